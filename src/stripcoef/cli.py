@@ -1,0 +1,58 @@
+"""Command-line interface: a thin layer over the Python API.
+
+Each subcommand lives in ``stripcoef.commands.<name>`` and exposes
+``add_parser(subparsers)`` and ``run(args) -> int``.  This module is the only
+place that turns errors into exit codes: a :class:`StripcoefError` (bad input,
+unreachable manoeuvre) prints one line and exits 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import warnings
+
+from .errors import StripcoefError
+
+#: Subcommands, in the order of the pipeline.
+COMMANDS = ("coefficients",)
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # argparse's usage errors: one line, exit 2
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="stripcoef",
+                     description="Hydrodynamic models of underwater vehicles by strip theory.")
+    from . import __version__
+    parser.add_argument("--version", action="version", version=f"stripcoef {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+    for name in COMMANDS:
+        module = importlib.import_module(f"stripcoef.commands.{name}")
+        module.add_parser(sub)
+    return parser
+
+
+def _showwarning(message, category, filename, lineno, file=None, line=None):
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    warnings.showwarning = _showwarning
+    try:
+        return int(args.func(args) or 0)
+    except StripcoefError as exc:
+        print(f"stripcoef {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

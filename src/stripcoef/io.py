@@ -1,0 +1,51 @@
+"""Atomic file output: write to a temporary file in the same folder, then rename.
+
+A failed run never leaves a partial file, and an existing file is replaced only
+by a complete new one.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+from .errors import InputError
+
+
+@contextmanager
+def atomic_path(path, *, key: str = "output"):
+    """Yield a temporary path next to ``path``; rename it onto ``path`` on success."""
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputError("folder does not exist", key=key, value=str(path),
+                         expected="a path in an existing, writable folder")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    except OSError as exc:
+        raise InputError(f"cannot write ({exc.strerror})", key=key, value=str(path),
+                         expected="a path in an existing, writable folder") from None
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def write_text(path, text: str, *, key: str = "output") -> None:
+    """Write ``text`` to ``path`` atomically."""
+    with atomic_path(path, key=key) as tmp:
+        tmp.write_text(text)
+
+
+def write_bytes(path, data: bytes, *, key: str = "output") -> None:
+    """Write ``data`` to ``path`` atomically."""
+    with atomic_path(path, key=key) as tmp:
+        tmp.write_bytes(data)

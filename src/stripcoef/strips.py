@@ -1,0 +1,177 @@
+"""Strips: the body cut into slices along x, each with the 2D parts of its section.
+
+A :class:`Strips` object is the hand-off between geometry (vehicle file or
+mesh) and the section coefficients.  Each strip ``i`` has a centre ``x[i]`` and
+a width ``dx[i]``; its section is the set of :class:`Part` entries that cover
+strip ``i`` (the hull, appendages, fins, or the polygons of a mesh slice), and
+the :class:`HoleCut` entries that cross it.
+
+Coordinates are FRD body axes [m].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+#: Shapes a :class:`Part` may have; the section registry (stripcoef.sections) knows each.
+PART_SHAPES = ("ellipse", "rectangle", "polygon")
+
+
+@dataclass
+class Part:
+    """One 2D part of the sections of a run of strips (vectorised over those strips).
+
+    Attributes
+    ----------
+    name : str
+        Hull, appendage or polygon name.
+    shape : str
+        ``ellipse`` (a circle when both half-axes are equal), ``rectangle`` or
+        ``polygon`` (arbitrary contours, from a mesh; see ``contours``).
+    index : (k,) int array
+        Strip indices the part covers.
+    y, z : (k,) arrays
+        Centre of the part's section [m]
+    half_breadth, half_height : (k,) arrays
+        Half-extent along y and along z [m]
+    area : (k,) array
+        Section area [m^2] (solid material / displaced water; 0 for a hollow duct wall's
+        entrained water, see ``entrained_area``)
+    entrained_area : (k,) array
+        Water inside the part that moves with it in cross-flow (duct interior) [m^2]
+    rounded : bool
+        Rounded edges (Re-dependent drag) or sharp edges (Re-independent drag)
+    length : float
+        Length of the part along x [m] (finite-length drag correction)
+    role : str
+        ``hull``, ``appendage`` or ``fin``
+    contours : list, optional
+        For ``polygon`` parts: per strip, a list of (n, 2) arrays of (y, z) rings
+        (outer rings counter-clockwise, holes clockwise).
+    """
+
+    name: str
+    shape: str
+    index: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+    half_breadth: np.ndarray
+    half_height: np.ndarray
+    area: np.ndarray
+    entrained_area: np.ndarray | None = None
+    rounded: bool = True
+    length: float = 0.0
+    role: str = "appendage"
+    contours: list | None = None
+
+    def __post_init__(self):
+        self.index = np.asarray(self.index, dtype=int)
+        k = self.index.size
+        for attr in ("y", "z", "half_breadth", "half_height", "area"):
+            val = np.broadcast_to(np.asarray(getattr(self, attr), dtype=float), (k,)).copy()
+            setattr(self, attr, val)
+        if self.entrained_area is None:
+            self.entrained_area = np.zeros(k)
+        else:
+            self.entrained_area = np.broadcast_to(
+                np.asarray(self.entrained_area, dtype=float), (k,)).copy()
+
+
+@dataclass
+class HoleCut:
+    """A through-hole crossing some strips.
+
+    Attributes
+    ----------
+    name : str
+    axis : str
+        ``y`` or ``z``: the hole's axis.  Motion along the axis passes freely;
+        motion across it carries the water inside.
+    index : (k,) int array
+        Strip indices crossed.
+    chord : (k,) array
+        Width of the hole in the strip's section, across the axis [m]
+    depth : (k,) array
+        Length of the hole through the hull, along the axis [m]
+    y, z : (k,) arrays
+        Centre of the hole's water in the section [m]
+    """
+
+    name: str
+    axis: str
+    index: np.ndarray
+    chord: np.ndarray
+    depth: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+
+
+@dataclass
+class Strips:
+    """The body cut into ``n`` strips along x.
+
+    Attributes
+    ----------
+    x : (n,) array
+        Strip centres [m]
+    dx : (n,) array
+        Strip widths [m]
+    parts : list of Part
+    holes : list of HoleCut
+    length : float
+        Body length used for hull-level formulas [m]
+    """
+
+    x: np.ndarray
+    dx: np.ndarray
+    parts: list[Part] = field(default_factory=list)
+    holes: list[HoleCut] = field(default_factory=list)
+
+    @property
+    def n(self) -> int:
+        return int(self.x.size)
+
+    @property
+    def x_min(self) -> float:
+        return float(self.x[0] - 0.5 * self.dx[0])
+
+    @property
+    def x_max(self) -> float:
+        return float(self.x[-1] + 0.5 * self.dx[-1])
+
+    @property
+    def length(self) -> float:
+        return self.x_max - self.x_min
+
+    def hull_parts(self) -> list[Part]:
+        return [p for p in self.parts if p.role == "hull"]
+
+    def strip(self, i: int) -> dict:
+        """Everything known about strip ``i``: x, dx, the parts and holes crossing it."""
+        parts = []
+        for p in self.parts:
+            k = np.nonzero(p.index == i)[0]
+            if k.size:
+                k = int(k[0])
+                parts.append({"name": p.name, "shape": p.shape, "role": p.role,
+                              "y": float(p.y[k]), "z": float(p.z[k]),
+                              "half_breadth": float(p.half_breadth[k]),
+                              "half_height": float(p.half_height[k]),
+                              "area": float(p.area[k])})
+        holes = []
+        for h in self.holes:
+            k = np.nonzero(h.index == i)[0]
+            if k.size:
+                k = int(k[0])
+                holes.append({"name": h.name, "axis": h.axis, "chord": float(h.chord[k]),
+                              "depth": float(h.depth[k])})
+        return {"index": i, "x": float(self.x[i]), "dx": float(self.dx[i]),
+                "parts": parts, "holes": holes}
+
+
+def uniform_stations(x_min: float, x_max: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Centres and widths of ``n`` equal strips covering [x_min, x_max] [m]."""
+    edges = np.linspace(x_min, x_max, n + 1)
+    return 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
