@@ -41,6 +41,10 @@ class Part:
         entrained water, see ``entrained_area``)
     entrained_area : (k,) array
         Water inside the part that moves with it in cross-flow (duct interior) [m^2]
+    iyy, izz : (k,) arrays
+        Second moments of the section area about its centre,
+        ``iyy = int (y - y_c)^2 dA`` and ``izz = int (z - z_c)^2 dA`` [m^4]
+        (rigid-body inertia from density zones)
     rounded : bool
         Rounded edges (Re-dependent drag) or sharp edges (Re-independent drag)
     length : float
@@ -61,6 +65,8 @@ class Part:
     half_height: np.ndarray
     area: np.ndarray
     entrained_area: np.ndarray | None = None
+    iyy: np.ndarray | None = None
+    izz: np.ndarray | None = None
     rounded: bool = True
     length: float = 0.0
     role: str = "appendage"
@@ -72,11 +78,11 @@ class Part:
         for attr in ("y", "z", "half_breadth", "half_height", "area"):
             val = np.broadcast_to(np.asarray(getattr(self, attr), dtype=float), (k,)).copy()
             setattr(self, attr, val)
-        if self.entrained_area is None:
-            self.entrained_area = np.zeros(k)
-        else:
-            self.entrained_area = np.broadcast_to(
-                np.asarray(self.entrained_area, dtype=float), (k,)).copy()
+        for attr in ("entrained_area", "iyy", "izz"):
+            val = getattr(self, attr)
+            val = np.zeros(k) if val is None else np.broadcast_to(
+                np.asarray(val, dtype=float), (k,)).copy()
+            setattr(self, attr, val)
 
 
 @dataclass
