@@ -119,3 +119,19 @@ def test_cli_bad_model_file_and_existing_output_kept(tmp_path, capsys):
     rc = cli.main(["simulate", str(tmp_path / "missing.yaml"), "--inputs",
                    str(tmp_path / "in.csv"), "--out", str(out)])
     assert rc == 2 and "file not found" in capsys.readouterr().err
+
+
+def test_cli_passes_other_columns_through_to_effects_and_log(tmp_path):
+    # a calibrated model with a tether drag effect reads tether_length from the inputs
+    model, _ = videoray_like(tmp_path)
+    model.effects = [{"name": "buoyancy_offset", "dof": "surge", "parameters": {"b": 0.5}}]
+    mpath = tmp_path / "cal.yaml"
+    save_model(model, mpath)
+    write_inputs(tmp_path / "in.csv", {"t": [0.0, 40.0], "X": [0.0, 0.0],
+                                      "tether_length": [3.0, 3.0]})
+    rc = cli.main(["simulate", str(mpath), "--inputs", str(tmp_path / "in.csv"),
+                   "--out", str(tmp_path / "out.csv"), "--dt", "1"])
+    assert rc == 0
+    log = read_log(tmp_path / "out.csv")
+    np.testing.assert_allclose(log["tether_length"], 3.0)
+    assert log["u"][-1] > 0.05  # the constant 0.5 N offset pushes it forward

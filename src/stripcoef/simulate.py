@@ -137,7 +137,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
              interpolation: str = "previous", rtol: float = 1e-8, atol: float = 1e-10,
              method: str = "RK45", max_step: float | None = None,
              extra_force: Callable | None = None, effects: bool = True,
-             munk: bool = True) -> Log:
+             munk: bool = True, channels: dict | None = None) -> Log:
     r"""Simulate the 6-DOF motion of ``model`` and return it as a log.
 
     .. math::
@@ -180,11 +180,14 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         side but not to the logged applied forces (an undeclared effect). ``inputs`` is
         a dict with ``commands`` (name -> command), ``thrust`` (name -> [N]), ``tau``
         (applied force, (6,)), ``nu_c`` (current in body axes, (6,)), ``nu_r`` ((6,)),
-        ``model`` and ``columns`` (other sampled columns, see ``channels``).
+        ``model`` and ``columns`` (the ``channels`` at that time).
     effects : bool
         Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.identify.effects`).
     munk : bool
         Keep the Munk moment in C_A (``HydroModel.coriolis``).
+    channels : dict, optional
+        Other logged signals over ``t`` (e.g. ``tether_length`` [m]) that effects read;
+        held like the inputs and copied into the output log.
 
     Returns
     -------
@@ -235,6 +238,11 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     inputs_series = np.hstack([cmd, force_series])
     sampler = _Sampler(t, inputs_series, interpolation)
     current_fn = _current_function(current, t, interpolation)
+    chan_names = list(channels or {})
+    chan_sampler = None
+    if chan_names:
+        chan_series = np.column_stack([_as_series(channels[k], n, 1, k) for k in chan_names])
+        chan_sampler = _Sampler(t, chan_series, interpolation)
 
     eta0 = np.zeros(6) if eta0 is None else _as_series(eta0, 1, 6, "eta0").reshape(6)
     nu0 = np.zeros(6) if nu0 is None else _as_series(nu0, 1, 6, "nu0").reshape(6)
@@ -266,7 +274,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
 
     def rhs(time, y):
         eta, nu = y[:6], y[6:]
-        c, thrust, tau = applied(time)
+        c, thrust, tau = hold["applied"] if hold["values"] is not None else applied(time)
         nu_c = np.zeros(6)
         nu_c_dot = np.zeros(6)
         if current_fn is not None:
@@ -284,7 +292,9 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
                      + m_added @ nu_c_dot)
         if effect_terms or extra_force is not None:
             inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
-                      "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model}
+                      "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
+                      "columns": (dict(zip(chan_names, chan_sampler(time)))
+                                  if chan_sampler is not None else {})}
             for term in effect_terms:
                 rhs_force = rhs_force + term(time, eta, nu, inputs)
             if extra_force is not None:
@@ -312,6 +322,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         # Hold the inputs of sample a over [t_a, t_b] (no jump inside the segment).
         hold["values"] = inputs_series[a] if interpolation == "previous" and force_fn is None \
             else None
+        if hold["values"] is not None:
+            hold["applied"] = applied(t[a])
         sol = solve_ivp(rhs, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
         if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
             raise UnreachableError(f"simulation failed between t = {t[a]:g} s and "
@@ -331,6 +343,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         cols[name] = taus[:, i]
     for name in commanded:
         cols[COMMAND_PREFIX + name] = cmd[:, names.index(name)]
+    for k, name in enumerate(chan_names):
+        cols[name] = chan_series[:, k]
     meta = {"model": model.name, "interpolation": interpolation}
     if current is not None and not callable(current):
         meta["current"] = np.asarray(current, dtype=float).tolist()

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..conventions import FORCES
 from ..errors import InputError
-from ..logs import read_log
+from ..logs import KNOWN_COLUMNS, read_log
 
 
 def add_parser(subparsers):
@@ -50,7 +50,8 @@ def parse_vector(text: str, *, key: str, size: int = 3) -> np.ndarray:
 
 
 def inputs_from_log(log, model, times=None, *, interpolation="previous"):
-    """Forces (n,6) or None and commands dict from an inputs log, resampled at ``times``."""
+    """Times, forces (n,6) or None, commands and other channels (e.g. ``tether_length``)
+    from an inputs log, resampled at ``times``."""
     t_in = log.require("t")
     if len(t_in) < 2:
         raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
@@ -81,7 +82,9 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
     forces = log.forces()
     forces = None if forces is None else np.column_stack([resample(c) for c in forces.T])
     commands = {k: resample(v) for k, v in cmds.items()}
-    return np.asarray(times, float), forces, commands
+    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds}
+    channels = {k: resample(v) for k, v in log.columns.items() if k not in skip}
+    return np.asarray(times, float), forces, commands, channels
 
 
 def run(args) -> int:
@@ -99,9 +102,10 @@ def run(args) -> int:
         t_in = log.require("t")
         times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
         times = times[times <= t_in[-1] + 1e-12]
-    times, forces, commands = inputs_from_log(log, model, times,
-                                              interpolation=args.interpolation)
+    times, forces, commands, channels = inputs_from_log(log, model, times,
+                                                        interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
+                   channels=channels,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "
