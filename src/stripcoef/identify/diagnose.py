@@ -167,8 +167,28 @@ def _profile_hyper(cfg: _Config, mask):
         cands = eff.candidates(cfg.data, cfg.dof)
         if cands.size == 0:
             return np.array([0.0])
-        costs = [float(np.sum(cost_vec(np.array([c])) ** 2)) for c in cands]
-        return np.array([cands[int(np.argmin(costs))]])
+        def cost(c):
+            return float(np.sum(cost_vec(np.array([c])) ** 2))
+
+        costs = np.array([cost(c) for c in cands])
+        k = int(np.argmin(costs))
+        lo = cands[max(k - 1, 0)]
+        hi = cands[min(k + 1, cands.size - 1)]
+        # fine search: the cost only changes when the threshold crosses a command level of
+        # the fitting windows, so evaluate between consecutive levels near the coarse optimum
+        act = cfg.data.acting(cfg.dof)
+        rows = np.zeros(cfg.data.t.size, bool)
+        for a, b in zip(cfg.data.i0[mask], cfg.data.i1[mask]):
+            rows[a:b] = True
+        levels = np.unique(np.abs(cfg.data.commands[rows][:, act]))
+        levels = levels[(levels >= lo) & (levels <= hi)]
+        if levels.size >= 2:
+            mids = 0.5 * (levels[1:] + levels[:-1])
+            fine = np.array([cost(c) for c in mids])
+            j = int(np.argmin(fine))
+            # the threshold is only known to lie between two levels: take their middle
+            return np.array([mids[j]])
+        return np.array([cands[k]])
     best = None
     for start in ([0.0, 0.0], [0.2, 0.0], [0.0, 0.2], [-0.2, 0.0], [0.0, -0.2]):
         sol = least_squares(cost_vec, np.asarray(start, float), method="lm", x_scale=0.1)
@@ -294,17 +314,14 @@ def _structure(data: WindowData, dof: int, resid, candidates):
 
 
 def _generic_basis(data: WindowData, dof: int):
-    cols = []
-    for j in range(6):
-        v = data.nu[:, j]
-        if np.std(v) < 1e-9:
-            continue
-        cols += [data.mean(v), data.mean(v * np.abs(v))]
-        if j == dof:
-            cols += [data.mean(v ** 3), data.mean(np.sign(v)), data.rate(v)]
+    """Generic regressors for the structure test: shapes in the DOF's own velocity and
+    force the library does not use (cube, sign), the heading, other logged channels and
+    the thruster commands. Small on purpose: it must not overfit the held-out windows."""
+    v = data.nu[:, dof]
+    cols = [data.mean(v ** 3), data.mean(np.sign(v)), data.mean(np.sqrt(np.abs(v)) * v)]
     f = data.tau[:, dof]
     if np.std(f) > 0:
-        cols += [data.mean_held(f), data.mean_held(np.abs(f))]
+        cols += [data.mean_held(f * np.abs(f)), data.mean_held(np.abs(f))]
     psi = data.eta[:, 5]
     if np.ptp(psi) > 0.1:
         cols += [data.mean(np.cos(psi)), data.mean(np.sin(psi))]
@@ -313,9 +330,9 @@ def _generic_basis(data: WindowData, dof: int):
         if name not in KNOWN_COLUMNS and not name.startswith("n_") and np.std(x) > 0:
             cols += [data.mean(x)]
     if data.commands is not None:
-        for k in range(data.commands.shape[1]):
-            if np.std(data.commands[:, k]) > 0:
-                cols += [data.mean_held(np.abs(data.commands[:, k]))]
+        others = [k for k in range(data.commands.shape[1]) if k not in data.acting(dof)]
+        if others:
+            cols += [data.mean_held(np.abs(data.commands[:, others]).mean(axis=1))]
     cols.append(np.ones(data.n_windows))
     return np.column_stack(cols)
 
@@ -470,7 +487,7 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
         if dbic > -MIN_DELTA_BIC:
             reasons.append(f"delta BIC {dbic:.1f} > -{MIN_DELTA_BIC:g}")
     if z < MIN_Z:
-        reasons.append(f"|theta|/sigma {z:.1f} < {MIN_Z:g}")
+        reasons.append(f"z = {z:.1f} < {MIN_Z:g} (parameter / its std)")
     if not eff.plausible(params):
         reasons.append("implausible parameters")
     if not signature and not mimic and key:
@@ -581,8 +598,10 @@ def diagnose(log, model, *, dof="all", window: float = 2.0, effects=None,
     out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
                       for d, r in per.items()}
     if resimulate:
-        out["resimulated_velocity_rms"] = {
-            d: resimulated_errors(log, model, calibrated, parse_dof(d), per[d]) for d in per}
+        out["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
+        out["resimulated_velocity_description"] = (
+            "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF: "
+            "the prior, the prior with its calibrated coefficients, and the final model")
     out["_per_dof_internal"] = per
     out["model"] = calibrated
     return out
@@ -629,28 +648,37 @@ def calibrated_model(model, per: dict):
     return m
 
 
-def resimulated_errors(log, prior, calibrated, dof: int, result: dict) -> dict:
-    """RMS of the re-simulated velocity in ``dof`` for the prior, the prior with only its
-    calibrated coefficients, and the final calibrated model [m/s or rad/s]."""
-    only_cal = calibrated_model(prior, {DOF[dof]: {**result, "steps": [],
-                                                   "_final_config": _Config(
-                                                       result["_final_config"].data, dof,
-                                                       None, None, [])}})
+def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
+    """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
+    only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
+    simulation diverges)."""
+    only_cal = copy.deepcopy(prior)
     only_cal.added_mass = np.array(prior.added_mass, float)
     only_cal.linear_damping = np.array(prior.linear_damping, float)
     only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
-    cal = result["calibration"]["parameters"]
-    for key, mat in (("M", only_cal.added_mass), ("D_L", only_cal.linear_damping),
-                     ("D_Q", only_cal.quadratic_damping)):
-        if key in cal:
-            mat[dof, dof] += cal[key]
-    return {"baseline": resimulate_rms(log, prior, dof),
-            "calibrated": resimulate_rms(log, only_cal, dof),
-            "final": resimulate_rms(log, calibrated, dof)}
+    for d, r in per.items():
+        i = parse_dof(d)
+        cal = r["calibration"]["parameters"]
+        for key, mat in (("M", only_cal.added_mass), ("D_L", only_cal.linear_damping),
+                         ("D_Q", only_cal.quadratic_damping)):
+            if key in cal:
+                mat[i, i] += cal[key]
+    dofs = [parse_dof(d) for d in per]
+    rows = {name: resimulate_rms(log, m, dofs) for name, m in
+            (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
+    return {DOF[i]: {name: (None if rows[name] is None else rows[name][k])
+                     for name in rows} for k, i in enumerate(dofs)}
 
 
-def resimulate_rms(log, model, dof: int):
-    """RMS difference between the logged and the re-simulated velocity of ``dof``."""
+#: Horizon of the re-simulated velocity error [s]: the log is cut into segments of this
+#: length, each re-simulated from the logged state at its start (an open-loop simulation
+#: of a whole log of a directionally unstable vehicle drifts away whatever the model).
+RESIMULATION_HORIZON = 10.0
+
+
+def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
+    """RMS differences between the logged and the re-simulated velocities of ``dofs``
+    (list) over segments of ``horizon`` seconds, or None if a simulation diverges."""
     from ..conventions import POSE, VELOCITIES
     from ..errors import StripcoefError
     from ..logs import KNOWN_COLUMNS
@@ -659,17 +687,34 @@ def resimulate_rms(log, model, dof: int):
     t = log["t"]
     cmds = log.commands()
     forces = None if cmds else log.forces()
-    eta0 = [float(log.get(p, [0.0])[0]) for p in POSE]
-    nu0 = [float(log.get(v, [0.0])[0]) for v in VELOCITIES]
     channels = {k: v for k, v in log.columns.items()
                 if k not in KNOWN_COLUMNS and not k.startswith("n_")}
-    try:
-        sim = simulate(model, t, forces=forces, commands=cmds or None, eta0=eta0, nu0=nu0,
-                       channels=channels or None, rtol=1e-6, atol=1e-8)
-    except StripcoefError:
-        return None
-    v = VELOCITIES[dof]
-    return _rms(sim[v] - log.get(v, np.zeros(len(log))))
+    starts = [0]
+    while True:
+        nxt = int(np.searchsorted(t, t[starts[-1]] + horizon))
+        if nxt >= t.size - 2:
+            break
+        starts.append(nxt)
+    bounds = starts + [t.size]
+    err = {i: [] for i in dofs}
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        sl = slice(a, b)
+        if b - a < 2:
+            continue
+        eta0 = [float(log.get(p, np.zeros(t.size))[a]) for p in POSE]
+        nu0 = [float(log.get(v, np.zeros(t.size))[a]) for v in VELOCITIES]
+        try:
+            sim = simulate(model, t[sl], forces=None if forces is None else forces[sl],
+                           commands={k: v[sl] for k, v in cmds.items()} or None,
+                           eta0=eta0, nu0=nu0,
+                           channels={k: v[sl] for k, v in channels.items()} or None,
+                           rtol=1e-6, atol=1e-8)
+        except StripcoefError:
+            return None
+        for i in dofs:
+            v = VELOCITIES[i]
+            err[i].append(sim[v] - log.get(v, np.zeros(t.size))[sl])
+    return [_rms(np.concatenate(err[i])) for i in dofs]
 
 
 def public(result: dict) -> dict:

@@ -50,6 +50,11 @@ MAGNITUDES = {
 }
 
 
+#: Effects outside the library (for the ``unexplained`` checks): Coulomb-like friction of a
+#: rubbing tether or a cable guide, F = -c tanh(u / 0.02) [N].
+OUTSIDE = {"coulomb_friction": {"dof": "surge", "range": (0.3, 0.6), "unit": "N"}}
+
+
 def rov_model(*, linear_surge: bool = True) -> HydroModel:
     """A VideoRay Pro III-like ROV (seed 000, Table I) about its centre of buoyancy.
 
@@ -163,7 +168,7 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
     effects = [e for e in (effect, second) if e]
     truth = {"effect": effect, "second": second, "magnitude": None}
     for k, name in enumerate(effects):
-        rngm = MAGNITUDES[name]["range"]
+        rngm = {**MAGNITUDES, **OUTSIDE}[name]["range"]
         mag = magnitude if (magnitude is not None and k == 0) else rng.uniform(*rngm)
         if k == 0:
             truth["magnitude"] = float(mag)
