@@ -30,7 +30,11 @@ def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
     for key in ("effect", "parameters", "std", "error_before", "error_after",
                 "held_out_error_before", "held_out_error_after"):
         assert key in first
-    assert first["error_after"] < first["error_before"]
+    if first["signature"]:
+        assert first["error_after"] < first["error_before"]
+    else:  # a coefficient released from its band: the calibration had already absorbed it
+        assert abs(first["band_excess"]) >= 2.5
+        assert first["error_after"] <= 1.01 * first["error_before"]
 
 
 @pytest.mark.parametrize("seed", [21, 22, 23])

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import write_bytes, write_text
-from .diagnose import (BANDS, HELD_OUT_BLOCKS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
+from .diagnose import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, _fit, public)
 
 
@@ -113,8 +113,8 @@ def markdown_report(result: dict, path) -> None:
             out.append(f"| {d} | {_fmt(v['baseline'])} | {_fmt(v['calibrated'])} | "
                        f"{_fmt(v['final'])} |")
     out += ["", "## Method", "",
-            f"Held-out windows: blocks {', '.join(str(b + 1) for b in HELD_OUT_BLOCKS)} of "
-            f"{N_BLOCKS}. An effect is significant when the held-out error drops by "
+            f"Held-out error: blocked cross-validation, {N_BLOCKS} contiguous blocks each "
+            f"predicted by a fit on the others. An effect is significant when the held-out error drops by "
             f"{100 * MIN_HELD_OUT_GAIN:.0f} % or more, BIC by {MIN_DELTA_BIC:g} or more, a "
             f"signature parameter is {MIN_Z:g} sigma from zero and the parameters are "
             f"plausible; an effect without a signature in the log must push the prior "

@@ -42,6 +42,8 @@ from ..conventions import DOF, FORCES, parse_dof
 from ..errors import InputError, unknown_name
 
 TRANSLATIONAL = (0, 1, 2)
+#: 1-sigma relative uncertainty of the thrust maps (bench-measured C_t) [-]
+THRUST_BAND = 0.05
 
 
 # ---------------------------------------------------------------------------
@@ -139,6 +141,7 @@ class WindowData:
     e0: np.ndarray = field(default=None)
     columns: dict = field(default_factory=dict)
     source: str = ""
+    endpoint_halfwidth: int = 0
 
     @property
     def n_windows(self) -> int:
@@ -162,9 +165,42 @@ class WindowData:
         return (cum[self.i1] - cum[self.i0]) / (self.T if f.ndim == 1 else self.T[:, None])
 
     def rate(self, f) -> np.ndarray:
-        """(f(t1) - f(t0)) / T: the window-mean derivative."""
+        """(f(t1) - f(t0)) / T: the window-mean derivative.
+
+        The end values are means over ``2 h + 1`` samples centred on each end (``h =
+        endpoint_halfwidth``): white measurement noise enters the difference divided by
+        sqrt(2h + 1) while a smooth signal is unchanged to second order (its linear part
+        cancels in a centred mean). Noise in this term would otherwise bias the fitted
+        inertia low (errors in variables)."""
         f = np.asarray(f, dtype=float)
+        h = self.endpoint_halfwidth
+        if h > 0:
+            kern = np.ones(2 * h + 1) / (2 * h + 1)
+            if f.ndim == 1:
+                pad = np.pad(f, h, mode="edge")
+                f = np.convolve(pad, kern, mode="valid")
+            else:
+                pad = np.pad(f, ((h, h), (0, 0)), mode="edge")
+                f = np.column_stack([np.convolve(pad[:, j], kern, mode="valid")
+                                     for j in range(f.shape[1])])
         return (f[self.i1] - f[self.i0]) / (self.T if f.ndim == 1 else self.T[:, None])
+
+    def rate_noise_variance(self, dof: int) -> float:
+        r"""Variance of the noise of :meth:`rate` for velocity ``dof`` [(m/s^2)^2].
+
+        White velocity noise of variance :math:`\sigma_v^2`, estimated robustly from
+        second differences (:math:`\operatorname{var}(\Delta^2 v) = 6\sigma_v^2` for white
+        noise; median absolute deviation), gives :math:`2\sigma_v^2 / ((2h+1) T^2)`.
+        """
+        cache = self.__dict__.setdefault("_noise_cache", {})
+        if dof not in cache:
+            v = self.nu[:, dof]
+            d2 = v[2:] - 2 * v[1:-1] + v[:-2]
+            mad = 1.4826 * np.median(np.abs(d2 - np.median(d2))) if d2.size else 0.0
+            var_v = mad ** 2 / 6.0
+            h = self.endpoint_halfwidth
+            cache[dof] = float(2 * var_v / ((2 * h + 1) * np.mean(self.T ** 2)))
+        return cache[dof]
 
     def thruster_force(self, dof: int):
         """Per-sample generalized force in ``dof`` from each thruster (n, k), or None."""
@@ -226,7 +262,8 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     data = WindowData(log=log, model=model, t=t, nu=nu, eta=eta, tau=tau, thrust=thrust,
                       commands=commands, alloc=alloc, i0=i0, i1=i1, T=t[i1] - t[i0],
                       columns={k: v for k, v in log.columns.items()},
-                      source=log.source)
+                      source=log.source,
+                      endpoint_halfwidth=0)
     data.e0 = prior_residual(data, model)
     return data
 
@@ -292,6 +329,17 @@ class Effect:
         v = data.nu[:, dof]
         cols = {"M": -data.rate(v), "D_L": -data.mean(v), "D_Q": -data.mean(v * np.abs(v))}
         return np.column_stack([cols[n] for n in self.nuisance_names])
+
+    def nuisance_sd(self, data, dof) -> np.ndarray:
+        """Prior standard deviations of the nuisance parameters (inf = free)."""
+        nuis = self.nuisance(data, dof)
+        return np.full(0 if nuis is None else nuis.shape[1], np.inf)
+
+    def prior_sd(self, data, dof, hyper=None) -> np.ndarray:
+        """Prior standard deviations of all columns of :meth:`design` (inf = free)."""
+        ncols = self.design(data, dof, hyper)[1].shape[1]
+        sd = self.nuisance_sd(data, dof)
+        return np.concatenate([sd, np.full(ncols - sd.size, np.inf)])
 
     def own_design(self, data, dof, hyper=None):
         """(offset, columns) of the effect's own parameters."""
@@ -443,6 +491,16 @@ class ThrustAsymmetry(Effect):
         # D_Q together: fit it in the reference too, judge only the asymmetry
         pos, neg = self._parts(data, dof)
         return data.mean_held(pos + neg)[:, None]
+
+    def nuisance_sd(self, data, dof):
+        # the bench-measured thrust coefficients (seed 000 Table I, least squares on a
+        # load cell) are taken as known to THRUST_BAND: without this anchor a free thrust
+        # scale and the calibrated inertia and drag could all shrink together to zero
+        return np.array([THRUST_BAND])
+
+    def lower_bounds(self, data, dof, hyper=None):
+        # thrust scale > -0.9: the thrusters deliver at least 10 % of their map
+        return np.array([-0.9, -np.inf])
 
     def own_design(self, data, dof, hyper=None):
         pos, neg = self._parts(data, dof)
@@ -795,6 +853,7 @@ class AddedMassError(Effect):
     """
 
     name = "added_mass_error"
+    inertia = True  # its column multiplies the acceleration (profiled, see diagnose._solve)
     summary = "wrong total inertia, visible in transients"
     source = "Fossen (2011) sec. 6.3; seed 000 Table I"
     parameters = {"delta_m": "kg or kg m^2"}
@@ -803,6 +862,10 @@ class AddedMassError(Effect):
 
     def signature(self, data, dof):
         return ""
+
+    def lower_bounds(self, data, dof, hyper=None):
+        # no negative added mass (the released inertia stays >= the rigid-body one)
+        return np.array([-abs(float(data.model.added_mass[dof, dof]))])
 
     def own_design(self, data, dof, hyper=None):
         return None, -data.rate(data.nu[:, dof])[:, None]
