@@ -80,7 +80,7 @@ ROV2_LENGTH = 0.3904       # [m]  (from the in-air alpha = -25.128, seed 003 sec
 ROV2_THETA0 = np.radians(45.0)
 ROV2_FPS = 30.0
 ROV2_DURATION = 12.0       # [s]
-ROV2_NOISE = 0.01          # [rad] marker-tracking noise on the angle
+ROV2_NOISE = 0.03          # [rad] marker-tracking noise on the angle
 
 
 def pendulum_rhs(alpha, beta, gamma):
