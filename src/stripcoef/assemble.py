@@ -63,7 +63,7 @@ def displaced_volume(strips: Strips):
     vol = 0.0
     mom = np.zeros(3)
     for p in strips.parts:
-        dv = p.area * strips.dx[p.index]
+        dv = p.area * strips.width(p)
         vol += dv.sum()
         mom += np.array([(dv * strips.x[p.index]).sum(), (dv * p.y).sum(), (dv * p.z).sum()])
     for h, dv in _hole_water(strips):
@@ -113,7 +113,7 @@ def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb
     elems = []  # (dm, r, second-moment diag contribution)
     for p in strips.parts:
         xs = strips.x[p.index]
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         dens = _density_of(p, xs, vehicle, rho_default) if zones else np.full(xs.size, 1.0)
         dm = dens * p.area * dx
         elems.append((dm, np.column_stack([xs, p.y, p.z]),
@@ -215,7 +215,7 @@ def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
         h2[:, 1, 2] = dy
         m = np.einsum("kji,kjl,klm->kim", h2, m, h2)
         L = _strip_operator(strips.x[p.index] - x0)
-        total += np.einsum("k,kji,kjl,klm->im", strips.dx[p.index], L, m, L)
+        total += np.einsum("k,kji,kjl,klm->im", strips.width(p), L, m, L)
     return total
 
 
@@ -329,7 +329,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     max_d = 0.0
     x_h = y_h = z_h = 0.0
     for p in hull_parts:
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         per = (_ellipse_perimeter(p.half_breadth, p.half_height) if p.shape == "ellipse"
                else 4.0 * (p.half_breadth + p.half_height))
         s_wet += float((per * dx).sum())
@@ -370,16 +370,19 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
                 / max(a_front, 1e-12)   # friction on both faces, per frontal area
         else:
             cd_a = float(sdrag.blunt_cylinder_axial_cd(ld))
-        w = p.area * strips.dx[p.index]
+        w = p.area * strips.width(p)
         xc = float((w * strips.x[p.index]).sum() / max(w.sum(), 1e-300))
         elems.append((np.array([xc, float(np.mean(p.y)), float(np.mean(p.z))]),
                       np.array([0.5 * rho * cd_a * a_front, 0, 0]), np.array([2.0, 2, 2])))
     # --- cross-flow per strip element
     hull_cd = {}
     for p in strips.parts:
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         hy, hz = 2 * p.half_height, 2 * p.half_breadth      # extents across y- and z-flow
-        re_y, re_z = speed * hy / nu, speed * hz / nu
+        # one Reynolds number per part, on its largest extent across the flow: the regime
+        # of a body is set by its main diameter, not by the tapering tips (MSS cylinderDrag.m)
+        re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
+        re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
         cd_y, cd_z = section_drag(p, re_y, re_z)
         n_y = _local_exponent(lambda re: section_drag(p, re, re_z)[0], re_y)
         n_z = _local_exponent(lambda re: section_drag(p, re_y, re)[1], re_z)
