@@ -310,7 +310,6 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     about = np.asarray(about, float)
     L = strips.length
     omega = speed / (0.5 * L)
-    s_ref = np.array([speed] * 3 + [omega] * 3)
     elems = []  # (r (3,), c (3,) [kg/m], n (3,))
     cond = {"reference_speed": speed, "reference_rate": omega}
 
@@ -420,15 +419,15 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
         rel = np.asarray(r, float) - about
         G = np.hstack([np.eye(3), -skew(rel)])   # local velocity for unit DOF motion
         a_hat, b_hat = power_law_split(n)
+        # linear part: a linear force law -k V on the local velocity, k = a_hat c U, so
+        # D_L = sum G^T diag(k) G is a congruence and moves between points exactly
+        d_lin += G.T @ np.diag(a_hat * c * speed) @ G
         for j in range(6):
             v = G[:, j]
             if not np.any(v):
                 continue
             f_q = b_hat * c * np.abs(v) * v                   # -> D_Q column (positive)
-            f_l = a_hat * c * np.abs(v) * v * s_ref[j]        # -> D_L column
             d_quad[:, j] += np.concatenate([f_q, np.cross(rel, f_q)])
-            d_lin[:, j] += np.concatenate([f_l, np.cross(rel, f_l)])
-    # numerical noise below 1e-12 of the largest term is exactly zero by symmetry
     return _clean(d_lin), _clean(d_quad), cond
 
 
