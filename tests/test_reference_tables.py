@@ -84,6 +84,22 @@ def test_computed_row_reproduces_its_formula(source, name):
     assert row["value"] == pytest.approx(value, rel=1e-5, abs=1e-12), row["formula"]
 
 
+@pytest.mark.parametrize("check", [
+    pytest.param(c, id=f"{c.source}:{c.computed}",
+                 marks=pytest.mark.xfail(strict=True, reason=f"{c.source}: {c.mismatch}") if c.mismatch else ())
+    for c in ref.CHECKS])
+def test_paper_internal_consistency(check):
+    """A number the paper prints equals what the paper's own inputs give (to printed precision)."""
+    assert ref.agrees(ref.reference_value(check.source, check.printed), ref.recompute(check.source, check.computed))
+
+
+def test_check_results_report_every_check():
+    results = ref.check_results()
+    assert len(results) == len(ref.CHECKS)
+    for r in results:
+        assert r["agrees"] == (r["check"].mismatch is None), r["check"]
+
+
 def test_printed_precision():
     assert ref.printed_precision("21.42") == pytest.approx(0.005)
     assert ref.printed_precision("0.5800") == pytest.approx(5e-5)
@@ -184,26 +200,10 @@ def test_videoray_beta_over_gamma_is_0_0416():
     assert float(f"{value:.3g}") == 0.0416
 
 
-def test_videoray_N_r_is_alpha_over_gamma():
-    assert agrees(V, "N_r.experimental", ref.recompute(V, "N_r.from_yaw_fit"))
-
-
-def test_videoray_N_rdot_is_inverse_gamma_minus_I_zz():
+def test_videoray_gamma_is_about_z():
+    """1/gamma - I_zz reproduces N_rdot; the text's 'about y-axis' (I_yy) does not (a CHECKS mismatch)."""
     assert agrees(V, "N_rdot.experimental", ref.recompute(V, "N_rdot.from_yaw_fit"))
-    # the text says gamma is the inverse inertia 'about y-axis': I_yy does not reproduce Table I
     assert not agrees(V, "N_rdot.experimental", ref.recompute(V, "N_rdot.from_yaw_fit_with_I_yy"))
-
-
-@pytest.mark.xfail(strict=True, reason="VideoRay Table I prints N_r|r| (experimental) = 0.4504 while its own "
-                   "beta/gamma = 1.1219/26.95 = 0.0416 (10.8x smaller)")
-def test_videoray_N_rr_table_matches_beta_over_gamma():
-    assert agrees(V, "N_rr.experimental", ref.recompute(V, "N_rr.from_yaw_fit"))
-
-
-@pytest.mark.xfail(strict=True, reason="VideoRay sec. IV.A: the paper's model predicts 0.51 m/s at n = 60, but "
-                   "Table I's experimental X_u, X_u|u| and two thrusters T = Ct n|n| give 0.483 m/s")
-def test_videoray_predicted_surge_speed_from_table1():
-    assert agrees(V, "verification.u_predicted", ref.recompute(V, "verification.u_steady_from_table1"))
 
 
 def test_videoray_table1_is_positive_magnitudes():
@@ -219,60 +219,17 @@ def test_videoray_table1_is_positive_magnitudes():
 R = "rov2"
 
 
-@pytest.mark.parametrize("p", ["m_a", "K_L", "K_Q", "rms"])
-def test_rov2_table2_average_is_mean_of_tests(p):
-    assert agrees(R, f"surge.average.{p}", ref.recompute(R, f"surge.mean_of_tests.{p}"))
-
-
-@pytest.mark.parametrize("computed,printed", [
-    ("scale.drag_factor_exact", "scale.drag_factor"),
-    ("scale.rot_drag_factor_exact", "scale.rot_drag_factor"),
-])
-def test_rov2_printed_scale_factors(computed, printed):
-    assert agrees(R, printed, ref.recompute(R, computed))
-
-
-SCALED = [
-    ("surge.K_L.scaled", "surge.K_L.experiment", None),
-    ("surge.m_a.scaled", "surge.experiment",
-     "ROV II: Table II average 0.5800 kg x (1/0.3)^3 = 21.48 kg, Table III prints 21.42 (reproduced by 3.33^3)"),
-    ("surge.K_Q.scaled", "surge.K_Q.experiment",
-     "ROV II: Table II average 9.5439 x (1/0.3)^2 = 106.04, Table IV prints 106.03 (reproduced by x 11.11)"),
-    ("surge.K_Q.scaled_printed_factor", "surge.K_Q.experiment",
-     "ROV II: 9.5439 x 11.111 (eq. 9's printed factor) = 106.04, Table IV prints 106.03"),
-    ("surge.m_a.scaled_ratio_3.33", "surge.experiment", None),
-    ("surge.K_Q.scaled_factor_11.11", "surge.K_Q.experiment", None),
-]
-
-
-@pytest.mark.parametrize("computed,printed,reason", [
-    pytest.param(c, p, r, id=c, marks=pytest.mark.xfail(strict=True, reason=r) if r else ())
-    for c, p, r in SCALED])
-def test_rov2_tables_3_4_are_table2_scaled(computed, printed, reason):
-    assert agrees(R, printed, ref.recompute(R, computed))
-
-
 def test_rov2_every_rederivable_table3_4_entry_is_checked():
     """Every surge 'Experiment' entry of Tables III/IV (the only direction with model-scale data in
     Table II; sway/heave/yaw were 'not shown') is compared in SCALED."""
     surge_rows = {r["name"] for t in ("table3_added_mass", "table4_drag") for r in ref.load_table(R, t)
                   if r["name"].startswith("surge.") and r["name"].endswith("experiment")}
-    assert surge_rows and surge_rows <= {p for _, p, _ in SCALED}
+    checked = {c.printed for c in ref.CHECKS if c.source == R}
+    assert surge_rows and surge_rows <= checked
 
 
-def test_rov2_in_air_pendulum_length_uses_g_9_81():
-    assert agrees(R, "air.r_from_alpha", ref.recompute(R, "air.r_from_alpha_g9.81"))
+def test_rov2_in_air_measured_length_matches_fitted():
     assert agrees(R, "air.r_measured", val(R, "air.r_from_alpha"))
-
-
-def test_rov2_in_air_K_Q_was_computed_as_gamma_M_r():
-    assert agrees(R, "air.K_Q", ref.recompute(R, "air.K_Q_from_gamma_times_r"))
-
-
-@pytest.mark.xfail(strict=True, reason="ROV II in-air text: with the printed gamma = -K_Q r/(M+m_a) and the mass "
-                   "implied by beta and K_L (0.304 kg), K_Q = 0.0374, not the printed 0.0057")
-def test_rov2_in_air_K_Q_follows_its_printed_formula():
-    assert agrees(R, "air.K_Q", ref.recompute(R, "air.K_Q_from_gamma_eq4"))
 
 
 @pytest.mark.xfail(strict=True, reason="ROV II in-air text: beta & K_L imply M = 0.304 kg, gamma & K_Q imply 0.046 kg")

@@ -37,6 +37,7 @@ import difflib
 import math
 import os
 import re
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
@@ -292,3 +293,70 @@ def agrees(row: dict, value: float) -> bool:
     if atol is None and rtol is None:
         atol = printed_precision(row["value_text"])
     return abs(value - row["value"]) <= (atol or 0.0) + (rtol or 0.0) * abs(row["value"])
+
+
+# ---------------------------------------------------------------------------
+# Internal-consistency checks of the papers (used by the tests and docs/validation.md)
+# ---------------------------------------------------------------------------
+
+
+
+@dataclass(frozen=True)
+class Check:
+    """A computed row compared with a printed row of the same source.
+
+    ``mismatch`` is ``None`` when the paper is consistent, else the reason it is not (the
+    test of a mismatch is a strict xfail with this reason).
+    """
+
+    source: str
+    computed: str
+    printed: str
+    mismatch: str | None = None
+
+
+#: Every numeric cross-check between a paper's printed numbers and what its own inputs give.
+CHECKS: tuple[Check, ...] = (
+    Check("videoray_pro3", "N_r.from_yaw_fit", "N_r.experimental"),
+    Check("videoray_pro3", "N_rdot.from_yaw_fit", "N_rdot.experimental"),
+    Check("videoray_pro3", "N_rr.from_yaw_fit", "N_rr.experimental",
+          "Table I prints N_r|r| = 0.4504; its own beta/gamma = 1.1219/26.95 = 0.0416 (10.8x smaller)"),
+    Check("videoray_pro3", "N_rdot.from_yaw_fit_with_I_yy", "N_rdot.experimental",
+          "the text says gamma is the inverse inertia 'about y-axis'; with I_yy, 1/gamma - I_yy = 0.0132, "
+          "not Table I's 0.0118 (I_zz reproduces it)"),
+    Check("videoray_pro3", "verification.u_steady_from_table1", "verification.u_predicted",
+          "the paper's model predicts 0.51 m/s at n = 60; Table I's experimental X_u, X_u|u| with two "
+          "thrusters T = Ct n|n| give 0.483 m/s"),
+    Check("rov2", "surge.mean_of_tests.m_a", "surge.average.m_a"),
+    Check("rov2", "surge.mean_of_tests.K_L", "surge.average.K_L"),
+    Check("rov2", "surge.mean_of_tests.K_Q", "surge.average.K_Q"),
+    Check("rov2", "surge.mean_of_tests.rms", "surge.average.rms"),
+    Check("rov2", "scale.drag_factor_exact", "scale.drag_factor"),
+    Check("rov2", "scale.rot_drag_factor_exact", "scale.rot_drag_factor"),
+    Check("rov2", "surge.K_L.scaled", "surge.K_L.experiment"),
+    Check("rov2", "surge.m_a.scaled", "surge.experiment",
+          "Table II average 0.5800 kg x (1/0.3)^3 = 21.48 kg; Table III prints 21.42 (= 0.58 x 3.33^3)"),
+    Check("rov2", "surge.m_a.scaled_ratio_3.33", "surge.experiment"),
+    Check("rov2", "surge.K_Q.scaled", "surge.K_Q.experiment",
+          "Table II average 9.5439 x (1/0.3)^2 = 106.04; Table IV prints 106.03 (= 9.5439 x 11.11)"),
+    Check("rov2", "surge.K_Q.scaled_printed_factor", "surge.K_Q.experiment",
+          "9.5439 x 11.111 (eq. 9's printed factor) = 106.04; Table IV prints 106.03"),
+    Check("rov2", "surge.K_Q.scaled_factor_11.11", "surge.K_Q.experiment"),
+    Check("rov2", "air.r_from_alpha_g9.81", "air.r_from_alpha"),
+    Check("rov2", "air.K_Q_from_gamma_times_r", "air.K_Q"),
+    Check("rov2", "air.K_Q_from_gamma_eq4", "air.K_Q",
+          "with the printed gamma = -K_Q r/(M+m_a) and the mass implied by beta and K_L (0.304 kg), "
+          "K_Q = 0.0374, not the printed 0.0057 (which is |gamma| M r)"),
+)
+
+
+def check_results(*, root=None) -> list[dict]:
+    """Evaluate :data:`CHECKS`: printed and computed values, relative difference, agreement."""
+    out = []
+    for c in CHECKS:
+        printed = reference_value(c.source, c.printed, root=root)
+        computed = recompute(c.source, c.computed, root=root)
+        rel = (computed - printed["value"]) / abs(printed["value"]) if printed["value"] else float("nan")
+        out.append({"check": c, "printed": printed, "computed": computed, "relative_difference": rel,
+                    "agrees": agrees(printed, computed)})
+    return out
