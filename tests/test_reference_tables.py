@@ -18,7 +18,7 @@ from stripcoef.errors import InputError
 
 ROOT = ref.reference_dir()
 DATA = Path(ref.__file__).resolve().parent / "data"
-SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner")
+SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor")
 
 
 def val(source, name):
