@@ -141,15 +141,18 @@ def one_step(t, y, n, *, model: str = "LQB", dof: str = "yaw", inertia: float | 
     fv, fx = VELOCITIES[i], FORCES[i]
     lin_u = "m/s" if i < 3 else "rad/s"
     fit.units.update({"alpha": "1/s", "beta": "1/m" if i < 3 else "1/rad",
-                      "gamma": "1/kg" if i < 3 else "1/(kg m^2)", "delta": f"{lin_u}/s"})
+                      "gamma": "1/kg" if i < 3 else "1/(kg m^2)",
+                      "delta": "m/s^2" if i < 3 else "rad/s^2"})
+    u_lin = "N s/m" if i < 3 else "N m s/rad"
+    u_quad = "N s^2/m^2" if i < 3 else "N m s^2/rad^2"
     if "gamma" in names:
         if abs(fit.value("gamma")) > 0:
             fit.derive("inertia_total", lambda p: 1.0 / p["gamma"],
                        unit="kg" if i < 3 else "kg m^2")
             if "alpha" in names:
-                fit.derive(f"{fx}_{fv}", lambda p: p["alpha"] / p["gamma"])
+                fit.derive(f"{fx}_{fv}", lambda p: p["alpha"] / p["gamma"], unit=u_lin)
             if "beta" in names:
-                fit.derive(f"{fx}_{fv}{fv}", lambda p: p["beta"] / p["gamma"])
+                fit.derive(f"{fx}_{fv}{fv}", lambda p: p["beta"] / p["gamma"], unit=u_quad)
             if "delta" in names:
                 fit.derive("bias", lambda p: p["delta"] / p["gamma"], unit="N" if i < 3 else "N m")
             if inertia is not None:

@@ -178,9 +178,26 @@ def fit_steady(points: SteadyPoints, model: str = "standard", *,
             fit.derive(f"{FORCES[i]}_{v}", lambda p, n=n: -p[n], unit=units[n])
         elif n == f"k_{v}{v}":
             fit.derive(f"{FORCES[i]}_{v}{v}", lambda p, n=n: -p[n], unit=units[n])
-    fit.data.update({"velocity": pts.velocity, "force": pts.force})
+    fit.data.update({"velocity": pts.velocity, "force": pts.force,
+                     "predicted": predicted_force(fit, pts)})
     fit.notes.append(f"{len(pts)} steady-state points; residuals in {units_f} (seed 001 eq. 4.12)")
     return fit
+
+
+def predicted_force(fit: FitResult, points: SteadyPoints) -> np.ndarray:
+    r"""Applied force the fitted model needs for each point's velocity [N or N m]:
+    :math:`\hat F = (k w + k_2 w|w| \mp W + \alpha n_h w) / \eta` (eta on upward points)."""
+    i = parse_dof(points.dof)
+    v = VELOCITIES[i]
+    p = fit.parameters
+    w = points.velocity
+    drag = p.get(f"k_{v}", 0.0) * w + p.get(f"k_{v}{v}", 0.0) * w * np.abs(w)
+    drag = drag - p.get("W", 0.0) + p.get("b", 0.0)
+    if "alpha" in p and points.n_h is not None:
+        drag = drag + p["alpha"] * points.n_h * w
+    if "eta" in p:
+        drag = np.where(drag < 0, drag / p["eta"], drag)
+    return drag
 
 
 # ---------------------------------------------------------------------------
@@ -218,6 +235,30 @@ class Candidate:
     @property
     def all_significant(self) -> bool:
         return self.max_relative_error < SIGNIFICANT_PERCENT
+
+
+def merge_directions(fp: FitResult, fn: FitResult) -> FitResult:
+    """One FitResult from the two per-direction fits: names suffixed ``_pos`` / ``_neg``,
+    block-diagonal covariance, costs and observations summed."""
+    names = [f"{n}_pos" for n in fp.names] + [f"{n}_neg" for n in fn.names]
+    p1, p2 = fp.n_params, fn.n_params
+    cov = np.zeros((p1 + p2, p1 + p2))
+    cov[:p1, :p1] = fp.cov
+    cov[p1:, p1:] = fn.cov
+    model = fp.model.rsplit(" ", 1)[0]
+    out = FitResult(method=fp.method, model=f"{model} +/- separately", dof=fp.dof, names=names,
+                    theta=np.concatenate([fp.theta, fn.theta]), cov=cov,
+                    residuals=np.concatenate([fp.residuals, fn.residuals]),
+                    cost=fp.cost + fn.cost, n_obs=fp.n_obs + fn.n_obs,
+                    units={f"{n}_{d}": u for d, f in (("pos", fp), ("neg", fn))
+                           for n, u in f.units.items()})
+    for d, f in (("pos", fp), ("neg", fn)):
+        for n, (v, sd) in f.derived.items():
+            out.derived[f"{n}_{d}"] = (v, sd)
+    out.data = {k: np.concatenate([fp.data[k], fn.data[k]])
+                for k in ("velocity", "force", "predicted", "y", "fitted")}
+    out.notes = fp.notes[:1] + fn.notes[:1]
+    return out
 
 
 @dataclass
@@ -282,6 +323,12 @@ def compare_models(points: SteadyPoints, models=COMPARISON_MODELS) -> Comparison
         lines.append(f"All its parameters exceed 2 sigma (largest relative error "
                      f"{rec.max_relative_error:.1f} %).")
     return Comparison(points.dof, cands, single, rec, " ".join(lines))
+
+
+def recommended_fit(cmp: Comparison) -> FitResult:
+    """The recommended candidate as one FitResult (per-direction fits merged)."""
+    c = cmp.recommended
+    return c.fits[0] if len(c.fits) == 1 else merge_directions(*c.fits)
 
 
 # ---------------------------------------------------------------------------
