@@ -27,6 +27,10 @@ ROMEO_FORCES = (10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
 #: applied force from the identified thruster model, relative [-].
 ROMEO_NOISE_W = 0.003
 ROMEO_NOISE_F = 0.02
+#: Assumed: mean |command| of the horizontal thrusters holding the heading, nearly the same at
+#: every heave speed (the chapter's explanation of the eta-md collinearity) [command units].
+ROMEO_N_H = 600.0
+ROMEO_N_H_SPREAD = 15.0
 
 
 def romeo_weights(n: int = 5) -> np.ndarray:
@@ -54,6 +58,9 @@ def romeo_experiment(index: int, seed: int, *, forces=ROMEO_FORCES, truth=ROMEO_
                      noise_w: float = ROMEO_NOISE_W, noise_f: float = ROMEO_NOISE_F):
     """Steady-state points of ROMEO heave experiment ``index`` (1..5) with seeded noise.
 
+    Truth: the eta model (no momentum drag), k_w, k_ww, eta from :data:`ROMEO_TRUTH`, the net
+    weight from :func:`romeo_weights`; commanded forces +-:data:`ROMEO_FORCES`.
+
     Returns
     -------
     SteadyPoints, true net weight [N]
@@ -66,7 +73,9 @@ def romeo_experiment(index: int, seed: int, *, forces=ROMEO_FORCES, truth=ROMEO_
                               eta=truth["eta"])
     w = w + rng.normal(0.0, noise_w, w.size)
     f_meas = f * (1.0 + rng.normal(0.0, noise_f, f.size))
-    return SteadyPoints("heave", w, f_meas, source=f"ROMEO virtual experiment {index}"), weight
+    n_h = ROMEO_N_H + rng.normal(0.0, ROMEO_N_H_SPREAD, f.size)
+    return SteadyPoints("heave", w, f_meas, n_h=n_h,
+                        source=f"ROMEO virtual experiment {index}"), weight
 
 
 # --- ROV II free-decay pendulum (Eng et al., seed 003) --------------------------------------
@@ -141,11 +150,28 @@ def videoray_yaw_log(seed: int, *, truth=VIDEORAY_TRUTH, cycles: int = 8,
         j = np.minimum((np.asarray(tt) // seg).astype(int), amps.size - 1)
         return amps[j] * np.sin(2 * np.pi * np.asarray(tt) / VIDEORAY_PERIOD)
 
-    def rhs(tt, s):
-        r = s[0]
-        return [a * r + b * r * abs(r) + c * float(torque(tt)) + d]
     t = np.arange(0.0, seg * amps.size, 1.0 / fps)
-    sol = solve_ivp(rhs, (t[0], t[-1]), [0.0], t_eval=t, rtol=1e-9, atol=1e-12, max_step=0.01)
+    # RK4 with 20 steps per frame (truth to ~1e-10 rad/s), torque evaluated exactly
+    sub = 20
+    h = 1.0 / fps / sub
+    tf = np.arange(t.size * sub) * h
+    nf = torque(tf)
+    nm = torque(tf + 0.5 * h)
+    r = 0.0
+    out = np.empty(t.size)
+    for k in range(t.size):
+        out[k] = r
+        for j in range(k * sub, (k + 1) * sub):
+            n0, n1 = nf[j], nm[j]
+            n2 = torque(tf[j] + h) if j + 1 == nf.size else nf[j + 1]
+            k1 = a * r + b * r * abs(r) + c * n0 + d
+            y = r + 0.5 * h * k1
+            k2 = a * y + b * y * abs(y) + c * n1 + d
+            y = r + 0.5 * h * k2
+            k3 = a * y + b * y * abs(y) + c * n1 + d
+            y = r + h * k3
+            k4 = a * y + b * y * abs(y) + c * n2 + d
+            r += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
     rng = np.random.default_rng(seed)
-    return Log({"t": t, "r": sol.y[0] + rng.normal(0.0, noise, t.size), "N": torque(t)},
+    return Log({"t": t, "r": out + rng.normal(0.0, noise, t.size), "N": torque(t)},
                source=f"VideoRay virtual pivot test (seed {seed})")
