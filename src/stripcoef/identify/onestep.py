@@ -52,7 +52,7 @@ from scipy.signal import savgol_filter
 
 from ..conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
 from ..errors import InputError, unknown_name
-from .estimators import FitResult, linear_lstsq
+from .estimators import FitResult, linear_lstsq, runs_test_z
 
 #: Model name -> terms (linear, quadratic, input, bias); LQB is seed 000's eq. 8.
 MODELS = {
@@ -165,8 +165,11 @@ def one_step(t, y, n, *, model: str = "LQB", dof: str = "yaw", inertia: float | 
     fit.rms_error = float(np.sqrt(np.mean(fit.residuals ** 2)))
     free = float(np.sqrt(np.mean((sim - y) ** 2))) if np.all(np.isfinite(sim)) else float("inf")
     fit.metrics["free_run_rms"] = free
+    if np.isfinite(free):
+        fit.metrics["free_run_runs_z"] = runs_test_z(sim - y)
     fit.notes.append(f"rms_error = one-step-ahead prediction RMS [{lin_u}]; free_run_rms = RMS "
-                     f"of the re-simulated {fv} with the measured input")
+                     f"of the re-simulated {fv} with the measured input; free_run_runs_z = runs "
+                     "test of its sign (below -3: systematic error, a missing term)")
     return fit
 
 
