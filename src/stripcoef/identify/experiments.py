@@ -92,19 +92,22 @@ ROV2_DURATION = 12.0       # [s]
 ROV2_NOISE = 0.03          # [rad] marker-tracking noise on the angle
 
 
-def pendulum_rhs(alpha, beta, gamma):
-    r""":math:`\ddot\theta = \alpha\sin\theta - \beta\dot\theta - \gamma|\dot\theta|\dot\theta`
-    (seed 003, eq. 4) as a first-order system."""
-    def f(_t, s):
+def pendulum_rhs(alpha, beta, gamma, restoring="sin"):
+    r""":math:`\ddot\theta = \alpha f(\theta) - \beta\dot\theta - \gamma|\dot\theta|\dot\theta`
+    with f = sin (seed 003, eq. 4) or f = identity (torsion, eq. 12) as a first-order system."""
+    f = np.sin if restoring == "sin" else (lambda x: x)
+
+    def rhs(_t, s):
         th, om = s
-        return [om, alpha * np.sin(th) - beta * om - gamma * abs(om) * om]
-    return f
+        return [om, alpha * f(th) - beta * om - gamma * abs(om) * om]
+    return rhs
 
 
-def simulate_pendulum(alpha, beta, gamma, theta0, t, *, omega0=0.0):
-    """Angle [rad] of eq. 4 at times ``t`` from rest at ``theta0`` (RK45, rtol 1e-9)."""
-    sol = solve_ivp(pendulum_rhs(alpha, beta, gamma), (t[0], t[-1]), [theta0, omega0],
-                    t_eval=t, rtol=1e-9, atol=1e-11, method="RK45")
+def simulate_pendulum(alpha, beta, gamma, theta0, t, *, omega0=0.0, restoring="sin"):
+    """Angle [rad] of eq. 4 (or 12) at times ``t`` from rest at ``theta0`` (RK45, rtol 1e-10;
+    an integrator independent of the estimator's)."""
+    sol = solve_ivp(pendulum_rhs(alpha, beta, gamma, restoring), (t[0], t[-1]),
+                    [theta0, omega0], t_eval=t, rtol=1e-10, atol=1e-12, method="RK45")
     return sol.y[0]
 
 
@@ -175,3 +178,29 @@ def videoray_yaw_log(seed: int, *, truth=VIDEORAY_TRUTH, cycles: int = 8,
     rng = np.random.default_rng(seed)
     return Log({"t": t, "r": out + rng.normal(0.0, noise, t.size), "N": torque(t)},
                source=f"VideoRay virtual pivot test (seed {seed})")
+
+
+# --- ROV II torsion pendulum in yaw (seed 003, eq. 12) ---------------------------------------
+#: Truth: Tables III/IV full-scale yaw values divided by lambda^5 (lambda = 1/0.3) - the
+#: scaled-model values the paper does not print.
+ROV2_YAW_TRUTH = {"I_a": 3.60 * 0.3 ** 5, "K_L": 1.18 * 0.3 ** 5, "K_Q": 7.51 * 0.3 ** 5}
+#: Assumed: model inertia about the spring axis [kg m^2], spring stiffness [N m/rad],
+#: release angle [rad] (peak rate ~0.5 rad/s, Table IV's yaw range), angle noise [rad].
+ROV2_YAW_INERTIA = 0.012
+ROV2_YAW_STIFFNESS = 0.05
+ROV2_YAW_THETA0 = 0.35
+ROV2_YAW_NOISE = 0.005
+ROV2_YAW_DURATION = 30.0
+
+
+def rov2_torsion_log(seed: int, *, truth=ROV2_YAW_TRUTH, inertia=ROV2_YAW_INERTIA,
+                     stiffness=ROV2_YAW_STIFFNESS, noise=ROV2_YAW_NOISE,
+                     duration=ROV2_YAW_DURATION, fps=ROV2_FPS) -> Log:
+    """A torsion-pendulum decay log (``t``, ``theta_pendulum``) of the ROV II scaled model."""
+    total = inertia + truth["I_a"]
+    t = np.arange(0.0, duration, 1.0 / fps)
+    th = simulate_pendulum(-stiffness / total, truth["K_L"] / total, truth["K_Q"] / total,
+                           ROV2_YAW_THETA0, t, restoring="linear")
+    rng = np.random.default_rng(seed)
+    return Log({"t": t, "theta_pendulum": th + rng.normal(0.0, noise, t.size)},
+               source=f"ROV II virtual torsion pendulum (seed {seed})")
