@@ -185,7 +185,9 @@ def refine_output_error(fit: FitResult, t, theta, *, restoring: str = "sin") -> 
     out.rms_error = float(np.sqrt(np.mean(r ** 2)))
     out.metrics["rms_angle_error"] = out.rms_error
     out.metrics["equation_error_rms_angle"] = fit.rms_error
-    out.data.update({"t": tt, "y": yy, "simulated": yy + r, "fitted": yy + r})
+    sim = yy + r
+    out.data.update({"t": tt, "y": yy, "simulated": sim, "fitted": sim,
+                     "velocity": np.gradient(sim, tt)})
     out.notes.append("output-error refinement of the equation-error estimate: " +
                      ", ".join(f"{n_}={v:.5g}" for n_, v in zip(fit.names, fit.theta)))
     return out
