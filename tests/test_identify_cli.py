@@ -138,3 +138,31 @@ def test_bad_options_one_line_exit_2(logs, tmp_path, capsys):
     bad.write_text("{not json")
     assert main(["scale", str(bad), "--ratio", "3"]) == 2
     assert "JSON" in capsys.readouterr().err
+
+
+def test_one_step_with_vehicle_thruster_map(tmp_path, capsys):
+    """Commands n_port, n_starboard + the shipped VideoRay file: torque from the bench map
+    (T = Ct n|n|, seed 000 Table I) and I_zz from the vehicle give the same fit as the torque."""
+    from pathlib import Path
+
+    from stripcoef.identify.inputs import vehicle_model
+    vehicle = Path(__file__).resolve().parents[1] / "geometry" / "videoray_pro3.yaml"
+    model = vehicle_model(vehicle)
+    port = next(t for t in model.thrusters if t.name == "port")
+    stb = next(t for t in model.thrusters if t.name == "starboard")
+    log = videoray_yaw_log(0)
+    thrust = log["N"] / (2 * port.wrench_column(model.reference_point)[5])
+    f = tmp_path / "cmd.csv"
+    Log({"t": log["t"], "r": log["r"], "n_port": port.command_for(thrust),
+         "n_starboard": stb.command_for(-thrust)}).write_csv(f)
+    d = _json(capsys, ["identify", str(f), "--method", "one-step", "--vehicle", str(vehicle),
+                       "--json"])
+    g = tmp_path / "torque.csv"
+    log.write_csv(g)
+    ref = _json(capsys, ["identify", str(g), "--method", "one-step", "--inertia", "0.02532",
+                         "--json"])
+    for k in ("alpha", "beta", "gamma", "delta", "N_rdot"):
+        assert d["parameters"][k] == pytest.approx(ref["parameters"][k], rel=1e-6)
+    f.write_text(f.read_text().replace("n_port", "n_bow"))
+    assert main(["identify", str(f), "--method", "one-step", "--vehicle", str(vehicle)]) == 2
+    assert "n_bow" in capsys.readouterr().err
