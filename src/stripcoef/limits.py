@@ -111,6 +111,7 @@ class Manoeuvre:
     thrust: dict
     saturated: str
     trim: dict = field(default_factory=dict)
+    at_limit: list = field(default_factory=list)
 
 
 @dataclass
@@ -145,12 +146,13 @@ class TurnPoint:
     thrust: dict
     saturated: str
     trim: dict = field(default_factory=dict)
+    at_limit: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return {"radius": float(self.radius), "u_max": float(self.u_max), "v": float(self.v),
                 "yaw_rate": float(self.yaw_rate), "drift_angle": float(self.drift_angle),
                 "thrust": {k: float(x) for k, x in self.thrust.items()},
-                "saturated": self.saturated,
+                "saturated": self.saturated, "at_limit": list(self.at_limit),
                 "trim": {k: float(x) for k, x in self.trim.items()}}
 
 
@@ -168,6 +170,7 @@ class LimitsResult:
     min_turning_speed: float
     options: LimitOptions
     notes: list[str] = field(default_factory=list)
+    thrust_limits: dict = field(default_factory=dict)
 
     @property
     def surge_speed_max(self) -> float:
@@ -192,7 +195,7 @@ class LimitsResult:
                 return None
             return {"speed": float(m.speed), "nu": [float(x) for x in m.nu],
                     "thrust": {k: float(x) for k, x in m.thrust.items()},
-                    "saturated": m.saturated,
+                    "saturated": m.saturated, "at_limit": list(m.at_limit),
                     "trim": {k: float(x) for k, x in m.trim.items()}}
 
         return {
@@ -393,11 +396,21 @@ class _Allocator:
     def thrust_dict(self, thrust) -> dict:
         return {n: float(x) for n, x in zip(self.names, thrust)}
 
-    def most_loaded(self, thrust) -> str:
+    def loads(self, thrust) -> np.ndarray:
+        """|T_i| / limit_i in the direction of T_i [-]."""
         with np.errstate(divide="ignore", invalid="ignore"):
             load = np.where(thrust >= 0.0, thrust / self.fmax, -thrust / self.bmax)
-        load = np.nan_to_num(load, nan=0.0, posinf=np.inf)
-        return self.names[int(np.argmax(load))]
+        return np.nan_to_num(load, nan=0.0, posinf=np.inf)
+
+    def at_limit(self, thrust) -> list[str]:
+        """Names of every thruster loaded within 1e-6 of the most loaded (ties: all)."""
+        load = self.loads(thrust)
+        top = float(load.max())
+        return [n for n, x in zip(self.names, load) if x >= top - 1e-6 * max(top, 1.0)]
+
+    def most_loaded(self, thrust) -> str:
+        """The first (in the vehicle's order) of :meth:`at_limit`."""
+        return self.at_limit(thrust)[0]
 
 
 def _max_speed(evaluate, what: str, *, hint: float | None = None):
@@ -448,7 +461,8 @@ def _single_dof(model, alloc, dof: int, what: str, options: LimitOptions) -> Man
     tau = required_force(model, nu, options=options)
     s, thrust = alloc.utilisation(tau)
     return Manoeuvre(speed=x, nu=nu, thrust=alloc.thrust_dict(thrust),
-                     saturated=alloc.most_loaded(thrust), trim=alloc.trim(tau, thrust))
+                     saturated=alloc.most_loaded(thrust), trim=alloc.trim(tau, thrust),
+                     at_limit=alloc.at_limit(thrust))
 
 
 # ---------------------------------------------------------------------------
@@ -547,14 +561,14 @@ def steady_turn(model, radius: float, u: float, *, options: LimitOptions = Limit
     s, thrust = alloc.utilisation(tau)
     if thrust is None:
         raise UnreachableError(alloc.explain_outside(tau, f"turn of radius {radius:g} m"))
-    if s > 1.0 + 1e-9:
+    if s > 1.0 + 1e-7:
         raise UnreachableError(
             f"turn of radius {radius:g} m at u = {u:.4g} m/s needs {s:.3g} times the thrust "
             f"limit of thruster {alloc.most_loaded(thrust)!r}")
     return TurnPoint(radius=radius, u_max=u, v=v, yaw_rate=r,
                      drift_angle=-math.atan2(v, u) if u or v else 0.0,
                      thrust=alloc.thrust_dict(thrust), saturated=alloc.most_loaded(thrust),
-                     trim=alloc.trim(tau, thrust))
+                     trim=alloc.trim(tau, thrust), at_limit=alloc.at_limit(thrust))
 
 
 def turn_limit(model, radius: float, *, options: LimitOptions = LimitOptions(),
@@ -582,7 +596,7 @@ def turn_limit(model, radius: float, *, options: LimitOptions = LimitOptions(),
         return s, thrust
 
     u = _max_speed(evaluate, what, hint=_hint)
-    point = steady_turn(model, radius, u * (1.0 - 1e-12), options=options, _alloc=alloc)
+    point = steady_turn(model, radius, u, options=options, _alloc=alloc)
     point.radius = radius
     return point
 
@@ -728,4 +742,72 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
                           stacklevel=2)
     return LimitsResult(name=model.name, surge=surge, heave=heave, yaw=yaw, sway=sway,
                         turning=turning, min_turning_radius=rmin, min_turning_speed=speed,
-                        options=options, notes=notes)
+                        options=options, notes=notes,
+                        thrust_limits={t.name: (float(t.max_forward), float(t.max_backward))
+                                       for t in model.thrusters})
+
+
+# ---------------------------------------------------------------------------
+# figure
+# ---------------------------------------------------------------------------
+def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = None,
+                compare_label: str | None = None, title: str | None = None) -> None:
+    """Write the turning-circle figure (PNG, atomically): u_max(R), drift angle(R), thrusts(R).
+
+    The three panels reproduce seed 002 Figs. 7, 8 and 6.  ``compare`` (e.g. the same
+    vehicle with the Munk moment on) is drawn dashed.  Needs the ``plot`` extra
+    (matplotlib); raises InputError if it is missing.
+    """
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise InputError("plotting needs matplotlib", key="--plot", value=str(path),
+                         expected="pip install 'stripcoef[plot]'") from None
+    from .io import atomic_path
+
+    def label(res):
+        return ("Munk moment " + ("on" if res.options.munk else "off")
+                + ("" if res.options.coriolis else ", no Coriolis"))
+
+    fig, axes = plt.subplots(3, 1, figsize=(7.0, 9.0), sharex=True, constrained_layout=True)
+    runs = [(result, "-", label(result))]
+    if compare is not None:
+        runs.append((compare, "--", compare_label or label(compare)))
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for res, style, lab in runs:
+        radii = [p.radius for p in res.turning]
+        axes[0].plot(radii, [p.u_max for p in res.turning], style, color="C0",
+                     label=f"$u_{{max}}(R)$, {lab}")
+        axes[1].plot(radii, [math.degrees(p.drift_angle) for p in res.turning], style,
+                     color="C0", label=lab)
+        names = list(res.turning[0].thrust) if res.turning else []
+        for k, name in enumerate(names):
+            forces = np.array([p.thrust[name] for p in res.turning])
+            if np.abs(forces).max(initial=0.0) < 1e-6 * max(1.0, np.abs(forces).max(initial=0)):
+                continue
+            colour = colours[k % len(colours)]
+            axes[2].plot(radii, forces, style, color=colour, label=f"{name}, {lab}")
+    axes[0].axhline(result.surge_speed_max, color="0.4", lw=0.8, ls=":",
+                    label=f"straight line {result.surge_speed_max:.3g} m/s")
+    if compare is not None:
+        axes[0].axhline(compare.surge_speed_max, color="0.6", lw=0.8, ls=":")
+    shown = sorted({v for name in (result.turning[0].thrust if result.turning else {})
+                     for v in (result.thrust_limits.get(name, (None, None))[0],
+                               -result.thrust_limits.get(name, (0, 0))[1]) if v is not None})
+    for k, lim in enumerate(shown):
+        axes[2].axhline(lim, color="0.3", lw=0.8, ls=":", label="thrust limits" if k == 0 else None)
+    axes[0].set_ylabel("max. forward speed $u_{max}$ [m/s]")
+    axes[0].set_ylim(bottom=0.0)
+    axes[1].set_ylabel("drift angle $\\psi-\\chi$ [deg]\n(nose into the circle > 0)")
+    axes[2].set_ylabel("thrust at $u_{max}$ [N]")
+    axes[2].axhline(0.0, color="0.5", lw=0.6)
+    axes[2].set_xlabel("turning radius $R$ [m]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="best")
+    fig.suptitle(title or f"{result.name}: steady starboard turns at the thrust limit")
+    with atomic_path(path, key="--plot") as tmp:
+        fig.savefig(tmp, format="png", dpi=150)
+    plt.close(fig)

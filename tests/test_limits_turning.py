@@ -1,0 +1,95 @@
+"""Steady turning circle: properties and the MARES Munk paradox (seed 002 sec. V.D)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from limits_helpers import make_model
+from stripcoef.errors import InputError, UnreachableError
+from stripcoef.limits import (LimitOptions, min_turning_radius, required_force, solve_limits,
+                              steady_turn, turn_limit, turning_curve)
+
+RADII = [0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+
+
+@pytest.fixture(scope="module")
+def model():
+    return make_model()
+
+
+@pytest.mark.parametrize("munk", [True, False])
+def test_u_max_rises_towards_straight_line(model, munk):
+    res = solve_limits(model, radii=RADII, munk=munk)
+    u = np.array([p.u_max for p in res.turning])
+    assert np.all(np.diff(u) > 0.0)
+    assert np.all(u < res.surge_speed_max)
+    # the Munk moment decays only like R^-1/2 (drift angle ~ R^-1/2), so the straight
+    # line is approached slowly with it
+    assert turn_limit(model, 1e7, options=LimitOptions(munk=munk)).u_max == pytest.approx(
+        res.surge_speed_max, rel=0.01)
+    if not munk:
+        assert u[-1] == pytest.approx(res.surge_speed_max, rel=0.03)
+
+
+def test_turn_is_a_steady_balance(model):
+    p = turn_limit(model, 3.0, options=LimitOptions(munk=False))
+    nu = [p.u_max, p.v, 0, 0, 0, p.yaw_rate]
+    tau = required_force(model, nu, options=LimitOptions(munk=False))
+    b = model.allocation()
+    t = np.array([p.thrust[n] for n in p.thrust])
+    # every thruster-controlled row balances; the sway row balances with no sway thrust
+    for row in (0, 1, 2, 4, 5):
+        assert (b @ t)[row] == pytest.approx(tau[row], abs=1e-7)
+    assert p.yaw_rate == pytest.approx(math.hypot(p.u_max, p.v) / 3.0, rel=1e-12)
+    assert max(abs(x) for x in p.thrust.values()) == pytest.approx(10.0, rel=1e-6)
+
+
+def test_nose_points_into_the_circle(model):
+    # seed 002, eq. 60: v = 0 does not balance sway; the nose points to the centre
+    for p in turning_curve(model, RADII):
+        assert p.v < 0.0 and p.drift_angle > 0.0
+
+
+def test_drift_angle_falls_with_radius(model):
+    d = [p.drift_angle for p in turning_curve(model, RADII, options=LimitOptions(munk=False))]
+    assert np.all(np.diff(d) < 0.0)
+
+
+def test_without_coriolis_a_symmetric_vehicle_does_not_drift(model):
+    for p in turning_curve(model, [1.0, 5.0], options=LimitOptions(coriolis=False)):
+        assert p.v == pytest.approx(0.0, abs=1e-12)
+
+
+def test_munk_paradox_on_hand_built_slender_body(model):
+    b = model.allocation()
+    with_munk = turning_curve(model, [2.0, 4.0, 8.0, 16.0], options=LimitOptions(munk=True))
+    without = turning_curve(model, [2.0, 4.0, 8.0, 16.0], options=LimitOptions(munk=False))
+    for p in with_munk:
+        n_thr = b[5] @ np.array(list(p.thrust.values()))
+        assert p.yaw_rate > 0.0 and n_thr < 0.0       # moment opposes the rotation
+    for p in without:
+        n_thr = b[5] @ np.array(list(p.thrust.values()))
+        assert n_thr > 0.0
+        assert p.saturated == "P1"                     # port = outer in a starboard turn
+
+
+def test_steady_turn_above_u_max_is_unreachable(model):
+    p = turn_limit(model, 4.0)
+    ok = steady_turn(model, 4.0, 0.9 * p.u_max)
+    assert max(abs(x) for x in ok.thrust.values()) < 10.0
+    with pytest.raises(UnreachableError, match="thrust"):
+        steady_turn(model, 4.0, 1.05 * p.u_max)
+
+
+def test_min_turning_radius_inverts_u_max(model):
+    p = turn_limit(model, 5.0)
+    assert min_turning_radius(model, p.u_max) == pytest.approx(5.0, rel=1e-6)
+    with pytest.raises(UnreachableError):
+        min_turning_radius(model, 1.01 * solve_limits(model, radii=[1.0]).surge_speed_max)
+
+
+@pytest.mark.parametrize("radii", [[-1.0, 2.0], [2.0, 1.0], [1.0, 1.0], [0.0], []])
+def test_bad_radii(model, radii):
+    with pytest.raises(InputError, match="radi"):
+        turning_curve(model, radii)
