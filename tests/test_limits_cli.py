@@ -10,12 +10,6 @@ from limits_helpers import make_model
 from stripcoef import cli
 
 
-@pytest.fixture(autouse=True)
-def only_limits(monkeypatch):
-    # test this command in isolation from the other subcommands' imports
-    monkeypatch.setattr(cli, "COMMANDS", ("limits",))
-
-
 @pytest.fixture
 def model_json(tmp_path):
     path = tmp_path / "model.json"
@@ -178,3 +172,24 @@ def test_no_yaw_thruster_is_a_clear_error(tmp_path, capsys):
     path = tmp_path / "bad.json"
     path.write_text(json.dumps(data))
     _one_line_error(*run(["limits", str(path)], capsys), "yaw")
+
+
+def test_vehicle_file_mares(capsys):
+    from pathlib import Path
+    mares = Path(__file__).resolve().parent.parent / "geometry" / "mares.yaml"
+    code, out, err = run(["limits", str(mares), "--json", "--radii", "2:8:2", "--no-munk"],
+                         capsys)
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["name"] == "MARES" and data["sway_speed_max"] is None
+    assert [p["saturated"] for p in data["turning"]] == ["P1", "P1"]
+
+
+def test_vehicle_file_without_thrusters(tmp_path, capsys):
+    from pathlib import Path
+    mares = Path(__file__).resolve().parent.parent / "geometry" / "mares.yaml"
+    data = yaml.safe_load(mares.read_text())
+    del data["thrusters"]
+    path = tmp_path / "nothr.yaml"
+    path.write_text(yaml.safe_dump(data))
+    _one_line_error(*run(["limits", str(path)], capsys), "no thrusters", "nothr.yaml")

@@ -444,9 +444,20 @@ def _max_speed(evaluate, what: str, *, hint: float | None = None):
 
 
 def _single_dof(model, alloc, dof: int, what: str, options: LimitOptions) -> Manoeuvre:
+    """Limit of one velocity component; the others are zero except a free sway drift
+    when no thruster gives sway (e.g. a sway force from Y_r while yawing on the spot)."""
+    free = dof != 1 and not alloc.controls(1)
+
     def nu_of(x):
         nu = np.zeros(6)
         nu[dof] = x
+        if free and x != 0.0:
+            def with_v(v):
+                n = nu.copy()
+                n[1] = v
+                return n
+            nu[1] = _free_sway(model, with_v, options, speed=abs(x) if dof < 3 else abs(x) * 0.1,
+                               what=what)
         return nu
 
     def evaluate(x):
@@ -517,28 +528,38 @@ def sway_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre | 
     return _single_dof(model, alloc, 1, "sway", options)
 
 
-def _sway_balance(model, u: float, radius: float, options: LimitOptions) -> float:
-    """Sway speed v with tau_req,Y(u, v, r = sqrt(u^2+v^2)/R) = 0 (seed 002, eq. 60)."""
+def _free_sway(model, nu_of_v, options: LimitOptions, *, speed: float, what: str) -> float:
+    """Sway speed v with no net sway thrust: tau_req,Y(nu(v)) = 0 (seed 002, eq. 60).
+
+    ``nu_of_v(v)`` builds the body velocity; ``speed`` sets the search scale [m/s].
+    The root nearest v = 0 is taken (bracketed outwards on both sides, then Brent).
+    """
     def g(v):
-        r = math.hypot(u, v) / radius
-        return required_force(model, [u, v, 0.0, 0.0, 0.0, r], options=options)[1]
+        return required_force(model, nu_of_v(v), options=options)[1]
 
     g0 = g(0.0)
-    scale = abs(g0) + 1e-300
-    if u == 0.0 or abs(g0) <= 1e-13 * (1.0 + abs(g(u))):
+    ref = abs(g(speed)) if speed > 0.0 else 0.0
+    if g0 == 0.0 or abs(g0) <= 1e-13 * ref:
         return 0.0
-    # search outwards on both sides for the sign change nearest v = 0
-    a = 0.02 * u
-    while a <= 200.0 * u:
+    a = max(0.02 * speed, 1e-9)
+    top = max(200.0 * speed, 10.0)
+    while a <= top:
         for side in (-1.0, 1.0):
-            gv = g(side * a)
-            if gv * g0 <= 0.0:
+            if g(side * a) * g0 <= 0.0:
                 lo, hi = sorted((0.0, side * a))
-                return brentq(g, lo, hi, xtol=1e-14 + 1e-12 * abs(u), rtol=1e-13)
+                return brentq(g, lo, hi, xtol=1e-15 + 1e-12 * max(speed, abs(a)), rtol=1e-13)
         a *= 2.0
-    raise UnreachableError(
-        f"turn of radius {radius:g} m at u = {u:.4g} m/s: no sway speed balances the sway "
-        f"force ({g0:.4g} N at v = 0) without sway thrust")
+    raise UnreachableError(f"{what}: no sway speed balances the sway force "
+                           f"({g0:.4g} N at v = 0) and no thruster gives sway")
+
+
+def _sway_balance(model, u: float, radius: float, options: LimitOptions) -> float:
+    """Sway speed v with tau_req,Y(u, v, r = sqrt(u^2+v^2)/R) = 0 (seed 002, eq. 60)."""
+    if u == 0.0:
+        return 0.0
+    return _free_sway(model, lambda v: [u, v, 0.0, 0.0, 0.0, math.hypot(u, v) / radius],
+                      options, speed=abs(u),
+                      what=f"turn of radius {radius:g} m at u = {u:.4g} m/s")
 
 
 def steady_turn(model, radius: float, u: float, *, options: LimitOptions = LimitOptions(),

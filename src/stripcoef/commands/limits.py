@@ -92,6 +92,12 @@ def format_table(result) -> str:
 
     def row(label, value, unit, m=None, extra=""):
         sat = f"  saturates: {', '.join(m.at_limit) or m.saturated}" if m is not None else ""
+        if m is not None and abs(m.nu[1]) > 1e-9 and m is not result.sway:
+            sat += f"; sway drift v = {m.nu[1]:.4f} m/s"
+        if m is not None:
+            for k, a in m.trim.items():
+                if abs(a) > 1e-6:
+                    sat += f"; {k} trim {math.degrees(a):.2f} deg"
         lines.append(f"  {label:<28s} {value:>9s} {unit:<6s}{extra}{sat}")
 
     row("surge speed max", f"{result.surge_speed_max:.4f}", "m/s", result.surge)
