@@ -104,3 +104,32 @@ def test_coriolis_option_does_not_change_straight_line():
     m = make_model()
     a = surge_limit(m, options=LimitOptions(coriolis=False))
     assert a.speed == pytest.approx(surge_limit(m).speed, rel=1e-12)
+
+
+def test_redundant_thrusters_use_the_linear_programme():
+    # two identical pairs of 5 N thrusters = one pair of 10 N (the LP shares the load)
+    pair_a = horizontal_pair(5.0)
+    pair_b = [Thruster(t.name + "b", t.position, t.direction, max_forward=5.0,
+                       max_backward=5.0) for t in pair_a]
+    red = make_model(thrusters=pair_a + pair_b + vertical_pair(10.0))
+    ref = make_model()
+    from stripcoef.limits import _Allocator
+    assert _Allocator(red).square is None and _Allocator(ref).square is not None
+    for f in (surge_limit, heave_limit, yaw_limit):
+        assert f(red).speed == pytest.approx(f(ref).speed, rel=1e-7)
+    a = solve_limits(red, radii=[2.0, 6.0])
+    b = solve_limits(ref, radii=[2.0, 6.0])
+    for pa, pb in zip(a.turning, b.turning):
+        assert pa.u_max == pytest.approx(pb.u_max, rel=1e-7)
+
+
+def test_direct_allocation_equals_linear_programme():
+    from stripcoef.limits import _Allocator, required_force
+    m = make_model()
+    alloc = _Allocator(m)
+    tau = required_force(m, [0.4, -0.05, 0.02, 0, 0, 0.1])
+    s_direct, t_direct = alloc.utilisation(tau)
+    alloc.square = None
+    s_lp, t_lp = alloc.utilisation(tau)
+    assert s_lp == pytest.approx(s_direct, rel=1e-7)
+    np.testing.assert_allclose(t_lp, t_direct, rtol=1e-6, atol=1e-9)

@@ -322,6 +322,7 @@ class _Allocator:
         k = int(np.sum(sv > 1e-10 * max(sv[0], 1e-300))) if sv.size else 0
         self.basis = u[:, :k]                       # orthonormal basis of range(B_S)
         self.A = self.basis.T @ bs                  # full row rank k x n
+        self.square = np.linalg.inv(self.A) if k == bs.shape[1] and k > 0 else None
         self.scale = float(np.max(np.abs(self.B) @ np.maximum(self.fmax, self.bmax)))
         m = model
         self.stiffness = m.weight * m.r_g[2] - m.buoyancy * m.r_b[2]   # z_g W - z_b B [N m]
@@ -357,6 +358,10 @@ class _Allocator:
         if np.abs(out).max(initial=0.0) > tol:
             return math.inf, None
         b = self.basis.T @ tau[self.rows]
+        if self.square is not None:
+            # as many independent rows as thrusters: the allocation is unique, T = A^-1 b
+            thrust = self.square @ b
+            return float(self.loads(thrust).max(initial=0.0)), thrust
         a_eq = np.hstack([self.A, np.zeros((self.A.shape[0], 1))])
         res = linprog(self.c, A_ub=self.A_ub, b_ub=self.b_ub, A_eq=a_eq, b_eq=b,
                       bounds=self.bounds, method="highs")
@@ -825,9 +830,9 @@ def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = No
     axes[2].set_ylabel("thrust at $u_{max}$ [N]")
     axes[2].axhline(0.0, color="0.5", lw=0.6)
     axes[2].set_xlabel("turning radius $R$ [m]")
-    for ax in axes:
+    for k, ax in enumerate(axes):
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8, loc="best")
+        ax.legend(fontsize=7 if k == 2 else 8, loc="best", ncol=2 if k == 2 else 1)
     fig.suptitle(title or f"{result.name}: steady starboard turns at the thrust limit")
     with atomic_path(path, key="--plot") as tmp:
         fig.savefig(tmp, format="png", dpi=150)

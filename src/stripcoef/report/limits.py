@@ -143,7 +143,7 @@ def mares_paradox(radii=(1.0, 2.0, 4.0, 8.0, 16.0)) -> dict | None:
             t = np.array([p.thrust[n] for n in p.thrust])
             rows.append({"radius": p.radius, "u_max": p.u_max, "drift_deg": math.degrees(p.drift_angle),
                          "yaw_moment": float(b[5] @ t), "yaw_rate": p.yaw_rate,
-                         "thrust": p.thrust, "saturated": p.saturated})
+                         "thrust": p.thrust, "saturated": ", ".join(p.at_limit)})
         out["munk" if munk else "no_munk"] = {"result": res, "rows": rows}
     out["model"] = model
     return out
@@ -205,15 +205,20 @@ def section() -> str:
         ["drag column", "thrust [N]", "steady u [m/s]", "paper predicted [m/s]",
          "measured [m/s]", "thrust - drag(0.47 m/s) [N]", "thrust needed for 0.51 m/s [N]"],
         rows))
+    vr = {r["column"]: r for r in videoray_surge()}
+    e, a = vr["experimental"], vr["analytical"]
     lines += ["",
-              "With the experimental drag the tether-free model settles at 0.483 m/s: 2.7 % "
-              "above the measured 0.47 m/s, and the 0.088 N surplus at 0.47 m/s is the drag "
-              "the tether would have to supply, consistent with the paper's explanation. "
-              "The paper's own prediction, 0.51 m/s, is not reproduced from Table I "
-              "(strict xfail in tests/test_limits_videoray.py): it needs 2.05 N of thrust, "
-              "10 % more than Ct n|n| gives. The analytical (strip-theory) drag column gives "
-              "0.356 m/s, 24 % below the measurement: the strip-theory surge drag is too "
-              "large, which no tether can explain.", ""]
+              f"With the experimental drag the tether-free model settles at {e['speed']:.3f} m/s, "
+              f"{100 * (e['speed'] / e['measured'] - 1):.1f} % above the measured "
+              f"{e['measured']:.2f} m/s; the {e['missing_force_at_measured']:.3f} N surplus of "
+              "thrust over drag at the measured speed is the drag the tether would have to "
+              "supply, consistent with the paper's explanation. The paper's own prediction, "
+              f"{e['predicted']:.2f} m/s, is not reproduced from Table I (strict xfail in "
+              f"tests/test_limits_videoray.py): it needs {e['thrust_for_predicted']:.2f} N of "
+              f"thrust, {100 * (e['thrust_for_predicted'] / e['thrust'] - 1):.0f} % more than "
+              "2 Ct n|n| gives. The analytical (strip-theory) drag column gives "
+              f"{a['speed']:.3f} m/s, {100 * (1 - a['speed'] / a['measured']):.0f} % below the "
+              "measurement: that surge drag is too large, which no tether can explain.", ""]
     par = mares_paradox()
     lines += ["### MARES turning circle: the Munk-moment paradox (seed 002, sec. V.D)", ""]
     if par is None:
@@ -225,8 +230,13 @@ def section() -> str:
                 rows.append((label, f"{r['radius']:.1f}", f"{r['u_max']:.3f}",
                              f"{r['drift_deg']:.2f}", f"{r['yaw_rate']:.3f}",
                              f"{r['yaw_moment']:+.3f}", r["saturated"]))
+        res = par["no_munk"]["result"]
+        lines += ["geometry/mares.yaml estimated by strip theory (thrust limits 8 N forward, "
+                  "6 N backward per thruster, assumed in the vehicle file): straight-line "
+                  f"surge {res.surge_speed_max:.3f} m/s, dive {res.heave_speed_max:.3f} m/s, "
+                  f"yaw on the spot {res.yaw_rate_max:.3f} rad/s; no sway thruster.", ""]
         lines.append(markdown_table(["Munk", "R [m]", "u_max [m/s]", "drift [deg]",
-                                     "r [rad/s]", "thruster yaw moment [N m]", "saturated"],
+                                     "r [rad/s]", "thruster yaw moment [N m]", "at limit"],
                                     rows))
         lines += ["", "With the Munk moment the thrusters' yaw moment is negative while the "
                   "turn is positive (starboard), the paper's paradox; without it the outer "
