@@ -90,7 +90,7 @@ class Vehicle:
         parts = []
         for body in self.bodies:
             parts.extend(body.parts(x, dx))
-        holes = [h.cut(x, self.hull) for h in self.holes] if self.hull is not None else []
+        holes = [h.cut(x, dx, self.hull) for h in self.holes] if self.hull is not None else []
         for body in self.bodies:
             if hasattr(body, "holes"):
                 holes.extend(body.holes(x, dx))

@@ -9,7 +9,7 @@ from __future__ import annotations
 import importlib
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ("limits",)
+SECTIONS: tuple[str, ...] = ("core", "limits")
 
 
 def build() -> str:
