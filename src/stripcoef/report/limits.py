@@ -116,6 +116,35 @@ def videoray_surge() -> list[dict]:
     return out
 
 
+VIDEORAY_FILE = ROOT / "geometry" / "videoray_pro3.yaml"
+
+
+def videoray_strip_surge() -> dict | None:
+    """Surge speed at the test command from stripcoef's own estimate of geometry/videoray_pro3.yaml.
+
+    The shipped vehicle's thrust limits (|n| = 220) are replaced by the thrust at the
+    test's n; None when the vehicle file or the estimator is missing.
+    """
+    if not VIDEORAY_FILE.is_file():
+        return None
+    try:
+        import stripcoef
+        model = stripcoef.estimate(stripcoef.load_vehicle(VIDEORAY_FILE))
+    except (ImportError, AttributeError):
+        return None
+    from dataclasses import replace
+
+    from ..limits import surge_limit
+    n = videoray_table()["surge_test"]["command"]
+    model = replace(model, thrusters=[replace(t, max_forward=t.thrust(n),
+                                              max_backward=-t.thrust(-n))
+                                      for t in model.thrusters])
+    lim = surge_limit(model)
+    return {"speed": lim.speed, "linear": float(model.linear_damping[0, 0]),
+            "quadratic": float(model.quadratic_damping[0, 0]),
+            "thrust": sum(lim.thrust[t.name] for t in model.thrusters if t.direction[0] > 0)}
+
+
 def _opts():
     from ..limits import LimitOptions
     return LimitOptions()
@@ -219,6 +248,22 @@ def section() -> str:
               "2 Ct n|n| gives. The analytical (strip-theory) drag column gives "
               f"{a['speed']:.3f} m/s, {100 * (1 - a['speed'] / a['measured']):.0f} % below the "
               "measurement: that surge drag is too large, which no tether can explain.", ""]
+    own = videoray_strip_surge()
+    tab_e = videoray_table()["surge_drag"]["experimental"]
+    measured = videoray_table()["surge_test"]["measured_speed"]
+    if own is not None:
+        rows_own = [("stripcoef strip theory (geometry/videoray_pro3.yaml)",
+                     f"{own['linear']:.4f}", f"{own['quadratic']:.4f}", f"{own['speed']:.4f}")]
+        lines += ["", "The same test with this project's own estimate of the vehicle "
+                  "(same thrust):", "",
+                  markdown_table(["model", "X_u [N s/m]", "X_u\\|u\\| [N s^2/m^2]",
+                                  "steady u [m/s]"], rows_own), "",
+                  f"Our estimate is {100 * (own['speed'] / measured - 1):.0f} % faster than the pool "
+                  "test: its quadratic surge drag is "
+                  f"{100 * (1 - own['quadratic'] / tab_e['quadratic']):.0f} % below the flume "
+                  f"fit and its linear term ({own['linear']:.3f} N s/m) is "
+                  f"far below the fitted {tab_e['linear']:.3f} N s/m; the tether adds to the gap.",
+                  ""]
     par = mares_paradox()
     lines += ["### MARES turning circle: the Munk-moment paradox (seed 002, sec. V.D)", ""]
     if par is None:
