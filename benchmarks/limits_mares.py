@@ -37,21 +37,27 @@ def main() -> None:
     import stripcoef
     from stripcoef.limits import solve_limits
 
-    t0 = time.perf_counter()
-    model = stripcoef.estimate(stripcoef.load_vehicle(args.vehicle))
-    t_est = time.perf_counter() - t0
-    solver = []
+    model = stripcoef.estimate(stripcoef.load_vehicle(args.vehicle))   # warm-up
+    solver, nomunk = [], []
     for _ in range(args.repeat):
         t0 = time.perf_counter()
         solve_limits(model)
         solver.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        solve_limits(model, munk=False)
+        nomunk.append(time.perf_counter() - t0)
 
     print(f"command: stripcoef limits {args.vehicle}")
     print(f"  whole command   median {statistics.median(wall):.3f} s  "
           f"(min {min(wall):.3f}, max {max(wall):.3f}, {args.repeat} runs)")
-    print(f"  estimate        {t_est:.3f} s (one run, in-process)")
     print(f"  solve_limits    median {statistics.median(solver):.3f} s  "
           f"(min {min(solver):.3f}, max {max(solver):.3f}; 40 radii, Munk on)")
+    print(f"  solve_limits    median {statistics.median(nomunk):.3f} s  "
+          f"(min {min(nomunk):.3f}, max {max(nomunk):.3f}; 40 radii, Munk off)")
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", "import stripcoef.limits, stripcoef.assemble"],
+                   check=True)
+    print(f"  interpreter + imports {time.perf_counter() - t0:.3f} s (one run)")
 
 
 if __name__ == "__main__":
