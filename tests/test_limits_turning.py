@@ -78,8 +78,12 @@ def test_steady_turn_above_u_max_is_unreachable(model):
     p = turn_limit(model, 4.0)
     ok = steady_turn(model, 4.0, 0.9 * p.u_max)
     assert max(abs(x) for x in ok.thrust.values()) < 10.0
-    with pytest.raises(UnreachableError, match="thrust"):
+    with pytest.raises(UnreachableError, match="thrust") as err:
         steady_turn(model, 4.0, 1.05 * p.u_max)
+    # the message names the smallest circle at that speed, which is larger than 4 m
+    rmin = float(str(err.value).split("R = ")[1].split(" m")[0])
+    assert rmin > 4.0
+    assert rmin == pytest.approx(min_turning_radius(model, 1.05 * p.u_max), rel=1e-3)
 
 
 def test_min_turning_radius_inverts_u_max(model):

@@ -588,9 +588,14 @@ def steady_turn(model, radius: float, u: float, *, options: LimitOptions = Limit
     if thrust is None:
         raise UnreachableError(alloc.explain_outside(tau, f"turn of radius {radius:g} m"))
     if s > 1.0 + 1e-7:
+        try:
+            rmin = f"; the smallest circle at this speed is R = " \
+                   f"{min_turning_radius(model, u, options=options):.4g} m"
+        except UnreachableError:
+            rmin = "; no steady turn is possible at this speed"
         raise UnreachableError(
             f"turn of radius {radius:g} m at u = {u:.4g} m/s needs {s:.3g} times the thrust "
-            f"limit of thruster {alloc.most_loaded(thrust)!r}")
+            f"limit of thruster {alloc.most_loaded(thrust)!r}{rmin}")
     return TurnPoint(radius=radius, u_max=u, v=v, yaw_rate=r,
                      drift_angle=-math.atan2(v, u) if u or v else 0.0,
                      thrust=alloc.thrust_dict(thrust), saturated=alloc.most_loaded(thrust),
