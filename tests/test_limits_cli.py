@@ -165,13 +165,30 @@ def test_failed_run_leaves_earlier_plot_untouched(tmp_path, capsys, model_json):
     assert code == 2 and png.read_bytes() == b"old"
 
 
-def test_no_yaw_thruster_is_a_clear_error(tmp_path, capsys):
+def test_no_yaw_thruster_is_reported_not_nan(tmp_path, capsys):
     data = make_model().to_dict()
     data["thrusters"] = [t for t in data["thrusters"] if t["name"] in ("P1", "V1", "V2")]
     data["thrusters"][0]["position"] = [-0.6, 0.0, 0.0]
-    path = tmp_path / "bad.json"
+    path = tmp_path / "noyaw.json"
     path.write_text(json.dumps(data))
-    _one_line_error(*run(["limits", str(path)], capsys), "yaw")
+    code, out, err = run(["limits", str(path), "--json"], capsys)
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["yaw_rate_max"] is None and d["turning"] == [] and d["min_turning_radius"] is None
+    assert d["surge_speed_max"] > 0.0
+    assert any("yaw" in n for n in d["notes"])
+    code, out, err = run(["limits", str(path)], capsys)
+    assert code == 0 and "unreachable" in out
+    # a figure of the turning circle cannot be drawn: one-line error, no file
+    png = tmp_path / "t.png"
+    _one_line_error(*run(["limits", str(path), "--plot", str(png)], capsys), "nothing to plot",
+                    "yaw")
+    assert not png.exists()
+
+
+def test_turn_speed_above_top_speed(model_json, capsys):
+    _one_line_error(*run(["limits", str(model_json), "--radii", "2:4:2", "--turn-speed", "5"],
+                         capsys), "straight-line")
 
 
 def test_vehicle_file_mares(capsys):

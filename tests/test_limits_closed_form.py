@@ -133,3 +133,14 @@ def test_direct_allocation_equals_linear_programme():
     s_lp, t_lp = alloc.utilisation(tau)
     assert s_lp == pytest.approx(s_direct, rel=1e-7)
     np.testing.assert_allclose(t_lp, t_direct, rtol=1e-6, atol=1e-9)
+
+
+def test_buoyant_vehicle_without_vertical_thrusters_is_a_clear_error():
+    m = make_model(buoyancy_ratio=1.01, thrusters=horizontal_pair(10.0))
+    with pytest.raises(UnreachableError, match="heave force Z"):
+        surge_limit(m)
+    # neutrally buoyant: the horizontal limits exist, the dive does not
+    m0 = make_model(thrusters=horizontal_pair(10.0))
+    assert surge_limit(m0).speed == pytest.approx(quadratic_speed(20.0, 2.0, 20.0), rel=1e-9)
+    with pytest.raises(UnreachableError, match="heave"):
+        heave_limit(m0)

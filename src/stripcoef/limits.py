@@ -162,8 +162,8 @@ class LimitsResult:
 
     name: str
     surge: Manoeuvre
-    heave: Manoeuvre
-    yaw: Manoeuvre
+    heave: Manoeuvre | None
+    yaw: Manoeuvre | None
     sway: Manoeuvre | None
     turning: list[TurnPoint]
     min_turning_radius: float | None
@@ -177,12 +177,12 @@ class LimitsResult:
         return self.surge.speed
 
     @property
-    def heave_speed_max(self) -> float:
-        return self.heave.speed
+    def heave_speed_max(self) -> float | None:
+        return None if self.heave is None else self.heave.speed
 
     @property
-    def yaw_rate_max(self) -> float:
-        return self.yaw.speed
+    def yaw_rate_max(self) -> float | None:
+        return None if self.yaw is None else self.yaw.speed
 
     @property
     def sway_speed_max(self) -> float | None:
@@ -201,8 +201,8 @@ class LimitsResult:
         return {
             "name": self.name,
             "surge_speed_max": float(self.surge_speed_max),
-            "heave_speed_max": float(self.heave_speed_max),
-            "yaw_rate_max": float(self.yaw_rate_max),
+            "heave_speed_max": None if self.heave is None else float(self.heave.speed),
+            "yaw_rate_max": None if self.yaw is None else float(self.yaw.speed),
             "sway_speed_max": None if self.sway is None else float(self.sway.speed),
             "min_turning_radius": (None if self.min_turning_radius is None
                                    else float(self.min_turning_radius)),
@@ -425,6 +425,9 @@ def _max_speed(evaluate, what: str, *, hint: float | None = None):
     x = 0 is not reachable or when no finite limit exists below the search cap.
     """
     s0, _ = evaluate(0.0)
+    if not math.isfinite(s0):
+        raise UnreachableError(f"{what}: the thrusters cannot hold the vehicle still "
+                               "(a force at rest, e.g. net buoyancy, that no thruster gives)")
     if not s0 <= 1.0:
         raise UnreachableError(f"{what}: not reachable even at zero speed (thruster "
                                f"utilisation {s0:.3g} > 1 holding the vehicle still)")
@@ -747,7 +750,9 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
     InputError
         No thrusters, unusable thrust limits, non-positive drag, bad radii
     UnreachableError
-        A manoeuvre the thrusters cannot do at all (e.g. no thruster gives yaw)
+        The thrusters cannot hold the vehicle in straight-line surge, or ``turn_speed``
+        has no steady circle.  Any other manoeuvre they cannot do at all (no thruster
+        gives heave or yaw, ...) is ``None`` in the result with the reason in ``notes``.
     """
     check_model(model)
     options = LimitOptions(munk=munk, coriolis=coriolis)
@@ -758,13 +763,27 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
         notes.append("not controlled by the thrusters, carried by a hydrostatic trim angle: "
                      + ", ".join(DOF[i] for i in alloc.trimmed))
     surge = _single_dof(model, alloc, 0, "surge", options)
-    heave = _single_dof(model, alloc, 2, "heave", options)
-    yaw = _single_dof(model, alloc, 5, "yaw", options)
-    sway = _single_dof(model, alloc, 1, "sway", options) if alloc.controls(1) else None
-    turning = turning_curve(model, radii, options=options)
+
+    def attempt(func, *args, **kwargs):
+        # a manoeuvre the thrusters cannot do at all is reported (null + note), not fatal
+        try:
+            return func(*args, **kwargs)
+        except UnreachableError as exc:
+            notes.append(f"unreachable: {exc}")
+            return None
+
+    heave = attempt(_single_dof, model, alloc, 2, "heave", options)
+    yaw = attempt(_single_dof, model, alloc, 5, "yaw", options)
+    sway = attempt(_single_dof, model, alloc, 1, "sway", options) if alloc.controls(1) else None
+    turning = attempt(turning_curve, model, radii, options=options) or []
     speed = 0.5 * surge.speed if turn_speed is None else float(turn_speed)
-    rmin = min_turning_radius(model, speed, options=options)
+    if turn_speed is not None:
+        rmin = min_turning_radius(model, speed, options=options)    # asked for: errors are errors
+    else:
+        rmin = attempt(min_turning_radius, model, speed, options=options) if turning else None
     for key, m in (("surge", surge), ("heave", heave), ("yaw", yaw)):
+        if m is None:
+            continue
         big = {k: a for k, a in m.trim.items() if abs(a) > math.radians(15.0)}
         if big:
             warnings.warn(f"{key} limit needs a trim of "
@@ -797,6 +816,10 @@ def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = No
         raise InputError("plotting needs matplotlib", key="--plot", value=str(path),
                          expected="pip install 'stripcoef[plot]'") from None
     from .io import atomic_path
+
+    if not result.turning:
+        reason = "; ".join(n for n in result.notes if n.startswith("unreachable")) or "no radii"
+        raise UnreachableError(f"nothing to plot: no steady turn ({reason})")
 
     def label(res):
         return ("Munk moment " + ("on" if res.options.munk else "off")

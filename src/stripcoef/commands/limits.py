@@ -101,9 +101,15 @@ def format_table(result) -> str:
         lines.append(f"  {label:<28s} {value:>9s} {unit:<6s}{extra}{sat}")
 
     row("surge speed max", f"{result.surge_speed_max:.4f}", "m/s", result.surge)
-    row("dive (heave) speed max", f"{result.heave_speed_max:.4f}", "m/s", result.heave)
-    row("yaw rate max (on the spot)", f"{result.yaw_rate_max:.4f}", "rad/s", result.yaw,
-        f" ({math.degrees(result.yaw_rate_max):.1f} deg/s)")
+    if result.heave is None:
+        row("dive (heave) speed max", "-", "", None, "  (unreachable, see notes)")
+    else:
+        row("dive (heave) speed max", f"{result.heave_speed_max:.4f}", "m/s", result.heave)
+    if result.yaw is None:
+        row("yaw rate max (on the spot)", "-", "", None, "  (unreachable, see notes)")
+    else:
+        row("yaw rate max (on the spot)", f"{result.yaw_rate_max:.4f}", "rad/s", result.yaw,
+            f" ({math.degrees(result.yaw_rate_max):.1f} deg/s)")
     if result.sway is None:
         row("sway speed max", "-", "", None, "  (no thruster gives sway)")
     else:
