@@ -116,3 +116,21 @@ def test_default_strip_count_converged_to_0p1_percent():
         d = np.diag(mb)
         mask = d != 0
         assert np.max(np.abs(np.diag(ma)[mask] / d[mask] - 1)) < 1e-3
+
+
+def test_fin_pair_on_a_circle_uses_the_finned_section():
+    r, a, length = 0.1, 0.2, 0.4
+    span = a - r
+    base = {"name": "finned", "fluid": {"density": 1000.0, "kinematic_viscosity": 1e-6},
+            "hull": {"profile": [{"type": "cylinder", "x": [-1.0, 1.0], "radius": r}]},
+            "appendages": [
+                {"name": "top", "type": "fin", "center": [0.0, 0.0, -(r + span / 2)],
+                 "span_axis": "z", "span": span, "chord": length, "thickness": 0.002},
+                {"name": "bottom", "type": "fin", "center": [0.0, 0.0, r + span / 2],
+                 "span_axis": "z", "span": span, "chord": length, "thickness": 0.002}]}
+    model = estimate(parse_vehicle(base, file="<finned>"), corrections=False)
+    plain = estimate(parse_vehicle(dict(base, appendages=[]), file="<plain>"), corrections=False)
+    extra = model.added_mass[1, 1] - plain.added_mass[1, 1]
+    expected = 1000 * np.pi * (a**2 - r**2 + r**4 / a**2 - r**2) * length
+    assert extra == pytest.approx(expected, rel=1e-6)
+    assert model.added_mass[3, 3] == pytest.approx(2 / np.pi * 1000 * a**4 * length, rel=1e-6)

@@ -196,12 +196,71 @@ def _hole_width_reduction(strips: Strips, part):
     return cy, cz
 
 
+def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
+    r"""Replace hull + fin-pair sums by the finned-circle section where it applies (in place).
+
+    Where a circular hull section carries a symmetric pair of fins (both spanning along z,
+    mirrored about the hull axis, or both along y) whose roots touch the hull, the section
+    normal to the fins is the circle with fins of tip radius a:
+
+    .. math:: m_n = \rho\pi(a^2 - R^2 + R^4/a^2),\qquad m_{44} = \tfrac{2}{\pi}\rho a^4
+
+    (Blevins 1979 table 14-2; Prestero 2001 sec. 3.4) instead of the circle plus two
+    isolated plates, which ignores their interaction.  A cruciform section gets both pairs'
+    normal terms; its roll term is then the sum of the two pairs' (an approximation).
+    """
+    from .sections.added_mass import circle_with_fins
+
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
+    if not hulls or len(fins) < 2:
+        return
+    for kh, hull in hulls:
+        pos_h = {int(i): j for j, i in enumerate(hull.index)}
+        for a_i in range(len(fins)):
+            for b_i in range(a_i + 1, len(fins)):
+                (ka, fa), (kb, fb) = fins[a_i], fins[b_i]
+                common = np.intersect1d(np.intersect1d(fa.index, fb.index), hull.index)
+                for s_idx in common:
+                    ia = int(np.nonzero(fa.index == s_idx)[0][0])
+                    ib = int(np.nonzero(fb.index == s_idx)[0][0])
+                    ih = pos_h[int(s_idx)]
+                    b, h = hull.half_breadth[ih], hull.half_height[ih]
+                    if not np.isclose(b, h, rtol=1e-6):
+                        continue
+                    vertical = fa.half_height[ia] > fa.half_breadth[ia]
+                    if vertical != (fb.half_height[ib] > fb.half_breadth[ib]):
+                        continue
+                    if vertical:
+                        off_a, off_b = fa.z[ia] - hull.z[ih], fb.z[ib] - hull.z[ih]
+                        lat_ok = np.isclose(fa.y[ia], hull.y[ih]) and np.isclose(fb.y[ib], hull.y[ih])
+                        half_a, half_b = fa.half_height[ia], fb.half_height[ib]
+                        n = 0          # sway is normal to vertical fins
+                    else:
+                        off_a, off_b = fa.y[ia] - hull.y[ih], fb.y[ib] - hull.y[ih]
+                        lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
+                        half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
+                        n = 1          # heave is normal to horizontal fins
+                    tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
+                    touching = (abs(off_a) - half_a <= b * (1 + 1e-6)
+                                and abs(off_b) - half_b <= b * (1 + 1e-6))
+                    if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
+                            and touching and tip_a > b):
+                        continue
+                    m_n, m44 = circle_with_fins(b, tip_a, rho=rho)
+                    mats[kh][ih, n, n] = m_n
+                    for k, i in ((ka, ia), (kb, ib)):
+                        mats[k][i, n, n] = 0.0
+                        mats[k][i, 2, 2] = 0.5 * m44
+
+
 def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
     """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI]."""
     x0, y0, z0 = about
     total = np.zeros((6, 6))
-    for p in strips.parts:
-        m = section_added_mass(p, rho).copy()           # (k, 3, 3) about the part centre
+    mats = [section_added_mass(p, rho).copy() for p in strips.parts]   # about part centres
+    _combine_fins(strips, mats, rho)
+    for p, m in zip(strips.parts, mats):
         cy, cz = _hole_width_reduction(strips, p)
         if np.any(cz > 0):   # heave passes through vertical holes (seed 002, eq. 40)
             m[:, 1, 1] *= np.clip(1.0 - cz / (2 * p.half_breadth), 0.0, 1.0) ** 2
@@ -354,12 +413,12 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
             a_max = float(np.max(p.area))
             if hull_body is not None:    # exact end sections of the profile
                 lo, hi = hull_body.x_extent()
-                a_end = max(float(hull_body.half_breadth(np.array([x]))[0]
-                                  * hull_body.half_height(np.array([x]))[0]) for x in (lo, hi))
-                a_max = float(np.max(p.half_breadth * p.half_height))
+                ends = [hull_body.half_breadth(np.array([x]))[0]
+                        * hull_body.half_height(np.array([x]))[0] for x in (lo, hi)]
+                end_ratio = float(max(ends)) / float(np.max(p.half_breadth * p.half_height))
             else:                        # mesh: end strips
-                a_end = max(float(p.area[0]), float(p.area[-1]))
-            if p.index.size and a_end > 0.25 * a_max:   # flat or truncated end
+                end_ratio = max(float(p.area[0]), float(p.area[-1])) / a_max
+            if p.index.size and end_ratio > 0.25:   # flat or truncated end
                 cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
                 elems.append((np.array([x_h, y_h, z_h]),
                               np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))

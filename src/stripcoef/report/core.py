@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
@@ -41,10 +40,9 @@ def capsule_vs_bem():
     from ..assemble import estimate
     from ..geometry.vehicle import load_vehicle
 
-    ref = {}
-    with open(ROOT / "reference_tables" / "capytaine_anchor" / "capsule.csv") as f:
-        for row in csv.DictReader(line for line in f if not line.startswith("#")):
-            ref[row["name"]] = float(row["value"])
+    from ..reference import load_table
+
+    ref = {row["name"]: row["value"] for row in load_table("capytaine_anchor", "capsule")}
     model = estimate(load_vehicle(ROOT / "geometry" / "capsule.yaml"))
     pure = estimate(load_vehicle(ROOT / "geometry" / "capsule.yaml"), corrections=False)
     idx = {"m11": 0, "m22": 1, "m33": 2, "m55": 4, "m66": 5}

@@ -11,21 +11,58 @@ import math
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..model import HydroModel, rigid_body_mass_matrix
 from ..thrusters import Thruster
 from . import markdown_table
 
 ROOT = Path(__file__).resolve().parents[3]
-VIDEORAY_TABLE = ROOT / "reference_tables" / "videoray_wang_clark" / "surge_test.yaml"
+SOURCE = "videoray_pro3"          # reference_tables/videoray_pro3 (seed 000)
 MARES_FILE = ROOT / "geometry" / "mares.yaml"
 
 
+_DIAGONALS = {
+    "added_mass": ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot"),
+    "linear_drag": ("X_u", "Y_v", "Z_w", "K_p", "M_q", "N_r"),
+    "quadratic_drag": ("X_uu", "Y_vv", "Z_ww", "K_pp", "M_qq", "N_rr"),
+}
+
+
 def videoray_table() -> dict:
-    """Seed 000 Table I and the surge test, as data (reference_tables/videoray_wang_clark)."""
-    with open(VIDEORAY_TABLE) as fh:
-        return yaml.safe_load(fh)
+    """Seed 000 Table I and the surge test (sec. IV.A), from reference_tables/videoray_pro3.
+
+    Returns the diagonals of each Table I column (``None`` where the paper prints NA),
+    the thrust coefficients, the inertias and the surge-test rows (dicts with ``value``
+    and tolerances, see :mod:`stripcoef.reference`).
+    """
+    from ..reference import load_table, reference_value
+
+    rows = {}
+    for table in ("table1_added_mass", "table1_linear_drag", "table1_quadratic_drag",
+                  "table1_thrusters", "table1_geometry_inertia", "text_and_derived"):
+        rows.update({r["name"]: r for r in load_table(SOURCE, table)})
+
+    def column(key, col):
+        return [rows[f"{n}.{col}"]["value"] if f"{n}.{col}" in rows else None
+                for n in _DIAGONALS[key]]
+
+    out = {key: {col: column(key, col) for col in ("analytical", "experimental")}
+           for key in _DIAGONALS}
+    out["surge_drag"] = {col: {"linear": rows[f"X_u.{col}"]["value"],
+                               "quadratic": rows[f"X_uu.{col}"]["value"]}
+                         for col in ("analytical", "experimental")}
+    out["thrusters"] = {
+        "horizontal": {"ct_forward": rows["Ct_horizontal_forward"]["value"],
+                       "ct_backward": rows["Ct_horizontal_backward"]["value"]},
+        "vertical": {"ct_forward": rows["Ct_vertical_forward"]["value"],
+                     "ct_backward": rows["Ct_vertical_backward"]["value"]}}
+    out["inertia"] = [rows[n]["value"] for n in ("I_xx", "I_yy", "I_zz")]
+    out["surge_test"] = {"command": rows["verification.n_command"]["value"],
+                         "predicted_speed": rows["verification.u_predicted"]["value"],
+                         "measured_speed": rows["verification.u_observed"]["value"],
+                         "predicted_row": reference_value(SOURCE, "verification.u_predicted"),
+                         "measured_row": reference_value(SOURCE, "verification.u_observed")}
+    return out
 
 
 def quadratic_speed(thrust: float, linear: float, quadratic: float) -> float:
