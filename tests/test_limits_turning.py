@@ -97,3 +97,30 @@ def test_min_turning_radius_inverts_u_max(model):
 def test_bad_radii(model, radii):
     with pytest.raises(InputError, match="radi"):
         turning_curve(model, radii)
+
+
+def test_mirrored_vehicle_turns_the_same_with_thrusters_swapped(model):
+    # a starboard turn of the mirror image (y -> -y) is the port turn of the original;
+    # for a port-starboard symmetric vehicle both must give the same u_max
+    from dataclasses import replace
+    mirrored = replace(model, thrusters=[
+        replace(t, position=np.array(t.position) * [1, -1, 1]) for t in model.thrusters])
+    a = turning_curve(model, [2.0, 8.0], options=LimitOptions(munk=False))
+    b = turning_curve(mirrored, [2.0, 8.0], options=LimitOptions(munk=False))
+    for pa, pb in zip(a, b):
+        assert pb.u_max == pytest.approx(pa.u_max, rel=1e-9)
+        assert pb.thrust["P2"] == pytest.approx(pa.thrust["P1"], rel=1e-7)
+        assert pb.saturated == "P2"
+
+
+def test_straight_line_limits_do_not_depend_on_the_reference_point():
+    # pure translation is the same motion about any point: M_RB, M_A, D_L and the
+    # translation columns of D_Q move exactly (HydroModel.about), g and B with the point
+    import warnings
+    from stripcoef.limits import heave_limit, surge_limit
+    m = make_model(buoyancy_ratio=1.02)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        moved = m.about([0.3, 0.0, 0.05])
+    for f in (surge_limit, heave_limit):
+        assert f(moved).speed == pytest.approx(f(m).speed, rel=1e-9)
