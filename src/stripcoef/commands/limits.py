@@ -15,8 +15,8 @@ def add_parser(subparsers) -> None:
     p = subparsers.add_parser(
         "limits", help="maximum speeds, yaw rate and turning circle the thrusters allow",
         description="Steady-state manoeuvre limits: maximum surge, dive, sway speed, yaw rate "
-                    "on the spot and the fastest steady turn for each radius (MARES method, "
-                    "seed 002 sec. V).")
+                    "on the spot and the fastest steady turn for each radius (the method of "
+                    "the MARES AUV paper, seed 002 sec. V; see docs/limits.md).")
     p.add_argument("vehicle", metavar="VEHICLE",
                    help="vehicle file (YAML) or a model file written by stripcoef "
                         "(JSON/YAML of HydroModel.to_dict())")
