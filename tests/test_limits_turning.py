@@ -124,3 +124,24 @@ def test_straight_line_limits_do_not_depend_on_the_reference_point():
         moved = m.about([0.3, 0.0, 0.05])
     for f in (surge_limit, heave_limit):
         assert f(moved).speed == pytest.approx(f(m).speed, rel=1e-9)
+
+
+def test_steady_turn_is_where_the_dynamics_settle():
+    # integrate M nu_dot = B T - tau_req(nu) from rest with the thrusts of the turn at its
+    # limit (Munk off): the vehicle must settle on (u_max, v, r) - the steady state the
+    # solver found is the attractor, with the same signs as the equations of motion
+    from scipy.integrate import solve_ivp
+    m = make_model(z_g=0.0)
+    opts = LimitOptions(munk=False)
+    p = turn_limit(m, 3.0, options=opts)
+    tau = m.allocation() @ np.array([p.thrust[t.name] for t in m.thrusters])
+    minv = np.linalg.inv(m.mass_matrix)
+
+    def rhs(_, nu):
+        return minv @ (tau - required_force(m, nu, options=opts))
+
+    sol = solve_ivp(rhs, (0.0, 400.0), np.zeros(6), rtol=1e-9, atol=1e-12)
+    u, v, r = sol.y[0, -1], sol.y[1, -1], sol.y[5, -1]
+    assert u == pytest.approx(p.u_max, rel=1e-4)
+    assert v == pytest.approx(p.v, rel=1e-3)
+    assert r == pytest.approx(p.yaw_rate, rel=1e-4)
