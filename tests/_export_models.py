@@ -8,7 +8,11 @@ from an off-axis appendage), off-diagonal linear damping (Y_r, N_v), quadratic c
 
 from __future__ import annotations
 
+import os
+import shutil
+
 import numpy as np
+import pytest
 
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.thrusters import Thruster
@@ -55,3 +59,13 @@ def torpedo(*, name: str = "torpedo", big_added_mass: bool = False) -> HydroMode
                       volume=mass / rho * 1.004, center_of_gravity=cg, center_of_buoyancy=cb,
                       density=rho, thrusters=thrusters,
                       conditions={"reference_speed": 1.5}, provenance={"method": "hand-built"})
+
+
+def octave_or_skip() -> str:
+    """Path of octave-cli; skip without it, unless STRIPCOEF_REQUIRE_OCTAVE=1 (CI): then fail."""
+    exe = shutil.which("octave-cli")
+    if exe is None:
+        if os.environ.get("STRIPCOEF_REQUIRE_OCTAVE") == "1":
+            pytest.fail("octave-cli not found but STRIPCOEF_REQUIRE_OCTAVE=1")
+        pytest.skip("octave-cli not installed (set STRIPCOEF_REQUIRE_OCTAVE=1 to require it)")
+    return exe

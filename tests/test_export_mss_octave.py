@@ -6,14 +6,12 @@ a missing Octave is a failure.
 
 from __future__ import annotations
 
-import os
-import shutil
 import subprocess
 import warnings
 
 import numpy as np
 import pytest
-from _export_models import torpedo
+from _export_models import octave_or_skip, torpedo
 
 from stripcoef.conventions import kinematics, rotation_matrix
 from stripcoef.errors import InputError
@@ -24,12 +22,7 @@ OUTPUTS = ("xdot", "U", "M", "MRB", "MA", "D", "g", "DL", "DQ", "Bthr")
 
 @pytest.fixture(scope="module")
 def octave():
-    exe = shutil.which("octave-cli")
-    if exe is None:
-        if os.environ.get("STRIPCOEF_REQUIRE_OCTAVE") == "1":
-            pytest.fail("octave-cli not found but STRIPCOEF_REQUIRE_OCTAVE=1")
-        pytest.skip("octave-cli not installed (set STRIPCOEF_REQUIRE_OCTAVE=1 to require it)")
-    return exe
+    return octave_or_skip()
 
 
 def run_octave(exe, folder, script):

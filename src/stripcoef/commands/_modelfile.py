@@ -1,8 +1,8 @@
 """Read the VEHICLE argument of the model-consuming commands: a vehicle file or a model file.
 
-A model file is :meth:`HydroModel.to_dict` as JSON or YAML (it has ``added_mass`` and
-``rigid_body_mass``); anything else is a vehicle file, estimated by strip theory
-(:func:`stripcoef.load_vehicle` + :func:`stripcoef.estimate`).
+A model file is :meth:`HydroModel.to_dict` as JSON, or as YAML (a mapping with
+``added_mass`` and ``rigid_body_mass``); anything else is a vehicle file (YAML or a mesh),
+estimated by strip theory (:func:`stripcoef.load_vehicle` + :func:`stripcoef.estimate`).
 """
 
 from __future__ import annotations
@@ -26,8 +26,12 @@ def load_model(path) -> HydroModel:
     path = Path(path)
     if not path.is_file():
         raise InputError("file not found", file=str(path), expected="a vehicle or model file")
+    suffix = path.suffix.lower()
+    if suffix not in (".json", ".yaml", ".yml"):
+        from .. import estimate, load_vehicle      # meshes and anything else: the vehicle loader
+        return estimate(load_vehicle(path))
     text = _read(path)
-    if path.suffix.lower() == ".json":
+    if suffix == ".json":
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:

@@ -44,7 +44,7 @@ def run(args) -> int:
 
     module = format_module(args.to)            # unknown format: fail before any work
     if module.BINARY and not args.output:
-        raise InputError(f"format {args.to} is binary", key="output", value=None,
+        raise InputError(f"format {args.to} is binary and is not printed", key="output",
                          expected="-o FILE")
     model = load_model(args.vehicle)
     options = dict(point=args.point, axes=args.axes, link_name=args.link,

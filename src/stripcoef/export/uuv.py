@@ -88,7 +88,11 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     dropped = [(i, j) for i in range(6) for j in range(6)
                if i != j and scale > 0 and abs(off[i, j]) > 1e-12 * scale]
     if dropped:
-        names = ", ".join(f"{quadratic_damping_name(i, j)} = {-dq[i, j]:.4g}" for i, j in dropped)
+        dropped.sort(key=lambda ij: -abs(dq[ij]))
+        names = ", ".join(f"{quadratic_damping_name(i, j)} = {-dq[i, j]:.4g}"
+                          for i, j in dropped[:6])
+        if len(dropped) > 6:
+            names += f" and {len(dropped) - 6} smaller"
         trap("uuv: the UUV Simulator plugin uses only the diagonal of quadratic_damping "
              f"(HydrodynamicModel.cc, ComputeDampingMatrix); dropped cross terms: {names}")
 
