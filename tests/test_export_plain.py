@@ -194,3 +194,14 @@ def test_write_is_atomic_and_keeps_the_old_file_on_error(tmp_path):
         write_export(torpedo(), "json", tmp_path / "missing" / "m.json")
     with pytest.raises(InputError, match="folder"):
         write_export(torpedo(), "json", tmp_path)
+
+
+def test_written_files_are_readable_by_others(tmp_path):
+    import os
+    import stat
+    mask = os.umask(0o022)
+    try:
+        path = write_export(torpedo(), "json", tmp_path / "m.json")
+    finally:
+        os.umask(mask)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o644
