@@ -1,5 +1,5 @@
 function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = mares(x, tau, Vc)
-% MARES  MARES: hydrodynamic model exported by stripcoef 0.1.0 to format 'mss'
+% MARES  hydrodynamic model exported by stripcoef 0.1.0 to format 'mss'
 % Compatible with MATLAB and the free software GNU Octave (www.octave.org).
 % Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).
 % reference point: CO = [0.00436761219642622, 0, 0.0013222898113235168] m (FRD body coordinates of the source model)

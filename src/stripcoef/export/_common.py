@@ -234,3 +234,15 @@ def plain(obj):
 def xml_comment(lines) -> list[str]:
     """Lines of an XML comment (``--`` is not allowed inside one; nothing is escaped)."""
     return ["<!--", *("  " + str(line).replace("--", "- -") for line in lines), "-->"]
+
+
+def clean(m, *, rtol: float = 1e-13) -> np.ndarray:
+    """A copy of ``m`` with round-off entries (below ``rtol`` of its largest) set to zero.
+
+    Used for the simulator files (gazebo, uuv, mss), so that transforms do not litter them
+    with 1e-18 values; the data formats keep every bit.
+    """
+    m = np.array(m, dtype=float)
+    scale = float(np.abs(m).max()) if m.size else 0.0
+    m[np.abs(m) <= rtol * scale] = 0.0
+    return m

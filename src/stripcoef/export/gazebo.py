@@ -51,7 +51,7 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from ..conventions import DOF
-from ._common import ExportView, fmt, header_lines, xml_comment, is_symmetric, trap
+from ._common import ExportView, clean, fmt, header_lines, is_symmetric, trap, xml_comment
 
 NAME = "gazebo"
 DESCRIPTION = "gz-sim Hydrodynamics system plugin + SDF <fluid_added_mass> (link frame, link origin)"
@@ -109,11 +109,11 @@ def render(view: ExportView, *, link_name: str = "base_link",
     All matrices come from ``view`` (the model about the link origin, in the link's axes).
     """
     model = view.model
-    ma = view.matrix("added_mass")
-    mrb = view.matrix("rigid_body_mass")
-    dl = view.matrix("linear_damping")
-    dq = view.matrix("quadratic_damping")
-    ig = view.inertia_about_cg()
+    ma = clean(view.matrix("added_mass"))
+    mrb = clean(view.matrix("rigid_body_mass"))
+    dl = clean(view.matrix("linear_damping"))
+    dq = clean(view.matrix("quadratic_damping"))
+    ig = clean(view.inertia_about_cg())
     r_g = view.r_g
     r_b = view.r_b
     link = escape(link_name)

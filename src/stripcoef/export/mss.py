@@ -35,7 +35,7 @@ import re
 import numpy as np
 
 from ..errors import InputError
-from ._common import ExportView, fmt, header_lines
+from ._common import ExportView, clean, fmt, header_lines
 
 NAME = "mss"
 DESCRIPTION = "MATLAB/Octave function file in the style of Fossen's MSS vehicle models (FRD, CO)"
@@ -78,17 +78,17 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
     """The function file text (``view``: the model about the CO of the file, FRD axes)."""
     model = view.model
     fname = check_function_name(function_name or function_name_for(model.name))
-    mrb = view.matrix("rigid_body_mass")
-    ma = view.matrix("added_mass")
-    dl = view.matrix("linear_damping")
-    dq = view.matrix("quadratic_damping")
+    mrb = clean(view.matrix("rigid_body_mass"))
+    ma = clean(view.matrix("added_mass"))
+    dl = clean(view.matrix("linear_damping"))
+    dq = clean(view.matrix("quadratic_damping"))
     bthr = view.allocation()
     thr_names = [t.name for t in model.thrusters]
 
     head = header_lines(view, NAME)
     lines = [
         f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = {fname}(x, tau, Vc)",
-        f"% {fname.upper()}  {head[0]}",
+        f"% {fname.upper()}  {head[0].split(': ', 1)[-1]}",
         "% Compatible with MATLAB and the free software GNU Octave (www.octave.org).",
         "% Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).",
     ]

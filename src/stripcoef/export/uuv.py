@@ -42,7 +42,7 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from ..conventions import quadratic_damping_name
-from ._common import ExportView, fmt, header_lines, xml_comment, trap
+from ._common import ExportView, clean, fmt, header_lines, trap, xml_comment
 
 NAME = "uuv"
 DESCRIPTION = "UUV Simulator / DAVE classic hydrodynamic_model 'fossen' (FRD parameters, about the CoG)"
@@ -77,11 +77,11 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     link_axes = view.axes
     params = ExportView(model=view.model, source=view.source, point=view.point,
                         point_label=view.point_label, axes=parameter_axes(link_axes))
-    ma = params.matrix("added_mass")
-    dl = params.matrix("linear_damping")
-    dq = params.matrix("quadratic_damping")
+    ma = clean(params.matrix("added_mass"))
+    dl = clean(params.matrix("linear_damping"))
+    dq = clean(params.matrix("quadratic_damping"))
     cob = view.r_b          # link axes, relative to the CoG
-    ig = view.inertia_about_cg()
+    ig = clean(view.inertia_about_cg())
 
     off = dq - np.diag(np.diag(dq))
     scale = float(np.abs(dq).max()) if dq.size else 0.0
