@@ -127,6 +127,10 @@ def test_bad_model_files(capsys, tmp_path):
     assert "JSON" in one_line_error(code, err)
     code, _, err = run(capsys, tmp_path / "none.yaml", "--to", "json")
     assert "not found" in one_line_error(code, err)
+    mesh = tmp_path / "hull.stl"
+    mesh.write_text("solid x\nendsolid x\n")
+    code, _, err = run(capsys, mesh, "--to", "json")
+    assert "stripcoef coefficients MESH" in one_line_error(code, err)
 
 
 def test_mss_file_name_sets_the_function_name(capsys, model_file, tmp_path):

@@ -112,6 +112,7 @@ def test_diagonal_model_has_no_trap():
     model = torpedo()
     model.quadratic_damping[:] = np.diag(np.diag(model.quadratic_damping))
     model.reference_point = model.center_of_gravity.copy()   # matrices taken as about the CG
+    model.added_mass *= 0.5                                  # below the rigid-body terms
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         parse(export_model(model, "uuv"))
@@ -128,3 +129,10 @@ def test_point_must_be_cg_and_frd_link_flips_parameters():
     # an FRD link frame: ToNED makes the parameters FLU
     np.testing.assert_allclose(frd["Ma"], np.diag(T) @ flu["Ma"] @ np.diag(T), atol=1e-15)
     np.testing.assert_allclose(frd["cob"], T[:3] * flu["cob"], atol=1e-15)
+
+
+def test_added_mass_larger_than_rigid_body_is_a_trap():
+    """The plugin applies added mass explicitly (HydrodynamicModel.cc, ComputeAcc)."""
+    model = torpedo()                    # sway/heave M_A 35.5 kg > m = 31.9 kg
+    with pytest.warns(SimulatorTrapWarning, match=r"sway \(M_A 35.5 > M_RB 31.9\)"):
+        export_model(model, "uuv")

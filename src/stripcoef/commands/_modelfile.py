@@ -1,8 +1,9 @@
 """Read the VEHICLE argument of the model-consuming commands: a vehicle file or a model file.
 
 A model file is :meth:`HydroModel.to_dict` as JSON, or as YAML (a mapping with
-``added_mass`` and ``rigid_body_mass``); anything else is a vehicle file (YAML or a mesh),
-estimated by strip theory (:func:`stripcoef.load_vehicle` + :func:`stripcoef.estimate`).
+``added_mass`` and ``rigid_body_mass``); any other YAML is a vehicle file, estimated by strip
+theory (:func:`stripcoef.load_vehicle` + :func:`stripcoef.estimate`).  Meshes need the mesh
+options of ``stripcoef coefficients``: make a model file with it first.
 """
 
 from __future__ import annotations
@@ -28,8 +29,10 @@ def load_model(path) -> HydroModel:
         raise InputError("file not found", file=str(path), expected="a vehicle or model file")
     suffix = path.suffix.lower()
     if suffix not in (".json", ".yaml", ".yml"):
-        from .. import estimate, load_vehicle      # meshes and anything else: the vehicle loader
-        return estimate(load_vehicle(path))
+        raise InputError("not a vehicle or model file", file=str(path), value=path.suffix,
+                         expected="a vehicle file (.yaml) or a model file (.json/.yaml); for a "
+                                  "mesh run 'stripcoef coefficients MESH --json -o model.json' "
+                                  "first")
     text = _read(path)
     if suffix == ".json":
         try:

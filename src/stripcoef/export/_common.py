@@ -246,3 +246,21 @@ def clean(m, *, rtol: float = 1e-13) -> np.ndarray:
     scale = float(np.abs(m).max()) if m.size else 0.0
     m[np.abs(m) <= rtol * scale] = 0.0
     return m
+
+
+def explicit_added_mass_trap(prefix: str, added_mass, rigid_body_mass, why: str) -> None:
+    """Warn when an engine that applies added mass explicitly gets M_A[i,i] > M_RB[i,i].
+
+    Explicit added mass, -M_A times the previous step's (finite-difference) acceleration,
+    is an unstable feedback when M_A outweighs the rigid body: gz-sim issue #1923
+    ("Unbounded velocity growth"); UUV Simulator HydrodynamicModel.cc, ComputeAcc comment
+    ("This can lead to an oscillating system"), issues #181 and #96.
+    """
+    from ..conventions import DOF
+    ma = np.asarray(added_mass, dtype=float)
+    mrb = np.asarray(rigid_body_mass, dtype=float)
+    big = [f"{DOF[i]} (M_A {ma[i, i]:.4g} > M_RB {mrb[i, i]:.4g})"
+           for i in range(6) if ma[i, i] > mrb[i, i]]
+    if big:
+        trap(f"{prefix}: added mass exceeds the rigid-body term in " + ", ".join(big)
+             + f"; {why}")

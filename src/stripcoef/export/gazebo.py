@@ -50,8 +50,8 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from ..conventions import DOF
-from ._common import ExportView, clean, fmt, header_lines, is_symmetric, trap, xml_comment
+from ._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines,
+                      is_symmetric, trap, xml_comment)
 
 NAME = "gazebo"
 DESCRIPTION = "gz-sim Hydrodynamics system plugin + SDF <fluid_added_mass> (link frame, link origin)"
@@ -175,7 +175,7 @@ def render(view: ExportView, *, link_name: str = "base_link",
             '      <collision name="buoyancy_volume">',
             f"        <pose>{fmt(r_b[0])} {fmt(r_b[1])} {fmt(r_b[2])} 0 0 0</pose>",
             f"        <geometry><box><size>{fmt(side)} {fmt(side)} {fmt(side)}</size></box></geometry>",
-            "        <surface><contact><collide_bitmask>0x0000</collide_bitmask></contact></surface>",
+            "        <surface><contact><collide_bitmask>0</collide_bitmask></contact></surface>",
             "      </collision>",
         ]
     out.append("    </link>")
@@ -213,13 +213,10 @@ def render(view: ExportView, *, link_name: str = "base_link",
 
 def _legacy_traps(ma: np.ndarray, mrb: np.ndarray) -> None:
     """Warn about what goes wrong when gz-sim applies added mass explicitly."""
-    big = [f"{DOF[i]} (M_A {ma[i, i]:.4g} > M_RB {mrb[i, i]:.4g})"
-           for i in range(6) if ma[i, i] > mrb[i, i]]
-    if big:
-        trap("gazebo --legacy-added-mass: added mass exceeds the rigid-body term in "
-             + ", ".join(big) + "; the plugin applies added mass explicitly from the previous "
-             "step's acceleration and this diverges (gz-sim issue #1923); prefer "
-             "<fluid_added_mass> with DART")
+    explicit_added_mass_trap(
+        "gazebo --legacy-added-mass", ma, mrb,
+        "the plugin applies added mass explicitly from the previous step's acceleration and "
+        "this diverges (gz-sim issue #1923); prefer <fluid_added_mass> with DART")
     off = ma - np.diag(np.diag(ma))
     if np.any(_nonzero(off, 1e-9) & _nonzero(ma, 1e-9)):
         i, j = np.unravel_index(int(np.argmax(np.abs(off))), off.shape)

@@ -32,7 +32,9 @@ the coefficients are about the CoG and the link origin should be placed at the C
 (``BuoyantObject.cc``: ``AddForceAtRelativePosition(buoyancyForce, GetCoB())``).
 
 Trap warnings (:class:`SimulatorTrapWarning`): quadratic cross terms (dropped, the plugin
-reads only the diagonal).
+reads only the diagonal); an added-mass diagonal term larger than the rigid-body term (the
+plugin applies added mass explicitly from a filtered finite-difference acceleration, which
+its own ``ComputeAcc`` comment says "can lead to an oscillating system"; issues #181, #96).
 """
 
 from __future__ import annotations
@@ -42,7 +44,8 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from ..conventions import quadratic_damping_name
-from ._common import ExportView, clean, fmt, header_lines, trap, xml_comment
+from ._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines, trap,
+                      xml_comment)
 
 NAME = "uuv"
 DESCRIPTION = "UUV Simulator / DAVE classic hydrodynamic_model 'fossen' (FRD parameters, about the CoG)"
@@ -80,6 +83,7 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     ma = clean(params.matrix("added_mass"))
     dl = clean(params.matrix("linear_damping"))
     dq = clean(params.matrix("quadratic_damping"))
+    mrb = clean(params.matrix("rigid_body_mass"))
     cob = view.r_b          # link axes, relative to the CoG
     ig = clean(view.inertia_about_cg())
 
@@ -95,6 +99,12 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
             names += f" and {len(dropped) - 6} smaller"
         trap("uuv: the UUV Simulator plugin uses only the diagonal of quadratic_damping "
              f"(HydrodynamicModel.cc, ComputeDampingMatrix); dropped cross terms: {names}")
+
+    explicit_added_mass_trap(
+        "uuv", ma, mrb,
+        "the plugin applies -M_A times a filtered finite-difference acceleration of the "
+        "previous step, which oscillates or diverges (HydrodynamicModel.cc ComputeAcc; "
+        "UUV Simulator issues #181, #96)")
 
     notes = header_lines(view, NAME)
     notes += [
