@@ -10,6 +10,7 @@ No exporter transforms a matrix any other way.
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from dataclasses import dataclass
 
@@ -36,8 +37,11 @@ class SimulatorTrapWarning(ModelWarning):
 
 
 def trap(message: str) -> None:
-    """Issue a :class:`SimulatorTrapWarning` pointing at the caller of the exporter."""
-    warnings.warn(message, SimulatorTrapWarning, stacklevel=4)
+    """Issue a :class:`SimulatorTrapWarning` pointing at the first caller outside this package."""
+    frame, level = sys._getframe(1), 2
+    while frame is not None and frame.f_globals.get("__name__", "").startswith(__package__):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, SimulatorTrapWarning, stacklevel=level)
 
 
 def resolve_point(model: HydroModel, point) -> tuple[np.ndarray, str]:

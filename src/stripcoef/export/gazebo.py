@@ -97,11 +97,6 @@ def fluid_added_mass_tag(i: int, j: int) -> str:
     return _FAM_LETTERS[a] + _FAM_LETTERS[b]
 
 
-def _nonzero(m: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
-    scale = float(np.abs(m).max()) if m.size else 0.0
-    return np.abs(m) > rtol * scale if scale > 0 else np.zeros(m.shape, bool)
-
-
 def render(view: ExportView, *, link_name: str = "base_link",
            legacy_added_mass: bool = False) -> str:
     """SDF text: a model with the link's inertial (and added mass) and the plugin block.
@@ -183,14 +178,14 @@ def render(view: ExportView, *, link_name: str = "base_link",
     out.append(f'    <plugin filename="{PLUGIN_FILENAME}" name="{PLUGIN_NAME}">')
     out.append(f"      <link_name>{link}</link_name>")
     out.append("      <!-- linear damping: <fi Vj> = -D_L[i,j] -->")
-    nz = _nonzero(dl)
+    nz = dl != 0.0          # clean() already zeroed round-off
     for i in range(6):
         for j in range(6):
             if i == j or nz[i, j]:
                 tag = linear_tag(i, j)
                 out.append(f"      <{tag}>{fmt(-dl[i, j])}</{tag}>")
     out.append("      <!-- quadratic damping: <fi Vj abs Vj> = -D_Q[i,j] (force -D_Q[i,j] |v_j| v_j) -->")
-    nz = _nonzero(dq)
+    nz = dq != 0.0
     for i in range(6):
         for j in range(6):
             if i == j or nz[i, j]:
@@ -199,7 +194,7 @@ def render(view: ExportView, *, link_name: str = "base_link",
     if legacy_added_mass:
         _legacy_traps(ma, mrb)
         out.append("      <!-- legacy added mass: <fi Dot Vj> = -M_A[i,j] -->")
-        nz = _nonzero(ma)
+        nz = ma != 0.0
         for i in range(6):
             for j in range(6):
                 if i == j or nz[i, j]:
@@ -218,7 +213,7 @@ def _legacy_traps(ma: np.ndarray, mrb: np.ndarray) -> None:
         "the plugin applies added mass explicitly from the previous step's acceleration and "
         "this diverges (gz-sim issue #1923); prefer <fluid_added_mass> with DART")
     off = ma - np.diag(np.diag(ma))
-    if np.any(_nonzero(off, 1e-9) & _nonzero(ma, 1e-9)):
+    if np.any(off != 0.0):
         i, j = np.unravel_index(int(np.argmax(np.abs(off))), off.shape)
         trap("gazebo --legacy-added-mass: the plugin's added-mass Coriolis uses only the "
              f"diagonal of M_A (HydrodynamicsUtils.hh buildCoriolisMatrix); coupling terms such "
