@@ -39,6 +39,7 @@ its own ``ComputeAcc`` comment says "can lead to an oscillating system"; issues 
 
 from __future__ import annotations
 
+from dataclasses import replace
 from xml.sax.saxutils import escape
 
 import numpy as np
@@ -78,8 +79,7 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     """The plugin block for one link (``view``: the model about the CoG, link axes)."""
     model = view.model
     link_axes = view.axes
-    params = ExportView(model=view.model, source=view.source, point=view.point,
-                        point_label=view.point_label, axes=parameter_axes(link_axes))
+    params = replace(view, axes=parameter_axes(link_axes))
     ma = clean(params.matrix("added_mass"))
     dl = clean(params.matrix("linear_damping"))
     dq = clean(params.matrix("quadratic_damping"))
@@ -87,10 +87,7 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     cob = view.r_b          # link axes, relative to the CoG
     ig = clean(view.inertia_about_cg())
 
-    off = dq - np.diag(np.diag(dq))
-    scale = float(np.abs(dq).max()) if dq.size else 0.0
-    dropped = [(i, j) for i in range(6) for j in range(6)
-               if i != j and scale > 0 and abs(off[i, j]) > 1e-12 * scale]
+    dropped = [(i, j) for i in range(6) for j in range(6) if i != j and dq[i, j] != 0.0]
     if dropped:
         dropped.sort(key=lambda ij: -abs(dq[ij]))
         names = ", ".join(f"{quadratic_damping_name(i, j)} = {-dq[i, j]:.4g}"
