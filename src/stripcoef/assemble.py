@@ -310,7 +310,6 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     about = np.asarray(about, float)
     L = strips.length
     omega = speed / (0.5 * L)
-    s_ref = np.array([speed] * 3 + [omega] * 3)
     elems = []  # (r (3,), c (3,) [kg/m], n (3,))
     cond = {"reference_speed": speed, "reference_rate": omega}
 
@@ -350,9 +349,16 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
                      "axial_drag_coefficient_wetted": cf * ff,
                      "axial_drag_coefficient_frontal": cf * ff * s_wet / (np.pi * max_d**2 / 4)})
         # blunt ends: pressure drag on the frontal area of a hull that does not close
+        hull_body = getattr(vehicle, "hull", None)
         for p in hull_parts:
-            a_end = max(float(p.area[0]), float(p.area[-1]))
             a_max = float(np.max(p.area))
+            if hull_body is not None:    # exact end sections of the profile
+                lo, hi = hull_body.x_extent()
+                a_end = max(float(hull_body.half_breadth(np.array([x]))[0]
+                                  * hull_body.half_height(np.array([x]))[0]) for x in (lo, hi))
+                a_max = float(np.max(p.half_breadth * p.half_height))
+            else:                        # mesh: end strips
+                a_end = max(float(p.area[0]), float(p.area[-1]))
             if p.index.size and a_end > 0.25 * a_max:   # flat or truncated end
                 cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
                 elems.append((np.array([x_h, y_h, z_h]),
@@ -411,24 +417,28 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     cond.update(hull_cd)
     d_lin = np.zeros((6, 6))
     d_quad = np.zeros((6, 6))
+    pts = [(np.asarray(r, float), np.asarray(c, float), np.asarray(n, float))
+           for r, c, n in elems if not isinstance(r, str)]
     for r, c, n in elems:
-        if isinstance(r, str):  # roll-only element: c in [kg m^2], n exponent
+        if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
             a_hat, b_hat = power_law_split(n)
             d_lin[3, 3] += a_hat * c * omega
             d_quad[3, 3] += b_hat * c
-            continue
-        rel = np.asarray(r, float) - about
-        G = np.hstack([np.eye(3), -skew(rel)])   # local velocity for unit DOF motion
-        a_hat, b_hat = power_law_split(n)
-        for j in range(6):
-            v = G[:, j]
-            if not np.any(v):
-                continue
-            f_q = b_hat * c * np.abs(v) * v                   # -> D_Q column (positive)
-            f_l = a_hat * c * np.abs(v) * v * s_ref[j]        # -> D_L column
-            d_quad[:, j] += np.concatenate([f_q, np.cross(rel, f_q)])
-            d_lin[:, j] += np.concatenate([f_l, np.cross(rel, f_l)])
-    # numerical noise below 1e-12 of the largest term is exactly zero by symmetry
+    rel = np.array([p[0] for p in pts]) - about                    # (E, 3)
+    c = np.array([p[1] for p in pts])                               # (E, 3) [kg/m]
+    a_hat, b_hat = power_law_split(np.array([p[2] for p in pts]))   # (E, 3)
+    G = np.zeros((rel.shape[0], 3, 6))                              # local velocity per DOF
+    G[:, :, :3] = np.eye(3)
+    G[:, 0, 4], G[:, 0, 5] = rel[:, 2], -rel[:, 1]                  # -S(r) = S(r)^T
+    G[:, 1, 3], G[:, 1, 5] = -rel[:, 2], rel[:, 0]
+    G[:, 2, 3], G[:, 2, 4] = rel[:, 1], -rel[:, 0]
+    # linear part: a linear force law -k V on the local velocity, k = a_hat c U, so
+    # D_L = sum G^T diag(k) G is a congruence and moves between points exactly
+    d_lin += np.einsum("eki,ek,ekj->ij", G, a_hat * c * speed, G)
+    # quadratic part: pure-motion columns, force g = b_hat c |V| V and its moment r x g
+    g = (b_hat * c)[:, :, None] * np.abs(G) * G                     # (E, 3, 6)
+    d_quad[:3] += g.sum(axis=0)
+    d_quad[3:] += np.cross(rel[:, :, None], g, axisa=1, axisb=1, axisc=1).sum(axis=0)
     return _clean(d_lin), _clean(d_quad), cond
 
 
