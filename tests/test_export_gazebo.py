@@ -202,3 +202,22 @@ def test_asymmetric_added_mass_is_a_trap():
     model.added_mass[1, 5] += 0.5
     with pytest.warns(SimulatorTrapWarning, match="asymmetric"):
         export_model(model, "gazebo")
+
+
+def test_about_cg_in_flu_and_back_gives_the_original():
+    """Read the tags about the CG in FLU, undo axes and point with transform_matrix: the model."""
+    from stripcoef.conventions import transform_matrix
+    model = torpedo()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, _, lin, quad, _, fam = parse(export_model(model, "gazebo", point="CG"))
+    assert not any(quad[i, j, k] for i in range(6) for j in range(6) for k in range(6) if k != j)
+    read = {"added_mass": fam, "linear_damping": -lin,
+            "quadratic_damping": -np.einsum("ijj->ij", quad)}
+    for key, value in read.items():
+        frd = transform_matrix(value, axes="FLU")
+        back = transform_matrix(frd, from_point=model.center_of_gravity,
+                                to_point=model.reference_point)
+        original = getattr(model, key)
+        np.testing.assert_allclose(back, original, rtol=1e-12,
+                                   atol=1e-12 * np.abs(original).max(), err_msg=key)

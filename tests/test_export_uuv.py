@@ -136,3 +136,17 @@ def test_added_mass_larger_than_rigid_body_is_a_trap():
     model = torpedo()                    # sway/heave M_A 35.5 kg > m = 31.9 kg
     with pytest.warns(SimulatorTrapWarning, match=r"sway \(M_A 35.5 > M_RB 31.9\)"):
         export_model(model, "uuv")
+
+
+def test_about_cg_and_back_gives_the_original():
+    from stripcoef.conventions import transform_matrix
+    model = torpedo()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = parse(export_model(model, "uuv"))
+    for key, value in (("added_mass", p["Ma"]), ("linear_damping", -p["DLin"])):
+        back = transform_matrix(value, from_point=model.center_of_gravity,
+                                to_point=model.reference_point)      # parameters are FRD
+        original = getattr(model, key)
+        np.testing.assert_allclose(back, original, rtol=1e-12,
+                                   atol=1e-12 * np.abs(original).max(), err_msg=key)
