@@ -69,3 +69,15 @@ def octave_or_skip() -> str:
             pytest.fail("octave-cli not found but STRIPCOEF_REQUIRE_OCTAVE=1")
         pytest.skip("octave-cli not installed (set STRIPCOEF_REQUIRE_OCTAVE=1 to require it)")
     return exe
+
+
+def warning_messages(func, *args, **kwargs):
+    """Call func and return (result, {category name: [messages]}) of every warning it raised."""
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = func(*args, **kwargs)
+    out: dict[str, list[str]] = {}
+    for w in caught:
+        out.setdefault(w.category.__name__, []).append(str(w.message))
+    return result, out
