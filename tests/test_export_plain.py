@@ -173,12 +173,19 @@ def test_options_that_do_not_apply_are_errors():
         export_model(torpedo(), "gazebo", link_name="bad name")
 
 
-def test_effects_that_csv_cannot_hold_are_a_trap():
+@pytest.mark.parametrize("fmt", sorted(FORMATS))
+def test_effects_a_format_cannot_hold_are_a_trap(fmt):
     from stripcoef.export import SimulatorTrapWarning
     model = torpedo()
     model.effects = [{"effect": "tether_drag", "parameters": {"c": 1.0}}]
-    with pytest.warns(SimulatorTrapWarning, match="tether_drag"):
-        export_model(model, "csv")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = export_model(model, fmt)
+    traps = [str(w.message) for w in caught if w.category is SimulatorTrapWarning
+             and "tether_drag" in str(w.message)]
+    assert bool(traps) == (fmt not in ("json", "yaml", "npz"))
+    if fmt == "json":
+        assert HydroModel.from_dict(json.loads(out)).effects == model.effects
 
 
 def test_write_is_atomic_and_keeps_the_old_file_on_error(tmp_path):

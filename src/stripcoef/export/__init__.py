@@ -2,7 +2,7 @@ r"""Exports of a :class:`~stripcoef.model.HydroModel` to the formats simulators 
 
 One module per target format; :data:`FORMATS` is the registry.  Each format module
 declares its defaults and limits (``DEFAULT_POINT``, ``DEFAULT_AXES``, ``AXES_ALLOWED``,
-``POINTS_ALLOWED``, ``OPTIONS``) and a ``render(view, **options)`` function.
+``POINTS_ALLOWED``, ``OPTIONS``, ``HOLDS_EFFECTS``) and a ``render(view, **options)`` function.
 
 Every conversion goes through one transform: the model is moved to the reference point
 with :meth:`HydroModel.about` and its matrices are expressed in the target axes with
@@ -25,7 +25,8 @@ from ..errors import InputError, unknown_name
 from ..io import write_bytes, write_text
 from ..model import HydroModel
 from . import csvtable, gazebo, jsondata, mss, npzarrays, pymodule, uuv, yamldata
-from ._common import POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point
+from ._common import (POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point,
+                      trap)
 
 #: The registry of export formats: name -> module.
 FORMATS = {m.NAME: m for m in (gazebo, uuv, mss, pymodule, jsondata, yamldata, csvtable,
@@ -113,6 +114,11 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
                              + (" (the UUV plugin applies forces at the link's CoG)"
                                 if fmt == "uuv" else ""))
     view = ExportView.of(model, point, axes)
+    if model.effects and not module.HOLDS_EFFECTS:
+        names = ", ".join(str(e.get("effect", e.get("name", "?"))) if isinstance(e, dict)
+                          else str(e) for e in model.effects)
+        trap(f"{fmt}: the model's calibrated effects ({names}) cannot be written in this "
+             "format and are left out; json, yaml and npz keep them")
     return module.render(view, **options)
 
 

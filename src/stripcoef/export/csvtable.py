@@ -13,7 +13,7 @@ Rows, in the export's axes and about its reference point:
   thrust map (``ct_forward`` ... ``deadband``, col = thruster name).
 
 :func:`read` parses it back.  The calibrated ``effects`` a model may carry do not fit
-this table; a :class:`SimulatorTrapWarning` says so.
+this table (the registry warns, as for every format without ``HOLDS_EFFECTS``).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ import numpy as np
 
 from ..conventions import DOF
 from ..errors import InputError
-from ._common import ExportView, fmt, trap
+from ._common import ExportView, fmt
 
 NAME = "csv"
 DESCRIPTION = "plain CSV table quantity,row,col,value,unit (matrices, mass properties, thrusters)"
@@ -35,6 +35,8 @@ AXES_ALLOWED = ("FRD", "FLU")
 DEFAULT_AXES = "FRD"
 DEFAULT_POINT = "CO"
 POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = False
 OPTIONS = ()
 
 MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping")
@@ -60,10 +62,6 @@ def matrix_unit(kind: str, i: int, j: int) -> str:
 
 def render(view: ExportView) -> str:
     model = view.model
-    if model.effects:
-        trap("csv: the model's calibrated effects (" +
-             ", ".join(str(e.get("effect", e.get("name", "?"))) for e in model.effects) +
-             ") do not fit the CSV table and are not written; use json or yaml")
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["quantity", "row", "col", "value", "unit"])

@@ -61,6 +61,8 @@ AXES_ALLOWED = ("FRD", "FLU")
 DEFAULT_AXES = "FLU"
 DEFAULT_POINT = "CO"
 POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = False
 OPTIONS = ("link_name", "legacy_added_mass")
 
 #: Force-axis and velocity letters of the plugin's tag grammar (Hydrodynamics.cc, Configure).

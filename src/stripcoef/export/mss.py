@@ -45,6 +45,8 @@ AXES_ALLOWED = ("FRD",)
 DEFAULT_AXES = "FRD"
 DEFAULT_POINT = "CO"
 POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = False
 OPTIONS = ("function_name",)
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,62}$")

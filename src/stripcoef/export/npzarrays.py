@@ -28,6 +28,8 @@ AXES_ALLOWED = ("FRD", "FLU")
 DEFAULT_AXES = "FRD"
 DEFAULT_POINT = "CO"
 POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = True
 OPTIONS = ()
 
 

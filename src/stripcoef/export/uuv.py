@@ -57,6 +57,8 @@ DEFAULT_AXES = "FLU"
 DEFAULT_POINT = "CG"
 #: The plugin applies forces at the CoG: no other point is meaningful.
 POINTS_ALLOWED = ("CG",)
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = False
 OPTIONS = ("link_name",)
 
 PLUGIN_FILENAME = "libuuv_underwater_object_ros_plugin.so"
