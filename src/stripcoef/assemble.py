@@ -354,12 +354,12 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
             a_max = float(np.max(p.area))
             if hull_body is not None:    # exact end sections of the profile
                 lo, hi = hull_body.x_extent()
-                a_end = max(float(hull_body.half_breadth(np.array([x]))[0]
-                                  * hull_body.half_height(np.array([x]))[0]) for x in (lo, hi))
-                a_max = float(np.max(p.half_breadth * p.half_height))
+                ends = [hull_body.half_breadth(np.array([x]))[0]
+                        * hull_body.half_height(np.array([x]))[0] for x in (lo, hi)]
+                end_ratio = float(max(ends)) / float(np.max(p.half_breadth * p.half_height))
             else:                        # mesh: end strips
-                a_end = max(float(p.area[0]), float(p.area[-1]))
-            if p.index.size and a_end > 0.25 * a_max:   # flat or truncated end
+                end_ratio = max(float(p.area[0]), float(p.area[-1])) / a_max
+            if p.index.size and end_ratio > 0.25:   # flat or truncated end
                 cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
                 elems.append((np.array([x_h, y_h, z_h]),
                               np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))

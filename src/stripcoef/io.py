@@ -61,3 +61,20 @@ def write_bytes(path, data: bytes, *, key: str = "output") -> None:
     """Write ``data`` to ``path`` atomically."""
     with atomic_path(path, key=key) as tmp:
         tmp.write_bytes(data)
+
+
+def read_text(path, *, kind: str) -> str:
+    """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
+
+    ``kind`` says what the file should be ("vehicle file", "CSV log", ...).
+    """
+    path = Path(path)
+    try:
+        return path.read_text()
+    except FileNotFoundError:
+        raise InputError("file not found", file=str(path), expected=f"an existing {kind}") from None
+    except IsADirectoryError:
+        raise InputError("is a folder", file=str(path), expected=f"a {kind}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read ({exc.__class__.__name__})", file=str(path),
+                         expected=f"a readable UTF-8 {kind}") from None
