@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..io import read_text
 from ..model import HydroModel
 
 _MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass")
@@ -25,15 +26,13 @@ _REQUIRED = _MATRICES + ("reference_point", "mass", "volume", "center_of_gravity
 def load_model(path) -> HydroModel:
     """A HydroModel from a model file (JSON/YAML) or a vehicle file (YAML)."""
     path = Path(path)
-    if not path.is_file():
-        raise InputError("file not found", file=str(path), expected="a vehicle or model file")
     suffix = path.suffix.lower()
     if suffix not in (".json", ".yaml", ".yml"):
         raise InputError("not a vehicle or model file", file=str(path), value=path.suffix,
                          expected="a vehicle file (.yaml) or a model file (.json/.yaml); for a "
                                   "mesh run 'stripcoef coefficients MESH --json -o model.json' "
                                   "first")
-    text = _read(path)
+    text = read_text(path, kind="vehicle or model file")
     if suffix == ".json":
         try:
             data = json.loads(text)
@@ -52,13 +51,6 @@ def load_model(path) -> HydroModel:
         return model_from_dict(data, file=str(path))
     from .. import estimate, load_vehicle
     return estimate(load_vehicle(path))
-
-
-def _read(path: Path) -> str:
-    try:
-        return path.read_text()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read ({exc})", file=str(path)) from None
 
 
 def model_from_dict(data, *, file: str | None = None) -> HydroModel:
