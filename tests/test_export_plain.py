@@ -212,3 +212,16 @@ def test_written_files_are_readable_by_others(tmp_path):
     finally:
         os.umask(mask)
     assert stat.S_IMODE(path.stat().st_mode) == 0o644
+
+
+@pytest.mark.parametrize("name, attr", [("cg", "center_of_gravity"),
+                                        ("center_of_buoyancy", "center_of_buoyancy"),
+                                        ("reference_point", "reference_point"),
+                                        ("origin", None)])
+def test_named_points(name, attr):
+    model = torpedo()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        data = json.loads(export_model(model, "json", point=name))
+    want = np.zeros(3) if attr is None else getattr(model, attr)
+    np.testing.assert_array_equal(data["reference_point"], want)

@@ -123,6 +123,11 @@ def test_point_must_be_cg_and_frd_link_flips_parameters():
     model = torpedo()
     with pytest.raises(InputError, match="CG"):
         export_model(model, "uuv", point="CB")
+    with pytest.raises(InputError, match="CG"):
+        export_model(model, "uuv", point=model.center_of_gravity)   # say CG, not numbers
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert export_model(model, "uuv", point="center_of_gravity") == export_model(model, "uuv")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         flu = parse(export_model(model, "uuv"))

@@ -23,10 +23,11 @@ def add_parser(subparsers):
     p.add_argument("--to", required=True, metavar="FORMAT",
                    help="one of " + ", ".join(FORMATS))
     p.add_argument("-o", "--output", metavar="FILE", help="output file (default: stdout)")
-    p.add_argument("--point", metavar="CO|CG|CB|X,Y,Z",
-                   help="reference point of the exported matrices: CO (the model's), CG, CB "
-                        "or x,y,z in m, FRD body coordinates (write --point=-0.1,0,0 for a "
-                        "negative x); default: the format's (CG for uuv, else CO)")
+    p.add_argument("--point", metavar="CO|CG|CB|origin|X,Y,Z",
+                   help="reference point of the exported matrices: CO (the model's), CG, CB, "
+                        "origin or x,y,z in m, FRD body coordinates of the vehicle file (write "
+                        "--point=-0.1,0,0 for a negative x); default: the format's (CG for "
+                        "uuv, else CO)")
     p.add_argument("--axes", metavar="FRD|FLU",
                    help="axes of the exported matrices (gazebo, uuv: of the link frame); "
                         "default FLU for gazebo and uuv, FRD otherwise")

@@ -67,8 +67,9 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
         Matrices about ``model.reference_point`` in FRD body axes
     fmt : str
         One of :data:`FORMATS`
-    point : "CO", "CG", "CB", (x, y, z) or "x,y,z", optional
-        Reference point of the exported matrices (FRD body coordinates of the model [m]);
+    point : "CO", "CG", "CB", "origin", (x, y, z) or "x,y,z", optional
+        Reference point of the exported matrices (FRD body coordinates of the model [m];
+        see :func:`resolve_point` for the long names);
         default: the format's own (``CO`` = the model's reference point; ``CG`` for ``uuv``,
         which applies forces at the CoG)
     axes : "FRD" or "FLU", optional
@@ -106,7 +107,7 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
                       fmt_name=fmt)
     point = module.DEFAULT_POINT if point is None else point
     if module.POINTS_ALLOWED is not None:
-        label = point.strip().upper() if isinstance(point, str) else None
+        _, label = resolve_point(model, point)
         if label not in module.POINTS_ALLOWED:
             raise InputError(f"format {fmt} must be expressed about "
                              + " or ".join(module.POINTS_ALLOWED), key="point", value=point,

@@ -21,9 +21,17 @@ from ..errors import InputError, ModelWarning
 from ..model import HydroModel
 
 #: Names of the special reference points (see :func:`resolve_point`).
-POINT_NAMES = ("CO", "CG", "CB")
-POINT_EXPECTED = ("CO, CG, CB or three finite numbers x,y,z [m] in FRD body axes "
-                  "relative to the model's origin")
+POINT_NAMES = ("CO", "CG", "CB", "origin")
+#: Name -> (label, HydroModel attribute); the long names are those of the vehicle file's
+#: ``reference_point`` key; "origin" is the origin of the vehicle file's coordinates.
+_NAMED_POINTS = {
+    "CO": ("CO", "reference_point"), "reference_point": ("CO", "reference_point"),
+    "CG": ("CG", "center_of_gravity"), "center_of_gravity": ("CG", "center_of_gravity"),
+    "CB": ("CB", "center_of_buoyancy"), "center_of_buoyancy": ("CB", "center_of_buoyancy"),
+    "origin": ("origin", None),
+}
+POINT_EXPECTED = ("CO, CG, CB, origin or three finite numbers x,y,z [m] in the model's FRD "
+                  "body coordinates")
 
 
 class SimulatorTrapWarning(ModelWarning):
@@ -51,8 +59,10 @@ def resolve_point(model: HydroModel, point) -> tuple[np.ndarray, str]:
     ----------
     model : HydroModel
     point : str or sequence of 3 numbers
-        ``"CO"`` (the model's own reference point), ``"CG"``, ``"CB"``, a point
-        ``(x, y, z)`` [m] or the string ``"x,y,z"``, in the model's FRD body axes.
+        ``"CO"`` (the model's own reference point), ``"CG"``, ``"CB"`` (also spelt
+        ``reference_point``, ``center_of_gravity``, ``center_of_buoyancy``), ``"origin"``
+        (the origin of the model's coordinates), a point ``(x, y, z)`` [m] or the string
+        ``"x,y,z"``, in the model's FRD body coordinates.
 
     Returns
     -------
@@ -60,13 +70,11 @@ def resolve_point(model: HydroModel, point) -> tuple[np.ndarray, str]:
     """
     if isinstance(point, str):
         key = point.strip()
-        upper = key.upper()
-        if upper == "CO":
-            return np.asarray(model.reference_point, dtype=float).copy(), "CO"
-        if upper == "CG":
-            return np.asarray(model.center_of_gravity, dtype=float).copy(), "CG"
-        if upper == "CB":
-            return np.asarray(model.center_of_buoyancy, dtype=float).copy(), "CB"
+        named = _NAMED_POINTS.get(key.upper()) or _NAMED_POINTS.get(key.lower())
+        if named is not None:
+            label, attr = named
+            xyz = np.zeros(3) if attr is None else getattr(model, attr)
+            return np.asarray(xyz, dtype=float).copy(), label
         parts = [p for p in key.replace(";", ",").split(",")]
         if len(parts) != 3:
             raise InputError("not a reference point", key="point", value=point,
