@@ -18,7 +18,7 @@ from stripcoef.errors import InputError
 
 ROOT = ref.reference_dir()
 DATA = Path(ref.__file__).resolve().parent / "data"
-SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner")
+SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor")
 
 
 def val(source, name):
@@ -511,8 +511,6 @@ def test_data_rectangle_drag_against_published_points():
     assert cd[i] == pytest.approx(val(h, "rect_drag.peak.Cd"), abs=0.15)
 
 
-@pytest.mark.xfail(strict=True, reason="src/stripcoef/data/rectangle_drag.csv has no d/h = 1 point: linear interpolation "
-                   "between 0.7 (2.7) and 1.2 (2.1) gives 2.34 for the square, above the published 1.95-2.32")
 def test_data_rectangle_drag_square_within_published_range():
     import numpy as np
     rows = _data_csv("rectangle_drag.csv")
