@@ -142,7 +142,7 @@ def test_indefinite_drag(tmp_path, capsys):
 
 def test_not_a_matrix(tmp_path, capsys):
     path = _bad_model(tmp_path, quadratic_damping=[[1, 2], [3, 4]])
-    _one_line_error(*run(["limits", str(path)], capsys), "quadratic_damping", "6x6")
+    _one_line_error(*run(["limits", str(path)], capsys), "quadratic_damping", "(6, 6)")
 
 
 @pytest.mark.parametrize("radii,word", [("-1:5:3", "positive"), ("5:1:3", "increasing"),

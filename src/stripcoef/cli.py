@@ -16,7 +16,7 @@ import warnings
 from .errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits")
+COMMANDS = ("coefficients", "limits", "export")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -9,6 +9,7 @@ import math
 from pathlib import Path
 
 from ..errors import InputError
+from ._modelfile import load_model
 
 
 def add_parser(subparsers) -> None:
@@ -32,55 +33,6 @@ def add_parser(subparsers) -> None:
                    help="surge speed [m/s] for the minimum turning radius "
                         "(default: half the straight-line maximum)")
     p.set_defaults(func=run)
-
-
-def load_model(path):
-    """A HydroModel from a model file (detected by its keys) or a vehicle file (estimated)."""
-    import yaml
-
-    from ..model import HydroModel
-
-    p = Path(path)
-    if not p.is_file():
-        raise InputError("file not found", key="VEHICLE", value=str(path),
-                         expected="a vehicle YAML or a model JSON/YAML file")
-    text = p.read_text()
-    try:
-        data = json.loads(text)
-    except ValueError:
-        try:
-            data = yaml.safe_load(text)
-        except yaml.YAMLError as exc:
-            line = getattr(getattr(exc, "problem_mark", None), "line", None)
-            where = f"line {line + 1}" if line is not None else None
-            raise InputError("not valid YAML or JSON", file=str(p), key=where,
-                             expected="a vehicle or model file") from None
-    if isinstance(data, dict) and {"rigid_body_mass", "added_mass"} <= set(data):
-        required = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
-                    "quadratic_damping", "mass", "volume", "center_of_gravity",
-                    "center_of_buoyancy", "density")
-        for key in required:
-            if key not in data:
-                raise InputError("model file lacks a key", file=str(p), key=key,
-                                 expected="every key of HydroModel.to_dict()")
-        for key in ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping"):
-            try:
-                ok = len(data[key]) == 6 and all(len(row) == 6 for row in data[key])
-            except TypeError:
-                ok = False
-            if not ok:
-                raise InputError("not a 6x6 matrix", file=str(p), key=key,
-                                 expected="6 rows of 6 numbers")
-        try:
-            model = HydroModel.from_dict(data)
-        except (KeyError, TypeError, ValueError) as exc:
-            raise InputError(f"cannot read model ({exc})", file=str(p),
-                             expected="a file written from HydroModel.to_dict()") from None
-        return model
-    import stripcoef
-
-    vehicle = stripcoef.load_vehicle(p)
-    return stripcoef.estimate(vehicle)
 
 
 def format_table(result) -> str:
@@ -149,7 +101,7 @@ def run(args) -> int:
         if str(folder) and not folder.is_dir():
             raise InputError("folder does not exist", key="--plot", value=args.plot,
                              expected="a path in an existing folder")
-    model = load_model(args.vehicle)
+    model = load_model(args.vehicle)            # shared with the other model commands
     check_model(model, file=str(args.vehicle))
     result = solve_limits(model, radii=radii, munk=args.munk, coriolis=args.coriolis,
                           turn_speed=args.turn_speed)
