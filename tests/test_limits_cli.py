@@ -210,3 +210,20 @@ def test_vehicle_file_without_thrusters(tmp_path, capsys):
     path = tmp_path / "nothr.yaml"
     path.write_text(yaml.safe_dump(data))
     _one_line_error(*run(["limits", str(path)], capsys), "no thrusters", "nothr.yaml")
+
+
+@pytest.mark.parametrize("fmt,suffix", [("--json", "json"), ("--yaml", "yaml")])
+def test_model_file_from_coefficients_gives_the_same_limits(tmp_path, capsys, fmt, suffix):
+    from pathlib import Path
+    mares = str(Path(__file__).resolve().parent.parent / "geometry" / "mares.yaml")
+    model = tmp_path / f"mares.{suffix}"
+    code, _, err = run(["coefficients", mares, fmt, "-o", str(model)], capsys)
+    assert code == 0, err
+    args = ["--json", "--radii", "3:3:1", "--no-munk"]
+    code, out_model, err = run(["limits", str(model)] + args, capsys)
+    assert code == 0, err
+    code, out_vehicle, _ = run(["limits", mares] + args, capsys)
+    a, b = json.loads(out_model), json.loads(out_vehicle)
+    for key in ("surge_speed_max", "heave_speed_max", "yaw_rate_max", "min_turning_radius"):
+        assert a[key] == pytest.approx(b[key], rel=1e-9)
+    assert a["turning"][0]["u_max"] == pytest.approx(b["turning"][0]["u_max"], rel=1e-9)
