@@ -258,7 +258,7 @@ def section() -> str:
              "Closed form: d_L x + d_Q x|x| = T_net, x = (-d_L + sqrt(d_L^2 + 4 d_Q T_net)) / "
              "(2 d_Q) (seed 002 eqs. 53, 55, 57, reconstructed).", ""]
     rows = [(c, f"{a:.6f}", f"{b:.6f}", f"{abs(a - b):.1e}") for c, a, b in closed_form_cases()]
-    lines.append(markdown_table(["case", "solver", "closed form", "|difference|"], rows))
+    lines.append(markdown_table(["case", "solver", "closed form", "abs. difference"], rows))
     lines += ["", "### VideoRay Pro III surge at n = 60 (seed 000, Table I and sec. IV.A)", "",
               "Two horizontal thrusters, T = Ct n|n| with Ct = 2.5939e-4 N (forward), "
               "n = 60: 0.934 N each.", ""]
