@@ -16,7 +16,7 @@ import warnings
 from .errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "identify", "scale")
+COMMANDS = ("coefficients", "limits", "export", "identify", "scale")
 
 
 class _Parser(argparse.ArgumentParser):

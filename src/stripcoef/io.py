@@ -30,6 +30,7 @@ def atomic_path(path, *, key: str = "output"):
     os.close(fd)
     try:
         yield Path(tmp)
+        os.chmod(tmp, _final_mode(path))
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -37,6 +38,17 @@ def atomic_path(path, *, key: str = "output"):
         except OSError:
             pass
         raise
+
+
+def _final_mode(path: Path) -> int:
+    """Permissions of the new file: those of the file it replaces, else 0o666 minus the umask
+    (mkstemp's temporary files are 0o600, which would hide exports from other users)."""
+    try:
+        return path.stat().st_mode & 0o7777
+    except OSError:
+        mask = os.umask(0)
+        os.umask(mask)
+        return 0o666 & ~mask
 
 
 def write_text(path, text: str, *, key: str = "output") -> None:
