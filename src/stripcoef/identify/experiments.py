@@ -204,3 +204,74 @@ def rov2_torsion_log(seed: int, *, truth=ROV2_YAW_TRUTH, inertia=ROV2_YAW_INERTI
     rng = np.random.default_rng(seed)
     return Log({"t": t, "theta_pendulum": th + rng.normal(0.0, noise, t.size)},
                source=f"ROV II virtual torsion pendulum (seed {seed})")
+
+
+# --- ROMEO heave as a time series from the 6-DOF simulation ----------------------------------
+#: Assumed ROMEO-like rigid body (the chapter does not print it): mass [kg], inertia about the
+#: CG [kg m^2], added mass diagonal [kg, kg m^2], other DOFs' damping; four vertical thrusters
+#: at the frame corners with unit bench coefficient (command = thrust in N per thruster at
+#: |n| = 1) and efficiency ROMEO_TRUTH["eta"] when pushing up.
+ROMEO_MASS = 450.0
+ROMEO_INERTIA = (60.0, 90.0, 80.0)
+ROMEO_ADDED = (200.0, 300.0, 400.0, 40.0, 60.0, 50.0)
+ROMEO_DAMPING = (80.0, 120.0, None, 60.0, 60.0, 40.0)          # linear; heave from the truth
+ROMEO_QDAMPING = (200.0, 300.0, None, 80.0, 80.0, 60.0)        # quadratic
+ROMEO_DEPTH_NOISE = 0.01                                        # [m] depth sensor
+
+
+def romeo_hydromodel(net_weight: float, *, truth=ROMEO_TRUTH):
+    """A ROMEO-like HydroModel whose heave obeys the eta model with ``truth`` [SI].
+
+    Net weight W = m g - rho g V [N] (down positive); CB 0.1 m above the CG.
+    """
+    from ..model import HydroModel, rigid_body_mass_matrix
+    from ..thrusters import Thruster
+    d_l = np.diag([truth["k_w"] if v is None else v for v in ROMEO_DAMPING])
+    d_q = np.diag([truth["k_ww"] if v is None else v for v in ROMEO_QDAMPING])
+    volume = (ROMEO_MASS * G - net_weight) / (RHO_SEAWATER * G)
+    thr = [Thruster(f"v{k}", np.array([x, y, -0.4]), np.array([0.0, 0.0, 1.0]),
+                    ct_forward=1.0, ct_backward=1.0, eta_forward=1.0,
+                    eta_backward=truth["eta"])
+           for k, (x, y) in enumerate(((0.5, 0.4), (0.5, -0.4), (-0.5, 0.4), (-0.5, -0.4)))]
+    return HydroModel(name="ROMEO (virtual)", reference_point=np.zeros(3),
+                      rigid_body_mass=rigid_body_mass_matrix(ROMEO_MASS, np.zeros(3),
+                                                             np.diag(ROMEO_INERTIA)),
+                      added_mass=np.diag(ROMEO_ADDED), linear_damping=d_l,
+                      quadratic_damping=d_q, mass=ROMEO_MASS, volume=volume,
+                      center_of_gravity=np.zeros(3), center_of_buoyancy=np.array([0, 0, -0.1]),
+                      density=RHO_SEAWATER, thrusters=thr)
+
+
+def romeo_heave_log(index: int, seed: int, *, forces=ROMEO_FORCES, segment: float = 90.0,
+                    rate: float = 10.0, noise: float = ROMEO_DEPTH_NOISE):
+    """Heave trial ``index`` simulated with :func:`stripcoef.simulate.simulate`.
+
+    Constant total commanded force per segment (+F down, -F up, alternating, the chapter's
+    Fig. 4.8), four thrusters sharing it; each thruster's real thrust differs from the bench
+    map by a random ROMEO_NOISE_F per segment.  The log keeps ``t``, the noisy depth ``z``
+    and the commands ``n_v0..n_v3`` - as a real trial, no velocity and no applied force (they
+    come from the depth and the bench thruster map).
+
+    Returns
+    -------
+    Log, HydroModel (for the thruster map), true net weight [N]
+    """
+    from ..simulate import simulate
+    weight = romeo_weights()[index - 1]
+    model = romeo_hydromodel(weight)
+    levels = np.ravel([[f, -f] for f in forces])
+    t = np.arange(0.0, segment * levels.size, 1.0 / rate)
+    total = levels[np.minimum((t // segment).astype(int), levels.size - 1)]
+    per = total / 4.0
+    n = np.sign(per) * np.sqrt(np.abs(per))               # T = n|n| per thruster (ct = 1)
+    rng = np.random.default_rng(seed)
+    # the real thrust differs from the bench map by ROMEO_NOISE_F per segment and thruster
+    seg = np.minimum((t // segment).astype(int), levels.size - 1)
+    actual = {}
+    for th in model.thrusters:
+        err = 1.0 + rng.normal(0.0, ROMEO_NOISE_F, levels.size)
+        actual[th.name] = n * np.sqrt(err[seg])
+    log = simulate(model, t, commands=actual)
+    cols = {"t": t, "z": log["z"] + rng.normal(0.0, noise, t.size)}
+    cols.update({f"n_{th.name}": n for th in model.thrusters})
+    return Log(cols, source=f"ROMEO simulated trial {index}"), model, weight
