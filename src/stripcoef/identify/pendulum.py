@@ -48,6 +48,8 @@ from ..fluid import G
 from .estimators import FitResult, linear_lstsq
 
 COLUMN = "theta_pendulum"
+_EIV_NOTE = ("equation error on noisy derivatives underestimates the added mass when the angle "
+             "noise is large (docs/identify.md); --refine fits the re-simulated angle instead")
 
 
 def smooth_derivatives(t, theta, *, window: int = 15, order: int = 4):
@@ -222,6 +224,8 @@ def pendulum(t, theta, *, mass=None, buoyancy=0.0, length=None, g: float = G,
                      source=source, method="pendulum")
     if refine:
         fit = refine_output_error(fit, t, theta, restoring="sin")
+    else:
+        fit.notes.append(_EIV_NOTE)
     fit.dof = dof
     fit.units.update({"alpha": "1/s^2", "beta": "1/s", "gamma": "1/rad"})
     if medium == "air":
@@ -263,6 +267,8 @@ def torsion(t, theta, *, stiffness=None, inertia=None, medium: str = "water",
                      source=source, method="torsion")
     if refine:
         fit = refine_output_error(fit, t, theta, restoring="linear")
+    else:
+        fit.notes.append(_EIV_NOTE)
     fit.dof = dof
     fit.units.update({"a": "1/s^2", "b": "1/s", "c": "1/rad"})
     if medium == "air":
