@@ -163,3 +163,14 @@ def test_printed_tables_are_consistent_and_per_direction_preferred_for_a_watson(
             assert len({c.n_obs for c in together}) == 1
     ranked, rec, _ = recommend(printed_yaw_candidates("A", "watson"))
     assert rec.label == "LNB +/- separately" and ranked[0] is rec
+
+
+def test_yaw_rate_from_wrapped_heading():
+    """ROMEO's yaw trials turn about one full circle per torque: psi wraps at +-pi."""
+    t = np.arange(0, 300, 0.1)
+    seg = (t // 60).astype(int)
+    rate = np.array([0.1, -0.1, 0.15, -0.15, 0.05])[seg]
+    psi = np.cumsum(rate) * 0.1
+    wrapped = (psi + np.pi) % (2 * np.pi) - np.pi
+    pts = steady_points(Log({"t": t, "psi": wrapped, "N": 40 * rate}), "yaw", settle=1.0)
+    np.testing.assert_allclose(pts.velocity, [0.1, -0.1, 0.15, -0.15, 0.05], atol=1e-3)

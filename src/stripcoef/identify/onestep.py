@@ -221,7 +221,8 @@ def one_step_log(log, dof: str, *, model: str = "LQB", input=None, inertia=None,
         y = log[vname]
         cov = covariance or "ma1"
     elif pname in log:
-        y = velocity_from_pose(t, log[pname], window=window, order=order)
+        pose = np.unwrap(log[pname]) if i >= 3 else log[pname]     # angles may wrap at pi
+        y = velocity_from_pose(t, pose, window=window, order=order)
         lags = window + 1
         cov = covariance or "hac"
     else:

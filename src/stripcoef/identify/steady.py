@@ -377,7 +377,8 @@ def steady_points(log, dof, *, force=None, n_h=None, settle: float = 8.0, trim: 
     into segments of constant input; in each, the first ``settle`` seconds (the transient) and
     the last ``trim`` samples are dropped (seed 001, sec. 4.2.4) and the steady velocity is the
     mean of the velocity column, or, when only the pose is logged (``z``, ``psi``), the slope
-    of the least-squares line :math:`y(t) = \dot\psi t + \psi_0` (seed 001, eq. 4.18).
+    of the least-squares line :math:`y(t) = \dot\psi t + \psi_0` (seed 001, eq. 4.18;
+    angles are unwrapped first, so full turns at a constant yaw rate are fine).
 
     Parameters
     ----------
@@ -400,7 +401,7 @@ def steady_points(log, dof, *, force=None, n_h=None, settle: float = 8.0, trim: 
     if vname in log:
         vel, use_pose = log[vname], False
     elif pname in log:
-        vel, use_pose = log[pname], True
+        vel, use_pose = (np.unwrap(log[pname]) if i >= 3 else log[pname]), True
     else:
         log.require(vname)  # raises, naming the column
     change = np.nonzero(np.abs(np.diff(f)) > tol * max(1.0, float(np.abs(f).max())))[0] + 1
