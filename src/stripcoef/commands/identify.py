@@ -191,10 +191,14 @@ def run(args) -> int:
     if args.json:
         data = fit.to_dict()
         if cmp is not None:
+            def num(x):
+                return float(x) if math.isfinite(x) else None
             data["comparison"] = [
                 {"label": c.label, "model": c.model, "direction": c.direction,
-                 "aicc": c.aicc, "bic": c.bic, "cost": c.cost, "n_params": c.n_params,
-                 "n_obs": c.n_obs, "max_relative_error_percent": c.max_relative_error,
+                 "aicc": num(c.aicc), "bic": num(c.bic), "cost": num(c.cost),
+                 "n_params": c.n_params, "n_obs": c.n_obs,
+                 "max_relative_error_percent": num(c.max_relative_error),
+                 "problems": c.problems(),
                  "fits": [f.to_dict() for f in c.fits]} for c in cmp.candidates]
             data["recommended"] = cmp.recommended.label
             data["explanation"] = cmp.explanation
