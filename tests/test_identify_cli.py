@@ -171,7 +171,7 @@ def test_one_step_with_vehicle_thruster_map(tmp_path, capsys):
 def test_compare_with_few_points_gives_valid_json(tmp_path, capsys):
     """Per-direction fits with N - p - 1 <= 0 have infinite AICc: JSON null, not a crash."""
     f = tmp_path / "few.csv"
-    f.write_text("r,N\n0.05,2\n0.1,4.1\n0.15,6\n0.2,8.2\n-0.05,-2\n-0.1,-4\n-0.15,-6.1\n")
+    f.write_text("r,N\n0.05,2\n0.1,4.1\n-0.05,-2.05\n-0.1,-4\n")
     d = _json(capsys, ["identify", str(f), "--method", "steady", "--dof", "yaw", "--model",
                        "compare", "--json"])
     assert any(c["aicc"] is None for c in d["comparison"])
