@@ -176,3 +176,15 @@ def test_compare_with_few_points_gives_valid_json(tmp_path, capsys):
                        "compare", "--json"])
     assert any(c["aicc"] is None for c in d["comparison"])
     assert d["recommended"] == "LNB together"
+
+
+def test_python_api_matches_cli(logs, capsys):
+    from stripcoef.errors import InputError
+    from stripcoef.identify.api import identify_log
+    from stripcoef.logs import read_log
+    fit, cmp = identify_log(read_log(logs["steady"]), "steady", model="eta")
+    d = _json(capsys, ["identify", str(logs["steady"]), "--method", "steady", "--model", "eta",
+                       "--json"])
+    assert cmp is None and fit.to_dict()["parameters"] == d["parameters"]
+    with pytest.raises(InputError, match="one-step"):
+        identify_log(read_log(logs["steady"]), "kalman")

@@ -9,12 +9,10 @@ from __future__ import annotations
 import json
 import math
 
-from ..conventions import DOF, parse_dof
-from ..errors import InputError
 from ..io import write_text
 from ..logs import read_log
 
-METHODS = ("steady", "one-step", "pendulum", "torsion")
+from ..identify.api import METHODS
 
 
 def add_parser(sub):
@@ -131,59 +129,17 @@ def format_comparison(cmp) -> str:
 
 def run_identify(args):
     """Run the method; returns (fit, comparison or None)."""
-    from ..identify import onestep, pendulum, steady
-    from ..identify.inputs import applied_force, horizontal_command, vehicle_model
+    from ..identify.api import identify_log
+    from ..identify.inputs import vehicle_model
 
     log = read_log(args.log)
-    model = vehicle_model(args.vehicle) if args.vehicle else None
-    method = args.method
-    if method in ("steady", "one-step"):
-        dof = DOF[parse_dof(args.dof or ("heave" if method == "steady" else "yaw"))]
-        i = DOF.index(dof)
-        force, origin = applied_force(log, dof, model)
-        if method == "steady":
-            name = args.model or "standard"
-            pts = steady.steady_points(log, dof, force=force, n_h=horizontal_command(log, model),
-                                       settle=args.settle, trim=args.trim)
-            if name == "compare":
-                cmp = steady.compare_models(pts)
-                fit = steady.recommended_fit(cmp)
-                fit.notes.append(f"applied force from {origin}")
-                return fit, cmp
-            fit = steady.fit_steady(pts, name, direction=args.direction)
-        else:
-            inertia = args.inertia
-            if inertia is None and model is not None:
-                inertia = float(model.rigid_body_mass[i, i])
-            fit = onestep.one_step_log(log, dof, model=args.model or "LQB", input=force,
-                                       inertia=inertia, covariance=args.covariance)
-        fit.notes.append(f"applied force from {origin}")
-        return fit, None
-    if args.model:
-        raise InputError("--model applies to steady and one-step only", key="--model",
-                         value=args.model, expected=f"no --model with --method {method}")
-    kw = dict(window=args.window, order=args.order, refine=args.refine)
-    if method == "pendulum":
-        mass = args.mass if args.mass is not None else (model.mass if model else None)
-        if args.medium == "air":
-            buoy = 0.0
-        else:
-            buoy = args.buoyancy if args.buoyancy is not None else (
-                model.buoyancy if model else None)
-            if mass is not None and buoy is None:
-                raise InputError("buoyancy needed with the mass", key="--buoyancy",
-                                 expected="--buoyancy B [N] or --vehicle")
-        fit = pendulum.pendulum_log(log, mass=mass, buoyancy=buoy or 0.0, length=args.length,
-                                    medium=args.medium, dof=args.dof or "", **kw)
-    else:
-        dof = DOF[parse_dof(args.dof or "yaw")]
-        inertia = args.inertia
-        if inertia is None and model is not None:
-            i = DOF.index(dof)
-            inertia = float(model.rigid_body_mass[i, i])
-        fit = pendulum.torsion_log(log, stiffness=args.stiffness, inertia=inertia,
-                                   medium=args.medium, dof=dof, **kw)
-    return fit, None
+    vehicle = vehicle_model(args.vehicle) if args.vehicle else None
+    return identify_log(log, args.method, dof=args.dof, model=args.model, vehicle=vehicle,
+                        direction=args.direction, settle=args.settle, trim=args.trim,
+                        inertia=args.inertia, covariance=args.covariance, mass=args.mass,
+                        buoyancy=args.buoyancy, length=args.length, stiffness=args.stiffness,
+                        medium=args.medium, window=args.window, order=args.order,
+                        refine=args.refine)
 
 
 def run(args) -> int:
