@@ -8,12 +8,14 @@ import pytest
 from stripcoef import cli
 from stripcoef.identify.synthetic import generate
 from stripcoef.logs import read_log
-from stripcoef.modelfile import load_model, save_model
+from stripcoef.commands._modelfile import load_model
+from stripcoef.export import write_export
 
 
-@pytest.fixture(autouse=True)
-def only_ours(monkeypatch):
-    monkeypatch.setattr(cli, "COMMANDS", ("simulate", "diagnose"))
+def save_model(model, path):
+    write_export(model, "json" if str(path).endswith(".json") else "yaml", path)
+
+
 
 
 @pytest.fixture(scope="module")

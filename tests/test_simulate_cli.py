@@ -11,15 +11,16 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from stripcoef import cli  # noqa: E402
 from stripcoef.logs import Log, read_log  # noqa: E402
-from stripcoef.modelfile import load_model, save_model  # noqa: E402
+from stripcoef.commands._modelfile import load_model
+from stripcoef.export import write_export  # noqa: E402
 from stripcoef.thrusters import Thruster  # noqa: E402
 from test_simulate_dynamics import make_model  # noqa: E402
 
 
-@pytest.fixture(autouse=True)
-def only_simulate(monkeypatch):
-    # test this command alone, whatever other subcommands the build has
-    monkeypatch.setattr(cli, "COMMANDS", ("simulate",))
+def save_model(model, path):
+    write_export(model, "json" if str(path).endswith(".json") else "yaml", path)
+
+
 
 
 def videoray_like(tmp_path, suffix=".yaml"):
@@ -135,3 +136,14 @@ def test_cli_passes_other_columns_through_to_effects_and_log(tmp_path):
     log = read_log(tmp_path / "out.csv")
     np.testing.assert_allclose(log["tether_length"], 3.0)
     assert log["u"][-1] > 0.05  # the constant 0.5 N offset pushes it forward
+
+
+def test_cli_vehicle_file_is_estimated_by_strip_theory(tmp_path):
+    vehicle = Path(__file__).resolve().parents[1] / "geometry" / "videoray_pro3.yaml"
+    write_inputs(tmp_path / "in.csv", {"t": [0.0, 10.0], "n_port": [60.0, 60.0],
+                                      "n_starboard": [60.0, 60.0]})
+    rc = cli.main(["simulate", str(vehicle), "--inputs", str(tmp_path / "in.csv"),
+                   "--out", str(tmp_path / "out.csv"), "--dt", "0.1"])
+    assert rc == 0
+    log = read_log(tmp_path / "out.csv")
+    assert len(log) == 101 and log["u"][-1] > 0.01 and log["X"][-1] > 0

@@ -40,7 +40,8 @@ def run(args) -> int:
     from ..identify.diagnose_report import markdown_report, text_summary
     from ..identify.effects import get_effect
     from ..logs import read_log
-    from ..modelfile import load_model, save_model
+    from ..export import write_export
+    from ._modelfile import load_model
 
     if not (args.window > 0):
         raise InputError("not a positive window", key="--window", value=args.window,
@@ -63,7 +64,8 @@ def run(args) -> int:
     if args.report:
         markdown_report(result, args.report)
     if args.out:
-        save_model(result["model"], args.out)
+        write_export(result["model"], "json" if str(args.out).lower().endswith(".json")
+                     else "yaml", args.out)
     if args.json:
         json.dump(public(result), sys.stdout, indent=1)
         sys.stdout.write("\n")

@@ -47,7 +47,7 @@ import numpy as np
 
 from ..errors import InputError
 
-COVARIANCES = ("iid", "hac")
+COVARIANCES = ("iid", "hac", "ma1")
 
 
 @dataclass
@@ -85,6 +85,8 @@ class FitResult:
         Units of parameters by name (for tables).
     notes : list of str
         Assumptions and warnings to show with the result.
+    metrics : dict
+        Other scalar measures of fit by name (e.g. ``free_run_rms``), serialised as "metrics".
     data : dict
         Arrays for plots (``y``, ``fitted``, ``x`` velocity, ``t``...); not serialised.
     """
@@ -103,6 +105,7 @@ class FitResult:
     rms_error: float | None = None
     units: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
+    metrics: dict = field(default_factory=dict)
     data: dict = field(default_factory=dict, repr=False)
 
     # -- sizes and quality --------------------------------------------------
@@ -226,6 +229,7 @@ class FitResult:
             "bic": num(self.bic),
             "units": dict(self.units),
             "notes": list(self.notes),
+            "metrics": {k: num(v) for k, v in self.metrics.items()},
         }
 
 
@@ -248,7 +252,11 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
         Parameter names, one per column of H.
     covariance : {"iid", "hac"}
         ``iid``: :math:`\hat\sigma^2 (H^TH)^{-1}` (seed 001, eqs. 4.6, 4.12);
-        ``hac``: Newey-West with ``lags`` lags (for correlated residuals).
+        ``hac``: Newey-West with ``lags`` lags (for correlated residuals);
+        ``ma1``: sandwich :math:`(H^TH)^{-1} H^T \Sigma H (H^TH)^{-1}` with
+        :math:`\Sigma = \hat\sigma^2 (I + \hat\rho (S + S^T))`, S the one-sample shift and
+        :math:`\hat\rho` the lag-1 residual autocorrelation clipped to [-1/2, 1/2] - the
+        structure of differenced white measurement noise (one-step-ahead residuals).
     lags : int
         Number of lags L for ``hac`` (about the correlation length of the residuals).
     what : str
@@ -313,6 +321,15 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
     if covariance == "iid":
         cov = cost / dof_ * xtx_inv
         label = "iid"
+    elif covariance == "ma1":
+        # OLS sandwich under MA(1) residuals: Sigma = s2 (I + rho (S + S^T)), |rho| <= 1/2
+        rho = float(resid[1:] @ resid[:-1]) / cost if cost > 0 else 0.0
+        rho = min(max(rho, -0.5), 0.5)
+        s2 = cost / dof_
+        sh = Hs.T @ Hs + rho * (Hs[1:].T @ Hs[:-1] + Hs[:-1].T @ Hs[1:])
+        cov_s = s2 * xtx_inv_s @ sh @ xtx_inv_s
+        cov = cov_s / np.outer(scale, scale)
+        label = f"ma1(rho={rho:.3f})"
     else:
         lags = int(max(lags, 0))
         hs = Hs * resid[:, None]
