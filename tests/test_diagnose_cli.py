@@ -21,7 +21,7 @@ def save_model(model, path):
 @pytest.fixture(scope="module")
 def tether_case(tmp_path_factory):
     d = tmp_path_factory.mktemp("diag")
-    log, prior, truth = generate("tether_drag", seed=3)
+    log, prior, truth = generate("tether_drag", seed=3, duration=160.0)
     log.write_csv(d / "log.csv")
     save_model(prior, d / "prior.yaml")
     return d, truth
@@ -60,7 +60,7 @@ def test_json_contract_report_and_calibrated_model(tether_case, capsys):
 def test_calibrated_model_simulates_the_log_better(tmp_path, capsys):
     # truth = prior + an undeclared tether (no coefficient perturbation): the prior's
     # re-simulation misses the tether, the calibrated model reproduces the log
-    log, prior, truth = generate("tether_drag", seed=4, perturb=0.0)
+    log, prior, truth = generate("tether_drag", seed=4, perturb=0.0, duration=100.0)
     log.write_csv(tmp_path / "log.csv")
     save_model(prior, tmp_path / "prior.yaml")
     rc = cli.main(["diagnose", str(tmp_path / "log.csv"), "--vehicle",
@@ -70,8 +70,8 @@ def test_calibrated_model_simulates_the_log_better(tmp_path, capsys):
     assert rc == 0
     from stripcoef.identify.diagnose import resimulate_rms
     log = read_log(tmp_path / "log.csv")
-    before = resimulate_rms(log, load_model(tmp_path / "prior.yaml"), [0], horizon=5.0)[0]
-    after = resimulate_rms(log, load_model(tmp_path / "cal.yaml"), [0], horizon=5.0)[0]
+    before = resimulate_rms(log, load_model(tmp_path / "prior.yaml"), [0], horizon=10.0)[0]
+    after = resimulate_rms(log, load_model(tmp_path / "cal.yaml"), [0], horizon=10.0)[0]
     assert after < 0.6 * before
     assert after < 0.02  # velocity noise is 0.01 m/s
     # and `stripcoef simulate` accepts the calibrated model file

@@ -64,7 +64,7 @@ def test_force_law_and_regressor_agree(name):
     truth.effects = [{"name": name, "dof": ["surge", "sway", "heave"][dof],
                       "parameters": CASES[name]}]
     rng = np.random.default_rng(0)
-    t, cmds = manoeuvre(rng, duration=60.0)
+    t, cmds = manoeuvre(rng, duration=40.0)
     length = 2.0 + 0.3 * t
     log = simulate(truth, t, commands=cmds, channels={"tether_length": length},
                    rtol=1e-8, atol=1e-10)

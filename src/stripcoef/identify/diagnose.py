@@ -141,13 +141,25 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m):
             / sigma ** 2
 
     hi = 5.0 * m_total
-    sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
-                          options={"xatol": 1e-6 * m_total})
-    mu = float(sol.x)
-    th, covx, res = inner(mu)
-    h = 1e-3 * m_total
-    c0, cp, cm = cost(mu), cost(min(mu + h, hi)), cost(max(mu - h, lo))
+    # without active bounds the profiled cost is exactly quadratic in mu (a linear
+    # least-squares residual of y - mu * rate, plus quadratic prior and noise terms):
+    # three evaluations give its vertex; otherwise fall back to a bounded search
+    h = 0.1 * m_total
+    c0, cp, cm = cost(0.0), cost(h), cost(-h)
     curv = (cp - 2 * c0 + cm) / h ** 2
+    mu = None
+    if curv > 0:
+        cand = float(np.clip(-(cp - cm) / (2 * h) / curv, lo, hi))
+        if cost(cand) <= min(c0, cp, cm) + 1e-9 * max(abs(c0), 1.0):
+            mu = cand
+    if mu is None:
+        sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-6 * m_total})
+        mu = float(sol.x)
+    th, covx, res = inner(mu)
+    if not (curv > 0 and lo + h <= mu <= hi - h):
+        c0, cp, cm = cost(mu), cost(min(mu + h, hi)), cost(max(mu - h, lo))
+        curv = (cp - 2 * c0 + cm) / h ** 2
     var_mu = 2.0 / curv if curv > 0 else np.inf
     theta = np.zeros(H.shape[1])
     cov = np.zeros((H.shape[1], H.shape[1]))
