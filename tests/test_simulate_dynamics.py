@@ -201,3 +201,22 @@ def test_bad_input_names_the_key(kwargs, key):
     with pytest.raises(InputError) as exc:
         simulate(model, t, **kwargs)
     assert key in str(exc.value)
+
+
+def test_saturated_thrusters_reach_the_limits_solvers_surge_speed():
+    from stripcoef.limits import surge_limit
+
+    thr = [Thruster("port", np.array([-0.1, -0.1, 0.0]), np.array([1.0, 0, 0]),
+                    ct_forward=2.5939e-4, ct_backward=1.0086e-4, max_forward=3.0,
+                    max_backward=1.5),
+           Thruster("starboard", np.array([-0.1, 0.1, 0.0]), np.array([1.0, 0, 0]),
+                    ct_forward=2.5939e-4, ct_backward=1.0086e-4, max_forward=3.0,
+                    max_backward=1.5),
+           Thruster("vertical", np.zeros(3), np.array([0, 0, 1.0]), ct_forward=1.19e-4,
+                    ct_backward=0.75e-4, max_forward=2.0, max_backward=1.5)]
+    model = make_model(thrusters=thr)
+    limit = surge_limit(model)
+    t = np.linspace(0.0, 60.0, 121)
+    full = np.full(t.size, 400.0)  # commands beyond saturation
+    log = simulate(model, t, commands={"port": full, "starboard": full}, munk=False)
+    assert log["u"][-1] == pytest.approx(limit.speed, rel=1e-5)
