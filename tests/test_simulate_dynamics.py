@@ -220,3 +220,24 @@ def test_saturated_thrusters_reach_the_limits_solvers_surge_speed():
     full = np.full(t.size, 400.0)  # commands beyond saturation
     log = simulate(model, t, commands={"port": full, "starboard": full}, munk=False)
     assert log["u"][-1] == pytest.approx(limit.speed, rel=1e-5)
+
+
+def test_controller_feedback_holds_a_speed_and_is_logged():
+    # a proportional speed controller on one thruster: the logged command is the one applied
+    thr = [Thruster("main", np.zeros(3), np.array([1.0, 0, 0]), ct_forward=1e-3,
+                    ct_backward=1e-3)]
+    model = make_model(thrusters=thr)
+    t = np.linspace(0.0, 40.0, 401)
+
+    def speed_hold(time, eta, nu, commands):
+        return {"main": 100.0 * (0.3 - nu[0]) + 40.0}
+
+    log = simulate(model, t, controller=speed_hold)
+    assert log["n_main"][-1] == pytest.approx(100.0 * (0.3 - log["u"][-1]) + 40.0, rel=1e-9)
+    # steady state: thrust = drag at the held speed
+    u = log["u"][-1]
+    thrust = 1e-3 * log["n_main"][-1] ** 2
+    dl, dq = model.linear_damping[0, 0], model.quadratic_damping[0, 0]
+    assert thrust == pytest.approx(dl * u + dq * u * u, rel=1e-4)
+    with pytest.raises(InputError, match="thruster"):
+        simulate(model, t[:5], controller=lambda *a: {"nope": 1.0})

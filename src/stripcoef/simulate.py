@@ -137,7 +137,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
              interpolation: str = "previous", rtol: float = 1e-8, atol: float = 1e-10,
              method: str = "RK45", max_step: float | None = None,
              extra_force: Callable | None = None, effects: bool = True,
-             munk: bool = True, channels: dict | None = None) -> Log:
+             munk: bool = True, channels: dict | None = None,
+             controller: Callable | None = None) -> Log:
     r"""Simulate the 6-DOF motion of ``model`` and return it as a log.
 
     .. math::
@@ -188,6 +189,11 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     channels : dict, optional
         Other logged signals over ``t`` (e.g. ``tether_length`` [m]) that effects read;
         held like the inputs and copied into the output log.
+    controller : callable, optional
+        Feedback: ``controller(time, eta, nu, commands) -> {thruster: command}`` is called at
+        every sample with the state and the open-loop commands of that sample; the commands
+        it returns replace them until the next sample (zero-order hold) and are logged (an
+        autopilot, e.g. the heading autopilot of seed 001's heave trials).
 
     Returns
     -------
@@ -305,20 +311,42 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         return np.concatenate([eta_dot, nu_dot])
 
     # --- integrate, restarting at input discontinuities ----------------------
-    if interpolation == "previous" and force_fn is None:
+    if controller is not None:
+        if interpolation != "previous" or force_fn is not None:
+            raise InputError("a controller needs sampled inputs held between samples",
+                             key="controller", expected="interpolation='previous' and "
+                             "forces given as samples (not a function)")
+        bounds = list(range(n))  # commands change at every sample
+    elif interpolation == "previous" and force_fn is None:
         jumps = np.nonzero(np.any(np.diff(inputs_series, axis=0) != 0.0, axis=1))[0] + 1
+        bounds = [0, *[int(j) for j in jumps], n - 1]
     else:
-        jumps = np.zeros(0, dtype=int)
-    bounds = [0, *[int(j) for j in jumps], n - 1]
+        bounds = [0, n - 1]
     y = np.concatenate([eta0, nu0])
     states = np.empty((n, 12))
     states[0] = y
     opts = {"rtol": rtol, "atol": atol, "method": method}
     if max_step is not None:
         opts["max_step"] = max_step
+    def control(k, state):
+        out = controller(t[k], state[:6].copy(), state[6:].copy(), dict(zip(names, cmd[k])))
+        for name, value in dict(out).items():
+            if name not in names:
+                raise unknown_name("thruster", name, names, key="controller")
+            value = float(value)
+            if not np.isfinite(value):
+                raise InputError("controller returned a non-finite command", key=name,
+                                 value=value, expected="a finite command")
+            cmd[k, names.index(name)] = value
+            if name not in commanded:
+                commanded.append(name)
+        inputs_series[k, :nthr] = cmd[k]
+
     for a, b in zip(bounds[:-1], bounds[1:]):
         if b <= a:
             continue
+        if controller is not None:
+            control(a, y)
         # Hold the inputs of sample a over [t_a, t_b] (no jump inside the segment).
         hold["values"] = inputs_series[a] if interpolation == "previous" and force_fn is None \
             else None
@@ -332,6 +360,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         y = sol.y[:, -1]
         # at t_b the new inputs take over (zero-order hold), so the state carries on.
 
+    if controller is not None:
+        control(n - 1, y)  # the command issued at the last sample (logged)
     hold["values"] = None
     taus = np.array([applied(ti)[2] for ti in t])
     cols = {"t": t}
