@@ -5,7 +5,6 @@ over >= 200 logs; here one seed per effect checks the same three criteria of iss
 named first, magnitude within 15 %, error cut at least threefold.
 """
 
-import numpy as np
 import pytest
 
 from stripcoef.identify.diagnose import diagnose, public

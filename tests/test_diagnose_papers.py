@@ -1,6 +1,5 @@
 """The papers' cases of issue 7 (seed 000 VideoRay surge, seed 001 ROMEO heave)."""
 
-import numpy as np
 import pytest
 
 from stripcoef.identify.cases import (VIDEORAY_MEASURED, romeo_case, videoray_case,

@@ -28,8 +28,6 @@ Assumptions (not printed in the papers):
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 
 from ..fluid import G
@@ -226,4 +224,4 @@ def romeo_case(seed: int = 0) -> list:
 
 
 __all__ = ["videoray_tether_gap", "videoray_pool_log", "videoray_case", "romeo_model",
-           "romeo_log", "romeo_case", "copy"]
+           "romeo_log", "romeo_case"]

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..conventions import DOF, FORCES, parse_dof
+from ..conventions import DOF, parse_dof
 from ..errors import InputError, unknown_name
 
 TRANSLATIONAL = (0, 1, 2)
@@ -242,10 +242,7 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
         commands = np.column_stack([cmds.get(n, np.zeros(len(log))) for n in names])
         thrust = np.column_stack([np.asarray(th.thrust(commands[:, k]), float).reshape(-1)
                                   for k, th in enumerate(model.thrusters)])
-        tau = thrust @ alloc.T
-        forces = log.forces()
-        if forces is not None:  # other applied forces beyond the thrusters' are not known
-            pass
+        tau = thrust @ alloc.T  # logged X..N, if any, are not used: thrust is the prior's map
     else:
         tau = log.forces()
         if tau is None:
@@ -922,4 +919,4 @@ def effect_forces(model) -> list:
 
 
 __all__ = ["EFFECTS", "Effect", "WindowData", "effect_forces", "get_effect", "window_data",
-           "prior_residual", "coriolis_times_velocity", "damping_times_velocity", "FORCES"]
+           "prior_residual", "coriolis_times_velocity", "damping_times_velocity"]
