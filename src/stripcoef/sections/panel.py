@@ -51,7 +51,7 @@ import numpy as np
 from ..errors import InputError
 
 #: Default number of panels per section (all contours together).
-DEFAULT_PANELS = 128
+DEFAULT_PANELS = 96
 #: Minimum panels on any one contour.
 MIN_PANELS_PER_CONTOUR = 24
 #: Minimum panels between two sharp corners.
@@ -233,7 +233,7 @@ def discretise(contours, *, panels: int | None = None, where: str = "contours"):
         # slender rings need more panels: scale by sqrt of the isoperimetric ratio P^2/(4 pi A)
         # (1 for a circle, 4.2 for a 10:1 ellipse), capped at 3x; rounded to 16 for batching
         q = max(_perimeter(r) ** 2 / (4.0 * np.pi * abs(signed_area(r))) for r in rings)
-        panels = int(16 * np.ceil(DEFAULT_PANELS * min(3.0, np.sqrt(q)) / 16))
+        panels = int(16 * np.round(DEFAULT_PANELS * min(3.0, np.sqrt(q)) / 16))
     budget = _panel_budget(rings, flags, panels)
     return [_resample_ring(r, n, f) for r, n, f in zip(rings, budget, flags)]
 
@@ -258,9 +258,12 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     nrm = np.stack([t[..., 1], -t[..., 0]], axis=2)                       # out of the body
     mid = 0.5 * (p1 + p2)
     # field point i, panel j
-    rel = mid[:, :, None, :] - p1[:, None, :, :]                          # (B, N, N, 2)
-    xl = np.einsum("bijk,bjk->bij", rel, t)
-    yl = np.einsum("bijk,bjk->bij", rel, nrm)
+    dy = mid[:, :, None, 0] - p1[:, None, :, 0]                           # (B, N, N)
+    dz = mid[:, :, None, 1] - p1[:, None, :, 1]
+    ty, tz = t[:, None, :, 0], t[:, None, :, 1]
+    xl = dy * ty + dz * tz                                                # along panel j
+    yl = dy * tz - dz * ty                                                # along its normal
+    del dy, dz
     L = length[:, None, :]
     y2 = yl * yl
     u1, u2 = xl, xl - L
@@ -325,7 +328,7 @@ def added_mass_contours(contours, *, rho: float, about=(0.0, 0.0),
     about : (y0, z0)
         Point about which the roll terms are taken [m]
     panels : int, optional
-        Total panel count (default 128, more for many sharp corners); ``0`` uses
+        Total panel count (default 96, more for slender sections and many sharp corners); ``0`` uses
         the input vertices as they are.
 
     Returns
