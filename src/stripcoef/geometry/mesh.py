@@ -429,6 +429,10 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         raise _fail(where, f"the body has no extent along the mesh {axis} axis (the body axis)",
                     value=f"{extent[0]:.3g} m", expected="--axis along the body's length")
     length = float(extent[0])
+    if min(extent[1], extent[2]) <= 1e-9 * length:
+        raise _fail(where, "mesh encloses no volume (it is flat)",
+                    value=f"extent {extent[1]:.3g} x {extent[2]:.3g} m across the axis",
+                    expected="a closed solid")
     if not LENGTH_RANGE[0] <= extent.max() <= LENGTH_RANGE[1]:
         raise _fail(where, f"body is {extent.max():.4g} m long with length unit '{length_unit}'",
                     expected=f"between {LENGTH_RANGE[0]:g} and {LENGTH_RANGE[1]:g} m "
@@ -564,3 +568,38 @@ def mesh_body(mesh, *, name: str = "mesh", axis: str = "x", length_unit: str = "
                                                transform=transform)
     return MeshBody(mesh, name=name, source=name, repairs=repairs, face_label=labels,
                     n_bodies=n_bodies)
+
+
+def revolved_mesh(x, r, *, sections: int = 64):
+    """Closed triangle mesh of the body of revolution with radius ``r(x)`` about the x axis.
+
+    Parameters
+    ----------
+    x, r : arrays
+        Meridian stations [m] and radii [m]; the ends are closed (a zero radius is a
+        tip, a non-zero end radius gets a flat cap).
+    sections : int
+        Panels around the circumference.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        Watertight mesh, outward normals, x along the axis.
+    """
+    import trimesh
+
+    x = np.asarray(x, dtype=float)
+    r = np.asarray(r, dtype=float)
+    if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) <= 0) or np.any(r < 0):
+        raise InputError("profile must be increasing x with non-negative radii",
+                         key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
+    pts = np.column_stack([r, x])
+    if r[0] > 0:
+        pts = np.vstack([[0.0, x[0]], pts])
+    if r[-1] > 0:
+        pts = np.vstack([pts, [0.0, x[-1]]])
+    m = trimesh.creation.revolve(pts, sections=int(sections))   # about z, axial coordinate z
+    m.vertices = np.asarray(m.vertices)[:, [2, 0, 1]]              # (x, y, z) <- (z, x, y)
+    if m.volume < 0:
+        m.invert()
+    return m
