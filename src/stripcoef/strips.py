@@ -103,6 +103,9 @@ class HoleCut:
         Length of the hole through the hull, along the axis [m]
     y, z : (k,) arrays
         Centre of the hole's water in the section [m]
+    in_hull : bool
+        True for a hole cut through a part (its water is removed from that part's
+        displaced volume); False for a duct interior (never counted as displaced).
     """
 
     name: str
@@ -112,6 +115,7 @@ class HoleCut:
     depth: np.ndarray
     y: np.ndarray
     z: np.ndarray
+    in_hull: bool = True
 
 
 @dataclass

@@ -1,0 +1,506 @@
+r"""Assembly: strips + sections + hull-level formulas -> :class:`~stripcoef.model.HydroModel`.
+
+Added mass (strip theory, Newman 1977 sec. 7.4; Fossen 2011 sec. 6.3.3). A strip at
+``x`` whose section has the 2D matrix :math:`m(x)` (sway, heave, roll, about the
+reference line) moves with :math:`[v + X r,\ w - X q,\ p] = L(X)\,\nu`,
+:math:`X = x - x_0`, hence
+
+.. math:: M_A^{strip} = \int L(X)^T\, m(x)\, L(X)\, dx,\quad
+          L = \begin{bmatrix}0&1&0&0&0&X\\0&0&1&0&-X&0\\0&0&0&1&0&0\end{bmatrix}
+
+giving e.g. :math:`Y_{\dot v} = -\int m_{22}`, :math:`Y_{\dot r} = N_{\dot v} = -\int X m_{22}`,
+:math:`N_{\dot r} = -\int X^2 m_{22}`, :math:`Z_{\dot q} = M_{\dot w} = \int X m_{33}`.
+Parts off the reference line are shifted in 2D by
+:math:`H_2 = [[1,0,-\Delta z],[0,1,\Delta y],[0,0,1]]`, :math:`m \to H_2^T m H_2`, which
+creates the roll couplings of off-axis appendages (K_vdot from a sonar housing below).
+Then the 3D end correction (:func:`stripcoef.hull.end_correction_factors`), the axial
+added mass :math:`k_1\rho V` of the equivalent spheroid (seed 002, eq. 36), and the water
+carried in through-holes and ducts
+
+.. math:: M_{hole} = \rho \int [I,\ -S(r)]^T (I - a a^T) [I,\ -S(r)]\, dV
+
+(the water's velocity component across the hole axis ``a`` moves with the body; along
+the axis it passes freely: seed 002, sec. IV.C).
+
+Damping: see :func:`_damping` (cross-flow principle, friction lines, power-law split).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from .conventions import skew, transform_matrix
+from .errors import InputError, ModelWarning
+from .hull import end_correction_factors, power_law_split
+from .model import HydroModel, rigid_body_mass_matrix
+from .sections import drag as sdrag
+from .sections import section_added_mass, section_drag
+from .strips import Strips
+
+
+# ---------------------------------------------------------------------------
+# Volumes and mass properties
+# ---------------------------------------------------------------------------
+
+def _hole_water(strips: Strips):
+    """Per hole-cut: water volume per strip [m^3] (only holes cut through displaced parts)."""
+    return [(h, h.chord * h.depth * strips.dx[h.index]) for h in strips.holes]
+
+
+def displaced_volume(strips: Strips):
+    r"""Displaced volume and centre of buoyancy from the strips.
+
+    .. math:: V = \sum_{parts} A\,dx - \sum_{holes} c\,d\,dx,\qquad
+              r_B = \frac{1}{V}\Big(\sum A\,dx\,(x, y_c, z_c) - \sum c\,d\,dx\,(x, y_h, z_h)\Big)
+
+    Returns
+    -------
+    (float, ndarray)
+        V [m^3], r_B [m] in body axes
+    """
+    vol = 0.0
+    mom = np.zeros(3)
+    for p in strips.parts:
+        dv = p.area * strips.dx[p.index]
+        vol += dv.sum()
+        mom += np.array([(dv * strips.x[p.index]).sum(), (dv * p.y).sum(), (dv * p.z).sum()])
+    for h, dv in _hole_water(strips):
+        if not h.in_hull:
+            continue
+        vol -= dv.sum()
+        mom -= np.array([(dv * strips.x[h.index]).sum(), (dv * h.y).sum(), (dv * h.z).sum()])
+    if vol <= 0:
+        raise InputError("the body has no displaced volume", key="geometry", value=vol,
+                         expected="a volume > 0")
+    return float(vol), mom / vol
+
+
+def _density_of(part, x, vehicle, rho_default):
+    """Density per strip of a part from the vehicle's zones (last matching zone wins)."""
+    dens = np.full(x.size, rho_default)
+    for z in vehicle.mass.zones:
+        if z.bodies is not None and part.name not in z.bodies:
+            continue
+        inside = (x >= z.x_aft) & (x <= z.x_fwd)
+        dens[inside] = z.density
+    return dens
+
+
+def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb):
+    r"""Mass [kg], centre of gravity [m] and inertia tensor about the CG [kg m^2].
+
+    Directly from the vehicle file when given; otherwise from density zones (seed 002,
+    Table I and eq. 34) or, without either, a uniform body of the fluid's density
+    (neutrally buoyant). The inertia of the strips is
+
+    .. math:: I = \sum \rho_i A_i\,dx\,(|r_i|^2 I - r_i r_i^T) +
+              \rho_i\,dx\,\mathrm{diag}(i_{yy}+i_{zz},\ i_{zz} + A\,dx^2/12,\
+              i_{yy} + A\,dx^2/12)
+
+    with :math:`r_i` from the CG (parallel-axis theorem, Fossen 2011 eq. 3.37).
+    """
+    spec = vehicle.mass if vehicle is not None else None
+    have_mass = spec is not None and spec.mass is not None
+    zones = spec is not None and bool(spec.zones)
+    rho_default = rho_fluid
+    if spec is not None and spec.default_density is not None:
+        rho_default = spec.default_density
+    if have_mass and spec.center_of_gravity is not None and spec.inertia is not None:
+        return spec.mass, np.asarray(spec.center_of_gravity, float), np.asarray(spec.inertia)
+    # distribute mass over the strips
+    elems = []  # (dm, r, second-moment diag contribution)
+    for p in strips.parts:
+        xs = strips.x[p.index]
+        dx = strips.dx[p.index]
+        dens = _density_of(p, xs, vehicle, rho_default) if zones else np.full(xs.size, 1.0)
+        dm = dens * p.area * dx
+        elems.append((dm, np.column_stack([xs, p.y, p.z]),
+                      np.column_stack([dens * dx * (p.iyy + p.izz),
+                                       dens * dx * p.izz + dm * dx**2 / 12.0,
+                                       dens * dx * p.iyy + dm * dx**2 / 12.0])))
+    for h, dv in _hole_water(strips):
+        if not h.in_hull:
+            continue
+        xs = strips.x[h.index]
+        if zones:
+            hull = next((p for p in strips.parts if p.role == "hull"), None)
+            dens = _density_of(hull, xs, vehicle, rho_default) if hull is not None \
+                else np.full(xs.size, rho_default)
+        else:
+            dens = np.ones(xs.size)
+        elems.append((-dens * dv, np.column_stack([xs, h.y, h.z]), np.zeros((xs.size, 3))))
+    dm = np.concatenate([e[0] for e in elems])
+    r = np.concatenate([e[1] for e in elems])
+    sec = np.concatenate([e[2] for e in elems])
+    total = dm.sum()
+    if total <= 0:
+        raise InputError("density zones give no mass", key="mass.zones", value=float(total),
+                         expected="zones with positive density over the body")
+    scale = 1.0
+    if have_mass:
+        scale = spec.mass / total           # uniform distribution scaled to the given mass
+    elif not zones:
+        scale = rho_fluid                   # neutrally buoyant, uniform
+    dm = dm * scale
+    sec = sec * scale
+    mass = float(dm.sum())
+    cg = (dm[:, None] * r).sum(axis=0) / mass
+    if have_mass and spec.center_of_gravity is not None:
+        cg = np.asarray(spec.center_of_gravity, float)
+    d = r - cg
+    inertia = np.zeros((3, 3))
+    inertia += np.einsum("i,ij,ik->jk", dm, d, d) * -1.0
+    inertia += np.eye(3) * (dm * (d**2).sum(axis=1)).sum()
+    inertia += np.diag(sec.sum(axis=0))
+    if have_mass and spec.inertia is not None:
+        inertia = spec.inertia
+    return mass, cg, inertia
+
+
+# ---------------------------------------------------------------------------
+# Added mass
+# ---------------------------------------------------------------------------
+
+def _strip_operator(xrel):
+    """L(X) for an array of X: (n, 3, 6)."""
+    n = xrel.size
+    L = np.zeros((n, 3, 6))
+    L[:, 0, 1] = 1.0
+    L[:, 0, 5] = xrel
+    L[:, 1, 2] = 1.0
+    L[:, 1, 4] = -xrel
+    L[:, 2, 3] = 1.0
+    return L
+
+
+def _hole_width_reduction(strips: Strips, part):
+    """Per strip of a hull part: open width of holes along z (c_z) and along y (c_y) [m]."""
+    cz = np.zeros(part.index.size)
+    cy = np.zeros(part.index.size)
+    if part.role != "hull":
+        return cy, cz
+    pos = {int(i): k for k, i in enumerate(part.index)}
+    for h in strips.holes:
+        if not h.in_hull:
+            continue
+        for i, c in zip(h.index, h.chord):
+            k = pos.get(int(i))
+            if k is None:
+                continue
+            if h.axis == "z":
+                cz[k] += c
+            elif h.axis == "y":
+                cy[k] += c
+    return cy, cz
+
+
+def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
+    """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI]."""
+    x0, y0, z0 = about
+    total = np.zeros((6, 6))
+    for p in strips.parts:
+        m = section_added_mass(p, rho).copy()           # (k, 3, 3) about the part centre
+        cy, cz = _hole_width_reduction(strips, p)
+        if np.any(cz > 0):   # heave passes through vertical holes (seed 002, eq. 40)
+            m[:, 1, 1] *= np.clip(1.0 - cz / (2 * p.half_breadth), 0.0, 1.0) ** 2
+        if np.any(cy > 0):   # sway passes through horizontal holes
+            m[:, 0, 0] *= np.clip(1.0 - cy / (2 * p.half_height), 0.0, 1.0) ** 2
+        dy = p.y - y0
+        dz = p.z - z0
+        h2 = np.zeros((p.index.size, 3, 3))
+        h2[:, 0, 0] = h2[:, 1, 1] = h2[:, 2, 2] = 1.0
+        h2[:, 0, 2] = -dz
+        h2[:, 1, 2] = dy
+        m = np.einsum("kji,kjl,klm->kim", h2, m, h2)
+        L = _strip_operator(strips.x[p.index] - x0)
+        total += np.einsum("k,kji,kjl,klm->im", strips.dx[p.index], L, m, L)
+    return total
+
+
+_GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
+
+
+def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
+    r"""Added inertia of the water carried in through-holes and duct interiors [SI].
+
+    .. math:: M = \rho\sum_{strips}\sum_g w_g\, c\, d\, dx\ [I,\ -S(r_g)]^T (I - aa^T) [I,\ -S(r_g)]
+
+    with 3 Gauss points :math:`r_g` along the hole's axis (exact for the quadratic moments).
+    """
+    about = np.asarray(about, float)
+    total = np.zeros((6, 6))
+    axes = {"x": np.array([1.0, 0, 0]), "y": np.array([0, 1.0, 0]), "z": np.array([0, 0, 1.0])}
+    for h in strips.holes:
+        a = axes[h.axis]
+        proj = np.eye(3) - np.outer(a, a)
+        dm = rho * h.chord * h.depth * strips.dx[h.index]
+        for xi, w in zip(*_GAUSS3):
+            for k, i in enumerate(h.index):
+                r = np.array([strips.x[i], h.y[k], h.z[k]]) - about + a * xi * 0.5 * h.depth[k]
+                G = np.hstack([np.eye(3), -skew(r)])
+                total += w * dm[k] * G.T @ proj @ G
+    return total
+
+
+def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
+               corrections: bool = True):
+    """Full 6x6 M_A about ``about``: strips (+ end corrections) + axial + entrained water.
+
+    Returns (M_A, info) where info lists the correction factors used.
+    """
+    center = np.asarray(center, float)
+    strip = strip_added_mass(strips, rho, center)
+    info = {}
+    ft, fr, k1, ld = end_correction_factors(strips.length, volume)
+    info.update({"equivalent_spheroid_L_over_D": ld, "k1": k1})
+    if corrections:
+        s = np.sqrt(np.array([1.0, ft, ft, 1.0, fr, fr]))
+        strip = s[:, None] * strip * s[None, :]
+    else:
+        ft = fr = 1.0
+    # the axial term is a hull-level formula, present with or without end corrections
+    strip[0, 0] += k1 * rho * volume
+    info.update({"end_correction_translation": ft, "end_correction_rotation": fr,
+                 "axial_added_mass": "k1 rho V of the equivalent spheroid (Lamb)"})
+    total = transform_matrix(strip, from_point=center, to_point=about)
+    total = total + entrained_water(strips, rho, about)
+    return 0.5 * (total + total.T), info
+
+
+# ---------------------------------------------------------------------------
+# Damping
+# ---------------------------------------------------------------------------
+
+def _local_exponent(fn, re):
+    """n = 2 + d ln C_D / d ln Re (power-law exponent of the drag force in speed)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hi = np.asarray(fn(np.asarray(re) * 1.1), float)
+        lo = np.asarray(fn(np.asarray(re) / 1.1), float)
+    return 2.0 + (np.log(hi) - np.log(lo)) / (2.0 * np.log(1.1))
+
+
+def _ellipse_perimeter(b, h):
+    """Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles)."""
+    hh = ((b - h) / (b + h)) ** 2
+    return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))
+
+
+def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
+    r"""Linear and quadratic damping about ``about`` from the viscous force model.
+
+    Force model (all per element e at r_e, directions k = x, y, z):
+
+    - cross-flow (Hoerner 1965 ch. 3; Fossen 2011 sec. 6.4.3, MSS crossFlowDrag.m):
+      :math:`f_k = -\tfrac12\rho\,C_{D,k}(Re)\,\kappa\,h_k\,|V_k|V_k` per unit length, with
+      :math:`h_y = 2h`, :math:`h_z = 2b` the part's extent across the flow and
+      :math:`Re = U h_k/\nu` at the reference speed U;
+    - hull axial friction + form drag: :math:`X = -\tfrac12\rho C_f(Re_L)\,FF\,S_{wet}u|u|`
+      (Hoerner form factor), plus blunt-end pressure drag for blunt hulls and appendages;
+    - roll: skin friction on the hull's perimeter and the cross-flow of off-axis parts.
+
+    For each DOF j the element's local velocity is :math:`V = [I,\ -S(r)]e_j`; the
+    generalized force is :math:`[F;\ r\times F]`.  Each element's force at the reference
+    DOF speed, with its power-law exponent n (from the Reynolds dependence of its C_D or
+    C_f), is split into linear and quadratic parts by :func:`stripcoef.hull.power_law_split`.
+    Reference speeds: U for translations, :math:`\Omega = U/(L/2)` for rotations.
+    """
+    about = np.asarray(about, float)
+    L = strips.length
+    omega = speed / (0.5 * L)
+    s_ref = np.array([speed] * 3 + [omega] * 3)
+    elems = []  # (r (3,), c (3,) [kg/m], n (3,))
+    cond = {"reference_speed": speed, "reference_rate": omega}
+
+    # --- axial: hull friction and form drag
+    re_l = speed * L / nu
+    cf, reg = sdrag.friction_coefficient(re_l, regime=regime)
+    cf_lam = float(sdrag.blasius_cf(re_l))
+    cf_turb = float(sdrag.ittc57_cf(re_l))
+    n_f = 2.0 + (np.log(sdrag.friction_coefficient(re_l * 1.1, regime=regime)[0])
+                 - np.log(sdrag.friction_coefficient(re_l / 1.1, regime=regime)[0])) / (
+        2 * np.log(1.1))
+    cond.update({"reynolds_length": re_l, "regime": reg, "cf_laminar": cf_lam,
+                 "cf_turbulent": cf_turb, "cf_used": cf})
+    hull_parts = [p for p in strips.parts if p.role == "hull"]
+    s_wet = 0.0
+    max_d = 0.0
+    x_h = y_h = z_h = 0.0
+    for p in hull_parts:
+        dx = strips.dx[p.index]
+        per = (_ellipse_perimeter(p.half_breadth, p.half_height) if p.shape == "ellipse"
+               else 4.0 * (p.half_breadth + p.half_height))
+        s_wet += float((per * dx).sum())
+        area = p.area
+        max_d = max(max_d, float(2.0 * np.sqrt(np.max(area) / np.pi)))
+        w = area * dx
+        x_h = float((w * strips.x[p.index]).sum() / w.sum())
+        y_h, z_h = float(p.y[0]), float(p.z[0])
+        # roll friction on the hull perimeter: dK = 1/2 rho Cf per R_eff^3 p|p| dx
+        r_eff = np.sqrt(p.half_breadth * p.half_height)
+        c_roll = 0.5 * rho * cf * float((per * r_eff**3 * dx).sum())
+        elems.append(("roll", c_roll, n_f))
+    if hull_parts:
+        ff = float(sdrag.hoerner_form_factor(max_d / L))
+        c_fric = 0.5 * rho * cf * ff * s_wet
+        elems.append((np.array([x_h, y_h, z_h]), np.array([c_fric, 0, 0]), np.array([n_f, 2, 2])))
+        cond.update({"wetted_area": s_wet, "form_factor": ff,
+                     "axial_drag_coefficient_wetted": cf * ff,
+                     "axial_drag_coefficient_frontal": cf * ff * s_wet / (np.pi * max_d**2 / 4)})
+        # blunt ends: pressure drag on the frontal area of a hull that does not close
+        for p in hull_parts:
+            a_end = max(float(p.area[0]), float(p.area[-1]))
+            a_max = float(np.max(p.area))
+            if p.index.size and a_end > 0.25 * a_max:   # flat or truncated end
+                cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
+                elems.append((np.array([x_h, y_h, z_h]),
+                              np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))
+                cond["blunt_hull_cd"] = cd_b
+    # --- appendages: axial pressure drag (blunt) on the frontal area
+    for p in strips.parts:
+        if p.role == "hull":
+            continue
+        a_front = float(np.max(p.area + p.entrained_area)) if p.shape != "rectangle" else \
+            float(np.max(4 * p.half_breadth * p.half_height))
+        ld = max(p.length, 1e-9) / max(2 * np.sqrt(a_front / np.pi), 1e-9)
+        if p.role == "fin":
+            cd_a = 2.0 * cf * p.length * np.max(2 * np.maximum(p.half_breadth, p.half_height)) \
+                / max(a_front, 1e-12)   # friction on both faces, per frontal area
+        else:
+            cd_a = float(sdrag.blunt_cylinder_axial_cd(ld))
+        w = p.area * strips.dx[p.index]
+        xc = float((w * strips.x[p.index]).sum() / max(w.sum(), 1e-300))
+        elems.append((np.array([xc, float(np.mean(p.y)), float(np.mean(p.z))]),
+                      np.array([0.5 * rho * cd_a * a_front, 0, 0]), np.array([2.0, 2, 2])))
+    # --- cross-flow per strip element
+    hull_cd = {}
+    for p in strips.parts:
+        dx = strips.dx[p.index]
+        hy, hz = 2 * p.half_height, 2 * p.half_breadth      # extents across y- and z-flow
+        re_y, re_z = speed * hy / nu, speed * hz / nu
+        cd_y, cd_z = section_drag(p, re_y, re_z)
+        n_y = _local_exponent(lambda re: section_drag(p, re, re_z)[0], re_y)
+        n_z = _local_exponent(lambda re: section_drag(p, re_y, re)[1], re_z)
+        if p.role != "fin":
+            ld_y = max(p.length, 1e-9) / np.maximum(hy, 1e-9)
+            ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)
+            kap_y = sdrag.cylinder_length_factor(np.clip(ld_y, 2, 100), re_y)
+            kap_z = sdrag.cylinder_length_factor(np.clip(ld_z, 2, 100), re_z)
+            # short parts (L/D < 2) keep the L/D = 2 factor: documented in theory.md
+        else:
+            kap_y = kap_z = np.ones(p.index.size)
+        cy, cz = _hole_width_reduction(strips, p)
+        c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
+        c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
+        r = np.column_stack([strips.x[p.index], p.y, p.z])
+        for k in range(p.index.size):
+            elems.append((r[k], np.array([0.0, c_y[k], c_z[k]]), np.array([2.0, n_y[k], n_z[k]])))
+        if p.shape == "rectangle":   # roll of a sharp part about its own centre
+            c_self = 0.5 * rho * (cd_z * p.half_breadth**4 + cd_y * p.half_height**4) / 2 * dx
+            elems.append(("roll", float(c_self.sum()), 2.0))
+        if p.role == "hull":
+            mid = int(np.argmax(p.area))
+            hull_cd = {"hull_reynolds_diameter": float(re_y[mid]),
+                       "hull_crossflow_cd_y": float(cd_y[mid]), "hull_crossflow_cd_z": float(cd_z[mid]),
+                       "hull_length_factor": float(np.atleast_1d(kap_y)[mid])}
+    cond.update(hull_cd)
+    d_lin = np.zeros((6, 6))
+    d_quad = np.zeros((6, 6))
+    for r, c, n in elems:
+        if isinstance(r, str):  # roll-only element: c in [kg m^2], n exponent
+            a_hat, b_hat = power_law_split(n)
+            d_lin[3, 3] += a_hat * c * omega
+            d_quad[3, 3] += b_hat * c
+            continue
+        rel = np.asarray(r, float) - about
+        G = np.hstack([np.eye(3), -skew(rel)])   # local velocity for unit DOF motion
+        a_hat, b_hat = power_law_split(n)
+        for j in range(6):
+            v = G[:, j]
+            if not np.any(v):
+                continue
+            f_q = b_hat * c * np.abs(v) * v                   # -> D_Q column (positive)
+            f_l = a_hat * c * np.abs(v) * v * s_ref[j]        # -> D_L column
+            d_quad[:, j] += np.concatenate([f_q, np.cross(rel, f_q)])
+            d_lin[:, j] += np.concatenate([f_l, np.cross(rel, f_l)])
+    # numerical noise below 1e-12 of the largest term is exactly zero by symmetry
+    return _clean(d_lin), _clean(d_quad), cond
+
+
+# ---------------------------------------------------------------------------
+# The pipeline
+# ---------------------------------------------------------------------------
+
+def _clean(m, rel=1e-12):
+    """Set round-off below ``rel`` times the largest entry to exactly zero."""
+    m = np.array(m, dtype=float)
+    m[np.abs(m) < rel * max(float(np.abs(m).max()), 1e-300)] = 0.0
+    return m + 0.0   # no negative zeros
+
+
+def _reference_point(ref, cb, cg):
+    if isinstance(ref, str):
+        return {"center_of_buoyancy": cb, "center_of_gravity": cg,
+                "origin": np.zeros(3)}[ref]
+    return np.asarray(ref, dtype=float)
+
+
+def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
+             speed: float | None = None, reference_point=None, regime: str = "auto",
+             fluid=None) -> HydroModel:
+    """Strip theory: a :class:`~stripcoef.geometry.vehicle.Vehicle` in, a HydroModel out.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    strips : int, optional
+        Number of strips (default: the vehicle file's, else 400).
+    corrections : bool, optional
+        3D end corrections (default on; ``False`` = pure strip theory).
+    speed : float, optional
+        Reference speed for Reynolds numbers and the damping split [m/s].
+    reference_point : str or (3,), optional
+        center_of_buoyancy, center_of_gravity, origin, or a point [m] (default: file's).
+    regime : str
+        Friction line: ``auto``, ``laminar`` or ``turbulent``.
+    fluid : Fluid, optional
+        Override the vehicle file's fluid.
+    """
+    if regime not in ("auto", "laminar", "turbulent"):
+        raise InputError("unknown regime", key="regime", value=regime,
+                         expected="auto, laminar or turbulent")
+    fluid = fluid or vehicle.fluid
+    rho, nu = fluid.density, fluid.kinematic_viscosity
+    speed = float(speed if speed is not None else vehicle.reference_speed)
+    if not np.isfinite(speed) or speed <= 0:
+        raise InputError("invalid reference speed", key="speed", value=speed,
+                         expected="a speed > 0 m/s")
+    corrections = vehicle.corrections if corrections is None else bool(corrections)
+    st = vehicle.cut(strips)
+    volume, cb = displaced_volume(st)
+    mass, cg, inertia = mass_properties(st, vehicle, rho, volume, cb)
+    ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
+                           cb, cg)
+    m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
+                              corrections=corrections)
+    d_l, d_q, cond = _damping(st, vehicle, rho, nu, speed, ref, regime, volume)
+    m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
+    m_a, m_rb = _clean(m_a), _clean(m_rb)
+    cond.update(am_info)
+    cond.update({"strips": st.n, "corrections": corrections, "density": rho,
+                 "kinematic_viscosity": nu, "fluid": fluid.source, "length": st.length})
+    if abs(mass - rho * volume) > 0.05 * rho * volume:
+        warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
+                      f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
+                      f"(m = {mass:.3g} kg, rho V = {rho * volume:.3g} kg)", ModelWarning,
+                      stacklevel=2)
+    return HydroModel(
+        name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
+        linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
+        center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
+        thrusters=list(vehicle.thrusters), conditions=cond,
+        provenance={"method": "strip theory", "source": vehicle.source,
+                    "corrections": corrections, "strips": st.n},
+    )

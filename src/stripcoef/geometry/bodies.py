@@ -1,0 +1,239 @@
+r"""Bodies that make up a vehicle: the hull, appendages and through-holes.
+
+Each body turns the strip stations ``x`` (centres) into :class:`~stripcoef.strips.Part`
+sections (or :class:`~stripcoef.strips.HoleCut` for holes and duct interiors).
+Section properties of the primitive shapes:
+
+- ellipse with half-axes b (y) and h (z): area :math:`\pi b h`,
+  :math:`\int (y-y_c)^2 dA = \pi b^3 h / 4`, :math:`\int (z-z_c)^2 dA = \pi b h^3/4`;
+- rectangle 2b x 2h: area 4bh, second moments :math:`4 b^3 h/3` and :math:`4 b h^3 / 3`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..strips import HoleCut, Part
+from .profiles import Profile
+
+
+def _inside(x, lo, hi):
+    return np.nonzero((x >= lo) & (x <= hi))[0]
+
+
+def ellipse_section(b, h):
+    """Area [m^2] and second moments iyy, izz [m^4] of an ellipse with half-axes b (y), h (z)."""
+    return np.pi * b * h, np.pi * b**3 * h / 4.0, np.pi * b * h**3 / 4.0
+
+
+def rectangle_section(b, h):
+    """Area [m^2] and second moments iyy, izz [m^4] of a 2b x 2h rectangle."""
+    return 4.0 * b * h, 4.0 * b**3 * h / 3.0, 4.0 * b * h**3 / 3.0
+
+
+@dataclass
+class Hull:
+    """The main hull: half-breadth and half-height profiles, elliptic or rectangular section."""
+
+    name: str
+    half_breadth: Profile
+    half_height: Profile
+    section: str = "ellipse"
+    y: float = 0.0
+    z: float = 0.0
+
+    def x_extent(self):
+        return (min(self.half_breadth.x_aft, self.half_height.x_aft),
+                max(self.half_breadth.x_fwd, self.half_height.x_fwd))
+
+    def parts(self, x, dx):
+        b = self.half_breadth(x)
+        h = self.half_height(x)
+        idx = np.nonzero((b > 0) & (h > 0))[0]
+        b, h = b[idx], h[idx]
+        area, iyy, izz = (ellipse_section if self.section == "ellipse" else rectangle_section)(b, h)
+        lo, hi = self.x_extent()
+        return [Part(name=self.name, shape=self.section, index=idx, y=self.y, z=self.z,
+                     half_breadth=b, half_height=h, area=area, iyy=iyy, izz=izz,
+                     rounded=self.section == "ellipse", length=hi - lo, role="hull")]
+
+    def max_diameter(self) -> float:
+        xs = np.linspace(*self.x_extent(), 2001)
+        return float(2.0 * np.max(np.sqrt(self.half_breadth(xs) * self.half_height(xs))))
+
+
+@dataclass
+class Cylinder:
+    """A solid or hollow (duct) cylinder along x, y or z.
+
+    ``inner_diameter > 0`` makes a duct: its wall displaces water, its interior is
+    water carried in cross-flow and free in flow along the axis (a :class:`HoleCut`).
+    """
+
+    name: str
+    axis: str
+    center: np.ndarray
+    diameter: float
+    length: float
+    inner_diameter: float = 0.0
+    role: str = "appendage"
+
+    def x_extent(self):
+        half = 0.5 * self.length if self.axis == "x" else 0.5 * self.diameter
+        return (self.center[0] - half, self.center[0] + half)
+
+    def _chord(self, x, radius):
+        return 2.0 * np.sqrt(np.maximum(radius**2 - (x - self.center[0]) ** 2, 0.0))
+
+    def parts(self, x, dx):
+        lo, hi = self.x_extent()
+        idx = _inside(x, lo, hi)
+        if idx.size == 0:
+            return []
+        xs = x[idx]
+        ro, ri = 0.5 * self.diameter, 0.5 * self.inner_diameter
+        if self.axis == "x":
+            b = h = np.full(idx.size, ro)
+            area, iyy, izz = ellipse_section(b, h)
+            a_in, iyy_in, izz_in = ellipse_section(np.full(idx.size, ri), np.full(idx.size, ri))
+            return [Part(name=self.name, shape="ellipse", index=idx, y=self.center[1],
+                         z=self.center[2], half_breadth=b, half_height=h, area=area - a_in,
+                         iyy=iyy - iyy_in, izz=izz - izz_in, rounded=True, length=self.length,
+                         role=self.role)]
+        # Axis y or z: each strip cuts a rectangle, chord along x-width.
+        c_out = self._chord(xs, ro)
+        c_in = self._chord(xs, ri) if ri > 0 else np.zeros_like(xs)
+        keep = c_out > 0
+        idx, c_out, c_in = idx[keep], c_out[keep], c_in[keep]
+        half_len = np.full(idx.size, 0.5 * self.length)
+        if self.axis == "y":
+            b, h = half_len, 0.5 * c_out      # long along y, thin along z
+        else:
+            b, h = 0.5 * c_out, half_len
+        area, iyy, izz = rectangle_section(b, h)
+        # a hollow cylinder across x: remove the interior (its water is a HoleCut)
+        if ri > 0:
+            bi, hi_ = (half_len, 0.5 * c_in) if self.axis == "y" else (0.5 * c_in, half_len)
+            a_in, iyy_in, izz_in = rectangle_section(bi, hi_)
+            area, iyy, izz = area - a_in, iyy - iyy_in, izz - izz_in
+        return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
+                     z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
+                     izz=izz, rounded=True, length=self.diameter, role=self.role)]
+
+    def holes(self, x, dx):
+        """The duct interior as a hole along the cylinder's axis."""
+        if self.inner_diameter <= 0:
+            return []
+        ri = 0.5 * self.inner_diameter
+        if self.axis == "x":
+            lo, hi = self.center[0] - 0.5 * self.length, self.center[0] + 0.5 * self.length
+            idx = _inside(x, lo, hi)
+            # per unit x-length the interior is a disc: model as chord = area / depth
+            area = np.pi * ri**2
+            return [HoleCut(name=self.name + ":interior", axis="x", index=idx,
+                            chord=np.full(idx.size, area / (2 * ri)),
+                            depth=np.full(idx.size, 2 * ri),
+                            y=np.full(idx.size, self.center[1]),
+                            z=np.full(idx.size, self.center[2]), in_hull=False)]
+        idx = _inside(x, self.center[0] - ri, self.center[0] + ri)
+        chord = self._chord(x[idx], ri)
+        keep = chord > 0
+        idx, chord = idx[keep], chord[keep]
+        return [HoleCut(name=self.name + ":interior", axis=self.axis, index=idx, chord=chord,
+                        depth=np.full(idx.size, self.length), y=np.full(idx.size, self.center[1]),
+                        z=np.full(idx.size, self.center[2]), in_hull=False)]
+
+
+@dataclass
+class Box:
+    """An axis-aligned box (skid, battery pod, frame member)."""
+
+    name: str
+    center: np.ndarray
+    size: np.ndarray  # [lx, ly, lz]
+    role: str = "appendage"
+
+    def x_extent(self):
+        return (self.center[0] - 0.5 * self.size[0], self.center[0] + 0.5 * self.size[0])
+
+    def parts(self, x, dx):
+        idx = _inside(x, *self.x_extent())
+        if idx.size == 0:
+            return []
+        b = np.full(idx.size, 0.5 * self.size[1])
+        h = np.full(idx.size, 0.5 * self.size[2])
+        area, iyy, izz = rectangle_section(b, h)
+        return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
+                     z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
+                     izz=izz, rounded=False, length=float(self.size[0]), role=self.role)]
+
+
+@dataclass
+class Fin:
+    """A thin fin (flat plate) of given span along y or z, chord along x, and thickness."""
+
+    name: str
+    center: np.ndarray
+    span_axis: str
+    span: float
+    chord: float
+    thickness: float
+
+    def x_extent(self):
+        return (self.center[0] - 0.5 * self.chord, self.center[0] + 0.5 * self.chord)
+
+    def parts(self, x, dx):
+        idx = _inside(x, *self.x_extent())
+        if idx.size == 0:
+            return []
+        if self.span_axis == "y":
+            b, h = 0.5 * self.span, 0.5 * self.thickness
+        else:
+            b, h = 0.5 * self.thickness, 0.5 * self.span
+        b = np.full(idx.size, b)
+        h = np.full(idx.size, h)
+        area, iyy, izz = rectangle_section(b, h)
+        return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
+                     z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
+                     izz=izz, rounded=False, length=self.chord, role="fin")]
+
+
+@dataclass
+class Hole:
+    """A through-hole in the hull: a cylinder of diameter d along y or z at (x, y or z).
+
+    Motion along the axis passes freely (no added mass, no drag area); motion across it
+    carries the water inside (seed 002, sec. IV.C).
+    """
+
+    name: str
+    axis: str
+    x: float
+    offset: float  # y of a z-hole, z of a y-hole [m]
+    diameter: float
+
+    def x_extent(self):
+        r = 0.5 * self.diameter
+        return (self.x - r, self.x + r)
+
+    def cut(self, x, hull: Hull) -> HoleCut:
+        r = 0.5 * self.diameter
+        idx = _inside(x, self.x - r, self.x + r)
+        chord = 2.0 * np.sqrt(np.maximum(r**2 - (x[idx] - self.x) ** 2, 0.0))
+        keep = chord > 0
+        idx, chord = idx[keep], chord[keep]
+        xs = x[idx]
+        if self.axis == "z":  # through the height: depth = hull height at the hole's y
+            b, h = hull.half_breadth(xs), hull.half_height(xs)
+            frac = np.clip(1.0 - (self.offset / np.maximum(b, 1e-300)) ** 2, 0.0, 1.0)
+            depth = 2.0 * h * np.sqrt(frac) if hull.section == "ellipse" else 2.0 * h
+            y, z = np.full(idx.size, self.offset), np.full(idx.size, hull.z)
+        else:
+            b, h = hull.half_breadth(xs), hull.half_height(xs)
+            frac = np.clip(1.0 - (self.offset / np.maximum(h, 1e-300)) ** 2, 0.0, 1.0)
+            depth = 2.0 * b * np.sqrt(frac) if hull.section == "ellipse" else 2.0 * b
+            y, z = np.full(idx.size, hull.y), np.full(idx.size, self.offset)
+        return HoleCut(name=self.name, axis=self.axis, index=idx, chord=chord, depth=depth,
+                       y=y, z=z)

@@ -1,0 +1,544 @@
+"""The vehicle file (YAML): schema, validation and the :class:`Vehicle` it describes.
+
+Every key is documented in docs/vehicle-file.md.  Validation is strict: unknown
+keys, missing required keys, wrong types, non-finite or non-positive sizes,
+gapped or overlapping profile segments, holes outside the hull and appendages
+that intersect nothing are refused with an :class:`~stripcoef.errors.InputError`
+naming the file, the key path, the value and what was expected.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from ..errors import InputError
+from ..fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from ..strips import Strips, uniform_stations
+from ..thrusters import Thruster
+from .bodies import Box, Cylinder, Fin, Hole, Hull
+from .profiles import SEGMENT_TYPES, Segment, check_contiguous
+
+#: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
+DEFAULT_STRIPS = 400
+#: Default reference speed for Reynolds numbers and the damping split [m/s].
+DEFAULT_SPEED = 1.0
+REFERENCE_NAMES = ("center_of_buoyancy", "center_of_gravity", "origin")
+
+
+@dataclass
+class DensityZone:
+    """A zone of uniform density between two x stations, over some bodies (MARES Table I)."""
+
+    name: str
+    x_aft: float
+    x_fwd: float
+    density: float
+    bodies: tuple[str, ...] | None  # None = every body
+
+
+@dataclass
+class MassSpec:
+    """Mass properties: given directly, or from density zones, or neutrally buoyant uniform."""
+
+    mass: float | None = None
+    center_of_gravity: np.ndarray | None = None
+    inertia: np.ndarray | None = None  # 3x3 about the CG
+    zones: list[DensityZone] = field(default_factory=list)
+    default_density: float | None = None  # density where no zone applies (None: fluid's)
+
+
+@dataclass
+class Vehicle:
+    """Everything a vehicle file says (validated)."""
+
+    name: str
+    source: str
+    fluid: Fluid
+    hull: Hull | None
+    bodies: list  # hull first, then appendages (and mesh bodies)
+    holes: list[Hole]
+    mass: MassSpec
+    thrusters: list[Thruster]
+    reference: str | np.ndarray = "center_of_buoyancy"
+    reference_speed: float = DEFAULT_SPEED
+    n_strips: int = DEFAULT_STRIPS
+    corrections: bool = True
+    description: str = ""
+
+    def x_extent(self) -> tuple[float, float]:
+        lo = min(b.x_extent()[0] for b in self.bodies)
+        hi = max(b.x_extent()[1] for b in self.bodies)
+        return lo, hi
+
+    @property
+    def length(self) -> float:
+        lo, hi = self.x_extent()
+        return hi - lo
+
+    def cut(self, n: int | None = None) -> Strips:
+        """Cut the vehicle into ``n`` equal strips along x (default ``n_strips``)."""
+        n = int(n or self.n_strips)
+        if n < 4:
+            raise InputError("too few strips", key="strips", value=n, expected="at least 4")
+        lo, hi = self.x_extent()
+        x, dx = uniform_stations(lo, hi, n)
+        parts = []
+        for body in self.bodies:
+            parts.extend(body.parts(x, dx))
+        holes = [h.cut(x, self.hull) for h in self.holes] if self.hull is not None else []
+        for body in self.bodies:
+            if hasattr(body, "holes"):
+                holes.extend(body.holes(x, dx))
+        return Strips(x=x, dx=dx, parts=parts, holes=holes)
+
+
+# ---------------------------------------------------------------------------
+# Reading and validation
+# ---------------------------------------------------------------------------
+
+class _Reader:
+    """Typed access to a YAML mapping with error messages naming file and key path."""
+
+    def __init__(self, file: str):
+        self.file = file
+
+    def err(self, key, what="", value=InputError._MISSING, expected=None):
+        return InputError(what, file=self.file, key=key, value=value, expected=expected)
+
+    def mapping(self, data, key, allowed, required=()):
+        if not isinstance(data, dict):
+            raise self.err(key, "not a mapping", data, "a mapping of keys to values")
+        for k in data:
+            if k not in allowed:
+                raise self.err(f"{key}.{k}" if key else str(k), "unknown key",
+                               expected="one of " + ", ".join(allowed))
+        for k in required:
+            if k not in data:
+                raise self.err(f"{key}.{k}" if key else k, "missing required key")
+        return data
+
+    def number(self, data, key, path, *, default=None, positive=False, nonneg=False,
+               required=False):
+        full = f"{path}.{key}" if path else key
+        if key not in data:
+            if required:
+                raise self.err(full, "missing required key", expected="a number")
+            return default
+        v = data[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise self.err(full, "wrong type", v, "a number")
+        v = float(v)
+        if not math.isfinite(v):
+            raise self.err(full, "not finite", v, "a finite number")
+        if positive and v <= 0:
+            raise self.err(full, "must be positive", v, "a number > 0")
+        if nonneg and v < 0:
+            raise self.err(full, "must not be negative", v, "a number >= 0")
+        return v
+
+    def vector(self, data, key, path, n=3, *, default=None, required=False):
+        full = f"{path}.{key}" if path else key
+        if key not in data:
+            if required:
+                raise self.err(full, "missing required key", expected=f"a list of {n} numbers")
+            return None if default is None else np.asarray(default, float)
+        v = data[key]
+        if (not isinstance(v, (list, tuple)) or len(v) != n
+                or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in v)):
+            raise self.err(full, "wrong type", v, f"a list of {n} numbers")
+        arr = np.asarray(v, dtype=float)
+        if not np.all(np.isfinite(arr)):
+            raise self.err(full, "not finite", v, f"a list of {n} finite numbers")
+        return arr
+
+    def string(self, data, key, path, *, choices=None, default=None, required=False):
+        full = f"{path}.{key}" if path else key
+        if key not in data:
+            if required:
+                raise self.err(full, "missing required key", expected="a string")
+            return default
+        v = data[key]
+        if not isinstance(v, str):
+            raise self.err(full, "wrong type", v, "a string")
+        if choices is not None and v not in choices:
+            raise self.err(full, "invalid value", v, "one of " + ", ".join(choices))
+        return v
+
+    def listing(self, data, key, path, *, required=False):
+        full = f"{path}.{key}" if path else key
+        if key not in data:
+            if required:
+                raise self.err(full, "missing required key", expected="a list")
+            return []
+        v = data[key]
+        if not isinstance(v, list):
+            raise self.err(full, "wrong type", v, "a list")
+        return v
+
+
+def _segment(r: _Reader, seg, path) -> Segment:
+    r.mapping(seg, path, ("type", "x", "radius", "n", "theta_deg", "points"), ("type", "x"))
+    kind = r.string(seg, "type", path, choices=SEGMENT_TYPES, required=True)
+    x = seg["x"]
+    if (not isinstance(x, list) or len(x) != 2
+            or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in x)):
+        raise r.err(f"{path}.x", "wrong type", x, "[x_aft, x_fwd] in metres")
+    xa, xf = float(x[0]), float(x[1])
+    if not (math.isfinite(xa) and math.isfinite(xf)):
+        raise r.err(f"{path}.x", "not finite", x, "finite numbers")
+    if xf <= xa:
+        raise r.err(f"{path}.x", "segment has no length", x, "x_aft < x_fwd")
+    params = {}
+    if kind == "table":
+        pts = seg.get("points")
+        try:
+            arr = np.asarray(pts, dtype=float)
+        except (TypeError, ValueError):
+            arr = None
+        if arr is None or arr.ndim != 2 or arr.shape[1] != 2 or arr.shape[0] < 2:
+            raise r.err(f"{path}.points", "wrong type", pts, "a list of [x, r] pairs (>= 2)")
+        if not np.all(np.isfinite(arr)):
+            raise r.err(f"{path}.points", "not finite", pts, "finite numbers")
+        if np.any(np.diff(arr[:, 0]) <= 0):
+            raise r.err(f"{path}.points", "x not increasing", pts.__repr__()[:60],
+                        "strictly increasing x")
+        if np.any(arr[:, 1] < 0):
+            raise r.err(f"{path}.points", "negative radius", pts, "radii >= 0")
+        if arr[0, 0] > xa + 1e-9 or arr[-1, 0] < xf - 1e-9:
+            raise r.err(f"{path}.points", "table does not cover the segment",
+                        [float(arr[0, 0]), float(arr[-1, 0])], f"points from {xa} to {xf}")
+        params["points"] = arr
+    elif kind == "cone":
+        rad = seg.get("radius")
+        if (not isinstance(rad, list) or len(rad) != 2
+                or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in rad)):
+            raise r.err(f"{path}.radius", "wrong type", rad, "[r_aft, r_fwd] in metres")
+        if any((not math.isfinite(a)) or a < 0 for a in rad) or max(rad) <= 0:
+            raise r.err(f"{path}.radius", "invalid radii", rad, "radii >= 0, not both zero")
+        params["radius"] = (float(rad[0]), float(rad[1]))
+    else:
+        params["radius"] = r.number(seg, "radius", path, positive=True, required=True)
+        if kind == "myring_nose":
+            params["n"] = r.number(seg, "n", path, default=2.0, positive=True)
+        if kind == "myring_tail":
+            params["theta_deg"] = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+    return Segment(kind, xa, xf, params)
+
+
+def _profile(r: _Reader, segs, path):
+    if not isinstance(segs, list) or not segs:
+        raise r.err(path, "wrong type", segs, "a non-empty list of segments")
+    segments = [_segment(r, s, f"{path}[{i}]") for i, s in enumerate(segs)]
+    return check_contiguous(segments, file=r.file, key=path)
+
+
+def _hull(r: _Reader, data) -> Hull:
+    path = "hull"
+    r.mapping(data, path, ("name", "section", "profile", "half_breadth", "half_height", "y", "z"))
+    section = r.string(data, "section", path, choices=("ellipse", "rectangle"), default="ellipse")
+    if "profile" in data:
+        if "half_breadth" in data or "half_height" in data:
+            raise r.err(path, "both profile and half_breadth/half_height given",
+                        expected="either profile (circular) or half_breadth + half_height")
+        prof = _profile(r, data["profile"], f"{path}.profile")
+        hb = hh = prof
+    else:
+        if "half_breadth" not in data or "half_height" not in data:
+            raise r.err(f"{path}.profile", "missing required key",
+                        expected="profile, or both half_breadth and half_height")
+        hb = _profile(r, data["half_breadth"], f"{path}.half_breadth")
+        hh = _profile(r, data["half_height"], f"{path}.half_height")
+        if abs(hb.x_aft - hh.x_aft) > 1e-9 or abs(hb.x_fwd - hh.x_fwd) > 1e-9:
+            raise r.err(f"{path}.half_height", "profiles cover different x ranges",
+                        [hh.x_aft, hh.x_fwd], f"the half_breadth range [{hb.x_aft}, {hb.x_fwd}]")
+    return Hull(name=r.string(data, "name", path, default="hull"), half_breadth=hb,
+                half_height=hh, section=section, y=r.number(data, "y", path, default=0.0),
+                z=r.number(data, "z", path, default=0.0))
+
+
+def _appendage(r: _Reader, data, path):
+    r.mapping(data, path, ("name", "type", "axis", "center", "diameter", "length",
+                           "inner_diameter", "size", "span_axis", "span", "chord", "thickness",
+                           "mesh", "length_unit", "transform"), ("type",))
+    kind = r.string(data, "type", path, choices=("cylinder", "box", "fin", "mesh"), required=True)
+    name = r.string(data, "name", path, default=path)
+    if kind == "cylinder":
+        d = r.number(data, "diameter", path, positive=True, required=True)
+        di = r.number(data, "inner_diameter", path, default=0.0, nonneg=True)
+        if di >= d:
+            raise r.err(f"{path}.inner_diameter", "not smaller than the diameter", di,
+                        f"a value < diameter = {d}")
+        return Cylinder(name=name, axis=r.string(data, "axis", path, choices=("x", "y", "z"),
+                                                 default="x"),
+                        center=r.vector(data, "center", path, required=True), diameter=d,
+                        length=r.number(data, "length", path, positive=True, required=True),
+                        inner_diameter=di)
+    if kind == "box":
+        size = r.vector(data, "size", path, required=True)
+        if np.any(size <= 0):
+            raise r.err(f"{path}.size", "must be positive", size.tolist(),
+                        "[lx, ly, lz] all > 0")
+        return Box(name=name, center=r.vector(data, "center", path, required=True), size=size)
+    if kind == "fin":
+        return Fin(name=name, center=r.vector(data, "center", path, required=True),
+                   span_axis=r.string(data, "span_axis", path, choices=("y", "z"), required=True),
+                   span=r.number(data, "span", path, positive=True, required=True),
+                   chord=r.number(data, "chord", path, positive=True, required=True),
+                   thickness=r.number(data, "thickness", path, positive=True, default=0.01))
+    # a mesh appendage (or hull) - needs the mesh module
+    from . import mesh as mesh_mod  # noqa: PLC0415  (optional path)
+    mfile = r.string(data, "mesh", path, required=True)
+    mpath = Path(r.file).parent / mfile
+    return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,
+                                                          choices=("m", "mm", "in"), default="m"),
+                              origin="file", transform=data.get("transform"), name=name)
+
+
+def _hole(r: _Reader, data, path) -> Hole:
+    r.mapping(data, path, ("name", "axis", "x", "y", "z", "diameter"), ("axis", "x", "diameter"))
+    axis = r.string(data, "axis", path, choices=("y", "z"), required=True)
+    offset_key = "y" if axis == "z" else "z"
+    if ("z" if axis == "z" else "y") in data:
+        raise r.err(f"{path}.{'z' if axis == 'z' else 'y'}", "unexpected key for this axis",
+                    expected=f"only x and {offset_key} to place a hole along {axis}")
+    return Hole(name=r.string(data, "name", path, default=path), axis=axis,
+                x=r.number(data, "x", path, required=True),
+                offset=r.number(data, offset_key, path, default=0.0),
+                diameter=r.number(data, "diameter", path, positive=True, required=True))
+
+
+def _fluid(r: _Reader, data) -> Fluid:
+    if data is None:
+        return Fluid()
+    path = "fluid"
+    r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity"))
+    if "temperature" in data or "salinity" in data:
+        if "density" in data or "kinematic_viscosity" in data:
+            raise r.err(path, "both temperature/salinity and density/viscosity given",
+                        expected="either temperature + salinity, or density + kinematic_viscosity")
+        t = r.number(data, "temperature", path, required=True)
+        s = r.number(data, "salinity", path, required=True, nonneg=True)
+        return Fluid.from_temperature_salinity(t, s)
+    water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
+    rho = r.number(data, "density", path, positive=True,
+                   default=RHO_SEAWATER if water == "sea" else RHO_FRESHWATER)
+    nu = r.number(data, "kinematic_viscosity", path, positive=True,
+                  default=1.19e-6 if water == "sea" else 1.14e-6)
+    return Fluid(density=rho, kinematic_viscosity=nu,
+                 source=f"vehicle file ({water} water defaults where not given)")
+
+
+def _mass(r: _Reader, data) -> MassSpec:
+    if data is None:
+        return MassSpec()
+    path = "mass"
+    r.mapping(data, path, ("mass", "center_of_gravity", "inertia", "zones", "default_density"))
+    spec = MassSpec(mass=r.number(data, "mass", path, positive=True),
+                    center_of_gravity=r.vector(data, "center_of_gravity", path),
+                    default_density=r.number(data, "default_density", path, nonneg=True))
+    if "inertia" in data:
+        v = data["inertia"]
+        arr = None
+        try:
+            arr = np.asarray(v, dtype=float)
+        except (TypeError, ValueError):
+            pass
+        if arr is None or arr.shape not in ((3,), (3, 3)) or not np.all(np.isfinite(arr)):
+            raise r.err(f"{path}.inertia", "wrong type", v,
+                        "[Ixx, Iyy, Izz] or a 3x3 matrix about the CG, kg m^2")
+        arr = np.diag(arr) if arr.shape == (3,) else arr
+        if not np.allclose(arr, arr.T) or np.any(np.linalg.eigvalsh(0.5 * (arr + arr.T)) <= 0):
+            raise r.err(f"{path}.inertia", "not symmetric positive definite", v,
+                        "a symmetric positive-definite inertia tensor")
+        spec.inertia = arr
+    for i, z in enumerate(r.listing(data, "zones", path)):
+        zp = f"{path}.zones[{i}]"
+        r.mapping(z, zp, ("name", "x", "density", "bodies"), ("x", "density"))
+        x = z["x"]
+        if (not isinstance(x, list) or len(x) != 2
+                or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in x)
+                or x[1] <= x[0]):
+            raise r.err(f"{zp}.x", "wrong value", x, "[x_aft, x_fwd] with x_aft < x_fwd")
+        bodies = z.get("bodies")
+        if bodies is not None and (not isinstance(bodies, list)
+                                   or not all(isinstance(b, str) for b in bodies)):
+            raise r.err(f"{zp}.bodies", "wrong type", bodies, "a list of body names")
+        spec.zones.append(DensityZone(name=str(z.get("name", zp)), x_aft=float(x[0]),
+                                      x_fwd=float(x[1]),
+                                      density=r.number(z, "density", zp, nonneg=True,
+                                                       required=True),
+                                      bodies=tuple(bodies) if bodies else None))
+    if spec.zones and spec.mass is not None:
+        raise r.err(f"{path}.zones", "both mass and zones given",
+                    expected="either mass (+ center_of_gravity, inertia) or density zones")
+    if spec.inertia is not None and spec.mass is None:
+        raise r.err(f"{path}.mass", "missing required key", expected="mass when inertia is given")
+    return spec
+
+
+def _thruster(r: _Reader, data, path) -> Thruster:
+    r.mapping(data, path, ("name", "position", "direction", "ct_forward", "ct_backward", "ct",
+                           "max_forward", "max_backward", "max_thrust", "eta_forward",
+                           "eta_backward", "deadband"), ("name", "position", "direction"))
+    name = r.string(data, "name", path, required=True)
+    d = r.vector(data, "direction", path, required=True)
+    if np.linalg.norm(d) < 1e-12:
+        raise r.err(f"{path}.direction", "zero vector", d.tolist(), "a non-zero direction")
+    ct = r.number(data, "ct", path, positive=True, default=None)
+    mx = r.number(data, "max_thrust", path, nonneg=True, default=None)
+    inf = float("inf")
+    t = Thruster(
+        name=name, position=r.vector(data, "position", path, required=True),
+        direction=d / np.linalg.norm(d),
+        ct_forward=r.number(data, "ct_forward", path, positive=True, default=ct or 1.0),
+        ct_backward=r.number(data, "ct_backward", path, positive=True, default=ct or 1.0),
+        max_forward=r.number(data, "max_forward", path, nonneg=True,
+                             default=mx if mx is not None else inf),
+        max_backward=r.number(data, "max_backward", path, nonneg=True,
+                              default=mx if mx is not None else inf),
+        eta_forward=r.number(data, "eta_forward", path, positive=True, default=1.0),
+        eta_backward=r.number(data, "eta_backward", path, positive=True, default=1.0),
+        deadband=r.number(data, "deadband", path, nonneg=True, default=0.0),
+    )
+    return t
+
+
+TOP_KEYS = ("name", "description", "fluid", "reference_point", "reference_speed", "strips",
+            "corrections", "hull", "holes", "appendages", "mass", "thrusters")
+
+
+def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
+    """Validate a parsed vehicle mapping and build the :class:`Vehicle`."""
+    r = _Reader(file)
+    r.mapping(data, "", TOP_KEYS, ("hull",))
+    name = r.string(data, "name", "", default=Path(file).stem)
+    fluid = _fluid(r, data.get("fluid"))
+    hull = _hull(r, data["hull"])
+    bodies: list = [hull]
+    names = {hull.name}
+    for i, a in enumerate(r.listing(data, "appendages", "")):
+        body = _appendage(r, a, f"appendages[{i}]")
+        if body.name in names:
+            raise r.err(f"appendages[{i}].name", "duplicated name", body.name, "unique names")
+        names.add(body.name)
+        bodies.append(body)
+    holes = [_hole(r, h, f"holes[{i}]") for i, h in enumerate(r.listing(data, "holes", ""))]
+    # geometric consistency
+    hlo, hhi = hull.x_extent()
+    for i, h in enumerate(holes):
+        lo, hi = h.x_extent()
+        if lo < hlo or hi > hhi:
+            raise r.err(f"holes[{i}].x", "hole outside the hull", h.x,
+                        f"the hole within the hull's x range [{hlo}, {hhi}]")
+        width = hull.half_breadth(h.x) if h.axis == "z" else hull.half_height(h.x)
+        if abs(h.offset) + 0.5 * h.diameter > width + 1e-12:
+            raise r.err(f"holes[{i}].diameter", "hole wider than the hull there", h.diameter,
+                        f"|offset| + diameter/2 <= {float(width):.4g} m (hull half-width at x)")
+    _check_connected(r, bodies)
+    mass = _mass(r, data.get("mass"))
+    for i, z in enumerate(mass.zones):
+        for b in (z.bodies or ()):
+            if b not in names:
+                raise r.err(f"mass.zones[{i}].bodies", "unknown body", b,
+                            "one of " + ", ".join(sorted(names)))
+    thrusters = [_thruster(r, t, f"thrusters[{i}]")
+                 for i, t in enumerate(r.listing(data, "thrusters", ""))]
+    if len({t.name for t in thrusters}) != len(thrusters):
+        raise r.err("thrusters", "duplicated thruster name", [t.name for t in thrusters],
+                    "unique names")
+    ref = data.get("reference_point", "center_of_buoyancy")
+    if isinstance(ref, str):
+        if ref not in REFERENCE_NAMES:
+            raise r.err("reference_point", "invalid value", ref,
+                        "one of " + ", ".join(REFERENCE_NAMES) + " or [x, y, z]")
+    else:
+        ref = r.vector(data, "reference_point", "")
+    strips = data.get("strips", DEFAULT_STRIPS)
+    if isinstance(strips, bool) or not isinstance(strips, int) or strips < 4:
+        raise r.err("strips", "invalid value", strips, "an integer >= 4")
+    corr = data.get("corrections", True)
+    if not isinstance(corr, bool):
+        raise r.err("corrections", "wrong type", corr, "true or false")
+    return Vehicle(name=name, source=file, fluid=fluid, hull=hull, bodies=bodies, holes=holes,
+                   mass=mass, thrusters=thrusters, reference=ref,
+                   reference_speed=r.number(data, "reference_speed", "", positive=True,
+                                            default=DEFAULT_SPEED),
+                   n_strips=strips, corrections=corr,
+                   description=str(data.get("description", "")))
+
+
+def _bbox(body) -> np.ndarray:
+    """Axis-aligned bounding box [[x0, y0, z0], [x1, y1, z1]] of a body [m]."""
+    lo, hi = body.x_extent()
+    if isinstance(body, Hull):
+        xs = np.linspace(lo, hi, 401)
+        b, h = float(np.max(body.half_breadth(xs))), float(np.max(body.half_height(xs)))
+        return np.array([[lo, body.y - b, body.z - h], [hi, body.y + b, body.z + h]])
+    if hasattr(body, "bbox"):
+        return np.asarray(body.bbox(), float)
+    c = body.center
+    if isinstance(body, Cylinder):
+        half = np.full(3, 0.5 * body.diameter)
+        half["xyz".index(body.axis)] = 0.5 * body.length
+    elif isinstance(body, Box):
+        half = 0.5 * np.asarray(body.size)
+    else:  # Fin
+        half = np.array([0.5 * body.chord, 0.5 * body.thickness, 0.5 * body.thickness])
+        half["xyz".index(body.span_axis)] = 0.5 * body.span
+    return np.array([c - half, c + half])
+
+
+def _check_connected(r: _Reader, bodies) -> None:
+    """Every appendage must touch the hull or an appendage that does (bounding boxes)."""
+    boxes = [_bbox(b) for b in bodies]
+    tol = 1e-6
+    connected = {0}
+    changed = True
+    while changed:
+        changed = False
+        for i in range(1, len(bodies)):
+            if i in connected:
+                continue
+            for j in connected:
+                if np.all(boxes[i][0] <= boxes[j][1] + tol) and np.all(boxes[j][0] <= boxes[i][1] + tol):
+                    connected.add(i)
+                    changed = True
+                    break
+    for i in range(1, len(bodies)):
+        if i not in connected:
+            c = getattr(bodies[i], "center", boxes[i].mean(axis=0))
+            raise r.err(f"appendages[{i - 1}]", f"appendage '{bodies[i].name}' intersects nothing",
+                        [float(v) for v in c],
+                        "an appendage touching the hull or an appendage attached to it")
+
+
+def load_vehicle(path) -> Vehicle:
+    """Read and validate a vehicle YAML file (see docs/vehicle-file.md)."""
+    path = Path(path)
+    name = str(path)
+    if path.suffix.lower() not in (".yaml", ".yml"):
+        raise InputError("unknown vehicle file extension", file=name, value=path.suffix,
+                         expected=".yaml or .yml (or a mesh: .stl .obj .ply .glb)")
+    try:
+        text = path.read_text()
+    except FileNotFoundError:
+        raise InputError("file not found", file=name, expected="an existing vehicle file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read ({exc.__class__.__name__})", file=name,
+                         expected="a readable UTF-8 YAML file") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"line {mark.line + 1}" if mark is not None else None
+        raise InputError("invalid YAML", file=name, key=where,
+                         expected="a YAML mapping (see docs/vehicle-file.md)") from None
+    if not isinstance(data, dict):
+        raise InputError("not a mapping", file=name, value=type(data).__name__,
+                         expected="a YAML mapping with at least a 'hull' key")
+    return parse_vehicle(data, file=name)

@@ -1,0 +1,90 @@
+"""Sections: 2D coefficients per strip, one registry per family.
+
+- :data:`ADDED_MASS` maps a :class:`~stripcoef.strips.Part` shape to a function
+  ``f(part, rho) -> (k, 3, 3)`` giving the per-unit-length added mass (sway, heave, roll)
+  about the part's centre.
+- :data:`CROSS_FLOW_DRAG` maps a shape to ``f(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``,
+  the 2D drag coefficients for flow along y and along z (reference heights: 2h and 2b).
+
+An unknown shape is an error listing the registered ones.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import unknown_name
+from . import added_mass as am
+from . import drag
+
+
+def _added_mass_ellipse(part, rho):
+    m22, m33, m44 = am.ellipse(part.half_breadth, part.half_height, rho=rho)
+    return _diag3(m22, m33, m44)
+
+
+def _added_mass_rectangle(part, rho):
+    m22, m33, m44 = am.rectangle(part.half_breadth, part.half_height, rho=rho)
+    return _diag3(m22, m33, m44)
+
+
+def _added_mass_polygon(part, rho):
+    from .panel import added_mass_sections  # noqa: PLC0415 (mesh path only)
+    mats = added_mass_sections(part.contours, rho=rho, about=None)
+    return np.asarray(mats, dtype=float)
+
+
+def _diag3(a, b, c):
+    out = np.zeros((np.size(a), 3, 3))
+    out[:, 0, 0], out[:, 1, 1], out[:, 2, 2] = a, b, c
+    return out
+
+
+ADDED_MASS = {
+    "ellipse": _added_mass_ellipse,
+    "rectangle": _added_mass_rectangle,
+    "polygon": _added_mass_polygon,
+}
+
+
+def _drag_ellipse(part, re_y, re_z):
+    b, h = part.half_breadth, part.half_height
+    circ = np.isclose(b, h, rtol=1e-6)
+    cd_y = np.where(circ, drag.circle_cd(re_y), drag.ellipse_cd(b / np.maximum(h, 1e-300), re_y))
+    cd_z = np.where(circ, drag.circle_cd(re_z), drag.ellipse_cd(h / np.maximum(b, 1e-300), re_z))
+    return cd_y, cd_z
+
+
+def _drag_rectangle(part, re_y, re_z):
+    b, h = part.half_breadth, part.half_height
+    return drag.rectangle_cd(b / h), drag.rectangle_cd(h / b)
+
+
+def _drag_polygon(part, re_y, re_z):
+    from .polygon_drag import cross_flow_cd  # noqa: PLC0415 (mesh path only)
+    return cross_flow_cd(part, re_y, re_z)
+
+
+CROSS_FLOW_DRAG = {
+    "ellipse": _drag_ellipse,
+    "rectangle": _drag_rectangle,
+    "polygon": _drag_polygon,
+}
+
+
+def section_added_mass(part, rho: float) -> np.ndarray:
+    """(k, 3, 3) added mass per unit length of ``part`` about its centre [kg/m, kg, kg m]."""
+    try:
+        fn = ADDED_MASS[part.shape]
+    except KeyError:
+        raise unknown_name("section shape", part.shape, ADDED_MASS) from None
+    return fn(part, rho)
+
+
+def section_drag(part, re_y, re_z):
+    """2D drag coefficients (cd_y, cd_z) of ``part`` for flow along y and along z [-]."""
+    try:
+        fn = CROSS_FLOW_DRAG[part.shape]
+    except KeyError:
+        raise unknown_name("section shape", part.shape, CROSS_FLOW_DRAG) from None
+    return fn(part, re_y, re_z)

@@ -1,0 +1,184 @@
+r"""2D cross-flow drag coefficients of sections, and the axial friction lines.
+
+The drag force per unit length of a section in cross-flow V is
+:math:`f = \tfrac12 \rho\, C_D\, h\, |V| V` with h the section's height across the
+flow (the cross-flow principle, Hoerner 1965, ch. 3).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..tables import load_table
+
+#: Subcritical plateau of the circle curve, used to scale other rounded shapes.
+CIRCLE_CD_SUBCRITICAL = 1.2
+
+
+def circle_cd(reynolds):
+    r"""Drag coefficient of a smooth circular cylinder in steady cross-flow, :math:`C_D(Re_D)`.
+
+    Interpolated in log10(Re) in the DNV-RP-C205 curve (data/cylinder_drag_dnv.csv,
+    1.02e4 <= Re_D <= 4.94e6); outside, clamped with an ExtrapolationWarning.
+
+    Parameters
+    ----------
+    reynolds : float or array
+        Re_D = V D / nu on the diameter [-]
+
+    Returns
+    -------
+    float or array
+        C_D [-]
+
+    References
+    ----------
+    DNV-RP-C205 (2025-04), fig. 6-6 / sec. 6.7, digitised by M. Seidl
+    (cybergalactic/MSS HYDRO/cylinderDrag.m).
+    """
+    return load_table("cylinder_drag_dnv").interp(reynolds, "Cd", log_x=True, what="Re_D")
+
+
+def cylinder_length_factor(length_over_diameter, reynolds):
+    r"""Finite-length reduction :math:`\kappa(L/D, Re)`, :math:`C_{D,eff} = \kappa C_{D,2D}`.
+
+    Subcritical column for Re < 2e5, supercritical column otherwise
+    (data/cylinder_length_factor.csv; L/D in 2..100, clamped with a warning outside).
+
+    References
+    ----------
+    DNV-RP-C205 (2025-04), table 6-3 (via cybergalactic/MSS HYDRO/cylinderDrag.m);
+    Hoerner (1965), fig. 3-16.
+    """
+    t = load_table("cylinder_length_factor")
+    ld = np.asarray(length_over_diameter, dtype=float)
+    sub = t.interp(ld, "kappa_subcritical", log_x=True, what="L/D")
+    sup = t.interp(ld, "kappa_supercritical", log_x=True, what="L/D")
+    return np.where(np.asarray(reynolds) < 2e5, sub, sup)
+
+
+def rectangle_cd(depth_over_height):
+    r"""Drag of a sharp-edged rectangular cylinder vs d/h (length along flow / height across).
+
+    Reynolds-independent for Re >= 1e4 (separation fixed at the corners).
+
+    References
+    ----------
+    White, Fluid Mechanics, table 7.2 (after Delany & Sorensen 1953, NACA TN 3038);
+    data/rectangle_drag.csv (marked assumed: recalled, not re-checked).
+    """
+    return load_table("rectangle_drag").interp(depth_over_height, "Cd", what="d/h")
+
+
+def ellipse_cd(depth_over_height, reynolds):
+    r"""Drag of an elliptic cylinder vs d/h, with the circle's Reynolds dependence.
+
+    .. math:: C_D = C_{D,table}(d/h)\; C_{D,circle}(Re) / 1.2
+
+    References
+    ----------
+    White, Fluid Mechanics, table 7.2 (elliptical cylinder, laminar column);
+    data/ellipse_drag.csv (assumed values, see its header).
+    """
+    base = load_table("ellipse_drag").interp(depth_over_height, "Cd", what="d/h")
+    return base * circle_cd(reynolds) / CIRCLE_CD_SUBCRITICAL
+
+
+def flat_plate_cd():
+    r"""Normal flat plate in 2D cross-flow, :math:`C_D = 2.0`.
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 3, fig. 3-11 (2D plate ~1.98-2.0).
+    """
+    return 2.0
+
+
+# -- axial friction lines ---------------------------------------------------
+
+def blasius_cf(reynolds):
+    r"""Laminar flat-plate friction (Blasius): :math:`C_f = 1.328/\sqrt{Re_L}`.
+
+    References
+    ----------
+    Schlichting & Gersten, Boundary-Layer Theory (8th ed.), eq. 6.59.
+    """
+    return 1.328 / np.sqrt(np.asarray(reynolds, dtype=float))
+
+
+def ittc57_cf(reynolds):
+    r"""ITTC-1957 model-ship correlation line: :math:`C_f = 0.075/(\log_{10} Re_L - 2)^2`.
+
+    References
+    ----------
+    ITTC (1957), Proc. 8th ITTC; ITTC 7.5-02-02-02.
+    """
+    return 0.075 / (np.log10(np.asarray(reynolds, dtype=float)) - 2.0) ** 2
+
+
+#: Critical Reynolds number of laminar-turbulent transition on a flat plate [-].
+RE_CRITICAL = 5e5
+
+
+def friction_coefficient(reynolds, *, regime: str = "auto"):
+    r"""Skin-friction coefficient with a laminar leading part.
+
+    .. math::
+        C_f = \begin{cases} 1.328/\sqrt{Re} & Re < Re_{cr} \\
+        C_{f,ITTC}(Re) - \frac{Re_{cr}}{Re}\left[C_{f,ITTC}(Re_{cr}) - C_{f,Bl}(Re_{cr})\right]
+        & Re \ge Re_{cr}\end{cases}
+
+    The second line is Prandtl's correction for a laminar run up to Re_cr = 5e5 on a
+    turbulent plate (Schlichting & Gersten, sec. 18.2.5, eq. 18.99 with its constant
+    A = Re_cr (C_f,t - C_f,l)); it is continuous at Re_cr and tends to ITTC-57.
+
+    Parameters
+    ----------
+    reynolds : float
+        Re_L on the body length [-]
+    regime : str
+        ``auto`` (rule above), ``laminar`` (Blasius) or ``turbulent`` (ITTC-57)
+
+    Returns
+    -------
+    (float, str)
+        C_f [-] and the regime name: laminar, transitional or turbulent
+    """
+    re = float(reynolds)
+    if regime == "laminar":
+        return float(blasius_cf(re)), "laminar"
+    if regime == "turbulent":
+        return float(ittc57_cf(re)), "turbulent"
+    if re < RE_CRITICAL:
+        return float(blasius_cf(re)), "laminar"
+    a = RE_CRITICAL * (ittc57_cf(RE_CRITICAL) - blasius_cf(RE_CRITICAL))
+    cf = float(ittc57_cf(re) - a / re)
+    name = "turbulent" if re > 1e7 else "transitional"
+    return cf, name
+
+
+def hoerner_form_factor(diameter_over_length):
+    r"""Form factor of a streamlined body of revolution on its wetted area.
+
+    .. math:: C_{D,wet} = C_f\,[1 + 1.5 (d/l)^{3/2} + 7 (d/l)^3]
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 6, eq. 6-27 (tagged "from memory" in
+    shared/reference/formulas.md sec. 5.4; values L/D = 4: 1.297, 6: 1.135, 10: 1.054).
+    """
+    r = np.asarray(diameter_over_length, dtype=float)
+    return 1.0 + 1.5 * r**1.5 + 7.0 * r**3
+
+
+def blunt_cylinder_axial_cd(length_over_diameter):
+    r"""Pressure drag of a blunt (flat-ended) cylinder in flow along its axis, on its frontal area.
+
+    Hoerner's values for flat-faced cylinders: C_D ~ 1.15 at L/D = 0.5, 0.9 at 1,
+    0.85 at 2, 0.87 at 4, 0.99 at 8 (Hoerner 1965, fig. 3-33); linear interpolation
+    between these points, clamped outside (appendage pods and housings).
+    """
+    ld = np.asarray(length_over_diameter, dtype=float)
+    xs = np.array([0.5, 1.0, 2.0, 4.0, 8.0])
+    ys = np.array([1.15, 0.90, 0.85, 0.87, 0.99])
+    return np.interp(np.clip(ld, xs[0], xs[-1]), xs, ys)
