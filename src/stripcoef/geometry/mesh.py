@@ -230,6 +230,10 @@ class MeshBody:
         """Volume centroid in body axes [m]."""
         return np.asarray(self.mesh.center_mass, dtype=float)
 
+    def bbox(self) -> np.ndarray:
+        """Axis-aligned bounding box [[x0, y0, z0], [x1, y1, z1]] [m]."""
+        return np.asarray(self.mesh.bounds, dtype=float)
+
     def x_extent(self) -> tuple[float, float]:
         """(x_min, x_max) of the body [m]."""
         b = self.mesh.bounds
@@ -493,10 +497,10 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
 
     # origin
     if isinstance(origin, str):
-        if origin != "centroid":
+        if origin not in ("centroid", "file"):
             raise InputError("unknown origin", key="origin", value=origin,
-                             expected="centroid or a point (x, y, z)")
-        point = np.asarray(mesh.center_mass, dtype=float)
+                             expected="centroid, file or a point (x, y, z)")
+        point = np.asarray(mesh.center_mass, dtype=float) if origin == "centroid" else np.zeros(3)
     else:
         p = np.asarray(origin, dtype=float)
         if p.shape != (3,) or not np.all(np.isfinite(p)):
@@ -522,7 +526,7 @@ def _open_edge_count(mesh) -> int:
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-              transform=None) -> MeshBody:
+              transform=None, name: str | None = None) -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
 
     Parameters
@@ -533,12 +537,15 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
         Mesh axis along the body's length; mapped cyclically onto body x.
     length_unit : {"m", "mm", "cm", "in", "ft"}
         Unit of the file's coordinates.
-    origin : "centroid" or (x, y, z)
-        Body origin: the volume centroid (centre of buoyancy), or a point given
-        in the file's coordinates and unit.
+    origin : "centroid", "file" or (x, y, z)
+        Body origin: the volume centroid (centre of buoyancy), the file's own
+        origin (after unit, transform and axis mapping: for meshes placed in a
+        vehicle file), or a point given in the file's coordinates and unit.
     transform : (4, 4) array, optional
         Homogeneous transform applied after the unit conversion (translation in
         metres), before the axis mapping.
+    name : str, optional
+        Body name (default: the file's stem).
 
     Returns
     -------
@@ -556,7 +563,7 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     mesh, repairs, labels, n_bodies = _prepare(mesh, path=path, axis=axis,
                                                length_unit=length_unit, origin=origin,
                                                transform=transform)
-    return MeshBody(mesh, name=path.stem, source=str(path), repairs=repairs,
+    return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
                     face_label=labels, n_bodies=n_bodies)
 
 

@@ -136,6 +136,27 @@ def orient_contours(contours, where: str = "contours") -> list[np.ndarray]:
     return out
 
 
+def section_centroid(contours) -> tuple[float, float]:
+    r"""Area centroid (y_c, z_c) of a section made of rings (holes subtracted) [m].
+
+    .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
+
+    (with the orientation normalised: outer rings add area, holes subtract it).
+    An empty section gives (0, 0).
+    """
+    if contours is None or len(contours) == 0:
+        return (0.0, 0.0)
+    a = sy = sz = 0.0
+    for r in orient_contours(contours):
+        y, z = r[:, 0], r[:, 1]
+        y1, z1 = np.roll(y, -1), np.roll(z, -1)
+        c = y * z1 - y1 * z
+        a += 0.5 * c.sum()
+        sy += ((y + y1) * c).sum() / 6.0
+        sz += ((z + z1) * c).sum() / 6.0
+    return (sy / a, sz / a)
+
+
 def _corner_flags(r: np.ndarray) -> np.ndarray:
     e_out = np.roll(r, -1, axis=0) - r
     e_in = r - np.roll(r, 1, axis=0)
@@ -360,8 +381,9 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
         a zero matrix (a strip with no material).
     rho : float
         Fluid density [kg/m^3]
-    about : (y0, z0) or (n, 2) array
-        Roll reference point, shared or per section [m]
+    about : (y0, z0), (n, 2) array or None
+        Roll reference point, shared or per section [m]; ``None``: each section's
+        area centroid (:func:`section_centroid`).
     panels : int, optional
         Panels per section (see :func:`added_mass_contours`).
 
@@ -378,6 +400,8 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
         raise InputError("fluid density must be positive", key="rho", value=rho,
                          expected="> 0 kg/m^3")
     nsec = len(sections)
+    if about is None:
+        about = np.array([section_centroid(c) for c in sections]).reshape(nsec, 2)
     about = np.asarray(about, dtype=float)
     if about.ndim == 1:
         about = np.broadcast_to(about, (nsec, 2))
