@@ -90,6 +90,23 @@ def _exposed_heights(along_lo, along_hi, across_lo, across_hi):
     return h - (1.0 - TANDEM_SHIELDING) * shadow
 
 
+def _direction_terms(g, along, across):
+    """Geometry-only terms for one flow direction: ratio d/h, h, exposed w, section height."""
+    a_lo, a_hi = g[:, along], g[:, along + 1]
+    c_lo, c_hi = g[:, across], g[:, across + 1]
+    h = c_hi - c_lo
+    ratio = (a_hi - a_lo) / np.maximum(h, 1e-300)
+    w = _exposed_heights(a_lo, a_hi, c_lo, c_hi)
+    return ratio, h, w, float(c_hi.max() - c_lo.min())
+
+
+def _cd_terms(rounded, ratio, h, w, height, re):
+    """sum_p C_D,p w_p per section (vectorised over all parts of all sections)."""
+    re_p = np.maximum(re * h / np.maximum(height, 1e-300), 1.0)
+    cd_p = np.where(rounded, drag.ellipse_cd(ratio, re_p), drag.rectangle_cd(ratio))
+    return cd_p * w
+
+
 def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict:
     r"""Cross-flow drag of one section for flow along y and along z.
 
@@ -118,27 +135,41 @@ def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict
     g = _parts_geometry(contours)
     out = {"parts": int(len(g)), "rounded": [bool(v) for v in g[:, 4]]}
     for key, along, across, re in (("y", 0, 2, reynolds_y), ("z", 2, 0, reynolds_z)):
-        a_lo, a_hi = g[:, along], g[:, along + 1]
-        c_lo, c_hi = g[:, across], g[:, across + 1]
-        height = float(c_hi.max() - c_lo.min())
-        h = c_hi - c_lo
-        d = a_hi - a_lo
-        ratio = d / np.maximum(h, 1e-300)
-        re_p = float(re) * h / max(height, 1e-300)
-        cd_p = np.where(g[:, 4] > 0, drag.ellipse_cd(ratio, np.maximum(re_p, 1.0)),
-                        drag.rectangle_cd(ratio))
-        w = _exposed_heights(a_lo, a_hi, c_lo, c_hi)
-        out[f"cd_{key}"] = float(np.sum(cd_p * w) / max(height, 1e-300))
+        ratio, h, w, height = _direction_terms(g, along, across)
+        terms = _cd_terms(g[:, 4] > 0, ratio, h, w, height, float(re))
+        out[f"cd_{key}"] = float(terms.sum() / max(height, 1e-300))
         out[f"height_{key}"] = height
     return out
+
+
+def _part_cache(part):
+    """Geometry of every strip's section of ``part``, computed once per part."""
+    cache = getattr(part, "_polygon_drag_cache", None)
+    if cache is not None and cache[0] is part.contours:
+        return cache[1]
+    data = {}
+    geoms = [_parts_geometry(c) for c in part.contours]
+    owner = np.concatenate([np.full(len(g), i) for i, g in enumerate(geoms)]).astype(int)
+    rounded = np.concatenate([g[:, 4] for g in geoms]) > 0
+    for key, along, across in (("y", 0, 2), ("z", 2, 0)):
+        per = [_direction_terms(g, along, across) for g in geoms]
+        data[key] = (np.concatenate([p[0] for p in per]), np.concatenate([p[1] for p in per]),
+                     np.concatenate([p[2] for p in per]), np.array([p[3] for p in per]))
+    data["owner"], data["rounded"] = owner, rounded
+    part._polygon_drag_cache = (part.contours, data)
+    return data
 
 
 def cross_flow_cd(part, re_y, re_z):
     r"""Registry entry for ``polygon`` parts: (cd_y, cd_z) per strip of ``part``.
 
+    .. math:: C_{D,y} = \frac{\sum_p C_{D,p} w_p}{2h}, \qquad
+              C_{D,z} = \frac{\sum_p C_{D,p} w_p}{2b}
+
     Coefficients on the reference heights ``2 * part.half_height`` (flow along y)
-    and ``2 * part.half_breadth`` (flow along z), from
-    :func:`section_cross_flow_drag` applied to each strip's contours.
+    and ``2 * part.half_breadth`` (flow along z), by the rule of
+    :func:`section_cross_flow_drag` applied to each strip's contours (geometry
+    cached on the part; vectorised over strips).
 
     Parameters
     ----------
@@ -156,12 +187,12 @@ def cross_flow_cd(part, re_y, re_z):
     See :func:`section_cross_flow_drag`.
     """
     k = part.index.size
-    re_y = np.broadcast_to(np.asarray(re_y, dtype=float), (k,))
-    re_z = np.broadcast_to(np.asarray(re_z, dtype=float), (k,))
-    cd_y, cd_z = np.zeros(k), np.zeros(k)
-    for i, contours in enumerate(part.contours):
-        res = section_cross_flow_drag(contours, reynolds_y=re_y[i], reynolds_z=re_z[i])
-        # the part's reference heights are the same extents (the polygons' bounding box)
-        cd_y[i] = res["cd_y"] * res["height_y"] / max(2 * part.half_height[i], 1e-300)
-        cd_z[i] = res["cd_z"] * res["height_z"] / max(2 * part.half_breadth[i], 1e-300)
-    return cd_y, cd_z
+    c = _part_cache(part)
+    own = c["owner"]
+    out = []
+    for key, re, ref in (("y", re_y, 2 * part.half_height), ("z", re_z, 2 * part.half_breadth)):
+        ratio, h, w, height = c[key]
+        re = np.broadcast_to(np.asarray(re, dtype=float), (k,))
+        terms = _cd_terms(c["rounded"], ratio, h, w, height[own], re[own])
+        out.append(np.bincount(own, weights=terms, minlength=k) / np.maximum(ref, 1e-300))
+    return out[0], out[1]
