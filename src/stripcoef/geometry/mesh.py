@@ -583,8 +583,8 @@ def revolved_mesh(x, r, *, sections: int = 64):
     Parameters
     ----------
     x, r : arrays
-        Meridian stations [m] and radii [m]; the ends are closed (a zero radius is a
-        tip, a non-zero end radius gets a flat cap).
+        Meridian stations [m] (increasing) and radii [m]; a zero end radius is a
+        tip (one vertex), a non-zero one gets a flat cap.
     sections : int
         Panels around the circumference.
 
@@ -600,13 +600,53 @@ def revolved_mesh(x, r, *, sections: int = 64):
     if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) <= 0) or np.any(r < 0):
         raise InputError("profile must be increasing x with non-negative radii",
                          key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
-    pts = np.column_stack([r, x])
-    if r[0] > 0:
-        pts = np.vstack([[0.0, x[0]], pts])
-    if r[-1] > 0:
-        pts = np.vstack([pts, [0.0, x[-1]]])
-    m = trimesh.creation.revolve(pts, sections=int(sections))   # about z, axial coordinate z
-    m.vertices = np.asarray(m.vertices)[:, [2, 0, 1]]              # (x, y, z) <- (z, x, y)
-    if m.volume < 0:
-        m.invert()
-    return m
+    tiny = 1e-12 * max(float(r.max()), 1e-300)
+    if r[0] <= tiny:
+        x0, x, r = x[0], x[1:], r[1:]
+    else:
+        x0 = x[0]
+    if r[-1] <= tiny:
+        x1, x, r = x[-1], x[:-1], r[:-1]
+    else:
+        x1 = x[-1]
+    if np.any(r <= tiny):
+        raise InputError("profile radius is zero inside the body", key="profile",
+                         expected="r > 0 except at the two ends")
+    n = int(sections)
+    th = 2.0 * np.pi * np.arange(n) / n
+    rings = np.stack([np.column_stack([np.full(n, xi), ri * np.cos(th), ri * np.sin(th)])
+                      for xi, ri in zip(x, r)])                   # (m, n, 3)
+    m = len(x)
+    verts = np.vstack([rings.reshape(-1, 3), [[x0, 0.0, 0.0], [x1, 0.0, 0.0]]])
+    nose, tail = m * n, m * n + 1
+    k = np.arange(n)
+    k1 = (k + 1) % n
+    faces = []
+    for i in range(m - 1):
+        a, b = i * n + k, i * n + k1
+        c, d = (i + 1) * n + k, (i + 1) * n + k1
+        faces.append(np.column_stack([a, c, d]))
+        faces.append(np.column_stack([a, d, b]))
+    faces.append(np.column_stack([np.full(n, nose), k, k1]))          # nose fan (or cap)
+    last = (m - 1) * n
+    faces.append(np.column_stack([np.full(n, tail), last + k1, last + k]))
+    mesh = trimesh.Trimesh(verts, np.vstack(faces), process=False)
+    if mesh.volume < 0:
+        mesh.invert()
+    return mesh
+
+
+def polygon_perimeter(part) -> np.ndarray:
+    r"""Wetted perimeter of each strip's section of a ``polygon`` part [m].
+
+    .. math:: P = \sum_{rings}\sum_i |p_{i+1} - p_i|
+
+    (outer rings and holes: a duct's inner wall is wetted too).  For the hull's
+    friction drag and roll friction (wetted area :math:`S = \int P\,dx`).
+    """
+    out = np.zeros(part.index.size)
+    for k, rings in enumerate(part.contours or []):
+        for r in rings:
+            r = np.asarray(r, dtype=float)
+            out[k] += float(np.sum(np.linalg.norm(np.roll(r, -1, axis=0) - r, axis=1)))
+    return out
