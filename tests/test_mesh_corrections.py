@@ -96,3 +96,23 @@ def test_equivalent_profile_blunt_and_pointed_ends():
 def test_bad_profile():
     with pytest.raises(InputError):
         body_of_revolution_added_mass([0.0, -1.0], [0.1, 0.1], rho=RHO)
+
+
+def test_coupling_of_an_asymmetric_hull_about_its_centre_of_buoyancy():
+    """Egg-shaped body (blunt nose, long tail): the corrected strip matrix of its own strips
+    reproduces the axisymmetric 3D solution, including the sway-yaw coupling about the CB."""
+    t = np.linspace(0.0, np.pi, 161)[::-1]
+    x = np.where(np.cos(t) > 0, 0.3 * np.cos(t), 0.9 * np.cos(t))
+    r = 0.1 * np.sin(t)
+    body = mesh_body(revolved_mesh(x, r, sections=128))           # origin: centroid
+    st = body.strips(200)
+    c = hull_corrections(st, rho=RHO, center=(0.0, 0.0, 0.0))
+    xs, rs = equivalent_profile(st)
+    m3 = body_of_revolution_added_mass(xs, rs, rho=RHO)
+    a = np.pi * rs[1:-1] ** 2
+    s26 = RHO * np.sum(a * st.x * st.dx)
+    s22, s66 = RHO * np.sum(a * st.dx), RHO * np.sum(a * st.x ** 2 * st.dx)
+    assert abs(m3[1, 5]) > 1e-3 * np.sqrt(m3[1, 1] * m3[5, 5])     # a real coupling
+    assert np.sqrt(c["translation"] * c["rotation"]) * s26 + c["coupling"] == pytest.approx(m3[1, 5], rel=1e-9)
+    assert c["translation"] * s22 == pytest.approx(m3[1, 1], rel=1e-9)
+    assert c["rotation"] * s66 == pytest.approx(m3[5, 5], rel=1e-9)

@@ -340,7 +340,16 @@ def hull_corrections(strips, *, rho: float, center, panels: int = DEFAULT_PANELS
 
     .. math:: f_t = \frac{m_{22}^{3D}}{\rho\int\pi r_{eq}^2 dx},\quad
               f_r = \frac{m_{66}^{3D}}{\rho\int\pi r_{eq}^2 (x-x_c)^2 dx},\quad
-              m_{11} = m_{11}^{3D}
+              m_{11} = m_{11}^{3D},
+
+    .. math:: \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,\rho\int\pi r_{eq}^2 (x-x_c)\,dx
+
+    Applied to the strip matrix S about ``center`` (FRD order):
+    :math:`S \to D S D` with :math:`D = diag(1, \sqrt{f_t}, \sqrt{f_t}, 1, \sqrt{f_r}, \sqrt{f_r})`,
+    then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
+    :math:`S_{35} = S_{53} -= \Delta_{26}`.  For the equal-area body of revolution this
+    reproduces its 3D matrix exactly (a fore-aft asymmetric hull has a sway-yaw
+    coupling about its centre of buoyancy that strip theory misses).
 
     Parameters
     ----------
@@ -353,7 +362,8 @@ def hull_corrections(strips, *, rho: float, center, panels: int = DEFAULT_PANELS
     Returns
     -------
     dict
-        ``translation`` (f_t), ``rotation`` (f_r), ``axial_added_mass`` [kg],
+        ``translation`` (f_t), ``rotation`` (f_r), ``coupling`` (Delta_26) [kg m],
+        ``axial_added_mass`` [kg],
         ``equivalent_volume`` [m^3], ``method``.
 
     References
@@ -366,9 +376,13 @@ def hull_corrections(strips, *, rho: float, center, panels: int = DEFAULT_PANELS
     # strip theory of the same body, on the same strips
     a = np.pi * rs[1:-1] ** 2
     m22_strip = rho * np.sum(a * strips.dx)
+    m26_strip = rho * np.sum(a * (strips.x - xc) * strips.dx)
     m66_strip = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
-    return {"translation": float(m3[1, 1] / m22_strip),
-            "rotation": float(m3[5, 5] / m66_strip),
+    ft = float(m3[1, 1] / m22_strip)
+    fr = float(m3[5, 5] / m66_strip)
+    return {"translation": ft,
+            "rotation": fr,
+            "coupling": float(m3[1, 5] - np.sqrt(ft * fr) * m26_strip),
             "axial_added_mass": float(m3[0, 0]),
             "equivalent_volume": float(np.sum(a * strips.dx)),
             "method": "axisymmetric BEM of the equal-area body of revolution"}
