@@ -28,7 +28,7 @@ from mesh_shapes import (body_of_revolution, capsule_profile, finned_torpedo,  #
 
 from stripcoef.assemble import displaced_volume, entrained_water, estimate, strip_added_mass  # noqa: E402
 from stripcoef.conventions import transform_matrix  # noqa: E402
-from stripcoef.corrections import hull_corrections  # noqa: E402
+from stripcoef.corrections import apply_corrections, hull_corrections, strip_section_added_mass  # noqa: E402
 from stripcoef.fluid import Fluid  # noqa: E402
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402
 from stripcoef.geometry.vehicle import MassSpec, Vehicle  # noqa: E402
@@ -63,16 +63,10 @@ def strip_variants(mesh, strips=200):
     st = v.cut(strips)
     _, cb = displaced_volume(st)
     t0 = time.perf_counter()
-    c = hull_corrections(st, rho=RHO, center=cb)
+    m2d = strip_section_added_mass(st, RHO)
+    c = hull_corrections(st, rho=RHO, center=cb, section_added_mass=m2d)
     t_corr = time.perf_counter() - t0
-    m = strip_added_mass(st, RHO, cb)
-    s = np.sqrt(np.array([1.0, c["translation"], c["translation"], 1.0, c["rotation"], c["rotation"]]))
-    m = s[:, None] * m * s[None, :]
-    m[0, 0] += c["axial_added_mass"]
-    m[1, 5] += c["coupling"]
-    m[5, 1] += c["coupling"]
-    m[2, 4] -= c["coupling"]
-    m[4, 2] -= c["coupling"]
+    m = apply_corrections(strip_added_mass(st, RHO, cb), c)
     axi = transform_matrix(m, from_point=cb, to_point=main.reference_point) + \
         entrained_water(st, RHO, main.reference_point)
     pure_m = pure.added_mass.copy()

@@ -70,6 +70,8 @@ from scipy.special import ellipe, ellipk
 
 from .errors import InputError
 
+#: Lateral-equivalent bodies end in r = 0 (no flat end faces rocking in pitch/yaw).
+CLOSED_ENDS = True
 #: Meridian panels used by default.
 DEFAULT_PANELS = 100
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
@@ -305,6 +307,38 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     return out
 
 
+def strip_section_added_mass(strips, rho: float) -> np.ndarray:
+    """Per-strip 2D added mass (n, 3, 3), the sum of the parts' sections [kg/m, kg, kg m].
+
+    Translation terms only are used by :func:`hull_corrections` (they do not depend
+    on the roll reference point).
+    """
+    from .sections import section_added_mass
+    out = np.zeros((strips.n, 3, 3))
+    for p in strips.parts:
+        np.add.at(out, p.index, section_added_mass(p, rho))
+    return out
+
+
+def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
+    """Profile (x, r) with pi r^2 = per_strip (an area [m^2]), ends extrapolated linearly
+    (or closed to r = 0 at the body's ends)."""
+    x = strips.x
+    if strips.n < 2:
+        raise InputError("too few strips for the 3D correction", key="strips", value=strips.n,
+                         expected=">= 2")
+
+    def end(i0, i1, xe):
+        slope = (per_strip[i1] - per_strip[i0]) / (x[i1] - x[i0])
+        return max(per_strip[i0] + slope * (xe - x[i0]), 0.0)
+
+    a_lo = 0.0 if closed_ends else end(0, 1, strips.x_min)
+    a_hi = 0.0 if closed_ends else end(-1, -2, strips.x_max)
+    xs = np.r_[strips.x_min, x, strips.x_max]
+    rs = np.sqrt(np.maximum(np.r_[a_lo, per_strip, a_hi], 0.0) / np.pi)
+    return xs, rs
+
+
 def equivalent_profile(strips):
     r"""Equal-area body of revolution of a set of strips: :math:`r_{eq} = \sqrt{A(x)/\pi}`.
 
@@ -319,37 +353,45 @@ def equivalent_profile(strips):
     area = np.zeros(strips.n)
     for p in strips.parts:
         np.add.at(area, p.index, p.area)
-    x = strips.x
-    if strips.n < 2:
-        raise InputError("too few strips for the 3D correction", key="strips", value=strips.n,
-                         expected=">= 2")
-
-    def end(i0, i1, xe):
-        slope = (area[i1] - area[i0]) / (x[i1] - x[i0])
-        return max(area[i0] + slope * (xe - x[i0]), 0.0)
-
-    a_lo = end(0, 1, strips.x_min)
-    a_hi = end(-1, -2, strips.x_max)
-    xs = np.r_[strips.x_min, x, strips.x_max]
-    rs = np.sqrt(np.r_[a_lo, area, a_hi] / np.pi)
-    return xs, rs
+    return _equivalent_radius(strips, area)
 
 
-def hull_corrections(strips, *, rho: float, center, panels: int = DEFAULT_PANELS) -> dict:
-    r"""3D corrections for :func:`stripcoef.assemble.added_mass` from the equal-area body.
+def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
+    """3D/strip factors and coupling increment of the body of revolution pi r^2 = per_strip."""
+    xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
+    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
+    a = np.pi * rs[1:-1] ** 2
+    s22 = rho * np.sum(a * strips.dx)
+    s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
+    s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
+    ft, fr = float(m3[1, 1] / s22), float(m3[5, 5] / s66)
+    return ft, fr, float(m3[1, 5] - np.sqrt(ft * fr) * s26), m3
 
-    .. math:: f_t = \frac{m_{22}^{3D}}{\rho\int\pi r_{eq}^2 dx},\quad
-              f_r = \frac{m_{66}^{3D}}{\rho\int\pi r_{eq}^2 (x-x_c)^2 dx},\quad
-              m_{11} = m_{11}^{3D},
 
-    .. math:: \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,\rho\int\pi r_{eq}^2 (x-x_c)\,dx
+def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
+                     panels: int = DEFAULT_PANELS) -> dict:
+    r"""3D corrections for :func:`stripcoef.assemble.added_mass`, per direction.
 
-    Applied to the strip matrix S about ``center`` (FRD order):
-    :math:`S \to D S D` with :math:`D = diag(1, \sqrt{f_t}, \sqrt{f_t}, 1, \sqrt{f_r}, \sqrt{f_r})`,
+    Each lateral direction gets its own *added-mass-equivalent* body of revolution,
+    whose radius reproduces the strips' 2D added mass in that direction,
+
+    .. math:: \pi\rho\, r_v(x)^2 = m^{2D}_{22}(x),\qquad \pi\rho\, r_w(x)^2 = m^{2D}_{33}(x),
+
+    (for a circular hull both are the hull itself; fins, plates and pods widen them
+    where they are).  Its 3D added mass (axisymmetric BEM) against its own strip
+    theory gives the factors and the sway-yaw / heave-pitch coupling increments,
+
+    .. math:: f_v = \frac{m_{22}^{3D}[r_v]}{\int\rho\pi r_v^2 dx},\quad
+              f_r = \frac{m_{66}^{3D}[r_v]}{\int\rho\pi r_v^2 (x-x_c)^2 dx},\quad
+              \Delta_{26} = m_{26}^{3D}[r_v] - \sqrt{f_v f_r}\int\rho\pi r_v^2 (x-x_c) dx
+
+    and likewise :math:`f_w, f_q, \Delta_{35}` from :math:`r_w`.  The axial added mass
+    is that of the equal-area body :math:`\pi r_A^2 = A(x)` (the displaced water).
+    Applied to the strip matrix S about ``center``:
+    :math:`S \to D S D`, :math:`D = diag(1, \sqrt{f_v}, \sqrt{f_w}, 1, \sqrt{f_q}, \sqrt{f_r})`,
     then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
-    :math:`S_{35} = S_{53} -= \Delta_{26}`.  For the equal-area body of revolution this
-    reproduces its 3D matrix exactly (a fore-aft asymmetric hull has a sway-yaw
-    coupling about its centre of buoyancy that strip theory misses).
+    :math:`S_{35} = S_{53} += \Delta_{35}`.  For a body of revolution this is its exact
+    3D matrix (to the panel discretisation).  Roll is not corrected.
 
     Parameters
     ----------
@@ -358,31 +400,56 @@ def hull_corrections(strips, *, rho: float, center, panels: int = DEFAULT_PANELS
         Fluid density [kg/m^3]
     center : (3,)
         Point about which the strip matrix is assembled (its x is used) [m]
+    section_added_mass : (n, 3, 3) array, optional
+        Per-strip 2D added mass (:func:`strip_section_added_mass`); default: the
+        equal-area circle, :math:`\rho A(x)` in both directions.
 
     Returns
     -------
     dict
-        ``translation`` (f_t), ``rotation`` (f_r), ``coupling`` (Delta_26) [kg m],
-        ``axial_added_mass`` [kg],
-        ``equivalent_volume`` [m^3], ``method``.
+        ``scale`` (6,) diagonal of D**2, ``axial_added_mass`` [kg], ``coupling_26``,
+        ``coupling_35`` [kg m], and the legacy ``translation``/``rotation``/``coupling``
+        (sway-yaw values), ``method``.
 
     References
     ----------
-    See the module docstring; Newman (1977) sec. 7.4 for strip theory's end error.
+    See the module docstring; Newman (1977) sec. 7.4 for strip theory's end error;
+    DNV-RP-C205 table A-2 for the finite-length reduction of plates that this
+    reproduces for plate-like sections.
     """
-    xs, rs = equivalent_profile(strips)
     xc = float(np.asarray(center, dtype=float)[0])
-    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
-    # strip theory of the same body, on the same strips
-    a = np.pi * rs[1:-1] ** 2
-    m22_strip = rho * np.sum(a * strips.dx)
-    m26_strip = rho * np.sum(a * (strips.x - xc) * strips.dx)
-    m66_strip = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
-    ft = float(m3[1, 1] / m22_strip)
-    fr = float(m3[5, 5] / m66_strip)
-    return {"translation": ft,
-            "rotation": fr,
-            "coupling": float(m3[1, 5] - np.sqrt(ft * fr) * m26_strip),
-            "axial_added_mass": float(m3[0, 0]),
-            "equivalent_volume": float(np.sum(a * strips.dx)),
-            "method": "axisymmetric BEM of the equal-area body of revolution"}
+    area = np.zeros(strips.n)
+    for p in strips.parts:
+        np.add.at(area, p.index, p.area)
+    xs, rs = _equivalent_radius(strips, area)
+    m_area = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
+    if section_added_mass is None:
+        mv = mw = area
+    else:
+        m2d = np.asarray(section_added_mass, dtype=float)
+        mv, mw = m2d[:, 0, 0] / rho, m2d[:, 1, 1] / rho
+    fv, fr, d26, _ = _lateral(strips, mv, rho, xc, panels)
+    if section_added_mass is None:
+        fw, fq, d35 = fv, fr, -d26
+    else:
+        fw, fq, d62, _ = _lateral(strips, mw, rho, xc, panels)
+        d35 = -d62                      # heave-pitch: M[2,4] = -m26 of the heave body
+    return {"scale": np.array([1.0, fv, fw, 1.0, fq, fr]),
+            "axial_added_mass": float(m_area[0, 0]),
+            "coupling_26": d26, "coupling_35": d35,
+            "translation": fv, "rotation": fr, "coupling": d26,
+            "equivalent_volume": float(np.sum(np.pi * rs[1:-1] ** 2 * strips.dx)),
+            "method": "axisymmetric BEM of the added-mass-equivalent bodies of revolution"}
+
+
+def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
+    r"""Corrected 6x6 added mass from the pure strip matrix about ``center`` (see
+    :func:`hull_corrections`): :math:`D S D` plus the axial term and coupling increments."""
+    s = np.sqrt(np.asarray(corr["scale"], dtype=float))
+    m = s[:, None] * np.asarray(strip_matrix, dtype=float) * s[None, :]
+    m[0, 0] += corr["axial_added_mass"]
+    m[1, 5] += corr["coupling_26"]
+    m[5, 1] += corr["coupling_26"]
+    m[2, 4] += corr["coupling_35"]
+    m[4, 2] += corr["coupling_35"]
+    return m

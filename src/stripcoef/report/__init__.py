@@ -9,7 +9,7 @@ from __future__ import annotations
 import importlib
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ()
+SECTIONS: tuple[str, ...] = ("meshes",)
 
 
 def build() -> str:
