@@ -70,8 +70,9 @@ from scipy.special import ellipe, ellipk
 
 from .errors import InputError
 
-#: Lateral-equivalent bodies end in r = 0 (no flat end faces rocking in pitch/yaw).
-CLOSED_ENDS = True
+#: Lateral-equivalent bodies closed to r = 0 at the ends (False: blunt ends keep their flat faces,
+#: which rock in pitch and yaw; measured: no difference on the open-frame ROV benchmark).
+CLOSED_ENDS = False
 #: Meridian panels used by default.
 DEFAULT_PANELS = 100
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
