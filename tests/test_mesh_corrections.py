@@ -116,3 +116,22 @@ def test_coupling_of_an_asymmetric_hull_about_its_centre_of_buoyancy():
     assert np.sqrt(c["translation"] * c["rotation"]) * s26 + c["coupling"] == pytest.approx(m3[1, 5], rel=1e-9)
     assert c["translation"] * s22 == pytest.approx(m3[1, 1], rel=1e-9)
     assert c["rotation"] * s66 == pytest.approx(m3[5, 5], rel=1e-9)
+
+
+def test_directional_bodies_of_a_body_of_revolution_reproduce_its_3d_matrix():
+    """With the panel method's 2D added mass (circles: rho A), the corrected strip matrix of a
+    body of revolution is its axisymmetric 3D matrix (both lateral directions alike)."""
+    from stripcoef.assemble import strip_added_mass
+    from stripcoef.corrections import apply_corrections, strip_section_added_mass
+    t = np.linspace(0.0, np.pi, 121)[::-1]
+    x = np.where(np.cos(t) > 0, 0.3 * np.cos(t), 0.9 * np.cos(t))
+    body = mesh_body(revolved_mesh(x, 0.1 * np.sin(t), sections=128))
+    st = body.strips(120)
+    m2d = strip_section_added_mass(st, RHO)
+    c = hull_corrections(st, rho=RHO, center=(0.0, 0.0, 0.0), section_added_mass=m2d)
+    m = apply_corrections(strip_added_mass(st, RHO, (0.0, 0.0, 0.0)), c)
+    m3 = body_of_revolution_added_mass(*equivalent_profile(st), rho=RHO)
+    for i in (0, 1, 2, 4, 5):
+        assert m[i, i] == pytest.approx(m3[i, i], rel=2e-3)
+    assert m[1, 5] == pytest.approx(m3[1, 5], rel=2e-2)
+    assert m[2, 4] == pytest.approx(m3[2, 4], rel=2e-2)
