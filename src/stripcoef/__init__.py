@@ -7,6 +7,7 @@ Public API (see docs/):
 
 - :func:`load_vehicle` - read and validate a vehicle file (YAML)
 - :func:`estimate` - strip theory: a Vehicle in, a :class:`HydroModel` out
+- :func:`solve_limits` - steady manoeuvre limits of a :class:`HydroModel` (docs/limits.md)
 """
 
 from .errors import InputError, StripcoefError, UnreachableError
@@ -17,7 +18,7 @@ from .thrusters import Thruster
 __version__ = "0.1.0"
 
 __all__ = ["Fluid", "HydroModel", "InputError", "StripcoefError", "Thruster",
-           "UnreachableError", "estimate", "load_vehicle", "__version__"]
+           "UnreachableError", "estimate", "load_vehicle", "solve_limits", "__version__"]
 
 
 def __getattr__(name):  # lazy imports keep `import stripcoef` fast
@@ -27,4 +28,7 @@ def __getattr__(name):  # lazy imports keep `import stripcoef` fast
     if name == "estimate":
         from .assemble import estimate
         return estimate
+    if name == "solve_limits":
+        from .limits import solve_limits
+        return solve_limits
     raise AttributeError(f"module 'stripcoef' has no attribute {name!r}")

@@ -63,7 +63,7 @@ def displaced_volume(strips: Strips):
     vol = 0.0
     mom = np.zeros(3)
     for p in strips.parts:
-        dv = p.area * strips.dx[p.index]
+        dv = p.area * strips.width(p)
         vol += dv.sum()
         mom += np.array([(dv * strips.x[p.index]).sum(), (dv * p.y).sum(), (dv * p.z).sum()])
     for h, dv in _hole_water(strips):
@@ -113,7 +113,7 @@ def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb
     elems = []  # (dm, r, second-moment diag contribution)
     for p in strips.parts:
         xs = strips.x[p.index]
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         dens = _density_of(p, xs, vehicle, rho_default) if zones else np.full(xs.size, 1.0)
         dm = dens * p.area * dx
         elems.append((dm, np.column_stack([xs, p.y, p.z]),
@@ -196,12 +196,71 @@ def _hole_width_reduction(strips: Strips, part):
     return cy, cz
 
 
+def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
+    r"""Replace hull + fin-pair sums by the finned-circle section where it applies (in place).
+
+    Where a circular hull section carries a symmetric pair of fins (both spanning along z,
+    mirrored about the hull axis, or both along y) whose roots touch the hull, the section
+    normal to the fins is the circle with fins of tip radius a:
+
+    .. math:: m_n = \rho\pi(a^2 - R^2 + R^4/a^2),\qquad m_{44} = \tfrac{2}{\pi}\rho a^4
+
+    (Blevins 1979 table 14-2; Prestero 2001 sec. 3.4) instead of the circle plus two
+    isolated plates, which ignores their interaction.  A cruciform section gets both pairs'
+    normal terms; its roll term is then the sum of the two pairs' (an approximation).
+    """
+    from .sections.added_mass import circle_with_fins
+
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
+    if not hulls or len(fins) < 2:
+        return
+    for kh, hull in hulls:
+        pos_h = {int(i): j for j, i in enumerate(hull.index)}
+        for a_i in range(len(fins)):
+            for b_i in range(a_i + 1, len(fins)):
+                (ka, fa), (kb, fb) = fins[a_i], fins[b_i]
+                common = np.intersect1d(np.intersect1d(fa.index, fb.index), hull.index)
+                for s_idx in common:
+                    ia = int(np.nonzero(fa.index == s_idx)[0][0])
+                    ib = int(np.nonzero(fb.index == s_idx)[0][0])
+                    ih = pos_h[int(s_idx)]
+                    b, h = hull.half_breadth[ih], hull.half_height[ih]
+                    if not np.isclose(b, h, rtol=1e-6):
+                        continue
+                    vertical = fa.half_height[ia] > fa.half_breadth[ia]
+                    if vertical != (fb.half_height[ib] > fb.half_breadth[ib]):
+                        continue
+                    if vertical:
+                        off_a, off_b = fa.z[ia] - hull.z[ih], fb.z[ib] - hull.z[ih]
+                        lat_ok = np.isclose(fa.y[ia], hull.y[ih]) and np.isclose(fb.y[ib], hull.y[ih])
+                        half_a, half_b = fa.half_height[ia], fb.half_height[ib]
+                        n = 0          # sway is normal to vertical fins
+                    else:
+                        off_a, off_b = fa.y[ia] - hull.y[ih], fb.y[ib] - hull.y[ih]
+                        lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
+                        half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
+                        n = 1          # heave is normal to horizontal fins
+                    tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
+                    touching = (abs(off_a) - half_a <= b * (1 + 1e-6)
+                                and abs(off_b) - half_b <= b * (1 + 1e-6))
+                    if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
+                            and touching and tip_a > b):
+                        continue
+                    m_n, m44 = circle_with_fins(b, tip_a, rho=rho)
+                    mats[kh][ih, n, n] = m_n
+                    for k, i in ((ka, ia), (kb, ib)):
+                        mats[k][i, n, n] = 0.0
+                        mats[k][i, 2, 2] = 0.5 * m44
+
+
 def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
     """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI]."""
     x0, y0, z0 = about
     total = np.zeros((6, 6))
-    for p in strips.parts:
-        m = section_added_mass(p, rho).copy()           # (k, 3, 3) about the part centre
+    mats = [section_added_mass(p, rho).copy() for p in strips.parts]   # about part centres
+    _combine_fins(strips, mats, rho)
+    for p, m in zip(strips.parts, mats):
         cy, cz = _hole_width_reduction(strips, p)
         if np.any(cz > 0):   # heave passes through vertical holes (seed 002, eq. 40)
             m[:, 1, 1] *= np.clip(1.0 - cz / (2 * p.half_breadth), 0.0, 1.0) ** 2
@@ -215,7 +274,7 @@ def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
         h2[:, 1, 2] = dy
         m = np.einsum("kji,kjl,klm->kim", h2, m, h2)
         L = _strip_operator(strips.x[p.index] - x0)
-        total += np.einsum("k,kji,kjl,klm->im", strips.dx[p.index], L, m, L)
+        total += np.einsum("k,kji,kjl,klm->im", strips.width(p), L, m, L)
     return total
 
 
@@ -310,7 +369,6 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     about = np.asarray(about, float)
     L = strips.length
     omega = speed / (0.5 * L)
-    s_ref = np.array([speed] * 3 + [omega] * 3)
     elems = []  # (r (3,), c (3,) [kg/m], n (3,))
     cond = {"reference_speed": speed, "reference_rate": omega}
 
@@ -329,7 +387,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     max_d = 0.0
     x_h = y_h = z_h = 0.0
     for p in hull_parts:
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         per = (_ellipse_perimeter(p.half_breadth, p.half_height) if p.shape == "ellipse"
                else 4.0 * (p.half_breadth + p.half_height))
         s_wet += float((per * dx).sum())
@@ -350,10 +408,17 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
                      "axial_drag_coefficient_wetted": cf * ff,
                      "axial_drag_coefficient_frontal": cf * ff * s_wet / (np.pi * max_d**2 / 4)})
         # blunt ends: pressure drag on the frontal area of a hull that does not close
+        hull_body = getattr(vehicle, "hull", None)
         for p in hull_parts:
-            a_end = max(float(p.area[0]), float(p.area[-1]))
             a_max = float(np.max(p.area))
-            if p.index.size and a_end > 0.25 * a_max:   # flat or truncated end
+            if hull_body is not None:    # exact end sections of the profile
+                lo, hi = hull_body.x_extent()
+                ends = [hull_body.half_breadth(np.array([x]))[0]
+                        * hull_body.half_height(np.array([x]))[0] for x in (lo, hi)]
+                end_ratio = float(max(ends)) / float(np.max(p.half_breadth * p.half_height))
+            else:                        # mesh: end strips
+                end_ratio = max(float(p.area[0]), float(p.area[-1])) / a_max
+            if p.index.size and end_ratio > 0.25:   # flat or truncated end
                 cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
                 elems.append((np.array([x_h, y_h, z_h]),
                               np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))
@@ -370,16 +435,19 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
                 / max(a_front, 1e-12)   # friction on both faces, per frontal area
         else:
             cd_a = float(sdrag.blunt_cylinder_axial_cd(ld))
-        w = p.area * strips.dx[p.index]
+        w = p.area * strips.width(p)
         xc = float((w * strips.x[p.index]).sum() / max(w.sum(), 1e-300))
         elems.append((np.array([xc, float(np.mean(p.y)), float(np.mean(p.z))]),
                       np.array([0.5 * rho * cd_a * a_front, 0, 0]), np.array([2.0, 2, 2])))
     # --- cross-flow per strip element
     hull_cd = {}
     for p in strips.parts:
-        dx = strips.dx[p.index]
+        dx = strips.width(p)
         hy, hz = 2 * p.half_height, 2 * p.half_breadth      # extents across y- and z-flow
-        re_y, re_z = speed * hy / nu, speed * hz / nu
+        # one Reynolds number per part, on its largest extent across the flow: the regime
+        # of a body is set by its main diameter, not by the tapering tips (MSS cylinderDrag.m)
+        re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
+        re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
         cd_y, cd_z = section_drag(p, re_y, re_z)
         n_y = _local_exponent(lambda re: section_drag(p, re, re_z)[0], re_y)
         n_z = _local_exponent(lambda re: section_drag(p, re_y, re)[1], re_z)
@@ -408,24 +476,28 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     cond.update(hull_cd)
     d_lin = np.zeros((6, 6))
     d_quad = np.zeros((6, 6))
+    pts = [(np.asarray(r, float), np.asarray(c, float), np.asarray(n, float))
+           for r, c, n in elems if not isinstance(r, str)]
     for r, c, n in elems:
-        if isinstance(r, str):  # roll-only element: c in [kg m^2], n exponent
+        if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
             a_hat, b_hat = power_law_split(n)
             d_lin[3, 3] += a_hat * c * omega
             d_quad[3, 3] += b_hat * c
-            continue
-        rel = np.asarray(r, float) - about
-        G = np.hstack([np.eye(3), -skew(rel)])   # local velocity for unit DOF motion
-        a_hat, b_hat = power_law_split(n)
-        for j in range(6):
-            v = G[:, j]
-            if not np.any(v):
-                continue
-            f_q = b_hat * c * np.abs(v) * v                   # -> D_Q column (positive)
-            f_l = a_hat * c * np.abs(v) * v * s_ref[j]        # -> D_L column
-            d_quad[:, j] += np.concatenate([f_q, np.cross(rel, f_q)])
-            d_lin[:, j] += np.concatenate([f_l, np.cross(rel, f_l)])
-    # numerical noise below 1e-12 of the largest term is exactly zero by symmetry
+    rel = np.array([p[0] for p in pts]) - about                    # (E, 3)
+    c = np.array([p[1] for p in pts])                               # (E, 3) [kg/m]
+    a_hat, b_hat = power_law_split(np.array([p[2] for p in pts]))   # (E, 3)
+    G = np.zeros((rel.shape[0], 3, 6))                              # local velocity per DOF
+    G[:, :, :3] = np.eye(3)
+    G[:, 0, 4], G[:, 0, 5] = rel[:, 2], -rel[:, 1]                  # -S(r) = S(r)^T
+    G[:, 1, 3], G[:, 1, 5] = -rel[:, 2], rel[:, 0]
+    G[:, 2, 3], G[:, 2, 4] = rel[:, 1], -rel[:, 0]
+    # linear part: a linear force law -k V on the local velocity, k = a_hat c U, so
+    # D_L = sum G^T diag(k) G is a congruence and moves between points exactly
+    d_lin += np.einsum("eki,ek,ekj->ij", G, a_hat * c * speed, G)
+    # quadratic part: pure-motion columns, force g = b_hat c |V| V and its moment r x g
+    g = (b_hat * c)[:, :, None] * np.abs(G) * G                     # (E, 3, 6)
+    d_quad[:3] += g.sum(axis=0)
+    d_quad[3:] += np.cross(rel[:, :, None], g, axisa=1, axisb=1, axisc=1).sum(axis=0)
     return _clean(d_lin), _clean(d_quad), cond
 
 

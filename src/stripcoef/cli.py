@@ -16,7 +16,7 @@ import warnings
 from .errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "compare")
+COMMANDS = ("coefficients", "limits", "export", "compare")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -30,6 +30,7 @@ def atomic_path(path, *, key: str = "output"):
     os.close(fd)
     try:
         yield Path(tmp)
+        os.chmod(tmp, _final_mode(path))
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -37,6 +38,17 @@ def atomic_path(path, *, key: str = "output"):
         except OSError:
             pass
         raise
+
+
+def _final_mode(path: Path) -> int:
+    """Permissions of the new file: those of the file it replaces, else 0o666 minus the umask
+    (mkstemp's temporary files are 0o600, which would hide exports from other users)."""
+    try:
+        return path.stat().st_mode & 0o7777
+    except OSError:
+        mask = os.umask(0)
+        os.umask(mask)
+        return 0o666 & ~mask
 
 
 def write_text(path, text: str, *, key: str = "output") -> None:
@@ -49,3 +61,20 @@ def write_bytes(path, data: bytes, *, key: str = "output") -> None:
     """Write ``data`` to ``path`` atomically."""
     with atomic_path(path, key=key) as tmp:
         tmp.write_bytes(data)
+
+
+def read_text(path, *, kind: str) -> str:
+    """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
+
+    ``kind`` says what the file should be ("vehicle file", "CSV log", ...).
+    """
+    path = Path(path)
+    try:
+        return path.read_text()
+    except FileNotFoundError:
+        raise InputError("file not found", file=str(path), expected=f"an existing {kind}") from None
+    except IsADirectoryError:
+        raise InputError("is a folder", file=str(path), expected=f"a {kind}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read ({exc.__class__.__name__})", file=str(path),
+                         expected=f"a readable UTF-8 {kind}") from None

@@ -26,7 +26,7 @@ import numpy as np
 
 from .conventions import FORCES, POSE, VELOCITIES
 from .errors import InputError
-from .io import write_text
+from .io import read_text, write_text
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
 COMMAND_PREFIX = "n_"
@@ -146,13 +146,7 @@ def read_log(path, *, required=()) -> Log:
     """
     path = Path(path)
     name = str(path)
-    try:
-        text = path.read_text()
-    except FileNotFoundError:
-        raise InputError("file not found", file=name, expected="an existing CSV log") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read ({exc.__class__.__name__})", file=name,
-                         expected="a readable UTF-8 CSV log") from None
+    text = read_text(path, kind="CSV log")
     rows = list(csv.reader(io.StringIO(text)))
     rows = [r for r in rows if any(c.strip() for c in r)]
     if not rows:

@@ -128,6 +128,19 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
     ])
 
 
+def plain(value):
+    """Recursively convert numpy scalars/arrays to plain Python types (JSON/YAML safe)."""
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
 @dataclass
 class HydroModel:
     """A vehicle's hydrodynamic model about one reference point (FRD body axes).
@@ -287,9 +300,9 @@ class HydroModel:
             "gravity": float(self.gravity),
             "coefficients": self.coefficients(),
             "thrusters": [t.to_dict() for t in self.thrusters],
-            "conditions": self.conditions,
-            "effects": self.effects,
-            "provenance": self.provenance,
+            "conditions": plain(self.conditions),
+            "effects": plain(self.effects),
+            "provenance": plain(self.provenance),
         }
 
     @classmethod

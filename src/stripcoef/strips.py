@@ -51,6 +51,9 @@ class Part:
         Length of the part along x [m] (finite-length drag correction)
     role : str
         ``hull``, ``appendage`` or ``fin``
+    coverage : (k,) array
+        Fraction of each strip's width that the part covers (1 inside, < 1 at the part's
+        ends); every integral uses ``coverage * dx`` so parts ending mid-strip are exact.
     contours : list, optional
         For ``polygon`` parts: per strip, a list of (n, 2) arrays of (y, z) rings
         (outer rings counter-clockwise, holes clockwise).
@@ -71,6 +74,7 @@ class Part:
     length: float = 0.0
     role: str = "appendage"
     contours: list | None = None
+    coverage: np.ndarray | None = None
 
     def __post_init__(self):
         self.index = np.asarray(self.index, dtype=int)
@@ -78,7 +82,9 @@ class Part:
         for attr in ("y", "z", "half_breadth", "half_height", "area"):
             val = np.broadcast_to(np.asarray(getattr(self, attr), dtype=float), (k,)).copy()
             setattr(self, attr, val)
-        for attr in ("entrained_area", "iyy", "izz"):
+        if self.coverage is None:
+            self.coverage = np.ones(k)
+        for attr in ("entrained_area", "iyy", "izz", "coverage"):
             val = getattr(self, attr)
             val = np.zeros(k) if val is None else np.broadcast_to(
                 np.asarray(val, dtype=float), (k,)).copy()
@@ -102,7 +108,8 @@ class HoleCut:
     depth : (k,) array
         Length of the hole through the hull, along the axis [m]
     y, z : (k,) arrays
-        Centre of the hole's water in the section [m]
+        Centre of the hole's water in the section [m]; ``chord`` is the mean over the strip
+        (exact strip integral), so ``chord * depth * dx`` is the strip's water volume
     in_hull : bool
         True for a hole cut through a part (its water is removed from that part's
         displaced volume); False for a duct interior (never counted as displaced).
@@ -154,6 +161,10 @@ class Strips:
     @property
     def length(self) -> float:
         return self.x_max - self.x_min
+
+    def width(self, part: Part) -> np.ndarray:
+        """Effective widths ``coverage * dx`` of the strips a part covers [m]."""
+        return part.coverage * self.dx[part.index]
 
     def hull_parts(self) -> list[Part]:
         return [p for p in self.parts if p.role == "hull"]

@@ -34,7 +34,8 @@ class Table:
         ys = self.column(column)
         x = np.asarray(x, dtype=float)
         lo, hi = xs[0], xs[-1]
-        out = (x < lo) | (x > hi)
+        eps = 1e-9 * max(abs(lo), abs(hi), 1e-300)      # round-off at the ends is not outside
+        out = (x < lo - eps) | (x > hi + eps)
         if np.any(out):
             bad = x[out]
             warnings.warn(

@@ -23,6 +23,32 @@ def _inside(x, lo, hi):
     return np.nonzero((x >= lo) & (x <= hi))[0]
 
 
+def _overlap(x, dx, lo, hi):
+    """Strips overlapping [lo, hi]: indices, covered fraction of each, and the x at which to
+    evaluate the section (the centre of the covered part of the strip)."""
+    a = np.maximum(x - 0.5 * dx, lo)
+    b = np.minimum(x + 0.5 * dx, hi)
+    idx = np.nonzero(b > a + 1e-15 * np.maximum(dx, 1.0))[0]
+    return idx, (b[idx] - a[idx]) / dx[idx], 0.5 * (a[idx] + b[idx])
+
+
+def mean_chord(x, dx, center, radius):
+    r"""Mean over each strip of the chord :math:`c(\xi) = 2\sqrt{r^2 - \xi^2}` of a circle.
+
+    .. math:: \bar c = \frac{F(\xi_2) - F(\xi_1)}{dx},\quad
+              F(\xi) = \xi\sqrt{r^2-\xi^2} + r^2 \arcsin(\xi / r)
+
+    (exact strip integral, so hole volumes converge at any strip count) [m].
+    """
+    xi1 = np.clip(x - 0.5 * dx - center, -radius, radius)
+    xi2 = np.clip(x + 0.5 * dx - center, -radius, radius)
+
+    def f(t):
+        return t * np.sqrt(np.maximum(radius**2 - t**2, 0.0)) + radius**2 * np.arcsin(t / radius)
+
+    return (f(xi2) - f(xi1)) / dx
+
+
 def ellipse_section(b, h):
     """Area [m^2] and second moments iyy, izz [m^4] of an ellipse with half-axes b (y), h (z)."""
     return np.pi * b * h, np.pi * b**3 * h / 4.0, np.pi * b * h**3 / 4.0
@@ -84,15 +110,11 @@ class Cylinder:
         half = 0.5 * self.length if self.axis == "x" else 0.5 * self.diameter
         return (self.center[0] - half, self.center[0] + half)
 
-    def _chord(self, x, radius):
-        return 2.0 * np.sqrt(np.maximum(radius**2 - (x - self.center[0]) ** 2, 0.0))
-
     def parts(self, x, dx):
         lo, hi = self.x_extent()
-        idx = _inside(x, lo, hi)
+        idx, cov, xs = _overlap(x, dx, lo, hi)
         if idx.size == 0:
             return []
-        xs = x[idx]
         ro, ri = 0.5 * self.diameter, 0.5 * self.inner_diameter
         if self.axis == "x":
             b = h = np.full(idx.size, ro)
@@ -101,10 +123,10 @@ class Cylinder:
             return [Part(name=self.name, shape="ellipse", index=idx, y=self.center[1],
                          z=self.center[2], half_breadth=b, half_height=h, area=area - a_in,
                          iyy=iyy - iyy_in, izz=izz - izz_in, rounded=True, length=self.length,
-                         role=self.role)]
-        # Axis y or z: each strip cuts a rectangle, chord along x-width.
-        c_out = self._chord(xs, ro)
-        c_in = self._chord(xs, ri) if ri > 0 else np.zeros_like(xs)
+                         role=self.role, coverage=cov)]
+        # Axis y or z: each strip cuts a rectangle whose x-width is the mean chord.
+        c_out = mean_chord(x[idx], dx[idx], self.center[0], ro)
+        c_in = mean_chord(x[idx], dx[idx], self.center[0], ri) if ri > 0 else np.zeros(idx.size)
         keep = c_out > 0
         idx, c_out, c_in = idx[keep], c_out[keep], c_in[keep]
         half_len = np.full(idx.size, 0.5 * self.length)
@@ -121,6 +143,7 @@ class Cylinder:
         return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
                      z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
                      izz=izz, rounded=True, length=self.diameter, role=self.role)]
+        # (the mean chord already carries the partial coverage of the end strips)
 
     def holes(self, x, dx):
         """The duct interior as a hole along the cylinder's axis."""
@@ -129,16 +152,16 @@ class Cylinder:
         ri = 0.5 * self.inner_diameter
         if self.axis == "x":
             lo, hi = self.center[0] - 0.5 * self.length, self.center[0] + 0.5 * self.length
-            idx = _inside(x, lo, hi)
+            idx, cov, _ = _overlap(x, dx, lo, hi)
             # per unit x-length the interior is a disc: model as chord = area / depth
             area = np.pi * ri**2
             return [HoleCut(name=self.name + ":interior", axis="x", index=idx,
-                            chord=np.full(idx.size, area / (2 * ri)),
+                            chord=cov * area / (2 * ri),
                             depth=np.full(idx.size, 2 * ri),
                             y=np.full(idx.size, self.center[1]),
                             z=np.full(idx.size, self.center[2]), in_hull=False)]
-        idx = _inside(x, self.center[0] - ri, self.center[0] + ri)
-        chord = self._chord(x[idx], ri)
+        idx, _, _ = _overlap(x, dx, self.center[0] - ri, self.center[0] + ri)
+        chord = mean_chord(x[idx], dx[idx], self.center[0], ri)
         keep = chord > 0
         idx, chord = idx[keep], chord[keep]
         return [HoleCut(name=self.name + ":interior", axis=self.axis, index=idx, chord=chord,
@@ -159,7 +182,7 @@ class Box:
         return (self.center[0] - 0.5 * self.size[0], self.center[0] + 0.5 * self.size[0])
 
     def parts(self, x, dx):
-        idx = _inside(x, *self.x_extent())
+        idx, cov, _ = _overlap(x, dx, *self.x_extent())
         if idx.size == 0:
             return []
         b = np.full(idx.size, 0.5 * self.size[1])
@@ -167,7 +190,8 @@ class Box:
         area, iyy, izz = rectangle_section(b, h)
         return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
                      z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
-                     izz=izz, rounded=False, length=float(self.size[0]), role=self.role)]
+                     izz=izz, rounded=False, length=float(self.size[0]), role=self.role,
+                     coverage=cov)]
 
 
 @dataclass
@@ -185,7 +209,7 @@ class Fin:
         return (self.center[0] - 0.5 * self.chord, self.center[0] + 0.5 * self.chord)
 
     def parts(self, x, dx):
-        idx = _inside(x, *self.x_extent())
+        idx, cov, _ = _overlap(x, dx, *self.x_extent())
         if idx.size == 0:
             return []
         if self.span_axis == "y":
@@ -197,7 +221,7 @@ class Fin:
         area, iyy, izz = rectangle_section(b, h)
         return [Part(name=self.name, shape="rectangle", index=idx, y=self.center[1],
                      z=self.center[2], half_breadth=b, half_height=h, area=area, iyy=iyy,
-                     izz=izz, rounded=False, length=self.chord, role="fin")]
+                     izz=izz, rounded=False, length=self.chord, role="fin", coverage=cov)]
 
 
 @dataclass
@@ -218,10 +242,10 @@ class Hole:
         r = 0.5 * self.diameter
         return (self.x - r, self.x + r)
 
-    def cut(self, x, hull: Hull) -> HoleCut:
+    def cut(self, x, dx, hull: Hull) -> HoleCut:
         r = 0.5 * self.diameter
-        idx = _inside(x, self.x - r, self.x + r)
-        chord = 2.0 * np.sqrt(np.maximum(r**2 - (x[idx] - self.x) ** 2, 0.0))
+        idx, _, _ = _overlap(x, dx, self.x - r, self.x + r)
+        chord = mean_chord(x[idx], dx[idx], self.x, r)
         keep = chord > 0
         idx, chord = idx[keep], chord[keep]
         xs = x[idx]

@@ -18,6 +18,7 @@ import yaml
 
 from ..errors import InputError
 from ..fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from ..io import read_text
 from ..strips import Strips, uniform_stations
 from ..thrusters import Thruster
 from .bodies import Box, Cylinder, Fin, Hole, Hull
@@ -90,7 +91,7 @@ class Vehicle:
         parts = []
         for body in self.bodies:
             parts.extend(body.parts(x, dx))
-        holes = [h.cut(x, self.hull) for h in self.holes] if self.hull is not None else []
+        holes = [h.cut(x, dx, self.hull) for h in self.holes] if self.hull is not None else []
         for body in self.bodies:
             if hasattr(body, "holes"):
                 holes.extend(body.holes(x, dx))
@@ -524,13 +525,7 @@ def load_vehicle(path) -> Vehicle:
     if path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError("unknown vehicle file extension", file=name, value=path.suffix,
                          expected=".yaml or .yml (or a mesh: .stl .obj .ply .glb)")
-    try:
-        text = path.read_text()
-    except FileNotFoundError:
-        raise InputError("file not found", file=name, expected="an existing vehicle file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read ({exc.__class__.__name__})", file=name,
-                         expected="a readable UTF-8 YAML file") from None
+    text = read_text(path, kind="vehicle file")
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as exc:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import importlib
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ("meshes",)
+SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "meshes")
 
 
 def build() -> str:

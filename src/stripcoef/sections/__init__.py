@@ -57,7 +57,7 @@ def _drag_ellipse(part, re_y, re_z):
 
 def _drag_rectangle(part, re_y, re_z):
     b, h = part.half_breadth, part.half_height
-    return drag.rectangle_cd(b / h), drag.rectangle_cd(h / b)
+    return drag.rectangle_cd(b / h, re_y), drag.rectangle_cd(h / b, re_z)
 
 
 def _drag_polygon(part, re_y, re_z):

@@ -97,17 +97,24 @@ def flat_plate(half_width, *, rho=RHO):
 def rectangle_coefficient(a_over_b):
     r"""DNV added-mass coefficient :math:`C_A(a/b)` of a rectangle 2a (normal to motion) x 2b.
 
-    Tabulated (src/stripcoef/data/rectangle_added_mass_dnv.csv, DNV-RP-C205 table A-1);
-    for a/b above 10 the exact flat-plate limit C_A -> 1 is approached as
-    :math:`C_A = 1 + 1.4 (b/a)` (Newman 1977, thin-body expansion fitted to the table's
-    a/b = 10 value); below 0.1 the table warns and clamps.
+    Tabulated for 0.1 <= a/b <= 10 (src/stripcoef/data/rectangle_added_mass_dnv.csv,
+    DNV-RP-C205 table A-1).  Beyond the table two documented limits apply instead of
+    extrapolation:
+
+    - a/b > 10 (a plate moving normal to itself): :math:`C_A = 1 + 1.4\,b/a`, tending to the
+      exact flat-plate value 1 (Newman 1977, table 4.2) and equal to the table at a/b = 10;
+    - a/b < 0.1 (a thin plate moving edgewise): :math:`C_A = C_A(0.1) = 2.23`.  The added mass
+      :math:`C_A\rho\pi a^2` then vanishes with the thickness 2a, as the exact thin-ellipse
+      value :math:`\rho\pi a^2` does; the table's end value is kept (the true coefficient
+      grows only logarithmically with b/a).
     """
     t = load_table("rectangle_added_mass_dnv")
     ratio = np.asarray(a_over_b, dtype=float)
     thin = ratio > 10.0
     out = np.empty_like(ratio)
-    if np.any(~thin):
-        out[~thin] = t.interp(ratio[~thin], "C_A", log_x=True, what="a/b")
+    inside = ~thin
+    if np.any(inside):
+        out[inside] = t.interp(np.maximum(ratio[inside], 0.1), "C_A", log_x=True, what="a/b")
     if np.any(thin):
         out[thin] = 1.0 + 1.4 / ratio[thin]
     return out

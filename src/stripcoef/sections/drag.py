@@ -57,17 +57,38 @@ def cylinder_length_factor(length_over_diameter, reynolds):
     return np.where(np.asarray(reynolds) < 2e5, sub, sup)
 
 
-def rectangle_cd(depth_over_height):
+def rectangle_cd(depth_over_height, reynolds=1e5):
     r"""Drag of a sharp-edged rectangular cylinder vs d/h (length along flow / height across).
 
-    Reynolds-independent for Re >= 1e4 (separation fixed at the corners).
+    Reynolds-independent for Re >= 1e4 (separation fixed at the corners) and tabulated for
+    0 <= d/h <= 6 (White, Fluid Mechanics, table 7.2, after Delany & Sorensen 1953, NACA
+    TN 3038; data/rectangle_drag.csv, marked assumed: recalled, not re-checked).  A longer
+    section (a plate edge-on, such as a fin in flow along its chord) is beyond the table; it is
+    modelled instead of extrapolated as pressure drag decaying like h/d plus skin friction on
+    both faces over the excess length:
 
-    References
+    .. math:: C_D = 0.9\,\frac{6}{d/h} + 2\,C_f(Re_d)\,(d/h - 6),\qquad d/h > 6
+
+    continuous at d/h = 6 (Hoerner 1965, ch. 2 and 3), with :math:`Re_d = Re\,(d/h)` and
+    :func:`friction_coefficient`.
+
+    Parameters
     ----------
-    White, Fluid Mechanics, table 7.2 (after Delany & Sorensen 1953, NACA TN 3038);
-    data/rectangle_drag.csv (marked assumed: recalled, not re-checked).
+    depth_over_height : float or array
+        d/h [-]
+    reynolds : float or array
+        Reynolds number on the height across the flow (only used beyond the table) [-]
     """
-    return load_table("rectangle_drag").interp(depth_over_height, "Cd", what="d/h")
+    r = np.asarray(depth_over_height, dtype=float)
+    t = load_table("rectangle_drag")
+    out = t.interp(np.minimum(r, 6.0), "Cd", what="d/h")
+    long = r > 6.0
+    if np.any(long):
+        re_d = np.broadcast_to(np.asarray(reynolds, dtype=float), r.shape)[long] * r[long]
+        cf = np.array([friction_coefficient(v)[0] for v in np.atleast_1d(re_d)])
+        out = np.array(out, dtype=float, copy=True)
+        out[long] = 0.9 * 6.0 / r[long] + 2.0 * cf * (r[long] - 6.0)
+    return out
 
 
 def ellipse_cd(depth_over_height, reynolds):

@@ -1,0 +1,27 @@
+"""Draw the MARES turning-circle figures of docs/limits.md (seed 002, Figs. 6-8 reproduced).
+
+Run from the repository root:  python scripts/make_limits_figures.py
+Writes docs/figures/mares_limits.png (Munk moment off, as the paper finally uses, with the
+Munk-on result dashed) and docs/figures/mares_limits_munk.png (Munk on alone: Fig. 6's
+paradox).
+"""
+
+from pathlib import Path
+
+import stripcoef
+from stripcoef.limits import parse_radii, plot_limits, solve_limits
+
+ROOT = Path(__file__).resolve().parent.parent
+
+if __name__ == "__main__":
+    model = stripcoef.estimate(stripcoef.load_vehicle(ROOT / "geometry" / "mares.yaml"))
+    radii = parse_radii("0.5:40:80")
+    off = solve_limits(model, radii=radii, munk=False)
+    on = solve_limits(model, radii=radii, munk=True)
+    out = ROOT / "docs" / "figures"
+    out.mkdir(parents=True, exist_ok=True)
+    plot_limits(off, out / "mares_limits.png", compare=on,
+                title="MARES (geometry/mares.yaml): steady starboard turns at the thrust limit")
+    plot_limits(on, out / "mares_limits_munk.png",
+                title="MARES with the Munk moment: the thrusters' moment opposes the turn")
+    print(f"wrote {out / 'mares_limits.png'} and {out / 'mares_limits_munk.png'}")

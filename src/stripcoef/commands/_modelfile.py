@@ -1,0 +1,88 @@
+"""Read the VEHICLE argument of the model-consuming commands: a vehicle file or a model file.
+
+A model file is :meth:`HydroModel.to_dict` as JSON, or as YAML (a mapping with
+``added_mass`` and ``rigid_body_mass``); any other YAML is a vehicle file, estimated by strip
+theory (:func:`stripcoef.load_vehicle` + :func:`stripcoef.estimate`).  Meshes need the mesh
+options of ``stripcoef coefficients``: make a model file with it first.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..io import read_text
+from ..model import HydroModel
+
+_MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass")
+_REQUIRED = _MATRICES + ("reference_point", "mass", "volume", "center_of_gravity",
+                         "center_of_buoyancy", "density")
+
+
+def load_model(path) -> HydroModel:
+    """A HydroModel from a model file (JSON/YAML) or a vehicle file (YAML)."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".json", ".yaml", ".yml"):
+        raise InputError("not a vehicle or model file", file=str(path), value=path.suffix,
+                         expected="a vehicle file (.yaml) or a model file (.json/.yaml); for a "
+                                  "mesh run 'stripcoef coefficients MESH --json -o model.json' "
+                                  "first")
+    text = read_text(path, kind="vehicle or model file")
+    if suffix == ".json":
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise InputError(f"not valid JSON ({exc.msg})", file=str(path),
+                             key=f"line {exc.lineno}") from None
+        return model_from_dict(data, file=str(path))
+    import yaml
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        raise InputError("not valid YAML", file=str(path),
+                         key=f"line {mark.line + 1}" if mark else None) from None
+    if isinstance(data, dict) and "added_mass" in data and "rigid_body_mass" in data:
+        return model_from_dict(data, file=str(path))
+    from .. import estimate, load_vehicle
+    return estimate(load_vehicle(path))
+
+
+def model_from_dict(data, *, file: str | None = None) -> HydroModel:
+    """:meth:`HydroModel.from_dict` with every missing or malformed key reported by name."""
+    if not isinstance(data, dict):
+        raise InputError("not a model", file=file, value=type(data).__name__,
+                         expected="a mapping from HydroModel.to_dict()")
+    for key in _REQUIRED:
+        if key not in data:
+            raise InputError("missing key", file=file, key=key,
+                             expected="a model file from HydroModel.to_dict()")
+    for key in _MATRICES:
+        _check_array(data[key], (6, 6), file, key)
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        _check_array(data[key], (3,), file, key)
+    for key in ("mass", "volume", "density"):
+        v = data[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+            raise InputError("not a positive number", file=file, key=key, value=v,
+                             expected="a finite number > 0")
+    try:
+        return HydroModel.from_dict(data)
+    except (KeyError, TypeError, ValueError) as exc:
+        raise InputError(f"malformed model ({exc})", file=file,
+                         expected="a model file from HydroModel.to_dict()") from None
+
+
+def _check_array(value, shape, file, key):
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.shape != shape or not np.all(np.isfinite(arr)):
+        raise InputError("wrong array", file=file, key=key, value=value,
+                         expected=f"finite numbers of shape {shape}")

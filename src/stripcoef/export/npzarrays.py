@@ -1,0 +1,65 @@
+r"""NPZ export: numpy arrays in a compressed ``.npz`` archive (binary; needs ``-o``).
+
+Arrays, in the export's axes and about its reference point: ``M_RB``, ``M_A``, ``D_L``,
+``D_Q`` (6x6, Fossen's positive convention), ``mass``, ``volume``, ``density``,
+``gravity``, ``kinematic_viscosity``, ``r_g``, ``r_b`` (CG and CB relative to the point),
+``reference_point`` (FRD coordinates in the source model), ``axes``, ``point``, ``name``,
+``dof``, ``thrusters`` (names) and ``B_thrusters`` (6 x n), plus ``model_json``: the
+whole :meth:`HydroModel.to_dict` about the point (FRD), so that
+``HydroModel.from_dict(json.loads(str(npz["model_json"])))`` restores the model.
+Load with ``numpy.load(path)`` (no pickles are stored).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+
+import numpy as np
+
+from ..conventions import DOF
+from ._common import ExportView, plain
+
+NAME = "npz"
+DESCRIPTION = "numpy .npz archive of the matrices (binary, needs -o)"
+SUFFIX = ".npz"
+BINARY = True
+AXES_ALLOWED = ("FRD", "FLU")
+DEFAULT_AXES = "FRD"
+DEFAULT_POINT = "CO"
+POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = True
+OPTIONS = ()
+
+
+def arrays(view: ExportView) -> dict:
+    """The arrays stored in the archive."""
+    model = view.model
+    return {
+        "name": np.array(model.name),
+        "axes": np.array(view.axes),
+        "point": np.array(view.point_label),
+        "dof": np.array(DOF),
+        "reference_point": np.asarray(view.point, dtype=float),
+        "M_RB": view.matrix("rigid_body_mass"),
+        "M_A": view.matrix("added_mass"),
+        "D_L": view.matrix("linear_damping"),
+        "D_Q": view.matrix("quadratic_damping"),
+        "mass": np.array(float(model.mass)),
+        "volume": np.array(float(model.volume)),
+        "density": np.array(float(model.density)),
+        "gravity": np.array(float(model.gravity)),
+        "kinematic_viscosity": np.array(float(model.kinematic_viscosity)),
+        "r_g": view.r_g,
+        "r_b": view.r_b,
+        "thrusters": np.array([t.name for t in model.thrusters], dtype=str),
+        "B_thrusters": view.allocation() if model.thrusters else np.zeros((6, 0)),
+        "model_json": np.array(json.dumps(plain(model.to_dict()))),
+    }
+
+
+def render(view: ExportView) -> bytes:
+    buf = io.BytesIO()
+    np.savez_compressed(buf, **arrays(view))
+    return buf.getvalue()

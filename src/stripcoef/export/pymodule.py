@@ -1,0 +1,107 @@
+r"""Python export: an importable module holding the model as numpy arrays.
+
+The module defines, in the export's axes and about its reference point:
+``M_RB``, ``M_A``, ``D_L``, ``D_Q`` (6x6, Fossen's positive convention: the hydrodynamic
+force is ``-M_A @ nu_dot - C_A(nu) @ nu - (D_L + D_Q * abs(nu)) @ nu``), ``M = M_RB + M_A``,
+``MASS``, ``VOLUME``, ``DENSITY``, ``GRAVITY``, ``R_G`` and ``R_B`` (CG and CB relative to
+the reference point), ``REFERENCE_POINT`` (FRD coordinates of the point in the source
+model), ``AXES``, ``DOF``, ``THRUSTERS`` (names) and ``B_THRUSTERS`` (6 x n allocation,
+``tau = B_THRUSTERS @ thrusts``), and ``COEFFICIENTS`` (SNAME derivatives by name, with
+their signs, in the export's axes).
+
+References
+----------
+Fossen (2011), Handbook of Marine Craft Hydrodynamics and Motion Control, eq. 7.190.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..conventions import DOF, sname_coefficients
+from ._common import ExportView, fmt, header_lines
+
+NAME = "python"
+DESCRIPTION = "importable Python module with the matrices as numpy arrays"
+SUFFIX = ".py"
+BINARY = False
+AXES_ALLOWED = ("FRD", "FLU")
+DEFAULT_AXES = "FRD"
+DEFAULT_POINT = "CO"
+POINTS_ALLOWED = None
+#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
+HOLDS_EFFECTS = False
+OPTIONS = ()
+
+
+def _array(m) -> str:
+    m = np.asarray(m, dtype=float)
+    if m.ndim == 1:
+        return "np.array([" + ", ".join(_num(v) for v in m) + "])"
+    if m.size == 0:
+        return f"np.zeros(({m.shape[0]}, {m.shape[1]}))"
+    rows = ["    [" + ", ".join(_num(v) for v in row) + "]," for row in m]
+    return "np.array([\n" + "\n".join(rows) + "\n])"
+
+
+def _num(v) -> str:
+    text = fmt(v)
+    if text in ("Inf", "-Inf"):
+        return "float('inf')" if text == "Inf" else "-float('inf')"
+    return text
+
+
+def render(view: ExportView) -> str:
+    model = view.model
+    ma = view.matrix("added_mass")
+    dl = view.matrix("linear_damping")
+    dq = view.matrix("quadratic_damping")
+    coeffs = sname_coefficients(ma, dl, dq, tol=1e-12)
+    head = header_lines(view, NAME)
+    lines = ['"""' + head[0] + ".", ""]
+    lines += head[1:]
+    lines += [
+        "",
+        "Fossen's convention: M_A, D_L, D_Q positive; hydrodynamic force",
+        "-M_A nu_dot - C_A(nu) nu - (D_L + D_Q diag|nu|) nu. Units SI, radians.",
+        '"""',
+        "",
+        "import numpy as np",
+        "",
+        f"NAME = {model.name!r}",
+        f"AXES = {view.axes!r}",
+        f"POINT = {view.point_label!r}",
+        f"DOF = {tuple(DOF)!r}",
+        f"REFERENCE_POINT = {_array(view.point)}  # [m], FRD coordinates of the source model",
+        f"MASS = {_num(model.mass)}  # [kg]",
+        f"VOLUME = {_num(model.volume)}  # [m^3]",
+        f"DENSITY = {_num(model.density)}  # [kg/m^3]",
+        f"GRAVITY = {_num(model.gravity)}  # [m/s^2]",
+        f"KINEMATIC_VISCOSITY = {_num(model.kinematic_viscosity)}  # [m^2/s]",
+        f"R_G = {_array(view.r_g)}  # CG relative to the reference point [m]",
+        f"R_B = {_array(view.r_b)}  # CB relative to the reference point [m]",
+        "",
+        "# Rigid-body mass [kg, kg m, kg m^2]",
+        f"M_RB = {_array(view.matrix('rigid_body_mass'))}",
+        "",
+        "# Added mass, positive (M_A[0, 0] = -X_udot) [kg, kg m, kg m^2]",
+        f"M_A = {_array(ma)}",
+        "",
+        "# Linear damping, positive (D_L[0, 0] = -X_u) [kg/s, kg m/s, kg m^2/s]",
+        f"D_L = {_array(dl)}",
+        "",
+        "# Quadratic damping, positive: force_i = -sum_j D_Q[i, j] |nu_j| nu_j",
+        f"D_Q = {_array(dq)}",
+        "",
+        "M = M_RB + M_A",
+        "",
+        f"THRUSTERS = {tuple(t.name for t in model.thrusters)!r}",
+        "# Thruster allocation: tau = B_THRUSTERS @ thrusts [N]",
+        f"B_THRUSTERS = {_array(view.allocation()) if model.thrusters else 'np.zeros((6, 0))'}",
+        "",
+        "# SNAME derivatives (signed) in AXES",
+        "COEFFICIENTS = {",
+    ]
+    lines += [f"    {k!r}: {_num(v)}," for k, v in coeffs.items()]
+    lines += ["}", ""]
+    return "\n".join(lines)

@@ -1,0 +1,38 @@
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+GEOMETRY = ROOT / "geometry"
+
+
+@pytest.fixture
+def geometry_dir():
+    return GEOMETRY
+
+
+def spheroid_vehicle(length, diameter, *, rho=1000.0, strips=400, **extra):
+    """A spheroid vehicle dict (semi-axes a = L/2, b = D/2)."""
+    from stripcoef.geometry.vehicle import parse_vehicle
+
+    a, b = 0.5 * length, 0.5 * diameter
+    data = {"name": f"spheroid L/D={length / diameter:g}",
+            "fluid": {"density": rho, "kinematic_viscosity": 1e-6},
+            "strips": strips,
+            "hull": {"profile": [
+                {"type": "ellipsoid_tail", "x": [-a, 0.0], "radius": b},
+                {"type": "ellipsoid_nose", "x": [0.0, a], "radius": b}]}}
+    data.update(extra)
+    return parse_vehicle(data, file="<spheroid>")
+
+
+def cylinder_vehicle(length, diameter, *, rho=1000.0, **extra):
+    from stripcoef.geometry.vehicle import parse_vehicle
+
+    data = {"name": "cylinder", "fluid": {"density": rho, "kinematic_viscosity": 1e-6},
+            "hull": {"profile": [{"type": "cylinder", "x": [-0.5 * length, 0.5 * length],
+                                  "radius": 0.5 * diameter}]}}
+    data.update(extra)
+    return parse_vehicle(data, file="<cylinder>")
