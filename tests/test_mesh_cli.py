@@ -70,3 +70,15 @@ def test_output_file_and_bad_inputs(tmp_path, capsys):
     big = spheroid_file(tmp_path / "big.stl", scale=1000.0)
     assert main(["coefficients", str(big)]) == 2
     assert "length-unit" in capsys.readouterr().err
+
+
+def test_repairs_are_reported_on_stderr(tmp_path, capsys):
+    t = np.linspace(0.0, np.pi, 61)[::-1]
+    m = revolved_mesh(0.6 * np.cos(t), 0.1 * np.sin(t), sections=32)
+    m.invert()
+    path = tmp_path / "inside_out.stl"
+    m.export(path)
+    assert main(["coefficients", str(path), "--json", "--strips", "40"]) == 0
+    captured = capsys.readouterr()
+    assert "flipped inward-pointing normals" in captured.err
+    assert json.loads(captured.out)["volume"] > 0

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.mesh import load_mesh, mesh_body, revolved_mesh
 
 
@@ -110,7 +110,8 @@ def test_overlapping_bodies_united():
     a = trimesh.creation.box([1.0, 0.2, 0.2])
     b = trimesh.creation.box([0.4, 0.2, 0.6])           # a fin crossing the hull
     body = mesh_body(trimesh.util.concatenate([a, b]))
-    st = body.strips(50)
+    with pytest.warns(ModelWarning, match="double counts"):
+        st = body.strips(50)
     p = st.parts[0]
     mid = np.argmin(abs(st.x))
     assert p.area[mid] == pytest.approx(0.2 * 0.6, rel=1e-6)

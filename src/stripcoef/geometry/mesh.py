@@ -50,7 +50,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+import warnings
+
+from ..errors import InputError, ModelWarning
 from ..strips import Part, Strips, uniform_stations
 
 #: File extensions read through trimesh.
@@ -346,9 +348,10 @@ class MeshBody:
             dxs = np.asarray(dx, dtype=float)
             dxs = np.broadcast_to(dxs, x.shape)[inside]
             v_strips = float(np.sum(props[:, 0] * dxs))
-            self.repairs.append(
-                f"overlapping bodies: sections united per strip (shapely union); the mesh volume "
-                f"{self.volume:.6g} m^3 double counts {self.volume - v_strips:.3g} m^3")
+            note = (f"overlapping bodies: sections united per strip (shapely union); the mesh "
+                    f"volume {self.volume:.6g} m^3 double counts {self.volume - v_strips:.3g} m^3")
+            self.repairs.append(note)
+            warnings.warn(f"{self.source}: {note}", ModelWarning, stacklevel=2)
             self._overlap_reported = True
         corners = _has_sharp_corners(secs[len(secs) // 2])
         part = Part(name=self.name, shape="polygon", index=inside, y=props[:, 1], z=props[:, 2],
@@ -550,6 +553,8 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     Returns
     -------
     MeshBody
+        Each repair is in ``MeshBody.repairs`` and is also issued as a
+        :class:`~stripcoef.errors.ModelWarning` (the CLI prints it on stderr).
 
     Raises
     ------
@@ -563,6 +568,8 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     mesh, repairs, labels, n_bodies = _prepare(mesh, path=path, axis=axis,
                                                length_unit=length_unit, origin=origin,
                                                transform=transform)
+    for note in repairs:
+        warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
                     face_label=labels, n_bodies=n_bodies)
 
