@@ -77,7 +77,7 @@ CLOSED_ENDS = False
 DEFAULT_PANELS = 100
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
 _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
-_TRAP_THETA = 32
+_TRAP_THETA = 16
 
 
 def _theta_moments(x, r, xq, rq):
