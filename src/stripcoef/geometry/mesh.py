@@ -210,10 +210,16 @@ class MeshBody:
         What was found and repaired, in words (empty for a clean mesh).
     n_bodies : int
         Number of connected bodies.
+    role : str
+        ``hull`` (default; friction and form drag of the hull), ``appendage`` or ``fin``.
     """
 
     def __init__(self, mesh, *, name: str = "mesh", source: str = "", repairs=None,
-                 face_label=None, n_bodies: int = 1):
+                 face_label=None, n_bodies: int = 1, role: str = "hull"):
+        if role not in ("hull", "appendage", "fin"):
+            raise InputError("unknown body role", key="role", value=role,
+                             expected="hull, appendage or fin")
+        self.role = role
         self.mesh = mesh
         self.name = name
         self.source = source
@@ -357,7 +363,7 @@ class MeshBody:
         part = Part(name=self.name, shape="polygon", index=inside, y=props[:, 1], z=props[:, 2],
                     half_breadth=props[:, 3], half_height=props[:, 4], area=props[:, 0],
                     iyy=props[:, 5], izz=props[:, 6], rounded=not corners,
-                    length=xmax - xmin, role="hull", contours=secs)
+                    length=xmax - xmin, role=self.role, contours=secs)
         return [part]
 
     def strips(self, n: int = 200) -> Strips:
@@ -529,7 +535,7 @@ def _open_edge_count(mesh) -> int:
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-              transform=None, name: str | None = None) -> MeshBody:
+              transform=None, name: str | None = None, role: str = "hull") -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
 
     Parameters
@@ -549,6 +555,9 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
         metres), before the axis mapping.
     name : str, optional
         Body name (default: the file's stem).
+    role : {"hull", "appendage", "fin"}
+        Role of the mesh's parts in the assembly (an appendage mesh in a vehicle file is
+        ``appendage``).
 
     Returns
     -------
@@ -571,7 +580,7 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     for note in repairs:
         warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
-                    face_label=labels, n_bodies=n_bodies)
+                    face_label=labels, n_bodies=n_bodies, role=role)
 
 
 def mesh_body(mesh, *, name: str = "mesh", axis: str = "x", length_unit: str = "m",
