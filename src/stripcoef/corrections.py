@@ -74,7 +74,7 @@ from .errors import InputError
 #: which rock in pitch and yaw; measured: no difference on the open-frame ROV benchmark).
 CLOSED_ENDS = False
 #: Meridian panels used by default.
-DEFAULT_PANELS = 100
+DEFAULT_PANELS = 160
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
 _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
 _TRAP_THETA = 16
@@ -238,9 +238,15 @@ def _meridian(x, r, panels):
     keep = np.r_[True, seg > 1e-12 * max(np.ptp(x), 1e-300)]
     x, r = x[keep], r[keep]
     s = np.r_[0.0, np.cumsum(np.hypot(np.diff(x), np.diff(r)))]
-    # keep the profile's corners (flat caps): resample each smooth run separately
-    t = s[-1] * 0.5 * (1.0 - np.cos(np.pi * np.linspace(0.0, 1.0, panels + 1)))
-    t = np.unique(np.r_[t, s[_corners(x, r)]])
+    # the profile's corners (flat caps, steps) and the two tips split it into smooth runs;
+    # each run gets panels in proportion to its length, cosine-clustered towards its ends
+    knots = np.unique(np.r_[0.0, s[_corners(x, r)], s[-1]])
+    runs = np.diff(knots)
+    n_run = np.maximum(4, np.round(panels * runs / runs.sum())).astype(int)
+    t = [knots[:1]]
+    for a, length, n in zip(knots[:-1], runs, n_run):
+        t.append(a + length * 0.5 * (1.0 - np.cos(np.pi * np.arange(1, n + 1) / n)))
+    t = np.concatenate(t)
     xn, rn = np.interp(t, s, x), np.interp(t, s, r)
     rn[0] = rn[-1] = 0.0
     return xn, rn
@@ -317,8 +323,14 @@ def strip_section_added_mass(strips, rho: float) -> np.ndarray:
     from .sections import section_added_mass
     out = np.zeros((strips.n, 3, 3))
     for p in strips.parts:
-        np.add.at(out, p.index, section_added_mass(p, rho))
+        np.add.at(out, p.index, section_added_mass(p, rho) * _coverage(p)[:, None, None])
     return out
+
+
+def _coverage(part) -> np.ndarray:
+    """Fraction of each covered strip's width that the part spans (1 if not recorded)."""
+    cov = getattr(part, "coverage", None)
+    return np.ones(part.index.size) if cov is None else np.asarray(cov, dtype=float)
 
 
 def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
@@ -353,8 +365,44 @@ def equivalent_profile(strips):
     """
     area = np.zeros(strips.n)
     for p in strips.parts:
-        np.add.at(area, p.index, p.area)
+        np.add.at(area, p.index, p.area * _coverage(p))
     return _equivalent_radius(strips, area)
+
+
+def _axial_added_mass(strips, rho, panels):
+    """Surge added mass: the equal-area body of the hull parts, plus each other part as its
+    own equal-area body (appendages are not smeared into rings round the hull)."""
+    area = np.zeros(strips.n)
+    others = []
+    for p in strips.parts:
+        if p.role == "hull":
+            np.add.at(area, p.index, p.area * _coverage(p))
+        else:
+            others.append(p)
+    m11 = 0.0
+    if np.any(area > 0):
+        xs, rs = _equivalent_radius(strips, area)
+        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels)[0, 0]
+    for p in others:
+        cov = _coverage(p)
+        vol = float(np.sum(p.area * cov * strips.dx[p.index]))
+        if p.index.size < 3 or vol <= 0:
+            m11 += 0.5 * rho * vol                  # too short to resolve: a sphere's k1 = 1/2
+            continue
+        order = np.argsort(p.index)
+        idx, a, cov = p.index[order], p.area[order], cov[order]
+        x = strips.x[idx]
+        half = 0.5 * strips.dx[idx]
+        # a part ending inside a strip covers the fraction cov of it from the inner side:
+        # its end is there (not smeared over the strip), extrapolated in area
+        x_lo = x[0] + half[0] - cov[0] * 2 * half[0]
+        x_hi = x[-1] - half[-1] + cov[-1] * 2 * half[-1]
+        a_lo = max(a[1] + (a[1] - a[2]) / (x[2] - x[1]) * (x[1] - x_lo), 0.0)
+        a_hi = max(a[-2] + (a[-2] - a[-3]) / (x[-2] - x[-3]) * (x_hi - x[-2]), 0.0)
+        px = np.r_[x_lo, x[1:-1], x_hi]
+        pr = np.sqrt(np.r_[a_lo, a[1:-1], a_hi] / np.pi)
+        m11 += body_of_revolution_added_mass(px, pr, rho=rho, panels=max(40, panels // 2))[0, 0]
+    return m11
 
 
 def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
@@ -387,7 +435,8 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
               \Delta_{26} = m_{26}^{3D}[r_v] - \sqrt{f_v f_r}\int\rho\pi r_v^2 (x-x_c) dx
 
     and likewise :math:`f_w, f_q, \Delta_{35}` from :math:`r_w`.  The axial added mass
-    is that of the equal-area body :math:`\pi r_A^2 = A(x)` (the displaced water).
+    is that of the equal-area body :math:`\pi r_A^2 = A(x)` of the hull parts plus that of
+    each other part's own equal-area body (appendages are not smeared into rings).
     Applied to the strip matrix S about ``center``:
     :math:`S \to D S D`, :math:`D = diag(1, \sqrt{f_v}, \sqrt{f_w}, 1, \sqrt{f_q}, \sqrt{f_r})`,
     then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
@@ -419,12 +468,11 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     reproduces for plate-like sections.
     """
     xc = float(np.asarray(center, dtype=float)[0])
-    area = np.zeros(strips.n)
-    for p in strips.parts:
-        np.add.at(area, p.index, p.area)
-    xs, rs = _equivalent_radius(strips, area)
-    m_area = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
+    m11 = _axial_added_mass(strips, rho, panels)
     if section_added_mass is None:
+        area = np.zeros(strips.n)
+        for p in strips.parts:
+            np.add.at(area, p.index, p.area * _coverage(p))
         mv = mw = area
     else:
         m2d = np.asarray(section_added_mass, dtype=float)
@@ -436,10 +484,9 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
         fw, fq, d62, _ = _lateral(strips, mw, rho, xc, panels)
         d35 = -d62                      # heave-pitch: M[2,4] = -m26 of the heave body
     return {"scale": np.array([1.0, fv, fw, 1.0, fq, fr]),
-            "axial_added_mass": float(m_area[0, 0]),
+            "axial_added_mass": float(m11),
             "coupling_26": d26, "coupling_35": d35,
             "translation": fv, "rotation": fr, "coupling": d26,
-            "equivalent_volume": float(np.sum(np.pi * rs[1:-1] ** 2 * strips.dx)),
             "method": "axisymmetric BEM of the added-mass-equivalent bodies of revolution"}
 
 
