@@ -135,3 +135,19 @@ def test_directional_bodies_of_a_body_of_revolution_reproduce_its_3d_matrix():
         assert m[i, i] == pytest.approx(m3[i, i], rel=2e-3)
     assert m[1, 5] == pytest.approx(m3[1, 5], rel=2e-2)
     assert m[2, 4] == pytest.approx(m3[2, 4], rel=2e-2)
+
+
+def test_axial_added_mass_converges_with_strips_on_mares():
+    """Appendages get their own equal-area bodies with their ends where the parts end, so
+    the surge term does not depend on how the strips cut them (MARES, 400 vs 3200 strips)."""
+    from pathlib import Path
+
+    from stripcoef.assemble import displaced_volume
+    from stripcoef.geometry.vehicle import load_vehicle
+    v = load_vehicle(Path(__file__).resolve().parents[1] / "geometry" / "mares.yaml")
+    vals = []
+    for n in (400, 3200):
+        st = v.cut(n)
+        _, cb = displaced_volume(st)
+        vals.append(hull_corrections(st, rho=RHO, center=cb)["axial_added_mass"])
+    assert vals[0] == pytest.approx(vals[1], rel=1e-3)
