@@ -96,3 +96,9 @@ def test_compare_bad_file_exit_2(tmp_path, capsys):
     assert main(["compare", str(p)]) == 2
     err = capsys.readouterr().err
     assert "x.stl" in err and len(err.strip().splitlines()) == 1
+
+
+def test_compare_cli_table(spheroid_file, capsys):
+    assert main(["compare", str(spheroid_file), "--rho", "1000", "--strips", "40"]) == 0
+    out = capsys.readouterr().out
+    assert "strip theory" in out and "BEM" in out and "Y_vdot" in out and "diff %" in out

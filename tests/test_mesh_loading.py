@@ -218,3 +218,29 @@ def test_no_extent_along_axis():
 def test_bad_options(kw, match):
     with pytest.raises(InputError, match=match):
         mesh_body(spheroid(), **kw)
+
+
+def test_glb_scene_nodes_are_merged_with_their_transforms(tmp_path):
+    scene = trimesh.Scene()
+    box = trimesh.creation.box([1.0, 0.2, 0.2])
+    scene.add_geometry(box, node_name="hull")
+    pod = trimesh.creation.box([0.2, 0.1, 0.1])
+    scene.add_geometry(pod, node_name="pod",
+                       transform=trimesh.transformations.translation_matrix([0.0, 0.5, 0.0]))
+    path = tmp_path / "scene.glb"
+    scene.export(path)
+    with pytest.warns(ModelWarning, match="2 separate bodies"):
+        body = load_mesh(path, origin="file")
+    assert body.n_bodies == 2
+    assert body.bbox()[1, 1] == pytest.approx(0.55, abs=1e-6)
+    assert body.volume == pytest.approx(0.04 + 0.002, rel=1e-6)
+
+
+def test_box_mesh_drag_through_the_section_registry():
+    """A sharp box section gets the rectangular-cylinder coefficient via sections.section_drag."""
+    from stripcoef.sections import drag, section_drag
+    body = mesh_body(trimesh.creation.box([1.0, 0.4, 0.2]))
+    p = body.strips(10).parts[0]
+    cd_y, cd_z = section_drag(p, np.full(10, 1e5), np.full(10, 1e5))
+    np.testing.assert_allclose(cd_y, float(drag.rectangle_cd(2.0)))     # d/h = 0.4/0.2
+    np.testing.assert_allclose(cd_z, float(drag.rectangle_cd(0.5)))
