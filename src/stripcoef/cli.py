@@ -16,7 +16,7 @@ import warnings
 from .errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits", "export", "compare")
+COMMANDS = ("coefficients", "limits", "export", "identify", "scale", "compare")
 
 
 class _Parser(argparse.ArgumentParser):

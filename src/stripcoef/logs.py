@@ -186,6 +186,6 @@ def read_log(path, *, required=()) -> Log:
             k = int(bad[0])
             what = "duplicated timestamp" if d[k] == 0 else "time goes backwards"
             raise InputError(f"{what} at row {k + 3}", file=name, key="t", value=float(t[k + 1]),
-                             expected=f"strictly increasing time (previous {t[k]!r})")
+                             expected=f"strictly increasing time (previous {float(t[k]):g})")
     log.require(*required) if required else None
     return log

@@ -9,7 +9,8 @@ from __future__ import annotations
 import importlib
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "meshes")
+SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "identification",
+                             "meshes")
 
 
 def build() -> str:

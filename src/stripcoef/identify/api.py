@@ -1,0 +1,84 @@
+"""One entry point for every identification method: a log (and optionally a vehicle) in,
+a :class:`FitResult` out.  The CLI (``stripcoef identify``) is a thin layer over it.
+"""
+
+from __future__ import annotations
+
+from ..conventions import DOF, parse_dof
+from ..errors import InputError, unknown_name
+
+METHODS = ("steady", "one-step", "pendulum", "torsion")
+
+
+def identify_log(log, method: str, *, dof: str | None = None, model: str | None = None,
+                 vehicle=None, direction: str = "both", settle: float = 8.0, trim: int = 0,
+                 inertia: float | None = None, covariance: str | None = None,
+                 mass: float | None = None, buoyancy: float | None = None,
+                 length: float | None = None, stiffness: float | None = None,
+                 medium: str = "water", window: int | None = None, order: int = 4,
+                 refine: bool = False):
+    """Identify coefficients from ``log`` (a :class:`stripcoef.logs.Log`).
+
+    Parameters
+    ----------
+    method : {"steady", "one-step", "pendulum", "torsion"}
+    dof : str, optional
+        Default heave (steady), yaw (one-step, torsion), "" (pendulum).
+    model : str, optional
+        steady: standard, eta, eta-md, LQB, LQNB, LB, LNB or ``compare``; one-step: LQB,
+        LQNB, LB, LNB.
+    vehicle : HydroModel, optional
+        Thruster map (commands -> force), rigid-body inertia, mass and buoyancy [SI].
+    Other parameters as in :func:`steady.steady_points`, :func:`onestep.one_step_log`,
+    :func:`pendulum.pendulum` and :func:`pendulum.torsion`.
+
+    Returns
+    -------
+    (FitResult, Comparison or None)
+    """
+    if method not in METHODS:
+        raise unknown_name("identification method", method, METHODS, key="--method")
+    from . import onestep, pendulum, steady        # scipy.signal etc. only when used
+    from .inputs import applied_force, horizontal_command
+    if method in ("steady", "one-step"):
+        name = DOF[parse_dof(dof or ("heave" if method == "steady" else "yaw"))]
+        i = DOF.index(name)
+        force, origin = applied_force(log, name, vehicle)
+        cmp = None
+        if method == "steady":
+            pts = steady.steady_points(log, name, force=force,
+                                       n_h=horizontal_command(log, vehicle), settle=settle,
+                                       trim=trim)
+            if (model or "standard") == "compare":
+                cmp = steady.compare_models(pts)
+                fit = steady.recommended_fit(cmp)
+            else:
+                fit = steady.fit_steady(pts, model or "standard", direction=direction)
+        else:
+            if inertia is None and vehicle is not None:
+                inertia = float(vehicle.rigid_body_mass[i, i])
+            fit = onestep.one_step_log(log, name, model=model or "LQB", input=force,
+                                       inertia=inertia, covariance=covariance)
+        fit.notes.append(f"applied force from {origin}")
+        return fit, cmp
+    if model:
+        raise InputError("--model applies to steady and one-step only", key="--model",
+                         value=model, expected=f"no --model with --method {method}")
+    kw = dict(window=window, order=order, refine=refine)
+    if method == "pendulum":
+        if mass is None and vehicle is not None:
+            mass = vehicle.mass
+        if medium == "air":
+            buoyancy = 0.0
+        elif buoyancy is None and vehicle is not None:
+            buoyancy = vehicle.buoyancy
+        if medium == "water" and mass is not None and buoyancy is None:
+            raise InputError("buoyancy needed with the mass", key="--buoyancy",
+                             expected="--buoyancy B [N] or --vehicle")
+        return pendulum.pendulum_log(log, mass=mass, buoyancy=buoyancy or 0.0, length=length,
+                                     medium=medium, dof=dof or "", **kw), None
+    name = DOF[parse_dof(dof or "yaw")]
+    if inertia is None and vehicle is not None:
+        inertia = float(vehicle.rigid_body_mass[DOF.index(name), DOF.index(name)])
+    return pendulum.torsion_log(log, stiffness=stiffness, inertia=inertia, medium=medium,
+                                dof=name, **kw), None

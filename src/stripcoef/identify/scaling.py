@@ -1,0 +1,85 @@
+r"""Similitude: coefficients of a scaled model to full scale (Eng et al., seed 003, eqs. 8-10).
+
+With geometric ratio :math:`\lambda = L_{full}/L_{model}` (seed 003: :math:`\lambda = 1/0.3`),
+the same fluid and the same speed, and a drag coefficient independent of the Reynolds number:
+
+- drag force :math:`D = \tfrac12\rho C_d A V^2` scales with the area (eq. 9):
+  :math:`K_L, K_Q \times \lambda^2` (seed 003 applies the same factor to the linear term);
+- rotational drag torque :math:`T_d = C_D \rho A_p L^3 \dot\theta^2` (eq. 10):
+  :math:`K_L, K_Q` (rotational) :math:`\times \lambda^5`;
+- added mass scales with the displaced volume (Triantafyllou & Hover, ref. [14] of seed 003):
+  :math:`m_a \times \lambda^3`; added moment of inertia :math:`\times \lambda^5`.
+
+Reynolds caveat (seed 003, sec. II.D): dynamic similarity needs equal Re, i.e. the model
+moving :math:`\lambda` times faster in the same water.  The scaling above holds only where
+:math:`C_d` is flat in Re (seed 003's CFD: 0-0.5 m/s); a linear drag term is a viscous /
+low-Re effect and does not in general follow :math:`\lambda^2`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InputError
+
+#: Parameter name -> exponent of lambda, for translational (surge/sway/heave) results.
+TRANSLATION = {"m_a": 3, "K_L": 2, "K_Q": 2}
+#: For rotational results (torsion pendulum, yaw).
+ROTATION = {"I_a": 5, "m_a": 5, "K_L": 5, "K_Q": 5}
+REYNOLDS_CAVEAT = ("similitude at equal speed assumes drag coefficients independent of the "
+                   "Reynolds number (seed 003 sec. II.D: true for its CFD over 0-0.5 m/s); the "
+                   "full-scale Re is lambda times the model's, and linear (viscous) drag does "
+                   "not in general scale as lambda^2")
+
+
+def exponents(rotational: bool) -> dict:
+    """Exponent of lambda per parameter name."""
+    return ROTATION if rotational else TRANSLATION
+
+
+def scale_value(value: float, name: str, ratio: float, *, rotational: bool = False) -> float:
+    r"""Full-scale value :math:`\theta_{full} = \lambda^k \theta_{model}` (seed 003, eqs. 9-10)."""
+    if not (ratio > 0 and math.isfinite(ratio)):
+        raise InputError("bad scale ratio", key="--ratio", value=ratio,
+                         expected="a positive finite number L_full / L_model")
+    table = exponents(rotational)
+    if name not in table:
+        raise InputError("no similitude law for this parameter", key=name,
+                         expected="one of " + ", ".join(sorted(table)))
+    return value * ratio ** table[name]
+
+
+def scale_result(result: dict, ratio: float, *, rotational: bool | None = None) -> dict:
+    """Scale the parameters and std of a result dict (the JSON contract) to full scale.
+
+    ``rotational`` defaults to True for torsion results and yaw/roll/pitch DOFs.
+    Parameters without a similitude law (alpha, beta...) are dropped; the output lists
+    the factor used for each.
+    """
+    for key in ("parameters", "std"):
+        if not isinstance(result.get(key), dict):
+            raise InputError("not an identification result", key=key,
+                             expected='a JSON object with "parameters" and "std" '
+                             "(the output of stripcoef identify --json)")
+    if rotational is None:
+        rotational = (result.get("method", "").startswith("torsion")
+                      or result.get("dof") in ("roll", "pitch", "yaw"))
+    table = exponents(rotational)
+    params, std, factors = {}, {}, {}
+    for name, value in result["parameters"].items():
+        if name in table and value is not None:
+            f = ratio ** table[name]
+            params[name] = value * f
+            s = result["std"].get(name)
+            std[name] = None if s is None else s * f
+            factors[name] = f
+    if not params:
+        raise InputError("no scalable parameter in the result", key="parameters",
+                         value=sorted(result["parameters"]),
+                         expected="some of " + ", ".join(sorted(table)))
+    rel = {n: (100.0 * std[n] / abs(params[n]) if std[n] is not None and params[n] else None)
+           for n in params}
+    return {"method": "similitude", "model": result.get("model", ""),
+            "dof": result.get("dof", ""), "ratio": ratio, "rotational": rotational,
+            "parameters": params, "std": std, "relative_error_percent": rel,
+            "factors": factors, "caveat": REYNOLDS_CAVEAT, "source": result.get("method", "")}
