@@ -124,7 +124,7 @@ def section() -> str:
              "beta on rho pi a_max^4; rows and tolerances from reference_tables/dnv_rp_c205)\n",
              markdown_table(["a/b . column", "table", "panel method", "difference", "status"],
                             _rect_rows()),
-             "\n### Axisymmetric BEM of `stripcoef.corrections` (100 meridian panels): error %\n",
+             "\n### Axisymmetric BEM of `stripcoef.corrections` (160 meridian panels): error %\n",
              markdown_table(["body (reference)", "m11", "m22", "m66"], _axisym_rows()),
              "\n### Mesh made by revolving a shipped profile vs the profile (200 strips)\n",
              markdown_table(["vehicle", "max added-mass diagonal difference %",
