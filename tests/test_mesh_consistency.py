@@ -56,9 +56,6 @@ def test_crossflow_quadratic_damping_matches_profile(pair):
     _close(a.quadratic_damping[idx], b.quadratic_damping[idx])
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "assemble._damping takes a non-ellipse hull's perimeter as 4 (b + h) (27 % high for a "
-    "circle); polygon parts need stripcoef.geometry.mesh.polygon_perimeter (to be wired in)"))
 def test_friction_terms_match_profile(pair):
     a, b = pair
     assert b.quadratic_damping[0, 0] == pytest.approx(a.quadratic_damping[0, 0], rel=1e-2)

@@ -158,8 +158,9 @@ def format_table(model) -> str:
            "Conditions:"]
     keys = ("reference_speed", "reynolds_length", "regime", "cf_laminar", "cf_turbulent",
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
-            "hull_crossflow_cd_y", "hull_length_factor", "equivalent_spheroid_L_over_D", "k1",
-            "end_correction_translation", "end_correction_rotation")
+            "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
+            "end_correction_sway", "end_correction_heave", "end_correction_pitch",
+            "end_correction_yaw", "correction_method")
     for k in keys:
         if k in c:
             v = c[k]

@@ -297,7 +297,8 @@ def _appendage(r: _Reader, data, path):
     mpath = Path(r.file).parent / mfile
     return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,
                                                           choices=("m", "mm", "in"), default="m"),
-                              origin="file", transform=data.get("transform"), name=name)
+                              origin="file", transform=data.get("transform"), name=name,
+                              role="appendage")
 
 
 def _hole(r: _Reader, data, path) -> Hole:
