@@ -564,7 +564,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
     ----------
     vehicle : Vehicle
     strips : int, optional
-        Number of strips (default: the vehicle file's, else 400).
+        Number of strips (default: the vehicle file's, else 1000).
     corrections : bool, optional
         3D end corrections (default on; ``False`` = pure strip theory).
     speed : float, optional

@@ -25,7 +25,7 @@ from .bodies import Box, Cylinder, Fin, Hole, Hull
 from .profiles import SEGMENT_TYPES, Segment, check_contiguous
 
 #: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
-DEFAULT_STRIPS = 400
+DEFAULT_STRIPS = 1000
 #: Default reference speed for Reynolds numbers and the damping split [m/s].
 DEFAULT_SPEED = 1.0
 REFERENCE_NAMES = ("center_of_buoyancy", "center_of_gravity", "origin")

@@ -60,7 +60,7 @@ def mares_conditions():
 
 def section() -> str:
     out = ["## Strip theory against exact solutions (issue 2)", "",
-           "Prolate spheroids, L = 1.5 m, ρ = 1000 kg/m³, 400 strips, against Lamb's exact added "
+           "Prolate spheroids, L = 1.5 m, ρ = 1000 kg/m³, 1000 strips, against Lamb's exact added "
            "mass (`tests/test_hull_lamb.py` asserts 2 % on every non-zero diagonal term). m55 "
            "equals m66 and m33 equals m22 by symmetry.", ""]
     out.append(markdown_table(
