@@ -39,6 +39,7 @@ from stripcoef.corrections import apply_corrections, hull_corrections, strip_sec
 from stripcoef.fluid import Fluid  # noqa: E402
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402
 from stripcoef.geometry.vehicle import MassSpec, Vehicle  # noqa: E402
+from stripcoef.hull import spheroid_added_mass  # noqa: E402
 
 RHO = 1000.0
 FLUID = Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark")
@@ -46,16 +47,8 @@ DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def lamb(length, diameter):
-    a, b = 0.5 * length, 0.5 * diameter
-    e = np.sqrt(1 - (b / a) ** 2)
-    lg = np.log((1 + e) / (1 - e))
-    alpha0 = 2 * (1 - e**2) / e**3 * (0.5 * lg - e)
-    beta0 = 1 / e**2 - (1 - e**2) / (2 * e**3) * lg
-    k1, k2 = alpha0 / (2 - alpha0), beta0 / (2 - beta0)
-    kp = e**4 * (beta0 - alpha0) / ((2 - e**2) * (2 * e**2 - (2 - e**2) * (beta0 - alpha0)))
-    m = RHO * 4 / 3 * np.pi * a * b * b
-    return np.diag([k1 * m, k2 * m, k2 * m, 0.0, kp * m * (a * a + b * b) / 5, kp * m * (a * a + b * b) / 5])
-
+    """Lamb's exact 6x6 added mass of a spheroid (stripcoef.hull.spheroid_added_mass)."""
+    return np.diag(spheroid_added_mass(0.5 * length, 0.5 * diameter, rho=RHO))
 
 def strip_variants(mesh, strips=200):
     body = mesh_body(mesh, origin="file", name="body")

@@ -7,6 +7,7 @@ import pytest
 
 from stripcoef.cli import main
 from stripcoef.geometry.mesh import revolved_mesh
+from stripcoef.hull import spheroid_added_mass
 
 RHO = 1000.0
 
@@ -20,15 +21,8 @@ def spheroid_file(path, a=0.6, b=0.1, n_ax=80, n_circ=48, scale=1.0):
 
 
 def lamb(a, b, rho=RHO):
-    e = np.sqrt(1 - (b / a) ** 2)
-    lg = np.log((1 + e) / (1 - e))
-    alpha0 = 2 * (1 - e**2) / e**3 * (0.5 * lg - e)
-    beta0 = 1 / e**2 - (1 - e**2) / (2 * e**3) * lg
-    k1, k2 = alpha0 / (2 - alpha0), beta0 / (2 - beta0)
-    kp = e**4 * (beta0 - alpha0) / ((2 - e**2) * (2 * e**2 - (2 - e**2) * (beta0 - alpha0)))
-    m = rho * 4 / 3 * np.pi * a * b * b
-    return np.array([k1 * m, k2 * m, k2 * m, 0.0, kp * m * (a * a + b * b) / 5, kp * m * (a * a + b * b) / 5])
-
+    """Lamb's exact diagonal (stripcoef.hull.spheroid_added_mass, tested in test_hull_lamb)."""
+    return spheroid_added_mass(a, b, rho=rho)
 
 @pytest.mark.parametrize("ext", [".stl", ".ply"])
 def test_spheroid_mesh_end_to_end(tmp_path, capsys, ext):

@@ -6,21 +6,16 @@ import pytest
 from stripcoef.corrections import body_of_revolution_added_mass, equivalent_profile, hull_corrections
 from stripcoef.errors import InputError
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
+from stripcoef.hull import spheroid_added_mass
 
 RHO = 1000.0
 
 
 def lamb(a, b, rho=RHO):
-    """Lamb (1932) sec. 373 via the closed forms in shared/reference/formulas.md 5.2."""
-    e = np.sqrt(1 - (b / a) ** 2)
-    lg = np.log((1 + e) / (1 - e))
-    alpha0 = 2 * (1 - e**2) / e**3 * (0.5 * lg - e)
-    beta0 = 1 / e**2 - (1 - e**2) / (2 * e**3) * lg
-    k1, k2 = alpha0 / (2 - alpha0), beta0 / (2 - beta0)
-    kp = e**4 * (beta0 - alpha0) / ((2 - e**2) * (2 * e**2 - (2 - e**2) * (beta0 - alpha0)))
-    m = rho * 4 / 3 * np.pi * a * b * b
-    return k1 * m, k2 * m, kp * m * (a * a + b * b) / 5
-
+    """Lamb (1932) sec. 373: stripcoef.hull.spheroid_added_mass (tested against Lamb's table
+    in tests/test_hull_lamb.py)."""
+    m = spheroid_added_mass(a, b, rho=rho)
+    return m[0], m[1], m[4]
 
 def spheroid_profile(a, b, n=400):
     t = np.linspace(0.0, np.pi, n)[::-1]

@@ -10,6 +10,7 @@ import numpy as np
 from ..conventions import added_mass_name
 from ..errors import InputError
 from ..io import write_text
+from .coefficients import add_fluid_arguments, add_mesh_arguments
 
 
 def add_parser(sub):
@@ -26,18 +27,8 @@ def add_parser(sub):
                    help="pure strip theory (no 3D corrections)")
     p.add_argument("--max-faces", type=int, default=None, metavar="N",
                    help="largest mesh the BEM accepts (default 8000; memory grows as N^2)")
-    g = p.add_argument_group("fluid (default: sea water)")
-    g.add_argument("--rho", type=float, metavar="KG_M3", help="water density [kg/m^3]")
-    g.add_argument("--nu", type=float, metavar="M2_S", help="kinematic viscosity [m^2/s]")
-    g.add_argument("--water-temperature", type=float, metavar="C", help="temperature [degC]")
-    g.add_argument("--salinity", type=float, metavar="PSU", help="salinity [PSU]")
-    m = p.add_argument_group("mesh input")
-    m.add_argument("--origin", default="centroid", metavar="centroid|X,Y,Z",
-                   help="reference point: the volume centroid or a point [m]")
-    m.add_argument("--axis", choices=("x", "y", "z"), default="x",
-                   help="mesh axis along the body (default x)")
-    m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
-                   help="length unit of the mesh file")
+    add_fluid_arguments(p, "fluid (default: sea water)")
+    add_mesh_arguments(p)
     p.set_defaults(func=run, reference_point=None, regime="auto", method="strip")
     return p
 

@@ -12,21 +12,16 @@ from pathlib import Path
 import numpy as np
 
 from . import markdown_table
+from ..hull import spheroid_added_mass
 
 ROOT = Path(__file__).resolve().parents[3]
 RHO = 1000.0
 
 
 def _lamb(a, b):
-    e = np.sqrt(1 - (b / a) ** 2)
-    lg = np.log((1 + e) / (1 - e))
-    alpha0 = 2 * (1 - e**2) / e**3 * (0.5 * lg - e)
-    beta0 = 1 / e**2 - (1 - e**2) / (2 * e**3) * lg
-    k1, k2 = alpha0 / (2 - alpha0), beta0 / (2 - beta0)
-    kp = e**4 * (beta0 - alpha0) / ((2 - e**2) * (2 * e**2 - (2 - e**2) * (beta0 - alpha0)))
-    m = RHO * 4 / 3 * np.pi * a * b * b
-    return k1 * m, k2 * m, kp * m * (a * a + b * b) / 5
-
+    """Lamb's exact (m11, m22, m55) of a spheroid (stripcoef.hull, tested against Lamb's table)."""
+    m = spheroid_added_mass(a, b, rho=RHO)
+    return m[0], m[1], m[4]
 
 def _panel_rows():
     from ..sections.panel import added_mass_contours
