@@ -28,7 +28,7 @@ def main():
     for name in ("mares", "videoray_pro3", "capsule", "spheroid"):
         v = stripcoef.load_vehicle(ROOT / "geometry" / f"{name}.yaml")
         ref = stripcoef.estimate(v, strips=6400)
-        for n in (50, 100, 200, 400, 800):
+        for n in (100, 200, 400, 1000, 2000):
             times = []
             for _ in range(5):
                 t0 = time.perf_counter()

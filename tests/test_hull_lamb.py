@@ -51,7 +51,8 @@ def test_sphere_file_is_exact():
     model = estimate(load_vehicle(GEOMETRY / "sphere.yaml"))
     exact = 0.5 * 1000 * 4 / 3 * np.pi * 0.5**3
     assert np.diag(model.added_mass)[:3] == pytest.approx([exact] * 3, rel=2e-4)
-    assert np.allclose(np.diag(model.added_mass)[3:], 0.0, atol=1e-9)
+    # exact rotation terms are 0; the axisymmetric-BEM correction leaves discretisation noise
+    assert np.allclose(np.diag(model.added_mass)[3:], 0.0, atol=1e-6 * exact * 0.5**2)
 
 
 def test_power_law_split():

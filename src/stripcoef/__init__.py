@@ -7,28 +7,39 @@ Public API (see docs/):
 
 - :func:`load_vehicle` - read and validate a vehicle file (YAML)
 - :func:`estimate` - strip theory: a Vehicle in, a :class:`HydroModel` out
+- :func:`load_model` - a HydroModel from a model file (JSON/YAML) or a vehicle file
 - :func:`solve_limits` - steady manoeuvre limits of a :class:`HydroModel` (docs/limits.md)
+- :func:`export_model` / :func:`write_export` - simulator and data formats (docs/export/)
+
+Everything but the exception classes is imported lazily, so that ``import stripcoef``
+(and the CLI's start-up) does not load numpy before the CLI has set up its environment.
 """
 
+from importlib import import_module
+
 from .errors import InputError, StripcoefError, UnreachableError
-from .fluid import Fluid
-from .model import HydroModel
-from .thrusters import Thruster
 
 __version__ = "0.1.0"
 
-__all__ = ["Fluid", "HydroModel", "InputError", "StripcoefError", "Thruster",
-           "UnreachableError", "estimate", "load_vehicle", "solve_limits", "__version__"]
+#: public name -> (module, attribute)
+_LAZY = {
+    "Fluid": ("fluid", "Fluid"),
+    "HydroModel": ("model", "HydroModel"),
+    "Thruster": ("thrusters", "Thruster"),
+    "load_vehicle": ("geometry.vehicle", "load_vehicle"),
+    "estimate": ("assemble", "estimate"),
+    "load_model": ("commands._modelfile", "load_model"),
+    "solve_limits": ("limits", "solve_limits"),
+    "export_model": ("export", "export_model"),
+    "write_export": ("export", "write_export"),
+}
+
+__all__ = ["InputError", "StripcoefError", "UnreachableError", "__version__", *_LAZY]
 
 
-def __getattr__(name):  # lazy imports keep `import stripcoef` fast
-    if name == "load_vehicle":
-        from .geometry.vehicle import load_vehicle
-        return load_vehicle
-    if name == "estimate":
-        from .assemble import estimate
-        return estimate
-    if name == "solve_limits":
-        from .limits import solve_limits
-        return solve_limits
-    raise AttributeError(f"module 'stripcoef' has no attribute {name!r}")
+def __getattr__(name):
+    try:
+        module, attr = _LAZY[name]
+    except KeyError:
+        raise AttributeError(f"module 'stripcoef' has no attribute {name!r}") from None
+    return getattr(import_module(f"stripcoef.{module}"), attr)

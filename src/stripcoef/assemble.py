@@ -254,11 +254,10 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
                         mats[k][i, 2, 2] = 0.5 * m44
 
 
-def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
-    """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI]."""
-    x0, y0, z0 = about
-    total = np.zeros((6, 6))
-    mats = [section_added_mass(p, rho).copy() for p in strips.parts]   # about part centres
+def section_matrices(strips: Strips, rho: float) -> list:
+    """Per part, the (k, 3, 3) 2D added mass about the part's centre [kg/m, kg, kg m], with
+    fin pairs combined (:func:`_combine_fins`) and the open width of holes removed."""
+    mats = [section_added_mass(p, rho).copy() for p in strips.parts]
     _combine_fins(strips, mats, rho)
     for p, m in zip(strips.parts, mats):
         cy, cz = _hole_width_reduction(strips, p)
@@ -266,6 +265,19 @@ def strip_added_mass(strips: Strips, rho: float, about) -> np.ndarray:
             m[:, 1, 1] *= np.clip(1.0 - cz / (2 * p.half_breadth), 0.0, 1.0) ** 2
         if np.any(cy > 0):   # sway passes through horizontal holes
             m[:, 0, 0] *= np.clip(1.0 - cy / (2 * p.half_height), 0.0, 1.0) ** 2
+    return mats
+
+
+def strip_added_mass(strips: Strips, rho: float, about, mats=None) -> np.ndarray:
+    """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
+
+    ``mats`` are the parts' section matrices (:func:`section_matrices`; computed if omitted).
+    """
+    x0, y0, z0 = about
+    total = np.zeros((6, 6))
+    if mats is None:
+        mats = section_matrices(strips, rho)
+    for p, m in zip(strips.parts, mats):
         dy = p.y - y0
         dz = p.z - z0
         h2 = np.zeros((p.index.size, 3, 3))
@@ -305,24 +317,39 @@ def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
 
 def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
                corrections: bool = True):
-    """Full 6x6 M_A about ``about``: strips (+ end corrections) + axial + entrained water.
+    """Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
 
-    Returns (M_A, info) where info lists the correction factors used.
+    With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
+    the axisymmetric-BEM corrections of :mod:`stripcoef.corrections` (per-direction
+    equivalent bodies of revolution: end effects, sway-yaw / heave-pitch couplings and the
+    axial added mass).  Without them it is pure strip theory plus the axial term
+    :math:`k_1\rho V` of the equal-length, equal-volume spheroid (Lamb; seed 002 eq. 36).
+
+    Returns (M_A, info) where info lists the factors used.
     """
+    from .corrections import apply_corrections, hull_corrections
+
     center = np.asarray(center, float)
-    strip = strip_added_mass(strips, rho, center)
-    info = {}
-    ft, fr, k1, ld = end_correction_factors(strips.length, volume)
-    info.update({"equivalent_spheroid_L_over_D": ld, "k1": k1})
+    mats = section_matrices(strips, rho)
+    strip = strip_added_mass(strips, rho, center, mats)
+    _, _, k1, ld = end_correction_factors(strips.length, volume)
+    info = {"equivalent_spheroid_L_over_D": float(ld)}
     if corrections:
-        s = np.sqrt(np.array([1.0, ft, ft, 1.0, fr, fr]))
-        strip = s[:, None] * strip * s[None, :]
+        per_strip = np.zeros((strips.n, 3, 3))
+        for p, m in zip(strips.parts, mats):
+            np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
+        corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip)
+        strip = apply_corrections(strip, corr)
+        scale = corr["scale"]
+        info.update({"end_correction_sway": float(scale[1]), "end_correction_heave": float(scale[2]),
+                     "end_correction_pitch": float(scale[4]), "end_correction_yaw": float(scale[5]),
+                     "axial_added_mass": float(corr["axial_added_mass"]),
+                     "correction_method": corr["method"]})
     else:
-        ft = fr = 1.0
-    # the axial term is a hull-level formula, present with or without end corrections
-    strip[0, 0] += k1 * rho * volume
-    info.update({"end_correction_translation": ft, "end_correction_rotation": fr,
-                 "axial_added_mass": "k1 rho V of the equivalent spheroid (Lamb)"})
+        strip[0, 0] += k1 * rho * volume
+        info.update({"k1": float(k1), "axial_added_mass": float(k1 * rho * volume),
+                     "correction_method": "none (pure strip theory); axial k1 rho V of the "
+                                          "equivalent spheroid"})
     total = transform_matrix(strip, from_point=center, to_point=about)
     total = total + entrained_water(strips, rho, about)
     return 0.5 * (total + total.T), info
@@ -339,6 +366,16 @@ def _local_exponent(fn, re):
         hi = np.asarray(fn(np.asarray(re) * 1.1), float)
         lo = np.asarray(fn(np.asarray(re) / 1.1), float)
     return 2.0 + (np.log(hi) - np.log(lo)) / (2.0 * np.log(1.1))
+
+
+def _perimeter(part):
+    """Wetted perimeter of each strip's section of a part [m]."""
+    if part.shape == "ellipse":
+        return _ellipse_perimeter(part.half_breadth, part.half_height)
+    if part.shape == "polygon":
+        from .geometry.mesh import polygon_perimeter
+        return polygon_perimeter(part)
+    return 4.0 * (part.half_breadth + part.half_height)
 
 
 def _ellipse_perimeter(b, h):
@@ -388,8 +425,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     x_h = y_h = z_h = 0.0
     for p in hull_parts:
         dx = strips.width(p)
-        per = (_ellipse_perimeter(p.half_breadth, p.half_height) if p.shape == "ellipse"
-               else 4.0 * (p.half_breadth + p.half_height))
+        per = _perimeter(p)
         s_wet += float((per * dx).sum())
         area = p.area
         max_d = max(max_d, float(2.0 * np.sqrt(np.max(area) / np.pi)))
@@ -528,7 +564,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
     ----------
     vehicle : Vehicle
     strips : int, optional
-        Number of strips (default: the vehicle file's, else 400).
+        Number of strips (default: the vehicle file's, else 1000).
     corrections : bool, optional
         3D end corrections (default on; ``False`` = pure strip theory).
     speed : float, optional

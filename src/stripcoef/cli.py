@@ -10,13 +10,21 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 import warnings
+
+# The matrices here are small (strips, panels): threaded BLAS only adds contention, and on a
+# loaded 2-core machine makes a 160x160 solve 100x slower (docs/performance.md). Set before
+# numpy is imported by the subcommands; a user's own setting wins.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 from .errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "diagnose")
+COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
+            "diagnose")
 
 
 class _Parser(argparse.ArgumentParser):

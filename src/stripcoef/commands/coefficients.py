@@ -34,22 +34,34 @@ def add_parser(sub):
                    help="center_of_buoyancy, center_of_gravity, origin or X,Y,Z [m]")
     p.add_argument("--regime", choices=("auto", "laminar", "turbulent"), default="auto",
                    help="friction line (default: auto, laminar below Re_L = 5e5)")
-    g = p.add_argument_group("fluid (override the file; defaults for meshes: sea water)")
+    add_fluid_arguments(p, "fluid (override the file; defaults for meshes: sea water)")
+    m = add_mesh_arguments(p)
+    m.add_argument("--method", choices=("strip", "bem"), default="strip",
+                   help="strip theory (default) or the Capytaine BEM (needs stripcoef[bem])")
+    p.set_defaults(func=run)
+    return p
+
+
+def add_fluid_arguments(parser, title: str):
+    """--rho, --nu, --water-temperature, --salinity (shared by the commands that estimate)."""
+    g = parser.add_argument_group(title)
     g.add_argument("--rho", type=float, metavar="KG_M3", help="water density [kg/m^3]")
     g.add_argument("--nu", type=float, metavar="M2_S", help="kinematic viscosity [m^2/s]")
     g.add_argument("--water-temperature", type=float, metavar="C", help="temperature [degC]")
     g.add_argument("--salinity", type=float, metavar="PSU", help="salinity [PSU]")
-    m = p.add_argument_group("mesh input")
+    return g
+
+
+def add_mesh_arguments(parser):
+    """--origin, --axis, --length-unit for mesh input (shared with ``compare``)."""
+    m = parser.add_argument_group("mesh input")
     m.add_argument("--origin", default="centroid", metavar="centroid|X,Y,Z",
                    help="reference point of a mesh: its volume centroid or a point [m]")
     m.add_argument("--axis", choices=("x", "y", "z"), default="x",
                    help="mesh axis along the body (default x)")
     m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
                    help="length unit of the mesh file")
-    m.add_argument("--method", choices=("strip", "bem"), default="strip",
-                   help="strip theory (default) or the Capytaine BEM (needs stripcoef[bem])")
-    p.set_defaults(func=run)
-    return p
+    return m
 
 
 def parse_point(text: str, *, key: str):
@@ -158,8 +170,9 @@ def format_table(model) -> str:
            "Conditions:"]
     keys = ("reference_speed", "reynolds_length", "regime", "cf_laminar", "cf_turbulent",
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
-            "hull_crossflow_cd_y", "hull_length_factor", "equivalent_spheroid_L_over_D", "k1",
-            "end_correction_translation", "end_correction_rotation")
+            "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
+            "end_correction_sway", "end_correction_heave", "end_correction_pitch",
+            "end_correction_yaw", "correction_method")
     for k in keys:
         if k in c:
             v = c[k]

@@ -25,7 +25,7 @@ from .bodies import Box, Cylinder, Fin, Hole, Hull
 from .profiles import SEGMENT_TYPES, Segment, check_contiguous
 
 #: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
-DEFAULT_STRIPS = 400
+DEFAULT_STRIPS = 1000
 #: Default reference speed for Reynolds numbers and the damping split [m/s].
 DEFAULT_SPEED = 1.0
 REFERENCE_NAMES = ("center_of_buoyancy", "center_of_gravity", "origin")
@@ -297,7 +297,8 @@ def _appendage(r: _Reader, data, path):
     mpath = Path(r.file).parent / mfile
     return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,
                                                           choices=("m", "mm", "in"), default="m"),
-                              origin="file", transform=data.get("transform"), name=name)
+                              origin="file", transform=data.get("transform"), name=name,
+                              role="appendage")
 
 
 def _hole(r: _Reader, data, path) -> Hole:

@@ -10,7 +10,7 @@ import importlib
 
 #: Topic modules, in pipeline order.
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "identification",
-                             "diagnosis")
+                             "meshes", "diagnosis")
 
 
 def build() -> str:

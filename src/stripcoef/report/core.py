@@ -60,7 +60,7 @@ def mares_conditions():
 
 def section() -> str:
     out = ["## Strip theory against exact solutions (issue 2)", "",
-           "Prolate spheroids, L = 1.5 m, ρ = 1000 kg/m³, 400 strips, against Lamb's exact added "
+           "Prolate spheroids, L = 1.5 m, ρ = 1000 kg/m³, 1000 strips, against Lamb's exact added "
            "mass (`tests/test_hull_lamb.py` asserts 2 % on every non-zero diagonal term). m55 "
            "equals m66 and m33 equals m22 by symmetry.", ""]
     out.append(markdown_table(
@@ -68,9 +68,9 @@ def section() -> str:
         [(f"{ld:g}", n, f"{e:.5g}", f"{c:.5g}", f"{d:+.3f}", "–" if np.isnan(p) else f"{p:+.1f}")
          for ld, n, e, c, d, p in spheroid_accuracy()]))
     out += ["", "Capsule (cylinder with hemispherical ends, 1.5 m × 0.2 m) against the converged "
-            "Capytaine BEM (reference_tables/capytaine_anchor). The equivalent-spheroid "
-            "correction is exact only for spheroids; the blunt body's axial term is "
-            "underestimated (issue 3 improves the corrections for arbitrary bodies).", ""]
+            "Capytaine BEM (reference_tables/capytaine_anchor): the default 3D corrections "
+            "(axisymmetric BEM of the equivalent bodies of revolution, docs/theory.md sec. 6) "
+            "against pure strip theory with Lamb's axial term.", ""]
     out.append(markdown_table(["term", "BEM", "stripcoef", "diff %", "pure strip diff %"],
                               [(k, f"{v:.4g}", f"{c:.4g}", f"{d:+.1f}", f"{p:+.1f}")
                                for k, v, c, d, p in capsule_vs_bem()]))
