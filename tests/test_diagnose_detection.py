@@ -36,7 +36,7 @@ def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
         assert first["error_after"] <= 1.01 * first["error_before"]
 
 
-@pytest.mark.parametrize("seed", [21, 22, 23])
+@pytest.mark.parametrize("seed", [21, 22])
 def test_clean_log_adds_no_effect(seed):
     log, prior, _ = generate(None, seed=seed)
     res = public(diagnose(log, prior, dof="surge"))
