@@ -377,7 +377,7 @@ def _bic(resid, n_params):
 # evaluation of one configuration
 # ---------------------------------------------------------------------------
 
-def _evaluate(cfg: _Config, train, held):
+def _evaluate(cfg: _Config):
     """Fit on all windows (parameters, error, BIC) and by blocked cross-validation (the
     held-out error: each of ``N_BLOCKS`` contiguous blocks predicted by a fit on the others).
 
@@ -422,12 +422,6 @@ def _calibration(data: WindowData, dof: int, bands=None):
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return cols, np.asarray(sd, float), names, prior, b
-
-
-def _held_out_mask(n):
-    """All windows are fitted and all are held out once (blocked cross-validation, see
-    :func:`_evaluate`); kept as (fit mask, held-out mask) for the callers' signatures."""
-    return np.ones(n, bool), np.ones(n, bool)
 
 
 def _structure(data: WindowData, dof: int, resid, candidates):
@@ -490,7 +484,6 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
     """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module)."""
     names = list(effects) if effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
-    train, held = _held_out_mask(data.n_windows)
     cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands)
     e0 = data.e0[:, dof]
     unit = "N" if dof < 3 else "N m"
@@ -498,7 +491,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
               "baseline_error": _rms(e0), "baseline_held_out_error": _rms(e0)}
 
     cfg = _Config(data, dof, cal_cols, cal_sd, [])
-    cur = _evaluate(cfg, train, held)
+    cur = _evaluate(cfg)
     th = cur["full"]["theta"]
     sd = np.sqrt(np.clip(np.diag(cur["full"]["cov"]), 0, None))
     result["calibration"] = {
@@ -526,12 +519,11 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
                 continue
             trial_cfg = _Config(data, dof, cal_cols, cal_sd, list(cfg.terms) + [(eff, None)])
             try:
-                ev = _evaluate(trial_cfg, train, held)
+                ev = _evaluate(trial_cfg)
                 ref = cur
                 if eff.nuisance(data, dof) is not None:
                     ref = _evaluate(_Config(data, dof, cal_cols, cal_sd,
-                                            list(cfg.terms) + [(_Nuisance(eff), None)]),
-                                    train, held)
+                                            list(cfg.terms) + [(_Nuisance(eff), None)]))
             except (np.linalg.LinAlgError, ValueError) as exc:
                 evaluated.append({"effect": eff.name, "applicable": False,
                                   "reason": f"fit failed: {exc}"})
@@ -582,7 +574,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
     result["final_error"] = cur["error"]
     result["final_held_out_error"] = cur["held_out_error"]
     result["structure_after"] = _structure(data, dof, cur["full"]["resid"], library)
-    result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur, train, held)
+    result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur)
     result["_final_config"] = cfg
     result["_final_eval"] = cur
     result["_e0"] = e0
@@ -666,14 +658,14 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
             "_cfg": cfg, "_ev": ev}
 
 
-def _unexplained(cfg, cur, train, held):
+def _unexplained(cfg, cur):
     """Fit a generic basis on top of the final model; structured when it cuts the
     cross-validated error by ``UNEXPLAINED_GAIN`` and lowers BIC by ``MIN_DELTA_BIC``."""
     data = cfg.data
     basis = _generic_basis(data, cfg.dof)
     generic = _Generic(basis)
     ev = _evaluate(_Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd,
-                           list(cfg.terms) + [(generic, None)]), train, held)
+                           list(cfg.terms) + [(generic, None)]))
     gain = 1.0 - ev["held_out_error"] / cur["held_out_error"] if cur["held_out_error"] > 0 \
         else 0.0
     dbic = ev["bic"] - cur["bic"]
@@ -922,13 +914,12 @@ def fit_effects(log, model, dof, effects, *, window: float = 2.0, bands=None) ->
     """
     data = window_data(log, model, window=window)
     i = parse_dof(dof)
-    train, held = _held_out_mask(data.n_windows)
     cal_cols, cal_sd, cal_names, _, _ = _calibration(data, i, bands)
     cfg = _Config(data, i, cal_cols, cal_sd, [])
-    ev = _evaluate(cfg, train, held)
+    ev = _evaluate(cfg)
     for name in effects:
         cfg = _Config(data, i, cal_cols, cal_sd, list(cfg.terms) + [(get_effect(name), None)])
-        ev = _evaluate(cfg, train, held)
+        ev = _evaluate(cfg)
     full = ev["full"]
     theta, cov = full["theta"], full["cov"]
     k = len(cal_names)
