@@ -7,7 +7,7 @@ import pytest
 from stripcoef import cli
 from stripcoef.identify.synthetic import generate
 from stripcoef.logs import read_log
-from stripcoef.commands._modelfile import load_model
+from stripcoef.modelfile import load_model
 from stripcoef.export import write_export
 
 

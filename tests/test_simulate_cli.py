@@ -11,7 +11,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from stripcoef import cli  # noqa: E402
 from stripcoef.logs import Log, read_log  # noqa: E402
-from stripcoef.commands._modelfile import load_model
+from stripcoef.modelfile import load_model
 from stripcoef.export import write_export  # noqa: E402
 from stripcoef.thrusters import Thruster  # noqa: E402
 from test_simulate_dynamics import make_model  # noqa: E402

@@ -28,7 +28,7 @@ _LAZY = {
     "Thruster": ("thrusters", "Thruster"),
     "load_vehicle": ("geometry.vehicle", "load_vehicle"),
     "estimate": ("assemble", "estimate"),
-    "load_model": ("commands._modelfile", "load_model"),
+    "load_model": ("modelfile", "load_model"),
     "solve_limits": ("limits", "solve_limits"),
     "export_model": ("export", "export_model"),
     "write_export": ("export", "write_export"),

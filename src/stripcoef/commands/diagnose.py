@@ -41,7 +41,7 @@ def run(args) -> int:
     from ..identify.effects import get_effect
     from ..logs import read_log
     from ..export import write_export
-    from ._modelfile import load_model
+    from ..modelfile import load_model
 
     if not (args.window > 0):
         raise InputError("not a positive window", key="--window", value=args.window,

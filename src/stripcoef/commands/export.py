@@ -41,7 +41,7 @@ def add_parser(subparsers):
 
 def run(args) -> int:
     from ..export import export_model, format_module, write_export
-    from ._modelfile import load_model
+    from ..modelfile import load_model
 
     module = format_module(args.to)            # unknown format: fail before any work
     if module.BINARY and not args.output:

@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 
 from ..errors import InputError
-from ._modelfile import load_model
+from ..modelfile import load_model
 
 
 def add_parser(subparsers) -> None:

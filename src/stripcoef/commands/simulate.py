@@ -88,7 +88,7 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
 
 
 def run(args) -> int:
-    from ._modelfile import load_model
+    from ..modelfile import load_model
     from ..simulate import simulate
 
     log = read_log(args.inputs, required=("t",))
