@@ -18,7 +18,7 @@ import numpy as np
 
 from ..conventions import AXES, axes_operator, transform_matrix, transform_vector
 from ..errors import InputError, ModelWarning
-from ..model import HydroModel
+from ..model import HydroModel, plain
 
 #: Names of the special reference points (see :func:`resolve_point`).
 POINT_NAMES = ("CO", "CG", "CB", "origin")
@@ -224,23 +224,6 @@ def header_lines(view: ExportView, fmt_name: str) -> list[str]:
         f"mass {fmt(m.mass)} kg, volume {fmt(m.volume)} m^3, density {fmt(m.density)} kg/m^3",
     ]
     return lines
-
-
-def plain(obj):
-    """Nested data with numpy scalars and arrays turned into Python floats, ints and lists."""
-    if isinstance(obj, dict):
-        return {str(k): plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [plain(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return plain(obj.tolist())
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.floating):
-        return float(obj)
-    return obj
 
 
 def xml_comment(lines) -> list[str]:
