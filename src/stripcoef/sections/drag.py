@@ -195,9 +195,23 @@ def hoerner_form_factor(diameter_over_length):
 def blunt_cylinder_axial_cd(length_over_diameter):
     r"""Pressure drag of a blunt (flat-ended) cylinder in flow along its axis, on its frontal area.
 
+    .. math:: F = \tfrac12 \rho\, C_D(L/D)\, A_{frontal}\, u|u|
+
     Hoerner's values for flat-faced cylinders: C_D ~ 1.15 at L/D = 0.5, 0.9 at 1,
-    0.85 at 2, 0.87 at 4, 0.99 at 8 (Hoerner 1965, fig. 3-33); linear interpolation
-    between these points, clamped outside (appendage pods and housings).
+    0.85 at 2, 0.87 at 4, 0.99 at 8 (Hoerner 1965, fig. 3-33; recalled, not re-checked
+    here: treat as assumed); linear interpolation between these points.  Outside
+    0.5 <= L/D <= 8 the end value is used: a shorter body is a disc (C_D ~ 1.1-1.2) and a
+    longer one adds only skin friction, which the hull friction line already carries.
+
+    Parameters
+    ----------
+    length_over_diameter : float or array
+        L/D of the body along the flow [-]
+
+    Returns
+    -------
+    float or array
+        C_D on the frontal area [-]
     """
     ld = np.asarray(length_over_diameter, dtype=float)
     xs = np.array([0.5, 1.0, 2.0, 4.0, 8.0])
