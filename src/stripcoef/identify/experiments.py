@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 
 from ..fluid import G, RHO_SEAWATER
 from ..logs import Log
+from .onestep import simulate_state
 
 #: Lead density [kg/m^3] (pure lead, CRC Handbook).
 RHO_LEAD = 11340.0
@@ -154,27 +155,13 @@ def videoray_yaw_log(seed: int, *, truth=VIDEORAY_TRUTH, cycles: int = 8,
         return amps[j] * np.sin(2 * np.pi * np.asarray(tt) / VIDEORAY_PERIOD)
 
     t = np.arange(0.0, seg * amps.size, 1.0 / fps)
-    # RK4 with 20 steps per frame (truth to ~1e-10 rad/s), torque evaluated exactly
+    # truth: the identified equation itself (onestep.simulate_state, classical RK4) on a grid
+    # 20 times finer than the frames, so the linearly interpolated torque is near exact
     sub = 20
-    h = 1.0 / fps / sub
-    tf = np.arange(t.size * sub) * h
-    nf = torque(tf)
-    nm = torque(tf + 0.5 * h)
-    r = 0.0
-    out = np.empty(t.size)
-    for k in range(t.size):
-        out[k] = r
-        for j in range(k * sub, (k + 1) * sub):
-            n0, n1 = nf[j], nm[j]
-            n2 = torque(tf[j] + h) if j + 1 == nf.size else nf[j + 1]
-            k1 = a * r + b * r * abs(r) + c * n0 + d
-            y = r + 0.5 * h * k1
-            k2 = a * y + b * y * abs(y) + c * n1 + d
-            y = r + 0.5 * h * k2
-            k3 = a * y + b * y * abs(y) + c * n1 + d
-            y = r + h * k3
-            k4 = a * y + b * y * abs(y) + c * n2 + d
-            r += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+    tf = np.arange(t.size * sub) * (1.0 / fps / sub)
+    fine = simulate_state(tf, torque(tf), 0.0, {"alpha": a, "beta": b, "gamma": c, "delta": d},
+                          "LQB", substeps=2)
+    out = fine[::sub]
     rng = np.random.default_rng(seed)
     return Log({"t": t, "r": out + rng.normal(0.0, noise, t.size), "N": torque(t)},
                source=f"VideoRay virtual pivot test (seed {seed})")
