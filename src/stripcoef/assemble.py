@@ -45,7 +45,11 @@ from .strips import Strips
 # ---------------------------------------------------------------------------
 
 def _hole_water(strips: Strips):
-    """Per hole-cut: water volume per strip [m^3] (only holes cut through displaced parts)."""
+    """Per hole-cut: water volume per strip [m^3] (only holes cut through displaced parts).
+
+    dV = c d dx, chord c [m], depth d [m], strip width dx [m]; [assumption] prismatic
+    hole per strip (seed 002, sec. IV.C approximates holes by cylinders).
+    """
     return [(h, h.chord * h.depth * strips.dx[h.index]) for h in strips.holes]
 
 
@@ -55,10 +59,17 @@ def displaced_volume(strips: Strips):
     .. math:: V = \sum_{parts} A\,dx - \sum_{holes} c\,d\,dx,\qquad
               r_B = \frac{1}{V}\Big(\sum A\,dx\,(x, y_c, z_c) - \sum c\,d\,dx\,(x, y_h, z_h)\Big)
 
+    Part areas A [m^2], hole chord c and depth d [m], strip widths dx [m]; centroids [m].
+
     Returns
     -------
     (float, ndarray)
         V [m^3], r_B [m] in body axes
+
+    References
+    ----------
+    Midpoint-rule volume and first moment of the strips (Newman 1977, sec. 7.4 strip
+    slicing); Fossen (2011), sec. 4.1 (B and r_B).
     """
     vol = 0.0
     mom = np.zeros(3)
@@ -164,7 +175,11 @@ def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb
 # ---------------------------------------------------------------------------
 
 def _strip_operator(xrel):
-    """L(X) for an array of X: (n, 3, 6)."""
+    """L(X) for an array of X: (n, 3, 6).
+
+    [v + X r, w - X q, p] = L(X) nu, X = x - x_0 [m]; L is [-] in its 1 entries and [m]
+    in the X entries. See module docstring (Newman 1977, sec. 7.4).
+    """
     n = xrel.size
     L = np.zeros((n, 3, 6))
     L[:, 0, 1] = 1.0
@@ -176,7 +191,12 @@ def _strip_operator(xrel):
 
 
 def _hole_width_reduction(strips: Strips, part):
-    """Per strip of a hull part: open width of holes along z (c_z) and along y (c_y) [m]."""
+    """Per strip of a hull part: open width of holes along z (c_z) and along y (c_y) [m].
+
+    c_z = sum of the chords [m] of the in-hull holes with axis z in the strip (same for y).
+    [assumption] widths add (holes do not overlap); used by seed 002, eq. 40 style
+    reductions in :func:`section_matrices` and :func:`_damping`.
+    """
     cz = np.zeros(part.index.size)
     cy = np.zeros(part.index.size)
     if part.role != "hull":
@@ -208,6 +228,9 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
     (Blevins 1979 table 14-2; Prestero 2001 sec. 3.4) instead of the circle plus two
     isolated plates, which ignores their interaction.  A cruciform section gets both pairs'
     normal terms; its roll term is then the sum of the two pairs' (an approximation).
+
+    Hull radius R and tip radius a [m], rho [kg/m^3]; m_n [kg/m], m_44 [kg m] per unit
+    length, written into ``mats`` (per part, (k, 3, 3) [kg/m, kg, kg m]).
     """
     from .sections.added_mass import circle_with_fins
 
@@ -255,8 +278,19 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
 
 
 def section_matrices(strips: Strips, rho: float) -> list:
-    """Per part, the (k, 3, 3) 2D added mass about the part's centre [kg/m, kg, kg m], with
-    fin pairs combined (:func:`_combine_fins`) and the open width of holes removed."""
+    r"""Per part, the (k, 3, 3) 2D added mass about the part's centre [kg/m, kg, kg m], with
+    fin pairs combined (:func:`_combine_fins`) and the open width of holes removed.
+
+    .. math:: m_{33} \leftarrow m_{33}\,(1 - c_z/2b)^2,\qquad m_{22} \leftarrow m_{22}\,(1 - c_y/2h)^2
+
+    with open hole widths c_z, c_y [m] (:func:`_hole_width_reduction`), half-breadth b and
+    half-height h [m]; ``rho`` [kg/m^3]. Sections: :func:`stripcoef.sections.section_added_mass`.
+
+    References
+    ----------
+    Holes pass heave (sway) flow: seed 002, eq. 40; the squared open-width factor is an
+    [assumption] (added mass ~ width^2, as for a plate, DNV-RP-C205 table A-1).
+    """
     mats = [section_added_mass(p, rho).copy() for p in strips.parts]
     _combine_fins(strips, mats, rho)
     for p, m in zip(strips.parts, mats):
@@ -269,9 +303,18 @@ def section_matrices(strips: Strips, rho: float) -> list:
 
 
 def strip_added_mass(strips: Strips, rho: float, about, mats=None) -> np.ndarray:
-    """Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
+    r"""Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
 
-    ``mats`` are the parts' section matrices (:func:`section_matrices`; computed if omitted).
+    .. math:: M_A^{strip} = \sum_{parts}\sum_k dx_k\, L(X_k)^T H_2^T m_k H_2\, L(X_k),
+              \quad H_2 = egin{bmatrix}1&0&-\Delta z\0&1&\Delta y\0&0&1\end{bmatrix}
+
+    ``mats`` are the parts' section matrices [kg/m, kg, kg m] (:func:`section_matrices`;
+    computed if omitted); ``rho`` [kg/m^3]; ``about`` [m]; strip widths dx [m]. Returns M_A
+    [kg, kg m, kg m^2].
+
+    References
+    ----------
+    See module docstring (Newman 1977, sec. 7.4; Fossen 2011, sec. 6.3.3).
     """
     x0, y0, z0 = about
     total = np.zeros((6, 6))
@@ -299,6 +342,11 @@ def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
     .. math:: M = \rho\sum_{strips}\sum_g w_g\, c\, d\, dx\ [I,\ -S(r_g)]^T (I - aa^T) [I,\ -S(r_g)]
 
     with 3 Gauss points :math:`r_g` along the hole's axis (exact for the quadratic moments).
+    ``rho`` [kg/m^3], chord c, depth d, dx and ``about`` [m]; returns [kg, kg m, kg m^2].
+
+    References
+    ----------
+    See module docstring (:math:`M_{hole}`; seed 002, sec. IV.C and eq. 40).
     """
     about = np.asarray(about, float)
     total = np.zeros((6, 6))
@@ -317,7 +365,7 @@ def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
 
 def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
                corrections: bool = True):
-    """Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
+    r"""Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
 
     With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
     the axisymmetric-BEM corrections of :mod:`stripcoef.corrections` (per-direction
@@ -325,7 +373,17 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     axial added mass).  Without them it is pure strip theory plus the axial term
     :math:`k_1\rho V` of the equal-length, equal-volume spheroid (Lamb; seed 002 eq. 36).
 
-    Returns (M_A, info) where info lists the factors used.
+    .. math:: M_A = H^T\big(M_A^{strip}(+\text{corr.}) + k_1\rho V\,e_1e_1^T\big)H + M_{hole}
+
+    (H moves the matrix from ``center`` to ``about``; :func:`stripcoef.conventions.transform_matrix`;
+    the k_1 term only without corrections). ``rho`` [kg/m^3], ``volume`` [m^3], ``about``
+    and ``center`` [m].
+
+    Returns (M_A [kg, kg m, kg m^2], info) where info lists the factors used.
+
+    References
+    ----------
+    See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
     """
     from .corrections import apply_corrections, hull_corrections
 
@@ -360,7 +418,12 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
 # ---------------------------------------------------------------------------
 
 def _local_exponent(fn, re):
-    """n = 2 + d ln C_D / d ln Re (power-law exponent of the drag force in speed)."""
+    """n = 2 + d ln C_D / d ln Re (power-law exponent of the drag force in speed).
+
+    ``fn(Re)`` -> C_D [-], ``re`` [-]; returns n [-] by a central difference over Re*1.1^+-1.
+    From F = 1/2 rho C_D(Re) A V^2 with Re proportional to V (Hoerner 1965, ch. 3);
+    the split is :func:`stripcoef.hull.power_law_split`.
+    """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         hi = np.asarray(fn(np.asarray(re) * 1.1), float)
@@ -369,7 +432,12 @@ def _local_exponent(fn, re):
 
 
 def _perimeter(part):
-    """Wetted perimeter of each strip's section of a part [m]."""
+    """Wetted perimeter of each strip's section of a part [m].
+
+    Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
+    (:func:`stripcoef.geometry.mesh.polygon_perimeter`); rectangle: P = 4 (b + h), half
+    sizes b, h [m]. Exact geometry (the ellipse: Ramanujan's approximation).
+    """
     if part.shape == "ellipse":
         return _ellipse_perimeter(part.half_breadth, part.half_height)
     if part.shape == "polygon":
@@ -379,7 +447,15 @@ def _perimeter(part):
 
 
 def _ellipse_perimeter(b, h):
-    """Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles)."""
+    r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
+
+    .. math:: P pprox \pi(b + h)\left(1 + rac{3\lambda}{10 + \sqrt{4 - 3\lambda}}
+ight),
+              \quad \lambda = \left(rac{b-h}{b+h}
+ight)^2
+
+    Half-axes b, h [m]. Ramanujan (1914), Quart. J. Math. 45, the second approximation.
+    """
     hh = ((b - h) / (b + h)) ** 2
     return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))
 
@@ -575,6 +651,10 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         Friction line: ``auto``, ``laminar`` or ``turbulent``.
     fluid : Fluid, optional
         Override the vehicle file's fluid.
+
+    Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
+    :func:`added_mass`, D_L and D_Q from :func:`_damping`, M_RB from
+    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
     """
     if regime not in ("auto", "laminar", "turbulent"):
         raise InputError("unknown regime", key="regime", value=regime,

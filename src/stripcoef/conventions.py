@@ -66,7 +66,11 @@ def shift_operator(r) -> np.ndarray:
 
 
 def axes_operator(axes: str) -> np.ndarray:
-    """Diagonal sign matrix taking FRD body-axis components to ``axes`` ("FRD" or "FLU")."""
+    """Diagonal sign matrix taking FRD body-axis components to ``axes`` ("FRD" or "FLU").
+
+    T = I (FRD) or T = diag(1, -1, -1, 1, -1, -1) (FLU: a rotation by pi about x);
+    returns T [-]. [assumption] convention of this package (see module docstring).
+    """
     if axes == "FRD":
         return np.eye(6)
     if axes == "FLU":
@@ -107,12 +111,21 @@ def transform_matrix(matrix, *, from_point=(0.0, 0.0, 0.0), to_point=(0.0, 0.0, 
 
 
 def transform_vector(vec, axes: str = "FRD") -> np.ndarray:
-    """Components of a 3-vector (point, direction) of FRD body axes in ``axes``."""
+    """Components of a 3-vector (point, direction) of FRD body axes in ``axes``.
+
+    v_axes = T_3 v_FRD with T_3 the first 3 diagonal entries of :func:`axes_operator`;
+    ``vec`` and the result in the same unit ([m] for points, [-] for directions).
+    [assumption] package convention (see module docstring).
+    """
     return np.asarray(vec, dtype=float) * axes_operator(axes).diagonal()[:3]
 
 
 def rotation_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
     r"""Body-to-NED rotation :math:`R_{zyx}(\phi, \theta, \psi)` (J_1 of seed 000, eq. 2).
+
+    .. math:: R_{zyx} = R_{z,\psi} R_{y,\theta} R_{x,\phi}
+
+    Euler angles ``phi, theta, psi`` [rad]; returns R [-] (3x3, orthonormal).
 
     References
     ----------
@@ -131,6 +144,11 @@ def rotation_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
 def euler_rate_matrix(phi: float, theta: float) -> np.ndarray:
     r"""Angular-velocity transform :math:`T(\Theta)` (J_2 of seed 000, eq. 2).
 
+    .. math:: \dot\Theta = T(\Theta)\,\omega, \quad
+        T = \begin{bmatrix} 1 & s\phi t\theta & c\phi t\theta \\
+        0 & c\phi & -s\phi \\ 0 & s\phi/c\theta & c\phi/c\theta \end{bmatrix}
+
+    ``phi, theta`` [rad]; returns T [-] (Euler rates [rad/s] from body rates [rad/s]).
     Singular at :math:`\theta = \pm 90^\circ`.
 
     References
@@ -143,7 +161,17 @@ def euler_rate_matrix(phi: float, theta: float) -> np.ndarray:
 
 
 def kinematics(eta) -> np.ndarray:
-    r"""Full 6x6 kinematic transform :math:`J(\eta)`, :math:`\dot\eta = J(\eta)\nu`."""
+    r"""Full 6x6 kinematic transform :math:`J(\eta)`, :math:`\dot\eta = J(\eta)\nu`.
+
+    .. math:: J(\eta) = \operatorname{diag}(R_{zyx}(\Theta),\ T(\Theta))
+
+    ``eta`` = [x, y, z, phi, theta, psi] [m, rad]; returns J [-] mapping nu
+    [m/s, rad/s] to eta_dot [m/s, rad/s].
+
+    References
+    ----------
+    Seed 000, eq. 2; Fossen (2011), eqs. 2.18 and 2.29 (blocks).
+    """
     j = np.zeros((6, 6))
     j[:3, :3] = rotation_matrix(eta[3], eta[4], eta[5])
     j[3:, 3:] = euler_rate_matrix(eta[3], eta[4])

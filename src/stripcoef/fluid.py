@@ -121,7 +121,12 @@ class Fluid:
 
     @classmethod
     def from_temperature_salinity(cls, temperature: float, salinity: float) -> "Fluid":
-        """Fluid from water temperature [degC] and salinity [PSU] (EOS-80 + Sharqawy 2010)."""
+        """Fluid from water temperature [degC] and salinity [PSU] (EOS-80 + Sharqawy 2010).
+
+        rho = rho_EOS80(t, S) [kg/m^3] (:func:`density_eos80`), mu = mu_Sharqawy(t, S)
+        [Pa s] (:func:`dynamic_viscosity_sharqawy`), nu = mu / rho [m^2/s]; see those
+        functions and the module docstring for the equations and their references.
+        """
         for name, value, lo, hi in (("temperature", temperature, 0.0, 40.0),
                                     ("salinity", salinity, 0.0, 42.0)):
             if not np.isfinite(value):

@@ -85,6 +85,13 @@ def equivalent_spheroid(length, volume):
 
     A body's L/D used for Lamb's factors is ``a/b`` (>= 1 enforced: a body shorter than
     its volume-equivalent diameter is treated as a sphere of that volume).
+
+    ``length`` L [m], ``volume`` V [m^3]; returns (a, b) [m].
+
+    References
+    ----------
+    [assumption] equal-length, equal-volume spheroid, after Newman (1977), sec. 7.4 and
+    the MARES equivalent ellipsoid (seed 002, sec. IV.C).
     """
     a = 0.5 * length
     b = np.sqrt(3.0 * volume / (4.0 * np.pi * a))
@@ -108,10 +115,16 @@ def end_correction_factors(length, volume):
     :math:`S M S` with :math:`S = \mathrm{diag}(1, \sqrt{f_t}, \sqrt{f_t}, 1, \sqrt{f_r},
     \sqrt{f_r})`, which keeps M_A symmetric positive definite.
 
+    ``length`` L [m], ``volume`` V [m^3].
+
     Returns
     -------
     tuple
-        (f_t, f_r, k1, L/D of the equivalent spheroid)
+        (f_t, f_r, k1, L/D of the equivalent spheroid), all [-]
+
+    References
+    ----------
+    Lamb (1932), sec. 373 (k factors, see module docstring); Newman (1977), sec. 7.4.
     """
     a, b = equivalent_spheroid(length, volume)
     k1, k2, kp = lamb_k_factors(a / b)

@@ -186,17 +186,17 @@ class HydroModel:
     # -- derived quantities -------------------------------------------------
     @property
     def mass_matrix(self) -> np.ndarray:
-        """M = M_RB + M_A [kg, kg m, kg m^2]."""
+        """M = M_RB + M_A [kg, kg m, kg m^2] (Fossen 2011, eq. 7.190; see module docstring)."""
         return self.rigid_body_mass + self.added_mass
 
     @property
     def weight(self) -> float:
-        """W = m g [N]."""
+        """W = m g [N], m [kg], g [m/s^2] (Fossen 2011, sec. 4.1)."""
         return self.mass * self.gravity
 
     @property
     def buoyancy(self) -> float:
-        """B = rho g V [N]."""
+        """B = rho g V [N], rho [kg/m^3], V [m^3] (Fossen 2011, sec. 4.1)."""
         return self.density * self.gravity * self.volume
 
     @property
@@ -212,7 +212,11 @@ class HydroModel:
     def coriolis(self, nu, *, rigid_body: bool = True, added_mass: bool = True,
                  munk: bool = True) -> np.ndarray:
         """C(nu) = C_RB(nu) + C_A(nu); ``munk=False`` drops the C_A terms that multiply
-        linear velocities into moments (the Munk moment, seed 002 sec. V.D)."""
+        linear velocities into moments (the Munk moment, seed 002 sec. V.D).
+
+        ``nu`` [m/s, rad/s]; returns C [kg/s, kg m/s, kg m^2/s] (C nu in [N, N m]).
+        Each term from :func:`coriolis_from_mass` (Fossen 2011, Theorem 3.2, eq. 3.46).
+        """
         c = np.zeros((6, 6))
         if rigid_body:
             c += coriolis_from_mass(self.rigid_body_mass, nu)
@@ -226,16 +230,25 @@ class HydroModel:
         return c
 
     def damping(self, nu) -> np.ndarray:
-        """D(nu) = D_L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu."""
+        """D(nu) = D_L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
+
+        ``nu`` [m/s, rad/s]; D_L [kg/s, kg m^2/s], D_Q [kg/m, kg m^2]. Quadratic
+        diagonal drag of seed 000, eq. 7 (see module docstring, Fossen 2011, eq. 7.190).
+        """
         return self.linear_damping + self.quadratic_damping * np.abs(np.asarray(nu, dtype=float))
 
     def restoring(self, eta) -> np.ndarray:
-        """g(eta) [N, N m] (force = -g)."""
+        """g(eta) [N, N m] (force = -g), eta [m, rad]; see :func:`restoring_forces`
+        (Fossen 2011, eq. 4.6)."""
         return restoring_forces(eta, weight=self.weight, buoyancy=self.buoyancy,
                                 r_g=self.r_g, r_b=self.r_b)
 
     def allocation(self) -> np.ndarray:
-        """Thruster allocation matrix B (6 x n): tau = B @ thrust."""
+        """Thruster allocation matrix B (6 x n): tau = B @ thrust.
+
+        tau [N, N m], thrust [N]; B is [-] in force rows, [m] in moment rows
+        (column i = [d_i; r_i x d_i], see :func:`stripcoef.thrusters.allocation_matrix`).
+        """
         return allocation_matrix(self.thrusters, self.reference_point)
 
     def thruster(self, name: str) -> Thruster:

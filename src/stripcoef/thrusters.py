@@ -57,7 +57,11 @@ class Thruster:
     source: dict = field(default_factory=dict, compare=False)
 
     def thrust(self, n):
-        r"""Thrust for command ``n`` [N]: :math:`\eta C_t n|n|`, saturated at the limits."""
+        r"""Thrust for command ``n`` [N]: :math:`T = \eta_\pm C_{t,\pm} n|n|`, saturated at the limits.
+
+        ``n`` [command units]; zero for ``|n| <= deadband``; clipped to
+        ``[-max_backward, max_forward]`` [N]. Seed 000, eq. 6 (see module docstring).
+        """
         n = np.asarray(n, dtype=float)
         fwd = n >= 0.0
         ct = np.where(fwd, self.ct_forward * self.eta_forward, self.ct_backward * self.eta_backward)
@@ -68,7 +72,13 @@ class Thruster:
         return float(t) if t.ndim == 0 else t
 
     def command_for(self, thrust):
-        """Inverse map: command giving ``thrust`` [N] (unsaturated)."""
+        r"""Inverse map: command giving ``thrust`` [N] (unsaturated).
+
+        .. math:: n = \operatorname{sign}(T) \sqrt{|T| / (\eta_\pm C_{t,\pm})}
+
+        Returns ``n`` [command units]; ignores the deadband and the limits.
+        Inverse of seed 000, eq. 6 (see module docstring).
+        """
         t = np.asarray(thrust, dtype=float)
         ct = np.where(t >= 0.0, self.ct_forward * self.eta_forward,
                       self.ct_backward * self.eta_backward)
@@ -76,7 +86,12 @@ class Thruster:
         return float(n) if n.ndim == 0 else n
 
     def wrench_column(self, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:
-        r"""Generalized force per newton of thrust about a point: :math:`[d;\ (p - o) \times d]`."""
+        r"""Generalized force per newton of thrust about a point: :math:`[d;\ (p - o) \times d]`.
+
+        ``reference_point`` o [m] in FRD body axes; returns [-] (force rows) and [m]
+        (moment rows). Moment of a point force, :math:`M = r \times F`; the
+        :math:`\tau` of seed 000, eq. 1.
+        """
         d = np.asarray(self.direction, dtype=float)
         r = np.asarray(self.position, dtype=float) - np.asarray(reference_point, dtype=float)
         return np.concatenate([d, skew(r) @ d])
@@ -94,7 +109,13 @@ class Thruster:
 
 
 def allocation_matrix(thrusters, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:
-    """6 x n_thrusters matrix B with tau = B @ thrusts (about ``reference_point``)."""
+    r"""6 x n_thrusters matrix B with tau = B @ thrusts (about ``reference_point``).
+
+    .. math:: B_{:,i} = [d_i;\ (p_i - o) \times d_i]
+
+    ``reference_point`` o [m]; B [-] in force rows, [m] in moment rows; tau [N, N m],
+    thrusts [N]. The :math:`\tau` of seed 000, eq. 1 (see :meth:`Thruster.wrench_column`).
+    """
     if not thrusters:
         return np.zeros((6, 0))
     return np.column_stack([t.wrench_column(reference_point) for t in thrusters])
