@@ -315,10 +315,13 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
 
 
 def strip_section_added_mass(strips, rho: float) -> np.ndarray:
-    """Per-strip 2D added mass (n, 3, 3), the sum of the parts' sections [kg/m, kg, kg m].
+    r"""Per-strip 2D added mass (n, 3, 3), the sum of the parts' sections [kg/m, kg, kg m].
 
-    Translation terms only are used by :func:`hull_corrections` (they do not depend
-    on the roll reference point).
+    .. math:: m^{2D}(x_i) = \sum_p c_{p,i}\, m_p(x_i)
+
+    with coverage fractions :math:`c_{p,i}` [-] and ``rho`` [kg/m^3]. Translation terms only
+    are used by :func:`hull_corrections` (they do not depend on the roll reference point).
+    [assumption] sections add without interaction (strip theory, Newman 1977, sec. 7.4).
     """
     from .sections import section_added_mass
     out = np.zeros((strips.n, 3, 3))
@@ -335,7 +338,12 @@ def _coverage(part) -> np.ndarray:
 
 def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
     """Profile (x, r) with pi r^2 = per_strip (an area [m^2]), ends extrapolated linearly
-    (or closed to r = 0 at the body's ends)."""
+    (or closed to r = 0 at the body's ends).
+
+    r = sqrt(A / pi) [m] at the strip centres x [m], plus end stations at x_min, x_max with
+    A_end = max(A_0 + (A_1 - A_0)/(x_1 - x_0) (x_end - x_0), 0). [assumption] linear
+    end extrapolation; equal-area body of the module docstring.
+    """
     x = strips.x
     if strips.n < 2:
         raise InputError("too few strips for the 3D correction", key="strips", value=strips.n,
@@ -362,6 +370,10 @@ def equivalent_profile(strips):
     Returns
     -------
     (x, r) arrays [m]
+
+    References
+    ----------
+    See module docstring (equivalent body of revolution; Newman 1977, sec. 7.4).
     """
     area = np.zeros(strips.n)
     for p in strips.parts:
@@ -371,7 +383,12 @@ def equivalent_profile(strips):
 
 def _axial_added_mass(strips, rho, panels):
     """Surge added mass: the equal-area body of the hull parts, plus each other part as its
-    own equal-area body (appendages are not smeared into rings round the hull)."""
+    own equal-area body (appendages are not smeared into rings round the hull).
+
+    m_11 = m_11^BEM[r_hull] + sum_parts m_11^BEM[r_part] [kg] (module docstring, Newman
+    1977, eq. 4.148); a part of < 3 strips gets the sphere's m_11 = rho V / 2 (Lamb 1932,
+    sec. 373, k_1 = 1/2). ``rho`` [kg/m^3]. [assumption] no interaction between parts.
+    """
     area = np.zeros(strips.n)
     others = []
     for p in strips.parts:
@@ -406,7 +423,15 @@ def _axial_added_mass(strips, rho, panels):
 
 
 def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
-    """3D/strip factors and coupling increment of the body of revolution pi r^2 = per_strip."""
+    r"""3D/strip factors and coupling increment of the body of revolution pi r^2 = per_strip.
+
+    .. math:: f_t = rac{m_{22}^{3D}}{ho\sum A\,dx},\quad
+              f_r = rac{m_{66}^{3D}}{ho\sum A X^2 dx},\quad
+              \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,ho\sum A X\,dx,\quad X = x - x_c
+
+    ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
+    Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.
+    """
     xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
     m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
     a = np.pi * rs[1:-1] ** 2
@@ -492,7 +517,14 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
 
 def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
     r"""Corrected 6x6 added mass from the pure strip matrix about ``center`` (see
-    :func:`hull_corrections`): :math:`D S D` plus the axial term and coupling increments."""
+    :func:`hull_corrections`): :math:`D S D` plus the axial term and coupling increments.
+
+    .. math:: M = D S D + m_{11} e_1 e_1^T + \Delta_{26}(e_2 e_6^T + e_6 e_2^T)
+              + \Delta_{35}(e_3 e_5^T + e_5 e_3^T),\quad D = \operatorname{diag}(\sqrt{scale})
+
+    ``strip_matrix`` S and the result [kg, kg m, kg m^2]; ``scale`` [-], ``axial_added_mass``
+    [kg], couplings [kg m]. References: see module docstring (Newman 1977, sec. 7.4).
+    """
     s = np.sqrt(np.asarray(corr["scale"], dtype=float))
     m = s[:, None] * np.asarray(strip_matrix, dtype=float) * s[None, :]
     m[0, 0] += corr["axial_added_mass"]

@@ -73,7 +73,14 @@ CROSS_FLOW_DRAG = {
 
 
 def section_added_mass(part, rho: float) -> np.ndarray:
-    """(k, 3, 3) added mass per unit length of ``part`` about its centre [kg/m, kg, kg m]."""
+    r"""(k, 3, 3) added mass per unit length of ``part`` about its centre [kg/m, kg, kg m].
+
+    Registry dispatch on ``part.shape`` (``rho`` [kg/m^3]): ellipse
+    :math:`m_{22} = ho\pi h^2,\ m_{33} = ho\pi b^2` (:func:`added_mass.ellipse`), rectangle
+    :math:`m_{22} = C_Aho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
+    (:func:`panel.added_mass_sections`); each function carries its own reference
+    (Newman 1977, sec. 4.13 and table 4.2; DNV-RP-C205 table A-1).
+    """
     try:
         fn = ADDED_MASS[part.shape]
     except KeyError:
@@ -82,7 +89,15 @@ def section_added_mass(part, rho: float) -> np.ndarray:
 
 
 def section_drag(part, re_y, re_z):
-    """2D drag coefficients (cd_y, cd_z) of ``part`` for flow along y and along z [-]."""
+    r"""2D drag coefficients (cd_y, cd_z) of ``part`` for flow along y and along z [-].
+
+    Used as :math:`f_k = 	frac12ho C_{D,k} H_k |V_k| V_k` per unit length, with
+    reference heights :math:`H_y = 2h`, :math:`H_z = 2b` [m]; ``re_y``, ``re_z`` [-] on those
+    heights. Dispatch on ``part.shape``: ellipse (circle: :func:`drag.circle_cd`, else
+    :func:`drag.ellipse_cd` of d/h), rectangle (:func:`drag.rectangle_cd`), polygon
+    (:func:`polygon_drag.cross_flow_cd`). Cross-flow principle: Hoerner (1965), ch. 3
+    (see :mod:`stripcoef.sections.drag`).
+    """
     try:
         fn = CROSS_FLOW_DRAG[part.shape]
     except KeyError:

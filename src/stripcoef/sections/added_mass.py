@@ -107,6 +107,9 @@ def rectangle_coefficient(a_over_b):
       :math:`C_A\rho\pi a^2` then vanishes with the thickness 2a, as the exact thin-ellipse
       value :math:`\rho\pi a^2` does; the table's end value is kept (the true coefficient
       grows only logarithmically with b/a).
+
+    ``a_over_b`` [-]; returns C_A [-] (added mass per unit length
+    :math:`C_A\rho\pi a^2` [kg/m]).
     """
     t = load_table("rectangle_added_mass_dnv")
     ratio = np.asarray(a_over_b, dtype=float)

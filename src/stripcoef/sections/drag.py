@@ -44,6 +44,7 @@ def cylinder_length_factor(length_over_diameter, reynolds):
 
     Subcritical column for Re < 2e5, supercritical column otherwise
     (data/cylinder_length_factor.csv; L/D in 2..100, clamped with a warning outside).
+    ``length_over_diameter`` L/D [-], ``reynolds`` Re_D [-]; returns kappa [-].
 
     References
     ----------
@@ -96,6 +97,10 @@ def ellipse_cd(depth_over_height, reynolds):
 
     .. math:: C_D = C_{D,table}(d/h)\; C_{D,circle}(Re) / 1.2
 
+    ``depth_over_height`` d/h [-], ``reynolds`` Re on the height [-]; returns C_D [-].
+    The factor :math:`C_{D,circle}(Re)/1.2` (circle curve over its subcritical plateau) is an
+    [assumption]: rounded sections share the circle's drag crisis.
+
     References
     ----------
     White, Fluid Mechanics, table 7.2 (elliptical cylinder, laminar column);
@@ -106,7 +111,7 @@ def ellipse_cd(depth_over_height, reynolds):
 
 
 def flat_plate_cd():
-    r"""Normal flat plate in 2D cross-flow, :math:`C_D = 2.0`.
+    r"""Normal flat plate in 2D cross-flow, :math:`C_D = 2.0` [-] (on the plate's width).
 
     References
     ----------
@@ -120,6 +125,8 @@ def flat_plate_cd():
 def blasius_cf(reynolds):
     r"""Laminar flat-plate friction (Blasius): :math:`C_f = 1.328/\sqrt{Re_L}`.
 
+    ``reynolds`` Re_L = U L / nu [-]; returns the mean (whole-plate) C_f [-].
+
     References
     ----------
     Schlichting & Gersten, Boundary-Layer Theory (8th ed.), eq. 6.59.
@@ -129,6 +136,8 @@ def blasius_cf(reynolds):
 
 def ittc57_cf(reynolds):
     r"""ITTC-1957 model-ship correlation line: :math:`C_f = 0.075/(\log_{10} Re_L - 2)^2`.
+
+    ``reynolds`` Re_L = U L / nu [-]; returns C_f [-].
 
     References
     ----------

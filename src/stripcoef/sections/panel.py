@@ -142,7 +142,12 @@ def section_centroid(contours) -> tuple[float, float]:
     .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
 
     (with the orientation normalised: outer rings add area, holes subtract it).
-    An empty section gives (0, 0).
+    An empty section gives (0, 0). ``contours``: rings of (y, z) points [m].
+
+    References
+    ----------
+    Shoelace formula for the first moments of a polygon (Green's theorem), as
+    :func:`signed_area`.
     """
     if contours is None or len(contours) == 0:
         return (0.0, 0.0)
