@@ -352,7 +352,11 @@ class _Allocator:
         return ts - self.basis @ (self.basis.T @ ts)
 
     def utilisation(self, tau):
-        """(s*, T) of the min-max allocation; s* = inf when the rows cannot balance."""
+        """(s*, T) of the min-max allocation; s* = inf when the rows cannot balance.
+
+        s* = min s s.t. B_S T = tau_S, -s T_max,- <= T <= s T_max,+ (module docstring);
+        ``tau`` [N, N m]; returns s* [-] and T [N].
+        """
         out = self.outside(tau)
         tol = 1e-7 * (self.scale + float(np.abs(tau).max()))
         if np.abs(out).max(initial=0.0) > tol:
@@ -378,7 +382,12 @@ class _Allocator:
                 f"{FORCES[row]} = {tau[row]:.4g} {unit} it needs")
 
     def trim(self, tau, thrust) -> dict:
-        """Hydrostatic trim angle of each uncontrolled rotation [rad] (linearised eq. 4.6)."""
+        """Hydrostatic trim angle of each uncontrolled rotation [rad] (linearised eq. 4.6).
+
+        angle = asin(M_resid / (z_g W - z_b B)), residual moment M_resid = B_i T - tau_i [N m],
+        stiffness [N m] (roll/pitch rows of g(eta), Fossen 2011, eq. 4.6, the other
+        rotation at zero); ``tau`` [N, N m], ``thrust`` [N].
+        """
         out = {}
         for i in self.trimmed:
             resid = float(self.B[i] @ thrust - tau[i])
@@ -490,7 +499,9 @@ def _single_dof(model, alloc, dof: int, what: str, options: LimitOptions) -> Man
 def surge_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
     r"""Largest forward speed, straight and level (seed 002, eqs. 51-53).
 
-    .. math:: (X_u + X_{u|u|}|u|)\,u = \textstyle\sum_i T_i d_{x,i}, \quad \nu = [u,0,0,0,0,0]
+    .. math:: -(X_u + X_{u|u|}|u|)\,u = \textstyle\sum_i T_i d_{x,i}, \quad \nu = [u,0,0,0,0,0]
+
+    (SNAME signs: :math:`X_u = -D_{L,11} \le 0`, so the left side is the positive drag)
 
     together with every other row of :math:`\tau_{req} = B T` (the single-DOF closed form
     :math:`u = (-D_L + \sqrt{D_L^2 + 4 D_Q T})/(2 D_Q)` when nothing couples).
@@ -507,9 +518,16 @@ def surge_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
 def heave_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
     r"""Largest dive (downward, +w) speed at zero pitch (seed 002, eqs. 54-55).
 
-    .. math:: (Z_w + Z_{w|w|}|w|)\,w - (W - B) = \textstyle\sum_i T_i d_{z,i}
+    .. math:: -(Z_w + Z_{w|w|}|w|)\,w - (W - B) = \textstyle\sum_i T_i d_{z,i}
 
-    (FRD: z down, so a heavy vehicle, W > B, is helped by its weight when diving).
+    (FRD: z down, so a heavy vehicle, W > B, is helped by its weight when diving; SNAME
+    signs, :math:`Z_w = -D_{L,33} \le 0`; W, B [N], thrusts [N]; :math:`g_z = -(W-B)`,
+    Fossen 2011, eq. 4.6).
+
+    Returns
+    -------
+    Manoeuvre
+        speed w [m/s], thrusts [N], saturated thruster
     """
     check_model(model)
     return _single_dof(model, _Allocator(model), 2, "heave", options)
@@ -518,7 +536,14 @@ def heave_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
 def yaw_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
     r"""Largest yaw rate turning on the spot (seed 002, eqs. 56-57).
 
-    .. math:: (N_r + N_{r|r|}|r|)\,r = \textstyle\sum_i T_i (r_i \times d_i)_z
+    .. math:: -(N_r + N_{r|r|}|r|)\,r = \textstyle\sum_i T_i (r_i \times d_i)_z
+
+    (SNAME signs, :math:`N_r = -D_{L,66} \le 0`; lever arms r_i [m], thrusts [N]).
+
+    Returns
+    -------
+    Manoeuvre
+        speed = yaw rate r [rad/s], thrusts [N], saturated thruster
     """
     check_model(model)
     return _single_dof(model, _Allocator(model), 5, "yaw", options)
@@ -527,7 +552,15 @@ def yaw_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre:
 def sway_limit(model, *, options: LimitOptions = LimitOptions()) -> Manoeuvre | None:
     r"""Largest sway speed, or None when no thruster gives a sway force.
 
-    .. math:: (Y_v + Y_{v|v|}|v|)\,v = \textstyle\sum_i T_i d_{y,i}
+    .. math:: -(Y_v + Y_{v|v|}|v|)\,v = \textstyle\sum_i T_i d_{y,i}
+
+    (SNAME signs, :math:`Y_v = -D_{L,22} \le 0`), with every other row of
+    :math:`\tau_{req} = B T` (module docstring; Fossen 2011, eq. 7.190 at steady state).
+
+    Returns
+    -------
+    Manoeuvre or None
+        speed v [m/s], thrusts [N], saturated thruster
     """
     check_model(model)
     alloc = _Allocator(model)
@@ -562,7 +595,10 @@ def _free_sway(model, nu_of_v, options: LimitOptions, *, speed: float, what: str
 
 
 def _sway_balance(model, u: float, radius: float, options: LimitOptions) -> float:
-    """Sway speed v with tau_req,Y(u, v, r = sqrt(u^2+v^2)/R) = 0 (seed 002, eq. 60)."""
+    """Sway speed v with tau_req,Y(u, v, r = sqrt(u^2+v^2)/R) = 0 (seed 002, eq. 60).
+
+    ``u`` [m/s], ``radius`` R [m]; returns v [m/s]; r from seed 002, eq. 59.
+    """
     if u == 0.0:
         return 0.0
     return _free_sway(model, lambda v: [u, v, 0.0, 0.0, 0.0, math.hypot(u, v) / radius],
@@ -636,7 +672,12 @@ def turn_limit(model, radius: float, *, options: LimitOptions = LimitOptions(),
 
 
 def turning_curve(model, radii, *, options: LimitOptions = LimitOptions()) -> list[TurnPoint]:
-    """u_max(R), v, drift angle, thrusts and saturated thruster for each radius [m]."""
+    """u_max(R), v, drift angle, thrusts and saturated thruster for each radius [m].
+
+    Per radius R [m], :func:`turn_limit`: u_max [m/s] is the root of s*(u) = 1 with
+    nu = [u, v, 0, 0, 0, r], r = sqrt(u^2 + v^2)/R [rad/s] (seed 002, eqs. 59-60) and drift
+    angle beta = -atan2(v, u) [rad]; thrusts [N]. See module docstring (seed 002, sec. V.D).
+    """
     radii = check_radii(radii)
     check_model(model)
     alloc = _Allocator(model)
@@ -656,6 +697,9 @@ def min_turning_radius(model, speed: float, *, options: LimitOptions = LimitOpti
     The root of :math:`u_{max}(R) = u` (u_max rises with R).  A thruster-steered vehicle
     turns on the spot (R -> 0) as u -> 0, so a minimum radius only exists at a stated
     speed.  Raises UnreachableError if even a straight line is too fast.
+
+    Returns R_min [m]: the root of :math:`s^*(\nu(R)) = 1` with
+    :math:`\nu = [u, v, 0, 0, 0, \sqrt{u^2+v^2}/R]` (seed 002, eqs. 59-60; module docstring).
     """
     check_model(model)
     alloc = _Allocator(model)
