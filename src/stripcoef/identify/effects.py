@@ -88,7 +88,11 @@ def damping_times_velocity(model, nu) -> np.ndarray:
 
 
 def rotation_matrices(eta) -> np.ndarray:
-    """(n, 3, 3) body-to-NED rotations R(phi, theta, psi) (Fossen 2011, eq. 2.18)."""
+    """(n, 3, 3) body-to-NED rotations R(phi, theta, psi) (Fossen 2011, eq. 2.18).
+
+    R = R_z(psi) R_y(theta) R_x(phi) [-] for each row of ``eta`` (n, 6) [m, rad]; same as
+    :func:`stripcoef.conventions.rotation_matrix`.
+    """
     eta = np.atleast_2d(eta)
     cf, sf = np.cos(eta[:, 3]), np.sin(eta[:, 3])
     ct, st = np.cos(eta[:, 4]), np.sin(eta[:, 4])
@@ -266,7 +270,14 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
 
 
 def prior_residual(data: WindowData, model) -> np.ndarray:
-    r"""Window force residual of a model (module docstring) [N, N m], shape (m, 6)."""
+    r"""Window force residual of a model (module docstring) [N, N m], shape (m, 6).
+
+    .. math:: e = M\frac{\nu(t_1) - \nu(t_0)}{T} + \overline{C(\nu)\nu + D(\nu)\nu + g(\eta)}
+              - \overline{\tau}
+
+    (window means, trapezoidal for states, exact for held inputs; T [s]). Window form of
+    seed 000, eqs. 14-17 and Fossen (2011), eq. 7.190.
+    """
     nu, eta = data.nu, data.eta
     rest = (coriolis_times_velocity(model.rigid_body_mass, nu)
             + coriolis_times_velocity(model.added_mass, nu)
@@ -362,6 +373,9 @@ class Effect:
         return all(math.isfinite(v) for v in params.values())
 
     def force_law(self, params: dict, dof: int):
+        """Force law ``f(time, eta, nu, inputs) -> (6,)`` [N, N m] of the effect's equation
+        (class docstring, with its units and source) in DOF ``dof``, for
+        :func:`stripcoef.simulate.simulate`; ``params`` in the units of :attr:`parameters`."""
         raise NotImplementedError
 
     def apply(self, model, dof: int, params: dict, std: dict | None = None):
@@ -428,6 +442,8 @@ class TetherDrag(Effect):
         return params["c_t"] > 0.0
 
     def force_law(self, params, dof):
+        """Simulation force law: F_i = -c_t L nu_r,i |nu_r,i|, c_t [N s^2/m^3], L [m], nu_r [m/s];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         c = params["c_t"]
         e = _unit_vec(dof)
 
@@ -521,6 +537,8 @@ class ThrustAsymmetry(Effect):
         return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
 
     def force_law(self, params, dof):
+        """Simulation force law: Delta F_i = (eta_+ - 1) F+_i + (eta_- - 1) F-_i, eta [-], F+-_i [N or N m];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         kp, kn = params["eta_forward"] - 1.0, params["eta_backward"] - 1.0
         e = _unit_vec(dof)
 
@@ -594,6 +612,8 @@ class MomentumDrag(Effect):
         return params["alpha"] > 0.0
 
     def force_law(self, params, dof):
+        """Simulation force law: F_i = -alpha n_h nu_r,i, alpha [N s/m per command unit], n_h [command units];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         a = params["alpha"]
         e = _unit_vec(dof)
 
@@ -631,6 +651,8 @@ class BuoyancyOffset(Effect):
         return None, np.ones((data.n_windows, 1))
 
     def force_law(self, params, dof):
+        """Simulation force law: F_i = b, b [N or N m];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         e = params["b"] * _unit_vec(dof)
         return lambda time, eta, nu, inputs: e
 
@@ -690,6 +712,8 @@ class Current(Effect):
         return self.magnitude(params) < 5.0
 
     def force_law(self, params, dof):
+        """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         v = np.array([params["current_north"], params["current_east"], 0.0])
         e = _unit_vec(dof)
 
@@ -740,6 +764,8 @@ class LinearDrag(Effect):
         return params["d_L"] > 0.0
 
     def force_law(self, params, dof):
+        """Simulation force law: F_i = -d_L nu_r,i, d_L [N s/m or N m s/rad];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         d = params["d_L"]
         e = _unit_vec(dof)
         return lambda time, eta, nu, inputs: -d * inputs.get("nu_r", nu)[dof] * e
@@ -815,6 +841,8 @@ class Deadband(Effect):
         return params["deadband"] > 0.0
 
     def force_law(self, params, dof):
+        """Simulation force law: Delta F_i = -sum_k B_ik T_k [|n_k| <= delta], T_k [N], delta [command units];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         delta = params["deadband"]
         e = _unit_vec(dof)
 
@@ -871,6 +899,8 @@ class AddedMassError(Effect):
         return True
 
     def force_law(self, params, dof):
+        """Simulation force law: none, the effect is native (F_i = -delta_m nu_dot_i [N], delta_m [kg], is folded into M_A by apply);
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         raise InputError("added_mass_error is applied to the added-mass matrix, not as a force",
                          key="effects", value=self.name, expected="a native model change")
 
