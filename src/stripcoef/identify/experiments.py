@@ -38,6 +38,10 @@ def romeo_weights(n: int = 5) -> np.ndarray:
     r"""Net weight W (down positive) of the five ROMEO experiments [N].
 
     .. math:: W_i = (i - 3)\, m_{lead}\, g\, (1 - \rho_w/\rho_{lead})
+
+    (the lead's weight less its buoyancy, Archimedes). m_lead [kg], g [m/s^2], densities
+    [kg/m^3]. [assumption] one 0.25 kg lead per experiment, neutral in experiment 3
+    (seed 001, sec. 4.2.4 and its footnote 3; see :data:`ROMEO_LEAD_MASS`).
     """
     step = ROMEO_LEAD_MASS * G * (1.0 - RHO_SEAWATER / RHO_LEAD)
     return (np.arange(1, n + 1) - 3) * step
@@ -95,7 +99,11 @@ ROV2_NOISE = 0.03          # [rad] marker-tracking noise on the angle
 
 def pendulum_rhs(alpha, beta, gamma, restoring="sin"):
     r""":math:`\ddot\theta = \alpha f(\theta) - \beta\dot\theta - \gamma|\dot\theta|\dot\theta`
-    with f = sin (seed 003, eq. 4) or f = identity (torsion, eq. 12) as a first-order system."""
+    with f = sin (seed 003, eq. 4) or f = identity (torsion, eq. 12) as a first-order system.
+
+    alpha [1/s^2], beta [1/s], gamma [1/rad]; the returned rhs(t, [theta, omega]) gives
+    [omega, theta_ddot] in [rad/s, rad/s^2].
+    """
     f = np.sin if restoring == "sin" else (lambda x: x)
 
     def rhs(_t, s):
@@ -105,8 +113,14 @@ def pendulum_rhs(alpha, beta, gamma, restoring="sin"):
 
 
 def simulate_pendulum(alpha, beta, gamma, theta0, t, *, omega0=0.0, restoring="sin"):
-    """Angle [rad] of eq. 4 (or 12) at times ``t`` from rest at ``theta0`` (RK45, rtol 1e-10;
-    an integrator independent of the estimator's)."""
+    r"""Angle [rad] of eq. 4 (or 12) at times ``t`` from rest at ``theta0`` (RK45, rtol 1e-10;
+    an integrator independent of the estimator's).
+
+    .. math:: \ddot\theta = \alpha f(\theta) - \beta\dot\theta - \gamma|\dot\theta|\dot\theta
+
+    (seed 003, eqs. 4 and 12; :func:`pendulum_rhs`). alpha [1/s^2], beta [1/s], gamma
+    [1/rad], ``theta0`` [rad], ``omega0`` [rad/s], ``t`` [s].
+    """
     sol = solve_ivp(pendulum_rhs(alpha, beta, gamma, restoring), (t[0], t[-1]),
                     [theta0, omega0], t_eval=t, rtol=1e-10, atol=1e-12, method="RK45")
     return sol.y[0]

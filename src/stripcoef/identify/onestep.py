@@ -84,6 +84,10 @@ def velocity_from_pose(t, pose, *, window: int = 15, order: int = 3) -> np.ndarr
     Local least-squares polynomial of degree ``order`` over ``window`` samples
     (Savitzky & Golay, Anal. Chem. 36 (1964) 1627; used by seed 001, sec. 4.2.4).
     Requires near-uniform sampling (checked: spacing within 1 %).
+
+    :math:`\dot x_k = \frac{1}{h}\sum_{j=-m}^{m} c_j x_{k+j}`, with c_j the first-derivative
+    weights of that polynomial, h the time step [s], ``window`` = 2m + 1; ``t`` [s],
+    ``pose`` [m or rad], result [m/s or rad/s].
     """
     t = np.asarray(t, dtype=float)
     dt = np.diff(t)
@@ -176,7 +180,14 @@ def one_step(t, y, n, *, model: str = "LQB", dof: str = "yaw", inertia: float | 
 def simulate_state(t, n, x0, params: dict, model: str = "LQB", *, substeps: int = 2) -> np.ndarray:
     r"""Integrate :math:`\dot x = \phi(x, n)\theta` through the sample times, ``n`` linearly
     interpolated (classical Runge-Kutta 4, ``substeps`` steps per sample).  Returns inf after
-    a blow-up (|x| > 1e6)."""
+    a blow-up (|x| > 1e6).
+
+    .. math:: \dot x = \alpha x + \beta x|x| + \gamma n + \delta
+
+    (seed 000, eq. 8; terms absent from ``model`` are zero). ``t`` [s]; ``x0`` and the result
+    [m/s or rad/s]; ``n`` [N, N m or command]; alpha [1/s], beta [1/m or 1/rad], gamma
+    [1/kg or 1/(kg m^2), or per command], delta [m/s^2 or rad/s^2].
+    """
     t = np.asarray(t, dtype=float)
     n = np.asarray(n, dtype=float)
     p = {k: float(params.get(k, 0.0)) if k in _terms(model) else 0.0 for k in PARAMS}
@@ -242,6 +253,9 @@ def videoray_table_i(alpha=0.6199, beta=1.1219, gamma=26.95, izz=0.02532) -> dic
     Magnitudes, as Table I prints them:
     :math:`|N_r| = \alpha/\gamma`, :math:`|N_{r|r|}| = \beta/\gamma`,
     :math:`|N_{\dot r}| = 1/\gamma - I_{zz}`.
+
+    alpha [1/s], beta [1/rad], gamma [1/(kg m^2)], izz [kg m^2]; returns N_r [N m s/rad],
+    N_rr [N m s^2/rad^2], N_rdot and inertia_total [kg m^2]. Derivation: module docstring.
     """
     return {"N_r": alpha / gamma, "N_rr": beta / gamma, "N_rdot": 1.0 / gamma - izz,
             "inertia_total": 1.0 / gamma}

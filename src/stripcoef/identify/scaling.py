@@ -38,7 +38,11 @@ def exponents(rotational: bool) -> dict:
 
 
 def scale_value(value: float, name: str, ratio: float, *, rotational: bool = False) -> float:
-    r"""Full-scale value :math:`\theta_{full} = \lambda^k \theta_{model}` (seed 003, eqs. 9-10)."""
+    r"""Full-scale value :math:`\theta_{full} = \lambda^k \theta_{model}` (seed 003, eqs. 9-10).
+
+    ``ratio`` :math:`\lambda = L_{full}/L_{model}` [-]; ``value`` and the result in the
+    parameter's own unit (e.g. [kg], [N s^2/m^2]); k from :func:`exponents` (module docstring).
+    """
     if not (ratio > 0 and math.isfinite(ratio)):
         raise InputError("bad scale ratio", key="--ratio", value=ratio,
                          expected="a positive finite number L_full / L_model")

@@ -124,6 +124,12 @@ def _names(dof: str, model: str):
 def regression(points: SteadyPoints, model: str):
     r"""Build :math:`y` and :math:`H` for a steady-state model (seed 001, eqs. 4.15-4.17).
 
+    .. math:: y = H\theta,\quad H = [w,\ w|w|,\ \mp 1,\ -F\,[F<0],\ n_h w],\quad
+              y = F\,[F \ge 0 \text{ or no } \eta]
+
+    (columns as the model has them: bias -1 for heave's W, +1 for b; see module docstring).
+    ``points``: velocity w [m/s or rad/s], force F [N or N m], n_h [command units].
+
     Returns
     -------
     y : (m,) array, H : (m, p) array, names : list of str
@@ -159,6 +165,8 @@ def fit_steady(points: SteadyPoints, model: str = "standard", *,
     """Fit one steady-state model by least squares (seed 001, eqs. 4.5, 4.6, 4.12).
 
     Adds the SNAME derivatives as derived parameters (``Z_w = -k_w``, ``Z_ww = -k_ww``...).
+    :math:`\hat\theta = (H^TH)^{-1}H^Ty` on :func:`regression`'s y, H; units: k [N s/m or
+    N m s/rad], k_2 [N s^2/m^2 or N m s^2/rad^2], W, b [N or N m], eta [-].
     """
     pts = points.select(direction)
     i = parse_dof(pts.dof)
@@ -186,7 +194,11 @@ def fit_steady(points: SteadyPoints, model: str = "standard", *,
 
 def predicted_force(fit: FitResult, points: SteadyPoints) -> np.ndarray:
     r"""Applied force the fitted model needs for each point's velocity [N or N m]:
-    :math:`\hat F = (k w + k_2 w|w| \mp W + \alpha n_h w) / \eta` (eta on upward points)."""
+    :math:`\hat F = (k w + k_2 w|w| \mp W + \alpha n_h w) / \eta` (eta on upward points).
+
+    Inverse of the module docstring's models (seed 001, eqs. 4.15-4.17); here "upward" is
+    where the predicted drag side is negative. ``points.velocity`` [m/s or rad/s].
+    """
     i = parse_dof(points.dof)
     v = VELOCITIES[i]
     p = fit.parameters
