@@ -39,6 +39,8 @@ def mean_chord(x, dx, center, radius):
               F(\xi) = \xi\sqrt{r^2-\xi^2} + r^2 \arcsin(\xi / r)
 
     (exact strip integral, so hole volumes converge at any strip count) [m].
+    ``x``, ``dx``, ``center``, ``radius`` [m]. Reference: elementary integral
+    :math:`\int\sqrt{r^2-\xi^2}\,d\xi` (area of a circular segment).
     """
     xi1 = np.clip(x - 0.5 * dx - center, -radius, radius)
     xi2 = np.clip(x + 0.5 * dx - center, -radius, radius)
@@ -50,12 +52,22 @@ def mean_chord(x, dx, center, radius):
 
 
 def ellipse_section(b, h):
-    """Area [m^2] and second moments iyy, izz [m^4] of an ellipse with half-axes b (y), h (z)."""
+    """Area [m^2] and second moments iyy, izz [m^4] of an ellipse with half-axes b (y), h (z).
+
+    A = pi b h, iyy = int y^2 dA = pi b^3 h / 4, izz = int z^2 dA = pi b h^3 / 4 (b, h [m];
+    the naming of :class:`stripcoef.strips.Part`). Reference: standard second moments of
+    area of an ellipse about its axes (elementary integration).
+    """
     return np.pi * b * h, np.pi * b**3 * h / 4.0, np.pi * b * h**3 / 4.0
 
 
 def rectangle_section(b, h):
-    """Area [m^2] and second moments iyy, izz [m^4] of a 2b x 2h rectangle."""
+    """Area [m^2] and second moments iyy, izz [m^4] of a 2b x 2h rectangle.
+
+    A = 4 b h, iyy = int y^2 dA = (2h)(2b)^3/12 = 4 b^3 h / 3, izz = 4 b h^3 / 3 (b, h [m];
+    the naming of :class:`stripcoef.strips.Part`). Reference: standard second moments of
+    area of a rectangle about its centroidal axes (elementary integration).
+    """
     return 4.0 * b * h, 4.0 * b**3 * h / 3.0, 4.0 * b * h**3 / 3.0
 
 

@@ -659,6 +659,8 @@ def polygon_perimeter(part) -> np.ndarray:
 
     (outer rings and holes: a duct's inner wall is wetted too).  For the hull's
     friction drag and roll friction (wetted area :math:`S = \int P\,dx`).
+    Ring points p_i [m]. Reference: polygon perimeter (elementary geometry); wetted area
+    for friction drag as in Hoerner (1965), ch. 2.
     """
     out = np.zeros(part.index.size)
     for k, rings in enumerate(part.contours or []):

@@ -33,7 +33,14 @@ def ellipsoid_nose(x, x_aft, x_fwd, radius):
 
 
 def ellipsoid_tail(x, x_aft, x_fwd, radius):
-    r"""Semi-ellipsoid tail, tip at ``x_aft``: :math:`r = R\sqrt{1 - \xi^2}`, :math:`\xi = (x_f - x)/(x_f - x_a)` [m]."""
+    r"""Semi-ellipsoid tail, tip at ``x_aft``: :math:`r = R\sqrt{1 - \xi^2}`, :math:`\xi = (x_f - x)/(x_f - x_a)` [m].
+
+    Parameters: x [m], segment ends [m], radius R [m].  Returns r [m].
+
+    References
+    ----------
+    MARES model (seed 002, sec. IV.A), as :func:`ellipsoid_nose`.
+    """
     xi = np.clip((x_fwd - np.asarray(x, float)) / (x_fwd - x_aft), 0.0, 1.0)
     return radius * np.sqrt(np.maximum(1.0 - xi**2, 0.0))
 
@@ -58,6 +65,9 @@ def myring_tail(x, x_aft, x_fwd, radius, theta=np.radians(25.0)):
 
     .. math:: r(t) = R - \left(\frac{3R}{c^2} - \frac{\tan\theta}{c}\right)t^2
                      + \left(\frac{2R}{c^3} - \frac{\tan\theta}{c^2}\right)t^3,\quad t = x_f - x
+
+    Parameters: x [m], segment ends [m] (tail length c = x_f - x_a), radius R [m],
+    ``theta`` [rad]. Returns r [m].
 
     References
     ----------

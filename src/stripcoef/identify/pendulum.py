@@ -56,6 +56,10 @@ def smooth_derivatives(t, theta, *, window: int = 15, order: int = 4):
     r"""Savitzky-Golay smoothed angle and its first two derivatives [rad, rad/s, rad/s^2].
 
     Requires uniform sampling within 1 %.
+    :math:`\theta^{(d)}_k = h^{-d}\sum_{j=-m}^{m} c^{(d)}_j \theta_{k+j}`, d = 0, 1, 2, with
+    :math:`c^{(d)}` the weights of the local least-squares polynomial of degree ``order``
+    over ``window`` = 2m + 1 samples, h the step [s] (Savitzky & Golay, Anal. Chem. 36
+    (1964) 1627). ``t`` [s], ``theta`` [rad].
     """
     t = np.asarray(t, dtype=float)
     theta = np.asarray(theta, dtype=float)
@@ -156,6 +160,8 @@ def refine_output_error(fit: FitResult, t, theta, *, restoring: str = "sin") -> 
     the cost removes the errors-in-variables bias of noisy derivatives.  Covariance
     :math:`\hat\sigma^2 (J^T J)^{-1}` at the optimum (Gauss-Newton, white angle noise;
     Ljung 1999, sec. 9.3).  Returns a new FitResult (method ``<method> output-error``).
+    ``t`` [s], ``theta`` [rad]; a [1/s^2], b [1/s], c [1/rad] as in the module docstring
+    (seed 003, eqs. 4 and 12).
     """
     from scipy.optimize import least_squares
     t = np.asarray(t, dtype=float)
