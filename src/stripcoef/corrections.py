@@ -81,10 +81,15 @@ _TRAP_THETA = 16
 
 
 def _theta_moments(x, r, xq, rq):
-    """theta-integrals over [0, 2 pi] of 1/R, cos/R, 1/R^3, cos/R^3, cos^2/R^3.
+    r"""theta-integrals over [0, 2 pi] of 1/R, cos/R, 1/R^3, cos/R^3, cos^2/R^3.
 
     Elliptic-integral closed forms where the ring is near (Q/P >= 0.25); a
     periodic trapezoid rule (spectrally accurate) where it is far.
+
+    :math:`R^2 = P - Q\cos\theta`; :math:`I_0 = 4K/A`, :math:`J_0 = 4E/(AB^2)`, and by
+    recursion :math:`I_1 = (P I_0 - 4AE)/Q`, :math:`J_1 = (P J_0 - I_0)/Q`,
+    :math:`J_2 = (P J_1 - I_1)/Q`. ``x, r, xq, rq`` [m]; results [1/m] (1/R terms) and
+    [1/m^3] (1/R^3 terms). Gradshteyn & Ryzhik (2007), 2.571, 8.111-8.112 (module docstring).
     """
     dx2 = (x - xq) ** 2
     p = dx2 + r * r + rq * rq
@@ -122,7 +127,15 @@ def _theta_moments(x, r, xq, rq):
 
 
 def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
-    """S and D kernels per unit meridian length at collocation (xc, rc) from ring (xq, rq)."""
+    r"""S and D kernels per unit meridian length at collocation (xc, rc) from ring (xq, rq).
+
+    .. math:: S_m = -\frac{r_q}{4\pi}\int\frac{\cos m\theta}{R}d\theta,\quad
+              D_m = \frac{r_q}{4\pi}\int\frac{(q-p)\cdot n_q\,\cos m\theta}{R^3}d\theta,
+              \quad (q-p)\cdot n_q = (x_q - x_c)n_x + n_r r_q - n_r r_c\cos\theta
+
+    (G = -1/(4 pi R), module docstring; Hess & Smith 1967, sec. 5). Positions [m], normals
+    [-]; S [-] and D [1/m] per unit meridian length.
+    """
     i0, i1, j0, j1, j2 = _theta_moments(xc, rc, xq, rq)
     base = (xq - xc) * nxq + nrq * rq
     if mode == 0:
@@ -197,7 +210,12 @@ def _influence(xn, rn, mode):
 
 def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     """Kernels on the collocation point's own (straight) panel, cancellation-free:
-    there (q - p) . n = n_r r (1 - cos theta) exactly."""
+    there (q - p) . n = n_r r (1 - cos theta) exactly.
+
+    Same S_m, D_m as :func:`_kernels` with (q - p) . n_q = n_r r_c (1 - cos theta), so
+    D_m = r_q n_r r_c/(4 pi) int (1 - cos theta) cos(m theta)/R^3 dtheta (module docstring).
+    Units as :func:`_kernels`.
+    """
     dx2 = (xc - xq) ** 2
     p = dx2 + rc * rc + rq * rq
     q = 2.0 * rc * rq
@@ -425,9 +443,12 @@ def _axial_added_mass(strips, rho, panels):
 def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     r"""3D/strip factors and coupling increment of the body of revolution pi r^2 = per_strip.
 
-    .. math:: f_t = rac{m_{22}^{3D}}{ho\sum A\,dx},\quad
-              f_r = rac{m_{66}^{3D}}{ho\sum A X^2 dx},\quad
-              \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,ho\sum A X\,dx,\quad X = x - x_c
+    .. math:: f_t = rac{m_{22}^{3D}}{
+ho\sum A\,dx},\quad
+              f_r = rac{m_{66}^{3D}}{
+ho\sum A X^2 dx},\quad
+              \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,
+ho\sum A X\,dx,\quad X = x - x_c
 
     ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
     Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.

@@ -170,7 +170,12 @@ def romeo_model(*, k_w=ROMEO_STANDARD["k_w"], k_ww=ROMEO_STANDARD["k_ww"]) -> Hy
 
 def romeo_weight(index: int) -> float:
     r"""Net weight W - B of experiment ``index`` (1..5) [N], down positive:
-    :math:`(i - 3)\, m_{lead}\, g\, (1 - \rho/\rho_{lead})`."""
+    :math:`(i - 3)\, m_{lead}\, g\, (1 - \rho/\rho_{lead})`.
+
+    m_lead [kg], g [m/s^2], rho = 1025 kg/m^3, rho_lead [kg/m^3]. [assumption] one lead
+    per experiment, neutral in experiment 3 (seed 001, sec. 4.2.4, footnote 3); same law as
+    :func:`stripcoef.identify.experiments.romeo_weights`.
+    """
     return (index - 3) * ROMEO_LEAD * G * (1.0 - 1025.0 / RHO_LEAD)
 
 

@@ -115,7 +115,7 @@ class FitResult:
 
     @property
     def degrees_of_freedom(self) -> int:
-        """N - p (seed 001's nu)."""
+        """N - p [-] (seed 001's nu, eq. 4.12)."""
         return self.n_obs - self.n_params
 
     @property
@@ -129,19 +129,29 @@ class FitResult:
 
     @property
     def aic(self) -> float:
-        """Akaike information criterion, Gaussian residuals, variance estimated."""
+        """Akaike information criterion, Gaussian residuals, variance estimated.
+
+        AIC = N ln(J_LS / N) + 2 p [-] (Akaike 1974; Ljung 1999, ch. 16), p = :attr:`n_params`
+        (the noise variance is not counted: a constant offset for all candidates).
+        """
         return _loglik_term(self.cost, self.n_obs) + 2.0 * self.n_params
 
     @property
     def aicc(self) -> float:
-        """Small-sample AIC (Hurvich & Tsai 1989); inf when N - p - 1 <= 0."""
+        """Small-sample AIC (Hurvich & Tsai 1989); inf when N - p - 1 <= 0.
+
+        AICc = AIC + 2 p (p + 1) / (N - p - 1) [-].
+        """
         k = self.n_params
         d = self.n_obs - k - 1
         return self.aic + (2.0 * k * (k + 1) / d if d > 0 else math.inf)
 
     @property
     def bic(self) -> float:
-        """Schwarz (Bayesian) information criterion."""
+        """Schwarz (Bayesian) information criterion.
+
+        BIC = N ln(J_LS / N) + p ln N [-] (Schwarz 1978).
+        """
         return _loglik_term(self.cost, self.n_obs) + self.n_params * math.log(self.n_obs)
 
     # -- parameters -----------------------------------------------------------
@@ -250,7 +260,7 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
         Measurement vector.
     names : sequence of str
         Parameter names, one per column of H.
-    covariance : {"iid", "hac"}
+    covariance : {"iid", "hac", "ma1"}
         ``iid``: :math:`\hat\sigma^2 (H^TH)^{-1}` (seed 001, eqs. 4.6, 4.12);
         ``hac``: Newey-West with ``lags`` lags (for correlated residuals);
         ``ma1``: sandwich :math:`(H^TH)^{-1} H^T \Sigma H (H^TH)^{-1}` with

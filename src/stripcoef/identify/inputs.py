@@ -26,7 +26,12 @@ def vehicle_model(path):
 
 
 def applied_force(log, dof, model=None) -> tuple[np.ndarray, str]:
-    """Applied force along ``dof`` [N or N m] and a description of where it came from."""
+    """Applied force along ``dof`` [N or N m] and a description of where it came from.
+
+    From the log column, else tau_i = sum_k B_ik T_k(n_k) with the bench thrust map
+    T = C_t n|n| (eta = 1) and B_ik the i-th entry of the thruster's wrench column
+    [-] or [m] (seed 000, eqs. 1 and 6; :mod:`stripcoef.thrusters`).
+    """
     i = parse_dof(dof)
     name = FORCES[i]
     if name in log:
@@ -52,7 +57,11 @@ def applied_force(log, dof, model=None) -> tuple[np.ndarray, str]:
 
 
 def horizontal_command(log, model=None):
-    """Mean |command| of the horizontal thrusters (``n_h`` of seed 001's eta-md model)."""
+    """Mean |command| of the horizontal thrusters (``n_h`` of seed 001's eta-md model).
+
+    n_h = (1/K) sum_k |n_k| over the K thrusters with no z component of direction
+    [command units] (seed 001, sec. 3.3.1, momentum-drag regressor F_md = -alpha n_h w).
+    """
     if "n_h" in log:
         return log["n_h"]
     if model is None:

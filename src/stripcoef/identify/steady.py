@@ -162,7 +162,7 @@ def regression(points: SteadyPoints, model: str):
 
 def fit_steady(points: SteadyPoints, model: str = "standard", *,
                direction: str = "both") -> FitResult:
-    """Fit one steady-state model by least squares (seed 001, eqs. 4.5, 4.6, 4.12).
+    r"""Fit one steady-state model by least squares (seed 001, eqs. 4.5, 4.6, 4.12).
 
     Adds the SNAME derivatives as derived parameters (``Z_w = -k_w``, ``Z_ww = -k_ww``...).
     :math:`\hat\theta = (H^TH)^{-1}H^Ty` on :func:`regression`'s y, H; units: k [N s/m or

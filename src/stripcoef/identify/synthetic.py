@@ -62,6 +62,10 @@ def rov_model(*, linear_surge: bool = True) -> HydroModel:
     experimental where given, analytical otherwise; thrusters: Table I forward/backward
     C_t. Mass 3.6 kg and the lateral thruster are assumptions. ``linear_surge=False`` gives
     a quadratic-only surge model (the prior of the ``linear_drag`` case).
+
+    Units: mass [kg], inertia and rotational added mass [kg m^2], translational added mass
+    [kg], D_L [N s/m, N m s/rad], D_Q [N s^2/m^2, N m s^2/rad^2], C_t [N per command^2];
+    rho = 1000 kg/m^3 [assumption, fresh-water pool]. Model form: Fossen (2011), eq. 7.190.
     """
     mass = 3.6
     rho = 1000.0
