@@ -460,7 +460,7 @@ ight)^2
     return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))
 
 
-def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
+def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     r"""Linear and quadratic damping about ``about`` from the viscous force model.
 
     Force model (all per element e at r_e, directions k = x, y, z):
@@ -498,7 +498,8 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     hull_parts = [p for p in strips.parts if p.role == "hull"]
     s_wet = 0.0
     max_d = 0.0
-    x_h = y_h = z_h = 0.0
+    hull_moment = np.zeros(3)   # volume-weighted centre of all hull parts (friction acts there)
+    hull_volume = 0.0
     for p in hull_parts:
         dx = strips.width(p)
         per = _perimeter(p)
@@ -506,8 +507,8 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
         area = p.area
         max_d = max(max_d, float(2.0 * np.sqrt(np.max(area) / np.pi)))
         w = area * dx
-        x_h = float((w * strips.x[p.index]).sum() / w.sum())
-        y_h, z_h = float(p.y[0]), float(p.z[0])
+        hull_volume += float(w.sum())
+        hull_moment += np.array([(w * strips.x[p.index]).sum(), (w * p.y).sum(), (w * p.z).sum()])
         # roll friction on the hull perimeter: dK = 1/2 rho Cf per R_eff^3 p|p| dx
         r_eff = np.sqrt(p.half_breadth * p.half_height)
         c_roll = 0.5 * rho * cf * float((per * r_eff**3 * dx).sum())
@@ -515,6 +516,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime, volume):
     if hull_parts:
         ff = float(sdrag.hoerner_form_factor(max_d / L))
         c_fric = 0.5 * rho * cf * ff * s_wet
+        x_h, y_h, z_h = hull_moment / hull_volume
         elems.append((np.array([x_h, y_h, z_h]), np.array([c_fric, 0, 0]), np.array([n_f, 2, 2])))
         cond.update({"wetted_area": s_wet, "form_factor": ff,
                      "axial_drag_coefficient_wetted": cf * ff,
@@ -673,7 +675,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
                            cb, cg)
     m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
                               corrections=corrections)
-    d_l, d_q, cond = _damping(st, vehicle, rho, nu, speed, ref, regime, volume)
+    d_l, d_q, cond = _damping(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
     m_a, m_rb = _clean(m_a), _clean(m_rb)
     cond.update(am_info)

@@ -35,6 +35,8 @@ from ..logs import Log
 from ..model import HydroModel, rigid_body_mass_matrix
 from ..simulate import simulate
 from .diagnose import diagnose, fit_effects, public
+from .effects import get_effect
+from .experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
 from .synthetic import add_noise, rov_model
 
 #: seed 000, sec. IV.A: predicted and measured surge speed at n = 60 [m/s]
@@ -116,10 +118,8 @@ def videoray_pool_log(seed: int = 0, *, length=(3.0, 15.0), with_length: bool = 
     t = np.arange(n.size) * dt
     tether = length[0] + (length[1] - length[0]) * t / t[-1]
 
-    def tether_force(time, eta, nu, inputs):
-        v = inputs["nu_r"][0]
-        return np.array([-c_t * inputs["columns"]["tether_length"] * v * abs(v), 0, 0, 0, 0, 0])
-
+    # the undeclared effect is the library's own tether law, applied in surge
+    tether_force = get_effect("tether_drag").force_law({"c_t": c_t}, 0)
     log = simulate(prior, t, commands={"port": n, "starboard": n}, extra_force=tether_force,
                    channels={"tether_length": tether}, munk=False, rtol=1e-7, atol=1e-9)
     cols = {k: v for k, v in log.columns.items() if k not in "XYZKMN"}
@@ -150,7 +150,6 @@ ROMEO_STANDARD = {"k_w": 116.0, "k_ww": 403.0}               # seed 001, eq. 4.1
 ROMEO_MASS = 500.0
 ROMEO_ADDED_MASS = 500.0
 ROMEO_LEAD = 2.0
-RHO_LEAD = 11340.0
 
 
 def romeo_model(*, k_w=ROMEO_STANDARD["k_w"], k_ww=ROMEO_STANDARD["k_ww"]) -> HydroModel:
@@ -169,14 +168,10 @@ def romeo_model(*, k_w=ROMEO_STANDARD["k_w"], k_ww=ROMEO_STANDARD["k_ww"]) -> Hy
 
 
 def romeo_weight(index: int) -> float:
-    r"""Net weight W - B of experiment ``index`` (1..5) [N], down positive:
-    :math:`(i - 3)\, m_{lead}\, g\, (1 - \rho/\rho_{lead})`.
-
-    m_lead [kg], g [m/s^2], rho = 1025 kg/m^3, rho_lead [kg/m^3]. [assumption] one lead
-    per experiment, neutral in experiment 3 (seed 001, sec. 4.2.4, footnote 3); same law as
-    :func:`stripcoef.identify.experiments.romeo_weights`.
-    """
-    return (index - 3) * ROMEO_LEAD * G * (1.0 - 1025.0 / RHO_LEAD)
+    """Net weight W - B of experiment ``index`` (1..5) [N], down positive: the law of
+    :func:`stripcoef.identify.experiments.romeo_weights` with this case's lead mass
+    ``ROMEO_LEAD`` [kg] ([assumption], seed 001 sec. 4.2.4, footnote 3)."""
+    return float(romeo_weights(5, lead_mass=ROMEO_LEAD)[index - 1])
 
 
 def romeo_log(index: int, seed: int = 0):

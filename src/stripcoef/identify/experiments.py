@@ -34,7 +34,7 @@ ROMEO_N_H = 600.0
 ROMEO_N_H_SPREAD = 15.0
 
 
-def romeo_weights(n: int = 5) -> np.ndarray:
+def romeo_weights(n: int = 5, *, lead_mass: float = ROMEO_LEAD_MASS) -> np.ndarray:
     r"""Net weight W (down positive) of the five ROMEO experiments [N].
 
     .. math:: W_i = (i - 3)\, m_{lead}\, g\, (1 - \rho_w/\rho_{lead})
@@ -43,7 +43,7 @@ def romeo_weights(n: int = 5) -> np.ndarray:
     [kg/m^3]. [assumption] one 0.25 kg lead per experiment, neutral in experiment 3
     (seed 001, sec. 4.2.4 and its footnote 3; see :data:`ROMEO_LEAD_MASS`).
     """
-    step = ROMEO_LEAD_MASS * G * (1.0 - RHO_SEAWATER / RHO_LEAD)
+    step = lead_mass * G * (1.0 - RHO_SEAWATER / RHO_LEAD)
     return (np.arange(1, n + 1) - 3) * step
 
 
