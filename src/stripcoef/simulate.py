@@ -181,7 +181,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         side but not to the logged applied forces (an undeclared effect). ``inputs`` is
         a dict with ``commands`` (name -> command), ``thrust`` (name -> [N]), ``tau``
         (applied force, (6,)), ``nu_c`` (current in body axes, (6,)), ``nu_r`` ((6,)),
-        ``model`` and ``columns`` (the ``channels`` at that time).
+        ``model``, ``allocation`` (its thruster allocation matrix B, (6, n), computed once per
+        run) and ``columns`` (the ``channels`` at that time).
     effects : bool
         Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.identify.effects`).
     munk : bool
@@ -299,6 +300,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         if effect_terms or extra_force is not None:
             inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
                       "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
+                      "allocation": alloc,
                       "columns": (dict(zip(chan_names, chan_sampler(time)))
                                   if chan_sampler is not None else {})}
             for term in effect_terms:

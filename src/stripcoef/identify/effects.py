@@ -546,7 +546,7 @@ class ThrustAsymmetry(Effect):
             model = inputs["model"]
             thrust = inputs.get("thrust") or {}
             if model.thrusters and thrust:
-                b = model.allocation()[dof]
+                b = inputs["allocation"][dof]
                 tk = np.array([thrust[th.name] for th in model.thrusters])
                 pos = float(np.sum(np.where(tk >= 0, b * tk, 0.0)))
                 neg = float(np.sum(np.where(tk < 0, b * tk, 0.0)))
@@ -619,7 +619,7 @@ class MomentumDrag(Effect):
 
         def f(time, eta, nu, inputs):
             model = inputs["model"]
-            b = model.allocation()[dof]
+            b = inputs["allocation"][dof]
             cmds = inputs.get("commands") or {}
             others = [th.name for k, th in enumerate(model.thrusters) if abs(b[k]) <= 1e-9]
             nh = float(np.mean([abs(cmds.get(n, 0.0)) for n in others])) if others else 0.0
@@ -848,7 +848,7 @@ class Deadband(Effect):
 
         def f(time, eta, nu, inputs):
             model = inputs["model"]
-            b = model.allocation()[dof]
+            b = inputs["allocation"][dof]
             cmds = inputs.get("commands") or {}
             thrust = inputs.get("thrust") or {}
             s = sum(b[k] * thrust.get(th.name, 0.0) for k, th in enumerate(model.thrusters)
