@@ -77,6 +77,13 @@ PLUGIN_FILENAME = "gz-sim-hydrodynamics-system"
 PLUGIN_NAME = "gz::sim::systems::Hydrodynamics"
 
 
+
+def _sname_tags(matrix, tag_of) -> list[str]:
+    """``<tag>-m[i,j]</tag>`` lines for the diagonal and every non-zero entry (SNAME signs)."""
+    m = np.asarray(matrix, dtype=float)
+    return [f"      <{tag_of(i, j)}>{fmt(-m[i, j])}</{tag_of(i, j)}>"
+            for i in range(6) for j in range(6) if i == j or m[i, j] != 0.0]
+
 def linear_tag(i: int, j: int) -> str:
     """Tag of the linear derivative of force ``i`` on velocity ``j`` (``<yR>`` = Y_r)."""
     return FORCE_LETTERS[i] + VELOCITY_LETTERS[j]
@@ -180,28 +187,13 @@ def render(view: ExportView, *, link_name: str = "base_link",
     out.append(f'    <plugin filename="{PLUGIN_FILENAME}" name="{PLUGIN_NAME}">')
     out.append(f"      <link_name>{link}</link_name>")
     out.append("      <!-- linear damping: <fi Vj> = -D_L[i,j] -->")
-    nz = dl != 0.0          # clean() already zeroed round-off
-    for i in range(6):
-        for j in range(6):
-            if i == j or nz[i, j]:
-                tag = linear_tag(i, j)
-                out.append(f"      <{tag}>{fmt(-dl[i, j])}</{tag}>")
+    out += _sname_tags(dl, linear_tag)     # clean() already zeroed round-off
     out.append("      <!-- quadratic damping: <fi Vj abs Vj> = -D_Q[i,j] (force -D_Q[i,j] |v_j| v_j) -->")
-    nz = dq != 0.0
-    for i in range(6):
-        for j in range(6):
-            if i == j or nz[i, j]:
-                tag = quadratic_tag(i, j)
-                out.append(f"      <{tag}>{fmt(-dq[i, j])}</{tag}>")
+    out += _sname_tags(dq, quadratic_tag)
     if legacy_added_mass:
         _legacy_traps(ma, mrb)
         out.append("      <!-- legacy added mass: <fi Dot Vj> = -M_A[i,j] -->")
-        nz = ma != 0.0
-        for i in range(6):
-            for j in range(6):
-                if i == j or nz[i, j]:
-                    tag = added_mass_tag(i, j)
-                    out.append(f"      <{tag}>{fmt(-ma[i, j])}</{tag}>")
+        out += _sname_tags(ma, added_mass_tag)
     out.append("    </plugin>")
     out.append("  </model>")
     out.append("</sdf>")
