@@ -80,6 +80,26 @@ _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
 _TRAP_THETA = 16
 
 
+def _ring_integrals(p, q):
+    r"""Elliptic-integral forms of the ring integrals with :math:`R^2 = P - Q\cos\theta`.
+
+    .. math:: A^2 = P + Q,\ B^2 = P - Q,\ m = 2Q/A^2,\quad
+              I_0 = \int_0^{2\pi}\frac{d\theta}{R} = \frac{4K(m)}{A},\quad
+              I_1 = \int_0^{2\pi}\frac{\cos\theta\,d\theta}{R} = \frac{P I_0 - 4AE(m)}{Q}
+
+    ``p`` [m^2], ``q`` [m^2]; returns A [m], B^2 [m^2], K, E [-], I_0, I_1 [1/m].
+    Gradshteyn & Ryzhik (2007), 2.571 and 8.111-8.112.
+    """
+    a2 = p + q
+    b2 = np.maximum(p - q, 1e-300)
+    a = np.sqrt(a2)
+    m = np.clip(2.0 * q / a2, 0.0, 1.0 - 1e-16)
+    kk, ee = ellipk(m), ellipe(m)
+    i0 = 4.0 * kk / a
+    i1 = (p * i0 - 4.0 * a * ee) / q
+    return a, b2, kk, ee, i0, i1
+
+
 def _theta_moments(x, r, xq, rq):
     r"""theta-integrals over [0, 2 pi] of 1/R, cos/R, 1/R^3, cos/R^3, cos^2/R^3.
 
@@ -111,15 +131,8 @@ def _theta_moments(x, r, xq, rq):
     near = ~far
     if np.any(near):
         pn, qn = p[near], q[near]
-        a2 = pn + qn
-        b2 = np.maximum(pn - qn, 1e-300)
-        a = np.sqrt(a2)
-        m = np.clip(2.0 * qn / a2, 0.0, 1.0 - 1e-16)
-        kk, ee = ellipk(m), ellipe(m)
-        i0 = 4.0 * kk / a
-        ir = 4.0 * a * ee
+        a, b2, kk, ee, i0, i1 = _ring_integrals(pn, qn)
         j0 = 4.0 * ee / (a * b2)
-        i1 = (pn * i0 - ir) / qn
         j1 = (pn * j0 - i0) / qn
         j2 = (pn * j1 - i1) / qn
         out[0][near], out[1][near], out[2][near], out[3][near], out[4][near] = i0, i1, j0, j1, j2
@@ -219,14 +232,7 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     dx2 = (xc - xq) ** 2
     p = dx2 + rc * rc + rq * rq
     q = 2.0 * rc * rq
-    a2 = p + q
-    b2 = np.maximum(p - q, 1e-300)
-    a = np.sqrt(a2)
-    m = np.clip(2.0 * q / a2, 0.0, 1.0 - 1e-16)
-    kk, ee = ellipk(m), ellipe(m)
-    i0 = 4.0 * kk / a
-    ir = 4.0 * a * ee
-    i1 = (p * i0 - ir) / q
+    a, b2, kk, ee, i0, i1 = _ring_integrals(p, q)
     if mode == 0:
         s = -rq * i0 / (4.0 * np.pi)
         jdiff = 4.0 * (kk - ee) / (a * q)                 # int (1 - cos)/R^3
