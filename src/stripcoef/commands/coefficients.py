@@ -141,10 +141,15 @@ def estimate_from_args(args):
                              fluid=fluid)
 
 
+def _pt(point) -> list:
+    """A point rounded to 0.1 mm for display, without negative zeros [m]."""
+    return (np.round(np.asarray(point, dtype=float), 4) + 0.0).tolist()
+
+
 def format_table(model) -> str:
     """A readable summary: mass properties, the three matrices, conditions."""
     def mat(name, m, unit):
-        lines = [f"{name} [{unit}] about {np.round(model.reference_point, 4).tolist()} m:"]
+        lines = [f"{name} [{unit}] about {_pt(model.reference_point)} m:"]
         lines.append("        " + "".join(f"{d:>11s}" for d in DOF))
         for d, row in zip(DOF, np.asarray(m)):
             lines.append(f"{d:>7s} " + "".join(f"{v:11.4g}" for v in row))
@@ -155,8 +160,8 @@ def format_table(model) -> str:
            f"{'on' if c.get('corrections') else 'off'})",
            f"  mass {model.mass:.4g} kg, volume {model.volume:.5g} m^3 "
            f"(rho V = {model.density * model.volume:.4g} kg)",
-           f"  CG {np.round(model.center_of_gravity, 4).tolist()} m, "
-           f"CB {np.round(model.center_of_buoyancy, 4).tolist()} m",
+           f"  CG {_pt(model.center_of_gravity)} m, "
+           f"CB {_pt(model.center_of_buoyancy)} m",
            f"  fluid: rho = {model.density:.5g} kg/m^3, nu = {model.kinematic_viscosity:.4g} m^2/s",
            "",
            mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2"),
