@@ -683,12 +683,29 @@ class Current(Effect):
         return ("a force that turns with the heading" if np.ptp(data.eta[:, 5]) > 0.5
                 else "a force asymmetric in the sign of the speed")
 
-    def offset(self, data, dof, vc):
-        model = data.model
+    def _current_body(self, data, vc):
+        """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""
         rot = rotation_matrices(data.eta)
         v = np.array([vc[0], vc[1], 0.0])
         nuc = np.zeros_like(data.nu)
         nuc[:, :3] = np.einsum("nji,j->ni", rot, v)  # R^T V_c
+        return nuc
+
+    def relative_velocity(self, data, vc):
+        """nu_r = nu - [R^T V_c; 0] (n, 6) [m/s, rad/s]: the velocity the calibration's drag
+        and added-mass terms act on once the current is in the model (Fossen 2011, eq. 10.1)."""
+        return data.nu - self._current_body(data, vc)
+
+    def design(self, data, dof, hyper=None):
+        """Nuisance columns (released D_L, D_Q) at the relative velocity, then the offset."""
+        off, cols = self.own_design(data, dof, hyper)
+        v = self.relative_velocity(data, (0.0, 0.0) if hyper is None else hyper)[:, dof]
+        nuis = np.column_stack([-data.mean(v), -data.mean(v * np.abs(v))])
+        return off, np.hstack([nuis, cols])
+
+    def offset(self, data, dof, vc):
+        model = data.model
+        nuc = self._current_body(data, vc)
         nur = data.nu - nuc
         diff = (damping_times_velocity(model, nur) - damping_times_velocity(model, data.nu)
                 + coriolis_times_velocity(model.added_mass, nur)
