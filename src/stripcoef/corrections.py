@@ -459,6 +459,8 @@ ho\sum A X\,dx,\quad X = x - x_c
     ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
     Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.
     """
+    if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
+        return 1.0, 1.0, 0.0, np.zeros((6, 6))
     xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
     m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
     a = np.pi * rs[1:-1] ** 2
