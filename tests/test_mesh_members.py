@@ -52,7 +52,7 @@ def test_two_separate_spheroids_sum_lamb_about_the_centre():
                                      spheroid_mesh(a, b, (0, 1.0, -0.05))])
     st = strips_of(mesh)
     ents = decompose(st, RHO)
-    assert [e.kind for e in ents] == ["member", "member"]
+    assert [e.kind for e in ents] == ["member", "member", "roll interaction"]
     one = np.diag(spheroid_added_mass(a, b, rho=RHO))
     exact = sum(transform_matrix(one, from_point=c, to_point=(0, 0, 0))
                 for c in ((0, -1.0, 0.05), (0, 1.0, -0.05)))
@@ -62,7 +62,7 @@ def test_two_separate_spheroids_sum_lamb_about_the_centre():
         assert m[i, i] == pytest.approx(exact[i, i], rel=1e-2), i
     # couplings from the lever arms (sway-roll, surge-yaw, heave-roll...)
     np.testing.assert_allclose(m, exact, atol=1e-2 * big.max())
-    assert {round(i["centre"][1], 3) for i in info} == {-1.0, 1.0}
+    assert {round(i["centre"][1], 3) for i in info if "centre" in i} == {-1.0, 1.0}
 
 
 def h_frame(gap_post=0.06):
@@ -77,8 +77,14 @@ def test_junction_found_and_members_run_through_it():
     ents = decompose(st, RHO)
     kinds = [e.kind for e in ents]
     assert kinds.count("member") == 2 and kinds.count("junction") == 1
+    assert kinds.count("roll interaction") == 1
     for e in ents:
-        if e.kind == "member":                   # the bars keep their whole length
+        if e.kind == "roll interaction":      # roll terms only, none in the junction run
+            assert np.all(e.mats[:, :2, :2] == 0.0)
+            jun = next(f for f in ents if f.kind == "junction")
+            inside = np.isin(e.strips.x, jun.strips.x)
+            assert np.all(e.mats[inside] == 0.0)
+        elif e.kind == "member":                   # the bars keep their whole length
             assert e.strips.x_min == pytest.approx(-0.5) and e.strips.x_max == pytest.approx(0.5)
             np.testing.assert_allclose(e.strips.parts[0].area, 0.01, rtol=1e-6)
         else:                                    # the crossbar between the bars only
@@ -121,15 +127,15 @@ def rov_errors():
 
 
 def test_open_frame_rov_against_bem():
-    """The small-mesh check: surge, sway, heave and yaw within the 5 % target."""
+    """The small-mesh check: surge, sway, heave, roll and yaw within the 5 % target."""
     err = rov_errors()
-    for i in (0, 1, 2, 5):
+    for i in (0, 1, 2, 3, 5):
         assert abs(err[i]) < 5.0, (i, err)
 
 
-@pytest.mark.xfail(strict=True, reason="measured +9 % pitch (the junctions' 2D heave excess, "
-                   "0.95 kg m^2 at x = +-0.38 m, against 0.25 from the BEM's posts) and +19 % roll "
-                   "(no 3D relief of the float's plate roll); docs/performance.md")
-def test_open_frame_rov_pitch_and_roll_within_target():
+@pytest.mark.xfail(strict=True, reason="measured +9 % pitch: the junctions' 2D heave excess "
+                   "(0.95 kg m^2 at x = +-0.38 m, against about 0.25 from the posts in the BEM); "
+                   "docs/performance.md")
+def test_open_frame_rov_pitch_within_target():
     err = rov_errors()
-    assert abs(err[4]) < 5.0 and abs(err[3]) < 5.0, err
+    assert abs(err[4]) < 5.0, err

@@ -239,7 +239,9 @@ def decompose(strips: Strips, rho: float) -> list[Entity] | None:
         p = e.strips.parts[0]
         for k, xi in enumerate(e.strips.x):
             member_of.setdefault(float(xi), []).append((e, k))
-    _share_interaction(strips, part, member_of, set(crossing), rho)
+    joint = added_mass_sections(part.contours, rho=rho,
+                                about=np.column_stack([part.y, part.z]))
+    _share_interaction(strips, part, member_of, set(crossing), joint)
     # junctions: excess of the joined section over its members' sections
     for r, (j0, j1) in enumerate(runs):
         js = np.array([j for j in range(j0, j1 + 1) if crossing.get(j)])
@@ -273,10 +275,20 @@ def decompose(strips: Strips, rho: float) -> list[Entity] | None:
             m[:, 1, 1] = share * d[ks, 1]
             sub.parts = [p]
             entities.append(Entity("junction", sub, m))
+    # 2D roll interaction outside the junction runs: the joint section's roll terms minus the
+    # members' about the section's centroid; the translations are the members'
+    resid = joint.copy()
+    for j in range(part.index.size):
+        for e, k in member_of.get(float(strips.x[part.index[j]]), []):
+            mp = e.strips.parts[0]
+            resid[j] -= _shift2(e.mats[k], mp.y[k] - part.y[j], mp.z[k] - part.z[j])
+    resid[:, :2, :2] = 0.0
+    resid[sorted(crossing)] = 0.0     # junction runs: their excess is the pieces' (translation)
+    entities.append(Entity("roll interaction", strips, resid))
     return entities
 
 
-def _share_interaction(strips, part, member_of, junction_strips, rho):
+def _share_interaction(strips, part, member_of, junction_strips, joint):
     r"""Give the members the 2D interaction of the joint section, in proportion (in place).
 
     Where a strip's section is the union of its members' sections (not in a junction run),
@@ -288,17 +300,14 @@ def _share_interaction(strips, part, member_of, junction_strips, rho):
 
     [assumption] the interaction is shared in proportion to the members' own added mass;
     measured on the ROV's float and pontoons: joint sway 8 % above the sum of the parts,
-    heave 3 % below. Roll terms are left as the members' own. Units as
-    :func:`stripcoef.sections.panel.added_mass_sections`.
+    heave 3 % below. Roll terms are left as the members' own (their 2D roll interaction is
+    the roll-interaction entity of :func:`decompose`). ``joint`` (n, 3, 3) per strip of the
+    part [kg/m, kg, kg m].
     """
-    from .sections.panel import added_mass_sections
-
     rows = [j for j in range(part.index.size) if j not in junction_strips
             and len(member_of.get(float(strips.x[part.index[j]]), [])) > 1]
-    if not rows:
-        return
-    joint = added_mass_sections([part.contours[j] for j in rows], rho=rho, about=None)
-    for j, mj in zip(rows, joint):
+    for j in rows:
+        mj = joint[j]
         mine = member_of[float(strips.x[part.index[j]])]
         total = np.zeros(2)
         for e, k in mine:
@@ -375,7 +384,8 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None):
     """
     from .assemble import strip_added_mass
     from .conventions import transform_matrix
-    from .corrections import apply_corrections, hull_corrections
+    from .corrections import _polygon_roll_mode, apply_corrections, hull_corrections, roll_relief
+    from .sections import section_added_mass
 
     if entities is None:
         entities = decompose(strips, rho)
@@ -388,6 +398,14 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None):
         st = e.strips
         p = st.parts[0]
         mats = [e.mats]
+        if e.kind == "roll interaction":
+            # relieved like the whole body's roll (the joint sections' roll relief)
+            s = strip_added_mass(st, rho, center, mats)
+            m44 = section_added_mass(p, rho)[:, 2, 2]
+            fp = roll_relief(st, m44, rho=rho, mode=_polygon_roll_mode(st, m44))
+            total += fp * s
+            info.append({"kind": e.kind, "name": p.name, "roll_relief": fp})
+            continue
         w = p.area * st.dx
         a_e = np.array([np.sum(st.x * w), np.sum(p.y * w), np.sum(p.z * w)]) / np.sum(w)
         s = strip_added_mass(st, rho, a_e, mats)
