@@ -98,7 +98,8 @@ def test_estimate_uses_members_and_stays_symmetric():
     st = strips_of(h_frame(), n=100)
     vol, cb = displaced_volume(st)
     m, info = added_mass(st, RHO, about=cb, volume=vol, center=cb)
-    assert "members" in info and "stripcoef.members" in info["correction_method"]
+    assert info["members"] == 2 and info["junction_pieces"] == 1
+    assert "stripcoef.members" in info["correction_method"]
     np.testing.assert_allclose(m, m.T, atol=1e-12 * np.abs(m).max())
     assert np.all(np.linalg.eigvalsh(m) > 0)
 

@@ -402,7 +402,9 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip)
             strip = apply_corrections(strip, corr)
         else:                           # several members / junctions: corrected one by one
-            corrected, info["members"] = per_member
+            corrected, parts_info = per_member
+            info["members"] = sum(1 for e in parts_info if e["kind"] == "member")
+            info["junction_pieces"] = sum(1 for e in parts_info if e["kind"] == "junction")
             diag = np.diag(strip)
             eff = np.where(diag > 0, np.diag(corrected) / np.where(diag > 0, diag, 1.0), 1.0)
             corr = {"scale": eff, "axial_added_mass": float(corrected[0, 0]),

@@ -691,7 +691,8 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     :math:`S \to D S D`, :math:`D = diag(1, \sqrt{f_v}, \sqrt{f_w}, 1, \sqrt{f_q}, \sqrt{f_r})`,
     then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
     :math:`S_{35} = S_{53} += \Delta_{35}`.  For a body of revolution this is its exact
-    3D matrix (to the panel discretisation).  Roll is not corrected.
+    3D matrix (to the panel discretisation).  Roll: for mesh bodies (polygon parts) the
+    section roll terms are scaled by :func:`roll_relief` (``scale[3]``); otherwise 1.
 
     Parameters
     ----------
