@@ -397,7 +397,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
         per_strip = np.zeros((strips.n, 3, 3))
         for p, m in zip(strips.parts, mats):
             np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
-        per_member = member_added_mass(strips, rho, center)
+        per_member = member_added_mass(strips, rho, center,
+                                       joint=mats[0] if len(mats) == 1 else None)
         if per_member is None:
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip)
             strip = apply_corrections(strip, corr)

@@ -81,11 +81,15 @@ class Entity:
         The entity's strips (its own x-range; one polygon part, indices local)
     mats : (k, 3, 3) array
         2D added mass per strip about the part's centroid [kg/m, kg, kg m]
+    roll_m44 : (k,) array, optional
+        For the roll-interaction entity: the joint sections' roll added mass [kg m] (its
+        roll relief)
     """
 
     kind: str
     strips: Strips
     mats: np.ndarray
+    roll_m44: np.ndarray | None = None
 
 
 def _components(rings):
@@ -170,7 +174,7 @@ def _polygon_part(name, index, polys_per_strip, length, role):
                 length=length, role=role, contours=contours)
 
 
-def decompose(strips: Strips, rho: float) -> list[Entity] | None:
+def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
     r"""Members and junctions of a single-mesh body (module docstring), or None when the body
     is one member without junctions, or is not a single polygon part (vehicle-file bodies).
 
@@ -180,6 +184,8 @@ def decompose(strips: Strips, rho: float) -> list[Entity] | None:
         The body's strips (one ``polygon`` part, from a mesh)
     rho : float
         Fluid density [kg/m^3] (the junctions' 2D excess added mass)
+    joint : (n, 3, 3) array, optional
+        The part's 2D sections about their centroids (solved if omitted)
 
     Returns
     -------
@@ -239,8 +245,9 @@ def decompose(strips: Strips, rho: float) -> list[Entity] | None:
         p = e.strips.parts[0]
         for k, xi in enumerate(e.strips.x):
             member_of.setdefault(float(xi), []).append((e, k))
-    joint = added_mass_sections(part.contours, rho=rho,
-                                about=np.column_stack([part.y, part.z]))
+    if joint is None:
+        joint = added_mass_sections(part.contours, rho=rho,
+                                    about=np.column_stack([part.y, part.z]))
     _share_interaction(strips, part, member_of, set(crossing), joint)
     # junctions: excess of the joined section over its members' sections
     for r, (j0, j1) in enumerate(runs):
@@ -284,7 +291,7 @@ def decompose(strips: Strips, rho: float) -> list[Entity] | None:
             resid[j] -= _shift2(e.mats[k], mp.y[k] - part.y[j], mp.z[k] - part.z[j])
     resid[:, :2, :2] = 0.0
     resid[sorted(crossing)] = 0.0     # junction runs: their excess is the pieces' (translation)
-    entities.append(Entity("roll interaction", strips, resid))
+    entities.append(Entity("roll interaction", strips, resid, joint[:, 2, 2].copy()))
     return entities
 
 
@@ -366,7 +373,7 @@ def _sub_strips(strips: Strips, idx) -> Strips:
     return Strips(x=strips.x[idx].copy(), dx=strips.dx[idx].copy(), parts=[], holes=[])
 
 
-def member_added_mass(strips: Strips, rho: float, center, entities=None):
+def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=None):
     r"""Corrected 6x6 added mass about ``center`` as the sum over members and junctions.
 
     .. math:: M_A = \sum_e H(a_e - c)^T\,\mathrm{corr}_e\big(S_e(a_e)\big)\,H(a_e - c)
@@ -385,10 +392,9 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None):
     from .assemble import strip_added_mass
     from .conventions import transform_matrix
     from .corrections import _polygon_roll_mode, apply_corrections, hull_corrections, roll_relief
-    from .sections import section_added_mass
 
     if entities is None:
-        entities = decompose(strips, rho)
+        entities = decompose(strips, rho, joint)
     if not entities:
         return None
     center = np.asarray(center, dtype=float)
@@ -401,7 +407,7 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None):
         if e.kind == "roll interaction":
             # relieved like the whole body's roll (the joint sections' roll relief)
             s = strip_added_mass(st, rho, center, mats)
-            m44 = section_added_mass(p, rho)[:, 2, 2]
+            m44 = e.roll_m44
             fp = roll_relief(st, m44, rho=rho, mode=_polygon_roll_mode(st, m44))
             total += fp * s
             info.append({"kind": e.kind, "name": p.name, "roll_relief": fp})
