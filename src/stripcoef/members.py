@@ -238,7 +238,7 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
     for g, per in enumerate(groups):
         js = np.array(sorted(per))
         if js.size < 2:
-            continue            # a one-strip sliver: left out ([assumption], its volume is tiny)
+            return _too_short("member", strips.x[gidx[js[0]]])
         sub = _sub_strips(strips, gidx[js])
         length = float(sub.x_max - sub.x_min)
         p = _polygon_part(f"{part.name}:member{g}", np.arange(js.size), [per[j] for j in js],
@@ -257,8 +257,10 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
     # junctions: excess of the joined section over its members' sections
     for r, (j0, j1) in enumerate(runs):
         js = np.array([j for j in range(j0, j1 + 1) if crossing.get(j)])
+        if js.size == 0:
+            continue                  # the run's sections lie inside its neighbours': no excess
         if js.size < 2:
-            continue
+            return _too_short("junction", strips.x[gidx[js[0]]])
         whole = _polygon_part("run", np.arange(js.size), [crossing[j] for j in js], 0.0,
                               "appendage")
         about = np.column_stack([whole.y, whole.z])
@@ -275,7 +277,7 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
         for q, piece in enumerate(pieces):
             pj = np.array(sorted(piece))
             if pj.size < 2:
-                continue
+                return _too_short("junction piece", strips.x[gidx[pj[0]]])
             k_of = {int(j): k for k, j in enumerate(js)}
             ks = np.array([k_of[int(j)] for j in pj])
             sub = _sub_strips(strips, gidx[pj])
@@ -330,6 +332,18 @@ def _share_interaction(strips, part, member_of, junction_strips, joint):
         d = np.sqrt(np.clip(r, 0.0, None))
         for e, k in mine:
             e.mats[k] = d[:, None] * e.mats[k] * d[None, :]
+
+
+def _too_short(what, x):
+    """A member or junction one strip long cannot have its own equivalent body: warn and let
+    the caller use the single equivalent body of the whole body (nothing is dropped)."""
+    import warnings
+
+    from .errors import ModelWarning
+    warnings.warn(f"a {what} at x = {x:.4g} m spans a single strip: the whole body is corrected "
+                  f"as one (use more strips for the per-member correction)", ModelWarning,
+                  stacklevel=3)
+    return None
 
 
 def _shift2(m, dy, dz):
