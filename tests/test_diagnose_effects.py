@@ -108,3 +108,38 @@ def test_effect_forces_reject_bad_entries():
     model.effects = [{"name": "tether_drag", "dof": "surge", "parameters": {}}]
     with pytest.raises(InputError, match="c_t"):
         effect_forces(model)
+
+
+def test_savgol_centre_weights_are_the_quadratic_fit():
+    """Savitzky-Golay (1964) table I: 5 points (-3, 12, 17, 12, -3)/35; exact on cubics at
+    the centre; the variance factor is the centre weight."""
+    from stripcoef.identify.effects import savgol_centre_weights
+    np.testing.assert_allclose(savgol_centre_weights(2), np.array([-3, 12, 17, 12, -3]) / 35,
+                               rtol=1e-13)
+    for h in range(2, 8):
+        w = savgol_centre_weights(h)
+        k = np.arange(-h, h + 1)
+        for p in range(4):  # 1, k, k^2, k^3 -> their value at k = 0
+            assert np.dot(w, k ** p) == pytest.approx(1.0 if p == 0 else 0.0, abs=1e-12)
+        assert np.sum(w ** 2) == pytest.approx(w[h], rel=1e-12)
+
+
+def test_end_values_do_not_bias_the_true_model_and_cut_the_noise():
+    """Noise-free log of the prior itself: its window residual is the discretisation error
+    of the window operators only; with the smoothed end values it stays far below the noise
+    floor they remove (the input jumps are not smoothed across)."""
+    from stripcoef.identify.synthetic import NOISE
+    model = rov_model()
+    rng = np.random.default_rng(3)
+    t, cmds = manoeuvre(rng, duration=120.0)
+    log = simulate(model, t, commands=cmds, rtol=1e-9, atol=1e-11)
+    log = Log({k: v for k, v in log.columns.items() if k not in "XYZKMN"})
+    data = window_data(log, model, window=4.0)
+    h0, h1 = data._endpoint_halfwidths()
+    assert h0.max() == 2 and np.mean(h0 == 2) > 0.5      # 0.2 s at 10 Hz, mostly smoothed
+    for dof in (0, 1, 2):
+        floor_raw = model.mass_matrix[dof, dof] * np.sqrt(2) * NOISE["uvw"[dof]] / 4.0
+        assert np.sqrt(np.mean(data.e0[:, dof] ** 2)) < 0.1 * floor_raw
+    noisy = Log({**log.columns, "u": log["u"] + rng.normal(scale=0.01, size=t.size)})
+    d2 = window_data(noisy, model, window=4.0)
+    assert d2.rate_noise_variance(0) < 0.75 * 2 * 0.01 ** 2 / 16.0   # about 0.6 of raw

@@ -363,8 +363,22 @@ def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
     return total
 
 
+def _correction_panels(value, default):
+    """Meridian panel count of the 3D corrections: ``None`` -> ``default``, else an int >= 8."""
+    if value is None:
+        return int(default)
+    try:
+        n = int(value)
+    except (TypeError, ValueError):
+        n = None
+    if n is None or n != value or n < 8:
+        raise InputError("invalid number of correction panels", key="correction_panels",
+                         value=value, expected="an integer >= 8")
+    return n
+
+
 def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
-               corrections: bool = True):
+               corrections: bool = True, correction_panels: int | None = None):
     r"""Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
 
     With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
@@ -377,7 +391,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
 
     (H moves the matrix from ``center`` to ``about``; :func:`stripcoef.conventions.transform_matrix`;
     the k_1 term only without corrections). ``rho`` [kg/m^3], ``volume`` [m^3], ``about``
-    and ``center`` [m].
+    and ``center`` [m]. ``correction_panels``: meridian panels of the corrections'
+    axisymmetric solves (default :data:`stripcoef.corrections.DEFAULT_PANELS`).
 
     Returns (M_A [kg, kg m, kg m^2], info) where info lists the factors used.
 
@@ -385,9 +400,10 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     ----------
     See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
     """
-    from .corrections import apply_corrections, hull_corrections
+    from .corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
     from .members import member_added_mass
 
+    panels = _correction_panels(correction_panels, DEFAULT_PANELS)
     center = np.asarray(center, float)
     mats = section_matrices(strips, rho)
     strip = strip_added_mass(strips, rho, center, mats)
@@ -397,10 +413,11 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
         per_strip = np.zeros((strips.n, 3, 3))
         for p, m in zip(strips.parts, mats):
             np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
-        per_member = member_added_mass(strips, rho, center,
+        per_member = member_added_mass(strips, rho, center, panels=panels,
                                        joint=mats[0] if len(mats) == 1 else None)
         if per_member is None:
-            corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip)
+            corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
+                                    panels=panels)
             strip = apply_corrections(strip, corr)
         else:                           # several members / junctions: corrected one by one
             corrected, parts_info = per_member
@@ -417,7 +434,7 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
         info.update({"end_correction_sway": float(scale[1]), "end_correction_heave": float(scale[2]),
                      "end_correction_pitch": float(scale[4]), "end_correction_yaw": float(scale[5]),
                      "axial_added_mass": float(corr["axial_added_mass"]),
-                     "correction_method": corr["method"]})
+                     "correction_method": corr["method"], "correction_panels": panels})
     else:
         strip[0, 0] += k1 * rho * volume
         info.update({"k1": float(k1), "axial_added_mass": float(k1 * rho * volume),
@@ -650,7 +667,7 @@ def _reference_point(ref, cb, cg):
 
 def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
              speed: float | None = None, reference_point=None, regime: str = "auto",
-             fluid=None) -> HydroModel:
+             fluid=None, correction_panels: int | None = None) -> HydroModel:
     """Strip theory: a :class:`~stripcoef.geometry.vehicle.Vehicle` in, a HydroModel out.
 
     Parameters
@@ -668,6 +685,11 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         Friction line: ``auto``, ``laminar`` or ``turbulent``.
     fluid : Fluid, optional
         Override the vehicle file's fluid.
+    correction_panels : int, optional
+        Meridian panels of each axisymmetric solve of the 3D corrections (default
+        :data:`stripcoef.corrections.DEFAULT_PANELS` = 160; cost grows as its square,
+        accuracy converges at second order, docs/performance.md "Speed"). Ignored
+        without corrections.
 
     Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
     :func:`added_mass`, D_L and D_Q from :func:`_damping`, M_RB from
@@ -689,7 +711,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
     m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
-                              corrections=corrections)
+                              corrections=corrections, correction_panels=correction_panels)
     d_l, d_q, cond = _damping(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
     m_a, m_rb = _clean(m_a), _clean(m_rb)

@@ -392,7 +392,8 @@ def _sub_strips(strips: Strips, idx) -> Strips:
     return Strips(x=strips.x[idx].copy(), dx=strips.dx[idx].copy(), parts=[], holes=[])
 
 
-def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=None):
+def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=None,
+                      panels: int | None = None):
     r"""Corrected 6x6 added mass about ``center`` as the sum over members and junctions.
 
     .. math:: M_A = \sum_e H(a_e - c)^T\,\mathrm{corr}_e\big(S_e(a_e)\big)\,H(a_e - c)
@@ -400,7 +401,8 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
     with :math:`S_e(a_e)` the entity's strip matrix about its centre :math:`a_e` (volume
     centroid of a member, area centroid of a junction's crossing material) and corr the
     per-direction equivalent-body correction of :func:`stripcoef.corrections.hull_corrections`
-    and :func:`~stripcoef.corrections.apply_corrections`.  ``rho`` [kg/m^3], ``center`` [m];
+    and :func:`~stripcoef.corrections.apply_corrections` (``panels``: its meridian panels,
+    default :data:`stripcoef.corrections.DEFAULT_PANELS`).  ``rho`` [kg/m^3], ``center`` [m];
     returns (M_A [kg, kg m, kg m^2], list of per-entity info) or None when the body is not
     decomposed (:func:`decompose`).
 
@@ -410,8 +412,10 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
     """
     from .assemble import strip_added_mass
     from .conventions import transform_matrix
-    from .corrections import _polygon_roll_mode, apply_corrections, hull_corrections, roll_relief
+    from .corrections import (DEFAULT_PANELS, _polygon_roll_mode, apply_corrections,
+                              hull_corrections, roll_relief)
 
+    panels = DEFAULT_PANELS if panels is None else int(panels)
     if entities is None:
         entities = decompose(strips, rho, joint)
     if not entities:
@@ -427,14 +431,15 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
             # relieved like the whole body's roll (the joint sections' roll relief)
             s = strip_added_mass(st, rho, center, mats)
             m44 = e.roll_m44
-            fp = roll_relief(st, m44, rho=rho, mode=_polygon_roll_mode(st, m44))
+            fp = roll_relief(st, m44, rho=rho, mode=_polygon_roll_mode(st, m44), panels=panels)
             total += fp * s
             info.append({"kind": e.kind, "name": p.name, "roll_relief": fp})
             continue
         w = p.area * st.dx
         a_e = np.array([np.sum(st.x * w), np.sum(p.y * w), np.sum(p.z * w)]) / np.sum(w)
         s = strip_added_mass(st, rho, a_e, mats)
-        corr = hull_corrections(st, rho=rho, center=a_e, section_added_mass=mats[0])
+        corr = hull_corrections(st, rho=rho, center=a_e, section_added_mass=mats[0],
+                                panels=panels)
         if e.kind == "junction":
             # a crossing piece is short along x: its equivalent body is a disc whose broadside
             # rotation is not the piece's; its own pitch/yaw about its centre (O(dx^3)) take

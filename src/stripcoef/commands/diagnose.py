@@ -25,8 +25,8 @@ def add_parser(subparsers):
     p.add_argument("--report", metavar="FILE.md", help="write a markdown report (+ plots)")
     p.add_argument("--out", metavar="CALIBRATED.yaml",
                    help="write the calibrated model (YAML or JSON model file)")
-    p.add_argument("--window", type=float, default=2.0,
-                   help="window of the one-step force residual [s] (default 2)")
+    p.add_argument("--window", type=float, default=None,
+                   help="window of the one-step force residual [s] (default 4)")
     p.add_argument("--effects", default=None,
                    help="comma-separated candidate effects (default: the whole library)")
     p.add_argument("--no-resimulate", action="store_true",
@@ -36,13 +36,15 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from ..identify.diagnose import diagnose, public
+    from ..identify.diagnose import DEFAULT_WINDOW, diagnose, public
     from ..identify.diagnose_report import markdown_report, text_summary
     from ..identify.effects import get_effect
     from ..logs import read_log
     from ..export import write_export
     from ..modelfile import load_model
 
+    if args.window is None:
+        args.window = DEFAULT_WINDOW
     if not (args.window > 0):
         raise InputError("not a positive window", key="--window", value=args.window,
                          expected="a positive number of seconds")

@@ -62,6 +62,11 @@ MIMIC_BANDS = 2.5
 UNEXPLAINED_GAIN = 0.10
 N_BLOCKS = 5
 MAX_STEPS = 4
+#: Default window of the one-step residual [s]. Velocity noise of standard deviation
+#: sigma_v enters the window residual as M_ii sqrt(2) sigma_v / T: 4 s windows halve the
+#: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
+#: (measured: benchmarks/diagnose_detection.py --window 2 vs 4, docs/performance.md).
+DEFAULT_WINDOW = 4.0
 METRIC = "rms_window_force_residual"
 METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the model misses, "
                "averaged over non-overlapping windows [N or N m]")
@@ -177,15 +182,22 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m):
 class _Config:
     """Calibration columns + accepted effects (+ a candidate) for one DOF."""
 
-    def __init__(self, data: WindowData, dof: int, cal_cols, cal_sd, terms, cal_lower=None):
+    def __init__(self, data: WindowData, dof: int, cal_cols, cal_sd, terms, cal_lower=None,
+                 cal_names=None):
         self.data, self.dof = data, dof
         self.cal_cols, self.cal_sd = cal_cols, cal_sd
+        self.cal_names = cal_names
         if cal_lower is None:
             cal_lower = np.full(len(cal_sd), -np.inf)
             if cal_sd is not None and len(cal_sd):
                 cache = data.__dict__.setdefault("_cal_prior", {})
+                names = data.__dict__.setdefault("_cal_names", {})
                 if dof not in cache:
-                    cache[dof] = np.asarray(_calibration(data, dof)[3], float)
+                    cal = _calibration(data, dof)
+                    cache[dof] = np.asarray(cal[3], float)
+                    names[dof] = list(cal[2])
+                if self.cal_names is None and len(names[dof]) == len(cal_sd):
+                    self.cal_names = names[dof]
                 if cache[dof].size == len(cal_sd):
                     # the calibrated coefficient stays >= 0: no negative added mass or drag
                     cal_lower = -np.abs(cache[dof])
@@ -221,9 +233,21 @@ class _Config:
         return (cols, float(self.data.model.mass_matrix[self.dof, self.dof]),
                 self.data.rate_noise_variance(self.dof))
 
+    def calibration_columns(self, hyper_override=None):
+        """The calibration columns, at the velocity relative to the water when a term (the
+        current) defines it -- drag and added mass act on nu_r (Fossen 2011, eq. 10.1)."""
+        for k, (eff, hyper) in enumerate(self.terms):
+            h = hyper_override if (hyper_override is not None and k == len(self.terms) - 1) \
+                else hyper
+            if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
+                nur = eff.relative_velocity(self.data, h)
+                return np.column_stack([_calibration_column(self.data, self.dof, key, nur)
+                                        for key in self.cal_names])
+        return self.cal_cols
+
     def design(self, hyper_override=None):
         y = self.data.e0[:, self.dof].copy()
-        cols = [self.cal_cols]
+        cols = [self.calibration_columns(hyper_override)]
         sd = [self.cal_sd]
         for k, (eff, hyper) in enumerate(self.terms):
             h = hyper_override if (hyper_override is not None and k == len(self.terms) - 1) \
@@ -403,25 +427,68 @@ def _evaluate(cfg: _Config):
 
 
 def _calibration(data: WindowData, dof: int, bands=None):
-    """Calibration columns and band standard deviations for one DOF."""
+    r"""Calibration columns and band standard deviations for one DOF.
+
+    The DOF's own inertia, linear and quadratic damping, and the added mass
+    :math:`M_{jj}` of every *other* DOF j that reaches this one through the added-mass
+    Coriolis and centripetal force :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43: e.g.
+    :math:`M_{33}\,w q` and :math:`-M_{22}\,v r` in surge). Those are the prior's own
+    coefficients as well, with the band of their DOF: on a log with turns, strip theory's
+    error in the sway added mass shows in the surge residual as :math:`\Delta M_{22}\,v r`,
+    which no effect of the library should be asked to explain. Their column is the window
+    mean of :math:`\partial (C_A(\nu)\nu)_i / \partial M_{jj} = (C_A[E_{jj}](\nu)\nu)_i`
+    (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
+    when that product never moves in the log.
+    """
     bands = bands or BANDS
     kind = "translational" if dof < 3 else "rotational"
-    b = bands[kind]
+    b = dict(bands[kind])
     m = data.model
-    v = data.nu[:, dof]
     cols, sd, names, prior = [], [], [], []
-    spec = [("M", float(m.added_mass[dof, dof]), -data.rate(v)),
-            ("D_L", float(m.linear_damping[dof, dof]), -data.mean(v)),
-            ("D_Q", float(m.quadratic_damping[dof, dof]), -data.mean(v * np.abs(v)))]
-    for key, value, col in spec:
+    for key in ("M", "D_L", "D_Q"):
+        value = float({"M": m.added_mass, "D_L": m.linear_damping,
+                       "D_Q": m.quadratic_damping}[key][dof, dof])
         if value == 0.0:
             continue
+        cols.append(_calibration_column(data, dof, key))
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
+    for j in range(6):
+        value = float(m.added_mass[j, j])
+        if j == dof or value == 0.0:
+            continue
+        key = "M_" + DOF[j]
+        col = _calibration_column(data, dof, key)
+        if not np.any(np.abs(col) > 0.0):
+            continue
+        b[key] = bands["translational" if j < 3 else "rotational"]["M"]
         cols.append(col)
         sd.append(b[key] * abs(value))
         names.append(key)
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return cols, np.asarray(sd, float), names, prior, b
+
+
+def _calibration_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndarray:
+    """Window column of one calibration coefficient (see :func:`_calibration`), with the
+    velocity ``nu`` (n, 6) the coefficient acts on: over ground by default, relative to the
+    water when a current is fitted (Fossen 2011, eq. 10.1)."""
+    from .effects import coriolis_times_velocity
+
+    nu = data.nu if nu is None else nu
+    v = nu[:, dof]
+    if key == "M":
+        return -data.rate(v)
+    if key == "D_L":
+        return -data.mean(v)
+    if key == "D_Q":
+        return -data.mean(v * np.abs(v))
+    unit = np.zeros((6, 6))
+    j = parse_dof(key[2:])
+    unit[j, j] = 1.0
+    return -data.mean(coriolis_times_velocity(unit, nu)[:, dof])
 
 
 def _structure(data: WindowData, dof: int, resid, candidates):
@@ -701,7 +768,7 @@ def excited_dofs(data: WindowData) -> list:
     return out
 
 
-def diagnose(log, model, *, dof="all", window: float = 2.0, effects=None,
+def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
              resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> dict:
     """Diagnose a log against a prior model (module docstring).
 
@@ -772,6 +839,20 @@ def diagnose(log, model, *, dof="all", window: float = 2.0, effects=None,
     return out
 
 
+def _apply_calibration(m, i: int, cal: dict, per: dict) -> None:
+    """Add the calibration of DOF ``i`` to model ``m`` (its arrays, in place): its own M,
+    D_L, D_Q, and the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that
+    DOF is diagnosed itself, whose own calibration then holds."""
+    for key, mat in (("M", m.added_mass), ("D_L", m.linear_damping),
+                     ("D_Q", m.quadratic_damping)):
+        if key in cal:
+            mat[i, i] += cal[key]
+    for key, value in cal.items():
+        if key.startswith("M_") and key[2:] not in per:
+            j = parse_dof(key[2:])
+            m.added_mass[j, j] += value
+
+
 def calibrated_model(model, per: dict):
     """The prior with its calibrated coefficients and the added effects."""
     m = copy.deepcopy(model)
@@ -782,12 +863,7 @@ def calibrated_model(model, per: dict):
     for d, r in per.items():
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
-        if "M" in cal:
-            m.added_mass[i, i] += cal["M"]
-        if "D_L" in cal:
-            m.linear_damping[i, i] += cal["D_L"]
-        if "D_Q" in cal:
-            m.quadratic_damping[i, i] += cal["D_Q"]
+        _apply_calibration(m, i, cal, per)
         cfg = r["_final_config"]
         theta = r["_final_eval"]["full"]["theta"]
         k = len(r["calibration"]["parameters"])
@@ -823,11 +899,7 @@ def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
     only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
     for d, r in per.items():
         i = parse_dof(d)
-        cal = r["calibration"]["parameters"]
-        for key, mat in (("M", only_cal.added_mass), ("D_L", only_cal.linear_damping),
-                         ("D_Q", only_cal.quadratic_damping)):
-            if key in cal:
-                mat[i, i] += cal[key]
+        _apply_calibration(only_cal, i, r["calibration"]["parameters"], per)
     dofs = [parse_dof(d) for d in per]
     rows = {name: resimulate_rms(log, m, dofs) for name, m in
             (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
@@ -901,7 +973,7 @@ def public(result: dict) -> dict:
     return clean(result)
 
 
-def fit_effects(log, model, dof, effects, *, window: float = 2.0, bands=None) -> dict:
+def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, bands=None) -> dict:
     """Fit the calibration and a given list of effects (no selection): the "what if" of a
     fixed model structure, e.g. seed 001's standard model (calibration + buoyancy) or its
     eta model (+ thrust_asymmetry).

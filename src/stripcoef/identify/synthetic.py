@@ -159,12 +159,16 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
     prior : HydroModel
         The model the diagnosis is given.
     truth : dict
-        effect name, magnitude (see :data:`MAGNITUDES`) and the truth model.
+        effect name, magnitude (see :data:`MAGNITUDES`), the truth model (``model``), the
+        truth without its effects (``model_without_effects``: same coefficients, no effect)
+        and the noise-free log (``clean_log``), from which the effect's own force along the
+        trajectory follows (:func:`effect_signal`).
     """
     rng = np.random.default_rng(seed)
     if prior is None:
         prior = rov_model(linear_surge=effect != "linear_drag")
     truth_model = perturb_within_bands(prior, rng, scale=perturb)
+    without = copy.deepcopy(truth_model)
     t, cmds = manoeuvre(rng, duration=duration, small_commands=effect == "deadband")
     tether = 2.0 + (t / t[-1]) * rng.uniform(10.0, 30.0)  # paid out steadily [m]
     extra = []
@@ -230,4 +234,39 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
     cols = {k: v for k, v in log.columns.items() if k not in ("X", "Y", "Z", "K", "M", "N")}
     noisy = add_noise(Log(cols, source=f"synthetic({effect or 'clean'}, seed {seed})"), rng)
     truth["model"] = truth_model
+    truth["model_without_effects"] = without
+    truth["clean_log"] = Log(cols, source=f"synthetic({effect or 'clean'}, seed {seed}, "
+                             "noise-free)")
     return noisy, prior, truth
+
+
+def effect_signal(truth: dict, dof: int, *, window: float = 2.0) -> dict:
+    r"""Size of the undeclared effects in a generated log, against the noise of the metric.
+
+    The effects' own generalized force in ``dof``, window by window, is the window force
+    residual (:func:`stripcoef.identify.effects.prior_residual`) of the truth *without* its
+    effects on the noise-free log: every other term of the force balance is exact there,
+
+    .. math:: s_k = e_k[\text{truth without effects}],\qquad
+              S = \sqrt{\overline{s_k^2}}\ \text{[N or N m]}.
+
+    The noise floor of the metric is the part of the window residual that the generator's
+    velocity noise (:data:`NOISE`, standard deviation :math:`\sigma_v`) alone produces
+    through the rate term, :math:`F = M_{ii}\sqrt{2}\,\sigma_v / T` [N or N m] (window
+    length T [s]; :meth:`stripcoef.identify.effects.WindowData.rate_noise_variance`). A model
+    that captured the effect perfectly would cut the error from about
+    :math:`\sqrt{S^2 + F^2}` to :math:`F`, so a cut of three needs :math:`S/F \ge 2\sqrt2`.
+
+    Returns ``{"signal": S, "noise_floor": F, "snr": S / F}`` for the ``truth`` of
+    :func:`generate`.
+    """
+    from .effects import window_data
+
+    clean = truth["clean_log"]
+    model = truth["model_without_effects"]
+    data = window_data(clean, model, window=window)
+    s = float(np.sqrt(np.mean(data.e0[:, dof] ** 2)))
+    sigma_v = NOISE[VELOCITIES[dof]]
+    var_rate = 2 * sigma_v ** 2 / float(np.mean(data.T ** 2))
+    floor = float(model.mass_matrix[dof, dof]) * float(np.sqrt(var_rate))
+    return {"signal": s, "noise_floor": floor, "snr": s / floor}
