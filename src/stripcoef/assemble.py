@@ -401,6 +401,7 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
     """
     from .corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
+    from .members import member_added_mass
 
     panels = _correction_panels(correction_panels, DEFAULT_PANELS)
     center = np.asarray(center, float)
@@ -412,9 +413,23 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
         per_strip = np.zeros((strips.n, 3, 3))
         for p, m in zip(strips.parts, mats):
             np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
-        corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
-                                panels=panels)
-        strip = apply_corrections(strip, corr)
+        per_member = member_added_mass(strips, rho, center, panels=panels,
+                                       joint=mats[0] if len(mats) == 1 else None)
+        if per_member is None:
+            corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
+                                    panels=panels)
+            strip = apply_corrections(strip, corr)
+        else:                           # several members / junctions: corrected one by one
+            corrected, parts_info = per_member
+            info["members"] = sum(1 for e in parts_info if e["kind"] == "member")
+            info["junction_pieces"] = sum(1 for e in parts_info if e["kind"] == "junction")
+            diag = np.diag(strip)
+            eff = np.where(diag > 0, np.diag(corrected) / np.where(diag > 0, diag, 1.0), 1.0)
+            corr = {"scale": eff, "axial_added_mass": float(corrected[0, 0]),
+                    "method": "per-member axisymmetric BEM of the added-mass-equivalent bodies "
+                              "of revolution (stripcoef.members); end_correction_* are the "
+                              "effective ratios corrected/strip"}
+            strip = corrected
         scale = corr["scale"]
         info.update({"end_correction_sway": float(scale[1]), "end_correction_heave": float(scale[2]),
                      "end_correction_pitch": float(scale[4]), "end_correction_yaw": float(scale[5]),

@@ -149,6 +149,8 @@ def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
     (G = -1/(4 pi R), module docstring; Hess & Smith 1967, sec. 5). Positions [m], normals
     [-]; S [-] and D [1/m] per unit meridian length.
     """
+    if mode >= 2:
+        return _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode)
     i0, i1, j0, j1, j2 = _theta_moments(xc, rc, xq, rq)
     base = (xq - xc) * nxq + nrq * rq
     if mode == 0:
@@ -158,6 +160,114 @@ def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
         s = -rq * i1 / (4.0 * np.pi)
         d = rq * (base * j1 - nrq * rc * j2) / (4.0 * np.pi)
     return s, d
+
+
+_TRAP_THETA_MODE = 48
+
+
+def _toroidal(chi, kmax):
+    r"""Toroidal Legendre functions :math:`Q_{k-1/2}(\chi)`, k = 0..kmax, and their derivatives.
+
+    .. math:: Q_{-1/2} = \kappa K(\kappa^2),\quad
+              Q_{1/2} = \chi\kappa K(\kappa^2) - \sqrt{2(\chi+1)}E(\kappa^2),\quad
+              \kappa^2 = \frac{2}{\chi+1},
+
+    :math:`(n+1)Q_{n+1} = (2n+1)\chi Q_n - nQ_{n-1}`, and
+    :math:`(\chi^2-1)Q'_n = n(\chi Q_n - Q_{n-1})` with :math:`Q_{-3/2} = Q_{1/2}`
+    (Abramowitz & Stegun 1964, 8.5.3, 8.5.4, 8.13.3; Gradshteyn & Ryzhik 2007, 8.834).
+    ``chi`` >= 1 [-]; upward recurrence, used for chi <= 4 (near rings) where it is stable
+    to ~1e-7 for k <= 6. Returns arrays (kmax + 2, ...) of Q and of
+    :math:`n(\chi Q_n - Q_{n-1})` (the derivative without its :math:`1/(\chi^2-1)`).
+    """
+    k2 = np.clip(2.0 / (chi + 1.0), 0.0, 1.0 - 1e-16)
+    kk, ee = ellipk(k2), ellipe(k2)
+    q = [np.sqrt(k2) * kk, chi * np.sqrt(k2) * kk - np.sqrt(2.0 * (chi + 1.0)) * ee]
+    for k in range(1, kmax + 1):
+        n = k - 0.5
+        q.append(((2 * n + 1) * chi * q[k] - n * q[k - 1]) / (n + 1))
+    q = np.array(q)
+    dn = np.empty_like(q)
+    dn[0] = -0.5 * (chi * q[0] - q[1])
+    for k in range(1, q.shape[0]):
+        dn[k] = (k - 0.5) * (chi * q[k] - q[k - 1])
+    return q, dn
+
+
+def _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode, own_panel=False):
+    r"""S and D kernels of Fourier mode m >= 2 (as :func:`_kernels` for m = 0, 1).
+
+    .. math:: \int_0^{2\pi}\frac{\cos m\theta}{R}d\theta = \frac{2\sqrt2}{\sqrt Q}Q_{m-1/2}(\chi),
+              \quad \int_0^{2\pi}\frac{\cos m\theta}{R^3}d\theta
+              = -\frac{4\sqrt2}{Q^{3/2}}Q'_{m-1/2}(\chi),\quad \chi = P/Q
+
+    (:func:`_toroidal`; R^2 = P - Q cos theta), :math:`\cos\theta\cos m\theta =
+    \frac12(\cos(m+1)\theta + \cos(m-1)\theta)`, and on the collocation point's own panel
+    :math:`\int(1-\cos\theta)\cos m\theta/R^3 = (I_m - B^2J_m)/Q`, :math:`B^2 = P - Q`,
+    without cancellation.  Far rings (Q < P/4): periodic trapezoid rule.  Units as
+    :func:`_kernels`.
+    """
+    xc, rc, xq, rq, nxq, nrq = np.broadcast_arrays(xc, rc, xq, rq, nxq, nrq)
+    p = (xc - xq) ** 2 + rc * rc + rq * rq
+    q = 2.0 * rc * rq
+    far = q < 0.25 * p
+    im = np.empty(p.shape)
+    jc = np.empty(p.shape)          # int cos(theta) cos(m theta) / R^3
+    jm = np.empty(p.shape)
+    b2jm = np.empty(p.shape)
+    if np.any(far):
+        th = np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA_MODE, endpoint=False)
+        w = 2.0 * np.pi / _TRAP_THETA_MODE
+        c, cm = np.cos(th), np.cos(mode * th)
+        pf, qf = p[far][:, None], q[far][:, None]
+        rr = np.sqrt(pf - qf * c)
+        im[far] = w * (cm / rr).sum(1)
+        jm[far] = w * (cm / rr ** 3).sum(1)
+        jc[far] = w * (c * cm / rr ** 3).sum(1)
+        b2jm[far] = (p[far] - q[far]) * jm[far]
+    near = ~far
+    if np.any(near):
+        pn, qn = p[near], q[near]
+        chi = pn / qn
+        tq, dn = _toroidal(chi, mode + 1)
+        sq = np.sqrt(qn)
+        im[near] = 2.0 * np.sqrt(2.0) * tq[mode] / sq
+        # J_k = -4 sqrt2 dn_k / ((chi^2 - 1) Q^1.5);  B^2 J_k = -4 sqrt2 dn_k / ((chi + 1) sqrt Q)
+        b2j = -4.0 * np.sqrt(2.0) * dn / ((chi + 1.0) * sq)
+        b2 = np.maximum(pn - qn, 1e-300)
+        jk = b2j / b2
+        jm[near] = jk[mode]
+        jc[near] = 0.5 * (jk[mode + 1] + jk[mode - 1])
+        b2jm[near] = b2j[mode]
+    s = -rq * im / (4.0 * np.pi)
+    if own_panel:
+        d = rq * nrq * rc * (im - b2jm) / q / (4.0 * np.pi)
+    else:
+        base = (xq - xc) * nxq + nrq * rq
+        d = rq * (base * jm - nrq * rc * jc) / (4.0 * np.pi)
+    return s, d
+
+
+def mode_inertia(x, r, *, mode: int, rho: float, panels: int = DEFAULT_PANELS) -> float:
+    r"""3D inertia of the Fourier mode ``mode`` = m >= 2 of a body of revolution.
+
+    The body's surface moves with normal velocity :math:`v_n = r\,n_r\cos m\theta` (a radial
+    field :math:`u_r = r\cos m\theta`; on a cylinder of radius r the 2D value is
+    :math:`\rho\pi r^4/m` per unit length, from :math:`\phi = -(r^2/m)(r/\varrho)^m\cos m\theta`),
+    and
+
+    .. math:: I_m = -\rho\iint_S\phi\,v_n\,dS = -\pi\rho\int\phi_m(s)\,r^2 n_r\,ds
+
+    with :math:`\phi_m` from the direct boundary-integral equation of the module docstring in
+    mode m.  ``x, r`` [m] as :func:`body_of_revolution_added_mass`, ``rho`` [kg/m^3]; returns
+    I_m [kg m^2].  References: Newman (1977) sec. 4.13 (2D multipoles); Hess & Smith (1967)
+    sec. 5 (ring kernels); Abramowitz & Stegun (1964) ch. 8 (toroidal functions).
+    """
+    xn, rn = _meridian(x, r, int(panels))
+    S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, int(mode))
+    A = D + 0.5 * np.eye(D.shape[0])
+    bc = rc * nr
+    phi = np.linalg.solve(A, S @ bc)
+    return float(-np.pi * rho * np.sum(phi * rc * bc * length))
 
 
 def _panel_geometry(xn, rn):
@@ -229,6 +339,8 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     D_m = r_q n_r r_c/(4 pi) int (1 - cos theta) cos(m theta)/R^3 dtheta (module docstring).
     Units as :func:`_kernels`.
     """
+    if mode >= 2:
+        return _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode, own_panel=True)
     dx2 = (xc - xq) ** 2
     p = dx2 + rc * rc + rq * rq
     q = 2.0 * rc * rq
@@ -459,6 +571,8 @@ ho\sum A X\,dx,\quad X = x - x_c
     ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
     Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.
     """
+    if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
+        return 1.0, 1.0, 0.0, np.zeros((6, 6))
     xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
     m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
     a = np.pi * rs[1:-1] ** 2
@@ -467,6 +581,90 @@ ho\sum A X\,dx,\quad X = x - x_c
     s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
     ft, fr = float(m3[1, 1] / s22), float(m3[5, 5] / s66)
     return ft, fr, float(m3[1, 5] - np.sqrt(ft * fr) * s26), m3
+
+
+def roll_symmetry_order(contours, max_order: int = 6) -> int:
+    r"""Rotational symmetry order k of a section about its area centroid, at least 2.
+
+    The largest k <= ``max_order`` for which the section rotated by :math:`2\pi/k` covers
+    itself (symmetric difference < 1 % of its area); 2 when there is none (the roll flow of
+    a rigid rotation has no source and its dipole is the sway/heave coupling, so its own far
+    field is at least a quadrupole, Newman 1977, sec. 4.13).  ``contours`` (y, z) rings [m].
+    """
+    import shapely
+    from shapely import affinity
+    from shapely.geometry import Polygon
+
+    from .geometry.mesh import ring_integrals
+    shells = [Polygon(r) for r in contours if ring_integrals(r)[0] > 0]
+    holes = [Polygon(r) for r in contours if ring_integrals(r)[0] < 0]
+    if not shells:
+        return 2
+    geom = shapely.union_all(shells)
+    if holes:
+        geom = geom.difference(shapely.union_all(holes))
+    c = geom.centroid
+    for k in range(max_order, 2, -1):
+        rot = affinity.rotate(geom, 360.0 / k, origin=c)
+        if geom.symmetric_difference(rot).area < 0.01 * geom.area:
+            return k
+    return 2
+
+
+def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT_PANELS):
+    r"""3D/strip ratio of the roll added mass from the roll-equivalent body of revolution.
+
+    Each run of strips with roll added mass gets the body of revolution whose mode-m
+    inertia per unit length (:func:`mode_inertia`, :math:`\rho\pi r^4/m` on a cylinder)
+    equals the section's 2D roll added mass about its centroid,
+
+    .. math:: r_p(x) = \left(\frac{m\,m_{44}^{2D}(x)}{\rho\pi}\right)^{1/4},\qquad
+              f_p = \frac{\sum_{runs} I_m^{3D}[r_p]}{\int m_{44}^{2D}\,dx}
+
+    with m the sections' rotational symmetry order (:func:`roll_symmetry_order`; 2 for a
+    plate, 4 for a cruciform): the order of the 2D roll far field, whose decay along x sets
+    the 3D relief.  Exact in the 2D limit (long cylinders) and for a sphere's mode 2
+    (:math:`I_2 = 16\pi\rho R^5/45`, spherical harmonic of degree 2); [assumption] for other
+    sections, checked against Lamb's exact elliptic plates (Lamb 1932, sec. 373, rotation
+    about a diameter of the ellipsoid with c -> 0): the factor is 9 % low at aspect ratio 1,
+    19 % low at 3.6 (docs/theory.md sec. 6).  ``m44`` [kg m] per strip, ``rho`` [kg/m^3].
+
+    Returns the factor f_p [-] (1 if no strip has roll added mass).
+    """
+    m44 = np.clip(np.asarray(m44, dtype=float), 0.0, None)
+    total = float(np.sum(m44 * strips.dx))
+    if not total > 0:
+        return 1.0
+    on = m44 > 1e-3 * m44.max()
+    i3d = 0.0
+    j = 0
+    n = strips.n
+    while j < n:
+        if not on[j]:
+            j += 1
+            continue
+        k = j
+        while k + 1 < n and on[k + 1]:
+            k += 1
+        x = strips.x[j:k + 1]
+        r = (mode * m44[j:k + 1] / (rho * np.pi)) ** 0.25
+        lo, hi = x[0] - 0.5 * strips.dx[j], x[-1] + 0.5 * strips.dx[k]
+        i3d += mode_inertia(np.r_[lo, x, hi], np.r_[r[0], r, r[-1]], mode=mode, rho=rho,
+                            panels=max(40, panels // 2))
+        j = k + 1
+    return i3d / total
+
+
+def _polygon_roll_mode(strips, m44) -> int | None:
+    """Symmetry order of the section with the largest roll added mass, for bodies made of
+    polygon parts only (meshes); None otherwise (vehicle files: roll left uncorrected)."""
+    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+        return None
+    if len(strips.parts) != 1:
+        return 2
+    p = strips.parts[0]
+    k = int(np.argmax(np.asarray(m44)[p.index]))
+    return roll_symmetry_order(p.contours[k])
 
 
 def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
@@ -493,7 +691,8 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     :math:`S \to D S D`, :math:`D = diag(1, \sqrt{f_v}, \sqrt{f_w}, 1, \sqrt{f_q}, \sqrt{f_r})`,
     then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
     :math:`S_{35} = S_{53} += \Delta_{35}`.  For a body of revolution this is its exact
-    3D matrix (to the panel discretisation).  Roll is not corrected.
+    3D matrix (to the panel discretisation).  Roll: for mesh bodies (polygon parts) the
+    section roll terms are scaled by :func:`roll_relief` (``scale[3]``); otherwise 1.
 
     Parameters
     ----------
@@ -535,7 +734,13 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     else:
         fw, fq, d62, _ = _lateral(strips, mw, rho, xc, panels)
         d35 = -d62                      # heave-pitch: M[2,4] = -m26 of the heave body
-    return {"scale": np.array([1.0, fv, fw, 1.0, fq, fr]),
+    fp = 1.0
+    if section_added_mass is not None:
+        m44 = np.asarray(section_added_mass, dtype=float)[:, 2, 2]
+        mode = _polygon_roll_mode(strips, m44)
+        if mode is not None:
+            fp = roll_relief(strips, m44, rho=rho, mode=mode, panels=panels)
+    return {"scale": np.array([1.0, fv, fw, fp, fq, fr]),
             "axial_added_mass": float(m11),
             "coupling_26": d26, "coupling_35": d35,
             "translation": fv, "rotation": fr, "coupling": d26,
