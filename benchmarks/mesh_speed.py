@@ -322,6 +322,8 @@ def main(argv=None):
                     help="BLAS/OpenMP threads of the BEM child processes (default: all cores)")
     ap.add_argument("--bem-worker", nargs=2, type=int, help=argparse.SUPPRESS)
     ap.add_argument("--skip-part1", action="store_true", help="only the BEM comparison")
+    ap.add_argument("--only-part1", action="store_true",
+                    help="only the 100k-face pipeline timing (no BEM)")
     args = ap.parse_args(argv)
     if args.bem_worker:
         bem_worker(*args.bem_worker)
@@ -329,7 +331,8 @@ def main(argv=None):
     print("load average at the start: %.2f %.2f %.2f" % os.getloadavg())
     if not args.skip_part1:
         part1()
-    part2(args.max_gb, args.bem_threads)
+    if not args.only_part1:
+        part2(args.max_gb, args.bem_threads)
     print("\nload average at the end: %.2f %.2f %.2f" % os.getloadavg())
 
 
