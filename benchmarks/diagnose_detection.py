@@ -164,8 +164,9 @@ def write_section(path, body, window, duration):
     path = Path(path)
     text = path.read_text() if path.exists() else "# Performance\n"
     head = "## Diagnosis"
-    section = (f"{head}\n\nMeasured by `python benchmarks/diagnose_detection.py --write "
-               f"docs/performance.md` (seeded: the same command gives the same table), "
+    section = (f"{head}\n\nMeasured by `python benchmarks/diagnose_detection.py --jobs 2 "
+               f"--write docs/performance.md` (seeded: the same command gives the same table, "
+               f"whatever `--jobs`), "
                f"window {window:g} s (the default of `stripcoef diagnose`), logs of "
                f"{duration:g} s.\n\n"
                + NOTES + "\n\n" + body + "\n")
