@@ -50,6 +50,8 @@ def section() -> str:
             "diagnosis says so instead of naming an effect — the data of the paper could not "
             "have told a tether from a larger drag coefficient.", ""]
     rc = romeo_case(seed=0)
+    shrink = [(abs(r["standard_buoyancy"] - r["weight_truth"]),
+               abs(r["eta_buoyancy"] - r["weight_truth"])) for r in rc]
     rows = []
     for row in rc:
         d = row["diagnosis"]
@@ -74,6 +76,20 @@ def section() -> str:
             "As in the chapter, the standard model compensates the over-estimated upward thrust "
             "with weight: its buoyancy estimate is biased (toward heavy) in all five experiments. "
             "The diagnosis finds the direction-dependent efficiency from the residuals in every "
-            "experiment, and with it the weight estimate falls on the truth within its error "
-            "bars; in the neutral experiment no buoyancy term is added at all.", ""]
+            "experiment, and with it the weight bias shrinks "
+            + ", ".join(f"{b:.1f} → {a:.1f} N" for b, a in shrink) + " (experiments 1-5). "
+            + _within_text(rc) + " In the neutral experiment no buoyancy term is added "
+            "at all.", ""]
     return "\n".join(out)
+
+
+def _within_text(rc) -> str:
+    """Which experiments' weight with the efficiency lies within 3 sigma of the truth."""
+    off = [r["experiment"] for r in rc
+           if abs(r["eta_buoyancy"] - r["weight_truth"]) >= 3 * r["eta_buoyancy_std"]]
+    if not off:
+        return "Every estimate with the efficiency lies within 3σ of the truth."
+    return ("Within 3σ of the truth in all but experiment(s) " + ", ".join(map(str, off))
+            + ", where the fitted scale (inertia, efficiency) comes out high and the bias, "
+            "though much smaller, stays beyond its error bar (a strict xfail in "
+            "tests/test_diagnose_papers.py; cause not traced).")
