@@ -48,7 +48,7 @@ from scipy.optimize import least_squares, lsq_linear
 
 from ..conventions import DOF, parse_dof
 from ..errors import InputError
-from .effects import EFFECTS, WindowData, get_effect, window_data
+from .effects import EFFECTS, WindowData, coefficient_column, get_effect, window_data
 from .estimators import residual_autocorrelation, runs_test_z
 
 #: 1-sigma relative bands on the prior's coefficients (see module docstring).
@@ -241,7 +241,7 @@ class _Config:
                 else hyper
             if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
                 nur = eff.relative_velocity(self.data, h)
-                return np.column_stack([_calibration_column(self.data, self.dof, key, nur)
+                return np.column_stack([coefficient_column(self.data, self.dof, key, nur)
                                         for key in self.cal_names])
         return self.cal_cols
 
@@ -450,7 +450,7 @@ def _calibration(data: WindowData, dof: int, bands=None):
                        "D_Q": m.quadratic_damping}[key][dof, dof])
         if value == 0.0:
             continue
-        cols.append(_calibration_column(data, dof, key))
+        cols.append(coefficient_column(data, dof, key))
         sd.append(b[key] * abs(value))
         names.append(key)
         prior.append(value)
@@ -459,7 +459,7 @@ def _calibration(data: WindowData, dof: int, bands=None):
         if j == dof or value == 0.0:
             continue
         key = "M_" + DOF[j]
-        col = _calibration_column(data, dof, key)
+        col = coefficient_column(data, dof, key)
         if not np.any(np.abs(col) > 0.0):
             continue
         b[key] = bands["translational" if j < 3 else "rotational"]["M"]
@@ -469,26 +469,6 @@ def _calibration(data: WindowData, dof: int, bands=None):
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return cols, np.asarray(sd, float), names, prior, b
-
-
-def _calibration_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndarray:
-    """Window column of one calibration coefficient (see :func:`_calibration`), with the
-    velocity ``nu`` (n, 6) the coefficient acts on: over ground by default, relative to the
-    water when a current is fitted (Fossen 2011, eq. 10.1)."""
-    from .effects import coriolis_times_velocity
-
-    nu = data.nu if nu is None else nu
-    v = nu[:, dof]
-    if key == "M":
-        return -data.rate(v)
-    if key == "D_L":
-        return -data.mean(v)
-    if key == "D_Q":
-        return -data.mean(v * np.abs(v))
-    unit = np.zeros((6, 6))
-    j = parse_dof(key[2:])
-    unit[j, j] = 1.0
-    return -data.mean(coriolis_times_velocity(unit, nu)[:, dof])
 
 
 def _structure(data: WindowData, dof: int, resid, candidates):

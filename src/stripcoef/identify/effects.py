@@ -335,6 +335,32 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     return data
 
 
+def coefficient_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndarray:
+    r"""Window regressor of a change of one prior coefficient in DOF i [N or N m per unit]:
+    minus the derivative of the window residual :func:`prior_residual` with respect to it,
+
+    - ``M`` (the DOF's added mass): :math:`-(\nu_i(t_1) - \nu_i(t_0))/T`;
+    - ``D_L``, ``D_Q``: :math:`-\overline{\nu_i}`, :math:`-\overline{\nu_i|\nu_i|}`;
+    - ``M_<dof>`` (another DOF's added mass :math:`M_{jj}`, seen through the added-mass
+      Coriolis force, linear in :math:`M_A`; Fossen 2011, eq. 6.43):
+      :math:`-\overline{(C_A[E_{jj}](\nu)\nu)_i}`,
+
+    with ``nu`` (n, 6) the velocity the coefficient acts on: over ground by default, relative
+    to the water when a current is in the model (Fossen 2011, eq. 10.1)."""
+    nu = data.nu if nu is None else nu
+    v = nu[:, dof]
+    if key == "M":
+        return -data.rate(v)
+    if key == "D_L":
+        return -data.mean(v)
+    if key == "D_Q":
+        return -data.mean(v * np.abs(v))
+    unit = np.zeros((6, 6))
+    j = parse_dof(key[2:])
+    unit[j, j] = 1.0
+    return -data.mean(coriolis_times_velocity(unit, nu)[:, dof])
+
+
 def prior_residual(data: WindowData, model) -> np.ndarray:
     r"""Window force residual of a model (module docstring) [N, N m], shape (m, 6).
 
@@ -400,9 +426,7 @@ class Effect:
         beyond them (its signature). None = no nuisance columns."""
         if not self.nuisance_names:
             return None
-        v = data.nu[:, dof]
-        cols = {"M": -data.rate(v), "D_L": -data.mean(v), "D_Q": -data.mean(v * np.abs(v))}
-        return np.column_stack([cols[n] for n in self.nuisance_names])
+        return np.column_stack([coefficient_column(data, dof, n) for n in self.nuisance_names])
 
     def nuisance_sd(self, data, dof) -> np.ndarray:
         """Prior standard deviations of the nuisance parameters (inf = free)."""
@@ -765,8 +789,9 @@ class Current(Effect):
     def design(self, data, dof, hyper=None):
         """Nuisance columns (released D_L, D_Q) at the relative velocity, then the offset."""
         off, cols = self.own_design(data, dof, hyper)
-        v = self.relative_velocity(data, (0.0, 0.0) if hyper is None else hyper)[:, dof]
-        nuis = np.column_stack([-data.mean(v), -data.mean(v * np.abs(v))])
+        nur = self.relative_velocity(data, (0.0, 0.0) if hyper is None else hyper)
+        nuis = np.column_stack([coefficient_column(data, dof, n, nur)
+                                for n in self.nuisance_names])
         return off, np.hstack([nuis, cols])
 
     def offset(self, data, dof, vc):
@@ -976,7 +1001,7 @@ class AddedMassError(Effect):
         return np.array([-abs(float(data.model.added_mass[dof, dof]))])
 
     def own_design(self, data, dof, hyper=None):
-        return None, -data.rate(data.nu[:, dof])[:, None]
+        return None, coefficient_column(data, dof, "M")[:, None]
 
     def plausible(self, params):
         return True
