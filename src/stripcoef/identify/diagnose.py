@@ -182,11 +182,10 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m):
 class _Config:
     """Calibration columns + accepted effects (+ a candidate) for one DOF."""
 
-    def __init__(self, data: WindowData, dof: int, cal_cols, cal_sd, terms, cal_lower=None,
-                 cal_names=None):
+    def __init__(self, data: WindowData, dof: int, cal_cols, cal_sd, terms, cal_lower=None):
         self.data, self.dof = data, dof
         self.cal_cols, self.cal_sd = cal_cols, cal_sd
-        self.cal_names = cal_names
+        self.cal_names = None  # names of the calibration columns (for recomputing them)
         if cal_lower is None:
             cal_lower = np.full(len(cal_sd), -np.inf)
             if cal_sd is not None and len(cal_sd):
@@ -206,12 +205,17 @@ class _Config:
                           and float(data.model.added_mass[dof, dof]) != 0.0)
         self.terms = terms  # list of (effect, hyper)
 
+    def hyper_terms(self, hyper_override=None):
+        """(effect, hyper) of each term, the last one's hyper replaced by ``hyper_override``
+        when given (the candidate whose nonlinear parameters are being profiled)."""
+        last = len(self.terms) - 1
+        return [(eff, hyper_override if (hyper_override is not None and k == last) else hyper)
+                for k, (eff, hyper) in enumerate(self.terms)]
+
     def lower(self, hyper_override=None):
         """Lower bounds of all parameters (calibration: coefficient >= 0)."""
         out = [self.cal_lower]
-        for k, (eff, hyper) in enumerate(self.terms):
-            h = hyper_override if (hyper_override is not None and k == len(self.terms) - 1) \
-                else hyper
+        for eff, h in self.hyper_terms(hyper_override):
             lo = eff.lower_bounds(self.data, self.dof, h) if hasattr(eff, "lower_bounds") \
                 else np.full(eff.design(self.data, self.dof, h)[1].shape[1], -np.inf)
             out.append(lo)
@@ -223,9 +227,7 @@ class _Config:
         if self.cal_has_m:
             cols.append(0)
         k = self.cal_cols.shape[1]
-        for j, (eff, hyper) in enumerate(self.terms):
-            h = hyper_override if (hyper_override is not None and j == len(self.terms) - 1) \
-                else hyper
+        for eff, h in self.hyper_terms(hyper_override):
             n = eff.design(self.data, self.dof, h)[1].shape[1]
             if getattr(eff, "inertia", False):
                 cols.append(k + n - 1)
@@ -236,9 +238,7 @@ class _Config:
     def calibration_columns(self, hyper_override=None):
         """The calibration columns, at the velocity relative to the water when a term (the
         current) defines it -- drag and added mass act on nu_r (Fossen 2011, eq. 10.1)."""
-        for k, (eff, hyper) in enumerate(self.terms):
-            h = hyper_override if (hyper_override is not None and k == len(self.terms) - 1) \
-                else hyper
+        for eff, h in self.hyper_terms(hyper_override):
             if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
                 nur = eff.relative_velocity(self.data, h)
                 return np.column_stack([coefficient_column(self.data, self.dof, key, nur)
@@ -249,9 +249,7 @@ class _Config:
         y = self.data.e0[:, self.dof].copy()
         cols = [self.calibration_columns(hyper_override)]
         sd = [self.cal_sd]
-        for k, (eff, hyper) in enumerate(self.terms):
-            h = hyper_override if (hyper_override is not None and k == len(self.terms) - 1) \
-                else hyper
+        for eff, h in self.hyper_terms(hyper_override):
             off, c = eff.design(self.data, self.dof, h)
             if off is not None:
                 y = y - off
