@@ -765,3 +765,113 @@ def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
     m[2, 4] += corr["coupling_35"]
     m[4, 2] += corr["coupling_35"]
     return m
+
+
+# --- bodies of revolution whose meridian does not touch the axis (tubes, rings) -------------
+
+def _closed_meridian(xm, rm, panels):
+    r"""Panel nodes of a closed meridian polygon off the axis (a tube's wall section).
+
+    ``xm, rm`` [m]: the polygon's corners, r > 0, any orientation; returned clockwise in the
+    (x, r) plane (so that :func:`_panel_geometry`'s normal :math:`(-t_r, t_x)` points out of
+    the wall), each side cut into panels in proportion to its length with cosine clustering
+    towards the corners, the last node equal to the first.
+    """
+    xm = np.asarray(xm, dtype=float)
+    rm = np.asarray(rm, dtype=float)
+    if xm.ndim != 1 or xm.shape != rm.shape or xm.size < 3 or np.any(rm <= 0) \
+            or not np.all(np.isfinite(xm)) or not np.all(np.isfinite(rm)):
+        raise InputError("a closed meridian needs >= 3 finite corners with r > 0",
+                         key="meridian", value=f"{xm.size} points", expected="r > 0 (off the axis)")
+    signed = 0.5 * np.sum(xm * np.roll(rm, -1) - np.roll(xm, -1) * rm)
+    if signed > 0:                      # counter-clockwise in (x, r): reverse
+        xm, rm = xm[::-1], rm[::-1]
+    xs, rs = np.r_[xm, xm[0]], np.r_[rm, rm[0]]
+    side = np.hypot(np.diff(xs), np.diff(rs))
+    n_side = np.maximum(4, np.round(panels * side / side.sum())).astype(int)
+    xn, rn = [], []
+    for k, n in enumerate(n_side):
+        t = 0.5 * (1.0 - np.cos(np.pi * np.arange(n) / n))
+        xn.append(xs[k] + t * (xs[k + 1] - xs[k]))
+        rn.append(rs[k] + t * (rs[k + 1] - rs[k]))
+    xn, rn = np.concatenate(xn), np.concatenate(rn)
+    return np.r_[xn, xn[0]], np.r_[rn, rn[0]]
+
+
+def _influence_closed(xn, rn, mode):
+    """:func:`_influence` for a closed meridian (last node = first): the first and last
+    panels are neighbours too, integrated with the same clustered rule from their shared
+    node (their kernels are log-singular there)."""
+    S, D, geo = _influence(xn, rn, mode)
+    length, nx, nr, xc, rc = geo
+    _, tx, tr, _, _ = _panel_geometry(xn, rn)
+    n = xc.size
+    g, w = _GAUSS_NEAR
+    u = 0.5 * (g + 1.0)
+    tcl, wcl = u ** 3, 3.0 * u ** 2 * 0.5 * w
+    # (i, j, start node of the integration, direction along panel j)
+    for i, j, x0, r0, dirn in ((n - 1, 0, xn[0], rn[0], 1.0), (0, n - 1, xn[n], rn[n], -1.0)):
+        s_ij = d_ij = 0.0
+        for tk, wk in zip(tcl, wcl):
+            sq = tk * length[j]
+            s, d = _kernels(np.array(xc[i]), np.array(rc[i]), np.array(x0 + dirn * sq * tx[j]),
+                            np.array(r0 + dirn * sq * tr[j]), np.array(nx[j]), np.array(nr[j]),
+                            mode)
+            s_ij += float(s) * wk * length[j]
+            d_ij += float(d) * wk * length[j]
+        S[i, j], D[i, j] = s_ij, d_ij
+    return S, D, geo
+
+
+def ring_body_added_mass(xm, rm, *, rho: float, x_ref: float = 0.0,
+                         panels: int = DEFAULT_PANELS) -> np.ndarray:
+    r"""6x6 added mass of a body of revolution about the x axis whose meridian is a closed
+    polygon off the axis (a tube, a duct ring: the water inside the bore is outside the body).
+
+    Same direct boundary-integral equation and ring kernels as
+    :func:`body_of_revolution_added_mass` (module docstring: :math:`G = -1/4\pi R`,
+    :math:`\phi = \phi_m(s)\cos m\theta`, Hess & Smith 1967 sec. 5), on a closed meridian
+    (outer wall, ends and bore all wetted),
+
+    .. math:: m_{11} = -2\pi\rho\oint\phi_0 n_x r\,ds,\quad
+              m_{22} = m_{33} = -\pi\rho\oint\phi_{1,v} n_r r\,ds,\quad
+              m_{55} = m_{66} = -\pi\rho\oint\phi_{1,r}(X n_r - r n_x) r\,ds
+
+    (Newman 1977, eq. 4.148), :math:`X = x - x_{ref}`, :math:`m_{26} = -m_{35}`.  A long tube
+    tends to the 2D annulus, whose bore water moves with it:
+    :math:`m_{22}/L \to \rho\pi(r_o^2 + r_i^2)` (exterior circle :math:`\rho\pi r_o^2`,
+    Newman 1977 sec. 4.13; the bore's rigid water :math:`\rho\pi r_i^2`).
+
+    Parameters
+    ----------
+    xm, rm : arrays
+        Corners of the meridian polygon [m], all r > 0 (e.g. a tube of length l:
+        x = (0, l, l, 0), r = (r_i, r_i, r_o, r_o))
+    rho : float
+        Fluid density [kg/m^3]
+    x_ref : float
+        Reference point on the axis for the rotational terms [m]
+    panels : int
+        Meridian panels in all.
+
+    Returns
+    -------
+    (6, 6) array
+        M_A [kg, kg m, kg m^2], FRD DOF order; roll 0.
+    """
+    xn, rn = _closed_meridian(xm, rm, int(panels))
+    xn = xn - x_ref
+    out = np.zeros((6, 6))
+    S, D, (length, nx, nr, xc, rc) = _influence_closed(xn, rn, 0)
+    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
+    out[0, 0] = -2.0 * np.pi * rho * np.sum(phi * nx * rc * length)
+    S, D, _ = _influence_closed(xn, rn, 1)
+    bc = np.column_stack([nr, xc * nr - rc * nx])
+    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ bc)
+    m = -np.pi * rho * (bc * (rc * length)[:, None]).T @ phi
+    m = 0.5 * (m + m.T)
+    out[1, 1] = out[2, 2] = m[0, 0]
+    out[5, 5] = out[4, 4] = m[1, 1]
+    out[1, 5] = out[5, 1] = m[0, 1]
+    out[2, 4] = out[4, 2] = -m[0, 1]
+    return out
