@@ -78,6 +78,124 @@ def main_tubes():
                   f"{ours[5, 5]:.4g} | {ref[2]:.4g} | {faces} | {sec:.1f} |", flush=True)
 
 
+# --- frames: boxes with two reflection symmetries (y = 0 and x = 0), given by their quarter --
+
+def _box(lo, hi):
+    import trimesh
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    return trimesh.creation.box(hi - lo, transform=trimesh.transformations.translation_matrix(
+        0.5 * (lo + hi)))
+
+
+def full_mesh(quarter_boxes):
+    """The whole body: each quarter box (x >= 0, y >= 0) mirrored in x = 0 and y = 0, unioned."""
+    import trimesh
+    boxes = []
+    for lo, hi in quarter_boxes:
+        xs = [(-hi[0], hi[0])] if lo[0] == 0 else [(lo[0], hi[0]), (-hi[0], -lo[0])]
+        ys = [(-hi[1], hi[1])] if lo[1] == 0 else [(lo[1], hi[1]), (-hi[1], -lo[1])]
+        for x0, x1 in xs:
+            for y0, y1 in ys:
+                boxes.append(_box([x0, y0, lo[2]], [x1, y1, hi[2]]))
+    return trimesh.boolean.union(boxes, engine="manifold")
+
+
+def quarter_mesh(quarter_boxes, max_edge):
+    """The x >= 0, y >= 0 quarter, open on x = 0 and y = 0, edges <= ``max_edge`` [m]."""
+    import trimesh
+    q = trimesh.boolean.union([_box(lo, hi) for lo, hi in quarter_boxes], engine="manifold")
+    c, n = q.triangles_center, q.face_normals
+    cut = ((np.abs(c[:, 0]) < 1e-9) & (n[:, 0] < -0.99)) | \
+        ((np.abs(c[:, 1]) < 1e-9) & (n[:, 1] < -0.99))
+    q.update_faces(~cut)
+    q.remove_unreferenced_vertices()
+    v, f = trimesh.remesh.subdivide_to_size(q.vertices, q.faces, max_edge=max_edge)
+    return trimesh.Trimesh(v, f, process=True)
+
+
+def bem_quarter(quarter_boxes, max_edge):
+    """Capytaine (two reflection symmetries, direct, no free surface) about the origin."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from mesh_reference_convergence import capytaine_quarter
+    q = quarter_mesh(quarter_boxes, max_edge)
+    a, sec = capytaine_quarter(q, (0.0, 0.0, 0.0))
+    return a, 4 * len(q.faces), sec
+
+
+def strip_model(quarter_boxes, strips=200):
+    """stripcoef.assemble.estimate (as shipped) on the whole body, about the origin."""
+    import warnings
+
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.mesh import mesh_body
+    from stripcoef.geometry.vehicle import MassSpec, Vehicle
+    from stripcoef.assemble import estimate
+    body = mesh_body(full_mesh(quarter_boxes), origin="file", name="frame")
+    v = Vehicle(name="frame", source="benchmark", hull=None, bodies=[body], holes=[],
+                fluid=Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark"),
+                mass=MassSpec(), thrusters=[], reference="center_of_buoyancy")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = estimate(v, strips=strips)
+    return transform_matrix(m.added_mass, from_point=m.reference_point, to_point=(0, 0, 0))
+
+
+def section_2d(quarter_boxes, x):
+    """2D added mass (sway, heave, roll about the origin) of the whole body's section at x."""
+    import shapely
+    from shapely.geometry import box
+    from shapely.geometry.polygon import orient
+
+    from stripcoef.sections.panel import added_mass_sections
+    polys = []
+    for lo, hi in quarter_boxes:
+        if lo[0] - 1e-12 <= abs(x) <= hi[0] + 1e-12 or (lo[0] == 0 and abs(x) <= hi[0]):
+            for s in (1, -1):
+                y0, y1 = sorted((s * lo[1], s * hi[1]))
+                polys.append(box(y0, lo[2], y1, hi[2]))
+    geom = shapely.union_all(polys)
+    rings = []
+    for g in getattr(geom, "geoms", [geom]):
+        g = orient(g, 1.0)
+        rings.append(np.asarray(g.exterior.coords)[:-1])
+        rings.extend(np.asarray(h.coords)[:-1] for h in g.interiors)
+    return added_mass_sections([rings], rho=RHO, about=np.zeros((1, 2)))[0], geom
+
+
+# Test frames (not the ROV), quarter boxes (lo, hi) [m]: members along x and short crossing
+# posts (length 0.06 along x) at x = +-0.3
+LADDER_BARS = [((0, 0, -0.30), (0.5, 0.30, -0.18)), ((0, 0, 0.18), (0.5, 0.30, 0.30))]
+LADDER_POSTS = [((0.27, 0.24, -0.18), (0.33, 0.30, 0.18))]
+ARCH_MEMBERS = [((0, 0, -0.25), (0.40, 0.25, -0.13)), ((0, 0.17, 0.13), (0.45, 0.27, 0.25))]
+ARCH_POSTS = [((0.27, 0.19, -0.13), (0.33, 0.25, 0.13))]
+
+
+def main_frames(max_edge=0.04):
+    dof = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+    for name, members, posts in (("ladder (closed ring at the posts)", LADDER_BARS, LADDER_POSTS),
+                                 ("arch (open ring at the posts)", ARCH_MEMBERS, ARCH_POSTS)):
+        m2d_j, geom = section_2d(members + posts, 0.3)
+        m2d_m, _ = section_2d(members, 0.3)
+        holes = sum(len(g.interiors) for g in getattr(geom, "geoms", [geom]))
+        print(f"\n{name}: 2D at the posts (x = 0.3), holes {holes}: joint sway {m2d_j[0, 0]:.1f}, "
+              f"heave {m2d_j[1, 1]:.1f} kg/m; members sway {m2d_m[0, 0]:.1f}, heave "
+              f"{m2d_m[1, 1]:.1f} kg/m; excess x 0.06 m x 2 junctions: sway "
+              f"{2 * 0.06 * (m2d_j[0, 0] - m2d_m[0, 0]):.2f} kg, heave "
+              f"{2 * 0.06 * (m2d_j[1, 1] - m2d_m[1, 1]):.2f} kg", flush=True)
+        full, nf, s1 = bem_quarter(members + posts, max_edge)
+        base, nb, s2 = bem_quarter(members, max_edge)
+        sf, sb = strip_model(members + posts), strip_model(members)
+        print(f"BEM {nf} / {nb} faces ({s1:.0f} s / {s2:.0f} s), about the origin")
+        print("| term | BEM with posts | BEM without | posts add (BEM) | strip with | strip without "
+              "| posts add (strip) | with: strip vs BEM |")
+        print("|---|---|---|---|---|---|---|---|")
+        for i in range(6):
+            print(f"| {dof[i]} | {full[i, i]:.4g} | {base[i, i]:.4g} | {full[i, i] - base[i, i]:.4g} | "
+                  f"{sf[i, i]:.4g} | {sb[i, i]:.4g} | {sf[i, i] - sb[i, i]:.4g} | "
+                  f"{100 * (sf[i, i] - full[i, i]) / full[i, i]:+.2f} % |", flush=True)
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "tubes"
-    {"tubes": main_tubes}[what]()
+    {"tubes": main_tubes, "frames": main_frames}[what]()
