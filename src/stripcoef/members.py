@@ -258,6 +258,13 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
         joint = added_mass_sections(part.contours, rho=rho,
                                     about=np.column_stack([part.y, part.z]))
     _share_interaction(strips, part, member_of, set(crossing), joint)
+    # in the junction runs the joint section holds the crossing material too: there the
+    # members' 2D interaction is that of their own sections solved together
+    rows = [j for j in sorted(crossing) if len(base[j]) > 1]
+    if rows:
+        together = added_mass_sections([_rings(base[j]) for j in rows], rho=rho,
+                                       about=np.zeros((len(rows), 2)))
+        _share_interaction(strips, part, member_of, set(), dict(zip(rows, together)), rows)
     # junctions: excess of the joined section over its members' sections
     for r, (j0, j1) in enumerate(runs):
         js = np.array([j for j in range(j0, j1 + 1) if crossing.get(j)])
@@ -307,7 +314,7 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
     return entities
 
 
-def _share_interaction(strips, part, member_of, junction_strips, joint):
+def _share_interaction(strips, part, member_of, junction_strips, joint, rows=None):
     r"""Give the members the 2D interaction of the joint section, in proportion (in place).
 
     Where a strip's section is the union of its members' sections (not in a junction run),
@@ -321,9 +328,12 @@ def _share_interaction(strips, part, member_of, junction_strips, joint):
     measured on the ROV's float and pontoons: joint sway 8 % above the sum of the parts,
     heave 3 % below. Roll terms are left as the members' own (their 2D roll interaction is
     the roll-interaction entity of :func:`decompose`). ``joint`` (n, 3, 3) per strip of the
-    part [kg/m, kg, kg m].
+    part [kg/m, kg, kg m] (or a mapping strip -> (3, 3) for the strips ``rows``; in a junction
+    run, the members' own sections solved together).
     """
-    rows = [j for j in range(part.index.size) if j not in junction_strips
+    if rows is None:
+        rows = range(part.index.size)
+    rows = [j for j in rows if j not in junction_strips
             and len(member_of.get(float(strips.x[part.index[j]]), [])) > 1]
     for j in rows:
         mj = joint[j]
