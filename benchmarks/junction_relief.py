@@ -7,7 +7,11 @@ tubes:  transverse and axial added mass of short circular tubes (length l, bore 
         from stripcoef.corrections.ring_body_added_mass against Capytaine on a
         RotationSymmetricMesh of the same tube (direct method, no free surface), and the ratio
         to the 2D annulus rho pi (r_o^2 + r_i^2) l.
-frames: see main_frames.
+frames: frames with short posts (a closed "ladder" and an open "arch", not the ROV), BEM with
+        and without the posts against strip theory (stripcoef.assemble.estimate): what the
+        posts add.
+smallbody: each post as a small body in the members' 3D flow (main_smallbody).
+      .venv/bin/python benchmarks/junction_relief.py smallbody (about 1 minute, ~2 GB)
 """
 
 from __future__ import annotations
@@ -196,6 +200,66 @@ def main_frames(max_edge=0.04):
                   f"{100 * (sf[i, i] - full[i, i]) / full[i, i]:+.2f} % |", flush=True)
 
 
+# the ROV's float, pontoons and posts (benchmarks/mesh_shapes.open_frame_rov), by quarter
+ROV_MEMBERS = [((0, 0, -0.275), (0.45, 0.3, -0.125)), ((0, 0.23, 0.125), (0.5, 0.35, 0.275))]
+ROV_POSTS = [((0.35, 0.24, -0.125), (0.41, 0.30, 0.125))]
+
+
+def main_smallbody(max_edge=0.04):
+    r"""Each post as a small body in the members' 3D flow (a check of the junction model).
+
+    With u the fluid velocity (per unit body velocity in DOF d) of the frame *without* posts
+    at the post's place, a post of cross-section A' and 2D cross-flow added mass m' per unit
+    length (axis z: none along it) adds, over its height h,
+
+    .. math:: \Delta M_{dd} = h\,\overline{m'[(\delta_{dx} - u_x)^2 + (\delta_{dy} - u_y)^2]
+              - \rho A'|u|^2}
+
+    (kinetic energy of a small body in a locally uniform flow: its own added mass on the
+    relative velocity, less the moving water it displaces; Taylor 1928, Proc. R. Soc. A 120,
+    "The forces on a body placed in a curved or converging stream of fluid"; exact limits: u = 0
+    gives m', a body in rigidly moving bore water u = e_d gives -rho A').  m' = 4.754 rho a^2
+    for a square of half-side a (DNV-RP-H103 (2011) table A-1).  u from Capytaine's indirect
+    method (source distribution) at 3 x 3 x 8 points per post, averaged.
+    """
+    import capytaine as cpt
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    print("| frame | DOF | mean u at the post (x, y, z) | post's own m' h (4 posts) | small-body estimate (4 posts) |")
+    print("|---|---|---|---|---|")
+    for name, members, posts in (("arch", ARCH_MEMBERS, ARCH_POSTS), ("ladder", LADDER_BARS, LADDER_POSTS),
+                                 ("ROV", ROV_MEMBERS, ROV_POSTS)):
+        q = quarter_mesh(members, max_edge)
+        m = cpt.Mesh(vertices=np.asarray(q.vertices, float), faces=np.asarray(q.faces, int))
+        mesh = cpt.ReflectionSymmetricMesh(half=cpt.ReflectionSymmetricMesh(half=m, plane="xOz"),
+                                           plane="yOz")
+        body = cpt.FloatingBody(mesh=mesh, dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)))
+        solver = cpt.BEMSolver(method="indirect")
+        dofs = ("Surge", "Sway", "Heave")
+        # omega plays no role without a free surface (a finite one keeps the results numeric)
+        res = solver.solve_all([cpt.RadiationProblem(body=body, radiating_dof=d, free_surface=np.inf,
+                                                     omega=1.0, rho=RHO) for d in dofs],
+                               progress_bar=False)
+        (lo, hi), = posts
+        lo, hi = np.array(lo, float), np.array(hi, float)
+        g = [lo[i] + (np.arange(n) + 0.5) / n * (hi[i] - lo[i]) for i, n in enumerate((3, 3, 8))]
+        pts = np.array([(x, y, z) for x in g[0] for y in g[1] for z in g[2]])
+        a, h = 0.5 * (hi[0] - lo[0]), hi[2] - lo[2]
+        area = (hi[0] - lo[0]) * (hi[1] - lo[1])
+        mprime = 4.754 * RHO * a * a
+        normals = np.asarray(body.mesh.merged().faces_normals)
+        for k, d in enumerate(dofs):
+            bc = np.asarray(res[k].problem.boundary_condition)
+            f = int(np.argmax(np.abs(normals[:, k])))
+            u = np.real(np.asarray(solver.compute_velocity(pts, res[k])) / (bc[f] / normals[f, k]))
+            e = np.zeros(3)
+            e[k] = 1.0
+            rel = e[None, :] - u
+            per_len = mprime * (rel[:, 0] ** 2 + rel[:, 1] ** 2) - RHO * area * np.sum(u ** 2, axis=1)
+            own = 4 * h * mprime * (1.0 if k < 2 else 0.0)
+            print(f"| {name} | {d} | {np.array2string(u.mean(0), precision=3)} | {own:.2f} | "
+                  f"{4 * h * per_len.mean():.2f} |", flush=True)
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "tubes"
-    {"tubes": main_tubes, "frames": main_frames}[what]()
+    {"tubes": main_tubes, "frames": main_frames, "smallbody": main_smallbody}[what]()

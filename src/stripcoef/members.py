@@ -19,7 +19,8 @@ So the body is decomposed, from the strips' sections alone, into
 
 **members** -- the connected components of the body once the junctions' crossing material is
 removed; each is a polygon part of its own, its 2D sections solved alone and then given the
-2D interaction of the joint section in proportion (:func:`_share_interaction`), and
+2D interaction of the joint section in proportion (:func:`_share_interaction`; in a junction
+run, of the members' own sections solved together), and
 
 **junctions** -- runs of strips whose section joins components that are separate on both sides
 of the run (a component overlapping two or more components of the adjacent strip outside the
@@ -45,7 +46,10 @@ and added (Fossen 2011, sec. 7.5.3; :func:`stripcoef.conventions.transform_matri
           H(a_e - c)
 
 so the offset members' roll and pitch/yaw terms (their sway/heave added mass times the lever
-arm squared) carry their own end reliefs.  The members' 2D roll interaction (the joint
+arm squared) carry their own end reliefs.  A junction piece's equivalent body is a short disc;
+its sway and heave are then weighted for the piece's own slenderness in the section plane
+(:func:`crossing_weights`: a post moving along its axis adds almost nothing in 3D, measured
+against Capytaine on two frames other than the ROV, docs/theory.md sec. 6).  The members' 2D roll interaction (the joint
 sections' roll terms minus the members' own, outside the junction runs) is added with the
 roll relief of the joint sections (:func:`stripcoef.corrections.roll_relief`).  A body with a
 single member and no junction is left to the single equivalent body (identical results).
