@@ -396,9 +396,10 @@ def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
     round a short piece, and a piece moving along its own axis pushes no water of its own.
     :math:`\mathbf t` is the major principal axis of the piece's section (area-weighted
     second moments over its strips).  [assumption]; measured against Capytaine
-    (benchmarks/junction_relief.py, docs/theory.md sec. 6): two frames with vertical posts
-    (an arch like the ROV's and a closed ladder), the posts add -0.65 and -1.14 kg of heave
-    in 3D where the disc gave +5.1 and +6.2 kg.  ``polys_per_strip``: the piece's shapely
+    (benchmarks/junction_relief.py, docs/theory.md sec. 6): on a frame with four vertical
+    posts 0.06 m long (an arch like the ROV's) the posts add -0.65 kg of heave in 3D, the
+    junction's disc gave +5.1 kg, with these weights +0.47 kg (a closed ladder: -1.14 kg,
+    now +0.10 kg).  ``polys_per_strip``: the piece's shapely
     polygons per strip [m]; ``length`` l [m].  Returns (s_y, s_z) [-].
     """
     from .hull import lamb_k_factors
