@@ -11,6 +11,7 @@ frames: frames with short posts (a closed "ladder" and an open "arch", not the R
         and without the posts against strip theory (stripcoef.assemble.estimate): what the
         posts add.
 smallbody: each post as a small body in the members' 3D flow (main_smallbody).
+rings:  a short square ring alone (main_rings): BEM against its equivalent bodies.
       .venv/bin/python benchmarks/junction_relief.py smallbody (about 1 minute, ~2 GB)
 """
 
@@ -200,6 +201,32 @@ def main_frames(max_edge=0.04):
                   f"{100 * (sf[i, i] - full[i, i]) / full[i, i]:+.2f} % |", flush=True)
 
 
+def main_rings(max_edge=0.04):
+    """A short square ring (outer 0.6 m, wall 0.06 m, length l along x) moving in its own
+    plane: the BEM against 2D x l and the equivalent bodies of revolution of the section."""
+    from stripcoef.corrections import body_of_revolution_added_mass
+    print("| l [m] | faces | BEM m22 / (2D l) | disc | hollow, r_o from 2D | hollow, r_o from outer area |")
+    print("|---|---|---|---|---|---|")
+    for l in (0.03, 0.06, 0.12, 0.3, 0.6):
+        boxes = [((0, 0, -0.3), (l / 2, 0.3, -0.24)), ((0, 0, 0.24), (l / 2, 0.3, 0.3)),
+                 ((0, 0.24, -0.24), (l / 2, 0.3, 0.24))]
+        m2d, geom = section_2d(boxes, 0.0)
+        hole = sum(sum(abs(g.area) for g in [type(p)(h) for h in p.interiors])
+                   for p in getattr(geom, "geoms", [geom]))
+        a, faces, _ = bem_quarter(boxes, max_edge)
+        strip = m2d[0, 0] * l
+        r = np.sqrt(m2d[0, 0] / (RHO * np.pi))
+        disc = body_of_revolution_added_mass([-l / 2, l / 2], [r, r], rho=RHO)[1, 1]
+        ri = np.sqrt(hole / np.pi)
+        ro = np.sqrt(m2d[0, 0] / (RHO * np.pi) - ri * ri)
+        t1 = ring_body_added_mass([-l / 2, l / 2, l / 2, -l / 2], [ri, ri, ro, ro], rho=RHO)[1, 1]
+        ro2 = np.sqrt(0.36 / np.pi)
+        t2 = ring_body_added_mass([-l / 2, l / 2, l / 2, -l / 2], [ri, ri, ro2, ro2], rho=RHO)[1, 1]
+        f2 = t2 / (RHO * np.pi * (ro2 ** 2 + ri ** 2) * l)
+        print(f"| {l} | {faces} | {a[1, 1] / strip:.4f} | {disc / strip:.4f} | {t1 / strip:.4f} | "
+              f"{f2:.4f} |", flush=True)
+
+
 # the ROV's float, pontoons and posts (benchmarks/mesh_shapes.open_frame_rov), by quarter
 ROV_MEMBERS = [((0, 0, -0.275), (0.45, 0.3, -0.125)), ((0, 0.23, 0.125), (0.5, 0.35, 0.275))]
 ROV_POSTS = [((0.35, 0.24, -0.125), (0.41, 0.30, 0.125))]
@@ -262,4 +289,5 @@ def main_smallbody(max_edge=0.04):
 
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "tubes"
-    {"tubes": main_tubes, "frames": main_frames, "smallbody": main_smallbody}[what]()
+    {"tubes": main_tubes, "frames": main_frames, "smallbody": main_smallbody,
+     "rings": main_rings}[what]()
