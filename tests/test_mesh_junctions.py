@@ -39,7 +39,7 @@ def test_tube_matrix_properties():
     coupling), m22 = m33, m55 = m66; a short tube keeps a small part of the 2D annulus."""
     a = tube(0.06, 0.24, 0.3)
     b = ring_body_added_mass([0, 0, 0.06, 0.06], [0.24, 0.3, 0.3, 0.24], rho=RHO, x_ref=0.03)
-    np.testing.assert_allclose(a, b, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(a, b, rtol=1e-8, atol=1e-8 * np.abs(a).max())
     assert a[1, 1] == a[2, 2] and a[4, 4] == a[5, 5]
     assert abs(a[1, 5]) < 1e-6 * a[1, 1]
     assert 0 < a[1, 1] < 0.2 * RHO * np.pi * (0.3 ** 2 + 0.24 ** 2) * 0.06
@@ -73,3 +73,50 @@ def test_crossing_weights_of_horizontal_tilted_and_stubby_pieces():
     assert tilted[0] == pytest.approx(0.5 * (1 + hor[0]), rel=1e-6)
     # a piece no longer in the section plane than across it: no axis, nothing changed
     np.testing.assert_allclose(crossing_weights(pieces(sbox(0, 0, 0.1, 0.1)), 0.2), [1, 1])
+
+
+@pytest.mark.parametrize("length,ri,ro", [(1.0, 0.2, 0.3), (0.5, 0.24, 0.3)])
+def test_a_duct_mesh_gets_its_tube_matrix(length, ri, ro):
+    """A circular tube as a mesh (sections with a hole all along): the pipeline's hollow
+    equivalent bodies (corrections.bore_area) make it its own 3D matrix; the solid bodies
+    gave surge +55..+106 %, sway -11..-16 %, pitch/yaw -23..+119 % on these two."""
+    import warnings
+
+    import trimesh
+
+    from stripcoef.assemble import added_mass, displaced_volume
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.geometry.mesh import mesh_body
+    m = trimesh.creation.annulus(r_min=ri, r_max=ro, height=length, sections=256)
+    m.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        st = mesh_body(m, origin="file").strips(200)
+    vol, cb = displaced_volume(st)
+    got, _ = added_mass(st, RHO, about=cb, volume=vol, center=cb)
+    # the mesh's tube is centred on the origin
+    exact = transform_matrix(tube(length, ri, ro, panels=320), from_point=(0, 0, 0), to_point=cb)
+    for i in (0, 1, 2, 4, 5):
+        assert got[i, i] == pytest.approx(exact[i, i], rel=0.012), i
+
+
+def test_bore_area_only_for_a_bore_all_along():
+    import warnings
+
+    import trimesh
+
+    from stripcoef.corrections import bore_area
+    from stripcoef.geometry.mesh import mesh_body
+    duct = trimesh.creation.annulus(r_min=0.2, r_max=0.3, height=1.0, sections=64)
+    duct.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    cap = trimesh.creation.cylinder(radius=0.3, height=0.2, sections=64)
+    cap.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    cap.apply_translation([0.55, 0, 0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        st = mesh_body(duct, origin="file").strips(50)
+        closed = mesh_body(trimesh.util.concatenate([duct, cap]), origin="file").strips(60)
+    a = bore_area(st)
+    assert a is not None
+    np.testing.assert_allclose(a, np.pi * 0.2 ** 2, rtol=0.01)
+    assert bore_area(closed) is None          # closed at one end: solid equivalent bodies

@@ -719,7 +719,9 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     reproduces for plate-like sections.
     """
     xc = float(np.asarray(center, dtype=float)[0])
-    m11 = _axial_added_mass(strips, rho, panels)
+    bore = bore_area(strips)            # a bore along the whole body: hollow equivalent bodies
+    m11 = _axial_added_mass(strips, rho, panels) if bore is None else \
+        _axial_hollow(strips, bore, rho, panels)
     if section_added_mass is None:
         area = np.zeros(strips.n)
         for p in strips.parts:
@@ -728,11 +730,16 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     else:
         m2d = np.asarray(section_added_mass, dtype=float)
         mv, mw = m2d[:, 0, 0] / rho, m2d[:, 1, 1] / rho
-    fv, fr, d26, _ = _lateral(strips, mv, rho, xc, panels)
+    if bore is not None and section_added_mass is not None:
+        def lateral(st, per, rho_, xc_, n):
+            return _lateral_hollow(st, per, bore, rho_, xc_, n)
+    else:
+        lateral = _lateral
+    fv, fr, d26, _ = lateral(strips, mv, rho, xc, panels)
     if section_added_mass is None:
         fw, fq, d35 = fv, fr, -d26
     else:
-        fw, fq, d62, _ = _lateral(strips, mw, rho, xc, panels)
+        fw, fq, d62, _ = lateral(strips, mw, rho, xc, panels)
         d35 = -d62                      # heave-pitch: M[2,4] = -m26 of the heave body
     fp = 1.0
     if section_added_mass is not None:
@@ -772,10 +779,11 @@ def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
 def _closed_meridian(xm, rm, panels):
     r"""Panel nodes of a closed meridian polygon off the axis (a tube's wall section).
 
-    ``xm, rm`` [m]: the polygon's corners, r > 0, any orientation; returned clockwise in the
+    ``xm, rm`` [m]: the polygon's vertices, r > 0, any orientation; returned clockwise in the
     (x, r) plane (so that :func:`_panel_geometry`'s normal :math:`(-t_r, t_x)` points out of
-    the wall), each side cut into panels in proportion to its length with cosine clustering
-    towards the corners, the last node equal to the first.
+    the wall).  Its corners (turns > 20 degrees) split it into smooth runs, each resampled by
+    arc length with panels in proportion to its length (at least 4), cosine-clustered towards
+    its ends (as :func:`_meridian`); the last node equals the first.
     """
     xm = np.asarray(xm, dtype=float)
     rm = np.asarray(rm, dtype=float)
@@ -786,16 +794,27 @@ def _closed_meridian(xm, rm, panels):
     signed = 0.5 * np.sum(xm * np.roll(rm, -1) - np.roll(xm, -1) * rm)
     if signed > 0:                      # counter-clockwise in (x, r): reverse
         xm, rm = xm[::-1], rm[::-1]
+    seg = np.hypot(np.roll(xm, -1) - xm, np.roll(rm, -1) - rm)
+    keep = seg > 1e-12 * max(np.ptp(xm), np.ptp(rm))
+    xm, rm = xm[keep], rm[keep]
+    d = np.column_stack([np.roll(xm, -1) - xm, np.roll(rm, -1) - rm])
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    corner = np.einsum("ij,ij->i", d, np.roll(d, 1, axis=0)) < np.cos(np.radians(20.0))
+    if not np.any(corner):
+        corner[0] = True
+    first = int(np.argmax(corner))               # start the loop at a corner
+    xm, rm, corner = (np.roll(v, -first) for v in (xm, rm, corner))
     xs, rs = np.r_[xm, xm[0]], np.r_[rm, rm[0]]
-    side = np.hypot(np.diff(xs), np.diff(rs))
-    n_side = np.maximum(4, np.round(panels * side / side.sum())).astype(int)
-    xn, rn = [], []
-    for k, n in enumerate(n_side):
-        t = 0.5 * (1.0 - np.cos(np.pi * np.arange(n) / n))
-        xn.append(xs[k] + t * (xs[k + 1] - xs[k]))
-        rn.append(rs[k] + t * (rs[k + 1] - rs[k]))
-    xn, rn = np.concatenate(xn), np.concatenate(rn)
-    return np.r_[xn, xn[0]], np.r_[rn, rn[0]]
+    s = np.r_[0.0, np.cumsum(np.hypot(np.diff(xs), np.diff(rs)))]
+    knots = np.r_[s[:-1][corner], s[-1]]
+    runs = np.diff(knots)
+    n_run = np.maximum(4, np.round(panels * runs / runs.sum())).astype(int)
+    t = [a + length * 0.5 * (1.0 - np.cos(np.pi * np.arange(n) / n))
+         for a, length, n in zip(knots[:-1], runs, n_run)]
+    t = np.r_[np.concatenate(t), s[-1]]
+    xn, rn = np.interp(t, s, xs), np.interp(t, s, rs)
+    xn[-1], rn[-1] = xn[0], rn[0]
+    return xn, rn
 
 
 def _influence_closed(xn, rn, mode):
@@ -875,3 +894,74 @@ def ring_body_added_mass(xm, rm, *, rho: float, x_ref: float = 0.0,
     out[1, 5] = out[5, 1] = m[0, 1]
     out[2, 4] = out[4, 2] = -m[0, 1]
     return out
+
+
+def bore_area(strips):
+    r"""Per-strip area of the bore of a body whose every section has a hole [m^2], else None.
+
+    .. math:: A_{bore}(x_i) = \sum_{parts} c_{p,i} \sum_{holes} |A_{hole}|
+
+    (holes: the clockwise rings of the polygon parts' contours, ``Strips`` of a mesh;
+    coverage :math:`c_{p,i}`).  None when a strip has no hole, or a part is not a polygon:
+    a bore along the whole body (a duct, a ring) gets the hollow equivalent bodies of
+    :func:`hull_corrections`, anything else the solid ones.
+    """
+    from .geometry.mesh import ring_integrals
+    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+        return None
+    out = np.zeros(strips.n)
+    for p in strips.parts:
+        holes = np.array([sum(-a for a in (ring_integrals(r)[0] for r in rings) if a < 0)
+                          for rings in p.contours])
+        np.add.at(out, p.index, holes * _coverage(p))
+    return out if np.all(out > 0) else None
+
+
+def _hollow_profile(strips, per_strip, bore):
+    """Closed meridian (x, r) of the tube with pi (r_o^2 + r_i^2) = per_strip, pi r_i^2 =
+    bore [m^2] at the strip centres, flat ends at the body's first and last x [m]."""
+    ri2 = np.asarray(bore, dtype=float) / np.pi
+    ro2 = np.maximum(np.asarray(per_strip, dtype=float) / np.pi - ri2, 1.0001 * ri2)
+    x = np.r_[strips.x_min, strips.x, strips.x_max]
+    ro = np.sqrt(np.r_[ro2[0], ro2, ro2[-1]])
+    ri = np.sqrt(np.r_[ri2[0], ri2, ri2[-1]])
+    return np.r_[x, x[::-1]], np.r_[ro, ri[::-1]]
+
+
+def _lateral_hollow(strips, per_strip, bore, rho, xc, panels):
+    r"""3D/strip factors of the *hollow* added-mass-equivalent body of a bored body.
+
+    The 2D added mass of a section with a hole counts the hole's water, which moves with the
+    section (docs/theory.md sec. 6); the equivalent body is then the tube whose 2D annulus
+    matches it, :math:`\rho\pi(r_o^2 + r_i^2) = m^{2D}`, :math:`\pi r_i^2 = A_{bore}`
+    (for a circular tube: the tube itself, so its 3D matrix is exact), solved with
+    :func:`ring_body_added_mass`; factors and coupling increment as :func:`_lateral`,
+
+    .. math:: f_t = \frac{m_{22}^{3D}}{\rho\int\pi(r_o^2+r_i^2)dx},\quad
+              f_r = \frac{m_{66}^{3D}}{\rho\int\pi(r_o^2+r_i^2)(x-x_c)^2dx}
+
+    ``per_strip`` m^{2D}/rho [m^2], ``bore`` [m^2], ``rho`` [kg/m^3], ``xc`` [m].
+    [assumption] beyond circular tubes: a short square ring (benchmarks/junction_relief.py
+    rings) is within 0.1-2 % of Capytaine, where the solid equivalent body is 8-15 % low.
+    """
+    if not np.any(np.asarray(per_strip) > 0):
+        return 1.0, 1.0, 0.0, np.zeros((6, 6))
+    xm, rm = _hollow_profile(strips, per_strip, bore)
+    m3 = ring_body_added_mass(xm, rm, rho=rho, x_ref=xc, panels=panels)
+    a = np.pi * (rm[1:strips.n + 1] ** 2 + rm[::-1][1:strips.n + 1] ** 2)
+    s22 = rho * np.sum(a * strips.dx)
+    s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
+    s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
+    ft, fr = float(m3[1, 1] / s22), float(m3[5, 5] / s66)
+    return ft, fr, float(m3[1, 5] - np.sqrt(ft * fr) * s26), m3
+
+
+def _axial_hollow(strips, bore, rho, panels):
+    r"""Surge added mass of a bored body: the tube of its material area and bore,
+    :math:`\pi(r_o^2 - r_i^2) = A(x)`, :math:`\pi r_i^2 = A_{bore}(x)` (exact for a circular
+    tube), :func:`ring_body_added_mass` [kg]; ``bore`` [m^2], ``rho`` [kg/m^3]."""
+    area = np.zeros(strips.n)
+    for p in strips.parts:
+        np.add.at(area, p.index, p.area * _coverage(p))
+    xm, rm = _hollow_profile(strips, area + 2.0 * np.asarray(bore), bore)
+    return float(ring_body_added_mass(xm, rm, rho=rho, panels=panels)[0, 0])
