@@ -205,8 +205,9 @@ def main_rings(max_edge=0.04):
     """A short square ring (outer 0.6 m, wall 0.06 m, length l along x) moving in its own
     plane: the BEM against 2D x l and the equivalent bodies of revolution of the section."""
     from stripcoef.corrections import body_of_revolution_added_mass
-    print("| l [m] | faces | BEM m22 / (2D l) | disc | hollow, r_o from 2D | hollow, r_o from outer area |")
-    print("|---|---|---|---|---|---|")
+    print("| l [m] | faces | BEM m22 / (2D l) | disc | hollow, r_o from 2D | hollow, r_o from outer area "
+          "| estimate: sway, heave, pitch, surge vs BEM |")
+    print("|---|---|---|---|---|---|---|")
     for l in (0.03, 0.06, 0.12, 0.3, 0.6):
         boxes = [((0, 0, -0.3), (l / 2, 0.3, -0.24)), ((0, 0, 0.24), (l / 2, 0.3, 0.3)),
                  ((0, 0.24, -0.24), (l / 2, 0.3, 0.24))]
@@ -223,8 +224,10 @@ def main_rings(max_edge=0.04):
         ro2 = np.sqrt(0.36 / np.pi)
         t2 = ring_body_added_mass([-l / 2, l / 2, l / 2, -l / 2], [ri, ri, ro2, ro2], rho=RHO)[1, 1]
         f2 = t2 / (RHO * np.pi * (ro2 ** 2 + ri ** 2) * l)
+        est = strip_model(boxes)
+        errs = ", ".join(f"{100 * (est[i, i] - a[i, i]) / a[i, i]:+.1f} %" for i in (1, 2, 4, 0))
         print(f"| {l} | {faces} | {a[1, 1] / strip:.4f} | {disc / strip:.4f} | {t1 / strip:.4f} | "
-              f"{f2:.4f} |", flush=True)
+              f"{f2:.4f} | {errs} |", flush=True)
 
 
 # the ROV's float, pontoons and posts (benchmarks/mesh_shapes.open_frame_rov), by quarter
