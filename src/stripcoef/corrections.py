@@ -691,8 +691,11 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     :math:`S \to D S D`, :math:`D = diag(1, \sqrt{f_v}, \sqrt{f_w}, 1, \sqrt{f_q}, \sqrt{f_r})`,
     then :math:`S_{11} += m_{11}`, :math:`S_{26} = S_{62} += \Delta_{26}`,
     :math:`S_{35} = S_{53} += \Delta_{35}`.  For a body of revolution this is its exact
-    3D matrix (to the panel discretisation).  Roll: for mesh bodies (polygon parts) the
-    section roll terms are scaled by :func:`roll_relief` (``scale[3]``); otherwise 1.
+    3D matrix (to the panel discretisation).  A body whose every section has a hole (a duct,
+    a ring: :func:`bore_area`) gets one *hollow* equivalent body instead, the tube of its
+    outer-contour and bore areas, for surge and both lateral directions
+    (:func:`_hollow_corrections`; exact for a circular tube).  Roll: for mesh bodies (polygon
+    parts) the section roll terms are scaled by :func:`roll_relief` (``scale[3]``); otherwise 1.
 
     Parameters
     ----------
