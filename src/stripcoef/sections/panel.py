@@ -73,15 +73,15 @@ def _clean_ring(ring, where: str) -> np.ndarray:
                          value=f"shape {r.shape}", expected="(n, 2)")
     if not np.all(np.isfinite(r)):
         raise InputError("contour has non-finite coordinates", key=where)
-    if len(r) > 1 and np.allclose(r[0], r[-1]):
-        r = r[:-1]
-    # drop repeated consecutive points
-    keep = np.ones(len(r), bool)
+    if len(r) > 1 and np.all(np.abs(r[0] - r[-1]) <= 1e-8 + 1e-5 * np.abs(r[-1])):
+        r = r[:-1]                                  # the closing point (np.allclose's test)
     if len(r) > 1:
-        step = np.linalg.norm(np.diff(r, axis=0, append=r[:1]), axis=1)
-        scale = max(np.ptp(r[:, 0]), np.ptp(r[:, 1]), 1e-300)
-        keep = step > 1e-12 * scale
-    r = r[keep]
+        # drop repeated consecutive points
+        scale = max(float(np.ptp(r[:, 0])), float(np.ptp(r[:, 1])), 1e-300)
+        d = np.diff(r, axis=0, append=r[:1])
+        keep = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2) > 1e-12 * scale
+        if not keep.all():
+            r = r[keep]
     if len(r) < 3:
         raise InputError("contour has fewer than 3 distinct points", key=where,
                          value=len(r), expected=">= 3")
@@ -99,7 +99,7 @@ def signed_area(ring) -> float:
     """
     r = np.asarray(ring, dtype=float)
     y, z = r[:, 0], r[:, 1]
-    return 0.5 * float(np.sum(y * np.roll(z, -1) - np.roll(y, -1) * z))
+    return 0.5 * float(y[:-1] @ z[1:] - y[1:] @ z[:-1] + y[-1] * z[0] - y[0] * z[-1])
 
 
 def _point_in_ring(p, ring) -> bool:
@@ -151,8 +151,13 @@ def section_centroid(contours) -> tuple[float, float]:
     """
     if contours is None or len(contours) == 0:
         return (0.0, 0.0)
+    return _centroid(orient_contours(contours))
+
+
+def _centroid(rings) -> tuple[float, float]:
+    """:func:`section_centroid` of rings already oriented (:func:`orient_contours`)."""
     a = sy = sz = 0.0
-    for r in orient_contours(contours):
+    for r in rings:
         y, z = r[:, 0], r[:, 1]
         y1, z1 = np.roll(y, -1), np.roll(z, -1)
         c = y * z1 - y1 * z
@@ -251,7 +256,11 @@ def discretise(contours, *, panels: int | None = None, where: str = "contours"):
         slender sections), and at least enough for the per-contour and per-edge minima.  ``0`` keeps the input
         vertices as panel nodes.
     """
-    rings = orient_contours(contours, where)
+    return _discretise(orient_contours(contours, where), panels)
+
+
+def _discretise(rings, panels):
+    """:func:`discretise` of rings already oriented (:func:`orient_contours`)."""
     if panels == 0:
         return rings
     flags = [_corner_flags(r) for r in rings]
@@ -405,8 +414,11 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
         raise InputError("fluid density must be positive", key="rho", value=rho,
                          expected="> 0 kg/m^3")
     nsec = len(sections)
+    rings = [None if c is None or len(c) == 0 else orient_contours(c, f"sections[{s}]")
+             for s, c in enumerate(sections)]
     if about is None:
-        about = np.array([section_centroid(c) for c in sections]).reshape(nsec, 2)
+        about = np.array([(0.0, 0.0) if r is None else _centroid(r) for r in rings])
+        about = about.reshape(nsec, 2)
     about = np.asarray(about, dtype=float)
     if about.ndim == 1:
         about = np.broadcast_to(about, (nsec, 2))
@@ -415,10 +427,10 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
                          value=f"shape {about.shape}", expected=f"(2,) or ({nsec}, 2)")
     out = np.zeros((nsec, 3, 3))
     groups: dict[int, list[tuple[int, list]]] = {}
-    for s, contours in enumerate(sections):
-        if contours is None or len(contours) == 0:
+    for s, oriented in enumerate(rings):
+        if oriented is None:
             continue
-        nodes = discretise(contours, panels=panels, where=f"sections[{s}]")
+        nodes = _discretise(oriented, panels)
         n = sum(len(r) for r in nodes)
         groups.setdefault(n, []).append((s, nodes))
     for members in groups.values():
