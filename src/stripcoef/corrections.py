@@ -359,9 +359,11 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     return s, d
 
 
-def _meridian(x, r, panels):
+def _meridian(x, r, panels, area_linear=False):
     """Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
-    with cosine clustering towards both ends."""
+    with cosine clustering towards both ends; between the given points r is linear in x, or
+    with ``area_linear`` the area :math:`\pi r^2` is (r = sqrt of the linear interpolant of
+    r^2: round noses and tails sampled at a few stations are followed, not cut by chords)."""
     x = np.asarray(x, dtype=float)
     r = np.asarray(r, dtype=float)
     if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) < 0) \
@@ -385,7 +387,8 @@ def _meridian(x, r, panels):
     for a, length, n in zip(knots[:-1], runs, n_run):
         t.append(a + length * 0.5 * (1.0 - np.cos(np.pi * np.arange(1, n + 1) / n)))
     t = np.concatenate(t)
-    xn, rn = np.interp(t, s, x), np.interp(t, s, r)
+    xn = np.interp(t, s, x)
+    rn = np.sqrt(np.interp(t, s, r * r)) if area_linear else np.interp(t, s, r)
     rn[0] = rn[-1] = 0.0
     return xn, rn
 
@@ -398,7 +401,8 @@ def _corners(x, r):
 
 
 def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
-                                  panels: int = DEFAULT_PANELS, modes=(0, 1)) -> np.ndarray:
+                                  panels: int = DEFAULT_PANELS, modes=(0, 1),
+                                  area_linear: bool = False) -> np.ndarray:
     r"""6x6 added mass of a body of revolution about the x axis (3D potential flow).
 
     .. math:: m_{11} = -2\pi\rho\int\phi_0 n_x r\,ds,\ \
@@ -422,6 +426,9 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     modes : tuple of int
         Fourier modes to solve: 0 for surge, 1 for sway, heave, pitch and yaw (default both;
         the terms of a mode left out are 0).
+    area_linear : bool
+        Between the profile's points interpolate the area :math:`\pi r^2` linearly in x
+        instead of r (for profiles sampled from strips, :func:`hull_corrections`).
 
     Returns
     -------
@@ -432,7 +439,7 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     ----------
     Newman (1977) sec. 4.13-4.15; Hess & Smith (1967) sec. 5; Lamb (1932) sec. 373.
     """
-    xn, rn = _meridian(x, r, int(panels))
+    xn, rn = _meridian(x, r, int(panels), area_linear)
     xn = xn - x_ref
     out = np.zeros((6, 6))
     if 0 in modes:      # mode 0: surge
@@ -547,7 +554,8 @@ def _axial_added_mass(strips, rho, panels):
     m11 = 0.0
     if np.any(area > 0):
         xs, rs = _equivalent_radius(strips, area)
-        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels, modes=(0,))[0, 0]
+        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels, modes=(0,),
+                                             area_linear=True)[0, 0]
     for p in others:
         cov = _coverage(p)
         vol = float(np.sum(p.area * cov * strips.dx[p.index]))
@@ -567,7 +575,7 @@ def _axial_added_mass(strips, rho, panels):
         px = np.r_[x_lo, x[1:-1], x_hi]
         pr = np.sqrt(np.r_[a_lo, a[1:-1], a_hi] / np.pi)
         m11 += body_of_revolution_added_mass(px, pr, rho=rho, panels=max(40, panels // 2),
-                                             modes=(0,))[0, 0]
+                                             modes=(0,), area_linear=True)[0, 0]
     return m11
 
 
@@ -587,7 +595,8 @@ ho\sum A X\,dx,\quad X = x - x_c
     if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
     xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
-    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,))
+    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,),
+                                       area_linear=True)
     a = np.pi * rs[1:-1] ** 2
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
