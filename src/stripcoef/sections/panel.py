@@ -167,30 +167,35 @@ def _centroid(rings) -> tuple[float, float]:
     return (sy / a, sz / a)
 
 
+def _ring_shape(r: np.ndarray):
+    """Edge lengths (edge i: vertex i -> i+1, closing edge last) and turning angle at each
+    vertex [rad] of a ring, computed once for the panel placement."""
+    e_out = np.concatenate((r[1:], r[:1])) - r
+    e_in = np.concatenate((e_out[-1:], e_out[:-1]))
+    seg = np.sqrt(e_out[:, 0] ** 2 + e_out[:, 1] ** 2)
+    turn = np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
+                      e_in[:, 0] * e_out[:, 0] + e_in[:, 1] * e_out[:, 1])
+    return seg, np.abs(turn)
+
+
 def _corner_flags(r: np.ndarray) -> np.ndarray:
-    e_out = np.roll(r, -1, axis=0) - r
-    e_in = r - np.roll(r, 1, axis=0)
-    cross = e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0]
-    dot = np.einsum("ij,ij->i", e_in, e_out)
-    return np.abs(np.arctan2(cross, dot)) > CORNER_ANGLE
+    """Sharp corners of a ring: turning angle above :data:`CORNER_ANGLE`."""
+    return _ring_shape(r)[1] > CORNER_ANGLE
 
 
-def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray) -> np.ndarray:
-    """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners."""
-    closed = np.vstack([r, r[:1]])
-    seg = np.linalg.norm(np.diff(closed, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
+def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray, shape=None) -> np.ndarray:
+    """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners
+    (``shape``: its :func:`_ring_shape`, computed if omitted)."""
+    seg, turn = _ring_shape(r) if shape is None else shape
+    closed = np.concatenate((r, r[:1]))
+    s = np.concatenate(([0.0], np.cumsum(seg)))
     perim = s[-1]
     idx = np.nonzero(corners)[0]
     if idx.size == 0:
         # equidistribute arc length plus turning: mu(s) = s + P/(2 pi) Theta(s), with the
         # turning angle at each vertex spread over the two adjacent edges (continuous)
-        e_in = r - np.roll(r, 1, axis=0)
-        e_out = np.roll(r, -1, axis=0) - r
-        turn = np.abs(np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
-                                 np.einsum("ij,ij->i", e_in, e_out)))
-        per_edge = 0.5 * (turn + np.roll(turn, -1))
-        theta = np.concatenate([[0.0], np.cumsum(per_edge)])
+        per_edge = 0.5 * (turn + np.concatenate((turn[1:], turn[:1])))
+        theta = np.concatenate(([0.0], np.cumsum(per_edge)))
         mu = s + CURVATURE_WEIGHT * perim / (2.0 * np.pi) * theta
         t = np.interp(np.linspace(0.0, mu[-1], n, endpoint=False), mu, s)
     else:
@@ -217,11 +222,12 @@ def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray) -> np.ndarray:
 
 
 def _perimeter(r: np.ndarray) -> float:
-    return float(np.sum(np.linalg.norm(np.diff(np.vstack([r, r[:1]]), axis=0), axis=1)))
+    return float(_ring_shape(r)[0].sum())
 
 
-def _panel_budget(rings, corner_flags, panels) -> list[int]:
-    perims = np.array([_perimeter(r) for r in rings])
+def _panel_budget(rings, corner_flags, panels, perims=None) -> list[int]:
+    if perims is None:
+        perims = np.array([_perimeter(r) for r in rings])
     mins = np.array([max(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * int(c.sum()))
                      for c in corner_flags])
     total = max(int(panels), int(mins.sum()))
@@ -263,14 +269,16 @@ def _discretise(rings, panels):
     """:func:`discretise` of rings already oriented (:func:`orient_contours`)."""
     if panels == 0:
         return rings
-    flags = [_corner_flags(r) for r in rings]
+    shapes = [_ring_shape(r) for r in rings]
+    flags = [turn > CORNER_ANGLE for _, turn in shapes]
+    perims = np.array([seg.sum() for seg, _ in shapes])
     if panels is None:
         # slender rings need more panels: scale by sqrt of the isoperimetric ratio P^2/(4 pi A)
         # (1 for a circle, 4.2 for a 10:1 ellipse), capped at 3x; rounded to 16 for batching
-        q = max(_perimeter(r) ** 2 / (4.0 * np.pi * abs(signed_area(r))) for r in rings)
+        q = max(pr ** 2 / (4.0 * np.pi * abs(signed_area(r))) for pr, r in zip(perims, rings))
         panels = int(16 * np.round(DEFAULT_PANELS * min(3.0, np.sqrt(q)) / 16))
-    budget = _panel_budget(rings, flags, panels)
-    return [_resample_ring(r, n, f) for r, n, f in zip(rings, budget, flags)]
+    budget = _panel_budget(rings, flags, panels, perims)
+    return [_resample_ring(r, n, f, sh) for r, n, f, sh in zip(rings, budget, flags, shapes)]
 
 
 # --------------------------------------------------------------------------- solver
