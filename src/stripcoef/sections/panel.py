@@ -71,15 +71,19 @@ def _clean_ring(ring, where: str) -> np.ndarray:
     if r.ndim != 2 or r.shape[1] != 2:
         raise InputError("contour must be an (n, 2) array of (y, z) points", key=where,
                          value=f"shape {r.shape}", expected="(n, 2)")
-    if not np.all(np.isfinite(r)):
+    if not np.isfinite(r).all():
         raise InputError("contour has non-finite coordinates", key=where)
-    if len(r) > 1 and np.all(np.abs(r[0] - r[-1]) <= 1e-8 + 1e-5 * np.abs(r[-1])):
-        r = r[:-1]                                  # the closing point (np.allclose's test)
+    if len(r) > 1:
+        y0, z0 = r[0]
+        y1, z1 = r[-1]
+        if abs(y0 - y1) <= 1e-8 + 1e-5 * abs(y1) and abs(z0 - z1) <= 1e-8 + 1e-5 * abs(z1):
+            r = r[:-1]                              # the closing point (np.allclose's test)
     if len(r) > 1:
         # drop repeated consecutive points
-        scale = max(float(np.ptp(r[:, 0])), float(np.ptp(r[:, 1])), 1e-300)
-        d = np.diff(r, axis=0, append=r[:1])
-        keep = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2) > 1e-12 * scale
+        y, z = r[:, 0], r[:, 1]
+        scale = max(float(y.max() - y.min()), float(z.max() - z.min()), 1e-300)
+        d = np.concatenate((r[1:], r[:1])) - r
+        keep = d[:, 0] ** 2 + d[:, 1] ** 2 > (1e-12 * scale) ** 2
         if not keep.all():
             r = r[keep]
     if len(r) < 3:
