@@ -13,11 +13,13 @@ Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~
       peak memory; the next rung is only tried when the measured peak, extrapolated as N^2,
       stays under --max-gb and under the memory available.
    b. Strip theory's accuracy over the knobs a user has: the mesh (the BEM's own meshes and
-      finer ones), the number of strips and the meridian panels of the 3D corrections
-      (estimate(correction_panels=)).
+      finer ones), the number of strips, the meridian panels of the 3D corrections
+      (estimate(correction_panels=)) and the panels per 2D section (estimate(section_panels=);
+      96 is the adaptive default for these round sections).
    c. For each BEM rung, the cheapest strip-theory configuration whose largest diagonal error
       is at most the BEM's: every configuration that meets the error and is not dominated
-      (another one meeting it with no more faces, strips and panels is never slower) is timed,
+      (another one meeting it with no more faces, strips and panels of either kind is never
+      slower) is timed,
       best of 3, and the fastest is timed again, best of 7.
    Both methods are timed from the same triangle arrays in memory to the matrices: strip
    theory = mesh checks/repair (mesh_body) + stripcoef.assemble.estimate (slicing, 2D
@@ -72,6 +74,8 @@ BEM_MESHES = ((30, 26), (40, 38), (60, 50), (84, 72))
 STRIP_MESHES = BEM_MESHES + ((120, 96), (200, 160), (400, 256))
 STRIPS = (10, 15, 20, 30, 50, 75, 100, 150, 200)
 PANELS = (16, 24, 32, 48, 64, 96, 128, 160)
+#: panels per 2D section (96: the adaptive default of a round section)
+SECTION_PANELS = (32, 48, 96)
 #: the 1000x target of issue 3
 TARGET = 1000.0
 
@@ -143,13 +147,14 @@ def spheroid_vehicle(body):
                    holes=[], mass=MassSpec(), thrusters=[], reference="center_of_buoyancy")
 
 
-def strip_model(vertices, faces, strips, panels):
+def strip_model(vertices, faces, strips, panels, section_panels=None):
     """What the user waits for: triangle arrays in memory -> the full strip-theory model."""
     body = mesh_body(trimesh.Trimesh(vertices, faces, process=False), origin="file",
                      name="spheroid")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return estimate(spheroid_vehicle(body), strips=strips, correction_panels=panels)
+        return estimate(spheroid_vehicle(body), strips=strips, correction_panels=panels,
+                        section_panels=section_panels)
 
 
 # --------------------------------------------------------------------------- BEM (child)
@@ -216,7 +221,8 @@ def bem_ladder(max_gb, threads):
 # --------------------------------------------------------------------------- strip theory
 
 def strip_accuracy():
-    """Error [%] of every (mesh, strips, panels): the M_A that estimate computes (same call)."""
+    """Error [%] of every (mesh faces, strips, correction panels, section panels): the M_A
+    that estimate computes (same call)."""
     table = {}
     for n_axial, n_circ in STRIP_MESHES:
         mesh = spheroid_mesh(n_axial, n_circ)
@@ -226,14 +232,15 @@ def strip_accuracy():
             st = vehicle.cut(strips)
             volume, cb = displaced_volume(st)
             for panels in PANELS:
-                m, _ = added_mass(st, RHO, about=cb, volume=volume, center=cb,
-                                  correction_panels=panels)
-                table[(len(mesh.faces), strips, panels)] = max_error(m)
+                for sp in SECTION_PANELS:
+                    m, _ = added_mass(st, RHO, about=cb, volume=volume, center=cb,
+                                      correction_panels=panels, section_panels=sp)
+                    table[(len(mesh.faces), strips, panels, sp)] = max_error(m)
     return table
 
 
 def undominated(configs):
-    """Configurations no other one beats with no more faces, strips and panels."""
+    """Configurations no other one beats with no more faces, strips and panels (both)."""
     return [c for c in configs
             if not any(o != c and all(oi <= ci for oi, ci in zip(o, c)) for o in configs)]
 
@@ -247,9 +254,9 @@ def cheapest(table, error, arrays, timings, faces=None):
         return None
     for c in ok:
         if c not in timings:
-            timings[c] = best(lambda c=c: strip_model(*arrays[c[0]], c[1], c[2]), n=3)[1]
+            timings[c] = best(lambda c=c: strip_model(*arrays[c[0]], *c[1:]), n=3)[1]
     pick = min(ok, key=timings.get)
-    model, seconds = best(lambda: strip_model(*arrays[pick[0]], pick[1], pick[2]), n=7)
+    model, seconds = best(lambda: strip_model(*arrays[pick[0]], *pick[1:]), n=7)
     timings[pick] = min(timings[pick], seconds)
     return pick, max_error(model.added_mass), timings[pick], len(ok)
 
@@ -266,11 +273,12 @@ def part2(max_gb, threads):
         m = spheroid_mesh(n_axial, n_circ)
         arrays[len(m.faces)] = (np.asarray(m.vertices), np.asarray(m.faces))
     print(f"{len(table)} configurations ({len(arrays)} meshes x {len(STRIPS)} strip counts x "
-          f"{len(PANELS)} correction panel counts) in {time.perf_counter() - t0:.0f} s; "
+          f"{len(PANELS)} correction panel counts x {len(SECTION_PANELS)} section panel counts)"
+          f" in {time.perf_counter() - t0:.0f} s; "
           f"best error {min(table.values()):.3f} % ({min(table, key=table.get)})")
     print("\n### c. cheapest strip-theory configuration at the BEM's accuracy")
     print("\n| BEM faces | BEM max error | BEM time | strip theory: mesh faces, strips, "
-          "correction panels | its max error | its time | ratio |")
+          "correction panels, section panels | its max error | its time | ratio |")
     print("|---|---|---|---|---|---|---|")
     timings, verdict = {}, []
     for row in bem:
@@ -279,32 +287,36 @@ def part2(max_gb, threads):
             print(f"| {row['faces']:,} | {row['error']:.3f} % | {row['seconds']:.2f} s | "
                   f"none in the grid reaches it | | | |")
             continue
-        (faces, strips, panels), err, sec, n_ok = found
+        (faces, strips, panels, sp), err, sec, n_ok = found
         ratio = row["seconds"] / sec
         verdict.append((row["error"], ratio))
         print(f"| {row['faces']:,} | {row['error']:.3f} % | {row['seconds']:.2f} s | {faces:,}, "
-              f"{strips}, {panels} (fastest of {n_ok} timed) | {err:.3f} % | {1e3 * sec:.1f} ms | "
+              f"{strips}, {panels}, {sp} (fastest of {n_ok} timed) | {err:.3f} % | "
+              f"{1e3 * sec:.1f} ms | "
               f"**{ratio:,.0f}x** |")
     print("\nthe same, strip theory restricted to the BEM's own mesh:\n")
-    print("| BEM faces | BEM max error | BEM time | strips, correction panels | its max error "
-          "| its time | ratio |")
+    print("| BEM faces | BEM max error | BEM time | strips, correction panels, section panels "
+          "| its max error | its time | ratio |")
     print("|---|---|---|---|---|---|---|")
     for row in bem:
         found = cheapest(table, row["error"], arrays, timings, faces=row["faces"])
         if found is None:          # none reaches it: the most accurate one on that mesh
             own = min((c for c in table if c[0] == row["faces"]), key=table.get)
-            _, sec = best(lambda: strip_model(*arrays[own[0]], own[1], own[2]), n=3)
+            _, sec = best(lambda: strip_model(*arrays[own[0]], *own[1:]), n=3)
             print(f"| {row['faces']:,} | {row['error']:.3f} % | {row['seconds']:.2f} s | none "
-                  f"reaches it; the most accurate: {own[1]}, {own[2]} | {table[own]:.3f} % | "
+                  f"reaches it; the most accurate: {own[1]}, {own[2]}, {own[3]} | "
+                  f"{table[own]:.3f} % | "
                   f"{1e3 * sec:.1f} ms | ({row['seconds'] / sec:,.0f}x, less accurate) |")
             continue
-        (_, strips, panels), err, sec, _ = found
+        (_, strips, panels, sp), err, sec, _ = found
         print(f"| {row['faces']:,} | {row['error']:.3f} % | {row['seconds']:.2f} s | {strips}, "
-              f"{panels} | {err:.3f} % | {1e3 * sec:.1f} ms | {row['seconds'] / sec:,.0f}x |")
+              f"{panels}, {sp} | {err:.3f} % | {1e3 * sec:.1f} ms | "
+              f"{row['seconds'] / sec:,.0f}x |")
     top = min(table, key=table.get)
-    _, t_top = best(lambda: strip_model(*arrays[top[0]], top[1], top[2]), n=3)
+    _, t_top = best(lambda: strip_model(*arrays[top[0]], *top[1:]), n=3)
     print(f"\nmost accurate strip configuration of the grid: {top[0]:,} faces, {top[1]} strips, "
-          f"{top[2]} panels: {table[top]:.3f} %, {t_top:.3f} s"
+          f"{top[2]} correction panels, {top[3]} section panels: {table[top]:.3f} %, "
+          f"{t_top:.3f} s"
           + (f"; the largest BEM ({bem[-1]['faces']:,} faces, {bem[-1]['error']:.3f} %, "
              f"{bem[-1]['seconds']:.1f} s) is {bem[-1]['seconds'] / t_top:,.0f}x slower and "
              f"{bem[-1]['error'] / table[top]:.1f}x less accurate" if bem else ""))

@@ -277,21 +277,22 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
                         mats[k][i, 2, 2] = 0.5 * m44
 
 
-def section_matrices(strips: Strips, rho: float) -> list:
+def section_matrices(strips: Strips, rho: float, panels: int | None = None) -> list:
     r"""Per part, the (k, 3, 3) 2D added mass about the part's centre [kg/m, kg, kg m], with
     fin pairs combined (:func:`_combine_fins`) and the open width of holes removed.
 
     .. math:: m_{33} \leftarrow m_{33}\,(1 - c_z/2b)^2,\qquad m_{22} \leftarrow m_{22}\,(1 - c_y/2h)^2
 
     with open hole widths c_z, c_y [m] (:func:`_hole_width_reduction`), half-breadth b and
-    half-height h [m]; ``rho`` [kg/m^3]. Sections: :func:`stripcoef.sections.section_added_mass`.
+    half-height h [m]; ``rho`` [kg/m^3]. Sections: :func:`stripcoef.sections.section_added_mass`
+    (``panels``: panels per polygon section, default adaptive).
 
     References
     ----------
     Holes pass heave (sway) flow: seed 002, eq. 40; the squared open-width factor is an
     [assumption] (added mass ~ width^2, as for a plate, DNV-RP-C205 table A-1).
     """
-    mats = [section_added_mass(p, rho).copy() for p in strips.parts]
+    mats = [section_added_mass(p, rho, panels).copy() for p in strips.parts]
     _combine_fins(strips, mats, rho)
     for p, m in zip(strips.parts, mats):
         cy, cz = _hole_width_reduction(strips, p)
@@ -363,22 +364,24 @@ def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
     return total
 
 
-def _correction_panels(value, default):
-    """Meridian panel count of the 3D corrections: ``None`` -> ``default``, else an int >= 8."""
+def _panel_count(value, default, key: str):
+    """A panel count (``key``: correction_panels or section_panels): ``None`` -> ``default``,
+    else an int >= 8."""
     if value is None:
-        return int(default)
+        return None if default is None else int(default)
     try:
         n = int(value)
     except (TypeError, ValueError):
         n = None
     if n is None or n != value or n < 8:
-        raise InputError("invalid number of correction panels", key="correction_panels",
+        raise InputError(f"invalid number of {key.replace('_', ' ')}", key=key,
                          value=value, expected="an integer >= 8")
     return n
 
 
 def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
-               corrections: bool = True, correction_panels: int | None = None):
+               corrections: bool = True, correction_panels: int | None = None,
+               section_panels: int | None = None):
     r"""Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
 
     With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
@@ -392,7 +395,9 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     (H moves the matrix from ``center`` to ``about``; :func:`stripcoef.conventions.transform_matrix`;
     the k_1 term only without corrections). ``rho`` [kg/m^3], ``volume`` [m^3], ``about``
     and ``center`` [m]. ``correction_panels``: meridian panels of the corrections'
-    axisymmetric solves (default :data:`stripcoef.corrections.DEFAULT_PANELS`).
+    axisymmetric solves (default :data:`stripcoef.corrections.DEFAULT_PANELS`);
+    ``section_panels``: panels per polygon section of the 2D panel method (default adaptive,
+    :func:`stripcoef.sections.panel.discretise`).
 
     Returns (M_A [kg, kg m, kg m^2], info) where info lists the factors used.
 
@@ -403,17 +408,21 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     from .corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
     from .members import member_added_mass
 
-    panels = _correction_panels(correction_panels, DEFAULT_PANELS)
+    panels = _panel_count(correction_panels, DEFAULT_PANELS, "correction_panels")
+    section_panels = _panel_count(section_panels, None, "section_panels")
     center = np.asarray(center, float)
-    mats = section_matrices(strips, rho)
+    mats = section_matrices(strips, rho, section_panels)
     strip = strip_added_mass(strips, rho, center, mats)
     _, _, k1, ld = end_correction_factors(strips.length, volume)
     info = {"equivalent_spheroid_L_over_D": float(ld)}
+    if section_panels is not None:
+        info["section_panels"] = section_panels
     if corrections:
         per_strip = np.zeros((strips.n, 3, 3))
         for p, m in zip(strips.parts, mats):
             np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
         per_member = member_added_mass(strips, rho, center, panels=panels,
+                                       section_panels=section_panels,
                                        joint=mats[0] if len(mats) == 1 else None)
         if per_member is None:
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
@@ -667,7 +676,8 @@ def _reference_point(ref, cb, cg):
 
 def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
              speed: float | None = None, reference_point=None, regime: str = "auto",
-             fluid=None, correction_panels: int | None = None) -> HydroModel:
+             fluid=None, correction_panels: int | None = None,
+             section_panels: int | None = None) -> HydroModel:
     """Strip theory: a :class:`~stripcoef.geometry.vehicle.Vehicle` in, a HydroModel out.
 
     Parameters
@@ -690,6 +700,10 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         :data:`stripcoef.corrections.DEFAULT_PANELS` = 160; cost grows as its square,
         accuracy converges at second order, docs/performance.md "Speed"). Ignored
         without corrections.
+    section_panels : int, optional
+        Panels per 2D section of a mesh body (default adaptive: 96 for a round section, more
+        for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
+        round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
 
     Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
     :func:`added_mass`, D_L and D_Q from :func:`_damping`, M_RB from
@@ -711,7 +725,8 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
     m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
-                              corrections=corrections, correction_panels=correction_panels)
+                              corrections=corrections, correction_panels=correction_panels,
+                              section_panels=section_panels)
     d_l, d_q, cond = _damping(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
     m_a, m_rb = _clean(m_a), _clean(m_rb)

@@ -75,9 +75,17 @@ from .errors import InputError
 CLOSED_ENDS = False
 #: Meridian panels used by default.
 DEFAULT_PANELS = 160
+#: 2D roll added mass below this fraction of rho A^2 is round-off, not roll (a circle's panel
+#: solution gives ~1e-29 of it): :func:`roll_relief` has nothing to relieve [-]
+ROLL_ROUNDOFF = 1e-9
+#: sway and heave sections equal to this relative tolerance share one equivalent body [-]
+SAME_BODY_RTOL = 1e-10
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
 _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
 _TRAP_THETA = 16
+_TRAP_COS = np.cos(np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA, endpoint=False))
+#: trapezoid weights times cos^k theta, k = 0, 1, 2 (rows)
+_TRAP_W = 2.0 * np.pi / _TRAP_THETA * _TRAP_COS[None, :] ** np.arange(3)[:, None]
 
 
 def _ring_integrals(p, q):
@@ -117,17 +125,11 @@ def _theta_moments(x, r, xq, rq):
     far = q < 0.25 * p
     out = [np.empty_like(p) for _ in range(5)]
     if np.any(far):
-        th = np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA, endpoint=False)
-        c = np.cos(th)
-        pf, qf = p[far][:, None], q[far][:, None]
-        rr = np.sqrt(pf - qf * c)
-        w = 2.0 * np.pi / _TRAP_THETA
-        inv, inv3 = 1.0 / rr, 1.0 / rr ** 3
-        out[0][far] = w * inv.sum(1)
-        out[1][far] = w * (c * inv).sum(1)
-        out[2][far] = w * inv3.sum(1)
-        out[3][far] = w * (c * inv3).sum(1)
-        out[4][far] = w * (c * c * inv3).sum(1)
+        inv = 1.0 / np.sqrt(p[far][:, None] - q[far][:, None] * _TRAP_COS)
+        m1 = inv @ _TRAP_W[:2].T                        # sum of w c^k / R, k = 0, 1
+        m3 = (inv * inv * inv) @ _TRAP_W.T              # sum of w c^k / R^3, k = 0, 1, 2
+        out[0][far], out[1][far] = m1[:, 0], m1[:, 1]
+        out[2][far], out[3][far], out[4][far] = m3[:, 0], m3[:, 1], m3[:, 2]
     near = ~far
     if np.any(near):
         pn, qn = p[near], q[near]
@@ -357,9 +359,11 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     return s, d
 
 
-def _meridian(x, r, panels):
+def _meridian(x, r, panels, area_linear=False):
     """Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
-    with cosine clustering towards both ends."""
+    with cosine clustering towards both ends; between the given points r is linear in x, or
+    with ``area_linear`` the area :math:`\pi r^2` is (r = sqrt of the linear interpolant of
+    r^2: round noses and tails sampled at a few stations are followed, not cut by chords)."""
     x = np.asarray(x, dtype=float)
     r = np.asarray(r, dtype=float)
     if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) < 0) \
@@ -383,7 +387,8 @@ def _meridian(x, r, panels):
     for a, length, n in zip(knots[:-1], runs, n_run):
         t.append(a + length * 0.5 * (1.0 - np.cos(np.pi * np.arange(1, n + 1) / n)))
     t = np.concatenate(t)
-    xn, rn = np.interp(t, s, x), np.interp(t, s, r)
+    xn = np.interp(t, s, x)
+    rn = np.sqrt(np.interp(t, s, r * r)) if area_linear else np.interp(t, s, r)
     rn[0] = rn[-1] = 0.0
     return xn, rn
 
@@ -396,7 +401,8 @@ def _corners(x, r):
 
 
 def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
-                                  panels: int = DEFAULT_PANELS) -> np.ndarray:
+                                  panels: int = DEFAULT_PANELS, modes=(0, 1),
+                                  area_linear: bool = False) -> np.ndarray:
     r"""6x6 added mass of a body of revolution about the x axis (3D potential flow).
 
     .. math:: m_{11} = -2\pi\rho\int\phi_0 n_x r\,ds,\ \
@@ -417,6 +423,12 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
         Reference point on the axis for the rotational terms [m]
     panels : int
         Meridian panels (plus cap corners).
+    modes : tuple of int
+        Fourier modes to solve: 0 for surge, 1 for sway, heave, pitch and yaw (default both;
+        the terms of a mode left out are 0).
+    area_linear : bool
+        Between the profile's points interpolate the area :math:`\pi r^2` linearly in x
+        instead of r (for profiles sampled from strips, :func:`hull_corrections`).
 
     Returns
     -------
@@ -427,16 +439,18 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     ----------
     Newman (1977) sec. 4.13-4.15; Hess & Smith (1967) sec. 5; Lamb (1932) sec. 373.
     """
-    xn, rn = _meridian(x, r, int(panels))
+    xn, rn = _meridian(x, r, int(panels), area_linear)
     xn = xn - x_ref
     out = np.zeros((6, 6))
-    # mode 0: surge
-    S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, 0)
-    A = D + 0.5 * np.eye(D.shape[0])
-    phi = np.linalg.solve(A, S @ nx)
-    out[0, 0] = -2.0 * np.pi * rho * np.sum(phi * nx * rc * length)
+    if 0 in modes:      # mode 0: surge
+        S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, 0)
+        A = D + 0.5 * np.eye(D.shape[0])
+        phi = np.linalg.solve(A, S @ nx)
+        out[0, 0] = -2.0 * np.pi * rho * np.sum(phi * nx * rc * length)
+    if 1 not in modes:
+        return out
     # mode 1: sway and yaw together
-    S, D, _ = _influence(xn, rn, 1)
+    S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, 1)
     A = D + 0.5 * np.eye(D.shape[0])
     bc = np.column_stack([nr, xc * nr - rc * nx])
     phi = np.linalg.solve(A, S @ bc)
@@ -496,6 +510,14 @@ def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
     return xs, rs
 
 
+def _strip_area(strips) -> np.ndarray:
+    """Section area of every strip, all parts that displace water summed [m^2]."""
+    area = np.zeros(strips.n)
+    for p in strips.parts:
+        np.add.at(area, p.index, p.area * _coverage(p))
+    return area
+
+
 def equivalent_profile(strips):
     r"""Equal-area body of revolution of a set of strips: :math:`r_{eq} = \sqrt{A(x)/\pi}`.
 
@@ -511,10 +533,7 @@ def equivalent_profile(strips):
     ----------
     See module docstring (equivalent body of revolution; Newman 1977, sec. 7.4).
     """
-    area = np.zeros(strips.n)
-    for p in strips.parts:
-        np.add.at(area, p.index, p.area * _coverage(p))
-    return _equivalent_radius(strips, area)
+    return _equivalent_radius(strips, _strip_area(strips))
 
 
 def _axial_added_mass(strips, rho, panels):
@@ -535,7 +554,8 @@ def _axial_added_mass(strips, rho, panels):
     m11 = 0.0
     if np.any(area > 0):
         xs, rs = _equivalent_radius(strips, area)
-        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels)[0, 0]
+        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels, modes=(0,),
+                                             area_linear=True)[0, 0]
     for p in others:
         cov = _coverage(p)
         vol = float(np.sum(p.area * cov * strips.dx[p.index]))
@@ -554,7 +574,8 @@ def _axial_added_mass(strips, rho, panels):
         a_hi = max(a[-2] + (a[-2] - a[-3]) / (x[-2] - x[-3]) * (x_hi - x[-2]), 0.0)
         px = np.r_[x_lo, x[1:-1], x_hi]
         pr = np.sqrt(np.r_[a_lo, a[1:-1], a_hi] / np.pi)
-        m11 += body_of_revolution_added_mass(px, pr, rho=rho, panels=max(40, panels // 2))[0, 0]
+        m11 += body_of_revolution_added_mass(px, pr, rho=rho, panels=max(40, panels // 2),
+                                             modes=(0,), area_linear=True)[0, 0]
     return m11
 
 
@@ -574,7 +595,8 @@ ho\sum A X\,dx,\quad X = x - x_c
     if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
     xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
-    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels)
+    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,),
+                                       area_linear=True)
     a = np.pi * rs[1:-1] ** 2
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
@@ -629,11 +651,12 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
     about a diameter of the ellipsoid with c -> 0): the factor is 9 % low at aspect ratio 1,
     19 % low at 3.6 (docs/theory.md sec. 6).  ``m44`` [kg m] per strip, ``rho`` [kg/m^3].
 
-    Returns the factor f_p [-] (1 if no strip has roll added mass).
+    Returns the factor f_p [-] (1 if no strip has roll added mass, or only round-off: below
+    :data:`ROLL_ROUNDOFF` times :math:`\int\rho A^2 dx`, e.g. a circle's panel solution).
     """
     m44 = np.clip(np.asarray(m44, dtype=float), 0.0, None)
     total = float(np.sum(m44 * strips.dx))
-    if not total > 0:
+    if not total > ROLL_ROUNDOFF * rho * float(np.sum(_strip_area(strips) ** 2 * strips.dx)):
         return 1.0
     on = m44 > 1e-3 * m44.max()
     i3d = 0.0
@@ -728,17 +751,15 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     else:
         m11 = _axial_added_mass(strips, rho, panels)
     if section_added_mass is None:
-        area = np.zeros(strips.n)
-        for p in strips.parts:
-            np.add.at(area, p.index, p.area * _coverage(p))
-        mv = mw = area
+        mv = mw = _strip_area(strips)
     else:
         m2d = np.asarray(section_added_mass, dtype=float)
         mv, mw = m2d[:, 0, 0] / rho, m2d[:, 1, 1] / rho
     if bore is None:
         fv, fr, d26, _ = _lateral(strips, mv, rho, xc, panels)
-    if bore is not None or section_added_mass is None:
-        fw, fq, d35 = fv, fr, -d26      # one body of revolution for both directions
+    if bore is not None or section_added_mass is None \
+            or np.allclose(mv, mw, rtol=SAME_BODY_RTOL, atol=0.0):
+        fw, fq, d35 = fv, fr, -d26      # one equivalent body for both directions
     else:
         fw, fq, d62, _ = _lateral(strips, mw, rho, xc, panels)
         d35 = -d62                      # heave-pitch: M[2,4] = -m26 of the heave body

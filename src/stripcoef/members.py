@@ -187,7 +187,8 @@ def _polygon_part(name, index, polys_per_strip, length, role):
                 length=length, role=role, contours=contours)
 
 
-def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
+def decompose(strips: Strips, rho: float, joint=None,
+              section_panels: int | None = None) -> list[Entity] | None:
     r"""Members and junctions of a single-mesh body (module docstring), or None when the body
     is one member without junctions, or is not a single polygon part (vehicle-file bodies).
 
@@ -199,6 +200,8 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
         Fluid density [kg/m^3] (the junctions' 2D excess added mass)
     joint : (n, 3, 3) array, optional
         The part's 2D sections about their centroids (solved if omitted)
+    section_panels : int, optional
+        Panels per 2D section (:func:`stripcoef.sections.panel.discretise`; default adaptive)
 
     Returns
     -------
@@ -252,14 +255,14 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
         p = _polygon_part(f"{part.name}:member{g}", np.arange(js.size), [per[j] for j in js],
                           length, part.role)
         sub.parts = [p]
-        entities.append(Entity("member", sub, section_added_mass(p, rho)))
+        entities.append(Entity("member", sub, section_added_mass(p, rho, section_panels)))
     member_of = {}
     for e in entities:
         p = e.strips.parts[0]
         for k, xi in enumerate(e.strips.x):
             member_of.setdefault(float(xi), []).append((e, k))
     if joint is None:
-        joint = added_mass_sections(part.contours, rho=rho,
+        joint = added_mass_sections(part.contours, rho=rho, panels=section_panels,
                                     about=np.column_stack([part.y, part.z]))
     _share_interaction(strips, part, member_of, set(crossing), joint)
     # in the junction runs the joint section holds the crossing material too: there the
@@ -267,7 +270,7 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
     rows = [j for j in sorted(crossing) if len(base[j]) > 1]
     if rows:
         together = added_mass_sections([_rings(base[j]) for j in rows], rho=rho,
-                                       about=np.zeros((len(rows), 2)))
+                                       panels=section_panels, about=np.zeros((len(rows), 2)))
         _share_interaction(strips, part, member_of, set(), dict(zip(rows, together)), rows)
     # junctions: excess of the joined section over its members' sections
     for r, (j0, j1) in enumerate(runs):
@@ -279,7 +282,8 @@ def decompose(strips: Strips, rho: float, joint=None) -> list[Entity] | None:
         whole = _polygon_part("run", np.arange(js.size), [crossing[j] for j in js], 0.0,
                               "appendage")
         about = np.column_stack([whole.y, whole.z])
-        full = added_mass_sections([part.contours[j] for j in js], rho=rho, about=about)
+        full = added_mass_sections([part.contours[j] for j in js], rho=rho, about=about,
+                                   panels=section_panels)
         excess = full.copy()
         for k, j in enumerate(js):
             for me, mk in member_of.get(float(strips.x[gidx[j]]), []):
@@ -483,7 +487,7 @@ def _sub_strips(strips: Strips, idx) -> Strips:
 
 
 def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=None,
-                      panels: int | None = None):
+                      panels: int | None = None, section_panels: int | None = None):
     r"""Corrected 6x6 added mass about ``center`` as the sum over members and junctions.
 
     .. math:: M_A = \sum_e H(a_e - c)^T\,\mathrm{corr}_e\big(S_e(a_e)\big)\,H(a_e - c)
@@ -492,7 +496,8 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
     centroid of a member, area centroid of a junction's crossing material) and corr the
     per-direction equivalent-body correction of :func:`stripcoef.corrections.hull_corrections`
     and :func:`~stripcoef.corrections.apply_corrections` (``panels``: its meridian panels,
-    default :data:`stripcoef.corrections.DEFAULT_PANELS`).  ``rho`` [kg/m^3], ``center`` [m];
+    default :data:`stripcoef.corrections.DEFAULT_PANELS`; ``section_panels``: the 2D
+    sections', see :func:`decompose`).  ``rho`` [kg/m^3], ``center`` [m];
     returns (M_A [kg, kg m, kg m^2], list of per-entity info) or None when the body is not
     decomposed (:func:`decompose`).
 
@@ -507,7 +512,7 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
 
     panels = DEFAULT_PANELS if panels is None else int(panels)
     if entities is None:
-        entities = decompose(strips, rho, joint)
+        entities = decompose(strips, rho, joint, section_panels)
     if not entities:
         return None
     center = np.asarray(center, dtype=float)

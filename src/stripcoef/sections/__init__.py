@@ -1,8 +1,8 @@
 """Sections: 2D coefficients per strip, one registry per family.
 
 - :data:`ADDED_MASS` maps a :class:`~stripcoef.strips.Part` shape to a function
-  ``f(part, rho) -> (k, 3, 3)`` giving the per-unit-length added mass (sway, heave, roll)
-  about the part's centre.
+  ``f(part, rho, panels) -> (k, 3, 3)`` giving the per-unit-length added mass (sway, heave,
+  roll) about the part's centre (``panels``: the panel method's count, polygons only).
 - :data:`CROSS_FLOW_DRAG` maps a shape to ``f(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``,
   the 2D drag coefficients for flow along y and along z (reference heights: 2h and 2b).
 
@@ -18,19 +18,19 @@ from . import added_mass as am
 from . import drag
 
 
-def _added_mass_ellipse(part, rho):
+def _added_mass_ellipse(part, rho, panels=None):
     m22, m33, m44 = am.ellipse(part.half_breadth, part.half_height, rho=rho)
     return _diag3(m22, m33, m44)
 
 
-def _added_mass_rectangle(part, rho):
+def _added_mass_rectangle(part, rho, panels=None):
     m22, m33, m44 = am.rectangle(part.half_breadth, part.half_height, rho=rho)
     return _diag3(m22, m33, m44)
 
 
-def _added_mass_polygon(part, rho):
+def _added_mass_polygon(part, rho, panels=None):
     from .panel import added_mass_sections  # noqa: PLC0415 (mesh path only)
-    mats = added_mass_sections(part.contours, rho=rho, about=None)
+    mats = added_mass_sections(part.contours, rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
 
 
@@ -72,12 +72,16 @@ CROSS_FLOW_DRAG = {
 }
 
 
-def section_added_mass(part, rho: float) -> np.ndarray:
+def section_added_mass(part, rho: float, panels: int | None = None) -> np.ndarray:
     r"""(k, 3, 3) added mass per unit length of ``part`` about its centre [kg/m, kg, kg m].
 
-    Registry dispatch on ``part.shape`` (``rho`` [kg/m^3]): ellipse
-    :math:`m_{22} = ho\pi h^2,\ m_{33} = ho\pi b^2` (:func:`added_mass.ellipse`), rectangle
-    :math:`m_{22} = C_Aho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
+    Registry dispatch on ``part.shape`` (``rho`` [kg/m^3]; ``panels``: panels per section of
+    the polygon panel method, default adaptive, :func:`panel.discretise`): ellipse
+    :math:`m_{22} = 
+ho\pi h^2,\ m_{33} = 
+ho\pi b^2` (:func:`added_mass.ellipse`), rectangle
+    :math:`m_{22} = C_A
+ho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
     (:func:`panel.added_mass_sections`); each function carries its own reference
     (Newman 1977, sec. 4.13 and table 4.2; DNV-RP-C205 table A-1).
     """
@@ -85,13 +89,14 @@ def section_added_mass(part, rho: float) -> np.ndarray:
         fn = ADDED_MASS[part.shape]
     except KeyError:
         raise unknown_name("section shape", part.shape, ADDED_MASS) from None
-    return fn(part, rho)
+    return fn(part, rho, panels)
 
 
 def section_drag(part, re_y, re_z):
     r"""2D drag coefficients (cd_y, cd_z) of ``part`` for flow along y and along z [-].
 
-    Used as :math:`f_k = 	frac12ho C_{D,k} H_k |V_k| V_k` per unit length, with
+    Used as :math:`f_k = 	frac12
+ho C_{D,k} H_k |V_k| V_k` per unit length, with
     reference heights :math:`H_y = 2h`, :math:`H_z = 2b` [m]; ``re_y``, ``re_z`` [-] on those
     heights. Dispatch on ``part.shape``: ellipse (circle: :func:`drag.circle_cd`, else
     :func:`drag.ellipse_cd` of d/h), rectangle (:func:`drag.rectangle_cd`), polygon

@@ -71,17 +71,21 @@ def _clean_ring(ring, where: str) -> np.ndarray:
     if r.ndim != 2 or r.shape[1] != 2:
         raise InputError("contour must be an (n, 2) array of (y, z) points", key=where,
                          value=f"shape {r.shape}", expected="(n, 2)")
-    if not np.all(np.isfinite(r)):
+    if not np.isfinite(r).all():
         raise InputError("contour has non-finite coordinates", key=where)
-    if len(r) > 1 and np.allclose(r[0], r[-1]):
-        r = r[:-1]
-    # drop repeated consecutive points
-    keep = np.ones(len(r), bool)
     if len(r) > 1:
-        step = np.linalg.norm(np.diff(r, axis=0, append=r[:1]), axis=1)
-        scale = max(np.ptp(r[:, 0]), np.ptp(r[:, 1]), 1e-300)
-        keep = step > 1e-12 * scale
-    r = r[keep]
+        y0, z0 = r[0]
+        y1, z1 = r[-1]
+        if abs(y0 - y1) <= 1e-8 + 1e-5 * abs(y1) and abs(z0 - z1) <= 1e-8 + 1e-5 * abs(z1):
+            r = r[:-1]                              # the closing point (np.allclose's test)
+    if len(r) > 1:
+        # drop repeated consecutive points
+        y, z = r[:, 0], r[:, 1]
+        scale = max(float(y.max() - y.min()), float(z.max() - z.min()), 1e-300)
+        d = np.concatenate((r[1:], r[:1])) - r
+        keep = d[:, 0] ** 2 + d[:, 1] ** 2 > (1e-12 * scale) ** 2
+        if not keep.all():
+            r = r[keep]
     if len(r) < 3:
         raise InputError("contour has fewer than 3 distinct points", key=where,
                          value=len(r), expected=">= 3")
@@ -99,7 +103,7 @@ def signed_area(ring) -> float:
     """
     r = np.asarray(ring, dtype=float)
     y, z = r[:, 0], r[:, 1]
-    return 0.5 * float(np.sum(y * np.roll(z, -1) - np.roll(y, -1) * z))
+    return 0.5 * float(y[:-1] @ z[1:] - y[1:] @ z[:-1] + y[-1] * z[0] - y[0] * z[-1])
 
 
 def _point_in_ring(p, ring) -> bool:
@@ -151,8 +155,13 @@ def section_centroid(contours) -> tuple[float, float]:
     """
     if contours is None or len(contours) == 0:
         return (0.0, 0.0)
+    return _centroid(orient_contours(contours))
+
+
+def _centroid(rings) -> tuple[float, float]:
+    """:func:`section_centroid` of rings already oriented (:func:`orient_contours`)."""
     a = sy = sz = 0.0
-    for r in orient_contours(contours):
+    for r in rings:
         y, z = r[:, 0], r[:, 1]
         y1, z1 = np.roll(y, -1), np.roll(z, -1)
         c = y * z1 - y1 * z
@@ -162,30 +171,35 @@ def section_centroid(contours) -> tuple[float, float]:
     return (sy / a, sz / a)
 
 
+def _ring_shape(r: np.ndarray):
+    """Edge lengths (edge i: vertex i -> i+1, closing edge last) and turning angle at each
+    vertex [rad] of a ring, computed once for the panel placement."""
+    e_out = np.concatenate((r[1:], r[:1])) - r
+    e_in = np.concatenate((e_out[-1:], e_out[:-1]))
+    seg = np.sqrt(e_out[:, 0] ** 2 + e_out[:, 1] ** 2)
+    turn = np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
+                      e_in[:, 0] * e_out[:, 0] + e_in[:, 1] * e_out[:, 1])
+    return seg, np.abs(turn)
+
+
 def _corner_flags(r: np.ndarray) -> np.ndarray:
-    e_out = np.roll(r, -1, axis=0) - r
-    e_in = r - np.roll(r, 1, axis=0)
-    cross = e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0]
-    dot = np.einsum("ij,ij->i", e_in, e_out)
-    return np.abs(np.arctan2(cross, dot)) > CORNER_ANGLE
+    """Sharp corners of a ring: turning angle above :data:`CORNER_ANGLE`."""
+    return _ring_shape(r)[1] > CORNER_ANGLE
 
 
-def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray) -> np.ndarray:
-    """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners."""
-    closed = np.vstack([r, r[:1]])
-    seg = np.linalg.norm(np.diff(closed, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
+def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray, shape=None) -> np.ndarray:
+    """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners
+    (``shape``: its :func:`_ring_shape`, computed if omitted)."""
+    seg, turn = _ring_shape(r) if shape is None else shape
+    closed = np.concatenate((r, r[:1]))
+    s = np.concatenate(([0.0], np.cumsum(seg)))
     perim = s[-1]
     idx = np.nonzero(corners)[0]
     if idx.size == 0:
         # equidistribute arc length plus turning: mu(s) = s + P/(2 pi) Theta(s), with the
         # turning angle at each vertex spread over the two adjacent edges (continuous)
-        e_in = r - np.roll(r, 1, axis=0)
-        e_out = np.roll(r, -1, axis=0) - r
-        turn = np.abs(np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
-                                 np.einsum("ij,ij->i", e_in, e_out)))
-        per_edge = 0.5 * (turn + np.roll(turn, -1))
-        theta = np.concatenate([[0.0], np.cumsum(per_edge)])
+        per_edge = 0.5 * (turn + np.concatenate((turn[1:], turn[:1])))
+        theta = np.concatenate(([0.0], np.cumsum(per_edge)))
         mu = s + CURVATURE_WEIGHT * perim / (2.0 * np.pi) * theta
         t = np.interp(np.linspace(0.0, mu[-1], n, endpoint=False), mu, s)
     else:
@@ -212,11 +226,12 @@ def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray) -> np.ndarray:
 
 
 def _perimeter(r: np.ndarray) -> float:
-    return float(np.sum(np.linalg.norm(np.diff(np.vstack([r, r[:1]]), axis=0), axis=1)))
+    return float(_ring_shape(r)[0].sum())
 
 
-def _panel_budget(rings, corner_flags, panels) -> list[int]:
-    perims = np.array([_perimeter(r) for r in rings])
+def _panel_budget(rings, corner_flags, panels, perims=None) -> list[int]:
+    if perims is None:
+        perims = np.array([_perimeter(r) for r in rings])
     mins = np.array([max(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * int(c.sum()))
                      for c in corner_flags])
     total = max(int(panels), int(mins.sum()))
@@ -251,17 +266,23 @@ def discretise(contours, *, panels: int | None = None, where: str = "contours"):
         slender sections), and at least enough for the per-contour and per-edge minima.  ``0`` keeps the input
         vertices as panel nodes.
     """
-    rings = orient_contours(contours, where)
+    return _discretise(orient_contours(contours, where), panels)
+
+
+def _discretise(rings, panels):
+    """:func:`discretise` of rings already oriented (:func:`orient_contours`)."""
     if panels == 0:
         return rings
-    flags = [_corner_flags(r) for r in rings]
+    shapes = [_ring_shape(r) for r in rings]
+    flags = [turn > CORNER_ANGLE for _, turn in shapes]
+    perims = np.array([seg.sum() for seg, _ in shapes])
     if panels is None:
         # slender rings need more panels: scale by sqrt of the isoperimetric ratio P^2/(4 pi A)
         # (1 for a circle, 4.2 for a 10:1 ellipse), capped at 3x; rounded to 16 for batching
-        q = max(_perimeter(r) ** 2 / (4.0 * np.pi * abs(signed_area(r))) for r in rings)
+        q = max(pr ** 2 / (4.0 * np.pi * abs(signed_area(r))) for pr, r in zip(perims, rings))
         panels = int(16 * np.round(DEFAULT_PANELS * min(3.0, np.sqrt(q)) / 16))
-    budget = _panel_budget(rings, flags, panels)
-    return [_resample_ring(r, n, f) for r, n, f in zip(rings, budget, flags)]
+    budget = _panel_budget(rings, flags, panels, perims)
+    return [_resample_ring(r, n, f, sh) for r, n, f, sh in zip(rings, budget, flags, shapes)]
 
 
 # --------------------------------------------------------------------------- solver
@@ -405,8 +426,11 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
         raise InputError("fluid density must be positive", key="rho", value=rho,
                          expected="> 0 kg/m^3")
     nsec = len(sections)
+    rings = [None if c is None or len(c) == 0 else orient_contours(c, f"sections[{s}]")
+             for s, c in enumerate(sections)]
     if about is None:
-        about = np.array([section_centroid(c) for c in sections]).reshape(nsec, 2)
+        about = np.array([(0.0, 0.0) if r is None else _centroid(r) for r in rings])
+        about = about.reshape(nsec, 2)
     about = np.asarray(about, dtype=float)
     if about.ndim == 1:
         about = np.broadcast_to(about, (nsec, 2))
@@ -415,10 +439,10 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
                          value=f"shape {about.shape}", expected=f"(2,) or ({nsec}, 2)")
     out = np.zeros((nsec, 3, 3))
     groups: dict[int, list[tuple[int, list]]] = {}
-    for s, contours in enumerate(sections):
-        if contours is None or len(contours) == 0:
+    for s, oriented in enumerate(rings):
+        if oriented is None:
             continue
-        nodes = discretise(contours, panels=panels, where=f"sections[{s}]")
+        nodes = _discretise(oriented, panels)
         n = sum(len(r) for r in nodes)
         groups.setdefault(n, []).append((s, nodes))
     for members in groups.values():

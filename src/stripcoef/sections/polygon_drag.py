@@ -52,8 +52,8 @@ def _parts_geometry(contours):
     for r in orient_contours(contours):
         if signed_area(r) <= 0:          # holes: the outline is what the flow sees
             continue
-        lo, hi = r.min(axis=0), r.max(axis=0)
-        out.append((lo[0], hi[0], lo[1], hi[1], not bool(_corner_flags(r).any())))
+        y, z = r[:, 0], r[:, 1]
+        out.append((y.min(), y.max(), z.min(), z.max(), not bool(_corner_flags(r).any())))
     return np.array(out, dtype=float).reshape(-1, 5)
 
 
