@@ -440,27 +440,29 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     Newman (1977) sec. 4.13-4.15; Hess & Smith (1967) sec. 5; Lamb (1932) sec. 373.
     """
     xn, rn = _meridian(x, r, int(panels), area_linear)
-    xn = xn - x_ref
+    return _meridian_added_mass(xn - x_ref, rn, rho, _influence, modes)
+
+
+def _meridian_added_mass(xn, rn, rho, influence, modes=(0, 1)) -> np.ndarray:
+    """6x6 added mass from the mode-0 (surge) and mode-1 (sway and yaw together) solutions on
+    the meridian panel nodes (xn, rn) [m] (x about the reference point), with ``influence``
+    the S, D matrices of an open (:func:`_influence`) or closed (:func:`_influence_closed`)
+    meridian; the equations of :func:`body_of_revolution_added_mass`. ``rho`` [kg/m^3]."""
     out = np.zeros((6, 6))
-    if 0 in modes:      # mode 0: surge
-        S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, 0)
-        A = D + 0.5 * np.eye(D.shape[0])
-        phi = np.linalg.solve(A, S @ nx)
+    if 0 in modes:
+        S, D, (length, nx, nr, xc, rc) = influence(xn, rn, 0)
+        phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
         out[0, 0] = -2.0 * np.pi * rho * np.sum(phi * nx * rc * length)
-    if 1 not in modes:
-        return out
-    # mode 1: sway and yaw together
-    S, D, (length, nx, nr, xc, rc) = _influence(xn, rn, 1)
-    A = D + 0.5 * np.eye(D.shape[0])
-    bc = np.column_stack([nr, xc * nr - rc * nx])
-    phi = np.linalg.solve(A, S @ bc)
-    w = (rc * length)[:, None]
-    m = -np.pi * rho * (bc * w).T @ phi                   # [[m22, m26], [m62, m66]]
-    m = 0.5 * (m + m.T)
-    out[1, 1] = out[2, 2] = m[0, 0]
-    out[5, 5] = out[4, 4] = m[1, 1]
-    out[1, 5] = out[5, 1] = m[0, 1]
-    out[2, 4] = out[4, 2] = -m[0, 1]
+    if 1 in modes:
+        S, D, (length, nx, nr, xc, rc) = influence(xn, rn, 1)
+        bc = np.column_stack([nr, xc * nr - rc * nx])
+        phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ bc)
+        m = -np.pi * rho * (bc * (rc * length)[:, None]).T @ phi   # [[m22, m26], [m62, m66]]
+        m = 0.5 * (m + m.T)
+        out[1, 1] = out[2, 2] = m[0, 0]
+        out[5, 5] = out[4, 4] = m[1, 1]
+        out[1, 5] = out[5, 1] = m[0, 1]
+        out[2, 4] = out[4, 2] = -m[0, 1]
     return out
 
 
@@ -901,21 +903,7 @@ def ring_body_added_mass(xm, rm, *, rho: float, x_ref: float = 0.0,
         M_A [kg, kg m, kg m^2], FRD DOF order; roll 0.
     """
     xn, rn = _closed_meridian(xm, rm, int(panels))
-    xn = xn - x_ref
-    out = np.zeros((6, 6))
-    S, D, (length, nx, nr, xc, rc) = _influence_closed(xn, rn, 0)
-    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
-    out[0, 0] = -2.0 * np.pi * rho * np.sum(phi * nx * rc * length)
-    S, D, _ = _influence_closed(xn, rn, 1)
-    bc = np.column_stack([nr, xc * nr - rc * nx])
-    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ bc)
-    m = -np.pi * rho * (bc * (rc * length)[:, None]).T @ phi
-    m = 0.5 * (m + m.T)
-    out[1, 1] = out[2, 2] = m[0, 0]
-    out[5, 5] = out[4, 4] = m[1, 1]
-    out[1, 5] = out[5, 1] = m[0, 1]
-    out[2, 4] = out[4, 2] = -m[0, 1]
-    return out
+    return _meridian_added_mass(xn - x_ref, rn, rho, _influence_closed)
 
 
 def bore_area(strips):
