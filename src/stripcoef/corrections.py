@@ -658,7 +658,7 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
     """
     m44 = np.clip(np.asarray(m44, dtype=float), 0.0, None)
     total = float(np.sum(m44 * strips.dx))
-    if not total > ROLL_ROUNDOFF * rho * float(np.sum(_strip_area(strips) ** 2 * strips.dx)):
+    if _roll_is_roundoff(strips, m44, rho):
         return 1.0
     on = m44 > 1e-3 * m44.max()
     i3d = 0.0
@@ -678,6 +678,14 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
                             panels=max(40, panels // 2))
         j = k + 1
     return i3d / total
+
+
+def _roll_is_roundoff(strips, m44, rho) -> bool:
+    """No roll added mass but round-off: :math:`\int m_{44}^{2D} dx \le`
+    :data:`ROLL_ROUNDOFF` :math:`\int\rho A^2 dx` (``m44`` [kg m] per strip, ``rho``
+    [kg/m^3])."""
+    total = float(np.sum(np.clip(m44, 0.0, None) * strips.dx))
+    return not total > ROLL_ROUNDOFF * rho * float(np.sum(_strip_area(strips) ** 2 * strips.dx))
 
 
 def _polygon_roll_mode(strips, m44) -> int | None:
@@ -768,7 +776,7 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     fp = 1.0
     if section_added_mass is not None:
         m44 = np.asarray(section_added_mass, dtype=float)[:, 2, 2]
-        mode = _polygon_roll_mode(strips, m44)
+        mode = None if _roll_is_roundoff(strips, m44, rho) else _polygon_roll_mode(strips, m44)
         if mode is not None:
             fp = roll_relief(strips, m44, rho=rho, mode=mode, panels=panels)
     return {"scale": np.array([1.0, fv, fw, fp, fq, fr]),
@@ -919,10 +927,15 @@ def bore_area(strips):
     from .geometry.mesh import ring_integrals
     if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
         return None
+    several = np.zeros(strips.n)        # a hole needs a second ring round it in the section
+    for p in strips.parts:
+        np.add.at(several, p.index, [len(rings) > 1 for rings in p.contours])
+    if not np.all(several > 0):
+        return None
     out = np.zeros(strips.n)
     for p in strips.parts:
         holes = np.array([sum(-a for a in (ring_integrals(r)[0] for r in rings) if a < 0)
-                          for rings in p.contours])
+                          if len(rings) > 1 else 0.0 for rings in p.contours])
         np.add.at(out, p.index, holes * _coverage(p))
     return out if np.all(out > 0) else None
 

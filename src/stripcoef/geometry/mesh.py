@@ -87,7 +87,7 @@ def ring_integrals(ring) -> tuple[float, float, float, float, float]:
     """
     r = np.asarray(ring, dtype=float)
     y, z = r[:, 0], r[:, 1]
-    y1, z1 = np.roll(y, -1), np.roll(z, -1)
+    y1, z1 = np.concatenate((y[1:], y[:1])), np.concatenate((z[1:], z[:1]))
     c = y * z1 - y1 * z
     a = 0.5 * c.sum()
     sy = ((y + y1) * c).sum() / 6.0
@@ -130,21 +130,65 @@ def _chain_cycles(start, end):
     return order, lab[order]
 
 
-def slice_rings(mesh, heights, *, face_label=None):
+class EdgeTopology:
+    """Undirected edges of a triangle mesh, found in one sort of its 3F directed edges.
+
+    Attributes
+    ----------
+    edges : (E, 2) int array
+        Unique edges as sorted vertex pairs.
+    face_edges : (F, 3) int array
+        Edge k of each face (vertex k -> k+1) as an index into ``edges`` (the order of
+        ``trimesh.Trimesh.faces_unique_edges``).
+    watertight : bool
+        Every edge is shared by exactly two faces (a closed 2-manifold surface).
+    consistent : bool
+        Watertight and every edge is used once in each direction (consistent winding).
+    """
+
+    def __init__(self, faces):
+        faces = np.asarray(faces, dtype=np.int64)
+        n = int(faces.max()) + 1 if faces.size else 1
+        a = faces.reshape(-1)
+        b = np.roll(faces, -1, axis=1).reshape(-1)
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        key = lo * n + hi
+        uniq, inv, count = np.unique(key, return_inverse=True, return_counts=True)
+        self.edges = np.column_stack([uniq // n, uniq % n])
+        self.face_edges = inv.reshape(-1, 3)
+        self.watertight = bool(count.size and np.all(count == 2))
+        forward = np.bincount(inv, weights=(a < b).astype(float), minlength=uniq.size)
+        self.consistent = self.watertight and bool(np.all(forward == 1.0))
+        self._inv = inv
+
+    def component_labels(self) -> np.ndarray:
+        """Connected component of each face across shared edges (watertight meshes)."""
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+        order = np.argsort(self._inv, kind="stable")
+        f1, f2 = order[0::2] // 3, order[1::2] // 3        # the two faces of each edge
+        nf = self.face_edges.shape[0]
+        graph = coo_matrix((np.ones(f1.size), (f1, f2)), shape=(nf, nf))
+        return connected_components(graph, directed=False)[1]
+
+
+def slice_rings(mesh, heights, *, face_label=None, topology=None):
     """Cut a watertight, consistently wound mesh by the planes ``x = heights``.
 
     Returns, for each plane, a list of (ring (n, 2) array of (y, z), body label).
     Rings of solid outlines are counter-clockwise and holes clockwise when the
     mesh normals point outwards.  Raises ``ValueError`` if the cut edges do not
-    chain into closed rings (open or non-manifold mesh).
+    chain into closed rings (open or non-manifold mesh).  ``topology``: the mesh's
+    :class:`EdgeTopology` (computed if omitted).
     """
     heights = np.asarray(heights, dtype=float)
     order_h = np.argsort(heights)
     hs = heights[order_h]
     v = np.asarray(mesh.vertices)
     f = np.asarray(mesh.faces)
-    fe = np.asarray(mesh.faces_unique_edges)
-    edges = np.asarray(mesh.edges_unique)
+    if topology is None:
+        topology = EdgeTopology(mesh.faces)
+    fe, edges = topology.face_edges, topology.edges
     n_edges = len(edges)
     fx = v[f, 0]
     lo = np.searchsorted(hs, fx.min(axis=1), side="left")      # first plane with h >= xmin
@@ -169,8 +213,8 @@ def slice_rings(mesh, heights, *, face_label=None):
     n_end = plane.astype(np.int64) * n_edges + e_up
     nodes, inv = np.unique(np.concatenate([n_start, n_end]), return_inverse=True)
     s_idx, e_idx = inv[:n_start.size], inv[n_start.size:]
-    if not (nodes.size == s_idx.size and np.unique(s_idx).size == s_idx.size
-            and np.unique(e_idx).size == e_idx.size):
+    if not (nodes.size == s_idx.size and np.bincount(s_idx, minlength=nodes.size).max() == 1
+            and np.bincount(e_idx, minlength=nodes.size).max() == 1):
         raise ValueError("cut edges do not chain into closed rings")
     node_plane = nodes // n_edges
     node_edge = nodes % n_edges
@@ -215,7 +259,7 @@ class MeshBody:
     """
 
     def __init__(self, mesh, *, name: str = "mesh", source: str = "", repairs=None,
-                 face_label=None, n_bodies: int = 1, role: str = "hull"):
+                 face_label=None, n_bodies: int = 1, role: str = "hull", topology=None):
         if role not in ("hull", "appendage", "fin"):
             raise InputError("unknown body role", key="role", value=role,
                              expected="hull, appendage or fin")
@@ -226,6 +270,8 @@ class MeshBody:
         self.repairs = list(repairs or [])
         self.n_bodies = int(n_bodies)
         self._face_label = face_label
+        self._topology = topology               # EdgeTopology of mesh.faces as given here
+        self._topology_faces = mesh.faces
         self._overlap_reported = False
 
     @property
@@ -253,7 +299,11 @@ class MeshBody:
         overlapping bodies united."""
         x = np.asarray(x, dtype=float)
         try:
-            raw = slice_rings(self.mesh, x, face_label=self._face_label)
+            if self._topology is None or self.mesh.faces is not self._topology_faces:
+                self._topology = EdgeTopology(self.mesh.faces)
+                self._topology_faces = self.mesh.faces
+            raw = slice_rings(self.mesh, x, face_label=self._face_label,
+                              topology=self._topology)
         except ValueError:
             raw = self._slice_fallback(x)
         out = []
@@ -464,7 +514,8 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     mesh.remove_unreferenced_vertices()
     if len(mesh.faces) == 0:
         raise _fail(where, "mesh is empty after removing degenerate faces", value=f"{n0} faces")
-    if not mesh.is_watertight:
+    topo = EdgeTopology(mesh.faces)
+    if not topo.watertight:
         n_open = _open_edge_count(mesh)
         trimesh.repair.fill_holes(mesh)
         if mesh.is_watertight:
@@ -475,11 +526,12 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
             raise _fail(where, f"mesh is not watertight: {n_left} open or non-manifold edges "
                                "remain after hole filling",
                         expected="a closed surface (close or boolean-union it in CAD)")
-    if not mesh.is_winding_consistent:
+        topo = EdgeTopology(mesh.faces)
+    if not topo.consistent:
         trimesh.repair.fix_winding(mesh)
         repairs.append("made the face winding consistent (trimesh.repair.fix_winding)")
-    labels = trimesh.graph.connected_component_labels(mesh.face_adjacency,
-                                                      node_count=len(mesh.faces))
+        topo = EdgeTopology(mesh.faces)
+    labels = topo.component_labels()
     n_bodies = int(labels.max()) + 1 if labels.size else 0
     flipped, body_volumes = [], []
     for k in range(n_bodies):
@@ -494,6 +546,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
             sel = labels == k
             faces[sel] = faces[sel][:, ::-1]
         mesh.faces = faces
+        topo = EdgeTopology(mesh.faces)          # a flipped face lists its edges reversed
         repairs.append(f"flipped inward-pointing normals of {len(flipped)} of {n_bodies} "
                        "bodies" if n_bodies > 1 else "flipped inward-pointing normals")
     if n_bodies > 1:
@@ -522,7 +575,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
             p = (np.asarray(transform, float) @ np.append(p, 1.0))[:3]
         point = p[list(perm)]
     mesh.apply_translation(-point)
-    return mesh, repairs, labels, n_bodies
+    return mesh, repairs, labels, n_bodies, topo
 
 
 def _signed_volume(vertices, faces) -> float:
@@ -590,23 +643,23 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     """
     path = Path(path)
     mesh = _read(path)
-    mesh, repairs, labels, n_bodies = _prepare(mesh, path=path, axis=axis,
-                                               length_unit=length_unit, origin=origin,
-                                               transform=transform)
+    mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=path, axis=axis,
+                                                     length_unit=length_unit, origin=origin,
+                                                     transform=transform)
     for note in repairs:
         warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
-                    face_label=labels, n_bodies=n_bodies, role=role)
+                    face_label=labels, n_bodies=n_bodies, role=role, topology=topo)
 
 
 def mesh_body(mesh, *, name: str = "mesh", axis: str = "x", length_unit: str = "m",
               origin="centroid", transform=None) -> MeshBody:
     """:func:`load_mesh` for an in-memory ``trimesh.Trimesh``."""
-    mesh, repairs, labels, n_bodies = _prepare(mesh, path=name, axis=axis,
-                                               length_unit=length_unit, origin=origin,
-                                               transform=transform)
+    mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=name, axis=axis,
+                                                     length_unit=length_unit, origin=origin,
+                                                     transform=transform)
     return MeshBody(mesh, name=name, source=name, repairs=repairs, face_label=labels,
-                    n_bodies=n_bodies)
+                    n_bodies=n_bodies, topology=topo)
 
 
 def revolved_mesh(x, r, *, sections: int = 64):
