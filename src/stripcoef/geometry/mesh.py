@@ -735,5 +735,6 @@ def polygon_perimeter(part) -> np.ndarray:
     for k, rings in enumerate(part.contours or []):
         for r in rings:
             r = np.asarray(r, dtype=float)
-            out[k] += float(np.sum(np.linalg.norm(np.roll(r, -1, axis=0) - r, axis=1)))
+            d = np.concatenate((r[1:], r[:1])) - r
+            out[k] += float(np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2).sum())
     return out

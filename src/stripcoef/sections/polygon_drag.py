@@ -79,6 +79,8 @@ def _exposed_heights(along_lo, along_hi, across_lo, across_hi):
     """Exposed height of each part, shadowing averaged over both flow senses [m]."""
     n = along_lo.size
     h = across_hi - across_lo
+    if n < 2:
+        return h                                # one part: nothing shadows it
     centre = 0.5 * (along_lo + along_hi)
     shadow = np.zeros(n)
     for sense in (1.0, -1.0):
