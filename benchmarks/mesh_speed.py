@@ -26,7 +26,7 @@ Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~
    sections, 3D corrections, damping, rigid-body terms: the full model); BEM =
    bem_added_mass (Capytaine mesh + solve of the six radiation problems: the added mass
    only), after one warm-up solve on a tiny mesh in the same process (imports, first-call
-   set-up), best of 2 below 4,000 faces, one run above.  Strip theory runs with one BLAS
+   set-up), best of 3 below 4,000 faces, best of 2 above.  Strip theory runs with one BLAS
    thread (its many small solves are slower with more); the BEM gets --bem-threads (default:
    all cores; measured faster for its large dense solve).
 """
@@ -172,7 +172,7 @@ def bem_worker(n_axial, n_circ):
     base = _rss_gb()
     mesh = spheroid_mesh(n_axial, n_circ)
     v, f = np.asarray(mesh.vertices), np.asarray(mesh.faces)
-    runs = 2 if len(f) < 4000 else 1
+    runs = 3 if len(f) < 4000 else 2       # best of: timing scatter is tens of % here
     times = []
     for _ in range(runs):
         t0 = time.perf_counter()
