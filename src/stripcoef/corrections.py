@@ -360,7 +360,7 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
 
 
 def _meridian(x, r, panels, area_linear=False):
-    """Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
+    r"""Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
     with cosine clustering towards both ends; between the given points r is linear in x, or
     with ``area_linear`` the area :math:`\pi r^2` is (r = sqrt of the linear interpolant of
     r^2: round noses and tails sampled at a few stations are followed, not cut by chords)."""
@@ -681,7 +681,7 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
 
 
 def _roll_is_roundoff(strips, m44, rho) -> bool:
-    """No roll added mass but round-off: :math:`\int m_{44}^{2D} dx \le`
+    r"""No roll added mass but round-off: :math:`\int m_{44}^{2D} dx \le`
     :data:`ROLL_ROUNDOFF` :math:`\int\rho A^2 dx` (``m44`` [kg m] per strip, ``rho``
     [kg/m^3])."""
     total = float(np.sum(np.clip(m44, 0.0, None) * strips.dx))
