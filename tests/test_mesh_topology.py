@@ -1,0 +1,60 @@
+"""geometry.mesh.EdgeTopology: one sort of the directed edges gives the checks the mesh
+loader and the slicer need; checked against trimesh's own graph properties."""
+
+import numpy as np
+import trimesh
+
+from stripcoef.geometry.mesh import EdgeTopology, _volume_centroid
+
+
+def _edge_set(edges):
+    return {tuple(e) for e in np.sort(np.asarray(edges), axis=1)}
+
+
+def test_closed_mesh_matches_trimesh():
+    m = trimesh.creation.icosphere(subdivisions=2)
+    t = EdgeTopology(m.faces)
+    assert t.watertight and t.consistent
+    assert _edge_set(t.edges) == _edge_set(m.edges_unique)
+    # edge k of each face is vertex k -> k+1, as trimesh's faces_unique_edges
+    f = np.asarray(m.faces)
+    for k in range(3):
+        e = t.edges[t.face_edges[:, k]]
+        np.testing.assert_array_equal(np.sort(e, axis=1),
+                                      np.sort(np.column_stack([f[:, k], f[:, (k + 1) % 3]]),
+                                              axis=1))
+    assert np.all(t.component_labels() == 0)
+
+
+def test_open_mesh_is_not_watertight():
+    m = trimesh.creation.box()
+    t = EdgeTopology(np.asarray(m.faces)[1:])
+    assert not t.watertight and not t.consistent
+
+
+def test_one_flipped_face_breaks_only_the_winding():
+    f = np.asarray(trimesh.creation.box().faces).copy()
+    f[0] = f[0][::-1]
+    t = EdgeTopology(f)
+    assert t.watertight and not t.consistent
+
+
+def test_separate_bodies_are_separate_components():
+    a = trimesh.creation.box()
+    b = trimesh.creation.box()
+    b.apply_translation([3.0, 0.0, 0.0])
+    m = trimesh.util.concatenate([a, b])
+    t = EdgeTopology(m.faces)
+    labels = t.component_labels()
+    assert t.watertight and t.consistent
+    assert len(set(labels)) == 2
+    assert set(labels[: len(a.faces)]) != set(labels[len(a.faces):])
+
+
+def test_volume_centroid_is_translation_covariant():
+    m = trimesh.creation.icosphere(subdivisions=2)
+    m.apply_translation([0.3, -0.2, 0.5])
+    np.testing.assert_allclose(_volume_centroid(m.vertices, m.faces), [0.3, -0.2, 0.5],
+                               atol=1e-12)
+    np.testing.assert_allclose(_volume_centroid(m.vertices, m.faces), m.center_mass,
+                               atol=1e-12)
