@@ -58,3 +58,20 @@ def test_volume_centroid_is_translation_covariant():
                                atol=1e-12)
     np.testing.assert_allclose(_volume_centroid(m.vertices, m.faces), m.center_mass,
                                atol=1e-12)
+
+
+def test_nondegenerate_matches_trimesh():
+    """The loader's degenerate-face test equals trimesh's nondegenerate_faces(height)."""
+    from stripcoef.geometry.mesh import _nondegenerate
+    rng = np.random.default_rng(3)
+    m = trimesh.creation.icosphere(subdivisions=2)
+    v = np.vstack([m.vertices, [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1e-12, 0]]])
+    n = len(m.vertices)
+    extra = np.array([[n, n + 1, n + 2],        # collinear
+                      [n, n, n + 1],            # repeated vertex
+                      [n, n + 1, n + 3]])       # a sliver 1e-12 high
+    f = np.vstack([m.faces, extra, rng.integers(0, n, size=(50, 3))])
+    mesh = trimesh.Trimesh(v, f, process=False)
+    for h in (1e-10, 1e-3):
+        np.testing.assert_array_equal(_nondegenerate(v, f, h), mesh.nondegenerate_faces(height=h))
+    assert not _nondegenerate(v, f, 1e-10)[len(m.faces):len(m.faces) + 3].any()

@@ -503,7 +503,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
 
     # faces
     n0 = len(mesh.faces)
-    mask = mesh.nondegenerate_faces(height=1e-10 * length)
+    mask = _nondegenerate(np.asarray(mesh.vertices), np.asarray(mesh.faces), 1e-10 * length)
     if not mask.all():
         mesh.update_faces(mask)
         repairs.append(f"removed {int((~mask).sum())} degenerate (zero-area) faces")
@@ -578,9 +578,32 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     return mesh, repairs, labels, n_bodies, topo
 
 
+def _cross(a, b):
+    """Row-wise cross product of (n, 3) arrays (np.cross without its generality)."""
+    return np.column_stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
+                            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]])
+
+
+def _tetra_volumes(tri):
+    """Signed volumes a.(b x c)/6 of the tetrahedra from the origin to each face [m^3]."""
+    return np.einsum("ij,ij->i", tri[:, 0], _cross(tri[:, 1], tri[:, 2])) / 6.0
+
+
 def _signed_volume(vertices, faces) -> float:
+    return float(_tetra_volumes(vertices[faces]).sum())
+
+
+def _nondegenerate(vertices, faces, height: float) -> np.ndarray:
+    """Faces whose two heights over the edges from their first vertex both exceed ``height``
+    [m] (trimesh's ``nondegenerate_faces(height)`` test: the triangle's 2D box
+    2A/|e| > height for e = v1 - v0 and v2 - v0, an edge of 1e-8 m or less counting as 0)."""
     tri = vertices[faces]
-    return float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
+    a, b = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    c = _cross(a, b)
+    twice_area = np.sqrt((c * c).sum(axis=1))
+    la, lb = np.sqrt((a * a).sum(axis=1)), np.sqrt((b * b).sum(axis=1))
+    return (la > 1e-8) & (lb > 1e-8) & (twice_area > height * la) & (twice_area > height * lb)
 
 
 def _volume_centroid(vertices, faces) -> np.ndarray:
@@ -593,7 +616,7 @@ def _volume_centroid(vertices, faces) -> np.ndarray:
     2001, "Efficient feature extraction for 2D/3D objects in mesh representation").
     """
     tri = vertices[faces]
-    v = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0
+    v = _tetra_volumes(tri)
     return (v @ tri.sum(axis=1)) / (4.0 * v.sum())
 
 
