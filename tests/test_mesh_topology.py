@@ -30,6 +30,8 @@ def test_open_mesh_is_not_watertight():
     m = trimesh.creation.box()
     t = EdgeTopology(np.asarray(m.faces)[1:])
     assert not t.watertight and not t.consistent
+    assert t.open_edges == 3                    # the missing triangle's rim
+    assert EdgeTopology(m.faces).open_edges == 0
 
 
 def test_one_flipped_face_breaks_only_the_winding():

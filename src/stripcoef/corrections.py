@@ -944,9 +944,7 @@ def _hollow_profile(strips, bore):
     """Closed meridian (x, r) of the tube of a bored body: pi r_o^2 = A(x) + A_bore(x) (the
     outer contour's area), pi r_i^2 = A_bore(x) at the strip centres, flat ends at the body's
     first and last x [m]."""
-    area = np.zeros(strips.n)
-    for p in strips.parts:
-        np.add.at(area, p.index, p.area * _coverage(p))
+    area = _strip_area(strips)
     ri2 = np.asarray(bore, dtype=float) / np.pi
     ro2 = ri2 + np.maximum(area, 1e-9 * ri2) / np.pi
     x = np.r_[strips.x_min, strips.x, strips.x_max]

@@ -142,6 +142,8 @@ class EdgeTopology:
         ``trimesh.Trimesh.faces_unique_edges``).
     watertight : bool
         Every edge is shared by exactly two faces (a closed 2-manifold surface).
+    open_edges : int
+        Face edges not in a pair (on an edge used by one face, or by three or more).
     consistent : bool
         Watertight and every edge is used once in each direction (consistent winding).
     """
@@ -157,6 +159,7 @@ class EdgeTopology:
         self.edges = np.column_stack([uniq // n, uniq % n])
         self.face_edges = inv.reshape(-1, 3)
         self.watertight = bool(count.size and np.all(count == 2))
+        self.open_edges = int(count[count != 2].sum())
         forward = np.bincount(inv, weights=(a < b).astype(float), minlength=uniq.size)
         self.consistent = self.watertight and bool(np.all(forward == 1.0))
         self._inv = inv
@@ -516,17 +519,17 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         raise _fail(where, "mesh is empty after removing degenerate faces", value=f"{n0} faces")
     topo = EdgeTopology(mesh.faces)
     if not topo.watertight:
-        n_open = _open_edge_count(mesh)
+        n_open = topo.open_edges
         trimesh.repair.fill_holes(mesh)
-        if mesh.is_watertight:
+        topo = EdgeTopology(mesh.faces)
+        if topo.watertight:
             repairs.append(f"closed holes in the surface ({n_open} open edges; "
                            "trimesh.repair.fill_holes)")
         else:
-            n_left = _open_edge_count(mesh)
+            n_left = topo.open_edges
             raise _fail(where, f"mesh is not watertight: {n_left} open or non-manifold edges "
                                "remain after hole filling",
                         expected="a closed surface (close or boolean-union it in CAD)")
-        topo = EdgeTopology(mesh.faces)
     if not topo.consistent:
         trimesh.repair.fix_winding(mesh)
         repairs.append("made the face winding consistent (trimesh.repair.fix_winding)")
@@ -618,12 +621,6 @@ def _volume_centroid(vertices, faces) -> np.ndarray:
     tri = vertices[faces]
     v = _tetra_volumes(tri)
     return (v @ tri.sum(axis=1)) / (4.0 * v.sum())
-
-
-def _open_edge_count(mesh) -> int:
-    import trimesh
-    groups = trimesh.grouping.group_rows(mesh.edges_sorted, require_count=2)
-    return int(len(mesh.edges_sorted) - 2 * len(groups))
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
