@@ -67,62 +67,80 @@ _AXIS_PERM = {"x": (0, 1, 2), "y": (1, 2, 0), "z": (2, 0, 1)}
 
 # --------------------------------------------------------------------------- polygon integrals
 
-def ring_integrals(ring) -> tuple[float, float, float, float, float]:
-    r"""Signed area and first/second moments of a closed ring.
+def rings_integrals(rings) -> np.ndarray:
+    r"""Signed area and first/second moments of each of several closed rings.
 
     .. math:: A = \tfrac12\sum c_i,\ \ S_y = \tfrac16\sum (y_i + y_{i+1}) c_i,\ \
               S_z = \tfrac16\sum (z_i + z_{i+1}) c_i,\ \
               I_{y^2} = \tfrac1{12}\sum (y_i^2 + y_i y_{i+1} + y_{i+1}^2) c_i
 
-    with :math:`c_i = y_i z_{i+1} - y_{i+1} z_i`.
+    with :math:`c_i = y_i z_{i+1} - y_{i+1} z_i` (i + 1 wrapping to the ring's first point).
+    All rings are evaluated together on their concatenated points.
+
+    Parameters
+    ----------
+    rings : sequence of (n_k, 2) arrays of (y, z) [m]
 
     Returns
     -------
-    (A [m^2], S_y = int y dA [m^3], S_z [m^3], int y^2 dA [m^4], int z^2 dA [m^4])
+    (K, 5) array
+        Per ring: A [m^2], S_y = int y dA [m^3], S_z [m^3], int y^2 dA [m^4], int z^2 dA [m^4]
+        (positive for counter-clockwise rings).
 
     References
     ----------
     Green's theorem on polygons (Bourke 1988; Steger 1996, "On the calculation of
     arbitrary moments of polygons").
     """
-    r = np.asarray(ring, dtype=float)
-    y, z = r[:, 0], r[:, 1]
-    y1, z1 = np.concatenate((y[1:], y[:1])), np.concatenate((z[1:], z[:1]))
+    sizes = np.array([len(r) for r in rings], dtype=np.int64)
+    if sizes.size == 0:
+        return np.zeros((0, 5))
+    pts = np.concatenate([np.asarray(r, dtype=float) for r in rings])
+    start = np.cumsum(sizes) - sizes
+    nxt = np.arange(1, pts.shape[0] + 1)
+    nxt[start + sizes - 1] = start                     # each ring closes on its first point
+    y, z = pts[:, 0], pts[:, 1]
+    y1, z1 = y[nxt], z[nxt]
     c = y * z1 - y1 * z
-    a = 0.5 * c.sum()
-    sy = ((y + y1) * c).sum() / 6.0
-    sz = ((z + z1) * c).sum() / 6.0
-    iyy = ((y * y + y * y1 + y1 * y1) * c).sum() / 12.0
-    izz = ((z * z + z * z1 + z1 * z1) * c).sum() / 12.0
-    return a, sy, sz, iyy, izz
+    terms = np.stack([c / 2.0, (y + y1) * c / 6.0, (z + z1) * c / 6.0,
+                      (y * y + y * y1 + y1 * y1) * c / 12.0, (z * z + z * z1 + z1 * z1) * c / 12.0])
+    return np.add.reduceat(terms, start, axis=1).T
+
+
+def ring_integrals(ring) -> tuple[float, float, float, float, float]:
+    """:func:`rings_integrals` of one ring: (A [m^2], S_y [m^3], S_z [m^3], int y^2 dA [m^4],
+    int z^2 dA [m^4])."""
+    return tuple(float(t) for t in rings_integrals([ring])[0])
 
 
 # --------------------------------------------------------------------------- slicing
 
-def _chain_cycles(start, end):
-    """Order nodes of the permutation start -> end into cycles (pointer doubling).
+def _chain_cycles(nxt):
+    """Order the nodes of the permutation ``i -> nxt[i]`` into its cycles.
 
-    Returns (order, label): node indices ordered cycle by cycle, and each
-    ordered node's cycle label.
+    Each cycle is found as a connected component (scipy; labels numbered in the order of
+    each cycle's smallest node), and each node's rank from that smallest node by pointer
+    doubling over log2(longest cycle) steps.
+
+    Returns (order, label): node indices ordered cycle by cycle (cycles by their smallest
+    node, each starting at it), and each ordered node's cycle label.
     """
-    n = start.size
-    nxt = np.empty(n, dtype=np.int64)
-    nxt[start] = end
-    lab = np.arange(n)
-    p = nxt.copy()
-    steps = 1
-    while steps < n:
-        lab = np.minimum(lab, lab[p])
-        p = p[p]
-        steps *= 2
-    head = lab == np.arange(n)
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = nxt.size
+    graph = csr_matrix((np.ones(n), nxt, np.arange(n + 1)), shape=(n, n))
+    _, lab = connected_components(graph, directed=False)
+    size = np.bincount(lab)
+    head = np.zeros(n, dtype=bool)
+    head[np.unique(lab, return_index=True)[1]] = True      # smallest node of each cycle
     pred = np.empty(n, dtype=np.int64)
     pred[nxt] = np.arange(n)
-    pred[head] = np.nonzero(head)[0]
+    pred[head] = np.nonzero(head)[0]                        # a head is its own predecessor
     rank = (~head).astype(np.int64)
     q = pred.copy()
     steps = 1
-    while steps < n:
+    while steps < size.max():
         rank = rank + rank[q]
         q = q[q]
         steps *= 2
@@ -165,13 +183,20 @@ class EdgeTopology:
         self._inv = inv
 
     def component_labels(self) -> np.ndarray:
-        """Connected component of each face across shared edges (watertight meshes)."""
-        from scipy.sparse import coo_matrix
+        """Connected component of each face across shared edges (watertight meshes).
+
+        In a watertight mesh each edge has exactly two faces, so the sum of their indices
+        per edge gives each face's neighbour across its edge k as that sum minus the face
+        itself: three neighbours per face, a sparse graph built without sorting.
+        """
+        from scipy.sparse import csr_matrix
         from scipy.sparse.csgraph import connected_components
-        order = np.argsort(self._inv, kind="stable")
-        f1, f2 = order[0::2] // 3, order[1::2] // 3        # the two faces of each edge
         nf = self.face_edges.shape[0]
-        graph = coo_matrix((np.ones(f1.size), (f1, f2)), shape=(nf, nf))
+        owner = np.repeat(np.arange(nf), 3)                 # face of each directed edge
+        pair_sum = np.bincount(self._inv, weights=owner, minlength=self.edges.shape[0])
+        neighbour = pair_sum[self.face_edges].astype(np.int64) - np.arange(nf)[:, None]
+        graph = csr_matrix((np.ones(3 * nf), neighbour.reshape(-1), np.arange(0, 3 * nf + 1, 3)),
+                           shape=(nf, nf))
         return connected_components(graph, directed=False)[1]
 
 
@@ -193,31 +218,42 @@ def slice_rings(mesh, heights, *, face_label=None, topology=None):
         topology = EdgeTopology(mesh.faces)
     fe, edges = topology.face_edges, topology.edges
     n_edges = len(edges)
-    fx = v[f, 0]
-    lo = np.searchsorted(hs, fx.min(axis=1), side="left")      # first plane with h >= xmin
-    hi = np.searchsorted(hs, fx.max(axis=1), side="left")      # planes with h < xmax
-    count = np.maximum(hi - lo, 0)
+    # planes crossed by each face: those with x_min <= h < x_max.  The plane count below a
+    # vertex is monotone in its x, so a face's first and last plane come from its vertices'.
+    below = np.searchsorted(hs, v[:, 0], side="left")           # planes with h < x, per vertex
+    k0, k1, k2 = below[f[:, 0]], below[f[:, 1]], below[f[:, 2]]
+    lo = np.minimum(np.minimum(k0, k1), k2)                     # first plane with h >= x_min
+    count = np.maximum(np.maximum(k0, k1), k2) - lo
     out = [[] for _ in heights]
     if count.sum() == 0:
         return out
+    # one row per (face, plane) crossing
     face = np.repeat(np.arange(len(f)), count)
     offs = np.cumsum(count) - count
     plane = lo[face] + (np.arange(count.sum()) - np.repeat(offs, count))
     h = hs[plane]
-    above = fx[face] > h[:, None]                               # (P, 3)
-    nxt_above = np.roll(above, -1, axis=1)
-    down = above & ~nxt_above                                   # edge k: vertex k -> k+1
-    up = ~above & nxt_above
-    if not (np.all(down.sum(1) == 1) and np.all(up.sum(1) == 1)):
-        raise ValueError("inconsistent plane crossing")
-    e_down = fe[face, np.argmax(down, axis=1)]
-    e_up = fe[face, np.argmax(up, axis=1)]
-    n_start = plane.astype(np.int64) * n_edges + e_down
-    n_end = plane.astype(np.int64) * n_edges + e_up
-    nodes, inv = np.unique(np.concatenate([n_start, n_end]), return_inverse=True)
-    s_idx, e_idx = inv[:n_start.size], inv[n_start.size:]
-    if not (nodes.size == s_idx.size and np.bincount(s_idx, minlength=nodes.size).max() == 1
-            and np.bincount(e_idx, minlength=nodes.size).max() == 1):
+    # vertex k above the plane; since x_min <= h < x_max, at least one vertex is above and one
+    # is not, so around the triangle there is exactly one "down" edge (k above, k+1 not) and
+    # one "up" edge
+    fv = f[face]
+    xv = v[:, 0]
+    a0, a1, a2 = xv[fv[:, 0]] > h, xv[fv[:, 1]] > h, xv[fv[:, 2]] > h
+    k_down = np.where(a0 & ~a1, 0, np.where(a1 & ~a2, 1, 2))
+    k_up = np.where(~a0 & a1, 0, np.where(~a1 & a2, 1, 2))
+    rows = fe[face]
+    e_down = np.take_along_axis(rows, k_down[:, None], axis=1)[:, 0]
+    e_up = np.take_along_axis(rows, k_up[:, None], axis=1)[:, 0]
+    # Nodes: the cut points, one per (plane, edge crossed).  Each crossing is a segment from
+    # its down edge's point to its up edge's point; sorted by (plane, down edge), segment j
+    # starts at node j, and its successor is the segment that starts at its end node.
+    key_start = plane.astype(np.int64) * n_edges + e_down
+    key_end = plane.astype(np.int64) * n_edges + e_up
+    by_start = np.argsort(key_start)
+    nodes = key_start[by_start]
+    nxt = np.searchsorted(nodes, key_end[by_start])
+    nxt_ok = np.minimum(nxt, nodes.size - 1)
+    if not (np.all(np.diff(nodes) > 0) and np.all(nodes[nxt_ok] == key_end[by_start])
+            and np.bincount(nxt, minlength=nodes.size).max() == 1):
         raise ValueError("cut edges do not chain into closed rings")
     node_plane = nodes // n_edges
     node_edge = nodes % n_edges
@@ -227,8 +263,8 @@ def slice_rings(mesh, heights, *, face_label=None, topology=None):
     pts = a[:, 1:] + t[:, None] * (b[:, 1:] - a[:, 1:])
     node_label = np.zeros(nodes.size, dtype=np.int64)
     if face_label is not None:
-        node_label[s_idx] = np.asarray(face_label)[face]
-    order, lab = _chain_cycles(s_idx, e_idx)
+        node_label = np.asarray(face_label)[face[by_start]]
+    order, lab = _chain_cycles(nxt)
     cuts = np.nonzero(np.diff(lab))[0] + 1
     for seg in np.split(order, cuts):
         if seg.size < 3:
@@ -387,22 +423,29 @@ class MeshBody:
         if inside.size == 0:
             return []
         secs = self.sections(x[inside])
-        props = np.zeros((inside.size, 7))
-        for k, (i, rings) in enumerate(zip(inside, secs)):
+        for i, rings in zip(inside, secs):
             if not rings:
                 raise InputError(f"strip {i} at x = {x[i]:.6g} m cuts no material inside the "
                                  f"body (x from {xmin:.6g} to {xmax:.6g} m)", file=self.source,
                                  expected="a body without gaps along its axis (join the parts "
                                           "or use fewer strips)")
-            ints = np.array([ring_integrals(r) for r in rings])
-            a, sy, sz, iy2, iz2 = ints.sum(axis=0)
-            if a <= 0:
-                raise InputError(f"strip {i} at x = {x[i]:.6g} m has non-positive section area "
-                                 f"{a:.3g} m^2", file=self.source, expected="outward normals")
-            yc, zc = sy / a, sz / a
-            pts = np.vstack(rings)
-            props[k] = (a, yc, zc, 0.5 * np.ptp(pts[:, 0]), 0.5 * np.ptp(pts[:, 1]),
-                        iy2 - a * yc * yc, iz2 - a * zc * zc)
+        # every ring of every section in one pass: per-ring integrals summed per section
+        flat = [r for rings in secs for r in rings]
+        per_sec = np.array([len(rings) for rings in secs])
+        first_ring = np.cumsum(per_sec) - per_sec
+        a, sy, sz, iy2, iz2 = np.add.reduceat(rings_integrals(flat), first_ring, axis=0).T
+        bad = np.nonzero(a <= 0)[0]
+        if bad.size:
+            i = inside[bad[0]]
+            raise InputError(f"strip {i} at x = {x[i]:.6g} m has non-positive section area "
+                             f"{a[bad[0]]:.3g} m^2", file=self.source, expected="outward normals")
+        yc, zc = sy / a, sz / a
+        n_pts = np.array([sum(len(r) for r in rings) for rings in secs])
+        first_pt = np.cumsum(n_pts) - n_pts
+        pts = np.concatenate(flat)
+        lo, hi = np.minimum.reduceat(pts, first_pt), np.maximum.reduceat(pts, first_pt)
+        props = np.column_stack([a, yc, zc, 0.5 * (hi[:, 0] - lo[:, 0]), 0.5 * (hi[:, 1] - lo[:, 1]),
+                                 iy2 - a * yc * yc, iz2 - a * zc * zc])
         if getattr(self, "_overlap_seen", False) and not self._overlap_reported:
             dxs = np.asarray(dx, dtype=float)
             dxs = np.broadcast_to(dxs, x.shape)[inside]
@@ -472,7 +515,9 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
                          expected="one of " + ", ".join(LENGTH_UNITS))
     if axis not in AXES:
         raise InputError("unknown body axis", key="axis", value=axis, expected="x, y or z")
-    mesh = mesh.copy()
+    # a fresh mesh on copied arrays (Trimesh.copy also deep-copies its caches)
+    mesh = trimesh.Trimesh(vertices=np.array(mesh.vertices, dtype=float),
+                           faces=np.array(mesh.faces, dtype=np.int64), process=False)
     scale = LENGTH_UNITS[length_unit]
     mesh.apply_scale(scale)
     if transform is not None:
@@ -504,24 +549,34 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
                     expected=f"between {LENGTH_RANGE[0]:g} and {LENGTH_RANGE[1]:g} m "
                              "(check --length-unit)")
 
-    # faces
+    # faces: the per-face vectors are gathered once and reused while the faces are unchanged
     n0 = len(mesh.faces)
-    mask = _nondegenerate(np.asarray(mesh.vertices), np.asarray(mesh.faces), 1e-10 * length)
+    fv = _FaceVectors(mesh.vertices, mesh.faces)
+    mask = fv.nondegenerate(1e-10 * length)
     if not mask.all():
         mesh.update_faces(mask)
         repairs.append(f"removed {int((~mask).sum())} degenerate (zero-area) faces")
-    mask = mesh.unique_faces()
-    if not mask.all():
-        mesh.update_faces(mask)
-        repairs.append(f"removed {int((~mask).sum())} duplicate faces")
+        fv = None
     mesh.remove_unreferenced_vertices()
     if len(mesh.faces) == 0:
         raise _fail(where, "mesh is empty after removing degenerate faces", value=f"{n0} faces")
     topo = EdgeTopology(mesh.faces)
+    labels = topo.component_labels() if topo.watertight else None
+    # Duplicate faces: two faces on the same three vertices share all three edges, so in a
+    # watertight mesh (every edge on exactly two faces) they can only form a two-face
+    # component of their own.  Search for them only if the mesh is open or has a component
+    # smaller than a tetrahedron's four faces.
+    if labels is None or np.bincount(labels).min() < 4:
+        mask = mesh.unique_faces()
+        if not mask.all():
+            mesh.update_faces(mask)
+            mesh.remove_unreferenced_vertices()
+            repairs.append(f"removed {int((~mask).sum())} duplicate faces")
+            topo, labels, fv = EdgeTopology(mesh.faces), None, None
     if not topo.watertight:
         n_open = topo.open_edges
         trimesh.repair.fill_holes(mesh)
-        topo = EdgeTopology(mesh.faces)
+        topo, labels, fv = EdgeTopology(mesh.faces), None, None
         if topo.watertight:
             repairs.append(f"closed holes in the surface ({n_open} open edges; "
                            "trimesh.repair.fill_holes)")
@@ -533,29 +588,27 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     if not topo.consistent:
         trimesh.repair.fix_winding(mesh)
         repairs.append("made the face winding consistent (trimesh.repair.fix_winding)")
-        topo = EdgeTopology(mesh.faces)
-    labels = topo.component_labels()
+        topo, labels, fv = EdgeTopology(mesh.faces), None, None
+    if labels is None:
+        labels = topo.component_labels()
+    if fv is None:
+        fv = _FaceVectors(mesh.vertices, mesh.faces)
     n_bodies = int(labels.max()) + 1 if labels.size else 0
-    flipped, body_volumes = [], []
-    for k in range(n_bodies):
-        sel = labels == k
-        vol = _signed_volume(mesh.vertices, mesh.faces[sel])
-        body_volumes.append(abs(vol))
-        if vol < 0:
-            flipped.append(k)
-    if flipped:
+    body_vol = np.bincount(labels, weights=fv.tetra_volumes(), minlength=n_bodies)
+    flipped = np.nonzero(body_vol < 0)[0]
+    if flipped.size:
         faces = mesh.faces.copy()
-        for k in flipped:
-            sel = labels == k
-            faces[sel] = faces[sel][:, ::-1]
+        sel = np.isin(labels, flipped)
+        faces[sel] = faces[sel][:, ::-1]
         mesh.faces = faces
         topo = EdgeTopology(mesh.faces)          # a flipped face lists its edges reversed
-        repairs.append(f"flipped inward-pointing normals of {len(flipped)} of {n_bodies} "
+        fv = _FaceVectors(mesh.vertices, mesh.faces)
+        repairs.append(f"flipped inward-pointing normals of {flipped.size} of {n_bodies} "
                        "bodies" if n_bodies > 1 else "flipped inward-pointing normals")
     if n_bodies > 1:
         repairs.append(f"mesh has {n_bodies} separate bodies; treated as one rigid body "
                        "(sections solved together)")
-    vol = float(sum(body_volumes))         # each body's, outward normals (as mesh.volume)
+    vol = float(np.abs(body_vol).sum())    # each body's, outward normals (as mesh.volume)
     bbox_vol = float(np.prod(np.ptp(mesh.vertices, axis=0)))
     if not vol > 1e-9 * bbox_vol:
         raise _fail(where, "mesh encloses no volume", value=f"{vol:.3g} m^3",
@@ -566,8 +619,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         if origin not in ("centroid", "file"):
             raise InputError("unknown origin", key="origin", value=origin,
                              expected="centroid, file or a point (x, y, z)")
-        point = _volume_centroid(mesh.vertices, mesh.faces) if origin == "centroid" \
-            else np.zeros(3)
+        point = fv.centroid() if origin == "centroid" else np.zeros(3)
     else:
         p = np.asarray(origin, dtype=float)
         if p.shape != (3,) or not np.all(np.isfinite(p)):
@@ -581,46 +633,68 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     return mesh, repairs, labels, n_bodies, topo
 
 
-def _cross(a, b):
-    """Row-wise cross product of (n, 3) arrays (np.cross without its generality)."""
-    return np.column_stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
-                            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]])
+class _FaceVectors:
+    r"""Per-face vectors of a triangle mesh, gathered once and shared by the loader's checks.
 
+    For face f with vertices :math:`\mathbf p_0, \mathbf p_1, \mathbf p_2` [m]: the edge
+    vectors :math:`\mathbf a = \mathbf p_1 - \mathbf p_0`, :math:`\mathbf b = \mathbf p_2 -
+    \mathbf p_0` and :math:`\mathbf c = \mathbf a \times \mathbf b` (twice the area vector,
+    along the outward normal for counter-clockwise winding).  Coordinates are stored as
+    (3, F) rows so that every operation runs on contiguous arrays.
+    """
 
-def _tetra_volumes(tri):
-    """Signed volumes a.(b x c)/6 of the tetrahedra from the origin to each face [m^3]."""
-    return np.einsum("ij,ij->i", tri[:, 0], _cross(tri[:, 1], tri[:, 2])) / 6.0
+    def __init__(self, vertices, faces):
+        v = np.ascontiguousarray(np.asarray(vertices, dtype=float).T)      # (3, V)
+        f = np.asarray(faces)
+        self.p0 = v[:, f[:, 0]]
+        self.a = v[:, f[:, 1]] - self.p0
+        self.b = v[:, f[:, 2]] - self.p0
+        ax, ay, az = self.a
+        bx, by, bz = self.b
+        self.c = np.array([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx])
 
+    def tetra_volumes(self) -> np.ndarray:
+        r"""Signed volumes of the tetrahedra from the origin to each face [m^3].
 
-def _signed_volume(vertices, faces) -> float:
-    return float(_tetra_volumes(vertices[faces]).sum())
+        .. math:: V_f = \tfrac16\,\mathbf p_0\cdot(\mathbf p_1\times\mathbf p_2)
+                      = \tfrac16\,\mathbf p_0\cdot(\mathbf a\times\mathbf b)
+
+        (the two agree because :math:`\mathbf p_0\cdot(\mathbf p_0\times\cdot) = 0`;
+        divergence theorem, e.g. Zhang & Chen 2001, "Efficient feature extraction for
+        2D/3D objects in mesh representation").
+        """
+        return np.einsum("kf,kf->f", self.p0, self.c) / 6.0
+
+    def centroid(self) -> np.ndarray:
+        r"""Volume centroid of a closed, outward-oriented triangle mesh [m].
+
+        .. math:: \mathbf c = \frac{\sum_f V_f\,(\mathbf p_0 + \mathbf p_1 + \mathbf p_2)/4}
+                  {\sum_f V_f},\qquad \mathbf p_0 + \mathbf p_1 + \mathbf p_2
+                  = 3\mathbf p_0 + \mathbf a + \mathbf b
+
+        (Zhang & Chen 2001, as :meth:`tetra_volumes`).
+        """
+        vol = self.tetra_volumes()
+        return ((3.0 * self.p0 + self.a + self.b) @ vol) / (4.0 * vol.sum())
+
+    def nondegenerate(self, height: float) -> np.ndarray:
+        """Faces whose two heights over the edges from their first vertex both exceed
+        ``height`` [m] (trimesh's ``nondegenerate_faces(height)`` test: the triangle's 2D
+        box 2A/|e| > height for e = a and e = b, an edge of 1e-8 m or less counting as 0)."""
+        twice_area = np.sqrt(np.einsum("kf,kf->f", self.c, self.c))
+        la = np.sqrt(np.einsum("kf,kf->f", self.a, self.a))
+        lb = np.sqrt(np.einsum("kf,kf->f", self.b, self.b))
+        return (la > 1e-8) & (lb > 1e-8) & (twice_area > height * la) & (twice_area > height * lb)
 
 
 def _nondegenerate(vertices, faces, height: float) -> np.ndarray:
-    """Faces whose two heights over the edges from their first vertex both exceed ``height``
-    [m] (trimesh's ``nondegenerate_faces(height)`` test: the triangle's 2D box
-    2A/|e| > height for e = v1 - v0 and v2 - v0, an edge of 1e-8 m or less counting as 0)."""
-    tri = vertices[faces]
-    a, b = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-    c = _cross(a, b)
-    twice_area = np.sqrt((c * c).sum(axis=1))
-    la, lb = np.sqrt((a * a).sum(axis=1)), np.sqrt((b * b).sum(axis=1))
-    return (la > 1e-8) & (lb > 1e-8) & (twice_area > height * la) & (twice_area > height * lb)
+    """:meth:`_FaceVectors.nondegenerate` of the mesh ``(vertices, faces)``."""
+    return _FaceVectors(vertices, faces).nondegenerate(height)
 
 
 def _volume_centroid(vertices, faces) -> np.ndarray:
-    r"""Volume centroid of a closed, outward-oriented triangle mesh [m].
-
-    .. math:: \mathbf c = \frac{\sum_f V_f\,(\mathbf a_f + \mathbf b_f + \mathbf c_f)/4}
-              {\sum_f V_f},\qquad V_f = \mathbf a_f\cdot(\mathbf b_f\times\mathbf c_f)/6
-
-    (signed tetrahedra from the origin to each face; divergence theorem, e.g. Zhang & Chen
-    2001, "Efficient feature extraction for 2D/3D objects in mesh representation").
-    """
-    tri = vertices[faces]
-    v = _tetra_volumes(tri)
-    return (v @ tri.sum(axis=1)) / (4.0 * v.sum())
+    """:meth:`_FaceVectors.centroid` of the mesh ``(vertices, faces)`` [m]."""
+    return _FaceVectors(vertices, faces).centroid()
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
