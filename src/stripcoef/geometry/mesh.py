@@ -173,7 +173,17 @@ class EdgeTopology:
         b = np.roll(faces, -1, axis=1).reshape(-1)
         lo, hi = np.minimum(a, b), np.maximum(a, b)
         key = lo * n + hi
-        uniq, inv, count = np.unique(key, return_inverse=True, return_counts=True)
+        # np.unique(key, return_inverse=True, return_counts=True), with a stable sort
+        # (numpy's radix/merge sort of integers; faster here than unique's quicksort)
+        order = np.argsort(key, kind="stable")
+        sk = key[order]
+        first = np.empty(sk.size, dtype=bool)
+        first[:1] = True
+        np.not_equal(sk[1:], sk[:-1], out=first[1:])
+        uniq = sk[first]
+        inv = np.empty(key.size, dtype=np.int64)
+        inv[order] = np.cumsum(first) - 1
+        count = np.diff(np.append(np.nonzero(first)[0], key.size))
         self.edges = np.column_stack([uniq // n, uniq % n])
         self.face_edges = inv.reshape(-1, 3)
         self.watertight = bool(count.size and np.all(count == 2))
