@@ -322,6 +322,7 @@ class MeshBody:
         self._topology = topology               # EdgeTopology of mesh.faces as given here
         self._topology_faces = mesh.faces
         self._overlap_reported = False
+        self._bounds = None                     # (vertex array, bbox) of bbox()
 
     @property
     def volume(self) -> float:
@@ -334,12 +335,20 @@ class MeshBody:
         return np.asarray(self.mesh.center_mass, dtype=float)
 
     def bbox(self) -> np.ndarray:
-        """Axis-aligned bounding box [[x0, y0, z0], [x1, y1, z1]] [m]."""
-        return np.asarray(self.mesh.bounds, dtype=float)
+        """Axis-aligned bounding box [[x0, y0, z0], [x1, y1, z1]] [m].
+
+        Computed once per vertex array (trimesh's ``bounds`` re-hashes the mesh on every
+        access to validate its cache); every vertex is on a face after the loader's repairs.
+        """
+        v = self.mesh.vertices
+        if self._bounds is None or self._bounds[0] is not v:
+            arr = np.asarray(v, dtype=float)
+            self._bounds = (v, np.array([arr.min(axis=0), arr.max(axis=0)]))
+        return self._bounds[1].copy()
 
     def x_extent(self) -> tuple[float, float]:
         """(x_min, x_max) of the body [m]."""
-        b = self.mesh.bounds
+        b = self.bbox()
         return float(b[0, 0]), float(b[1, 0])
 
     def sections(self, x) -> list[list[np.ndarray]]:
