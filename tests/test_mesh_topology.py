@@ -96,15 +96,17 @@ def test_duplicate_face_hidden_in_a_closed_mesh_is_found():
     assert "removed 1 duplicate faces" in body.repairs
 
 
-def test_rings_integrals_match_one_ring_at_a_time():
-    """The batched polygon integrals equal the shoelace sums of each ring (square, triangle,
-    clockwise hole) and the exact values of a unit square."""
+def test_rings_integrals_exact_on_square_triangle_hole():
+    """The batched polygon integrals give the exact area and moments of a unit square and a
+    triangle, and a clockwise hole's area negative."""
     from stripcoef.geometry.mesh import rings_integrals
     sq = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
     tri = np.array([[2, 0], [3, 0], [2, 2]], float)
     hole = (0.25 + 0.5 * sq)[::-1]
     got = rings_integrals([sq, tri, hole])
-    np.testing.assert_allclose(got[0], [1.0, 0.5, 0.5, 1 / 3, 1 / 3], rtol=1e-14)
+    np.testing.assert_allclose(got[0], [1.0, 0.5, 0.5, 1 / 3, 1 / 3, 1 / 4], rtol=1e-14)
     assert got[2, 0] == pytest.approx(-0.25)
     np.testing.assert_allclose(got[1, 0], 1.0)
     np.testing.assert_allclose(got[1, 1], 1.0 * (2 + 3 + 2) / 3)        # area * y_centroid
+    # triangle: int yz dA = A/12 (sum y_i z_i + sum y_i sum z_i) = (4 + 7 * 2) / 12
+    np.testing.assert_allclose(got[1, 5], 18.0 / 12.0, rtol=1e-14)

@@ -171,16 +171,9 @@ def _junction_runs(comps):
 
 
 def _polygon_part(name, index, polys_per_strip, length, role):
-    from .geometry.mesh import ring_integrals
+    from .geometry.mesh import section_properties
     contours = [_rings(ps) for ps in polys_per_strip]
-    props = np.zeros((len(contours), 7))
-    for k, rings in enumerate(contours):
-        ints = np.array([ring_integrals(r) for r in rings])
-        a, sy, sz, iy2, iz2 = ints.sum(axis=0)
-        yc, zc = sy / a, sz / a
-        pts = np.vstack(rings)
-        props[k] = (a, yc, zc, 0.5 * np.ptp(pts[:, 0]), 0.5 * np.ptp(pts[:, 1]),
-                    iy2 - a * yc * yc, iz2 - a * zc * zc)
+    props = section_properties(contours)
     return Part(name=name, shape="polygon", index=np.asarray(index), y=props[:, 1],
                 z=props[:, 2], half_breadth=props[:, 3], half_height=props[:, 4],
                 area=props[:, 0], iyy=props[:, 5], izz=props[:, 6], rounded=False,
@@ -357,29 +350,6 @@ def _share_interaction(strips, part, member_of, junction_strips, joint, rows=Non
             e.mats[k] = d[:, None] * e.mats[k] * d[None, :]
 
 
-def _second_moments(ring):
-    r"""Area, centroid and second moments of a polygon ring (counter-clockwise positive).
-
-    .. math:: A = \tfrac12\sum c_i,\ \ c_i = y_i z_{i+1} - y_{i+1} z_i,\quad
-              \int y^2 = \tfrac1{12}\sum c_i (y_i^2 + y_i y_{i+1} + y_{i+1}^2),\quad
-              \int yz = \tfrac1{24}\sum c_i (y_i z_{i+1} + 2y_i z_i + 2y_{i+1}z_{i+1}
-              + y_{i+1} z_i)
-
-    (the polygon moment formulas from Green's theorem, e.g. Steger 1996, "On the calculation
-    of arbitrary moments of polygons").  ``ring`` (n, 2) [m]; returns A [m^2],
-    (int y, int z) [m^3], [[int y^2, int yz], [int yz, int z^2]] [m^4] about the origin.
-    """
-    y, z = ring[:, 0], ring[:, 1]
-    y1, z1 = np.roll(y, -1), np.roll(z, -1)
-    c = y * z1 - y1 * z
-    a = 0.5 * np.sum(c)
-    first = np.array([np.sum(c * (y + y1)), np.sum(c * (z + z1))]) / 6.0
-    iyy = np.sum(c * (y * y + y * y1 + y1 * y1)) / 12.0
-    izz = np.sum(c * (z * z + z * z1 + z1 * z1)) / 12.0
-    iyz = np.sum(c * (y * z1 + 2 * y * z + 2 * y1 * z1 + y1 * z)) / 24.0
-    return a, first, np.array([[iyy, iyz], [iyz, izz]])
-
-
 def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
     r"""Factors of a junction piece's sway and heave added mass for its own slenderness.
 
@@ -407,14 +377,15 @@ def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
     polygons per strip [m]; ``length`` l [m].  Returns (s_y, s_z) [-].
     """
     from .hull import lamb_k_factors
+    from .geometry.mesh import rings_integrals
     rings = [np.asarray(p.exterior.coords)[:-1] for ps in polys_per_strip for p in ps]
-    mom = [_second_moments(r) for r in rings]
-    a = sum(abs(m[0]) for m in mom)
+    ints = rings_integrals(rings)                       # per ring: A, S_y, S_z, Iyy, Izz, Iyz
+    a = float(np.abs(ints[:, 0]).sum())
     if not a > 0 or not length > 0:
         return np.ones(2)
-    sign = [np.sign(m[0]) for m in mom]
-    c = sum(sg * m[1] for sg, m in zip(sign, mom)) / a
-    inertia = sum(sg * m[2] for sg, m in zip(sign, mom)) - a * np.outer(c, c)
+    _, sy, sz, iyy, izz, iyz = np.sign(ints[:, 0]) @ ints     # every ring counted as solid
+    c = np.array([sy, sz]) / a
+    inertia = np.array([[iyy, iyz], [iyz, izz]]) - a * np.outer(c, c)
     _, vec = np.linalg.eigh(inertia)
     t, n = vec[:, 1], vec[:, 0]                       # major, minor principal axes
     pts = np.vstack(rings)

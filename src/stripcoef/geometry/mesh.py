@@ -72,7 +72,10 @@ def rings_integrals(rings) -> np.ndarray:
 
     .. math:: A = \tfrac12\sum c_i,\ \ S_y = \tfrac16\sum (y_i + y_{i+1}) c_i,\ \
               S_z = \tfrac16\sum (z_i + z_{i+1}) c_i,\ \
-              I_{y^2} = \tfrac1{12}\sum (y_i^2 + y_i y_{i+1} + y_{i+1}^2) c_i
+              I_{y^2} = \tfrac1{12}\sum (y_i^2 + y_i y_{i+1} + y_{i+1}^2) c_i,
+
+    .. math:: I_{yz} = \tfrac1{24}\sum (y_i z_{i+1} + 2 y_i z_i + 2 y_{i+1} z_{i+1}
+              + y_{i+1} z_i)\, c_i
 
     with :math:`c_i = y_i z_{i+1} - y_{i+1} z_i` (i + 1 wrapping to the ring's first point).
     All rings are evaluated together on their concatenated points.
@@ -83,9 +86,9 @@ def rings_integrals(rings) -> np.ndarray:
 
     Returns
     -------
-    (K, 5) array
-        Per ring: A [m^2], S_y = int y dA [m^3], S_z [m^3], int y^2 dA [m^4], int z^2 dA [m^4]
-        (positive for counter-clockwise rings).
+    (K, 6) array
+        Per ring: A [m^2], S_y = int y dA [m^3], S_z [m^3], int y^2 dA [m^4], int z^2 dA [m^4],
+        int yz dA [m^4] (signed: positive for counter-clockwise rings).
 
     References
     ----------
@@ -94,7 +97,7 @@ def rings_integrals(rings) -> np.ndarray:
     """
     sizes = np.array([len(r) for r in rings], dtype=np.int64)
     if sizes.size == 0:
-        return np.zeros((0, 5))
+        return np.zeros((0, 6))
     pts = np.concatenate([np.asarray(r, dtype=float) for r in rings])
     start = np.cumsum(sizes) - sizes
     nxt = np.arange(1, pts.shape[0] + 1)
@@ -103,14 +106,52 @@ def rings_integrals(rings) -> np.ndarray:
     y1, z1 = y[nxt], z[nxt]
     c = y * z1 - y1 * z
     terms = np.stack([c / 2.0, (y + y1) * c / 6.0, (z + z1) * c / 6.0,
-                      (y * y + y * y1 + y1 * y1) * c / 12.0, (z * z + z * z1 + z1 * z1) * c / 12.0])
+                      (y * y + y * y1 + y1 * y1) * c / 12.0, (z * z + z * z1 + z1 * z1) * c / 12.0,
+                      (y * z1 + 2.0 * y * z + 2.0 * y1 * z1 + y1 * z) * c / 24.0])
     return np.add.reduceat(terms, start, axis=1).T
 
 
 def ring_integrals(ring) -> tuple[float, float, float, float, float]:
     """:func:`rings_integrals` of one ring: (A [m^2], S_y [m^3], S_z [m^3], int y^2 dA [m^4],
     int z^2 dA [m^4])."""
-    return tuple(float(t) for t in rings_integrals([ring])[0])
+    return tuple(float(t) for t in rings_integrals([ring])[0, :5])
+
+
+def section_properties(sections) -> np.ndarray:
+    r"""Area, centroid, half extents and central second moments of each section.
+
+    Per section (a list of rings, outer rings counter-clockwise and holes clockwise), from
+    the summed ring integrals of :func:`rings_integrals`:
+
+    .. math:: y_c = S_y / A,\quad z_c = S_z / A,\quad
+              I_{yy} = \int y^2 dA - A y_c^2,\quad I_{zz} = \int z^2 dA - A z_c^2
+
+    and the half extents :math:`b = \tfrac12(y_{max} - y_{min})`,
+    :math:`h = \tfrac12(z_{max} - z_{min})` of all its points (every ring of every section
+    in one pass).
+
+    Parameters
+    ----------
+    sections : sequence of non-empty lists of (n, 2) arrays of (y, z) [m]
+
+    Returns
+    -------
+    (k, 7) array
+        Columns A [m^2], y_c [m], z_c [m], b [m], h [m], I_yy [m^4], I_zz [m^4] (the
+        ``Part`` fields area, y, z, half_breadth, half_height, iyy, izz).
+    """
+    flat = [r for rings in sections for r in rings]
+    per_sec = np.array([len(rings) for rings in sections])
+    first_ring = np.cumsum(per_sec) - per_sec
+    a, sy, sz, iy2, iz2, _ = np.add.reduceat(rings_integrals(flat), first_ring, axis=0).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        yc, zc = sy / a, sz / a
+    n_pts = np.array([sum(len(r) for r in rings) for rings in sections])
+    first_pt = np.cumsum(n_pts) - n_pts
+    pts = np.concatenate(flat)
+    lo, hi = np.minimum.reduceat(pts, first_pt), np.maximum.reduceat(pts, first_pt)
+    return np.column_stack([a, yc, zc, 0.5 * (hi[:, 0] - lo[:, 0]), 0.5 * (hi[:, 1] - lo[:, 1]),
+                            iy2 - a * yc * yc, iz2 - a * zc * zc])
 
 
 # --------------------------------------------------------------------------- slicing
@@ -448,23 +489,13 @@ class MeshBody:
                                  f"body (x from {xmin:.6g} to {xmax:.6g} m)", file=self.source,
                                  expected="a body without gaps along its axis (join the parts "
                                           "or use fewer strips)")
-        # every ring of every section in one pass: per-ring integrals summed per section
-        flat = [r for rings in secs for r in rings]
-        per_sec = np.array([len(rings) for rings in secs])
-        first_ring = np.cumsum(per_sec) - per_sec
-        a, sy, sz, iy2, iz2 = np.add.reduceat(rings_integrals(flat), first_ring, axis=0).T
-        bad = np.nonzero(a <= 0)[0]
+        props = section_properties(secs)
+        bad = np.nonzero(props[:, 0] <= 0)[0]
         if bad.size:
             i = inside[bad[0]]
             raise InputError(f"strip {i} at x = {x[i]:.6g} m has non-positive section area "
-                             f"{a[bad[0]]:.3g} m^2", file=self.source, expected="outward normals")
-        yc, zc = sy / a, sz / a
-        n_pts = np.array([sum(len(r) for r in rings) for rings in secs])
-        first_pt = np.cumsum(n_pts) - n_pts
-        pts = np.concatenate(flat)
-        lo, hi = np.minimum.reduceat(pts, first_pt), np.maximum.reduceat(pts, first_pt)
-        props = np.column_stack([a, yc, zc, 0.5 * (hi[:, 0] - lo[:, 0]), 0.5 * (hi[:, 1] - lo[:, 1]),
-                                 iy2 - a * yc * yc, iz2 - a * zc * zc])
+                             f"{props[bad[0], 0]:.3g} m^2", file=self.source,
+                             expected="outward normals")
         if getattr(self, "_overlap_seen", False) and not self._overlap_reported:
             dxs = np.asarray(dx, dtype=float)
             dxs = np.broadcast_to(dxs, x.shape)[inside]
