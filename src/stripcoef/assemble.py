@@ -458,32 +458,41 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
 # Damping
 # ---------------------------------------------------------------------------
 
-def _local_exponent(fn, re):
-    """n = 2 + d ln C_D / d ln Re (power-law exponent of the drag force in speed).
+def _local_exponent(fn, *re):
+    """n_k = 2 + d ln C_D,k / d ln Re_k (power-law exponent of the drag force in speed).
 
-    ``fn(Re)`` -> C_D [-], ``re`` [-]; returns n [-] by a central difference over Re*1.1^+-1.
+    ``fn(Re_1, Re_2, ...)`` -> (C_D,1, C_D,2, ...) [-], each C_D,k depending on Re_k only
+    (so one call at Re*1.1 and one at Re/1.1 serve every k); ``re``: the Re_k [-]; returns
+    the n_k [-] (a tuple) by a central difference over Re*1.1^+-1.
     From F = 1/2 rho C_D(Re) A V^2 with Re proportional to V (Hoerner 1965, ch. 3);
     the split is :func:`stripcoef.hull.power_law_split`.
     """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        hi = np.asarray(fn(np.asarray(re) * 1.1), float)
-        lo = np.asarray(fn(np.asarray(re) / 1.1), float)
-    return 2.0 + (np.log(hi) - np.log(lo)) / (2.0 * np.log(1.1))
+        hi = fn(*(np.asarray(r) * 1.1 for r in re))
+        lo = fn(*(np.asarray(r) / 1.1 for r in re))
+    return tuple(2.0 + (np.log(np.asarray(h, float)) - np.log(np.asarray(l, float)))
+                 / (2.0 * np.log(1.1)) for h, l in zip(hi, lo))
 
 
 def _perimeter(part):
-    """Wetted perimeter of each strip's section of a part [m].
+    r"""Wetted perimeter of each strip's section of a part [m].
 
     Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
-    (:func:`stripcoef.geometry.mesh.polygon_perimeter`); rectangle: P = 4 (b + h), half
+    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (as
+    :func:`stripcoef.geometry.mesh.polygon_perimeter`, taken from the part's ring set
+    :func:`stripcoef.sections.panel.part_rings`, which the section solvers share; repeated
+    points, closer than 1e-12 of the ring's size, are dropped there); rectangle: P = 4 (b + h), half
     sizes b, h [m]. Exact geometry (the ellipse: Ramanujan's approximation).
     """
     if part.shape == "ellipse":
         return _ellipse_perimeter(part.half_breadth, part.half_height)
     if part.shape == "polygon":
-        from .geometry.mesh import polygon_perimeter
-        return polygon_perimeter(part)
+        from .sections.panel import part_rings
+        if not part.contours:
+            return np.zeros(part.index.size)
+        rs = part_rings(part)
+        return np.bincount(rs.section, rs.seg.sum(axis=1), part.index.size)
     return 4.0 * (part.half_breadth + part.half_height)
 
 
@@ -604,8 +613,8 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
         re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
         re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
         cd_y, cd_z = section_drag(p, re_y, re_z)
-        n_y = _local_exponent(lambda re: section_drag(p, re, re_z)[0], re_y)
-        n_z = _local_exponent(lambda re: section_drag(p, re_y, re)[1], re_z)
+        # cd_y depends on re_y only and cd_z on re_z only (sections.CROSS_FLOW_DRAG)
+        n_y, n_z = _local_exponent(lambda ry, rz: section_drag(p, ry, rz), re_y, re_z)
         if p.role != "fin":
             ld_y = max(p.length, 1e-9) / np.maximum(hy, 1e-9)
             ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)

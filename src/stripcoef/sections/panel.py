@@ -287,14 +287,12 @@ def _discretise(rings, panels):
 
 # --------------------------------------------------------------------------- solver
 
-def _assemble(nodes_list):
-    """Stack discretised sections with the same panel count into arrays."""
-    p1 = np.stack([np.vstack(nodes) for nodes in nodes_list])            # (B, N, 2)
-    nxt = []
-    for nodes in nodes_list:
-        nxt.append(np.vstack([np.roll(r, -1, axis=0) for r in nodes]))
-    p2 = np.stack(nxt)
-    return p1, p2
+def _u_log_r2(u, r2):
+    """u ln(r2), and 0 where r2 = 0 (a field point on a panel end: u = 0 there)."""
+    if (r2 > 0).all():
+        return u * np.log(r2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(r2 > 0, u * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
 
 
 def _solve_batch(p1, p2, holes_list, about, rho):
@@ -304,10 +302,13 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     t = d / length[..., None]
     nrm = np.stack([t[..., 1], -t[..., 0]], axis=2)                       # out of the body
     mid = 0.5 * (p1 + p2)
-    # field point i, panel j
-    dy = mid[:, :, None, 0] - p1[:, None, :, 0]                           # (B, N, N)
-    dz = mid[:, :, None, 1] - p1[:, None, :, 1]
-    ty, tz = t[:, None, :, 0], t[:, None, :, 1]
+    # field point i, panel j: (B, N, N) arrays broadcast from contiguous (B, N) components
+    my, mz = np.ascontiguousarray(mid[..., 0]), np.ascontiguousarray(mid[..., 1])
+    ay, az = np.ascontiguousarray(p1[..., 0]), np.ascontiguousarray(p1[..., 1])
+    ty, tz = np.ascontiguousarray(t[..., 0]), np.ascontiguousarray(t[..., 1])
+    dy = my[:, :, None] - ay[:, None, :]
+    dz = mz[:, :, None] - az[:, None, :]
+    ty, tz = ty[:, None, :], tz[:, None, :]
     xl = dy * ty + dz * tz                                                # along panel j
     yl = dy * tz - dz * ty                                                # along its normal
     del dy, dz
@@ -316,13 +317,18 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     u1, u2 = xl, xl - L
     r1 = u1 * u1 + y2
     r2 = u2 * u2 + y2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        f1 = np.where(r1 > 0, u1 * np.log(np.where(r1 > 0, r1, 1.0)), 0.0)
-        f2 = np.where(r2 > 0, u2 * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
+    f1, f2 = _u_log_r2(u1, r1), _u_log_r2(u2, r2)
     ang = np.arctan2(L * yl, y2 + xl * xl - xl * L)                       # subtended angle
-    # S_ij = int_j G ds;  G = ln(r) / (2 pi)
-    S = (0.5 * (f1 - f2) - L + yl * ang) / (2.0 * np.pi)
-    D = -ang / (2.0 * np.pi)                                              # int_j dG/dn ds
+    # S_ij = int_j G ds;  G = ln(r) / (2 pi):  S = (0.5 (f1 - f2) - L + yl ang) / (2 pi)
+    S = f1
+    S -= f2
+    S *= 0.5
+    S -= L
+    yl *= ang
+    S += yl
+    S /= 2.0 * np.pi
+    D = np.negative(ang, out=ang)                                         # int_j dG/dn ds
+    D /= 2.0 * np.pi                                                      # = -ang / (2 pi)
     n = p1.shape[1]
     diag = np.arange(n)
     D[:, diag, diag] = 0.0
@@ -342,15 +348,6 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     phi = np.linalg.solve(A, rhs)                                         # (B, N, 3)
     m = -rho * np.einsum("bji,bjk->bik", q * length[..., None], phi)
     return 0.5 * (m + np.swapaxes(m, 1, 2))
-
-
-def _hole_slices(nodes) -> list[slice]:
-    out, start = [], 0
-    for r in nodes:
-        if signed_area(r) < 0:
-            out.append(slice(start, start + len(r)))
-        start += len(r)
-    return out
 
 
 def added_mass_contours(contours, *, rho: float, about=(0.0, 0.0),
@@ -447,7 +444,7 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
     nxt[end - 1] = first
     size = np.bincount(rs.section, budget, nsec).astype(int)            # panels per section
     start = first[np.minimum(rs.rings_of[:-1], len(first) - 1)]         # first node per section
-    # holes: rings of negative area (as _hole_slices), as slices of their section's panels
+    # holes: rings of negative area, as slices of their section's panels
     y, z = nodes[:, 0], nodes[:, 1]
     ring_area = np.add.reduceat(y * z[nxt] - y[nxt] * z, first)
     holes = [[] for _ in range(nsec)]

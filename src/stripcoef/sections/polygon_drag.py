@@ -105,7 +105,10 @@ def _direction_terms(g, along, across):
 def _cd_terms(rounded, ratio, h, w, height, re):
     """sum_p C_D,p w_p per section (vectorised over all parts of all sections)."""
     re_p = np.maximum(re * h / np.maximum(height, 1e-300), 1.0)
-    cd_p = np.where(rounded, drag.ellipse_cd(ratio, re_p), drag.rectangle_cd(ratio))
+    if np.all(rounded):          # no sharp part: skip the rectangle curve (it never warns)
+        cd_p = drag.ellipse_cd(ratio, re_p)
+    else:
+        cd_p = np.where(rounded, drag.ellipse_cd(ratio, re_p), drag.rectangle_cd(ratio))
     return cd_p * w
 
 
