@@ -492,7 +492,7 @@ def _perimeter(part):
         if not part.contours:
             return np.zeros(part.index.size)
         rs = part_rings(part)
-        return np.bincount(rs.section, rs.seg.sum(axis=1), part.index.size)
+        return np.bincount(rs.section, rs.perimeters(), part.index.size)
     return 4.0 * (part.half_breadth + part.half_height)
 
 
@@ -532,7 +532,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     about = np.asarray(about, float)
     L = strips.length
     omega = speed / (0.5 * L)
-    elems = []  # (r (3,), c (3,) [kg/m], n (3,))
+    elems = []  # (r, c [kg/m], n): rows (3,) or blocks (k, 3); or ("roll", c, n)
     cond = {"reference_speed": speed, "reference_rate": omega}
 
     # --- axial: hull friction and form drag
@@ -626,9 +626,11 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
         cy, cz = _hole_width_reduction(strips, p)
         c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
         c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
-        r = np.column_stack([strips.x[p.index], p.y, p.z])
-        for k in range(p.index.size):
-            elems.append((r[k], np.array([0.0, c_y[k], c_z[k]]), np.array([2.0, n_y[k], n_z[k]])))
+        # one element per strip, appended as one block of rows (r, c, n), each (k, 3)
+        k = p.index.size
+        elems.append((np.column_stack([strips.x[p.index], p.y, p.z]),
+                      np.column_stack([np.zeros(k), c_y, c_z]),
+                      np.column_stack([np.full(k, 2.0), n_y, n_z])))
         if p.shape == "rectangle":   # roll of a sharp part about its own centre
             c_self = 0.5 * rho * (cd_z * p.half_breadth**4 + cd_y * p.half_height**4) / 2 * dx
             elems.append(("roll", float(c_self.sum()), 2.0))
@@ -640,16 +642,17 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     cond.update(hull_cd)
     d_lin = np.zeros((6, 6))
     d_quad = np.zeros((6, 6))
-    pts = [(np.asarray(r, float), np.asarray(c, float), np.asarray(n, float))
-           for r, c, n in elems if not isinstance(r, str)]
+    # point elements: single (3,) rows and (k, 3) blocks, stacked in order
+    pts = [tuple(np.reshape(np.asarray(v, float), (-1, 3)) for v in e)
+           for e in elems if not isinstance(e[0], str)]
     for r, c, n in elems:
         if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
             a_hat, b_hat = power_law_split(n)
             d_lin[3, 3] += a_hat * c * omega
             d_quad[3, 3] += b_hat * c
-    rel = np.array([p[0] for p in pts]) - about                    # (E, 3)
-    c = np.array([p[1] for p in pts])                               # (E, 3) [kg/m]
-    a_hat, b_hat = power_law_split(np.array([p[2] for p in pts]))   # (E, 3)
+    rel = np.concatenate([p[0] for p in pts]) - about              # (E, 3)
+    c = np.concatenate([p[1] for p in pts])                         # (E, 3) [kg/m]
+    a_hat, b_hat = power_law_split(np.concatenate([p[2] for p in pts]))   # (E, 3)
     G = np.zeros((rel.shape[0], 3, 6))                              # local velocity per DOF
     G[:, :, :3] = np.eye(3)
     G[:, 0, 4], G[:, 0, 5] = rel[:, 2], -rel[:, 1]                  # -S(r) = S(r)^T

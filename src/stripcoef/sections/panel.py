@@ -515,12 +515,33 @@ class _RingSet:
         """(nsec, 2) area centroid of each section as :func:`_centroid` ((0, 0) if empty) [m]."""
         y, z = self.pts[..., 0], self.pts[..., 1]
         c = y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]                   # zero in the padding
-        a = np.bincount(self.section, 0.5 * c.sum(axis=1), self.nsec)
-        sy = np.bincount(self.section, ((y[:, :-1] + y[:, 1:]) * c).sum(axis=1) / 6.0, self.nsec)
-        sz = np.bincount(self.section, ((z[:, :-1] + z[:, 1:]) * c).sum(axis=1) / 6.0, self.nsec)
+        # per ring sums, then summed over each section's rings in order (as _centroid)
+        a = np.bincount(self.section, 0.5 * self.row_sums(c), self.nsec)
+        sy = np.bincount(self.section, self.row_sums((y[:, :-1] + y[:, 1:]) * c) / 6.0, self.nsec)
+        sz = np.bincount(self.section, self.row_sums((z[:, :-1] + z[:, 1:]) * c) / 6.0, self.nsec)
         out = np.zeros((self.nsec, 2))
         ok = a != 0
         out[ok, 0], out[ok, 1] = sy[ok] / a[ok], sz[ok] / a[ok]
+        return out
+
+    def perimeters(self) -> np.ndarray:
+        """(R,) perimeter of each ring [m]."""
+        return self.row_sums(self.seg)
+
+    def row_sums(self, a) -> np.ndarray:
+        """``a[r, :count[r]].sum()`` for each ring r of an (R, >= max count) array.
+
+        Each row is summed as the 1-D slice of its own length, so the last bits are those of
+        the one-ring code (numpy sums pairwise, and trailing zeros would change the pairs):
+        rings of equal length are summed together.
+        """
+        m = self.pts.shape[1] - 1
+        if (self.count == m).all():
+            return a[:, :m].sum(axis=1)
+        out = np.empty(len(self.count))
+        for n in np.unique(self.count):
+            rows = np.nonzero(self.count == n)[0]
+            out[rows] = a[rows, :n].sum(axis=1)
         return out
 
 
@@ -687,26 +708,25 @@ def _discretise_rings(rs: _RingSet, panels):
         return rs.pts[:, :-1][np.arange(rs.pts.shape[1] - 1) < rs.count[:, None]], rs.count
     ncorner = rs.corner.sum(axis=1)
     nrings = np.diff(rs.rings_of)
+    several = np.nonzero(nrings > 1)[0]
+    perims = rs.perimeters() if panels is None or several.size else None
     if panels is None:
         # as _discretise: DEFAULT_PANELS times sqrt(P^2 / (4 pi A)) of the section's most
         # slender ring, capped at 3x, rounded to 16
-        perims = rs.seg.sum(axis=1)
         q = perims ** 2 / (4.0 * np.pi * np.abs(rs.area))
         full = nrings > 0
         qs = np.maximum.reduceat(q, rs.rings_of[:-1][full])
         per_sec = np.zeros(rs.nsec, int)
-        per_sec[full] = (16 * np.round(DEFAULT_PANELS * np.minimum(3.0, np.sqrt(qs)) / 16)).astype(int)
+        per_sec[full] = 16 * np.round(DEFAULT_PANELS * np.minimum(3.0, np.sqrt(qs)) / 16)
     else:
         per_sec = np.full(rs.nsec, int(panels))
     # one ring: its whole budget, at least the per-contour and per-edge minima
     # (_panel_budget with one ring); several rings: _panel_budget, section by section
     budget = np.maximum(per_sec[rs.section],
                         np.maximum(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * ncorner))
-    for s in np.nonzero(nrings > 1)[0]:
-        mine = range(rs.rings_of[s], rs.rings_of[s + 1])
-        budget[rs.rings_of[s]:rs.rings_of[s + 1]] = _panel_budget(
-            None, [rs.corner[r] for r in mine], per_sec[s],
-            np.array([rs.shape(r)[0].sum() for r in mine]))
+    for s in several:
+        mine = slice(rs.rings_of[s], rs.rings_of[s + 1])
+        budget[mine] = _panel_budget(None, rs.corner[mine], per_sec[s], perims[mine])
     nodes = np.empty((int(budget.sum()), 2))
     first = np.cumsum(budget) - budget                                   # first node of each ring
     smooth = np.nonzero(ncorner == 0)[0]
