@@ -168,7 +168,7 @@ def test_interp_rows_is_numpy_interp():
     fp = rng.normal(size=(nr, nk))
     x = np.concatenate([xp[:, :5], np.sort(rng.uniform(1.0, xp.max(axis=1)[:, None] * (1 + 1e-16),
                                                        (nr, 6)), axis=1)], axis=1)
-    got = _interp_rows(x, xp, fp, last)
+    (got,) = _interp_rows(x, xp, [fp], last)
     for r in range(nr):
         want = np.interp(x[r], xp[r, :last[r] + 1], fp[r, :last[r] + 1])
         assert np.array_equal(got[r], want), r

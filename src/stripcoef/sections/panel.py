@@ -60,8 +60,13 @@ MIN_PANELS_PER_EDGE = 6
 CORNER_ANGLE = np.radians(25.0)
 #: Weight of the turning angle against arc length when placing panels on smooth rings.
 CURVATURE_WEIGHT = 1.0
-#: Sections are solved in batches of at most this many.
+#: Sections are solved in batches of at most this many ...
 _BATCH = 48
+#: ... and of at most this many influence coefficients (B N^2): 128 kB per (B, N, N) array.
+#: Small temporaries are reused by the allocator; large ones may come as fresh pages from the
+#: system on every call (measured on this machine in a fresh process: 75 sections of 32
+#: panels in 2.2 ms in batches of 16, 4.8 ms in batches of 48).
+_BATCH_ELEMENTS = 16384
 
 
 # --------------------------------------------------------------------------- geometry
@@ -288,9 +293,12 @@ def _discretise(rings, panels):
 # --------------------------------------------------------------------------- solver
 
 def _u_log_r2(u, r2):
-    """u ln(r2), and 0 where r2 = 0 (a field point on a panel end: u = 0 there)."""
+    """u ln(r2), and 0 where r2 = 0 (a field point on a panel end: u = 0 there); may
+    overwrite r2."""
     if (r2 > 0).all():
-        return u * np.log(r2)
+        out = np.log(r2, out=r2)
+        out *= u
+        return out
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(r2 > 0, u * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
 
@@ -309,16 +317,23 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     dy = my[:, :, None] - ay[:, None, :]
     dz = mz[:, :, None] - az[:, None, :]
     ty, tz = ty[:, None, :], tz[:, None, :]
-    xl = dy * ty + dz * tz                                                # along panel j
-    yl = dy * tz - dz * ty                                                # along its normal
-    del dy, dz
     L = length[:, None, :]
+    # local coordinates of the field point: xl along panel j, yl along its normal
+    # (in place: the (B, N, N) temporaries are the costly part)
+    xl = dy * ty
+    xl += dz * tz                                                         # dy ty + dz tz
+    dy *= tz
+    dz *= ty
+    yl = np.subtract(dy, dz, out=dy)                                      # dy tz - dz ty
     y2 = yl * yl
-    u1, u2 = xl, xl - L
-    r1 = u1 * u1 + y2
-    r2 = u2 * u2 + y2
-    f1, f2 = _u_log_r2(u1, r1), _u_log_r2(u2, r2)
-    ang = np.arctan2(L * yl, y2 + xl * xl - xl * L)                       # subtended angle
+    u2 = xl - L
+    r1 = xl * xl
+    r1 += y2                                                              # xl^2 + yl^2
+    den = r1 - xl * L                                                     # y2 + xl^2 - xl L
+    r2 = u2 * u2
+    r2 += y2
+    f1, f2 = _u_log_r2(xl, r1), _u_log_r2(u2, r2)
+    ang = np.arctan2(L * yl, den)                                         # subtended angle
     # S_ij = int_j G ds;  G = ln(r) / (2 pi):  S = (0.5 (f1 - f2) - L + yl ang) / (2 pi)
     S = f1
     S -= f2
@@ -451,11 +466,12 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
     for r in np.nonzero(ring_area < 0)[0]:
         a = first[r] - start[rs.section[r]]
         holes[rs.section[r]].append(slice(a, a + budget[r]))
-    # sections with the same panel count are solved together, in chunks of _BATCH
+    # sections with the same panel count are solved together, in chunks (_BATCH_ELEMENTS)
     for n in np.unique(size[size > 0]):
         members = np.nonzero(size == n)[0]
-        for k in range(0, len(members), _BATCH):
-            idx = members[k:k + _BATCH]
+        chunk = max(1, min(_BATCH, _BATCH_ELEMENTS // (n * n)))
+        for k in range(0, len(members), chunk):
+            idx = members[k:k + chunk]
             p1 = start[idx][:, None] + np.arange(n)                      # (B, n) node indices
             out[idx] = _solve_batch(_take_points(nodes, p1), _take_points(nodes, nxt[p1]),
                                     [holes[s] for s in idx], about[idx], rho)
@@ -648,14 +664,15 @@ def part_rings(part) -> _RingSet:
     return rs
 
 
-def _interp_rows(x, xp, fp, last):
+def _interp_rows(x, xp, fps, last):
     """``np.interp`` row by row: row r is ``np.interp(x[r], xp[r, :last[r] + 1],
-    fp[r, :last[r] + 1])``, with numpy's arithmetic (on the knot interval
-    xp[j] <= x < xp[j+1]: (fp[j+1] - fp[j]) / (xp[j+1] - xp[j]) * (x - xp[j]) + fp[j];
-    fp[last] at and after the last knot).  Needs x >= xp[:, 0] and rows of xp increasing."""
+    fp[r, :last[r] + 1])`` for each ``fp`` in the list ``fps`` (one knot search for all),
+    with numpy's arithmetic (on the knot interval xp[j] <= x < xp[j+1]:
+    (fp[j+1] - fp[j]) / (xp[j+1] - xp[j]) * (x - xp[j]) + fp[j]; fp[last] at and after the
+    last knot).  Needs x >= xp[:, 0] and rows of xp increasing."""
     nr, nk = xp.shape
     base = np.arange(nr)[:, None] * nk                 # xp.ravel()[base + j] is xp[r, j]
-    xpf, fpf = xp.reshape(-1), fp.reshape(-1)
+    xpf = xp.reshape(-1)
     lastc = last[:, None]
     # the knot interval of every x by one searchsorted over all rows, row r shifted by
     # r * span (span: a power of two above every value, so the rows stay apart) ...
@@ -671,9 +688,15 @@ def _interp_rows(x, xp, fp, last):
             break
         j = j + up - down
     k = base + np.minimum(j, lastc - 1)                # interval's left knot
-    x0, f0 = xpf.take(k), fpf.take(k)
-    out = (fpf.take(k + 1) - f0) / (xpf.take(k + 1) - x0) * (x - x0) + f0
-    return np.where(j >= lastc, fpf.take(base + lastc), np.where(x == x0, f0, out))
+    x0 = xpf.take(k)
+    dx, at_knot, past = xpf.take(k + 1) - x0, x == x0, j >= lastc
+    out = []
+    for fp in fps:
+        fpf = fp.reshape(-1)
+        f0 = fpf.take(k)
+        val = (fpf.take(k + 1) - f0) / dx * (x - x0) + f0
+        out.append(np.where(past, fpf.take(base + lastc), np.where(at_knot, f0, val)))
+    return out
 
 
 def _resample_smooth(rs: _RingSet, rings, n) -> np.ndarray:
@@ -695,10 +718,9 @@ def _resample_smooth(rs: _RingSet, rings, n) -> np.ndarray:
     col = np.arange(int(n.max()))
     q = col * (mu[rows, cnt] / n)[:, None] + 0.0
     q = np.where(col < n[:, None], q, 0.0)                               # padding: any valid x
-    t = _interp_rows(q, mu, s, cnt)
+    (t,) = _interp_rows(q, mu, [s], cnt)
     pts = rs.pts[rings]
-    return np.stack([_interp_rows(t, s, pts[..., 0], cnt),
-                     _interp_rows(t, s, pts[..., 1], cnt)], axis=2)
+    return np.stack(_interp_rows(t, s, [pts[..., 0], pts[..., 1]], cnt), axis=2)
 
 
 def _discretise_rings(rs: _RingSet, panels):
