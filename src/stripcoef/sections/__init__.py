@@ -31,8 +31,9 @@ def _added_mass_rectangle(part, rho, panels=None):
 
 
 def _added_mass_polygon(part, rho, panels=None):
-    from .panel import added_mass_sections  # noqa: PLC0415 (mesh path only)
-    mats = added_mass_sections(part.contours, rho=rho, about=None, panels=panels)
+    from .panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
+    # the part's rings, cleaned and oriented once (shared with the cross-flow drag)
+    mats = added_mass_sections(part_rings(part), rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
 
 

@@ -410,13 +410,15 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
     .. math:: m^{(s)}_{ik} = -\rho \oint_{C_s} \phi^{(s)}_k n_i\, ds
 
     Sections with the same panel count are solved together as one stacked
-    dense system (numpy batched LU).
+    dense system (numpy batched LU); the rings of all sections are cleaned,
+    oriented and resampled together (:class:`_RingSet`).
 
     Parameters
     ----------
-    sections : list of lists of (n, 2) arrays
+    sections : list of lists of (n, 2) arrays, or a ring set
         For each strip, its contours of (y, z) points [m].  An empty list gives
-        a zero matrix (a strip with no material).
+        a zero matrix (a strip with no material).  A ring set (:func:`part_rings`)
+        holds them already cleaned and oriented.
     rho : float
         Fluid density [kg/m^3]
     about : (y0, z0), (n, 2) array or None
