@@ -62,10 +62,10 @@ CORNER_ANGLE = np.radians(25.0)
 CURVATURE_WEIGHT = 1.0
 #: Sections are solved in batches of at most this many ...
 _BATCH = 48
-#: ... and of at most this many influence coefficients (B N^2): 128 kB per (B, N, N) array.
-#: Small temporaries are reused by the allocator; large ones may come as fresh pages from the
-#: system on every call (measured on this machine in a fresh process: 75 sections of 32
-#: panels in 2.2 ms in batches of 16, 4.8 ms in batches of 48).
+#: ... and of at most this many influence coefficients B N^2 (512 kB per (B, N, N) array).
+#: Measured on this machine (benchmarks/mesh_speed.py part 1, 200 sections of ~96 panels):
+#: 36 ms in batches of 7, 46 ms one by one, slower again in batches of 48, whose temporaries
+#: outgrow the caches (and, in a fresh process, come as new pages on every call).
 _BATCH_ELEMENTS = 16384
 
 
@@ -488,8 +488,9 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
 # of every section in one padded 2D array and runs the same steps (clean, orient, edge
 # lengths and turning angles, resample) once for all rings.  Each step does the same
 # floating-point operations in the same order as its one-ring counterpart above, so the
-# panel nodes are the same; only the per-ring sums (area, perimeter, centroid) may differ
-# in the last bits (tests/test_panel_batched.py).
+# panel nodes, centroids and perimeters are the same to the last bit; only the signed ring
+# areas (used for their sign and, by the default panel count, their size) are summed in
+# another order (tests/test_panel_batched.py).
 #
 # Padded layout: ring r with n_r vertices is row r of ``pts`` (R, m + 1, 2), m = max n_r;
 # columns n_r..m repeat the ring's first vertex.  Edge i (vertex i -> i + 1) is then the
@@ -516,8 +517,9 @@ class _RingSet:
         e_in = np.concatenate((e_out[rows, count - 1][:, None], e_out[:, :-1]), axis=1)
         # as _ring_shape, elementwise on all rings (zero past each ring's end)
         self.seg = np.sqrt(e_out[..., 0] ** 2 + e_out[..., 1] ** 2)
-        self.turn = np.abs(np.arctan2(e_in[..., 0] * e_out[..., 1] - e_in[..., 1] * e_out[..., 0],
-                                      e_in[..., 0] * e_out[..., 0] + e_in[..., 1] * e_out[..., 1]))
+        cross = e_in[..., 0] * e_out[..., 1] - e_in[..., 1] * e_out[..., 0]
+        dot = e_in[..., 0] * e_out[..., 0] + e_in[..., 1] * e_out[..., 1]
+        self.turn = np.abs(np.arctan2(cross, dot))
         self.corner = self.turn > CORNER_ANGLE
 
     def ring(self, r) -> np.ndarray:
@@ -530,20 +532,28 @@ class _RingSet:
         return self.seg[r, :n], self.turn[r, :n]
 
     def centroids(self) -> np.ndarray:
-        """(nsec, 2) area centroid of each section as :func:`_centroid` ((0, 0) if empty) [m]."""
+        r"""(nsec, 2) area centroid (y_c, z_c) of each section [m], (0, 0) if empty.
+
+        .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
+
+        over all rings of the section (holes, clockwise, subtract), as :func:`_centroid`.
+        Reference: shoelace formula for the first moments of a polygon (Green's theorem).
+        """
         y, z = self.pts[..., 0], self.pts[..., 1]
         c = y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]                   # zero in the padding
         # per ring sums, then summed over each section's rings in order (as _centroid)
-        a = np.bincount(self.section, 0.5 * self.row_sums(c), self.nsec)
-        sy = np.bincount(self.section, self.row_sums((y[:, :-1] + y[:, 1:]) * c) / 6.0, self.nsec)
-        sz = np.bincount(self.section, self.row_sums((z[:, :-1] + z[:, 1:]) * c) / 6.0, self.nsec)
+        s = self.section
+        a = np.bincount(s, 0.5 * self.row_sums(c), self.nsec)
+        sy = np.bincount(s, self.row_sums((y[:, :-1] + y[:, 1:]) * c) / 6.0, self.nsec)
+        sz = np.bincount(s, self.row_sums((z[:, :-1] + z[:, 1:]) * c) / 6.0, self.nsec)
         out = np.zeros((self.nsec, 2))
         ok = a != 0
         out[ok, 0], out[ok, 1] = sy[ok] / a[ok], sz[ok] / a[ok]
         return out
 
     def perimeters(self) -> np.ndarray:
-        """(R,) perimeter of each ring [m]."""
+        r"""(R,) perimeter :math:`P = \sum_i |p_{i+1} - p_i|` of each ring [m] (elementary
+        geometry; the sum of :func:`_ring_shape`'s edge lengths)."""
         return self.row_sums(self.seg)
 
     def row_sums(self, a) -> np.ndarray:
