@@ -66,7 +66,7 @@ _BATCH = 48
 #: Measured on this machine (benchmarks/mesh_speed.py part 1, 200 sections of ~96 panels):
 #: 36 ms in batches of 7, 46 ms one by one, slower again in batches of 48, whose temporaries
 #: outgrow the caches (and, in a fresh process, come as new pages on every call).
-_BATCH_ELEMENTS = 16384
+_BATCH_ELEMENTS = 65536
 
 
 # --------------------------------------------------------------------------- geometry
