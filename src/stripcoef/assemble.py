@@ -458,32 +458,41 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
 # Damping
 # ---------------------------------------------------------------------------
 
-def _local_exponent(fn, re):
-    """n = 2 + d ln C_D / d ln Re (power-law exponent of the drag force in speed).
+def _local_exponent(fn, *re):
+    """n_k = 2 + d ln C_D,k / d ln Re_k (power-law exponent of the drag force in speed).
 
-    ``fn(Re)`` -> C_D [-], ``re`` [-]; returns n [-] by a central difference over Re*1.1^+-1.
+    ``fn(Re_1, Re_2, ...)`` -> (C_D,1, C_D,2, ...) [-], each C_D,k depending on Re_k only
+    (so one call at Re*1.1 and one at Re/1.1 serve every k); ``re``: the Re_k [-]; returns
+    the n_k [-] (a tuple) by a central difference over Re*1.1^+-1.
     From F = 1/2 rho C_D(Re) A V^2 with Re proportional to V (Hoerner 1965, ch. 3);
     the split is :func:`stripcoef.hull.power_law_split`.
     """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        hi = np.asarray(fn(np.asarray(re) * 1.1), float)
-        lo = np.asarray(fn(np.asarray(re) / 1.1), float)
-    return 2.0 + (np.log(hi) - np.log(lo)) / (2.0 * np.log(1.1))
+        hi = fn(*(np.asarray(r) * 1.1 for r in re))
+        lo = fn(*(np.asarray(r) / 1.1 for r in re))
+    return tuple(2.0 + (np.log(np.asarray(h, float)) - np.log(np.asarray(l, float)))
+                 / (2.0 * np.log(1.1)) for h, l in zip(hi, lo))
 
 
 def _perimeter(part):
-    """Wetted perimeter of each strip's section of a part [m].
+    r"""Wetted perimeter of each strip's section of a part [m].
 
     Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
-    (:func:`stripcoef.geometry.mesh.polygon_perimeter`); rectangle: P = 4 (b + h), half
+    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (as
+    :func:`stripcoef.geometry.mesh.polygon_perimeter`, taken from the part's ring set
+    :func:`stripcoef.sections.panel.part_rings`, which the section solvers share; repeated
+    points, closer than 1e-12 of the ring's size, are dropped there); rectangle: P = 4 (b + h), half
     sizes b, h [m]. Exact geometry (the ellipse: Ramanujan's approximation).
     """
     if part.shape == "ellipse":
         return _ellipse_perimeter(part.half_breadth, part.half_height)
     if part.shape == "polygon":
-        from .geometry.mesh import polygon_perimeter
-        return polygon_perimeter(part)
+        from .sections.panel import part_rings
+        if not part.contours:
+            return np.zeros(part.index.size)
+        rs = part_rings(part)
+        return np.bincount(rs.section, rs.perimeters(), part.index.size)
     return 4.0 * (part.half_breadth + part.half_height)
 
 
@@ -523,7 +532,7 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     about = np.asarray(about, float)
     L = strips.length
     omega = speed / (0.5 * L)
-    elems = []  # (r (3,), c (3,) [kg/m], n (3,))
+    elems = []  # (r, c [kg/m], n): rows (3,) or blocks (k, 3); or ("roll", c, n)
     cond = {"reference_speed": speed, "reference_rate": omega}
 
     # --- axial: hull friction and form drag
@@ -604,8 +613,8 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
         re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
         re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
         cd_y, cd_z = section_drag(p, re_y, re_z)
-        n_y = _local_exponent(lambda re: section_drag(p, re, re_z)[0], re_y)
-        n_z = _local_exponent(lambda re: section_drag(p, re_y, re)[1], re_z)
+        # cd_y depends on re_y only and cd_z on re_z only (sections.CROSS_FLOW_DRAG)
+        n_y, n_z = _local_exponent(lambda ry, rz: section_drag(p, ry, rz), re_y, re_z)
         if p.role != "fin":
             ld_y = max(p.length, 1e-9) / np.maximum(hy, 1e-9)
             ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)
@@ -617,9 +626,11 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
         cy, cz = _hole_width_reduction(strips, p)
         c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
         c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
-        r = np.column_stack([strips.x[p.index], p.y, p.z])
-        for k in range(p.index.size):
-            elems.append((r[k], np.array([0.0, c_y[k], c_z[k]]), np.array([2.0, n_y[k], n_z[k]])))
+        # one element per strip, appended as one block of rows (r, c, n), each (k, 3)
+        k = p.index.size
+        elems.append((np.column_stack([strips.x[p.index], p.y, p.z]),
+                      np.column_stack([np.zeros(k), c_y, c_z]),
+                      np.column_stack([np.full(k, 2.0), n_y, n_z])))
         if p.shape == "rectangle":   # roll of a sharp part about its own centre
             c_self = 0.5 * rho * (cd_z * p.half_breadth**4 + cd_y * p.half_height**4) / 2 * dx
             elems.append(("roll", float(c_self.sum()), 2.0))
@@ -631,16 +642,17 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     cond.update(hull_cd)
     d_lin = np.zeros((6, 6))
     d_quad = np.zeros((6, 6))
-    pts = [(np.asarray(r, float), np.asarray(c, float), np.asarray(n, float))
-           for r, c, n in elems if not isinstance(r, str)]
+    # point elements: single (3,) rows and (k, 3) blocks, stacked in order
+    pts = [tuple(np.reshape(np.asarray(v, float), (-1, 3)) for v in e)
+           for e in elems if not isinstance(e[0], str)]
     for r, c, n in elems:
         if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
             a_hat, b_hat = power_law_split(n)
             d_lin[3, 3] += a_hat * c * omega
             d_quad[3, 3] += b_hat * c
-    rel = np.array([p[0] for p in pts]) - about                    # (E, 3)
-    c = np.array([p[1] for p in pts])                               # (E, 3) [kg/m]
-    a_hat, b_hat = power_law_split(np.array([p[2] for p in pts]))   # (E, 3)
+    rel = np.concatenate([p[0] for p in pts]) - about              # (E, 3)
+    c = np.concatenate([p[1] for p in pts])                         # (E, 3) [kg/m]
+    a_hat, b_hat = power_law_split(np.concatenate([p[2] for p in pts]))   # (E, 3)
     G = np.zeros((rel.shape[0], 3, 6))                              # local velocity per DOF
     G[:, :, :3] = np.eye(3)
     G[:, 0, 4], G[:, 0, 5] = rel[:, 2], -rel[:, 1]                  # -S(r) = S(r)^T

@@ -4,7 +4,9 @@
   ``f(part, rho, panels) -> (k, 3, 3)`` giving the per-unit-length added mass (sway, heave,
   roll) about the part's centre (``panels``: the panel method's count, polygons only).
 - :data:`CROSS_FLOW_DRAG` maps a shape to ``f(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``,
-  the 2D drag coefficients for flow along y and along z (reference heights: 2h and 2b).
+  the 2D drag coefficients for flow along y and along z (reference heights: 2h and 2b);
+  ``cd_y`` depends on ``reynolds_y`` only and ``cd_z`` on ``reynolds_z`` only (the damping's
+  power-law exponents perturb both in one call).
 
 An unknown shape is an error listing the registered ones.
 """
@@ -29,8 +31,9 @@ def _added_mass_rectangle(part, rho, panels=None):
 
 
 def _added_mass_polygon(part, rho, panels=None):
-    from .panel import added_mass_sections  # noqa: PLC0415 (mesh path only)
-    mats = added_mass_sections(part.contours, rho=rho, about=None, panels=panels)
+    from .panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
+    # the part's rings, cleaned and oriented once (shared with the cross-flow drag)
+    mats = added_mass_sections(part_rings(part), rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
 
 

@@ -60,8 +60,13 @@ MIN_PANELS_PER_EDGE = 6
 CORNER_ANGLE = np.radians(25.0)
 #: Weight of the turning angle against arc length when placing panels on smooth rings.
 CURVATURE_WEIGHT = 1.0
-#: Sections are solved in batches of at most this many.
+#: Sections are solved in batches of at most this many ...
 _BATCH = 48
+#: ... and of at most this many influence coefficients B N^2 (512 kB per (B, N, N) array).
+#: Measured on this machine (benchmarks/mesh_speed.py part 1, 200 sections of ~96 panels):
+#: 36 ms in batches of 7, 46 ms one by one, slower again in batches of 48, whose temporaries
+#: outgrow the caches (and, in a fresh process, come as new pages on every call).
+_BATCH_ELEMENTS = 65536
 
 
 # --------------------------------------------------------------------------- geometry
@@ -287,14 +292,15 @@ def _discretise(rings, panels):
 
 # --------------------------------------------------------------------------- solver
 
-def _assemble(nodes_list):
-    """Stack discretised sections with the same panel count into arrays."""
-    p1 = np.stack([np.vstack(nodes) for nodes in nodes_list])            # (B, N, 2)
-    nxt = []
-    for nodes in nodes_list:
-        nxt.append(np.vstack([np.roll(r, -1, axis=0) for r in nodes]))
-    p2 = np.stack(nxt)
-    return p1, p2
+def _u_log_r2(u, r2):
+    """u ln(r2), and 0 where r2 = 0 (a field point on a panel end: u = 0 there); may
+    overwrite r2."""
+    if (r2 > 0).all():
+        out = np.log(r2, out=r2)
+        out *= u
+        return out
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(r2 > 0, u * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
 
 
 def _solve_batch(p1, p2, holes_list, about, rho):
@@ -304,25 +310,40 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     t = d / length[..., None]
     nrm = np.stack([t[..., 1], -t[..., 0]], axis=2)                       # out of the body
     mid = 0.5 * (p1 + p2)
-    # field point i, panel j
-    dy = mid[:, :, None, 0] - p1[:, None, :, 0]                           # (B, N, N)
-    dz = mid[:, :, None, 1] - p1[:, None, :, 1]
-    ty, tz = t[:, None, :, 0], t[:, None, :, 1]
-    xl = dy * ty + dz * tz                                                # along panel j
-    yl = dy * tz - dz * ty                                                # along its normal
-    del dy, dz
+    # field point i, panel j: (B, N, N) arrays broadcast from contiguous (B, N) components
+    my, mz = np.ascontiguousarray(mid[..., 0]), np.ascontiguousarray(mid[..., 1])
+    ay, az = np.ascontiguousarray(p1[..., 0]), np.ascontiguousarray(p1[..., 1])
+    ty, tz = np.ascontiguousarray(t[..., 0]), np.ascontiguousarray(t[..., 1])
+    dy = my[:, :, None] - ay[:, None, :]
+    dz = mz[:, :, None] - az[:, None, :]
+    ty, tz = ty[:, None, :], tz[:, None, :]
     L = length[:, None, :]
+    # local coordinates of the field point: xl along panel j, yl along its normal
+    # (in place: the (B, N, N) temporaries are the costly part)
+    xl = dy * ty
+    xl += dz * tz                                                         # dy ty + dz tz
+    dy *= tz
+    dz *= ty
+    yl = np.subtract(dy, dz, out=dy)                                      # dy tz - dz ty
     y2 = yl * yl
-    u1, u2 = xl, xl - L
-    r1 = u1 * u1 + y2
-    r2 = u2 * u2 + y2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        f1 = np.where(r1 > 0, u1 * np.log(np.where(r1 > 0, r1, 1.0)), 0.0)
-        f2 = np.where(r2 > 0, u2 * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
-    ang = np.arctan2(L * yl, y2 + xl * xl - xl * L)                       # subtended angle
-    # S_ij = int_j G ds;  G = ln(r) / (2 pi)
-    S = (0.5 * (f1 - f2) - L + yl * ang) / (2.0 * np.pi)
-    D = -ang / (2.0 * np.pi)                                              # int_j dG/dn ds
+    u2 = xl - L
+    r1 = xl * xl
+    r1 += y2                                                              # xl^2 + yl^2
+    den = r1 - xl * L                                                     # y2 + xl^2 - xl L
+    r2 = u2 * u2
+    r2 += y2
+    f1, f2 = _u_log_r2(xl, r1), _u_log_r2(u2, r2)
+    ang = np.arctan2(L * yl, den)                                         # subtended angle
+    # S_ij = int_j G ds;  G = ln(r) / (2 pi):  S = (0.5 (f1 - f2) - L + yl ang) / (2 pi)
+    S = f1
+    S -= f2
+    S *= 0.5
+    S -= L
+    yl *= ang
+    S += yl
+    S /= 2.0 * np.pi
+    D = np.negative(ang, out=ang)                                         # int_j dG/dn ds
+    D /= 2.0 * np.pi                                                      # = -ang / (2 pi)
     n = p1.shape[1]
     diag = np.arange(n)
     D[:, diag, diag] = 0.0
@@ -342,15 +363,6 @@ def _solve_batch(p1, p2, holes_list, about, rho):
     phi = np.linalg.solve(A, rhs)                                         # (B, N, 3)
     m = -rho * np.einsum("bji,bjk->bik", q * length[..., None], phi)
     return 0.5 * (m + np.swapaxes(m, 1, 2))
-
-
-def _hole_slices(nodes) -> list[slice]:
-    out, start = [], 0
-    for r in nodes:
-        if signed_area(r) < 0:
-            out.append(slice(start, start + len(r)))
-        start += len(r)
-    return out
 
 
 def added_mass_contours(contours, *, rho: float, about=(0.0, 0.0),
@@ -398,13 +410,15 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
     .. math:: m^{(s)}_{ik} = -\rho \oint_{C_s} \phi^{(s)}_k n_i\, ds
 
     Sections with the same panel count are solved together as one stacked
-    dense system (numpy batched LU).
+    dense system (numpy batched LU); the rings of all sections are cleaned,
+    oriented and resampled together (:class:`_RingSet`).
 
     Parameters
     ----------
-    sections : list of lists of (n, 2) arrays
+    sections : list of lists of (n, 2) arrays, or a ring set
         For each strip, its contours of (y, z) points [m].  An empty list gives
-        a zero matrix (a strip with no material).
+        a zero matrix (a strip with no material).  A ring set (:func:`part_rings`)
+        holds them already cleaned and oriented.
     rho : float
         Fluid density [kg/m^3]
     about : (y0, z0), (n, 2) array or None
@@ -425,12 +439,10 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
     if not np.isfinite(rho) or rho <= 0:
         raise InputError("fluid density must be positive", key="rho", value=rho,
                          expected="> 0 kg/m^3")
-    nsec = len(sections)
-    rings = [None if c is None or len(c) == 0 else orient_contours(c, f"sections[{s}]")
-             for s, c in enumerate(sections)]
+    rs = sections if isinstance(sections, _RingSet) else _ring_set(sections, "sections")
+    nsec = rs.nsec
     if about is None:
-        about = np.array([(0.0, 0.0) if r is None else _centroid(r) for r in rings])
-        about = about.reshape(nsec, 2)
+        about = rs.centroids()
     about = np.asarray(about, dtype=float)
     if about.ndim == 1:
         about = np.broadcast_to(about, (nsec, 2))
@@ -438,18 +450,330 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
         raise InputError("about must be (y0, z0) or one point per section", key="about",
                          value=f"shape {about.shape}", expected=f"(2,) or ({nsec}, 2)")
     out = np.zeros((nsec, 3, 3))
-    groups: dict[int, list[tuple[int, list]]] = {}
-    for s, oriented in enumerate(rings):
-        if oriented is None:
-            continue
-        nodes = _discretise(oriented, panels)
-        n = sum(len(r) for r in nodes)
-        groups.setdefault(n, []).append((s, nodes))
-    for members in groups.values():
-        for k in range(0, len(members), _BATCH):
-            chunk = members[k:k + _BATCH]
-            idx = [s for s, _ in chunk]
-            p1, p2 = _assemble([nodes for _, nodes in chunk])
-            holes = [_hole_slices(nodes) for _, nodes in chunk]
-            out[idx] = _solve_batch(p1, p2, holes, about[idx], rho)
+    if len(rs.count) == 0:
+        return out
+    nodes, budget = _discretise_rings(rs, panels)
+    # bookkeeping on the flat node array: each ring's first node and each node's successor
+    # in its ring (the end of panel i is node nxt[i], as np.roll(ring, -1) per ring)
+    end = np.cumsum(budget)
+    first = end - budget
+    nxt = np.arange(1, len(nodes) + 1)
+    nxt[end - 1] = first
+    size = np.bincount(rs.section, budget, nsec).astype(int)            # panels per section
+    start = first[np.minimum(rs.rings_of[:-1], len(first) - 1)]         # first node per section
+    # holes: rings of negative area, as slices of their section's panels
+    y, z = nodes[:, 0], nodes[:, 1]
+    ring_area = np.add.reduceat(y * z[nxt] - y[nxt] * z, first)
+    holes = [[] for _ in range(nsec)]
+    for r in np.nonzero(ring_area < 0)[0]:
+        a = first[r] - start[rs.section[r]]
+        holes[rs.section[r]].append(slice(a, a + budget[r]))
+    # sections with the same panel count are solved together, in chunks (_BATCH_ELEMENTS)
+    for n in np.unique(size[size > 0]):
+        members = np.nonzero(size == n)[0]
+        chunk = max(1, min(_BATCH, _BATCH_ELEMENTS // (n * n)))
+        for k in range(0, len(members), chunk):
+            idx = members[k:k + chunk]
+            p1 = start[idx][:, None] + np.arange(n)                      # (B, n) node indices
+            out[idx] = _solve_batch(_take_points(nodes, p1), _take_points(nodes, nxt[p1]),
+                                    [holes[s] for s in idx], about[idx], rho)
     return out
+
+
+# --------------------------------------------------------------------------- all sections at once
+#
+# The functions above work on one ring at a time.  A strip model has one section per strip
+# (75 to 200 of them, each with one or a few rings), and for rings of a few hundred points
+# the per-call overhead of numpy costs more than the arithmetic.  _RingSet holds every ring
+# of every section in one padded 2D array and runs the same steps (clean, orient, edge
+# lengths and turning angles, resample) once for all rings.  Each step does the same
+# floating-point operations in the same order as its one-ring counterpart above, so the
+# panel nodes, centroids and perimeters are the same to the last bit; only the signed ring
+# areas (used for their sign and, by the default panel count, their size) are summed in
+# another order (tests/test_panel_batched.py).
+#
+# Padded layout: ring r with n_r vertices is row r of ``pts`` (R, m + 1, 2), m = max n_r;
+# columns n_r..m repeat the ring's first vertex.  Edge i (vertex i -> i + 1) is then the
+# closing edge for i = n_r - 1 and has zero length for i >= n_r, so row sums and cumulative
+# sums over a row are those of the closed ring, and min / max over a row are the ring's.
+
+class _RingSet:
+    """Every ring of a list of sections: cleaned, oriented (outer rings CCW, holes CW),
+    with its edge lengths and turning angles, in padded arrays (layout above).
+
+    Attributes: ``nsec`` sections; per ring ``section`` (owner), ``count`` (vertices),
+    ``area`` (signed [m^2]), ``pts`` (R, m + 1, 2) [m], ``seg`` (R, m) edge lengths [m],
+    ``turn`` (R, m) |turning angle| [rad], ``corner`` (R, m) bool; ``rings_of`` (nsec + 1,)
+    ring index of each section's first ring (rings are stored in section order).
+    """
+
+    def __init__(self, nsec, section, count, pts, area):
+        self.nsec = nsec
+        self.section, self.count, self.pts, self.area = section, count, pts, area
+        self.rings_of = np.searchsorted(section, np.arange(nsec + 1))
+        e_out = pts[:, 1:] - pts[:, :-1]                                 # (R, m, 2)
+        # incoming edge of vertex i: edge i - 1; of vertex 0: the closing edge n_r - 1
+        rows = np.arange(len(count))
+        e_in = np.concatenate((e_out[rows, count - 1][:, None], e_out[:, :-1]), axis=1)
+        # as _ring_shape, elementwise on all rings (zero past each ring's end)
+        self.seg = np.sqrt(e_out[..., 0] ** 2 + e_out[..., 1] ** 2)
+        cross = e_in[..., 0] * e_out[..., 1] - e_in[..., 1] * e_out[..., 0]
+        dot = e_in[..., 0] * e_out[..., 0] + e_in[..., 1] * e_out[..., 1]
+        self.turn = np.abs(np.arctan2(cross, dot))
+        self.corner = self.turn > CORNER_ANGLE
+
+    def ring(self, r) -> np.ndarray:
+        """Ring ``r``'s (n_r, 2) vertices (a view)."""
+        return self.pts[r, :self.count[r]]
+
+    def shape(self, r):
+        """Ring ``r``'s :func:`_ring_shape` (views)."""
+        n = self.count[r]
+        return self.seg[r, :n], self.turn[r, :n]
+
+    def centroids(self) -> np.ndarray:
+        r"""(nsec, 2) area centroid (y_c, z_c) of each section [m], (0, 0) if empty.
+
+        .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
+
+        over all rings of the section (holes, clockwise, subtract), as :func:`_centroid`.
+        Reference: shoelace formula for the first moments of a polygon (Green's theorem).
+        """
+        y, z = self.pts[..., 0], self.pts[..., 1]
+        c = y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]                   # zero in the padding
+        # per ring sums, then summed over each section's rings in order (as _centroid)
+        s = self.section
+        a = np.bincount(s, 0.5 * self.row_sums(c), self.nsec)
+        sy = np.bincount(s, self.row_sums((y[:, :-1] + y[:, 1:]) * c) / 6.0, self.nsec)
+        sz = np.bincount(s, self.row_sums((z[:, :-1] + z[:, 1:]) * c) / 6.0, self.nsec)
+        out = np.zeros((self.nsec, 2))
+        ok = a != 0
+        out[ok, 0], out[ok, 1] = sy[ok] / a[ok], sz[ok] / a[ok]
+        return out
+
+    def perimeters(self) -> np.ndarray:
+        r"""(R,) perimeter :math:`P = \sum_i |p_{i+1} - p_i|` of each ring [m] (elementary
+        geometry; the sum of :func:`_ring_shape`'s edge lengths)."""
+        return self.row_sums(self.seg)
+
+    def row_sums(self, a) -> np.ndarray:
+        """``a[r, :count[r]].sum()`` for each ring r of an (R, >= max count) array.
+
+        Each row is summed as the 1-D slice of its own length, so the last bits are those of
+        the one-ring code (numpy sums pairwise, and trailing zeros would change the pairs):
+        rings of equal length are summed together.
+        """
+        m = self.pts.shape[1] - 1
+        if (self.count == m).all():
+            return a[:, :m].sum(axis=1)
+        out = np.empty(len(self.count))
+        for n in np.unique(self.count):
+            rows = np.nonzero(self.count == n)[0]
+            out[rows] = a[rows, :n].sum(axis=1)
+        return out
+
+
+def _refuse(sections, where, s):
+    """Raise the error of the first section that :func:`orient_contours` refuses (the
+    message names the ring); if it accepts them all (a ring whose area rounds to zero in one
+    sum and not in the other), the zero-area error of section ``s``."""
+    for i, c in enumerate(sections):
+        if c is not None and len(c):
+            orient_contours(c, f"{where}[{i}]")
+    raise InputError("contour has zero area", key=f"{where}[{s}]")
+
+
+def _ring_set(sections, where: str = "sections") -> "_RingSet":
+    """:class:`_RingSet` of ``sections`` (each a list of (n, 2) rings [m]; ``None`` or ``[]``:
+    an empty section).  Invalid rings raise the :class:`InputError` of :func:`orient_contours`."""
+    rings, owner = [], []
+    for s, contours in enumerate(sections):
+        for c in contours if contours is not None else ():
+            r = np.asarray(c, dtype=float)
+            if r.ndim != 2 or r.shape[1] != 2 or len(r) < 3:
+                _refuse(sections, where, s)
+            rings.append(r)
+            owner.append(s)
+    nsec = len(sections)
+    if not rings:
+        return _RingSet(nsec, np.zeros(0, int), np.zeros(0, int), np.zeros((0, 1, 2)),
+                        np.zeros(0))
+    flat = np.concatenate(rings)
+    if not np.isfinite(flat).all():
+        _refuse(sections, where, 0)
+    section = np.array(owner)
+    count = np.array([len(r) for r in rings])
+    pts = _padded(flat, count)
+    rows = np.arange(len(count))
+    # _clean_ring on all rings: 1) a closing point equal to the first (np.allclose's test)
+    # is dropped (its column becomes padding) ...
+    first, last = pts[:, 0], pts[rows, count - 1]
+    closing = (np.abs(first - last) <= 1e-8 + 1e-5 * np.abs(last)).all(axis=1)
+    if closing.any():
+        count = count - closing
+        pts[rows[closing], count[closing]] = first[closing]
+    # ... 2) so are points repeating their successor (within 1e-12 of the ring's size)
+    y, z = pts[..., 0], pts[..., 1]
+    scale = np.maximum(np.maximum(y.max(axis=1) - y.min(axis=1), z.max(axis=1) - z.min(axis=1)),
+                       1e-300)
+    d = pts[:, 1:] - pts[:, :-1]                                         # edge i: i -> i + 1
+    real = np.arange(pts.shape[1] - 1) < count[:, None]
+    short = (d[..., 0] ** 2 + d[..., 1] ** 2 <= ((1e-12 * scale) ** 2)[:, None]) & real
+    if short.any():
+        keep = real & ~short
+        count = keep.sum(axis=1)
+        pts = _padded(pts[:, :-1][keep], count)
+    if (count < 3).any():
+        _refuse(sections, where, 0)
+    # signed area of each ring (shoelace, as signed_area; the padding adds zeros)
+    y, z = pts[..., 0], pts[..., 1]
+    area = 0.5 * (y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]).sum(axis=1)
+    if (area == 0.0).any():
+        _refuse(sections, where, int(section[np.argmax(area == 0.0)]))
+    # orient_contours: a ring inside an odd number of the section's other rings is a hole
+    # (clockwise), the others are outer rings (counter-clockwise).  Nesting is tested only
+    # in sections with several rings (few), one ring at a time.
+    want_ccw = np.ones(len(count), bool)
+    bounds = np.searchsorted(section, np.arange(nsec + 1))
+    for s in np.nonzero(np.diff(bounds) > 1)[0]:
+        mine = [pts[r, :count[r]] for r in range(bounds[s], bounds[s + 1])]
+        for i, r in enumerate(mine):
+            depth = sum(_point_in_ring(r[0], other) for j, other in enumerate(mine) if j != i)
+            want_ccw[bounds[s] + i] = depth % 2 == 0
+    flip = (area > 0) != want_ccw
+    if flip.any():                                                       # as r[::-1]
+        area = np.where(flip, -area, area)
+        n = count[flip][:, None]
+        col = np.arange(pts.shape[1])
+        back = np.where(col < n, n - 1 - col, n - 1)                    # padding: new first
+        pts[flip] = np.take_along_axis(pts[flip], back[:, :, None], axis=1)
+    return _RingSet(nsec, section, count, pts, area)
+
+
+def _padded(flat, count) -> np.ndarray:
+    """Rings stored one after the other in ``flat`` (count[r] points each) as the padded
+    (R, max(count) + 1, 2) array of :class:`_RingSet` (padding: the ring's first point)."""
+    start = np.cumsum(count) - count
+    col = np.arange(int(count.max()) + 1)
+    return _take_points(flat, start[:, None] + np.where(col < count[:, None], col, 0))
+
+
+def _take_points(points, index) -> np.ndarray:
+    """``points[index]`` for (P, 2) ``points``: the rows read as complex numbers, which is
+    several times faster than numpy's fancy indexing of rows (same values)."""
+    flat = np.ascontiguousarray(points, dtype=float).view(np.complex128).reshape(-1)
+    return flat.take(index).view(np.float64).reshape(np.shape(index) + (2,))
+
+
+def part_rings(part) -> _RingSet:
+    """:class:`_RingSet` of a ``polygon`` part's sections, built once per part and kept on it
+    (the added mass and the cross-flow drag of a strip model both need it)."""
+    cache = getattr(part, "_ring_set_cache", None)
+    if cache is not None and cache[0] is part.contours:
+        return cache[1]
+    rs = _ring_set(part.contours, "sections")
+    part._ring_set_cache = (part.contours, rs)
+    return rs
+
+
+def _interp_rows(x, xp, fps, last):
+    """``np.interp`` row by row: row r is ``np.interp(x[r], xp[r, :last[r] + 1],
+    fp[r, :last[r] + 1])`` for each ``fp`` in the list ``fps`` (one knot search for all),
+    with numpy's arithmetic (on the knot interval xp[j] <= x < xp[j+1]:
+    (fp[j+1] - fp[j]) / (xp[j+1] - xp[j]) * (x - xp[j]) + fp[j]; fp[last] at and after the
+    last knot).  Needs x >= xp[:, 0] and rows of xp increasing."""
+    nr, nk = xp.shape
+    base = np.arange(nr)[:, None] * nk                 # xp.ravel()[base + j] is xp[r, j]
+    xpf = xp.reshape(-1)
+    lastc = last[:, None]
+    # the knot interval of every x by one searchsorted over all rows, row r shifted by
+    # r * span (span: a power of two above every value, so the rows stay apart) ...
+    span = 2.0 ** (np.ceil(np.log2(max(float(xp.max()), float(x.max()), 1.0))) + 1.0)
+    shift = np.arange(nr)[:, None] * span
+    j = np.searchsorted((xp + shift).reshape(-1), (x + shift).reshape(-1), side="right")
+    j = np.clip(j.reshape(x.shape) - 1 - base, 0, lastc)
+    # ... the shift rounds, and values closer than its last bit may tie: correct j exactly
+    while True:
+        up = (j < lastc) & (xpf.take(base + np.minimum(j + 1, nk - 1)) <= x)
+        down = (j > 0) & (xpf.take(base + j) > x)
+        if not (up.any() or down.any()):
+            break
+        j = j + up - down
+    k = base + np.minimum(j, lastc - 1)                # interval's left knot
+    x0 = xpf.take(k)
+    dx, at_knot, past = xpf.take(k + 1) - x0, x == x0, j >= lastc
+    out = []
+    for fp in fps:
+        fpf = fp.reshape(-1)
+        f0 = fpf.take(k)
+        val = (fpf.take(k + 1) - f0) / dx * (x - x0) + f0
+        out.append(np.where(past, fpf.take(base + lastc), np.where(at_knot, f0, val)))
+    return out
+
+
+def _resample_smooth(rs: _RingSet, rings, n) -> np.ndarray:
+    """:func:`_resample_ring` of the rings ``rings`` (no sharp corner) of ``rs`` with ``n``
+    nodes each, all at once: (len(rings), max(n), 2), row i's first n[i] nodes."""
+    cnt = rs.count[rings]
+    seg, turn = rs.seg[rings], rs.turn[rings]
+    k = len(rings)
+    rows = np.arange(k)
+    zero = np.zeros((k, 1))
+    s = np.concatenate((zero, np.cumsum(seg, axis=1)), axis=1)          # arc length at vertices
+    perim = s[rows, cnt]
+    # mu(s) = s + P/(2 pi) Theta(s), the turning at each vertex spread over its two edges
+    turn_next = np.concatenate((turn[:, 1:], zero), axis=1)
+    turn_next[rows, cnt - 1] = turn[:, 0]                                # the ring closes
+    theta = np.concatenate((zero, np.cumsum(0.5 * (turn + turn_next), axis=1)), axis=1)
+    mu = s + (CURVATURE_WEIGHT * perim / (2.0 * np.pi))[:, None] * theta
+    # n equidistributed values of mu per ring (as np.linspace(0, mu_end, n, endpoint=False))
+    col = np.arange(int(n.max()))
+    q = col * (mu[rows, cnt] / n)[:, None] + 0.0
+    q = np.where(col < n[:, None], q, 0.0)                               # padding: any valid x
+    (t,) = _interp_rows(q, mu, [s], cnt)
+    pts = rs.pts[rings]
+    return np.stack(_interp_rows(t, s, [pts[..., 0], pts[..., 1]], cnt), axis=2)
+
+
+def _discretise_rings(rs: _RingSet, panels):
+    """:func:`_discretise` of every section of ``rs``: the nodes of all rings in ring order
+    (Q, 2) and the node count of each ring (R,)."""
+    if panels == 0:
+        return rs.pts[:, :-1][np.arange(rs.pts.shape[1] - 1) < rs.count[:, None]], rs.count
+    ncorner = rs.corner.sum(axis=1)
+    nrings = np.diff(rs.rings_of)
+    several = np.nonzero(nrings > 1)[0]
+    perims = rs.perimeters() if panels is None or several.size else None
+    if panels is None:
+        # as _discretise: DEFAULT_PANELS times sqrt(P^2 / (4 pi A)) of the section's most
+        # slender ring, capped at 3x, rounded to 16
+        q = perims ** 2 / (4.0 * np.pi * np.abs(rs.area))
+        full = nrings > 0
+        qs = np.maximum.reduceat(q, rs.rings_of[:-1][full])
+        per_sec = np.zeros(rs.nsec, int)
+        per_sec[full] = 16 * np.round(DEFAULT_PANELS * np.minimum(3.0, np.sqrt(qs)) / 16)
+    else:
+        per_sec = np.full(rs.nsec, int(panels))
+    # one ring: its whole budget, at least the per-contour and per-edge minima
+    # (_panel_budget with one ring); several rings: _panel_budget, section by section
+    budget = np.maximum(per_sec[rs.section],
+                        np.maximum(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * ncorner))
+    for s in several:
+        mine = slice(rs.rings_of[s], rs.rings_of[s + 1])
+        budget[mine] = _panel_budget(None, rs.corner[mine], per_sec[s], perims[mine])
+    nodes = np.empty((int(budget.sum()), 2))
+    first = np.cumsum(budget) - budget                                   # first node of each ring
+    smooth = np.nonzero(ncorner == 0)[0]
+    if smooth.size:
+        res = _resample_smooth(rs, smooth, budget[smooth])
+        valid = np.arange(res.shape[1]) < budget[smooth][:, None]
+        if smooth.size == len(budget) and valid.all():   # all rings, same count: in order
+            nodes = res.reshape(-1, 2)
+        else:
+            nodes[(first[smooth][:, None] + np.arange(res.shape[1]))[valid]] = res[valid]
+    for r in np.nonzero(ncorner > 0)[0]:                                 # cosine clustering
+        nodes[first[r]:first[r] + budget[r]] = _resample_ring(rs.ring(r), budget[r],
+                                                              rs.corner[r, :rs.count[r]],
+                                                              rs.shape(r))
+    return nodes, budget
+

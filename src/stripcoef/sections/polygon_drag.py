@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import drag
-from .panel import _corner_flags, orient_contours, signed_area
+from .panel import _corner_flags, orient_contours, part_rings, signed_area
 
 #: Weight of the shadowed height of a part behind another part along the flow.
 TANDEM_SHIELDING = 0.5
@@ -105,7 +105,10 @@ def _direction_terms(g, along, across):
 def _cd_terms(rounded, ratio, h, w, height, re):
     """sum_p C_D,p w_p per section (vectorised over all parts of all sections)."""
     re_p = np.maximum(re * h / np.maximum(height, 1e-300), 1.0)
-    cd_p = np.where(rounded, drag.ellipse_cd(ratio, re_p), drag.rectangle_cd(ratio))
+    if np.all(rounded):          # no sharp part: skip the rectangle curve (it never warns)
+        cd_p = drag.ellipse_cd(ratio, re_p)
+    else:
+        cd_p = np.where(rounded, drag.ellipse_cd(ratio, re_p), drag.rectangle_cd(ratio))
     return cd_p * w
 
 
@@ -145,19 +148,37 @@ def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict
 
 
 def _part_cache(part):
-    """Geometry of every strip's section of ``part``, computed once per part."""
+    """Geometry of every strip's section of ``part``, computed once per part.
+
+    The same terms as :func:`_parts_geometry` and :func:`_direction_terms` section by
+    section, computed for the solid parts of all sections at once from the part's ring set
+    (:func:`stripcoef.sections.panel.part_rings`, shared with the panel method).
+    """
     cache = getattr(part, "_polygon_drag_cache", None)
     if cache is not None and cache[0] is part.contours:
         return cache[1]
-    data = {}
-    geoms = [_parts_geometry(c) for c in part.contours]
-    owner = np.concatenate([np.full(len(g), i) for i, g in enumerate(geoms)]).astype(int)
-    rounded = np.concatenate([g[:, 4] for g in geoms]) > 0
+    rs = part_rings(part)
+    for s in np.nonzero(np.diff(rs.rings_of) == 0)[0]:
+        orient_contours(part.contours[s])        # an empty section: its error
+    outer = rs.area > 0                          # solid parts: outer rings (holes: see rule 1)
+    y, z = rs.pts[outer, :, 0], rs.pts[outer, :, 1]          # padding repeats a vertex
+    g = np.column_stack([y.min(axis=1), y.max(axis=1), z.min(axis=1), z.max(axis=1)])
+    owner = rs.section[outer]
+    first = np.searchsorted(owner, np.arange(rs.nsec + 1))     # each section's first part
+    several = np.nonzero(np.diff(first) > 1)[0]
+    data = {"owner": owner, "rounded": ~rs.corner[outer].any(axis=1)}
     for key, along, across in (("y", 0, 2), ("z", 2, 0)):
-        per = [_direction_terms(g, along, across) for g in geoms]
-        data[key] = (np.concatenate([p[0] for p in per]), np.concatenate([p[1] for p in per]),
-                     np.concatenate([p[2] for p in per]), np.array([p[3] for p in per]))
-    data["owner"], data["rounded"] = owner, rounded
+        # _direction_terms of all parts at once; the tandem shadowing only where a
+        # section has several parts
+        a_lo, a_hi, c_lo, c_hi = g[:, along], g[:, along + 1], g[:, across], g[:, across + 1]
+        h = c_hi - c_lo
+        ratio = (a_hi - a_lo) / np.maximum(h, 1e-300)
+        w = h.copy()
+        for s in several:
+            sl = slice(first[s], first[s + 1])
+            w[sl] = _exposed_heights(a_lo[sl], a_hi[sl], c_lo[sl], c_hi[sl])
+        height = np.maximum.reduceat(c_hi, first[:-1]) - np.minimum.reduceat(c_lo, first[:-1])
+        data[key] = (ratio, h, w, height)
     part._polygon_drag_cache = (part.contours, data)
     return data
 
