@@ -479,8 +479,9 @@ def _perimeter(part):
     r"""Wetted perimeter of each strip's section of a part [m].
 
     Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
-    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (as
-    :func:`stripcoef.geometry.mesh.polygon_perimeter`, taken from the part's ring set
+    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (outer rings and holes: a duct's inner
+    wall is wetted too; wetted area for friction drag as in Hoerner 1965, ch. 2), from the
+    part's ring set
     :func:`stripcoef.sections.panel.part_rings`, which the section solvers share; repeated
     points, closer than 1e-12 of the ring's size, are dropped there); rectangle: P = 4 (b + h), half
     sizes b, h [m]. Exact geometry (the ellipse: Ramanujan's approximation).

@@ -863,22 +863,3 @@ def revolved_mesh(x, r, *, sections: int = 64):
     if mesh.volume < 0:
         mesh.invert()
     return mesh
-
-
-def polygon_perimeter(part) -> np.ndarray:
-    r"""Wetted perimeter of each strip's section of a ``polygon`` part [m].
-
-    .. math:: P = \sum_{rings}\sum_i |p_{i+1} - p_i|
-
-    (outer rings and holes: a duct's inner wall is wetted too).  For the hull's
-    friction drag and roll friction (wetted area :math:`S = \int P\,dx`).
-    Ring points p_i [m]. Reference: polygon perimeter (elementary geometry); wetted area
-    for friction drag as in Hoerner (1965), ch. 2.
-    """
-    out = np.zeros(part.index.size)
-    for k, rings in enumerate(part.contours or []):
-        for r in rings:
-            r = np.asarray(r, dtype=float)
-            d = np.concatenate((r[1:], r[:1])) - r
-            out[k] += float(np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2).sum())
-    return out
