@@ -86,8 +86,11 @@ _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
 # towards t = 0, the end nearest to the collocation point): points t and weights 3u^2 w/2
 _CLUSTER_T = (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 3
 _CLUSTER_W = 3.0 * (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 2 * 0.5 * _GAUSS_NEAR[1]
-#: far-panel kernels are evaluated in blocks of about this many (point, panel) pairs
-_BLOCK_PAIRS = 16384
+#: far-panel kernels are evaluated in blocks of at most about this many (Gauss point, panel)
+#: pairs (at least one row of collocation points): the whole (4, n, n) at once was measured
+#: 2x slower at n = 160 (its multi-MB temporaries are handed back to the system and faulted
+#: in again on every call), blocks of < 8,000 pairs slower again (per-call overhead)
+_BLOCK_PAIRS = 32768
 _TRAP_THETA = 16
 # The integrands are even in theta (they depend on it through cos theta only), so the 16 nodes
 # theta_k = 2 pi k / 16 of the periodic trapezoid rule take only the 9 values cos(theta_k),
@@ -318,10 +321,11 @@ def _influence(xn, rn, mode):
     S [m], D [-] and (panel length [m], n_x, n_r [-], x_c, r_c [m]).  Hess & Smith (1967),
     sec. 5 (module docstring).
 
-    Every rule is evaluated on whole arrays, one kernel call per rule: the far rule on
-    (Gauss point, collocation point, panel) arrays of shape (4, n, n), the neighbour and
-    own-panel rules on (point, pair) arrays; the point axis (axis 0) is then summed in
-    order, as a loop over the points would.
+    Each rule is evaluated on whole arrays instead of a loop over its points: the far rule
+    on (Gauss point, collocation point, panel) arrays of shape (4, rows, n) (blocks of
+    collocation rows, :data:`_BLOCK_PAIRS`), the neighbour and own-panel rules in one kernel
+    call each on (point, pair) arrays; the point axis (axis 0) is then summed in order, as
+    the loop over the points did.
     """
     n = xn.size - 1
     length, tx, tr, nx, nr = _panel_geometry(xn, rn)
@@ -334,8 +338,8 @@ def _influence(xn, rn, mode):
     S = np.empty((n, n))
     D = np.empty((n, n))
     # kernels for every (point k, collocation point i, panel j): shape (4, rows, n), in blocks
-    # of collocation rows (small arrays: see _BLOCK_PAIRS)
-    rows = max(1, _BLOCK_PAIRS // (xq.size))
+    # of collocation rows (see _BLOCK_PAIRS)
+    rows = max(1, _BLOCK_PAIRS // xq.size)
     for i0 in range(0, n, rows):
         b = slice(i0, i0 + rows)
         s, d = _kernels(xc[None, b, None], rc[None, b, None], xq[:, None, :], rq[:, None, :],
@@ -345,8 +349,8 @@ def _influence(xn, rn, mode):
     # neighbouring panels j = i - 1 and j = i + 1 (pairs flattened: (2n - 2,)), integrated
     # from the end nearest to the collocation point into the panel; points along axis 0
     tcl, wcl = _CLUSTER_T[:, None], _CLUSTER_W[:, None]
-    i = np.r_[np.arange(1, n), np.arange(0, n - 1)]
-    j = np.r_[np.arange(0, n - 1), np.arange(1, n)]
+    i = np.concatenate([np.arange(1, n), np.arange(0, n - 1)])
+    j = np.concatenate([np.arange(0, n - 1), np.arange(1, n)])
     after = j > i                       # panel after i: start at its first node, go forwards
     start_x = np.where(after, xn[j], xn[j + 1])
     start_r = np.where(after, rn[j], rn[j + 1])
