@@ -65,6 +65,8 @@ bodies and their end effects).  Lamb, H. (1932) *Hydrodynamics*, sec. 373
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy.special import ellipe, ellipk
 
@@ -194,6 +196,29 @@ def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
 _TRAP_THETA_MODE = 48
 
 
+@functools.lru_cache(maxsize=None)
+def _mode_trapezoid(mode):
+    r"""The 48-point periodic trapezoid rule of :func:`_mode_kernels` for Fourier mode
+    ``mode``, on its 25 distinct values of :math:`\cos\theta` (the integrands are even in
+    theta, as for :data:`_TRAP_COS`; nodes 1..23 counted twice).
+
+    Returns the nodes :math:`c_k = \cos\theta_k` (25,) and read-only weights W (3, 25) with
+    :math:`\sum_k W_{0k}/R_k \approx \int_0^{2\pi}\cos m\theta/R\,d\theta`,
+    :math:`\sum_k W_{1k}/R_k^3 \approx \int\cos m\theta/R^3\,d\theta` and
+    :math:`\sum_k W_{2k}/R_k^3 \approx \int\cos\theta\cos m\theta/R^3\,d\theta`
+    [rad]. Built once per mode (cached).
+    """
+    half = _TRAP_THETA_MODE // 2
+    th = 2.0 * np.pi * np.arange(half + 1) / _TRAP_THETA_MODE
+    count = np.r_[1.0, np.full(half - 1, 2.0), 1.0]        # nodes k and 48 - k coincide
+    c = np.cos(th)
+    wcm = 2.0 * np.pi / _TRAP_THETA_MODE * count * np.cos(mode * th)
+    weights = np.array([wcm, wcm, c * wcm])
+    weights.setflags(write=False)
+    c.setflags(write=False)
+    return c, weights
+
+
 def _toroidal(chi, kmax):
     r"""Toroidal Legendre functions :math:`Q_{k-1/2}(\chi)`, k = 0..kmax, and their derivatives.
 
@@ -244,15 +269,18 @@ def _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode, own_panel=False):
     jm = np.empty(p.shape)
     b2jm = np.empty(p.shape)
     if np.any(far):
-        th = np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA_MODE, endpoint=False)
-        w = 2.0 * np.pi / _TRAP_THETA_MODE
-        c, cm = np.cos(th), np.cos(mode * th)
-        pf, qf = p[far][:, None], q[far][:, None]
-        rr = np.sqrt(pf - qf * c)
-        im[far] = w * (cm / rr).sum(1)
-        jm[far] = w * (cm / rr ** 3).sum(1)
-        jc[far] = w * (c * cm / rr ** 3).sum(1)
-        b2jm[far] = (p[far] - q[far]) * jm[far]
+        c, wts = _mode_trapezoid(mode)
+        pf, qf = p[far], q[far]
+        # 1/R at the 25 distinct nodes (rows) of every far pair (columns), in place
+        inv = np.multiply.outer(c, qf)
+        np.subtract(pf, inv, out=inv)
+        np.sqrt(inv, out=inv)
+        np.divide(1.0, inv, out=inv)
+        im[far] = wts[0] @ inv
+        inv3 = inv * inv
+        inv3 *= inv
+        jm[far], jc[far] = wts[1:] @ inv3
+        b2jm[far] = (pf - qf) * jm[far]
     near = ~far
     if np.any(near):
         pn, qn = p[near], q[near]
