@@ -88,6 +88,11 @@ _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
 # towards t = 0, the end nearest to the collocation point): points t and weights 3u^2 w/2
 _CLUSTER_T = (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 3
 _CLUSTER_W = 3.0 * (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 2 * 0.5 * _GAUSS_NEAR[1]
+# the own-panel rule: the near rule on each half of the panel from its mid-point outwards, as
+# columns (rows: the 12 points forwards, then the 12 backwards): direction, t, weight
+_HALVES_SIGN = np.repeat([1.0, -1.0], _CLUSTER_T.size)[:, None]
+_HALVES_T = np.tile(_CLUSTER_T, 2)[:, None]
+_HALVES_W = np.tile(_CLUSTER_W, 2)[:, None]
 #: far-panel kernels are evaluated in blocks of at most about this many (Gauss point, panel)
 #: pairs (at least one row of collocation points): the whole (4, n, n) at once was measured
 #: 2x slower at n = 160 (its multi-MB temporaries are handed back to the system and faulted
@@ -388,15 +393,13 @@ def _influence(xn, rn, mode):
                     nx[j], nr[j], mode)
     S[i, j] = np.sum(s * wcl * length[j], axis=0)
     D[i, j] = np.sum(d * wcl * length[j], axis=0)
-    # own panel: its two halves from the mid-point outwards (rows: 12 points forwards, then
-    # 12 backwards), (24, n) arrays
-    sign = np.r_[np.ones(tcl.size), -np.ones(tcl.size)][:, None]
-    t2, w2 = np.r_[tcl, tcl], np.r_[wcl, wcl]
-    sq = t2 * 0.5 * length
-    s, d = _self_kernels(xc, rc, xc + sign * sq * tx, rc + sign * sq * tr, nx, nr, mode)
+    # own panel: its two halves from the mid-point outwards, (24, n) arrays
+    sq = _HALVES_T * 0.5 * length
+    s, d = _self_kernels(xc, rc, xc + _HALVES_SIGN * sq * tx, rc + _HALVES_SIGN * sq * tr,
+                         nx, nr, mode)
     own = np.arange(n)
-    S[own, own] = np.sum(s * w2 * 0.5 * length, axis=0)
-    D[own, own] = np.sum(d * w2 * 0.5 * length, axis=0)
+    S[own, own] = np.sum(s * _HALVES_W * 0.5 * length, axis=0)
+    D[own, own] = np.sum(d * _HALVES_W * 0.5 * length, axis=0)
     return S, D, (length, nx, nr, xc, rc)
 
 
@@ -438,16 +441,19 @@ def _meridian(x, r, panels, area_linear=False):
         raise InputError("profile must be non-decreasing x with finite radii >= 0",
                          key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
     if r[0] > 0:
-        x, r = np.r_[x[0], x], np.r_[0.0, r]
+        x, r = np.concatenate([x[:1], x]), np.concatenate([[0.0], r])
     if r[-1] > 0:
-        x, r = np.r_[x, x[-1]], np.r_[r, 0.0]
+        x, r = np.concatenate([x, x[-1:]]), np.concatenate([r, [0.0]])
     seg = np.hypot(np.diff(x), np.diff(r))
-    keep = np.r_[True, seg > 1e-12 * max(np.ptp(x), 1e-300)]
-    x, r = x[keep], r[keep]
-    s = np.r_[0.0, np.cumsum(np.hypot(np.diff(x), np.diff(r)))]
+    keep = seg > 1e-12 * max(x[-1] - x[0], 1e-300)      # x is non-decreasing
+    if not keep.all():                                  # drop repeated points
+        keep = np.concatenate([[True], keep])
+        x, r = x[keep], r[keep]
+        seg = np.hypot(np.diff(x), np.diff(r))
+    s = np.concatenate([[0.0], np.cumsum(seg)])
     # the profile's corners (flat caps, steps) and the two tips split it into smooth runs;
     # each run gets panels in proportion to its length, cosine-clustered towards its ends
-    knots = np.unique(np.r_[0.0, s[_corners(x, r)], s[-1]])
+    knots = np.unique(np.concatenate([[0.0], s[_corners(x, r)], s[-1:]]))
     runs = np.diff(knots)
     n_run = np.maximum(4, np.round(panels * runs / runs.sum())).astype(int)
     t = [knots[:1]]
@@ -464,7 +470,7 @@ def _corners(x, r):
     d = np.column_stack([np.diff(x), np.diff(r)])
     d /= np.linalg.norm(d, axis=1)[:, None]
     cosang = np.einsum("ij,ij->i", d[1:], d[:-1])
-    return np.r_[False, cosang < np.cos(np.radians(20.0)), False]
+    return np.concatenate([[False], cosang < np.cos(np.radians(20.0)), [False]])
 
 
 def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
