@@ -66,6 +66,7 @@ bodies and their end effects).  Lamb, H. (1932) *Hydrodynamics*, sec. 373
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 from scipy.special import ellipe, ellipk
@@ -93,11 +94,12 @@ _CLUSTER_W = 3.0 * (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 2 * 0.5 * _GAUSS_NEAR[1]
 _HALVES_SIGN = np.repeat([1.0, -1.0], _CLUSTER_T.size)[:, None]
 _HALVES_T = np.tile(_CLUSTER_T, 2)[:, None]
 _HALVES_W = np.tile(_CLUSTER_W, 2)[:, None]
-#: far-panel kernels are evaluated in blocks of at most about this many (Gauss point, panel)
-#: pairs (at least one row of collocation points): the whole (4, n, n) at once was measured
-#: 2x slower at n = 160 (its multi-MB temporaries are handed back to the system and faulted
-#: in again on every call), blocks of < 8,000 pairs slower again (per-call overhead)
-_BLOCK_PAIRS = 32768
+#: far-panel kernels are evaluated in equal blocks of collocation rows with at most about this
+#: many (Gauss point, collocation point, panel) triples each (one block up to n = 78 panels).
+#: Measured after a mesh pipeline (benchmarks/mesh_speed.py): the whole (4, n, n) at once is
+#: 2x slower at n = 166 (its multi-MB temporaries go back to the system and are faulted in
+#: again on every call); 8192-triple blocks cost 0.1 ms per extra block at n = 78.
+_BLOCK_PAIRS = 24576
 _TRAP_THETA = 16
 # The integrands are even in theta (they depend on it through cos theta only), so the 16 nodes
 # theta_k = 2 pi k / 16 of the periodic trapezoid rule take only the 9 values cos(theta_k),
@@ -372,7 +374,8 @@ def _influence(xn, rn, mode):
     D = np.empty((n, n))
     # kernels for every (point k, collocation point i, panel j): shape (4, rows, n), in blocks
     # of collocation rows (see _BLOCK_PAIRS)
-    rows = max(1, _BLOCK_PAIRS // xq.size)
+    blocks = math.ceil(xq.size * n / _BLOCK_PAIRS)
+    rows = math.ceil(n / blocks)                       # equal blocks, the last one shorter
     for i0 in range(0, n, rows):
         b = slice(i0, i0 + rows)
         s, d = _kernels(xc[None, b, None], rc[None, b, None], xq[:, None, :], rq[:, None, :],
