@@ -2,6 +2,8 @@
 
 - the theta moments (closed forms for near rings, the 9-node form of the 16-point trapezoid
   rule for far ones) against a dense trapezoid rule on theta;
+- the mode >= 2 kernels (roll relief; the 25-node form of the 48-point rule for far rings)
+  against the same dense rule;
 - the vectorised influence matrices against the same quadrature written as loops over the
   quadrature points (one kernel call per point, as the solver was first written).
 """
@@ -128,8 +130,8 @@ def test_closed_influence_corner_pairs(mode):
         for tk, wk in zip(C._CLUSTER_T, C._CLUSTER_W):
             sq = tk * length[j]
             s, d = C._kernels(np.array([xc[i]]), np.array([rc[i]]),
-                              np.array([x0 + dirn * sq * tx[j]]), np.array([r0 + dirn * sq * tr[j]]),
-                              nx[j], nr[j], mode)
+                              np.array([x0 + dirn * sq * tx[j]]),
+                              np.array([r0 + dirn * sq * tr[j]]), nx[j], nr[j], mode)
             s_ij += s[0] * wk * length[j]
             d_ij += d[0] * wk * length[j]
         assert S[i, j] == pytest.approx(s_ij, rel=1e-13)
@@ -162,7 +164,8 @@ def test_mode_kernels_match_dense_quadrature(mode):
     assert np.sum(far) > 50 and np.sum(keep & ~far) > 50
     # relative to the size of the integrand (the cos(m t) integrals can be close to 0)
     s_scale = rq * w * np.sum(inv, axis=1) / (4.0 * np.pi)
-    d_scale = rq * w * np.sum(np.abs(base - (nr * rc)[:, None] * c) * inv ** 3, axis=1) / (4.0 * np.pi)
+    d_scale = rq * w * np.sum(np.abs(base - (nr * rc)[:, None] * c) * inv ** 3,
+                              axis=1) / (4.0 * np.pi)
     for tol, sel in ((1e-10, far), (1e-9, keep & ~far)):
         assert np.max(np.abs(s - s_ref)[sel] / s_scale[sel]) < tol
         assert np.max(np.abs(d - d_ref)[sel] / d_scale[sel]) < tol
