@@ -65,6 +65,9 @@ bodies and their end effects).  Lamb, H. (1932) *Hydrodynamics*, sec. 373
 
 from __future__ import annotations
 
+import functools
+import math
+
 import numpy as np
 from scipy.special import ellipe, ellipk
 
@@ -82,10 +85,31 @@ ROLL_ROUNDOFF = 1e-9
 SAME_BODY_RTOL = 1e-10
 _GAUSS_FAR = np.polynomial.legendre.leggauss(4)
 _GAUSS_NEAR = np.polynomial.legendre.leggauss(12)
+# the near rule: 12-point Gauss-Legendre on u in (0, 1) mapped by t = u^3 (cubic clustering
+# towards t = 0, the end nearest to the collocation point): points t and weights 3u^2 w/2
+_CLUSTER_T = (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 3
+_CLUSTER_W = 3.0 * (0.5 * (_GAUSS_NEAR[0] + 1.0)) ** 2 * 0.5 * _GAUSS_NEAR[1]
+# the own-panel rule: the near rule on each half of the panel from its mid-point outwards, as
+# columns (rows: the 12 points forwards, then the 12 backwards): direction, t, weight
+_HALVES_SIGN = np.repeat([1.0, -1.0], _CLUSTER_T.size)[:, None]
+_HALVES_T = np.tile(_CLUSTER_T, 2)[:, None]
+_HALVES_W = np.tile(_CLUSTER_W, 2)[:, None]
+#: far-panel kernels are evaluated in equal blocks of collocation rows with at most about this
+#: many (Gauss point, collocation point, panel) triples each (one block up to n = 78 panels).
+#: Measured after a mesh pipeline (benchmarks/mesh_speed.py): the whole (4, n, n) at once is
+#: 2x slower at n = 166 (its multi-MB temporaries go back to the system and are faulted in
+#: again on every call); 8192-triple blocks cost 0.1 ms per extra block at n = 78.
+_BLOCK_PAIRS = 24576
 _TRAP_THETA = 16
-_TRAP_COS = np.cos(np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA, endpoint=False))
-#: trapezoid weights times cos^k theta, k = 0, 1, 2 (rows)
-_TRAP_W = 2.0 * np.pi / _TRAP_THETA * _TRAP_COS[None, :] ** np.arange(3)[:, None]
+# The integrands are even in theta (they depend on it through cos theta only), so the 16 nodes
+# theta_k = 2 pi k / 16 of the periodic trapezoid rule take only the 9 values cos(theta_k),
+# k = 0..8 (nodes k and 16 - k coincide): the rule is evaluated on those 9, nodes 1..7 counted
+# twice.  Same rule, same result to round-off, 9/16 of the square roots.
+_TRAP_COS = np.cos(2.0 * np.pi * np.arange(_TRAP_THETA // 2 + 1) / _TRAP_THETA)
+_TRAP_COUNT = np.r_[1.0, np.full(_TRAP_THETA // 2 - 1, 2.0), 1.0]
+#: trapezoid weights times cos^k theta, k = 0, 1, 2 (rows), on the 9 distinct nodes (columns)
+_TRAP_W = (2.0 * np.pi / _TRAP_THETA * _TRAP_COUNT[None, :]
+           * _TRAP_COS[None, :] ** np.arange(3)[:, None])
 
 
 def _ring_integrals(p, q):
@@ -108,37 +132,51 @@ def _ring_integrals(p, q):
     return a, b2, kk, ee, i0, i1
 
 
-def _theta_moments(x, r, xq, rq):
-    r"""theta-integrals over [0, 2 pi] of 1/R, cos/R, 1/R^3, cos/R^3, cos^2/R^3.
+def _theta_moments(x, r, xq, rq, m):
+    r"""theta-integrals over [0, 2 pi] that the mode-m kernels need (m = 0 or 1):
+
+    .. math:: I_m = \int\frac{\cos^m\theta}{R}d\theta,\quad
+              J_m = \int\frac{\cos^m\theta}{R^3}d\theta,\quad
+              J_{m+1} = \int\frac{\cos^{m+1}\theta}{R^3}d\theta
 
     Elliptic-integral closed forms where the ring is near (Q/P >= 0.25); a
     periodic trapezoid rule (spectrally accurate) where it is far.
 
     :math:`R^2 = P - Q\cos\theta`; :math:`I_0 = 4K/A`, :math:`J_0 = 4E/(AB^2)`, and by
     recursion :math:`I_1 = (P I_0 - 4AE)/Q`, :math:`J_1 = (P J_0 - I_0)/Q`,
-    :math:`J_2 = (P J_1 - I_1)/Q`. ``x, r, xq, rq`` [m]; results [1/m] (1/R terms) and
-    [1/m^3] (1/R^3 terms). Gradshteyn & Ryzhik (2007), 2.571, 8.111-8.112 (module docstring).
+    :math:`J_2 = (P J_1 - I_1)/Q`. ``x, r, xq, rq`` [m] (arrays that broadcast together);
+    returns (I_m [1/m], J_m, J_{m+1} [1/m^3]). Gradshteyn & Ryzhik (2007), 2.571,
+    8.111-8.112 (module docstring).
     """
     dx2 = (x - xq) ** 2
     p = dx2 + r * r + rq * rq
-    q = 2.0 * r * rq
+    q = np.broadcast_to(2.0 * r * rq, p.shape)
     far = q < 0.25 * p
-    out = [np.empty_like(p) for _ in range(5)]
+    i_m, j_m, j_m1 = np.empty_like(p), np.empty_like(p), np.empty_like(p)
     if np.any(far):
-        inv = 1.0 / np.sqrt(p[far][:, None] - q[far][:, None] * _TRAP_COS)
-        m1 = inv @ _TRAP_W[:2].T                        # sum of w c^k / R, k = 0, 1
-        m3 = (inv * inv * inv) @ _TRAP_W.T              # sum of w c^k / R^3, k = 0, 1, 2
-        out[0][far], out[1][far] = m1[:, 0], m1[:, 1]
-        out[2][far], out[3][far], out[4][far] = m3[:, 0], m3[:, 1], m3[:, 2]
+        pf, qf = p[far], q[far]                        # all far pairs, flattened: (N,)
+        # 1/R at the trapezoid nodes, one row per distinct cos(theta_k): (9, N), computed in
+        # place (R^2 = P - Q cos, then R, then 1/R in one buffer: fewer large temporaries)
+        inv = np.multiply.outer(_TRAP_COS, qf)
+        np.subtract(pf, inv, out=inv)
+        np.sqrt(inv, out=inv)
+        np.divide(1.0, inv, out=inv)
+        i_m[far] = _TRAP_W[m] @ inv                     # sum of w c^m / R
+        inv3 = inv * inv
+        inv3 *= inv
+        m3 = _TRAP_W[m:m + 2] @ inv3                    # sums of w c^m / R^3, w c^(m+1) / R^3
+        j_m[far], j_m1[far] = m3[0], m3[1]
     near = ~far
     if np.any(near):
         pn, qn = p[near], q[near]
         a, b2, kk, ee, i0, i1 = _ring_integrals(pn, qn)
         j0 = 4.0 * ee / (a * b2)
         j1 = (pn * j0 - i0) / qn
-        j2 = (pn * j1 - i1) / qn
-        out[0][near], out[1][near], out[2][near], out[3][near], out[4][near] = i0, i1, j0, j1, j2
-    return out
+        if m == 0:
+            i_m[near], j_m[near], j_m1[near] = i0, j0, j1
+        else:
+            i_m[near], j_m[near], j_m1[near] = i1, j1, (pn * j1 - i1) / qn   # J_2
+    return i_m, j_m, j_m1
 
 
 def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
@@ -149,22 +187,43 @@ def _kernels(xc, rc, xq, rq, nxq, nrq, mode):
               \quad (q-p)\cdot n_q = (x_q - x_c)n_x + n_r r_q - n_r r_c\cos\theta
 
     (G = -1/(4 pi R), module docstring; Hess & Smith 1967, sec. 5). Positions [m], normals
-    [-]; S [-] and D [1/m] per unit meridian length.
+    [-]; S [-] and D [1/m] per unit meridian length.  For m = 0, 1:
+    :math:`S_m = -r_q I_m/4\pi`, :math:`D_m = r_q(b J_m - n_r r_c J_{m+1})/4\pi` with
+    :math:`b = (x_q - x_c)n_x + n_r r_q` (:func:`_theta_moments`).
     """
     if mode >= 2:
         return _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode)
-    i0, i1, j0, j1, j2 = _theta_moments(xc, rc, xq, rq)
+    i_m, j_m, j_m1 = _theta_moments(xc, rc, xq, rq, mode)
     base = (xq - xc) * nxq + nrq * rq
-    if mode == 0:
-        s = -rq * i0 / (4.0 * np.pi)
-        d = rq * (base * j0 - nrq * rc * j1) / (4.0 * np.pi)
-    else:
-        s = -rq * i1 / (4.0 * np.pi)
-        d = rq * (base * j1 - nrq * rc * j2) / (4.0 * np.pi)
+    s = -rq * i_m / (4.0 * np.pi)
+    d = rq * (base * j_m - nrq * rc * j_m1) / (4.0 * np.pi)
     return s, d
 
 
 _TRAP_THETA_MODE = 48
+
+
+@functools.lru_cache(maxsize=None)
+def _mode_trapezoid(mode):
+    r"""The 48-point periodic trapezoid rule of :func:`_mode_kernels` for Fourier mode
+    ``mode``, on its 25 distinct values of :math:`\cos\theta` (the integrands are even in
+    theta, as for :data:`_TRAP_COS`; nodes 1..23 counted twice).
+
+    Returns the nodes :math:`c_k = \cos\theta_k` (25,) and read-only weights W (3, 25) with
+    :math:`\sum_k W_{0k}/R_k \approx \int_0^{2\pi}\cos m\theta/R\,d\theta`,
+    :math:`\sum_k W_{1k}/R_k^3 \approx \int\cos m\theta/R^3\,d\theta` and
+    :math:`\sum_k W_{2k}/R_k^3 \approx \int\cos\theta\cos m\theta/R^3\,d\theta`
+    [rad]. Built once per mode (cached).
+    """
+    half = _TRAP_THETA_MODE // 2
+    th = 2.0 * np.pi * np.arange(half + 1) / _TRAP_THETA_MODE
+    count = np.r_[1.0, np.full(half - 1, 2.0), 1.0]        # nodes k and 48 - k coincide
+    c = np.cos(th)
+    wcm = 2.0 * np.pi / _TRAP_THETA_MODE * count * np.cos(mode * th)
+    weights = np.array([wcm, wcm, c * wcm])
+    weights.setflags(write=False)
+    c.setflags(write=False)
+    return c, weights
 
 
 def _toroidal(chi, kmax):
@@ -217,15 +276,18 @@ def _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode, own_panel=False):
     jm = np.empty(p.shape)
     b2jm = np.empty(p.shape)
     if np.any(far):
-        th = np.linspace(0.0, 2.0 * np.pi, _TRAP_THETA_MODE, endpoint=False)
-        w = 2.0 * np.pi / _TRAP_THETA_MODE
-        c, cm = np.cos(th), np.cos(mode * th)
-        pf, qf = p[far][:, None], q[far][:, None]
-        rr = np.sqrt(pf - qf * c)
-        im[far] = w * (cm / rr).sum(1)
-        jm[far] = w * (cm / rr ** 3).sum(1)
-        jc[far] = w * (c * cm / rr ** 3).sum(1)
-        b2jm[far] = (p[far] - q[far]) * jm[far]
+        c, wts = _mode_trapezoid(mode)
+        pf, qf = p[far], q[far]
+        # 1/R at the 25 distinct nodes (rows) of every far pair (columns), in place
+        inv = np.multiply.outer(c, qf)
+        np.subtract(pf, inv, out=inv)
+        np.sqrt(inv, out=inv)
+        np.divide(1.0, inv, out=inv)
+        im[far] = wts[0] @ inv
+        inv3 = inv * inv
+        inv3 *= inv
+        jm[far], jc[far] = wts[1:] @ inv3
+        b2jm[far] = (pf - qf) * jm[far]
     near = ~far
     if np.any(near):
         pn, qn = p[near], q[near]
@@ -281,55 +343,66 @@ def _panel_geometry(xn, rn):
 
 
 def _influence(xn, rn, mode):
+    r"""Influence matrices S, D of Fourier mode ``mode`` on the open meridian (xn, rn).
+
+    .. math:: S_{ij} = \int_{panel\ j} S_m(c_i, q)\,ds_q,\qquad
+              D_{ij} = \int_{panel\ j} D_m(c_i, q)\,ds_q
+
+    with the ring kernels :func:`_kernels` (own panel: :func:`_self_kernels`) and the
+    collocation points :math:`c_i` at the panel mid-points.  Far panels: 4-point
+    Gauss-Legendre; the collocation point's own panel and its two neighbours: 12-point
+    Gauss-Legendre clustered cubically towards the collocation point (log-singular kernels;
+    own panel: two halves from the mid-point outwards).  Nodes ``xn, rn`` [m]; returns
+    S [m], D [-] and (panel length [m], n_x, n_r [-], x_c, r_c [m]).  Hess & Smith (1967),
+    sec. 5 (module docstring).
+
+    Each rule is evaluated on whole arrays instead of a loop over its points: the far rule
+    on (Gauss point, collocation point, panel) arrays of shape (4, rows, n) (blocks of
+    collocation rows, :data:`_BLOCK_PAIRS`), the neighbour and own-panel rules in one kernel
+    call each on (point, pair) arrays; the point axis (axis 0) is then summed in order, as
+    the loop over the points did.
+    """
     n = xn.size - 1
     length, tx, tr, nx, nr = _panel_geometry(xn, rn)
     xc, rc = 0.5 * (xn[1:] + xn[:-1]), 0.5 * (rn[1:] + rn[:-1])
-    S = np.zeros((n, n))
-    D = np.zeros((n, n))
-    # far panels: 4 Gauss points per panel, vectorised over all pairs
+    # far panels: 4 Gauss points on every panel j, (4, n) arrays (row k: point k of each panel)
     g, w = _GAUSS_FAR
-    for gk, wk in zip(g, w):
-        xq = xc + 0.5 * gk * length * tx
-        rq = rc + 0.5 * gk * length * tr
-        s, d = _kernels(xc[:, None], rc[:, None], xq[None, :], rq[None, :],
-                        nx[None, :], nr[None, :], mode)
-        S += s * (0.5 * wk * length[None, :])
-        D += d * (0.5 * wk * length[None, :])
-    # self and neighbouring panels: clustered Gauss points towards the collocation point
-    g, w = _GAUSS_NEAR
-    u = 0.5 * (g + 1.0)                        # (0, 1)
-    tcl, wcl = u ** 3, 3.0 * u ** 2 * 0.5 * w   # cubic clustering towards 0, weights on (0,1)
-    for off in (-1, 0, 1):
-        i = np.arange(max(0, -off), min(n, n - off))
-        j = i + off
-        S[i, j] = 0.0
-        D[i, j] = 0.0
-        if off == 0:
-            # two halves from the mid-point outwards
-            pieces = [(+1.0, 0.5), (-1.0, 0.5)]
-        else:
-            pieces = [(None, 1.0)]
-        for sign, frac in pieces:
-            if sign is None:
-                # from the end nearest to the collocation point into the panel
-                start_x = np.where(off > 0, xn[j], xn[j + 1])
-                start_r = np.where(off > 0, rn[j], rn[j + 1])
-                dirn = 1.0 if off > 0 else -1.0
-                for tk, wk in zip(tcl, wcl):
-                    sq = tk * length[j]
-                    xq = start_x + dirn * sq * tx[j]
-                    rq = start_r + dirn * sq * tr[j]
-                    s, d = _kernels(xc[i], rc[i], xq, rq, nx[j], nr[j], mode)
-                    S[i, j] += s * wk * length[j]
-                    D[i, j] += d * wk * length[j]
-            else:
-                for tk, wk in zip(tcl, wcl):
-                    sq = tk * frac * length[j]
-                    xq = xc[j] + sign * sq * tx[j]
-                    rq = rc[j] + sign * sq * tr[j]
-                    s, d = _self_kernels(xc[i], rc[i], xq, rq, nx[j], nr[j], mode)
-                    S[i, j] += s * wk * frac * length[j]
-                    D[i, j] += d * wk * frac * length[j]
+    xq = xc + 0.5 * g[:, None] * length * tx
+    rq = rc + 0.5 * g[:, None] * length * tr
+    wl = (0.5 * w[:, None] * length)[:, None, :]      # Gauss weight times panel length (4, 1, n)
+    S = np.empty((n, n))
+    D = np.empty((n, n))
+    # kernels for every (point k, collocation point i, panel j): shape (4, rows, n), in blocks
+    # of collocation rows (see _BLOCK_PAIRS)
+    blocks = math.ceil(xq.size * n / _BLOCK_PAIRS)
+    rows = math.ceil(n / blocks)                       # equal blocks, the last one shorter
+    for i0 in range(0, n, rows):
+        b = slice(i0, i0 + rows)
+        s, d = _kernels(xc[None, b, None], rc[None, b, None], xq[:, None, :], rq[:, None, :],
+                        nx[None, None, :], nr[None, None, :], mode)
+        S[b] = np.sum(s * wl, axis=0)
+        D[b] = np.sum(d * wl, axis=0)
+    # neighbouring panels j = i - 1 and j = i + 1 (pairs flattened: (2n - 2,)), integrated
+    # from the end nearest to the collocation point into the panel; points along axis 0
+    tcl, wcl = _CLUSTER_T[:, None], _CLUSTER_W[:, None]
+    i = np.concatenate([np.arange(1, n), np.arange(0, n - 1)])
+    j = np.concatenate([np.arange(0, n - 1), np.arange(1, n)])
+    after = j > i                       # panel after i: start at its first node, go forwards
+    start_x = np.where(after, xn[j], xn[j + 1])
+    start_r = np.where(after, rn[j], rn[j + 1])
+    dirn = np.where(after, 1.0, -1.0)
+    sq = tcl * length[j]                # arc length from the start node (12, 2n - 2)
+    s, d = _kernels(xc[i], rc[i], start_x + dirn * sq * tx[j], start_r + dirn * sq * tr[j],
+                    nx[j], nr[j], mode)
+    S[i, j] = np.sum(s * wcl * length[j], axis=0)
+    D[i, j] = np.sum(d * wcl * length[j], axis=0)
+    # own panel: its two halves from the mid-point outwards, (24, n) arrays
+    sq = _HALVES_T * 0.5 * length
+    s, d = _self_kernels(xc, rc, xc + _HALVES_SIGN * sq * tx, rc + _HALVES_SIGN * sq * tr,
+                         nx, nr, mode)
+    own = np.arange(n)
+    S[own, own] = np.sum(s * _HALVES_W * 0.5 * length, axis=0)
+    D[own, own] = np.sum(d * _HALVES_W * 0.5 * length, axis=0)
     return S, D, (length, nx, nr, xc, rc)
 
 
@@ -371,16 +444,19 @@ def _meridian(x, r, panels, area_linear=False):
         raise InputError("profile must be non-decreasing x with finite radii >= 0",
                          key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
     if r[0] > 0:
-        x, r = np.r_[x[0], x], np.r_[0.0, r]
+        x, r = np.concatenate([x[:1], x]), np.concatenate([[0.0], r])
     if r[-1] > 0:
-        x, r = np.r_[x, x[-1]], np.r_[r, 0.0]
+        x, r = np.concatenate([x, x[-1:]]), np.concatenate([r, [0.0]])
     seg = np.hypot(np.diff(x), np.diff(r))
-    keep = np.r_[True, seg > 1e-12 * max(np.ptp(x), 1e-300)]
-    x, r = x[keep], r[keep]
-    s = np.r_[0.0, np.cumsum(np.hypot(np.diff(x), np.diff(r)))]
+    keep = seg > 1e-12 * max(x[-1] - x[0], 1e-300)      # x is non-decreasing
+    if not keep.all():                                  # drop repeated points
+        keep = np.concatenate([[True], keep])
+        x, r = x[keep], r[keep]
+        seg = np.hypot(np.diff(x), np.diff(r))
+    s = np.concatenate([[0.0], np.cumsum(seg)])
     # the profile's corners (flat caps, steps) and the two tips split it into smooth runs;
     # each run gets panels in proportion to its length, cosine-clustered towards its ends
-    knots = np.unique(np.r_[0.0, s[_corners(x, r)], s[-1]])
+    knots = np.unique(np.concatenate([[0.0], s[_corners(x, r)], s[-1:]]))
     runs = np.diff(knots)
     n_run = np.maximum(4, np.round(panels * runs / runs.sum())).astype(int)
     t = [knots[:1]]
@@ -397,7 +473,7 @@ def _corners(x, r):
     d = np.column_stack([np.diff(x), np.diff(r)])
     d /= np.linalg.norm(d, axis=1)[:, None]
     cosang = np.einsum("ij,ij->i", d[1:], d[:-1])
-    return np.r_[False, cosang < np.cos(np.radians(20.0)), False]
+    return np.concatenate([[False], cosang < np.cos(np.radians(20.0)), [False]])
 
 
 def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
@@ -857,20 +933,13 @@ def _influence_closed(xn, rn, mode):
     length, nx, nr, xc, rc = geo
     _, tx, tr, _, _ = _panel_geometry(xn, rn)
     n = xc.size
-    g, w = _GAUSS_NEAR
-    u = 0.5 * (g + 1.0)
-    tcl, wcl = u ** 3, 3.0 * u ** 2 * 0.5 * w
-    # (i, j, start node of the integration, direction along panel j)
+    # (i, j, start node of the integration, direction along panel j); the 12 points at once
     for i, j, x0, r0, dirn in ((n - 1, 0, xn[0], rn[0], 1.0), (0, n - 1, xn[n], rn[n], -1.0)):
-        s_ij = d_ij = 0.0
-        for tk, wk in zip(tcl, wcl):
-            sq = tk * length[j]
-            s, d = _kernels(np.array(xc[i]), np.array(rc[i]), np.array(x0 + dirn * sq * tx[j]),
-                            np.array(r0 + dirn * sq * tr[j]), np.array(nx[j]), np.array(nr[j]),
-                            mode)
-            s_ij += float(s) * wk * length[j]
-            d_ij += float(d) * wk * length[j]
-        S[i, j], D[i, j] = s_ij, d_ij
+        sq = _CLUSTER_T * length[j]
+        s, d = _kernels(xc[i], rc[i], x0 + dirn * sq * tx[j], r0 + dirn * sq * tr[j],
+                        nx[j], nr[j], mode)
+        S[i, j] = np.sum(s * _CLUSTER_W * length[j])
+        D[i, j] = np.sum(d * _CLUSTER_W * length[j])
     return S, D, geo
 
 
