@@ -149,3 +149,24 @@ def test_a_one_strip_member_falls_back_with_a_warning():
     from stripcoef.errors import ModelWarning
     with pytest.warns(ModelWarning, match="single strip"):
         assert decompose(st, RHO) is None
+
+
+def test_overlap_shortcuts_agree_with_the_intersection():
+    """members._overlaps decides most pairs by bounds (bounding boxes above, an inscribed disc
+    below); on random boxes, discs and L-shapes, some touching or barely overlapping, it gives
+    the answer of the polygon intersection itself."""
+    from shapely.geometry import Point, Polygon, box
+
+    from stripcoef.members import _OVERLAP_REL, _overlaps
+    rng = np.random.default_rng(7)
+    shapes = [box(0, 0, 1, 0.3), Point(0, 0).buffer(0.4, 32),
+              Polygon([(0, 0), (1, 0), (1, 0.2), (0.2, 0.2), (0.2, 1), (0, 1)])]
+    for _ in range(300):
+        a, b = rng.choice(len(shapes), 2)
+        dy, dz = rng.uniform(-1.2, 1.2, 2)
+        if rng.random() < 0.2:
+            dz = 0.3                                     # box edges touching: zero area
+        pa = shapes[a]
+        pb = Polygon(np.asarray(shapes[b].exterior.coords) + [dy, dz])
+        exact = pa.intersection(pb).area > _OVERLAP_REL * min(pa.area, pb.area)
+        assert _overlaps(pa, pb) == exact
