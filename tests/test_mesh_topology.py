@@ -110,3 +110,27 @@ def test_rings_integrals_exact_on_square_triangle_hole():
     np.testing.assert_allclose(got[1, 1], 1.0 * (2 + 3 + 2) / 3)        # area * y_centroid
     # triangle: int yz dA = A/12 (sum y_i z_i + sum y_i sum z_i) = (4 + 7 * 2) / 12
     np.testing.assert_allclose(got[1, 5], 18.0 / 12.0, rtol=1e-14)
+
+
+def test_points_cut_from_flat_faces_are_dropped():
+    """A subdivided box cuts into the same 4-point rectangles as the plain box: the points where
+    the cut crosses edges inside a flat face are on a straight line and are dropped, corners
+    and each ring's first point kept."""
+    from stripcoef.geometry.mesh import _corner_points, mesh_body
+    plain = trimesh.creation.box(extents=(1.0, 0.4, 0.2))
+    fine = plain.subdivide().subdivide().subdivide()
+    x = np.linspace(-0.45, 0.45, 7)
+    for mesh in (plain, fine):
+        secs = mesh_body(mesh, origin="file").sections(x)
+        for rings in secs:
+            (ring,) = rings
+            assert len(ring) == 4
+            np.testing.assert_allclose(np.sort(np.abs(ring), axis=0), [[0.2, 0.1]] * 4,
+                                       atol=1e-15)
+    # a square's side points (not corners) go; a fold-back point (a spike) stays
+    t = np.linspace(0, 1, 5)[:-1]
+    sq = np.concatenate([np.c_[t, 0 * t], np.c_[1 + 0 * t, t], np.c_[1 - t, 1 + 0 * t],
+                         np.c_[0 * t, 1 - t]])
+    assert list(np.flatnonzero(_corner_points(sq, np.zeros(len(sq), int)))) == [0, 4, 8, 12]
+    spike = np.array([[0, 0], [2, 0], [1, 0], [1, 1]], float)
+    assert _corner_points(spike, np.zeros(4, int)).all()

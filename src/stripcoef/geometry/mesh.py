@@ -62,6 +62,9 @@ LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254, "ft": 0.3048}
 #: Body lengths outside this range [m] mean a wrong length unit.
 LENGTH_RANGE = (1e-3, 200.0)
 AXES = ("x", "y", "z")
+#: Turning angle [rad] below which a section point between two others is on their straight
+#: line and is dropped from the ring (round-off of a point cut from a flat face).
+COLLINEAR_TOL = 1e-12
 _AXIS_PERM = {"x": (0, 1, 2), "y": (1, 2, 0), "z": (2, 0, 1)}
 
 
@@ -187,6 +190,41 @@ def _chain_cycles(nxt):
         steps *= 2
     order = np.lexsort((rank, lab))
     return order, lab[order]
+
+
+def _corner_points(p, ring, tol: float = COLLINEAR_TOL):
+    r"""Which points of the rings to keep: all but those on a straight line with their two
+    neighbours (a face edge crossing the middle of a flat face's cut, as on a subdivided
+    mesh), which change neither the polygon nor anything computed from it.
+
+    Point i, with edges :math:`\mathbf e_1 = p_i - p_{i-1}` and :math:`\mathbf e_2 = p_{i+1}
+    - p_i`, is dropped when :math:`|\mathbf e_1\times\mathbf e_2| \le tol\,|\mathbf e_1|
+    |\mathbf e_2|` (turning angle below ``tol`` [rad]) and :math:`\mathbf e_1\cdot\mathbf e_2
+    > 0` (no fold-back); each ring's first point is kept (the 2D panels start there).
+    ``p``: (n, 2) points ordered ring by ring; ``ring``: each point's ring label (rings
+    contiguous).
+    """
+    n = len(p)
+    if n == 0:
+        return np.ones(0, dtype=bool)
+    first = np.flatnonzero(np.r_[True, ring[1:] != ring[:-1]])
+    last = np.r_[first[1:], n] - 1
+    y, z = np.ascontiguousarray(p[:, 0]), np.ascontiguousarray(p[:, 1])
+    # e2[i] = p[i+1] - p[i] (wrapping to the ring's first point), e1[i] = e2[i-1] (wrapping)
+    e2y, e2z = np.empty(n), np.empty(n)
+    np.subtract(y[1:], y[:-1], out=e2y[:-1])
+    np.subtract(z[1:], z[:-1], out=e2z[:-1])
+    e2y[last], e2z[last] = y[first] - y[last], z[first] - z[last]
+    e1y, e1z = np.empty(n), np.empty(n)
+    e1y[1:], e1z[1:] = e2y[:-1], e2z[:-1]
+    e1y[first], e1z[first] = e2y[last], e2z[last]
+    cross = e1y * e2z - e1z * e2y
+    dot = e1y * e2y + e1z * e2z
+    # |cross| <= tol |e1| |e2|, squared (no square roots)
+    keep = ~((cross * cross <= tol * tol * (e1y * e1y + e1z * e1z) * (e2y * e2y + e2z * e2z))
+             & (dot > 0))
+    keep[first] = True            # each ring keeps its first point: where its panels start
+    return keep
 
 
 class EdgeTopology:
@@ -316,6 +354,8 @@ def slice_rings(mesh, heights, *, face_label=None, topology=None):
     if face_label is not None:
         node_label = np.asarray(face_label)[face[by_start]]
     order, lab = _chain_cycles(nxt)
+    keep = _corner_points(pts[order], lab)
+    order, lab = order[keep], lab[keep]
     cuts = np.nonzero(np.diff(lab))[0] + 1
     for seg in np.split(order, cuts):
         if seg.size < 3:
