@@ -5,7 +5,8 @@ Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~
 1. A ~100k-face Myring (REMUS) hull as an STL file -> full matrices (M_A, D_L, D_Q, M_RB):
    wall time of each stage (read + repair, slicing into 200 strips, 2D panel method,
    axisymmetric 3D corrections given the 2D sections, the whole stripcoef.assemble.estimate,
-   and file -> matrices) -- best of 3.
+   and file -> matrices) -- best of 3; then the open-frame ROV of mesh_accuracy.py refined
+   to ~139k faces, file -> matrices (its members and junctions), best of 3.
 2. Prolate spheroid L/D = 7.5 as triangle meshes (as from CAD, no symmetry used), every
    non-zero diagonal added-mass term against Lamb's exact values.
    a. Capytaine (direct, no free surface; stripcoef.bem.bem_added_mass) on a ladder of meshes,
@@ -56,7 +57,8 @@ import trimesh  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from mesh_accuracy import FLUID, RHO, lamb  # noqa: E402
-from mesh_shapes import body_of_revolution, myring_profile, spheroid_profile  # noqa: E402
+from mesh_shapes import (body_of_revolution, myring_profile, open_frame_rov,  # noqa: E402
+                         refine_to, spheroid_profile)
 
 from stripcoef.assemble import added_mass, displaced_volume, estimate  # noqa: E402
 from stripcoef.corrections import hull_corrections, strip_section_added_mass  # noqa: E402
@@ -106,16 +108,20 @@ def pipeline(path, strips=200):
             warnings.simplefilter("ignore")
             _, t_est = best(lambda: estimate(v, strips=strips))
 
-        def total():
-            b = load_mesh(path)
-            vv = Vehicle(name="myring", source=str(path), fluid=FLUID, hull=None, bodies=[b],
-                         holes=[], mass=MassSpec(), thrusters=[], reference="center_of_buoyancy")
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                return estimate(vv, strips=strips)      # 3D corrections included (default)
-        _, t_total = best(total)
+        _, t_total = best(lambda: file_to_matrices(path, strips))
     return {"faces": len(body.mesh.faces), "load": t_load, "slice": t_slice, "panel": t_panel,
             "corrections": t_corr, "estimate": t_est, "total": t_total}
+
+
+def file_to_matrices(path, strips=200):
+    """What a user of `stripcoef coefficients MESH` waits for, in process: read + repair the
+    mesh file, then the full model (3D corrections included, the default)."""
+    body = load_mesh(path)
+    v = Vehicle(name=Path(path).stem, source=str(path), fluid=FLUID, hull=None, bodies=[body],
+                holes=[], mass=MassSpec(), thrusters=[], reference="center_of_buoyancy")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return estimate(v, strips=strips)
 
 
 def part1():
@@ -129,6 +135,18 @@ def part1():
           f"2D panel (200 sections) {r['panel']:.3f} s, axisym corrections {r['corrections']:.3f} s, "
           f"assemble.estimate (slice + sections + corrections + damping) {r['estimate']:.3f} s; "
           f"file -> full matrices {r['total']:.3f} s")
+    # an open frame: several members, junctions, sharp corners (the member decomposition)
+    try:
+        rov = refine_to(open_frame_rov(), 100_000)
+    except Exception as exc:                   # no boolean engine: pip install -e '.[bench]'
+        print(f"open-frame ROV: skipped ({type(exc).__name__}: its boolean unions need the "
+              "bench extra)")
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "rov.stl"
+        rov.export(path)
+        _, t_rov = best(lambda: file_to_matrices(path))
+    print(f"open-frame ROV, {len(rov.faces)} faces: file -> full matrices {t_rov:.3f} s")
 
 
 def spheroid_mesh(n_axial, n_circ):
