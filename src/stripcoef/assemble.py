@@ -307,7 +307,7 @@ def strip_added_mass(strips: Strips, rho: float, about, mats=None) -> np.ndarray
     r"""Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
 
     .. math:: M_A^{strip} = \sum_{parts}\sum_k dx_k\, L(X_k)^T H_2^T m_k H_2\, L(X_k),
-              \quad H_2 = egin{bmatrix}1&0&-\Delta z\0&1&\Delta y\0&0&1\end{bmatrix}
+              \quad H_2 = \begin{bmatrix}1&0&-\Delta z\\0&1&\Delta y\\0&0&1\end{bmatrix}
 
     ``mats`` are the parts' section matrices [kg/m, kg, kg m] (:func:`section_matrices`;
     computed if omitted); ``rho`` [kg/m^3]; ``about`` [m]; strip widths dx [m]. Returns M_A
@@ -500,10 +500,8 @@ def _perimeter(part):
 def _ellipse_perimeter(b, h):
     r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
 
-    .. math:: P pprox \pi(b + h)\left(1 + rac{3\lambda}{10 + \sqrt{4 - 3\lambda}}
-ight),
-              \quad \lambda = \left(rac{b-h}{b+h}
-ight)^2
+    .. math:: P \approx \pi(b + h)\left(1 + \frac{3\lambda}{10 + \sqrt{4 - 3\lambda}}\right),
+              \quad \lambda = \left(\frac{b-h}{b+h}\right)^2
 
     Half-axes b, h [m]. Ramanujan (1914), Quart. J. Math. 45, the second approximation.
     """

@@ -660,12 +660,9 @@ def _axial_added_mass(strips, rho, panels):
 def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     r"""3D/strip factors and coupling increment of the body of revolution pi r^2 = per_strip.
 
-    .. math:: f_t = rac{m_{22}^{3D}}{
-ho\sum A\,dx},\quad
-              f_r = rac{m_{66}^{3D}}{
-ho\sum A X^2 dx},\quad
-              \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,
-ho\sum A X\,dx,\quad X = x - x_c
+    .. math:: f_t = \frac{m_{22}^{3D}}{\rho\sum A\,dx},\quad
+              f_r = \frac{m_{66}^{3D}}{\rho\sum A X^2 dx},\quad
+              \Delta_{26} = m_{26}^{3D} - \sqrt{f_t f_r}\,\rho\sum A X\,dx,\quad X = x - x_c
 
     ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
     Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.

@@ -80,11 +80,8 @@ def section_added_mass(part, rho: float, panels: int | None = None) -> np.ndarra
 
     Registry dispatch on ``part.shape`` (``rho`` [kg/m^3]; ``panels``: panels per section of
     the polygon panel method, default adaptive, :func:`panel.discretise`): ellipse
-    :math:`m_{22} = 
-ho\pi h^2,\ m_{33} = 
-ho\pi b^2` (:func:`added_mass.ellipse`), rectangle
-    :math:`m_{22} = C_A
-ho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
+    :math:`m_{22} = \rho\pi h^2,\ m_{33} = \rho\pi b^2` (:func:`added_mass.ellipse`), rectangle
+    :math:`m_{22} = C_A\rho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
     (:func:`panel.added_mass_sections`); each function carries its own reference
     (Newman 1977, sec. 4.13 and table 4.2; DNV-RP-C205 table A-1).
     """
@@ -98,8 +95,7 @@ ho\pi h^2` (:func:`added_mass.rectangle`), polygon: 2D panel method
 def section_drag(part, re_y, re_z):
     r"""2D drag coefficients (cd_y, cd_z) of ``part`` for flow along y and along z [-].
 
-    Used as :math:`f_k = 	frac12
-ho C_{D,k} H_k |V_k| V_k` per unit length, with
+    Used as :math:`f_k = \tfrac12\rho C_{D,k} H_k |V_k| V_k` per unit length, with
     reference heights :math:`H_y = 2h`, :math:`H_z = 2b` [m]; ``re_y``, ``re_z`` [-] on those
     heights. Dispatch on ``part.shape``: ellipse (circle: :func:`drag.circle_cd`, else
     :func:`drag.ellipse_cd` of d/h), rectangle (:func:`drag.rectangle_cd`), polygon
