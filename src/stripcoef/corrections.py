@@ -132,6 +132,23 @@ def _ring_integrals(p, q):
     return a, b2, kk, ee, i0, i1
 
 
+def _inverse_distances(cos_nodes, p, q):
+    r"""1/R and 1/R^3 at the trapezoid nodes of every far ring pair: (nodes, N) arrays,
+
+    .. math:: R_{kn} = \sqrt{P_n - Q_n\cos\theta_k}
+
+    (``cos_nodes`` :math:`\cos\theta_k` [-], ``p``, ``q`` (N,) [m^2]; R [m]).  1/R is built in
+    one buffer (R^2, then R, then 1/R in place: fewer large temporaries).
+    """
+    inv = np.multiply.outer(cos_nodes, q)
+    np.subtract(p, inv, out=inv)
+    np.sqrt(inv, out=inv)
+    np.divide(1.0, inv, out=inv)
+    inv3 = inv * inv
+    inv3 *= inv
+    return inv, inv3
+
+
 def _theta_moments(x, r, xq, rq, m):
     r"""theta-integrals over [0, 2 pi] that the mode-m kernels need (m = 0 or 1):
 
@@ -155,15 +172,8 @@ def _theta_moments(x, r, xq, rq, m):
     i_m, j_m, j_m1 = np.empty_like(p), np.empty_like(p), np.empty_like(p)
     if np.any(far):
         pf, qf = p[far], q[far]                        # all far pairs, flattened: (N,)
-        # 1/R at the trapezoid nodes, one row per distinct cos(theta_k): (9, N), computed in
-        # place (R^2 = P - Q cos, then R, then 1/R in one buffer: fewer large temporaries)
-        inv = np.multiply.outer(_TRAP_COS, qf)
-        np.subtract(pf, inv, out=inv)
-        np.sqrt(inv, out=inv)
-        np.divide(1.0, inv, out=inv)
+        inv, inv3 = _inverse_distances(_TRAP_COS, pf, qf)                # (9, N) each
         i_m[far] = _TRAP_W[m] @ inv                     # sum of w c^m / R
-        inv3 = inv * inv
-        inv3 *= inv
         m3 = _TRAP_W[m:m + 2] @ inv3                    # sums of w c^m / R^3, w c^(m+1) / R^3
         j_m[far], j_m1[far] = m3[0], m3[1]
     near = ~far
@@ -278,14 +288,8 @@ def _mode_kernels(xc, rc, xq, rq, nxq, nrq, mode, own_panel=False):
     if np.any(far):
         c, wts = _mode_trapezoid(mode)
         pf, qf = p[far], q[far]
-        # 1/R at the 25 distinct nodes (rows) of every far pair (columns), in place
-        inv = np.multiply.outer(c, qf)
-        np.subtract(pf, inv, out=inv)
-        np.sqrt(inv, out=inv)
-        np.divide(1.0, inv, out=inv)
+        inv, inv3 = _inverse_distances(c, pf, qf)                        # (25, N) each
         im[far] = wts[0] @ inv
-        inv3 = inv * inv
-        inv3 *= inv
         jm[far], jc[far] = wts[1:] @ inv3
         b2jm[far] = (pf - qf) * jm[far]
     near = ~far
