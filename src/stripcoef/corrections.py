@@ -692,18 +692,12 @@ def roll_symmetry_order(contours, max_order: int = 6) -> int:
     a rigid rotation has no source and its dipole is the sway/heave coupling, so its own far
     field is at least a quadrupole, Newman 1977, sec. 4.13).  ``contours`` (y, z) rings [m].
     """
-    import shapely
     from shapely import affinity
-    from shapely.geometry import Polygon
 
-    from .geometry.mesh import ring_integrals
-    shells = [Polygon(r) for r in contours if ring_integrals(r)[0] > 0]
-    holes = [Polygon(r) for r in contours if ring_integrals(r)[0] < 0]
-    if not shells:
+    from .geometry.mesh import section_geometry
+    geom = section_geometry(contours)
+    if geom.is_empty:
         return 2
-    geom = shapely.union_all(shells)
-    if holes:
-        geom = geom.difference(shapely.union_all(holes))
     c = geom.centroid
     for k in range(max_order, 2, -1):
         rot = affinity.rotate(geom, 360.0 / k, origin=c)

@@ -107,17 +107,8 @@ class Entity:
 
 def _components(rings):
     """Shapely polygons (outer ring with its holes) of one section's rings."""
-    import shapely
-    from shapely.geometry import Polygon
-
-    from .geometry.mesh import ring_integrals
-    shells = [Polygon(r) for r in rings if ring_integrals(r)[0] > 0]
-    holes = [Polygon(r) for r in rings if ring_integrals(r)[0] < 0]
-    if not shells:
-        return []
-    geom = shapely.union_all(shells)
-    if holes:
-        geom = geom.difference(shapely.union_all(holes))
+    from .geometry.mesh import section_geometry
+    geom = section_geometry(rings)
     return [g for g in getattr(geom, "geoms", [geom]) if not g.is_empty and g.area > 0]
 
 

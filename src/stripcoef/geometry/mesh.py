@@ -157,6 +157,26 @@ def section_properties(sections) -> np.ndarray:
                             iy2 - a * yc * yc, iz2 - a * zc * zc])
 
 
+def section_geometry(rings):
+    """One section as shapely geometry: the union of its outer (counter-clockwise) rings
+    minus the union of its holes (clockwise rings); an empty polygon without an outer ring.
+    ``rings``: (n, 2) arrays of (y, z) [m]."""
+    import shapely
+    from shapely.geometry import Polygon
+
+    if not len(rings):
+        return Polygon()
+    area = rings_integrals(rings)[:, 0]
+    shells = [Polygon(r) for r, a in zip(rings, area) if a > 0]
+    holes = [Polygon(r) for r, a in zip(rings, area) if a < 0]
+    if not shells:
+        return Polygon()
+    geom = shapely.union_all(shells)
+    if holes:
+        geom = geom.difference(shapely.union_all(holes))
+    return geom
+
+
 # --------------------------------------------------------------------------- slicing
 
 def _chain_cycles(nxt):
@@ -476,19 +496,10 @@ class MeshBody:
         if len(labels) < 2:
             return [r for r, _ in rings]
         import shapely
-        from shapely.geometry import Polygon
 
-        per_body = []
-        total = 0.0
-        for lab in sorted(labels):
-            mine = [r for r, l_ in rings if l_ == lab]
-            shells = [r for r in mine if ring_integrals(r)[0] > 0]
-            holes = [r for r in mine if ring_integrals(r)[0] < 0]
-            geom = shapely.union_all([Polygon(s) for s in shells]) if shells else Polygon()
-            if holes:
-                geom = geom.difference(shapely.union_all([Polygon(h) for h in holes]))
-            per_body.append(geom)
-            total += geom.area
+        per_body = [section_geometry([r for r, l_ in rings if l_ == lab])
+                    for lab in sorted(labels)]
+        total = sum(geom.area for geom in per_body)
         union = shapely.union_all(per_body)
         if total - union.area <= 1e-9 * max(total, 1e-300):
             return [r for r, _ in rings]
