@@ -5,7 +5,7 @@ import numpy as np
 import trimesh
 import pytest
 
-from stripcoef.geometry.mesh import EdgeTopology, _volume_centroid
+from stripcoef.geometry.mesh import EdgeTopology, _FaceVectors
 
 
 def _edge_set(edges):
@@ -57,15 +57,14 @@ def test_separate_bodies_are_separate_components():
 def test_volume_centroid_is_translation_covariant():
     m = trimesh.creation.icosphere(subdivisions=2)
     m.apply_translation([0.3, -0.2, 0.5])
-    np.testing.assert_allclose(_volume_centroid(m.vertices, m.faces), [0.3, -0.2, 0.5],
+    np.testing.assert_allclose(_FaceVectors(m.vertices, m.faces).centroid(), [0.3, -0.2, 0.5],
                                atol=1e-12)
-    np.testing.assert_allclose(_volume_centroid(m.vertices, m.faces), m.center_mass,
+    np.testing.assert_allclose(_FaceVectors(m.vertices, m.faces).centroid(), m.center_mass,
                                atol=1e-12)
 
 
 def test_nondegenerate_matches_trimesh():
     """The loader's degenerate-face test equals trimesh's nondegenerate_faces(height)."""
-    from stripcoef.geometry.mesh import _nondegenerate
     rng = np.random.default_rng(3)
     m = trimesh.creation.icosphere(subdivisions=2)
     v = np.vstack([m.vertices, [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1e-12, 0]]])
@@ -76,8 +75,8 @@ def test_nondegenerate_matches_trimesh():
     f = np.vstack([m.faces, extra, rng.integers(0, n, size=(50, 3))])
     mesh = trimesh.Trimesh(v, f, process=False)
     for h in (1e-10, 1e-3):
-        np.testing.assert_array_equal(_nondegenerate(v, f, h), mesh.nondegenerate_faces(height=h))
-    assert not _nondegenerate(v, f, 1e-10)[len(m.faces):len(m.faces) + 3].any()
+        np.testing.assert_array_equal(_FaceVectors(v, f).nondegenerate(h), mesh.nondegenerate_faces(height=h))
+    assert not _FaceVectors(v, f).nondegenerate(1e-10)[len(m.faces):len(m.faces) + 3].any()
 
 
 def test_duplicate_face_hidden_in_a_closed_mesh_is_found():

@@ -788,16 +788,6 @@ class _FaceVectors:
         return (la > 1e-8) & (lb > 1e-8) & (twice_area > height * la) & (twice_area > height * lb)
 
 
-def _nondegenerate(vertices, faces, height: float) -> np.ndarray:
-    """:meth:`_FaceVectors.nondegenerate` of the mesh ``(vertices, faces)``."""
-    return _FaceVectors(vertices, faces).nondegenerate(height)
-
-
-def _volume_centroid(vertices, faces) -> np.ndarray:
-    """:meth:`_FaceVectors.centroid` of the mesh ``(vertices, faces)`` [m]."""
-    return _FaceVectors(vertices, faces).centroid()
-
-
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
               transform=None, name: str | None = None, role: str = "hull") -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
