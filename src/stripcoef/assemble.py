@@ -303,6 +303,26 @@ def section_matrices(strips: Strips, rho: float, panels: int | None = None) -> l
     return mats
 
 
+def shift_section_matrices(m, dy, dz) -> np.ndarray:
+    r"""2D section matrices (sway, heave, roll) moved to a reference point offset by
+    (dy, dz) [m] from their own:
+
+    .. math:: m' = H_2^T m H_2,\qquad
+              H_2 = \begin{bmatrix}1&0&-\Delta z\\0&1&\Delta y\\0&0&1\end{bmatrix}
+
+    (a rigid roll p about the new point moves the section's own point by
+    :math:`(-\Delta z\,p, \Delta y\,p)`; Fossen 2011, sec. 7.5.3, in 2D).  ``m`` (..., 3, 3)
+    [kg/m, kg, kg m], ``dy``, ``dz`` broadcasting over its leading axes; returns the same
+    shape.
+    """
+    dy, dz = np.broadcast_arrays(np.asarray(dy, dtype=float), np.asarray(dz, dtype=float))
+    h2 = np.zeros(dy.shape + (3, 3))
+    h2[..., 0, 0] = h2[..., 1, 1] = h2[..., 2, 2] = 1.0
+    h2[..., 0, 2] = -dz
+    h2[..., 1, 2] = dy
+    return np.einsum("...ji,...jl,...lm->...im", h2, m, h2)
+
+
 def strip_added_mass(strips: Strips, rho: float, about, mats=None) -> np.ndarray:
     r"""Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
 
@@ -322,13 +342,7 @@ def strip_added_mass(strips: Strips, rho: float, about, mats=None) -> np.ndarray
     if mats is None:
         mats = section_matrices(strips, rho)
     for p, m in zip(strips.parts, mats):
-        dy = p.y - y0
-        dz = p.z - z0
-        h2 = np.zeros((p.index.size, 3, 3))
-        h2[:, 0, 0] = h2[:, 1, 1] = h2[:, 2, 2] = 1.0
-        h2[:, 0, 2] = -dz
-        h2[:, 1, 2] = dy
-        m = np.einsum("kji,kjl,klm->kim", h2, m, h2)
+        m = shift_section_matrices(m, p.y - y0, p.z - z0)
         L = _strip_operator(strips.x[p.index] - x0)
         total += np.einsum("k,kji,kjl,klm->im", strips.width(p), L, m, L)
     return total

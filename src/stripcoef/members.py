@@ -71,6 +71,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .assemble import shift_section_matrices
 from .strips import Part, Strips
 
 #: Overlap area below which two components of adjacent strips are not connected
@@ -288,7 +289,8 @@ def decompose(strips: Strips, rho: float, joint=None,
         for k, j in enumerate(js):
             for me, mk in member_of.get(float(strips.x[gidx[j]]), []):
                 mp = me.strips.parts[0]
-                excess[k] -= _shift2(me.mats[mk], mp.y[mk] - whole.y[k], mp.z[mk] - whole.z[k])
+                excess[k] -= shift_section_matrices(me.mats[mk], mp.y[mk] - whole.y[k],
+                                                    mp.z[mk] - whole.z[k])
         d = np.clip(np.einsum("kii->ki", excess[:, :2, :2]), 0.0, None)
         # the crossing pieces (one per connected run of crossing material) share the
         # excess in proportion to their section areas [assumption]
@@ -315,7 +317,8 @@ def decompose(strips: Strips, rho: float, joint=None,
     for j in range(part.index.size):
         for e, k in member_of.get(float(strips.x[part.index[j]]), []):
             mp = e.strips.parts[0]
-            resid[j] -= _shift2(e.mats[k], mp.y[k] - part.y[j], mp.z[k] - part.z[j])
+            resid[j] -= shift_section_matrices(e.mats[k], mp.y[k] - part.y[j],
+                                               mp.z[k] - part.z[j])
     resid[:, :2, :2] = 0.0
     resid[sorted(crossing)] = 0.0     # junction runs: their excess is the pieces' (translation)
     entities.append(Entity("roll interaction", strips, resid, joint[:, 2, 2].copy()))
@@ -416,16 +419,6 @@ def _too_short(what, x):
                   f"as one (use more strips for the per-member correction)", ModelWarning,
                   stacklevel=3)
     return None
-
-
-def _shift2(m, dy, dz):
-    r"""2D section matrix about a point offset by (dy, dz) from its own point [m]:
-    :math:`H_2^T m H_2`, :math:`H_2 = [[1, 0, -dz], [0, 1, dy], [0, 0, 1]]`
-    (as in :func:`stripcoef.assemble.strip_added_mass`)."""
-    h2 = np.eye(3)
-    h2[0, 2] = -dz
-    h2[1, 2] = dy
-    return h2.T @ m @ h2
 
 
 def _tracks(polys_by_strip: dict) -> list[dict]:

@@ -344,9 +344,9 @@ def slice_rings(mesh, heights, *, face_label=None, topology=None):
     # vertex k above the plane; since x_min <= h < x_max, at least one vertex is above and one
     # is not, so around the triangle there is exactly one "down" edge (k above, k+1 not) and
     # one "up" edge
-    fv = f[face]
+    tri = f[face]
     xv = v[:, 0]
-    a0, a1, a2 = xv[fv[:, 0]] > h, xv[fv[:, 1]] > h, xv[fv[:, 2]] > h
+    a0, a1, a2 = xv[tri[:, 0]] > h, xv[tri[:, 1]] > h, xv[tri[:, 2]] > h
     k_down = np.where(a0 & ~a1, 0, np.where(a1 & ~a2, 1, 2))
     k_up = np.where(~a0 & a1, 0, np.where(~a1 & a2, 1, 2))
     rows = fe[face]
