@@ -494,11 +494,11 @@ def _perimeter(part):
 
     Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
     :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (outer rings and holes: a duct's inner
-    wall is wetted too; wetted area for friction drag as in Hoerner 1965, ch. 2), from the
-    part's ring set
-    :func:`stripcoef.sections.panel.part_rings`, which the section solvers share; repeated
-    points, closer than 1e-12 of the ring's size, are dropped there); rectangle: P = 4 (b + h), half
-    sizes b, h [m]. Exact geometry (the ellipse: Ramanujan's approximation).
+    wall is wetted too; wetted area for friction drag as in Hoerner 1965, ch. 2), taken from
+    the part's ring set :func:`stripcoef.sections.panel.part_rings`, which the section
+    solvers share (repeated points, closer than 1e-12 of the ring's size, are dropped
+    there); rectangle: P = 4 (b + h), half sizes b, h [m]. Exact geometry (the ellipse:
+    Ramanujan's approximation).
     """
     if part.shape == "ellipse":
         return _ellipse_perimeter(part.half_breadth, part.half_height)
@@ -553,9 +553,8 @@ def _damping(strips: Strips, vehicle, rho, nu, speed, about, regime):
     cf, reg = sdrag.friction_coefficient(re_l, regime=regime)
     cf_lam = float(sdrag.blasius_cf(re_l))
     cf_turb = float(sdrag.ittc57_cf(re_l))
-    n_f = 2.0 + (np.log(sdrag.friction_coefficient(re_l * 1.1, regime=regime)[0])
-                 - np.log(sdrag.friction_coefficient(re_l / 1.1, regime=regime)[0])) / (
-        2 * np.log(1.1))
+    (n_f,) = _local_exponent(lambda r: (sdrag.friction_coefficient(r, regime=regime)[0],), re_l)
+    n_f = float(n_f)
     cond.update({"reynolds_length": re_l, "regime": reg, "cf_laminar": cf_lam,
                  "cf_turbulent": cf_turb, "cf_used": cf})
     hull_parts = [p for p in strips.parts if p.role == "hull"]
