@@ -17,7 +17,7 @@ Everything but the exception classes is imported lazily, so that ``import stripc
 
 from importlib import import_module
 
-from .errors import InputError, StripcoefError, UnreachableError
+from stripcoef.errors import InputError, StripcoefError, UnreachableError
 
 __version__ = "0.1.0"
 

@@ -31,13 +31,13 @@ import warnings
 
 import numpy as np
 
-from .conventions import skew, transform_matrix
-from .errors import InputError, ModelWarning
-from .hull import end_correction_factors, power_law_split
-from .model import HydroModel, rigid_body_mass_matrix
-from .sections import drag as sdrag
-from .sections import section_added_mass, section_drag
-from .strips import Strips
+from stripcoef.conventions import skew, transform_matrix
+from stripcoef.errors import InputError, ModelWarning
+from stripcoef.hull import end_correction_factors, power_law_split
+from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.sections import drag as sdrag
+from stripcoef.sections import section_added_mass, section_drag
+from stripcoef.strips import Strips
 
 
 # ---------------------------------------------------------------------------
@@ -232,7 +232,7 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
     Hull radius R and tip radius a [m], rho [kg/m^3]; m_n [kg/m], m_44 [kg m] per unit
     length, written into ``mats`` (per part, (k, 3, 3) [kg/m, kg, kg m]).
     """
-    from .sections.added_mass import circle_with_fins
+    from stripcoef.sections.added_mass import circle_with_fins
 
     hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
     fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
@@ -419,8 +419,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     ----------
     See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
     """
-    from .corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
-    from .members import member_added_mass
+    from stripcoef.corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
+    from stripcoef.members import member_added_mass
 
     panels = _panel_count(correction_panels, DEFAULT_PANELS, "correction_panels")
     section_panels = _panel_count(section_panels, None, "section_panels")
@@ -503,7 +503,7 @@ def _perimeter(part):
     if part.shape == "ellipse":
         return _ellipse_perimeter(part.half_breadth, part.half_height)
     if part.shape == "polygon":
-        from .sections.panel import part_rings
+        from stripcoef.sections.panel import part_rings
         if not part.contours:
             return np.zeros(part.index.size)
         rs = part_rings(part)

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import InputError
+from stripcoef.errors import InputError
 
 #: Capytaine's DOF names in stripcoef's order (surge, sway, heave, roll, pitch, yaw).
 CAPYTAINE_DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -53,7 +53,7 @@ def _capytaine():
 def _as_trimesh(mesh_or_path, load_kw):
     import trimesh
 
-    from .geometry.mesh import MeshBody, load_mesh
+    from stripcoef.geometry.mesh import MeshBody, load_mesh
     if isinstance(mesh_or_path, MeshBody):
         return mesh_or_path.mesh
     if isinstance(mesh_or_path, trimesh.Trimesh):
@@ -137,8 +137,8 @@ def bem_model_dict(vehicle, args) -> dict:
     The strip-theory model (damping, rigid-body terms) with its added-mass matrix
     replaced by the BEM one about the same reference point.
     """
-    from .commands.coefficients import estimate_from_args
-    from .geometry.mesh import MeshBody
+    from stripcoef.commands.coefficients import estimate_from_args
+    from stripcoef.geometry.mesh import MeshBody
 
     meshes = [b for b in vehicle.bodies if isinstance(b, MeshBody)]
     if len(meshes) != 1 or len(vehicle.bodies) != 1:

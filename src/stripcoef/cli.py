@@ -20,7 +20,7 @@ import warnings
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-from .errors import StripcoefError
+from stripcoef.errors import StripcoefError
 
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
@@ -35,7 +35,7 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="stripcoef",
                      description="Hydrodynamic models of underwater vehicles by strip theory.")
-    from . import __version__
+    from stripcoef import __version__
     parser.add_argument("--version", action="version", version=f"stripcoef {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True

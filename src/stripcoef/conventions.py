@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import InputError
+from stripcoef.errors import InputError
 
 DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 VELOCITIES = ("u", "v", "w", "p", "q", "r")

@@ -71,7 +71,7 @@ import math
 import numpy as np
 from scipy.special import ellipe, ellipk
 
-from .errors import InputError
+from stripcoef.errors import InputError
 
 #: Lateral-equivalent bodies closed to r = 0 at the ends (False: blunt ends keep their flat faces,
 #: which rock in pitch and yaw; measured: no difference on the open-frame ROV benchmark).
@@ -555,7 +555,7 @@ def strip_section_added_mass(strips, rho: float) -> np.ndarray:
     are used by :func:`hull_corrections` (they do not depend on the roll reference point).
     [assumption] sections add without interaction (strip theory, Newman 1977, sec. 7.4).
     """
-    from .sections import section_added_mass
+    from stripcoef.sections import section_added_mass
     out = np.zeros((strips.n, 3, 3))
     for p in strips.parts:
         np.add.at(out, p.index, section_added_mass(p, rho) * _coverage(p)[:, None, None])
@@ -694,7 +694,7 @@ def roll_symmetry_order(contours, max_order: int = 6) -> int:
     """
     from shapely import affinity
 
-    from .geometry.mesh import section_geometry
+    from stripcoef.geometry.mesh import section_geometry
     geom = section_geometry(contours)
     if geom.is_empty:
         return 2
@@ -988,7 +988,7 @@ def bore_area(strips):
     a bore along the whole body (a duct, a ring) gets the hollow equivalent bodies of
     :func:`hull_corrections`, anything else the solid ones.
     """
-    from .geometry.mesh import ring_integrals
+    from stripcoef.geometry.mesh import ring_integrals
     if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
         return None
     several = np.zeros(strips.n)        # a hole needs a second ring round it in the section

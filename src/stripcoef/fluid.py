@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ExtrapolationWarning, InputError
+from stripcoef.errors import ExtrapolationWarning, InputError
 
 RHO_SEAWATER = 1025.0
 """Default sea-water density [kg/m^3] (Fossen 2011; ITTC nominal)."""

@@ -58,8 +58,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq, linprog
 
-from .conventions import DOF, FORCES
-from .errors import InputError, ModelWarning, UnreachableError
+from stripcoef.conventions import DOF, FORCES
+from stripcoef.errors import InputError, ModelWarning, UnreachableError
 
 #: Rows that have no hydrostatic stiffness and must always balance.
 _ALWAYS = (0, 1, 2, 5)
@@ -859,7 +859,7 @@ def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = No
     except ImportError:
         raise InputError("plotting needs matplotlib", key="--plot", value=str(path),
                          expected="pip install 'stripcoef[plot]'") from None
-    from .io import atomic_path
+    from stripcoef.io import atomic_path
 
     if not result.turning:
         reason = "; ".join(n for n in result.notes if n.startswith("unreachable")) or "no radii"

@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .conventions import FORCES, POSE, VELOCITIES
-from .errors import InputError
-from .io import read_text, write_text
+from stripcoef.conventions import FORCES, POSE, VELOCITIES
+from stripcoef.errors import InputError
+from stripcoef.io import read_text, write_text
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
 COMMAND_PREFIX = "n_"

@@ -71,8 +71,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assemble import shift_section_matrices
-from .strips import Part, Strips
+from stripcoef.assemble import shift_section_matrices
+from stripcoef.strips import Part, Strips
 
 #: Overlap area below which two components of adjacent strips are not connected
 #: (relative to the smaller component's area).
@@ -108,7 +108,7 @@ class Entity:
 
 def _components(rings):
     """Shapely polygons (outer ring with its holes) of one section's rings."""
-    from .geometry.mesh import section_geometry
+    from stripcoef.geometry.mesh import section_geometry
     geom = section_geometry(rings)
     return [g for g in getattr(geom, "geoms", [geom]) if not g.is_empty and g.area > 0]
 
@@ -179,7 +179,7 @@ def _junction_runs(comps):
 
 
 def _polygon_part(name, index, polys_per_strip, length, role):
-    from .geometry.mesh import section_properties
+    from stripcoef.geometry.mesh import section_properties
     contours = [_rings(ps) for ps in polys_per_strip]
     props = section_properties(contours)
     return Part(name=name, shape="polygon", index=np.asarray(index), y=props[:, 1],
@@ -208,8 +208,8 @@ def decompose(strips: Strips, rho: float, joint=None,
     -------
     list of Entity or None
     """
-    from .sections import section_added_mass
-    from .sections.panel import added_mass_sections
+    from stripcoef.sections import section_added_mass
+    from stripcoef.sections.panel import added_mass_sections
 
     if len(strips.parts) != 1 or strips.parts[0].shape != "polygon" or strips.holes:
         return None
@@ -386,8 +386,8 @@ def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
     now +0.10 kg).  ``polys_per_strip``: the piece's shapely
     polygons per strip [m]; ``length`` l [m].  Returns (s_y, s_z) [-].
     """
-    from .hull import lamb_k_factors
-    from .geometry.mesh import rings_integrals
+    from stripcoef.hull import lamb_k_factors
+    from stripcoef.geometry.mesh import rings_integrals
     rings = [np.asarray(p.exterior.coords)[:-1] for ps in polys_per_strip for p in ps]
     ints = rings_integrals(rings)                       # per ring: A, S_y, S_z, Iyy, Izz, Iyz
     a = float(np.abs(ints[:, 0]).sum())
@@ -414,7 +414,7 @@ def _too_short(what, x):
     the caller use the single equivalent body of the whole body (nothing is dropped)."""
     import warnings
 
-    from .errors import ModelWarning
+    from stripcoef.errors import ModelWarning
     warnings.warn(f"a {what} at x = {x:.4g} m spans a single strip: the whole body is corrected "
                   f"as one (use more strips for the per-member correction)", ModelWarning,
                   stacklevel=3)
@@ -476,9 +476,9 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
     ----------
     Module docstring; Fossen (2011) sec. 7.5.3.
     """
-    from .assemble import strip_added_mass
-    from .conventions import transform_matrix
-    from .corrections import (DEFAULT_PANELS, _polygon_roll_mode, apply_corrections,
+    from stripcoef.assemble import strip_added_mass
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.corrections import (DEFAULT_PANELS, _polygon_roll_mode, apply_corrections,
                               hull_corrections, roll_relief)
 
     panels = DEFAULT_PANELS if panels is None else int(panels)

@@ -18,10 +18,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .conventions import DOF, sname_coefficients, skew, transform_matrix
-from .errors import ModelWarning
-from .fluid import G
-from .thrusters import Thruster, allocation_matrix
+from stripcoef.conventions import DOF, sname_coefficients, skew, transform_matrix
+from stripcoef.errors import ModelWarning
+from stripcoef.fluid import G
+from stripcoef.thrusters import Thruster, allocation_matrix
 
 
 def coriolis_from_mass(mass_matrix, nu) -> np.ndarray:
@@ -255,7 +255,7 @@ class HydroModel:
         for t in self.thrusters:
             if t.name == name:
                 return t
-        from .errors import unknown_name
+        from stripcoef.errors import unknown_name
         raise unknown_name("thruster", name, [t.name for t in self.thrusters])
 
     def coefficients(self) -> dict:

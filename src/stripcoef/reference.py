@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from .errors import InputError
+from stripcoef.errors import InputError
 
 #: Columns every reference table has, in this order.
 COLUMNS: tuple[str, ...] = ("name", "value", "unit", "sign_convention", "provenance", "source",

@@ -39,9 +39,9 @@ from typing import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
-from .errors import InputError, UnreachableError, unknown_name
-from .logs import COMMAND_PREFIX, Log
+from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
+from stripcoef.errors import InputError, UnreachableError, unknown_name
+from stripcoef.logs import COMMAND_PREFIX, Log
 
 INTERPOLATIONS = ("previous", "linear")
 
@@ -265,7 +265,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     alloc = model.allocation()
     effect_terms = []
     if effects and model.effects:
-        from .identify.effects import effect_forces  # calibrated effects (issue 7)
+        from stripcoef.identify.effects import effect_forces  # calibrated effects (issue 7)
         effect_terms = effect_forces(model)
     nthr = len(thrusters)
 

@@ -15,7 +15,7 @@ from importlib import resources
 
 import numpy as np
 
-from .errors import ExtrapolationWarning
+from stripcoef.errors import ExtrapolationWarning
 
 
 @dataclass(frozen=True)

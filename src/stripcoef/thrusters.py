@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .conventions import skew
+from stripcoef.conventions import skew
 
 
 @dataclass(frozen=True)

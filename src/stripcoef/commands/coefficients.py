@@ -8,10 +8,10 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..conventions import DOF
-from ..errors import InputError
-from ..fluid import Fluid, RHO_SEAWATER, NU_SEAWATER
-from ..io import write_text
+from stripcoef.conventions import DOF
+from stripcoef.errors import InputError
+from stripcoef.fluid import Fluid, RHO_SEAWATER, NU_SEAWATER
+from stripcoef.io import write_text
 
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -101,12 +101,12 @@ def fluid_from_args(args, default: Fluid | None) -> Fluid | None:
 
 def load_any_vehicle(args):
     """A Vehicle from a YAML vehicle file or from a mesh (with the mesh options)."""
-    from ..geometry.vehicle import MassSpec, Vehicle, load_vehicle
+    from stripcoef.geometry.vehicle import MassSpec, Vehicle, load_vehicle
 
     path = Path(args.vehicle)
     if path.suffix.lower() in MESH_SUFFIXES:
         try:
-            from ..geometry import mesh as mesh_mod
+            from stripcoef.geometry import mesh as mesh_mod
         except ImportError:
             raise InputError("mesh input is not available in this installation",
                              file=str(path), expected="a vehicle file (.yaml)") from None
@@ -123,7 +123,7 @@ def load_any_vehicle(args):
 
 def estimate_from_args(args):
     """The HydroModel the options ask for (shared by the commands that take a VEHICLE)."""
-    from ..assemble import estimate
+    from stripcoef.assemble import estimate
 
     vehicle = load_any_vehicle(args)
     fluid = fluid_from_args(args, vehicle.fluid)
@@ -187,7 +187,7 @@ def format_table(model) -> str:
 
 def run(args) -> int:
     if args.method == "bem":
-        from .. import bem  # optional extra
+        from stripcoef import bem  # optional extra
 
         vehicle = load_any_vehicle(args)
         data = bem.bem_model_dict(vehicle, args)

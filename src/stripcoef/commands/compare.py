@@ -7,10 +7,10 @@ import time
 
 import numpy as np
 
-from ..conventions import added_mass_name
-from ..errors import InputError
-from ..io import write_text
-from .coefficients import add_fluid_arguments, add_mesh_arguments
+from stripcoef.conventions import added_mass_name
+from stripcoef.errors import InputError
+from stripcoef.io import write_text
+from stripcoef.commands.coefficients import add_fluid_arguments, add_mesh_arguments
 
 
 def add_parser(sub):
@@ -59,10 +59,10 @@ def compare_rows(strip, bem, *, rel_zero: float = 1e-3):
 
 
 def run(args) -> int:
-    from .. import bem
-    from ..assemble import estimate
-    from ..geometry.mesh import MeshBody
-    from .coefficients import fluid_from_args, load_any_vehicle
+    from stripcoef import bem
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.mesh import MeshBody
+    from stripcoef.commands.coefficients import fluid_from_args, load_any_vehicle
 
     bem._capytaine()                                   # fail early, before any work
     t0 = time.perf_counter()

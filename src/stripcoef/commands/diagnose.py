@@ -8,7 +8,7 @@ import json
 import sys
 from pathlib import Path
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 
 def add_parser(subparsers):
@@ -36,12 +36,12 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from ..identify.diagnose import DEFAULT_WINDOW, diagnose, public
-    from ..identify.diagnose_report import markdown_report, text_summary
-    from ..identify.effects import get_effect
-    from ..logs import read_log
-    from ..export import write_export
-    from ..modelfile import load_model
+    from stripcoef.identify.diagnose import DEFAULT_WINDOW, diagnose, public
+    from stripcoef.identify.diagnose_report import markdown_report, text_summary
+    from stripcoef.identify.effects import get_effect
+    from stripcoef.logs import read_log
+    from stripcoef.export import write_export
+    from stripcoef.modelfile import load_model
 
     if args.window is None:
         args.window = DEFAULT_WINDOW

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import sys
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 
 def add_parser(subparsers):
-    from ..export import FORMATS
+    from stripcoef.export import FORMATS
     p = subparsers.add_parser(
         "export", help="export the model to a simulator or data format",
         description="Export a vehicle's hydrodynamic model to a simulator or data format. "
@@ -40,8 +40,8 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from ..export import export_model, format_module, write_export
-    from ..modelfile import load_model
+    from stripcoef.export import export_model, format_module, write_export
+    from stripcoef.modelfile import load_model
 
     module = format_module(args.to)            # unknown format: fail before any work
     if module.BINARY and not args.output:

@@ -9,10 +9,10 @@ from __future__ import annotations
 import json
 import math
 
-from ..io import write_text
-from ..logs import read_log
+from stripcoef.io import write_text
+from stripcoef.logs import read_log
 
-from ..identify.api import METHODS
+from stripcoef.identify.api import METHODS
 
 
 def add_parser(sub):
@@ -129,8 +129,8 @@ def format_comparison(cmp) -> str:
 
 def run_identify(args):
     """Run the method; returns (fit, comparison or None)."""
-    from ..identify.api import identify_log
-    from ..identify.inputs import vehicle_model
+    from stripcoef.identify.api import identify_log
+    from stripcoef.identify.inputs import vehicle_model
 
     log = read_log(args.log)
     vehicle = vehicle_model(args.vehicle) if args.vehicle else None
@@ -163,7 +163,7 @@ def run(args) -> int:
         text = format_comparison(cmp) if cmp is not None else ""
         text += ("\n" if cmp is not None else "") + format_fit(fit, source=args.log)
     if args.plot:
-        from ..identify.plots import plot_fit
+        from stripcoef.identify.plots import plot_fit
         plot_fit(fit, args.plot)
     if args.output:
         write_text(args.output, text, key="--output")

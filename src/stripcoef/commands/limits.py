@@ -8,8 +8,8 @@ import json
 import math
 from pathlib import Path
 
-from ..errors import InputError
-from ..modelfile import load_model
+from stripcoef.errors import InputError
+from stripcoef.modelfile import load_model
 
 
 def add_parser(subparsers) -> None:
@@ -90,7 +90,7 @@ def format_table(result) -> str:
 
 
 def run(args) -> int:
-    from ..limits import check_model, parse_radii, plot_limits, solve_limits
+    from stripcoef.limits import check_model, parse_radii, plot_limits, solve_limits
 
     radii = parse_radii(args.radii) if args.radii is not None else None
     if args.turn_speed is not None and not (args.turn_speed > 0 and math.isfinite(args.turn_speed)):

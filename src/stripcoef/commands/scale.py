@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..errors import InputError
-from ..io import read_text, write_text
+from stripcoef.errors import InputError
+from stripcoef.io import read_text, write_text
 
 
 def add_parser(sub):
@@ -27,7 +27,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from ..identify.scaling import scale_result
+    from stripcoef.identify.scaling import scale_result
     path = Path(args.result)
     text = read_text(path, kind="identification result")
     try:

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..conventions import FORCES
-from ..errors import InputError
-from ..logs import KNOWN_COLUMNS, read_log
+from stripcoef.conventions import FORCES
+from stripcoef.errors import InputError
+from stripcoef.logs import KNOWN_COLUMNS, read_log
 
 
 def add_parser(subparsers):
@@ -88,8 +88,8 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
 
 
 def run(args) -> int:
-    from ..modelfile import load_model
-    from ..simulate import simulate
+    from stripcoef.modelfile import load_model
+    from stripcoef.simulate import simulate
 
     log = read_log(args.inputs, required=("t",))
     model = load_model(args.vehicle)

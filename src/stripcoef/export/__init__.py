@@ -21,11 +21,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import InputError, unknown_name
-from ..io import write_bytes, write_text
-from ..model import HydroModel
-from . import csvtable, gazebo, jsondata, mss, npzarrays, pymodule, uuv, yamldata
-from ._common import (POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point,
+from stripcoef.errors import InputError, unknown_name
+from stripcoef.io import write_bytes, write_text
+from stripcoef.model import HydroModel
+from stripcoef.export import csvtable, gazebo, jsondata, mss, npzarrays, pymodule, uuv, yamldata
+from stripcoef.export._common import (POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point,
                       trap)
 
 #: The registry of export formats: name -> module.

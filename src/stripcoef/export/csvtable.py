@@ -23,9 +23,9 @@ import io
 
 import numpy as np
 
-from ..conventions import DOF
-from ..errors import InputError
-from ._common import ExportView, fmt
+from stripcoef.conventions import DOF
+from stripcoef.errors import InputError
+from stripcoef.export._common import ExportView, fmt
 
 NAME = "csv"
 DESCRIPTION = "plain CSV table quantity,row,col,value,unit (matrices, mass properties, thrusters)"

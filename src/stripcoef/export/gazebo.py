@@ -50,7 +50,7 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from ._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines,
+from stripcoef.export._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines,
                       is_symmetric, trap, xml_comment)
 
 NAME = "gazebo"

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 
-from ._common import ExportView, plain
+from stripcoef.export._common import ExportView, plain
 
 NAME = "json"
 DESCRIPTION = "HydroModel.to_dict() as JSON (FRD; read back with HydroModel.from_dict)"

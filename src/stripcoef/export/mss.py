@@ -34,8 +34,8 @@ import re
 
 import numpy as np
 
-from ..errors import InputError
-from ._common import ExportView, clean, fmt, header_lines
+from stripcoef.errors import InputError
+from stripcoef.export._common import ExportView, clean, fmt, header_lines
 
 NAME = "mss"
 DESCRIPTION = "MATLAB/Octave function file in the style of Fossen's MSS vehicle models (FRD, CO)"

@@ -17,8 +17,8 @@ import json
 
 import numpy as np
 
-from ..conventions import DOF
-from ._common import ExportView, plain
+from stripcoef.conventions import DOF
+from stripcoef.export._common import ExportView, plain
 
 NAME = "npz"
 DESCRIPTION = "numpy .npz archive of the matrices (binary, needs -o)"

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..conventions import DOF, sname_coefficients
-from ._common import ExportView, fmt, header_lines
+from stripcoef.conventions import DOF, sname_coefficients
+from stripcoef.export._common import ExportView, fmt, header_lines
 
 NAME = "python"
 DESCRIPTION = "importable Python module with the matrices as numpy arrays"

@@ -44,8 +44,8 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from ..conventions import quadratic_damping_name
-from ._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines, trap,
+from stripcoef.conventions import quadratic_damping_name
+from stripcoef.export._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines, trap,
                       xml_comment)
 
 NAME = "uuv"

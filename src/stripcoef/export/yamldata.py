@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import yaml
 
-from ._common import ExportView, header_lines, plain
+from stripcoef.export._common import ExportView, header_lines, plain
 
 NAME = "yaml"
 DESCRIPTION = "HydroModel.to_dict() as YAML (FRD; read back with HydroModel.from_dict)"

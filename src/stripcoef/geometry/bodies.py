@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..strips import HoleCut, Part
-from .profiles import Profile
+from stripcoef.strips import HoleCut, Part
+from stripcoef.geometry.profiles import Profile
 
 
 def _inside(x, lo, hi):

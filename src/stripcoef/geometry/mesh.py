@@ -52,8 +52,8 @@ import numpy as np
 
 import warnings
 
-from ..errors import InputError, ModelWarning
-from ..strips import Part, Strips, uniform_stations
+from stripcoef.errors import InputError, ModelWarning
+from stripcoef.strips import Part, Strips, uniform_stations
 
 #: File extensions read through trimesh.
 MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".glb")
@@ -473,7 +473,7 @@ class MeshBody:
     def _slice_fallback(self, x):
         # trimesh's slicer, for meshes whose cut edges do not chain (non-manifold edges);
         # ring orientation then comes from nesting, not from the winding
-        from ..sections.panel import orient_contours
+        from stripcoef.sections.panel import orient_contours
 
         out = []
         for xi in x:
@@ -573,7 +573,7 @@ class MeshBody:
 
 
 def _has_sharp_corners(rings) -> bool:
-    from ..sections.panel import _corner_flags, orient_contours
+    from stripcoef.sections.panel import _corner_flags, orient_contours
     try:
         return any(_corner_flags(r).any() for r in orient_contours(rings))
     except InputError:

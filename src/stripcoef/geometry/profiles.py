@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 #: Registry of segment types: name -> (evaluator, required shape keys)
 SEGMENT_TYPES = ("cylinder", "cone", "ellipsoid_nose", "ellipsoid_tail", "myring_nose",

@@ -16,13 +16,13 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..errors import InputError
-from ..fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
-from ..io import read_text
-from ..strips import Strips, uniform_stations
-from ..thrusters import Thruster
-from .bodies import Box, Cylinder, Fin, Hole, Hull
-from .profiles import SEGMENT_TYPES, Segment, check_contiguous
+from stripcoef.errors import InputError
+from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from stripcoef.io import read_text
+from stripcoef.strips import Strips, uniform_stations
+from stripcoef.thrusters import Thruster
+from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
+from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous
 
 #: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
 DEFAULT_STRIPS = 1000
@@ -292,7 +292,7 @@ def _appendage(r: _Reader, data, path):
                    chord=r.number(data, "chord", path, positive=True, required=True),
                    thickness=r.number(data, "thickness", path, positive=True, default=0.01))
     # a mesh appendage (or hull) - needs the mesh module
-    from . import mesh as mesh_mod  # noqa: PLC0415  (optional path)
+    from stripcoef.geometry import mesh as mesh_mod  # noqa: PLC0415  (optional path)
     mfile = r.string(data, "mesh", path, required=True)
     mpath = Path(r.file).parent / mfile
     return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,

@@ -7,6 +7,6 @@
 - :mod:`.scaling` - similitude from a scaled model to full scale (seed 003, eqs. 8-10)
 """
 
-from .estimators import FitResult, linear_lstsq, residual_autocorrelation, runs_test_z
+from stripcoef.identify.estimators import FitResult, linear_lstsq, residual_autocorrelation, runs_test_z
 
 __all__ = ["FitResult", "linear_lstsq", "residual_autocorrelation", "runs_test_z"]

@@ -4,8 +4,8 @@ a :class:`FitResult` out.  The CLI (``stripcoef identify``) is a thin layer over
 
 from __future__ import annotations
 
-from ..conventions import DOF, parse_dof
-from ..errors import InputError, unknown_name
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.errors import InputError, unknown_name
 
 METHODS = ("steady", "one-step", "pendulum", "torsion")
 
@@ -38,8 +38,8 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
     """
     if method not in METHODS:
         raise unknown_name("identification method", method, METHODS, key="--method")
-    from . import onestep, pendulum, steady        # scipy.signal etc. only when used
-    from .inputs import applied_force, horizontal_command
+    from stripcoef.identify import onestep, pendulum, steady        # scipy.signal etc. only when used
+    from stripcoef.identify.inputs import applied_force, horizontal_command
     if method in ("steady", "one-step"):
         name = DOF[parse_dof(dof or ("heave" if method == "steady" else "yaw"))]
         i = DOF.index(name)

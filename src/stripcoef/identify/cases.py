@@ -30,14 +30,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fluid import G
-from ..logs import Log
-from ..model import HydroModel, rigid_body_mass_matrix
-from ..simulate import simulate
-from .diagnose import diagnose, fit_effects, public
-from .effects import get_effect
-from .experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
-from .synthetic import add_noise, rov_model
+from stripcoef.fluid import G
+from stripcoef.logs import Log
+from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.simulate import simulate
+from stripcoef.identify.diagnose import diagnose, fit_effects, public
+from stripcoef.identify.effects import get_effect
+from stripcoef.identify.experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
+from stripcoef.identify.synthetic import add_noise, rov_model
 
 #: seed 000, sec. IV.A: predicted and measured surge speed at n = 60 [m/s]
 VIDEORAY_PREDICTED = 0.51

@@ -46,10 +46,10 @@ import math
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
-from ..conventions import DOF, parse_dof
-from ..errors import InputError
-from .effects import EFFECTS, WindowData, coefficient_column, get_effect, window_data
-from .estimators import residual_autocorrelation, runs_test_z
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.errors import InputError
+from stripcoef.identify.effects import EFFECTS, WindowData, coefficient_column, get_effect, window_data
+from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
 
 #: 1-sigma relative bands on the prior's coefficients (see module docstring).
 BANDS = {"translational": {"M": 0.3, "D_L": 0.6, "D_Q": 0.3},
@@ -508,7 +508,7 @@ def _generic_basis(data: WindowData, dof: int):
     psi = data.eta[:, 5]
     if np.ptp(psi) > 0.1:
         cols += [data.mean(np.cos(psi)), data.mean(np.sin(psi))]
-    from ..logs import KNOWN_COLUMNS
+    from stripcoef.logs import KNOWN_COLUMNS
     for name, x in data.columns.items():
         if name not in KNOWN_COLUMNS and not name.startswith("n_") and np.std(x) > 0:
             cols += [data.mean(x)]
@@ -894,10 +894,10 @@ RESIMULATION_HORIZON = 10.0
 def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     """RMS differences between the logged and the re-simulated velocities of ``dofs``
     (list) over segments of ``horizon`` seconds, or None if a simulation diverges."""
-    from ..conventions import POSE, VELOCITIES
-    from ..errors import StripcoefError
-    from ..logs import KNOWN_COLUMNS
-    from ..simulate import simulate
+    from stripcoef.conventions import POSE, VELOCITIES
+    from stripcoef.errors import StripcoefError
+    from stripcoef.logs import KNOWN_COLUMNS
+    from stripcoef.simulate import simulate
 
     t = log["t"]
     cmds = log.commands()

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import write_bytes, write_text
-from .diagnose import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
+from stripcoef.io import write_bytes, write_text
+from stripcoef.identify.diagnose import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, _fit, public)
 
 
@@ -69,7 +69,7 @@ def _plot(result, dof, path):
     cfg = r["_final_config"]
     data = cfg.data
     tw = 0.5 * (data.t[data.i0] + data.t[data.i1])
-    from .diagnose import _Config
+    from stripcoef.identify.diagnose import _Config
     curves = [("prior", r["_e0"])]
     for k in range(len(cfg.terms) + 1):
         c = _Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd, cfg.terms[:k])

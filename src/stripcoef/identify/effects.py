@@ -38,8 +38,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..conventions import DOF, parse_dof
-from ..errors import InputError, unknown_name
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.errors import InputError, unknown_name
 
 TRANSLATIONAL = (0, 1, 2)
 #: 1-sigma relative uncertainty of the thrust maps (bench-measured C_t) [-]
@@ -291,7 +291,7 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     InputError
         No time column, no velocities, no inputs, or too few windows (< 12).
     """
-    from ..conventions import POSE, VELOCITIES
+    from stripcoef.conventions import POSE, VELOCITIES
 
     t = log.require("t")
     present = [v for v in VELOCITIES if v in log]
@@ -826,7 +826,7 @@ class Current(Effect):
         e = _unit_vec(dof)
 
         def f(time, eta, nu, inputs):
-            from ..conventions import rotation_matrix, skew
+            from stripcoef.conventions import rotation_matrix, skew
             model = inputs["model"]
             rt = rotation_matrix(eta[3], eta[4], eta[5]).T
             nuc = np.concatenate([rt @ v, np.zeros(3)])

@@ -45,7 +45,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 COVARIANCES = ("iid", "hac", "ma1")
 

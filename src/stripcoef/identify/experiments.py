@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..fluid import G, RHO_SEAWATER
-from ..logs import Log
-from .onestep import simulate_state
+from stripcoef.fluid import G, RHO_SEAWATER
+from stripcoef.logs import Log
+from stripcoef.identify.onestep import simulate_state
 
 #: Lead density [kg/m^3] (pure lead, CRC Handbook).
 RHO_LEAD = 11340.0
@@ -70,7 +70,7 @@ def romeo_experiment(index: int, seed: int, *, forces=ROMEO_FORCES, truth=ROMEO_
     -------
     SteadyPoints, true net weight [N]
     """
-    from .steady import SteadyPoints
+    from stripcoef.identify.steady import SteadyPoints
     rng = np.random.default_rng(seed)
     weight = romeo_weights()[index - 1]
     f = np.concatenate([np.asarray(forces), -np.asarray(forces)])
@@ -225,8 +225,8 @@ def romeo_hydromodel(net_weight: float, *, truth=ROMEO_TRUTH):
 
     Net weight W = m g - rho g V [N] (down positive); CB 0.1 m above the CG.
     """
-    from ..model import HydroModel, rigid_body_mass_matrix
-    from ..thrusters import Thruster
+    from stripcoef.model import HydroModel, rigid_body_mass_matrix
+    from stripcoef.thrusters import Thruster
     d_l = np.diag([truth["k_w"] if v is None else v for v in ROMEO_DAMPING])
     d_q = np.diag([truth["k_ww"] if v is None else v for v in ROMEO_QDAMPING])
     volume = (ROMEO_MASS * G - net_weight) / (RHO_SEAWATER * G)
@@ -257,7 +257,7 @@ def romeo_heave_log(index: int, seed: int, *, forces=ROMEO_FORCES, segment: floa
     -------
     Log, HydroModel (for the thruster map), true net weight [N]
     """
-    from ..simulate import simulate
+    from stripcoef.simulate import simulate
     weight = romeo_weights()[index - 1]
     model = romeo_hydromodel(weight)
     levels = np.ravel([[f, -f] for f in forces])

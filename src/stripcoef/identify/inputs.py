@@ -15,13 +15,13 @@ import dataclasses
 
 import numpy as np
 
-from ..conventions import FORCES, parse_dof
-from ..errors import InputError
+from stripcoef.conventions import FORCES, parse_dof
+from stripcoef.errors import InputError
 
 
 def vehicle_model(path):
     """HydroModel of a vehicle file (``stripcoef.load_vehicle`` + ``stripcoef.estimate``)."""
-    from .. import estimate, load_vehicle
+    from stripcoef import estimate, load_vehicle
     return estimate(load_vehicle(path))
 
 

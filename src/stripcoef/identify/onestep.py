@@ -50,9 +50,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import savgol_filter
 
-from ..conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
-from ..errors import InputError, unknown_name
-from .estimators import FitResult, linear_lstsq, runs_test_z
+from stripcoef.conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
+from stripcoef.errors import InputError, unknown_name
+from stripcoef.identify.estimators import FitResult, linear_lstsq, runs_test_z
 
 #: Model name -> terms (linear, quadratic, input, bias); LQB is seed 000's eq. 8.
 MODELS = {

@@ -43,9 +43,9 @@ import math
 import numpy as np
 from scipy.signal import savgol_filter
 
-from ..errors import InputError
-from ..fluid import G
-from .estimators import FitResult, linear_lstsq
+from stripcoef.errors import InputError
+from stripcoef.fluid import G
+from stripcoef.identify.estimators import FitResult, linear_lstsq
 
 COLUMN = "theta_pendulum"
 _EIV_NOTE = ("equation error on noisy derivatives underestimates the added mass when the angle "

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
-from ..io import atomic_path
-from .estimators import FitResult
+from stripcoef.errors import InputError
+from stripcoef.io import atomic_path
+from stripcoef.identify.estimators import FitResult
 
 
 def _pyplot():

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 #: Parameter name -> exponent of lambda, for translational (surge/sway/heave) results.
 TRANSLATION = {"m_a": 3, "K_L": 2, "K_Q": 2}

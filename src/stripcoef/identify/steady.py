@@ -40,9 +40,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
-from ..errors import InputError, unknown_name
-from .estimators import FitResult, linear_lstsq
+from stripcoef.conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
+from stripcoef.errors import InputError, unknown_name
+from stripcoef.identify.estimators import FitResult, linear_lstsq
 
 #: Model name -> (linear, quadratic, bias, eta, momentum drag)
 MODELS = {

@@ -25,12 +25,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..conventions import POSE, VELOCITIES
-from ..fluid import G
-from ..logs import Log
-from ..model import HydroModel, rigid_body_mass_matrix
-from ..simulate import simulate
-from ..thrusters import Thruster
+from stripcoef.conventions import POSE, VELOCITIES
+from stripcoef.fluid import G
+from stripcoef.logs import Log
+from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.simulate import simulate
+from stripcoef.thrusters import Thruster
 
 #: Measurement noise standard deviations (assumed, see module docstring).
 NOISE = {"u": 0.01, "v": 0.01, "w": 0.01, "p": 0.003, "q": 0.003, "r": 0.003,
@@ -125,7 +125,7 @@ def perturb_within_bands(model, rng, *, scale: float = 0.5):
     added-mass / damping term is multiplied by 1 + scale*band*U(-1, 1) (rotational bands
     capped at 50 %).
     """
-    from .diagnose import BANDS
+    from stripcoef.identify.diagnose import BANDS
 
     m = copy.deepcopy(model)
     for attr, key in (("added_mass", "M"), ("linear_damping", "D_L"),
@@ -222,7 +222,7 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
                 return np.array([-c * np.tanh(inputs["nu_r"][0] / 0.02), 0, 0, 0, 0, 0])
             extra.append(f)
         else:
-            from ..errors import unknown_name
+            from stripcoef.errors import unknown_name
             raise unknown_name("synthetic effect", name, list(MAGNITUDES) + ["coulomb_friction"])
 
     def extra_force(time, eta, nu, inputs):
@@ -260,7 +260,7 @@ def effect_signal(truth: dict, dof: int, *, window: float = 2.0) -> dict:
     Returns ``{"signal": S, "noise_floor": F, "snr": S / F}`` for the ``truth`` of
     :func:`generate`.
     """
-    from .effects import window_data
+    from stripcoef.identify.effects import window_data
 
     clean = truth["clean_log"]
     model = truth["model_without_effects"]

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import markdown_table
+from stripcoef.report import markdown_table
 
 ROOT = Path(__file__).resolve().parents[3]
 LD_VALUES = (1.5, 2.0, 3.0, 5.0, 7.5, 10.0, 15.0, 20.0)
@@ -14,9 +14,9 @@ LD_VALUES = (1.5, 2.0, 3.0, 5.0, 7.5, 10.0, 15.0, 20.0)
 
 def spheroid_accuracy():
     """Rows (L/D, term, exact, corrected, % diff, pure strip % diff) for spheroids, L = 1.5 m."""
-    from ..assemble import estimate
-    from ..geometry.vehicle import parse_vehicle
-    from ..hull import spheroid_added_mass
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.vehicle import parse_vehicle
+    from stripcoef.hull import spheroid_added_mass
 
     rows = []
     for ld in LD_VALUES:
@@ -37,10 +37,10 @@ def spheroid_accuracy():
 
 
 def capsule_vs_bem():
-    from ..assemble import estimate
-    from ..geometry.vehicle import load_vehicle
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
 
-    from ..reference import load_table
+    from stripcoef.reference import load_table
 
     ref = {row["name"]: row["value"] for row in load_table("capytaine_anchor", "capsule")}
     model = estimate(load_vehicle(ROOT / "geometry" / "capsule.yaml"))
@@ -52,8 +52,8 @@ def capsule_vs_bem():
 
 
 def mares_conditions():
-    from ..assemble import estimate
-    from ..geometry.vehicle import load_vehicle
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
 
     return estimate(load_vehicle(ROOT / "geometry" / "mares.yaml")).conditions
 

@@ -5,11 +5,11 @@ The same computations as tests/test_diagnose_papers.py (stripcoef.identify.cases
 
 from __future__ import annotations
 
-from . import markdown_table
+from stripcoef.report import markdown_table
 
 
 def section() -> str:
-    from ..identify.cases import (TETHER_CD, TETHER_CF, VIDEORAY_TETHER_DIAMETER, romeo_case,
+    from stripcoef.identify.cases import (TETHER_CD, TETHER_CF, VIDEORAY_TETHER_DIAMETER, romeo_case,
                                   videoray_case)
 
     out = ["## Diagnosis: the papers' cases (issue 7)", ""]

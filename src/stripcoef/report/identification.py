@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import markdown_table
+from stripcoef.report import markdown_table
 
 FIGURES = Path(__file__).resolve().parents[3] / "docs" / "figures"
 
@@ -19,9 +19,9 @@ def _pm(v, s, d=4):
 
 # ---------------------------------------------------------------------------
 def videoray() -> tuple[str, dict]:
-    from ..identify.experiments import VIDEORAY_IZZ, VIDEORAY_TRUTH, videoray_yaw_log
-    from ..identify.onestep import one_step_log, videoray_table_i
-    from ..reference import agrees, reference_value
+    from stripcoef.identify.experiments import VIDEORAY_IZZ, VIDEORAY_TRUTH, videoray_yaw_log
+    from stripcoef.identify.onestep import one_step_log, videoray_table_i
+    from stripcoef.reference import agrees, reference_value
 
     paper = {k: reference_value("videoray_pro3", f"yaw.{k}")["value"]
              for k in ("alpha", "beta", "gamma", "delta")}
@@ -87,12 +87,12 @@ def videoray() -> tuple[str, dict]:
 
 # ---------------------------------------------------------------------------
 def rov2() -> tuple[str, dict]:
-    from ..identify.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS, ROV2_NOISE,
+    from stripcoef.identify.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS, ROV2_NOISE,
                                         ROV2_TRUTH, ROV2_YAW_INERTIA, ROV2_YAW_STIFFNESS,
                                         ROV2_YAW_TRUTH, rov2_pendulum_log, rov2_torsion_log)
-    from ..identify.pendulum import in_air_length, pendulum_log, torsion_log
-    from ..identify.scaling import scale_result
-    from ..reference import agrees, reference_value
+    from stripcoef.identify.pendulum import in_air_length, pendulum_log, torsion_log
+    from stripcoef.identify.scaling import scale_result
+    from stripcoef.reference import agrees, reference_value
 
     lam = 1.0 / reference_value("rov2", "scale.length_ratio_model")["value"]
     avg = {k: reference_value("rov2", f"surge.average.{k}")["value"] for k in ("m_a", "K_L", "K_Q")}
@@ -162,9 +162,9 @@ def rov2() -> tuple[str, dict]:
 
 # ---------------------------------------------------------------------------
 def romeo() -> tuple[str, dict]:
-    from ..identify.experiments import (ROMEO_FORCES, ROMEO_LEAD_MASS, ROMEO_NOISE_F,
+    from stripcoef.identify.experiments import (ROMEO_FORCES, ROMEO_LEAD_MASS, ROMEO_NOISE_F,
                                         ROMEO_NOISE_W, ROMEO_TRUTH, romeo_experiment)
-    from ..identify.steady import fit_steady
+    from stripcoef.identify.steady import fit_steady
 
     fits = {"standard": [], "eta": [], "eta-md": []}
     weights = []
@@ -217,13 +217,13 @@ def romeo() -> tuple[str, dict]:
 def romeo_simulated() -> tuple[str, dict]:
     """The five ROMEO trials from the 6-DOF simulation (needs stripcoef.simulate)."""
     try:
-        from ..identify.experiments import romeo_heave_log
-        from ..simulate import simulate  # noqa: F401
+        from stripcoef.identify.experiments import romeo_heave_log
+        from stripcoef.simulate import simulate  # noqa: F401
     except ImportError:
         return "", {}
-    from ..identify.experiments import ROMEO_TRUTH
-    from ..identify.inputs import applied_force
-    from ..identify.steady import fit_steady, steady_points
+    from stripcoef.identify.experiments import ROMEO_TRUTH
+    from stripcoef.identify.inputs import applied_force
+    from stripcoef.identify.steady import fit_steady, steady_points
 
     rows = []
     for i in range(1, 6):
@@ -254,7 +254,7 @@ def romeo_simulated() -> tuple[str, dict]:
 
 # ---------------------------------------------------------------------------
 def yaw_comparison() -> tuple[str, dict]:
-    from ..identify.steady import SteadyPoints, compare_models
+    from stripcoef.identify.steady import SteadyPoints, compare_models
 
     rng = np.random.default_rng(0)
     r = np.radians(np.r_[np.linspace(2, 10, 7), -np.linspace(2, 10, 8)])
@@ -277,7 +277,7 @@ def yaw_comparison() -> tuple[str, dict]:
 
 
 def _printed(table: str) -> dict:
-    from ..reference import load_table
+    from stripcoef.reference import load_table
     out: dict = {}
     for row in load_table("romeo", table):
         _, model, q = row["name"].split(".", 2)
@@ -289,7 +289,7 @@ def printed_yaw_candidates(exp: str, sensor: str, *, separate: bool = True) -> l
     """Candidates built from the chapter's printed yaw tables (seed 001, sec. 4.2.5):
     J_LS, N = nu + p, the estimates and their relative errors, for the models fitted to both
     directions together and (``separate``) to each direction ('+ & - dir' tables)."""
-    from ..identify.steady import Candidate
+    from stripcoef.identify.steady import Candidate
     cands = []
     for model, d in _printed(f"yaw_{exp}_{sensor}").items():
         vals = {k: d[k] for k in ("k_r", "k_rr", "b") if k in d}
@@ -317,7 +317,7 @@ def printed_yaw_candidates(exp: str, sensor: str, *, separate: bool = True) -> l
 
 
 def romeo_yaw_tables() -> tuple[str, dict]:
-    from ..identify.steady import recommend
+    from stripcoef.identify.steady import recommend
 
     rows, out = [], {}
     for exp in ("A", "B"):
@@ -360,8 +360,8 @@ def figures(results: dict, folder: Path = FIGURES) -> list[str]:
         import matplotlib.pyplot as plt
     except ImportError:
         return []
-    from ..io import atomic_path
-    from ..identify.plots import plot_fit
+    from stripcoef.io import atomic_path
+    from stripcoef.identify.plots import plot_fit
 
     folder.mkdir(parents=True, exist_ok=True)
     links = []

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model import HydroModel, rigid_body_mass_matrix
-from ..thrusters import Thruster
-from . import markdown_table
+from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.thrusters import Thruster
+from stripcoef.report import markdown_table
 
 ROOT = Path(__file__).resolve().parents[3]
 SOURCE = "videoray_pro3"          # reference_tables/videoray_pro3 (seed 000)
@@ -35,7 +35,7 @@ def videoray_table() -> dict:
     the thrust coefficients, the inertias and the surge-test rows (dicts with ``value``
     and tolerances, see :mod:`stripcoef.reference`).
     """
-    from ..reference import load_table, reference_value
+    from stripcoef.reference import load_table, reference_value
 
     rows = {}
     for table in ("table1_added_mass", "table1_linear_drag", "table1_quadratic_drag",
@@ -130,7 +130,7 @@ def videoray_model(column: str, *, mass: float = 3.5, command: float | None = No
 
 def videoray_surge() -> list[dict]:
     """Steady surge speed at the test command for both drag columns, with the paper's numbers."""
-    from ..limits import surge_limit
+    from stripcoef.limits import surge_limit
 
     tab = videoray_table()
     test = tab["surge_test"]
@@ -171,7 +171,7 @@ def videoray_strip_surge() -> dict | None:
         return None
     from dataclasses import replace
 
-    from ..limits import surge_limit
+    from stripcoef.limits import surge_limit
     n = videoray_table()["surge_test"]["command"]
     model = replace(model, thrusters=[replace(t, max_forward=t.thrust(n),
                                               max_backward=-t.thrust(-n))
@@ -183,7 +183,7 @@ def videoray_strip_surge() -> dict | None:
 
 
 def _opts():
-    from ..limits import LimitOptions
+    from stripcoef.limits import LimitOptions
     return LimitOptions()
 
 
@@ -199,7 +199,7 @@ def mares_paradox(radii=(1.0, 2.0, 4.0, 8.0, 16.0)) -> dict | None:
         model = stripcoef.estimate(stripcoef.load_vehicle(MARES_FILE))
     except (ImportError, AttributeError):
         return None
-    from ..limits import solve_limits
+    from stripcoef.limits import solve_limits
     out = {}
     for munk in (True, False):
         res = solve_limits(model, radii=list(radii), munk=munk)
@@ -217,8 +217,8 @@ def mares_paradox(radii=(1.0, 2.0, 4.0, 8.0, 16.0)) -> dict | None:
 
 def closed_form_cases() -> list[tuple[str, float, float]]:
     """(case, solver, closed form) for single-DOF manoeuvres of a diagonal test vehicle."""
-    from ..limits import LimitOptions, heave_limit, surge_limit, yaw_limit
-    from ..fluid import G
+    from stripcoef.limits import LimitOptions, heave_limit, surge_limit, yaw_limit
+    from stripcoef.fluid import G
 
     d_l = np.array([3.0, 6.0, 5.0, 0.5, 1.0, 1.5])
     d_q = np.array([25.0, 120.0, 90.0, 1.0, 10.0, 12.0])

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import markdown_table
-from ..hull import spheroid_added_mass
+from stripcoef.report import markdown_table
+from stripcoef.hull import spheroid_added_mass
 
 ROOT = Path(__file__).resolve().parents[3]
 RHO = 1000.0
@@ -24,7 +24,7 @@ def _lamb(a, b):
     return m[0], m[1], m[4]
 
 def _panel_rows():
-    from ..sections.panel import added_mass_contours
+    from stripcoef.sections.panel import added_mass_contours
     th = np.linspace(0, 2 * np.pi, 800, endpoint=False)
     rows = []
     c = np.column_stack([0.5 * np.cos(th), 0.5 * np.sin(th)])
@@ -41,8 +41,8 @@ def _panel_rows():
 
 
 def _rect_rows():
-    from ..reference import load_table
-    from ..sections.panel import added_mass_contours
+    from stripcoef.reference import load_table
+    from stripcoef.sections.panel import added_mass_contours
     prefix = "rectangle.a_over_b_"
     rows = []
     for row in load_table("dnv_rp_c205", "table_a1_added_mass_2d"):
@@ -67,7 +67,7 @@ def _rect_rows():
 
 
 def _axisym_rows():
-    from ..corrections import body_of_revolution_added_mass
+    from stripcoef.corrections import body_of_revolution_added_mass
     rows = []
     for ld in (2, 4, 7.5, 12):
         a, b = 0.75, 0.75 / ld
@@ -87,9 +87,9 @@ def _axisym_rows():
 
 
 def _consistency_rows():
-    from ..assemble import estimate
-    from ..geometry.mesh import mesh_body, revolved_mesh
-    from ..geometry.vehicle import MassSpec, Vehicle, load_vehicle
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.mesh import mesh_body, revolved_mesh
+    from stripcoef.geometry.vehicle import MassSpec, Vehicle, load_vehicle
     rows = []
     for name in ("spheroid", "capsule", "mares"):
         v = load_vehicle(ROOT / "geometry" / f"{name}.yaml")

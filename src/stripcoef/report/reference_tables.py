@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from .. import reference
-from . import markdown_table
+from stripcoef import reference
+from stripcoef.report import markdown_table
 
 
 def section() -> str:

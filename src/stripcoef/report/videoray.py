@@ -11,7 +11,7 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-from . import markdown_table
+from stripcoef.report import markdown_table
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -59,8 +59,8 @@ COMPARISONS = {
 
 @lru_cache(maxsize=1)
 def _models():
-    from ..assemble import estimate
-    from ..geometry.vehicle import load_vehicle
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
 
     v = load_vehicle(ROOT / "geometry" / "videoray_pro3.yaml")
     return estimate(v, corrections=False), estimate(v)
@@ -68,8 +68,8 @@ def _models():
 
 def hull_only_added_mass():
     """Pure strip theory on the VideoRay hull alone (no pods, struts): Y_vdot, Z_wdot [kg]."""
-    from ..assemble import estimate
-    from ..geometry.vehicle import parse_vehicle
+    from stripcoef.assemble import estimate
+    from stripcoef.geometry.vehicle import parse_vehicle
 
     v = parse_vehicle({"name": "VideoRay hull", "fluid": {"density": 1000.0,
                                                           "kinematic_viscosity": 1e-6},
@@ -83,7 +83,7 @@ def hull_only_added_mass():
 
 def comparison():
     """Rows: term, analytical, experimental, pure strip, corrected, diff %, rtol, ok, reason."""
-    from ..reference import load_table
+    from stripcoef.reference import load_table
 
     pure, corrected = _models()
     cp, cc = pure.coefficients(), corrected.coefficients()

@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import unknown_name
-from . import added_mass as am
-from . import drag
+from stripcoef.errors import unknown_name
+from stripcoef.sections import added_mass as am
+from stripcoef.sections import drag
 
 
 def _added_mass_ellipse(part, rho, panels=None):
@@ -31,7 +31,7 @@ def _added_mass_rectangle(part, rho, panels=None):
 
 
 def _added_mass_polygon(part, rho, panels=None):
-    from .panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
+    from stripcoef.sections.panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
     # the part's rings, cleaned and oriented once (shared with the cross-flow drag)
     mats = added_mass_sections(part_rings(part), rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
@@ -64,7 +64,7 @@ def _drag_rectangle(part, re_y, re_z):
 
 
 def _drag_polygon(part, re_y, re_z):
-    from .polygon_drag import cross_flow_cd  # noqa: PLC0415 (mesh path only)
+    from stripcoef.sections.polygon_drag import cross_flow_cd  # noqa: PLC0415 (mesh path only)
     return cross_flow_cd(part, re_y, re_z)
 
 

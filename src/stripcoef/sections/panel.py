@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from stripcoef.errors import InputError
 
 #: Default number of panels per section (all contours together).
 DEFAULT_PANELS = 96

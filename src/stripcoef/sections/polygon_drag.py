@@ -39,8 +39,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import drag
-from .panel import _corner_flags, orient_contours, part_rings, signed_area
+from stripcoef.sections import drag
+from stripcoef.sections.panel import _corner_flags, orient_contours, part_rings, signed_area
 
 #: Weight of the shadowed height of a part behind another part along the flow.
 TANDEM_SHIELDING = 0.5
