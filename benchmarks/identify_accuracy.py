@@ -11,7 +11,12 @@ import time
 
 import numpy as np
 
-from stripcoef.identify.experiments import (ROMEO_TRUTH, ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
+import sys  # noqa: E402
+from pathlib import Path as _Path  # noqa: E402
+
+sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
+
+from validation.experiments import (ROMEO_TRUTH, ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
                                             ROV2_TRUTH, VIDEORAY_TRUTH, romeo_experiment,
                                             rov2_pendulum_log, videoray_yaw_log)
 from stripcoef.identify.onestep import one_step_log

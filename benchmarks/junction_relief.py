@@ -4,11 +4,11 @@ Run:  .venv/bin/python benchmarks/junction_relief.py tubes     (about 1 minute, 
       .venv/bin/python benchmarks/junction_relief.py frames    (a few minutes, ~3 GB)
 
 tubes:  transverse and axial added mass of short circular tubes (length l, bore r_i, outer r_o)
-        from stripcoef.corrections.ring_body_added_mass against Capytaine on a
+        from stripcoef.hull.corrections.ring_body_added_mass against Capytaine on a
         RotationSymmetricMesh of the same tube (direct method, no free surface), and the ratio
         to the 2D annulus rho pi (r_o^2 + r_i^2) l.
 frames: frames with short posts (a closed "ladder" and an open "arch", not the ROV), BEM with
-        and without the posts against strip theory (stripcoef.assemble.estimate): what the
+        and without the posts against strip theory (stripcoef.assembly.estimate.estimate): what the
         posts add.
 smallbody: each post as a small body in the members' 3D flow (main_smallbody).
 rings:  a short square ring alone (main_rings): BEM against its equivalent bodies.
@@ -28,7 +28,7 @@ import time
 
 import numpy as np
 
-from stripcoef.corrections import ring_body_added_mass
+from stripcoef.hull.corrections import ring_body_added_mass
 
 RHO = 1000.0
 
@@ -128,14 +128,14 @@ def bem_quarter(quarter_boxes, max_edge):
 
 
 def strip_model(quarter_boxes, strips=200):
-    """stripcoef.assemble.estimate (as shipped) on the whole body, about the origin."""
+    """stripcoef.assembly.estimate.estimate (as shipped) on the whole body, about the origin."""
     import warnings
 
     from stripcoef.conventions import transform_matrix
     from stripcoef.fluid import Fluid
     from stripcoef.geometry.mesh import mesh_body
     from stripcoef.geometry.vehicle import MassSpec, Vehicle
-    from stripcoef.assemble import estimate
+    from stripcoef.assembly.estimate import estimate
     body = mesh_body(full_mesh(quarter_boxes), origin="file", name="frame")
     v = Vehicle(name="frame", source="benchmark", hull=None, bodies=[body], holes=[],
                 fluid=Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark"),
@@ -204,7 +204,7 @@ def main_frames(max_edge=0.04):
 def main_rings(max_edge=0.04):
     """A short square ring (outer 0.6 m, wall 0.06 m, length l along x) moving in its own
     plane: the BEM against 2D x l and the equivalent bodies of revolution of the section."""
-    from stripcoef.corrections import body_of_revolution_added_mass
+    from stripcoef.hull.corrections import body_of_revolution_added_mass
     print("| l [m] | faces | BEM m22 / (2D l) | disc | hollow, r_o from 2D | hollow, r_o from outer area "
           "| estimate: sway, heave, pitch, surge vs BEM |")
     print("|---|---|---|---|---|---|---|")

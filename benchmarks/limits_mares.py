@@ -27,7 +27,7 @@ def main() -> None:
     p.add_argument("--repeat", type=int, default=5)
     args = p.parse_args()
 
-    cmd = [sys.executable, "-m", "stripcoef.cli", "limits", args.vehicle]
+    cmd = [sys.executable, "-m", "stripcoef", "limits", args.vehicle]
     wall = []
     for _ in range(args.repeat):
         t0 = time.perf_counter()
@@ -35,7 +35,7 @@ def main() -> None:
         wall.append(time.perf_counter() - t0)
 
     import stripcoef
-    from stripcoef.limits import solve_limits
+    from stripcoef.limits.solver import solve_limits
 
     model = stripcoef.estimate(stripcoef.load_vehicle(args.vehicle))   # warm-up
     solver, nomunk = [], []
@@ -55,7 +55,7 @@ def main() -> None:
     print(f"  solve_limits    median {statistics.median(nomunk):.3f} s  "
           f"(min {min(nomunk):.3f}, max {max(nomunk):.3f}; 40 radii, Munk off)")
     t0 = time.perf_counter()
-    subprocess.run([sys.executable, "-c", "import stripcoef.limits, stripcoef.assemble"],
+    subprocess.run([sys.executable, "-c", "import stripcoef.limits.solver, stripcoef.assembly.estimate"],
                    check=True)
     print(f"  interpreter + imports {time.perf_counter() - t0:.3f} s (one run)")
 

@@ -4,10 +4,10 @@ Run:  .venv/bin/python benchmarks/mesh_accuracy.py            (about 2-4 minutes
       .venv/bin/python benchmarks/mesh_accuracy.py --quick    (bodies of revolution only)
 
 For each body: strip theory on a fine mesh (200 strips) in three variants --
-``pure`` (no 3D corrections), ``axisym`` (stripcoef.corrections alone: one axisymmetric BEM of
+``pure`` (no 3D corrections), ``axisym`` (stripcoef.hull.corrections alone: one axisymmetric BEM of
 the added-mass-equivalent bodies of revolution of the whole body) and ``default``
-(stripcoef.assemble.estimate as shipped: the same, but per member and junction for a body made
-of several members, stripcoef.members) -- against
+(stripcoef.assembly.estimate.estimate as shipped: the same, but per member and junction for a body made
+of several members, stripcoef.hull.members) -- against
 the reference: Lamb's exact spheroid values, or Capytaine (direct, no free surface).
 Prints markdown tables (per cent error of every non-zero diagonal term, and the couplings).
 """
@@ -34,13 +34,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from mesh_shapes import (body_of_revolution, capsule_profile, finned_torpedo,  # noqa: E402
                          myring_profile, open_frame_rov, refine_to, spheroid_profile)
 
-from stripcoef.assemble import displaced_volume, entrained_water, estimate, strip_added_mass  # noqa: E402
+from stripcoef.assembly.estimate import displaced_volume, estimate  # noqa: E402
+from stripcoef.assembly.added_mass import entrained_water  # noqa: E402
+from stripcoef.assembly.added_mass import section_matrices  # noqa: E402
+from stripcoef.strips import strip_added_mass  # noqa: E402
 from stripcoef.conventions import transform_matrix  # noqa: E402
-from stripcoef.corrections import apply_corrections, hull_corrections, strip_section_added_mass  # noqa: E402
+from stripcoef.hull.corrections import apply_corrections, hull_corrections, strip_section_added_mass  # noqa: E402
 from stripcoef.fluid import Fluid  # noqa: E402
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402
 from stripcoef.geometry.vehicle import MassSpec, Vehicle  # noqa: E402
-from stripcoef.hull import spheroid_added_mass  # noqa: E402
+from stripcoef.hull.lamb import spheroid_added_mass  # noqa: E402
 
 RHO = 1000.0
 FLUID = Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark")
@@ -48,7 +51,7 @@ DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def lamb(length, diameter):
-    """Lamb's exact 6x6 added mass of a spheroid (stripcoef.hull.spheroid_added_mass)."""
+    """Lamb's exact 6x6 added mass of a spheroid (stripcoef.hull.lamb.spheroid_added_mass)."""
     return np.diag(spheroid_added_mass(0.5 * length, 0.5 * diameter, rho=RHO))
 
 def strip_variants(mesh, strips=200):
@@ -67,7 +70,7 @@ def strip_variants(mesh, strips=200):
     m2d = strip_section_added_mass(st, RHO)
     c = hull_corrections(st, rho=RHO, center=cb, section_added_mass=m2d)
     t_corr = time.perf_counter() - t0
-    m = apply_corrections(strip_added_mass(st, RHO, cb), c)
+    m = apply_corrections(strip_added_mass(st, section_matrices(st, RHO), cb), c)
     axi = transform_matrix(m, from_point=cb, to_point=main.reference_point) + \
         entrained_water(st, RHO, main.reference_point)
     pure_m = pure.added_mass.copy()
@@ -123,7 +126,7 @@ def report(name, variants, ref, ref_name, extra=""):
     print("reference diagonal:", np.array2string(np.diag(ref), precision=5))
     for r in rows:
         print(r)
-    from stripcoef.commands.compare import compare_rows
+    from stripcoef.cli.compare import compare_rows
     for r in compare_rows(variants["default"], ref):
         if r["i"] == r["j"]:
             continue

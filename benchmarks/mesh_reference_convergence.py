@@ -10,7 +10,7 @@ The BEM (direct, no free surface) about the strip model's centre of buoyancy:
   of the memory), up to 25k faces.
 With face counts N1 < N2 < N3 (the three finest) and a discretisation error ~ N^(-p/2) (p: order
 in the panel size h ~ N^(-1/2)), p is fitted per term and the converged value extrapolated
-(Richardson).  Then the strip model as shipped (stripcoef.assemble.estimate, 200 strips) against
+(Richardson).  Then the strip model as shipped (stripcoef.assembly.estimate.estimate, 200 strips) against
 the finest BEM and the extrapolated value.
 """
 

@@ -4,7 +4,7 @@ Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~
 
 1. A ~100k-face Myring (REMUS) hull as an STL file -> full matrices (M_A, D_L, D_Q, M_RB):
    wall time of each stage (read + repair, slicing into 200 strips, 2D panel method,
-   axisymmetric 3D corrections given the 2D sections, the whole stripcoef.assemble.estimate,
+   axisymmetric 3D corrections given the 2D sections, the whole stripcoef.assembly.estimate.estimate,
    and file -> matrices) -- best of 3; then the open-frame ROV of mesh_accuracy.py refined
    to ~139k faces, file -> matrices (its members and junctions), best of 3.
 2. Prolate spheroid L/D = 7.5 as triangle meshes (as from CAD, no symmetry used), every
@@ -23,7 +23,7 @@ Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~
       slower) is timed,
       best of 3, and the fastest is timed again, best of 7.
    Both methods are timed from the same triangle arrays in memory to the matrices: strip
-   theory = mesh checks/repair (mesh_body) + stripcoef.assemble.estimate (slicing, 2D
+   theory = mesh checks/repair (mesh_body) + stripcoef.assembly.estimate.estimate (slicing, 2D
    sections, 3D corrections, damping, rigid-body terms: the full model); BEM =
    bem_added_mass (Capytaine mesh + solve of the six radiation problems: the added mass
    only), after one warm-up solve on a tiny mesh in the same process (imports, first-call
@@ -60,8 +60,8 @@ from mesh_accuracy import FLUID, RHO, lamb  # noqa: E402
 from mesh_shapes import (body_of_revolution, myring_profile, open_frame_rov,  # noqa: E402
                          refine_to, spheroid_profile)
 
-from stripcoef.assemble import added_mass, displaced_volume, estimate  # noqa: E402
-from stripcoef.corrections import hull_corrections, strip_section_added_mass  # noqa: E402
+from stripcoef.assembly.estimate import added_mass, displaced_volume, estimate  # noqa: E402
+from stripcoef.hull.corrections import hull_corrections, strip_section_added_mass  # noqa: E402
 from stripcoef.geometry.mesh import load_mesh, mesh_body  # noqa: E402
 from stripcoef.geometry.vehicle import MassSpec, Vehicle  # noqa: E402
 from stripcoef.sections.panel import added_mass_sections  # noqa: E402

@@ -12,7 +12,7 @@ difference, since each call re-cuts the strips:
 - slicing: ``Vehicle.cut`` (slice_rings, section properties);
 - 2D sections: ``added_mass(corrections=False)`` minus slicing;
 - 3D corrections: ``added_mass(corrections=True)`` minus ``added_mass(corrections=False)``;
-- damping: ``_damping`` minus slicing;
+- damping: ``damping_matrices`` minus slicing;
 - total: ``strip_model`` of mesh_speed.py (mesh checks + the whole ``estimate``).
 """
 
@@ -34,7 +34,7 @@ import trimesh  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from mesh_speed import spheroid_mesh, spheroid_vehicle, strip_model  # noqa: E402
 
-from stripcoef import assemble  # noqa: E402
+from stripcoef.assembly import added_mass as assembly_added_mass, damping as assembly_damping, mass as assembly_mass  # noqa: E402
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402
 
 #: the 0.2 % configuration: (meridian intervals, panels around) of the mesh, strips,
@@ -64,10 +64,10 @@ def main(argv=None):
     body = mesh_body(trimesh.Trimesh(v, f, process=False), origin="file", name="spheroid")
     vehicle = spheroid_vehicle(body)
     strips = vehicle.cut(STRIPS)
-    volume, cb = assemble.displaced_volume(strips)
+    volume, cb = assembly_mass.displaced_volume(strips)
 
     def am(corr):
-        return assemble.added_mass(vehicle.cut(STRIPS), RHO, about=cb, volume=volume, center=cb,
+        return assembly_added_mass.added_mass(vehicle.cut(STRIPS), RHO, about=cb, volume=volume, center=cb,
                                    corrections=corr, correction_panels=PANELS,
                                    section_panels=SECTION_PANELS)
 
@@ -75,7 +75,7 @@ def main(argv=None):
     t_cut = best_ms(lambda: vehicle.cut(STRIPS), n)
     t_pure = best_ms(lambda: am(False), n)
     t_corr = best_ms(lambda: am(True), n)
-    t_damp = best_ms(lambda: assemble._damping(vehicle.cut(STRIPS), vehicle, RHO, NU, SPEED, cb,
+    t_damp = best_ms(lambda: assembly_damping.damping_matrices(vehicle.cut(STRIPS), vehicle, RHO, NU, SPEED, cb,
                                                "auto"), n)
     t_all = best_ms(lambda: strip_model(v, f, STRIPS, PANELS, SECTION_PANELS), n)
     print(f"{len(f):,} faces, {STRIPS} strips, {PANELS} correction panels, {SECTION_PANELS} "

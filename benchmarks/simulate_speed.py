@@ -1,6 +1,6 @@
 """CPU time of `stripcoef.simulate.simulate` on the diagnosis benchmark's manoeuvre.
 
-A 240 s log at 10 Hz of the seed 000 ROV (random steps on four thrusters, a sinusoid,
+A 240 s log at 10 Hz of the Wang & Clark 2006 ROV (random steps on four thrusters, a sinusoid,
 turns; zero-order hold, so the integrator restarts at every input jump), RK45 at
 rtol 1e-6 / 1e-8 (the benchmark's setting) and 1e-8 (the default).
 
@@ -12,7 +12,12 @@ import time
 
 import numpy as np
 
-from stripcoef.identify.synthetic import manoeuvre, rov_model
+import sys  # noqa: E402
+from pathlib import Path as _Path  # noqa: E402
+
+sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
+
+from validation.synthetic import manoeuvre, rov_model
 from stripcoef.simulate import simulate
 
 

@@ -1,4 +1,4 @@
-"""Draw the MARES turning-circle figures of docs/limits.md (seed 002, Figs. 6-8 reproduced).
+"""Draw the MARES turning-circle figures of docs/limits.md (Ferreira et al. 2009, Figs. 6-8 reproduced).
 
 Run from the repository root:  python scripts/make_limits_figures.py
 Writes docs/figures/mares_limits.png (Munk moment off, as the paper finally uses, with the
@@ -9,7 +9,9 @@ paradox).
 from pathlib import Path
 
 import stripcoef
-from stripcoef.limits import parse_radii, plot_limits, solve_limits
+from stripcoef.cli.limits import parse_radii
+from stripcoef.limits.plots import plot_limits
+from stripcoef.limits.solver import solve_limits
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -11,7 +11,7 @@
 import numpy as np
 import pytest
 
-from stripcoef import corrections as C
+from stripcoef.hull import axisymmetric as C
 
 
 def dense_moments(p, q, m, nodes=4096):

@@ -5,8 +5,8 @@ import json
 import pytest
 
 from stripcoef import cli
-from stripcoef.identify.synthetic import generate
-from stripcoef.logs import read_log
+from validation.synthetic import generate
+from stripcoef.logfile import read_log
 from stripcoef.modelfile import load_model
 from stripcoef.export import write_export
 
@@ -67,7 +67,7 @@ def test_calibrated_model_simulates_the_log_better(tmp_path, capsys):
                    str(tmp_path / "cal.yaml"), "--no-resimulate"])
     capsys.readouterr()
     assert rc == 0
-    from stripcoef.identify.diagnose import resimulate_rms
+    from stripcoef.diagnose.pipeline import resimulate_rms
     log = read_log(tmp_path / "log.csv")
     before = resimulate_rms(log, load_model(tmp_path / "prior.yaml"), [0], horizon=10.0)[0]
     after = resimulate_rms(log, load_model(tmp_path / "cal.yaml"), [0], horizon=10.0)[0]

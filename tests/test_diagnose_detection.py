@@ -7,9 +7,9 @@ named first, magnitude within 15 %, error cut at least threefold.
 
 import pytest
 
-from stripcoef.identify.diagnose import diagnose, public
-from stripcoef.identify.effects import get_effect
-from stripcoef.identify.synthetic import MAGNITUDES, generate
+from stripcoef.diagnose.pipeline import diagnose, public
+from stripcoef.effects.laws import get_effect
+from validation.synthetic import MAGNITUDES, generate
 
 EFFECTS = sorted(MAGNITUDES)
 
@@ -69,7 +69,7 @@ def test_tether_without_length_column_is_a_tie_with_quadratic_drag():
     the effect had no signature."""
     log, prior, truth = generate("tether_drag", seed=5, magnitude=0.08)
     cols = {k: v for k, v in log.columns.items() if k != "tether_length"}
-    from stripcoef.logs import Log
+    from stripcoef.logfile import Log
     res = public(diagnose(Log(cols), prior, dof="surge"))
     cand = {c["effect"]: c for c in res["per_dof"]["surge"]["candidates"]}
     assert cand["tether_drag"]["signature"] is None

@@ -4,11 +4,10 @@ import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
-from stripcoef.identify.effects import (EFFECTS, coriolis_times_velocity,
-                                        damping_times_velocity, effect_forces, get_effect,
-                                        window_data)
-from stripcoef.identify.synthetic import manoeuvre, rov_model
-from stripcoef.logs import Log
+from stripcoef.effects.laws import EFFECTS, coriolis_times_velocity, damping_times_velocity, effect_forces, get_effect
+from stripcoef.effects.windows import window_data
+from validation.synthetic import manoeuvre, rov_model
+from stripcoef.logfile import Log
 from stripcoef.simulate import simulate
 
 NAMES = ("tether_drag", "thrust_asymmetry", "momentum_drag", "buoyancy_offset", "current",
@@ -113,7 +112,7 @@ def test_effect_forces_reject_bad_entries():
 def test_savgol_centre_weights_are_the_quadratic_fit():
     """Savitzky-Golay (1964) table I: 5 points (-3, 12, 17, 12, -3)/35; exact on cubics at
     the centre; the variance factor is the centre weight."""
-    from stripcoef.identify.effects import savgol_centre_weights
+    from stripcoef.effects.windows import savgol_centre_weights
     np.testing.assert_allclose(savgol_centre_weights(2), np.array([-3, 12, 17, 12, -3]) / 35,
                                rtol=1e-13)
     for h in range(2, 8):
@@ -128,7 +127,7 @@ def test_end_values_do_not_bias_the_true_model_and_cut_the_noise():
     """Noise-free log of the prior itself: its window residual is the discretisation error
     of the window operators only; with the smoothed end values it stays far below the noise
     floor they remove (the input jumps are not smoothed across)."""
-    from stripcoef.identify.synthetic import NOISE
+    from validation.synthetic import NOISE
     model = rov_model()
     rng = np.random.default_rng(3)
     t, cmds = manoeuvre(rng, duration=120.0)

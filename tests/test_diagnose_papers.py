@@ -1,8 +1,8 @@
-"""The papers' cases of issue 7 (seed 000 VideoRay surge, seed 001 ROMEO heave)."""
+"""The papers' cases of issue 7 (Wang & Clark 2006 VideoRay surge, Indiveri 1998 ROMEO heave)."""
 
 import pytest
 
-from stripcoef.identify.cases import (VIDEORAY_MEASURED, romeo_case, videoray_case,
+from validation.cases import (VIDEORAY_MEASURED, romeo_case, videoray_case,
                                       videoray_tether_gap)
 
 

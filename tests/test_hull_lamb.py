@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from stripcoef.assemble import estimate
-from stripcoef.hull import lamb_k_factors, power_law_split, spheroid_added_mass
+from stripcoef.assembly.estimate import estimate
+from stripcoef.hull.lamb import lamb_k_factors, power_law_split, spheroid_added_mass
 
 from conftest import GEOMETRY, spheroid_vehicle
 

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from stripcoef.cli import main
-from stripcoef.identify.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
+from validation.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
                                             romeo_experiment, rov2_pendulum_log,
                                             rov2_torsion_log, videoray_yaw_log)
-from stripcoef.logs import Log
+from stripcoef.logfile import Log
 
 CONTRACT = ("method", "model", "dof", "parameters", "std", "relative_error_percent", "cost",
             "degrees_of_freedom", "rms_error")
@@ -142,7 +142,7 @@ def test_bad_options_one_line_exit_2(logs, tmp_path, capsys):
 
 def test_one_step_with_vehicle_thruster_map(tmp_path, capsys):
     """Commands n_port, n_starboard + the shipped VideoRay file: torque from the bench map
-    (T = Ct n|n|, seed 000 Table I) and I_zz from the vehicle give the same fit as the torque."""
+    (T = Ct n|n|, Wang & Clark 2006 Table I) and I_zz from the vehicle give the same fit as the torque."""
     from pathlib import Path
 
     from stripcoef.identify.inputs import vehicle_model
@@ -181,7 +181,7 @@ def test_compare_with_few_points_gives_valid_json(tmp_path, capsys):
 def test_python_api_matches_cli(logs, capsys):
     from stripcoef.errors import InputError
     from stripcoef.identify.api import identify_log
-    from stripcoef.logs import read_log
+    from stripcoef.logfile import read_log
     fit, cmp = identify_log(read_log(logs["steady"]), "steady", model="eta")
     d = _json(capsys, ["identify", str(logs["steady"]), "--method", "steady", "--model", "eta",
                        "--json"])

@@ -1,14 +1,14 @@
-"""One-step-ahead prediction LS (seed 000, eqs. 8-19): VideoRay reproduction and the scipy way."""
+"""One-step-ahead prediction LS (Wang & Clark 2006, eqs. 8-19): VideoRay reproduction and the scipy way."""
 
 import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
 from stripcoef.identify import residual_autocorrelation, runs_test_z
-from stripcoef.identify.experiments import VIDEORAY_IZZ, VIDEORAY_TRUTH, videoray_yaw_log
+from validation.experiments import VIDEORAY_IZZ, VIDEORAY_TRUTH, videoray_yaw_log
 from stripcoef.identify.onestep import one_step, one_step_log, simulate_state, videoray_table_i
-from stripcoef.logs import Log
-from stripcoef.reference import agrees, reference_value
+from stripcoef.logfile import Log
+from validation.reference import agrees, reference_value
 
 PAPER = {k: reference_value("videoray_pro3", f"yaw.{k}")["value"]
          for k in ("alpha", "beta", "gamma", "delta")}

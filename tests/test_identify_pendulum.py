@@ -1,23 +1,23 @@
-"""Free-decay pendulum and torsion pendulum (seed 003, eqs. 1-7 and 12)."""
+"""Free-decay pendulum and torsion pendulum (Eng et al. 2009, eqs. 1-7 and 12)."""
 
 import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
-from stripcoef.identify.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS, ROV2_TRUTH,
+from validation.experiments import (ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS, ROV2_TRUTH,
                                             ROV2_YAW_INERTIA, ROV2_YAW_STIFFNESS, ROV2_YAW_TRUTH,
                                             rov2_pendulum_log, rov2_torsion_log)
 from stripcoef.identify.pendulum import (in_air_length, pendulum, pendulum_log,
                                          simulate_decay, torsion_log)
-from stripcoef.logs import Log
-from stripcoef.reference import agrees, reference_value
+from stripcoef.logfile import Log
+from validation.reference import agrees, reference_value
 
 KW = dict(mass=ROV2_MASS, buoyancy=ROV2_BUOYANCY, length=ROV2_LENGTH)
 KEYS = ("m_a", "K_L", "K_Q")
 
 
 def test_in_air_alpha_gives_rod_length():
-    """alpha = -25.128 -> r = g/|alpha| = 0.3904 m with g = 9.81 (seed 003, sec. IV.A)."""
+    """alpha = -25.128 -> r = g/|alpha| = 0.3904 m with g = 9.81 (Eng et al. 2009, sec. IV.A)."""
     alpha = reference_value("rov2", "air.alpha")["value"]
     assert agrees(reference_value("rov2", "air.r_from_alpha"), in_air_length(alpha))
 

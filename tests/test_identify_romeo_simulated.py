@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("stripcoef.simulate")
 
-from stripcoef.identify.experiments import ROMEO_TRUTH, romeo_heave_log  # noqa: E402
+from validation.experiments import ROMEO_TRUTH, romeo_heave_log  # noqa: E402
 from stripcoef.identify.inputs import applied_force  # noqa: E402
 from stripcoef.identify.steady import fit_steady, steady_points  # noqa: E402
 

@@ -1,10 +1,10 @@
-"""Similitude (seed 003, eqs. 8-10): ROV II Table II scaled by lambda = 1/0.3 vs Tables III/IV."""
+"""Similitude (Eng et al. 2009, eqs. 8-10): ROV II Table II scaled by lambda = 1/0.3 vs Tables III/IV."""
 
 import pytest
 
 from stripcoef.errors import InputError
 from stripcoef.identify.scaling import scale_result, scale_value
-from stripcoef.reference import agrees, reference_value
+from validation.reference import agrees, reference_value
 
 LAMBDA = 1.0 / reference_value("rov2", "scale.length_ratio_model")["value"]
 

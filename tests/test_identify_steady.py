@@ -1,13 +1,13 @@
-"""Steady-state regression (seed 001): ROMEO heave reproduction, yaw model comparison, segmenter."""
+"""Steady-state regression (Indiveri 1998): ROMEO heave reproduction, yaw model comparison, segmenter."""
 
 import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
-from stripcoef.identify.experiments import ROMEO_TRUTH, romeo_experiment, romeo_weights
+from validation.experiments import ROMEO_TRUTH, romeo_experiment, romeo_weights
 from stripcoef.identify.steady import (SteadyPoints, compare_models, fit_steady, predicted_force,
                                        steady_points)
-from stripcoef.logs import Log
+from stripcoef.logfile import Log
 
 
 def _five(rep):
@@ -83,7 +83,7 @@ def _yaw_points(seed, k_r=40.0, k_rr=0.0, rmax=10.0, sigma=0.5):
 
 
 def test_comparison_recommends_lnb_for_linear_truth():
-    """Truth tau = 40 r (seed 001's conclusion at <= 10 deg/s): LNB chosen in >= 80 of 100 seeds."""
+    """Truth tau = 40 r (Indiveri 1998's conclusion at <= 10 deg/s): LNB chosen in >= 80 of 100 seeds."""
     picks = [compare_models(_yaw_points(s)).recommended.model for s in range(100)]
     assert picks.count("LNB") >= 80, {m: picks.count(m) for m in set(picks)}
 
@@ -148,7 +148,7 @@ _DISAGREE = ("the bias b is beyond 2 sigma in the chapter's LB fit ({}) and LB h
         strict=True, reason=_DISAGREE.format("relative error 29.2 %")))])
 def test_rule_reproduces_chapter_choice_of_lnb_on_printed_tables(exp, sensor):
     from stripcoef.identify.steady import recommend
-    from stripcoef.report.identification import printed_yaw_candidates
+    from validation.identification import printed_yaw_candidates
     _, rec, _ = recommend(printed_yaw_candidates(exp, sensor, separate=False))
     assert rec.label == "LNB together"
 
@@ -156,7 +156,7 @@ def test_rule_reproduces_chapter_choice_of_lnb_on_printed_tables(exp, sensor):
 def test_printed_tables_are_consistent_and_per_direction_preferred_for_a_watson():
     """N = nu + p is the same for every model of a table; A Watson: per-direction LNB wins."""
     from stripcoef.identify.steady import recommend
-    from stripcoef.report.identification import printed_yaw_candidates
+    from validation.identification import printed_yaw_candidates
     for exp in "AB":
         for sensor in ("watson", "kvh"):
             together = printed_yaw_candidates(exp, sensor, separate=False)

@@ -1,4 +1,4 @@
-"""Single-DOF limits against closed forms, and scaling properties (seed 002 sec. V.A-C)."""
+"""Single-DOF limits against closed forms, and scaling properties (Ferreira et al. 2009 sec. V.A-C)."""
 
 import math
 
@@ -7,9 +7,9 @@ import pytest
 
 from limits_helpers import horizontal_pair, make_model, vertical_pair
 from stripcoef.errors import UnreachableError
-from stripcoef.limits import (LimitOptions, heave_limit, surge_limit, sway_limit, yaw_limit,
+from stripcoef.limits.solver import (LimitOptions, heave_limit, surge_limit, sway_limit, yaw_limit,
                               solve_limits)
-from stripcoef.report.limits import closed_form_cases, quadratic_speed
+from validation.limits import closed_form_cases, quadratic_speed
 from stripcoef.thrusters import Thruster
 
 
@@ -113,7 +113,7 @@ def test_redundant_thrusters_use_the_linear_programme():
                        max_backward=5.0) for t in pair_a]
     red = make_model(thrusters=pair_a + pair_b + vertical_pair(10.0))
     ref = make_model()
-    from stripcoef.limits import _Allocator
+    from stripcoef.limits.solver import _Allocator
     assert _Allocator(red).square is None and _Allocator(ref).square is not None
     for f in (surge_limit, heave_limit, yaw_limit):
         assert f(red).speed == pytest.approx(f(ref).speed, rel=1e-7)
@@ -124,7 +124,7 @@ def test_redundant_thrusters_use_the_linear_programme():
 
 
 def test_direct_allocation_equals_linear_programme():
-    from stripcoef.limits import _Allocator
+    from stripcoef.limits.solver import _Allocator
     m = make_model()
     alloc = _Allocator(m)
     tau = np.array([3.0, 0.0, 2.0, 0.1, 0.5, 0.3])

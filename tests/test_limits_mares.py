@@ -1,4 +1,4 @@
-"""The MARES paradox (seed 002 sec. V.D) with the shipped geometry/mares.yaml.
+"""The MARES paradox (Ferreira et al. 2009 sec. V.D) with the shipped geometry/mares.yaml.
 
 With the Munk moment the horizontal thrusters' differential moment opposes the rotation;
 without it the outer thruster (P1, port, in a starboard turn) saturates first.
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import stripcoef
-from stripcoef.limits import LimitOptions, solve_limits, turning_curve
+from stripcoef.limits.solver import LimitOptions, solve_limits, turning_curve
 
 MARES = Path(__file__).resolve().parent.parent / "geometry" / "mares.yaml"
 RADII = [2.0, 4.0, 8.0, 16.0, 32.0]
@@ -49,7 +49,7 @@ def test_u_max_rises_to_the_straight_line_without_munk(model):
 
 
 def test_nose_points_to_the_centre(model):
-    # seed 002 eq. 60: v = 0 cannot balance sway
+    # Ferreira et al. 2009 eq. 60: v = 0 cannot balance sway
     for munk in (True, False):
         for p in turning_curve(model, RADII, options=LimitOptions(munk=munk)):
             assert p.v < 0.0 and p.drift_angle > 0.0

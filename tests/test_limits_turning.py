@@ -1,4 +1,4 @@
-"""Steady turning circle: properties and the MARES Munk paradox (seed 002 sec. V.D)."""
+"""Steady turning circle: properties and the MARES Munk paradox (Ferreira et al. 2009 sec. V.D)."""
 
 import math
 
@@ -7,7 +7,7 @@ import pytest
 
 from limits_helpers import make_model
 from stripcoef.errors import InputError, UnreachableError
-from stripcoef.limits import (LimitOptions, min_turning_radius, required_force, solve_limits,
+from stripcoef.limits.solver import (LimitOptions, min_turning_radius, required_force, solve_limits,
                               steady_turn, turn_limit, turning_curve)
 
 RADII = [0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
@@ -46,7 +46,7 @@ def test_turn_is_a_steady_balance(model):
 
 
 def test_nose_points_into_the_circle(model):
-    # seed 002, eq. 60: v = 0 does not balance sway; the nose points to the centre
+    # Ferreira et al. 2009, eq. 60: v = 0 does not balance sway; the nose points to the centre
     for p in turning_curve(model, RADII):
         assert p.v < 0.0 and p.drift_angle > 0.0
 
@@ -117,7 +117,7 @@ def test_straight_line_limits_do_not_depend_on_the_reference_point():
     # pure translation is the same motion about any point: M_RB, M_A, D_L and the
     # translation columns of D_Q move exactly (HydroModel.about), g and B with the point
     import warnings
-    from stripcoef.limits import heave_limit, surge_limit
+    from stripcoef.limits.solver import heave_limit, surge_limit
     m = make_model(buoyancy_ratio=1.02)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

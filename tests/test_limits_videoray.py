@@ -1,10 +1,10 @@
-"""VideoRay Pro III surge at n = 60 from Table I (seed 000, sec. IV.A)."""
+"""VideoRay Pro III surge at n = 60 from Table I (Wang & Clark 2006, sec. IV.A)."""
 
 import pytest
 
-from stripcoef.limits import surge_limit
-from stripcoef.reference import agrees, reference_value
-from stripcoef.report.limits import (quadratic_speed, videoray_model, videoray_surge,
+from stripcoef.limits.solver import surge_limit
+from validation.reference import agrees, reference_value
+from validation.limits import (quadratic_speed, videoray_model, videoray_surge,
                                      videoray_table)
 
 
@@ -45,7 +45,7 @@ def test_analytical_drag_is_too_large(runs):
     assert runs["analytical"]["speed"] < runs["analytical"]["measured"]
 
 
-@pytest.mark.xfail(strict=True, reason="seed 000 predicts 0.51 m/s, but Table I with T = Ct n|n| "
+@pytest.mark.xfail(strict=True, reason="Wang & Clark 2006 predicts 0.51 m/s, but Table I with T = Ct n|n| "
                    "gives 0.483 m/s (experimental drag) or 0.356 m/s (analytical); 0.51 m/s "
                    "needs 2.05 N, 10 % more thrust than Ct 60^2 x 2 = 1.87 N")
 @pytest.mark.parametrize("column", ["experimental", "analytical"])

@@ -7,7 +7,7 @@ import pytest
 
 from stripcoef.cli import main
 from stripcoef.geometry.mesh import revolved_mesh
-from stripcoef.hull import spheroid_added_mass
+from stripcoef.hull.lamb import spheroid_added_mass
 
 RHO = 1000.0
 
@@ -21,7 +21,7 @@ def spheroid_file(path, a=0.6, b=0.1, n_ax=80, n_circ=48, scale=1.0):
 
 
 def lamb(a, b, rho=RHO):
-    """Lamb's exact diagonal (stripcoef.hull.spheroid_added_mass, tested in test_hull_lamb)."""
+    """Lamb's exact diagonal (stripcoef.hull.lamb.spheroid_added_mass, tested in test_hull_lamb)."""
     return spheroid_added_mass(a, b, rho=rho)
 
 @pytest.mark.parametrize("ext", [".stl", ".ply"])

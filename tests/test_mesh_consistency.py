@@ -6,8 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stripcoef.assemble import estimate
-from stripcoef.assemble import _perimeter
+from stripcoef.assembly.estimate import estimate
+from stripcoef.assembly.damping import wetted_perimeter
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
 from stripcoef.geometry.vehicle import MassSpec, Vehicle, load_vehicle
 
@@ -67,4 +67,4 @@ def test_polygon_perimeter_of_circle():
     t = np.linspace(0.0, np.pi, 81)[::-1]
     body = mesh_body(revolved_mesh(0.5 * np.cos(t), 0.1 * np.sin(t), sections=256))
     p = body.strips(41).parts[0]
-    np.testing.assert_allclose(_perimeter(p)[20], 2 * np.pi * p.half_breadth[20], rtol=1e-4)
+    np.testing.assert_allclose(wetted_perimeter(p)[20], 2 * np.pi * p.half_breadth[20], rtol=1e-4)

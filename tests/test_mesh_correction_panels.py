@@ -5,13 +5,13 @@ import warnings
 import numpy as np
 import pytest
 
-from stripcoef.assemble import estimate
-from stripcoef.corrections import DEFAULT_PANELS
+from stripcoef.assembly.estimate import estimate
+from stripcoef.hull.corrections import DEFAULT_PANELS
 from stripcoef.errors import InputError
 from stripcoef.fluid import Fluid
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
 from stripcoef.geometry.vehicle import MassSpec, Vehicle
-from stripcoef.hull import spheroid_added_mass
+from stripcoef.hull.lamb import spheroid_added_mass
 
 RHO = 1000.0
 

@@ -3,16 +3,16 @@
 import numpy as np
 import pytest
 
-from stripcoef.corrections import body_of_revolution_added_mass, equivalent_profile, hull_corrections
+from stripcoef.hull.corrections import body_of_revolution_added_mass, equivalent_profile, hull_corrections
 from stripcoef.errors import InputError
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
-from stripcoef.hull import spheroid_added_mass
+from stripcoef.hull.lamb import spheroid_added_mass
 
 RHO = 1000.0
 
 
 def lamb(a, b, rho=RHO):
-    """Lamb (1932) sec. 373: stripcoef.hull.spheroid_added_mass (tested against Lamb's table
+    """Lamb (1932) sec. 373: stripcoef.hull.lamb.spheroid_added_mass (tested against Lamb's table
     in tests/test_hull_lamb.py)."""
     m = spheroid_added_mass(a, b, rho=rho)
     return m[0], m[1], m[4]
@@ -116,15 +116,16 @@ def test_coupling_of_an_asymmetric_hull_about_its_centre_of_buoyancy():
 def test_directional_bodies_of_a_body_of_revolution_reproduce_its_3d_matrix():
     """With the panel method's 2D added mass (circles: rho A), the corrected strip matrix of a
     body of revolution is its axisymmetric 3D matrix (both lateral directions alike)."""
-    from stripcoef.assemble import strip_added_mass
-    from stripcoef.corrections import apply_corrections, strip_section_added_mass
+    from stripcoef.assembly.added_mass import section_matrices
+    from stripcoef.strips import strip_added_mass
+    from stripcoef.hull.corrections import apply_corrections, strip_section_added_mass
     t = np.linspace(0.0, np.pi, 121)[::-1]
     x = np.where(np.cos(t) > 0, 0.3 * np.cos(t), 0.9 * np.cos(t))
     body = mesh_body(revolved_mesh(x, 0.1 * np.sin(t), sections=128))
     st = body.strips(120)
     m2d = strip_section_added_mass(st, RHO)
     c = hull_corrections(st, rho=RHO, center=(0.0, 0.0, 0.0), section_added_mass=m2d)
-    m = apply_corrections(strip_added_mass(st, RHO, (0.0, 0.0, 0.0)), c)
+    m = apply_corrections(strip_added_mass(st, section_matrices(st, RHO), (0.0, 0.0, 0.0)), c)
     m3 = body_of_revolution_added_mass(*equivalent_profile(st), rho=RHO)
     for i in (0, 1, 2, 4, 5):
         assert m[i, i] == pytest.approx(m3[i, i], rel=2e-3)
@@ -137,7 +138,7 @@ def test_axial_added_mass_converges_with_strips_on_mares():
     the surge term does not depend on how the strips cut them (MARES, 400 vs 3200 strips)."""
     from pathlib import Path
 
-    from stripcoef.assemble import displaced_volume
+    from stripcoef.assembly.estimate import displaced_volume
     from stripcoef.geometry.vehicle import load_vehicle
     v = load_vehicle(Path(__file__).resolve().parents[1] / "geometry" / "mares.yaml")
     vals = []
@@ -153,15 +154,16 @@ def test_area_linear_equivalent_body_converges_with_few_strips():
     interpolated linearly between strip centres every diagonal term is within 0.25 % of
     Lamb's exact values (a radius-linear meridian, cut by chords at the round ends, gave
     -0.58 % in pitch and yaw; docs/theory.md sec. 6)."""
-    from stripcoef.assemble import section_matrices, strip_added_mass
-    from stripcoef.corrections import apply_corrections
+    from stripcoef.assembly.added_mass import section_matrices
+    from stripcoef.strips import strip_added_mass
+    from stripcoef.hull.corrections import apply_corrections
     t = np.linspace(0.0, np.pi, 241)[::-1]
     body = mesh_body(revolved_mesh(0.75 * np.cos(t), 0.1 * np.sin(t), sections=128))
     lamb = np.asarray(spheroid_added_mass(0.75, 0.1, rho=RHO))
     st = body.strips(40)
     mats = section_matrices(st, RHO)
     corr = hull_corrections(st, rho=RHO, center=(0.0, 0.0, 0.0), section_added_mass=mats[0])
-    m = apply_corrections(strip_added_mass(st, RHO, (0.0, 0.0, 0.0), mats), corr)
+    m = apply_corrections(strip_added_mass(st, mats, (0.0, 0.0, 0.0)), corr)
     nz = [0, 1, 2, 4, 5]
     np.testing.assert_allclose(np.diag(m)[nz], lamb[nz], rtol=2.5e-3)
 
@@ -169,7 +171,7 @@ def test_area_linear_equivalent_body_converges_with_few_strips():
 def test_area_linear_meridian_is_exact_for_a_cylinder_and_follows_sqrt_between_points():
     """The area-linear meridian keeps a cylinder exactly (constant area) and, between two
     profile points, puts r = sqrt of the linear interpolant of r^2 (never below the chord)."""
-    from stripcoef.corrections import _meridian
+    from stripcoef.hull.axisymmetric import _meridian
     xn, rn = _meridian(np.array([0.0, 0.0, 1.0, 1.0]), np.array([0.0, 0.2, 0.2, 0.0]), 40,
                        area_linear=True)
     side = (xn > 0) & (xn < 1)

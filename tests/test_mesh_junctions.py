@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from shapely.geometry import box as sbox
 
-from stripcoef.corrections import body_of_revolution_added_mass, ring_body_added_mass
-from stripcoef.hull import lamb_k_factors
-from stripcoef.members import crossing_weights
+from stripcoef.hull.corrections import body_of_revolution_added_mass, ring_body_added_mass
+from stripcoef.hull.lamb import lamb_k_factors
+from stripcoef.hull.members import crossing_weights
 
 RHO = 1000.0
 
@@ -84,7 +84,7 @@ def test_a_duct_mesh_gets_its_tube_matrix(length, ri, ro):
 
     import trimesh
 
-    from stripcoef.assemble import added_mass, displaced_volume
+    from stripcoef.assembly.estimate import added_mass, displaced_volume
     from stripcoef.conventions import transform_matrix
     from stripcoef.geometry.mesh import mesh_body
     m = trimesh.creation.annulus(r_min=ri, r_max=ro, height=length, sections=256)
@@ -105,7 +105,7 @@ def test_bore_area_only_for_a_bore_all_along():
 
     import trimesh
 
-    from stripcoef.corrections import bore_area
+    from stripcoef.hull.corrections import bore_area
     from stripcoef.geometry.mesh import mesh_body
     duct = trimesh.creation.annulus(r_min=0.2, r_max=0.3, height=1.0, sections=64)
     duct.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))

@@ -1,4 +1,4 @@
-"""Per-member 3D corrections (stripcoef.members): decomposition, exact spheroid sums, the ROV."""
+"""Per-member 3D corrections (stripcoef.hull.members): decomposition, exact spheroid sums, the ROV."""
 
 import warnings
 
@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 import trimesh
 
-from stripcoef.assemble import added_mass, displaced_volume
+from stripcoef.assembly.estimate import added_mass, displaced_volume
 from stripcoef.conventions import transform_matrix
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
-from stripcoef.hull import spheroid_added_mass
-from stripcoef.members import decompose, member_added_mass
+from stripcoef.hull.lamb import spheroid_added_mass
+from stripcoef.hull.members import decompose, member_added_mass
 
 RHO = 1000.0
 T = trimesh.transformations.translation_matrix
@@ -99,7 +99,7 @@ def test_estimate_uses_members_and_stays_symmetric():
     vol, cb = displaced_volume(st)
     m, info = added_mass(st, RHO, about=cb, volume=vol, center=cb)
     assert info["members"] == 2 and info["junction_pieces"] == 1
-    assert "stripcoef.members" in info["correction_method"]
+    assert "stripcoef.hull.members" in info["correction_method"]
     np.testing.assert_allclose(m, m.T, atol=1e-12 * np.abs(m).max())
     assert np.all(np.linalg.eigvalsh(m) > 0)
 
@@ -157,7 +157,7 @@ def test_overlap_shortcuts_agree_with_the_intersection():
     the answer of the polygon intersection itself."""
     from shapely.geometry import Point, Polygon, box
 
-    from stripcoef.members import _OVERLAP_REL, _overlaps
+    from stripcoef.hull.members import _OVERLAP_REL, _overlaps
     rng = np.random.default_rng(7)
     shapes = [box(0, 0, 1, 0.3), Point(0, 0).buffer(0.4, 32),
               Polygon([(0, 0), (1, 0), (1, 0.2), (0.2, 0.2), (0.2, 1), (0, 1)])]

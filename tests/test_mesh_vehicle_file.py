@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from stripcoef.assemble import estimate
+from stripcoef.assembly.estimate import estimate
 from stripcoef.geometry.mesh import load_mesh
 from stripcoef.geometry.vehicle import load_vehicle
 

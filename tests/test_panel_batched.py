@@ -2,7 +2,7 @@
 
 `panel._RingSet` cleans, orients, measures and resamples every ring of every section in
 padded arrays; `added_mass_sections`, the polygon drag geometry and the wetted perimeter use
-it.  The one-ring functions it replaces (`orient_contours`, `_discretise`, `_centroid`,
+it.  The one-ring functions it replaces (`orient_contours`, `_discretise`, `ring_centroid`,
 `polygon_drag._parts_geometry` ...) are kept; these tests hold the two paths equal on mixed
 sections: holes, several parts, sharp corners, either orientation, closing and repeated
 points, rings of different lengths, empty sections.
@@ -13,9 +13,8 @@ import pytest
 
 from stripcoef.errors import InputError
 from stripcoef.sections import panel, polygon_drag, section_drag
-from stripcoef.sections.panel import (_centroid, _discretise, _interp_rows, _ring_set,
-                                      _solve_batch, added_mass_sections, orient_contours,
-                                      part_rings, signed_area)
+from stripcoef.geometry.polygons import ring_centroid
+from stripcoef.sections.panel import _discretise, _interp_rows, _ring_set, _solve_batch, added_mass_sections, orient_contours, part_rings, signed_area
 from stripcoef.strips import Part
 
 RHO = 1025.0
@@ -68,7 +67,7 @@ def one_by_one(sections, about, panels):
             if signed_area(r) < 0:
                 holes.append(slice(start, start + len(r)))
             start += len(r)
-        point = _centroid(rings) if about is None else about
+        point = ring_centroid(rings) if about is None else about
         out[s] = _solve_batch(p1[None], p2[None], [holes], np.array([point], float), RHO)[0]
     return out
 
@@ -101,12 +100,12 @@ def test_ring_set_is_cleaned_and_oriented_like_orient_contours():
     assert rs.count.tolist() == [len(r) for r in rings]
     for r, ring in enumerate(rings):
         assert np.array_equal(rs.ring(r), ring)
-        seg, turn = panel._ring_shape(ring)
+        seg, turn = panel.ring_shape(ring)
         assert np.array_equal(rs.shape(r)[0], seg) and np.array_equal(rs.shape(r)[1], turn)
         assert np.sign(rs.area[r]) == np.sign(signed_area(ring))
     cent = rs.centroids()
     for s, c in enumerate(secs):
-        want = _centroid(orient_contours(c)) if c else (0.0, 0.0)
+        want = ring_centroid(orient_contours(c)) if c else (0.0, 0.0)
         assert tuple(cent[s]) == want
 
 
@@ -143,13 +142,13 @@ def test_drag_geometry_equals_the_per_section_rule():
 
 
 def test_perimeter_and_ring_cache():
-    from stripcoef.assemble import _perimeter
+    from stripcoef.assembly.damping import wetted_perimeter
     secs = [c for c in mixed_sections() if c]
     part = polygon_part(secs)
     # reference: the sum of each ring's edge lengths, ring by ring
     ref = [sum(float(np.linalg.norm(np.roll(r, -1, axis=0) - r, axis=1).sum()) for r in rings)
            for rings in part.contours]
-    np.testing.assert_allclose(_perimeter(part), ref, rtol=1e-11)
+    np.testing.assert_allclose(wetted_perimeter(part), ref, rtol=1e-11)
     rs = part_rings(part)
     assert part_rings(part) is rs                       # built once per part ...
     part.contours = secs[:3]
@@ -193,12 +192,12 @@ def test_invalid_rings_raise_the_one_ring_error():
 
 
 def test_damping_exponents_use_one_call_per_perturbation():
-    """_local_exponent with (Re_y, Re_z) equals one exponent at a time."""
-    from stripcoef.assemble import _local_exponent
+    """local_exponent with (Re_y, Re_z) equals one exponent at a time."""
+    from stripcoef.assembly.damping import local_exponent
     part = polygon_part([c for c in mixed_sections() if c])
     re_y = np.geomspace(1e4, 3e6, part.index.size)
     re_z = re_y[::-1].copy()
-    n_y, n_z = _local_exponent(lambda ry, rz: section_drag(part, ry, rz), re_y, re_z)
-    (one_y,) = _local_exponent(lambda ry: (section_drag(part, ry, re_z)[0],), re_y)
-    (one_z,) = _local_exponent(lambda rz: (section_drag(part, re_y, rz)[1],), re_z)
+    n_y, n_z = local_exponent(lambda ry, rz: section_drag(part, ry, rz), re_y, re_z)
+    (one_y,) = local_exponent(lambda ry: (section_drag(part, ry, re_z)[0],), re_y)
+    (one_z,) = local_exponent(lambda rz: (section_drag(part, re_y, rz)[1],), re_z)
     assert np.array_equal(n_y, one_y) and np.array_equal(n_z, one_z)

@@ -7,7 +7,7 @@ reference_tables/dnv_rp_c205/table_a1_added_mass_2d.csv.
 import numpy as np
 import pytest
 
-from stripcoef.reference import load_table
+from validation.reference import load_table
 from stripcoef.sections.panel import added_mass_contours
 
 RHO = 1000.0

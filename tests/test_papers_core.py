@@ -37,8 +37,8 @@ def test_mares_holes_make_heave_differ_from_sway(mares):
     assert mares.quadratic_damping[1, 1] > mares.quadratic_damping[2, 2]
 
 
-# --- VideoRay Pro III vs Table I (tolerances and reasons live in stripcoef.report.videoray) ---
-from stripcoef.report import videoray as vr  # noqa: E402
+# --- VideoRay Pro III vs Table I (tolerances and reasons live in validation.videoray) ---
+from validation import videoray as vr  # noqa: E402
 
 
 def test_videoray_inferred_hull_section_reproduces_table_i():

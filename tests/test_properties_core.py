@@ -31,7 +31,7 @@ def test_port_starboard_symmetry_kills_terms(mares):
 
 
 def test_sonar_below_creates_roll_couplings(mares):
-    # the sonar housing below the hull breaks the xy-plane symmetry (seed 002, sec. III.C.1)
+    # the sonar housing below the hull breaks the xy-plane symmetry (Ferreira et al. 2009, sec. III.C.1)
     c = mares.coefficients()
     assert c["K_vdot"] != 0.0 and c["K_vdot"] == pytest.approx(c["Y_pdot"])
     assert c["N_vdot"] == pytest.approx(c["Y_rdot"])

@@ -13,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from stripcoef import reference as ref
+import stripcoef.data
+from validation import reference as ref
 from stripcoef.errors import InputError
 
 ROOT = ref.reference_dir()
-DATA = Path(ref.__file__).resolve().parent / "data"
+DATA = Path(stripcoef.data.__file__).resolve().parent   # the runtime curves (src/stripcoef/data)
 SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor")
 
 
@@ -188,7 +189,7 @@ def test_formula_evaluation_and_its_errors(tmp_path):
 
 
 # ---------------------------------------------------------------------------
-# VideoRay Pro III (seed 000): Table I vs the yaw identification of sec. III.C
+# VideoRay Pro III (Wang & Clark 2006): Table I vs the yaw identification of sec. III.C
 # ---------------------------------------------------------------------------
 
 V = "videoray_pro3"
@@ -213,7 +214,7 @@ def test_videoray_table1_is_positive_magnitudes():
 
 
 # ---------------------------------------------------------------------------
-# ROV II (seed 003): Table II averages, scaling to Tables III/IV, the in-air text
+# ROV II (Eng et al. 2009): Table II averages, scaling to Tables III/IV, the in-air text
 # ---------------------------------------------------------------------------
 
 R = "rov2"
@@ -251,7 +252,7 @@ def test_rov2_in_air_gamma_has_the_sign_of_K_Q():
 
 
 # ---------------------------------------------------------------------------
-# ROMEO (seed 001): eq. 4.17 vs Table I, and the yaw tables' degrees of freedom
+# ROMEO (Indiveri 1998): eq. 4.17 vs Table I, and the yaw tables' degrees of freedom
 # ---------------------------------------------------------------------------
 
 M = "romeo"

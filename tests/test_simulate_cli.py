@@ -10,7 +10,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).parent))
 
 from stripcoef import cli  # noqa: E402
-from stripcoef.logs import Log, read_log  # noqa: E402
+from stripcoef.logfile import Log, read_log  # noqa: E402
 from stripcoef.modelfile import load_model
 from stripcoef.export import write_export  # noqa: E402
 from stripcoef.thrusters import Thruster  # noqa: E402

@@ -91,7 +91,7 @@ def test_constant_thrust_reaches_analytic_steady_speed(thrust):
 
 
 def test_thruster_commands_forward_and_backward_maps():
-    ct_f, ct_b = 2.5939e-4, 1.0086e-4  # seed 000, Table I (port/starboard)
+    ct_f, ct_b = 2.5939e-4, 1.0086e-4  # Wang & Clark 2006, Table I (port/starboard)
     thr = [Thruster("port", np.array([0.0, -0.1, 0.0]), np.array([1.0, 0, 0]),
                     ct_forward=ct_f, ct_backward=ct_b),
            Thruster("starboard", np.array([0.0, 0.1, 0.0]), np.array([1.0, 0, 0]),
@@ -204,7 +204,7 @@ def test_bad_input_names_the_key(kwargs, key):
 
 
 def test_saturated_thrusters_reach_the_limits_solvers_surge_speed():
-    from stripcoef.limits import surge_limit
+    from stripcoef.limits.solver import surge_limit
 
     thr = [Thruster("port", np.array([-0.1, -0.1, 0.0]), np.array([1.0, 0, 0]),
                     ct_forward=2.5939e-4, ct_backward=1.0086e-4, max_forward=3.0,

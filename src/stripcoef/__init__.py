@@ -6,7 +6,9 @@ limits / export / simulate / identify / diagnose.
 Public API (see docs/):
 
 - :func:`load_vehicle` - read and validate a vehicle file (YAML)
-- :func:`estimate` - strip theory: a Vehicle in, a :class:`HydroModel` out
+- :func:`estimate` - strip theory: a vehicle file, a mesh file or a :class:`Vehicle` in,
+  a :class:`HydroModel` out
+- :class:`Vehicle` - the geometry (``Vehicle.from_mesh`` for a CAD mesh)
 - :func:`load_model` - a HydroModel from a model file (JSON/YAML) or a vehicle file
 - :func:`solve_limits` - steady manoeuvre limits of a :class:`HydroModel` (docs/limits.md)
 - :func:`export_model` / :func:`write_export` - simulator and data formats (docs/export/)
@@ -27,7 +29,8 @@ _LAZY = {
     "HydroModel": ("model", "HydroModel"),
     "Thruster": ("thrusters", "Thruster"),
     "load_vehicle": ("geometry.vehicle", "load_vehicle"),
-    "estimate": ("assemble", "estimate"),
+    "Vehicle": ("geometry.vehicle", "Vehicle"),
+    "estimate": ("assembly", "estimate"),
     "load_model": ("modelfile", "load_model"),
     "solve_limits": ("limits", "solve_limits"),
     "export_model": ("export", "export_model"),
@@ -35,6 +38,10 @@ _LAZY = {
 }
 
 __all__ = ["InputError", "StripcoefError", "UnreachableError", "__version__", *_LAZY]
+
+
+def __dir__():
+    return sorted(__all__)
 
 
 def __getattr__(name):

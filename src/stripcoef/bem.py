@@ -12,8 +12,8 @@ exact potential-flow added-mass matrix of the panelled body
 and numerical aspects of the open source BEM solver NEMOH", EWTEC, for the
 solver that Capytaine builds on).  The ``direct`` (Green's identity) method is
 used: it converges at second order where the default ``indirect`` (source)
-method is 2-3 % high at a few thousand panels (measured, see
-/work/shared/reference/libraries-and-bem.md).
+method is 2-3 % high at a few thousand panels (measured on spheroid meshes against
+Lamb's exact values: benchmarks/mesh_reference_convergence.py).
 
 Trap avoided: ``capytaine.assemble_dataset`` silently drops results with an
 infinite free surface, so each result's ``added_mass`` is read directly.
@@ -43,7 +43,7 @@ def _capytaine():
         import capytaine as cpt  # noqa: PLC0415  (optional extra)
     except ImportError:
         raise InputError("the BEM cross-check needs Capytaine, which is not installed",
-                         key="--method bem",
+                         key="method",
                          expected="pip install 'stripcoef[bem]'") from None
     import logging
     logging.getLogger("capytaine").setLevel(logging.ERROR)
@@ -131,27 +131,27 @@ def timed_bem_added_mass(*args, **kwargs):
     return a, time.perf_counter() - t0
 
 
-def bem_model_dict(vehicle, args) -> dict:
-    """JSON contract of ``stripcoef coefficients MESH --method bem``.
+def bem_model(model, vehicle):
+    """``model`` with its added-mass matrix replaced by the BEM one of ``vehicle``'s mesh.
 
-    The strip-theory model (damping, rigid-body terms) with its added-mass matrix
-    replaced by the BEM one about the same reference point.
+    The strip-theory model keeps its damping and rigid-body terms; the BEM added mass is
+    taken about the same reference point (:func:`bem_added_mass`). ``vehicle`` must be a
+    single mesh (:meth:`~stripcoef.geometry.vehicle.Vehicle.from_mesh`). Returns a new
+    HydroModel whose provenance names the method, the faces and the solver time [s].
     """
-    from stripcoef.commands.coefficients import estimate_from_args
+    from dataclasses import replace
+
     from stripcoef.geometry.mesh import MeshBody
 
     meshes = [b for b in vehicle.bodies if isinstance(b, MeshBody)]
     if len(meshes) != 1 or len(vehicle.bodies) != 1:
-        raise InputError("--method bem needs a mesh file as the whole vehicle",
-                         file=vehicle.source, key="--method",
-                         expected="a .stl/.obj/.ply/.glb file")
-    _, model = estimate_from_args(args)
+        raise InputError("the BEM needs a mesh as the whole vehicle", file=vehicle.source,
+                         key="method", expected="a .stl/.obj/.ply/.glb file")
     a, seconds = timed_bem_added_mass(meshes[0], rho=model.density,
                                       reference_point=model.reference_point)
-    model.added_mass = a
-    model.provenance = dict(model.provenance)
-    model.provenance.update({"method": "bem (Capytaine, free_surface=inf, direct) added mass; "
-                                       "strip-theory damping",
-                             "bem_faces": int(len(meshes[0].mesh.faces)),
-                             "bem_seconds": round(seconds, 3)})
-    return model.to_dict()
+    provenance = dict(model.provenance)
+    provenance.update({"method": "bem (Capytaine, free_surface=inf, direct) added mass; "
+                                 "strip-theory damping",
+                       "bem_faces": int(len(meshes[0].mesh.faces)),
+                       "bem_seconds": round(seconds, 3)})
+    return replace(model, added_mass=a, provenance=provenance)

@@ -121,7 +121,7 @@ def transform_vector(vec, axes: str = "FRD") -> np.ndarray:
 
 
 def rotation_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
-    r"""Body-to-NED rotation :math:`R_{zyx}(\phi, \theta, \psi)` (J_1 of seed 000, eq. 2).
+    r"""Body-to-NED rotation :math:`R_{zyx}(\phi, \theta, \psi)` (J_1 of Wang & Clark 2006, eq. 2).
 
     .. math:: R_{zyx} = R_{z,\psi} R_{y,\theta} R_{x,\phi}
 
@@ -142,7 +142,7 @@ def rotation_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
 
 
 def euler_rate_matrix(phi: float, theta: float) -> np.ndarray:
-    r"""Angular-velocity transform :math:`T(\Theta)` (J_2 of seed 000, eq. 2).
+    r"""Angular-velocity transform :math:`T(\Theta)` (J_2 of Wang & Clark 2006, eq. 2).
 
     .. math:: \dot\Theta = T(\Theta)\,\omega, \quad
         T = \begin{bmatrix} 1 & s\phi t\theta & c\phi t\theta \\
@@ -222,3 +222,10 @@ def parse_dof(name: str) -> int:
         return DOF.index(low)
     raise InputError("unknown degree of freedom", key="dof", value=name,
                      expected="one of " + ", ".join(DOF) + " (or u v w p q r)")
+
+
+def clean_roundoff(m, rel=1e-12):
+    """Set round-off below ``rel`` times the largest entry to exactly zero."""
+    m = np.array(m, dtype=float)
+    m[np.abs(m) < rel * max(float(np.abs(m).max()), 1e-300)] = 0.0
+    return m + 0.0   # no negative zeros

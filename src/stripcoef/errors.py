@@ -57,6 +57,11 @@ class InputError(StripcoefError, ValueError):
         body = "; ".join(parts)
         super().__init__(f"{where}: {body}" if where else body)
 
+    def with_key(self, key: str | None) -> "InputError":
+        """The same error naming another key (the CLI names its flag for a parameter)."""
+        return InputError(self.what, file=self.file, key=key, value=self.value,
+                          expected=self.expected)
+
 
 class UnreachableError(StripcoefError, RuntimeError):
     """A manoeuvre or computation that the model or thrusters cannot achieve."""

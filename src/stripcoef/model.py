@@ -1,6 +1,6 @@
 r"""HydroModel: the one result object every consumer reads.
 
-Equations of motion (Fossen 2011, eq. 7.190; seed 000, eqs. 1-2):
+Equations of motion (Fossen 2011, eq. 7.190; Wang & Clark 2006, eqs. 1-2):
 
 .. math::
     M \dot\nu + C(\nu)\nu + D(\nu)\nu + g(\eta) = \tau, \qquad \dot\eta = J(\eta)\nu
@@ -160,7 +160,7 @@ class HydroModel:
     conditions : dict
         Reynolds numbers, regimes and drag coefficients used (for reports)
     effects : list of dict
-        Extra force terms added by calibration (see :mod:`stripcoef.identify.effects`)
+        Extra force terms added by calibration (see :mod:`stripcoef.effects.laws`)
     provenance : dict
         Where each part came from (method, options, file)
     """
@@ -212,7 +212,7 @@ class HydroModel:
     def coriolis(self, nu, *, rigid_body: bool = True, added_mass: bool = True,
                  munk: bool = True) -> np.ndarray:
         """C(nu) = C_RB(nu) + C_A(nu); ``munk=False`` drops the C_A terms that multiply
-        linear velocities into moments (the Munk moment, seed 002 sec. V.D).
+        linear velocities into moments (the Munk moment, Ferreira et al. 2009 sec. V.D).
 
         ``nu`` [m/s, rad/s]; returns C [kg/s, kg m/s, kg m^2/s] (C nu in [N, N m]).
         Each term from :func:`coriolis_from_mass` (Fossen 2011, Theorem 3.2, eq. 3.46).
@@ -233,7 +233,7 @@ class HydroModel:
         """D(nu) = D_L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
 
         ``nu`` [m/s, rad/s]; D_L [kg/s, kg m^2/s], D_Q [kg/m, kg m^2]. Quadratic
-        diagonal drag of seed 000, eq. 7 (see module docstring, Fossen 2011, eq. 7.190).
+        diagonal drag of Wang & Clark 2006, eq. 7 (see module docstring, Fossen 2011, eq. 7.190).
         """
         return self.linear_damping + self.quadratic_damping * np.abs(np.asarray(nu, dtype=float))
 

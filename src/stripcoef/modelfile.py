@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.io import read_text
+from stripcoef.files import read_text
 from stripcoef.model import HydroModel
 
 _MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass")
@@ -49,7 +49,8 @@ def load_model(path) -> HydroModel:
                          key=f"line {mark.line + 1}" if mark else None) from None
     if isinstance(data, dict) and "added_mass" in data and "rigid_body_mass" in data:
         return model_from_dict(data, file=str(path))
-    from stripcoef import estimate, load_vehicle
+    from stripcoef.assembly import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
     return estimate(load_vehicle(path))
 
 

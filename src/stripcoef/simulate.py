@@ -1,7 +1,7 @@
 r"""6-DOF time simulation of a :class:`~stripcoef.model.HydroModel`.
 
 Equations of motion with a water current (Fossen 2011, eq. 10.1 and sec. 10.3;
-seed 000, eqs. 1-2):
+Wang & Clark 2006, eqs. 1-2):
 
 .. math::
     M_{RB}\dot\nu + C_{RB}(\nu)\nu + M_A\dot\nu_r + C_A(\nu_r)\nu_r + D(\nu_r)\nu_r
@@ -25,7 +25,7 @@ The applied force :math:`\tau = B\,T(n) + \tau_{forces}` is the thrust of every
 thruster through the allocation matrix ``B`` (``Thruster.thrust``: forward/backward
 coefficients, efficiencies, dead band, limits) plus the given generalized forces.
 :math:`\tau_{extra}` gathers the calibrated effects of the model
-(``model.effects``, see :mod:`stripcoef.identify.effects`) and a user hook.
+(``model.effects``, see :mod:`stripcoef.effects.laws`) and a user hook.
 
 The state is integrated with :func:`scipy.integrate.solve_ivp`; with zero-order-hold
 inputs the integration restarts at every sample where an input jumps, so the
@@ -41,7 +41,7 @@ from scipy.integrate import solve_ivp
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
-from stripcoef.logs import COMMAND_PREFIX, Log
+from stripcoef.logfile import COMMAND_PREFIX, Log
 
 INTERPOLATIONS = ("previous", "linear")
 
@@ -145,7 +145,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         M\dot\nu = \tau + \tau_{extra} - C_{RB}(\nu)\nu - C_A(\nu_r)\nu_r
         - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c,\qquad \dot\eta = J(\eta)\nu
 
-    (module docstring; Fossen 2011 eqs. 10.1, 10.3; seed 000 eqs. 1-2).
+    (module docstring; Fossen 2011 eqs. 10.1, 10.3; Wang & Clark 2006 eqs. 1-2).
 
     Parameters
     ----------
@@ -184,7 +184,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         ``model``, ``allocation`` (its thruster allocation matrix B, (6, n), computed once per
         run) and ``columns`` (the ``channels`` at that time).
     effects : bool
-        Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.identify.effects`).
+        Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.effects.laws`).
     munk : bool
         Keep the Munk moment in C_A (``HydroModel.coriolis``).
     channels : dict, optional
@@ -194,7 +194,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         Feedback: ``controller(time, eta, nu, commands) -> {thruster: command}`` is called at
         every sample with the state and the open-loop commands of that sample; the commands
         it returns replace them until the next sample (zero-order hold) and are logged (an
-        autopilot, e.g. the heading autopilot of seed 001's heave trials).
+        autopilot, e.g. the heading autopilot of Indiveri 1998's heave trials).
 
     Returns
     -------
@@ -213,7 +213,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     References
     ----------
     Fossen, Handbook of Marine Craft Hydrodynamics and Motion Control (2011), eqs. 7.190,
-    10.1 and sec. 10.3 (current); Wang & Clark (seed 000), eqs. 1-2.
+    10.1 and sec. 10.3 (current); Wang & Clark (Wang & Clark 2006), eqs. 1-2.
     """
     if interpolation not in INTERPOLATIONS:
         raise unknown_name("interpolation", interpolation, INTERPOLATIONS, key="interpolation")
@@ -265,7 +265,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     alloc = model.allocation()
     effect_terms = []
     if effects and model.effects:
-        from stripcoef.identify.effects import effect_forces  # calibrated effects (issue 7)
+        from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
         effect_terms = effect_forces(model)
     nthr = len(thrusters)
 

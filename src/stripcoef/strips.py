@@ -196,3 +196,97 @@ def uniform_stations(x_min: float, x_max: float, n: int) -> tuple[np.ndarray, np
     """Centres and widths of ``n`` equal strips covering [x_min, x_max] [m]."""
     edges = np.linspace(x_min, x_max, n + 1)
     return 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+
+
+def hole_water(strips: Strips):
+    """Per hole-cut: water volume per strip [m^3] (only holes cut through displaced parts).
+
+    dV = c d dx, chord c [m], depth d [m], strip width dx [m]; [assumption] prismatic
+    hole per strip (Ferreira et al. 2009, sec. IV.C approximates holes by cylinders).
+    """
+    return [(h, h.chord * h.depth * strips.dx[h.index]) for h in strips.holes]
+
+
+def _strip_operator(xrel):
+    """L(X) for an array of X: (n, 3, 6).
+
+    [v + X r, w - X q, p] = L(X) nu, X = x - x_0 [m]; L is [-] in its 1 entries and [m]
+    in the X entries. See module docstring (Newman 1977, sec. 7.4).
+    """
+    n = xrel.size
+    L = np.zeros((n, 3, 6))
+    L[:, 0, 1] = 1.0
+    L[:, 0, 5] = xrel
+    L[:, 1, 2] = 1.0
+    L[:, 1, 4] = -xrel
+    L[:, 2, 3] = 1.0
+    return L
+
+
+def hole_widths(strips: Strips, part):
+    """Per strip of a hull part: open width of holes along z (c_z) and along y (c_y) [m].
+
+    c_z = sum of the chords [m] of the in-hull holes with axis z in the strip (same for y).
+    [assumption] widths add (holes do not overlap); used by Ferreira et al. 2009, eq. 40 style
+    reductions in :func:`section_matrices` and :func:`~stripcoef.assembly.damping.damping_matrices`.
+    """
+    cz = np.zeros(part.index.size)
+    cy = np.zeros(part.index.size)
+    if part.role != "hull":
+        return cy, cz
+    pos = {int(i): k for k, i in enumerate(part.index)}
+    for h in strips.holes:
+        if not h.in_hull:
+            continue
+        for i, c in zip(h.index, h.chord):
+            k = pos.get(int(i))
+            if k is None:
+                continue
+            if h.axis == "z":
+                cz[k] += c
+            elif h.axis == "y":
+                cy[k] += c
+    return cy, cz
+
+
+def shift_section_matrices(m, dy, dz) -> np.ndarray:
+    r"""2D section matrices (sway, heave, roll) moved to a reference point offset by
+    (dy, dz) [m] from their own:
+
+    .. math:: m' = H_2^T m H_2,\qquad
+              H_2 = \begin{bmatrix}1&0&-\Delta z\\0&1&\Delta y\\0&0&1\end{bmatrix}
+
+    (a rigid roll p about the new point moves the section's own point by
+    :math:`(-\Delta z\,p, \Delta y\,p)`; Fossen 2011, sec. 7.5.3, in 2D).  ``m`` (..., 3, 3)
+    [kg/m, kg, kg m], ``dy``, ``dz`` broadcasting over its leading axes; returns the same
+    shape.
+    """
+    dy, dz = np.broadcast_arrays(np.asarray(dy, dtype=float), np.asarray(dz, dtype=float))
+    h2 = np.zeros(dy.shape + (3, 3))
+    h2[..., 0, 0] = h2[..., 1, 1] = h2[..., 2, 2] = 1.0
+    h2[..., 0, 2] = -dz
+    h2[..., 1, 2] = dy
+    return np.einsum("...ji,...jl,...lm->...im", h2, m, h2)
+
+
+def strip_added_mass(strips: Strips, mats, about) -> np.ndarray:
+    r"""Pure strip-theory 6x6 added mass about point ``about`` (no 3D corrections) [SI].
+
+    .. math:: M_A^{strip} = \sum_{parts}\sum_k dx_k\, L(X_k)^T H_2^T m_k H_2\, L(X_k),
+              \quad H_2 = \begin{bmatrix}1&0&-\Delta z\\0&1&\Delta y\\0&0&1\end{bmatrix}
+
+    ``mats`` are the parts' 2D section matrices, one (k, 3, 3) array per part, about the
+    part's centre [kg/m, kg, kg m] (:func:`stripcoef.sections.strip_section_matrices`);
+    ``about`` [m]; strip widths dx [m]. Returns M_A [kg, kg m, kg m^2].
+
+    References
+    ----------
+    See module docstring (Newman 1977, sec. 7.4; Fossen 2011, sec. 6.3.3).
+    """
+    x0, y0, z0 = about
+    total = np.zeros((6, 6))
+    for p, m in zip(strips.parts, mats):
+        m = shift_section_matrices(m, p.y - y0, p.z - z0)
+        L = _strip_operator(strips.x[p.index] - x0)
+        total += np.einsum("k,kji,kjl,klm->im", strips.width(p), L, m, L)
+    return total

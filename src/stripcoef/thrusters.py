@@ -2,15 +2,15 @@ r"""Thrusters: position, direction and the command-to-thrust map.
 
 The thrust of one thruster at command ``n`` (propeller speed or the vehicle's
 command signal) follows the bilinear model of Yoerger et al. (1990), as used by
-Wang & Clark (seed 000, eq. 6) with separate forward and backward
-coefficients (seed 000, Table I):
+Wang & Clark (Wang & Clark 2006, eq. 6) with separate forward and backward
+coefficients (Wang & Clark 2006, Table I):
 
 .. math::
     T(n) = \eta_\pm\, C_{t,\pm}\, n |n|, \qquad
     T \in [-T_{max,-},\ T_{max,+}]
 
 with ``+`` for ``n >= 0``.  The efficiency ``eta`` per direction is the
-propeller-hull interaction factor of Caccia et al. (seed 001, eq. 4.16).
+propeller-hull interaction factor of Caccia et al. (Indiveri 1998, eq. 4.16).
 """
 
 from __future__ import annotations
@@ -77,7 +77,7 @@ class Thruster:
         .. math:: n = \operatorname{sign}(T) \sqrt{|T| / (\eta_\pm C_{t,\pm})}
 
         Returns ``n`` [command units]; ignores the deadband and the limits.
-        Inverse of seed 000, eq. 6 (see module docstring).
+        Inverse of Wang & Clark 2006, eq. 6 (see module docstring).
         """
         t = np.asarray(thrust, dtype=float)
         ct = np.where(t >= 0.0, self.ct_forward * self.eta_forward,
@@ -90,7 +90,7 @@ class Thruster:
 
         ``reference_point`` o [m] in FRD body axes; returns [-] (force rows) and [m]
         (moment rows). Moment of a point force, :math:`M = r \times F`; the
-        :math:`\tau` of seed 000, eq. 1.
+        :math:`\tau` of Wang & Clark 2006, eq. 1.
         """
         d = np.asarray(self.direction, dtype=float)
         r = np.asarray(self.position, dtype=float) - np.asarray(reference_point, dtype=float)
@@ -114,7 +114,7 @@ def allocation_matrix(thrusters, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:
     .. math:: B_{:,i} = [d_i;\ (p_i - o) \times d_i]
 
     ``reference_point`` o [m]; B [-] in force rows, [m] in moment rows; tau [N, N m],
-    thrusts [N]. The :math:`\tau` of seed 000, eq. 1 (see :meth:`Thruster.wrench_column`).
+    thrusts [N]. The :math:`\tau` of Wang & Clark 2006, eq. 1 (see :meth:`Thruster.wrench_column`).
     """
     if not thrusters:
         return np.zeros((6, 0))

@@ -22,7 +22,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from stripcoef.errors import InputError, unknown_name
-from stripcoef.io import write_bytes, write_text
+from stripcoef.files import write_bytes, write_text
 from stripcoef.model import HydroModel
 from stripcoef.export import csvtable, gazebo, jsondata, mss, npzarrays, pymodule, uuv, yamldata
 from stripcoef.export._common import (POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point,
@@ -31,10 +31,6 @@ from stripcoef.export._common import (POINT_NAMES, ExportView, SimulatorTrapWarn
 #: The registry of export formats: name -> module.
 FORMATS = {m.NAME: m for m in (gazebo, uuv, mss, pymodule, jsondata, yamldata, csvtable,
                                 npzarrays)}
-
-#: Options a caller may give and the CLI flag that sets each (for error messages).
-_OPTION_FLAGS = {"link_name": "--link", "legacy_added_mass": "--legacy-added-mass",
-                 "function_name": "the output file name"}
 
 __all__ = ["FORMATS", "ExportView", "SimulatorTrapWarning", "export_model", "format_module",
            "resolve_point", "write_export"]
@@ -100,7 +96,7 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
             continue
         if key not in module.OPTIONS:
             valid = [f for f, m in FORMATS.items() if key in m.OPTIONS]
-            raise InputError(f"option {_OPTION_FLAGS[key]} does not apply to format {fmt}",
+            raise InputError(f"option {key} does not apply to format {fmt}",
                              key=key, value=value, expected="a format among " + ", ".join(valid))
         options[key] = _check_link_name(value) if key == "link_name" else value
     axes = check_axes(module.DEFAULT_AXES if axes is None else axes, module.AXES_ALLOWED,

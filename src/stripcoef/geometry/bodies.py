@@ -241,7 +241,7 @@ class Hole:
     """A through-hole in the hull: a cylinder of diameter d along y or z at (x, y or z).
 
     Motion along the axis passes freely (no added mass, no drag area); motion across it
-    carries the water inside (seed 002, sec. IV.C).
+    carries the water inside (Ferreira et al. 2009, sec. IV.C).
     """
 
     name: str

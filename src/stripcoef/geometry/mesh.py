@@ -473,7 +473,7 @@ class MeshBody:
     def _slice_fallback(self, x):
         # trimesh's slicer, for meshes whose cut edges do not chain (non-manifold edges);
         # ring orientation then comes from nesting, not from the winding
-        from stripcoef.sections.panel import orient_contours
+        from stripcoef.geometry.polygons import orient_contours
 
         out = []
         for xi in x:
@@ -573,9 +573,10 @@ class MeshBody:
 
 
 def _has_sharp_corners(rings) -> bool:
-    from stripcoef.sections.panel import _corner_flags, orient_contours
+    from stripcoef.geometry.polygons import corner_flags, orient_contours
+
     try:
-        return any(_corner_flags(r).any() for r in orient_contours(rings))
+        return any(corner_flags(r).any() for r in orient_contours(rings))
     except InputError:
         return False
 
@@ -639,7 +640,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         raise _fail(where, "mesh has non-finite vertex coordinates")
     if extent[0] <= 1e-9 * max(extent.max(), 1e-300):
         raise _fail(where, f"the body has no extent along the mesh {axis} axis (the body axis)",
-                    value=f"{extent[0]:.3g} m", expected="--axis along the body's length")
+                    value=f"{extent[0]:.3g} m", expected="the mesh axis along the body's length as axis (x, y or z)")
     length = float(extent[0])
     if min(extent[1], extent[2]) <= 1e-9 * length:
         raise _fail(where, "mesh encloses no volume (it is flat)",

@@ -26,7 +26,7 @@ def ellipsoid_nose(x, x_aft, x_fwd, radius):
 
     References
     ----------
-    MARES model (seed 002, sec. IV.A): "the nose and the tail consist in two semi-ellipsoids".
+    MARES model (Ferreira et al. 2009, sec. IV.A): "the nose and the tail consist in two semi-ellipsoids".
     """
     xi = np.clip((np.asarray(x, float) - x_aft) / (x_fwd - x_aft), 0.0, 1.0)
     return radius * np.sqrt(np.maximum(1.0 - xi**2, 0.0))
@@ -39,7 +39,7 @@ def ellipsoid_tail(x, x_aft, x_fwd, radius):
 
     References
     ----------
-    MARES model (seed 002, sec. IV.A), as :func:`ellipsoid_nose`.
+    MARES model (Ferreira et al. 2009, sec. IV.A), as :func:`ellipsoid_nose`.
     """
     xi = np.clip((x_fwd - np.asarray(x, float)) / (x_fwd - x_aft), 0.0, 1.0)
     return radius * np.sqrt(np.maximum(1.0 - xi**2, 0.0))

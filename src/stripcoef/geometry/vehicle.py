@@ -18,7 +18,7 @@ import yaml
 
 from stripcoef.errors import InputError
 from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
-from stripcoef.io import read_text
+from stripcoef.files import read_text
 from stripcoef.strips import Strips, uniform_stations
 from stripcoef.thrusters import Thruster
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
@@ -29,6 +29,8 @@ DEFAULT_STRIPS = 1000
 #: Default reference speed for Reynolds numbers and the damping split [m/s].
 DEFAULT_SPEED = 1.0
 REFERENCE_NAMES = ("center_of_buoyancy", "center_of_gravity", "origin")
+#: File suffixes read as CAD meshes (:mod:`stripcoef.geometry.mesh`); the rest must be YAML.
+MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 
 
 @dataclass
@@ -70,6 +72,58 @@ class Vehicle:
     n_strips: int = DEFAULT_STRIPS
     corrections: bool = True
     description: str = ""
+
+    @classmethod
+    def from_mesh(cls, mesh, *, axis: str = "x", length_unit: str = "m", origin="centroid",
+                  fluid: Fluid | None = None, name: str | None = None) -> "Vehicle":
+        """A vehicle made of one closed CAD mesh, with default sea water and neutral buoyancy.
+
+        Parameters
+        ----------
+        mesh : str, Path, MeshBody or trimesh.Trimesh
+            A mesh file (STL, OBJ, PLY, GLB, GLTF, OFF), a loaded body or an in-memory mesh.
+        axis : {"x", "y", "z"}
+            The mesh axis along the body's length (mapped onto body x).
+        length_unit : {"m", "mm", "cm", "in", "ft"}
+            Unit of the mesh coordinates.
+        origin : "centroid" or (x, y, z)
+            "centroid": body axes at the volume centroid, matrices about the centre of
+            buoyancy; a point: the file's origin is kept and the matrices are about that
+            point [m, body axes].
+        fluid : Fluid, optional
+            Default: sea water (:data:`stripcoef.fluid.RHO_SEAWATER`, ``NU_SEAWATER``).
+        name : str, optional
+            Default: the file's stem, or "mesh".
+        """
+        from stripcoef.fluid import NU_SEAWATER
+        from stripcoef.geometry import mesh as mesh_mod
+
+        if isinstance(origin, str):
+            if origin != "centroid":
+                raise InputError("unknown mesh origin", key="origin", value=origin,
+                                 expected="'centroid' or a point (x, y, z) [m]")
+            reference, body_origin = "center_of_buoyancy", "centroid"
+        else:
+            reference = np.asarray(origin, dtype=float).reshape(-1)
+            if reference.shape != (3,) or not np.isfinite(reference).all():
+                raise InputError("not a point", key="origin", value=list(reference),
+                                 expected="three finite coordinates [m]")
+            body_origin = "file"
+        kw = dict(axis=axis, length_unit=length_unit, origin=body_origin)
+        if isinstance(mesh, mesh_mod.MeshBody):
+            body, source = mesh, mesh.source
+        elif isinstance(mesh, (str, Path)):
+            body, source = mesh_mod.load_mesh(mesh, **kw), str(mesh)
+        elif hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+            body, source = mesh_mod.mesh_body(mesh, name=name or "mesh", **kw), "<trimesh>"
+        else:
+            raise InputError("not a mesh", key="mesh", value=type(mesh).__name__,
+                             expected="a mesh file path, a MeshBody or a trimesh.Trimesh")
+        return cls(name=name or (Path(source).stem if source != "<trimesh>" else "mesh"),
+                   source=source,
+                   fluid=fluid or Fluid(RHO_SEAWATER, NU_SEAWATER, "default sea water"),
+                   hull=None, bodies=[body], holes=[], mass=MassSpec(), thrusters=[],
+                   reference=reference)
 
     def x_extent(self) -> tuple[float, float]:
         lo = min(b.x_extent()[0] for b in self.bodies)
@@ -519,13 +573,23 @@ def _check_connected(r: _Reader, bodies) -> None:
                         "an appendage touching the hull or an appendage attached to it")
 
 
-def load_vehicle(path) -> Vehicle:
-    """Read and validate a vehicle YAML file (see docs/vehicle-file.md)."""
+def load_vehicle(path, **mesh_options) -> Vehicle:
+    """Read and validate a vehicle file (YAML, docs/vehicle-file.md) or a mesh file.
+
+    A mesh file (:data:`MESH_SUFFIXES`) becomes a vehicle through :meth:`Vehicle.from_mesh`,
+    which takes ``mesh_options`` (axis, length_unit, origin, fluid, name).
+    """
     path = Path(path)
     name = str(path)
+    if path.suffix.lower() in MESH_SUFFIXES:
+        return Vehicle.from_mesh(path, **mesh_options)
+    if mesh_options:
+        raise InputError("mesh options given for a vehicle file", file=name,
+                         key=", ".join(sorted(mesh_options)),
+                         expected="options only with a mesh file (" + " ".join(MESH_SUFFIXES) + ")")
     if path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError("unknown vehicle file extension", file=name, value=path.suffix,
-                         expected=".yaml or .yml (or a mesh: .stl .obj .ply .glb)")
+                         expected=".yaml or .yml, or a mesh: " + " ".join(MESH_SUFFIXES))
     text = read_text(path, kind="vehicle file")
     try:
         data = yaml.safe_load(text)

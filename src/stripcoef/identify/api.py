@@ -17,7 +17,7 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
                  length: float | None = None, stiffness: float | None = None,
                  medium: str = "water", window: int | None = None, order: int = 4,
                  refine: bool = False):
-    """Identify coefficients from ``log`` (a :class:`stripcoef.logs.Log`).
+    """Identify coefficients from ``log`` (a :class:`stripcoef.logfile.Log`).
 
     Parameters
     ----------
@@ -37,7 +37,7 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
     (FitResult, Comparison or None)
     """
     if method not in METHODS:
-        raise unknown_name("identification method", method, METHODS, key="--method")
+        raise unknown_name("identification method", method, METHODS, key="method")
     from stripcoef.identify import onestep, pendulum, steady        # scipy.signal etc. only when used
     from stripcoef.identify.inputs import applied_force, horizontal_command
     if method in ("steady", "one-step"):
@@ -62,8 +62,8 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
         fit.notes.append(f"applied force from {origin}")
         return fit, cmp
     if model:
-        raise InputError("--model applies to steady and one-step only", key="--model",
-                         value=model, expected=f"no --model with --method {method}")
+        raise InputError("a model applies to the steady and one-step methods only", key="model",
+                         value=model, expected=f"no model with method {method}")
     kw = dict(window=window, order=order, refine=refine)
     if method == "pendulum":
         if mass is None and vehicle is not None:
@@ -73,8 +73,8 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
         elif buoyancy is None and vehicle is not None:
             buoyancy = vehicle.buoyancy
         if medium == "water" and mass is not None and buoyancy is None:
-            raise InputError("buoyancy needed with the mass", key="--buoyancy",
-                             expected="--buoyancy B [N] or --vehicle")
+            raise InputError("buoyancy needed with the mass", key="buoyancy",
+                             expected="the buoyancy B [N] or a vehicle")
         return pendulum.pendulum_log(log, mass=mass, buoyancy=buoyancy or 0.0, length=length,
                                      medium=medium, dof=dof or "", **kw), None
     name = DOF[parse_dof(dof or "yaw")]

@@ -4,16 +4,16 @@ The papers all reduce identification to a linear regression
 
 .. math:: y = H\theta + \varepsilon
 
-solved by ordinary least squares (Caccia, seed 001, eqs. 4.5, 4.6, 4.12; Wang & Clark,
-seed 000, eq. 18; Eng et al., seed 003, eqs. 6-7):
+solved by ordinary least squares (Caccia, Indiveri 1998, eqs. 4.5, 4.6, 4.12; Wang & Clark,
+Wang & Clark 2006, eq. 18; Eng et al., Eng et al. 2009, eqs. 6-7):
 
 .. math::
     \hat\theta = (H^T H)^{-1} H^T y, \qquad
     \hat\sigma^2 = \frac{(y - H\hat\theta)^T (y - H\hat\theta)}{N - p}, \qquad
     \operatorname{cov}\hat\theta = \hat\sigma^2 (H^T H)^{-1}
 
-with the relative error :math:`100\,\hat\sigma_\theta / |\hat\theta|` [%] (seed 001, Table I)
-and the cost :math:`J_{LS} = \sum \varepsilon^2` (seed 001, yaw tables).
+with the relative error :math:`100\,\hat\sigma_\theta / |\hat\theta|` [%] (Indiveri 1998, Table I)
+and the cost :math:`J_{LS} = \sum \varepsilon^2` (Indiveri 1998, yaw tables).
 
 The i.i.d. covariance above is honest only when the residuals are uncorrelated. Residuals
 built from smoothed derivatives (Savitzky-Golay) or from differenced samples (one-step-ahead
@@ -115,12 +115,12 @@ class FitResult:
 
     @property
     def degrees_of_freedom(self) -> int:
-        """N - p [-] (seed 001's nu, eq. 4.12)."""
+        """N - p [-] (Indiveri 1998's nu, eq. 4.12)."""
         return self.n_obs - self.n_params
 
     @property
     def sigma2(self) -> float:
-        r""":math:`\hat\sigma^2 = J_{LS} / (N - p)` [units of y squared] (seed 001, eq. 4.12)."""
+        r""":math:`\hat\sigma^2 = J_{LS} / (N - p)` [units of y squared] (Indiveri 1998, eq. 4.12)."""
         return self.cost / self.degrees_of_freedom
 
     @property
@@ -175,7 +175,7 @@ class FitResult:
 
     @property
     def relative_error_percent(self) -> dict:
-        r""":math:`100\,\sigma/|\theta|` [%] (seed 001, Table I); inf for a zero estimate."""
+        r""":math:`100\,\sigma/|\theta|` [%] (Indiveri 1998, Table I); inf for a zero estimate."""
         p, s = self.parameters, self.std
         return {n: (100.0 * s[n] / abs(p[n]) if p[n] != 0.0 else math.inf) for n in p}
 
@@ -261,7 +261,7 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
     names : sequence of str
         Parameter names, one per column of H.
     covariance : {"iid", "hac", "ma1"}
-        ``iid``: :math:`\hat\sigma^2 (H^TH)^{-1}` (seed 001, eqs. 4.6, 4.12);
+        ``iid``: :math:`\hat\sigma^2 (H^TH)^{-1}` (Indiveri 1998, eqs. 4.6, 4.12);
         ``hac``: Newey-West with ``lags`` lags (for correlated residuals);
         ``ma1``: sandwich :math:`(H^TH)^{-1} H^T \Sigma H (H^TH)^{-1}` with
         :math:`\Sigma = \hat\sigma^2 (I + \hat\rho (S + S^T))`, S the one-sample shift and
@@ -284,7 +284,7 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
 
     References
     ----------
-    Ljung, System Identification (1999), sec. 7.3 and 9.2; Caccia (seed 001) eqs. 4.5-4.12.
+    Ljung, System Identification (1999), sec. 7.3 and 9.2; Caccia (Indiveri 1998) eqs. 4.5-4.12.
     """
     H = np.asarray(H, dtype=float)
     y = np.asarray(y, dtype=float).reshape(-1)

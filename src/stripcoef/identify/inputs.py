@@ -1,7 +1,7 @@
 r"""Inputs of the identification methods from a log and, optionally, a vehicle.
 
 The applied generalized force along a DOF is the log's force column (``X``..``N``) or, from
-thruster commands ``n_<name>`` and the vehicle's thruster map (seed 000, eq. 6,
+thruster commands ``n_<name>`` and the vehicle's thruster map (Wang & Clark 2006, eq. 6,
 :math:`T = C_t n|n|`, bench coefficients, efficiency 1 so that eta can be identified):
 
 .. math:: \tau = \sum_j T_j(n_j)\, [d_j;\ (p_j - o) \times d_j]
@@ -21,7 +21,8 @@ from stripcoef.errors import InputError
 
 def vehicle_model(path):
     """HydroModel of a vehicle file (``stripcoef.load_vehicle`` + ``stripcoef.estimate``)."""
-    from stripcoef import estimate, load_vehicle
+    from stripcoef.assembly import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
     return estimate(load_vehicle(path))
 
 
@@ -30,7 +31,7 @@ def applied_force(log, dof, model=None) -> tuple[np.ndarray, str]:
 
     From the log column, else tau_i = sum_k B_ik T_k(n_k) with the bench thrust map
     T = C_t n|n| (eta = 1) and B_ik the i-th entry of the thruster's wrench column
-    [-] or [m] (seed 000, eqs. 1 and 6; :mod:`stripcoef.thrusters`).
+    [-] or [m] (Wang & Clark 2006, eqs. 1 and 6; :mod:`stripcoef.thrusters`).
     """
     i = parse_dof(dof)
     name = FORCES[i]
@@ -57,10 +58,10 @@ def applied_force(log, dof, model=None) -> tuple[np.ndarray, str]:
 
 
 def horizontal_command(log, model=None):
-    """Mean |command| of the horizontal thrusters (``n_h`` of seed 001's eta-md model).
+    """Mean |command| of the horizontal thrusters (``n_h`` of Indiveri 1998's eta-md model).
 
     n_h = (1/K) sum_k |n_k| over the K thrusters with no z component of direction
-    [command units] (seed 001, sec. 3.3.1, momentum-drag regressor F_md = -alpha n_h w).
+    [command units] (Indiveri 1998, sec. 3.3.1, momentum-drag regressor F_md = -alpha n_h w).
     """
     if "n_h" in log:
         return log["n_h"]

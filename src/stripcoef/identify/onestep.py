@@ -1,6 +1,6 @@
-r"""One-step-ahead prediction least squares on a one-DOF state equation (seed 000, eqs. 8-19).
+r"""One-step-ahead prediction least squares on a one-DOF state equation (Wang & Clark 2006, eqs. 8-19).
 
-Wang & Clark (seed 000, eq. 8) model the decoupled yaw motion of the VideoRay Pro III as
+Wang & Clark (Wang & Clark 2006, eq. 8) model the decoupled yaw motion of the VideoRay Pro III as
 
 .. math:: \dot r = \alpha r + \beta r|r| + \gamma n + \delta
 
@@ -54,7 +54,7 @@ from stripcoef.conventions import DOF, FORCES, POSE, VELOCITIES, parse_dof
 from stripcoef.errors import InputError, unknown_name
 from stripcoef.identify.estimators import FitResult, linear_lstsq, runs_test_z
 
-#: Model name -> terms (linear, quadratic, input, bias); LQB is seed 000's eq. 8.
+#: Model name -> terms (linear, quadratic, input, bias); LQB is Wang & Clark 2006's eq. 8.
 MODELS = {
     "LQB": (True, True, True, True),
     "LQNB": (True, True, True, False),
@@ -71,7 +71,7 @@ def _terms(model):
 
 
 def phi(x, n, model="LQB") -> np.ndarray:
-    r"""Regressor row(s) :math:`\phi(r, n) = [r\ \ r|r|\ \ n\ \ 1]` (seed 000, eq. 9)."""
+    r"""Regressor row(s) :math:`\phi(r, n) = [r\ \ r|r|\ \ n\ \ 1]` (Wang & Clark 2006, eq. 9)."""
     x = np.asarray(x, dtype=float)
     n = np.asarray(n, dtype=float)
     cols = {"alpha": x, "beta": x * np.abs(x), "gamma": n, "delta": np.ones_like(x)}
@@ -82,7 +82,7 @@ def velocity_from_pose(t, pose, *, window: int = 15, order: int = 3) -> np.ndarr
     r"""Velocity [unit/s] as the Savitzky-Golay derivative of a sampled pose.
 
     Local least-squares polynomial of degree ``order`` over ``window`` samples
-    (Savitzky & Golay, Anal. Chem. 36 (1964) 1627; used by seed 001, sec. 4.2.4).
+    (Savitzky & Golay, Anal. Chem. 36 (1964) 1627; used by Indiveri 1998, sec. 4.2.4).
     Requires near-uniform sampling (checked: spacing within 1 %).
 
     :math:`\dot x_k = \frac{1}{h}\sum_{j=-m}^{m} c_j x_{k+j}`, with c_j the first-derivative
@@ -103,7 +103,7 @@ def velocity_from_pose(t, pose, *, window: int = 15, order: int = 3) -> np.ndarr
 
 def one_step(t, y, n, *, model: str = "LQB", dof: str = "yaw", inertia: float | None = None,
              covariance: str = "ma1", lags: int = 2, source: str = "<memory>") -> FitResult:
-    r"""Identify the state equation of one DOF by one-step-ahead prediction LS (seed 000).
+    r"""Identify the state equation of one DOF by one-step-ahead prediction LS (Wang & Clark 2006).
 
     Parameters
     ----------
@@ -184,7 +184,7 @@ def simulate_state(t, n, x0, params: dict, model: str = "LQB", *, substeps: int 
 
     .. math:: \dot x = \alpha x + \beta x|x| + \gamma n + \delta
 
-    (seed 000, eq. 8; terms absent from ``model`` are zero). ``t`` [s]; ``x0`` and the result
+    (Wang & Clark 2006, eq. 8; terms absent from ``model`` are zero). ``t`` [s]; ``x0`` and the result
     [m/s or rad/s]; ``n`` [N, N m or command]; alpha [1/s], beta [1/m or 1/rad], gamma
     [1/kg or 1/(kg m^2), or per command], delta [m/s^2 or rad/s^2].
     """

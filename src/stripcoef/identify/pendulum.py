@@ -1,6 +1,6 @@
-r"""Free-decay pendulum and torsion pendulum identification (Eng et al., seed 003).
+r"""Free-decay pendulum and torsion pendulum identification (Eng et al., Eng et al. 2009).
 
-Pendulum (seed 003, eqs. 1-4): a model of mass M [kg] and buoyancy B [N] on a rod of
+Pendulum (Eng et al. 2009, eqs. 1-4): a model of mass M [kg] and buoyancy B [N] on a rod of
 length r [m] swings in water; the hydrodynamic force :math:`F_H = m_a\ddot x + K_L\dot x +
 K_Q|\dot x|\dot x` acts along the path, :math:`\dot x = r\dot\theta`.  Then
 
@@ -19,9 +19,9 @@ in-air beta and gamma come out with mixed signs).  Inverting:
     K_Q = \frac{\gamma (M + m_a)}{r}
 
 In air (B = 0, m_a = 0) the first relation gives the rod length, :math:`r = -g/\alpha`
-(seed 003, sec. IV.A: alpha = -25.128 gives r = 0.3904 m with g = 9.81 m/s^2).
+(Eng et al. 2009, sec. IV.A: alpha = -25.128 gives r = 0.3904 m with g = 9.81 m/s^2).
 
-Torsion pendulum (seed 003, eq. 12) for yaw: the rod is replaced by a torsion spring of
+Torsion pendulum (Eng et al. 2009, eq. 12) for yaw: the rod is replaced by a torsion spring of
 stiffness K [N m/rad] and
 
 .. math:: \ddot\theta = a\,\theta - b\,\dot\theta - c\,|\dot\theta|\dot\theta, \quad
@@ -31,7 +31,7 @@ stiffness K [N m/rad] and
 So :math:`I_a = -K/a - I`, :math:`K_L = b(I + I_a)`, :math:`K_Q = c(I + I_a)`.
 
 The derivatives come from a Savitzky-Golay smoothing of the sampled angle (Savitzky & Golay
-1964; seed 001 sec. 4.2.4 uses the same filter).  Its residuals are correlated over the
+1964; Indiveri 1998 sec. 4.2.4 uses the same filter).  Its residuals are correlated over the
 window, so the covariance is Newey-West with ``window`` lags.  The quality measure is the
 paper's: the RMS of the re-simulated angle minus the measured angle [rad] (Table II).
 """
@@ -148,7 +148,7 @@ def _fit_decay(t, theta, restoring, names, *, window, order, source, method):
                      "acceleration": ac[sl]})
     fit.notes.append(f"derivatives: Savitzky-Golay window {window}, order {order}; "
                      f"covariance Newey-West with {window} lags; rms_error = RMS of re-simulated "
-                     "minus measured angle [rad] (seed 003, Table II)")
+                     "minus measured angle [rad] (Eng et al. 2009, Table II)")
     return fit
 
 
@@ -156,12 +156,12 @@ def refine_output_error(fit: FitResult, t, theta, *, restoring: str = "sin") -> 
     r"""Output-error refinement: minimise :math:`\sum_k (\theta_k - \theta_{sim}(t_k))^2` over
     a, b, c and the initial state, starting from the equation-error estimate.
 
-    The re-simulated angle is the paper's own quality measure (seed 003, Table II); making it
+    The re-simulated angle is the paper's own quality measure (Eng et al. 2009, Table II); making it
     the cost removes the errors-in-variables bias of noisy derivatives.  Covariance
     :math:`\hat\sigma^2 (J^T J)^{-1}` at the optimum (Gauss-Newton, white angle noise;
     Ljung 1999, sec. 9.3).  Returns a new FitResult (method ``<method> output-error``).
     ``t`` [s], ``theta`` [rad]; a [1/s^2], b [1/s], c [1/rad] as in the module docstring
-    (seed 003, eqs. 4 and 12).
+    (Eng et al. 2009, eqs. 4 and 12).
     """
     from scipy.optimize import least_squares
     t = np.asarray(t, dtype=float)
@@ -204,7 +204,7 @@ def refine_output_error(fit: FitResult, t, theta, *, restoring: str = "sin") -> 
 def pendulum(t, theta, *, mass=None, buoyancy=0.0, length=None, g: float = G,
              medium: str = "water", window: int | None = None, order: int = 4,
              source: str = "<memory>", dof: str = "", refine: bool = False) -> FitResult:
-    r"""Free-decay pendulum identification (seed 003, eqs. 1-7).
+    r"""Free-decay pendulum identification (Eng et al. 2009, eqs. 1-7).
 
     Parameters
     ----------
@@ -258,7 +258,7 @@ def pendulum(t, theta, *, mass=None, buoyancy=0.0, length=None, g: float = G,
 def torsion(t, theta, *, stiffness=None, inertia=None, medium: str = "water",
             window: int | None = None, order: int = 4, source: str = "<memory>",
             dof: str = "yaw", refine: bool = False) -> FitResult:
-    r"""Torsion-pendulum identification (seed 003, eq. 12).
+    r"""Torsion-pendulum identification (Eng et al. 2009, eq. 12).
 
     Parameters
     ----------
@@ -309,5 +309,5 @@ def torsion_log(log, **kw) -> FitResult:
 
 
 def in_air_length(alpha: float, *, g: float = G) -> float:
-    r"""Rod length from the in-air alpha: :math:`r = -g/\alpha` [m] (seed 003, sec. IV.A)."""
+    r"""Rod length from the in-air alpha: :math:`r = -g/\alpha` [m] (Eng et al. 2009, sec. IV.A)."""
     return -g / alpha

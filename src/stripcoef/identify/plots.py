@@ -9,24 +9,24 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.io import atomic_path
+from stripcoef.files import atomic_path
 from stripcoef.identify.estimators import FitResult
 
 
-def _pyplot():
+def _pyplot(key: str):
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        raise InputError("plotting needs matplotlib", key="--plot",
+        raise InputError("plotting needs matplotlib", key=key,
                          expected="pip install 'stripcoef[plot]'") from None
     return plt
 
 
-def plot_fit(fit: FitResult, path, *, title: str | None = None) -> None:
+def plot_fit(fit: FitResult, path, *, title: str | None = None, key: str = "path") -> None:
     """Three panels: data vs fit, residuals vs time/sample, residuals vs velocity (PNG/PDF/SVG)."""
-    plt = _pyplot()
+    plt = _pyplot(key)
     d = fit.data
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
     res = np.asarray(fit.residuals)
@@ -71,10 +71,10 @@ def plot_fit(fit: FitResult, path, *, title: str | None = None) -> None:
     fmt = str(path).rsplit(".", 1)[-1].lower() if "." in str(path) else "png"
     if fmt not in ("png", "pdf", "svg"):
         plt.close(fig)
-        raise InputError("unknown plot format", key="--plot", value=str(path),
+        raise InputError("unknown plot format", key=key, value=str(path),
                          expected="a file name ending in .png, .pdf or .svg")
     try:
-        with atomic_path(path, key="--plot") as tmp:
+        with atomic_path(path, key=key) as tmp:
             fig.savefig(tmp, format=fmt, dpi=110)
     finally:
         plt.close(fig)

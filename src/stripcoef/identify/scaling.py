@@ -1,18 +1,18 @@
-r"""Similitude: coefficients of a scaled model to full scale (Eng et al., seed 003, eqs. 8-10).
+r"""Similitude: coefficients of a scaled model to full scale (Eng et al., Eng et al. 2009, eqs. 8-10).
 
-With geometric ratio :math:`\lambda = L_{full}/L_{model}` (seed 003: :math:`\lambda = 1/0.3`),
+With geometric ratio :math:`\lambda = L_{full}/L_{model}` (Eng et al. 2009: :math:`\lambda = 1/0.3`),
 the same fluid and the same speed, and a drag coefficient independent of the Reynolds number:
 
 - drag force :math:`D = \tfrac12\rho C_d A V^2` scales with the area (eq. 9):
-  :math:`K_L, K_Q \times \lambda^2` (seed 003 applies the same factor to the linear term);
+  :math:`K_L, K_Q \times \lambda^2` (Eng et al. 2009 applies the same factor to the linear term);
 - rotational drag torque :math:`T_d = C_D \rho A_p L^3 \dot\theta^2` (eq. 10):
   :math:`K_L, K_Q` (rotational) :math:`\times \lambda^5`;
-- added mass scales with the displaced volume (Triantafyllou & Hover, ref. [14] of seed 003):
+- added mass scales with the displaced volume (Triantafyllou & Hover, ref. [14] of Eng et al. 2009):
   :math:`m_a \times \lambda^3`; added moment of inertia :math:`\times \lambda^5`.
 
-Reynolds caveat (seed 003, sec. II.D): dynamic similarity needs equal Re, i.e. the model
+Reynolds caveat (Eng et al. 2009, sec. II.D): dynamic similarity needs equal Re, i.e. the model
 moving :math:`\lambda` times faster in the same water.  The scaling above holds only where
-:math:`C_d` is flat in Re (seed 003's CFD: 0-0.5 m/s); a linear drag term is a viscous /
+:math:`C_d` is flat in Re (Eng et al. 2009's CFD: 0-0.5 m/s); a linear drag term is a viscous /
 low-Re effect and does not in general follow :math:`\lambda^2`.
 """
 
@@ -27,7 +27,7 @@ TRANSLATION = {"m_a": 3, "K_L": 2, "K_Q": 2}
 #: For rotational results (torsion pendulum, yaw).
 ROTATION = {"I_a": 5, "m_a": 5, "K_L": 5, "K_Q": 5}
 REYNOLDS_CAVEAT = ("similitude at equal speed assumes drag coefficients independent of the "
-                   "Reynolds number (seed 003 sec. II.D: true for its CFD over 0-0.5 m/s); the "
+                   "Reynolds number (Eng et al. 2009 sec. II.D: true for its CFD over 0-0.5 m/s); the "
                    "full-scale Re is lambda times the model's, and linear (viscous) drag does "
                    "not in general scale as lambda^2")
 
@@ -38,13 +38,13 @@ def exponents(rotational: bool) -> dict:
 
 
 def scale_value(value: float, name: str, ratio: float, *, rotational: bool = False) -> float:
-    r"""Full-scale value :math:`\theta_{full} = \lambda^k \theta_{model}` (seed 003, eqs. 9-10).
+    r"""Full-scale value :math:`\theta_{full} = \lambda^k \theta_{model}` (Eng et al. 2009, eqs. 9-10).
 
     ``ratio`` :math:`\lambda = L_{full}/L_{model}` [-]; ``value`` and the result in the
     parameter's own unit (e.g. [kg], [N s^2/m^2]); k from :func:`exponents` (module docstring).
     """
     if not (ratio > 0 and math.isfinite(ratio)):
-        raise InputError("bad scale ratio", key="--ratio", value=ratio,
+        raise InputError("bad scale ratio", key="ratio", value=ratio,
                          expected="a positive finite number L_full / L_model")
     table = exponents(rotational)
     if name not in table:

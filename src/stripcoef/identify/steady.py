@@ -1,7 +1,7 @@
 r"""Steady-state regression: drag, bias and thruster efficiency from constant-input trials.
 
 At steady state (:math:`\dot\nu = 0`) a decoupled DOF balances the applied force
-against drag and a constant bias.  Caccia (seed 001, sec. 4.2.4) writes three heave models,
+against drag and a constant bias.  Caccia (Indiveri 1998, sec. 4.2.4) writes three heave models,
 all linear in the parameters (:math:`y = H\theta + \varepsilon`):
 
 standard, eq. 4.15 with :math:`\dot w = 0`:
@@ -23,7 +23,7 @@ and a column :math:`-F` for :math:`\eta`.  Here ``F`` is the applied generalized
 the DOF in FRD body axes (for heave, positive downward) [N or N m], ``w`` the steady velocity
 [m/s or rad/s] and ``W`` the net weight along z (weight minus buoyancy, positive = sinks) [N].
 
-For one DOF without hydrostatics (yaw, seed 001 sec. 4.2.5) the four models are
+For one DOF without hydrostatics (yaw, Indiveri 1998 sec. 4.2.5) the four models are
 
 .. math::
     \tau = k_r r + k_{r|r|} |r| r + b \;(LQB), \quad \tau = k_r r + k_{r|r|}|r| r \;(LQNB),
@@ -122,7 +122,7 @@ def _names(dof: str, model: str):
 
 
 def regression(points: SteadyPoints, model: str):
-    r"""Build :math:`y` and :math:`H` for a steady-state model (seed 001, eqs. 4.15-4.17).
+    r"""Build :math:`y` and :math:`H` for a steady-state model (Indiveri 1998, eqs. 4.15-4.17).
 
     .. math:: y = H\theta,\quad H = [w,\ w|w|,\ \mp 1,\ -F\,[F<0],\ n_h w],\quad
               y = F\,[F \ge 0 \text{ or no } \eta]
@@ -162,7 +162,7 @@ def regression(points: SteadyPoints, model: str):
 
 def fit_steady(points: SteadyPoints, model: str = "standard", *,
                direction: str = "both") -> FitResult:
-    r"""Fit one steady-state model by least squares (seed 001, eqs. 4.5, 4.6, 4.12).
+    r"""Fit one steady-state model by least squares (Indiveri 1998, eqs. 4.5, 4.6, 4.12).
 
     Adds the SNAME derivatives as derived parameters (``Z_w = -k_w``, ``Z_ww = -k_ww``...).
     :math:`\hat\theta = (H^TH)^{-1}H^Ty` on :func:`regression`'s y, H; units: k [N s/m or
@@ -188,7 +188,7 @@ def fit_steady(points: SteadyPoints, model: str = "standard", *,
             fit.derive(f"{FORCES[i]}_{v}{v}", lambda p, n=n: -p[n], unit=units[n])
     fit.data.update({"velocity": pts.velocity, "force": pts.force,
                      "predicted": predicted_force(fit, pts)})
-    fit.notes.append(f"{len(pts)} steady-state points; residuals in {units_f} (seed 001 eq. 4.12)")
+    fit.notes.append(f"{len(pts)} steady-state points; residuals in {units_f} (Indiveri 1998 eq. 4.12)")
     return fit
 
 
@@ -196,7 +196,7 @@ def predicted_force(fit: FitResult, points: SteadyPoints) -> np.ndarray:
     r"""Applied force the fitted model needs for each point's velocity [N or N m]:
     :math:`\hat F = (k w + k_2 w|w| \mp W + \alpha n_h w) / \eta` (eta on upward points).
 
-    Inverse of the module docstring's models (seed 001, eqs. 4.15-4.17); here "upward" is
+    Inverse of the module docstring's models (Indiveri 1998, eqs. 4.15-4.17); here "upward" is
     where the predicted drag side is negative. ``points.velocity`` [m/s or rad/s].
     """
     i = parse_dof(points.dof)
@@ -213,7 +213,7 @@ def predicted_force(fit: FitResult, points: SteadyPoints) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------
-# Model comparison (seed 001, sec. 4.2.5 tables)
+# Model comparison (Indiveri 1998, sec. 4.2.5 tables)
 # ---------------------------------------------------------------------------
 
 @dataclass
@@ -278,7 +278,7 @@ class Candidate:
 def recommend(cands: list):
     r"""Rank candidates by AICc and pick the best admissible one.
 
-    Admissible (seed 001, sec. 4.2.5's two arguments made explicit): every parameter beyond
+    Admissible (Indiveri 1998, sec. 4.2.5's two arguments made explicit): every parameter beyond
     2 sigma (relative error < 50 %) and no negative drag coefficient (a negative k is
     unphysical).  Returns (ranked list, recommended, explanation).
     """
@@ -338,11 +338,11 @@ class Comparison:
 
 
 def compare_models(points: SteadyPoints, models=COMPARISON_MODELS) -> Comparison:
-    r"""Fit LQB / LQNB / LB / LNB to each direction and to both (seed 001, sec. 4.2.5).
+    r"""Fit LQB / LQNB / LB / LNB to each direction and to both (Indiveri 1998, sec. 4.2.5).
 
     Candidates for describing *all* the data: each model fitted to both directions together,
     and each model fitted to the two directions separately (J summed, p summed).  Ranked by
-    AICc (small samples: seed 001 has 4 to 14 points); the recommended model is the best-ranked
+    AICc (small samples: Indiveri 1998 has 4 to 14 points); the recommended model is the best-ranked
     admissible one (:func:`recommend`: every parameter beyond 2 sigma, no negative drag),
     which formalises the paper's argument for LNB.
     """
@@ -387,14 +387,14 @@ def steady_points(log, dof, *, force=None, n_h=None, settle: float = 8.0, trim: 
     A log without ``t`` is a table of points: the velocity column (``w`` for heave) and the
     force column (``Z``), or ``force`` given by the caller (thruster map).  A time series is cut
     into segments of constant input; in each, the first ``settle`` seconds (the transient) and
-    the last ``trim`` samples are dropped (seed 001, sec. 4.2.4) and the steady velocity is the
+    the last ``trim`` samples are dropped (Indiveri 1998, sec. 4.2.4) and the steady velocity is the
     mean of the velocity column, or, when only the pose is logged (``z``, ``psi``), the slope
-    of the least-squares line :math:`y(t) = \dot\psi t + \psi_0` (seed 001, eq. 4.18;
+    of the least-squares line :math:`y(t) = \dot\psi t + \psi_0` (Indiveri 1998, eq. 4.18;
     angles are unwrapped first, so full turns at a constant yaw rate are fine).
 
     Parameters
     ----------
-    log : stripcoef.logs.Log
+    log : stripcoef.logfile.Log
     dof : str
     force : (n,) array, optional
         Applied force along the DOF [N, N m]; default the log's force column.

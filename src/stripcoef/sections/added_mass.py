@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.tables import load_table
+from stripcoef.data import load_table
 
 RHO = 1025.0
 

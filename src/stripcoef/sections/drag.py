@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.tables import load_table
+from stripcoef.data import load_table
 
 #: Subcritical plateau of the circle curve, used to scale other rounded shapes.
 CIRCLE_CD_SUBCRITICAL = 1.2

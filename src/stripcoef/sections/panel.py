@@ -49,6 +49,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.geometry.polygons import CORNER_ANGLE, orient_contours, point_in_ring, ring_shape, signed_area
 
 #: Default number of panels per section (all contours together).
 DEFAULT_PANELS = 96
@@ -56,8 +57,6 @@ DEFAULT_PANELS = 96
 MIN_PANELS_PER_CONTOUR = 24
 #: Minimum panels between two sharp corners.
 MIN_PANELS_PER_EDGE = 6
-#: Turning angle above which a vertex is a sharp corner (cosine clustering) [rad].
-CORNER_ANGLE = np.radians(25.0)
 #: Weight of the turning angle against arc length when placing panels on smooth rings.
 CURVATURE_WEIGHT = 1.0
 #: Sections are solved in batches of at most this many ...
@@ -71,131 +70,11 @@ _BATCH_ELEMENTS = 65536
 
 # --------------------------------------------------------------------------- geometry
 
-def _clean_ring(ring, where: str) -> np.ndarray:
-    r = np.asarray(ring, dtype=float)
-    if r.ndim != 2 or r.shape[1] != 2:
-        raise InputError("contour must be an (n, 2) array of (y, z) points", key=where,
-                         value=f"shape {r.shape}", expected="(n, 2)")
-    if not np.isfinite(r).all():
-        raise InputError("contour has non-finite coordinates", key=where)
-    if len(r) > 1:
-        y0, z0 = r[0]
-        y1, z1 = r[-1]
-        if abs(y0 - y1) <= 1e-8 + 1e-5 * abs(y1) and abs(z0 - z1) <= 1e-8 + 1e-5 * abs(z1):
-            r = r[:-1]                              # the closing point (np.allclose's test)
-    if len(r) > 1:
-        # drop repeated consecutive points
-        y, z = r[:, 0], r[:, 1]
-        scale = max(float(y.max() - y.min()), float(z.max() - z.min()), 1e-300)
-        d = np.concatenate((r[1:], r[:1])) - r
-        keep = d[:, 0] ** 2 + d[:, 1] ** 2 > (1e-12 * scale) ** 2
-        if not keep.all():
-            r = r[keep]
-    if len(r) < 3:
-        raise InputError("contour has fewer than 3 distinct points", key=where,
-                         value=len(r), expected=">= 3")
-    return r
-
-
-def signed_area(ring) -> float:
-    r"""Signed area of a ring in the (y, z) plane, positive counter-clockwise [m^2].
-
-    .. math:: A = \tfrac12 \sum_i (y_i z_{i+1} - y_{i+1} z_i)
-
-    References
-    ----------
-    Shoelace formula (Gauss's area formula).
-    """
-    r = np.asarray(ring, dtype=float)
-    y, z = r[:, 0], r[:, 1]
-    return 0.5 * float(y[:-1] @ z[1:] - y[1:] @ z[:-1] + y[-1] * z[0] - y[0] * z[-1])
-
-
-def _point_in_ring(p, ring) -> bool:
-    y, z = ring[:, 0], ring[:, 1]
-    y2, z2 = np.roll(y, -1), np.roll(z, -1)
-    cond = (z > p[1]) != (z2 > p[1])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        yc = y + (p[1] - z) * (y2 - y) / (z2 - z)
-    return bool(np.count_nonzero(cond & (p[0] < yc)) % 2)
-
-
-def orient_contours(contours, where: str = "contours") -> list[np.ndarray]:
-    """Rings oriented for the solver: outer rings counter-clockwise, holes clockwise.
-
-    A ring is a hole when it lies inside an odd number of the other rings.
-    """
-    rings = [_clean_ring(c, f"{where}[{i}]") for i, c in enumerate(contours)]
-    if not rings:
-        raise InputError("a section needs at least one contour", key=where, value=0,
-                         expected=">= 1 ring")
-    out = []
-    for i, r in enumerate(rings):
-        depth = 0
-        if len(rings) > 1:
-            probe = r[0]
-            for j, other in enumerate(rings):
-                if j != i and _point_in_ring(probe, other):
-                    depth += 1
-        a = signed_area(r)
-        if a == 0.0:
-            raise InputError("contour has zero area", key=f"{where}[{i}]")
-        want_ccw = depth % 2 == 0
-        out.append(r if (a > 0) == want_ccw else r[::-1].copy())
-    return out
-
-
-def section_centroid(contours) -> tuple[float, float]:
-    r"""Area centroid (y_c, z_c) of a section made of rings (holes subtracted) [m].
-
-    .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
-
-    (with the orientation normalised: outer rings add area, holes subtract it).
-    An empty section gives (0, 0). ``contours``: rings of (y, z) points [m].
-
-    References
-    ----------
-    Shoelace formula for the first moments of a polygon (Green's theorem), as
-    :func:`signed_area`.
-    """
-    if contours is None or len(contours) == 0:
-        return (0.0, 0.0)
-    return _centroid(orient_contours(contours))
-
-
-def _centroid(rings) -> tuple[float, float]:
-    """:func:`section_centroid` of rings already oriented (:func:`orient_contours`)."""
-    a = sy = sz = 0.0
-    for r in rings:
-        y, z = r[:, 0], r[:, 1]
-        y1, z1 = np.roll(y, -1), np.roll(z, -1)
-        c = y * z1 - y1 * z
-        a += 0.5 * c.sum()
-        sy += ((y + y1) * c).sum() / 6.0
-        sz += ((z + z1) * c).sum() / 6.0
-    return (sy / a, sz / a)
-
-
-def _ring_shape(r: np.ndarray):
-    """Edge lengths (edge i: vertex i -> i+1, closing edge last) and turning angle at each
-    vertex [rad] of a ring, computed once for the panel placement."""
-    e_out = np.concatenate((r[1:], r[:1])) - r
-    e_in = np.concatenate((e_out[-1:], e_out[:-1]))
-    seg = np.sqrt(e_out[:, 0] ** 2 + e_out[:, 1] ** 2)
-    turn = np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
-                      e_in[:, 0] * e_out[:, 0] + e_in[:, 1] * e_out[:, 1])
-    return seg, np.abs(turn)
-
-
-def _corner_flags(r: np.ndarray) -> np.ndarray:
-    """Sharp corners of a ring: turning angle above :data:`CORNER_ANGLE`."""
-    return _ring_shape(r)[1] > CORNER_ANGLE
-
 
 def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray, shape=None) -> np.ndarray:
     """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners
-    (``shape``: its :func:`_ring_shape`, computed if omitted)."""
-    seg, turn = _ring_shape(r) if shape is None else shape
+    (``shape``: its :func:`ring_shape`, computed if omitted)."""
+    seg, turn = ring_shape(r) if shape is None else shape
     closed = np.concatenate((r, r[:1]))
     s = np.concatenate(([0.0], np.cumsum(seg)))
     perim = s[-1]
@@ -231,7 +110,7 @@ def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray, shape=None) -> np
 
 
 def _perimeter(r: np.ndarray) -> float:
-    return float(_ring_shape(r)[0].sum())
+    return float(ring_shape(r)[0].sum())
 
 
 def _panel_budget(rings, corner_flags, panels, perims=None) -> list[int]:
@@ -278,7 +157,7 @@ def _discretise(rings, panels):
     """:func:`discretise` of rings already oriented (:func:`orient_contours`)."""
     if panels == 0:
         return rings
-    shapes = [_ring_shape(r) for r in rings]
+    shapes = [ring_shape(r) for r in rings]
     flags = [turn > CORNER_ANGLE for _, turn in shapes]
     perims = np.array([seg.sum() for seg, _ in shapes])
     if panels is None:
@@ -515,7 +394,7 @@ class _RingSet:
         # incoming edge of vertex i: edge i - 1; of vertex 0: the closing edge n_r - 1
         rows = np.arange(len(count))
         e_in = np.concatenate((e_out[rows, count - 1][:, None], e_out[:, :-1]), axis=1)
-        # as _ring_shape, elementwise on all rings (zero past each ring's end)
+        # as ring_shape, elementwise on all rings (zero past each ring's end)
         self.seg = np.sqrt(e_out[..., 0] ** 2 + e_out[..., 1] ** 2)
         cross = e_in[..., 0] * e_out[..., 1] - e_in[..., 1] * e_out[..., 0]
         dot = e_in[..., 0] * e_out[..., 0] + e_in[..., 1] * e_out[..., 1]
@@ -527,7 +406,7 @@ class _RingSet:
         return self.pts[r, :self.count[r]]
 
     def shape(self, r):
-        """Ring ``r``'s :func:`_ring_shape` (views)."""
+        """Ring ``r``'s :func:`ring_shape` (views)."""
         n = self.count[r]
         return self.seg[r, :n], self.turn[r, :n]
 
@@ -536,12 +415,12 @@ class _RingSet:
 
         .. math:: y_c = \frac{1}{6A}\sum (y_i + y_{i+1})(y_i z_{i+1} - y_{i+1} z_i)
 
-        over all rings of the section (holes, clockwise, subtract), as :func:`_centroid`.
+        over all rings of the section (holes, clockwise, subtract), as :func:`ring_centroid`.
         Reference: shoelace formula for the first moments of a polygon (Green's theorem).
         """
         y, z = self.pts[..., 0], self.pts[..., 1]
         c = y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]                   # zero in the padding
-        # per ring sums, then summed over each section's rings in order (as _centroid)
+        # per ring sums, then summed over each section's rings in order (as ring_centroid)
         s = self.section
         a = np.bincount(s, 0.5 * self.row_sums(c), self.nsec)
         sy = np.bincount(s, self.row_sums((y[:, :-1] + y[:, 1:]) * c) / 6.0, self.nsec)
@@ -553,7 +432,7 @@ class _RingSet:
 
     def perimeters(self) -> np.ndarray:
         r"""(R,) perimeter :math:`P = \sum_i |p_{i+1} - p_i|` of each ring [m] (elementary
-        geometry; the sum of :func:`_ring_shape`'s edge lengths)."""
+        geometry; the sum of :func:`ring_shape`'s edge lengths)."""
         return self.row_sums(self.seg)
 
     def row_sums(self, a) -> np.ndarray:
@@ -605,7 +484,7 @@ def _ring_set(sections, where: str = "sections") -> "_RingSet":
     count = np.array([len(r) for r in rings])
     pts = _padded(flat, count)
     rows = np.arange(len(count))
-    # _clean_ring on all rings: 1) a closing point equal to the first (np.allclose's test)
+    # clean_ring on all rings: 1) a closing point equal to the first (np.allclose's test)
     # is dropped (its column becomes padding) ...
     first, last = pts[:, 0], pts[rows, count - 1]
     closing = (np.abs(first - last) <= 1e-8 + 1e-5 * np.abs(last)).all(axis=1)
@@ -638,7 +517,7 @@ def _ring_set(sections, where: str = "sections") -> "_RingSet":
     for s in np.nonzero(np.diff(bounds) > 1)[0]:
         mine = [pts[r, :count[r]] for r in range(bounds[s], bounds[s + 1])]
         for i, r in enumerate(mine):
-            depth = sum(_point_in_ring(r[0], other) for j, other in enumerate(mine) if j != i)
+            depth = sum(point_in_ring(r[0], other) for j, other in enumerate(mine) if j != i)
             want_ccw[bounds[s] + i] = depth % 2 == 0
     flip = (area > 0) != want_ccw
     if flip.any():                                                       # as r[::-1]

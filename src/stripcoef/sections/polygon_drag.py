@@ -40,7 +40,8 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.sections import drag
-from stripcoef.sections.panel import _corner_flags, orient_contours, part_rings, signed_area
+from stripcoef.geometry.polygons import corner_flags
+from stripcoef.sections.panel import orient_contours, part_rings, signed_area
 
 #: Weight of the shadowed height of a part behind another part along the flow.
 TANDEM_SHIELDING = 0.5
@@ -53,7 +54,7 @@ def _parts_geometry(contours):
         if signed_area(r) <= 0:          # holes: the outline is what the flow sees
             continue
         y, z = r[:, 0], r[:, 1]
-        out.append((y.min(), y.max(), z.min(), z.max(), not bool(_corner_flags(r).any())))
+        out.append((y.min(), y.max(), z.min(), z.max(), not bool(corner_flags(r).any())))
     return np.array(out, dtype=float).reshape(-1, 5)
 
 

@@ -1,0 +1,240 @@
+r"""Added mass of the whole vehicle: strip integral, 3D corrections, entrained water.
+
+Added mass (strip theory, Newman 1977 sec. 7.4; Fossen 2011 sec. 6.3.3). A strip at
+``x`` whose section has the 2D matrix :math:`m(x)` (sway, heave, roll, about the
+reference line) moves with :math:`[v + X r,\ w - X q,\ p] = L(X)\,\nu`,
+:math:`X = x - x_0`, hence
+
+.. math:: M_A^{strip} = \int L(X)^T\, m(x)\, L(X)\, dx,\quad
+          L = \begin{bmatrix}0&1&0&0&0&X\\0&0&1&0&-X&0\\0&0&0&1&0&0\end{bmatrix}
+
+giving e.g. :math:`Y_{\dot v} = -\int m_{22}`, :math:`Y_{\dot r} = N_{\dot v} = -\int X m_{22}`,
+:math:`N_{\dot r} = -\int X^2 m_{22}`, :math:`Z_{\dot q} = M_{\dot w} = \int X m_{33}`.
+Parts off the reference line are shifted in 2D by
+:math:`H_2 = [[1,0,-\Delta z],[0,1,\Delta y],[0,0,1]]`, :math:`m \to H_2^T m H_2`, which
+creates the roll couplings of off-axis appendages (K_vdot from a sonar housing below).
+Then the 3D end correction (:func:`stripcoef.hull.lamb.end_correction_factors`), the axial
+added mass :math:`k_1\rho V` of the equivalent spheroid (Ferreira et al. 2009, eq. 36), and the water
+carried in through-holes and ducts
+
+.. math:: M_{hole} = \rho \int [I,\ -S(r)]^T (I - a a^T) [I,\ -S(r)]\, dV
+
+(the water's velocity component across the hole axis ``a`` moves with the body; along
+the axis it passes freely: Ferreira et al. 2009, sec. IV.C).
+"""
+
+from __future__ import annotations
+import numpy as np
+from stripcoef.conventions import skew, transform_matrix
+from stripcoef.errors import InputError
+from stripcoef.hull.lamb import end_correction_factors
+from stripcoef.sections import section_added_mass
+from stripcoef.strips import Strips
+from stripcoef.strips import hole_widths, strip_added_mass
+
+
+def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
+    r"""Replace hull + fin-pair sums by the finned-circle section where it applies (in place).
+
+    Where a circular hull section carries a symmetric pair of fins (both spanning along z,
+    mirrored about the hull axis, or both along y) whose roots touch the hull, the section
+    normal to the fins is the circle with fins of tip radius a:
+
+    .. math:: m_n = \rho\pi(a^2 - R^2 + R^4/a^2),\qquad m_{44} = \tfrac{2}{\pi}\rho a^4
+
+    (Blevins 1979 table 14-2; Prestero 2001 sec. 3.4) instead of the circle plus two
+    isolated plates, which ignores their interaction.  A cruciform section gets both pairs'
+    normal terms; its roll term is then the sum of the two pairs' (an approximation).
+
+    Hull radius R and tip radius a [m], rho [kg/m^3]; m_n [kg/m], m_44 [kg m] per unit
+    length, written into ``mats`` (per part, (k, 3, 3) [kg/m, kg, kg m]).
+    """
+    from stripcoef.sections.added_mass import circle_with_fins
+
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
+    if not hulls or len(fins) < 2:
+        return
+    for kh, hull in hulls:
+        pos_h = {int(i): j for j, i in enumerate(hull.index)}
+        for a_i in range(len(fins)):
+            for b_i in range(a_i + 1, len(fins)):
+                (ka, fa), (kb, fb) = fins[a_i], fins[b_i]
+                common = np.intersect1d(np.intersect1d(fa.index, fb.index), hull.index)
+                for s_idx in common:
+                    ia = int(np.nonzero(fa.index == s_idx)[0][0])
+                    ib = int(np.nonzero(fb.index == s_idx)[0][0])
+                    ih = pos_h[int(s_idx)]
+                    b, h = hull.half_breadth[ih], hull.half_height[ih]
+                    if not np.isclose(b, h, rtol=1e-6):
+                        continue
+                    vertical = fa.half_height[ia] > fa.half_breadth[ia]
+                    if vertical != (fb.half_height[ib] > fb.half_breadth[ib]):
+                        continue
+                    if vertical:
+                        off_a, off_b = fa.z[ia] - hull.z[ih], fb.z[ib] - hull.z[ih]
+                        lat_ok = np.isclose(fa.y[ia], hull.y[ih]) and np.isclose(fb.y[ib], hull.y[ih])
+                        half_a, half_b = fa.half_height[ia], fb.half_height[ib]
+                        n = 0          # sway is normal to vertical fins
+                    else:
+                        off_a, off_b = fa.y[ia] - hull.y[ih], fb.y[ib] - hull.y[ih]
+                        lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
+                        half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
+                        n = 1          # heave is normal to horizontal fins
+                    tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
+                    touching = (abs(off_a) - half_a <= b * (1 + 1e-6)
+                                and abs(off_b) - half_b <= b * (1 + 1e-6))
+                    if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
+                            and touching and tip_a > b):
+                        continue
+                    m_n, m44 = circle_with_fins(b, tip_a, rho=rho)
+                    mats[kh][ih, n, n] = m_n
+                    for k, i in ((ka, ia), (kb, ib)):
+                        mats[k][i, n, n] = 0.0
+                        mats[k][i, 2, 2] = 0.5 * m44
+
+
+def section_matrices(strips: Strips, rho: float, panels: int | None = None) -> list:
+    r"""Per part, the (k, 3, 3) 2D added mass about the part's centre [kg/m, kg, kg m], with
+    fin pairs combined (:func:`_combine_fins`) and the open width of holes removed.
+
+    .. math:: m_{33} \leftarrow m_{33}\,(1 - c_z/2b)^2,\qquad m_{22} \leftarrow m_{22}\,(1 - c_y/2h)^2
+
+    with open hole widths c_z, c_y [m] (:func:`hole_widths`), half-breadth b and
+    half-height h [m]; ``rho`` [kg/m^3]. Sections: :func:`stripcoef.sections.section_added_mass`
+    (``panels``: panels per polygon section, default adaptive).
+
+    References
+    ----------
+    Holes pass heave (sway) flow: Ferreira et al. 2009, eq. 40; the squared open-width factor is an
+    [assumption] (added mass ~ width^2, as for a plate, DNV-RP-C205 table A-1).
+    """
+    mats = [section_added_mass(p, rho, panels).copy() for p in strips.parts]
+    _combine_fins(strips, mats, rho)
+    for p, m in zip(strips.parts, mats):
+        cy, cz = hole_widths(strips, p)
+        if np.any(cz > 0):   # heave passes through vertical holes (Ferreira et al. 2009, eq. 40)
+            m[:, 1, 1] *= np.clip(1.0 - cz / (2 * p.half_breadth), 0.0, 1.0) ** 2
+        if np.any(cy > 0):   # sway passes through horizontal holes
+            m[:, 0, 0] *= np.clip(1.0 - cy / (2 * p.half_height), 0.0, 1.0) ** 2
+    return mats
+
+
+_GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
+
+
+def entrained_water(strips: Strips, rho: float, about) -> np.ndarray:
+    r"""Added inertia of the water carried in through-holes and duct interiors [SI].
+
+    .. math:: M = \rho\sum_{strips}\sum_g w_g\, c\, d\, dx\ [I,\ -S(r_g)]^T (I - aa^T) [I,\ -S(r_g)]
+
+    with 3 Gauss points :math:`r_g` along the hole's axis (exact for the quadratic moments).
+    ``rho`` [kg/m^3], chord c, depth d, dx and ``about`` [m]; returns [kg, kg m, kg m^2].
+
+    References
+    ----------
+    See module docstring (:math:`M_{hole}`; Ferreira et al. 2009, sec. IV.C and eq. 40).
+    """
+    about = np.asarray(about, float)
+    total = np.zeros((6, 6))
+    axes = {"x": np.array([1.0, 0, 0]), "y": np.array([0, 1.0, 0]), "z": np.array([0, 0, 1.0])}
+    for h in strips.holes:
+        a = axes[h.axis]
+        proj = np.eye(3) - np.outer(a, a)
+        dm = rho * h.chord * h.depth * strips.dx[h.index]
+        for xi, w in zip(*_GAUSS3):
+            for k, i in enumerate(h.index):
+                r = np.array([strips.x[i], h.y[k], h.z[k]]) - about + a * xi * 0.5 * h.depth[k]
+                G = np.hstack([np.eye(3), -skew(r)])
+                total += w * dm[k] * G.T @ proj @ G
+    return total
+
+
+def _panel_count(value, default, key: str):
+    """A panel count (``key``: correction_panels or section_panels): ``None`` -> ``default``,
+    else an int >= 8."""
+    if value is None:
+        return None if default is None else int(default)
+    try:
+        n = int(value)
+    except (TypeError, ValueError):
+        n = None
+    if n is None or n != value or n < 8:
+        raise InputError(f"invalid number of {key.replace('_', ' ')}", key=key,
+                         value=value, expected="an integer >= 8")
+    return n
+
+
+def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
+               corrections: bool = True, correction_panels: int | None = None,
+               section_panels: int | None = None):
+    r"""Full 6x6 M_A about ``about``: strips (+ 3D corrections) + axial + entrained water.
+
+    With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
+    the axisymmetric-BEM corrections of :mod:`stripcoef.hull.corrections` (per-direction
+    equivalent bodies of revolution: end effects, sway-yaw / heave-pitch couplings and the
+    axial added mass).  Without them it is pure strip theory plus the axial term
+    :math:`k_1\rho V` of the equal-length, equal-volume spheroid (Lamb; Ferreira et al. 2009 eq. 36).
+
+    .. math:: M_A = H^T\big(M_A^{strip}(+\text{corr.}) + k_1\rho V\,e_1e_1^T\big)H + M_{hole}
+
+    (H moves the matrix from ``center`` to ``about``; :func:`stripcoef.conventions.transform_matrix`;
+    the k_1 term only without corrections). ``rho`` [kg/m^3], ``volume`` [m^3], ``about``
+    and ``center`` [m]. ``correction_panels``: meridian panels of the corrections'
+    axisymmetric solves (default :data:`stripcoef.hull.corrections.DEFAULT_PANELS`);
+    ``section_panels``: panels per polygon section of the 2D panel method (default adaptive,
+    :func:`stripcoef.sections.panel.discretise`).
+
+    Returns (M_A [kg, kg m, kg m^2], info) where info lists the factors used.
+
+    References
+    ----------
+    See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
+    """
+    from stripcoef.hull.corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
+    from stripcoef.hull.members import member_added_mass
+
+    panels = _panel_count(correction_panels, DEFAULT_PANELS, "correction_panels")
+    section_panels = _panel_count(section_panels, None, "section_panels")
+    center = np.asarray(center, float)
+    mats = section_matrices(strips, rho, section_panels)
+    strip = strip_added_mass(strips, mats, center)
+    _, _, k1, ld = end_correction_factors(strips.length, volume)
+    info = {"equivalent_spheroid_L_over_D": float(ld)}
+    if section_panels is not None:
+        info["section_panels"] = section_panels
+    if corrections:
+        per_strip = np.zeros((strips.n, 3, 3))
+        for p, m in zip(strips.parts, mats):
+            np.add.at(per_strip, p.index, m * p.coverage[:, None, None])
+        per_member = member_added_mass(strips, rho, center, panels=panels,
+                                       section_panels=section_panels,
+                                       joint=mats[0] if len(mats) == 1 else None)
+        if per_member is None:
+            corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
+                                    panels=panels)
+            strip = apply_corrections(strip, corr)
+        else:                           # several members / junctions: corrected one by one
+            corrected, parts_info = per_member
+            info["members"] = sum(1 for e in parts_info if e["kind"] == "member")
+            info["junction_pieces"] = sum(1 for e in parts_info if e["kind"] == "junction")
+            diag = np.diag(strip)
+            eff = np.where(diag > 0, np.diag(corrected) / np.where(diag > 0, diag, 1.0), 1.0)
+            corr = {"scale": eff, "axial_added_mass": float(corrected[0, 0]),
+                    "method": "per-member axisymmetric BEM of the added-mass-equivalent bodies "
+                              "of revolution (stripcoef.hull.members); end_correction_* are the "
+                              "effective ratios corrected/strip"}
+            strip = corrected
+        scale = corr["scale"]
+        info.update({"end_correction_sway": float(scale[1]), "end_correction_heave": float(scale[2]),
+                     "end_correction_pitch": float(scale[4]), "end_correction_yaw": float(scale[5]),
+                     "axial_added_mass": float(corr["axial_added_mass"]),
+                     "correction_method": corr["method"], "correction_panels": panels})
+    else:
+        strip[0, 0] += k1 * rho * volume
+        info.update({"k1": float(k1), "axial_added_mass": float(k1 * rho * volume),
+                     "correction_method": "none (pure strip theory); axial k1 rho V of the "
+                                          "equivalent spheroid"})
+    total = transform_matrix(strip, from_point=center, to_point=about)
+    total = total + entrained_water(strips, rho, about)
+    return 0.5 * (total + total.T), info

@@ -1,0 +1,226 @@
+r"""Linear and quadratic damping: cross-flow drag per strip, friction and form drag of the hull.
+
+The cross-flow principle (Hoerner 1965, ch. 3; Newman 1977, sec. 7.4) integrates each
+section's drag coefficient along the body; axial drag is skin friction from the ITTC-1957 or
+Blasius line at the hull Reynolds number with a form factor; the power-law split of
+:func:`stripcoef.hull.lamb.power_law_split` gives the linear and quadratic parts about the
+reference speed. Every equation is in :func:`damping_matrices`' docstring.
+"""
+
+from __future__ import annotations
+import warnings
+import numpy as np
+from stripcoef.hull.lamb import power_law_split
+from stripcoef.sections import drag as sdrag
+from stripcoef.sections import section_drag
+from stripcoef.strips import Strips
+from stripcoef.conventions import clean_roundoff
+from stripcoef.strips import hole_widths
+
+
+def local_exponent(fn, *re):
+    """n_k = 2 + d ln C_D,k / d ln Re_k (power-law exponent of the drag force in speed).
+
+    ``fn(Re_1, Re_2, ...)`` -> (C_D,1, C_D,2, ...) [-], each C_D,k depending on Re_k only
+    (so one call at Re*1.1 and one at Re/1.1 serve every k); ``re``: the Re_k [-]; returns
+    the n_k [-] (a tuple) by a central difference over Re*1.1^+-1.
+    From F = 1/2 rho C_D(Re) A V^2 with Re proportional to V (Hoerner 1965, ch. 3);
+    the split is :func:`stripcoef.hull.lamb.power_law_split`.
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hi = fn(*(np.asarray(r) * 1.1 for r in re))
+        lo = fn(*(np.asarray(r) / 1.1 for r in re))
+    return tuple(2.0 + (np.log(np.asarray(h, float)) - np.log(np.asarray(l, float)))
+                 / (2.0 * np.log(1.1)) for h, l in zip(hi, lo))
+
+
+def wetted_perimeter(part):
+    r"""Wetted perimeter of each strip's section of a part [m].
+
+    Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
+    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (outer rings and holes: a duct's inner
+    wall is wetted too; wetted area for friction drag as in Hoerner 1965, ch. 2), taken from
+    the part's ring set :func:`stripcoef.sections.panel.part_rings`, which the section
+    solvers share (repeated points, closer than 1e-12 of the ring's size, are dropped
+    there); rectangle: P = 4 (b + h), half sizes b, h [m]. Exact geometry (the ellipse:
+    Ramanujan's approximation).
+    """
+    if part.shape == "ellipse":
+        return _ellipse_perimeter(part.half_breadth, part.half_height)
+    if part.shape == "polygon":
+        from stripcoef.sections.panel import part_rings
+        if not part.contours:
+            return np.zeros(part.index.size)
+        rs = part_rings(part)
+        return np.bincount(rs.section, rs.perimeters(), part.index.size)
+    return 4.0 * (part.half_breadth + part.half_height)
+
+
+def _ellipse_perimeter(b, h):
+    r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
+
+    .. math:: P \approx \pi(b + h)\left(1 + \frac{3\lambda}{10 + \sqrt{4 - 3\lambda}}\right),
+              \quad \lambda = \left(\frac{b-h}{b+h}\right)^2
+
+    Half-axes b, h [m]. Ramanujan (1914), Quart. J. Math. 45, the second approximation.
+    """
+    hh = ((b - h) / (b + h)) ** 2
+    return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))
+
+
+def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
+    r"""Linear and quadratic damping about ``about`` from the viscous force model.
+
+    Force model (all per element e at r_e, directions k = x, y, z):
+
+    - cross-flow (Hoerner 1965 ch. 3; Fossen 2011 sec. 6.4.3, MSS crossFlowDrag.m):
+      :math:`f_k = -\tfrac12\rho\,C_{D,k}(Re)\,\kappa\,h_k\,|V_k|V_k` per unit length, with
+      :math:`h_y = 2h`, :math:`h_z = 2b` the part's extent across the flow and
+      :math:`Re = U h_k/\nu` at the reference speed U;
+    - hull axial friction + form drag: :math:`X = -\tfrac12\rho C_f(Re_L)\,FF\,S_{wet}u|u|`
+      (Hoerner form factor), plus blunt-end pressure drag for blunt hulls and appendages;
+    - roll: skin friction on the hull's perimeter and the cross-flow of off-axis parts.
+
+    For each DOF j the element's local velocity is :math:`V = [I,\ -S(r)]e_j`; the
+    generalized force is :math:`[F;\ r\times F]`.  Each element's force at the reference
+    DOF speed, with its power-law exponent n (from the Reynolds dependence of its C_D or
+    C_f), is split into linear and quadratic parts by :func:`stripcoef.hull.lamb.power_law_split`.
+    Reference speeds: U for translations, :math:`\Omega = U/(L/2)` for rotations.
+    """
+    about = np.asarray(about, float)
+    L = strips.length
+    omega = speed / (0.5 * L)
+    elems = []  # (r, c [kg/m], n): rows (3,) or blocks (k, 3); or ("roll", c, n)
+    cond = {"reference_speed": speed, "reference_rate": omega}
+
+    # --- axial: hull friction and form drag
+    re_l = speed * L / nu
+    cf, reg = sdrag.friction_coefficient(re_l, regime=regime)
+    cf_lam = float(sdrag.blasius_cf(re_l))
+    cf_turb = float(sdrag.ittc57_cf(re_l))
+    (n_f,) = local_exponent(lambda r: (sdrag.friction_coefficient(r, regime=regime)[0],), re_l)
+    n_f = float(n_f)
+    cond.update({"reynolds_length": re_l, "regime": reg, "cf_laminar": cf_lam,
+                 "cf_turbulent": cf_turb, "cf_used": cf})
+    hull_parts = [p for p in strips.parts if p.role == "hull"]
+    s_wet = 0.0
+    max_d = 0.0
+    hull_moment = np.zeros(3)   # volume-weighted centre of all hull parts (friction acts there)
+    hull_volume = 0.0
+    for p in hull_parts:
+        dx = strips.width(p)
+        per = wetted_perimeter(p)
+        s_wet += float((per * dx).sum())
+        area = p.area
+        max_d = max(max_d, float(2.0 * np.sqrt(np.max(area) / np.pi)))
+        w = area * dx
+        hull_volume += float(w.sum())
+        hull_moment += np.array([(w * strips.x[p.index]).sum(), (w * p.y).sum(), (w * p.z).sum()])
+        # roll friction on the hull perimeter: dK = 1/2 rho Cf per R_eff^3 p|p| dx
+        r_eff = np.sqrt(p.half_breadth * p.half_height)
+        c_roll = 0.5 * rho * cf * float((per * r_eff**3 * dx).sum())
+        elems.append(("roll", c_roll, n_f))
+    if hull_parts:
+        ff = float(sdrag.hoerner_form_factor(max_d / L))
+        c_fric = 0.5 * rho * cf * ff * s_wet
+        x_h, y_h, z_h = hull_moment / hull_volume
+        elems.append((np.array([x_h, y_h, z_h]), np.array([c_fric, 0, 0]), np.array([n_f, 2, 2])))
+        cond.update({"wetted_area": s_wet, "form_factor": ff,
+                     "axial_drag_coefficient_wetted": cf * ff,
+                     "axial_drag_coefficient_frontal": cf * ff * s_wet / (np.pi * max_d**2 / 4)})
+        # blunt ends: pressure drag on the frontal area of a hull that does not close
+        hull_body = getattr(vehicle, "hull", None)
+        for p in hull_parts:
+            a_max = float(np.max(p.area))
+            if hull_body is not None:    # exact end sections of the profile
+                lo, hi = hull_body.x_extent()
+                ends = [hull_body.half_breadth(np.array([x]))[0]
+                        * hull_body.half_height(np.array([x]))[0] for x in (lo, hi)]
+                end_ratio = float(max(ends)) / float(np.max(p.half_breadth * p.half_height))
+            else:                        # mesh: end strips
+                end_ratio = max(float(p.area[0]), float(p.area[-1])) / a_max
+            if p.index.size and end_ratio > 0.25:   # flat or truncated end
+                cd_b = float(sdrag.blunt_cylinder_axial_cd(L / max_d))
+                elems.append((np.array([x_h, y_h, z_h]),
+                              np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))
+                cond["blunt_hull_cd"] = cd_b
+    # --- appendages: axial pressure drag (blunt) on the frontal area
+    for p in strips.parts:
+        if p.role == "hull":
+            continue
+        a_front = float(np.max(p.area + p.entrained_area)) if p.shape != "rectangle" else \
+            float(np.max(4 * p.half_breadth * p.half_height))
+        ld = max(p.length, 1e-9) / max(2 * np.sqrt(a_front / np.pi), 1e-9)
+        if p.role == "fin":
+            cd_a = 2.0 * cf * p.length * np.max(2 * np.maximum(p.half_breadth, p.half_height)) \
+                / max(a_front, 1e-12)   # friction on both faces, per frontal area
+        else:
+            cd_a = float(sdrag.blunt_cylinder_axial_cd(ld))
+        w = p.area * strips.width(p)
+        xc = float((w * strips.x[p.index]).sum() / max(w.sum(), 1e-300))
+        elems.append((np.array([xc, float(np.mean(p.y)), float(np.mean(p.z))]),
+                      np.array([0.5 * rho * cd_a * a_front, 0, 0]), np.array([2.0, 2, 2])))
+    # --- cross-flow per strip element
+    hull_cd = {}
+    for p in strips.parts:
+        dx = strips.width(p)
+        hy, hz = 2 * p.half_height, 2 * p.half_breadth      # extents across y- and z-flow
+        # one Reynolds number per part, on its largest extent across the flow: the regime
+        # of a body is set by its main diameter, not by the tapering tips (MSS cylinderDrag.m)
+        re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
+        re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
+        cd_y, cd_z = section_drag(p, re_y, re_z)
+        # cd_y depends on re_y only and cd_z on re_z only (sections.CROSS_FLOW_DRAG)
+        n_y, n_z = local_exponent(lambda ry, rz: section_drag(p, ry, rz), re_y, re_z)
+        if p.role != "fin":
+            ld_y = max(p.length, 1e-9) / np.maximum(hy, 1e-9)
+            ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)
+            kap_y = sdrag.cylinder_length_factor(np.clip(ld_y, 2, 100), re_y)
+            kap_z = sdrag.cylinder_length_factor(np.clip(ld_z, 2, 100), re_z)
+            # short parts (L/D < 2) keep the L/D = 2 factor: documented in theory.md
+        else:
+            kap_y = kap_z = np.ones(p.index.size)
+        cy, cz = hole_widths(strips, p)
+        c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
+        c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
+        # one element per strip, appended as one block of rows (r, c, n), each (k, 3)
+        k = p.index.size
+        elems.append((np.column_stack([strips.x[p.index], p.y, p.z]),
+                      np.column_stack([np.zeros(k), c_y, c_z]),
+                      np.column_stack([np.full(k, 2.0), n_y, n_z])))
+        if p.shape == "rectangle":   # roll of a sharp part about its own centre
+            c_self = 0.5 * rho * (cd_z * p.half_breadth**4 + cd_y * p.half_height**4) / 2 * dx
+            elems.append(("roll", float(c_self.sum()), 2.0))
+        if p.role == "hull":
+            mid = int(np.argmax(p.area))
+            hull_cd = {"hull_reynolds_diameter": float(re_y[mid]),
+                       "hull_crossflow_cd_y": float(cd_y[mid]), "hull_crossflow_cd_z": float(cd_z[mid]),
+                       "hull_length_factor": float(np.atleast_1d(kap_y)[mid])}
+    cond.update(hull_cd)
+    d_lin = np.zeros((6, 6))
+    d_quad = np.zeros((6, 6))
+    # point elements: single (3,) rows and (k, 3) blocks, stacked in order
+    pts = [tuple(np.reshape(np.asarray(v, float), (-1, 3)) for v in e)
+           for e in elems if not isinstance(e[0], str)]
+    for r, c, n in elems:
+        if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
+            a_hat, b_hat = power_law_split(n)
+            d_lin[3, 3] += a_hat * c * omega
+            d_quad[3, 3] += b_hat * c
+    rel = np.concatenate([p[0] for p in pts]) - about              # (E, 3)
+    c = np.concatenate([p[1] for p in pts])                         # (E, 3) [kg/m]
+    a_hat, b_hat = power_law_split(np.concatenate([p[2] for p in pts]))   # (E, 3)
+    G = np.zeros((rel.shape[0], 3, 6))                              # local velocity per DOF
+    G[:, :, :3] = np.eye(3)
+    G[:, 0, 4], G[:, 0, 5] = rel[:, 2], -rel[:, 1]                  # -S(r) = S(r)^T
+    G[:, 1, 3], G[:, 1, 5] = -rel[:, 2], rel[:, 0]
+    G[:, 2, 3], G[:, 2, 4] = rel[:, 1], -rel[:, 0]
+    # linear part: a linear force law -k V on the local velocity, k = a_hat c U, so
+    # D_L = sum G^T diag(k) G is a congruence and moves between points exactly
+    d_lin += np.einsum("eki,ek,ekj->ij", G, a_hat * c * speed, G)
+    # quadratic part: pure-motion columns, force g = b_hat c |V| V and its moment r x g
+    g = (b_hat * c)[:, :, None] * np.abs(G) * G                     # (E, 3, 6)
+    d_quad[:3] += g.sum(axis=0)
+    d_quad[3:] += np.cross(rel[:, :, None], g, axisa=1, axisb=1, axisc=1).sum(axis=0)
+    return clean_roundoff(d_lin), clean_roundoff(d_quad), cond

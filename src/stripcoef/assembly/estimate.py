@@ -1,0 +1,109 @@
+r"""The pipeline function: a Vehicle in, a :class:`~stripcoef.model.HydroModel` out.
+
+geometry (the vehicle cut into strips) -> sections (2D coefficients per strip) -> hull-level
+terms -> :mod:`~stripcoef.assembly.mass`, :mod:`~stripcoef.assembly.added_mass`,
+:mod:`~stripcoef.assembly.damping` -> one HydroModel about the reference point asked for.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from stripcoef.errors import InputError, ModelWarning
+from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.assembly.added_mass import added_mass
+from stripcoef.assembly.damping import damping_matrices
+from stripcoef.assembly.mass import displaced_volume, mass_properties
+from stripcoef.conventions import clean_roundoff
+from stripcoef.geometry.vehicle import Vehicle, load_vehicle
+
+
+def _reference_point(ref, cb, cg):
+    if isinstance(ref, str):
+        return {"center_of_buoyancy": cb, "center_of_gravity": cg,
+                "origin": np.zeros(3)}[ref]
+    return np.asarray(ref, dtype=float)
+
+
+def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
+             speed: float | None = None, reference_point=None, regime: str = "auto",
+             fluid=None, correction_panels: int | None = None,
+             section_panels: int | None = None) -> HydroModel:
+    """Strip theory: a vehicle in, a HydroModel out.
+
+    Parameters
+    ----------
+    vehicle : Vehicle, str, Path, MeshBody or trimesh.Trimesh
+        A :class:`~stripcoef.geometry.vehicle.Vehicle`, a vehicle file (YAML) or a mesh file
+        (read by :func:`~stripcoef.geometry.vehicle.load_vehicle`), or an in-memory mesh
+        (:meth:`~stripcoef.geometry.vehicle.Vehicle.from_mesh`, default options).
+    strips : int, optional
+        Number of strips (default: the vehicle file's, else 1000).
+    corrections : bool, optional
+        3D end corrections (default on; ``False`` = pure strip theory).
+    speed : float, optional
+        Reference speed for Reynolds numbers and the damping split [m/s].
+    reference_point : str or (3,), optional
+        center_of_buoyancy, center_of_gravity, origin, or a point [m] (default: file's).
+    regime : str
+        Friction line: ``auto``, ``laminar`` or ``turbulent``.
+    fluid : Fluid, optional
+        Override the vehicle file's fluid.
+    correction_panels : int, optional
+        Meridian panels of each axisymmetric solve of the 3D corrections (default
+        :data:`stripcoef.hull.corrections.DEFAULT_PANELS` = 160; cost grows as its square,
+        accuracy converges at second order, docs/performance.md "Speed"). Ignored
+        without corrections.
+    section_panels : int, optional
+        Panels per 2D section of a mesh body (default adaptive: 96 for a round section, more
+        for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
+        round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
+
+    Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
+    :func:`added_mass`, D_L and D_Q from :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
+    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
+    """
+    if isinstance(vehicle, (str, Path)):
+        vehicle = load_vehicle(vehicle)
+    elif not isinstance(vehicle, Vehicle):
+        vehicle = Vehicle.from_mesh(vehicle)
+    if regime not in ("auto", "laminar", "turbulent"):
+        raise InputError("unknown regime", key="regime", value=regime,
+                         expected="auto, laminar or turbulent")
+    fluid = fluid or vehicle.fluid
+    rho, nu = fluid.density, fluid.kinematic_viscosity
+    speed = float(speed if speed is not None else vehicle.reference_speed)
+    if not np.isfinite(speed) or speed <= 0:
+        raise InputError("invalid reference speed", key="speed", value=speed,
+                         expected="a speed > 0 m/s")
+    corrections = vehicle.corrections if corrections is None else bool(corrections)
+    st = vehicle.cut(strips)
+    volume, cb = displaced_volume(st)
+    mass, cg, inertia = mass_properties(st, vehicle, rho, volume, cb)
+    ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
+                           cb, cg)
+    m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
+                              corrections=corrections, correction_panels=correction_panels,
+                              section_panels=section_panels)
+    d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
+    m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
+    m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
+    cond.update(am_info)
+    cond.update({"strips": st.n, "corrections": corrections, "density": rho,
+                 "kinematic_viscosity": nu, "fluid": fluid.source, "length": st.length})
+    if abs(mass - rho * volume) > 0.05 * rho * volume:
+        warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
+                      f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
+                      f"(m = {mass:.3g} kg, rho V = {rho * volume:.3g} kg)", ModelWarning,
+                      stacklevel=2)
+    return HydroModel(
+        name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
+        linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
+        center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
+        thrusters=list(vehicle.thrusters), conditions=cond,
+        provenance={"method": "strip theory", "source": vehicle.source,
+                    "corrections": corrections, "strips": st.n},
+    )

@@ -1,0 +1,81 @@
+"""Command-line interface: a thin layer over the Python API.
+
+Each subcommand lives in ``stripcoef.cli.<name>`` and exposes
+``add_parser(subparsers)`` and ``run(args) -> int``.  This module is the only
+place that turns errors into exit codes: a :class:`StripcoefError` (bad input,
+unreachable manoeuvre) prints one line and exits 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+import warnings
+
+# The matrices here are small (strips, panels): threaded BLAS only adds contention, and on a
+# loaded 2-core machine makes a 160x160 solve 100x slower (docs/performance.md). Set before
+# numpy is imported by the subcommands; a user's own setting wins.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+from stripcoef.errors import InputError, StripcoefError
+
+#: Subcommands, in the order of the pipeline.
+COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
+            "diagnose")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # argparse's usage errors: one line, exit 2
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="stripcoef",
+                     description="Hydrodynamic models of underwater vehicles by strip theory.")
+    from stripcoef import __version__
+    parser.add_argument("--version", action="version", version=f"stripcoef {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+    for name in COMMANDS:
+        module = importlib.import_module(f"stripcoef.cli.{name}")
+        module.add_parser(sub)
+    return parser
+
+
+def _showwarning(message, category, filename, lineno, file=None, line=None):
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> StripcoefError:
+    """The library names a parameter (``radii``); the user typed a flag (``--radii``).
+
+    An :class:`InputError` that names no file and whose key is the destination of one of the
+    command's options is reworded to name that option's flag (a key of a file, such as a
+    vehicle file's ``reference_point``, stays the file's); any other error is returned as it is.
+    """
+    if not isinstance(exc, InputError) or not exc.key or exc.file:
+        return exc
+    for action in parser._actions:
+        if action.dest == exc.key and action.option_strings:
+            return exc.with_key(max(action.option_strings, key=len))
+    return exc
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    warnings.showwarning = _showwarning
+    try:
+        return int(args.func(args) or 0)
+    except StripcoefError as exc:
+        exc = in_cli_terms(exc, parser._subparsers._group_actions[0].choices[args.command])
+        print(f"stripcoef {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:  # output piped into a command that stopped reading (e.g. head)
+        sys.stderr.close()
+        return 0

@@ -1,0 +1,119 @@
+"""``stripcoef coefficients``: a vehicle file or a mesh in, the hydrodynamic model out."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import yaml
+
+from stripcoef.conventions import DOF
+from stripcoef.cli.options import (add_fluid_arguments, add_mesh_arguments,
+                                   estimate_from_args)
+from stripcoef.files import write_text
+
+
+
+def add_parser(sub):
+    p = sub.add_parser("coefficients", help="added mass, damping and rigid-body matrices",
+                       description="Strip-theory hydrodynamic model of a vehicle file (YAML) "
+                                   "or a CAD mesh (STL/OBJ/PLY/GLB).")
+    p.add_argument("vehicle", metavar="VEHICLE", help="vehicle file (.yaml) or mesh file")
+    fmt = p.add_mutually_exclusive_group()
+    fmt.add_argument("--json", action="store_true", help="print the JSON contract")
+    fmt.add_argument("--yaml", action="store_true", help="print YAML (same content)")
+    p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
+    p.add_argument("--strips", type=int, metavar="N", help="number of strips")
+    p.add_argument("--speed", type=float, metavar="M_S",
+                   help="reference speed for Reynolds numbers and damping [m/s]")
+    p.add_argument("--no-corrections", action="store_true",
+                   help="pure strip theory (no 3D end corrections)")
+    p.add_argument("--reference-point", metavar="POINT",
+                   help="center_of_buoyancy, center_of_gravity, origin or X,Y,Z [m]")
+    p.add_argument("--regime", choices=("auto", "laminar", "turbulent"), default="auto",
+                   help="friction line (default: auto, laminar below Re_L = 5e5)")
+    add_fluid_arguments(p, "fluid (override the file; defaults for meshes: sea water)")
+    m = add_mesh_arguments(p)
+    m.add_argument("--method", choices=("strip", "bem"), default="strip",
+                   help="strip theory (default) or the Capytaine BEM (needs stripcoef[bem])")
+    p.set_defaults(func=run)
+    return p
+
+
+
+
+
+
+
+
+
+
+
+
+
+
+def _pt(point) -> list:
+    """A point rounded to 0.1 mm for display, without negative zeros [m]."""
+    return (np.round(np.asarray(point, dtype=float), 4) + 0.0).tolist()
+
+
+def format_table(model) -> str:
+    """A readable summary: mass properties, the three matrices, conditions."""
+    def mat(name, m, unit):
+        lines = [f"{name} [{unit}] about {_pt(model.reference_point)} m:"]
+        lines.append("        " + "".join(f"{d:>11s}" for d in DOF))
+        for d, row in zip(DOF, np.asarray(m)):
+            lines.append(f"{d:>7s} " + "".join(f"{v:11.4g}" for v in row))
+        return "\n".join(lines)
+
+    c = model.conditions
+    out = [f"{model.name}: strip theory ({c.get('strips')} strips, 3D corrections "
+           f"{'on' if c.get('corrections') else 'off'})",
+           f"  mass {model.mass:.4g} kg, volume {model.volume:.5g} m^3 "
+           f"(rho V = {model.density * model.volume:.4g} kg)",
+           f"  CG {_pt(model.center_of_gravity)} m, "
+           f"CB {_pt(model.center_of_buoyancy)} m",
+           f"  fluid: rho = {model.density:.5g} kg/m^3, nu = {model.kinematic_viscosity:.4g} m^2/s",
+           "",
+           mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2"),
+           "",
+           mat("Linear damping D_L", model.linear_damping, "kg/s, kg m/s, kg m^2/s"),
+           "",
+           mat("Quadratic damping D_Q", model.quadratic_damping, "kg/m, kg, kg m^2"),
+           "",
+           mat("Rigid-body mass M_RB", model.rigid_body_mass, "kg, kg m, kg m^2"),
+           "",
+           "Conditions:"]
+    keys = ("reference_speed", "reynolds_length", "regime", "cf_laminar", "cf_turbulent",
+            "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
+            "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
+            "end_correction_sway", "end_correction_heave", "end_correction_pitch",
+            "end_correction_yaw", "correction_method")
+    for k in keys:
+        if k in c:
+            v = c[k]
+            out.append(f"  {k:32s} {v:.4g}" if isinstance(v, float) else f"  {k:32s} {v}")
+    return "\n".join(out) + "\n"
+
+
+def run(args) -> int:
+    if args.method == "bem":
+        from stripcoef import bem  # optional extra
+
+        vehicle, model = estimate_from_args(args)
+        data = bem.bem_model(model, vehicle).to_dict()
+        text = json.dumps(data, indent=2)
+    else:
+        _, model = estimate_from_args(args)
+        data = model.to_dict()
+        if args.json:
+            text = json.dumps(data, indent=2)
+        elif args.yaml:
+            text = yaml.safe_dump(data, sort_keys=False)
+        else:
+            text = format_table(model)
+    if args.output:
+        write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")
+    else:
+        print(text, end="" if text.endswith("\n") else "\n")
+    return 0

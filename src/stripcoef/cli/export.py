@@ -1,0 +1,58 @@
+"""``stripcoef export VEHICLE --to FORMAT [-o FILE]``: the model in a simulator's format.
+
+VEHICLE is a vehicle file (YAML, estimated by strip theory) or a model file
+(``HydroModel.to_dict()`` as JSON or YAML, e.g. from ``stripcoef export --to json``).
+Without ``-o`` the export is printed (``npz`` is binary and needs ``-o``).
+"""
+
+from __future__ import annotations
+
+import sys
+
+from stripcoef.errors import InputError
+
+
+def add_parser(subparsers):
+    from stripcoef.export import FORMATS
+    p = subparsers.add_parser(
+        "export", help="export the model to a simulator or data format",
+        description="Export a vehicle's hydrodynamic model to a simulator or data format. "
+                    "Formats: " + "; ".join(f"{k}: {m.DESCRIPTION}" for k, m in FORMATS.items()))
+    p.add_argument("vehicle", metavar="VEHICLE",
+                   help="vehicle file (YAML) or model file (JSON/YAML from HydroModel.to_dict)")
+    p.add_argument("--to", required=True, metavar="FORMAT",
+                   help="one of " + ", ".join(FORMATS))
+    p.add_argument("-o", "--output", metavar="FILE", help="output file (default: stdout)")
+    p.add_argument("--point", metavar="CO|CG|CB|origin|X,Y,Z",
+                   help="reference point of the exported matrices: CO (the model's), CG, CB, "
+                        "origin or x,y,z in m, FRD body coordinates of the vehicle file (write "
+                        "--point=-0.1,0,0 for a negative x); default: the format's (CG for "
+                        "uuv, else CO)")
+    p.add_argument("--axes", metavar="FRD|FLU",
+                   help="axes of the exported matrices (gazebo, uuv: of the link frame); "
+                        "default FLU for gazebo and uuv, FRD otherwise")
+    p.add_argument("--link", dest="link_name", metavar="NAME", help="link name (gazebo, uuv; default base_link)")
+    p.add_argument("--legacy-added-mass", action="store_true",
+                   help="gazebo: write the plugin's <xDotU> added-mass tags (Bullet, MuJoCo) "
+                        "instead of <fluid_added_mass> (DART)")
+    p.set_defaults(func=run)
+    return p
+
+
+def run(args) -> int:
+    from stripcoef.export import export_model, format_module, write_export
+    from stripcoef.modelfile import load_model
+
+    module = format_module(args.to)            # unknown format: fail before any work
+    if module.BINARY and not args.output:
+        raise InputError(f"format {args.to} is binary and is not printed", key="output",
+                         expected="-o FILE")
+    model = load_model(args.vehicle)
+    options = dict(point=args.point, axes=args.axes, link_name=args.link_name,
+                   legacy_added_mass=args.legacy_added_mass)
+    if args.output:
+        path = write_export(model, args.to, args.output, **options)
+        print(f"wrote {path}", file=sys.stderr)
+    else:
+        sys.stdout.write(export_model(model, args.to, **options))
+    return 0

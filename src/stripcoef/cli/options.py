@@ -1,0 +1,101 @@
+"""Options shared by the commands that read a vehicle: fluid, mesh input, points, strips."""
+
+from __future__ import annotations
+
+from stripcoef.errors import InputError
+
+
+def add_fluid_arguments(parser, title: str):
+    """--rho, --nu, --water-temperature, --salinity (shared by the commands that estimate)."""
+    g = parser.add_argument_group(title)
+    g.add_argument("--rho", type=float, metavar="KG_M3", help="water density [kg/m^3]")
+    g.add_argument("--nu", type=float, metavar="M2_S", help="kinematic viscosity [m^2/s]")
+    g.add_argument("--water-temperature", type=float, metavar="C", help="temperature [degC]")
+    g.add_argument("--salinity", type=float, metavar="PSU", help="salinity [PSU]")
+    return g
+
+
+def add_mesh_arguments(parser):
+    """--origin, --axis, --length-unit for mesh input (shared with ``compare``)."""
+    m = parser.add_argument_group("mesh input")
+    m.add_argument("--origin", default="centroid", metavar="centroid|X,Y,Z",
+                   help="reference point of a mesh: its volume centroid or a point [m]")
+    m.add_argument("--axis", choices=("x", "y", "z"), default="x",
+                   help="mesh axis along the body (default x)")
+    m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
+                   help="length unit of the mesh file")
+    return m
+
+
+def parse_point(text: str, *, key: str):
+    """'X,Y,Z' -> array of 3 floats [m], or an InputError naming the option."""
+    import numpy as np
+
+    parts = str(text).split(",")
+    try:
+        vals = [float(v) for v in parts]
+    except ValueError:
+        vals = []
+    if len(vals) != 3 or not all(np.isfinite(vals)):
+        raise InputError("not a point", key=key, value=text, expected="X,Y,Z in metres")
+    return np.asarray(vals)
+
+
+def fluid_from_args(args, default):
+    """Fluid from --rho/--nu or --water-temperature/--salinity (None: keep the default)."""
+    import numpy as np
+
+    from stripcoef.fluid import Fluid
+
+    ts = args.water_temperature is not None or args.salinity is not None
+    dn = args.rho is not None or args.nu is not None
+    if ts and dn:
+        raise InputError("conflicting fluid options", key="--rho/--nu",
+                         expected="either --rho/--nu or --water-temperature/--salinity")
+    if ts:
+        if args.water_temperature is None or args.salinity is None:
+            raise InputError("incomplete fluid options", key="--water-temperature/--salinity",
+                             expected="both --water-temperature and --salinity")
+        return Fluid.from_temperature_salinity(args.water_temperature, args.salinity)
+    if dn:
+        base = default or Fluid()
+        rho = args.rho if args.rho is not None else base.density
+        nu = args.nu if args.nu is not None else base.kinematic_viscosity
+        for k, v in (("--rho", rho), ("--nu", nu)):
+            if not np.isfinite(v) or v <= 0:
+                raise InputError("must be positive", key=k, value=v, expected="a number > 0")
+        return Fluid(density=rho, kinematic_viscosity=nu, source="command line")
+    return None
+
+
+def load_any_vehicle(args):
+    """A Vehicle from a YAML vehicle file or from a mesh (with the mesh options)."""
+    from pathlib import Path
+
+    from stripcoef.geometry.vehicle import MESH_SUFFIXES, load_vehicle
+
+    path = Path(args.vehicle)
+    if path.suffix.lower() in MESH_SUFFIXES:
+        origin = "centroid" if args.origin == "centroid" else parse_point(args.origin, key="--origin")
+        return load_vehicle(path, axis=args.axis, length_unit=args.length_unit, origin=origin)
+    return load_vehicle(path)
+
+
+def estimate_from_args(args):
+    """The vehicle and the HydroModel the options ask for (commands that take a VEHICLE)."""
+    from stripcoef.assembly import estimate
+
+    vehicle = load_any_vehicle(args)
+    fluid = fluid_from_args(args, vehicle.fluid)
+    ref = None
+    if getattr(args, "reference_point", None):
+        rp = args.reference_point
+        ref = rp if rp in ("center_of_buoyancy", "center_of_gravity", "origin") else \
+            parse_point(rp, key="--reference-point")
+    if args.strips is not None and args.strips < 4:
+        raise InputError("too few strips", key="--strips", value=args.strips,
+                         expected="an integer >= 4")
+    return vehicle, estimate(vehicle, strips=args.strips,
+                             corrections=False if args.no_corrections else None,
+                             speed=args.speed, reference_point=ref, regime=args.regime,
+                             fluid=fluid)

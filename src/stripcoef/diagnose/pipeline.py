@@ -1,0 +1,993 @@
+r"""Closing the loop: find the residual, trace it to the effect the model lacks, add it.
+
+Steps, for each degree of freedom (issue 7):
+
+1. **Baseline**: the prior (strip-theory) model predicts the log; the error is the RMS of the
+   window force residual :math:`e_i` of :mod:`stripcoef.effects.laws` [N or N m] (the
+   one-step form of Wang & Clark 2006, eqs. 14-17, over windows of ``window`` seconds), and, when
+   ``resimulate`` is on, the RMS of the re-simulated velocity [m/s or rad/s].
+2. **Calibration** of the prior's own coefficients of that DOF (inertia M_ii, linear and
+   quadratic damping D_L,ii and D_Q,ii) *within their bands*: a Gaussian prior on each
+   correction with standard deviation ``band * prior value`` (maximum a posteriori least
+   squares, Tarantola 2005 eq. 3.37; ridge regression). Bands, from the analytical vs
+   experimental columns of Wang & Clark 2006 Table I: translational added mass 30 %, linear drag
+   60 %, quadratic drag 30 %; rotational added mass 100 %, linear and quadratic drag 300 %
+   (N_r is off by 4.8x and N_r|r| by 50x there: strip theory barely constrains rotation).
+   A coefficient the prior has as zero is not calibrated (strip theory says it is absent).
+3. **Structure** of the residual: bias, lag-1 autocorrelation, runs test, dependence on the
+   sign of the velocity and of the thrust, correlation with each candidate's regressors.
+4. **Effects**: every applicable effect of the library is fitted together with the
+   calibration (nonlinear parameters profiled); it is *significant* when all of
+   - the held-out error (blocked cross-validation: the log's windows in ``N_BLOCKS``
+     contiguous blocks, each predicted by a fit on the others) drops by at least
+     ``MIN_HELD_OUT_GAIN``,
+   - the Bayesian information criterion on all windows drops by at least
+     ``MIN_DELTA_BIC`` (Schwarz 1978; windows do not overlap, so residuals are close to
+     independent and N is the number of windows),
+   - a parameter of the effect is at least ``MIN_Z`` standard deviations from zero,
+   - its parameters are physically plausible (a drag is positive, an efficiency in (0.1, 3)),
+   - an effect without a signature in this log (it only mimics a prior coefficient, e.g. a
+     tether drag without a ``tether_length`` column looks like a larger D_Q) must also push
+     that coefficient more than ``MIMIC_BANDS`` bands away from the prior.
+   The significant effect with the lowest held-out error is added; effects within ``TIE``
+   of it are reported as alternatives, and an effect with a signature is preferred over one
+   without. Repeat until nothing is significant.
+5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
+   signs, applied force, heading, other logged channels) is fitted to the final residual; if
+   it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
+   no library effect explaining it, ``unexplained`` is true.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+from scipy.optimize import least_squares, lsq_linear
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.errors import InputError
+from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
+from stripcoef.effects.windows import window_data
+from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
+
+#: 1-sigma relative bands on the prior's coefficients (see module docstring).
+BANDS = {"translational": {"M": 0.3, "D_L": 0.6, "D_Q": 0.3},
+         "rotational": {"M": 1.0, "D_L": 3.0, "D_Q": 3.0}}
+MIN_HELD_OUT_GAIN = 0.10
+MIN_DELTA_BIC = 10.0
+MIN_Z = 3.0
+TIE = 0.02
+MIMIC_BANDS = 2.5
+UNEXPLAINED_GAIN = 0.10
+N_BLOCKS = 5
+MAX_STEPS = 4
+#: Default window of the one-step residual [s]. Velocity noise of standard deviation
+#: sigma_v enters the window residual as M_ii sqrt(2) sigma_v / T: 4 s windows halve the
+#: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
+#: (measured: benchmarks/diagnose_detection.py --window 2 vs 4, docs/performance.md).
+DEFAULT_WINDOW = 4.0
+METRIC = "rms_window_force_residual"
+METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the model misses, "
+               "averaged over non-overlapping windows [N or N m]")
+
+
+# ---------------------------------------------------------------------------
+# least squares with band priors
+# ---------------------------------------------------------------------------
+
+def _solve(y, H, prior_sd, sigma, lower=None, m=None):
+    r"""MAP least squares: min |y - H theta|^2 / sigma^2 + sum_j (theta_j / s_j)^2,
+    subject to theta >= lower (physical bounds: no negative added mass or damping).
+
+    ``m = (columns, M, v)``: the columns that multiply the acceleration (inertia changes
+    :math:`\mu`, collinear), the prior inertia M of the DOF and the variance v of the
+    measured window acceleration's noise. The force balance is homogeneous: scaling
+    inertia, damping and thrust together leaves it unchanged, while the velocity noise
+    enters the residual as :math:`(M + \mu) n`; a plain fit follows that noise and shrinks
+    everything (errors in variables). :math:`\mu` is therefore profiled (variable
+    projection, Golub & Pereyra 1973) on the cost corrected for the expected noise term,
+    :math:`J(\mu) - N (M + \mu)^2 v / \sigma^2` (corrected least squares, Fuller 1987,
+    Measurement Error Models, sec. 2.2).
+
+    Returns theta, covariance (the unconstrained one at the solution), weighted residual.
+    """
+    if m is not None and len(m[0]):
+        return _solve_profiled(y, H, prior_sd, sigma, lower, m)
+    return _solve_linear(y, H, prior_sd, sigma, lower)
+
+
+def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0):
+    p = H.shape[1]
+    if p == 0:
+        return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
+    rows = [H * weight / sigma]
+    rhs = [y * weight / sigma]
+    finite = np.isfinite(prior_sd)
+    if finite.any():
+        reg = np.zeros((int(finite.sum()), p))
+        reg[np.arange(reg.shape[0]), np.nonzero(finite)[0]] = 1.0 / prior_sd[finite]
+        rows.append(reg)
+        rhs.append(np.zeros(reg.shape[0]))
+    a = np.vstack(rows)
+    b = np.concatenate(rhs)
+    scale = np.sqrt((a ** 2).sum(axis=0))
+    scale[scale == 0] = 1.0
+    theta_s, *_ = np.linalg.lstsq(a / scale, b, rcond=None)
+    if lower is not None and np.any(theta_s / scale < lower):
+        lb = np.where(np.isfinite(lower), lower * scale, -np.inf)
+        theta_s = lsq_linear(a / scale, b, bounds=(lb, np.inf), method="bvls").x
+    theta = theta_s / scale
+    cov = np.linalg.pinv((a / scale).T @ (a / scale)) / np.outer(scale, scale)
+    return theta, cov, b - a @ theta
+
+
+def _solve_profiled(y, H, prior_sd, sigma, lower, m):
+    from scipy.optimize import minimize_scalar
+
+    mcols, m_total, noise_var = list(m[0]), float(m[1]), float(m[2])
+    keep = [j for j in range(H.shape[1]) if j not in mcols]
+    rate = H[:, mcols[0]]
+    msd = prior_sd[mcols]
+    mu_sd = np.inf if not np.all(np.isfinite(msd)) else float(np.sqrt(np.sum(msd ** 2)))
+    lo = -0.95 * m_total
+    if lower is not None:
+        lo = max(lo, float(np.max(lower[mcols])))
+    X, sdx = H[:, keep], prior_sd[keep]
+    lowx = None if lower is None else lower[keep]
+
+    def inner(mu):
+        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx)
+        extra = np.array([mu / mu_sd]) if np.isfinite(mu_sd) else np.zeros(0)
+        return th, cov, np.concatenate([res, extra])
+
+    def cost(mu):
+        return float(np.sum(inner(mu)[2] ** 2)) - y.size * (m_total + mu) ** 2 * noise_var \
+            / sigma ** 2
+
+    hi = 5.0 * m_total
+    # without active bounds the profiled cost is exactly quadratic in mu (a linear
+    # least-squares residual of y - mu * rate, plus quadratic prior and noise terms):
+    # three evaluations give its vertex; otherwise fall back to a bounded search
+    h = 0.1 * m_total
+    c0, cp, cm = cost(0.0), cost(h), cost(-h)
+    curv = (cp - 2 * c0 + cm) / h ** 2
+    mu = None
+    if curv > 0:
+        cand = float(np.clip(-(cp - cm) / (2 * h) / curv, lo, hi))
+        if cost(cand) <= min(c0, cp, cm) + 1e-9 * max(abs(c0), 1.0):
+            mu = cand
+    if mu is None:
+        sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-6 * m_total})
+        mu = float(sol.x)
+    th, covx, res = inner(mu)
+    if not (curv > 0 and lo + h <= mu <= hi - h):
+        c0, cp, cm = cost(mu), cost(min(mu + h, hi)), cost(max(mu - h, lo))
+        curv = (cp - 2 * c0 + cm) / h ** 2
+    var_mu = 2.0 / curv if curv > 0 else np.inf
+    theta = np.zeros(H.shape[1])
+    cov = np.zeros((H.shape[1], H.shape[1]))
+    theta[keep] = th
+    cov[np.ix_(keep, keep)] = covx
+    # the inertia change goes to the last inertia column (the released one if any)
+    j = mcols[-1] if not np.isfinite(mu_sd) and len(mcols) > 1 else mcols[0]
+    if not np.isfinite(mu_sd):
+        j = next((c for c in mcols if not np.isfinite(prior_sd[c])), mcols[-1])
+    theta[j] = mu
+    cov[j, j] = var_mu
+    return theta, cov, res
+
+
+class _Config:
+    """Calibration columns + accepted effects (+ a candidate) for one DOF."""
+
+    def __init__(self, data: WindowData, dof: int, cal_cols, cal_sd, terms, cal_lower=None):
+        self.data, self.dof = data, dof
+        self.cal_cols, self.cal_sd = cal_cols, cal_sd
+        self.cal_names = None  # names of the calibration columns (for recomputing them)
+        if cal_lower is None:
+            cal_lower = np.full(len(cal_sd), -np.inf)
+            if cal_sd is not None and len(cal_sd):
+                cache = data.__dict__.setdefault("_cal_prior", {})
+                names = data.__dict__.setdefault("_cal_names", {})
+                if dof not in cache:
+                    cal = _calibration(data, dof)
+                    cache[dof] = np.asarray(cal[3], float)
+                    names[dof] = list(cal[2])
+                if self.cal_names is None and len(names[dof]) == len(cal_sd):
+                    self.cal_names = names[dof]
+                if cache[dof].size == len(cal_sd):
+                    # the calibrated coefficient stays >= 0: no negative added mass or drag
+                    cal_lower = -np.abs(cache[dof])
+        self.cal_lower = np.asarray(cal_lower, float)
+        self.cal_has_m = (cal_sd is not None and len(cal_sd) > 0
+                          and float(data.model.added_mass[dof, dof]) != 0.0)
+        self.terms = terms  # list of (effect, hyper)
+
+    def hyper_terms(self, hyper_override=None):
+        """(effect, hyper) of each term, the last one's hyper replaced by ``hyper_override``
+        when given (the candidate whose nonlinear parameters are being profiled)."""
+        last = len(self.terms) - 1
+        return [(eff, hyper_override if (hyper_override is not None and k == last) else hyper)
+                for k, (eff, hyper) in enumerate(self.terms)]
+
+    def lower(self, hyper_override=None):
+        """Lower bounds of all parameters (calibration: coefficient >= 0)."""
+        out = [self.cal_lower]
+        for eff, h in self.hyper_terms(hyper_override):
+            lo = eff.lower_bounds(self.data, self.dof, h) if hasattr(eff, "lower_bounds") \
+                else np.full(eff.design(self.data, self.dof, h)[1].shape[1], -np.inf)
+            out.append(lo)
+        return np.concatenate(out)
+
+    def m_info(self, hyper_override=None):
+        """(indices of the inertia columns, prior inertia of the DOF) for :func:`_solve`."""
+        cols = []
+        if self.cal_has_m:
+            cols.append(0)
+        k = self.cal_cols.shape[1]
+        for eff, h in self.hyper_terms(hyper_override):
+            n = eff.design(self.data, self.dof, h)[1].shape[1]
+            if getattr(eff, "inertia", False):
+                cols.append(k + n - 1)
+            k += n
+        return (cols, float(self.data.model.mass_matrix[self.dof, self.dof]),
+                self.data.rate_noise_variance(self.dof))
+
+    def calibration_columns(self, hyper_override=None):
+        """The calibration columns, at the velocity relative to the water when a term (the
+        current) defines it -- drag and added mass act on nu_r (Fossen 2011, eq. 10.1)."""
+        for eff, h in self.hyper_terms(hyper_override):
+            if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
+                nur = eff.relative_velocity(self.data, h)
+                return np.column_stack([coefficient_column(self.data, self.dof, key, nur)
+                                        for key in self.cal_names])
+        return self.cal_cols
+
+    def design(self, hyper_override=None):
+        y = self.data.e0[:, self.dof].copy()
+        cols = [self.calibration_columns(hyper_override)]
+        sd = [self.cal_sd]
+        for eff, h in self.hyper_terms(hyper_override):
+            off, c = eff.design(self.data, self.dof, h)
+            if off is not None:
+                y = y - off
+            cols.append(c)
+            if hasattr(eff, "prior_sd"):
+                sd.append(eff.prior_sd(self.data, self.dof, h))
+            else:
+                sd.append(np.full(c.shape[1], np.inf))
+        return y, np.hstack(cols), np.concatenate(sd)
+
+
+class _Nuisance:
+    """The nuisance columns of an effect as a term of its own (the reference fit)."""
+
+    hyper = ()
+
+    def __init__(self, effect):
+        self.effect = effect
+        self.name = effect.name + "(reference)"
+
+    def design(self, data, dof, hyper=None):
+        return None, self.effect.nuisance(data, dof)
+
+    def prior_sd(self, data, dof, hyper=None):
+        return self.effect.nuisance_sd(data, dof)
+
+
+def _sigma(y, H, sd=None, lower=None, m=None):
+    """Noise level of the window residual: iterate the MAP fit from sigma = RMS(y) (a free
+    fit could follow the scale degeneracy of the force balance to sigma = 0)."""
+    if H.shape[1] == 0:
+        return max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
+    sd = np.full(H.shape[1], np.inf) if sd is None else sd
+    sigma = max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
+    for _ in range(4):
+        theta, _, _ = _solve(y, H, sd, sigma, lower, m)
+        r = y - H @ theta
+
+        p_eff = min(H.shape[1], y.size - 1)
+        sigma = max(float(np.sqrt(r @ r / max(y.size - p_eff, 1))), 1e-12)
+    return sigma
+
+
+def _fit(cfg: _Config, mask=None, hyper=None):
+    y, H, sd = cfg.design(hyper)
+    lower = cfg.lower(hyper)
+    m = cfg.m_info(hyper)
+    yy, HH = (y, H) if mask is None else (y[mask], H[mask])
+    sigma = _sigma(yy, HH, sd, lower, m)
+    theta, cov, _ = _solve(yy, HH, sd, sigma, lower, m)
+    resid = y - H @ theta
+    return {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
+            "sd": sd}
+
+
+def _profile_hyper(cfg: _Config, mask):
+    """Optimise the nonlinear parameters of the last term on the fitting windows."""
+    eff, _ = cfg.terms[-1]
+    if not eff.hyper:
+        return None
+    h0 = eff.hyper_start(cfg.data, cfg.dof)
+    y0, H0, sd0 = cfg.design(h0)
+    sigma0 = _sigma(y0[mask], H0[mask], sd0, cfg.lower(h0), cfg.m_info(h0))
+
+    def cost_vec(h):
+        y, H, sd = cfg.design(h)
+        yy, HH = y[mask], H[mask]
+        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h))
+        return wres
+
+    if eff.name == "deadband":
+        cands = eff.candidates(cfg.data, cfg.dof)
+        if cands.size == 0:
+            return np.array([0.0])
+        def cost(c):
+            return float(np.sum(cost_vec(np.array([c])) ** 2))
+
+        costs = np.array([cost(c) for c in cands])
+        k = int(np.argmin(costs))
+        lo = cands[max(k - 1, 0)]
+        hi = cands[min(k + 1, cands.size - 1)]
+        # fine search: the cost only changes when the threshold crosses a command level of
+        # the fitting windows, so evaluate between consecutive levels near the coarse optimum
+        act = cfg.data.acting(cfg.dof)
+        rows = np.zeros(cfg.data.t.size, bool)
+        for a, b in zip(cfg.data.i0[mask], cfg.data.i1[mask]):
+            rows[a:b] = True
+        levels = np.unique(np.abs(cfg.data.commands[rows][:, act]))
+        levels = levels[(levels >= lo) & (levels <= hi)]
+        if levels.size >= 2:
+            mids = 0.5 * (levels[1:] + levels[:-1])
+            fine = np.array([cost(c) for c in mids])
+            j = int(np.argmin(fine))
+            # the threshold is only known to lie between two levels: take their middle
+            return np.array([mids[j]])
+        return np.array([cands[k]])
+    best = None
+    for start in ([0.0, 0.0], [0.2, 0.0], [0.0, 0.2], [-0.2, 0.0], [0.0, -0.2]):
+        sol = least_squares(cost_vec, np.asarray(start, float), method="lm", x_scale=0.1)
+        if best is None or sol.cost < best.cost:
+            best = sol
+    return best.x
+
+
+def _hyper_std(cfg: _Config, hyper, sigma):
+    """Std of nonlinear parameters: sigma^2 (J^T J)^-1 of the profiled residual."""
+    if hyper is None or len(np.atleast_1d(hyper)) == 0:
+        return np.zeros(0)
+    eff = cfg.terms[-1][0]
+    if eff.name == "deadband":
+        # one-sided steps between command levels: take the spacing of the candidate grid
+        cands = eff.candidates(cfg.data, cfg.dof)
+        h = float(hyper[0])
+        if cands.size < 2:
+            return np.array([np.nan])
+        k = int(np.argmin(np.abs(cands - h)))
+        lo = cands[max(k - 1, 0)]
+        hi = cands[min(k + 1, cands.size - 1)]
+        return np.array([0.5 * (hi - lo) / math.sqrt(3.0)])
+    hyper = np.asarray(hyper, float)
+
+    def vec(h):
+        y, H, sd = cfg.design(h)
+        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h))[2] * sigma
+
+    j = np.empty((vec(hyper).size, hyper.size))
+    for k in range(hyper.size):
+        step = 1e-4 * max(1.0, abs(hyper[k]))
+        hp, hm = hyper.copy(), hyper.copy()
+        hp[k] += step
+        hm[k] -= step
+        j[:, k] = (vec(hp) - vec(hm)) / (2 * step)
+    cov = sigma ** 2 * np.linalg.pinv(j.T @ j)
+    return np.sqrt(np.clip(np.diag(cov), 0, None))
+
+
+def _rms(x):
+    return float(np.sqrt(np.mean(np.asarray(x) ** 2))) if np.size(x) else float("nan")
+
+
+def _bic(resid, n_params):
+    n = resid.size
+    return n * math.log(max(float(resid @ resid), 1e-300) / n) + n_params * math.log(n)
+
+
+# ---------------------------------------------------------------------------
+# evaluation of one configuration
+# ---------------------------------------------------------------------------
+
+def _evaluate(cfg: _Config):
+    """Fit on all windows (parameters, error, BIC) and by blocked cross-validation (the
+    held-out error: each of ``N_BLOCKS`` contiguous blocks predicted by a fit on the others).
+
+    The nonlinear parameters of a new term are profiled once on all windows (not per fold):
+    a slight optimism for the two effects that have them (current, dead band)."""
+    hyper = None
+    everything = np.ones(cfg.data.n_windows, bool)
+    if cfg.terms and cfg.terms[-1][0].hyper and cfg.terms[-1][1] is None:
+        hyper = _profile_hyper(cfg, everything)
+        cfg.terms[-1] = (cfg.terms[-1][0], hyper)
+    full = _fit(cfg)
+    pred = np.empty(cfg.data.n_windows)
+    for fold in np.array_split(np.arange(cfg.data.n_windows), N_BLOCKS):
+        mask = everything.copy()
+        mask[fold] = False
+        tr = _fit(cfg, mask)
+        pred[fold] = tr["resid"][fold]
+    n_free = int(np.sum(~np.isfinite(full["sd"]))) + (
+        len(np.atleast_1d(hyper)) if hyper is not None else 0)
+    return {"full": full, "held_out_error": _rms(pred), "held_out_resid": pred,
+            "error": _rms(full["resid"]), "bic": _bic(full["resid"], n_free),
+            "hyper": hyper}
+
+
+def _calibration(data: WindowData, dof: int, bands=None):
+    r"""Calibration columns and band standard deviations for one DOF.
+
+    The DOF's own inertia, linear and quadratic damping, and the added mass
+    :math:`M_{jj}` of every *other* DOF j that reaches this one through the added-mass
+    Coriolis and centripetal force :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43: e.g.
+    :math:`M_{33}\,w q` and :math:`-M_{22}\,v r` in surge). Those are the prior's own
+    coefficients as well, with the band of their DOF: on a log with turns, strip theory's
+    error in the sway added mass shows in the surge residual as :math:`\Delta M_{22}\,v r`,
+    which no effect of the library should be asked to explain. Their column is the window
+    mean of :math:`\partial (C_A(\nu)\nu)_i / \partial M_{jj} = (C_A[E_{jj}](\nu)\nu)_i`
+    (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
+    when that product never moves in the log.
+    """
+    bands = bands or BANDS
+    kind = "translational" if dof < 3 else "rotational"
+    b = dict(bands[kind])
+    m = data.model
+    cols, sd, names, prior = [], [], [], []
+    for key in ("M", "D_L", "D_Q"):
+        value = float({"M": m.added_mass, "D_L": m.linear_damping,
+                       "D_Q": m.quadratic_damping}[key][dof, dof])
+        if value == 0.0:
+            continue
+        cols.append(coefficient_column(data, dof, key))
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
+    for j in range(6):
+        value = float(m.added_mass[j, j])
+        if j == dof or value == 0.0:
+            continue
+        key = "M_" + DOF[j]
+        col = coefficient_column(data, dof, key)
+        if not np.any(np.abs(col) > 0.0):
+            continue
+        b[key] = bands["translational" if j < 3 else "rotational"]["M"]
+        cols.append(col)
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
+    cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
+    return cols, np.asarray(sd, float), names, prior, b
+
+
+def _structure(data: WindowData, dof: int, resid, candidates):
+    """Descriptive statistics of a residual (bias, autocorrelation, sign dependence...)."""
+    r = np.asarray(resid, float)
+    n = r.size
+    v = data.mean(data.nu[:, dof])
+    f = data.mean_held(data.tau[:, dof])
+    out = {"bias": float(np.mean(r)),
+           "bias_z": float(np.mean(r) / (np.std(r, ddof=1) / math.sqrt(n))) if n > 1 else 0.0,
+           "lag1_autocorrelation": float(residual_autocorrelation(r, 1)[1]),
+           "runs_z": float(runs_test_z(r))}
+    for name, x in (("velocity", v), ("force", f)):
+        pos, neg = r[x > 0], r[x < 0]
+        out[f"mean_when_{name}_positive"] = float(np.mean(pos)) if pos.size else None
+        out[f"mean_when_{name}_negative"] = float(np.mean(neg)) if neg.size else None
+    corr = {}
+    for eff in candidates:
+        if not eff.applicable(data, dof)[0]:
+            continue
+        off, cols = eff.design(data, dof, eff.hyper_start(data, dof) if eff.hyper else None)
+        x = off if cols.shape[1] == 0 else cols[:, 0]
+        if x is None or np.std(x) == 0 or np.std(r) == 0:
+            continue
+        corr[eff.name] = float(np.corrcoef(x, r)[0, 1])
+    out["correlation_with_candidates"] = corr
+    return out
+
+
+def _generic_basis(data: WindowData, dof: int):
+    """Generic regressors for the structure test: shapes in the DOF's own velocity and
+    force the library does not use (cube, sign), the heading, other logged channels and
+    the thruster commands. Small on purpose: it must not overfit the held-out windows."""
+    v = data.nu[:, dof]
+    cols = [data.mean(v ** 3), data.mean(np.sign(v)), data.mean(np.sqrt(np.abs(v)) * v)]
+    f = data.tau[:, dof]
+    if np.std(f) > 0:
+        cols += [data.mean_held(f * np.abs(f)), data.mean_held(np.abs(f))]
+    psi = data.eta[:, 5]
+    if np.ptp(psi) > 0.1:
+        cols += [data.mean(np.cos(psi)), data.mean(np.sin(psi))]
+    from stripcoef.logfile import KNOWN_COLUMNS
+    for name, x in data.columns.items():
+        if name not in KNOWN_COLUMNS and not name.startswith("n_") and np.std(x) > 0:
+            cols += [data.mean(x)]
+    if data.commands is not None:
+        others = [k for k in range(data.commands.shape[1]) if k not in data.acting(dof)]
+        if others:
+            cols += [data.mean_held(np.abs(data.commands[:, others]).mean(axis=1))]
+    cols.append(np.ones(data.n_windows))
+    return np.column_stack(cols)
+
+
+# ---------------------------------------------------------------------------
+# the diagnosis of one DOF
+# ---------------------------------------------------------------------------
+
+def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
+                 max_steps: int = MAX_STEPS) -> dict:
+    """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module)."""
+    names = list(effects) if effects is not None else list(EFFECTS)
+    library = [get_effect(n) for n in names]
+    cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands)
+    e0 = data.e0[:, dof]
+    unit = "N" if dof < 3 else "N m"
+    result = {"dof": DOF[dof], "metric": METRIC, "units": unit,
+              "baseline_error": _rms(e0), "baseline_held_out_error": _rms(e0)}
+
+    cfg = _Config(data, dof, cal_cols, cal_sd, [])
+    cur = _evaluate(cfg)
+    th = cur["full"]["theta"]
+    sd = np.sqrt(np.clip(np.diag(cur["full"]["cov"]), 0, None))
+    result["calibration"] = {
+        "parameters": {n: float(v) for n, v in zip(cal_names, th)},
+        "std": {n: float(s) for n, s in zip(cal_names, sd)},
+        "prior": dict(zip(cal_names, cal_prior)),
+        "band_relative": {n: band[n] for n in cal_names},
+        "band_z": {n: float(v / s) for n, v, s in zip(cal_names, th, cal_sd)},
+    }
+    result["calibrated_error"] = cur["error"]
+    result["calibrated_held_out_error"] = cur["held_out_error"]
+    result["structure_before"] = _structure(data, dof, cur["full"]["resid"], library)
+
+    steps, evaluated = [], []
+    accepted_names = set()
+    for _ in range(max_steps):
+        trials = []
+        for eff in library:
+            if eff.name in accepted_names:
+                continue
+            ok, why = eff.applicable(data, dof)
+            if not ok:
+                if not steps:
+                    evaluated.append({"effect": eff.name, "applicable": False, "reason": why})
+                continue
+            trial_cfg = _Config(data, dof, cal_cols, cal_sd, list(cfg.terms) + [(eff, None)])
+            try:
+                ev = _evaluate(trial_cfg)
+                ref = cur
+                if eff.nuisance(data, dof) is not None:
+                    ref = _evaluate(_Config(data, dof, cal_cols, cal_sd,
+                                            list(cfg.terms) + [(_Nuisance(eff), None)]))
+            except (np.linalg.LinAlgError, ValueError) as exc:
+                evaluated.append({"effect": eff.name, "applicable": False,
+                                  "reason": f"fit failed: {exc}"})
+                continue
+            trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd))
+        if not steps:
+            evaluated += [{k: v for k, v in t.items() if not k.startswith("_")} for t in trials]
+        good = [t for t in trials if t["significant"]]
+        if not good:
+            break
+        good.sort(key=lambda t: t["held_out_error_after"])
+        best = good[0]
+        ties = [t for t in good[1:]
+                if t["held_out_error_after"] <= best["held_out_error_after"] * (1 + TIE)]
+        if not best["signature"]:
+            with_sig = [t for t in ties if t["signature"]]
+            if with_sig:
+                ties = [best] + [t for t in ties if t is not with_sig[0]]
+                best = with_sig[0]
+        step = {k: v for k, v in best.items() if not k.startswith("_")}
+        step["error_before"] = cur["error"]
+        step["held_out_error_before"] = cur["held_out_error"]
+        step["alternatives"] = [{"effect": t["effect"], "parameters": t["parameters"],
+                                 "held_out_error_after": t["held_out_error_after"],
+                                 "signature": t["signature"]} for t in ties]
+        step["dof"] = DOF[dof]
+        steps.append(step)
+        accepted_names.add(best["effect"])
+        cfg = best["_cfg"]
+        cur = best["_ev"]
+
+    # parameters of every added effect refitted with all the others (the step's own values
+    # are those it had when it was added)
+    k = len(cal_names)
+    th_all = cur["full"]["theta"]
+    for step, (eff, hyper) in zip(steps, cfg.terms):
+        ncol = eff.design(data, dof, hyper)[1].shape[1]
+        nuis = eff.nuisance(data, dof)
+        kn = 0 if nuis is None else nuis.shape[1]
+        step["final_parameters"] = eff.to_parameters(th_all[k + kn:k + ncol], hyper,
+                                                     th_all[k:k + kn])
+        k += ncol
+    th = cur["full"]["theta"]
+    result["calibration"]["final_parameters"] = {n: float(v) for n, v in
+                                                 zip(cal_names, th[:len(cal_names)])}
+    result["steps"] = steps
+    result["candidates"] = evaluated
+    result["final_error"] = cur["error"]
+    result["final_held_out_error"] = cur["held_out_error"]
+    result["structure_after"] = _structure(data, dof, cur["full"]["resid"], library)
+    result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur)
+    result["_final_config"] = cfg
+    result["_final_eval"] = cur
+    result["_e0"] = e0
+    return result
+
+
+def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
+    full = ev["full"]
+    ncal = len(cal_names)
+    n_lin_before = sum(c.design(data, dof, h)[1].shape[1] for c, h in cfg.terms[:-1])
+    k0 = ncal + n_lin_before
+    nuis = eff.nuisance(data, dof)
+    kn = 0 if nuis is None else nuis.shape[1]
+    theta_nuis = full["theta"][k0:k0 + kn]
+    full_cov = full["cov"][k0:, k0:]
+    theta_eff = full["theta"][k0 + kn:]
+    cov_eff = full["cov"][k0 + kn:, k0 + kn:]
+    sd_eff = np.sqrt(np.clip(np.diag(cov_eff), 0, None))
+    hyper = ev["hyper"]
+    hyper_sd = _hyper_std(cfg, hyper, full["sigma"]) if hyper is not None else np.zeros(0)
+    params = eff.to_parameters(theta_eff, hyper, theta_nuis)
+    std = eff.std_of(theta_eff, cov_eff, hyper_sd, full_cov)
+    zc = eff.z_columns if eff.z_columns is not None else range(theta_eff.size)
+    z_vals = [abs(theta_eff[j]) / sd_eff[j] if sd_eff[j] > 0 else math.inf for j in zc]
+    if hyper is not None:
+        z_vals += [abs(h) / s if s > 0 else math.inf
+                   for h, s in zip(np.atleast_1d(hyper), hyper_sd)]
+    z = max(z_vals) if z_vals else 0.0
+    gain = 1.0 - ev["held_out_error"] / cur["held_out_error"] if cur["held_out_error"] > 0 \
+        else 0.0
+    dbic = ev["bic"] - cur["bic"]
+    signature = eff.signature(data, dof)
+    reasons = []
+    key = eff.mimics
+    mimic = not signature and key in cal_names and theta_eff.size > 0
+    band_excess = None
+    if mimic:
+        # no signature: the effect is the prior coefficient released from its band. The
+        # calibration may already have absorbed it (the data outweigh the band), so the
+        # test is how far the released coefficient sits from the prior, in bands.
+        j = cal_names.index(key)
+        total = full["theta"][j] + theta_eff[0]
+        band_excess = float(total / cal_sd[j])
+        sd_total = math.sqrt(max(full["cov"][j, j] + cov_eff[0, 0]
+                                 + 2 * full["cov"][j, k0 + kn], 0.0))
+        z = abs(total) / sd_total if sd_total > 0 else math.inf
+        params = eff.to_parameters(np.concatenate([[total], theta_eff[1:]]), hyper, theta_nuis)
+        std = eff.std_of(np.concatenate([[total], theta_eff[1:]]), cov_eff, hyper_sd, full_cov)
+        std[next(iter(eff.parameters))] = sd_total
+        if abs(band_excess) < MIMIC_BANDS:
+            reasons.append(f"no signature in this log and the {key} change it implies "
+                           f"({total:.3g}) is within {MIMIC_BANDS:g} bands "
+                           f"({MIMIC_BANDS * cal_sd[j]:.3g})")
+    else:
+        if gain < MIN_HELD_OUT_GAIN:
+            reasons.append(f"held-out gain {100 * gain:.1f}% < {100 * MIN_HELD_OUT_GAIN:.0f}%")
+        if dbic > -MIN_DELTA_BIC:
+            reasons.append(f"delta BIC {dbic:.1f} > -{MIN_DELTA_BIC:g}")
+    if z < MIN_Z:
+        reasons.append(f"z = {z:.1f} < {MIN_Z:g} (parameter / its std)")
+    if not eff.plausible(params):
+        reasons.append("implausible parameters")
+    low = cfg.lower(hyper)[k0:]
+    fin = np.isfinite(low)
+    tol = 1e-4 * np.maximum(1.0, np.abs(np.where(fin, low, 0.0)))
+    at_bound = fin & (full["theta"][k0:] <= np.where(fin, low, 0.0) + tol)
+    if np.any(at_bound):
+        reasons.append("a parameter is pinned at its physical bound (e.g. zero added mass)")
+    if not signature and not mimic and key:
+        reasons.append(f"no signature in this log and the prior has no {key} to compare")
+    nuisance = {n: float(v) for n, v in zip(eff.nuisance_names, theta_nuis)} if kn else {}
+    return {"effect": eff.name, "applicable": True, "parameters": params, "std": std,
+            "released": {k: v for k, v in nuisance.items() if k in ("M", "D_L", "D_Q")},
+            "units": dict(eff.parameters), "signature": signature or None,
+            "mimics": None if signature else eff.mimics,
+            "band_excess": band_excess,
+            "error_after": ev["error"], "held_out_error_after": ev["held_out_error"],
+            "held_out_gain": gain, "delta_bic": dbic, "z": z,
+            "significant": not reasons, "rejected_because": reasons,
+            "magnitude": eff.magnitude(params), "source": eff.source,
+            "_cfg": cfg, "_ev": ev}
+
+
+def _unexplained(cfg, cur):
+    """Fit a generic basis on top of the final model; structured when it cuts the
+    cross-validated error by ``UNEXPLAINED_GAIN`` and lowers BIC by ``MIN_DELTA_BIC``."""
+    data = cfg.data
+    basis = _generic_basis(data, cfg.dof)
+    generic = _Generic(basis)
+    ev = _evaluate(_Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd,
+                           list(cfg.terms) + [(generic, None)]))
+    gain = 1.0 - ev["held_out_error"] / cur["held_out_error"] if cur["held_out_error"] > 0 \
+        else 0.0
+    dbic = ev["bic"] - cur["bic"]
+    structured = gain >= UNEXPLAINED_GAIN and dbic < -MIN_DELTA_BIC
+    return bool(structured), {"generic_basis_columns": int(basis.shape[1]),
+                              "held_out_gain": float(gain), "delta_bic": float(dbic),
+                              "threshold": UNEXPLAINED_GAIN}
+
+
+class _Generic:
+    """The generic basis as a term (free columns)."""
+
+    hyper = ()
+    name = "generic"
+
+    def __init__(self, basis):
+        self.basis = basis
+
+    def design(self, data, dof, hyper=None):
+        return None, self.basis
+
+
+# ---------------------------------------------------------------------------
+# public API
+# ---------------------------------------------------------------------------
+
+def excited_dofs(data: WindowData) -> list:
+    """DOFs with both an applied force and motion (velocity std > 1e-3)."""
+    out = []
+    for i in range(6):
+        if np.std(data.nu[:, i]) > 1e-3 and np.any(data.tau[:, i] != 0):
+            out.append(i)
+    return out
+
+
+def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
+             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> dict:
+    """Diagnose a log against a prior model (module docstring).
+
+    Parameters
+    ----------
+    log : Log
+        Time series with ``t``, velocities and inputs (commands or forces).
+    model : HydroModel
+        The prior (strip-theory) model.
+    dof : str
+        A DOF name (surge..yaw, u..r, X..N) or ``"all"`` (every excited DOF).
+    window : float
+        Window length of the one-step residual [s].
+    effects : list of str, optional
+        Candidate effects (default: the whole library).
+    resimulate : bool
+        Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
+
+    Returns
+    -------
+    dict
+        The JSON contract: ``metric``, ``baseline_error``, ``calibrated_error``, ``steps``
+        (each with ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
+        ``held_out_error_before``, ``held_out_error_after``), ``final_error``,
+        ``unexplained``; plus ``per_dof`` details and ``model`` (the calibrated HydroModel,
+        not serialised).
+    """
+    data = window_data(log, model, window=window)
+    if str(dof).lower() == "all":
+        dofs = excited_dofs(data)
+        if not dofs:
+            raise InputError("no excited degree of freedom", file=log.source,
+                             expected="a log where some DOF has both an applied force and "
+                             "motion")
+    else:
+        dofs = [parse_dof(dof)]
+    per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
+           for i in dofs}
+    calibrated = calibrated_model(model, per)
+    out = {"metric": METRIC, "metric_description": METRIC_TEXT, "window_s": window,
+           "log": log.source, "vehicle": model.name}
+    if len(dofs) == 1:
+        r = per[DOF[dofs[0]]]
+        out.update({"dof": r["dof"], "units": r["units"],
+                    "baseline_error": r["baseline_error"],
+                    "calibrated_error": r["calibrated_error"],
+                    "steps": r["steps"], "final_error": r["final_error"],
+                    "unexplained": r["unexplained"]})
+    else:
+        def rel(key):
+            return float(np.sqrt(np.mean([(per[d][key] / per[d]["baseline_error"]) ** 2
+                                          for d in per])))
+        out.update({"dof": "all", "units": "relative to each DOF's baseline",
+                    "metric": METRIC + "_relative",
+                    "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
+                    "steps": [s for d in per for s in per[d]["steps"]],
+                    "final_error": rel("final_error"),
+                    "unexplained": any(per[d]["unexplained"] for d in per)})
+    out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
+                      for d, r in per.items()}
+    if resimulate:
+        out["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
+        out["resimulated_velocity_description"] = (
+            "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF: "
+            "the prior, the prior with its calibrated coefficients, and the final model")
+    out["_per_dof_internal"] = per
+    out["model"] = calibrated
+    return out
+
+
+def _apply_calibration(m, i: int, cal: dict, per: dict) -> None:
+    """Add the calibration of DOF ``i`` to model ``m`` (its arrays, in place): its own M,
+    D_L, D_Q, and the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that
+    DOF is diagnosed itself, whose own calibration then holds."""
+    for key, mat in (("M", m.added_mass), ("D_L", m.linear_damping),
+                     ("D_Q", m.quadratic_damping)):
+        if key in cal:
+            mat[i, i] += cal[key]
+    for key, value in cal.items():
+        if key.startswith("M_") and key[2:] not in per:
+            j = parse_dof(key[2:])
+            m.added_mass[j, j] += value
+
+
+def calibrated_model(model, per: dict):
+    """The prior with its calibrated coefficients and the added effects."""
+    m = copy.deepcopy(model)
+    m.added_mass = np.array(m.added_mass, float)
+    m.linear_damping = np.array(m.linear_damping, float)
+    m.quadratic_damping = np.array(m.quadratic_damping, float)
+    record = []
+    for d, r in per.items():
+        i = parse_dof(d)
+        cal = r["calibration"]["final_parameters"]
+        _apply_calibration(m, i, cal, per)
+        cfg = r["_final_config"]
+        theta = r["_final_eval"]["full"]["theta"]
+        k = len(r["calibration"]["parameters"])
+        for eff, hyper in cfg.terms:
+            ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
+            nuis = eff.nuisance(cfg.data, i)
+            kn = 0 if nuis is None else nuis.shape[1]
+            tn = theta[k:k + kn]
+            params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
+            for name, value in zip(eff.nuisance_names, tn):
+                target = {"M": m.added_mass, "D_L": m.linear_damping,
+                          "D_Q": m.quadratic_damping}.get(name)
+                if target is not None:  # a prior coefficient released by this effect
+                    target[i, i] += value
+            k += ncol
+            step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
+            eff.apply(m, i, params, step.get("std"))
+        record.append({"dof": d, "calibration": cal,
+                       "effects": [s["effect"] for s in r["steps"]]})
+    m.provenance = dict(m.provenance)
+    m.provenance["diagnose"] = record
+    m.name = f"{model.name}-calibrated"
+    return m
+
+
+def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
+    """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
+    only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
+    simulation diverges)."""
+    only_cal = copy.deepcopy(prior)
+    only_cal.added_mass = np.array(prior.added_mass, float)
+    only_cal.linear_damping = np.array(prior.linear_damping, float)
+    only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
+    for d, r in per.items():
+        i = parse_dof(d)
+        _apply_calibration(only_cal, i, r["calibration"]["parameters"], per)
+    dofs = [parse_dof(d) for d in per]
+    rows = {name: resimulate_rms(log, m, dofs) for name, m in
+            (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
+    return {DOF[i]: {name: (None if rows[name] is None else rows[name][k])
+                     for name in rows} for k, i in enumerate(dofs)}
+
+
+#: Horizon of the re-simulated velocity error [s]: the log is cut into segments of this
+#: length, each re-simulated from the logged state at its start (an open-loop simulation
+#: of a whole log of a directionally unstable vehicle drifts away whatever the model).
+RESIMULATION_HORIZON = 10.0
+
+
+def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
+    """RMS differences between the logged and the re-simulated velocities of ``dofs``
+    (list) over segments of ``horizon`` seconds, or None if a simulation diverges."""
+    from stripcoef.conventions import POSE, VELOCITIES
+    from stripcoef.errors import StripcoefError
+    from stripcoef.logfile import KNOWN_COLUMNS
+    from stripcoef.simulate import simulate
+
+    t = log["t"]
+    cmds = log.commands()
+    forces = None if cmds else log.forces()
+    channels = {k: v for k, v in log.columns.items()
+                if k not in KNOWN_COLUMNS and not k.startswith("n_")}
+    starts = [0]
+    while True:
+        nxt = int(np.searchsorted(t, t[starts[-1]] + horizon))
+        if nxt >= t.size - 2:
+            break
+        starts.append(nxt)
+    bounds = starts + [t.size]
+    err = {i: [] for i in dofs}
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        sl = slice(a, b)
+        if b - a < 2:
+            continue
+        eta0 = [float(log.get(p, np.zeros(t.size))[a]) for p in POSE]
+        nu0 = [float(log.get(v, np.zeros(t.size))[a]) for v in VELOCITIES]
+        try:
+            sim = simulate(model, t[sl], forces=None if forces is None else forces[sl],
+                           commands={k: v[sl] for k, v in cmds.items()} or None,
+                           eta0=eta0, nu0=nu0,
+                           channels={k: v[sl] for k, v in channels.items()} or None,
+                           rtol=1e-6, atol=1e-8)
+        except StripcoefError:
+            return None
+        for i in dofs:
+            v = VELOCITIES[i]
+            err[i].append(sim[v] - log.get(v, np.zeros(t.size))[sl])
+    return [_rms(np.concatenate(err[i])) for i in dofs]
+
+
+def public(result: dict) -> dict:
+    """The JSON-serialisable part of a diagnosis result (drops the model and internals)."""
+    def clean(x):
+        if isinstance(x, dict):
+            return {k: clean(v) for k, v in x.items() if not str(k).startswith("_")
+                    and k != "model"}
+        if isinstance(x, (list, tuple)):
+            return [clean(v) for v in x]
+        if isinstance(x, (np.floating, float)):
+            x = float(x)
+            return x if math.isfinite(x) else None
+        if isinstance(x, np.integer):
+            return int(x)
+        if isinstance(x, np.bool_):
+            return bool(x)
+        return x
+    return clean(result)
+
+
+def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, bands=None) -> dict:
+    """Fit the calibration and a given list of effects (no selection): the "what if" of a
+    fixed model structure, e.g. Indiveri 1998's standard model (calibration + buoyancy) or its
+    eta model (+ thrust_asymmetry).
+
+    Returns
+    -------
+    dict
+        ``parameters`` and ``std`` (effect name -> parameter dict), ``calibration``,
+        ``error``, ``held_out_error`` [N or N m].
+    """
+    data = window_data(log, model, window=window)
+    i = parse_dof(dof)
+    cal_cols, cal_sd, cal_names, _, _ = _calibration(data, i, bands)
+    cfg = _Config(data, i, cal_cols, cal_sd, [])
+    ev = _evaluate(cfg)
+    for name in effects:
+        cfg = _Config(data, i, cal_cols, cal_sd, list(cfg.terms) + [(get_effect(name), None)])
+        ev = _evaluate(cfg)
+    full = ev["full"]
+    theta, cov = full["theta"], full["cov"]
+    k = len(cal_names)
+    params, std = {}, {}
+    for eff, hyper in cfg.terms:
+        ncol = eff.design(data, i, hyper)[1].shape[1]
+        nuis = eff.nuisance(data, i)
+        kn = 0 if nuis is None else nuis.shape[1]
+        own = slice(k + kn, k + ncol)
+        hsd = np.zeros(0)
+        if hyper is not None:
+            probe = _Config(data, i, cal_cols, cal_sd,
+                            [t for t in cfg.terms if t[0] is not eff] + [(eff, hyper)])
+            hsd = _hyper_std(probe, hyper, full["sigma"])
+        params[eff.name] = eff.to_parameters(theta[own], hyper, theta[k:k + kn])
+        std[eff.name] = eff.std_of(theta[own], cov[own, own], hsd, cov[k:k + ncol, k:k + ncol])
+        k += ncol
+    return {"parameters": params, "std": std,
+            "calibration": {n: float(v) for n, v in zip(cal_names, theta[:len(cal_names)])},
+            "error": ev["error"], "held_out_error": ev["held_out_error"]}

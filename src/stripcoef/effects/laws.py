@@ -1,0 +1,727 @@
+r"""The effects library: forces a strip-theory model lacks, with their regressors.
+
+Each effect is a small class with
+
+- its physics (docstring: equation, units, source),
+- ``parameters``: name -> unit,
+- ``design(data, dof, hyper)`` -> ``(offset, columns)``: the missing generalized force in one
+  DOF, window-averaged (see :class:`~stripcoef.effects.windows.WindowData`), is modelled as
+  ``offset(hyper) + columns @ theta`` [N or N m]; ``hyper`` are the effect's nonlinear
+  parameters (a current, a dead band), profiled by :mod:`stripcoef.diagnose.pipeline`,
+- ``force_law(parameters, dof)`` -> ``f(time, eta, nu, inputs) -> (6,)``: the same force for
+  :func:`stripcoef.simulate.simulate` (a calibrated model carries its effects in
+  ``HydroModel.effects`` and the simulation applies them),
+- ``mimics``: the prior coefficient whose regressor the effect reproduces when the log has
+  no signature of it (then it is identifiable only as a coefficient far outside its band).
+
+The registry :data:`EFFECTS` has one entry per effect name; :func:`get_effect` raises an
+error listing the valid names.
+
+What the effects are fitted to, the log's window data, is :mod:`stripcoef.effects.windows`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.errors import InputError, unknown_name
+from stripcoef.effects.windows import (WindowData, coefficient_column, coriolis_times_velocity,
+                                       damping_times_velocity, rotation_matrices)
+
+TRANSLATIONAL = (0, 1, 2)
+#: 1-sigma relative uncertainty of the thrust maps (bench-measured C_t) [-]
+THRUST_BAND = 0.05
+
+
+# ---------------------------------------------------------------------------
+# vectorised model terms (same formulas as HydroModel; tested against it)
+# ---------------------------------------------------------------------------
+
+
+# ---------------------------------------------------------------------------
+# the log, cut into windows
+# ---------------------------------------------------------------------------
+
+
+# ---------------------------------------------------------------------------
+# effects
+# ---------------------------------------------------------------------------
+
+class Effect:
+    """Base class: see the module docstring for the interface."""
+
+    name = ""
+    summary = ""
+    source = ""
+    parameters: dict = {}
+    hyper: tuple = ()
+    dofs = tuple(range(6))
+    mimics = None
+    native = False
+
+    def applicable(self, data: WindowData, dof: int) -> tuple[bool, str]:
+        if dof not in self.dofs:
+            return False, f"acts only in {', '.join(DOF[i] for i in self.dofs)}"
+        return True, ""
+
+    def signature(self, data: WindowData, dof: int) -> str:
+        """What in the data separates this effect from the prior's own terms ('' = none)."""
+        return "" if self.mimics else "a regressor the prior's terms do not have"
+
+
+    def hyper_start(self, data, dof):
+        return None
+
+    def to_parameters(self, theta, hyper, nuisance=None) -> dict:
+        names = list(self.parameters)
+        vals = list(np.atleast_1d(theta)) + list(np.atleast_1d(hyper) if hyper is not None
+                                                 else [])
+        return {n: float(v) for n, v in zip(names, vals)}
+
+    #: indices of the linear parameters that carry the signature (tested for |theta|/sigma)
+    z_columns = None
+
+    #: names of the nuisance columns (prior coefficients ``M``, ``D_L``, ``D_Q`` released
+    #: from their bands, or a parameter of the effect itself)
+    nuisance_names: tuple = ()
+
+    def nuisance(self, data, dof):
+        """Columns fitted, free, in the reference as well as with the effect: the part of
+        the effect the prior's own terms can mimic. The effect is judged on what it adds
+        beyond them (its signature). None = no nuisance columns."""
+        if not self.nuisance_names:
+            return None
+        return np.column_stack([coefficient_column(data, dof, n) for n in self.nuisance_names])
+
+    def nuisance_sd(self, data, dof) -> np.ndarray:
+        """Prior standard deviations of the nuisance parameters (inf = free)."""
+        nuis = self.nuisance(data, dof)
+        return np.full(0 if nuis is None else nuis.shape[1], np.inf)
+
+    def prior_sd(self, data, dof, hyper=None) -> np.ndarray:
+        """Prior standard deviations of all columns of :meth:`design` (inf = free)."""
+        ncols = self.design(data, dof, hyper)[1].shape[1]
+        sd = self.nuisance_sd(data, dof)
+        return np.concatenate([sd, np.full(ncols - sd.size, np.inf)])
+
+    def own_design(self, data, dof, hyper=None):
+        """(offset, columns) of the effect's own parameters."""
+        raise NotImplementedError
+
+    def design(self, data, dof, hyper=None):
+        """Nuisance columns first, then the effect's own columns."""
+        off, cols = self.own_design(data, dof, hyper)
+        nuis = self.nuisance(data, dof)
+        return off, cols if nuis is None else np.hstack([nuis, cols])
+
+    def std_of(self, theta, cov, hyper_std, full_cov=None) -> dict:
+        """Standard deviations of :meth:`to_parameters` (``theta``, ``cov``: own part;
+        ``full_cov``: with the nuisance parameters first)."""
+        vals = list(np.sqrt(np.clip(np.diag(cov), 0, None))) + list(hyper_std)
+        return {n: float(v) for n, v in zip(self.parameters, vals)}
+
+    def magnitude(self, params: dict) -> float:
+        """The one number the benchmark compares with the truth."""
+        return float(next(iter(params.values())))
+
+    def plausible(self, params: dict) -> bool:
+        return all(math.isfinite(v) for v in params.values())
+
+    def force_law(self, params: dict, dof: int):
+        """Force law ``f(time, eta, nu, inputs) -> (6,)`` [N, N m] of the effect's equation
+        (class docstring, with its units and source) in DOF ``dof``, for
+        :func:`stripcoef.simulate.simulate`; ``params`` in the units of :attr:`parameters`."""
+        raise NotImplementedError
+
+    def apply(self, model, dof: int, params: dict, std: dict | None = None):
+        """Add the effect to a (copied) model: as an entry of ``model.effects``."""
+        model.effects = list(model.effects) + [{
+            "name": self.name, "dof": DOF[dof], "parameters": dict(params),
+            "std": dict(std or {}), "units": dict(self.parameters)}]
+        return model
+
+
+def _unit_vec(dof):
+    e = np.zeros(6)
+    e[dof] = 1.0
+    return e
+
+
+class TetherDrag(Effect):
+    r"""Drag of a tether paid out behind the vehicle.
+
+    .. math:: F_i = -c_t\, L(t)\, \nu_{r,i}|\nu_{r,i}|, \qquad c_t = \tfrac12 \rho C_d d_t
+
+    with L the paid-out length [m] (log column ``tether_length``), d_t the tether diameter
+    [m] and C_d its drag coefficient (about 1.2 in cross-flow, Hoerner 1965, ch. 3, fig. 21;
+    much less along the cable). c_t [N s^2/m^3] is the drag per metre of tether per (m/s)^2.
+    Without a ``tether_length`` column L = 1 and the effect is a quadratic drag increase,
+    indistinguishable from a larger D_Q (it ``mimics`` that coefficient). With the column, a
+    free D_Q change is fitted alongside (nuisance) and the tether is judged on the
+    dependence on L alone.
+
+    Source: Hoerner, Fluid-Dynamic Drag (1965) ch. 3 (cylinder cross-flow drag); Wang &
+    Clark (Wang & Clark 2006, sec. IV.A): the unmodelled tether blamed for 0.47 vs 0.51 m/s.
+    """
+
+    name = "tether_drag"
+    nuisance_names = ("D_Q",)
+    summary = "tether drag, quadratic in speed, proportional to the paid-out length"
+    source = "Hoerner (1965) ch. 3; Wang & Clark 2006 sec. IV.A"
+    parameters = {"c_t": "N s^2/m^3"}
+    dofs = TRANSLATIONAL
+
+    def _length(self, data):
+        return data.columns.get("tether_length")
+
+    def signature(self, data, dof):
+        length = self._length(data)
+        if length is None or np.ptp(length) <= 1e-9 * max(1.0, float(np.max(np.abs(length)))):
+            return ""
+        return "dependence on tether_length"
+
+    @property
+    def mimics(self):  # decided per log in signature(); the prior term it can look like
+        return "D_Q"
+
+    def nuisance(self, data, dof):
+        return super().nuisance(data, dof) if self.signature(data, dof) else None
+
+    def own_design(self, data, dof, hyper=None):
+        length = self._length(data)
+        length = np.ones(data.t.size) if length is None else length
+        v = data.nu[:, dof]
+        return None, -data.mean(length * v * np.abs(v))[:, None]
+
+    def plausible(self, params):
+        return params["c_t"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -c_t L nu_r,i |nu_r,i|, c_t [N s^2/m^3], L [m], nu_r [m/s];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        c = params["c_t"]
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            length = inputs.get("columns", {}).get("tether_length", 1.0)
+            v = inputs.get("nu_r", nu)[dof]
+            return -c * length * v * abs(v) * e
+        return f
+
+
+class ThrustAsymmetry(Effect):
+    r"""Thrust efficiency that depends on the direction of thrust.
+
+    .. math:: \Delta F_i = k_+ (F^+_i + F^-_i) + k_a F^-_i,\qquad
+              \eta_+ = 1 + k_+,\ \eta_- = 1 + k_+ + k_a
+
+    where :math:`F^\pm_i = \sum_k B_{ik}\max(\pm T_k, 0)(\pm 1)` is the part of the prior's
+    thruster force in DOF i from thrusters pushing forward (+) or backward (-) (or, for a log
+    of forces, the positive and negative parts of the applied force). The asymmetry
+    :math:`\eta_-/\eta_+` is the signature: inertia and drag terms cannot produce a force
+    that scales differently with the sign of the thrust. A symmetric error k_+ scales the
+    force balance like the prior's own M, D_L and D_Q together, so it is fitted in the
+    reference as well and only k_a is tested. [-]
+
+    Source: Caccia et al. (Indiveri 1998, eq. 4.16, the eta model: propeller-hull interaction of
+    the upward thrust, eta = 0.57); Wang & Clark (Wang & Clark 2006, Table I: forward and backward
+    thrust coefficients).
+    """
+
+    name = "thrust_asymmetry"
+    summary = "direction-dependent thruster efficiency (propeller-hull interaction)"
+    source = "Indiveri 1998 eq. 4.16; Wang & Clark 2006 Table I"
+    parameters = {"eta_forward": "-", "eta_backward": "-"}
+
+    def _parts(self, data, dof):
+        if data.thrust is not None:
+            fk = data.thruster_force(dof)
+            pos = np.where(data.thrust >= 0, fk, 0.0).sum(axis=1)
+            neg = np.where(data.thrust < 0, fk, 0.0).sum(axis=1)
+        else:
+            f = data.tau[:, dof]
+            pos, neg = np.maximum(f, 0.0), np.minimum(f, 0.0)
+        return pos, neg
+
+    def applicable(self, data, dof):
+        pos, neg = self._parts(data, dof)
+        if np.abs(pos).max() == 0 or np.abs(neg).max() == 0:
+            return False, "the thrust in this DOF never changes direction"
+        return True, ""
+
+    def signature(self, data, dof):
+        return "force that depends on the sign of the thrust"
+
+    nuisance_names = ("thrust_scale",)
+
+    def nuisance(self, data, dof):
+        # a symmetric thrust error scales the whole force balance like the prior's M, D_L,
+        # D_Q together: fit it in the reference too, judge only the asymmetry
+        pos, neg = self._parts(data, dof)
+        return data.mean_held(pos + neg)[:, None]
+
+    def nuisance_sd(self, data, dof):
+        # the bench-measured thrust coefficients (Wang & Clark 2006 Table I, least squares on a
+        # load cell) are taken as known to THRUST_BAND: without this anchor a free thrust
+        # scale and the calibrated inertia and drag could all shrink together to zero
+        return np.array([THRUST_BAND])
+
+    def lower_bounds(self, data, dof, hyper=None):
+        # thrust scale > -0.9: the thrusters deliver at least 10 % of their map
+        return np.array([-0.9, -np.inf])
+
+    def own_design(self, data, dof, hyper=None):
+        pos, neg = self._parts(data, dof)
+        return None, data.mean_held(neg)[:, None]
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        k = float(nuisance[0]) if nuisance is not None and len(nuisance) else 0.0
+        return {"eta_forward": 1.0 + k, "eta_backward": 1.0 + k + float(theta[0])}
+
+    def std_of(self, theta, cov, hyper_std, full_cov=None):
+        if full_cov is None:
+            return super().std_of(theta, cov, hyper_std)
+        v0, v1, c = full_cov[0, 0], full_cov[1, 1], full_cov[0, 1]
+        return {"eta_forward": float(math.sqrt(max(v0, 0.0))),
+                "eta_backward": float(math.sqrt(max(v0 + v1 + 2 * c, 0.0)))}
+
+    def magnitude(self, params):
+        return params["eta_backward"] / params["eta_forward"]
+
+    def plausible(self, params):
+        return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F_i = (eta_+ - 1) F+_i + (eta_- - 1) F-_i, eta [-], F+-_i [N or N m];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        kp, kn = params["eta_forward"] - 1.0, params["eta_backward"] - 1.0
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            model = inputs["model"]
+            thrust = inputs.get("thrust") or {}
+            if model.thrusters and thrust:
+                b = inputs["allocation"][dof]
+                tk = np.array([thrust[th.name] for th in model.thrusters])
+                pos = float(np.sum(np.where(tk >= 0, b * tk, 0.0)))
+                neg = float(np.sum(np.where(tk < 0, b * tk, 0.0)))
+            else:
+                fi = float(inputs["tau"][dof])
+                pos, neg = max(fi, 0.0), min(fi, 0.0)
+            return (kp * pos + kn * neg) * e
+        return f
+
+
+class MomentumDrag(Effect):
+    r"""Drag proportional to another thruster group's speed times the velocity.
+
+    .. math:: F_i = -\alpha\, n_h(t)\, \nu_{r,i}
+
+    with :math:`n_h` the mean modulus of the commands of the thrusters that do not act in
+    DOF i [command units] and :math:`\alpha` [N s/m per command unit] (N m s/rad for a
+    rotation). The signature: dependence on another channel (those thrusters' speed).
+
+    Source: Caccia et al. (Indiveri 1998, the eta-md model, sec. 3.3.1 and the H_md regressor:
+    F_md = -alpha n_h w).
+    """
+
+    name = "momentum_drag"
+    nuisance_names = ("D_L",)
+    summary = "drag proportional to other thrusters' speed times the velocity"
+    source = "Indiveri 1998 eta-md model (sec. 3.3.1, eq. 4.17)"
+    parameters = {"alpha": "N s/m per command unit"}
+
+    def _nh(self, data, dof):
+        if data.commands is None:
+            return None
+        others = [k for k in range(data.commands.shape[1]) if k not in data.acting(dof)]
+        if not others:
+            return None
+        return np.mean(np.abs(data.commands[:, others]), axis=1)
+
+    def applicable(self, data, dof):
+        nh = self._nh(data, dof)
+        if nh is None:
+            return False, "needs commands of thrusters that do not act in this DOF"
+        if np.ptp(nh) == 0 and nh.max() == 0:
+            return False, "the other thrusters never run"
+        return True, ""
+
+    def signature(self, data, dof):
+        nh = self._nh(data, dof)
+        return "dependence on other thrusters' speed" if nh is not None and np.ptp(nh) > 0 \
+            else ""
+
+    @property
+    def mimics(self):
+        return "D_L"
+
+    def nuisance(self, data, dof):
+        return super().nuisance(data, dof) if self.signature(data, dof) else None
+
+    def own_design(self, data, dof, hyper=None):
+        nh = self._nh(data, dof)
+        return None, -data.mean(nh * data.nu[:, dof])[:, None]
+
+    def plausible(self, params):
+        return params["alpha"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -alpha n_h nu_r,i, alpha [N s/m per command unit], n_h [command units];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        a = params["alpha"]
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            model = inputs["model"]
+            b = inputs["allocation"][dof]
+            cmds = inputs.get("commands") or {}
+            others = [th.name for k, th in enumerate(model.thrusters) if abs(b[k]) <= 1e-9]
+            nh = float(np.mean([abs(cmds.get(n, 0.0)) for n in others])) if others else 0.0
+            return -a * nh * inputs.get("nu_r", nu)[dof] * e
+        return f
+
+
+class BuoyancyOffset(Effect):
+    r"""A constant force or moment: wrong weight or buoyancy, a trim or bias.
+
+    .. math:: F_i = b
+
+    [N or N m]. For heave this is the weight-buoyancy error W - B projected on the body z
+    axis (constant for small roll and pitch); for yaw the bias delta of Wang & Clark 2006's eq. 8.
+
+    Source: Caccia et al. (Indiveri 1998, eq. 4.15: the buoyancy term W); Wang & Clark (Wang & Clark 2006,
+    eq. 8: the bias delta); Fossen (2011) eq. 4.6.
+    """
+
+    name = "buoyancy_offset"
+    summary = "constant force or moment (weight/buoyancy error, bias)"
+    source = "Indiveri 1998 eq. 4.15; Wang & Clark 2006 eq. 8; Fossen (2011) eq. 4.6"
+    parameters = {"b": "N or N m"}
+
+    def signature(self, data, dof):
+        return "a bias"
+
+    def own_design(self, data, dof, hyper=None):
+        return None, np.ones((data.n_windows, 1))
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = b, b [N or N m];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        e = params["b"] * _unit_vec(dof)
+        return lambda time, eta, nu, inputs: e
+
+
+class Current(Effect):
+    r"""A constant water current, so drag and added-mass forces act on the relative velocity.
+
+    .. math::
+        \Delta F = -\big[D(\nu_r)\nu_r - D(\nu)\nu\big] - \big[C_A(\nu_r)\nu_r - C_A(\nu)\nu\big]
+        + M_A\dot\nu_c,\qquad \nu_r = \nu - [R^T V_c;\ 0]
+
+    with the horizontal current :math:`V_c = [V_N, V_E, 0]` [m/s] in NED, fitted by
+    nonlinear least squares (variable projection). The signature: a force that rotates
+    with the heading (turns) and is not symmetric in the sign of the speed.
+
+    Source: Fossen (2011), eq. 10.1 and sec. 10.3 (relative velocity, irrotational current).
+    """
+
+    name = "current"
+    nuisance_names = ("D_L", "D_Q")
+    summary = "constant water current: drag on the relative velocity"
+    source = "Fossen (2011) eq. 10.1, sec. 10.3"
+    parameters = {"current_north": "m/s", "current_east": "m/s"}
+    hyper = ("current_north", "current_east")
+    dofs = (0, 1)
+
+    def signature(self, data, dof):
+        return ("a force that turns with the heading" if np.ptp(data.eta[:, 5]) > 0.5
+                else "a force asymmetric in the sign of the speed")
+
+    def _current_body(self, data, vc):
+        """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""
+        rot = rotation_matrices(data.eta)
+        v = np.array([vc[0], vc[1], 0.0])
+        nuc = np.zeros_like(data.nu)
+        nuc[:, :3] = np.einsum("nji,j->ni", rot, v)  # R^T V_c
+        return nuc
+
+    def relative_velocity(self, data, vc):
+        """nu_r = nu - [R^T V_c; 0] (n, 6) [m/s, rad/s]: the velocity the calibration's drag
+        and added-mass terms act on once the current is in the model (Fossen 2011, eq. 10.1)."""
+        return data.nu - self._current_body(data, vc)
+
+    def design(self, data, dof, hyper=None):
+        """Nuisance columns (released D_L, D_Q) at the relative velocity, then the offset."""
+        off, cols = self.own_design(data, dof, hyper)
+        nur = self.relative_velocity(data, (0.0, 0.0) if hyper is None else hyper)
+        nuis = np.column_stack([coefficient_column(data, dof, n, nur)
+                                for n in self.nuisance_names])
+        return off, np.hstack([nuis, cols])
+
+    def offset(self, data, dof, vc):
+        model = data.model
+        nuc = self._current_body(data, vc)
+        nur = data.nu - nuc
+        diff = (damping_times_velocity(model, nur) - damping_times_velocity(model, data.nu)
+                + coriolis_times_velocity(model.added_mass, nur)
+                - coriolis_times_velocity(model.added_mass, data.nu))
+        return -data.mean(diff[:, dof]) + data.rate(nuc @ model.added_mass[dof])
+
+    def own_design(self, data, dof, hyper=None):
+        vc = (0.0, 0.0) if hyper is None else hyper
+        return self.offset(data, dof, vc), np.zeros((data.n_windows, 0))
+
+    def hyper_start(self, data, dof):
+        return np.zeros(2)
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"current_north": float(hyper[0]), "current_east": float(hyper[1])}
+
+    def magnitude(self, params):
+        return math.hypot(params["current_north"], params["current_east"])
+
+    def plausible(self, params):
+        return self.magnitude(params) < 5.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        v = np.array([params["current_north"], params["current_east"], 0.0])
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            from stripcoef.conventions import rotation_matrix, skew
+            model = inputs["model"]
+            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
+            nuc = np.concatenate([rt @ v, np.zeros(3)])
+            nur = nu - nuc
+            nuc_dot = np.concatenate([-skew(nu[3:]) @ (rt @ v), np.zeros(3)])
+            diff = (model.damping(nur) @ nur - model.damping(nu) @ nu
+                    + model.coriolis(nur, rigid_body=False) @ nur
+                    - model.coriolis(nu, rigid_body=False) @ nu)
+            return (-diff[dof] + (model.added_mass @ nuc_dot)[dof]) * e
+        return f
+
+
+class LinearDrag(Effect):
+    r"""A linear damping term missing from a quadratic-only model.
+
+    .. math:: F_i = -d_L\, \nu_{r,i}
+
+    [N s/m or N m s/rad]. Dominant at low speed (Wang & Clark 2006, eq. 7; Indiveri 1998's yaw tables
+    where the linear no-bias LNB model is the best at rates below 10 deg/s). When the prior
+    already has this linear term the effect mimics its calibration.
+
+    Source: Fossen (2011) eq. 6.59; Wang & Clark 2006 eq. 7; Indiveri 1998 sec. 4.2.5.
+    """
+
+    name = "linear_drag"
+    summary = "linear damping missing from the model"
+    source = "Fossen (2011) eq. 6.59; Wang & Clark 2006 eq. 7; Indiveri 1998 sec. 4.2.5"
+    parameters = {"d_L": "N s/m or N m s/rad"}
+    native = True
+
+    def signature(self, data, dof):
+        return "" if data.model.linear_damping[dof, dof] != 0 else \
+            "linear damping where the prior has none"
+
+    @property
+    def mimics(self):
+        return "D_L"
+
+    def own_design(self, data, dof, hyper=None):
+        return None, -data.mean(data.nu[:, dof])[:, None]
+
+    def plausible(self, params):
+        return params["d_L"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -d_L nu_r,i, d_L [N s/m or N m s/rad];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        d = params["d_L"]
+        e = _unit_vec(dof)
+        return lambda time, eta, nu, inputs: -d * inputs.get("nu_r", nu)[dof] * e
+
+    def apply(self, model, dof, params, std=None):
+        dl = np.array(model.linear_damping, dtype=float)
+        dl[dof, dof] += params["d_L"]
+        model.linear_damping = dl
+        return model
+
+
+class Deadband(Effect):
+    r"""A thruster dead zone around zero command.
+
+    .. math:: T_k(n) = 0 \ \text{for}\ |n| \le \delta, \qquad
+              \Delta F_i = -\sum_k B_{ik} T_k(n_k)\,[\,|n_k| \le \delta\,]
+
+    with :math:`\delta` [command units] found by a one-dimensional search. The signature:
+    no response to small commands, full response to large ones.
+
+    Source: Yoerger, Cooke & Slotine (1990), IEEE JOE 15 (thruster dynamics, the dead zone of
+    brushless thrusters); Wang & Clark 2006 eq. 6 (the thrust map it modifies).
+    """
+
+    name = "deadband"
+    summary = "thruster dead zone around zero command"
+    source = "Yoerger et al. (1990); Wang & Clark 2006 eq. 6"
+    parameters = {"deadband": "command units"}
+    hyper = ("deadband",)
+    native = True
+
+    def applicable(self, data, dof):
+        if data.commands is None:
+            return False, "needs thruster commands n_<name>"
+        act = data.acting(dof)
+        if not act:
+            return False, "no thruster acts in this DOF"
+        small = np.abs(data.commands[:, act])
+        if not np.any((small > 0) & (small < np.percentile(small[small > 0], 50)
+                                     if np.any(small > 0) else False)):
+            return False, "no small non-zero commands"
+        return True, ""
+
+    def signature(self, data, dof):
+        return "no response to small commands"
+
+    def candidates(self, data, dof):
+        act = data.acting(dof)
+        levels = np.unique(np.abs(data.commands[:, act]))
+        levels = levels[levels > 0]
+        top = np.percentile(levels, 60) if levels.size else 0.0
+        levels = levels[levels <= top]
+        mids = 0.5 * (levels[1:] + levels[:-1])
+        cands = np.unique(np.concatenate([levels, mids]))
+        if cands.size > 60:
+            cands = np.quantile(cands, np.linspace(0, 1, 60))
+        return cands
+
+    def offset(self, data, dof, delta):
+        act = data.acting(dof)
+        fk = data.thruster_force(dof)[:, act]
+        dead = np.abs(data.commands[:, act]) <= delta
+        return -data.mean_held(np.where(dead, fk, 0.0).sum(axis=1))
+
+    def own_design(self, data, dof, hyper=None):
+        delta = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
+        return self.offset(data, dof, delta), np.zeros((data.n_windows, 0))
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"deadband": float(np.atleast_1d(hyper)[0])}
+
+    def plausible(self, params):
+        return params["deadband"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F_i = -sum_k B_ik T_k [|n_k| <= delta], T_k [N], delta [command units];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        delta = params["deadband"]
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            model = inputs["model"]
+            b = inputs["allocation"][dof]
+            cmds = inputs.get("commands") or {}
+            thrust = inputs.get("thrust") or {}
+            s = sum(b[k] * thrust.get(th.name, 0.0) for k, th in enumerate(model.thrusters)
+                    if abs(cmds.get(th.name, 0.0)) <= delta and abs(b[k]) > 1e-9)
+            return -s * e
+        return f
+
+    def apply(self, model, dof, params, std=None):
+        from dataclasses import replace
+        b = model.allocation()[dof]
+        model.thrusters = [replace(th, deadband=max(th.deadband, params["deadband"]))
+                           if abs(b[k]) > 1e-9 else th for k, th in enumerate(model.thrusters)]
+        return model
+
+
+class AddedMassError(Effect):
+    r"""Wrong total inertia (added mass), visible in the transients.
+
+    .. math:: F_i = -\delta m\, \dot\nu_i
+
+    [kg or kg m^2]. The regressor is the prior's own inertia term, so the effect is the
+    inertia released from its band: it is reported only when the data force the inertia
+    far outside the band strip theory is known to have (Wang & Clark 2006, Table I: N_rdot 0.0321
+    analytical vs 0.0118 experimental).
+
+    Source: Fossen (2011) sec. 6.3 (added mass); Wang & Clark 2006 Table I.
+    """
+
+    name = "added_mass_error"
+    inertia = True  # its column multiplies the acceleration (profiled, see diagnose._solve)
+    summary = "wrong total inertia, visible in transients"
+    source = "Fossen (2011) sec. 6.3; Wang & Clark 2006 Table I"
+    parameters = {"delta_m": "kg or kg m^2"}
+    mimics = "M"
+    native = True
+
+    def signature(self, data, dof):
+        return ""
+
+    def lower_bounds(self, data, dof, hyper=None):
+        # no negative added mass (the released inertia stays >= the rigid-body one)
+        return np.array([-abs(float(data.model.added_mass[dof, dof]))])
+
+    def own_design(self, data, dof, hyper=None):
+        return None, coefficient_column(data, dof, "M")[:, None]
+
+    def plausible(self, params):
+        return True
+
+    def force_law(self, params, dof):
+        """Simulation force law: none, the effect is native (F_i = -delta_m nu_dot_i [N], delta_m [kg], is folded into M_A by apply);
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        raise InputError("added_mass_error is applied to the added-mass matrix, not as a force",
+                         key="effects", value=self.name, expected="a native model change")
+
+    def apply(self, model, dof, params, std=None):
+        ma = np.array(model.added_mass, dtype=float)
+        ma[dof, dof] += params["delta_m"]
+        model.added_mass = ma
+        return model
+
+
+#: The registry: one instance per effect, by name.
+EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
+                               BuoyancyOffset(), Current(), LinearDrag(), Deadband(),
+                               AddedMassError())}
+
+
+def get_effect(name: str) -> Effect:
+    try:
+        return EFFECTS[name]
+    except KeyError:
+        raise unknown_name("effect", name, EFFECTS, key="effect") from None
+
+
+def effect_forces(model) -> list:
+    """Force laws of a model's effects (``HydroModel.effects``) for the simulation.
+
+    Native effects (linear drag, dead band, added mass) are already folded into the model's
+    matrices and thrusters by :meth:`Effect.apply` and are skipped here.
+    """
+    out = []
+    for k, entry in enumerate(model.effects):
+        if not isinstance(entry, dict) or "name" not in entry:
+            raise InputError("effect entry without a name", key=f"effects[{k}]",
+                             value=entry, expected="{name, dof, parameters}")
+        eff = get_effect(entry["name"])
+        if eff.native:
+            continue
+        dof = parse_dof(entry.get("dof", "surge"))
+        params = entry.get("parameters", {})
+        missing = [p for p in eff.parameters if p not in params]
+        if missing:
+            raise InputError("effect parameter missing", key=f"effects[{k}].parameters",
+                             value=missing[0], expected="parameters " + ", ".join(eff.parameters))
+        out.append(eff.force_law({p: float(params[p]) for p in eff.parameters}, dof))
+    return out
+
+
+__all__ = ["EFFECTS", "Effect", "effect_forces", "get_effect"]
