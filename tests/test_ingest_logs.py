@@ -312,3 +312,16 @@ def test_bag_without_map_is_an_error(tmp_path):
     with pytest.raises(InputError, match="a ROS bag needs a column map"):
         read_any_log(tmp_path / "run.bag")
     shutil.rmtree(tmp_path, ignore_errors=True)
+
+
+def test_every_map_in_docs_logs_md_is_valid():
+    """The maps shown in docs/logs.md parse (a renamed key would fail here)."""
+    import re
+
+    import yaml
+    text = (Path(__file__).parent.parent / "docs" / "logs.md").read_text()
+    blocks = re.findall(r"```yaml\n(.*?)```", text, flags=re.S)
+    assert len(blocks) == 3
+    for block in blocks:
+        m = parse_map(yaml.safe_load(block), path="docs/logs.md")
+        assert m.streams
