@@ -49,9 +49,9 @@ def _needed(logmap: LogMap) -> dict:
 
 
 def read_streams(source, logmap: LogMap) -> dict:
-    """Every stream of the map as a Table: files named by the map are found next to
-    ``source`` (relative paths), a stream without ``file`` reads ``source`` itself, topics
-    read the bag ``source``."""
+    """Every stream of the map as a Table: relative ``file`` paths are in the folder that
+    holds ``source`` (without a source: the map's folder), a stream without ``file`` reads
+    ``source`` itself, topics read the bag ``source``."""
     source = Path(source) if source is not None else None
     need = _needed(logmap)
     tables, topics = {}, []
@@ -72,9 +72,8 @@ def read_streams(source, logmap: LogMap) -> dict:
             path = source
         else:
             path = Path(spec.file)
-            if not path.is_absolute():
-                base = source.parent if source is not None and not source.is_dir() else \
-                    (source if source is not None else Path(logmap.path).parent)
+            if not path.is_absolute():          # in the folder that holds LOG (else the map)
+                base = source.parent if source is not None else Path(logmap.path).parent
                 path = base / path
         tables[name] = read_csv_stream(path, spec, need[name])
     if topics:
