@@ -112,4 +112,4 @@ def read_log_from_args(path, args, *, required=()):
     """The log at ``path``: the log CSV format, or through ``--map`` a CSV or a ROS bag."""
     from stripcoef.ingest import read_any_log
 
-    return read_any_log(path, map=getattr(args, "map", None), required=required)
+    return read_any_log(path, column_map=getattr(args, "map", None), required=required)

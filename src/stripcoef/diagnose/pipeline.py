@@ -818,6 +818,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                           ModelWarning, stacklevel=2)
     else:
         dofs = [parse_dof(dof)]
+    absent = [v for v in VELOCITIES if v not in log]
+    if absent:
+        warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
+                      "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
+                      stacklevel=2)
     per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
            for i in dofs}
     calibrated = calibrated_model(model, per)

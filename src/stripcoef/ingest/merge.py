@@ -275,14 +275,15 @@ def read_mapped_log(source, logmap) -> Log:
     return build_log(logmap, tables, source=name)
 
 
-def read_any_log(path, *, map=None, required=()) -> Log:
+def read_any_log(path, *, column_map=None, required=()) -> Log:
     """The log of a command: the log CSV format (:func:`stripcoef.logfile.read_log`), or
-    through a column map ``map`` a CSV or a ROS bag; a bag without a map is an error."""
-    if map is not None:
-        log = read_mapped_log(path, map)
+    through a column map a CSV or a ROS bag; a bag without a map is an error."""
+    if column_map is not None:
+        log = read_mapped_log(path, column_map)
         log.require(*required) if required else None
         return log
     if is_bag(path):
-        raise InputError("a ROS bag needs a column map", file=str(path), key="map",
-                         expected="--map MAP.yaml naming its topics and fields (docs/logs.md)")
+        raise InputError("a ROS bag needs a column map", key="map", value=str(path),
+                         expected="a column map (YAML) naming its topics and fields "
+                         "(docs/logs.md)")
     return read_log(path, required=required)
