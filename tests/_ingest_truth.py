@@ -96,11 +96,17 @@ def matrix_to_quaternion(m):
 
 
 def write_nav_csv(path, truth, time):
+    """Stamps [ns], a string, ENU position, x y z w quaternion, ENU velocity and ENU angular
+    velocity (earth-fixed, as some navigation filters give it)."""
     pos, q, v_enu, _, _ = truth.nav_rows(time)
+    from stripcoef.ingest.attitude import euler_matrices
+    r = euler_matrices(truth("phi", time), truth("theta", time), truth("psi", time))
+    w_ned = np.einsum("nij,nj->ni", r, np.column_stack([truth(k, time) for k in "pqr"]))
+    w_enu = w_ned @ ENU.T
     stamps = EPOCH_NS + np.round(time * 1e9).astype(np.int64)
-    lines = ["stamp_ns,frame_id,px,py,pz,qx,qy,qz,qw,ve,vn,vu"]
+    lines = ["stamp_ns,frame_id,px,py,pz,qx,qy,qz,qw,ve,vn,vu,wx,wy,wz"]
     for k in range(time.size):
-        vals = [*pos[k], *q[k], *v_enu[k]]
+        vals = [*pos[k], *q[k], *v_enu[k], *w_enu[k]]
         lines.append(f"{stamps[k]},odom," + ",".join(repr(float(v)) for v in vals))
     path.write_text("\n".join(lines) + "\n")
 

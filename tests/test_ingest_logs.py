@@ -72,6 +72,14 @@ def test_regular_streams_are_read_exactly(tmp_path, truth):
     # rates from the attitude: second-order differences of a 10 Hz attitude (next test)
     for k in "pqr":
         assert np.sqrt(np.mean((log[k] - truth(k, ta)) ** 2)) < 0.1 * np.std(truth(k, ta))
+    # earth-fixed (ENU) angular velocity rotated into the body: exact like the velocities
+    m = tmp_path / "map.yaml"
+    m.write_text(m.read_text().replace("rates: {from: attitude}",
+                                       "rates: {stream: nav, columns: [wx, wy, wz], "
+                                       "frame: world}"))
+    log, _ = read_quiet(tmp_path / "nav.csv", m)
+    for k in "pqr":
+        np.testing.assert_allclose(log[k], truth(k, ta), atol=2e-5, err_msg=k)
 
 
 def test_irregular_navigation_within_the_interpolation_bound(tmp_path, truth):
@@ -242,7 +250,12 @@ GOOD = {"streams": {"nav": {"file": "nav.csv", "time": {"column": "t"}}},
     ({"velocity": {"stream": "nav", "columns": ["u", "v", "w"], "frame": "ned"}},
      r"velocity.frame: unknown value; got 'ned'; expected one of body, world"),
     ({"velocity": {"stream": "nav", "columns": ["u", "v", "w"], "frame": "world"}},
-     r"velocity: an earth-fixed velocity needs the attitude"),
+     r"velocity: earth-fixed or derived values need the attitude"),
+    ({"rates": {"from": "attitude"}}, r"rates: earth-fixed or derived values need the "
+                                      r"attitude"),
+    ({"attitude": {"stream": "nav", "euler": ["r", "p", "y"]},
+      "rates": {"stream": "nav", "columns": ["p", None, "r"], "frame": "world"}},
+     r"rates.columns: earth-fixed values need all three columns"),
     ({"attitude": {"stream": "nav", "quaternion": ["a", "b", "c", "d"]}},
      r"attitude.order: missing key; expected wxyz or xyzw"),
     ({"attitude": {"stream": "nav", "euler": ["r", "p", "y"], "unit": "grad"}},

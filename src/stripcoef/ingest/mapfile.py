@@ -315,20 +315,21 @@ def parse_map(data, *, path: str = "<map>") -> LogMap:
                       ("stream", "columns", "scale", "offset", "frame", "from"), 3,
                       frames=VELOCITY_FRAMES, derive="position")
     rates = _block(r, data.get("rates"), "rates", streams,
-                   ("stream", "columns", "scale", "offset", "unit", "from"), 3,
-                   units=RATE_UNITS, unit_default="rad/s", derive="attitude")
+                   ("stream", "columns", "scale", "offset", "unit", "frame", "from"), 3,
+                   units=RATE_UNITS, unit_default="rad/s", frames=VELOCITY_FRAMES,
+                   derive="attitude")
     if rates is not None and rates.derive is None:
         f = RATE_UNITS[rates.unit]
         rates = Block(**{**rates.__dict__, "scale": tuple(s * f for s in rates.scale)})
     wrench = _block(r, data.get("wrench"), "wrench", streams,
                     ("stream", "columns", "scale", "offset"), 6)
-    if velocity is not None and velocity.frame == "world" and None in velocity.columns:
-        raise r.err("velocity.columns", "a world-frame velocity needs all three columns",
-                    list(velocity.columns), "north, east, down (or x, y, z of frames.world)")
-    if velocity is not None and (velocity.frame == "world" or velocity.derive) \
-            and attitude is None:
-        raise r.err("velocity", "an earth-fixed velocity needs the attitude to reach the body",
-                    expected="an attitude block (or frame: body velocities)")
+    for name, b in (("velocity", velocity), ("rates", rates)):
+        if b is not None and (b.frame == "world" or b.derive) and attitude is None:
+            raise r.err(name, "earth-fixed or derived values need the attitude",
+                        expected=f"an attitude block (or frame: body {name})")
+        if b is not None and b.frame == "world" and None in b.columns:
+            raise r.err(f"{name}.columns", "earth-fixed values need all three columns",
+                        list(b.columns), "x, y and z of frames.world")
     if position is None and velocity is not None and velocity.derive:
         raise r.err("velocity.from", "no position to derive from",
                     expected="a position block (or velocity columns)")

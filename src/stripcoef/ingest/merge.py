@@ -16,7 +16,8 @@ The rules (docs/logs.md):
    interpolated linearly (Euler angles unwrapped); inputs (wrench, thruster commands, channels
    with ``hold: previous``) are held from their last sample (zero-order hold), as a
    controller issues them and as :func:`stripcoef.simulate.simulate` applies them.
-5. Earth-fixed velocities are rotated into the body on the grid, :math:`v_b = R^T(\Theta) v_n`.
+5. Earth-fixed velocities and angular velocities are rotated into the body on the grid,
+   :math:`v_b = R^T(\Theta) v_n` (Fossen 2011, eq. 2.18).
 6. ``exclude`` ranges (seconds of the output time) are dropped; one inside the log leaves a
    gap in ``t`` (a :class:`~stripcoef.errors.SamplingWarning` says where).
 """
@@ -210,11 +211,15 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
             tb = tables[logmap.attitude.stream]
             omega = body_rates(tb.t, _attitude_matrices(logmap, tb))
             present = [True] * 3
+            om = _linear(tb.t, omega, grid)
+        elif w.frame == "world":             # omega_b = R^T A_world omega_world
+            tb = tables[w.stream]
+            om = np.einsum("nji,nj->ni", r_grid, _linear(tb.t, _values(w, tb) @ a_w.T, grid))
+            present = [True] * 3
         else:
             tb = tables[w.stream]
-            omega = np.nan_to_num(_values(w, tb)) * sign[3:]
+            om = _linear(tb.t, np.nan_to_num(_values(w, tb)) * sign[3:], grid)
             present = [c is not None for c in w.columns]
-        om = _linear(tb.t, omega, grid)
         for i in range(3):
             if present[i]:
                 cols[VELOCITIES[3 + i]] = om[:, i]
