@@ -407,3 +407,21 @@ def test_bag_array_commands_without_header(tmp_path):
     with pytest.raises(InputError, match=r"Float64MultiArray has no header stamp \(stream "
                                          r"'cmd'\).*expected time: bag"):
         read_mapped_log(tmp_path / "bag", m)
+
+
+def test_heading_only_attitude_warns_when_it_rotates(tmp_path):
+    """A navigation with heading only: psi is logged, phi and theta are absent (not zeros);
+    rotating earth-fixed velocities with it says that it takes them as 0."""
+    from stripcoef.errors import ModelWarning
+    csv = tmp_path / "nav.csv"
+    t = np.arange(0.0, 5.0, 0.1)
+    csv.write_text("t,hdg,vn,ve,vd\n" + "".join(f"{float(tk)!r},90,1,0,0\n" for tk in t))
+    m = tmp_path / "m.yaml"
+    m.write_text("streams: {nav: {time: t}}\nattitude: {euler: [null, null, hdg], unit: deg}\n"
+                 "velocity: {columns: [vn, ve, vd], frame: world}\n")
+    with pytest.warns(ModelWarning, match="attitude has no phi, theta: taken as 0 to rotate"):
+        log = read_mapped_log(csv, m)
+    assert "phi" not in log and "theta" not in log
+    np.testing.assert_allclose(log["psi"], np.pi / 2)
+    np.testing.assert_allclose(log["u"], 0.0, atol=1e-15)     # heading east, moving north:
+    np.testing.assert_allclose(log["v"], -1.0)                 # sideways to port

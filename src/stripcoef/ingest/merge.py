@@ -169,9 +169,11 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
                 warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as "
                               "0 to rotate earth-fixed velocities into the body", ModelWarning,
                               stacklevel=3)
-            if logmap.rates is not None and logmap.rates.derive:
+            if logmap.rates is not None and (logmap.rates.derive
+                                             or logmap.rates.frame == "world"):
                 warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as "
-                              "0 to derive the body rates", ModelWarning, stacklevel=3)
+                              "0 to derive or rotate the body rates", ModelWarning,
+                              stacklevel=3)
     pos_ned = None
     if logmap.position is not None:
         tb = tables[logmap.position.stream]
