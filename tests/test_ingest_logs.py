@@ -425,3 +425,22 @@ def test_heading_only_attitude_warns_when_it_rotates(tmp_path):
     np.testing.assert_allclose(log["psi"], np.pi / 2)
     np.testing.assert_allclose(log["u"], 0.0, atol=1e-15)     # heading east, moving north:
     np.testing.assert_allclose(log["v"], -1.0)                 # sideways to port
+
+
+def test_iso_date_time_stamps(tmp_path):
+    """ISO 8601 stamps (a telemetry export): read to the nanosecond, a UTC offset converted,
+    a bad one named by line."""
+    csv = tmp_path / "tel.csv"
+    csv.write_text("Timestamp,speed\n2024-05-02 10:15:30.000,0.5\n2024-05-02T10:15:30.25Z,0.6\n"
+                   "2024-05-02T12:15:30.500000001+02:00,0.7\n2024-05-02T10:15:30.75,0.8\n")
+    m = tmp_path / "m.yaml"
+    m.write_text("streams: {tel: {time: {column: Timestamp, unit: iso}}}\n"
+                 "velocity: {columns: [speed, null, null]}\noutput: {rate: 4}\n")
+    log, _ = read_quiet(csv, m)
+    np.testing.assert_allclose(log["t"], [0.0, 0.25, 0.5, 0.75])
+    np.testing.assert_allclose(log["u"], [0.5, 0.6, 0.7, 0.8], atol=1e-8)
+    assert log.meta["time_base"] == 1714644930
+    csv.write_text("Timestamp,speed\n2024-05-02 10:15:30,0.5\n2024-13-02 10:15:31,0.6\n")
+    with pytest.raises(InputError, match=r"tel.csv: Timestamp: bad time in line 3; got "
+                                         r"'2024-13-02 10:15:31'; expected an ISO 8601"):
+        read_mapped_log(csv, m)

@@ -20,7 +20,8 @@ from stripcoef.ingest.attitude import QUATERNION_ORDERS
 from stripcoef.logfile import COMMAND_PREFIX, KNOWN_COLUMNS
 
 #: Time units of a time column and their factor to seconds [s per unit].
-TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
+TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9, "iso": 1e-9}
+#   ("iso": ISO 8601 date-time strings, read as nanoseconds since 1970-01-01 UTC)
 #: Angle units and their factor to radians [rad per unit].
 ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
 #: Angular-rate units and their factor to rad/s.

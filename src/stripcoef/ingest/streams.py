@@ -111,6 +111,18 @@ def read_csv_stream(path, spec: StreamSpec, needed) -> Table:
                              + ("header" if spec.header else "map's columns list"))
         for j, col in enumerate(want):
             cell = cells[idx[col]]
+            if j == 0 and spec.time.column:
+                stamp = _stamp(cell, spec.time.unit)
+                if stamp is None:
+                    if spec.missing == "drop" and cell.strip().lower() in ("", "nan"):
+                        keep[i] = False
+                        break
+                    raise InputError(f"bad time in line {num}", file=name, key=col, value=cell,
+                                     expected="an ISO 8601 date-time (2024-05-02T10:15:30.25Z)"
+                                     if spec.time.unit == "iso" else "a finite number")
+                stamps[i] = stamp
+                data[i, 0] = float(stamp)
+                continue
             try:
                 v = float(cell) if cell.strip() else math.nan
             except ValueError:
@@ -124,17 +136,35 @@ def read_csv_stream(path, spec: StreamSpec, needed) -> Table:
                                  key=col, value=cell, expected="a finite number (or "
                                  f"streams.{spec.name}.missing: drop to skip such rows)")
             data[i, j] = v
-            if j == 0 and spec.time.column:
-                stamps[i] = np.longdouble(cell.strip())
     data, stamps = data[keep], stamps[keep]
     lines = np.array([num for (num, _), k in zip(rows, keep) if k])
     if spec.time.column:
         t = stamps * np.longdouble(TIME_UNITS[spec.time.unit]) + np.longdouble(spec.time.offset)
+        # ("iso" stamps are read in ns: TIME_UNITS["iso"] = 1e-9)
     else:
         t = np.longdouble(spec.time.start) + np.arange(data.shape[0]) / np.longdouble(
             spec.time.rate)
     cols = {c: data[:, j] for j, c in enumerate(want)}
     return checked_table(spec, name, t, cols, lines=lines, time_key=spec.time.column or "t")
+
+
+def _stamp(cell: str, unit: str):
+    """A time cell as an extended-precision number in ``unit`` (ISO 8601 date-times in ns
+    since 1970-01-01 UTC, an explicit offset such as +02:00 converted to UTC); None if it is
+    empty or not a finite number / date-time."""
+    cell = cell.strip()
+    if not cell:
+        return None
+    try:
+        if unit == "iso":
+            with warnings.catch_warnings():      # numpy warns that it drops the offset
+                warnings.simplefilter("ignore")
+                ns = np.datetime64(cell[:-1] if cell.endswith("Z") else cell, "ns")
+            return None if np.isnat(ns) else np.longdouble(int(ns.astype(np.int64)))
+        value = np.longdouble(cell)
+    except (ValueError, TypeError, OverflowError):
+        return None
+    return value if np.isfinite(value) else None
 
 
 def checked_table(spec: StreamSpec, where: str, t, columns, *, lines=None,
