@@ -140,91 +140,98 @@ def _held(table_t, values, grid):
     return values[k]
 
 
-def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log:
-    """The merged log of the streams' tables (module docstring, rules 2-6)."""
-    base = np.floor(min(tb.t[0] for tb in tables.values()))   # whole seconds
-    tables = {k: dataclasses.replace(tb, t=np.asarray(tb.t - base, dtype=float))
-              for k, tb in tables.items()}
-    grid, rate = _grid(logmap, tables, base)
-    a_w = world_axes_operator(logmap.world)
-    sign = axes_operator(logmap.body).diagonal()        # FLU -> FRD: its own inverse
-    cols = {}
-    euler_grid = r_grid = None
-    if logmap.attitude is not None:
-        tb = tables[logmap.attitude.stream]
-        r_native = _attitude_matrices(logmap, tb)
-        euler = euler_from_matrices(r_native)
-        euler[:, 0] = np.unwrap(euler[:, 0])
-        euler_grid = _linear(tb.t, euler, grid)
-        present = [True] * 3 if logmap.attitude.kind == "quaternion" else \
-            [c is not None for c in logmap.attitude.columns]
-        for i in range(3):
-            if present[i]:
-                cols[POSE[3 + i]] = euler_grid[:, i]
-        r_grid = euler_matrices(*euler_grid.T)
-        if not all(present):
-            missing = [POSE[3 + i] for i in range(3) if not present[i]]
-            if logmap.velocity is not None and (logmap.velocity.frame == "world"
-                                                or logmap.velocity.derive):
-                warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as "
-                              "0 to rotate earth-fixed velocities into the body", ModelWarning,
-                              stacklevel=3)
-            if logmap.rates is not None and (logmap.rates.derive
-                                             or logmap.rates.frame == "world"):
-                warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as "
-                              "0 to derive or rotate the body rates", ModelWarning,
-                              stacklevel=3)
-    pos_ned = None
-    if logmap.position is not None:
-        tb = tables[logmap.position.stream]
-        vals = _values(logmap.position, tb)
-        if np.isnan(vals).any() and logmap.world != "NED":
-            raise InputError("an ENU position needs all three columns", file=logmap.path,
-                             key="position.columns", value=list(logmap.position.columns),
-                             expected="x, y and z columns")
-        pos_ned = vals @ a_w.T
-        p_grid = _linear(tb.t, np.nan_to_num(pos_ned), grid)
-        for i, c in enumerate(logmap.position.columns):
-            if c is not None:                   # an ENU position has all three (above)
-                cols[POSE[i]] = p_grid[:, i]
+def _to_body(r_grid, world_values_on_grid) -> np.ndarray:
+    r"""Earth-fixed (NED) vectors into the body, :math:`v_b = R^T v_n` (Fossen 2011, eq. 2.18)."""
+    return np.einsum("nji,nj->ni", r_grid, world_values_on_grid)
+
+
+def _attitude_columns(logmap, tables, grid, cols):
+    """phi theta psi on the grid (the logged ones) and R on the grid (None without attitude)."""
+    block = logmap.attitude
+    if block is None:
+        return None
+    tb = tables[block.stream]
+    euler = euler_from_matrices(_attitude_matrices(logmap, tb))
+    euler[:, 0] = np.unwrap(euler[:, 0])
+    euler_grid = _linear(tb.t, euler, grid)
+    present = [True] * 3 if block.kind == "quaternion" else [c is not None for c in block.columns]
+    for i in range(3):
+        if present[i]:
+            cols[POSE[3 + i]] = euler_grid[:, i]
+    missing = [POSE[3 + i] for i in range(3) if not present[i]]
+    for name, b, what in (("velocity", logmap.velocity, "rotate earth-fixed velocities into "
+                           "the body"), ("rates", logmap.rates, "derive or rotate the body rates")):
+        if missing and b is not None and (b.frame == "world" or b.derive):
+            warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as 0 to "
+                          f"{what}", ModelWarning, stacklevel=4)
+    return euler_matrices(*euler_grid.T)
+
+
+def _position_columns(logmap, tables, grid, cols, a_w):
+    """x y z (NED) on the grid (the logged ones); the NED position on its own samples."""
+    block = logmap.position
+    if block is None:
+        return None
+    tb = tables[block.stream]
+    vals = _values(block, tb)
+    if np.isnan(vals).any() and logmap.world != "NED":
+        raise InputError("an ENU position needs all three columns", file=logmap.path,
+                         key="position.columns", value=list(block.columns),
+                         expected="x, y and z columns")
+    pos_ned = vals @ a_w.T
+    p_grid = _linear(tb.t, np.nan_to_num(pos_ned), grid)
+    for i, c in enumerate(block.columns):
+        if c is not None:                        # an ENU position has all three (above)
+            cols[POSE[i]] = p_grid[:, i]
+    return pos_ned
+
+
+def _velocity_columns(logmap, tables, grid, cols, r_grid, pos_ned, a_w, sign):
+    """u v w on the grid: body columns, earth-fixed columns rotated, or from the position."""
     v = logmap.velocity
-    if v is not None:
-        if v.derive:
-            tb = tables[logmap.position.stream]
-            if np.isnan(pos_ned).any():
-                raise InputError("velocity from a position needs all three position columns",
-                                 file=logmap.path, key="position.columns",
-                                 value=list(logmap.position.columns), expected="x, y and z")
-            world_v = np.gradient(pos_ned, tb.t, axis=0)
-            body_v = np.einsum("nji,nj->ni", r_grid, _linear(tb.t, world_v, grid))
-        else:
-            tb = tables[v.stream]
-            vals = _values(v, tb)
-            if v.frame == "world":
-                body_v = np.einsum("nji,nj->ni", r_grid, _linear(tb.t, vals @ a_w.T, grid))
-            else:
-                body_v = _linear(tb.t, np.nan_to_num(vals) * sign[:3], grid)
-        for i in range(3):
-            if v.derive or v.frame == "world" or v.columns[i] is not None:
-                cols[VELOCITIES[i]] = body_v[:, i]
+    if v is None:
+        return
+    if v.derive:
+        tb = tables[logmap.position.stream]
+        if np.isnan(pos_ned).any():
+            raise InputError("velocity from a position needs all three position columns",
+                             file=logmap.path, key="position.columns",
+                             value=list(logmap.position.columns), expected="x, y and z")
+        body = _to_body(r_grid, _linear(tb.t, np.gradient(pos_ned, tb.t, axis=0), grid))
+    elif v.frame == "world":
+        tb = tables[v.stream]
+        body = _to_body(r_grid, _linear(tb.t, _values(v, tb) @ a_w.T, grid))
+    else:
+        tb = tables[v.stream]
+        body = _linear(tb.t, np.nan_to_num(_values(v, tb)) * sign[:3], grid)
+    for i in range(3):
+        if v.derive or v.frame == "world" or v.columns[i] is not None:
+            cols[VELOCITIES[i]] = body[:, i]
+
+
+def _rate_columns(logmap, tables, grid, cols, r_grid, a_w, sign):
+    """p q r on the grid: body columns, earth-fixed columns rotated, or from the attitude."""
     w = logmap.rates
-    if w is not None:
-        if w.derive:
-            tb = tables[logmap.attitude.stream]
-            omega = body_rates(tb.t, _attitude_matrices(logmap, tb))
-            present = [True] * 3
-            om = _linear(tb.t, omega, grid)
-        elif w.frame == "world":             # omega_b = R^T A_world omega_world
-            tb = tables[w.stream]
-            om = np.einsum("nji,nj->ni", r_grid, _linear(tb.t, _values(w, tb) @ a_w.T, grid))
-            present = [True] * 3
-        else:
-            tb = tables[w.stream]
-            om = _linear(tb.t, np.nan_to_num(_values(w, tb)) * sign[3:], grid)
-            present = [c is not None for c in w.columns]
-        for i in range(3):
-            if present[i]:
-                cols[VELOCITIES[3 + i]] = om[:, i]
+    if w is None:
+        return
+    present = [True] * 3
+    if w.derive:
+        tb = tables[logmap.attitude.stream]
+        om = _linear(tb.t, body_rates(tb.t, _attitude_matrices(logmap, tb)), grid)
+    elif w.frame == "world":
+        tb = tables[w.stream]
+        om = _to_body(r_grid, _linear(tb.t, _values(w, tb) @ a_w.T, grid))
+    else:
+        tb = tables[w.stream]
+        om = _linear(tb.t, np.nan_to_num(_values(w, tb)) * sign[3:], grid)
+        present = [c is not None for c in w.columns]
+    for i in range(3):
+        if present[i]:
+            cols[VELOCITIES[3 + i]] = om[:, i]
+
+
+def _input_columns(logmap, tables, grid, cols, sign):
+    """X..N and n_<thruster> held (zero-order hold); channels as their ``hold`` says."""
     if logmap.wrench is not None:
         tb = tables[logmap.wrench.stream]
         f = _held(tb.t, np.nan_to_num(_values(logmap.wrench, tb)) * sign, grid)
@@ -239,7 +246,10 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
         vals = _values(b, tb)[:, 0]
         cols[name] = np.interp(grid, tb.t, vals) if b.hold == "linear" else \
             _held(tb.t, vals, grid)
-    t = grid - grid[0] if logmap.time_origin == "start" else grid + float(base)
+
+
+def _kept_rows(logmap, t) -> np.ndarray:
+    """Indices of the rows outside every ``exclude`` range; a gap left inside warns."""
     keep = np.ones(t.size, dtype=bool)
     for a, b in logmap.exclude:
         keep &= ~((t >= a) & (t <= b))
@@ -248,13 +258,30 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
                          key="exclude", value=[list(r) for r in logmap.exclude],
                          expected=f"ranges that keep part of t = {t[0]:.6g}..{t[-1]:.6g} s")
     idx = np.nonzero(keep)[0]
-    holes = np.nonzero(np.diff(idx) > 1)[0]
-    for k in holes:
+    for k in np.nonzero(np.diff(idx) > 1)[0]:
         warnings.warn(f"{logmap.path}: excluded range leaves a gap in t from "
                       f"{t[idx[k]]:.6g} to {t[idx[k + 1]]:.6g} s (methods that difference "
-                      "consecutive samples span it)", SamplingWarning, stacklevel=3)
-    out = {"t": t[keep]}
-    out.update({k: np.asarray(c)[keep] for k, c in cols.items()})
+                      "consecutive samples span it)", SamplingWarning, stacklevel=4)
+    return idx
+
+
+def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log:
+    """The merged log of the streams' tables (module docstring, rules 2-6)."""
+    base = np.floor(min(tb.t[0] for tb in tables.values()))   # whole seconds
+    tables = {k: dataclasses.replace(tb, t=np.asarray(tb.t - base, dtype=float))
+              for k, tb in tables.items()}
+    grid, rate = _grid(logmap, tables, base)
+    a_w = world_axes_operator(logmap.world)
+    sign = axes_operator(logmap.body).diagonal()        # FLU -> FRD: its own inverse
+    cols = {}
+    r_grid = _attitude_columns(logmap, tables, grid, cols)
+    pos_ned = _position_columns(logmap, tables, grid, cols, a_w)
+    _velocity_columns(logmap, tables, grid, cols, r_grid, pos_ned, a_w, sign)
+    _rate_columns(logmap, tables, grid, cols, r_grid, a_w, sign)
+    _input_columns(logmap, tables, grid, cols, sign)
+    t = grid - grid[0] if logmap.time_origin == "start" else grid + float(base)
+    idx = _kept_rows(logmap, t)
+    out = {"t": t[idx], **{k: np.asarray(c)[idx] for k, c in cols.items()}}
     meta = {"map": logmap.path, "time_base": int(base), "t0": float(grid[0]),
             "rate": float(rate),
             "streams": {k: {"samples": int(tb.t.size), "median_rate": tb.median_rate,
