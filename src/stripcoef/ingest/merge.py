@@ -15,7 +15,7 @@ The rules (docs/logs.md):
 4. States (position, attitude, velocity, rates, and channels with ``hold: linear``) are
    interpolated linearly (Euler angles unwrapped); inputs (wrench, thruster commands, channels
    with ``hold: previous``) are held from their last sample (zero-order hold), as a
-   controller issues them and as :func:`stripcoef.simulate.simulate` applies them.
+   controller sends them and as :func:`stripcoef.simulate.simulate` applies them.
 5. Earth-fixed velocities and angular velocities are rotated into the body on the grid,
    :math:`v_b = R^T(\Theta) v_n` (Fossen 2011, eq. 2.18).
 6. ``exclude`` ranges (seconds of the output time) are dropped; one inside the log leaves a
