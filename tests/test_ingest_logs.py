@@ -199,6 +199,21 @@ def test_exclusions_and_time_origin(tmp_path, truth):
     assert log.meta["rate"] == 20.0
     assert t[0] > 2.0 and not np.any((t >= 5.0) & (t <= 6.0))
     assert len(warned) == 1 and "gap in t from 4.95 to 6.05 s" in warned[0]
+
+
+def test_max_gap_drops_rows_inside_a_stream_gap(tmp_path, truth):
+    """A 1.1 s dropout of the navigation: bridged by linear interpolation (warned) by
+    default; with max_gap: 0.5 the output rows inside it are dropped instead."""
+    nav_t = 0.3 + np.arange(190) * 0.1
+    gappy = np.concatenate([nav_t[:50], nav_t[61:]])         # samples 5.3 .. 6.3 s missing
+    nav, m = nav_wrench(tmp_path, truth, gappy)
+    m.write_text(m.read_text().replace("    rate: 10\n", "    rate: 10\n    max_gap: 0.5\n", 1))
+    log, warned = read_quiet(nav, m)
+    ta = truth_times(log)
+    assert not np.any((ta > 5.2 + 1e-6) & (ta < 6.4 - 1e-6))
+    assert np.any(np.isclose(ta, 5.2)) and np.any(np.isclose(ta, 6.4))
+    assert any("gap in t from 4.9 to 6.1 s" in w for w in warned), warned
+    np.testing.assert_allclose(log["x"], truth("x", ta), atol=2e-5)
     np.testing.assert_allclose(log["x"], truth("x", truth_times(log)), atol=1e-2)
 
 

@@ -61,6 +61,7 @@ class StreamSpec:
     missing: str = "error"
     time: TimeSpec = field(default_factory=TimeSpec)
     rate: float | None = None
+    max_gap: float | None = None
 
 
 @dataclass(frozen=True)
@@ -187,7 +188,7 @@ def _time_spec(r: _Reader, obj, key, *, topic: bool) -> TimeSpec:
 def _stream(r: _Reader, name, obj) -> StreamSpec:
     key = f"streams.{name}"
     r.mapping(obj or {}, key, ("file", "topic", "header", "columns", "delimiter", "comment",
-                               "missing", "time", "rate"))
+                               "missing", "time", "rate", "max_gap"))
     obj = obj or {}
     if "file" in obj and "topic" in obj:
         raise r.err(key, "both file and topic", expected="a CSV file or a bag topic")
@@ -219,7 +220,9 @@ def _stream(r: _Reader, name, obj) -> StreamSpec:
         header=header, columns=columns, delimiter=delim, comment=comment,
         missing=r.choice(obj.get("missing", "error"), f"{key}.missing", MISSING),
         time=_time_spec(r, obj.get("time"), f"{key}.time", topic=topic is not None),
-        rate=r.number(obj.get("rate"), f"{key}.rate", positive=True, allow_none=True))
+        rate=r.number(obj.get("rate"), f"{key}.rate", positive=True, allow_none=True),
+        max_gap=r.number(obj.get("max_gap"), f"{key}.max_gap", positive=True,
+                         allow_none=True))
 
 
 def _columns(r, obj, key, n, *, allow_null=True):

@@ -18,8 +18,10 @@ The rules (docs/logs.md):
    controller sends them and as :func:`stripcoef.simulate.simulate` applies them.
 5. Earth-fixed velocities and angular velocities are rotated into the body on the grid,
    :math:`v_b = R^T(\Theta) v_n` (Fossen 2011, eq. 2.18).
-6. ``exclude`` ranges (seconds of the output time) are dropped; one inside the log leaves a
-   gap in ``t`` (a :class:`~stripcoef.errors.SamplingWarning` says where).
+6. ``exclude`` ranges (seconds of the output time) are dropped, and so are the rows inside a
+   gap of a stream longer than its ``max_gap`` (instead of bridging it by interpolation); a
+   hole inside the log leaves a gap in ``t`` (a :class:`~stripcoef.errors.SamplingWarning`
+   says where).
 """
 
 from __future__ import annotations
@@ -248,18 +250,25 @@ def _input_columns(logmap, tables, grid, cols, sign):
             _held(tb.t, vals, grid)
 
 
-def _kept_rows(logmap, t) -> np.ndarray:
-    """Indices of the rows outside every ``exclude`` range; a gap left inside warns."""
+def _kept_rows(logmap, t, grid, tables) -> np.ndarray:
+    """Indices of the rows outside every ``exclude`` range and inside no gap longer than its
+    stream's ``max_gap``; a hole left inside the log warns."""
     keep = np.ones(t.size, dtype=bool)
     for a, b in logmap.exclude:
         keep &= ~((t >= a) & (t <= b))
+    for name, tb in tables.items():
+        limit = logmap.streams[name].max_gap
+        if limit is None:
+            continue
+        for k in np.nonzero(np.diff(tb.t) > limit)[0]:
+            keep &= ~((grid > tb.t[k]) & (grid < tb.t[k + 1]))   # not bridged by interpolation
     if keep.sum() < 2:
         raise InputError("excluded ranges leave fewer than 2 samples", file=logmap.path,
                          key="exclude", value=[list(r) for r in logmap.exclude],
                          expected=f"ranges that keep part of t = {t[0]:.6g}..{t[-1]:.6g} s")
     idx = np.nonzero(keep)[0]
     for k in np.nonzero(np.diff(idx) > 1)[0]:
-        warnings.warn(f"{logmap.path}: excluded range leaves a gap in t from "
+        warnings.warn(f"{logmap.path}: excluded range or stream gap leaves a gap in t from "
                       f"{t[idx[k]]:.6g} to {t[idx[k + 1]]:.6g} s (methods that difference "
                       "consecutive samples span it)", SamplingWarning, stacklevel=4)
     return idx
@@ -280,7 +289,7 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
     _rate_columns(logmap, tables, grid, cols, r_grid, a_w, sign)
     _input_columns(logmap, tables, grid, cols, sign)
     t = grid - grid[0] if logmap.time_origin == "start" else grid + float(base)
-    idx = _kept_rows(logmap, t)
+    idx = _kept_rows(logmap, t, grid, tables)
     out = {"t": t[idx], **{k: np.asarray(c)[idx] for k, c in cols.items()}}
     meta = {"map": logmap.path, "time_base": int(base), "t0": float(grid[0]),
             "rate": float(rate),
