@@ -78,6 +78,31 @@ def axes_operator(axes: str) -> np.ndarray:
     raise InputError("unknown axes", key="axes", value=axes, expected="FRD or FLU")
 
 
+#: Earth-fixed frames a log may use: NED (this package) and ENU (ROS, REP 103).
+WORLD_FRAMES = ("NED", "ENU")
+
+
+def world_axes_operator(world: str) -> np.ndarray:
+    r"""Matrix taking earth-fixed components in ``world`` ("NED" or "ENU") to NED [-].
+
+    .. math:: A_{ENU} = \begin{bmatrix} 0 & 1 & 0 \\ 1 & 0 & 0 \\ 0 & 0 & -1 \end{bmatrix},
+              \quad v_{NED} = A\, v_{world}
+
+    (north = y_ENU, east = x_ENU, down = -z_ENU; A is its own inverse).
+
+    References
+    ----------
+    Fossen (2011), sec. 2.1 (NED); ROS REP 103, "Standard Units of Measure and Coordinate
+    Conventions" (ENU world, FLU body).
+    """
+    if world == "NED":
+        return np.eye(3)
+    if world == "ENU":
+        return np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+    raise InputError("unknown world frame", key="world", value=world,
+                     expected=" or ".join(WORLD_FRAMES))
+
+
 def transform_matrix(matrix, *, from_point=(0.0, 0.0, 0.0), to_point=(0.0, 0.0, 0.0),
                      axes: str = "FRD") -> np.ndarray:
     r"""Express a 6x6 inertia-like or linear-damping matrix about another point and axes.

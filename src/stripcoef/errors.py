@@ -75,6 +75,10 @@ class ModelWarning(UserWarning):
     """A modelling assumption or limitation the user should know about."""
 
 
+class SamplingWarning(UserWarning):
+    """A log stream sampled irregularly, with gaps or bursts, or off its stated rate."""
+
+
 def unknown_name(kind: str, name: str, valid, *, file: str | None = None,
                  key: str | None = None) -> InputError:
     """Error for a name missing from a registry, listing the valid names."""

@@ -406,3 +406,38 @@ def kinetic_energy(model, nu) -> np.ndarray:
     nu = np.atleast_2d(np.asarray(nu, dtype=float))
     e = 0.5 * np.einsum("ni,ij,nj->n", nu, model.mass_matrix, nu)
     return e if e.size > 1 else float(e[0])
+
+
+def initial_state(log, index: int = 0) -> tuple:
+    """The logged state at row ``index``: pose eta0 [m, rad], body velocity nu0 [m/s, rad/s]
+    and the names of the pose and velocity columns the log lacks (taken as 0: the caller says
+    so). The start of a free simulation from a log (Fossen 2011, eq. 7.190: the state
+    (eta, nu) fixes the motion for given inputs)."""
+    eta0 = np.array([float(log.columns[c][index]) if c in log else 0.0 for c in POSE])
+    nu0 = np.array([float(log.columns[c][index]) if c in log else 0.0 for c in VELOCITIES])
+    missing = [c for c in POSE + VELOCITIES if c not in log]
+    return eta0, nu0, missing
+
+
+def free_run_errors(log, prediction) -> dict:
+    r"""RMS error of a free simulation against the log it started from, per logged velocity.
+
+    .. math:: e_i = \sqrt{\tfrac1n \textstyle\sum_k (\nu_{i,k}^{log} - \nu_{i,k}^{sim})^2},
+              \quad e_i^{hold} = \sqrt{\tfrac1n \textstyle\sum_k (\nu_{i,k}^{log}
+              - \nu_{i,0}^{log})^2}
+
+    with the trivial predictor "hold the initial velocity" as the reference a model must
+    beat [m/s, rad/s]. ``prediction`` is the simulated log on the same times.
+
+    Returns
+    -------
+    dict
+        velocity name -> {"rms": e, "hold_initial_rms": e_hold}
+    """
+    out = {}
+    for c in VELOCITIES:
+        if c in log:
+            v = log.columns[c]
+            out[c] = {"rms": float(np.sqrt(np.mean((v - prediction.columns[c]) ** 2))),
+                      "hold_initial_rms": float(np.sqrt(np.mean((v - v[0]) ** 2)))}
+    return out

@@ -8,6 +8,7 @@ import json
 import sys
 from pathlib import Path
 
+from stripcoef.cli.options import add_map_argument, read_log_from_args
 from stripcoef.errors import InputError
 
 
@@ -17,10 +18,15 @@ def add_parser(subparsers):
         description="Predict the log with the vehicle's model, calibrate its coefficients "
                     "within their bands, add the significant effects of the library, and "
                     "report the error before and after each step.")
-    p.add_argument("log", metavar="LOG.csv", help="time-series log (see docs/diagnose.md)")
+    p.add_argument("log", metavar="LOG",
+                   help="time-series log: a log CSV (docs/diagnose.md), or with --map any CSV "
+                        "or a ROS bag (docs/logs.md)")
     p.add_argument("--vehicle", required=True, metavar="VEHICLE",
                    help="vehicle file (YAML) or model file (JSON/YAML)")
-    p.add_argument("--dof", default="all", help="DOF to diagnose (surge..yaw) or 'all'")
+    add_map_argument(p)
+    p.add_argument("--dof", default="all",
+                   help="DOF to diagnose (surge..yaw) or 'all' (every excited DOF; it says "
+                        "which it drops and why)")
     p.add_argument("--json", action="store_true", help="print the JSON result")
     p.add_argument("--report", metavar="FILE.md", help="write a markdown report (+ plots)")
     p.add_argument("--out", metavar="CALIBRATED.yaml",
@@ -39,7 +45,6 @@ def run(args) -> int:
     from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose, public
     from stripcoef.diagnose.report import markdown_report, text_summary
     from stripcoef.effects.laws import get_effect
-    from stripcoef.logfile import read_log
     from stripcoef.export import write_export
     from stripcoef.modelfile import load_model
 
@@ -59,7 +64,7 @@ def run(args) -> int:
             if not folder.is_dir():
                 raise InputError("folder does not exist", key=key, value=path,
                                  expected="a path in an existing, writable folder")
-    log = read_log(args.log, required=("t",))
+    log = read_log_from_args(args.log, args, required=("t",))
     model = load_model(args.vehicle)
     result = diagnose(log, model, dof=args.dof, window=args.window, effects=effects,
                       resimulate=not args.no_resimulate)

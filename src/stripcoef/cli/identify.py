@@ -9,8 +9,8 @@ from __future__ import annotations
 import json
 import math
 
+from stripcoef.cli.options import add_map_argument, read_log_from_args
 from stripcoef.files import write_text
-from stripcoef.logfile import read_log
 
 from stripcoef.identify.api import METHODS
 
@@ -19,7 +19,10 @@ def add_parser(sub):
     p = sub.add_parser("identify", help="identify coefficients from a log (CSV)",
                        description="Least-squares identification with parameter standard "
                                    "deviations, relative errors, J_LS and information criteria.")
-    p.add_argument("log", metavar="LOG.csv", help="log file (docs/identify.md: the log format)")
+    p.add_argument("log", metavar="LOG",
+                   help="log file (docs/identify.md: the log format), or with --map any CSV "
+                        "or a ROS bag (docs/logs.md)")
+    add_map_argument(p)
     p.add_argument("--method", required=True, choices=METHODS)
     p.add_argument("--dof", default=None, metavar="DOF",
                    help="surge..yaw or u..r (steady: heave, one-step: yaw, torsion: yaw)")
@@ -132,7 +135,7 @@ def run_identify(args):
     from stripcoef.identify.api import identify_log
     from stripcoef.identify.inputs import vehicle_model
 
-    log = read_log(args.log)
+    log = read_log_from_args(args.log, args)
     vehicle = vehicle_model(args.vehicle) if args.vehicle else None
     return identify_log(log, args.method, dof=args.dof, model=args.model, vehicle=vehicle,
                         direction=args.direction, settle=args.settle, trim=args.trim,

@@ -99,3 +99,17 @@ def estimate_from_args(args):
                              corrections=False if args.no_corrections else None,
                              speed=args.speed, reference_point=ref, regime=args.regime,
                              fluid=fluid)
+
+
+def add_map_argument(parser):
+    """--map: read the log (any CSV, several CSVs, a ROS bag) through a column map."""
+    parser.add_argument("--map", metavar="MAP.yaml", default=None,
+                        help="column map: read LOG (any CSV, several CSV streams or a ROS "
+                             "bag) through it (docs/logs.md)")
+
+
+def read_log_from_args(path, args, *, required=()):
+    """The log at ``path``: the log CSV format, or through ``--map`` a CSV or a ROS bag."""
+    from stripcoef.ingest import read_any_log
+
+    return read_any_log(path, column_map=getattr(args, "map", None), required=required)

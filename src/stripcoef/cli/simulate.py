@@ -1,18 +1,24 @@
 """``stripcoef simulate VEHICLE --inputs INPUTS.csv --out LOG.csv``: a 6-DOF simulation.
 
 INPUTS is a log-format CSV (:mod:`stripcoef.logfile`) with a time column ``t`` and thruster
-commands ``n_<thruster>`` and/or generalized forces ``X Y Z K M N``; the output is a log
-with the pose, the velocities, the applied forces and the commands at every input time
-(or every ``--dt`` seconds).
+commands ``n_<thruster>`` and/or generalized forces ``X Y Z K M N`` (or, with ``--map``, any
+CSV or a ROS bag through a column map, docs/logs.md); the output is a log with the pose, the
+velocities, the applied forces and the commands at every input time (or every ``--dt``
+seconds). ``--from-log LOG`` starts from the log's pose and velocity instead of rest at the
+origin and, without ``--inputs``, free-simulates the log's own inputs and prints the
+prediction error against the log.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.conventions import FORCES
-from stripcoef.errors import InputError
-from stripcoef.logfile import KNOWN_COLUMNS, read_log
+import warnings
+
+from stripcoef.cli.options import add_map_argument, read_log_from_args
+from stripcoef.conventions import FORCES, VELOCITIES
+from stripcoef.errors import InputError, ModelWarning
+from stripcoef.logfile import KNOWN_COLUMNS
 
 
 def add_parser(subparsers):
@@ -23,8 +29,18 @@ def add_parser(subparsers):
     p.add_argument("vehicle", metavar="VEHICLE",
                    help="vehicle file (YAML, estimated by strip theory) or model file "
                         "(JSON/YAML from HydroModel.to_dict, e.g. diagnose --out)")
-    p.add_argument("--inputs", required=True, metavar="INPUTS.csv",
-                   help="log CSV with t and n_<thruster> commands and/or X Y Z K M N forces")
+    p.add_argument("--inputs", metavar="INPUTS",
+                   help="log with t and n_<thruster> commands and/or X Y Z K M N forces "
+                        "(default with --from-log: that log's inputs)")
+    p.add_argument("--from-log", metavar="LOG", default=None,
+                   help="start from this log's pose and velocity (at --start) instead of rest "
+                        "at the origin; without --inputs, free-simulate its inputs and print "
+                        "the error of the prediction against the log")
+    add_map_argument(p)
+    p.add_argument("--start", type=float, default=None, metavar="S",
+                   help="with --from-log: start at this time of the log [s] (its first sample)")
+    p.add_argument("--duration", type=float, default=None, metavar="S",
+                   help="with --from-log: simulate this long [s] (to the end of the log)")
     p.add_argument("--out", required=True, metavar="LOG.csv", help="output log CSV")
     p.add_argument("--current", metavar="U,V,W", default=None,
                    help="constant water current in the earth-fixed NED frame [m/s]")
@@ -87,27 +103,76 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
     return np.asarray(times, float), forces, commands, channels
 
 
+def _log_window(log, start, duration):
+    """Rows of ``log`` with start <= t <= start + duration [s] (defaults: the whole log)."""
+    t = log.require("t")
+    if start is not None and not (t[0] <= start < t[-1]):
+        raise InputError("start outside the log", key="start", value=start,
+                         expected=f"a time in [{t[0]:g}, {t[-1]:g}) s")
+    if duration is not None and not (np.isfinite(duration) and duration > 0):
+        raise InputError("not a positive duration", key="duration", value=duration,
+                         expected="a positive number of seconds")
+    a = 0 if start is None else int(np.searchsorted(t, start - 1e-9))
+    end = t[-1] if duration is None else t[a] + duration
+    b = int(np.searchsorted(t, end + 1e-9, side="right"))
+    if b - a < 2:
+        raise InputError("fewer than 2 samples in the window", key="duration", value=duration,
+                         expected="a window holding at least two of the log's samples")
+    return log.slice(a, b)
+
+
 def run(args) -> int:
     from stripcoef.modelfile import load_model
-    from stripcoef.simulate import simulate
+    from stripcoef.simulate import free_run_errors, initial_state, simulate
 
-    log = read_log(args.inputs, required=("t",))
+    if args.inputs is None and args.from_log is None:
+        raise InputError("no inputs", key="inputs",
+                         expected="--inputs INPUTS and/or --from-log LOG")
+    if args.from_log is None and (args.start is not None or args.duration is not None):
+        raise InputError("applies to --from-log only", key="start" if args.start is not None
+                         else "duration", expected="--from-log LOG with it")
+    eta0 = nu0 = None
+    start_log = None
+    if args.from_log is not None:
+        start_log = _log_window(read_log_from_args(args.from_log, args, required=("t",)),
+                                args.start, args.duration)
+        eta0, nu0, missing = initial_state(start_log)
+        if missing:
+            warnings.warn(f"{start_log.source}: no column {', '.join(missing)}: the initial "
+                          "state takes 0 for them", ModelWarning, stacklevel=2)
+    log = start_log if args.inputs is None else \
+        read_log_from_args(args.inputs, args, required=("t",))
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
     times = None
+    t_in = log.require("t")
     if args.dt is not None:
         if not (np.isfinite(args.dt) and args.dt > 0):
             raise InputError("not a positive time step", key="--dt", value=args.dt,
                              expected="a positive number of seconds")
-        t_in = log.require("t")
         times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
         times = times[times <= t_in[-1] + 1e-12]
+    elif start_log is not None and log is not start_log:
+        times = start_log.require("t")              # predict at the logged times
     times, forces, commands, channels = inputs_from_log(log, model, times,
                                                         interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels,
+                   channels=channels, eta0=eta0, nu0=nu0,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "
           f"final speed {np.linalg.norm(out.velocities()[-1, :3]):.4g} m/s")
+    if start_log is not None:
+        same = len(start_log) == len(out) and np.allclose(start_log["t"], out["t"])
+        if not same:
+            print("prediction vs log: not compared (the output times are not the log's; "
+                  "drop --dt)")
+        else:
+            errors = free_run_errors(start_log, out)
+            print(f"free simulation from the logged state at t = {times[0]:g} s "
+                  f"({times[-1] - times[0]:g} s), RMS error vs the log "
+                  "(and holding the initial velocity):")
+            for c, e in errors.items():
+                unit = "m/s" if VELOCITIES.index(c) < 3 else "rad/s"
+                print(f"  {c}: {e['rms']:.4g} {unit}  (hold: {e['hold_initial_rms']:.4g})")
     return 0

@@ -42,12 +42,13 @@ from __future__ import annotations
 
 import copy
 import math
+import warnings
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
-from stripcoef.conventions import DOF, parse_dof
-from stripcoef.errors import InputError
+from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
 from stripcoef.effects.windows import window_data
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
@@ -68,6 +69,8 @@ MAX_STEPS = 4
 #: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
 #: (measured: benchmarks/diagnose_detection.py --window 2 vs 4, docs/performance.md).
 DEFAULT_WINDOW = 4.0
+#: Velocity standard deviation above which ``dof="all"`` counts a DOF as excited [m/s, rad/s].
+EXCITATION_STD = 1e-3
 METRIC = "rms_window_force_residual"
 METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the model misses, "
                "averaged over non-overlapping windows [N or N m]")
@@ -740,11 +743,34 @@ class _Generic:
 
 def excited_dofs(data: WindowData) -> list:
     """DOFs with both an applied force and motion (velocity std > 1e-3)."""
-    out = []
+    return select_dofs(data)[0]
+
+
+def select_dofs(data: WindowData) -> tuple:
+    """The DOFs ``dof="all"`` diagnoses and, for each one left out, why.
+
+    A DOF is diagnosed when the log has its velocity column, an applied force acts in it and
+    its velocity varies (standard deviation above ``EXCITATION_STD`` [m/s or rad/s]); a
+    missing column is never read as zeros.
+
+    Returns
+    -------
+    (list of int, dict of DOF name -> reason)
+    """
+    out, dropped = [], {}
     for i in range(6):
-        if np.std(data.nu[:, i]) > 1e-3 and np.any(data.tau[:, i] != 0):
+        v = VELOCITIES[i]
+        unit = "m/s" if i < 3 else "rad/s"
+        if v not in data.log:
+            dropped[DOF[i]] = f"no column {v} in the log"
+        elif not np.any(data.tau[:, i] != 0):
+            dropped[DOF[i]] = f"no applied force in {DOF[i]} ({FORCES[i]} is zero throughout)"
+        elif not np.std(data.nu[:, i]) > EXCITATION_STD:
+            dropped[DOF[i]] = (f"not excited (std of {v} {np.std(data.nu[:, i]):.2g} {unit} "
+                               f"<= {EXCITATION_STD:g})")
+        else:
             out.append(i)
-    return out
+    return out, dropped
 
 
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
@@ -775,15 +801,28 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``unexplained``; plus ``per_dof`` details and ``model`` (the calibrated HydroModel,
         not serialised).
     """
+    if str(dof).lower() != "all":
+        log.require(VELOCITIES[parse_dof(dof)])       # never a missing column read as zeros
     data = window_data(log, model, window=window)
+    dropped = {}
     if str(dof).lower() == "all":
-        dofs = excited_dofs(data)
+        dofs, dropped = select_dofs(data)
         if not dofs:
             raise InputError("no excited degree of freedom", file=log.source,
-                             expected="a log where some DOF has both an applied force and "
-                             "motion")
+                             expected="a log where some DOF has its velocity column, an "
+                             "applied force and motion (" + "; ".join(
+                                 f"{k}: {v}" for k, v in dropped.items()) + ")")
+        if dropped:
+            warnings.warn(f"{log.source}: dof='all' diagnoses " + ", ".join(DOF[i] for i in dofs)
+                          + " and drops " + "; ".join(f"{k} ({v})" for k, v in dropped.items()),
+                          ModelWarning, stacklevel=2)
     else:
         dofs = [parse_dof(dof)]
+    absent = [v for v in VELOCITIES if v not in log]
+    if absent:
+        warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
+                      "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
+                      stacklevel=2)
     per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
            for i in dofs}
     calibrated = calibrated_model(model, per)
@@ -806,6 +845,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                     "steps": [s for d in per for s in per[d]["steps"]],
                     "final_error": rel("final_error"),
                     "unexplained": any(per[d]["unexplained"] for d in per)})
+    out["dropped_dofs"] = dropped
     out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
                       for d, r in per.items()}
     if resimulate:

@@ -1,0 +1,240 @@
+"""Streams of a log: the columns a map asks for, with their sample times in seconds.
+
+A stream is a CSV file (with a header, or header-less with its column names in the map) or
+a topic of a ROS bag (:mod:`stripcoef.ingest.bags`); either becomes a :class:`Table`.
+Sample times are checked: time going backwards is an error naming the row; repeated
+timestamps keep the first sample; irregular sampling, gaps, bursts and a rate off the stated
+one are each a :class:`~stripcoef.errors.SamplingWarning` (thresholds below, docs/logs.md).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from stripcoef.errors import InputError, SamplingWarning
+from stripcoef.files import read_text
+from stripcoef.ingest.mapfile import TIME_UNITS, StreamSpec
+
+#: A step longer than GAP_FACTOR nominal periods is a gap [-].
+GAP_FACTOR = 2.5
+#: A step shorter than BURST_FACTOR nominal periods is part of a burst [-].
+BURST_FACTOR = 0.25
+#: Irregular: standard deviation of the steps (gaps and bursts left out) over their median [-].
+IRREGULAR_CV = 0.2
+#: A median rate off the stated rate by more than this fraction warns [-].
+RATE_TOLERANCE = 0.1
+
+
+@dataclass(frozen=True)
+class Table:
+    """Samples of one stream: ``t`` [s] strictly increasing and each used column (raw units).
+
+    ``t`` is in extended precision (``numpy.longdouble``) as read: epoch stamps in
+    nanoseconds (1.7e18) keep their nanoseconds, which float64 rounds to 256 ns (and to
+    0.24 us once in seconds); :mod:`.merge` subtracts a whole-second time base before it
+    works in float64."""
+    name: str
+    where: str
+    t: np.ndarray
+    columns: dict
+
+    def column(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+    @property
+    def median_rate(self) -> float:
+        """1 / median sample step [Hz] (inf for one sample)."""
+        return 1.0 / float(np.median(np.diff(self.t).astype(float))) if self.t.size > 1 \
+            else math.inf
+
+
+def _split_lines(text: str, spec: StreamSpec):
+    """(line number, cells) of the non-blank, non-comment lines."""
+    lines = text.splitlines()
+    if spec.delimiter == "whitespace":
+        rows = ((i + 1, ln.split()) for i, ln in enumerate(lines))
+    else:
+        reader = csv.reader(io.StringIO(text), delimiter=spec.delimiter)
+        rows = ((reader.line_num, [c.strip() for c in row]) for row in reader)
+    for num, cells in rows:
+        if not any(c.strip() for c in cells):
+            continue
+        if spec.comment and cells[0].lstrip().startswith(spec.comment):
+            continue
+        yield num, cells
+
+
+def read_csv_stream(path, spec: StreamSpec, needed) -> Table:
+    """The ``needed`` columns (and the time) of a CSV stream (module docstring).
+
+    Raises
+    ------
+    InputError
+        Missing file or column, a row with a wrong number of cells, a non-numeric or empty
+        cell (with ``missing: error``), time going backwards; each names the file, the
+        column and the line.
+    """
+    name = str(path)
+    text = read_text(Path(path), kind=f"CSV file of stream {spec.name!r}")
+    rows = list(_split_lines(text, spec))
+    if spec.header:
+        if not rows:
+            raise InputError("empty file", file=name, expected="a header row and data rows")
+        header = [h.strip() for h in rows[0][1]]
+        rows = rows[1:]
+    else:
+        header = list(spec.columns)
+    want = list(dict.fromkeys(([spec.time.column] if spec.time.column else []) + list(needed)))
+    idx = {}
+    for col in want:
+        if col not in header:
+            shown = ", ".join(header[:12]) + (", ..." if len(header) > 12 else "")
+            raise InputError(f"no column {col!r} in stream {spec.name!r}", file=name, key=col,
+                             expected=f"one of the file's columns ({shown})")
+        idx[col] = header.index(col)
+    if not rows:
+        raise InputError("no data rows", file=name, expected="at least two samples")
+    data = np.empty((len(rows), len(want)))
+    stamps = np.empty(len(rows), dtype=np.longdouble)
+    keep = np.ones(len(rows), dtype=bool)
+    for i, (num, cells) in enumerate(rows):
+        if len(cells) != len(header):
+            raise InputError(f"line {num} has {len(cells)} cells", file=name, key=f"line {num}",
+                             expected=f"{len(header)} cells like the "
+                             + ("header" if spec.header else "map's columns list"))
+        for j, col in enumerate(want):
+            cell = cells[idx[col]]
+            if j == 0 and spec.time.column:
+                stamp = _stamp(cell, spec.time.unit)
+                if stamp is None:
+                    if spec.missing == "drop" and cell.strip().lower() in ("", "nan"):
+                        keep[i] = False
+                        break
+                    raise InputError(f"bad time in line {num}", file=name, key=col, value=cell,
+                                     expected="an ISO 8601 date-time (2024-05-02T10:15:30.25Z)"
+                                     if spec.time.unit == "iso" else "a finite number")
+                stamps[i] = stamp
+                data[i, 0] = float(stamp)
+                continue
+            try:
+                v = float(cell) if cell.strip() else math.nan
+            except ValueError:
+                raise InputError(f"non-numeric cell in line {num}", file=name, key=col,
+                                 value=cell, expected="a number") from None
+            if not math.isfinite(v):
+                if spec.missing == "drop" and cell.strip().lower() in ("", "nan"):
+                    keep[i] = False
+                    break
+                raise InputError(f"missing or non-finite value in line {num}", file=name,
+                                 key=col, value=cell, expected="a finite number (or "
+                                 f"streams.{spec.name}.missing: drop to skip such rows)")
+            data[i, j] = v
+    data, stamps = data[keep], stamps[keep]
+    lines = np.array([num for (num, _), k in zip(rows, keep) if k])
+    if spec.time.column:
+        t = stamps * np.longdouble(TIME_UNITS[spec.time.unit]) + np.longdouble(spec.time.offset)
+        # ("iso" stamps are read in ns: TIME_UNITS["iso"] = 1e-9)
+    else:
+        t = np.longdouble(spec.time.start) + np.arange(data.shape[0]) / np.longdouble(
+            spec.time.rate)
+    cols = {c: data[:, j] for j, c in enumerate(want)}
+    return checked_table(spec, name, t, cols, lines=lines, time_key=spec.time.column or "t")
+
+
+def _stamp(cell: str, unit: str):
+    """A time cell as an extended-precision number in ``unit`` (ISO 8601 date-times in ns
+    since 1970-01-01 UTC, an explicit offset such as +02:00 converted to UTC); None if it is
+    empty or not a finite number / date-time."""
+    cell = cell.strip()
+    if not cell:
+        return None
+    try:
+        if unit == "iso":
+            with warnings.catch_warnings():      # numpy warns that it drops the offset
+                warnings.simplefilter("ignore")
+                ns = np.datetime64(cell[:-1] if cell.endswith("Z") else cell, "ns")
+            return None if np.isnat(ns) else np.longdouble(int(ns.astype(np.int64)))
+        value = np.longdouble(cell)
+    except (ValueError, TypeError, OverflowError):
+        return None
+    return value if np.isfinite(value) else None
+
+
+def checked_table(spec: StreamSpec, where: str, t, columns, *, lines=None,
+                  time_key: str = "t") -> Table:
+    """A :class:`Table` after the time checks (module docstring): backwards time is an
+    error, repeated times keep the first sample, sampling problems warn."""
+    t = np.asarray(t, dtype=np.longdouble)
+    if t.size < 2:
+        raise InputError(f"stream {spec.name!r} has {t.size} sample(s)", file=where,
+                         expected="at least two samples")
+    d = np.diff(t).astype(float)
+    back = np.nonzero(d < 0)[0]
+    if back.size:
+        k = int(back[0])
+        row = f"line {int(lines[k + 1])}" if lines is not None else f"sample {k + 2}"
+        raise InputError(f"time goes backwards at {row}", file=where, key=time_key,
+                         value=float(t[k + 1]), expected=f"non-decreasing time (previous "
+                         f"{float(t[k]):.9g})")
+    dup = np.nonzero(d == 0)[0] + 1
+    if dup.size:
+        warnings.warn(f"{where}: stream {spec.name!r}: {dup.size} repeated timestamp(s) "
+                      f"(the first at {float(t[dup[0]] - t[0]):.6g} s into the stream); kept "
+                      "the first sample of each",
+                      SamplingWarning, stacklevel=3)
+        keep = np.ones(t.size, dtype=bool)
+        keep[dup] = False
+        t = t[keep]
+        columns = {k: v[keep] for k, v in columns.items()}
+        if t.size < 2:
+            raise InputError(f"stream {spec.name!r} has one distinct time", file=where,
+                             key=time_key, expected="at least two sample times")
+    if spec.time.rate is None:
+        sampling_warnings(t, spec.rate, f"{where}: stream {spec.name!r}")
+    return Table(name=spec.name, where=where, t=t, columns=columns)
+
+
+def sampling_warnings(t, stated_rate=None, where: str = "") -> list:
+    """Warn (:class:`SamplingWarning`) on a stream's sampling; returns the messages.
+
+    A median rate off the stated one by more than ``RATE_TOLERANCE``; with the nominal step
+    h = 1/stated rate (the median step when there is no stated rate or it is off): steps longer than ``GAP_FACTOR`` h (gaps); steps
+    shorter than ``BURST_FACTOR`` h (bursts); and, among the other steps, a standard
+    deviation above ``IRREGULAR_CV`` of their median (irregular sampling).
+    """
+    t = np.asarray(t, dtype=np.longdouble)
+    d = np.diff(t).astype(float)
+    med = float(np.median(d))
+    out = []
+    h = med
+    if stated_rate is not None:
+        if abs(1.0 / med - stated_rate) > RATE_TOLERANCE * stated_rate:
+            out.append(f"median rate {1.0 / med:.4g} Hz, not the stated {stated_rate:g} Hz "
+                       "(gaps and bursts below are judged on the median step)")
+        else:
+            h = 1.0 / stated_rate
+    gaps = np.nonzero(d > GAP_FACTOR * h)[0]
+    if gaps.size:
+        k = int(gaps[np.argmax(d[gaps])])
+        out.append(f"{gaps.size} gap(s) longer than {GAP_FACTOR:g} sample periods, the "
+                   f"longest {d[k]:.4g} s at {float(t[k] - t[0]):.6g} s into the stream")
+    bursts = np.nonzero(d < BURST_FACTOR * h)[0]
+    if bursts.size:
+        out.append(f"{bursts.size} step(s) shorter than {BURST_FACTOR:g} sample periods "
+                   f"(bursts), the first at {float(t[bursts[0]] - t[0]):.6g} s into the stream")
+    normal = d[(d <= GAP_FACTOR * h) & (d >= BURST_FACTOR * h)]
+    if normal.size > 2:
+        cv = float(np.std(normal) / np.median(normal))
+        if cv > IRREGULAR_CV:
+            out.append(f"irregular sampling: step {np.median(normal):.4g} s +- "
+                       f"{np.std(normal):.3g} s ({100 * cv:.0f} % > {100 * IRREGULAR_CV:g} %)")
+    for msg in out:
+        warnings.warn(f"{where}: {msg}" if where else msg, SamplingWarning, stacklevel=3)
+    return out
