@@ -265,11 +265,24 @@ def _roll_is_roundoff(strips, m44, rho) -> bool:
     return not total > ROLL_ROUNDOFF * rho * float(np.sum(_strip_area(strips) ** 2 * strips.dx))
 
 
+def _fin_roll_mode(strips, m44) -> int | None:
+    """Symmetry order of a vehicle file's finned section with the largest roll added mass: 4 for
+    a cruciform (a vertical and a horizontal fin pair), 2 for one pair; None without fins."""
+    fins = [p for p in strips.parts if p.role == "fin"]
+    if not fins:
+        return None
+    k = int(np.argmax(np.asarray(m44)))
+    here = [p for p in fins if np.any(p.index == k)]
+    vertical = {bool(p.half_height[0] > p.half_breadth[0]) for p in here}
+    return 4 if len(vertical) == 2 else 2
+
+
 def _polygon_roll_mode(strips, m44) -> int | None:
     """Symmetry order of the section with the largest roll added mass, for bodies made of
-    polygon parts only (meshes); None otherwise (vehicle files: roll left uncorrected)."""
+    polygon parts only (meshes); for vehicle files the finned section's
+    (:func:`_fin_roll_mode`); None otherwise (roll left uncorrected)."""
     if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
-        return None
+        return _fin_roll_mode(strips, m44)
     if len(strips.parts) != 1:
         return 2
     p = strips.parts[0]
