@@ -133,7 +133,7 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
             horiz = [p for p in pairs if p[0] == 1]
             if vert and horiz:           # a cruciform: one roll term for the whole section
                 m44 = np.mean([finned_circle_roll(b, t, fins=4, rho=rho)
-                               for t in (vert[0][1], horiz[0][1])])
+                               for t in {vert[0][1], horiz[0][1]}])
                 groups = [(vert[0][2] + horiz[0][2], m44)]
                 rest = vert[1:] + horiz[1:]
             else:
