@@ -117,3 +117,36 @@ def test_partial_coverage_converges_like_the_bare_hull():
         fin = _added_mass(_vehicle(fins=("top", "bottom"), strips=n))
         bare = _added_mass(_vehicle(fins=(), strips=n))
         assert fin[1, 5] - bare[1, 5] == pytest.approx(exact, rel=1e-3), n
+
+
+# --- fin cross-flow drag ---------------------------------------------------------------------
+
+def test_plate_drag_aspect_ratio_table_and_limits():
+    from stripcoef.sections import drag
+    # the table's rows (data/plate_drag_aspect_ratio.csv, Hoerner 1965 ch. 3 via White table 7.3)
+    assert drag.plate_cd(1.0) == pytest.approx(1.18)
+    assert drag.plate_cd(5.0) == pytest.approx(1.2)
+    assert drag.plate_cd(20.0) == pytest.approx(1.5)
+    # the 2D plate is the infinite-aspect-ratio limit, and AR and 1/AR are the same plate
+    assert drag.plate_cd(1e12) == pytest.approx(drag.flat_plate_cd(), rel=1e-9)
+    assert drag.plate_cd(0.25) == drag.plate_cd(4.0)
+    ar = np.geomspace(1.0, 1e4, 50)
+    assert np.all(np.diff(drag.plate_cd(ar)) >= 0)          # monotone towards the 2D value
+
+
+def test_fin_crossflow_drag_uses_the_effective_aspect_ratio():
+    # sway drag of a vertical fin pair = 1/2 rho C_D(AR_e) (exposed area), AR_e = 2 span/chord
+    from stripcoef.sections import drag
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fin = estimate(_vehicle(fins=("top", "bottom"), strips=500))
+        bare = estimate(_vehicle(fins=(), strips=500))
+    span = TIP - R_HULL
+    cd = drag.plate_cd(2 * span / CHORD)
+    area = 2 * span * CHORD            # the two fins' exposed plan area, from root to tip
+    # the fins' part runs from their centre +- span/2 (their root is on the hull surface)
+    got = fin.quadratic_damping[1, 1] - bare.quadratic_damping[1, 1]
+    # the vertical fins' sway drag (their edge-on heave and friction terms do not enter D_Q[1,1]);
+    # measured -1.33 %: the 2D section is a rectangle of thickness/span 0.027, C_D 1.973 not 2.0
+    assert got == pytest.approx(0.5 * 1025.0 * cd * area, rel=0.02)
+    assert got < 0.5 * 1025.0 * 0.7 * drag.flat_plate_cd() * area    # far below the 2D plate
