@@ -2,7 +2,8 @@
 
 Run:
   python benchmarks/finned_bodies.py            # compare against the stored BEM references
-  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~2 min, ~2 GB)
+  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~10 min, ~3 GB)
+  python benchmarks/finned_bodies.py --convergence   # Y_rdot vs strip count 250..8000
 
 Bodies (all along x, metres, origin at mid-length): the REMUS-like Myring hull of
 benchmarks/mesh_shapes.py (Prestero 2001, table 2.1: a = 0.191, b = 0.654, c = 0.541,
@@ -227,10 +228,41 @@ def compare():
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bem", action="store_true", help="recompute the BEM references")
+    ap.add_argument("--convergence", action="store_true",
+                    help="the coupling vs the strip count instead of the BEM comparison")
     args = ap.parse_args()
+    if args.convergence:
+        convergence()
+        return
     if args.bem:
         run_bem()
     compare()
+
+
+
+def convergence(counts=(250, 500, 1000, 2000, 4000, 8000)):
+    """Y_rdot = -M_A[1,5] (about the origin) of the REMUS-like finned hull and of its bare hull vs
+    the strip count, each relative to its value at the largest count (docs/performance.md)."""
+    rows = []
+    for name, fins in (("finned", True), ("bare hull", False)):
+        vals = []
+        for n in counts:
+            d = vehicle_dict("remus_tail", n)
+            if not fins:
+                d["appendages"] = []
+            from stripcoef.assembly.estimate import estimate
+            from stripcoef.geometry.vehicle import parse_vehicle
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                m = estimate(parse_vehicle(d, file="<conv>")).added_mass
+            vals.append(m[1, 5])
+        rows.append((name, vals))
+    print("| body | " + " | ".join(str(n) for n in counts) + " |")
+    print("|---|" + "---|" * len(counts))
+    for name, vals in rows:
+        ref = vals[-1]
+        print(f"| {name} | " + " | ".join(f"{100 * (v - ref) / abs(ref):+.3f} %" for v in vals[:-1])
+              + f" | {ref:.5g} kg m |")
 
 
 if __name__ == "__main__":

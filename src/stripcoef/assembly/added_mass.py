@@ -33,12 +33,13 @@ from stripcoef.strips import Strips
 from stripcoef.strips import hole_widths, strip_added_mass
 
 
-def _fin_pairs(hull, ih, fins, s_idx):
+def _fin_pairs(hull, ih, fins, s_idx, reach):
     """The symmetric fin pairs of strip ``s_idx`` on the circular hull section ``ih``.
 
     A pair is two fins spanning the same axis (both along z, or both along y), centred on the
     hull's other coordinate, on opposite sides, with equal tip radius a > R, whose roots touch
-    the hull (root radius <= R).  Returns a list of (n, a, [(k, i), (k, i)], coverage): n the
+    the hull (root radius <= ``reach[k]``, the largest hull radius under fin part k: on a
+    tapering tail the root may stand off the hull at the fin's thin end).  Returns a list of (n, a, [(k, i), (k, i)], coverage): n the
     normal direction (0: sway, normal to vertical fins; 1: heave), a [m], the fins' (part,
     position) and the pair's mean coverage of the strip [-].
     """
@@ -66,8 +67,8 @@ def _fin_pairs(hull, ih, fins, s_idx):
                 lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
                 half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
             tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
-            touching = (abs(off_a) - half_a <= b * (1 + 1e-6)
-                        and abs(off_b) - half_b <= b * (1 + 1e-6))
+            touching = (abs(off_a) - half_a <= reach[ka] * (1 + 1e-6)
+                        and abs(off_b) - half_b <= reach[kb] * (1 + 1e-6))
             if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
                     and touching and tip_a > b):
                 continue
@@ -115,12 +116,16 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
     fin_strips = np.unique(np.concatenate([p.index for _, p in fins]))
     for kh, hull in hulls:
         pos_h = {int(i): j for j, i in enumerate(hull.index)}
+        reach = {}
+        for k, f in fins:
+            under = [pos_h[int(i)] for i in f.index if int(i) in pos_h]
+            reach[k] = float(np.max(hull.half_breadth[under])) if under else 0.0
         for s_idx in np.intersect1d(fin_strips, hull.index):
             ih = pos_h[int(s_idx)]
             b, h = hull.half_breadth[ih], hull.half_height[ih]
             if not np.isclose(b, h, rtol=1e-6):
                 continue
-            pairs = _fin_pairs(hull, ih, fins, s_idx)
+            pairs = _fin_pairs(hull, ih, fins, s_idx, reach)
             if not pairs:
                 continue
             circle = rho * np.pi * b * b
