@@ -242,12 +242,16 @@ def main():
 
 def convergence(counts=(250, 500, 1000, 2000, 4000, 8000)):
     """Y_rdot = -M_A[1,5] (about the origin) of the REMUS-like finned hull and of its bare hull vs
-    the strip count, each relative to its value at the largest count (docs/performance.md)."""
+    the strip count, each relative to its value at the largest count, with and without the 3D
+    corrections (docs/performance.md)."""
     rows = []
-    for name, fins in (("finned", True), ("bare hull", False)):
+    for name, fins, corr in (("finned, pure strip", True, False), ("finned, corrected", True, True),
+                             ("bare hull, pure strip", False, False),
+                             ("bare hull, corrected", False, True)):
         vals = []
         for n in counts:
             d = vehicle_dict("remus_tail", n)
+            d["corrections"] = corr
             if not fins:
                 d["appendages"] = []
             from stripcoef.assembly.estimate import estimate
