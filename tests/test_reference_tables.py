@@ -517,3 +517,12 @@ def test_data_rectangle_drag_square_within_published_range():
     rows = _data_csv("rectangle_drag.csv")
     cd_square = np.interp(1.0, [float(r["d_over_h"]) for r in rows], [float(r["Cd"]) for r in rows])
     assert val("hoerner", "square.Cd_min") <= cd_square <= val("hoerner", "square.Cd_max")
+
+
+def test_data_plate_aspect_ratio_drag_ends_at_the_published_2d_plate():
+    """The recalled plate-vs-aspect-ratio curve (data/plate_drag_aspect_ratio.csv) tends to the
+    long plate normal to the flow (data book 1.98) and stays below it (tip vortices)."""
+    rows = _data_csv("plate_drag_aspect_ratio.csv")
+    cd = {float(r["h_over_b"]): float(r["Cd"]) for r in rows}
+    assert cd[0.0] == pytest.approx(val("hoerner", "long_plate_normal.Cd"), abs=0.05)
+    assert all(v < val("hoerner", "long_plate_normal.Cd") for k, v in cd.items() if k > 0)

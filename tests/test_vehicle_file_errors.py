@@ -53,6 +53,18 @@ CASES = [
     ("floating appendage", lambda: dict(GOOD, appendages=[
         {"name": "far", "type": "box", "center": [0, 2.0, 0], "size": [0.1, 0.1, 0.1]}]),
      "appendages[0]", "intersects nothing"),
+    ("fin off the hull", lambda: dict(GOOD, appendages=[
+        {"name": "f", "type": "fin", "center": [-0.4, 0, -0.12], "span_axis": "z", "span": 0.04,
+         "chord": 0.05}]),
+     "appendages[0].center", "does not touch the hull"),
+    ("fin across the axis", lambda: dict(GOOD, appendages=[
+        {"name": "f", "type": "fin", "center": [0.0, 0, 0.0], "span_axis": "z", "span": 0.4,
+         "chord": 0.05}]),
+     "appendages[0].span", "crosses the hull axis"),
+    ("fin of zero span", lambda: dict(GOOD, appendages=[
+        {"name": "f", "type": "fin", "center": [0.0, 0, 0.15], "span_axis": "z", "span": 0,
+         "chord": 0.05}]),
+     "appendages[0].span", "must be positive"),
     ("bad reference", lambda: dict(GOOD, reference_point="nose"), "reference_point",
      "center_of_buoyancy"),
     ("bad thruster", lambda: dict(GOOD, thrusters=[{"name": "a", "position": [0, 0, 0],

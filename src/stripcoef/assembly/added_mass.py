@@ -33,65 +33,121 @@ from stripcoef.strips import Strips
 from stripcoef.strips import hole_widths, strip_added_mass
 
 
+def _fin_pairs(hull, ih, fins, s_idx, reach):
+    """The symmetric fin pairs of strip ``s_idx`` on the circular hull section ``ih``.
+
+    A pair is two fins spanning the same axis (both along z, or both along y), centred on the
+    hull's other coordinate, on opposite sides, with equal tip radius a > R, whose roots touch
+    the hull (root radius <= ``reach[k]``, the largest hull radius under fin part k: on a
+    tapering tail the root may stand off the hull at the fin's thin end).  Returns a list of (n, a, [(k, i), (k, i)], coverage): n the
+    normal direction (0: sway, normal to vertical fins; 1: heave), a [m], the fins' (part,
+    position) and the pair's mean coverage of the strip [-].
+    """
+    b = hull.half_breadth[ih]
+    here = []
+    for k, f in fins:
+        pos = np.nonzero(f.index == s_idx)[0]
+        if pos.size:
+            here.append((k, f, int(pos[0])))
+    pairs, used = [], set()
+    for u in range(len(here)):
+        for v in range(u + 1, len(here)):
+            if u in used or v in used:
+                continue
+            (ka, fa, ia), (kb, fb, ib) = here[u], here[v]
+            vertical = fa.half_height[ia] > fa.half_breadth[ia]
+            if vertical != (fb.half_height[ib] > fb.half_breadth[ib]):
+                continue
+            if vertical:
+                off_a, off_b = fa.z[ia] - hull.z[ih], fb.z[ib] - hull.z[ih]
+                lat_ok = np.isclose(fa.y[ia], hull.y[ih]) and np.isclose(fb.y[ib], hull.y[ih])
+                half_a, half_b = fa.half_height[ia], fb.half_height[ib]
+            else:
+                off_a, off_b = fa.y[ia] - hull.y[ih], fb.y[ib] - hull.y[ih]
+                lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
+                half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
+            tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
+            touching = (abs(off_a) - half_a <= reach[ka] * (1 + 1e-6)
+                        and abs(off_b) - half_b <= reach[kb] * (1 + 1e-6))
+            if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
+                    and touching and tip_a > b):
+                continue
+            used.update((u, v))
+            cov = 0.5 * (fa.coverage[ia] + fb.coverage[ib])
+            pairs.append((0 if vertical else 1, float(tip_a), [(ka, ia), (kb, ib)], float(cov)))
+    return pairs
+
+
 def _combine_fins(strips: Strips, mats: list, rho: float) -> None:
-    r"""Replace hull + fin-pair sums by the finned-circle section where it applies (in place).
+    r"""Replace hull + fin sums by the exact finned-circle section where it applies (in place).
 
     Where a circular hull section carries a symmetric pair of fins (both spanning along z,
-    mirrored about the hull axis, or both along y) whose roots touch the hull, the section
-    normal to the fins is the circle with fins of tip radius a:
+    mirrored about the hull axis, or both along y; :func:`_fin_pairs`) whose roots touch the
+    hull, the section normal to the fins is the circle with fins of tip radius a, and a
+    cruciform (a vertical and a horizontal pair) rolls as one section:
 
-    .. math:: m_n = \rho\pi(a^2 - R^2 + R^4/a^2),\qquad m_{44} = \tfrac{2}{\pi}\rho a^4
+    .. math:: m_n = \rho\pi(a^2 - R^2 + R^4/a^2),\qquad
+              m_{44} = m_{44}^{pair}(R, a)\ \text{or}\ m_{44}^{cruciform}(R, a)
 
-    (Blevins 1979 table 14-2; Prestero 2001 sec. 3.4) instead of the circle plus two
-    isolated plates, which ignores their interaction.  A cruciform section gets both pairs'
-    normal terms; its roll term is then the sum of the two pairs' (an approximation).
+    (:func:`stripcoef.sections.added_mass.circle_with_fins`, exact by conformal mapping:
+    Newman 1977 sec. 4.13; Blevins 1979 table 14-2; Prestero 2001 sec. 3.4), instead of the
+    circle plus isolated plates, which ignores their interaction.  The cruciform's roll is the
+    whole section's, counted once and shared by its four fins; with unequal tip radii
+    :math:`a_v \ne a_h` it is the mean of the two equal-tip cruciforms' [assumption: exact
+    when equal].
+
+    Partial coverage: where the fins cover only the fraction c of a strip (their leading and
+    trailing edges), the strip is the finned section over c and the bare circle over 1 - c,
+
+    .. math:: m_{hull,n} = \rho\pi R^2 + c\,(m_n - \rho\pi R^2)
+
+    (the fins' own roll entries are weighted by c through their coverage), so the strip
+    integral converges with the strip count like the bare hull's.
 
     Hull radius R and tip radius a [m], rho [kg/m^3]; m_n [kg/m], m_44 [kg m] per unit
     length, written into ``mats`` (per part, (k, 3, 3) [kg/m, kg, kg m]).
     """
-    from stripcoef.sections.added_mass import circle_with_fins
+    from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
 
     hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
     fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
     if not hulls or len(fins) < 2:
         return
+    fin_strips = np.unique(np.concatenate([p.index for _, p in fins]))
     for kh, hull in hulls:
         pos_h = {int(i): j for j, i in enumerate(hull.index)}
-        for a_i in range(len(fins)):
-            for b_i in range(a_i + 1, len(fins)):
-                (ka, fa), (kb, fb) = fins[a_i], fins[b_i]
-                common = np.intersect1d(np.intersect1d(fa.index, fb.index), hull.index)
-                for s_idx in common:
-                    ia = int(np.nonzero(fa.index == s_idx)[0][0])
-                    ib = int(np.nonzero(fb.index == s_idx)[0][0])
-                    ih = pos_h[int(s_idx)]
-                    b, h = hull.half_breadth[ih], hull.half_height[ih]
-                    if not np.isclose(b, h, rtol=1e-6):
-                        continue
-                    vertical = fa.half_height[ia] > fa.half_breadth[ia]
-                    if vertical != (fb.half_height[ib] > fb.half_breadth[ib]):
-                        continue
-                    if vertical:
-                        off_a, off_b = fa.z[ia] - hull.z[ih], fb.z[ib] - hull.z[ih]
-                        lat_ok = np.isclose(fa.y[ia], hull.y[ih]) and np.isclose(fb.y[ib], hull.y[ih])
-                        half_a, half_b = fa.half_height[ia], fb.half_height[ib]
-                        n = 0          # sway is normal to vertical fins
-                    else:
-                        off_a, off_b = fa.y[ia] - hull.y[ih], fb.y[ib] - hull.y[ih]
-                        lat_ok = np.isclose(fa.z[ia], hull.z[ih]) and np.isclose(fb.z[ib], hull.z[ih])
-                        half_a, half_b = fa.half_breadth[ia], fb.half_breadth[ib]
-                        n = 1          # heave is normal to horizontal fins
-                    tip_a, tip_b = abs(off_a) + half_a, abs(off_b) + half_b
-                    touching = (abs(off_a) - half_a <= b * (1 + 1e-6)
-                                and abs(off_b) - half_b <= b * (1 + 1e-6))
-                    if not (lat_ok and off_a * off_b < 0 and np.isclose(tip_a, tip_b, rtol=1e-6)
-                            and touching and tip_a > b):
-                        continue
-                    m_n, m44 = circle_with_fins(b, tip_a, rho=rho)
-                    mats[kh][ih, n, n] = m_n
-                    for k, i in ((ka, ia), (kb, ib)):
-                        mats[k][i, n, n] = 0.0
-                        mats[k][i, 2, 2] = 0.5 * m44
+        reach = {}
+        for k, f in fins:
+            under = [pos_h[int(i)] for i in f.index if int(i) in pos_h]
+            reach[k] = float(np.max(hull.half_breadth[under])) if under else 0.0
+        for s_idx in np.intersect1d(fin_strips, hull.index):
+            ih = pos_h[int(s_idx)]
+            b, h = hull.half_breadth[ih], hull.half_height[ih]
+            if not np.isclose(b, h, rtol=1e-6):
+                continue
+            pairs = _fin_pairs(hull, ih, fins, s_idx, reach)
+            if not pairs:
+                continue
+            circle = rho * np.pi * b * b
+            for n, tip, members, cov in pairs:
+                m_n, _ = circle_with_fins(b, tip, rho=rho)
+                mats[kh][ih, n, n] = circle + cov * (m_n - circle)
+                for k, i in members:
+                    mats[k][i, n, n] = 0.0
+            vert = [p for p in pairs if p[0] == 0]
+            horiz = [p for p in pairs if p[0] == 1]
+            if vert and horiz:           # a cruciform: one roll term for the whole section
+                m44 = np.mean([finned_circle_roll(b, t, fins=4, rho=rho)
+                               for t in {vert[0][1], horiz[0][1]}])
+                groups = [(vert[0][2] + horiz[0][2], m44)]
+                rest = vert[1:] + horiz[1:]
+            else:
+                groups, rest = [], pairs
+            for _, tip, members, _ in rest:
+                groups.append((members, finned_circle_roll(b, tip, fins=2, rho=rho)))
+            for members, m44 in groups:
+                for k, i in members:
+                    mats[k][i, 2, 2] = m44 / len(members)
 
 
 def section_matrices(strips: Strips, rho: float, panels: int | None = None) -> list:

@@ -179,8 +179,14 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
             kap_y = sdrag.cylinder_length_factor(np.clip(ld_y, 2, 100), re_y)
             kap_z = sdrag.cylinder_length_factor(np.clip(ld_z, 2, 100), re_z)
             # short parts (L/D < 2) keep the L/D = 2 factor: documented in theory.md
-        else:
+        else:   # a fin: the 2D plate in flow normal to it, reduced to its aspect ratio
             kap_y = kap_z = np.ones(p.index.size)
+            span = 2.0 * float(np.max(np.maximum(p.half_breadth, p.half_height)))
+            kappa = sdrag.fin_crossflow_factor(span, max(p.length, 1e-9))
+            if np.max(p.half_height) > np.max(p.half_breadth):
+                kap_y = np.full(p.index.size, kappa)     # vertical fin: sway is normal to it
+            else:
+                kap_z = np.full(p.index.size, kappa)
         cy, cz = hole_widths(strips, p)
         c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
         c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
@@ -190,7 +196,9 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                       np.column_stack([np.zeros(k), c_y, c_z]),
                       np.column_stack([np.full(k, 2.0), n_y, n_z])))
         if p.shape == "rectangle":   # roll of a sharp part about its own centre
-            c_self = 0.5 * rho * (cd_z * p.half_breadth**4 + cd_y * p.half_height**4) / 2 * dx
+            f_y, f_z = (kap_y, kap_z) if p.role == "fin" else (1.0, 1.0)   # fins: finite span
+            c_self = 0.5 * rho * (f_z * cd_z * p.half_breadth**4
+                                  + f_y * cd_y * p.half_height**4) / 2 * dx
             elems.append(("roll", float(c_self.sum()), 2.0))
         if p.role == "hull":
             mid = int(np.argmax(p.area))

@@ -495,6 +495,9 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
         if abs(h.offset) + 0.5 * h.diameter > width + 1e-12:
             raise r.err(f"holes[{i}].diameter", "hole wider than the hull there", h.diameter,
                         f"|offset| + diameter/2 <= {float(width):.4g} m (hull half-width at x)")
+    for i, body in enumerate(bodies[1:]):
+        if isinstance(body, Fin):
+            _check_fin(r, body, hull, f"appendages[{i}]")
     _check_connected(r, bodies)
     mass = _mass(r, data.get("mass"))
     for i, z in enumerate(mass.zones):
@@ -547,6 +550,41 @@ def _bbox(body) -> np.ndarray:
         half = np.array([0.5 * body.chord, 0.5 * body.thickness, 0.5 * body.thickness])
         half["xyz".index(body.span_axis)] = 0.5 * body.span
     return np.array([c - half, c + half])
+
+
+def _check_fin(r: _Reader, fin: Fin, hull: Hull, path: str) -> None:
+    """A radial fin (its span line through the hull's cross-section, e.g. a tail fin) must run
+    from the hull surface outward: its root radius (distance of the inner edge from the hull
+    axis) between 0 and the hull's half-width under the fin.
+
+    Root radius :math:`r_0 = |c_s - c_{hull}| - s/2` along the span axis (centre c [m], span s
+    [m]); the hull's half-height (z fins) or half-breadth (y fins) R(x) over the chord [m].
+    ``r_0 < 0``: the fin crosses the hull axis (a pair must be two fins, one each side: the
+    finned section of docs/theory.md pairs them); ``r_0 > max R``: the fin does not touch the
+    hull.  Fins off the hull's centre plane are left to the bounding-box check.
+    """
+    k = "xyz".index(fin.span_axis)
+    other = 2 if k == 1 else 1
+    axis = np.array([0.0, hull.y, hull.z])
+    lo, hi = fin.x_extent()
+    hlo, hhi = hull.x_extent()
+    xs = np.linspace(max(lo, hlo), min(hi, hhi), 65) if hi > hlo and lo < hhi else np.array([])
+    prof = hull.half_height if fin.span_axis == "z" else hull.half_breadth
+    across = hull.half_breadth if fin.span_axis == "z" else hull.half_height
+    reach = float(np.max(prof(xs))) if xs.size else 0.0
+    width = float(np.max(across(xs))) if xs.size else 0.0
+    if abs(fin.center[other] - axis[other]) > width:      # not on the hull's centre plane
+        return
+    root = abs(fin.center[k] - axis[k]) - 0.5 * fin.span
+    if root < -1e-9:
+        raise r.err(f"{path}.span", f"fin '{fin.name}' crosses the hull axis", fin.span,
+                    f"a fin from the hull surface outward: span <= 2 |center.{fin.span_axis}| = "
+                    f"{2 * abs(fin.center[k] - axis[k]):.4g} m (a fin pair is two fins)")
+    if root > reach * (1 + 1e-6) + 1e-9:
+        raise r.err(f"{path}.center", f"fin '{fin.name}' does not touch the hull",
+                    [float(v) for v in fin.center],
+                    f"a root radius |center.{fin.span_axis}| - span/2 = {root:.4g} m <= the hull's "
+                    f"half-width under the fin, {reach:.4g} m")
 
 
 def _check_connected(r: _Reader, bodies) -> None:

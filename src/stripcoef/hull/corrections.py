@@ -74,9 +74,10 @@ def _coverage(part) -> np.ndarray:
     return np.ones(part.index.size) if cov is None else np.asarray(cov, dtype=float)
 
 
-def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
+def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False, steps: bool = False):
     """Profile (x, r) with pi r^2 = per_strip (an area [m^2]), ends extrapolated linearly
-    (or closed to r = 0 at the body's ends).
+    (or closed to r = 0 at the body's ends); with ``steps``, a fin edge inside a strip
+    (:func:`fin_edges`) replaces that strip's station by a step at the edge.
 
     r = sqrt(A / pi) [m] at the strip centres x [m], plus end stations at x_min, x_max with
     A_end = max(A_0 + (A_1 - A_0)/(x_1 - x_0) (x_end - x_0), 0). [assumption] linear
@@ -94,8 +95,50 @@ def _equivalent_radius(strips, per_strip, *, closed_ends: bool = False):
     a_lo = 0.0 if closed_ends else end(0, 1, strips.x_min)
     a_hi = 0.0 if closed_ends else end(-1, -2, strips.x_max)
     xs = np.r_[strips.x_min, x, strips.x_max]
-    rs = np.sqrt(np.maximum(np.r_[a_lo, per_strip, a_hi], 0.0) / np.pi)
+    a = np.r_[a_lo, per_strip, a_hi]
+    edges = fin_edges(strips) if steps else []
+    if edges:      # a fin's edge strip: the step at the edge (the neighbours' areas each side)
+        xs_l, a_l, last = [], [], 0
+        for i, xe, outside, inside in edges:
+            j = i + 1                                   # station of strip i in xs
+            xs_l.append(xs[last:j])
+            a_l.append(a[last:j])
+            lo, hi = (outside, inside) if outside < inside else (inside, outside)
+            xs_l.append(np.array([xe, xe]))
+            a_l.append(np.array([per_strip[lo], per_strip[hi]]))
+            last = j + 1
+        xs_l.append(xs[last:])
+        a_l.append(a[last:])
+        xs, a = np.concatenate(xs_l), np.concatenate(a_l)
+    rs = np.sqrt(np.maximum(a, 0.0) / np.pi)
     return xs, rs
+
+
+def fin_edges(strips) -> list:
+    r"""The leading and trailing edges of vehicle-file fins that fall inside a strip.
+
+    For a fin part whose first (last) strip i is covered over the fraction c < 1, its edge is at
+    :math:`x_e = x_i + dx_i/2 - c\,dx_i` (:math:`x_e = x_i - dx_i/2 + c\,dx_i`) [m]: the finned
+    section holds on the fin's side of x_e and the bare one on the other.  Returns sorted
+    (i, x_e, outside, inside) tuples, ``outside``/``inside`` the neighbouring strip indices on
+    either side; only fins of at least 3 strips (the neighbours must be a bare and a wholly
+    covered strip).  Used by :func:`_equivalent_radius` to put the step of the equivalent body
+    where the fins end instead of smearing it over the strip.
+    """
+    out = {}
+    for p in strips.parts:
+        if p.role != "fin" or p.index.size < 3:
+            continue
+        order = np.argsort(p.index)
+        idx, cov = p.index[order], _coverage(p)[order]
+        for i, c, outside, inside, first in ((idx[0], cov[0], idx[0] - 1, idx[1], True),
+                                             (idx[-1], cov[-1], idx[-1] + 1, idx[-2], False)):
+            if c >= 1.0 - 1e-9 or outside < 0 or outside >= strips.n:
+                continue
+            half = 0.5 * strips.dx[i]
+            xe = strips.x[i] + half - c * 2 * half if first else strips.x[i] - half + c * 2 * half
+            out[int(i)] = (int(i), float(xe), int(outside), int(inside))
+    return [out[k] for k in sorted(out)]
 
 
 def _strip_area(strips) -> np.ndarray:
@@ -179,10 +222,11 @@ def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     """
     if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
-    xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
+    xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends, steps=True)
     m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,),
                                        area_linear=True)
-    a = np.pi * rs[1:-1] ** 2
+    # the strip sums of the same body (its stations; a fin's step is already in the strip means)
+    a = np.pi * np.sqrt(np.maximum(np.asarray(per_strip, dtype=float), 0.0) / np.pi) ** 2
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
     s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
@@ -265,11 +309,24 @@ def _roll_is_roundoff(strips, m44, rho) -> bool:
     return not total > ROLL_ROUNDOFF * rho * float(np.sum(_strip_area(strips) ** 2 * strips.dx))
 
 
+def _fin_roll_mode(strips, m44) -> int | None:
+    """Symmetry order of a vehicle file's finned section with the largest roll added mass: 4 for
+    a cruciform (a vertical and a horizontal fin pair), 2 for one pair; None without fins."""
+    fins = [p for p in strips.parts if p.role == "fin"]
+    if not fins:
+        return None
+    k = int(np.argmax(np.asarray(m44)))
+    here = [p for p in fins if np.any(p.index == k)]
+    vertical = {bool(p.half_height[0] > p.half_breadth[0]) for p in here}
+    return 4 if len(vertical) == 2 else 2
+
+
 def _polygon_roll_mode(strips, m44) -> int | None:
     """Symmetry order of the section with the largest roll added mass, for bodies made of
-    polygon parts only (meshes); None otherwise (vehicle files: roll left uncorrected)."""
+    polygon parts only (meshes); for vehicle files the finned section's
+    (:func:`_fin_roll_mode`); None otherwise (roll left uncorrected)."""
     if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
-        return None
+        return _fin_roll_mode(strips, m44)
     if len(strips.parts) != 1:
         return 2
     p = strips.parts[0]

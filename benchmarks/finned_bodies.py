@@ -1,0 +1,273 @@
+"""Finned Myring hulls: the vehicle-file strip model against a converged Capytaine BEM.
+
+Run:
+  python benchmarks/finned_bodies.py            # compare against the stored BEM references
+  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~10 min, ~3 GB)
+  python benchmarks/finned_bodies.py --convergence   # Y_rdot vs strip count 250..8000
+
+Bodies (all along x, metres, origin at mid-length): the REMUS-like Myring hull of
+benchmarks/mesh_shapes.py (Prestero 2001, table 2.1: a = 0.191, b = 0.654, c = 0.541,
+d = 0.191 m, n = 2, tail half-angle 25 deg; untruncated, L = 1.386 m) with a cruciform of four
+flat rectangular fins (thickness 0.012 m) on it, in three sizes and places (``CASES``).
+The BEM mesh is the hull of revolution unioned with four boxes running from the axis to the
+fin tip radius (benchmarks/mesh_shapes.py style); the vehicle file describes the same body
+with a ``profile`` of Myring segments and four ``fin`` appendages from the hull surface to the
+tip.
+
+BEM: ``stripcoef.bem.bem_added_mass`` (Capytaine, direct method, no free surface) about the
+origin, at two refinements of the mesh; the body's two reflection symmetries (y = 0, z = 0) let
+Capytaine solve a quarter mesh (<= 2,500 faces: the memory of a 5,000-face general mesh) for
+the full body's matrices (:func:`bem_quarter`, as in mesh_reference_convergence.py); the direct method converges at second
+order in the panel size h ~ N^(-1/2), so the error ~ 1/N and the Richardson value is
+A_inf = A_2 + (A_2 - A_1) N_1 / (N_2 - N_1).  The references are stored in
+benchmarks/data/bem_finned_bodies.csv (one row per case and mesh, plus the extrapolated row).
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import csv
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+RHO = 1025.0
+DATA = HERE / "data" / "bem_finned_bodies.csv"
+MYRING = {"a": 0.191, "b": 0.654, "c": 0.541, "d": 0.191, "n": 2.0, "theta_deg": 25.0}
+LENGTH = MYRING["a"] + MYRING["b"] + MYRING["c"]
+X0 = -0.5 * LENGTH
+THICKNESS = 0.012
+#: name -> (fin mid-chord x [m], chord [m], tip radius [m])
+CASES = {
+    "remus_tail": (X0 + 0.17, 0.08, 0.1425),      # the fin size of benchmarks/mesh_shapes.py
+    "large_tail": (X0 + 0.25, 0.12, 0.17),
+    "midbody": (0.10, 0.14, 0.16),
+}
+TERMS = [(i, j) for i in range(6) for j in range(i, 6)]
+DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+#: mesh levels: (meridian panels, sections round the axis, fin chord / largest fin edge); the
+#: panel size shrinks by about sqrt(2) from one level to the next (faces about x 2)
+MESH_LEVELS = ((38, 28, 5.7), (54, 40, 8.0))
+
+
+def hull_radius(x):
+    from stripcoef.geometry.profiles import myring_nose, myring_tail
+    p = MYRING
+    tail_end, mid_end = X0 + p["c"], X0 + p["c"] + p["b"]
+    x = np.asarray(x, float)
+    return np.where(x < tail_end, myring_tail(x, X0, tail_end, 0.5 * p["d"], np.radians(p["theta_deg"])),
+                    np.where(x > mid_end, myring_nose(x, mid_end, X0 + LENGTH, 0.5 * p["d"], p["n"]),
+                             0.5 * p["d"]))
+
+
+def vehicle_dict(case: str, strips: int = 1000) -> dict:
+    """The vehicle file (as a mapping) of a finned hull: Myring profile and four fins whose
+    root is the hull surface at the fin's aft edge (the smallest hull radius under the fin)."""
+    xc, chord, tip = CASES[case]
+    p = MYRING
+    r_root = float(hull_radius(xc - 0.5 * chord))
+    span = tip - r_root
+    mid = r_root + 0.5 * span
+    fins = []
+    for name, axis, c in (("top", "z", [xc, 0.0, -mid]), ("bottom", "z", [xc, 0.0, mid]),
+                          ("port", "y", [xc, -mid, 0.0]), ("starboard", "y", [xc, mid, 0.0])):
+        fins.append({"name": name, "type": "fin", "center": c, "span_axis": axis, "span": span,
+                     "chord": chord, "thickness": THICKNESS})
+    tail_end, mid_end = X0 + p["c"], X0 + p["c"] + p["b"]
+    return {"name": case, "strips": strips, "reference_point": [0.0, 0.0, 0.0],
+            "hull": {"profile": [
+                {"type": "myring_tail", "x": [X0, tail_end], "radius": 0.5 * p["d"],
+                 "theta_deg": p["theta_deg"]},
+                {"type": "cylinder", "x": [tail_end, mid_end], "radius": 0.5 * p["d"]},
+                {"type": "myring_nose", "x": [mid_end, X0 + LENGTH], "radius": 0.5 * p["d"],
+                 "n": p["n"]}]},
+            "appendages": fins}
+
+
+def bem_mesh(case: str, level: int):
+    import trimesh
+
+    from stripcoef.geometry.mesh import revolved_mesh
+    xc, chord, tip = CASES[case]
+    n_profile, sections, per_chord = MESH_LEVELS[level]
+    max_edge = chord / per_chord
+    x = X0 + LENGTH * 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, n_profile + 1)))
+    r = hull_radius(x)
+    r[0] = r[-1] = 0.0
+    # each level is built from scratch (the hull's facets converge to the body, not only the
+    # panels); the fins' boxes are split to edges <= max_edge before the union
+    hull = revolved_mesh(x, r, sections=sections)
+    fins = []
+    for ang in (0.0, 0.5 * np.pi, np.pi, 1.5 * np.pi):
+        box = trimesh.creation.box([chord, THICKNESS, tip])
+        box.apply_translation([xc, 0.0, 0.5 * tip])
+        box.apply_transform(trimesh.transformations.rotation_matrix(ang, [1, 0, 0]))
+        v, f = trimesh.remesh.subdivide_to_size(box.vertices, box.faces, max_edge=max_edge)
+        fins.append(trimesh.Trimesh(v, f, process=True))
+    return trimesh.boolean.union([hull] + fins, engine="manifold")
+
+
+#: Capytaine's frame is (x_c, y_c, z_c) = (y, z, x) of ours (a cyclic permutation, handedness
+#: kept), so our symmetry planes y = 0 and z = 0 are its yOz and xOz; its DOFs (surge_c, sway_c,
+#: heave_c, roll_c, pitch_c, yaw_c) are our (sway, heave, surge, pitch, yaw, roll)
+OURS_FROM_CAPYTAINE = (2, 0, 1, 5, 3, 4)
+
+
+def quarter(mesh):
+    """The y >= 0, z >= 0 quarter of a body symmetric about y = 0 and z = 0, open on those planes."""
+    import trimesh
+    q = trimesh.intersections.slice_mesh_plane(mesh, [0, 1, 0], [0, 0, 0], cap=False)
+    return trimesh.intersections.slice_mesh_plane(q, [0, 0, 1], [0, 0, 0], cap=False)
+
+
+def bem_quarter(mesh_q, rho=RHO):
+    """6x6 added mass about the origin of the body whose quarter is ``mesh_q``: Capytaine's
+    direct method on a ReflectionSymmetricMesh of ReflectionSymmetricMesh (the full body's
+    matrices with a quarter of the memory, benchmarks/mesh_reference_convergence.py)."""
+    import logging
+
+    import capytaine as cpt
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    v = np.asarray(mesh_q.vertices, float)[:, [1, 2, 0]]
+    q = cpt.Mesh(vertices=v, faces=np.asarray(mesh_q.faces, int))
+    mesh = cpt.ReflectionSymmetricMesh(half=cpt.ReflectionSymmetricMesh(half=q, plane="xOz"),
+                                       plane="yOz")
+    body = cpt.FloatingBody(mesh=mesh, dofs=cpt.rigid_body_dofs(rotation_center=(0.0, 0.0, 0.0)))
+    dofs = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+    pbs = [cpt.RadiationProblem(body=body, radiating_dof=d, free_surface=np.inf, omega=np.inf,
+                                rho=rho) for d in dofs]
+    res = cpt.BEMSolver(method="direct").solve_all(pbs, progress_bar=False)
+    a_c = np.array([[float(np.real(r.added_mass[d])) for d in dofs] for r in res]).T
+    p = OURS_FROM_CAPYTAINE
+    a = a_c[np.ix_(p, p)]
+    return 0.5 * (a + a.T)
+
+
+def run_bem():
+    rows = []
+    for case in CASES:
+        res = []
+        for level in range(len(MESH_LEVELS)):
+            mesh_q = quarter(bem_mesh(case, level))
+            t0 = time.perf_counter()
+            a = bem_quarter(mesh_q)
+            n = 4 * len(mesh_q.faces)
+            print(f"{case}: {n} faces, {time.perf_counter() - t0:.1f} s", flush=True)
+            res.append((n, a))
+            rows.append((case, str(n), a))
+        (n1, a1), (n2, a2) = res
+        rows.append((case, "richardson", a2 + (a2 - a1) * n1 / (n2 - n1)))
+    DATA.parent.mkdir(exist_ok=True)
+    with open(DATA, "w", newline="") as fh:
+        fh.write("# Added mass of finned Myring hulls (benchmarks/finned_bodies.py CASES), Capytaine BEM,\n"
+                 "# direct method, two reflection symmetries, no free surface, rho = 1025 kg/m^3, about the origin (mid-length),\n"
+                 "# FRD body axes; M_A entries (Fossen signs, positive diagonal) [kg, kg m, kg m^2].\n"
+                 "# Source: computed by benchmarks/finned_bodies.py --bem (stripcoef.bem.bem_added_mass);\n"
+                 "# faces = full-body mesh size (4 x the solved quarter), 'richardson' = A_2 + (A_2 - A_1) N_1/(N_2 - N_1) (second order in h).\n")
+        w = csv.writer(fh)
+        w.writerow(["case", "faces"] + [f"m{i}{j}" for i, j in TERMS])
+        for case, n, a in rows:
+            w.writerow([case, n] + [f"{a[i, j]:.8g}" for i, j in TERMS])
+
+
+def load_references() -> dict:
+    """case -> {faces or 'richardson': 6x6 array} from the stored csv."""
+    out: dict = {}
+    with open(DATA) as fh:
+        lines = [ln for ln in fh if not ln.startswith("#")]
+    for row in csv.DictReader(lines):
+        a = np.zeros((6, 6))
+        for i, j in TERMS:
+            a[i, j] = a[j, i] = float(row[f"m{i}{j}"])
+        out.setdefault(row["case"], {})[row["faces"]] = a
+    return out
+
+
+def strip_model(case: str, strips: int = 1000):
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.geometry.vehicle import parse_vehicle
+    veh = parse_vehicle(vehicle_dict(case, strips), file=f"<{case}>")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return estimate(veh).added_mass
+
+
+#: the terms compared (every non-zero one of a cruciform-finned body of revolution)
+COMPARED = [(0, 0), (1, 1), (2, 2), (3, 3), (4, 4), (5, 5), (1, 5), (2, 4)]
+
+
+def compare():
+    refs = load_references()
+    worst = 0.0
+    print("| case | term | BEM finest | BEM Richardson | strip (1000) | error % |")
+    print("|---|---|---|---|---|---|")
+    for case in CASES:
+        r = refs[case]
+        fine = r[max((k for k in r if k != "richardson"), key=int)]
+        conv = r["richardson"]
+        m = strip_model(case)
+        for i, j in COMPARED:
+            err = 100.0 * (m[i, j] - conv[i, j]) / conv[i, j]
+            worst = max(worst, abs(err))
+            print(f"| {case} | M_A[{i},{j}] | {fine[i, j]:.5g} | {conv[i, j]:.5g} | {m[i, j]:.5g} "
+                  f"| {err:+.2f} |")
+    print(f"largest error: {worst:.2f} %")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bem", action="store_true", help="recompute the BEM references")
+    ap.add_argument("--convergence", action="store_true",
+                    help="the coupling vs the strip count instead of the BEM comparison")
+    args = ap.parse_args()
+    if args.convergence:
+        convergence()
+        return
+    if args.bem:
+        run_bem()
+    compare()
+
+
+
+def convergence(counts=(250, 500, 1000, 2000, 4000, 8000)):
+    """Y_rdot = -M_A[1,5] (about the origin) of the REMUS-like finned hull and of its bare hull vs
+    the strip count, each relative to its value at the largest count, with and without the 3D
+    corrections (docs/performance.md)."""
+    rows = []
+    for name, fins, corr in (("finned, pure strip", True, False), ("finned, corrected", True, True),
+                             ("bare hull, pure strip", False, False),
+                             ("bare hull, corrected", False, True)):
+        vals = []
+        for n in counts:
+            d = vehicle_dict("remus_tail", n)
+            d["corrections"] = corr
+            if not fins:
+                d["appendages"] = []
+            from stripcoef.assembly.estimate import estimate
+            from stripcoef.geometry.vehicle import parse_vehicle
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                m = estimate(parse_vehicle(d, file="<conv>")).added_mass
+            vals.append(m[1, 5])
+        rows.append((name, vals))
+    print("| body | " + " | ".join(str(n) for n in counts) + " |")
+    print("|---|" + "---|" * len(counts))
+    for name, vals in rows:
+        ref = vals[-1]
+        print(f"| {name} | " + " | ".join(f"{100 * (v - ref) / abs(ref):+.3f} %" for v in vals[:-1])
+              + f" | {ref:.5g} kg m |")
+
+
+if __name__ == "__main__":
+    main()
