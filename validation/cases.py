@@ -28,6 +28,8 @@ Assumptions (not printed in the papers):
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from stripcoef.fluid import G
@@ -104,10 +106,10 @@ def videoray_pool_log(seed: int = 0, *, length=(3.0, 15.0), with_length: bool = 
     # thrust coefficient that makes the model predict 0.51 m/s at n = 60 (the paper's
     # simulation); keep Table I's forward/backward ratio
     scale = gap["thrust"] / gap["table_thrust"]
-    from dataclasses import replace
-    prior.thrusters = [replace(th, ct_forward=th.ct_forward * scale,
-                               ct_backward=th.ct_backward * scale)
-                       if th.name in ("port", "starboard") else th for th in prior.thrusters]
+    prior = replace(prior, thrusters=[replace(th, ct_forward=th.ct_forward * scale,
+                                              ct_backward=th.ct_backward * scale)
+                                      if th.name in ("port", "starboard") else th
+                                      for th in prior.thrusters])
     c_t = gap["c_t_L"] / (0.5 * (length[0] + length[1]))
     dt = 0.1
     levels = [30, 60, 90, 60, -60, 60, 30, 90, 60]
@@ -180,7 +182,7 @@ def romeo_log(index: int, seed: int = 0):
     rng = np.random.default_rng(1000 * index + seed)
     truth = romeo_model(k_w=ROMEO_TRUTH["k_w"], k_ww=ROMEO_TRUTH["k_ww"])
     weight = romeo_weight(index)
-    truth.mass = ROMEO_MASS + weight / G
+    truth = replace(truth, mass=ROMEO_MASS + weight / G)
     levels = rng.permutation([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
     f = []
     for lv in levels:

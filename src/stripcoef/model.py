@@ -14,7 +14,9 @@ All matrices are about :attr:`HydroModel.reference_point` in FRD body axes.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from types import MappingProxyType
 
 import numpy as np
 
@@ -130,7 +132,7 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
 
 def plain(value):
     """Recursively convert numpy scalars/arrays to plain Python types (JSON/YAML safe)."""
-    if isinstance(value, dict):
+    if isinstance(value, Mapping):
         return {str(k): plain(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
@@ -141,9 +143,31 @@ def plain(value):
     return value
 
 
-@dataclass
+def _frozen_array(value) -> np.ndarray:
+    """A float copy of ``value`` that cannot be written to (``setflags(write=False)``)."""
+    a = np.array(value, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+def _frozen_mapping(value) -> Mapping:
+    """A read-only view of a shallow copy of ``value`` (a mapping; ``None`` = empty)."""
+    return MappingProxyType(dict(value or {}))
+
+
+#: the array fields of a HydroModel, frozen by ``__post_init__``
+_ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
+           "quadratic_damping", "center_of_gravity", "center_of_buoyancy")
+
+
+@dataclass(frozen=True)
 class HydroModel:
     """A vehicle's hydrodynamic model about one reference point (FRD body axes).
+
+    Immutable: the fields cannot be assigned, the arrays are read-only copies, the
+    thrusters and effects are tuples and ``conditions`` / ``provenance`` read-only
+    mappings. A changed model is a new one: :func:`dataclasses.replace`,
+    :meth:`about`, :meth:`with_effects`, :meth:`with_provenance`.
 
     Attributes
     ----------
@@ -156,12 +180,12 @@ class HydroModel:
     center_of_gravity, center_of_buoyancy : (3,) [m], body axes (absolute, not relative)
     density : float [kg/m^3]
     kinematic_viscosity : float [m^2/s]
-    thrusters : list of Thruster
-    conditions : dict
+    thrusters : tuple of Thruster
+    conditions : mapping
         Reynolds numbers, regimes and drag coefficients used (for reports)
-    effects : list of dict
+    effects : tuple of dict
         Extra force terms added by calibration (see :mod:`stripcoef.effects.laws`)
-    provenance : dict
+    provenance : mapping
         Where each part came from (method, options, file)
     """
 
@@ -178,10 +202,35 @@ class HydroModel:
     density: float
     kinematic_viscosity: float = 1.19e-6
     gravity: float = G
-    thrusters: list[Thruster] = field(default_factory=list)
-    conditions: dict = field(default_factory=dict)
-    effects: list[dict] = field(default_factory=list)
-    provenance: dict = field(default_factory=dict)
+    thrusters: tuple[Thruster, ...] = ()
+    conditions: Mapping = field(default_factory=dict)
+    effects: tuple[dict, ...] = ()
+    provenance: Mapping = field(default_factory=dict)
+
+    def __post_init__(self):
+        for name in _ARRAYS:
+            object.__setattr__(self, name, _frozen_array(getattr(self, name)))
+        object.__setattr__(self, "thrusters", tuple(self.thrusters))
+        object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
+                                                  for e in self.effects))
+        object.__setattr__(self, "conditions", _frozen_mapping(self.conditions))
+        object.__setattr__(self, "provenance", _frozen_mapping(self.provenance))
+
+    def __reduce__(self):
+        # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
+        # mapping cannot be pickled)
+        args = tuple(dict(v) if isinstance(v, MappingProxyType) else v
+                     for v in (getattr(self, f.name) for f in fields(self)))
+        return (type(self), args)
+
+    def with_effects(self, *entries) -> "HydroModel":
+        """A copy with ``entries`` (effect dicts, see :mod:`stripcoef.effects.laws`) appended
+        to :attr:`effects`."""
+        return replace(self, effects=self.effects + tuple(entries))
+
+    def with_provenance(self, **entries) -> "HydroModel":
+        """A copy whose :attr:`provenance` has ``entries`` added (or replaced)."""
+        return replace(self, provenance={**self.provenance, **entries})
 
     # -- derived quantities -------------------------------------------------
     @property

@@ -40,8 +40,8 @@ Steps, for each degree of freedom (issue 7):
 
 from __future__ import annotations
 
-import copy
 import math
+from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
@@ -818,31 +818,41 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     return out
 
 
-def _apply_calibration(m, i: int, cal: dict, per: dict) -> None:
-    """Add the calibration of DOF ``i`` to model ``m`` (its arrays, in place): its own M,
-    D_L, D_Q, and the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that
-    DOF is diagnosed itself, whose own calibration then holds."""
-    for key, mat in (("M", m.added_mass), ("D_L", m.linear_damping),
-                     ("D_Q", m.quadratic_damping)):
+def _apply_calibration(mats: dict, i: int, cal: dict, per: dict) -> None:
+    """Add the calibration of DOF ``i`` to the matrices ``mats`` (``M``, ``D_L``, ``D_Q``:
+    writable copies of a model's M_A, D_L, D_Q, changed in place): its own M, D_L, D_Q, and
+    the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed
+    itself, whose own calibration then holds."""
+    for key in ("M", "D_L", "D_Q"):
         if key in cal:
-            mat[i, i] += cal[key]
+            mats[key][i, i] += cal[key]
     for key, value in cal.items():
         if key.startswith("M_") and key[2:] not in per:
             j = parse_dof(key[2:])
-            m.added_mass[j, j] += value
+            mats["M"][j, j] += value
+
+
+def _writable_matrices(model) -> dict:
+    """Writable copies of a model's M_A, D_L, D_Q under the calibration's names."""
+    return {"M": np.array(model.added_mass, float), "D_L": np.array(model.linear_damping, float),
+            "D_Q": np.array(model.quadratic_damping, float)}
+
+
+def _with_matrices(model, mats: dict):
+    """``model`` with the matrices of :func:`_writable_matrices` (a new model)."""
+    return replace(model, added_mass=mats["M"], linear_damping=mats["D_L"],
+                   quadratic_damping=mats["D_Q"])
 
 
 def calibrated_model(model, per: dict):
-    """The prior with its calibrated coefficients and the added effects."""
-    m = copy.deepcopy(model)
-    m.added_mass = np.array(m.added_mass, float)
-    m.linear_damping = np.array(m.linear_damping, float)
-    m.quadratic_damping = np.array(m.quadratic_damping, float)
+    """The prior with its calibrated coefficients and the added effects (a new model)."""
+    m = model
+    mats = _writable_matrices(m)
     record = []
     for d, r in per.items():
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
-        _apply_calibration(m, i, cal, per)
+        _apply_calibration(mats, i, cal, per)
         cfg = r["_final_config"]
         theta = r["_final_eval"]["full"]["theta"]
         k = len(r["calibration"]["parameters"])
@@ -853,32 +863,28 @@ def calibrated_model(model, per: dict):
             tn = theta[k:k + kn]
             params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
             for name, value in zip(eff.nuisance_names, tn):
-                target = {"M": m.added_mass, "D_L": m.linear_damping,
-                          "D_Q": m.quadratic_damping}.get(name)
-                if target is not None:  # a prior coefficient released by this effect
-                    target[i, i] += value
+                if name in mats:  # a prior coefficient released by this effect
+                    mats[name][i, i] += value
             k += ncol
             step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
-            eff.apply(m, i, params, step.get("std"))
+            # a native effect adds its term to the matrices calibrated so far
+            m = eff.apply(_with_matrices(m, mats), i, params, step.get("std"))
+            mats = _writable_matrices(m)
         record.append({"dof": d, "calibration": cal,
                        "effects": [s["effect"] for s in r["steps"]]})
-    m.provenance = dict(m.provenance)
-    m.provenance["diagnose"] = record
-    m.name = f"{model.name}-calibrated"
-    return m
+    m = _with_matrices(m, mats).with_provenance(diagnose=record)
+    return replace(m, name=f"{model.name}-calibrated")
 
 
 def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
     """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
     only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
     simulation diverges)."""
-    only_cal = copy.deepcopy(prior)
-    only_cal.added_mass = np.array(prior.added_mass, float)
-    only_cal.linear_damping = np.array(prior.linear_damping, float)
-    only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
+    mats = _writable_matrices(prior)
     for d, r in per.items():
         i = parse_dof(d)
-        _apply_calibration(only_cal, i, r["calibration"]["parameters"], per)
+        _apply_calibration(mats, i, r["calibration"]["parameters"], per)
+    only_cal = _with_matrices(prior, mats)
     dofs = [parse_dof(d) for d in per]
     rows = {name: resimulate_rms(log, m, dofs) for name, m in
             (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}

@@ -23,6 +23,8 @@ What the effects are fitted to, the log's window data, is :mod:`stripcoef.effect
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from dataclasses import replace
 
 import numpy as np
 
@@ -137,11 +139,11 @@ class Effect:
         raise NotImplementedError
 
     def apply(self, model, dof: int, params: dict, std: dict | None = None):
-        """Add the effect to a (copied) model: as an entry of ``model.effects``."""
-        model.effects = list(model.effects) + [{
+        """The model with the effect added (a new model; ``model`` is immutable): as an
+        entry of ``model.effects``."""
+        return model.with_effects({
             "name": self.name, "dof": DOF[dof], "parameters": dict(params),
-            "std": dict(std or {}), "units": dict(self.parameters)}]
-        return model
+            "std": dict(std or {}), "units": dict(self.parameters)})
 
 
 def _unit_vec(dof):
@@ -547,10 +549,10 @@ class LinearDrag(Effect):
         return lambda time, eta, nu, inputs: -d * inputs.get("nu_r", nu)[dof] * e
 
     def apply(self, model, dof, params, std=None):
+        """The model with d_L added to D_L[dof, dof] (a new model)."""
         dl = np.array(model.linear_damping, dtype=float)
         dl[dof, dof] += params["d_L"]
-        model.linear_damping = dl
-        return model
+        return replace(model, linear_damping=dl)
 
 
 class Deadband(Effect):
@@ -633,11 +635,11 @@ class Deadband(Effect):
         return f
 
     def apply(self, model, dof, params, std=None):
-        from dataclasses import replace
+        """The model whose thrusters acting in ``dof`` have the dead band (a new model)."""
         b = model.allocation()[dof]
-        model.thrusters = [replace(th, deadband=max(th.deadband, params["deadband"]))
-                           if abs(b[k]) > 1e-9 else th for k, th in enumerate(model.thrusters)]
-        return model
+        return replace(model, thrusters=[
+            replace(th, deadband=max(th.deadband, params["deadband"]))
+            if abs(b[k]) > 1e-9 else th for k, th in enumerate(model.thrusters)])
 
 
 class AddedMassError(Effect):
@@ -681,10 +683,10 @@ class AddedMassError(Effect):
                          key="effects", value=self.name, expected="a native model change")
 
     def apply(self, model, dof, params, std=None):
+        """The model with delta_m added to M_A[dof, dof] (a new model)."""
         ma = np.array(model.added_mass, dtype=float)
         ma[dof, dof] += params["delta_m"]
-        model.added_mass = ma
-        return model
+        return replace(model, added_mass=ma)
 
 
 #: The registry: one instance per effect, by name.
@@ -708,7 +710,7 @@ def effect_forces(model) -> list:
     """
     out = []
     for k, entry in enumerate(model.effects):
-        if not isinstance(entry, dict) or "name" not in entry:
+        if not isinstance(entry, Mapping) or "name" not in entry:
             raise InputError("effect entry without a name", key=f"effects[{k}]",
                              value=entry, expected="{name, dof, parameters}")
         eff = get_effect(entry["name"])
