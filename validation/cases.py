@@ -36,7 +36,7 @@ from stripcoef.fluid import G
 from stripcoef.logfile import Log
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.simulate import simulate
-from stripcoef.diagnose.pipeline import diagnose, fit_effects, public
+from stripcoef.diagnose.pipeline import diagnose, fit_effects
 from stripcoef.effects.laws import get_effect
 from validation.experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
 from validation.synthetic import add_noise, rov_model
@@ -136,10 +136,10 @@ def videoray_case(seed: int = 0) -> dict:
     out = {"gap": gap}
     log, prior, c_t = videoray_pool_log(seed, with_length=True)
     out["c_t_truth"] = c_t
-    out["with_tether_length"] = public(diagnose(log, prior, dof="surge"))
+    out["with_tether_length"] = diagnose(log, prior, dof="surge").to_dict()
     without = Log({k: v for k, v in log.columns.items() if k != "tether_length"},
                   source=log.source + " without tether_length")
-    out["without_tether_length"] = public(diagnose(without, prior, dof="surge"))
+    out["without_tether_length"] = diagnose(without, prior, dof="surge").to_dict()
     return out
 
 
@@ -214,7 +214,7 @@ def romeo_case(seed: int = 0) -> list:
         log, prior, weight = romeo_log(i, seed)
         standard = fit_effects(log, prior, "heave", ["buoyancy_offset"])
         with_eta = fit_effects(log, prior, "heave", ["thrust_asymmetry", "buoyancy_offset"])
-        res = public(diagnose(log, prior, dof="heave"))
+        res = diagnose(log, prior, dof="heave").to_dict()
         rows.append({"experiment": i, "weight_truth": weight,
                      "standard_buoyancy": standard["parameters"]["buoyancy_offset"]["b"],
                      "standard_buoyancy_std": standard["std"]["buoyancy_offset"]["b"],

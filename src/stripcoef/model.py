@@ -143,6 +143,153 @@ def plain(value):
     return value
 
 
+@dataclass(frozen=True, eq=False)
+class Conditions(Mapping):
+    """The conditions a strip-theory model was computed at, and the factors it used.
+
+    A typed record (``model.conditions.regime``) that also reads as the read-only mapping of
+    the JSON output (``model.conditions["regime"]``, ``"k1" in c``): its keys are the fields
+    that are set (not ``None``), in field order, then :attr:`extra`. :meth:`to_dict` is the
+    ``conditions`` object of ``coefficients --json`` (docs/conventions.md). Which fields are
+    set depends on the model: hull terms only with a hull part, ``blunt_hull_cd`` for a
+    blunt hull, ``members``/``junction_pieces`` for per-member corrections, the
+    ``end_correction_*`` factors with corrections and ``k1`` without.
+
+    Attributes
+    ----------
+    reference_speed : float
+        U, the speed of the Reynolds numbers and of the damping split [m/s]
+    reference_rate : float
+        Omega = U / (L/2), the rotation rate of the split [rad/s]
+    reynolds_length : float
+        Re_L = U L / nu [-]
+    regime : str
+        Friction regime used (laminar or turbulent)
+    cf_laminar, cf_turbulent, cf_used : float
+        Blasius and ITTC-1957 friction coefficients at Re_L, and the one used [-]
+    wetted_area : float
+        Hull wetted area S_wet [m^2]
+    form_factor : float
+        Hoerner form factor FF [-]
+    axial_drag_coefficient_wetted, axial_drag_coefficient_frontal : float
+        C_f FF on the wetted area, and the same drag on the frontal area [-]
+    blunt_hull_cd : float
+        Axial pressure drag coefficient of a blunt hull end [-]
+    hull_reynolds_diameter : float
+        Re on the hull's largest cross-flow extent [-]
+    hull_crossflow_cd_y, hull_crossflow_cd_z : float
+        2D cross-flow drag coefficients of the hull's largest section [-]
+    hull_length_factor : float
+        Finite-length factor kappa of the hull's cross-flow drag [-]
+    equivalent_spheroid_L_over_D : float
+        L/D of the equal-length, equal-volume spheroid [-]
+    section_panels : int
+        Panels per 2D polygon section, when given
+    members, junction_pieces : int
+        Members and junction pieces of per-member corrections
+    end_correction_sway, end_correction_heave, end_correction_pitch, end_correction_yaw : float
+        3D correction factors of the strip matrix' diagonal [-]
+    k1 : float
+        Lamb's axial coefficient of the equivalent spheroid (no corrections) [-]
+    axial_added_mass : float
+        m_11 [kg]
+    correction_method : str
+        How the 3D terms were obtained
+    correction_panels : int
+        Meridian panels of the axisymmetric solves
+    strips : int
+        Number of strips
+    corrections : bool
+        3D corrections on
+    density : float
+        rho [kg/m^3]
+    kinematic_viscosity : float
+        nu [m^2/s]
+    fluid : str
+        Source of the fluid properties
+    length : float
+        Body length L [m]
+    extra : mapping
+        Keys of a model file that are none of the above, kept as they were
+    """
+
+    reference_speed: float | None = None
+    reference_rate: float | None = None
+    reynolds_length: float | None = None
+    regime: str | None = None
+    cf_laminar: float | None = None
+    cf_turbulent: float | None = None
+    cf_used: float | None = None
+    wetted_area: float | None = None
+    form_factor: float | None = None
+    axial_drag_coefficient_wetted: float | None = None
+    axial_drag_coefficient_frontal: float | None = None
+    blunt_hull_cd: float | None = None
+    hull_reynolds_diameter: float | None = None
+    hull_crossflow_cd_y: float | None = None
+    hull_crossflow_cd_z: float | None = None
+    hull_length_factor: float | None = None
+    equivalent_spheroid_L_over_D: float | None = None
+    section_panels: int | None = None
+    members: int | None = None
+    junction_pieces: int | None = None
+    end_correction_sway: float | None = None
+    end_correction_heave: float | None = None
+    end_correction_pitch: float | None = None
+    end_correction_yaw: float | None = None
+    k1: float | None = None
+    axial_added_mass: float | None = None
+    correction_method: str | None = None
+    correction_panels: int | None = None
+    strips: int | None = None
+    corrections: bool | None = None
+    density: float | None = None
+    kinematic_viscosity: float | None = None
+    fluid: str | None = None
+    length: float | None = None
+    extra: Mapping = field(default_factory=dict)
+
+    def __post_init__(self):
+        object.__setattr__(self, "extra", MappingProxyType(dict(self.extra)))
+
+    @classmethod
+    def from_dict(cls, data) -> "Conditions":
+        """The conditions of a mapping (a model file's ``conditions``, or
+        :meth:`to_dict`); keys that are not fields go to :attr:`extra`, in their order."""
+        if isinstance(data, cls):
+            return data
+        names = {f.name for f in fields(cls)} - {"extra"}
+        data = dict(data or {})
+        return cls(**{k: v for k, v in data.items() if k in names},
+                   extra={k: v for k, v in data.items() if k not in names})
+
+    def _keys(self):
+        return [f.name for f in fields(self)
+                if f.name != "extra" and getattr(self, f.name) is not None] + list(self.extra)
+
+    def __getitem__(self, key):
+        if key in self.extra:
+            return self.extra[key]
+        if key != "extra" and key in self.__dataclass_fields__:
+            value = getattr(self, key)
+            if value is not None:
+                return value
+        raise KeyError(key)
+
+    def __iter__(self):
+        return iter(self._keys())
+
+    def __len__(self):
+        return len(self._keys())
+
+    def __repr__(self):
+        return f"Conditions({dict(self)!r})"
+
+    def to_dict(self) -> dict:
+        """The set fields then :attr:`extra`, as a plain dict (JSON ``conditions``)."""
+        return {k: self[k] for k in self._keys()}
+
+
 def _frozen_array(value) -> np.ndarray:
     """A float copy of ``value`` that cannot be written to (``setflags(write=False)``)."""
     a = np.array(value, dtype=float)
@@ -165,8 +312,8 @@ class HydroModel:
     """A vehicle's hydrodynamic model about one reference point (FRD body axes).
 
     Immutable: the fields cannot be assigned, the arrays are read-only copies, the
-    thrusters and effects are tuples and ``conditions`` / ``provenance`` read-only
-    mappings. A changed model is a new one: :func:`dataclasses.replace`,
+    thrusters and effects are tuples, ``conditions`` a :class:`Conditions` and
+    ``provenance`` a read-only mapping. A changed model is a new one: :func:`dataclasses.replace`,
     :meth:`about`, :meth:`with_effects`, :meth:`with_provenance`.
 
     Attributes
@@ -181,8 +328,9 @@ class HydroModel:
     density : float [kg/m^3]
     kinematic_viscosity : float [m^2/s]
     thrusters : tuple of Thruster
-    conditions : mapping
-        Reynolds numbers, regimes and drag coefficients used (for reports)
+    conditions : Conditions
+        Reynolds numbers, regimes, drag coefficients and correction factors used (for
+        reports); a dict given here is read by :meth:`Conditions.from_dict`
     effects : tuple of dict
         Extra force terms added by calibration (see :mod:`stripcoef.effects.laws`)
     provenance : mapping
@@ -203,7 +351,7 @@ class HydroModel:
     kinematic_viscosity: float = 1.19e-6
     gravity: float = G
     thrusters: tuple[Thruster, ...] = ()
-    conditions: Mapping = field(default_factory=dict)
+    conditions: Conditions = field(default_factory=Conditions)
     effects: tuple[dict, ...] = ()
     provenance: Mapping = field(default_factory=dict)
 
@@ -213,13 +361,13 @@ class HydroModel:
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
         object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
                                                   for e in self.effects))
-        object.__setattr__(self, "conditions", _frozen_mapping(self.conditions))
+        object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
         object.__setattr__(self, "provenance", _frozen_mapping(self.provenance))
 
     def __reduce__(self):
         # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
         # mapping cannot be pickled)
-        args = tuple(dict(v) if isinstance(v, MappingProxyType) else v
+        args = tuple(dict(v) if isinstance(v, (MappingProxyType, Conditions)) else v
                      for v in (getattr(self, f.name) for f in fields(self)))
         return (type(self), args)
 
@@ -362,7 +510,7 @@ class HydroModel:
             "gravity": float(self.gravity),
             "coefficients": self.coefficients(),
             "thrusters": [t.to_dict() for t in self.thrusters],
-            "conditions": plain(self.conditions),
+            "conditions": plain(self.conditions.to_dict()),
             "effects": plain(self.effects),
             "provenance": plain(self.provenance),
         }

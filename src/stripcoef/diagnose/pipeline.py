@@ -41,7 +41,9 @@ Steps, for each degree of freedom (issue 7):
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
@@ -526,8 +528,9 @@ def _generic_basis(data: WindowData, dof: int):
 # ---------------------------------------------------------------------------
 
 def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
-                 max_steps: int = MAX_STEPS) -> dict:
-    """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module)."""
+                 max_steps: int = MAX_STEPS):
+    """Run steps 1-5 for one DOF; returns the per-DOF result (the JSON-ready dictionary of
+    :attr:`Diagnosis.per_dof`, see module) and its :class:`DofFit`."""
     names = list(effects) if effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
     cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands)
@@ -621,10 +624,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
     result["final_held_out_error"] = cur["held_out_error"]
     result["structure_after"] = _structure(data, dof, cur["full"]["resid"], library)
     result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur)
-    result["_final_config"] = cfg
-    result["_final_eval"] = cur
-    result["_e0"] = e0
-    return result
+    return result, DofFit(config=cfg, evaluation=cur, prior_residual=e0)
 
 
 def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
@@ -738,6 +738,130 @@ class _Generic:
 # public API
 # ---------------------------------------------------------------------------
 
+@dataclass(frozen=True)
+class DofFit:
+    """The final fit of one DOF's diagnosis, beyond its JSON: what the calibrated model and
+    the residual plots are computed from.
+
+    Attributes
+    ----------
+    config : the calibration columns and the accepted effects (with their nonlinear
+        parameters) of the final fit
+    evaluation : dict
+        Its fit on all windows (``full``: ``theta``, ``cov``, ``resid``, ...) and held-out
+        errors
+    prior_residual : (n_windows,) array
+        The prior's window force residual e_i [N or N m]
+    """
+
+    config: _Config
+    evaluation: dict
+    prior_residual: np.ndarray
+
+
+#: the keys of :meth:`Diagnosis.to_dict`, in order (the JSON contract of ``diagnose --json``)
+_JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "dof", "units",
+                "baseline_error", "calibrated_error", "steps", "final_error", "unexplained",
+                "per_dof", "resimulated_velocity_rms", "resimulated_velocity_description")
+
+
+def _json_ready(x):
+    """Plain JSON types: numpy scalars to Python, non-finite floats to None."""
+    if isinstance(x, Mapping):
+        return {k: _json_ready(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_json_ready(v) for v in x]
+    if isinstance(x, (np.floating, float)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, np.bool_):
+        return bool(x)
+    return x
+
+
+@dataclass(frozen=True)
+class Diagnosis:
+    """The result of :func:`diagnose`.
+
+    Attributes
+    ----------
+    metric, metric_description : str
+        The error metric (:data:`METRIC`; ``..._relative`` for several DOFs)
+    window_s : float
+        Window of the one-step residual [s]
+    log, vehicle : str
+        The log's source and the prior model's name
+    dof, units : str
+        The DOF diagnosed (or ``all``) and the metric's units
+    baseline_error, calibrated_error, final_error : float
+        The metric for the prior, after the calibration, after the added effects (several
+        DOFs: RMS over the DOFs of each DOF's error relative to its baseline)
+    steps : tuple of dict
+        The effects added, in order (effect, parameters, std, errors before and after ...)
+    unexplained : bool
+        A structured residual remains that no library effect explains
+    per_dof : mapping
+        DOF name -> its detailed result (calibration, candidates, structure, steps ...)
+    model : HydroModel
+        The calibrated model (the prior with its calibration and the added effects)
+    resimulated_velocity_rms : dict, optional
+        DOF -> RMS re-simulated velocity error of the prior, the calibrated prior and the
+        final model [m/s or rad/s] (with ``resimulate``)
+    resimulated_velocity_description : str, optional
+    fits : mapping
+        DOF name -> :class:`DofFit` (for :meth:`residual_curves`)
+    """
+
+    metric: str
+    metric_description: str
+    window_s: float
+    log: str
+    vehicle: str
+    dof: str
+    units: str
+    baseline_error: float
+    calibrated_error: float
+    steps: tuple
+    final_error: float
+    unexplained: bool
+    per_dof: Mapping
+    model: object
+    resimulated_velocity_rms: dict | None = None
+    resimulated_velocity_description: str | None = None
+    fits: Mapping = field(default_factory=dict, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "steps", tuple(self.steps))
+        object.__setattr__(self, "per_dof", MappingProxyType(dict(self.per_dof)))
+        object.__setattr__(self, "fits", MappingProxyType(dict(self.fits)))
+
+    def to_dict(self) -> dict:
+        """The JSON output of ``diagnose --json`` (no model; non-finite numbers as null)."""
+        out = {}
+        for key in _JSON_FIELDS:
+            value = getattr(self, key)
+            if value is not None or not key.startswith("resimulated"):
+                out[key] = value
+        return _json_ready(out)
+
+    def residual_curves(self, dof: str):
+        """Window mid-times [s] and the window force residual [N or N m] of DOF ``dof``:
+        ``(t, [(label, residual), ...])`` for the prior, the calibrated prior and after
+        each added effect."""
+        fit = self.fits[dof]
+        cfg = fit.config
+        data = cfg.data
+        tw = 0.5 * (data.t[data.i0] + data.t[data.i1])
+        curves = [("prior", fit.prior_residual)]
+        for k in range(len(cfg.terms) + 1):
+            c = _Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd, cfg.terms[:k])
+            label = "calibrated" if k == 0 else f"+ {cfg.terms[k - 1][0].name}"
+            curves.append((label, _fit(c)["resid"]))
+        return tw, curves
+
+
 def excited_dofs(data: WindowData) -> list:
     """DOFs with both an applied force and motion (velocity std > 1e-3)."""
     out = []
@@ -748,7 +872,7 @@ def excited_dofs(data: WindowData) -> list:
 
 
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
-             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> dict:
+             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -768,12 +892,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 
     Returns
     -------
-    dict
-        The JSON contract: ``metric``, ``baseline_error``, ``calibrated_error``, ``steps``
-        (each with ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
+    Diagnosis
+        ``metric``, ``baseline_error``, ``calibrated_error``, ``steps`` (each with
+        ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
         ``held_out_error_before``, ``held_out_error_after``), ``final_error``,
-        ``unexplained``; plus ``per_dof`` details and ``model`` (the calibrated HydroModel,
-        not serialised).
+        ``unexplained``, ``per_dof`` details, ``model`` (the calibrated HydroModel);
+        :meth:`Diagnosis.to_dict` is the JSON contract (everything but the model).
     """
     data = window_data(log, model, window=window)
     if str(dof).lower() == "all":
@@ -784,38 +908,35 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                              "motion")
     else:
         dofs = [parse_dof(dof)]
-    per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
-           for i in dofs}
-    calibrated = calibrated_model(model, per)
-    out = {"metric": METRIC, "metric_description": METRIC_TEXT, "window_s": window,
-           "log": log.source, "vehicle": model.name}
+    per, fits = {}, {}
+    for i in dofs:
+        per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, effects=effects, bands=bands,
+                                                 max_steps=max_steps)
+    calibrated = calibrated_model(model, per, fits)
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
-        out.update({"dof": r["dof"], "units": r["units"],
-                    "baseline_error": r["baseline_error"],
-                    "calibrated_error": r["calibrated_error"],
-                    "steps": r["steps"], "final_error": r["final_error"],
-                    "unexplained": r["unexplained"]})
+        summary = {"metric": METRIC, "dof": r["dof"], "units": r["units"],
+                   "baseline_error": r["baseline_error"],
+                   "calibrated_error": r["calibrated_error"],
+                   "steps": r["steps"], "final_error": r["final_error"],
+                   "unexplained": r["unexplained"]}
     else:
         def rel(key):
             return float(np.sqrt(np.mean([(per[d][key] / per[d]["baseline_error"]) ** 2
                                           for d in per])))
-        out.update({"dof": "all", "units": "relative to each DOF's baseline",
-                    "metric": METRIC + "_relative",
-                    "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
-                    "steps": [s for d in per for s in per[d]["steps"]],
-                    "final_error": rel("final_error"),
-                    "unexplained": any(per[d]["unexplained"] for d in per)})
-    out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
-                      for d, r in per.items()}
+        summary = {"metric": METRIC + "_relative", "dof": "all",
+                   "units": "relative to each DOF's baseline",
+                   "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
+                   "steps": [s for d in per for s in per[d]["steps"]],
+                   "final_error": rel("final_error"),
+                   "unexplained": any(per[d]["unexplained"] for d in per)}
     if resimulate:
-        out["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
-        out["resimulated_velocity_description"] = (
+        summary["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
+        summary["resimulated_velocity_description"] = (
             "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF: "
             "the prior, the prior with its calibrated coefficients, and the final model")
-    out["_per_dof_internal"] = per
-    out["model"] = calibrated
-    return out
+    return Diagnosis(metric_description=METRIC_TEXT, window_s=window, log=log.source,
+                     vehicle=model.name, per_dof=per, model=calibrated, fits=fits, **summary)
 
 
 def _apply_calibration(mats: dict, i: int, cal: dict, per: dict) -> None:
@@ -844,8 +965,9 @@ def _with_matrices(model, mats: dict):
                    quadratic_damping=mats["D_Q"])
 
 
-def calibrated_model(model, per: dict):
-    """The prior with its calibrated coefficients and the added effects (a new model)."""
+def calibrated_model(model, per: dict, fits: dict):
+    """The prior with its calibrated coefficients and the added effects (a new model);
+    ``per``: DOF -> its result (:func:`diagnose_dof`), ``fits``: DOF -> its :class:`DofFit`."""
     m = model
     mats = _writable_matrices(m)
     record = []
@@ -853,8 +975,8 @@ def calibrated_model(model, per: dict):
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
         _apply_calibration(mats, i, cal, per)
-        cfg = r["_final_config"]
-        theta = r["_final_eval"]["full"]["theta"]
+        cfg = fits[d].config
+        theta = fits[d].evaluation["full"]["theta"]
         k = len(r["calibration"]["parameters"])
         for eff, hyper in cfg.terms:
             ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
@@ -937,25 +1059,6 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
             v = VELOCITIES[i]
             err[i].append(sim[v] - log.get(v, np.zeros(t.size))[sl])
     return [_rms(np.concatenate(err[i])) for i in dofs]
-
-
-def public(result: dict) -> dict:
-    """The JSON-serialisable part of a diagnosis result (drops the model and internals)."""
-    def clean(x):
-        if isinstance(x, dict):
-            return {k: clean(v) for k, v in x.items() if not str(k).startswith("_")
-                    and k != "model"}
-        if isinstance(x, (list, tuple)):
-            return [clean(v) for v in x]
-        if isinstance(x, (np.floating, float)):
-            x = float(x)
-            return x if math.isfinite(x) else None
-        if isinstance(x, np.integer):
-            return int(x)
-        if isinstance(x, np.bool_):
-            return bool(x)
-        return x
-    return clean(result)
 
 
 def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, bands=None) -> dict:
