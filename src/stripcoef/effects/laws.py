@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import FrozenInstanceError, replace
 
 import numpy as np
 
@@ -53,7 +53,18 @@ THRUST_BAND = 0.05
 # ---------------------------------------------------------------------------
 
 class Effect:
-    """Base class: see the module docstring for the interface."""
+    """Base class: see the module docstring for the interface.
+
+    An effect is a frozen spec: its name, parameters, physics and regressors are class
+    attributes and methods, and an instance cannot be changed (the registry :data:`EFFECTS`
+    shares one instance per effect with every caller).
+    """
+
+    def __setattr__(self, name, value):
+        raise FrozenInstanceError(f"effect {self.name!r} is immutable (cannot set {name!r})")
+
+    def __delattr__(self, name):
+        raise FrozenInstanceError(f"effect {self.name!r} is immutable (cannot delete {name!r})")
 
     name = ""
     summary = ""
@@ -689,7 +700,7 @@ class AddedMassError(Effect):
         return replace(model, added_mass=ma)
 
 
-#: The registry: one instance per effect, by name.
+#: The registry: name -> the effect (one frozen instance per effect).
 EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
                                BuoyancyOffset(), Current(), LinearDrag(), Deadband(),
                                AddedMassError())}
