@@ -22,7 +22,7 @@ import numpy as np
 
 from stripcoef.conventions import DOF, sname_coefficients, skew, transform_matrix
 from stripcoef.errors import ModelWarning
-from stripcoef.fluid import G
+from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
 
 
@@ -250,7 +250,7 @@ class Conditions(Mapping):
     extra: Mapping = field(default_factory=dict)
 
     def __post_init__(self):
-        object.__setattr__(self, "extra", MappingProxyType(dict(self.extra)))
+        object.__setattr__(self, "extra", frozen_mapping(self.extra))
 
     @classmethod
     def from_dict(cls, data) -> "Conditions":
@@ -290,14 +290,14 @@ class Conditions(Mapping):
         return {k: self[k] for k in self._keys()}
 
 
-def _frozen_array(value) -> np.ndarray:
+def frozen_array(value) -> np.ndarray:
     """A float copy of ``value`` that cannot be written to (``setflags(write=False)``)."""
     a = np.array(value, dtype=float)
     a.setflags(write=False)
     return a
 
 
-def _frozen_mapping(value) -> Mapping:
+def frozen_mapping(value) -> Mapping:
     """A read-only view of a shallow copy of ``value`` (a mapping; ``None`` = empty)."""
     return MappingProxyType(dict(value or {}))
 
@@ -348,7 +348,7 @@ class HydroModel:
     center_of_gravity: np.ndarray
     center_of_buoyancy: np.ndarray
     density: float
-    kinematic_viscosity: float = 1.19e-6
+    kinematic_viscosity: float = NU_SEAWATER
     gravity: float = G
     thrusters: tuple[Thruster, ...] = ()
     conditions: Conditions = field(default_factory=Conditions)
@@ -357,12 +357,12 @@ class HydroModel:
 
     def __post_init__(self):
         for name in _ARRAYS:
-            object.__setattr__(self, name, _frozen_array(getattr(self, name)))
+            object.__setattr__(self, name, frozen_array(getattr(self, name)))
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
         object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
                                                   for e in self.effects))
         object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
-        object.__setattr__(self, "provenance", _frozen_mapping(self.provenance))
+        object.__setattr__(self, "provenance", frozen_mapping(self.provenance))
 
     def __reduce__(self):
         # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
@@ -538,7 +538,7 @@ class HydroModel:
             center_of_gravity=np.asarray(data["center_of_gravity"], float),
             center_of_buoyancy=np.asarray(data["center_of_buoyancy"], float),
             density=float(data["density"]),
-            kinematic_viscosity=float(data.get("kinematic_viscosity", 1.19e-6)),
+            kinematic_viscosity=float(data.get("kinematic_viscosity", NU_SEAWATER)),
             gravity=float(data.get("gravity", G)),
             thrusters=thr, conditions=data.get("conditions", {}),
             effects=list(data.get("effects", [])), provenance=data.get("provenance", {}),

@@ -43,13 +43,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from types import MappingProxyType
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError
+from stripcoef.model import frozen_mapping, plain
 from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
 from stripcoef.effects.windows import window_data
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
@@ -765,19 +765,14 @@ _JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "d
                 "per_dof", "resimulated_velocity_rms", "resimulated_velocity_description")
 
 
-def _json_ready(x):
-    """Plain JSON types: numpy scalars to Python, non-finite floats to None."""
-    if isinstance(x, Mapping):
-        return {k: _json_ready(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_json_ready(v) for v in x]
-    if isinstance(x, (np.floating, float)):
-        x = float(x)
-        return x if math.isfinite(x) else None
-    if isinstance(x, np.integer):
-        return int(x)
-    if isinstance(x, np.bool_):
-        return bool(x)
+def _finite_or_none(x):
+    """``x`` (plain JSON types, :func:`stripcoef.model.plain`) with non-finite floats as None."""
+    if isinstance(x, dict):
+        return {k: _finite_or_none(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_finite_or_none(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
     return x
 
 
@@ -834,8 +829,8 @@ class Diagnosis:
 
     def __post_init__(self):
         object.__setattr__(self, "steps", tuple(self.steps))
-        object.__setattr__(self, "per_dof", MappingProxyType(dict(self.per_dof)))
-        object.__setattr__(self, "fits", MappingProxyType(dict(self.fits)))
+        object.__setattr__(self, "per_dof", frozen_mapping(self.per_dof))
+        object.__setattr__(self, "fits", frozen_mapping(self.fits))
 
     def to_dict(self) -> dict:
         """The JSON output of ``diagnose --json`` (no model; non-finite numbers as null)."""
@@ -844,7 +839,7 @@ class Diagnosis:
             value = getattr(self, key)
             if value is not None or not key.startswith("resimulated"):
                 out[key] = value
-        return _json_ready(out)
+        return _finite_or_none(plain(out))
 
     def residual_curves(self, dof: str):
         """Window mid-times [s] and the window force residual [N or N m] of DOF ``dof``:

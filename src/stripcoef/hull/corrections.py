@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.model import frozen_array
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
                                          mode_inertia, ring_body_added_mass)
 
@@ -304,9 +305,7 @@ class CorrectionFactors:
     method: str
 
     def __post_init__(self):
-        scale = np.array(self.scale, dtype=float)
-        scale.setflags(write=False)
-        object.__setattr__(self, "scale", scale)
+        object.__setattr__(self, "scale", frozen_array(self.scale))
 
     @property
     def translation(self) -> float:
