@@ -19,7 +19,8 @@ Assumptions (not printed in the papers):
   (:data:`VIDEORAY_TETHER_DIAMETER`), normal drag coefficient 1.2 (Hoerner 1965, ch. 3),
   tangential friction coefficient 0.015 (:data:`TETHER_CF`); in the generated pool log
   the tether is paid out from 3 to 15 m.
-- ROMEO: mass 500 kg and heave added mass 500 kg (an open frame of about 1.3 x 0.9 x 1 m);
+- ROMEO: mass 450 kg (:data:`validation.experiments.ROMEO_MASS`: the chapter prints no mass)
+  and heave added mass 500 kg (an open frame of about 1.3 x 0.9 x 1 m);
   one diver's lead of 2 kg per experiment step (experiment 3 neutral, 1-2 buoyant, 4-5
   heavy, as the chapter's footnote says); applied heave forces of 10 to 60 N each way held
   20 s; heave velocity noise 5 mm/s; the prior is the chapter's standard-model estimate
@@ -38,7 +39,8 @@ from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.simulate import simulate
 from stripcoef.diagnose.pipeline import diagnose, fit_effects
 from stripcoef.effects.laws import get_effect
-from validation.experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
+from validation.experiments import (RHO_LEAD, ROMEO_MASS, ROMEO_TRUTH,  # noqa: F401 (re-exported)
+                                    romeo_weights)
 from validation.synthetic import add_noise, rov_model
 
 #: Wang & Clark 2006, sec. IV.A: predicted and measured surge speed at n = 60 [m/s]
@@ -147,9 +149,7 @@ def videoray_case(seed: int = 0) -> dict:
 # ROMEO
 # ---------------------------------------------------------------------------
 
-ROMEO_TRUTH = {"k_w": 50.0, "k_ww": 424.0, "eta": 0.57}      # Indiveri 1998, eq. 4.17 (eta model)
 ROMEO_STANDARD = {"k_w": 116.0, "k_ww": 403.0}               # Indiveri 1998, eq. 4.17 (standard)
-ROMEO_MASS = 500.0
 ROMEO_ADDED_MASS = 500.0
 ROMEO_LEAD = 2.0
 
