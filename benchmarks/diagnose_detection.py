@@ -39,7 +39,7 @@ from pathlib import Path as _Path  # noqa: E402
 sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
 
 from stripcoef.conventions import parse_dof  # noqa: E402
-from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose, public  # noqa: E402
+from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose  # noqa: E402
 from stripcoef.effects.laws import get_effect  # noqa: E402
 from validation.synthetic import MAGNITUDES, OUTSIDE, effect_signal, generate  # noqa: E402
 
@@ -64,7 +64,7 @@ def run_one(effect, seed, window=DEFAULT_WINDOW, second=None, duration=DURATION)
     t0 = time.process_time()
     log, prior, truth = generate(effect, seed, second=second, duration=duration)
     t1 = time.process_time()
-    res = public(diagnose(log, prior, dof=dof, window=window))
+    res = diagnose(log, prior, dof=dof, window=window).to_dict()
     t2 = time.process_time()
     snr = effect_signal(truth, parse_dof(dof), window=window)["snr"] \
         if effect and not second else 0.0

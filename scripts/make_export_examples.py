@@ -28,7 +28,7 @@ if __name__ == "__main__":
     model = stripcoef.estimate(stripcoef.load_vehicle(ROOT / "geometry" / "mares.yaml"))
     notes = []
     for name, fmt, options in EXAMPLES:
-        assert not FORMATS[fmt].BINARY
+        assert not FORMATS[fmt].binary
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             write_export(model, fmt, OUT / name, **options)

@@ -7,7 +7,7 @@ named first, magnitude within 15 %, error cut at least threefold.
 
 import pytest
 
-from stripcoef.diagnose.pipeline import diagnose, public
+from stripcoef.diagnose.pipeline import diagnose
 from stripcoef.effects.laws import get_effect
 from validation.synthetic import MAGNITUDES, generate
 
@@ -18,7 +18,7 @@ EFFECTS = sorted(MAGNITUDES)
 def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
     log, prior, truth = generate(effect, seed=11)
     dof = MAGNITUDES[effect]["dof"]
-    res = public(diagnose(log, prior, dof=dof))
+    res = diagnose(log, prior, dof=dof).to_dict()
     assert res["steps"], f"{effect}: nothing found ({res['per_dof'][dof]['candidates']})"
     first = res["steps"][0]
     assert first["effect"] == effect
@@ -39,21 +39,21 @@ def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
 @pytest.mark.parametrize("seed", [21, 22])
 def test_clean_log_adds_no_effect(seed):
     log, prior, _ = generate(None, seed=seed)
-    res = public(diagnose(log, prior, dof="surge"))
+    res = diagnose(log, prior, dof="surge").to_dict()
     assert res["steps"] == []
     assert res["final_error"] == res["calibrated_error"]
 
 
 def test_effect_outside_the_library_is_not_claimed_as_a_large_gain():
     log, prior, truth = generate("coulomb_friction", seed=2)
-    res = public(diagnose(log, prior, dof="surge"))
+    res = diagnose(log, prior, dof="surge").to_dict()
     gains = [s["held_out_gain"] for s in res["steps"]]
     assert res["unexplained"] or max(gains, default=0.0) < 0.3
 
 
 def test_two_effects_at_once():
     log, prior, truth = generate("tether_drag", seed=1, second="thrust_asymmetry")
-    res = public(diagnose(log, prior, dof="surge"))
+    res = diagnose(log, prior, dof="surge").to_dict()
     found = [s["effect"] for s in res["steps"]]
     assert set(found[:2]) == {"tether_drag", "thrust_asymmetry"}
     params = {s["effect"]: s["parameters"] for s in res["steps"]}
@@ -70,7 +70,7 @@ def test_tether_without_length_column_is_a_tie_with_quadratic_drag():
     log, prior, truth = generate("tether_drag", seed=5, magnitude=0.08)
     cols = {k: v for k, v in log.columns.items() if k != "tether_length"}
     from stripcoef.logfile import Log
-    res = public(diagnose(Log(cols), prior, dof="surge"))
+    res = diagnose(Log(cols), prior, dof="surge").to_dict()
     cand = {c["effect"]: c for c in res["per_dof"]["surge"]["candidates"]}
     assert cand["tether_drag"]["signature"] is None
     assert cand["tether_drag"]["mimics"] == "D_Q"

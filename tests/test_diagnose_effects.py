@@ -1,5 +1,7 @@
 """The effects library: registry, vectorised terms, and force laws that match regressors."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -60,8 +62,8 @@ def test_force_law_and_regressor_agree(name):
     prior = rov_model()
     dof = DOFS[name]
     truth = rov_model()
-    truth.effects = [{"name": name, "dof": ["surge", "sway", "heave"][dof],
-                      "parameters": CASES[name]}]
+    truth = truth.with_effects({"name": name, "dof": ["surge", "sway", "heave"][dof],
+                                "parameters": CASES[name]})
     rng = np.random.default_rng(0)
     t, cmds = manoeuvre(rng, duration=40.0)
     length = 2.0 + 0.3 * t
@@ -91,20 +93,20 @@ def test_native_effects_change_the_model_and_are_not_forces():
     for name, params in (("linear_drag", {"d_L": 2.0}), ("deadband", {"deadband": 30.0}),
                          ("added_mass_error", {"delta_m": 1.0})):
         eff = get_effect(name)
-        m = eff.apply(__import__("copy").deepcopy(model), 0, params)
-        assert m.effects == []
-    m = get_effect("linear_drag").apply(__import__("copy").deepcopy(model), 0, {"d_L": 2.0})
+        m = eff.apply(model, 0, params)
+        assert m.effects == ()
+    m = get_effect("linear_drag").apply(model, 0, {"d_L": 2.0})
     assert m.linear_damping[0, 0] == pytest.approx(model.linear_damping[0, 0] + 2.0)
-    m = get_effect("deadband").apply(__import__("copy").deepcopy(model), 0, {"deadband": 30.0})
+    m = get_effect("deadband").apply(model, 0, {"deadband": 30.0})
     assert [th.deadband for th in m.thrusters] == [30.0, 30.0, 0.0, 0.0]
 
 
 def test_effect_forces_reject_bad_entries():
     model = rov_model()
-    model.effects = [{"name": "nope", "dof": "surge", "parameters": {}}]
+    model = replace(model, effects=[{"name": "nope", "dof": "surge", "parameters": {}}])
     with pytest.raises(InputError, match="tether_drag"):
         effect_forces(model)
-    model.effects = [{"name": "tether_drag", "dof": "surge", "parameters": {}}]
+    model = replace(model, effects=[{"name": "tether_drag", "dof": "surge", "parameters": {}}])
     with pytest.raises(InputError, match="c_t"):
         effect_forces(model)
 

@@ -83,9 +83,10 @@ def test_romeo_buoyancy_bias_disappears(romeo):
 
 @pytest.mark.xfail(strict=True, reason=(
     "experiment 5 (the heaviest, W - B = +35.7 N, most upward thrust): the eta model's fitted "
-    "scale is high (inertia +23 %, eta_forward +6 %, b = 42.3 +- 1.6 N against 35.7 N; 40.5 "
-    "+- 2.2 N with raw window end values), the same with 10x wider bands, so not the band "
-    "priors; cause not traced. The bias still shrinks from 32.6 N to 6.6 N."))
+    "scale is high (added mass +21 %, eta_forward +6 %, b = 42.0 +- 1.5 N against 35.7 N; "
+    "with the earlier 500 kg body: b = 40.5 +- 2.2 N with raw window end values, and the same "
+    "with 10x wider bands, so not the band priors); cause not traced. The bias still shrinks "
+    "from 33.6 N to 6.3 N."))
 def test_romeo_experiment_5_buoyancy_within_three_sigma(romeo):
     row = romeo[4]
     assert abs(row["eta_buoyancy"] - row["weight_truth"]) < 3 * row["eta_buoyancy_std"]

@@ -16,6 +16,8 @@ import re
 import warnings
 import xml.etree.ElementTree as ET
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from _export_models import torpedo, warning_messages
@@ -102,7 +104,7 @@ def test_tags_are_the_plugins_and_signs_are_sname():
 def test_damping_force_in_link_frame_matches_model(point):
     """The plugin's force on FLU link-origin velocities equals the model's (FRD, at the CO)."""
     model = torpedo()
-    model.quadratic_damping[:] = 0.0        # D_Q is moved approximately; checked at the CO below
+    model = replace(model, quadratic_damping=np.zeros((6, 6)))  # D_Q is moved approximately; checked at the CO below
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         text = export_model(model, "gazebo", point=point)
@@ -201,7 +203,9 @@ def test_inertial_cg_pose_and_buoyancy_volume():
 
 def test_asymmetric_added_mass_is_a_trap():
     model = torpedo()
-    model.added_mass[1, 5] += 0.5
+    ma = np.array(model.added_mass)
+    ma[1, 5] += 0.5
+    model = replace(model, added_mass=ma)
     with pytest.warns(SimulatorTrapWarning, match="asymmetric"):
         export_model(model, "gazebo")
 

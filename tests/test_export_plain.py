@@ -177,7 +177,7 @@ def test_options_that_do_not_apply_are_errors():
 def test_effects_a_format_cannot_hold_are_a_trap(fmt):
     from stripcoef.export import SimulatorTrapWarning
     model = torpedo()
-    model.effects = [{"effect": "tether_drag", "parameters": {"c": 1.0}}]
+    model = model.with_effects({"effect": "tether_drag", "parameters": {"c": 1.0}})
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         out = export_model(model, fmt)

@@ -16,6 +16,8 @@ import re
 import warnings
 import xml.etree.ElementTree as ET
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from _export_models import torpedo, warning_messages
@@ -111,9 +113,10 @@ def test_quadratic_cross_terms_are_reported_as_dropped():
 
 def test_diagonal_model_has_no_trap():
     model = torpedo()
-    model.quadratic_damping[:] = np.diag(np.diag(model.quadratic_damping))
-    model.reference_point = model.center_of_gravity.copy()   # matrices taken as about the CG
-    model.added_mass *= 0.5                                  # below the rigid-body terms
+    model = replace(model,
+                    quadratic_damping=np.diag(np.diag(model.quadratic_damping)),
+                    reference_point=model.center_of_gravity.copy(),  # matrices taken as about the CG
+                    added_mass=model.added_mass * 0.5)               # below the rigid-body terms
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         parse(export_model(model, "uuv"))

@@ -34,11 +34,11 @@ def vehicle(request):
 
 def test_every_format_reads_back(vehicle, tmp_path):
     name, model = vehicle
-    for fmt, module in FORMATS.items():
+    for fmt, spec in FORMATS.items():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SimulatorTrapWarning)
             warnings.simplefilter("ignore", stripcoef.errors.ModelWarning)
-            path = write_export(model, fmt, tmp_path / f"{name}{module.SUFFIX}")
+            path = write_export(model, fmt, tmp_path / f"{name}{spec.suffix}")
         data = path.read_bytes()
         assert data, fmt
         if fmt == "gazebo":

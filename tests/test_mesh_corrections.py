@@ -72,9 +72,9 @@ def test_hull_corrections_on_spheroid_strips_give_lamb():
     m11, m22, m55 = lamb(0.75, 0.1)
     strip22 = RHO * float(np.sum(st.parts[0].area * st.dx))
     strip66 = RHO * float(np.sum(st.parts[0].area * st.x ** 2 * st.dx))
-    assert c["axial_added_mass"] == pytest.approx(m11, rel=1e-2)
-    assert c["translation"] * strip22 == pytest.approx(m22, rel=5e-3)
-    assert c["rotation"] * strip66 == pytest.approx(m55, rel=5e-3)
+    assert c.axial_added_mass == pytest.approx(m11, rel=1e-2)
+    assert c.translation * strip22 == pytest.approx(m22, rel=5e-3)
+    assert c.rotation * strip66 == pytest.approx(m55, rel=5e-3)
 
 
 def test_equivalent_profile_blunt_and_pointed_ends():
@@ -108,9 +108,9 @@ def test_coupling_of_an_asymmetric_hull_about_its_centre_of_buoyancy():
     s26 = RHO * np.sum(a * st.x * st.dx)
     s22, s66 = RHO * np.sum(a * st.dx), RHO * np.sum(a * st.x ** 2 * st.dx)
     assert abs(m3[1, 5]) > 1e-3 * np.sqrt(m3[1, 1] * m3[5, 5])     # a real coupling
-    assert np.sqrt(c["translation"] * c["rotation"]) * s26 + c["coupling"] == pytest.approx(m3[1, 5], rel=1e-9)
-    assert c["translation"] * s22 == pytest.approx(m3[1, 1], rel=1e-9)
-    assert c["rotation"] * s66 == pytest.approx(m3[5, 5], rel=1e-9)
+    assert np.sqrt(c.translation * c.rotation) * s26 + c.coupling == pytest.approx(m3[1, 5], rel=1e-9)
+    assert c.translation * s22 == pytest.approx(m3[1, 1], rel=1e-9)
+    assert c.rotation * s66 == pytest.approx(m3[5, 5], rel=1e-9)
 
 
 def test_directional_bodies_of_a_body_of_revolution_reproduce_its_3d_matrix():
@@ -145,7 +145,7 @@ def test_axial_added_mass_converges_with_strips_on_mares():
     for n in (400, 3200):
         st = v.cut(n)
         _, cb = displaced_volume(st)
-        vals.append(hull_corrections(st, rho=RHO, center=cb)["axial_added_mass"])
+        vals.append(hull_corrections(st, rho=RHO, center=cb).axial_added_mass)
     assert vals[0] == pytest.approx(vals[1], rel=1e-3)
 
 

@@ -1,11 +1,12 @@
-"""The vectorised section path (all rings of all sections at once) against the one-ring code.
+"""The vectorised section path (all rings of all sections at once).
 
 `panel._RingSet` cleans, orients, measures and resamples every ring of every section in
-padded arrays; `added_mass_sections`, the polygon drag geometry and the wetted perimeter use
-it.  The one-ring functions it replaces (`orient_contours`, `_discretise`, `ring_centroid`,
-`polygon_drag._parts_geometry` ...) are kept; these tests hold the two paths equal on mixed
-sections: holes, several parts, sharp corners, either orientation, closing and repeated
-points, rings of different lengths, empty sections.
+padded arrays; `added_mass_sections`, `discretise`, the polygon drag geometry and the wetted
+perimeter use it.  The panel method has one implementation (a single section is the case of
+one); these tests hold batching to its one-section result, and the ring set to the one-ring
+functions that other stages still use (`orient_contours`, `ring_centroid`,
+`polygon_drag._parts_geometry` ...), on mixed sections: holes, several parts, sharp corners,
+either orientation, closing and repeated points, rings of different lengths, empty sections.
 """
 
 import numpy as np
@@ -14,7 +15,7 @@ import pytest
 from stripcoef.errors import InputError
 from stripcoef.sections import panel, polygon_drag, section_drag
 from stripcoef.geometry.polygons import ring_centroid
-from stripcoef.sections.panel import _discretise, _interp_rows, _ring_set, _solve_batch, added_mass_sections, orient_contours, part_rings, signed_area
+from stripcoef.sections.panel import _interp_rows, _ring_set, _solve_batch, added_mass_sections, discretise, orient_contours, part_rings, signed_area
 from stripcoef.strips import Part
 
 RHO = 1025.0
@@ -53,13 +54,13 @@ def mixed_sections():
 
 
 def one_by_one(sections, about, panels):
-    """The one-ring path: orient, discretise and solve each section on its own."""
+    """Each section on its own: orient, discretise (a ring set of one section) and solve."""
     out = np.zeros((len(sections), 3, 3))
     for s, c in enumerate(sections):
         if not c:
             continue
         rings = orient_contours(c)
-        nodes = _discretise(rings, panels)
+        nodes = discretise(c, panels=panels)
         p1 = np.vstack(nodes)
         p2 = np.vstack([np.roll(r, -1, axis=0) for r in nodes])
         holes, start = [], 0
@@ -74,23 +75,12 @@ def one_by_one(sections, about, panels):
 
 @pytest.mark.parametrize("panels", [None, 0, 32, 64])
 @pytest.mark.parametrize("about", [None, (0.1, -0.05)])
-def test_added_mass_equals_the_one_ring_path(panels, about):
+def test_added_mass_of_sections_together_equals_each_alone(panels, about):
     secs = mixed_sections()
     batch = added_mass_sections(secs, rho=RHO, about=about, panels=panels)
     ref = one_by_one(secs, about, panels)
     np.testing.assert_allclose(batch, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
     assert np.all(batch[[11, 15]] == 0.0)
-
-
-@pytest.mark.parametrize("panels", [None, 0, 40])
-def test_panel_nodes_are_the_one_ring_nodes(panels):
-    """Same nodes, bit for bit: the vectorised resampling repeats numpy's arithmetic."""
-    secs = [c for c in mixed_sections() if c]
-    rs = _ring_set(secs)
-    nodes, budget = panel._discretise_rings(rs, panels)
-    ref = [r for c in secs for r in _discretise(orient_contours(c), panels)]
-    assert budget.tolist() == [len(r) for r in ref]
-    assert np.array_equal(nodes, np.vstack(ref))
 
 
 def test_ring_set_is_cleaned_and_oriented_like_orient_contours():

@@ -125,7 +125,7 @@ def test_cli_bad_model_file_and_existing_output_kept(tmp_path, capsys):
 def test_cli_passes_other_columns_through_to_effects_and_log(tmp_path):
     # a calibrated model with a tether drag effect reads tether_length from the inputs
     model, _ = videoray_like(tmp_path)
-    model.effects = [{"name": "buoyancy_offset", "dof": "surge", "parameters": {"b": 0.5}}]
+    model = model.with_effects({"name": "buoyancy_offset", "dof": "surge", "parameters": {"b": 0.5}})
     mpath = tmp_path / "cal.yaml"
     save_model(model, mpath)
     write_inputs(tmp_path / "in.csv", {"t": [0.0, 40.0], "X": [0.0, 0.0],

@@ -19,7 +19,8 @@ Assumptions (not printed in the papers):
   (:data:`VIDEORAY_TETHER_DIAMETER`), normal drag coefficient 1.2 (Hoerner 1965, ch. 3),
   tangential friction coefficient 0.015 (:data:`TETHER_CF`); in the generated pool log
   the tether is paid out from 3 to 15 m.
-- ROMEO: mass 500 kg and heave added mass 500 kg (an open frame of about 1.3 x 0.9 x 1 m);
+- ROMEO: mass 450 kg (:data:`validation.experiments.ROMEO_MASS`: the chapter prints no mass)
+  and heave added mass 500 kg (an open frame of about 1.3 x 0.9 x 1 m);
   one diver's lead of 2 kg per experiment step (experiment 3 neutral, 1-2 buoyant, 4-5
   heavy, as the chapter's footnote says); applied heave forces of 10 to 60 N each way held
   20 s; heave velocity noise 5 mm/s; the prior is the chapter's standard-model estimate
@@ -28,15 +29,18 @@ Assumptions (not printed in the papers):
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from stripcoef.fluid import G
 from stripcoef.logfile import Log
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.simulate import simulate
-from stripcoef.diagnose.pipeline import diagnose, fit_effects, public
+from stripcoef.diagnose.pipeline import diagnose, fit_effects
 from stripcoef.effects.laws import get_effect
-from validation.experiments import RHO_LEAD, romeo_weights  # noqa: F401 (RHO_LEAD re-exported)
+from validation.experiments import (RHO_LEAD, ROMEO_MASS, ROMEO_TRUTH,  # noqa: F401 (re-exported)
+                                    romeo_weights)
 from validation.synthetic import add_noise, rov_model
 
 #: Wang & Clark 2006, sec. IV.A: predicted and measured surge speed at n = 60 [m/s]
@@ -104,10 +108,10 @@ def videoray_pool_log(seed: int = 0, *, length=(3.0, 15.0), with_length: bool = 
     # thrust coefficient that makes the model predict 0.51 m/s at n = 60 (the paper's
     # simulation); keep Table I's forward/backward ratio
     scale = gap["thrust"] / gap["table_thrust"]
-    from dataclasses import replace
-    prior.thrusters = [replace(th, ct_forward=th.ct_forward * scale,
-                               ct_backward=th.ct_backward * scale)
-                       if th.name in ("port", "starboard") else th for th in prior.thrusters]
+    prior = replace(prior, thrusters=[replace(th, ct_forward=th.ct_forward * scale,
+                                              ct_backward=th.ct_backward * scale)
+                                      if th.name in ("port", "starboard") else th
+                                      for th in prior.thrusters])
     c_t = gap["c_t_L"] / (0.5 * (length[0] + length[1]))
     dt = 0.1
     levels = [30, 60, 90, 60, -60, 60, 30, 90, 60]
@@ -134,10 +138,10 @@ def videoray_case(seed: int = 0) -> dict:
     out = {"gap": gap}
     log, prior, c_t = videoray_pool_log(seed, with_length=True)
     out["c_t_truth"] = c_t
-    out["with_tether_length"] = public(diagnose(log, prior, dof="surge"))
+    out["with_tether_length"] = diagnose(log, prior, dof="surge").to_dict()
     without = Log({k: v for k, v in log.columns.items() if k != "tether_length"},
                   source=log.source + " without tether_length")
-    out["without_tether_length"] = public(diagnose(without, prior, dof="surge"))
+    out["without_tether_length"] = diagnose(without, prior, dof="surge").to_dict()
     return out
 
 
@@ -145,9 +149,7 @@ def videoray_case(seed: int = 0) -> dict:
 # ROMEO
 # ---------------------------------------------------------------------------
 
-ROMEO_TRUTH = {"k_w": 50.0, "k_ww": 424.0, "eta": 0.57}      # Indiveri 1998, eq. 4.17 (eta model)
 ROMEO_STANDARD = {"k_w": 116.0, "k_ww": 403.0}               # Indiveri 1998, eq. 4.17 (standard)
-ROMEO_MASS = 500.0
 ROMEO_ADDED_MASS = 500.0
 ROMEO_LEAD = 2.0
 
@@ -180,7 +182,7 @@ def romeo_log(index: int, seed: int = 0):
     rng = np.random.default_rng(1000 * index + seed)
     truth = romeo_model(k_w=ROMEO_TRUTH["k_w"], k_ww=ROMEO_TRUTH["k_ww"])
     weight = romeo_weight(index)
-    truth.mass = ROMEO_MASS + weight / G
+    truth = replace(truth, mass=ROMEO_MASS + weight / G)
     levels = rng.permutation([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
     f = []
     for lv in levels:
@@ -212,7 +214,7 @@ def romeo_case(seed: int = 0) -> list:
         log, prior, weight = romeo_log(i, seed)
         standard = fit_effects(log, prior, "heave", ["buoyancy_offset"])
         with_eta = fit_effects(log, prior, "heave", ["thrust_asymmetry", "buoyancy_offset"])
-        res = public(diagnose(log, prior, dof="heave"))
+        res = diagnose(log, prior, dof="heave").to_dict()
         rows.append({"experiment": i, "weight_truth": weight,
                      "standard_buoyancy": standard["parameters"]["buoyancy_offset"]["b"],
                      "standard_buoyancy_std": standard["std"]["buoyancy_offset"]["b"],

@@ -20,7 +20,6 @@ Every value not taken from a paper is an assumption stated here:
 
 from __future__ import annotations
 
-import copy
 from dataclasses import replace
 
 import numpy as np
@@ -127,15 +126,15 @@ def perturb_within_bands(model, rng, *, scale: float = 0.5):
     """
     from stripcoef.diagnose.pipeline import BANDS
 
-    m = copy.deepcopy(model)
+    changed = {}
     for attr, key in (("added_mass", "M"), ("linear_damping", "D_L"),
                       ("quadratic_damping", "D_Q")):
-        mat = np.array(getattr(m, attr), float)
+        mat = np.array(getattr(model, attr), float)
         for i in range(6):
             band = BANDS["translational" if i < 3 else "rotational"][key]
             mat[i, i] *= 1.0 + min(scale * band, 0.5) * rng.uniform(-1, 1)
-        setattr(m, attr, mat)
-    return m
+        changed[attr] = mat
+    return replace(model, **changed)
 
 
 def add_noise(log: Log, rng, noise=None) -> Log:
@@ -168,7 +167,7 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
     if prior is None:
         prior = rov_model(linear_surge=effect != "linear_drag")
     truth_model = perturb_within_bands(prior, rng, scale=perturb)
-    without = copy.deepcopy(truth_model)
+    without = truth_model            # immutable: the changes below make new models
     t, cmds = manoeuvre(rng, duration=duration, small_commands=effect == "deadband")
     tether = 2.0 + (t / t[-1]) * rng.uniform(10.0, 30.0)  # paid out steadily [m]
     extra = []
@@ -189,8 +188,8 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
                 return np.array([-c * length * v * abs(v), 0, 0, 0, 0, 0])
             extra.append(f)
         elif name == "thrust_asymmetry":
-            truth_model.thrusters = [replace(th, eta_backward=mag) for th in
-                                     truth_model.thrusters]
+            truth_model = replace(truth_model, thrusters=[
+                replace(th, eta_backward=mag) for th in truth_model.thrusters])
         elif name == "momentum_drag":
             def f(time, eta, nu, inputs, a=mag):
                 c = inputs["commands"]
@@ -199,7 +198,8 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
             extra.append(f)
         elif name == "buoyancy_offset":
             # lighter than water by mag newtons: B - W = mag (a force up, -z)
-            truth_model.volume = truth_model.volume + mag / (truth_model.density * G)
+            truth_model = replace(truth_model, volume=truth_model.volume
+                                  + mag / (truth_model.density * G))
             truth["magnitude"] = -float(mag) if k == 0 else truth["magnitude"]
         elif name == "current":
             ang = rng.uniform(0, 2 * np.pi)
@@ -208,13 +208,14 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
         elif name == "linear_drag":
             dl = np.array(truth_model.linear_damping, float)
             dl[0, 0] = mag
-            truth_model.linear_damping = dl
+            truth_model = replace(truth_model, linear_damping=dl)
         elif name == "deadband":
-            truth_model.thrusters = [replace(th, deadband=mag) for th in truth_model.thrusters]
+            truth_model = replace(truth_model, thrusters=[replace(th, deadband=mag)
+                                                          for th in truth_model.thrusters])
         elif name == "added_mass_error":
             ma = np.array(truth_model.added_mass, float)
             ma[0, 0] = prior.added_mass[0, 0] * mag
-            truth_model.added_mass = ma
+            truth_model = replace(truth_model, added_mass=ma)
             truth["magnitude"] = float(ma[0, 0] - prior.added_mass[0, 0]) if k == 0 \
                 else truth["magnitude"]
         elif name == "coulomb_friction":  # outside the library (for the 'unexplained' test)

@@ -7,7 +7,7 @@ Public API (see docs/):
 
 - :func:`load_vehicle` - read and validate a vehicle file (YAML)
 - :func:`estimate` - strip theory: a vehicle file, a mesh file or a :class:`Vehicle` in,
-  a :class:`HydroModel` out
+  a :class:`HydroModel` out; its options by keyword or as an :class:`EstimateOptions`
 - :class:`Vehicle` - the geometry (``Vehicle.from_mesh`` for a CAD mesh)
 - :func:`load_model` - a HydroModel from a model file (JSON/YAML) or a vehicle file
 - :func:`solve_limits` - steady manoeuvre limits of a :class:`HydroModel` (docs/limits.md)
@@ -31,6 +31,7 @@ _LAZY = {
     "load_vehicle": ("geometry.vehicle", "load_vehicle"),
     "Vehicle": ("geometry.vehicle", "Vehicle"),
     "estimate": ("assembly", "estimate"),
+    "EstimateOptions": ("assembly", "EstimateOptions"),
     "load_model": ("modelfile", "load_model"),
     "solve_limits": ("limits", "solve_limits"),
     "export_model": ("export", "export_model"),

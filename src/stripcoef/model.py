@@ -14,13 +14,15 @@ All matrices are about :attr:`HydroModel.reference_point` in FRD body axes.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from types import MappingProxyType
 
 import numpy as np
 
 from stripcoef.conventions import DOF, sname_coefficients, skew, transform_matrix
 from stripcoef.errors import ModelWarning
-from stripcoef.fluid import G
+from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
 
 
@@ -130,7 +132,7 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
 
 def plain(value):
     """Recursively convert numpy scalars/arrays to plain Python types (JSON/YAML safe)."""
-    if isinstance(value, dict):
+    if isinstance(value, Mapping):
         return {str(k): plain(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
@@ -141,9 +143,178 @@ def plain(value):
     return value
 
 
-@dataclass
+@dataclass(frozen=True, eq=False)
+class Conditions(Mapping):
+    """The conditions a strip-theory model was computed at, and the factors it used.
+
+    A typed record (``model.conditions.regime``) that also reads as the read-only mapping of
+    the JSON output (``model.conditions["regime"]``, ``"k1" in c``): its keys are the fields
+    that are set (not ``None``), in field order, then :attr:`extra`. :meth:`to_dict` is the
+    ``conditions`` object of ``coefficients --json`` (docs/conventions.md). Which fields are
+    set depends on the model: hull terms only with a hull part, ``blunt_hull_cd`` for a
+    blunt hull, ``members``/``junction_pieces`` for per-member corrections, the
+    ``end_correction_*`` factors with corrections and ``k1`` without.
+
+    Attributes
+    ----------
+    reference_speed : float
+        U, the speed of the Reynolds numbers and of the damping split [m/s]
+    reference_rate : float
+        Omega = U / (L/2), the rotation rate of the split [rad/s]
+    reynolds_length : float
+        Re_L = U L / nu [-]
+    regime : str
+        Friction regime used (laminar or turbulent)
+    cf_laminar, cf_turbulent, cf_used : float
+        Blasius and ITTC-1957 friction coefficients at Re_L, and the one used [-]
+    wetted_area : float
+        Hull wetted area S_wet [m^2]
+    form_factor : float
+        Hoerner form factor FF [-]
+    axial_drag_coefficient_wetted, axial_drag_coefficient_frontal : float
+        C_f FF on the wetted area, and the same drag on the frontal area [-]
+    blunt_hull_cd : float
+        Axial pressure drag coefficient of a blunt hull end [-]
+    hull_reynolds_diameter : float
+        Re on the hull's largest cross-flow extent [-]
+    hull_crossflow_cd_y, hull_crossflow_cd_z : float
+        2D cross-flow drag coefficients of the hull's largest section [-]
+    hull_length_factor : float
+        Finite-length factor kappa of the hull's cross-flow drag [-]
+    equivalent_spheroid_L_over_D : float
+        L/D of the equal-length, equal-volume spheroid [-]
+    section_panels : int
+        Panels per 2D polygon section, when given
+    members, junction_pieces : int
+        Members and junction pieces of per-member corrections
+    end_correction_sway, end_correction_heave, end_correction_pitch, end_correction_yaw : float
+        3D correction factors of the strip matrix' diagonal [-]
+    k1 : float
+        Lamb's axial coefficient of the equivalent spheroid (no corrections) [-]
+    axial_added_mass : float
+        m_11 [kg]
+    correction_method : str
+        How the 3D terms were obtained
+    correction_panels : int
+        Meridian panels of the axisymmetric solves
+    strips : int
+        Number of strips
+    corrections : bool
+        3D corrections on
+    density : float
+        rho [kg/m^3]
+    kinematic_viscosity : float
+        nu [m^2/s]
+    fluid : str
+        Source of the fluid properties
+    length : float
+        Body length L [m]
+    extra : mapping
+        Keys of a model file that are none of the above, kept as they were
+    """
+
+    reference_speed: float | None = None
+    reference_rate: float | None = None
+    reynolds_length: float | None = None
+    regime: str | None = None
+    cf_laminar: float | None = None
+    cf_turbulent: float | None = None
+    cf_used: float | None = None
+    wetted_area: float | None = None
+    form_factor: float | None = None
+    axial_drag_coefficient_wetted: float | None = None
+    axial_drag_coefficient_frontal: float | None = None
+    blunt_hull_cd: float | None = None
+    hull_reynolds_diameter: float | None = None
+    hull_crossflow_cd_y: float | None = None
+    hull_crossflow_cd_z: float | None = None
+    hull_length_factor: float | None = None
+    equivalent_spheroid_L_over_D: float | None = None
+    section_panels: int | None = None
+    members: int | None = None
+    junction_pieces: int | None = None
+    end_correction_sway: float | None = None
+    end_correction_heave: float | None = None
+    end_correction_pitch: float | None = None
+    end_correction_yaw: float | None = None
+    k1: float | None = None
+    axial_added_mass: float | None = None
+    correction_method: str | None = None
+    correction_panels: int | None = None
+    strips: int | None = None
+    corrections: bool | None = None
+    density: float | None = None
+    kinematic_viscosity: float | None = None
+    fluid: str | None = None
+    length: float | None = None
+    extra: Mapping = field(default_factory=dict)
+
+    def __post_init__(self):
+        object.__setattr__(self, "extra", frozen_mapping(self.extra))
+
+    @classmethod
+    def from_dict(cls, data) -> "Conditions":
+        """The conditions of a mapping (a model file's ``conditions``, or
+        :meth:`to_dict`); keys that are not fields go to :attr:`extra`, in their order."""
+        if isinstance(data, cls):
+            return data
+        names = {f.name for f in fields(cls)} - {"extra"}
+        data = dict(data or {})
+        return cls(**{k: v for k, v in data.items() if k in names},
+                   extra={k: v for k, v in data.items() if k not in names})
+
+    def _keys(self):
+        return [f.name for f in fields(self)
+                if f.name != "extra" and getattr(self, f.name) is not None] + list(self.extra)
+
+    def __getitem__(self, key):
+        if key in self.extra:
+            return self.extra[key]
+        if key != "extra" and key in self.__dataclass_fields__:
+            value = getattr(self, key)
+            if value is not None:
+                return value
+        raise KeyError(key)
+
+    def __iter__(self):
+        return iter(self._keys())
+
+    def __len__(self):
+        return len(self._keys())
+
+    def __repr__(self):
+        return f"Conditions({dict(self)!r})"
+
+    def to_dict(self) -> dict:
+        """The set fields then :attr:`extra`, as a plain dict (JSON ``conditions``)."""
+        return {k: self[k] for k in self._keys()}
+
+
+def frozen_array(value) -> np.ndarray:
+    """A float copy of ``value`` that cannot be written to (``setflags(write=False)``)."""
+    a = np.array(value, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+def frozen_mapping(value) -> Mapping:
+    """A read-only view of a shallow copy of ``value`` (a mapping; ``None`` = empty)."""
+    return MappingProxyType(dict(value or {}))
+
+
+#: the array fields of a HydroModel, frozen by ``__post_init__``
+_ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
+           "quadratic_damping", "center_of_gravity", "center_of_buoyancy")
+
+
+@dataclass(frozen=True)
 class HydroModel:
     """A vehicle's hydrodynamic model about one reference point (FRD body axes).
+
+    Immutable: the fields cannot be assigned, the arrays are read-only copies, the
+    thrusters and effects are tuples, ``conditions`` a :class:`Conditions` and
+    ``provenance`` a read-only mapping. A changed model is a new one: :func:`dataclasses.replace`,
+    :meth:`about`, :meth:`with_effects`, :meth:`with_provenance`.
 
     Attributes
     ----------
@@ -156,12 +327,13 @@ class HydroModel:
     center_of_gravity, center_of_buoyancy : (3,) [m], body axes (absolute, not relative)
     density : float [kg/m^3]
     kinematic_viscosity : float [m^2/s]
-    thrusters : list of Thruster
-    conditions : dict
-        Reynolds numbers, regimes and drag coefficients used (for reports)
-    effects : list of dict
+    thrusters : tuple of Thruster
+    conditions : Conditions
+        Reynolds numbers, regimes, drag coefficients and correction factors used (for
+        reports); a dict given here is read by :meth:`Conditions.from_dict`
+    effects : tuple of dict
         Extra force terms added by calibration (see :mod:`stripcoef.effects.laws`)
-    provenance : dict
+    provenance : mapping
         Where each part came from (method, options, file)
     """
 
@@ -176,12 +348,37 @@ class HydroModel:
     center_of_gravity: np.ndarray
     center_of_buoyancy: np.ndarray
     density: float
-    kinematic_viscosity: float = 1.19e-6
+    kinematic_viscosity: float = NU_SEAWATER
     gravity: float = G
-    thrusters: list[Thruster] = field(default_factory=list)
-    conditions: dict = field(default_factory=dict)
-    effects: list[dict] = field(default_factory=list)
-    provenance: dict = field(default_factory=dict)
+    thrusters: tuple[Thruster, ...] = ()
+    conditions: Conditions = field(default_factory=Conditions)
+    effects: tuple[dict, ...] = ()
+    provenance: Mapping = field(default_factory=dict)
+
+    def __post_init__(self):
+        for name in _ARRAYS:
+            object.__setattr__(self, name, frozen_array(getattr(self, name)))
+        object.__setattr__(self, "thrusters", tuple(self.thrusters))
+        object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
+                                                  for e in self.effects))
+        object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
+        object.__setattr__(self, "provenance", frozen_mapping(self.provenance))
+
+    def __reduce__(self):
+        # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
+        # mapping cannot be pickled)
+        args = tuple(dict(v) if isinstance(v, (MappingProxyType, Conditions)) else v
+                     for v in (getattr(self, f.name) for f in fields(self)))
+        return (type(self), args)
+
+    def with_effects(self, *entries) -> "HydroModel":
+        """A copy with ``entries`` (effect dicts, see :mod:`stripcoef.effects.laws`) appended
+        to :attr:`effects`."""
+        return replace(self, effects=self.effects + tuple(entries))
+
+    def with_provenance(self, **entries) -> "HydroModel":
+        """A copy whose :attr:`provenance` has ``entries`` added (or replaced)."""
+        return replace(self, provenance={**self.provenance, **entries})
 
     # -- derived quantities -------------------------------------------------
     @property
@@ -313,7 +510,7 @@ class HydroModel:
             "gravity": float(self.gravity),
             "coefficients": self.coefficients(),
             "thrusters": [t.to_dict() for t in self.thrusters],
-            "conditions": plain(self.conditions),
+            "conditions": plain(self.conditions.to_dict()),
             "effects": plain(self.effects),
             "provenance": plain(self.provenance),
         }
@@ -341,7 +538,7 @@ class HydroModel:
             center_of_gravity=np.asarray(data["center_of_gravity"], float),
             center_of_buoyancy=np.asarray(data["center_of_buoyancy"], float),
             density=float(data["density"]),
-            kinematic_viscosity=float(data.get("kinematic_viscosity", 1.19e-6)),
+            kinematic_viscosity=float(data.get("kinematic_viscosity", NU_SEAWATER)),
             gravity=float(data.get("gravity", G)),
             thrusters=thr, conditions=data.get("conditions", {}),
             effects=list(data.get("effects", [])), provenance=data.get("provenance", {}),

@@ -15,10 +15,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-#: Shapes a :class:`Part` may have; the section registry (stripcoef.sections) knows each.
-PART_SHAPES = ("ellipse", "rectangle", "polygon")
-
-
 @dataclass
 class Part:
     """One 2D part of the sections of a run of strips (vectorised over those strips).
@@ -29,7 +25,8 @@ class Part:
         Hull, appendage or polygon name.
     shape : str
         ``ellipse`` (a circle when both half-axes are equal), ``rectangle`` or
-        ``polygon`` (arbitrary contours, from a mesh; see ``contours``).
+        ``polygon`` (arbitrary contours, from a mesh; see ``contours``): a name of the
+        section-shape registry :data:`stripcoef.sections.SHAPES`.
     index : (k,) int array
         Strip indices the part covers.
     y, z : (k,) arrays

@@ -7,6 +7,6 @@ matrices, the strip integral with its 3D corrections, entrained water), :mod:`.d
 Depends on: hull, sections, geometry, strips, model, base.
 """
 
-from stripcoef.assembly.estimate import estimate
+from stripcoef.assembly.estimate import EstimateOptions, estimate
 
-__all__ = ["estimate"]
+__all__ = ["EstimateOptions", "estimate"]

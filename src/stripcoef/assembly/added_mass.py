@@ -270,22 +270,22 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
                                     panels=panels)
             strip = apply_corrections(strip, corr)
+            scale, axial, method = corr.scale, corr.axial_added_mass, corr.method
         else:                           # several members / junctions: corrected one by one
             corrected, parts_info = per_member
             info["members"] = sum(1 for e in parts_info if e["kind"] == "member")
             info["junction_pieces"] = sum(1 for e in parts_info if e["kind"] == "junction")
             diag = np.diag(strip)
-            eff = np.where(diag > 0, np.diag(corrected) / np.where(diag > 0, diag, 1.0), 1.0)
-            corr = {"scale": eff, "axial_added_mass": float(corrected[0, 0]),
-                    "method": "per-member axisymmetric BEM of the added-mass-equivalent bodies "
-                              "of revolution (stripcoef.hull.members); end_correction_* are the "
-                              "effective ratios corrected/strip"}
+            scale = np.where(diag > 0, np.diag(corrected) / np.where(diag > 0, diag, 1.0), 1.0)
+            axial = float(corrected[0, 0])
+            method = ("per-member axisymmetric BEM of the added-mass-equivalent bodies "
+                      "of revolution (stripcoef.hull.members); end_correction_* are the "
+                      "effective ratios corrected/strip")
             strip = corrected
-        scale = corr["scale"]
         info.update({"end_correction_sway": float(scale[1]), "end_correction_heave": float(scale[2]),
                      "end_correction_pitch": float(scale[4]), "end_correction_yaw": float(scale[5]),
-                     "axial_added_mass": float(corr["axial_added_mass"]),
-                     "correction_method": corr["method"], "correction_panels": panels})
+                     "axial_added_mass": float(axial),
+                     "correction_method": method, "correction_panels": panels})
     else:
         strip[0, 0] += k1 * rho * volume
         info.update({"k1": float(k1), "axial_added_mass": float(k1 * rho * volume),

@@ -171,7 +171,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         re_y = np.full(p.index.size, speed * float(np.max(hy)) / nu)
         re_z = np.full(p.index.size, speed * float(np.max(hz)) / nu)
         cd_y, cd_z = section_drag(p, re_y, re_z)
-        # cd_y depends on re_y only and cd_z on re_z only (sections.CROSS_FLOW_DRAG)
+        # cd_y depends on re_y only and cd_z on re_z only (sections.SHAPES: cross_flow_drag)
         n_y, n_z = local_exponent(lambda ry, rz: section_drag(p, ry, rz), re_y, re_z)
         if p.role != "fin":
             ld_y = max(p.length, 1e-9) / np.maximum(hy, 1e-9)

@@ -8,12 +8,14 @@ terms -> :mod:`~stripcoef.assembly.mass`, :mod:`~stripcoef.assembly.added_mass`,
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.fluid import Fluid
+from stripcoef.model import Conditions, HydroModel, rigid_body_mass_matrix
 from stripcoef.assembly.added_mass import added_mass
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.mass import displaced_volume, mass_properties
@@ -28,18 +30,13 @@ def _reference_point(ref, cb, cg):
     return np.asarray(ref, dtype=float)
 
 
-def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
-             speed: float | None = None, reference_point=None, regime: str = "auto",
-             fluid=None, correction_panels: int | None = None,
-             section_panels: int | None = None) -> HydroModel:
-    """Strip theory: a vehicle in, a HydroModel out.
+@dataclass(frozen=True)
+class EstimateOptions:
+    """The options of :func:`estimate` (every field optional; ``None`` = the vehicle file's
+    value or the documented default).
 
-    Parameters
+    Attributes
     ----------
-    vehicle : Vehicle, str, Path, MeshBody or trimesh.Trimesh
-        A :class:`~stripcoef.geometry.vehicle.Vehicle`, a vehicle file (YAML) or a mesh file
-        (read by :func:`~stripcoef.geometry.vehicle.load_vehicle`), or an in-memory mesh
-        (:meth:`~stripcoef.geometry.vehicle.Vehicle.from_mesh`, default options).
     strips : int, optional
         Number of strips (default: the vehicle file's, else 1000).
     corrections : bool, optional
@@ -61,11 +58,52 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         Panels per 2D section of a mesh body (default adaptive: 96 for a round section, more
         for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
         round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
+    """
+
+    strips: int | None = None
+    corrections: bool | None = None
+    speed: float | None = None
+    reference_point: object = None
+    regime: str = "auto"
+    fluid: Fluid | None = None
+    correction_panels: int | None = None
+    section_panels: int | None = None
+
+
+def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> HydroModel:
+    """Strip theory: a vehicle in, a HydroModel out.
+
+    Parameters
+    ----------
+    vehicle : Vehicle, str, Path, MeshBody or trimesh.Trimesh
+        A :class:`~stripcoef.geometry.vehicle.Vehicle`, a vehicle file (YAML) or a mesh file
+        (read by :func:`~stripcoef.geometry.vehicle.load_vehicle`), or an in-memory mesh
+        (:meth:`~stripcoef.geometry.vehicle.Vehicle.from_mesh`, default options).
+    options : EstimateOptions, optional
+        The options (see :class:`EstimateOptions` for each one).
+    **keywords
+        The same options by name (``strips=``, ``corrections=``, ``speed=``,
+        ``reference_point=``, ``regime=``, ``fluid=``, ``correction_panels=``,
+        ``section_panels=``); with ``options`` too, they replace its fields.
 
     Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
     :func:`added_mass`, D_L and D_Q from :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
     :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
     """
+    if options is None:
+        options = EstimateOptions(**keywords)
+    elif not isinstance(options, EstimateOptions):
+        raise TypeError(f"options must be EstimateOptions, not {type(options).__name__}")
+    elif keywords:
+        options = replace(options, **keywords)
+    return _estimate(vehicle, options)
+
+
+def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
+    """:func:`estimate` with its options resolved (see there)."""
+    strips, corrections, speed = options.strips, options.corrections, options.speed
+    reference_point, regime, fluid = options.reference_point, options.regime, options.fluid
+    correction_panels, section_panels = options.correction_panels, options.section_panels
     if isinstance(vehicle, (str, Path)):
         vehicle = load_vehicle(vehicle)
     elif not isinstance(vehicle, Vehicle):
@@ -91,9 +129,9 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
-    cond.update(am_info)
-    cond.update({"strips": st.n, "corrections": corrections, "density": rho,
-                 "kinematic_viscosity": nu, "fluid": fluid.source, "length": st.length})
+    conditions = Conditions(**cond, **am_info, strips=st.n, corrections=corrections,
+                            density=rho, kinematic_viscosity=nu, fluid=fluid.source,
+                            length=st.length)
     if abs(mass - rho * volume) > 0.05 * rho * volume:
         warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
@@ -103,7 +141,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
-        thrusters=list(vehicle.thrusters), conditions=cond,
+        thrusters=vehicle.thrusters, conditions=conditions,
         provenance={"method": "strip theory", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )

@@ -62,7 +62,7 @@ def run(args) -> int:
     from stripcoef import bem
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.mesh import MeshBody
-    from stripcoef.cli.options import fluid_from_args, load_any_vehicle
+    from stripcoef.cli.options import estimate_options, load_any_vehicle
 
     bem._capytaine()                                   # fail early, before any work
     t0 = time.perf_counter()
@@ -71,15 +71,10 @@ def run(args) -> int:
     if not (len(vehicle.bodies) == 1 and isinstance(vehicle.bodies[0], MeshBody)):
         raise InputError("compare needs a mesh file", file=str(args.vehicle),
                          expected="a .stl/.obj/.ply/.glb file")
-    if args.strips is not None and args.strips < 4:
-        raise InputError("too few strips", key="--strips", value=args.strips,
-                         expected="an integer >= 4")
     body = vehicle.bodies[0]
-    fluid = fluid_from_args(args, vehicle.fluid)
+    options = estimate_options(args, vehicle)
     t0 = time.perf_counter()
-    model = estimate(vehicle, strips=args.strips,
-                     corrections=False if args.no_corrections else None,
-                     speed=args.speed, fluid=fluid)
+    model = estimate(vehicle, options)
     t_strip = time.perf_counter() - t0
     kw = {} if args.max_faces is None else {"max_faces": args.max_faces}
     a_bem, t_bem = bem.timed_bem_added_mass(body, rho=model.density,

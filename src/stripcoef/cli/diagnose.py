@@ -42,7 +42,7 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose, public
+    from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose
     from stripcoef.diagnose.report import markdown_report, text_summary
     from stripcoef.effects.laws import get_effect
     from stripcoef.export import write_export
@@ -71,11 +71,11 @@ def run(args) -> int:
     if args.report:
         markdown_report(result, args.report)
     if args.out:
-        write_export(result["model"], "json" if str(args.out).lower().endswith(".json")
+        write_export(result.model, "json" if str(args.out).lower().endswith(".json")
                      else "yaml", args.out)
     if args.json:
-        json.dump(public(result), sys.stdout, indent=1)
+        json.dump(result.to_dict(), sys.stdout, indent=1)
         sys.stdout.write("\n")
     else:
-        sys.stdout.write(text_summary(public(result)))
+        sys.stdout.write(text_summary(result))
     return 0

@@ -17,7 +17,7 @@ def add_parser(subparsers):
     p = subparsers.add_parser(
         "export", help="export the model to a simulator or data format",
         description="Export a vehicle's hydrodynamic model to a simulator or data format. "
-                    "Formats: " + "; ".join(f"{k}: {m.DESCRIPTION}" for k, m in FORMATS.items()))
+                    "Formats: " + "; ".join(f"{k}: {f.description}" for k, f in FORMATS.items()))
     p.add_argument("vehicle", metavar="VEHICLE",
                    help="vehicle file (YAML) or model file (JSON/YAML from HydroModel.to_dict)")
     p.add_argument("--to", required=True, metavar="FORMAT",
@@ -40,11 +40,11 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from stripcoef.export import export_model, format_module, write_export
+    from stripcoef.export import export_model, get_format, write_export
     from stripcoef.modelfile import load_model
 
-    module = format_module(args.to)            # unknown format: fail before any work
-    if module.BINARY and not args.output:
+    spec = get_format(args.to)                 # unknown format: fail before any work
+    if spec.binary and not args.output:
         raise InputError(f"format {args.to} is binary and is not printed", key="output",
                          expected="-o FILE")
     model = load_model(args.vehicle)

@@ -81,12 +81,12 @@ def load_any_vehicle(args):
     return load_vehicle(path)
 
 
-def estimate_from_args(args):
-    """The vehicle and the HydroModel the options ask for (commands that take a VEHICLE)."""
-    from stripcoef.assembly import estimate
+def estimate_options(args, vehicle):
+    """The :class:`~stripcoef.assembly.EstimateOptions` of the command line (``--strips``,
+    ``--no-corrections``, ``--speed``, ``--reference-point``, ``--regime``, the fluid
+    options; those a command lacks keep their defaults)."""
+    from stripcoef.assembly import EstimateOptions
 
-    vehicle = load_any_vehicle(args)
-    fluid = fluid_from_args(args, vehicle.fluid)
     ref = None
     if getattr(args, "reference_point", None):
         rp = args.reference_point
@@ -95,10 +95,19 @@ def estimate_from_args(args):
     if args.strips is not None and args.strips < 4:
         raise InputError("too few strips", key="--strips", value=args.strips,
                          expected="an integer >= 4")
-    return vehicle, estimate(vehicle, strips=args.strips,
-                             corrections=False if args.no_corrections else None,
-                             speed=args.speed, reference_point=ref, regime=args.regime,
-                             fluid=fluid)
+    return EstimateOptions(strips=args.strips,
+                           corrections=False if args.no_corrections else None,
+                           speed=args.speed, reference_point=ref,
+                           regime=getattr(args, "regime", "auto"),
+                           fluid=fluid_from_args(args, vehicle.fluid))
+
+
+def estimate_from_args(args):
+    """The vehicle and the HydroModel the options ask for (commands that take a VEHICLE)."""
+    from stripcoef.assembly import estimate
+
+    vehicle = load_any_vehicle(args)
+    return vehicle, estimate(vehicle, estimate_options(args, vehicle))
 
 
 def add_map_argument(parser):

@@ -40,15 +40,17 @@ Steps, for each degree of freedom (issue 7):
 
 from __future__ import annotations
 
-import copy
 import math
 import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
 from stripcoef.errors import InputError, ModelWarning
+from stripcoef.model import frozen_mapping, plain
 from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
 from stripcoef.effects.windows import window_data
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
@@ -529,8 +531,9 @@ def _generic_basis(data: WindowData, dof: int):
 # ---------------------------------------------------------------------------
 
 def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
-                 max_steps: int = MAX_STEPS) -> dict:
-    """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module)."""
+                 max_steps: int = MAX_STEPS):
+    """Run steps 1-5 for one DOF; returns the per-DOF result (the JSON-ready dictionary of
+    :attr:`Diagnosis.per_dof`, see module) and its :class:`DofFit`."""
     names = list(effects) if effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
     cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands)
@@ -624,10 +627,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
     result["final_held_out_error"] = cur["held_out_error"]
     result["structure_after"] = _structure(data, dof, cur["full"]["resid"], library)
     result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur)
-    result["_final_config"] = cfg
-    result["_final_eval"] = cur
-    result["_e0"] = e0
-    return result
+    return result, DofFit(config=cfg, evaluation=cur, prior_residual=e0)
 
 
 def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
@@ -741,6 +741,128 @@ class _Generic:
 # public API
 # ---------------------------------------------------------------------------
 
+@dataclass(frozen=True)
+class DofFit:
+    """The final fit of one DOF's diagnosis, beyond its JSON: what the calibrated model and
+    the residual plots are computed from.
+
+    Attributes
+    ----------
+    config : the calibration columns and the accepted effects (with their nonlinear
+        parameters) of the final fit
+    evaluation : dict
+        Its fit on all windows (``full``: ``theta``, ``cov``, ``resid``, ...) and held-out
+        errors
+    prior_residual : (n_windows,) array
+        The prior's window force residual e_i [N or N m]
+    """
+
+    config: _Config
+    evaluation: dict
+    prior_residual: np.ndarray
+
+
+#: the keys of :meth:`Diagnosis.to_dict`, in order (the JSON contract of ``diagnose --json``)
+_JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "dof", "units",
+                "baseline_error", "calibrated_error", "steps", "final_error", "unexplained",
+                "per_dof", "dropped_dofs", "resimulated_velocity_rms",
+                "resimulated_velocity_description")
+
+
+def _finite_or_none(x):
+    """``x`` (plain JSON types, :func:`stripcoef.model.plain`) with non-finite floats as None."""
+    if isinstance(x, dict):
+        return {k: _finite_or_none(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_finite_or_none(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+@dataclass(frozen=True)
+class Diagnosis:
+    """The result of :func:`diagnose`.
+
+    Attributes
+    ----------
+    metric, metric_description : str
+        The error metric (:data:`METRIC`; ``..._relative`` for several DOFs)
+    window_s : float
+        Window of the one-step residual [s]
+    log, vehicle : str
+        The log's source and the prior model's name
+    dof, units : str
+        The DOF diagnosed (or ``all``) and the metric's units
+    baseline_error, calibrated_error, final_error : float
+        The metric for the prior, after the calibration, after the added effects (several
+        DOFs: RMS over the DOFs of each DOF's error relative to its baseline)
+    steps : tuple of dict
+        The effects added, in order (effect, parameters, std, errors before and after ...)
+    unexplained : bool
+        A structured residual remains that no library effect explains
+    per_dof : mapping
+        DOF name -> its detailed result (calibration, candidates, structure, steps ...)
+    model : HydroModel
+        The calibrated model (the prior with its calibration and the added effects)
+    resimulated_velocity_rms : dict, optional
+        DOF -> RMS re-simulated velocity error of the prior, the calibrated prior and the
+        final model [m/s or rad/s] (with ``resimulate``)
+    resimulated_velocity_description : str, optional
+    fits : mapping
+        DOF name -> :class:`DofFit` (for :meth:`residual_curves`)
+    """
+
+    metric: str
+    metric_description: str
+    window_s: float
+    log: str
+    vehicle: str
+    dof: str
+    units: str
+    baseline_error: float
+    calibrated_error: float
+    steps: tuple
+    final_error: float
+    unexplained: bool
+    per_dof: Mapping
+    model: object
+    resimulated_velocity_rms: dict | None = None
+    resimulated_velocity_description: str | None = None
+    #: DOFs of dof='all' left out, and why (no column, no applied force, not excited)
+    dropped_dofs: Mapping = field(default_factory=dict)
+    fits: Mapping = field(default_factory=dict, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "steps", tuple(self.steps))
+        object.__setattr__(self, "per_dof", frozen_mapping(self.per_dof))
+        object.__setattr__(self, "fits", frozen_mapping(self.fits))
+
+    def to_dict(self) -> dict:
+        """The JSON output of ``diagnose --json`` (no model; non-finite numbers as null)."""
+        out = {}
+        for key in _JSON_FIELDS:
+            value = getattr(self, key)
+            if value is not None or not key.startswith("resimulated"):
+                out[key] = value
+        return _finite_or_none(plain(out))
+
+    def residual_curves(self, dof: str):
+        """Window mid-times [s] and the window force residual [N or N m] of DOF ``dof``:
+        ``(t, [(label, residual), ...])`` for the prior, the calibrated prior and after
+        each added effect."""
+        fit = self.fits[dof]
+        cfg = fit.config
+        data = cfg.data
+        tw = 0.5 * (data.t[data.i0] + data.t[data.i1])
+        curves = [("prior", fit.prior_residual)]
+        for k in range(len(cfg.terms) + 1):
+            c = _Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd, cfg.terms[:k])
+            label = "calibrated" if k == 0 else f"+ {cfg.terms[k - 1][0].name}"
+            curves.append((label, _fit(c)["resid"]))
+        return tw, curves
+
+
 def excited_dofs(data: WindowData) -> list:
     """DOFs with both an applied force and motion (velocity std > 1e-3)."""
     return select_dofs(data)[0]
@@ -774,7 +896,7 @@ def select_dofs(data: WindowData) -> tuple:
 
 
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
-             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> dict:
+             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -794,12 +916,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 
     Returns
     -------
-    dict
-        The JSON contract: ``metric``, ``baseline_error``, ``calibrated_error``, ``steps``
-        (each with ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
+    Diagnosis
+        ``metric``, ``baseline_error``, ``calibrated_error``, ``steps`` (each with
+        ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
         ``held_out_error_before``, ``held_out_error_after``), ``final_error``,
-        ``unexplained``; plus ``per_dof`` details and ``model`` (the calibrated HydroModel,
-        not serialised).
+        ``unexplained``, ``per_dof`` details, ``model`` (the calibrated HydroModel);
+        :meth:`Diagnosis.to_dict` is the JSON contract (everything but the model).
     """
     if str(dof).lower() != "all":
         log.require(VELOCITIES[parse_dof(dof)])       # never a missing column read as zeros
@@ -823,68 +945,76 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=2)
-    per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
-           for i in dofs}
-    calibrated = calibrated_model(model, per)
-    out = {"metric": METRIC, "metric_description": METRIC_TEXT, "window_s": window,
-           "log": log.source, "vehicle": model.name}
+    per, fits = {}, {}
+    for i in dofs:
+        per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, effects=effects, bands=bands,
+                                                 max_steps=max_steps)
+    calibrated = calibrated_model(model, per, fits)
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
-        out.update({"dof": r["dof"], "units": r["units"],
-                    "baseline_error": r["baseline_error"],
-                    "calibrated_error": r["calibrated_error"],
-                    "steps": r["steps"], "final_error": r["final_error"],
-                    "unexplained": r["unexplained"]})
+        summary = {"metric": METRIC, "dof": r["dof"], "units": r["units"],
+                   "baseline_error": r["baseline_error"],
+                   "calibrated_error": r["calibrated_error"],
+                   "steps": r["steps"], "final_error": r["final_error"],
+                   "unexplained": r["unexplained"]}
     else:
         def rel(key):
             return float(np.sqrt(np.mean([(per[d][key] / per[d]["baseline_error"]) ** 2
                                           for d in per])))
-        out.update({"dof": "all", "units": "relative to each DOF's baseline",
-                    "metric": METRIC + "_relative",
-                    "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
-                    "steps": [s for d in per for s in per[d]["steps"]],
-                    "final_error": rel("final_error"),
-                    "unexplained": any(per[d]["unexplained"] for d in per)})
-    out["dropped_dofs"] = dropped
-    out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
-                      for d, r in per.items()}
+        summary = {"metric": METRIC + "_relative", "dof": "all",
+                   "units": "relative to each DOF's baseline",
+                   "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
+                   "steps": [s for d in per for s in per[d]["steps"]],
+                   "final_error": rel("final_error"),
+                   "unexplained": any(per[d]["unexplained"] for d in per)}
     if resimulate:
-        out["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
-        out["resimulated_velocity_description"] = (
+        summary["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
+        summary["resimulated_velocity_description"] = (
             "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF: "
             "the prior, the prior with its calibrated coefficients, and the final model")
-    out["_per_dof_internal"] = per
-    out["model"] = calibrated
-    return out
+    return Diagnosis(metric_description=METRIC_TEXT, window_s=window, log=log.source,
+                     vehicle=model.name, per_dof=per, model=calibrated, fits=fits,
+                     dropped_dofs=dropped, **summary)
 
 
-def _apply_calibration(m, i: int, cal: dict, per: dict) -> None:
-    """Add the calibration of DOF ``i`` to model ``m`` (its arrays, in place): its own M,
-    D_L, D_Q, and the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that
-    DOF is diagnosed itself, whose own calibration then holds."""
-    for key, mat in (("M", m.added_mass), ("D_L", m.linear_damping),
-                     ("D_Q", m.quadratic_damping)):
+def _apply_calibration(mats: dict, i: int, cal: dict, per: dict) -> None:
+    """Add the calibration of DOF ``i`` to the matrices ``mats`` (``M``, ``D_L``, ``D_Q``:
+    writable copies of a model's M_A, D_L, D_Q, changed in place): its own M, D_L, D_Q, and
+    the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed
+    itself, whose own calibration then holds."""
+    for key in ("M", "D_L", "D_Q"):
         if key in cal:
-            mat[i, i] += cal[key]
+            mats[key][i, i] += cal[key]
     for key, value in cal.items():
         if key.startswith("M_") and key[2:] not in per:
             j = parse_dof(key[2:])
-            m.added_mass[j, j] += value
+            mats["M"][j, j] += value
 
 
-def calibrated_model(model, per: dict):
-    """The prior with its calibrated coefficients and the added effects."""
-    m = copy.deepcopy(model)
-    m.added_mass = np.array(m.added_mass, float)
-    m.linear_damping = np.array(m.linear_damping, float)
-    m.quadratic_damping = np.array(m.quadratic_damping, float)
+def _writable_matrices(model) -> dict:
+    """Writable copies of a model's M_A, D_L, D_Q under the calibration's names."""
+    return {"M": np.array(model.added_mass, float), "D_L": np.array(model.linear_damping, float),
+            "D_Q": np.array(model.quadratic_damping, float)}
+
+
+def _with_matrices(model, mats: dict):
+    """``model`` with the matrices of :func:`_writable_matrices` (a new model)."""
+    return replace(model, added_mass=mats["M"], linear_damping=mats["D_L"],
+                   quadratic_damping=mats["D_Q"])
+
+
+def calibrated_model(model, per: dict, fits: dict):
+    """The prior with its calibrated coefficients and the added effects (a new model);
+    ``per``: DOF -> its result (:func:`diagnose_dof`), ``fits``: DOF -> its :class:`DofFit`."""
+    m = model
+    mats = _writable_matrices(m)
     record = []
     for d, r in per.items():
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
-        _apply_calibration(m, i, cal, per)
-        cfg = r["_final_config"]
-        theta = r["_final_eval"]["full"]["theta"]
+        _apply_calibration(mats, i, cal, per)
+        cfg = fits[d].config
+        theta = fits[d].evaluation["full"]["theta"]
         k = len(r["calibration"]["parameters"])
         for eff, hyper in cfg.terms:
             ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
@@ -893,32 +1023,28 @@ def calibrated_model(model, per: dict):
             tn = theta[k:k + kn]
             params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
             for name, value in zip(eff.nuisance_names, tn):
-                target = {"M": m.added_mass, "D_L": m.linear_damping,
-                          "D_Q": m.quadratic_damping}.get(name)
-                if target is not None:  # a prior coefficient released by this effect
-                    target[i, i] += value
+                if name in mats:  # a prior coefficient released by this effect
+                    mats[name][i, i] += value
             k += ncol
             step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
-            eff.apply(m, i, params, step.get("std"))
+            # a native effect adds its term to the matrices calibrated so far
+            m = eff.apply(_with_matrices(m, mats), i, params, step.get("std"))
+            mats = _writable_matrices(m)
         record.append({"dof": d, "calibration": cal,
                        "effects": [s["effect"] for s in r["steps"]]})
-    m.provenance = dict(m.provenance)
-    m.provenance["diagnose"] = record
-    m.name = f"{model.name}-calibrated"
-    return m
+    m = _with_matrices(m, mats).with_provenance(diagnose=record)
+    return replace(m, name=f"{model.name}-calibrated")
 
 
 def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
     """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
     only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
     simulation diverges)."""
-    only_cal = copy.deepcopy(prior)
-    only_cal.added_mass = np.array(prior.added_mass, float)
-    only_cal.linear_damping = np.array(prior.linear_damping, float)
-    only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
+    mats = _writable_matrices(prior)
     for d, r in per.items():
         i = parse_dof(d)
-        _apply_calibration(only_cal, i, r["calibration"]["parameters"], per)
+        _apply_calibration(mats, i, r["calibration"]["parameters"], per)
+    only_cal = _with_matrices(prior, mats)
     dofs = [parse_dof(d) for d in per]
     rows = {name: resimulate_rms(log, m, dofs) for name, m in
             (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
@@ -971,25 +1097,6 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
             v = VELOCITIES[i]
             err[i].append(sim[v] - log.get(v, np.zeros(t.size))[sl])
     return [_rms(np.concatenate(err[i])) for i in dofs]
-
-
-def public(result: dict) -> dict:
-    """The JSON-serialisable part of a diagnosis result (drops the model and internals)."""
-    def clean(x):
-        if isinstance(x, dict):
-            return {k: clean(v) for k, v in x.items() if not str(k).startswith("_")
-                    and k != "model"}
-        if isinstance(x, (list, tuple)):
-            return [clean(v) for v in x]
-        if isinstance(x, (np.floating, float)):
-            x = float(x)
-            return x if math.isfinite(x) else None
-        if isinstance(x, np.integer):
-            return int(x)
-        if isinstance(x, np.bool_):
-            return bool(x)
-        return x
-    return clean(result)
 
 
 def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, bands=None) -> dict:

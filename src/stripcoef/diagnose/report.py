@@ -9,7 +9,7 @@ import numpy as np
 
 from stripcoef.files import write_bytes, write_text
 from stripcoef.diagnose.pipeline import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
-                       MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, _fit, public)
+                                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, Diagnosis)
 
 
 def _fmt(x, digits=4):
@@ -28,8 +28,10 @@ def _params(p, s=None):
                      for k, v in p.items())
 
 
-def text_summary(result: dict) -> str:
-    """Plain-text table for the terminal."""
+def text_summary(result) -> str:
+    """Plain-text table for the terminal (of a :class:`Diagnosis` or its :meth:`to_dict`)."""
+    if isinstance(result, Diagnosis):
+        result = result.to_dict()
     lines = [f"diagnosis of {result['log']} against {result['vehicle']}",
              f"metric: {result['metric']} ({result['units']})"]
     for d, r in result["per_dof"].items():
@@ -57,30 +59,22 @@ def text_summary(result: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _plot(result, dof, path):
-    """Residual before (calibrated) and after each step, against window time; PNG bytes."""
+def _plot(result: Diagnosis, dof, path):
+    """Residual before (calibrated) and after each step, against window time
+    (:meth:`Diagnosis.residual_curves`), written to ``path`` as a PNG."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
         return False
-    r = result["_per_dof_internal"][dof]
-    cfg = r["_final_config"]
-    data = cfg.data
-    tw = 0.5 * (data.t[data.i0] + data.t[data.i1])
-    from stripcoef.diagnose.pipeline import _Config
-    curves = [("prior", r["_e0"])]
-    for k in range(len(cfg.terms) + 1):
-        c = _Config(data, cfg.dof, cfg.cal_cols, cfg.cal_sd, cfg.terms[:k])
-        label = "calibrated" if k == 0 else f"+ {cfg.terms[k - 1][0].name}"
-        curves.append((label, _fit(c)["resid"]))
+    tw, curves = result.residual_curves(dof)
     fig, ax = plt.subplots(figsize=(8, 3.2))
     for label, y in curves:
         ax.plot(tw, y, lw=1, label=label)
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("t [s]")
-    ax.set_ylabel(f"missing force [{r['units']}]")
+    ax.set_ylabel(f"missing force [{result.per_dof[dof]['units']}]")
     ax.set_title(f"{dof}: window force residual before and after each step")
     ax.legend(fontsize=7, ncol=4)
     fig.tight_layout()
@@ -91,10 +85,10 @@ def _plot(result, dof, path):
     return True
 
 
-def markdown_report(result: dict, path) -> None:
+def markdown_report(result: Diagnosis, path) -> None:
     """Write the markdown report (and one PNG per DOF beside it) atomically."""
     path = Path(path)
-    pub = public(result)
+    pub = result.to_dict()
     out = [f"# Diagnosis of `{pub['log']}`", "",
            f"Vehicle model: `{pub['vehicle']}`. Metric: **{pub['metric']}** — "
            f"{pub['metric_description']}; windows of {pub['window_s']:g} s.", "",

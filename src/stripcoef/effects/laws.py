@@ -23,6 +23,8 @@ What the effects are fitted to, the log's window data, is :mod:`stripcoef.effect
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from dataclasses import FrozenInstanceError, replace
 
 import numpy as np
 
@@ -51,7 +53,18 @@ THRUST_BAND = 0.05
 # ---------------------------------------------------------------------------
 
 class Effect:
-    """Base class: see the module docstring for the interface."""
+    """Base class: see the module docstring for the interface.
+
+    An effect is a frozen spec: its name, parameters, physics and regressors are class
+    attributes and methods, and an instance cannot be changed (the registry :data:`EFFECTS`
+    shares one instance per effect with every caller).
+    """
+
+    def __setattr__(self, name, value):
+        raise FrozenInstanceError(f"effect {self.name!r} is immutable (cannot set {name!r})")
+
+    def __delattr__(self, name):
+        raise FrozenInstanceError(f"effect {self.name!r} is immutable (cannot delete {name!r})")
 
     name = ""
     summary = ""
@@ -137,11 +150,11 @@ class Effect:
         raise NotImplementedError
 
     def apply(self, model, dof: int, params: dict, std: dict | None = None):
-        """Add the effect to a (copied) model: as an entry of ``model.effects``."""
-        model.effects = list(model.effects) + [{
+        """The model with the effect added (a new model; ``model`` is immutable): as an
+        entry of ``model.effects``."""
+        return model.with_effects({
             "name": self.name, "dof": DOF[dof], "parameters": dict(params),
-            "std": dict(std or {}), "units": dict(self.parameters)}]
-        return model
+            "std": dict(std or {}), "units": dict(self.parameters)})
 
 
 def _unit_vec(dof):
@@ -547,10 +560,10 @@ class LinearDrag(Effect):
         return lambda time, eta, nu, inputs: -d * inputs.get("nu_r", nu)[dof] * e
 
     def apply(self, model, dof, params, std=None):
+        """The model with d_L added to D_L[dof, dof] (a new model)."""
         dl = np.array(model.linear_damping, dtype=float)
         dl[dof, dof] += params["d_L"]
-        model.linear_damping = dl
-        return model
+        return replace(model, linear_damping=dl)
 
 
 class Deadband(Effect):
@@ -633,11 +646,11 @@ class Deadband(Effect):
         return f
 
     def apply(self, model, dof, params, std=None):
-        from dataclasses import replace
+        """The model whose thrusters acting in ``dof`` have the dead band (a new model)."""
         b = model.allocation()[dof]
-        model.thrusters = [replace(th, deadband=max(th.deadband, params["deadband"]))
-                           if abs(b[k]) > 1e-9 else th for k, th in enumerate(model.thrusters)]
-        return model
+        return replace(model, thrusters=[
+            replace(th, deadband=max(th.deadband, params["deadband"]))
+            if abs(b[k]) > 1e-9 else th for k, th in enumerate(model.thrusters)])
 
 
 class AddedMassError(Effect):
@@ -681,13 +694,13 @@ class AddedMassError(Effect):
                          key="effects", value=self.name, expected="a native model change")
 
     def apply(self, model, dof, params, std=None):
+        """The model with delta_m added to M_A[dof, dof] (a new model)."""
         ma = np.array(model.added_mass, dtype=float)
         ma[dof, dof] += params["delta_m"]
-        model.added_mass = ma
-        return model
+        return replace(model, added_mass=ma)
 
 
-#: The registry: one instance per effect, by name.
+#: The registry: name -> the effect (one frozen instance per effect).
 EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
                                BuoyancyOffset(), Current(), LinearDrag(), Deadband(),
                                AddedMassError())}
@@ -708,7 +721,7 @@ def effect_forces(model) -> list:
     """
     out = []
     for k, entry in enumerate(model.effects):
-        if not isinstance(entry, dict) or "name" not in entry:
+        if not isinstance(entry, Mapping) or "name" not in entry:
             raise InputError("effect entry without a name", key=f"effects[{k}]",
                              value=entry, expected="{name, dof, parameters}")
         eff = get_effect(entry["name"])

@@ -1,8 +1,9 @@
 r"""Exports of a :class:`~stripcoef.model.HydroModel` to the formats simulators read.
 
-One module per target format; :data:`FORMATS` is the registry.  Each format module
-declares its defaults and limits (``DEFAULT_POINT``, ``DEFAULT_AXES``, ``AXES_ALLOWED``,
-``POINTS_ALLOWED``, ``OPTIONS``, ``HOLDS_EFFECTS``) and a ``render(view, **options)`` function.
+One module per target format; :data:`FORMATS` is the registry, name -> :class:`ExportFormat`.
+Each format module has a ``render(view, **options)`` function and its registry entry
+``FORMAT = ExportFormat(...)``: its defaults and limits (``default_point``, ``default_axes``,
+``axes_allowed``, ``points_allowed``, ``options``, ``holds_effects``).
 
 Every conversion goes through one transform: the model is moved to the reference point
 with :meth:`HydroModel.about` and its matrices are expressed in the target axes with
@@ -25,19 +26,19 @@ from stripcoef.errors import InputError, unknown_name
 from stripcoef.files import write_bytes, write_text
 from stripcoef.model import HydroModel
 from stripcoef.export import csvtable, gazebo, jsondata, mss, npzarrays, pymodule, uuv, yamldata
-from stripcoef.export._common import (POINT_NAMES, ExportView, SimulatorTrapWarning, check_axes, resolve_point,
-                      trap)
+from stripcoef.export._common import (POINT_NAMES, ExportFormat, ExportView, SimulatorTrapWarning,
+                                      check_axes, resolve_point, trap)
 
-#: The registry of export formats: name -> module.
-FORMATS = {m.NAME: m for m in (gazebo, uuv, mss, pymodule, jsondata, yamldata, csvtable,
-                                npzarrays)}
+#: The registry of export formats: name -> :class:`ExportFormat` (each module's ``FORMAT``).
+FORMATS = {m.FORMAT.name: m.FORMAT for m in (gazebo, uuv, mss, pymodule, jsondata, yamldata,
+                                              csvtable, npzarrays)}
 
-__all__ = ["FORMATS", "ExportView", "SimulatorTrapWarning", "export_model", "format_module",
-           "resolve_point", "write_export"]
+__all__ = ["FORMATS", "ExportFormat", "ExportView", "SimulatorTrapWarning", "export_model",
+           "get_format", "resolve_point", "write_export"]
 
 
-def format_module(fmt: str):
-    """The module of an export format; an unknown name is an error listing the valid ones."""
+def get_format(fmt: str) -> ExportFormat:
+    """The :class:`ExportFormat` of ``fmt``; an unknown name is an error listing the valid ones."""
     try:
         return FORMATS[fmt]
     except (KeyError, TypeError):
@@ -87,36 +88,36 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
     SimulatorTrapWarning
         For known simulator traps and terms a format cannot hold.
     """
-    module = format_module(fmt)
+    spec = get_format(fmt)
     given = {"link_name": link_name, "legacy_added_mass": legacy_added_mass or None,
              "function_name": function_name}
     options = {}
     for key, value in given.items():
         if value is None:
             continue
-        if key not in module.OPTIONS:
-            valid = [f for f, m in FORMATS.items() if key in m.OPTIONS]
+        if key not in spec.options:
+            valid = [f for f, m in FORMATS.items() if key in m.options]
             raise InputError(f"option {key} does not apply to format {fmt}",
                              key=key, value=value, expected="a format among " + ", ".join(valid))
         options[key] = _check_link_name(value) if key == "link_name" else value
-    axes = check_axes(module.DEFAULT_AXES if axes is None else axes, module.AXES_ALLOWED,
+    axes = check_axes(spec.default_axes if axes is None else axes, spec.axes_allowed,
                       fmt_name=fmt)
-    point = module.DEFAULT_POINT if point is None else point
-    if module.POINTS_ALLOWED is not None:
+    point = spec.default_point if point is None else point
+    if spec.points_allowed is not None:
         _, label = resolve_point(model, point)
-        if label not in module.POINTS_ALLOWED:
+        if label not in spec.points_allowed:
             raise InputError(f"format {fmt} must be expressed about "
-                             + " or ".join(module.POINTS_ALLOWED), key="point", value=point,
-                             expected=" or ".join(module.POINTS_ALLOWED)
+                             + " or ".join(spec.points_allowed), key="point", value=point,
+                             expected=" or ".join(spec.points_allowed)
                              + (" (the UUV plugin applies forces at the link's CoG)"
                                 if fmt == "uuv" else ""))
     view = ExportView.of(model, point, axes)
-    if model.effects and not module.HOLDS_EFFECTS:
+    if model.effects and not spec.holds_effects:
         names = ", ".join(str(e.get("effect", e.get("name", "?"))) if isinstance(e, dict)
                           else str(e) for e in model.effects)
         trap(f"{fmt}: the model's calibrated effects ({names}) cannot be written in this "
              "format and are left out; json, yaml and npz keep them")
-    return module.render(view, **options)
+    return spec.render(view, **options)
 
 
 def write_export(model: HydroModel, fmt: str, path, **kwargs) -> Path:
@@ -125,12 +126,12 @@ def write_export(model: HydroModel, fmt: str, path, **kwargs) -> Path:
 
     Keyword arguments are those of :func:`export_model`.  Returns the path written.
     """
-    module = format_module(fmt)
+    spec = get_format(fmt)
     path = Path(path)
     if path.is_dir():
         raise InputError("output is a folder", key="output", value=str(path),
                          expected="a file path")
-    if "function_name" in module.OPTIONS and kwargs.get("function_name") is None:
+    if "function_name" in spec.options and kwargs.get("function_name") is None:
         kwargs["function_name"] = mss.check_function_name(path.stem)
     data = export_model(model, fmt, **kwargs)
     try:

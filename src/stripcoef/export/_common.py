@@ -13,6 +13,7 @@ import math
 import sys
 import warnings
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -32,6 +33,51 @@ _NAMED_POINTS = {
 }
 POINT_EXPECTED = ("CO, CG, CB, origin or three finite numbers x,y,z [m] in the model's FRD "
                   "body coordinates")
+
+
+@dataclass(frozen=True)
+class ExportFormat:
+    """One export format, the entry of the registry :data:`stripcoef.export.FORMATS`.
+
+    Each format module defines ``FORMAT = ExportFormat(...)`` beside its ``render``.
+
+    Attributes
+    ----------
+    name : str
+        The format's name (``--to``)
+    description : str
+        One line for the CLI's help
+    suffix : str
+        File suffix of its files
+    render : callable
+        ``render(view, **options) -> str | bytes`` of an :class:`ExportView`
+    binary : bool
+        ``render`` returns bytes (the CLI then needs ``-o``)
+    axes_allowed : tuple of str
+        Axes the matrices may be written in (``FRD``, ``FLU``)
+    default_axes : str
+    default_point : str
+        Reference point when none is asked for (``CO``: the model's own)
+    points_allowed : tuple of str, optional
+        The only points the format may be expressed about (None: any)
+    holds_effects : bool
+        The model's calibrated ``effects`` fit the format (else a SimulatorTrapWarning)
+    options : tuple of str
+        Keyword options of ``render`` (``link_name``, ``legacy_added_mass``,
+        ``function_name``); any other is an error
+    """
+
+    name: str
+    description: str
+    suffix: str
+    render: Callable
+    binary: bool = False
+    axes_allowed: tuple = AXES
+    default_axes: str = "FRD"
+    default_point: str = "CO"
+    points_allowed: tuple | None = None
+    holds_effects: bool = False
+    options: tuple = ()
 
 
 class SimulatorTrapWarning(ModelWarning):

@@ -13,7 +13,7 @@ Rows, in the export's axes and about its reference point:
   thrust map (``ct_forward`` ... ``deadband``, col = thruster name).
 
 :func:`read` parses it back.  The calibrated ``effects`` a model may carry do not fit
-this table (the registry warns, as for every format without ``HOLDS_EFFECTS``).
+this table (the registry warns, as for every format without ``holds_effects``).
 """
 
 from __future__ import annotations
@@ -25,19 +25,9 @@ import numpy as np
 
 from stripcoef.conventions import DOF
 from stripcoef.errors import InputError
-from stripcoef.export._common import ExportView, fmt
+from stripcoef.export._common import ExportFormat, ExportView, fmt
 
 NAME = "csv"
-DESCRIPTION = "plain CSV table quantity,row,col,value,unit (matrices, mass properties, thrusters)"
-SUFFIX = ".csv"
-BINARY = False
-AXES_ALLOWED = ("FRD", "FLU")
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = False
-OPTIONS = ()
 
 MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping")
 SCALARS = {"mass": "kg", "volume": "m^3", "density": "kg/m^3", "gravity": "m/s^2",
@@ -135,3 +125,11 @@ def read(text: str, *, file: str | None = None) -> dict:
                                   else np.zeros((6, 0)))
     out["thruster_params"] = thr
     return out
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="plain CSV table quantity,row,col,value,unit (matrices, mass properties, thrusters)",
+    suffix=".csv",
+    render=render)

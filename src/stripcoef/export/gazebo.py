@@ -50,20 +50,10 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from stripcoef.export._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines,
+from stripcoef.export._common import (ExportFormat, ExportView, clean, explicit_added_mass_trap, fmt, header_lines,
                       is_symmetric, trap, xml_comment)
 
 NAME = "gazebo"
-DESCRIPTION = "gz-sim Hydrodynamics system plugin + SDF <fluid_added_mass> (link frame, link origin)"
-SUFFIX = ".sdf"
-BINARY = False
-AXES_ALLOWED = ("FRD", "FLU")
-DEFAULT_AXES = "FLU"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = False
-OPTIONS = ("link_name", "legacy_added_mass")
 
 #: Force-axis and velocity letters of the plugin's tag grammar (Hydrodynamics.cc, Configure).
 FORCE_LETTERS = "xyzkmn"
@@ -213,3 +203,13 @@ def _legacy_traps(ma: np.ndarray, mrb: np.ndarray) -> None:
              f"diagonal of M_A (HydrodynamicsUtils.hh buildCoriolisMatrix); coupling terms such "
              f"as {FORCE_LETTERS[i]}Dot{VELOCITY_LETTERS[j]} = {-off[i, j]:.4g} enter the inertia "
              "but not C_A(nu)")
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="gz-sim Hydrodynamics system plugin + SDF <fluid_added_mass> (link frame, link origin)",
+    suffix=".sdf",
+    render=render,
+    default_axes="FLU",
+    options=("link_name", "legacy_added_mass"))

@@ -9,20 +9,20 @@ from __future__ import annotations
 
 import json
 
-from stripcoef.export._common import ExportView, plain
+from stripcoef.export._common import ExportFormat, ExportView, plain
 
 NAME = "json"
-DESCRIPTION = "HydroModel.to_dict() as JSON (FRD; read back with HydroModel.from_dict)"
-SUFFIX = ".json"
-BINARY = False
-AXES_ALLOWED = ("FRD",)
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = True
-OPTIONS = ()
 
 
 def render(view: ExportView) -> str:
     return json.dumps(plain(view.model.to_dict()), indent=2) + "\n"
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="HydroModel.to_dict() as JSON (FRD; read back with HydroModel.from_dict)",
+    suffix=".json",
+    render=render,
+    axes_allowed=("FRD",),
+    holds_effects=True)

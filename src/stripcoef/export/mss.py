@@ -35,19 +35,9 @@ import re
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.export._common import ExportView, clean, fmt, header_lines
+from stripcoef.export._common import ExportFormat, ExportView, clean, fmt, header_lines
 
 NAME = "mss"
-DESCRIPTION = "MATLAB/Octave function file in the style of Fossen's MSS vehicle models (FRD, CO)"
-SUFFIX = ".m"
-BINARY = False
-AXES_ALLOWED = ("FRD",)
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = False
-OPTIONS = ("function_name",)
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,62}$")
 
@@ -204,3 +194,13 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
         "end",
     ]
     return "\n".join(lines) + "\n"
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="MATLAB/Octave function file in the style of Fossen's MSS vehicle models (FRD, CO)",
+    suffix=".m",
+    render=render,
+    axes_allowed=("FRD",),
+    options=("function_name",))

@@ -18,19 +18,9 @@ import json
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.export._common import ExportView, plain
+from stripcoef.export._common import ExportFormat, ExportView, plain
 
 NAME = "npz"
-DESCRIPTION = "numpy .npz archive of the matrices (binary, needs -o)"
-SUFFIX = ".npz"
-BINARY = True
-AXES_ALLOWED = ("FRD", "FLU")
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = True
-OPTIONS = ()
 
 
 def arrays(view: ExportView) -> dict:
@@ -63,3 +53,13 @@ def render(view: ExportView) -> bytes:
     buf = io.BytesIO()
     np.savez_compressed(buf, **arrays(view))
     return buf.getvalue()
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="numpy .npz archive of the matrices (binary, needs -o)",
+    suffix=".npz",
+    render=render,
+    binary=True,
+    holds_effects=True)

@@ -19,19 +19,9 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.conventions import DOF, sname_coefficients
-from stripcoef.export._common import ExportView, fmt, header_lines
+from stripcoef.export._common import ExportFormat, ExportView, fmt, header_lines
 
 NAME = "python"
-DESCRIPTION = "importable Python module with the matrices as numpy arrays"
-SUFFIX = ".py"
-BINARY = False
-AXES_ALLOWED = ("FRD", "FLU")
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = False
-OPTIONS = ()
 
 
 def _array(m) -> str:
@@ -105,3 +95,11 @@ def render(view: ExportView) -> str:
     lines += [f"    {k!r}: {_num(v)}," for k, v in coeffs.items()]
     lines += ["}", ""]
     return "\n".join(lines)
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="importable Python module with the matrices as numpy arrays",
+    suffix=".py",
+    render=render)

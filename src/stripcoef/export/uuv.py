@@ -45,21 +45,10 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from stripcoef.conventions import quadratic_damping_name
-from stripcoef.export._common import (ExportView, clean, explicit_added_mass_trap, fmt, header_lines, trap,
+from stripcoef.export._common import (ExportFormat, ExportView, clean, explicit_added_mass_trap, fmt, header_lines, trap,
                       xml_comment)
 
 NAME = "uuv"
-DESCRIPTION = "UUV Simulator / DAVE classic hydrodynamic_model 'fossen' (FRD parameters, about the CoG)"
-SUFFIX = ".xml"
-BINARY = False
-AXES_ALLOWED = ("FLU", "FRD")
-DEFAULT_AXES = "FLU"
-DEFAULT_POINT = "CG"
-#: The plugin applies forces at the CoG: no other point is meaningful.
-POINTS_ALLOWED = ("CG",)
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = False
-OPTIONS = ("link_name",)
 
 PLUGIN_FILENAME = "libuuv_underwater_object_ros_plugin.so"
 
@@ -151,3 +140,16 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     out.append("  </link>")
     out.append("</plugin>")
     return "\n".join(out) + "\n"
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="UUV Simulator / DAVE classic hydrodynamic_model 'fossen' (FRD parameters, about the CoG)",
+    suffix=".xml",
+    render=render,
+    axes_allowed=("FLU", "FRD"),
+    default_axes="FLU",
+    default_point="CG",
+    points_allowed=("CG",),      # the plugin applies forces at the CoG: no other point
+    options=("link_name",))

@@ -8,22 +8,22 @@ from __future__ import annotations
 
 import yaml
 
-from stripcoef.export._common import ExportView, header_lines, plain
+from stripcoef.export._common import ExportFormat, ExportView, header_lines, plain
 
 NAME = "yaml"
-DESCRIPTION = "HydroModel.to_dict() as YAML (FRD; read back with HydroModel.from_dict)"
-SUFFIX = ".yaml"
-BINARY = False
-AXES_ALLOWED = ("FRD",)
-DEFAULT_AXES = "FRD"
-DEFAULT_POINT = "CO"
-POINTS_ALLOWED = None
-#: Whether the model's calibrated ``effects`` fit this format (else a SimulatorTrapWarning).
-HOLDS_EFFECTS = True
-OPTIONS = ()
 
 
 def render(view: ExportView) -> str:
     head = "".join(f"# {line}\n" for line in header_lines(view, NAME))
     return head + yaml.safe_dump(plain(view.model.to_dict()), sort_keys=False,
                                  default_flow_style=None, width=120)
+
+
+#: This format's entry of the registry :data:`stripcoef.export.FORMATS`.
+FORMAT = ExportFormat(
+    name=NAME,
+    description="HydroModel.to_dict() as YAML (FRD; read back with HydroModel.from_dict)",
+    suffix=".yaml",
+    render=render,
+    axes_allowed=("FRD",),
+    holds_effects=True)

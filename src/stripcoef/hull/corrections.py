@@ -35,10 +35,13 @@ bodies and their end effects).  Lamb, H. (1932) *Hydrodynamics*, sec. 373
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.model import frozen_array
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
                                          mode_inertia, ring_body_added_mass)
 
@@ -334,8 +337,51 @@ def _polygon_roll_mode(strips, m44) -> int | None:
     return roll_symmetry_order(p.contours[k])
 
 
+@dataclass(frozen=True)
+class CorrectionFactors:
+    r"""The 3D corrections of a strip matrix (:func:`hull_corrections`), applied by
+    :func:`apply_corrections`: :math:`M = D S D + m_{11} e_1 e_1^T + \Delta_{26}(e_2 e_6^T +
+    e_6 e_2^T) + \Delta_{35}(e_3 e_5^T + e_5 e_3^T)`, :math:`D = \operatorname{diag}(\sqrt{scale})`.
+
+    Attributes
+    ----------
+    scale : (6,) array
+        Diagonal of D**2, the factors of the strip matrix' diagonal [-] (read-only)
+    axial_added_mass : float
+        m_11 [kg]
+    coupling_26, coupling_35 : float
+        Sway-yaw and heave-pitch increments Delta_26, Delta_35 [kg m]
+    method : str
+        How they were obtained
+    """
+
+    scale: np.ndarray
+    axial_added_mass: float
+    coupling_26: float
+    coupling_35: float
+    method: str
+
+    def __post_init__(self):
+        object.__setattr__(self, "scale", frozen_array(self.scale))
+
+    @property
+    def translation(self) -> float:
+        """f_v = scale[1], the sway factor [-]."""
+        return self.scale[1]
+
+    @property
+    def rotation(self) -> float:
+        """f_r = scale[5], the yaw factor [-]."""
+        return self.scale[5]
+
+    @property
+    def coupling(self) -> float:
+        """Delta_26 [kg m], the sway-yaw increment."""
+        return self.coupling_26
+
+
 def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
-                     panels: int = DEFAULT_PANELS) -> dict:
+                     panels: int = DEFAULT_PANELS) -> CorrectionFactors:
     r"""3D corrections for :func:`stripcoef.assembly.estimate.added_mass`, per direction.
 
     Each lateral direction gets its own *added-mass-equivalent* body of revolution,
@@ -377,10 +423,10 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
 
     Returns
     -------
-    dict
+    CorrectionFactors
         ``scale`` (6,) diagonal of D**2, ``axial_added_mass`` [kg], ``coupling_26``,
-        ``coupling_35`` [kg m], and the legacy ``translation``/``rotation``/``coupling``
-        (sway-yaw values), ``method``.
+        ``coupling_35`` [kg m], ``method`` (and the sway-yaw values ``translation``,
+        ``rotation``, ``coupling``).
 
     References
     ----------
@@ -413,14 +459,13 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
         mode = None if _roll_is_roundoff(strips, m44, rho) else _polygon_roll_mode(strips, m44)
         if mode is not None:
             fp = roll_relief(strips, m44, rho=rho, mode=mode, panels=panels)
-    return {"scale": np.array([1.0, fv, fw, fp, fq, fr]),
-            "axial_added_mass": float(m11),
-            "coupling_26": d26, "coupling_35": d35,
-            "translation": fv, "rotation": fr, "coupling": d26,
-            "method": "axisymmetric BEM of the added-mass-equivalent bodies of revolution"}
+    return CorrectionFactors(
+        scale=np.array([1.0, fv, fw, fp, fq, fr]), axial_added_mass=float(m11),
+        coupling_26=d26, coupling_35=d35,
+        method="axisymmetric BEM of the added-mass-equivalent bodies of revolution")
 
 
-def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
+def apply_corrections(strip_matrix, corr: CorrectionFactors) -> np.ndarray:
     r"""Corrected 6x6 added mass from the pure strip matrix about ``center`` (see
     :func:`hull_corrections`): :math:`D S D` plus the axial term and coupling increments.
 
@@ -430,13 +475,13 @@ def apply_corrections(strip_matrix, corr: dict) -> np.ndarray:
     ``strip_matrix`` S and the result [kg, kg m, kg m^2]; ``scale`` [-], ``axial_added_mass``
     [kg], couplings [kg m]. References: see module docstring (Newman 1977, sec. 7.4).
     """
-    s = np.sqrt(np.asarray(corr["scale"], dtype=float))
+    s = np.sqrt(np.asarray(corr.scale, dtype=float))
     m = s[:, None] * np.asarray(strip_matrix, dtype=float) * s[None, :]
-    m[0, 0] += corr["axial_added_mass"]
-    m[1, 5] += corr["coupling_26"]
-    m[5, 1] += corr["coupling_26"]
-    m[2, 4] += corr["coupling_35"]
-    m[4, 2] += corr["coupling_35"]
+    m[0, 0] += corr.axial_added_mass
+    m[1, 5] += corr.coupling_26
+    m[5, 1] += corr.coupling_26
+    m[2, 4] += corr.coupling_35
+    m[4, 2] += corr.coupling_35
     return m
 
 

@@ -67,7 +67,7 @@ Fossen (2011) sec. 7.5.3 (moving a matrix between points).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -510,15 +510,16 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
             # a crossing piece is short along x: its equivalent body is a disc whose broadside
             # rotation is not the piece's; its own pitch/yaw about its centre (O(dx^3)) take
             # the translation factors and no coupling increment [assumption]
+            scale = np.array(corr.scale)
             if e.crossing_weights is not None:
                 # motion along the piece's own in-plane axis (crossing_weights)
-                corr["scale"][1] *= e.crossing_weights[0]
-                corr["scale"][2] *= e.crossing_weights[1]
-            corr["scale"][4], corr["scale"][5] = corr["scale"][2], corr["scale"][1]
-            corr["coupling_26"] = corr["coupling_35"] = 0.0
+                scale[1] *= e.crossing_weights[0]
+                scale[2] *= e.crossing_weights[1]
+            scale[4], scale[5] = scale[2], scale[1]
+            corr = replace(corr, scale=scale, coupling_26=0.0, coupling_35=0.0)
         m = apply_corrections(s, corr)
         total += transform_matrix(m, from_point=a_e, to_point=center)
         info.append({"kind": e.kind, "name": p.name, "centre": a_e.tolist(),
-                     "x_range": [st.x_min, st.x_max], "scale": corr["scale"].tolist(),
-                     "axial_added_mass": corr["axial_added_mass"]})
+                     "x_range": [st.x_min, st.x_max], "scale": corr.scale.tolist(),
+                     "axial_added_mass": corr.axial_added_mass})
     return 0.5 * (total + total.T), info

@@ -1,17 +1,22 @@
-"""Sections: 2D coefficients per strip, one registry per family.
+"""Sections: 2D coefficients per strip, and the registry of section shapes.
 
-- :data:`ADDED_MASS` maps a :class:`~stripcoef.strips.Part` shape to a function
-  ``f(part, rho, panels) -> (k, 3, 3)`` giving the per-unit-length added mass (sway, heave,
-  roll) about the part's centre (``panels``: the panel method's count, polygons only).
-- :data:`CROSS_FLOW_DRAG` maps a shape to ``f(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``,
-  the 2D drag coefficients for flow along y and along z (reference heights: 2h and 2b);
-  ``cd_y`` depends on ``reynolds_y`` only and ``cd_z`` on ``reynolds_z`` only (the damping's
-  power-law exponents perturb both in one call).
+:data:`SHAPES` maps the name of a :class:`~stripcoef.strips.Part`'s shape to its
+:class:`SectionShape`: the functions that give one run of sections of that shape
 
-An unknown shape is an error listing the registered ones.
+- ``added_mass(part, rho, panels) -> (k, 3, 3)``: the per-unit-length added mass (sway, heave,
+  roll) about the part's centre (``panels``: the panel method's count, polygons only);
+- ``cross_flow_drag(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``: the 2D drag coefficients
+  for flow along y and along z (reference heights: 2h and 2b); ``cd_y`` depends on
+  ``reynolds_y`` only and ``cd_z`` on ``reynolds_z`` only (the damping's power-law exponents
+  perturb both in one call).
+
+An unknown shape is an error listing the registered ones (:func:`get_shape`).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -43,13 +48,6 @@ def _diag3(a, b, c):
     return out
 
 
-ADDED_MASS = {
-    "ellipse": _added_mass_ellipse,
-    "rectangle": _added_mass_rectangle,
-    "polygon": _added_mass_polygon,
-}
-
-
 def _drag_ellipse(part, re_y, re_z):
     b, h = part.half_breadth, part.half_height
     circ = np.isclose(b, h, rtol=1e-6)
@@ -68,11 +66,47 @@ def _drag_polygon(part, re_y, re_z):
     return cross_flow_cd(part, re_y, re_z)
 
 
-CROSS_FLOW_DRAG = {
-    "ellipse": _drag_ellipse,
-    "rectangle": _drag_rectangle,
-    "polygon": _drag_polygon,
-}
+@dataclass(frozen=True)
+class SectionShape:
+    """One section shape of the registry :data:`SHAPES`.
+
+    Attributes
+    ----------
+    name : str
+        The shape's name (``Part.shape``)
+    added_mass : callable
+        ``f(part, rho, panels) -> (k, 3, 3)`` added mass per unit length about the part's
+        centre [kg/m, kg, kg m]
+    cross_flow_drag : callable
+        ``f(part, re_y, re_z) -> (cd_y, cd_z)`` 2D drag coefficients [-]
+    description : str
+        What the two functions use (for docs and error messages)
+    """
+
+    name: str
+    added_mass: Callable
+    cross_flow_drag: Callable
+    description: str = ""
+
+
+#: The registry of section shapes: name -> :class:`SectionShape`.
+SHAPES = {s.name: s for s in (
+    SectionShape("ellipse", _added_mass_ellipse, _drag_ellipse,
+                 "closed-form ellipse added mass; circle / ellipse cross-flow drag curves"),
+    SectionShape("rectangle", _added_mass_rectangle, _drag_rectangle,
+                 "DNV rectangle added mass; rectangle cross-flow drag curve"),
+    SectionShape("polygon", _added_mass_polygon, _drag_polygon,
+                 "2D panel method; cross-flow drag of the polygon's parts"),
+)}
+
+
+def get_shape(name: str) -> SectionShape:
+    """The :class:`SectionShape` of ``name``; an unknown name is an error listing the valid
+    ones."""
+    try:
+        return SHAPES[name]
+    except (KeyError, TypeError):
+        raise unknown_name("section shape", name, SHAPES) from None
 
 
 def section_added_mass(part, rho: float, panels: int | None = None) -> np.ndarray:
@@ -85,11 +119,7 @@ def section_added_mass(part, rho: float, panels: int | None = None) -> np.ndarra
     (:func:`panel.added_mass_sections`); each function carries its own reference
     (Newman 1977, sec. 4.13 and table 4.2; DNV-RP-C205 table A-1).
     """
-    try:
-        fn = ADDED_MASS[part.shape]
-    except KeyError:
-        raise unknown_name("section shape", part.shape, ADDED_MASS) from None
-    return fn(part, rho, panels)
+    return get_shape(part.shape).added_mass(part, rho, panels)
 
 
 def section_drag(part, re_y, re_z):
@@ -102,8 +132,4 @@ def section_drag(part, re_y, re_z):
     (:func:`polygon_drag.cross_flow_cd`). Cross-flow principle: Hoerner (1965), ch. 3
     (see :mod:`stripcoef.sections.drag`).
     """
-    try:
-        fn = CROSS_FLOW_DRAG[part.shape]
-    except KeyError:
-        raise unknown_name("section shape", part.shape, CROSS_FLOW_DRAG) from None
-    return fn(part, re_y, re_z)
+    return get_shape(part.shape).cross_flow_drag(part, re_y, re_z)

@@ -13,8 +13,7 @@ from functools import lru_cache
 import numpy as np
 
 from stripcoef.data import load_table
-
-RHO = 1025.0
+from stripcoef.fluid import RHO_SEAWATER as RHO   # the default density of every function
 
 
 def circle(radius, *, rho=RHO):

@@ -71,51 +71,46 @@ _BATCH_ELEMENTS = 65536
 # --------------------------------------------------------------------------- geometry
 
 
-def _resample_ring(r: np.ndarray, n: int, corners: np.ndarray, shape=None) -> np.ndarray:
-    """``n`` nodes on the polyline ``r``; cosine-clustered towards sharp corners
-    (``shape``: its :func:`ring_shape`, computed if omitted)."""
-    seg, turn = ring_shape(r) if shape is None else shape
+def _resample_cornered(r: np.ndarray, n: int, corners: np.ndarray, shape) -> np.ndarray:
+    r"""``n`` nodes on the polyline ``r`` with sharp corners (``corners``: flags per vertex,
+    at least one; ``shape``: its :func:`ring_shape`), cosine-clustered towards the corners:
+    the nodes of each edge between consecutive corners at
+    :math:`s = s_0 + \ell\,(1 - \cos(\pi j / m))/2`, j = 0..m-1, with m its share of ``n``
+    (at least :data:`MIN_PANELS_PER_EDGE`, the rest by length). Rings without corners are
+    resampled by :func:`_resample_smooth`. Reference: the cosine spacing of panel methods
+    (Katz & Plotkin 2001, ch. 11); accuracy against exact sections in
+    tests/test_panel_exact.py."""
+    seg, _ = shape
     closed = np.concatenate((r, r[:1]))
     s = np.concatenate(([0.0], np.cumsum(seg)))
     perim = s[-1]
     idx = np.nonzero(corners)[0]
-    if idx.size == 0:
-        # equidistribute arc length plus turning: mu(s) = s + P/(2 pi) Theta(s), with the
-        # turning angle at each vertex spread over the two adjacent edges (continuous)
-        per_edge = 0.5 * (turn + np.concatenate((turn[1:], turn[:1])))
-        theta = np.concatenate(([0.0], np.cumsum(per_edge)))
-        mu = s + CURVATURE_WEIGHT * perim / (2.0 * np.pi) * theta
-        t = np.interp(np.linspace(0.0, mu[-1], n, endpoint=False), mu, s)
-    else:
-        # start at the first corner; edges between consecutive corners
-        s0 = s[idx]
-        lengths = np.diff(np.concatenate([s0, [s0[0] + perim]]))
-        k = len(idx)
-        base = np.full(k, min(MIN_PANELS_PER_EDGE, max(1, n // k)))
-        extra = n - base.sum()
-        if extra > 0:
-            share = lengths / lengths.sum() * extra
-            add = np.floor(share).astype(int)
-            rem = extra - add.sum()
-            add[np.argsort(share - add)[::-1][:rem]] += 1
-            base = base + add
-        parts = []
-        for a, length, m in zip(s0, lengths, base):
-            j = np.arange(m)
-            parts.append(a + length * 0.5 * (1.0 - np.cos(np.pi * j / m)))
-        t = np.mod(np.concatenate(parts), perim)
+    # start at the first corner; edges between consecutive corners
+    s0 = s[idx]
+    lengths = np.diff(np.concatenate([s0, [s0[0] + perim]]))
+    k = len(idx)
+    base = np.full(k, min(MIN_PANELS_PER_EDGE, max(1, n // k)))
+    extra = n - base.sum()
+    if extra > 0:
+        share = lengths / lengths.sum() * extra
+        add = np.floor(share).astype(int)
+        rem = extra - add.sum()
+        add[np.argsort(share - add)[::-1][:rem]] += 1
+        base = base + add
+    parts = []
+    for a, length, m in zip(s0, lengths, base):
+        j = np.arange(m)
+        parts.append(a + length * 0.5 * (1.0 - np.cos(np.pi * j / m)))
+    t = np.mod(np.concatenate(parts), perim)
     y = np.interp(t, s, closed[:, 0], period=None)
     z = np.interp(t, s, closed[:, 1], period=None)
     return np.column_stack([y, z])
 
 
-def _perimeter(r: np.ndarray) -> float:
-    return float(ring_shape(r)[0].sum())
-
-
-def _panel_budget(rings, corner_flags, panels, perims=None) -> list[int]:
-    if perims is None:
-        perims = np.array([_perimeter(r) for r in rings])
+def _panel_budget(corner_flags, panels, perims) -> list[int]:
+    """Panels of each ring of one section: ``panels`` shared in proportion to the rings'
+    perimeters ``perims`` [m], each ring keeping at least :data:`MIN_PANELS_PER_CONTOUR` and
+    :data:`MIN_PANELS_PER_EDGE` per sharp corner (``corner_flags``: per ring, per vertex)."""
     mins = np.array([max(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * int(c.sum()))
                      for c in corner_flags])
     total = max(int(panels), int(mins.sum()))
@@ -140,6 +135,9 @@ def _panel_budget(rings, corner_flags, panels, perims=None) -> list[int]:
 def discretise(contours, *, panels: int | None = None, where: str = "contours"):
     """Panel nodes of a section: list of (n_c, 2) rings, oriented, resampled.
 
+    The one-section case of the ring set's :func:`_discretise_rings` (the code every
+    section of a strip model goes through).
+
     Parameters
     ----------
     contours : list of (n, 2) arrays
@@ -149,24 +147,13 @@ def discretise(contours, *, panels: int | None = None, where: str = "contours"):
         ``min(3, sqrt(P^2 / (4 pi A)))`` of the most slender ring (more panels for
         slender sections), and at least enough for the per-contour and per-edge minima.  ``0`` keeps the input
         vertices as panel nodes.
+    where : str
+        Name of ``contours`` in error messages.
     """
-    return _discretise(orient_contours(contours, where), panels)
-
-
-def _discretise(rings, panels):
-    """:func:`discretise` of rings already oriented (:func:`orient_contours`)."""
-    if panels == 0:
-        return rings
-    shapes = [ring_shape(r) for r in rings]
-    flags = [turn > CORNER_ANGLE for _, turn in shapes]
-    perims = np.array([seg.sum() for seg, _ in shapes])
-    if panels is None:
-        # slender rings need more panels: scale by sqrt of the isoperimetric ratio P^2/(4 pi A)
-        # (1 for a circle, 4.2 for a 10:1 ellipse), capped at 3x; rounded to 16 for batching
-        q = max(pr ** 2 / (4.0 * np.pi * abs(signed_area(r))) for pr, r in zip(perims, rings))
-        panels = int(16 * np.round(DEFAULT_PANELS * min(3.0, np.sqrt(q)) / 16))
-    budget = _panel_budget(rings, flags, panels, perims)
-    return [_resample_ring(r, n, f, sh) for r, n, f, sh in zip(rings, budget, flags, shapes)]
+    if contours is None or not len(contours):
+        orient_contours([], where)                      # its error: no contour
+    nodes, budget = _discretise_rings(_ring_set([contours], where, single=True), panels)
+    return np.split(nodes, np.cumsum(budget)[:-1])
 
 
 # --------------------------------------------------------------------------- solver
@@ -361,15 +348,15 @@ def added_mass_sections(sections, *, rho: float, about=(0.0, 0.0),
 
 # --------------------------------------------------------------------------- all sections at once
 #
-# The functions above work on one ring at a time.  A strip model has one section per strip
-# (75 to 200 of them, each with one or a few rings), and for rings of a few hundred points
-# the per-call overhead of numpy costs more than the arithmetic.  _RingSet holds every ring
-# of every section in one padded 2D array and runs the same steps (clean, orient, edge
-# lengths and turning angles, resample) once for all rings.  Each step does the same
-# floating-point operations in the same order as its one-ring counterpart above, so the
-# panel nodes, centroids and perimeters are the same to the last bit; only the signed ring
-# areas (used for their sign and, by the default panel count, their size) are summed in
-# another order (tests/test_panel_batched.py).
+# A strip model has one section per strip (75 to 200 of them, each with one or a few rings),
+# and for rings of a few hundred points the per-call overhead of numpy costs more than the
+# arithmetic.  _RingSet holds every ring of every section in one padded 2D array and runs
+# the steps (clean, orient, edge lengths and turning angles, resample) once for all rings;
+# a single section (added_mass_contours, discretise) is the case of one.  Cleaning and
+# orienting repeat :func:`~stripcoef.geometry.polygons.orient_contours` (which the mesh
+# slicer and the polygon drag use on one section) operation for operation, so the rings are
+# the same to the last bit; only the signed ring areas (used for their sign and, by the
+# default panel count, their size) are summed in another order (tests/test_panel_batched.py).
 #
 # Padded layout: ring r with n_r vertices is row r of ``pts`` (R, m + 1, 2), m = max n_r;
 # columns n_r..m repeat the ring's first vertex.  Edge i (vertex i -> i + 1) is then the
@@ -398,7 +385,9 @@ class _RingSet:
         self.seg = np.sqrt(e_out[..., 0] ** 2 + e_out[..., 1] ** 2)
         cross = e_in[..., 0] * e_out[..., 1] - e_in[..., 1] * e_out[..., 0]
         dot = e_in[..., 0] * e_out[..., 0] + e_in[..., 1] * e_out[..., 1]
-        self.turn = np.abs(np.arctan2(cross, dot))
+        # zero past each ring's end: there e_out = 0 and arctan2(0, -0.0) would be pi
+        real = np.arange(e_out.shape[1]) < count[:, None]
+        self.turn = np.where(real, np.abs(np.arctan2(cross, dot)), 0.0)
         self.corner = self.turn > CORNER_ANGLE
 
     def ring(self, r) -> np.ndarray:
@@ -452,25 +441,30 @@ class _RingSet:
         return out
 
 
-def _refuse(sections, where, s):
+def _refuse(sections, where, s, single=False):
     """Raise the error of the first section that :func:`orient_contours` refuses (the
     message names the ring); if it accepts them all (a ring whose area rounds to zero in one
-    sum and not in the other), the zero-area error of section ``s``."""
+    sum and not in the other), the zero-area error of section ``s``. ``single``: one
+    section, named ``where`` itself."""
+    def name(i):
+        return where if single else f"{where}[{i}]"
+
     for i, c in enumerate(sections):
         if c is not None and len(c):
-            orient_contours(c, f"{where}[{i}]")
-    raise InputError("contour has zero area", key=f"{where}[{s}]")
+            orient_contours(c, name(i))
+    raise InputError("contour has zero area", key=name(s))
 
 
-def _ring_set(sections, where: str = "sections") -> "_RingSet":
+def _ring_set(sections, where: str = "sections", single: bool = False) -> "_RingSet":
     """:class:`_RingSet` of ``sections`` (each a list of (n, 2) rings [m]; ``None`` or ``[]``:
-    an empty section).  Invalid rings raise the :class:`InputError` of :func:`orient_contours`."""
+    an empty section).  Invalid rings raise the :class:`InputError` of :func:`orient_contours`
+    (``single``: ``sections`` is one section, named ``where``)."""
     rings, owner = [], []
     for s, contours in enumerate(sections):
         for c in contours if contours is not None else ():
             r = np.asarray(c, dtype=float)
             if r.ndim != 2 or r.shape[1] != 2 or len(r) < 3:
-                _refuse(sections, where, s)
+                _refuse(sections, where, s, single)
             rings.append(r)
             owner.append(s)
     nsec = len(sections)
@@ -479,7 +473,7 @@ def _ring_set(sections, where: str = "sections") -> "_RingSet":
                         np.zeros(0))
     flat = np.concatenate(rings)
     if not np.isfinite(flat).all():
-        _refuse(sections, where, 0)
+        _refuse(sections, where, 0, single)
     section = np.array(owner)
     count = np.array([len(r) for r in rings])
     pts = _padded(flat, count)
@@ -503,12 +497,12 @@ def _ring_set(sections, where: str = "sections") -> "_RingSet":
         count = keep.sum(axis=1)
         pts = _padded(pts[:, :-1][keep], count)
     if (count < 3).any():
-        _refuse(sections, where, 0)
+        _refuse(sections, where, 0, single)
     # signed area of each ring (shoelace, as signed_area; the padding adds zeros)
     y, z = pts[..., 0], pts[..., 1]
     area = 0.5 * (y[:, :-1] * z[:, 1:] - y[:, 1:] * z[:, :-1]).sum(axis=1)
     if (area == 0.0).any():
-        _refuse(sections, where, int(section[np.argmax(area == 0.0)]))
+        _refuse(sections, where, int(section[np.argmax(area == 0.0)]), single)
     # orient_contours: a ring inside an odd number of the section's other rings is a hole
     # (clockwise), the others are outer rings (counter-clockwise).  Nesting is tested only
     # in sections with several rings (few), one ring at a time.
@@ -591,8 +585,15 @@ def _interp_rows(x, xp, fps, last):
 
 
 def _resample_smooth(rs: _RingSet, rings, n) -> np.ndarray:
-    """:func:`_resample_ring` of the rings ``rings`` (no sharp corner) of ``rs`` with ``n``
-    nodes each, all at once: (len(rings), max(n), 2), row i's first n[i] nodes."""
+    r"""``n`` nodes on each of the rings ``rings`` (no sharp corner) of ``rs``, all at once:
+    (len(rings), max(n), 2), row i's first n[i] nodes.
+
+    Equidistributed in arc length plus turning,
+    :math:`\mu(s) = s + w\,P/(2\pi)\,\Theta(s)` (w = :data:`CURVATURE_WEIGHT`, P the
+    perimeter, :math:`\Theta` the turning angle so far, each vertex's turn spread over its
+    two edges): n equal steps of mu mapped back to s, then to (y, z) by linear interpolation
+    along the ring. [assumption] the weighting is this module's choice (no published rule);
+    accuracy against exact sections in tests/test_panel_exact.py."""
     cnt = rs.count[rings]
     seg, turn = rs.seg[rings], rs.turn[rings]
     k = len(rings)
@@ -615,8 +616,10 @@ def _resample_smooth(rs: _RingSet, rings, n) -> np.ndarray:
 
 
 def _discretise_rings(rs: _RingSet, panels):
-    """:func:`_discretise` of every section of ``rs``: the nodes of all rings in ring order
-    (Q, 2) and the node count of each ring (R,)."""
+    """Panel nodes of every section of ``rs`` (see :func:`discretise` for the panel count):
+    the nodes of all rings in ring order (Q, 2) and the node count of each ring (R,).
+    Smooth rings: :func:`_resample_smooth`; rings with sharp corners:
+    :func:`_resample_cornered`."""
     if panels == 0:
         return rs.pts[:, :-1][np.arange(rs.pts.shape[1] - 1) < rs.count[:, None]], rs.count
     ncorner = rs.corner.sum(axis=1)
@@ -624,8 +627,8 @@ def _discretise_rings(rs: _RingSet, panels):
     several = np.nonzero(nrings > 1)[0]
     perims = rs.perimeters() if panels is None or several.size else None
     if panels is None:
-        # as _discretise: DEFAULT_PANELS times sqrt(P^2 / (4 pi A)) of the section's most
-        # slender ring, capped at 3x, rounded to 16
+        # DEFAULT_PANELS times sqrt(P^2 / (4 pi A)) of the section's most slender ring
+        # (1 for a circle, 4.2 for a 10:1 ellipse), capped at 3x, rounded to 16 for batching
         q = perims ** 2 / (4.0 * np.pi * np.abs(rs.area))
         full = nrings > 0
         qs = np.maximum.reduceat(q, rs.rings_of[:-1][full])
@@ -639,7 +642,7 @@ def _discretise_rings(rs: _RingSet, panels):
                         np.maximum(MIN_PANELS_PER_CONTOUR, MIN_PANELS_PER_EDGE * ncorner))
     for s in several:
         mine = slice(rs.rings_of[s], rs.rings_of[s + 1])
-        budget[mine] = _panel_budget(None, rs.corner[mine], per_sec[s], perims[mine])
+        budget[mine] = _panel_budget(rs.corner[mine], per_sec[s], perims[mine])
     nodes = np.empty((int(budget.sum()), 2))
     first = np.cumsum(budget) - budget                                   # first node of each ring
     smooth = np.nonzero(ncorner == 0)[0]
@@ -651,8 +654,8 @@ def _discretise_rings(rs: _RingSet, panels):
         else:
             nodes[(first[smooth][:, None] + np.arange(res.shape[1]))[valid]] = res[valid]
     for r in np.nonzero(ncorner > 0)[0]:                                 # cosine clustering
-        nodes[first[r]:first[r] + budget[r]] = _resample_ring(rs.ring(r), budget[r],
-                                                              rs.corner[r, :rs.count[r]],
-                                                              rs.shape(r))
+        nodes[first[r]:first[r] + budget[r]] = _resample_cornered(rs.ring(r), budget[r],
+                                                                  rs.corner[r, :rs.count[r]],
+                                                                  rs.shape(r))
     return nodes, budget
 

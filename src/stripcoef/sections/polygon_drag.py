@@ -26,7 +26,7 @@ The rule (documented in docs/meshes.md and docs/theory.md):
    C_{D,p}\, w_p`, with :math:`w_p` the exposed heights; it is returned as one
    coefficient on the section's full height across the flow, ``2 h`` for flow
    along y and ``2 b`` along z (the reference heights of
-   :data:`stripcoef.sections.CROSS_FLOW_DRAG`):
+   :data:`stripcoef.sections.SHAPES`):
 
    .. math:: C_{D,section} = \frac{\sum_p C_{D,p} w_p}{H_{ref}}
 
