@@ -99,3 +99,22 @@ def estimate_from_args(args):
                              corrections=False if args.no_corrections else None,
                              speed=args.speed, reference_point=ref, regime=args.regime,
                              fluid=fluid)
+
+
+def check_output_path(path, *, key: str) -> None:
+    """An output path must name a file in an existing, writable folder: checked before any
+    work, so a long run never ends on an unwritable path."""
+    import os
+    from pathlib import Path
+
+    p = Path(path)
+    if str(path) in ("", ".", "..") or p.is_dir() or str(path).endswith(("/", os.sep)):
+        raise InputError("output is a folder", key=key, value=str(path),
+                         expected="a file name")
+    folder = p.parent if str(p.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputError("output folder does not exist", key=key, value=str(path),
+                         expected="a file in an existing folder")
+    if not os.access(folder, os.W_OK):
+        raise InputError("output folder is not writable", key=key, value=str(path),
+                         expected="a file in a writable folder")
