@@ -24,7 +24,7 @@ from stripcoef.errors import InputError, StripcoefError
 
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
-            "diagnose")
+            "diagnose", "uncertainty", "sweep")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -122,3 +122,22 @@ def read_log_from_args(path, args, *, required=()):
     from stripcoef.ingest import read_any_log
 
     return read_any_log(path, column_map=getattr(args, "map", None), required=required)
+
+
+def check_output_path(path, *, key: str) -> None:
+    """An output path must name a file in an existing, writable folder: checked before any
+    work, so a long run never ends on an unwritable path."""
+    import os
+    from pathlib import Path
+
+    p = Path(path)
+    if str(path) in ("", ".", "..") or p.is_dir() or str(path).endswith(("/", os.sep)):
+        raise InputError("output is a folder", key=key, value=str(path),
+                         expected="a file name")
+    folder = p.parent if str(p.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputError("output folder does not exist", key=key, value=str(path),
+                         expected="a file in an existing folder")
+    if not os.access(folder, os.W_OK):
+        raise InputError("output folder is not writable", key=key, value=str(path),
+                         expected="a file in a writable folder")

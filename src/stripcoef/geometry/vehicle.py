@@ -21,6 +21,7 @@ from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
 from stripcoef.files import read_text
 from stripcoef.strips import Strips, uniform_stations
 from stripcoef.thrusters import Thruster
+from stripcoef.geometry.keypaths import nominal
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
 from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous
 
@@ -469,7 +470,13 @@ TOP_KEYS = ("name", "description", "fluid", "reference_point", "reference_speed"
 
 
 def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
-    """Validate a parsed vehicle mapping and build the :class:`Vehicle`."""
+    """Validate a parsed vehicle mapping and build the :class:`Vehicle`.
+
+    Values declared uncertain (``{value: V, sd: S}`` or ``{value: V, tol: T}``, see
+    :mod:`stripcoef.geometry.keypaths`) take their nominal value ``V``.
+    """
+    if isinstance(data, dict):
+        data = nominal(data, file=file)
     r = _Reader(file)
     r.mapping(data, "", TOP_KEYS, ("hull",))
     name = r.string(data, "name", "", default=Path(file).stem)
@@ -628,6 +635,13 @@ def load_vehicle(path, **mesh_options) -> Vehicle:
     if path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError("unknown vehicle file extension", file=name, value=path.suffix,
                          expected=".yaml or .yml, or a mesh: " + " ".join(MESH_SUFFIXES))
+    return parse_vehicle(read_vehicle_data(path), file=name)
+
+
+def read_vehicle_data(path) -> dict:
+    """The raw mapping of a vehicle YAML file (not yet validated: :func:`parse_vehicle`)."""
+    path = Path(path)
+    name = str(path)
     text = read_text(path, kind="vehicle file")
     try:
         data = yaml.safe_load(text)
@@ -639,4 +653,4 @@ def load_vehicle(path, **mesh_options) -> Vehicle:
     if not isinstance(data, dict):
         raise InputError("not a mapping", file=name, value=type(data).__name__,
                          expected="a YAML mapping with at least a 'hull' key")
-    return parse_vehicle(data, file=name)
+    return data

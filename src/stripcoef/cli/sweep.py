@@ -1,0 +1,52 @@
+"""``stripcoef sweep``: the model and the limits over a grid of vehicle-file values."""
+
+from __future__ import annotations
+
+
+def add_parser(sub):
+    from stripcoef.cli.uncertainty import add_execution_arguments
+
+    p = sub.add_parser("sweep", help="the model and limits over a grid of vehicle-file values",
+                       description="Set numbers of the vehicle file by key path "
+                                   "(hull.profile[1].radius, thrusters[0].max_forward, "
+                                   "mass.mass) over a grid and tabulate every coefficient and "
+                                   "limit (docs/uncertainty.md).")
+    p.add_argument("vehicle", metavar="VEHICLE", help="vehicle file (.yaml)")
+    p.add_argument("--vary", action="append", required=True, metavar="KEY=LO:HI:N",
+                   help="a key path and N values from LO to HI (repeat for a grid)")
+    p.add_argument("--no-limits", dest="limits", action="store_false",
+                   help="the model only (about 5x faster)")
+    p.add_argument("-o", "--output", metavar="FILE.csv|FILE.parquet",
+                   help="write the table (default: CSV on stdout)")
+    p.add_argument("--plot", metavar="FILE.png", help="one output over the swept keys")
+    p.add_argument("--plot-output", metavar="NAME", default=None,
+                   help="the output to plot (default surge_speed_max, or X_udot without limits)")
+    add_execution_arguments(p)
+    p.set_defaults(func=run)
+    return p
+
+
+def run(args) -> int:
+    from stripcoef.cli.options import check_output_path
+    from stripcoef.files import write_text
+    from stripcoef.study.plots import sweep_figure
+    from stripcoef.study.sweep import parse_vary, sweep, write_table
+
+    for flag, path in (("--output", args.output), ("--plot", args.plot)):
+        if path:
+            check_output_path(path, key=flag)
+    axes = [parse_vary(v) for v in args.vary]
+    if len(axes) > 2 and args.plot:
+        from stripcoef.errors import InputError
+        raise InputError("a plot shows one or two swept keys", key="--plot",
+                         value=len(axes), expected="--vary given once or twice with --plot")
+    frame = sweep(args.vehicle, axes, limits=args.limits, workers=args.workers,
+                  scheduler=args.scheduler, progress=False if args.quiet else None)
+    if args.plot:
+        output = args.plot_output or ("surge_speed_max" if args.limits else "X_udot")
+        sweep_figure(frame, [a.key for a in axes], output, path=args.plot, key="--plot")
+    if args.output:
+        write_table(frame, args.output, key="--output")
+    else:
+        print(frame.to_csv(index=False), end="")
+    return 0
