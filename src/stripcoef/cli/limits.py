@@ -73,6 +73,8 @@ def format_table(result) -> str:
             f"  at u = {d['min_turning_radius_speed']:.3f} m/s")
     for note in result.notes:
         lines.append(f"  note: {note}")
+    if result.steering is not None:
+        lines += steering_table(result.steering)
     if result.turning:
         names = list(result.turning[0].thrust)
         lines += ["", "  steady starboard turn at the thrust limit (drift > 0: nose into the "
@@ -87,6 +89,41 @@ def format_table(result) -> str:
                          + " ".join(f"{p.thrust[n]:9.3f}" for n in names)
                          + f"  {p.saturated}")
     return "\n".join(lines)
+
+
+def steering_table(steer) -> list[str]:
+    """Trim, turning circle, dive and climb of a rudder/elevator-steered vehicle."""
+    deg = math.degrees
+    lines = ["", f"  level flight: top speed {steer.surge_speed_max:.4f} m/s, slowest "
+             + ("-" if steer.level_speed_min is None else f"{steer.level_speed_min:.4f} m/s")]
+    if steer.trim:
+        lines += ["", "  level trim (pitch, heel and elevator the vehicle needs)", "",
+                  f"  {'u [m/s]':>8s} {'pitch [deg]':>11s} {'heel [deg]':>10s} "
+                  f"{'w [m/s]':>8s} {'elevator [deg]':>14s} {'thrust load':>11s}"]
+        for f in steer.trim:
+            el = [v for k, v in f.deflections.items()]
+            lines.append(f"  {f.u:8.3f} {deg(f.pitch):11.2f} {deg(f.roll):10.2f} {f.nu[2]:8.4f} "
+                         f"{deg(max(el, key=abs)):14.2f} {f.load:11.3f}")
+    if steer.turning:
+        lines += ["", "  turning circle at full rudder (positive rudder: turn to port)", "",
+                  f"  {'u [m/s]':>8s} {'R [m]':>8s} {'r [rad/s]':>9s} {'drift [deg]':>11s} "
+                  f"{'rudder [deg]':>12s} {'thrust load':>11s}"]
+        for f in steer.turning:
+            rud = max(f.deflections.values(), key=abs)
+            lines.append(f"  {f.u:8.3f} {f.radius:8.3f} {f.yaw_rate:9.4f} "
+                         f"{deg(f.drift_angle):11.2f} {deg(rud):12.2f} {f.load:11.3f}")
+    for title, rows in (("steepest steady dive", steer.dive), ("steepest steady climb",
+                                                                 steer.climb)):
+        if rows:
+            lines += ["", f"  {title} (elevator and thrust within limits; depth rate > 0 "
+                      "down)", "",
+                      f"  {'u [m/s]':>8s} {'pitch [deg]':>11s} {'dz/dt [m/s]':>11s} "
+                      f"{'elevator [deg]':>14s} {'thrust load':>11s}"]
+            for f in rows:
+                el = max(f.deflections.values(), key=abs)
+                lines.append(f"  {f.u:8.3f} {deg(f.pitch):11.2f} {f.depth_rate:11.4f} "
+                             f"{deg(el):14.2f} {f.load:11.3f}")
+    return lines
 
 
 def run(args) -> int:

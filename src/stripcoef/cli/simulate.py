@@ -1,7 +1,8 @@
 """``stripcoef simulate VEHICLE --inputs INPUTS.csv --out LOG.csv``: a 6-DOF simulation.
 
 INPUTS is a log-format CSV (:mod:`stripcoef.logfile`) with a time column ``t`` and thruster
-commands ``n_<thruster>`` and/or generalized forces ``X Y Z K M N``; the output is a log
+commands ``n_<thruster>``, control-surface deflections ``delta_<surface>`` [rad] and/or
+generalized forces ``X Y Z K M N``; the output is a log
 with the pose, the velocities, the applied forces and the commands at every input time
 (or every ``--dt`` seconds).
 """
@@ -24,7 +25,8 @@ def add_parser(subparsers):
                    help="vehicle file (YAML, estimated by strip theory) or model file "
                         "(JSON/YAML from HydroModel.to_dict, e.g. diagnose --out)")
     p.add_argument("--inputs", required=True, metavar="INPUTS.csv",
-                   help="log CSV with t and n_<thruster> commands and/or X Y Z K M N forces")
+                   help="log CSV with t and n_<thruster> commands, delta_<surface> deflections "
+                        "[rad] and/or X Y Z K M N forces")
     p.add_argument("--out", required=True, metavar="LOG.csv", help="output log CSV")
     p.add_argument("--current", metavar="U,V,W", default=None,
                    help="constant water current in the earth-fixed NED frame [m/s]")
@@ -50,19 +52,26 @@ def parse_vector(text: str, *, key: str, size: int = 3) -> np.ndarray:
 
 
 def inputs_from_log(log, model, times=None, *, interpolation="previous"):
-    """Times, forces (n,6) or None, commands and other channels (e.g. ``tether_length``)
-    from an inputs log, resampled at ``times``."""
+    """Times, forces (n,6) or None, commands, deflections [rad] and other channels (e.g.
+    ``tether_length``) from an inputs log, resampled at ``times``."""
     t_in = log.require("t")
     if len(t_in) < 2:
         raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
                          expected="at least 2 time samples")
     cmds = log.commands()
+    defl = log.deflections()
     force_cols = [f for f in FORCES if f in log]
-    if not cmds and not force_cols:
+    if not cmds and not force_cols and not defl:
         raise InputError("no inputs", file=log.source,
                          expected="thruster commands n_<name> (thrusters: "
                          + ", ".join(th.name for th in model.thrusters)
-                         + ") and/or forces X Y Z K M N")
+                         + "), deflections delta_<surface> and/or forces X Y Z K M N")
+    snames = [sf.name for sf in model.control_surfaces]
+    for name in defl:
+        if name not in snames:
+            raise InputError("unknown control surface", file=log.source, key="delta_" + name,
+                             expected="one of " + (", ".join("delta_" + n for n in snames)
+                                                   or "(the model has no control surfaces)"))
     names = [th.name for th in model.thrusters]
     for name in cmds:
         if name not in names:
@@ -82,9 +91,10 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
     forces = log.forces()
     forces = None if forces is None else np.column_stack([resample(c) for c in forces.T])
     commands = {k: resample(v) for k, v in cmds.items()}
-    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds}
+    deflections = {k: resample(v) for k, v in defl.items()}
+    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds} | {"delta_" + k for k in defl}
     channels = {k: resample(v) for k, v in log.columns.items() if k not in skip}
-    return np.asarray(times, float), forces, commands, channels
+    return np.asarray(times, float), forces, commands, deflections, channels
 
 
 def run(args) -> int:
@@ -102,10 +112,10 @@ def run(args) -> int:
         t_in = log.require("t")
         times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
         times = times[times <= t_in[-1] + 1e-12]
-    times, forces, commands, channels = inputs_from_log(log, model, times,
-                                                        interpolation=args.interpolation)
+    times, forces, commands, deflections, channels = inputs_from_log(
+        log, model, times, interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels,
+                   channels=channels, deflections=deflections,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "

@@ -171,6 +171,7 @@ class LimitsResult:
     options: LimitOptions
     notes: list[str] = field(default_factory=list)
     thrust_limits: dict = field(default_factory=dict)
+    steering: object = None     # SteeringLimits of a rudder/elevator-steered vehicle
 
     @property
     def surge_speed_max(self) -> float:
@@ -212,6 +213,7 @@ class LimitsResult:
                            "yaw": man(self.yaw), "sway": man(self.sway)},
             "options": {"munk": self.options.munk, "coriolis": self.options.coriolis},
             "notes": list(self.notes),
+            "steering": None if self.steering is None else self.steering.to_dict(),
         }
 
 
@@ -779,6 +781,8 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
     """
     check_model(model)
     options = LimitOptions(munk=munk, coriolis=coriolis)
+    if getattr(model, "control_surfaces", ()):
+        return _steered_limits(model, options, turn_speed)
     radii = check_radii(np.linspace(*DEFAULT_RADII[:2], DEFAULT_RADII[2]) if radii is None else radii)
     alloc = _Allocator(model)
     notes = []
@@ -820,3 +824,39 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
                                        for t in model.thrusters})
 
 
+
+
+def _steered_limits(model, options: LimitOptions, turn_speed) -> LimitsResult:
+    """Limits of a vehicle with rudders/elevators (:mod:`stripcoef.limits.steering`): the top
+    speed of trimmed level flight, the turning circle at full rudder, dive and climb.
+
+    The surge manoeuvre is the level trim at the top speed (pitch and heel in ``trim``);
+    ``min_turning_radius`` is the full-rudder circle at ``turn_speed`` (default half the top
+    speed). Heave, yaw and sway on the spot are None: no thruster gives them.
+    """
+    from stripcoef.limits.steering import level_trim, rudder_turn, steering_limits
+
+    steer = steering_limits(model, options=options, turn_speed=turn_speed)
+    top = level_trim(model, steer.surge_speed_max, options=options)
+    loads = {n: abs(t) / (lim[0] if t >= 0 else lim[1]) if (lim[0] if t >= 0 else lim[1]) else 0.0
+             for (n, t), lim in zip(top.thrust.items(),
+                                    ((th.max_forward, th.max_backward) for th in model.thrusters))}
+    top_load = max(loads.values())
+    at_limit = [n for n, x in loads.items() if x >= top_load - 1e-6 * max(top_load, 1.0)]
+    surge = Manoeuvre(speed=steer.surge_speed_max, nu=top.nu, thrust=top.thrust,
+                      saturated=at_limit[0], trim={"roll": top.roll, "pitch": top.pitch},
+                      at_limit=at_limit)
+    speed = 0.5 * steer.surge_speed_max if turn_speed is None else float(turn_speed)
+    rmin = None
+    if any(s.kind == "rudder" for s in model.control_surfaces):
+        lim = min(s.max_deflection for s in model.control_surfaces if s.kind == "rudder")
+        rmin = rudder_turn(model, speed, lim, options=options).radius
+    notes = ["steered by control surfaces: heave, yaw and sway on the spot need thrusters "
+             "this vehicle does not have; see steering (trim, turning circle, dive, climb)"]
+    notes += steer.notes
+    return LimitsResult(name=model.name, surge=surge, heave=None, yaw=None, sway=None,
+                        turning=[], min_turning_radius=rmin, min_turning_speed=speed,
+                        options=options, notes=notes,
+                        thrust_limits={t.name: (float(t.max_forward), float(t.max_backward))
+                                       for t in model.thrusters},
+                        steering=steer)
