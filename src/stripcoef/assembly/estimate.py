@@ -93,7 +93,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
                               section_panels=section_panels)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
-    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref)
+    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb)
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     cond.update(am_info)
     if lift_info:

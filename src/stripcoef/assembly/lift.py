@@ -46,7 +46,7 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float):
             {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area})
 
 
-def vehicle_lift(vehicle, rho: float, ref) -> tuple[np.ndarray, tuple, dict]:
+def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, tuple, dict]:
     """Lift matrix L (force -u L nu), control surfaces and a summary, about ``ref`` [m].
 
     Parameters
@@ -56,6 +56,8 @@ def vehicle_lift(vehicle, rho: float, ref) -> tuple[np.ndarray, tuple, dict]:
         Fluid density [kg/m^3]
     ref : (3,)
         Reference point [m]
+    center : (3,), optional
+        Centre of buoyancy [m], where the body lift's sideslip is measured (default ``ref``)
 
     Returns
     -------
@@ -102,7 +104,7 @@ def vehicle_lift(vehicle, rho: float, ref) -> tuple[np.ndarray, tuple, dict]:
         surfaces.append(ControlSurface(name=s.name, kind=s.kind, derivative=b,
                                        max_deflection=s.max_deflection,
                                        stall_angle=s.stall_angle))
-    body = _body_lift(vehicle, rho, ref)
+    body = _body_lift(vehicle, rho, ref, ref if center is None else center)
     if body is not None:
         lift += body[0]
         info["body_lift"] = body[1]
@@ -113,7 +115,7 @@ def vehicle_lift(vehicle, rho: float, ref) -> tuple[np.ndarray, tuple, dict]:
     return lift, tuple(surfaces), info
 
 
-def _body_lift(vehicle, rho: float, ref):
+def _body_lift(vehicle, rho: float, ref, center):
     """Body lift of a slender hull of revolution (Hoerner & Borst 1985; Prestero 2001 sec. 3.6.1).
 
     ``body_lift: auto`` (default) includes it when the vehicle has fins or control surfaces
@@ -140,5 +142,6 @@ def _body_lift(vehicle, rho: float, ref):
         return None
     x_cp = hi - BODY_CP_FRACTION * length
     cp = np.array([x_cp, hull.y, hull.z]) - np.asarray(ref, float)
-    return (body_lift_matrix(length, d, cp, rho=rho),
+    return (body_lift_matrix(length, d, cp, rho=rho,
+                             velocity_point=np.asarray(center, float) - np.asarray(ref, float)),
             {"length": length, "diameter": d, "center_of_pressure_x": x_cp})

@@ -82,8 +82,32 @@ def format_table(model) -> str:
            mat("Quadratic damping D_Q", model.quadratic_damping, "kg/m, kg, kg m^2"),
            "",
            mat("Rigid-body mass M_RB", model.rigid_body_mass, "kg, kg m, kg m^2"),
-           "",
-           "Conditions:"]
+           ""]
+    if np.any(model.lift) or model.control_surfaces:
+        out += [mat("Lift L (force -u L nu)", model.lift, "kg/m, kg, kg m"), ""]
+        coeffs = model.coefficients()
+        lift_names = [k for k in ("Y_uv", "Y_ur", "Z_uw", "Z_uq", "K_up", "M_uw", "M_uq",
+                                  "N_uv", "N_ur") if k in coeffs]
+        if lift_names:
+            out.append("Lift derivatives (SNAME): " + ", ".join(
+                f"{k} = {coeffs[k]:.4g}" for k in lift_names))
+        for s in model.control_surfaces:
+            d = s.derivative
+            out.append(f"Control surface {s.name} ({s.kind}, +-{np.degrees(s.max_deflection):.3g} "
+                       f"deg, stall {np.degrees(s.stall_angle):.3g} deg): force u^2 b delta, b = "
+                       + "[" + ", ".join(f"{x:.4g}" for x in d) + "]")
+        ctrl = {k: v for k, v in coeffs.items() if "_uud" in k}
+        if ctrl:
+            out.append("Control derivatives (SNAME): " + ", ".join(
+                f"{k} = {v:.4g}" for k, v in ctrl.items()))
+        out.append("")
+    torques = [t for t in model.thrusters if getattr(t, "torque_ratio", 0.0)]
+    for t in torques:
+        out.append(f"Thruster {t.name}: propeller torque k_Q = {t.torque_ratio:.4g} m "
+                   "(moment k_Q T along its axis)")
+    if torques:
+        out.append("")
+    out.append("Conditions:")
     keys = ("reference_speed", "reynolds_length", "regime", "cf_laminar", "cf_turbulent",
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",

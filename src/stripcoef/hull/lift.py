@@ -178,14 +178,16 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
 
 
 def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
-                     rho: float) -> np.ndarray:
+                     rho: float, velocity_point=(0.0, 0.0, 0.0)) -> np.ndarray:
     r"""Lift matrix of a slender body of revolution (force :math:`-uL\nu`).
 
-    .. math:: L_{22} = L_{33} = \tfrac12 \rho d^2 c_{yd\beta}, \quad
-              L_{62} = x_{cp} L_{22}, \quad L_{53} = -x_{cp} L_{33}
+    .. math:: L = k\,(c_y a_y^T + c_z a_z^T),\quad k = \tfrac12 \rho d^2 c_{yd\beta},\quad
+              c_e = [e;\ r_{cp} \times e],\quad a_e = [e;\ r_v \times e]
 
-    (with the y/z offsets of the centre of pressure in the roll rows): the force of a
-    sideslip v (angle of attack w) acting at the centre of pressure.
+    the force of the sideslip (angle of attack) :math:`a_e^T\nu = e^T(v + \omega\times r_v)`
+    at the body's centre ``velocity_point`` r_v, acting at the centre of pressure r_cp. About
+    the centre itself this is :math:`L_{22} = L_{33} = k`, :math:`L_{62} = x_{cp} k`,
+    :math:`L_{53} = -x_{cp} k` (Prestero's form, which takes v at his origin, the CB).
 
     Parameters
     ----------
@@ -195,6 +197,9 @@ def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
         Centre of pressure relative to the reference point [m]
     rho : float
         Fluid density [kg/m^3]
+    velocity_point : (3,)
+        Where the sideslip is measured (the centre of buoyancy), relative to the reference
+        point [m]; makes the matrix move between reference points like D_L
 
     Returns
     -------
@@ -207,6 +212,6 @@ def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
     """
     k = 0.5 * rho * diameter ** 2 * body_lift_slope(length, diameter)
     out = np.zeros((6, 6))
-    out[:, 1] = k * lift_column([0.0, 1.0, 0.0], center_of_pressure)
-    out[:, 2] = k * lift_column([0.0, 0.0, 1.0], center_of_pressure)
+    for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
+        out += k * np.outer(lift_column(e, center_of_pressure), lift_column(e, velocity_point))
     return out
