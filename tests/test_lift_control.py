@@ -157,9 +157,9 @@ def _total_linear(model, u=1.0):
 
 _COMBINED = {"Y_uv": (1, 1), "Z_uw": (2, 2), "N_uv": (5, 1), "M_uw": (4, 2),
              "Y_ur": (1, 5), "Z_uq": (2, 4), "N_ur": (5, 5), "M_uq": (4, 4)}
-_MISS = ("Prestero's printed fin terms are rho c_La S = 9.64 kg/m, 45 % of what his formula "
-         "gives with his own inputs (21.4 kg/m; reference_tables/prestero2001 README, "
-         "inconsistency 1); the model uses the formula")
+_MISS = ("Prestero's printed fin terms are rho c_La S = 9.64 kg/m, 45 % of two fins' "
+         "2 x 1/2 rho c_La S_fin = 21.4 kg/m with his own inputs (reference_tables/prestero2001 "
+         "README, inconsistency 1); the model keeps the two-fin formula")
 
 
 @pytest.mark.parametrize("name", list(_COMBINED))

@@ -18,7 +18,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "identification",
+SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift", "identification",
                              "meshes", "diagnosis")
 
 
