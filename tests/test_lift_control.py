@@ -83,7 +83,7 @@ def test_remus_lift_signs_and_symmetry(remus):
     assert c["Y_uudr"] > 0 and c["N_uudr"] < 0             # Prestero's rudder convention
     assert c["Z_uuds"] < 0 and c["M_uuds"] < 0
     assert c["Y_uudr"] == pytest.approx(-c["Z_uuds"])
-    assert c["K_prop_propeller"] == pytest.approx(-0.1407)
+    assert remus.thrusters[0].torque_ratio == pytest.approx(-0.1407)
     body = remus.conditions["lift"]["body_lift"]
     assert body["center_of_pressure_x"] < 0.0             # 0.65 l aft of the nose
 
@@ -320,3 +320,81 @@ def test_bad_control_surface(tmp_path, capsys, label, edit, key, text):
 def test_simulate_refuses_a_deflection_beyond_the_limit(remus):
     with pytest.raises(InputError, match="delta_rudder"):
         simulate(remus, [0.0, 1.0], deflections={"rudder": 0.5})
+
+
+def test_myring_truncation_is_the_untruncated_curve_shifted():
+    from stripcoef.geometry.profiles import myring_nose, myring_tail
+    x = np.linspace(0.4365, 0.611, 7)
+    full = myring_nose(x, 0.4365, 0.611 + 0.0165, 0.0955, 2.0)
+    cut = myring_nose(x, 0.4365, 0.611, 0.0955, 2.0, 0.191)
+    assert np.allclose(cut, full, atol=1e-15)
+    xt = np.linspace(-0.7217, -0.2175, 7)
+    assert np.allclose(myring_tail(xt, -0.7217, -0.2175, 0.0955, math.radians(25), 0.541),
+                       myring_tail(xt, -0.7585, -0.2175, 0.0955, math.radians(25)), atol=1e-15)
+
+
+@pytest.mark.parametrize("segment,value,text", [
+    (0, 0.3, "shorter than the segment"), (1, 0.6, "unexpected key")])
+def test_myring_length_errors(tmp_path, capsys, segment, value, text):
+    data = _remus_data()
+    data["hull"]["profile"][segment]["length"] = value
+    f = tmp_path / "bad.yaml"
+    f.write_text(yaml.safe_dump(data))
+    assert main(["coefficients", str(f)]) == 2
+    err = capsys.readouterr().err
+    assert f"hull.profile[{segment}].length" in err and text in err
+
+
+# ---------------------------------------------------------------------------
+# exports that hold lift and control surfaces
+# ---------------------------------------------------------------------------
+def test_exports_carry_the_lift(remus, tmp_path):
+    import importlib.util
+    import io
+    import re
+
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.export import export_model
+    from stripcoef.export.csvtable import read as read_csv
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        uuv = export_model(remus, "uuv")
+        sdf = export_model(remus, "gazebo")
+        csv_text = export_model(remus, "csv")
+        npz = export_model(remus, "npz")
+        py = export_model(remus, "python")
+        mss = export_model(remus, "mss")
+    at_cg = remus.about(remus.center_of_gravity)
+    # UUV Simulator: parameters in FRD about the CoG, DLinForwardSpeed = -L (36 values)
+    block = re.search(r"<linear_damping_forward_speed>(.*?)</linear_damping_forward_speed>",
+                      uuv, re.S).group(1)
+    vals = np.array([float(v) for v in block.split()]).reshape(6, 6)
+    assert np.allclose(vals, -at_cg.lift, atol=1e-12)
+    # gz-sim: about the CO in FLU, <yVabsU> = Y_uv (unchanged by the y, z flip)
+    flu = transform_matrix(remus.lift, axes="FLU")
+    assert float(re.search(r"<yVabsU>(.*?)</yVabsU>", sdf).group(1)) == pytest.approx(-flu[1, 1])
+    assert float(re.search(r"<nRabsU>(.*?)</nRabsU>", sdf).group(1)) == pytest.approx(-flu[5, 5])
+    d = read_csv(csv_text)
+    assert np.allclose(d["lift"], remus.lift) and d["control_surfaces"] == ["rudder", "elevator"]
+    assert np.allclose(d["control_derivatives"], remus.control_matrix)
+    with np.load(io.BytesIO(npz)) as arc:
+        assert np.allclose(arc["L"], remus.lift) and np.allclose(arc["B_delta"],
+                                                                  remus.control_matrix)
+    path = tmp_path / "remus_model.py"
+    path.write_text(py)
+    spec = importlib.util.spec_from_file_location("remus_model", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert np.allclose(mod.L, remus.lift) and np.allclose(mod.B_DELTA, remus.control_matrix)
+    assert mod.COEFFICIENTS["Y_uv"] == pytest.approx(remus.coefficients()["Y_uv"])
+    assert "Bdelta = [" in mss and "D = DL + nu_r(1) * L" in mss
+
+
+def test_model_file_round_trip_through_the_cli(tmp_path, capsys):
+    f = tmp_path / "remus.json"
+    assert main(["coefficients", str(REMUS), "--json", "-o", str(f)]) == 0
+    capsys.readouterr()
+    assert main(["limits", str(f), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["steering"]["turning"]

@@ -377,7 +377,9 @@ class HydroModel:
         raise unknown_name("thruster", name, [t.name for t in self.thrusters])
 
     def coefficients(self) -> dict:
-        """Every SNAME derivative by name, with its SNAME sign."""
+        """Every SNAME derivative by name, with its SNAME sign: added mass, damping, lift
+        (``Y_uv = -L[1, 1]``...) and control derivatives (``Y_uudr``...; Prestero 2001,
+        secs. 3.6-3.7)."""
         out = sname_coefficients(self.added_mass, self.linear_damping, self.quadratic_damping,
                                  tol=1e-12)
         lift = np.asarray(self.lift, dtype=float)
@@ -386,9 +388,6 @@ class HydroModel:
             if lift[i, j] != 0.0 and abs(lift[i, j]) > 1e-12 * scale:
                 out[name] = -float(lift[i, j])
         out.update(control_derivative_names(self.control_surfaces))
-        for t in self.thrusters:
-            if getattr(t, "torque_ratio", 0.0):
-                out[f"K_prop_{t.name}"] = float(t.torque_ratio)
         return out
 
     # -- transforms ---------------------------------------------------------

@@ -328,9 +328,9 @@ def _segment(r: _Reader, seg, path) -> Segment:
                                 f"the full Myring length >= x_fwd - x_aft = {xf - xa:g} m "
                                 "(a longer one truncates the tip)")
                 params["length"] = full
-        elif "length" in seg:
-            raise r.err(f"{path}.length", "unexpected key for this segment type",
-                        expected="length only on myring_nose and myring_tail segments")
+    if "length" in seg and kind not in ("myring_nose", "myring_tail"):
+        raise r.err(f"{path}.length", "unexpected key for this segment type",
+                    expected="length only on myring_nose and myring_tail segments")
     return Segment(kind, xa, xf, params)
 
 
