@@ -268,7 +268,7 @@ def steepest_dive(model, u: float, sign: float, *, options=None, _plant=None) ->
             return 1.0
         return max(max(abs(d) for d in f.deflections.values()) / lim, f.load) - 1.0
 
-    grid = sign * np.linspace(0.0, PITCH_CAP, 25)
+    grid = sign * np.linspace(0.0, PITCH_CAP, 13)        # 5 deg steps, then Brent
     prev = grid[0]
     if excess(prev) > 0.0:
         raise UnreachableError(f"u = {u:.4g} m/s: the elevators or the thrusters cannot "
