@@ -398,3 +398,19 @@ def test_model_file_round_trip_through_the_cli(tmp_path, capsys):
     assert main(["limits", str(f), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["steering"]["turning"]
+
+
+def test_finned_vehicle_without_control_surfaces_is_trimmed_not_refused(tmp_path, capsys):
+    """Fixed fins, one propeller, 7 % buoyant: no thruster gives heave, yet limits reports
+    the free flight (pitch, depth rate) instead of exiting 2 (issue 15)."""
+    data = _remus_data()
+    del data["control_surfaces"]
+    f = tmp_path / "fixed_fins.yaml"
+    f.write_text(yaml.safe_dump(data))
+    assert main(["limits", str(f), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    trim = out["steering"]["trim"]
+    assert trim and out["steering"]["turning"] == []
+    for t in trim:
+        theta, w, u = t["pitch"], t["nu"][2], t["u"]
+        assert t["depth_rate"] == pytest.approx(-u * math.sin(theta) + w * math.cos(theta))

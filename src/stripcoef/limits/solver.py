@@ -781,7 +781,9 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
     """
     check_model(model)
     options = LimitOptions(munk=munk, coriolis=coriolis)
-    if getattr(model, "control_surfaces", ()):
+    if getattr(model, "control_surfaces", ()) or (
+            np.any(getattr(model, "lift", 0.0)) and not _Allocator(model).controls(2)):
+        # steered by control surfaces, or a finned body whose thrusters give no heave
         return _steered_limits(model, options, turn_speed)
     radii = check_radii(np.linspace(*DEFAULT_RADII[:2], DEFAULT_RADII[2]) if radii is None else radii)
     alloc = _Allocator(model)
@@ -834,10 +836,12 @@ def _steered_limits(model, options: LimitOptions, turn_speed) -> LimitsResult:
     ``min_turning_radius`` is the full-rudder circle at ``turn_speed`` (default half the top
     speed). Heave, yaw and sway on the spot are None: no thruster gives them.
     """
-    from stripcoef.limits.steering import level_trim, rudder_turn, steering_limits
+    from stripcoef.limits.steering import free_flight, level_trim, rudder_turn, steering_limits
 
     steer = steering_limits(model, options=options, turn_speed=turn_speed)
-    top = level_trim(model, steer.surge_speed_max, options=options)
+    trim_of = level_trim if any(s.kind == "elevator" for s in model.control_surfaces) \
+        else free_flight
+    top = trim_of(model, steer.surge_speed_max, options=options)
     loads = {n: abs(t) / (lim[0] if t >= 0 else lim[1]) if (lim[0] if t >= 0 else lim[1]) else 0.0
              for (n, t), lim in zip(top.thrust.items(),
                                     ((th.max_forward, th.max_backward) for th in model.thrusters))}
@@ -851,8 +855,9 @@ def _steered_limits(model, options: LimitOptions, turn_speed) -> LimitsResult:
     if any(s.kind == "rudder" for s in model.control_surfaces):
         lim = min(s.max_deflection for s in model.control_surfaces if s.kind == "rudder")
         rmin = rudder_turn(model, speed, lim, options=options).radius
-    notes = ["steered by control surfaces: heave, yaw and sway on the spot need thrusters "
-             "this vehicle does not have; see steering (trim, turning circle, dive, climb)"]
+    notes = ["steered by control surfaces (or finned without heave thrust): heave, yaw and "
+             "sway on the spot need thrusters this vehicle does not have; see steering (trim, "
+             "turning circle, dive, climb)"]
     notes += steer.notes
     return LimitsResult(name=model.name, surge=surge, heave=None, yaw=None, sway=None,
                         turning=[], min_turning_radius=rmin, min_turning_speed=speed,

@@ -223,6 +223,32 @@ def level_trim(model, u: float, *, options=None, _plant=None) -> Flight:
     return p.flight(u, *parts(x))
 
 
+def free_flight(model, u: float, *, options=None, _plant=None) -> Flight:
+    r"""Steady straight flight at surge speed ``u`` [m/s] of a vehicle without elevators.
+
+    Unknowns thrust, pitch :math:`\theta` and heave w (rows X, Z, M), control surfaces at
+    zero: the attitude its weight, buoyancy, lift and fins settle on; the path is not level
+    and the depth rate :math:`\dot z = -u\sin\theta + w\cos\theta` [m/s] says how fast it
+    rises or sinks (Fossen 2011, eqs. 2.18, 4.6, 7.190; module docstring).
+    """
+    p = _plant or _Plant(model, _options(options))
+    zero = np.zeros(len(model.control_surfaces))
+
+    def parts(x):
+        x_t, theta, w = x
+        return (np.array([u, 0.0, w, 0.0, 0.0, 0.0]),
+                np.array([0.0, 0.0, 0.0, 0.0, theta, 0.0]), x_t, zero)
+
+    def f(x, s):
+        return p.balance(*parts(x))[[0, 2, 4]]
+
+    x0 = [float(p.required(np.array([u, 0, 0, 0, 0, 0.0]), np.zeros(6))[0]), 0.0, 0.0]
+    x = _solve(f, x0, f"free flight at u = {u:.4g} m/s")
+    nu, eta, x_t, d = parts(x)
+    return p.flight(u, nu, eta, x_t, d, depth_rate=-u * math.sin(eta[4])
+                    + nu[2] * math.cos(eta[4]))
+
+
 #: Steepest pitch searched for the dive and climb [rad] (assumption: AUV autopilots limit
 #: pitch to well below this; beyond it the small-angle hydrostatic trim is poor).
 PITCH_CAP = math.radians(60.0)
@@ -354,9 +380,12 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
     """
     p = _Plant(model, _options(options))
     notes = []
+    have_rudder = any(s.kind == "rudder" for s in model.control_surfaces)
+    have_elevator = any(s.kind == "elevator" for s in model.control_surfaces)
+    trim_of = level_trim if have_elevator else free_flight
 
     def load(u):
-        return level_trim(model, u, _plant=p).load - 1.0
+        return trim_of(model, u, _plant=p).load - 1.0
 
     # bracket the top speed: stepping up from 0.1 m/s by 25 % to the first speed the
     # thrusters can hold (slow level flight may need a steep, costly trim, or no trim
@@ -376,8 +405,11 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
             raise UnreachableError("level flight: no speed the thrusters can hold"
                                    if lo is None else "level flight: no finite top speed")
     u_max = brentq(load, lo, u, xtol=1e-9)
-    u_min = level_speed_min(model, u_max, _plant=p)
-    if u_min is None:
+    u_min = level_speed_min(model, u_max, _plant=p) if have_elevator else None
+    if not have_elevator:
+        notes.append("no elevator: the trim table is the free flight the vehicle settles on "
+                     "(pitch and depth rate from its weight, buoyancy and lift)")
+    elif u_min is None:
         notes.append("the elevators cannot hold the net buoyancy in level flight at any "
                      "speed up to the top speed")
     elif u_min > 0.0:
@@ -387,9 +419,9 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
     speeds = sorted(set([f * u_max for f in SPEED_FRACTIONS]
                         + ([float(turn_speed)] if turn_speed else [])))
     trim, turning, dives, climbs = [], [], [], []
-    have_rudder = any(s.kind == "rudder" for s in model.control_surfaces)
-    have_elevator = any(s.kind == "elevator" for s in model.control_surfaces)
     for u in speeds:
+        if not have_elevator:
+            trim.append(free_flight(model, u, _plant=p))
         if have_elevator:
             trim.append(level_trim(model, u, _plant=p))
             for sign, out in ((-1.0, dives), (1.0, climbs)):
@@ -402,7 +434,7 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
     if not have_rudder:
         notes.append("no rudder: no turning circle")
     if not have_elevator:
-        notes.append("no elevator: no trim, dive or climb")
+        notes.append("no elevator: no dive or climb")
     for f in turning + dives + climbs:
         if f.load > 1.0 + 1e-6:
             notes.append(f"at u = {f.u:.3f} m/s the manoeuvre needs {f.load:.2f} times the "
