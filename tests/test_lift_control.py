@@ -414,3 +414,16 @@ def test_finned_vehicle_without_control_surfaces_is_trimmed_not_refused(tmp_path
     for t in trim:
         theta, w, u = t["pitch"], t["nu"][2], t["u"]
         assert t["depth_rate"] == pytest.approx(-u * math.sin(theta) + w * math.cos(theta))
+
+
+def test_effective_angle_and_stall_warning(remus_neutral):
+    from stripcoef.simulate import effective_angle
+    rud = remus_neutral.surface("rudder")
+    # straight at 1 m/s: the angle is the deflection; a sideslip v adds -v/u at the fins
+    assert effective_angle(rud, [[1.0, 0, 0, 0, 0, 0]], [0.1])[0] == pytest.approx(0.1)
+    assert effective_angle(rud, [[1.0, 0.05, 0, 0, 0, 0]], [0.0])[0] == pytest.approx(-0.05)
+    elev = remus_neutral.surface("elevator")
+    assert effective_angle(elev, [[2.0, 0, 0.1, 0, 0, 0]], [0.0])[0] == pytest.approx(-0.05)
+    # a vehicle started sideways at speed: the fins see far beyond stall -> warning
+    with pytest.warns(ModelWarning, match="stall"):
+        simulate(remus_neutral, np.linspace(0, 1, 11), nu0=[1.0, 0.8, 0, 0, 0, 0])

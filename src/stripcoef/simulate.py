@@ -395,6 +395,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
 
     if controller is not None:
         control(n - 1, y)  # the command issued at the last sample (logged)
+    if surfaces:
+        _check_stall(surfaces, states[:, 6:], defl, t, current_fn is not None)
     hold["values"] = None
     taus = np.array([applied(ti)[2] for ti in t])
     cols = {"t": t}
@@ -414,6 +416,49 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     if current is not None and not callable(current):
         meta["current"] = np.asarray(current, dtype=float).tolist()
     return Log(cols, source=f"simulate({model.name})", meta=meta)
+
+
+def effective_angle(surface, nu_r, delta) -> np.ndarray:
+    r"""Effective angle of attack of a control surface [rad].
+
+    .. math:: \alpha_e = \sigma\delta - \frac{b^T\nu_r}{b_e\,u_r},\qquad
+              \sigma = \operatorname{sign}(b_e)
+
+    with b the surface's derivative column and b_e its lift-direction entry (Y for a rudder,
+    Z for an elevator): :math:`b^T\nu_r / b_e` is the area-weighted cross velocity of its
+    panels at their quarter chords (Prestero 2001, sec. 3.7; docs/theory.md sec. 8).
+    ``nu_r`` (n, 6) [m/s, rad/s], ``delta`` (n,) [rad]; NaN where u_r = 0.
+    """
+    b = np.asarray(surface.derivative, dtype=float)
+    row = 1 if surface.kind == "rudder" else 2
+    be = b[row]
+    nu_r = np.atleast_2d(nu_r)
+    u = nu_r[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross = (nu_r @ b) / be
+        return np.where(u != 0.0, np.sign(be) * np.asarray(delta) - cross / u, np.nan)
+
+
+def _check_stall(surfaces, nu, defl, t, with_current: bool) -> None:
+    """Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
+    the linear lift law is then extrapolated (docs/theory.md sec. 8). With a current, the
+    angle is computed on the velocity over ground (an approximation, said in the message)."""
+    import warnings
+
+    from stripcoef.errors import ModelWarning
+
+    moving = np.abs(nu[:, 0]) > 1e-3
+    for k, sf in enumerate(surfaces):
+        a = effective_angle(sf, nu, defl[:, k])
+        a = np.where(moving, np.abs(a), 0.0)
+        if np.nanmax(a, initial=0.0) > sf.stall_angle:
+            i = int(np.nanargmax(a))
+            warnings.warn(f"control surface {sf.name!r}: effective angle of attack "
+                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s exceeds its stall "
+                          f"angle {np.degrees(sf.stall_angle):.1f} deg; the linear lift is "
+                          "extrapolated there" + (" (angle from the velocity over ground)"
+                                                   if with_current else ""),
+                          ModelWarning, stacklevel=3)
 
 
 def kinetic_energy(model, nu) -> np.ndarray:
