@@ -427,3 +427,21 @@ def test_effective_angle_and_stall_warning(remus_neutral):
     # a vehicle started sideways at speed: the fins see far beyond stall -> warning
     with pytest.warns(ModelWarning, match="stall"):
         simulate(remus_neutral, np.linspace(0, 1, 11), nu0=[1.0, 0.8, 0, 0, 0, 0])
+
+
+def test_window_residual_of_a_rudder_log_counts_the_control_force(remus_neutral):
+    """diagnose's window residual of the true model on its own rudder log: small only when
+    the deflections are read (effects/windows.py; a known truth, no noise)."""
+    from stripcoef.effects.windows import window_data
+    from stripcoef.logfile import Log
+
+    t = np.linspace(0.0, 40.0, 801)
+    delta = np.where(t < 10.0, 0.0, math.radians(8.0))
+    log = simulate(remus_neutral, t, commands={"propeller": 2.0}, deflections={"rudder": delta},
+                   nu0=[1.2, 0, 0, 0, 0, 0])
+    with_delta = window_data(log, remus_neutral, window=2.0).e0
+    cols = {k: v for k, v in log.columns.items() if not k.startswith("delta_")}
+    without = window_data(Log(cols), remus_neutral, window=2.0).e0
+    yaw_force = np.abs(without[:, 5]).max()
+    assert yaw_force > 0.3                       # the rudder's yaw moment, unexplained
+    assert np.abs(with_delta[:, 5]).max() < 0.05 * yaw_force
