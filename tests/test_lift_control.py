@@ -445,3 +445,10 @@ def test_window_residual_of_a_rudder_log_counts_the_control_force(remus_neutral)
     yaw_force = np.abs(without[:, 5]).max()
     assert yaw_force > 0.3                       # the rudder's yaw moment, unexplained
     assert np.abs(with_delta[:, 5]).max() < 0.05 * yaw_force
+
+
+def test_limits_plot_of_a_steered_vehicle(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "remus.png"
+    assert main(["limits", str(REMUS), "--plot", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
