@@ -117,6 +117,17 @@ def format_table(model) -> str:
         if k in c:
             v = c[k]
             out.append(f"  {k:32s} {v:.4g}" if isinstance(v, float) else f"  {k:32s} {v}")
+    lift = c.get("lift", {})
+    if "body_lift" in lift:
+        b = lift["body_lift"]
+        out.append(f"  {'body_lift':32s} l = {b['length']:.4g} m, d = {b['diameter']:.4g} m, "
+                   f"x_cp = {b['center_of_pressure_x']:.4g} m")
+    for f in lift.get("fin_lift", []):
+        out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
+                   f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2")
+    if lift.get("fins_without_lift"):
+        out.append(f"  {'fins_without_lift':32s} " + ", ".join(lift["fins_without_lift"])
+                   + " (not on the hull)")
     return "\n".join(out) + "\n"
 
 
