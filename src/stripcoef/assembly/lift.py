@@ -18,7 +18,7 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.geometry.bodies import Fin
-from stripcoef.geometry.vehicle import SurfacePanel
+from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
 from stripcoef.hull.lift import (MIN_SLENDERNESS, BODY_CP_FRACTION, body_lift_matrix,
                                  effective_aspect_ratio, fin_lift_matrix, fin_lift_slope,
                                  lift_column)
@@ -70,8 +70,6 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
     ----------
     Prestero 2001, secs. 3.6-3.7; module docstring.
     """
-    from stripcoef.geometry.vehicle import _exposed_panels, _Reader  # one geometry rule
-
     if vehicle.hull is None:            # a mesh: no fins, no surfaces known to the model
         return np.zeros((6, 6)), (), {}
     lift = np.zeros((6, 6))
@@ -79,13 +77,12 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
     in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
     hull = vehicle.hull
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
-    reader = _Reader(vehicle.source)
     fin_info = []
     no_lift = []
     for fin in fins:
         try:
-            panels = _exposed_panels(hull, fin.center, fin.span, fin.chord, fin.span_axis,
-                                     r=reader, path=f"appendages[{fin.name}]")
+            panels = exposed_panels(hull, fin.center, fin.span, fin.chord, fin.span_axis,
+                                    path=f"appendages[{fin.name}]")
         except InputError:
             no_lift.append(fin.name)     # on another appendage, not on the hull
             continue

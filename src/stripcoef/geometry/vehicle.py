@@ -539,13 +539,14 @@ TOP_KEYS = ("name", "description", "fluid", "reference_point", "reference_speed"
 SURFACE_TYPES = {"rudder": "z", "elevator": "y"}
 
 
-def _exposed_panels(hull: Hull, center, span: float, chord: float, span_axis: str, *,
-                    r: _Reader, path: str) -> list:
+def exposed_panels(hull: Hull, center, span: float, chord: float, span_axis: str, *,
+                   path: str, r: "_Reader | None" = None) -> list:
     """The parts of a fin outside the hull, one panel per side (root at the hull surface).
 
     The hull half-width at the fin's x along its span axis is the root; a fin that does
-    not reach the hull surface is refused.
+    not reach the hull surface is refused (InputError naming ``path``; ``r`` adds the file).
     """
+    r = r or _Reader(None)
     k = "xyz".index(span_axis)
     off = float(center[k]) - (hull.y if span_axis == "y" else hull.z)
     x = float(center[0])
@@ -613,7 +614,7 @@ def _control_surface(r: _Reader, data, path, hull: Hull, fins: dict, used: dict)
                 raise r.err(f"{path}.fins", f"fin {n!r} spans along {fin.span_axis}", n,
                             f"fins spanning along {span_axis} for a {kind}")
             used[n] = name
-            panels += _exposed_panels(hull, fin.center, fin.span, fin.chord, span_axis, r=r,
+            panels += exposed_panels(hull, fin.center, fin.span, fin.chord, span_axis, r=r,
                                       path=f"{path}.fins")
         names = tuple(names)
     else:
@@ -625,7 +626,7 @@ def _control_surface(r: _Reader, data, path, hull: Hull, fins: dict, used: dict)
             raise r.err(f"{path}.chord", "give chord or area", expected="one of chord [m] or "
                         "area [m^2] beside span")
         chord = chord if chord is not None else area / span
-        panels = _exposed_panels(hull, pos, span, chord, span_axis, r=r, path=f"{path}.position")
+        panels = exposed_panels(hull, pos, span, chord, span_axis, r=r, path=f"{path}.position")
     return ControlSurfaceSpec(name=name, kind=kind, panels=panels,
                               max_deflection=math.radians(dmax), stall_angle=math.radians(stall),
                               fins=names)
