@@ -9,7 +9,6 @@ REMUS coefficients, strict xfail where the model misses); consistency between
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import json
 import math
@@ -368,7 +367,7 @@ def test_exports_carry_the_lift(remus, tmp_path):
     at_cg = remus.about(remus.center_of_gravity)
     # UUV Simulator: parameters in FRD about the CoG, DLinForwardSpeed = -L (36 values)
     block = re.search(r"<linear_damping_forward_speed>(.*?)</linear_damping_forward_speed>",
-                      uuv, re.S).group(1)
+                      uuv, re.DOTALL).group(1)
     vals = np.array([float(v) for v in block.split()]).reshape(6, 6)
     assert np.allclose(vals, -at_cg.lift, atol=1e-12)
     # gz-sim: about the CO in FLU, <yVabsU> = Y_uv (unchanged by the y, z flip)

@@ -19,9 +19,15 @@ import numpy as np
 from stripcoef.errors import InputError
 from stripcoef.geometry.bodies import Fin
 from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
-from stripcoef.hull.lift import (MIN_SLENDERNESS, BODY_CP_FRACTION, body_lift_matrix,
-                                 effective_aspect_ratio, fin_lift_matrix, fin_lift_slope,
-                                 lift_column)
+from stripcoef.hull.lift import (
+    BODY_CP_FRACTION,
+    MIN_SLENDERNESS,
+    body_lift_matrix,
+    effective_aspect_ratio,
+    fin_lift_matrix,
+    fin_lift_slope,
+    lift_column,
+)
 from stripcoef.model import ControlSurface
 
 #: Force direction of a positive deflection (Prestero 2001, sec. 3.7: Y_uudr > 0, Z_uuds < 0).

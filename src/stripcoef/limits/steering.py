@@ -190,7 +190,7 @@ def _solve(f, x0, what: str, steps: int = 1):
     (:func:`scipy.optimize.fsolve` at each; the previous root starts the next)."""
     x = np.asarray(x0, dtype=float)
     for s in np.linspace(0.0 if steps > 1 else 1.0, 1.0, steps + 1 if steps > 1 else 1):
-        x, info, ier, msg = fsolve(lambda y: f(y, s), x, full_output=True, xtol=1e-12)
+        x, info, ier, msg = fsolve(lambda y, s=s: f(y, s), x, full_output=True, xtol=1e-12)
         res = np.abs(info["fvec"]).max()
         if ier != 1 and res > 1e-8 * (1.0 + np.abs(x).max()):
             raise UnreachableError(f"{what}: no steady state found ({msg.strip()})")
