@@ -60,6 +60,7 @@ from scipy.optimize import brentq, linprog
 
 from stripcoef.conventions import DOF, FORCES
 from stripcoef.errors import InputError, ModelWarning, UnreachableError
+from stripcoef.limits.balance import LimitOptions, required_force
 
 #: Rows that have no hydrostatic stiffness and must always balance.
 _ALWAYS = (0, 1, 2, 5)
@@ -72,22 +73,6 @@ _SPEED_CAP = 1.0e3
 # ---------------------------------------------------------------------------
 # options and results
 # ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class LimitOptions:
-    """What the steady-state balance includes.
-
-    Attributes
-    ----------
-    munk : bool
-        Keep the Munk moment (the moment part of C_A(nu) nu).  Seed 002 neglects it.
-    coriolis : bool
-        Keep C(nu) = C_RB + C_A at all.
-    """
-
-    munk: bool = True
-    coriolis: bool = True
-
-
 @dataclass
 class Manoeuvre:
     """One steady manoeuvre at its limit.
@@ -270,38 +255,6 @@ def check_model(model, *, file: str | None = None) -> None:
 # ---------------------------------------------------------------------------
 # the steady-state balance
 # ---------------------------------------------------------------------------
-def required_force(model, nu, eta=None, *, options: LimitOptions = LimitOptions()) -> np.ndarray:
-    r"""Generalized force the thrusters must give to hold ``nu`` steady.
-
-    .. math:: \tau_{req} = C(\nu)\nu + D(\nu)\nu + g(\eta)
-
-    Parameters
-    ----------
-    model : HydroModel
-    nu : (6,) array
-        Body velocity [m/s, rad/s]
-    eta : (6,) array, optional
-        Pose [m, rad] (only roll and pitch matter); level by default
-    options : LimitOptions
-        Munk moment / Coriolis terms on or off
-
-    Returns
-    -------
-    (6,) array
-        [N, N, N, N m, N m, N m]
-
-    References
-    ----------
-    Fossen (2011), eq. 7.190 with nu_dot = 0; Ferreira et al. 2009, eq. 23.
-    """
-    nu = np.asarray(nu, dtype=float)
-    eta = np.zeros(6) if eta is None else np.asarray(eta, dtype=float)
-    tau = model.damping(nu) @ nu + model.restoring(eta)
-    if options.coriolis:
-        tau = tau + model.coriolis(nu, munk=options.munk) @ nu
-    return tau
-
-
 class _Allocator:
     """Bounded allocation tau_S = B_S T on the rows the thrusters must balance."""
 
@@ -836,7 +789,8 @@ def _steered_limits(model, options: LimitOptions, turn_speed) -> LimitsResult:
     ``min_turning_radius`` is the full-rudder circle at ``turn_speed`` (default half the top
     speed). Heave, yaw and sway on the spot are None: no thruster gives them.
     """
-    from stripcoef.limits.steering import free_flight, level_trim, rudder_turn, steering_limits
+    from stripcoef.limits.steering import (free_flight, level_trim, rudder_turn,  # noqa: PLC0415
+                                           steering_limits)
 
     steer = steering_limits(model, options=options, turn_speed=turn_speed)
     trim_of = level_trim if any(s.kind == "elevator" for s in model.control_surfaces) \

@@ -42,6 +42,7 @@ import numpy as np
 from scipy.optimize import brentq, fsolve
 
 from stripcoef.errors import UnreachableError
+from stripcoef.limits.balance import LimitOptions, required_force
 
 #: Speeds of the turning-circle and dive tables, as fractions of the top speed [-].
 SPEED_FRACTIONS = (0.25, 0.4, 0.55, 0.7, 0.85, 1.0)
@@ -125,8 +126,6 @@ class _Plant:
     """The model's pieces the steady equations need (computed once)."""
 
     def __init__(self, model, options):
-        from stripcoef.limits.solver import required_force
-
         self.model = model
         self.options = options
         self.required = lambda nu, eta: required_force(model, nu, eta, options=options)
@@ -336,7 +335,6 @@ def rudder_turn(model, u: float, delta: float, *, options=None, _plant=None) -> 
 
 
 def _options(options):
-    from stripcoef.limits.solver import LimitOptions
     return options if options is not None else LimitOptions()
 
 
