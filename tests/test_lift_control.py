@@ -451,3 +451,35 @@ def test_limits_plot_of_a_steered_vehicle(tmp_path, capsys):
     out = tmp_path / "remus.png"
     assert main(["limits", str(REMUS), "--plot", str(out)]) == 0
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_lift_scales_with_size(tmp_path, remus):
+    """Doubling every length multiplies L and b by 2^(2 + number of rotation indices)
+    (L = 1/2 rho S c_La c c^T: S ~ l^2, each moment arm ~ l; c_La and c_ydb depend only on
+    ratios) - a dimensional property of the formulas."""
+    d = _remus_data()
+    k = 2.0
+    for seg in d["hull"]["profile"]:
+        seg["x"] = [k * v for v in seg["x"]]
+        seg["radius"] = k * seg["radius"]
+        if "length" in seg:
+            seg["length"] = k * seg["length"]
+    for a in d["appendages"]:
+        for key in ("span", "chord", "thickness"):
+            a[key] = k * a[key]
+        a["center"] = [k * v for v in a["center"]]
+    d["mass"] = {"mass": k ** 3 * d["mass"]["mass"],
+                 "center_of_gravity": [k * v for v in d["mass"]["center_of_gravity"]],
+                 "inertia": [k ** 5 * v for v in d["mass"]["inertia"]]}
+    for t in d["thrusters"]:
+        t["position"] = [k * v for v in t["position"]]
+    f = tmp_path / "big.yaml"
+    f.write_text(yaml.safe_dump(d))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        big = estimate(f)
+    rot = np.array([0, 0, 0, 1, 1, 1])
+    expo = 2 + rot[:, None] + rot[None, :]
+    assert np.allclose(big.lift, remus.lift * k ** expo, rtol=1e-9, atol=1e-12)
+    assert np.allclose(big.control_matrix, remus.control_matrix * k ** (2 + rot)[:, None],
+                       rtol=1e-9, atol=1e-12)
