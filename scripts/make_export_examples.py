@@ -3,6 +3,7 @@
 Run: python scripts/make_export_examples.py
 """
 
+import dataclasses
 import warnings
 from pathlib import Path
 
@@ -26,6 +27,9 @@ EXAMPLES = [
 
 if __name__ == "__main__":
     model = stripcoef.estimate(stripcoef.load_vehicle(ROOT / "geometry" / "mares.yaml"))
+    # the checkout's absolute path would differ per machine: name the file relative to the root
+    model = dataclasses.replace(model, provenance={**model.provenance,
+                                                   "source": "geometry/mares.yaml"})
     notes = []
     for name, fmt, options in EXAMPLES:
         assert not FORMATS[fmt].binary

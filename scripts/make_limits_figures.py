@@ -1,4 +1,5 @@
-"""Draw the MARES turning-circle figures of docs/limits.md (Ferreira et al. 2009, Figs. 6-8 reproduced).
+"""Draw the MARES turning-circle figures of docs/limits.md (Ferreira et al. 2009, Figs. 6-8 reproduced)
+and the REMUS 100 steering figure (docs/figures/remus100_limits.png).
 
 Run from the repository root:  python scripts/make_limits_figures.py
 Writes docs/figures/mares_limits.png (Munk moment off, as the paper finally uses, with the
@@ -27,3 +28,10 @@ if __name__ == "__main__":
     plot_limits(on, out / "mares_limits_munk.png",
                 title="MARES with the Munk moment: the thrusters' moment opposes the turn")
     print(f"wrote {out / 'mares_limits.png'} and {out / 'mares_limits_munk.png'}")
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # REMUS is 7 % buoyant: trimmed, not refused
+        remus = stripcoef.estimate(stripcoef.load_vehicle(ROOT / "geometry" / "remus100.yaml"))
+    plot_limits(solve_limits(remus), out / "remus100_limits.png",
+                title="REMUS 100 (geometry/remus100.yaml): steady flight with rudders and elevators")
+    print(f"wrote {out / 'remus100_limits.png'}")

@@ -136,7 +136,7 @@ def test_bad_model_files(capsys, tmp_path):
 def test_mss_file_name_sets_the_function_name(capsys, model_file, tmp_path):
     code, _, _ = run(capsys, model_file, "--to", "mss", "-o", tmp_path / "rov_a.m")
     assert code == 0
-    assert "= rov_a(x, tau, Vc)" in (tmp_path / "rov_a.m").read_text().splitlines()[0]
+    assert "= rov_a(x, tau, Vc, delta)" in (tmp_path / "rov_a.m").read_text().splitlines()[0]
     code, _, err = run(capsys, model_file, "--to", "mss", "-o", tmp_path / "rov-a.m")
     assert "function name" in one_line_error(code, err)
     assert not (tmp_path / "rov-a.m").exists()

@@ -91,8 +91,8 @@ def test_octave_returns_the_model(octave, tmp_path, point):
         warnings.simplefilter("ignore")
         path = write_export(model, "mss", tmp_path / "torpedo_model.m", point=point)
         ref = model.about({"CO": model.reference_point, "CB": model.center_of_buoyancy}[point])
-    assert path.read_text().startswith("function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = "
-                                       "torpedo_model(x, tau, Vc)")
+    assert path.read_text().startswith("function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = "
+                                       "torpedo_model(x, tau, Vc, delta)")
     for case, got in zip(CASES, call(octave, tmp_path, "torpedo_model", CASES)):
         want = expected(ref, *case)
         for name in OUTPUTS:
@@ -113,7 +113,7 @@ def test_function_name_must_be_an_identifier(tmp_path):
         write_export(torpedo(), "mss", tmp_path / "2-bad name.m")
     assert not list(tmp_path.iterdir())
     assert export_model(torpedo(name="my vehicle (v2)"), "mss").startswith(
-        "function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = my_vehicle__v2_(")
+        "function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = my_vehicle__v2_(")
 
 
 def test_mss_is_frd_only():

@@ -70,7 +70,7 @@ def test_every_format_reads_back(vehicle, tmp_path):
             np.testing.assert_array_equal(mod.D_Q, model.quadratic_damping)
             assert len(mod.THRUSTERS) == len(model.thrusters)
         elif fmt == "mss":
-            assert data.decode().startswith(f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = {name}(")
+            assert data.decode().startswith(f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = {name}(")
         else:
             raise AssertionError(f"no read-back check for format {fmt}")
 

@@ -19,7 +19,8 @@ from stripcoef.errors import InputError
 
 ROOT = ref.reference_dir()
 DATA = Path(stripcoef.data.__file__).resolve().parent   # the runtime curves (src/stripcoef/data)
-SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor")
+SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor",
+           "prestero2001")
 
 
 def val(source, name):

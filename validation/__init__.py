@@ -18,8 +18,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 #: Topic modules, in pipeline order.
-SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "identification",
-                             "meshes", "fins", "diagnosis")
+SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
+                             "identification", "meshes", "fins", "diagnosis")
 
 
 def build() -> str:

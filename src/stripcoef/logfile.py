@@ -6,7 +6,7 @@ A CSV file with one header row, SI units, radians:
 - velocities ``u v w p q r`` [m/s, rad/s], pose ``x y z phi theta psi`` [m, rad],
   and for a pendulum ``theta_pendulum`` [rad];
 - applied generalized forces ``X Y Z K M N`` [N, N m] and/or thruster commands
-  ``n_<thruster name>``;
+  ``n_<thruster name>``, and control-surface deflections ``delta_<surface name>`` [rad];
 - any other column (``tether_length``, ``depth``...) is kept.
 
 Reading validates: numeric cells, no NaN, strictly increasing time (no
@@ -30,6 +30,7 @@ from stripcoef.files import read_text, write_text
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
 COMMAND_PREFIX = "n_"
+DEFLECTION_PREFIX = "delta_"
 
 
 @dataclass
@@ -93,6 +94,11 @@ class Log:
 
     def get(self, name: str, default=None):
         return self.columns.get(name, default)
+
+    def deflections(self) -> dict:
+        """Control-surface deflections by surface name (columns ``delta_<name>``) [rad]."""
+        return {k[len(DEFLECTION_PREFIX):]: v for k, v in self.columns.items()
+                if k.startswith(DEFLECTION_PREFIX)}
 
     def commands(self) -> dict[str, np.ndarray]:
         """Thruster commands by thruster name (columns ``n_<name>``)."""

@@ -6,7 +6,10 @@ Equations of motion (Fossen 2011, eq. 7.190; Wang & Clark 2006, eqs. 1-2):
     M \dot\nu + C(\nu)\nu + D(\nu)\nu + g(\eta) = \tau, \qquad \dot\eta = J(\eta)\nu
 
 with :math:`M = M_{RB} + M_A`, :math:`C = C_{RB} + C_A`,
-:math:`D(\nu) = D_L + D_Q \operatorname{diag}(|\nu|)`.
+:math:`D(\nu) = D_L + u\,L + D_Q \operatorname{diag}(|\nu|)` (``L``: the lift matrix, body
+and fin lift, force :math:`-u L \nu`; Prestero 2001, sec. 3.6), and
+:math:`\tau = B T + u^2 B_\delta \delta` (thrusters, and control surfaces deflected by
+:math:`\delta` [rad]; Prestero 2001, sec. 3.7).
 
 All matrices are about :attr:`HydroModel.reference_point` in FRD body axes.
 """
@@ -20,7 +23,8 @@ from types import MappingProxyType
 
 import numpy as np
 
-from stripcoef.conventions import DOF, sname_coefficients, skew, transform_matrix
+from stripcoef.conventions import (DOF, shift_operator, sname_coefficients, skew,
+                                   transform_matrix)
 from stripcoef.errors import ModelWarning
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
@@ -130,6 +134,84 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
     ])
 
 
+@dataclass(frozen=True)
+class ControlSurface:
+    r"""A control surface (rudder or elevator) of a model: its force per deflection and limits.
+
+    The generalized force of a deflection :math:`\delta` [rad] at surge speed u [m/s] is
+
+    .. math:: \tau_\delta = u^2\, b\, \delta, \qquad |\delta| \le \delta_{max} < \alpha_{stall}
+
+    with ``b`` = ``derivative`` about the model's reference point: for a rudder
+    :math:`b = [0, Y_{uu\delta_r}, 0, K_{uu\delta_r}, 0, N_{uu\delta_r}]`
+    (Prestero 2001, sec. 3.7, eq. 3.51: :math:`Y_{uu\delta_r} = \rho c_{L\alpha} S_{fin}`
+    for the fin pair).
+
+    Attributes
+    ----------
+    name : str
+        Identifier; simulation inputs carry its deflection in the column ``delta_<name>`` [rad]
+    kind : str
+        ``rudder`` (lift along y) or ``elevator`` (lift along z)
+    derivative : (6,) array
+        b [N/((m/s)^2 rad), N m/((m/s)^2 rad)] about the model's reference point
+    max_deflection : float
+        Largest deflection either way [rad]
+    stall_angle : float
+        Effective angle of attack where the surface stalls [rad]
+    """
+
+    name: str
+    kind: str
+    derivative: np.ndarray
+    max_deflection: float
+    stall_angle: float
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "type": self.kind,
+                "derivative": [float(x) for x in self.derivative],
+                "max_deflection": float(self.max_deflection),
+                "stall_angle": float(self.stall_angle)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "ControlSurface":
+        return cls(name=str(d["name"]), kind=str(d.get("type", "rudder")),
+                   derivative=np.asarray(d["derivative"], float).reshape(6),
+                   max_deflection=float(d["max_deflection"]),
+                   stall_angle=float(d.get("stall_angle", d["max_deflection"])))
+
+
+#: SNAME names of the control derivatives, by (surface kind, force row).
+CONTROL_NAMES = {"rudder": "{F}_uudr", "elevator": "{F}_uuds"}
+
+
+def control_derivative_names(surfaces) -> dict:
+    """SNAME names of every non-zero control derivative, e.g. ``Y_uudr``, ``M_uuds``.
+
+    Two surfaces of the same kind are told apart by their name (``Y_uudr_<name>``).
+    Naming after Prestero 2001, sec. 3.7 (Y_uudr, Z_uuds, M_uuds, N_uudr).
+    """
+    from stripcoef.conventions import FORCES
+    out: dict[str, float] = {}
+    kinds = [s.kind for s in surfaces]
+    for s in surfaces:
+        pattern = CONTROL_NAMES.get(s.kind, "{F}_uud_" + s.name)
+        scale = max(float(np.abs(s.derivative).max()), 1e-300)
+        for i, f in enumerate(FORCES):
+            if s.derivative[i] != 0.0 and abs(s.derivative[i]) > 1e-12 * scale:
+                key = pattern.format(F=f)
+                if kinds.count(s.kind) > 1:
+                    key += "_" + s.name
+                out[key] = float(s.derivative[i])
+    return out
+
+
+def lift_names() -> dict:
+    """SNAME name of ``-L[i, j]`` (force -u L nu): ``Y_uv``, ``N_ur``, ... (Prestero 2001, sec. 3.6)."""
+    from stripcoef.conventions import FORCES, VELOCITIES
+    return {(i, j): f"{FORCES[i]}_u{VELOCITIES[j]}" for i in range(6) for j in range(6)}
+
+
 def plain(value):
     """Recursively convert numpy scalars/arrays to plain Python types (JSON/YAML safe)."""
     if isinstance(value, Mapping):
@@ -197,6 +279,8 @@ class Conditions(Mapping):
         How the 3D terms were obtained
     correction_panels : int
         Meridian panels of the axisymmetric solves
+    lift : mapping
+        How the lift terms were built (body and fin lift, :mod:`stripcoef.assembly.lift`)
     strips : int
         Number of strips
     corrections : bool
@@ -241,6 +325,7 @@ class Conditions(Mapping):
     axial_added_mass: float | None = None
     correction_method: str | None = None
     correction_panels: int | None = None
+    lift: Mapping | None = None
     strips: int | None = None
     corrections: bool | None = None
     density: float | None = None
@@ -251,6 +336,8 @@ class Conditions(Mapping):
 
     def __post_init__(self):
         object.__setattr__(self, "extra", frozen_mapping(self.extra))
+        if self.lift is not None:
+            object.__setattr__(self, "lift", frozen_mapping(self.lift))
 
     @classmethod
     def from_dict(cls, data) -> "Conditions":
@@ -287,7 +374,8 @@ class Conditions(Mapping):
 
     def to_dict(self) -> dict:
         """The set fields then :attr:`extra`, as a plain dict (JSON ``conditions``)."""
-        return {k: self[k] for k in self._keys()}
+        return {k: dict(v) if isinstance(v, Mapping) else v
+                for k, v in ((k, self[k]) for k in self._keys())}
 
 
 def frozen_array(value) -> np.ndarray:
@@ -304,7 +392,7 @@ def frozen_mapping(value) -> Mapping:
 
 #: the array fields of a HydroModel, frozen by ``__post_init__``
 _ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
-           "quadratic_damping", "center_of_gravity", "center_of_buoyancy")
+           "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift")
 
 
 @dataclass(frozen=True)
@@ -335,6 +423,11 @@ class HydroModel:
         Extra force terms added by calibration (see :mod:`stripcoef.effects.laws`)
     provenance : mapping
         Where each part came from (method, options, file)
+    lift : (6, 6)
+        L, the speed-dependent linear (lift) terms: force ``-u L nu`` [kg/m, kg, kg m];
+        ``-L[1, 1] = Y_uv``, ``-L[5, 5] = N_ur`` (docs/conventions.md; Prestero 2001, sec. 3.6)
+    control_surfaces : tuple of ControlSurface
+        Rudders and elevators: force ``u^2 b delta`` and deflection limits
     """
 
     name: str
@@ -354,11 +447,14 @@ class HydroModel:
     conditions: Conditions = field(default_factory=Conditions)
     effects: tuple[dict, ...] = ()
     provenance: Mapping = field(default_factory=dict)
+    lift: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
+    control_surfaces: tuple = ()
 
     def __post_init__(self):
         for name in _ARRAYS:
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
+        object.__setattr__(self, "control_surfaces", tuple(self.control_surfaces))
         object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
                                                   for e in self.effects))
         object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
@@ -427,12 +523,41 @@ class HydroModel:
         return c
 
     def damping(self, nu) -> np.ndarray:
-        """D(nu) = D_L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
+        """D(nu) = D_L + u L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
 
-        ``nu`` [m/s, rad/s]; D_L [kg/s, kg m^2/s], D_Q [kg/m, kg m^2]. Quadratic
-        diagonal drag of Wang & Clark 2006, eq. 7 (see module docstring, Fossen 2011, eq. 7.190).
+        ``nu`` [m/s, rad/s]; D_L [kg/s, kg m^2/s], D_Q [kg/m, kg m^2], L [kg/m, kg, kg m]
+        (lift, :attr:`lift`). Quadratic diagonal drag of Wang & Clark 2006, eq. 7 (see module
+        docstring, Fossen 2011, eq. 7.190); the lift terms are Prestero 2001's Y_uv u v ...
+        (sec. 3.6), which the UUV Simulator calls the forward-speed linear damping.
         """
-        return self.linear_damping + self.quadratic_damping * np.abs(np.asarray(nu, dtype=float))
+        nu = np.asarray(nu, dtype=float)
+        d = self.linear_damping + self.quadratic_damping * np.abs(nu)
+        if np.any(self.lift):
+            d = d + nu[0] * np.asarray(self.lift, dtype=float)
+        return d
+
+    @property
+    def control_matrix(self) -> np.ndarray:
+        """B_delta (6 x n_surfaces): force ``u^2 B_delta delta`` [N/((m/s)^2 rad), ...]
+        (:class:`ControlSurface`; Prestero 2001, sec. 3.7)."""
+        if not self.control_surfaces:
+            return np.zeros((6, 0))
+        return np.column_stack([np.asarray(s.derivative, float) for s in self.control_surfaces])
+
+    def control_force(self, u: float, deflections) -> np.ndarray:
+        r"""Generalized force of the control surfaces, :math:`u^2 B_\delta \delta` [N, N m].
+
+        ``u`` surge speed through the water [m/s]; ``deflections`` [rad], one per surface
+        (Prestero 2001, sec. 3.7; :class:`ControlSurface`).
+        """
+        return u * abs(u) * (self.control_matrix @ np.asarray(deflections, dtype=float))
+
+    def surface(self, name: str) -> ControlSurface:
+        for s in self.control_surfaces:
+            if s.name == name:
+                return s
+        from stripcoef.errors import unknown_name
+        raise unknown_name("control surface", name, [s.name for s in self.control_surfaces])
 
     def restoring(self, eta) -> np.ndarray:
         """g(eta) [N, N m] (force = -g), eta [m, rad]; see :func:`restoring_forces`
@@ -456,9 +581,18 @@ class HydroModel:
         raise unknown_name("thruster", name, [t.name for t in self.thrusters])
 
     def coefficients(self) -> dict:
-        """Every SNAME derivative by name, with its SNAME sign."""
-        return sname_coefficients(self.added_mass, self.linear_damping, self.quadratic_damping,
-                                  tol=1e-12)
+        """Every SNAME derivative by name, with its SNAME sign: added mass, damping, lift
+        (``Y_uv = -L[1, 1]``...) and control derivatives (``Y_uudr``...; Prestero 2001,
+        secs. 3.6-3.7)."""
+        out = sname_coefficients(self.added_mass, self.linear_damping, self.quadratic_damping,
+                                 tol=1e-12)
+        lift = np.asarray(self.lift, dtype=float)
+        scale = max(float(np.abs(lift).max()), 1e-300)
+        for (i, j), name in lift_names().items():
+            if lift[i, j] != 0.0 and abs(lift[i, j]) > 1e-12 * scale:
+                out[name] = -float(lift[i, j])
+        out.update(control_derivative_names(self.control_surfaces))
+        return out
 
     # -- transforms ---------------------------------------------------------
     def about(self, point) -> "HydroModel":
@@ -483,9 +617,12 @@ class HydroModel:
             warnings.warn("quadratic damping moved to another reference point with the "
                           "linear congruence: exact for translation columns, approximate "
                           "for rotation columns", ModelWarning, stacklevel=2)
+        shift = shift_operator(-(point - old)).T     # tau_P = H(-r)^T tau_O
+        surfaces = tuple(replace(s, derivative=shift @ np.asarray(s.derivative, float))
+                         for s in self.control_surfaces)
         return replace(self, reference_point=point, rigid_body_mass=t(self.rigid_body_mass),
                        added_mass=t(self.added_mass), linear_damping=t(self.linear_damping),
-                       quadratic_damping=dq)
+                       quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces)
 
     # -- serialisation ------------------------------------------------------
     def to_dict(self) -> dict:
@@ -513,6 +650,8 @@ class HydroModel:
             "conditions": plain(self.conditions.to_dict()),
             "effects": plain(self.effects),
             "provenance": plain(self.provenance),
+            "lift": mat(self.lift),
+            "control_surfaces": [c.to_dict() for c in self.control_surfaces],
         }
 
     @classmethod
@@ -525,8 +664,10 @@ class HydroModel:
                         max_backward=t.get("max_backward", float("inf")),
                         eta_forward=t.get("eta_forward", 1.0),
                         eta_backward=t.get("eta_backward", 1.0),
-                        deadband=t.get("deadband", 0.0))
+                        deadband=t.get("deadband", 0.0),
+                        torque_ratio=t.get("torque_ratio", 0.0))
                for t in data.get("thrusters", [])]
+        lift = np.asarray(data.get("lift", np.zeros((6, 6))), float)
         return cls(
             name=data.get("name", "model"),
             reference_point=np.asarray(data["reference_point"], float),
@@ -542,4 +683,7 @@ class HydroModel:
             gravity=float(data.get("gravity", G)),
             thrusters=thr, conditions=data.get("conditions", {}),
             effects=list(data.get("effects", [])), provenance=data.get("provenance", {}),
+            lift=lift,
+            control_surfaces=tuple(ControlSurface.from_dict(c)
+                                   for c in data.get("control_surfaces", [])),
         )

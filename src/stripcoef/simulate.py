@@ -19,7 +19,11 @@ so the state equation solved for :math:`\dot\nu` is
 
 .. math::
     (M_{RB} + M_A)\dot\nu = \tau + \tau_{extra} - C_{RB}(\nu)\nu - C_A(\nu_r)\nu_r
-    - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c
+    - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c + u_r|u_r| B_\delta \delta
+
+:math:`D(\nu_r)` includes the lift terms :math:`u_r L` (:meth:`HydroModel.damping`) and the
+last term is the force of the control surfaces deflected by :math:`\delta` [rad]
+(:meth:`HydroModel.control_force`; Prestero 2001, secs. 3.6-3.7).
 
 The applied force :math:`\tau = B\,T(n) + \tau_{forces}` is the thrust of every
 thruster through the allocation matrix ``B`` (``Thruster.thrust``: forward/backward
@@ -41,7 +45,7 @@ from scipy.integrate import solve_ivp
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
-from stripcoef.logfile import COMMAND_PREFIX, Log
+from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log
 
 INTERPOLATIONS = ("previous", "linear")
 
@@ -138,7 +142,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
              method: str = "RK45", max_step: float | None = None,
              extra_force: Callable | None = None, effects: bool = True,
              munk: bool = True, channels: dict | None = None,
-             controller: Callable | None = None) -> Log:
+             controller: Callable | None = None, deflections: dict | None = None) -> Log:
     r"""Simulate the 6-DOF motion of ``model`` and return it as a log.
 
     .. math::
@@ -190,6 +194,10 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     channels : dict, optional
         Other logged signals over ``t`` (e.g. ``tether_length`` [m]) that effects read;
         held like the inputs and copied into the output log.
+    deflections : dict, optional
+        Control surface name -> deflection over ``t`` (array of n) or a constant [rad]; its
+        force is :math:`u_r|u_r| b\,\delta` (:meth:`HydroModel.control_force`). A deflection
+        beyond the surface's ``max_deflection`` is an error. Surfaces not named stay at 0.
     controller : callable, optional
         Feedback: ``controller(time, eta, nu, commands) -> {thruster: command}`` is called at
         every sample with the state and the open-loop commands of that sample; the commands
@@ -236,13 +244,32 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             raise InputError("NaN or infinite command", key=COMMAND_PREFIX + name,
                              expected="finite numbers")
         commanded.append(name)
+    surfaces = list(getattr(model, "control_surfaces", ()))
+    snames = [sf.name for sf in surfaces]
+    defl = np.zeros((n, len(surfaces)))
+    deflected = []
+    for name, values in (deflections or {}).items():
+        if name not in snames:
+            raise unknown_name("control surface", name, snames, key=DEFLECTION_PREFIX + str(name))
+        k = snames.index(name)
+        v = np.asarray(values, dtype=float)
+        defl[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
+            v, n, 1, DEFLECTION_PREFIX + name)
+        lim = surfaces[k].max_deflection
+        bad = np.nonzero(~(np.abs(defl[:, k]) <= lim * (1 + 1e-12)))[0]
+        if bad.size:
+            raise InputError(f"deflection beyond the limit at sample {int(bad[0])}",
+                             key=DEFLECTION_PREFIX + name, value=float(defl[bad[0], k]),
+                             expected=f"|delta| <= {lim:.6g} rad ({np.degrees(lim):.4g} deg, "
+                                      f"stall at {np.degrees(surfaces[k].stall_angle):.4g} deg)")
+        deflected.append(name)
     force_fn = None
     force_series = np.zeros((n, 6))
     if callable(forces):
         force_fn = forces
     elif forces is not None:
         force_series = _as_series(forces, n, 6, "forces")
-    inputs_series = np.hstack([cmd, force_series])
+    inputs_series = np.hstack([cmd, force_series, defl])
     sampler = _Sampler(t, inputs_series, interpolation)
     current_fn = _current_function(current, t, interpolation)
     chan_names = list(channels or {})
@@ -263,6 +290,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         raise InputError("singular mass matrix M_RB + M_A", key="model",
                          expected="a positive definite inertia matrix") from None
     alloc = model.allocation()
+    b_delta = model.control_matrix if surfaces else None
     effect_terms = []
     if effects and model.effects:
         from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
@@ -275,13 +303,14 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         vals = hold["values"] if hold["values"] is not None else sampler(time)
         c = vals[:nthr]
         thrust = np.array([th.thrust(ci) for th, ci in zip(thrusters, c)]) if nthr else c
-        f = np.asarray(force_fn(time), dtype=float).reshape(6) if force_fn else vals[nthr:]
+        f = np.asarray(force_fn(time), dtype=float).reshape(6) if force_fn \
+            else vals[nthr:nthr + 6]
         tau = (alloc @ thrust if nthr else np.zeros(6)) + f
-        return c, thrust, tau
+        return c, thrust, tau, vals[nthr + 6:]
 
     def rhs(time, y):
         eta, nu = y[:6], y[6:]
-        c, thrust, tau = hold["applied"] if hold["values"] is not None else applied(time)
+        c, thrust, tau, delta = hold["applied"] if hold["values"] is not None else applied(time)
         nu_c = np.zeros(6)
         nu_c_dot = np.zeros(6)
         if current_fn is not None:
@@ -297,6 +326,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
                      - model.damping(nu_r) @ nu_r
                      - model.restoring(eta)
                      + m_added @ nu_c_dot)
+        if b_delta is not None:
+            rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (b_delta @ delta)
         if effect_terms or extra_force is not None:
             inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
                       "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
@@ -364,6 +395,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
 
     if controller is not None:
         control(n - 1, y)  # the command issued at the last sample (logged)
+    if surfaces:
+        _check_stall(surfaces, states[:, 6:], defl, t, current_fn is not None)
     hold["values"] = None
     taus = np.array([applied(ti)[2] for ti in t])
     cols = {"t": t}
@@ -375,12 +408,57 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         cols[name] = taus[:, i]
     for name in commanded:
         cols[COMMAND_PREFIX + name] = cmd[:, names.index(name)]
+    for name in deflected:
+        cols[DEFLECTION_PREFIX + name] = defl[:, snames.index(name)]
     for k, name in enumerate(chan_names):
         cols[name] = chan_series[:, k]
     meta = {"model": model.name, "interpolation": interpolation}
     if current is not None and not callable(current):
         meta["current"] = np.asarray(current, dtype=float).tolist()
     return Log(cols, source=f"simulate({model.name})", meta=meta)
+
+
+def effective_angle(surface, nu_r, delta) -> np.ndarray:
+    r"""Effective angle of attack of a control surface [rad].
+
+    .. math:: \alpha_e = \sigma\delta - \frac{b^T\nu_r}{b_e\,u_r},\qquad
+              \sigma = \operatorname{sign}(b_e)
+
+    with b the surface's derivative column and b_e its lift-direction entry (Y for a rudder,
+    Z for an elevator): :math:`b^T\nu_r / b_e` is the area-weighted cross velocity of its
+    panels at their quarter chords (Prestero 2001, sec. 3.7; docs/theory.md sec. 8).
+    ``nu_r`` (n, 6) [m/s, rad/s], ``delta`` (n,) [rad]; NaN where u_r = 0.
+    """
+    b = np.asarray(surface.derivative, dtype=float)
+    row = 1 if surface.kind == "rudder" else 2
+    be = b[row]
+    nu_r = np.atleast_2d(nu_r)
+    u = nu_r[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross = (nu_r @ b) / be
+        return np.where(u != 0.0, np.sign(be) * np.asarray(delta) - cross / u, np.nan)
+
+
+def _check_stall(surfaces, nu, defl, t, with_current: bool) -> None:
+    """Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
+    the linear lift law is then extrapolated (docs/theory.md sec. 8). With a current, the
+    angle is computed on the velocity over ground (an approximation, said in the message)."""
+    import warnings
+
+    from stripcoef.errors import ModelWarning
+
+    moving = np.abs(nu[:, 0]) > 1e-3
+    for k, sf in enumerate(surfaces):
+        a = effective_angle(sf, nu, defl[:, k])
+        a = np.where(moving, np.abs(a), 0.0)
+        if np.nanmax(a, initial=0.0) > sf.stall_angle:
+            i = int(np.nanargmax(a))
+            warnings.warn(f"control surface {sf.name!r}: effective angle of attack "
+                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s exceeds its stall "
+                          f"angle {np.degrees(sf.stall_angle):.1f} deg; the linear lift is "
+                          "extrapolated there" + (" (angle from the velocity over ground)"
+                                                   if with_current else ""),
+                          ModelWarning, stacklevel=3)
 
 
 def kinetic_energy(model, nu) -> np.ndarray:

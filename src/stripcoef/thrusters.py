@@ -11,6 +11,13 @@ coefficients (Wang & Clark 2006, Table I):
 
 with ``+`` for ``n >= 0``.  The efficiency ``eta`` per direction is the
 propeller-hull interaction factor of Caccia et al. (Indiveri 1998, eq. 4.16).
+
+A propeller also turns the vehicle the other way round its shaft: its reaction torque is
+proportional to the thrust when both follow the same :math:`n|n|` law,
+:math:`Q = K_Q \rho n^2 D^5 = (K_Q D / K_T)\,T`, so each thruster carries a signed
+``torque_ratio`` :math:`k_Q = Q/T` [m] and its moment is :math:`k_Q T d` about its axis d
+(Prestero 2001, sec. 3.8: K_prop = -0.543 N m at X_prop = 3.86 N, k_Q = -0.141 m for
+REMUS; open-water K_T, K_Q of Carlton, Marine Propellers and Propulsion, ch. 6).
 """
 
 from __future__ import annotations
@@ -42,6 +49,9 @@ class Thruster:
         Efficiency per direction [-] (1 = as measured on the bench)
     deadband : float
         Commands with ``|n| <= deadband`` give no thrust [command units]
+    torque_ratio : float
+        Propeller reaction torque per newton of thrust, k_Q = Q/T [m], signed: the moment
+        on the vehicle is ``k_Q T d`` (module docstring; 0 = no torque)
     """
 
     name: str
@@ -55,6 +65,7 @@ class Thruster:
     eta_backward: float = 1.0
     deadband: float = 0.0
     source: dict = field(default_factory=dict, compare=False)
+    torque_ratio: float = 0.0
 
     def thrust(self, n):
         r"""Thrust for command ``n`` [N]: :math:`T = \eta_\pm C_{t,\pm} n|n|`, saturated at the limits.
@@ -86,15 +97,16 @@ class Thruster:
         return float(n) if n.ndim == 0 else n
 
     def wrench_column(self, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:
-        r"""Generalized force per newton of thrust about a point: :math:`[d;\ (p - o) \times d]`.
+        r"""Generalized force per newton of thrust about a point: :math:`[d;\ (p - o) \times d + k_Q d]`.
 
         ``reference_point`` o [m] in FRD body axes; returns [-] (force rows) and [m]
         (moment rows). Moment of a point force, :math:`M = r \times F`; the
-        :math:`\tau` of Wang & Clark 2006, eq. 1.
+        :math:`\tau` of Wang & Clark 2006, eq. 1; plus the propeller torque
+        :math:`k_Q T d` (module docstring, Prestero 2001, sec. 3.8).
         """
         d = np.asarray(self.direction, dtype=float)
         r = np.asarray(self.position, dtype=float) - np.asarray(reference_point, dtype=float)
-        return np.concatenate([d, skew(r) @ d])
+        return np.concatenate([d, skew(r) @ d + float(self.torque_ratio) * d])
 
     def to_dict(self) -> dict:
         return {
@@ -105,6 +117,7 @@ class Thruster:
             "max_forward": self.max_forward, "max_backward": self.max_backward,
             "eta_forward": self.eta_forward, "eta_backward": self.eta_backward,
             "deadband": self.deadband,
+            **({"torque_ratio": self.torque_ratio} if self.torque_ratio else {}),
         }
 
 

@@ -1,4 +1,4 @@
-function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = mares(x, tau, Vc)
+function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = mares(x, tau, Vc, delta)
 % MARES  hydrodynamic model exported by stripcoef 0.1.0 to format 'mss'
 % Compatible with MATLAB and the free software GNU Octave (www.octave.org).
 % Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).
@@ -10,13 +10,17 @@ function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = mares(x, tau, Vc)
 %         velocities about the CO above, NED position, Euler angles (zyx)
 %   tau = [ X Y Z K M N ]' generalized force about the CO (N, Nm), default zeros
 %   Vc  = [ Vn Ve Vd ]' constant ocean current in NED (m/s), default zeros
+%   delta = control surface deflections (rad), one per column of Bdelta, default zeros
 %
 % Returns xdot (12x1), the speed U (m/s), M = MRB + MA, MRB, MA, the damping
-% D = DL + DQ*diag(|nu_r|) at the relative velocity nu_r, the restoring forces
-% g(eta) (Fossen 2011, eq. 4.6), DL, DQ and the thruster allocation Bthr (6 x n,
-% tau = Bthr*T). MA, DL, DQ are positive: -MA*nu_dot - D*nu is the hydrodynamic force.
+% D = DL + u_r*L + DQ*diag(|nu_r|) at the relative velocity nu_r (L: body and fin
+% lift, Prestero 2001 sec. 3.6), the restoring forces g(eta) (Fossen 2011, eq. 4.6),
+% DL, DQ, the thruster allocation Bthr (6 x n, tau = Bthr*T), L and the control
+% surfaces' Bdelta (force u_r*|u_r|*Bdelta*delta, Prestero 2001 sec. 3.7).
+% MA, DL, DQ are positive: -MA*nu_dot - D*nu is the hydrodynamic force.
 %
-%   M*nu_dot = tau - CRB(nu)*nu - CA(nu_r)*nu_r - D*nu_r - g + MA*nu_c_dot
+%   M*nu_dot = tau + u_r|u_r| Bdelta delta - CRB(nu)*nu - CA(nu_r)*nu_r - D*nu_r - g
+%              + MA*nu_c_dot
 %
 % Example usage:
 %   [~,~,M,MRB,MA] = mares()             : the constant matrices
@@ -24,8 +28,11 @@ function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = mares(x, tau, Vc)
 %   [xdot,U] = mares(x, tau, [0.2 0 0]') : 0.2 m/s current towards north
 %
 % Thrusters (columns of Bthr): P1, P2, V1, V2
+% Control surfaces (columns of Bdelta): none
 
 if nargin < 1 || isempty(x), x = zeros(12,1); end
+if nargin < 4 || isempty(delta), delta = zeros(0,1); end
+delta = delta(:);
 if nargin < 2 || isempty(tau), tau = zeros(6,1); end
 if nargin < 3 || isempty(Vc), Vc = zeros(3,1); end
 x = x(:); tau = tau(:); Vc = Vc(:);
@@ -53,11 +60,11 @@ MRB = [
 % Added mass, positive (MA(1,1) = -X_udot)
 MA = [
   3.9080205335022753, 0, 0, 0, -0.002031868498488919, 0;
-  0, 41.036429297212806, 0, 0.003975713912744219, 0, 0.1557159936554916;
-  0, 0, 36.913906053136344, 0, 0.008055825974218151, 0;
+  0, 41.036429297212806, 0, 0.003975713912744219, 0, 0.15571599365549102;
+  0, 0, 36.91390605313635, 0, 0.008055825974219194, 0;
   0, 0.003975713912744219, 0, 0.027790670034328287, 0, -0.009278143896206813;
-  -0.002031868498488919, 0, 0.008055825974218151, 0, 4.824341228959666, 0;
-  0, 0.1557159936554916, 0, -0.009278143896206813, 0, 5.293744731778096];
+  -0.002031868498488919, 0, 0.008055825974219194, 0, 4.824341228959663, 0;
+  0, 0.15571599365549102, 0, -0.009278143896206813, 0, 5.293744731778096];
 % Linear damping, positive (DL(1,1) = -X_u)
 DL = [
   0, 0, 0, 0, 0, 0;
@@ -82,6 +89,16 @@ Bthr = [
   0, 0, 0, 0;
   -0.0013222979649128548, -0.0013222979649128548, 0.304366654862094, -0.395633345137906;
   0.13, -0.13, 0, 0];
+% Lift (forward-speed) terms, positive: force = -u*L*nu (L(2,2) = -Y_uv)
+L = [
+  0, 0, 0, 0, 0, 0;
+  0, 0, 0, 0, 0, 0;
+  0, 0, 0, 0, 0, 0;
+  0, 0, 0, 0, 0, 0;
+  0, 0, 0, 0, 0, 0;
+  0, 0, 0, 0, 0, 0];
+% Control surfaces: force = u*|u|*Bdelta*delta (Bdelta(2,1) = Y_uudr)
+Bdelta = zeros(6,0);
 
 % States, current and relative velocity
 nu = x(1:6); eta = x(7:12);
@@ -92,12 +109,13 @@ nu_r = nu - nu_c;
 U = sqrt(nu(1)^2 + nu(2)^2 + nu(3)^2);
 
 M = MRB + MA;
-D = DL + DQ * diag(abs(nu_r));
+D = DL + nu_r(1) * L + DQ * diag(abs(nu_r));
 g = gvect_local(W, B, eta(5), eta(4), r_bg, r_bb);
 CRB = m2c_local(MRB, nu);
 CA = m2c_local(MA, nu_r);
 
-nu_dot = M \ (tau - CRB * nu - CA * nu_r - D * nu_r - g + MA * nu_c_dot);
+tau_delta = nu_r(1) * abs(nu_r(1)) * (Bdelta * delta);
+nu_dot = M \ (tau + tau_delta - CRB * nu - CA * nu_r - D * nu_r - g + MA * nu_c_dot);
 xdot = [nu_dot; J * nu];
 end
 

@@ -18,6 +18,7 @@ from stripcoef.fluid import Fluid
 from stripcoef.model import Conditions, HydroModel, rigid_body_mass_matrix
 from stripcoef.assembly.added_mass import added_mass
 from stripcoef.assembly.damping import damping_matrices
+from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
 from stripcoef.conventions import clean_roundoff
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
@@ -88,7 +89,9 @@ def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> Hyd
 
     Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
     :func:`added_mass`, D_L and D_Q from :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
-    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
+    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45), the lift matrix and control surfaces
+    from :func:`~stripcoef.assembly.lift.vehicle_lift` (Prestero 2001, secs. 3.6-3.7). See the
+    module docstring.
     """
     if options is None:
         options = EstimateOptions(**keywords)
@@ -128,10 +131,11 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
                               section_panels=section_panels)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
+    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb)
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
-    conditions = Conditions(**cond, **am_info, strips=st.n, corrections=corrections,
-                            density=rho, kinematic_viscosity=nu, fluid=fluid.source,
-                            length=st.length)
+    conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
+                            corrections=corrections, density=rho, kinematic_viscosity=nu,
+                            fluid=fluid.source, length=st.length)
     if abs(mass - rho * volume) > 0.05 * rho * volume:
         warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
@@ -141,7 +145,8 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
-        thrusters=vehicle.thrusters, conditions=conditions,
+        thrusters=vehicle.thrusters, conditions=conditions, lift=lift,
+        control_surfaces=surfaces,
         provenance={"method": "strip theory", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )

@@ -82,8 +82,32 @@ def format_table(model) -> str:
            mat("Quadratic damping D_Q", model.quadratic_damping, "kg/m, kg, kg m^2"),
            "",
            mat("Rigid-body mass M_RB", model.rigid_body_mass, "kg, kg m, kg m^2"),
-           "",
-           "Conditions:"]
+           ""]
+    if np.any(model.lift) or model.control_surfaces:
+        out += [mat("Lift L (force -u L nu)", model.lift, "kg/m, kg, kg m"), ""]
+        coeffs = model.coefficients()
+        lift_names = [k for k in ("Y_uv", "Y_ur", "Z_uw", "Z_uq", "K_up", "M_uw", "M_uq",
+                                  "N_uv", "N_ur") if k in coeffs]
+        if lift_names:
+            out.append("Lift derivatives (SNAME): " + ", ".join(
+                f"{k} = {coeffs[k]:.4g}" for k in lift_names))
+        for s in model.control_surfaces:
+            d = s.derivative
+            out.append(f"Control surface {s.name} ({s.kind}, +-{np.degrees(s.max_deflection):.3g} "
+                       f"deg, stall {np.degrees(s.stall_angle):.3g} deg): force u^2 b delta, b = "
+                       + "[" + ", ".join(f"{x:.4g}" for x in d) + "]")
+        ctrl = {k: v for k, v in coeffs.items() if "_uud" in k}
+        if ctrl:
+            out.append("Control derivatives (SNAME): " + ", ".join(
+                f"{k} = {v:.4g}" for k, v in ctrl.items()))
+        out.append("")
+    torques = [t for t in model.thrusters if getattr(t, "torque_ratio", 0.0)]
+    for t in torques:
+        out.append(f"Thruster {t.name}: propeller torque k_Q = {t.torque_ratio:.4g} m "
+                   "(moment k_Q T along its axis)")
+    if torques:
+        out.append("")
+    out.append("Conditions:")
     keys = ("reference_speed", "reynolds_length", "regime", "cf_laminar", "cf_turbulent",
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
@@ -93,6 +117,17 @@ def format_table(model) -> str:
         if k in c:
             v = c[k]
             out.append(f"  {k:32s} {v:.4g}" if isinstance(v, float) else f"  {k:32s} {v}")
+    lift = c.get("lift", {})
+    if "body_lift" in lift:
+        b = lift["body_lift"]
+        out.append(f"  {'body_lift':32s} l = {b['length']:.4g} m, d = {b['diameter']:.4g} m, "
+                   f"x_cp = {b['center_of_pressure_x']:.4g} m")
+    for f in lift.get("fin_lift", []):
+        out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
+                   f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2")
+    if lift.get("fins_without_lift"):
+        out.append(f"  {'fins_without_lift':32s} " + ", ".join(lift["fins_without_lift"])
+                   + " (not on the hull)")
     return "\n".join(out) + "\n"
 
 

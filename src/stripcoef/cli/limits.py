@@ -35,7 +35,7 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
-def format_table(result) -> str:
+def format_table(result, surfaces=()) -> str:
     """Readable summary and turning-circle table."""
     d = result.to_dict()
     opts = (f"Munk moment {'on' if result.options.munk else 'off'}, "
@@ -73,6 +73,8 @@ def format_table(result) -> str:
             f"  at u = {d['min_turning_radius_speed']:.3f} m/s")
     for note in result.notes:
         lines.append(f"  note: {note}")
+    if result.steering is not None:
+        lines += steering_table(result.steering, surfaces)
     if result.turning:
         names = list(result.turning[0].thrust)
         lines += ["", "  steady starboard turn at the thrust limit (drift > 0: nose into the "
@@ -87,6 +89,49 @@ def format_table(result) -> str:
                          + " ".join(f"{p.thrust[n]:9.3f}" for n in names)
                          + f"  {p.saturated}")
     return "\n".join(lines)
+
+
+def steering_table(steer, surfaces=()) -> list[str]:
+    """Trim, turning circle, dive and climb of a rudder/elevator-steered vehicle
+    (``surfaces``: the model's control surfaces, to tell rudders from elevators)."""
+    deg = math.degrees
+    lines = ["", f"  straight flight: top speed {steer.surge_speed_max:.4f} m/s; slowest level "
+             + ("-" if steer.level_speed_min is None else f"{steer.level_speed_min:.4f} m/s")]
+    if steer.trim:
+        lines += ["", "  trim (pitch, heel and elevator the vehicle needs; dz/dt > 0 down: 0 in "
+                  "level flight)", "",
+                  f"  {'u [m/s]':>8s} {'pitch [deg]':>11s} {'heel [deg]':>10s} "
+                  f"{'w [m/s]':>8s} {'elevator [deg]':>14s} {'dz/dt [m/s]':>11s} "
+                  f"{'thrust load':>11s}"]
+        for f in steer.trim:
+            el = [v for k, v in f.deflections.items()
+                  if any(s.name == k and s.kind == "elevator" for s in surfaces)]
+            elev = f"{deg(max(el, key=abs)):14.2f}" if el else f"{'-':>14s}"
+            lines.append(f"  {f.u:8.3f} {deg(f.pitch):11.2f} {deg(f.roll):10.2f} {f.nu[2]:8.4f} "
+                         f"{elev} {f.depth_rate:11.4f} {f.load:11.3f}")
+    if steer.turning:
+        lines += ["", "  turning circle at full rudder (positive rudder: turn to port)", "",
+                  f"  {'u [m/s]':>8s} {'R [m]':>8s} {'r [rad/s]':>9s} {'drift [deg]':>11s} "
+                  f"{'rudder [deg]':>12s} {'thrust load':>11s}"]
+        for f in steer.turning:
+            rud = max([v for k, v in f.deflections.items()
+                       if any(s.name == k and s.kind == "rudder" for s in surfaces)], key=abs)
+            lines.append(f"  {f.u:8.3f} {f.radius:8.3f} {f.yaw_rate:9.4f} "
+                         f"{deg(f.drift_angle):11.2f} {deg(rud):12.2f} {f.load:11.3f}")
+    for title, rows in (("steepest steady dive", steer.dive), ("steepest steady climb",
+                                                                 steer.climb)):
+        if rows:
+            lines += ["", f"  {title} (elevator and thrust within limits; depth rate > 0 "
+                      "down)", "",
+                      f"  {'u [m/s]':>8s} {'pitch [deg]':>11s} {'dz/dt [m/s]':>11s} "
+                      f"{'elevator [deg]':>14s} {'thrust load':>11s}"]
+            for f in rows:
+                el = max([v for k, v in f.deflections.items()
+                          if any(s.name == k and s.kind == "elevator" for s in surfaces)],
+                         key=abs)
+                lines.append(f"  {f.u:8.3f} {deg(f.pitch):11.2f} {f.depth_rate:11.4f} "
+                             f"{deg(el):14.2f} {f.load:11.3f}")
+    return lines
 
 
 def run(args) -> int:
@@ -111,7 +156,7 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(result.to_dict(), indent=2))
     else:
-        print(format_table(result))
+        print(format_table(result, model.control_surfaces))
     return 0
 
 

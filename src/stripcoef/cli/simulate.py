@@ -1,12 +1,12 @@
 """``stripcoef simulate VEHICLE --inputs INPUTS.csv --out LOG.csv``: a 6-DOF simulation.
 
 INPUTS is a log-format CSV (:mod:`stripcoef.logfile`) with a time column ``t`` and thruster
-commands ``n_<thruster>`` and/or generalized forces ``X Y Z K M N`` (or, with ``--map``, any
-CSV or a ROS bag through a column map, docs/logs.md); the output is a log with the pose, the
-velocities, the applied forces and the commands at every input time (or every ``--dt``
-seconds). ``--from-log LOG`` starts from the log's pose and velocity instead of rest at the
-origin and, without ``--inputs``, free-simulates the log's own inputs and prints the
-prediction error against the log.
+commands ``n_<thruster>``, control-surface deflections ``delta_<surface>`` [rad] and/or
+generalized forces ``X Y Z K M N`` (or, with ``--map``, any CSV or a ROS bag through a column
+map, docs/logs.md); the output is a log with the pose, the velocities, the applied forces and
+the commands at every input time (or every ``--dt`` seconds). ``--from-log LOG`` starts from
+the log's pose and velocity instead of rest at the origin and, without ``--inputs``,
+free-simulates the log's own inputs and prints the prediction error against the log.
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ def add_parser(subparsers):
                    help="vehicle file (YAML, estimated by strip theory) or model file "
                         "(JSON/YAML from HydroModel.to_dict, e.g. diagnose --out)")
     p.add_argument("--inputs", metavar="INPUTS",
-                   help="log with t and n_<thruster> commands and/or X Y Z K M N forces "
+                   help="log with t, n_<thruster> commands, delta_<surface> deflections [rad] "
+                        "and/or X Y Z K M N forces "
                         "(default with --from-log: that log's inputs)")
     p.add_argument("--from-log", metavar="LOG", default=None,
                    help="start from this log's pose and velocity (at --start) instead of rest "
@@ -66,19 +67,26 @@ def parse_vector(text: str, *, key: str, size: int = 3) -> np.ndarray:
 
 
 def inputs_from_log(log, model, times=None, *, interpolation="previous"):
-    """Times, forces (n,6) or None, commands and other channels (e.g. ``tether_length``)
-    from an inputs log, resampled at ``times``."""
+    """Times, forces (n,6) or None, commands, deflections [rad] and other channels (e.g.
+    ``tether_length``) from an inputs log, resampled at ``times``."""
     t_in = log.require("t")
     if len(t_in) < 2:
         raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
                          expected="at least 2 time samples")
     cmds = log.commands()
+    defl = log.deflections()
     force_cols = [f for f in FORCES if f in log]
-    if not cmds and not force_cols:
+    if not cmds and not force_cols and not defl:
         raise InputError("no inputs", file=log.source,
                          expected="thruster commands n_<name> (thrusters: "
                          + ", ".join(th.name for th in model.thrusters)
-                         + ") and/or forces X Y Z K M N")
+                         + "), deflections delta_<surface> and/or forces X Y Z K M N")
+    snames = [sf.name for sf in model.control_surfaces]
+    for name in defl:
+        if name not in snames:
+            raise InputError("unknown control surface", file=log.source, key="delta_" + name,
+                             expected="one of " + (", ".join("delta_" + n for n in snames)
+                                                   or "(the model has no control surfaces)"))
     names = [th.name for th in model.thrusters]
     for name in cmds:
         if name not in names:
@@ -98,9 +106,10 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
     forces = log.forces()
     forces = None if forces is None else np.column_stack([resample(c) for c in forces.T])
     commands = {k: resample(v) for k, v in cmds.items()}
-    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds}
+    deflections = {k: resample(v) for k, v in defl.items()}
+    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds} | {"delta_" + k for k in defl}
     channels = {k: resample(v) for k, v in log.columns.items() if k not in skip}
-    return np.asarray(times, float), forces, commands, channels
+    return np.asarray(times, float), forces, commands, deflections, channels
 
 
 def _log_window(log, start, duration):
@@ -154,10 +163,10 @@ def run(args) -> int:
         times = times[times <= t_in[-1] + 1e-12]
     elif start_log is not None and log is not start_log:
         times = start_log.require("t")              # predict at the logged times
-    times, forces, commands, channels = inputs_from_log(log, model, times,
-                                                        interpolation=args.interpolation)
+    times, forces, commands, deflections, channels = inputs_from_log(
+        log, model, times, interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels, eta0=eta0, nu0=nu0,
+                   channels=channels, deflections=deflections, eta0=eta0, nu0=nu0,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "

@@ -28,7 +28,6 @@ def add_parser(sub):
 
 def run(args) -> int:
     from stripcoef.cli.options import check_output_path
-    from stripcoef.files import write_text
     from stripcoef.study.plots import sweep_figure
     from stripcoef.study.sweep import parse_vary, sweep, write_table
 

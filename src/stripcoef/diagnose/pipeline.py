@@ -1070,7 +1070,8 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     cmds = log.commands()
     forces = None if cmds else log.forces()
     channels = {k: v for k, v in log.columns.items()
-                if k not in KNOWN_COLUMNS and not k.startswith("n_")}
+                if k not in KNOWN_COLUMNS and not k.startswith(("n_", "delta_"))}
+    defl = log.deflections() if getattr(model, "control_surfaces", ()) else {}
     starts = [0]
     while True:
         nxt = int(np.searchsorted(t, t[starts[-1]] + horizon))
@@ -1088,6 +1089,7 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
         try:
             sim = simulate(model, t[sl], forces=None if forces is None else forces[sl],
                            commands={k: v[sl] for k, v in cmds.items()} or None,
+                           deflections={k: v[sl] for k, v in defl.items()} or None,
                            eta0=eta0, nu0=nu0,
                            channels={k: v[sl] for k, v in channels.items()} or None,
                            rtol=1e-6, atol=1e-8)

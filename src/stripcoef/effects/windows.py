@@ -66,11 +66,16 @@ def coriolis_times_velocity(mass_matrix, nu) -> np.ndarray:
 
 
 def damping_times_velocity(model, nu) -> np.ndarray:
-    r""":math:`D(\nu)\nu = D_L\nu + D_Q(|\nu|\odot\nu)` for (n, 6) velocities [N, N m]
-    (Fossen 2011, eq. 6.59 with the diagonal-in-|nu| quadratic form of HydroModel.damping)."""
+    r""":math:`D(\nu)\nu = D_L\nu + u L\nu + D_Q(|\nu|\odot\nu)` for (n, 6) velocities [N, N m]
+    (Fossen 2011, eq. 6.59 with the diagonal-in-|nu| quadratic form of HydroModel.damping and
+    its lift L, Prestero 2001 sec. 3.6)."""
     nu = np.atleast_2d(np.asarray(nu, dtype=float))
-    return nu @ np.asarray(model.linear_damping).T + (np.abs(nu) * nu) @ np.asarray(
+    out = nu @ np.asarray(model.linear_damping).T + (np.abs(nu) * nu) @ np.asarray(
         model.quadratic_damping).T
+    lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), dtype=float)
+    if np.any(lift):
+        out = out + nu[:, :1] * (nu @ lift.T)
+    return out
 
 
 def rotation_matrices(eta) -> np.ndarray:
@@ -289,6 +294,18 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
         if tau is None:
             raise InputError("no inputs", file=log.source,
                              expected="thruster commands n_<name> or forces X Y Z K M N")
+    defl = log.deflections()
+    if defl and getattr(model, "control_surfaces", ()):
+        # control surfaces: u|u| B_delta delta at the logged speed (Prestero 2001, sec. 3.7)
+        snames = [sf.name for sf in model.control_surfaces]
+        unknown = [k for k in defl if k not in snames]
+        if unknown:
+            raise InputError("unknown control surface", file=log.source,
+                             key="delta_" + unknown[0],
+                             expected="one of " + ", ".join("delta_" + n for n in snames))
+        delta = np.column_stack([defl.get(n, np.zeros(len(log))) for n in snames])
+        u = nu[:, 0]
+        tau = tau + (u * np.abs(u))[:, None] * (delta @ model.control_matrix.T)
     dt = float(np.median(np.diff(t)))
     w = max(1, int(round(window / dt)))
     i0 = np.arange(0, len(t) - w, w)

@@ -29,7 +29,7 @@ from stripcoef.export._common import ExportFormat, ExportView, fmt
 
 NAME = "csv"
 
-MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping")
+MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping", "lift")
 SCALARS = {"mass": "kg", "volume": "m^3", "density": "kg/m^3", "gravity": "m/s^2",
            "kinematic_viscosity": "m^2/s"}
 THRUSTER_FIELDS = {"ct_forward": "N/cmd^2", "ct_backward": "N/cmd^2", "max_forward": "N",
@@ -45,7 +45,7 @@ def matrix_unit(kind: str, i: int, j: int) -> str:
         return "kg" if ti and tj else ("kg m^2" if not ti and not tj else "kg m")
     if kind == "linear_damping":
         return "kg/s" if ti and tj else ("kg m^2/s" if not ti and not tj else "kg m/s")
-    # quadratic: force_i / (|nu_j| nu_j)
+    # quadratic: force_i / (|nu_j| nu_j); lift: force_i / (u nu_j), the same units
     return {(True, True): "kg/m", (True, False): "kg m", (False, True): "kg",
             (False, False): "kg m^2"}[(ti, tj)]
 
@@ -77,6 +77,12 @@ def render(view: ExportView) -> str:
                         "-" if i < 3 else "m"])
         for key, unit in THRUSTER_FIELDS.items():
             w.writerow([key, "", t.name, fmt(getattr(t, key)), unit])
+    for c in model.control_surfaces:
+        b = view.vector6(c.derivative)
+        for i in range(6):
+            w.writerow(["control_derivative", DOF[i], c.name, fmt(b[i]),
+                        "kg/(m rad)" if i < 3 else "kg/rad"])
+        w.writerow(["max_deflection", "", c.name, fmt(c.max_deflection), "rad"])
     return buf.getvalue()
 
 
@@ -96,6 +102,8 @@ def read(text: str, *, file: str | None = None) -> dict:
     out.update(reference_point=np.zeros(3), r_g=np.zeros(3), r_b=np.zeros(3))
     thr: dict[str, dict] = {}
     alloc: dict[str, np.ndarray] = {}
+    ctrl: dict[str, np.ndarray] = {}
+    dmax: dict[str, float] = {}
     for line, row in enumerate(rows[1:], start=2):
         if len(row) != 5:
             raise InputError("wrong number of columns", file=file, key=f"line {line}",
@@ -114,6 +122,10 @@ def read(text: str, *, file: str | None = None) -> dict:
                 alloc.setdefault(c, np.zeros(6))[DOF.index(r)] = float(v)
             elif q in THRUSTER_FIELDS:
                 thr.setdefault(c, {})[q] = float(v)
+            elif q == "control_derivative":
+                ctrl.setdefault(c, np.zeros(6))[DOF.index(r)] = float(v)
+            elif q == "max_deflection":
+                dmax[c] = float(v)
             else:
                 raise ValueError(q)
         except ValueError:
@@ -124,6 +136,10 @@ def read(text: str, *, file: str | None = None) -> dict:
     out["thruster_allocation"] = (np.column_stack([alloc[n] for n in names]) if names
                                   else np.zeros((6, 0)))
     out["thruster_params"] = thr
+    out["control_surfaces"] = list(ctrl)
+    out["control_derivatives"] = (np.column_stack([ctrl[n] for n in ctrl]) if ctrl
+                                  else np.zeros((6, 0)))
+    out["max_deflection"] = dmax
     return out
 
 

@@ -17,6 +17,11 @@ What the consumers read (checked against their sources)
     (``buildCoriolisMatrix``) uses **only the diagonal** of ``Ma``;
   - ``<link_name>``.
 
+  The lift terms (force :math:`-uL\nu`, Prestero 2001 sec. 3.6) are written as
+  ``<{f_i}{V_j}absU>`` = :math:`-L_{ij}`: the plugin's :math:`|u|\,v_j` equals
+  :math:`u\,v_j` in forward motion (they differ when reversing, where fin lift is poorly
+  known anyway).
+
   Values are signed SNAME derivatives, hence negative for damping and legacy added
   mass.  Velocities are those of the **link origin** in the **link frame** and the
   wrench is applied at the link origin (``Link::AddWorldWrench``): no NED
@@ -180,6 +185,18 @@ def render(view: ExportView, *, link_name: str = "base_link",
     out += _sname_tags(dl, linear_tag)     # clean() already zeroed round-off
     out.append("      <!-- quadratic damping: <fi Vj abs Vj> = -D_Q[i,j] (force -D_Q[i,j] |v_j| v_j) -->")
     out += _sname_tags(dq, quadratic_tag)
+    lift = clean(view.matrix("lift"))
+    if np.any(lift[:, 1:]):
+        if np.any(lift[:, 0]):
+            trap("gazebo: lift terms on u itself have no tag distinct from X_u|u|; dropped")
+        out.append("      <!-- lift (forward-speed terms): <fi Vj abs U> = -L[i,j] (force -|u| L nu; "
+                   "equal to -u L nu when moving forward) -->")
+        out += [f"      <{quadratic_tag(i, j, 0)}>{fmt(-lift[i, j])}</{quadratic_tag(i, j, 0)}>"
+                for i in range(6) for j in range(1, 6) if lift[i, j] != 0.0]
+    if model.control_surfaces:
+        notes_cs = ", ".join(s.name for s in model.control_surfaces)
+        out.append(f"      <!-- control surfaces not exported ({notes_cs}): use one "
+                   "gz-sim-lift-drag-system per fin -->")
     if legacy_added_mass:
         _legacy_traps(ma, mrb)
         out.append("      <!-- legacy added mass: <fi Dot Vj> = -M_A[i,j] -->")

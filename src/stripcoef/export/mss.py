@@ -76,10 +76,14 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
     dq = clean(view.matrix("quadratic_damping"))
     bthr = view.allocation()
     thr_names = [t.name for t in model.thrusters]
+    lift = clean(view.matrix("lift"))
+    bdel = (np.column_stack([view.vector6(s.derivative) for s in model.control_surfaces])
+            if model.control_surfaces else np.zeros((6, 0)))
+    cs_names = [s.name for s in model.control_surfaces]
 
     head = header_lines(view, NAME)
     lines = [
-        f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr] = {fname}(x, tau, Vc)",
+        f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = {fname}(x, tau, Vc, delta)",
         f"% {fname.upper()}  {head[0].split(': ', 1)[-1]}",
         "% Compatible with MATLAB and the free software GNU Octave (www.octave.org).",
         "% Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).",
@@ -91,13 +95,17 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
         "%         velocities about the CO above, NED position, Euler angles (zyx)",
         "%   tau = [ X Y Z K M N ]' generalized force about the CO (N, Nm), default zeros",
         "%   Vc  = [ Vn Ve Vd ]' constant ocean current in NED (m/s), default zeros",
+        "%   delta = control surface deflections (rad), one per column of Bdelta, default zeros",
         "%",
         "% Returns xdot (12x1), the speed U (m/s), M = MRB + MA, MRB, MA, the damping",
-        "% D = DL + DQ*diag(|nu_r|) at the relative velocity nu_r, the restoring forces",
-        "% g(eta) (Fossen 2011, eq. 4.6), DL, DQ and the thruster allocation Bthr (6 x n,",
-        "% tau = Bthr*T). MA, DL, DQ are positive: -MA*nu_dot - D*nu is the hydrodynamic force.",
+        "% D = DL + u_r*L + DQ*diag(|nu_r|) at the relative velocity nu_r (L: body and fin",
+        "% lift, Prestero 2001 sec. 3.6), the restoring forces g(eta) (Fossen 2011, eq. 4.6),",
+        "% DL, DQ, the thruster allocation Bthr (6 x n, tau = Bthr*T), L and the control",
+        "% surfaces' Bdelta (force u_r*|u_r|*Bdelta*delta, Prestero 2001 sec. 3.7).",
+        "% MA, DL, DQ are positive: -MA*nu_dot - D*nu is the hydrodynamic force.",
         "%",
-        "%   M*nu_dot = tau - CRB(nu)*nu - CA(nu_r)*nu_r - D*nu_r - g + MA*nu_c_dot",
+        "%   M*nu_dot = tau + u_r|u_r| Bdelta delta - CRB(nu)*nu - CA(nu_r)*nu_r - D*nu_r - g",
+        "%              + MA*nu_c_dot",
         "%",
         "% Example usage:",
         f"%   [~,~,M,MRB,MA] = {fname}()             : the constant matrices",
@@ -105,8 +113,11 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
         f"%   [xdot,U] = {fname}(x, tau, [0.2 0 0]') : 0.2 m/s current towards north",
         "%",
         "% Thrusters (columns of Bthr): " + (", ".join(thr_names) if thr_names else "none"),
+        "% Control surfaces (columns of Bdelta): " + (", ".join(cs_names) if cs_names else "none"),
         "",
         "if nargin < 1 || isempty(x), x = zeros(12,1); end",
+        f"if nargin < 4 || isempty(delta), delta = zeros({len(cs_names)},1); end",
+        "delta = delta(:);",
         "if nargin < 2 || isempty(tau), tau = zeros(6,1); end",
         "if nargin < 3 || isempty(Vc), Vc = zeros(3,1); end",
         "x = x(:); tau = tau(:); Vc = Vc(:);",
@@ -134,6 +145,10 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
     lines += _matrix("DQ", dq)
     lines += ["% Thruster allocation about the CO: tau = Bthr * thrusts (N)"]
     lines += _matrix("Bthr", bthr)
+    lines += ["% Lift (forward-speed) terms, positive: force = -u*L*nu (L(2,2) = -Y_uv)"]
+    lines += _matrix("L", lift)
+    lines += ["% Control surfaces: force = u*|u|*Bdelta*delta (Bdelta(2,1) = Y_uudr)"]
+    lines += _matrix("Bdelta", bdel) if bdel.size else ["Bdelta = zeros(6,0);"]
     lines += [
         "",
         "% States, current and relative velocity",
@@ -145,12 +160,13 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
         "U = sqrt(nu(1)^2 + nu(2)^2 + nu(3)^2);",
         "",
         "M = MRB + MA;",
-        "D = DL + DQ * diag(abs(nu_r));",
+        "D = DL + nu_r(1) * L + DQ * diag(abs(nu_r));",
         "g = gvect_local(W, B, eta(5), eta(4), r_bg, r_bb);",
         "CRB = m2c_local(MRB, nu);",
         "CA = m2c_local(MA, nu_r);",
         "",
-        "nu_dot = M \\ (tau - CRB * nu - CA * nu_r - D * nu_r - g + MA * nu_c_dot);",
+        "tau_delta = nu_r(1) * abs(nu_r(1)) * (Bdelta * delta);",
+        "nu_dot = M \\ (tau + tau_delta - CRB * nu - CA * nu_r - D * nu_r - g + MA * nu_c_dot);",
         "xdot = [nu_dot; J * nu];",
         "end",
         "",

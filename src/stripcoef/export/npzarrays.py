@@ -45,6 +45,11 @@ def arrays(view: ExportView) -> dict:
         "r_b": view.r_b,
         "thrusters": np.array([t.name for t in model.thrusters], dtype=str),
         "B_thrusters": view.allocation() if model.thrusters else np.zeros((6, 0)),
+        "L": view.matrix("lift"),
+        "control_surfaces": np.array([c.name for c in model.control_surfaces], dtype=str),
+        "B_delta": (np.column_stack([view.vector6(c.derivative) for c in model.control_surfaces])
+                    if model.control_surfaces else np.zeros((6, 0))),
+        "max_deflection": np.array([c.max_deflection for c in model.control_surfaces], float),
         "model_json": np.array(json.dumps(plain(model.to_dict()))),
     }
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.conventions import DOF, sname_coefficients
+from stripcoef.conventions import DOF, FORCES, VELOCITIES, sname_coefficients
 from stripcoef.export._common import ExportFormat, ExportView, fmt, header_lines
 
 NAME = "python"
@@ -47,6 +47,11 @@ def render(view: ExportView) -> str:
     dl = view.matrix("linear_damping")
     dq = view.matrix("quadratic_damping")
     coeffs = sname_coefficients(ma, dl, dq, tol=1e-12)
+    lift = view.matrix("lift")
+    coeffs.update({f"{FORCES[i]}_u{VELOCITIES[j]}": -float(lift[i, j]) for i in range(6)
+                   for j in range(6) if abs(lift[i, j]) > 1e-12 * max(np.abs(lift).max(), 1e-300)})
+    bdel = (np.column_stack([view.vector6(c.derivative) for c in model.control_surfaces])
+            if model.control_surfaces else np.zeros((6, 0)))
     head = header_lines(view, NAME)
     lines = ['"""' + head[0] + ".", ""]
     lines += head[1:]
@@ -83,7 +88,17 @@ def render(view: ExportView) -> str:
         "# Quadratic damping, positive: force_i = -sum_j D_Q[i, j] |nu_j| nu_j",
         f"D_Q = {_array(dq)}",
         "",
+        "# Lift (forward-speed) terms, positive: force = -u L nu (L[1, 1] = -Y_uv)",
+        "# [kg/m, kg, kg m] (body and fin lift, Prestero 2001 sec. 3.6)",
+        f"L = {_array(lift)}",
+        "",
         "M = M_RB + M_A",
+        "",
+        f"CONTROL_SURFACES = {tuple(c.name for c in model.control_surfaces)!r}",
+        "# Control surfaces: force = u |u| B_DELTA @ deflections [rad] (Prestero 2001 sec. 3.7)",
+        f"B_DELTA = {_array(bdel)}",
+        f"MAX_DEFLECTION = {_array(np.array([c.max_deflection for c in model.control_surfaces]))}"
+        "  # [rad]",
         "",
         f"THRUSTERS = {tuple(t.name for t in model.thrusters)!r}",
         "# Thruster allocation: tau = B_THRUSTERS @ thrusts [N]",

@@ -75,6 +75,7 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     dl = clean(params.matrix("linear_damping"))
     dq = clean(params.matrix("quadratic_damping"))
     mrb = clean(params.matrix("rigid_body_mass"))
+    lift = clean(params.matrix("lift"))
     cob = view.r_b          # link axes, relative to the CoG
     ig = clean(view.inertia_about_cg())
 
@@ -111,10 +112,13 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
         notes.append("Thrusters not exported here: " + ", ".join(t.name for t in model.thrusters)
                      + " (uuv_thruster_ros_plugin per thruster).")
     notes += [
-        "linear_damping_forward_speed is zero: the model's terms proportional to u (Munk moment,",
-        "Y_ur and N_uv added-mass lift) are all in C_A(nu), which the plugin builds itself from",
-        "added_mass; stripcoef has no viscous lift-type derivatives to add.",
+        "linear_damping_forward_speed = -L, the model's lift (body and fin lift: Y_uv, N_ur, ...,",
+        "force -u L nu; Prestero 2001 sec. 3.6); the Munk part of the u-terms is in C_A(nu), which",
+        "the plugin builds itself from added_mass.",
     ]
+    if model.control_surfaces:
+        notes.append("Control surfaces not exported here: " + ", ".join(
+            s.name for s in model.control_surfaces) + " (uuv_fin_ros_plugin per fin).")
 
     ind = "      "
     out = ['<?xml version="1.0" ?>', *xml_comment(notes)]
@@ -133,8 +137,13 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     out.append("      <linear_damping>")
     out += _matrix_lines(-dl, ind)
     out.append("      </linear_damping>")
-    out.append(f"      <linear_damping_forward_speed>{_row(np.zeros(6))}"
-               "</linear_damping_forward_speed>")
+    if np.any(lift):
+        out.append("      <linear_damping_forward_speed>")
+        out += _matrix_lines(-lift, ind)
+        out.append("      </linear_damping_forward_speed>")
+    else:
+        out.append(f"      <linear_damping_forward_speed>{_row(np.zeros(6))}"
+                   "</linear_damping_forward_speed>")
     out.append(f"      <quadratic_damping>{_row(-np.diag(dq))}</quadratic_damping>")
     out.append("    </hydrodynamic_model>")
     out.append("  </link>")

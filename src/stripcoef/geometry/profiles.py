@@ -45,35 +45,42 @@ def ellipsoid_tail(x, x_aft, x_fwd, radius):
     return radius * np.sqrt(np.maximum(1.0 - xi**2, 0.0))
 
 
-def myring_nose(x, x_aft, x_fwd, radius, n=2.0):
+def myring_nose(x, x_aft, x_fwd, radius, n=2.0, length=None):
     r"""Myring nose, tip at ``x_fwd``, nose length ``a``, shape exponent ``n``.
 
-    .. math:: r(s) = R\left[1 - \left(\frac{s - a}{a}\right)^2\right]^{1/n},\quad s = x_f - x
+    .. math:: r(s) = R\left[1 - \left(\frac{s - a}{a}\right)^2\right]^{1/n},\quad
+              s = x_f - x + (a - (x_f - x_a))
+
+    ``length`` a [m] is the full Myring nose length (default: the segment's); a longer
+    ``a`` truncates the tip by :math:`a_{offset} = a - (x_f - x_a)`, as real hulls are
+    (Prestero 2001, Table 2.1: REMUS a = 0.191 m, a_offset = 0.0165 m).
 
     References
     ----------
     Myring, D. F. (1976), "A theoretical study of body drag in subcritical axisymmetric flow",
     Aeronautical Quarterly 27(3), 186-194, eq. for the nose; Prestero (2001), eq. 2.1.
     """
-    a = x_fwd - x_aft
-    s = np.clip(x_fwd - np.asarray(x, float), 0.0, a)
+    a = float(length) if length is not None else x_fwd - x_aft
+    s = np.clip(x_fwd - np.asarray(x, float) + (a - (x_fwd - x_aft)), 0.0, a)
     return radius * np.maximum(1.0 - ((s - a) / a) ** 2, 0.0) ** (1.0 / n)
 
 
-def myring_tail(x, x_aft, x_fwd, radius, theta=np.radians(25.0)):
+def myring_tail(x, x_aft, x_fwd, radius, theta=np.radians(25.0), length=None):
     r"""Myring tail, from full radius at ``x_fwd`` to the tip at ``x_aft``, tip half-angle theta.
 
     .. math:: r(t) = R - \left(\frac{3R}{c^2} - \frac{\tan\theta}{c}\right)t^2
                      + \left(\frac{2R}{c^3} - \frac{\tan\theta}{c^2}\right)t^3,\quad t = x_f - x
 
-    Parameters: x [m], segment ends [m] (tail length c = x_f - x_a), radius R [m],
-    ``theta`` [rad]. Returns r [m].
+    Parameters: x [m], segment ends [m], radius R [m], ``theta`` [rad], ``length`` c [m]
+    (the full Myring tail length, default x_f - x_a; a longer c truncates the tip by
+    :math:`c_{offset} = c - (x_f - x_a)`, Prestero 2001, Table 2.1: REMUS c = 0.541 m,
+    c_offset = 0.0368 m). Returns r [m].
 
     References
     ----------
     Myring (1976); Prestero (2001), eq. 2.2 (with d = 2R).
     """
-    c = x_fwd - x_aft
+    c = float(length) if length is not None else x_fwd - x_aft
     t = np.clip(x_fwd - np.asarray(x, float), 0.0, c)
     tt = np.tan(theta)
     r = radius - (3 * radius / c**2 - tt / c) * t**2 + (2 * radius / c**3 - tt / c**2) * t**3
@@ -102,10 +109,11 @@ class Segment:
         if self.kind == "ellipsoid_tail":
             return ellipsoid_tail(x, self.x_aft, self.x_fwd, p["radius"])
         if self.kind == "myring_nose":
-            return myring_nose(x, self.x_aft, self.x_fwd, p["radius"], p.get("n", 2.0))
+            return myring_nose(x, self.x_aft, self.x_fwd, p["radius"], p.get("n", 2.0),
+                               p.get("length"))
         if self.kind == "myring_tail":
             return myring_tail(x, self.x_aft, self.x_fwd, p["radius"],
-                               np.radians(p.get("theta_deg", 25.0)))
+                               np.radians(p.get("theta_deg", 25.0)), p.get("length"))
         if self.kind == "table":
             pts = p["points"]
             return np.interp(x, pts[:, 0], pts[:, 1])

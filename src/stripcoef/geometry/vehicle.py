@@ -57,6 +57,41 @@ class MassSpec:
 
 
 @dataclass
+class SurfacePanel:
+    """One lifting panel of a control surface: a fin's exposed part (root at the hull).
+
+    ``center`` [m] is mid span and mid chord in body axes, ``span`` root to tip [m],
+    ``chord`` [m]; the panel's plane is normal to ``normal`` (y for a rudder, z for an
+    elevator).
+    """
+
+    center: np.ndarray
+    span: float
+    chord: float
+    normal: str
+
+    @property
+    def area(self) -> float:
+        return self.span * self.chord
+
+
+@dataclass
+class ControlSurfaceSpec:
+    """A rudder or elevator of the vehicle file: panels deflected together and its limits.
+
+    ``max_deflection`` and ``stall_angle`` in [rad]; ``fins`` names the fin appendages it
+    is made of (their lift is then counted once, here).
+    """
+
+    name: str
+    kind: str
+    panels: list
+    max_deflection: float
+    stall_angle: float
+    fins: tuple = ()
+
+
+@dataclass
 class Vehicle:
     """Everything a vehicle file says (validated)."""
 
@@ -73,6 +108,8 @@ class Vehicle:
     n_strips: int = DEFAULT_STRIPS
     corrections: bool = True
     description: str = ""
+    control_surfaces: list = field(default_factory=list)
+    body_lift: str = "auto"
 
     @classmethod
     def from_mesh(cls, mesh, *, axis: str = "x", length_unit: str = "m", origin="centroid",
@@ -238,7 +275,8 @@ class _Reader:
 
 
 def _segment(r: _Reader, seg, path) -> Segment:
-    r.mapping(seg, path, ("type", "x", "radius", "n", "theta_deg", "points"), ("type", "x"))
+    r.mapping(seg, path, ("type", "x", "radius", "n", "theta_deg", "points", "length"),
+              ("type", "x"))
     kind = r.string(seg, "type", path, choices=SEGMENT_TYPES, required=True)
     x = seg["x"]
     if (not isinstance(x, list) or len(x) != 2
@@ -283,6 +321,17 @@ def _segment(r: _Reader, seg, path) -> Segment:
             params["n"] = r.number(seg, "n", path, default=2.0, positive=True)
         if kind == "myring_tail":
             params["theta_deg"] = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+        if kind in ("myring_nose", "myring_tail"):
+            full = r.number(seg, "length", path, positive=True, default=None)
+            if full is not None:
+                if full < xf - xa - 1e-12:
+                    raise r.err(f"{path}.length", "shorter than the segment", full,
+                                f"the full Myring length >= x_fwd - x_aft = {xf - xa:g} m "
+                                "(a longer one truncates the tip)")
+                params["length"] = full
+    if "length" in seg and kind not in ("myring_nose", "myring_tail"):
+        raise r.err(f"{path}.length", "unexpected key for this segment type",
+                    expected="length only on myring_nose and myring_tail segments")
     return Segment(kind, xa, xf, params)
 
 
@@ -441,7 +490,8 @@ def _mass(r: _Reader, data) -> MassSpec:
 def _thruster(r: _Reader, data, path) -> Thruster:
     r.mapping(data, path, ("name", "position", "direction", "ct_forward", "ct_backward", "ct",
                            "max_forward", "max_backward", "max_thrust", "eta_forward",
-                           "eta_backward", "deadband"), ("name", "position", "direction"))
+                           "eta_backward", "deadband", "torque_ratio", "kq"),
+              ("name", "position", "direction"))
     name = r.string(data, "name", path, required=True)
     d = r.vector(data, "direction", path, required=True)
     if np.linalg.norm(d) < 1e-12:
@@ -461,12 +511,126 @@ def _thruster(r: _Reader, data, path) -> Thruster:
         eta_forward=r.number(data, "eta_forward", path, positive=True, default=1.0),
         eta_backward=r.number(data, "eta_backward", path, positive=True, default=1.0),
         deadband=r.number(data, "deadband", path, nonneg=True, default=0.0),
+        torque_ratio=_torque_ratio(r, data, path, ct),
     )
     return t
 
 
+def _torque_ratio(r: _Reader, data, path, ct) -> float:
+    """k_Q = Q/T [m] from ``torque_ratio`` or from ``kq`` [N m per command^2] and the
+    forward thrust coefficient (Q = kq n|n|, T = ct n|n|: k_Q = kq/ct; Prestero 2001,
+    sec. 3.8)."""
+    if "torque_ratio" in data and "kq" in data:
+        raise r.err(f"{path}.kq", "both torque_ratio and kq given",
+                    expected="one of torque_ratio [m] or kq [N m per command^2]")
+    if "kq" in data:
+        kq = r.number(data, "kq", path)
+        ctf = r.number(data, "ct_forward", path, positive=True, default=ct)
+        if ctf is None:
+            raise r.err(f"{path}.kq", "kq without a thrust coefficient",
+                        expected="ct or ct_forward beside kq (k_Q = kq / ct)")
+        return kq / ctf
+    return r.number(data, "torque_ratio", path, default=0.0)
+
+
 TOP_KEYS = ("name", "description", "fluid", "reference_point", "reference_speed", "strips",
-            "corrections", "hull", "holes", "appendages", "mass", "thrusters")
+            "corrections", "hull", "holes", "appendages", "mass", "thrusters", "control_surfaces",
+            "body_lift")
+#: Span axis of the panels of each control surface type (rudder: vertical, elevator: horizontal).
+SURFACE_TYPES = {"rudder": "z", "elevator": "y"}
+
+
+def exposed_panels(hull: Hull, center, span: float, chord: float, span_axis: str, *,
+                   path: str, r: "_Reader | None" = None) -> list:
+    """The parts of a fin outside the hull, one panel per side (root at the hull surface).
+
+    The hull half-width at the fin's x along its span axis is the root; a fin that does
+    not reach the hull surface is refused (InputError naming ``path``; ``r`` adds the file).
+    """
+    r = r or _Reader(None)
+    k = "xyz".index(span_axis)
+    off = float(center[k]) - (hull.y if span_axis == "y" else hull.z)
+    x = float(center[0])
+    lo, hi = hull.x_extent()
+    width = float(hull.half_breadth(x) if span_axis == "y" else hull.half_height(x)) \
+        if lo <= x <= hi else 0.0
+    a, b = off - 0.5 * span, off + 0.5 * span
+    tol = 1e-6 * max(1.0, span)
+    if width <= 0.0 or (a > width + tol) or (b < -width - tol):
+        raise r.err(f"{path}", "control surface does not touch the hull",
+                    [float(v) for v in center],
+                    f"a panel whose root reaches the hull surface (hull half-width "
+                    f"{width:.4g} m along {span_axis} at x = {x:.4g} m)")
+    panels = []
+    for lo_s, hi_s in ((max(a, width), b), (a, min(b, -width))):
+        if hi_s - lo_s > tol:
+            c = np.array(center, dtype=float)
+            c[k] = (hull.y if span_axis == "y" else hull.z) + 0.5 * (lo_s + hi_s)
+            panels.append(SurfacePanel(center=c, span=hi_s - lo_s, chord=chord,
+                                       normal="y" if span_axis == "z" else "z"))
+    if not panels:
+        raise r.err(f"{path}", "control surface is inside the hull", [float(v) for v in center],
+                    "a panel reaching out of the hull")
+    return panels
+
+
+def _control_surface(r: _Reader, data, path, hull: Hull, fins: dict, used: dict):
+    r.mapping(data, path, ("name", "type", "fins", "span", "chord", "area", "position", "axis",
+                           "max_deflection_deg", "stall_angle_deg"),
+              ("name", "type", "max_deflection_deg"))
+    name = r.string(data, "name", path, required=True)
+    kind = r.string(data, "type", path, choices=tuple(SURFACE_TYPES), required=True)
+    span_axis = SURFACE_TYPES[kind]
+    axis = r.string(data, "axis", path, choices=("y", "z"), default=span_axis)
+    if axis != span_axis:
+        raise r.err(f"{path}.axis", "span axis does not fit the type", axis,
+                    f"{span_axis} for a {kind} (rudder: vertical, elevator: horizontal)")
+    dmax = r.number(data, "max_deflection_deg", path, positive=True, required=True)
+    stall = r.number(data, "stall_angle_deg", path, positive=True, default=None)
+    if stall is None:
+        stall = dmax
+    if dmax > stall:
+        raise r.err(f"{path}.max_deflection_deg", "deflection beyond the stall angle", dmax,
+                    f"at most stall_angle_deg = {stall:g} deg (the linear lift law ends at stall)")
+    if dmax >= 90.0:
+        raise r.err(f"{path}.max_deflection_deg", "invalid value", dmax, "less than 90 deg")
+    panels = []
+    names = ()
+    if "fins" in data:
+        if any(k in data for k in ("span", "chord", "area", "position")):
+            raise r.err(f"{path}.fins", "both fins and span/chord/position given",
+                        expected="either fins (appendage names) or the surface's own geometry")
+        names = data["fins"]
+        if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
+            raise r.err(f"{path}.fins", "wrong type", names, "a list of fin appendage names")
+        for n in names:
+            if n not in fins:
+                raise r.err(f"{path}.fins", "unknown fin", n,
+                            "one of " + (", ".join(sorted(fins)) or "(no fin appendages)"))
+            if n in used:
+                raise r.err(f"{path}.fins", "fin used by two control surfaces", n,
+                            f"each fin in one surface (already in {used[n]!r})")
+            fin = fins[n]
+            if fin.span_axis != span_axis:
+                raise r.err(f"{path}.fins", f"fin {n!r} spans along {fin.span_axis}", n,
+                            f"fins spanning along {span_axis} for a {kind}")
+            used[n] = name
+            panels += exposed_panels(hull, fin.center, fin.span, fin.chord, span_axis, r=r,
+                                      path=f"{path}.fins")
+        names = tuple(names)
+    else:
+        pos = r.vector(data, "position", path, required=True)
+        span = r.number(data, "span", path, positive=True, required=True)
+        chord = r.number(data, "chord", path, positive=True)
+        area = r.number(data, "area", path, positive=True)
+        if (chord is None) == (area is None):
+            raise r.err(f"{path}.chord", "give chord or area", expected="one of chord [m] or "
+                        "area [m^2] beside span")
+        chord = chord if chord is not None else area / span
+        panels = exposed_panels(hull, pos, span, chord, span_axis, r=r, path=f"{path}.position")
+    return ControlSurfaceSpec(name=name, kind=kind, panels=panels,
+                              max_deflection=math.radians(dmax), stall_angle=math.radians(stall),
+                              fins=names)
 
 
 def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
@@ -512,6 +676,18 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
             if b not in names:
                 raise r.err(f"mass.zones[{i}].bodies", "unknown body", b,
                             "one of " + ", ".join(sorted(names)))
+    fins = {b.name: b for b in bodies if isinstance(b, Fin)}
+    used: dict = {}
+    surfaces = [_control_surface(r, c, f"control_surfaces[{i}]", hull, fins, used)
+                for i, c in enumerate(r.listing(data, "control_surfaces", ""))]
+    if len({c.name for c in surfaces}) != len(surfaces):
+        raise r.err("control_surfaces", "duplicated control surface name",
+                    [c.name for c in surfaces], "unique names")
+    body_lift = data.get("body_lift", "auto")
+    if body_lift is True or body_lift is False:
+        body_lift = "on" if body_lift else "off"
+    if body_lift not in ("auto", "on", "off"):
+        raise r.err("body_lift", "invalid value", body_lift, "auto, on or off")
     thrusters = [_thruster(r, t, f"thrusters[{i}]")
                  for i, t in enumerate(r.listing(data, "thrusters", ""))]
     if len({t.name for t in thrusters}) != len(thrusters):
@@ -535,7 +711,8 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
                    reference_speed=r.number(data, "reference_speed", "", positive=True,
                                             default=DEFAULT_SPEED),
                    n_strips=strips, corrections=corr,
-                   description=str(data.get("description", "")))
+                   description=str(data.get("description", "")),
+                   control_surfaces=surfaces, body_lift=body_lift)
 
 
 def _bbox(body) -> np.ndarray:

@@ -25,6 +25,8 @@ def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = No
                          expected="pip install 'stripcoef[plot]'") from None
     from stripcoef.files import atomic_path
 
+    if result.steering is not None:
+        return plot_steering(result, path, title=title, key=key, plt=plt)
     if not result.turning:
         reason = "; ".join(n for n in result.notes if n.startswith("unreachable")) or "no radii"
         raise UnreachableError(f"nothing to plot: no steady turn ({reason})")
@@ -70,6 +72,51 @@ def plot_limits(result: LimitsResult, path, *, compare: LimitsResult | None = No
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7 if k == 2 else 8, loc="best", ncol=2 if k == 2 else 1)
     fig.suptitle(title or f"{result.name}: steady starboard turns at the thrust limit")
+    with atomic_path(path, key=key) as tmp:
+        fig.savefig(tmp, format="png", dpi=150)
+    plt.close(fig)
+
+
+def plot_steering(result: LimitsResult, path, *, title: str | None = None, key: str = "path",
+                  plt=None) -> None:
+    """Figure of a rudder/elevator-steered vehicle (PNG, atomically) against surge speed u:
+    full-rudder turning radius and drift angle; level-trim pitch and elevator; steepest dive
+    and climb depth rates (the tables of :mod:`stripcoef.limits.steering`)."""
+    from stripcoef.files import atomic_path
+
+    steer = result.steering
+    fig, axes = plt.subplots(3, 1, figsize=(7.0, 9.0), sharex=True, constrained_layout=True)
+    if steer.turning:
+        u = [f.u for f in steer.turning]
+        axes[0].plot(u, [f.radius for f in steer.turning], "-o", ms=3, label="radius R [m]")
+        axes[0].plot(u, [abs(math.degrees(f.drift_angle)) for f in steer.turning], "--s", ms=3,
+                     label="|drift angle| [deg]")
+    if steer.trim:
+        u = [f.u for f in steer.trim]
+        axes[1].plot(u, [math.degrees(f.pitch) for f in steer.trim], "-o", ms=3,
+                     label="pitch [deg]")
+        for name in steer.trim[0].deflections:
+            vals = [math.degrees(f.deflections[name]) for f in steer.trim]
+            if any(abs(v) > 1e-9 for v in vals):
+                axes[1].plot(u, vals, "--s", ms=3, label=f"{name} [deg]")
+        if steer.level_speed_min:
+            axes[1].axvline(steer.level_speed_min, color="0.4", lw=0.8, ls=":",
+                            label=f"slowest level flight {steer.level_speed_min:.3g} m/s")
+    for rows, lab in ((steer.dive, "steepest dive"), (steer.climb, "steepest climb")):
+        if rows:
+            axes[2].plot([f.u for f in rows], [f.depth_rate for f in rows], "-o", ms=3,
+                         label=f"{lab}: dz/dt [m/s] (down > 0)")
+    axes[2].axhline(0.0, color="0.5", lw=0.6)
+    axes[0].set_ylabel("full-rudder turn")
+    axes[1].set_ylabel("level trim")
+    axes[2].set_ylabel("depth rate [m/s]")
+    axes[2].set_xlabel("surge speed u [m/s]")
+    for ax in axes:
+        ax.axvline(steer.surge_speed_max, color="0.6", lw=0.8, ls=":")
+        ax.grid(True, alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8, loc="best")
+    fig.suptitle(title or f"{result.name}: steady flight with rudders and elevators")
     with atomic_path(path, key=key) as tmp:
         fig.savefig(tmp, format="png", dpi=150)
     plt.close(fig)

@@ -60,6 +60,7 @@ from scipy.optimize import brentq, linprog
 
 from stripcoef.conventions import DOF, FORCES
 from stripcoef.errors import InputError, ModelWarning, UnreachableError
+from stripcoef.limits.balance import LimitOptions, required_force
 
 #: Rows that have no hydrostatic stiffness and must always balance.
 _ALWAYS = (0, 1, 2, 5)
@@ -72,22 +73,6 @@ _SPEED_CAP = 1.0e3
 # ---------------------------------------------------------------------------
 # options and results
 # ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class LimitOptions:
-    """What the steady-state balance includes.
-
-    Attributes
-    ----------
-    munk : bool
-        Keep the Munk moment (the moment part of C_A(nu) nu).  Seed 002 neglects it.
-    coriolis : bool
-        Keep C(nu) = C_RB + C_A at all.
-    """
-
-    munk: bool = True
-    coriolis: bool = True
-
-
 @dataclass
 class Manoeuvre:
     """One steady manoeuvre at its limit.
@@ -171,6 +156,7 @@ class LimitsResult:
     options: LimitOptions
     notes: list[str] = field(default_factory=list)
     thrust_limits: dict = field(default_factory=dict)
+    steering: object = None     # SteeringLimits of a rudder/elevator-steered vehicle
 
     @property
     def surge_speed_max(self) -> float:
@@ -212,6 +198,7 @@ class LimitsResult:
                            "yaw": man(self.yaw), "sway": man(self.sway)},
             "options": {"munk": self.options.munk, "coriolis": self.options.coriolis},
             "notes": list(self.notes),
+            "steering": None if self.steering is None else self.steering.to_dict(),
         }
 
 
@@ -268,38 +255,6 @@ def check_model(model, *, file: str | None = None) -> None:
 # ---------------------------------------------------------------------------
 # the steady-state balance
 # ---------------------------------------------------------------------------
-def required_force(model, nu, eta=None, *, options: LimitOptions = LimitOptions()) -> np.ndarray:
-    r"""Generalized force the thrusters must give to hold ``nu`` steady.
-
-    .. math:: \tau_{req} = C(\nu)\nu + D(\nu)\nu + g(\eta)
-
-    Parameters
-    ----------
-    model : HydroModel
-    nu : (6,) array
-        Body velocity [m/s, rad/s]
-    eta : (6,) array, optional
-        Pose [m, rad] (only roll and pitch matter); level by default
-    options : LimitOptions
-        Munk moment / Coriolis terms on or off
-
-    Returns
-    -------
-    (6,) array
-        [N, N, N, N m, N m, N m]
-
-    References
-    ----------
-    Fossen (2011), eq. 7.190 with nu_dot = 0; Ferreira et al. 2009, eq. 23.
-    """
-    nu = np.asarray(nu, dtype=float)
-    eta = np.zeros(6) if eta is None else np.asarray(eta, dtype=float)
-    tau = model.damping(nu) @ nu + model.restoring(eta)
-    if options.coriolis:
-        tau = tau + model.coriolis(nu, munk=options.munk) @ nu
-    return tau
-
-
 class _Allocator:
     """Bounded allocation tau_S = B_S T on the rows the thrusters must balance."""
 
@@ -779,6 +734,10 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
     """
     check_model(model)
     options = LimitOptions(munk=munk, coriolis=coriolis)
+    if getattr(model, "control_surfaces", ()) or (
+            np.any(getattr(model, "lift", 0.0)) and not _Allocator(model).controls(2)):
+        # steered by control surfaces, or a finned body whose thrusters give no heave
+        return _steered_limits(model, options, turn_speed)
     radii = check_radii(np.linspace(*DEFAULT_RADII[:2], DEFAULT_RADII[2]) if radii is None else radii)
     alloc = _Allocator(model)
     notes = []
@@ -820,3 +779,43 @@ def solve_limits(model, *, radii=None, munk: bool = True, coriolis: bool = True,
                                        for t in model.thrusters})
 
 
+
+
+def _steered_limits(model, options: LimitOptions, turn_speed) -> LimitsResult:
+    """Limits of a vehicle with rudders/elevators (:mod:`stripcoef.limits.steering`): the top
+    speed of trimmed level flight, the turning circle at full rudder, dive and climb.
+
+    The surge manoeuvre is the level trim at the top speed (pitch and heel in ``trim``);
+    ``min_turning_radius`` is the full-rudder circle at ``turn_speed`` (default half the top
+    speed). Heave, yaw and sway on the spot are None: no thruster gives them.
+    """
+    from stripcoef.limits.steering import (free_flight, level_trim, rudder_turn,  # noqa: PLC0415
+                                           steering_limits)
+
+    steer = steering_limits(model, options=options, turn_speed=turn_speed)
+    trim_of = level_trim if any(s.kind == "elevator" for s in model.control_surfaces) \
+        else free_flight
+    top = trim_of(model, steer.surge_speed_max, options=options)
+    loads = {n: abs(t) / (lim[0] if t >= 0 else lim[1]) if (lim[0] if t >= 0 else lim[1]) else 0.0
+             for (n, t), lim in zip(top.thrust.items(),
+                                    ((th.max_forward, th.max_backward) for th in model.thrusters))}
+    top_load = max(loads.values())
+    at_limit = [n for n, x in loads.items() if x >= top_load - 1e-6 * max(top_load, 1.0)]
+    surge = Manoeuvre(speed=steer.surge_speed_max, nu=top.nu, thrust=top.thrust,
+                      saturated=at_limit[0], trim={"roll": top.roll, "pitch": top.pitch},
+                      at_limit=at_limit)
+    speed = 0.5 * steer.surge_speed_max if turn_speed is None else float(turn_speed)
+    rmin = None
+    if any(s.kind == "rudder" for s in model.control_surfaces):
+        lim = min(s.max_deflection for s in model.control_surfaces if s.kind == "rudder")
+        rmin = rudder_turn(model, speed, lim, options=options).radius
+    notes = ["steered by control surfaces (or finned without heave thrust): heave, yaw and "
+             "sway on the spot need thrusters this vehicle does not have; see steering (trim, "
+             "turning circle, dive, climb)"]
+    notes += steer.notes
+    return LimitsResult(name=model.name, surge=surge, heave=None, yaw=None, sway=None,
+                        turning=[], min_turning_radius=rmin, min_turning_speed=speed,
+                        options=options, notes=notes,
+                        thrust_limits={t.name: (float(t.max_forward), float(t.max_backward))
+                                       for t in model.thrusters},
+                        steering=steer)

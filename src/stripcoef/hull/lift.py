@@ -1,0 +1,217 @@
+r"""Lift: the speed-dependent linear forces of a slender body and its fins.
+
+A vehicle moving at surge speed u with a small sideslip :math:`\beta \approx v/u` or angle
+of attack :math:`\alpha \approx w/u` gets a force normal to its path that grows as
+:math:`u^2 \beta = u v`: the body's viscous cross-flow lift and the fins' lift.  Both are
+collected in one 6x6 matrix L about the model's reference point,
+
+.. math:: \tau_{lift} = -u\,L\,\nu, \qquad -L_{ij} = \{Y_{uv}, Y_{ur}, Z_{uw}, Z_{uq},
+          M_{uw}, M_{uq}, N_{uv}, N_{ur}, \dots\}
+
+(SNAME names, force per u times velocity [kg/m, kg, kg m]; Prestero 2001, sec. 3.6).  The
+potential-flow (Munk) part of these derivatives is *not* here: it is in
+:math:`C_A(\nu)\nu` of the added mass (Fossen 2011, eq. 6.43), as in Prestero's split
+:math:`Y_{uv} = Y_{uva} + Y_{uvl} + Y_{uvf}`.
+
+Body lift (Hoerner & Borst 1985, "Fluid-Dynamic Lift", ch. 19, as used by Prestero 2001,
+sec. 3.6.1):
+
+.. math:: Y_{uvl} = Z_{uwl} = -\tfrac12 \rho d^2 c_{yd\beta}, \quad
+          c_{yd\beta} = 0.003\,(l/d)\ [1/\mathrm{deg}], \quad
+          x_{cp} = x_{nose} - 0.65\,l
+
+acting at the centre of pressure :math:`x_{cp}` (a sideslip v gives the force; yaw rate does
+not, as in Prestero's model).
+
+Fin lift (Whicker & Fehlner 1958, DTMB report 933, as used by Prestero 2001, sec. 3.6.2,
+and Hoerner & Borst 1985, ch. 3): each fin of planform area S and span b (root at the hull,
+which acts as a reflection plane) has the effective aspect ratio
+:math:`AR_e = 2 b^2 / S` and the lift-curve slope
+
+.. math:: c_{L\alpha} = \left[\frac{1}{2 a \pi} + \frac{1}{\pi AR_e}\right]^{-1},
+          \quad a = 0.9
+
+and the force :math:`\tfrac12 \rho u^2 S c_{L\alpha} \alpha_e` normal to its plane, with
+:math:`\alpha_e = \delta - v_f/u` the effective angle of attack, :math:`v_f` the cross
+velocity at its quarter chord.  A fin of lift direction e at r (relative to the reference
+point) adds :math:`k\,c\,c^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m],
+:math:`c = [e;\ r \times e]`, and a control surface deflected by :math:`\delta` gives
+:math:`u^2 k\,c\,\delta` (Prestero 2001, sec. 3.7: :math:`Y_{uu\delta_r}`,
+:math:`N_{uu\delta_r}`, ...).  The linear law holds up to the stall angle; beyond it the
+lift falls (Hoerner & Borst 1985, ch. 4), which this model does not represent: deflections
+are limited below stall.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from stripcoef.conventions import skew
+
+#: Span efficiency a of Whicker & Fehlner's lift slope (Prestero 2001, sec. 3.6.2) [-].
+FIN_EFFICIENCY = 0.9
+#: Hoerner's body lift slope per degree per unit slenderness, c_ydb = 0.003 l/d [1/deg]
+#: (Hoerner & Borst 1985, ch. 19; Prestero 2001, sec. 3.6.1) [-].
+BODY_LIFT_PER_DEG = 0.003
+#: Centre of pressure of the body lift, as a fraction of the length aft of the nose
+#: (Hoerner & Borst 1985, ch. 19; Prestero 2001, sec. 3.6.1) [-].
+BODY_CP_FRACTION = 0.65
+#: Smallest length/diameter for which the slender-body lift above is used (assumption:
+#: Hoerner's correlation is for slender bodies; a sphere has no lift by symmetry) [-].
+MIN_SLENDERNESS = 4.0
+
+
+def effective_aspect_ratio(span, area):
+    r"""Effective aspect ratio of a fin mounted on a hull (the hull is a reflection plane).
+
+    .. math:: AR_e = 2\,b^2 / S
+
+    Parameters
+    ----------
+    span : float or array
+        b, root (hull surface) to tip [m]
+    area : float or array
+        S, planform area of the fin [m^2]
+
+    Returns
+    -------
+    float or array
+        AR_e [-]
+
+    References
+    ----------
+    Prestero 2001, sec. 3.6.2 (REMUS: b = 8.57e-2 m, S = 6.65e-3 m^2, AR_e = 2.21);
+    Hoerner & Borst 1985, ch. 3 (image of a wing on a wall).
+    """
+    return 2.0 * np.asarray(span, dtype=float) ** 2 / np.asarray(area, dtype=float)
+
+
+def fin_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
+    r"""Lift-curve slope of a low-aspect-ratio fin.
+
+    .. math:: c_{L\alpha} = \left[\frac{1}{2 a \pi} + \frac{1}{\pi AR_e}\right]^{-1}
+
+    Parameters
+    ----------
+    aspect_ratio : float or array
+        AR_e, effective aspect ratio [-] (:func:`effective_aspect_ratio`)
+    efficiency : float
+        a, ratio of the 2D section slope to 2 pi [-] (0.9)
+
+    Returns
+    -------
+    float or array
+        c_Lalpha [1/rad]
+
+    References
+    ----------
+    Whicker & Fehlner 1958, DTMB report 933; Prestero 2001, sec. 3.6.2 (AR_e = 2.21 gives
+    c_Lalpha = 3.12).
+    """
+    ar = np.asarray(aspect_ratio, dtype=float)
+    return 1.0 / (1.0 / (2.0 * efficiency * math.pi) + 1.0 / (math.pi * ar))
+
+
+def body_lift_slope(length: float, diameter: float) -> float:
+    r"""Body lift slope of a slender body of revolution, per radian.
+
+    .. math:: c_{yd\beta} = 0.003\,\frac{l}{d}\ [1/\mathrm{deg}] = 0.003\,\frac{l}{d}\,\frac{180}{\pi}\ [1/\mathrm{rad}]
+
+    Parameters
+    ----------
+    length, diameter : float
+        l and the largest diameter d [m]
+
+    Returns
+    -------
+    float
+        c_ydbeta [1/rad], based on d^2
+
+    References
+    ----------
+    Hoerner & Borst 1985, ch. 19; Prestero 2001, sec. 3.6.1 (REMUS, l/d = 6.97: 1.2).
+    """
+    return BODY_LIFT_PER_DEG * (length / diameter) * 180.0 / math.pi
+
+
+def lift_column(direction, point) -> np.ndarray:
+    r"""Generalized force of a unit force along ``direction`` at ``point``: :math:`c = [e;\ r \times e]`.
+
+    ``direction`` e [-] and ``point`` r [m] relative to the reference point, FRD body axes;
+    returns c [-, m]. Moment of a point force, Fossen 2011, eq. 3.2 (:math:`M = r \times F`).
+    """
+    e = np.asarray(direction, dtype=float)
+    return np.concatenate([e, skew(np.asarray(point, dtype=float)) @ e])
+
+
+def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: float) -> np.ndarray:
+    r"""Lift matrix of one fin: :math:`L = \tfrac12 \rho S c_{L\alpha}\, c\, c^T` (force :math:`-uL\nu`).
+
+    Parameters
+    ----------
+    area : float
+        S, planform area [m^2]
+    lift_slope : float
+        c_Lalpha [1/rad] (:func:`fin_lift_slope`)
+    direction : (3,)
+        Unit normal of the fin's plane (y for a vertical fin, z for a horizontal one) [-]
+    point : (3,)
+        Quarter-chord point at mid span, relative to the reference point [m]
+    rho : float
+        Fluid density [kg/m^3]
+
+    Returns
+    -------
+    (6, 6) array
+        [kg/m, kg, kg m]
+
+    References
+    ----------
+    Prestero 2001, sec. 3.6.2 (Y_uvf = -rho c_La S_fin for a fin pair, Y_urf, N_uvf,
+    N_urf from the fin's lever arm); the cross velocity at the fin is
+    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring).
+    """
+    c = lift_column(direction, point)
+    return 0.5 * rho * area * lift_slope * np.outer(c, c)
+
+
+def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
+                     rho: float, velocity_point=(0.0, 0.0, 0.0)) -> np.ndarray:
+    r"""Lift matrix of a slender body of revolution (force :math:`-uL\nu`).
+
+    .. math:: L = k\,(c_y a_y^T + c_z a_z^T),\quad k = \tfrac12 \rho d^2 c_{yd\beta},\quad
+              c_e = [e;\ r_{cp} \times e],\quad a_e = [e;\ r_v \times e]
+
+    the force of the sideslip (angle of attack) :math:`a_e^T\nu = e^T(v + \omega\times r_v)`
+    at the body's centre ``velocity_point`` r_v, acting at the centre of pressure r_cp. About
+    the centre itself this is :math:`L_{22} = L_{33} = k`, :math:`L_{62} = x_{cp} k`,
+    :math:`L_{53} = -x_{cp} k` (Prestero's form, which takes v at his origin, the CB).
+
+    Parameters
+    ----------
+    length, diameter : float
+        l, d [m]
+    center_of_pressure : (3,)
+        Centre of pressure relative to the reference point [m]
+    rho : float
+        Fluid density [kg/m^3]
+    velocity_point : (3,)
+        Where the sideslip is measured (the centre of buoyancy), relative to the reference
+        point [m]; makes the matrix move between reference points like D_L
+
+    Returns
+    -------
+    (6, 6) array
+        [kg/m, kg, kg m]
+
+    References
+    ----------
+    Hoerner & Borst 1985, ch. 19; Prestero 2001, sec. 3.6.1 (Y_uvl, Z_uwl, M_uwl, N_uvl).
+    """
+    k = 0.5 * rho * diameter ** 2 * body_lift_slope(length, diameter)
+    out = np.zeros((6, 6))
+    for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
+        out += k * np.outer(lift_column(e, center_of_pressure), lift_column(e, velocity_point))
+    return out
