@@ -428,7 +428,10 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
                 except UnreachableError as exc:
                     notes.append(f"{'dive' if sign < 0 else 'climb'}: {exc}")
         if have_rudder:
-            turning.append(rudder_turn(model, u, p.limit("rudder"), _plant=p))
+            try:
+                turning.append(rudder_turn(model, u, p.limit("rudder"), _plant=p))
+            except UnreachableError as exc:   # e.g. a heel the restoring moment cannot hold
+                notes.append(f"turn at full rudder, u = {u:.3f} m/s: {exc}")
     if not have_rudder:
         notes.append("no rudder: no turning circle")
     if not have_elevator:
