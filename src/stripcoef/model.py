@@ -324,8 +324,8 @@ class HydroModel:
         thr = [Thruster(name=t["name"], position=np.asarray(t["position"], float),
                         direction=np.asarray(t["direction"], float),
                         ct_forward=t.get("ct_forward", 1.0), ct_backward=t.get("ct_backward", 1.0),
-                        max_forward=t.get("max_forward", float("inf")),
-                        max_backward=t.get("max_backward", float("inf")),
+                        max_forward=Thruster.limit_from_data(t.get("max_forward")),
+                        max_backward=Thruster.limit_from_data(t.get("max_backward")),
                         eta_forward=t.get("eta_forward", 1.0),
                         eta_backward=t.get("eta_backward", 1.0),
                         deadband=t.get("deadband", 0.0))

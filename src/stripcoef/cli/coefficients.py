@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import yaml
 
 from stripcoef.conventions import DOF
 from stripcoef.cli.options import (add_fluid_arguments, add_mesh_arguments,
                                    estimate_from_args)
-from stripcoef.files import write_text
+from stripcoef.files import json_text, write_text
 
 
 
@@ -102,12 +100,12 @@ def run(args) -> int:
 
         vehicle, model = estimate_from_args(args)
         data = bem.bem_model(model, vehicle).to_dict()
-        text = json.dumps(data, indent=2)
+        text = json_text(data)
     else:
         _, model = estimate_from_args(args)
         data = model.to_dict()
         if args.json:
-            text = json.dumps(data, indent=2)
+            text = json_text(data)
         elif args.yaml:
             text = yaml.safe_dump(data, sort_keys=False)
         else:

@@ -6,10 +6,9 @@ Methods: ``steady`` (Indiveri 1998, eqs. 4.15-4.17 and the yaw model comparison)
 
 from __future__ import annotations
 
-import json
 import math
 
-from stripcoef.files import write_text
+from stripcoef.files import json_text, write_text
 from stripcoef.logfile import read_log
 
 from stripcoef.identify.api import METHODS
@@ -158,7 +157,7 @@ def run(args) -> int:
                  "fits": [f.to_dict() for f in c.fits]} for c in cmp.candidates]
             data["recommended"] = cmp.recommended.label
             data["explanation"] = cmp.explanation
-        text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+        text = json_text(data)
     else:
         text = format_comparison(cmp) if cmp is not None else ""
         text += ("\n" if cmp is not None else "") + format_fit(fit, source=args.log)

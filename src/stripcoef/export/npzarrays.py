@@ -13,12 +13,12 @@ Load with ``numpy.load(path)`` (no pickles are stored).
 from __future__ import annotations
 
 import io
-import json
 
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.export._common import ExportView, plain
+from stripcoef.export._common import ExportView
+from stripcoef.files import json_text
 
 NAME = "npz"
 DESCRIPTION = "numpy .npz archive of the matrices (binary, needs -o)"
@@ -55,7 +55,7 @@ def arrays(view: ExportView) -> dict:
         "r_b": view.r_b,
         "thrusters": np.array([t.name for t in model.thrusters], dtype=str),
         "B_thrusters": view.allocation() if model.thrusters else np.zeros((6, 0)),
-        "model_json": np.array(json.dumps(plain(model.to_dict()))),
+        "model_json": np.array(json_text(model.to_dict(), indent=None).strip()),
     }
 
 
