@@ -24,7 +24,7 @@ from stripcoef.errors import InputError, StripcoefError
 
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
-            "diagnose")
+            "diagnose", "samples")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -66,8 +66,16 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
 
 def main(argv=None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
     warnings.showwarning = _showwarning
+    try:
+        # sample:NAME is the shipped sample's path (stripcoef.samples), in any argument
+        from stripcoef.samples import resolve
+        argv = [resolve(a) for a in argv]
+    except StripcoefError as exc:
+        print(f"stripcoef: error: {exc}", file=sys.stderr)
+        return 2
+    args = parser.parse_args(argv)
     try:
         return int(args.func(args) or 0)
     except StripcoefError as exc:

@@ -16,7 +16,7 @@ def add_parser(sub):
     p = sub.add_parser("compare", help="strip theory vs the 3D BEM (Capytaine) on a mesh",
                        description="Added mass of a CAD mesh by strip theory and by the "
                                    "Capytaine boundary-element method (needs stripcoef[bem]), "
-                                   "with each method's wall time and the %% difference per term.")
+                                   "with each method's wall time and the % difference per term.")
     p.add_argument("vehicle", metavar="MODEL", help="mesh file (.stl .obj .ply .glb)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
