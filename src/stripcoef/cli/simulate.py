@@ -3,16 +3,26 @@
 INPUTS is a log-format CSV (:mod:`stripcoef.logfile`) with a time column ``t`` and thruster
 commands ``n_<thruster>`` and/or generalized forces ``X Y Z K M N``; the output is a log
 with the pose, the velocities, the applied forces and the commands at every input time
-(or every ``--dt`` seconds).
+(or every ``--dt`` seconds; every :data:`DEFAULT_DT` seconds when the inputs have fewer than
+:data:`FEW_ROWS` rows). ``--out -`` writes the log to stdout (the summary goes to stderr).
 """
 
 from __future__ import annotations
 
+import argparse
+import sys
+import warnings
+
 import numpy as np
 
 from stripcoef.conventions import FORCES
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.logfile import KNOWN_COLUMNS, read_log
+
+#: Without --dt, inputs with fewer rows than this are resampled every DEFAULT_DT seconds
+#: (a 2-row input would otherwise give a 2-row log).
+FEW_ROWS = 100
+DEFAULT_DT = 0.1   # [s]
 
 
 def add_parser(subparsers):
@@ -25,14 +35,20 @@ def add_parser(subparsers):
                         "(JSON/YAML from HydroModel.to_dict, e.g. diagnose --out)")
     p.add_argument("--inputs", required=True, metavar="INPUTS.csv",
                    help="log CSV with t and n_<thruster> commands and/or X Y Z K M N forces")
-    p.add_argument("--out", required=True, metavar="LOG.csv", help="output log CSV")
+    p.add_argument("-o", "--out", required=True, metavar="LOG.csv",
+                   help="output log CSV ('-': stdout, the summary then goes to stderr)")
     p.add_argument("--current", metavar="U,V,W", default=None,
                    help="constant water current in the earth-fixed NED frame [m/s]")
     p.add_argument("--dt", type=float, default=None,
-                   help="output sample period [s] (default: the inputs' times)")
+                   help="output sample period [s] (default: the inputs' times, or "
+                        f"{DEFAULT_DT:g} s when the inputs have fewer than {FEW_ROWS} rows)")
     p.add_argument("--interpolation", choices=("previous", "linear"), default="previous",
                    help="inputs between samples: zero-order hold (default) or linear")
     p.add_argument("--rtol", type=float, default=1e-8, help="integrator relative tolerance")
+    p.add_argument("--munk", action=argparse.BooleanOptionalAction, default=True,
+                   help="keep the Munk moment in C_A(nu) (default: on; as in 'limits')")
+    p.add_argument("--coriolis", action=argparse.BooleanOptionalAction, default=True,
+                   help="keep C(nu) = C_RB + C_A (default: on; as in 'limits')")
     p.set_defaults(func=run)
     return p
 
@@ -89,25 +105,55 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
 
 def run(args) -> int:
     from stripcoef.modelfile import load_model
-    from stripcoef.simulate import simulate
+    from stripcoef.simulate import simulate, summarize_motion
 
     log = read_log(args.inputs, required=("t",))
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
     times = None
-    if args.dt is not None:
-        if not (np.isfinite(args.dt) and args.dt > 0):
-            raise InputError("not a positive time step", key="--dt", value=args.dt,
-                             expected="a positive number of seconds")
-        t_in = log.require("t")
-        times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
+    dt = args.dt
+    if dt is not None and not (np.isfinite(dt) and dt > 0):
+        raise InputError("not a positive time step", key="--dt", value=dt,
+                         expected="a positive number of seconds")
+    t_in = log.require("t")
+    if dt is None and len(t_in) < FEW_ROWS:
+        dt = DEFAULT_DT
+    if dt is not None:
+        times = np.arange(t_in[0], t_in[-1] + 0.5 * dt, dt)
         times = times[times <= t_in[-1] + 1e-12]
     times, forces, commands, channels = inputs_from_log(log, model, times,
                                                         interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels,
+                   channels=channels, munk=args.munk, coriolis=args.coriolis,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
-    out.write_csv(args.out)
-    print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "
-          f"final speed {np.linalg.norm(out.velocities()[-1, :3]):.4g} m/s")
+    to_stdout = args.out == "-"
+    if to_stdout:
+        sys.stdout.write(out.to_csv_text())
+    else:
+        out.write_csv(args.out)
+    summary = summarize_motion(out)
+    print(format_summary(summary, args.out, out, dt=dt, default_dt=args.dt is None and dt),
+          file=sys.stderr if to_stdout else sys.stdout)
+    for text in summary.warnings:
+        warnings.warn(text.replace("munk=False", "--no-munk"), ModelWarning, stacklevel=1)
     return 0
+
+
+def format_summary(s, where, log, *, dt=None, default_dt=None) -> str:
+    """What happened, in a few lines: samples, final speeds, distance, heading, attitude."""
+    u, v, w, p, q, r = s.final_velocity
+    t = log.require("t")
+    target = "stdout" if where == "-" else where
+    step = f", every {dt:g} s" if dt else ""
+    why = f" (default for inputs of fewer than {FEW_ROWS} rows; --dt to change)" \
+        if default_dt else ""
+    dx, dy, dz = s.displacement
+    return "\n".join([
+        f"wrote {target}: {len(log)} samples, t = {t[0]:g} .. {t[-1]:g} s{step}{why}",
+        f"  final speed {s.final_speed:.4g} m/s (u {u:.4g}, v {v:.4g}, w {w:.4g} m/s; "
+        f"p {p:.3g}, q {q:.3g}, r {r:.3g} rad/s)",
+        f"  distance travelled {s.distance:.4g} m; displacement north {dx:.4g}, east {dy:.4g}, "
+        f"down {dz:.4g} m",
+        f"  heading change {s.heading_change:.4g} rad ({np.degrees(s.heading_change):.4g} deg); "
+        f"max |roll| {np.degrees(s.max_roll):.3g} deg, max |pitch| "
+        f"{np.degrees(s.max_pitch):.3g} deg"])
