@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef import progress
 
 #: Capytaine's DOF names in stripcoef's order (surge, sway, heave, roll, pitch, yaw).
 CAPYTAINE_DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -116,7 +117,7 @@ def bem_added_mass(mesh_or_path, *, rho: float, reference_point=(0.0, 0.0, 0.0),
                             name="body")
     problems = [cpt.RadiationProblem(body=body, radiating_dof=d, free_surface=np.inf,
                                      omega=np.inf, rho=float(rho)) for d in CAPYTAINE_DOFS]
-    results = cpt.BEMSolver(method=method).solve_all(problems, progress_bar=False)
+    results = cpt.BEMSolver(method=method).solve_all(problems, progress_bar=progress.enabled())
     a = np.zeros((6, 6))
     for j, res in enumerate(results):           # column j: motion in DOF j
         for i, d in enumerate(CAPYTAINE_DOFS):

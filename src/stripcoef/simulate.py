@@ -43,6 +43,7 @@ from scipy.integrate import solve_ivp
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
 from stripcoef.logfile import COMMAND_PREFIX, Log
+from stripcoef.progress import TimeBar
 
 INTERPOLATIONS = ("previous", "linear")
 
@@ -284,6 +285,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         return c, thrust, tau
 
     def rhs(time, y):
+        clock.advance(time)
         eta, nu = y[:6], y[6:]
         c, thrust, tau = hold["applied"] if hold["values"] is not None else applied(time)
         nu_c = np.zeros(6)
@@ -350,6 +352,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
                 commanded.append(name)
         inputs_series[k, :nthr] = cmd[k]
 
+    clock = TimeBar(t[0], t[-1], desc=f"simulate {model.name}")
     for a, b in zip(bounds[:-1], bounds[1:]):
         if b <= a:
             continue
@@ -367,6 +370,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         states[a:b + 1] = sol.y.T
         y = sol.y[:, -1]
         # at t_b the new inputs take over (zero-order hold), so the state carries on.
+    clock.close()
 
     if controller is not None:
         control(n - 1, y)  # the command issued at the last sample (logged)
