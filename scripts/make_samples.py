@@ -5,8 +5,9 @@
 
 - the vehicles: copies of ``geometry/*.yaml`` (the repository keeps ``geometry/`` for the
   README's commands; ``tests/test_samples.py`` checks the copies are identical);
-- one small mesh, ``capsule.stl``: a capsule 1.0 m long, 0.2 m in diameter along x
-  (trimesh.creation.capsule, 16 x 16 segments), for ``coefficients`` and ``compare``;
+- one small mesh, ``capsule.stl``: a capsule 1.0 m long, 0.2 m in diameter along x, the
+  body of revolution of its profile (``stripcoef.geometry.mesh.revolved_mesh``, 32 profile
+  points, 24 sections: 1488 faces), for ``coefficients`` and ``compare``;
 - logs generated from a known truth with seeded noise (the generators of ``validation/``,
   the same ones the tests use), and ``truth.yaml`` beside them: for each log its
   generator, seed, the true parameters with units, and the command that recovers them.
@@ -45,8 +46,6 @@ def _log_text(log: Log) -> str:
 
 def build() -> dict[str, bytes]:
     """name -> bytes of every sample."""
-    import trimesh
-
     from validation.experiments import (ROMEO_TRUTH, ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
                                         ROV2_TRUTH, VIDEORAY_IZZ, VIDEORAY_TRUTH,
                                         romeo_experiment, rov2_pendulum_log, videoray_yaw_log)
@@ -58,8 +57,14 @@ def build() -> dict[str, bytes]:
         out[f.name] = f.read_bytes()
         described[f.name] = f"vehicle file: {yaml.safe_load(f.read_text())['name']}"
 
-    mesh = trimesh.creation.capsule(height=0.8, radius=0.1, count=[16, 16])
-    mesh.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    from stripcoef.geometry.mesh import revolved_mesh
+
+    # profile: tail hemisphere, cylinder, nose hemisphere (radius 0.1 m, x from -0.5 to 0.5 m)
+    tail, nose = np.linspace(np.pi, np.pi / 2, 9), np.linspace(np.pi / 2, 0.0, 9)
+    mid = np.linspace(-0.4, 0.4, 17)[1:-1]
+    x = np.concatenate([-0.4 + 0.1 * np.cos(tail), mid, 0.4 + 0.1 * np.cos(nose)])
+    r = np.concatenate([0.1 * np.sin(tail), np.full(mid.size, 0.1), 0.1 * np.sin(nose)])
+    mesh = revolved_mesh(x, r, sections=24)
     out["capsule.stl"] = mesh.export(file_type="stl")
     described["capsule.stl"] = ("mesh: a capsule 1.0 m long, 0.2 m in diameter along x "
                                 f"({len(mesh.faces)} faces, metres)")

@@ -21,6 +21,8 @@ def add_parser(sub):
     fmt.add_argument("--json", action="store_true", help="print the JSON contract")
     fmt.add_argument("--yaml", action="store_true", help="print YAML (same content)")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw the body's strips and sections (.png/.pdf/.svg; matplotlib)")
     p.add_argument("--strips", type=int, metavar="N", help="number of strips")
     p.add_argument("--speed", type=float, metavar="M_S",
                    help="reference speed for Reynolds numbers and damping [m/s]")
@@ -94,7 +96,22 @@ def format_table(model) -> str:
     return "\n".join(out) + "\n"
 
 
+def write_body_plot(vehicle, model, args) -> None:
+    """``--plot``: the strips and sections the model was computed from."""
+    from stripcoef.figures import save_figure
+    from stripcoef.geometry.plots import body_figure
+
+    strips = vehicle.cut(args.strips)
+    fig = body_figure(strips, name=model.name, key="--plot",
+                      points={"CB": model.center_of_buoyancy, "CG": model.center_of_gravity,
+                              "reference point": model.reference_point})
+    save_figure(fig, args.plot, key="--plot")
+
+
 def run(args) -> int:
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     if args.method == "bem":
         from stripcoef import bem  # optional extra
 
@@ -102,7 +119,7 @@ def run(args) -> int:
         data = bem.bem_model(model, vehicle).to_dict()
         text = json_text(data)
     else:
-        _, model = estimate_from_args(args)
+        vehicle, model = estimate_from_args(args)
         data = model.to_dict()
         if args.json:
             text = json_text(data)
@@ -110,6 +127,8 @@ def run(args) -> int:
             text = yaml.safe_dump(data, sort_keys=False)
         else:
             text = format_table(model)
+    if args.plot:
+        write_body_plot(vehicle, model, args)
     if args.output:
         write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")
     else:

@@ -20,6 +20,8 @@ def add_parser(sub):
     p.add_argument("vehicle", metavar="MODEL", help="mesh file (.stl .obj .ply .glb)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw strip theory vs BEM per DOF (.png/.pdf/.svg; matplotlib)")
     p.add_argument("--strips", type=int, metavar="N", help="number of strips")
     p.add_argument("--speed", type=float, metavar="M_S", help="reference speed [m/s]")
     p.add_argument("--no-corrections", action="store_true",
@@ -64,6 +66,9 @@ def run(args) -> int:
     from stripcoef.cli.options import fluid_from_args, load_any_vehicle
 
     bem._capytaine()                                   # fail early, before any work
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     t0 = time.perf_counter()
     vehicle = load_any_vehicle(args)
     t_load = time.perf_counter() - t0
@@ -84,6 +89,10 @@ def run(args) -> int:
     a_bem, t_bem = bem.timed_bem_added_mass(body, rho=model.density,
                                             reference_point=model.reference_point, **kw)
     rows = compare_rows(model.added_mass, a_bem)
+    if args.plot:
+        from stripcoef.figures import save_figure
+        save_figure(bem.comparison_figure(model.added_mass, a_bem, name=model.name,
+                                          key="--plot"), args.plot, key="--plot")
     data = {
         "name": model.name, "faces": int(len(body.mesh.faces)), "repairs": body.repairs,
         "reference_point": [float(v) for v in model.reference_point],

@@ -45,6 +45,8 @@ def add_parser(subparsers):
     p.add_argument("--interpolation", choices=("previous", "linear"), default="previous",
                    help="inputs between samples: zero-order hold (default) or linear")
     p.add_argument("--rtol", type=float, default=1e-8, help="integrator relative tolerance")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw the trajectory and the velocities (.png/.pdf/.svg; matplotlib)")
     p.add_argument("--munk", action=argparse.BooleanOptionalAction, default=True,
                    help="keep the Munk moment in C_A(nu) (default: on; as in 'limits')")
     p.add_argument("--coriolis", action=argparse.BooleanOptionalAction, default=True,
@@ -107,6 +109,9 @@ def run(args) -> int:
     from stripcoef.modelfile import load_model
     from stripcoef.simulate import simulate, summarize_motion
 
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     log = read_log(args.inputs, required=("t",))
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
@@ -131,6 +136,11 @@ def run(args) -> int:
         sys.stdout.write(out.to_csv_text())
     else:
         out.write_csv(args.out)
+    if args.plot:
+        from stripcoef.figures import motion_figure, save_figure
+        save_figure(motion_figure(out, title=f"{model.name}: simulated trajectory and "
+                                             "velocities", key="--plot"),
+                    args.plot, key="--plot")
     summary = summarize_motion(out)
     print(format_summary(summary, args.out, out, dt=dt, default_dt=args.dt is None and dt),
           file=sys.stderr if to_stdout else sys.stdout)
