@@ -62,9 +62,13 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
         round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
 
-    Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
-    :func:`added_mass`, D_L and D_Q from :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
-    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
+    Returns
+    -------
+    HydroModel
+        The model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
+        :func:`added_mass`, D_L and D_Q from
+        :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
+        :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45). See the module docstring.
     """
     if isinstance(vehicle, (str, Path)):
         vehicle = load_vehicle(vehicle)
