@@ -263,6 +263,22 @@ class HydroModel:
         return sname_coefficients(self.added_mass, self.linear_damping, self.quadratic_damping,
                                   tol=1e-12)
 
+    # -- labelled views (stripcoef.views) -------------------------------------
+    def frame(self, kind: str = "added_mass"):
+        """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
+        ``quadratic_damping``) as a pandas DataFrame labelled with the DOFs, units in
+        ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
+        from stripcoef.views import MATRICES, matrix_frame
+        if kind not in MATRICES:
+            from stripcoef.errors import unknown_name
+            raise unknown_name("matrix", kind, MATRICES, key="kind")
+        return matrix_frame(getattr(self, kind), kind)
+
+    def _repr_html_(self) -> str:
+        """What a notebook shows: mass properties and the four labelled matrices."""
+        from stripcoef.views import model_html
+        return model_html(self)
+
     # -- transforms ---------------------------------------------------------
     def about(self, point) -> "HydroModel":
         """The same model expressed about another point (FRD body axes).

@@ -19,6 +19,7 @@ from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.mass import displaced_volume, mass_properties
 from stripcoef.conventions import clean_roundoff
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
+from stripcoef.threads import small_matrices
 
 
 def _reference_point(ref, cb, cg):
@@ -28,6 +29,7 @@ def _reference_point(ref, cb, cg):
     return np.asarray(ref, dtype=float)
 
 
+@small_matrices           # BLAS on one thread for the many small solves (stripcoef.threads)
 def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = None,
              speed: float | None = None, reference_point=None, regime: str = "auto",
              fluid=None, correction_panels: int | None = None,
