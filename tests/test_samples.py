@@ -86,3 +86,16 @@ def test_identify_recovers_the_truth(log, tmp_path):
         est, sd = fit["parameters"][name], fit["std"][name]
         assert abs(est - value) <= 3 * sd, f"{log}: {name} = {est} +- {sd}, truth {value} [{unit}]"
     assert set(truth["truth"]) & set(fit["parameters"])
+
+
+def test_identify_vehicle_accepts_a_model_file(tmp_path, capsys):
+    """identify --vehicle reads model files like every other command (here the JSON prior of
+    the tether sample, whose commands the thruster map turns into the yaw moment)."""
+    from stripcoef.logfile import read_log
+    log = read_log(samples.path("rov_tether.csv")).slice(0, 600)
+    f = tmp_path / "yaw.csv"
+    log.write_csv(f)
+    assert main(["identify", str(f), "--method", "one-step", "--dof", "yaw", "--vehicle",
+                 "sample:rov_prior.json", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["dof"] == "yaw" and "gamma" in d["parameters"]

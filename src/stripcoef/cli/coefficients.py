@@ -67,7 +67,8 @@ def format_table(model) -> str:
         return "\n".join(lines)
 
     c = model.conditions
-    out = [f"{model.name}: strip theory ({c.get('strips')} strips, 3D corrections "
+    method = model.provenance.get("method", "strip theory")
+    out = [f"{model.name}: {method} ({c.get('strips')} strips, 3D corrections "
            f"{'on' if c.get('corrections') else 'off'})",
            f"  mass {model.mass:.4g} kg, volume {model.volume:.5g} m^3 "
            f"(rho V = {model.density * model.volume:.4g} kg)",
@@ -112,21 +113,18 @@ def run(args) -> int:
     if args.plot:
         from stripcoef.figures import check_plot_path
         check_plot_path(args.plot, key="--plot")
+    vehicle, model = estimate_from_args(args)
     if args.method == "bem":
         from stripcoef import bem  # optional extra
 
-        vehicle, model = estimate_from_args(args)
-        data = bem.bem_model(model, vehicle).to_dict()
+        model = bem.bem_model(model, vehicle)
+    data = model.to_dict()
+    if args.json:
         text = json_text(data)
+    elif args.yaml:
+        text = yaml.safe_dump(data, sort_keys=False)
     else:
-        vehicle, model = estimate_from_args(args)
-        data = model.to_dict()
-        if args.json:
-            text = json_text(data)
-        elif args.yaml:
-            text = yaml.safe_dump(data, sort_keys=False)
-        else:
-            text = format_table(model)
+        text = format_table(model)
     if args.plot:
         write_body_plot(vehicle, model, args)
     if args.output:

@@ -26,7 +26,8 @@ def add_parser(sub):
                    help="steady: standard, eta, eta-md, LQB, LQNB, LB, LNB or compare "
                         "(default standard); one-step: LQB (eq. 8), LQNB, LB, LNB")
     p.add_argument("--vehicle", metavar="VEHICLE",
-                   help="vehicle file: thruster map, mass, buoyancy and inertia")
+                   help="vehicle file or model file (JSON/YAML of HydroModel.to_dict): "
+                        "thruster map, mass, buoyancy and inertia")
     p.add_argument("--json", action="store_true", help="print the JSON result")
     p.add_argument("-o", "--output", metavar="FILE", help="write the output to FILE (atomically)")
     p.add_argument("--plot", metavar="FILE.png", help="data vs fit and residuals (matplotlib)")
