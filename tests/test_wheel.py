@@ -1,5 +1,5 @@
 """The built wheel, installed into a fresh virtual environment without the repository, runs
-the quick start on a shipped vehicle and an identification on a shipped log.
+the quick start on a shipped vehicle, an identification and a diagnosis on shipped logs.
 
 Slow (builds the wheel in an isolated build environment and installs numpy, scipy, trimesh
 ... into a new venv: about a minute and a half with a warm pip cache), kept in CI.
@@ -60,7 +60,7 @@ def test_wheel_metadata_and_contents(installed):
     assert not any(n.startswith(("validation/", "tests/")) for n in names)
 
 
-def test_quick_start_and_identify_without_a_clone(installed):
+def test_quick_start_identify_and_diagnose_without_a_clone(installed):
     env = {**os.environ, "PYTHONPATH": ""}
     stripcoef = str(installed["bin"] / "stripcoef")
     cwd = installed["cwd"]
@@ -69,6 +69,11 @@ def test_quick_start_and_identify_without_a_clone(installed):
     out = _run([stripcoef, "identify", "sample:yaw_onestep.csv", "--method", "one-step",
                 "--dof", "yaw", "--inertia", "0.02532", "--json"], cwd=cwd, env=env).stdout
     assert json.loads(out)["parameters"]["alpha"] == pytest.approx(-0.6199, abs=0.1)
+    out = _run([stripcoef, "diagnose", "sample:rov_tether.csv", "--vehicle",
+                "sample:rov_prior.json", "--dof", "surge", "--no-resimulate", "--json"],
+               cwd=cwd, env=env).stdout
+    steps = json.loads(out)["steps"]
+    assert steps and steps[0]["effect"] == "tether_drag"
     code = ("import stripcoef, stripcoef.samples as s; "
             "m = stripcoef.estimate(s.path('videoray_pro3.yaml')); "
             "print(stripcoef.__file__); print(m.name)")
