@@ -65,3 +65,18 @@ def test_page_examples_run(page, tmp_path, shim):
         assert out.returncode == 0, (f"{page}, block {k + 1} ({lang}) failed:\n{code}\n"
                                      f"--- stdout\n{out.stdout[-3000:]}\n"
                                      f"--- stderr\n{out.stderr[-3000:]}")
+
+
+def test_readme_python_block_runs(tmp_path):
+    """The README's Python example (its bash blocks create virtual environments: CI runs
+    the test one itself, tests/test_wheel.py the install)."""
+    (tmp_path / "geometry").symlink_to(ROOT / "geometry")
+    code = [c for lang, c in blocks(ROOT / "README.md") if lang == "python"]
+    assert code
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), str(ROOT)])}
+    for k, c in enumerate(code):
+        script = tmp_path / f"readme{k}.py"
+        script.write_text(c)
+        out = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env,
+                             capture_output=True, text=True, timeout=300)
+        assert out.returncode == 0, out.stderr[-3000:]
