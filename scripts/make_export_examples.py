@@ -3,6 +3,7 @@
 Run: python scripts/make_export_examples.py
 """
 
+import os
 import warnings
 from pathlib import Path
 
@@ -25,7 +26,8 @@ EXAMPLES = [
 ]
 
 if __name__ == "__main__":
-    model = stripcoef.estimate(stripcoef.load_vehicle(ROOT / "geometry" / "mares.yaml"))
+    os.chdir(ROOT)      # the model's provenance names the file relative to the repository
+    model = stripcoef.estimate(stripcoef.load_vehicle("geometry/mares.yaml"))
     notes = []
     for name, fmt, options in EXAMPLES:
         assert not FORMATS[fmt].BINARY
