@@ -83,7 +83,7 @@ def test_compare_cli_json(spheroid_file, capsys):
 
 def test_coefficients_method_bem(spheroid_file, capsys):
     assert main(["coefficients", str(spheroid_file), "--method", "bem", "--rho", "1000",
-                 "--strips", "40"]) == 0
+                 "--strips", "40", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert "bem" in data["provenance"]["method"]
     assert data["added_mass"][1][1] == pytest.approx(np.pi * 4 / 3 * 0.6 * 0.01 * 1000 * 0.93,
@@ -102,3 +102,15 @@ def test_compare_cli_table(spheroid_file, capsys):
     assert main(["compare", str(spheroid_file), "--rho", "1000", "--strips", "40"]) == 0
     out = capsys.readouterr().out
     assert "strip theory" in out and "BEM" in out and "Y_vdot" in out and "diff %" in out
+
+
+def test_coefficients_method_bem_honours_the_output_format(spheroid_file, capsys):
+    import yaml
+    assert main(["coefficients", str(spheroid_file), "--method", "bem", "--rho", "1000",
+                 "--strips", "40", "--yaml"]) == 0
+    data = yaml.safe_load(capsys.readouterr().out)
+    assert "bem" in data["provenance"]["method"]
+    assert main(["coefficients", str(spheroid_file), "--method", "bem", "--rho", "1000",
+                 "--strips", "40"]) == 0
+    out = capsys.readouterr().out
+    assert out.splitlines()[0].startswith("spheroid: bem (Capytaine") and "Added mass M_A" in out

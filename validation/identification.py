@@ -354,19 +354,19 @@ def romeo_yaw_tables() -> tuple[str, dict]:
 # ---------------------------------------------------------------------------
 def figures(results: dict, folder: Path = FIGURES) -> list[str]:
     """Write the figures (if matplotlib is installed); returns markdown image links."""
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        return []
-    from stripcoef.files import atomic_path
+    from stripcoef.errors import InputError
+    from stripcoef.figures import new_figure, save_figure
     from stripcoef.identify.plots import plot_fit
+
+    try:                                   # a Figure without pyplot (no backend switching)
+        fig = new_figure(figsize=(15, 4), key="figure")
+    except InputError:                     # no matplotlib
+        return []
 
     folder.mkdir(parents=True, exist_ok=True)
     links = []
     fits, weights = results["romeo"]["fits"], results["romeo"]["weights"]
-    fig, ax = plt.subplots(1, 3, figsize=(15, 4))
+    ax = fig.subplots(1, 3)
     x = np.arange(1, 6)
     for j, (p, label) in enumerate((("W", "W [N] (net weight, down +)"), ("k_w", "k_w [N s/m]"),
                                     ("k_ww", "k_w|w| [N s^2/m^2]"))):
@@ -376,14 +376,11 @@ def figures(results: dict, folder: Path = FIGURES) -> list[str]:
             ax[j].errorbar(x + 0.1 * (k - 1), v, yerr=s, fmt="o", capsize=3, label=m)
         truth = weights if p == "W" else [{"k_w": 50.0, "k_ww": 424.0}[p]] * 5
         ax[j].plot(x, truth, "k_", ms=20, mew=2, label="truth")
-        ax[j].set_xlabel("experiment")
+        ax[j].set_xlabel("experiment [index]")
         ax[j].set_ylabel(label)
         ax[j].legend(fontsize=8)
     fig.suptitle("ROMEO heave, five virtual experiments (cf. Indiveri 1998 Figs. 4.10-4.12)")
-    fig.tight_layout()
-    with atomic_path(folder / "identify_romeo.png", key="figure") as tmp:
-        fig.savefig(tmp, format="png", dpi=100)
-    plt.close(fig)
+    save_figure(fig, folder / "identify_romeo.png", key="figure", dpi=100)
     links.append("![ROMEO heave estimates](figures/identify_romeo.png)")
     for name, fit, title in (
             ("identify_videoray_yaw.png", results["videoray"]["fit"],

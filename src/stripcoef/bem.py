@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef import progress
 
 #: Capytaine's DOF names in stripcoef's order (surge, sway, heave, roll, pitch, yaw).
 CAPYTAINE_DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -116,7 +117,7 @@ def bem_added_mass(mesh_or_path, *, rho: float, reference_point=(0.0, 0.0, 0.0),
                             name="body")
     problems = [cpt.RadiationProblem(body=body, radiating_dof=d, free_surface=np.inf,
                                      omega=np.inf, rho=float(rho)) for d in CAPYTAINE_DOFS]
-    results = cpt.BEMSolver(method=method).solve_all(problems, progress_bar=False)
+    results = cpt.BEMSolver(method=method).solve_all(problems, progress_bar=progress.enabled())
     a = np.zeros((6, 6))
     for j, res in enumerate(results):           # column j: motion in DOF j
         for i, d in enumerate(CAPYTAINE_DOFS):
@@ -155,3 +156,45 @@ def bem_model(model, vehicle):
                        "bem_faces": int(len(meshes[0].mesh.faces)),
                        "bem_seconds": round(seconds, 3)})
     return replace(model, added_mass=a, provenance=provenance)
+
+
+def comparison_figure(strip, bem, *, name: str = "", key: str = "plot"):
+    """Strip theory against the BEM, per DOF: the diagonal added mass of each DOF side by side
+    (translations [kg] and rotations [kg m^2] on their own axes) and the relative difference
+    of every term [%]; a :class:`matplotlib.figure.Figure` (:mod:`stripcoef.figures`).
+
+    ``strip``, ``bem``: (6, 6) added-mass matrices M_A about the same point [kg, kg m, kg m^2].
+    """
+    from stripcoef.conventions import DOF, added_mass_name
+    from stripcoef.figures import new_figure
+
+    strip, bem = np.asarray(strip, float), np.asarray(bem, float)
+    fig = new_figure(figsize=(12.0, 4.2), key=key)
+    ax_t, ax_r, ax_d = fig.subplots(1, 3, width_ratios=[1.0, 1.0, 1.4])
+    width = 0.38
+    for ax, idx, unit in ((ax_t, range(3), "kg"), (ax_r, range(3, 6), "kg m^2")):
+        pos = np.arange(3)
+        ax.bar(pos - width / 2, [strip[i, i] for i in idx], width, label="strip theory")
+        ax.bar(pos + width / 2, [bem[i, i] for i in idx], width, label="BEM (Capytaine)")
+        ax.set_xticks(pos, [f"{DOF[i]}\n{added_mass_name(i, i)}" for i in idx])
+        ax.set_ylabel(f"added mass M_A[i, i] [{unit}]")
+        ax.set_xlabel("degree of freedom, SNAME term [-]")
+        ax.grid(True, axis="y", alpha=0.3)
+    ax_t.set_title("translations")
+    ax_r.set_title("rotations")
+    ax_r.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncol=2)
+    scale = max(np.abs(np.diag(bem)).max(), 1e-300)
+    terms = [(i, j) for i in range(6) for j in range(i, 6)
+             if abs(bem[i, j]) > 1e-3 * np.sqrt(abs(bem[i, i] * bem[j, j])) + 1e-12 * scale]
+    diff = [100.0 * (strip[i, j] - bem[i, j]) / abs(bem[i, j]) for i, j in terms]
+    ax_d.barh(np.arange(len(terms)), diff, color=["C0" if i == j else "C1" for i, j in terms])
+    ax_d.set_yticks(np.arange(len(terms)), [added_mass_name(i, j) for i, j in terms],
+                    fontsize=8)
+    ax_d.invert_yaxis()
+    ax_d.set_ylabel("SNAME term [-]")
+    ax_d.axvline(0.0, color="k", lw=0.6)
+    ax_d.set_xlabel("strip − BEM, relative to |BEM| [%]")
+    ax_d.set_title("every non-zero term (orange: couplings)")
+    ax_d.grid(True, axis="x", alpha=0.3)
+    fig.suptitle((f"{name}: " if name else "") + "added mass by strip theory and by the BEM")
+    return fig

@@ -6,6 +6,8 @@ by a complete new one.
 
 from __future__ import annotations
 
+import json
+import math
 import os
 import tempfile
 from contextlib import contextmanager
@@ -78,3 +80,29 @@ def read_text(path, *, kind: str) -> str:
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"cannot read ({exc.__class__.__name__})", file=str(path),
                          expected=f"a readable UTF-8 {kind}") from None
+
+
+def strict_json(value):
+    """``value`` with every non-finite float (``inf``, ``nan``) replaced by ``None``.
+
+    The one encoding of non-finite values in stripcoef's JSON (docs/conventions.md): ``null``.
+    A thruster without a limit (``max_forward = inf``) is written ``null`` and read back as
+    ``inf``; Python's ``Infinity``/``NaN`` literals are not JSON (RFC 8259, sec. 6) and strict
+    parsers (JavaScript's ``JSON.parse``) reject them. numpy scalars and arrays become plain
+    Python numbers and lists.
+    """
+    if isinstance(value, dict):
+        return {str(k): strict_json(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [strict_json(v) for v in value]
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):  # numpy array/scalar
+        return strict_json(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def json_text(value, *, indent: int | None = 2) -> str:
+    """Strict JSON text of ``value`` (non-finite numbers as ``null``, see :func:`strict_json`),
+    ending with a newline."""
+    return json.dumps(strict_json(value), indent=indent, allow_nan=False) + "\n"

@@ -594,6 +594,22 @@ class HydroModel:
         out.update(control_derivative_names(self.control_surfaces))
         return out
 
+    # -- labelled views (stripcoef.views) -------------------------------------
+    def frame(self, kind: str = "added_mass"):
+        """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
+        ``quadratic_damping``) as a pandas DataFrame labelled with the DOFs, units in
+        ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
+        from stripcoef.views import MATRICES, matrix_frame
+        if kind not in MATRICES:
+            from stripcoef.errors import unknown_name
+            raise unknown_name("matrix", kind, MATRICES, key="kind")
+        return matrix_frame(getattr(self, kind), kind)
+
+    def _repr_html_(self) -> str:
+        """What a notebook shows: mass properties and the four labelled matrices."""
+        from stripcoef.views import model_html
+        return model_html(self)
+
     # -- transforms ---------------------------------------------------------
     def about(self, point) -> "HydroModel":
         """The same model expressed about another point (FRD body axes).
@@ -660,8 +676,8 @@ class HydroModel:
         thr = [Thruster(name=t["name"], position=np.asarray(t["position"], float),
                         direction=np.asarray(t["direction"], float),
                         ct_forward=t.get("ct_forward", 1.0), ct_backward=t.get("ct_backward", 1.0),
-                        max_forward=t.get("max_forward", float("inf")),
-                        max_backward=t.get("max_backward", float("inf")),
+                        max_forward=Thruster.limit_from_data(t.get("max_forward")),
+                        max_backward=Thruster.limit_from_data(t.get("max_backward")),
                         eta_forward=t.get("eta_forward", 1.0),
                         eta_backward=t.get("eta_backward", 1.0),
                         deadband=t.get("deadband", 0.0),

@@ -38,6 +38,7 @@ integrator never steps across a discontinuity.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -46,6 +47,7 @@ from scipy.integrate import solve_ivp
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
 from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log
+from stripcoef.progress import TimeBar
 
 INTERPOLATIONS = ("previous", "linear")
 
@@ -141,7 +143,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
              interpolation: str = "previous", rtol: float = 1e-8, atol: float = 1e-10,
              method: str = "RK45", max_step: float | None = None,
              extra_force: Callable | None = None, effects: bool = True,
-             munk: bool = True, channels: dict | None = None,
+             munk: bool = True, coriolis: bool = True, channels: dict | None = None,
              controller: Callable | None = None, deflections: dict | None = None) -> Log:
     r"""Simulate the 6-DOF motion of ``model`` and return it as a log.
 
@@ -191,6 +193,9 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.effects.laws`).
     munk : bool
         Keep the Munk moment in C_A (``HydroModel.coriolis``).
+    coriolis : bool
+        Keep :math:`C_{RB}(\nu)\nu + C_A(\nu_r)\nu_r` (``False`` drops both, as the limits'
+        ``coriolis=False`` does).
     channels : dict, optional
         Other logged signals over ``t`` (e.g. ``tether_length`` [m]) that effects read;
         held like the inputs and copied into the output log.
@@ -309,6 +314,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         return c, thrust, tau, vals[nthr + 6:]
 
     def rhs(time, y):
+        clock.advance(time)
         eta, nu = y[:6], y[6:]
         c, thrust, tau, delta = hold["applied"] if hold["values"] is not None else applied(time)
         nu_c = np.zeros(6)
@@ -320,9 +326,11 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             nu_c[:3] = vc
             nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
         nu_r = nu - nu_c
-        rhs_force = (tau
-                     - model.coriolis(nu, added_mass=False) @ nu
-                     - model.coriolis(nu_r, rigid_body=False, munk=munk) @ nu_r
+        rhs_force = tau
+        if coriolis:
+            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
+                         - model.coriolis(nu_r, rigid_body=False, munk=munk) @ nu_r)
+        rhs_force = (rhs_force
                      - model.damping(nu_r) @ nu_r
                      - model.restoring(eta)
                      + m_added @ nu_c_dot)
@@ -375,6 +383,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
                 commanded.append(name)
         inputs_series[k, :nthr] = cmd[k]
 
+    clock = TimeBar(t[0], t[-1], desc=f"simulate {model.name}")
     for a, b in zip(bounds[:-1], bounds[1:]):
         if b <= a:
             continue
@@ -392,6 +401,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         states[a:b + 1] = sol.y.T
         y = sol.y[:, -1]
         # at t_b the new inputs take over (zero-order hold), so the state carries on.
+    clock.close()
 
     if controller is not None:
         control(n - 1, y)  # the command issued at the last sample (logged)
@@ -459,6 +469,92 @@ def _check_stall(surfaces, nu, defl, t, with_current: bool) -> None:
                           "extrapolated there" + (" (angle from the velocity over ground)"
                                                    if with_current else ""),
                           ModelWarning, stacklevel=3)
+
+
+#: Bounds beyond which a simulated motion is reported as diverging (no underwater vehicle moves
+#: this fast; a pitch or roll past them means it looped or capsized).
+DIVERGENCE_SPEED = 20.0          # [m/s], each linear velocity
+DIVERGENCE_RATE = 20.0           # [rad/s], each angular velocity
+DIVERGENCE_ATTITUDE = np.pi / 2  # [rad], |roll| or |pitch|
+
+
+@dataclass(frozen=True)
+class MotionSummary:
+    """What a simulated (or logged) motion did, for a one-look summary.
+
+    Attributes
+    ----------
+    duration : float [s]
+    final_velocity : (6,) [m/s, rad/s], body axes over ground (u v w p q r at the last sample)
+    final_speed : float [m/s], |(u, v, w)| at the last sample
+    distance : float [m], path length over ground (sum of |delta (x, y, z)|)
+    displacement : (3,) [m], (x, y, z) at the end minus at the start (NED)
+    heading_change : float [rad], unwrapped psi(end) - psi(start)
+    max_roll, max_pitch : float [rad], largest |phi| and |theta|
+    warnings : tuple of str
+        The state diverged (a speed, rate or attitude beyond :data:`DIVERGENCE_SPEED`,
+        :data:`DIVERGENCE_RATE`, :data:`DIVERGENCE_ATTITUDE`) or the heading ran away (more
+        than one full turn while the applied yaw moment averaged out: see
+        :func:`summarize_motion`).
+    """
+
+    duration: float
+    final_velocity: np.ndarray
+    final_speed: float
+    distance: float
+    displacement: np.ndarray
+    heading_change: float
+    max_roll: float
+    max_pitch: float
+    warnings: tuple = field(default=())
+
+
+def summarize_motion(log: Log) -> MotionSummary:
+    r"""Summary of a motion log (columns ``t``, ``x y z phi theta psi``, ``u .. r``; ``N`` if
+    logged) and the warnings it deserves.
+
+    Heading runaway: the unwrapped heading turned more than :math:`2\pi` while the applied
+    yaw moment averaged out, :math:`|\int N\,dt| \le 0.1 \int |N|\,dt` (a straight run
+    that spins: for a finless body the Munk moment :math:`(Y_{\dot v} - X_{\dot u})\,u v`
+    makes yaw unstable, Fossen 2011 sec. 6.5; try ``munk=False`` to see the decoupled model).
+    Divergence: see :class:`MotionSummary`. Units: [s, m, rad, m/s, rad/s, N m].
+    """
+    t = log.require("t")
+    pose = np.column_stack([log.get(k, np.zeros(len(log))) for k in POSE])
+    nu = log.velocities()
+    psi = np.unwrap(pose[:, 5])
+    heading = float(psi[-1] - psi[0])
+    steps = np.linalg.norm(np.diff(pose[:, :3], axis=0), axis=1)
+    summary = dict(duration=float(t[-1] - t[0]), final_velocity=nu[-1].copy(),
+                   final_speed=float(np.linalg.norm(nu[-1, :3])), distance=float(steps.sum()),
+                   displacement=pose[-1, :3] - pose[0, :3], heading_change=heading,
+                   max_roll=float(np.max(np.abs(pose[:, 3]))),
+                   max_pitch=float(np.max(np.abs(pose[:, 4]))))
+    warn = []
+    speed = np.max(np.abs(nu[:, :3]))
+    rate = np.max(np.abs(nu[:, 3:]))
+    if speed > DIVERGENCE_SPEED or rate > DIVERGENCE_RATE:
+        warn.append(f"the state diverges: speeds reach {speed:.3g} m/s and rates "
+                    f"{rate:.3g} rad/s (limits {DIVERGENCE_SPEED:g} m/s, {DIVERGENCE_RATE:g} "
+                    "rad/s): check the model's damping and the inputs")
+    tilt = max(summary["max_roll"], summary["max_pitch"])
+    if tilt > DIVERGENCE_ATTITUDE:
+        warn.append(f"the vehicle capsized or looped: max |roll| {summary['max_roll']:.3g} rad, "
+                    f"max |pitch| {summary['max_pitch']:.3g} rad (beyond "
+                    f"{DIVERGENCE_ATTITUDE:.3g} rad): check the CG/CB (metacentric height)")
+    yaw = log.get("N")
+    dt = np.diff(t)
+    net = abs(np.sum(0.5 * (yaw[1:] + yaw[:-1]) * dt)) if yaw is not None else 0.0
+    total = np.sum(0.5 * (np.abs(yaw[1:]) + np.abs(yaw[:-1])) * dt) if yaw is not None else 0.0
+    forces = log.forces()
+    scale = 1e-9 * (float(t[-1] - t[0])) * max(1.0, np.max(np.abs(forces)) if forces is not None
+                                               else 1.0)      # round-off of a zero moment
+    if abs(heading) > 2 * np.pi and net <= 0.1 * total + scale:
+        warn.append(f"the heading runs away: it turned {heading:.4g} rad "
+                    f"({abs(heading) / (2 * np.pi):.1f} turns) while the applied yaw moment "
+                    "averaged out; a finless body is directionally unstable (Munk moment): "
+                    "compare without it (munk=False)")
+    return MotionSummary(**summary, warnings=tuple(warn))
 
 
 def kinetic_energy(model, nu) -> np.ndarray:

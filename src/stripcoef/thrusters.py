@@ -109,16 +109,26 @@ class Thruster:
         return np.concatenate([d, skew(r) @ d + float(self.torque_ratio) * d])
 
     def to_dict(self) -> dict:
+        """Plain data (JSON/YAML); no limit (``inf``) is ``None``, the one encoding of
+        non-finite values (docs/conventions.md), read back by :meth:`limit_from_data`."""
+        def limit(v):
+            return float(v) if np.isfinite(v) else None
+
         return {
             "name": self.name,
             "position": [float(x) for x in self.position],
             "direction": [float(x) for x in self.direction],
             "ct_forward": self.ct_forward, "ct_backward": self.ct_backward,
-            "max_forward": self.max_forward, "max_backward": self.max_backward,
+            "max_forward": limit(self.max_forward), "max_backward": limit(self.max_backward),
             "eta_forward": self.eta_forward, "eta_backward": self.eta_backward,
             "deadband": self.deadband,
             **({"torque_ratio": self.torque_ratio} if self.torque_ratio else {}),
         }
+
+    @staticmethod
+    def limit_from_data(value) -> float:
+        """A thrust limit read from data [N]: ``None`` (or absent) means no limit, ``inf``."""
+        return float("inf") if value is None else float(value)
 
 
 def allocation_matrix(thrusters, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:

@@ -22,6 +22,7 @@ from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
 from stripcoef.conventions import clean_roundoff
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
+from stripcoef.threads import small_matrices
 
 
 def _reference_point(ref, cb, cg):
@@ -71,6 +72,7 @@ class EstimateOptions:
     section_panels: int | None = None
 
 
+@small_matrices           # BLAS on one thread for the many small solves (stripcoef.threads)
 def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> HydroModel:
     """Strip theory: a vehicle in, a HydroModel out.
 

@@ -24,7 +24,7 @@ from stripcoef.errors import InputError, StripcoefError
 
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
-            "diagnose", "uncertainty", "sweep")
+            "diagnose", "uncertainty", "sweep", "samples")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -42,7 +42,18 @@ def build_parser() -> argparse.ArgumentParser:
     for name in COMMANDS:
         module = importlib.import_module(f"stripcoef.cli.{name}")
         module.add_parser(sub)
+    for command in sub.choices.values():
+        add_progress_arguments(command)
     return parser
+
+
+def add_progress_arguments(parser) -> None:
+    """--quiet/--verbose on every command: progress bars on long work (stripcoef.progress)."""
+    g = parser.add_mutually_exclusive_group()
+    g.add_argument("-q", "--quiet", dest="progress", action="store_const", const=False,
+                   help="no progress bars (default: bars when stderr is a terminal)")
+    g.add_argument("-v", "--verbose", dest="progress", action="store_const", const=True,
+                   help="progress bars even when stderr is not a terminal")
 
 
 def _showwarning(message, category, filename, lineno, file=None, line=None):
@@ -66,8 +77,18 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
 
 def main(argv=None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
     warnings.showwarning = _showwarning
+    try:
+        # sample:NAME is the shipped sample's path (stripcoef.samples), in any argument
+        from stripcoef.samples import resolve
+        argv = [resolve(a) for a in argv]
+    except StripcoefError as exc:
+        print(f"stripcoef: error: {exc}", file=sys.stderr)
+        return 2
+    args = parser.parse_args(argv)
+    from stripcoef import progress
+    progress.set_enabled(getattr(args, "progress", None))
     try:
         return int(args.func(args) or 0)
     except StripcoefError as exc:

@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import yaml
 
 from stripcoef.conventions import DOF
 from stripcoef.cli.options import (add_fluid_arguments, add_mesh_arguments,
                                    estimate_from_args)
-from stripcoef.files import write_text
+from stripcoef.files import json_text, write_text
 
 
 
@@ -23,6 +21,8 @@ def add_parser(sub):
     fmt.add_argument("--json", action="store_true", help="print the JSON contract")
     fmt.add_argument("--yaml", action="store_true", help="print YAML (same content)")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw the body's strips and sections (.png/.pdf/.svg; matplotlib)")
     p.add_argument("--strips", type=int, metavar="N", help="number of strips")
     p.add_argument("--speed", type=float, metavar="M_S",
                    help="reference speed for Reynolds numbers and damping [m/s]")
@@ -67,7 +67,8 @@ def format_table(model) -> str:
         return "\n".join(lines)
 
     c = model.conditions
-    out = [f"{model.name}: strip theory ({c.get('strips')} strips, 3D corrections "
+    method = model.provenance.get("method", "strip theory")
+    out = [f"{model.name}: {method} ({c.get('strips')} strips, 3D corrections "
            f"{'on' if c.get('corrections') else 'off'})",
            f"  mass {model.mass:.4g} kg, volume {model.volume:.5g} m^3 "
            f"(rho V = {model.density * model.volume:.4g} kg)",
@@ -131,22 +132,36 @@ def format_table(model) -> str:
     return "\n".join(out) + "\n"
 
 
+def write_body_plot(vehicle, model, args) -> None:
+    """``--plot``: the strips and sections the model was computed from."""
+    from stripcoef.figures import save_figure
+    from stripcoef.geometry.plots import body_figure
+
+    strips = vehicle.cut(args.strips)
+    fig = body_figure(strips, name=model.name, key="--plot",
+                      points={"CB": model.center_of_buoyancy, "CG": model.center_of_gravity,
+                              "reference point": model.reference_point})
+    save_figure(fig, args.plot, key="--plot")
+
+
 def run(args) -> int:
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
+    vehicle, model = estimate_from_args(args)
     if args.method == "bem":
         from stripcoef import bem  # optional extra
 
-        vehicle, model = estimate_from_args(args)
-        data = bem.bem_model(model, vehicle).to_dict()
-        text = json.dumps(data, indent=2)
+        model = bem.bem_model(model, vehicle)
+    data = model.to_dict()
+    if args.json:
+        text = json_text(data)
+    elif args.yaml:
+        text = yaml.safe_dump(data, sort_keys=False)
     else:
-        _, model = estimate_from_args(args)
-        data = model.to_dict()
-        if args.json:
-            text = json.dumps(data, indent=2)
-        elif args.yaml:
-            text = yaml.safe_dump(data, sort_keys=False)
-        else:
-            text = format_table(model)
+        text = format_table(model)
+    if args.plot:
+        write_body_plot(vehicle, model, args)
     if args.output:
         write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")
     else:

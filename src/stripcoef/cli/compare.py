@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import time
 
 import numpy as np
 
 from stripcoef.conventions import added_mass_name
 from stripcoef.errors import InputError
-from stripcoef.files import write_text
+from stripcoef.files import json_text, write_text
 from stripcoef.cli.coefficients import add_fluid_arguments, add_mesh_arguments
 
 
@@ -17,10 +16,12 @@ def add_parser(sub):
     p = sub.add_parser("compare", help="strip theory vs the 3D BEM (Capytaine) on a mesh",
                        description="Added mass of a CAD mesh by strip theory and by the "
                                    "Capytaine boundary-element method (needs stripcoef[bem]), "
-                                   "with each method's wall time and the %% difference per term.")
+                                   "with each method's wall time and the % difference per term.")
     p.add_argument("vehicle", metavar="MODEL", help="mesh file (.stl .obj .ply .glb)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw strip theory vs BEM per DOF (.png/.pdf/.svg; matplotlib)")
     p.add_argument("--strips", type=int, metavar="N", help="number of strips")
     p.add_argument("--speed", type=float, metavar="M_S", help="reference speed [m/s]")
     p.add_argument("--no-corrections", action="store_true",
@@ -65,6 +66,9 @@ def run(args) -> int:
     from stripcoef.cli.options import estimate_options, load_any_vehicle
 
     bem._capytaine()                                   # fail early, before any work
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     t0 = time.perf_counter()
     vehicle = load_any_vehicle(args)
     t_load = time.perf_counter() - t0
@@ -80,6 +84,10 @@ def run(args) -> int:
     a_bem, t_bem = bem.timed_bem_added_mass(body, rho=model.density,
                                             reference_point=model.reference_point, **kw)
     rows = compare_rows(model.added_mass, a_bem)
+    if args.plot:
+        from stripcoef.figures import save_figure
+        save_figure(bem.comparison_figure(model.added_mass, a_bem, name=model.name,
+                                          key="--plot"), args.plot, key="--plot")
     data = {
         "name": model.name, "faces": int(len(body.mesh.faces)), "repairs": body.repairs,
         "reference_point": [float(v) for v in model.reference_point],
@@ -91,7 +99,7 @@ def run(args) -> int:
         "bem": [[float(v) for v in r] for r in a_bem],
         "terms": rows,
     }
-    text = json.dumps(data, indent=2) if args.json else format_comparison(data)
+    text = json_text(data) if args.json else format_comparison(data)
     if args.output:
         write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")
     else:

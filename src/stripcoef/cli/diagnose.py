@@ -4,7 +4,6 @@ effect the model lacks, add it, report before and after (see
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -46,6 +45,7 @@ def run(args) -> int:
     from stripcoef.diagnose.report import markdown_report, text_summary
     from stripcoef.effects.laws import get_effect
     from stripcoef.export import write_export
+    from stripcoef.files import json_text
     from stripcoef.modelfile import load_model
 
     if args.window is None:
@@ -74,8 +74,7 @@ def run(args) -> int:
         write_export(result.model, "json" if str(args.out).lower().endswith(".json")
                      else "yaml", args.out)
     if args.json:
-        json.dump(result.to_dict(), sys.stdout, indent=1)
-        sys.stdout.write("\n")
+        sys.stdout.write(json_text(result.to_dict(), indent=1))
     else:
         sys.stdout.write(text_summary(result))
     return 0

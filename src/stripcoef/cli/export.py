@@ -35,6 +35,13 @@ def add_parser(subparsers):
     p.add_argument("--legacy-added-mass", action="store_true",
                    help="gazebo: write the plugin's <xDotU> added-mass tags (Bullet, MuJoCo) "
                         "instead of <fluid_added_mass> (DART)")
+    p.add_argument("--fortress", action="store_true",
+                   help="gazebo: a file for Ignition Gazebo Fortress (SDF 1.9, whose sdformat 12 "
+                        "drops <fluid_added_mass>; ignition plugin names; legacy added mass)")
+    p.add_argument("--no-buoyancy-volume", dest="buoyancy_volume", action="store_false",
+                   default=None,
+                   help="gazebo: no displaced-volume box (the link's own collisions give the "
+                        "buoyancy; gz-sim sums every collision of a link)")
     p.set_defaults(func=run)
     return p
 
@@ -49,7 +56,8 @@ def run(args) -> int:
                          expected="-o FILE")
     model = load_model(args.vehicle)
     options = dict(point=args.point, axes=args.axes, link_name=args.link_name,
-                   legacy_added_mass=args.legacy_added_mass)
+                   legacy_added_mass=args.legacy_added_mass, fortress=args.fortress,
+                   buoyancy_volume=args.buoyancy_volume)
     if args.output:
         path = write_export(model, args.to, args.output, **options)
         print(f"wrote {path}", file=sys.stderr)

@@ -6,11 +6,10 @@ Methods: ``steady`` (Indiveri 1998, eqs. 4.15-4.17 and the yaw model comparison)
 
 from __future__ import annotations
 
-import json
 import math
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
-from stripcoef.files import write_text
+from stripcoef.files import json_text, write_text
 
 from stripcoef.identify.api import METHODS
 
@@ -30,7 +29,8 @@ def add_parser(sub):
                    help="steady: standard, eta, eta-md, LQB, LQNB, LB, LNB or compare "
                         "(default standard); one-step: LQB (eq. 8), LQNB, LB, LNB")
     p.add_argument("--vehicle", metavar="VEHICLE",
-                   help="vehicle file: thruster map, mass, buoyancy and inertia")
+                   help="vehicle file or model file (JSON/YAML of HydroModel.to_dict): "
+                        "thruster map, mass, buoyancy and inertia")
     p.add_argument("--json", action="store_true", help="print the JSON result")
     p.add_argument("-o", "--output", metavar="FILE", help="write the output to FILE (atomically)")
     p.add_argument("--plot", metavar="FILE.png", help="data vs fit and residuals (matplotlib)")
@@ -161,7 +161,7 @@ def run(args) -> int:
                  "fits": [f.to_dict() for f in c.fits]} for c in cmp.candidates]
             data["recommended"] = cmp.recommended.label
             data["explanation"] = cmp.explanation
-        text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+        text = json_text(data)
     else:
         text = format_comparison(cmp) if cmp is not None else ""
         text += ("\n" if cmp is not None else "") + format_fit(fit, source=args.log)

@@ -4,11 +4,12 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
+import sys
 from pathlib import Path
 
 from stripcoef.errors import InputError
+from stripcoef.files import json_text
 from stripcoef.modelfile import load_model
 
 
@@ -154,7 +155,7 @@ def run(args) -> int:
     if args.plot is not None:
         plot_limits(result, args.plot, key="--plot")
     if args.json:
-        print(json.dumps(result.to_dict(), indent=2))
+        sys.stdout.write(json_text(result.to_dict()))
     else:
         print(format_table(result, model.control_surfaces))
     return 0

@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from stripcoef.errors import InputError
-from stripcoef.files import read_text, write_text
+from stripcoef.files import json_text, read_text, write_text
 
 
 def add_parser(sub):
@@ -40,7 +40,7 @@ def run(args) -> int:
                          expected="the output of stripcoef identify --json")
     out = scale_result(data, args.ratio, rotational=args.rotational)
     if args.json:
-        text = json.dumps(out, indent=2) + "\n"
+        text = json_text(out)
     else:
         kind = "rotational" if out["rotational"] else "translational"
         lines = [f"similitude, lambda = {args.ratio:.6g} ({kind}), from {path}", "",

@@ -4,21 +4,30 @@ INPUTS is a log-format CSV (:mod:`stripcoef.logfile`) with a time column ``t`` a
 commands ``n_<thruster>``, control-surface deflections ``delta_<surface>`` [rad] and/or
 generalized forces ``X Y Z K M N`` (or, with ``--map``, any CSV or a ROS bag through a column
 map, docs/logs.md); the output is a log with the pose, the velocities, the applied forces and
-the commands at every input time (or every ``--dt`` seconds). ``--from-log LOG`` starts from
-the log's pose and velocity instead of rest at the origin and, without ``--inputs``,
-free-simulates the log's own inputs and prints the prediction error against the log.
+the commands at every input time (or every ``--dt`` seconds; every :data:`DEFAULT_DT` seconds
+when the inputs have fewer than :data:`FEW_ROWS` rows). ``--out -`` writes the log to stdout
+(the summary goes to stderr). ``--from-log LOG`` starts from the log's pose and velocity
+instead of rest at the origin and, without ``--inputs``, free-simulates the log's own inputs
+and prints the prediction error against the log.
 """
 
 from __future__ import annotations
 
-import numpy as np
-
+import argparse
+import sys
 import warnings
+
+import numpy as np
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
 from stripcoef.conventions import FORCES, VELOCITIES
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.logfile import KNOWN_COLUMNS
+
+#: Without --dt, inputs with fewer rows than this are resampled every DEFAULT_DT seconds
+#: (a 2-row input would otherwise give a 2-row log).
+FEW_ROWS = 100
+DEFAULT_DT = 0.1   # [s]
 
 
 def add_parser(subparsers):
@@ -42,14 +51,22 @@ def add_parser(subparsers):
                    help="with --from-log: start at this time of the log [s] (its first sample)")
     p.add_argument("--duration", type=float, default=None, metavar="S",
                    help="with --from-log: simulate this long [s] (to the end of the log)")
-    p.add_argument("--out", required=True, metavar="LOG.csv", help="output log CSV")
+    p.add_argument("-o", "--out", required=True, metavar="LOG.csv",
+                   help="output log CSV ('-': stdout, the summary then goes to stderr)")
     p.add_argument("--current", metavar="U,V,W", default=None,
                    help="constant water current in the earth-fixed NED frame [m/s]")
     p.add_argument("--dt", type=float, default=None,
-                   help="output sample period [s] (default: the inputs' times)")
+                   help="output sample period [s] (default: the inputs' times, or "
+                        f"{DEFAULT_DT:g} s when the inputs have fewer than {FEW_ROWS} rows)")
     p.add_argument("--interpolation", choices=("previous", "linear"), default="previous",
                    help="inputs between samples: zero-order hold (default) or linear")
     p.add_argument("--rtol", type=float, default=1e-8, help="integrator relative tolerance")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw the trajectory and the velocities (.png/.pdf/.svg; matplotlib)")
+    p.add_argument("--munk", action=argparse.BooleanOptionalAction, default=True,
+                   help="keep the Munk moment in C_A(nu) (default: on; as in 'limits')")
+    p.add_argument("--coriolis", action=argparse.BooleanOptionalAction, default=True,
+                   help="keep C(nu) = C_RB + C_A (default: on; as in 'limits')")
     p.set_defaults(func=run)
     return p
 
@@ -132,7 +149,7 @@ def _log_window(log, start, duration):
 
 def run(args) -> int:
     from stripcoef.modelfile import load_model
-    from stripcoef.simulate import free_run_errors, initial_state, simulate
+    from stripcoef.simulate import free_run_errors, initial_state, simulate, summarize_motion
 
     if args.inputs is None and args.from_log is None:
         raise InputError("no inputs", key="inputs",
@@ -140,6 +157,9 @@ def run(args) -> int:
     if args.from_log is None and (args.start is not None or args.duration is not None):
         raise InputError("applies to --from-log only", key="start" if args.start is not None
                          else "duration", expected="--from-log LOG with it")
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     eta0 = nu0 = None
     start_log = None
     if args.from_log is not None:
@@ -154,12 +174,15 @@ def run(args) -> int:
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
     times = None
+    dt = args.dt
+    if dt is not None and not (np.isfinite(dt) and dt > 0):
+        raise InputError("not a positive time step", key="--dt", value=dt,
+                         expected="a positive number of seconds")
     t_in = log.require("t")
-    if args.dt is not None:
-        if not (np.isfinite(args.dt) and args.dt > 0):
-            raise InputError("not a positive time step", key="--dt", value=args.dt,
-                             expected="a positive number of seconds")
-        times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
+    if dt is None and len(t_in) < FEW_ROWS and start_log is None:
+        dt = DEFAULT_DT
+    if dt is not None:
+        times = np.arange(t_in[0], t_in[-1] + 0.5 * dt, dt)
         times = times[times <= t_in[-1] + 1e-12]
     elif start_log is not None and log is not start_log:
         times = start_log.require("t")              # predict at the logged times
@@ -167,21 +190,56 @@ def run(args) -> int:
         log, model, times, interpolation=args.interpolation)
     out = simulate(model, times, forces=forces, commands=commands, current=current,
                    channels=channels, deflections=deflections, eta0=eta0, nu0=nu0,
+                   munk=args.munk, coriolis=args.coriolis,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
-    out.write_csv(args.out)
-    print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "
-          f"final speed {np.linalg.norm(out.velocities()[-1, :3]):.4g} m/s")
+    to_stdout = args.out == "-"
+    if to_stdout:
+        sys.stdout.write(out.to_csv_text())
+    else:
+        out.write_csv(args.out)
+    if args.plot:
+        from stripcoef.figures import motion_figure, save_figure
+        save_figure(motion_figure(out, title=f"{model.name}: simulated trajectory and "
+                                             "velocities", key="--plot"),
+                    args.plot, key="--plot")
+    summary = summarize_motion(out)
+    report = sys.stderr if to_stdout else sys.stdout
+    print(format_summary(summary, args.out, out, dt=dt, default_dt=args.dt is None and dt),
+          file=report)
+    for text in summary.warnings:
+        warnings.warn(text.replace("munk=False", "--no-munk"), ModelWarning, stacklevel=1)
     if start_log is not None:
         same = len(start_log) == len(out) and np.allclose(start_log["t"], out["t"])
         if not same:
             print("prediction vs log: not compared (the output times are not the log's; "
-                  "drop --dt)")
+                  "drop --dt)", file=report)
         else:
             errors = free_run_errors(start_log, out)
             print(f"free simulation from the logged state at t = {times[0]:g} s "
                   f"({times[-1] - times[0]:g} s), RMS error vs the log "
-                  "(and holding the initial velocity):")
+                  "(and holding the initial velocity):", file=report)
             for c, e in errors.items():
                 unit = "m/s" if VELOCITIES.index(c) < 3 else "rad/s"
-                print(f"  {c}: {e['rms']:.4g} {unit}  (hold: {e['hold_initial_rms']:.4g})")
+                print(f"  {c}: {e['rms']:.4g} {unit}  (hold: {e['hold_initial_rms']:.4g})",
+                      file=report)
     return 0
+
+
+def format_summary(s, where, log, *, dt=None, default_dt=None) -> str:
+    """What happened, in a few lines: samples, final speeds, distance, heading, attitude."""
+    u, v, w, p, q, r = s.final_velocity
+    t = log.require("t")
+    target = "stdout" if where == "-" else where
+    step = f", every {dt:g} s" if dt else ""
+    why = f" (default for inputs of fewer than {FEW_ROWS} rows; --dt to change)" \
+        if default_dt else ""
+    dx, dy, dz = s.displacement
+    return "\n".join([
+        f"wrote {target}: {len(log)} samples, t = {t[0]:g} .. {t[-1]:g} s{step}{why}",
+        f"  final speed {s.final_speed:.4g} m/s (u {u:.4g}, v {v:.4g}, w {w:.4g} m/s; "
+        f"p {p:.3g}, q {q:.3g}, r {r:.3g} rad/s)",
+        f"  distance travelled {s.distance:.4g} m; displacement north {dx:.4g}, east {dy:.4g}, "
+        f"down {dz:.4g} m",
+        f"  heading change {s.heading_change:.4g} rad ({np.degrees(s.heading_change):.4g} deg); "
+        f"max |roll| {np.degrees(s.max_roll):.3g} deg, max |pitch| "
+        f"{np.degrees(s.max_pitch):.3g} deg"])

@@ -40,7 +40,7 @@ def run(args) -> int:
         raise InputError("a plot shows one or two swept keys", key="--plot",
                          value=len(axes), expected="--vary given once or twice with --plot")
     frame = sweep(args.vehicle, axes, limits=args.limits, workers=args.workers,
-                  scheduler=args.scheduler, progress=False if args.quiet else None)
+                  scheduler=args.scheduler, progress=getattr(args, "progress", None))
     if args.plot:
         output = args.plot_output or ("surge_speed_max" if args.limits else "X_udot")
         sweep_figure(frame, [a.key for a in axes], output, path=args.plot, key="--plot")

@@ -28,13 +28,12 @@ def add_parser(sub):
 
 
 def add_execution_arguments(p):
-    """--workers, --scheduler, --quiet (shared with ``sweep``)."""
+    """--workers, --scheduler (shared with ``sweep``; -q/--quiet is every command's)."""
     g = p.add_argument_group("execution")
     g.add_argument("--workers", type=int, metavar="N",
                    help="local processes (default: the cores of this machine)")
     g.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on a Dask distributed scheduler (tcp://host:8786) instead")
-    g.add_argument("--quiet", action="store_true", help="no progress bar")
     return g
 
 
@@ -66,7 +65,7 @@ def run(args) -> int:
             check_output_path(path, key=flag)
     result = uncertainty(args.vehicle, samples=args.samples, seed=args.seed,
                          limits=args.limits, method=args.method, workers=args.workers,
-                         scheduler=args.scheduler, progress=False if args.quiet else None)
+                         scheduler=args.scheduler, progress=getattr(args, "progress", None))
     text = json.dumps(result.to_dict(), indent=2, allow_nan=False) + "\n" if args.json \
         else format_table(result)
     if args.plot:

@@ -54,6 +54,7 @@ from stripcoef.model import frozen_mapping, plain
 from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
 from stripcoef.effects.windows import window_data
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
+from stripcoef.progress import track
 
 #: 1-sigma relative bands on the prior's coefficients (see module docstring).
 BANDS = {"translational": {"M": 0.3, "D_L": 0.6, "D_Q": 0.3},
@@ -559,9 +560,10 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
 
     steps, evaluated = [], []
     accepted_names = set()
-    for _ in range(max_steps):
+    for step_index in range(max_steps):
         trials = []
-        for eff in library:
+        for eff in track(library, desc=f"diagnose {DOF[dof]}: step {step_index + 1}, effects",
+                         unit="effect"):
             if eff.name in accepted_names:
                 continue
             ok, why = eff.applicable(data, dof)
@@ -1047,7 +1049,8 @@ def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
     only_cal = _with_matrices(prior, mats)
     dofs = [parse_dof(d) for d in per]
     rows = {name: resimulate_rms(log, m, dofs) for name, m in
-            (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
+            track((("baseline", prior), ("calibrated", only_cal), ("final", calibrated)),
+                  desc="diagnose: re-simulating", unit="model")}
     return {DOF[i]: {name: (None if rows[name] is None else rows[name][k])
                      for name in rows} for k, i in enumerate(dofs)}
 

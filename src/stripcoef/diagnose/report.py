@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
 
-from stripcoef.files import write_bytes, write_text
+from stripcoef.files import write_text
 from stripcoef.diagnose.pipeline import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
                                         MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, Diagnosis)
 
@@ -59,29 +58,36 @@ def text_summary(result) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _plot(result: Diagnosis, dof, path):
-    """Residual before (calibrated) and after each step, against window time
-    (:meth:`Diagnosis.residual_curves`), written to ``path`` as a PNG."""
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        return False
+def residual_figure(result: Diagnosis, dof, *, key: str = "report"):
+    """The window force residual of ``dof`` before (prior, calibrated) and after each
+    accepted effect, against the window's mid time [s] (:meth:`Diagnosis.residual_curves`);
+    a Figure (:mod:`stripcoef.figures`)."""
+    from stripcoef.figures import new_figure
+
     tw, curves = result.residual_curves(dof)
-    fig, ax = plt.subplots(figsize=(8, 3.2))
+    fig = new_figure(figsize=(9, 3.4), key=key)
+    ax = fig.subplots()
     for label, y in curves:
         ax.plot(tw, y, lw=1, label=label)
     ax.axhline(0, color="k", lw=0.5)
-    ax.set_xlabel("t [s]")
+    ax.set_xlabel("window mid time t [s]")
     ax.set_ylabel(f"missing force [{result.per_dof[dof]['units']}]")
     ax.set_title(f"{dof}: window force residual before and after each step")
-    ax.legend(fontsize=7, ncol=4)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
-    plt.close(fig)
-    write_bytes(path, buf.getvalue(), key="report")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.grid(True, alpha=0.3)
+    return fig
+
+
+def _plot(result, dof, path):
+    """Write :func:`residual_figure` as PNG; False when matplotlib is missing."""
+    from stripcoef.errors import InputError
+    from stripcoef.figures import save_figure
+
+    try:
+        fig = residual_figure(result, dof)
+    except InputError:           # no matplotlib: the report says so
+        return False
+    save_figure(fig, path, key="report", dpi=110)
     return True
 
 

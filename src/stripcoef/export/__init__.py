@@ -55,7 +55,8 @@ def _check_link_name(name) -> str:
 
 def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = None,
                  link_name: str | None = None, legacy_added_mass: bool = False,
-                 function_name: str | None = None) -> str | bytes:
+                 function_name: str | None = None, fortress: bool = False,
+                 buoyancy_volume: bool | None = None) -> str | bytes:
     """Export a model to a simulator or data format.
 
     Parameters
@@ -78,6 +79,12 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
         ``gazebo`` only: write the plugin's ``<xDotU>`` tags instead of ``<fluid_added_mass>``
     function_name : str, optional
         ``mss`` only: the MATLAB function name (defaults to the model name)
+    fortress : bool
+        ``gazebo`` only: a file for Ignition Gazebo Fortress (SDF 1.9, sdformat 12, the
+        ``ignition-gazebo-hydrodynamics-system`` plugin, legacy added-mass tags)
+    buoyancy_volume : bool, optional
+        ``gazebo`` only: write the non-colliding box of the displaced volume for gz-sim's
+        Buoyancy system (default True; False when the link's own collisions carry the volume)
 
     Returns
     -------
@@ -90,7 +97,8 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
     """
     spec = get_format(fmt)
     given = {"link_name": link_name, "legacy_added_mass": legacy_added_mass or None,
-             "function_name": function_name}
+             "function_name": function_name, "fortress": fortress or None,
+             "buoyancy_volume": buoyancy_volume}
     options = {}
     for key, value in given.items():
         if value is None:

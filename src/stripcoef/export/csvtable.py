@@ -26,6 +26,7 @@ import numpy as np
 from stripcoef.conventions import DOF
 from stripcoef.errors import InputError
 from stripcoef.export._common import ExportFormat, ExportView, fmt
+from stripcoef.views import entry_unit
 
 NAME = "csv"
 
@@ -38,16 +39,8 @@ THRUSTER_FIELDS = {"ct_forward": "N/cmd^2", "ct_backward": "N/cmd^2", "max_forwa
 XYZ = ("x", "y", "z")
 
 
-def matrix_unit(kind: str, i: int, j: int) -> str:
-    """SI unit of entry (i, j) of a mass or damping matrix (force_i per velocity_j)."""
-    ti, tj = i < 3, j < 3
-    if kind in ("rigid_body_mass", "added_mass"):
-        return "kg" if ti and tj else ("kg m^2" if not ti and not tj else "kg m")
-    if kind == "linear_damping":
-        return "kg/s" if ti and tj else ("kg m^2/s" if not ti and not tj else "kg m/s")
-    # quadratic: force_i / (|nu_j| nu_j); lift: force_i / (u nu_j), the same units
-    return {(True, True): "kg/m", (True, False): "kg m", (False, True): "kg",
-            (False, False): "kg m^2"}[(ti, tj)]
+#: SI unit of entry (i, j) of a mass or damping matrix (one home: stripcoef.views).
+matrix_unit = entry_unit
 
 
 def render(view: ExportView) -> str:

@@ -70,6 +70,11 @@ _FAM_LETTERS = "xyzpqr"
 
 PLUGIN_FILENAME = "gz-sim-hydrodynamics-system"
 PLUGIN_NAME = "gz::sim::systems::Hydrodynamics"
+#: Ignition Gazebo Fortress (ign-gazebo 6, sdformat 12): its plugin's library and class, and
+#: the newest SDF version sdformat 12 knows (1.9, no <fluid_added_mass>: from SDF 1.10 on).
+FORTRESS_PLUGIN_FILENAME = "ignition-gazebo-hydrodynamics-system"
+FORTRESS_PLUGIN_NAME = "ignition::gazebo::systems::Hydrodynamics"
+SDF_VERSION, FORTRESS_SDF_VERSION = "1.11", "1.9"
 
 
 
@@ -102,11 +107,20 @@ def fluid_added_mass_tag(i: int, j: int) -> str:
 
 
 def render(view: ExportView, *, link_name: str = "base_link",
-           legacy_added_mass: bool = False) -> str:
+           legacy_added_mass: bool = False, fortress: bool = False,
+           buoyancy_volume: bool = True) -> str:
     """SDF text: a model with the link's inertial (and added mass) and the plugin block.
 
     All matrices come from ``view`` (the model about the link origin, in the link's axes).
+    ``fortress``: SDF 1.9 and the Ignition plugin names for Fortress, whose sdformat 12 has
+    no ``<fluid_added_mass>`` (it would be dropped without a word), hence the legacy added-mass
+    tags, which Fortress's plugin reads with the same grammar (ign-gazebo6 Hydrodynamics.cc).
+    ``buoyancy_volume``: the box of the displaced volume for the Buoyancy system, which sums
+    the volume of every collision of a link (gz-sim Buoyancy.cc): with it, a trap warning
+    says to keep it the link's only collision.
     """
+    if fortress:
+        legacy_added_mass = True
     model = view.model
     ma = clean(view.matrix("added_mass"))
     mrb = clean(view.matrix("rigid_body_mass"))
@@ -134,17 +148,30 @@ def render(view: ExportView, *, link_name: str = "base_link",
             "Added mass as SDF <inertial><fluid_added_mass> (positive, about the link origin,",
             "sdf/1.11/inertial.sdf): DART only. For other engines export with the legacy added-mass option.",
         ]
-    notes += [
-        "Buoyancy: the 'buoyancy_volume' collision is a non-colliding box of the displaced volume",
-        "centred on the CB, for the world plugin gz-sim-buoyancy-system (add it to the world with",
-        f"<uniform_fluid_density>{fmt(model.density)}</uniform_fluid_density>).",
-    ]
+    if fortress:
+        notes += [
+            "Fortress file: SDF 1.9 (sdformat 12 drops <fluid_added_mass> silently, it exists from",
+            "SDF 1.10), plugin ignition-gazebo-hydrodynamics-system, legacy added-mass tags.",
+        ]
+    if buoyancy_volume:
+        notes += [
+            "Buoyancy: the 'buoyancy_volume' collision is a non-colliding box of the displaced volume",
+            "centred on the CB, for the world plugin gz-sim-buoyancy-system (add it to the world with",
+            f"<uniform_fluid_density>{fmt(model.density)}</uniform_fluid_density>). That system sums",
+            "the volume of EVERY collision of the link: keep this box the link's only collision, or",
+            "export without it and let the hull's own collisions carry the volume.",
+        ]
+    else:
+        notes += [
+            "Buoyancy: no volume box written; gz-sim-buoyancy-system takes the link's volume from",
+            f"its own collisions (they must displace {fmt(model.volume)} m^3 centred on the CB).",
+        ]
     if model.thrusters:
         notes.append("Thrusters not exported here: " + ", ".join(t.name for t in model.thrusters)
                      + " (use gz-sim-thruster-system per thruster).")
 
     out = ['<?xml version="1.0" ?>', *xml_comment(notes)]
-    out.append('<sdf version="1.11">')
+    out.append(f'<sdf version="{FORTRESS_SDF_VERSION if fortress else SDF_VERSION}">')
     out.append(f'  <model name="{escape(model.name, {chr(34): "&quot;"})}">')
     out.append(f'    <link name="{link}">')
     out.append("      <inertial>")
@@ -168,7 +195,12 @@ def render(view: ExportView, *, link_name: str = "base_link",
                 out.append(f"          <{tag}>{fmt(msym[i, j])}</{tag}>")
         out.append("        </fluid_added_mass>")
     out.append("      </inertial>")
-    if model.volume > 0:
+    if buoyancy_volume and model.volume > 0:
+        trap("gazebo: gz-sim's Buoyancy system sums the volume of every collision of a link; "
+             "the exported 'buoyancy_volume' box already holds the displaced volume "
+             f"({model.volume:.4g} m^3), so hull collisions added to the same link count it "
+             "again (buoyancy doubled): keep the box the link's only collision, or export "
+             "without it (--no-buoyancy-volume)")
         side = model.volume ** (1.0 / 3.0)
         out += [
             '      <collision name="buoyancy_volume">',
@@ -179,7 +211,9 @@ def render(view: ExportView, *, link_name: str = "base_link",
         ]
     out.append("    </link>")
 
-    out.append(f'    <plugin filename="{PLUGIN_FILENAME}" name="{PLUGIN_NAME}">')
+    plugin = (FORTRESS_PLUGIN_FILENAME, FORTRESS_PLUGIN_NAME) if fortress else \
+        (PLUGIN_FILENAME, PLUGIN_NAME)
+    out.append(f'    <plugin filename="{plugin[0]}" name="{plugin[1]}">')
     out.append(f"      <link_name>{link}</link_name>")
     out.append("      <!-- linear damping: <fi Vj> = -D_L[i,j] -->")
     out += _sname_tags(dl, linear_tag)     # clean() already zeroed round-off
@@ -229,4 +263,4 @@ FORMAT = ExportFormat(
     suffix=".sdf",
     render=render,
     default_axes="FLU",
-    options=("link_name", "legacy_added_mass"))
+    options=("link_name", "legacy_added_mass", "fortress", "buoyancy_volume"))

@@ -1,21 +1,20 @@
 """JSON export: :meth:`stripcoef.model.HydroModel.to_dict` of the model about the chosen point.
 
 Readable back with ``HydroModel.from_dict(json.load(f))``.  The HydroModel contract is
-FRD body axes, so FRD is the only axes this format is written in.  Infinite thrust limits
-are written as ``Infinity`` (what Python's json module reads and writes).
+FRD body axes, so FRD is the only axes this format is written in.  Strict JSON: a thruster
+without a limit is ``null`` (:func:`stripcoef.files.json_text`, docs/conventions.md).
 """
 
 from __future__ import annotations
 
-import json
-
-from stripcoef.export._common import ExportFormat, ExportView, plain
+from stripcoef.export._common import ExportFormat, ExportView
+from stripcoef.files import json_text
 
 NAME = "json"
 
 
 def render(view: ExportView) -> str:
-    return json.dumps(plain(view.model.to_dict()), indent=2) + "\n"
+    return json_text(view.model.to_dict())
 
 
 #: This format's entry of the registry :data:`stripcoef.export.FORMATS`.

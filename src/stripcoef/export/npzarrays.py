@@ -13,12 +13,12 @@ Load with ``numpy.load(path)`` (no pickles are stored).
 from __future__ import annotations
 
 import io
-import json
 
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.export._common import ExportFormat, ExportView, plain
+from stripcoef.export._common import ExportFormat, ExportView
+from stripcoef.files import json_text
 
 NAME = "npz"
 
@@ -50,7 +50,7 @@ def arrays(view: ExportView) -> dict:
         "B_delta": (np.column_stack([view.vector6(c.derivative) for c in model.control_surfaces])
                     if model.control_surfaces else np.zeros((6, 0))),
         "max_deflection": np.array([c.max_deflection for c in model.control_surfaces], float),
-        "model_json": np.array(json.dumps(plain(model.to_dict()))),
+        "model_json": np.array(json_text(model.to_dict(), indent=None).strip()),
     }
 
 

@@ -9,9 +9,20 @@ model), ``AXES``, ``DOF``, ``THRUSTERS`` (names) and ``B_THRUSTERS`` (6 x n allo
 ``tau = B_THRUSTERS @ thrusts``), and ``COEFFICIENTS`` (SNAME derivatives by name, with
 their signs, in the export's axes).
 
+In FRD axes (the default) the module also runs: ``THRUSTER_MAPS`` and ``thrust(commands)``
+(the bilinear map of Wang & Clark 2006, eq. 6, with its efficiencies, dead band and limits),
+``state_derivative(eta, nu, tau, current)`` (Fossen 2011, eqs. 7.190 and 10.1: the same
+equations as ``stripcoef simulate`` and the MSS export) and a class ``Vehicle`` in the style of
+the vehicles of Fossen's PythonVehicleSimulator: ``Vehicle().dynamics(eta, nu, u_actual,
+u_control, sampleTime)`` returns the next ``nu`` (one forward-Euler step) and ``u_actual``
+(the thruster commands after a first-order lag of time constant ``T_n``, 0 = none). The
+module needs numpy only. In FLU axes it holds the data only (the NED kinematics are FRD).
+
 References
 ----------
-Fossen (2011), Handbook of Marine Craft Hydrodynamics and Motion Control, eq. 7.190.
+Fossen (2011), Handbook of Marine Craft Hydrodynamics and Motion Control, eqs. 2.18, 2.29,
+3.46, 4.6, 6.43, 7.190, 10.1; Wang & Clark (2006), eq. 6; Fossen's PythonVehicleSimulator
+(github.com/cybergalactic/PythonVehicleSimulator) for the ``dynamics`` interface.
 """
 
 from __future__ import annotations
@@ -109,7 +120,151 @@ def render(view: ExportView) -> str:
     ]
     lines += [f"    {k!r}: {_num(v)}," for k, v in coeffs.items()]
     lines += ["}", ""]
+    if view.axes == "FRD":
+        lines += _dynamics_lines(view)
     return "\n".join(lines)
+
+
+def _dynamics_lines(view: ExportView) -> list[str]:
+    """The runnable part of the module: thrust map, state derivative, a Vehicle class."""
+    maps = ["THRUSTER_MAPS = ("]
+    for t in view.model.thrusters:
+        maps.append(f"    # {t.name}: thrust = eta C_t n|n| [N], clipped to [-max_backward, "
+                    "max_forward]")
+        maps.append(f"    {{'name': {t.name!r}, 'ct_forward': {_num(t.ct_forward)}, "
+                    f"'ct_backward': {_num(t.ct_backward)}, 'eta_forward': "
+                    f"{_num(t.eta_forward)}, 'eta_backward': {_num(t.eta_backward)}, "
+                    f"'max_forward': {_num(t.max_forward)}, 'max_backward': "
+                    f"{_num(t.max_backward)}, 'deadband': {_num(t.deadband)}}},")
+    maps.append(")")
+    return maps + [""] + _DYNAMICS.splitlines() + [""]
+
+
+# The runnable part, written as it is into FRD modules (numpy only). Equations: Fossen (2011)
+# eqs. 2.18/2.29 (J), 3.46/6.43 (C from M), 4.6 (g), 7.190 and 10.1 (relative velocity);
+# thrust: Wang & Clark (2006), eq. 6 (stripcoef.thrusters.Thruster.thrust).
+_DYNAMICS = '''
+def skew(a):
+    """S(a), S(a) b = a x b (Fossen 2011, eq. 2.10)."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def coriolis(mass, nu):
+    """C(nu) of a 6x6 inertia matrix [kg/s, kg m/s, kg m^2/s] (Fossen 2011, eqs. 3.46, 6.43)."""
+    a = mass[:3, :3] @ nu[:3] + mass[:3, 3:] @ nu[3:]
+    b = mass[3:, :3] @ nu[:3] + mass[3:, 3:] @ nu[3:]
+    c = np.zeros((6, 6))
+    c[:3, 3:] = -skew(a)
+    c[3:, :3] = -skew(a)
+    c[3:, 3:] = -skew(b)
+    return c
+
+
+def rotation(phi, theta, psi):
+    """R(Theta), body to NED, zyx Euler angles [rad] (Fossen 2011, eq. 2.18)."""
+    cf, sf, ct, st, cp, sp = (np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta),
+                              np.cos(psi), np.sin(psi))
+    return np.array([[cp * ct, -sp * cf + cp * st * sf, sp * sf + cp * cf * st],
+                     [sp * ct, cp * cf + sf * st * sp, -cp * sf + st * sp * cf],
+                     [-st, ct * sf, ct * cf]])
+
+
+def kinematics(eta):
+    """J(eta): eta_dot = J(eta) nu (Fossen 2011, eqs. 2.18 and 2.29)."""
+    phi, theta = eta[3], eta[4]
+    cf, sf, ct, tt = np.cos(phi), np.sin(phi), np.cos(theta), np.tan(theta)
+    t = np.array([[1.0, sf * tt, cf * tt], [0.0, cf, -sf], [0.0, sf / ct, cf / ct]])
+    j = np.zeros((6, 6))
+    j[:3, :3] = rotation(*eta[3:6])
+    j[3:, 3:] = t
+    return j
+
+
+def restoring(eta):
+    """g(eta) [N, N m], the force is -g (Fossen 2011, eq. 4.6)."""
+    w, b = MASS * GRAVITY, DENSITY * GRAVITY * VOLUME
+    phi, theta = eta[3], eta[4]
+    sf, cf, st, ct = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
+    (xg, yg, zg), (xb, yb, zb) = R_G, R_B
+    return np.array([(w - b) * st, -(w - b) * ct * sf, -(w - b) * ct * cf,
+                     -(yg * w - yb * b) * ct * cf + (zg * w - zb * b) * ct * sf,
+                     (zg * w - zb * b) * st + (xg * w - xb * b) * ct * cf,
+                     -(xg * w - xb * b) * ct * sf - (yg * w - yb * b) * st])
+
+
+def thrust(commands):
+    """Thrusts [N] of the thrusters for their commands (sequence in THRUSTERS order):
+    T = eta C_t n|n| (forward/backward values), 0 inside the dead band, clipped to the limits
+    (Wang & Clark 2006, eq. 6)."""
+    out = np.zeros(len(THRUSTER_MAPS))
+    for k, (t, n) in enumerate(zip(THRUSTER_MAPS, np.asarray(commands, dtype=float))):
+        fwd = n >= 0.0
+        ct = t["ct_forward"] * t["eta_forward"] if fwd else t["ct_backward"] * t["eta_backward"]
+        value = 0.0 if abs(n) <= t["deadband"] else ct * n * abs(n)
+        out[k] = min(max(value, -t["max_backward"]), t["max_forward"])
+    return out
+
+
+def state_derivative(eta, nu, tau, current=(0.0, 0.0, 0.0)):
+    """(eta_dot, nu_dot) of the 6-DOF model [m/s, rad/s; m/s^2, rad/s^2].
+
+    M nu_dot = tau - C_RB(nu) nu - C_A(nu_r) nu_r - D(nu_r) nu_r - g(eta) + M_A nu_c_dot,
+    D(nu_r) = D_L + u_r L + D_Q diag|nu_r| (L: body and fin lift, 0 without fins),
+    eta_dot = J(eta) nu, nu_r = nu - nu_c, nu_c = [R^T V_c; 0], nu_c_dot = [-S(w) R^T V_c; 0]
+    (Fossen 2011, eqs. 7.190 and 10.1). eta [m, rad] NED pose, nu [m/s, rad/s] body
+    velocity over ground (about the reference point, FRD), tau [N, N m] applied force,
+    current V_c [m/s] constant in NED. Control-surface forces are part of tau:
+    u_r |u_r| B_DELTA @ deflections [N, N m] for deflections [rad].
+    """
+    eta = np.asarray(eta, dtype=float)
+    nu = np.asarray(nu, dtype=float)
+    vc = rotation(*eta[3:6]).T @ np.asarray(current, dtype=float)
+    nu_c = np.concatenate([vc, np.zeros(3)])
+    nu_c_dot = np.concatenate([-skew(nu[3:]) @ vc, np.zeros(3)])
+    nu_r = nu - nu_c
+    force = (np.asarray(tau, dtype=float) - coriolis(M_RB, nu) @ nu
+             - coriolis(M_A, nu_r) @ nu_r - (D_L + nu_r[0] * L + D_Q * np.abs(nu_r)) @ nu_r
+             - restoring(eta) + M_A @ nu_c_dot)
+    return kinematics(eta) @ nu, np.linalg.solve(M, force)
+
+
+class Vehicle:
+    """The model as a vehicle of Fossen's PythonVehicleSimulator (same interface).
+
+    ``u_control`` and ``u_actual`` are the thruster commands (THRUSTERS order); ``T_n`` [s]
+    is a first-order lag of the actual commands (0: none, as in stripcoef simulate);
+    ``current`` [m/s] a constant NED current.
+    """
+
+    def __init__(self, controlSystem="stepInput", T_n=0.0, current=(0.0, 0.0, 0.0)):
+        self.name = NAME + " (stripcoef export)"
+        self.L = None
+        self.controls = [f"{n} command" for n in THRUSTERS]
+        self.dimU = len(THRUSTERS)
+        self.controlMode = controlSystem
+        self.controlDescription = "Step inputs of the thruster commands"
+        self.nu = np.zeros(6)
+        self.u_actual = np.zeros(self.dimU)
+        self.T_n = float(T_n)
+        self.current = np.asarray(current, dtype=float)
+        self.u_step = np.zeros(self.dimU)
+
+    def dynamics(self, eta, nu, u_actual, u_control, sampleTime):
+        """One forward-Euler step of sampleTime [s]: returns (nu, u_actual) at the next sample."""
+        u_actual = np.asarray(u_actual, dtype=float)
+        tau = B_THRUSTERS @ thrust(u_actual) if self.dimU else np.zeros(6)
+        _, nu_dot = state_derivative(eta, nu, tau, self.current)
+        if self.T_n > 0.0:
+            u_dot = (np.asarray(u_control, dtype=float) - u_actual) / self.T_n
+            u_actual = u_actual + sampleTime * u_dot
+        else:
+            u_actual = np.asarray(u_control, dtype=float).copy()
+        return np.asarray(nu, dtype=float) + sampleTime * nu_dot, u_actual
+
+    def stepInput(self, t):
+        """The commands of a step input at time t [s] (constant ``u_step``)."""
+        return self.u_step.copy()
+'''.strip("\n")
 
 
 #: This format's entry of the registry :data:`stripcoef.export.FORMATS`.

@@ -19,6 +19,9 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
                  refine: bool = False):
     """Identify coefficients from ``log`` (a :class:`stripcoef.logfile.Log`).
 
+    The parameters not listed below are those of :func:`steady.steady_points`,
+    :func:`onestep.one_step_log`, :func:`pendulum.pendulum` and :func:`pendulum.torsion`.
+
     Parameters
     ----------
     method : {"steady", "one-step", "pendulum", "torsion"}
@@ -29,8 +32,6 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
         LQNB, LB, LNB.
     vehicle : HydroModel, optional
         Thruster map (commands -> force), rigid-body inertia, mass and buoyancy [SI].
-    Other parameters as in :func:`steady.steady_points`, :func:`onestep.one_step_log`,
-    :func:`pendulum.pendulum` and :func:`pendulum.torsion`.
 
     Returns
     -------

@@ -20,10 +20,10 @@ from stripcoef.errors import InputError
 
 
 def vehicle_model(path):
-    """HydroModel of a vehicle file (``stripcoef.load_vehicle`` + ``stripcoef.estimate``)."""
-    from stripcoef.assembly import estimate
-    from stripcoef.geometry.vehicle import load_vehicle
-    return estimate(load_vehicle(path))
+    """HydroModel of a vehicle file or a model file (JSON/YAML of ``HydroModel.to_dict``), as
+    every model-consuming command reads it (:func:`stripcoef.modelfile.load_model`)."""
+    from stripcoef.modelfile import load_model
+    return load_model(path)
 
 
 def applied_force(log, dof, model=None) -> tuple[np.ndarray, str]:

@@ -1,0 +1,29 @@
+"""The documentation site builds with warnings as errors (mkdocs --strict): every page in the
+nav, every link and anchor resolved, every docstring of the API reference parsed."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from conftest import ROOT
+
+pytest.importorskip("mkdocs")
+pytest.importorskip("mkdocstrings")
+pytest.importorskip("material")
+
+
+def test_site_builds_strictly(tmp_path):
+    env = {**os.environ, "NO_MKDOCS_2_WARNING": "1",
+           "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), str(ROOT)])}
+    out = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-f",
+                          str(ROOT / "mkdocs.yml"), "-d", str(tmp_path / "site")],
+                         capture_output=True, text=True, env=env, timeout=600, cwd=ROOT)
+    assert out.returncode == 0, out.stderr[-4000:]
+    site = tmp_path / "site"
+    for page in ("index.html", "tutorial/index.html", "api/index.html",
+                 "export/gazebo/index.html"):
+        assert (site / page).is_file(), page
+    api = (site / "api" / "index.html").read_text()
+    assert "HydroModel" in api and "summarize_motion" in api and "load_vehicle" in api
