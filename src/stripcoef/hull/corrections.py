@@ -141,9 +141,7 @@ def _axial_added_mass(strips, rho, panels):
             others.append(p)
     m11 = 0.0
     if np.any(area > 0):
-        xs, rs = _equivalent_radius(strips, area)
-        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels, modes=(0,),
-                                             area_linear=True)[0, 0]
+        m11 += _equivalent_bodies(strips, area, rho, 0.0, panels, (0,))[0, 0]
     for p in others:
         cov = _coverage(p)
         vol = float(np.sum(p.area * cov * strips.dx[p.index]))
@@ -180,13 +178,7 @@ def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     per_strip = np.asarray(per_strip, dtype=float)
     if not np.any(per_strip > 0):                  # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
-    runs = _positive_runs(per_strip)
-    if len(runs) == 1 and runs[0] == (0, strips.n - 1):
-        xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
-        m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels,
-                                           modes=(1,), area_linear=True)
-    else:       # the equivalent radius vanishes on some strips: one body per run (see below)
-        m3 = sum(_run_added_mass(strips, per_strip, j, k, rho, xc, panels) for j, k in runs)
+    m3 = _equivalent_bodies(strips, per_strip, rho, xc, panels, (1,), closed_ends)
     a = np.clip(per_strip, 0.0, None)
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
@@ -202,8 +194,22 @@ def _positive_runs(per_strip):
     return list(zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0] - 1))
 
 
-def _run_added_mass(strips, per_strip, j, k, rho, xc, panels):
-    r"""6x6 mode-1 added mass about x = ``xc`` of the equivalent body of revolution of the
+def _equivalent_bodies(strips, per_strip, rho, xc, panels, modes, closed_ends=False):
+    """6x6 added mass (Fourier ``modes``) about x = ``xc`` of the equivalent body of revolution
+    pi r^2 = ``per_strip`` [m^2]: one body when every strip has A > 0 (ends extrapolated,
+    :func:`_equivalent_radius`), else one per run of strips with A > 0 (:func:`_run_added_mass`).
+    ``rho`` [kg/m^3], ``xc`` [m]; Newman (1977) sec. 4.13."""
+    runs = _positive_runs(per_strip)
+    if len(runs) == 1 and runs[0] == (0, strips.n - 1):
+        xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends)
+        return body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels,
+                                             modes=modes, area_linear=True)
+    return sum(_run_added_mass(strips, per_strip, j, k, rho, xc, panels, modes)
+               for j, k in runs)
+
+
+def _run_added_mass(strips, per_strip, j, k, rho, xc, panels, modes=(1,)):
+    r"""6x6 added mass (Fourier ``modes``) about x = ``xc`` of the equivalent body of revolution of the
     strips j..k, :math:`\pi r^2 = A(x)` (``per_strip`` A [m^2], ``rho`` [kg/m^3], [m]).
 
     Where the 2D added mass in a direction vanishes on whole strips (a member with no section
@@ -224,7 +230,7 @@ def _run_added_mass(strips, per_strip, j, k, rho, xc, panels):
         a_lo = a_hi = a[0]
     xs = np.r_[lo, x, hi]
     rs = np.sqrt(np.r_[a_lo, a, a_hi] / np.pi)
-    return body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,),
+    return body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=modes,
                                          area_linear=True)
 
 
