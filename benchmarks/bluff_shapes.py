@@ -19,7 +19,7 @@ subdivided.
 
 Accuracy and timing:
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bluff_shapes.py [--markdown] [--no-corrections]
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bluff_shapes.py [--no-corrections | --per-dof-axes]
 
 prints every shape x every diagonal term and the significant off-diagonals (|BEM| >= 1 % of
 the geometric mean of the two diagonals) against the Richardson value, and the ellipsoids
@@ -262,6 +262,56 @@ def strip_matrix(name, corrections=True):
     return np.asarray(model.added_mass), time.perf_counter() - t0
 
 
+#: cyclic axis maps of load_mesh: body = P mesh
+_PERM = {"x": np.eye(3), "y": np.array([[0., 1, 0], [0, 0, 1], [1, 0, 0]]),
+         "z": np.array([[0., 0, 1], [1, 0, 0], [0, 1, 0]])}
+
+
+def axis_matrix(name, axis):
+    """M_A of the shape sliced along the mesh ``axis``, rotated back to the mesh axes
+    (M_mesh = T^T M_body T, T = diag(P, P)), about the centroid [kg, kg m, kg m^2]."""
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.vehicle import Vehicle
+
+    veh = Vehicle.from_mesh(strip_mesh(name), name=name, axis=axis,
+                            fluid=Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark"))
+    t = np.kron(np.eye(2), _PERM[axis])
+    return t.T @ np.asarray(estimate(veh).added_mass) @ t
+
+
+def per_dof_axes(extent):
+    r"""Candidate (measured, not adopted): the slicing axis of each DOF by slenderness.
+
+    Translation along j: slice along the longer of the two axes across j. Rotation about j:
+    the largest of L_j / max(L_k, L_m) (sections rolling), L_k / L_j and L_m / L_j (sections
+    translating across j, their 2D width L_j). ``extent`` (L_x, L_y, L_z) [m]."""
+    e = np.asarray(extent, float)
+    out = []
+    for j in range(3):
+        k, m = [a for a in range(3) if a != j]
+        out.append(k if e[k] >= e[m] else m)
+    for j in range(3):
+        k, m = [a for a in range(3) if a != j]
+        cand = {j: e[j] / max(e[k], e[m]), k: e[k] / e[j], m: e[m] / e[j]}
+        out.append(max(cand, key=cand.get))
+    return ["xyz"[a] for a in out]
+
+
+def per_dof_matrix(name):
+    """Candidate per-DOF combination of the three slicings (:func:`per_dof_axes`): row/column i
+    of DOF i from its axis' matrix, couplings from the axis of the larger diagonal pair."""
+    mesh = strip_mesh(name)
+    axes = per_dof_axes(np.ptp(mesh.vertices, axis=0))
+    t0 = time.perf_counter()
+    mats = {a: axis_matrix(name, a) for a in set(axes)}
+    out = np.zeros((6, 6))
+    for i in range(6):
+        for j in range(6):
+            out[i, j] = mats[axes[i] if i == j or axes[i] == axes[j] else axes[min(i, j)]][i, j]
+    return 0.5 * (out + out.T), time.perf_counter() - t0
+
+
 def significant_terms(ref):
     """Diagonal terms and the off-diagonals with |A_ij| >= SIGNIFICANT sqrt(A_ii A_jj)."""
     d = np.abs(np.diag(ref))
@@ -290,7 +340,8 @@ def main(argv=None):
     ap.add_argument("--reference", action="store_true", help="recompute the BEM references")
     ap.add_argument("--only", nargs="*", help="shapes (default all)")
     ap.add_argument("--no-corrections", action="store_true")
-    ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--per-dof-axes", action="store_true",
+                    help="candidate: each DOF from the slicing axis of per_dof_axes()")
     args = ap.parse_args(argv)
     names = args.only or list(SHAPES)
     if args.reference:
@@ -306,7 +357,10 @@ def main(argv=None):
         if name in ELLIPSOIDS:
             ref = ref.copy()
             ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
-        a, dt = strip_matrix(name, corrections=not args.no_corrections)
+        if args.per_dof_axes:
+            a, dt = per_dof_matrix(name)
+        else:
+            a, dt = strip_matrix(name, corrections=not args.no_corrections)
         times.append(dt)
         err = errors(a, ref)
         cells = []
