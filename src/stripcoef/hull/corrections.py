@@ -179,7 +179,7 @@ def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     if not np.any(per_strip > 0):                  # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
     m3 = _equivalent_bodies(strips, per_strip, rho, xc, panels, (1,), closed_ends)
-    a = np.clip(per_strip, 0.0, None)
+    a = np.pi * np.sqrt(np.maximum(per_strip, 0.0) / np.pi) ** 2     # as the profile's r
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
     s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
