@@ -283,10 +283,17 @@ def axis_matrix(name, axis):
 def per_dof_axes(extent):
     r"""Candidate (measured, not adopted): the slicing axis of each DOF by slenderness.
 
-    Translation along j: slice along the longer of the two axes across j. Rotation about j:
+    A body whose extents across one axis are equal (a body of revolution, a square section)
+    is sliced along that axis for every DOF (its equivalent bodies of revolution are exact
+    there). Otherwise, translation along j: slice along the longer of the two axes across j.
+    Rotation about j:
     the largest of L_j / max(L_k, L_m) (sections rolling), L_k / L_j and L_m / L_j (sections
     translating across j, their 2D width L_j). ``extent`` (L_x, L_y, L_z) [m]."""
     e = np.asarray(extent, float)
+    for a in range(3):      # sections with equal extents across one axis (round or square):
+        k, m = [b for b in range(3) if b != a]      # the equivalent bodies of revolution about
+        if abs(e[k] - e[m]) <= 0.01 * max(e[k], e[m]):      # it are the body's own: keep it
+            return ["xyz"[a]] * 6
     out = []
     for j in range(3):
         k, m = [a for a in range(3) if a != j]
@@ -340,6 +347,8 @@ def main(argv=None):
     ap.add_argument("--reference", action="store_true", help="recompute the BEM references")
     ap.add_argument("--only", nargs="*", help="shapes (default all)")
     ap.add_argument("--no-corrections", action="store_true")
+    ap.add_argument("--write", action="store_true",
+                    help="also write benchmarks/data/bluff_accuracy_<mode>.md")
     ap.add_argument("--per-dof-axes", action="store_true",
                     help="candidate: each DOF from the slicing axis of per_dof_axes()")
     args = ap.parse_args(argv)
@@ -375,11 +384,28 @@ def main(argv=None):
                 offs.append(f"{TERM_NAMES[i][0]}{TERM_NAMES[j][2:]}: {100 * e:+.1f} %")
                 worst_o = max(worst_o, abs(e))
         lines.append(f"| {name} | " + " | ".join(cells) + f" | {'; '.join(offs) or '-'} | {dt:.3f} |")
-    print("\n".join(lines))
-    print(f"\nworst diagonal {100 * worst_d:.1f} %, worst off-diagonal {100 * worst_o:.1f} % of "
-          f"the diagonal scale, median estimate() {np.median(times):.3f} s "
-          f"(reference: Richardson BEM; ellipsoid diagonals: Lamb exact)")
+    summary = (f"worst diagonal {100 * worst_d:.1f} %, worst off-diagonal {100 * worst_o:.1f} % "
+               f"of the diagonal scale, median wall time {np.median(times):.3f} s "
+               f"(reference: Richardson BEM; ellipsoid diagonals: Lamb exact)")
+    print("\n".join(lines) + "\n\n" + summary)
+    if args.write:
+        mode = "per_dof_axes" if args.per_dof_axes else \
+            ("no_corrections" if args.no_corrections else "default")
+        flag = {"default": "", "per_dof_axes": " --per-dof-axes",
+                "no_corrections": " --no-corrections"}[mode]
+        out = ROOT / "benchmarks" / "data" / f"bluff_accuracy_{mode}.md"
+        out.write_text(f"### {TITLES[mode]}\n\n`OPENBLAS_NUM_THREADS=1 python "
+                       f"benchmarks/bluff_shapes.py{flag} --write` "
+                       f"({datetime.date.today().isoformat()}). Diagonal: relative error; "
+                       f"off-diagonal: error / sqrt(A_ii A_jj) of the reference.\n\n"
+                       + "\n".join(lines) + "\n\n" + summary + "\n")
     return 0
+
+
+TITLES = {"default": "stripcoef as shipped (slicing along x, 3D corrections)",
+          "no_corrections": "pure strip theory (slicing along x)",
+          "per_dof_axes": "candidate, not adopted: each DOF from the slicing axis chosen by "
+                          "slenderness (per_dof_axes)"}
 
 
 if __name__ == "__main__":
