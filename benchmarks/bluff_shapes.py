@@ -280,24 +280,43 @@ def axis_matrix(name, axis):
     return t.T @ np.asarray(estimate(veh).added_mass) @ t
 
 
-def per_dof_axes(extent):
+def round_axis(mesh):
+    """The axis (0, 1, 2) about which the mesh's mid-section is a circle -- equal extents across
+    it and the section's area pi/4 of its bounding square within 1 % -- else None."""
+    e = np.ptp(mesh.vertices, axis=0)
+    c = 0.5 * (mesh.vertices.min(axis=0) + mesh.vertices.max(axis=0))
+    for a in range(3):
+        k, m = [b for b in range(3) if b != a]
+        if abs(e[k] - e[m]) > 0.01 * max(e[k], e[m]):
+            continue
+        sec = mesh.section(plane_origin=c, plane_normal=np.eye(3)[a])
+        if sec is None:
+            continue
+        area = sum(p.area for p in sec.to_2D()[0].polygons_full)
+        if abs(area / (0.25 * np.pi * e[k] * e[m]) - 1.0) < 0.01:
+            return a
+    return None
+
+
+def per_dof_axes(extent, round_about=None):
     r"""Candidate (measured, not adopted): the slicing axis of each DOF by slenderness.
 
-    A body whose extents across one axis are equal (a body of revolution, a square section)
-    is sliced along that axis for every DOF (its equivalent bodies of revolution are exact
-    there). Otherwise, translation along j: slice along the longer of the two axes across j.
-    Rotation about j:
-    the largest of L_j / max(L_k, L_m) (sections rolling), L_k / L_j and L_m / L_j (sections
-    translating across j, their 2D width L_j). ``extent`` (L_x, L_y, L_z) [m]."""
+    A body of revolution (``round_about``, :func:`round_axis`) is sliced along its axis for
+    every DOF (its equivalent bodies of revolution are itself: exact there). Otherwise:
+    translation along j, the largest of L_j / max(L_k, L_m) (axial: the equal-area body along
+    j), L_k / L_m and L_m / L_k (sections moving across j, their 2D width the third extent);
+    rotation about j, the largest of L_j / max(L_k, L_m) (sections rolling), L_k / L_j and
+    L_m / L_j (sections translating across j, their 2D width L_j). Strip theory along an axis
+    is the slender-body limit about it (Newman 1977, sec. 7.4): the larger the ratio, the
+    closer to 2D the flow of the sections. ``extent`` (L_x, L_y, L_z) [m]."""
     e = np.asarray(extent, float)
-    for a in range(3):      # sections with equal extents across one axis (round or square):
-        k, m = [b for b in range(3) if b != a]      # the equivalent bodies of revolution about
-        if abs(e[k] - e[m]) <= 0.01 * max(e[k], e[m]):      # it are the body's own: keep it
-            return ["xyz"[a]] * 6
+    if round_about is not None:     # a body of revolution: its equivalent bodies are its own
+        return ["xyz"[round_about]] * 6
     out = []
     for j in range(3):
         k, m = [a for a in range(3) if a != j]
-        out.append(k if e[k] >= e[m] else m)
+        cand = {j: e[j] / max(e[k], e[m]), k: e[k] / e[m], m: e[m] / e[k]}
+        out.append(max(cand, key=cand.get))
     for j in range(3):
         k, m = [a for a in range(3) if a != j]
         cand = {j: e[j] / max(e[k], e[m]), k: e[k] / e[j], m: e[m] / e[j]}
@@ -309,7 +328,7 @@ def per_dof_matrix(name):
     """Candidate per-DOF combination of the three slicings (:func:`per_dof_axes`): row/column i
     of DOF i from its axis' matrix, couplings from the axis of the larger diagonal pair."""
     mesh = strip_mesh(name)
-    axes = per_dof_axes(np.ptp(mesh.vertices, axis=0))
+    axes = per_dof_axes(np.ptp(mesh.vertices, axis=0), round_axis(mesh))
     t0 = time.perf_counter()
     mats = {a: axis_matrix(name, a) for a in set(axes)}
     out = np.zeros((6, 6))
