@@ -138,3 +138,20 @@ def test_compare_text_says_untrusted():
                               "limit": 20.0}}
     text = format_comparison(data)
     assert "NOT TRUSTED" in text and "%" not in text.split("diff %")[1].split("(values")[0]
+
+
+@pytest.mark.xfail(strict=True, reason="issue 14, not fixed: the member decomposition treats the "
+                   "overlapping parts of a frame differently from their boolean union (sway "
+                   "+32 %, pitch +98 % at 400 strips)")
+def test_frame_union_and_overlapping_parts_agree():
+    import sys
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from make_bluerov2_heavy import bluerov2_heavy_parts
+
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.geometry.vehicle import Vehicle
+    union = Vehicle.from_mesh(ROOT / "geometry" / "bluerov2_heavy.stl")
+    parts = Vehicle.from_mesh(trimesh.util.concatenate(bluerov2_heavy_parts()))
+    a = np.diag(estimate(union, strips=200).added_mass)
+    b = np.diag(estimate(parts, strips=200).added_mass)
+    np.testing.assert_allclose(b, a, rtol=0.05)
