@@ -50,7 +50,11 @@ def section() -> str:
              "\nThe BEM meshes of `open_frame` (50 % of the area), `cyl_x_short` (8 %), "
              "`cyl_z_puck` (4 %) and `bluerov2_heavy` (3 %) have panels of aspect ratio above 20 "
              "(thin tubes and cylinder end fans at <= 5000 faces; `stripcoef.bem.panel_quality`): "
-             "their references are less certain than the convergence column says.\n"]
+             "their references are less certain than the convergence column says. The short "
+             "cylinder along x is a body of revolution, where the 3D corrections are exact to "
+             "their discretisation, yet its pitch and yaw differ by -11 %: either its reference "
+             "(end-cap fans of sliver panels) or the flat-ended equivalent body is wrong; not "
+             "resolved.\n"]
     for mode in ("default", "per_dof_axes", "no_corrections"):
         acc = DATA / f"bluff_accuracy_{mode}.md"
         if acc.exists():
