@@ -47,14 +47,15 @@ def section() -> str:
              "within 0.5 %, tests/test_bluff_shapes.py). Reference convergence (largest change of "
              "a diagonal term from the finer run to the extrapolation):\n",
              markdown_table(["shape", "faces", "finer run to Richardson"], _convergence_rows()),
-             "\nThe BEM meshes of `open_frame` (50 % of the area), `cyl_x_short` (8 %), "
-             "`cyl_z_puck` (4 %) and `bluerov2_heavy` (3 %) have panels of aspect ratio above 20 "
-             "(thin tubes and cylinder end fans at <= 5000 faces; `stripcoef.bem.panel_quality`): "
-             "their references are less certain than the convergence column says. The short "
-             "cylinder along x is a body of revolution, where the 3D corrections are exact to "
-             "their discretisation, yet its pitch and yaw differ by -11 %: either its reference "
-             "(end-cap fans of sliver panels) or the flat-ended equivalent body is wrong; not "
-             "resolved.\n"]
+             "\nThe BEM meshes of `open_frame` (50 % of the area) and `bluerov2_heavy` (3 %) "
+             "have panels of aspect ratio above 20 (thin tubes at <= 5000 faces; "
+             "`stripcoef.bem.panel_quality`): their references are less certain than the "
+             "convergence column says. The cylinders were first meshed with trimesh's end-cap "
+             "fans (sliver panels, aspect up to 36): that reference put the short cylinder's "
+             "pitch 12 % above the axisymmetric solution of the same body (0.04343 kg m^2, "
+             "converged to 0.05 % at 640 meridian panels); with rings on the ends (aspect <= 12) "
+             "the Richardson value is 0.04459, still converging slowly at the sharp edges "
+             "(0.04630, 0.04539 at 2100, 4464 faces).\n"]
     for mode in ("default", "per_dof_axes", "no_corrections"):
         acc = DATA / f"bluff_accuracy_{mode}.md"
         if acc.exists():
