@@ -83,7 +83,11 @@ def run(args) -> int:
     kw = {} if args.max_faces is None else {"max_faces": args.max_faces}
     a_bem, t_bem = bem.timed_bem_added_mass(body, rho=model.density,
                                             reference_point=model.reference_point, **kw)
+    quality = bem.panel_quality(body.mesh)
     rows = compare_rows(model.added_mass, a_bem)
+    if not quality["trusted"]:          # a bogus BEM gives a bogus difference: say so instead
+        for r in rows:
+            r["diff_percent"] = None
     if args.plot:
         from stripcoef.figures import save_figure
         save_figure(bem.comparison_figure(model.added_mass, a_bem, name=model.name,
@@ -98,6 +102,7 @@ def run(args) -> int:
         "strip_theory": [[float(v) for v in r] for r in model.added_mass],
         "bem": [[float(v) for v in r] for r in a_bem],
         "terms": rows,
+        "panel_quality": quality,
     }
     text = json_text(data) if args.json else format_comparison(data)
     if args.output:
@@ -118,10 +123,17 @@ def format_comparison(data) -> str:
            f"  mesh loading and repair: {s['load']:.3f} s"]
     for r in data["repairs"]:
         out.append(f"  repaired: {r}")
+    q = data["panel_quality"]
+    if not q["trusted"]:
+        out.append(f"  BEM NOT TRUSTED: {100 * q['area_fraction']:.0f} % of the surface is in panels "
+                   f"with aspect ratio > {q['limit']:.0f} (up to {q['max_aspect']:.0f}); no % "
+                   f"differences are given. Remesh with panels of similar length and width "
+                   f"(e.g. trimesh.remesh.subdivide_to_size, or a finer CAD export).")
     out.append("")
     out.append(f"  {'term':10s} {'strip':>12s} {'BEM':>12s} {'diff %':>8s}")
     for r in data["terms"]:
-        pct = "   (0)" if r["diff_percent"] is None else f"{r['diff_percent']:+8.2f}"
+        pct = ("     n/a" if not q["trusted"] else "   (0)") if r["diff_percent"] is None \
+            else f"{r['diff_percent']:+8.2f}"
         # SNAME derivative = -M_A[i, j]
         out.append(f"  {r['term']:10s} {-r['strip']:12.5g} {-r['bem']:12.5g} {pct}")
     out.append("  (values are SNAME derivatives, -M_A[i, j]; units kg, kg m, kg m^2)")

@@ -187,9 +187,7 @@ def _axial_added_mass(strips, rho, panels):
             others.append(p)
     m11 = 0.0
     if np.any(area > 0):
-        xs, rs = _equivalent_radius(strips, area)
-        m11 += body_of_revolution_added_mass(xs, rs, rho=rho, panels=panels, modes=(0,),
-                                             area_linear=True)[0, 0]
+        m11 += _equivalent_bodies(strips, area, rho, 0.0, panels, (0,))[0, 0]
     for p in others:
         cov = _coverage(p)
         vol = float(np.sum(p.area * cov * strips.dx[p.index]))
@@ -223,18 +221,66 @@ def _lateral(strips, per_strip, rho, xc, panels, closed_ends=CLOSED_ENDS):
     ``per_strip`` A [m^2], ``rho`` [kg/m^3], ``xc`` [m]; returns f_t, f_r [-],
     Delta_26 [kg m] and the 6x6 BEM matrix. See module docstring and :func:`hull_corrections`.
     """
-    if not np.any(np.asarray(per_strip) > 0):      # nothing to correct in this direction
+    per_strip = np.asarray(per_strip, dtype=float)
+    if not np.any(per_strip > 0):                  # nothing to correct in this direction
         return 1.0, 1.0, 0.0, np.zeros((6, 6))
-    xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends, steps=True)
-    m3 = body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=(1,),
-                                       area_linear=True)
+    m3 = _equivalent_bodies(strips, per_strip, rho, xc, panels, (1,), closed_ends, steps=True)
     # the strip sums of the same body (its stations; a fin's step is already in the strip means)
-    a = np.pi * np.sqrt(np.maximum(np.asarray(per_strip, dtype=float), 0.0) / np.pi) ** 2
+    a = np.pi * np.sqrt(np.maximum(per_strip, 0.0) / np.pi) ** 2
     s22 = rho * np.sum(a * strips.dx)
     s26 = rho * np.sum(a * (strips.x - xc) * strips.dx)
     s66 = rho * np.sum(a * (strips.x - xc) ** 2 * strips.dx)
     ft, fr = float(m3[1, 1] / s22), float(m3[5, 5] / s66)
     return ft, fr, float(m3[1, 5] - np.sqrt(ft * fr) * s26), m3
+
+
+def _positive_runs(per_strip):
+    """Maximal runs (first, last) of consecutive strips with per_strip > 0."""
+    on = np.r_[False, np.asarray(per_strip) > 0, False].astype(int)
+    edges = np.diff(on)
+    return list(zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0] - 1))
+
+
+def _equivalent_bodies(strips, per_strip, rho, xc, panels, modes, closed_ends=False,
+                       steps=False):
+    """6x6 added mass (Fourier ``modes``) about x = ``xc`` of the equivalent body of revolution
+    pi r^2 = ``per_strip`` [m^2]: one body when every strip has A > 0 (ends extrapolated, fin
+    edges as steps with ``steps``: :func:`_equivalent_radius`), else one per run of strips with
+    A > 0 (:func:`_run_added_mass`).
+    ``rho`` [kg/m^3], ``xc`` [m]; Newman (1977) sec. 4.13."""
+    runs = _positive_runs(per_strip)
+    if len(runs) == 1 and runs[0] == (0, strips.n - 1):
+        xs, rs = _equivalent_radius(strips, per_strip, closed_ends=closed_ends, steps=steps)
+        return body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels,
+                                             modes=modes, area_linear=True)
+    return sum(_run_added_mass(strips, per_strip, j, k, rho, xc, panels, modes)
+               for j, k in runs)
+
+
+def _run_added_mass(strips, per_strip, j, k, rho, xc, panels, modes=(1,)):
+    r"""6x6 added mass (Fourier ``modes``) about x = ``xc`` of the equivalent body of revolution of the
+    strips j..k, :math:`\pi r^2 = A(x)` (``per_strip`` A [m^2], ``rho`` [kg/m^3], [m]).
+
+    Where the 2D added mass in a direction vanishes on whole strips (a member with no section
+    there, a plate edge-on), the equivalent body touches the axis along a length: it is then
+    several bodies of revolution, one per run of strips with A > 0, ends at the run's strip
+    edges (area extrapolated linearly from the run's last two strips, clipped at 0; a single
+    strip keeps its area, a flat disc).  [assumption] the runs' 3D interaction is neglected
+    (they are separated by strips of no added mass in that direction); without this split the
+    meridian had panels lying on the axis, whose ring kernels are singular (the all-NaN
+    matrix of issue 14).  Newman (1977) sec. 4.13 (bodies of revolution).
+    """
+    x, dx, a = strips.x[j:k + 1], strips.dx[j:k + 1], per_strip[j:k + 1]
+    lo, hi = x[0] - 0.5 * dx[0], x[-1] + 0.5 * dx[-1]
+    if a.size >= 2:
+        a_lo = max(a[0] + (a[0] - a[1]) / (x[1] - x[0]) * (x[0] - lo), 0.0)
+        a_hi = max(a[-1] + (a[-1] - a[-2]) / (x[-1] - x[-2]) * (hi - x[-1]), 0.0)
+    else:
+        a_lo = a_hi = a[0]
+    xs = np.r_[lo, x, hi]
+    rs = np.sqrt(np.r_[a_lo, a, a_hi] / np.pi)
+    return body_of_revolution_added_mass(xs, rs, rho=rho, x_ref=xc, panels=panels, modes=modes,
+                                         area_linear=True)
 
 
 def roll_symmetry_order(contours, max_order: int = 6) -> int:

@@ -159,3 +159,62 @@ def power_law_split(exponent):
     a_hat = 240.0 * (1.0 / (5.0 * (n + 2.0)) - 1.0 / (4.0 * (n + 3.0)))
     b_hat = 240.0 * (1.0 / (3.0 * (n + 3.0)) - 1.0 / (4.0 * (n + 2.0)))
     return a_hat, b_hat
+
+
+def ellipsoid_added_mass(a, b, c, *, rho):
+    r"""Exact diagonal added mass of a triaxial ellipsoid (semi-axes a, b, c along x, y, z).
+
+    With :math:`\Delta = \sqrt{(a^2+\lambda)(b^2+\lambda)(c^2+\lambda)}`,
+
+    .. math::
+        \alpha_0 = abc\int_0^\infty\frac{d\lambda}{(a^2+\lambda)\Delta}
+                 = \tfrac23\,abc\,R_D(b^2, c^2, a^2)
+
+    (Carlson's symmetric integral :math:`R_D`; :math:`\beta_0, \gamma_0` likewise with b, c),
+    :math:`m = \rho V = \tfrac43\pi\rho abc`:
+
+    .. math::
+        m_{11} = \frac{\alpha_0}{2-\alpha_0} m,\qquad
+        m_{44} = \frac{m}{5}\,\frac{(b^2-c^2)^2(\gamma_0-\beta_0)}
+                 {2(b^2-c^2) + (b^2+c^2)(\beta_0-\gamma_0)}
+
+    and cyclically (b, c, beta_0, gamma_0) -> (c, a, gamma_0, alpha_0) for m_22, m_55, ->
+    (a, b, alpha_0, beta_0) for m_33, m_66.  A rotation about an axis of symmetry (two equal
+    semi-axes across it) moves no water: 0.  Off-diagonal terms are zero about the centre.
+
+    Parameters
+    ----------
+    a, b, c : float
+        Semi-axes along body x, y, z [m]
+    rho : float
+        Fluid density [kg/m^3]
+
+    Returns
+    -------
+    ndarray (6,)
+        [kg, kg, kg, kg m^2, kg m^2, kg m^2]
+
+    References
+    ----------
+    Lamb (1932), Hydrodynamics, sec. 114 and 373 (eqs. 7-8 of sec. 373); Korotkin (2009),
+    *Added Masses of Ship Structures*, sec. 2.1.3; Carlson (1995), Numer. Algorithms 10, for
+    :math:`R_D` (scipy.special.elliprd).
+    """
+    from scipy.special import elliprd
+
+    a, b, c = float(a), float(b), float(c)
+    if min(a, b, c) <= 0:
+        raise ValueError("ellipsoid semi-axes must be positive")
+    m = 4.0 / 3.0 * np.pi * rho * a * b * c
+    s = a * b * c * 2.0 / 3.0
+    al, be, ga = s * elliprd(b * b, c * c, a * a), s * elliprd(c * c, a * a, b * b), \
+        s * elliprd(a * a, b * b, c * c)
+
+    def rot(p, q, g_p, g_q):      # rotation about the third axis; p, q the two others
+        d2 = p * p - q * q
+        if abs(d2) <= 1e-12 * (p * p + q * q):
+            return 0.0
+        return m / 5.0 * d2 ** 2 * (g_q - g_p) / (2.0 * d2 + (p * p + q * q) * (g_p - g_q))
+
+    return np.array([al / (2 - al) * m, be / (2 - be) * m, ga / (2 - ga) * m,
+                     rot(b, c, be, ga), rot(c, a, ga, al), rot(a, b, al, be)])

@@ -1,0 +1,456 @@
+"""Bluff-shape benchmark: strip theory + 3D corrections against converged BEM references.
+
+Shapes (body axes FRD, metres, centred on their volume centroid): boxes from 1:4:1 to 4:1:1 in
+all orientations and a cube, short cylinders along x, y and z, a sphere, an oblate and two
+triaxial ellipsoids, an open frame of tubes with thruster pods, a VideoRay-like body and the
+BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl.
+
+References (stored, never recomputed by the tests):
+
+    python benchmarks/bluff_shapes.py --reference      # about 2 min quiet, 1.3 GB peak
+
+runs Capytaine (direct method, no free surface, rho = 1000) on each shape at two resolutions
+(about 2300 and 4600 faces: at most 5000 faces per solve, one solve at a time) and writes
+benchmarks/data/bem_bluff.csv: both resolutions, their face counts and the Richardson
+extrapolation A = (N2 A2 - N1 A1) / (N2 - N1) (the direct method converges at second order in
+the panel size h ~ N^-1/2, i.e. as 1/N). Smooth shapes (sphere, ellipsoids, cylinders) are
+re-tessellated at each resolution; faceted shapes (boxes, frames) keep their geometry and are
+subdivided.
+
+Accuracy and timing:
+
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bluff_shapes.py [--no-corrections | --per-dof-axes]
+
+prints every shape x every diagonal term and the significant off-diagonals (|BEM| >= 1 % of
+the geometric mean of the two diagonals) against the Richardson value, and the ellipsoids
+against Lamb's exact values (:func:`stripcoef.hull.lamb.ellipsoid_added_mass`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import datetime
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "benchmarks" / "data" / "bem_bluff.csv"
+RHO = 1000.0
+#: target faces of the two BEM resolutions (each solve <= 5000 faces, ~1.4 GB)
+LEVELS = (2300, 4600)
+#: faces of the strip-theory input of smooth shapes
+STRIP_FACES = 20000
+#: an off-diagonal term is significant when |BEM| >= this fraction of sqrt(A_ii A_jj)
+SIGNIFICANT = 0.01
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+TERM_NAMES = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
+
+
+def _T(xyz):
+    return trimesh.transformations.translation_matrix(xyz)
+
+
+def _box(size, center=(0, 0, 0)):
+    return trimesh.creation.box(size, transform=_T(center))
+
+
+def _cyl(d, length, center, axis, sections):
+    c = trimesh.creation.cylinder(radius=0.5 * d, height=length, sections=sections)
+    c.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], np.asarray(axis, float)))
+    c.apply_translation(center)
+    return c
+
+
+def _round_cylinder(d, length, axis, faces):
+    """Solid circular cylinder (diameter d, length [m]) along ``axis`` ("x", "y" or "z"), about
+    ``faces`` triangles of even size: revolved (stripcoef.geometry.mesh.revolved_mesh) with
+    rings on the flat ends, not trimesh's fans of sliver triangles (aspect ratio > 20 at the
+    centre, which biased the BEM of the end caps: +12 % on the pitch of the short cylinder)."""
+    r = 0.5 * d
+    for k in range(16, 400, 2):
+        h = 2 * np.pi * r / k
+        nr, nl = max(2, int(np.ceil(r / h))), max(2, int(np.ceil(length / h)))
+        if 2 * k * (2 * nr + nl) > faces:
+            break
+        best = (k, nr, nl)
+    k, nr, nl = best
+    rr = np.linspace(0.0, r, nr + 1)
+    zs = np.r_[np.full(nr, -0.5 * length), np.linspace(-0.5 * length, 0.5 * length, nl + 1),
+               np.full(nr, 0.5 * length)]
+    rs = np.r_[rr[:-1], np.full(nl + 1, r), rr[::-1][1:]]
+    m = trimesh.creation.revolve(np.column_stack([rs, zs]), sections=k)    # about z
+    m = trimesh.Trimesh(m.vertices, m.faces, process=True)
+    if m.volume < 0:
+        m.invert()
+    m.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], np.eye(3)["xyz".index(axis)]))
+    return m
+
+
+def _ellipsoid(a, b, c, faces):
+    """UV-sphere scaled to semi-axes (a, b, c) along (x, y, z), about ``faces`` triangles."""
+    n = max(8, int(round(np.sqrt(faces / 8.0))))
+    s = trimesh.creation.uv_sphere(radius=1.0, count=[n, 2 * n])
+    s.apply_scale([a, b, c])
+    return s
+
+
+def _union(parts):
+    return trimesh.boolean.union(parts, engine="manifold")
+
+
+def open_frame():
+    """Open frame 0.50 x 0.40 x 0.30 m: four longitudinal tubes (D 0.04 m) at the corners,
+    four cross tubes, four vertical posts, two thruster pods (D 0.08, L 0.10 m, along x) aft
+    and one vertical pod in the middle of the top."""
+    s = 16
+    parts = []
+    for y in (-0.18, 0.18):
+        for z in (-0.13, 0.13):
+            parts.append(_cyl(0.04, 0.50, [0, y, z], [1, 0, 0], s))
+    for x in (-0.23, 0.23):
+        for z in (-0.13, 0.13):
+            parts.append(_cyl(0.04, 0.40, [x, 0, z], [0, 1, 0], s))
+        for y in (-0.18, 0.18):
+            parts.append(_cyl(0.04, 0.30, [x, y, 0], [0, 0, 1], s))
+    for y in (-0.18, 0.18):
+        parts.append(_cyl(0.08, 0.10, [-0.18, y, 0.05], [1, 0, 0], s))
+        parts.append(_box([0.04, 0.02, 0.10], [-0.18, y, 0.09]))
+    parts.append(_cyl(0.08, 0.10, [0.0, 0.0, -0.13], [0, 0, 1], s))
+    parts.append(_box([0.02, 0.36, 0.02], [0.0, 0.0, -0.13]))
+    return _union(parts)
+
+
+def videoray_like():
+    """VideoRay-like micro ROV, 0.30 x 0.22 x 0.21 m overall, asymmetric fore-aft and
+    top-bottom: a rounded main hull (capsule D 0.14 m along x), two side thruster pods aft,
+    a float block on top shifted forward and a lower skid (bar) aft."""
+    s = 20
+    hull = trimesh.creation.capsule(height=0.16, radius=0.07, count=[s, s])
+    hull.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
+    parts = [hull]
+    for y in (-0.08, 0.08):
+        parts.append(_cyl(0.06, 0.09, [-0.09, y, 0.0], [1, 0, 0], s))
+    parts.append(_box([0.16, 0.14, 0.05], [0.03, 0.0, -0.08]))        # float, forward, on top
+    parts.append(_box([0.12, 0.03, 0.03], [-0.06, 0.0, 0.09]))        # skid below, aft
+    return _union(parts)
+
+
+def _bluerov2():
+    return trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
+
+
+#: name -> (builder(faces) -> trimesh, smooth, what it is)
+SHAPES = {
+    "box_bluerov": (lambda n: _box([0.46, 0.58, 0.25]), False, "box 0.46 x 0.58 x 0.25 m"),
+    "box_4_1_1": (lambda n: _box([0.6, 0.15, 0.15]), False, "box 4:1:1 (long in x)"),
+    "box_1_4_1": (lambda n: _box([0.15, 0.6, 0.15]), False, "box 1:4:1 (wide)"),
+    "box_1_1_4": (lambda n: _box([0.15, 0.15, 0.6]), False, "box 1:1:4 (tall)"),
+    "box_2_2_1": (lambda n: _box([0.4, 0.4, 0.2]), False, "box 2:2:1 (flat)"),
+    "box_1_2_2": (lambda n: _box([0.2, 0.4, 0.4]), False, "box 1:2:2 (short)"),
+    "box_2_1_1": (lambda n: _box([0.4, 0.2, 0.2]), False, "box 2:1:1"),
+    "cube": (lambda n: _box([0.3, 0.3, 0.3]), False, "cube 0.3 m"),
+    "cyl_x_short": (lambda n: _round_cylinder(0.3, 0.25, "x", n), True,
+                    "cylinder along x, L 0.25 D 0.30 m"),
+    "cyl_y": (lambda n: _round_cylinder(0.2, 0.5, "y", n), True,
+              "cylinder along y, L 0.50 D 0.20 m"),
+    "cyl_z_puck": (lambda n: _round_cylinder(0.4, 0.12, "z", n), True,
+                   "cylinder along z (puck), D 0.40 H 0.12 m"),
+    "sphere": (lambda n: _ellipsoid(0.15, 0.15, 0.15, n), True, "sphere R 0.15 m"),
+    "oblate": (lambda n: _ellipsoid(0.2, 0.2, 0.08, n), True, "oblate spheroid 0.2, 0.2, 0.08 m"),
+    "triaxial_wide": (lambda n: _ellipsoid(0.15, 0.3, 0.08, n), True,
+                      "triaxial ellipsoid 0.15, 0.30, 0.08 m (wide)"),
+    "triaxial_long": (lambda n: _ellipsoid(0.3, 0.15, 0.08, n), True,
+                      "triaxial ellipsoid 0.30, 0.15, 0.08 m (long)"),
+    "open_frame": (lambda n: open_frame(), False, "open frame: 12 tubes, 3 thruster pods"),
+    "videoray_like": (lambda n: videoray_like(), False, "VideoRay-like body (asymmetric)"),
+    "bluerov2_heavy": (lambda n: _bluerov2(), False, "geometry/bluerov2_heavy.stl"),
+}
+
+#: semi-axes of the shapes that Lamb solves exactly
+ELLIPSOIDS = {"sphere": (0.15, 0.15, 0.15), "oblate": (0.2, 0.2, 0.08),
+              "triaxial_wide": (0.15, 0.3, 0.08), "triaxial_long": (0.3, 0.15, 0.08)}
+
+
+def refine(mesh, faces):
+    """Subdivide edges longer than a bound chosen (bisection) for about ``faces`` triangles,
+    not more."""
+    base = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
+    if len(base.faces) >= faces:
+        return base
+    lo, hi = 1e-4, float(np.max(base.edges_unique_length))
+    best = base
+    for _ in range(18):
+        mid = np.sqrt(lo * hi)
+        v, f = trimesh.remesh.subdivide_to_size(base.vertices, base.faces, max_edge=mid)
+        if len(f) > faces:
+            lo = mid
+        else:
+            hi, best = mid, trimesh.Trimesh(v, f, process=True)
+    return best
+
+
+def shape_mesh(name, faces):
+    """The shape at about ``faces`` triangles, centred on its volume centroid."""
+    build, smooth, _ = SHAPES[name]
+    m = build(faces) if smooth else build(None)
+    m = refine(m, faces)
+    m.apply_translation(-m.center_mass)
+    return m
+
+
+def strip_mesh(name):
+    """The strip-theory input: the shape's own facets, or a fine tessellation of a smooth one."""
+    build, smooth, _ = SHAPES[name]
+    m = build(STRIP_FACES) if smooth else build(None)
+    m = trimesh.Trimesh(m.vertices, m.faces, process=True)
+    m.apply_translation(-m.center_mass)
+    return m
+
+
+def make_references(names):
+    import capytaine
+    from stripcoef.bem import bem_added_mass
+
+    rows = []
+    for name in names:
+        mats, counts = [], []
+        for level in LEVELS:
+            m = shape_mesh(name, level)
+            t0 = time.perf_counter()
+            a = bem_added_mass(m, rho=RHO, reference_point=(0, 0, 0), max_faces=5000)
+            dt = time.perf_counter() - t0
+            mats.append(a)
+            counts.append(len(m.faces))
+            print(f"{name:16s} {len(m.faces):5d} faces {dt:6.1f} s  diag "
+                  f"{np.array2string(np.diag(a), precision=4)}", flush=True)
+        n1, n2 = counts
+        rich = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
+        for i in range(6):
+            for j in range(i, 6):
+                rows.append([name, i, j, f"{mats[0][i, j]:.8g}", f"{mats[1][i, j]:.8g}",
+                             n1, n2, f"{rich[i, j]:.8g}"])
+    header = [
+        "# BEM added mass of the bluff benchmark shapes (benchmarks/bluff_shapes.py), about the",
+        "# volume centroid, body axes FRD, rho = 1000 kg/m^3, units kg, kg m, kg m^2.",
+        f"# Source: Capytaine {capytaine.__version__}, method direct, free_surface = inf,",
+        "# two resolutions (faces_1, faces_2), Richardson extrapolation assuming error ~ 1/N:",
+        "# richardson = (faces_2 a_2 - faces_1 a_1) / (faces_2 - faces_1).",
+        f"# Generated {datetime.date.today().isoformat()} by python benchmarks/bluff_shapes.py --reference",
+    ]
+    old = read_references() if DATA.exists() else {}
+    keep = [r for r in _raw_rows() if r[0] not in names] if DATA.exists() else []
+    DATA.parent.mkdir(parents=True, exist_ok=True)
+    with open(DATA, "w", newline="") as fh:
+        fh.write("\n".join(header) + "\n")
+        w = csv.writer(fh)
+        w.writerow(["shape", "i", "j", "a_1", "a_2", "faces_1", "faces_2", "richardson"])
+        w.writerows(keep + rows)
+    del old
+
+
+def _raw_rows():
+    with open(DATA) as fh:
+        lines = [ln for ln in fh if not ln.startswith("#")]
+    return list(csv.reader(lines))[1:]
+
+
+def read_references(column="richardson"):
+    """{shape: 6x6 array} of the stored BEM references (``column``: richardson, a_1 or a_2)."""
+    out = {}
+    with open(DATA) as fh:
+        lines = [ln for ln in fh if not ln.startswith("#")]
+    for r in csv.DictReader(lines):
+        m = out.setdefault(r["shape"], np.zeros((6, 6)))
+        i, j = int(r["i"]), int(r["j"])
+        m[i, j] = m[j, i] = float(r[column])
+    return out
+
+
+def strip_matrix(name, corrections=True):
+    """Strip-theory M_A of the shape about its centroid, and the wall time of estimate() [s]."""
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.vehicle import Vehicle
+
+    m = strip_mesh(name)
+    veh = Vehicle.from_mesh(m, name=name, fluid=Fluid(density=RHO, kinematic_viscosity=1e-6,
+                                                       source="benchmark"))
+    t0 = time.perf_counter()
+    model = estimate(veh, corrections=corrections)
+    return np.asarray(model.added_mass), time.perf_counter() - t0
+
+
+#: cyclic axis maps of load_mesh: body = P mesh
+_PERM = {"x": np.eye(3), "y": np.array([[0., 1, 0], [0, 0, 1], [1, 0, 0]]),
+         "z": np.array([[0., 0, 1], [1, 0, 0], [0, 1, 0]])}
+
+
+def axis_matrix(name, axis):
+    """M_A of the shape sliced along the mesh ``axis``, rotated back to the mesh axes
+    (M_mesh = T^T M_body T, T = diag(P, P)), about the centroid [kg, kg m, kg m^2]."""
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.vehicle import Vehicle
+
+    veh = Vehicle.from_mesh(strip_mesh(name), name=name, axis=axis,
+                            fluid=Fluid(density=RHO, kinematic_viscosity=1e-6, source="benchmark"))
+    t = np.kron(np.eye(2), _PERM[axis])
+    return t.T @ np.asarray(estimate(veh).added_mass) @ t
+
+
+def round_axis(mesh):
+    """The axis (0, 1, 2) about which the mesh's mid-section is a circle -- equal extents across
+    it and the section's area pi/4 of its bounding square within 1 % -- else None."""
+    e = np.ptp(mesh.vertices, axis=0)
+    c = 0.5 * (mesh.vertices.min(axis=0) + mesh.vertices.max(axis=0))
+    for a in range(3):
+        k, m = [b for b in range(3) if b != a]
+        if abs(e[k] - e[m]) > 0.01 * max(e[k], e[m]):
+            continue
+        sec = mesh.section(plane_origin=c, plane_normal=np.eye(3)[a])
+        if sec is None:
+            continue
+        area = sum(p.area for p in sec.to_2D()[0].polygons_full)
+        if abs(area / (0.25 * np.pi * e[k] * e[m]) - 1.0) < 0.01:
+            return a
+    return None
+
+
+def per_dof_axes(extent, round_about=None):
+    r"""Candidate (measured, not adopted): the slicing axis of each DOF by slenderness.
+
+    A body of revolution (``round_about``, :func:`round_axis`) is sliced along its axis for
+    every DOF (its equivalent bodies of revolution are itself: exact there). Otherwise:
+    translation along j, the largest of L_j / max(L_k, L_m) (axial: the equal-area body along
+    j), L_k / L_m and L_m / L_k (sections moving across j, their 2D width the third extent);
+    rotation about j, the largest of L_j / max(L_k, L_m) (sections rolling), L_k / L_j and
+    L_m / L_j (sections translating across j, their 2D width L_j). Strip theory along an axis
+    is the slender-body limit about it (Newman 1977, sec. 7.4): the larger the ratio, the
+    closer to 2D the flow of the sections. ``extent`` (L_x, L_y, L_z) [m]."""
+    e = np.asarray(extent, float)
+    if round_about is not None:     # a body of revolution: its equivalent bodies are its own
+        return ["xyz"[round_about]] * 6
+    out = []
+    for j in range(3):
+        k, m = [a for a in range(3) if a != j]
+        cand = {j: e[j] / max(e[k], e[m]), k: e[k] / e[m], m: e[m] / e[k]}
+        out.append(max(cand, key=cand.get))
+    for j in range(3):
+        k, m = [a for a in range(3) if a != j]
+        cand = {j: e[j] / max(e[k], e[m]), k: e[k] / e[j], m: e[m] / e[j]}
+        out.append(max(cand, key=cand.get))
+    return ["xyz"[a] for a in out]
+
+
+def per_dof_matrix(name):
+    """Candidate per-DOF combination of the three slicings (:func:`per_dof_axes`): row/column i
+    of DOF i from its axis' matrix, couplings from the axis of the larger diagonal pair."""
+    mesh = strip_mesh(name)
+    axes = per_dof_axes(np.ptp(mesh.vertices, axis=0), round_axis(mesh))
+    t0 = time.perf_counter()
+    mats = {a: axis_matrix(name, a) for a in set(axes)}
+    out = np.zeros((6, 6))
+    for i in range(6):
+        for j in range(6):
+            out[i, j] = mats[axes[i] if i == j or axes[i] == axes[j] else axes[min(i, j)]][i, j]
+    return 0.5 * (out + out.T), time.perf_counter() - t0
+
+
+def significant_terms(ref):
+    """Diagonal terms and the off-diagonals with |A_ij| >= SIGNIFICANT sqrt(A_ii A_jj)."""
+    d = np.abs(np.diag(ref))
+    out = [(i, i) for i in range(6) if d[i] > 1e-6 * d.max()]
+    for i in range(6):
+        for j in range(i + 1, 6):
+            if abs(ref[i, j]) >= SIGNIFICANT * np.sqrt(d[i] * d[j]) and d[i] * d[j] > 0:
+                out.append((i, j))
+    return out
+
+
+def errors(strip, ref):
+    """{(i, j): error} -- diagonal: relative [-]; off-diagonal: (strip - ref) / sqrt(A_ii A_jj)."""
+    out = {}
+    d = np.abs(np.diag(ref))
+    for i, j in significant_terms(ref):
+        if i == j:
+            out[(i, j)] = (strip[i, i] - ref[i, i]) / ref[i, i]
+        else:
+            out[(i, j)] = (strip[i, j] - ref[i, j]) / np.sqrt(d[i] * d[j])
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--reference", action="store_true", help="recompute the BEM references")
+    ap.add_argument("--only", nargs="*", help="shapes (default all)")
+    ap.add_argument("--no-corrections", action="store_true")
+    ap.add_argument("--write", action="store_true",
+                    help="also write benchmarks/data/bluff_accuracy_<mode>.md")
+    ap.add_argument("--per-dof-axes", action="store_true",
+                    help="candidate: each DOF from the slicing axis of per_dof_axes()")
+    args = ap.parse_args(argv)
+    names = args.only or list(SHAPES)
+    if args.reference:
+        make_references(names)
+        return 0
+    from stripcoef.hull.lamb import ellipsoid_added_mass
+    refs = read_references()
+    worst_d, worst_o, times = 0.0, 0.0, []
+    lines = ["| shape | " + " | ".join(TERM_NAMES) + " | off-diagonals (of diag. scale) | time [s] |",
+             "|---" * 9 + "|"]
+    for name in names:
+        ref = refs[name]
+        if name in ELLIPSOIDS:
+            ref = ref.copy()
+            ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
+        if args.per_dof_axes:
+            a, dt = per_dof_matrix(name)
+        else:
+            a, dt = strip_matrix(name, corrections=not args.no_corrections)
+        times.append(dt)
+        err = errors(a, ref)
+        cells = []
+        for i in range(6):
+            e = err.get((i, i))
+            cells.append("0 (0)" if e is None else f"{100 * e:+.1f} %")
+            if e is not None:
+                worst_d = max(worst_d, abs(e))
+        offs = []
+        for (i, j), e in err.items():
+            if i != j:
+                offs.append(f"{TERM_NAMES[i][0]}{TERM_NAMES[j][2:]}: {100 * e:+.1f} %")
+                worst_o = max(worst_o, abs(e))
+        lines.append(f"| {name} | " + " | ".join(cells) + f" | {'; '.join(offs) or '-'} | {dt:.3f} |")
+    summary = (f"worst diagonal {100 * worst_d:.1f} %, worst off-diagonal {100 * worst_o:.1f} % "
+               f"of the diagonal scale, median wall time {np.median(times):.3f} s "
+               f"(reference: Richardson BEM; ellipsoid diagonals: Lamb exact)")
+    print("\n".join(lines) + "\n\n" + summary)
+    if args.write:
+        mode = "per_dof_axes" if args.per_dof_axes else \
+            ("no_corrections" if args.no_corrections else "default")
+        flag = {"default": "", "per_dof_axes": " --per-dof-axes",
+                "no_corrections": " --no-corrections"}[mode]
+        out = ROOT / "benchmarks" / "data" / f"bluff_accuracy_{mode}.md"
+        out.write_text(f"### {TITLES[mode]}\n\n`OPENBLAS_NUM_THREADS=1 python "
+                       f"benchmarks/bluff_shapes.py{flag} --write` "
+                       f"({datetime.date.today().isoformat()}). Diagonal: relative error; "
+                       f"off-diagonal: error / sqrt(A_ii A_jj) of the reference.\n\n"
+                       + "\n".join(lines) + "\n\n" + summary + "\n")
+    return 0
+
+
+TITLES = {"default": "stripcoef as shipped (slicing along x, 3D corrections)",
+          "no_corrections": "pure strip theory (slicing along x)",
+          "per_dof_axes": "candidate, not adopted: each DOF from the slicing axis chosen by "
+                          "slenderness (per_dof_axes)"}
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

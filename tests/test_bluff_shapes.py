@@ -1,0 +1,170 @@
+"""Bluff shapes (issue 14): Lamb's exact triaxial ellipsoid, the stored BEM references, the
+BlueROV2-Heavy-like vehicle, no NaN matrices, and the BEM panel-quality check."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+
+from stripcoef.errors import InputError
+from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "benchmarks" / "data" / "bem_bluff.csv"
+RHO = 1000.0
+
+
+def _references(column="richardson"):
+    lines = [ln for ln in open(DATA) if not ln.startswith("#")]
+    out = {}
+    for r in csv.DictReader(lines):
+        m = out.setdefault(r["shape"], np.zeros((6, 6)))
+        m[int(r["i"]), int(r["j"])] = m[int(r["j"]), int(r["i"])] = float(r[column])
+    return out
+
+
+# --- exact: Lamb's triaxial ellipsoid ------------------------------------------------------
+
+@pytest.mark.parametrize("a,b", [(0.75, 0.1), (0.3, 0.15), (1.0, 0.999)])
+def test_triaxial_reduces_to_spheroid(a, b):
+    exact = spheroid_added_mass(a, b, rho=RHO)
+    got = ellipsoid_added_mass(a, b, b, rho=RHO)
+    np.testing.assert_allclose(got, exact, rtol=1e-10, atol=1e-12 * exact.max())
+
+
+def test_triaxial_sphere_and_axis_permutation():
+    r = 0.2
+    got = ellipsoid_added_mass(r, r, r, rho=RHO)
+    np.testing.assert_allclose(got[:3], 0.5 * RHO * 4 / 3 * np.pi * r ** 3, rtol=1e-12)
+    assert np.all(got[3:] == 0.0)
+    a, b, c = 0.3, 0.15, 0.08                     # relabelling the axes permutes the terms
+    m = ellipsoid_added_mass(a, b, c, rho=RHO)
+    p = ellipsoid_added_mass(b, c, a, rho=RHO)
+    np.testing.assert_allclose(p, m[[1, 2, 0, 4, 5, 3]], rtol=1e-12)
+
+
+@pytest.mark.parametrize("shape,axes", [("triaxial_wide", (0.15, 0.3, 0.08)),
+                                        ("triaxial_long", (0.3, 0.15, 0.08)),
+                                        ("oblate", (0.2, 0.2, 0.08)),
+                                        ("sphere", (0.15, 0.15, 0.15))])
+def test_stored_bem_matches_lamb(shape, axes):
+    """The stored Capytaine references (Richardson of two resolutions) agree with Lamb to
+    0.5 % on every diagonal term that is not zero by symmetry: checks both the formulas and the
+    reference pipeline (tolerance: the uv-sphere tessellation, about 0.3 % at 4400 faces)."""
+    ref = np.diag(_references()[shape])
+    exact = ellipsoid_added_mass(*axes, rho=RHO)
+    on = exact > 1e-6 * exact.max()
+    np.testing.assert_allclose(ref[on], exact[on], rtol=5e-3)
+
+
+def test_reference_table_complete():
+    refs = _references()
+    assert len(refs) >= 15
+    for name, m in refs.items():
+        assert np.all(np.isfinite(m)) and np.all(np.diag(m)[:3] > 0), name
+
+
+# --- no NaN: the frame sliced along another axis, the vehicle file ------------------------
+
+def test_frame_mesh_across_axes_is_finite():
+    """The BlueROV2-like frame sliced along y used to give an all-NaN matrix (an equivalent
+    body touching the axis along strips); every slicing axis now gives a finite, symmetric,
+    positive-definite M_A."""
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.geometry.vehicle import Vehicle
+    for axis in "xyz":
+        v = Vehicle.from_mesh(ROOT / "geometry" / "bluerov2_heavy.stl", axis=axis)
+        a = np.asarray(estimate(v, strips=200).added_mass)
+        assert np.all(np.isfinite(a)), axis
+        assert np.linalg.eigvalsh(a).min() > 0, axis
+
+
+def test_nonfinite_matrix_is_an_error(monkeypatch):
+    import importlib
+    est = importlib.import_module("stripcoef.assembly.estimate")
+    real = est.added_mass
+
+    def nan_added_mass(*args, **kwargs):
+        m, info = real(*args, **kwargs)
+        return np.full_like(m, np.nan), info
+    monkeypatch.setattr(est, "added_mass", nan_added_mass)
+    with pytest.raises(InputError, match="non-finite"):
+        est.estimate(ROOT / "geometry" / "sphere.yaml", strips=50)
+
+
+def test_bluerov2_heavy_vehicle_file():
+    import warnings
+
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.errors import ModelWarning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)        # e.g. weight and buoyancy differ
+        m = estimate(ROOT / "geometry" / "bluerov2_heavy.yaml", strips=300)
+    assert m.mass == pytest.approx(11.5)
+    assert abs(m.volume * m.density - m.mass) < 0.05 * m.mass       # near neutral [P]
+    assert len(m.thrusters) == 8
+    assert np.all(np.isfinite(m.added_mass)) and np.linalg.eigvalsh(m.added_mass).min() > 0
+
+
+def test_bluerov2_mesh_dimensions():
+    mesh = trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
+    np.testing.assert_allclose(np.ptp(mesh.vertices, axis=0), [0.457, 0.575, 0.254], atol=1e-3)
+
+
+# --- BEM panel quality ---------------------------------------------------------------------
+
+def test_panel_quality_flags_long_panels():
+    from stripcoef.bem import panel_quality
+    bad = panel_quality(trimesh.creation.capsule(height=1.2, radius=0.1))
+    assert not bad["trusted"] and bad["max_aspect"] > 50
+    good = panel_quality(trimesh.creation.box([1.0, 0.5, 0.3]).subdivide().subdivide())
+    assert good["trusted"] and good["area_fraction"] == 0.0
+
+
+def test_compare_text_says_untrusted():
+    from stripcoef.cli.compare import compare_rows, format_comparison
+    a = np.diag([1.0, 2.0, 2.0, 0.0, 0.5, 0.5])
+    rows = compare_rows(a, 1.5 * a)
+    for r in rows:
+        r["diff_percent"] = None
+    data = {"name": "capsule", "faces": 4096, "reference_point": [0, 0, 0], "density": 1000.0,
+            "strips": 1000, "corrections": True, "repairs": [], "speedup": 10.0,
+            "seconds": {"load": 0.1, "strip_theory": 0.1, "bem": 1.0}, "terms": rows,
+            "panel_quality": {"trusted": False, "area_fraction": 0.86, "max_aspect": 122.0,
+                              "limit": 20.0}}
+    text = format_comparison(data)
+    assert "NOT TRUSTED" in text and "%" not in text.split("diff %")[1].split("(values")[0]
+
+
+@pytest.mark.xfail(strict=True, reason="issue 14, not fixed: the member decomposition treats the "
+                   "overlapping parts of a frame differently from their boolean union (sway "
+                   "+32 %, pitch +98 % at 400 strips)")
+def test_frame_union_and_overlapping_parts_agree():
+    import sys
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from make_bluerov2_heavy import bluerov2_heavy_parts
+
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.geometry.vehicle import Vehicle
+    union = Vehicle.from_mesh(ROOT / "geometry" / "bluerov2_heavy.stl")
+    parts = Vehicle.from_mesh(trimesh.util.concatenate(bluerov2_heavy_parts()))
+    a = np.diag(estimate(union, strips=200).added_mass)
+    b = np.diag(estimate(parts, strips=200).added_mass)
+    np.testing.assert_allclose(b, a, rtol=0.05)
+
+
+def test_stored_cylinder_reference_matches_axisymmetric_solver():
+    """The short cylinder along x (D 0.30, L 0.25 m) is a body of revolution: the stored BEM
+    (Richardson) and stripcoef's axisymmetric solver of the same body agree within 3 % on
+    every term (the BEM converges slowly at the sharp edges: 2.7 % on pitch; see
+    docs/validation.md) -- the check that caught the end-cap fans' +12 %."""
+    from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
+    exact = np.diag(body_of_revolution_added_mass([-0.125, -0.125, 0.125, 0.125],
+                                                  [0.0, 0.15, 0.15, 0.0], rho=RHO, panels=320))
+    ref = np.diag(_references()["cyl_x_short"])
+    on = exact > 0
+    np.testing.assert_allclose(ref[on], exact[on], rtol=0.03)
