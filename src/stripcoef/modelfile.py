@@ -8,15 +8,14 @@ options of ``stripcoef coefficients``: make a model file with it first.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.files import read_text
-from stripcoef.model import HydroModel
+from stripcoef.files import load_json, load_yaml, read_text
+from stripcoef.model import HydroModel, check_physical
 
 _MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass")
 _REQUIRED = _MATRICES + ("reference_point", "mass", "volume", "center_of_gravity",
@@ -34,19 +33,8 @@ def load_model(path) -> HydroModel:
                                   "first")
     text = read_text(path, kind="vehicle or model file")
     if suffix == ".json":
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise InputError(f"not valid JSON ({exc.msg})", file=str(path),
-                             key=f"line {exc.lineno}") from None
-        return model_from_dict(data, file=str(path))
-    import yaml
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        raise InputError("not valid YAML", file=str(path),
-                         key=f"line {mark.line + 1}" if mark else None) from None
+        return model_from_dict(load_json(text, file=str(path)), file=str(path))
+    data = load_yaml(text, file=str(path))
     if isinstance(data, dict) and "added_mass" in data and "rigid_body_mass" in data:
         return model_from_dict(data, file=str(path))
     from stripcoef.assembly import estimate
@@ -73,10 +61,12 @@ def model_from_dict(data, *, file: str | None = None) -> HydroModel:
             raise InputError("not a positive number", file=file, key=key, value=v,
                              expected="a finite number > 0")
     try:
-        return HydroModel.from_dict(data)
+        model = HydroModel.from_dict(data)
     except (KeyError, TypeError, ValueError) as exc:
         raise InputError(f"malformed model ({exc})", file=file,
                          expected="a model file from HydroModel.to_dict()") from None
+    check_physical(model, file=file)
+    return model
 
 
 def _check_array(value, shape, file, key):

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, rigid_body_mass_matrix
+from stripcoef.model import HydroModel, check_physical, rigid_body_mass_matrix
 from stripcoef.assembly.added_mass import added_mass
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.mass import displaced_volume, mass_properties
@@ -99,7 +99,7 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
                       f"(m = {mass:.3g} kg, rho V = {rho * volume:.3g} kg)", ModelWarning,
                       stacklevel=2)
-    return HydroModel(
+    model = HydroModel(
         name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
@@ -107,3 +107,5 @@ def estimate(vehicle, *, strips: int | None = None, corrections: bool | None = N
         provenance={"method": "strip theory", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )
+    check_physical(model, file=vehicle.source)   # no NaN or impossible model leaves here
+    return model

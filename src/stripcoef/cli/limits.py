@@ -119,7 +119,7 @@ def parse_radii(text: str):
     """``--radii "R1:R2:N"`` -> N radii evenly spaced from R1 to R2 [m] (checked)."""
     import numpy as np
 
-    from stripcoef.limits.solver import check_radii
+    from stripcoef.limits.solver import MAX_RADII, check_radii
 
     parts = str(text).split(":")
     try:
@@ -132,6 +132,9 @@ def parse_radii(text: str):
     if n < 1:
         raise InputError("number of radii must be positive", key="--radii", value=text,
                          expected="R1:R2:N with N >= 1")
+    if n > MAX_RADII:
+        raise InputError("too many turning radii", key="--radii", value=text,
+                         expected=f"R1:R2:N with N <= {MAX_RADII}")
     if r1 <= 0.0:
         raise InputError("turning radius must be positive", key="--radii", value=text,
                          expected="R1 > 0 [m]")

@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from stripcoef.errors import InputError
-from stripcoef.files import read_text, write_text
+from stripcoef.files import load_json, read_text, write_text
 
 
 def add_parser(sub):
@@ -30,11 +30,7 @@ def run(args) -> int:
     from stripcoef.identify.scaling import scale_result
     path = Path(args.result)
     text = read_text(path, kind="identification result")
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not JSON (line {exc.lineno})", file=str(path),
-                         expected="the output of stripcoef identify --json") from None
+    data = load_json(text, file=str(path))
     if not isinstance(data, dict):
         raise InputError("not a JSON object", file=str(path),
                          expected="the output of stripcoef identify --json")

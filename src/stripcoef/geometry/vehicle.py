@@ -14,12 +14,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from stripcoef.errors import InputError
 from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
-from stripcoef.files import read_text
-from stripcoef.strips import Strips, uniform_stations
+from stripcoef.files import load_yaml, read_text
+from stripcoef.strips import MAX_STRIPS, Strips, uniform_stations
 from stripcoef.thrusters import Thruster
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
 from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous
@@ -379,7 +378,10 @@ def _fluid(r: _Reader, data) -> Fluid:
                         expected="either temperature + salinity, or density + kinematic_viscosity")
         t = r.number(data, "temperature", path, required=True)
         s = r.number(data, "salinity", path, required=True, nonneg=True)
-        return Fluid.from_temperature_salinity(t, s)
+        try:
+            return Fluid.from_temperature_salinity(t, s)
+        except InputError as exc:            # the correlation's error, in the file's terms
+            raise r.err(f"{path}.{exc.key}", exc.what, exc.value, exc.expected) from None
     water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
     rho = r.number(data, "density", path, positive=True,
                    default=RHO_SEAWATER if water == "sea" else RHO_FRESHWATER)
@@ -411,6 +413,13 @@ def _mass(r: _Reader, data) -> MassSpec:
         if not np.allclose(arr, arr.T) or np.any(np.linalg.eigvalsh(0.5 * (arr + arr.T)) <= 0):
             raise r.err(f"{path}.inertia", "not symmetric positive definite", v,
                         "a symmetric positive-definite inertia tensor")
+        # principal moments of a real body: I1 + I2 >= I3 for every ordering (the triangle
+        # inequality of I_i = int (r^2 - x_i^2) dm; Landau & Lifshitz, Mechanics, sec. 32)
+        p1, p2, p3 = np.linalg.eigvalsh(0.5 * (arr + arr.T))
+        if p1 + p2 < p3 * (1.0 - 1e-9):
+            raise r.err(f"{path}.inertia", "principal moments violate the triangle inequality",
+                        v, f"I1 + I2 >= I3 (principal moments {p1:.4g}, {p2:.4g}, {p3:.4g} "
+                           "kg m^2)")
         spec.inertia = arr
     for i, z in enumerate(r.listing(data, "zones", path)):
         zp = f"{path}.zones[{i}]"
@@ -515,8 +524,8 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
     else:
         ref = r.vector(data, "reference_point", "")
     strips = data.get("strips", DEFAULT_STRIPS)
-    if isinstance(strips, bool) or not isinstance(strips, int) or strips < 4:
-        raise r.err("strips", "invalid value", strips, "an integer >= 4")
+    if isinstance(strips, bool) or not isinstance(strips, int) or not 4 <= strips <= MAX_STRIPS:
+        raise r.err("strips", "invalid value", strips, f"an integer from 4 to {MAX_STRIPS}")
     corr = data.get("corrections", True)
     if not isinstance(corr, bool):
         raise r.err("corrections", "wrong type", corr, "true or false")
@@ -590,14 +599,7 @@ def load_vehicle(path, **mesh_options) -> Vehicle:
     if path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError("unknown vehicle file extension", file=name, value=path.suffix,
                          expected=".yaml or .yml, or a mesh: " + " ".join(MESH_SUFFIXES))
-    text = read_text(path, kind="vehicle file")
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}" if mark is not None else None
-        raise InputError("invalid YAML", file=name, key=where,
-                         expected="a YAML mapping (see docs/vehicle-file.md)") from None
+    data = load_yaml(read_text(path, kind="vehicle file"), file=name)
     if not isinstance(data, dict):
         raise InputError("not a mapping", file=name, value=type(data).__name__,
                          expected="a YAML mapping with at least a 'hull' key")
