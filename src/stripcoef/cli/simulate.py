@@ -15,6 +15,11 @@ from stripcoef.errors import InputError
 from stripcoef.logfile import KNOWN_COLUMNS, read_log
 
 
+#: Fastest water current accepted [m/s]: the fastest tidal races run at ~5 m/s; a faster
+#: "current" is a typo, and makes the equations so stiff that the integrator grinds.
+MAX_CURRENT = 100.0
+
+
 def add_parser(subparsers):
     p = subparsers.add_parser(
         "simulate", help="6-DOF time simulation of a vehicle or model file",
@@ -94,6 +99,9 @@ def run(args) -> int:
     log = read_log(args.inputs, required=("t",))
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
+    if current is not None and np.linalg.norm(current) > MAX_CURRENT:
+        raise InputError("current too fast", key="--current", value=args.current,
+                         expected=f"a speed below {MAX_CURRENT:g} m/s (tidal races reach ~5 m/s)")
     times = None
     if args.dt is not None:
         if not (np.isfinite(args.dt) and args.dt > 0):
