@@ -272,3 +272,18 @@ def first_non_finite(value, path: str = ""):
             if not np.isfinite(v):
                 return where or "value"
     return None
+
+
+def check_finite_output(value, *, what: str, file: str | None = None) -> None:
+    """Refuse to write or print a result holding a NaN or an infinity.
+
+    The one output check of the commands: ``value`` is the result as it is about to be written
+    (nested dicts, lists, arrays); the first non-finite number is reported with its key path.
+    """
+    where = first_non_finite(value)
+    if where is not None:
+        from stripcoef.errors import UnreachableError
+
+        raise UnreachableError(f"{file + ': ' if file else ''}{what} has no finite value at "
+                               f"{where}: nothing written (the input leads outside the range "
+                               "where the model holds; check the inputs' magnitudes)")

@@ -147,7 +147,12 @@ def read_log(path, *, required=()) -> Log:
     path = Path(path)
     name = str(path)
     text = read_text(path, kind="CSV log")
-    rows = list(csv.reader(io.StringIO(text)))
+    reader = csv.reader(io.StringIO(text))
+    try:
+        rows = list(reader)
+    except csv.Error as exc:  # e.g. a cell over the csv module's field limit (128 kB)
+        raise InputError(f"unreadable CSV ({exc})", file=name, key=f"row {reader.line_num}",
+                         expected="comma-separated numbers, one row per line") from None
     rows = [r for r in rows if any(c.strip() for c in r)]
     if not rows:
         raise InputError("empty file", file=name, expected="a header row and data rows")
@@ -180,6 +185,9 @@ def read_log(path, *, required=()) -> Log:
     log = Log({h: data[:, j] for j, h in enumerate(header)}, source=name)
     if "t" in log.columns:
         t = log.columns["t"]
+        if t.size < 2:
+            raise InputError("a time series of one row", file=name, key="t", value=t.size,
+                             expected="at least 2 rows (a time series has a time step)")
         d = np.diff(t)
         bad = np.nonzero(d <= 0)[0]
         if bad.size:

@@ -9,7 +9,7 @@ import numpy as np
 
 from stripcoef.conventions import added_mass_name
 from stripcoef.errors import InputError
-from stripcoef.files import write_text
+from stripcoef.files import check_finite_output, write_text
 from stripcoef.cli.coefficients import add_fluid_arguments, add_mesh_arguments
 
 
@@ -96,6 +96,7 @@ def run(args) -> int:
         "bem": [[float(v) for v in r] for r in a_bem],
         "terms": rows,
     }
+    check_finite_output(data, what="the comparison", file=str(args.vehicle))
     text = json.dumps(data, indent=2) if args.json else format_comparison(data)
     if args.output:
         write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")

@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import math
 
-from stripcoef.files import write_text
+from stripcoef.files import check_finite_output, write_text
 from stripcoef.logfile import read_log
 
 from stripcoef.identify.api import METHODS
@@ -144,6 +144,8 @@ def run_identify(args):
 
 def run(args) -> int:
     fit, cmp = run_identify(args)
+    check_finite_output({"parameters": fit.to_dict().get("parameters")},
+                        what="the identified model", file=args.log)
     if args.json:
         data = fit.to_dict()
         if cmp is not None:

@@ -6,9 +6,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
-from pathlib import Path
 
 from stripcoef.errors import InputError
+from stripcoef.files import check_finite_output
 from stripcoef.modelfile import load_model
 
 
@@ -97,15 +97,12 @@ def run(args) -> int:
     if args.turn_speed is not None and not (args.turn_speed > 0 and math.isfinite(args.turn_speed)):
         raise InputError("turning speed must be positive", key="--turn-speed",
                          value=args.turn_speed, expected="a speed > 0 [m/s]")
-    if args.plot is not None:
-        folder = Path(args.plot).parent
-        if str(folder) and not folder.is_dir():
-            raise InputError("folder does not exist", key="--plot", value=args.plot,
-                             expected="a path in an existing folder")
+    # --plot is checked before any work (cli.app.check_outputs)
     model = load_model(args.vehicle)            # shared with the other model commands
     check_model(model, file=str(args.vehicle))
     result = solve_limits(model, radii=radii, munk=args.munk, coriolis=args.coriolis,
                           turn_speed=args.turn_speed)
+    check_finite_output(result.to_dict(), what="the limits", file=str(args.vehicle))
     if args.plot is not None:
         plot_limits(result, args.plot, key="--plot")
     if args.json:

@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from stripcoef.errors import InputError
-from stripcoef.files import load_json, read_text, write_text
+from stripcoef.files import check_finite_output, load_json, read_text, write_text
 
 
 def add_parser(sub):
@@ -35,6 +35,7 @@ def run(args) -> int:
         raise InputError("not a JSON object", file=str(path),
                          expected="the output of stripcoef identify --json")
     out = scale_result(data, args.ratio, rotational=args.rotational)
+    check_finite_output(out, what="the scaled result", file=str(path))
     if args.json:
         text = json.dumps(out, indent=2) + "\n"
     else:

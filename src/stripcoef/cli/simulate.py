@@ -12,6 +12,7 @@ import numpy as np
 
 from stripcoef.conventions import FORCES
 from stripcoef.errors import InputError
+from stripcoef.files import check_finite_output
 from stripcoef.logfile import KNOWN_COLUMNS, read_log
 
 
@@ -115,6 +116,7 @@ def run(args) -> int:
     out = simulate(model, times, forces=forces, commands=commands, current=current,
                    channels=channels,
                    interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
+    check_finite_output(out.columns, what="the simulated log", file=str(args.vehicle))
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "
           f"final speed {np.linalg.norm(out.velocities()[-1, :3]):.4g} m/s")

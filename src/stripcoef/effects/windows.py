@@ -265,6 +265,9 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     from stripcoef.conventions import POSE, VELOCITIES
 
     t = log.require("t")
+    if not (np.isfinite(window) and window > 0):
+        raise InputError("not a positive window", key="window", value=window,
+                         expected="a finite number of seconds > 0")
     present = [v for v in VELOCITIES if v in log]
     if not present:
         raise InputError("no velocity columns", file=log.source,
