@@ -66,7 +66,31 @@ def model_from_dict(data, *, file: str | None = None) -> HydroModel:
         raise InputError(f"malformed model ({exc})", file=file,
                          expected="a model file from HydroModel.to_dict()") from None
     check_physical(model, file=file)
+    _check_about_reference_point(model, file)
     return model
+
+
+def _check_about_reference_point(model, file) -> None:
+    r"""M_RB of a model file must be about its reference point: its blocks are
+    :math:`m I` and :math:`-m S(r_g)`, :math:`r_g` = CG - reference point (Fossen 2011,
+    eq. 3.44), within 1e-6 of their scale [kg, kg m]. A reference point or CG edited alone (or
+    one far from the vehicle) would make every consumer wrong."""
+    m = float(model.mass)
+    m_rb = np.asarray(model.rigid_body_mass, dtype=float)
+    r_g = np.asarray(model.center_of_gravity, float) - np.asarray(model.reference_point, float)
+    # -m S(r_g) = m [[0, z, -y], [-z, 0, x], [y, -x, 0]]: M_RB[0,4] = m z, M_RB[1,5] = m x,
+    # M_RB[2,3] = m y
+    implied = np.array([m_rb[1, 5], m_rb[2, 3], m_rb[0, 4]]) / m
+    scale = 1e-6 * (1.0 + float(np.max(np.abs(r_g))))
+    if np.max(np.abs(np.diag(m_rb)[:3] - m)) > 1e-6 * m:
+        raise InputError("rigid_body_mass does not hold the mass", file=file,
+                         key="rigid_body_mass", value=np.diag(m_rb)[:3].tolist(),
+                         expected=f"the mass {m:.6g} kg on the first three diagonal entries")
+    if not np.all(np.abs(implied - r_g) <= scale):
+        raise InputError("rigid_body_mass is not about the reference point", file=file,
+                         key="reference_point", value=np.asarray(model.reference_point).tolist(),
+                         expected=f"CG - reference point = {implied.tolist()} m as M_RB says "
+                                  "(Fossen 2011, eq. 3.44)")
 
 
 def _check_array(value, shape, file, key):

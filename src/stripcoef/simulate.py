@@ -409,12 +409,14 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
         except _OverBudget as stop:
             raise UnreachableError(
-                f"simulation stopped at t = {stop.time:.6g} s of {t[0]:g}..{t[-1]:g} s: "
-                f"{stop.why}; the run is stiff or divergent (check the mass, inertia, damping "
-                f"and current; {len(bounds) - 1} input segments, {n} samples)") from None
+                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
+                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
+                "expected a run that is not stiff or divergent (check the mass, inertia, "
+                "damping and current)") from None
         if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
-            raise UnreachableError(f"simulation failed between t = {t[a]:g} s and "
-                                   f"{t[b]:g} s: {sol.message} (motion diverged?)")
+            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
+                                   f"({sol.message}); expected a motion that stays finite "
+                                   "(did it diverge?)")
         states[a:b + 1] = sol.y.T
         y = sol.y[:, -1]
         # at t_b the new inputs take over (zero-order hold), so the state carries on.

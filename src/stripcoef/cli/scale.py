@@ -34,7 +34,7 @@ def run(args) -> int:
     if not isinstance(data, dict):
         raise InputError("not a JSON object", file=str(path),
                          expected="the output of stripcoef identify --json")
-    out = scale_result(data, args.ratio, rotational=args.rotational)
+    out = scale_result(data, args.ratio, rotational=args.rotational, file=str(path))
     check_finite_output(out, what="the scaled result", file=str(path))
     if args.json:
         text = json.dumps(out, indent=2) + "\n"

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.conventions import FORCES
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, UnreachableError
 from stripcoef.files import check_finite_output
 from stripcoef.logfile import KNOWN_COLUMNS, read_log
 
@@ -19,6 +19,8 @@ from stripcoef.logfile import KNOWN_COLUMNS, read_log
 #: Fastest water current accepted [m/s]: the fastest tidal races run at ~5 m/s; a faster
 #: "current" is a typo, and makes the equations so stiff that the integrator grinds.
 MAX_CURRENT = 100.0
+#: Most output samples of one run (a 1,000,000-row log is ~100 MB of CSV).
+MAX_SAMPLES = 1_000_000
 
 
 def add_parser(subparsers):
@@ -109,13 +111,20 @@ def run(args) -> int:
             raise InputError("not a positive time step", key="--dt", value=args.dt,
                              expected="a positive number of seconds")
         t_in = log.require("t")
+        if (t_in[-1] - t_in[0]) / args.dt > MAX_SAMPLES:
+            raise InputError("time step too small for the inputs' span", key="--dt",
+                             value=args.dt, expected=f"at most {MAX_SAMPLES} output samples over "
+                             f"{t_in[-1] - t_in[0]:g} s")
         times = np.arange(t_in[0], t_in[-1] + 0.5 * args.dt, args.dt)
         times = times[times <= t_in[-1] + 1e-12]
     times, forces, commands, channels = inputs_from_log(log, model, times,
                                                         interpolation=args.interpolation)
-    out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels,
-                   interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
+    try:
+        out = simulate(model, times, forces=forces, commands=commands, current=current,
+                       channels=channels,
+                       interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
+    except UnreachableError as exc:     # a stopped run: name the model it was run on
+        raise UnreachableError(f"{args.vehicle}: {exc}") from None
     check_finite_output(out.columns, what="the simulated log", file=str(args.vehicle))
     out.write_csv(args.out)
     print(f"wrote {args.out}: {len(out)} samples, t = {times[0]:g} .. {times[-1]:g} s, "

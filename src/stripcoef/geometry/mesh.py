@@ -623,7 +623,10 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     scale = LENGTH_UNITS[length_unit]
     mesh.apply_scale(scale)
     if transform is not None:
-        t = np.asarray(transform, dtype=float)
+        try:
+            t = np.asarray(transform, dtype=float)
+        except (TypeError, ValueError):
+            t = np.full(1, np.nan)
         if t.shape != (4, 4) or not np.all(np.isfinite(t)):
             raise InputError("transform must be a 4x4 matrix", key="transform",
                              value=f"shape {t.shape}", expected="4x4 finite")

@@ -210,6 +210,21 @@ class _Reader:
             raise self.err(full, "not finite", v, f"a list of {n} finite numbers")
         return arr
 
+    def matrix(self, data, key, path, shape, expected):
+        """A nested list of finite numbers of ``shape`` (no ragged rows, no strings)."""
+        full = f"{path}.{key}" if path else key
+        v = data[key]
+
+        def numbers(x, dims):
+            if not dims:
+                return (not isinstance(x, bool) and isinstance(x, (int, float))
+                        and math.isfinite(x))
+            return (isinstance(x, list) and len(x) == dims[0]
+                    and all(numbers(y, dims[1:]) for y in x))
+        if not numbers(v, shape):
+            raise self.err(full, "wrong type", v, expected)
+        return np.asarray(v, dtype=float)
+
     def string(self, data, key, path, *, choices=None, default=None, required=False):
         full = f"{path}.{key}" if path else key
         if key not in data:
@@ -348,6 +363,9 @@ def _appendage(r: _Reader, data, path):
     from stripcoef.geometry import mesh as mesh_mod  # noqa: PLC0415  (optional path)
     mfile = r.string(data, "mesh", path, required=True)
     mpath = Path(r.file).parent / mfile
+    if "transform" in data:
+        r.matrix(data, "transform", path, (4, 4), "a 4x4 homogeneous transform (rows of 4 "
+                                                  "finite numbers)")
     return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,
                                                           choices=("m", "mm", "in"), default="m"),
                               origin="file", transform=data.get("transform"), name=name,
@@ -427,8 +445,9 @@ def _mass(r: _Reader, data) -> MassSpec:
         x = z["x"]
         if (not isinstance(x, list) or len(x) != 2
                 or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in x)
-                or x[1] <= x[0]):
-            raise r.err(f"{zp}.x", "wrong value", x, "[x_aft, x_fwd] with x_aft < x_fwd")
+                or not all(math.isfinite(a) for a in x) or x[1] <= x[0]):
+            raise r.err(f"{zp}.x", "wrong value", x,
+                        "[x_aft, x_fwd], finite, with x_aft < x_fwd [m]")
         bodies = z.get("bodies")
         if bodies is not None and (not isinstance(bodies, list)
                                    or not all(isinstance(b, str) for b in bodies)):
