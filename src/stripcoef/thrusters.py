@@ -97,7 +97,9 @@ class Thruster:
         return np.concatenate([d, skew(r) @ d])
 
     def to_dict(self) -> dict:
-        return {
+        """The thruster as plain data; an unlimited thrust (``inf``) is left out, so that every
+        number written is finite (``HydroModel.from_dict`` reads a missing limit as ``inf``)."""
+        out = {
             "name": self.name,
             "position": [float(x) for x in self.position],
             "direction": [float(x) for x in self.direction],
@@ -106,6 +108,10 @@ class Thruster:
             "eta_forward": self.eta_forward, "eta_backward": self.eta_backward,
             "deadband": self.deadband,
         }
+        for key in ("max_forward", "max_backward"):
+            if out[key] == float("inf"):
+                del out[key]
+        return out
 
 
 def allocation_matrix(thrusters, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:

@@ -31,6 +31,7 @@ def run(args) -> int:
     path = Path(args.result)
     text = read_text(path, kind="identification result")
     data = load_json(text, file=str(path))
+    check_finite_output(data, what="the identification result", file=str(path))
     if not isinstance(data, dict):
         raise InputError("not a JSON object", file=str(path),
                          expected="the output of stripcoef identify --json")

@@ -173,7 +173,9 @@ class _Reader:
                                expected="one of " + ", ".join(allowed))
         for k in required:
             if k not in data:
-                raise self.err(f"{key}.{k}" if key else k, "missing required key")
+                raise self.err(f"{key}.{k}" if key else k, "missing required key",
+                               expected="the keys " + ", ".join(required)
+                               + " (docs/vehicle-file.md)")
         return data
 
     def number(self, data, key, path, *, default=None, positive=False, nonneg=False,

@@ -88,7 +88,13 @@ def scale_result(result: dict, ratio: float, *, rotational: bool | None = None,
     params, std, factors = {}, {}, {}
     for name, value in result["parameters"].items():
         if name in table and value is not None:
-            f = ratio ** table[name]
+            try:
+                f = ratio ** table[name]
+            except OverflowError:
+                f = math.inf
+            if not math.isfinite(f * value):
+                raise InputError("scaled value overflows", key="ratio", value=ratio,
+                                 expected=f"a ratio whose power {table[name]} keeps {name} finite")
             params[name] = value * f
             s = result["std"].get(name)
             std[name] = None if s is None else s * f
