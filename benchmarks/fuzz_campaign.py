@@ -7,6 +7,9 @@ identification results, and bad option values. Each mutation says whether its in
 its output must be finite). A case's outcome is one of
 
 - ``ok``: exit 0 on an odd input, every number written or printed finite;
+- ``not reachable``: exit 2 and one line of an ``UnreachableError`` naming the degree of
+  freedom or manoeuvre and the value that cannot be reached (an answer of the model, e.g.
+  a vehicle whose thrusters cannot hold it still: not an input error);
 - ``clean error``: exit 2 and one line ``stripcoef CMD: error: WHERE: ...`` naming the file,
   key, column or option and saying what was expected (argparse's usage errors name the
   option and the value);
@@ -63,9 +66,9 @@ CASE_LIMIT = 60.0
 #: told apart from a hang by the case limit.
 BUDGET = 10.0
 
-OUTCOMES = ("ok", "clean error", "traceback", "hang", "partial output", "exit 0 on invalid",
-            "exit 0 non-finite", "vague error", "multi-line error")
-BAD = OUTCOMES[2:]
+OUTCOMES = ("ok", "clean error", "not reachable", "traceback", "hang", "partial output",
+            "exit 0 on invalid", "exit 0 non-finite", "vague error", "multi-line error")
+BAD = OUTCOMES[3:]
 
 
 @dataclass
@@ -212,6 +215,8 @@ def _bad_vector(rng, vec):
     return options[rng.integers(len(options))]
 
 
+_where: list = []     # the last mutated paths (for the failure report)
+
 # vehicle-file keys that take any text (a mutation there proves nothing)
 _FREE_KEYS = {"description"}
 
@@ -222,6 +227,7 @@ def mutate_mapping(rng, data, *, kind: str):
     choice = kind
     if choice == "type":
         p, v = leaves[rng.integers(len(leaves))]
+        _where.append(p)
         return _set(data, p, _wrong_type(rng, v)), True
     if choice == "nonfinite":
         nums = [(p, v) for p, v in leaves if isinstance(v, (int, float, list))
@@ -237,6 +243,7 @@ def mutate_mapping(rng, data, *, kind: str):
                 not isinstance(v, bool)]
         p, v = nums[rng.integers(len(nums))]
         new = [0, -1, -1e-9, 1e-30, 1e300, -1e300, 1e12, 1e-12, 7.5e6][rng.integers(9)]
+        _where.append((p, new))
         return _set(data, p, new), False
     if choice == "shape":
         vecs = [(p, v) for p, v in leaves if isinstance(v, list)]
@@ -355,8 +362,10 @@ def vehicle_case(rng, bases: Bases) -> Case:
     r = rng.random()
     if r < 0.62:
         kind = ["type", "nonfinite", "extreme", "shape", "delete", "unknown"][rng.integers(6)]
+        _where.clear()
         data, invalid = mutate_mapping(rng, data, kind=kind)
-        content, kind = _dump_yaml(data), "vehicle:" + kind
+        content = _dump_yaml(data)
+        kind = "vehicle:" + kind + (f"@{_where[-1]}" if _where else "")
     elif r < 0.82:
         pname, content, invalid = PHYSICAL[rng.integers(len(PHYSICAL))]
         kind = "vehicle:physical:" + pname
@@ -530,7 +539,7 @@ def log_case(rng, bases: Bases) -> Case:
     from validation.experiments import ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS
     which = ["steady", "one-step", "pendulum", "torsion", "diagnose", "simulate"][rng.integers(6)]
     if which == "steady":
-        text, needed = bases.steady, ("w", "Z", "n_h")
+        text, needed = bases.steady, ("w", "Z")
         argv = ["identify", "{d}/log.csv", "--method", "steady", "--dof", "heave", "--json",
                 "-o", "{d}/out.json"]
     elif which == "one-step":
@@ -816,6 +825,14 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
     argv = [a.replace("{d}", str(folder)) for a in case.argv]
     before = {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()}
     out, err = io.StringIO(), io.StringIO()
+    from stripcoef.cli import app
+    raised = []
+    in_cli_terms = app.in_cli_terms
+
+    def spy(exc, parser):          # the type of the error main prints
+        raised.append(type(exc).__name__)
+        return in_cli_terms(exc, parser)
+    app.in_cli_terms = spy
     old = signal.signal(signal.SIGALRM, _alarm)
     signal.setitimer(signal.ITIMER_REAL, limit)
     rc, detail = None, ""
@@ -831,12 +848,15 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
     except _Hang:
         return "hang", f"over {limit:g} s"
     except Exception as exc:  # noqa: BLE001 - the point: anything escaping is a traceback
-        tb = traceback.extract_tb(exc.__traceback__)[-1]
+        frames = traceback.extract_tb(exc.__traceback__)
+        ours = [f for f in frames if "stripcoef" in f.filename]
+        tb = (ours or frames)[-1]
         return "traceback", f"{type(exc).__name__}: {str(exc)[:120]} ({Path(tb.filename).name}:{tb.lineno})"
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, old)
         warnings.showwarning = showwarning
+        app.in_cli_terms = in_cli_terms
     stdout, stderr = out.getvalue(), err.getvalue()
     after = {p.name: p for p in folder.iterdir() if p.is_file()}
     leftovers = [n for n in after if n.endswith(".tmp")]
@@ -850,6 +870,9 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
         if stdout.strip():
             return "partial output", f"exit {rc} but printed {stdout.strip()[:60]!r}"
         kind = classify_error(case.command, stderr)
+        if kind == "vague error" and raised == ["UnreachableError"] and \
+                re.search(r"error: [^:]+: .*\d", stderr):
+            kind = "not reachable"
         return kind, stderr.strip().splitlines()[-1][:200] if stderr.strip() else "(no message)"
     # exit 0
     if case.invalid:
@@ -932,7 +955,7 @@ def main(argv=None) -> int:
 
     counts, bad = run_campaign(cases, limit=args.limit, progress=progress)
     print(table(counts))
-    by_kind = Counter((c.kind.split(":")[0], o) for c, o, _ in bad)
+    by_kind = Counter(f"{c.kind.split(':')[0]}/{o}" for c, o, _ in bad)
     if bad:
         print("failures by family:", dict(by_kind))
     print(f"{len(cases)} cases, seed {args.seed}, {time.time() - t0:.0f} s")

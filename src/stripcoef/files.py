@@ -284,6 +284,6 @@ def check_finite_output(value, *, what: str, file: str | None = None) -> None:
     if where is not None:
         from stripcoef.errors import UnreachableError
 
-        raise UnreachableError(f"{file + ': ' if file else ''}{what} has no finite value at "
-                               f"{where}: nothing written (the input leads outside the range "
-                               "where the model holds; check the inputs' magnitudes)")
+        raise UnreachableError(f"{file + ': ' if file else ''}{where}: {what} is not finite; "
+                               "expected finite numbers (nothing written: the input leads "
+                               "outside the range where the model holds; check its magnitudes)")

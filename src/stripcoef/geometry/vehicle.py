@@ -143,7 +143,16 @@ class Vehicle:
         x, dx = uniform_stations(lo, hi, n)
         parts = []
         for body in self.bodies:
-            parts.extend(body.parts(x, dx))
+            own = body.parts(x, dx)
+            if not any(np.size(p.index) for p in own):
+                # a body shorter than a strip is invisible to strip theory (and a hull that
+                # covers no strip leaves the hull terms without a section)
+                blo, bhi = body.x_extent()
+                raise InputError(f"body '{body.name}' covers no strip", file=self.source,
+                                 key="strips", value=f"{n} strips over {hi - lo:.4g} m",
+                                 expected=f"strips shorter than the body's {bhi - blo:.4g} m "
+                                          "(more strips, or sizes in metres)")
+            parts.extend(own)
         holes = [h.cut(x, dx, self.hull) for h in self.holes] if self.hull is not None else []
         for body in self.bodies:
             if hasattr(body, "holes"):
@@ -392,6 +401,7 @@ def _fluid(r: _Reader, data) -> Fluid:
         return Fluid()
     path = "fluid"
     r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity"))
+    water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
     if "temperature" in data or "salinity" in data:
         if "density" in data or "kinematic_viscosity" in data:
             raise r.err(path, "both temperature/salinity and density/viscosity given",
@@ -402,7 +412,6 @@ def _fluid(r: _Reader, data) -> Fluid:
             return Fluid.from_temperature_salinity(t, s)
         except InputError as exc:            # the correlation's error, in the file's terms
             raise r.err(f"{path}.{exc.key}", exc.what, exc.value, exc.expected) from None
-    water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
     rho = r.number(data, "density", path, positive=True,
                    default=RHO_SEAWATER if water == "sea" else RHO_FRESHWATER)
     nu = r.number(data, "kinematic_viscosity", path, positive=True,
@@ -454,7 +463,7 @@ def _mass(r: _Reader, data) -> MassSpec:
         if bodies is not None and (not isinstance(bodies, list)
                                    or not all(isinstance(b, str) for b in bodies)):
             raise r.err(f"{zp}.bodies", "wrong type", bodies, "a list of body names")
-        spec.zones.append(DensityZone(name=str(z.get("name", zp)), x_aft=float(x[0]),
+        spec.zones.append(DensityZone(name=r.string(z, "name", zp, default=zp), x_aft=float(x[0]),
                                       x_fwd=float(x[1]),
                                       density=r.number(z, "density", zp, nonneg=True,
                                                        required=True),
