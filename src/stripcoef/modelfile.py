@@ -94,10 +94,16 @@ def _check_about_reference_point(model, file) -> None:
 
 
 def _check_array(value, shape, file, key):
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        arr = None
-    if arr is None or arr.shape != shape or not np.all(np.isfinite(arr)):
-        raise InputError("wrong array", file=file, key=key, value=value,
-                         expected=f"finite numbers of shape {shape}")
+    """A nested list of finite numbers of ``shape``; the error names the first bad entry."""
+    def walk(v, dims, where):
+        if not dims:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise InputError("not a finite number", file=file, key=where, value=v,
+                                 expected=f"finite numbers of shape {shape}")
+            return
+        if not isinstance(v, (list, tuple)) or len(v) != dims[0]:
+            raise InputError("wrong shape", file=file, key=where, value=v,
+                             expected=f"{dims[0]} entries (an array of shape {shape})")
+        for i, x in enumerate(v):
+            walk(x, dims[1:], f"{where}[{i}]")
+    walk(value, shape, key)
