@@ -40,16 +40,16 @@ def fuzz():
 
 
 def test_quick_campaign_has_no_bad_outcome(fuzz):
-    """300 seeded cases over vehicle files, model files, logs, meshes, results and options."""
+    """250 seeded cases over vehicle files, model files, logs, meshes, results and options."""
     mod, bases = fuzz
-    cases = mod.generate_cases(300, 12345, bases)
+    cases = mod.generate_cases(250, 12345, bases)
     cases = [c for c in cases if "huge log" not in c.kind]        # the slow ones: full mode
     t0 = time.time()
     counts, bad = mod.run_campaign(cases, limit=30.0)
     report = "\n".join(f"{c.command} {c.kind}: {o} {d}" for c, o, d in bad)
     assert not bad, report
     total = sum(sum(c.values()) for c in counts.values())
-    assert total == len(cases) > 250
+    assert total == len(cases) > 200
     assert sum(counts[k]["clean error"] for k in counts) > 0.7 * total
     assert time.time() - t0 < 120
 

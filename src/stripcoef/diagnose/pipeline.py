@@ -820,6 +820,8 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps)
                              "motion")
     else:
         dofs = [parse_dof(dof)]
+        from stripcoef.conventions import VELOCITIES
+        log.require(VELOCITIES[dofs[0]])   # not a column of zeros: the DOF asked for is measured
     per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
            for i in dofs}
     calibrated = calibrated_model(model, per)

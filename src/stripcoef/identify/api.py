@@ -43,7 +43,8 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
     from stripcoef.identify import onestep, pendulum, steady        # scipy.signal etc. only when used
     from stripcoef.identify.inputs import applied_force, horizontal_command
     if method in ("steady", "one-step"):
-        name = DOF[parse_dof(dof or ("heave" if method == "steady" else "yaw"))]
+        name = DOF[parse_dof(dof if dof is not None else
+                             ("heave" if method == "steady" else "yaw"))]
         i = DOF.index(name)
         force, origin = applied_force(log, name, vehicle)
         cmp = None
@@ -79,7 +80,7 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
                              expected="the buoyancy B [N] or a vehicle")
         return pendulum.pendulum_log(log, mass=mass, buoyancy=buoyancy or 0.0, length=length,
                                      medium=medium, dof=dof or "", **kw), None
-    name = DOF[parse_dof(dof or "yaw")]
+    name = DOF[parse_dof(dof if dof is not None else "yaw")]
     if inertia is None and vehicle is not None:
         inertia = float(vehicle.rigid_body_mass[DOF.index(name), DOF.index(name)])
     return pendulum.torsion_log(log, stiffness=stiffness, inertia=inertia, medium=medium,
