@@ -483,6 +483,8 @@ def _csv_mutation(rng, text, needed):
     sub = ["nan cell", "text cell", "10 MB cell", "one row", "header only", "empty",
            "1e300 column", "drop needed column", "ragged row", "duplicate time", "shuffled",
            "duplicate header", "inf cell", "garbage", "huge log"][rng.integers(15)]
+    if sub == "huge log" and rng.random() < 0.75:      # ~20 s each: a quarter as often
+        return _csv_mutation(rng, text, needed)
     col = int(rng.integers(len(header)))
     k = int(rng.integers(len(rows)))
     invalid = True
@@ -671,7 +673,8 @@ OPTIONS = {
     + [(["--interpolation", "cubic"], True), (["--out", "{d}"], True)],
     "identify": [(["--method", "steady", "--dof", "heave", "--settle", v], True)
                  for v in ("-1", "nan", "inf")]
-    + [(["--method", "steady", "--dof", "heave", "--trim", v], True) for v in ("-1", "1000000000")]
+    + [(["--method", "steady", "--dof", "heave", "--trim", "-1"], True)]
+    + [(["--method", "steady", "--dof", "heave", "--trim", "1000000000"], False)]  # a table: no-op
     + [(["--method", "steady", "--dof", v], True) for v in ("bogus", "")]
     + [(["--method", "one-step", "--dof", "yaw", "--inertia", v], True)
        for v in ("0", "-1", "nan", "inf")]
@@ -900,16 +903,19 @@ def run_campaign(cases, *, limit: float = CASE_LIMIT, progress=None):
     import stripcoef.simulate as sim
     sim.TIME_LIMIT = diag.TIME_LIMIT = BUDGET
     counts = defaultdict(Counter)
+    seconds = Counter()
     bad = []
     with tempfile.TemporaryDirectory(prefix="fuzz") as root:
         for k, case in enumerate(cases):
             folder = Path(root, f"c{k}")
             folder.mkdir()
             cwd = os.getcwd()
+            t0 = time.monotonic()
             try:
                 outcome, detail = run_case(case, folder, limit=limit)
             finally:
                 os.chdir(cwd)
+            seconds[case.command] += time.monotonic() - t0
             counts[case.command][outcome] += 1
             if outcome in BAD:
                 bad.append((case, outcome, detail))
@@ -918,6 +924,7 @@ def run_campaign(cases, *, limit: float = CASE_LIMIT, progress=None):
             for p in folder.iterdir():
                 p.unlink()
             folder.rmdir()
+    run_campaign.seconds = seconds
     return counts, bad
 
 
@@ -955,6 +962,7 @@ def main(argv=None) -> int:
 
     counts, bad = run_campaign(cases, limit=args.limit, progress=progress)
     print(table(counts))
+    print("seconds per command:", {k: round(v) for k, v in run_campaign.seconds.items()})
     by_kind = Counter(f"{c.kind.split(':')[0]}/{o}" for c, o, _ in bad)
     if bad:
         print("failures by family:", dict(by_kind))
