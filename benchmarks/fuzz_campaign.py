@@ -134,6 +134,31 @@ class Bases:
         self.mesh_capsule_stl = self.mesh_capsule.export(file_type="stl")
         self.mesh_obj = box.export(file_type="obj")
 
+    def frame_stl(self) -> bytes:
+        """An open frame of 12 square bars (a ROV skid), one closed surface: the bars' boolean
+        union (manifold3d), else the bars merged where they overlap (which leaves the mesh
+        not watertight: an error, so the case still runs)."""
+        if getattr(self, "_frame", None) is None:
+            import trimesh
+            bars = []
+            for y in (-0.3, 0.3):
+                for z in (-0.2, 0.2):
+                    bars.append(trimesh.creation.box(extents=(1.0, 0.04, 0.04)))
+                    bars[-1].apply_translation([0, y, z])
+            for x in (-0.48, 0.48):
+                for z in (-0.2, 0.2):
+                    bars.append(trimesh.creation.box(extents=(0.04, 0.64, 0.04)))
+                    bars[-1].apply_translation([x, 0, z])
+                for y in (-0.3, 0.3):
+                    bars.append(trimesh.creation.box(extents=(0.04, 0.04, 0.44)))
+                    bars[-1].apply_translation([x, y, 0])
+            try:
+                frame = trimesh.boolean.union(bars, engine="manifold")
+            except Exception:  # noqa: BLE001 - manifold3d is an optional extra
+                frame = trimesh.util.concatenate(bars)
+            self._frame = frame.export(file_type="stl")
+        return self._frame
+
     def pendulum_result(self) -> str:
         if self.identify_json is None:
             from stripcoef.cli import main
@@ -578,7 +603,7 @@ def mesh_case(rng, bases: Bases) -> Case:
     import trimesh
     sub = ["truncated", "garbage", "empty", "open", "nan vertex", "degenerate", "huge",
            "two intersecting bodies", "hull again as appendage", "transform a string",
-           "transform ragged", "tiny", "options"][rng.integers(13)]
+           "transform ragged", "tiny", "options", "open frame"][rng.integers(14)]
     files, invalid, extra = {}, True, []
     box = trimesh.creation.box(extents=(1.0, 0.3, 0.2))
     name = "m.stl"
@@ -624,6 +649,11 @@ def mesh_case(rng, bases: Bases) -> Case:
                            + transform + "}\n")
         invalid = sub != "hull again as appendage"
         name = "v.yaml"
+    elif sub == "open frame":
+        # an open frame of 12 bars; along z its correction factor once went negative
+        files[name] = bases.frame_stl()
+        axis = ["x", "y", "z"][rng.integers(3)]
+        extra, invalid, sub = ["--axis", axis], False, f"open frame --axis {axis}"
     else:  # mesh options
         files[name] = bases.mesh_capsule_stl
         opt = [["--origin", "nan,0,0"], ["--origin", "1,2"], ["--origin", "1e300,0,0"],
@@ -688,6 +718,12 @@ OPTIONS = {
     "diagnose": [(["--window", v], True) for v in ("0", "-1", "nan", "inf", "1e9")]
     + [(["--dof", "bogus"], True), (["--effects", "bogus"], True),
        (["--report", "{d}"], True), (["--out", "."], True)],
+    # compare: the cases that must fail before the BEM starts (the BEM itself takes minutes)
+    "compare": [(["--strips", v], True) for v in ("0", "30000000")]
+    + [(["--max-faces", v], True) for v in ("0", "-5")]
+    + [(["--speed", v], True) for v in ("0", "nan")]
+    + [(["--rho", "-1"], True), (["--origin", "1,2"], True), (["-o", "{d}"], True),
+       (["--garbage-mesh"], True)],
     "scale": [(["--ratio", v], True) for v in ("0", "-1", "nan", "inf")]
     + [(["--ratio", "1e300"], False), (["-o", "{d}"], True)],
 }
@@ -723,6 +759,12 @@ def option_case(rng, bases: Bases) -> Case:
         files["prior.yaml"] = bases.diag_prior
         argv = ["diagnose", "{d}/log.csv", "--vehicle", "{d}/prior.yaml", "--no-resimulate",
                 *extra]
+    elif command == "compare":
+        if extra == ["--garbage-mesh"]:
+            files["m.stl"], extra = garbage(rng), []
+        else:
+            files["m.stl"] = bases.mesh_capsule_stl
+        argv = ["compare", "{d}/m.stl", *extra]
     else:
         files["r.json"] = bases.pendulum_result()
         argv = ["scale", "{d}/r.json", *extra]
@@ -756,6 +798,7 @@ def result_case(rng, bases: Bases) -> Case:
 GENERATORS = {"vehicle": (vehicle_case, 0.40), "model": (model_case, 0.17),
               "log": (log_case, 0.17), "mesh": (mesh_case, 0.08),
               "options": (option_case, 0.15), "result": (result_case, 0.03)}
+# (compare runs the BEM on valid input; only its failing cases are in the options family)
 
 
 def generate_cases(n: int, seed: int, bases: Bases, *, families=None) -> list[Case]:

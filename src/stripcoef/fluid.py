@@ -150,9 +150,11 @@ class Fluid:
         # result is no longer liquid water (inside the range they give rho = 992-1034 kg/m^3 and
         # mu = 0.65-1.9e-3 Pa s; accepted: 950-1100 kg/m^3, 2e-4-5e-3 Pa s) it is an error
         if not (950.0 <= rho <= 1100.0 and 2e-4 <= mu <= 5e-3):
+            key, value = (("salinity", salinity) if 0.0 <= temperature <= 40.0
+                          else ("temperature", temperature))
             raise InputError("outside the validity of the EOS-80 / Sharqawy (2010) "
                              f"correlations: rho = {rho:.5g} kg/m^3, mu = {mu:.4g} Pa s",
-                             key="temperature", value=temperature,
+                             key=key, value=value,
                              expected="0-40 degC and 0-42 PSU (water properties that exist)")
         return cls(density=float(rho), kinematic_viscosity=float(mu / rho),
                    source=f"t = {temperature} degC, S = {salinity} PSU "
