@@ -102,7 +102,8 @@ def test_deep_json_model_file(tmp_path, capsys):
 @pytest.mark.parametrize("name", ["zero thruster direction", "thruster position of 2 numbers",
                                   "ct a string", "name a number", "max_forward null",
                                   "inertia violates the triangle inequality", "water at -300 C",
-                                  "zone x with nan", "negative mass", "viscosity zero"])
+                                  "zone x with nan", "negative mass", "viscosity zero",
+                                  "Myring tail theta 720"])
 def test_physical_and_type_errors_of_the_issue(name, tmp_path, capsys):
     fuzz = _campaign()
     text = {n: t for n, t, _ in fuzz.PHYSICAL}[name]

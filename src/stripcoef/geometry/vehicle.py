@@ -306,7 +306,20 @@ def _segment(r: _Reader, seg, path) -> Segment:
         if kind == "myring_nose":
             params["n"] = r.number(seg, "n", path, default=2.0, positive=True)
         if kind == "myring_tail":
-            params["theta_deg"] = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+            th = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+            if th >= 90.0:
+                raise r.err(f"{path}.theta_deg", "not a tail half-angle", th,
+                            "an angle from 0 to < 90 degrees")
+            # the cubic must stay between the axis and the radius over the tail's length
+            from stripcoef.geometry.profiles import myring_tail
+            rs = myring_tail(np.linspace(xa, xf, 201), xa, xf, params["radius"],
+                             math.radians(th))
+            if np.min(rs) < -1e-12 * params["radius"] or \
+                    np.max(rs) > params["radius"] * (1 + 1e-9):
+                raise r.err(f"{path}.theta_deg", "the tail leaves [0, radius] with this angle",
+                            th, f"a smaller angle for a tail {xf - xa:g} m long of radius "
+                                f"{params['radius']:g} m")
+            params["theta_deg"] = th
     return Segment(kind, xa, xf, params)
 
 
