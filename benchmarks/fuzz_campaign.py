@@ -62,7 +62,7 @@ for _p in (ROOT / "src", ROOT):
 #: Per-case wall-clock limit [s]: past it the case is a hang (the issue's definition).
 CASE_LIMIT = 60.0
 #: ``stripcoef.simulate.TIME_LIMIT`` and ``stripcoef.diagnose.pipeline.TIME_LIMIT`` during
-#: the campaign [s] (defaults 50 s and 120 s): a run stopped by its budget is a clean error,
+#: the campaign [s] (defaults 120 s and 300 s): a run stopped by its budget is a clean error,
 #: told apart from a hang by the case limit.
 BUDGET = 10.0
 

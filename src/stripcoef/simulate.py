@@ -50,7 +50,7 @@ INTERPOLATIONS = ("previous", "linear")
 MAX_EVALUATIONS = 1_000_000
 #: Wall-clock budget of one simulation [s] (docs/simulate.md): past it the run stops with an
 #: error saying where it got to, instead of grinding.
-TIME_LIMIT = 50.0
+TIME_LIMIT = 120.0
 
 
 class _OverBudget(Exception):

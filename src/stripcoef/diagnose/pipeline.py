@@ -67,7 +67,7 @@ MAX_STEPS = 4
 #: Wall-clock budget of one diagnosis [s]: the fits cost grows with the log's length (a
 #: 200,000-row log would take most of an hour); past the budget the diagnosis stops with an
 #: error saying so, instead of grinding.
-TIME_LIMIT = 120.0
+TIME_LIMIT = 300.0
 _deadline = {"at": None, "limit": None, "rows": 0, "source": ""}
 
 
