@@ -255,3 +255,19 @@ def test_non_finite_result_is_not_written(tmp_path, capsys):
     assert first_non_finite({"a": [1.0, None, "nan"]}) is None
     with pytest.raises(Exception, match=r"f: a\[1\]: the result is not finite; expected"):
         check_finite_output({"a": [0.0, float("inf")]}, what="the result", file="f")
+
+
+def test_python_api_export_refuses_negative_damping():
+    """Negative linear damping (an energy source) is not exported from the API either."""
+    from dataclasses import replace
+
+    from stripcoef import estimate
+    from stripcoef.errors import InputError
+    from stripcoef.export import export_model
+
+    model = estimate(GEO / "mares.yaml", strips=100)
+    d = np.array(model.linear_damping)
+    d[2, 2] = -3.0
+    with pytest.raises(InputError, match=r"linear_damping\[2\]\[2\].*-3\.0.*expected"):
+        export_model(replace(model, linear_damping=d), "yaml")
+    assert export_model(model, "yaml")          # the model as estimated exports

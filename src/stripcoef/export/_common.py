@@ -18,7 +18,7 @@ import numpy as np
 
 from stripcoef.conventions import AXES, axes_operator, transform_matrix, transform_vector
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, plain
+from stripcoef.model import HydroModel, check_physical, plain
 
 #: Names of the special reference points (see :func:`resolve_point`).
 POINT_NAMES = ("CO", "CG", "CB", "origin")
@@ -137,6 +137,7 @@ class ExportView:
 
     @classmethod
     def of(cls, model: HydroModel, point, axes: str) -> "ExportView":
+        check_physical(model)     # no impossible model (negative damping...) is exported
         xyz, label = resolve_point(model, point)
         moved = model.about(xyz)
         for name in ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping"):
