@@ -131,8 +131,8 @@ class Log:
 
 def _fast_table(rows, width):
     """All cells as floats in one numpy conversion, or None when some row or cell is wrong
-    (then the cell-by-cell loop of :func:`read_log` finds and names it). A 200,000-row log
-    reads in ~1 s instead of ~10 s."""
+    (then the cell-by-cell loop of :func:`read_log` finds and names it). A 200,000-row,
+    18-column log read in 7.7 s instead of 10.6 s on the loaded project machine."""
     if any(len(r) != width for r in rows):
         return None
     try:
