@@ -19,11 +19,8 @@ from stripcoef.errors import InputError
 @contextmanager
 def atomic_path(path, *, key: str = "output"):
     """Yield a temporary path next to ``path``; rename it onto ``path`` on success."""
-    path = Path(path)
+    path = check_output_path(path, key=key)
     folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise InputError("folder does not exist", key=key, value=str(path),
-                         expected="a path in an existing, writable folder")
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
     except OSError as exc:
@@ -106,3 +103,215 @@ def json_text(value, *, indent: int | None = 2) -> str:
     """Strict JSON text of ``value`` (non-finite numbers as ``null``, see :func:`strict_json`),
     ending with a newline."""
     return json.dumps(strict_json(value), indent=indent, allow_nan=False) + "\n"
+
+
+# ---------------------------------------------------------------------------
+# Bounded parsing: the one place where YAML and JSON text becomes Python data
+# ---------------------------------------------------------------------------
+
+#: Deepest nesting of mappings/lists accepted in a YAML or JSON input file (a vehicle file
+#: nests 4 levels; a 10,000-deep file would exhaust Python's recursion limit).
+MAX_NESTING = 64
+#: Most nodes a YAML file may expand to once its aliases are followed (an "alias bomb" of a
+#: few lines expands to 1e8 nodes and more); a vehicle file has a few hundred.
+MAX_EXPANDED_NODES = 100_000
+#: Largest input text read as YAML or JSON [characters] (a vehicle file is a few kB).
+MAX_TEXT = 50_000_000
+
+
+def _yaml_loader(file: str):
+    """A SafeLoader class that refuses duplicate keys, nesting deeper than
+    :data:`MAX_NESTING` and documents expanding past :data:`MAX_EXPANDED_NODES` nodes."""
+    import yaml
+
+    class Loader(yaml.SafeLoader):
+        depth = 0
+
+        def compose_node(self, parent, index):
+            if self.check_event(yaml.AliasEvent):
+                return super().compose_node(parent, index)
+            self.depth += 1
+            if self.depth > MAX_NESTING:
+                mark = self.peek_event().start_mark
+                raise InputError("nesting too deep", file=file, key=f"line {mark.line + 1}",
+                                 value=self.depth, expected=f"at most {MAX_NESTING} levels "
+                                 "of mappings and lists")
+            try:
+                return super().compose_node(parent, index)
+            finally:
+                self.depth -= 1
+
+        def construct_mapping(self, node, deep=False):
+            seen = {}
+            for key_node, _ in node.value:
+                if isinstance(key_node, yaml.ScalarNode):
+                    k = key_node.value
+                    if k in seen:
+                        raise InputError("duplicate key", file=file,
+                                         key=f"line {key_node.start_mark.line + 1}", value=k,
+                                         expected=f"each key once in a mapping (first on line "
+                                                  f"{seen[k]})")
+                    seen[k] = key_node.start_mark.line + 1
+            return super().construct_mapping(node, deep=deep)
+
+    return Loader
+
+
+def _expanded_size(node, limit: int, file: str) -> int:
+    """Nodes of a composed YAML document with every alias followed (memoised per node, so
+    a shared node is counted each time it is referenced without being walked again)."""
+    import yaml
+
+    sizes: dict[int, int] = {}
+    order, stack = [], [node]
+    while stack:                       # post-order without recursion
+        n = stack.pop()
+        if id(n) in sizes:
+            continue
+        sizes[id(n)] = -1
+        order.append(n)
+        if isinstance(n, yaml.SequenceNode):
+            stack.extend(n.value)
+        elif isinstance(n, yaml.MappingNode):
+            for k, v in n.value:
+                stack.extend((k, v))
+    for n in reversed(order):
+        if isinstance(n, yaml.SequenceNode):
+            total = 1 + sum(sizes[id(c)] for c in n.value)
+        elif isinstance(n, yaml.MappingNode):
+            total = 1 + sum(sizes[id(k)] + sizes[id(v)] for k, v in n.value)
+        else:
+            total = 1
+        if total > limit:
+            raise InputError("document too large once its aliases are expanded", file=file,
+                             key=f"line {n.start_mark.line + 1}", value=f"> {limit} nodes",
+                             expected=f"at most {limit} nodes (few or no YAML aliases)")
+        sizes[id(n)] = total
+    return sizes[id(node)]
+
+
+def load_yaml(text: str, *, file: str):
+    """Parse YAML text safely: no duplicate keys, bounded nesting and alias expansion.
+
+    Raises an :class:`InputError` naming ``file`` and the line for invalid YAML, a duplicate
+    key, nesting deeper than :data:`MAX_NESTING` or more than :data:`MAX_EXPANDED_NODES`
+    nodes once aliases are followed.
+    """
+    import yaml
+
+    if len(text) > MAX_TEXT:
+        raise InputError("file too large", file=file, value=f"{len(text)} characters",
+                         expected=f"at most {MAX_TEXT} characters")
+    loader = _yaml_loader(file)(text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        _expanded_size(node, MAX_EXPANDED_NODES, file)
+        return loader.construct_document(node)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        problem = getattr(exc, "problem", None) or "syntax error"
+        raise InputError(f"invalid YAML ({problem})", file=file,
+                         key=f"line {mark.line + 1}" if mark is not None else None,
+                         expected="a YAML mapping") from None
+    finally:
+        loader.dispose()
+
+
+def load_json(text: str, *, file: str):
+    """Parse JSON text with nesting bounded by :data:`MAX_NESTING`; errors name the line."""
+    import json
+
+    if len(text) > MAX_TEXT:
+        raise InputError("file too large", file=file, value=f"{len(text)} characters",
+                         expected=f"at most {MAX_TEXT} characters")
+    depth = _json_depth(text)
+    if depth > MAX_NESTING:
+        raise InputError("nesting too deep", file=file, value=depth,
+                         expected=f"at most {MAX_NESTING} levels of objects and arrays")
+    try:
+        return json.loads(text)   # Infinity is kept (an unlimited thrust); schemas check finiteness
+    except json.JSONDecodeError as exc:
+        raise InputError(f"invalid JSON ({exc.msg})", file=file,
+                         key=f"line {exc.lineno}", expected="a JSON object") from None
+
+
+def _json_depth(text: str) -> int:
+    """Deepest bracket nesting of JSON text, brackets inside strings ignored."""
+    import re
+
+    # strings (with their escapes) removed, then the running count of [{ minus ]}
+    stripped = re.sub(r'"(?:[^"\\]|\\.)*"', '""', text)
+    depth = best = 0
+    for ch in re.sub(r"[^\[\]{}]", "", stripped):
+        depth += 1 if ch in "[{" else -1
+        best = max(best, depth)
+    return best
+
+
+# ---------------------------------------------------------------------------
+# Output paths and output values
+# ---------------------------------------------------------------------------
+
+def check_output_path(path, *, key: str = "output") -> Path:
+    """An output path a command can write: not a folder, in an existing writable folder.
+
+    Called before any work (the CLI checks every output option first) and again by
+    :func:`atomic_path`; raises an :class:`InputError` naming ``key`` and the path.
+    """
+    text = str(path)
+    p = Path(text)
+    expected = "a file path in an existing, writable folder"
+    if not text or text.endswith(("/", os.sep)) or p.is_dir() or p.name in ("", ".", ".."):
+        raise InputError("is a folder", key=key, value=text, expected=expected)
+    folder = p.parent if str(p.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputError("folder does not exist", key=key, value=text, expected=expected)
+    if not os.access(folder, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
+        raise InputError("not writable", key=key, value=text, expected=expected)
+    return p
+
+
+def first_non_finite(value, path: str = ""):
+    """The key path of the first NaN or infinite number in nested dicts/lists/arrays, or None.
+
+    Used at the output boundary: no command writes or prints a non-finite result.
+    """
+    import numpy as np
+
+    stack = [(path, value)]
+    while stack:
+        where, v = stack.pop()
+        if isinstance(v, bool) or v is None or isinstance(v, (str, bytes)):
+            continue
+        if isinstance(v, dict):
+            stack.extend((f"{where}.{k}" if where else str(k), x) for k, x in
+                         reversed(list(v.items())))
+        elif isinstance(v, (list, tuple)):
+            stack.extend((f"{where}[{i}]", x) for i, x in reversed(list(enumerate(v))))
+        elif isinstance(v, np.ndarray):
+            if v.dtype.kind in "fc" and not np.all(np.isfinite(v)):
+                k = int(np.flatnonzero(~np.isfinite(v.reshape(-1)))[0])
+                return f"{where}[{', '.join(map(str, np.unravel_index(k, v.shape)))}]"
+            if v.dtype == object:
+                stack.extend((f"{where}[{i}]", x) for i, x in enumerate(v.reshape(-1)))
+        elif isinstance(v, (float, np.floating, complex, np.complexfloating)):
+            if not np.isfinite(v):
+                return where or "value"
+    return None
+
+
+def check_finite_output(value, *, what: str, file: str | None = None) -> None:
+    """Refuse to write or print a result holding a NaN or an infinity.
+
+    The one output check of the commands: ``value`` is the result as it is about to be written
+    (nested dicts, lists, arrays); the first non-finite number is reported with its key path.
+    """
+    where = first_non_finite(value)
+    if where is not None:
+        from stripcoef.errors import UnreachableError
+
+        raise UnreachableError(f"{file + ': ' if file else ''}{where}: {what} is not finite; "
+                               "expected finite numbers (nothing written: the input leads "
+                               "outside the range where the model holds; check its magnitudes)")

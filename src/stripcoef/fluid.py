@@ -119,6 +119,15 @@ class Fluid:
     kinematic_viscosity: float = NU_SEAWATER
     source: str = "default sea water (rho = 1025 kg/m^3, nu = 1.19e-6 m^2/s)"
 
+    def __post_init__(self):
+        # the one check of a fluid, however it was made (file, flags, temperature, API)
+        for key, value in (("density", self.density),
+                           ("kinematic_viscosity", self.kinematic_viscosity)):
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) \
+                    or not np.isfinite(value) or value <= 0:
+                raise InputError(f"impossible water {key.replace('_', ' ')}", key=key,
+                                 value=value, expected=f"a finite number > 0 ({self.source})")
+
     @classmethod
     def from_temperature_salinity(cls, temperature: float, salinity: float) -> "Fluid":
         """Fluid from water temperature [degC] and salinity [PSU] (EOS-80 + Sharqawy 2010).
@@ -137,6 +146,16 @@ class Fluid:
                               stacklevel=2)
         rho = density_eos80(temperature, salinity)
         mu = dynamic_viscosity_sharqawy(temperature, salinity)
+        # outside their range the correlations are extrapolated (the warning above); where the
+        # result is no longer liquid water (inside the range they give rho = 992-1034 kg/m^3 and
+        # mu = 0.65-1.9e-3 Pa s; accepted: 950-1100 kg/m^3, 2e-4-5e-3 Pa s) it is an error
+        if not (950.0 <= rho <= 1100.0 and 2e-4 <= mu <= 5e-3):
+            key, value = (("salinity", salinity) if 0.0 <= temperature <= 40.0
+                          else ("temperature", temperature))
+            raise InputError("outside the validity of the EOS-80 / Sharqawy (2010) "
+                             f"correlations: rho = {rho:.5g} kg/m^3, mu = {mu:.4g} Pa s",
+                             key=key, value=value,
+                             expected="0-40 degC and 0-42 PSU (water properties that exist)")
         return cls(density=float(rho), kinematic_viscosity=float(mu / rho),
                    source=f"t = {temperature} degC, S = {salinity} PSU "
                           "(EOS-80 density, Sharqawy 2010 viscosity)")

@@ -25,7 +25,7 @@ import numpy as np
 
 from stripcoef.conventions import (DOF, shift_operator, sname_coefficients, skew,
                                    transform_matrix)
-from stripcoef.errors import ModelWarning
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
 
@@ -703,3 +703,67 @@ class HydroModel:
             control_surfaces=tuple(ControlSurface.from_dict(c)
                                    for c in data.get("control_surfaces", [])),
         )
+
+
+def check_physical(model, *, file: str | None = None) -> None:
+    r"""Raise an :class:`InputError` if ``model`` is not a physically possible vehicle.
+
+    Checked, each error naming the key, the value and what was expected:
+
+    - every matrix, point and scalar finite; mass, volume and density > 0 [kg, m^3, kg/m^3];
+    - :math:`M_{RB}` symmetric positive definite (Fossen 2011, eq. 3.44: a rigid body's
+      kinetic energy :math:`\tfrac12\nu^T M_{RB}\nu > 0`), and so
+      :math:`M = M_{RB} + M_A` (its symmetric part: the kinetic energy of body and fluid,
+      Fossen 2011, sec. 6.3.1);
+    - damping that dissipates: non-negative diagonals of :math:`D_L` and :math:`D_Q` and a
+      positive semi-definite symmetric part of :math:`D_L`
+      (:math:`\nu^T D_L \nu \ge 0`, Fossen 2011, sec. 6.4; a negative one is an energy source).
+
+    Eigenvalue tolerances are relative to the matrix's largest entry (1e-9) [-].
+    """
+    def fail(key, what, value, expected):
+        raise InputError(what, file=file, key=key, value=value, expected=expected)
+
+    arrays = (("added_mass", model.added_mass), ("linear_damping", model.linear_damping),
+              ("quadratic_damping", model.quadratic_damping),
+              ("rigid_body_mass", model.rigid_body_mass),
+              ("reference_point", model.reference_point),
+              ("center_of_gravity", model.center_of_gravity),
+              ("center_of_buoyancy", model.center_of_buoyancy))
+    for key, arr in arrays:
+        a = np.asarray(arr, dtype=float)
+        if not np.all(np.isfinite(a)):
+            k = np.unravel_index(int(np.flatnonzero(~np.isfinite(a))[0]), a.shape)
+            fail(f"{key}[{']['.join(map(str, k))}]", "not finite", float(a[k]),
+                 "finite numbers (the model is not usable)")
+    for key in ("mass", "volume", "density"):
+        v = float(getattr(model, key))
+        if not (np.isfinite(v) and v > 0):
+            fail(key, "not a positive number", v, "a finite number > 0")
+
+    def lowest(m):
+        m = np.asarray(m, dtype=float)
+        return float(np.linalg.eigvalsh(0.5 * (m + m.T)).min()), max(1.0, float(np.abs(m).max()))
+
+    m_rb = np.asarray(model.rigid_body_mass, dtype=float)
+    low, scale = lowest(m_rb)
+    if low <= 1e-12 * scale:
+        fail("rigid_body_mass", "not positive definite",
+             f"smallest eigenvalue {low:.4g}",
+             "a positive-definite M_RB (mass > 0, inertia satisfying the triangle inequality)")
+    low, scale = lowest(m_rb + np.asarray(model.added_mass, dtype=float))
+    if low <= 1e-12 * scale:
+        fail("added_mass", "M_RB + M_A not positive definite",
+             f"smallest eigenvalue {low:.4g}", "a positive-definite total mass matrix")
+    for key, mat in (("linear_damping", model.linear_damping),
+                     ("quadratic_damping", model.quadratic_damping)):
+        mat = np.asarray(mat, dtype=float)
+        for i in range(6):
+            if mat[i, i] < 0.0:
+                fail(f"{key}[{i}][{i}]", "drag matrix is not positive", float(mat[i, i]),
+                     ">= 0 (Fossen's convention: D positive, drag opposes motion)")
+    low, scale = lowest(model.linear_damping)
+    if low < -1e-9 * scale:
+        fail("linear_damping", "drag matrix is not positive",
+             f"smallest eigenvalue of the symmetric part {low:.4g}",
+             "a positive semi-definite matrix (negative damping is an energy source)")

@@ -39,6 +39,7 @@ integrator never steps across a discontinuity.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import time as _time
 from typing import Callable
 
 import numpy as np
@@ -50,6 +51,20 @@ from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log
 from stripcoef.progress import TimeBar
 
 INTERPOLATIONS = ("previous", "linear")
+#: Right-hand-side evaluations one simulation may spend (a smooth 100 s run of a shipped
+#: vehicle takes ~6,000; a stiff or divergent one would take forever) [-].
+MAX_EVALUATIONS = 1_000_000
+#: Wall-clock budget of one simulation [s] (docs/simulate.md): past it the run stops with an
+#: error saying where it got to, instead of grinding.
+TIME_LIMIT = 120.0
+
+
+class _OverBudget(Exception):
+    """Raised inside the right-hand side to stop the integrator (converted below)."""
+
+    def __init__(self, time, why):
+        super().__init__(why)
+        self.time, self.why = time, why
 
 
 def _as_time(t) -> np.ndarray:
@@ -144,7 +159,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
              method: str = "RK45", max_step: float | None = None,
              extra_force: Callable | None = None, effects: bool = True,
              munk: bool = True, coriolis: bool = True, channels: dict | None = None,
-             controller: Callable | None = None, deflections: dict | None = None) -> Log:
+             controller: Callable | None = None, deflections: dict | None = None,
+             max_evaluations: int = MAX_EVALUATIONS, time_limit: float | None = None) -> Log:
     r"""Simulate the 6-DOF motion of ``model`` and return it as a log.
 
     .. math::
@@ -177,7 +193,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         (the value at sample k applies on [t_k, t_{k+1}), like a controller's command);
         ``linear`` interpolates linearly between samples.
     rtol, atol : float
-        Integrator tolerances (``solve_ivp``).
+        Integrator tolerances (``solve_ivp``): 1e-13 <= rtol < 1, atol > 0.
     method : str
         ``solve_ivp`` method (``RK45``, ``DOP853``, ``LSODA``...).
     max_step : float, optional
@@ -208,6 +224,12 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         every sample with the state and the open-loop commands of that sample; the commands
         it returns replace them until the next sample (zero-order hold) and are logged (an
         autopilot, e.g. the heading autopilot of Indiveri 1998's heave trials).
+    max_evaluations : int
+        Budget of right-hand-side evaluations (:data:`MAX_EVALUATIONS`).
+    time_limit : float, optional
+        Wall-clock budget [s] (default :data:`TIME_LIMIT`; ``inf``: none). A stiff or divergent run
+        (a tiny mass, a huge current, a non-finite force) stops with an
+        :class:`~stripcoef.errors.UnreachableError` saying where it got to and why.
 
     Returns
     -------
@@ -230,6 +252,16 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     """
     if interpolation not in INTERPOLATIONS:
         raise unknown_name("interpolation", interpolation, INTERPOLATIONS, key="interpolation")
+    for key, value, ok, expected in (
+            ("rtol", rtol, lambda v: 1e-13 <= v < 1.0, "a relative tolerance from 1e-13 to < 1"),
+            ("atol", atol, lambda v: 0.0 < v < np.inf, "an absolute tolerance > 0"),
+            ("max_evaluations", max_evaluations, lambda v: v >= 1, "a budget >= 1"),
+            ("time_limit", TIME_LIMIT if time_limit is None else time_limit, lambda v: v > 0,
+             "a time budget > 0 [s]")):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) \
+                or np.isnan(value) or (key != "time_limit" and np.isinf(value)) or not ok(value):
+            raise InputError("invalid integrator setting", key=key, value=value,
+                             expected=expected)
     t = _as_time(t)
     n = t.size
 
@@ -366,6 +398,25 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     y = np.concatenate([eta0, nu0])
     states = np.empty((n, 12))
     states[0] = y
+    spent = {"evaluations": 0}
+    time_limit = TIME_LIMIT if time_limit is None else float(time_limit)
+    deadline = _time.monotonic() + time_limit if np.isfinite(time_limit) else None
+
+    def budgeted(time, y):
+        """rhs within the evaluation and wall-clock budgets, and finite."""
+        spent["evaluations"] += 1
+        if spent["evaluations"] > max_evaluations:
+            raise _OverBudget(time, f"over the budget of {max_evaluations} right-hand-side "
+                                    "evaluations")
+        if deadline is not None and spent["evaluations"] % 64 == 0 \
+                and _time.monotonic() > deadline:
+            raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
+        out = rhs(time, y)
+        if not np.all(np.isfinite(out)):
+            raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
+                                    "diverged)")
+        return out
+
     opts = {"rtol": rtol, "atol": atol, "method": method}
     if max_step is not None:
         opts["max_step"] = max_step
@@ -394,10 +445,18 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             else None
         if hold["values"] is not None:
             hold["applied"] = applied(t[a])
-        sol = solve_ivp(rhs, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
+        try:
+            sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
+        except _OverBudget as stop:
+            raise UnreachableError(
+                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
+                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
+                "expected a run that is not stiff or divergent (check the mass, inertia, "
+                "damping and current)") from None
         if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
-            raise UnreachableError(f"simulation failed between t = {t[a]:g} s and "
-                                   f"{t[b]:g} s: {sol.message} (motion diverged?)")
+            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
+                                   f"({sol.message}); expected a motion that stays finite "
+                                   "(did it diverge?)")
         states[a:b + 1] = sol.y.T
         y = sol.y[:, -1]
         # at t_b the new inputs take over (zero-order hold), so the state carries on.

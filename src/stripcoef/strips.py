@@ -15,6 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from stripcoef.errors import InputError
+
+
 @dataclass
 class Part:
     """One 2D part of the sections of a run of strips (vectorised over those strips).
@@ -189,8 +192,20 @@ class Strips:
                 "parts": parts, "holes": holes}
 
 
+#: Most strips a body is cut into: the default 1000 converge to 0.1 % (docs/vehicle-file.md);
+#: 100,000 take seconds and tens of MB, 3e7 would exhaust the memory (docs/performance.md).
+MAX_STRIPS = 100_000
+
+
 def uniform_stations(x_min: float, x_max: float, n: int) -> tuple[np.ndarray, np.ndarray]:
     """Centres and widths of ``n`` equal strips covering [x_min, x_max] [m]."""
+    if n > MAX_STRIPS:
+        raise InputError("too many strips", key="strips", value=n,
+                         expected=f"at most {MAX_STRIPS} (memory; 1000 converge to 0.1 %)")
+    if not (np.isfinite(x_min) and np.isfinite(x_max) and x_max > x_min):
+        raise InputError("no length to cut into strips", key="strips",
+                         value=[float(x_min), float(x_max)],
+                         expected="a body of finite, positive length [m]")
     edges = np.linspace(x_min, x_max, n + 1)
     return 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
 

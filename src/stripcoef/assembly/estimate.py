@@ -15,7 +15,7 @@ import numpy as np
 
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import Fluid
-from stripcoef.model import Conditions, HydroModel, rigid_body_mass_matrix
+from stripcoef.model import Conditions, HydroModel, check_physical, rigid_body_mass_matrix
 from stripcoef.assembly.added_mass import added_mass
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.lift import vehicle_lift
@@ -150,7 +150,7 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
                       f"(m = {mass:.3g} kg, rho V = {rho * volume:.3g} kg)", ModelWarning,
                       stacklevel=2)
-    return HydroModel(
+    model = HydroModel(
         name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
@@ -159,3 +159,5 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         provenance={"method": "strip theory", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )
+    check_physical(model, file=vehicle.source)   # no NaN or impossible model leaves here
+    return model

@@ -22,6 +22,10 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 from stripcoef.errors import InputError, StripcoefError
 
+#: Options that name a file a command writes: checked before any work (a folder, ``.``, a
+#: missing or unwritable folder is a one-line error, not a failure after minutes of work).
+OUTPUT_OPTIONS = ("output", "out", "report", "plot")
+
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
             "diagnose", "uncertainty", "sweep", "samples")
@@ -75,6 +79,16 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
     return exc
 
 
+def check_outputs(args) -> None:
+    """Every output option of the command names a writable file path (before any work)."""
+    from stripcoef.files import check_output_path
+
+    for dest in OUTPUT_OPTIONS:
+        path = getattr(args, dest, None)
+        if path is not None:
+            check_output_path(path, key=dest)
+
+
 def main(argv=None) -> int:
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -90,7 +104,12 @@ def main(argv=None) -> int:
     from stripcoef import progress
     progress.set_enabled(getattr(args, "progress", None))
     try:
+        check_outputs(args)
         return int(args.func(args) or 0)
+    except MemoryError:  # a resource limit missed by the input checks: say so, in one line
+        print(f"stripcoef {args.command}: error: out of memory; expected inputs of a size this "
+              "machine can hold (fewer strips, radii or log rows)", file=sys.stderr)
+        return 2
     except StripcoefError as exc:
         exc = in_cli_terms(exc, parser._subparsers._group_actions[0].choices[args.command])
         print(f"stripcoef {args.command}: error: {exc}", file=sys.stderr)

@@ -8,7 +8,7 @@ import numpy as np
 
 from stripcoef.conventions import added_mass_name
 from stripcoef.errors import InputError
-from stripcoef.files import json_text, write_text
+from stripcoef.files import check_finite_output, json_text, write_text
 from stripcoef.cli.coefficients import add_fluid_arguments, add_mesh_arguments
 
 
@@ -104,6 +104,7 @@ def run(args) -> int:
         "terms": rows,
         "panel_quality": quality,
     }
+    check_finite_output(data, what="the comparison", file=str(args.vehicle))
     text = json_text(data) if args.json else format_comparison(data)
     if args.output:
         write_text(args.output, text if text.endswith("\n") else text + "\n", key="--output")

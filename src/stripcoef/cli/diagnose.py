@@ -5,10 +5,10 @@ effect the model lacks, add it, report before and after (see
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
 from stripcoef.errors import InputError
+from stripcoef.files import check_finite_output
 
 
 def add_parser(subparsers):
@@ -50,7 +50,7 @@ def run(args) -> int:
 
     if args.window is None:
         args.window = DEFAULT_WINDOW
-    if not (args.window > 0):
+    if not (0 < args.window < float("inf")):
         raise InputError("not a positive window", key="--window", value=args.window,
                          expected="a positive number of seconds")
     effects = None
@@ -58,16 +58,12 @@ def run(args) -> int:
         effects = [e.strip() for e in args.effects.split(",") if e.strip()]
         for e in effects:
             get_effect(e)
-    for key, path in (("--out", args.out), ("--report", args.report)):
-        if path:
-            folder = Path(path).parent if str(Path(path).parent) else Path(".")
-            if not folder.is_dir():
-                raise InputError("folder does not exist", key=key, value=path,
-                                 expected="a path in an existing, writable folder")
+    # --out and --report are checked before any work (cli.app.check_outputs)
     log = read_log_from_args(args.log, args, required=("t",))
     model = load_model(args.vehicle)
     result = diagnose(log, model, dof=args.dof, window=args.window, effects=effects,
                       resimulate=not args.no_resimulate)
+    check_finite_output(result.model.to_dict(), what="the calibrated model", file=str(args.log))
     if args.report:
         markdown_report(result, args.report)
     if args.out:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
-from stripcoef.files import json_text, write_text
+from stripcoef.files import check_finite_output, json_text, write_text
 
 from stripcoef.identify.api import METHODS
 
@@ -147,6 +147,8 @@ def run_identify(args):
 
 def run(args) -> int:
     fit, cmp = run_identify(args)
+    check_finite_output({"parameters": fit.to_dict().get("parameters")},
+                        what="the identified model", file=args.log)
     if args.json:
         data = fit.to_dict()
         if cmp is not None:

@@ -6,10 +6,9 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from pathlib import Path
 
 from stripcoef.errors import InputError
-from stripcoef.files import json_text
+from stripcoef.files import check_finite_output, json_text
 from stripcoef.modelfile import load_model
 
 
@@ -143,15 +142,12 @@ def run(args) -> int:
     if args.turn_speed is not None and not (args.turn_speed > 0 and math.isfinite(args.turn_speed)):
         raise InputError("turning speed must be positive", key="--turn-speed",
                          value=args.turn_speed, expected="a speed > 0 [m/s]")
-    if args.plot is not None:
-        folder = Path(args.plot).parent
-        if str(folder) and not folder.is_dir():
-            raise InputError("folder does not exist", key="--plot", value=args.plot,
-                             expected="a path in an existing folder")
+    # --plot is checked before any work (cli.app.check_outputs)
     model = load_model(args.vehicle)            # shared with the other model commands
     check_model(model, file=str(args.vehicle))
     result = solve_limits(model, radii=radii, munk=args.munk, coriolis=args.coriolis,
                           turn_speed=args.turn_speed)
+    check_finite_output(result.to_dict(), what="the limits", file=str(args.vehicle))
     if args.plot is not None:
         plot_limits(result, args.plot, key="--plot")
     if args.json:
@@ -165,7 +161,7 @@ def parse_radii(text: str):
     """``--radii "R1:R2:N"`` -> N radii evenly spaced from R1 to R2 [m] (checked)."""
     import numpy as np
 
-    from stripcoef.limits.solver import check_radii
+    from stripcoef.limits.solver import MAX_RADII, check_radii
 
     parts = str(text).split(":")
     try:
@@ -178,6 +174,9 @@ def parse_radii(text: str):
     if n < 1:
         raise InputError("number of radii must be positive", key="--radii", value=text,
                          expected="R1:R2:N with N >= 1")
+    if n > MAX_RADII:
+        raise InputError("too many turning radii", key="--radii", value=text,
+                         expected=f"R1:R2:N with N <= {MAX_RADII}")
     if r1 <= 0.0:
         raise InputError("turning radius must be positive", key="--radii", value=text,
                          expected="R1 > 0 [m]")

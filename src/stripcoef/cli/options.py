@@ -56,7 +56,11 @@ def fluid_from_args(args, default):
         if args.water_temperature is None or args.salinity is None:
             raise InputError("incomplete fluid options", key="--water-temperature/--salinity",
                              expected="both --water-temperature and --salinity")
-        return Fluid.from_temperature_salinity(args.water_temperature, args.salinity)
+        try:
+            return Fluid.from_temperature_salinity(args.water_temperature, args.salinity)
+        except InputError as exc:
+            raise exc.with_key("--" + str(exc.key).replace("temperature", "water-temperature")) \
+                from None
     if dn:
         base = default or Fluid()
         rho = args.rho if args.rho is not None else base.density
@@ -92,9 +96,11 @@ def estimate_options(args, vehicle):
         rp = args.reference_point
         ref = rp if rp in ("center_of_buoyancy", "center_of_gravity", "origin") else \
             parse_point(rp, key="--reference-point")
-    if args.strips is not None and args.strips < 4:
-        raise InputError("too few strips", key="--strips", value=args.strips,
-                         expected="an integer >= 4")
+    from stripcoef.strips import MAX_STRIPS
+
+    if args.strips is not None and not 4 <= args.strips <= MAX_STRIPS:
+        raise InputError("invalid number of strips", key="--strips", value=args.strips,
+                         expected=f"an integer from 4 to {MAX_STRIPS}")
     return EstimateOptions(strips=args.strips,
                            corrections=False if args.no_corrections else None,
                            speed=args.speed, reference_point=ref,
@@ -123,21 +129,3 @@ def read_log_from_args(path, args, *, required=()):
 
     return read_any_log(path, column_map=getattr(args, "map", None), required=required)
 
-
-def check_output_path(path, *, key: str) -> None:
-    """An output path must name a file in an existing, writable folder: checked before any
-    work, so a long run never ends on an unwritable path."""
-    import os
-    from pathlib import Path
-
-    p = Path(path)
-    if str(path) in ("", ".", "..") or p.is_dir() or str(path).endswith(("/", os.sep)):
-        raise InputError("output is a folder", key=key, value=str(path),
-                         expected="a file name")
-    folder = p.parent if str(p.parent) else Path(".")
-    if not folder.is_dir():
-        raise InputError("output folder does not exist", key=key, value=str(path),
-                         expected="a file in an existing folder")
-    if not os.access(folder, os.W_OK):
-        raise InputError("output folder is not writable", key=key, value=str(path),
-                         expected="a file in a writable folder")

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from stripcoef.errors import InputError
-from stripcoef.files import json_text, read_text, write_text
+from stripcoef.files import check_finite_output, json_text, load_json, read_text, write_text
 
 
 def add_parser(sub):
@@ -30,15 +29,13 @@ def run(args) -> int:
     from stripcoef.identify.scaling import scale_result
     path = Path(args.result)
     text = read_text(path, kind="identification result")
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not JSON (line {exc.lineno})", file=str(path),
-                         expected="the output of stripcoef identify --json") from None
+    data = load_json(text, file=str(path))
+    check_finite_output(data, what="the identification result", file=str(path))
     if not isinstance(data, dict):
         raise InputError("not a JSON object", file=str(path),
                          expected="the output of stripcoef identify --json")
-    out = scale_result(data, args.ratio, rotational=args.rotational)
+    out = scale_result(data, args.ratio, rotational=args.rotational, file=str(path))
+    check_finite_output(out, what="the scaled result", file=str(path))
     if args.json:
         text = json_text(out)
     else:

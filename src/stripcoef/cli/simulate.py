@@ -21,13 +21,21 @@ import numpy as np
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
 from stripcoef.conventions import FORCES, VELOCITIES
-from stripcoef.errors import InputError, ModelWarning
+from stripcoef.errors import InputError, ModelWarning, UnreachableError
+from stripcoef.files import check_finite_output
 from stripcoef.logfile import KNOWN_COLUMNS
 
 #: Without --dt, inputs with fewer rows than this are resampled every DEFAULT_DT seconds
 #: (a 2-row input would otherwise give a 2-row log).
 FEW_ROWS = 100
 DEFAULT_DT = 0.1   # [s]
+
+
+#: Fastest water current accepted [m/s]: the fastest tidal races run at ~5 m/s; a faster
+#: "current" is a typo, and makes the equations so stiff that the integrator grinds.
+MAX_CURRENT = 100.0
+#: Most output samples of one run (a 1,000,000-row log is ~100 MB of CSV).
+MAX_SAMPLES = 1_000_000
 
 
 def add_parser(subparsers):
@@ -173,6 +181,9 @@ def run(args) -> int:
         read_log_from_args(args.inputs, args, required=("t",))
     model = load_model(args.vehicle)
     current = parse_vector(args.current, key="--current") if args.current else None
+    if current is not None and np.linalg.norm(current) > MAX_CURRENT:
+        raise InputError("current too fast", key="--current", value=args.current,
+                         expected=f"a speed below {MAX_CURRENT:g} m/s (tidal races reach ~5 m/s)")
     times = None
     dt = args.dt
     if dt is not None and not (np.isfinite(dt) and dt > 0):
@@ -182,16 +193,24 @@ def run(args) -> int:
     if dt is None and len(t_in) < FEW_ROWS and start_log is None:
         dt = DEFAULT_DT
     if dt is not None:
+        if (t_in[-1] - t_in[0]) / dt > MAX_SAMPLES:
+            raise InputError("time step too small for the inputs' span", key="--dt",
+                             value=dt, expected=f"at most {MAX_SAMPLES} output samples over "
+                             f"{t_in[-1] - t_in[0]:g} s")
         times = np.arange(t_in[0], t_in[-1] + 0.5 * dt, dt)
         times = times[times <= t_in[-1] + 1e-12]
     elif start_log is not None and log is not start_log:
         times = start_log.require("t")              # predict at the logged times
     times, forces, commands, deflections, channels = inputs_from_log(
         log, model, times, interpolation=args.interpolation)
-    out = simulate(model, times, forces=forces, commands=commands, current=current,
-                   channels=channels, deflections=deflections, eta0=eta0, nu0=nu0,
-                   munk=args.munk, coriolis=args.coriolis,
-                   interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
+    try:
+        out = simulate(model, times, forces=forces, commands=commands, current=current,
+                       channels=channels, deflections=deflections, eta0=eta0, nu0=nu0,
+                       munk=args.munk, coriolis=args.coriolis, interpolation=args.interpolation,
+                       rtol=args.rtol, atol=args.rtol * 1e-2)
+    except UnreachableError as exc:     # a stopped run: name the model it was run on
+        raise UnreachableError(f"{args.vehicle}: {exc}") from None
+    check_finite_output(out.columns, what="the simulated log", file=str(args.vehicle))
     to_stdout = args.out == "-"
     if to_stdout:
         sys.stdout.write(out.to_csv_text())

@@ -27,13 +27,10 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from stripcoef.cli.options import check_output_path
     from stripcoef.study.plots import sweep_figure
     from stripcoef.study.sweep import parse_vary, sweep, write_table
 
-    for flag, path in (("--output", args.output), ("--plot", args.plot)):
-        if path:
-            check_output_path(path, key=flag)
+    # --output and --plot are checked before any work (cli.app.check_outputs)
     axes = [parse_vary(v) for v in args.vary]
     if len(axes) > 2 and args.plot:
         from stripcoef.errors import InputError

@@ -56,13 +56,10 @@ def format_table(result) -> str:
 
 
 def run(args) -> int:
-    from stripcoef.cli.options import check_output_path
     from stripcoef.files import write_text
     from stripcoef.study.uncertainty import plot_band, uncertainty
 
-    for flag, path in (("--output", args.output), ("--plot", args.plot)):
-        if path:
-            check_output_path(path, key=flag)
+    # --output and --plot are checked before any work (cli.app.check_outputs)
     result = uncertainty(args.vehicle, samples=args.samples, seed=args.seed,
                          limits=args.limits, method=args.method, workers=args.workers,
                          scheduler=args.scheduler, progress=getattr(args, "progress", None))

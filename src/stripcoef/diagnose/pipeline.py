@@ -41,6 +41,7 @@ Steps, for each degree of freedom (issue 7):
 from __future__ import annotations
 
 import math
+import time
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -49,7 +50,7 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
-from stripcoef.errors import InputError, ModelWarning
+from stripcoef.errors import InputError, ModelWarning, UnreachableError
 from stripcoef.model import frozen_mapping, plain
 from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
 from stripcoef.effects.windows import window_data
@@ -67,6 +68,21 @@ MIMIC_BANDS = 2.5
 UNEXPLAINED_GAIN = 0.10
 N_BLOCKS = 5
 MAX_STEPS = 4
+#: Wall-clock budget of one diagnosis [s]: the fits cost grows with the log's length (a
+#: 200,000-row log would take most of an hour); past the budget the diagnosis stops with an
+#: error saying so, instead of grinding.
+TIME_LIMIT = 300.0
+_deadline = {"at": None, "limit": None, "rows": 0, "source": ""}
+
+
+def _check_budget() -> None:
+    """Raise once the running diagnosis is past its wall-clock budget (checked per design)."""
+    at = _deadline["at"]
+    if at is not None and time.monotonic() > at:
+        raise UnreachableError(
+            f"{_deadline['source']}: diagnosis stopped, over its time budget of {_deadline['limit']:g} s; got "
+            f"{_deadline['rows']} log rows; expected a log this machine can fit in time "
+            "(resample it, e.g. to 10 Hz, or cut it into parts)")
 #: Default window of the one-step residual [s]. Velocity noise of standard deviation
 #: sigma_v enters the window residual as M_ii sqrt(2) sigma_v / T: 4 s windows halve the
 #: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
@@ -253,6 +269,7 @@ class _Config:
         return self.cal_cols
 
     def design(self, hyper_override=None):
+        _check_budget()
         y = self.data.e0[:, self.dof].copy()
         cols = [self.calibration_columns(hyper_override)]
         sd = [self.cal_sd]
@@ -898,7 +915,8 @@ def select_dofs(data: WindowData) -> tuple:
 
 
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
-             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> Diagnosis:
+             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS,
+             time_limit: float | None = None) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -915,6 +933,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Candidate effects (default: the whole library).
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
+    time_limit : float, optional
+        Wall-clock budget [s] (default :data:`TIME_LIMIT`; ``inf``: none); past it an
+        :class:`~stripcoef.errors.UnreachableError` says so instead of grinding.
 
     Returns
     -------
@@ -925,6 +946,21 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``unexplained``, ``per_dof`` details, ``model`` (the calibrated HydroModel);
         :meth:`Diagnosis.to_dict` is the JSON contract (everything but the model).
     """
+    limit = TIME_LIMIT if time_limit is None else float(time_limit)
+    if not limit > 0:
+        raise InputError("not a positive time budget", key="time_limit", value=time_limit,
+                         expected="a number of seconds > 0 (inf: none)")
+    _deadline.update(at=time.monotonic() + limit if math.isfinite(limit) else None,
+                     limit=limit, rows=len(log), source=log.source)
+    try:
+        return _diagnose(log, model, dof=dof, window=window, effects=effects,
+                         resimulate=resimulate, bands=bands, max_steps=max_steps)
+    finally:
+        _deadline["at"] = None
+
+
+def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps) -> Diagnosis:
+    """:func:`diagnose` inside its time budget."""
     if str(dof).lower() != "all":
         log.require(VELOCITIES[parse_dof(dof)])       # never a missing column read as zeros
     data = window_data(log, model, window=window)

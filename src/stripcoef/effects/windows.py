@@ -270,6 +270,9 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     from stripcoef.conventions import POSE, VELOCITIES
 
     t = log.require("t")
+    if not (np.isfinite(window) and window > 0):
+        raise InputError("not a positive window", key="window", value=window,
+                         expected="a finite number of seconds > 0")
     present = [v for v in VELOCITIES if v in log]
     if not present:
         raise InputError("no velocity columns", file=log.source,
@@ -320,6 +323,14 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
                       source=log.source,
                       endpoint_halfwidth=min(int(round(ENDPOINT_SPAN / dt)), w // 4))
     data.e0 = prior_residual(data, model)
+    if not np.all(np.isfinite(data.e0)):
+        # values so large that the prior's forces overflow (1e300 in a column): refused
+        # here, where the log's column can still be named, not as a failed SVD later
+        k = int(np.nonzero(~np.all(np.isfinite(data.e0), axis=1))[0][0])
+        big = max(log.names, key=lambda c: float(np.max(np.abs(log.columns[c]))))
+        raise InputError(f"the model's forces overflow in window {k}", file=log.source,
+                         key=big, value=float(np.max(np.abs(log.columns[big]))),
+                         expected="values in SI units of a plausible magnitude")
     return data
 
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from stripcoef.conventions import AXES, axes_operator, transform_matrix, transform_vector
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, plain
+from stripcoef.model import HydroModel, check_physical, plain
 
 #: Names of the special reference points (see :func:`resolve_point`).
 POINT_NAMES = ("CO", "CG", "CB", "origin")
@@ -183,9 +183,14 @@ class ExportView:
 
     @classmethod
     def of(cls, model: HydroModel, point, axes: str) -> "ExportView":
+        check_physical(model)     # no impossible model (negative damping...) is exported
         xyz, label = resolve_point(model, point)
-        return cls(model=model.about(xyz), source=model, point=xyz, point_label=label,
-                   axes=axes)
+        moved = model.about(xyz)
+        for name in ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping"):
+            if not np.all(np.isfinite(getattr(moved, name))):
+                raise InputError("the matrices are not finite about this point", key="point",
+                                 value=point, expected="a reference point near the vehicle")
+        return cls(model=moved, source=model, point=xyz, point_label=label, axes=axes)
 
     def matrix(self, name: str) -> np.ndarray:
         """A 6x6 matrix of the model about the view's point, in the view's axes.

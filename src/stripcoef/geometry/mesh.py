@@ -595,12 +595,13 @@ def _read(path: Path):
         raise _fail(path, "unknown mesh file extension", value=path.suffix or "(none)",
                     expected="one of " + ", ".join(MESH_EXTENSIONS))
     if not path.is_file():
-        raise _fail(path, "mesh file not found")
+        raise _fail(path, "mesh file not found", expected="an existing mesh file")
     try:
         loaded = trimesh.load(str(path), force="mesh", process=True)
     except Exception as exc:  # trimesh raises many types for garbage input
         raise _fail(path, f"not a readable {ext[1:].upper()} mesh ({type(exc).__name__}: "
-                          f"{str(exc).splitlines()[0][:80] if str(exc) else 'no detail'})") from None
+                          f"{str(exc).splitlines()[0][:80] if str(exc) else 'no detail'})",
+                    expected=f"a valid {ext[1:].upper()} file of a closed surface") from None
     if not isinstance(loaded, trimesh.Trimesh):
         raise _fail(path, "file holds no triangle mesh", value=type(loaded).__name__,
                     expected="a surface mesh with faces")
@@ -623,7 +624,10 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     scale = LENGTH_UNITS[length_unit]
     mesh.apply_scale(scale)
     if transform is not None:
-        t = np.asarray(transform, dtype=float)
+        try:
+            t = np.asarray(transform, dtype=float)
+        except (TypeError, ValueError):
+            t = np.full(1, np.nan)
         if t.shape != (4, 4) or not np.all(np.isfinite(t)):
             raise InputError("transform must be a 4x4 matrix", key="transform",
                              value=f"shape {t.shape}", expected="4x4 finite")
@@ -637,7 +641,8 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     where = str(path)
     extent = np.ptp(mesh.vertices, axis=0)
     if not np.all(np.isfinite(extent)):
-        raise _fail(where, "mesh has non-finite vertex coordinates")
+        raise _fail(where, "mesh has non-finite vertex coordinates",
+                    expected="finite coordinates (no NaN or inf)")
     if extent[0] <= 1e-9 * max(extent.max(), 1e-300):
         raise _fail(where, f"the body has no extent along the mesh {axis} axis (the body axis)",
                     value=f"{extent[0]:.3g} m", expected="the mesh axis along the body's length as axis (x, y or z)")
@@ -661,7 +666,8 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         fv = None
     mesh.remove_unreferenced_vertices()
     if len(mesh.faces) == 0:
-        raise _fail(where, "mesh is empty after removing degenerate faces", value=f"{n0} faces")
+        raise _fail(where, "mesh is empty after removing degenerate faces", value=f"{n0} faces",
+                    expected="triangles of non-zero area")
     topo = EdgeTopology(mesh.faces)
     labels = topo.component_labels() if topo.watertight else None
     # Duplicate faces: two faces on the same three vertices share all three edges, so in a

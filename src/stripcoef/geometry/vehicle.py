@@ -14,12 +14,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from stripcoef.errors import InputError
 from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
-from stripcoef.files import read_text
-from stripcoef.strips import Strips, uniform_stations
+from stripcoef.files import load_yaml, read_text
+from stripcoef.strips import MAX_STRIPS, Strips, uniform_stations
 from stripcoef.thrusters import Thruster
 from stripcoef.geometry.keypaths import nominal
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
@@ -182,7 +181,16 @@ class Vehicle:
         x, dx = uniform_stations(lo, hi, n)
         parts = []
         for body in self.bodies:
-            parts.extend(body.parts(x, dx))
+            own = body.parts(x, dx)
+            if not any(np.size(p.index) for p in own):
+                # a body shorter than a strip is invisible to strip theory (and a hull that
+                # covers no strip leaves the hull terms without a section)
+                blo, bhi = body.x_extent()
+                raise InputError(f"body '{body.name}' covers no strip", file=self.source,
+                                 key="strips", value=f"{n} strips over {hi - lo:.4g} m",
+                                 expected=f"strips shorter than the body's {bhi - blo:.4g} m "
+                                          "(more strips, or sizes in metres)")
+            parts.extend(own)
         holes = [h.cut(x, dx, self.hull) for h in self.holes] if self.hull is not None else []
         for body in self.bodies:
             if hasattr(body, "holes"):
@@ -212,7 +220,9 @@ class _Reader:
                                expected="one of " + ", ".join(allowed))
         for k in required:
             if k not in data:
-                raise self.err(f"{key}.{k}" if key else k, "missing required key")
+                raise self.err(f"{key}.{k}" if key else k, "missing required key",
+                               expected="the keys " + ", ".join(required)
+                               + " (docs/vehicle-file.md)")
         return data
 
     def number(self, data, key, path, *, default=None, positive=False, nonneg=False,
@@ -248,6 +258,21 @@ class _Reader:
         if not np.all(np.isfinite(arr)):
             raise self.err(full, "not finite", v, f"a list of {n} finite numbers")
         return arr
+
+    def matrix(self, data, key, path, shape, expected):
+        """A nested list of finite numbers of ``shape`` (no ragged rows, no strings)."""
+        full = f"{path}.{key}" if path else key
+        v = data[key]
+
+        def numbers(x, dims):
+            if not dims:
+                return (not isinstance(x, bool) and isinstance(x, (int, float))
+                        and math.isfinite(x))
+            return (isinstance(x, list) and len(x) == dims[0]
+                    and all(numbers(y, dims[1:]) for y in x))
+        if not numbers(v, shape):
+            raise self.err(full, "wrong type", v, expected)
+        return np.asarray(v, dtype=float)
 
     def string(self, data, key, path, *, choices=None, default=None, required=False):
         full = f"{path}.{key}" if path else key
@@ -320,7 +345,21 @@ def _segment(r: _Reader, seg, path) -> Segment:
         if kind == "myring_nose":
             params["n"] = r.number(seg, "n", path, default=2.0, positive=True)
         if kind == "myring_tail":
-            params["theta_deg"] = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+            th = r.number(seg, "theta_deg", path, default=25.0, nonneg=True)
+            if th >= 90.0:
+                raise r.err(f"{path}.theta_deg", "not a tail half-angle", th,
+                            "an angle from 0 to < 90 degrees")
+            if "length" not in seg:
+                # the cubic must stay between the axis and the radius over the tail's length
+                from stripcoef.geometry.profiles import myring_tail
+                rs = myring_tail(np.linspace(xa, xf, 201), xa, xf, params["radius"],
+                                 math.radians(th))
+                if np.min(rs) < -1e-12 * params["radius"] or \
+                        np.max(rs) > params["radius"] * (1 + 1e-9):
+                    raise r.err(f"{path}.theta_deg", "the tail leaves [0, radius] with this angle",
+                                th, f"a smaller angle for a tail {xf - xa:g} m long of radius "
+                                    f"{params['radius']:g} m")
+            params["theta_deg"] = th
         if kind in ("myring_nose", "myring_tail"):
             full = r.number(seg, "length", path, positive=True, default=None)
             if full is not None:
@@ -399,6 +438,9 @@ def _appendage(r: _Reader, data, path):
     from stripcoef.geometry import mesh as mesh_mod  # noqa: PLC0415  (optional path)
     mfile = r.string(data, "mesh", path, required=True)
     mpath = Path(r.file).parent / mfile
+    if "transform" in data:
+        r.matrix(data, "transform", path, (4, 4), "a 4x4 homogeneous transform (rows of 4 "
+                                                  "finite numbers)")
     return mesh_mod.load_mesh(mpath, length_unit=r.string(data, "length_unit", path,
                                                           choices=("m", "mm", "in"), default="m"),
                               origin="file", transform=data.get("transform"), name=name,
@@ -423,14 +465,17 @@ def _fluid(r: _Reader, data) -> Fluid:
         return Fluid()
     path = "fluid"
     r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity"))
+    water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
     if "temperature" in data or "salinity" in data:
         if "density" in data or "kinematic_viscosity" in data:
             raise r.err(path, "both temperature/salinity and density/viscosity given",
                         expected="either temperature + salinity, or density + kinematic_viscosity")
         t = r.number(data, "temperature", path, required=True)
         s = r.number(data, "salinity", path, required=True, nonneg=True)
-        return Fluid.from_temperature_salinity(t, s)
-    water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
+        try:
+            return Fluid.from_temperature_salinity(t, s)
+        except InputError as exc:            # the correlation's error, in the file's terms
+            raise r.err(f"{path}.{exc.key}", exc.what, exc.value, exc.expected) from None
     rho = r.number(data, "density", path, positive=True,
                    default=RHO_SEAWATER if water == "sea" else RHO_FRESHWATER)
     nu = r.number(data, "kinematic_viscosity", path, positive=True,
@@ -461,6 +506,13 @@ def _mass(r: _Reader, data) -> MassSpec:
         if not np.allclose(arr, arr.T) or np.any(np.linalg.eigvalsh(0.5 * (arr + arr.T)) <= 0):
             raise r.err(f"{path}.inertia", "not symmetric positive definite", v,
                         "a symmetric positive-definite inertia tensor")
+        # principal moments of a real body: I1 + I2 >= I3 for every ordering (the triangle
+        # inequality of I_i = int (r^2 - x_i^2) dm; Landau & Lifshitz, Mechanics, sec. 32)
+        p1, p2, p3 = np.linalg.eigvalsh(0.5 * (arr + arr.T))
+        if p1 + p2 < p3 * (1.0 - 1e-9):
+            raise r.err(f"{path}.inertia", "principal moments violate the triangle inequality",
+                        v, f"I1 + I2 >= I3 (principal moments {p1:.4g}, {p2:.4g}, {p3:.4g} "
+                           "kg m^2)")
         spec.inertia = arr
     for i, z in enumerate(r.listing(data, "zones", path)):
         zp = f"{path}.zones[{i}]"
@@ -468,13 +520,14 @@ def _mass(r: _Reader, data) -> MassSpec:
         x = z["x"]
         if (not isinstance(x, list) or len(x) != 2
                 or any(isinstance(a, bool) or not isinstance(a, (int, float)) for a in x)
-                or x[1] <= x[0]):
-            raise r.err(f"{zp}.x", "wrong value", x, "[x_aft, x_fwd] with x_aft < x_fwd")
+                or not all(math.isfinite(a) for a in x) or x[1] <= x[0]):
+            raise r.err(f"{zp}.x", "wrong value", x,
+                        "[x_aft, x_fwd], finite, with x_aft < x_fwd [m]")
         bodies = z.get("bodies")
         if bodies is not None and (not isinstance(bodies, list)
                                    or not all(isinstance(b, str) for b in bodies)):
             raise r.err(f"{zp}.bodies", "wrong type", bodies, "a list of body names")
-        spec.zones.append(DensityZone(name=str(z.get("name", zp)), x_aft=float(x[0]),
+        spec.zones.append(DensityZone(name=r.string(z, "name", zp, default=zp), x_aft=float(x[0]),
                                       x_fwd=float(x[1]),
                                       density=r.number(z, "density", zp, nonneg=True,
                                                        required=True),
@@ -701,8 +754,8 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
     else:
         ref = r.vector(data, "reference_point", "")
     strips = data.get("strips", DEFAULT_STRIPS)
-    if isinstance(strips, bool) or not isinstance(strips, int) or strips < 4:
-        raise r.err("strips", "invalid value", strips, "an integer >= 4")
+    if isinstance(strips, bool) or not isinstance(strips, int) or not 4 <= strips <= MAX_STRIPS:
+        raise r.err("strips", "invalid value", strips, f"an integer from 4 to {MAX_STRIPS}")
     corr = data.get("corrections", True)
     if not isinstance(corr, bool):
         raise r.err("corrections", "wrong type", corr, "true or false")
@@ -816,17 +869,11 @@ def load_vehicle(path, **mesh_options) -> Vehicle:
 
 
 def read_vehicle_data(path) -> dict:
-    """The raw mapping of a vehicle YAML file (not yet validated: :func:`parse_vehicle`)."""
+    """The raw mapping of a vehicle YAML file (not yet validated: :func:`parse_vehicle`), read
+    by the one bounded YAML reader (:func:`stripcoef.files.load_yaml`)."""
     path = Path(path)
     name = str(path)
-    text = read_text(path, kind="vehicle file")
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}" if mark is not None else None
-        raise InputError("invalid YAML", file=name, key=where,
-                         expected="a YAML mapping (see docs/vehicle-file.md)") from None
+    data = load_yaml(read_text(path, kind="vehicle file"), file=name)
     if not isinstance(data, dict):
         raise InputError("not a mapping", file=name, value=type(data).__name__,
                          expected="a YAML mapping with at least a 'hull' key")

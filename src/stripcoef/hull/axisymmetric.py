@@ -114,6 +114,11 @@ def _ring_integrals(p, q):
               I_0 = \int_0^{2\pi}\frac{d\theta}{R} = \frac{4K(m)}{A},\quad
               I_1 = \int_0^{2\pi}\frac{\cos\theta\,d\theta}{R} = \frac{P I_0 - 4AE(m)}{Q}
 
+    A ring on the axis (:math:`Q = 0`: a zero radius at either end, e.g. a panel of an
+    equal-area profile that runs along the axis where no body is) has R independent of
+    theta, and the limits :math:`I_0 = 2\pi/\sqrt{P}`, :math:`I_1 = 0` are used there (the
+    recursion's 0/0 would be a NaN).
+
     ``p`` [m^2], ``q`` [m^2]; returns A [m], B^2 [m^2], K, E [-], I_0, I_1 [1/m].
     Gradshteyn & Ryzhik (2007), 2.571 and 8.111-8.112.
     """
@@ -123,7 +128,8 @@ def _ring_integrals(p, q):
     m = np.clip(2.0 * q / a2, 0.0, 1.0 - 1e-16)
     kk, ee = ellipk(m), ellipe(m)
     i0 = 4.0 * kk / a
-    i1 = (p * i0 - 4.0 * a * ee) / q
+    on_axis = q <= 0.0
+    i1 = np.where(on_axis, 0.0, (p * i0 - 4.0 * a * ee) / np.where(on_axis, 1.0, q))
     return a, b2, kk, ee, i0, i1
 
 
@@ -419,14 +425,21 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     p = dx2 + rc * rc + rq * rq
     q = 2.0 * rc * rq
     a, b2, kk, ee, i0, i1 = _ring_integrals(p, q)
+    # a panel on the axis (r_c = 0, Q = 0): R = A for every theta, so
+    # int (1 - cos)/R^3 = 2 pi/A^3 and int (1 - cos) cos/R^3 = -pi/A^3 (limits of the
+    # recursions below, whose 0/0 would be a NaN)
+    on_axis = q <= 0.0
+    qs = np.where(on_axis, 1.0, q)
     if mode == 0:
         s = -rq * i0 / (4.0 * np.pi)
-        jdiff = 4.0 * (kk - ee) / (a * q)                 # int (1 - cos)/R^3
+        jdiff = np.where(on_axis, 2.0 * np.pi / a**3,
+                         4.0 * (kk - ee) / (a * qs))      # int (1 - cos)/R^3
     else:
         s = -rq * i1 / (4.0 * np.pi)
         j0 = 4.0 * ee / (a * b2)
-        j1 = (p * j0 - i0) / q
-        jdiff = (i1 - b2 * j1) / q                        # int (1 - cos) cos / R^3
+        j1 = (p * j0 - i0) / qs
+        jdiff = np.where(on_axis, -np.pi / a**3,
+                         (i1 - b2 * j1) / qs)             # int (1 - cos) cos / R^3
     d = rq * nrq * rc * jdiff / (4.0 * np.pi)
     return s, d
 

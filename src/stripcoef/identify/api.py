@@ -39,10 +39,13 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
     """
     if method not in METHODS:
         raise unknown_name("identification method", method, METHODS, key="method")
+    _check_settings(settle=settle, trim=trim, inertia=inertia, mass=mass, buoyancy=buoyancy,
+                    length=length, stiffness=stiffness, window=window, order=order)
     from stripcoef.identify import onestep, pendulum, steady        # scipy.signal etc. only when used
     from stripcoef.identify.inputs import applied_force, horizontal_command
     if method in ("steady", "one-step"):
-        name = DOF[parse_dof(dof or ("heave" if method == "steady" else "yaw"))]
+        name = DOF[parse_dof(dof if dof is not None else
+                             ("heave" if method == "steady" else "yaw"))]
         i = DOF.index(name)
         force, origin = applied_force(log, name, vehicle)
         cmp = None
@@ -78,8 +81,39 @@ def identify_log(log, method: str, *, dof: str | None = None, model: str | None 
                              expected="the buoyancy B [N] or a vehicle")
         return pendulum.pendulum_log(log, mass=mass, buoyancy=buoyancy or 0.0, length=length,
                                      medium=medium, dof=dof or "", **kw), None
-    name = DOF[parse_dof(dof or "yaw")]
+    name = DOF[parse_dof(dof if dof is not None else "yaw")]
     if inertia is None and vehicle is not None:
         inertia = float(vehicle.rigid_body_mass[DOF.index(name), DOF.index(name)])
     return pendulum.torsion_log(log, stiffness=stiffness, inertia=inertia, medium=medium,
                                 dof=name, **kw), None
+
+
+def _check_settings(**settings) -> None:
+    """The numerical settings of :func:`identify_log`, each finite and in its range.
+
+    settle [s] and buoyancy [N] >= 0; inertia [kg m^2], mass [kg], length [m] and stiffness
+    [N m/rad] > 0; trim [samples] >= 0; window [samples] >= 3 and order >= 1, order < window
+    (a Savitzky-Golay filter, scipy.signal.savgol_filter).
+    """
+    import math
+
+    def bad(key, value, expected):
+        raise InputError("invalid setting", key=key, value=value, expected=expected)
+
+    for key in ("settle", "buoyancy", "inertia", "mass", "length", "stiffness"):
+        v = settings[key]
+        if v is None:
+            continue
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            bad(key, v, "a finite number")
+        if key in ("settle", "buoyancy") and v < 0:
+            bad(key, v, "a number >= 0")
+        if key not in ("settle", "buoyancy") and v <= 0:
+            bad(key, v, "a number > 0")
+    if settings["trim"] < 0:
+        bad("trim", settings["trim"], "a number of samples >= 0")
+    window, order = settings["window"], settings["order"]
+    if order < 1:
+        bad("order", order, "a filter order >= 1")
+    if window is not None and (window < 3 or window <= order):
+        bad("window", window, f"a window of >= 3 samples, more than the order {order}")

@@ -43,9 +43,7 @@ def scale_value(value: float, name: str, ratio: float, *, rotational: bool = Fal
     ``ratio`` :math:`\lambda = L_{full}/L_{model}` [-]; ``value`` and the result in the
     parameter's own unit (e.g. [kg], [N s^2/m^2]); k from :func:`exponents` (module docstring).
     """
-    if not (ratio > 0 and math.isfinite(ratio)):
-        raise InputError("bad scale ratio", key="ratio", value=ratio,
-                         expected="a positive finite number L_full / L_model")
+    _check_ratio(ratio)
     table = exponents(rotational)
     if name not in table:
         raise InputError("no similitude law for this parameter", key=name,
@@ -53,32 +51,56 @@ def scale_value(value: float, name: str, ratio: float, *, rotational: bool = Fal
     return value * ratio ** table[name]
 
 
-def scale_result(result: dict, ratio: float, *, rotational: bool | None = None) -> dict:
+def _check_ratio(ratio) -> None:
+    if isinstance(ratio, bool) or not isinstance(ratio, (int, float)) \
+            or not (ratio > 0 and math.isfinite(ratio)):
+        raise InputError("bad scale ratio", key="ratio", value=ratio,
+                         expected="a positive finite number L_full / L_model")
+
+
+def scale_result(result: dict, ratio: float, *, rotational: bool | None = None,
+                 file: str | None = None) -> dict:
     """Scale the parameters and std of a result dict (the JSON contract) to full scale.
 
     ``rotational`` defaults to True for torsion results and yaw/roll/pitch DOFs.
     Parameters without a similitude law (alpha, beta...) are dropped; the output lists
     the factor used for each.
     """
+    _check_ratio(ratio)
     for key in ("parameters", "std"):
         if not isinstance(result.get(key), dict):
-            raise InputError("not an identification result", key=key,
+            raise InputError("not an identification result", file=file, key=key,
                              expected='a JSON object with "parameters" and "std" '
                              "(the output of stripcoef identify --json)")
+        for name, value in result[key].items():
+            if value is None and key == "std":
+                continue
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value):
+                raise InputError("not a finite number", file=file, key=f"{key}.{name}",
+                                 value=value,
+                                 expected="a finite number (the output of stripcoef identify "
+                                          "--json)")
     if rotational is None:
-        rotational = (result.get("method", "").startswith("torsion")
+        rotational = (str(result.get("method", "")).startswith("torsion")
                       or result.get("dof") in ("roll", "pitch", "yaw"))
     table = exponents(rotational)
     params, std, factors = {}, {}, {}
     for name, value in result["parameters"].items():
         if name in table and value is not None:
-            f = ratio ** table[name]
+            try:
+                f = ratio ** table[name]
+            except OverflowError:
+                f = math.inf
+            if not math.isfinite(f * value):
+                raise InputError("scaled value overflows", key="ratio", value=ratio,
+                                 expected=f"a ratio whose power {table[name]} keeps {name} finite")
             params[name] = value * f
             s = result["std"].get(name)
             std[name] = None if s is None else s * f
             factors[name] = f
     if not params:
-        raise InputError("no scalable parameter in the result", key="parameters",
+        raise InputError("no scalable parameter in the result", file=file, key="parameters",
                          value=sorted(result["parameters"]),
                          expected="some of " + ", ".join(sorted(table)))
     rel = {n: (100.0 * std[n] / abs(params[n]) if std[n] is not None and params[n] else None)

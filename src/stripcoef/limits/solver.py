@@ -61,6 +61,7 @@ from scipy.optimize import brentq, linprog
 from stripcoef.conventions import DOF, FORCES
 from stripcoef.errors import InputError, ModelWarning, UnreachableError
 from stripcoef.limits.balance import LimitOptions, required_force
+from stripcoef.model import check_physical
 
 #: Rows that have no hydrostatic stiffness and must always balance.
 _ALWAYS = (0, 1, 2, 5)
@@ -232,24 +233,7 @@ def check_model(model, *, file: str | None = None) -> None:
             raise InputError(f"thruster {t.name!r} has no direction", file=file,
                              key=f"thrusters[{i}].direction", value=list(t.direction),
                              expected="a non-zero vector")
-    for key, mat in (("linear_damping", model.linear_damping),
-                     ("quadratic_damping", model.quadratic_damping)):
-        mat = np.asarray(mat, float)
-        if mat.shape != (6, 6) or not np.all(np.isfinite(mat)):
-            raise InputError("drag matrix is not a finite 6x6 matrix", file=file, key=key,
-                             expected="6x6 finite numbers")
-        for i in range(6):
-            if mat[i, i] < 0.0:
-                raise InputError("drag matrix is not positive", file=file,
-                                 key=f"{key}[{i}][{i}]", value=float(mat[i, i]),
-                                 expected=">= 0 (Fossen's convention: D positive, "
-                                          f"{FORCES[i]} drag opposes motion)")
-    dl = np.asarray(model.linear_damping, float)
-    low = float(np.linalg.eigvalsh(0.5 * (dl + dl.T)).min())
-    if low < -1e-9 * max(1.0, float(np.abs(dl).max())):
-        raise InputError("drag matrix is not positive", file=file, key="linear_damping",
-                         value=f"smallest eigenvalue of the symmetric part {low:.4g}",
-                         expected="a positive semi-definite matrix")
+    check_physical(model, file=file)   # finite, positive-definite mass, dissipative drag
 
 
 # ---------------------------------------------------------------------------
@@ -686,12 +670,19 @@ def min_turning_radius(model, speed: float, *, options: LimitOptions = LimitOpti
     return brentq(f, lo, hi, xtol=1e-9 * hi, rtol=1e-10)
 
 
+#: Most turning radii solved in one run (each takes ~10 ms: 1000 take ~10 s).
+MAX_RADII = 1000
+
+
 def check_radii(radii) -> np.ndarray:
-    """Radii must be positive, finite and strictly increasing [m]."""
+    """Radii must be positive, finite and strictly increasing [m], at most :data:`MAX_RADII`."""
     arr = np.atleast_1d(np.asarray(radii, dtype=float))
     if arr.ndim != 1 or arr.size == 0:
         raise InputError("no turning radii", key="radii", value=list(arr.ravel()),
                          expected="one or more radii > 0 [m]")
+    if arr.size > MAX_RADII:
+        raise InputError("too many turning radii", key="radii", value=int(arr.size),
+                         expected=f"at most {MAX_RADII}")
     if not np.all(np.isfinite(arr)) or np.any(arr <= 0.0):
         bad = float(arr[~(np.isfinite(arr) & (arr > 0.0))][0])
         raise InputError("turning radius must be positive", key="radii", value=bad,
