@@ -89,11 +89,15 @@ def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> Hyd
         ``reference_point=``, ``regime=``, ``fluid=``, ``correction_panels=``,
         ``section_panels=``); with ``options`` too, they replace its fields.
 
-    Returns the model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
-    :func:`added_mass`, D_L and D_Q from :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
-    :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45), the lift matrix and control surfaces
-    from :func:`~stripcoef.assembly.lift.vehicle_lift` (Prestero 2001, secs. 3.6-3.7). See the
-    module docstring.
+    Returns
+    -------
+    HydroModel
+        The model of :mod:`stripcoef.model` (Fossen 2011, eq. 7.190): M_A from
+        :func:`added_mass`, D_L and D_Q from
+        :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
+        :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45), the lift matrix and control
+        surfaces from :func:`~stripcoef.assembly.lift.vehicle_lift` (Prestero 2001, secs.
+        3.6-3.7). See the module docstring.
     """
     if options is None:
         options = EstimateOptions(**keywords)
