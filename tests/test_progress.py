@@ -30,7 +30,9 @@ def _run_with_terminal_stderr(argv, cwd):
     """Run the CLI with stderr on a pseudo-terminal; return (exit code, what stderr showed)."""
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # 100 columns
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), str(ROOT)])}
+    # a bar shows after DELAY of work; on a fast machine the run may be shorter: no delay here
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), str(ROOT)]),
+           "STRIPCOEF_PROGRESS_DELAY": "0"}
     proc = subprocess.Popen([sys.executable, "-m", "stripcoef", *argv], cwd=cwd, env=env,
                             stdout=subprocess.DEVNULL, stderr=slave, stdin=subprocess.DEVNULL)
     os.close(slave)
@@ -58,7 +60,9 @@ def test_bar_on_a_terminal_and_not_with_quiet(tmp_path, inputs, geometry_dir):
     assert "heading runs away" in shown        # warnings are not progress: still shown
 
 
-def test_quiet_in_a_pipe_and_verbose_forces_it(tmp_path, inputs, geometry_dir, capsys):
+def test_quiet_in_a_pipe_and_verbose_forces_it(tmp_path, inputs, geometry_dir, capsys,
+                                               monkeypatch):
+    monkeypatch.setattr(progress, "DELAY", 0.0)  # a fast run may end before the usual delay
     argv = ["simulate", str(geometry_dir / "spheroid.yaml"), "--inputs", str(inputs),
             "-o", "-"]
     assert main(argv) == 0                     # pytest's captured stderr is not a terminal

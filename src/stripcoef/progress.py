@@ -10,6 +10,7 @@ inside a diagnosis do not stack bars).
 
 from __future__ import annotations
 
+import os
 import sys
 import weakref
 
@@ -18,7 +19,7 @@ _ENABLED: bool | None = None
 #: Bars open now (a bar inside another stays silent).
 _DEPTH = 0
 #: Seconds of work before a bar appears [s].
-DELAY = 0.5
+DELAY = float(os.environ.get("STRIPCOEF_PROGRESS_DELAY", "0.5"))   # [s]; tests set 0
 
 
 def set_enabled(value: bool | None) -> None:
