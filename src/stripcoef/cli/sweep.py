@@ -30,7 +30,11 @@ def run(args) -> int:
     from stripcoef.study.plots import sweep_figure
     from stripcoef.study.sweep import parse_vary, sweep, write_table
 
-    # --output and --plot are checked before any work (cli.app.check_outputs)
+    # --output and --plot are checked before any work (cli.app.check_outputs), and the
+    # plot's format too: a long study must not end on a bad suffix
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     axes = [parse_vary(v) for v in args.vary]
     if len(axes) > 2 and args.plot:
         from stripcoef.errors import InputError

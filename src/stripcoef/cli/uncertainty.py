@@ -59,7 +59,11 @@ def run(args) -> int:
     from stripcoef.files import write_text
     from stripcoef.study.uncertainty import plot_band, uncertainty
 
-    # --output and --plot are checked before any work (cli.app.check_outputs)
+    # --output and --plot are checked before any work (cli.app.check_outputs), and the
+    # plot's format too: a long study must not end on a bad suffix
+    if args.plot:
+        from stripcoef.figures import check_plot_path
+        check_plot_path(args.plot, key="--plot")
     result = uncertainty(args.vehicle, samples=args.samples, seed=args.seed,
                          limits=args.limits, method=args.method, workers=args.workers,
                          scheduler=args.scheduler, progress=getattr(args, "progress", None))

@@ -1,7 +1,7 @@
 """Figures of studies: u_max(R) bands, a swept output over one or two keys.
 
-matplotlib ``Figure`` objects built directly (no pyplot, no backend switching, so a notebook's
-backend is left alone); written to a file only when a path is given (atomically).
+matplotlib ``Figure`` objects from :mod:`stripcoef.figures` (no pyplot, no backend switching);
+written to a file only when a path is given (atomically).
 """
 
 from __future__ import annotations
@@ -9,31 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-
-
-def _figure(**kw):
-    try:
-        from matplotlib.figure import Figure
-    except ImportError:
-        raise InputError("plotting needs matplotlib", key=kw.pop("key", "path"),
-                         expected="pip install 'stripcoef[plot]'") from None
-    kw.pop("key", None)
-    return Figure(**kw)
-
-
-def _save(fig, path, key):
-    from pathlib import Path
-
-    from stripcoef.files import atomic_path
-
-    if path is None:
-        return
-    fmt = Path(path).suffix.lower().lstrip(".")
-    if fmt not in ("png", "pdf", "svg"):
-        raise InputError("unknown plot format", key=key, value=str(path),
-                         expected="a .png, .pdf or .svg file")
-    with atomic_path(path, key=key) as tmp:
-        fig.savefig(tmp, format=fmt, dpi=150)
+from stripcoef.figures import new_figure, save_figure
 
 
 def band_figure(result, *, path=None, key: str = "path"):
@@ -45,7 +21,7 @@ def band_figure(result, *, path=None, key: str = "path"):
     cols.sort()
     radii = np.array([r for r, _ in cols])
     data = np.column_stack([result.column(n) for _, n in cols])
-    fig = _figure(figsize=(7.0, 4.2), constrained_layout=True, key=key)
+    fig = new_figure(figsize=(7.0, 4.2), key=key)
     ax = fig.add_subplot()
     with np.errstate(all="ignore"):
         p = np.nanpercentile(data, [2.5, 25, 50, 75, 97.5], axis=0)
@@ -58,7 +34,8 @@ def band_figure(result, *, path=None, key: str = "path"):
     ax.set_title(f"{result.vehicle}: u_max(R), {result.samples.shape[0]} samples")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
-    _save(fig, path, key)
+    if path is not None:
+        save_figure(fig, path, key=key, dpi=150)
     return fig
 
 
@@ -67,7 +44,7 @@ def sweep_figure(frame, keys, output: str, *, path=None, key: str = "path"):
     if output not in frame.columns:
         raise InputError("unknown output", key="output", value=output,
                          expected="one of " + ", ".join(c for c in frame.columns if c not in keys))
-    fig = _figure(figsize=(6.5, 4.2), constrained_layout=True, key=key)
+    fig = new_figure(figsize=(6.5, 4.2), key=key)
     ax = fig.add_subplot()
     if len(keys) == 1:
         ax.plot(frame[keys[0]], frame[output], "o-")
@@ -85,5 +62,6 @@ def sweep_figure(frame, keys, output: str, *, path=None, key: str = "path"):
         ax.set_ylabel(keys[1])
     ax.set_title(f"{output} over {', '.join(keys)}")
     ax.grid(True, alpha=0.3)
-    _save(fig, path, key)
+    if path is not None:
+        save_figure(fig, path, key=key, dpi=150)
     return fig

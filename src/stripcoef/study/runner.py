@@ -16,7 +16,6 @@ bit for bit).
 from __future__ import annotations
 
 import os
-import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from stripcoef.errors import InputError
@@ -37,15 +36,14 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _progress(total: int, label: str, enabled: bool | None):
-    """A tqdm bar on a terminal, or None (quiet in pipes and with enabled=False)."""
-    if enabled is False or (enabled is None and not sys.stderr.isatty()):
-        return None
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        return None
-    return tqdm(total=total, desc=label, unit="batch", file=sys.stderr, leave=False)
+def _tracked(iterable, total: int, label: str, progress: bool | None):
+    """``iterable`` with the package's progress bar (:func:`stripcoef.progress.track`: on a
+    terminal, or as ``-q``/``-v`` set it), or bare with ``progress=False``."""
+    if progress is False:
+        return iterable
+    from stripcoef.progress import track
+
+    return track(iterable, desc=label, total=total, unit="batch")
 
 
 def _client(scheduler):
@@ -69,38 +67,22 @@ def run_batches(fn, batches: list, *, workers: int | None = None, scheduler=None
                 progress: bool | None = None, label: str = "samples") -> list:
     """``[fn(b) for b in batches]``, in order, locally or on a Dask cluster."""
     _pin_blas()
-    bar = _progress(len(batches), label, progress)
-    try:
-        if scheduler is not None:
-            client, owned = _client(scheduler)
-            try:
-                futures = client.map(fn, batches, pure=False)
-                if bar is not None:
-                    from dask.distributed import as_completed
-                    for _ in as_completed(futures):
-                        bar.update(1)
-                return client.gather(futures)
-            finally:
-                if owned:
-                    client.close()
-        n = default_workers() if workers is None else int(workers)
-        if n < 1:
-            raise InputError("workers must be positive", key="workers", value=workers,
-                             expected="an integer >= 1")
-        if n == 1 or len(batches) <= 1:
-            out = []
-            for b in batches:
-                out.append(fn(b))
-                if bar is not None:
-                    bar.update(1)
-            return out
-        with ProcessPoolExecutor(max_workers=min(n, len(batches))) as pool:
-            out = []
-            for r in pool.map(fn, batches):
-                out.append(r)
-                if bar is not None:
-                    bar.update(1)
-            return out
-    finally:
-        if bar is not None:
-            bar.close()
+    if scheduler is not None:
+        client, owned = _client(scheduler)
+        try:
+            futures = client.map(fn, batches, pure=False)
+            from dask.distributed import as_completed
+            for _ in _tracked(as_completed(futures), len(batches), label, progress):
+                pass
+            return client.gather(futures)
+        finally:
+            if owned:
+                client.close()
+    n = default_workers() if workers is None else int(workers)
+    if n < 1:
+        raise InputError("workers must be positive", key="workers", value=workers,
+                         expected="an integer >= 1")
+    if n == 1 or len(batches) <= 1:
+        return list(_tracked(map(fn, batches), len(batches), label, progress))
+    with ProcessPoolExecutor(max_workers=min(n, len(batches))) as pool:
+        return list(_tracked(pool.map(fn, batches), len(batches), label, progress))
