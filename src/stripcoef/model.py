@@ -734,8 +734,9 @@ def check_physical(model, *, file: str | None = None) -> None:
         a = np.asarray(arr, dtype=float)
         if not np.all(np.isfinite(a)):
             k = np.unravel_index(int(np.flatnonzero(~np.isfinite(a))[0]), a.shape)
-            fail(f"{key}[{']['.join(map(str, k))}]", "not finite", float(a[k]),
-                 "finite numbers (the model is not usable)")
+            fail(f"{key}[{']['.join(map(str, k))}]", "non-finite entry", float(a[k]),
+                 "finite numbers (the model is not usable; from a geometry: try more "
+                 "strips or another mesh axis)")
     for key in ("mass", "volume", "density"):
         v = float(getattr(model, key))
         if not (np.isfinite(v) and v > 0):
