@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 import yaml
 
+from validation.lift import total_linear
 from stripcoef import estimate
 from stripcoef.cli import main
 from stripcoef.errors import InputError, ModelWarning
@@ -139,19 +140,8 @@ def test_lift_is_in_the_damping(remus):
 # ---------------------------------------------------------------------------
 # published table: Prestero 2001 (REMUS)
 # ---------------------------------------------------------------------------
-def _total_linear(model, u=1.0):
-    """d(force)/d(nu) / u at straight motion: lift plus the Munk part of C_A (Prestero's
-    'combined' coefficients), by central differences."""
-    def force(nu):
-        nu = np.asarray(nu, float)
-        return -(model.coriolis(nu, rigid_body=False) @ nu) - nu[0] * model.lift @ nu
-    jac = np.zeros((6, 6))
-    base = np.array([u, 0, 0, 0, 0, 0.0])
-    for j in range(6):
-        e = np.zeros(6)
-        e[j] = 1e-6
-        jac[:, j] = (force(base + e) - force(base - e)) / 2e-6 / u
-    return jac
+# the same central differences as the validation report (one home: validation/lift.py)
+_total_linear = total_linear
 
 
 _COMBINED = {"Y_uv": (1, 1), "Z_uw": (2, 2), "N_uv": (5, 1), "M_uw": (4, 2),
