@@ -13,9 +13,18 @@ import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
-from stripcoef.sections import panel, polygon_drag, section_drag
 from stripcoef.geometry.polygons import ring_centroid
-from stripcoef.sections.panel import _interp_rows, _ring_set, _solve_batch, added_mass_sections, discretise, orient_contours, part_rings, signed_area
+from stripcoef.sections import panel, polygon_drag, section_drag
+from stripcoef.sections.panel import (
+    _interp_rows,
+    _ring_set,
+    _solve_batch,
+    added_mass_sections,
+    discretise,
+    orient_contours,
+    part_rings,
+    signed_area,
+)
 from stripcoef.strips import Part
 
 RHO = 1025.0
@@ -111,15 +120,14 @@ def test_drag_geometry_equals_the_per_section_rule():
     secs = [c for c in mixed_sections() if c]
     part = polygon_part(secs)
     data = polygon_drag._part_cache(part)
-    geoms = [polygon_drag._parts_geometry(c) for c in secs]
-    owner = np.concatenate([np.full(len(g), i) for i, g in enumerate(geoms)])
+    # the whole part at once equals each section's geometry on its own
+    geoms = [polygon_drag._ring_set_geometry(_ring_set([c])) for c in secs]
+    owner = np.concatenate([np.full(g["owner"].size, i) for i, g in enumerate(geoms)])
     assert np.array_equal(data["owner"], owner)
-    assert np.array_equal(data["rounded"], np.concatenate([g[:, 4] for g in geoms]) > 0)
-    for key, along, across in (("y", 0, 2), ("z", 2, 0)):
-        per = [polygon_drag._direction_terms(g, along, across) for g in geoms]
-        for i in range(3):
-            assert np.array_equal(data[key][i], np.concatenate([p[i] for p in per]))
-        assert np.array_equal(data[key][3], [p[3] for p in per])
+    assert np.array_equal(data["rounded"], np.concatenate([g["rounded"] for g in geoms]))
+    for key in ("y", "z"):
+        for i in range(4):
+            assert np.array_equal(data[key][i], np.concatenate([g[key][i] for g in geoms]))
     # and the coefficients are those of section_cross_flow_drag, section by section
     re = np.geomspace(2e4, 1e6, len(secs))
     cd_y, cd_z = section_drag(part, re, 2 * re)

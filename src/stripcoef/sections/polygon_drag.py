@@ -40,22 +40,10 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.sections import drag
-from stripcoef.geometry.polygons import corner_flags
-from stripcoef.sections.panel import orient_contours, part_rings, signed_area
+from stripcoef.sections.panel import _ring_set, orient_contours, part_rings
 
 #: Weight of the shadowed height of a part behind another part along the flow.
 TANDEM_SHIELDING = 0.5
-
-
-def _parts_geometry(contours):
-    """Per solid part: (ymin, ymax, zmin, zmax, rounded) of its outer ring."""
-    out = []
-    for r in orient_contours(contours):
-        if signed_area(r) <= 0:          # holes: the outline is what the flow sees
-            continue
-        y, z = r[:, 0], r[:, 1]
-        out.append((y.min(), y.max(), z.min(), z.max(), not bool(corner_flags(r).any())))
-    return np.array(out, dtype=float).reshape(-1, 5)
 
 
 def _interval_overlap(lo, hi, others):
@@ -93,16 +81,6 @@ def _exposed_heights(along_lo, along_hi, across_lo, across_hi):
     return h - (1.0 - TANDEM_SHIELDING) * shadow
 
 
-def _direction_terms(g, along, across):
-    """Geometry-only terms for one flow direction: ratio d/h, h, exposed w, section height."""
-    a_lo, a_hi = g[:, along], g[:, along + 1]
-    c_lo, c_hi = g[:, across], g[:, across + 1]
-    h = c_hi - c_lo
-    ratio = (a_hi - a_lo) / np.maximum(h, 1e-300)
-    w = _exposed_heights(a_lo, a_hi, c_lo, c_hi)
-    return ratio, h, w, float(c_hi.max() - c_lo.min())
-
-
 def _cd_terms(rounded, ratio, h, w, height, re):
     """sum_p C_D,p w_p per section (vectorised over all parts of all sections)."""
     re_p = np.maximum(re * h / np.maximum(height, 1e-300), 1.0)
@@ -138,30 +116,28 @@ def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict
     White, *Fluid Mechanics*, table 7.2; DNV-RP-C205 App. E and sec. 6.7;
     Hoerner (1965) *Fluid-Dynamic Drag*, ch. 3 and 4.
     """
-    g = _parts_geometry(contours)
-    out = {"parts": int(len(g)), "rounded": [bool(v) for v in g[:, 4]]}
-    for key, along, across, re in (("y", 0, 2, reynolds_y), ("z", 2, 0, reynolds_z)):
-        ratio, h, w, height = _direction_terms(g, along, across)
-        terms = _cd_terms(g[:, 4] > 0, ratio, h, w, height, float(re))
-        out[f"cd_{key}"] = float(terms.sum() / max(height, 1e-300))
-        out[f"height_{key}"] = height
+    rs = _ring_set([contours], "contours", single=True)
+    if rs.nsec and rs.rings_of[1] == 0:
+        orient_contours(contours)                # an empty section: its error
+    c = _ring_set_geometry(rs)
+    out = {"parts": int(c["owner"].size), "rounded": [bool(v) for v in c["rounded"]]}
+    for key, re in (("y", reynolds_y), ("z", reynolds_z)):
+        ratio, h, w, height = c[key]
+        terms = _cd_terms(c["rounded"], ratio, h, w, height[0], float(re))
+        out[f"cd_{key}"] = float(terms.sum() / max(height[0], 1e-300))
+        out[f"height_{key}"] = float(height[0])
     return out
 
 
-def _part_cache(part):
-    """Geometry of every strip's section of ``part``, computed once per part.
+def _ring_set_geometry(rs):
+    """Cross-flow geometry of every section of the ring set ``rs``, all parts at once.
 
-    The same terms as :func:`_parts_geometry` and :func:`_direction_terms` section by
-    section, computed for the solid parts of all sections at once from the part's ring set
-    (:func:`stripcoef.sections.panel.part_rings`, shared with the panel method).
+    Per solid part (outer ring; holes do not change the outline the flow sees, rule 1 of
+    the module): ``owner`` (its section), ``rounded`` (no sharp corner), and per flow
+    direction ``"y"``/``"z"`` the tuple (d/h, h, exposed height w, section height H), with
+    h, w [m] per part and H [m] per section (rules 2-4 of the module).
     """
-    cache = getattr(part, "_polygon_drag_cache", None)
-    if cache is not None and cache[0] is part.contours:
-        return cache[1]
-    rs = part_rings(part)
-    for s in np.nonzero(np.diff(rs.rings_of) == 0)[0]:
-        orient_contours(part.contours[s])        # an empty section: its error
-    outer = rs.area > 0                          # solid parts: outer rings (holes: see rule 1)
+    outer = rs.area > 0
     y, z = rs.pts[outer, :, 0], rs.pts[outer, :, 1]          # padding repeats a vertex
     g = np.column_stack([y.min(axis=1), y.max(axis=1), z.min(axis=1), z.max(axis=1)])
     owner = rs.section[outer]
@@ -169,8 +145,7 @@ def _part_cache(part):
     several = np.nonzero(np.diff(first) > 1)[0]
     data = {"owner": owner, "rounded": ~rs.corner[outer].any(axis=1)}
     for key, along, across in (("y", 0, 2), ("z", 2, 0)):
-        # _direction_terms of all parts at once; the tandem shadowing only where a
-        # section has several parts
+        # the tandem shadowing only where a section has several parts
         a_lo, a_hi, c_lo, c_hi = g[:, along], g[:, along + 1], g[:, across], g[:, across + 1]
         h = c_hi - c_lo
         ratio = (a_hi - a_lo) / np.maximum(h, 1e-300)
@@ -180,6 +155,19 @@ def _part_cache(part):
             w[sl] = _exposed_heights(a_lo[sl], a_hi[sl], c_lo[sl], c_hi[sl])
         height = np.maximum.reduceat(c_hi, first[:-1]) - np.minimum.reduceat(c_lo, first[:-1])
         data[key] = (ratio, h, w, height)
+    return data
+
+
+def _part_cache(part):
+    """:func:`_ring_set_geometry` of ``part``'s sections, computed once per part (from the
+    ring set :func:`stripcoef.sections.panel.part_rings`, shared with the panel method)."""
+    cache = getattr(part, "_polygon_drag_cache", None)
+    if cache is not None and cache[0] is part.contours:
+        return cache[1]
+    rs = part_rings(part)
+    for s in np.nonzero(np.diff(rs.rings_of) == 0)[0]:
+        orient_contours(part.contours[s])        # an empty section: its error
+    data = _ring_set_geometry(rs)
     part._polygon_drag_cache = (part.contours, data)
     return data
 
