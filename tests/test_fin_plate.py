@@ -49,6 +49,25 @@ def test_plate_factor_rejects_bad_dimensions(w, c):
         plate_chordwise_factor(w, c)
 
 
+def test_plate_table_against_capytaine():
+    # The DNV table is read from a secondary source; Capytaine on thin plates (t/a = 0.02 and
+    # 0.01, extrapolated linearly to t = 0) checks it.  Tolerance 3 %: the extrapolation's own
+    # spread (the two levels differ by 1-3 % and the thickness and panel errors of a plate's
+    # edge are only roughly first order) plus the table's 3 printed digits.
+    bench = _bench("plate_added_mass")
+    from stripcoef.data import load_table
+    table = load_table("plate_added_mass_dnv")
+    both = {r: lv for r, lv in bench.load().items() if 0.01 in lv}
+    assert set(both) >= {1.0, 2.0}
+    for ratio, lv in both.items():
+        zero = 2 * lv[0.01] - lv[0.02]
+        assert zero == pytest.approx(table.interp(1.0 / ratio, "lambda"), rel=0.03), ratio
+    # a thick level alone (b/a = 4: the thin level did not run) lies above the thin plate, as
+    # the thickness and the panel error do at b/a = 1 and 2 (+3..+6 %)
+    for ratio, lv in bench.load().items():
+        assert 1.0 < lv[0.02] / table.interp(1.0 / ratio, "lambda") < 1.06, ratio
+
+
 # --- finned hulls against the BEM -----------------------------------------------------------
 
 #: tolerances [%] per term of benchmarks/finned_bodies.py COMPARED against the Richardson BEM:
