@@ -224,8 +224,11 @@ def fin_share_corrections(strips: Strips, mats: list, shares: list, center) -> l
     The fins' share of a finned section normal to a pair (:func:`_combine_fins`) is, with the
     exposed span s = a - R,
 
-    .. math:: m_n - ho\pi R^2 = ho\pirac{(a^2 - R^2)^2}{a^2}
-              = \Big(1 + rac{R}{a}\Big)^2 ho\pi s^2,
+    .. math:: m_n - 
+ho\pi R^2 = 
+ho\pirac{(a^2 - R^2)^2}{a^2}
+              = \Big(1 + rac{R}{a}\Big)^2 
+ho\pi s^2,
 
     the 2D added mass of the exposed pair joined at its roots (a plate of span 2s) times the
     slender-body fin-hull interference factor :math:`(1 + R/a)^2`.  Summed along the chord it
@@ -325,7 +328,9 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
     the axisymmetric-BEM corrections of :mod:`stripcoef.hull.corrections` (per-direction
     equivalent bodies of revolution: end effects, sway-yaw / heave-pitch couplings and the
-    axial added mass).  Without them it is pure strip theory plus the axial term
+    axial added mass); fin pairs on a circular hull are taken out of the hull's equivalent body
+    and their share of the strip matrix is scaled by the exposed pair's rectangular-plate factor
+    (:func:`fin_share_corrections`).  Without them it is pure strip theory plus the axial term
     :math:`k_1\rho V` of the equal-length, equal-volume spheroid (Lamb; Ferreira et al. 2009 eq. 36).
 
     .. math:: M_A = H^T\big(M_A^{strip}(+\text{corr.}) + k_1\rho V\,e_1e_1^T\big)H + M_{hole}
