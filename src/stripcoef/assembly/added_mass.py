@@ -433,7 +433,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
             folded = None
             if fin_parts:       # the finned equivalent body: the shares' 3D distribution
                 folded = apply_corrections(strip, hull_corrections(
-                    strips, rho=rho, center=center, section_added_mass=per_strip, panels=panels))
+                    strips, rho=rho, center=center, section_added_mass=per_strip, panels=panels,
+                    axial=False))
             for f in shares:
                 per_strip[f.strip, f.n, f.n] -= f.increment
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
