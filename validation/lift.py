@@ -100,8 +100,9 @@ def section() -> str:
         "2 x 1/2 rho c_La S_fin = 21.4 kg/m with his own inputs (S_fin is one fin's area: "
         "AR_e = 2 b^2/S_fin = 2.21), and 90 % of the single-fin value 10.7 kg/m that a public "
         "re-implementation uses (reference_tables/prestero2001/README.md, inconsistency 1). "
-        "The body-lift and Munk parts add smaller differences (our Z_wdot is -31.1 kg against "
-        "his -35.5 kg). The model keeps the two-fin formula: no factor is fitted to the "
+        "The body-lift and Munk parts add smaller differences (our Z_wdot is "
+        f"{coeffs['Z_wdot']:.1f} kg against his -35.5 kg). The model keeps the two-fin "
+        "formula: no factor is fitted to the "
         "table.", "",
         "### Other published lift data: none retrievable", "",
         "Captive-model coefficients of DARPA SUBOFF (Roddy 1990, DTRC/SHD-1298-08: bare hull and "
