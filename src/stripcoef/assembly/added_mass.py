@@ -292,14 +292,14 @@ ho\pi s^2,
     the 2D added mass of the exposed pair joined at its roots (a plate of span 2s) times the
     slender-body fin-hull interference factor :math:`(1 + R/a)^2`.  Summed along the chord it
     is strip theory of that plate, which is right only for a chord much longer than the span;
-    its 3D value is the rectangular plate's, :math:`\kappa(2ar s, c)` times the strip sum
+    its 3D value is the rectangular plate's, :math:`\kappa(2\bar s, c)` times the strip sum
     (:func:`stripcoef.sections.added_mass.plate_chordwise_factor`, DNV-RP-H103 table A-2),
     keeping the interference factor of slender-body theory, as Pitts, Nielsen & Kaattari (1957)
     keep theirs on the 3D wing-alone lift.  Per pair (``shares`` grouped by their fins and
     direction), with chord :math:`c = \sum_i c_i\,dx_i` [m] and mean exposed span
-    :math:`ar s = \sum_i c_i\,dx_i\,s_i / c` [m] (c_i the coverage, dx_i the strip width):
+    :math:`\bar s = \sum_i c_i\,dx_i\,s_i / c` [m] (c_i the coverage, dx_i the strip width):
 
-    .. math:: M_{fins} = \sum_{pairs} \kappa(2ar s, c)\, S_{pair},
+    .. math:: M_{fins} = \sum_{pairs} \kappa(2\bar s, c)\, S_{pair},
 
     :math:`S_{pair}` the strip matrix about ``center`` [m] of the pair's increments alone
     [kg, kg m, kg m^2].  [assumption] the interference factor and the hull's own 3D correction
