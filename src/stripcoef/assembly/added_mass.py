@@ -283,11 +283,8 @@ def fin_share_corrections(strips: Strips, mats: list, shares: list, center) -> l
     The fins' share of a finned section normal to a pair (:func:`_combine_fins`) is, with the
     exposed span s = a - R,
 
-    .. math:: m_n - 
-ho\pi R^2 = 
-ho\pirac{(a^2 - R^2)^2}{a^2}
-              = \Big(1 + rac{R}{a}\Big)^2 
-ho\pi s^2,
+    .. math:: m_n - \rho\pi R^2 = \rho\pi\frac{(a^2 - R^2)^2}{a^2}
+              = \Big(1 + \frac{R}{a}\Big)^2 \rho\pi s^2,
 
     the 2D added mass of the exposed pair joined at its roots (a plate of span 2s) times the
     slender-body fin-hull interference factor :math:`(1 + R/a)^2`.  Summed along the chord it
