@@ -110,8 +110,11 @@ def test_cruciform_roll_counted_once():
 
 def test_partial_coverage_converges_like_the_bare_hull():
     # the fins' edges fall inside strips: with the covered fraction weighting, the fins'
-    # share of Y_rdot (fin + hull minus hull) is the exact integral at every strip count
-    m_n = am.circle_with_fins(R_HULL, TIP, rho=1025.0)[0] - am.circle(R_HULL, rho=1025.0)
+    # share of Y_rdot (fin + hull minus hull) is the exact integral at every strip count (the
+    # thin finned circle's share times the fins' thickness factor, C_A of the exposed pair)
+    from stripcoef.assembly.added_mass import _fin_thickness_factor
+    m_n = (am.circle_with_fins(R_HULL, TIP, rho=1025.0)[0] - am.circle(R_HULL, rho=1025.0)) \
+        * _fin_thickness_factor(TIP - R_HULL, 0.002)
     exact = m_n * CHORD * X_FIN                               # int X m_n dx over the chord
     for n in (250, 1000, 4000):
         fin = _added_mass(_vehicle(fins=("top", "bottom"), strips=n))

@@ -131,7 +131,10 @@ def test_fin_pair_on_a_circle_uses_the_finned_section():
     model = estimate(parse_vehicle(base, file="<finned>"), corrections=False)
     plain = estimate(parse_vehicle(dict(base, appendages=[]), file="<plain>"), corrections=False)
     extra = model.added_mass[1, 1] - plain.added_mass[1, 1]
-    expected = 1000 * np.pi * (a**2 - r**2 + r**4 / a**2 - r**2) * length
+    # the thin finned circle's share times the fins' thickness factor C_A(span / (t/2))
+    from stripcoef.assembly.added_mass import _fin_thickness_factor
+    expected = 1000 * np.pi * (a**2 - r**2 + r**4 / a**2 - r**2) * length \
+        * _fin_thickness_factor(span, 0.001)
     assert extra == pytest.approx(expected, rel=1e-6)
     # one pair rolls as the exact finned circle with two fins (Newman 1977 sec. 4.13), not as
     # the cruciform's 2/pi rho a^4 (tests/test_fin_sections.py checks the closed form)

@@ -400,6 +400,19 @@ def test_data_rectangle_added_mass_matches_reference():
     assert {f"{float(r['a_over_b']):g}" for r in rows} == {"0.1", "0.2", "0.5", "1", "2", "5", "10"}
 
 
+def test_data_plate_added_mass_matches_reference():
+    # src/stripcoef/data/plate_added_mass_dnv.csv is Table A-2 by a/b = 1 / (printed b/a)
+    rows = _data_csv("plate_added_mass_dnv.csv")
+    printed = ["1.0", "1.25", "1.50", "1.59", "2.0", "2.5", "3.0", "3.17", "4.0", "5.0", "6.25",
+               "8.0", "10.0"]
+    inner = [r for r in rows if float(r["a_over_b"]) > 0]
+    assert len(inner) == len(printed)
+    for r, ba in zip(sorted(inner, key=lambda r: -float(r["a_over_b"])), printed):
+        assert float(r["a_over_b"]) == pytest.approx(1 / float(ba), abs=5e-5)
+        assert float(r["lambda"]) == val(D, f"plate.b_over_a_{float(ba):g}.lambda")
+    assert [float(r["lambda"]) for r in rows if float(r["a_over_b"]) == 0] == [1.0]
+
+
 def test_hoerner_curve_is_monotone_decreasing():
     pts = [(val("hoerner", f"point{i:02d}.B_over_2T"), val("hoerner", f"point{i:02d}.Cd")) for i in range(1, 21)]
     assert all(a[0] < b[0] and a[1] >= b[1] for a, b in zip(pts, pts[1:]))

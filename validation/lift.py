@@ -100,9 +100,23 @@ def section() -> str:
         "2 x 1/2 rho c_La S_fin = 21.4 kg/m with his own inputs (S_fin is one fin's area: "
         "AR_e = 2 b^2/S_fin = 2.21), and 90 % of the single-fin value 10.7 kg/m that a public "
         "re-implementation uses (reference_tables/prestero2001/README.md, inconsistency 1). "
-        "The body-lift and Munk parts add smaller differences (our Z_wdot is -31.1 kg against "
-        "his -35.5 kg). The model keeps the two-fin formula: no factor is fitted to the "
+        "The body-lift and Munk parts add smaller differences (our Z_wdot is "
+        f"{coeffs['Z_wdot']:.1f} kg against his -35.5 kg). The model keeps the two-fin "
+        "formula: no factor is fitted to the "
         "table.", "",
+        "### Other published lift data: none retrievable", "",
+        "Captive-model coefficients of DARPA SUBOFF (Roddy 1990, DTRC/SHD-1298-08: bare hull and "
+        "appended, Z'_w, M'_w, Z'_q, M'_q, Y'_v, N'_v ...), normal-force data of bodies of "
+        "revolution (Jorgensen 1977, NASA TR R-474) and low-aspect-ratio control-surface lift "
+        "(Whicker & Fehlner 1958) were searched for in the stored public documentation, web "
+        "pages and code available to this project: the Roddy report is stored only as its "
+        "first pages (no coefficient table), and no page or repository quoting its tables, or "
+        "Jorgensen's or Whicker & Fehlner's data, was found. The only low-aspect-ratio plate "
+        "lift table found (attributed to Pelletier & Mueller 2000, J. Aircraft 37(5), in a "
+        "public sailing-boat calculator) is a rounded, symmetrised sketch of the curves (C_L "
+        "exactly 0.025 per degree), not a digitisation, so it is not used. The lift is "
+        "therefore validated only against Prestero (above, strict xfails), and its "
+        "body-lift and fin-hull interference factors are left as they are.", "",
         "### Rudder step: simulate against limits", "",
         "REMUS made neutral (mass = rho V, no propeller torque), u = 1.2 m/s, rudder 10 deg, "
         "60 s (tests/test_lift_control.py::test_rudder_step_reaches_the_steady_turn_of_limits):",

@@ -427,7 +427,7 @@ class CorrectionFactors:
 
 
 def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
-                     panels: int = DEFAULT_PANELS) -> CorrectionFactors:
+                     panels: int = DEFAULT_PANELS, axial: bool = True) -> CorrectionFactors:
     r"""3D corrections for :func:`stripcoef.assembly.estimate.added_mass`, per direction.
 
     Each lateral direction gets its own *added-mass-equivalent* body of revolution,
@@ -466,6 +466,9 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     section_added_mass : (n, 3, 3) array, optional
         Per-strip 2D added mass (:func:`strip_section_added_mass`); default: the
         equal-area circle, :math:`\rho A(x)` in both directions.
+    axial : bool
+        Solve the axial added mass (default); False leaves ``axial_added_mass`` = 0 (a caller
+        that needs only the lateral factors, e.g. the fins' distribution).
 
     Returns
     -------
@@ -485,7 +488,7 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
     if bore is not None:
         m11, fv, fr, d26 = _hollow_corrections(strips, bore, rho, xc, panels)
     else:
-        m11 = _axial_added_mass(strips, rho, panels)
+        m11 = _axial_added_mass(strips, rho, panels) if axial else 0.0
     if section_added_mass is None:
         mv = mw = _strip_area(strips)
     else:

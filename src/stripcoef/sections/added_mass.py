@@ -13,6 +13,7 @@ from functools import lru_cache
 import numpy as np
 
 from stripcoef.data import load_table
+from stripcoef.errors import InputError
 from stripcoef.fluid import RHO_SEAWATER as RHO   # the default density of every function
 
 
@@ -275,3 +276,46 @@ def _unit_roll_series(r: float, a: float, fins: int) -> float:
     cn = np.fft.rfft(f) / theta.size
     n = np.arange(cn.size)
     return float(np.pi * np.sum(n[1:] * np.abs(cn[1:]) ** 2))
+
+
+def plate_chordwise_factor(span, chord):
+    r"""3D added mass of a thin rectangular plate moving normal to itself, over its strip-theory
+    value with strips across the span (the strip sum along the chord).
+
+    Strip theory along the chord c gives :math:`\rho\pi (w/2)^2 c` for a plate of span w; the 3D
+    value is :math:`A = \lambda(a/b)\,\rho\frac{\pi}{4} a^2 b` with a = min(w, c), b = max(w, c)
+    (DNV-RP-H103 table A-2), hence
+
+    .. math:: \kappa = \frac{A}{\rho\pi (w/2)^2 c} =
+              \begin{cases}\lambda(c/w)\,c/w, & w \ge c\\ \lambda(w/c), & w < c\end{cases}
+
+    tending to 1 for a long strip (w << c) and to :math:`\lambda(0)\,c/w = c/w` for a wide plate
+    (the strip sum along the chord then over-counts: the real flow is 2D across the chord).
+    lambda is interpolated linearly in a/b over the table's whole range 0..1
+    (src/stripcoef/data/plate_added_mass_dnv.csv).
+
+    Parameters
+    ----------
+    span : float
+        Plate width w normal to the strips' axis [m], > 0
+    chord : float
+        Plate length c along the strips' axis [m], > 0
+
+    Returns
+    -------
+    float
+        kappa [-]
+
+    References
+    ----------
+    DNV-RP-H103 (2011), appendix A, table A-2 (rectangular plates); Brennen (1982), "A review of
+    added mass and fluid inertial forces", NCEL CR 82.010, sec. 3 (3D plates).
+    """
+    w, c = float(span), float(chord)
+    for key, v in (("span", w), ("chord", c)):
+        if not (np.isfinite(v) and v > 0):
+            raise InputError("plate dimension must be positive", key=key, value=v,
+                             expected="a finite length > 0 [m]")
+    t = load_table("plate_added_mass_dnv")
+    lam = t.interp(min(w, c) / max(w, c), "lambda", what="a/b")
+    return lam * c / w if w >= c else lam
