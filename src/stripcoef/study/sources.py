@@ -8,8 +8,9 @@ Two kinds of source, each a :class:`Source` with the text that justifies it:
 
   .. math:: M'_{ij} = M_{ij}\sqrt{f_i f_j},
 
-  which keeps M_A symmetric and positive definite; :math:`f_i = 1 + \sigma z` (normal) or
-  :math:`e^{\sigma z}` (lognormal, for damping, which must stay positive), :math:`z \sim N(0,1)`,
+  which keeps M_A symmetric and positive definite; :math:`f_i = e^{\sigma z}` (lognormal: every row of
+  the table; the measured errors are multiplicative, up to factors of 100 for the rotations of
+  bluff bodies, and every term must keep its sign) or :math:`1 + \sigma z` (normal), :math:`z \sim N(0,1)`,
   one factor per matrix and DOF group (translations share one, rotations another: the
   errors of one method on one body are correlated across its DOFs).
 - **input**: a value declared uncertain in the vehicle file (``{value, sd}`` normal,
@@ -30,7 +31,6 @@ from stripcoef.geometry.keypaths import UncertainValue
 
 MATRICES = ("added_mass", "linear_damping", "quadratic_damping")
 GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5)}
-CLASSES = ("revolution", "appended", "mesh")
 
 
 @dataclass(frozen=True)
@@ -77,18 +77,11 @@ def _method_table() -> tuple:
 
 
 def shape_class(vehicle) -> str:
-    """``revolution``, ``appended`` or ``mesh``: the rows of the method table that apply.
+    """``revolution``, ``finned``, ``bluff`` or ``open_frame``, from the vehicle's geometry
+    (:func:`stripcoef.study.shapes.shape_class`: the documented rule)."""
+    from stripcoef.study.shapes import shape_class as by_geometry
 
-    A mesh body makes the vehicle ``mesh``; a vehicle-file hull alone with round sections,
-    no appendages and no holes is ``revolution``; anything else is ``appended``.
-    """
-    from stripcoef.geometry.mesh import MeshBody
-
-    if any(isinstance(b, MeshBody) for b in vehicle.bodies):
-        return "mesh"
-    if vehicle.hull is not None and len(vehicle.bodies) == 1 and not vehicle.holes:
-        return "revolution"
-    return "appended"
+    return by_geometry(vehicle)
 
 
 def method_sources(vehicle) -> list[Source]:
@@ -96,8 +89,8 @@ def method_sources(vehicle) -> list[Source]:
     cls = shape_class(vehicle)
     out = []
     for row in _method_table():
-        if row["class"] != cls:
-            continue
+        if row["class"] != cls or row["dofs"] not in GROUPS:
+            continue            # couplings are measured and listed, not sampled
         out.append(Source("method", f"{row['matrix']}.{row['dofs']}", row["distribution"],
                           float(row["sd"]), 1.0, f"{cls}: {row['source']}"))
     return out
