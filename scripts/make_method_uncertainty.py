@@ -19,8 +19,9 @@ error, the reference's source). The references, all stored data or exact formula
 Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_class), never by
 its name. The second step reads that file and writes src/stripcoef/data/method_uncertainty.csv:
 per class and term family (translational / rotational added mass), the sd of ln
-sigma = q95 / 1.96 from the conservative empirical 95 % quantile q95 of |ln(strip / reference)|
-(stripcoef.study.calibration); couplings are measured as (strip - ref) / sqrt(A_ii A_jj) and
+sigma = q95 / 1.96 from the split-conformal 95 % quantile q95 of |ln(strip / reference)|
+(the k-th smallest, k = min(n, ceil(0.95 (n + 1))): a new exchangeable term falls within it with
+probability k / (n + 1), stripcoef.study.calibration); couplings are measured as (strip - ref) / sqrt(A_ii A_jj) and
 listed, not sampled; drag has no independent reference stored (assumed rows, labelled so) and
 linear damping is not predicted by the method (placeholder rows, labelled so).
 """
@@ -43,7 +44,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import numpy as np  # noqa: E402
 
-from stripcoef.study.calibration import Z95, log_error, quantile95  # noqa: E402
+from stripcoef.study.calibration import Z95, claimed_coverage, log_error, quantile95  # noqa: E402
 from stripcoef.study.shapes import CLASSES  # noqa: E402
 
 ERRORS = ROOT / "benchmarks" / "data" / "method_errors.csv"
@@ -176,8 +177,10 @@ HEADER = """\
 # matrix: added_mass | linear_damping | quadratic_damping; dofs: translation | rotation |
 #   coupling (measured, listed, not sampled: the congruence scales couplings with their diagonals).
 # distribution: lognormal (sd of ln(term)) | normal (sd of the coupling error over sqrt(A_ii A_jj)).
-# basis: measured (sd = q95 / 1.96, q95 the conservative empirical 95 % quantile of |error|
-#   over n_terms terms of n_shapes shapes) | assumed (no independent reference stored) |
+# basis: measured (sd = q95 / 1.96, q95 the split-conformal 95 % quantile of |error| over
+#   n_terms terms of n_shapes shapes: the k-th smallest, k = min(n, ceil(0.95 (n + 1)));
+#   claim = k / (n + 1), the chance a new term of the class falls inside, distribution-free;
+#   stripcoef.study.calibration) | assumed (no independent reference stored) |
 #   not_predicted (outside the model: a placeholder spread, not a calibrated band).
 """
 
@@ -187,7 +190,7 @@ def make_table(rows) -> str:
     out.write(HEADER)
     w = csv.writer(out, lineterminator="\n")
     w.writerow(["class", "matrix", "dofs", "distribution", "sd", "basis", "n_shapes",
-                "n_terms", "q95", "source"])
+                "n_terms", "q95", "claim", "source"])
     for cls in CLASSES:
         for fam in ("translation", "rotation", "coupling"):
             sel = [r for r in rows if r["class"] == cls and r["family"] == fam]
@@ -201,18 +204,20 @@ def make_table(rows) -> str:
             what = "|ln(strip/ref)|" if fam != "coupling" else "|strip - ref| / sqrt(A_ii A_jj)"
             text = (f"{what} of {len(sel)} terms of {len(shapes)} shapes ({'; '.join(sets)}): "
                     f"q95 {q:.4g}, largest {abs(float(worst['error'])):.4g} "
-                    f"({worst['shape']} {worst['term']})")
+                    f"({worst['shape']} {worst['term']}); a new term of the class falls in the "
+                    f"band with probability {claimed_coverage(len(sel)):.3f} (k/(n+1))")
             w.writerow([cls, "added_mass", fam, "lognormal" if fam != "coupling" else "normal",
-                        f"{q / Z95:.4g}", "measured", len(shapes), len(sel), f"{q:.4g}", text])
+                        f"{q / Z95:.4g}", "measured", len(shapes), len(sel), f"{q:.4g}",
+                        f"{claimed_coverage(len(sel)):.3f}", text])
         tr, rot = ASSUMED_DRAG[cls]
         for fam, sd in (("translation", tr), ("rotation", rot)):
-            w.writerow([cls, "quadratic_damping", fam, "lognormal", f"{sd:g}", "assumed", 0, 0, "",
+            w.writerow([cls, "quadratic_damping", fam, "lognormal", f"{sd:g}", "assumed", 0, 0, "", "",
                         "no drag reference independent of the method's own correlations (Hoerner "
                         "1965, DNV-RP-C205) is stored: an assumed sd(ln); checked on held-out "
                         "measurements by benchmarks/band_coverage.py"])
         for fam in ("translation", "rotation"):
             w.writerow([cls, "linear_damping", fam, "lognormal", "2.5", "not_predicted", 0, 0,
-                        "", "not predicted: the method's drag is quadratic and its linear part "
+                        "", "", "not predicted: the method's drag is quadratic and its linear part "
                             "only the Reynolds-number share; measured linear damping (Wang & Clark "
                             "2006) is 13-560x larger. A placeholder spread, not a band: excluded "
                             "from the coverage check"])
