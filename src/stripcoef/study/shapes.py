@@ -45,13 +45,12 @@ FINNED_ROUND = 0.5
 FINNED_SLENDERNESS = 3.0
 #: fill (volume / bounding-box volume) below which a body is an open frame [-]
 OPEN_FILL = 0.20
-#: strips used to read the features (the features converge far faster than the matrices)
-STRIPS = 200
 
 
-def features(vehicle, strips: int = STRIPS) -> dict:
+def features(vehicle, strips: int | None = None) -> dict:
     """``round_fraction``, ``slenderness``, ``fill`` [-] and ``length`` [m] of a vehicle
-    (module docstring: the formulas)."""
+    (module docstring: the formulas), on ``strips`` strips (default: the vehicle's own count,
+    the sections its model is made of: a body too short for fewer strips is still seen)."""
     st = vehicle.cut(strips)
     n = st.n
     ymin, ymax = np.full(n, np.inf), np.full(n, -np.inf)
