@@ -16,8 +16,12 @@ strips (:meth:`stripcoef.geometry.vehicle.Vehicle.cut`, the same sections the mo
   the volume of the bounding box (1 for a box, :math:`\pi/4` for a cylinder, :math:`\pi/6` for
   an ellipsoid; small for a frame of tubes).
 
-The rule (thresholds midway between the reference shapes of the calibration set,
-benchmarks/data/method_errors.csv, whose features :func:`features` prints):
+The rule (thresholds between the reference shapes of the calibration set,
+benchmarks/data/method_errors.csv: round fraction 0.99-1 for the bodies of revolution,
+0.90-0.96 for the six finned hulls (0.82 MARES, 0.94 REMUS 100; the smallest margin is the
+small-fin hull's 0.955 against 0.97: fins much smaller still would make a hull ``revolution``),
+at most 0.18 for the bluff shapes; fill 0.09 for the open frame, 0.17 for the BlueROV2 Heavy
+vehicle file, 0.35-1 for the bluff shapes, 0.29 for the VideoRay vehicle file):
 
 1. ``revolution``: :math:`\rho_r \ge 0.97` -- every section round (a sphere, a spheroid, a
    capsule, a short cylinder along x: strip theory with its 3D end corrections is the exact
