@@ -26,7 +26,7 @@ Terms of one shape are correlated (one factor per DOF group; Y and Z alike on a 
 revolution): the effective number of items is smaller than the count, so the intervals are
 if anything too narrow.
 
-Run: python benchmarks/band_coverage.py [--samples 64] [--write]   (about 1 min)
+Run: python benchmarks/band_coverage.py [--samples 256] [--write]   (about 10-20 s)
 """
 
 from __future__ import annotations
@@ -94,7 +94,8 @@ def cross_validation(rows):
 
 
 def held_out(samples):
-    """(table lines, (k, n), excluded lines) of the VideoRay check against the shipped bands."""
+    """(table lines, {band basis: (k, n)}, excluded lines, class) of the VideoRay check against
+    the shipped bands."""
     from stripcoef.study.uncertainty import uncertainty
     from validation.reference import load_table
 
@@ -135,7 +136,7 @@ def main(argv=None):
     from make_method_uncertainty import read_errors
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--samples", type=int, default=64)
+    ap.add_argument("--samples", type=int, default=256)
     ap.add_argument("--write", action="store_true", help=f"also write {OUT.relative_to(ROOT)}")
     args = ap.parse_args(argv)
     cv_lines, per_class = cross_validation(read_errors())
