@@ -169,3 +169,17 @@ def test_study_band_of_a_diagonal_term_is_the_analytic_band_the_check_uses():
         lo, hi = sorted(np.log(np.array([s["p2.5"], s["p97.5"]]) / s["nominal"]))
         assert lo == pytest.approx(-Z95 * sd, rel=0.06)
         assert hi == pytest.approx(Z95 * sd, rel=0.06)
+
+
+def test_leave_one_shape_out_coverage_of_the_shipped_errors_is_consistent_with_95_percent():
+    """The done-when of issue 19 on the stored errors (benchmarks/band_coverage.py, part 1): per
+    class with more than one shape, 95 % inside the exact binomial interval of the count."""
+    rows = _script().read_errors()
+    for cls in ("revolution", "finned", "bluff"):
+        k = n = 0
+        for fam in ("translation", "rotation"):
+            sel = [r for r in rows if r["class"] == cls and r["family"] == fam]
+            ok = leave_one_group_out([float(r["error"]) for r in sel], [r["shape"] for r in sel])
+            k, n = k + int(ok.sum()), n + len(sel)
+        lo, hi = binomial_interval(k, n)
+        assert lo <= 0.95 <= hi, (cls, k, n)
