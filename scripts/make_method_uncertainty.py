@@ -20,10 +20,11 @@ Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_cla
 its name. The second step reads that file and writes src/stripcoef/data/method_uncertainty.csv:
 per class and term family (translational / rotational added mass), the sd of ln
 sigma = q95 / 1.96 from the split-conformal 95 % quantile q95 of |ln(strip / reference)|
-(the k-th smallest, k = min(n, ceil(0.95 (n + 1))): a new exchangeable term falls within it with
-probability k / (n + 1), stripcoef.study.calibration); couplings are measured as (strip - ref) / sqrt(A_ii A_jj) and
-listed, not sampled; drag has no independent reference stored (assumed rows, labelled so) and
-linear damping is not predicted by the method (placeholder rows, labelled so).
+(the k-th smallest, k = min(n, ceil(0.95 (n + 1))): a new exchangeable term falls within it
+with probability k / (n + 1), stripcoef.study.calibration); couplings are measured as
+(strip - ref) / sqrt(A_ii A_jj) and sampled as an additive move c sqrt(A_ii A_jj)
+(stripcoef.study.sources.couple); drag has no independent reference stored (assumed rows,
+labelled so) and linear damping is not predicted by the method (placeholder rows, labelled so).
 """
 
 from __future__ import annotations
@@ -190,7 +191,7 @@ HEADER = """\
 # converged Capytaine runs). Do not edit by hand: tests/test_uncertainty_bands.py regenerates it.
 # class: by geometry, stripcoef.study.shapes (revolution | finned | bluff | open_frame).
 # matrix: added_mass | linear_damping | quadratic_damping; dofs: translation | rotation |
-#   coupling (measured, listed, not sampled: the congruence scales couplings with their diagonals).
+#   coupling (sampled as M_ij + c sign(M_ij) sqrt(M_ii M_jj), c = sd z: stripcoef.study.sources.couple).
 # distribution: lognormal (sd of ln(term)) | normal (sd of the coupling error over sqrt(A_ii A_jj)).
 # basis: measured (sd = q95 / 1.96, q95 the split-conformal 95 % quantile of |error| over
 #   n_terms terms of n_shapes shapes: the k-th smallest, k = min(n, ceil(0.95 (n + 1)));

@@ -14,7 +14,7 @@ from stripcoef.study.calibration import (Z95, binomial_interval, claimed_coverag
                                          leave_one_group_out, log_error, quantile95,
                                          sd_from_errors)
 from stripcoef.study.shapes import classify, features, shape_class
-from stripcoef.study.sources import method_sources
+from stripcoef.study.sources import couple, method_sources
 
 ROOT = Path(__file__).resolve().parent.parent
 WATER = Fluid(density=1000.0, kinematic_viscosity=1e-6, source="test")
@@ -150,10 +150,26 @@ def test_classifier_rule_on_its_features():
     assert classify({"round_fraction": 0.0, "slenderness": 1.0, "fill": 0.1}) == "open_frame"
 
 
-def test_method_sources_follow_the_class_and_leave_couplings_unsampled():
+def test_method_sources_follow_the_class_and_sample_the_couplings():
     names = {s.name for s in method_sources(load_vehicle(ROOT / "geometry" / "remus100.yaml"))}
     assert names == {f"{m}.{g}" for m in ("added_mass", "linear_damping", "quadratic_damping")
-                     for g in ("translation", "rotation")}
+                     for g in ("translation", "rotation")} | {"added_mass.coupling"}
+
+
+def test_couple_moves_only_the_significant_couplings_and_keeps_the_matrix_definite():
+    m = np.diag([10.0, 40.0, 40.0, 0.1, 4.0, 4.0])
+    m[1, 5] = m[5, 1] = 2.0                           # a torpedo's sway-yaw coupling
+    m[2, 4] = m[4, 2] = -2.0
+    m[0, 1] = m[1, 0] = 1e-12                         # round-off: left alone
+    out = couple(m, 0.05)
+    scale = np.sqrt(40.0 * 4.0)
+    assert out[1, 5] == pytest.approx(2.0 + 0.05 * scale)
+    assert out[2, 4] == pytest.approx(-2.0 - 0.05 * scale)   # the magnitude grows either sign
+    assert out[0, 1] == 1e-12 and np.array_equal(np.diag(out), np.diag(m))
+    np.testing.assert_array_equal(out, out.T)
+    np.testing.assert_array_equal(couple(m, 0.0), m)
+    big = couple(m, 5.0)                                      # would break definiteness: halved
+    assert np.all(np.linalg.eigvalsh(big) > 0) and abs(big[1, 5]) > 2.0
 
 
 def test_study_band_of_a_diagonal_term_is_the_analytic_band_the_check_uses():
@@ -173,7 +189,8 @@ def test_study_band_of_a_diagonal_term_is_the_analytic_band_the_check_uses():
 
 def test_leave_one_shape_out_coverage_of_the_shipped_errors_is_consistent_with_95_percent():
     """The done-when of issue 19 on the stored errors (benchmarks/band_coverage.py, part 1): per
-    class with more than one shape, 95 % inside the exact binomial interval of the count."""
+    class with more than one shape, 95 % inside the exact binomial interval of the count, for
+    the diagonal terms. (The bluff couplings are a known miss, 5 of 11: docs/uncertainty.md.)"""
     rows = _script().read_errors()
     for cls in ("revolution", "finned", "bluff"):
         k = n = 0
