@@ -37,8 +37,8 @@ def section() -> str:
              "`python scripts/make_method_uncertainty.py --measure` "
              "(`benchmarks/data/method_errors.csv`), and the table the uncertainty study samples "
              "is generated from those errors: sd of ln = q95 / 1.96, q95 the split-conformal 95 % "
-             "quantile of |ln(strip/ref)| (couplings: |strip - ref| / sqrt(A_ii A_jj), listed, not "
-             "sampled). `claim` = k/(n+1), the chance that a new term of the class falls in the "
+             "quantile of |ln(strip/ref)| (couplings: |strip - ref| / sqrt(A_ii A_jj), sampled as an "
+             "additive move of that scale). `claim` = k/(n+1), the chance that a new term of the class falls in the "
              "band. Drag rows are assumed (no independent drag reference is stored) and linear "
              "damping is not predicted (docs/uncertainty.md).\n",
              markdown_table(["class", "DOF group", "distribution", "sd", "q95",
