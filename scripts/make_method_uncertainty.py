@@ -218,7 +218,8 @@ def make_table(rows) -> str:
             sets = sorted({r["set"] for r in sel})
             worst = sel[int(np.argmax(np.abs(err)))]
             what = "|ln(strip/ref)|" if fam != "coupling" else "|strip - ref| / sqrt(A_ii A_jj)"
-            text = (f"{what} of {len(sel)} terms of {len(shapes)} shapes ({'; '.join(sets)}): "
+            text = (f"{what} of {len(sel)} terms of {len(shapes)} "
+                    f"shape{'s' if len(shapes) != 1 else ''} ({'; '.join(sets)}): "
                     f"q95 {q:.4g}, largest {abs(float(worst['error'])):.4g} "
                     f"({worst['shape']} {worst['term']}); a new term of the class falls in the "
                     f"band with probability {claimed_coverage(len(sel)):.3f} (k/(n+1))")
