@@ -53,6 +53,12 @@ CASES = {
     "remus_tail": (X0 + 0.17, 0.08, 0.1425),      # the fin size of benchmarks/mesh_shapes.py
     "large_tail": (X0 + 0.25, 0.12, 0.17),
     "midbody": (0.10, 0.14, 0.16),
+    # added for the uncertainty calibration (scripts/make_method_uncertainty.py), chosen to span
+    # fin size and place before their errors were known: small aft fins, forward fins on the
+    # parallel middle body, and aft fins of twice the hull radius in span
+    "small_tail": (X0 + 0.12, 0.06, 0.125),
+    "forward_fins": (0.40, 0.08, 0.15),
+    "wide_tail": (X0 + 0.20, 0.10, 0.22),
 }
 TERMS = [(i, j) for i in range(6) for j in range(i, 6)]
 DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -154,9 +160,15 @@ def bem_quarter(mesh_q, rho=RHO):
     return 0.5 * (a + a.T)
 
 
-def run_bem():
+def run_bem(cases=None):
+    """BEM references of ``cases`` (default all); the stored rows of the other cases are kept."""
+    cases = list(cases or CASES)
     rows = []
-    for case in CASES:
+    if DATA.exists():
+        for case, levels in load_references().items():
+            if case in CASES and case not in cases:
+                rows += [(case, n, a) for n, a in levels.items()]
+    for case in cases:
         res = []
         for level in range(len(MESH_LEVELS)):
             mesh_q = quarter(bem_mesh(case, level))
@@ -228,6 +240,7 @@ def compare():
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bem", action="store_true", help="recompute the BEM references")
+    ap.add_argument("--only", nargs="*", help="with --bem: only these cases (the others kept)")
     ap.add_argument("--convergence", action="store_true",
                     help="the coupling vs the strip count instead of the BEM comparison")
     args = ap.parse_args()
@@ -235,7 +248,7 @@ def main():
         convergence()
         return
     if args.bem:
-        run_bem()
+        run_bem(args.only)
     compare()
 
 

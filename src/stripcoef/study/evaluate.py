@@ -67,7 +67,7 @@ def evaluate(job: Job, row) -> dict:
     from stripcoef.assembly import estimate
     from stripcoef.geometry.keypaths import set_value
     from stripcoef.geometry.vehicle import parse_vehicle
-    from stripcoef.study.sources import method_factors, scale_matrix
+    from stripcoef.study.sources import couple, method_couplings, method_factors, scale_matrix
 
     row = [float(v) for v in row]
     n_in = len(job.paths)
@@ -79,7 +79,9 @@ def evaluate(job: Job, row) -> dict:
         model = estimate(parse_vehicle(data, file=job.file), strips=job.strips)
     if job.sources:
         f = method_factors(list(job.sources), row[n_in:])
-        model = replace(model, added_mass=scale_matrix(model.added_mass, f["added_mass"]),
+        c = method_couplings(list(job.sources), row[n_in:])
+        model = replace(model, added_mass=couple(scale_matrix(model.added_mass, f["added_mass"]),
+                                                 c["added_mass"]),
                         linear_damping=scale_matrix(model.linear_damping, f["linear_damping"]),
                         quadratic_damping=scale_matrix(model.quadratic_damping,
                                                        f["quadratic_damping"]))
