@@ -48,9 +48,11 @@ import numpy as np
 from stripcoef.errors import InputError
 
 #: Pairs closer than this many source-panel diameters (longest edge) use the exact integrals [-].
-#: Beyond 4 diameters the one-point rule's relative error is below ~0.3 % per pair (its
-#: leading error is the panel's second moment over r^2, Katz & Plotkin 2001, sec. 10.4.1).
-NEAR_FACTOR = 4.0
+NEAR_FACTOR = 2.0
+#: Pairs closer than this many diameters (and not near) use a three-point rule; beyond, one
+#: point: its relative error is below ~0.3 % per pair beyond 4 diameters (the leading error is
+#: the panel's second moment over r^2, Katz & Plotkin 2001, sec. 10.4.1) [-].
+MID_FACTOR = 4.0
 #: Default panels of the finer of the two resolutions [-] (the coarser has half as many).
 DEFAULT_PANELS = 1600
 #: Most panels one solve accepts (dense memory ~ 24 N^2 bytes, time ~ N^3) [-].
@@ -92,7 +94,9 @@ def triangle_integrals(points, tri, normal):
     R = tri - points[:, None, :]                          # (k, 3, 3) vertex - point
     r = np.linalg.norm(R, axis=2)
     num = np.einsum("ij,ij->i", R[:, 0], np.cross(R[:, 1], R[:, 2]))
-    dot = lambda a, b: np.einsum("ij,ij->i", R[:, a], R[:, b])    # noqa: E731
+    def dot(a, b):
+        return np.einsum("ij,ij->i", R[:, a], R[:, b])
+
     den = r[:, 0] * r[:, 1] * r[:, 2] + dot(0, 1) * r[:, 2] + dot(0, 2) * r[:, 1] \
         + dot(1, 2) * r[:, 0]
     omega = 2.0 * np.arctan2(num, den)
@@ -118,22 +122,42 @@ def triangle_integrals(points, tri, normal):
     return total / _FOUR_PI, -omega / _FOUR_PI
 
 
-def influence_matrices(tri, near_factor: float = NEAR_FACTOR):
+def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float = MID_FACTOR):
     r"""Source S [m] and dipole D [-] influence matrices of constant flat triangular panels.
 
     Row k: collocation point (centroid of panel k); column l: panel l.  Exact integrals
-    (:func:`triangle_integrals`) within ``near_factor`` diameters of panel l, the one-point
-    rule :math:`S = A_l/(4\pi r)`, :math:`D = A_l\,(x_k - c_l)\cdot n_l/(4\pi r^3)` beyond
-    (Katz & Plotkin 2001, sec. 10.4.1).
+    (:func:`triangle_integrals`) within ``near_factor`` diameters (longest edge) of panel l;
+    the three-point rule of degree 2 (Strang & Fix 1973, points at barycentric (2/3, 1/6, 1/6),
+    weights A/3) within ``mid_factor`` diameters; the one-point rule
+    :math:`S = A_l/(4\pi r)`, :math:`D = A_l\,(x_k - c_l)\cdot n_l/(4\pi r^3)` beyond
+    (Katz & Plotkin 2001, sec. 10.4.1: the one-point error is the panel's second moment over
+    r^2, below 0.3 % per pair beyond 4 diameters).
     """
     c, n, area, diam = _frames(tri)
-    d = c[:, None, :] - c[None, :, :]                     # x_k - c_l
-    r2 = np.einsum("klm,klm->kl", d, d)
+    c0 = c - c.mean(axis=0)                               # |x_k - c_l|^2 by matrix products
+    cc = np.einsum("ij,ij->i", c0, c0)
+    r2 = cc[:, None] + cc[None, :] - 2.0 * (c0 @ c0.T)
     np.fill_diagonal(r2, 1.0)
     inv_r = 1.0 / np.sqrt(r2)
-    s = (area / _FOUR_PI)[None, :] * inv_r
-    dd = np.einsum("klm,lm->kl", d, n) * inv_r ** 3 * (area / _FOUR_PI)[None, :]
-    near = r2 < (near_factor * diam[None, :]) ** 2
+    w = area / _FOUR_PI
+    s = w[None, :] * inv_r
+    # (x_k - c_l) . n_l
+    dd = (c0 @ n.T - np.einsum("ij,ij->i", c0, n)[None, :]) * inv_r ** 3 * w[None, :]
+    ratio2 = r2 / (diam * diam)[None, :]
+    k, l = np.nonzero((ratio2 < mid_factor ** 2) & (ratio2 >= near_factor ** 2))
+    if len(k):
+        sk = np.zeros(len(k))
+        dk = np.zeros(len(k))
+        for q in range(3):
+            xi = (2.0 / 3.0) * tri[l, q] + (1.0 / 6.0) * (tri[l, (q + 1) % 3]
+                                                          + tri[l, (q + 2) % 3])
+            dq = c[k] - xi
+            iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
+            sk += iq
+            dk += np.einsum("ij,ij->i", dq, n[l]) * iq ** 3
+        s[k, l] = sk * w[l] / 3.0
+        dd[k, l] = dk * w[l] / 3.0
+    near = ratio2 < near_factor ** 2
     np.fill_diagonal(near, True)
     k, l = np.nonzero(near)
     for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
@@ -213,8 +237,7 @@ def _cluster(vertices, faces, h):
     f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
     # coincident faces: same vertex set; equal winding -> keep one, opposite -> drop both
     srt = np.sort(f, axis=1)
-    _, first, ids, cnt = np.unique(srt, axis=0, return_index=True, return_inverse=True,
-                                   return_counts=True)
+    _, first, ids = np.unique(srt, axis=0, return_index=True, return_inverse=True)
     ids = ids.reshape(-1)
     rot = np.argmin(f, axis=1)                       # winding: rotate the smallest index first
     canon = np.take_along_axis(f, (rot[:, None] + np.arange(3)) % 3, axis=1)
