@@ -361,18 +361,34 @@ def refine(vertices, faces, panels: int):
 VOLUME_TOLERANCE = 0.02
 
 
-def panel_levels(vertices, faces, panels: int, where=None):
-    r"""The two panellings (coarse, fine) of the Richardson extrapolation, about N/2 and N.
+def split_in_four(vertices, faces):
+    """Every face split into four at its edge midpoints (trimesh.remesh.subdivide): the same
+    polyhedron with the panel size halved, so that the two levels of the extrapolation are one
+    family of meshes.  Returns (vertices, faces)."""
+    import trimesh.remesh
 
-    A mesh of more than N faces is coarsened to each level independently (:func:`coarsen`:
-    two approximations of the same surface, their geometric error ~h^2 like the panel error),
-    unless that changes its volume by more than :data:`VOLUME_TOLERANCE` (members thinner than
-    the panels).  Otherwise both levels refine the mesh itself (:func:`refine`, longest-edge
-    bisection: its slivers are split too): the coarse one to :math:`N_1 = \max(N/2,
-    1.25 F)` panels (F faces), the fine one to :math:`2 N_1`; more than :data:`MAX_PANELS` is
-    an error naming ``panels``.
+    return trimesh.remesh.subdivide(vertices, faces)
+
+
+def panel_levels(vertices, faces, panels: int, where=None):
+    r"""The two panellings (coarse, fine) of the Richardson extrapolation.
+
+    - A mesh of at most N/4 faces (N = ``panels``; boxes, coarse CAD): refined by longest-edge
+      bisection to about N/4 panels (:func:`refine`), and that split in four
+      (:func:`split_in_four`): N_2 = 4 N_1, h halved on the same polyhedron.
+    - A mesh of more than N faces: coarsened to N/2 and N panels independently
+      (:func:`coarsen`: two approximations of the same surface, their geometric error ~h^2
+      like the panel error), unless that changes its volume by more than
+      :data:`VOLUME_TOLERANCE` (members thinner than the panels).
+    - Otherwise (and for thin members) both levels refine the mesh itself (its slivers are
+      split too): to :math:`N_1 = \max(N/2, 1.25 F)` (F faces) and :math:`2 N_1` panels; more
+      than :data:`MAX_PANELS` is an error naming ``panels``.
     """
     v, f = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    dv = 0.0
+    if 4 * len(f) <= panels:
+        coarse = refine(v, f, panels // 4)
+        return [coarse, split_in_four(*coarse)]
     if len(f) > panels:
         levels = [coarsen(v, f, n) for n in (panels // 2, panels)]
         vol = _volume(v, f)
@@ -385,7 +401,7 @@ def panel_levels(vertices, faces, panels: int, where=None):
                          f"volume changes by {100 * dv:.1f} % when coarsened), and its "
                          f"{len(f)} faces need more than {MAX_PANELS} panels", file=where,
                          key="panels", value=panels,
-                         expected=f"a mesh of at most {MAX_PANELS // 2.5:.0f} faces (or more "
+                         expected=f"a mesh of at most {MAX_PANELS / 2.5:.0f} faces (or more "
                                   "panels)")
     return [refine(v, f, n1), refine(v, f, 2 * n1)]
 
