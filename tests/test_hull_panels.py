@@ -111,3 +111,75 @@ def test_bad_input_is_one_line_naming_the_key():
         panel_added_mass(open_mesh, rho=RHO, source="hull.stl")
     with pytest.raises(InputError, match="panels"):
         panel_added_mass(_ellipsoid(0.3, 0.15, 0.08, 2), rho=RHO, panels=10)
+
+
+# --- integration: EstimateOptions.added_mass_method and the CLI flag ---------------------------
+
+def _box_vehicle(size=(0.46, 0.58, 0.25)):
+    from stripcoef.geometry.vehicle import Vehicle
+
+    return Vehicle.from_mesh(trimesh.creation.box(size), name="box")
+
+
+def test_estimate_panels_changes_only_the_added_mass():
+    from stripcoef.assembly import estimate
+
+    veh = _box_vehicle()
+    strips = estimate(veh)
+    panels = estimate(veh, added_mass_method="panels", added_mass_panels=800)
+    np.testing.assert_array_equal(panels.linear_damping, strips.linear_damping)
+    np.testing.assert_array_equal(panels.quadratic_damping, strips.quadratic_damping)
+    rho = strips.density
+    direct, _ = panel_added_mass(veh.bodies[0], rho=rho, panels=800,
+                                 about=strips.reference_point)
+    np.testing.assert_allclose(panels.added_mass, direct, rtol=1e-9, atol=1e-9)
+    assert panels.conditions["added_mass_panels"] >= 400
+    assert "added_mass_method" not in strips.conditions
+
+
+def test_auto_rule():
+    from stripcoef.assembly import estimate
+    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.geometry.mesh import revolved_mesh
+    from stripcoef.geometry.vehicle import Vehicle
+
+    box = _box_vehicle()
+    assert added_mass_method("auto", box, box.cut(100)) == "panels"          # L/B 0.8
+    slender = _box_vehicle((1.5, 0.25, 0.2))
+    assert added_mass_method("auto", slender, slender.cut(100)) == "strips"  # L/B 6
+    x = np.linspace(-0.3, 0.3, 61)
+    sphere_like = Vehicle.from_mesh(revolved_mesh(x, np.sqrt(np.maximum(0.09 - x**2, 0.0))),
+                                    name="round")
+    assert added_mass_method("auto", sphere_like, sphere_like.cut(100)) == "strips"
+    a = estimate(sphere_like, added_mass_method="auto")
+    b = estimate(sphere_like)
+    np.testing.assert_array_equal(a.added_mass, b.added_mass)    # bit for bit
+
+
+def test_panels_need_a_mesh_vehicle_and_a_known_method():
+    from conftest import GEOMETRY
+
+    from stripcoef.assembly import estimate
+
+    with pytest.raises(InputError, match="added_mass_method.*one closed mesh"):
+        estimate(GEOMETRY / "sphere.yaml", added_mass_method="panels")
+    with pytest.raises(InputError, match="added_mass_method"):
+        estimate(_box_vehicle(), added_mass_method="bem")
+    with pytest.raises(InputError, match="added_mass_panels"):
+        estimate(_box_vehicle(), added_mass_method="panels", added_mass_panels=20)
+
+
+def test_cli_flag(tmp_path, capsys):
+    import json
+
+    from stripcoef.cli import main
+
+    box = tmp_path / "box.stl"
+    trimesh.creation.box(extents=(0.46, 0.58, 0.25)).export(box)
+    assert main(["coefficients", str(box), "--rho", "1000", "--added-mass-method", "panels",
+                 "--added-mass-panels", "800", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["conditions"]["added_mass_panels"] >= 400
+    assert main(["coefficients", str(box), "--added-mass-method", "panels",
+                 "--added-mass-panels", "20"]) == 2
+    assert "--added-mass-panels" in capsys.readouterr().err
