@@ -207,6 +207,8 @@ def _cluster(vertices, faces, h):
     :math:`b = \sum a\, n (n\cdot p)`, singular values below 1e-3 of the largest dropped), so
     that edges and corners stay sharp.  Faces that lose a vertex, and pairs of coincident
     faces of opposite winding (a collapsed thin wall), are dropped."""
+    tri = vertices[faces]
+    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     key3 = np.floor((vertices - vertices.min(axis=0)) / h).astype(np.int64)
     dims = key3.max(axis=0) + 1
     key = (key3[:, 0] * dims[1] + key3[:, 1]) * dims[2] + key3[:, 2]
@@ -214,8 +216,6 @@ def _cluster(vertices, faces, h):
     k = len(counts)
     mean = np.column_stack([np.bincount(inv, weights=vertices[:, c], minlength=k)
                             for c in range(3)]) / counts[:, None]
-    tri = vertices[faces]
-    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     a2 = np.linalg.norm(cr, axis=1)
     nrm = cr / np.where(a2 > 0, a2, 1.0)[:, None]
     q = (a2[:, None, None] * nrm[:, :, None] * nrm[:, None, :]).reshape(-1, 9)
@@ -378,8 +378,9 @@ def panel_levels(vertices, faces, panels: int, where=None):
       (:func:`split_in_four`): N_2 = 4 N_1, h halved on the same polyhedron.
     - A mesh of more than N faces: coarsened to N/2 and N panels independently
       (:func:`coarsen`: two approximations of the same surface, their geometric error ~h^2
-      like the panel error), unless that changes its volume by more than
-      :data:`VOLUME_TOLERANCE` (members thinner than the panels).
+      like the panel error); if that changes its volume by more than
+      :data:`VOLUME_TOLERANCE` (members thinner than the panels collapsed), N is doubled
+      while it stays within :data:`MAX_PANELS`.
     - Otherwise (and for thin members) both levels refine the mesh itself (its slivers are
       split too): to :math:`N_1 = \max(N/2, 1.25 F)` (F faces) and :math:`2 N_1` panels; more
       than :data:`MAX_PANELS` is an error naming ``panels``.
@@ -389,12 +390,16 @@ def panel_levels(vertices, faces, panels: int, where=None):
     if 4 * len(f) <= panels:
         coarse = refine(v, f, panels // 4)
         return [coarse, split_in_four(*coarse)]
-    if len(f) > panels:
-        levels = [coarsen(v, f, n) for n in (panels // 2, panels)]
+    n = panels
+    while len(f) > n:           # coarsen, with twice the panels while thin members collapse
+        levels = [coarsen(v, f, k) for k in (n // 2, n)]
         vol = _volume(v, f)
         dv = max(abs(_volume(*lv) / vol - 1.0) for lv in levels)
         if dv <= VOLUME_TOLERANCE:
             return levels
+        if 2 * n > MAX_PANELS:
+            break
+        n *= 2
     n1 = max(panels // 2, int(np.ceil(1.25 * len(f))))
     if 2 * n1 > MAX_PANELS:
         raise InputError(f"the mesh has members thinner than {panels} panels resolve (its "
