@@ -402,12 +402,13 @@ def panel_levels(vertices, faces, panels: int, where=None):
         n *= 2
     n1 = max(panels // 2, int(np.ceil(1.25 * len(f))))
     if 2 * n1 > MAX_PANELS:
-        raise InputError(f"the mesh has members thinner than {panels} panels resolve (its "
-                         f"volume changes by {100 * dv:.1f} % when coarsened), and its "
-                         f"{len(f)} faces need more than {MAX_PANELS} panels", file=where,
+        why = (f"the mesh has members thinner than {n} panels resolve (coarsening changes "
+               f"its volume by {100 * dv:.1f} %) and " if dv > VOLUME_TOLERANCE else "")
+        raise InputError(f"{why}its {len(f)} faces are too many to refine within "
+                         f"{MAX_PANELS} panels", file=where,
                          key="panels", value=panels,
-                         expected=f"a mesh of at most {MAX_PANELS / 2.5:.0f} faces (or more "
-                                  "panels)")
+                         expected=f"a mesh of at most {MAX_PANELS / 2.5:.0f} faces (decimated "
+                                  "in CAD, thin members kept)")
     return [refine(v, f, n1), refine(v, f, 2 * n1)]
 
 
