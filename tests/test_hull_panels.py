@@ -183,3 +183,20 @@ def test_cli_flag(tmp_path, capsys):
     assert main(["coefficients", str(box), "--added-mass-method", "panels",
                  "--added-mass-panels", "20"]) == 2
     assert "--added-mass-panels" in capsys.readouterr().err
+
+
+def test_auto_keeps_the_strips_for_the_shipped_vehicles():
+    """Every shipped vehicle file and the round sample mesh stay on the strips under ``auto``
+    (their output would not change); the BlueROV2 frame mesh and a box go to the panels."""
+    from conftest import GEOMETRY
+
+    from stripcoef import samples
+    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    files = sorted(GEOMETRY.glob("*.yaml")) + [samples.path("capsule.stl")]
+    for f in files:
+        v = load_vehicle(f)
+        assert added_mass_method("auto", v, v.cut(200)) == "strips", f.name
+    rov = load_vehicle(GEOMETRY / "bluerov2_heavy.stl")
+    assert added_mass_method("auto", rov, rov.cut(200)) == "panels"
