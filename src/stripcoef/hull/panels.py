@@ -136,30 +136,43 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
     c, n, area, diam = _frames(tri)
     c0 = c - c.mean(axis=0)                               # |x_k - c_l|^2 by matrix products
     cc = np.einsum("ij,ij->i", c0, c0)
-    r2 = cc[:, None] + cc[None, :] - 2.0 * (c0 @ c0.T)
+    r2 = c0 @ c0.T
+    r2 *= -2.0
+    r2 += cc[:, None]
+    r2 += cc[None, :]
+    np.fill_diagonal(r2, 0.0)
+    # pairs within mid_factor diameters (near ones among them, the panel itself included),
+    # found on r2 before it is reused
+    k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
     np.fill_diagonal(r2, 1.0)
-    inv_r = 1.0 / np.sqrt(r2)
+    inv_r = np.sqrt(r2, out=r2)
+    np.divide(1.0, inv_r, out=inv_r)
     w = area / _FOUR_PI
-    s = w[None, :] * inv_r
-    # (x_k - c_l) . n_l
-    dd = (c0 @ n.T - np.einsum("ij,ij->i", c0, n)[None, :]) * inv_r ** 3 * w[None, :]
-    ratio2 = r2 / (diam * diam)[None, :]
-    k, l = np.nonzero((ratio2 < mid_factor ** 2) & (ratio2 >= near_factor ** 2))
-    if len(k):
-        sk = np.zeros(len(k))
-        dk = np.zeros(len(k))
+    # (x_k - c_l) . n_l A_l / (4 pi r^3)
+    dd = c0 @ n.T
+    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
+    dd *= w[None, :]
+    dd *= inv_r
+    dd *= inv_r
+    dd *= inv_r
+    s = inv_r
+    s *= w[None, :]
+    d2 = np.einsum("ij,ij->i", c[k] - c[l], c[k] - c[l])
+    near = (d2 < (near_factor * diam[l]) ** 2) | (k == l)
+    km, lm = k[~near], l[~near]
+    if len(km):
+        sk = np.zeros(len(km))
+        dk = np.zeros(len(km))
         for q in range(3):
-            xi = (2.0 / 3.0) * tri[l, q] + (1.0 / 6.0) * (tri[l, (q + 1) % 3]
-                                                          + tri[l, (q + 2) % 3])
-            dq = c[k] - xi
+            xi = (2.0 / 3.0) * tri[lm, q] + (1.0 / 6.0) * (tri[lm, (q + 1) % 3]
+                                                           + tri[lm, (q + 2) % 3])
+            dq = c[km] - xi
             iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
             sk += iq
-            dk += np.einsum("ij,ij->i", dq, n[l]) * iq ** 3
-        s[k, l] = sk * w[l] / 3.0
-        dd[k, l] = dk * w[l] / 3.0
-    near = ratio2 < near_factor ** 2
-    np.fill_diagonal(near, True)
-    k, l = np.nonzero(near)
+            dk += np.einsum("ij,ij->i", dq, n[lm]) * iq ** 3
+        s[km, lm] = sk * w[lm] / 3.0
+        dd[km, lm] = dk * w[lm] / 3.0
+    k, l = k[near], l[near]
     for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
         sk, dk = triangle_integrals(c[k[sl]], tri[l[sl]], n[l[sl]])
         s[k[sl], l[sl]] = sk
@@ -198,7 +211,26 @@ def solve_added_mass(tri, *, rho: float, about=(0.0, 0.0, 0.0),
 MAX_INPUT_FACES = 2_000_000
 
 
-def _cluster(vertices, faces, h):
+def vertex_quadrics(vertices, faces):
+    r"""Per vertex, the summed plane quadrics of its faces: :math:`Q = \sum a\, n n^T` (V, 9)
+    and :math:`b = \sum a\, n (n\cdot p)` (V, 3), a the doubled face area [m^2] (Lindstrom
+    2000); computed once for all the clusterings of a mesh."""
+    tri = vertices[faces]
+    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    a2 = np.linalg.norm(cr, axis=1)
+    nrm = cr / np.where(a2 > 0, a2, 1.0)[:, None]
+    q = (a2[:, None, None] * nrm[:, :, None] * nrm[:, None, :]).reshape(-1, 9)
+    b = a2[:, None] * nrm * np.einsum("ij,ij->i", nrm, tri[:, 0])[:, None]
+    idx = faces.reshape(-1)
+    nv = len(vertices)
+    qv = np.column_stack([np.bincount(idx, weights=np.repeat(q[:, c], 3), minlength=nv)
+                          for c in range(9)])
+    bv = np.column_stack([np.bincount(idx, weights=np.repeat(b[:, c], 3), minlength=nv)
+                          for c in range(3)])
+    return qv, bv
+
+
+def _cluster(vertices, faces, h, quadrics=None):
     r"""Vertex clustering on a grid of cell ``h`` [m] (Rossignac & Borrel 1993, "Multi-resolution
     3D approximations for rendering complex scenes"), each cell's vertex placed where it
     minimises the summed squared distances to the planes of the faces around it (the quadric
@@ -206,9 +238,9 @@ def _cluster(vertices, faces, h):
     SIGGRAPH: :math:`x = \bar x + Q^+ (b - Q\bar x)`, :math:`Q = \sum a\, n n^T`,
     :math:`b = \sum a\, n (n\cdot p)`, singular values below 1e-3 of the largest dropped), so
     that edges and corners stay sharp.  Faces that lose a vertex, and pairs of coincident
-    faces of opposite winding (a collapsed thin wall), are dropped."""
-    tri = vertices[faces]
-    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    faces of opposite winding (a collapsed thin wall), are dropped.  ``quadrics``: those of
+    :func:`vertex_quadrics` (computed if omitted)."""
+    qv, bv = vertex_quadrics(vertices, faces) if quadrics is None else quadrics
     key3 = np.floor((vertices - vertices.min(axis=0)) / h).astype(np.int64)
     dims = key3.max(axis=0) + 1
     key = (key3[:, 0] * dims[1] + key3[:, 1]) * dims[2] + key3[:, 2]
@@ -216,15 +248,9 @@ def _cluster(vertices, faces, h):
     k = len(counts)
     mean = np.column_stack([np.bincount(inv, weights=vertices[:, c], minlength=k)
                             for c in range(3)]) / counts[:, None]
-    a2 = np.linalg.norm(cr, axis=1)
-    nrm = cr / np.where(a2 > 0, a2, 1.0)[:, None]
-    q = (a2[:, None, None] * nrm[:, :, None] * nrm[:, None, :]).reshape(-1, 9)
-    b = a2[:, None] * nrm * np.einsum("ij,ij->i", nrm, tri[:, 0])[:, None]
-    cells = inv[faces].reshape(-1)
-    qc = np.column_stack([np.bincount(cells, weights=np.repeat(q[:, c], 3), minlength=k)
+    qc = np.column_stack([np.bincount(inv, weights=qv[:, c], minlength=k)
                           for c in range(9)]).reshape(-1, 3, 3)
-    bc = np.column_stack([np.bincount(cells, weights=np.repeat(b[:, c], 3), minlength=k)
-                          for c in range(3)])
+    bc = np.column_stack([np.bincount(inv, weights=bv[:, c], minlength=k) for c in range(3)])
     u, sv, vt = np.linalg.svd(qc)
     sinv = np.where(sv > 1e-3 * sv[:, :1], 1.0 / np.where(sv > 0, sv, 1.0), 0.0)
     resid = bc - np.einsum("kij,kj->ki", qc, mean)
@@ -266,15 +292,18 @@ def _area(vertices, faces):
                                       axis=1).sum())
 
 
-def coarsen(vertices, faces, panels: int):
+def coarsen(vertices, faces, panels: int, quadrics=None):
     r"""At most about ``panels`` triangles of a finer closed mesh by quadric vertex clustering
     (:func:`_cluster`) on cells of :math:`0.75 h`, :math:`h = \sqrt{4A/(\sqrt3 N)}` the side of
     N equilateral triangles covering the area A [m^2]; the cell is corrected twice on the
-    count reached (faces ~ cell^-2).  Returns (vertices, faces)."""
+    count reached (faces ~ cell^-2).  ``quadrics``: :func:`vertex_quadrics` of the mesh
+    (computed if omitted).  Returns (vertices, faces)."""
+    if quadrics is None:
+        quadrics = vertex_quadrics(vertices, faces)
     h = 0.75 * np.sqrt(4.0 * _area(vertices, faces) / (np.sqrt(3.0) * panels))
     best = None
     for _ in range(4):
-        cv, cf = _cluster(vertices, faces, h)
+        cv, cf = _cluster(vertices, faces, h, quadrics)
         if len(cf) <= 1.1 * panels and (best is None or len(cf) > len(best[1])):
             best = (cv, cf)
         ratio = len(cf) / panels
@@ -391,9 +420,10 @@ def panel_levels(vertices, faces, panels: int, where=None):
         coarse = refine(v, f, panels // 4)
         return [coarse, split_in_four(*coarse)]
     n = panels
+    quadrics = vertex_quadrics(v, f) if len(f) > n else None
+    vol = _volume(v, f)
     while len(f) > n:           # coarsen, with twice the panels while thin members collapse
-        levels = [coarsen(v, f, k) for k in (n // 2, n)]
-        vol = _volume(v, f)
+        levels = [coarsen(v, f, k, quadrics) for k in (n // 2, n)]
         dv = max(abs(_volume(*lv) / vol - 1.0) for lv in levels)
         if dv <= VOLUME_TOLERANCE:
             return levels
