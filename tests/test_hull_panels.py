@@ -111,6 +111,10 @@ def test_bad_input_is_one_line_naming_the_key():
         panel_added_mass(open_mesh, rho=RHO, source="hull.stl")
     with pytest.raises(InputError, match="panels"):
         panel_added_mass(_ellipsoid(0.3, 0.15, 0.08, 2), rho=RHO, panels=10)
+    inside_out = _ellipsoid(0.3, 0.15, 0.08, 2)
+    inside_out.invert()
+    with pytest.raises(InputError, match="mesh.*normals point into the body"):
+        panel_added_mass(inside_out, rho=RHO)
 
 
 # --- integration: EstimateOptions.added_mass_method and the CLI flag ---------------------------

@@ -462,8 +462,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     .. math:: A = \frac{N_2 A_2 - N_1 A_1}{N_2 - N_1},\qquad
               A_k = -\rho \sum_p a_p\, n(x_p)\, \Phi_k(x_p)^T
 
-    (module docstring; Richardson extrapolation of the two resolutions N_1 ~ N/2 and N_2 ~ N
-    panels, the error of constant panels ~ 1/N).  Symmetric part returned.
+    (module docstring; Richardson extrapolation of the two resolutions N_1 < N_2 of
+    :func:`panel_levels`, the error of constant panels ~ 1/N).  Symmetric part returned.
 
     Parameters
     ----------
@@ -489,7 +489,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     body = getattr(mesh, "mesh", mesh)
     v = np.asarray(body.vertices, float)
     f = np.asarray(body.faces, np.int64)
-    where = source or getattr(mesh, "source", "") or None
+    named = getattr(mesh, "source", "")        # a MeshBody's file (a Trimesh's is no str)
+    where = source or (named if isinstance(named, str) else "") or None
     if not (isinstance(panels, (int, np.integer)) and 50 <= panels <= MAX_PANELS):
         raise InputError("panel count out of range", key="panels", value=panels,
                          expected=f"an integer from 50 to {MAX_PANELS}")
@@ -508,6 +509,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         raise InputError("degenerate (zero-area) faces", file=where, key="mesh",
                          value=f"{int(np.sum(dbl <= 1e-12 * scale ** 2))} faces",
                          expected="faces of non-zero area (load_mesh removes them)")
+    vol = _volume(v, f)
+    if not vol > 1e-9 * scale ** 3:
+        raise InputError("the mesh's normals point into the body or it encloses no volume",
+                         file=where, key="mesh", value=f"volume {vol:.3g} m^3",
+                         expected="outward normals (load_mesh orients them)")
     if extrapolate:
         levels = panel_levels(v, f, panels, where)
     else:
