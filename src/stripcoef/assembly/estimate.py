@@ -98,7 +98,8 @@ def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> Hyd
     **keywords
         The same options by name (``strips=``, ``corrections=``, ``speed=``,
         ``reference_point=``, ``regime=``, ``fluid=``, ``correction_panels=``,
-        ``section_panels=``, ``added_mass_method=``, ``added_mass_panels=``); with ``options`` too, they replace its fields.
+        ``section_panels=``, ``added_mass_method=``, ``added_mass_panels=``); with
+        ``options`` too, they replace its fields.
 
     Returns
     -------
