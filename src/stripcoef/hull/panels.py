@@ -31,7 +31,7 @@ N the (n, 6) generalised normals; one LU solves the six modes.  Near pairs (cent
 below :data:`NEAR_FACTOR` panel diameters) use the exact flat-triangle integrals (source:
 Wilton et al. 1984, IEEE Trans. Antennas Propag. 32(3), eq. for :math:`\int 1/R\,dS`; dipole:
 van Oosterom & Strackee 1983, IEEE Trans. Biomed. Eng. 30(2), the solid angle of a triangle);
-far pairs the one-point rule.  The self term is analytic (the same formulas, D = 0).
+pairs within :data:`MID_FACTOR` diameters a three-point rule, farther ones the one-point rule.  The self term is analytic (the same formulas, D = 0).
 
 Constant panels converge as 1/N (error ~ h^2, N panels).  :func:`panel_added_mass` solves two
 resolutions N_1 < N_2 and Richardson-extrapolates :math:`A = (N_2 A_2 - N_1 A_1)/(N_2 - N_1)`
