@@ -363,6 +363,49 @@ def per_dof_matrix(name):
     return 0.5 * (out + out.T), time.perf_counter() - t0
 
 
+def panel_matrix(name, panels=None):
+    """M_A of the shape by the 3D panel method (stripcoef.hull.panels, Richardson from two
+    resolutions) from the strip-theory input mesh (loaded and repaired as the CLI does), and
+    its wall time [s] (panelling and solves; the repair excluded)."""
+    from stripcoef.geometry.mesh import mesh_body
+    from stripcoef.hull.panels import DEFAULT_PANELS, panel_added_mass
+
+    body = mesh_body(strip_mesh(name), name=name)
+    t0 = time.perf_counter()
+    a, info = panel_added_mass(body, rho=RHO, panels=panels or DEFAULT_PANELS)
+    return a, time.perf_counter() - t0, info
+
+
+def bem_equal_accuracy(name, error, ref):
+    """Capytaine (direct) at the resolution whose error equals ``error`` (worst relative
+    diagonal error, [-]), from its stored first-level error e_1 at N_1 faces and the 1/N law:
+    N = N_1 e_1 / error. Returns (N asked, faces solved, wall time [s], its worst diagonal
+    error [-]); None when N exceeds the 5000 faces of one solve (no extrapolated time)."""
+    from stripcoef.bem import bem_added_mass
+
+    a1 = read_references("a_1")[name]
+    n1 = int(_faces(name)[0])
+    e1 = np.max(np.abs(np.diag(a1) - np.diag(ref))[np.diag(ref) > 1e-6 * np.diag(ref).max()]
+                / np.diag(ref)[np.diag(ref) > 1e-6 * np.diag(ref).max()])
+    n = int(np.ceil(n1 * e1 / max(error, 1e-9)))
+    if n > 5000:
+        return n, None, None, None
+    m = shape_mesh(name, n)
+    t0 = time.perf_counter()
+    a = bem_added_mass(m, rho=RHO, reference_point=(0, 0, 0), max_faces=5000)
+    dt = time.perf_counter() - t0
+    d = np.diag(ref)
+    ok = d > 1e-6 * d.max()
+    return n, len(m.faces), dt, float(np.max(np.abs(np.diag(a)[ok] / d[ok] - 1.0)))
+
+
+def _faces(name):
+    for r in _raw_rows():
+        if r[0] == name:
+            return int(r[5]), int(r[6])
+    raise KeyError(name)
+
+
 def significant_terms(ref):
     """Diagonal terms and the off-diagonals with |A_ij| >= SIGNIFICANT sqrt(A_ii A_jj)."""
     d = np.abs(np.diag(ref))
@@ -395,6 +438,11 @@ def main(argv=None):
                     help="also write benchmarks/data/bluff_accuracy_<mode>.md")
     ap.add_argument("--per-dof-axes", action="store_true",
                     help="candidate: each DOF from the slicing axis of per_dof_axes()")
+    ap.add_argument("--method", choices=("strips", "panels"), default="strips",
+                    help="panels: the 3D panel method (stripcoef.hull.panels)")
+    ap.add_argument("--panels", type=int, default=None, help="panels of the finer resolution")
+    ap.add_argument("--bem-timing", action="store_true",
+                    help="with --method panels: time Capytaine at the panel method's accuracy")
     args = ap.parse_args(argv)
     names = args.only or list(SHAPES)
     if args.reference:
@@ -402,15 +450,25 @@ def main(argv=None):
         return 0
     from stripcoef.hull.lamb import ellipsoid_added_mass
     refs = read_references()
-    worst_d, worst_o, times = 0.0, 0.0, []
-    lines = ["| shape | " + " | ".join(TERM_NAMES) + " | off-diagonals (of diag. scale) | time [s] |",
-             "|---" * 9 + "|"]
+    worst_d, worst_o, times, ratios = 0.0, 0.0, [], []
+    head = "| shape | " + " | ".join(TERM_NAMES) + " | off-diagonals (of diag. scale) | time [s] |"
+    ncol = 9
+    if args.method == "panels":
+        head += " panels N1/N2 |"
+        ncol += 1
+        if args.bem_timing:
+            head += " Capytaine at equal accuracy (faces, worst diag. error, time) | speed ratio |"
+            ncol += 2
+    lines = [head, "|---" * ncol + "|"]
     for name in names:
         ref = refs[name]
         if name in ELLIPSOIDS:
             ref = ref.copy()
             ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
-        if args.per_dof_axes:
+        info = None
+        if args.method == "panels":
+            a, dt, info = panel_matrix(name, args.panels)
+        elif args.per_dof_axes:
             a, dt = per_dof_matrix(name)
         else:
             a, dt = strip_matrix(name, corrections=not args.no_corrections)
@@ -427,16 +485,34 @@ def main(argv=None):
             if i != j:
                 offs.append(f"{TERM_NAMES[i][0]}{TERM_NAMES[j][2:]}: {100 * e:+.1f} %")
                 worst_o = max(worst_o, abs(e))
-        lines.append(f"| {name} | " + " | ".join(cells) + f" | {'; '.join(offs) or '-'} | {dt:.3f} |")
+        extra = ""
+        if info is not None:
+            extra = f" | {info['panels'][0]}/{info['panels'][1]}"
+            if args.bem_timing:
+                worst = max(abs(e) for (i, j), e in err.items() if i == j)
+                n, nf, bt, be = bem_equal_accuracy(name, worst, ref)
+                extra += (f" | N {n} > 5000: not run | -" if nf is None else
+                          f" | {nf} faces, {100 * be:.1f} %, {bt:.2f} s | {bt / dt:.2f}")
+                if nf is not None:
+                    ratios.append(bt / dt)
+        lines.append(f"| {name} | " + " | ".join(cells) + f" | {'; '.join(offs) or '-'} | {dt:.3f}"
+                     + extra + " |")
     summary = (f"worst diagonal {100 * worst_d:.1f} %, worst off-diagonal {100 * worst_o:.1f} % "
                f"of the diagonal scale, median wall time {np.median(times):.3f} s "
                f"(reference: Richardson BEM; ellipsoid diagonals: Lamb exact)")
+    if ratios:
+        summary += (f"; Capytaine at equal accuracy / panel method: median {np.median(ratios):.2f}x, "
+                    f"range {min(ratios):.2f}-{max(ratios):.2f}x over {len(ratios)} shapes")
     print("\n".join(lines) + "\n\n" + summary)
     if args.write:
         mode = "per_dof_axes" if args.per_dof_axes else \
             ("no_corrections" if args.no_corrections else "default")
+        if args.method == "panels":
+            mode = "panels"
         flag = {"default": "", "per_dof_axes": " --per-dof-axes",
-                "no_corrections": " --no-corrections"}[mode]
+                "no_corrections": " --no-corrections",
+                "panels": " --method panels" + (" --bem-timing" if args.bem_timing else "")
+                + (f" --panels {args.panels}" if args.panels else "")}[mode]
         out = ROOT / "benchmarks" / "data" / f"bluff_accuracy_{mode}.md"
         out.write_text(f"### {TITLES[mode]}\n\n`OPENBLAS_NUM_THREADS=1 python "
                        f"benchmarks/bluff_shapes.py{flag} --write` "
@@ -449,7 +525,9 @@ def main(argv=None):
 TITLES = {"default": "stripcoef as shipped (slicing along x, 3D corrections)",
           "no_corrections": "pure strip theory (slicing along x)",
           "per_dof_axes": "candidate, not adopted: each DOF from the slicing axis chosen by "
-                          "slenderness (per_dof_axes)"}
+                          "slenderness (per_dof_axes)",
+          "panels": "3D panel method (stripcoef.hull.panels: direct method, constant "
+                    "triangles, Richardson from two resolutions)"}
 
 
 if __name__ == "__main__":

@@ -4,7 +4,8 @@ converged Capytaine references and Lamb's exact ellipsoids (issue 14).
 The references are data (benchmarks/data/bem_bluff.csv, written by
 ``python benchmarks/bluff_shapes.py --reference``); the accuracy tables are the stored output
 of the benchmark (benchmarks/data/bluff_accuracy_<mode>.md, written by
-``python benchmarks/bluff_shapes.py [--per-dof-axes] --write``), so that this report does not rerun 18 shapes.
+``python benchmarks/bluff_shapes.py [--per-dof-axes | --method panels --bem-timing] --write``),
+so that this report does not rerun 18 shapes.
 """
 
 from __future__ import annotations
@@ -56,7 +57,15 @@ def section() -> str:
              "converged to 0.05 % at 640 meridian panels); with rings on the ends (aspect <= 12) "
              "the Richardson value is 0.04459, still converging slowly at the sharp edges "
              "(0.04630, 0.04539 at 2100, 4464 faces).\n"]
-    for mode in ("default", "per_dof_axes", "no_corrections"):
+    parts.append("The 3D panel method (`stripcoef.hull.panels`, `estimate(added_mass_method="
+                 "\"panels\")`, `--added-mass-method panels`; docs/theory.md \"3D panel "
+                 "method\") solves the same potential-flow problem as the reference for any "
+                 "closed mesh; strip theory stays the default, and `auto` takes the panels for "
+                 "a mesh that is neither round at mid-length nor slender. The last columns "
+                 "time Capytaine at the resolution whose error equals the panel method's worst "
+                 "diagonal (from its stored first-level error and the 1/N law), in the same "
+                 "run.\n")
+    for mode in ("panels", "default", "per_dof_axes", "no_corrections"):
         acc = DATA / f"bluff_accuracy_{mode}.md"
         if acc.exists():
             parts.append(acc.read_text())

@@ -279,6 +279,10 @@ class Conditions(Mapping):
         How the 3D terms were obtained
     correction_panels : int
         Meridian panels of the axisymmetric solves
+    added_mass_method : str
+        How M_A was obtained when not by the strips (the 3D panel method)
+    added_mass_panels : int
+        Panels of the finer resolution of the panel method
     lift : mapping
         How the lift terms were built (body and fin lift, :mod:`stripcoef.assembly.lift`)
     strips : int
@@ -325,6 +329,8 @@ class Conditions(Mapping):
     axial_added_mass: float | None = None
     correction_method: str | None = None
     correction_panels: int | None = None
+    added_mass_method: str | None = None
+    added_mass_panels: int | None = None
     lift: Mapping | None = None
     strips: int | None = None
     corrections: bool | None = None

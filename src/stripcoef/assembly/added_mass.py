@@ -466,3 +466,94 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     total = transform_matrix(strip, from_point=center, to_point=about)
     total = total + entrained_water(strips, rho, about)
     return 0.5 * (total + total.T), info
+
+
+#: Added-mass methods of :class:`~stripcoef.assembly.estimate.EstimateOptions`.
+ADDED_MASS_METHODS = ("strips", "panels", "auto")
+#: ``auto`` keeps strip theory for a body at least this slender, L / max(B, H) [-].
+#: [assumption] strip theory is the slender-body limit (Newman 1977, sec. 7.4): each section's
+#: flow is two-dimensional except within about one cross dimension of the ends, so at L / B = 5
+#: the 3D ends are at most 40 % of the length, and the 3D corrections (built on equivalent
+#: bodies of revolution, stripcoef.hull.corrections) account for them.  Not fitted to any
+#: benchmark shape.
+SLENDER_RATIO = 5.0
+#: A section is round when its breadth and height agree and its area is pi/4 B H, both within
+#: this fraction [-] (then the body is one of revolution about x, where the strips and their
+#: axisymmetric 3D corrections are exact to 0.2 %: docs/validation.md).  A CAD tessellation of
+#: a circle by n >= 16 sides passes: its area is (n / 2 pi) sin(2 pi / n) of the circle's
+#: (-2.6 % at n = 16) and its flat-to-flat width cos(pi / n) of the diameter (-1.9 %); a square
+#: (+27 %) or an octagon (-10 % or +5.5 %) does not.
+ROUND_TOLERANCE = 0.03
+
+
+def _mesh_of(vehicle):
+    """The one closed mesh of a vehicle made of a mesh alone (Vehicle.from_mesh), else None."""
+    from stripcoef.geometry.mesh import MeshBody
+
+    bodies = getattr(vehicle, "bodies", [])
+    if (getattr(vehicle, "hull", None) is None and len(bodies) == 1
+            and isinstance(bodies[0], MeshBody) and not getattr(vehicle, "holes", [])):
+        return bodies[0]
+    return None
+
+
+def _round_along_x(strips: Strips) -> bool:
+    """The middle strip has one part whose section is a circle (:data:`ROUND_TOLERANCE`)."""
+    mid = strips.n // 2
+    here = [(p, int(np.nonzero(p.index == mid)[0][0])) for p in strips.parts
+            if np.any(p.index == mid)]
+    if len(here) != 1:
+        return False
+    p, i = here[0]
+    b, h, a = 2 * p.half_breadth[i], 2 * p.half_height[i], p.area[i]
+    return bool(abs(b - h) <= ROUND_TOLERANCE * max(b, h)
+                and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
+
+
+def added_mass_method(method, vehicle, strips: Strips) -> str:
+    r"""``strips`` or ``panels`` for the option ``added_mass_method`` (``strips``, ``panels``
+    or ``auto``).
+
+    ``auto``: the 3D panel method (:mod:`stripcoef.hull.panels`) for a vehicle that is one
+    mesh, not a body of revolution about x (round middle section, :func:`_round_along_x`) and
+    not slender (:math:`L / \max(B, H) <` :data:`SLENDER_RATIO`, B and H the largest breadth
+    and height of the strips [m]); strip theory otherwise.  ``panels`` needs a mesh vehicle:
+    a vehicle file's geometry has no closed surface to panel.
+    """
+    if method not in ADDED_MASS_METHODS:
+        raise InputError("unknown added-mass method", key="added_mass_method", value=method,
+                         expected=" or ".join(ADDED_MASS_METHODS))
+    if method == "strips":
+        return "strips"
+    mesh = _mesh_of(vehicle)
+    if method == "panels":
+        if mesh is None:
+            raise InputError("the panel method needs a vehicle made of one closed mesh",
+                             file=getattr(vehicle, "source", None) or None,
+                             key="added_mass_method", value=method,
+                             expected="a mesh file (STL, OBJ, ...), or strips/auto for a "
+                                      "vehicle file")
+        return "panels"
+    if mesh is None or _round_along_x(strips):
+        return "strips"
+    width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
+                for p in strips.parts)
+    return "panels" if strips.length < SLENDER_RATIO * width else "strips"
+
+
+def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
+    r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
+    (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
+    :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), and its info."""
+    from stripcoef.hull.panels import DEFAULT_PANELS, panel_added_mass
+
+    body = _mesh_of(vehicle)
+    n = _panel_count(panels, DEFAULT_PANELS, "added_mass_panels")
+    try:
+        m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n,
+                                     source=getattr(vehicle, "source", "") or "")
+    except InputError as exc:
+        raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
+    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, Richardson "
+                                      f"from {info['panels'][0]} and {info['panels'][1]} panels)",
+                 "added_mass_panels": int(info["panels"][1])}

@@ -16,7 +16,7 @@ import numpy as np
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import Fluid
 from stripcoef.model import Conditions, HydroModel, check_physical, rigid_body_mass_matrix
-from stripcoef.assembly.added_mass import added_mass
+from stripcoef.assembly.added_mass import added_mass, added_mass_method, panel_vehicle_added_mass
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
@@ -60,6 +60,15 @@ class EstimateOptions:
         Panels per 2D section of a mesh body (default adaptive: 96 for a round section, more
         for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
         round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
+    added_mass_method : str
+        ``strips`` (default: strip theory and its 3D corrections), ``panels`` (the 3D panel
+        method of :mod:`stripcoef.hull.panels`, for a vehicle made of one closed mesh) or
+        ``auto`` (panels for a mesh that is neither a body of revolution about x nor slender,
+        :func:`stripcoef.assembly.added_mass.added_mass_method`).  Only M_A changes: the
+        damping stays from the strips.
+    added_mass_panels : int, optional
+        Panels of the finer of the panel method's two resolutions (default
+        :data:`stripcoef.hull.panels.DEFAULT_PANELS`).
     """
 
     strips: int | None = None
@@ -70,6 +79,8 @@ class EstimateOptions:
     fluid: Fluid | None = None
     correction_panels: int | None = None
     section_panels: int | None = None
+    added_mass_method: str = "strips"
+    added_mass_panels: int | None = None
 
 
 @small_matrices           # BLAS on one thread for the many small solves (stripcoef.threads)
@@ -87,7 +98,8 @@ def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> Hyd
     **keywords
         The same options by name (``strips=``, ``corrections=``, ``speed=``,
         ``reference_point=``, ``regime=``, ``fluid=``, ``correction_panels=``,
-        ``section_panels=``); with ``options`` too, they replace its fields.
+        ``section_panels=``, ``added_mass_method=``, ``added_mass_panels=``); with
+        ``options`` too, they replace its fields.
 
     Returns
     -------
@@ -132,9 +144,13 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     mass, cg, inertia = mass_properties(st, vehicle, rho, volume, cb)
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
-    m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
-                              corrections=corrections, correction_panels=correction_panels,
-                              section_panels=section_panels)
+    method = added_mass_method(options.added_mass_method, vehicle, st)
+    if method == "panels":
+        m_a, am_info = panel_vehicle_added_mass(vehicle, rho, ref, options.added_mass_panels)
+    else:
+        m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
+                                  corrections=corrections, correction_panels=correction_panels,
+                                  section_panels=section_panels)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
     lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb)
@@ -153,7 +169,8 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
         thrusters=vehicle.thrusters, conditions=conditions, lift=lift,
         control_surfaces=surfaces,
-        provenance={"method": "strip theory", "source": vehicle.source,
+        provenance={"method": "strip theory" if method == "strips" else
+                    "strip theory, added mass by the 3D panel method", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )
     check_physical(model, file=vehicle.source)   # no NaN or impossible model leaves here

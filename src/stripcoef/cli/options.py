@@ -87,8 +87,9 @@ def load_any_vehicle(args):
 
 def estimate_options(args, vehicle):
     """The :class:`~stripcoef.assembly.EstimateOptions` of the command line (``--strips``,
-    ``--no-corrections``, ``--speed``, ``--reference-point``, ``--regime``, the fluid
-    options; those a command lacks keep their defaults)."""
+    ``--no-corrections``, ``--speed``, ``--reference-point``, ``--regime``,
+    ``--added-mass-method``, ``--added-mass-panels``, the fluid options; those a command
+    lacks keep their defaults)."""
     from stripcoef.assembly import EstimateOptions
 
     ref = None
@@ -105,7 +106,9 @@ def estimate_options(args, vehicle):
                            corrections=False if args.no_corrections else None,
                            speed=args.speed, reference_point=ref,
                            regime=getattr(args, "regime", "auto"),
-                           fluid=fluid_from_args(args, vehicle.fluid))
+                           fluid=fluid_from_args(args, vehicle.fluid),
+                           added_mass_method=getattr(args, "added_mass_method", "strips"),
+                           added_mass_panels=getattr(args, "added_mass_panels", None))
 
 
 def estimate_from_args(args):

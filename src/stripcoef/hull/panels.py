@@ -1,0 +1,576 @@
+r"""3D potential-flow panel method: the added mass of any closed body in unbounded fluid.
+
+Strip theory is the slender-body limit; a short, wide or open body (box ROVs, frames) needs the
+3D flow.  The added mass of a deeply submerged body is the unbounded-fluid Neumann problem
+
+.. math::
+    \nabla^2\phi_j = 0 \text{ in the fluid},\qquad
+    \partial\phi_j/\partial n = n_j \text{ on } S,\qquad \phi_j \to 0 \text{ at infinity},
+
+    A_{ij} = -\rho \iint_S \phi_j\, n_i\, dS \quad [\mathrm{kg},\ \mathrm{kg\,m},\
+    \mathrm{kg\,m^2}]
+
+with n the unit normal out of the body (into the fluid), :math:`(n_1, n_2, n_3) = n` and
+:math:`(n_4, n_5, n_6) = (x - x_{ref}) \times n`, body axes FRD about the reference point
+(Newman 1977, "Marine Hydrodynamics", sec. 4.13-4.15, eqs. 4.148; the sign convention of
+:func:`stripcoef.bem.bem_added_mass`, so that M_A is positive definite).
+
+It is solved by the direct (Green's identity) method with constant-strength flat triangular
+panels collocated at their centroids (Hess & Smith 1967, "Calculation of potential flow about
+arbitrary bodies", Prog. Aero. Sci. 8; Newman 1977 eq. 4.97; Katz & Plotkin 2001, "Low-Speed
+Aerodynamics", 2nd ed., sec. 9.2-9.6 and 10.4): with :math:`G = 1/(4\pi r)`, for x on S
+
+.. math::
+    \tfrac12\phi(x) - \iint_S \phi\,\frac{\partial G}{\partial n_\xi}\,dS_\xi
+        = -\iint_S G\,\frac{\partial\phi}{\partial n_\xi}\,dS_\xi,
+    \qquad \Big(\tfrac12 I - D\Big)\,\Phi = -S\,N,
+
+:math:`S_{kl} = \iint_{T_l} G(x_k, \xi)\,dS` [m], :math:`D_{kl} = \iint_{T_l}
+\partial G/\partial n_\xi\,dS` [-] (minus the solid angle of T_l seen from x_k over 4 pi),
+N the (n, 6) generalised normals; one LU solves the six modes.  Near pairs (centroid distance
+below :data:`NEAR_FACTOR` panel diameters) use the exact flat-triangle integrals (source:
+Wilton et al. 1984, IEEE Trans. Antennas Propag. 32(3), eq. for :math:`\int 1/R\,dS`; dipole:
+van Oosterom & Strackee 1983, IEEE Trans. Biomed. Eng. 30(2), the solid angle of a triangle);
+pairs within :data:`MID_FACTOR` diameters a three-point rule, farther ones the one-point rule.  The self term is analytic (the same formulas, D = 0).
+
+Constant panels converge as 1/N (error ~ h^2, N panels).  :func:`panel_added_mass` solves two
+resolutions N_1 < N_2 and Richardson-extrapolates :math:`A = (N_2 A_2 - N_1 A_1)/(N_2 - N_1)`
+(Richardson 1911; the same extrapolation as the stored Capytaine references of
+benchmarks/bluff_shapes.py), then takes the symmetric part (the exact A is symmetric, Newman
+1977 eq. 4.150; the discrete one is not, and its asymmetry is returned as a measure of the
+discretisation error).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stripcoef.errors import InputError
+
+#: Pairs closer than this many source-panel diameters (longest edge) use the exact integrals [-].
+NEAR_FACTOR = 2.0
+#: Pairs closer than this many diameters (and not near) use a three-point rule; beyond, one
+#: point: its relative error is below ~0.3 % per pair beyond 4 diameters (the leading error is
+#: the panel's second moment over r^2, Katz & Plotkin 2001, sec. 10.4.1) [-].
+MID_FACTOR = 4.0
+#: Default panels of the finer of the two resolutions [-] (the coarser has half as many).
+DEFAULT_PANELS = 1600
+#: Most panels one solve accepts (dense memory ~ 24 N^2 bytes, time ~ N^3) [-].
+MAX_PANELS = 6000
+_FOUR_PI = 4.0 * np.pi
+
+
+def _frames(tri):
+    """Centroids, unit normals, areas [m^2] and longest edges [m] of (n, 3, 3) triangles."""
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    cr = np.cross(e1, e2)
+    area2 = np.linalg.norm(cr, axis=1)
+    normal = cr / area2[:, None]
+    edges = np.linalg.norm(tri[:, [1, 2, 0]] - tri, axis=2)
+    return tri.mean(axis=1), normal, 0.5 * area2, edges.max(axis=1)
+
+
+def triangle_integrals(points, tri, normal):
+    r"""Exact influence of a unit constant source and a unit normal dipole on flat triangles.
+
+    .. math::
+        s = \frac{1}{4\pi}\iint_T \frac{dS}{|x - \xi|} \ [\mathrm{m}],\qquad
+        d = \frac{1}{4\pi}\iint_T \frac{(x-\xi)\cdot n}{|x - \xi|^3}\,dS = -\frac{\Omega}{4\pi}
+        \ [-]
+
+    Pairwise: ``points`` (k, 3) [m], ``tri`` (k, 3, 3) [m] counter-clockwise about ``normal``
+    (k, 3).  Source: Wilton et al. (1984), IEEE Trans. Antennas Propag. 32(3) 276-281,
+
+    .. math:: \iint_T \frac{dS}{R} = \sum_{edges} t_0\,[\sinh^{-1}(s^+/R_0) -
+              \sinh^{-1}(s^-/R_0)] - |h| \sum_{edges}\Big[\tan^{-1}\frac{t_0 s^+}{R_0^2 + |h|
+              R^+} - \tan^{-1}\frac{t_0 s^-}{R_0^2 + |h| R^-}\Big]
+
+    (h the height of x above the plane, t_0 its in-plane distance to the edge line, s^\pm the
+    edge ends along it, :math:`R_0^2 = t_0^2 + h^2`).  Solid angle: van Oosterom & Strackee
+    (1983), :math:`\tan(\Omega/2) = R_1\cdot(R_2\times R_3)/(r_1 r_2 r_3 + (R_1\cdot R_2) r_3
+    + (R_1\cdot R_3) r_2 + (R_2\cdot R_3) r_1)`, :math:`R_k = v_k - x`; zero on the panel
+    itself (principal value).
+    """
+    R = tri - points[:, None, :]                          # (k, 3, 3) vertex - point
+    r = np.linalg.norm(R, axis=2)
+    num = np.einsum("ij,ij->i", R[:, 0], np.cross(R[:, 1], R[:, 2]))
+    def dot(a, b):
+        return np.einsum("ij,ij->i", R[:, a], R[:, b])
+
+    den = r[:, 0] * r[:, 1] * r[:, 2] + dot(0, 1) * r[:, 2] + dot(0, 2) * r[:, 1] \
+        + dot(1, 2) * r[:, 0]
+    omega = 2.0 * np.arctan2(num, den)
+    h = -np.einsum("ij,ij->i", R[:, 0], normal)           # height of the point above the plane
+    ah = np.abs(h)
+    total = np.zeros(len(points))
+    for k in range(3):
+        a, b = R[:, k], R[:, (k + 1) % 3]
+        edge = b - a
+        ln = np.linalg.norm(edge, axis=1)
+        lt = edge / ln[:, None]
+        u = np.cross(lt, normal)                           # in-plane, out of the triangle
+        t0 = np.einsum("ij,ij->i", a, u)
+        sm = np.einsum("ij,ij->i", a, lt)
+        sp = sm + ln
+        r02 = t0 * t0 + h * h
+        ok = r02 > 1e-24 * ln * ln
+        r0 = np.sqrt(np.where(ok, r02, 1.0))
+        term = t0 * (np.arcsinh(sp / r0) - np.arcsinh(sm / r0)) - ah * (
+            np.arctan(t0 * sp / (r02 + ah * r[:, (k + 1) % 3] + 1e-300))
+            - np.arctan(t0 * sm / (r02 + ah * r[:, k] + 1e-300)))
+        total += np.where(ok, term, 0.0)
+    return total / _FOUR_PI, -omega / _FOUR_PI
+
+
+def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float = MID_FACTOR):
+    r"""Source S [m] and dipole D [-] influence matrices of constant flat triangular panels.
+
+    Row k: collocation point (centroid of panel k); column l: panel l.  Exact integrals
+    (:func:`triangle_integrals`) within ``near_factor`` diameters (longest edge) of panel l;
+    the three-point rule of degree 2 (Strang & Fix 1973, points at barycentric (2/3, 1/6, 1/6),
+    weights A/3) within ``mid_factor`` diameters; the one-point rule
+    :math:`S = A_l/(4\pi r)`, :math:`D = A_l\,(x_k - c_l)\cdot n_l/(4\pi r^3)` beyond
+    (Katz & Plotkin 2001, sec. 10.4.1: the one-point error is the panel's second moment over
+    r^2, below 0.3 % per pair beyond 4 diameters) -- or the three-point rule for all pairs
+    when more than :data:`DENSE_MID_FRACTION` of them are in the mid zone.
+    """
+    c, n, area, diam = _frames(tri)
+    c0 = c - c.mean(axis=0)                               # |x_k - c_l|^2 by matrix products
+    cc = np.einsum("ij,ij->i", c0, c0)
+    r2 = c0 @ c0.T
+    r2 *= -2.0
+    r2 += cc[:, None]
+    r2 += cc[None, :]
+    np.fill_diagonal(r2, 0.0)
+    # pairs within mid_factor diameters (near ones among them, the panel itself included),
+    # found on r2 before it is reused
+    k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
+    np.fill_diagonal(r2, 1.0)
+    inv_r = np.sqrt(r2, out=r2)
+    np.divide(1.0, inv_r, out=inv_r)
+    w = area / _FOUR_PI
+    # (x_k - c_l) . n_l A_l / (4 pi r^3)
+    dd = c0 @ n.T
+    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
+    dd *= w[None, :]
+    dd *= inv_r
+    dd *= inv_r
+    dd *= inv_r
+    s = inv_r
+    s *= w[None, :]
+    d2 = np.einsum("ij,ij->i", c[k] - c[l], c[k] - c[l])
+    near = (d2 < (near_factor * diam[l]) ** 2) | (k == l)
+    km, lm = k[~near], l[~near]
+    if len(km) > DENSE_MID_FRACTION * len(c) ** 2:
+        # many pairs in the mid zone (long panels: frames of thin tubes): the three-point rule
+        # for every pair in dense matrix products is cheaper than gathering them one by one
+        _three_point_dense(c0, n, tri - c.mean(axis=0), w, s, dd)
+    elif len(km):
+        sk = np.zeros(len(km))
+        dk = np.zeros(len(km))
+        for q in range(3):
+            xi = (2.0 / 3.0) * tri[lm, q] + (1.0 / 6.0) * (tri[lm, (q + 1) % 3]
+                                                           + tri[lm, (q + 2) % 3])
+            dq = c[km] - xi
+            iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
+            sk += iq
+            dk += np.einsum("ij,ij->i", dq, n[lm]) * iq ** 3
+        s[km, lm] = sk * w[lm] / 3.0
+        dd[km, lm] = dk * w[lm] / 3.0
+    k, l = k[near], l[near]
+    for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
+        sk, dk = triangle_integrals(c[k[sl]], tri[l[sl]], n[l[sl]])
+        s[k[sl], l[sl]] = sk
+        dd[k[sl], l[sl]] = dk
+    np.fill_diagonal(dd, 0.0)       # principal value on the panel itself (flat: no dipole)
+    return s, dd
+
+
+#: Share of all pairs in the mid zone beyond which the three-point rule is applied to every
+#: pair at once (:func:`_three_point_dense`) [-]; a choice of speed, not of accuracy (the
+#: three-point rule is at least as accurate as the one-point rule it replaces far away).
+DENSE_MID_FRACTION = 0.1
+
+
+def _three_point_dense(c0, n, tri0, w, s, dd):
+    r"""Overwrite S and D [m, -] by the three-point rule (Strang & Fix 1973, degree 2) for all
+    pairs: :math:`S_{kl} = \frac{w_l}{3}\sum_q 1/|x_k - \xi_{lq}|`, :math:`D_{kl} =
+    \frac{w_l}{3}\sum_q (x_k - \xi_{lq})\cdot n_l / |x_k - \xi_{lq}|^3`, w = A/(4 pi);
+    coordinates ``c0``, ``tri0`` shifted by one common point [m] (the near pairs are
+    overwritten afterwards by the exact integrals)."""
+    cc = np.einsum("ij,ij->i", c0, c0)
+    cn = c0 @ n.T
+    s[:] = 0.0
+    dd[:] = 0.0
+    for q in range(3):
+        xi = (2.0 / 3.0) * tri0[:, q] + (1.0 / 6.0) * (tri0[:, (q + 1) % 3] + tri0[:, (q + 2) % 3])
+        r2 = c0 @ xi.T
+        r2 *= -2.0
+        r2 += cc[:, None]
+        r2 += np.einsum("ij,ij->i", xi, xi)[None, :]
+        np.maximum(r2, 1e-300, out=r2)
+        ir = np.sqrt(r2, out=r2)
+        np.divide(1.0, ir, out=ir)
+        s += ir
+        t = cn - np.einsum("ij,ij->i", xi, n)[None, :]
+        t *= ir
+        t *= ir
+        t *= ir
+        dd += t
+    s *= (w / 3.0)[None, :]
+    dd *= (w / 3.0)[None, :]
+
+
+def generalised_normals(centers, normals, about=(0.0, 0.0, 0.0)):
+    r"""(n, 6) generalised normals :math:`(n, (x - x_{ref})\times n)` [-, m] (Newman 1977,
+    eq. 4.104)."""
+    return np.hstack([normals, np.cross(centers - np.asarray(about, float), normals)])
+
+
+def solve_added_mass(tri, *, rho: float, about=(0.0, 0.0, 0.0),
+                     near_factor: float = NEAR_FACTOR) -> np.ndarray:
+    r"""6x6 added mass [kg, kg m, kg m^2] of one panelling (no extrapolation, not symmetrised).
+
+    Solves :math:`(\tfrac12 I - D)\Phi = -S N` (module docstring) by one LU and returns
+    :math:`A_{ij} = -\rho \sum_k a_k n_i(x_k)\,\Phi_{kj}` (Newman 1977, eq. 4.148).
+    ``tri`` (n, 3, 3) [m], counter-clockwise seen from the fluid (normals out of the body).
+    """
+    import scipy.linalg
+
+    tri = np.asarray(tri, dtype=float)
+    c, n, area, _ = _frames(tri)
+    s, d = influence_matrices(tri, near_factor)
+    nrm = generalised_normals(c, n, about)
+    lhs = -d
+    lhs[np.diag_indices_from(lhs)] += 0.5
+    phi = scipy.linalg.solve(lhs, -(s @ nrm), overwrite_a=True, check_finite=False)
+    return -rho * (nrm * area[:, None]).T @ phi
+
+
+#: Largest input mesh [faces]: beyond it the clustering alone exceeds the time budget.
+MAX_INPUT_FACES = 2_000_000
+
+
+def vertex_quadrics(vertices, faces):
+    r"""Per vertex, the summed plane quadrics of its faces: :math:`Q = \sum a\, n n^T` (V, 9)
+    and :math:`b = \sum a\, n (n\cdot p)` (V, 3), a the doubled face area [m^2] (Lindstrom
+    2000); computed once for all the clusterings of a mesh."""
+    tri = vertices[faces]
+    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    a2 = np.linalg.norm(cr, axis=1)
+    nrm = cr / np.where(a2 > 0, a2, 1.0)[:, None]
+    q = (a2[:, None, None] * nrm[:, :, None] * nrm[:, None, :]).reshape(-1, 9)
+    b = a2[:, None] * nrm * np.einsum("ij,ij->i", nrm, tri[:, 0])[:, None]
+    idx = faces.reshape(-1)
+    nv = len(vertices)
+    qv = np.column_stack([np.bincount(idx, weights=np.repeat(q[:, c], 3), minlength=nv)
+                          for c in range(9)])
+    bv = np.column_stack([np.bincount(idx, weights=np.repeat(b[:, c], 3), minlength=nv)
+                          for c in range(3)])
+    return qv, bv
+
+
+def _cluster(vertices, faces, h, quadrics=None):
+    r"""Vertex clustering on a grid of cell ``h`` [m] (Rossignac & Borrel 1993, "Multi-resolution
+    3D approximations for rendering complex scenes"), each cell's vertex placed where it
+    minimises the summed squared distances to the planes of the faces around it (the quadric
+    error metric, Lindstrom 2000, "Out-of-core simplification of large polygonal models",
+    SIGGRAPH: :math:`x = \bar x + Q^+ (b - Q\bar x)`, :math:`Q = \sum a\, n n^T`,
+    :math:`b = \sum a\, n (n\cdot p)`, singular values below 1e-3 of the largest dropped), so
+    that edges and corners stay sharp.  Faces that lose a vertex, and pairs of coincident
+    faces of opposite winding (a collapsed thin wall), are dropped.  ``quadrics``: those of
+    :func:`vertex_quadrics` (computed if omitted)."""
+    qv, bv = vertex_quadrics(vertices, faces) if quadrics is None else quadrics
+    key3 = np.floor((vertices - vertices.min(axis=0)) / h).astype(np.int64)
+    dims = key3.max(axis=0) + 1
+    key = (key3[:, 0] * dims[1] + key3[:, 1]) * dims[2] + key3[:, 2]
+    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
+    k = len(counts)
+    mean = np.column_stack([np.bincount(inv, weights=vertices[:, c], minlength=k)
+                            for c in range(3)]) / counts[:, None]
+    qc = np.column_stack([np.bincount(inv, weights=qv[:, c], minlength=k)
+                          for c in range(9)]).reshape(-1, 3, 3)
+    bc = np.column_stack([np.bincount(inv, weights=bv[:, c], minlength=k) for c in range(3)])
+    u, sv, vt = np.linalg.svd(qc)
+    sinv = np.where(sv > 1e-3 * sv[:, :1], 1.0 / np.where(sv > 0, sv, 1.0), 0.0)
+    resid = bc - np.einsum("kij,kj->ki", qc, mean)
+    # x = mean + V S^+ U^T (b - Q mean)  (Q = U S V^T)
+    nv = mean + np.einsum("kji,kj->ki", vt, sinv * np.einsum("kji,kj->ki", u, resid))
+    # a vertex may not leave its cell's neighbourhood (ill-conditioned quadrics)
+    far = np.linalg.norm(nv - mean, axis=1) > h
+    nv[far] = mean[far]
+    f = inv[faces]
+    f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
+    # coincident faces: same vertex set; equal winding -> keep one, opposite -> drop both
+    srt = np.sort(f, axis=1)
+    _, first, ids = np.unique(srt, axis=0, return_index=True, return_inverse=True)
+    ids = ids.reshape(-1)
+    rot = np.argmin(f, axis=1)                       # winding: rotate the smallest index first
+    canon = np.take_along_axis(f, (rot[:, None] + np.arange(3)) % 3, axis=1)
+    sign = np.where(canon[:, 1] == srt[:, 1], 1, -1)
+    net = np.bincount(ids, weights=sign)
+    keep = np.zeros(len(f), bool)
+    keep[first] = net[ids[first]] != 0
+    f = f[keep]
+    flip = net[ids[keep]] * sign[keep] < 0
+    f[flip] = f[flip][:, ::-1]
+    used = np.unique(f)
+    remap = np.full(len(nv), -1, np.int64)
+    remap[used] = np.arange(len(used))
+    return nv[used], remap[f]
+
+
+def _volume(vertices, faces):
+    """Enclosed volume [m^3] (divergence theorem, sum of signed tetrahedra)."""
+    t = vertices[faces]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
+def _area(vertices, faces):
+    t = vertices[faces]
+    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
+                                      axis=1).sum())
+
+
+def coarsen(vertices, faces, panels: int, quadrics=None):
+    r"""At most about ``panels`` triangles of a finer closed mesh by quadric vertex clustering
+    (:func:`_cluster`) on cells of :math:`0.75 h`, :math:`h = \sqrt{4A/(\sqrt3 N)}` the side of
+    N equilateral triangles covering the area A [m^2]; the cell is corrected twice on the
+    count reached (faces ~ cell^-2).  ``quadrics``: :func:`vertex_quadrics` of the mesh
+    (computed if omitted).  Returns (vertices, faces)."""
+    if quadrics is None:
+        quadrics = vertex_quadrics(vertices, faces)
+    h = 0.75 * np.sqrt(4.0 * _area(vertices, faces) / (np.sqrt(3.0) * panels))
+    best = None
+    for _ in range(4):
+        cv, cf = _cluster(vertices, faces, h, quadrics)
+        if len(cf) <= 1.1 * panels and (best is None or len(cf) > len(best[1])):
+            best = (cv, cf)
+        ratio = len(cf) / panels
+        if 0.8 < ratio <= 1.1:
+            break
+        h *= np.sqrt(ratio) * (1.02 if ratio > 1 else 0.98)
+    return best if best is not None else (cv, cf)
+
+
+def bisect_longest(vertices, faces, max_edge):
+    r"""Split faces until no edge is longer than ``max_edge`` [m], always at the midpoint of a
+    face's longest edge (Rivara 1984, "Algorithms for refining triangular grids suitable for
+    adaptive and multigrid techniques", Int. J. Numer. Meth. Eng. 20: the longest-edge
+    bisection with its conforming closure): slivers become well-shaped triangles, the mesh
+    stays closed and its winding kept, and the new vertices lie on the flat faces (the
+    geometry is unchanged).  Returns (vertices, faces)."""
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    for _ in range(60):
+        t = v[f]
+        elen = np.linalg.norm(t[:, [1, 2, 0]] - t, axis=2)      # edge k: vertex k -> k+1
+        longest = np.argmax(elen, axis=1)
+        if elen.max() <= max_edge:
+            break
+        a = f.reshape(-1)
+        b = np.roll(f, -1, axis=1).reshape(-1)
+        key = np.minimum(a, b) * len(v) + np.maximum(a, b)
+        uniq, inv = np.unique(key, return_inverse=True)
+        inv = inv.reshape(-1, 3)
+        rows = np.arange(len(f))
+        marked = np.zeros(len(uniq), bool)
+        marked[inv[rows, longest][elen[rows, longest] > max_edge]] = True
+        while True:          # closure: a face with a marked edge has its longest edge marked
+            need = marked[inv].any(axis=1) & ~marked[inv[rows, longest]]
+            if not need.any():
+                break
+            marked[inv[rows[need], longest[need]]] = True
+        ids = np.full(len(uniq), -1, np.int64)
+        ids[marked] = len(v) + np.arange(marked.sum())
+        ends = np.column_stack([uniq // len(v), uniq % len(v)])[marked]
+        v = np.vstack([v, 0.5 * (v[ends[:, 0]] + v[ends[:, 1]])])
+        # rotate each face so that its longest edge is 0 -> 1
+        r = (longest[:, None] + np.arange(3)) % 3
+        fa, fb, fc = np.take_along_axis(f, r, axis=1).T
+        mab, mbc, mca = np.take_along_axis(ids[inv], r, axis=1).T
+        split = mab >= 0
+        out = [np.column_stack([fa, fb, fc])[~split]]
+        fa, fb, fc, mab, mbc, mca = (x[split] for x in (fa, fb, fc, mab, mbc, mca))
+        nb, nc = mbc < 0, mca < 0
+        out += [np.column_stack([mab, fb, fc])[nb],                   # (m, b, c) whole
+                np.column_stack([mab, fb, mbc])[~nb], np.column_stack([mab, mbc, fc])[~nb],
+                np.column_stack([fa, mab, fc])[nc],                   # (a, m, c) whole
+                np.column_stack([fa, mab, mca])[~nc], np.column_stack([mab, fc, mca])[~nc]]
+        f = np.vstack(out)
+    return v, f
+
+
+def refine(vertices, faces, panels: int):
+    """About ``panels`` triangles (the most at or below it) by longest-edge bisection
+    (:func:`bisect_longest`), the edge bound found by bisection on the count.  A mesh of
+    ``panels`` faces or more is returned as it is.  Returns (vertices, faces)."""
+    if len(faces) >= panels:
+        return vertices, faces
+    t = vertices[faces]
+    hi = float(np.linalg.norm(t[:, [1, 2, 0]] - t, axis=2).max())
+    lo = 1e-3 * hi
+    best = (vertices, faces)
+    for _ in range(14):
+        mid = np.sqrt(lo * hi)
+        v, f = bisect_longest(vertices, faces, mid)
+        if len(f) > panels:
+            lo = mid
+        else:
+            hi = mid
+            if len(f) > len(best[1]):
+                best = (v, f)
+        if 0.97 * panels <= len(best[1]):
+            break
+    return best
+
+
+#: Largest change of the enclosed volume by the coarsening [-]: beyond it the mesh has members
+#: thinner than the panels (tubes, plates) that the clustering collapsed.
+VOLUME_TOLERANCE = 0.02
+
+
+def split_in_four(vertices, faces):
+    """Every face split into four at its edge midpoints (trimesh.remesh.subdivide): the same
+    polyhedron with the panel size halved, so that the two levels of the extrapolation are one
+    family of meshes.  Returns (vertices, faces)."""
+    import trimesh.remesh
+
+    return trimesh.remesh.subdivide(vertices, faces)
+
+
+def panel_levels(vertices, faces, panels: int, where=None):
+    r"""The two panellings (coarse, fine) of the Richardson extrapolation.
+
+    - A mesh of at most N/4 faces (N = ``panels``; boxes, coarse CAD): refined by longest-edge
+      bisection to about N/4 panels (:func:`refine`), and that split in four
+      (:func:`split_in_four`): N_2 = 4 N_1, h halved on the same polyhedron.
+    - A mesh of more than N faces: coarsened to N/2 and N panels independently
+      (:func:`coarsen`: two approximations of the same surface, their geometric error ~h^2
+      like the panel error); if that changes its volume by more than
+      :data:`VOLUME_TOLERANCE` (members thinner than the panels collapsed), N is doubled
+      while it stays within :data:`MAX_PANELS`.
+    - Otherwise (and for thin members) both levels refine the mesh itself (its slivers are
+      split too): to :math:`N_1 = \max(N/2, 1.25 F)` (F faces) and :math:`2 N_1` panels; more
+      than :data:`MAX_PANELS` is an error naming ``panels``.
+    """
+    v, f = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    dv = 0.0
+    if 4 * len(f) <= panels:
+        coarse = refine(v, f, panels // 4)
+        return [coarse, split_in_four(*coarse)]
+    n = panels
+    quadrics = vertex_quadrics(v, f) if len(f) > n else None
+    vol = _volume(v, f)
+    while len(f) > n:           # coarsen, with twice the panels while thin members collapse
+        levels = [coarsen(v, f, k, quadrics) for k in (n // 2, n)]
+        dv = max(abs(_volume(*lv) / vol - 1.0) for lv in levels)
+        if dv <= VOLUME_TOLERANCE:
+            return levels
+        if 2 * n > MAX_PANELS:
+            break
+        n *= 2
+    n1 = max(panels // 2, int(np.ceil(1.25 * len(f))))
+    if 2 * n1 > MAX_PANELS:
+        why = (f"the mesh has members thinner than {n} panels resolve (coarsening changes "
+               f"its volume by {100 * dv:.1f} %) and " if dv > VOLUME_TOLERANCE else "")
+        raise InputError(f"{why}its {len(f)} faces are too many to refine within "
+                         f"{MAX_PANELS} panels", file=where,
+                         key="panels", value=panels,
+                         expected=f"a mesh of at most {MAX_PANELS / 2.5:.0f} faces (decimated "
+                                  "in CAD, thin members kept)")
+    return [refine(v, f, n1), refine(v, f, 2 * n1)]
+
+
+def _check_closed(faces, where):
+    from stripcoef.geometry.mesh import EdgeTopology
+
+    topo = EdgeTopology(faces)
+    if not topo.consistent:
+        raise InputError("the panel method needs a closed surface with consistent winding",
+                         file=where, key="mesh", value=f"{topo.open_edges} open or "
+                         "non-manifold edges" if not topo.watertight else "inconsistent winding",
+                         expected="a watertight mesh (load it with stripcoef.geometry.mesh."
+                                  "load_mesh, which repairs what it can)")
+
+
+def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = DEFAULT_PANELS,
+                     extrapolate: bool = True, near_factor: float = NEAR_FACTOR,
+                     source: str = "") -> tuple[np.ndarray, dict]:
+    r"""6x6 added mass of a closed body in unbounded fluid by the 3D panel method.
+
+    .. math:: A = \frac{N_2 A_2 - N_1 A_1}{N_2 - N_1},\qquad
+              A_k = -\rho \sum_p a_p\, n(x_p)\, \Phi_k(x_p)^T
+
+    (module docstring; Richardson extrapolation of the two resolutions N_1 < N_2 of
+    :func:`panel_levels`, the error of constant panels ~ 1/N).  Symmetric part returned.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh or MeshBody
+        Closed body in FRD body axes [m], normals out of the body (a MeshBody's mesh is).
+    rho : float
+        Fluid density [kg/m^3].
+    about : (3,)
+        Reference point of the rotations and moments, body axes [m].
+    panels : int
+        Panels of the finer resolution (:data:`DEFAULT_PANELS`; at most :data:`MAX_PANELS`).
+    extrapolate : bool
+        Richardson from two resolutions (default); ``False``: one solve at ``panels``.
+    source : str
+        Name of the mesh for error messages.
+
+    Returns
+    -------
+    (ndarray (6, 6), dict)
+        M_A [kg, kg m, kg m^2] and ``{"panels": (N_1, N_2), "asymmetry": max|A - A^T| /
+        max|A| of the finer solve [-]}``.
+    """
+    body = getattr(mesh, "mesh", mesh)
+    v = np.asarray(body.vertices, float)
+    f = np.asarray(body.faces, np.int64)
+    named = getattr(mesh, "source", "")        # a MeshBody's file (a Trimesh's is no str)
+    where = source or (named if isinstance(named, str) else "") or None
+    if not (isinstance(panels, (int, np.integer)) and 50 <= panels <= MAX_PANELS):
+        raise InputError("panel count out of range", key="panels", value=panels,
+                         expected=f"an integer from 50 to {MAX_PANELS}")
+    if len(f) > MAX_INPUT_FACES:
+        raise InputError("mesh too large for the panel method's time budget", file=where,
+                         key="mesh", value=f"{len(f)} faces",
+                         expected=f"at most {MAX_INPUT_FACES} faces (decimate it in CAD)")
+    if len(f) == 0 or not np.all(np.isfinite(v)):
+        raise InputError("empty mesh or non-finite vertices", file=where, key="mesh",
+                         value=f"{len(f)} faces", expected="a closed triangle mesh")
+    _check_closed(f, where)
+    tri = v[f]
+    dbl = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    scale = np.ptp(v, axis=0).max()
+    if np.any(dbl <= 1e-12 * scale ** 2):
+        raise InputError("degenerate (zero-area) faces", file=where, key="mesh",
+                         value=f"{int(np.sum(dbl <= 1e-12 * scale ** 2))} faces",
+                         expected="faces of non-zero area (load_mesh removes them)")
+    vol = _volume(v, f)
+    if not vol > 1e-9 * scale ** 3:
+        raise InputError("the mesh's normals point into the body or it encloses no volume",
+                         file=where, key="mesh", value=f"volume {vol:.3g} m^3",
+                         expected="outward normals (load_mesh orients them)")
+    if extrapolate:
+        levels = panel_levels(v, f, panels, where)
+    else:
+        levels = [coarsen(v, f, panels) if len(f) > panels else refine(v, f, panels)]
+    counts, mats = [], []
+    for pv, pf in levels:
+        ptri = pv[pf]
+        keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
+                              axis=1) > 1e-12 * scale ** 2
+        counts.append(int(keep.sum()))
+        mats.append(solve_added_mass(ptri[keep], rho=rho, about=about, near_factor=near_factor))
+    a = mats[-1]
+    if extrapolate:
+        if counts[1] <= counts[0]:
+            raise InputError("the two panel resolutions coincide", file=where, key="panels",
+                             value=counts, expected="a finer second resolution (more panels)")
+        n1, n2 = counts
+        a = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
+    asym = float(np.abs(mats[-1] - mats[-1].T).max() / np.abs(mats[-1]).max())
+    return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym}
