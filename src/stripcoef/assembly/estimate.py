@@ -61,10 +61,11 @@ class EstimateOptions:
         for slender ones and sharp corners, :func:`stripcoef.sections.panel.discretise`); a
         round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
     added_mass_method : str
-        ``strips`` (default: strip theory and its 3D corrections), ``panels`` (the 3D panel
-        method of :mod:`stripcoef.hull.panels`, for a vehicle made of one closed mesh) or
-        ``auto`` (panels for a mesh that is neither a body of revolution about x nor slender,
-        :func:`stripcoef.assembly.added_mass.added_mass_method`).  Only M_A changes: the
+        ``auto`` (default: the 3D panel method of :mod:`stripcoef.hull.panels` for a vehicle
+        made of one closed mesh that is neither a body of revolution about x nor slender,
+        strip theory and its 3D corrections otherwise,
+        :func:`stripcoef.assembly.added_mass.added_mass_method`), ``strips`` (always strip
+        theory) or ``panels`` (always the panel method; mesh vehicles only).  Only M_A changes: the
         damping stays from the strips.
     added_mass_panels : int, optional
         Panels of the finer of the panel method's two resolutions (default
@@ -79,7 +80,7 @@ class EstimateOptions:
     fluid: Fluid | None = None
     correction_panels: int | None = None
     section_panels: int | None = None
-    added_mass_method: str = "strips"
+    added_mass_method: str = "auto"
     added_mass_panels: int | None = None
 
 

@@ -30,12 +30,6 @@ def add_parser(sub):
                    help="pure strip theory (no 3D end corrections)")
     p.add_argument("--reference-point", metavar="POINT",
                    help="center_of_buoyancy, center_of_gravity, origin or X,Y,Z [m]")
-    p.add_argument("--added-mass-method", choices=("strips", "panels", "auto"), default="strips",
-                   help="M_A by strip theory (default), by the 3D panel method (mesh input: "
-                        "boxes, frames, any bluff body), or auto (panels for a mesh that is "
-                        "neither round nor slender)")
-    p.add_argument("--added-mass-panels", type=int, metavar="N",
-                   help="panels of the panel method's finer resolution (default 1600)")
     p.add_argument("--regime", choices=("auto", "laminar", "turbulent"), default="auto",
                    help="friction line (default: auto, laminar below Re_L = 5e5)")
     add_fluid_arguments(p, "fluid (override the file; defaults for meshes: sea water)")

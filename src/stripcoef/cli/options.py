@@ -16,7 +16,8 @@ def add_fluid_arguments(parser, title: str):
 
 
 def add_mesh_arguments(parser):
-    """--origin, --axis, --length-unit for mesh input (shared with ``compare``)."""
+    """--origin, --axis, --length-unit, --added-mass-method, --added-mass-panels for mesh
+    input (shared with ``compare``)."""
     m = parser.add_argument_group("mesh input")
     m.add_argument("--origin", default="centroid", metavar="centroid|X,Y,Z",
                    help="reference point of a mesh: its volume centroid or a point [m]")
@@ -24,6 +25,12 @@ def add_mesh_arguments(parser):
                    help="mesh axis along the body (default x)")
     m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
                    help="length unit of the mesh file")
+    m.add_argument("--added-mass-method", choices=("auto", "strips", "panels"), default="auto",
+                   help="M_A by the 3D panel method for a mesh that is neither round nor "
+                        "slender, by strip theory otherwise (auto, default); always by strip "
+                        "theory (strips); always by the panel method (panels, mesh input)")
+    m.add_argument("--added-mass-panels", type=int, metavar="N",
+                   help="panels of the panel method's finer resolution (default 1600)")
     return m
 
 
@@ -107,7 +114,7 @@ def estimate_options(args, vehicle):
                            speed=args.speed, reference_point=ref,
                            regime=getattr(args, "regime", "auto"),
                            fluid=fluid_from_args(args, vehicle.fluid),
-                           added_mass_method=getattr(args, "added_mass_method", "strips"),
+                           added_mass_method=getattr(args, "added_mass_method", "auto"),
                            added_mass_panels=getattr(args, "added_mass_panels", None))
 
 
