@@ -40,15 +40,16 @@ Steps, for each degree of freedom (issue 7):
 
 from __future__ import annotations
 
-import copy
 import math
+from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError
-from stripcoef.effects.laws import EFFECTS, WindowData, coefficient_column, get_effect
+from stripcoef.effects.laws import (EFFECTS, WindowData, coefficient_column,
+                                    effect_window_forces, get_effect)
 from stripcoef.effects.windows import window_data
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
 
@@ -63,6 +64,23 @@ MIMIC_BANDS = 2.5
 UNEXPLAINED_GAIN = 0.10
 N_BLOCKS = 5
 MAX_STEPS = 4
+#: Plausible added mass as a factor of the prior's [-] (lower, upper): Wang & Clark 2006
+#: Table I has analytical/experimental ratios up to 2.7 (N_rdot); strip theory's translational
+#: added mass is closer (a factor 4 either way is an assumption that covers the synthetic
+#: benchmark's 2-3x truths), rotation is barely constrained (a factor 5).
+ADDED_MASS_FACTOR = {"translational": (0.25, 4.0), "rotational": (0.2, 5.0)}
+#: Identifiability: a coefficient is calibrated only when the log determines it at least
+#: this many times better than its band, sd_band / sd_data >= MIN_INFORMATION_RATIO, with
+#: sd_data^2 = sigma^2 [(H^T H)^-1]_jj the conditional (Fisher) variance given the other
+#: columns (Cramer-Rao bound of the linear model; Ljung 1999, sec. 9.2, eq. 9.29).
+MIN_INFORMATION_RATIO = 2.0
+#: A DOF is excited when its velocity's standard deviation is this many times its noise
+#: (the noise from second differences, :meth:`WindowData.rate_noise_variance`'s estimator)
+#: and its applied force moves.
+EXCITATION_SNR = 3.0
+#: Fraction of the fitting log (its last part) kept to validate each change by free
+#: simulation: a calibration or an effect stays only if it lowers the validation error.
+VALIDATION_FRACTION = 0.25
 #: Default window of the one-step residual [s]. Velocity noise of standard deviation
 #: sigma_v enters the window residual as M_ii sqrt(2) sigma_v / T: 4 s windows halve the
 #: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
@@ -73,11 +91,18 @@ METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the mo
                "averaged over non-overlapping windows [N or N m]")
 
 
+def added_mass_bounds(dof: int, prior: float) -> tuple[float, float]:
+    """(lower, upper) plausible added mass of DOF ``dof`` [kg or kg m^2]:
+    :data:`ADDED_MASS_FACTOR` times the prior's value."""
+    lo, hi = ADDED_MASS_FACTOR["translational" if dof < 3 else "rotational"]
+    return lo * abs(prior), hi * abs(prior)
+
+
 # ---------------------------------------------------------------------------
 # least squares with band priors
 # ---------------------------------------------------------------------------
 
-def _solve(y, H, prior_sd, sigma, lower=None, m=None):
+def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None):
     r"""MAP least squares: min |y - H theta|^2 / sigma^2 + sum_j (theta_j / s_j)^2,
     subject to theta >= lower (physical bounds: no negative added mass or damping).
 
@@ -91,14 +116,17 @@ def _solve(y, H, prior_sd, sigma, lower=None, m=None):
     :math:`J(\mu) - N (M + \mu)^2 v / \sigma^2` (corrected least squares, Fuller 1987,
     Measurement Error Models, sec. 2.2).
 
+    ``upper``: upper bounds (an added mass within its plausible factor of the prior,
+    :data:`ADDED_MASS_FACTOR`).
+
     Returns theta, covariance (the unconstrained one at the solution), weighted residual.
     """
     if m is not None and len(m[0]):
-        return _solve_profiled(y, H, prior_sd, sigma, lower, m)
-    return _solve_linear(y, H, prior_sd, sigma, lower)
+        return _solve_profiled(y, H, prior_sd, sigma, lower, m, upper)
+    return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper)
 
 
-def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0):
+def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None):
     p = H.shape[1]
     if p == 0:
         return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
@@ -115,15 +143,20 @@ def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0):
     scale = np.sqrt((a ** 2).sum(axis=0))
     scale[scale == 0] = 1.0
     theta_s, *_ = np.linalg.lstsq(a / scale, b, rcond=None)
-    if lower is not None and np.any(theta_s / scale < lower):
-        lb = np.where(np.isfinite(lower), lower * scale, -np.inf)
-        theta_s = lsq_linear(a / scale, b, bounds=(lb, np.inf), method="bvls").x
+    low_bad = lower is not None and np.any(theta_s / scale < lower)
+    up_bad = upper is not None and np.any(theta_s / scale > upper)
+    if low_bad or up_bad:
+        lb = (np.full(p, -np.inf) if lower is None
+              else np.where(np.isfinite(lower), lower * scale, -np.inf))
+        ub = (np.full(p, np.inf) if upper is None
+              else np.where(np.isfinite(upper), upper * scale, np.inf))
+        theta_s = lsq_linear(a / scale, b, bounds=(lb, ub), method="bvls").x
     theta = theta_s / scale
     cov = np.linalg.pinv((a / scale).T @ (a / scale)) / np.outer(scale, scale)
     return theta, cov, b - a @ theta
 
 
-def _solve_profiled(y, H, prior_sd, sigma, lower, m):
+def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None):
     from scipy.optimize import minimize_scalar
 
     mcols, m_total, noise_var = list(m[0]), float(m[1]), float(m[2])
@@ -136,9 +169,10 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m):
         lo = max(lo, float(np.max(lower[mcols])))
     X, sdx = H[:, keep], prior_sd[keep]
     lowx = None if lower is None else lower[keep]
+    upx = None if upper is None else upper[keep]
 
     def inner(mu):
-        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx)
+        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx)
         extra = np.array([mu / mu_sd]) if np.isfinite(mu_sd) else np.zeros(0)
         return th, cov, np.concatenate([res, extra])
 
@@ -147,6 +181,8 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m):
             / sigma ** 2
 
     hi = 5.0 * m_total
+    if upper is not None:
+        hi = min(hi, float(np.min(upper[mcols])))
     # without active bounds the profiled cost is exactly quadratic in mu (a linear
     # least-squares residual of y - mu * rate, plus quadratic prior and noise terms):
     # three evaluations give its vertex; otherwise fall back to a bounded search
@@ -202,8 +238,18 @@ class _Config:
                     # the calibrated coefficient stays >= 0: no negative added mass or drag
                     cal_lower = -np.abs(cache[dof])
         self.cal_lower = np.asarray(cal_lower, float)
+        self.cal_upper = np.full(self.cal_lower.size, np.inf)
+        prior = data.__dict__.get("_cal_prior", {}).get(dof)
+        if self.cal_names and prior is not None and prior.size == self.cal_lower.size:
+            for j, key in enumerate(self.cal_names):
+                if key == "M" or key.startswith("M_"):
+                    lo, hi = added_mass_bounds(dof if key == "M" else parse_dof(key[2:]),
+                                               prior[j])
+                    self.cal_lower[j] = max(self.cal_lower[j], lo - prior[j])
+                    self.cal_upper[j] = hi - prior[j]
         self.cal_has_m = (cal_sd is not None and len(cal_sd) > 0
-                          and float(data.model.added_mass[dof, dof]) != 0.0)
+                          and float(data.model.added_mass[dof, dof]) != 0.0
+                          and (self.cal_names is None or self.cal_names[:1] == ["M"]))
         self.terms = terms  # list of (effect, hyper)
 
     def hyper_terms(self, hyper_override=None):
@@ -220,6 +266,16 @@ class _Config:
             lo = eff.lower_bounds(self.data, self.dof, h) if hasattr(eff, "lower_bounds") \
                 else np.full(eff.design(self.data, self.dof, h)[1].shape[1], -np.inf)
             out.append(lo)
+        return np.concatenate(out)
+
+    def upper(self, hyper_override=None):
+        """Upper bounds of all parameters (calibration: added mass within its factor)."""
+        out = [self.cal_upper]
+        for eff, h in self.hyper_terms(hyper_override):
+            n = eff.design(self.data, self.dof, h)[1].shape[1]
+            up = eff.upper_bounds(self.data, self.dof, h) if hasattr(eff, "upper_bounds") \
+                else np.full(n, np.inf)
+            out.append(up)
         return np.concatenate(out)
 
     def m_info(self, hyper_override=None):
@@ -278,7 +334,7 @@ class _Nuisance:
         return self.effect.nuisance_sd(data, dof)
 
 
-def _sigma(y, H, sd=None, lower=None, m=None):
+def _sigma(y, H, sd=None, lower=None, m=None, upper=None):
     """Noise level of the window residual: iterate the MAP fit from sigma = RMS(y) (a free
     fit could follow the scale degeneracy of the force balance to sigma = 0)."""
     if H.shape[1] == 0:
@@ -286,7 +342,7 @@ def _sigma(y, H, sd=None, lower=None, m=None):
     sd = np.full(H.shape[1], np.inf) if sd is None else sd
     sigma = max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
     for _ in range(4):
-        theta, _, _ = _solve(y, H, sd, sigma, lower, m)
+        theta, _, _ = _solve(y, H, sd, sigma, lower, m, upper)
         r = y - H @ theta
 
         p_eff = min(H.shape[1], y.size - 1)
@@ -297,10 +353,11 @@ def _sigma(y, H, sd=None, lower=None, m=None):
 def _fit(cfg: _Config, mask=None, hyper=None):
     y, H, sd = cfg.design(hyper)
     lower = cfg.lower(hyper)
+    upper = cfg.upper(hyper)
     m = cfg.m_info(hyper)
     yy, HH = (y, H) if mask is None else (y[mask], H[mask])
-    sigma = _sigma(yy, HH, sd, lower, m)
-    theta, cov, _ = _solve(yy, HH, sd, sigma, lower, m)
+    sigma = _sigma(yy, HH, sd, lower, m, upper)
+    theta, cov, _ = _solve(yy, HH, sd, sigma, lower, m, upper)
     resid = y - H @ theta
     return {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
             "sd": sd}
@@ -313,13 +370,31 @@ def _profile_hyper(cfg: _Config, mask):
         return None
     h0 = eff.hyper_start(cfg.data, cfg.dof)
     y0, H0, sd0 = cfg.design(h0)
-    sigma0 = _sigma(y0[mask], H0[mask], sd0, cfg.lower(h0), cfg.m_info(h0))
+    sigma0 = _sigma(y0[mask], H0[mask], sd0, cfg.lower(h0), cfg.m_info(h0), cfg.upper(h0))
 
     def cost_vec(h):
         y, H, sd = cfg.design(h)
         yy, HH = y[mask], H[mask]
-        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h))
+        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h), cfg.upper(h))
         return wres
+
+    if hasattr(eff, "grid"):
+        # one nonlinear parameter on a bounded range (a time constant, a delay): a grid,
+        # then a bounded scalar search between the neighbours of the best grid point
+        from scipy.optimize import minimize_scalar
+        grid = eff.grid(cfg.data, cfg.dof)
+
+        def cost1(c):
+            return float(np.sum(cost_vec(np.array([c])) ** 2))
+        costs = np.array([cost1(c) for c in grid])
+        k = int(np.argmin(costs))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+        if hi > lo:
+            sol = minimize_scalar(cost1, bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-3 * (hi - lo)})
+            if sol.fun <= costs[k]:
+                return np.array([float(sol.x)])
+        return np.array([float(grid[k])])
 
     if eff.name == "deadband":
         cands = eff.candidates(cfg.data, cfg.dof)
@@ -374,7 +449,7 @@ def _hyper_std(cfg: _Config, hyper, sigma):
 
     def vec(h):
         y, H, sd = cfg.design(h)
-        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h))[2] * sigma
+        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h))[2] * sigma
 
     j = np.empty((vec(hyper).size, hyper.size))
     for k in range(hyper.size):
@@ -425,7 +500,7 @@ def _evaluate(cfg: _Config):
             "hyper": hyper}
 
 
-def _calibration(data: WindowData, dof: int, bands=None):
+def _calibration(data: WindowData, dof: int, bands=None, cross=None):
     r"""Calibration columns and band standard deviations for one DOF.
 
     The DOF's own inertia, linear and quadratic damping, and the added mass
@@ -437,7 +512,9 @@ def _calibration(data: WindowData, dof: int, bands=None):
     which no effect of the library should be asked to explain. Their column is the window
     mean of :math:`\partial (C_A(\nu)\nu)_i / \partial M_{jj} = (C_A[E_{jj}](\nu)\nu)_i`
     (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
-    when that product never moves in the log.
+    when that product never moves in the log, or when DOF j is not in ``cross`` (the DOFs
+    whose added mass this DOF may calibrate: excited, and not diagnosed themselves, so that
+    one coefficient has one value; None = all).
     """
     bands = bands or BANDS
     kind = "translational" if dof < 3 else "rotational"
@@ -455,7 +532,7 @@ def _calibration(data: WindowData, dof: int, bands=None):
         prior.append(value)
     for j in range(6):
         value = float(m.added_mass[j, j])
-        if j == dof or value == 0.0:
+        if j == dof or value == 0.0 or (cross is not None and j not in cross):
             continue
         key = "M_" + DOF[j]
         col = coefficient_column(data, dof, key)
@@ -468,6 +545,58 @@ def _calibration(data: WindowData, dof: int, bands=None):
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return cols, np.asarray(sd, float), names, prior, b
+
+
+def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> dict:
+    r"""Which calibration coefficients the log can determine, and why not the others.
+
+    A coefficient is kept at the prior when (1) the DOF it belongs to is not excited
+    (:func:`excited_dofs`), or (2) its conditional Fisher information is too small: with
+    the window residual's noise :math:`\sigma` (MAP fit of all columns) the Cramer-Rao
+    standard deviation of coefficient j given the others is
+    :math:`s_j = \sigma\sqrt{[(H^T H)^{-1}]_{jj}}`; it is calibrated only if
+    :math:`b_j / s_j \ge` :data:`MIN_INFORMATION_RATIO`, b_j its band (Ljung 1999,
+    sec. 9.2, eq. 9.29; a near-collinear pair has a large conditional variance, which is
+    the condition check).
+
+    Returns ``{"kept_at_prior": {name: reason}, "information_ratio": {name: b_j/s_j}}``.
+    """
+    reasons, ratios = {}, {}
+    for n in names:
+        owner = dof if n in ("M", "D_L", "D_Q") else parse_dof(n[2:])
+        if owner not in excited:
+            reasons[n] = f"{DOF[owner]} is not excited in this log"
+    keep = [j for j, n in enumerate(names) if n not in reasons]
+    if keep:
+        H = cols[:, keep]
+        sigma = _sigma(data.e0[:, dof], H, np.asarray(sd, float)[keep])
+        cov = np.linalg.pinv(H.T @ H) * sigma ** 2
+        for k, j in enumerate(keep):
+            s_data = math.sqrt(max(float(cov[k, k]), 0.0))
+            ratio = sd[j] / s_data if s_data > 0 else math.inf
+            ratios[names[j]] = float(ratio)
+            if ratio < MIN_INFORMATION_RATIO:
+                reasons[names[j]] = (f"the log determines it only to +-{s_data:.3g}, less than "
+                                     f"{MIN_INFORMATION_RATIO:g}x better than its band "
+                                     f"+-{sd[j]:.3g} (Fisher information)")
+    return {"kept_at_prior": reasons, "information_ratio": ratios}
+
+
+def _physical_problems(data: WindowData, dof: int, totals: dict) -> list:
+    """Reasons a set of total coefficients of DOF ``dof`` is impossible: negative drag, an
+    added mass outside :func:`added_mass_bounds`. ``totals``: name (M, D_L, D_Q, M_<dof>)
+    -> the coefficient's total value (prior + calibration + released part)."""
+    m = data.model
+    out = []
+    for key, total in totals.items():
+        if key in ("D_L", "D_Q") and total < 0.0:
+            out.append(f"negative {key} ({total:.3g})")
+        if key == "M" or key.startswith("M_"):
+            j = dof if key == "M" else parse_dof(key[2:])
+            lo, hi = added_mass_bounds(j, float(m.added_mass[j, j]))
+            if not lo * (1 - 1e-9) <= total <= hi * (1 + 1e-9):
+                out.append(f"{key} {total:.3g} outside its plausible range [{lo:.3g}, {hi:.3g}]")
+    return out
 
 
 def _structure(data: WindowData, dof: int, resid, candidates):
@@ -526,11 +655,24 @@ def _generic_basis(data: WindowData, dof: int):
 # ---------------------------------------------------------------------------
 
 def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
-                 max_steps: int = MAX_STEPS) -> dict:
-    """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module)."""
+                 max_steps: int = MAX_STEPS, excited=None, cross=None) -> dict:
+    """Run steps 1-5 for one DOF; returns the per-DOF result dictionary (see module).
+
+    ``excited``: the excited DOFs (default: :func:`excited_dofs`); ``cross``: the other DOFs
+    whose added mass this DOF may calibrate (:func:`_calibration`). Coefficients the log
+    does not determine are kept at the prior (:func:`_identifiability`)."""
     names = list(effects) if effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
-    cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands)
+    excited = excited_dofs(data) if excited is None else list(excited)
+    cal_cols, cal_sd, cal_names, cal_prior, band = _calibration(data, dof, bands, cross)
+    ident = _identifiability(data, dof, cal_cols, cal_sd, cal_names, excited)
+    keep = [j for j, n in enumerate(cal_names) if n not in ident["kept_at_prior"]]
+    cal_cols = cal_cols[:, keep]
+    cal_sd = np.asarray(cal_sd, float)[keep]
+    cal_names = [cal_names[j] for j in keep]
+    cal_prior = [cal_prior[j] for j in keep]
+    data.__dict__.setdefault("_cal_prior", {})[dof] = np.asarray(cal_prior, float)
+    data.__dict__.setdefault("_cal_names", {})[dof] = list(cal_names)
     e0 = data.e0[:, dof]
     unit = "N" if dof < 3 else "N m"
     result = {"dof": DOF[dof], "metric": METRIC, "units": unit,
@@ -546,6 +688,8 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
         "prior": dict(zip(cal_names, cal_prior)),
         "band_relative": {n: band[n] for n in cal_names},
         "band_z": {n: float(v / s) for n, v, s in zip(cal_names, th, cal_sd)},
+        "kept_at_prior": ident["kept_at_prior"],
+        "information_ratio": ident["information_ratio"],
     }
     result["calibrated_error"] = cur["error"]
     result["calibrated_held_out_error"] = cur["held_out_error"]
@@ -681,8 +825,21 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
             reasons.append(f"delta BIC {dbic:.1f} > -{MIN_DELTA_BIC:g}")
     if z < MIN_Z:
         reasons.append(f"z = {z:.1f} < {MIN_Z:g} (parameter / its std)")
-    if not eff.plausible(params):
-        reasons.append("implausible parameters")
+    why = eff.implausible(params, data, dof)
+    if why:
+        reasons.append(why)
+    # the totals the model would carry: prior + calibration + what the effect releases
+    priors = {"M": float(data.model.added_mass[dof, dof]),
+              "D_L": float(data.model.linear_damping[dof, dof]),
+              "D_Q": float(data.model.quadratic_damping[dof, dof])}
+    totals = {}
+    for name, value in zip(eff.nuisance_names if kn else (), theta_nuis):
+        if name in priors:
+            cal = full["theta"][cal_names.index(name)] if name in cal_names else 0.0
+            totals[name] = priors[name] + cal + float(value)
+    if mimic and key in priors:
+        totals[key] = priors[key] + float(band_excess * cal_sd[cal_names.index(key)])
+    reasons += _physical_problems(data, dof, totals)
     low = cfg.lower(hyper)[k0:]
     fin = np.isfinite(low)
     tol = 1e-4 * np.maximum(1.0, np.abs(np.where(fin, low, 0.0)))
@@ -739,16 +896,34 @@ class _Generic:
 # ---------------------------------------------------------------------------
 
 def excited_dofs(data: WindowData) -> list:
-    """DOFs with both an applied force and motion (velocity std > 1e-3)."""
-    out = []
-    for i in range(6):
-        if np.std(data.nu[:, i]) > 1e-3 and np.any(data.tau[:, i] != 0):
-            out.append(i)
-    return out
+    r"""DOFs the log excites: the applied force moves and the velocity's standard deviation
+    is at least :data:`EXCITATION_SNR` times its white noise,
+    :math:`\mathrm{std}(\nu_i) \ge 3\,\sigma_{v,i}`, with :math:`\sigma_{v,i}` estimated from
+    second differences (:math:`\mathrm{var}(\Delta^2\nu) = 6\sigma_v^2`, median absolute
+    deviation; the estimator of :meth:`WindowData.rate_noise_variance`)."""
+    return [i for i in range(6) if not _excitation(data, i)[1]]
+
+
+def _excitation(data: WindowData, i: int):
+    """(velocity std / noise, reason the DOF is not excited or '')."""
+    v = data.nu[:, i]
+    d2 = v[2:] - 2 * v[1:-1] + v[:-2]
+    noise = 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / math.sqrt(6.0) \
+        if d2.size else 0.0
+    std = float(np.std(v))
+    snr = std / noise if noise > 0 else (math.inf if std > 1e-12 else 0.0)
+    if np.ptp(data.tau[:, i]) == 0.0:
+        return snr, "no applied force moves in this DOF"
+    if snr < EXCITATION_SNR:
+        return snr, (f"velocity std {std:.3g} is {snr:.2g}x its noise {noise:.3g}, "
+                     f"less than {EXCITATION_SNR:g}x")
+    return snr, ""
 
 
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
-             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS) -> dict:
+             resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS,
+             validation: float | None = VALIDATION_FRACTION, holdout: float | None = None,
+             progress=None) -> dict:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -756,7 +931,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     log : Log
         Time series with ``t``, velocities and inputs (commands or forces).
     model : HydroModel
-        The prior (strip-theory) model.
+        The prior (strip-theory) model; its ``effects`` (a calibrated model's) are part of
+        the residual, so they are not found again.
     dof : str
         A DOF name (surge..yaw, u..r, X..N) or ``"all"`` (every excited DOF).
     window : float
@@ -765,6 +941,14 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Candidate effects (default: the whole library).
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
+    validation : float or None
+        Fraction of the fitting log (its end) kept to validate every change by free
+        simulation (:func:`validate_changes`); None or 0 keeps every change.
+    holdout : float or None
+        Fraction of the log (its end) never used for fitting: the held-out free-simulation
+        errors of the prior, the calibrated model and hold-last-velocity are reported on it.
+    progress : callable, optional
+        ``progress(message)`` is called at the start of each stage.
 
     Returns
     -------
@@ -772,21 +956,54 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         The JSON contract: ``metric``, ``baseline_error``, ``calibrated_error``, ``steps``
         (each with ``effect``, ``parameters``, ``std``, ``error_before``, ``error_after``,
         ``held_out_error_before``, ``held_out_error_after``), ``final_error``,
-        ``unexplained``; plus ``per_dof`` details and ``model`` (the calibrated HydroModel,
-        not serialised).
+        ``unexplained``, ``excited_dofs``, ``dofs_not_diagnosed``, ``kept_at_prior``,
+        ``validation``, ``holdout``; plus ``per_dof`` details and ``model`` (the calibrated
+        HydroModel, not serialised).
     """
-    data = window_data(log, model, window=window)
+    from stripcoef.conventions import VELOCITIES
+    from stripcoef.diagnose.heldout import split
+
+    say = progress or (lambda message: None)
+    fit_log, test_log = (log, None) if not holdout else split(log, holdout, key="holdout")
+    train_log, val_log = ((fit_log, None) if not validation
+                          else split(fit_log, validation, key="validation"))
+    say(f"windows of {window:g} s over {train_log['t'][-1] - train_log['t'][0]:.0f} s of log")
+    data = window_data(train_log, model, window=window)
+    if model.effects:  # a calibrated model: its effects are part of its prediction
+        data.e0 = data.e0 - effect_window_forces(data, model)
+    excited = excited_dofs(data)
+    not_diagnosed = {}
+    for i in range(6):
+        if VELOCITIES[i] not in log:
+            not_diagnosed[DOF[i]] = f"no column {VELOCITIES[i]} in the log"
+        elif i not in excited:
+            not_diagnosed[DOF[i]] = _excitation(data, i)[1]
     if str(dof).lower() == "all":
-        dofs = excited_dofs(data)
+        dofs = [i for i in excited if DOF[i] not in not_diagnosed]
         if not dofs:
             raise InputError("no excited degree of freedom", file=log.source,
                              expected="a log where some DOF has both an applied force and "
-                             "motion")
+                             "motion above its noise")
     else:
-        dofs = [parse_dof(dof)]
-    per = {DOF[i]: diagnose_dof(data, i, effects=effects, bands=bands, max_steps=max_steps)
-           for i in dofs}
-    calibrated = calibrated_model(model, per)
+        i = parse_dof(dof)
+        if VELOCITIES[i] not in log:
+            raise InputError(f"no column for the diagnosed DOF {DOF[i]}", file=log.source,
+                             key=VELOCITIES[i], expected=f"a column {VELOCITIES[i]} "
+                             "[m/s or rad/s] in the log")
+        dofs = [i]
+        not_diagnosed.pop(DOF[i], None)
+    cross = [j for j in excited if j not in dofs]
+    per = {}
+    for i in dofs:
+        say(f"{DOF[i]}: calibration and effects")
+        per[DOF[i]] = diagnose_dof(data, i, effects=effects, bands=bands,
+                                   max_steps=max_steps, excited=excited, cross=cross)
+    exclude, record = set(), None
+    if val_log is not None:
+        say("validation: free simulation of every change on the last "
+            f"{100 * validation:.0f}% of the fitting log")
+        exclude, record = validate_changes(val_log, model, per, dofs)
+    calibrated = calibrated_model(model, per, exclude)
     out = {"metric": METRIC, "metric_description": METRIC_TEXT, "window_s": window,
            "log": log.source, "vehicle": model.name}
     if len(dofs) == 1:
@@ -806,79 +1023,179 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                     "steps": [s for d in per for s in per[d]["steps"]],
                     "final_error": rel("final_error"),
                     "unexplained": any(per[d]["unexplained"] for d in per)})
+    out["excited_dofs"] = [DOF[i] for i in excited]
+    out["dofs_not_diagnosed"] = not_diagnosed
+    kept = {d: dict(per[d]["calibration"]["kept_at_prior"]) for d in per}
+    for d, why in not_diagnosed.items():
+        kept[d] = {"all coefficients": why}
+    out["kept_at_prior"] = kept
     out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
                       for d, r in per.items()}
+    out["validation"] = record
+    out["fitted_on_s"] = [float(train_log["t"][0]), float(train_log["t"][-1])]
     if resimulate:
-        out["resimulated_velocity_rms"] = resimulated_errors(log, model, per, calibrated)
+        say("re-simulation of the fitting log")
+        out["resimulated_velocity_rms"] = resimulated_errors(train_log, model, per,
+                                                             calibrated, exclude)
         out["resimulated_velocity_description"] = (
-            "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF: "
-            "the prior, the prior with its calibrated coefficients, and the final model")
+            "RMS of logged minus re-simulated velocity [m/s or rad/s] of each diagnosed DOF "
+            "on the fitting log: the prior, the prior with its calibrated coefficients, and "
+            "the final model")
+    out["_test_log"] = test_log
+    out["_dofs"] = dofs
+    if test_log is not None:
+        say(f"held-out: free simulation of the last {100 * holdout:.0f}% of the log")
+        # recomputed from the model as it is written (its dictionary form)
+        written = type(calibrated).from_dict(calibrated.to_dict())
+        out["holdout"] = heldout_errors(out, model, written)
     out["_per_dof_internal"] = per
     out["model"] = calibrated
     return out
 
 
-def _apply_calibration(m, i: int, cal: dict, per: dict) -> None:
-    """Add the calibration of DOF ``i`` to model ``m`` (its arrays, in place): its own M,
-    D_L, D_Q, and the other DOFs' added mass ``M_<dof>`` seen through C_A -- unless that
-    DOF is diagnosed itself, whose own calibration then holds."""
-    for key, mat in (("M", m.added_mass), ("D_L", m.linear_damping),
-                     ("D_Q", m.quadratic_damping)):
-        if key in cal:
-            mat[i, i] += cal[key]
-    for key, value in cal.items():
-        if key.startswith("M_") and key[2:] not in per:
-            j = parse_dof(key[2:])
-            m.added_mass[j, j] += value
+def heldout_errors(result: dict, prior, written) -> dict:
+    """Held-out free-simulation errors of the prior, the model as written and
+    hold-last-velocity on the held-out part of the log of a :func:`diagnose` result
+    (:mod:`stripcoef.diagnose.heldout`) [m/s or rad/s]."""
+    from stripcoef.diagnose.heldout import HORIZON, compare
+
+    test_log, dofs = result["_test_log"], result["_dofs"]
+    errors = compare(test_log, {"prior": prior, "calibrated": written}, dofs)
+    return {"description": "RMS free-simulation velocity error on the held-out end of the log "
+                           f"[m/s or rad/s]: {HORIZON:g}-s simulations from the logged state; "
+                           "hold_last_velocity predicts the velocity at each start",
+            "held_out_s": [float(test_log["t"][0]), float(test_log["t"][-1])],
+            "horizon_s": HORIZON, "errors": errors}
 
 
-def calibrated_model(model, per: dict):
-    """The prior with its calibrated coefficients and the added effects."""
-    m = copy.deepcopy(model)
-    m.added_mass = np.array(m.added_mass, float)
-    m.linear_damping = np.array(m.linear_damping, float)
-    m.quadratic_damping = np.array(m.quadratic_damping, float)
+def _changes(per: dict) -> list:
+    """The changes a diagnosis makes to the prior: each DOF's calibration and each effect."""
+    out = []
+    for d, r in per.items():
+        if any(v != 0.0 for v in r["calibration"]["final_parameters"].values()):
+            out.append(("calibration", d))
+        out += [("effect", d, s["effect"]) for s in r["steps"]]
+    return out
+
+
+def validate_changes(val_log, prior, per: dict, dofs) -> tuple[set, dict]:
+    r"""Keep a change only if it improves the free simulation of data it was not fitted on.
+
+    Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
+    log: with :math:`r_i = E_i / E_i^{prior}` the free-simulation error of DOF i
+    (:func:`stripcoef.diagnose.heldout.free_simulation_errors`) relative to the prior's, a
+    model's score is the pair (number of DOFs with :math:`r_i > 1`, :math:`\sum_i r_i^2`),
+    compared in that order; the change (a DOF's calibration or one effect) whose removal
+    gives the best score is removed while that score is no worse than the current one
+    (ties go to the simpler model), so the result never simulates an excited DOF worse
+    than the prior on the validation data unless every subset does.
+
+    Returns ``(excluded changes, record)``.
+    """
+    from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
+
+    base = free_simulation_errors(val_log, prior, dofs)
+    ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
+    ref = [max(e, 1e-12) for e in ref]
+    cache = {}
+
+    def score(excl):
+        key = frozenset(excl)
+        if key not in cache:
+            e = free_simulation_errors(val_log, calibrated_model(prior, per, key), dofs)
+            if e is None:
+                cache[key] = ((math.inf, math.inf), None)
+            else:
+                r = [a / b for a, b in zip(e, ref)]
+                cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
+                              e)
+        return cache[key]
+
+    changes = _changes(per)
+    excl = set()
+    cur = score(excl)
+    first = cur[1]
+    while len(excl) < len(changes):
+        trials = [(score(excl | {c}), c) for c in changes if c not in excl]
+        (best, _), c = min(trials, key=lambda x: x[0][0])
+        if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
+            break
+        excl.add(c)
+        cur = score(excl)
+
+    def named(e):
+        return None if e is None else {DOF[i]: float(v) for i, v in zip(dofs, e)}
+
+    for d, r in per.items():
+        r["calibration"]["kept"] = ("calibration", d) not in excl
+        for s in r["steps"]:
+            s["kept"] = ("effect", d, s["effect"]) not in excl
+    record = {"description": "RMS free-simulation velocity error [m/s or rad/s] on the last "
+                             "part of the fitting log, not used to fit: each change is kept "
+                             "only if removing it makes this worse",
+              "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
+              "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
+              "removed": [" ".join(c[1:][::-1]) if c[0] == "effect" else f"{c[1]} calibration"
+                          for c in changes if c in excl]}
+    return excl, record
+
+
+def calibrated_model(model, per: dict, exclude=frozenset()):
+    """The prior with its calibrated coefficients and the added effects, as a new model
+    (``dataclasses.replace``; the prior is not changed). ``exclude``: changes left out,
+    ``("calibration", dof)`` or ``("effect", dof, name)`` (see :func:`validate_changes`)."""
+    m = replace(model, added_mass=np.array(model.added_mass, float),
+                linear_damping=np.array(model.linear_damping, float),
+                quadratic_damping=np.array(model.quadratic_damping, float),
+                effects=list(model.effects))
+
+    def add(m, key, i, value):
+        attr = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping"}[key]
+        mat = np.array(getattr(m, attr), float)
+        mat[i, i] += value
+        return replace(m, **{attr: mat})
+
     record = []
     for d, r in per.items():
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
-        _apply_calibration(m, i, cal, per)
+        if ("calibration", d) not in exclude:
+            for key, value in cal.items():
+                if key in ("M", "D_L", "D_Q"):
+                    m = add(m, key, i, value)
+                elif key.startswith("M_") and key[2:] not in per:
+                    m = add(m, "M", parse_dof(key[2:]), value)
         cfg = r["_final_config"]
         theta = r["_final_eval"]["full"]["theta"]
         k = len(r["calibration"]["parameters"])
+        kept_effects = []
         for eff, hyper in cfg.terms:
             ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
             nuis = eff.nuisance(cfg.data, i)
             kn = 0 if nuis is None else nuis.shape[1]
             tn = theta[k:k + kn]
             params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
-            for name, value in zip(eff.nuisance_names, tn):
-                target = {"M": m.added_mass, "D_L": m.linear_damping,
-                          "D_Q": m.quadratic_damping}.get(name)
-                if target is not None:  # a prior coefficient released by this effect
-                    target[i, i] += value
             k += ncol
+            if ("effect", d, eff.name) in exclude:
+                continue
+            for name, value in zip(eff.nuisance_names, tn):
+                if name in ("M", "D_L", "D_Q"):  # a prior coefficient released by the effect
+                    m = add(m, name, i, float(value))
             step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
-            eff.apply(m, i, params, step.get("std"))
-        record.append({"dof": d, "calibration": cal,
-                       "effects": [s["effect"] for s in r["steps"]]})
-    m.provenance = dict(m.provenance)
-    m.provenance["diagnose"] = record
-    m.name = f"{model.name}-calibrated"
-    return m
+            m = eff.apply(m, i, params, step.get("std"))
+            kept_effects.append(eff.name)
+        record.append({"dof": d, "calibration": cal if ("calibration", d) not in exclude
+                       else {}, "effects": kept_effects})
+    return replace(m, provenance={**dict(model.provenance), "diagnose": record},
+                   name=f"{model.name}-calibrated")
 
 
-def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
+def resimulated_errors(log, prior, per: dict, calibrated, exclude=frozenset()) -> dict:
     """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
     only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
     simulation diverges)."""
-    only_cal = copy.deepcopy(prior)
-    only_cal.added_mass = np.array(prior.added_mass, float)
-    only_cal.linear_damping = np.array(prior.linear_damping, float)
-    only_cal.quadratic_damping = np.array(prior.quadratic_damping, float)
-    for d, r in per.items():
-        i = parse_dof(d)
-        _apply_calibration(only_cal, i, r["calibration"]["parameters"], per)
+    no_effects = set(exclude) | {c for c in _changes(per) if c[0] == "effect"}
+    only_cal = calibrated_model(prior, per, no_effects)
     dofs = [parse_dof(d) for d in per]
     rows = {name: resimulate_rms(log, m, dofs) for name, m in
             (("baseline", prior), ("calibrated", only_cal), ("final", calibrated))}
@@ -886,51 +1203,16 @@ def resimulated_errors(log, prior, per: dict, calibrated) -> dict:
                      for name in rows} for k, i in enumerate(dofs)}
 
 
-#: Horizon of the re-simulated velocity error [s]: the log is cut into segments of this
-#: length, each re-simulated from the logged state at its start (an open-loop simulation
-#: of a whole log of a directionally unstable vehicle drifts away whatever the model).
+#: Horizon of the re-simulated velocity error [s] (:data:`stripcoef.diagnose.heldout.HORIZON`).
 RESIMULATION_HORIZON = 10.0
 
 
 def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     """RMS differences between the logged and the re-simulated velocities of ``dofs``
-    (list) over segments of ``horizon`` seconds, or None if a simulation diverges."""
-    from stripcoef.conventions import POSE, VELOCITIES
-    from stripcoef.errors import StripcoefError
-    from stripcoef.logfile import KNOWN_COLUMNS
-    from stripcoef.simulate import simulate
-
-    t = log["t"]
-    cmds = log.commands()
-    forces = None if cmds else log.forces()
-    channels = {k: v for k, v in log.columns.items()
-                if k not in KNOWN_COLUMNS and not k.startswith("n_")}
-    starts = [0]
-    while True:
-        nxt = int(np.searchsorted(t, t[starts[-1]] + horizon))
-        if nxt >= t.size - 2:
-            break
-        starts.append(nxt)
-    bounds = starts + [t.size]
-    err = {i: [] for i in dofs}
-    for a, b in zip(bounds[:-1], bounds[1:]):
-        sl = slice(a, b)
-        if b - a < 2:
-            continue
-        eta0 = [float(log.get(p, np.zeros(t.size))[a]) for p in POSE]
-        nu0 = [float(log.get(v, np.zeros(t.size))[a]) for v in VELOCITIES]
-        try:
-            sim = simulate(model, t[sl], forces=None if forces is None else forces[sl],
-                           commands={k: v[sl] for k, v in cmds.items()} or None,
-                           eta0=eta0, nu0=nu0,
-                           channels={k: v[sl] for k, v in channels.items()} or None,
-                           rtol=1e-6, atol=1e-8)
-        except StripcoefError:
-            return None
-        for i in dofs:
-            v = VELOCITIES[i]
-            err[i].append(sim[v] - log.get(v, np.zeros(t.size))[sl])
-    return [_rms(np.concatenate(err[i])) for i in dofs]
+    (list) over segments of ``horizon`` seconds, or None if a simulation diverges
+    (:func:`stripcoef.diagnose.heldout.free_simulation_errors`)."""
+    from stripcoef.diagnose.heldout import free_simulation_errors
+    return free_simulation_errors(log, model, dofs, horizon=horizon)
 
 
 def public(result: dict) -> dict:
