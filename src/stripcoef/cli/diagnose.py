@@ -31,6 +31,15 @@ def add_parser(subparsers):
                    help="comma-separated candidate effects (default: the whole library)")
     p.add_argument("--no-resimulate", action="store_true",
                    help="skip the re-simulated velocity error (faster)")
+    p.add_argument("--holdout", type=float, default=None, metavar="FRACTION",
+                   help="keep the last FRACTION of the log out of the fit and report the "
+                        "free-simulation error on it (prior, calibrated model as written, "
+                        "hold-last-velocity)")
+    p.add_argument("--validation", type=float, default=None, metavar="FRACTION",
+                   help="fraction of the fitting log (its end) that validates each change by "
+                        "free simulation (default 0.25; 0 keeps every change)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress lines on stderr (they are printed only to a terminal)")
     p.set_defaults(func=run)
     return p
 
@@ -59,15 +68,32 @@ def run(args) -> int:
             if not folder.is_dir():
                 raise InputError("folder does not exist", key=key, value=path,
                                  expected="a path in an existing, writable folder")
+    from stripcoef.diagnose.pipeline import VALIDATION_FRACTION, heldout_errors
+
+    for key, value in (("--holdout", args.holdout), ("--validation", args.validation)):
+        if value is not None and not (0.0 <= value < 1.0):
+            raise InputError("not a fraction", key=key, value=value,
+                             expected="a number in [0, 1), e.g. 0.3")
+    validation = VALIDATION_FRACTION if args.validation is None else args.validation
+    progress = None
+    if not args.quiet and sys.stderr.isatty():
+        def progress(message):
+            sys.stderr.write(f"diagnose: {message}\n")
+            sys.stderr.flush()
     log = read_log(args.log, required=("t",))
     model = load_model(args.vehicle)
     result = diagnose(log, model, dof=args.dof, window=args.window, effects=effects,
-                      resimulate=not args.no_resimulate)
-    if args.report:
-        markdown_report(result, args.report)
+                      resimulate=not args.no_resimulate, validation=validation or None,
+                      holdout=args.holdout or None, progress=progress)
     if args.out:
         write_export(result["model"], "json" if str(args.out).lower().endswith(".json")
                      else "yaml", args.out)
+        if result.get("holdout") is not None:
+            # the held-out numbers printed are those of the file just written, read back
+            result["holdout"] = heldout_errors(result, model, load_model(args.out))
+            result["holdout"]["model_file"] = str(args.out)
+    if args.report:
+        markdown_report(result, args.report)
     if args.json:
         json.dump(public(result), sys.stdout, indent=1)
         sys.stdout.write("\n")

@@ -62,6 +62,12 @@ MIN_Z = 3.0
 TIE = 0.02
 MIMIC_BANDS = 2.5
 UNEXPLAINED_GAIN = 0.10
+#: The residual is unexplained also when, after the best candidates, its held-out error
+#: stays above this multiple of the noise floor F = M_ii sqrt(var(rate noise)) (the part of
+#: the window residual the velocity noise alone makes; effects/windows.py): a model that
+#: explained the log would leave about F (chi-square with one degree of freedom per window
+#: exceeds 5^2 with probability < 1e-6, so noise alone never crosses it).
+NOISE_FLOOR_FACTOR = 5.0
 N_BLOCKS = 5
 MAX_STEPS = 4
 #: Plausible added mass as a factor of the prior's [-] (lower, upper): Wang & Clark 2006
@@ -718,7 +724,8 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
                 evaluated.append({"effect": eff.name, "applicable": False,
                                   "reason": f"fit failed: {exc}"})
                 continue
-            trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd))
+            trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
+                                 bands))
         if not steps:
             evaluated += [{k: v for k, v in t.items() if not k.startswith("_")} for t in trials]
         good = [t for t in trials if t["significant"]]
@@ -771,7 +778,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
     return result
 
 
-def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
+def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd, bands_used=None):
     full = ev["full"]
     ncal = len(cal_names)
     n_lin_before = sum(c.design(data, dof, h)[1].shape[1] for c, h in cfg.terms[:-1])
@@ -828,6 +835,14 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd):
     why = eff.implausible(params, data, dof)
     if why:
         reasons.append(why)
+    if getattr(eff, "scales_prior", False) and eff.magnitude(params) > 0:
+        # a thrust scale s acts like inertia and drag all scaled by 1/s: within one band of
+        # the DOF's added mass the prior's own coefficients explain it as well
+        band_m = (bands_used or BANDS)["translational" if dof < 3 else "rotational"]["M"]
+        implied = abs(1.0 / eff.magnitude(params) - 1.0)
+        if implied < band_m:
+            reasons.append(f"the scale implies a common change of inertia and drag of "
+                           f"{100 * implied:.0f}%, within one band ({100 * band_m:.0f}%)")
     # the totals the model would carry: prior + calibration + what the effect releases
     priors = {"M": float(data.model.added_mass[dof, dof]),
               "D_L": float(data.model.linear_damping[dof, dof]),
@@ -873,9 +888,16 @@ def _unexplained(cfg, cur):
         else 0.0
     dbic = ev["bic"] - cur["bic"]
     structured = gain >= UNEXPLAINED_GAIN and dbic < -MIN_DELTA_BIC
-    return bool(structured), {"generic_basis_columns": int(basis.shape[1]),
-                              "held_out_gain": float(gain), "delta_bic": float(dbic),
-                              "threshold": UNEXPLAINED_GAIN}
+    # the noise floor: velocity noise through the rate term alone, F = M_ii sqrt(var(rate))
+    floor = float(data.model.mass_matrix[cfg.dof, cfg.dof]) * math.sqrt(
+        data.rate_noise_variance(cfg.dof))
+    ratio = cur["held_out_error"] / floor if floor > 0 else math.inf
+    above = ratio > NOISE_FLOOR_FACTOR
+    return bool(structured or above), {
+        "generic_basis_columns": int(basis.shape[1]), "held_out_gain": float(gain),
+        "delta_bic": float(dbic), "threshold": UNEXPLAINED_GAIN, "noise_floor": floor,
+        "held_out_error_over_noise_floor": float(ratio),
+        "above_noise_floor": bool(above)}
 
 
 class _Generic:
@@ -965,8 +987,13 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 
     say = progress or (lambda message: None)
     fit_log, test_log = (log, None) if not holdout else split(log, holdout, key="holdout")
-    train_log, val_log = ((fit_log, None) if not validation
-                          else split(fit_log, validation, key="validation"))
+    train_log, val_log, skipped = fit_log, None, None
+    if validation:
+        try:
+            train_log, val_log = split(fit_log, validation, key="validation")
+            window_data(train_log, model, window=window)
+        except InputError as exc:  # too short to spare a validation part: fit on all of it
+            train_log, val_log, skipped = fit_log, None, str(exc)
     say(f"windows of {window:g} s over {train_log['t'][-1] - train_log['t'][0]:.0f} s of log")
     data = window_data(train_log, model, window=window)
     if model.effects:  # a calibrated model: its effects are part of its prediction
@@ -1031,7 +1058,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     out["kept_at_prior"] = kept
     out["per_dof"] = {d: {k: v for k, v in r.items() if not k.startswith("_")}
                       for d, r in per.items()}
-    out["validation"] = record
+    out["validation"] = record if skipped is None else {"skipped": skipped}
     out["fitted_on_s"] = [float(train_log["t"][0]), float(train_log["t"][-1])]
     if resimulate:
         say("re-simulation of the fitting log")

@@ -756,6 +756,8 @@ class ThrustEffectiveness(Effect):
     source = "Fossen (2011) sec. 6.7; Indiveri 1998 eq. 4.16"
     parameters = {"scale": "-"}
     input_driven = True
+    #: its regressor scales the prior's whole force balance (see the diagnosis's bands test)
+    scales_prior = True
     #: plausible range of the scale [-]: at least 5 % and at most twice the prior's map
     BOUNDS = (0.05, 2.0)
 
@@ -765,7 +767,10 @@ class ThrustEffectiveness(Effect):
         return True, ""
 
     def signature(self, data, dof):
-        return "the applied force itself (separated from inertia and drag by their bands)"
+        # none: the regressor is the applied force, which the prior's inertia and drag
+        # scaled together reproduce; the effect is separated from them only by their bands
+        # and must win on held-out error like any other candidate without a signature
+        return ""
 
     def own_design(self, data, dof, hyper=None):
         return None, data.mean_held(data.tau[:, dof])[:, None]
@@ -852,6 +857,20 @@ def delayed_integral(t, u, delay, s):
     return c(np.asarray(s) - delay) - c(t[0] - delay)
 
 
+def _resolvable(effect, value, data, samples):
+    """'' if a time [s] is plausible and longer than ``samples`` sampling intervals of the
+    log (a shorter lag or delay is not resolvable from it: it absorbs the quadrature error
+    of the window integrals at input steps instead), else the reason."""
+    if not effect.plausible({next(iter(effect.parameters)): value}):
+        return "implausible parameters"
+    if data is not None:
+        dt = float(np.median(np.diff(data.t)))
+        if value < samples * dt:
+            return (f"{value:.3g} s is shorter than {samples:g} sampling interval(s) "
+                    f"({samples * dt:.3g} s): not resolvable from this log")
+    return ""
+
+
 class ThrusterLag(Effect):
     r"""Thruster dynamics: the thrust follows the command with a first-order lag.
 
@@ -912,6 +931,9 @@ class ThrusterLag(Effect):
 
     def plausible(self, params):
         return 0.0 < params["time_constant"] <= self.GRID_MAX
+
+    def implausible(self, params, data=None, dof=None):
+        return _resolvable(self, params["time_constant"], data, 0.5)
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F = tau_l - tau with T_l dtau_l/dt = tau - tau_l, exact
@@ -989,6 +1011,9 @@ class ActuationDelay(Effect):
 
     def plausible(self, params):
         return 0.0 < params["delay"] <= self.GRID_MAX
+
+    def implausible(self, params, data=None, dof=None):
+        return _resolvable(self, params["delay"], data, 1.0)
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F = tau(t - d) - tau(t), d [s], tau [N, N m], in DOF
