@@ -212,3 +212,30 @@ def test_holdout_numbers_are_those_of_the_written_model_and_validation_never_wor
             sum(val["all_changes"][x] > val["prior"][x] for x in val["prior"])
     assert np.all(np.diag(res["model"].linear_damping) >= 0)
     assert np.all(np.diag(res["model"].quadratic_damping) >= 0)
+
+
+def test_cli_holdout_prints_the_numbers_of_the_file_it_wrote(tmp_path, capsys):
+    from stripcoef import cli
+    from stripcoef.export import write_export
+    from stripcoef.modelfile import load_model
+
+    log, prior, _ = make_log(10, duration=120.0)
+    log.write_csv(tmp_path / "log.csv")
+    write_export(prior, "yaml", tmp_path / "prior.yaml")
+    rc = cli.main(["diagnose", str(tmp_path / "log.csv"), "--vehicle",
+                   str(tmp_path / "prior.yaml"), "--effects", "buoyancy_offset",
+                   "--holdout", "0.3", "--out", str(tmp_path / "cal.yaml"), "--json",
+                   "--no-resimulate", "--quiet"])
+    out = capsys.readouterr()
+    assert rc == 0 and out.err == ""
+    res = json.loads(out.out)
+    assert res["holdout"]["model_file"] == str(tmp_path / "cal.yaml")
+    test_log = split(log, 0.3)[1]
+    dofs = [DOF.index(d) for d in res["holdout"]["errors"]]
+    again = free_simulation_errors(test_log, load_model(tmp_path / "cal.yaml"), dofs)
+    for k, d in enumerate(res["holdout"]["errors"]):
+        assert res["holdout"]["errors"][d]["calibrated"] == pytest.approx(again[k], rel=1e-6)
+    rc = cli.main(["diagnose", str(tmp_path / "log.csv"), "--vehicle",
+                   str(tmp_path / "prior.yaml"), "--holdout", "1.5"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--holdout" in err and len(err.strip().splitlines()) == 1
