@@ -836,13 +836,15 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd, bands_used=None):
     if why:
         reasons.append(why)
     if getattr(eff, "scales_prior", False) and eff.magnitude(params) > 0:
-        # a thrust scale s acts like inertia and drag all scaled by 1/s: within one band of
-        # the DOF's added mass the prior's own coefficients explain it as well
+        # a thrust scale s acts like inertia and drag all scaled by 1/s, which the prior's
+        # own coefficients reproduce: like an effect without a signature, it must imply a
+        # change beyond MIMIC_BANDS bands of the DOF's added mass
         band_m = (bands_used or BANDS)["translational" if dof < 3 else "rotational"]["M"]
         implied = abs(1.0 / eff.magnitude(params) - 1.0)
-        if implied < band_m:
+        if implied < MIMIC_BANDS * band_m:
             reasons.append(f"the scale implies a common change of inertia and drag of "
-                           f"{100 * implied:.0f}%, within one band ({100 * band_m:.0f}%)")
+                           f"{100 * implied:.0f}%, within {MIMIC_BANDS:g} bands "
+                           f"({100 * MIMIC_BANDS * band_m:.0f}%)")
     # the totals the model would carry: prior + calibration + what the effect releases
     priors = {"M": float(data.model.added_mass[dof, dof]),
               "D_L": float(data.model.linear_damping[dof, dof]),
