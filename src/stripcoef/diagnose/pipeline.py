@@ -1197,15 +1197,23 @@ def calibrated_model(model, per: dict, exclude=frozenset()):
     for d, r in per.items():
         i = parse_dof(d)
         cal = r["calibration"]["final_parameters"]
+        cfg = r["_final_config"]
+        theta = r["_final_eval"]["full"]["theta"]
+        k = len(r["calibration"]["parameters"])
+        dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
+        if dropped:
+            # the kept terms refitted without the removed ones (their nonlinear parameters
+            # as selected), so that no kept parameter compensates a term that is not there
+            cfg = _Config(cfg.data, i, cfg.cal_cols, cfg.cal_sd,
+                          [t for t in cfg.terms if t not in dropped])
+            theta = _fit(cfg)["theta"]
+            cal = {n: float(v) for n, v in zip(cal, theta[:k])}
         if ("calibration", d) not in exclude:
             for key, value in cal.items():
                 if key in ("M", "D_L", "D_Q"):
                     m = add(m, key, i, value)
                 elif key.startswith("M_") and key[2:] not in per:
                     m = add(m, "M", parse_dof(key[2:]), value)
-        cfg = r["_final_config"]
-        theta = r["_final_eval"]["full"]["theta"]
-        k = len(r["calibration"]["parameters"])
         kept_effects = []
         for eff, hyper in cfg.terms:
             ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
