@@ -12,6 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from conftest import ROOT
 from stripcoef.conventions import DOF
 from stripcoef.diagnose.heldout import (free_simulation_errors, hold_last_velocity_errors,
                                         segments, split)
@@ -301,3 +302,91 @@ def test_real_style_log_meets_the_issue_16_done_when():
     again = free_simulation_errors(split(log, 0.3)[1], written, [DOF.index(d) for d in errors])
     for k, d in enumerate(errors):
         assert errors[d]["calibrated"] == pytest.approx(again[k], rel=1e-9)
+
+
+# ---------------------------------------------------------------------------
+# issue 19: the method uncertainty of the prior's added mass bounds its calibration
+# ---------------------------------------------------------------------------
+
+def test_method_added_mass_sd_of_a_vehicle_file_and_none_for_a_model_file(tmp_path):
+    from stripcoef.diagnose.pipeline import prior_added_mass_sd
+    from stripcoef.export import write_export
+    from stripcoef.study.sources import method_sources
+
+    sd, cls = prior_added_mass_sd(str(ROOT / "geometry" / "videoray_pro3.yaml"))
+    assert cls == "appended"
+    rows = {s.name: s.spread for s in method_sources_of(str(ROOT / "geometry" / "videoray_pro3.yaml"),
+                                                         method_sources)}
+    np.testing.assert_array_equal(sd, [rows["added_mass.translation"]] * 3
+                                  + [rows["added_mass.rotation"]] * 3)
+    write_export(rov_model(), "yaml", tmp_path / "model.yaml")
+    assert prior_added_mass_sd(tmp_path / "model.yaml") == (None, None)
+    assert prior_added_mass_sd(tmp_path / "model.json") == (None, None)
+
+
+def method_sources_of(path, method_sources):
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    return method_sources(load_vehicle(path))
+
+
+def test_added_mass_bounds_with_a_method_band():
+    # 5 % at 1 sigma: the 99.7 % band is +-15 %, inside the factor 0.25-4
+    assert added_mass_bounds(0, 2.0, 0.05) == pytest.approx((1.7, 2.3))
+    # a wide band is cut by the plausible factor (rotation 0.2-5)
+    assert added_mass_bounds(5, 1.0, 0.4) == pytest.approx((0.2, 2.2))
+    assert added_mass_bounds(0, 2.0, float("nan")) == added_mass_bounds(0, 2.0)
+
+
+def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reported():
+    """A truth whose surge added mass is twice the prior's: with a 5 % method band the
+    calibration stops at +15 % (the 99.7 % band), and ``bounds_hit`` says so; without the band
+    it goes further."""
+    from stripcoef.diagnose.pipeline import clip_added_mass
+
+    prior = rov_model()
+    ma = np.array(prior.added_mass, float)
+    ma[0, 0] *= 2.0
+    truth = replace(prior, added_mass=ma)
+    log, _, _ = make_log(11, surge_only=True, truth=truth, duration=120.0)
+    sd = np.array([0.05, 0.05, 0.05, 0.10, 0.10, 0.10])
+    res = diagnose(log, prior, dof="surge", effects=["added_mass_error"], validation=None,
+                   added_mass_sd=sd)
+    lo, hi = added_mass_bounds(0, float(prior.added_mass[0, 0]), 0.05)
+    assert res.model.added_mass[0, 0] == pytest.approx(hi, rel=1e-5)
+    assert "99.7 % band" in res.bounds_hit["surge"]["M"]
+    assert res.added_mass_band["relative_sd"]["surge"] == 0.05
+    assert json.loads(json.dumps(res.to_dict()))["added_mass_band"]["z"] == 3.0
+    free = diagnose(log, prior, dof="surge", effects=[], validation=None)
+    assert free.model.added_mass[0, 0] > 1.3 * prior.added_mass[0, 0]
+    assert free.added_mass_band is None
+    # what a fit leaves outside the band (an effect folded in afterwards) is clipped to it
+    model, clipped = clip_added_mass(prior, free.model, sd)
+    assert model.added_mass[0, 0] == pytest.approx(hi) and clipped["surge"][1] == model.added_mass[0, 0]
+    assert clip_added_mass(prior, prior, sd) == (prior, {})
+    with pytest.raises(InputError, match="added_mass_sd"):
+        diagnose(log, prior, dof="surge", added_mass_sd=[0.1, 0.1])
+
+
+def test_cli_with_a_vehicle_file_bounds_the_added_mass_by_its_method_band(tmp_path, capsys):
+    from stripcoef import cli
+    from stripcoef.conventions import FORCES
+    from stripcoef.modelfile import load_model
+
+    vehicle = str(ROOT / "geometry" / "videoray_pro3.yaml")
+    prior = load_model(vehicle)
+    rng = np.random.default_rng(12)
+    t = np.arange(0.0, 80.05, 0.1)
+    forces = np.zeros((t.size, 6))
+    forces[:, 0] = _steps(rng, t, (2.0, 6.0))
+    sim = simulate(prior, t, forces=forces, rtol=1e-7, atol=1e-9)
+    cols = {k: v for k, v in sim.columns.items() if k not in FORCES}
+    cols.update({"X": forces[:, 0], "Y": forces[:, 1], "Z": forces[:, 2], "K": forces[:, 3],
+                 "M": forces[:, 4], "N": forces[:, 5]})
+    add_noise(Log(cols, source="vr"), rng).write_csv(tmp_path / "log.csv")
+    rc = cli.main(["diagnose", str(tmp_path / "log.csv"), "--vehicle", vehicle, "--dof",
+                   "surge", "--effects", "buoyancy_offset", "--no-resimulate", "--json", "-q"])
+    res = json.loads(capsys.readouterr().out)
+    assert rc == 0
+    assert res["added_mass_band"]["relative_sd"] == {"surge": 0.05, "sway": 0.05, "heave": 0.05,
+                                                     "roll": 0.1, "pitch": 0.1, "yaw": 0.1}

@@ -129,11 +129,69 @@ METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the mo
                "averaged over non-overlapping windows [N or N m]")
 
 
-def added_mass_bounds(dof: int, prior: float) -> tuple[float, float]:
-    """(lower, upper) plausible added mass of DOF ``dof`` [kg or kg m^2]:
-    :data:`ADDED_MASS_FACTOR` times the prior's value."""
+#: Half-width of the method uncertainty band of the added mass, in standard deviations [-]:
+#: :math:`\pm 3\sigma` holds 99.73 % of a normal distribution (two-sided), the band a
+#: calibrated added mass is clipped to when the prior's method uncertainty is known
+#: (:func:`method_added_mass_sd`; issue 19: the study's bands as the diagnosis's priors).
+ADDED_MASS_BAND_Z = 3.0
+
+
+def added_mass_bounds(dof: int, prior: float, sd: float | None = None) -> tuple[float, float]:
+    r"""(lower, upper) plausible added mass of DOF ``dof`` [kg or kg m^2].
+
+    :data:`ADDED_MASS_FACTOR` times the prior's value, intersected, when the relative 1-sigma
+    method uncertainty ``sd`` [-] of the prior's added mass is known, with its 99.7 % band
+
+    .. math:: |M_{ii}| \,(1 - z\sigma) \le M'_{ii} \le |M_{ii}|\,(1 + z\sigma),
+              \quad z = 3
+
+    (``ADDED_MASS_BAND_Z``; the normal method factor :math:`f = 1 + \sigma z` of
+    :mod:`stripcoef.study.sources`)."""
     lo, hi = ADDED_MASS_FACTOR["translational" if dof < 3 else "rotational"]
-    return lo * abs(prior), hi * abs(prior)
+    lo, hi = lo * abs(prior), hi * abs(prior)
+    if sd is not None and np.isfinite(sd) and sd > 0:
+        lo = max(lo, (1.0 - ADDED_MASS_BAND_Z * float(sd)) * abs(prior))
+        hi = min(hi, (1.0 + ADDED_MASS_BAND_Z * float(sd)) * abs(prior))
+    return lo, hi
+
+
+def _band_sd(data, dof: int):
+    """The relative 1-sigma method uncertainty of DOF ``dof``'s added mass the diagnosis of
+    ``data`` runs with (:func:`diagnose`'s ``added_mass_sd``), or None."""
+    sd = data.__dict__.get("_added_mass_sd")
+    return None if sd is None else float(sd[dof])
+
+
+def method_added_mass_sd(vehicle) -> np.ndarray:
+    """Relative 1-sigma method uncertainty [-] of each DOF's added mass (6,) for a parsed
+    vehicle: the normal ``added_mass`` rows of its shape class in
+    :func:`stripcoef.study.sources.method_sources` (translations share one value, rotations
+    another)."""
+    from stripcoef.study.sources import GROUPS, method_sources
+
+    out = np.full(6, np.nan)
+    for src in method_sources(vehicle):
+        matrix, group = src.name.split(".")
+        if matrix == "added_mass" and src.distribution == "normal":
+            out[list(GROUPS[group])] = src.spread
+    return out
+
+
+def prior_added_mass_sd(path):
+    """``(sd, shape class)`` of :func:`method_added_mass_sd` when ``path`` is a vehicle file,
+    ``(None, None)`` for a model file (it does not say which method or shape it came from)."""
+    from stripcoef.files import load_yaml, read_text
+    from stripcoef.geometry.vehicle import load_vehicle
+    from stripcoef.study.sources import shape_class
+
+    path = str(path)
+    if not path.lower().endswith((".yaml", ".yml")):
+        return None, None
+    data = load_yaml(read_text(path, kind="vehicle or model file"), file=path)
+    if isinstance(data, dict) and "added_mass" in data and "rigid_body_mass" in data:
+        return None, None
+    vehicle = load_vehicle(path)
+    return method_added_mass_sd(vehicle), shape_class(vehicle)
 
 
 # ---------------------------------------------------------------------------
@@ -281,8 +339,8 @@ class _Config:
         if self.cal_names and prior is not None and prior.size == self.cal_lower.size:
             for j, key in enumerate(self.cal_names):
                 if key == "M" or key.startswith("M_"):
-                    lo, hi = added_mass_bounds(dof if key == "M" else parse_dof(key[2:]),
-                                               prior[j])
+                    owner = dof if key == "M" else parse_dof(key[2:])
+                    lo, hi = added_mass_bounds(owner, prior[j], _band_sd(data, owner))
                     self.cal_lower[j] = max(self.cal_lower[j], lo - prior[j])
                     self.cal_upper[j] = hi - prior[j]
         self.cal_has_m = (cal_sd is not None and len(cal_sd) > 0
@@ -632,7 +690,7 @@ def _physical_problems(data: WindowData, dof: int, totals: dict) -> list:
             out.append(f"negative {key} ({total:.3g})")
         if key == "M" or key.startswith("M_"):
             j = dof if key == "M" else parse_dof(key[2:])
-            lo, hi = added_mass_bounds(j, float(m.added_mass[j, j]))
+            lo, hi = added_mass_bounds(j, float(m.added_mass[j, j]), _band_sd(data, j))
             if not lo * (1 - 1e-9) <= total <= hi * (1 + 1e-9):
                 out.append(f"{key} {total:.3g} outside its plausible range [{lo:.3g}, {hi:.3g}]")
     return out
@@ -980,7 +1038,8 @@ class DofFit:
 _JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "dof", "units",
                 "baseline_error", "calibrated_error", "steps", "final_error", "unexplained",
                 "per_dof", "dropped_dofs", "excited_dofs", "dofs_not_diagnosed",
-                "kept_at_prior", "bounds_hit", "fitted_on_s", "validation", "holdout",
+                "kept_at_prior", "bounds_hit", "added_mass_band", "fitted_on_s",
+                "validation", "holdout",
                 "resimulated_velocity_rms", "resimulated_velocity_description")
 
 
@@ -1036,6 +1095,9 @@ class Diagnosis:
     bounds_hit : mapping
         DOF -> {coefficient: text} for each calibrated coefficient at a physical bound
         (:func:`bounds_hit`)
+    added_mass_band : dict, optional
+        The method uncertainty of the prior's added mass the calibration was bounded by
+        (``relative_sd`` per DOF, ``z``), when known (``added_mass_sd``)
     fitted_on_s : tuple
         (start, end) [s] of the part of the log the coefficients were fitted on
     validation : dict, optional
@@ -1077,6 +1139,7 @@ class Diagnosis:
     fitted_on_s: tuple | None = None
     validation: dict | None = None
     holdout: dict | None = None
+    added_mass_band: dict | None = None
     fits: Mapping = field(default_factory=dict, repr=False, compare=False)
     test_log: object = field(default=None, repr=False, compare=False)
     diagnosed: tuple = field(default=(), repr=False, compare=False)
@@ -1176,7 +1239,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS,
              time_limit: float | None = None,
              validation: float | None = VALIDATION_FRACTION,
-             holdout: float | None = None) -> Diagnosis:
+             holdout: float | None = None, added_mass_sd=None) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -1204,6 +1267,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Fraction of the log (its end) never used for fitting: the held-out free-simulation
         errors of the prior, the calibrated model (as written) and hold-last-velocity are
         reported on it (:attr:`Diagnosis.holdout`).
+    added_mass_sd : (6,) array, optional
+        Relative 1-sigma method uncertainty [-] of the prior's added mass per DOF
+        (:func:`method_added_mass_sd`; NaN where unknown): the calibrated added mass stays
+        within its 99.7 % band (:func:`added_mass_bounds`); one outside it is clipped to it
+        and listed in ``bounds_hit``.
 
     Returns
     -------
@@ -1225,18 +1293,25 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                                       and 0.0 <= float(value) < 1.0):
             raise InputError("not a fraction", key=key, value=value,
                              expected="a number in [0, 1), e.g. 0.3")
+    if added_mass_sd is not None:
+        added_mass_sd = np.asarray(added_mass_sd, float).reshape(-1)
+        if added_mass_sd.size != 6 or np.any(added_mass_sd[np.isfinite(added_mass_sd)] < 0):
+            raise InputError("not six relative standard deviations", key="added_mass_sd",
+                             value=added_mass_sd.tolist(),
+                             expected="6 numbers >= 0 (NaN where unknown), one per DOF")
     _deadline.update(at=time.monotonic() + limit if math.isfinite(limit) else None,
                      limit=limit, rows=len(log), source=log.source)
     try:
         return _diagnose(log, model, dof=dof, window=window, effects=effects,
                          resimulate=resimulate, bands=bands, max_steps=max_steps,
-                         validation=validation or None, holdout=holdout or None)
+                         validation=validation or None, holdout=holdout or None,
+                         added_mass_sd=added_mass_sd)
     finally:
         _deadline["at"] = None
 
 
 def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
-              validation, holdout) -> Diagnosis:
+              validation, holdout, added_mass_sd=None) -> Diagnosis:
     """:func:`diagnose` inside its time budget."""
     from stripcoef.diagnose.heldout import split
 
@@ -1251,6 +1326,7 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
         except InputError as exc:  # too short to spare a validation part: fit on all of it
             train_log, val_log, skipped = fit_log, None, str(exc)
     data = window_data(train_log, model, window=window)
+    data.__dict__["_added_mass_sd"] = added_mass_sd
     if model.effects:  # a calibrated model: its effects are part of its prediction
         data.e0 = data.e0 - effect_window_forces(data, model)
     excited, not_excited = select_dofs(data)
@@ -1284,6 +1360,7 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs)
     calibrated = calibrated_model(model, per, fits, exclude)
+    calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
         summary = {"metric": METRIC, "dof": r["dof"], "units": r["units"],
@@ -1315,7 +1392,8 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
                        vehicle=model.name, per_dof=per, model=calibrated, fits=fits,
                        dropped_dofs=dropped, excited_dofs=tuple(DOF[i] for i in excited),
                        dofs_not_diagnosed=not_diagnosed, kept_at_prior=kept,
-                       bounds_hit=bounds_hit(model, calibrated),
+                       bounds_hit=bounds_hit(model, calibrated, added_mass_sd, clipped),
+                       added_mass_band=_band_record(added_mass_sd),
                        validation=record if skipped is None else {"skipped": skipped},
                        fitted_on_s=(float(train_log["t"][0]), float(train_log["t"][-1])),
                        test_log=test_log, diagnosed=tuple(dofs), **summary)
@@ -1341,19 +1419,63 @@ def heldout_errors(result: Diagnosis, prior, written) -> dict:
             "horizon_s": HORIZON, "errors": errors}
 
 
-def bounds_hit(prior, calibrated) -> dict:
+def _band_record(added_mass_sd):
+    """The JSON record of the added-mass bands a diagnosis ran with (None without)."""
+    if added_mass_sd is None:
+        return None
+    return {"relative_sd": {DOF[i]: (float(v) if np.isfinite(v) else None)
+                            for i, v in enumerate(added_mass_sd)},
+            "z": ADDED_MASS_BAND_Z,
+            "description": "method uncertainty of the prior's added mass (1 sigma, relative; "
+                           "stripcoef.study.sources); the calibrated added mass stays within "
+                           f"+-{ADDED_MASS_BAND_Z:g} sigma (99.7 %)"}
+
+
+def clip_added_mass(prior, calibrated, added_mass_sd=None):
+    """``(model, clipped)``: ``calibrated`` with each diagonal added mass clipped to
+    :func:`added_mass_bounds` of the prior's (a new model if anything moved), and
+    ``{dof: (value before, value after)}`` [kg or kg m^2] of the clipped ones. The fits are
+    bounded already; this catches what an effect adds to the matrix afterwards."""
+    ma = np.array(calibrated.added_mass, float)
+    clipped = {}
+    for i in range(6):
+        ma0 = float(prior.added_mass[i, i])
+        if ma0 == 0.0 or ma[i, i] == ma0:
+            continue
+        lo, hi = added_mass_bounds(i, ma0, None if added_mass_sd is None
+                                   else float(added_mass_sd[i]))
+        value = float(np.clip(ma[i, i], lo, hi))
+        if value != ma[i, i]:
+            clipped[DOF[i]] = (float(ma[i, i]), value)
+            ma[i, i] = value
+    if not clipped:
+        return calibrated, clipped
+    return replace(calibrated, added_mass=ma), clipped
+
+
+def bounds_hit(prior, calibrated, added_mass_sd=None, clipped=None) -> dict:
     """The coefficients of a calibrated model at a physical bound: DOF -> {name: text}, for
-    an added mass at a limit of :func:`added_mass_bounds` and a drag at zero."""
+    an added mass at a limit of :func:`added_mass_bounds` (the 99.7 % method band with
+    ``added_mass_sd``; ``clipped``: :func:`clip_added_mass`'s record) and a drag at zero."""
     out = {}
+    clipped = clipped or {}
     for i in range(6):
         hits = {}
         ma0, ma = float(prior.added_mass[i, i]), float(calibrated.added_mass[i, i])
         if ma0 != 0.0:
-            lo, hi = added_mass_bounds(i, ma0)
+            sd = None if added_mass_sd is None else float(added_mass_sd[i])
+            lo, hi = added_mass_bounds(i, ma0, sd)
+            band = (f"the 99.7 % band of its method uncertainty ({100 * sd:g} % at 1 sigma) "
+                    "and its plausible range" if sd is not None and np.isfinite(sd) and sd > 0
+                    else "its plausible range")
             for value, name in ((lo, "lower"), (hi, "upper")):
-                if ma != ma0 and abs(ma - value) <= 1e-6 * max(abs(value), 1e-12):
-                    hits["M"] = (f"added mass {ma:.4g} at the {name} bound of its plausible "
-                                 f"range [{lo:.4g}, {hi:.4g}]")
+                # within the bounded scalar search's tolerance (1e-6 of the DOF's whole
+                # inertia M_RB + M_A, a few 1e-6 of M_A): at the bound
+                if ma != ma0 and abs(ma - value) <= 1e-5 * max(abs(value), 1e-12):
+                    hits["M"] = (f"added mass {ma:.4g} at the {name} bound of {band} "
+                                 f"[{lo:.4g}, {hi:.4g}]")
+                    if DOF[i] in clipped:
+                        hits["M"] += f", clipped from {clipped[DOF[i]][0]:.4g}"
         for key, attr in (("D_L", "linear_damping"), ("D_Q", "quadratic_damping")):
             d0, d = float(getattr(prior, attr)[i, i]), float(getattr(calibrated, attr)[i, i])
             if d0 != 0.0 and d != d0 and abs(d) <= 1e-9 * abs(d0):

@@ -59,6 +59,12 @@ def text_summary(result) -> str:
         lines.append("\nkept at the prior (the log does not determine them):")
         for d, v in kept.items():
             lines += [f"  {d} {k}: {why}" for k, why in v.items()]
+    band = result.get("added_mass_band")
+    if band:
+        lines.append(f"\nadded mass bounded by +-{band['z']:g} sigma of its method uncertainty "
+                     "(1 sigma: " + ", ".join(f"{d} {100 * v:g} %" for d, v in
+                                              band["relative_sd"].items() if v is not None)
+                     + ")")
     hits = result.get("bounds_hit") or {}
     if hits:
         lines.append("\nat a physical bound in the calibrated model:")
