@@ -204,7 +204,8 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         a dict with ``commands`` (name -> command), ``thrust`` (name -> [N]), ``tau``
         (applied force, (6,)), ``nu_c`` (current in body axes, (6,)), ``nu_r`` ((6,)),
         ``model``, ``allocation`` (its thruster allocation matrix B, (6, n), computed once per
-        run) and ``columns`` (the ``channels`` at that time).
+        run), ``columns`` (the ``channels`` at that time) and ``input_history`` (``(t,
+        tau)``: the applied force at every sample, for effects with a memory of the inputs).
     effects : bool
         Apply ``model.effects`` (calibrated effects, :mod:`stripcoef.effects.laws`).
     munk : bool
@@ -333,6 +334,16 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
         effect_terms = effect_forces(model)
     nthr = len(thrusters)
+    # the applied force at every sample (updated by a controller as it runs): effects with
+    # a memory of the inputs (thruster lag, actuation delay) read it as ``input_history``
+    tau_history = np.zeros((n, 6))
+    if effect_terms or extra_force is not None:
+        thr_all = (np.column_stack([np.asarray(th.thrust(cmd[:, k]), float).reshape(-1)
+                                    for k, th in enumerate(thrusters)]) if nthr
+                   else np.zeros((n, 0)))
+        f_all = (np.array([np.asarray(force_fn(ti), float).reshape(6) for ti in t])
+                 if force_fn else force_series)
+        tau_history = (thr_all @ alloc.T if nthr else 0.0) + f_all
 
     hold = {"values": None}  # inputs held constant over a zero-order-hold segment
 
@@ -371,7 +382,7 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         if effect_terms or extra_force is not None:
             inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
                       "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
-                      "allocation": alloc,
+                      "allocation": alloc, "input_history": (t, tau_history),
                       "columns": (dict(zip(chan_names, chan_sampler(time)))
                                   if chan_sampler is not None else {})}
             for term in effect_terms:
@@ -433,6 +444,9 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             if name not in commanded:
                 commanded.append(name)
         inputs_series[k, :nthr] = cmd[k]
+        if effect_terms or extra_force is not None:
+            thr_k = np.array([float(th.thrust(c)) for th, c in zip(thrusters, cmd[k])])
+            tau_history[k] = (alloc @ thr_k if nthr else 0.0) + force_series[k]
 
     clock = TimeBar(t[0], t[-1], desc=f"simulate {model.name}")
     for a, b in zip(bounds[:-1], bounds[1:]):

@@ -38,18 +38,59 @@ def text_summary(result) -> str:
                      f"calibrated {_fmt(r['calibrated_error'])}  final {_fmt(r['final_error'])}"
                      f"  unexplained {_fmt(r['unexplained'])}")
         cal = r["calibration"]
-        lines.append("  calibration: " + ", ".join(
+        lines.append("  calibration" + (" [removed: worse free simulation on the validation "
+                                        "data]" if cal.get("kept") is False else "")
+                     + ": " + ", ".join(
             f"{k} {_fmt(cal['prior'][k])} -> {_fmt(cal['prior'][k] + v)} "
             f"({_fmt(cal['band_z'][k], 2)} bands)" for k, v in cal["parameters"].items()))
         for i, s in enumerate(r["steps"], 1):
             alt = (" (ties: " + ", ".join(a["effect"] for a in s["alternatives"]) + ")"
                    if s["alternatives"] else "")
+            if s.get("kept") is False:
+                alt += " [removed: worse free simulation on the validation data]"
             lines.append(f"  step {i}: {s['effect']}: {_params(s['parameters'], s['std'])}; "
                          f"error {_fmt(s['error_before'])} -> {_fmt(s['error_after'])}, "
                          f"held-out {_fmt(s['held_out_error_before'])} -> "
                          f"{_fmt(s['held_out_error_after'])}{alt}")
         if not r["steps"]:
             lines.append("  no effect is significant")
+    kept = {d: v for d, v in (result.get("kept_at_prior") or {}).items() if v}
+    if kept:
+        lines.append("\nkept at the prior (the log does not determine them):")
+        for d, v in kept.items():
+            lines += [f"  {d} {k}: {why}" for k, why in v.items()]
+    band = result.get("added_mass_band")
+    if band:
+        lines.append(f"\nadded mass bounded by +-{band['z']:g} sigma of its method uncertainty "
+                     "(1 sigma: " + ", ".join(f"{d} {100 * v:g} %" for d, v in
+                                              band["relative_sd"].items() if v is not None)
+                     + ")")
+    hits = result.get("bounds_hit") or {}
+    if hits:
+        lines.append("\nat a physical bound in the calibrated model:")
+        for d, v in hits.items():
+            lines += [f"  {d} {k}: {why}" for k, why in v.items()]
+    val = result.get("validation")
+    if val and "skipped" in val:
+        lines.append(f"\nvalidation skipped (every change kept): {val['skipped']}")
+    elif val:
+        lines.append("\nvalidation (free simulation, " + "-".join(
+            f"{x:.0f}" for x in val["validation_s"]) + " s; prior / all changes / kept):")
+        for d in val["prior"] or {}:
+            lines.append(f"  {d}: {_fmt((val['prior'] or {}).get(d))} / "
+                         f"{_fmt((val['all_changes'] or {}).get(d))} / "
+                         f"{_fmt((val['kept_changes'] or {}).get(d))}")
+        if val["removed"]:
+            lines.append("  removed: " + ", ".join(val["removed"]))
+    hold = result.get("holdout")
+    if hold:
+        lines.append("\nheld-out free simulation, " + "-".join(
+            f"{x:.0f}" for x in hold["held_out_s"]) + " s (prior / calibrated / "
+            "hold-last-velocity)" + (f", model read back from {hold['model_file']}"
+                                     if hold.get("model_file") else "") + ":")
+        for d, v in hold["errors"].items():
+            lines.append(f"  {d}: {_fmt(v['prior'])} / {_fmt(v['calibrated'])} / "
+                         f"{_fmt(v['hold_last_velocity'])}")
     if "resimulated_velocity_rms" in result:
         lines.append("\nre-simulated velocity RMS (baseline / calibrated / final):")
         for d, v in result["resimulated_velocity_rms"].items():
@@ -112,6 +153,16 @@ def markdown_report(result: Diagnosis, path) -> None:
         for d, v in pub["resimulated_velocity_rms"].items():
             out.append(f"| {d} | {_fmt(v['baseline'])} | {_fmt(v['calibrated'])} | "
                        f"{_fmt(v['final'])} |")
+    text = text_summary(pub)
+    extra = text[text.find("\nkept at the prior"):] if "\nkept at the prior" in text else ""
+    for marker in ("\nat a physical bound", "\nvalidation (free", "\nvalidation skipped",
+                   "\nheld-out free"):
+        if not extra and marker in text:
+            extra = text[text.find(marker):]
+    extra = extra.split("\nre-simulated velocity RMS")[0]
+    if extra.strip():
+        out += ["", "## Identifiability, validation and held-out error", "", "```",
+                extra.strip("\n"), "```"]
     out += ["", "## Method", "",
             f"Held-out error: blocked cross-validation, {N_BLOCKS} contiguous blocks each "
             f"predicted by a fit on the others. An effect is significant when the held-out error drops by "

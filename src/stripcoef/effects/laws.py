@@ -149,12 +149,36 @@ class Effect:
         :func:`stripcoef.simulate.simulate`; ``params`` in the units of :attr:`parameters`."""
         raise NotImplementedError
 
+    def window_force(self, data, params: dict, dof: int) -> np.ndarray:
+        """Window mean of the effect's force in ``dof`` along the log [N or N m], (m,): the
+        force law evaluated at every sample (the log's state and inputs), averaged as a held
+        input (:attr:`input_driven`) or by the trapezoidal rule."""
+        law = self.force_law(params, dof)
+        names = [th.name for th in data.model.thrusters]
+        f = np.zeros(data.t.size)
+        for n in range(data.t.size):
+            cmd = {} if data.commands is None else dict(zip(names, data.commands[n]))
+            thr = {} if data.thrust is None else dict(zip(names, data.thrust[n]))
+            inputs = {"commands": cmd, "thrust": thr, "tau": data.tau[n], "nu_c": np.zeros(6),
+                      "nu_r": data.nu[n], "model": data.model, "allocation": data.alloc,
+                      "columns": {k: v[n] for k, v in data.columns.items()},
+                      "input_history": (data.t, data.tau)}
+            f[n] = law(data.t[n], data.eta[n], data.nu[n], inputs)[dof]
+        return data.mean_held(f) if self.input_driven else data.mean(f)
+
     def apply(self, model, dof: int, params: dict, std: dict | None = None):
         """The model with the effect added (a new model; ``model`` is immutable): as an
         entry of ``model.effects``."""
         return model.with_effects({
             "name": self.name, "dof": DOF[dof], "parameters": dict(params),
             "std": dict(std or {}), "units": dict(self.parameters)})
+
+    #: the force depends only on the applied inputs (window-averaged exactly as a held input)
+    input_driven = False
+
+    def implausible(self, params: dict, data=None, dof=None) -> str:
+        """Why the parameters are physically impossible for this log ('' if they are not)."""
+        return "" if self.plausible(params) else "implausible parameters"
 
 
 def _unit_vec(dof):
@@ -307,6 +331,8 @@ class ThrustAsymmetry(Effect):
     def plausible(self, params):
         return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
 
+    input_driven = True
+
     def force_law(self, params, dof):
         """Simulation force law: Delta F_i = (eta_+ - 1) F+_i + (eta_- - 1) F-_i, eta [-], F+-_i [N or N m];
         returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
@@ -418,6 +444,8 @@ class BuoyancyOffset(Effect):
     def signature(self, data, dof):
         return "a bias"
 
+    input_driven = True
+
     def own_design(self, data, dof, hyper=None):
         return None, np.ones((data.n_windows, 1))
 
@@ -499,6 +527,23 @@ class Current(Effect):
 
     def plausible(self, params):
         return self.magnitude(params) < 5.0
+
+    def max_magnitude(self, data) -> float:
+        r"""Largest current the log can support [m/s]: the vehicle's 95th-percentile
+        horizontal speed over ground, :math:`|V_c| \le P_{95}(\sqrt{u^2 + v^2})`. A vehicle
+        driven around a basin against a current faster than itself would be swept away,
+        and a constant current larger than the speeds the log explores is an extrapolation
+        of the drag law, not a measurement (issue 16: 0.73 m/s accepted in a pool)."""
+        return float(np.percentile(np.hypot(data.nu[:, 0], data.nu[:, 1]), 95))
+
+    def implausible(self, params, data=None, dof=None):
+        if not self.plausible(params):
+            return "implausible parameters"
+        if data is not None and self.magnitude(params) > self.max_magnitude(data):
+            return (f"a current of {self.magnitude(params):.3g} m/s exceeds what the log "
+                    f"supports ({self.max_magnitude(data):.3g} m/s, the 95th-percentile "
+                    "horizontal speed)")
+        return ""
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2];
@@ -700,10 +745,306 @@ class AddedMassError(Effect):
         return replace(model, added_mass=ma)
 
 
+class ThrustEffectiveness(Effect):
+    r"""Commanded wrench that reaches the water only in part: a thrust scale per axis.
+
+    .. math:: \Delta F_i = (s_i - 1)\,\tau_i
+
+    with :math:`\tau_i` the applied generalized force the prior predicts from the commands
+    (or the logged wrench) [N or N m] and :math:`s_i` [-] the fraction that acts: thruster
+    wake and hull interaction, ventilation, a wrong thrust map or a controller whose
+    commanded wrench is saturated downstream. The regressor is the applied force itself;
+    it is separated from the prior's inertia and drag only by their bands (the force
+    balance :math:`M\dot\nu + D\nu = s\tau` is homogeneous), so it is kept only when it
+    improves the held-out free simulation (:mod:`stripcoef.diagnose.heldout`).
+
+    Source: Fossen (2011) sec. 6.7 (thrust deduction and propeller-hull interaction,
+    :math:`T_{eff} = (1 - t_d) T`); Indiveri 1998 eq. 4.16 (the eta model, eta = 0.57 upward);
+    issue 16 (real logs at 0.3-0.5 of the commanded wrench).
+    """
+
+    name = "thrust_effectiveness"
+    summary = "only a fraction of the commanded thrust/wrench acts (scale per axis)"
+    source = "Fossen (2011) sec. 6.7; Indiveri 1998 eq. 4.16"
+    parameters = {"scale": "-"}
+    input_driven = True
+    #: its regressor scales the prior's whole force balance (see the diagnosis's bands test)
+    scales_prior = True
+    #: plausible range of the scale [-]: at least 5 % and at most twice the prior's map
+    BOUNDS = (0.05, 2.0)
+
+    def applicable(self, data, dof):
+        if not np.any(data.tau[:, dof] != 0):
+            return False, "no applied force in this DOF"
+        return True, ""
+
+    def signature(self, data, dof):
+        # none: the regressor is the applied force, which the prior's inertia and drag
+        # scaled together reproduce; the effect is separated from them only by their bands
+        # and must win on held-out error like any other candidate without a signature
+        return ""
+
+    def own_design(self, data, dof, hyper=None):
+        return None, data.mean_held(data.tau[:, dof])[:, None]
+
+    def lower_bounds(self, data, dof, hyper=None):
+        return np.array([self.BOUNDS[0] - 1.0])
+
+    def upper_bounds(self, data, dof, hyper=None):
+        return np.array([self.BOUNDS[1] - 1.0])
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"scale": 1.0 + float(np.atleast_1d(theta)[0])}
+
+    def magnitude(self, params):
+        return params["scale"]
+
+    def window_force(self, data, params, dof):
+        return (params["scale"] - 1.0) * data.mean_held(data.tau[:, dof])
+
+    def plausible(self, params):
+        return self.BOUNDS[0] <= params["scale"] <= self.BOUNDS[1]
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F = (s - 1) tau in DOF ``dof`` (all six for None),
+        s [-], tau [N, N m]; returns f(time, eta, nu, inputs) -> (6,) [N, N m]."""
+        k = params["scale"] - 1.0
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+        return lambda time, eta, nu, inputs: k * np.asarray(inputs["tau"], float) * e
+
+
+def _held_history(inputs):
+    """(t, tau) of the whole run from the simulation's inputs (``input_history``)."""
+    hist = inputs.get("input_history")
+    if hist is None:
+        raise InputError("this effect needs the input history of the simulation",
+                         key="effects", expected="stripcoef.simulate.simulate")
+    return hist
+
+
+def lagged_held(t, u, time_constant):
+    r"""First-order lag of a zero-order-hold input, exactly.
+
+    .. math:: T\dot y = u - y,\quad y_{k+1} = u_k + (y_k - u_k)e^{-\Delta t_k/T},\quad
+              \int_{t_k}^{t_{k+1}} y\,dt = u_k\Delta t_k + (y_k - u_k)\,T(1 - e^{-\Delta t_k/T})
+
+    with :math:`y_0 = u_0` (in equilibrium at the start). ``t`` (n,) [s], ``u`` (n,) or
+    (n, c), ``time_constant`` T [s]. Returns ``(y, integral)``: y at the samples and the
+    exact integral of y over each interval (n - 1) [units of u times s].
+
+    Source: Fossen (2011) sec. 9.3 (first-order actuator dynamics); Yoerger, Cooke &
+    Slotine (1990), IEEE JOE 15 (thruster dynamics).
+    """
+    u = np.asarray(u, float)
+    dt = np.diff(t)
+    y = np.empty_like(u)
+    y[0] = u[0]
+    tc = max(float(time_constant), 1e-9)
+    a = np.exp(-dt / tc)
+    for k in range(dt.size):
+        y[k + 1] = u[k] + (y[k] - u[k]) * a[k]
+    w = tc * (1.0 - a)
+    if u.ndim > 1:
+        dt, w = dt[:, None], w[:, None]
+    integral = u[:-1] * dt + (y[:-1] - u[:-1]) * w
+    return y, integral
+
+
+def delayed_integral(t, u, delay, s):
+    r"""Integral of a held input delayed by ``delay`` up to the times ``s``.
+
+    .. math:: \int_{t_0}^{s} u(\sigma - d)\,d\sigma = C(s - d) - C(t_0 - d),\quad
+              C(x) = \int_{t_0}^{x} u,\ u(x < t_0) = u_0
+
+    ``t`` (n,) [s], ``u`` (n,) zero-order hold, ``delay`` d [s] >= 0, ``s`` (m,) [s].
+    """
+    u = np.asarray(u, float)
+    dt = np.diff(t)
+    cum = np.concatenate([[0.0], np.cumsum(u[:-1] * dt)])
+
+    def c(x):
+        x = np.asarray(x, float)
+        k = np.clip(np.searchsorted(t, x, side="right") - 1, 0, t.size - 1)
+        return np.where(x < t[0], u[0] * (x - t[0]), cum[k] + u[k] * (x - t[k]))
+    return c(np.asarray(s) - delay) - c(t[0] - delay)
+
+
+def _resolvable(effect, value, data, samples):
+    """'' if a time [s] is plausible and longer than ``samples`` sampling intervals of the
+    log (a shorter lag or delay is not resolvable from it: it absorbs the quadrature error
+    of the window integrals at input steps instead), else the reason."""
+    if not effect.plausible({next(iter(effect.parameters)): value}):
+        return "implausible parameters"
+    if data is not None:
+        dt = float(np.median(np.diff(data.t)))
+        if value < samples * dt:
+            return (f"{value:.3g} s is shorter than {samples:g} sampling interval(s) "
+                    f"({samples * dt:.3g} s): not resolvable from this log")
+    return ""
+
+
+class ThrusterLag(Effect):
+    r"""Thruster dynamics: the thrust follows the command with a first-order lag.
+
+    .. math:: T_l\,\dot{\tau}_{l} = \tau - \tau_{l},\qquad \Delta F_i = \tau_{l,i} - \tau_i
+
+    with :math:`\tau` the applied force the prior predicts from the commands [N or N m],
+    :math:`\tau_l` the force that acts and :math:`T_l` [s] the time constant, profiled by a
+    one-dimensional search (one value for the vehicle's thrusters). The signature: a force
+    that follows every step of the input and decays with the time constant; an inflated
+    added mass (the confusion issue 16 measured in 6 of 6 logs) acts on the acceleration of
+    the vehicle instead, whose time constant is M/D.
+
+    Source: Yoerger, Cooke & Slotine (1990), IEEE JOE 15 (thruster dynamics); Fossen (2011)
+    sec. 9.3 (first-order actuator model).
+    """
+
+    name = "thruster_lag"
+    summary = "first-order lag of the thrust behind the command"
+    source = "Yoerger et al. (1990); Fossen (2011) sec. 9.3"
+    parameters = {"time_constant": "s"}
+    hyper = ("time_constant",)
+    input_driven = True
+    #: search range of the time constant [s]: from a tenth of a sample to 2 s
+    GRID_MAX = 2.0
+
+    def applicable(self, data, dof):
+        if not np.any(data.tau[:, dof] != 0):
+            return False, "no applied force in this DOF"
+        return True, ""
+
+    def signature(self, data, dof):
+        return "a force that follows the steps of the input and decays"
+
+    def grid(self, data, dof):
+        dt = float(np.median(np.diff(data.t)))
+        return np.geomspace(0.1 * dt, self.GRID_MAX, 12)
+
+    def hyper_start(self, data, dof):
+        return np.array([0.0])
+
+    def offset(self, data, dof, tc):
+        tau = data.tau[:, dof]
+        _, integral = lagged_held(data.t, tau, tc)
+        cum = np.concatenate([[0.0], np.cumsum(integral)])
+        lagged = (cum[data.i1] - cum[data.i0]) / data.T
+        return lagged - data.mean_held(tau)
+
+    def own_design(self, data, dof, hyper=None):
+        tc = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
+        off = np.zeros(data.n_windows) if tc <= 0 else self.offset(data, dof, tc)
+        return off, np.zeros((data.n_windows, 0))
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"time_constant": float(np.atleast_1d(hyper)[0])}
+
+    def window_force(self, data, params, dof):
+        return self.own_design(data, dof, [params["time_constant"]])[0]
+
+    def plausible(self, params):
+        return 0.0 < params["time_constant"] <= self.GRID_MAX
+
+    def implausible(self, params, data=None, dof=None):
+        return _resolvable(self, params["time_constant"], data, 0.5)
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F = tau_l - tau with T_l dtau_l/dt = tau - tau_l, exact
+        for held inputs, T_l [s], tau [N, N m], in DOF ``dof`` (all six for None); returns
+        f(time, eta, nu, inputs) -> (6,) [N, N m]."""
+        tc = params["time_constant"]
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+        state = {"k": 0, "y": None}
+
+        def f(time, eta, nu, inputs):
+            t, taus = _held_history(inputs)
+            k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 1))
+            if state["y"] is None or k < state["k"]:
+                state["k"], state["y"] = 0, np.array(taus[0], float)
+            while state["k"] < k:  # advance the lag state sample by sample (exact, held)
+                j = state["k"]
+                a = math.exp(-(t[j + 1] - t[j]) / tc)
+                state["y"] = taus[j] + (state["y"] - taus[j]) * a
+                state["k"] = j + 1
+            u = np.asarray(inputs["tau"], float)
+            y = u + (state["y"] - u) * math.exp(-max(time - t[k], 0.0) / tc)
+            return (y - u) * e
+        return f
+
+
+class ActuationDelay(Effect):
+    r"""A pure delay between the logged command and the force it produces.
+
+    .. math:: \Delta F_i = \tau_i(t - d) - \tau_i(t)
+
+    with d [s] profiled by a one-dimensional search: communication and driver latency, a
+    command logged before it is sent. The signature: a force that precedes the response
+    by a fixed time at every step of the input.
+
+    Source: Fossen (2011) sec. 9.3 (actuator dynamics and time delays); Yoerger, Cooke &
+    Slotine (1990), IEEE JOE 15.
+    """
+
+    name = "actuation_delay"
+    summary = "pure time delay between command and thrust"
+    source = "Fossen (2011) sec. 9.3; Yoerger et al. (1990)"
+    parameters = {"delay": "s"}
+    hyper = ("delay",)
+    input_driven = True
+    GRID_MAX = 1.0
+
+    applicable = ThrusterLag.applicable
+
+    def signature(self, data, dof):
+        return "a force that precedes the response by a fixed time"
+
+    def grid(self, data, dof):
+        dt = float(np.median(np.diff(data.t)))
+        return np.linspace(0.1 * dt, self.GRID_MAX, 12)
+
+    def hyper_start(self, data, dof):
+        return np.array([0.0])
+
+    def offset(self, data, dof, delay):
+        tau = data.tau[:, dof]
+        a = delayed_integral(data.t, tau, delay, data.t[data.i0])
+        b = delayed_integral(data.t, tau, delay, data.t[data.i1])
+        return (b - a) / data.T - data.mean_held(tau)
+
+    def own_design(self, data, dof, hyper=None):
+        d = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
+        off = np.zeros(data.n_windows) if d <= 0 else self.offset(data, dof, d)
+        return off, np.zeros((data.n_windows, 0))
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"delay": float(np.atleast_1d(hyper)[0])}
+
+    def window_force(self, data, params, dof):
+        return self.own_design(data, dof, [params["delay"]])[0]
+
+    def plausible(self, params):
+        return 0.0 < params["delay"] <= self.GRID_MAX
+
+    def implausible(self, params, data=None, dof=None):
+        return _resolvable(self, params["delay"], data, 1.0)
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F = tau(t - d) - tau(t), d [s], tau [N, N m], in DOF
+        ``dof`` (all six for None); returns f(time, eta, nu, inputs) -> (6,) [N, N m]."""
+        d = params["delay"]
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            t, taus = _held_history(inputs)
+            k = int(np.clip(np.searchsorted(t, time - d, side="right") - 1, 0, t.size - 1))
+            return (np.asarray(taus[k], float) - np.asarray(inputs["tau"], float)) * e
+        return f
+
+
 #: The registry: name -> the effect (one frozen instance per effect).
 EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
                                BuoyancyOffset(), Current(), LinearDrag(), Deadband(),
-                               AddedMassError())}
+                               AddedMassError(), ThrustEffectiveness(), ThrusterLag(),
+                               ActuationDelay())}
 
 
 def get_effect(name: str) -> Effect:
@@ -727,14 +1068,42 @@ def effect_forces(model) -> list:
         eff = get_effect(entry["name"])
         if eff.native:
             continue
-        dof = parse_dof(entry.get("dof", "surge"))
-        params = entry.get("parameters", {})
-        missing = [p for p in eff.parameters if p not in params]
-        if missing:
-            raise InputError("effect parameter missing", key=f"effects[{k}].parameters",
-                             value=missing[0], expected="parameters " + ", ".join(eff.parameters))
-        out.append(eff.force_law({p: float(params[p]) for p in eff.parameters}, dof))
+        dof, params = _entry(eff, entry, k)
+        out.append(eff.force_law(params, dof))
     return out
 
 
-__all__ = ["EFFECTS", "Effect", "effect_forces", "get_effect"]
+def _entry(eff, entry, k):
+    """(dof or None for "all", parameters) of a model's effect entry number ``k``."""
+    raw = entry.get("dof", "surge")
+    dof = None if str(raw).lower() == "all" else parse_dof(raw)
+    params = entry.get("parameters", {})
+    missing = [p for p in eff.parameters if p not in params]
+    if missing:
+        raise InputError("effect parameter missing", key=f"effects[{k}].parameters",
+                         value=missing[0], expected="parameters " + ", ".join(eff.parameters))
+    return dof, {p: float(params[p]) for p in eff.parameters}
+
+
+def effect_window_forces(data: WindowData, model) -> np.ndarray:
+    r"""Window means of the forces of a model's (non-native) effects along a log [N, N m],
+    shape (m, 6): what a calibrated model already carries, subtracted from its window
+    residual so that a diagnosis of that model does not find its effects again (issue 16).
+
+    .. math:: \bar F_{e} = \frac{1}{T}\int_{t_0}^{t_1} \sum_{effects} F(t)\,dt
+    """
+    out = np.zeros((data.n_windows, 6))
+    for k, entry in enumerate(model.effects):
+        if not isinstance(entry, dict) or "name" not in entry:
+            raise InputError("effect entry without a name", key=f"effects[{k}]",
+                             value=entry, expected="{name, dof, parameters}")
+        eff = get_effect(entry["name"])
+        if eff.native:
+            continue
+        dof, params = _entry(eff, entry, k)
+        for i in (range(6) if dof is None else [dof]):
+            out[:, i] += eff.window_force(data, params, i)
+    return out
+
+
+__all__ = ["EFFECTS", "Effect", "effect_forces", "effect_window_forces", "get_effect"]
