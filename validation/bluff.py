@@ -60,7 +60,7 @@ def section() -> str:
     parts.append("The 3D panel method (`stripcoef.hull.panels`, `estimate(added_mass_method="
                  "\"panels\")`, `--added-mass-method panels`; docs/theory.md \"3D panel "
                  "method\") solves the same potential-flow problem as the reference for any "
-                 "closed mesh; strip theory stays the default, and `auto` takes the panels for "
+                 "closed mesh; the default, `auto`, takes the panels for "
                  "a mesh that is neither round at mid-length nor slender. The last columns "
                  "time Capytaine at the resolution whose error equals the panel method's worst "
                  "diagonal (from its stored first-level error and the 1/N law), in the same "

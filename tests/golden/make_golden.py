@@ -5,7 +5,8 @@ Run only when a change of the matrices is intended and explained in its commit:
     .venv/bin/python tests/golden/make_golden.py
 
 The cases: every shipped vehicle file, with and without the 3D corrections, and a box
-mesh (trimesh's box primitive, deterministic) through the mesh path.
+mesh (trimesh's box primitive, deterministic) through the mesh path, by strip theory and by
+the default method (auto: the panel method for this box).
 """
 
 from __future__ import annotations
@@ -32,7 +33,10 @@ def cases(tmp: Path):
         out.append((vehicle.stem + "_no_corrections", [str(vehicle), "--no-corrections"]))
     box = tmp / "box.stl"
     trimesh.creation.box(extents=(0.46, 0.58, 0.25)).export(box)
-    out.append(("box_mesh", [str(box), "--rho", "1000"]))
+    # strip theory on the box (its golden numbers since the house move), and the default
+    # (auto: the 3D panel method for a body neither round nor slender)
+    out.append(("box_mesh", [str(box), "--rho", "1000", "--added-mass-method", "strips"]))
+    out.append(("box_mesh_auto", [str(box), "--rho", "1000"]))
     return out
 
 

@@ -139,19 +139,19 @@ ADDED_MASS_BAND_Z = 3.0
 def added_mass_bounds(dof: int, prior: float, sd: float | None = None) -> tuple[float, float]:
     r"""(lower, upper) plausible added mass of DOF ``dof`` [kg or kg m^2].
 
-    :data:`ADDED_MASS_FACTOR` times the prior's value, intersected, when the relative 1-sigma
-    method uncertainty ``sd`` [-] of the prior's added mass is known, with its 99.7 % band
+    :data:`ADDED_MASS_FACTOR` times the prior's value, intersected, when the 1-sigma method
+    uncertainty ``sd`` of the prior's added mass is known (sd of :math:`\ln M_{ii}` [-], the
+    lognormal rows of :mod:`stripcoef.study.sources`), with its 99.7 % band
 
-    .. math:: |M_{ii}| \,(1 - z\sigma) \le M'_{ii} \le |M_{ii}|\,(1 + z\sigma),
+    .. math:: |M_{ii}|\, e^{-z\sigma} \le M'_{ii} \le |M_{ii}|\, e^{z\sigma},
               \quad z = 3
 
-    (``ADDED_MASS_BAND_Z``; the normal method factor :math:`f = 1 + \sigma z` of
-    :mod:`stripcoef.study.sources`)."""
+    (``ADDED_MASS_BAND_Z``)."""
     lo, hi = ADDED_MASS_FACTOR["translational" if dof < 3 else "rotational"]
     lo, hi = lo * abs(prior), hi * abs(prior)
     if sd is not None and np.isfinite(sd) and sd > 0:
-        lo = max(lo, (1.0 - ADDED_MASS_BAND_Z * float(sd)) * abs(prior))
-        hi = min(hi, (1.0 + ADDED_MASS_BAND_Z * float(sd)) * abs(prior))
+        lo = max(lo, float(np.exp(-ADDED_MASS_BAND_Z * float(sd))) * abs(prior))
+        hi = min(hi, float(np.exp(ADDED_MASS_BAND_Z * float(sd))) * abs(prior))
     return lo, hi
 
 
@@ -163,16 +163,17 @@ def _band_sd(data, dof: int):
 
 
 def method_added_mass_sd(vehicle) -> np.ndarray:
-    """Relative 1-sigma method uncertainty [-] of each DOF's added mass (6,) for a parsed
-    vehicle: the normal ``added_mass`` rows of its shape class in
+    """1-sigma method uncertainty of each DOF's added mass (6,), as the sd of its logarithm
+    [-], for a parsed vehicle: the ``added_mass`` rows of its class in
     :func:`stripcoef.study.sources.method_sources` (translations share one value, rotations
-    another)."""
+    another; a normal row's relative sd is taken as the sd of the logarithm, equal to first
+    order)."""
     from stripcoef.study.sources import GROUPS, method_sources
 
     out = np.full(6, np.nan)
     for src in method_sources(vehicle):
         matrix, group = src.name.split(".")
-        if matrix == "added_mass" and src.distribution == "normal":
+        if matrix == "added_mass" and group in GROUPS:
             out[list(GROUPS[group])] = src.spread
     return out
 

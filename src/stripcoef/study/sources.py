@@ -86,15 +86,39 @@ def shape_class(vehicle) -> str:
     return by_geometry(vehicle)
 
 
-def method_sources(vehicle) -> list[Source]:
-    """The method rows of ``vehicle``'s shape class, one Source per matrix and DOF group."""
+#: The rows of the method table for an added mass by the 3D panel method
+#: (:mod:`stripcoef.hull.panels`), whatever the shape: its error is measured on the same
+#: reference shapes; the damping of such a model keeps its geometric class's rows.
+PANELS = "panels"
+
+
+def uses_panels(vehicle, options=None) -> bool:
+    """Whether :func:`stripcoef.assembly.estimate` takes ``vehicle``'s added mass from the 3D
+    panel method with ``options`` (default: the default options, ``auto``)."""
+    from stripcoef.assembly import EstimateOptions
+    from stripcoef.assembly.added_mass import added_mass_method
+
+    options = options or EstimateOptions()
+    return added_mass_method(options.added_mass_method, vehicle,
+                             vehicle.cut(options.strips)) == "panels"
+
+
+def method_sources(vehicle, *, panels: bool | None = None) -> list[Source]:
+    """The method rows of ``vehicle``'s shape class, one Source per matrix and DOF group; the
+    added-mass rows of :data:`PANELS` when its added mass is the panel method's (``panels``;
+    default: what :func:`uses_panels` says for the default options)."""
     cls = shape_class(vehicle)
+    if panels is None:
+        panels = uses_panels(vehicle)
     out = []
     for row in _method_table():
-        if row["class"] != cls or row["dofs"] not in (*GROUPS, "coupling"):
+        if row["dofs"] not in (*GROUPS, "coupling"):
+            continue
+        wanted = PANELS if panels and row["matrix"] == "added_mass" else cls
+        if row["class"] != wanted:
             continue
         out.append(Source("method", f"{row['matrix']}.{row['dofs']}", row["distribution"],
-                          float(row["sd"]), 1.0, f"{cls}: {row['source']}"))
+                          float(row["sd"]), 1.0, f"{row['class']}: {row['source']}"))
     return out
 
 
