@@ -314,7 +314,7 @@ def test_method_added_mass_sd_of_a_vehicle_file_and_none_for_a_model_file(tmp_pa
     from stripcoef.study.sources import method_sources
 
     sd, cls = prior_added_mass_sd(str(ROOT / "geometry" / "videoray_pro3.yaml"))
-    assert cls == "appended"
+    assert cls == "bluff"           # stripcoef.study.shapes: by geometry
     rows = {s.name: s.spread for s in method_sources_of(str(ROOT / "geometry" / "videoray_pro3.yaml"),
                                                          method_sources)}
     np.testing.assert_array_equal(sd, [rows["added_mass.translation"]] * 3
@@ -331,16 +331,18 @@ def method_sources_of(path, method_sources):
 
 
 def test_added_mass_bounds_with_a_method_band():
-    # 5 % at 1 sigma: the 99.7 % band is +-15 %, inside the factor 0.25-4
-    assert added_mass_bounds(0, 2.0, 0.05) == pytest.approx((1.7, 2.3))
+    # sd(ln) 0.05: the 99.7 % band is a factor e^(+-0.15), inside the factor 0.25-4
+    assert added_mass_bounds(0, 2.0, 0.05) == pytest.approx((2.0 * np.exp(-0.15),
+                                                             2.0 * np.exp(0.15)))
     # a wide band is cut by the plausible factor (rotation 0.2-5)
-    assert added_mass_bounds(5, 1.0, 0.4) == pytest.approx((0.2, 2.2))
+    assert added_mass_bounds(5, 1.0, 0.4) == pytest.approx((np.exp(-1.2), np.exp(1.2)))
+    assert added_mass_bounds(5, 1.0, 0.6) == pytest.approx((0.2, 5.0))
     assert added_mass_bounds(0, 2.0, float("nan")) == added_mass_bounds(0, 2.0)
 
 
 def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reported():
     """A truth whose surge added mass is twice the prior's: with a 5 % method band the
-    calibration stops at +15 % (the 99.7 % band), and ``bounds_hit`` says so; without the band
+    calibration stops at e^0.15 - 1 = +16 % (the 99.7 % band), and ``bounds_hit`` says so; without the band
     it goes further."""
     from stripcoef.diagnose.pipeline import clip_added_mass
 
@@ -388,5 +390,7 @@ def test_cli_with_a_vehicle_file_bounds_the_added_mass_by_its_method_band(tmp_pa
                    "surge", "--effects", "buoyancy_offset", "--no-resimulate", "--json", "-q"])
     res = json.loads(capsys.readouterr().out)
     assert rc == 0
-    assert res["added_mass_band"]["relative_sd"] == {"surge": 0.05, "sway": 0.05, "heave": 0.05,
-                                                     "roll": 0.1, "pitch": 0.1, "yaw": 0.1}
+    from stripcoef.diagnose.pipeline import prior_added_mass_sd
+
+    sd, _ = prior_added_mass_sd(vehicle)          # the measured table's bluff rows
+    assert res["added_mass_band"]["relative_sd"] == dict(zip(DOF, sd.tolist()))

@@ -1427,9 +1427,9 @@ def _band_record(added_mass_sd):
     return {"relative_sd": {DOF[i]: (float(v) if np.isfinite(v) else None)
                             for i, v in enumerate(added_mass_sd)},
             "z": ADDED_MASS_BAND_Z,
-            "description": "method uncertainty of the prior's added mass (1 sigma, relative; "
-                           "stripcoef.study.sources); the calibrated added mass stays within "
-                           f"+-{ADDED_MASS_BAND_Z:g} sigma (99.7 %)"}
+            "description": "method uncertainty of the prior's added mass (1 sigma of ln M, "
+                           "about relative; stripcoef.study.sources); the calibrated added mass "
+                           f"stays within a factor e^(+-{ADDED_MASS_BAND_Z:g} sigma) (99.7 %)"}
 
 
 def clip_added_mass(prior, calibrated, added_mass_sd=None):

@@ -62,7 +62,7 @@ def text_summary(result) -> str:
     band = result.get("added_mass_band")
     if band:
         lines.append(f"\nadded mass bounded by +-{band['z']:g} sigma of its method uncertainty "
-                     "(1 sigma: " + ", ".join(f"{d} {100 * v:g} %" for d, v in
+                     "(1 sigma of ln M: " + ", ".join(f"{d} {100 * v:g} %" for d, v in
                                               band["relative_sd"].items() if v is not None)
                      + ")")
     hits = result.get("bounds_hit") or {}
