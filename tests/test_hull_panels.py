@@ -129,7 +129,7 @@ def test_estimate_panels_changes_only_the_added_mass():
     from stripcoef.assembly import estimate
 
     veh = _box_vehicle()
-    strips = estimate(veh)
+    strips = estimate(veh, added_mass_method="strips")
     panels = estimate(veh, added_mass_method="panels", added_mass_panels=800)
     np.testing.assert_array_equal(panels.linear_damping, strips.linear_damping)
     np.testing.assert_array_equal(panels.quadratic_damping, strips.quadratic_damping)
