@@ -215,6 +215,10 @@ def test_couple_moves_every_allowed_coupling_zero_or_not_and_keeps_the_matrix_de
     big = couple(m, 5.0, allowed)                                  # would break definiteness
     assert np.all(np.linalg.eigvalsh(big) > 0) and abs(big[1, 5]) > 2.0
     assert np.all(big[forbidden] == 0.0)
+    m[0, 1] = m[1, 0] = 0.5                 # forbidden, but the model has it (>= 1 %): moved
+    assert couple(m, 0.05, allowed)[0, 1] == pytest.approx(0.5 + 0.05 * scale[0, 1])
+    m[0, 1] = m[1, 0] = 1e-12               # round-off on a forbidden coupling: left alone
+    assert couple(m, 0.05, allowed)[0, 1] == 1e-12
 
 
 def test_study_of_an_asymmetric_body_bands_the_couplings_the_model_leaves_at_zero():

@@ -156,19 +156,27 @@ def method_couplings(sources: list[Source], values) -> dict:
     return out
 
 
-def couple(matrix, c: float, allowed=None) -> np.ndarray:
-    r"""Couplings moved by :math:`c` of their diagonal scale, every one the body's mirror
-    symmetries allow (``allowed``, (6, 6) bool: :func:`stripcoef.study.symmetry.allowed_couplings`;
-    default: every one, no symmetry known):
+#: a coupling the model has, :math:`|M_{ij}| \ge` this fraction of :math:`\sqrt{M_{ii} M_{jj}}`,
+#: is moved whatever the symmetries say (the significance of the measurement,
+#: make_method_uncertainty; a mesh asymmetric below the symmetry test's tolerance)
+SIGNIFICANT_COUPLING = 0.01
 
-    .. math:: M'_{ij} = M_{ij} + c\,s_{ij}\sqrt{M_{ii} M_{jj}}, \quad i \ne j \text{ allowed},
+
+def couple(matrix, c: float, allowed=None) -> np.ndarray:
+    r"""Couplings moved by :math:`c` of their diagonal scale: every one the body's mirror
+    symmetries allow (``allowed``, (6, 6) bool: :func:`stripcoef.study.symmetry.allowed_couplings`;
+    default: every one, no symmetry known), and every one the model has
+    (:math:`|M_{ij}| \ge 0.01 \sqrt{M_{ii} M_{jj}}`, :data:`SIGNIFICANT_COUPLING`: the panel
+    method on a mesh slightly asymmetric, below the symmetry test's tolerance):
+
+    .. math:: M'_{ij} = M_{ij} + c\,s_{ij}\sqrt{M_{ii} M_{jj}}, \quad i \ne j \text{ moved},
               \qquad s_{ij} = \mathrm{sign}(M_{ij}) \text{ or } +1 \text{ where } M_{ij} = 0,
 
     the form in which their error is measured ((strip - ref) / sqrt(A_ii A_jj),
     benchmarks/data/method_errors.csv), around the model's value even where that is zero (a
     coupling strip theory cannot see, X_wdot of a body without fore-aft or top-bottom
-    symmetry); a coupling the symmetries forbid stays as the model has it (zero for strip
-    theory). An added-mass matrix is positive definite (its kinetic energy
+    symmetry); a coupling the symmetries forbid and the model does not have stays as the
+    model has it (exactly zero for strip theory). An added-mass matrix is positive definite (its kinetic energy
     :math:`\tfrac12 \nu^T M \nu > 0`, Newman 1977 sec. 4.13): where :math:`c` would break
     that, it is halved until it does not (a coupling of a bluff body near its diagonal scale
     at a 3-sigma draw). Units: those of ``matrix``."""
@@ -178,7 +186,7 @@ def couple(matrix, c: float, allowed=None) -> np.ndarray:
     d = np.sqrt(np.abs(np.outer(np.diag(m), np.diag(m))))
     mask = ~np.eye(m.shape[0], dtype=bool) & (d > 0)
     if allowed is not None:
-        mask &= np.asarray(allowed, dtype=bool)
+        mask &= np.asarray(allowed, dtype=bool) | (np.abs(m) >= SIGNIFICANT_COUPLING * d)
     if not mask.any():
         return m
     step = np.where(mask, np.where(m < 0, -1.0, 1.0) * d, 0.0)
