@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import trimesh
 
+from stripcoef.errors import InputError
 from stripcoef.fluid import Fluid
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
 from stripcoef.study.calibration import (Z95, binomial_interval, claimed_coverage, inside,
@@ -199,6 +200,8 @@ def test_allowed_couplings_follow_the_parity_of_each_dof():
     assert {(i, j) for i in range(6) for j in range(i + 1, 6) if ok[i, j]} == \
         {(1, 2), (1, 3), (2, 3), (0, 4), (0, 5), (4, 5)}
     assert allowed_couplings(set()).all()
+    with pytest.raises(InputError, match="unknown reflection"):
+        allowed_couplings({"q"})
 
 
 def test_couple_moves_every_allowed_coupling_zero_or_not_and_keeps_the_matrix_definite():

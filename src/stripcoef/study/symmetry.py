@@ -63,6 +63,11 @@ def allowed_couplings(mirrors) -> np.ndarray:
     allow :math:`M_{ij} \ne 0`, i.e. :math:`P_i P_j = +1` for each; the diagonal is True."""
     ok = np.ones((6, 6), dtype=bool)
     for m in mirrors:
+        if m not in PARITY:
+            from stripcoef.errors import InputError
+
+            raise InputError("unknown reflection", key="mirrors", value=m,
+                             expected="x, y or z (the axis it reverses)")
         p = PARITY[m]
         ok &= np.outer(p, p) > 0
     return ok
