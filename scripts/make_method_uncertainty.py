@@ -53,7 +53,8 @@ ERRORS = ROOT / "benchmarks" / "data" / "method_errors.csv"
 TABLE = ROOT / "src" / "stripcoef" / "data" / "method_uncertainty.csv"
 TERMS = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
 SPHEROIDS = (2.0, 3.0, 5.0, 7.5, 10.0)
-FIELDS = ("set", "shape", "class", "family", "term", "strip", "reference", "error", "reference_source")
+FIELDS = ("set", "shape", "class", "family", "term", "strip", "reference", "error", "mirrors",
+          "allowed", "reference_source")
 
 #: drag: no reference independent of the correlations the method uses (Hoerner, DNV) is stored
 ASSUMED_DRAG = {
@@ -71,8 +72,14 @@ def _term(i, j):
     return TERMS[i] if i == j else f"{TERMS[i][0]}{TERMS[j][2:]}"
 
 
-def _rows(set_name, shape, cls, strip, ref, source, terms):
+def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors):
+    """One row per compared term; ``mirrors``: the shape's mirror symmetries through the
+    model's reference point (stripcoef.study.symmetry), ``allowed``: whether they allow the
+    coupling (the sampling moves it: stripcoef.study.sources.couple)."""
+    from stripcoef.study.symmetry import allowed_couplings
+
     out = []
+    ok = allowed_couplings(mirrors)
     d = np.abs(np.diag(ref))
     for i, j in terms:
         if i == j:
@@ -82,6 +89,8 @@ def _rows(set_name, shape, cls, strip, ref, source, terms):
         out.append({"set": set_name, "shape": shape, "class": cls, "family": _family(i, j),
                     "term": _term(i, j), "strip": f"{strip[i, j]:.8g}",
                     "reference": f"{ref[i, j]:.8g}", "error": f"{err:.6g}",
+                    "mirrors": " ".join(sorted(mirrors)) or "none",
+                    "allowed": "" if i == j else ("yes" if ok[i, j] else "no"),
                     "reference_source": source})
     return out
 
@@ -111,9 +120,13 @@ def measure() -> list[dict]:
     def estimate(veh, method="strips"):
         # the table is the error of one method: strips unless a row says panels
         return estimate_any(veh, added_mass_method=method)
+
+    def mirrors(veh, model):
+        return mirror_symmetries(veh, model.reference_point)
     from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
     from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
     from stripcoef.study.shapes import shape_class
+    from stripcoef.study.symmetry import mirror_symmetries
     from validation.reference import load_table
 
     rows = []
@@ -126,20 +139,23 @@ def measure() -> list[dict]:
             "hull": {"profile": [{"type": "ellipsoid_tail", "x": [-a, 0.0], "radius": b},
                                  {"type": "ellipsoid_nose", "x": [0.0, a], "radius": b}]}}))
         veh = parse_vehicle(data, file=f"spheroid_{ld:g}")
-        strip = np.asarray(estimate(veh).added_mass)
+        model = estimate(veh)
+        strip = np.asarray(model.added_mass)
         ref = np.diag(spheroid_added_mass(a, b, rho=1000.0))
         rows += _rows("Lamb spheroids", f"spheroid_ld{ld:g}", shape_class(veh), strip, ref,
                       "Lamb 1932 sec. 373 (stripcoef.hull.lamb.spheroid_added_mass)",
-                      [t for t in diag if abs(ref[t]) > 1e-9 * np.abs(ref).max()])
+                      [t for t in diag if abs(ref[t]) > 1e-9 * np.abs(ref).max()],
+                      mirrors(veh, model))
     veh = load_vehicle(ROOT / "geometry" / "capsule.yaml")
-    strip = np.asarray(estimate(veh).added_mass)
+    model = estimate(veh)
+    strip = np.asarray(model.added_mass)
     ref = np.zeros((6, 6))
     for r in load_table("capytaine_anchor", "capsule"):
         k = int(r["name"][1]) - 1
         ref[k, k] = r["value"]
     rows += _rows("Capytaine capsule", "capsule", shape_class(veh), strip, ref,
                   "reference_tables/capytaine_anchor/capsule.csv",
-                  [t for t in diag if ref[t] != 0.0])
+                  [t for t in diag if ref[t] != 0.0], mirrors(veh, model))
     bem = {}
     with open(fb.DATA) as fh:
         for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
@@ -150,10 +166,11 @@ def measure() -> list[dict]:
                 bem[r["case"]] = m
     for case in fb.CASES:
         veh = parse_vehicle(fb.vehicle_dict(case), file=case)
-        strip = np.asarray(estimate(veh).added_mass)
+        model = estimate(veh)
+        strip = np.asarray(model.added_mass)
         rows += _rows("Capytaine finned hulls", case, shape_class(veh), strip, bem[case],
                       "benchmarks/data/bem_finned_bodies.csv (richardson)",
-                      _compared(bs, bem[case], strip))
+                      _compared(bs, bem[case], strip), mirrors(veh, model))
     refs = bs.read_references()
     for name in bs.SHAPES:
         ref = refs[name].copy()
@@ -164,12 +181,14 @@ def measure() -> list[dict]:
         veh = Vehicle.from_mesh(bs.strip_mesh(name), name=name,
                                 fluid=Fluid(density=bs.RHO, kinematic_viscosity=1e-6,
                                             source="benchmark"))
-        strip = np.asarray(estimate(veh).added_mass)
+        model = estimate(veh)
+        strip = np.asarray(model.added_mass)
+        sym = mirrors(veh, model)
         rows += _rows("Capytaine bluff shapes", name, shape_class(veh), strip, ref, source,
-                      _compared(bs, ref, strip))
+                      _compared(bs, ref, strip), sym)
         panel = np.asarray(estimate(veh, "panels").added_mass)
         rows += _rows("Capytaine bluff shapes", name, PANELS, panel, ref, source,
-                      _compared(bs, ref, panel))
+                      _compared(bs, ref, panel), sym)
         print(f"{name}: {rows[-1]['class']}", flush=True)
     return rows
 
@@ -179,7 +198,10 @@ def write_errors(rows):
         fh.write("# Strip theory (added_mass_method strips, 3D corrections on), and the 3D panel method (class panels) on the bluff shapes, against stored references, one row\n"
                  "# per compared added-mass term. error: diagonal ln(strip / reference) [-] (inf: strip 0);\n"
                  "# coupling (strip - reference) / sqrt(A_ii A_jj) of the reference [-], for every coupling\n"
-                 "# >= 1 % of sqrt(A_ii A_jj) in the reference or in the strip model. class: by geometry\n"
+                 "# >= 1 % of sqrt(A_ii A_jj) in the reference or in the strip model (zero in the model\n"
+                 "# included). mirrors: the shape's mirror symmetries through the model's reference point\n"
+                 "# (stripcoef.study.symmetry); allowed: whether they allow the coupling (the sampling\n"
+                 "# moves it, stripcoef.study.sources.couple; a forbidden one stays zero). class: by geometry\n"
                  "# (stripcoef.study.shapes). Units kg, kg m, kg m^2 (Fossen signs). reference_source: where\n"
                  "# the reference is stored. Generated by python scripts/make_method_uncertainty.py --measure\n")
         w = csv.DictWriter(fh, FIELDS, lineterminator="\n")

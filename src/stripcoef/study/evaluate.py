@@ -30,7 +30,10 @@ class Job:
     ``data``: the vehicle file's nominal mapping; ``file``: its name (for errors);
     ``paths``: key paths whose values each row sets (inputs); ``sources``: the method sources
     whose factors each row carries after the inputs; ``limits``: solve the manoeuvre limits;
-    ``radii``: turning radii for the limits [m]; ``strips``: strip count (None: the file's).
+    ``radii``: turning radii for the limits [m]; ``strips``: strip count (None: the file's);
+    ``mirrors``: the nominal body's mirror symmetries (``x``, ``y``, ``z``:
+    :func:`stripcoef.study.symmetry.mirror_symmetries`), which decide the couplings the method
+    source moves (None: none known, every coupling moves).
     """
 
     data: dict
@@ -40,6 +43,7 @@ class Job:
     limits: bool = True
     radii: tuple = (0.5, 1.0, 2.0, 5.0, 10.0, 20.0)
     strips: int | None = None
+    mirrors: frozenset | None = None
 
 
 def _limits_outputs(model, radii) -> dict:
@@ -68,6 +72,7 @@ def evaluate(job: Job, row) -> dict:
     from stripcoef.geometry.keypaths import set_value
     from stripcoef.geometry.vehicle import parse_vehicle
     from stripcoef.study.sources import couple, method_couplings, method_factors, scale_matrix
+    from stripcoef.study.symmetry import allowed_couplings
 
     row = [float(v) for v in row]
     n_in = len(job.paths)
@@ -80,8 +85,9 @@ def evaluate(job: Job, row) -> dict:
     if job.sources:
         f = method_factors(list(job.sources), row[n_in:])
         c = method_couplings(list(job.sources), row[n_in:])
+        allowed = None if job.mirrors is None else allowed_couplings(job.mirrors)
         model = replace(model, added_mass=couple(scale_matrix(model.added_mass, f["added_mass"]),
-                                                 c["added_mass"]),
+                                                 c["added_mass"], allowed),
                         linear_damping=scale_matrix(model.linear_damping, f["linear_damping"]),
                         quadratic_damping=scale_matrix(model.quadratic_damping,
                                                        f["quadratic_damping"]))

@@ -14,7 +14,8 @@ Two kinds of source, each a :class:`Source` with the text that justifies it:
   and every term must keep its sign), :math:`z \sim N(0,1)`, one factor per matrix and DOF
   group (translations share one, rotations another: the errors of one method on one body are
   correlated across its DOFs). The added mass's couplings get one more source, normal, an
-  additive move of their diagonal scale (:func:`couple`).
+  additive move of their diagonal scale (:func:`couple`) for every coupling the body's mirror
+  symmetries allow (:mod:`stripcoef.study.symmetry`).
 - **input**: a value declared uncertain in the vehicle file (``{value, sd}`` normal,
   ``{value, tol}`` uniform; :mod:`stripcoef.geometry.keypaths`).
 """
@@ -155,34 +156,40 @@ def method_couplings(sources: list[Source], values) -> dict:
     return out
 
 
-#: a coupling is perturbed where :math:`|M_{ij}| \ge` this fraction of
-#: :math:`\sqrt{M_{ii} M_{jj}}` (the significance of the measurement, make_method_uncertainty)
+#: a coupling the model has, :math:`|M_{ij}| \ge` this fraction of :math:`\sqrt{M_{ii} M_{jj}}`,
+#: is moved whatever the symmetries say (the significance of the measurement,
+#: make_method_uncertainty; a mesh asymmetric below the symmetry test's tolerance)
 SIGNIFICANT_COUPLING = 0.01
 
 
-def couple(matrix, c: float) -> np.ndarray:
-    r"""Couplings moved by :math:`c` of their diagonal scale:
+def couple(matrix, c: float, allowed=None) -> np.ndarray:
+    r"""Couplings moved by :math:`c` of their diagonal scale: every one the body's mirror
+    symmetries allow (``allowed``, (6, 6) bool: :func:`stripcoef.study.symmetry.allowed_couplings`;
+    default: every one, no symmetry known), and every one the model has
+    (:math:`|M_{ij}| \ge 0.01 \sqrt{M_{ii} M_{jj}}`, :data:`SIGNIFICANT_COUPLING`: the panel
+    method on a mesh slightly asymmetric, below the symmetry test's tolerance):
 
-    .. math:: M'_{ij} = M_{ij} + c\,\mathrm{sign}(M_{ij})\sqrt{M_{ii} M_{jj}}, \quad i 
-e j,
-              \ |M_{ij}| \ge 0.01 \sqrt{M_{ii} M_{jj}},
+    .. math:: M'_{ij} = M_{ij} + c\,s_{ij}\sqrt{M_{ii} M_{jj}}, \quad i \ne j \text{ moved},
+              \qquad s_{ij} = \mathrm{sign}(M_{ij}) \text{ or } +1 \text{ where } M_{ij} = 0,
 
     the form in which their error is measured ((strip - ref) / sqrt(A_ii A_jj),
-    benchmarks/data/method_errors.csv); couplings below 1 % (zero by symmetry, or round-off)
-    stay as they are. An added-mass matrix is positive definite (its kinetic energy
-    :math:`	frac12 
-u^T M 
-u > 0`, Newman 1977 sec. 4.13): where :math:`c` would break
-    that, it is halved until it does not (rare: a coupling of a bluff body near its
-    diagonal scale at a 3-sigma draw). Units: those of ``matrix``."""
+    benchmarks/data/method_errors.csv), around the model's value even where that is zero (a
+    coupling strip theory cannot see, X_wdot of a body without fore-aft or top-bottom
+    symmetry); a coupling the symmetries forbid and the model does not have stays as the
+    model has it (exactly zero for strip theory). An added-mass matrix is positive definite (its kinetic energy
+    :math:`\tfrac12 \nu^T M \nu > 0`, Newman 1977 sec. 4.13): where :math:`c` would break
+    that, it is halved until it does not (a coupling of a bluff body near its diagonal scale
+    at a 3-sigma draw). Units: those of ``matrix``."""
     m = np.asarray(matrix, dtype=float)
     if c == 0.0:
         return m
     d = np.sqrt(np.abs(np.outer(np.diag(m), np.diag(m))))
-    mask = (np.abs(m) >= SIGNIFICANT_COUPLING * d) & ~np.eye(m.shape[0], dtype=bool) & (d > 0)
+    mask = ~np.eye(m.shape[0], dtype=bool) & (d > 0)
+    if allowed is not None:
+        mask &= np.asarray(allowed, dtype=bool) | (np.abs(m) >= SIGNIFICANT_COUPLING * d)
     if not mask.any():
         return m
-    step = np.where(mask, np.sign(m) * d, 0.0)
+    step = np.where(mask, np.where(m < 0, -1.0, 1.0) * d, 0.0)
     for _ in range(30):
         out = m + c * step
         try:

@@ -95,6 +95,20 @@ def _draws(sources, n: int, seed: int) -> np.ndarray:
     return np.column_stack([s.draw(u[:, k]) for k, s in enumerate(sources)])
 
 
+def _mirrors(vehicle, strips) -> frozenset:
+    """The nominal vehicle's mirror symmetries through its model's reference point
+    (:func:`stripcoef.study.symmetry.mirror_symmetries`): the couplings the method moves."""
+    import warnings
+
+    from stripcoef.assembly import estimate
+    from stripcoef.study.symmetry import mirror_symmetries
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # the nominal evaluation shows them
+        point = estimate(vehicle, strips=strips).reference_point
+    return mirror_symmetries(vehicle, point, strips)
+
+
 def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = True,
                 method: bool = True, radii=(0.5, 1.0, 2.0, 5.0, 10.0, 20.0),
                 strips: int | None = None, workers: int | None = None, scheduler=None,
@@ -146,7 +160,8 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
                                   "method uncertainty (method=True)")
     job = Job(data=data, file=file, paths=tuple(u.path for u in declared),
               sources=tuple(s for s in sources if s.kind == "method"), limits=limits,
-              radii=tuple(float(r) for r in radii), strips=strips)
+              radii=tuple(float(r) for r in radii), strips=strips,
+              mirrors=_mirrors(veh, strips) if method else None)
     nominal_row = [u.value for u in declared] + [1.0] * len(job.sources)
     nominal_out = evaluate(job, nominal_row)
     # inputs first, then method factors: the order Job.evaluate reads a row in
@@ -159,6 +174,10 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     names, arr = table([nominal_out] + results)
     if declared and not method:
         notes.append("method uncertainty left out (method=False)")
+    if method:
+        mirrors = " and ".join(f"{a} -> -{a}" for a in sorted(job.mirrors)) or "none"
+        notes.append(f"added-mass couplings: every one the body's mirror symmetries ({mirrors}) "
+                     f"allow gets the coupling band, zero or not; the others stay zero")
     return UncertaintyResult(vehicle=veh.name, names=tuple(names), samples=arr[1:],
                              nominal={k: float(v) for k, v in zip(names, arr[0])},
                              sources=tuple(ordered), draws=draws, seed=int(seed),
