@@ -883,7 +883,47 @@ def _resolvable(effect, value, data, samples):
     return ""
 
 
-class ThrusterLag(Effect):
+class _TimedInputEffect(Effect):
+    """An effect of the inputs with one time parameter [s] (a lag, a delay), profiled by a
+    one-dimensional search over :meth:`grid`: its design is the window mean of
+    :meth:`offset`, the input as it acts minus the input as logged, and it has no linear
+    coefficient.  Subclasses give ``hyper = (NAME,)``, ``GRID_MAX`` [s], ``RESOLVE``
+    (how many sampling intervals make the parameter resolvable) and :meth:`offset`."""
+
+    input_driven = True
+    GRID_MAX = 1.0
+    RESOLVE = 1.0
+
+    def applicable(self, data, dof):
+        if not np.any(data.tau[:, dof] != 0):
+            return False, "no applied force in this DOF"
+        return True, ""
+
+    def hyper_start(self, data, dof):
+        return np.array([0.0])
+
+    def offset(self, data, dof, value):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def own_design(self, data, dof, hyper=None):
+        value = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
+        off = np.zeros(data.n_windows) if value <= 0 else self.offset(data, dof, value)
+        return off, np.zeros((data.n_windows, 0))
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {self.hyper[0]: float(np.atleast_1d(hyper)[0])}
+
+    def window_force(self, data, params, dof):
+        return self.own_design(data, dof, [params[self.hyper[0]]])[0]
+
+    def plausible(self, params):
+        return 0.0 < params[self.hyper[0]] <= self.GRID_MAX
+
+    def implausible(self, params, data=None, dof=None):
+        return _resolvable(self, params[self.hyper[0]], data, self.RESOLVE)
+
+
+class ThrusterLag(_TimedInputEffect):
     r"""Thruster dynamics: the thrust follows the command with a first-order lag.
 
     .. math:: T_l\,\dot{\tau}_{l} = \tau - \tau_{l},\qquad \Delta F_i = \tau_{l,i} - \tau_i
@@ -904,14 +944,9 @@ class ThrusterLag(Effect):
     source = "Yoerger et al. (1990); Fossen (2011) sec. 9.3"
     parameters = {"time_constant": "s"}
     hyper = ("time_constant",)
-    input_driven = True
     #: search range of the time constant [s]: from a tenth of a sample to 2 s
     GRID_MAX = 2.0
-
-    def applicable(self, data, dof):
-        if not np.any(data.tau[:, dof] != 0):
-            return False, "no applied force in this DOF"
-        return True, ""
+    RESOLVE = 0.5
 
     def signature(self, data, dof):
         return "a force that follows the steps of the input and decays"
@@ -920,32 +955,12 @@ class ThrusterLag(Effect):
         dt = float(np.median(np.diff(data.t)))
         return np.geomspace(0.1 * dt, self.GRID_MAX, 12)
 
-    def hyper_start(self, data, dof):
-        return np.array([0.0])
-
     def offset(self, data, dof, tc):
         tau = data.tau[:, dof]
         _, integral = lagged_held(data.t, tau, tc)
         cum = np.concatenate([[0.0], np.cumsum(integral)])
         lagged = (cum[data.i1] - cum[data.i0]) / data.T
         return lagged - data.mean_held(tau)
-
-    def own_design(self, data, dof, hyper=None):
-        tc = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
-        off = np.zeros(data.n_windows) if tc <= 0 else self.offset(data, dof, tc)
-        return off, np.zeros((data.n_windows, 0))
-
-    def to_parameters(self, theta, hyper, nuisance=None):
-        return {"time_constant": float(np.atleast_1d(hyper)[0])}
-
-    def window_force(self, data, params, dof):
-        return self.own_design(data, dof, [params["time_constant"]])[0]
-
-    def plausible(self, params):
-        return 0.0 < params["time_constant"] <= self.GRID_MAX
-
-    def implausible(self, params, data=None, dof=None):
-        return _resolvable(self, params["time_constant"], data, 0.5)
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F = tau_l - tau with T_l dtau_l/dt = tau - tau_l, exact
@@ -971,7 +986,7 @@ class ThrusterLag(Effect):
         return f
 
 
-class ActuationDelay(Effect):
+class ActuationDelay(_TimedInputEffect):
     r"""A pure delay between the logged command and the force it produces.
 
     .. math:: \Delta F_i = \tau_i(t - d) - \tau_i(t)
@@ -989,10 +1004,8 @@ class ActuationDelay(Effect):
     source = "Fossen (2011) sec. 9.3; Yoerger et al. (1990)"
     parameters = {"delay": "s"}
     hyper = ("delay",)
-    input_driven = True
     GRID_MAX = 1.0
-
-    applicable = ThrusterLag.applicable
+    RESOLVE = 1.0
 
     def signature(self, data, dof):
         return "a force that precedes the response by a fixed time"
@@ -1001,31 +1014,11 @@ class ActuationDelay(Effect):
         dt = float(np.median(np.diff(data.t)))
         return np.linspace(0.1 * dt, self.GRID_MAX, 12)
 
-    def hyper_start(self, data, dof):
-        return np.array([0.0])
-
     def offset(self, data, dof, delay):
         tau = data.tau[:, dof]
         a = delayed_integral(data.t, tau, delay, data.t[data.i0])
         b = delayed_integral(data.t, tau, delay, data.t[data.i1])
         return (b - a) / data.T - data.mean_held(tau)
-
-    def own_design(self, data, dof, hyper=None):
-        d = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
-        off = np.zeros(data.n_windows) if d <= 0 else self.offset(data, dof, d)
-        return off, np.zeros((data.n_windows, 0))
-
-    def to_parameters(self, theta, hyper, nuisance=None):
-        return {"delay": float(np.atleast_1d(hyper)[0])}
-
-    def window_force(self, data, params, dof):
-        return self.own_design(data, dof, [params["delay"]])[0]
-
-    def plausible(self, params):
-        return 0.0 < params["delay"] <= self.GRID_MAX
-
-    def implausible(self, params, data=None, dof=None):
-        return _resolvable(self, params["delay"], data, 1.0)
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F = tau(t - d) - tau(t), d [s], tau [N, N m], in DOF
