@@ -26,7 +26,13 @@ its dictionary form, as written) and of hold-last-velocity; per log: whether any
 coefficient of an unexcited DOF changed, whether any drag is negative and any added mass
 outside its plausible range (``added_mass_bounds``).
 
+``--priors method`` gives the calibration the Gaussian prior widths of the method table's
+rows for the VideoRay Pro III vehicle file (shape class bluff; issue 19), as
+``diagnose --vehicle videoray_pro3.yaml`` does, and checks the added mass against its 99.7 %
+band; the default (``bands``) is a model file's fixed bands.
+
 Run:  PYTHONPATH=src:. python benchmarks/diagnose_heldout.py [--seeds 2] [--duration 300]
+      [--priors bands|method]
 """
 
 from __future__ import annotations
@@ -48,11 +54,12 @@ def coefficients(model: HydroModel, i: int):
             float(model.quadratic_damping[i, i]))
 
 
-def run(seed: int, scenario: str, duration: float) -> dict:
+def run(seed: int, scenario: str, duration: float, widths=None) -> dict:
     log, prior, truth = real_style_log(seed, scenario, duration)
     t0 = time.perf_counter()
     # no time budget: a 300-s log of 4 DOFs may take minutes on a loaded machine
-    res = diagnose(log, prior, dof="all", holdout=0.3, time_limit=float("inf"))
+    res = diagnose(log, prior, dof="all", holdout=0.3, time_limit=float("inf"),
+                   prior_widths=widths)
     elapsed = time.perf_counter() - t0
     model = res.model
     excited = [DOF.index(d) for d in res.per_dof]
@@ -62,9 +69,11 @@ def run(seed: int, scenario: str, duration: float) -> dict:
                or any(e.get("dof") == DOF[i] for e in model.effects)]
     negative = bool(np.any(np.diag(model.linear_damping) < 0)
                     or np.any(np.diag(model.quadratic_damping) < 0))
+    sd = [None] * 6 if widths is None else widths.added_mass_sd
     outside = [DOF[i] for i in range(6) if prior.added_mass[i, i] != 0 and not (
-        added_mass_bounds(i, prior.added_mass[i, i])[0] * (1 - 1e-9) <= model.added_mass[i, i]
-        <= added_mass_bounds(i, prior.added_mass[i, i])[1] * (1 + 1e-9))]
+        added_mass_bounds(i, prior.added_mass[i, i], sd[i])[0] * (1 - 1e-9)
+        <= model.added_mass[i, i]
+        <= added_mass_bounds(i, prior.added_mass[i, i], sd[i])[1] * (1 + 1e-9))]
     errors = res.holdout["errors"]
     beats = {d: (e["calibrated"] is not None and e["calibrated"] < e["prior"]
                  and e["calibrated"] < e["hold_last_velocity"]) for d, e in errors.items()}
@@ -81,8 +90,18 @@ def main():
     ap.add_argument("--seeds", type=int, default=2)
     ap.add_argument("--duration", type=float, default=300.0)
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--priors", choices=("bands", "method"), default="bands",
+                    help="the calibration's prior widths: the fixed BANDS (a model file, "
+                         "default) or the method table's rows of the VideoRay Pro III vehicle "
+                         "file (shape class bluff), as with --vehicle videoray_pro3.yaml")
     args = ap.parse_args()
-    rows = [run(seed, scenario, args.duration) for scenario in ("all", "sway-off")
+    widths = None
+    if args.priors == "method":
+        from stripcoef.diagnose.pipeline import prior_widths
+        from stripcoef.samples import path
+
+        widths = prior_widths(path("videoray_pro3.yaml"))
+    rows = [run(seed, scenario, args.duration, widths) for scenario in ("all", "sway-off")
             for seed in range(args.seeds)]
     if args.json:
         print(json.dumps(rows, indent=1))

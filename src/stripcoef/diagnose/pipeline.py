@@ -13,6 +13,9 @@ Steps, for each degree of freedom (issue 7):
    experimental columns of Wang & Clark 2006 Table I: translational added mass 30 %, linear drag
    60 %, quadratic drag 30 %; rotational added mass 100 %, linear and quadratic drag 300 %
    (N_r is off by 4.8x and N_r|r| by 50x there: strip theory barely constrains rotation).
+   With a vehicle file (its shape class known) the bands are instead the method table's
+   sd of ln c per matrix and DOF group (:class:`PriorWidths`, issue 19: the added mass
+   measured, the quadratic drag assumed, the linear drag not predicted: a very wide prior).
    A coefficient the prior has as zero is not calibrated (strip theory says it is absent).
 3. **Structure** of the residual: bias, lag-1 autocorrelation, runs test, dependence on the
    sign of the velocity and of the thrust, correlation with each candidate's regressors.
@@ -155,6 +158,92 @@ def added_mass_bounds(dof: int, prior: float, sd: float | None = None) -> tuple[
     return lo, hi
 
 
+#: The method-table matrix of each calibrated term (:mod:`stripcoef.study.sources`).
+TERM_MATRIX = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping"}
+#: The method-table DOF group of each band kind.
+KIND_GROUP = {"translational": "translation", "rotational": "rotation"}
+
+
+@dataclass(frozen=True)
+class PriorWidths:
+    r"""Widths of the calibration's Gaussian priors from the method table (issue 19).
+
+    The method table (``data/method_uncertainty.csv``, docs/uncertainty.md) gives, per shape
+    class, matrix and DOF group, the sd :math:`\sigma` of :math:`\ln c` of a coefficient c:
+    measured for the added mass (the ``panels`` rows when the model's added mass is the panel
+    method's), assumed for the quadratic damping, and a placeholder for the linear damping
+    (``not_predicted``: the method does not predict it, so its prior is very wide, 250 % at
+    1 sigma). The calibration is additive (a correction :math:`\delta = c - c_0` to the
+    prior value :math:`c_0`), so :math:`\sigma` is converted to an absolute sd at the prior
+    value by the first-order (delta-method) relation
+    :math:`d\ln c = dc / c`,
+
+    .. math:: \delta \sim N\!\left(0, (\sigma\,|c_0|)^2\right)
+              \quad [\text{units of } c],
+
+    i.e. a relative band :math:`b = \sigma` [-] in the place of :data:`BANDS` (Tarantola 2005,
+    eq. 3.37 for the Gaussian prior; the lognormal's sd of ln, :mod:`stripcoef.study.sources`).
+    For :math:`\sigma \gtrsim 1` the lognormal is skewed and the Gaussian only approximates
+    it (a wide prior, which is what such a row says); the bounds still apply (no negative
+    drag; the added mass within :func:`added_mass_bounds`, its 99.7 % band).
+
+    ``sd_ln``: ``{kind: {term: sigma}}`` (kind ``translational``/``rotational``, term
+    ``M``/``D_L``/``D_Q``) [-]; ``rows``: ``{kind: {term: "CLASS MATRIX.GROUP: source
+    text"}}``, the row each width came from (CLASS ``panels`` for a panel-method added mass);
+    ``shape_class``: the vehicle's geometric class.
+    """
+
+    shape_class: str
+    sd_ln: Mapping
+    rows: Mapping
+
+    @property
+    def bands(self) -> dict:
+        """The widths in the form of :data:`BANDS` (relative 1-sigma) [-]."""
+        return {k: dict(v) for k, v in self.sd_ln.items()}
+
+    @property
+    def added_mass_sd(self) -> np.ndarray:
+        """(6,) sd of ln M_ii [-] (:func:`method_added_mass_sd`'s form)."""
+        return np.array([self.sd_ln["translational" if i < 3 else "rotational"]["M"]
+                         for i in range(6)], float)
+
+    def to_dict(self) -> dict:
+        return {"shape_class": self.shape_class,
+                "sd_ln": {k: dict(v) for k, v in self.sd_ln.items()},
+                "rows": {k: dict(v) for k, v in self.rows.items()},
+                "description": "1-sigma widths of the calibration's Gaussian priors from the "
+                               "method table (sd of ln c, applied as sd |c0| sigma at the "
+                               "prior value c0); linear damping: not predicted by the method, "
+                               "a very wide prior"}
+
+
+def method_prior_widths(vehicle, *, panels: bool | None = None) -> PriorWidths:
+    """:class:`PriorWidths` of a parsed vehicle: the rows of
+    :func:`stripcoef.study.sources.method_sources` (its shape class; the ``panels`` rows for
+    the added mass of a panel-method model: ``panels``, default what
+    :func:`stripcoef.study.sources.uses_panels` says for the default options)."""
+    from stripcoef.study.sources import method_sources, shape_class
+
+    found = {}
+    for src in method_sources(vehicle, panels=panels):
+        matrix, group = src.name.split(".")
+        found[(matrix, group)] = src
+    sd_ln, rows = {}, {}
+    for kind, group in KIND_GROUP.items():
+        sd_ln[kind], rows[kind] = {}, {}
+        for term, matrix in TERM_MATRIX.items():
+            src = found.get((matrix, group))
+            if src is None or src.distribution != "lognormal":
+                raise InputError("no lognormal method row", key=f"{matrix}.{group}",
+                                 value=None if src is None else src.distribution,
+                                 expected="a lognormal row of data/method_uncertainty.csv")
+            cls, _, text = src.reason.partition(": ")
+            sd_ln[kind][term] = float(src.spread)
+            rows[kind][term] = f"{cls} {src.name}: {text}"
+    return PriorWidths(shape_class(vehicle), sd_ln, rows)
+
+
 def _band_sd(data, dof: int):
     """The relative 1-sigma method uncertainty of DOF ``dof``'s added mass the diagnosis of
     ``data`` runs with (:func:`diagnose`'s ``added_mass_sd``), or None."""
@@ -178,20 +267,35 @@ def method_added_mass_sd(vehicle) -> np.ndarray:
     return out
 
 
-def prior_added_mass_sd(path):
-    """``(sd, shape class)`` of :func:`method_added_mass_sd` when ``path`` is a vehicle file,
-    ``(None, None)`` for a model file (it does not say which method or shape it came from)."""
+def prior_widths(path) -> PriorWidths | None:
+    """:func:`method_prior_widths` when ``path`` is a vehicle file, None for a model file
+    (it does not say which method or shape it came from: the fixed :data:`BANDS` apply)."""
+    vehicle = _vehicle_of(path)
+    return None if vehicle is None else method_prior_widths(vehicle)
+
+
+def _vehicle_of(path):
+    """The parsed vehicle of a vehicle file ``path``, None for a model file."""
     from stripcoef.files import load_yaml, read_text
     from stripcoef.geometry.vehicle import load_vehicle
-    from stripcoef.study.sources import shape_class
 
     path = str(path)
     if not path.lower().endswith((".yaml", ".yml")):
-        return None, None
+        return None
     data = load_yaml(read_text(path, kind="vehicle or model file"), file=path)
     if isinstance(data, dict) and "added_mass" in data and "rigid_body_mass" in data:
+        return None
+    return load_vehicle(path)
+
+
+def prior_added_mass_sd(path):
+    """``(sd, shape class)`` of :func:`method_added_mass_sd` when ``path`` is a vehicle file,
+    ``(None, None)`` for a model file (it does not say which method or shape it came from)."""
+    from stripcoef.study.sources import shape_class
+
+    vehicle = _vehicle_of(path)
+    if vehicle is None:
         return None, None
-    vehicle = load_vehicle(path)
     return method_added_mass_sd(vehicle), shape_class(vehicle)
 
 
@@ -601,6 +705,10 @@ def _evaluate(cfg: _Config):
 def _calibration(data: WindowData, dof: int, bands=None, cross=None):
     r"""Calibration columns and band standard deviations for one DOF.
 
+    The relative bands: ``bands`` if given, else the :class:`PriorWidths` the diagnosis runs
+    with (a vehicle file's method-table rows), else :data:`BANDS`; the standard deviation of
+    a correction is the band times the prior value's magnitude [units of the coefficient].
+
     The DOF's own inertia, linear and quadratic damping, and the added mass
     :math:`M_{jj}` of every *other* DOF j that reaches this one through the added-mass
     Coriolis and centripetal force :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43: e.g.
@@ -614,7 +722,8 @@ def _calibration(data: WindowData, dof: int, bands=None, cross=None):
     whose added mass this DOF may calibrate: excited, and not diagnosed themselves, so that
     one coefficient has one value; None = all).
     """
-    bands = bands or BANDS
+    widths = data.__dict__.get("_prior_widths")
+    bands = bands or (widths.bands if widths is not None else BANDS)
     kind = "translational" if dof < 3 else "rotational"
     b = dict(bands[kind])
     m = data.model
@@ -643,6 +752,24 @@ def _calibration(data: WindowData, dof: int, bands=None, cross=None):
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return cols, np.asarray(sd, float), names, prior, b
+
+
+def _band_sources(data: WindowData, dof: int, names) -> dict:
+    """Where each calibrated coefficient's band came from: the method-table row (its text)
+    with a vehicle file's :class:`PriorWidths`, else the fixed :data:`BANDS`."""
+    widths = data.__dict__.get("_prior_widths")
+    out = {}
+    for n in names:
+        owner = dof if n in TERM_MATRIX else parse_dof(n[2:])
+        kind = "translational" if owner < 3 else "rotational"
+        term = n if n in TERM_MATRIX else "M"
+        if widths is not None:
+            out[n] = widths.rows[kind][term]
+        elif data.__dict__.get("_bands_given"):
+            out[n] = f"the bands given to diagnose ({kind} {term})"
+        else:
+            out[n] = f"BANDS {kind} {term}: Wang & Clark 2006 Table I"
+    return out
 
 
 def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> dict:
@@ -786,6 +913,7 @@ def diagnose_dof(data: WindowData, dof: int, *, effects=None, bands=None,
         "std": {n: float(s) for n, s in zip(cal_names, sd)},
         "prior": dict(zip(cal_names, cal_prior)),
         "band_relative": {n: band[n] for n in cal_names},
+        "band_source": _band_sources(data, dof, cal_names),
         "band_z": {n: float(v / s) for n, v, s in zip(cal_names, th, cal_sd)},
         "kept_at_prior": ident["kept_at_prior"],
         "information_ratio": ident["information_ratio"],
@@ -1039,7 +1167,7 @@ class DofFit:
 _JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "dof", "units",
                 "baseline_error", "calibrated_error", "steps", "final_error", "unexplained",
                 "per_dof", "dropped_dofs", "excited_dofs", "dofs_not_diagnosed",
-                "kept_at_prior", "bounds_hit", "added_mass_band", "fitted_on_s",
+                "kept_at_prior", "bounds_hit", "added_mass_band", "prior_widths", "fitted_on_s",
                 "validation", "holdout",
                 "resimulated_velocity_rms", "resimulated_velocity_description")
 
@@ -1096,6 +1224,9 @@ class Diagnosis:
     bounds_hit : mapping
         DOF -> {coefficient: text} for each calibrated coefficient at a physical bound
         (:func:`bounds_hit`)
+    prior_widths : dict, optional
+        :meth:`PriorWidths.to_dict` of the method-table widths the calibration's Gaussian
+        priors took (a vehicle file), None with the fixed :data:`BANDS` (a model file)
     added_mass_band : dict, optional
         The method uncertainty of the prior's added mass the calibration was bounded by
         (``relative_sd`` per DOF, ``z``), when known (``added_mass_sd``)
@@ -1141,6 +1272,7 @@ class Diagnosis:
     validation: dict | None = None
     holdout: dict | None = None
     added_mass_band: dict | None = None
+    prior_widths: dict | None = None
     fits: Mapping = field(default_factory=dict, repr=False, compare=False)
     test_log: object = field(default=None, repr=False, compare=False)
     diagnosed: tuple = field(default=(), repr=False, compare=False)
@@ -1240,7 +1372,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS,
              time_limit: float | None = None,
              validation: float | None = VALIDATION_FRACTION,
-             holdout: float | None = None, added_mass_sd=None) -> Diagnosis:
+             holdout: float | None = None, added_mass_sd=None,
+             prior_widths: PriorWidths | None = None) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -1272,7 +1405,13 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Relative 1-sigma method uncertainty [-] of the prior's added mass per DOF
         (:func:`method_added_mass_sd`; NaN where unknown): the calibrated added mass stays
         within its 99.7 % band (:func:`added_mass_bounds`); one outside it is clipped to it
-        and listed in ``bounds_hit``.
+        and listed in ``bounds_hit``. Default: that of ``prior_widths``.
+    prior_widths : PriorWidths, optional
+        The widths of the calibration's Gaussian priors from the method table
+        (:func:`method_prior_widths`, :func:`prior_widths` of a vehicle file), in the place
+        of :data:`BANDS`; ``bands``, when given, overrides them. Recorded in the JSON with
+        the row each width came from (``prior_widths``, ``per_dof.<dof>.calibration.
+        band_source``).
 
     Returns
     -------
@@ -1294,6 +1433,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                                       and 0.0 <= float(value) < 1.0):
             raise InputError("not a fraction", key=key, value=value,
                              expected="a number in [0, 1), e.g. 0.3")
+    if prior_widths is not None and not isinstance(prior_widths, PriorWidths):
+        raise InputError("not prior widths", key="prior_widths",
+                         value=type(prior_widths).__name__,
+                         expected="a PriorWidths (method_prior_widths(vehicle)) or None")
+    if added_mass_sd is None and prior_widths is not None:
+        added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
         added_mass_sd = np.asarray(added_mass_sd, float).reshape(-1)
         if added_mass_sd.size != 6 or np.any(added_mass_sd[np.isfinite(added_mass_sd)] < 0):
@@ -1306,13 +1451,13 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         return _diagnose(log, model, dof=dof, window=window, effects=effects,
                          resimulate=resimulate, bands=bands, max_steps=max_steps,
                          validation=validation or None, holdout=holdout or None,
-                         added_mass_sd=added_mass_sd)
+                         added_mass_sd=added_mass_sd, prior_widths=prior_widths)
     finally:
         _deadline["at"] = None
 
 
 def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
-              validation, holdout, added_mass_sd=None) -> Diagnosis:
+              validation, holdout, added_mass_sd=None, prior_widths=None) -> Diagnosis:
     """:func:`diagnose` inside its time budget."""
     from stripcoef.diagnose.heldout import split
 
@@ -1328,6 +1473,9 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
             train_log, val_log, skipped = fit_log, None, str(exc)
     data = window_data(train_log, model, window=window)
     data.__dict__["_added_mass_sd"] = added_mass_sd
+    # the calibration's prior widths: the bands given, else the method table's, else BANDS
+    data.__dict__["_prior_widths"] = prior_widths if bands is None else None
+    data.__dict__["_bands_given"] = bands is not None
     if model.effects:  # a calibrated model: its effects are part of its prediction
         data.e0 = data.e0 - effect_window_forces(data, model)
     excited, not_excited = select_dofs(data)
@@ -1395,6 +1543,8 @@ def _diagnose(log, model, *, dof, window, effects, resimulate, bands, max_steps,
                        dofs_not_diagnosed=not_diagnosed, kept_at_prior=kept,
                        bounds_hit=bounds_hit(model, calibrated, added_mass_sd, clipped),
                        added_mass_band=_band_record(added_mass_sd),
+                       prior_widths=(prior_widths.to_dict() if prior_widths is not None
+                                     and bands is None else None),
                        validation=record if skipped is None else {"skipped": skipped},
                        fitted_on_s=(float(train_log["t"][0]), float(train_log["t"][-1])),
                        test_log=test_log, diagnosed=tuple(dofs), **summary)

@@ -59,6 +59,13 @@ def text_summary(result) -> str:
         lines.append("\nkept at the prior (the log does not determine them):")
         for d, v in kept.items():
             lines += [f"  {d} {k}: {why}" for k, why in v.items()]
+    widths = result.get("prior_widths")
+    if widths:
+        lines.append(f"\ncalibration priors from the method table ({widths['shape_class']}; "
+                     "1 sigma of ln c: " + "; ".join(
+                         f"{k} " + ", ".join(f"{n} {v:g}" for n, v in b.items())
+                         for k, b in widths["sd_ln"].items())
+                     + "; linear damping not predicted: a very wide prior)")
     band = result.get("added_mass_band")
     if band:
         lines.append(f"\nadded mass bounded by +-{band['z']:g} sigma of its method uncertainty "
@@ -132,6 +139,21 @@ def _plot(result, dof, path):
     return True
 
 
+def _bands_text(widths) -> str:
+    """The report's sentence on the widths of the calibration's priors."""
+    if not widths:
+        return ("Bands (1 sigma, relative to the prior; Wang & Clark 2006 Table I analytical vs "
+                "experimental): " + "; ".join(f"{k}: " + ", ".join(
+                    f"{n} {100 * v:.0f} %" for n, v in b.items()) for k, b in BANDS.items())
+                + ".")
+    out = [f"Bands (1 sigma of ln c, applied as sigma |c0| at the prior value c0) from the "
+           f"method table, shape class {widths['shape_class']} (docs/uncertainty.md):", ""]
+    for kind, rows in widths["rows"].items():
+        for term, row in rows.items():
+            out.append(f"- {kind} {term}: {widths['sd_ln'][kind][term]:g} ({row})")
+    return "\n".join(out)
+
+
 def markdown_report(result: Diagnosis, path) -> None:
     """Write the markdown report (and one PNG per DOF beside it) atomically."""
     path = Path(path)
@@ -172,10 +194,7 @@ def markdown_report(result: Diagnosis, path) -> None:
             f"coefficient it mimics beyond {MIMIC_BANDS:g} bands. Ties: within "
             f"{100 * TIE:.0f} % of the best held-out error. Unexplained: a generic basis cuts "
             f"the final held-out error by {100 * UNEXPLAINED_GAIN:.0f} % or more.",
-            "", "Bands (1 sigma, relative to the prior; Wang & Clark 2006 Table I analytical vs "
-            "experimental): " + "; ".join(f"{k}: " + ", ".join(f"{n} {100 * v:.0f} %"
-                                                              for n, v in b.items())
-                                          for k, b in BANDS.items()) + "."]
+            "", _bands_text(pub.get("prior_widths"))]
     for d, r in pub["per_dof"].items():
         out += ["", f"## {d}", ""]
         cal = r["calibration"]
