@@ -124,7 +124,7 @@ def test_binomial_interval_is_clopper_pearson():
 # -- the shape classifier ----------------------------------------------------------------------
 
 def _frame():
-    """Open cube frame 0.5 m of 12 square bars 0.03 m."""
+    """Open cube frame 0.5 m of 12 square bars 0.03 m, as overlapping parts."""
     a, t = 0.5, 0.03
     bars = []
     for axis in range(3):
@@ -137,7 +137,7 @@ def _frame():
                 c[others[0]], c[others[1]] = 0.5 * a * s1, 0.5 * a * s2
                 bars.append(trimesh.creation.box(size, transform=trimesh.transformations
                                                  .translation_matrix(c)))
-    return trimesh.boolean.union(bars, engine="manifold")
+    return trimesh.util.concatenate(bars)      # overlapping parts (no boolean engine needed)
 
 
 def test_classifier_reads_the_geometry_box_torpedo_sphere_open_frame():
