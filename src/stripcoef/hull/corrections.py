@@ -27,10 +27,9 @@ The axisymmetric solver itself is :mod:`stripcoef.hull.axisymmetric`.
 
 References
 ----------
-Newman, J. N. (1977) *Marine Hydrodynamics*, sec. 4.13-4.15 and 7.4 (slender
-bodies and their end effects).  Lamb, H. (1932) *Hydrodynamics*, sec. 373
-(spheroid coefficients, the exact check).  Hess, J. L. & Smith, A. M. O. (1967)
-"Calculation of potential flow about arbitrary bodies", *Prog. Aerosp. Sci.* 8.
+Newman (1977) sec. 4.13-4.15 and 7.4 (slender bodies and their end effects), Lamb (1932)
+sec. 373 (the exact spheroid), Hess & Smith (1967): the solver's references, in full in
+:mod:`stripcoef.hull.axisymmetric` and docs/bibliography.md.
 """
 
 from __future__ import annotations
