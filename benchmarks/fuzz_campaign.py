@@ -38,7 +38,6 @@ import contextlib
 import copy
 import io
 import json
-import math
 import os
 import re
 import signal
@@ -881,7 +880,7 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
     app.in_cli_terms = spy
     old = signal.signal(signal.SIGALRM, _alarm)
     signal.setitimer(signal.ITIMER_REAL, limit)
-    rc, detail = None, ""
+    rc = None
     showwarning = warnings.showwarning
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), \

@@ -18,7 +18,6 @@ Deterministic: the same code writes the same bytes (seeded generators).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 

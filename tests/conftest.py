@@ -4,7 +4,6 @@ from pathlib import Path
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")   # small matrices: threads only add contention
 
-import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent

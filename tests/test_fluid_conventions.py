@@ -6,7 +6,7 @@ import pytest
 from stripcoef.conventions import (kinematics, parse_dof, shift_operator, skew,
                                    transform_matrix)
 from stripcoef.errors import InputError
-from stripcoef.fluid import Fluid, density_eos80, dynamic_viscosity_sharqawy
+from stripcoef.fluid import Fluid, density_eos80
 from stripcoef.model import coriolis_from_mass
 
 

@@ -20,7 +20,7 @@ from stripcoef.assembly import EstimateOptions, estimate
 from stripcoef.effects import EFFECTS, get_effect
 from stripcoef.errors import InputError
 from stripcoef.export import FORMATS, ExportFormat, get_format
-from stripcoef.model import Conditions, HydroModel
+from stripcoef.model import Conditions
 from stripcoef.sections import SHAPES, SectionShape, get_shape
 
 ROOT = Path(__file__).resolve().parents[1]

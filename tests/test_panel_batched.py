@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
-from stripcoef.geometry.polygons import ring_centroid
-from stripcoef.sections import panel, polygon_drag, section_drag
+from stripcoef.geometry.polygons import ring_centroid, ring_shape, signed_area
+from stripcoef.sections import polygon_drag, section_drag
 from stripcoef.sections.panel import (
     _interp_rows,
     _ring_set,
@@ -23,7 +23,6 @@ from stripcoef.sections.panel import (
     discretise,
     orient_contours,
     part_rings,
-    signed_area,
 )
 from stripcoef.strips import Part
 
@@ -99,7 +98,7 @@ def test_ring_set_is_cleaned_and_oriented_like_orient_contours():
     assert rs.count.tolist() == [len(r) for r in rings]
     for r, ring in enumerate(rings):
         assert np.array_equal(rs.ring(r), ring)
-        seg, turn = panel.ring_shape(ring)
+        seg, turn = ring_shape(ring)
         assert np.array_equal(rs.shape(r)[0], seg) and np.array_equal(rs.shape(r)[1], turn)
         assert np.sign(rs.area[r]) == np.sign(signed_area(ring))
     cent = rs.centroids()

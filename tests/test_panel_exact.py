@@ -99,7 +99,7 @@ def test_ring_entrains_its_water_and_not_its_rotation():
 def test_hole_orientation_is_normalised():
     outer, inner = ellipse(0.5, 0.5, 300), ellipse(0.3, 0.3, 300)
     rings = orient_contours([outer[::-1], inner])
-    from stripcoef.sections.panel import signed_area
+    from stripcoef.geometry.polygons import signed_area
     assert signed_area(rings[0]) > 0 and signed_area(rings[1]) < 0
 
 

@@ -3,7 +3,6 @@ scripts/make_samples.py writes, and the logs' truth recovered by the commands it
 
 import importlib.util
 import json
-import re
 import shlex
 
 import pytest

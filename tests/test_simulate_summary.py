@@ -1,7 +1,6 @@
 """simulate: --no-munk/--no-coriolis, '-o -' for stdout, the default output step for short
 inputs, the summary of what happened and the warnings for a runaway heading or a divergence."""
 
-import io
 
 import numpy as np
 import pytest

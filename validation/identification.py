@@ -108,7 +108,7 @@ def rov2() -> tuple[str, dict]:
     alpha = reference_value("rov2", "air.alpha")["value"]
     r_air = in_air_length(alpha)
     out = ["### ROV II free-decay pendulum (Eng et al. 2009, eqs. 1-12, Tables II-IV)", "",
-           f"Table II average scaled by lambda = 1/0.3 (`stripcoef scale`, eqs. 9-10):", "",
+           "Table II average scaled by lambda = 1/0.3 (`stripcoef scale`, eqs. 9-10):", "",
            markdown_table(["parameter", "Table II average", "factor", "scaled",
                            "Tables III/IV experiment", "status"], rows), "",
            "The added mass and K_Q do not reproduce: 0.58 x (1/0.3)^3 = 21.48 (printed 21.42 "

@@ -19,7 +19,7 @@ import numpy as np
 
 from stripcoef.conventions import AXES, axes_operator, transform_matrix, transform_vector
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, check_physical, plain
+from stripcoef.model import HydroModel, check_physical
 
 #: Names of the special reference points (see :func:`resolve_point`).
 POINT_NAMES = ("CO", "CG", "CB", "origin")

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import yaml
 
-from stripcoef.export._common import ExportFormat, ExportView, header_lines, plain
+from stripcoef.export._common import ExportFormat, ExportView, header_lines
+from stripcoef.model import plain
 
 NAME = "yaml"
 

@@ -49,7 +49,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.geometry.polygons import CORNER_ANGLE, orient_contours, point_in_ring, ring_shape, signed_area
+from stripcoef.geometry.polygons import CORNER_ANGLE, orient_contours, point_in_ring
 
 #: Default number of panels per section (all contours together).
 DEFAULT_PANELS = 96
