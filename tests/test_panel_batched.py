@@ -120,7 +120,7 @@ def test_drag_geometry_equals_the_per_section_rule():
     part = polygon_part(secs)
     data = polygon_drag._part_cache(part)
     # the whole part at once equals each section's geometry on its own
-    geoms = [polygon_drag._ring_set_geometry(_ring_set([c])) for c in secs]
+    geoms = [polygon_drag._ring_set_geometry(_ring_set([c]), [c]) for c in secs]
     owner = np.concatenate([np.full(g["owner"].size, i) for i, g in enumerate(geoms)])
     assert np.array_equal(data["owner"], owner)
     assert np.array_equal(data["rounded"], np.concatenate([g["rounded"] for g in geoms]))

@@ -253,18 +253,9 @@ def _band_sd(data, dof: int):
 
 def method_added_mass_sd(vehicle) -> np.ndarray:
     """1-sigma method uncertainty of each DOF's added mass (6,), as the sd of its logarithm
-    [-], for a parsed vehicle: the ``added_mass`` rows of its class in
-    :func:`stripcoef.study.sources.method_sources` (translations share one value, rotations
-    another; a normal row's relative sd is taken as the sd of the logarithm, equal to first
-    order)."""
-    from stripcoef.study.sources import GROUPS, method_sources
-
-    out = np.full(6, np.nan)
-    for src in method_sources(vehicle):
-        matrix, group = src.name.split(".")
-        if matrix == "added_mass" and group in GROUPS:
-            out[list(GROUPS[group])] = src.spread
-    return out
+    [-], for a parsed vehicle: the ``added_mass`` rows of its class (translations share one
+    value, rotations another), read as :func:`method_prior_widths` reads them."""
+    return method_prior_widths(vehicle).added_mass_sd
 
 
 def prior_widths(path) -> PriorWidths | None:
@@ -291,12 +282,8 @@ def _vehicle_of(path):
 def prior_added_mass_sd(path):
     """``(sd, shape class)`` of :func:`method_added_mass_sd` when ``path`` is a vehicle file,
     ``(None, None)`` for a model file (it does not say which method or shape it came from)."""
-    from stripcoef.study.sources import shape_class
-
-    vehicle = _vehicle_of(path)
-    if vehicle is None:
-        return None, None
-    return method_added_mass_sd(vehicle), shape_class(vehicle)
+    widths = prior_widths(path)
+    return (None, None) if widths is None else (widths.added_mass_sd, widths.shape_class)
 
 
 # ---------------------------------------------------------------------------

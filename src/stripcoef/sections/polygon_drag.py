@@ -116,10 +116,7 @@ def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict
     White, *Fluid Mechanics*, table 7.2; DNV-RP-C205 App. E and sec. 6.7;
     Hoerner (1965) *Fluid-Dynamic Drag*, ch. 3 and 4.
     """
-    rs = _ring_set([contours], "contours", single=True)
-    if rs.nsec and rs.rings_of[1] == 0:
-        orient_contours(contours)                # an empty section: its error
-    c = _ring_set_geometry(rs)
+    c = _ring_set_geometry(_ring_set([contours], "contours", single=True), [contours])
     out = {"parts": int(c["owner"].size), "rounded": [bool(v) for v in c["rounded"]]}
     for key, re in (("y", reynolds_y), ("z", reynolds_z)):
         ratio, h, w, height = c[key]
@@ -129,14 +126,17 @@ def section_cross_flow_drag(contours, *, reynolds_y=1e5, reynolds_z=1e5) -> dict
     return out
 
 
-def _ring_set_geometry(rs):
-    """Cross-flow geometry of every section of the ring set ``rs``, all parts at once.
+def _ring_set_geometry(rs, sections):
+    """Cross-flow geometry of every section of the ring set ``rs`` of ``sections`` (the
+    contours it was built from: an empty one raises its error), all parts at once.
 
     Per solid part (outer ring; holes do not change the outline the flow sees, rule 1 of
     the module): ``owner`` (its section), ``rounded`` (no sharp corner), and per flow
     direction ``"y"``/``"z"`` the tuple (d/h, h, exposed height w, section height H), with
     h, w [m] per part and H [m] per section (rules 2-4 of the module).
     """
+    for s in np.nonzero(np.diff(rs.rings_of) == 0)[0]:
+        orient_contours(sections[s])             # an empty section: its error
     outer = rs.area > 0
     y, z = rs.pts[outer, :, 0], rs.pts[outer, :, 1]          # padding repeats a vertex
     g = np.column_stack([y.min(axis=1), y.max(axis=1), z.min(axis=1), z.max(axis=1)])
@@ -164,10 +164,7 @@ def _part_cache(part):
     cache = getattr(part, "_polygon_drag_cache", None)
     if cache is not None and cache[0] is part.contours:
         return cache[1]
-    rs = part_rings(part)
-    for s in np.nonzero(np.diff(rs.rings_of) == 0)[0]:
-        orient_contours(part.contours[s])        # an empty section: its error
-    data = _ring_set_geometry(rs)
+    data = _ring_set_geometry(part_rings(part), part.contours)
     part._polygon_drag_cache = (part.contours, data)
     return data
 
