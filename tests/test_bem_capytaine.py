@@ -73,6 +73,7 @@ def test_compare_cli_json(spheroid_file, capsys):
     assert main(["compare", str(spheroid_file), "--rho", "1000", "--strips", "60", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert set(data["seconds"]) == {"load", "strip_theory", "bem"}
+    assert data["added_mass_method"] == "strip theory"       # a spheroid: auto keeps the strips
     terms = {t["term"]: t for t in data["terms"]}
     # a spheroid: strip theory with the spheroid end correction is Lamb's solution; the
     # coarse BEM mesh is within a few per cent of it

@@ -138,6 +138,10 @@ def test_compare_text_says_untrusted():
                               "limit": 20.0}}
     text = format_comparison(data)
     assert "NOT TRUSTED" in text and "%" not in text.split("diff %")[1].split("(values")[0]
+    assert "strip theory (1000 strips" in text
+    # the default (auto) sends a bluff mesh to the panel method: the text says which was compared
+    data["added_mass_method"] = "3D panel method (stripcoef.hull.panels, Richardson from 360 and 1440 panels)"
+    assert "stripcoef (3D panel method" in format_comparison(data)
 
 
 @pytest.mark.xfail(strict=True, reason="issue 14, not fixed: the member decomposition treats the "
