@@ -167,7 +167,7 @@ def test_actuator_effects_recover_their_truth(effect, truth_kw, param, value):
     log, _, _ = make_log(7, truth=prior, forces=_shortfall_lag_forces(**truth_kw),
                          duration=120.0)
     fit = fit_effects(log, prior, "surge", [effect])
-    est, sd = fit["parameters"][effect][param], fit["std"][effect][param]
+    est, sd = fit.parameters[effect][param], fit.std[effect][param]
     assert abs(est - value) <= 3 * sd + 0.02 * value, (est, sd)
 
 

@@ -216,11 +216,11 @@ def romeo_case(seed: int = 0) -> list:
         with_eta = fit_effects(log, prior, "heave", ["thrust_asymmetry", "buoyancy_offset"])
         res = diagnose(log, prior, dof="heave").to_dict()
         rows.append({"experiment": i, "weight_truth": weight,
-                     "standard_buoyancy": standard["parameters"]["buoyancy_offset"]["b"],
-                     "standard_buoyancy_std": standard["std"]["buoyancy_offset"]["b"],
-                     "eta_buoyancy": with_eta["parameters"]["buoyancy_offset"]["b"],
-                     "eta_buoyancy_std": with_eta["std"]["buoyancy_offset"]["b"],
-                     "eta": with_eta["parameters"]["thrust_asymmetry"],
+                     "standard_buoyancy": standard.parameters["buoyancy_offset"]["b"],
+                     "standard_buoyancy_std": standard.std["buoyancy_offset"]["b"],
+                     "eta_buoyancy": with_eta.parameters["buoyancy_offset"]["b"],
+                     "eta_buoyancy_std": with_eta.std["buoyancy_offset"]["b"],
+                     "eta": with_eta.parameters["thrust_asymmetry"],
                      "diagnosis": res})
     return rows
 

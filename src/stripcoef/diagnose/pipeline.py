@@ -1794,16 +1794,40 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     return free_simulation_errors(log, model, dofs, horizon=horizon, tolerances=(1e-6, 1e-8))
 
 
-def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, bands=None) -> dict:
+@dataclass(frozen=True)
+class EffectFit:
+    """The result of :func:`fit_effects`: a fixed list of effects fitted with the calibration.
+
+    Attributes
+    ----------
+    parameters : dict
+        Effect name -> its fitted parameters (:meth:`Effect.to_parameters`)
+    std : dict
+        Effect name -> the standard deviations of those parameters
+    calibration : dict
+        Calibrated coefficient name -> value (the columns of :func:`_calibration`)
+    error : float
+        RMS window force residual of the fit [N or N m]
+    held_out_error : float
+        The same on the held-out windows [N or N m]
+    """
+
+    parameters: dict
+    std: dict
+    calibration: dict
+    error: float
+    held_out_error: float
+
+
+def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW,
+                bands=None) -> EffectFit:
     """Fit the calibration and a given list of effects (no selection): the "what if" of a
     fixed model structure, e.g. Indiveri 1998's standard model (calibration + buoyancy) or its
     eta model (+ thrust_asymmetry).
 
     Returns
     -------
-    dict
-        ``parameters`` and ``std`` (effect name -> parameter dict), ``calibration``,
-        ``error``, ``held_out_error`` [N or N m].
+    EffectFit
     """
     data = window_data(log, model, window=window)
     i = parse_dof(dof)
@@ -1830,6 +1854,6 @@ def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW, ban
         params[eff.name] = eff.to_parameters(theta[own], hyper, theta[k:k + kn])
         std[eff.name] = eff.std_of(theta[own], cov[own, own], hsd, cov[k:k + ncol, k:k + ncol])
         k += ncol
-    return {"parameters": params, "std": std,
-            "calibration": {n: float(v) for n, v in zip(cal_names, theta[:len(cal_names)])},
-            "error": ev["error"], "held_out_error": ev["held_out_error"]}
+    return EffectFit(parameters=params, std=std,
+                     calibration={n: float(v) for n, v in zip(cal_names, theta[:len(cal_names)])},
+                     error=float(ev["error"]), held_out_error=float(ev["held_out_error"]))
