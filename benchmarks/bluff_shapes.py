@@ -2,8 +2,12 @@
 
 Shapes (body axes FRD, metres, centred on their volume centroid): boxes from 1:4:1 to 4:1:1 in
 all orientations and a cube, short cylinders along x, y and z, a sphere, an oblate and two
-triaxial ellipsoids, an open frame of tubes with thruster pods, a VideoRay-like body and the
-BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl.
+triaxial ellipsoids, an open frame of tubes with thruster pods, a VideoRay-like body, the
+BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl (18 shapes), and six asymmetric bluff
+bodies for the off-diagonal terms (issue 14): a box with two skids below, a box with a pod on
+top aft, an L-shaped block (raised housing at the front), a cylinder with a float on top
+forward, a box with its front-top edge chamfered, and two cylinders joined by a top plate
+(24 shapes in all).
 
 References (stored, never recomputed by the tests):
 
@@ -142,6 +146,59 @@ def videoray_like():
     return _union(parts)
 
 
+#: sections of the round parts of the asymmetric shapes (24: the two BEM resolutions of
+#: cyl_float, twin_hull and box_pod_top_aft come out near 2300 and 4600 faces; 32 gave
+#: cyl_float 2270 and 2942 only, a poorly conditioned Richardson step)
+_ASYM_SECTIONS = 24
+
+
+def box_skid():
+    """Box 0.40 x 0.30 x 0.20 m with two skid bars 0.36 x 0.03 x 0.04 m below it at
+    y = +-0.10 m (z 0.10-0.14 m: on the box's bottom face): asymmetric top-bottom."""
+    parts = [_box([0.40, 0.30, 0.20])]
+    for y in (-0.10, 0.10):
+        parts.append(_box([0.36, 0.03, 0.04], [0.0, y, 0.12]))
+    return _union(parts)
+
+
+def box_pod_top_aft():
+    """Box 0.45 x 0.35 x 0.22 m with a cylindrical pod (D 0.10, L 0.20 m, along x) on top, aft,
+    centred at (-0.12, 0, -0.14) m: asymmetric fore-aft and top-bottom."""
+    return _union([_box([0.45, 0.35, 0.22]),
+                   _cyl(0.10, 0.20, [-0.12, 0.0, -0.14], [1, 0, 0], _ASYM_SECTIONS)])
+
+
+def l_block():
+    """Box 0.40 x 0.30 x 0.12 m with a raised housing 0.15 x 0.30 x 0.15 m on top at the front
+    (centred at (0.125, 0, -0.13) m, 0.005 m into the box): an L-shaped side profile."""
+    return _union([_box([0.40, 0.30, 0.12]), _box([0.15, 0.30, 0.15], [0.125, 0.0, -0.13])])
+
+
+def cyl_float():
+    """Cylinder along x (D 0.15, L 0.40 m) with a float block 0.30 x 0.20 x 0.06 m on top,
+    shifted forward (centred at (0.04, 0, -0.095) m)."""
+    return _union([_cyl(0.15, 0.40, [0.0, 0.0, 0.0], [1, 0, 0], _ASYM_SECTIONS),
+                   _box([0.30, 0.20, 0.06], [0.04, 0.0, -0.095])])
+
+
+def chamfer_box():
+    """Box 0.40 x 0.30 x 0.20 m with its front-top edge chamfered (0.10 m along x, 0.10 m down
+    the front face): the convex hull of the corners with the two front-top ones replaced by
+    (0.20, +-0.15, 0.0) and (0.10, +-0.15, -0.10)."""
+    pts = [(x, y, z) for x in (-0.20, 0.20) for y in (-0.15, 0.15) for z in (-0.10, 0.10)
+           if not (x > 0 and z < 0)]
+    pts += [(0.20, y, 0.0) for y in (-0.15, 0.15)] + [(0.10, y, -0.10) for y in (-0.15, 0.15)]
+    return trimesh.convex.convex_hull(np.array(pts, float))
+
+
+def twin_hull():
+    """Two cylinders along x (D 0.12, L 0.50 m) at y = +-0.15 m joined by a top plate
+    0.30 x 0.42 x 0.04 m centred at (0, 0, -0.07) m: a catamaran-like body."""
+    parts = [_cyl(0.12, 0.50, [0.0, y, 0.0], [1, 0, 0], _ASYM_SECTIONS) for y in (-0.15, 0.15)]
+    parts.append(_box([0.30, 0.42, 0.04], [0.0, 0.0, -0.07]))
+    return _union(parts)
+
+
 def _bluerov2():
     return trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
 
@@ -171,6 +228,13 @@ SHAPES = {
     "open_frame": (lambda n: open_frame(), False, "open frame: 12 tubes, 3 thruster pods"),
     "videoray_like": (lambda n: videoray_like(), False, "VideoRay-like body (asymmetric)"),
     "bluerov2_heavy": (lambda n: _bluerov2(), False, "geometry/bluerov2_heavy.stl"),
+    "box_skid": (lambda n: box_skid(), False, "box 0.40 x 0.30 x 0.20 m, two skids below"),
+    "box_pod_top_aft": (lambda n: box_pod_top_aft(), False,
+                        "box 0.45 x 0.35 x 0.22 m, cylindrical pod on top aft"),
+    "l_block": (lambda n: l_block(), False, "box 0.40 x 0.30 x 0.12 m, raised housing at the front"),
+    "cyl_float": (lambda n: cyl_float(), False, "cylinder along x D 0.15 L 0.40 m, float on top forward"),
+    "chamfer_box": (lambda n: chamfer_box(), False, "box 0.40 x 0.30 x 0.20 m, front-top edge chamfered"),
+    "twin_hull": (lambda n: twin_hull(), False, "two cylinders along x joined by a top plate"),
 }
 
 #: semi-axes of the shapes that Lamb solves exactly

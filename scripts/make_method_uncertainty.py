@@ -13,7 +13,7 @@ error, the reference's source). The references, all stored data or exact formula
 - the capsule against its converged Capytaine run (reference_tables/capytaine_anchor);
 - three finned Myring hulls against Capytaine (benchmarks/data/bem_finned_bodies.csv, the
   Richardson rows; vehicle files of benchmarks/finned_bodies.py);
-- the 18 bluff shapes against Capytaine (benchmarks/data/bem_bluff.csv, Richardson), the
+- the 24 bluff shapes against Capytaine (benchmarks/data/bem_bluff.csv, Richardson), the
   ellipsoids' diagonals against Lamb (as benchmarks/bluff_shapes.py does).
 
 Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_class), never by

@@ -5,7 +5,7 @@ The references are data (benchmarks/data/bem_bluff.csv, written by
 ``python benchmarks/bluff_shapes.py --reference``); the accuracy tables are the stored output
 of the benchmark (benchmarks/data/bluff_accuracy_<mode>.md, written by
 ``python benchmarks/bluff_shapes.py [--per-dof-axes | --method panels --bem-timing] --write``),
-so that this report does not rerun 18 shapes.
+so that this report does not rerun the 24 shapes.
 """
 
 from __future__ import annotations
