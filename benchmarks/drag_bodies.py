@@ -20,7 +20,12 @@ Bodies (x: the mesh axis the method cuts its strips along):
   face area a^2 as the reference states), z a face (cube.face_on.Cd);
 - ``cone60``, ``cone30``: flat-based cones of apex angle 60 and 30 deg along x, against
   cone.apex60.Cd / cone.apex30.Cd (A = pi d^2/4, the base); the model's drag is symmetric in
-  the flow direction (a |u| u term).
+  the flow direction (a |u| u term);
+- ``hemisphere``: a solid hemisphere along x, its one X_uu against both orientations
+  (hemisphere_solid.Cd_dome, dome on the flow, and hemisphere_solid.Cd_high, flat face on it;
+  A = pi d^2/4): the model cannot tell them apart;
+- ``ellipsoid_2to1``: a prolate spheroid of length 2D along x against ellipsoid_2to1.Cd
+  (nose-on, A = pi D^2/4; Re = 1e5 on D as the reference's table states).
 
 Run: python benchmarks/drag_bodies.py   (seconds; prints model vs reference)
 """
@@ -68,6 +73,19 @@ def cone(apex_deg):
     return _revolved(r, x)
 
 
+def hemisphere():
+    """Solid hemisphere, base diameter SIZE, dome towards +x."""
+    t = np.linspace(0.0, 0.5 * np.pi, 49)
+    r = np.r_[0.5 * SIZE * np.sin(t), np.linspace(0.5 * SIZE, 0.0, 20)[1:]]
+    x = np.r_[0.5 * SIZE * np.cos(t), np.zeros(19)]
+    return _revolved(r, x)
+
+
+def ellipsoid_2to1():
+    t = np.linspace(0.0, np.pi, 97)
+    return _revolved(0.5 * SIZE * np.sin(t), -SIZE * np.cos(t))
+
+
 def cube():
     return trimesh.creation.box([SIZE] * 3)
 
@@ -79,15 +97,19 @@ def cube_edge():
 
 
 PI_D2 = np.pi * SIZE ** 2 / 4
-#: name -> (builder, reference area [m^2], what the area is, {dof index: reference row})
+#: name -> (builder, reference area [m^2], what the area is, [(dof index, reference row)])
 BODIES = {
-    "sphere": (sphere, PI_D2, "pi D^2/4", {0: "sphere.Cd", 1: "sphere.Cd", 2: "sphere.Cd"}),
-    "cube": (cube, SIZE ** 2, "face a^2", {0: "cube.face_on.Cd", 1: "cube.face_on.Cd",
-                                          2: "cube.face_on.Cd"}),
-    "cube_edge": (cube_edge, SIZE ** 2, "face a^2", {0: "cube.edge_on.Cd", 1: "cube.edge_on.Cd",
-                                                    2: "cube.face_on.Cd"}),
-    "cone60": (lambda: cone(60.0), PI_D2, "base pi d^2/4", {0: "cone.apex60.Cd"}),
-    "cone30": (lambda: cone(30.0), PI_D2, "base pi d^2/4", {0: "cone.apex30.Cd"}),
+    "sphere": (sphere, PI_D2, "pi D^2/4", [(0, "sphere.Cd"), (1, "sphere.Cd"), (2, "sphere.Cd")]),
+    "cube": (cube, SIZE ** 2, "face a^2", [(0, "cube.face_on.Cd"), (1, "cube.face_on.Cd"),
+                                          (2, "cube.face_on.Cd")]),
+    "cube_edge": (cube_edge, SIZE ** 2, "face a^2", [(0, "cube.edge_on.Cd"),
+                                                    (1, "cube.edge_on.Cd"),
+                                                    (2, "cube.face_on.Cd")]),
+    "cone60": (lambda: cone(60.0), PI_D2, "base pi d^2/4", [(0, "cone.apex60.Cd")]),
+    "cone30": (lambda: cone(30.0), PI_D2, "base pi d^2/4", [(0, "cone.apex30.Cd")]),
+    "hemisphere": (hemisphere, PI_D2, "base pi d^2/4", [(0, "hemisphere_solid.Cd_dome"),
+                                                       (0, "hemisphere_solid.Cd_high")]),
+    "ellipsoid_2to1": (ellipsoid_2to1, PI_D2, "pi D^2/4", [(0, "ellipsoid_2to1.Cd")]),
 }
 
 
@@ -113,7 +135,7 @@ def compare(name, estimate=None):
     dq = np.abs(np.diag(np.asarray(model.quadratic_damping)))
     dl = np.abs(np.diag(np.asarray(model.linear_damping)))
     rows = []
-    for k, row in refs.items():
+    for k, row in refs:
         rows.append({"dof": k, "cd_model": float(dq[k] / (0.5 * RHO * area)),
                      "cd_ref": float(reference_value(SOURCE, row)["value"]), "row": row,
                      "area": area_text, "reynolds": SPEED * SIZE / NU,

@@ -549,7 +549,8 @@ def test_data_plate_aspect_ratio_drag_ends_at_the_published_2d_plate():
 
 #: the rows scripts/make_method_uncertainty.py measures the translational drag on
 BODY_DRAG_USED = ("sphere.Cd", "cube.face_on.Cd", "cube.edge_on.Cd", "cone.apex60.Cd",
-                  "cone.apex30.Cd")
+                  "cone.apex30.Cd", "hemisphere_solid.Cd_dome", "hemisphere_solid.Cd_high",
+                  "ellipsoid_2to1.Cd")
 
 
 def test_body_drag_rows_used_are_read_or_computed_from_read():
