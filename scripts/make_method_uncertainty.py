@@ -14,17 +14,25 @@ error, the reference's source). The references, all stored data or exact formula
 - three finned Myring hulls against Capytaine (benchmarks/data/bem_finned_bodies.csv, the
   Richardson rows; vehicle files of benchmarks/finned_bodies.py);
 - the 24 bluff shapes against Capytaine (benchmarks/data/bem_bluff.csv, Richardson), the
-  ellipsoids' diagonals against Lamb (as benchmarks/bluff_shapes.py does).
+  ellipsoids' diagonals against Lamb (as benchmarks/bluff_shapes.py does);
+- translational quadratic drag: a sphere, a cube face-on and edge-on, two cones, a hemisphere
+  and a 2:1 ellipsoid against their measured whole-body drag coefficients
+  (reference_tables/body_drag_3d, Hoerner 1965 via public copies; bodies, sizes and Re = 1e5 in
+  benchmarks/drag_bodies.py). Bodies whose drag the method reads from the same number (disc,
+  square plate, cylinders along or across the flow, streamlined bodies of revolution) are not
+  used: reference_tables/body_drag_3d/README.md.
 
 Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_class), never by
 its name. The second step reads that file and writes src/stripcoef/data/method_uncertainty.csv:
-per class and term family (translational / rotational added mass), the sd of ln
+per class, matrix and term family (translational / rotational added mass; translational
+quadratic drag where a class has at least MIN_SHAPES measured shapes), the sd of ln
 sigma = q95 / 1.96 from the split-conformal 95 % quantile q95 of |ln(strip / reference)|
 (the k-th smallest, k = min(n, ceil(0.95 (n + 1))): a new exchangeable term falls within it
 with probability k / (n + 1), stripcoef.study.calibration); couplings are measured as
 (strip - ref) / sqrt(A_ii A_jj) and sampled as an additive move c sqrt(A_ii A_jj)
-(stripcoef.study.sources.couple); drag has no independent reference stored (assumed rows,
-labelled so) and linear damping is not predicted by the method (placeholder rows, labelled so).
+(stripcoef.study.sources.couple); rotational drag, and translational drag of a class with
+fewer measured shapes (finned, open_frame), have no independent reference stored (assumed rows,
+labelled so), and linear damping is not predicted by the method (placeholder rows, labelled so).
 """
 
 from __future__ import annotations
@@ -53,10 +61,13 @@ ERRORS = ROOT / "benchmarks" / "data" / "method_errors.csv"
 TABLE = ROOT / "src" / "stripcoef" / "data" / "method_uncertainty.csv"
 TERMS = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
 SPHEROIDS = (2.0, 3.0, 5.0, 7.5, 10.0)
-FIELDS = ("set", "shape", "class", "family", "term", "strip", "reference", "error", "mirrors",
+FIELDS = ("set", "shape", "class", "matrix", "family", "term", "strip", "reference", "error", "mirrors",
           "allowed", "reference_source")
 
-#: drag: no reference independent of the correlations the method uses (Hoerner, DNV) is stored
+#: fewest shapes of a class that make a measured row (leave-one-shape-out needs two)
+MIN_SHAPES = 2
+DRAG_SET = "Published 3D drag"
+#: drag with no independent reference stored for the class (rotation: none for any class)
 ASSUMED_DRAG = {
     "revolution": (0.15, 0.25), "finned": (0.15, 0.25), "bluff": (0.20, 0.30),
     "open_frame": (0.20, 0.30)}
@@ -86,7 +97,8 @@ def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors):
             err = float(log_error(strip[i, i], ref[i, i]))
         else:
             err = float((strip[i, j] - ref[i, j]) / np.sqrt(d[i] * d[j]))
-        out.append({"set": set_name, "shape": shape, "class": cls, "family": _family(i, j),
+        out.append({"set": set_name, "shape": shape, "class": cls, "matrix": "added_mass",
+                    "family": _family(i, j),
                     "term": _term(i, j), "strip": f"{strip[i, j]:.8g}",
                     "reference": f"{ref[i, j]:.8g}", "error": f"{err:.6g}",
                     "mirrors": " ".join(sorted(mirrors)) or "none",
@@ -190,28 +202,64 @@ def measure() -> list[dict]:
         rows += _rows("Capytaine bluff shapes", name, PANELS, panel, ref, source,
                       _compared(bs, ref, panel), sym)
         print(f"{name}: {rows[-1]['class']}", flush=True)
+    rows += drag_rows(mirrors)
     return rows
+
+
+def drag_rows(mirrors) -> list[dict]:
+    """One row per compared direction of each body of benchmarks/drag_bodies.py: the model's
+    and the measured C_D [-] on the reference's area, error ln(model / reference)."""
+    import drag_bodies as db
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.conventions import quadratic_damping_name
+    from stripcoef.study.shapes import shape_class
+
+    out = []
+    for name in db.BODIES:
+        veh, model, rows = db.compare(name, lambda v: estimate(
+            v, added_mass_method="strips", speed=db.SPEED))
+        cls = shape_class(veh)
+        sym = " ".join(sorted(mirrors(veh, model))) or "none"
+        for r in rows:
+            k = r["dof"]
+            out.append({"set": DRAG_SET, "shape": name, "class": cls,
+                        "matrix": "quadratic_damping", "family": _family(k, k),
+                        "term": quadratic_damping_name(k, k), "strip": f"{r['cd_model']:.8g}",
+                        "reference": f"{r['cd_ref']:.8g}",
+                        "error": f"{float(log_error(r['cd_model'], r['cd_ref'])):.6g}",
+                        "mirrors": sym, "allowed": "",
+                        "reference_source": f"reference_tables/{db.SOURCE}/{db.TABLE}.csv "
+                                            f"({r['row']}; C_D on {r['area']}, Re {r['reynolds']:.0e})"})
+        print(f"{name}: {cls} (drag)", flush=True)
+    return out
 
 
 def write_errors(rows):
     with open(ERRORS, "w", newline="") as fh:
         fh.write("# Strip theory (added_mass_method strips, 3D corrections on), and the 3D panel method (class panels) on the bluff shapes, against stored references, one row\n"
-                 "# per compared added-mass term. error: diagonal ln(strip / reference) [-] (inf: strip 0);\n"
+                 "# per compared term. matrix added_mass: error: diagonal ln(strip / reference) [-] (inf: strip 0);\n"
                  "# coupling (strip - reference) / sqrt(A_ii A_jj) of the reference [-], for every coupling\n"
                  "# >= 1 % of sqrt(A_ii A_jj) in the reference or in the strip model (zero in the model\n"
                  "# included). mirrors: the shape's mirror symmetries through the model's reference point\n"
                  "# (stripcoef.study.symmetry); allowed: whether they allow the coupling (the sampling\n"
                  "# moves it, stripcoef.study.sources.couple; a forbidden one stays zero). class: by geometry\n"
-                 "# (stripcoef.study.shapes). Units kg, kg m, kg m^2 (Fossen signs). reference_source: where\n"
-                 "# the reference is stored. Generated by python scripts/make_method_uncertainty.py --measure\n")
+                 "# (stripcoef.study.shapes). Units kg, kg m, kg m^2 (Fossen signs). matrix quadratic_damping\n"
+                 "# (set Published 3D drag, benchmarks/drag_bodies.py): strip and reference are the model's\n"
+                 "# |D_Q[k, k]| / (1/2 rho A) and the measured whole-body drag coefficient on the reference's\n"
+                 "# area A [-], error ln(strip / reference). reference_source: where the reference is stored.\n"
+                 "# Generated by python scripts/make_method_uncertainty.py --measure\n")
         w = csv.DictWriter(fh, FIELDS, lineterminator="\n")
         w.writeheader()
         w.writerows(rows)
 
 
 def read_errors(path=ERRORS) -> list[dict]:
+    """The rows of the errors file (a file written before the ``matrix`` column: added mass)."""
     with open(path) as fh:
-        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+        rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+    for r in rows:
+        r["matrix"] = r.get("matrix") or "added_mass"
+    return rows
 
 
 HEADER = """\
@@ -226,9 +274,29 @@ HEADER = """\
 # basis: measured (sd = q95 / 1.96, q95 the split-conformal 95 % quantile of |error| over
 #   n_terms terms of n_shapes shapes: the k-th smallest, k = min(n, ceil(0.95 (n + 1)));
 #   claim = k / (n + 1), the chance a new term of the class falls inside, distribution-free;
-#   stripcoef.study.calibration) | assumed (no independent reference stored) |
+#   stripcoef.study.calibration; added mass: Lamb and converged Capytaine runs; translational
+#   quadratic drag: measured whole-body drag of simple bodies, reference_tables/body_drag_3d,
+#   for a class with at least 2 such shapes) | assumed (no independent reference stored) |
 #   not_predicted (outside the model: a placeholder spread, not a calibrated band).
 """
+
+
+def _measured(cls, matrix, fam, sel) -> list:
+    """The measured row of ``sel`` (one class, matrix and family): sd = q95 / 1.96."""
+    err = np.array([float(r["error"]) for r in sel])
+    q = quantile95(err)
+    shapes = sorted({r["shape"] for r in sel})
+    sets = sorted({r["set"] for r in sel})
+    worst = sel[int(np.argmax(np.abs(err)))]
+    what = ("|ln(model/ref)|" if fam != "coupling" else "|model - ref| / sqrt(A_ii A_jj)")
+    text = (f"{what} of {len(sel)} terms of {len(shapes)} "
+            f"shape{'s' if len(shapes) != 1 else ''} ({'; '.join(sets)}): "
+            f"q95 {q:.4g}, largest {abs(float(worst['error'])):.4g} "
+            f"({worst['shape']} {worst['term']}); a new term of the class falls in the "
+            f"band with probability {claimed_coverage(len(sel)):.3f} (k/(n+1))")
+    return [cls, matrix, fam, "lognormal" if fam != "coupling" else "normal",
+            f"{q / Z95:.4g}", "measured", len(shapes), len(sel), f"{q:.4g}",
+            f"{claimed_coverage(len(sel)):.3f}", text]
 
 
 def make_table(rows) -> str:
@@ -239,31 +307,26 @@ def make_table(rows) -> str:
                 "n_terms", "q95", "claim", "source"])
     for cls in (*CLASSES, PANELS):
         for fam in ("translation", "rotation", "coupling"):
-            sel = [r for r in rows if r["class"] == cls and r["family"] == fam]
-            if not sel:
-                continue
-            err = np.array([float(r["error"]) for r in sel])
-            q = quantile95(err)
-            shapes = sorted({r["shape"] for r in sel})
-            sets = sorted({r["set"] for r in sel})
-            worst = sel[int(np.argmax(np.abs(err)))]
-            what = ("|ln(model/ref)|" if fam != "coupling" else "|model - ref| / sqrt(A_ii A_jj)")
-            text = (f"{what} of {len(sel)} terms of {len(shapes)} "
-                    f"shape{'s' if len(shapes) != 1 else ''} ({'; '.join(sets)}): "
-                    f"q95 {q:.4g}, largest {abs(float(worst['error'])):.4g} "
-                    f"({worst['shape']} {worst['term']}); a new term of the class falls in the "
-                    f"band with probability {claimed_coverage(len(sel)):.3f} (k/(n+1))")
-            w.writerow([cls, "added_mass", fam, "lognormal" if fam != "coupling" else "normal",
-                        f"{q / Z95:.4g}", "measured", len(shapes), len(sel), f"{q:.4g}",
-                        f"{claimed_coverage(len(sel)):.3f}", text])
+            sel = [r for r in rows if r["class"] == cls and r["family"] == fam
+                   and r["matrix"] == "added_mass"]
+            if sel:
+                w.writerow(_measured(cls, "added_mass", fam, sel))
         if cls == PANELS:
             continue              # damping of a panel-method model: its geometric class's rows
         tr, rot = ASSUMED_DRAG[cls]
         for fam, sd in (("translation", tr), ("rotation", rot)):
+            sel = [r for r in rows if r["class"] == cls and r["family"] == fam
+                   and r["matrix"] == "quadratic_damping"]
+            if len({r["shape"] for r in sel}) >= MIN_SHAPES:
+                w.writerow(_measured(cls, "quadratic_damping", fam, sel))
+                continue
+            what = ("no measured drag of a rotation is stored" if fam == "rotation" else
+                    f"measured drag of {len({r['shape'] for r in sel})} shape(s) of the class "
+                    f"stored (reference_tables/body_drag_3d; {MIN_SHAPES} needed)")
             w.writerow([cls, "quadratic_damping", fam, "lognormal", f"{sd:g}", "assumed", 0, 0, "", "",
-                        "no drag reference independent of the method's own correlations (Hoerner "
-                        "1965, DNV-RP-C205) is stored: an assumed sd(ln); checked on held-out "
-                        "measurements by benchmarks/band_coverage.py"])
+                        f"no drag reference independent of the method's own correlations (Hoerner "
+                        f"1965, DNV-RP-C205) for this class and DOF group: {what}; an assumed "
+                        f"sd(ln), checked on held-out measurements by benchmarks/band_coverage.py"])
         for fam in ("translation", "rotation"):
             w.writerow([cls, "linear_damping", fam, "lognormal", "2.5", "not_predicted", 0, 0,
                         "", "", "not predicted: the method's drag is quadratic and its linear part "

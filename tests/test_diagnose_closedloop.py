@@ -419,7 +419,8 @@ def _rows_by_name(sources):
 @pytest.mark.parametrize("panels", [None, True])
 def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
     """Added mass from the added_mass rows (the panels rows for a panel-method model),
-    quadratic damping from the assumed rows, linear damping from the not_predicted rows;
+    quadratic damping from its rows (translation measured on published 3D drag, rotation
+    assumed), linear damping from the not_predicted rows;
     each width names the row (its source text) it came from."""
     from stripcoef.diagnose.pipeline import method_prior_widths, prior_widths
     from stripcoef.geometry.vehicle import load_vehicle
@@ -440,7 +441,8 @@ def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
             assert widths.rows[kind][term].startswith(f"{cls} {matrix}.{group}: ")
         assert "not predicted" in widths.rows[kind]["D_L"]
         assert widths.sd_ln[kind]["D_L"] >= 2.5          # a very wide prior
-        assert "assumed" in widths.rows[kind]["D_Q"]
+        assert ("Published 3D drag" if kind == "translational" else "assumed") \
+            in widths.rows[kind]["D_Q"]
     if panels is None:
         assert prior_widths(path).sd_ln == widths.sd_ln
         np.testing.assert_array_equal(widths.added_mass_sd, prior_added_mass_sd_of(path))

@@ -69,6 +69,63 @@ def test_every_sampled_row_says_how_it_was_set():
             assert int(r["n_terms"]) > 0
 
 
+def test_drag_rows_are_measured_on_the_published_bodies_and_regenerate():
+    """The translational quadratic-drag rows: measured for the classes with at least
+    MIN_SHAPES bodies of reference_tables/body_drag_3d, assumed (and saying why) elsewhere and
+    for every rotation; each error row's reference is the stored read/computed value."""
+    import csv
+
+    from validation.reference import reference_value
+
+    mod = _script()
+    errors = mod.read_errors()
+    drag = [r for r in errors if r["matrix"] == "quadratic_damping"]
+    assert drag and all(r["set"] == mod.DRAG_SET and r["family"] == "translation" for r in drag)
+    for r in drag:
+        name = r["reference_source"].split("(")[1].split(";")[0]
+        row = reference_value("body_drag_3d", name)
+        assert row["provenance"] in ("read", "computed")
+        assert float(r["reference"]) == pytest.approx(row["value"], rel=1e-6)
+        assert float(r["error"]) == pytest.approx(np.log(float(r["strip"]) / row["value"]),
+                                                  abs=1e-5)
+    table = list(csv.DictReader(ln for ln in mod.make_table(errors).splitlines()
+                                if not ln.startswith("#")))
+    q = {(r["class"], r["dofs"]): r for r in table if r["matrix"] == "quadratic_damping"}
+    for cls in ("revolution", "finned", "bluff", "open_frame"):
+        shapes = {r["shape"] for r in drag if r["class"] == cls}
+        row = q[(cls, "translation")]
+        assert row["basis"] == ("measured" if len(shapes) >= mod.MIN_SHAPES else "assumed")
+        if row["basis"] == "measured":
+            assert int(row["n_shapes"]) == len(shapes) and "Published 3D drag" in row["source"]
+        assert q[(cls, "rotation")]["basis"] == "assumed"
+    assert q[("bluff", "translation")]["basis"] == "measured"
+    assert q[("revolution", "translation")]["basis"] == "measured"
+    # every body of benchmarks/drag_bodies.py is in the errors file, with each of its terms
+    import sys
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import drag_bodies as db
+    assert {r["shape"] for r in drag} == set(db.BODIES)
+    assert len(drag) == sum(len(b[3]) for b in db.BODIES.values())
+
+
+def test_drag_body_rows_reproduce_the_model():
+    """The cube's stored drag errors are what stripcoef gives now (benchmarks/drag_bodies.py)."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import drag_bodies as db
+    from stripcoef.conventions import quadratic_damping_name
+
+    stored = {r["term"]: r for r in _script().read_errors()
+              if r["matrix"] == "quadratic_damping" and r["shape"] == "cube"}
+    veh, _, rows = db.compare("cube")
+    assert shape_class(veh) == "bluff" and len(rows) == 3
+    for r in rows:
+        s = stored[quadratic_damping_name(r["dof"], r["dof"])]
+        assert r["cd_model"] == pytest.approx(float(s["strip"]), rel=1e-6)
+        assert r["reynolds"] == pytest.approx(1e5)
+
+
 # -- the band rule -----------------------------------------------------------------------------
 
 def test_quantile_is_conservative_and_log_error_is_infinite_for_a_zero():

@@ -15,7 +15,9 @@ Steps, for each degree of freedom (issue 7):
    (N_r is off by 4.8x and N_r|r| by 50x there: strip theory barely constrains rotation).
    With a vehicle file (its shape class known) the bands are instead the method table's
    sd of ln c per matrix and DOF group (:class:`PriorWidths`, issue 19: the added mass
-   measured, the quadratic drag assumed, the linear drag not predicted: a very wide prior).
+   measured, the translational quadratic drag measured for the classes with published 3D
+   body drag and assumed otherwise, the rotational drag assumed, the linear drag not
+   predicted: a very wide prior).
    A coefficient the prior has as zero is not calibrated (strip theory says it is absent).
 3. **Structure** of the residual: bias, lag-1 autocorrelation, runs test, dependence on the
    sign of the velocity and of the thrust, correlation with each candidate's regressors.
@@ -171,7 +173,9 @@ class PriorWidths:
     The method table (``data/method_uncertainty.csv``, docs/uncertainty.md) gives, per shape
     class, matrix and DOF group, the sd :math:`\sigma` of :math:`\ln c` of a coefficient c:
     measured for the added mass (the ``panels`` rows when the model's added mass is the panel
-    method's), assumed for the quadratic damping, and a placeholder for the linear damping
+    method's), measured for the translational quadratic damping of the classes with published
+    3D body drag (revolution, bluff) and assumed for the others and for every rotation, and a
+    placeholder for the linear damping
     (``not_predicted``: the method does not predict it, so its prior is very wide, 250 % at
     1 sigma). The calibration is additive (a correction :math:`\delta = c - c_0` to the
     prior value :math:`c_0`), so :math:`\sigma` is converted to an absolute sd at the prior
