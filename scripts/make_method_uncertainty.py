@@ -62,7 +62,7 @@ TABLE = ROOT / "src" / "stripcoef" / "data" / "method_uncertainty.csv"
 TERMS = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
 SPHEROIDS = (2.0, 3.0, 5.0, 7.5, 10.0)
 FIELDS = ("set", "shape", "class", "matrix", "family", "term", "strip", "reference", "error", "mirrors",
-          "allowed", "reference_source")
+          "allowed", "reference_source", "slenderness")
 
 #: fewest shapes of a class that make a measured row (leave-one-shape-out needs two)
 MIN_SHAPES = 2
@@ -83,10 +83,11 @@ def _term(i, j):
     return TERMS[i] if i == j else f"{TERMS[i][0]}{TERMS[j][2:]}"
 
 
-def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors):
+def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors, slenderness):
     """One row per compared term; ``mirrors``: the shape's mirror symmetries through the
     model's reference point (stripcoef.study.symmetry), ``allowed``: whether they allow the
-    coupling (the sampling moves it: stripcoef.study.sources.couple)."""
+    coupling (the sampling moves it: stripcoef.study.sources.couple); ``slenderness``: the
+    shape's L/D (stripcoef.study.shapes.features), the scope of the rows it measures."""
     from stripcoef.study.symmetry import allowed_couplings
 
     out = []
@@ -103,7 +104,7 @@ def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors):
                     "reference": f"{ref[i, j]:.8g}", "error": f"{err:.6g}",
                     "mirrors": " ".join(sorted(mirrors)) or "none",
                     "allowed": "" if i == j else ("yes" if ok[i, j] else "no"),
-                    "reference_source": source})
+                    "reference_source": source, "slenderness": f"{slenderness:.4g}"})
     return out
 
 
@@ -135,9 +136,12 @@ def measure() -> list[dict]:
 
     def mirrors(veh, model):
         return mirror_symmetries(veh, model.reference_point)
+
+    def slender(veh):
+        return features(veh)["slenderness"]
     from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
     from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
-    from stripcoef.study.shapes import shape_class
+    from stripcoef.study.shapes import features, shape_class
     from stripcoef.study.symmetry import mirror_symmetries
     from validation.reference import load_table
 
@@ -157,7 +161,7 @@ def measure() -> list[dict]:
         rows += _rows("Lamb spheroids", f"spheroid_ld{ld:g}", shape_class(veh), strip, ref,
                       "Lamb 1932 sec. 373 (stripcoef.hull.lamb.spheroid_added_mass)",
                       [t for t in diag if abs(ref[t]) > 1e-9 * np.abs(ref).max()],
-                      mirrors(veh, model))
+                      mirrors(veh, model), slender(veh))
     veh = load_vehicle(ROOT / "geometry" / "capsule.yaml")
     model = estimate(veh)
     strip = np.asarray(model.added_mass)
@@ -167,7 +171,7 @@ def measure() -> list[dict]:
         ref[k, k] = r["value"]
     rows += _rows("Capytaine capsule", "capsule", shape_class(veh), strip, ref,
                   "reference_tables/capytaine_anchor/capsule.csv",
-                  [t for t in diag if ref[t] != 0.0], mirrors(veh, model))
+                  [t for t in diag if ref[t] != 0.0], mirrors(veh, model), slender(veh))
     bem = {}
     with open(fb.DATA) as fh:
         for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
@@ -182,7 +186,7 @@ def measure() -> list[dict]:
         strip = np.asarray(model.added_mass)
         rows += _rows("Capytaine finned hulls", case, shape_class(veh), strip, bem[case],
                       "benchmarks/data/bem_finned_bodies.csv (richardson)",
-                      _compared(bs, bem[case], strip), mirrors(veh, model))
+                      _compared(bs, bem[case], strip), mirrors(veh, model), slender(veh))
     refs = bs.read_references()
     for name in bs.SHAPES:
         ref = refs[name].copy()
@@ -195,12 +199,12 @@ def measure() -> list[dict]:
                                             source="benchmark"))
         model = estimate(veh)
         strip = np.asarray(model.added_mass)
-        sym = mirrors(veh, model)
+        sym, ld = mirrors(veh, model), slender(veh)
         rows += _rows("Capytaine bluff shapes", name, shape_class(veh), strip, ref, source,
-                      _compared(bs, ref, strip), sym)
+                      _compared(bs, ref, strip), sym, ld)
         panel = np.asarray(estimate(veh, "panels").added_mass)
         rows += _rows("Capytaine bluff shapes", name, PANELS, panel, ref, source,
-                      _compared(bs, ref, panel), sym)
+                      _compared(bs, ref, panel), sym, ld)
         print(f"{name}: {rows[-1]['class']}", flush=True)
     rows += drag_rows(mirrors)
     return rows
@@ -212,13 +216,13 @@ def drag_rows(mirrors) -> list[dict]:
     import drag_bodies as db
     from stripcoef.assembly.estimate import estimate
     from stripcoef.conventions import quadratic_damping_name
-    from stripcoef.study.shapes import shape_class
+    from stripcoef.study.shapes import features, shape_class
 
     out = []
     for name in db.BODIES:
         veh, model, rows = db.compare(name, lambda v: estimate(
             v, added_mass_method="strips", speed=db.SPEED))
-        cls = shape_class(veh)
+        cls, ld = shape_class(veh), features(veh)["slenderness"]
         sym = " ".join(sorted(mirrors(veh, model))) or "none"
         for r in rows:
             k = r["dof"]
@@ -229,7 +233,8 @@ def drag_rows(mirrors) -> list[dict]:
                         "error": f"{float(log_error(r['cd_model'], r['cd_ref'])):.6g}",
                         "mirrors": sym, "allowed": "",
                         "reference_source": f"reference_tables/{db.SOURCE}/{db.TABLE}.csv "
-                                            f"({r['row']}; C_D on {r['area']}, Re {r['reynolds']:.0e})"})
+                                            f"({r['row']}; C_D on {r['area']}, Re {r['reynolds']:.0e})",
+                        "slenderness": f"{ld:.4g}"})
         print(f"{name}: {cls} (drag)", flush=True)
     return out
 
@@ -247,6 +252,7 @@ def write_errors(rows):
                  "# (set Published 3D drag, benchmarks/drag_bodies.py): strip and reference are the model's\n"
                  "# |D_Q[k, k]| / (1/2 rho A) and the measured whole-body drag coefficient on the reference's\n"
                  "# area A [-], error ln(strip / reference). reference_source: where the reference is stored.\n"
+                 "# slenderness: the shape's L/D [-] (stripcoef.study.shapes.features).\n"
                  "# Generated by python scripts/make_method_uncertainty.py --measure\n")
         w = csv.DictWriter(fh, FIELDS, lineterminator="\n")
         w.writeheader()
@@ -259,6 +265,7 @@ def read_errors(path=ERRORS) -> list[dict]:
         rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
     for r in rows:
         r["matrix"] = r.get("matrix") or "added_mass"
+        r["slenderness"] = r.get("slenderness") or ""
     return rows
 
 
@@ -278,6 +285,11 @@ HEADER = """\
 #   quadratic drag: measured whole-body drag of simple bodies, reference_tables/body_drag_3d,
 #   for a class with at least 2 such shapes) | assumed (no independent reference stored) |
 #   not_predicted (outside the model: a placeholder spread, not a calibrated band).
+# slenderness: for a measured drag row, the range of L/D [-] of its reference shapes
+#   (stripcoef.study.shapes.features): its scope, because the axial drag model changes regime
+#   with L/D (form factor of a streamlined hull, blunt-end pressure drag) within one shape class;
+#   a vehicle outside it gets the band as an extrapolation, said so in its source
+#   (stripcoef.study.sources.method_sources). Added-mass rows: scoped by their class.
 """
 
 
@@ -294,9 +306,15 @@ def _measured(cls, matrix, fam, sel) -> list:
             f"q95 {q:.4g}, largest {abs(float(worst['error'])):.4g} "
             f"({worst['shape']} {worst['term']}); a new term of the class falls in the "
             f"band with probability {claimed_coverage(len(sel)):.3f} (k/(n+1))")
+    # scope (drag rows): the axial drag model changes regime with L/D (streamlined-body form
+    # factor, blunt-end pressure drag: stripcoef.assembly.damping), which the shape class
+    # does not separate; added-mass rows are scoped by their class alone
+    ld = [float(r["slenderness"]) for r in sel if r["slenderness"]]
+    scope = f"{min(ld):.3g}-{max(ld):.3g}" \
+        if matrix == "quadratic_damping" and ld and len(ld) == len(sel) else ""
     return [cls, matrix, fam, "lognormal" if fam != "coupling" else "normal",
             f"{q / Z95:.4g}", "measured", len(shapes), len(sel), f"{q:.4g}",
-            f"{claimed_coverage(len(sel)):.3f}", text]
+            f"{claimed_coverage(len(sel)):.3f}", text, scope]
 
 
 def make_table(rows) -> str:
@@ -304,7 +322,7 @@ def make_table(rows) -> str:
     out.write(HEADER)
     w = csv.writer(out, lineterminator="\n")
     w.writerow(["class", "matrix", "dofs", "distribution", "sd", "basis", "n_shapes",
-                "n_terms", "q95", "claim", "source"])
+                "n_terms", "q95", "claim", "source", "slenderness"])
     for cls in (*CLASSES, PANELS):
         for fam in ("translation", "rotation", "coupling"):
             sel = [r for r in rows if r["class"] == cls and r["family"] == fam
@@ -326,13 +344,13 @@ def make_table(rows) -> str:
             w.writerow([cls, "quadratic_damping", fam, "lognormal", f"{sd:g}", "assumed", 0, 0, "", "",
                         f"no drag reference independent of the method's own correlations (Hoerner "
                         f"1965, DNV-RP-C205) for this class and DOF group: {what}; an assumed "
-                        f"sd(ln), checked on held-out measurements by benchmarks/band_coverage.py"])
+                        f"sd(ln), checked on held-out measurements by benchmarks/band_coverage.py", ""])
         for fam in ("translation", "rotation"):
             w.writerow([cls, "linear_damping", fam, "lognormal", "2.5", "not_predicted", 0, 0,
                         "", "", "not predicted: the method's drag is quadratic and its linear part "
                             "only the Reynolds-number share; measured linear damping (Wang & Clark "
                             "2006) is 13-560x larger. A placeholder spread, not a band: excluded "
-                            "from the coverage check"])
+                            "from the coverage check", ""])
     return out.getvalue()
 
 

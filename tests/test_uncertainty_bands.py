@@ -1,6 +1,7 @@
 """Issue 19's band check: the method table is generated from measured errors, the band width
 rule covers at the rate it claims, and the shape class comes from the geometry."""
 
+import csv
 import importlib.util
 from pathlib import Path
 
@@ -225,6 +226,32 @@ def test_method_sources_follow_the_class_and_sample_the_couplings():
 
 def _mesh_vehicle(mesh, name):
     return Vehicle.from_mesh(mesh, name=name, fluid=WATER)
+
+
+def test_drag_rows_carry_the_slenderness_of_their_references_and_flag_vehicles_outside():
+    """A measured drag row's scope is the L/D range of its reference shapes (the axial drag
+    model changes regime with L/D); a vehicle of its class outside it keeps the band but is
+    marked out of scope, with the reason; one inside, and every added-mass row, is in scope."""
+    mod = _script()
+    rows = mod.read_errors()
+    table = {(r["class"], r["matrix"], r["dofs"]): r for r in
+             csv.DictReader(ln for ln in mod.make_table(rows).splitlines()
+                                          if not ln.startswith("#"))}
+    for (cls, matrix, dofs), row in table.items():
+        if matrix != "quadratic_damping" or row["basis"] != "measured":
+            assert row["slenderness"] == ""
+            continue
+        ld = [float(r["slenderness"]) for r in rows if r["class"] == cls
+              and r["matrix"] == matrix and r["family"] == dofs]
+        assert row["slenderness"] == f"{min(ld):.3g}-{max(ld):.3g}"
+    long_ = method_sources(load_vehicle(ROOT / "geometry" / "capsule.yaml"))   # L/D 7.5
+    short = method_sources(load_vehicle(ROOT / "geometry" / "sphere.yaml"))    # L/D 1
+    out = [s for s in long_ if not s.in_scope]
+    assert [s.name for s in out] == ["quadratic_damping.translation"]
+    assert "EXTRAPOLATED" in out[0].reason and "7.5" in out[0].reason
+    assert all(s.in_scope for s in short)
+    assert all(s.in_scope for s in long_ if s.name.startswith("added_mass"))
+    assert out[0].to_dict()["in_scope"] is False
 
 
 def test_mirror_symmetries_of_a_box_a_box_with_a_skid_and_the_videoray():

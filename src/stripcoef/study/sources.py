@@ -43,7 +43,9 @@ class Source:
     ``kind``: ``"method"`` or ``"input"``; ``name``: ``added_mass.rotation`` or a key path;
     ``distribution``: normal, lognormal or uniform; ``spread``: sigma (relative for method
     normal, of ln for lognormal, absolute for inputs) or the uniform half-width;
-    ``nominal``: the input's nominal value (1.0 for method factors).
+    ``nominal``: the input's nominal value (1.0 for method factors); ``in_scope``: False for a
+    measured method row whose reference shapes' slenderness range does not hold the vehicle's
+    (the band is then an extrapolation, and ``reason`` says so).
     """
 
     kind: str
@@ -52,6 +54,7 @@ class Source:
     spread: float
     nominal: float
     reason: str
+    in_scope: bool = True
 
     def draw(self, u: np.ndarray) -> np.ndarray:
         """Values from uniform draws ``u`` in (0, 1) by the inverse CDF."""
@@ -69,7 +72,8 @@ class Source:
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "name": self.name, "distribution": self.distribution,
-                "spread": self.spread, "nominal": self.nominal, "reason": self.reason}
+                "spread": self.spread, "nominal": self.nominal, "reason": self.reason,
+                "in_scope": self.in_scope}
 
 
 @lru_cache(maxsize=None)
@@ -104,11 +108,31 @@ def uses_panels(vehicle, options=None) -> bool:
                              vehicle.cut(options.strips)) == "panels"
 
 
+#: relative slack on a row's slenderness range: the table prints it to 3 significant digits [-]
+SCOPE_SLACK = 0.005
+
+
+def in_scope(row: dict, slenderness: float) -> bool:
+    """Whether a method row's reference shapes span ``slenderness`` (L/D [-]): True for a row
+    without a range (assumed or not-predicted rows, which claim no measured scope)."""
+    scope = row.get("slenderness") or ""
+    if not scope:
+        return True
+    lo, hi = (float(v) for v in scope.split("-", 1))
+    return lo * (1.0 - SCOPE_SLACK) <= slenderness <= hi * (1.0 + SCOPE_SLACK)
+
+
 def method_sources(vehicle, *, panels: bool | None = None) -> list[Source]:
     """The method rows of ``vehicle``'s shape class, one Source per matrix and DOF group; the
     added-mass rows of :data:`PANELS` when its added mass is the panel method's (``panels``;
-    default: what :func:`uses_panels` says for the default options)."""
-    cls = shape_class(vehicle)
+    default: what :func:`uses_panels` says for the default options). A measured row whose
+    reference shapes' slenderness range (its ``slenderness`` column) does not hold the
+    vehicle's L/D (:func:`stripcoef.study.shapes.features`) is still used, but marked out of
+    scope: its band is an extrapolation, not a measurement, for this vehicle."""
+    from stripcoef.study.shapes import classify, features
+
+    f = features(vehicle)
+    cls = classify(f)
     if panels is None:
         panels = uses_panels(vehicle)
     out = []
@@ -118,8 +142,13 @@ def method_sources(vehicle, *, panels: bool | None = None) -> list[Source]:
         wanted = PANELS if panels and row["matrix"] == "added_mass" else cls
         if row["class"] != wanted:
             continue
+        ok = in_scope(row, f["slenderness"])
+        reason = f"{row['class']}: {row['source']}"
+        if not ok:
+            reason += (f"; EXTRAPOLATED: measured on shapes of L/D {row['slenderness']}, this "
+                       f"vehicle's L/D is {f['slenderness']:.3g}")
         out.append(Source("method", f"{row['matrix']}.{row['dofs']}", row["distribution"],
-                          float(row["sd"]), 1.0, f"{row['class']}: {row['source']}"))
+                          float(row["sd"]), 1.0, reason, ok))
     return out
 
 
