@@ -139,6 +139,7 @@ def held_out(samples):
     bases = {(r["class"], r["matrix"], r["dofs"]): r["basis"] for r in _method_table()}
     panels = _panels(path)
     summ = res.summary()
+    scope = {src.name: src.in_scope for src in res.sources if src.kind == "method"}
     lines = ["| reference | class | term | measured | nominal | P2.5 | P97.5 | band basis | inside |",
              "|---|---|---|---|---|---|---|---|---|"]
     excluded, counts = [], {}
@@ -163,6 +164,8 @@ def held_out(samples):
                            matrix, group)]
             basis = {"measured": "measured (BEM/exact sets)" if matrix == "added_mass" else
                      "measured (published 3D drag)"}.get(basis, basis)
+            if not scope.get(f"{matrix}.{group}", True):
+                basis += ", extrapolated (vehicle's L/D outside its reference bodies')"
             kk, nn = counts.get(basis, (0, 0))
             counts[basis] = (kk + ok, nn + 1)
             lines.append(f"| VideoRay Pro III, Wang & Clark 2006 Table I (measured) | "
