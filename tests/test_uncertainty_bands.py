@@ -358,3 +358,17 @@ def test_leave_one_shape_out_coverage_of_the_shipped_errors_is_consistent_with_9
             k, n = k + int(ok.sum()), n + len(sel)
         lo, hi = binomial_interval(k, n)
         assert lo <= 0.95 <= hi, (cls, k, n)
+
+
+def test_a_short_closed_hull_warns_that_its_axial_drag_is_a_lower_bound():
+    """The form factor of a streamlined body on a sphere (L/D 1) gives a sixth of the measured
+    drag (benchmarks/drag_bodies.py): the model says so; a slender spheroid does not warn."""
+    import warnings
+
+    from stripcoef.errors import ModelWarning
+
+    with pytest.warns(ModelWarning, match="axial drag of a closed hull of L/D 1 .*lower bound"):
+        estimate(load_vehicle(ROOT / "geometry" / "sphere.yaml"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)
+        estimate(load_vehicle(ROOT / "geometry" / "spheroid.yaml"))

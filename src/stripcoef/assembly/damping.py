@@ -16,6 +16,13 @@ from stripcoef.sections import section_drag
 from stripcoef.strips import Strips
 from stripcoef.conventions import clean_roundoff
 from stripcoef.strips import hole_widths
+from stripcoef.errors import ModelWarning
+
+#: L/D [-] at or below which a closed hull's axial drag by the streamlined-body form factor is
+#: known to be far too low: the measured whole-body drag of a sphere (L/D 1) and a 2:1
+#: ellipsoid (L/D 2) at Re 1e5 is 6x and 10x the model's (reference_tables/body_drag_3d,
+#: benchmarks/drag_bodies.py); the flow separates, and the pressure drag is not modelled
+SHORT_CLOSED_HULL = 2.0
 
 
 def local_exponent(fn, *re):
@@ -131,6 +138,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                      "axial_drag_coefficient_frontal": cf * ff * s_wet / (np.pi * max_d**2 / 4)})
         # blunt ends: pressure drag on the frontal area of a hull that does not close
         hull_body = getattr(vehicle, "hull", None)
+        blunt = False
         for p in hull_parts:
             a_max = float(np.max(p.area))
             if hull_body is not None:    # exact end sections of the profile
@@ -145,6 +153,14 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                 elems.append((np.array([x_h, y_h, z_h]),
                               np.array([0.5 * rho * cd_b * a_max, 0, 0]), np.array([2.0, 2, 2])))
                 cond["blunt_hull_cd"] = cd_b
+                blunt = True
+        if not blunt and L / max_d <= SHORT_CLOSED_HULL:
+            warnings.warn(
+                f"{getattr(vehicle, 'name', 'vehicle')}: axial drag of a closed hull of L/D "
+                f"{L / max_d:.2g} by the streamlined-body form factor (Hoerner), which does not "
+                f"hold for a body this short: the flow separates, and measured short bodies "
+                f"have 6-10x this drag (sphere, 2:1 ellipsoid: reference_tables/body_drag_3d); "
+                f"X_uu is a lower bound", ModelWarning, stacklevel=3)
     # --- appendages: axial pressure drag (blunt) on the frontal area
     for p in strips.parts:
         if p.role == "hull":
