@@ -582,3 +582,21 @@ def test_data_square_plate_drag_against_the_data_book():
     rows = _data_csv("plate_drag_aspect_ratio.csv")
     cd = {float(r["h_over_b"]): float(r["Cd"]) for r in rows}
     assert cd[1.0] == pytest.approx(val("body_drag_3d", "square_plate.Cd"), abs=0.015)
+
+
+@pytest.mark.parametrize("ld", ["0.5", "1", "2", "4"])
+def test_axial_blunt_cylinder_curve_against_munson(ld):
+    """The method's recalled blunt-end curve against a second public copy of Hoerner's rods
+    along the flow (Munson Fig. 9.20, reference_tables/body_drag_3d remark 8), l/D 0.5 included."""
+    from stripcoef.sections.drag import blunt_cylinder_axial_cd
+    row = ref.reference_value("body_drag_3d", f"cylinder_axial.l_over_d_{ld}.Cd.munson")
+    assert float(blunt_cylinder_axial_cd(float(ld))) == pytest.approx(row["value"], abs=0.05)
+
+
+def test_munson_cones_confirm_the_apex_angle_reading():
+    """Munson's theta is the half-angle: its 30 deg is the data book's 60 deg apex cone
+    (remark 7), within 10 %; and its cones rise to a disc's drag at 90 deg."""
+    half30 = val("body_drag_3d", "cone.half_angle30.Cd.munson")
+    assert half30 == pytest.approx(val("body_drag_3d", "cone.apex60.Cd"), rel=0.10)
+    assert val("body_drag_3d", "cone.half_angle10.Cd.munson") < val("body_drag_3d", "cone.apex30.Cd") \
+        < half30
