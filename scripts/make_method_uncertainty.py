@@ -71,6 +71,16 @@ DRAG_SET = "Published 3D drag"
 ASSUMED_DRAG = {
     "revolution": (0.15, 0.25), "finned": (0.15, 0.25), "bluff": (0.20, 0.30),
     "open_frame": (0.20, 0.30)}
+#: lift and control derivatives: no measured lift data could be retrieved (docs/validation.md,
+#: "Other published lift data"); the one published comparison, Prestero 2001's semi-empirical
+#: REMUS table, differs from the model's terms by factors 0.44-3.8 (|ln| up to 1.32, N_ur):
+#: an assumed sd(ln) that spans it (95 %: a factor 4.4 either way), not a calibrated band
+ASSUMED_LIFT = 0.75
+LIFT_REASON = ("not validated: no measured lift data with its geometry could be retrieved "
+               "(docs/validation.md); against Prestero 2001's semi-empirical REMUS 100 values the "
+               "model's {what} differ by factors 0.44-3.8 (|ln| up to 1.32); an assumed sd(ln) "
+               "that spans them, one factor for all these terms, not a calibrated band: excluded "
+               "from the coverage check")
 
 
 def _family(i, j):
@@ -275,8 +285,10 @@ HEADER = """\
 # (written by the same script with --measure: stripcoef against Lamb's exact solutions and
 # converged Capytaine runs). Do not edit by hand: tests/test_uncertainty_bands.py regenerates it.
 # class: by geometry, stripcoef.study.shapes (revolution | finned | bluff | open_frame).
-# matrix: added_mass | linear_damping | quadratic_damping; dofs: translation | rotation |
-#   coupling (sampled as M_ij + c sign(M_ij) sqrt(M_ii M_jj), c = sd z: stripcoef.study.sources.couple).
+# matrix: added_mass | linear_damping | quadratic_damping | lift (the lift matrix L) | control
+#   (the control surfaces' derivatives); dofs: translation | rotation | coupling (sampled as
+#   M_ij + c sign(M_ij) sqrt(M_ii M_jj), c = sd z: stripcoef.study.sources.couple) | all (one
+#   factor for the whole matrix: lift, control; sampled only for a model that has them).
 # distribution: lognormal (sd of ln(term)) | normal (sd of the coupling error over sqrt(A_ii A_jj)).
 # basis: measured (sd = q95 / 1.96, q95 the split-conformal 95 % quantile of |error| over
 #   n_terms terms of n_shapes shapes: the k-th smallest, k = min(n, ceil(0.95 (n + 1)));
@@ -351,6 +363,10 @@ def make_table(rows) -> str:
                             "only the Reynolds-number share; measured linear damping (Wang & Clark "
                             "2006) is 13-560x larger. A placeholder spread, not a band: excluded "
                             "from the coverage check", ""])
+        for matrix, what in (("lift", "body and fin lift terms (Y_uv ... N_ur)"),
+                             ("control", "control derivatives (Y_uudr ... M_uuds)")):
+            w.writerow([cls, matrix, "all", "lognormal", f"{ASSUMED_LIFT:g}", "assumed", 0, 0,
+                        "", "", LIFT_REASON.format(what=what), ""])
     return out.getvalue()
 
 

@@ -372,3 +372,27 @@ def test_a_short_closed_hull_warns_that_its_axial_drag_is_a_lower_bound():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelWarning)
         estimate(load_vehicle(ROOT / "geometry" / "spheroid.yaml"))
+
+
+def test_lift_and_control_terms_carry_a_stated_assumed_uncertainty():
+    """Every estimated coefficient has a source: a model with lift (REMUS 100) gets one factor
+    for its lift matrix and one for its control derivatives (assumed, with the reason); a model
+    without lift (MARES) gets no such dimension; a sampled factor scales exactly those terms."""
+    from stripcoef.study.evaluate import Job, evaluate
+    from stripcoef.geometry.vehicle import read_vehicle_data
+
+    remus = load_vehicle(ROOT / "geometry" / "remus100.yaml")
+    srcs = {s.name: s for s in method_sources(remus, lift=True)}
+    for name in ("lift.all", "control.all"):
+        assert srcs[name].distribution == "lognormal" and srcs[name].spread > 0
+        assert "not validated" in srcs[name].reason and "Prestero" in srcs[name].reason
+    assert not any(s.name.startswith(("lift", "control"))
+                   for s in method_sources(load_vehicle(ROOT / "geometry" / "mares.yaml")))
+    order = ("lift.all", "control.all")
+    job = Job(data=read_vehicle_data(ROOT / "geometry" / "remus100.yaml"),
+              file="remus100.yaml", sources=tuple(srcs[n] for n in order), limits=False)
+    base, moved = evaluate(job, [1.0, 1.0]), evaluate(job, [2.0, 0.5])
+    assert moved["Y_uv"] == pytest.approx(2.0 * base["Y_uv"])
+    assert moved["N_ur"] == pytest.approx(2.0 * base["N_ur"])
+    assert moved["Y_uudr"] == pytest.approx(0.5 * base["Y_uudr"])
+    assert moved["Y_vdot"] == pytest.approx(base["Y_vdot"])

@@ -90,7 +90,11 @@ def evaluate(job: Job, row) -> dict:
                                                  c["added_mass"], allowed),
                         linear_damping=scale_matrix(model.linear_damping, f["linear_damping"]),
                         quadratic_damping=scale_matrix(model.quadratic_damping,
-                                                       f["quadratic_damping"]))
+                                                       f["quadratic_damping"]),
+                        lift=np.asarray(model.lift, float) * f["lift"][0],
+                        control_surfaces=tuple(replace(cs, derivative=np.asarray(
+                            cs.derivative, float) * f["control"][0])
+                            for cs in model.control_surfaces))
     out = {k: float(v) for k, v in model.coefficients().items()}
     out["mass"] = float(model.mass)
     if job.limits:

@@ -32,8 +32,11 @@ import numpy as np
 from stripcoef.errors import InputError
 from stripcoef.geometry.keypaths import UncertainValue
 
-MATRICES = ("added_mass", "linear_damping", "quadratic_damping")
-GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5)}
+MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "lift", "control")
+GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5), "all": (0, 1, 2, 3, 4, 5)}
+#: matrices a model may not have: their rows are sampled only for a model with lift
+#: (:attr:`HydroModel.lift` non-zero) or control surfaces
+LIFT_MATRICES = ("lift", "control")
 
 
 @dataclass(frozen=True)
@@ -122,10 +125,12 @@ def in_scope(row: dict, slenderness: float) -> bool:
     return lo * (1.0 - SCOPE_SLACK) <= slenderness <= hi * (1.0 + SCOPE_SLACK)
 
 
-def method_sources(vehicle, *, panels: bool | None = None) -> list[Source]:
+def method_sources(vehicle, *, panels: bool | None = None, lift: bool = False) -> list[Source]:
     """The method rows of ``vehicle``'s shape class, one Source per matrix and DOF group; the
     added-mass rows of :data:`PANELS` when its added mass is the panel method's (``panels``;
-    default: what :func:`uses_panels` says for the default options). A measured row whose
+    default: what :func:`uses_panels` says for the default options); the ``lift`` and
+    ``control`` rows (one factor each for the lift matrix and the control derivatives) only
+    with ``lift`` (a model with lift or control surfaces). A measured row whose
     reference shapes' slenderness range (its ``slenderness`` column) does not hold the
     vehicle's L/D (:func:`stripcoef.study.shapes.features`) is still used, but marked out of
     scope: its band is an extrapolation, not a measurement, for this vehicle."""
@@ -138,6 +143,8 @@ def method_sources(vehicle, *, panels: bool | None = None) -> list[Source]:
     out = []
     for row in _method_table():
         if row["dofs"] not in (*GROUPS, "coupling"):
+            continue
+        if row["matrix"] in LIFT_MATRICES and not lift:
             continue
         wanted = PANELS if panels and row["matrix"] == "added_mass" else cls
         if row["class"] != wanted:

@@ -109,6 +109,19 @@ def _mirrors(vehicle, strips) -> frozenset:
     return mirror_symmetries(vehicle, point, strips)
 
 
+def _has_lift(vehicle, strips) -> bool:
+    """Whether the nominal model has lift terms or control surfaces (their method rows are
+    sampled only then)."""
+    import warnings
+
+    from stripcoef.assembly import estimate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # the nominal evaluation shows them
+        model = estimate(vehicle, strips=strips)
+    return bool(np.any(np.asarray(model.lift) != 0.0) or model.control_surfaces)
+
+
 def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = True,
                 method: bool = True, radii=(0.5, 1.0, 2.0, 5.0, 10.0, 20.0),
                 strips: int | None = None, workers: int | None = None, scheduler=None,
@@ -152,7 +165,7 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     data = nominal_data(raw, file=file)
     veh = parse_vehicle(data, file=file)
     sources = (input_sources(declared) if declared else []) + \
-        (method_sources(veh) if method else [])
+        (method_sources(veh, lift=_has_lift(veh, strips)) if method else [])
     notes = []
     if not sources:
         raise InputError("nothing is uncertain", file=file, key="samples",
