@@ -1813,7 +1813,8 @@ class EffectFit:
     error : float
         RMS window force residual of the fit [N or N m]
     held_out_error : float
-        The same on the held-out windows [N or N m]
+        RMS residual of the blocked cross-validation: each block of windows predicted by a fit
+        on the others [N or N m]
     """
 
     parameters: dict
