@@ -337,6 +337,18 @@ def read_references(column="richardson"):
     return out
 
 
+def reference_matrix(name, refs=None):
+    """The reference M_A of a shape: the stored Richardson BEM (``refs``, default
+    :func:`read_references`), with Lamb's exact diagonal for the ellipsoids
+    (:func:`stripcoef.hull.lamb.ellipsoid_added_mass`) [kg, kg m, kg m^2]."""
+    from stripcoef.hull.lamb import ellipsoid_added_mass
+
+    ref = (read_references() if refs is None else refs)[name].copy()
+    if name in ELLIPSOIDS:
+        ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
+    return ref
+
+
 def strip_matrix(name, corrections=True):
     """Strip-theory M_A of the shape about its centroid, and the wall time of estimate() [s]."""
     from stripcoef.assembly.estimate import estimate
@@ -512,7 +524,6 @@ def main(argv=None):
     if args.reference:
         make_references(names)
         return 0
-    from stripcoef.hull.lamb import ellipsoid_added_mass
     refs = read_references()
     worst_d, worst_o, times, ratios = 0.0, 0.0, [], []
     head = "| shape | " + " | ".join(TERM_NAMES) + " | off-diagonals (of diag. scale) | time [s] |"
@@ -525,10 +536,7 @@ def main(argv=None):
             ncol += 2
     lines = [head, "|---" * ncol + "|"]
     for name in names:
-        ref = refs[name]
-        if name in ELLIPSOIDS:
-            ref = ref.copy()
-            ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
+        ref = reference_matrix(name, refs)
         info = None
         if args.method == "panels":
             a, dt, info = panel_matrix(name, args.panels)

@@ -30,7 +30,6 @@ import argparse
 import datetime
 import os
 import sys
-import time
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -39,6 +38,8 @@ import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
+from mesh_speed import best  # noqa: E402  (best of n wall times, one helper for the benchmarks)
+
 OUT = ROOT / "benchmarks" / "data" / "panels_cost_accuracy.md"
 
 #: shapes: the issue's box, a 2:1:1 box, a short cylinder across x, the VideoRay-like body
@@ -59,40 +60,26 @@ def _worst(a, ref):
     return float(np.max(np.abs(d[ok] / r[ok] - 1.0)))
 
 
-def _reference(name, B):
-    from stripcoef.hull.lamb import ellipsoid_added_mass
-
-    ref = B.read_references()[name].copy()
-    if name in B.ELLIPSOIDS:
-        ref[np.diag_indices(6)] = ellipsoid_added_mass(*B.ELLIPSOIDS[name], rho=B.RHO)
-    return ref
-
-
-def panel_runs(name, B):
-    """[(panels asked, (N1, N2), worst error, best-of-3 time [s])]"""
+def panel_runs(name, ref, B):
+    """[(panels asked, (N1, N2), worst error against ``ref``, best-of-3 time [s])]"""
     from stripcoef.geometry.mesh import mesh_body
     from stripcoef.hull.panels import panel_added_mass
 
-    ref = _reference(name, B)
     body = mesh_body(B.strip_mesh(name), name=name)
     out = []
     for n in PANELS:
-        times = []
-        for _ in range(3):
-            t0 = time.perf_counter()
-            a, info = panel_added_mass(body, rho=B.RHO, panels=n)
-            times.append(time.perf_counter() - t0)
-        out.append((n, tuple(info["panels"]), _worst(a, ref), min(times)))
+        (a, info), t = best(lambda: panel_added_mass(body, rho=B.RHO, panels=n))
+        out.append((n, tuple(info["panels"]), _worst(a, ref), t))
         print(f"  panels {n:5d} -> {info['panels']}: worst {100 * out[-1][2]:6.2f} %, "
               f"{out[-1][3]:.3f} s", flush=True)
     return out
 
 
-def bem_runs(name, B):
-    """[(faces, worst error, time [s])], one solve each after an uncounted warm-up"""
+def bem_runs(name, ref, B):
+    """[(faces, worst error against ``ref``, time [s])], one solve each after an uncounted
+    warm-up"""
     from stripcoef.bem import bem_added_mass
 
-    ref = _reference(name, B)
     ladder = [f for f in FACES if not B.SHAPES[name][1] or f >= SMOOTH_MIN_FACES]
     bem_added_mass(B.shape_mesh(name, ladder[0]), rho=B.RHO, reference_point=(0, 0, 0))
     out, seen = [], set()
@@ -101,9 +88,9 @@ def bem_runs(name, B):
         if len(m.faces) in seen:
             continue
         seen.add(len(m.faces))
-        t0 = time.perf_counter()
-        a = bem_added_mass(m, rho=B.RHO, reference_point=(0, 0, 0), max_faces=5000)
-        out.append((len(m.faces), _worst(a, ref), time.perf_counter() - t0))
+        a, t = best(lambda: bem_added_mass(m, rho=B.RHO, reference_point=(0, 0, 0),
+                                           max_faces=5000), n=1)
+        out.append((len(m.faces), _worst(a, ref), t))
         print(f"  Capytaine {len(m.faces):5d} faces: worst {100 * out[-1][1]:6.2f} %, "
               f"{out[-1][2]:.3f} s", flush=True)
     return out
@@ -115,12 +102,7 @@ def lu_time(n):
 
     rng = np.random.default_rng(0)
     a = rng.random((n, n)) + n * np.eye(n)
-    best = np.inf
-    for _ in range(3):
-        t0 = time.perf_counter()
-        scipy.linalg.lu_factor(a, check_finite=False)
-        best = min(best, time.perf_counter() - t0)
-    return best
+    return best(lambda: scipy.linalg.lu_factor(a, check_finite=False))[1]
 
 
 def cheapest(runs, level, err_at, time_at):
@@ -138,7 +120,8 @@ def main(argv=None):
     rows = []
     for name in args.only:
         print(name, flush=True)
-        pr, br = panel_runs(name, B), bem_runs(name, B)
+        ref = B.reference_matrix(name)
+        pr, br = panel_runs(name, ref, B), bem_runs(name, ref, B)
         for level in LEVELS:
             p = cheapest(pr, level, lambda r: r[2], lambda r: r[3])
             b = cheapest(br, level, lambda r: r[1], lambda r: r[2])

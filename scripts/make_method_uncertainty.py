@@ -150,7 +150,7 @@ def measure() -> list[dict]:
     def slender(veh):
         return features(veh)["slenderness"]
     from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
-    from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
+    from stripcoef.hull.lamb import spheroid_added_mass
     from stripcoef.study.shapes import features, shape_class
     from stripcoef.study.symmetry import mirror_symmetries
     from validation.reference import load_table
@@ -199,10 +199,9 @@ def measure() -> list[dict]:
                       _compared(bs, bem[case], strip), mirrors(veh, model), slender(veh))
     refs = bs.read_references()
     for name in bs.SHAPES:
-        ref = refs[name].copy()
+        ref = bs.reference_matrix(name, refs)
         source = "benchmarks/data/bem_bluff.csv (richardson)"
         if name in bs.ELLIPSOIDS:
-            ref[np.diag_indices(6)] = ellipsoid_added_mass(*bs.ELLIPSOIDS[name], rho=bs.RHO)
             source += "; diagonal: Lamb (stripcoef.hull.lamb.ellipsoid_added_mass)"
         veh = Vehicle.from_mesh(bs.strip_mesh(name), name=name,
                                 fluid=Fluid(density=bs.RHO, kinematic_viscosity=1e-6,
