@@ -887,12 +887,19 @@ class _TimedInputEffect(Effect):
     """An effect of the inputs with one time parameter [s] (a lag, a delay), profiled by a
     one-dimensional search over :meth:`grid`: its design is the window mean of
     :meth:`offset`, the input as it acts minus the input as logged, and it has no linear
-    coefficient.  Subclasses give ``hyper = (NAME,)``, ``GRID_MAX`` [s], ``RESOLVE``
-    (how many sampling intervals make the parameter resolvable) and :meth:`offset`."""
+    coefficient.  Subclasses give ``hyper = (NAME,)``, ``GRID_MAX`` [s], ``GRID_LOG``
+    (search points spaced geometrically, else evenly, from a tenth of the median sampling
+    interval to ``GRID_MAX``), ``RESOLVE`` (how many sampling intervals make the parameter
+    resolvable) and :meth:`offset`."""
 
     input_driven = True
     GRID_MAX = 1.0
+    GRID_LOG = False
     RESOLVE = 1.0
+
+    def grid(self, data, dof):
+        dt = float(np.median(np.diff(data.t)))
+        return (np.geomspace if self.GRID_LOG else np.linspace)(0.1 * dt, self.GRID_MAX, 12)
 
     def applicable(self, data, dof):
         if not np.any(data.tau[:, dof] != 0):
@@ -944,16 +951,13 @@ class ThrusterLag(_TimedInputEffect):
     source = "Yoerger et al. (1990); Fossen (2011) sec. 9.3"
     parameters = {"time_constant": "s"}
     hyper = ("time_constant",)
-    #: search range of the time constant [s]: from a tenth of a sample to 2 s
+    #: search range of the time constant [s]: from a tenth of a sample to 2 s, geometric
     GRID_MAX = 2.0
+    GRID_LOG = True
     RESOLVE = 0.5
 
     def signature(self, data, dof):
         return "a force that follows the steps of the input and decays"
-
-    def grid(self, data, dof):
-        dt = float(np.median(np.diff(data.t)))
-        return np.geomspace(0.1 * dt, self.GRID_MAX, 12)
 
     def offset(self, data, dof, tc):
         tau = data.tau[:, dof]
@@ -1009,10 +1013,6 @@ class ActuationDelay(_TimedInputEffect):
 
     def signature(self, data, dof):
         return "a force that precedes the response by a fixed time"
-
-    def grid(self, data, dof):
-        dt = float(np.median(np.diff(data.t)))
-        return np.linspace(0.1 * dt, self.GRID_MAX, 12)
 
     def offset(self, data, dof, delay):
         tau = data.tau[:, dof]

@@ -95,31 +95,18 @@ def _draws(sources, n: int, seed: int) -> np.ndarray:
     return np.column_stack([s.draw(u[:, k]) for k, s in enumerate(sources)])
 
 
-def _mirrors(vehicle, strips) -> frozenset:
-    """The nominal vehicle's mirror symmetries through its model's reference point
-    (:func:`stripcoef.study.symmetry.mirror_symmetries`): the couplings the method moves."""
-    import warnings
-
-    from stripcoef.assembly import estimate
-    from stripcoef.study.symmetry import mirror_symmetries
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")          # the nominal evaluation shows them
-        point = estimate(vehicle, strips=strips).reference_point
-    return mirror_symmetries(vehicle, point, strips)
-
-
-def _has_lift(vehicle, strips) -> bool:
-    """Whether the nominal model has lift terms or control surfaces (their method rows are
-    sampled only then)."""
+def _nominal_model(vehicle, strips):
+    """The nominal vehicle's model, warnings hidden (the nominal evaluation shows them): its
+    reference point sets the mirror symmetries the method's couplings follow
+    (:func:`stripcoef.study.symmetry.mirror_symmetries`), its lift whether the lift rows are
+    sampled."""
     import warnings
 
     from stripcoef.assembly import estimate
 
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")          # the nominal evaluation shows them
-        model = estimate(vehicle, strips=strips)
-    return bool(np.any(np.asarray(model.lift) != 0.0) or model.control_surfaces)
+        warnings.simplefilter("ignore")
+        return estimate(vehicle, strips=strips)
 
 
 def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = True,
@@ -164,8 +151,15 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     declared = uncertain_values(raw, file=file)
     data = nominal_data(raw, file=file)
     veh = parse_vehicle(data, file=file)
+    mirrors, lift = None, False
+    if method:
+        from stripcoef.study.symmetry import mirror_symmetries
+
+        model = _nominal_model(veh, strips)
+        mirrors = mirror_symmetries(veh, model.reference_point, strips)
+        lift = bool(np.any(np.asarray(model.lift) != 0.0) or model.control_surfaces)
     sources = (input_sources(declared) if declared else []) + \
-        (method_sources(veh, lift=_has_lift(veh, strips)) if method else [])
+        (method_sources(veh, lift=lift) if method else [])
     notes = []
     if not sources:
         raise InputError("nothing is uncertain", file=file, key="samples",
@@ -174,7 +168,7 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     job = Job(data=data, file=file, paths=tuple(u.path for u in declared),
               sources=tuple(s for s in sources if s.kind == "method"), limits=limits,
               radii=tuple(float(r) for r in radii), strips=strips,
-              mirrors=_mirrors(veh, strips) if method else None)
+              mirrors=mirrors)
     nominal_row = [u.value for u in declared] + [1.0] * len(job.sources)
     nominal_out = evaluate(job, nominal_row)
     # inputs first, then method factors: the order Job.evaluate reads a row in
