@@ -13,67 +13,13 @@ factor is fitted: a miss is a strict xfail whose reason gives the numbers.
 
 from __future__ import annotations
 
-import math
 
 import pytest
 
-from stripcoef.hull.lift import body_lift_slope, effective_aspect_ratio, fin_lift_slope
+from stripcoef.hull.lift import fin_lift_slope
 from validation import reference as ref
-
-SOURCE = "roddy1990_suboff"
-TOLERANCE = 0.20
-
-
-def val(name):
-    return ref.reference_value(SOURCE, name)["value"]
-
-
-def within(predicted, measured, rtol=TOLERANCE):
-    return abs(predicted - measured) <= rtol * abs(measured)
-
-
-def helmbold(aspect_ratio):
-    """Helmbold's low-aspect-ratio slope 2 pi A / (2 + sqrt(A^2 + 4)) [1/rad] (comparison only)."""
-    return 2 * math.pi * aspect_ratio / (2 + math.sqrt(aspect_ratio ** 2 + 4))
-
-
-def afterbody_radius(x):
-    """SUBOFF afterbody radius [ft] at x [ft] (Groves et al. 1989 equation, constants as read:
-    reference_tables/roddy1990_suboff/README.md)."""
-    rh, k0, k1, rmax = 0.1175, 10.0, 44.6244, 0.833333
-    xi = (13.979167 - x) / 3.333333
-    s = (rh * rh + rh * k0 * xi ** 2
-         + (20 - 20 * rh * rh - 4 * rh * k0 - k1 / 3) * xi ** 3
-         + (-45 + 45 * rh * rh + 6 * rh * k0 + k1) * xi ** 4
-         + (36 - 36 * rh * rh - 4 * rh * k0 - k1) * xi ** 5
-         + (-10 + 10 * rh * rh + rh * k0 + k1 / 3) * xi ** 6)
-    return rmax * math.sqrt(s)
-
-
-def plane_chord(r):
-    return val("planes.chord_slope") * r + val("planes.chord_intercept")
-
-
-def body_Yv():
-    """stripcoef's body lift of the bare SUBOFF hull as Roddy's Y'_v."""
-    d = val("hull.D")
-    return -d ** 2 * body_lift_slope(val("hull.L"), d) / val("hull.L_BP") ** 2
-
-
-def sail_geometry():
-    b, s = val("sail.b"), val("sail.S")
-    return s, float(effective_aspect_ratio(b, s))
-
-
-def planes_geometry():
-    r_root = val("planes.r_root")
-    span = val("planes.r_tip") - r_root
-    area = 0.5 * (plane_chord(r_root) + plane_chord(val("planes.r_tip"))) * span
-    return area, float(effective_aspect_ratio(span, area))
-
-
-def fins_Yv(area, slope, n=1):
-    return -n * area * slope / val("hull.L_BP") ** 2
+from validation.lift import (SUBOFF as SOURCE, afterbody_radius, body_Yv, fins_Yv, helmbold,
+                             plane_chord, planes_geometry, sail_geometry, val, within)
 
 
 # ---------------------------------------------------------------------------
