@@ -1,0 +1,86 @@
+"""Lift formulas against measured captive-model data: DARPA SUBOFF (Roddy 1990, Table 4;
+reference_tables/roddy1990_suboff).
+
+Roddy's Y'_v is nondimensional on 1/2 rho L_BP^2 U (per v' = v/U). stripcoef's lift force is
+-u L nu, so its Y_uv = -1/2 rho d^2 c_ydb (body) and -1/2 rho S c_La per fin, and
+Y'_v = Y_uv / (1/2 rho L_BP^2): rho cancels.
+
+Tolerance: 20 %, the tolerance this project states for its semi-empirical lift against
+Prestero 2001 (docs/validation.md); Roddy's own uncertainty (4-5 % on the static derivatives,
+10-25 % on the increments, which are differences of two measured rows) is inside it. No
+factor is fitted: a miss is a strict xfail whose reason gives the numbers.
+"""
+
+from __future__ import annotations
+
+
+import pytest
+
+from stripcoef.hull.lift import fin_lift_slope
+from validation import reference as ref
+from validation.lift import (SUBOFF as SOURCE, afterbody_radius, body_Yv, fins_Yv, helmbold,
+                             plane_chord, planes_geometry, sail_geometry, val, within)
+
+
+# ---------------------------------------------------------------------------
+# the data and the geometry
+# ---------------------------------------------------------------------------
+def test_increments_add_up_to_the_fully_appended_model():
+    # bare hull + sail + planes = -0.027554 against -0.027834 measured (Roddy's 4-5 %)
+    assert ref.agrees(ref.reference_value(SOURCE, "Yv.fully_appended"), val("Yv.sum_of_parts"))
+
+
+def test_geometry_as_published():
+    assert val("hull.L") / val("hull.D") == pytest.approx(8.575, abs=5e-4)  # Groves: 8.575
+    assert val("hull.L") * 0.3048 == pytest.approx(4.3561, abs=5e-5)      # manifest: 4.3561 m
+    # the stern planes' root radius is the fixed point it is stored as
+    r = 0.3
+    for _ in range(60):
+        r = afterbody_radius(val("planes.x_te") - plane_chord(r) / 2)
+    assert r == pytest.approx(val("planes.r_root"), abs=1e-6)
+    # the afterbody equation meets the largest radius where the parallel middle body ends
+    assert afterbody_radius(13.979167 - 3.333333) == pytest.approx(0.833333, rel=1e-6)
+
+
+# ---------------------------------------------------------------------------
+# the lift formulas against the data
+# ---------------------------------------------------------------------------
+@pytest.mark.xfail(strict=True, reason=(
+    "Hoerner/Prestero body lift 0.003 (l/d)/deg on d^2 gives Y'_v = -0.0210 for the SUBOFF bare "
+    "hull (l/d = 8.575), Roddy 1990 measured -0.00595: 3.5 times (+252 %). The measured slope is "
+    "0.00085 (l/d)/deg (0.418/rad on d^2)."))
+def test_body_lift_against_suboff_bare_hull():
+    assert within(body_Yv(), val("Yv.bare_hull"))
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "Whicker & Fehlner fin lift of the SUBOFF sail (AR_e = 1.12, c_La = 2.17/rad) gives "
+    "Y'_v = -0.00905 against the measured sail increment -0.0171 (-47 %): the increment holds "
+    "the sail-hull interference (carry-over, cross-flow upwash) the model leaves out. "
+    "Helmbold's slope (1.64/rad) gives -0.00684 (-60 %)."))
+def test_sail_lift_against_the_measured_increment():
+    area, ar = sail_geometry()
+    assert within(fins_Yv(area, float(fin_lift_slope(ar))), val("Yv.sail_increment"))
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "Whicker & Fehlner fin lift of the two vertical SUBOFF stern planes (AR_e = 1.47, "
+    "c_La = 2.54/rad) gives Y'_v = -0.00694 against the measured increment -0.00455 (+53 %): "
+    "the planes sit in the afterbody's thick boundary layer. Helmbold's slope (2.06/rad) gives "
+    "-0.00562 (+24 %)."))
+def test_stern_plane_lift_against_the_measured_increment():
+    area, ar = planes_geometry()
+    assert within(fins_Yv(area, float(fin_lift_slope(ar)), n=2), val("Yv.planes_increment"))
+
+
+def test_comparison_numbers_as_reported():
+    """The numbers the xfail reasons and docs/validation.md state (so they cannot drift)."""
+    assert body_Yv() / val("Yv.bare_hull") == pytest.approx(3.52, abs=0.01)
+    area, ar = sail_geometry()
+    assert ar == pytest.approx(1.118, abs=1e-3)
+    assert fins_Yv(area, float(fin_lift_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.531, abs=1e-3)
+    assert fins_Yv(area, helmbold(ar)) / val("Yv.sail_increment") == pytest.approx(0.401, abs=1e-3)
+    area, ar = planes_geometry()
+    assert ar == pytest.approx(1.467, abs=1e-3)
+    assert fins_Yv(area, float(fin_lift_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(1.526, abs=1e-3)
+    assert fins_Yv(area, helmbold(ar), 2) / val("Yv.planes_increment") == pytest.approx(1.236, abs=1e-3)
