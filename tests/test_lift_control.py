@@ -23,7 +23,8 @@ from validation.lift import total_linear
 from stripcoef import estimate
 from stripcoef.cli import main
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.hull.lift import body_lift_slope, effective_aspect_ratio, fin_lift_slope
+from stripcoef.hull.lift import (body_lift_slope, effective_aspect_ratio, fin_lift_slope,
+                                 lifting_line_slope)
 from stripcoef.limits.steering import dive, level_trim, rudder_turn
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.simulate import simulate
@@ -53,10 +54,17 @@ def remus_neutral(remus):
 # ---------------------------------------------------------------------------
 # formulas against the values Prestero prints for their inputs
 # ---------------------------------------------------------------------------
-def test_fin_lift_slope_is_prestero_value():
-    # printed 3.12 (to its precision, +-0.005); the formula gives 3.1165
+def test_lifting_line_slope_is_prestero_value():
+    # Prestero's own (lifting-line) formula: printed 3.12 (to its precision, +-0.005); 3.1165
     assert ref.agrees(ref.reference_value("prestero2001", "fin.cLalpha"),
-                      float(fin_lift_slope(2.21)))
+                      float(lifting_line_slope(2.21)))
+
+
+def test_fin_lift_slope_is_helmbold():
+    # Helmbold with a0 = 2 pi 0.9 at REMUS's AR_e = 2.21: 2.687 (14 % below Prestero's 3.12)
+    x = 2 * math.pi * 0.9 / (math.pi * 2.21)
+    assert float(fin_lift_slope(2.21)) == pytest.approx(2 * math.pi * 0.9 / (math.hypot(1, x) + x))
+    assert float(fin_lift_slope(2.21)) == pytest.approx(2.687, abs=5e-4)
 
 
 def test_effective_aspect_ratio_and_body_lift_slope():
@@ -66,9 +74,14 @@ def test_effective_aspect_ratio_and_body_lift_slope():
 
 
 def test_fin_lift_slope_limits():
-    # slender-wing limit pi AR/2 for AR -> 0 and 2 pi a for AR -> infinity (formula property)
-    assert fin_lift_slope(1e-4) == pytest.approx(math.pi * 1e-4, rel=1e-3)
+    # Jones's slender-wing limit pi AR/2 for AR -> 0 and the section's 2 pi a for AR -> infinity
+    # (exact limits; the lifting-line form has pi AR, twice Jones's value)
+    assert fin_lift_slope(1e-4) == pytest.approx(math.pi * 1e-4 / 2, rel=1e-3)
     assert fin_lift_slope(1e8) == pytest.approx(2 * math.pi * 0.9, rel=1e-6)
+    assert lifting_line_slope(1e-4) == pytest.approx(math.pi * 1e-4, rel=1e-3)
+    ar = np.linspace(0.1, 20, 50)
+    assert np.all(np.diff(fin_lift_slope(ar)) > 0)                       # rises with AR
+    assert np.all(fin_lift_slope(ar) < lifting_line_slope(ar))
 
 
 # ---------------------------------------------------------------------------
@@ -172,10 +185,15 @@ def test_control_lever_against_prestero(remus):
     assert ref.agrees(row, -c["N_uudr"] / c["Y_uudr"])
 
 
-def test_fin_pair_equals_prestero_formula_with_his_inputs(remus):
-    # rho c_La S for the pair (two fins of S each, 1/2 rho S c_La per fin), at REMUS's density
+def test_fin_pair_is_the_formula_with_prestero_inputs(remus):
+    # rho c_La S for the pair (two fins of S each, 1/2 rho S c_La per fin) with his rho, S_fin and
+    # AR_e; c_La from Helmbold's slope (with his lifting-line c_La = 3.12 it is his 21.37 kg/m)
+    rho, s_fin, are = (ref.reference_value("prestero2001", k)["value"]
+                       for k in ("rho", "fin.S", "fin.ARe"))
+    assert remus.coefficients()["Y_uudr"] == pytest.approx(
+        rho * s_fin * float(fin_lift_slope(are)), rel=0.002)
     row = ref.reference_value("prestero2001", "control.formula_rho_cLa_S")
-    assert remus.coefficients()["Y_uudr"] == pytest.approx(row["value"], rel=0.002)
+    assert rho * s_fin * float(lifting_line_slope(are)) == pytest.approx(row["value"], rel=0.002)
 
 
 # ---------------------------------------------------------------------------

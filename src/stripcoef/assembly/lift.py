@@ -1,6 +1,6 @@
 r"""Body and fin lift of a vehicle, and its control surfaces, about the reference point.
 
-The formulas are in :mod:`stripcoef.hull.lift` (Hoerner & Borst 1985; Whicker & Fehlner
+The formulas are in :mod:`stripcoef.hull.lift` (Hoerner & Borst 1985; Helmbold 1942; Whicker & Fehlner
 1958; Prestero 2001, secs. 3.6-3.7); this module walks the vehicle's hull, fin appendages
 and control surfaces and sums them:
 

@@ -23,13 +23,14 @@ sec. 3.6.1):
 acting at the centre of pressure :math:`x_{cp}` (a sideslip v gives the force; yaw rate does
 not, as in Prestero's model).
 
-Fin lift (Whicker & Fehlner 1958, DTMB report 933, as used by Prestero 2001, sec. 3.6.2,
-and Hoerner & Borst 1985, ch. 3): each fin of planform area S and span b (root at the hull,
-which acts as a reflection plane) has the effective aspect ratio
-:math:`AR_e = 2 b^2 / S` and the lift-curve slope
+Fin lift (Helmbold 1942, the low-aspect-ratio lift slope of DATCOM sec. 4.1.3.2 and of Anderson
+1999, eq. 2.18; section efficiency a of Whicker & Fehlner 1958 as used by Prestero 2001,
+sec. 3.6.2): each fin of planform area S and span b (root at the hull, which acts as a
+reflection plane) has the effective aspect ratio :math:`AR_e = 2 b^2 / S` and the lift-curve
+slope
 
-.. math:: c_{L\alpha} = \left[\frac{1}{2 a \pi} + \frac{1}{\pi AR_e}\right]^{-1},
-          \quad a = 0.9
+.. math:: c_{L\alpha} = \frac{a_0}{\sqrt{1 + (a_0/\pi AR_e)^2} + a_0/\pi AR_e},
+          \quad a_0 = 2\pi a,\ a = 0.9
 
 and the force :math:`\tfrac12 \rho u^2 S c_{L\alpha} \alpha_e` normal to its plane, with
 :math:`\alpha_e = \delta - v_f/u` the effective angle of attack, :math:`v_f` the cross
@@ -50,7 +51,8 @@ import numpy as np
 
 from stripcoef.conventions import skew
 
-#: Span efficiency a of Whicker & Fehlner's lift slope (Prestero 2001, sec. 3.6.2) [-].
+#: Section efficiency a = a_0 / 2 pi of the fin lift slope, Whicker & Fehlner's value
+#: (Prestero 2001, sec. 3.6.2) [-].
 FIN_EFFICIENCY = 0.9
 #: Hoerner's body lift slope per degree per unit slenderness, c_ydb = 0.003 l/d [1/deg]
 #: (Hoerner & Borst 1985, ch. 19; Prestero 2001, sec. 3.6.1) [-].
@@ -89,16 +91,23 @@ def effective_aspect_ratio(span, area):
 
 
 def fin_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
-    r"""Lift-curve slope of a low-aspect-ratio fin.
+    r"""Lift-curve slope of a low-aspect-ratio fin (Helmbold's equation).
 
-    .. math:: c_{L\alpha} = \left[\frac{1}{2 a \pi} + \frac{1}{\pi AR_e}\right]^{-1}
+    .. math:: c_{L\alpha} = \frac{a_0}{\sqrt{1 + x^2} + x},\qquad x = \frac{a_0}{\pi AR_e},
+              \quad a_0 = 2\pi a
+
+    It has both exact limits: Jones's slender-wing value :math:`\pi AR_e / 2` as
+    :math:`AR_e \to 0` and the section's :math:`a_0` as :math:`AR_e \to \infty`.  Prandtl's
+    lifting-line form :math:`[1/a_0 + 1/(\pi AR_e)]^{-1}` that Whicker & Fehlner and Prestero
+    use tends to :math:`\pi AR_e`, twice Jones's value, and is 13-70 % above measured
+    flat-plate slopes at AR 0.5-3 (reference_tables/flat_plate_lift, docs/validation.md).
 
     Parameters
     ----------
     aspect_ratio : float or array
-        AR_e, effective aspect ratio [-] (:func:`effective_aspect_ratio`)
+        AR_e, effective aspect ratio [-] (:func:`effective_aspect_ratio`), > 0
     efficiency : float
-        a, ratio of the 2D section slope to 2 pi [-] (0.9)
+        a, ratio of the 2D section slope to 2 pi [-] (0.9, Whicker & Fehlner's value)
 
     Returns
     -------
@@ -107,8 +116,30 @@ def fin_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
 
     References
     ----------
-    Whicker & Fehlner 1958, DTMB report 933; Prestero 2001, sec. 3.6.2 (AR_e = 2.21 gives
-    c_Lalpha = 3.12).
+    Helmbold, H. B. (1942), Jahrbuch der deutschen Luftfahrtforschung, I 111-113; USAF DATCOM
+    (Finck 1978) sec. 4.1.3.2 (the same with a = kappa, incompressible, unswept); Anderson,
+    *Aircraft Performance and Design* (1999), eq. 2.18 (low-aspect-ratio straight wing); Jones
+    (1946), NACA Report 835 (slender wing, pi AR / 2).  REMUS (Prestero 2001): AR_e = 2.21
+    gives 2.687 [1/rad], where Prestero's lifting-line form gives 3.12.
+    """
+    ar = np.asarray(aspect_ratio, dtype=float)
+    a0 = 2.0 * math.pi * efficiency
+    x = a0 / (math.pi * ar)
+    return a0 / (np.sqrt(1.0 + x * x) + x)
+
+
+def lifting_line_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
+    r"""Prandtl's lifting-line slope as Whicker & Fehlner and Prestero use it (for comparison).
+
+    .. math:: c_{L\alpha} = \left[\frac{1}{2 a \pi} + \frac{1}{\pi AR_e}\right]^{-1}
+
+    Not used by the model (:func:`fin_lift_slope` is): kept to reproduce Prestero's printed
+    intermediate values (AR_e = 2.21 gives 3.1165, printed 3.12) and for the comparison with
+    measured slopes.  ``aspect_ratio`` [-], ``efficiency`` a [-]; returns [1/rad].
+
+    References
+    ----------
+    Whicker & Fehlner 1958, DTMB report 933; Prestero 2001, sec. 3.6.2.
     """
     ar = np.asarray(aspect_ratio, dtype=float)
     return 1.0 / (1.0 / (2.0 * efficiency * math.pi) + 1.0 / (math.pi * ar))
