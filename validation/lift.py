@@ -9,7 +9,8 @@ import warnings
 
 import numpy as np
 
-from stripcoef.hull.lift import body_lift_slope, effective_aspect_ratio, fin_lift_slope
+from stripcoef.hull.lift import (body_lift_slope, effective_aspect_ratio, fin_lift_slope,
+                                 lifting_line_slope)
 
 from validation import ROOT, markdown_table
 from validation import reference as ref
@@ -35,9 +36,38 @@ def within(predicted, measured, rtol=SUBOFF_TOLERANCE):
     return abs(predicted - measured) <= rtol * abs(measured)
 
 
-def helmbold(aspect_ratio):
-    """Helmbold's low-aspect-ratio slope 2 pi A / (2 + sqrt(A^2 + 4)) [1/rad] (comparison only)."""
-    return 2 * math.pi * aspect_ratio / (2 + math.sqrt(aspect_ratio ** 2 + 4))
+def flat_plate_points():
+    """(aspect ratio, measured lift slope [1/rad]) arrays of reference_tables/flat_plate_lift."""
+    rows = ref.load_table("flat_plate_lift", "lift_slope")
+    ar = np.array([r["value"] for r in rows if r["name"].startswith("AR.")])
+    cla = np.array([r["value"] for r in rows if r["name"].startswith("CLa.")])
+    return ar, cla
+
+
+def flat_plate_section() -> list[str]:
+    """The 'Fin lift slope' subsection of docs/validation.md."""
+    ar, cla = flat_plate_points()
+    ours, ll = fin_lift_slope(ar), lifting_line_slope(ar)
+    rows = [(f"{a:.2f}", f"{c:.3f}", f"{o:.3f}", f"{100 * (o / c - 1):+.1f} %", f"{w:.3f}",
+             f"{100 * (w / c - 1):+.1f} %") for a, c, o, w in zip(ar, cla, ours, ll)]
+    e_ours, e_ll = np.abs(ours / cla - 1), np.abs(ll / cla - 1)
+    return ["### Fin lift slope against measured flat plates", "",
+            "Lift-curve slopes of thin rectangular flat plates (wings alone) measured at aspect ratio "
+            "0.57-6.05 (reference_tables/flat_plate_lift: Branlard 2011, App. B, Fig. B.1, as "
+            "digitised in the author's public library), against the model's Helmbold slope "
+            "(`hull.lift.fin_lift_slope`, section efficiency a = 0.9 not fitted to these points) and "
+            "the lifting-line form Prestero 2001 uses (`lifting_line_slope`). Tolerance 20 % (the "
+            "points' own scatter is +-7 %; tests/test_lift_data.py):", "",
+            markdown_table(["AR", "measured [1/rad]", "Helmbold", "difference", "lifting line",
+                            "difference"], rows), "",
+            f"Helmbold: all {len(ar)} points within 20 % (largest {100 * e_ours.max():.1f} %, rms of ln "
+            f"{np.sqrt(np.mean(np.log(ours / cla) ** 2)):.3f}); lifting line: "
+            f"{int(np.sum(e_ll <= 0.2))} of {len(ar)} (largest {100 * e_ll.max():.1f} %, rms of ln "
+            f"{np.sqrt(np.mean(np.log(ll / cla) ** 2)):.3f}). Helmbold's equation also has both exact "
+            "limits (Jones's slender-wing pi AR/2 and the section's 2 pi a); the lifting-line form "
+            "tends to pi AR, twice Jones's value. A fin on a hull is taken at its effective aspect "
+            "ratio 2 b^2/S, the hull acting as a reflection plane; the hull's boundary layer and "
+            "its carry-over lift are not in the model (the SUBOFF comparison below).", ""]
 
 
 def afterbody_radius(x):
@@ -141,7 +171,7 @@ def suboff_rows() -> list[tuple]:
         area, ar = geometry()
         measured = val(name)
         ours = fins_Yv(area, float(fin_lift_slope(ar)), n)
-        other = fins_Yv(area, helmbold(ar), n)
+        other = fins_Yv(area, float(lifting_line_slope(ar)), n)
         rows.append((f"{label}, AR_e = {ar:.2f}", f"{measured:.6f}", f"{ours:.5f}",
                      f"{100 * (ours / measured - 1):+.0f} %",
                      f"{other:.5f} ({100 * (other / measured - 1):+.0f} %)",
@@ -172,16 +202,17 @@ def section() -> str:
         "## Lift and control surfaces (issue 15)", "",
         "### REMUS 100 against Prestero 2001", "",
         "geometry/remus100.yaml (Myring hull and fins from Prestero's published dimensions) "
-        "estimated by strip theory; the lift is Hoerner's body lift and Whicker & Fehlner's fin "
-        "lift (docs/theory.md). 'combined' = lift + the Munk part of C_A(nu), linearised at "
+        "estimated by strip theory; the lift is Hoerner's body lift and Helmbold's fin lift "
+        "slope (docs/theory.md). 'combined' = lift + the Munk part of C_A(nu), linearised at "
         "u = 1 m/s, as Prestero sums them. Tolerance 20 % (reference_tables/prestero2001: "
         "semi-empirical lift, no fin-hull interference).", "",
         markdown_table(["coefficient", "Prestero", "stripcoef combined", "stripcoef lift only",
                         "difference", "within 20 %"], rows), "",
-        "The formulas themselves reproduce Prestero's intermediate values: "
-        f"c_La(AR_e = 2.21) = 3.117 (printed 3.12), c_ydb(l/d = 6.98) = 1.199 (printed 1.2), "
-        f"rho c_La S_fin = {coeffs['Y_uudr']:.2f} kg/m for the fin pair (his formula with his "
-        f"inputs: 21.37). The fin lever M_uuds/Z_uuds = {lever:.4f} m against 0.638 m. The "
+        "Prestero's own lifting-line slope (`hull.lift.lifting_line_slope`) reproduces his "
+        f"intermediate value c_La(AR_e = 2.21) = {float(lifting_line_slope(2.21)):.3f} (printed 3.12); "
+        f"the model's Helmbold slope gives {float(fin_lift_slope(2.21)):.3f} (section 'Fin lift "
+        f"slope' below). c_ydb(l/d = 6.98) = 1.199 (printed 1.2); rho c_La S_fin = "
+        f"{coeffs['Y_uudr']:.2f} kg/m for the fin pair (his formula with his inputs: 21.37). The fin lever M_uuds/Z_uuds = {lever:.4f} m against 0.638 m. The "
         "control derivatives and most of the lift misses come from one number: Prestero's "
         "printed fin terms correspond to rho c_La S = 9.64 kg/m for a fin pair, 45 % of "
         "2 x 1/2 rho c_La S_fin = 21.4 kg/m with his own inputs (S_fin is one fin's area: "
@@ -191,6 +222,7 @@ def section() -> str:
         f"{coeffs['Z_wdot']:.1f} kg against his -35.5 kg). The model keeps the two-fin "
         "formula: no factor is fitted to the "
         "table.", "",
+        *flat_plate_section(),
         "### DARPA SUBOFF captive-model data (Roddy 1990)", "",
         "Roddy 1990 (DTRC/SHD-1298-08, Table 4) measured the static sway derivative Y'_v of the "
         "SUBOFF model bare, with its sail, with its four stern planes and fully appended "
@@ -202,14 +234,15 @@ def section() -> str:
         f"tolerance {100 * SUBOFF_TOLERANCE:.0f} % (Roddy's own uncertainty 4-5 %, 10-25 % on the "
         "increments; tests/test_lift_data.py, strict xfails):", "",
         markdown_table(["quantity", "Roddy 1990", "stripcoef", "difference",
-                        "Helmbold's slope instead", "within 20 %"], suboff_rows()), "",
+                        "lifting-line slope instead", "within 20 %"], suboff_rows()), "",
         "The increments add up: bare hull + sail + planes = "
         f"{val('Yv.sum_of_parts'):.6f} against the fully appended {val('Yv.fully_appended'):.6f}. "
         "The body-lift miss is the large one: Hoerner's 0.003 (l/d) per degree on d^2 is 3.5 "
         "times the SUBOFF bare hull's measured 0.00085 (l/d) per degree. The fins miss in "
         "opposite directions (the sail carries hull interference the model lacks, the stern "
         "planes sit in the afterbody's boundary layer), so no single change to the fin slope "
-        "fits both; Helmbold's slope is closer for the stern planes and further for the sail. "
+        "fits both; Prestero's lifting-line slope is further for the stern planes and closer for "
+        "the sail. "
         "The formulas are left unchanged: no factor is fitted to these data. Not found in a "
         "readable form: Jorgensen's (NASA TR R-474) body normal-force data, Whicker & "
         "Fehlner's fin data and a digitisation of low-aspect-ratio rectangular-wing lift "

@@ -99,8 +99,8 @@ def fin_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
     It has both exact limits: Jones's slender-wing value :math:`\pi AR_e / 2` as
     :math:`AR_e \to 0` and the section's :math:`a_0` as :math:`AR_e \to \infty`.  Prandtl's
     lifting-line form :math:`[1/a_0 + 1/(\pi AR_e)]^{-1}` that Whicker & Fehlner and Prestero
-    use tends to :math:`\pi AR_e`, twice Jones's value, and is 13-70 % above measured
-    flat-plate slopes at AR 0.5-3 (reference_tables/flat_plate_lift, docs/validation.md).
+    use tends to :math:`\pi AR_e`, twice Jones's value, and is 11-71 % above measured
+    flat-plate slopes at AR 0.57-3.1 (reference_tables/flat_plate_lift, docs/validation.md).
 
     Parameters
     ----------
