@@ -10,6 +10,24 @@ ROOT = Path(__file__).resolve().parent.parent
 GEOMETRY = ROOT / "geometry"
 
 
+def load_module(path, name=None, *, cache=False):
+    """The Python file ``path`` as a module named ``name`` (default its stem): scripts/,
+    benchmarks/ (not packages) and exported model files.  ``cache``: load once per session,
+    registered in sys.modules (a second call returns the same module)."""
+    import importlib.util
+    import sys
+
+    name = name or Path(path).stem
+    if cache and name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    if cache:
+        sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
 @pytest.fixture
 def geometry_dir():
     return GEOMETRY

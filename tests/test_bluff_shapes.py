@@ -12,6 +12,7 @@ import trimesh
 
 from stripcoef.errors import InputError
 from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "benchmarks" / "data" / "bem_bluff.csv"
@@ -62,12 +63,7 @@ def test_stored_bem_matches_lamb(shape, axes):
 
 
 def _benchmark():
-    import importlib.util
-    spec = importlib.util.spec_from_file_location(
-        "bluff_shapes", ROOT / "benchmarks" / "bluff_shapes.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(ROOT / "benchmarks" / "bluff_shapes.py")
 
 
 def test_reference_table_complete():

@@ -5,13 +5,12 @@ example file (a change of the physics that moves MARES's matrices must regenerat
 Numbers compare to 1e-12 relative (as tests/test_golden.py: another CPU's BLAS may round the
 last bits differently); everything else exactly."""
 
-import importlib.util
 import re
 import warnings
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, load_module
 
 EXAMPLES = ROOT / "docs" / "export" / "examples"
 NUMBER = re.compile(r"-?\d+\.\d{6,}(?:e-?\d+)?")
@@ -20,11 +19,7 @@ PAGES = {"gazebo.md": "mares.sdf", "uuv.md": "mares_uuv.xml", "mss.md": "mares.m
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location(
-        "make_export_examples", ROOT / "scripts" / "make_export_examples.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(ROOT / "scripts" / "make_export_examples.py")
 
 
 def _same(name, got, want):

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import json
 import warnings
@@ -17,6 +16,7 @@ from stripcoef.errors import InputError
 from stripcoef.export import FORMATS, export_model, write_export
 from stripcoef.export.csvtable import read as read_csv
 from stripcoef.model import HydroModel
+from conftest import load_module
 
 MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_damping")
 SHORT = {"rigid_body_mass": "M_RB", "added_mass": "M_A", "linear_damping": "D_L",
@@ -128,9 +128,7 @@ def test_npz_round_trip(tmp_path):
 def test_python_module_imports_with_the_matrices(tmp_path):
     model = torpedo()
     path = write_export(model, "python", tmp_path / "torpedo_model.py", axes="FLU")
-    spec = importlib.util.spec_from_file_location("torpedo_model", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_module(path, "torpedo_model")
     for key, short in SHORT.items():
         np.testing.assert_array_equal(getattr(mod, short),
                                       transform_matrix(getattr(model, key), axes="FLU"))

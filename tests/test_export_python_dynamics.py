@@ -1,7 +1,6 @@
 """The Python export runs: its state_derivative integrates to the trajectory of stripcoef
 simulate (to 1e-6), and its Vehicle class has PythonVehicleSimulator's dynamics interface."""
 
-import importlib.util
 
 import numpy as np
 import pytest
@@ -11,16 +10,14 @@ from stripcoef.conventions import POSE, VELOCITIES
 from stripcoef.export import write_export
 from stripcoef.modelfile import load_model
 from stripcoef.simulate import simulate
+from conftest import load_module
 
 COMMANDS = {"port": 150.0, "starboard": 120.0, "vertical": 60.0}
 CURRENT = np.array([0.1, -0.05, 0.0])
 
 
 def _module(path):
-    spec = importlib.util.spec_from_file_location(path.stem, path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(path)
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,6 @@ number) and tiny and large entries (issue 17: YAML exports that did not parse ba
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import json
 import shutil
@@ -26,6 +25,7 @@ import stripcoef
 from stripcoef.export import FORMATS, write_export
 from stripcoef.export.csvtable import read as read_csv
 from stripcoef.model import HydroModel
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 NAMES = ['a: b # "c" \'d\' <e> & f', "two\nlines", "näme-ü", "null", "- 1e3"]
@@ -83,9 +83,7 @@ def test_export_parses_back(fmt, name, base, tmp_path):
             back = HydroModel.from_dict(_strict_json(str(npz["model_json"])))
             assert back.name == name
     elif fmt == "python":
-        spec = importlib.util.spec_from_file_location("exported_model", path)
-        mod = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(mod)
+        mod = load_module(path, "exported_model")
         np.testing.assert_array_equal(mod.D_L, model.linear_damping)
     elif fmt == "mss":
         exe = shutil.which("octave-cli")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import json
 import warnings
@@ -20,6 +19,7 @@ import stripcoef
 from stripcoef.export import FORMATS, SimulatorTrapWarning, export_model, write_export
 from stripcoef.export.csvtable import read as read_csv
 from stripcoef.model import HydroModel
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 VEHICLES = ("mares", "videoray_pro3")
@@ -64,9 +64,7 @@ def test_every_format_reads_back(vehicle, tmp_path):
             with np.load(io.BytesIO(data), allow_pickle=False) as npz:
                 np.testing.assert_array_equal(npz["M_A"], model.added_mass)
         elif fmt == "python":
-            spec = importlib.util.spec_from_file_location(f"exported_{name}", path)
-            mod = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(mod)
+            mod = load_module(path, f"exported_{name}")
             np.testing.assert_array_equal(mod.D_Q, model.quadratic_damping)
             assert len(mod.THRUSTERS) == len(model.thrusters)
         elif fmt == "mss":

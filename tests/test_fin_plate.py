@@ -2,7 +2,6 @@
 Capytaine on thin plates, and finned Myring hulls against their converged BEM
 (benchmarks/finned_bodies.py, benchmarks/plate_added_mass.py)."""
 
-import importlib.util
 import sys
 import warnings
 from pathlib import Path
@@ -12,18 +11,14 @@ import pytest
 
 from stripcoef.errors import InputError
 from stripcoef.sections.added_mass import plate_chordwise_factor
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def _bench(name):
     """benchmarks/<name>.py (benchmarks/ is not a package), loaded once."""
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
-        mod = importlib.util.module_from_spec(spec)
-        sys.modules[name] = mod
-        spec.loader.exec_module(mod)
-    return sys.modules[name]
+    return load_module(ROOT / "benchmarks" / f"{name}.py", cache=True)
 
 
 # --- the plate factor ------------------------------------------------------------------------

@@ -7,9 +7,7 @@ output, no exit 0 with a NaN (issue 17).
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import sys
 import time
 from pathlib import Path
 
@@ -17,6 +15,7 @@ import numpy as np
 import pytest
 
 from stripcoef.cli import main
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 GEO = ROOT / "geometry"
@@ -24,13 +23,7 @@ GEO = ROOT / "geometry"
 
 def _campaign():
     """benchmarks/fuzz_campaign.py (benchmarks/ is not a package), loaded once."""
-    if "fuzz_campaign" not in sys.modules:
-        spec = importlib.util.spec_from_file_location("fuzz_campaign",
-                                                      ROOT / "benchmarks" / "fuzz_campaign.py")
-        mod = importlib.util.module_from_spec(spec)
-        sys.modules["fuzz_campaign"] = mod
-        spec.loader.exec_module(mod)
-    return sys.modules["fuzz_campaign"]
+    return load_module(ROOT / "benchmarks" / "fuzz_campaign.py", cache=True)
 
 
 @pytest.fixture(scope="module")

@@ -29,6 +29,7 @@ from stripcoef.limits.steering import dive, level_trim, rudder_turn
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
 from stripcoef.simulate import simulate
 from validation import reference as ref
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parents[1]
 REMUS = ROOT / "geometry" / "remus100.yaml"
@@ -356,7 +357,6 @@ def test_myring_length_errors(tmp_path, capsys, segment, value, text):
 # exports that hold lift and control surfaces
 # ---------------------------------------------------------------------------
 def test_exports_carry_the_lift(remus, tmp_path):
-    import importlib.util
     import io
     import re
 
@@ -390,9 +390,7 @@ def test_exports_carry_the_lift(remus, tmp_path):
                                                                   remus.control_matrix)
     path = tmp_path / "remus_model.py"
     path.write_text(py)
-    spec = importlib.util.spec_from_file_location("remus_model", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_module(path, "remus_model")
     assert np.allclose(mod.L, remus.lift) and np.allclose(mod.B_DELTA, remus.control_matrix)
     assert mod.COEFFICIENTS["Y_uv"] == pytest.approx(remus.coefficients()["Y_uv"])
     assert "Bdelta = [" in mss and "D = DL + nu_r(1) * L" in mss

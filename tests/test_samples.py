@@ -1,7 +1,6 @@
 """The sample data shipped in the wheel: reachable by name, identical to what
 scripts/make_samples.py writes, and the logs' truth recovered by the commands it names."""
 
-import importlib.util
 import json
 import shlex
 
@@ -12,14 +11,11 @@ from stripcoef import samples
 from stripcoef.cli import main
 from stripcoef.errors import InputError
 
-from conftest import GEOMETRY, ROOT
+from conftest import GEOMETRY, ROOT, load_module
 
 
 def _make_samples():
-    spec = importlib.util.spec_from_file_location("make_samples", ROOT / "scripts" / "make_samples.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(ROOT / "scripts" / "make_samples.py")
 
 
 def test_vehicles_are_the_repository_geometry():

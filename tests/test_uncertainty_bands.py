@@ -2,7 +2,6 @@
 rule covers at the rate it claims, and the shape class comes from the geometry."""
 
 import csv
-import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -19,17 +18,14 @@ from stripcoef.study.shapes import classify, features, shape_class
 from stripcoef.assembly import estimate
 from stripcoef.study.sources import couple, method_sources
 from stripcoef.study.symmetry import allowed_couplings, mirror_symmetries
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 WATER = Fluid(density=1000.0, kinematic_viscosity=1e-6, source="test")
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location(
-        "make_method_uncertainty", ROOT / "scripts" / "make_method_uncertainty.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(ROOT / "scripts" / "make_method_uncertainty.py")
 
 
 # -- the table is data made by a script ------------------------------------------------------
