@@ -8,7 +8,9 @@ Y'_v = Y_uv / (1/2 rho L_BP^2): rho cancels.
 Tolerance: 20 %, the tolerance this project states for its semi-empirical lift against
 Prestero 2001 (docs/validation.md); Roddy's own uncertainty (4-5 % on the static derivatives,
 10-25 % on the increments, which are differences of two measured rows) is inside it. No
-factor is fitted: a miss is a strict xfail whose reason gives the numbers.
+factor is fitted: a miss is a strict xfail whose reason gives the numbers. The fin-hull
+interference factor is slender-body theory's (1 + R/s)^2 on a cylindrical root, the model's
+rule (hull.lift.interference_factor), not a value chosen for these data.
 """
 
 from __future__ import annotations
@@ -21,7 +23,8 @@ from stripcoef.hull.lift import fin_lift_slope, lifting_line_slope
 from validation import reference as ref
 from validation.lift import (LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_radius, body_Yv,
                              fins_Yv, flat_plate_points, plane_chord, planes_geometry,
-                             sail_geometry, val, within)
+                             planes_interference, planes_root_radii, sail_geometry,
+                             sail_interference, suboff_rows, val, within)
 
 
 # ---------------------------------------------------------------------------
@@ -55,24 +58,36 @@ def test_body_lift_against_suboff_bare_hull():
     assert within(body_Yv(), val("Yv.bare_hull"))
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "Helmbold fin lift of the SUBOFF sail (AR_e = 1.12, c_La = 1.61/rad) gives "
-    "Y'_v = -0.00674 against the measured sail increment -0.0171 (-60 %): the increment holds "
-    "the sail-hull interference (carry-over, cross-flow upwash) the model leaves out. "
-    "Prestero's lifting-line slope (2.17/rad) gives -0.00905 (-47 %)."))
 def test_sail_lift_against_the_measured_increment():
+    """The sail sits on the parallel middle body: Helmbold's slope times slender-body theory's
+    fin-hull interference (1 + R/s)^2 = 2.41 gives -0.0162 against -0.0171 measured (-5 %);
+    without the factor it was -60 %."""
+    assert sail_interference() == pytest.approx(2.408, abs=1e-3)
     area, ar = sail_geometry()
-    assert within(fins_Yv(area, float(fin_lift_slope(ar))), val("Yv.sail_increment"))
+    assert within(fins_Yv(area, sail_interference() * float(fin_lift_slope(ar))),
+                  val("Yv.sail_increment"))
 
 
 @pytest.mark.xfail(strict=True, reason=(
     "Helmbold fin lift of the two vertical SUBOFF stern planes (AR_e = 1.47, "
-    "c_La = 2.01/rad) gives Y'_v = -0.00550 against the measured increment -0.00455 (+21 %): "
-    "the planes sit in the afterbody's thick boundary layer. Prestero's lifting-line slope "
-    "(2.54/rad) gives -0.00694 (+53 %)."))
+    "c_La = 2.01/rad) gives Y'_v = -0.00550 against the measured increment -0.00455 (+21 %). "
+    "Their roots run down the tapering afterbody (r = 0.514 to 0.271 ft), outside slender-body "
+    "theory's cylinder, so the model applies no hull interference; the cylinder's factor 2.16 "
+    "would give +161 %: the afterbody's thick boundary layer and closing body take most of it. "
+    "Prestero's lifting-line slope (2.54/rad) gives -0.00694 (+53 %)."))
 def test_stern_plane_lift_against_the_measured_increment():
+    assert planes_interference()[0] == 1.0
     area, ar = planes_geometry()
     assert within(fins_Yv(area, float(fin_lift_slope(ar)), n=2), val("Yv.planes_increment"))
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "Fully appended SUBOFF: the model's three rows sum to Y'_v = -0.0427 against -0.0278 "
+    "measured (+53 %), the body lift's miss (before the sail's hull interference the two fin "
+    "misses hid it: +19 %)."))
+def test_fully_appended_against_suboff():
+    total = float(suboff_rows()[-1][2])
+    assert within(total, val("Yv.fully_appended"))
 
 
 def test_comparison_numbers_as_reported():
@@ -82,10 +97,17 @@ def test_comparison_numbers_as_reported():
     assert ar == pytest.approx(1.118, abs=1e-3)
     assert fins_Yv(area, float(fin_lift_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.395, abs=1e-3)
     assert fins_Yv(area, float(lifting_line_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.531, abs=1e-3)
+    k = sail_interference()
+    assert k * fins_Yv(area, float(fin_lift_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.952, abs=1e-3)
+    assert k * fins_Yv(area, float(lifting_line_slope(ar))) / val("Yv.sail_increment") == pytest.approx(1.278, abs=1e-3)
+    assert planes_root_radii() == pytest.approx([0.514, 0.271], abs=1e-3)
+    assert planes_interference()[1] == pytest.approx(2.158, abs=1e-3)
+    assert float(suboff_rows()[-1][2]) / val("Yv.fully_appended") == pytest.approx(1.534, abs=2e-3)
     area, ar = planes_geometry()
     assert ar == pytest.approx(1.467, abs=1e-3)
     assert fins_Yv(area, float(fin_lift_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(1.209, abs=1e-3)
     assert fins_Yv(area, float(lifting_line_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(1.526, abs=1e-3)
+    assert planes_interference()[1] * fins_Yv(area, float(fin_lift_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(2.609, abs=2e-3)
 
 
 # ---------------------------------------------------------------------------

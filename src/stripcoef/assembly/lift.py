@@ -4,10 +4,12 @@ The formulas are in :mod:`stripcoef.hull.lift` (Hoerner & Borst 1985; Helmbold 1
 1958; Prestero 2001, secs. 3.6-3.7); this module walks the vehicle's hull, fin appendages
 and control surfaces and sums them:
 
-.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f}\, c_f c_f^T,
+.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f} K_f\, c_f c_f^T,
           \qquad b_s = \sum_{panels\ of\ s} \tfrac12\rho S_p c_{L\alpha,p}\, c_p\, \sigma_s
 
-with :math:`c = [e;\ r\times e]` at the panel's quarter chord and :math:`\sigma_s` the sign
+with :math:`c = [e;\ r\times e]` at the panel's quarter chord, :math:`K_f` the fin-hull
+interference factor (Pitts, Nielsen & Kaattari 1957) of a fin on a cylindrical stretch of a
+round hull (1 elsewhere) and :math:`\sigma_s` the sign
 of the deflection convention (Prestero 2001: a positive rudder gives +Y, a positive
 elevator gives -Z).
 """
@@ -23,9 +25,11 @@ from stripcoef.hull.lift import (
     BODY_CP_FRACTION,
     MIN_SLENDERNESS,
     body_lift_matrix,
+    cylindrical_root,
     effective_aspect_ratio,
     fin_lift_matrix,
     fin_lift_slope,
+    interference_factor,
     lift_column,
 )
 from stripcoef.model import ControlSurface
@@ -34,22 +38,27 @@ from stripcoef.model import ControlSurface
 DEFLECTION_FORCE = {"rudder": np.array([0.0, 1.0, 0.0]), "elevator": np.array([0.0, 0.0, -1.0])}
 
 
-def _panel_terms(panel: SurfacePanel, ref, rho: float):
+def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool):
     """(L (6, 6), k c (6,), info) of one panel at its quarter chord (module docstring).
 
-    L = 1/2 rho S c_La c c^T [kg/m, kg, kg m] (:func:`~stripcoef.hull.lift.fin_lift_matrix`),
+    L = 1/2 rho S c_La K c c^T [kg/m, kg, kg m] (:func:`~stripcoef.hull.lift.fin_lift_matrix`),
+    with K the fin-hull interference factor (1 + R/s)^2 of a panel on a cylindrical stretch of
+    a round hull and 1 elsewhere (:func:`~stripcoef.hull.lift.interference_factor`);
     k c = 1/2 rho S c_La c, the force per u^2 per rad of deflection [kg/m, kg] (Prestero 2001,
-    sec. 3.7).
+    sec. 3.7; the deflection's own interference is not modelled).
     """
     ar = float(effective_aspect_ratio(panel.span, panel.area))
     cla = float(fin_lift_slope(ar))
+    on_cylinder = round_hull and bool(panel.root_radii) and cylindrical_root(panel.root_radii)
+    factor = interference_factor(panel.root, panel.root + panel.span) if on_cylinder else 1.0
     point = np.asarray(panel.center, float) + np.array([0.25 * panel.chord, 0.0, 0.0]) \
         - np.asarray(ref, float)
     e = np.zeros(3)
     e["xyz".index(panel.normal)] = 1.0
     column = 0.5 * rho * panel.area * cla * lift_column(e, point)
-    return (fin_lift_matrix(panel.area, cla, e, point, rho=rho), column,
-            {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area})
+    return (fin_lift_matrix(panel.area, cla * factor, e, point, rho=rho), column,
+            {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
+             "interference": factor})
 
 
 def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, tuple, dict]:
@@ -82,6 +91,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
     info: dict = {}
     in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
     hull = vehicle.hull
+    round_ = _round(hull)
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
     no_lift = []
@@ -93,14 +103,14 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
             no_lift.append(fin.name)     # on another appendage, not on the hull
             continue
         for p in panels:
-            m, _, pinfo = _panel_terms(p, ref, rho)
+            m, _, pinfo = _panel_terms(p, ref, rho, round_)
             lift += m
             fin_info.append({"name": fin.name, **pinfo})
     surfaces = []
     for s in vehicle.control_surfaces:
         b = np.zeros(6)
         for p in s.panels:
-            m, column, pinfo = _panel_terms(p, ref, rho)
+            m, column, pinfo = _panel_terms(p, ref, rho, round_)
             lift += m
             b += column * float(DEFLECTION_FORCE[s.kind] @ column[:3] / abs(column[:3]).max())
             fin_info.append({"name": s.name, **pinfo})
@@ -116,6 +126,12 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
     if no_lift:
         info["fins_without_lift"] = no_lift
     return lift, tuple(surfaces), info
+
+
+def _round(hull) -> bool:
+    """A hull of circular sections (one radius profile): where body lift and the fin-hull
+    interference of slender-body theory apply."""
+    return hull.half_breadth is hull.half_height and hull.section == "ellipse"
 
 
 def _body_lift(vehicle, rho: float, ref, center):
@@ -136,8 +152,7 @@ def _body_lift(vehicle, rho: float, ref, center):
     lo, hi = hull.x_extent()
     length = hi - lo
     d = hull.max_diameter()
-    round_ = hull.half_breadth is hull.half_height and hull.section == "ellipse"
-    if not round_ or length / d < MIN_SLENDERNESS:
+    if not _round(hull) or length / d < MIN_SLENDERNESS:
         if mode == "on":
             raise InputError("body lift needs a slender round hull", file=vehicle.source,
                              key="body_lift", value=f"l/d = {length / d:.3g}",

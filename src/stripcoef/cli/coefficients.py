@@ -125,7 +125,9 @@ def format_table(model) -> str:
                    f"x_cp = {b['center_of_pressure_x']:.4g} m")
     for f in lift.get("fin_lift", []):
         out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
-                   f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2")
+                   f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2"
+                   + (f", hull interference x{f['interference']:.4g}"
+                      if f.get("interference", 1.0) != 1.0 else ""))
     if lift.get("fins_without_lift"):
         out.append(f"  {'fins_without_lift':32s} " + ", ".join(lift["fins_without_lift"])
                    + " (not on the hull)")

@@ -61,13 +61,18 @@ class SurfacePanel:
 
     ``center`` [m] is mid span and mid chord in body axes, ``span`` root to tip [m],
     ``chord`` [m]; the panel's plane is normal to ``normal`` (y for a rudder, z for an
-    elevator).
+    elevator).  ``root`` [m] is the hull's half-width at the root's mid chord (the distance of the
+    root from the hull axis); ``root_radii`` [m] samples it along the root chord, empty if the
+    chord reaches past the hull's ends (the lift model uses them to decide whether the fin
+    sits on a cylinder: :func:`stripcoef.hull.lift.cylindrical_root`).
     """
 
     center: np.ndarray
     span: float
     chord: float
     normal: str
+    root: float = 0.0
+    root_radii: tuple = ()
 
     @property
     def area(self) -> float:
@@ -614,13 +619,18 @@ def exposed_panels(hull: Hull, center, span: float, chord: float, span_axis: str
                     [float(v) for v in center],
                     f"a panel whose root reaches the hull surface (hull half-width "
                     f"{width:.4g} m along {span_axis} at x = {x:.4g} m)")
+    along = np.linspace(x - 0.5 * chord, x + 0.5 * chord, 9)
+    half = hull.half_breadth if span_axis == "y" else hull.half_height
+    root_radii = tuple(float(half(xi)) for xi in along) if lo <= along[0] and along[-1] <= hi \
+        else ()
     panels = []
     for lo_s, hi_s in ((max(a, width), b), (a, min(b, -width))):
         if hi_s - lo_s > tol:
             c = np.array(center, dtype=float)
             c[k] = (hull.y if span_axis == "y" else hull.z) + 0.5 * (lo_s + hi_s)
             panels.append(SurfacePanel(center=c, span=hi_s - lo_s, chord=chord,
-                                       normal="y" if span_axis == "z" else "z"))
+                                       normal="y" if span_axis == "z" else "z",
+                                       root=width, root_radii=root_radii))
     if not panels:
         raise r.err(f"{path}", "control surface is inside the hull", [float(v) for v in center],
                     "a panel reaching out of the hull")

@@ -41,6 +41,23 @@ point) adds :math:`k\,c\,c^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m
 :math:`N_{uu\delta_r}`, ...).  The linear law holds up to the stall angle; beyond it the
 lift falls (Hoerner & Borst 1985, ch. 4), which this model does not represent: deflections
 are limited below stall.
+
+Fin-hull interference (slender-body theory; Pitts, Nielsen & Kaattari 1957, NACA Report 1307):
+a fin on a cylindrical stretch of a hull of radius R, tip at distance s from the axis, sees the
+hull's cross-flow upwash and carries lift over onto the hull.  The lift of the exposed fin
+(the "wing alone" above) is multiplied by
+
+.. math:: K_{W(B)} + K_{B(W)} = (1 + \tau)^2, \qquad \tau = R / s,
+
+which is 1 for a fin on a wall-less body (R = 0) and 4 when the fin vanishes into the hull.
+It is applied to the sideslip/incidence lift of fins whose root lies on a cylindrical stretch
+(:data:`CYLINDER_TOLERANCE`), the case the theory is derived for; on a tapering afterbody
+the theory's assumptions (cylindrical body, thin boundary layer) fail and the isolated fin is
+kept (DARPA SUBOFF: the sail on the parallel middle body within 5 % with the factor, the
+stern planes on the afterbody within 21 % without it and 2.2 times too high with it;
+docs/validation.md).  A deflected control surface's own interference (the smaller
+:math:`k_{W(B)} + k_{B(W)}` of the same report) is not modelled: its deflection force uses
+the isolated panel.
 """
 
 from __future__ import annotations
@@ -63,6 +80,10 @@ BODY_CP_FRACTION = 0.65
 #: Smallest length/diameter for which the slender-body lift above is used (assumption:
 #: Hoerner's correlation is for slender bodies; a sphere has no lift by symmetry) [-].
 MIN_SLENDERNESS = 4.0
+#: Largest relative change of the hull radius along a fin's root chord for which the root
+#: counts as cylindrical and the fin-hull interference factor applies, (r_max - r_min)/r_max
+#: (assumption: 5 % changes (1 + R/s)^2 by less than 5 %, inside the lift tolerance) [-].
+CYLINDER_TOLERANCE = 0.05
 
 
 def effective_aspect_ratio(span, area):
@@ -143,6 +164,58 @@ def lifting_line_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
     """
     ar = np.asarray(aspect_ratio, dtype=float)
     return 1.0 / (1.0 / (2.0 * efficiency * math.pi) + 1.0 / (math.pi * ar))
+
+
+def interference_factor(root_radius, tip_radius):
+    r"""Fin-hull interference factor of slender-body theory, :math:`(1 + R/s)^2`.
+
+    .. math:: K = K_{W(B)} + K_{B(W)} = (1 + \tau)^2,\qquad \tau = R/s
+
+    the lift of a fin (or fin pair) on a cylinder of radius R, tip at s from the axis, over
+    the lift of the exposed fin alone (span s - R, the hull a reflection plane).  It follows
+    from the apparent mass per unit length of the cross-section at the trailing edge,
+    :math:`m = \pi\rho(s^2 - R^2 + R^4/s^2)` for a cylinder with a fin pair
+    (:func:`stripcoef.sections.added_mass.circle_with_fins`): slender-body lift is
+    :math:`q\,2\alpha\,m/\rho`, so the fins add :math:`\pi(s^2 - 2R^2 + R^4/s^2) =
+    \pi(s - R)^2 (1 + \tau)^2` to the body's :math:`\pi R^2`, against :math:`\pi(s - R)^2`
+    for the exposed pair alone.  A single fin (a sail) is given the same factor: its exact
+    2D value is 4 % lower at R/s = 0.55 (thin-fin limit of the 2D panel method,
+    tests/test_lift_control.py), the hull's image acting almost like the fin's mirror.
+
+    Parameters
+    ----------
+    root_radius : float or array
+        R, hull radius at the fin root [m], >= 0
+    tip_radius : float or array
+        s, distance of the fin tip from the hull axis [m], > R
+
+    Returns
+    -------
+    float or array
+        K [-], from 1 (R = 0) towards 4 (R -> s)
+
+    References
+    ----------
+    Pitts, Nielsen & Kaattari (1957), NACA Report 1307, "Lift and center of pressure of
+    wing-body-tail combinations at subsonic, transonic, and supersonic speeds" (slender-body
+    K_W(B), K_B(W)); Nielsen (1988), *Missile Aerodynamics*, ch. 5; Newman (1977), *Marine
+    Hydrodynamics*, sec. 4.13 (the finned circle's apparent mass) and ch. 7 (slender-body
+    lift from the apparent mass).
+    """
+    r = np.asarray(root_radius, dtype=float)
+    s = np.asarray(tip_radius, dtype=float)
+    if np.any(r < 0.0) or np.any(s <= r):
+        raise ValueError(f"interference_factor needs 0 <= root radius < tip radius, "
+                         f"got R = {root_radius}, s = {tip_radius}")
+    out = (1.0 + r / s) ** 2
+    return float(out) if out.ndim == 0 else out
+
+
+def cylindrical_root(radii) -> bool:
+    """True if hull radii [m] sampled along a fin's root chord vary by at most
+    :data:`CYLINDER_TOLERANCE` of their largest value (the fin sits on a cylinder)."""
+    r = np.asarray(radii, dtype=float)
+    return bool(r.min() > 0.0 and (r.max() - r.min()) <= CYLINDER_TOLERANCE * r.max())
 
 
 def body_lift_slope(length: float, diameter: float) -> float:
