@@ -67,8 +67,9 @@ def flat_plate_section() -> list[str]:
             f"{np.sqrt(np.mean(np.log(ll / cla) ** 2)):.3f}). Helmbold's equation also has both exact "
             "limits (Jones's slender-wing pi AR/2 and the section's 2 pi a); the lifting-line form "
             "tends to pi AR, twice Jones's value. A fin on a hull is taken at its effective aspect "
-            "ratio 2 b^2/S, the hull acting as a reflection plane; the hull's boundary layer and "
-            "its carry-over lift are not in the model (the SUBOFF comparison below).", ""]
+            "ratio 2 b^2/S, the hull acting as a reflection plane; on a cylindrical stretch of the "
+            "hull it also gets the hull's interference, and the afterbody's boundary layer is "
+            "not in the model (the SUBOFF comparison below).", ""]
 
 
 def afterbody_radius(x):
