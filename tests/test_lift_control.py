@@ -134,6 +134,7 @@ def test_cylindrical_root():
     assert not cylindrical_root([0.0955, 0.09])                   # 5.8 %
     assert not cylindrical_root([0.514, 0.271])                   # SUBOFF stern-plane root
     assert not cylindrical_root([0.0, 0.0])
+    assert not cylindrical_root(())                               # root past the hull's ends
 
 
 def test_fin_on_the_middle_body_gets_the_hull_interference(tmp_path):

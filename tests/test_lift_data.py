@@ -22,9 +22,9 @@ import pytest
 from stripcoef.hull.lift import fin_lift_slope, lifting_line_slope
 from validation import reference as ref
 from validation.lift import (LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_radius, body_Yv,
-                             fins_Yv, flat_plate_points, plane_chord, planes_geometry,
-                             planes_interference, planes_root_radii, sail_geometry,
-                             sail_interference, suboff_rows, val, within)
+                             flat_plate_points, fully_appended_Yv, increment_Yv, plane_chord,
+                             planes_geometry, planes_interference, planes_root_radii,
+                             sail_geometry, sail_interference, val, within)
 
 
 # ---------------------------------------------------------------------------
@@ -63,9 +63,7 @@ def test_sail_lift_against_the_measured_increment():
     fin-hull interference (1 + R/s)^2 = 2.41 gives -0.0162 against -0.0171 measured (-5 %);
     without the factor it was -60 %."""
     assert sail_interference() == pytest.approx(2.408, abs=1e-3)
-    area, ar = sail_geometry()
-    assert within(fins_Yv(area, sail_interference() * float(fin_lift_slope(ar))),
-                  val("Yv.sail_increment"))
+    assert within(increment_Yv(sail_geometry, 1, sail_interference()), val("Yv.sail_increment"))
 
 
 @pytest.mark.xfail(strict=True, reason=(
@@ -77,8 +75,7 @@ def test_sail_lift_against_the_measured_increment():
     "Prestero's lifting-line slope (2.54/rad) gives -0.00694 (+53 %)."))
 def test_stern_plane_lift_against_the_measured_increment():
     assert planes_interference()[0] == 1.0
-    area, ar = planes_geometry()
-    assert within(fins_Yv(area, float(fin_lift_slope(ar)), n=2), val("Yv.planes_increment"))
+    assert within(increment_Yv(planes_geometry, 2), val("Yv.planes_increment"))
 
 
 @pytest.mark.xfail(strict=True, reason=(
@@ -86,28 +83,26 @@ def test_stern_plane_lift_against_the_measured_increment():
     "measured (+53 %), the body lift's miss (before the sail's hull interference the two fin "
     "misses hid it: +19 %)."))
 def test_fully_appended_against_suboff():
-    total = float(suboff_rows()[-1][2])
-    assert within(total, val("Yv.fully_appended"))
+    assert within(fully_appended_Yv(), val("Yv.fully_appended"))
 
 
 def test_comparison_numbers_as_reported():
     """The numbers the xfail reasons and docs/validation.md state (so they cannot drift)."""
     assert body_Yv() / val("Yv.bare_hull") == pytest.approx(3.52, abs=0.01)
-    area, ar = sail_geometry()
-    assert ar == pytest.approx(1.118, abs=1e-3)
-    assert fins_Yv(area, float(fin_lift_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.395, abs=1e-3)
-    assert fins_Yv(area, float(lifting_line_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.531, abs=1e-3)
+    sail, planes = val("Yv.sail_increment"), val("Yv.planes_increment")
     k = sail_interference()
-    assert k * fins_Yv(area, float(fin_lift_slope(ar))) / val("Yv.sail_increment") == pytest.approx(0.952, abs=1e-3)
-    assert k * fins_Yv(area, float(lifting_line_slope(ar))) / val("Yv.sail_increment") == pytest.approx(1.278, abs=1e-3)
+    assert sail_geometry()[1] == pytest.approx(1.118, abs=1e-3)
+    assert increment_Yv(sail_geometry, 1) / sail == pytest.approx(0.395, abs=1e-3)
+    assert increment_Yv(sail_geometry, 1, 1.0, lifting_line_slope) / sail == pytest.approx(0.531, abs=1e-3)
+    assert increment_Yv(sail_geometry, 1, k) / sail == pytest.approx(0.952, abs=1e-3)
+    assert increment_Yv(sail_geometry, 1, k, lifting_line_slope) / sail == pytest.approx(1.278, abs=1e-3)
     assert planes_root_radii() == pytest.approx([0.514, 0.271], abs=1e-3)
     assert planes_interference()[1] == pytest.approx(2.158, abs=1e-3)
-    assert float(suboff_rows()[-1][2]) / val("Yv.fully_appended") == pytest.approx(1.534, abs=2e-3)
-    area, ar = planes_geometry()
-    assert ar == pytest.approx(1.467, abs=1e-3)
-    assert fins_Yv(area, float(fin_lift_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(1.209, abs=1e-3)
-    assert fins_Yv(area, float(lifting_line_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(1.526, abs=1e-3)
-    assert planes_interference()[1] * fins_Yv(area, float(fin_lift_slope(ar)), 2) / val("Yv.planes_increment") == pytest.approx(2.609, abs=2e-3)
+    assert fully_appended_Yv() / val("Yv.fully_appended") == pytest.approx(1.534, abs=2e-3)
+    assert planes_geometry()[1] == pytest.approx(1.467, abs=1e-3)
+    assert increment_Yv(planes_geometry, 2) / planes == pytest.approx(1.209, abs=1e-3)
+    assert increment_Yv(planes_geometry, 2, 1.0, lifting_line_slope) / planes == pytest.approx(1.526, abs=1e-3)
+    assert increment_Yv(planes_geometry, 2, planes_interference()[1]) / planes == pytest.approx(2.609, abs=2e-3)
 
 
 # ---------------------------------------------------------------------------

@@ -139,6 +139,13 @@ def fins_Yv(area, slope, n=1):
     return -n * area * slope / val("hull.L_BP") ** 2
 
 
+def increment_Yv(geometry, n, factor=1.0, slope=fin_lift_slope):
+    """Y'_v of n fins of ``geometry`` (:func:`sail_geometry`, :func:`planes_geometry`) with the
+    lift ``slope`` (of AR_e) times the hull interference ``factor``."""
+    area, ar = geometry()
+    return fins_Yv(area, factor * float(slope(ar)), n)
+
+
 def remus():
     """geometry/remus100.yaml estimated by strip theory (7 % buoyant: the warning is expected)."""
     import stripcoef
@@ -184,29 +191,34 @@ def turn_agreement(model, u: float = 1.2, delta_deg: float = 10.0):
     return turn, log.velocities()[-1]
 
 
+def fully_appended_Yv():
+    """The model's Y'_v of the fully appended SUBOFF: bare hull + sail + stern planes, each as
+    the model takes it (the sail with its hull interference, the stern planes without)."""
+    return (body_Yv() + increment_Yv(sail_geometry, 1, sail_interference())
+            + increment_Yv(planes_geometry, 2, planes_interference()[0]))
+
+
 def suboff_rows() -> list[tuple]:
     """Rows of the SUBOFF comparison table (docs/validation.md)."""
     rows = []
     measured = val("Yv.bare_hull")
     ours = body_Yv()
     rows.append(("Y'_v bare hull (body lift, l/d = 8.575)", f"{measured:.6f}", f"{ours:.5f}",
-                 f"{100 * (ours / measured - 1):+.0f} %", "", "yes" if within(ours, measured) else "no"))
-    rows[0] = rows[0][:4] + ("",) + rows[0][4:]
-    total = ours
+                 f"{100 * (ours / measured - 1):+.0f} %", "", "",
+                 "yes" if within(ours, measured) else "no"))
     for label, geometry, k, n, name in (
             ("Y'_v sail increment", sail_geometry, sail_interference(), 1, "Yv.sail_increment"),
             ("Y'_v stern-plane increment (2 vertical planes)", planes_geometry,
              planes_interference()[0], 2, "Yv.planes_increment")):
-        area, ar = geometry()
+        ar = geometry()[1]
         measured = val(name)
-        ours = fins_Yv(area, k * float(fin_lift_slope(ar)), n)
-        other = fins_Yv(area, k * float(lifting_line_slope(ar)), n)
+        ours = increment_Yv(geometry, n, k)
+        other = increment_Yv(geometry, n, k, lifting_line_slope)
         rows.append((f"{label}, AR_e = {ar:.2f}", f"{measured:.6f}", f"{ours:.5f}",
                      f"{100 * (ours / measured - 1):+.0f} %", f"{k:.3f}",
                      f"{other:.5f} ({100 * (other / measured - 1):+.0f} %)",
                      "yes" if within(ours, measured) else "no"))
-        total += ours
-    measured = val("Yv.fully_appended")
+    measured, total = val("Yv.fully_appended"), fully_appended_Yv()
     rows.append(("Y'_v fully appended (the three rows summed)", f"{measured:.6f}", f"{total:.5f}",
                  f"{100 * (total / measured - 1):+.0f} %", "", "",
                  "yes" if within(total, measured) else "no"))
@@ -231,6 +243,8 @@ def section() -> str:
                      f"{100 * (ours / row['value'] - 1):+.0f} %",
                      "yes" if ref.agrees(row, ours) else "no (strict xfail)"))
     lever = coeffs["M_uuds"] / coeffs["Z_uuds"]
+    r_le, r_te = planes_root_radii()
+    k_planes = planes_interference()[1]
     turn, final = turn_agreement(m)
     lines = [
         "## Lift and control surfaces (issue 15)", "",
@@ -277,12 +291,12 @@ def section() -> str:
         "The sail sits on the parallel middle body, where slender-body theory's fin-hull "
         "interference (Pitts, Nielsen & Kaattari 1957: K = (1 + R/s)^2, "
         "`hull.lift.interference_factor`, not fitted) applies: without it the sail was "
-        f"{100 * (fins_Yv(*sail_geometry()[:1], float(fin_lift_slope(sail_geometry()[1]))) / val('Yv.sail_increment') - 1):+.0f} %. "
+        f"{100 * (increment_Yv(sail_geometry, 1) / val('Yv.sail_increment') - 1):+.0f} %. "
         "The stern planes' roots run down the tapering afterbody "
-        f"(r = {planes_root_radii()[0]:.3f} to {planes_root_radii()[1]:.3f} ft), outside the "
+        f"(r = {r_le:.3f} to {r_te:.3f} ft), outside the "
         "theory's cylindrical body, and the model keeps the isolated fin there; the factor "
-        f"would be {planes_interference()[1]:.2f} and give "
-        f"{100 * (planes_interference()[1] * fins_Yv(planes_geometry()[0], float(fin_lift_slope(planes_geometry()[1])), 2) / val('Yv.planes_increment') - 1):+.0f} %, "
+        f"would be {k_planes:.2f} and give "
+        f"{100 * (increment_Yv(planes_geometry, 2, k_planes) / val('Yv.planes_increment') - 1):+.0f} %, "
         "so the measured afterbody loses most of it (the thick stern boundary layer and the "
         "closing body: the bare hull too keeps only "
         f"{val('Yv.bare_hull') / (-2 * math.pi * val('hull.Rmax') ** 2 / val('hull.L_BP') ** 2):.2f} "

@@ -49,7 +49,7 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool):
     """
     ar = float(effective_aspect_ratio(panel.span, panel.area))
     cla = float(fin_lift_slope(ar))
-    on_cylinder = round_hull and bool(panel.root_radii) and cylindrical_root(panel.root_radii)
+    on_cylinder = round_hull and cylindrical_root(panel.root_radii)
     factor = interference_factor(panel.root, panel.root + panel.span) if on_cylinder else 1.0
     point = np.asarray(panel.center, float) + np.array([0.25 * panel.chord, 0.0, 0.0]) \
         - np.asarray(ref, float)

@@ -213,9 +213,10 @@ def interference_factor(root_radius, tip_radius):
 
 def cylindrical_root(radii) -> bool:
     """True if hull radii [m] sampled along a fin's root chord vary by at most
-    :data:`CYLINDER_TOLERANCE` of their largest value (the fin sits on a cylinder)."""
+    :data:`CYLINDER_TOLERANCE` of their largest value (the fin sits on a cylinder); False for
+    no samples (a root reaching past the hull's ends)."""
     r = np.asarray(radii, dtype=float)
-    return bool(r.min() > 0.0 and (r.max() - r.min()) <= CYLINDER_TOLERANCE * r.max())
+    return bool(r.size and r.min() > 0.0 and (r.max() - r.min()) <= CYLINDER_TOLERANCE * r.max())
 
 
 def body_lift_slope(length: float, diameter: float) -> float:
