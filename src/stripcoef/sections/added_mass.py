@@ -125,6 +125,40 @@ def rectangle_coefficient(a_over_b):
     return out
 
 
+def fin_edgewise(thickness, chord, *, rho=RHO):
+    r"""2D added mass of a fin's own section moving along its chord, per unit span [kg/m].
+
+    A flat fin of thickness t and chord c, cut normal to its span, is a c x t rectangle; moving
+    along the chord (the vehicle surging) it is the rectangle of DNV-RP-C205 table A-1 with the
+    side 2a = t normal to the motion and 2b = c along it,
+
+    .. math:: m_{11}' = C_A(t/c)\,\rho\pi\,(t/2)^2
+
+    (:func:`rectangle_coefficient`; its thin limit t/c < 0.1 keeps C_A(0.1) = 2.23).  It vanishes
+    as t^2: a zero-thickness plate moving in its own plane displaces no water (Newman 1977,
+    sec. 4.13).  Strips along the span make this the fin's surge added mass for a span long
+    against the thickness (the flow round the blunt edges reaches about one chord from them).
+
+    Parameters
+    ----------
+    thickness, chord : float
+        t and c [m], > 0
+    rho : float
+        Fluid density [kg/m^3]
+
+    Returns
+    -------
+    float
+        m_11' [kg/m]
+
+    References
+    ----------
+    DNV-RP-C205 (2010), table A-1 (rectangle); Newman (1977), sec. 4.13.
+    """
+    t, c = float(thickness), float(chord)
+    return float(rectangle_coefficient(np.array([t / c]))[0]) * rho * np.pi * (0.5 * t) ** 2
+
+
 def rectangle(half_breadth, half_height, *, rho=RHO):
     r"""Added mass of a 2b x 2h rectangle (DNV table).
 
