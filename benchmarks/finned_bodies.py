@@ -2,7 +2,8 @@
 
 Run:
   python benchmarks/finned_bodies.py            # compare against the stored BEM references
-  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~10 min, ~3 GB)
+  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~25 min; ~10 GB
+                                                # a case: --only CASE runs one per process)
   python benchmarks/finned_bodies.py --convergence   # Y_rdot vs strip count 250..8000
 
 Bodies (all along x, metres, origin at mid-length): the REMUS-like Myring hull of
@@ -15,11 +16,12 @@ with a ``profile`` of Myring segments and four ``fin`` appendages from the hull 
 tip.
 
 BEM: ``stripcoef.bem.bem_added_mass`` (Capytaine, direct method, no free surface) about the
-origin, at two refinements of the mesh; the body's two reflection symmetries (y = 0, z = 0) let
+origin, at three refinements of the mesh; the body's two reflection symmetries (y = 0, z = 0) let
 Capytaine solve a quarter mesh (<= 2,500 faces: the memory of a 5,000-face general mesh) for
 the full body's matrices (:func:`bem_quarter`, as in mesh_reference_convergence.py); the direct method converges at second
-order in the panel size h ~ N^(-1/2), so the error ~ 1/N and the Richardson value is
-A_inf = A_2 + (A_2 - A_1) N_1 / (N_2 - N_1).  The references are stored in
+order in the panel size h ~ N^(-1/2), so the error ~ 1/N and the Richardson value of the two
+finest meshes is A_inf = A_3 + (A_3 - A_2) N_2 / (N_3 - N_2); the coarsest mesh checks that
+order (:func:`observed_order`).  The references are stored in
 benchmarks/data/bem_finned_bodies.csv (one row per case and mesh, plus the extrapolated row).
 """
 
@@ -64,7 +66,7 @@ TERMS = [(i, j) for i in range(6) for j in range(i, 6)]
 DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 #: mesh levels: (meridian panels, sections round the axis, fin chord / largest fin edge); the
 #: panel size shrinks by about sqrt(2) from one level to the next (faces about x 2)
-MESH_LEVELS = ((38, 28, 5.7), (54, 40, 8.0))
+MESH_LEVELS = ((38, 28, 5.7), (54, 40, 8.0), (76, 56, 11.3))
 
 
 def hull_radius(x):
@@ -161,24 +163,36 @@ def bem_quarter(mesh_q, rho=RHO):
 
 
 def run_bem(cases=None):
-    """BEM references of ``cases`` (default all); the stored rows of the other cases are kept."""
+    """BEM references of ``cases`` (default all) at every mesh level; the stored rows of the other
+    cases are kept."""
     cases = list(cases or CASES)
-    rows = []
+    levels = {}
     if DATA.exists():
-        for case, levels in load_references().items():
+        for case, stored in load_references().items():
             if case in CASES and case not in cases:
-                rows += [(case, n, a) for n, a in levels.items()]
+                levels[case] = [(int(n), a) for n, a in stored.items() if n != "richardson"]
     for case in cases:
-        res = []
+        levels[case] = []
         for level in range(len(MESH_LEVELS)):
             mesh_q = quarter(bem_mesh(case, level))
             t0 = time.perf_counter()
             a = bem_quarter(mesh_q)
             n = 4 * len(mesh_q.faces)
             print(f"{case}: {n} faces, {time.perf_counter() - t0:.1f} s", flush=True)
-            res.append((n, a))
-            rows.append((case, str(n), a))
-        (n1, a1), (n2, a2) = res
+            levels[case].append((n, a))
+    write_references(levels)
+
+
+def write_references(levels: dict) -> None:
+    """Store case -> [(faces, 6x6 BEM matrix), ...] with each case's Richardson row from its two
+    finest meshes."""
+    rows = []
+    for case in CASES:
+        if case not in levels:
+            continue
+        res = sorted(levels[case], key=lambda item: item[0])
+        rows += [(case, str(n), a) for n, a in res]
+        (n1, a1), (n2, a2) = res[-2:]
         rows.append((case, "richardson", a2 + (a2 - a1) * n1 / (n2 - n1)))
     DATA.parent.mkdir(exist_ok=True)
     with open(DATA, "w", newline="") as fh:
@@ -186,11 +200,33 @@ def run_bem(cases=None):
                  "# direct method, two reflection symmetries, no free surface, rho = 1025 kg/m^3, about the origin (mid-length),\n"
                  "# FRD body axes; M_A entries (Fossen signs, positive diagonal) [kg, kg m, kg m^2].\n"
                  "# Source: computed by benchmarks/finned_bodies.py --bem (stripcoef.bem.bem_added_mass);\n"
-                 "# faces = full-body mesh size (4 x the solved quarter), 'richardson' = A_2 + (A_2 - A_1) N_1/(N_2 - N_1) (second order in h).\n")
+                 "# faces = full-body mesh size (4 x the solved quarter), 'richardson' = A_3 + (A_3 - A_2) N_2/(N_3 - N_2) from the two finest\n"
+                 "# meshes (second order in h; the coarsest checks the order, benchmarks/finned_bodies.py observed_order).\n")
         w = csv.writer(fh)
         w.writerow(["case", "faces"] + [f"m{i}{j}" for i, j in TERMS])
         for case, n, a in rows:
             w.writerow([case, n] + [f"{a[i, j]:.8g}" for i, j in TERMS])
+
+
+def observed_order(n, a) -> float:
+    """Convergence order q of a BEM value on three meshes of n = (N_1, N_2, N_3) faces with values
+    a = (A_1, A_2, A_3), from error ~ N^-q: the root of
+    (A_2 - A_1)/(A_3 - A_2) = (N_1^-q - N_2^-q)/(N_2^-q - N_3^-q); q = 1 is second order in the
+    panel size h ~ N^(-1/2) (the Richardson rows assume it).  NaN when the differences change
+    sign (not in the asymptotic range) [-]."""
+    from scipy.optimize import brentq
+    n1, n2, n3 = (float(v) for v in n)
+    d12, d23 = a[1] - a[0], a[2] - a[1]
+    if d12 == 0 or d23 == 0 or d12 * d23 < 0:
+        return float("nan")
+    ratio = d12 / d23
+
+    def g(q):
+        return (n1 ** -q - n2 ** -q) / (n2 ** -q - n3 ** -q) - ratio
+    try:
+        return float(brentq(g, 0.05, 5.0))
+    except ValueError:
+        return float("nan")
 
 
 def load_references() -> dict:
@@ -219,11 +255,25 @@ def strip_model(case: str, strips: int = 1000):
 COMPARED = [(0, 0), (1, 1), (2, 2), (3, 3), (4, 4), (5, 5), (1, 5), (2, 4)]
 
 
+def richardson_spread(levels: dict, i: int, j: int) -> float:
+    """How far the reference itself is from converged on term (i, j) [%]: the Richardson values
+    of the two finest and of the two coarsest of three meshes, their difference over the first
+    (NaN with fewer than three meshes).  The meshes are built afresh at each level (not nested),
+    so the BEM's convergence is not monotone on every term (:func:`orders`)."""
+    ns = sorted(int(k) for k in levels if k != "richardson")
+    if len(ns) < 3:
+        return float("nan")
+    (n1, a1), (n2, a2) = [(n, levels[str(n)][i, j]) for n in ns[-3:-1]]
+    coarse = a2 + (a2 - a1) * n1 / (n2 - n1)
+    fine = levels["richardson"][i, j]
+    return 100.0 * abs(fine - coarse) / abs(fine)
+
+
 def compare():
     refs = load_references()
     worst = 0.0
-    print("| case | term | BEM finest | BEM Richardson | strip (1000) | error % |")
-    print("|---|---|---|---|---|---|")
+    print("| case | term | BEM finest | BEM Richardson | BEM spread % | strip (1000) | error % |")
+    print("|---|---|---|---|---|---|---|")
     for case in CASES:
         r = refs[case]
         fine = r[max((k for k in r if k != "richardson"), key=int)]
@@ -232,20 +282,41 @@ def compare():
         for i, j in COMPARED:
             err = 100.0 * (m[i, j] - conv[i, j]) / conv[i, j]
             worst = max(worst, abs(err))
-            print(f"| {case} | M_A[{i},{j}] | {fine[i, j]:.5g} | {conv[i, j]:.5g} | {m[i, j]:.5g} "
-                  f"| {err:+.2f} |")
+            print(f"| {case} | M_A[{i},{j}] | {fine[i, j]:.5g} | {conv[i, j]:.5g} "
+                  f"| {richardson_spread(r, i, j):.1f} | {m[i, j]:.5g} | {err:+.2f} |")
     print(f"largest error: {worst:.2f} %")
+
+
+def orders():
+    """Observed convergence order q (error ~ N^-q) of every compared term on the three stored
+    meshes (:func:`observed_order`; 1 = second order in h, as the Richardson rows assume)."""
+    refs = load_references()
+    print("| case | " + " | ".join(f"M_A[{i},{j}]" for i, j in COMPARED) + " |")
+    print("|---|" + "---|" * len(COMPARED))
+    for case in CASES:
+        r = refs[case]
+        ns = sorted(int(k) for k in r if k != "richardson")
+        if len(ns) < 3:
+            continue
+        ns = ns[-3:]
+        qs = [observed_order(ns, [r[str(n)][i, j] for n in ns]) for i, j in COMPARED]
+        print(f"| {case} | " + " | ".join(f"{q:.2f}" for q in qs) + " |")
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bem", action="store_true", help="recompute the BEM references")
     ap.add_argument("--only", nargs="*", help="with --bem: only these cases (the others kept)")
+    ap.add_argument("--order", action="store_true",
+                    help="the BEM's observed convergence order per term on the stored meshes")
     ap.add_argument("--convergence", action="store_true",
                     help="the coupling vs the strip count instead of the BEM comparison")
     args = ap.parse_args()
     if args.convergence:
         convergence()
+        return
+    if args.order:
+        orders()
         return
     if args.bem:
         run_bem(args.only)

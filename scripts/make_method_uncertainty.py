@@ -71,13 +71,15 @@ DRAG_SET = "Published 3D drag"
 ASSUMED_DRAG = {
     "revolution": (0.15, 0.25), "finned": (0.15, 0.25), "bluff": (0.20, 0.30),
     "open_frame": (0.20, 0.30)}
-#: lift and control derivatives: no measured lift data could be retrieved (docs/validation.md,
-#: "Other published lift data"); the one published comparison, Prestero 2001's semi-empirical
-#: REMUS table, differs from the model's terms by factors 0.44-3.8 (|ln| up to 1.32, N_ur):
-#: an assumed sd(ln) that spans it (95 %: a factor 4.4 either way), not a calibrated band
+#: lift and control derivatives: measured on one body only, Roddy 1990's captive-model DARPA
+#: SUBOFF (docs/validation.md "Lift"): the sail's increment 0.95x, the stern planes' 1.21x, the
+#: bare hull's body lift 3.5x; Prestero 2001's semi-empirical REMUS table differs from the
+#: model's terms by factors 0.44-3.8 (|ln| up to 1.32, N_ur): an assumed sd(ln) that spans both
+#: (95 %: a factor 4.4 either way), not a calibrated band
 ASSUMED_LIFT = 0.75
-LIFT_REASON = ("not validated: no measured lift data with its geometry could be retrieved "
-               "(docs/validation.md); against Prestero 2001's semi-empirical REMUS 100 values the "
+LIFT_REASON = ("not calibrated: measured lift of one body only, Roddy 1990's SUBOFF "
+               "(docs/validation.md: sail 0.95x, stern planes 1.21x, bare-hull body lift 3.5x); "
+               "against Prestero 2001's semi-empirical REMUS 100 values the "
                "model's {what} differ by factors 0.44-3.8 (|ln| up to 1.32); an assumed sd(ln) "
                "that spans them, one factor for all these terms, not a calibrated band: excluded "
                "from the coverage check")

@@ -242,9 +242,9 @@ def _fin_axial_added_mass(strips, fin, rho) -> float:
     t the fin's thickness [m]).  Strip theory across the span: no relief at the tip [assumption],
     and none at the root, where the hull wall mirrors the fin; [assumption] the hull's own surge
     flow at the fin is not included.  Against the Capytaine BEM of six finned Myring hulls
-    (benchmarks/finned_bodies.py) the fins' share of surge is within -21 % ... +75 % and the
-    total within 2 %; the equal-area body of revolution it replaces gave -19 % ... +134 %
-    (docs/theory.md sec. 6)."""
+    (benchmarks/finned_bodies.py) the fins' share of surge is within -15 % ... +37 % and the
+    total within 1.3 %; the equal-area body of revolution it replaces gave -22 % ... +84 % and
+    up to +5.0 % (docs/theory.md sec. 6)."""
     from stripcoef.sections.added_mass import fin_edgewise
     cov = _coverage(fin)
     chord = float(np.sum(cov * strips.dx[fin.index]))
