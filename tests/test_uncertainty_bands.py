@@ -381,7 +381,8 @@ def test_lift_and_control_terms_carry_a_stated_assumed_uncertainty():
     srcs = {s.name: s for s in method_sources(remus, lift=True)}
     for name in ("lift.all", "control.all"):
         assert srcs[name].distribution == "lognormal" and srcs[name].spread > 0
-        assert "not validated" in srcs[name].reason and "Prestero" in srcs[name].reason
+        reason = srcs[name].reason
+        assert "not calibrated" in reason and "Roddy" in reason and "Prestero" in reason
     assert not any(s.name.startswith(("lift", "control"))
                    for s in method_sources(load_vehicle(ROOT / "geometry" / "mares.yaml")))
     order = ("lift.all", "control.all")
