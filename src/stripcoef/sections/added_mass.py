@@ -134,7 +134,8 @@ def fin_edgewise(thickness, chord, *, rho=RHO):
 
     .. math:: m_{11}' = C_A(t/c)\,\rho\pi\,(t/2)^2
 
-    (:func:`rectangle_coefficient`; its thin limit t/c < 0.1 keeps C_A(0.1) = 2.23).  It vanishes
+    (:func:`rectangle`'s translation along the long side, read with
+    :func:`rectangle_coefficient`; its thin limit t/c < 0.1 keeps C_A(0.1) = 2.23).  It vanishes
     as t^2: a zero-thickness plate moving in its own plane displaces no water (Newman 1977,
     sec. 4.13).  Strips along the span make this the fin's surge added mass for a span long
     against the thickness (the flow round the blunt edges reaches about one chord from them).
@@ -155,8 +156,8 @@ def fin_edgewise(thickness, chord, *, rho=RHO):
     ----------
     DNV-RP-C205 (2010), table A-1 (rectangle); Newman (1977), sec. 4.13.
     """
-    t, c = float(thickness), float(chord)
-    return float(rectangle_coefficient(np.array([t / c]))[0]) * rho * np.pi * (0.5 * t) ** 2
+    along_chord, _, _ = rectangle(0.5 * float(chord), 0.5 * float(thickness), rho=rho)
+    return float(along_chord[0])
 
 
 def rectangle(half_breadth, half_height, *, rho=RHO):
