@@ -170,7 +170,7 @@ def run_bem(cases=None):
     if DATA.exists():
         for case, stored in load_references().items():
             if case in CASES and case not in cases:
-                levels[case] = [(int(n), a) for n, a in stored.items() if n != "richardson"]
+                levels[case] = [(n, stored[str(n)]) for n in meshes(stored)]
     for case in cases:
         levels[case] = []
         for level in range(len(MESH_LEVELS)):
@@ -192,8 +192,7 @@ def write_references(levels: dict) -> None:
             continue
         res = sorted(levels[case], key=lambda item: item[0])
         rows += [(case, str(n), a) for n, a in res]
-        (n1, a1), (n2, a2) = res[-2:]
-        rows.append((case, "richardson", a2 + (a2 - a1) * n1 / (n2 - n1)))
+        rows.append((case, "richardson", richardson(*res[-2:])))
     DATA.parent.mkdir(exist_ok=True)
     with open(DATA, "w", newline="") as fh:
         fh.write("# Added mass of finned Myring hulls (benchmarks/finned_bodies.py CASES), Capytaine BEM,\n"
@@ -206,6 +205,18 @@ def write_references(levels: dict) -> None:
         w.writerow(["case", "faces"] + [f"m{i}{j}" for i, j in TERMS])
         for case, n, a in rows:
             w.writerow([case, n] + [f"{a[i, j]:.8g}" for i, j in TERMS])
+
+
+def richardson(coarse, fine):
+    """Richardson value of two meshes, each (faces N, value A): error ~ 1/N (second order in the
+    panel size h ~ N^(-1/2)), so A_inf = A_2 + (A_2 - A_1) N_1 / (N_2 - N_1)."""
+    (n1, a1), (n2, a2) = coarse, fine
+    return a2 + (a2 - a1) * n1 / (n2 - n1)
+
+
+def meshes(levels: dict) -> list:
+    """The face counts of one case's stored meshes (:func:`load_references`), smallest first."""
+    return sorted(int(k) for k in levels if k != "richardson")
 
 
 def observed_order(n, a) -> float:
@@ -260,11 +271,10 @@ def richardson_spread(levels: dict, i: int, j: int) -> float:
     of the two finest and of the two coarsest of three meshes, their difference over the first
     (NaN with fewer than three meshes).  The meshes are built afresh at each level (not nested),
     so the BEM's convergence is not monotone on every term (:func:`orders`)."""
-    ns = sorted(int(k) for k in levels if k != "richardson")
+    ns = meshes(levels)
     if len(ns) < 3:
         return float("nan")
-    (n1, a1), (n2, a2) = [(n, levels[str(n)][i, j]) for n in ns[-3:-1]]
-    coarse = a2 + (a2 - a1) * n1 / (n2 - n1)
+    coarse = richardson(*[(n, levels[str(n)][i, j]) for n in ns[-3:-1]])
     fine = levels["richardson"][i, j]
     return 100.0 * abs(fine - coarse) / abs(fine)
 
@@ -276,7 +286,7 @@ def compare():
     print("|---|---|---|---|---|---|---|")
     for case in CASES:
         r = refs[case]
-        fine = r[max((k for k in r if k != "richardson"), key=int)]
+        fine = r[str(meshes(r)[-1])]
         conv = r["richardson"]
         m = strip_model(case)
         for i, j in COMPARED:
@@ -295,10 +305,9 @@ def orders():
     print("|---|" + "---|" * len(COMPARED))
     for case in CASES:
         r = refs[case]
-        ns = sorted(int(k) for k in r if k != "richardson")
+        ns = meshes(r)[-3:]
         if len(ns) < 3:
             continue
-        ns = ns[-3:]
         qs = [observed_order(ns, [r[str(n)][i, j] for n in ns]) for i, j in COMPARED]
         print(f"| {case} | " + " | ".join(f"{q:.2f}" for q in qs) + " |")
 
