@@ -107,28 +107,16 @@ def test_large_tail_couplings_within_3_percent():
 
 
 def _fins_share_of_sway(cases):
-    """(strip, BEM, BEM spread) fins' share of sway per case: finned minus bare hull, the BEM's
-    bare hull from the axisymmetric solution (exact to 0.02 %); the spread [kg] is how far the
-    BEM's sway is from converged (finned_bodies.richardson_spread), which the share, a 3-10 %
-    difference of two sways, carries whole."""
+    """(strip, BEM, BEM spread) fins' share of sway per case (validation.fins.fin_shares: finned
+    minus bare hull, the BEM's bare hull from the axisymmetric solution, exact to 0.02 %); the
+    spread [kg] is how far the BEM's sway is from converged (finned_bodies.richardson_spread),
+    which the share, a 3-10 % difference of two sways, carries whole."""
+    from validation.fins import fin_shares
     fb = _fb()
-    from stripcoef.assembly.estimate import estimate
-    from stripcoef.geometry.vehicle import parse_vehicle
-    from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
-    x = fb.X0 + fb.LENGTH * 0.5 * (1 - np.cos(np.linspace(0.0, np.pi, 801)))
-    r = fb.hull_radius(x)
-    r[0] = r[-1] = 0.0
-    bare_bem = body_of_revolution_added_mass(x, r, rho=fb.RHO, x_ref=0.0, panels=400, modes=(0, 1))
     out = {}
-    for case in cases:
-        d = fb.vehicle_dict(case)
-        d["appendages"] = []
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            bare = estimate(parse_vehicle(d, file="<bare>")).added_mass
+    for case, (_, share, bem) in fin_shares(cases).items():
         ref = fb.load_references()[case]
-        out[case] = (fb.strip_model(case)[1, 1] - bare[1, 1],
-                     ref["richardson"][1, 1] - bare_bem[1, 1],
+        out[case] = (share[1, 1], bem[1, 1],
                      fb.richardson_spread(ref, 1, 1) / 100.0 * ref["richardson"][1, 1])
     return out
 

@@ -42,17 +42,53 @@ def _section_rows():
     return rows
 
 
-def _bem_rows():
+def _finned_bodies():
+    """benchmarks/finned_bodies.py (the bodies, their vehicle files and the stored BEM)."""
     sys.path.insert(0, str(ROOT / "benchmarks"))
     import finned_bodies as fb
+    return fb
+
+
+def fin_shares(cases=None) -> dict:
+    """case -> (model M_A, the model's fins' share, the BEM's fins' share) of the finned hulls of
+    benchmarks/finned_bodies.py (``cases``, default all) [kg, kg m, kg m^2], about mid-length.
+
+    A fins' share is the finned body's matrix minus its bare hull's: the model's from two
+    estimates, the BEM's from the finned Richardson value minus the bare hull's exact
+    axisymmetric solution (exact to 0.02 %)."""
+    import warnings
+
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.geometry.vehicle import parse_vehicle
+    from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
+    fb = _finned_bodies()
+    x = fb.X0 + fb.LENGTH * 0.5 * (1 - np.cos(np.linspace(0.0, np.pi, 801)))
+    r = fb.hull_radius(x)
+    r[0] = r[-1] = 0.0
+    bare_bem = body_of_revolution_added_mass(x, r, rho=fb.RHO, x_ref=0.0, panels=400,
+                                             modes=(0, 1))
+    refs = fb.load_references()
+    out = {}
+    for case in cases or fb.CASES:
+        model = fb.strip_model(case)
+        d = fb.vehicle_dict(case)
+        d["appendages"] = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            bare = estimate(parse_vehicle(d, file="<bare>")).added_mass
+        out[case] = (model, model - bare, refs[case]["richardson"] - bare_bem)
+    return out
+
+
+def _bem_rows(results):
+    fb = _finned_bodies()
     refs = fb.load_references()
     rows = []
     names = {(0, 0): "surge", (1, 1): "sway", (2, 2): "heave", (3, 3): "roll", (4, 4): "pitch",
              (5, 5): "yaw", (1, 5): "sway-yaw M[1,5]", (2, 4): "heave-pitch M[2,4]"}
-    for case in fb.CASES:
+    for case, (m, _, _) in results.items():
         conv = refs[case]["richardson"]
-        fine = refs[case][max((k for k in refs[case] if k != "richardson"), key=int)]
-        m = fb.strip_model(case)
+        fine = refs[case][str(fb.meshes(refs[case])[-1])]
         scale = np.sqrt(np.outer(np.diag(conv), np.diag(conv)))
         for (i, j), name in names.items():
             rows.append([case if (i, j) == (0, 0) else "", name, f"{fine[i, j]:.5g}",
@@ -81,55 +117,39 @@ def _plate_rows():
     return rows
 
 
-def _share_rows():
-    """The fins' share (finned minus bare hull) of sway, yaw and the sway-yaw coupling: the BEM
-    (finned Richardson minus the bare hull's exact axisymmetric solution) against the model."""
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import finned_bodies as fb
-    from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
-    x = fb.X0 + fb.LENGTH * 0.5 * (1 - np.cos(np.linspace(0.0, np.pi, 801)))
-    r = fb.hull_radius(x)
-    r[0] = r[-1] = 0.0
-    bare_bem = body_of_revolution_added_mass(x, r, rho=fb.RHO, x_ref=0.0, panels=400,
-                                             modes=(0, 1))
-    refs = fb.load_references()
+#: the fins' share of these terms is tabulated
+SHARE_TERMS = (((0, 0), "surge"), ((1, 1), "sway"), ((5, 5), "yaw"), ((1, 5), "sway-yaw M[1,5]"))
+
+
+def _share_error(results, case, i, j) -> float:
+    """The model's fins' share of term (i, j) against the BEM's [%]."""
+    _, share, bem = results[case]
+    return 100 * (share[i, j] - bem[i, j]) / abs(bem[i, j])
+
+
+def _share_rows(results):
+    """The fins' share (finned minus bare hull) of surge, sway, yaw and the sway-yaw coupling:
+    the BEM against the model (:func:`fin_shares`)."""
     rows = []
-    for case in fb.CASES:
-        bem = refs[case]["richardson"] - bare_bem
-        model = fb.strip_model(case)
-        d = fb.vehicle_dict(case)
-        d["appendages"] = []
-        from stripcoef.assembly.estimate import estimate
-        from stripcoef.geometry.vehicle import parse_vehicle
-        import warnings
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            share = model - estimate(parse_vehicle(d, file="<bare>")).added_mass
-        for (i, j), name in (((0, 0), "surge"), ((1, 1), "sway"), ((5, 5), "yaw"),
-                             ((1, 5), "sway-yaw M[1,5]")):
+    for case, (_, share, bem) in results.items():
+        for (i, j), name in SHARE_TERMS:
             rows.append([case if (i, j) == (0, 0) else "", name, f"{bem[i, j]:.5g}",
-                         f"{share[i, j]:.5g}",
-                         f"{100 * (share[i, j] - bem[i, j]) / abs(bem[i, j]):+.2f}"])
+                         f"{share[i, j]:.5g}", f"{_share_error(results, case, i, j):+.2f}"])
     return rows
 
 
 def section() -> str:
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import finned_bodies as fb
-    bem_rows, share_rows = _bem_rows(), _share_rows()
+    fb = _finned_bodies()
+    results = fin_shares()
     refs = fb.load_references()
     err, spread = {}, {}
-    for case in fb.CASES:
-        m, conv = fb.strip_model(case), refs[case]["richardson"]
+    for case, (m, _, _) in results.items():
+        conv = refs[case]["richardson"]
         for i, j in fb.COMPARED:
             err[(case, (i, j))] = 100 * (m[i, j] - conv[i, j]) / conv[i, j]
             spread[(case, (i, j))] = fb.richardson_spread(refs[case], i, j)
-    share_err, case = {}, ""
-    for row in share_rows:
-        case = row[0] or case
-        share_err[(case, row[1])] = float(row[4])
     surge = [err[(c, (0, 0))] for c in fb.CASES]
-    surge_share = [share_err[(c, "surge")] for c in fb.CASES]
+    surge_share = [_share_error(results, c, 0, 0) for c in fb.CASES]
     dev, held = ("remus_tail", "large_tail", "midbody"), ("small_tail", "forward_fins", "wide_tail")
     parts = ["## Fins\n",
              "### Finned-circle sections: exact roll (conformal mapping) against the 2D panel method\n",
@@ -154,7 +174,8 @@ def section() -> str:
              "sqrt(M_ii M_jj), since about mid-length they are differences of the hull's and the "
              "fins' shares.\n",
              markdown_table(["body", "term", "BEM finest", "BEM Richardson", "BEM spread %",
-                             "strip", "error %", "error % of sqrt(M_ii M_jj)"], bem_rows),
+                             "strip", "error %", "error % of sqrt(M_ii M_jj)"],
+                            _bem_rows(results)),
              "\nThe fins' share (finned minus bare hull) against the BEM's (finned Richardson minus "
              "the bare hull's axisymmetric solution, exact to 0.02 %); a share, a 3-10 % "
              "difference of two sways, carries the BEM's spread on sway whole. Each fin pair's "
@@ -176,14 +197,15 @@ def section() -> str:
              f"{spread[('large_tail', (2, 4))]:.1f} %. small_tail, forward_fins and wide_tail "
              "were added afterwards for the out-of-sample band check, chosen before their errors "
              "were known, and played no part in the fins' treatment: on them the fins' share of "
-             "sway is " + ", ".join(f"{share_err[(c, 'sway')]:+.1f} %" for c in held) +
-             " off and of yaw " + ", ".join(f"{share_err[(c, 'yaw')]:+.1f} %" for c in held) +
+             "sway is " + ", ".join(f"{_share_error(results, c, 1, 1):+.1f} %" for c in held) +
+             " off and of yaw " + ", ".join(f"{_share_error(results, c, 5, 5):+.1f} %"
+                                            for c in held) +
              ", and the roll " + ", ".join(f"{err[(c, (3, 3))]:+.1f} %" for c in held) +
              ", so the 3 % holds on the three bodies the treatment was developed on only, and "
              "not on roll anywhere (" + ", ".join(f"{err[(c, (3, 3))]:+.1f} %" for c in dev) +
              " on those three).\n",
              markdown_table(["body", "term", "BEM fins' share", "model fins' share", "error %"],
-                            share_rows),
+                            _share_rows(results)),
              "\n### Thin rectangular plates: DNV-RP-H103 table A-2 against Capytaine\n",
              "Normal added mass lambda = A_33 / (rho pi/4 a^2 b) of a plate a x b (a the shorter "
              "side) of thickness t, Capytaine on quarter meshes (benchmarks/plate_added_mass.py, "
