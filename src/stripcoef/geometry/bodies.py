@@ -32,6 +32,22 @@ def _overlap(x, dx, lo, hi):
     return idx, (b[idx] - a[idx]) / dx[idx], 0.5 * (a[idx] + b[idx])
 
 
+def section_half_chord(shape: str, half_across, half_along, offset):
+    r"""Half the length [m] of a section's chord along one of its axes, at ``offset`` [m] from the
+    centre across it: an ellipse of half-axes b (across) and h (along) gives
+
+    .. math:: h\sqrt{1 - (d/b)^2}\quad(0 \text{ for } |d| \ge b),
+
+    a rectangle its half-side h (``shape`` "ellipse" or anything else; ``half_across`` b,
+    ``half_along`` h [m], scalars or arrays).  Reference: the ellipse's equation
+    :math:`(y/b)^2 + (z/h)^2 = 1`.
+    """
+    if shape != "ellipse":
+        return half_along * np.ones_like(np.asarray(offset, dtype=float))
+    frac = np.clip(1.0 - (offset / np.maximum(half_across, 1e-300)) ** 2, 0.0, 1.0)
+    return half_along * np.sqrt(frac)
+
+
 def mean_chord(x, dx, center, radius):
     r"""Mean over each strip of the chord :math:`c(\xi) = 2\sqrt{r^2 - \xi^2}` of a circle.
 
@@ -261,15 +277,12 @@ class Hole:
         keep = chord > 0
         idx, chord = idx[keep], chord[keep]
         xs = x[idx]
+        b, h = hull.half_breadth(xs), hull.half_height(xs)
         if self.axis == "z":  # through the height: depth = hull height at the hole's y
-            b, h = hull.half_breadth(xs), hull.half_height(xs)
-            frac = np.clip(1.0 - (self.offset / np.maximum(b, 1e-300)) ** 2, 0.0, 1.0)
-            depth = 2.0 * h * np.sqrt(frac) if hull.section == "ellipse" else 2.0 * h
+            depth = 2.0 * section_half_chord(hull.section, b, h, self.offset)
             y, z = np.full(idx.size, self.offset), np.full(idx.size, hull.z)
         else:
-            b, h = hull.half_breadth(xs), hull.half_height(xs)
-            frac = np.clip(1.0 - (self.offset / np.maximum(h, 1e-300)) ** 2, 0.0, 1.0)
-            depth = 2.0 * b * np.sqrt(frac) if hull.section == "ellipse" else 2.0 * b
+            depth = 2.0 * section_half_chord(hull.section, h, b, self.offset)
             y, z = np.full(idx.size, hull.y), np.full(idx.size, self.offset)
         return HoleCut(name=self.name, axis=self.axis, index=idx, chord=chord, depth=depth,
                        y=y, z=z)

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.geometry.bodies import section_half_chord
 from stripcoef.model import frozen_array
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
                                          mode_inertia, ring_body_added_mass)
@@ -189,11 +190,9 @@ def _section_chord(part, i, axis, offset):
             part.half_breadth[i]
     if abs(d) >= half_lat:
         return []
-    if part.shape == "ellipse":
-        h = half_span * np.sqrt(1.0 - (d / half_lat) ** 2)
+    if part.shape != "polygon" or part.contours is None:
+        h = float(section_half_chord(part.shape, half_lat, half_span, d))
         return [(centre - h, centre + h)]
-    if part.shape == "rectangle" or part.contours is None:
-        return [(centre - half_span, centre + half_span)]
     from shapely.geometry import LineString
 
     from stripcoef.geometry.mesh import section_geometry
