@@ -66,10 +66,11 @@ def test_plate_table_against_capytaine():
 # --- finned hulls against the BEM -----------------------------------------------------------
 
 #: tolerances [%] per term of benchmarks/finned_bodies.py COMPARED against the Richardson BEM
-#: (two finest of three meshes): every term 3 % (the issue's target), but roll 7 % (the exact 2D
-#: finned-circle roll summed along the chord with the mesh bodies' roll relief: measured +5.9 %
-#: and +6.3 % on the tail fins)
-TOLERANCE = {(0, 0): 3.0, (1, 1): 3.0, (2, 2): 3.0, (3, 3): 7.0, (4, 4): 3.0, (5, 5): 3.0,
+#: (two finest of three meshes): every term 3 % (the issue's target).  Roll is the fins' 3D
+#: thin-sheet solution with their thickness as an equivalent planform (hull.finsheet): measured
+#: +2.5, +2.9, +1.6 % here (before it, the exact 2D roll with the equivalent-body relief:
+#: +5.9, +6.3, -1.1 %)
+TOLERANCE = {(0, 0): 3.0, (1, 1): 3.0, (2, 2): 3.0, (3, 3): 3.0, (4, 4): 3.0, (5, 5): 3.0,
              (1, 5): 3.0, (2, 4): 3.0}
 #: the couplings of large_tail about mid-length are a 21 % difference of the hull's share
 #: (1.86 kg m) and the fins' (-1.47 kg m): the fins' share's centroid must be right to 3 mm for
@@ -104,6 +105,18 @@ def test_large_tail_couplings_within_3_percent():
     m = fb.strip_model("large_tail")
     for i, j in ((1, 5), (2, 4)):
         assert abs(m[i, j] - ref[i, j]) < 0.03 * abs(ref[i, j]), (i, j)
+
+
+@pytest.mark.parametrize("case", ["small_tail", "forward_fins", "wide_tail"])
+def test_held_out_roll_against_bem(case):
+    # roll of the three bodies added for the uncertainty calibration, within 3 %: measured +2.5,
+    # +2.5, +1.3 % (with the equivalent-body relief: +6.3, -1.6, +10.2 %).  The thin-sheet
+    # method was chosen among four thickness treatments (none, chord only, tip only, both) on
+    # physical grounds, exact in both 2D limits, after all six bodies had been run.
+    fb = _fb()
+    ref = fb.load_references()[case]["richardson"]
+    m = fb.strip_model(case)
+    assert abs(m[3, 3] - ref[3, 3]) < 0.03 * ref[3, 3], round(100 * (m[3, 3] / ref[3, 3] - 1), 2)
 
 
 def _fins_share_of_sway(cases):

@@ -34,6 +34,7 @@ sec. 373 (the exact spheroid), Hess & Smith (1967): the solver's references, in 
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 
@@ -438,6 +439,69 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
     return i3d / total
 
 
+def fin_roll_3d(strips, rho: float) -> float | None:
+    r"""3D roll added mass [kg m^2] of a vehicle file's flat fins on a hull of revolution, by the
+    thin-sheet panel method with the fins' thickness as an equivalent planform
+    (:func:`stripcoef.hull.finsheet.fins_roll_added_mass`), or None where it does not apply:
+    parts other than one hull and its fins, a hull section that is not a circle on the x axis,
+    a fin that is not a radial rectangle (span along y or z through the axis), or fins whose
+    section is neither a cruciform nor an opposite pair (the 2D thickness equivalence needs one
+    of the two).  ``rho`` [kg/m^3]."""
+    from stripcoef.hull.finsheet import FinPlanform
+
+    hulls = [p for p in strips.parts if p.role == "hull"]
+    fins = [p for p in strips.parts if p.role == "fin"]
+    if len(hulls) != 1 or not fins or len(hulls) + len(fins) != len(strips.parts):
+        return None
+    hull = hulls[0]
+    b, h = hull.half_breadth, hull.half_height
+    if hull.shape != "ellipse" or not np.allclose(b, h, rtol=1e-6) \
+            or np.any(np.abs(hull.y) > 1e-9 * b.max()) or np.any(np.abs(hull.z) > 1e-9 * b.max()):
+        return None
+    xh = strips.x[hull.index]
+    x_aft = xh[0] - 0.5 * strips.dx[hull.index[0]]
+    x_fore = xh[-1] + 0.5 * strips.dx[hull.index[-1]]
+    planforms, thickness = [], []
+    for f in fins:
+        if f.shape != "rectangle" or len(f.index) < 2:
+            return None
+        axis, offset, lo, hi = _fin_span_interval(f, len(f.index) // 2)
+        tip = max(abs(lo), abs(hi))
+        if abs(offset) > 1e-6 * tip or lo * hi < 0:
+            return None
+        angle = {("y", True): 0.0, ("z", True): 0.5 * np.pi, ("y", False): np.pi,
+                 ("z", False): 1.5 * np.pi}[(axis, hi > 0)]
+        cov, i0, i1 = _coverage(f), f.index[0], f.index[-1]
+        aft = strips.x[i0] + 0.5 * strips.dx[i0] - cov[0] * strips.dx[i0]
+        fore = strips.x[i1] - 0.5 * strips.dx[i1] + cov[-1] * strips.dx[i1]
+        planforms.append(FinPlanform(angle, float(aft), float(fore), float(tip)))
+        thickness.append(2.0 * float(np.mean(f.half_breadth if axis == "z" else f.half_height)))
+    tips = []
+    for f in planforms:
+        group = {round(g.angle / (0.5 * np.pi)) % 4 for g in planforms
+                 if g.x_aft < f.x_fore and f.x_aft < g.x_fore}
+        if group == {0, 1, 2, 3}:
+            tips.append(4)
+        elif group in ({0, 2}, {1, 3}):
+            tips.append(2)
+        else:
+            return None
+    return _fins_roll(xh.tobytes(), np.asarray(b, dtype=float).tobytes(), float(x_aft),
+                      float(x_fore), tuple(planforms), tuple(thickness), tuple(tips), float(rho))
+
+
+@functools.lru_cache(maxsize=16)
+def _fins_roll(xh, rh, x_aft, x_fore, planforms, thickness, tips, rho) -> float:
+    """:func:`stripcoef.hull.finsheet.fins_roll_added_mass` of the hull radius ``rh`` at the
+    stations ``xh`` (float64 bytes: hashable, so that the two correction passes of one
+    estimate, the finned and the bare equivalent bodies, solve it once)."""
+    from stripcoef.hull.finsheet import fins_roll_added_mass
+
+    x, r = np.frombuffer(xh), np.frombuffer(rh)
+    return fins_roll_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
+                                list(thickness), list(tips), rho=rho)
+
+
 def _roll_is_roundoff(strips, m44, rho) -> bool:
     r"""No roll added mass but round-off: :math:`\int m_{44}^{2D} dx \le`
     :data:`ROLL_ROUNDOFF` :math:`\int\rho A^2 dx` (``m44`` [kg m] per strip, ``rho``
@@ -595,7 +659,9 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
         m44 = np.asarray(section_added_mass, dtype=float)[:, 2, 2]
         mode = None if _roll_is_roundoff(strips, m44, rho) else _polygon_roll_mode(strips, m44)
         if mode is not None:
-            fp = roll_relief(strips, m44, rho=rho, mode=mode, panels=panels)
+            m3d = fin_roll_3d(strips, rho)
+            fp = (m3d / float(np.sum(np.clip(m44, 0.0, None) * strips.dx)) if m3d is not None
+                  else roll_relief(strips, m44, rho=rho, mode=mode, panels=panels))
     return CorrectionFactors(
         scale=np.array([1.0, fv, fw, fp, fq, fr]), axial_added_mass=float(m11),
         coupling_26=d26, coupling_35=d35,
