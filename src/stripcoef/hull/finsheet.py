@@ -28,8 +28,13 @@ This module solves the 3D potential flow of the fins as thin sheets on the hull:
   panel *in the angle variable* (:math:`\xi_k = -\cos(\pi k/N)`, :math:`\xi_c = -\cos(\pi (k +
   1/2)/N)`) make the 2D plate's added mass exact for every N (tests/test_finsheet.py); the
   chord uses it between leading and trailing edge, the span from the root (a wall, mirrored)
-  to the tip as its half (:math:`\eta = \sin(\pi k / 2N)`).  Check: Lamb's exact disc rotating
-  about a diameter, :math:`16\rho a^5/45` (Lamb 1932, sec. 108; tests).
+  to the tip as its half (:math:`\eta = \sin(\pi k / 2N)`).  Check: the exact disc rotating
+  about a diameter, :math:`16\rho a^5/45` (the ellipsoid of Lamb 1932, sec. 373, with one
+  semi-axis -> 0: :func:`stripcoef.hull.lamb.ellipsoid_added_mass`; tests).
+- **Cross-plane error.**  The hull polygon and the span panels alone make the section's roll
+  2-7 % low for short fins; the same discretisation in 2D (:func:`section_roll_discrete`) has
+  the same error, and the 3D value is multiplied by exact over discrete 2D sections along the
+  fins' chords (:func:`_cross_plane_factor`).
 
 **Thickness.**  A fin of thickness t moves more water than a sheet: its section across the
 chord is a c x t rectangle, whose added mass moving normal to its long side is
@@ -40,18 +45,19 @@ takes the *equivalent planform* that reproduces both 2D sections exactly: the ch
 cruciform (or pair) section has the thick section's roll added mass (2D panel method,
 :func:`stripcoef.sections.panel.added_mass_contours`).  [assumption] both 2D equivalences are
 exact in their limits (a long chord, a long span) and the combination is not; against the
-converged BEM of six box-finned hulls it is +0.3 to +4.2 % (docs/theory.md, "Fins in roll").
+converged BEM of six box-finned hulls it is +1.3 to +2.9 % (docs/theory.md, "Fins in roll").
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 
 #: Panels along the chord and along the span of each fin, round each quarter of the hull, and
 #: along the hull outside the fins (aft of them, ahead of them) [-]: the roll added mass of the
-#: six benchmark fins is within 0.5 % of a mesh of twice the panels (docs/performance.md)
+#: six benchmark fins is within 0.6 % of a mesh of twice the panels (docs/performance.md)
 CHORD_PANELS = 8
 SPAN_PANELS = 6
 QUARTER_PANELS = 8
@@ -108,8 +114,18 @@ def ring_velocity(points, nodes, quads) -> np.ndarray:
 
 
 def _cosine(a, b, n):
-    """n + 1 points from a to b, clustered at both ends (full cosine)."""
-    return a + (b - a) * 0.5 * (1.0 - np.cos(np.pi * np.arange(n + 1) / n))
+    """The n + 1 panel edges from a to b in full cosine (both ends free edges) and the n
+    collocation points at the panels' middle angles (module docstring, "Edges")."""
+    k = np.arange(n + 1)
+    edges = a + (b - a) * 0.5 * (1.0 - np.cos(np.pi * k / n))
+    return edges, a + (b - a) * 0.5 * (1.0 - np.cos(np.pi * (k[:-1] + 0.5) / n))
+
+
+def _half_cosine(n):
+    """Fractions of the span from root (a wall) to tip (a free edge) in half cosine: the n + 1
+    panel edges and the n collocation points at the middle angles."""
+    k = np.arange(n + 1)
+    return np.sin(0.5 * np.pi * k / n), np.sin(0.5 * np.pi * (k[:-1] + 0.5) / n)
 
 
 def _quarter_angles(quarter: int) -> np.ndarray:
@@ -146,7 +162,7 @@ def sheet_mesh(hull_radius, x_aft: float, x_fore: float, fins, *, chord=CHORD_PA
     lo = min(f.x_aft for f in fins)
     hi = max(f.x_fore for f in fins)
     xs = np.unique(np.round(np.concatenate(
-        [_cosine(x_aft, lo, aft), _cosine(hi, x_fore, fore), *stations]), 12))
+        [_cosine(x_aft, lo, aft)[0], _cosine(hi, x_fore, fore)[0], *(e for e, _ in stations)]), 12))
     xs = xs[(xs >= x_aft) & (xs <= x_fore)]
     rs = np.maximum(np.asarray(hull_radius(xs), dtype=float), 0.0)
     nth = 4 * quarter
@@ -170,10 +186,9 @@ def sheet_mesh(hull_radius, x_aft: float, x_fore: float, fins, *, chord=CHORD_PA
                 a, b = ring[end, j], ring[end, (j + 1) % nth]
                 quads.append([c, c, b, a] if step == 1 else [c, c, a, b])
     hull_quads = len(quads)
-    eta = np.sin(0.5 * np.pi * np.arange(span + 1) / span)
-    eta_c = np.sin(0.5 * np.pi * (np.arange(span) + 0.5) / span)
+    eta, eta_c = _half_cosine(span)
     points = []
-    for f, xf in zip(fins, stations):
+    for f, (xf, xc) in zip(fins, stations):
         j0 = (int(round(f.angle / (0.5 * np.pi))) % 4) * quarter
         e = np.array([np.cos(th[j0]), np.sin(th[j0])])
         rows = [int(np.argmin(np.abs(xs - x))) for x in xf]
@@ -185,8 +200,6 @@ def sheet_mesh(hull_radius, x_aft: float, x_fore: float, fins, *, chord=CHORD_PA
                 r = r0 + (f.tip - r0) * eta[j]
                 grid[k, j] = len(nodes)
                 nodes.append([x, r * e[0], r * e[1]])
-        xc = 0.5 * (f.x_aft + f.x_fore) - 0.5 * (f.x_fore - f.x_aft) * np.cos(
-            np.pi * (np.arange(chord) + 0.5) / chord)
         rc = np.maximum(np.asarray(hull_radius(xc), dtype=float), 0.0)
         for k in range(chord):
             for j in range(span):
@@ -252,6 +265,7 @@ def equivalent_planform(fin: FinPlanform, thickness: float, hull_radius_mid: flo
     return FinPlanform(fin.angle, mid - 0.5 * ce, mid + 0.5 * ce, float(ae))
 
 
+@functools.lru_cache(maxsize=64)
 def _thick_section_ratio(radius: float, tip: float, thickness: float, tips: int) -> float:
     """2D roll added mass of the circle ``radius`` with ``tips`` radial fins (4 or 2) of
     ``thickness`` to ``tip`` [m], over the same with fins 1/100 as thick (2D panel method)."""
@@ -300,20 +314,17 @@ def _cross_plane_factor(radius, sheets, tips, **mesh) -> float:
     panels, tests/test_finsheet.py)."""
     from stripcoef.sections.added_mass import finned_circle_roll
 
-    n = mesh.get("chord", CHORD_PANELS)
     cross = {k: mesh[k] for k in ("span", "quarter") if k in mesh}
-    k = np.arange(n + 1)
     exact = disc = 0.0
     for f, fins in zip(sheets, tips):
-        edges = 0.5 * (f.x_aft + f.x_fore) - 0.5 * (f.x_fore - f.x_aft) * np.cos(np.pi * k / n)
-        xc = 0.5 * (f.x_aft + f.x_fore) - 0.5 * (f.x_fore - f.x_aft) * np.cos(
-            np.pi * (k[:-1] + 0.5) / n)
+        edges, xc = _cosine(f.x_aft, f.x_fore, mesh.get("chord", CHORD_PANELS))
         for w, r in zip(np.diff(edges), np.maximum(np.asarray(radius(xc), dtype=float), 0.0)):
             exact += w * finned_circle_roll(float(r), f.tip, fins=fins, rho=1.0)
             disc += w * section_roll_discrete(float(r), f.tip, fins, **cross)
     return exact / disc
 
 
+@functools.lru_cache(maxsize=256)
 def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PANELS,
                           quarter=QUARTER_PANELS) -> float:
     r"""2D roll added mass per unit length [m^4, for rho = 1] of the circle ``radius`` with
@@ -330,8 +341,7 @@ def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PAN
         a, b = hull[j], hull[(j + 1) % len(hull)]
         seg_a.append(a), seg_b.append(b), pts.append(0.5 * (a + b))
     n_hull = len(seg_a)
-    eta = np.sin(0.5 * np.pi * np.arange(span + 1) / span)
-    eta_c = np.sin(0.5 * np.pi * (np.arange(span) + 0.5) / span)
+    eta, eta_c = _half_cosine(span)
     for k in range(4) if fins == 4 else (0, 2):
         e = np.array([np.cos(0.5 * np.pi * k), np.sin(0.5 * np.pi * k)])
         r = radius + (tip - radius) * eta
@@ -348,7 +358,7 @@ def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PAN
         r2 = np.einsum("pqi,pqi->pq", d, d)
         return np.stack([-d[..., 1], d[..., 0]], axis=-1) / (2.0 * np.pi * r2[..., None])
 
-    v = vortex(a) - vortex(b)
+    v = vortex(b) - vortex(a)           # the doublet segment's vortex pair, signed by its normal
     m = len(p)
     border = 1 if n_hull else 0          # a constant doublet on the closed hull is free
     mat = np.zeros((m + border, m + border))
@@ -358,4 +368,4 @@ def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PAN
     n4 = p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0]
     n4[:n_hull] = 0.0
     mu = np.linalg.solve(mat, np.r_[n4, np.zeros(border)])[:m]
-    return float(abs(np.sum(mu * n4 * length)))
+    return float(np.sum(mu * n4 * length))
