@@ -320,9 +320,14 @@ def main():
                     help="the BEM's observed convergence order per term on the stored meshes")
     ap.add_argument("--convergence", action="store_true",
                     help="the coupling vs the strip count instead of the BEM comparison")
+    ap.add_argument("--sheet-mesh", action="store_true",
+                    help="the fins' 3D shares vs the thin-sheet panel mesh (~8 min)")
     args = ap.parse_args()
     if args.convergence:
         convergence()
+        return
+    if args.sheet_mesh:
+        sheet_mesh_refinement()
         return
     if args.order:
         orders()
@@ -331,6 +336,41 @@ def main():
         run_bem(args.only)
     compare()
 
+
+
+#: the thin-sheet mesh doubled in every direction (stripcoef.hull.finsheet defaults: chord 8,
+#: span 6, quarter 8, aft 12, fore 24 panels)
+SHEET_FINE = {"chord": 16, "span": 12, "quarter": 16, "aft": 24, "fore": 48}
+
+
+def sheet_mesh_refinement():
+    """The fins' 3D share (stripcoef.hull.finsheet.fins_added_mass) of sway, yaw, their coupling
+    and roll for every case with the default sheet mesh and with :data:`SHEET_FINE`, each against
+    the BEM's share (validation.fins.fin_shares: finned Richardson minus the exact bare hull)
+    [%], and the time of one solve (docs/performance.md)."""
+    from stripcoef.hull.finsheet import FinPlanform, fins_added_mass
+    sys.path.insert(0, str(HERE.parent))
+    from validation.fins import fin_shares
+    shares = fin_shares()
+
+    def radius(x):
+        return hull_radius(np.clip(x, X0, X0 + LENGTH))
+
+    terms = ((1, 1), (5, 5), (1, 5), (3, 3))
+    print("| case | mesh | time [s] | " + " | ".join(f"M_A[{i},{j}] share error %"
+                                                          for i, j in terms) + " |")
+    print("|---|---|---|" + "---|" * len(terms))
+    for case, (xc, chord, tip) in CASES.items():
+        fins = [FinPlanform(k * 0.5 * np.pi, xc - 0.5 * chord, xc + 0.5 * chord, tip)
+                for k in range(4)]
+        bem = shares[case][2]
+        for name, mesh in (("default", {}), ("doubled", SHEET_FINE)):
+            t0 = time.perf_counter()
+            d = fins_added_mass(radius, X0, X0 + LENGTH, fins, [THICKNESS] * 4, [4] * 4,
+                                rho=RHO, **mesh)
+            dt = time.perf_counter() - t0
+            print(f"| {case} | {name} | {dt:.1f} | " + " | ".join(
+                f"{100 * (d[i, j] / bem[i, j] - 1):+.2f}" for i, j in terms) + " |", flush=True)
 
 
 def convergence(counts=(250, 500, 1000, 2000, 4000, 8000)):

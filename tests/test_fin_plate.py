@@ -66,26 +66,32 @@ def test_plate_table_against_capytaine():
 # --- finned hulls against the BEM -----------------------------------------------------------
 
 #: tolerances [%] per term of benchmarks/finned_bodies.py COMPARED against the Richardson BEM
-#: (two finest of three meshes): every term 3 % (the issue's target).  Roll is the fins' 3D
-#: thin-sheet solution with their thickness as an equivalent planform (hull.finsheet): measured
-#: +2.5, +2.9, +1.6 % here (before it, the exact 2D roll with the equivalent-body relief:
-#: +5.9, +6.3, -1.1 %)
+#: (two finest of three meshes): every term 3 % (the issue's target), on all six bodies.  The
+#: fins' share of sway, heave, pitch and yaw and of roll is the 3D thin-sheet solution with
+#: their thickness as an equivalent planform (hull.finsheet), chosen for roll after all six
+#: bodies had been run, and taken unchanged for the other modes (no factor fitted).  Measured:
+#: every term within 1.3 % but roll (+2.5, +2.9, +1.6, +2.5, +2.5, +1.3 %) and the couplings
+#: below
 TOLERANCE = {(0, 0): 3.0, (1, 1): 3.0, (2, 2): 3.0, (3, 3): 3.0, (4, 4): 3.0, (5, 5): 3.0,
              (1, 5): 3.0, (2, 4): 3.0}
-#: the couplings of large_tail about mid-length are a 21 % difference of the hull's share
-#: (1.86 kg m) and the fins' (-1.47 kg m): the fins' share's centroid must be right to 3 mm for
-#: 3 % of the coupling; the model's is about 10 mm aft of the BEM's (-19.0 %, -18.0 %; the BEM
-#: itself is not converged there: its Richardson values from the two finest and the two
-#: coarsest meshes differ by 7.4 % and 2.0 %, and its M[1,5] and -M[2,4], equal on this body,
-#: by 1.2 %)
+#: the couplings of large_tail about mid-length are a 23 % difference of the hull's share
+#: (1.86 kg m) and the fins' (-1.43 kg m): 1 % of the fins' share is 3.4 % of the coupling.
+#: Measured -5.0 % and -3.9 % (before the thin sheet: -19.0 %, -18.0 %), where the BEM itself
+#: is not converged: its Richardson values from the two finest and the two coarsest meshes
+#: differ by 7.4 % and 2.0 %, and its M[1,5] and -M[2,4], equal on this body, by 1.2 %.
 KNOWN = {("large_tail", (1, 5)), ("large_tail", (2, 4))}
+#: wide_tail's couplings about mid-length are zero within the BEM's spread (0.00044 and
+#: -0.011 kg m, spread 779 % and 69 %; the hull's and the fins' shares cancel): compared relative
+#: to sqrt(M_ii M_jj) instead (measured -0.09 %)
+CANCELLING = {("wide_tail", (1, 5)), ("wide_tail", (2, 4))}
 
 
 def _fb():
     return _bench("finned_bodies")
 
 
-@pytest.mark.parametrize("case", ["remus_tail", "large_tail", "midbody"])
+@pytest.mark.parametrize("case", ["remus_tail", "large_tail", "midbody", "small_tail",
+                                  "forward_fins", "wide_tail"])
 def test_finned_hulls_against_bem(case):
     fb = _fb()
     ref = fb.load_references()[case]["richardson"]
@@ -93,12 +99,23 @@ def test_finned_hulls_against_bem(case):
     for (i, j), tol in TOLERANCE.items():
         if (case, (i, j)) in KNOWN:
             continue
-        err = 100 * (m[i, j] - ref[i, j]) / abs(ref[i, j])
+        scale = np.sqrt(ref[i, i] * ref[j, j]) if (case, (i, j)) in CANCELLING else abs(ref[i, j])
+        err = 100 * (m[i, j] - ref[i, j]) / scale
         assert abs(err) < tol, (case, (i, j), round(err, 2))
 
 
-@pytest.mark.xfail(strict=True, reason="large_tail's couplings about mid-length: -19.0 % and "
-                   "-18.0 % (the fins' share's centroid about 10 mm aft of the BEM's; KNOWN)")
+def test_large_tail_couplings_within_3_percent_plus_the_bem_spread():
+    fb = _fb()
+    refs = fb.load_references()["large_tail"]
+    ref = refs["richardson"]
+    m = fb.strip_model("large_tail")
+    for i, j in ((1, 5), (2, 4)):
+        tol = 3.0 + fb.richardson_spread(refs, i, j)
+        assert 100 * abs(m[i, j] - ref[i, j]) < tol * abs(ref[i, j]), (i, j)
+
+
+@pytest.mark.xfail(strict=True, reason="large_tail's couplings about mid-length: -5.0 % and "
+                   "-3.9 % against a BEM whose own spread there is 7.4 % and 2.0 % (KNOWN)")
 def test_large_tail_couplings_within_3_percent():
     fb = _fb()
     ref = fb.load_references()["large_tail"]["richardson"]
@@ -107,55 +124,20 @@ def test_large_tail_couplings_within_3_percent():
         assert abs(m[i, j] - ref[i, j]) < 0.03 * abs(ref[i, j]), (i, j)
 
 
-@pytest.mark.parametrize("case", ["small_tail", "forward_fins", "wide_tail"])
-def test_held_out_roll_against_bem(case):
-    # roll of the three bodies added for the uncertainty calibration, within 3 %: measured +2.5,
-    # +2.5, +1.3 % (with the equivalent-body relief: +6.3, -1.6, +10.2 %).  The thin-sheet
-    # method was chosen among four thickness treatments (none, chord only, tip only, both) on
-    # physical grounds, exact in both 2D limits, after all six bodies had been run.
-    fb = _fb()
-    ref = fb.load_references()[case]["richardson"]
-    m = fb.strip_model(case)
-    assert abs(m[3, 3] - ref[3, 3]) < 0.03 * ref[3, 3], round(100 * (m[3, 3] / ref[3, 3] - 1), 2)
-
-
-def _fins_share_of_sway(cases):
-    """(strip, BEM, BEM spread) fins' share of sway per case (validation.fins.fin_shares: finned
-    minus bare hull, the BEM's bare hull from the axisymmetric solution, exact to 0.02 %); the
-    spread [kg] is how far the BEM's sway is from converged (finned_bodies.richardson_spread),
-    which the share, a 3-10 % difference of two sways, carries whole."""
+def test_fins_shares_against_bem():
+    # the fins' share (finned minus bare hull) of sway, yaw and their coupling on all six bodies
+    # within 5 % plus the BEM's own spread on that term, which a share (a 3-10 % difference of
+    # two sways) carries whole (finned_bodies.richardson_spread).  Measured with the thin sheet:
+    # sway -0.7, +1.7, -3.5, -4.9, -5.7, -1.2 %; yaw -0.2, +2.2, +3.8, -2.5, -4.8, -0.2 %;
+    # coupling -0.3, +1.5, -3.7, -0.8, -5.6, +0.6 %.  Before it (the plates' 3D factor on the
+    # strip shares): sway -4.8, +4.2, -0.7, -15.2, -3.1, -7.3 %, yaw off by up to 76 %
     from validation.fins import fin_shares
     fb = _fb()
-    out = {}
-    for case, (_, share, bem) in fin_shares(cases).items():
-        ref = fb.load_references()[case]
-        out[case] = (share[1, 1], bem[1, 1],
-                     fb.richardson_spread(ref, 1, 1) / 100.0 * ref["richardson"][1, 1])
-    return out
-
-
-#: The bodies the fins' plate treatment was developed on, and the three added afterwards
-#: (chosen before their errors were known, for the out-of-sample band check).
-DEVELOPED_ON = ("remus_tail", "large_tail", "midbody")
-HELD_OUT = ("small_tail", "forward_fins", "wide_tail")
-
-
-def test_fins_share_of_sway_against_bem():
-    # within 3 % plus the BEM's own spread on the bodies it was developed on (measured -4.8 %,
-    # +4.2 %, -0.7 %, spreads 2.1 %, 3.3 %, 0.6 % of the share; before the plate factor and the
-    # thickness: +25 %, +1.8 %, -8.3 %); within 10 % plus the spread on the held-out ones
-    # (measured -15.2 %, -3.1 %, -7.3 %, spreads 7.2 %, 10.8 %, 2.9 %)
-    for case, (share, bem, spread) in _fins_share_of_sway(DEVELOPED_ON).items():
-        assert abs(share - bem) <= 0.03 * bem + spread, case
-    for case, (share, bem, spread) in _fins_share_of_sway(HELD_OUT).items():
-        assert abs(share - bem) <= 0.10 * bem + spread, case
-
-
-@pytest.mark.xfail(strict=True, reason="held-out finned hulls: the fins' share of sway is "
-                   "-15.2 % (small_tail) and -7.3 % (wide_tail) off the BEM; KNOWN")
-def test_fins_share_of_sway_within_3_percent_on_held_out_bodies():
-    for case, (share, bem, spread) in _fins_share_of_sway(HELD_OUT).items():
-        assert abs(share - bem) <= 0.03 * bem + spread, case
+    refs = fb.load_references()
+    for case, (_, share, bem) in fin_shares().items():
+        for i, j in ((1, 1), (5, 5), (1, 5)):
+            spread = fb.richardson_spread(refs[case], i, j) / 100 * abs(refs[case]["richardson"][i, j])
+            assert abs(share[i, j] - bem[i, j]) <= 0.05 * abs(bem[i, j]) + spread, (case, i, j)
 
 
 def test_fin_thickness_factor_against_the_panel_method():

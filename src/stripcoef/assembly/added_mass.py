@@ -277,6 +277,35 @@ def distribute_fin_shares(bare, folded, fin_parts) -> np.ndarray:
     return out
 
 
+#: Sway, heave, pitch and yaw: the entries whose fins' share the thin sheet gives
+#: (:func:`sheet_fin_shares`)
+_SHEET_MODES = (1, 2, 4, 5)
+
+
+def sheet_fin_shares(bare, sheet, fin_parts, center) -> np.ndarray:
+    r"""Corrected 6x6 added mass of a finned hull of revolution from its bare hull and the fins'
+    3D share by the thin-sheet panel method.
+
+    .. math:: M_{ij} = M^{bare}_{ij} + \Delta^{sheet}_{ij}\quad (i, j \in
+              \{\text{sway, heave, pitch, yaw}\}),\qquad
+              M_{ij} = M^{bare}_{ij} + \sum_{pairs} \kappa S_{pair,ij}\ \text{otherwise},
+
+    :math:`\Delta^{sheet}` (:func:`stripcoef.hull.finsheet.fins_added_mass`, about the origin)
+    moved to ``center`` [m] (:func:`stripcoef.conventions.transform_matrix`).  The sheet is
+    thin, so the fins' share of surge (their chordwise sections moving edgewise) keeps the strip
+    treatment, and their roll is already the sheet's in ``bare`` (the roll factor of
+    :func:`stripcoef.hull.corrections.hull_corrections`).  [assumption] ``center`` is on the
+    hull's axis (the centre of buoyancy of a hull of revolution with symmetric fins), so that
+    moving the share there couples no roll.  ``bare``, the bare hull's corrected matrix about
+    ``center`` [kg, kg m, kg m^2]; ``fin_parts`` from :func:`fin_share_corrections`."""
+    out = np.asarray(bare, dtype=float) + sum(k * sp for sp, k, *_ in fin_parts)
+    moved = transform_matrix(np.asarray(sheet, dtype=float), from_point=(0.0, 0.0, 0.0),
+                             to_point=center)
+    idx = np.ix_(_SHEET_MODES, _SHEET_MODES)
+    out[idx] = np.asarray(bare, dtype=float)[idx] + moved[idx]
+    return out
+
+
 def fin_share_corrections(strips: Strips, mats: list, shares: list, center) -> list:
     r"""Each fin pair's share of the strip matrix and its 3D factor.
 
@@ -404,7 +433,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     ----------
     See module docstring; Lamb (1932), sec. 373 (k_1); Fossen (2011), sec. 7.5.3 (transform).
     """
-    from stripcoef.hull.corrections import DEFAULT_PANELS, apply_corrections, hull_corrections
+    from stripcoef.hull.corrections import (DEFAULT_PANELS, apply_corrections, fin_sheet_3d,
+                                            hull_corrections)
     from stripcoef.hull.members import member_added_mass
 
     panels = _panel_count(correction_panels, DEFAULT_PANELS, "correction_panels")
@@ -427,9 +457,10 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
             # fin pairs on a circular hull: the hull by its bare sections' equivalent body, the
             # fins' shares by the rectangular plate's 3D factor (fin_share_corrections)
             fin_parts = fin_share_corrections(strips, mats, shares, center)
+            sheet = fin_sheet_3d(strips, rho) if fin_parts else None
             folded = None
-            if fin_parts:       # the finned equivalent body: the shares' 3D distribution
-                folded = apply_corrections(strip, hull_corrections(
+            if fin_parts and sheet is None:   # the finned equivalent body: the shares' 3D
+                folded = apply_corrections(strip, hull_corrections(        # distribution
                     strips, rho=rho, center=center, section_added_mass=per_strip, panels=panels,
                     axial=False))
             for f in shares:
@@ -437,12 +468,17 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
             corr = hull_corrections(strips, rho=rho, center=center, section_added_mass=per_strip,
                                     panels=panels)
             bare = apply_corrections(strip - sum(sp for sp, *_ in fin_parts), corr)
-            strip = distribute_fin_shares(bare, folded, fin_parts)
             scale, axial, method = corr.scale, corr.axial_added_mass, corr.method
-            if fin_parts:
-                method += ("; fin pairs' shares by the rectangular plate's 3D factor "
-                           "(DNV-RP-H103 table A-2, stripcoef.assembly.added_mass."
-                           "fin_share_corrections)")
+            if sheet is not None:
+                strip = sheet_fin_shares(bare, sheet, fin_parts, center)
+                method += ("; fins' shares of sway, heave, pitch and yaw by the 3D thin-sheet "
+                           "panel method (stripcoef.hull.finsheet.fins_added_mass)")
+            else:
+                strip = distribute_fin_shares(bare, folded, fin_parts)
+                if fin_parts:
+                    method += ("; fin pairs' shares by the rectangular plate's 3D factor "
+                               "(DNV-RP-H103 table A-2, stripcoef.assembly.added_mass."
+                               "fin_share_corrections)")
         else:                           # several members / junctions: corrected one by one
             corrected, parts_info = per_member
             info["members"] = sum(1 for e in parts_info if e["kind"] == "member")

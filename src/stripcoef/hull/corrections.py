@@ -439,10 +439,11 @@ def roll_relief(strips, m44, *, rho: float, mode: int = 2, panels: int = DEFAULT
     return i3d / total
 
 
-def fin_roll_3d(strips, rho: float) -> float | None:
-    r"""3D roll added mass [kg m^2] of a vehicle file's flat fins on a hull of revolution, by the
-    thin-sheet panel method with the fins' thickness as an equivalent planform
-    (:func:`stripcoef.hull.finsheet.fins_roll_added_mass`), or None where it does not apply:
+def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
+    r"""The fins' 3D share of the 6x6 added mass [kg, kg m, kg m^2], about the strips' origin, of
+    a vehicle file's flat fins on a hull of revolution, by the thin-sheet panel method with the
+    fins' thickness as an equivalent planform (:func:`stripcoef.hull.finsheet.fins_added_mass`;
+    a read-only array), or None where it does not apply:
     parts other than one hull and its fins, a hull section that is not a circle on the x axis,
     a fin that is not a radial rectangle (span along y or z through the axis), or fins whose
     section is neither a cruciform nor an opposite pair (the 2D thickness equivalence needs one
@@ -486,20 +487,22 @@ def fin_roll_3d(strips, rho: float) -> float | None:
             tips.append(2)
         else:
             return None
-    return _fins_roll(xh.tobytes(), np.asarray(b, dtype=float).tobytes(), float(x_aft),
-                      float(x_fore), tuple(planforms), tuple(thickness), tuple(tips), float(rho))
+    return _fins_sheet(xh.tobytes(), np.asarray(b, dtype=float).tobytes(), float(x_aft),
+                       float(x_fore), tuple(planforms), tuple(thickness), tuple(tips), float(rho))
 
 
 @functools.lru_cache(maxsize=16)
-def _fins_roll(xh, rh, x_aft, x_fore, planforms, thickness, tips, rho) -> float:
-    """:func:`stripcoef.hull.finsheet.fins_roll_added_mass` of the hull radius ``rh`` at the
-    stations ``xh`` (float64 bytes: hashable, so that the two correction passes of one
-    estimate, the finned and the bare equivalent bodies, solve it once)."""
-    from stripcoef.hull.finsheet import fins_roll_added_mass
+def _fins_sheet(xh, rh, x_aft, x_fore, planforms, thickness, tips, rho) -> np.ndarray:
+    """:func:`stripcoef.hull.finsheet.fins_added_mass` of the hull radius ``rh`` at the
+    stations ``xh`` (float64 bytes: hashable, so that the roll correction and the assembly of
+    one estimate solve it once), read-only."""
+    from stripcoef.hull.finsheet import fins_added_mass
 
     x, r = np.frombuffer(xh), np.frombuffer(rh)
-    return fins_roll_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
-                                list(thickness), list(tips), rho=rho)
+    share = fins_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
+                            list(thickness), list(tips), rho=rho)
+    share.flags.writeable = False
+    return share
 
 
 def _roll_is_roundoff(strips, m44, rho) -> bool:
@@ -659,8 +662,9 @@ def hull_corrections(strips, *, rho: float, center, section_added_mass=None,
         m44 = np.asarray(section_added_mass, dtype=float)[:, 2, 2]
         mode = None if _roll_is_roundoff(strips, m44, rho) else _polygon_roll_mode(strips, m44)
         if mode is not None:
-            m3d = fin_roll_3d(strips, rho)
-            fp = (m3d / float(np.sum(np.clip(m44, 0.0, None) * strips.dx)) if m3d is not None
+            sheet = fin_sheet_3d(strips, rho)
+            fp = (sheet[3, 3] / float(np.sum(np.clip(m44, 0.0, None) * strips.dx))
+                  if sheet is not None
                   else roll_relief(strips, m44, rho=rho, mode=mode, panels=panels))
     return CorrectionFactors(
         scale=np.array([1.0, fv, fw, fp, fq, fr]), axial_added_mass=float(m11),

@@ -159,10 +159,14 @@ def sheet_mesh(hull_radius, x_aft: float, x_fore: float, fins, *, chord=CHORD_PA
     :class:`FinPlanform` ``fins``, their roots on hull panel edges (module docstring)."""
     fins = list(fins)
     stations = [_cosine(f.x_aft, f.x_fore, chord) for f in fins]
-    lo = min(f.x_aft for f in fins)
-    hi = max(f.x_fore for f in fins)
-    xs = np.unique(np.round(np.concatenate(
-        [_cosine(x_aft, lo, aft)[0], _cosine(hi, x_fore, fore)[0], *(e for e, _ in stations)]), 12))
+    if fins:
+        lo = min(f.x_aft for f in fins)
+        hi = max(f.x_fore for f in fins)
+        xs = np.concatenate([_cosine(x_aft, lo, aft)[0], _cosine(hi, x_fore, fore)[0],
+                             *(e for e, _ in stations)])
+    else:                                   # the hull alone
+        xs = _cosine(x_aft, x_fore, aft + fore)[0]
+    xs = np.unique(np.round(xs, 12))
     xs = xs[(xs >= x_aft) & (xs <= x_fore)]
     rs = np.maximum(np.asarray(hull_radius(xs), dtype=float), 0.0)
     nth = 4 * quarter
@@ -215,28 +219,92 @@ def sheet_mesh(hull_radius, x_aft: float, x_fore: float, fins, *, chord=CHORD_PA
     fin = np.zeros(len(quads), dtype=bool)
     fin[hull_quads:] = True
     col = p.mean(axis=1)
-    col[hull_quads:] = np.asarray(points, dtype=float)
+    col[hull_quads:] = np.asarray(points, dtype=float).reshape(-1, 3)
     keep = areas > 1e-12 * float(np.max(areas))     # hull panels collapsed onto the axis
     return SheetMesh(nodes, quads[keep], fin[keep], col[keep], normals[keep], areas[keep])
 
 
-def roll_added_mass(mesh: SheetMesh, rho: float) -> float:
-    r"""Roll added mass :math:`m_{44} = \rho\sum_{fins}\mu\,n_4\,A` [kg m^2] of the fins and hull
-    of ``mesh`` (:func:`sheet_mesh`) about the x axis; ``rho`` [kg/m^3] (module docstring)."""
+def quad_solid_angle(points, nodes, quads) -> np.ndarray:
+    r"""Signed solid angle [sr] of the panels ``quads`` (Q, 4 node indices into ``nodes`` (N, 3))
+    seen from ``points`` (P, 3) [m]; returns (P, Q).  Each quad is two triangles (a, b, c) and
+    (a, c, d); a triangle's is (Van Oosterom & Strackee 1983, eq. 8)
+
+    .. math:: \tan\frac{\Omega}{2} = \frac{\mathbf{r}_1\cdot(\mathbf{r}_2\times\mathbf{r}_3)}
+              {r_1 r_2 r_3 + (\mathbf{r}_1\cdot\mathbf{r}_2) r_3 + (\mathbf{r}_1\cdot\mathbf{r}_3) r_2
+               + (\mathbf{r}_2\cdot\mathbf{r}_3) r_1}
+
+    with :math:`\mathbf{r}_k` from the point to the vertices: :math:`-2\pi` just on the side
+    the panel's normal points to, :math:`+2\pi` just behind it, 0 in its plane.  A unit
+    vortex ring's potential is :math:`\Omega / 4\pi` (the constant doublet panel of Katz &
+    Plotkin 2001, sec. 10.4.2; its gradient is :func:`ring_velocity`, tests)."""
+    points = np.asarray(points, dtype=float)[:, None, :]
+
+    def triangle(a, b, c):
+        r1, r2, r3 = (nodes[quads[:, k]][None] - points for k in (a, b, c))
+        n1, n2, n3 = (np.sqrt(np.einsum("pqi,pqi->pq", r, r)) for r in (r1, r2, r3))
+        num = np.einsum("pqi,pqi->pq", r1, np.cross(r2, r3))
+        den = (n1 * n2 * n3 + np.einsum("pqi,pqi->pq", r1, r2) * n3
+               + np.einsum("pqi,pqi->pq", r1, r3) * n2 + np.einsum("pqi,pqi->pq", r2, r3) * n1)
+        return 2.0 * np.arctan2(num, den)
+
+    return triangle(0, 1, 2) + triangle(0, 2, 3)
+
+
+def sheet_added_mass(mesh: SheetMesh, rho: float) -> tuple[np.ndarray, np.ndarray]:
+    r"""6x6 added mass [kg, kg m, kg m^2] about the origin of the hull and fins of ``mesh``
+    (:func:`sheet_mesh`), and of its hull alone on the same hull panels; ``rho`` [kg/m^3].
+
+    Every rigid-body mode j at once (module docstring): the rings' strengths for the right-hand
+    sides :math:`n_j` (the normal and :math:`\mathbf{r}\times\mathbf{n}`), then (Newman 1977,
+    sec. 4.13, n out of the body)
+
+    .. math:: m_{ij} = -\rho\oint_{hull}\phi_i\,n_j\,dS + \rho\sum_{fins}\mu_i\,n_j\,A,
+
+    the fins' term from the jump of the potential across each sheet
+    (:math:`\phi_+ - \phi_- = -\mu`, + on the normal's side), the hull's from the potential
+    just outside its panel i, :math:`\phi_i = \sum_{k\ne i}\mu_k\Omega_{ik}/4\pi - \mu_i/2`
+    (:func:`quad_solid_angle`; the panels are plane, so their own solid angle at their centroid
+    is 0).  The hull alone is the same system without the fins' rows and columns.  Check: a
+    6:1 prolate spheroid within 0.1 % in sway and 0.8 % in pitch of Lamb's exact values
+    (tests/test_finsheet.py)."""
     n = len(mesh.quads)
-    a = np.empty((n + 1, n + 1))
+    a = np.empty((n, n))
     for i in range(0, n, _ROW_BLOCK):
         j = min(n, i + _ROW_BLOCK)
         v = ring_velocity(mesh.points[i:j], mesh.nodes, mesh.quads)
-        a[i:j, :n] = np.einsum("pqi,pi->pq", v, mesh.normals[i:j])
-    hull = (~mesh.fin).astype(float)
-    a[:n, n] = hull
-    a[n, :n] = hull
-    a[n, n] = 0.0
-    pts, nrm = mesh.points, mesh.normals
-    n4 = np.where(mesh.fin, pts[:, 1] * nrm[:, 2] - pts[:, 2] * nrm[:, 1], 0.0)
-    mu = np.linalg.solve(a, np.r_[n4, 0.0])[:n]
-    return float(rho * np.sum((mu * n4 * mesh.areas)[mesh.fin]))
+        a[i:j] = np.einsum("pqi,pi->pq", v, mesh.normals[i:j])
+    hull = np.flatnonzero(~mesh.fin)
+    phi = np.empty((len(hull), n))
+    for i in range(0, len(hull), _ROW_BLOCK):
+        rows = hull[i:i + _ROW_BLOCK]
+        phi[i:i + len(rows)] = quad_solid_angle(mesh.points[rows], mesh.nodes, mesh.quads)
+    phi /= 4.0 * np.pi
+    phi[np.arange(len(hull)), hull] = -0.5
+    modes = np.c_[mesh.normals, np.cross(mesh.points, mesh.normals)]
+    weights = mesh.areas[:, None] * modes
+    return (_solve_modes(a, phi, hull, np.arange(n), mesh.fin, modes, weights, rho),
+            _solve_modes(a, phi, hull, hull, mesh.fin, modes, weights, rho))
+
+
+def _solve_modes(a, phi, hull, keep, fin, modes, weights, rho) -> np.ndarray:
+    r""":func:`sheet_added_mass` on the panels ``keep`` (indices) of the system ``a`` (normal
+    velocities), ``phi`` (the hull panels' potentials, rows ``hull``): the rings' strengths of
+    the six modes, bordered with :math:`\sum_{hull}\mu = 0` (a constant doublet on the closed
+    hull induces nothing), and the 6x6 added mass."""
+    n = len(keep)
+    on_hull = (~fin[keep]).astype(float)
+    border = 1 if on_hull.any() else 0
+    mat = np.zeros((n + border, n + border))
+    mat[:n, :n] = a[np.ix_(keep, keep)]
+    if border:
+        mat[:n, n] = mat[n, :n] = on_hull
+    mu = np.linalg.solve(mat, np.r_[modes[keep], np.zeros((border, 6))])[:n]
+    sheets = fin[keep]
+    m = rho * mu[sheets].T @ weights[keep][sheets]
+    if border:
+        phi_hull = phi[:, keep] @ mu
+        m -= rho * phi_hull.T @ weights[hull]
+    return 0.5 * (m + m.T)
 
 
 def equivalent_planform(fin: FinPlanform, thickness: float, hull_radius_mid: float,
@@ -286,13 +354,25 @@ def _thick_section_ratio(radius: float, tip: float, thickness: float, tips: int)
     return roll(thickness) / roll(0.01 * thickness)
 
 
-def fins_roll_added_mass(hull_radius, x_aft: float, x_fore: float, fins, thickness, tips,
-                         *, rho: float, **mesh) -> float:
-    r"""3D roll added mass [kg m^2] of the flat rectangular ``fins`` (:class:`FinPlanform`, with
-    their ``thickness`` [m] and the number of fins ``tips`` (4 or 2) of the section each belongs
-    to) on the hull of revolution r = ``hull_radius(x)`` [m] from ``x_aft`` to ``x_fore`` [m]:
-    each fin's equivalent planform (:func:`equivalent_planform`), then the thin-sheet panel
-    method (:func:`sheet_mesh`, :func:`roll_added_mass`); ``rho`` [kg/m^3]."""
+def fins_added_mass(hull_radius, x_aft: float, x_fore: float, fins, thickness, tips,
+                    *, rho: float, **mesh) -> np.ndarray:
+    r"""The fins' 3D share of the 6x6 added mass [kg, kg m, kg m^2], about the origin, of the
+    flat rectangular ``fins`` (:class:`FinPlanform`, with their ``thickness`` [m] and the number
+    of fins ``tips`` (4 or 2) of the section each belongs to) on the hull of revolution
+    r = ``hull_radius(x)`` [m] from ``x_aft`` to ``x_fore`` [m]; ``rho`` [kg/m^3].
+
+    Each fin's equivalent planform (:func:`equivalent_planform`), then the thin-sheet panel
+    method (:func:`sheet_mesh`, :func:`sheet_added_mass`): the hull with its fins minus the hull
+    alone on the same hull panels, so that the hull's own discretisation error cancels and what
+    is left is the fins' share, their interaction with the hull included (the couplings of sway
+    and yaw, heave and pitch).  The roll term is the fins' alone (the hull of revolution moves
+    no water in roll), times the cross-plane factor (:func:`_cross_plane_factor`).
+    [assumption] the translation and pitch/yaw modes take the roll's equivalent planform: its
+    chord :math:`c\sqrt{C_A(c/t)}` is the thick section moving normal to itself, as the fins do
+    in those modes, but its tip radius matches the thick cross-section in roll, not in sway
+    (there the thick section's fins' share is 4-9 % above that tip's in 2D); measured against
+    the converged BEM of six finned hulls the shares of sway, yaw and their coupling are -8 to
+    +4 % and the totals within 2.3 % (docs/theory.md, "Fins in 3D")."""
     sheets = [equivalent_planform(f, t, float(hull_radius(0.5 * (f.x_aft + f.x_fore))), k)
               for f, t, k in zip(fins, thickness, tips)]
     lo = min([x_aft] + [f.x_aft for f in sheets])
@@ -302,38 +382,55 @@ def fins_roll_added_mass(hull_radius, x_aft: float, x_fore: float, fins, thickne
         x = np.asarray(x, dtype=float)
         return np.where((x < x_aft) | (x > x_fore), 0.0, hull_radius(np.clip(x, x_aft, x_fore)))
 
-    m3 = roll_added_mass(sheet_mesh(radius, lo, hi, sheets, **mesh), rho)
-    return m3 * _cross_plane_factor(radius, sheets, tips, **mesh)
+    with_fins, hull = sheet_added_mass(sheet_mesh(radius, lo, hi, sheets, **mesh), rho)
+    roll, sway, heave = _cross_plane_factors(radius, sheets, tips, **mesh)
+    scale = np.sqrt(np.array([1.0, sway, heave, roll, heave, sway]))
+    return (with_fins - hull) * np.outer(scale, scale)
 
 
-def _cross_plane_factor(radius, sheets, tips, **mesh) -> float:
+def _cross_plane_factors(radius, sheets, tips, **mesh) -> tuple[float, float, float]:
     r"""Exact over discretised 2D sections, summed over the fins' chords (their chordwise
-    collocation stations x_k, panel widths w_k): :math:`\sum w_k m^{exact}(R(x_k), a) /
-    \sum w_k m^{disc}(R(x_k), a)` (:func:`section_roll_discrete`), the correction of the
-    sheet's cross-plane discretisation error (3 to 7 % low for short fins with the default
-    panels, tests/test_finsheet.py)."""
-    from stripcoef.sections.added_mass import finned_circle_roll
+    collocation stations x_k, panel widths w_k), :math:`\sum w_k m^{exact}(R(x_k), a) /
+    \sum w_k m^{disc}(R(x_k), a)` (:func:`section_discrete`): the correction of the sheet's
+    cross-plane discretisation error, for roll (all fins; 3 to 7 % low for short fins with the
+    default panels) and for the fins' share of sway (the fins spanning z, normal to y) and of
+    heave (those spanning y), tests/test_finsheet.py.  Returns (roll, sway, heave) [-], 1 where
+    no fin moves normal to itself in that direction."""
+    from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
 
     cross = {k: mesh[k] for k in ("span", "quarter") if k in mesh}
-    exact = disc = 0.0
+    exact = np.zeros(3)
+    disc = np.zeros(3)
     for f, fins in zip(sheets, tips):
+        normal = 1 if round(f.angle / (0.5 * np.pi)) % 2 else 2     # spans z: sway; y: heave
         edges, xc = _cosine(f.x_aft, f.x_fore, mesh.get("chord", CHORD_PANELS))
         for w, r in zip(np.diff(edges), np.maximum(np.asarray(radius(xc), dtype=float), 0.0)):
-            exact += w * finned_circle_roll(float(r), f.tip, fins=fins, rho=1.0)
-            disc += w * section_roll_discrete(float(r), f.tip, fins, **cross)
-    return exact / disc
+            r = float(r)
+            share, roll = section_discrete(r, f.tip, fins, **cross)
+            exact[0] += w * finned_circle_roll(r, f.tip, fins=fins, rho=1.0)
+            disc[0] += w * roll
+            exact[normal] += w * (circle_with_fins(r, f.tip, fins=fins, rho=1.0)[0]
+                                  - np.pi * r * r)
+            disc[normal] += w * share
+    return tuple(float(e / d) if d > 0 else 1.0 for e, d in zip(exact, disc))
 
 
 @functools.lru_cache(maxsize=256)
-def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PANELS,
-                          quarter=QUARTER_PANELS) -> float:
-    r"""2D roll added mass per unit length [m^4, for rho = 1] of the circle ``radius`` with
-    ``fins`` (4, a cruciform; 2, a pair) thin fins to ``tip`` [m], by the 2D counterpart of
-    :func:`sheet_mesh`'s cross-plane discretisation: the same hull polygon and fin panels, each
-    constant-doublet segment as two point vortices at its ends (Katz & Plotkin 2001, sec.
-    11.2), collocation at the same points.  The 3D solution divided by this and multiplied by
-    the exact section (:func:`stripcoef.sections.added_mass.finned_circle_roll`) has the
-    cross-plane discretisation error removed (:func:`fins_roll_added_mass`)."""
+def section_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PANELS,
+                     quarter=QUARTER_PANELS) -> tuple[float, float]:
+    r"""2D added mass per unit length [for rho = 1] of the circle ``radius`` with ``fins`` (4, a
+    cruciform; 2, a pair) thin fins to ``tip`` [m], by the 2D counterpart of :func:`sheet_mesh`'s
+    cross-plane discretisation: the same hull polygon and fin panels, each constant-doublet
+    segment as two point vortices at its ends (Katz & Plotkin 2001, sec. 11.2), collocation at
+    the same points.  Returns (the fins' share of the translation normal to a pair [m^2]: the
+    section's minus its hull polygon's alone, roll [m^4]).  The 3D solution divided by these
+    and multiplied by the exact sections (:func:`stripcoef.sections.added_mass.circle_with_fins`,
+    :func:`stripcoef.sections.added_mass.finned_circle_roll`) has the cross-plane
+    discretisation error removed (:func:`fins_added_mass`).
+
+    As in 3D (:func:`sheet_added_mass`): :math:`m_{ij} = -\oint_{hull}\phi_i n_j\,dl +
+    \sum_{fins}\mu_i n_j\,l`, a segment's potential :math:`\mu\,\Delta\theta / 2\pi`
+    (:math:`\Delta\theta` the angle it subtends), :math:`-\mu/2` on its own normal's side."""
     th = _quarter_angles(quarter)
     hull = radius * np.c_[np.cos(th), np.sin(th)] if radius > 0 else np.zeros((0, 2))
     seg_a, seg_b, pts = [], [], []
@@ -358,14 +455,29 @@ def section_roll_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PAN
         r2 = np.einsum("pqi,pqi->pq", d, d)
         return np.stack([-d[..., 1], d[..., 0]], axis=-1) / (2.0 * np.pi * r2[..., None])
 
-    v = vortex(b) - vortex(a)           # the doublet segment's vortex pair, signed by its normal
-    m = len(p)
-    border = 1 if n_hull else 0          # a constant doublet on the closed hull is free
-    mat = np.zeros((m + border, m + border))
-    mat[:m, :m] = np.einsum("pqi,pi->pq", v, n)
-    if border:
-        mat[:n_hull, m] = mat[m, :n_hull] = 1.0
-    n4 = p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0]
-    n4[:n_hull] = 0.0
-    mu = np.linalg.solve(mat, np.r_[n4, np.zeros(border)])[:m]
-    return float(np.sum(mu * n4 * length))
+    da, db = p[:n_hull, None, :] - a[None], p[:n_hull, None, :] - b[None]
+    phi = np.arctan2(da[..., 0] * db[..., 1] - da[..., 1] * db[..., 0],
+                     np.einsum("pqi,pqi->pq", da, db)) / (2.0 * np.pi)
+    phi[np.arange(n_hull), np.arange(n_hull)] = -0.5
+    normal_velocity = np.einsum("pqi,pi->pq", vortex(b) - vortex(a), n)   # signed by normal
+    modes = np.c_[n[:, 1], p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0]]        # normal to a pair, roll
+    modes[:n_hull, 1] = 0.0
+
+    def solve(keep):
+        m = len(keep)
+        on_hull = (keep < n_hull).astype(float)
+        border = 1 if on_hull.any() else 0          # a constant doublet on the closed hull is free
+        mat = np.zeros((m + border, m + border))
+        mat[:m, :m] = normal_velocity[np.ix_(keep, keep)]
+        if border:
+            mat[:m, m] = mat[m, :m] = on_hull
+        mu = np.linalg.solve(mat, np.r_[modes[keep], np.zeros((border, 2))])[:m]
+        sheets = keep >= n_hull
+        out = mu[sheets].T @ (modes[keep][sheets] * length[keep][sheets, None])
+        if border:
+            out -= (phi[:, keep] @ mu).T @ (modes[:n_hull] * length[:n_hull, None])
+        return np.diag(out)
+
+    both = solve(np.arange(len(p)))
+    alone = solve(np.arange(n_hull)) if n_hull else np.zeros(2)
+    return float(both[0] - alone[0]), float(both[1])
