@@ -1,28 +1,31 @@
-r"""Roll added mass of flat fins on a hull of revolution: a 3D thin-sheet panel method.
+r"""Added mass of flat fins on a hull of revolution: a 3D thin-sheet panel method.
 
-A hull of revolution rolling about its axis moves no water; its fins do.  Each fin moves
-normal to itself with the speed :math:`p\,r` at radius r, and in 3D the water escapes round
-its leading and trailing edges and its tip, which no 2D section sees (strip theory's roll is
-the 2D cruciform's, :func:`stripcoef.sections.added_mass.finned_circle_roll`, per unit length).
-This module solves the 3D potential flow of the fins as thin sheets on the hull:
+A hull of revolution rolling moves no water; its fins do.  Each fin moves normal to itself
+with the speed :math:`p\,r` at radius r (in sway, heave, pitch and yaw too, through the hull's
+own cross-flow), and in 3D the water escapes round its leading and trailing edges and its tip,
+which no 2D section sees (strip theory's roll is the 2D cruciform's,
+:func:`stripcoef.sections.added_mass.finned_circle_roll`, per unit length).  This module solves
+the 3D potential flow of the fins as thin sheets on the hull:
 
 - **Unknowns.** Constant-strength doublet panels, i.e. vortex rings of circulation
   :math:`\mu_k` (Katz & Plotkin 2001, sec. 12.3 and 12.5), on the fins (open sheets: the jump of
   the potential across the fin) and on the hull surface (a closed sheet: it keeps the water
   out of the hull).  A ring's velocity is the Biot-Savart law of its four straight segments
-  (Katz & Plotkin 2001, eq. 10.115).
-- **Boundary condition** at one collocation point per panel, normal n:
+  (Katz & Plotkin 2001, eq. 10.115), its potential its solid angle over :math:`4\pi`
+  (:func:`quad_solid_angle`).
+- **Boundary condition** at one collocation point per panel, normal n, for each rigid-body
+  mode j (:math:`n_j` = n for translation, :math:`\mathbf{r}\times\mathbf{n}` for rotation):
 
-  .. math:: \sum_k \mu_k\,\mathbf{v}_k(\mathbf{x}_i)\cdot\mathbf{n}_i = n_{4,i},\qquad
-            n_4 = (\mathbf{r}\times\mathbf{n})_x = y\,n_z - z\,n_y
+  .. math:: \sum_k \mu_k\,\mathbf{v}_k(\mathbf{x}_i)\cdot\mathbf{n}_i = n_{j,i},
 
-  which is 0 on the hull of revolution.  A constant :math:`\mu` on the closed hull induces no
-  velocity; the system is bordered with :math:`\sum_{hull}\mu = 0` to fix it.
-- **Added mass.**  The roll potential jumps by :math:`\mu` across a fin, and :math:`n_4 = 0` on
-  the hull, so (Newman 1977, sec. 4.13: :math:`m_{ij} = \rho\oint\phi_i n_j\,dS`)
-
-  .. math:: K_{\dot p} = -m_{44},\qquad m_{44} = \rho\sum_{fins} \mu_k\,n_{4,k}\,A_k\ [kg\,m^2].
-
+  roll's :math:`n_4 = y\,n_z - z\,n_y` being 0 on the hull of revolution.  A constant
+  :math:`\mu` on the closed hull induces no velocity; the system is bordered with
+  :math:`\sum_{hull}\mu = 0` to fix it.
+- **Added mass** (Newman 1977, sec. 4.13, n out of the body):
+  :math:`m_{ij} = -\rho\oint_{hull}\phi_i n_j\,dS + \rho\sum_{fins}\mu_i n_j A`
+  (:func:`sheet_added_mass`); in roll the hull term vanishes,
+  :math:`K_{\dot p} = -m_{44} = -\rho\sum_{fins}\mu\,n_4\,A` [kg m^2].  The fins' share is the
+  hull with its fins minus the hull alone on the same panels (:func:`fins_added_mass`).
 - **Edges.**  A plate's potential jump vanishes like the square root of the distance to a
   free edge.  Panel edges in cosine spacing with the collocation point at the middle of each
   panel *in the angle variable* (:math:`\xi_k = -\cos(\pi k/N)`, :math:`\xi_c = -\cos(\pi (k +
@@ -32,9 +35,9 @@ This module solves the 3D potential flow of the fins as thin sheets on the hull:
   about a diameter, :math:`16\rho a^5/45` (the ellipsoid of Lamb 1932, sec. 373, with one
   semi-axis -> 0: :func:`stripcoef.hull.lamb.ellipsoid_added_mass`; tests).
 - **Cross-plane error.**  The hull polygon and the span panels alone make the section's roll
-  2-7 % low for short fins; the same discretisation in 2D (:func:`section_roll_discrete`) has
-  the same error, and the 3D value is multiplied by exact over discrete 2D sections along the
-  fins' chords (:func:`_cross_plane_factor`).
+  2-7 % low for short fins and their share of sway up to 4 % high; the same discretisation in
+  2D (:func:`section_discrete`) has the same error, and each 3D term is multiplied by exact
+  over discrete 2D sections along the fins' chords (:func:`_cross_plane_factors`).
 
 **Thickness.**  A fin of thickness t moves more water than a sheet: its section across the
 chord is a c x t rectangle, whose added mass moving normal to its long side is
@@ -45,7 +48,8 @@ takes the *equivalent planform* that reproduces both 2D sections exactly: the ch
 cruciform (or pair) section has the thick section's roll added mass (2D panel method,
 :func:`stripcoef.sections.panel.added_mass_contours`).  [assumption] both 2D equivalences are
 exact in their limits (a long chord, a long span) and the combination is not; against the
-converged BEM of six box-finned hulls it is +1.3 to +2.9 % (docs/theory.md, "Fins in roll").
+converged BEM of six box-finned hulls the roll is +1.3 to +2.9 %.  The other modes take the same
+planform (:func:`fins_added_mass`; docs/theory.md, "Fins in 3D").
 """
 
 from __future__ import annotations
@@ -366,13 +370,16 @@ def fins_added_mass(hull_radius, x_aft: float, x_fore: float, fins, thickness, t
     alone on the same hull panels, so that the hull's own discretisation error cancels and what
     is left is the fins' share, their interaction with the hull included (the couplings of sway
     and yaw, heave and pitch).  The roll term is the fins' alone (the hull of revolution moves
-    no water in roll), times the cross-plane factor (:func:`_cross_plane_factor`).
+    no water in roll).  Each term is multiplied by its cross-plane factor
+    (:func:`_cross_plane_factors`: roll; sway for the fins spanning z, heave for those spanning
+    y; pitch and yaw as heave and sway).
     [assumption] the translation and pitch/yaw modes take the roll's equivalent planform: its
     chord :math:`c\sqrt{C_A(c/t)}` is the thick section moving normal to itself, as the fins do
     in those modes, but its tip radius matches the thick cross-section in roll, not in sway
-    (there the thick section's fins' share is 4-9 % above that tip's in 2D); measured against
-    the converged BEM of six finned hulls the shares of sway, yaw and their coupling are -8 to
-    +4 % and the totals within 2.3 % (docs/theory.md, "Fins in 3D")."""
+    (there the thick section's fins' share is 4-9 % above that tip's in 2D).  Against the
+    converged BEM of six finned hulls, with the edgewise strip terms the assembly adds
+    (:func:`stripcoef.assembly.added_mass.sheet_fin_shares`), the shares of sway, yaw and their
+    coupling are -5.7 to +3.8 % (docs/theory.md, "Fins in 3D")."""
     sheets = [equivalent_planform(f, t, float(hull_radius(0.5 * (f.x_aft + f.x_fore))), k)
               for f, t, k in zip(fins, thickness, tips)]
     lo = min([x_aft] + [f.x_aft for f in sheets])
