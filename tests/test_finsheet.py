@@ -188,6 +188,21 @@ def test_fins_share_symmetry_and_scaling():
         assert big[i, j] / base[i, j] == pytest.approx(2.0 ** power, rel=1e-6), (i, j)
 
 
+def test_a_cruciforms_heave_is_its_horizontal_pairs():
+    # in heave the flow past the hull is tangent to the plane y = 0, so thin vertical fins in it
+    # are passive: the cruciform's share of heave and pitch is its horizontal pair's, and the
+    # pair's share of sway and yaw (moving edgewise) is zero
+    from stripcoef.hull.finsheet import fins_added_mass
+    cruciform = _cruciform()
+    pair = [f for f in cruciform if round(f.angle / (0.5 * np.pi)) % 2 == 0]
+    four = fins_added_mass(_hull, -1.0, 1.0, cruciform, [0.0] * 4, [4] * 4, rho=1000.0)
+    two = fins_added_mass(_hull, -1.0, 1.0, pair, [0.0] * 2, [2] * 2, rho=1000.0)
+    for i, j in ((2, 2), (4, 4), (2, 4)):
+        assert two[i, j] == pytest.approx(four[i, j], rel=1e-6), (i, j)
+    for i, j in ((1, 1), (5, 5), (1, 5)):
+        assert abs(two[i, j]) < 1e-6 * abs(four[i, j]), (i, j)
+
+
 def test_mesh_refinement_changes_roll_by_under_one_percent():
     fins = _cruciform()
     coarse = roll_added_mass(sheet_mesh(_hull, -1.0, 1.0, fins), 1000.0)
