@@ -413,9 +413,11 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     With ``corrections`` (the default) the strip matrix about the centre of buoyancy gets
     the axisymmetric-BEM corrections of :mod:`stripcoef.hull.corrections` (per-direction
     equivalent bodies of revolution: end effects, sway-yaw / heave-pitch couplings and the
-    axial added mass); fin pairs on a circular hull are taken out of the hull's equivalent body
-    and their share of the strip matrix is scaled by the exposed pair's rectangular-plate factor
-    (:func:`fin_share_corrections`).  Without them it is pure strip theory plus the axial term
+    axial added mass); fin pairs on a circular hull are taken out of the hull's equivalent body,
+    and their share of sway, heave, pitch and yaw is the 3D thin-sheet solution where it applies
+    (radial rectangular fins in cruciforms or opposite pairs on a hull of revolution:
+    :func:`sheet_fin_shares`), else the strip share scaled by the exposed pair's
+    rectangular-plate factor (:func:`fin_share_corrections`).  Without them it is pure strip theory plus the axial term
     :math:`k_1\rho V` of the equal-length, equal-volume spheroid (Lamb; Ferreira et al. 2009 eq. 36).
 
     .. math:: M_A = H^T\big(M_A^{strip}(+\text{corr.}) + k_1\rho V\,e_1e_1^T\big)H + M_{hole}
@@ -455,7 +457,8 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
                                        joint=mats[0] if len(mats) == 1 else None)
         if per_member is None:
             # fin pairs on a circular hull: the hull by its bare sections' equivalent body, the
-            # fins' shares by the rectangular plate's 3D factor (fin_share_corrections)
+            # fins' shares by the 3D thin sheet where it applies (hull.corrections.fin_sheet_3d),
+            # else by the rectangular plate's 3D factor (fin_share_corrections)
             fin_parts = fin_share_corrections(strips, mats, shares, center)
             sheet = fin_sheet_3d(strips, rho) if fin_parts else None
             folded = None
