@@ -298,11 +298,12 @@ def sheet_fin_shares(bare, sheet, fin_parts, center) -> np.ndarray:
     hull's axis (the centre of buoyancy of a hull of revolution with symmetric fins), so that
     moving the share there couples no roll.  ``bare``, the bare hull's corrected matrix about
     ``center`` [kg, kg m, kg m^2]; ``fin_parts`` from :func:`fin_share_corrections`."""
-    out = np.asarray(bare, dtype=float) + sum(k * sp for sp, k, *_ in fin_parts)
+    bare = np.asarray(bare, dtype=float)
+    out = bare + sum(k * sp for sp, k, *_ in fin_parts)
     moved = transform_matrix(np.asarray(sheet, dtype=float), from_point=(0.0, 0.0, 0.0),
                              to_point=center)
     idx = np.ix_(_SHEET_MODES, _SHEET_MODES)
-    out[idx] = np.asarray(bare, dtype=float)[idx] + moved[idx]
+    out[idx] = bare[idx] + moved[idx]
     return out
 
 

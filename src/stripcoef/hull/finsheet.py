@@ -242,10 +242,12 @@ def quad_solid_angle(points, nodes, quads) -> np.ndarray:
     vortex ring's potential is :math:`\Omega / 4\pi` (the constant doublet panel of Katz &
     Plotkin 2001, sec. 10.4.2; its gradient is :func:`ring_velocity`, tests)."""
     points = np.asarray(points, dtype=float)[:, None, :]
+    r = [nodes[quads[:, k]][None] - points for k in range(4)]     # the shared diagonal's
+    norm = [np.sqrt(np.einsum("pqi,pqi->pq", v, v)) for v in r]   # ends serve both triangles
 
     def triangle(a, b, c):
-        r1, r2, r3 = (nodes[quads[:, k]][None] - points for k in (a, b, c))
-        n1, n2, n3 = (np.sqrt(np.einsum("pqi,pqi->pq", r, r)) for r in (r1, r2, r3))
+        r1, r2, r3 = r[a], r[b], r[c]
+        n1, n2, n3 = norm[a], norm[b], norm[c]
         num = np.einsum("pqi,pqi->pq", r1, np.cross(r2, r3))
         den = (n1 * n2 * n3 + np.einsum("pqi,pqi->pq", r1, r2) * n3
                + np.einsum("pqi,pqi->pq", r1, r3) * n2 + np.einsum("pqi,pqi->pq", r2, r3) * n1)
@@ -269,7 +271,7 @@ def sheet_added_mass(mesh: SheetMesh, rho: float) -> tuple[np.ndarray, np.ndarra
     just outside its panel i, :math:`\phi_i = \sum_{k\ne i}\mu_k\Omega_{ik}/4\pi - \mu_i/2`
     (:func:`quad_solid_angle`; the panels are plane, so their own solid angle at their centroid
     is 0).  The hull alone is the same system without the fins' rows and columns.  Check: a
-    6:1 prolate spheroid within 0.1 % in sway and 0.8 % in pitch of Lamb's exact values
+    6:1 prolate spheroid within 0.1 % in sway and in pitch of Lamb's exact values
     (tests/test_finsheet.py)."""
     n = len(mesh.quads)
     a = np.empty((n, n))
@@ -403,7 +405,7 @@ def _cross_plane_factors(radius, sheets, tips, **mesh) -> tuple[float, float, fl
     default panels) and for the fins' share of sway (the fins spanning z, normal to y) and of
     heave (those spanning y), tests/test_finsheet.py.  Returns (roll, sway, heave) [-], 1 where
     no fin moves normal to itself in that direction."""
-    from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
+    from stripcoef.sections.added_mass import circle, circle_with_fins, finned_circle_roll
 
     cross = {k: mesh[k] for k in ("span", "quarter") if k in mesh}
     exact = np.zeros(3)
@@ -417,7 +419,7 @@ def _cross_plane_factors(radius, sheets, tips, **mesh) -> tuple[float, float, fl
             exact[0] += w * finned_circle_roll(r, f.tip, fins=fins, rho=1.0)
             disc[0] += w * roll
             exact[normal] += w * (circle_with_fins(r, f.tip, fins=fins, rho=1.0)[0]
-                                  - np.pi * r * r)
+                                  - float(circle(r, rho=1.0)))
             disc[normal] += w * share
     return tuple(float(e / d) if d > 0 else 1.0 for e, d in zip(exact, disc))
 
