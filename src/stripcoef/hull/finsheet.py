@@ -295,8 +295,9 @@ def sheet_added_mass(mesh: SheetMesh, rho: float) -> tuple[np.ndarray, np.ndarra
 def _solve_modes(a, phi, hull, keep, fin, modes, weights, rho) -> np.ndarray:
     r""":func:`sheet_added_mass` on the panels ``keep`` (indices) of the system ``a`` (normal
     velocities), ``phi`` (the hull panels' potentials, rows ``hull``): the rings' strengths of
-    the six modes, bordered with :math:`\sum_{hull}\mu = 0` (a constant doublet on the closed
-    hull induces nothing), and the 6x6 added mass."""
+    the modes (columns of ``modes``; ``weights`` = area x mode), bordered with
+    :math:`\sum_{hull}\mu = 0` (a constant doublet on the closed hull induces nothing), and the
+    added mass (6x6 in 3D; :func:`section_discrete` solves its 2D sections with it)."""
     n = len(keep)
     on_hull = (~fin[keep]).astype(float)
     border = 1 if on_hull.any() else 0
@@ -304,7 +305,7 @@ def _solve_modes(a, phi, hull, keep, fin, modes, weights, rho) -> np.ndarray:
     mat[:n, :n] = a[np.ix_(keep, keep)]
     if border:
         mat[:n, n] = mat[n, :n] = on_hull
-    mu = np.linalg.solve(mat, np.r_[modes[keep], np.zeros((border, 6))])[:n]
+    mu = np.linalg.solve(mat, np.r_[modes[keep], np.zeros((border, modes.shape[1]))])[:n]
     sheets = fin[keep]
     m = rho * mu[sheets].T @ weights[keep][sheets]
     if border:
@@ -472,20 +473,12 @@ def section_discrete(radius: float, tip: float, fins: int, *, span=SPAN_PANELS,
     modes = np.c_[n[:, 1], p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0]]        # normal to a pair, roll
     modes[:n_hull, 1] = 0.0
 
-    def solve(keep):
-        m = len(keep)
-        on_hull = (keep < n_hull).astype(float)
-        border = 1 if on_hull.any() else 0          # a constant doublet on the closed hull is free
-        mat = np.zeros((m + border, m + border))
-        mat[:m, :m] = normal_velocity[np.ix_(keep, keep)]
-        if border:
-            mat[:m, m] = mat[m, :m] = on_hull
-        mu = np.linalg.solve(mat, np.r_[modes[keep], np.zeros((border, 2))])[:m]
-        sheets = keep >= n_hull
-        out = mu[sheets].T @ (modes[keep][sheets] * length[keep][sheets, None])
-        if border:
-            out -= (phi[:, keep] @ mu).T @ (modes[:n_hull] * length[:n_hull, None])
-        return np.diag(out)
+    hull_rows, sheets = np.arange(n_hull), np.arange(len(p)) >= n_hull
+    weights = modes * length[:, None]
+
+    def solve(keep):                     # the 3D system's solve on the 2D segments
+        return np.diag(_solve_modes(normal_velocity, phi, hull_rows, keep, sheets, modes,
+                                    weights, 1.0))
 
     both = solve(np.arange(len(p)))
     alone = solve(np.arange(n_hull)) if n_hull else np.zeros(2)
