@@ -21,7 +21,7 @@ import pytest
 
 from stripcoef.hull.lift import fin_lift_slope, lifting_line_slope
 from validation import reference as ref
-from validation.lift import (LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_radius,
+from validation.lift import (FT, LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_radius,
                              bare_hull_derivatives, bare_hull_model, body_Yv, datcom_body_Yv,
                              flat_plate_points, fully_appended_Yv, hull_radius, increment_Yv,
                              plane_chord, planes_geometry, planes_interference,
@@ -38,7 +38,7 @@ def test_increments_add_up_to_the_fully_appended_model():
 
 def test_geometry_as_published():
     assert val("hull.L") / val("hull.D") == pytest.approx(8.575, abs=5e-4)  # Groves: 8.575
-    assert val("hull.L") * 0.3048 == pytest.approx(4.3561, abs=5e-5)      # manifest: 4.3561 m
+    assert val("hull.L") * FT == pytest.approx(4.3561, abs=5e-5)      # manifest: 4.3561 m
     # the stern planes' root radius is the fixed point it is stored as
     r = 0.3
     for _ in range(60):
@@ -66,7 +66,7 @@ def test_bare_hull_model_lift_is_the_formula():
     body-lift formula's Y'_v: a bare body of revolution has no Munk force in sway."""
     assert bare_hull_derivatives()["Yv"] == pytest.approx(body_Yv(), rel=1e-6)
     cb = bare_hull_model().center_of_buoyancy[0]
-    assert (0.5 * val("hull.L") - cb / 0.3048) / val("hull.L") == pytest.approx(0.461, abs=1e-3)
+    assert (0.5 * val("hull.L") - cb / FT) / val("hull.L") == pytest.approx(0.461, abs=1e-3)
 
 
 # ---------------------------------------------------------------------------

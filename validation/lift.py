@@ -10,6 +10,7 @@ import warnings
 
 import numpy as np
 
+from stripcoef.geometry.mesh import LENGTH_UNITS
 from stripcoef.hull.lift import (body_lift_slope, cylindrical_root, effective_aspect_ratio,
                                  fin_lift_slope, interference_factor, lifting_line_slope)
 
@@ -27,7 +28,7 @@ SUBOFF = "roddy1990_suboff"
 #: for the semi-empirical lift against Prestero (tests/test_lift_data.py) [-].
 LIFT_TOLERANCE = 0.20
 #: One foot [m] (Roddy's and Groves's unit).
-FT = 0.3048
+FT = LENGTH_UNITS["ft"]
 
 
 def val(name):
