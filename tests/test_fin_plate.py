@@ -75,10 +75,11 @@ def test_plate_table_against_capytaine():
 TOLERANCE = {(0, 0): 3.0, (1, 1): 3.0, (2, 2): 3.0, (3, 3): 3.0, (4, 4): 3.0, (5, 5): 3.0,
              (1, 5): 3.0, (2, 4): 3.0}
 #: the couplings of large_tail about mid-length are a 23 % difference of the hull's share
-#: (1.86 kg m) and the fins' (-1.43 kg m): 1 % of the fins' share is 3.4 % of the coupling.
-#: Measured -5.0 % and -3.9 % (before the thin sheet: -19.0 %, -18.0 %), where the BEM itself
-#: is not converged: its Richardson values from the two finest and the two coarsest meshes
-#: differ by 7.4 % and 2.0 %, and its M[1,5] and -M[2,4], equal on this body, by 1.2 %.
+#: (1.86 kg m) and the fins' (-1.45 kg m): 1 % of the fins' share is 3.5 % of the coupling.
+#: The stored three-level BEM is not converged there (Richardson spread 7.4 % and 2.0 %); the
+#: study with the fins refined alone and the hull's error removed
+#: (benchmarks/fin_bem_refinement.py) is the reference for them: its coupling still grows with
+#: each refinement, and the model is -3.5 % off its finest mesh
 KNOWN = {("large_tail", (1, 5)), ("large_tail", (2, 4))}
 #: wide_tail's couplings about mid-length are zero within the BEM's spread (0.00044 and
 #: -0.011 kg m, spread 779 % and 69 %; the hull's and the fins' shares cancel): compared relative
@@ -104,24 +105,26 @@ def test_finned_hulls_against_bem(case):
         assert abs(err) < tol, (case, (i, j), round(err, 2))
 
 
-def test_large_tail_couplings_within_3_percent_plus_the_bem_spread():
-    fb = _fb()
-    refs = fb.load_references()["large_tail"]
-    ref = refs["richardson"]
-    m = fb.strip_model("large_tail")
-    for i, j in ((1, 5), (2, 4)):
-        tol = 3.0 + fb.richardson_spread(refs, i, j)
-        assert 100 * abs(m[i, j] - ref[i, j]) < tol * abs(ref[i, j]), (i, j)
+def test_large_tail_couplings_against_the_fin_refined_bem():
+    # the refined BEM's coupling (the mean of M[1,5] and -M[2,4], equal by symmetry) grows with
+    # every refinement, so its finest mesh bounds the converged value from below; the model is
+    # within 4 % of that mesh (measured -3.5 %: a regression bound, not the 3 % the issue asks)
+    fr = _bench("fin_bem_refinement")
+    study = fr.load()
+    mean = [fr.mean_coupling(a) for _, _, a in study]
+    assert mean == sorted(mean)
+    m = _fb().strip_model("large_tail")
+    assert abs(fr.mean_coupling(m) / mean[-1] - 1) < 0.04
 
 
-@pytest.mark.xfail(strict=True, reason="large_tail's couplings about mid-length: -5.0 % and "
-                   "-3.9 % against a BEM whose own spread there is 7.4 % and 2.0 % (KNOWN)")
+@pytest.mark.xfail(strict=True, reason="large_tail's coupling about mid-length: -3.5 % against "
+                   "the finest fin-refined BEM (M[1,5] -3.4 %, M[2,4] -3.6 %), whose value still "
+                   "grows")
 def test_large_tail_couplings_within_3_percent():
-    fb = _fb()
-    ref = fb.load_references()["large_tail"]["richardson"]
-    m = fb.strip_model("large_tail")
-    for i, j in ((1, 5), (2, 4)):
-        assert abs(m[i, j] - ref[i, j]) < 0.03 * abs(ref[i, j]), (i, j)
+    fr = _bench("fin_bem_refinement")
+    fine = fr.load()[-1][2]
+    m = _fb().strip_model("large_tail")
+    assert abs(fr.mean_coupling(m) / fr.mean_coupling(fine) - 1) < 0.03
 
 
 def test_fins_shares_against_bem():
@@ -216,3 +219,30 @@ def test_finned_hull_surge_against_bem(case):
     fb = _fb()
     ref = fb.load_references()[case]["richardson"][0, 0]
     assert fb.strip_model(case)[0, 0] == pytest.approx(ref, rel=0.03)
+
+
+def test_fin_box_is_a_closed_box_with_its_nodes():
+    fr = _bench("fin_bem_refinement")
+    xs, ys, zs = fr.cosine_nodes(0.0, 0.3, 5), fr.cosine_nodes(-0.01, 0.01, 2), np.linspace(0, 1, 4)
+    box = fr.fin_box(xs, ys, zs)
+    assert box.is_watertight
+    assert box.volume == pytest.approx(0.3 * 0.02 * 1.0, rel=1e-12)
+    # two triangles per panel on the six faces
+    assert len(box.faces) == 4 * (5 * 2 + 5 * 3 + 3 * 2)
+    assert np.allclose(np.unique(np.round(box.vertices[:, 0], 12)), np.round(xs, 12))
+
+
+def test_fin_refinement_study_is_symmetric_and_its_hull_correction_small():
+    # benchmarks/fin_bem_refinement.py: M[1,5] = -M[2,4] on the cruciform, so their difference
+    # on each stored mesh is the BEM's own scatter; the hull correction (the bare hull's BEM
+    # error on the study's hull mesh) is a small part of the coupling
+    fr = _bench("fin_bem_refinement")
+    fb = _fb()
+    study = fr.load()
+    assert [name for name, _, _ in study] == [",".join(map(str, s)) for s in fr.REFINEMENT]
+    for name, _, a in study:
+        assert abs(a[1, 5] + a[2, 4]) < 0.02 * a[1, 5], name
+    exact = fb.bare_hull_exact()
+    correction = fr.hull_correction()
+    for i, j in fr.COUPLINGS:
+        assert abs(correction[i, j]) < 0.005 * abs(exact[i, j]), (i, j)
