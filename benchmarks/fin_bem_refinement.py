@@ -3,7 +3,7 @@
 Run:
   python benchmarks/fin_bem_refinement.py          # the stored study against the strip model
   python benchmarks/fin_bem_refinement.py --bem    # recompute it (~14 min on 2 cores; the
-                                                   # finest mesh peaks near 18 GB)
+                                                   # finest mesh needs most of 23 GB)
 
 Why: about mid-length, large_tail's sway-yaw and heave-pitch couplings (0.4 kg m) are the 23 %
 difference of the hull's share (+1.86 kg m) and the fins' (-1.45 kg m), so 1 % of the fins'
@@ -28,9 +28,9 @@ Method:
 
 The meshes: (16, 4, 16), (24, 4, 24), (32, 4, 32) refine the fin's plane at a fixed thickness
 (:func:`in_plane_order`), (32, 6, 40) then refines thickness and span.  Memory bounds the
-study: Capytaine's dense matrices need about 33 N^2 bytes for N full-body faces (gmres, no
-LU), so 27,000 faces (24 GB) is past the 23 GB machine that made it; the finest mesh has
-23,216.  Stored in benchmarks/data/bem_fin_refinement.csv (raw BEM matrices; the correction is
+study: with gmres (no LU) a 19,112-face mesh peaked at 7.4 GB and a 27,080-face one was killed
+at 24 GB, past the 23 GB machine that made it (docs/performance.md); the finest mesh has
+23,216 faces.  Stored in benchmarks/data/bem_fin_refinement.csv (raw BEM matrices; the correction is
 applied on loading).
 """
 

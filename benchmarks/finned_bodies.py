@@ -160,8 +160,8 @@ def bem_quarter(mesh_q, rho=RHO, linear_solver="lu_decomposition"):
     """6x6 added mass about the origin of the body whose quarter is ``mesh_q``: Capytaine's
     direct method on a ReflectionSymmetricMesh of ReflectionSymmetricMesh (the full body's
     matrices with a quarter of the memory, benchmarks/mesh_reference_convergence.py).
-    ``linear_solver`` "gmres" needs no LU factors: peak memory about 33 N^2 bytes for N
-    full-body faces (7.4 GB at 19,112 faces) against about 10 GB with the default."""
+    ``linear_solver`` "gmres" needs no LU factors: 7.4 GB peak at 19,112 full-body faces
+    against about 10 GB with the default (docs/performance.md)."""
     import logging
 
     import capytaine as cpt

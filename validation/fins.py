@@ -162,8 +162,9 @@ def _refinement_part(results) -> str:
         + ", ".join(f"{q:.2f}" if np.isfinite(q) else "not defined (the differences grow)"
                     for q in orders[:2])
         + " for M[1,5] and M[2,4] and " + ", ".join(f"{q:.2f}" for q in orders[2:])
-        + " for sway, roll and yaw, so no extrapolation is trusted. The next mesh (about 27,000 "
-        "faces) needs 24 GB, more than the 23 GB machine that made these. Against the finest "
+        + " for sway, roll and yaw, so no extrapolation is trusted. A finer mesh (27,080 "
+        "faces) ran out of memory at 24 GB on the 23 GB machine that made these "
+        "(docs/performance.md). Against the finest "
         "mesh the strip model's sway is " + f"{off[(1, 1)]:+.2f} %, its yaw {off[(5, 5)]:+.2f} % "
         f"and its roll {off[(3, 3)]:+.2f} % (the BEM's roll {roll_trend} with each refinement"
         + (", so against the converged value the roll error is larger"
