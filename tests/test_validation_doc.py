@@ -1,0 +1,73 @@
+"""docs/validation.md is what scripts/make_validation.py writes from the code as it is now.
+
+Every word the same, and every number within one unit of its last printed digit: the documents
+print 4-5 significant digits of results whose last bits depend on the machine's BLAS kernels, so
+a rounding may flip.  A claim that changed with the code (a number, a "grows" that no longer
+holds) fails here until the document is generated again.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
+#: commas), decimals, exponent
+NUMBER = re.compile(r"[-+\u2212]?(?:\d{1,3}(?:,\d{3})+|\d+)(?:\.\d+)?(?:[eE][-+]?\d+)?")
+
+
+def _value(token: str):
+    try:
+        return float(token.replace("\u2212", "-").replace(",", ""))
+    except ValueError:
+        return None
+
+
+def _close(a: str, b: str) -> bool:
+    """Two printed numbers agree within one unit of the last printed decimal (relative 1e-3 in
+    exponent notation); integers (counts, mesh sizes) must be equal."""
+    if a == b:
+        return True
+    va, vb = _value(a), _value(b)
+    if va is None or vb is None:
+        return False
+    if "e" in (a + b).lower():
+        return abs(va - vb) <= 1e-3 * max(abs(va), abs(vb))
+    decimals = max(len(t.split(".")[1]) if "." in t else 0 for t in (a, b))
+    return va == vb or (decimals > 0 and abs(va - vb) <= 1.01 * 10.0 ** -decimals)
+
+
+def stale_lines(stored: str, fresh: str) -> list:
+    """(line number, stored line, fresh line) of every line whose words or numbers differ."""
+    out = []
+    old, new = stored.splitlines(), fresh.splitlines()
+    if len(old) != len(new):
+        return [(0, f"{len(old)} lines", f"{len(new)} lines")]
+    for k, (a, b) in enumerate(zip(old, new), start=1):
+        if a == b:
+            continue
+        if NUMBER.sub("#", a) != NUMBER.sub("#", b) or not all(
+                _close(x, y) for x, y in zip(NUMBER.findall(a), NUMBER.findall(b))):
+            out.append((k, a, b))
+    return out
+
+
+def test_the_comparison_allows_a_rounding_and_nothing_else():
+    assert not stale_lines("x = 0.4062, y = +2.73 %", "x = 0.4063, y = +2.72 %")
+    assert stale_lines("x = 0.4062", "x = 0.4064")
+    assert stale_lines("the coupling grows", "the coupling falls")
+    assert not stale_lines("1,600 panels, 1e-06", "1,600 panels, 1.0005e-06")
+    assert stale_lines("mesh 16,4,16", "mesh 16,4,17")
+    assert stale_lines("a\nb", "a")
+
+
+def test_validation_doc_is_generated_from_the_current_code():
+    sys.path.insert(0, str(ROOT))
+    from validation import build
+    stored = (ROOT / "docs" / "validation.md").read_text()
+    stale = stale_lines(stored, build())
+    assert not stale, ("docs/validation.md is stale: run python scripts/make_validation.py; "
+                       f"first difference at line {stale[0][0]}:\n{stale[0][1]}\n{stale[0][2]}")
