@@ -2,8 +2,10 @@
 
 Run:
   python benchmarks/fin_bem_refinement.py          # the stored study against the strip model
-  python benchmarks/fin_bem_refinement.py --bem    # recompute it (~14 min on 2 cores; the
-                                                   # finest mesh needs most of 23 GB)
+  python benchmarks/fin_bem_refinement.py --bem    # solve the meshes not yet stored (~17 min
+                                                   # a case on 2 cores; the finest mesh needs
+                                                   # most of 23 GB); --case CASE for another
+                                                   # hull of finned_bodies.CASES
 
 Why: about mid-length, large_tail's sway-yaw and heave-pitch couplings (0.4 kg m) are the 23 %
 difference of the hull's share (+1.86 kg m) and the fins' (-1.45 kg m), so 1 % of the fins'
@@ -128,7 +130,9 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
     """Solve the bare hull and every mesh of ``REFINEMENT`` and store them; meshes already
     stored are kept unless ``force``."""
     stored = {} if force or not DATA.exists() else load_raw(case)
-    rows = []
+    rows = [] if not DATA.exists() else [
+        (other, name, n, a) for other in _cases() if other != case
+        for name, (n, a) in load_raw(other).items()]
     for name, mesh in [("bare", lambda: fb.hull_mesh(HULL_LEVEL))] + [
             (",".join(map(str, spec)), lambda spec=spec: finned_mesh(case, *spec))
             for spec in REFINEMENT]:
@@ -142,7 +146,7 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
         print(f"{case} {name}: {n} faces, {time.perf_counter() - t0:.0f} s", flush=True)
         rows.append((case, name, n, a))
     with open(DATA, "w", newline="") as fh:
-        fh.write("# Added mass of benchmarks/finned_bodies.py's large_tail with the fins refined alone "
+        fh.write("# Added mass of benchmarks/finned_bodies.py's finned hulls with the fins refined alone "
                  "(benchmarks/fin_bem_refinement.py):\n"
                  f"# Capytaine BEM, direct method, gmres, two reflection symmetries, no free surface, "
                  f"rho = {fb.RHO:g} kg/m^3, about the origin (mid-length), FRD axes [kg, kg m, kg m^2];\n"
@@ -154,6 +158,13 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
         w.writerow(["case", "mesh", "faces"] + [f"m{i}{j}" for i, j in fb.TERMS])
         for case_, name, n, a in rows:
             w.writerow([case_, name, n] + [f"{a[i, j]:.8g}" for i, j in fb.TERMS])
+
+
+def _cases() -> list:
+    """The cases stored in :data:`DATA`, in file order."""
+    with open(DATA) as fh:
+        names = [r["case"] for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))]
+    return list(dict.fromkeys(names))
 
 
 def load_raw(case: str = CASE) -> dict:
@@ -234,10 +245,12 @@ def main():
     ap.add_argument("--bem", action="store_true",
                     help="solve the meshes of REFINEMENT not yet stored")
     ap.add_argument("--force", action="store_true", help="with --bem: solve every mesh again")
+    ap.add_argument("--case", default=CASE, choices=sorted(fb.CASES),
+                    help=f"the finned hull (default {CASE})")
     args = ap.parse_args()
     if args.bem:
-        run_bem(force=args.force)
-    report()
+        run_bem(args.case, force=args.force)
+    report(args.case)
 
 
 if __name__ == "__main__":

@@ -104,15 +104,21 @@ def vehicle_dict(case: str, strips: int = 1000) -> dict:
             "appendages": fins}
 
 
-def hull_mesh(level: int):
-    """The bare hull's surface mesh at mesh level ``level`` of :data:`MESH_LEVELS` (meridian
-    panels clustered at the ends by cosine spacing, ``sections`` round the axis)."""
-    from stripcoef.geometry.mesh import revolved_mesh
-    n_profile, sections, _ = MESH_LEVELS[level]
-    x = X0 + LENGTH * 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, n_profile + 1)))
+def hull_profile(points: int):
+    """(x, r) of the hull at ``points`` stations clustered at the ends by cosine spacing, the
+    radius zero at both ends [m]."""
+    x = X0 + LENGTH * 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, points)))
     r = hull_radius(x)
     r[0] = r[-1] = 0.0
-    return revolved_mesh(x, r, sections=sections)
+    return x, r
+
+
+def hull_mesh(level: int):
+    """The bare hull's surface mesh at mesh level ``level`` of :data:`MESH_LEVELS`
+    (``n_profile`` meridian panels, ``sections`` round the axis)."""
+    from stripcoef.geometry.mesh import revolved_mesh
+    n_profile, sections, _ = MESH_LEVELS[level]
+    return revolved_mesh(*hull_profile(n_profile + 1), sections=sections)
 
 
 def bare_hull_exact():
@@ -120,9 +126,7 @@ def bare_hull_exact():
     (stripcoef.hull.axisymmetric, 400 panels on an 801-point profile: exact to 0.02 %)
     [kg, kg m, kg m^2]."""
     from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
-    x = X0 + LENGTH * 0.5 * (1 - np.cos(np.linspace(0.0, np.pi, 801)))
-    r = hull_radius(x)
-    r[0] = r[-1] = 0.0
+    x, r = hull_profile(801)
     return body_of_revolution_added_mass(x, r, rho=RHO, x_ref=0.0, panels=400, modes=(0, 1))
 
 
