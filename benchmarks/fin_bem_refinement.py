@@ -1,4 +1,6 @@
-"""large_tail's couplings: the BEM reference refined on the fins, the hull's discretisation removed.
+"""Finned hulls' added mass: the BEM reference refined on the fins, the hull's discretisation removed.
+
+Stored for large_tail (the case that needs it, below) and remus_tail (a check on a second body).
 
 Run:
   python benchmarks/fin_bem_refinement.py          # the stored study against the strip model
@@ -131,7 +133,7 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
     stored are kept unless ``force``."""
     stored = {} if force or not DATA.exists() else load_raw(case)
     rows = [] if not DATA.exists() else [
-        (other, name, n, a) for other in _cases() if other != case
+        (other, name, n, a) for other in stored_cases() if other != case
         for name, (n, a) in load_raw(other).items()]
     for name, mesh in [("bare", lambda: fb.hull_mesh(HULL_LEVEL))] + [
             (",".join(map(str, spec)), lambda spec=spec: finned_mesh(case, *spec))
@@ -160,7 +162,7 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
             w.writerow([case_, name, n] + [f"{a[i, j]:.8g}" for i, j in fb.TERMS])
 
 
-def _cases() -> list:
+def stored_cases() -> list:
     """The cases stored in :data:`DATA`, in file order."""
     with open(DATA) as fh:
         names = [r["case"] for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))]
