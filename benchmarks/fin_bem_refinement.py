@@ -1,6 +1,7 @@
 """Finned hulls' added mass: the BEM reference refined on the fins, the hull's discretisation removed.
 
-Stored for large_tail (the case that needs it, below) and remus_tail (a check on a second body).
+Stored for large_tail (the case that needs it, below), remus_tail and small_tail (checks on
+other bodies).
 
 Run:
   python benchmarks/fin_bem_refinement.py          # the stored study against the strip model
