@@ -165,36 +165,26 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
 
 def stored_cases() -> list:
     """The cases stored in :data:`DATA`, in file order."""
-    with open(DATA) as fh:
-        names = [r["case"] for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))]
-    return list(dict.fromkeys(names))
+    return list(dict.fromkeys(r["case"] for r in fb.read_rows(DATA)))
 
 
 def load_raw(case: str = CASE) -> dict:
     """mesh name -> (faces, raw BEM 6x6 matrix) of the stored study ('bare' = the hull alone)."""
-    with open(DATA) as fh:
-        rows = [r for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))
-                if r["case"] == case]
-    out = {}
-    for r in rows:
-        a = np.zeros((6, 6))
-        for i, j in fb.TERMS:
-            a[i, j] = a[j, i] = float(r[f"m{i}{j}"])
-        out[r["mesh"]] = (int(r["faces"]), a)
-    return out
+    return {r["mesh"]: (int(r["faces"]), fb.row_matrix(r))
+            for r in fb.read_rows(DATA) if r["case"] == case}
 
 
-def hull_correction(case: str = CASE) -> np.ndarray:
+def hull_correction(case: str = CASE, raw: dict | None = None) -> np.ndarray:
     """The bare hull's exact added mass minus its BEM value on the study's hull mesh [kg, kg m,
-    kg m^2]: added to every finned result."""
-    return fb.bare_hull_exact() - load_raw(case)["bare"][1]
+    kg m^2]: added to every finned result.  ``raw``: the case's :func:`load_raw`, if read."""
+    return fb.bare_hull_exact() - (raw or load_raw(case))["bare"][1]
 
 
 def load(case: str = CASE) -> list:
     """[(mesh, faces, hull-corrected 6x6 matrix), ...] of the stored study, coarsest first:
     A_BEM(finned) - A_BEM(bare) + finned_bodies.bare_hull_exact()."""
     raw = load_raw(case)
-    correction = hull_correction(case)
+    correction = hull_correction(case, raw)
     return sorted(((name, n, a + correction) for name, (n, a) in raw.items() if name != "bare"),
                   key=lambda item: item[1])
 

@@ -124,7 +124,12 @@ def hull_mesh(level: int):
 def bare_hull_exact():
     """The bare hull's 6x6 added mass about the origin from the axisymmetric panel method
     (stripcoef.hull.axisymmetric, 400 panels on an 801-point profile: exact to 0.02 %)
-    [kg, kg m, kg m^2]."""
+    [kg, kg m, kg m^2]: a fresh copy of a result solved once per process (0.35 s)."""
+    return _bare_hull_exact().copy()
+
+
+@functools.lru_cache(maxsize=1)
+def _bare_hull_exact():
     from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
     x, r = hull_profile(801)
     return body_of_revolution_added_mass(x, r, rho=RHO, x_ref=0.0, panels=400, modes=(0, 1))
@@ -265,16 +270,25 @@ def observed_order(n, a) -> float:
         return float("nan")
 
 
+def read_rows(path) -> list:
+    """The rows (dicts) of a stored BEM csv, its '#' comment lines skipped."""
+    with open(path) as fh:
+        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+
+
+def row_matrix(row) -> np.ndarray:
+    """The symmetric 6x6 matrix of a stored row's m{i}{j} columns (:data:`TERMS`)."""
+    a = np.zeros((6, 6))
+    for i, j in TERMS:
+        a[i, j] = a[j, i] = float(row[f"m{i}{j}"])
+    return a
+
+
 def load_references() -> dict:
     """case -> {faces or 'richardson': 6x6 array} from the stored csv."""
     out: dict = {}
-    with open(DATA) as fh:
-        lines = [ln for ln in fh if not ln.startswith("#")]
-    for row in csv.DictReader(lines):
-        a = np.zeros((6, 6))
-        for i, j in TERMS:
-            a[i, j] = a[j, i] = float(row[f"m{i}{j}"])
-        out.setdefault(row["case"], {})[row["faces"]] = a
+    for row in read_rows(DATA):
+        out.setdefault(row["case"], {})[row["faces"]] = row_matrix(row)
     return out
 
 

@@ -184,14 +184,7 @@ def measure() -> list[dict]:
     rows += _rows("Capytaine capsule", "capsule", shape_class(veh), strip, ref,
                   "reference_tables/capytaine_anchor/capsule.csv",
                   [t for t in diag if ref[t] != 0.0], mirrors(veh, model), slender(veh))
-    bem = {}
-    with open(fb.DATA) as fh:
-        for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
-            if r["faces"] == "richardson":
-                m = np.zeros((6, 6))
-                for i, j in fb.TERMS:
-                    m[i, j] = m[j, i] = float(r[f"m{i}{j}"])
-                bem[r["case"]] = m
+    bem = {case: refs["richardson"] for case, refs in fb.load_references().items()}
     for case in fb.CASES:
         veh = parse_vehicle(fb.vehicle_dict(case), file=case)
         model = estimate(veh)
