@@ -27,20 +27,17 @@ Bodies (x: the mesh axis the method cuts its strips along):
 - ``ellipsoid_2to1``: a prolate spheroid of length 2D along x against ellipsoid_2to1.Cd
   (nose-on, A = pi D^2/4; Re = 1e5 on D as the reference's table states).
 
-Run: python benchmarks/drag_bodies.py   (seconds; prints model vs reference)
+Run: python -m benchmarks.drag_bodies   (seconds; prints model vs reference)
 """
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 import trimesh
 
 ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
 
 RHO = 1000.0          # water [kg/m^3]
 NU = 1e-6             # [m^2/s]

@@ -1,7 +1,7 @@
 """Write the sample data shipped in the wheel: ``src/stripcoef/samples/``.
 
-    python scripts/make_samples.py            # (re)write every sample
-    python scripts/make_samples.py --check    # exit 1 if a sample differs from what it would write
+    python -m scripts.make_samples            # (re)write every sample
+    python -m scripts.make_samples --check    # exit 1 if a sample differs from what it would write
 
 - the vehicles: copies of ``geometry/*.yaml`` (the repository keeps ``geometry/`` for the
   README's commands; ``tests/test_samples.py`` checks the copies are identical);
@@ -18,11 +18,9 @@ Deterministic: the same code writes the same bytes (seeded generators).
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path[:0] = [str(ROOT / "src"), str(ROOT)]
 
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402

@@ -210,12 +210,12 @@ def test_auto_keeps_the_strips_for_the_shipped_vehicles():
                                          ("box_1_4_1", (0.15, 0.6, 0.15))])
 def test_boxes_against_the_stored_bem(shape, size):
     """Two of the bluff shapes (benchmarks/bluff_shapes.py) against the stored Richardson BEM
-    (benchmarks/data/bem_bluff.csv): every diagonal within 5 %, the issue-14 target (measured
+    (reference_tables/bem/bem_bluff.csv): every diagonal within 5 %, the issue-14 target (measured
     +2.4 % and -1.3 % worst), off-diagonals within 10 % of the diagonal scale."""
     import csv
     from pathlib import Path
 
-    data = Path(__file__).resolve().parents[1] / "benchmarks" / "data" / "bem_bluff.csv"
+    data = Path(__file__).resolve().parents[1] / "reference_tables" / "bem" / "bem_bluff.csv"
     ref = np.zeros((6, 6))
     lines = [ln for ln in data.read_text().splitlines() if not ln.startswith("#")]
     for r in csv.DictReader(lines):

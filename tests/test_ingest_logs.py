@@ -1,6 +1,6 @@
 """Real-style logs through a column map (stripcoef.ingest) against a known truth.
 
-The truth is a 6-DOF simulation of a known model (tests/_ingest_truth.py) driven by a 50 Hz
+The truth is a 6-DOF simulation of a known model (validation/ingest_truth.py) driven by a 50 Hz
 wrench; it is written the ways real logs come: a navigation CSV with nanosecond stamps, ENU
 positions, FLU-body quaternions (x, y, z, w) and ENU earth-fixed velocities, a header-less
 50 Hz wrench file in FLU axes, and ROS 1 / ROS 2 bags (nav_msgs/Odometry, sensor_msgs/Imu,
@@ -8,16 +8,13 @@ geometry_msgs/WrenchStamped) written with rosbags' writer.
 """
 
 import shutil
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
-
-import _ingest_truth as T  # noqa: E402
+from validation import ingest_truth as T  # noqa: E402
 from stripcoef.errors import InputError, SamplingWarning  # noqa: E402
 from stripcoef.ingest import load_map, parse_map, read_mapped_log  # noqa: E402
 from stripcoef.ingest.attitude import (body_rates, euler_from_matrices,  # noqa: E402

@@ -54,6 +54,13 @@ def density_eos80(temperature, salinity):
     UNESCO (1981), Tenth report of the joint panel on oceanographic tables and
     standards, UNESCO Tech. Pap. Mar. Sci. 36; Millero & Poisson (1981), Deep-Sea
     Res. 28A, 625-629.  (15 degC, S = 35 gives 1025.97 kg/m^3.)
+
+    Examples
+    --------
+    >>> round(density_eos80(15.0, 35.0), 2)      # standard sea water
+    1025.97
+    >>> round(density_eos80(4.0, 0.0), 3)        # fresh water near its density maximum
+    999.975
     """
     t = np.asarray(temperature, dtype=float)
     s = np.asarray(salinity, dtype=float)
@@ -91,6 +98,11 @@ def dynamic_viscosity_sharqawy(temperature, salinity):
     ----------
     Sharqawy, Lienhard & Zubair (2010), Desalination and Water Treatment 16, 354-380;
     ITTC Recommended Procedure 7.5-02-01-03 (2011), "Fresh water and seawater properties".
+
+    Examples
+    --------
+    >>> round(dynamic_viscosity_sharqawy(20.0, 0.0) * 1e3, 4)   # fresh water, 20 degC [mPa s]
+    1.0018
     """
     t = np.asarray(temperature, dtype=float)
     s = np.asarray(salinity, dtype=float) / 1000.0
@@ -135,6 +147,10 @@ class Fluid:
         rho = rho_EOS80(t, S) [kg/m^3] (:func:`density_eos80`), mu = mu_Sharqawy(t, S)
         [Pa s] (:func:`dynamic_viscosity_sharqawy`), nu = mu / rho [m^2/s]; see those
         functions and the module docstring for the equations and their references.
+
+        >>> water = Fluid.from_temperature_salinity(15.0, 35.0)
+        >>> round(water.density, 2), round(water.kinematic_viscosity * 1e6, 3)   # [m^2/s] x 1e6
+        (1025.97, 1.189)
         """
         for name, value, lo, hi in (("temperature", temperature, 0.0, 40.0),
                                     ("salinity", salinity, 0.0, 42.0)):
