@@ -8,7 +8,7 @@ Run (from the repository root):
   python -m benchmarks.fin_bem_refinement --bem    # solve the meshes not yet stored (~17 min
                                                    # a case on 2 cores; the finest mesh needs
                                                    # most of 23 GB); --case CASE for another
-                                                   # hull of finned_bodies.CASES
+                                                   # hull of validation.finned.CASES
 
 Why: about mid-length, large_tail's sway-yaw and heave-pitch couplings (0.4 kg m) are the 23 %
 difference of the hull's share (+1.86 kg m) and the fins' (-1.45 kg m), so 1 % of the fins'
@@ -20,9 +20,9 @@ the finest level), and the Richardson value's spread is 7.4 %.
 Method:
 
 - **The hull's error cancels.**  The hull is meshed once (``HULL_LEVEL`` of
-  finned_bodies.MESH_LEVELS) and solved bare on that same mesh; each finned result is
+  validation.finned.MESH_LEVELS) and solved bare on that same mesh; each finned result is
   A = A_BEM(finned) - A_BEM(bare, same hull mesh) + A_exact(bare), with A_exact the
-  axisymmetric solution (finned_bodies.bare_hull_exact, exact to 0.02 %).  What is left is the
+  axisymmetric solution (validation.finned.bare_hull_exact, exact to 0.02 %).  What is left is the
   error of the fins and their junction.
 - **The fins are refined alone**, as structured boxes (:func:`fin_box`) with cosine spacing
   along the chord, across the thickness and along the span (panels clustered at the edges,

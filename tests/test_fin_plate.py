@@ -127,7 +127,7 @@ def test_large_tail_couplings_within_3_percent():
 def test_fins_shares_against_bem():
     # the fins' share (finned minus bare hull) of sway, yaw and their coupling on all six bodies
     # within 5 % plus the BEM's own spread on that term, which a share (a 3-10 % difference of
-    # two sways) carries whole (finned_bodies.richardson_spread).  Measured with the thin sheet:
+    # two sways) carries whole (validation.finned.richardson_spread).  Measured with the thin sheet:
     # sway -0.7, +1.7, -3.5, -4.9, -5.7, -1.2 %; yaw -0.2, +2.2, +3.8, -2.5, -4.8, -0.2 %;
     # coupling -0.3, +1.5, -3.7, -0.8, -5.6, +0.6 %.  Before it (the plates' 3D factor on the
     # strip shares): sway -4.8, +4.2, -0.7, -15.2, -3.1, -7.3 %, yaw off by up to 76 %
