@@ -23,9 +23,9 @@ from types import MappingProxyType
 
 import numpy as np
 
-from stripcoef.conventions import (DOF, shift_operator, sname_coefficients, skew,
-                                   transform_matrix)
-from stripcoef.errors import InputError, ModelWarning
+from stripcoef.conventions import (DOF, FORCES, VELOCITIES, shift_operator, sname_coefficients,
+                                   skew, transform_matrix)
+from stripcoef.errors import InputError, ModelWarning, unknown_name
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
 
@@ -191,7 +191,6 @@ def control_derivative_names(surfaces) -> dict:
     Two surfaces of the same kind are told apart by their name (``Y_uudr_<name>``).
     Naming after Prestero 2001, sec. 3.7 (Y_uudr, Z_uuds, M_uuds, N_uudr).
     """
-    from stripcoef.conventions import FORCES
     out: dict[str, float] = {}
     kinds = [s.kind for s in surfaces]
     for s in surfaces:
@@ -208,7 +207,6 @@ def control_derivative_names(surfaces) -> dict:
 
 def lift_names() -> dict:
     """SNAME name of ``-L[i, j]`` (force -u L nu): ``Y_uv``, ``N_ur``, ... (Prestero 2001, sec. 3.6)."""
-    from stripcoef.conventions import FORCES, VELOCITIES
     return {(i, j): f"{FORCES[i]}_u{VELOCITIES[j]}" for i in range(6) for j in range(6)}
 
 
@@ -562,7 +560,6 @@ class HydroModel:
         for s in self.control_surfaces:
             if s.name == name:
                 return s
-        from stripcoef.errors import unknown_name
         raise unknown_name("control surface", name, [s.name for s in self.control_surfaces])
 
     def restoring(self, eta) -> np.ndarray:
@@ -583,7 +580,6 @@ class HydroModel:
         for t in self.thrusters:
             if t.name == name:
                 return t
-        from stripcoef.errors import unknown_name
         raise unknown_name("thruster", name, [t.name for t in self.thrusters])
 
     def coefficients(self) -> dict:
@@ -607,7 +603,6 @@ class HydroModel:
         ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
         from stripcoef.views import MATRICES, matrix_frame
         if kind not in MATRICES:
-            from stripcoef.errors import unknown_name
             raise unknown_name("matrix", kind, MATRICES, key="kind")
         return matrix_frame(getattr(self, kind), kind)
 

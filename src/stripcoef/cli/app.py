@@ -21,6 +21,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 from stripcoef.errors import InputError, StripcoefError
+from stripcoef.files import check_output_path
 
 #: Options that name a file a command writes: checked before any work (a folder, ``.``, a
 #: missing or unwritable folder is a one-line error, not a failure after minutes of work).
@@ -81,7 +82,6 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
 
 def check_outputs(args) -> None:
     """Every output option of the command names a writable file path (before any work)."""
-    from stripcoef.files import check_output_path
 
     for dest in OUTPUT_OPTIONS:
         path = getattr(args, dest, None)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from stripcoef.errors import InputError
 
 
@@ -81,7 +83,6 @@ def fluid_from_args(args, default):
 
 def load_any_vehicle(args):
     """A Vehicle from a YAML vehicle file or from a mesh (with the mesh options)."""
-    from pathlib import Path
 
     from stripcoef.geometry.vehicle import MESH_SUFFIXES, load_vehicle
 

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+from stripcoef.cli.uncertainty import add_execution_arguments
+from stripcoef.errors import InputError
+
 
 def add_parser(sub):
-    from stripcoef.cli.uncertainty import add_execution_arguments
-
     p = sub.add_parser("sweep", help="the model and limits over a grid of vehicle-file values",
                        description="Set numbers of the vehicle file by key path "
                                    "(hull.profile[1].radius, thrusters[0].max_forward, "
@@ -37,7 +38,6 @@ def run(args) -> int:
         check_plot_path(args.plot, key="--plot")
     axes = [parse_vary(v) for v in args.vary]
     if len(axes) > 2 and args.plot:
-        from stripcoef.errors import InputError
         raise InputError("a plot shows one or two swept keys", key="--plot",
                          value=len(axes), expected="--vary given once or twice with --plot")
     frame = sweep(args.vehicle, axes, limits=args.limits, workers=args.workers,

@@ -13,10 +13,12 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.files import atomic_path, write_text
 
 #: Grid points per batch of parallel work.
 BATCH = 4
@@ -108,9 +110,7 @@ def sweep(vehicle, vary, *, limits: bool = True, radii=(0.5, 1.0, 2.0, 5.0, 10.0
 
 def write_table(frame, path, *, key: str = "path") -> None:
     """Write a sweep table atomically: ``.csv``, or ``.parquet`` (needs pyarrow)."""
-    from pathlib import Path
 
-    from stripcoef.files import atomic_path, write_text
 
     suffix = Path(path).suffix.lower()
     if suffix == ".csv":

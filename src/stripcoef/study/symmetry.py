@@ -44,6 +44,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from stripcoef.errors import InputError
+
 #: the reflections, by the axis they reverse
 MIRRORS = ("x", "y", "z")
 #: parity of (u, v, w, p, q, r) under each reflection (module docstring: the table)
@@ -64,7 +66,6 @@ def allowed_couplings(mirrors) -> np.ndarray:
     ok = np.ones((6, 6), dtype=bool)
     for m in mirrors:
         if m not in PARITY:
-            from stripcoef.errors import InputError
 
             raise InputError("unknown reflection", key="mirrors", value=m,
                              expected="x, y or z (the axis it reverses)")

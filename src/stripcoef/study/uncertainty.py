@@ -100,7 +100,6 @@ def _nominal_model(vehicle, strips):
     reference point sets the mirror symmetries the method's couplings follow
     (:func:`stripcoef.study.symmetry.mirror_symmetries`), its lift whether the lift rows are
     sampled."""
-    import warnings
 
     from stripcoef.assembly import estimate
 
