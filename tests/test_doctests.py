@@ -14,6 +14,7 @@ import pytest
 MODULES = (
     "stripcoef.fluid",
     "stripcoef.sections.added_mass",
+    "stripcoef.sections.drag",
     "stripcoef.hull.lamb",
 )
 

@@ -177,6 +177,11 @@ def blasius_cf(reynolds):
     References
     ----------
     Schlichting & Gersten, Boundary-Layer Theory (8th ed.), eq. 6.59.
+
+    Examples
+    --------
+    >>> round(float(blasius_cf(1e4)), 6)        # 1.328 / 100
+    0.01328
     """
     return 1.328 / np.sqrt(np.asarray(reynolds, dtype=float))
 
@@ -189,6 +194,11 @@ def ittc57_cf(reynolds):
     References
     ----------
     ITTC (1957), Proc. 8th ITTC; ITTC 7.5-02-02-02.
+
+    Examples
+    --------
+    >>> round(float(ittc57_cf(1e7)), 6)         # 0.075 / (7 - 2)^2
+    0.003
     """
     return 0.075 / (np.log10(np.asarray(reynolds, dtype=float)) - 2.0) ** 2
 
@@ -220,6 +230,15 @@ def friction_coefficient(reynolds, *, regime: str = "auto"):
     -------
     (float, str)
         C_f [-] and the regime name: laminar, transitional or turbulent
+
+    Examples
+    --------
+    Continuous at the transition, Re_cr = 5e5:
+
+    >>> laminar, _ = friction_coefficient(5e5, regime="laminar")
+    >>> cf, name = friction_coefficient(5e5)
+    >>> round(cf / laminar, 9), name
+    (1.0, 'transitional')
     """
     re = float(reynolds)
     if regime == "laminar":
@@ -243,6 +262,13 @@ def hoerner_form_factor(diameter_over_length):
     ----------
     Hoerner, Fluid-Dynamic Drag (1965), ch. 6, eq. 6-27 (tagged "from memory" in
     shared/reference/formulas.md sec. 5.4; values L/D = 4: 1.297, 6: 1.135, 10: 1.054).
+
+    Examples
+    --------
+    The formula at L/D = 4, 6, 10 (at L/D = 6 it gives 1.13447, quoted as 1.135):
+
+    >>> [round(float(hoerner_form_factor(1.0 / ld)), 3) for ld in (4.0, 6.0, 10.0)]
+    [1.297, 1.134, 1.054]
     """
     r = np.asarray(diameter_over_length, dtype=float)
     return 1.0 + 1.5 * r**1.5 + 7.0 * r**3
