@@ -147,7 +147,7 @@ def write_references(levels: dict) -> None:
         fh.write("# Added mass of finned Myring hulls (benchmarks/finned_bodies.py CASES), Capytaine BEM,\n"
                  "# direct method, two reflection symmetries, no free surface, rho = 1025 kg/m^3, about the origin (mid-length),\n"
                  "# FRD body axes; M_A entries (Fossen signs, positive diagonal) [kg, kg m, kg m^2].\n"
-                 "# Source: computed by benchmarks/finned_bodies.py --bem (stripcoef.bem.bem_added_mass);\n"
+                 "# Source: computed by python -m benchmarks.finned_bodies --bem (stripcoef.bem.bem_added_mass);\n"
                  "# faces = full-body mesh size (4 x the solved quarter), 'richardson' = A_3 + (A_3 - A_2) N_2/(N_3 - N_2) from the two finest\n"
                  "# meshes (second order in h; the coarsest checks the order, benchmarks/finned_bodies.py observed_order).\n")
         w = csv.writer(fh)

@@ -71,7 +71,7 @@ def run_bem():
     are kept and compare() skips a ratio without both levels)."""
     with open(DATA, "w", newline="") as fh:
         fh.write("# Normal added mass of thin rectangular plates a x b (a = 1 m the shorter side), lambda = A_33 / (rho pi/4 a^2 b) [-].\n"
-                 "# Source: computed by benchmarks/plate_added_mass.py --bem (Capytaine, direct method, quarter mesh with two\n"
+                 "# Source: computed by python -m benchmarks.plate_added_mass --bem (Capytaine, direct method, quarter mesh with two\n"
                  "# reflection symmetries, no free surface); t_over_a = thickness / a [-], faces = full-plate mesh size.\n")
         w = csv.writer(fh)
         w.writerow(["b_over_a", "t_over_a", "faces", "lambda"])
