@@ -7,6 +7,7 @@
 - nothing imports tests/ (not a package, so import-linter cannot see it), and no file edits
   ``sys.path`` (benchmarks/ and scripts/ are packages run with ``python -m``);
 - docs/architecture.md names every module of src/stripcoef;
+- stored references live in reference_tables/ only, each computed csv named in its README;
 - no CLI vocabulary below the CLI: library errors name parameters (``radii``), and the CLI
   rewords them into its flags (``--radii``).
 """
@@ -153,3 +154,16 @@ def test_architecture_page_names_every_module():
                               or f"`{Path(folder).name}/{name}`" in r for r in row):
             missing.append(f"{folder}/{name}")
     assert not missing, "docs/architecture.md does not name: " + ", ".join(missing)
+
+
+def test_stored_references_have_one_home():
+    # stored reference data live in reference_tables/ (the computed ones in bem/ and
+    # method_errors/, each csv named in its folder's README with the command that remakes it);
+    # benchmarks/data keeps only the benchmarks' markdown outputs
+    stray = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "benchmarks").rglob("*")
+                   if p.is_file() and p.suffix not in (".py", ".md") and "__pycache__" not in p.parts)
+    assert not stray, stray
+    for folder in ("bem", "method_errors"):
+        readme = (ROOT / "reference_tables" / folder / "README.md").read_text()
+        for csv_file in (ROOT / "reference_tables" / folder).glob("*.csv"):
+            assert f"`{csv_file.name}`" in readme, (folder, csv_file.name)
