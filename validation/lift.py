@@ -76,6 +76,61 @@ def flat_plate_section() -> list[str]:
             "not in the model (the SUBOFF comparison below).", ""]
 
 
+def appendix_curve(config: int, quantity: str, table: str = "appendix_b_static"):
+    """(angle [deg], coefficient) arrays of one Appendix B series of Roddy 1990, sorted by angle
+    (reference_tables/roddy1990_suboff): ``quantity`` Y, N (configurations 2-6, against drift
+    beta), Z, M (configuration 1, against incidence alpha); from ``appendix_b_stock`` the stock
+    force Y (configurations 2, 5, against drift) of one appendage. Points whose coefficient the
+    OCR text does not hold are absent."""
+    rows = {r["name"]: r["value"] for r in ref.load_table(SUBOFF, table)}
+    prefix = "B" if table == "appendix_b_static" else "S"
+    angle = "alpha" if config == 1 else "beta"
+    pts = []
+    for name, value in rows.items():
+        parts = name.split(".")
+        if parts[0] == prefix and parts[1] == f"c{config}" and parts[3] == angle:
+            key = f"{prefix}.c{config}.{parts[2]}.{quantity}"
+            if key in rows:
+                pts.append((value, rows[key]))
+    pts.sort()
+    return np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
+
+
+def deflection_points(config: int):
+    """(deflection [deg], stock force) of Roddy's deflected appendage at about zero drift or
+    incidence: configuration 2's upper rudder (Y_S'), configuration 1's port sternplane (Z_S')."""
+    rows = {r["name"]: r["value"] for r in ref.load_table(SUBOFF, "appendix_b_stock")}
+    q = "Z" if config == 1 else "Y"
+    pts = sorted((v, rows[n[:-len("delta")] + q]) for n, v in rows.items()
+                 if n.startswith(f"S.c{config}.") and n.endswith(".delta"))
+    return np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
+
+
+def odd_slope(angle_deg, value, *, max_deg: float = 4.2) -> float:
+    """Least-squares slope d(value)/d(sin angle) over |angle| <= ``max_deg`` with a free offset
+    (the zero tare): the linear derivative of a measured curve, per radian."""
+    a = np.radians(np.asarray(angle_deg, float))
+    sel = np.abs(np.asarray(angle_deg, float)) <= max_deg
+    design = np.c_[np.sin(a[sel]), np.ones(int(sel.sum()))]
+    return float(np.linalg.lstsq(design, np.asarray(value, float)[sel], rcond=None)[0][0])
+
+
+def stock_lift_slopes() -> dict:
+    """Lift slope [1/rad] of one SUBOFF stern appendage measured on its stock (Roddy 1990 App.
+    B) on its printed area (Table 1, 0.267 ft^2): C_L = Y_S' L_BP^2 / S. ``drift``:
+    configuration 5's upper rudder against drift (beta > 0 is v < 0, the fin's angle of attack
+    beta, its lift +Y); ``rudder``: configuration 2's upper rudder
+    deflected +-5 to 15 deg at zero drift; ``sternplane``: configuration 1's port sternplane
+    (Z_S' < 0 for a positive deflection)."""
+    scale = val("t1.L_BP") ** 2 / val("t1.plane.S")
+    beta, ys = appendix_curve(5, "Y", "appendix_b_stock")
+    out = {"drift": odd_slope(beta, ys) * scale}
+    for key, config, sign in (("rudder", 2, 1.0), ("sternplane", 1, -1.0)):
+        d, f = deflection_points(config)
+        out[key] = sign * odd_slope(d, f, max_deg=15.0) * scale
+    return out
+
+
 def afterbody_radius(x):
     """SUBOFF afterbody radius [ft] at x [ft] (Groves et al. 1989 equation, constants as read:
     reference_tables/roddy1990_suboff/README.md)."""
