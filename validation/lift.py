@@ -474,6 +474,148 @@ def suboff_rows() -> list[tuple]:
     return rows
 
 
+#: The issue's tolerances on the SUBOFF comparison (issue 34): kind -> relative tolerance.
+SUBOFF_TOLERANCE = {"static": 0.15, "rotary": 0.25, "control": 0.15, "bare": 0.10}
+#: Derivatives compared, with their kind: horizontal plane (configurations 2-6) and the vertical
+#: plane and sternplanes (configuration 1), the rudder (configuration 2).
+SUBOFF_TERMS = {"Yv": "static", "Nv": "static", "Yr": "rotary", "Nr": "rotary"}
+SUBOFF_VERTICAL = {"Zw": "static", "Mw": "static", "Zq": "rotary", "Mq": "rotary",
+                   "Zds": "control", "Mds": "control"}
+#: Configurations compared -> the model configuration that represents them (the ring wing is not
+#: built: configurations 1 and 2 are compared without it, configuration 6 with the bare hull).
+SUBOFF_COMPARED = {3: 3, 4: 4, 5: 5, 6: 3, 2: 2, 1: 2}
+
+
+def suboff_comparisons() -> list[dict]:
+    """Every Table 4 derivative that stripcoef predicts, per configuration: measured (with
+    Appendix C's uncertainty), the model with Hoerner's body lift (the default) and with the
+    slender-body lift (``body_lift: slender``), and whether the latter meets the issue's
+    tolerance: static within 15 % and control within 15 % for configurations 1, 2, 4, 5; rotary
+    with the right sign and within 25 %; for 3 and 6 N'_v within 10 % and the rotary signs."""
+    out = []
+    for config, built in SUBOFF_COMPARED.items():
+        terms = dict(SUBOFF_VERTICAL) if config == 1 else dict(SUBOFF_TERMS)
+        if config == 2:
+            terms.update({"Ydr": "control", "Ndr": "control"})
+        hoerner, slender = suboff_derivatives(built, "on"), suboff_derivatives(built, "slender")
+        for name, kind in terms.items():
+            row = ref.reference_value(SUBOFF, f"c{config}.{name}")
+            measured = row["value"]
+            ratio = slender[name] / measured
+            same_sign = ratio > 0
+            if config in (3, 6):
+                if name == "Nv":
+                    tol, ok = SUBOFF_TOLERANCE["bare"], abs(ratio - 1) <= SUBOFF_TOLERANCE["bare"]
+                elif kind == "rotary":
+                    tol, ok = None, same_sign
+                else:
+                    tol, ok = None, None           # Y'_v: its error stated only
+            else:
+                tol = SUBOFF_TOLERANCE[kind]
+                ok = same_sign and abs(ratio - 1) <= tol
+            out.append({"config": config, "built": built, "name": name, "kind": kind,
+                        "measured": measured, "uncertainty": row["rtol"],
+                        "hoerner": hoerner[name], "slender": slender[name], "ratio": ratio,
+                        "tolerance": tol, "ok": ok})
+    return out
+
+
+def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0)) -> list[dict]:
+    """The model's Y'(beta), N'(beta) of configurations 2 (without the ring wing), 3, 4 and 5
+    against the odd part of Roddy's Appendix B curves (tares removed), at drift ``angles``
+    [deg]: the whole non-linear force of the model (Munk part of C_A, damping with the
+    cross-flow drag, lift) at nu = U (cos beta, -sin beta, 0, 0, 0, 0), U = Roddy's 6.5 knots
+    (report p. 3), both body-lift methods."""
+    speed = 6.5 * 1852.0 / 3600.0
+    out = []
+    for config in (2, 3, 4, 5):
+        for method in ("on", "slender"):
+            model = suboff_model(config, method)
+            h = 0.5 * model.density
+            lbp = FT * val("t1.L_BP")
+            for a in angles:
+                b = math.radians(a)
+                nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
+                tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
+                tau = tau / speed ** 2
+                for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
+                    deg, coef = appendix_curve(config, q)
+                    measured = 0.5 * (np.interp(a, deg, coef) - np.interp(-a, deg, coef))
+                    out.append({"config": config, "method": method, "beta": a, "q": q,
+                                "measured": float(measured), "model": float(tau[i] / (h * lbp ** k))})
+    return out
+
+
+def suboff_table_section() -> list[str]:
+    """The 'every configuration and derivative' subsection of docs/validation.md."""
+    rows = []
+    for c in suboff_comparisons():
+        verdict = {True: "yes", False: "no (strict xfail)", None: "error stated"}[c["ok"]]
+        rows.append((str(c["config"]), f"{c['name']}'", f"{c['measured']:.6f}",
+                     f"{100 * c['uncertainty']:.0f} %", f"{c['hoerner']:.5f}",
+                     f"{c['slender']:.5f}", f"{c['ratio']:.2f}",
+                     "sign" if c["tolerance"] is None and c["ok"] is not None else
+                     ("" if c["tolerance"] is None else f"{100 * c['tolerance']:.0f} %"), verdict))
+    curve = []
+    by = {}
+    for c in drift_curve_comparisons():
+        by.setdefault((c["config"], c["beta"], c["q"]), {})[c["method"]] = c
+    for (config, beta, q), d in sorted(by.items()):
+        m = d["on"]["measured"]
+        curve.append((str(config), f"{beta:.0f}", f"{q}'", f"{m:.5f}",
+                      f"{d['on']['model']:.5f} ({d['on']['model'] / m:.2f})",
+                      f"{d['slender']['model']:.5f} ({d['slender']['model'] / m:.2f})"))
+    stock = stock_lift_slopes()
+    ar = float(suboff_model(5).conditions.lift["fin_lift"][0]["aspect_ratio"])
+    cla = float(fin_lift_slope(ar))
+    return [
+        "#### Every configuration and derivative (Roddy 1990, Table 4)", "",
+        "All of Table 4 that stripcoef predicts, read from the report's public OCR text "
+        "(reference_tables/roddy1990_suboff/table4_derivatives.csv), about Roddy's moment point "
+        "6.6042 ft aft of the nose, on L_BP = 13.9792 ft. The model: the Groves et al. hull and "
+        "Table 1's sail and stern planes as vehicles (`validation.lift.suboff_vehicle_data`); the "
+        "ring wing is not built (its geometry is not in Roddy's report), so configurations 1 "
+        "and 2 are compared without it and configuration 6 (hull + ring) with the bare hull. "
+        "'Hoerner' is the default body lift (a point force at 0.65 l answering the sideslip at "
+        "the centre of buoyancy); 'slender' is `body_lift: slender` (slender-body lift ahead of "
+        "Hopkins's separation station, answering the local cross-flow; docs/theory.md). Ratio "
+        "= slender / measured. Tolerances are the issue's: static and control 15 %, rotary "
+        "right sign and 25 % (configurations 1, 2, 4, 5); N'_v 10 % and rotary signs for 3 and "
+        "6 (tests/test_lift_data.py; a miss is a strict xfail):", "",
+        markdown_table(["config", "derivative", "measured", "uncertainty", "Hoerner",
+                        "slender", "ratio", "tolerance", "met"], rows), "",
+        "The slender-body rule gets the rotary terms from the local cross-flow: the bare hull's "
+        "Y'_r and N'_r now have the measured signs (Hoerner's form: Y'_r wrong, N'_r zero) and "
+        "the fully appended Z'_q, M'_q, N'_r are within 6 %. Its one published constant, "
+        "Hopkins's separation station x_0 = 0.378 l + 0.527 x_1 (0.825 l on SUBOFF), was "
+        "correlated on missile bodies with boat-tails; SUBOFF's streamlined afterbody keeps "
+        "its flow attached further aft, so the body lift is too large (bare-hull Y'_v 2.8 "
+        "times; DATCOM's (k2 - k1) factor changes it by 3 %) and the moments too small. A "
+        "separation station near 0.88 l would put all four bare-hull derivatives within 25 %, "
+        "but that station would be fitted to these data, so it is not used. The rudder and "
+        "sternplane derivatives (isolated Helmbold fins, no interference) are within 16 %, "
+        "but only because two errors cancel (below).", "",
+        "#### One stern appendage's own force, measured on its stock", "",
+        f"The model's stern plane: AR_e = {ar:.2f}, Helmbold slope {cla:.2f} /rad on its "
+        "exposed area. Measured (Roddy App. B, C_L = Y_S' L_BP^2 / S on the printed 0.267 ft^2; "
+        f"`validation.lift.stock_lift_slopes`): {stock['drift']:.2f} /rad in drift "
+        f"(configuration 5's upper rudder; model {100 * (cla / stock['drift'] - 1):+.0f} %), "
+        f"{stock['rudder']:.2f} /rad deflected (configuration 2's upper rudder; "
+        f"{100 * (cla / stock['rudder'] - 1):+.0f} %), {stock['sternplane']:.2f} /rad "
+        "(configuration 1's port sternplane). The fin alone is too strong by 45-70 %, and the "
+        "whole-body control force (Y'_dr) is 1.4 times the stocks' (the lift carried over onto "
+        "the afterbody), which the model leaves out: the two cancel. Not closed here: a "
+        "published method for the lift of a thick (NACA 0020) low-aspect-ratio fin inside the "
+        "afterbody's boundary layer, with the carry-over onto a closing body (strict xfail, "
+        "tests/test_lift_data.py).", "",
+        "#### Force and moment against drift (Roddy 1990, Appendix B)", "",
+        "The model's whole non-linear force (Munk part of C_A, the strips' cross-flow drag, "
+        "the lift) at drift beta against the odd part of Roddy's curves (zero tares removed); "
+        "in brackets model / measured. Configuration 2 without the ring wing:", "",
+        markdown_table(["config", "beta [deg]", "", "measured", "Hoerner", "slender"], curve), "",
+    ]
+
+
 def section() -> str:
     m = remus()
     coeffs = m.coefficients()
@@ -572,6 +714,7 @@ def section() -> str:
         "Fehlner's fin data and a digitisation of low-aspect-ratio rectangular-wing lift "
         "curves (the one public plate table found, attributed to Pelletier & Mueller 2000, is a "
         "rounded sketch).", "",
+        *suboff_table_section(),
         "### Rudder step: simulate against limits", "",
         "REMUS made neutral (mass = rho V, no propeller torque), u = 1.2 m/s, rudder 10 deg, "
         "60 s (tests/test_lift_control.py::test_rudder_step_reaches_the_steady_turn_of_limits):",
