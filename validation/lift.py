@@ -566,6 +566,7 @@ def suboff_table_section() -> list[str]:
                       f"{d['on']['model']:.5f} ({d['on']['model'] / m:.2f})",
                       f"{d['slender']['model']:.5f} ({d['slender']['model'] / m:.2f})"))
     stock = stock_lift_slopes()
+    carry = val("c2.Ydr") / (2.0 * stock["rudder"] * val("t1.plane.S") / val("t1.L_BP") ** 2)
     ar = float(suboff_model(5).conditions.lift["fin_lift"][0]["aspect_ratio"])
     cla = float(fin_lift_slope(ar))
     return [
@@ -603,8 +604,9 @@ def suboff_table_section() -> list[str]:
         f"{stock['rudder']:.2f} /rad deflected (configuration 2's upper rudder; "
         f"{100 * (cla / stock['rudder'] - 1):+.0f} %), {stock['sternplane']:.2f} /rad "
         "(configuration 1's port sternplane). The fin alone is too strong by 45-70 %, and the "
-        "whole-body control force (Y'_dr) is 1.4 times the stocks' (the lift carried over onto "
-        "the afterbody), which the model leaves out: the two cancel. Not closed here: a "
+        f"whole-body control force Y'_dr is {carry:.2f} times the two rudders' stock forces (the "
+        "lift carried over onto the afterbody), which the model leaves out: the two cancel. "
+        "Not closed here: a "
         "published method for the lift of a thick (NACA 0020) low-aspect-ratio fin inside the "
         "afterbody's boundary layer, with the carry-over onto a closing body (strict xfail, "
         "tests/test_lift_data.py).", "",
