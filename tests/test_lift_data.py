@@ -337,3 +337,22 @@ def test_drift_curves_within_20_percent():
     for c in drift_curve_comparisons():
         if c["method"] == "slender":
             assert c["model"] == pytest.approx(c["measured"], rel=0.20), c
+
+
+@pytest.mark.parametrize("config", [2, 3, 4, 5])
+def test_suboff_vehicle_files_are_current(config):
+    """validation/suboff/config<n>.yaml is what scripts/make_suboff_vehicles.py writes, and it
+    loads as a vehicle with the expected appendages."""
+    import yaml
+    from pathlib import Path
+
+    from stripcoef.geometry.vehicle import load_vehicle
+    from validation.lift import suboff_vehicle_data
+
+    path = Path(__file__).resolve().parents[1] / "validation" / "suboff" / f"config{config}.yaml"
+    assert yaml.safe_load(path.read_text()) == suboff_vehicle_data(config), \
+        "stale: run python scripts/make_suboff_vehicles.py"
+    vehicle = load_vehicle(path)
+    names = {b.name for b in vehicle.bodies}
+    assert ("sail" in names) == (config in (2, 4))
+    assert ("plane_top" in names) == (config in (2, 5))
