@@ -121,8 +121,10 @@ def format_table(model) -> str:
     lift = c.get("lift", {})
     if "body_lift" in lift:
         b = lift["body_lift"]
+        where = (f"x_0 = {b['separation_x']:.4g} m (slender body)" if "separation_x" in b
+                 else f"x_cp = {b['center_of_pressure_x']:.4g} m")
         out.append(f"  {'body_lift':32s} l = {b['length']:.4g} m, d = {b['diameter']:.4g} m, "
-                   f"x_cp = {b['center_of_pressure_x']:.4g} m")
+                   + where)
     for f in lift.get("fin_lift", []):
         out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
                    f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2"
