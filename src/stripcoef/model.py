@@ -259,8 +259,10 @@ class Conditions(Mapping):
     axial_drag_method : str
         How the hull's axial drag was obtained: ``form_factor`` (friction with Hoerner's
         streamlined-body form factor, closed hull of L/D >= 3), ``measured_short_body`` (the
-        measured drag of ellipsoids, L/D <= 2), ``bridge`` (between the two) or ``blunt``
-        (flat end: the measured drag of flat-ended bodies end-on, plus plain friction)
+        measured drag of ellipsoids, L/D <= 2), ``bridge`` (between the two), ``blunt``
+        (flat bow: the measured drag of flat-ended bodies end-on, plus plain friction) or
+        ``blunt_base`` (closed bow, flat stern: the measured drag of ellipsoids of its L/D,
+        plus plain friction)
     blunt_hull_cd : float
         Axial whole-body drag coefficient of a blunt hull on its largest section [-]
     blunt_hull_aspect_ratio : float

@@ -26,6 +26,9 @@ from stripcoef.errors import ModelWarning
 #: its L/D a few parts per thousand above 2 (the bridge moves C_D by 2 % at most there)
 BRIDGE_QUIET = 0.02
 
+#: an end section larger than this fraction of the largest section is a flat (truncated) end
+FLAT_END = 0.25
+
 
 def local_exponent(fn, *re):
     """n_k = 2 + d ln C_D,k / d ln Re_k (power-law exponent of the drag force in speed).
@@ -94,9 +97,15 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
       the measured whole-body drag of ellipsoids of its L/D,
       :math:`X = -\tfrac12\rho C_D(L/D, Re_D) A_f u|u|`, bridged to the form factor between
       L/D 2 and 3 (:func:`stripcoef.sections.drag.closed_body_axial_cd`, with a warning there);
-      a hull with a flat end: the measured whole-body drag of flat-ended bodies end-on by L/D
-      and frontal aspect ratio (:func:`stripcoef.sections.drag.blunt_cylinder_axial_cd`: a
-      thin plate normal to the flow at L/D -> 0) plus plain friction (no form factor);
+      a hull with a flat bow (its +x end, which meets the flow going ahead): the measured
+      whole-body drag of flat-ended bodies end-on by L/D and frontal aspect ratio
+      (:func:`stripcoef.sections.drag.blunt_cylinder_axial_cd`: a thin plate normal to the
+      flow at L/D -> 0); a closed bow and a flat stern only: the measured drag of closed
+      bodies whose flow separates, the ellipsoids of its L/D
+      (:func:`stripcoef.sections.drag.ellipsoid_axial_cd`) [assumption: the base separates
+      the flow as a laminar separation does; the |u|u term then holds going ahead, and
+      underestimates the drag going astern, flat face first]; both plus plain friction
+      (no form factor);
       appendages: the blunt-body curve on their frontal area (fins: friction on both faces);
     - roll: skin friction on the hull's perimeter and the cross-flow of off-axis parts.
 
@@ -145,27 +154,39 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         r_h = np.array([x_h, y_h, z_h])
         ld_hull = L / max_d
         a_frontal = np.pi * max_d**2 / 4
-        # blunt ends: a hull that does not close gets the measured whole-body drag of
-        # flat-ended bodies end-on (pressure drag on the frontal area); its friction is the
-        # plain friction line, the streamlined-body form factor being outside its source
+        # flat ends: a hull that does not close gets the measured whole-body drag of its
+        # class on the frontal area, by the end that meets the flow going ahead (+x, FRD):
+        # a flat bow, the flat-ended bodies end-on; a closed bow with a flat stern only, the
+        # closed bodies whose flow separates (ellipsoids: a base separates the flow as a
+        # laminar separation does); its friction is the plain friction line, the
+        # streamlined-body form factor being outside its source
         blunt = False
+        blunt_kind = ""
+        re_d = speed * max_d / nu
         for p in hull_parts:
             a_max = float(np.max(p.area))
-            if hull_body is not None:    # exact end sections of the profile
+            if hull_body is not None:    # exact end sections of the profile (stern, bow)
                 lo, hi = hull_body.x_extent()
                 ends = [hull_body.half_breadth(np.array([x]))[0]
                         * hull_body.half_height(np.array([x]))[0] for x in (lo, hi)]
-                end_ratio = float(max(ends)) / float(np.max(p.half_breadth * p.half_height))
-            else:                        # mesh: end strips
-                end_ratio = max(float(p.area[0]), float(p.area[-1])) / a_max
-            if p.index.size and end_ratio > 0.25:   # flat or truncated end
-                width, height = 2 * float(np.max(p.half_breadth)), 2 * float(np.max(p.half_height))
-                aspect = max(width, 1e-12) / max(height, 1e-12)
+                stern, bow = (float(e) / float(np.max(p.half_breadth * p.half_height))
+                              for e in ends)
+            else:                        # mesh: end strips (strips run aft to fore)
+                stern, bow = float(p.area[0]) / a_max, float(p.area[-1]) / a_max
+            if not p.index.size or max(stern, bow) <= FLAT_END:
+                continue
+            width, height = 2 * float(np.max(p.half_breadth)), 2 * float(np.max(p.half_height))
+            aspect = max(width, 1e-12) / max(height, 1e-12)
+            if bow > FLAT_END:           # the flat face meets the flow
                 cd_b = float(sdrag.blunt_cylinder_axial_cd(ld_hull, aspect))
-                elems.append((r_h, np.array([0.5 * rho * cd_b * a_max, 0, 0]),
-                              np.array([2.0, 2, 2])))
-                cond.update({"blunt_hull_cd": cd_b, "blunt_hull_aspect_ratio": aspect})
-                blunt = True
+                blunt_kind = "blunt"
+            else:                        # a closed bow and a flat base
+                cd_b = float(sdrag.ellipsoid_axial_cd(ld_hull, re_d))
+                blunt_kind = blunt_kind or "blunt_base"
+            elems.append((r_h, np.array([0.5 * rho * cd_b * a_max, 0, 0]),
+                          np.array([2.0, 2, 2])))
+            cond.update({"blunt_hull_cd": cd_b, "blunt_hull_aspect_ratio": aspect})
+            blunt = True
         lo_ff, hi_ff = sdrag.FORM_FACTOR_LD
         if blunt or ld_hull >= hi_ff:
             # friction with the form factor of a streamlined body inside its range; a blunt
@@ -178,8 +199,6 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         else:
             # a short closed hull: the measured whole-body drag of ellipsoids of its L/D
             # (the flow separates), bridged to the form factor between L/D 2 and 3
-            re_d = speed * max_d / nu
-
             def axial_cd(s):
                 c_f = sdrag.friction_coefficient(re_l * float(s), regime=regime)[0]
                 return (sdrag.closed_body_axial_cd(ld_hull, re_d * float(s), c_f,
@@ -200,7 +219,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         cond.update({"wetted_area": s_wet, "form_factor": ff,
                      "axial_drag_coefficient_wetted": cd_axial * a_frontal / s_wet,
                      "axial_drag_coefficient_frontal": cd_axial,
-                     "axial_drag_method": "blunt" if blunt else (
+                     "axial_drag_method": blunt_kind if blunt else (
                          "form_factor" if ld_hull >= hi_ff else
                          "measured_short_body" if ld_hull <= lo_ff * (1 + BRIDGE_QUIET) else "bridge")})
     # --- appendages: axial pressure drag (blunt) on the frontal area
