@@ -15,12 +15,13 @@ error, the reference's source). The references, all stored data or exact formula
   the Richardson rows; vehicle files of validation/finned.py);
 - the 24 bluff shapes against Capytaine (reference_tables/bem/bem_bluff.csv, Richardson), the
   ellipsoids' diagonals against Lamb (as benchmarks/bluff_shapes.py does);
-- translational quadratic drag: a sphere, a cube face-on and edge-on, two cones, a hemisphere
-  and a 2:1 ellipsoid against their measured whole-body drag coefficients
-  (reference_tables/body_drag_3d, Hoerner 1965 via public copies; bodies, sizes and Re = 1e5 in
-  benchmarks/drag_bodies.py). Bodies whose drag the method reads from the same number (disc,
-  square plate, cylinders along or across the flow, streamlined bodies of revolution) are not
-  used: reference_tables/body_drag_3d/README.md.
+- translational quadratic drag: a sphere (across), a cube face-on and edge-on, three cones and a
+  hemisphere against their measured whole-body drag coefficients (reference_tables/body_drag_3d,
+  Hoerner 1965 via public copies; bodies, sizes and Re = 1e5 in benchmarks/drag_bodies.py), the
+  held-out rows only: a row whose number the model's own curves are built from (the sphere and
+  the 2:1 ellipsoid nose-on, the disc, the square plate, cylinders end-on: drag_bodies.BUILT_FROM,
+  issue 35) is not used, nor are the bodies of reference_tables/body_drag_3d/README.md that the
+  method reads from the same number.
 
 Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_class), never by
 its name. The second step reads that file and writes src/stripcoef/data/method_uncertainty.csv:
@@ -269,6 +270,8 @@ def drag_rows(mirrors) -> list[dict]:
         sym = " ".join(sorted(mirrors(veh, model))) or "none"
         for r in rows:
             k = r["dof"]
+            if not r["held_out"]:      # the reference is a number the model's curve is built from
+                continue
             out.append({"set": DRAG_SET, "shape": name, "class": cls,
                         "matrix": "quadratic_damping", "family": _family(k, k),
                         "term": quadratic_damping_name(k, k), "strip": f"{r['cd_model']:.8g}",

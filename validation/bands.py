@@ -39,8 +39,9 @@ def section() -> str:
              "is generated from those errors: sd of ln = q95 / 1.96, q95 the split-conformal 95 % "
              "quantile of |ln(strip/ref)| (couplings: |strip - ref| / sqrt(A_ii A_jj), sampled as an "
              "additive move of that scale). `claim` = k/(n+1), the chance that a new term of the class falls in the "
-             "band. Drag rows are assumed (no independent drag reference is stored) and linear "
-             "damping is not predicted (docs/uncertainty.md).\n",
+             "band. Translational drag rows of the revolution and bluff classes are measured on the "
+             "held-out bodies of the drag section above, the other drag rows are assumed, and "
+             "linear damping is not predicted (docs/uncertainty.md).\n",
              markdown_table(["class", "DOF group", "distribution", "sd", "q95",
                              "terms / shapes", "claim"], _method_rows()),
              "\n### Coverage out of sample\n"]

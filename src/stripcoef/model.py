@@ -252,9 +252,19 @@ class Conditions(Mapping):
     form_factor : float
         Hoerner form factor FF [-]
     axial_drag_coefficient_wetted, axial_drag_coefficient_frontal : float
-        C_f FF on the wetted area, and the same drag on the frontal area [-]
+        The hull's axial drag (without a blunt hull's end drag) on the wetted area, and the
+        same drag on the frontal area [-]
+    axial_drag_method : str
+        How the hull's axial drag was obtained: ``form_factor`` (friction with Hoerner's
+        streamlined-body form factor, closed hull of L/D >= 3), ``measured_short_body`` (the
+        measured drag of ellipsoids, L/D <= 2), ``bridge`` (between the two), ``blunt``
+        (flat bow: the measured drag of flat-ended bodies end-on, plus plain friction) or
+        ``blunt_base`` (closed bow, flat stern: the measured drag of ellipsoids of its L/D,
+        plus plain friction)
     blunt_hull_cd : float
-        Axial pressure drag coefficient of a blunt hull end [-]
+        Axial whole-body drag coefficient of a blunt hull on its largest section [-]
+    blunt_hull_aspect_ratio : float
+        Width over height of that section, which sets a thin plate's drag [-]
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -310,7 +320,9 @@ class Conditions(Mapping):
     form_factor: float | None = None
     axial_drag_coefficient_wetted: float | None = None
     axial_drag_coefficient_frontal: float | None = None
+    axial_drag_method: str | None = None
     blunt_hull_cd: float | None = None
+    blunt_hull_aspect_ratio: float | None = None
     hull_reynolds_diameter: float | None = None
     hull_crossflow_cd_y: float | None = None
     hull_crossflow_cd_z: float | None = None
