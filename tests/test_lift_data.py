@@ -351,7 +351,7 @@ def test_suboff_vehicle_files_are_current(config):
 
     path = Path(__file__).resolve().parents[1] / "validation" / "suboff" / f"config{config}.yaml"
     assert yaml.safe_load(path.read_text()) == suboff_vehicle_data(config), \
-        "stale: run python scripts/make_suboff_vehicles.py"
+        "stale: run python -m scripts.make_suboff_vehicles"
     vehicle = load_vehicle(path)
     names = {b.name for b in vehicle.bodies}
     assert ("sail" in names) == (config in (2, 4))

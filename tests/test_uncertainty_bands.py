@@ -99,7 +99,7 @@ def test_drag_rows_are_measured_on_the_published_bodies_and_regenerate():
     assert q[("revolution", "translation")]["basis"] == "measured"
     # every held-out row of benchmarks/drag_bodies.py is in the errors file, and no row whose
     # reference the model's curves are built from (issue 35)
-    from benchmarks import drag_bodies as db
+    from validation import drag_bodies as db
     held = [(name, k) for name, b in db.BODIES.items() for k, _ in b[3] if db.held_out(name, k)]
     assert {r["shape"] for r in drag} == {name for name, _ in held}
     assert len(drag) == len(held)
@@ -107,7 +107,7 @@ def test_drag_rows_are_measured_on_the_published_bodies_and_regenerate():
 
 def test_drag_body_rows_reproduce_the_model():
     """The cube's stored drag errors are what stripcoef gives now (benchmarks/drag_bodies.py)."""
-    from benchmarks import drag_bodies as db
+    from validation import drag_bodies as db
     from stripcoef.conventions import quadratic_damping_name
 
     stored = {r["term"]: r for r in _script().read_errors()

@@ -1,6 +1,6 @@
 """Validation section: whole-body drag against measured simple bodies (issue 35).
 
-The bodies, sizes and Reynolds number are those of benchmarks/drag_bodies.py (its docstring);
+The bodies, sizes and Reynolds number are those of validation/drag_bodies.py (its docstring);
 the references are reference_tables/body_drag_3d (Hoerner 1965 via public copies). Each row is
 held out (no number of it is an input of the model) or built from one of the model's own
 curves (drag_bodies.BUILT_FROM): the latter check only that a mesh reaches its curve, and are
@@ -9,20 +9,18 @@ not used to measure the method's band (scripts/make_method_uncertainty.py).
 
 from __future__ import annotations
 
-import sys
 import warnings
 
 import numpy as np
 
-from validation import ROOT, markdown_table
+from validation import markdown_table
 
 #: the issue's target: every translational term within 25 % of its reference
 TARGET = 0.25
 
 
 def _rows():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import drag_bodies as db
+    from validation import drag_bodies as db
     from stripcoef.assembly.estimate import estimate
     from stripcoef.conventions import quadratic_damping_name
     from stripcoef.study.shapes import shape_class
@@ -67,7 +65,7 @@ def section() -> str:
     built = [abs(np.log(r["model"] / r["ref"])) for r in rows if not r["held_out"]]
     return "\n".join([
         "## Whole-body drag against measured simple bodies (issue 35)\n",
-        "`python benchmarks/drag_bodies.py`: closed meshes of size D = 0.1 m in water at 1 m/s "
+        "`python -m benchmarks.drag_bodies`: closed meshes of size D = 0.1 m in water at 1 m/s "
         "(Re = 1e5 on D), the model's quadratic term over the reference's area, "
         "C_D = |D_Q[k,k]| / (1/2 rho A), against the measured whole-body drag of "
         "reference_tables/body_drag_3d (Hoerner 1965 via public copies: which copy, its page and "
