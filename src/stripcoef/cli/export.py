@@ -66,6 +66,11 @@ def run(args) -> int:
         raise InputError(f"format {args.to} is binary and is not printed", key="output",
                          expected="-o FILE")
     model = load_model(args.vehicle)
+    if model.provenance.get("method") == "strip theory" and not model.bands:
+        # estimated from a vehicle file here: its method bands go into the files' comments
+        from stripcoef.geometry.vehicle import load_vehicle
+        from stripcoef.study.bands import with_bands
+        model = with_bands(model, load_vehicle(args.vehicle))
     options = dict(point=args.point, axes=args.axes, link_name=args.link_name,
                    legacy_added_mass=args.legacy_added_mass, fortress=args.fortress,
                    buoyancy_volume=args.buoyancy_volume,
