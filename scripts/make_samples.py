@@ -3,8 +3,9 @@
     python -m scripts.make_samples            # (re)write every sample
     python -m scripts.make_samples --check    # exit 1 if a sample differs from what it would write
 
-- the vehicles: copies of ``geometry/*.yaml`` (the repository keeps ``geometry/`` for the
-  README's commands; ``tests/test_samples.py`` checks the copies are identical);
+- the vehicles: copies of ``geometry/*.yaml`` and of the shipped meshes ``geometry/*.stl``
+  (the repository keeps ``geometry/`` for the README's commands; ``tests/test_samples.py``
+  checks the copies are identical);
 - one small mesh, ``capsule.stl``: a capsule 1.0 m long, 0.2 m in diameter along x, the
   body of revolution of its profile (``stripcoef.geometry.mesh.revolved_mesh``, 32 profile
   points, 24 sections: 1488 faces), for ``coefficients`` and ``compare``;
@@ -53,6 +54,10 @@ def build() -> dict[str, bytes]:
     for f in sorted(GEOMETRY.glob("*.yaml")):
         out[f.name] = f.read_bytes()
         described[f.name] = f"vehicle file: {yaml.safe_load(f.read_text())['name']}"
+    for f in sorted(GEOMETRY.glob("*.stl")):
+        # the shipped meshes (bluerov2_heavy.stl: written by scripts/make_bluerov2_heavy.py)
+        out[f.name] = f.read_bytes()
+        described[f.name] = f"mesh: {f.stem}, the mesh of geometry/{f.stem}.yaml's parts (metres)"
 
     from stripcoef.geometry.mesh import revolved_mesh
 

@@ -456,3 +456,19 @@ def test_iso_date_time_stamps(tmp_path):
     with pytest.raises(InputError, match=r"tel.csv: Timestamp: bad time in line 3; got "
                                          r"'2024-13-02 10:15:31'; expected an ISO 8601"):
         read_mapped_log(csv, m)
+
+
+def test_iso_stamps_by_the_standard_library():
+    """ISO 8601 text -> ns since the epoch by datetime.fromisoformat (offsets, 'Z', no offset
+    = UTC), the fraction kept to the nanosecond; no numpy warning to suppress."""
+    import warnings
+
+    from stripcoef.ingest.streams import iso_ns
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert iso_ns("1970-01-01T00:00:00.000000001Z") == 1
+        assert iso_ns("1970-01-01T02:00:01.5+02:00") == 1_500_000_000
+        assert iso_ns("1970-01-01 00:00:01,25") == 1_250_000_000
+        assert iso_ns("2024-05-02T12:15:30.500000001+02:00") == 1714644930_500000001
+    with pytest.raises(ValueError):
+        iso_ns("2024-13-02 10:15:31")

@@ -185,6 +185,69 @@ class ControlSurface:
 CONTROL_NAMES = {"rudder": "{F}_uudr", "elevator": "{F}_uuds"}
 
 
+#: DOF indices of a method band's group (stripcoef.study.sources.GROUPS).
+BAND_GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5), "all": (0, 1, 2, 3, 4, 5)}
+#: The two-sided 95 % quantile of the normal distribution [-].
+Z95 = 1.959963984540054
+#: A term whose 95 % band reaches past this relative change is named in the CLI's warning.
+UNCERTAIN = 0.5
+
+
+@dataclass(frozen=True)
+class MethodBand:
+    """The method's measured (or assumed) spread of one matrix's DOF group.
+
+    ``matrix``: added_mass | linear_damping | quadratic_damping | lift | control; ``dofs``:
+    translation | rotation | coupling | all; ``distribution``: lognormal (``sd`` of ln of a
+    term [-]) or normal (a coupling's error over sqrt(M_ii M_jj) [-]); ``basis``: measured |
+    assumed | not_predicted; ``in_scope``: False where the vehicle lies outside the reference
+    shapes the row was measured on (an extrapolation); ``source``: the row's justification.
+    From ``data/method_uncertainty.csv`` through :func:`stripcoef.study.bands.method_bands`.
+    """
+
+    matrix: str
+    dofs: str
+    distribution: str
+    sd: float
+    basis: str = "measured"
+    in_scope: bool = True
+    source: str = ""
+
+    def factor(self) -> float:
+        """The 95 % band of a lognormal row as a factor: model/true within [1/f, f] [-]."""
+        return float(np.exp(Z95 * self.sd))
+
+    def to_dict(self) -> dict:
+        return {"matrix": self.matrix, "dofs": self.dofs, "distribution": self.distribution,
+                "sd": float(self.sd), "basis": self.basis, "in_scope": bool(self.in_scope),
+                "source": self.source}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "MethodBand":
+        return cls(matrix=str(d["matrix"]), dofs=str(d["dofs"]),
+                   distribution=str(d["distribution"]), sd=float(d["sd"]),
+                   basis=str(d.get("basis", "measured")), in_scope=bool(d.get("in_scope", True)),
+                   source=str(d.get("source", "")))
+
+
+def band_sd(bands, matrix: str, i: int, j: int) -> float | None:
+    r"""sd of ln of entry (i, j) of ``matrix`` under the method bands (None: no band).
+
+    The method scales a matrix DOF by DOF, :math:`M'_{ij} = M_{ij}\sqrt{f_i f_j}` with
+    :math:`\ln f = \sigma_g z_g`, one :math:`z_g` per DOF group (stripcoef.study.sources):
+    so :math:`\sigma(\ln M'_{ij}) = \sigma_g` within a group and
+    :math:`	frac12\sqrt{\sigma_{g_i}^2 + \sigma_{g_j}^2}` across two independent groups.
+    """
+    rows = {b.dofs: b.sd for b in bands if b.matrix == matrix and b.distribution == "lognormal"}
+    if "all" in rows:
+        return rows["all"]
+    gi = next((g for g, idx in BAND_GROUPS.items() if i in idx and g in rows), None)
+    gj = next((g for g, idx in BAND_GROUPS.items() if j in idx and g in rows), None)
+    if gi is None or gj is None:
+        return None
+    return rows[gi] if gi == gj else 0.5 * float(np.hypot(rows[gi], rows[gj]))
+
+
 def control_derivative_names(surfaces) -> dict:
     """SNAME names of every non-zero control derivative, e.g. ``Y_uudr``, ``M_uuds``.
 
@@ -465,12 +528,14 @@ class HydroModel:
     provenance: Mapping = field(default_factory=dict)
     lift: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     control_surfaces: tuple = ()
+    bands: tuple = ()
 
     def __post_init__(self):
         for name in _ARRAYS:
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
         object.__setattr__(self, "control_surfaces", tuple(self.control_surfaces))
+        object.__setattr__(self, "bands", tuple(self.bands))
         object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
                                                   for e in self.effects))
         object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
@@ -608,6 +673,50 @@ class HydroModel:
         out.update(control_derivative_names(self.control_surfaces))
         return out
 
+    def coefficient_bands(self) -> dict:
+        r"""The 95 % method band of every coefficient of :meth:`coefficients` that has one:
+        name -> (low, high), in the coefficient's units and SNAME sign.
+
+        A term scaled by the method's lognormal factors lies in
+        :math:`[c\,e^{-1.96\sigma}, c\,e^{1.96\sigma}]` (:func:`band_sd`); an added-mass
+        coupling moves additively, :math:`c \pm 1.96\,\sigma_c \sqrt{M_{ii}M_{jj}}`; lift
+        terms and control derivatives take their one factor. Empty without :attr:`bands`.
+        """
+        if not self.bands:
+            return {}
+        from stripcoef.conventions import (added_mass_name, linear_damping_name,
+                                           quadratic_damping_name)
+        coeffs = self.coefficients()
+        named = {}
+        for matrix, namer, m in (("added_mass", added_mass_name, self.added_mass),
+                                 ("linear_damping", linear_damping_name, self.linear_damping),
+                                 ("quadratic_damping", quadratic_damping_name,
+                                  self.quadratic_damping)):
+            for i in range(6):
+                for j in range(6):
+                    named[namer(i, j)] = (matrix, i, j, m)
+        named.update({name: ("lift", i, j, self.lift) for (i, j), name in lift_names().items()})
+        coupling = next((b.sd for b in self.bands if b.matrix == "added_mass"
+                         and b.dofs == "coupling"), None)
+        control = next((b.sd for b in self.bands if b.matrix == "control"), None)
+        out = {}
+        for name, value in coeffs.items():
+            if "_uud" in name:
+                sd = control
+            elif name in named:
+                matrix, i, j, m = named[name]
+                if matrix == "added_mass" and i != j and coupling is not None:
+                    half = Z95 * coupling * float(np.sqrt(abs(m[i, i] * m[j, j])))
+                    out[name] = (value - half, value + half)
+                    continue
+                sd = band_sd(self.bands, matrix, i, j)
+            else:
+                sd = None
+            if sd is not None:
+                lo, hi = value * np.exp(-Z95 * sd), value * np.exp(Z95 * sd)
+                out[name] = (float(min(lo, hi)), float(max(lo, hi)))
+        return out
+
     # -- labelled views (stripcoef.views) -------------------------------------
     def frame(self, kind: str = "added_mass"):
         """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
@@ -681,6 +790,8 @@ class HydroModel:
             "provenance": plain(self.provenance),
             "lift": mat(self.lift),
             "control_surfaces": [c.to_dict() for c in self.control_surfaces],
+            "bands": [b.to_dict() for b in self.bands],
+            "coefficient_bands": {k: list(v) for k, v in self.coefficient_bands().items()},
         }
 
     @classmethod
@@ -715,6 +826,7 @@ class HydroModel:
             lift=lift,
             control_surfaces=tuple(ControlSurface.from_dict(c)
                                    for c in data.get("control_surfaces", [])),
+            bands=tuple(MethodBand.from_dict(b) for b in data.get("bands", [])),
         )
 
 

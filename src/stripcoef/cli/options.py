@@ -14,6 +14,9 @@ def add_fluid_arguments(parser, title: str):
     g.add_argument("--nu", type=float, metavar="M2_S", help="kinematic viscosity [m^2/s]")
     g.add_argument("--water-temperature", type=float, metavar="C", help="temperature [degC]")
     g.add_argument("--salinity", type=float, metavar="PSU", help="salinity [PSU]")
+    g.add_argument("--water-equation", choices=("eos80", "teos10"), default=None,
+                   help="density from temperature and salinity by EOS-80 (default) or TEOS-10 "
+                        "(needs pip install 'stripcoef[seawater]')")
     return g
 
 
@@ -58,6 +61,11 @@ def fluid_from_args(args, default):
 
     ts = args.water_temperature is not None or args.salinity is not None
     dn = args.rho is not None or args.nu is not None
+    equation = getattr(args, "water_equation", None)
+    if equation is not None and not ts:
+        raise InputError("an equation of state needs the water's temperature and salinity",
+                         key="--water-equation", value=equation,
+                         expected="--water-temperature and --salinity beside it")
     if ts and dn:
         raise InputError("conflicting fluid options", key="--rho/--nu",
                          expected="either --rho/--nu or --water-temperature/--salinity")
@@ -66,10 +74,12 @@ def fluid_from_args(args, default):
             raise InputError("incomplete fluid options", key="--water-temperature/--salinity",
                              expected="both --water-temperature and --salinity")
         try:
-            return Fluid.from_temperature_salinity(args.water_temperature, args.salinity)
+            return Fluid.from_temperature_salinity(args.water_temperature, args.salinity,
+                                                   equation=equation or "eos80")
         except InputError as exc:
-            raise exc.with_key("--" + str(exc.key).replace("temperature", "water-temperature")) \
-                from None
+            flag = {"temperature": "water-temperature", "equation": "water-equation"}.get(
+                str(exc.key), str(exc.key))
+            raise exc.with_key("--" + flag) from None
     if dn:
         base = default or Fluid()
         rho = args.rho if args.rho is not None else base.density

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from stripcoef.fluid import EQUATIONS, Fluid, RHO_FRESHWATER, RHO_SEAWATER
 from stripcoef.files import load_yaml, read_text
 from stripcoef.strips import MAX_STRIPS, Strips, uniform_stations
 from stripcoef.thrusters import Thruster
@@ -469,16 +469,21 @@ def _fluid(r: _Reader, data) -> Fluid:
     if data is None:
         return Fluid()
     path = "fluid"
-    r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity"))
+    r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity",
+                           "equation"))
     water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
+    if "equation" in data and "temperature" not in data and "salinity" not in data:
+        raise r.err(f"{path}.equation", "an equation of state needs temperature and salinity",
+                    data["equation"], expected="temperature and salinity beside it")
     if "temperature" in data or "salinity" in data:
         if "density" in data or "kinematic_viscosity" in data:
             raise r.err(path, "both temperature/salinity and density/viscosity given",
                         expected="either temperature + salinity, or density + kinematic_viscosity")
         t = r.number(data, "temperature", path, required=True)
         s = r.number(data, "salinity", path, required=True, nonneg=True)
+        equation = r.string(data, "equation", path, choices=EQUATIONS, default="eos80")
         try:
-            return Fluid.from_temperature_salinity(t, s)
+            return Fluid.from_temperature_salinity(t, s, equation=equation)
         except InputError as exc:            # the correlation's error, in the file's terms
             raise r.err(f"{path}.{exc.key}", exc.what, exc.value, exc.expected) from None
     rho = r.number(data, "density", path, positive=True,
