@@ -526,7 +526,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         M_A [kg, kg m, kg m^2] and ``{"panels": (N_1, N_2), "asymmetry": max|A - A^T| /
         max|A| of the finer solve [-]}``.
     """
-    body = getattr(mesh, "mesh", mesh)
+    # several bodies or overlapping parts: one closed surface (MeshBody.united, a boolean union)
+    body = mesh.united() if hasattr(mesh, "united") else getattr(mesh, "mesh", mesh)
     v = np.asarray(body.vertices, float)
     f = np.asarray(body.faces, np.int64)
     named = getattr(mesh, "source", "")        # a MeshBody's file (a Trimesh's is no str)

@@ -1,0 +1,104 @@
+"""Meshes as users have them (issue 32): textured OBJs with vertices split at seams, zero-area
+faces inside a closed surface, overlapping parts united for the panel method, a wrong unit."""
+
+import numpy as np
+import pytest
+import trimesh
+
+from stripcoef.errors import ModelWarning
+from stripcoef.geometry.mesh import EdgeTopology, load_mesh, mesh_body
+from stripcoef.hull.panels import panel_added_mass
+
+BOX = (0.46, 0.58, 0.25)
+
+
+def split_vertex_obj(path, mesh, texture=True):
+    """An OBJ as texturing tools write it: every face with its own three vertices (split at
+    every seam), texture coordinates, and a material whose texture is not a readable image."""
+    v = np.asarray(mesh.vertices)[np.asarray(mesh.faces)].reshape(-1, 3)
+    lines = []
+    if texture:
+        lines.append("mtllib box.mtl")
+        (path.parent / "box.mtl").write_text("newmtl m\nKd 1 1 1\nmap_Kd tex.png\n")
+        (path.parent / "tex.png").write_bytes(b"\x89PNG\r\n\x1a\nnot an image")
+    lines += ["v %.9g %.9g %.9g" % tuple(p) for p in v]
+    lines += ["vt %.4f %.4f" % (i % 7 / 7, i % 5 / 5) for i in range(len(v))]
+    if texture:
+        lines.append("usemtl m")
+    lines += [f"f {3 * k + 1}/{3 * k + 1} {3 * k + 2}/{3 * k + 2} {3 * k + 3}/{3 * k + 3}"
+              for k in range(len(mesh.faces))]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_split_vertex_textured_obj_is_merged_and_closed(tmp_path):
+    box = trimesh.creation.box(BOX)
+    path = split_vertex_obj(tmp_path / "box.obj", box)
+    with pytest.warns(ModelWarning, match="merged"):
+        body = load_mesh(path)
+    assert EdgeTopology(body.mesh.faces).consistent
+    assert len(body.mesh.vertices) == 8
+    assert body.volume == pytest.approx(np.prod(BOX), rel=1e-9)
+    assert body.n_bodies == 1
+
+
+def test_zero_area_face_is_flipped_not_deleted():
+    """A cap (a vertex on the opposite edge, a T-junction as CAD exports write): removing it
+    would open the surface; the edge flip keeps it closed and the shape unchanged."""
+    box = trimesh.creation.box(BOX)
+    v, f = np.array(box.vertices), np.array(box.faces)
+    a, b, x = f[0]
+    m = len(v)
+    v = np.vstack([v, 0.5 * (v[a] + v[b])])
+    f = np.vstack([[[a, m, x], [m, b, x], [a, b, m]], f[1:]])     # the cap is (a, b, m)
+    assert EdgeTopology(f).consistent
+    body = mesh_body(trimesh.Trimesh(v, f, process=False))
+    text = " ".join(body.repairs)
+    assert "edge flips" in text and "removed" not in text
+    assert EdgeTopology(body.mesh.faces).consistent
+    assert len(body.mesh.faces) == len(f)
+    assert body.volume == pytest.approx(np.prod(BOX), rel=1e-12)
+
+
+def test_needle_face_is_collapsed():
+    """A face with two corners a hair apart (not merged by position: 1e-6 of the size) is
+    collapsed, not deleted; the surface stays closed."""
+    ico = trimesh.creation.icosphere(subdivisions=2, radius=0.2)
+    v, f = np.array(ico.vertices), np.array(ico.faces)
+    a, b, x = f[0]
+    # split vertex a: a copy a' 1e-11 m away takes the faces on one side of edge (a, b)
+    v = np.vstack([v, v[a] + 1e-11])
+    m = len(v) - 1
+    f2 = f.copy()
+    f2[0] = (m, b, x)
+    f2 = np.vstack([f2, [[a, b, m]]])          # the needle closing the gap between a and a'
+    # not merged by position at the loader's tolerance would leave it to the collapse
+    body = mesh_body(trimesh.Trimesh(v, f2, process=False))
+    assert EdgeTopology(body.mesh.faces).consistent
+    assert body.volume == pytest.approx(ico.volume, rel=1e-9)
+
+
+def test_overlapping_parts_united_for_the_panel_method():
+    """Two boxes overlapping by half their length are one 1.5 m box for the panel method, not
+    two boxes with a wall of panels inside each other."""
+    a = trimesh.creation.box([1.0, 0.2, 0.2])
+    b = a.copy()
+    b.apply_translation([0.5, 0.0, 0.0])
+    two = mesh_body(trimesh.util.concatenate([a, b]), origin="file")
+    one = trimesh.creation.box([1.5, 0.2, 0.2])
+    one.apply_translation([0.25, 0.0, 0.0])
+    ref = mesh_body(one, origin="file")
+    with pytest.warns(ModelWarning, match="united 2 bodies"):
+        m2, _ = panel_added_mass(two, rho=1000.0, about=(0.25, 0, 0), panels=1600)
+    m1, _ = panel_added_mass(ref, rho=1000.0, about=(0.25, 0, 0), panels=1600)
+    scale = np.sqrt(np.outer(np.diag(m1), np.diag(m1)))
+    np.testing.assert_allclose(m2 / scale, m1 / scale, atol=0.02)
+    assert two.united().volume == pytest.approx(1.5 * 0.04, rel=1e-6)
+
+
+def test_millimetre_file_read_as_metres_warns(tmp_path):
+    box = trimesh.creation.box([460.0, 58.0, 25.0])       # mm, read as m
+    path = tmp_path / "box.stl"
+    box.export(path)
+    with pytest.warns(ModelWarning, match="length-unit mm"):
+        load_mesh(path)
