@@ -97,8 +97,50 @@ def test_overlapping_parts_united_for_the_panel_method():
 
 
 def test_millimetre_file_read_as_metres_warns(tmp_path):
-    box = trimesh.creation.box([460.0, 58.0, 25.0])       # mm, read as m
+    box = trimesh.creation.box([150.0, 58.0, 25.0])       # mm, read as m
     path = tmp_path / "box.stl"
     box.export(path)
     with pytest.warns(ModelWarning, match="length-unit mm"):
         load_mesh(path)
+
+
+def test_mesh_command_reports_repairs_and_writes_a_closed_copy(tmp_path, capsys):
+    import json
+
+    from stripcoef.cli import main
+
+    path = split_vertex_obj(tmp_path / "box.obj", trimesh.creation.box(BOX))
+    out = tmp_path / "fixed.stl"
+    assert main(["mesh", str(path), "--repair", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "36 open" in text and "merged 28 vertices" in text and "closed" in text
+    fixed = load_mesh(out)
+    assert fixed.repairs == [] and fixed.volume == pytest.approx(np.prod(BOX), rel=1e-6)
+    assert main(["mesh", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["open_edges_found"] == 0 and data["repairs"] == [] and data["watertight"]
+    assert data["extent"] == pytest.approx(list(BOX), rel=1e-6)
+
+
+def test_mesh_command_bad_options(tmp_path, capsys):
+    from stripcoef.cli import main
+
+    path = tmp_path / "box.stl"
+    trimesh.creation.box(BOX).export(path)
+    assert main(["mesh", str(path), "--repair"]) == 2
+    assert "--repair and -o" in capsys.readouterr().err
+    assert main(["mesh", str(tmp_path / "missing.stl")]) == 2
+    assert main(["mesh", str(path), "--repair", "-o", str(tmp_path / "x.txt")]) == 2
+
+
+def test_z_up_file_turned_into_frd():
+    """A box with a skid on top of a z-up file (ROS REP 103) has the skid at body z < 0."""
+    hull = trimesh.creation.box([0.5, 0.4, 0.2])
+    skid = trimesh.creation.box([0.5, 0.1, 0.1])
+    skid.apply_translation([0.0, 0.1, 0.15])            # up and to the left (+y is left in FLU)
+    both = trimesh.boolean.union([hull, skid], engine="manifold")
+    body = mesh_body(both, origin="file", z_up=True)
+    v = np.asarray(body.mesh.vertices)
+    assert v[:, 2].min() == pytest.approx(-0.2) and v[:, 2].max() == pytest.approx(0.1)
+    top = v[v[:, 2] < -0.15]
+    assert np.all(top[:, 1] < 0)                         # left is -y (port) in FRD

@@ -27,7 +27,7 @@ from stripcoef.errors import InputError, StripcoefError
 OUTPUT_OPTIONS = ("output", "out", "report", "plot")
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
+COMMANDS = ("mesh", "coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
             "diagnose", "uncertainty", "sweep", "samples")
 
 

@@ -777,7 +777,7 @@ def _check_unit_and_axes(where, extent, length_unit, repairs) -> None:
                        "use --length-unit mm (Python: length_unit='mm')")
 
 
-def _prepare(mesh, *, path, axis, length_unit, origin, transform):
+def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
     import trimesh
 
     if length_unit not in LENGTH_UNITS:
@@ -803,6 +803,9 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     mesh.vertices = np.asarray(mesh.vertices)[:, perm]
     if np.linalg.det(np.eye(3)[list(perm)]) < 0:  # pragma: no cover - cyclic perms keep handedness
         mesh.invert()
+    if z_up:
+        # a z-up file (ROS REP 103: x forward, y left, z up; most CAD): 180 deg about x -> FRD
+        mesh.vertices = np.asarray(mesh.vertices) * [1.0, -1.0, -1.0]
 
     repairs: list[str] = []
     where = str(path)
@@ -915,7 +918,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         p = p * scale
         if transform is not None:
             p = (np.asarray(transform, float) @ np.append(p, 1.0))[:3]
-        point = p[list(perm)]
+        point = p[list(perm)] * ([1.0, -1.0, -1.0] if z_up else 1.0)
     mesh.apply_translation(-point)
     return mesh, repairs, labels, n_bodies, topo
 
@@ -975,7 +978,8 @@ class _FaceVectors:
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-              transform=None, name: str | None = None, role: str = "hull") -> MeshBody:
+              transform=None, name: str | None = None, role: str = "hull",
+              z_up: bool = False) -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
 
     Parameters
@@ -998,6 +1002,9 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     role : {"hull", "appendage", "fin"}
         Role of the mesh's parts in the assembly (an appendage mesh in a vehicle file is
         ``appendage``).
+    z_up : bool
+        The file's z axis points up (ROS meshes, REP 103: x forward, y left, z up; most CAD
+        tools): the body is turned 180 deg about x into FRD (z down) after the axis mapping.
 
     Returns
     -------
@@ -1016,7 +1023,7 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     mesh = _read(path)
     mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=path, axis=axis,
                                                      length_unit=length_unit, origin=origin,
-                                                     transform=transform)
+                                                     transform=transform, z_up=z_up)
     for note in repairs:
         warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
@@ -1024,11 +1031,11 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
 
 
 def mesh_body(mesh, *, name: str = "mesh", axis: str = "x", length_unit: str = "m",
-              origin="centroid", transform=None) -> MeshBody:
+              origin="centroid", transform=None, z_up: bool = False) -> MeshBody:
     """:func:`load_mesh` for an in-memory ``trimesh.Trimesh``."""
     mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=name, axis=axis,
                                                      length_unit=length_unit, origin=origin,
-                                                     transform=transform)
+                                                     transform=transform, z_up=z_up)
     return MeshBody(mesh, name=name, source=name, repairs=repairs, face_label=labels,
                     n_bodies=n_bodies, topology=topo)
 
