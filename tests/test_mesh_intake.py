@@ -144,3 +144,70 @@ def test_z_up_file_turned_into_frd():
     assert v[:, 2].min() == pytest.approx(-0.2) and v[:, 2].max() == pytest.approx(0.1)
     top = v[v[:, 2] < -0.15]
     assert np.all(top[:, 1] < 0)                         # left is -y (port) in FRD
+
+
+def _frame_rov():
+    """An open frame as CAD exports it: two side plates, three cross tubes (one only at the
+    front, so the frame is not fore-aft symmetric), overlapping parts."""
+    parts = []
+    for y in (-0.2, 0.2):
+        parts.append(trimesh.creation.box([0.5, 0.02, 0.3],
+                     transform=trimesh.transformations.translation_matrix([0, y, 0])))
+    for x, z in ((-0.15, -0.1), (-0.15, 0.1), (0.2, 0.0)):
+        tube = trimesh.creation.cylinder(radius=0.03, height=0.42, sections=16)
+        tube.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+        tube.apply_translation([x, 0.0, z])
+        parts.append(tube)
+    return trimesh.util.concatenate(parts)
+
+
+def test_symmetric_frame_couplings_exactly_zero():
+    """Port-starboard and top-bottom mirror planes forbid every coupling but Y_rdot, Z_qdot
+    (module stripcoef.assembly.symmetry): those are exactly zero in the model the exporters
+    read, not 5 % of the diagonal scale."""
+    import warnings
+
+    from stripcoef.assembly import estimate
+    from stripcoef.assembly.symmetry import allowed_couplings
+    from stripcoef.geometry.vehicle import Vehicle
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        veh = Vehicle.from_mesh(_frame_rov(), name="frame")
+        model = estimate(veh, added_mass_method="panels", added_mass_panels=1600)
+    assert model.conditions["mirror_planes"] == "yz"
+    forbidden = ~allowed_couplings({"y", "z"})
+    assert np.all(model.added_mass[forbidden] == 0.0)
+    assert np.all(model.added_mass_error[forbidden] == 0.0)
+    assert abs(model.added_mass[1, 5]) > 0.0             # Y_rdot: the frame is fore-aft asymmetric
+    assert np.all(np.diag(model.added_mass_error) > 0.0)
+
+
+def test_unconverged_panels_warn_with_the_remedy_and_report_the_error(tmp_path, capsys):
+    """The frame at 400 panels: the levels disagree (roll 18 % of its value); never printed
+    silently: a warning naming the panel count that resolves it, the estimated error of every
+    term in the JSON and in the model file round trip."""
+    import json
+
+    from stripcoef.cli import main
+    from stripcoef.model import HydroModel
+
+    path = tmp_path / "frame.stl"
+    _frame_rov().export(path)
+    assert main(["coefficients", str(path), "--added-mass-method", "panels",
+                 "--added-mass-panels", "400", "--json"]) == 0
+    cap = capsys.readouterr()
+    assert "has not converged" in cap.err and "--added-mass-panels 800" in cap.err
+    data = json.loads(cap.out)
+    err = np.array(data["added_mass_error"])
+    ma = np.array(data["added_mass"])
+    assert err.shape == (6, 6) and np.all(err >= 0) and np.all(np.diag(err) > 0)
+    assert data["conditions"]["added_mass_error_max"] > 0.05
+    rel = err / np.sqrt(np.outer(np.diag(ma), np.diag(ma)))
+    assert rel.max() == pytest.approx(data["conditions"]["added_mass_error_max"], rel=1e-9)
+    model = HydroModel.from_dict(data)
+    np.testing.assert_array_equal(model.added_mass_error, err)
+    # moved to another point: a bound that still covers every term
+    moved = model.about([0.1, 0.0, 0.05])
+    assert np.all(moved.added_mass_error >= 0)
+    assert moved.added_mass_error[5, 5] >= err[5, 5]

@@ -674,10 +674,13 @@ LONG_BODY = 20.0
 
 
 def merge_close_vertices(mesh, tol: float) -> int:
-    """Merge the vertices of ``mesh`` (in place) that lie within ``tol`` [m] of another, the
-    first of each group kept (groups: connected components of the pairs closer than ``tol``,
-    scipy's k-d tree).  Faces keep their winding; a face that loses a vertex to the merge
-    (two corners on one point) is dropped.  Returns the number of vertices merged away."""
+    """Merge the vertices on open edges of ``mesh`` (in place) that lie within ``tol`` [m] of
+    another such vertex, the first of each group kept (groups: connected components of the
+    pairs closer than ``tol``, scipy's k-d tree).  Only the ends of open edges are merged:
+    a vertex split at a seam leaves the edges on both sides open, while closed bodies that
+    touch at a corner (parts of a frame) stay separate, manifold bodies.  Faces keep their
+    winding; a face that loses a vertex to the merge is dropped.  Returns the number of
+    vertices merged away."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
@@ -685,7 +688,13 @@ def merge_close_vertices(mesh, tol: float) -> int:
     v = np.asarray(mesh.vertices, dtype=float)
     if len(v) < 2 or not tol > 0:
         return 0
-    pairs = cKDTree(v).query_pairs(tol, output_type="ndarray")
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    e = np.sort(np.stack([f, np.roll(f, -1, axis=1)], axis=2).reshape(-1, 2), axis=1)
+    uniq, count = np.unique(e, axis=0, return_counts=True)
+    loose = np.unique(uniq[count == 1])
+    if loose.size < 2:
+        return 0
+    pairs = loose[cKDTree(v[loose]).query_pairs(tol, output_type="ndarray")]
     if len(pairs) == 0:
         return 0
     n = len(v)
