@@ -211,3 +211,21 @@ def test_unconverged_panels_warn_with_the_remedy_and_report_the_error(tmp_path, 
     moved = model.about([0.1, 0.0, 0.05])
     assert np.all(moved.added_mass_error >= 0)
     assert moved.added_mass_error[5, 5] >= err[5, 5]
+
+
+def test_panels_beyond_the_face_count(monkeypatch):
+    """A finely tessellated thin plate whose coarsening collapses it, with more faces than
+    MAX_PANELS / 2.5: it used to be refused; now it is solved as it is and refined beyond its
+    face count (MAX_PANELS lowered so that the test stays small)."""
+    import stripcoef.hull.panels as panels
+
+    monkeypatch.setattr(panels, "MAX_PANELS", 1200)
+    b = trimesh.creation.box([0.3, 0.4, 0.01])
+    v, f = trimesh.remesh.subdivide_to_size(b.vertices, b.faces, max_edge=0.06)
+    body = mesh_body(trimesh.Trimesh(v, f))
+    n_faces = len(body.mesh.faces)
+    assert 1200 / 2.5 < n_faces <= 1200 / 1.5
+    m, info = panels.panel_added_mass(body, rho=1000.0, panels=1000)
+    assert info["panels"][0] == n_faces and info["panels"][1] >= 1.5 * n_faces
+    assert info["panels"][1] > n_faces and info["panels"][1] <= 1200
+    assert np.all(np.isfinite(m)) and np.all(np.diag(info["error"]) > 0)

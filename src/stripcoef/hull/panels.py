@@ -451,8 +451,11 @@ def panel_levels(vertices, faces, panels: int, where=None):
       :data:`VOLUME_TOLERANCE` (members thinner than the panels collapsed), N is doubled
       while it stays within :data:`MAX_PANELS`.
     - Otherwise (and for thin members) both levels refine the mesh itself (its slivers are
-      split too): to :math:`N_1 = \max(N/2, 1.25 F)` (F faces) and :math:`2 N_1` panels; more
-      than :data:`MAX_PANELS` is an error naming ``panels``.
+      split too): to :math:`N_1 = \max(N/2, 1.25 F)` (F faces) and :math:`2 N_1` panels; when
+      that exceeds :data:`MAX_PANELS`, a mesh of at most MAX_PANELS / 1.5 faces is solved as
+      it is and refined to :math:`\max(N, 2 F)` (at most MAX_PANELS, at least 1.5 F) panels, so that
+      ``panels`` may exceed the mesh's face count; a larger mesh is an error naming
+      ``panels``.
     """
     v, f = np.asarray(vertices, float), np.asarray(faces, np.int64)
     dv = 0.0
@@ -471,6 +474,15 @@ def panel_levels(vertices, faces, panels: int, where=None):
             break
         n *= 2
     n1 = max(panels // 2, int(np.ceil(1.25 * len(f))))
+    if 2 * n1 > MAX_PANELS and len(f) <= MAX_PANELS / 1.5:
+        # a mesh of more than MAX_PANELS / 2.5 faces: the first level is the mesh itself (the
+        # first member of the bisection family) and the second refines it to the panels asked
+        # for or twice the mesh's faces (at least 1.5 times as many; the Richardson error
+        # reports what that is worth)
+        levels = [refine(v, f, max(panels // 2, len(f))),
+                  refine(v, f, min(max(panels, 2 * len(f)), MAX_PANELS))]
+        if len(levels[1][1]) >= 1.5 * len(levels[0][1]):
+            return levels
     if 2 * n1 > MAX_PANELS:
         why = (f"the mesh has members thinner than {n} panels resolve (coarsening changes "
                f"its volume by {100 * dv:.1f} %) and " if dv > VOLUME_TOLERANCE else "")
