@@ -228,6 +228,7 @@ def run_one(family, rng, tmp, bem_faces):
         for j in range(i, 6):
             significant = i == j or abs(ref[i, j]) >= SIGNIFICANT * scale[i, j]
             rows.append(dict(i=i, j=j, ours=ours[i, j], ref=ref[i, j],
+                             est=est[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
                              rel=err[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
                              covered=bool(abs(err[i, j]) <= est[i, j]),
                              significant=significant, bem_step=bem_step[i, j]))
@@ -302,10 +303,11 @@ def main(argv=None) -> int:
             fh.write(f"# benchmarks/cad_shapes.py --seed {seed} --count {args.count}\n")
             w.writerow(["shape", "family", "what", "how", "panels", "bem_faces", "mirrors",
                         "warned", "t_model_s", "t_bem_s", "i", "j", "model", "bem",
-                        "error_rel", "covered", "significant", "bem_richardson_step_rel"])
+                        "error_rel", "covered", "significant", "bem_richardson_step_rel",
+                        "estimated_error_rel"])
             for k, r in enumerate(results):
                 if "failed" in r:
-                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 15)
+                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 16)
                     continue
                 head = [k, r["family"], r["what"], r["how"], r["panels"],
                         "/".join(map(str, r["bem_faces"])), r["mirrors"], int(r["unconverged"]),
@@ -313,7 +315,8 @@ def main(argv=None) -> int:
                 for x in r["rows"]:
                     w.writerow(head + [x["i"], x["j"], f"{x['ours']:.6g}", f"{x['ref']:.6g}",
                                        f"{x['rel']:.4g}", int(x["covered"]),
-                                       int(x["significant"]), f"{x['bem_step']:.3g}"])
+                                       int(x["significant"]), f"{x['bem_step']:.3g}",
+                                       f"{x['est']:.3g}"])
     return 0
 
 
