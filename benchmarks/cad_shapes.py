@@ -29,6 +29,12 @@ the scale).  Usage:
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/cad_shapes.py [--seed S] [--count N]
                                                             [--csv out/cad_shapes.csv]
+
+``--references CSV`` re-runs the model alone on the seed of a stored run against that run's
+references (after a change of the panel method: minutes instead of the BEM's quarter hour).
+The stored run, benchmarks/data/cad_shapes.csv (docs/validation.md), is seed 874081318 with 40
+shapes; its ``estimated_error_rel`` column comes from such a re-run (every other column
+reproduced within 1e-4).
 """
 
 from __future__ import annotations
@@ -192,7 +198,22 @@ def write_as_user(parts, path_stem, rng):
     return path, ("mm" if mm else "m"), ("mm" if mm else "m") + (", split OBJ" if split else ", STL")
 
 
-def run_one(family, rng, tmp, bem_faces):
+def stored_references(path):
+    """{shape index: (6x6 reference, (faces_1, faces_2))} of a stored run's CSV (``--csv``)."""
+    refs = {}
+    with open(path, newline="") as fh:
+        fh.readline()
+        for r in csv.DictReader(fh):
+            if r["what"].startswith("FAILED"):
+                continue
+            k = int(r["shape"])
+            a = refs.setdefault(k, (np.zeros((6, 6)), tuple(map(int, r["bem_faces"].split("/")))))[0]
+            i, j = int(r["i"]), int(r["j"])
+            a[i, j] = a[j, i] = float(r["bem"])
+    return refs
+
+
+def run_one(family, rng, tmp, bem_faces, stored=None):
     from stripcoef.assembly import estimate
     from stripcoef.bem import bem_added_mass
     from stripcoef.geometry.vehicle import load_vehicle
@@ -207,16 +228,20 @@ def run_one(family, rng, tmp, bem_faces):
     t_model = time.perf_counter() - t0
     unconverged = any("has not converged" in str(w.message) for w in caught)
     ref_point = np.asarray(model.reference_point)
-    surface = clean_surface(parts)
-    mats, counts = [], []
     t0 = time.perf_counter()
-    for n in bem_faces:
-        m = subdivided(surface, n)
-        mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=3200))
-        counts.append(len(m.faces))
+    if stored is not None:              # the same seed's references, read back
+        ref, counts = stored
+        mats = [ref, ref]
+    else:
+        surface = clean_surface(parts)
+        mats, counts = [], []
+        for n in bem_faces:
+            m = subdivided(surface, n)
+            mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=3200))
+            counts.append(len(m.faces))
+        n1, n2 = counts
+        ref = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
     t_bem = time.perf_counter() - t0
-    n1, n2 = counts
-    ref = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
     ours = np.asarray(model.added_mass) * RHO / model.density
     est = np.asarray(model.added_mass_error) * RHO / model.density
     d = np.sqrt(np.abs(np.diag(ref)))
@@ -245,7 +270,11 @@ def main(argv=None) -> int:
     ap.add_argument("--bem-faces", type=int, nargs=2, default=(1300, 2900),
                     help="faces of the two BEM resolutions (at most 3000 each)")
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--references", default=None, metavar="CSV",
+                    help="take the BEM references from a stored run of the same --seed "
+                         "(re-evaluate the model only; its bem_richardson_step is then 0)")
     args = ap.parse_args(argv)
+    stored = stored_references(args.references) if args.references else {}
     seed = args.seed if args.seed is not None else secrets.randbits(32)
     print(f"seed {seed}  (repeat: python benchmarks/cad_shapes.py --seed {seed} "
           f"--count {args.count})", flush=True)
@@ -255,7 +284,9 @@ def main(argv=None) -> int:
         for k in range(args.count):
             family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
             try:
-                r = run_one(family, rng, tmp, args.bem_faces)
+                if args.references and k not in stored:
+                    raise ValueError("no stored reference for this shape")
+                r = run_one(family, rng, tmp, args.bem_faces, stored.get(k))
             except Exception as exc:          # a refusal is a result too: say it, go on
                 print(f"{k:3d} {family:12s} FAILED: {type(exc).__name__}: {exc}", flush=True)
                 results.append(dict(family=family, failed=str(exc)))
