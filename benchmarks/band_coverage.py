@@ -11,7 +11,7 @@ Never against the references that set a band. Two checks:
    group), so no Monte Carlo is needed here; for a coupling it is a +- 1.96 sigma_c
    sqrt(A_ii A_jj) about the model's value, zero or not, for every coupling the shape's mirror
    symmetries allow (stripcoef.study.sources.couple; the ``allowed`` column of the errors
-   file, stripcoef.study.symmetry) or the model has (>= 1 %); any other stays at the model's
+   file, stripcoef.assembly.symmetry) or the model has (>= 1 %); any other stays at the model's
    value and is inside only if that is the reference's; the congruence's own spread left out (it only widens
    the band). The translational quadratic drag is checked the same way where the errors file
    has it (matrix quadratic_damping: measured whole-body drag of simple bodies,
@@ -74,7 +74,7 @@ def _rate(k, n):
 def _moved(row) -> bool:
     """Whether the sampling moves this coupling (stripcoef.study.sources.couple): the shape's
     mirror symmetries allow it (``allowed`` of reference_tables/method_errors/method_errors.csv,
-    stripcoef.study.symmetry), or the model has it, >= 1 % of sqrt(A_ii A_jj) (the scale
+    stripcoef.assembly.symmetry), or the model has it, >= 1 % of sqrt(A_ii A_jj) (the scale
     recovered from the stored error, (strip - ref) / scale)."""
     a, ref, e = float(row["strip"]), float(row["reference"]), float(row["error"])
     has = e != 0 and abs(a) >= 0.01 * abs((a - ref) / e)

@@ -137,10 +137,10 @@ def _term(i, j):
 
 def _rows(set_name, shape, cls, strip, ref, source, terms, mirrors, slenderness):
     """One row per compared term; ``mirrors``: the shape's mirror symmetries through the
-    model's reference point (stripcoef.study.symmetry), ``allowed``: whether they allow the
+    model's reference point (stripcoef.assembly.symmetry), ``allowed``: whether they allow the
     coupling (the sampling moves it: stripcoef.study.sources.couple); ``slenderness``: the
     shape's L/D (stripcoef.study.shapes.features), the scope of the rows it measures."""
-    from stripcoef.study.symmetry import allowed_couplings
+    from stripcoef.assembly.symmetry import allowed_couplings
 
     out = []
     ok = allowed_couplings(mirrors)
@@ -194,7 +194,7 @@ def measure() -> list[dict]:
     from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
     from stripcoef.hull.lamb import spheroid_added_mass
     from stripcoef.study.shapes import features, shape_class
-    from stripcoef.study.symmetry import mirror_symmetries
+    from stripcoef.assembly.symmetry import mirror_symmetries
     from validation.reference import load_table
 
     rows = []
@@ -292,7 +292,7 @@ def write_errors(rows):
                  "# coupling (strip - reference) / sqrt(A_ii A_jj) of the reference [-], for every coupling\n"
                  "# >= 1 % of sqrt(A_ii A_jj) in the reference or in the strip model (zero in the model\n"
                  "# included). mirrors: the shape's mirror symmetries through the model's reference point\n"
-                 "# (stripcoef.study.symmetry); allowed: whether they allow the coupling (the sampling\n"
+                 "# (stripcoef.assembly.symmetry); allowed: whether they allow the coupling (the sampling\n"
                  "# moves it, stripcoef.study.sources.couple; a forbidden one stays zero). class: by geometry\n"
                  "# (stripcoef.study.shapes). Units kg, kg m, kg m^2 (Fossen signs). matrix quadratic_damping\n"
                  "# (set Published 3D drag, benchmarks/drag_bodies.py): strip and reference are the model's\n"

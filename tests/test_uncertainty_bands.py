@@ -18,7 +18,7 @@ from stripcoef.study.calibration import (Z95, binomial_interval, claimed_coverag
 from stripcoef.study.shapes import classify, features, shape_class
 from stripcoef.assembly import estimate
 from stripcoef.study.sources import couple, method_sources
-from stripcoef.study.symmetry import allowed_couplings, mirror_symmetries
+from stripcoef.assembly.symmetry import allowed_couplings, mirror_symmetries
 
 ROOT = Path(__file__).resolve().parent.parent
 WATER = Fluid(density=1000.0, kinematic_viscosity=1e-6, source="test")

@@ -354,6 +354,13 @@ class Conditions(Mapping):
         How M_A was obtained when not by the strips (the 3D panel method)
     added_mass_panels : int
         Panels of the finer resolution of the panel method
+    added_mass_error_max : float
+        Largest estimated error of a term of M_A over the diagonal scale [-]
+        (:attr:`HydroModel.added_mass_error`)
+    mirror_planes : str
+        The body's mirror planes through the reference point (``x``, ``y``, ``z``: the axis
+        each reverses, or ``none``) whose forbidden couplings of M_A were set to exactly zero
+        (:mod:`stripcoef.assembly.symmetry`; the 3D panel method)
     lift : mapping
         How the lift terms were built (body and fin lift, :mod:`stripcoef.assembly.lift`)
     strips : int
@@ -404,6 +411,8 @@ class Conditions(Mapping):
     correction_panels: int | None = None
     added_mass_method: str | None = None
     added_mass_panels: int | None = None
+    added_mass_error_max: float | None = None
+    mirror_planes: str | None = None
     lift: Mapping | None = None
     strips: int | None = None
     corrections: bool | None = None
@@ -507,6 +516,10 @@ class HydroModel:
         ``-L[1, 1] = Y_uv``, ``-L[5, 5] = N_ur`` (docs/conventions.md; Prestero 2001, sec. 3.6)
     control_surfaces : tuple of ControlSurface
         Rudders and elevators: force ``u^2 b delta`` and deflection limits
+    added_mass_error : (6, 6) or None
+        Estimated absolute error of each term of M_A [kg, kg m, kg m^2] where the method
+        gives one (the 3D panel method: its two resolutions' Richardson correction,
+        :func:`stripcoef.hull.panels.panel_added_mass`); ``None`` otherwise
     """
 
     name: str
@@ -529,10 +542,13 @@ class HydroModel:
     lift: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     control_surfaces: tuple = ()
     bands: tuple = ()
+    added_mass_error: np.ndarray | None = None
 
     def __post_init__(self):
         for name in _ARRAYS:
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
+        if self.added_mass_error is not None:
+            object.__setattr__(self, "added_mass_error", frozen_array(self.added_mass_error))
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
         object.__setattr__(self, "control_surfaces", tuple(self.control_surfaces))
         object.__setattr__(self, "bands", tuple(self.bands))
@@ -758,9 +774,15 @@ class HydroModel:
         shift = shift_operator(-(point - old)).T     # tau_P = H(-r)^T tau_O
         surfaces = tuple(replace(s, derivative=shift @ np.asarray(s.derivative, float))
                          for s in self.control_surfaces)
+        error = self.added_mass_error
+        if error is not None:
+            # a bound: |H^T dA H| <= |H|^T |dA| |H| term by term (triangle inequality)
+            h = np.abs(shift_operator(-(point - old)))
+            error = h.T @ np.asarray(error) @ h
         return replace(self, reference_point=point, rigid_body_mass=t(self.rigid_body_mass),
                        added_mass=t(self.added_mass), linear_damping=t(self.linear_damping),
-                       quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces)
+                       quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces,
+                       added_mass_error=error)
 
     # -- serialisation ------------------------------------------------------
     def to_dict(self) -> dict:
@@ -768,7 +790,7 @@ class HydroModel:
         def mat(m):
             return [[float(x) for x in row] for row in np.asarray(m)]
 
-        return {
+        out = {
             "name": self.name,
             "dof": list(DOF),
             "reference_point": [float(x) for x in self.reference_point],
@@ -793,6 +815,9 @@ class HydroModel:
             "bands": [b.to_dict() for b in self.bands],
             "coefficient_bands": {k: list(v) for k, v in self.coefficient_bands().items()},
         }
+        if self.added_mass_error is not None:
+            out["added_mass_error"] = mat(self.added_mass_error)
+        return out
 
     @classmethod
     def from_dict(cls, data: dict) -> "HydroModel":
@@ -827,6 +852,8 @@ class HydroModel:
             control_surfaces=tuple(ControlSurface.from_dict(c)
                                    for c in data.get("control_surfaces", [])),
             bands=tuple(MethodBand.from_dict(b) for b in data.get("bands", [])),
+            added_mass_error=(None if data.get("added_mass_error") is None
+                              else np.asarray(data["added_mass_error"], float)),
         )
 
 

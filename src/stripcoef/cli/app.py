@@ -28,7 +28,7 @@ from stripcoef.files import check_output_path
 OUTPUT_OPTIONS = ("output", "out", "report", "plot")
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
+COMMANDS = ("mesh", "coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
             "diagnose", "uncertainty", "sweep", "samples")
 
 

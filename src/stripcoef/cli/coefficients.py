@@ -84,6 +84,11 @@ def format_table(model) -> str:
            "",
            mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2", "added_mass"),
            "",
+           *([mat("Estimated error of M_A (Richardson: the finer panel level's step to the "
+                  "extrapolation)", model.added_mass_error, "kg, kg m, kg m^2"),
+              f"  largest: {100 * c.get('added_mass_error_max', 0.0):.2g} % of the diagonal "
+              "scale sqrt(M_ii M_jj)", ""]
+             if model.added_mass_error is not None else []),
            mat("Linear damping D_L", model.linear_damping, "kg/s, kg m/s, kg m^2/s",
                "linear_damping"),
            "",
@@ -122,7 +127,8 @@ def format_table(model) -> str:
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
             "end_correction_sway", "end_correction_heave", "end_correction_pitch",
-            "end_correction_yaw", "correction_method", "added_mass_method")
+            "end_correction_yaw", "correction_method", "added_mass_method",
+            "added_mass_error_max", "mirror_planes")
     for k in keys:
         if k in c:
             v = c[k]

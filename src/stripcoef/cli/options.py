@@ -30,6 +30,9 @@ def add_mesh_arguments(parser):
                    help="mesh axis along the body (default x)")
     m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
                    help="length unit of the mesh file")
+    m.add_argument("--z-up", action="store_true",
+                   help="the mesh file is z-up (ROS REP 103, most CAD): turned 180 deg about "
+                        "x into the body axes (FRD, z down)")
     m.add_argument("--added-mass-method", choices=("auto", "strips", "panels"), default="auto",
                    help="M_A by the 3D panel method for a mesh that is neither round nor "
                         "slender, by strip theory otherwise (auto, default); always by strip "
@@ -99,7 +102,8 @@ def load_any_vehicle(args):
     path = Path(args.vehicle)
     if path.suffix.lower() in MESH_SUFFIXES:
         origin = "centroid" if args.origin == "centroid" else parse_point(args.origin, key="--origin")
-        return load_vehicle(path, axis=args.axis, length_unit=args.length_unit, origin=origin)
+        return load_vehicle(path, axis=args.axis, length_unit=args.length_unit, origin=origin,
+                            z_up=getattr(args, "z_up", False))
     return load_vehicle(path)
 
 

@@ -117,7 +117,8 @@ class Vehicle:
 
     @classmethod
     def from_mesh(cls, mesh, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-                  fluid: Fluid | None = None, name: str | None = None) -> "Vehicle":
+                  fluid: Fluid | None = None, name: str | None = None,
+                  z_up: bool = False) -> "Vehicle":
         """A vehicle made of one closed CAD mesh, with default sea water and neutral buoyancy.
 
         Parameters
@@ -136,6 +137,8 @@ class Vehicle:
             Default: sea water (:data:`stripcoef.fluid.RHO_SEAWATER`, ``NU_SEAWATER``).
         name : str, optional
             Default: the file's stem, or "mesh".
+        z_up : bool
+            The file is z-up (ROS REP 103, most CAD): turned 180 deg about x into FRD.
         """
         from stripcoef.fluid import NU_SEAWATER
         from stripcoef.geometry import mesh as mesh_mod
@@ -151,7 +154,7 @@ class Vehicle:
                 raise InputError("not a point", key="origin", value=list(reference),
                                  expected="three finite coordinates [m]")
             body_origin = "file"
-        kw = dict(axis=axis, length_unit=length_unit, origin=body_origin)
+        kw = dict(axis=axis, length_unit=length_unit, origin=body_origin, z_up=bool(z_up))
         if isinstance(mesh, mesh_mod.MeshBody):
             body, source = mesh, mesh.source
         elif isinstance(mesh, (str, Path)):

@@ -34,7 +34,7 @@ class Job:
     whose factors each row carries after the inputs; ``limits``: solve the manoeuvre limits;
     ``radii``: turning radii for the limits [m]; ``strips``: strip count (None: the file's);
     ``mirrors``: the nominal body's mirror symmetries (``x``, ``y``, ``z``:
-    :func:`stripcoef.study.symmetry.mirror_symmetries`), which decide the couplings the method
+    :func:`stripcoef.assembly.symmetry.mirror_symmetries`), which decide the couplings the method
     source moves (None: none known, every coupling moves).
     """
 
@@ -82,7 +82,7 @@ def evaluate(job: Job, row) -> dict:
     from stripcoef.geometry.keypaths import set_value
     from stripcoef.geometry.vehicle import parse_vehicle
     from stripcoef.study.sources import couple, method_couplings, method_factors, scale_matrix
-    from stripcoef.study.symmetry import allowed_couplings
+    from stripcoef.assembly.symmetry import allowed_couplings
 
     row = [float(v) for v in row]
     n_in = len(job.paths)

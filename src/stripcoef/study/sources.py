@@ -15,7 +15,7 @@ Two kinds of source, each a :class:`Source` with the text that justifies it:
   group (translations share one, rotations another: the errors of one method on one body are
   correlated across its DOFs). The added mass's couplings get one more source, normal, an
   additive move of their diagonal scale (:func:`couple`) for every coupling the body's mirror
-  symmetries allow (:mod:`stripcoef.study.symmetry`).
+  symmetries allow (:mod:`stripcoef.assembly.symmetry`).
 - **input**: a value declared uncertain in the vehicle file (``{value, sd}`` normal,
   ``{value, tol}`` uniform; :mod:`stripcoef.geometry.keypaths`).
 """
@@ -200,7 +200,7 @@ SIGNIFICANT_COUPLING = 0.01
 
 def couple(matrix, c: float, allowed=None) -> np.ndarray:
     r"""Couplings moved by :math:`c` of their diagonal scale: every one the body's mirror
-    symmetries allow (``allowed``, (6, 6) bool: :func:`stripcoef.study.symmetry.allowed_couplings`;
+    symmetries allow (``allowed``, (6, 6) bool: :func:`stripcoef.assembly.symmetry.allowed_couplings`;
     default: every one, no symmetry known), and every one the model has
     (:math:`|M_{ij}| \ge 0.01 \sqrt{M_{ii} M_{jj}}`, :data:`SIGNIFICANT_COUPLING`: the panel
     method on a mesh slightly asymmetric, below the symmetry test's tolerance):
