@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.files import write_text
-from stripcoef.diagnose.pipeline import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
-                                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, Diagnosis)
+from stripcoef.diagnose.result import Diagnosis
+from stripcoef.diagnose.settings import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
+                                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN)
 
 
 def _fmt(x, digits=4):
