@@ -76,7 +76,9 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          UNEXPLAINED_GAIN, VALIDATION_FRACTION, Budget,
                                          DiagnoseSettings)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
-                                         resimulated_errors, validate_changes)
+                                         resimulated_errors, validate_changes,
+                                         validation_errors)
+from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import effect_window_forces
 from stripcoef.effects.windows import window_data
 from stripcoef.errors import InputError, ModelWarning
@@ -223,6 +225,11 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)
     calibrated = calibrated_model(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
+    # one model: what is reported about the calibrated model is read back from it as written
+    written = type(calibrated).from_dict(calibrated.to_dict())
+    read_back(per, fits, written, train_log, window=window, exclude=exclude)
+    if record is not None and clipped:      # the validated model was clipped afterwards
+        record["kept_changes"] = validation_errors(val_log, written, dofs)
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
         summary = {"metric": METRIC, "dof": r["dof"], "units": r["units"],
@@ -263,7 +270,6 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                        test_log=test_log, diagnosed=tuple(dofs), **summary)
     if test_log is not None:
         # recomputed from the model as it is written (its dictionary form, read back)
-        written = type(calibrated).from_dict(calibrated.to_dict())
         result = replace(result, holdout=heldout_errors(result, model, written))
     return result
 

@@ -81,7 +81,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         cur = score(excl)
 
     def named(e):
-        return None if e is None else {DOF[i]: float(v) for i, v in zip(dofs, e)}
+        return _named(e, dofs)
 
     for d, r in per.items():
         r["calibration"]["kept"] = ("calibration", d) not in excl
@@ -93,7 +93,12 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed": [" ".join(c[1:][::-1]) if c[0] == "effect" else f"{c[1]} calibration"
-                          for c in changes if c in excl]}
+                          for c in changes if c in excl],
+              # the changes fitted together with a removed one are refitted without it
+              # (calibrate.written_fit): their values as written differ from the selection's
+              "refitted": {d: [("calibration" if c[0] == "calibration" else c[2])
+                               for c in changes if c[1] == d and c not in excl]
+                           for d in per if any(c[1] == d for c in excl)}}
     return excl, record
 
 
@@ -123,3 +128,16 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     return free_simulation_errors(log, model, dofs, horizon=horizon, tolerances=(1e-6, 1e-8))
 
 
+
+
+def _named(errors, dofs):
+    """{DOF name: error} of a list of errors of ``dofs`` (indices), None for None."""
+    return None if errors is None else {DOF[i]: float(v) for i, v in zip(dofs, errors)}
+
+
+def validation_errors(val_log, model, dofs):
+    """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
+    rad/s] (the record's ``kept_changes`` form), None when a simulation diverges."""
+    from stripcoef.diagnose.heldout import free_simulation_errors
+
+    return _named(free_simulation_errors(val_log, model, dofs), dofs)
