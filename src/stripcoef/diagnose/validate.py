@@ -44,6 +44,12 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     the current one (ties go to the simpler model), so the result never simulates an
     excited DOF worse than the prior on the validation data unless every subset does.
 
+    A DOF's effects were fitted together with its calibration: removing the calibration
+    removes them with it (:func:`partners`; an effect whose values compensate a calibration
+    that is not written would be a silent wrong answer, issue 33); the effects kept after
+    another one is removed are refitted without it
+    (:func:`stripcoef.diagnose.calibrate.written_fit`).
+
     Returns ``(excluded changes, record)``.
     """
     from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
@@ -53,8 +59,10 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     ref = [max(e, 1e-12) for e in ref]
     cache = {}
 
+    changes = _changes(per)
+
     def score(excl):
-        key = frozenset(excl)
+        key = frozenset(partners(excl, changes))
         if key not in cache:
             budget.check()
             e = free_simulation_errors(val_log, calibrated_model(prior, per, fits, key), dofs)
@@ -66,7 +74,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                               e)
         return cache[key]
 
-    changes = _changes(per)
     excl = set()
     cur = score(excl)
     first = cur[1]
@@ -77,7 +84,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         (best, _), c = min(trials, key=lambda x: x[0][0])
         if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
             break
-        excl.add(c)
+        excl = partners(excl | {c}, changes)
         cur = score(excl)
 
     def named(e):
@@ -92,13 +99,17 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                              "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
-              "removed": [" ".join(c[1:][::-1]) if c[0] == "effect" else f"{c[1]} calibration"
+              "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
+                                                    "fitted with)"
+                                                    if ("calibration", c[1]) in excl else "")
+                           if c[0] == "effect" else f"{c[1]} calibration")
                           for c in changes if c in excl],
               # the changes fitted together with a removed one are refitted without it
               # (calibrate.written_fit): their values as written differ from the selection's
-              "refitted": {d: [("calibration" if c[0] == "calibration" else c[2])
-                               for c in changes if c[1] == d and c not in excl]
-                           for d in per if any(c[1] == d for c in excl)}}
+              "refitted": {d: kept for d, kept in (
+                  (d, [("calibration" if c[0] == "calibration" else c[2])
+                       for c in changes if c[1] == d and c not in excl])
+                  for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
 
@@ -128,6 +139,16 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
     return free_simulation_errors(log, model, dofs, horizon=horizon, tolerances=(1e-6, 1e-8))
 
 
+
+
+def partners(excl, changes) -> set:
+    """``excl`` with the changes fitted together with an excluded one that cannot stand
+    without it: the effects of a DOF whose calibration is excluded."""
+    out = set(excl)
+    for c in changes:
+        if c[0] == "effect" and ("calibration", c[1]) in out:
+            out.add(c)
+    return out
 
 
 def _named(errors, dofs):
