@@ -4,7 +4,8 @@
 :mod:`.settings` (thresholds, :class:`DiagnoseSettings`, :class:`Budget`), :mod:`.priors`
 (the calibration's prior widths), :mod:`.fit` (MAP least squares), :mod:`.select` (effect
 selection), :mod:`.calibrate` (the fitted values written into the model), :mod:`.validate`
-(validation by free simulation) and :mod:`.result`; :mod:`.heldout` (free-simulation
+(validation by free simulation), :mod:`.written` (what is reported about the calibrated
+model, read back from it as written) and :mod:`.result`; :mod:`.heldout` (free-simulation
 errors), :mod:`.report` (text and markdown). docs/diagnose.md.
 
 Depends on: identify, simulate, effects, model, logfile, base.

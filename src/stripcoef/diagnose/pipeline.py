@@ -46,7 +46,8 @@ The stages, one module each: :mod:`.settings` (thresholds, :class:`DiagnoseSetti
 :class:`Budget`), :mod:`.priors` (the calibration's prior widths), :mod:`.fit` (the MAP
 least-squares fit), :mod:`.select` (effect selection per DOF), :mod:`.calibrate` (the fitted
 values written into the model), :mod:`.validate` (validation by free simulation),
-:mod:`.result` (:class:`Diagnosis`); this module runs them in order.
+:mod:`.written` (every value reported about the calibrated model read back from it as
+written), :mod:`.result` (:class:`Diagnosis`); this module runs them in order.
 
 Depends on: the modules above, effects, logfile.
 """
