@@ -35,7 +35,7 @@ def clip_added_mass(prior, calibrated, added_mass_sd=None):
             ma[i, i] = value
     if not clipped:
         return calibrated, clipped
-    return replace(calibrated, added_mass=ma), clipped
+    return replace(calibrated, added_mass=ma, added_mass_error=None), clipped
 
 
 def bounds_hit(prior, calibrated, added_mass_sd=None, clipped=None) -> dict:
@@ -106,9 +106,12 @@ def _writable_matrices(model) -> dict:
 
 
 def _with_matrices(model, mats: dict):
-    """``model`` with the matrices of :func:`_writable_matrices` (a new model)."""
+    """``model`` with the matrices of :func:`_writable_matrices` (a new model); a calibrated
+    added mass is no longer the panel method's, so its estimated error goes."""
+    changed = not np.array_equal(mats["M"], model.added_mass)
     return replace(model, added_mass=mats["M"], linear_damping=mats["D_L"],
-                   quadratic_damping=mats["D_Q"])
+                   quadratic_damping=mats["D_Q"],
+                   added_mass_error=None if changed else model.added_mass_error)
 
 
 def written_fit(d: str, result: dict, fit, exclude=frozenset()):

@@ -384,6 +384,6 @@ class AddedMassError(Effect):
         """The model with delta_m added to M_A[dof, dof] (a new model)."""
         ma = np.array(model.added_mass, dtype=float)
         ma[dof, dof] += params["delta_m"]
-        return replace(model, added_mass=ma)
+        return replace(model, added_mass=ma, added_mass_error=None)   # no longer the panels'
 
 
