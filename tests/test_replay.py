@@ -14,7 +14,8 @@ from stripcoef.errors import InputError, ModelWarning
 from stripcoef.export import write_export
 from stripcoef.logfile import Log, read_log
 from stripcoef.modelfile import load_model
-from stripcoef.simulate import log_inputs, replay, simulate
+from stripcoef.logfile import log_inputs
+from stripcoef.simulate import replay, simulate
 
 STATES = POSE + VELOCITIES
 

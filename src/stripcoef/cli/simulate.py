@@ -9,7 +9,7 @@ when the inputs have fewer than :data:`FEW_ROWS` rows). ``--out -`` writes the l
 (the summary goes to stderr). ``--from-log LOG`` starts from the log's pose and velocity
 instead of rest at the origin and, without ``--inputs``, free-simulates the log's own inputs
 and prints the prediction error against the log. Inputs are read from a log by the one replay
-rule of the library (:func:`stripcoef.simulate.log_inputs`: with thruster commands, a log's
+rule of the library (:func:`stripcoef.logfile.log_inputs`: with thruster commands, a log's
 ``X..N`` are the record of the applied force, thrust included, and are not applied again).
 """
 
@@ -112,8 +112,8 @@ def _log_window(log, start, duration):
 
 def run(args) -> int:
     from stripcoef.modelfile import load_model
-    from stripcoef.simulate import (free_run_errors, initial_state, log_inputs, replay, simulate,
-                                    summarize_motion)
+    from stripcoef.logfile import log_inputs
+    from stripcoef.simulate import free_run_errors, initial_state, replay, simulate, summarize_motion
 
     if args.inputs is None and args.from_log is None:
         raise InputError("no inputs", key="inputs",
@@ -205,7 +205,7 @@ def run(args) -> int:
 
 
 def _warn_not_replayed(inputs, source, vehicle) -> None:
-    """Say which columns of the inputs the replay leaves out (:func:`stripcoef.simulate.log_inputs`,
+    """Say which columns of the inputs the replay leaves out (:func:`stripcoef.logfile.log_inputs`,
     the one replay rule)."""
     if inputs.ignored:
         warnings.warn(f"{source}: {', '.join(inputs.ignored)} not applied: {vehicle} has no "

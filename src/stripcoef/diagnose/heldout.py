@@ -66,7 +66,8 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
     (module docstring), or None when a simulation diverges."""
-    from stripcoef.simulate import log_inputs, replay
+    from stripcoef.logfile import log_inputs
+    from stripcoef.simulate import replay
 
     t = log["t"]
     try:
