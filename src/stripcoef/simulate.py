@@ -33,7 +33,9 @@ coefficients, efficiencies, dead band, limits) plus the given generalized forces
 
 The state is integrated with :func:`scipy.integrate.solve_ivp`; with zero-order-hold
 inputs the integration restarts at every sample where an input jumps, so the
-integrator never steps across a discontinuity.
+integrator never steps across a discontinuity. :func:`simulate` is three pieces: the
+inputs at any time (:class:`InputSampler`), the state equation (:class:`RightHandSide`)
+and the integrator (:func:`integrate`); :func:`replay` runs it on a log's own inputs.
 """
 
 from __future__ import annotations
@@ -154,6 +156,286 @@ def _current_function(current, t, interpolation):
     return lambda time: (sampler(time), sampler.rate(time))
 
 
+class InputSampler:
+    r"""The inputs of a run at any time: thruster commands, generalized forces, control-surface
+    deflections, other channels and the water current, checked once and then held (zero-order
+    hold) or interpolated between the samples ``t``.
+
+    .. math:: \tau(t) = B\,T(n(t)) + \tau_{forces}(t)
+
+    (:meth:`Thruster.thrust`; Fossen 2011 eq. 11.3, Wang & Clark 2006 eq. 6) [N, N m].
+    ``history``: keep the applied force of every sample (``tau_history``) for effects with a
+    memory of the inputs (thruster lag, actuation delay).
+    """
+
+    def __init__(self, model, t, *, forces, commands, deflections, channels, current,
+                 interpolation, history):
+        n = t.size
+        self.t, self.model, self.interpolation = t, model, interpolation
+        self.thrusters = thrusters = list(model.thrusters)
+        self.names = names = [th.name for th in thrusters]
+        self.cmd = cmd = np.zeros((n, len(thrusters)))
+        self.commanded = []
+        for name, values in (commands or {}).items():
+            if name not in names:
+                raise unknown_name("thruster", name, names, key=COMMAND_PREFIX + str(name))
+            k = names.index(name)
+            v = np.asarray(values, dtype=float)
+            cmd[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
+                v, n, 1, COMMAND_PREFIX + name)
+            if not np.all(np.isfinite(cmd[:, k])):
+                raise InputError("NaN or infinite command", key=COMMAND_PREFIX + name,
+                                 expected="finite numbers")
+            self.commanded.append(name)
+        self.surfaces = surfaces = list(getattr(model, "control_surfaces", ()))
+        self.snames = snames = [sf.name for sf in surfaces]
+        self.defl = defl = np.zeros((n, len(surfaces)))
+        self.deflected = []
+        for name, values in (deflections or {}).items():
+            if name not in snames:
+                raise unknown_name("control surface", name, snames,
+                                   key=DEFLECTION_PREFIX + str(name))
+            k = snames.index(name)
+            v = np.asarray(values, dtype=float)
+            defl[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
+                v, n, 1, DEFLECTION_PREFIX + name)
+            lim = surfaces[k].max_deflection
+            bad = np.nonzero(~(np.abs(defl[:, k]) <= lim * (1 + 1e-12)))[0]
+            if bad.size:
+                raise InputError(
+                    f"deflection beyond the limit at sample {int(bad[0])}",
+                    key=DEFLECTION_PREFIX + name, value=float(defl[bad[0], k]),
+                    expected=f"|delta| <= {lim:.6g} rad ({np.degrees(lim):.4g} deg, "
+                             f"stall at {np.degrees(surfaces[k].stall_angle):.4g} deg)")
+            self.deflected.append(name)
+        self.force_fn = None
+        self.force_series = np.zeros((n, 6))
+        if callable(forces):
+            self.force_fn = forces
+        elif forces is not None:
+            self.force_series = _as_series(forces, n, 6, "forces")
+        self.series = np.hstack([cmd, self.force_series, defl])
+        self.sampler = _Sampler(t, self.series, interpolation)
+        self.current_fn = _current_function(current, t, interpolation)
+        self.chan_names = list(channels or {})
+        self.chan_sampler = None
+        if self.chan_names:
+            self.chan_series = np.column_stack([_as_series(channels[k], n, 1, k)
+                                                for k in self.chan_names])
+            self.chan_sampler = _Sampler(t, self.chan_series, interpolation)
+        self.nthr = nthr = len(thrusters)
+        self.alloc = alloc = model.allocation()
+        self.history = history
+        # the applied force at every sample (updated by a controller as it runs)
+        self.tau_history = np.zeros((n, 6))
+        if history:
+            thr_all = (np.column_stack([np.asarray(th.thrust(cmd[:, k]), float).reshape(-1)
+                                        for k, th in enumerate(thrusters)]) if nthr
+                       else np.zeros((n, 0)))
+            f_all = (np.array([np.asarray(self.force_fn(ti), float).reshape(6) for ti in t])
+                     if self.force_fn else self.force_series)
+            self.tau_history = (thr_all @ alloc.T if nthr else 0.0) + f_all
+        self.values = None  # the inputs held constant over a zero-order-hold segment
+        self.held = None
+
+    @property
+    def held_between_samples(self) -> bool:
+        """Zero-order hold of sampled inputs (no force function): inputs jump only at samples."""
+        return self.interpolation == "previous" and self.force_fn is None
+
+    def segments(self) -> list:
+        """Sample indices where a held input jumps (with the first and the last): the
+        integrator restarts there and never steps across a discontinuity."""
+        n = self.t.size
+        if self.held_between_samples:
+            jumps = np.nonzero(np.any(np.diff(self.series, axis=0) != 0.0, axis=1))[0] + 1
+            return [0, *[int(j) for j in jumps], n - 1]
+        return [0, n - 1]
+
+    def applied(self, time):
+        """(commands, thrust [N], tau [N, N m], deflections [rad]) at ``time``."""
+        vals = self.values if self.values is not None else self.sampler(time)
+        nthr = self.nthr
+        c = vals[:nthr]
+        thrust = np.array([th.thrust(ci) for th, ci in zip(self.thrusters, c)]) if nthr else c
+        f = np.asarray(self.force_fn(time), dtype=float).reshape(6) if self.force_fn \
+            else vals[nthr:nthr + 6]
+        tau = (self.alloc @ thrust if nthr else np.zeros(6)) + f
+        return c, thrust, tau, vals[nthr + 6:]
+
+    def __call__(self, time):
+        """The inputs at ``time``: those held over the segment, else sampled."""
+        return self.held if self.values is not None else self.applied(time)
+
+    def hold(self, k: int) -> None:
+        """Hold the inputs of sample k over the next segment (zero-order hold), or sample them
+        at every time (interpolated inputs, a force function)."""
+        self.values = self.series[k] if self.held_between_samples else None
+        if self.values is not None:
+            self.held = self.applied(self.t[k])
+
+    def release(self) -> None:
+        self.values = None
+
+    def channels(self, time) -> dict:
+        return dict(zip(self.chan_names, self.chan_sampler(time))) \
+            if self.chan_sampler is not None else {}
+
+    def commands_at(self, k: int) -> dict:
+        return dict(zip(self.names, self.cmd[k]))
+
+    def command(self, k: int, commands) -> None:
+        """Replace the commands of sample k (a controller's), checked; logged."""
+        names = self.names
+        for name, value in dict(commands).items():
+            if name not in names:
+                raise unknown_name("thruster", name, names, key="controller")
+            value = float(value)
+            if not np.isfinite(value):
+                raise InputError("controller returned a non-finite command", key=name,
+                                 value=value, expected="a finite command")
+            self.cmd[k, names.index(name)] = value
+            if name not in self.commanded:
+                self.commanded.append(name)
+        self.series[k, :self.nthr] = self.cmd[k]
+        if self.history:
+            thr_k = np.array([float(th.thrust(c)) for th, c in zip(self.thrusters, self.cmd[k])])
+            self.tau_history[k] = (self.alloc @ thr_k if self.nthr else 0.0) \
+                + self.force_series[k]
+
+
+class RightHandSide:
+    r"""The state equation :math:`\dot x = f(t, x)` of :math:`x = [\eta;\ \nu]` (module
+    docstring; Fossen 2011 eqs. 7.190, 10.1, sec. 10.3):
+
+    .. math::
+        \dot\nu = M^{-1}\big(\tau + \tau_{extra} - C_{RB}(\nu)\nu - C_A(\nu_r)\nu_r
+        - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c + u_r|u_r| B_\delta\delta\big),
+        \qquad \dot\eta = J(\eta)\nu
+
+    [m/s, rad/s, m/s^2, rad/s^2].
+    """
+
+    def __init__(self, model, inputs: InputSampler, *, effects=True, munk=True, coriolis=True,
+                 extra_force=None):
+        self.model, self.inputs = model, inputs
+        self.munk, self.coriolis, self.extra_force = munk, coriolis, extra_force
+        self.m_added = np.asarray(model.added_mass, dtype=float)
+        try:
+            self.m_inv = np.linalg.inv(model.mass_matrix)
+        except np.linalg.LinAlgError:
+            raise InputError("singular mass matrix M_RB + M_A", key="model",
+                             expected="a positive definite inertia matrix") from None
+        self.b_delta = model.control_matrix if inputs.surfaces else None
+        self.effect_terms = []
+        if effects and model.effects:
+            from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
+            self.effect_terms = effect_forces(model)
+
+    def current(self, time, eta, nu):
+        """(nu_c, d nu_c/dt): the current in body axes and its rate [m/s, m/s^2]."""
+        nu_c = np.zeros(6)
+        nu_c_dot = np.zeros(6)
+        if self.inputs.current_fn is not None:
+            vc_ned, dvc_ned = self.inputs.current_fn(time)
+            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
+            vc = rt @ vc_ned
+            nu_c[:3] = vc
+            nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
+        return nu_c, nu_c_dot
+
+    def __call__(self, time, y):
+        model, inputs = self.model, self.inputs
+        eta, nu = y[:6], y[6:]
+        c, thrust, tau, delta = inputs(time)
+        nu_c, nu_c_dot = self.current(time, eta, nu)
+        nu_r = nu - nu_c
+        rhs_force = tau
+        if self.coriolis:
+            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
+                         - model.coriolis(nu_r, rigid_body=False, munk=self.munk) @ nu_r)
+        rhs_force = (rhs_force
+                     - model.damping(nu_r) @ nu_r
+                     - model.restoring(eta)
+                     + self.m_added @ nu_c_dot)
+        if self.b_delta is not None:
+            rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
+        if self.effect_terms or self.extra_force is not None:
+            names = inputs.names
+            hook = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
+                    "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
+                    "allocation": inputs.alloc, "input_history": (inputs.t, inputs.tau_history),
+                    "columns": inputs.channels(time)}
+            for term in self.effect_terms:
+                rhs_force = rhs_force + term(time, eta, nu, hook)
+            if self.extra_force is not None:
+                rhs_force = rhs_force + np.asarray(self.extra_force(time, eta, nu, hook),
+                                                   dtype=float).reshape(6)
+        nu_dot = self.m_inv @ rhs_force
+        eta_dot = kinematics(eta) @ nu
+        return np.concatenate([eta_dot, nu_dot])
+
+
+def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
+              max_step=None, max_evaluations=MAX_EVALUATIONS, time_limit=TIME_LIMIT,
+              desc="simulate") -> np.ndarray:
+    """States ``(n, len(y0))`` of :math:`\dot y = f(t, y)` at the times ``t``, integrated by
+    :func:`scipy.integrate.solve_ivp` segment by segment between the sample indices ``bounds``
+    (the inputs jump only there), ``start_segment(k, y)`` called at the start of each; within
+    ``max_evaluations`` evaluations of f and ``time_limit`` seconds of wall clock, else an
+    :class:`~stripcoef.errors.UnreachableError` saying where it got to.
+    """
+    n = t.size
+    y = np.asarray(y0, dtype=float)
+    states = np.empty((n, y.size))
+    states[0] = y
+    spent = {"evaluations": 0}
+    deadline = _time.monotonic() + time_limit if np.isfinite(time_limit) else None
+    clock = TimeBar(t[0], t[-1], desc=desc)
+
+    def budgeted(time, y):
+        """f within the evaluation and wall-clock budgets, and finite."""
+        spent["evaluations"] += 1
+        if spent["evaluations"] > max_evaluations:
+            raise _OverBudget(time, f"over the budget of {max_evaluations} right-hand-side "
+                                    "evaluations")
+        if deadline is not None and spent["evaluations"] % 64 == 0 \
+                and _time.monotonic() > deadline:
+            raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
+        clock.advance(time)
+        out = f(time, y)
+        if not np.all(np.isfinite(out)):
+            raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
+                                    "diverged)")
+        return out
+
+    opts = {"rtol": rtol, "atol": atol, "method": method}
+    if max_step is not None:
+        opts["max_step"] = max_step
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        if b <= a:
+            continue
+        if start_segment is not None:
+            start_segment(a, y)
+        try:
+            sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
+        except _OverBudget as stop:
+            raise UnreachableError(
+                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
+                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
+                "expected a run that is not stiff or divergent (check the mass, inertia, "
+                "damping and current)") from None
+        if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
+            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
+                                   f"({sol.message}); expected a motion that stays finite "
+                                   "(did it diverge?)")
+        states[a:b + 1] = sol.y.T
+        y = sol.y[:, -1]
+        # at t_b the new inputs take over (zero-order hold), so the state carries on.
+    clock.close()
+    return states
+
+
 def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, nu0=None,
              interpolation: str = "previous", rtol: float = 1e-8, atol: float = 1e-10,
              method: str = "RK45", max_step: float | None = None,
@@ -264,224 +546,47 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             raise InputError("invalid integrator setting", key=key, value=value,
                              expected=expected)
     t = _as_time(t)
-    n = t.size
-
-    # --- inputs --------------------------------------------------------------
-    thrusters = list(model.thrusters)
-    names = [th.name for th in thrusters]
-    cmd = np.zeros((n, len(thrusters)))
-    commanded = []
-    for name, values in (commands or {}).items():
-        if name not in names:
-            raise unknown_name("thruster", name, names, key=COMMAND_PREFIX + str(name))
-        k = names.index(name)
-        v = np.asarray(values, dtype=float)
-        cmd[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(v, n, 1,
-                                                                          COMMAND_PREFIX + name)
-        if not np.all(np.isfinite(cmd[:, k])):
-            raise InputError("NaN or infinite command", key=COMMAND_PREFIX + name,
-                             expected="finite numbers")
-        commanded.append(name)
-    surfaces = list(getattr(model, "control_surfaces", ()))
-    snames = [sf.name for sf in surfaces]
-    defl = np.zeros((n, len(surfaces)))
-    deflected = []
-    for name, values in (deflections or {}).items():
-        if name not in snames:
-            raise unknown_name("control surface", name, snames, key=DEFLECTION_PREFIX + str(name))
-        k = snames.index(name)
-        v = np.asarray(values, dtype=float)
-        defl[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
-            v, n, 1, DEFLECTION_PREFIX + name)
-        lim = surfaces[k].max_deflection
-        bad = np.nonzero(~(np.abs(defl[:, k]) <= lim * (1 + 1e-12)))[0]
-        if bad.size:
-            raise InputError(f"deflection beyond the limit at sample {int(bad[0])}",
-                             key=DEFLECTION_PREFIX + name, value=float(defl[bad[0], k]),
-                             expected=f"|delta| <= {lim:.6g} rad ({np.degrees(lim):.4g} deg, "
-                                      f"stall at {np.degrees(surfaces[k].stall_angle):.4g} deg)")
-        deflected.append(name)
-    force_fn = None
-    force_series = np.zeros((n, 6))
-    if callable(forces):
-        force_fn = forces
-    elif forces is not None:
-        force_series = _as_series(forces, n, 6, "forces")
-    inputs_series = np.hstack([cmd, force_series, defl])
-    sampler = _Sampler(t, inputs_series, interpolation)
-    current_fn = _current_function(current, t, interpolation)
-    chan_names = list(channels or {})
-    chan_sampler = None
-    if chan_names:
-        chan_series = np.column_stack([_as_series(channels[k], n, 1, k) for k in chan_names])
-        chan_sampler = _Sampler(t, chan_series, interpolation)
-
+    history = bool((effects and model.effects) or extra_force is not None)
+    inputs = InputSampler(model, t, forces=forces, commands=commands, deflections=deflections,
+                          channels=channels, current=current, interpolation=interpolation,
+                          history=history)
     eta0 = np.zeros(6) if eta0 is None else _as_series(eta0, 1, 6, "eta0").reshape(6)
     nu0 = np.zeros(6) if nu0 is None else _as_series(nu0, 1, 6, "nu0").reshape(6)
+    f = RightHandSide(model, inputs, effects=effects, munk=munk, coriolis=coriolis,
+                      extra_force=extra_force)
+    if controller is not None and not inputs.held_between_samples:
+        raise InputError("a controller needs sampled inputs held between samples",
+                         key="controller", expected="interpolation='previous' and "
+                         "forces given as samples (not a function)")
 
-    # --- model constants -----------------------------------------------------
-    m_total = model.mass_matrix
-    m_added = np.asarray(model.added_mass, dtype=float)
-    try:
-        m_inv = np.linalg.inv(m_total)
-    except np.linalg.LinAlgError:
-        raise InputError("singular mass matrix M_RB + M_A", key="model",
-                         expected="a positive definite inertia matrix") from None
-    alloc = model.allocation()
-    b_delta = model.control_matrix if surfaces else None
-    effect_terms = []
-    if effects and model.effects:
-        from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
-        effect_terms = effect_forces(model)
-    nthr = len(thrusters)
-    # the applied force at every sample (updated by a controller as it runs): effects with
-    # a memory of the inputs (thruster lag, actuation delay) read it as ``input_history``
-    tau_history = np.zeros((n, 6))
-    if effect_terms or extra_force is not None:
-        thr_all = (np.column_stack([np.asarray(th.thrust(cmd[:, k]), float).reshape(-1)
-                                    for k, th in enumerate(thrusters)]) if nthr
-                   else np.zeros((n, 0)))
-        f_all = (np.array([np.asarray(force_fn(ti), float).reshape(6) for ti in t])
-                 if force_fn else force_series)
-        tau_history = (thr_all @ alloc.T if nthr else 0.0) + f_all
-
-    hold = {"values": None}  # inputs held constant over a zero-order-hold segment
-
-    def applied(time):
-        vals = hold["values"] if hold["values"] is not None else sampler(time)
-        c = vals[:nthr]
-        thrust = np.array([th.thrust(ci) for th, ci in zip(thrusters, c)]) if nthr else c
-        f = np.asarray(force_fn(time), dtype=float).reshape(6) if force_fn \
-            else vals[nthr:nthr + 6]
-        tau = (alloc @ thrust if nthr else np.zeros(6)) + f
-        return c, thrust, tau, vals[nthr + 6:]
-
-    def rhs(time, y):
-        clock.advance(time)
-        eta, nu = y[:6], y[6:]
-        c, thrust, tau, delta = hold["applied"] if hold["values"] is not None else applied(time)
-        nu_c = np.zeros(6)
-        nu_c_dot = np.zeros(6)
-        if current_fn is not None:
-            vc_ned, dvc_ned = current_fn(time)
-            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
-            vc = rt @ vc_ned
-            nu_c[:3] = vc
-            nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
-        nu_r = nu - nu_c
-        rhs_force = tau
-        if coriolis:
-            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
-                         - model.coriolis(nu_r, rigid_body=False, munk=munk) @ nu_r)
-        rhs_force = (rhs_force
-                     - model.damping(nu_r) @ nu_r
-                     - model.restoring(eta)
-                     + m_added @ nu_c_dot)
-        if b_delta is not None:
-            rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (b_delta @ delta)
-        if effect_terms or extra_force is not None:
-            inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
-                      "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
-                      "allocation": alloc, "input_history": (t, tau_history),
-                      "columns": (dict(zip(chan_names, chan_sampler(time)))
-                                  if chan_sampler is not None else {})}
-            for term in effect_terms:
-                rhs_force = rhs_force + term(time, eta, nu, inputs)
-            if extra_force is not None:
-                rhs_force = rhs_force + np.asarray(extra_force(time, eta, nu, inputs),
-                                                   dtype=float).reshape(6)
-        nu_dot = m_inv @ rhs_force
-        eta_dot = kinematics(eta) @ nu
-        return np.concatenate([eta_dot, nu_dot])
-
-    # --- integrate, restarting at input discontinuities ----------------------
-    if controller is not None:
-        if interpolation != "previous" or force_fn is not None:
-            raise InputError("a controller needs sampled inputs held between samples",
-                             key="controller", expected="interpolation='previous' and "
-                             "forces given as samples (not a function)")
-        bounds = list(range(n))  # commands change at every sample
-    elif interpolation == "previous" and force_fn is None:
-        jumps = np.nonzero(np.any(np.diff(inputs_series, axis=0) != 0.0, axis=1))[0] + 1
-        bounds = [0, *[int(j) for j in jumps], n - 1]
-    else:
-        bounds = [0, n - 1]
-    y = np.concatenate([eta0, nu0])
-    states = np.empty((n, 12))
-    states[0] = y
-    spent = {"evaluations": 0}
-    time_limit = TIME_LIMIT if time_limit is None else float(time_limit)
-    deadline = _time.monotonic() + time_limit if np.isfinite(time_limit) else None
-
-    def budgeted(time, y):
-        """rhs within the evaluation and wall-clock budgets, and finite."""
-        spent["evaluations"] += 1
-        if spent["evaluations"] > max_evaluations:
-            raise _OverBudget(time, f"over the budget of {max_evaluations} right-hand-side "
-                                    "evaluations")
-        if deadline is not None and spent["evaluations"] % 64 == 0 \
-                and _time.monotonic() > deadline:
-            raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
-        out = rhs(time, y)
-        if not np.all(np.isfinite(out)):
-            raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
-                                    "diverged)")
-        return out
-
-    opts = {"rtol": rtol, "atol": atol, "method": method}
-    if max_step is not None:
-        opts["max_step"] = max_step
-    def control(k, state):
-        out = controller(t[k], state[:6].copy(), state[6:].copy(), dict(zip(names, cmd[k])))
-        for name, value in dict(out).items():
-            if name not in names:
-                raise unknown_name("thruster", name, names, key="controller")
-            value = float(value)
-            if not np.isfinite(value):
-                raise InputError("controller returned a non-finite command", key=name,
-                                 value=value, expected="a finite command")
-            cmd[k, names.index(name)] = value
-            if name not in commanded:
-                commanded.append(name)
-        inputs_series[k, :nthr] = cmd[k]
-        if effect_terms or extra_force is not None:
-            thr_k = np.array([float(th.thrust(c)) for th, c in zip(thrusters, cmd[k])])
-            tau_history[k] = (alloc @ thr_k if nthr else 0.0) + force_series[k]
-
-    clock = TimeBar(t[0], t[-1], desc=f"simulate {model.name}")
-    for a, b in zip(bounds[:-1], bounds[1:]):
-        if b <= a:
-            continue
+    def start_segment(k, state):
+        """At sample k: the controller's commands, then the inputs held over the segment."""
         if controller is not None:
-            control(a, y)
-        # Hold the inputs of sample a over [t_a, t_b] (no jump inside the segment).
-        hold["values"] = inputs_series[a] if interpolation == "previous" and force_fn is None \
-            else None
-        if hold["values"] is not None:
-            hold["applied"] = applied(t[a])
-        try:
-            sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
-        except _OverBudget as stop:
-            raise UnreachableError(
-                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
-                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
-                "expected a run that is not stiff or divergent (check the mass, inertia, "
-                "damping and current)") from None
-        if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
-            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
-                                   f"({sol.message}); expected a motion that stays finite "
-                                   "(did it diverge?)")
-        states[a:b + 1] = sol.y.T
-        y = sol.y[:, -1]
-        # at t_b the new inputs take over (zero-order hold), so the state carries on.
-    clock.close()
+            inputs.command(k, controller(t[k], state[:6].copy(), state[6:].copy(),
+                                         inputs.commands_at(k)))
+        inputs.hold(k)
 
-    if controller is not None:
-        control(n - 1, y)  # the command issued at the last sample (logged)
-    if surfaces:
-        _check_stall(surfaces, states[:, 6:], defl, t, current_fn is not None)
-    hold["values"] = None
-    taus = np.array([applied(ti)[2] for ti in t])
+    bounds = list(range(t.size)) if controller is not None else inputs.segments()
+    states = integrate(f, t, np.concatenate([eta0, nu0]), bounds, start_segment=start_segment,
+                       rtol=rtol, atol=atol, method=method, max_step=max_step,
+                       max_evaluations=max_evaluations,
+                       time_limit=TIME_LIMIT if time_limit is None else float(time_limit),
+                       desc=f"simulate {model.name}")
+    if controller is not None:   # the command issued at the last sample (logged)
+        last = states[-1]
+        inputs.command(t.size - 1, controller(t[-1], last[:6].copy(), last[6:].copy(),
+                                              inputs.commands_at(t.size - 1)))
+    if inputs.surfaces:
+        _check_stall(inputs.surfaces, states[:, 6:], inputs.defl, t, inputs.current_fn is not None)
+    inputs.release()
+    return _motion_log(model, inputs, states, current=current, interpolation=interpolation)
+
+
+def _motion_log(model, inputs, states, *, current, interpolation) -> Log:
+    """The log of a run: pose, velocities, applied forces (at the sample times), commands,
+    deflections and channels."""
+    t = inputs.t
+    taus = np.array([inputs.applied(ti)[2] for ti in t])
     cols = {"t": t}
     for i, name in enumerate(POSE):
         cols[name] = states[:, i]
@@ -489,12 +594,12 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         cols[name] = states[:, 6 + i]
     for i, name in enumerate(FORCES):
         cols[name] = taus[:, i]
-    for name in commanded:
-        cols[COMMAND_PREFIX + name] = cmd[:, names.index(name)]
-    for name in deflected:
-        cols[DEFLECTION_PREFIX + name] = defl[:, snames.index(name)]
-    for k, name in enumerate(chan_names):
-        cols[name] = chan_series[:, k]
+    for name in inputs.commanded:
+        cols[COMMAND_PREFIX + name] = inputs.cmd[:, inputs.names.index(name)]
+    for name in inputs.deflected:
+        cols[DEFLECTION_PREFIX + name] = inputs.defl[:, inputs.snames.index(name)]
+    for k, name in enumerate(inputs.chan_names):
+        cols[name] = inputs.chan_series[:, k]
     meta = {"model": model.name, "interpolation": interpolation}
     if current is not None and not callable(current):
         meta["current"] = np.asarray(current, dtype=float).tolist()
