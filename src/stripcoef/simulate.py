@@ -33,7 +33,9 @@ coefficients, efficiencies, dead band, limits) plus the given generalized forces
 
 The state is integrated with :func:`scipy.integrate.solve_ivp`; with zero-order-hold
 inputs the integration restarts at every sample where an input jumps, so the
-integrator never steps across a discontinuity. :func:`simulate` is three pieces: the
+integrator never steps across a discontinuity. The attitude is integrated as a unit
+quaternion (Fossen 2011, eqs. 2.72 and 2.86; no singularity at +-90 deg of pitch); Euler
+angles are only its output (:func:`pose`). :func:`simulate` is three pieces: the
 inputs at any time (:class:`InputSampler`), the state equation (:class:`RightHandSide`)
 and the integrator (:func:`integrate`); :func:`replay` runs it on a log's own inputs.
 """
@@ -46,8 +48,9 @@ from typing import Callable
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.spatial.transform import Rotation
 
-from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
+from stripcoef.conventions import FORCES, POSE, VELOCITIES, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
 from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log, LogInputs, log_inputs
 from stripcoef.progress import TimeBar
@@ -154,6 +157,38 @@ def _current_function(current, t, interpolation):
     series = _as_series(c, t.size, 3, "current")
     sampler = _Sampler(t, series, "linear" if interpolation == "linear" else "previous")
     return lambda time: (sampler(time), sampler.rate(time))
+
+
+def _attitude_euler(rot) -> np.ndarray:
+    """(phi, theta, psi) [rad] of Rotation(s) ``rot`` (zyx convention, Fossen 2011 eq. 2.18);
+    at +-90 deg of pitch the angles are not unique and scipy's choice (psi = 0) is taken."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)       # "Gimbal lock detected"
+        return rot.as_euler("ZYX")[..., ::-1]
+
+
+def state_vector(eta, nu) -> np.ndarray:
+    r"""The integrated state :math:`x = [p;\ q;\ \nu]` (13,) of a pose ``eta`` = (x, y, z [m],
+    phi, theta, psi [rad]) and a body velocity ``nu`` [m/s, rad/s]: position in NED, the unit
+    quaternion of :math:`R(\Theta)` (scipy's order: vector part, then scalar) and nu."""
+    eta = np.asarray(eta, dtype=float)
+    quat = Rotation.from_euler("ZYX", eta[5:2:-1]).as_quat()
+    return np.concatenate([eta[:3], quat, np.asarray(nu, dtype=float)])
+
+
+def pose(states, eta0=None) -> np.ndarray:
+    """Poses (n, 6) [m, rad] of integrated states (n, 13) (:func:`state_vector`): Euler angles
+    from the quaternions, roll and heading made continuous in time (unwrapped, starting at
+    ``eta0``'s angles: a heading that turns twice reads 4 pi)."""
+    states = np.atleast_2d(states)
+    angles = _attitude_euler(Rotation.from_quat(states[:, 3:7]))
+    for i in (0, 2):
+        a = np.unwrap(angles[:, i])
+        start = 0.0 if eta0 is None else float(np.asarray(eta0, float)[3 + i])
+        angles[:, i] = a + 2 * np.pi * np.round((start - a[0]) / (2 * np.pi))
+    return np.column_stack([states[:, :3], angles])
 
 
 class InputSampler:
@@ -305,13 +340,16 @@ class InputSampler:
 
 
 class RightHandSide:
-    r"""The state equation :math:`\dot x = f(t, x)` of :math:`x = [\eta;\ \nu]` (module
-    docstring; Fossen 2011 eqs. 7.190, 10.1, sec. 10.3):
+    r"""The state equation :math:`\dot x = f(t, x)` of :math:`x = [p;\ q;\ \nu]` (position
+    in NED, unit quaternion, body velocity: :func:`state_vector`; module docstring; Fossen 2011
+    eqs. 2.86, 7.190, 10.1, sec. 10.3):
 
     .. math::
         \dot\nu = M^{-1}\big(\tau + \tau_{extra} - C_{RB}(\nu)\nu - C_A(\nu_r)\nu_r
         - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c + u_r|u_r| B_\delta\delta\big),
-        \qquad \dot\eta = J(\eta)\nu
+        \qquad \dot p = R(q)\,v, \qquad
+        \dot\varepsilon = \tfrac12 (q_0 I + S(\varepsilon))\,\omega,\quad
+        \dot q_0 = -\tfrac12 \varepsilon^T\omega
 
     [m/s, rad/s, m/s^2, rad/s^2].
     """
@@ -332,13 +370,14 @@ class RightHandSide:
             from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
             self.effect_terms = effect_forces(model)
 
-    def current(self, time, eta, nu):
-        """(nu_c, d nu_c/dt): the current in body axes and its rate [m/s, m/s^2]."""
+    def current(self, time, rmat, nu):
+        """(nu_c, d nu_c/dt): the current in body axes and its rate [m/s, m/s^2]; ``rmat`` is
+        R, body to NED."""
         nu_c = np.zeros(6)
         nu_c_dot = np.zeros(6)
         if self.inputs.current_fn is not None:
             vc_ned, dvc_ned = self.inputs.current_fn(time)
-            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
+            rt = rmat.T
             vc = rt @ vc_ned
             nu_c[:3] = vc
             nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
@@ -346,9 +385,12 @@ class RightHandSide:
 
     def __call__(self, time, y):
         model, inputs = self.model, self.inputs
-        eta, nu = y[:6], y[6:]
+        quat, nu = y[3:7], y[7:]
+        rot = Rotation.from_quat(quat)          # normalised: the integrator's drift of |q|
+        rmat = rot.as_matrix()
+        eta = np.concatenate([y[:3], _attitude_euler(rot)])
         c, thrust, tau, delta = inputs(time)
-        nu_c, nu_c_dot = self.current(time, eta, nu)
+        nu_c, nu_c_dot = self.current(time, rmat, nu)
         nu_r = nu - nu_c
         rhs_force = tau
         if self.coriolis:
@@ -372,8 +414,10 @@ class RightHandSide:
                 rhs_force = rhs_force + np.asarray(self.extra_force(time, eta, nu, hook),
                                                    dtype=float).reshape(6)
         nu_dot = self.m_inv @ rhs_force
-        eta_dot = kinematics(eta) @ nu
-        return np.concatenate([eta_dot, nu_dot])
+        eps, q0 = quat[:3], quat[3]
+        w = nu[3:]
+        eps_dot = 0.5 * (q0 * w + skew(eps) @ w)
+        return np.concatenate([rmat @ nu[:3], eps_dot, [-0.5 * (eps @ w)], nu_dot])
 
 
 def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
@@ -562,23 +606,24 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
     def start_segment(k, state):
         """At sample k: the controller's commands, then the inputs held over the segment."""
         if controller is not None:
-            inputs.command(k, controller(t[k], state[:6].copy(), state[6:].copy(),
+            inputs.command(k, controller(t[k], pose(state)[0], state[7:].copy(),
                                          inputs.commands_at(k)))
         inputs.hold(k)
 
     bounds = list(range(t.size)) if controller is not None else inputs.segments()
-    states = integrate(f, t, np.concatenate([eta0, nu0]), bounds, start_segment=start_segment,
+    states = integrate(f, t, state_vector(eta0, nu0), bounds, start_segment=start_segment,
                        rtol=rtol, atol=atol, method=method, max_step=max_step,
                        max_evaluations=max_evaluations,
                        time_limit=TIME_LIMIT if time_limit is None else float(time_limit),
                        desc=f"simulate {model.name}")
     if controller is not None:   # the command issued at the last sample (logged)
         last = states[-1]
-        inputs.command(t.size - 1, controller(t[-1], last[:6].copy(), last[6:].copy(),
+        inputs.command(t.size - 1, controller(t[-1], pose(last)[0], last[7:].copy(),
                                               inputs.commands_at(t.size - 1)))
     if inputs.surfaces:
-        _check_stall(inputs.surfaces, states[:, 6:], inputs.defl, t, inputs.current_fn is not None)
+        _check_stall(inputs.surfaces, states[:, 7:], inputs.defl, t, inputs.current_fn is not None)
     inputs.release()
+    states = np.column_stack([pose(states, eta0), states[:, 7:]])
     return _motion_log(model, inputs, states, current=current, interpolation=interpolation)
 
 
