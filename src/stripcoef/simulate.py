@@ -457,7 +457,7 @@ class RightHandSide:
 def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
               max_step=None, max_evaluations=MAX_EVALUATIONS, time_limit=TIME_LIMIT,
               desc="simulate") -> np.ndarray:
-    """States ``(n, len(y0))`` of :math:`\dot y = f(t, y)` at the times ``t``, integrated by
+    r"""States ``(n, len(y0))`` of :math:`\dot y = f(t, y)` at the times ``t``, integrated by
     :func:`scipy.integrate.solve_ivp` segment by segment between the sample indices ``bounds``
     (the inputs jump only there), ``start_segment(k, y)`` called at the start of each; within
     ``max_evaluations`` evaluations of f and ``time_limit`` seconds of wall clock, else an
@@ -706,22 +706,38 @@ def effective_angle(surface, nu_r, delta) -> np.ndarray:
         return np.where(u != 0.0, np.sign(be) * np.asarray(delta) - cross / u, np.nan)
 
 
+#: The stall check reads a surface's angle of attack only where |u| is at least this fraction of
+#: the run's largest |u| [-] and at least :data:`STALL_MIN_SPEED`: the fin force scales with u^2
+#: (Prestero 2001, sec. 3.7), so below them it is under 1 % of its force at the run's top speed
+#: (0.5 % of it at 1.5 m/s, REMUS's cruise), and as u -> 0 the angle of attack -v_f/u is
+#: undefined (issue 37: 101.5 deg reported for an undeflected elevator at u ~ 0).
+STALL_SPEED_FRACTION = 0.1
+STALL_MIN_SPEED = 0.1   # [m/s]
+
+
 def _check_stall(surfaces, nu, defl, t, with_current: bool) -> None:
-    """Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
+    r"""Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
     the linear lift law is then extrapolated (docs/theory.md sec. 8). With a current, the
-    angle is computed on the velocity over ground (an approximation, said in the message)."""
+    angle is computed on the velocity over ground (an approximation, said in the message).
+    Only where the vehicle moves (:data:`STALL_SPEED_FRACTION`), and as the flow angle at the
+    surface, :math:`\sigma\delta - \arctan(v_f/u)` [rad], of which :func:`effective_angle`'s
+    :math:`\sigma\delta - v_f/u` is the small-angle form (the angle stays within 90 deg + |delta|
+    however slow the vehicle; the stall angle is a flow angle)."""
     import warnings
 
     from stripcoef.errors import ModelWarning
 
-    moving = np.abs(nu[:, 0]) > 1e-3
+    speed = np.abs(nu[:, 0])
+    moving = speed >= max(STALL_MIN_SPEED, STALL_SPEED_FRACTION * float(np.max(speed, initial=0.0)))
     for k, sf in enumerate(surfaces):
-        a = effective_angle(sf, nu, defl[:, k])
+        lead = np.sign(sf.derivative[1 if sf.kind == "rudder" else 2]) * defl[:, k]
+        a = lead - np.arctan(lead - effective_angle(sf, nu, defl[:, k]))
         a = np.where(moving, np.abs(a), 0.0)
         if np.nanmax(a, initial=0.0) > sf.stall_angle:
             i = int(np.nanargmax(a))
             warnings.warn(f"control surface {sf.name!r}: effective angle of attack "
-                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s exceeds its stall "
+                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s (u = {nu[i, 0]:.3g} m/s) "
+                          "exceeds its stall "
                           f"angle {np.degrees(sf.stall_angle):.1f} deg; the linear lift is "
                           "extrapolated there" + (" (angle from the velocity over ground)"
                                                    if with_current else ""),
@@ -766,15 +782,21 @@ class MotionSummary:
     warnings: tuple = field(default=())
 
 
-def summarize_motion(log: Log) -> MotionSummary:
+def summarize_motion(log: Log, *, model=None, munk: bool = True) -> MotionSummary:
     r"""Summary of a motion log (columns ``t``, ``x y z phi theta psi``, ``u .. r``; ``N`` if
     logged) and the warnings it deserves.
 
-    Heading runaway: the unwrapped heading turned more than :math:`2\pi` while the applied
-    yaw moment averaged out, :math:`|\int N\,dt| \le 0.1 \int |N|\,dt` (a straight run
-    that spins: for a finless body the Munk moment :math:`(Y_{\dot v} - X_{\dot u})\,u v`
-    makes yaw unstable, Fossen 2011 sec. 6.5; try ``munk=False`` to see the decoupled model).
-    Divergence: see :class:`MotionSummary`. Units: [s, m, rad, m/s, rad/s, N m].
+    Heading runaway: the unwrapped heading turned more than :math:`2\pi` while the yaw moment
+    put on the vehicle averaged out, :math:`|\int N_a\,dt| \le 0.1 \int |N_a|\,dt`, with
+    :math:`N_a = N + u|u|\,(B_\delta\delta)_6` the applied yaw moment and, given ``model``,
+    that of its deflected control surfaces (log columns ``delta_<surface>``; Prestero 2001,
+    sec. 3.7; u over ground): a straight run that spins, for a finless body the Munk moment
+    :math:`(Y_{\dot v} - X_{\dot u})\,u v` makes yaw unstable (Fossen 2011 sec. 6.5). A
+    commanded turn (a steady moment, a held rudder) is no runaway, and a run without the Munk
+    moment (``munk=False``) gets no such warning. Capsized or looped: the body z axis tilted
+    more than 90 deg from the vertical, :math:`\cos\phi\cos\theta < 0` (whatever Euler angles
+    represent the attitude). Divergence: see :class:`MotionSummary`. Units: [s, m, rad, m/s,
+    rad/s, N m].
     """
     t = log.require("t")
     pose = np.column_stack([log.get(k, np.zeros(len(log))) for k in POSE])
@@ -782,11 +804,12 @@ def summarize_motion(log: Log) -> MotionSummary:
     psi = np.unwrap(pose[:, 5])
     heading = float(psi[-1] - psi[0])
     steps = np.linalg.norm(np.diff(pose[:, :3], axis=0), axis=1)
+    wrap = (pose[:, 3:5] + np.pi) % (2 * np.pi) - np.pi
     summary = dict(duration=float(t[-1] - t[0]), final_velocity=nu[-1].copy(),
                    final_speed=float(np.linalg.norm(nu[-1, :3])), distance=float(steps.sum()),
                    displacement=pose[-1, :3] - pose[0, :3], heading_change=heading,
-                   max_roll=float(np.max(np.abs(pose[:, 3]))),
-                   max_pitch=float(np.max(np.abs(pose[:, 4]))))
+                   max_roll=float(np.max(np.abs(wrap[:, 0]))),
+                   max_pitch=float(np.max(np.abs(wrap[:, 1]))))
     warn = []
     speed = np.max(np.abs(nu[:, :3]))
     rate = np.max(np.abs(nu[:, 3:]))
@@ -794,24 +817,47 @@ def summarize_motion(log: Log) -> MotionSummary:
         warn.append(f"the state diverges: speeds reach {speed:.3g} m/s and rates "
                     f"{rate:.3g} rad/s (limits {DIVERGENCE_SPEED:g} m/s, {DIVERGENCE_RATE:g} "
                     "rad/s): check the model's damping and the inputs")
-    tilt = max(summary["max_roll"], summary["max_pitch"])
+    tilt = float(np.max(np.arccos(np.clip(np.cos(pose[:, 3]) * np.cos(pose[:, 4]), -1, 1))))
     if tilt > DIVERGENCE_ATTITUDE:
-        warn.append(f"the vehicle capsized or looped: max |roll| {summary['max_roll']:.3g} rad, "
-                    f"max |pitch| {summary['max_pitch']:.3g} rad (beyond "
+        warn.append(f"the vehicle capsized or looped: its z axis tilted {np.degrees(tilt):.3g} "
+                    f"deg from the vertical (max |roll| {summary['max_roll']:.3g} rad, "
+                    f"max |pitch| {summary['max_pitch']:.3g} rad; beyond "
                     f"{DIVERGENCE_ATTITUDE:.3g} rad): check the CG/CB (metacentric height)")
     yaw = log.get("N")
+    control = control_moments(log, model)
+    if control is not None:
+        yaw = control[:, 5] if yaw is None else yaw + control[:, 5]
     dt = np.diff(t)
     net = abs(np.sum(0.5 * (yaw[1:] + yaw[:-1]) * dt)) if yaw is not None else 0.0
     total = np.sum(0.5 * (np.abs(yaw[1:]) + np.abs(yaw[:-1])) * dt) if yaw is not None else 0.0
     forces = log.forces()
     scale = 1e-9 * (float(t[-1] - t[0])) * max(1.0, np.max(np.abs(forces)) if forces is not None
                                                else 1.0)      # round-off of a zero moment
-    if abs(heading) > 2 * np.pi and net <= 0.1 * total + scale:
+    if munk and abs(heading) > 2 * np.pi and net <= 0.1 * total + scale:
         warn.append(f"the heading runs away: it turned {heading:.4g} rad "
                     f"({abs(heading) / (2 * np.pi):.1f} turns) while the applied yaw moment "
-                    "averaged out; a finless body is directionally unstable (Munk moment): "
+                    + ("(control surfaces included) " if control is not None else "")
+                    + "averaged out; a finless body is directionally unstable (Munk moment): "
                     "compare without it (munk=False)")
     return MotionSummary(**summary, warnings=tuple(warn))
+
+
+def control_moments(log: Log, model) -> np.ndarray | None:
+    r"""Forces of the deflected control surfaces along a log [N, N m], (n, 6):
+
+    .. math:: \tau_\delta = u|u|\,B_\delta\,\delta
+
+    with u the logged surge velocity (over ground: with a current an approximation) and
+    ``delta_<surface>`` the logged deflections [rad]; None without a model, surfaces or
+    deflections (:meth:`HydroModel.control_force`; Prestero 2001, sec. 3.7).
+    """
+    surfaces = [sf.name for sf in getattr(model, "control_surfaces", ())] if model else []
+    defl = log.deflections()
+    if not surfaces or not any(k in surfaces for k in defl):
+        return None
+    delta = np.column_stack([defl.get(k, np.zeros(len(log))) for k in surfaces])
+    u = log.velocities()[:, 0]
+    return (u * np.abs(u))[:, None] * (delta @ np.asarray(model.control_matrix, float).T)
 
 
 def kinetic_energy(model, nu) -> np.ndarray:

@@ -181,7 +181,7 @@ def run(args) -> int:
         save_figure(motion_figure(out, title=f"{model.name}: simulated trajectory and "
                                              "velocities", key="--plot"),
                     args.plot, key="--plot")
-    summary = summarize_motion(out)
+    summary = summarize_motion(out, model=model, munk=args.munk and args.coriolis)
     report = sys.stderr if to_stdout else sys.stdout
     print(format_summary(summary, args.out, out, dt=dt, default_dt=args.dt is None and dt),
           file=report)
