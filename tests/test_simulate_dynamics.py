@@ -241,3 +241,55 @@ def test_controller_feedback_holds_a_speed_and_is_logged():
     assert thrust == pytest.approx(dl * u + dq * u * u, rel=1e-4)
     with pytest.raises(InputError, match="thruster"):
         simulate(model, t[:5], controller=lambda *a: {"nope": 1.0})
+
+
+def _spinning_top(inertia=(0.02275, 0.02391, 0.02532), added=(0.033, 0.018, 0.032)):
+    """make_model without damping and restoring (CG = CB, W = B) and with the given rotational
+    inertia [kg m^2] and added inertia [kg m^2]."""
+    model = make_model(damping=False, cg=(0.0, 0.0, 0.0))
+    import dataclasses
+    return dataclasses.replace(
+        model, rigid_body_mass=rigid_body_mass_matrix(3.6, (0.0, 0.0, 0.0), np.diag(inertia)),
+        added_mass=np.diag([1.94, 6.06, 3.95, *added]))
+
+
+def _attitude_error(log, expected):
+    """Largest angle [rad] between the logged attitudes and the expected Rotations."""
+    from scipy.spatial.transform import Rotation
+    got = Rotation.from_euler("ZYX", np.column_stack([log["psi"], log["theta"], log["phi"]]))
+    return float(np.max((got.inv() * expected).magnitude()))
+
+
+def test_a_pure_pitch_rate_passes_through_90_degrees():
+    """Rotation about a principal axis with no moment: q stays constant and the attitude is
+    R_y(q t) (Fossen 2011 eq. 2.18). Euler angles are only the output: |theta| <= 90 deg, and
+    the summary's largest pitch is 90 deg, not the integrated angle (issue 37: "450 deg")."""
+    from scipy.spatial.transform import Rotation
+    from stripcoef.simulate import summarize_motion
+
+    q = 0.5
+    t = np.linspace(0.0, 10.0, 201)                 # 5 rad: through 90, 180 and 270 deg
+    log = simulate(_spinning_top(), t, nu0=[0, 0, 0, 0, q, 0], rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(log["q"], q, atol=1e-12)
+    assert _attitude_error(log, Rotation.from_rotvec(np.outer(q * t, [0, 1, 0]))) < 1e-7
+    assert np.max(np.abs(log["theta"])) <= np.pi / 2 + 1e-12
+    assert np.max(np.abs(log["theta"])) > np.radians(89.0)
+    assert summarize_motion(log).max_pitch <= np.pi / 2 + 1e-12
+
+
+def test_any_constant_rate_of_a_symmetric_top_gives_the_closed_form_attitude():
+    """Equal principal inertias: omega stays constant (omega x J omega = 0), so the attitude is
+    R(t) = R(0) exp(S(omega) t) whatever the angles pass through; started at 75 deg of pitch
+    the motion crosses the Euler angles' singularity (theta = +-90 deg)."""
+    from scipy.spatial.transform import Rotation
+
+    w = np.array([0.4, 0.7, -0.3])
+    eta0 = [0.0, 0.0, 0.0, 0.2, np.radians(75.0), -0.4]
+    t = np.linspace(0.0, 20.0, 401)
+    log = simulate(_spinning_top((0.02, 0.02, 0.02), (0.01, 0.01, 0.01)), t,
+                   eta0=eta0, nu0=[0, 0, 0, *w], rtol=1e-10, atol=1e-12)
+    r0 = Rotation.from_euler("ZYX", eta0[5:2:-1])
+    assert _attitude_error(log, r0 * Rotation.from_rotvec(np.outer(t, w))) < 1e-7
+    np.testing.assert_allclose(log["phi"][0], 0.2, atol=1e-12)
+    np.testing.assert_allclose(log["psi"][0], -0.4, atol=1e-12)
+

@@ -111,3 +111,80 @@ def test_summary_warnings():
     s = summarize_motion(_synthetic(np.zeros(1001), np.zeros(1001), u=50.0))
     assert any("diverges" in w for w in s.warnings)
     assert summarize_motion(_synthetic(np.zeros(1001), np.zeros(1001))).warnings == ()
+
+
+@pytest.fixture(scope="module")
+def remus_file(tmp_path_factory):
+    """REMUS 100 (propeller, rudder, elevator) as a model file, estimated once."""
+    import warnings
+
+    from conftest import GEOMETRY
+    from stripcoef.errors import ModelWarning
+    from stripcoef.export import write_export
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)          # REMUS is 7 % buoyant
+        model = load_model(GEOMETRY / "remus100.yaml")
+    path = tmp_path_factory.mktemp("remus") / "remus.json"
+    write_export(model, "json", path)
+    return path
+
+
+def test_a_rudder_turn_is_commanded_not_a_runaway(remus_file, tmp_path, capsys):
+    """A held rudder turns REMUS twice in 60 s: its yaw moment u|u| (B_delta delta)_N is steady,
+    so the turn is commanded and the Munk warning stays silent; with --no-munk there is no Munk
+    moment to blame (issue 37: it fired in both cases)."""
+    f = tmp_path / "turn.csv"
+    f.write_text("t,n_propeller,delta_rudder\n0,1500,0.12\n60,1500,0.12\n")
+    for flags in ([], ["--no-munk"]):
+        out = tmp_path / "log.csv"
+        assert main(["simulate", str(remus_file), "--inputs", str(f), "--out", str(out),
+                     *flags]) == 0
+        err = capsys.readouterr().err
+        log = read_log(out)
+        assert summarize_motion(log).heading_change < -2 * np.pi     # more than a turn
+        assert "heading runs away" not in err, flags
+    # the check reads the surfaces' moment from the model: without it, the log alone shows
+    # a spin with no applied yaw moment
+    assert any("heading runs away" in w for w in summarize_motion(log).warnings)
+    model = load_model(remus_file)
+    assert summarize_motion(log, model=model).warnings == ()
+
+
+def test_no_munk_warning_without_the_munk_moment():
+    psi = np.linspace(0.0, 20.0, 1001)
+    assert summarize_motion(_synthetic(psi, np.zeros(1001)), munk=False).warnings == ()
+
+
+def test_the_stall_check_reads_no_angle_at_near_zero_speed(remus_file):
+    """REMUS left to itself (no thrust, undeflected elevator) rises and barely moves forward:
+    the angle of attack -v_f/u of a fin is not defined as u -> 0 (issue 37: 101.5 deg; here the
+    old check said 4560.7 deg at u ~ 0.03 m/s); the check reads angles only where u is at least
+    0.1 m/s and 10 % of the run's top speed, as flow angles (within 90 deg + |delta|)."""
+    import warnings
+
+    from stripcoef.errors import ModelWarning
+
+    model = load_model(remus_file)
+    t = np.linspace(0.0, 20.0, 201)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        log = simulate(model, t, deflections={"elevator": 0.0})
+    stall = [str(w.message) for w in caught
+             if issubclass(w.category, ModelWarning) and "stall" in str(w.message)]
+    for text in stall:
+        angle = float(text.split("angle of attack ")[1].split(" deg")[0])
+        u = float(text.split("(u = ")[1].split(" m/s")[0])
+        assert angle <= 90.0 and u >= max(0.1, 0.1 * np.max(np.abs(log["u"]))) - 1e-3
+
+
+def test_a_pitch_loop_is_reported_although_pitch_stays_within_90_degrees():
+    """Euler angles from the quaternion keep |theta| <= 90 deg; the loop is seen as the body z
+    axis pointing up (cos(phi) cos(theta) < 0)."""
+    from test_simulate_dynamics import _spinning_top
+
+    t = np.linspace(0.0, 10.0, 201)
+    log = simulate(_spinning_top(), t, nu0=[0, 0, 0, 0, 0.5, 0], rtol=1e-10, atol=1e-12)
+    s = summarize_motion(log)
+    assert s.max_pitch <= np.pi / 2 + 1e-12
+    assert any("capsized or looped" in w and "tilted 180 deg" in w for w in s.warnings)

@@ -218,3 +218,150 @@ def read_log(path, *, required=()) -> Log:
                              expected=f"strictly increasing time (previous {float(t[k]):g})")
     log.require(*required) if required else None
     return log
+
+
+# --- the inputs of a log: the one replay rule ---------------------------------------------------
+
+@dataclass(frozen=True)
+class LogInputs:
+    r"""The inputs of a log as a simulation replays them (:func:`log_inputs`, the one replay
+    rule shared by ``simulate --from-log``, held-out validation and diagnose's window residual).
+
+    Attributes
+    ----------
+    t : (n,) array
+        Times [s].
+    forces : (n, 6) array or None
+        Applied generalized forces ``X..N`` replayed as such [N, N m]: only in a log without
+        thruster commands (see :func:`log_inputs`).
+    commands : dict
+        Thruster name -> commands (n,) [command units], through the model's thruster map.
+    deflections : dict
+        Control surface name -> deflections (n,) [rad].
+    channels : dict
+        Other columns (``tether_length``...) that effects read [their units].
+    recorded_forces : (n, 6) array or None
+        The log's ``X..N`` when it also has thruster commands: the record of the applied force
+        (thrust included), not replayed [N, N m].
+    thrust_mismatch : float
+        Largest ``|X..N - B T(n)|`` of ``recorded_forces`` against the model's thrust of the
+        commands [N or N m] (0 without them): above round-off, the log's forces hold something
+        the commands do not (forces beyond the thrust, or another thruster map), which the
+        replay does not apply.
+    ignored : tuple of str
+        Columns not replayed (``delta_<surface>`` of a model without control surfaces).
+    """
+
+    t: np.ndarray
+    forces: np.ndarray | None
+    commands: dict
+    deflections: dict
+    channels: dict
+    recorded_forces: np.ndarray | None = None
+    thrust_mismatch: float = 0.0
+    ignored: tuple = ()
+
+    def window(self, a: int, b: int) -> "LogInputs":
+        """The inputs of rows a..b-1."""
+        cut = {k: v[a:b] for k, v in self.commands.items()}
+        return LogInputs(self.t[a:b], None if self.forces is None else self.forces[a:b], cut,
+                         {k: v[a:b] for k, v in self.deflections.items()},
+                         {k: v[a:b] for k, v in self.channels.items()},
+                         None if self.recorded_forces is None else self.recorded_forces[a:b],
+                         self.thrust_mismatch, self.ignored)
+
+    def at(self, times, interpolation: str = "previous") -> "LogInputs":
+        """The inputs at other ``times`` [s], held (``previous``: the value of the last sample
+        at or before each time) or interpolated (``linear``) as a simulation holds them."""
+        times = np.asarray(times, dtype=float)
+        t = self.t
+
+        def resample(values):
+            values = np.asarray(values)
+            if interpolation == "linear":
+                if values.ndim == 2:
+                    return np.column_stack([np.interp(times, t, c) for c in values.T])
+                return np.interp(times, t, values)
+            k = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 1)
+            return values[k]
+
+        return LogInputs(times, None if self.forces is None else resample(self.forces),
+                         {k: resample(v) for k, v in self.commands.items()},
+                         {k: resample(v) for k, v in self.deflections.items()},
+                         {k: resample(v) for k, v in self.channels.items()},
+                         None if self.recorded_forces is None else resample(self.recorded_forces),
+                         self.thrust_mismatch, self.ignored)
+
+    def simulate_inputs(self) -> dict:
+        """Keyword arguments of :func:`stripcoef.simulate.simulate` (``forces``, ``commands``, ``deflections``,
+        ``channels``)."""
+        return {"forces": self.forces, "commands": self.commands or None,
+                "deflections": self.deflections or None, "channels": self.channels or None}
+
+
+def log_inputs(log, model) -> LogInputs:
+    r"""The inputs of ``log`` for a simulation of ``model``: the one log-replay rule.
+
+    - thruster commands ``n_<thruster>`` act through the model's thruster map,
+      :math:`\tau = B\,T(n)` (:meth:`Thruster.thrust`);
+    - ``X Y Z K M N`` are the log's applied generalized force, the thrust of its commanded
+      thrusters included (as :func:`stripcoef.simulate.simulate` writes them and :mod:`stripcoef.identify` reads
+      them). In a log without commands they are replayed as the applied force; in a log with
+      commands they are its record and are *not* replayed (the thrust would count twice:
+      issue 31, a REMUS log turned -297 deg instead of -0.7 deg). Diagnose's window residual
+      (:func:`stripcoef.effects.windows.window_data`) reads a log the same way.
+      :attr:`LogInputs.thrust_mismatch` says how far the record is from the model's thrust;
+    - deflections ``delta_<surface>`` [rad] act through the model's control matrix
+      (:meth:`HydroModel.control_force`); a model without control surfaces ignores them
+      (listed in :attr:`LogInputs.ignored`), a surface the model lacks is an error;
+    - every other column (``tether_length``...) is a channel that effects read.
+
+    Raises
+    ------
+    InputError
+        Fewer than two rows, no input at all, a thruster or control surface the model lacks.
+
+    References
+    ----------
+    Fossen (2011), eq. 11.3 (tau = B T(n)); Prestero (2001), sec. 3.7 (control forces).
+    """
+    t_in = log.require("t")
+    if len(t_in) < 2:
+        raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
+                         expected="at least 2 time samples")
+    cmds = log.commands()
+    defl = log.deflections()
+    forces = log.forces()
+    names = [th.name for th in model.thrusters]
+    for name in cmds:
+        if name not in names:
+            raise InputError("unknown thruster", file=log.source, key=COMMAND_PREFIX + name,
+                             expected="one of " + ", ".join(COMMAND_PREFIX + n for n in names))
+    snames = [sf.name for sf in getattr(model, "control_surfaces", ())]
+    ignored = ()
+    if defl and not snames:
+        ignored = tuple(DEFLECTION_PREFIX + k for k in defl)
+        defl = {}
+    if not cmds and forces is None and not defl:
+        raise InputError("no inputs", file=log.source,
+                         expected="thruster commands n_<name> (thrusters: "
+                         + ", ".join(th.name for th in model.thrusters)
+                         + "), deflections delta_<surface> and/or forces X Y Z K M N")
+    for name in defl:
+        if name not in snames:
+            raise InputError("unknown control surface", file=log.source,
+                             key=DEFLECTION_PREFIX + name,
+                             expected="one of " + ", ".join(DEFLECTION_PREFIX + n
+                                                            for n in snames))
+    recorded, mismatch = None, 0.0
+    if cmds and forces is not None:
+        recorded, forces = forces, None
+        n = np.column_stack([cmds.get(k, np.zeros(len(t_in))) for k in names])
+        thrust = np.column_stack([np.asarray(th.thrust(n[:, k]), float).reshape(-1)
+                                  for k, th in enumerate(model.thrusters)])
+        mismatch = float(np.max(np.abs(recorded - thrust @ model.allocation().T)))
+    skip = set(KNOWN_COLUMNS)
+    channels = {k: v for k, v in log.columns.items()
+                if k not in skip and not k.startswith((COMMAND_PREFIX, DEFLECTION_PREFIX))}
+    return LogInputs(np.asarray(t_in, dtype=float), forces, dict(cmds), dict(defl), channels,
+                     recorded, mismatch, ignored)

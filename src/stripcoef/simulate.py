@@ -33,7 +33,11 @@ coefficients, efficiencies, dead band, limits) plus the given generalized forces
 
 The state is integrated with :func:`scipy.integrate.solve_ivp`; with zero-order-hold
 inputs the integration restarts at every sample where an input jumps, so the
-integrator never steps across a discontinuity.
+integrator never steps across a discontinuity. The attitude is integrated as a unit
+quaternion (Fossen 2011, eqs. 2.72 and 2.86; no singularity at +-90 deg of pitch); Euler
+angles are only its output (:func:`pose`). :func:`simulate` is three pieces: the
+inputs at any time (:class:`InputSampler`), the state equation (:class:`RightHandSide`)
+and the integrator (:func:`integrate`); :func:`replay` runs it on a log's own inputs.
 """
 
 from __future__ import annotations
@@ -44,10 +48,11 @@ from typing import Callable
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.spatial.transform import Rotation
 
-from stripcoef.conventions import FORCES, POSE, VELOCITIES, kinematics, rotation_matrix, skew
+from stripcoef.conventions import FORCES, POSE, VELOCITIES, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
-from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log
+from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log, LogInputs, log_inputs
 from stripcoef.progress import TimeBar
 
 INTERPOLATIONS = ("previous", "linear")
@@ -152,6 +157,361 @@ def _current_function(current, t, interpolation):
     series = _as_series(c, t.size, 3, "current")
     sampler = _Sampler(t, series, "linear" if interpolation == "linear" else "previous")
     return lambda time: (sampler(time), sampler.rate(time))
+
+
+def _attitude_euler(rot) -> np.ndarray:
+    """(phi, theta, psi) [rad] of Rotation(s) ``rot`` (zyx convention, Fossen 2011 eq. 2.18);
+    at +-90 deg of pitch the angles are not unique and scipy's choice (psi = 0) is taken."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)       # "Gimbal lock detected"
+        return rot.as_euler("ZYX")[..., ::-1]
+
+
+def _quaternion_matrix(quat) -> np.ndarray:
+    r"""R(q) [-], body to NED, of a quaternion (vector part x, y, z, then scalar w; normalised
+    here), and the same R as :meth:`scipy.spatial.transform.Rotation.as_matrix`:
+
+    .. math:: R(q) = I + 2 w S(\varepsilon) + 2 S(\varepsilon)^2
+
+    Written out because it runs at every evaluation of the right-hand side, where building a
+    ``Rotation`` costs ~50 us of the ~90 us of the rest (benchmarks/simulate_speed.py).
+
+    References
+    ----------
+    Fossen (2011), eq. 2.72.
+    """
+    x, y, z, w = quat / np.sqrt(quat @ quat)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def _matrix_euler(rmat, quat) -> np.ndarray:
+    r"""(phi, theta, psi) [rad] of R = R_zyx (Fossen 2011 eq. 2.18):
+
+    .. math:: \phi = \operatorname{atan2}(R_{32}, R_{33}),\quad \theta = -\arcsin R_{31},
+              \quad \psi = \operatorname{atan2}(R_{21}, R_{11})
+
+    (Fossen 2011, sec. 2.2.3, Euler angles from a unit quaternion); within 1e-9 of +-90 deg of
+    pitch, where phi and psi are not unique, scipy's choice (:func:`_attitude_euler`).
+    """
+    s = -rmat[2, 0]
+    if abs(s) > 1.0 - 1e-9:
+        return _attitude_euler(Rotation.from_quat(quat))
+    return np.array([np.arctan2(rmat[2, 1], rmat[2, 2]), np.arcsin(s),
+                     np.arctan2(rmat[1, 0], rmat[0, 0])])
+
+
+def state_vector(eta, nu) -> np.ndarray:
+    r"""The integrated state :math:`x = [p;\ q;\ \nu]` (13,) of a pose ``eta`` = (x, y, z [m],
+    phi, theta, psi [rad]) and a body velocity ``nu`` [m/s, rad/s]: position in NED, the unit
+    quaternion of :math:`R(\Theta)` (scipy's order: vector part, then scalar) and nu."""
+    eta = np.asarray(eta, dtype=float)
+    quat = Rotation.from_euler("ZYX", eta[5:2:-1]).as_quat()
+    return np.concatenate([eta[:3], quat, np.asarray(nu, dtype=float)])
+
+
+def pose(states, eta0=None) -> np.ndarray:
+    """Poses (n, 6) [m, rad] of integrated states (n, 13) (:func:`state_vector`): Euler angles
+    from the quaternions, roll and heading made continuous in time (unwrapped, starting at
+    ``eta0``'s angles: a heading that turns twice reads 4 pi)."""
+    states = np.atleast_2d(states)
+    angles = _attitude_euler(Rotation.from_quat(states[:, 3:7]))
+    for i in (0, 2):
+        a = np.unwrap(angles[:, i])
+        start = 0.0 if eta0 is None else float(np.asarray(eta0, float)[3 + i])
+        angles[:, i] = a + 2 * np.pi * np.round((start - a[0]) / (2 * np.pi))
+    return np.column_stack([states[:, :3], angles])
+
+
+class InputSampler:
+    r"""The inputs of a run at any time: thruster commands, generalized forces, control-surface
+    deflections, other channels and the water current, checked once and then held (zero-order
+    hold) or interpolated between the samples ``t``.
+
+    .. math:: \tau(t) = B\,T(n(t)) + \tau_{forces}(t)
+
+    (:meth:`Thruster.thrust`; Fossen 2011 eq. 11.3, Wang & Clark 2006 eq. 6) [N, N m].
+    ``history``: keep the applied force of every sample (``tau_history``) for effects with a
+    memory of the inputs (thruster lag, actuation delay).
+    """
+
+    def __init__(self, model, t, *, forces, commands, deflections, channels, current,
+                 interpolation, history):
+        n = t.size
+        self.t, self.model, self.interpolation = t, model, interpolation
+        self.thrusters = thrusters = list(model.thrusters)
+        self.names = names = [th.name for th in thrusters]
+        self.cmd = cmd = np.zeros((n, len(thrusters)))
+        self.commanded = []
+        for name, values in (commands or {}).items():
+            if name not in names:
+                raise unknown_name("thruster", name, names, key=COMMAND_PREFIX + str(name))
+            k = names.index(name)
+            v = np.asarray(values, dtype=float)
+            cmd[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
+                v, n, 1, COMMAND_PREFIX + name)
+            if not np.all(np.isfinite(cmd[:, k])):
+                raise InputError("NaN or infinite command", key=COMMAND_PREFIX + name,
+                                 expected="finite numbers")
+            self.commanded.append(name)
+        self.surfaces = surfaces = list(getattr(model, "control_surfaces", ()))
+        self.snames = snames = [sf.name for sf in surfaces]
+        self.defl = defl = np.zeros((n, len(surfaces)))
+        self.deflected = []
+        for name, values in (deflections or {}).items():
+            if name not in snames:
+                raise unknown_name("control surface", name, snames,
+                                   key=DEFLECTION_PREFIX + str(name))
+            k = snames.index(name)
+            v = np.asarray(values, dtype=float)
+            defl[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
+                v, n, 1, DEFLECTION_PREFIX + name)
+            lim = surfaces[k].max_deflection
+            bad = np.nonzero(~(np.abs(defl[:, k]) <= lim * (1 + 1e-12)))[0]
+            if bad.size:
+                raise InputError(
+                    f"deflection beyond the limit at sample {int(bad[0])}",
+                    key=DEFLECTION_PREFIX + name, value=float(defl[bad[0], k]),
+                    expected=f"|delta| <= {lim:.6g} rad ({np.degrees(lim):.4g} deg, "
+                             f"stall at {np.degrees(surfaces[k].stall_angle):.4g} deg)")
+            self.deflected.append(name)
+        self.force_fn = None
+        self.force_series = np.zeros((n, 6))
+        if callable(forces):
+            self.force_fn = forces
+        elif forces is not None:
+            self.force_series = _as_series(forces, n, 6, "forces")
+        self.series = np.hstack([cmd, self.force_series, defl])
+        self.sampler = _Sampler(t, self.series, interpolation)
+        self.current_fn = _current_function(current, t, interpolation)
+        self.chan_names = list(channels or {})
+        self.chan_sampler = None
+        if self.chan_names:
+            self.chan_series = np.column_stack([_as_series(channels[k], n, 1, k)
+                                                for k in self.chan_names])
+            self.chan_sampler = _Sampler(t, self.chan_series, interpolation)
+        self.nthr = nthr = len(thrusters)
+        self.alloc = alloc = model.allocation()
+        self.history = history
+        # the applied force at every sample (updated by a controller as it runs)
+        self.tau_history = np.zeros((n, 6))
+        if history:
+            thr_all = (np.column_stack([np.asarray(th.thrust(cmd[:, k]), float).reshape(-1)
+                                        for k, th in enumerate(thrusters)]) if nthr
+                       else np.zeros((n, 0)))
+            f_all = (np.array([np.asarray(self.force_fn(ti), float).reshape(6) for ti in t])
+                     if self.force_fn else self.force_series)
+            self.tau_history = (thr_all @ alloc.T if nthr else 0.0) + f_all
+        self.values = None  # the inputs held constant over a zero-order-hold segment
+        self.held = None
+
+    @property
+    def held_between_samples(self) -> bool:
+        """Zero-order hold of sampled inputs (no force function): inputs jump only at samples."""
+        return self.interpolation == "previous" and self.force_fn is None
+
+    def segments(self) -> list:
+        """Sample indices where a held input jumps (with the first and the last): the
+        integrator restarts there and never steps across a discontinuity."""
+        n = self.t.size
+        if self.held_between_samples:
+            jumps = np.nonzero(np.any(np.diff(self.series, axis=0) != 0.0, axis=1))[0] + 1
+            return [0, *[int(j) for j in jumps], n - 1]
+        return [0, n - 1]
+
+    def applied(self, time):
+        """(commands, thrust [N], tau [N, N m], deflections [rad]) at ``time``."""
+        vals = self.values if self.values is not None else self.sampler(time)
+        nthr = self.nthr
+        c = vals[:nthr]
+        thrust = np.array([th.thrust(ci) for th, ci in zip(self.thrusters, c)]) if nthr else c
+        f = np.asarray(self.force_fn(time), dtype=float).reshape(6) if self.force_fn \
+            else vals[nthr:nthr + 6]
+        tau = (self.alloc @ thrust if nthr else np.zeros(6)) + f
+        return c, thrust, tau, vals[nthr + 6:]
+
+    def __call__(self, time):
+        """The inputs at ``time``: those held over the segment, else sampled."""
+        return self.held if self.values is not None else self.applied(time)
+
+    def hold(self, k: int) -> None:
+        """Hold the inputs of sample k over the next segment (zero-order hold), or sample them
+        at every time (interpolated inputs, a force function)."""
+        self.values = self.series[k] if self.held_between_samples else None
+        if self.values is not None:
+            self.held = self.applied(self.t[k])
+
+    def release(self) -> None:
+        self.values = None
+
+    def channels(self, time) -> dict:
+        return dict(zip(self.chan_names, self.chan_sampler(time))) \
+            if self.chan_sampler is not None else {}
+
+    def commands_at(self, k: int) -> dict:
+        return dict(zip(self.names, self.cmd[k]))
+
+    def command(self, k: int, commands) -> None:
+        """Replace the commands of sample k (a controller's), checked; logged."""
+        names = self.names
+        for name, value in dict(commands).items():
+            if name not in names:
+                raise unknown_name("thruster", name, names, key="controller")
+            value = float(value)
+            if not np.isfinite(value):
+                raise InputError("controller returned a non-finite command", key=name,
+                                 value=value, expected="a finite command")
+            self.cmd[k, names.index(name)] = value
+            if name not in self.commanded:
+                self.commanded.append(name)
+        self.series[k, :self.nthr] = self.cmd[k]
+        if self.history:
+            thr_k = np.array([float(th.thrust(c)) for th, c in zip(self.thrusters, self.cmd[k])])
+            self.tau_history[k] = (self.alloc @ thr_k if self.nthr else 0.0) \
+                + self.force_series[k]
+
+
+class RightHandSide:
+    r"""The state equation :math:`\dot x = f(t, x)` of :math:`x = [p;\ q;\ \nu]` (position
+    in NED, unit quaternion, body velocity: :func:`state_vector`; module docstring; Fossen 2011
+    eqs. 2.86, 7.190, 10.1, sec. 10.3):
+
+    .. math::
+        \dot\nu = M^{-1}\big(\tau + \tau_{extra} - C_{RB}(\nu)\nu - C_A(\nu_r)\nu_r
+        - D(\nu_r)\nu_r - g(\eta) + M_A\dot\nu_c + u_r|u_r| B_\delta\delta\big),
+        \qquad \dot p = R(q)\,v, \qquad
+        \dot\varepsilon = \tfrac12 (q_0 I + S(\varepsilon))\,\omega,\quad
+        \dot q_0 = -\tfrac12 \varepsilon^T\omega
+
+    [m/s, rad/s, m/s^2, rad/s^2].
+    """
+
+    def __init__(self, model, inputs: InputSampler, *, effects=True, munk=True, coriolis=True,
+                 extra_force=None):
+        self.model, self.inputs = model, inputs
+        self.munk, self.coriolis, self.extra_force = munk, coriolis, extra_force
+        self.m_added = np.asarray(model.added_mass, dtype=float)
+        try:
+            self.m_inv = np.linalg.inv(model.mass_matrix)
+        except np.linalg.LinAlgError:
+            raise InputError("singular mass matrix M_RB + M_A", key="model",
+                             expected="a positive definite inertia matrix") from None
+        self.b_delta = model.control_matrix if inputs.surfaces else None
+        self.effect_terms = []
+        if effects and model.effects:
+            from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
+            self.effect_terms = effect_forces(model)
+
+    def current(self, time, rmat, nu):
+        """(nu_c, d nu_c/dt): the current in body axes and its rate [m/s, m/s^2]; ``rmat`` is
+        R, body to NED."""
+        nu_c = np.zeros(6)
+        nu_c_dot = np.zeros(6)
+        if self.inputs.current_fn is not None:
+            vc_ned, dvc_ned = self.inputs.current_fn(time)
+            rt = rmat.T
+            vc = rt @ vc_ned
+            nu_c[:3] = vc
+            nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
+        return nu_c, nu_c_dot
+
+    def __call__(self, time, y):
+        model, inputs = self.model, self.inputs
+        quat, nu = y[3:7], y[7:]
+        rmat = _quaternion_matrix(quat)         # normalised: the integrator's drift of |q|
+        eta = np.concatenate([y[:3], _matrix_euler(rmat, quat)])
+        c, thrust, tau, delta = inputs(time)
+        nu_c, nu_c_dot = self.current(time, rmat, nu)
+        nu_r = nu - nu_c
+        rhs_force = tau
+        if self.coriolis:
+            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
+                         - model.coriolis(nu_r, rigid_body=False, munk=self.munk) @ nu_r)
+        rhs_force = (rhs_force
+                     - model.damping(nu_r) @ nu_r
+                     - model.restoring(eta)
+                     + self.m_added @ nu_c_dot)
+        if self.b_delta is not None:
+            rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
+        if self.effect_terms or self.extra_force is not None:
+            names = inputs.names
+            hook = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
+                    "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
+                    "allocation": inputs.alloc, "input_history": (inputs.t, inputs.tau_history),
+                    "columns": inputs.channels(time)}
+            for term in self.effect_terms:
+                rhs_force = rhs_force + term(time, eta, nu, hook)
+            if self.extra_force is not None:
+                rhs_force = rhs_force + np.asarray(self.extra_force(time, eta, nu, hook),
+                                                   dtype=float).reshape(6)
+        nu_dot = self.m_inv @ rhs_force
+        eps, q0 = quat[:3], quat[3]
+        w = nu[3:]
+        eps_dot = 0.5 * (q0 * w + skew(eps) @ w)
+        return np.concatenate([rmat @ nu[:3], eps_dot, [-0.5 * (eps @ w)], nu_dot])
+
+
+def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
+              max_step=None, max_evaluations=MAX_EVALUATIONS, time_limit=TIME_LIMIT,
+              desc="simulate") -> np.ndarray:
+    r"""States ``(n, len(y0))`` of :math:`\dot y = f(t, y)` at the times ``t``, integrated by
+    :func:`scipy.integrate.solve_ivp` segment by segment between the sample indices ``bounds``
+    (the inputs jump only there), ``start_segment(k, y)`` called at the start of each; within
+    ``max_evaluations`` evaluations of f and ``time_limit`` seconds of wall clock, else an
+    :class:`~stripcoef.errors.UnreachableError` saying where it got to.
+    """
+    n = t.size
+    y = np.asarray(y0, dtype=float)
+    states = np.empty((n, y.size))
+    states[0] = y
+    spent = {"evaluations": 0}
+    deadline = _time.monotonic() + time_limit if np.isfinite(time_limit) else None
+    clock = TimeBar(t[0], t[-1], desc=desc)
+
+    def budgeted(time, y):
+        """f within the evaluation and wall-clock budgets, and finite."""
+        spent["evaluations"] += 1
+        if spent["evaluations"] > max_evaluations:
+            raise _OverBudget(time, f"over the budget of {max_evaluations} right-hand-side "
+                                    "evaluations")
+        if deadline is not None and spent["evaluations"] % 64 == 0 \
+                and _time.monotonic() > deadline:
+            raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
+        clock.advance(time)
+        out = f(time, y)
+        if not np.all(np.isfinite(out)):
+            raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
+                                    "diverged)")
+        return out
+
+    opts = {"rtol": rtol, "atol": atol, "method": method}
+    if max_step is not None:
+        opts["max_step"] = max_step
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        if b <= a:
+            continue
+        if start_segment is not None:
+            start_segment(a, y)
+        try:
+            sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
+        except _OverBudget as stop:
+            raise UnreachableError(
+                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
+                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
+                "expected a run that is not stiff or divergent (check the mass, inertia, "
+                "damping and current)") from None
+        if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
+            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
+                                   f"({sol.message}); expected a motion that stays finite "
+                                   "(did it diverge?)")
+        states[a:b + 1] = sol.y.T
+        y = sol.y[:, -1]
+        # at t_b the new inputs take over (zero-order hold), so the state carries on.
+    clock.close()
+    return states
 
 
 def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, nu0=None,
@@ -264,224 +624,48 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
             raise InputError("invalid integrator setting", key=key, value=value,
                              expected=expected)
     t = _as_time(t)
-    n = t.size
-
-    # --- inputs --------------------------------------------------------------
-    thrusters = list(model.thrusters)
-    names = [th.name for th in thrusters]
-    cmd = np.zeros((n, len(thrusters)))
-    commanded = []
-    for name, values in (commands or {}).items():
-        if name not in names:
-            raise unknown_name("thruster", name, names, key=COMMAND_PREFIX + str(name))
-        k = names.index(name)
-        v = np.asarray(values, dtype=float)
-        cmd[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(v, n, 1,
-                                                                          COMMAND_PREFIX + name)
-        if not np.all(np.isfinite(cmd[:, k])):
-            raise InputError("NaN or infinite command", key=COMMAND_PREFIX + name,
-                             expected="finite numbers")
-        commanded.append(name)
-    surfaces = list(getattr(model, "control_surfaces", ()))
-    snames = [sf.name for sf in surfaces]
-    defl = np.zeros((n, len(surfaces)))
-    deflected = []
-    for name, values in (deflections or {}).items():
-        if name not in snames:
-            raise unknown_name("control surface", name, snames, key=DEFLECTION_PREFIX + str(name))
-        k = snames.index(name)
-        v = np.asarray(values, dtype=float)
-        defl[:, k] = np.full(n, float(v)) if v.ndim == 0 else _as_series(
-            v, n, 1, DEFLECTION_PREFIX + name)
-        lim = surfaces[k].max_deflection
-        bad = np.nonzero(~(np.abs(defl[:, k]) <= lim * (1 + 1e-12)))[0]
-        if bad.size:
-            raise InputError(f"deflection beyond the limit at sample {int(bad[0])}",
-                             key=DEFLECTION_PREFIX + name, value=float(defl[bad[0], k]),
-                             expected=f"|delta| <= {lim:.6g} rad ({np.degrees(lim):.4g} deg, "
-                                      f"stall at {np.degrees(surfaces[k].stall_angle):.4g} deg)")
-        deflected.append(name)
-    force_fn = None
-    force_series = np.zeros((n, 6))
-    if callable(forces):
-        force_fn = forces
-    elif forces is not None:
-        force_series = _as_series(forces, n, 6, "forces")
-    inputs_series = np.hstack([cmd, force_series, defl])
-    sampler = _Sampler(t, inputs_series, interpolation)
-    current_fn = _current_function(current, t, interpolation)
-    chan_names = list(channels or {})
-    chan_sampler = None
-    if chan_names:
-        chan_series = np.column_stack([_as_series(channels[k], n, 1, k) for k in chan_names])
-        chan_sampler = _Sampler(t, chan_series, interpolation)
-
+    history = bool((effects and model.effects) or extra_force is not None)
+    inputs = InputSampler(model, t, forces=forces, commands=commands, deflections=deflections,
+                          channels=channels, current=current, interpolation=interpolation,
+                          history=history)
     eta0 = np.zeros(6) if eta0 is None else _as_series(eta0, 1, 6, "eta0").reshape(6)
     nu0 = np.zeros(6) if nu0 is None else _as_series(nu0, 1, 6, "nu0").reshape(6)
+    f = RightHandSide(model, inputs, effects=effects, munk=munk, coriolis=coriolis,
+                      extra_force=extra_force)
+    if controller is not None and not inputs.held_between_samples:
+        raise InputError("a controller needs sampled inputs held between samples",
+                         key="controller", expected="interpolation='previous' and "
+                         "forces given as samples (not a function)")
 
-    # --- model constants -----------------------------------------------------
-    m_total = model.mass_matrix
-    m_added = np.asarray(model.added_mass, dtype=float)
-    try:
-        m_inv = np.linalg.inv(m_total)
-    except np.linalg.LinAlgError:
-        raise InputError("singular mass matrix M_RB + M_A", key="model",
-                         expected="a positive definite inertia matrix") from None
-    alloc = model.allocation()
-    b_delta = model.control_matrix if surfaces else None
-    effect_terms = []
-    if effects and model.effects:
-        from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
-        effect_terms = effect_forces(model)
-    nthr = len(thrusters)
-    # the applied force at every sample (updated by a controller as it runs): effects with
-    # a memory of the inputs (thruster lag, actuation delay) read it as ``input_history``
-    tau_history = np.zeros((n, 6))
-    if effect_terms or extra_force is not None:
-        thr_all = (np.column_stack([np.asarray(th.thrust(cmd[:, k]), float).reshape(-1)
-                                    for k, th in enumerate(thrusters)]) if nthr
-                   else np.zeros((n, 0)))
-        f_all = (np.array([np.asarray(force_fn(ti), float).reshape(6) for ti in t])
-                 if force_fn else force_series)
-        tau_history = (thr_all @ alloc.T if nthr else 0.0) + f_all
-
-    hold = {"values": None}  # inputs held constant over a zero-order-hold segment
-
-    def applied(time):
-        vals = hold["values"] if hold["values"] is not None else sampler(time)
-        c = vals[:nthr]
-        thrust = np.array([th.thrust(ci) for th, ci in zip(thrusters, c)]) if nthr else c
-        f = np.asarray(force_fn(time), dtype=float).reshape(6) if force_fn \
-            else vals[nthr:nthr + 6]
-        tau = (alloc @ thrust if nthr else np.zeros(6)) + f
-        return c, thrust, tau, vals[nthr + 6:]
-
-    def rhs(time, y):
-        clock.advance(time)
-        eta, nu = y[:6], y[6:]
-        c, thrust, tau, delta = hold["applied"] if hold["values"] is not None else applied(time)
-        nu_c = np.zeros(6)
-        nu_c_dot = np.zeros(6)
-        if current_fn is not None:
-            vc_ned, dvc_ned = current_fn(time)
-            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
-            vc = rt @ vc_ned
-            nu_c[:3] = vc
-            nu_c_dot[:3] = -skew(nu[3:]) @ vc + rt @ dvc_ned
-        nu_r = nu - nu_c
-        rhs_force = tau
-        if coriolis:
-            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
-                         - model.coriolis(nu_r, rigid_body=False, munk=munk) @ nu_r)
-        rhs_force = (rhs_force
-                     - model.damping(nu_r) @ nu_r
-                     - model.restoring(eta)
-                     + m_added @ nu_c_dot)
-        if b_delta is not None:
-            rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (b_delta @ delta)
-        if effect_terms or extra_force is not None:
-            inputs = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
-                      "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
-                      "allocation": alloc, "input_history": (t, tau_history),
-                      "columns": (dict(zip(chan_names, chan_sampler(time)))
-                                  if chan_sampler is not None else {})}
-            for term in effect_terms:
-                rhs_force = rhs_force + term(time, eta, nu, inputs)
-            if extra_force is not None:
-                rhs_force = rhs_force + np.asarray(extra_force(time, eta, nu, inputs),
-                                                   dtype=float).reshape(6)
-        nu_dot = m_inv @ rhs_force
-        eta_dot = kinematics(eta) @ nu
-        return np.concatenate([eta_dot, nu_dot])
-
-    # --- integrate, restarting at input discontinuities ----------------------
-    if controller is not None:
-        if interpolation != "previous" or force_fn is not None:
-            raise InputError("a controller needs sampled inputs held between samples",
-                             key="controller", expected="interpolation='previous' and "
-                             "forces given as samples (not a function)")
-        bounds = list(range(n))  # commands change at every sample
-    elif interpolation == "previous" and force_fn is None:
-        jumps = np.nonzero(np.any(np.diff(inputs_series, axis=0) != 0.0, axis=1))[0] + 1
-        bounds = [0, *[int(j) for j in jumps], n - 1]
-    else:
-        bounds = [0, n - 1]
-    y = np.concatenate([eta0, nu0])
-    states = np.empty((n, 12))
-    states[0] = y
-    spent = {"evaluations": 0}
-    time_limit = TIME_LIMIT if time_limit is None else float(time_limit)
-    deadline = _time.monotonic() + time_limit if np.isfinite(time_limit) else None
-
-    def budgeted(time, y):
-        """rhs within the evaluation and wall-clock budgets, and finite."""
-        spent["evaluations"] += 1
-        if spent["evaluations"] > max_evaluations:
-            raise _OverBudget(time, f"over the budget of {max_evaluations} right-hand-side "
-                                    "evaluations")
-        if deadline is not None and spent["evaluations"] % 64 == 0 \
-                and _time.monotonic() > deadline:
-            raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
-        out = rhs(time, y)
-        if not np.all(np.isfinite(out)):
-            raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
-                                    "diverged)")
-        return out
-
-    opts = {"rtol": rtol, "atol": atol, "method": method}
-    if max_step is not None:
-        opts["max_step"] = max_step
-    def control(k, state):
-        out = controller(t[k], state[:6].copy(), state[6:].copy(), dict(zip(names, cmd[k])))
-        for name, value in dict(out).items():
-            if name not in names:
-                raise unknown_name("thruster", name, names, key="controller")
-            value = float(value)
-            if not np.isfinite(value):
-                raise InputError("controller returned a non-finite command", key=name,
-                                 value=value, expected="a finite command")
-            cmd[k, names.index(name)] = value
-            if name not in commanded:
-                commanded.append(name)
-        inputs_series[k, :nthr] = cmd[k]
-        if effect_terms or extra_force is not None:
-            thr_k = np.array([float(th.thrust(c)) for th, c in zip(thrusters, cmd[k])])
-            tau_history[k] = (alloc @ thr_k if nthr else 0.0) + force_series[k]
-
-    clock = TimeBar(t[0], t[-1], desc=f"simulate {model.name}")
-    for a, b in zip(bounds[:-1], bounds[1:]):
-        if b <= a:
-            continue
+    def start_segment(k, state):
+        """At sample k: the controller's commands, then the inputs held over the segment."""
         if controller is not None:
-            control(a, y)
-        # Hold the inputs of sample a over [t_a, t_b] (no jump inside the segment).
-        hold["values"] = inputs_series[a] if interpolation == "previous" and force_fn is None \
-            else None
-        if hold["values"] is not None:
-            hold["applied"] = applied(t[a])
-        try:
-            sol = solve_ivp(budgeted, (t[a], t[b]), y, t_eval=t[a:b + 1], **opts)
-        except _OverBudget as stop:
-            raise UnreachableError(
-                f"t = {stop.time:.6g} s: simulation stopped, {stop.why}; got "
-                f"{len(bounds) - 1} input segments, {n} samples over {t[0]:g}..{t[-1]:g} s; "
-                "expected a run that is not stiff or divergent (check the mass, inertia, "
-                "damping and current)") from None
-        if sol.status != 0 or sol.y.shape[1] != b - a + 1 or not np.all(np.isfinite(sol.y)):
-            raise UnreachableError(f"t = {t[a]:g}..{t[b]:g} s: simulation failed "
-                                   f"({sol.message}); expected a motion that stays finite "
-                                   "(did it diverge?)")
-        states[a:b + 1] = sol.y.T
-        y = sol.y[:, -1]
-        # at t_b the new inputs take over (zero-order hold), so the state carries on.
-    clock.close()
+            inputs.command(k, controller(t[k], pose(state)[0], state[7:].copy(),
+                                         inputs.commands_at(k)))
+        inputs.hold(k)
 
-    if controller is not None:
-        control(n - 1, y)  # the command issued at the last sample (logged)
-    if surfaces:
-        _check_stall(surfaces, states[:, 6:], defl, t, current_fn is not None)
-    hold["values"] = None
-    taus = np.array([applied(ti)[2] for ti in t])
+    bounds = list(range(t.size)) if controller is not None else inputs.segments()
+    states = integrate(f, t, state_vector(eta0, nu0), bounds, start_segment=start_segment,
+                       rtol=rtol, atol=atol, method=method, max_step=max_step,
+                       max_evaluations=max_evaluations,
+                       time_limit=TIME_LIMIT if time_limit is None else float(time_limit),
+                       desc=f"simulate {model.name}")
+    if controller is not None:   # the command issued at the last sample (logged)
+        last = states[-1]
+        inputs.command(t.size - 1, controller(t[-1], pose(last)[0], last[7:].copy(),
+                                              inputs.commands_at(t.size - 1)))
+    if inputs.surfaces:
+        _check_stall(inputs.surfaces, states[:, 7:], inputs.defl, t, inputs.current_fn is not None)
+    inputs.release()
+    states = np.column_stack([pose(states, eta0), states[:, 7:]])
+    return _motion_log(model, inputs, states, current=current, interpolation=interpolation)
+
+
+def _motion_log(model, inputs, states, *, current, interpolation) -> Log:
+    """The log of a run: pose, velocities, applied forces (at the sample times), commands,
+    deflections and channels."""
+    t = inputs.t
+    taus = np.array([inputs.applied(ti)[2] for ti in t])
     cols = {"t": t}
     for i, name in enumerate(POSE):
         cols[name] = states[:, i]
@@ -489,12 +673,12 @@ def simulate(model, t, *, forces=None, commands=None, current=None, eta0=None, n
         cols[name] = states[:, 6 + i]
     for i, name in enumerate(FORCES):
         cols[name] = taus[:, i]
-    for name in commanded:
-        cols[COMMAND_PREFIX + name] = cmd[:, names.index(name)]
-    for name in deflected:
-        cols[DEFLECTION_PREFIX + name] = defl[:, snames.index(name)]
-    for k, name in enumerate(chan_names):
-        cols[name] = chan_series[:, k]
+    for name in inputs.commanded:
+        cols[COMMAND_PREFIX + name] = inputs.cmd[:, inputs.names.index(name)]
+    for name in inputs.deflected:
+        cols[DEFLECTION_PREFIX + name] = inputs.defl[:, inputs.snames.index(name)]
+    for k, name in enumerate(inputs.chan_names):
+        cols[name] = inputs.chan_series[:, k]
     meta = {"model": model.name, "interpolation": interpolation}
     if current is not None and not callable(current):
         meta["current"] = np.asarray(current, dtype=float).tolist()
@@ -522,22 +706,38 @@ def effective_angle(surface, nu_r, delta) -> np.ndarray:
         return np.where(u != 0.0, np.sign(be) * np.asarray(delta) - cross / u, np.nan)
 
 
+#: The stall check reads a surface's angle of attack only where |u| is at least this fraction of
+#: the run's largest |u| [-] and at least :data:`STALL_MIN_SPEED`: the fin force scales with u^2
+#: (Prestero 2001, sec. 3.7), so below them it is under 1 % of its force at the run's top speed
+#: (0.5 % of it at 1.5 m/s, REMUS's cruise), and as u -> 0 the angle of attack -v_f/u is
+#: undefined (issue 37: 101.5 deg reported for an undeflected elevator at u ~ 0).
+STALL_SPEED_FRACTION = 0.1
+STALL_MIN_SPEED = 0.1   # [m/s]
+
+
 def _check_stall(surfaces, nu, defl, t, with_current: bool) -> None:
-    """Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
+    r"""Warn (ModelWarning) when a surface's effective angle of attack passes its stall angle:
     the linear lift law is then extrapolated (docs/theory.md sec. 8). With a current, the
-    angle is computed on the velocity over ground (an approximation, said in the message)."""
+    angle is computed on the velocity over ground (an approximation, said in the message).
+    Only where the vehicle moves (:data:`STALL_SPEED_FRACTION`), and as the flow angle at the
+    surface, :math:`\sigma\delta - \arctan(v_f/u)` [rad], of which :func:`effective_angle`'s
+    :math:`\sigma\delta - v_f/u` is the small-angle form (the angle stays within 90 deg + |delta|
+    however slow the vehicle; the stall angle is a flow angle)."""
     import warnings
 
     from stripcoef.errors import ModelWarning
 
-    moving = np.abs(nu[:, 0]) > 1e-3
+    speed = np.abs(nu[:, 0])
+    moving = speed >= max(STALL_MIN_SPEED, STALL_SPEED_FRACTION * float(np.max(speed, initial=0.0)))
     for k, sf in enumerate(surfaces):
-        a = effective_angle(sf, nu, defl[:, k])
+        lead = np.sign(sf.derivative[1 if sf.kind == "rudder" else 2]) * defl[:, k]
+        a = lead - np.arctan(lead - effective_angle(sf, nu, defl[:, k]))
         a = np.where(moving, np.abs(a), 0.0)
         if np.nanmax(a, initial=0.0) > sf.stall_angle:
             i = int(np.nanargmax(a))
             warnings.warn(f"control surface {sf.name!r}: effective angle of attack "
-                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s exceeds its stall "
+                          f"{np.degrees(a[i]):.1f} deg at t = {t[i]:g} s (u = {nu[i, 0]:.3g} m/s) "
+                          "exceeds its stall "
                           f"angle {np.degrees(sf.stall_angle):.1f} deg; the linear lift is "
                           "extrapolated there" + (" (angle from the velocity over ground)"
                                                    if with_current else ""),
@@ -582,15 +782,21 @@ class MotionSummary:
     warnings: tuple = field(default=())
 
 
-def summarize_motion(log: Log) -> MotionSummary:
+def summarize_motion(log: Log, *, model=None, munk: bool = True) -> MotionSummary:
     r"""Summary of a motion log (columns ``t``, ``x y z phi theta psi``, ``u .. r``; ``N`` if
     logged) and the warnings it deserves.
 
-    Heading runaway: the unwrapped heading turned more than :math:`2\pi` while the applied
-    yaw moment averaged out, :math:`|\int N\,dt| \le 0.1 \int |N|\,dt` (a straight run
-    that spins: for a finless body the Munk moment :math:`(Y_{\dot v} - X_{\dot u})\,u v`
-    makes yaw unstable, Fossen 2011 sec. 6.5; try ``munk=False`` to see the decoupled model).
-    Divergence: see :class:`MotionSummary`. Units: [s, m, rad, m/s, rad/s, N m].
+    Heading runaway: the unwrapped heading turned more than :math:`2\pi` while the yaw moment
+    put on the vehicle averaged out, :math:`|\int N_a\,dt| \le 0.1 \int |N_a|\,dt`, with
+    :math:`N_a = N + u|u|\,(B_\delta\delta)_6` the applied yaw moment and, given ``model``,
+    that of its deflected control surfaces (log columns ``delta_<surface>``; Prestero 2001,
+    sec. 3.7; u over ground): a straight run that spins, for a finless body the Munk moment
+    :math:`(Y_{\dot v} - X_{\dot u})\,u v` makes yaw unstable (Fossen 2011 sec. 6.5). A
+    commanded turn (a steady moment, a held rudder) is no runaway, and a run without the Munk
+    moment (``munk=False``) gets no such warning. Capsized or looped: the body z axis tilted
+    more than 90 deg from the vertical, :math:`\cos\phi\cos\theta < 0` (whatever Euler angles
+    represent the attitude). Divergence: see :class:`MotionSummary`. Units: [s, m, rad, m/s,
+    rad/s, N m].
     """
     t = log.require("t")
     pose = np.column_stack([log.get(k, np.zeros(len(log))) for k in POSE])
@@ -598,11 +804,12 @@ def summarize_motion(log: Log) -> MotionSummary:
     psi = np.unwrap(pose[:, 5])
     heading = float(psi[-1] - psi[0])
     steps = np.linalg.norm(np.diff(pose[:, :3], axis=0), axis=1)
+    wrap = (pose[:, 3:5] + np.pi) % (2 * np.pi) - np.pi
     summary = dict(duration=float(t[-1] - t[0]), final_velocity=nu[-1].copy(),
                    final_speed=float(np.linalg.norm(nu[-1, :3])), distance=float(steps.sum()),
                    displacement=pose[-1, :3] - pose[0, :3], heading_change=heading,
-                   max_roll=float(np.max(np.abs(pose[:, 3]))),
-                   max_pitch=float(np.max(np.abs(pose[:, 4]))))
+                   max_roll=float(np.max(np.abs(wrap[:, 0]))),
+                   max_pitch=float(np.max(np.abs(wrap[:, 1]))))
     warn = []
     speed = np.max(np.abs(nu[:, :3]))
     rate = np.max(np.abs(nu[:, 3:]))
@@ -610,24 +817,47 @@ def summarize_motion(log: Log) -> MotionSummary:
         warn.append(f"the state diverges: speeds reach {speed:.3g} m/s and rates "
                     f"{rate:.3g} rad/s (limits {DIVERGENCE_SPEED:g} m/s, {DIVERGENCE_RATE:g} "
                     "rad/s): check the model's damping and the inputs")
-    tilt = max(summary["max_roll"], summary["max_pitch"])
+    tilt = float(np.max(np.arccos(np.clip(np.cos(pose[:, 3]) * np.cos(pose[:, 4]), -1, 1))))
     if tilt > DIVERGENCE_ATTITUDE:
-        warn.append(f"the vehicle capsized or looped: max |roll| {summary['max_roll']:.3g} rad, "
-                    f"max |pitch| {summary['max_pitch']:.3g} rad (beyond "
+        warn.append(f"the vehicle capsized or looped: its z axis tilted {np.degrees(tilt):.3g} "
+                    f"deg from the vertical (max |roll| {summary['max_roll']:.3g} rad, "
+                    f"max |pitch| {summary['max_pitch']:.3g} rad; beyond "
                     f"{DIVERGENCE_ATTITUDE:.3g} rad): check the CG/CB (metacentric height)")
     yaw = log.get("N")
+    control = control_moments(log, model)
+    if control is not None:
+        yaw = control[:, 5] if yaw is None else yaw + control[:, 5]
     dt = np.diff(t)
     net = abs(np.sum(0.5 * (yaw[1:] + yaw[:-1]) * dt)) if yaw is not None else 0.0
     total = np.sum(0.5 * (np.abs(yaw[1:]) + np.abs(yaw[:-1])) * dt) if yaw is not None else 0.0
     forces = log.forces()
     scale = 1e-9 * (float(t[-1] - t[0])) * max(1.0, np.max(np.abs(forces)) if forces is not None
                                                else 1.0)      # round-off of a zero moment
-    if abs(heading) > 2 * np.pi and net <= 0.1 * total + scale:
+    if munk and abs(heading) > 2 * np.pi and net <= 0.1 * total + scale:
         warn.append(f"the heading runs away: it turned {heading:.4g} rad "
                     f"({abs(heading) / (2 * np.pi):.1f} turns) while the applied yaw moment "
-                    "averaged out; a finless body is directionally unstable (Munk moment): "
+                    + ("(control surfaces included) " if control is not None else "")
+                    + "averaged out; a finless body is directionally unstable (Munk moment): "
                     "compare without it (munk=False)")
     return MotionSummary(**summary, warnings=tuple(warn))
+
+
+def control_moments(log: Log, model) -> np.ndarray | None:
+    r"""Forces of the deflected control surfaces along a log [N, N m], (n, 6):
+
+    .. math:: \tau_\delta = u|u|\,B_\delta\,\delta
+
+    with u the logged surge velocity (over ground: with a current an approximation) and
+    ``delta_<surface>`` the logged deflections [rad]; None without a model, surfaces or
+    deflections (:meth:`HydroModel.control_force`; Prestero 2001, sec. 3.7).
+    """
+    surfaces = [sf.name for sf in getattr(model, "control_surfaces", ())] if model else []
+    defl = log.deflections()
+    if not surfaces or not any(k in surfaces for k in defl):
+        return None
+    delta = np.column_stack([defl.get(k, np.zeros(len(log))) for k in surfaces])
+    u = log.velocities()[:, 0]
+    return (u * np.abs(u))[:, None] * (delta @ np.asarray(model.control_matrix, float).T)
 
 
 def kinetic_energy(model, nu) -> np.ndarray:
@@ -688,3 +918,26 @@ def free_run_errors(log, prediction) -> dict:
             out[c] = {"rms": float(np.sqrt(np.mean((v - prediction.columns[c]) ** 2))),
                       "hold_initial_rms": float(np.sqrt(np.mean((v - v[0]) ** 2)))}
     return out
+
+
+# --- log replay: the one rule ------------------------------------------------------------------
+
+def replay(model, log, *, inputs: LogInputs | None = None, **options) -> Log:
+    r"""Free simulation of ``model`` from the state logged at the first row of ``log``
+    (:func:`initial_state`) with the log's inputs (:func:`log_inputs`, or ``inputs``, e.g.
+    another file's resampled with :meth:`LogInputs.at`), at the inputs' times.
+
+    .. math:: \hat x(t) = x(t_0) + \int_{t_0}^{t} f(\hat x, u_{log}(s))\,ds
+
+    ``options`` go to :func:`simulate` (``rtol``, ``interpolation``, ``current``, ``munk``...).
+    A log written by :func:`simulate` and replayed with its model and settings gives its states
+    back to the integrator's tolerance (tests/test_replay.py).
+
+    References
+    ----------
+    Fossen (2011), eq. 7.190 (the state fixes the motion for given inputs); Ljung, System
+    Identification (1999), sec. 16.4 (simulation from measured inputs).
+    """
+    inputs = log_inputs(log, model) if inputs is None else inputs
+    eta0, nu0, _ = initial_state(log)
+    return simulate(model, inputs.t, eta0=eta0, nu0=nu0, **inputs.simulate_inputs(), **options)

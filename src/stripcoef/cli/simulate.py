@@ -8,7 +8,9 @@ the commands at every input time (or every ``--dt`` seconds; every :data:`DEFAUL
 when the inputs have fewer than :data:`FEW_ROWS` rows). ``--out -`` writes the log to stdout
 (the summary goes to stderr). ``--from-log LOG`` starts from the log's pose and velocity
 instead of rest at the origin and, without ``--inputs``, free-simulates the log's own inputs
-and prints the prediction error against the log.
+and prints the prediction error against the log. Inputs are read from a log by the one replay
+rule of the library (:func:`stripcoef.logfile.log_inputs`: with thruster commands, a log's
+``X..N`` are the record of the applied force, thrust included, and are not applied again).
 """
 
 from __future__ import annotations
@@ -20,10 +22,9 @@ import warnings
 import numpy as np
 
 from stripcoef.cli.options import add_map_argument, read_log_from_args
-from stripcoef.conventions import FORCES, VELOCITIES
+from stripcoef.conventions import VELOCITIES
 from stripcoef.errors import InputError, ModelWarning, UnreachableError
 from stripcoef.files import check_finite_output
-from stripcoef.logfile import KNOWN_COLUMNS
 
 #: Without --dt, inputs with fewer rows than this are resampled every DEFAULT_DT seconds
 #: (a 2-row input would otherwise give a 2-row log).
@@ -91,52 +92,6 @@ def parse_vector(text: str, *, key: str, size: int = 3) -> np.ndarray:
     return vec
 
 
-def inputs_from_log(log, model, times=None, *, interpolation="previous"):
-    """Times, forces (n,6) or None, commands, deflections [rad] and other channels (e.g.
-    ``tether_length``) from an inputs log, resampled at ``times``."""
-    t_in = log.require("t")
-    if len(t_in) < 2:
-        raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
-                         expected="at least 2 time samples")
-    cmds = log.commands()
-    defl = log.deflections()
-    force_cols = [f for f in FORCES if f in log]
-    if not cmds and not force_cols and not defl:
-        raise InputError("no inputs", file=log.source,
-                         expected="thruster commands n_<name> (thrusters: "
-                         + ", ".join(th.name for th in model.thrusters)
-                         + "), deflections delta_<surface> and/or forces X Y Z K M N")
-    snames = [sf.name for sf in model.control_surfaces]
-    for name in defl:
-        if name not in snames:
-            raise InputError("unknown control surface", file=log.source, key="delta_" + name,
-                             expected="one of " + (", ".join("delta_" + n for n in snames)
-                                                   or "(the model has no control surfaces)"))
-    names = [th.name for th in model.thrusters]
-    for name in cmds:
-        if name not in names:
-            raise InputError("unknown thruster", file=log.source, key="n_" + name,
-                             expected="one of " + ", ".join("n_" + n for n in names))
-    if times is None:
-        times = t_in
-
-    def resample(values):
-        if times is t_in:
-            return values
-        if interpolation == "linear":
-            return np.interp(times, t_in, values)
-        k = np.clip(np.searchsorted(t_in, times, side="right") - 1, 0, len(t_in) - 1)
-        return values[k]
-
-    forces = log.forces()
-    forces = None if forces is None else np.column_stack([resample(c) for c in forces.T])
-    commands = {k: resample(v) for k, v in cmds.items()}
-    deflections = {k: resample(v) for k, v in defl.items()}
-    skip = set(KNOWN_COLUMNS) | {"n_" + k for k in cmds} | {"delta_" + k for k in defl}
-    channels = {k: resample(v) for k, v in log.columns.items() if k not in skip}
-    return np.asarray(times, float), forces, commands, deflections, channels
-
-
 def _log_window(log, start, duration):
     """Rows of ``log`` with start <= t <= start + duration [s] (defaults: the whole log)."""
     t = log.require("t")
@@ -157,7 +112,8 @@ def _log_window(log, start, duration):
 
 def run(args) -> int:
     from stripcoef.modelfile import load_model
-    from stripcoef.simulate import free_run_errors, initial_state, simulate, summarize_motion
+    from stripcoef.logfile import log_inputs
+    from stripcoef.simulate import free_run_errors, initial_state, replay, simulate, summarize_motion
 
     if args.inputs is None and args.from_log is None:
         raise InputError("no inputs", key="inputs",
@@ -201,13 +157,17 @@ def run(args) -> int:
         times = times[times <= t_in[-1] + 1e-12]
     elif start_log is not None and log is not start_log:
         times = start_log.require("t")              # predict at the logged times
-    times, forces, commands, deflections, channels = inputs_from_log(
-        log, model, times, interpolation=args.interpolation)
+    inputs = log_inputs(log, model)
+    if times is not None:
+        inputs = inputs.at(times, args.interpolation)
+    _warn_not_replayed(inputs, log.source, args.vehicle)
+    options = dict(current=current, munk=args.munk, coriolis=args.coriolis,
+                   interpolation=args.interpolation, rtol=args.rtol, atol=args.rtol * 1e-2)
     try:
-        out = simulate(model, times, forces=forces, commands=commands, current=current,
-                       channels=channels, deflections=deflections, eta0=eta0, nu0=nu0,
-                       munk=args.munk, coriolis=args.coriolis, interpolation=args.interpolation,
-                       rtol=args.rtol, atol=args.rtol * 1e-2)
+        if start_log is not None:
+            out = replay(model, start_log, inputs=inputs, **options)
+        else:
+            out = simulate(model, inputs.t, **inputs.simulate_inputs(), **options)
     except UnreachableError as exc:     # a stopped run: name the model it was run on
         raise UnreachableError(f"{args.vehicle}: {exc}") from None
     check_finite_output(out.columns, what="the simulated log", file=str(args.vehicle))
@@ -221,7 +181,7 @@ def run(args) -> int:
         save_figure(motion_figure(out, title=f"{model.name}: simulated trajectory and "
                                              "velocities", key="--plot"),
                     args.plot, key="--plot")
-    summary = summarize_motion(out)
+    summary = summarize_motion(out, model=model, munk=args.munk and args.coriolis)
     report = sys.stderr if to_stdout else sys.stdout
     print(format_summary(summary, args.out, out, dt=dt, default_dt=args.dt is None and dt),
           file=report)
@@ -234,14 +194,29 @@ def run(args) -> int:
                   "drop --dt)", file=report)
         else:
             errors = free_run_errors(start_log, out)
-            print(f"free simulation from the logged state at t = {times[0]:g} s "
-                  f"({times[-1] - times[0]:g} s), RMS error vs the log "
+            print(f"free simulation from the logged state at t = {out['t'][0]:g} s "
+                  f"({out['t'][-1] - out['t'][0]:g} s), RMS error vs the log "
                   "(and holding the initial velocity):", file=report)
             for c, e in errors.items():
                 unit = "m/s" if VELOCITIES.index(c) < 3 else "rad/s"
                 print(f"  {c}: {e['rms']:.4g} {unit}  (hold: {e['hold_initial_rms']:.4g})",
                       file=report)
     return 0
+
+
+def _warn_not_replayed(inputs, source, vehicle) -> None:
+    """Say which columns of the inputs the replay leaves out (:func:`stripcoef.logfile.log_inputs`,
+    the one replay rule)."""
+    if inputs.ignored:
+        warnings.warn(f"{source}: {', '.join(inputs.ignored)} not applied: {vehicle} has no "
+                      "control surfaces", ModelWarning, stacklevel=2)
+    rec = inputs.recorded_forces
+    scale = 1.0 if rec is None else max(1.0, float(np.max(np.abs(rec))))
+    if rec is not None and inputs.thrust_mismatch > 1e-9 * scale:
+        warnings.warn(f"{source}: X..N differ from the thrust of its n_ commands through "
+                      f"{vehicle}'s thrusters by up to {inputs.thrust_mismatch:.4g} N or N m; "
+                      "with thruster commands a log's X..N are the record of the applied force "
+                      "(thrust included) and are not applied again", ModelWarning, stacklevel=2)
 
 
 def format_summary(s, where, log, *, dt=None, default_dt=None) -> str:

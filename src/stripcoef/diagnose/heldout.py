@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.conventions import DOF, POSE, VELOCITIES
+from stripcoef.conventions import DOF, VELOCITIES
 from stripcoef.errors import InputError, StripcoefError
 
 #: Horizon of the free simulations [s].
@@ -66,33 +66,26 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
     (module docstring), or None when a simulation diverges."""
-    from stripcoef.logfile import KNOWN_COLUMNS
-    from stripcoef.simulate import simulate
+    from stripcoef.logfile import log_inputs
+    from stripcoef.simulate import replay
 
     t = log["t"]
-    cmds = log.commands()
-    forces = None if cmds else log.forces()
-    channels = {k: v for k, v in log.columns.items()
-                if k not in KNOWN_COLUMNS and not k.startswith(("n_", "delta_"))}
-    defl = log.deflections() if getattr(model, "control_surfaces", ()) else {}
-    zeros = np.zeros(t.size)
+    try:
+        inputs = log_inputs(log, model)       # the one replay rule (simulate --from-log's)
+    except StripcoefError:
+        return None
     err = {i: [] for i in dofs}
     for a, b in segments(t, horizon):
-        sl = slice(a, b)
-        eta0 = [float(log.get(p, zeros)[a]) for p in POSE]
-        nu0 = [float(log.get(v, zeros)[a]) for v in VELOCITIES]
+        part = log.slice(a, b)
         try:
-            sim = simulate(model, t[sl], forces=None if forces is None else forces[sl],
-                           commands={k: v[sl] for k, v in cmds.items()} or None,
-                           deflections={k: v[sl] for k, v in defl.items()} or None,
-                           eta0=eta0, nu0=nu0,
-                           channels={k: v[sl] for k, v in channels.items()} or None,
-                           rtol=tolerances[0], atol=tolerances[1])
+            sim = replay(model, part, inputs=inputs.window(a, b),
+                         rtol=tolerances[0], atol=tolerances[1])
         except StripcoefError:
             return None
+        zeros = np.zeros(b - a)
         for i in dofs:
             v = VELOCITIES[i]
-            err[i].append(sim[v] - log.get(v, zeros)[sl])
+            err[i].append(sim[v] - part.get(v, zeros))
     return [_rms(np.concatenate(err[i])) for i in dofs]
 
 

@@ -24,6 +24,7 @@ from scipy.signal import savgol_coeffs
 from stripcoef.conventions import parse_dof
 from stripcoef.errors import InputError
 from stripcoef.ingest.attitude import euler_matrices
+from stripcoef.logfile import log_inputs
 
 
 #: Half-span of the end-value quadratics of :meth:`WindowData.rate` [s] (0.2 s: 5 samples
@@ -270,33 +271,22 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     nu = log.velocities()
     eta = np.column_stack([log.get(p, np.zeros(len(log))) for p in POSE])
     names = [th.name for th in model.thrusters]
-    cmds = log.commands()
-    unknown = [k for k in cmds if k not in names]
-    if unknown:
-        raise InputError("unknown thruster", file=log.source, key="n_" + unknown[0],
-                         expected="one of " + ", ".join("n_" + n for n in names))
+    inputs = log_inputs(log, model)      # the one replay rule (simulate --from-log's)
     alloc = model.allocation()
     thrust = commands = None
-    if cmds:
-        commands = np.column_stack([cmds.get(n, np.zeros(len(log))) for n in names])
+    if inputs.commands:
+        commands = np.column_stack([inputs.commands.get(n, np.zeros(len(log))) for n in names])
         thrust = np.column_stack([np.asarray(th.thrust(commands[:, k]), float).reshape(-1)
                                   for k, th in enumerate(model.thrusters)])
-        tau = thrust @ alloc.T  # logged X..N, if any, are not used: thrust is the prior's map
+        tau = thrust @ alloc.T  # logged X..N, if any, are their record: thrust is the prior's map
+    elif inputs.forces is not None:
+        tau = inputs.forces
     else:
-        tau = log.forces()
-        if tau is None:
-            raise InputError("no inputs", file=log.source,
-                             expected="thruster commands n_<name> or forces X Y Z K M N")
-    defl = log.deflections()
-    if defl and getattr(model, "control_surfaces", ()):
+        tau = np.zeros((len(log), 6))
+    if inputs.deflections:
         # control surfaces: u|u| B_delta delta at the logged speed (Prestero 2001, sec. 3.7)
         snames = [sf.name for sf in model.control_surfaces]
-        unknown = [k for k in defl if k not in snames]
-        if unknown:
-            raise InputError("unknown control surface", file=log.source,
-                             key="delta_" + unknown[0],
-                             expected="one of " + ", ".join("delta_" + n for n in snames))
-        delta = np.column_stack([defl.get(n, np.zeros(len(log))) for n in snames])
+        delta = np.column_stack([inputs.deflections.get(n, np.zeros(len(log))) for n in snames])
         u = nu[:, 0]
         tau = tau + (u * np.abs(u))[:, None] * (delta @ model.control_matrix.T)
     dt = float(np.median(np.diff(t)))
