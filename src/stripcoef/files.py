@@ -74,9 +74,15 @@ def read_text(path, *, kind: str) -> str:
         raise InputError("file not found", file=str(path), expected=f"an existing {kind}") from None
     except IsADirectoryError:
         raise InputError("is a folder", file=str(path), expected=f"a {kind}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read ({exc.__class__.__name__})", file=str(path),
-                         expected=f"a readable UTF-8 {kind}") from None
+    except UnicodeDecodeError as exc:
+        data = path.read_bytes()
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise InputError(f"not UTF-8 text (byte 0x{data[exc.start]:02x} at offset {exc.start})",
+                         file=str(path), key=f"line {line}",
+                         expected=f"a UTF-8 {kind}") from None
+    except OSError as exc:
+        raise InputError(f"cannot read ({exc.strerror or exc.__class__.__name__})",
+                         file=str(path), expected=f"a readable {kind}") from None
 
 
 def strict_json(value):
@@ -127,9 +133,14 @@ def _yaml_loader(file: str):
     class Loader(yaml.SafeLoader):
         depth = 0
 
+        def __init__(self, stream):
+            self.anchor_of: dict[int, str] = {}
+            super().__init__(stream)
+
         def compose_node(self, parent, index):
             if self.check_event(yaml.AliasEvent):
                 return super().compose_node(parent, index)
+            anchor = self.peek_event().anchor
             self.depth += 1
             if self.depth > MAX_NESTING:
                 mark = self.peek_event().start_mark
@@ -137,9 +148,12 @@ def _yaml_loader(file: str):
                                  value=self.depth, expected=f"at most {MAX_NESTING} levels "
                                  "of mappings and lists")
             try:
-                return super().compose_node(parent, index)
+                node = super().compose_node(parent, index)
             finally:
                 self.depth -= 1
+            if anchor is not None:
+                self.anchor_of[id(node)] = anchor       # named in a recursive-alias error
+            return node
 
         def construct_mapping(self, node, deep=False):
             seen = {}
@@ -157,36 +171,56 @@ def _yaml_loader(file: str):
     return Loader
 
 
-def _expanded_size(node, limit: int, file: str) -> int:
-    """Nodes of a composed YAML document with every alias followed (memoised per node, so
-    a shared node is counted each time it is referenced without being walked again)."""
+def _node_children(node) -> list:
+    """The child nodes of a composed YAML node (keys and values of a mapping)."""
     import yaml
 
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    if isinstance(node, yaml.MappingNode):
+        return [c for kv in node.value for c in kv]
+    return []
+
+
+def _expanded_size(node, limit: int, file: str, anchors=None) -> int:
+    """Nodes of a composed YAML document with every alias followed, without building it.
+
+    A depth-first walk of the node graph (iterative, so a deep graph cannot exhaust the
+    stack) in true post-order: a node's size is known before any node that refers to it, a
+    shared node is walked once and counted each time it is referenced. A node reached again
+    while it is still being walked is a recursive alias (``&a [*a]``): an error, since its
+    expansion is infinite (and building it would make every later walk recurse forever).
+    The walk stops at the first node whose expansion passes ``limit``, so a "wide" alias
+    bomb (thousands of references to one large anchor, or merge keys ``<<: *a``) costs the
+    size of its text, not of its expansion.
+    """
     sizes: dict[int, int] = {}
-    order, stack = [], [node]
-    while stack:                       # post-order without recursion
-        n = stack.pop()
-        if id(n) in sizes:
+    open_: set[int] = set()                       # nodes on the current path of the walk
+    stack: list = [(node, False)]
+    while stack:
+        n, done = stack.pop()
+        key = id(n)
+        if done:
+            open_.discard(key)
+            total = 1 + sum(sizes[id(c)] for c in _node_children(n))
+            if total > limit:
+                raise InputError("document too large once its aliases are expanded",
+                                 file=file, key=f"line {n.start_mark.line + 1}",
+                                 value=f"> {limit} nodes",
+                                 expected=f"at most {limit} nodes (few or no YAML aliases)")
+            sizes[key] = total
             continue
-        sizes[id(n)] = -1
-        order.append(n)
-        if isinstance(n, yaml.SequenceNode):
-            stack.extend(n.value)
-        elif isinstance(n, yaml.MappingNode):
-            for k, v in n.value:
-                stack.extend((k, v))
-    for n in reversed(order):
-        if isinstance(n, yaml.SequenceNode):
-            total = 1 + sum(sizes[id(c)] for c in n.value)
-        elif isinstance(n, yaml.MappingNode):
-            total = 1 + sum(sizes[id(k)] + sizes[id(v)] for k, v in n.value)
-        else:
-            total = 1
-        if total > limit:
-            raise InputError("document too large once its aliases are expanded", file=file,
-                             key=f"line {n.start_mark.line + 1}", value=f"> {limit} nodes",
-                             expected=f"at most {limit} nodes (few or no YAML aliases)")
-        sizes[id(n)] = total
+        if key in sizes:
+            continue
+        if key in open_:
+            raise InputError("recursive alias (a node that contains itself)", file=file,
+                             key=f"line {n.start_mark.line + 1}",
+                             value=f"&{(anchors or {}).get(key, '?')}",
+                             expected="aliases that refer to nodes defined before, outside "
+                                      "themselves")
+        open_.add(key)
+        stack.append((n, True))
+        stack.extend((c, False) for c in _node_children(n) if id(c) not in sizes)
     return sizes[id(node)]
 
 
@@ -202,13 +236,21 @@ def load_yaml(text: str, *, file: str):
     if len(text) > MAX_TEXT:
         raise InputError("file too large", file=file, value=f"{len(text)} characters",
                          expected=f"at most {MAX_TEXT} characters")
-    loader = _yaml_loader(file)(text)
+    loader = None
     try:
+        loader = _yaml_loader(file)(text)      # the reader refuses unprintable characters here
         node = loader.get_single_node()
         if node is None:
             return None
-        _expanded_size(node, MAX_EXPANDED_NODES, file)
+        _expanded_size(node, MAX_EXPANDED_NODES, file, loader.anchor_of)
         return loader.construct_document(node)
+    except yaml.reader.ReaderError as exc:
+        # a NUL byte or another character YAML does not allow (YAML 1.1, sec. 5.1)
+        line = text.count("\n", 0, exc.position) + 1
+        raise InputError("invalid YAML (a character YAML does not allow)", file=file,
+                         key=f"line {line}", value=chr(exc.character) if isinstance(
+                             exc.character, int) else exc.character,
+                         expected="printable text (no NUL or control characters)") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or "syntax error"
@@ -216,7 +258,8 @@ def load_yaml(text: str, *, file: str):
                          key=f"line {mark.line + 1}" if mark is not None else None,
                          expected="a YAML mapping") from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 def load_json(text: str, *, file: str):

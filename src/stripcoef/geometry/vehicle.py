@@ -304,6 +304,10 @@ class _Reader:
         return v
 
 
+#: The typed reader, also used for model files (:mod:`stripcoef.modelfile`).
+Reader = _Reader
+
+
 def _segment(r: _Reader, seg, path) -> Segment:
     r.mapping(seg, path, ("type", "x", "radius", "n", "theta_deg", "points", "length"),
               ("type", "x"))

@@ -1,0 +1,193 @@
+"""Reliability, issue 36: each reproducing input of the issue ends in one line naming the
+file, the key or column, the value and what was expected, with exit code 2 (or, for an odd
+but valid input, a correct answer); nothing is written after a failure.
+
+One test per class of the issue: YAML read safely; model files validated like vehicle files;
+vehicle files' mass; estimators on ill-conditioned or non-finite problems; logs; writes;
+options.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stripcoef.cli import main
+from stripcoef.errors import InputError
+
+ROOT = Path(__file__).resolve().parent.parent
+GEO = ROOT / "geometry"
+HULL = ("hull:\n  profile:\n"
+        "    - {type: ellipsoid_tail, x: [-0.75, -0.45], radius: 0.10}\n"
+        "    - {type: cylinder, x: [-0.45, 0.55], radius: 0.10}\n"
+        "    - {type: ellipsoid_nose, x: [0.55, 0.75], radius: 0.10}\nstrips: 100\n")
+
+
+def _one_line(capsys, argv, *words):
+    """Run the CLI; exit 2, one line (warnings aside) holding every one of ``words``."""
+    rc = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    lines = [ln for ln in err.strip().splitlines() if not ln.startswith("warning:")]
+    assert rc == 2, err
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for w in words:
+        assert w in lines[0], lines[0]
+    return lines[0]
+
+
+# -- YAML read safely -------------------------------------------------------------------
+
+@pytest.mark.parametrize("text, words", [
+    (HULL + "name: a\x00b\n", ("line 7", "a character YAML does not allow", "'\\x00'")),
+    (HULL + "name: a\x07b\n", ("line 7", "a character YAML does not allow")),
+    ("hull: &a\n  profile: [*a]\n", ("line 1", "recursive alias", "&a")),
+    ("a: &x [1, *x]\n" + HULL, ("line 1", "recursive alias", "&x")),
+    ("a: &m {<<: *m}\n" + HULL, ("recursive alias",)),
+])
+def test_unprintable_text_and_recursive_aliases(text, words, tmp_path, capsys):
+    f = tmp_path / "v.yaml"
+    f.write_text(text)
+    _one_line(capsys, ["coefficients", f], str(f), *words)
+
+
+def test_undecodable_bytes_name_the_file_and_the_byte(tmp_path, capsys):
+    f = tmp_path / "v.yaml"
+    f.write_bytes(HULL.encode() + b"name: \xff\xfe\n")
+    _one_line(capsys, ["coefficients", f], str(f), "not UTF-8", "0xff", "line 7")
+
+
+def _wide_bombs():
+    """Aliases that are cheap to write and expensive to build: (name, text)."""
+    big = "a: &a {" + ",".join(f"k{i}: 1" for i in range(3000)) + "}\n"
+    yield "merge keys", big + "b: [" + ",".join(["{<<: *a}"] * 5000) + "]\n"
+    seq = "a: &a [" + ",".join(["x"] * 5000) + "]\n"
+    yield "wide sequence", seq + "b: [" + ",".join(["*a"] * 20000) + "]\n"
+    # shared nodes met in an order that a pre-order walk counts wrongly
+    yield "late references", seq + "b: [" + ",".join(["[*a]"] * 20000) + "]\n"
+
+
+@pytest.mark.parametrize("name, text", list(_wide_bombs()))
+def test_wide_alias_bomb_is_refused_quickly(name, text, tmp_path, capsys):
+    """A ~100 kB document that expands to millions of nodes: refused before it is built
+    (the issue: 55 s and 5.3 GB before the fix)."""
+    from stripcoef.files import load_yaml
+
+    assert len(text) < 120_000
+    t0 = time.process_time()
+    with pytest.raises(InputError, match="too large once its aliases are expanded"):
+        load_yaml(text, file="bomb.yaml")
+    assert time.process_time() - t0 < 10.0
+
+
+def test_shared_anchors_are_counted_once_per_reference():
+    """The expansion count is exact: a node referenced n times counts n times."""
+    from stripcoef.files import _expanded_size, _yaml_loader
+
+    loader = _yaml_loader("f")("a: &a [1, 2, 3]\nb: [*a, *a, [*a]]\n")
+    node = loader.get_single_node()
+    # root 1 + (key a 1 + [1,2,3] 4) + (key b 1 + list 1 + 4 + 4 + (1 + 4)) = 21
+    assert _expanded_size(node, 10_000, "f") == 21
+
+
+# -- model files validated like vehicle files ------------------------------------------
+
+@pytest.fixture(scope="module")
+def mares_model_dict():
+    from stripcoef import estimate
+
+    return estimate(GEO / "mares.yaml", strips=100).to_dict()
+
+
+def _set(key, value):
+    def edit(d):
+        node = d
+        for k in key[:-1]:
+            node = node[k]
+        node[key[-1]] = value
+    return edit
+
+
+MODEL_CASES = [
+    ("gravity nan", _set(["gravity"], float("nan")), ("gravity", "nan", "finite")),
+    ("gravity 0", _set(["gravity"], 0), ("gravity", "got 0", "> 0")),
+    ("gravity negative", _set(["gravity"], -9.81), ("gravity", "-9.81", "> 0")),
+    ("position of 2 numbers", _set(["thrusters", 0, "position"], [1.0, 2.0]),
+     ("thrusters[0].position", "[1.0, 2.0]", "3 numbers")),
+    ("direction zeros", _set(["thrusters", 0, "direction"], [0, 0, 0]),
+     ("thrusters[0].direction", "zero vector", "non-zero")),
+    ("direction nan", _set(["thrusters", 0, "direction"], [float("nan"), 0, 0]),
+     ("thrusters[0].direction", "finite")),
+    ("ct_forward a string", _set(["thrusters", 0, "ct_forward"], "fast"),
+     ("thrusters[0].ct_forward", "'fast'", "a number")),
+    ("ct_forward -1", _set(["thrusters", 0, "ct_forward"], -1),
+     ("thrusters[0].ct_forward", "-1", "> 0")),
+    ("empty thruster name", _set(["thrusters", 0, "name"], ""),
+     ("thrusters[0].name", "empty name")),
+    ("duplicated thruster name", _set(["thrusters", 1, "name"], "P1"),
+     ("thrusters[1].name", "'P1'", "unique")),
+    ("unknown thruster key", _set(["thrusters", 0, "ct_foward"], 2.0),
+     ("thrusters[0].ct_foward", "unknown key")),
+    ("effects a string", _set(["effects"], "tether_drag"),
+     ("effects", "'tether_drag'", "a list")),
+    ("effect parameter a string", _set(["effects"], [
+        {"name": "tether_drag", "dof": "surge", "parameters": {"c_t": "abc"}}]),
+     ("effects[0].parameters.c_t", "'abc'", "a number")),
+    ("effect on DOF 7", _set(["effects"], [
+        {"name": "tether_drag", "dof": 7, "parameters": {"c_t": 1.0}}]),
+     ("effects[0].dof", "got 7", "surge")),
+    ("kinematic viscosity negative", _set(["kinematic_viscosity"], -1e-6),
+     ("kinematic_viscosity", "-1e-06", "> 0")),
+    ("lift of 5 rows", lambda d: d.__setitem__("lift", d["lift"][:5]), ("lift", "6 entries")),
+    ("control surface without derivative", _set(["control_surfaces"], [
+        {"name": "r", "type": "rudder", "max_deflection": 0.3}]),
+     ("control_surfaces[0].derivative", "missing")),
+]
+
+
+@pytest.mark.parametrize("command", ["export", "simulate", "limits"])
+@pytest.mark.parametrize("name, edit, words", MODEL_CASES, ids=[c[0] for c in MODEL_CASES])
+def test_model_file_errors(name, edit, words, command, mares_model_dict, tmp_path, capsys):
+    """Each invalid model file of the issue: one line from every command that reads it
+    (today some ran with NaN, the thruster off or a traceback)."""
+    d = copy.deepcopy(mares_model_dict)
+    edit(d)
+    f = tmp_path / "m.json"
+    f.write_text(json.dumps(d))
+    if command == "export":
+        argv = ["export", f, "--to", "gazebo", "-o", tmp_path / "o.sdf"]
+    elif command == "simulate":
+        (tmp_path / "in.csv").write_text("t,n_P1\n0,1\n1,1\n")
+        argv = ["simulate", f, "--inputs", tmp_path / "in.csv", "--out", tmp_path / "o.csv"]
+    else:
+        argv = ["limits", f, "--json", "--radii", "1:10:3"]
+    _one_line(capsys, argv, str(f), *words)
+    assert sorted(p.name for p in tmp_path.iterdir()) in (["m.json"], ["in.csv", "m.json"])
+
+
+def test_model_file_direction_is_normalised_as_in_a_vehicle_file(mares_model_dict):
+    """A direction that is not a unit vector is its direction (as in a vehicle file), not a
+    thrust scale."""
+    from stripcoef.modelfile import model_from_dict
+
+    d = copy.deepcopy(mares_model_dict)
+    d["thrusters"][0]["direction"] = [2.0, 0.0, 0.0]
+    model = model_from_dict(d, file="m.json")
+    np.testing.assert_allclose(model.thrusters[0].direction, [1.0, 0.0, 0.0], atol=1e-15)
+    assert model_from_dict(mares_model_dict).to_dict()["thrusters"] == \
+        mares_model_dict["thrusters"]
+
+
+def test_model_file_yaml_with_unlimited_thrust_reads_back(mares_model_dict):
+    """A thruster without a limit (``null``, or JSON's Infinity) stays valid."""
+    from stripcoef.modelfile import model_from_dict
+
+    d = copy.deepcopy(mares_model_dict)
+    d["thrusters"][0]["max_forward"] = None
+    d["thrusters"][1]["max_forward"] = float("inf")
+    model = model_from_dict(d)
+    assert model.thrusters[0].max_forward == model.thrusters[1].max_forward == float("inf")
