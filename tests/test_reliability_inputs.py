@@ -191,3 +191,57 @@ def test_model_file_yaml_with_unlimited_thrust_reads_back(mares_model_dict):
     d["thrusters"][1]["max_forward"] = float("inf")
     model = model_from_dict(d)
     assert model.thrusters[0].max_forward == model.thrusters[1].max_forward == float("inf")
+
+
+# -- vehicle files: density -------------------------------------------------------------
+
+def _cylinder(mass):
+    from stripcoef.geometry.vehicle import parse_vehicle
+
+    return parse_vehicle({"name": "c", "fluid": {"density": 1000.0, "kinematic_viscosity": 1e-6},
+                          "strips": 200,
+                          "hull": {"profile": [{"type": "cylinder", "x": [-1.0, 1.0],
+                                                "radius": 0.1}]},
+                          "mass": mass}, file="c.yaml")
+
+
+def test_default_density_without_zones_is_honoured():
+    """A uniform body of ``default_density``: m = rho V, exactly for a cylinder [kg] (it was
+    the fluid's density, silently)."""
+    from stripcoef import estimate
+    from stripcoef.errors import ModelWarning
+
+    with pytest.warns(ModelWarning, match="weight and buoyancy differ by -50.0 %"):
+        m = estimate(_cylinder({"default_density": 500.0}))
+    volume = np.pi * 0.1 ** 2 * 2.0
+    assert m.volume == pytest.approx(volume, rel=1e-9)
+    assert m.mass == pytest.approx(500.0 * volume, rel=1e-9)
+    np.testing.assert_allclose(m.center_of_gravity, m.center_of_buoyancy, atol=1e-12)
+    # the inertia of a solid rod of that mass: Iyy = m (L^2/12 + R^2/4) [kg m^2] (the
+    # strips' midpoint sum of a uniform rod is exact up to the dx^2/12 term they include)
+    iyy = m.mass * (2.0 ** 2 / 12 + 0.1 ** 2 / 4)
+    r_g = m.center_of_gravity - m.reference_point
+    assert m.rigid_body_mass[4, 4] - m.mass * (r_g[0] ** 2 + r_g[2] ** 2) == \
+        pytest.approx(iyy, rel=1e-6)
+
+
+@pytest.mark.parametrize("mass, words", [
+    ({"default_density": 0}, ("mass.default_density", "got 0", "> 0")),
+    ({"mass": 30.0, "default_density": 800.0}, ("mass.default_density", "both mass and")),
+    ({"zones": [{"name": "far", "x": [5.0, 6.0], "density": 900.0}]},
+     ("mass.zones[0].x", "'far' entirely outside the body", "[5.0, 6.0]", "-1 to 1 m")),
+    ({"zones": [{"name": "thin", "x": [0.0001, 0.0002], "density": 900.0}]},
+     ("mass.zones[0].x", "'thin' covers no strip", "more strips")),
+    ({"default_density": 1000.0, "zones": [{"x": [-1.0, 1.0], "density": 0.0}]},
+     ("mass.zones", "massless")),
+])
+def test_density_errors(mass, words, tmp_path, capsys):
+    import yaml
+
+    f = tmp_path / "v.yaml"
+    f.write_text(HULL.replace("-0.75", "-1.0").replace("0.75", "1.0")
+                 + yaml.safe_dump({"mass": mass}))
+    text = f.read_text().replace("ellipsoid_tail, x: [-1.0, -0.45]", "cylinder, x: [-1.0, -0.45]")
+    f.write_text(text.replace("ellipsoid_nose, x: [0.55, 1.0]", "cylinder, x: [0.55, 1.0]"))
+    _one_line(capsys, ["coefficients", f, "-o", tmp_path / "o.json"], str(f), *words)
+    assert not (tmp_path / "o.json").exists()
