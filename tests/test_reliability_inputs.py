@@ -245,3 +245,104 @@ def test_density_errors(mass, words, tmp_path, capsys):
     f.write_text(text.replace("ellipsoid_nose, x: [0.55, 1.0]", "cylinder, x: [0.55, 1.0]"))
     _one_line(capsys, ["coefficients", f, "-o", tmp_path / "o.json"], str(f), *words)
     assert not (tmp_path / "o.json").exists()
+
+
+# -- estimators: ill-conditioned or non-finite problems -----------------------------------
+
+def test_lstsq_refuses_an_overflowing_regression():
+    """One value of -1e300 among ordinary ones (a LinAlgError before): a named refusal."""
+    from stripcoef.identify.estimators import linear_lstsq
+
+    rng = np.random.default_rng(3)
+    h = np.column_stack([np.ones(40), rng.normal(size=40)])
+    y = h @ [1.0, 2.0] + 0.01 * rng.normal(size=40)
+    assert np.allclose(linear_lstsq(h, y, ["a", "b"]).theta, [1.0, 2.0], atol=0.02)
+    y[7] = -1e300
+    with pytest.raises(InputError, match=r"overflows.*-1e\+300 at observation 7.*units"):
+        linear_lstsq(h, y, ["a", "b"], what="points")
+    h[5, 1] = 1e300
+    with pytest.raises(InputError, match="overflows"):
+        linear_lstsq(h, h @ [1.0, 2.0], ["a", "b"])
+
+
+@pytest.mark.parametrize("a, b, c", [(1e308, -1e308, 0.0), (10.0, 0.0, -1e150)])
+def test_pendulum_decay_blow_up_is_nan_not_a_math_domain_error(a, b, c):
+    """sin(inf) inside a Runge-Kutta step raised 'math domain error' (a 200k-row log's fit)."""
+    from stripcoef.identify.pendulum import simulate_decay
+
+    out = simulate_decay(np.linspace(0.0, 1.0, 50), 1.0, 0.0, a, b, c)
+    assert out[0] == 1.0 and np.all(np.isnan(out[1:]))
+
+
+# -- logs: absurd magnitudes and units -----------------------------------------------------
+
+def _steady_log(tmp_path, edit=None):
+    from stripcoef.logfile import Log
+    from validation.experiments import romeo_experiment
+
+    pts, _ = romeo_experiment(2, seed=2)
+    cols = {"w": pts.velocity.copy(), "Z": pts.force.copy(), "n_h": pts.n_h.copy()}
+    if edit:
+        edit(cols)
+    f = tmp_path / "steady.csv"
+    f.write_text(Log(cols).to_csv_text())
+    return f
+
+
+@pytest.mark.parametrize("column, value, words", [
+    ("Z", -1e300, ("Z:", "row 5", "-1e+300", "|Z| <= 1e+09")),
+    ("w", 1e300, ("w:", "row 5", "|w| <= 100 m/s")),
+    ("n_h", 1e300, ("n_h:", "row 5", "1e+12")),
+])
+def test_steady_log_with_an_absurd_value(column, value, words, tmp_path, capsys):
+    f = _steady_log(tmp_path, lambda c: c[column].__setitem__(3, value))
+    _one_line(capsys, ["identify", f, "--method", "steady", "--dof", "heave", "--json"],
+              str(f), *words)
+
+
+def _yaw_log(tmp_path, scale=1.0, value=None):
+    from validation.experiments import videoray_yaw_log
+
+    log = videoray_yaw_log(0)
+    cols = dict(log.columns)
+    cols["t"] = cols["t"] * scale
+    if value is not None:
+        cols["r"] = cols["r"].copy()
+        cols["r"][5] = value
+    f = tmp_path / "yaw.csv"
+    from stripcoef.logfile import Log
+    f.write_text(Log(cols).to_csv_text())
+    return f
+
+
+def test_time_squeezed_to_nanoseconds_or_a_1e300_value(tmp_path, capsys):
+    """The fits gave 'null' error bars with exit 0 on these logs."""
+    f = _yaw_log(tmp_path, scale=1e-9)
+    _one_line(capsys, ["identify", f, "--method", "one-step", "--dof", "yaw"], str(f), "t:",
+              "not in seconds", "3.33e-11")
+    f = _yaw_log(tmp_path, value=1e300)
+    _one_line(capsys, ["identify", f, "--method", "one-step", "--dof", "yaw"], str(f), "r:",
+              "1e+300", "rad/s")
+    assert main(["identify", str(_yaw_log(tmp_path)), "--method", "one-step", "--dof",
+                 "yaw"]) == 0
+
+
+def test_time_in_milliseconds_is_named(tmp_path, capsys):
+    """simulate ran 20,000 s (and stopped at its 120 s budget) on a 20 s log in ms."""
+    t = np.arange(0, 20001, 100)
+    f = tmp_path / "in.csv"
+    f.write_text("t,n_P1,n_P2,n_V1,n_V2\n" + "".join(f"{x},1,1,0,0\n" for x in t))
+    t0 = time.time()
+    _one_line(capsys, ["simulate", GEO / "mares.yaml", "--inputs", f, "--out",
+                       tmp_path / "o.csv"], str(f), "t:", "milliseconds", "divide by 1000")
+    assert time.time() - t0 < 30
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_magnitude_bounds_leave_real_logs_alone():
+    """The shipped sample logs pass the magnitude checks."""
+    from stripcoef import samples
+    from stripcoef.logfile import read_log
+
+    for name in ("heave_steady.csv", "pendulum.csv", "rov_tether.csv", "yaw_onestep.csv"):
+        read_log(samples.path(name))
