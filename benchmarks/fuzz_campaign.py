@@ -109,6 +109,7 @@ class Bases:
         t = np.round(np.arange(0, 20.0 + 1e-9, 0.1), 6)
         step = np.where((t // 4) % 2 == 0, 1.0, -0.5)
         self.inputs = Log({"t": t, "n_P1": step, "n_P2": 0.8 + 0 * t, "n_V1": 0.2 + 0 * t,
+                           "n_V2": 0 * t,
                            "X": 0.0 * t}).to_csv_text()
         # identification logs, as the tests make them
         from validation.experiments import (romeo_experiment, rov2_pendulum_log,

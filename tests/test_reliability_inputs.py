@@ -161,7 +161,7 @@ def test_model_file_errors(name, edit, words, command, mares_model_dict, tmp_pat
     if command == "export":
         argv = ["export", f, "--to", "gazebo", "-o", tmp_path / "o.sdf"]
     elif command == "simulate":
-        (tmp_path / "in.csv").write_text("t,n_P1\n0,1\n1,1\n")
+        (tmp_path / "in.csv").write_text("t,n_P1,n_P2,n_V1,n_V2\n0,1,1,0,0\n1,1,1,0,0\n")
         argv = ["simulate", f, "--inputs", tmp_path / "in.csv", "--out", tmp_path / "o.csv"]
     else:
         argv = ["limits", f, "--json", "--radii", "1:10:3"]
@@ -346,3 +346,17 @@ def test_magnitude_bounds_leave_real_logs_alone():
 
     for name in ("heave_steady.csv", "pendulum.csv", "rov_tether.csv", "yaw_onestep.csv"):
         read_log(samples.path(name))
+
+
+@pytest.mark.parametrize("header, words", [
+    ("t,n_P1,n_P2,n_V1", ("n_V2:", "no command column for thruster 'V2'", "zeros")),
+    ("t,n_P1,n_P2,n_V1,n_V3", ("n_V3:", "unknown thruster", "n_V2")),
+])
+def test_simulate_inputs_missing_or_renamed_thruster_column(header, words, tmp_path, capsys):
+    """A thruster without its column ran switched off, silently."""
+    f = tmp_path / "in.csv"
+    cells = ",".join(["1"] * (header.count(",")))
+    f.write_text(f"{header}\n0,{cells}\n1,{cells}\n")
+    _one_line(capsys, ["simulate", GEO / "mares.yaml", "--inputs", f, "--out",
+                       tmp_path / "o.csv"], str(f), *words)
+    assert not (tmp_path / "o.csv").exists()

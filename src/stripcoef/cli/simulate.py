@@ -94,6 +94,7 @@ def parse_vector(text: str, *, key: str, size: int = 3) -> np.ndarray:
 def inputs_from_log(log, model, times=None, *, interpolation="previous"):
     """Times, forces (n,6) or None, commands, deflections [rad] and other channels (e.g.
     ``tether_length``) from an inputs log, resampled at ``times``."""
+    from stripcoef.thrusters import check_command_columns
     t_in = log.require("t")
     if len(t_in) < 2:
         raise InputError("too few rows", file=log.source, key="t", value=len(t_in),
@@ -112,11 +113,7 @@ def inputs_from_log(log, model, times=None, *, interpolation="previous"):
             raise InputError("unknown control surface", file=log.source, key="delta_" + name,
                              expected="one of " + (", ".join("delta_" + n for n in snames)
                                                    or "(the model has no control surfaces)"))
-    names = [th.name for th in model.thrusters]
-    for name in cmds:
-        if name not in names:
-            raise InputError("unknown thruster", file=log.source, key="n_" + name,
-                             expected="one of " + ", ".join("n_" + n for n in names))
+    check_command_columns(cmds, model.thrusters, file=log.source)
     if times is None:
         times = t_in
 
