@@ -360,3 +360,117 @@ def test_simulate_inputs_missing_or_renamed_thruster_column(header, words, tmp_p
     _one_line(capsys, ["simulate", GEO / "mares.yaml", "--inputs", f, "--out",
                        tmp_path / "o.csv"], str(f), *words)
     assert not (tmp_path / "o.csv").exists()
+
+
+# -- writes that fail cleanly -------------------------------------------------------------
+
+def _disk_full(monkeypatch):
+    """Every text or byte write fails as on a full disk (ENOSPC)."""
+    import errno
+
+    def full(self, *a, **k):
+        raise OSError(errno.ENOSPC, "No space left on device", str(self))
+    monkeypatch.setattr(Path, "write_text", full)
+    monkeypatch.setattr(Path, "write_bytes", full)
+
+
+@pytest.mark.parametrize("argv", [
+    ["coefficients", GEO / "sphere.yaml", "--strips", "40", "--json", "-o", "{d}/out.json"],
+    ["export", GEO / "sphere.yaml", "--to", "json", "-o", "{d}/out.json"],
+])
+def test_full_disk_is_one_line_and_keeps_the_old_file(argv, tmp_path, capsys, monkeypatch):
+    old = tmp_path / "out.json"
+    old.write_text("previous\n")
+    argv = [str(a).replace("{d}", str(tmp_path)) for a in argv]
+    _disk_full(monkeypatch)
+    _one_line(capsys, argv, "cannot write (No space left on device", "kept", str(old))
+    monkeypatch.undo()
+    assert old.read_text() == "previous\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.json"]
+
+
+def test_output_onto_an_installed_sample_is_refused(capsys):
+    from stripcoef import samples
+
+    before = samples.path("sphere.yaml").read_bytes()
+    _one_line(capsys, ["coefficients", "sample:sphere.yaml", "--strips", "40", "-o",
+                       "sample:sphere.yaml"], "-o", "installed sample is read-only")
+    assert samples.path("sphere.yaml").read_bytes() == before
+
+
+def test_output_set_is_all_new_or_all_old(tmp_path):
+    """Outputs of one run (a model, a report and its plot): renamed together after all were
+    written; an error while writing the second leaves both old files and no temporary."""
+    from stripcoef.files import OutputSet
+
+    a, b = tmp_path / "model.yaml", tmp_path / "sub" / "report.md"
+    b.parent.mkdir()
+    a.write_text("old model\n")
+    b.write_text("old report\n")
+    with pytest.raises(RuntimeError):
+        with OutputSet() as outs:
+            outs.path(a, key="out").write_text("new model\n")
+            staged = outs.path(b, key="report")
+            staged.with_name("report_plot.png").write_text("png")   # a writer's side file
+            raise RuntimeError("killed while writing the report")
+    assert a.read_text() == "old model\n" and b.read_text() == "old report\n"
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["model.yaml", "report.md", "sub"]
+    with OutputSet() as outs:
+        outs.path(a, key="out").write_text("new model\n")
+        staged = outs.path(b, key="report")
+        staged.write_text("new report\n")
+        staged.with_name("report_plot.png").write_text("png")
+        assert a.read_text() == "old model\n"                   # nothing moved before commit
+    assert a.read_text() == "new model\n" and b.read_text() == "new report\n"
+    assert (b.parent / "report_plot.png").read_text() == "png"
+    assert sorted(p.name for p in tmp_path.rglob("*")) == [
+        "model.yaml", "report.md", "report_plot.png", "sub"]
+    with pytest.raises(InputError, match="the same file twice"):
+        with OutputSet() as outs:
+            outs.path(a)
+            outs.path(tmp_path / "sub" / ".." / "model.yaml")
+
+
+def test_output_set_full_disk_names_the_output(tmp_path, monkeypatch):
+    from stripcoef.files import OutputSet, write_text
+
+    a = tmp_path / "cal.yaml"
+    a.write_text("old\n")
+    _disk_full(monkeypatch)
+    with pytest.raises(InputError, match=r"out: cannot write \(No space left.*cal.yaml'"):
+        with OutputSet() as outs:
+            write_text(outs.path(a, key="out"), "new\n", key="x")
+    monkeypatch.undo()
+    assert a.read_text() == "old\n" and [p.name for p in tmp_path.iterdir()] == ["cal.yaml"]
+
+
+def test_diagnose_writes_its_model_and_report_as_a_set(tmp_path, capsys, monkeypatch):
+    """A failure while writing the report (after the model was written) leaves the earlier
+    model and report: never a new model beside an old report."""
+    import stripcoef.diagnose.report as report
+    from stripcoef.export import export_model
+    from validation.synthetic import generate
+
+    log, prior, _ = generate(None, seed=1, duration=80.0)
+    (tmp_path / "log.csv").write_text(log.to_csv_text())
+    (tmp_path / "prior.yaml").write_text(export_model(prior, "yaml"))
+    (tmp_path / "cal.yaml").write_text("old model\n")
+    (tmp_path / "r.md").write_text("old report\n")
+
+    def broken(result, path):
+        Path(path).write_text("half a rep")
+        raise OSError(28, "No space left on device", str(path))
+    monkeypatch.setattr(report, "markdown_report", broken)
+    argv = ["diagnose", tmp_path / "log.csv", "--vehicle", tmp_path / "prior.yaml",
+            "--no-resimulate", "--dof", "surge", "--out", tmp_path / "cal.yaml",
+            "--report", tmp_path / "r.md"]
+    _one_line(capsys, argv, "--report", "No space left", "r.md")
+    assert (tmp_path / "cal.yaml").read_text() == "old model\n"
+    assert (tmp_path / "r.md").read_text() == "old report\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cal.yaml", "log.csv", "prior.yaml",
+                                                          "r.md"]
+    monkeypatch.undo()
+    assert main([str(a) for a in argv]) == 0
+    capsys.readouterr()
+    assert (tmp_path / "cal.yaml").read_text() != "old model\n"
+    assert (tmp_path / "r.md").read_text() != "old report\n"

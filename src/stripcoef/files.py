@@ -16,10 +16,44 @@ from pathlib import Path
 from stripcoef.errors import InputError
 
 
+def _write_error(exc: OSError, path, key: str) -> InputError:
+    """One line for a write that failed (a full disk, a read-only file system, a quota)."""
+    return InputError(f"cannot write ({exc.strerror or exc.__class__.__name__}; the earlier "
+                      "file, if any, is kept)", key=key, value=str(path),
+                      expected="a path in a writable folder with free space")
+
+
+def _discard(tmp) -> None:
+    try:
+        os.unlink(tmp)
+    except OSError:
+        pass
+
+
 @contextmanager
 def atomic_path(path, *, key: str = "output"):
-    """Yield a temporary path next to ``path``; rename it onto ``path`` on success."""
+    """Yield a temporary path next to ``path``; rename it onto ``path`` on success.
+
+    A failure while writing (an ``OSError``: a full disk, a read-only file system) is one
+    :class:`InputError` naming ``key`` and the path; the temporary file is removed and an
+    existing ``path`` is left as it was.
+    """
     path = check_output_path(path, key=key)
+    tmp = _temporary(path, key)
+    try:
+        yield Path(tmp)
+        os.chmod(tmp, _final_mode(path))
+        os.replace(tmp, path)
+    except OSError as exc:
+        _discard(tmp)
+        raise _write_error(exc, path, key) from None
+    except BaseException:
+        _discard(tmp)
+        raise
+
+
+def _temporary(path: Path, key: str) -> str:
+    """A new empty temporary file next to ``path`` (same folder: the rename is atomic)."""
     folder = path.parent if str(path.parent) else Path(".")
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
@@ -27,16 +61,93 @@ def atomic_path(path, *, key: str = "output"):
         raise InputError(f"cannot write ({exc.strerror})", key=key, value=str(path),
                          expected="a path in an existing, writable folder") from None
     os.close(fd)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, _final_mode(path))
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    return tmp
+
+
+class OutputSet:
+    """The outputs of one run written as a set: all new or all old.
+
+    :meth:`path` gives, for each output, a path with the output's own name in a staging
+    folder beside it (hidden, ``.stripcoef-*.tmp``, on the same file system); the caller
+    writes every output there with any writer, and files a writer adds beside its output
+    (a report's plots) are staged with it. :meth:`commit` then moves every staged file onto
+    its destination, each move an atomic rename, after all of them were written completely.
+    A failure before the commit (an error, a full disk, an interrupted run) removes the
+    staging folders and leaves every earlier output as it was; the renames follow each other
+    with no work between them (a kill -9 in that window of microseconds is the one case that
+    can mix new and old files). As a context manager it commits on success::
+
+        with OutputSet() as outs:
+            write_export(model, "yaml", outs.path("cal.yaml", key="out"))
+            markdown_report(result, outs.path("report.md", key="report"))
+        # both (and the report's plots) renamed here, or none
+    """
+
+    def __init__(self):
+        self._staging: dict[Path, Path] = {}        # destination folder -> staging folder
+        self._finals: dict[Path, tuple[Path, str]] = {}   # staged path -> (output, key)
+
+    def path(self, path, *, key: str = "output") -> Path:
+        """Where to write the output ``path`` (renamed onto it by :meth:`commit`)."""
+        final = check_output_path(path, key=key)
+        folder = (final.parent if str(final.parent) else Path(".")).resolve()
+        if any(f.resolve() == final.resolve() for f, _ in self._finals.values()):
+            raise InputError("the same file twice among a run's outputs", key=key,
+                             value=str(path), expected="a different file for each output")
+        if folder not in self._staging:
+            try:
+                self._staging[folder] = Path(tempfile.mkdtemp(prefix=".stripcoef-",
+                                                              suffix=".tmp", dir=folder))
+            except OSError as exc:
+                self.discard()
+                raise _write_error(exc, final, key) from None
+        staged = self._staging[folder] / final.name
+        self._finals[staged] = (final, key)
+        return staged
+
+    def commit(self) -> None:
+        """Move every staged file onto its destination (each move an atomic rename)."""
+        moves = []
+        for folder, staging in self._staging.items():
+            for f in sorted(staging.iterdir()):
+                final, key = self._finals.get(f, (folder / f.name, "output"))
+                try:
+                    os.chmod(f, _final_mode(folder / f.name))
+                except OSError as exc:
+                    self.discard()
+                    raise _write_error(exc, final, key) from None
+                moves.append((f, folder / f.name))
+        for src, dst in moves:
+            os.replace(src, dst)
+        self.discard()
+
+    def discard(self) -> None:
+        """Remove the staging folders and what they hold; no output changes."""
+        import shutil
+
+        for staging in self._staging.values():
+            shutil.rmtree(staging, ignore_errors=True)
+        self._staging.clear()
+
+    def __enter__(self) -> "OutputSet":
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is None:
+            self.commit()
+            return False
+        staged = {str(k): v for k, v in self._finals.items()}
+        self.discard()
+        if isinstance(exc, InputError) and str(exc.value) in staged:
+            # a writer's error names the staged path: name the output instead
+            final, key = staged[str(exc.value)]
+            raise InputError(exc.what, file=exc.file, key=key, value=str(final),
+                             expected=exc.expected) from None
+        if isinstance(exc, OSError):
+            final, key = staged.get(str(getattr(exc, "filename", "")),
+                                    next(reversed(self._finals.values()), ("output", "output")))
+            raise _write_error(exc, final, key) from None
+        return False
 
 
 def _final_mode(path: Path) -> int:
