@@ -474,3 +474,50 @@ def test_diagnose_writes_its_model_and_report_as_a_set(tmp_path, capsys, monkeyp
     capsys.readouterr()
     assert (tmp_path / "cal.yaml").read_text() != "old model\n"
     assert (tmp_path / "r.md").read_text() != "old report\n"
+
+
+# -- options and meshes ---------------------------------------------------------------------
+
+def test_empty_reference_point_is_an_error(capsys):
+    """--reference-point '' was taken as not given."""
+    _one_line(capsys, ["coefficients", GEO / "sphere.yaml", "--strips", "40",
+                       "--reference-point", ""], "--reference-point", "got ''", "X,Y,Z")
+
+
+def test_diagnose_window_shorter_than_the_sampling(tmp_path, capsys):
+    """--window 1e-6 was widened to one sample without a word."""
+    from stripcoef.export import export_model
+    from validation.synthetic import generate
+
+    log, prior, _ = generate(None, seed=1, duration=80.0)
+    (tmp_path / "log.csv").write_text(log.to_csv_text())
+    (tmp_path / "prior.yaml").write_text(export_model(prior, "yaml"))
+    _one_line(capsys, ["diagnose", tmp_path / "log.csv", "--vehicle", tmp_path / "prior.yaml",
+                       "--no-resimulate", "--window", "1e-6"], "--window", "1e-06",
+              "sampling intervals")
+
+
+def test_scale_of_a_result_without_method_or_dof(tmp_path, capsys):
+    """Without its method and DOF a result was scaled as translational, silently."""
+    f = tmp_path / "r.json"
+    f.write_text(json.dumps({"parameters": {"m_a": 1.0, "K_L": 2.0},
+                             "std": {"m_a": 0.1, "K_L": 0.2}}))
+    _one_line(capsys, ["scale", f, "--ratio", "3.3"], str(f), "method",
+              "--rotational or --translational")
+    assert main(["scale", str(f), "--ratio", "3.3", "--translational", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["parameters"]["m_a"] == pytest.approx(3.3 ** 3)
+
+
+@pytest.mark.parametrize("suffix", ["stl", "obj"])
+def test_mesh_with_nan_vertices_names_the_nan(suffix, tmp_path, capsys):
+    """trimesh dropped the faces of the NaN vertex and the repair closed the hole: a
+    different body with a warning (or an error blaming watertightness)."""
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box(extents=(1.0, 0.3, 0.2))
+    v = np.array(box.vertices)
+    v[3, 1] = np.nan
+    f = tmp_path / f"nan.{suffix}"
+    data = trimesh.Trimesh(vertices=v, faces=box.faces, process=False).export(file_type=suffix)
+    f.write_bytes(data if isinstance(data, bytes) else data.encode())
+    _one_line(capsys, ["coefficients", f, "--strips", "40"], str(f), "non-finite vertex",
+              "nan", "expected finite coordinates")
