@@ -521,3 +521,14 @@ def test_mesh_with_nan_vertices_names_the_nan(suffix, tmp_path, capsys):
     f.write_bytes(data if isinstance(data, bytes) else data.encode())
     _one_line(capsys, ["coefficients", f, "--strips", "40"], str(f), "non-finite vertex",
               "nan", "expected finite coordinates")
+
+
+def test_reference_speed_beyond_any_vehicle_is_named(tmp_path, capsys):
+    """A reference speed of 7.5e6 m/s was accepted; the limits then said only that no speed
+    could be held (the campaign's one vague error)."""
+    f = tmp_path / "v.yaml"
+    f.write_text(HULL + "reference_speed: 7500000.0\n")
+    _one_line(capsys, ["limits", f, "--json", "--radii", "1:10:5"], str(f), "reference_speed",
+              "7500000.0", "<= 100 m/s")
+    _one_line(capsys, ["coefficients", GEO / "sphere.yaml", "--strips", "40", "--speed",
+                       "1e300"], "--speed", "<= 100 m/s")

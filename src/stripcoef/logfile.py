@@ -27,6 +27,7 @@ import numpy as np
 from stripcoef.conventions import FORCES, POSE, VELOCITIES
 from stripcoef.errors import InputError
 from stripcoef.files import read_text, write_text
+from stripcoef.fluid import MAX_VEHICLE_SPEED
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
 COMMAND_PREFIX = "n_"
@@ -224,8 +225,7 @@ def read_log(path, *, required=()) -> Log:
 #: Largest magnitude of each kind of log column (SI units), with the reason: beyond it the
 #: value is in other units or corrupt, and a command would grind or answer nonsense.
 MAGNITUDE_BOUNDS = {
-    "velocity": (100.0, "m/s", "faster than any underwater vehicle (supercavitating "
-                               "torpedoes reach ~100 m/s)"),
+    "velocity": (MAX_VEHICLE_SPEED, "m/s", "faster than any underwater vehicle"),
     "rate": (100.0, "rad/s", "about 16 turns a second"),
     "angle": (1.0e4, "rad", "over 1500 turns"),
     "position": (1.0e8, "m", "over twice the Earth's circumference"),
