@@ -114,10 +114,14 @@ def _check_array(value, shape, file, key):
 # The optional parts of a model file: scalars, thrusters, effects, control surfaces
 # ---------------------------------------------------------------------------
 
-#: Keys of a thruster entry (the fields of :class:`~stripcoef.thrusters.Thruster`).
-_THRUSTER_KEYS = ("name", "position", "direction", "ct_forward", "ct_backward", "max_forward",
-                  "max_backward", "eta_forward", "eta_backward", "deadband", "torque_ratio",
-                  "source")
+def _thruster_keys() -> tuple:
+    """Keys of a thruster entry: the fields of :class:`~stripcoef.thrusters.Thruster`."""
+    from dataclasses import fields
+
+    from stripcoef.thrusters import Thruster
+
+    return tuple(f.name for f in fields(Thruster))
+
 _SURFACE_KEYS = ("name", "type", "derivative", "max_deflection", "stall_angle")
 
 
@@ -224,9 +228,10 @@ def _check_thrusters(r, data) -> list:
     """The thruster entries of a model file, checked; directions normalised."""
     out = []
     names: set = set()
+    keys = _thruster_keys()
     for k, t in enumerate(r.listing(data, "thrusters", "")):
         path = f"thrusters[{k}]"
-        r.mapping(t, path, _THRUSTER_KEYS)
+        r.mapping(t, path, keys)
         name = r.string(t, "name", path, required=True)
         if not name.strip():
             raise r.err(f"{path}.name", "empty name", name,
