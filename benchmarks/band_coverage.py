@@ -3,7 +3,7 @@
 Never against the references that set a band. Two checks:
 
 1. **Leave one shape out, within the BEM / exact sets.** The method bands are set from
-   benchmarks/data/method_errors.csv (scripts/make_method_uncertainty.py: stripcoef against
+   reference_tables/method_errors/method_errors.csv (scripts/make_method_uncertainty.py: stripcoef against
    Lamb's exact solutions and converged Capytaine runs). For each shape, its band is re-made
    from the OTHER shapes of its class and family (sd = q95 / 1.96 of their |ln(strip/ref)|,
    stripcoef.study.calibration) and its own terms are checked against it. For a diagonal
@@ -11,7 +11,7 @@ Never against the references that set a band. Two checks:
    group), so no Monte Carlo is needed here; for a coupling it is a +- 1.96 sigma_c
    sqrt(A_ii A_jj) about the model's value, zero or not, for every coupling the shape's mirror
    symmetries allow (stripcoef.study.sources.couple; the ``allowed`` column of the errors
-   file, stripcoef.study.symmetry) or the model has (>= 1 %); any other stays at the model's
+   file, stripcoef.assembly.symmetry) or the model has (>= 1 %); any other stays at the model's
    value and is inside only if that is the reference's; the congruence's own spread left out (it only widens
    the band). The translational quadratic drag is checked the same way where the errors file
    has it (matrix quadratic_damping: measured whole-body drag of simple bodies,
@@ -35,7 +35,7 @@ Terms of one shape are correlated (one factor per DOF group; Y and Z alike on a 
 revolution): the effective number of items is smaller than the count, so the intervals are
 if anything too narrow.
 
-Run: python benchmarks/band_coverage.py [--samples 256] [--write]   (about 10-20 s)
+Run: python -m benchmarks.band_coverage [--samples 256] [--write]   (about 10-20 s)
 """
 
 from __future__ import annotations
@@ -50,8 +50,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "scripts"))
 
 import numpy as np  # noqa: E402
 
@@ -75,8 +73,8 @@ def _rate(k, n):
 
 def _moved(row) -> bool:
     """Whether the sampling moves this coupling (stripcoef.study.sources.couple): the shape's
-    mirror symmetries allow it (``allowed`` of benchmarks/data/method_errors.csv,
-    stripcoef.study.symmetry), or the model has it, >= 1 % of sqrt(A_ii A_jj) (the scale
+    mirror symmetries allow it (``allowed`` of reference_tables/method_errors/method_errors.csv,
+    stripcoef.assembly.symmetry), or the model has it, >= 1 % of sqrt(A_ii A_jj) (the scale
     recovered from the stored error, (strip - ref) / scale)."""
     a, ref, e = float(row["strip"]), float(row["reference"]), float(row["error"])
     has = e != 0 and abs(a) >= 0.01 * abs((a - ref) / e)
@@ -185,7 +183,7 @@ def _panels(path) -> bool:
 
 
 def main(argv=None):
-    from make_method_uncertainty import read_errors
+    from validation.method_errors import read_errors
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, default=256)
@@ -217,7 +215,7 @@ def main(argv=None):
         summary.append(f"| {vr_class} (VideoRay) | held-out paper, bands {basis} | "
                        + " | ".join(_rate(kk, nn)) + " |")
     text = "\n".join([
-        f"`python benchmarks/band_coverage.py --samples {args.samples}` "
+        f"`python -m benchmarks.band_coverage --samples {args.samples}` "
         f"({datetime.date.today().isoformat()}). Bands: src/stripcoef/data/method_uncertainty.csv "
         "(scripts/make_method_uncertainty.py). Interval: exact binomial 95 % (Clopper-Pearson).",
         "", "Coverage per class:", "", *summary, "",

@@ -11,11 +11,11 @@ forward, a box with its front-top edge chamfered, and two cylinders joined by a 
 
 References (stored, never recomputed by the tests):
 
-    python benchmarks/bluff_shapes.py --reference      # about 2 min quiet, 1.3 GB peak
+    python -m benchmarks.bluff_shapes --reference      # about 2 min quiet, 1.3 GB peak
 
 runs Capytaine (direct method, no free surface, rho = 1000) on each shape at two resolutions
 (about 2300 and 4600 faces: at most 5000 faces per solve, one solve at a time) and writes
-benchmarks/data/bem_bluff.csv: both resolutions, their face counts and the Richardson
+reference_tables/bem/bem_bluff.csv: both resolutions, their face counts and the Richardson
 extrapolation A = (N2 A2 - N1 A1) / (N2 - N1) (the direct method converges at second order in
 the panel size h ~ N^-1/2, i.e. as 1/N). Smooth shapes (sphere, ellipsoids, cylinders) are
 re-tessellated at each resolution; faceted shapes (boxes, frames) keep their geometry and are
@@ -23,7 +23,7 @@ subdivided.
 
 Accuracy and timing:
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bluff_shapes.py [--no-corrections | --per-dof-axes]
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.bluff_shapes [--no-corrections | --per-dof-axes]
 
 prints every shape x every diagonal term and the significant off-diagonals (|BEM| >= 1 % of
 the geometric mean of the two diagonals) against the Richardson value, and the ellipsoids
@@ -45,7 +45,7 @@ import trimesh
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT / "benchmarks" / "data" / "bem_bluff.csv"
+DATA = ROOT / "reference_tables" / "bem" / "bem_bluff.csv"
 RHO = 1000.0
 #: target faces of the two BEM resolutions (each solve <= 5000 faces, ~1.4 GB)
 LEVELS = (2300, 4600)
@@ -306,7 +306,7 @@ def make_references(names):
         f"# Source: Capytaine {capytaine.__version__}, method direct, free_surface = inf,",
         "# two resolutions (faces_1, faces_2), Richardson extrapolation assuming error ~ 1/N:",
         "# richardson = (faces_2 a_2 - faces_1 a_1) / (faces_2 - faces_1).",
-        f"# Generated {datetime.date.today().isoformat()} by python benchmarks/bluff_shapes.py --reference",
+        f"# Generated {datetime.date.today().isoformat()} by python -m benchmarks.bluff_shapes --reference",
     ]
     old = read_references() if DATA.exists() else {}
     keep = [r for r in _raw_rows() if r[0] not in names] if DATA.exists() else []
@@ -587,7 +587,7 @@ def main(argv=None):
                 + (f" --panels {args.panels}" if args.panels else "")}[mode]
         out = ROOT / "benchmarks" / "data" / f"bluff_accuracy_{mode}.md"
         out.write_text(f"### {TITLES[mode]}\n\n`OPENBLAS_NUM_THREADS=1 python "
-                       f"benchmarks/bluff_shapes.py{flag} --write` "
+                       f"-m benchmarks.bluff_shapes{flag} --write` "
                        f"({datetime.date.today().isoformat()}). Diagonal: relative error; "
                        f"off-diagonal: error / sqrt(A_ii A_jj) of the reference.\n\n"
                        + "\n".join(lines) + "\n\n" + summary + "\n")

@@ -14,7 +14,7 @@ logs with an effect outside the library (Coulomb-like friction). Measures:
 - two effects at once (PAIRS): both named as the first two steps, both magnitudes.
 
 Usage:
-    python benchmarks/diagnose_detection.py [--per-effect 22] [--clean 24] [--outside 12]
+    python -m benchmarks.diagnose_detection [--per-effect 22] [--clean 24] [--outside 12]
                                             [--pairs 8] [--window S] [--duration S]
                                             [--jobs N]
                                             [--write docs/performance.md]
@@ -33,10 +33,6 @@ import numpy as np
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-
-from pathlib import Path as _Path  # noqa: E402
-
-sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
 
 from stripcoef.conventions import parse_dof  # noqa: E402
 from stripcoef.diagnose.pipeline import DEFAULT_WINDOW, diagnose  # noqa: E402
@@ -168,7 +164,7 @@ def write_section(path, body, window, duration):
     path = Path(path)
     text = path.read_text() if path.exists() else "# Performance\n"
     head = "## Diagnosis"
-    section = (f"{head}\n\nMeasured by `python benchmarks/diagnose_detection.py --jobs 2 "
+    section = (f"{head}\n\nMeasured by `python -m benchmarks.diagnose_detection --jobs 2 "
                f"--write docs/performance.md` (seeded: the same command gives the same table, "
                f"whatever `--jobs`), "
                f"window {window:g} s (the default of `stripcoef diagnose`), logs of "

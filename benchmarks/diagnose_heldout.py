@@ -31,7 +31,7 @@ rows for the VideoRay Pro III vehicle file (shape class bluff; issue 19), as
 ``diagnose --vehicle videoray_pro3.yaml`` does, and checks the added mass against its 99.7 %
 band; the default (``bands``) is a model file's fixed bands.
 
-Run:  PYTHONPATH=src:. python benchmarks/diagnose_heldout.py [--seeds 2] [--duration 300]
+Run:  PYTHONPATH=src:. python -m benchmarks.diagnose_heldout [--seeds 2] [--duration 300]
       [--priors bands|method]
 """
 

@@ -1,147 +1,17 @@
-"""Simple bodies with a measured whole-body drag coefficient, and stripcoef's drag of them.
+"""Whole-body drag of simple bodies against measured values: the table.
 
-The references are reference_tables/body_drag_3d (Hoerner 1965 via public copies; its
-README says which rows can measure the method and which cannot: a body whose drag the method
-reads from the same number is no independent check). Each body is a closed mesh of size
-D = 0.1 m (its extent across the flow: the sphere's and the cones' base diameter, the cube's
-edge a), run at U = 1 m/s in water (rho 1000 kg/m^3, nu 1e-6 m^2/s): Re = U D / nu = 1e5 on
-that size, inside the references' subcritical range (sphere Re 1e3-2e5, cube Re 1e4-1e6).
-stripcoef's drag coefficient in direction k is its quadratic term over the reference's area,
+The bodies, their meshes, the references and the rows held out are in
+``validation.drag_bodies`` (shared with docs/validation.md and the method table); this prints
+the model against each reference:
 
-    C_D,model = |D_Q[k, k]| / (1/2 rho A)        [-]
-
-(the D_Q term the VideoRay check and the uncertainty study sample; its linear share at U,
-the Reynolds-number part of skin friction, is printed but not compared).
-
-Bodies (x: the mesh axis the method cuts its strips along):
-- ``sphere``: x, y and z against sphere.Cd (A = pi D^2/4);
-- ``cube``: a cube of edge a, faces normal to x, y, z: all three against cube.face_on.Cd (A = a^2);
-- ``cube_edge``: the cube turned 45 deg about z: x and y meet an edge (cube.edge_on.Cd, on the
-  face area a^2 as the reference states), z a face (cube.face_on.Cd);
-- ``cone60``, ``cone30``: flat-based cones of apex angle 60 and 30 deg along x, against
-  cone.apex60.Cd / cone.apex30.Cd (A = pi d^2/4, the base); the model's drag is symmetric in
-  the flow direction (a |u| u term);
-- ``hemisphere``: a solid hemisphere along x, its one X_uu against both orientations
-  (hemisphere_solid.Cd_dome, dome on the flow, and hemisphere_solid.Cd_high, flat face on it;
-  A = pi d^2/4): the model cannot tell them apart;
-- ``ellipsoid_2to1``: a prolate spheroid of length 2D along x against ellipsoid_2to1.Cd
-  (nose-on, A = pi D^2/4; Re = 1e5 on D as the reference's table states).
-
-Run: python benchmarks/drag_bodies.py   (seconds; prints model vs reference)
+    python -m benchmarks.drag_bodies
 """
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
-import trimesh
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-RHO = 1000.0          # water [kg/m^3]
-NU = 1e-6             # [m^2/s]
-SPEED = 1.0           # [m/s]
-SIZE = 0.1            # D or a [m]
-SOURCE = "body_drag_3d"
-TABLE = "whole_body_drag"
-
-
-def _revolved(r, x, sections=128):
-    """Closed body of revolution about x from a meridian (r, x), r = 0 at both ends."""
-    m = trimesh.creation.revolve(np.column_stack([r, x]), sections=sections)   # about z
-    m = trimesh.Trimesh(m.vertices, m.faces, process=True)
-    if m.volume < 0:
-        m.invert()
-    m.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
-    return m
-
-
-def sphere():
-    t = np.linspace(0.0, np.pi, 97)
-    return _revolved(0.5 * SIZE * np.sin(t), -0.5 * SIZE * np.cos(t))
-
-
-def cone(apex_deg):
-    """Flat-based cone, base diameter SIZE, apex angle ``apex_deg`` [deg], apex at +x."""
-    length = 0.5 * SIZE / np.tan(np.radians(0.5 * apex_deg))
-    r = np.r_[np.linspace(0.0, 0.5 * SIZE, 40), np.linspace(0.5 * SIZE, 0.0, 20)[1:]]
-    x = np.r_[np.linspace(length, 0.0, 40), np.zeros(19)]
-    return _revolved(r, x)
-
-
-def hemisphere():
-    """Solid hemisphere, base diameter SIZE, dome towards +x."""
-    t = np.linspace(0.0, 0.5 * np.pi, 49)
-    r = np.r_[0.5 * SIZE * np.sin(t), np.linspace(0.5 * SIZE, 0.0, 20)[1:]]
-    x = np.r_[0.5 * SIZE * np.cos(t), np.zeros(19)]
-    return _revolved(r, x)
-
-
-def ellipsoid_2to1():
-    t = np.linspace(0.0, np.pi, 97)
-    return _revolved(0.5 * SIZE * np.sin(t), -SIZE * np.cos(t))
-
-
-def cube():
-    return trimesh.creation.box([SIZE] * 3)
-
-
-def cube_edge():
-    m = cube()
-    m.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 4, [0, 0, 1]))
-    return m
-
-
-PI_D2 = np.pi * SIZE ** 2 / 4
-#: name -> (builder, reference area [m^2], what the area is, [(dof index, reference row)])
-BODIES = {
-    "sphere": (sphere, PI_D2, "pi D^2/4", [(0, "sphere.Cd"), (1, "sphere.Cd"), (2, "sphere.Cd")]),
-    "cube": (cube, SIZE ** 2, "face a^2", [(0, "cube.face_on.Cd"), (1, "cube.face_on.Cd"),
-                                          (2, "cube.face_on.Cd")]),
-    "cube_edge": (cube_edge, SIZE ** 2, "face a^2", [(0, "cube.edge_on.Cd"),
-                                                    (1, "cube.edge_on.Cd"),
-                                                    (2, "cube.face_on.Cd")]),
-    "cone60": (lambda: cone(60.0), PI_D2, "base pi d^2/4", [(0, "cone.apex60.Cd")]),
-    "cone30": (lambda: cone(30.0), PI_D2, "base pi d^2/4", [(0, "cone.apex30.Cd")]),
-    "hemisphere": (hemisphere, PI_D2, "base pi d^2/4", [(0, "hemisphere_solid.Cd_dome"),
-                                                       (0, "hemisphere_solid.Cd_high")]),
-    "ellipsoid_2to1": (ellipsoid_2to1, PI_D2, "pi D^2/4", [(0, "ellipsoid_2to1.Cd")]),
-}
-
-
-def vehicle(name):
-    from stripcoef.fluid import Fluid
-    from stripcoef.geometry.vehicle import Vehicle
-
-    m = BODIES[name][0]()
-    m.apply_translation(-m.center_mass)
-    return Vehicle.from_mesh(m, name=name, fluid=Fluid(density=RHO, kinematic_viscosity=NU,
-                                                       source="benchmark: water"))
-
-
-def compare(name, estimate=None):
-    """(vehicle, model, rows): one row per compared direction k with the model's and the
-    reference's C_D [-], the reference row, the area and the Reynolds number."""
-    from stripcoef.assembly.estimate import estimate as estimate_any
-    from validation.reference import reference_value
-
-    veh = vehicle(name)
-    model = (estimate or (lambda v: estimate_any(v, added_mass_method="strips", speed=SPEED)))(veh)
-    _, area, area_text, refs = BODIES[name]
-    dq = np.abs(np.diag(np.asarray(model.quadratic_damping)))
-    dl = np.abs(np.diag(np.asarray(model.linear_damping)))
-    rows = []
-    for k, row in refs:
-        rows.append({"dof": k, "cd_model": float(dq[k] / (0.5 * RHO * area)),
-                     "cd_ref": float(reference_value(SOURCE, row)["value"]), "row": row,
-                     "area": area_text, "reynolds": SPEED * SIZE / NU,
-                     "linear_share": float(dl[k] * SPEED / max(dl[k] * SPEED + dq[k] * SPEED ** 2,
-                                                               1e-300))})
-    return veh, model, rows
+from validation.drag_bodies import BODIES, SPEED, compare
 
 
 def main():
@@ -149,15 +19,16 @@ def main():
     from stripcoef.conventions import quadratic_damping_name
     from stripcoef.study.shapes import shape_class
 
-    print("| body | class | term | C_D model | C_D reference | ln(model/ref) | area | Re |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| body | class | term | C_D model | C_D reference | ln(model/ref) | area | Re | held out |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name in BODIES:
         veh, _, rows = compare(name, lambda v: estimate(v, added_mass_method="strips",
                                                         speed=SPEED))
         for r in rows:
             print(f"| {name} | {shape_class(veh)} | {quadratic_damping_name(r['dof'], r['dof'])} | "
                   f"{r['cd_model']:.3f} | {r['cd_ref']:.3f} ({r['row']}) | "
-                  f"{np.log(r['cd_model'] / r['cd_ref']):+.3f} | {r['area']} | {r['reynolds']:.0e} |")
+                  f"{np.log(r['cd_model'] / r['cd_ref']):+.3f} | {r['area']} | {r['reynolds']:.0e} | "
+                  f"{'yes' if r['held_out'] else 'no: ' + r['built_from']} |")
 
 
 if __name__ == "__main__":

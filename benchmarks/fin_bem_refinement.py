@@ -3,12 +3,12 @@
 Stored for large_tail (the case that needs it, below), remus_tail and small_tail (checks on
 other bodies).
 
-Run:
-  python benchmarks/fin_bem_refinement.py          # the stored study against the strip model
-  python benchmarks/fin_bem_refinement.py --bem    # solve the meshes not yet stored (~17 min
+Run (from the repository root):
+  python -m benchmarks.fin_bem_refinement          # the stored study against the strip model
+  python -m benchmarks.fin_bem_refinement --bem    # solve the meshes not yet stored (~17 min
                                                    # a case on 2 cores; the finest mesh needs
                                                    # most of 23 GB); --case CASE for another
-                                                   # hull of finned_bodies.CASES
+                                                   # hull of validation.finned.CASES
 
 Why: about mid-length, large_tail's sway-yaw and heave-pitch couplings (0.4 kg m) are the 23 %
 difference of the hull's share (+1.86 kg m) and the fins' (-1.45 kg m), so 1 % of the fins'
@@ -20,9 +20,9 @@ the finest level), and the Richardson value's spread is 7.4 %.
 Method:
 
 - **The hull's error cancels.**  The hull is meshed once (``HULL_LEVEL`` of
-  finned_bodies.MESH_LEVELS) and solved bare on that same mesh; each finned result is
+  validation.finned.MESH_LEVELS) and solved bare on that same mesh; each finned result is
   A = A_BEM(finned) - A_BEM(bare, same hull mesh) + A_exact(bare), with A_exact the
-  axisymmetric solution (finned_bodies.bare_hull_exact, exact to 0.02 %).  What is left is the
+  axisymmetric solution (validation.finned.bare_hull_exact, exact to 0.02 %).  What is left is the
   error of the fins and their junction.
 - **The fins are refined alone**, as structured boxes (:func:`fin_box`) with cosine spacing
   along the chord, across the thickness and along the span (panels clustered at the edges,
@@ -35,8 +35,8 @@ The meshes: (16, 4, 16), (24, 4, 24), (32, 4, 32) refine the fin's plane at a fi
 (:func:`in_plane_order`), (32, 6, 40) then refines thickness and span.  Memory bounds the
 study: with gmres (no LU) a 19,112-face mesh peaked at 7.4 GB and a 27,080-face one was killed
 at 24 GB, past the 23 GB machine that made it (docs/performance.md); the finest mesh has
-23,216 faces.  Stored in benchmarks/data/bem_fin_refinement.csv (raw BEM matrices; the correction is
-applied on loading).
+23,216 faces.  Stored in reference_tables/bem/bem_fin_refinement.csv (raw BEM matrices; the
+correction is applied on loading, validation.finned.load_refinement).
 """
 
 from __future__ import annotations
@@ -48,27 +48,16 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import csv
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
+from benchmarks import finned_bodies as fb
+from validation import finned
+from validation.finned import (CASE, COUPLINGS, DIAGONAL, HULL_LEVEL, REFINEMENT, in_plane_order,
+                               load_raw, load_refinement, mean_coupling, stored_cases)
 
-import finned_bodies as fb  # noqa: E402
-
-DATA = HERE / "data" / "bem_fin_refinement.csv"
-CASE = "large_tail"
-#: hull mesh level (finned_bodies.MESH_LEVELS): its own error cancels in the correction
-HULL_LEVEL = 1
-#: (chord, thickness, span) panel counts of each fin box, cosine-spaced; the thickness count is
-#: even so that the quarter's symmetry planes fall on panel edges
-REFINEMENT = ((16, 4, 16), (24, 4, 24), (32, 4, 32), (32, 6, 40))
-#: the two coupling terms (sway-yaw, heave-pitch) and the diagonal terms reported
-COUPLINGS = ((1, 5), (2, 4))
-DIAGONAL = ((1, 1), (3, 3), (5, 5))
+DATA = finned.REFINEMENT_DATA
 
 
 def cosine_nodes(a: float, b: float, n: int) -> np.ndarray:
@@ -116,10 +105,10 @@ def finned_mesh(case: str, chord_panels: int, thickness_panels: int, span_panels
     running from the axis to the tip (three panels below 0.8 of the hull radius at the fin's
     aft edge, inside the hull; ``span_panels`` cosine-spaced from there to the tip)."""
     import trimesh
-    xc, chord, tip = fb.CASES[case]
-    inner = 0.8 * float(fb.hull_radius(xc - 0.5 * chord))
+    xc, chord, tip = finned.CASES[case]
+    inner = 0.8 * float(finned.hull_radius(xc - 0.5 * chord))
     xs = cosine_nodes(xc - 0.5 * chord, xc + 0.5 * chord, chord_panels)
-    ys = cosine_nodes(-0.5 * fb.THICKNESS, 0.5 * fb.THICKNESS, thickness_panels)
+    ys = cosine_nodes(-0.5 * finned.THICKNESS, 0.5 * finned.THICKNESS, thickness_panels)
     zs = np.concatenate([np.linspace(0.0, inner, 4)[:-1], cosine_nodes(inner, tip, span_panels)])
     fins = []
     for ang in (0.0, 0.5 * np.pi, np.pi, 1.5 * np.pi):
@@ -152,69 +141,20 @@ def run_bem(case: str = CASE, *, force: bool = False) -> None:
         fh.write("# Added mass of benchmarks/finned_bodies.py's finned hulls with the fins refined alone "
                  "(benchmarks/fin_bem_refinement.py):\n"
                  f"# Capytaine BEM, direct method, gmres, two reflection symmetries, no free surface, "
-                 f"rho = {fb.RHO:g} kg/m^3, about the origin (mid-length), FRD axes [kg, kg m, kg m^2];\n"
+                 f"rho = {finned.RHO:g} kg/m^3, about the origin (mid-length), FRD axes [kg, kg m, kg m^2];\n"
                  f"# hull mesh level {HULL_LEVEL} of finned_bodies.MESH_LEVELS in every row; 'bare' = "
                  "that hull alone; 'mesh' = fin box (chord, thickness, span) panels, cosine-spaced.\n"
                  "# Raw BEM values: the hull correction (minus 'bare', plus the exact bare hull) is "
-                 "applied by load().\n")
+                 "applied by validation.finned.load_refinement().\n")
         w = csv.writer(fh)
-        w.writerow(["case", "mesh", "faces"] + [f"m{i}{j}" for i, j in fb.TERMS])
+        w.writerow(["case", "mesh", "faces"] + [f"m{i}{j}" for i, j in finned.TERMS])
         for case_, name, n, a in rows:
-            w.writerow([case_, name, n] + [f"{a[i, j]:.8g}" for i, j in fb.TERMS])
-
-
-def stored_cases() -> list:
-    """The cases stored in :data:`DATA`, in file order."""
-    return list(dict.fromkeys(r["case"] for r in fb.read_rows(DATA)))
-
-
-def load_raw(case: str = CASE) -> dict:
-    """mesh name -> (faces, raw BEM 6x6 matrix) of the stored study ('bare' = the hull alone)."""
-    return {r["mesh"]: (int(r["faces"]), fb.row_matrix(r))
-            for r in fb.read_rows(DATA) if r["case"] == case}
-
-
-def hull_correction(case: str = CASE, raw: dict | None = None) -> np.ndarray:
-    """The bare hull's exact added mass minus its BEM value on the study's hull mesh [kg, kg m,
-    kg m^2]: added to every finned result.  ``raw``: the case's :func:`load_raw`, if read."""
-    return fb.bare_hull_exact() - (raw or load_raw(case))["bare"][1]
-
-
-def load(case: str = CASE) -> list:
-    """[(mesh, faces, hull-corrected 6x6 matrix), ...] of the stored study, coarsest first:
-    A_BEM(finned) - A_BEM(bare) + finned_bodies.bare_hull_exact()."""
-    raw = load_raw(case)
-    correction = hull_correction(case, raw)
-    return sorted(((name, n, a + correction) for name, (n, a) in raw.items() if name != "bare"),
-                  key=lambda item: item[1])
-
-
-def mean_coupling(a) -> float:
-    """The coupling of a cruciform-finned body of revolution, (M[1,5] - M[2,4]) / 2 [kg m]:
-    the two are equal by symmetry, so their mean is the estimate and their difference the
-    BEM's scatter."""
-    return 0.5 * (a[1, 5] - a[2, 4])
-
-
-#: the meshes refined in the fin's plane only (chord and span panels together, the thickness
-#: panels fixed): the sequence :func:`in_plane_order` reads
-IN_PLANE = ((16, 4, 16), (24, 4, 24), (32, 4, 32))
-
-
-def in_plane_order(study: list, i: int, j: int) -> float:
-    """Observed convergence order q of term (i, j) over the :data:`IN_PLANE` meshes of
-    ``study`` (:func:`load`): error ~ N^-q with N the chord x span panels of a fin face
-    (finned_bodies.observed_order), so q = 1 is second order in the panel size, what the
-    direct method reaches on smooth bodies.  NaN when the differences grow (not in the
-    asymptotic range).  Measured 0.16-0.32 and NaN: no extrapolation is trusted."""
-    named = {name: a for name, _, a in study}
-    n = [spec[0] * spec[2] for spec in IN_PLANE]
-    return fb.observed_order(n, [named[",".join(map(str, spec))][i, j] for spec in IN_PLANE])
+            w.writerow([case_, name, n] + [f"{a[i, j]:.8g}" for i, j in finned.TERMS])
 
 
 def report(case: str = CASE) -> None:
-    study = load(case)
-    m = fb.strip_model(case)
+    study = load_refinement(case)
+    m = finned.strip_model(case)
     terms = COUPLINGS + DIAGONAL
     print("| fin mesh | faces | " + " | ".join(f"M_A[{i},{j}]" for i, j in terms)
           + " | M[1,5] + M[2,4] % |")
@@ -238,7 +178,7 @@ def main():
     ap.add_argument("--bem", action="store_true",
                     help="solve the meshes of REFINEMENT not yet stored")
     ap.add_argument("--force", action="store_true", help="with --bem: solve every mesh again")
-    ap.add_argument("--case", default=CASE, choices=sorted(fb.CASES),
+    ap.add_argument("--case", default=CASE, choices=sorted(finned.CASES),
                     help=f"the finned hull (default {CASE})")
     args = ap.parse_args()
     if args.bem:

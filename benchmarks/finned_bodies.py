@@ -1,15 +1,16 @@
 """Finned Myring hulls: the vehicle-file strip model against a converged Capytaine BEM.
 
-Run:
-  python benchmarks/finned_bodies.py            # compare against the stored BEM references
-  python benchmarks/finned_bodies.py --bem      # recompute the BEM references (~25 min; ~10 GB
+Run (from the repository root):
+  python -m benchmarks.finned_bodies            # compare against the stored BEM references
+  python -m benchmarks.finned_bodies --bem      # recompute the BEM references (~25 min; ~10 GB
                                                 # a case: --only CASE runs one per process)
-  python benchmarks/finned_bodies.py --convergence   # Y_rdot vs strip count 250..8000
+  python -m benchmarks.finned_bodies --convergence   # Y_rdot vs strip count 250..8000
 
 Bodies (all along x, metres, origin at mid-length): the REMUS-like Myring hull of
 benchmarks/mesh_shapes.py (Prestero 2001, table 2.1: a = 0.191, b = 0.654, c = 0.541,
 d = 0.191 m, n = 2, tail half-angle 25 deg; untruncated, L = 1.386 m) with a cruciform of four
-flat rectangular fins (thickness 0.012 m) on it, in three sizes and places (``CASES``).
+flat rectangular fins (thickness 0.012 m) on it, in six sizes and places (``CASES``); the
+bodies, the stored references' readers and the Richardson arithmetic are validation/finned.py.
 The BEM mesh is the hull of revolution unioned with four boxes running from the axis to the
 fin tip radius (benchmarks/mesh_shapes.py style); the vehicle file describes the same body
 with a ``profile`` of Myring segments and four ``fin`` appendages from the hull surface to the
@@ -22,7 +23,7 @@ the full body's matrices (:func:`bem_quarter`, as in mesh_reference_convergence.
 order in the panel size h ~ N^(-1/2), so the error ~ 1/N and the Richardson value of the two
 finest meshes is A_inf = A_3 + (A_3 - A_2) N_2 / (N_3 - N_2); the coarsest mesh checks that
 order (:func:`observed_order`).  The references are stored in
-benchmarks/data/bem_finned_bodies.csv (one row per case and mesh, plus the extrapolated row).
+reference_tables/bem/bem_finned_bodies.csv (one row per case and mesh, plus the extrapolated row).
 """
 
 from __future__ import annotations
@@ -34,83 +35,15 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import csv
-import functools
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-
-RHO = 1025.0
-DATA = HERE / "data" / "bem_finned_bodies.csv"
-MYRING = {"a": 0.191, "b": 0.654, "c": 0.541, "d": 0.191, "n": 2.0, "theta_deg": 25.0}
-LENGTH = MYRING["a"] + MYRING["b"] + MYRING["c"]
-X0 = -0.5 * LENGTH
-THICKNESS = 0.012
-#: name -> (fin mid-chord x [m], chord [m], tip radius [m])
-CASES = {
-    "remus_tail": (X0 + 0.17, 0.08, 0.1425),      # the fin size of benchmarks/mesh_shapes.py
-    "large_tail": (X0 + 0.25, 0.12, 0.17),
-    "midbody": (0.10, 0.14, 0.16),
-    # added for the uncertainty calibration (scripts/make_method_uncertainty.py), chosen to span
-    # fin size and place before their errors were known: small aft fins, forward fins on the
-    # parallel middle body, and aft fins of twice the hull radius in span
-    "small_tail": (X0 + 0.12, 0.06, 0.125),
-    "forward_fins": (0.40, 0.08, 0.15),
-    "wide_tail": (X0 + 0.20, 0.10, 0.22),
-}
-TERMS = [(i, j) for i in range(6) for j in range(i, 6)]
-DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-#: mesh levels: (meridian panels, sections round the axis, fin chord / largest fin edge); the
-#: panel size shrinks by about sqrt(2) from one level to the next (faces about x 2)
-MESH_LEVELS = ((38, 28, 5.7), (54, 40, 8.0), (76, 56, 11.3))
-
-
-def hull_radius(x):
-    from stripcoef.geometry.profiles import myring_nose, myring_tail
-    p = MYRING
-    tail_end, mid_end = X0 + p["c"], X0 + p["c"] + p["b"]
-    x = np.asarray(x, float)
-    return np.where(x < tail_end, myring_tail(x, X0, tail_end, 0.5 * p["d"], np.radians(p["theta_deg"])),
-                    np.where(x > mid_end, myring_nose(x, mid_end, X0 + LENGTH, 0.5 * p["d"], p["n"]),
-                             0.5 * p["d"]))
-
-
-def vehicle_dict(case: str, strips: int = 1000) -> dict:
-    """The vehicle file (as a mapping) of a finned hull: Myring profile and four fins whose
-    root is the hull surface at the fin's aft edge (the smallest hull radius under the fin)."""
-    xc, chord, tip = CASES[case]
-    p = MYRING
-    r_root = float(hull_radius(xc - 0.5 * chord))
-    span = tip - r_root
-    mid = r_root + 0.5 * span
-    fins = []
-    for name, axis, c in (("top", "z", [xc, 0.0, -mid]), ("bottom", "z", [xc, 0.0, mid]),
-                          ("port", "y", [xc, -mid, 0.0]), ("starboard", "y", [xc, mid, 0.0])):
-        fins.append({"name": name, "type": "fin", "center": c, "span_axis": axis, "span": span,
-                     "chord": chord, "thickness": THICKNESS})
-    tail_end, mid_end = X0 + p["c"], X0 + p["c"] + p["b"]
-    return {"name": case, "strips": strips, "reference_point": [0.0, 0.0, 0.0],
-            "hull": {"profile": [
-                {"type": "myring_tail", "x": [X0, tail_end], "radius": 0.5 * p["d"],
-                 "theta_deg": p["theta_deg"]},
-                {"type": "cylinder", "x": [tail_end, mid_end], "radius": 0.5 * p["d"]},
-                {"type": "myring_nose", "x": [mid_end, X0 + LENGTH], "radius": 0.5 * p["d"],
-                 "n": p["n"]}]},
-            "appendages": fins}
-
-
-def hull_profile(points: int):
-    """(x, r) of the hull at ``points`` stations clustered at the ends by cosine spacing, the
-    radius zero at both ends [m]."""
-    x = X0 + LENGTH * 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, points)))
-    r = hull_radius(x)
-    r[0] = r[-1] = 0.0
-    return x, r
+from validation.finned import (CASES, COMPARED, DATA, LENGTH, MESH_LEVELS, RHO, TERMS, THICKNESS,
+                               X0, hull_profile, hull_radius, load_references, meshes,
+                               observed_order, richardson, richardson_spread, strip_model,
+                               vehicle_dict)
 
 
 def hull_mesh(level: int):
@@ -119,20 +52,6 @@ def hull_mesh(level: int):
     from stripcoef.geometry.mesh import revolved_mesh
     n_profile, sections, _ = MESH_LEVELS[level]
     return revolved_mesh(*hull_profile(n_profile + 1), sections=sections)
-
-
-def bare_hull_exact():
-    """The bare hull's 6x6 added mass about the origin from the axisymmetric panel method
-    (stripcoef.hull.axisymmetric, 400 panels on an 801-point profile: exact to 0.02 %)
-    [kg, kg m, kg m^2]: a fresh copy of a result solved once per process (0.35 s)."""
-    return _bare_hull_exact().copy()
-
-
-@functools.lru_cache(maxsize=1)
-def _bare_hull_exact():
-    from stripcoef.hull.axisymmetric import body_of_revolution_added_mass
-    x, r = hull_profile(801)
-    return body_of_revolution_added_mass(x, r, rho=RHO, x_ref=0.0, panels=400, modes=(0, 1))
 
 
 def bem_mesh(case: str, level: int):
@@ -228,102 +147,13 @@ def write_references(levels: dict) -> None:
         fh.write("# Added mass of finned Myring hulls (benchmarks/finned_bodies.py CASES), Capytaine BEM,\n"
                  "# direct method, two reflection symmetries, no free surface, rho = 1025 kg/m^3, about the origin (mid-length),\n"
                  "# FRD body axes; M_A entries (Fossen signs, positive diagonal) [kg, kg m, kg m^2].\n"
-                 "# Source: computed by benchmarks/finned_bodies.py --bem (stripcoef.bem.bem_added_mass);\n"
+                 "# Source: computed by python -m benchmarks.finned_bodies --bem (stripcoef.bem.bem_added_mass);\n"
                  "# faces = full-body mesh size (4 x the solved quarter), 'richardson' = A_3 + (A_3 - A_2) N_2/(N_3 - N_2) from the two finest\n"
                  "# meshes (second order in h; the coarsest checks the order, benchmarks/finned_bodies.py observed_order).\n")
         w = csv.writer(fh)
         w.writerow(["case", "faces"] + [f"m{i}{j}" for i, j in TERMS])
         for case, n, a in rows:
             w.writerow([case, n] + [f"{a[i, j]:.8g}" for i, j in TERMS])
-
-
-def richardson(coarse, fine):
-    """Richardson value of two meshes, each (faces N, value A): error ~ 1/N (second order in the
-    panel size h ~ N^(-1/2)), so A_inf = A_2 + (A_2 - A_1) N_1 / (N_2 - N_1)."""
-    (n1, a1), (n2, a2) = coarse, fine
-    return a2 + (a2 - a1) * n1 / (n2 - n1)
-
-
-def meshes(levels: dict) -> list:
-    """The face counts of one case's stored meshes (:func:`load_references`), smallest first."""
-    return sorted(int(k) for k in levels if k != "richardson")
-
-
-def observed_order(n, a) -> float:
-    """Convergence order q of a BEM value on three meshes of n = (N_1, N_2, N_3) faces with values
-    a = (A_1, A_2, A_3), from error ~ N^-q: the root of
-    (A_2 - A_1)/(A_3 - A_2) = (N_1^-q - N_2^-q)/(N_2^-q - N_3^-q); q = 1 is second order in the
-    panel size h ~ N^(-1/2) (the Richardson rows assume it).  NaN when the differences change
-    sign (not in the asymptotic range) [-]."""
-    from scipy.optimize import brentq
-    n1, n2, n3 = (float(v) for v in n)
-    d12, d23 = a[1] - a[0], a[2] - a[1]
-    if d12 == 0 or d23 == 0 or d12 * d23 < 0:
-        return float("nan")
-    ratio = d12 / d23
-
-    def g(q):
-        return (n1 ** -q - n2 ** -q) / (n2 ** -q - n3 ** -q) - ratio
-    try:
-        return float(brentq(g, 0.05, 5.0))
-    except ValueError:
-        return float("nan")
-
-
-def read_rows(path) -> list:
-    """The rows (dicts) of a stored BEM csv, its '#' comment lines skipped."""
-    with open(path) as fh:
-        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
-
-
-def row_matrix(row) -> np.ndarray:
-    """The symmetric 6x6 matrix of a stored row's m{i}{j} columns (:data:`TERMS`)."""
-    a = np.zeros((6, 6))
-    for i, j in TERMS:
-        a[i, j] = a[j, i] = float(row[f"m{i}{j}"])
-    return a
-
-
-def load_references() -> dict:
-    """case -> {faces or 'richardson': 6x6 array} from the stored csv."""
-    out: dict = {}
-    for row in read_rows(DATA):
-        out.setdefault(row["case"], {})[row["faces"]] = row_matrix(row)
-    return out
-
-
-def strip_model(case: str, strips: int = 1000):
-    """The strip model's 6x6 added mass of ``case`` about the origin [kg, kg m, kg m^2]: a
-    fresh copy of a result computed once per process (the tests and the docs ask for the same
-    case several times)."""
-    return _strip_model(case, strips).copy()
-
-
-@functools.lru_cache(maxsize=None)
-def _strip_model(case: str, strips: int):
-    from stripcoef.assembly.estimate import estimate
-    from stripcoef.geometry.vehicle import parse_vehicle
-    veh = parse_vehicle(vehicle_dict(case, strips), file=f"<{case}>")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return np.asarray(estimate(veh).added_mass)
-
-
-#: the terms compared (every non-zero one of a cruciform-finned body of revolution)
-COMPARED = [(0, 0), (1, 1), (2, 2), (3, 3), (4, 4), (5, 5), (1, 5), (2, 4)]
-
-
-def richardson_spread(levels: dict, i: int, j: int) -> float:
-    """How far the reference itself is from converged on term (i, j) [%]: the Richardson values
-    of the two finest and of the two coarsest of three meshes, their difference over the first
-    (NaN with fewer than three meshes).  The meshes are built afresh at each level (not nested),
-    so the BEM's convergence is not monotone on every term (:func:`orders`)."""
-    ns = meshes(levels)
-    if len(ns) < 3:
-        return float("nan")
-    coarse = richardson(*[(n, levels[str(n)][i, j]) for n in ns[-3:-1]])
-    fine = levels["richardson"][i, j]
-    return 100.0 * abs(fine - coarse) / abs(fine)
 
 
 def compare():
@@ -396,7 +226,6 @@ def sheet_mesh_refinement():
     the BEM's share (validation.fins.fin_shares: finned Richardson minus the exact bare hull)
     [%], and the time of one solve (docs/performance.md)."""
     from stripcoef.hull.finsheet import FinPlanform, fins_added_mass
-    sys.path.insert(0, str(HERE.parent))
     from validation.fins import fin_shares
     shares = fin_shares()
 

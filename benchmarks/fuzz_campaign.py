@@ -24,7 +24,7 @@ its output must be finite). A case's outcome is one of
 
 Full campaign (docs/performance.md has its counts)::
 
-    python benchmarks/fuzz_campaign.py --cases 3400 --seed 0
+    python -m benchmarks.fuzz_campaign --cases 3400 --seed 0
 
 ``tests/test_fuzz.py`` runs a quick mode of a few hundred cheap cases in CI. Simulations run
 with the time budgets of ``simulate`` and ``diagnose`` lowered to :data:`BUDGET` s, so a run
@@ -55,9 +55,6 @@ import numpy as np
 import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
-for _p in (ROOT / "src", ROOT):
-    if str(_p) not in sys.path:
-        sys.path.insert(0, str(_p))
 
 #: Per-case wall-clock limit [s]: past it the case is a hang (the issue's definition).
 CASE_LIMIT = 60.0

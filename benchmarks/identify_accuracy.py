@@ -1,6 +1,6 @@
 """Identification: speed per fit and accuracy of the error bars over seeded virtual experiments.
 
-Run: python benchmarks/identify_accuracy.py [--seeds N]
+Run: python -m benchmarks.identify_accuracy [--seeds N]
 Prints, for each method, the median in-process time of one fit and the fraction of estimates
 within 2 sigma of the truth (nominal 95.4 % for Gaussian errors).
 """
@@ -10,11 +10,6 @@ import statistics
 import time
 
 import numpy as np
-
-import sys  # noqa: E402
-from pathlib import Path as _Path  # noqa: E402
-
-sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
 
 from validation.experiments import (ROMEO_TRUTH, ROV2_BUOYANCY, ROV2_LENGTH, ROV2_MASS,
                                             ROV2_TRUTH, VIDEORAY_TRUTH, romeo_experiment,

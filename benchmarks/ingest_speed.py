@@ -4,15 +4,14 @@ A 10-minute pool run as loggers write it: a navigation CSV at an irregular ~10 H
 rows; nanosecond stamps, ENU position, x y z w quaternion, ENU velocity, a string column)
 and a header-less 50 Hz wrench CSV (30,000 rows), and the same run as a ROS 2 bag
 (nav_msgs/Odometry, sensor_msgs/Imu at ~10 Hz, geometry_msgs/WrenchStamped at 50 Hz),
-each read with the maps of tests/_ingest_truth.py (rates derived from the attitude for the
+each read with the maps of validation/ingest_truth.py (rates derived from the attitude for the
 CSV, IMU rates for the bag). The signals are smooth random motions (the reading cost does
 not depend on the physics).
 
-Usage: python benchmarks/ingest_speed.py [--minutes 10] [--repeat 3]
+Usage: python -m benchmarks.ingest_speed [--minutes 10] [--repeat 3]
 """
 
 import argparse
-import sys
 import tempfile
 import time
 import warnings
@@ -20,15 +19,12 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-
-import _ingest_truth as T  # noqa: E402
-from stripcoef.ingest import read_mapped_log  # noqa: E402
+from stripcoef.ingest import read_mapped_log
+from validation import ingest_truth as T
 
 
 class RandomMotion:
-    """Smooth random 6-DOF motion with the interface of _ingest_truth.Truth that the writers
+    """Smooth random 6-DOF motion with the interface of validation.ingest_truth.Truth that the writers
     use (a call per signal and time, ``nav_rows``, ``wrench``, ``t``)."""
 
     def __init__(self, minutes, seed=0):

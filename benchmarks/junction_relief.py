@@ -1,7 +1,7 @@
 """3D survival of the 2D added mass of short rings: axisymmetric tubes and a short frame junction.
 
-Run:  .venv/bin/python benchmarks/junction_relief.py tubes     (about 1 minute, < 1 GB)
-      .venv/bin/python benchmarks/junction_relief.py frames    (a few minutes, ~3 GB)
+Run:  .venv/bin/python -m benchmarks.junction_relief tubes     (about 1 minute, < 1 GB)
+      .venv/bin/python -m benchmarks.junction_relief frames    (a few minutes, ~3 GB)
 
 tubes:  transverse and axial added mass of short circular tubes (length l, bore r_i, outer r_o)
         from stripcoef.hull.corrections.ring_body_added_mass against Capytaine on a
@@ -12,7 +12,7 @@ frames: frames with short posts (a closed "ladder" and an open "arch", not the R
         posts add.
 smallbody: each post as a small body in the members' 3D flow (main_smallbody).
 rings:  a short square ring alone (main_rings): BEM against its equivalent bodies.
-      .venv/bin/python benchmarks/junction_relief.py smallbody (about 1 minute, ~2 GB)
+      .venv/bin/python -m benchmarks.junction_relief smallbody (about 1 minute, ~2 GB)
 """
 
 from __future__ import annotations
@@ -120,8 +120,7 @@ def quarter_mesh(quarter_boxes, max_edge):
 
 def bem_quarter(quarter_boxes, max_edge):
     """Capytaine (two reflection symmetries, direct, no free surface) about the origin."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from mesh_reference_convergence import capytaine_quarter
+    from benchmarks.mesh_reference_convergence import capytaine_quarter
     q = quarter_mesh(quarter_boxes, max_edge)
     a, sec = capytaine_quarter(q, (0.0, 0.0, 0.0))
     return a, 4 * len(q.faces), sec

@@ -2,7 +2,7 @@
 
 Run from the repository root:
 
-    python benchmarks/limits_mares.py [--repeat 5] [VEHICLE]
+    python -m benchmarks.limits_mares [--repeat 5] [VEHICLE]
 
 Each repeat is a fresh process (interpreter start, imports, strip-theory estimate,
 limits with the default 40 radii, table printed to /dev/null).  Prints the median and the

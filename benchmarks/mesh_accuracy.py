@@ -1,7 +1,7 @@
 """Accuracy of strip theory on meshes against Lamb and converged Capytaine BEM.
 
-Run:  .venv/bin/python benchmarks/mesh_accuracy.py            (about 2-4 minutes, ~3 GB peak)
-      .venv/bin/python benchmarks/mesh_accuracy.py --quick    (bodies of revolution only)
+Run:  .venv/bin/python -m benchmarks.mesh_accuracy            (about 2-4 minutes, ~3 GB peak)
+      .venv/bin/python -m benchmarks.mesh_accuracy --quick    (bodies of revolution only)
 
 For each body: strip theory on a fine mesh (200 strips) in three variants --
 ``pure`` (no 3D corrections), ``axisym`` (stripcoef.hull.corrections alone: one axisymmetric BEM of
@@ -23,15 +23,12 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import logging
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mesh_shapes import (body_of_revolution, capsule_profile, finned_torpedo,  # noqa: E402
+from benchmarks.mesh_shapes import (body_of_revolution, capsule_profile, finned_torpedo,  # noqa: E402
                          myring_profile, open_frame_rov, refine_to, spheroid_profile)
 
 from stripcoef.assembly.estimate import displaced_volume, estimate  # noqa: E402

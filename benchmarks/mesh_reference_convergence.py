@@ -1,6 +1,6 @@
 """Convergence of the Capytaine references of the finned torpedo and the open-frame ROV.
 
-Run:  .venv/bin/python benchmarks/mesh_reference_convergence.py   (about 6 minutes, ~6 GB peak)
+Run:  .venv/bin/python -m benchmarks.mesh_reference_convergence   (about 6 minutes, ~6 GB peak)
 
 The BEM (direct, no free surface) about the strip model's centre of buoyancy:
 - finned torpedo: three refinements of its coarse general mesh (the two finest are those of
@@ -21,16 +21,13 @@ import os
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 from scipy.optimize import brentq
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mesh_accuracy import DOF, RHO, capytaine_general, strip_variants  # noqa: E402
-from mesh_shapes import finned_torpedo, open_frame_rov, open_frame_rov_quarter, refine_to  # noqa: E402
+from benchmarks.mesh_accuracy import DOF, RHO, capytaine_general, strip_variants  # noqa: E402
+from benchmarks.mesh_shapes import finned_torpedo, open_frame_rov, open_frame_rov_quarter, refine_to  # noqa: E402
 
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402
 

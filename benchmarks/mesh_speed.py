@@ -1,6 +1,6 @@
 """Speed of the mesh pipeline, and strip theory vs the BEM at equal accuracy, in one run.
 
-Run:  .venv/bin/python benchmarks/mesh_speed.py     (about 5 minutes; BEM peak ~8 GB, see --max-gb)
+Run:  .venv/bin/python -m benchmarks.mesh_speed     (about 5 minutes; BEM peak ~8 GB, see --max-gb)
 
 1. A ~100k-face Myring (REMUS) hull as an STL file -> full matrices (M_A, D_L, D_Q, M_RB):
    wall time of each stage (read + repair, slicing into 200 strips, 2D panel method,
@@ -55,9 +55,8 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mesh_accuracy import FLUID, RHO, lamb  # noqa: E402
-from mesh_shapes import (body_of_revolution, myring_profile, open_frame_rov,  # noqa: E402
+from benchmarks.mesh_accuracy import FLUID, RHO, lamb  # noqa: E402
+from benchmarks.mesh_shapes import (body_of_revolution, myring_profile, open_frame_rov,  # noqa: E402
                          refine_to, spheroid_profile)
 
 from stripcoef.assembly.estimate import added_mass, displaced_volume, estimate  # noqa: E402

@@ -1,6 +1,6 @@
 """Where strip theory's time goes at the 0.2 % rung of benchmarks/mesh_speed.py.
 
-Run:  .venv/bin/python benchmarks/mesh_stages.py [--repeat 15]     (about 10 s)
+Run:  .venv/bin/python -m benchmarks.mesh_stages [--repeat 15]     (about 10 s)
 
 The configuration is the cheapest one as accurate as the largest BEM that fits the project
 machine (docs/performance.md, "Speed"): the prolate spheroid L/D = 7.5 as a 22,848-face
@@ -24,15 +24,12 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")      # many small solves: one BLAS thread (see mesh_speed)
 
 import argparse  # noqa: E402
-import sys  # noqa: E402
 import time  # noqa: E402
 import warnings  # noqa: E402
-from pathlib import Path  # noqa: E402
 
 import trimesh  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mesh_speed import spheroid_mesh, spheroid_vehicle, strip_model  # noqa: E402
+from benchmarks.mesh_speed import spheroid_mesh, spheroid_vehicle, strip_model  # noqa: E402
 
 from stripcoef.assembly import added_mass as assembly_added_mass, damping as assembly_damping, mass as assembly_mass  # noqa: E402
 from stripcoef.geometry.mesh import mesh_body  # noqa: E402

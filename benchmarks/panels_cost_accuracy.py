@@ -8,7 +8,7 @@ that takes. For each shape it runs, in one process and one after the other:
 - Capytaine (stripcoef.bem.bem_added_mass, direct method) at a ladder of face counts, one solve
   each, after one warm-up solve that is not counted;
 
-and compares each with the stored converged reference (benchmarks/data/bem_bluff.csv, the
+and compares each with the stored converged reference (reference_tables/bem/bem_bluff.csv, the
 Richardson column; Lamb's exact diagonal for the ellipsoids): the worst relative error of the
 significant diagonal terms. For each accuracy level it then reports the cheapest run of each
 that reaches it, and the ratio of the two times -- the speed-up "at equal accuracy".
@@ -18,7 +18,7 @@ finest panel count that reaches each level: the one step that any direct boundar
 solve of that many unknowns cannot skip, i.e. a floor under the panel method's time at that
 accuracy.
 
-Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/panels_cost_accuracy.py [--write] [--only ...]
+Run:  OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_cost_accuracy [--write] [--only ...]
 
 ``--write`` writes benchmarks/data/panels_cost_accuracy.md. Times are wall-clock on a shared
 machine: read the ratios, which are measured in one run, more than the absolute times.
@@ -36,9 +36,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
+from benchmarks.mesh_speed import best  # noqa: E402  (best of n wall times, one helper)
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "benchmarks"))
-from mesh_speed import best  # noqa: E402  (best of n wall times, one helper for the benchmarks)
 
 OUT = ROOT / "benchmarks" / "data" / "panels_cost_accuracy.md"
 
@@ -115,7 +115,7 @@ def main(argv=None):
     ap.add_argument("--only", nargs="*", default=list(SHAPES))
     ap.add_argument("--write", action="store_true", help=f"write {OUT.relative_to(ROOT)}")
     args = ap.parse_args(argv)
-    import bluff_shapes as B
+    from benchmarks import bluff_shapes as B
 
     rows = []
     for name in args.only:
@@ -128,7 +128,7 @@ def main(argv=None):
             lu = lu_time(p[1][1]) if p else None
             rows.append((name, level, p, b, lu))
     lines = [
-        f"`OPENBLAS_NUM_THREADS=1 python benchmarks/panels_cost_accuracy.py` "
+        f"`OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_cost_accuracy` "
         f"({datetime.date.today().isoformat()}). Worst diagonal error against the converged "
         "reference; the cheapest run of each method that reaches the level; LU: the dense "
         "factorisation alone of the panel method's finer level at that accuracy.",

@@ -1,6 +1,6 @@
 """Direct (Green's identity) against source (indirect) formulation of the 3D panel method.
 
-Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/panels_formulations.py
+Run:  OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_formulations
 
 Same panels, same collocation points, same exact near-field integrals: the direct method of
 stripcoef.hull.panels.solve_added_mass, and the source method
@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import os
 import sys
-from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
@@ -26,7 +25,6 @@ import numpy as np
 import scipy.linalg
 import trimesh
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 
 def source_gradient(points, tri, normal):
@@ -86,7 +84,7 @@ def _richardson(pairs):
 
 
 def main():
-    import bluff_shapes as B
+    from benchmarks import bluff_shapes as B
 
     from stripcoef.hull.lamb import ellipsoid_added_mass
     from stripcoef.hull.panels import refine, solve_added_mass, split_in_four

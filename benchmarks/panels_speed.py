@@ -1,6 +1,6 @@
 """Speed of the 3D panel method (stripcoef.hull.panels) on ~100k-face meshes, in one run.
 
-Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/panels_speed.py
+Run:  OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_speed
 
 1. A triaxial ellipsoid (0.30, 0.15, 0.08 m) of ~100k faces (vertex-clustered icosphere):
    panel_added_mass (coarsening + two solves + extrapolation) against Lamb's exact diagonal,
@@ -8,7 +8,7 @@ Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/panels_speed.py
    damping and rigid-body terms by the strips) against the strips alone, best of 3.
 2. The BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl refined to ~100k faces
    (longest-edge bisection: the same surface): panel_added_mass, best of 3, and its diagonal
-   against the stored Richardson BEM of benchmarks/data/bem_bluff.csv -- or the error that
+   against the stored Richardson BEM of reference_tables/bem/bem_bluff.csv -- or the error that
    refuses it (its thin members need more panels than MAX_PANELS allows).
 Times exclude start-up (imports) and reading/repairing the mesh (MeshBody in memory).
 """
@@ -25,8 +25,7 @@ import numpy as np
 import trimesh
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "benchmarks"))
-from mesh_speed import best  # noqa: E402  (best of n wall times)
+from benchmarks.mesh_speed import best  # noqa: E402  (best of n wall times)
 
 
 def main():
@@ -53,7 +52,7 @@ def main():
     print(f"  full model: estimate(added_mass_method='panels') {tp:.3f} s, strips alone "
           f"{ts:.3f} s")
 
-    import bluff_shapes as B
+    from benchmarks import bluff_shapes as B
 
     stl = trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
     base = mesh_body(stl, name="bluerov2").mesh

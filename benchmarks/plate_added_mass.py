@@ -1,8 +1,8 @@
 """Thin rectangular plates moving normal to themselves: Capytaine against DNV-RP-H103 table A-2.
 
-Run:
-  python benchmarks/plate_added_mass.py          # print the stored results against the table
-  python benchmarks/plate_added_mass.py --bem    # recompute them (~5 min, ~2 GB)
+Run (from the repository root):
+  python -m benchmarks.plate_added_mass          # print the stored results against the table
+  python -m benchmarks.plate_added_mass --bem    # recompute them (~5 min, ~2 GB)
 
 The plate is a x b (a the shorter side, a = 1 m) of thickness t, meshed as a box with edges
 <= h = sqrt(8 a b / N) (N ~ faces of the full plate), solved on its quarter with two
@@ -11,7 +11,7 @@ lambda = A_33 / (rho pi/4 a^2 b).  Two levels, (t/a, N) = (0.02, 4000) and (0.01
 thickness and the panel size both halve; the thin-plate value is extrapolated linearly in t,
 lambda_0 = 2 lambda(t/2) - lambda(t) [assumption: both errors first order in t and h, the edge
 singularity of a plate makes the panel error ~ h].  The results are stored in
-benchmarks/data/bem_plates.csv (the thin level of b/a = 4, about 32,000 faces, did not finish
+reference_tables/bem/bem_plates.csv (the thin level of b/a = 4, about 32,000 faces, did not finish
 on the 2-core, shared development machine: its process ended without output, presumably out of
 memory); they check the table behind
 stripcoef.sections.added_mass.plate_chordwise_factor (src/stripcoef/data/plate_added_mass_dnv.csv).
@@ -26,12 +26,11 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import csv
-from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-DATA = HERE / "data" / "bem_plates.csv"
+from validation.finned import PLATES_DATA as DATA
+from validation.finned import load_plates
 RHO = 1000.0
 RATIOS = (1.0, 2.0, 4.0)
 LEVELS = ((0.02, 4000), (0.01, 8000))
@@ -72,7 +71,7 @@ def run_bem():
     are kept and compare() skips a ratio without both levels)."""
     with open(DATA, "w", newline="") as fh:
         fh.write("# Normal added mass of thin rectangular plates a x b (a = 1 m the shorter side), lambda = A_33 / (rho pi/4 a^2 b) [-].\n"
-                 "# Source: computed by benchmarks/plate_added_mass.py --bem (Capytaine, direct method, quarter mesh with two\n"
+                 "# Source: computed by python -m benchmarks.plate_added_mass --bem (Capytaine, direct method, quarter mesh with two\n"
                  "# reflection symmetries, no free surface); t_over_a = thickness / a [-], faces = full-plate mesh size.\n")
         w = csv.writer(fh)
         w.writerow(["b_over_a", "t_over_a", "faces", "lambda"])
@@ -85,21 +84,12 @@ def run_bem():
                 fh.flush()
 
 
-def load() -> dict:
-    """b/a -> {t/a: lambda} from the stored csv."""
-    out: dict = {}
-    with open(DATA) as fh:
-        for row in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
-            out.setdefault(float(row["b_over_a"]), {})[float(row["t_over_a"])] = float(row["lambda"])
-    return out
-
-
 def compare():
     from stripcoef.data import load_table
     table = load_table("plate_added_mass_dnv")
     print("| b/a | t/a = 0.02 | t/a = 0.01 | t -> 0 | DNV-RP-H103 | error % |")
     print("|---|---|---|---|---|---|")
-    for ratio, lv in sorted(load().items()):
+    for ratio, lv in sorted(load_plates().items()):
         dnv = table.interp(1.0 / ratio, "lambda")
         if 0.01 not in lv:
             print(f"| {ratio:g} | {lv[0.02]:.4f} | - | - | {dnv:.3f} | - |")

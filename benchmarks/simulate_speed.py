@@ -4,18 +4,13 @@ A 240 s log at 10 Hz of the Wang & Clark 2006 ROV (random steps on four thruster
 turns; zero-order hold, so the integrator restarts at every input jump), RK45 at
 rtol 1e-6 / 1e-8 (the benchmark's setting) and 1e-8 (the default).
 
-Usage: python benchmarks/simulate_speed.py [--repeat 5]
+Usage: python -m benchmarks.simulate_speed [--repeat 5]
 """
 
 import argparse
 import time
 
 import numpy as np
-
-import sys  # noqa: E402
-from pathlib import Path as _Path  # noqa: E402
-
-sys.path.insert(0, str(_Path(__file__).resolve().parent.parent))   # validation/ beside src/
 
 from validation.synthetic import manoeuvre, rov_model
 from stripcoef.simulate import simulate

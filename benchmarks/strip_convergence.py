@@ -1,6 +1,6 @@
 """Strip-count convergence and wall time of `estimate` on the shipped vehicles.
 
-Run:  .venv/bin/python benchmarks/strip_convergence.py
+Run:  .venv/bin/python -m benchmarks.strip_convergence
 Prints, per vehicle and strip count, the largest relative difference of any non-zero diagonal
 term of M_A, D_Q and D_L against 6400 strips, and the median wall time of 5 runs.
 """

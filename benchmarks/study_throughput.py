@@ -4,7 +4,7 @@ Two workloads on a shipped vehicle: the model only (estimate: vehicle file -> Hy
 and the model plus the manoeuvre limits (6 turning radii). Each is timed as the whole study
 call (sampling, pickling to the workers, evaluation, gathering), best of ``--repeat``.
 
-Run: python benchmarks/study_throughput.py [--vehicle geometry/mares.yaml] [--samples 64]
+Run: python -m benchmarks.study_throughput [--vehicle geometry/mares.yaml] [--samples 64]
 The numbers and the sizing of a 10^6-sample study are in docs/performance.md.
 """
 
@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
 import time
 from pathlib import Path
 
@@ -20,7 +19,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
 
 from stripcoef.study.uncertainty import uncertainty  # noqa: E402
 

@@ -1,6 +1,6 @@
 """Write geometry/bluerov2_heavy.stl: a BlueROV2-Heavy-like frame from trimesh primitives.
 
-Run from the repository root:  python scripts/make_bluerov2_heavy.py
+Run from the repository root:  python -m scripts.make_bluerov2_heavy
 
 Published (Blue Robotics, BlueROV2 Heavy Configuration technical details) [P]: overall
 0.457 m long x 0.575 m wide x 0.254 m high; about 11.5 kg in air; eight T200 thrusters, four

@@ -1,6 +1,6 @@
 """Write docs/export/examples/: every text export of geometry/mares.yaml, with its warnings.
 
-Run: python scripts/make_export_examples.py
+Run: python -m scripts.make_export_examples
 """
 
 import dataclasses

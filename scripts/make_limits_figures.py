@@ -1,7 +1,7 @@
 """Draw the MARES turning-circle figures of docs/limits.md (Ferreira et al. 2009, Figs. 6-8 reproduced)
 and the REMUS 100 steering figure (docs/figures/remus100_limits.png).
 
-Run from the repository root:  python scripts/make_limits_figures.py
+Run from the repository root:  python -m scripts.make_limits_figures
 Writes docs/figures/mares_limits.png (Munk moment off, as the paper finally uses, with the
 Munk-on result dashed) and docs/figures/mares_limits_munk.png (Munk on alone: Fig. 6's
 paradox).

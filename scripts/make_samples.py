@@ -1,10 +1,11 @@
 """Write the sample data shipped in the wheel: ``src/stripcoef/samples/``.
 
-    python scripts/make_samples.py            # (re)write every sample
-    python scripts/make_samples.py --check    # exit 1 if a sample differs from what it would write
+    python -m scripts.make_samples            # (re)write every sample
+    python -m scripts.make_samples --check    # exit 1 if a sample differs from what it would write
 
-- the vehicles: copies of ``geometry/*.yaml`` (the repository keeps ``geometry/`` for the
-  README's commands; ``tests/test_samples.py`` checks the copies are identical);
+- the vehicles: copies of ``geometry/*.yaml`` and of the shipped meshes ``geometry/*.stl``
+  (the repository keeps ``geometry/`` for the README's commands; ``tests/test_samples.py``
+  checks the copies are identical);
 - one small mesh, ``capsule.stl``: a capsule 1.0 m long, 0.2 m in diameter along x, the
   body of revolution of its profile (``stripcoef.geometry.mesh.revolved_mesh``, 32 profile
   points, 24 sections: 1488 faces), for ``coefficients`` and ``compare``;
@@ -18,11 +19,9 @@ Deterministic: the same code writes the same bytes (seeded generators).
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path[:0] = [str(ROOT / "src"), str(ROOT)]
 
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
@@ -55,6 +54,10 @@ def build() -> dict[str, bytes]:
     for f in sorted(GEOMETRY.glob("*.yaml")):
         out[f.name] = f.read_bytes()
         described[f.name] = f"vehicle file: {yaml.safe_load(f.read_text())['name']}"
+    for f in sorted(GEOMETRY.glob("*.stl")):
+        # the shipped meshes (bluerov2_heavy.stl: written by scripts/make_bluerov2_heavy.py)
+        out[f.name] = f.read_bytes()
+        described[f.name] = f"mesh: {f.stem}, the mesh of geometry/{f.stem}.yaml's parts (metres)"
 
     from stripcoef.geometry.mesh import revolved_mesh
 

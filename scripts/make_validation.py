@@ -1,13 +1,8 @@
-"""Write docs/validation.md from validation/ (run: python scripts/make_validation.py)."""
+"""Write docs/validation.md from validation/ (run from the repository root:
+python -m scripts.make_validation)."""
 
-import sys
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))   # validation/ lives beside src/, out of the wheel
-
-from stripcoef.files import write_text  # noqa: E402
-from validation import build  # noqa: E402
+from stripcoef.files import write_text
+from validation import ROOT, build
 
 if __name__ == "__main__":
     out = ROOT / "docs" / "validation.md"

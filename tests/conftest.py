@@ -11,9 +11,10 @@ GEOMETRY = ROOT / "geometry"
 
 
 def load_module(path, name=None, *, cache=False):
-    """The Python file ``path`` as a module named ``name`` (default its stem): scripts/,
-    benchmarks/ (not packages) and exported model files.  ``cache``: load once per session,
-    registered in sys.modules (a second call returns the same module)."""
+    """The Python file ``path`` as a module named ``name`` (default its stem): the model files
+    the exporters write (benchmarks/ and scripts/ are packages: ``importlib.import_module``).
+    ``cache``: load once per session, registered in sys.modules (a second call returns the same
+    module)."""
     import importlib.util
     import sys
 

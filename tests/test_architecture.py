@@ -1,12 +1,18 @@
 """The layer contract of docs/architecture.md holds: imports run one way, down the pipeline.
 
 - import-linter's contracts (pyproject.toml, ``[tool.importlinter]``): each layer imports only
-  from the layers below it; the runtime package never imports ``validation``;
+  from the layers below it; the runtime package never imports ``validation``; the outer ring
+  runs scripts -> benchmarks -> validation -> stripcoef;
 - no import cycles at all, between modules of one layer either;
+- nothing imports tests/ (not a package, so import-linter cannot see it), and no file edits
+  ``sys.path`` (benchmarks/ and scripts/ are packages run with ``python -m``);
+- docs/architecture.md names every module of src/stripcoef;
+- stored references live in reference_tables/ only, each computed csv named in its README;
 - no CLI vocabulary below the CLI: library errors name parameters (``radii``), and the CLI
   rewords them into its flags (``--radii``).
 """
 
+import ast
 import re
 import shutil
 import subprocess
@@ -34,7 +40,7 @@ def test_no_import_cycles():
     import grimp
     import networkx as nx
 
-    graph = grimp.build_graph("stripcoef")
+    graph = grimp.build_graph("stripcoef", "validation", "benchmarks", "scripts")
     g = nx.DiGraph()
     for module in graph.modules:
         for imported in graph.find_modules_directly_imported_by(module):
@@ -62,3 +68,102 @@ def test_the_cli_names_its_flag_for_a_library_parameter(capsys):
     assert main(["limits", str(ROOT / "geometry" / "mares.yaml"), "--radii", "5:1:3"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("stripcoef limits: error: --radii:") and "\n" not in err
+
+
+#: the folders of Python files in the repository: the package and its outer ring
+RING = ("src", "validation", "benchmarks", "scripts", "tests")
+
+
+def _python_files():
+    for folder in RING:
+        yield from sorted((ROOT / folder).rglob("*.py"))
+
+
+def _imported_roots(tree) -> set:
+    """The top-level names of every module a file imports (inside functions too)."""
+    roots = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            roots |= {alias.name.split(".")[0] for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            roots.add(node.module.split(".")[0])
+    return roots
+
+
+def test_nothing_imports_the_tests():
+    # tests/ sits on top: a helper the package, validation/, benchmarks/ or scripts/ need lives
+    # in validation/ (validation.finned, validation.ingest_truth), never in a test module
+    test_modules = {p.stem for p in (ROOT / "tests").glob("*.py")} | {"tests"}
+    offenders = []
+    for path in _python_files():
+        if path.is_relative_to(ROOT / "tests"):
+            continue
+        hits = _imported_roots(ast.parse(path.read_text())) & test_modules
+        offenders += [f"{path.relative_to(ROOT)}: imports {name}" for name in sorted(hits)]
+    assert not offenders, "\n".join(offenders)
+
+
+#: files that still edit sys.path, each with the reason (none is wanted)
+SYS_PATH_ALLOWED = {
+    # loads tests/golden/make_golden.py; its owner changes it in the golden-file work
+    "tests/test_golden.py",
+}
+
+
+def test_no_sys_path_edits():
+    # benchmarks/ and scripts/ are packages run from the repository root (python -m
+    # benchmarks.bluff_shapes); pytest's pythonpath = ["."] lets the tests import them
+    offenders = []
+    for path in _python_files():
+        name = str(path.relative_to(ROOT))
+        if name in SYS_PATH_ALLOWED:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (isinstance(node, ast.Attribute) and node.attr == "path"
+                    and isinstance(node.value, ast.Name) and node.value.id == "sys"):
+                offenders.append(f"{name}:{node.lineno}")
+    assert not offenders, offenders
+
+
+def _module_names() -> list[tuple[str, str]]:
+    """(module path relative to src/stripcoef, its folder) of every module of the package,
+    from the file tree: ``diagnose/report.py`` -> ("report.py", "diagnose")."""
+    out = []
+    for path in sorted(SRC.rglob("*.py")):
+        rel = path.relative_to(SRC)
+        if rel.name == "__init__.py" and rel.parent != Path("."):
+            continue          # a subpackage's __init__ is named by its folder
+        out.append((rel.name, str(rel.parent) if rel.parent != Path(".") else ""))
+    return out
+
+
+def test_architecture_page_names_every_module():
+    # a module at the top is named as `name.py` in the page; a module of a subpackage as
+    # `name.py` in its folder's row of the layer table (the row that names `folder/`)
+    text = (ROOT / "docs" / "architecture.md").read_text()
+    rows = [line for line in text.splitlines() if line.startswith("|")]
+    missing = []
+    for name, folder in _module_names():
+        if not folder:
+            if name != "__init__.py" and f"`{name}`" not in text:
+                missing.append(name)
+            continue
+        top = folder.split("/")[0]
+        row = [r for r in rows if f"`{top}/`" in r]
+        if not row or not any(f"`{name}`" in r or f"`{folder.split('/', 1)[-1]}/{name}`" in r
+                              or f"`{Path(folder).name}/{name}`" in r for r in row):
+            missing.append(f"{folder}/{name}")
+    assert not missing, "docs/architecture.md does not name: " + ", ".join(missing)
+
+
+def test_stored_references_have_one_home():
+    # stored reference data live in reference_tables/ (the computed ones in bem/ and
+    # method_errors/, each csv named in its folder's README with the command that remakes it);
+    # benchmarks/data keeps only the benchmarks' markdown outputs
+    stray = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "benchmarks").rglob("*")
+                   if p.is_file() and p.suffix not in (".py", ".md") and "__pycache__" not in p.parts)
+    assert not stray, stray
+    for folder in ("bem", "method_errors"):
+        readme = (ROOT / "reference_tables" / folder / "README.md").read_text()
+        for csv_file in (ROOT / "reference_tables" / folder).glob("*.csv"):
+            assert f"`{csv_file.name}`" in readme, (folder, csv_file.name)

@@ -3,6 +3,7 @@ BlueROV2-Heavy-like vehicle, no NaN matrices, and the BEM panel-quality check.""
 
 from __future__ import annotations
 
+import importlib
 import csv
 from pathlib import Path
 
@@ -12,10 +13,9 @@ import trimesh
 
 from stripcoef.errors import InputError
 from stripcoef.hull.lamb import ellipsoid_added_mass, spheroid_added_mass
-from conftest import load_module
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT / "benchmarks" / "data" / "bem_bluff.csv"
+DATA = ROOT / "reference_tables" / "bem" / "bem_bluff.csv"
 RHO = 1000.0
 
 
@@ -63,7 +63,7 @@ def test_stored_bem_matches_lamb(shape, axes):
 
 
 def _benchmark():
-    return load_module(ROOT / "benchmarks" / "bluff_shapes.py")
+    return importlib.import_module("benchmarks.bluff_shapes")
 
 
 def test_reference_table_complete():
@@ -175,9 +175,7 @@ def test_compare_text_says_untrusted():
                    "overlapping parts of a frame differently from their boolean union (sway "
                    "+32 %, pitch +98 % at 400 strips)")
 def test_frame_union_and_overlapping_parts_agree():
-    import sys
-    sys.path.insert(0, str(ROOT / "scripts"))
-    from make_bluerov2_heavy import bluerov2_heavy_parts
+    from scripts.make_bluerov2_heavy import bluerov2_heavy_parts
 
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.vehicle import Vehicle

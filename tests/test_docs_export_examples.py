@@ -5,12 +5,13 @@ example file (a change of the physics that moves MARES's matrices must regenerat
 Numbers compare to 1e-12 relative (as tests/test_golden.py: another CPU's BLAS may round the
 last bits differently); everything else exactly."""
 
+import importlib
 import re
 import warnings
 
 import pytest
 
-from conftest import ROOT, load_module
+from conftest import ROOT
 
 EXAMPLES = ROOT / "docs" / "export" / "examples"
 NUMBER = re.compile(r"-?\d+\.\d{6,}(?:e-?\d+)?")
@@ -19,16 +20,16 @@ PAGES = {"gazebo.md": "mares.sdf", "uuv.md": "mares_uuv.xml", "mss.md": "mares.m
 
 
 def _script():
-    return load_module(ROOT / "scripts" / "make_export_examples.py")
+    return importlib.import_module("scripts.make_export_examples")
 
 
 def _same(name, got, want):
     """Equal text with numbers equal to 1e-12 relative."""
     g, w = ANY_NUMBER.split(got), ANY_NUMBER.split(want)
-    assert g == w, f"{name}: run python scripts/make_export_examples.py"
+    assert g == w, f"{name}: run python -m scripts.make_export_examples"
     for a, b in zip(ANY_NUMBER.findall(got), ANY_NUMBER.findall(want)):
         assert abs(float(a) - float(b)) <= 1e-12 * max(abs(float(b)), 1.0), \
-            f"{name}: {a} != {b}; run python scripts/make_export_examples.py"
+            f"{name}: {a} != {b}; run python -m scripts.make_export_examples"
 
 
 def test_examples_are_the_current_output(tmp_path, monkeypatch):

@@ -27,3 +27,10 @@ def test_site_builds_strictly(tmp_path):
         assert (site / page).is_file(), page
     api = (site / "api" / "index.html").read_text()
     assert "HydroModel" in api and "summarize_motion" in api and "load_vehicle" in api
+    # the docstrings' reST is rendered (scripts/docs_hooks.py), never shown raw, on any page
+    import re
+    raw = re.compile(r":(?:math|func|class|meth|mod|data|attr|obj|exc):`?<code>|\.\. math::")
+    for page in site.rglob("*.html"):
+        hit = raw.search(page.read_text())
+        assert hit is None, f"{page.relative_to(site)}: raw reST {hit.group(0)!r}"
+    assert 'class="arithmatex"' in api

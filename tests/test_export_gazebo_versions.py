@@ -42,7 +42,8 @@ def test_default_file_is_for_sdformat_13_and_later(mares):
 
 
 def test_fortress_file(mares):
-    root, traps = _export(mares, fortress=True)
+    # the whole M_A in the explicit tags (the lumped default: test_export_gazebo_fortress.py)
+    root, traps = _export(mares, fortress=True, lumped_added_mass=False)
     assert root.get("version") == "1.9"
     assert root.find("./model/link/inertial/fluid_added_mass") is None   # sdformat 12 drops it
     plugin = root.find("./model/plugin")

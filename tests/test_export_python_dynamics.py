@@ -88,3 +88,44 @@ def test_flu_module_holds_data_only(tmp_path, exported):
     model, _ = exported
     m = _module(write_export(model, "python", tmp_path / "flu_model.py", axes="FLU"))
     assert m.AXES == "FLU" and not hasattr(m, "state_derivative") and m.M_A.shape == (6, 6)
+
+
+def test_vehicle_class_steers_with_rudders_and_elevators(tmp_path):
+    """REMUS 100: the exported Vehicle takes the rudder and elevator deflections after the
+    propeller command (as the simulator's remus100 does), clips them to MAX_DEFLECTION and
+    integrates to the trajectory of stripcoef simulate with the same deflections."""
+    from conftest import GEOMETRY
+    model = load_model(GEOMETRY / "remus100.yaml")
+    m = _module(write_export(model, "python", tmp_path / "remus_model.py"))
+    v = m.Vehicle()
+    n_th, n_cs = len(m.THRUSTERS), len(m.CONTROL_SURFACES)
+    assert n_cs >= 2 and v.dimU == n_th + n_cs and len(v.controls) == v.dimU
+    assert all("deflection" in c for c in v.controls[n_th:])
+    rudder = next(i for i, c in enumerate(model.control_surfaces) if c.kind == "rudder")
+    delta = np.zeros(n_cs)
+    delta[rudder] = 0.05
+    u = np.concatenate([np.full(n_th, 1000.0), delta])
+    nu = np.array([1.5, 0, 0, 0, 0, 0])
+    # a deflection past the stop is clipped
+    big = u.copy()
+    big[n_th + rudder] = 10.0
+    _, ua = v.dynamics(np.zeros(6), nu, big, big, 0.01)
+    assert ua[n_th + rudder] == pytest.approx(m.MAX_DEFLECTION[rudder])
+    # the rudder's force is the model's u|u| derivative, and it turns the vehicle as simulate
+    tau = v.forces(np.zeros(6), nu, u) - v.forces(np.zeros(6), nu, np.concatenate(
+        [u[:n_th], np.zeros(n_cs)]))
+    want = 1.5 * 1.5 * 0.05 * np.asarray(model.control_surfaces[rudder].derivative)
+    assert np.allclose(tau, want, rtol=1e-12, atol=1e-12 * np.abs(want).max())
+    t_end, dt = 5.0, 0.002
+    cmd = {name: 1000.0 for name in m.THRUSTERS}
+    ref = simulate(model, np.array([0.0, t_end]), commands=cmd, nu0=nu,
+                   deflections={model.control_surfaces[rudder].name: 0.05},
+                   rtol=1e-10, atol=1e-12)
+    eta, x = np.zeros(6), nu.copy()
+    for _ in range(int(round(t_end / dt))):
+        eta_dot, _ = m.state_derivative(eta, x, v.forces(eta, x, u))
+        x, _ = v.dynamics(eta, x, u, u, dt)
+        eta = eta + dt * eta_dot
+    want = np.array([ref[k][-1] for k in VELOCITIES])
+    assert abs(want[5]) > 0.03                          # it turns
+    assert np.allclose(x, want, rtol=0, atol=0.02 * np.abs(want).max())

@@ -46,7 +46,6 @@ def test_no_backend_switching_or_pyplot_in_the_library():
 def test_figures_leave_pyplot_and_the_backend_alone(tmp_path):
     code = f"""
 import sys, matplotlib
-sys.path[:0] = [{str(ROOT / 'src')!r}, {str(ROOT)!r}]
 before = matplotlib.get_backend() if 'matplotlib.pyplot' in sys.modules else None
 from stripcoef import estimate
 from stripcoef.limits import solve_limits

@@ -2,23 +2,20 @@
 Capytaine on thin plates, and finned Myring hulls against their converged BEM
 (benchmarks/finned_bodies.py, benchmarks/plate_added_mass.py)."""
 
-import sys
+import importlib
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from stripcoef.errors import InputError
 from stripcoef.sections.added_mass import plate_chordwise_factor
-from conftest import load_module
-
-ROOT = Path(__file__).resolve().parent.parent
+from validation import finned
 
 
 def _bench(name):
-    """benchmarks/<name>.py (benchmarks/ is not a package), loaded once."""
-    return load_module(ROOT / "benchmarks" / f"{name}.py", cache=True)
+    """benchmarks/<name>.py."""
+    return importlib.import_module(f"benchmarks.{name}")
 
 
 # --- the plate factor ------------------------------------------------------------------------
@@ -49,17 +46,17 @@ def test_plate_table_against_capytaine():
     # 0.01, extrapolated linearly to t = 0) checks it.  Tolerance 3 %: the extrapolation's own
     # spread (the two levels differ by 1-3 % and the thickness and panel errors of a plate's
     # edge are only roughly first order) plus the table's 3 printed digits.
-    bench = _bench("plate_added_mass")
+    bench = finned
     from stripcoef.data import load_table
     table = load_table("plate_added_mass_dnv")
-    both = {r: lv for r, lv in bench.load().items() if 0.01 in lv}
+    both = {r: lv for r, lv in bench.load_plates().items() if 0.01 in lv}
     assert set(both) >= {1.0, 2.0}
     for ratio, lv in both.items():
         zero = 2 * lv[0.01] - lv[0.02]
         assert zero == pytest.approx(table.interp(1.0 / ratio, "lambda"), rel=0.03), ratio
     # a thick level alone (b/a = 4: the thin level did not run) lies above the thin plate, as
     # the thickness and the panel error do at b/a = 1 and 2 (+3..+6 %)
-    for ratio, lv in bench.load().items():
+    for ratio, lv in bench.load_plates().items():
         assert 1.0 < lv[0.02] / table.interp(1.0 / ratio, "lambda") < 1.06, ratio
 
 
@@ -88,7 +85,7 @@ CANCELLING = {("wide_tail", (1, 5)), ("wide_tail", (2, 4))}
 
 
 def _fb():
-    return _bench("finned_bodies")
+    return finned
 
 
 @pytest.mark.parametrize("case", ["remus_tail", "large_tail", "midbody", "small_tail",
@@ -109,8 +106,8 @@ def test_large_tail_couplings_against_the_fin_refined_bem():
     # the refined BEM's coupling (the mean of M[1,5] and -M[2,4], equal by symmetry) grows with
     # every refinement, so its finest mesh bounds the converged value from below; the model is
     # within 4 % of that mesh (measured -3.5 %: a regression bound, not the 3 % the issue asks)
-    fr = _bench("fin_bem_refinement")
-    study = fr.load()
+    fr = finned
+    study = fr.load_refinement()
     mean = [fr.mean_coupling(a) for _, _, a in study]
     assert mean == sorted(mean)
     m = _fb().strip_model("large_tail")
@@ -121,8 +118,8 @@ def test_large_tail_couplings_against_the_fin_refined_bem():
                    "the finest fin-refined BEM (M[1,5] -3.4 %, M[2,4] -3.6 %), whose value still "
                    "grows")
 def test_large_tail_couplings_within_3_percent():
-    fr = _bench("fin_bem_refinement")
-    fine = fr.load()[-1][2]
+    fr = finned
+    fine = fr.load_refinement()[-1][2]
     m = _fb().strip_model("large_tail")
     assert abs(fr.mean_coupling(m) / fr.mean_coupling(fine) - 1) < 0.03
 
@@ -130,7 +127,7 @@ def test_large_tail_couplings_within_3_percent():
 def test_fins_shares_against_bem():
     # the fins' share (finned minus bare hull) of sway, yaw and their coupling on all six bodies
     # within 5 % plus the BEM's own spread on that term, which a share (a 3-10 % difference of
-    # two sways) carries whole (finned_bodies.richardson_spread).  Measured with the thin sheet:
+    # two sways) carries whole (validation.finned.richardson_spread).  Measured with the thin sheet:
     # sway -0.7, +1.7, -3.5, -4.9, -5.7, -1.2 %; yaw -0.2, +2.2, +3.8, -2.5, -4.8, -0.2 %;
     # coupling -0.3, +1.5, -3.7, -0.8, -5.6, +0.6 %.  Before it (the plates' 3D factor on the
     # strip shares): sway -4.8, +4.2, -0.7, -15.2, -3.1, -7.3 %, yaw off by up to 76 %
@@ -147,8 +144,7 @@ def test_fin_thickness_factor_against_the_panel_method():
     # a thick fin pair's share of the finned circle's normal added mass over the thin one's:
     # the 2D panel method of the section (circle + 4 fins of thickness t) against C_A(s/(t/2))
     # of the exposed pair (DNV table A-1 rectangle); within 1.5 % for the BEM bodies' fins
-    sys.path.insert(0, str(ROOT / "tests"))
-    from test_fin_sections import _section
+    from validation.finned import finned_section as _section
     from stripcoef.assembly.added_mass import _fin_thickness_factor
     from stripcoef.sections import added_mass as am
     from stripcoef.sections.panel import added_mass_contours
@@ -237,10 +233,9 @@ def test_fin_refinement_study_is_symmetric_and_its_hull_correction_small(case):
     # benchmarks/fin_bem_refinement.py: M[1,5] = -M[2,4] on the cruciform, so their difference
     # on each stored mesh is the BEM's own scatter; the hull correction (the bare hull's BEM
     # error on the study's hull mesh) is a small part of the coupling
-    fr = _bench("fin_bem_refinement")
-    fb = _fb()
+    fr = fb = finned
     assert case in fr.stored_cases()
-    study = fr.load(case)
+    study = fr.load_refinement(case)
     assert [name for name, _, _ in study] == [",".join(map(str, s)) for s in fr.REFINEMENT]
     for name, _, a in study:
         assert abs(a[1, 5] + a[2, 4]) < 0.02 * a[1, 5], name
@@ -255,14 +250,13 @@ def test_other_couplings_and_the_rolls_against_the_fin_refined_bem():
     # (measured -0.04 %, +0.47 %); the roll of every studied body within 3 % of it and above it
     # (measured +2.73 %, +2.86 %, +2.30 %, with the BEM's roll falling at each refinement:
     # docs/validation.md)
-    fr = _bench("fin_bem_refinement")
-    fb = _fb()
+    fr = fb = finned
     for case in ("remus_tail", "small_tail"):
-        fine = fr.load(case)[-1][2]
+        fine = fr.load_refinement(case)[-1][2]
         m = fb.strip_model(case)
         assert abs(fr.mean_coupling(m) / fr.mean_coupling(fine) - 1) < 0.03, case
     for case in ("large_tail", "remus_tail", "small_tail"):
-        study = fr.load(case)
+        study = fr.load_refinement(case)
         roll = [a[3, 3] for _, _, a in study]
         assert roll == sorted(roll, reverse=True), case
         assert 0.0 < fb.strip_model(case)[3, 3] / roll[-1] - 1 < 0.03, case

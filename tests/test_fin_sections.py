@@ -5,13 +5,12 @@ import warnings
 
 import numpy as np
 import pytest
-from shapely.geometry import Point, box
-from shapely.ops import unary_union
 
 from stripcoef.assembly.estimate import estimate
 from stripcoef.geometry.vehicle import parse_vehicle
 from stripcoef.sections import added_mass as am
 from stripcoef.sections.panel import added_mass_contours
+from validation.finned import finned_section as _section
 
 RHO = 1000.0
 
@@ -36,15 +35,6 @@ def test_fins_of_zero_height_leave_the_circle():
 def test_roll_scales_with_rho_a4():
     base = am.finned_circle_roll(0.42, 1.0, fins=4, rho=1.0)
     assert am.finned_circle_roll(0.84, 2.0, fins=4, rho=RHO) == pytest.approx(16 * RHO * base, rel=1e-9)
-
-
-def _section(r, a, fins, t):
-    """Circle of radius r with 2 or 4 fins of thickness t to tip radius a (one outer ring)."""
-    g = [Point(0, 0).buffer(r, 256)] if r > 0 else []
-    g.append(box(-a, -t / 2, a, t / 2))
-    if fins == 4:
-        g.append(box(-t / 2, -a, t / 2, a))
-    return [np.asarray(unary_union(g).exterior.coords)[:-1]]
 
 
 @pytest.mark.parametrize("r, fins", [(0.42, 2), (0.42, 4), (0.6, 4)])

@@ -65,3 +65,50 @@ def test_parse_dof():
     assert parse_dof("yaw") == 5 and parse_dof("w") == 2 and parse_dof("N") == 5
     with pytest.raises(InputError, match="unknown degree of freedom"):
         parse_dof("spin")
+
+
+@pytest.mark.parametrize("t,s", [(15, 35), (4, 35), (25, 30), (10, 5)])
+def test_teos10_density_agrees_with_eos80(t, s):
+    """TEOS-10 (IOC et al. 2010) and EOS-80 give sea-water density within 0.05 kg/m^3 in the
+    oceanographic range (the TEOS-10 manual, sec. 2.5 and its comparison with EOS-80: the
+    reference-composition salinity shifts rho by a few 0.01 kg/m^3)."""
+    pytest.importorskip("gsw")
+    from stripcoef.fluid import density_teos10
+    assert density_teos10(t, s) == pytest.approx(density_eos80(t, s), abs=0.05)
+    f = Fluid.from_temperature_salinity(t, s, equation="teos10")
+    assert f.density == pytest.approx(density_teos10(t, s), rel=1e-15)
+    assert "TEOS-10" in f.source
+
+
+def test_teos10_without_gsw_names_the_extra(monkeypatch):
+    import sys
+    monkeypatch.setitem(sys.modules, "gsw", None)     # import gsw -> ImportError
+    with pytest.raises(InputError, match="gsw") as err:
+        Fluid.from_temperature_salinity(15, 35, equation="teos10")
+    assert "stripcoef[seawater]" in str(err.value)
+    with pytest.raises(InputError, match="unknown equation of state"):
+        Fluid.from_temperature_salinity(15, 35, equation="unesco")
+
+
+def test_vehicle_file_and_cli_take_the_equation(tmp_path):
+    pytest.importorskip("gsw")
+    import subprocess
+    import sys
+
+    import yaml
+
+    from stripcoef.geometry.vehicle import parse_vehicle
+    from conftest import GEOMETRY
+    data = yaml.safe_load((GEOMETRY / "sphere.yaml").read_text())
+    data["fluid"] = {"temperature": 10.0, "salinity": 35.0, "equation": "teos10"}
+    veh = parse_vehicle(data, file="s.yaml")
+    from stripcoef.fluid import density_teos10
+    assert veh.fluid.density == pytest.approx(density_teos10(10.0, 35.0), rel=1e-15)
+    data["fluid"] = {"density": 1000.0, "equation": "teos10"}
+    with pytest.raises(InputError, match="fluid.equation"):
+        parse_vehicle(data, file="s.yaml")
+    out = subprocess.run([sys.executable, "-m", "stripcoef", "coefficients",
+                          str(GEOMETRY / "sphere.yaml"), "--water-equation", "teos10"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and "--water-equation" in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1

@@ -7,6 +7,7 @@ output, no exit 0 with a NaN (issue 17).
 
 from __future__ import annotations
 
+import importlib
 import json
 import time
 from pathlib import Path
@@ -15,15 +16,14 @@ import numpy as np
 import pytest
 
 from stripcoef.cli import main
-from conftest import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 GEO = ROOT / "geometry"
 
 
 def _campaign():
-    """benchmarks/fuzz_campaign.py (benchmarks/ is not a package), loaded once."""
-    return load_module(ROOT / "benchmarks" / "fuzz_campaign.py", cache=True)
+    """benchmarks/fuzz_campaign.py."""
+    return importlib.import_module("benchmarks.fuzz_campaign")
 
 
 @pytest.fixture(scope="module")

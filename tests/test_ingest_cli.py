@@ -2,15 +2,11 @@
 simulation from a log's state; no missing column read as zeros."""
 
 import json
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
-
-import _ingest_truth as T  # noqa: E402
+from validation import ingest_truth as T  # noqa: E402
 from stripcoef import cli  # noqa: E402
 from stripcoef.export import write_export  # noqa: E402
 from stripcoef.logfile import Log, read_log  # noqa: E402

@@ -1,6 +1,6 @@
 """Real-style logs through a column map (stripcoef.ingest) against a known truth.
 
-The truth is a 6-DOF simulation of a known model (tests/_ingest_truth.py) driven by a 50 Hz
+The truth is a 6-DOF simulation of a known model (validation/ingest_truth.py) driven by a 50 Hz
 wrench; it is written the ways real logs come: a navigation CSV with nanosecond stamps, ENU
 positions, FLU-body quaternions (x, y, z, w) and ENU earth-fixed velocities, a header-less
 50 Hz wrench file in FLU axes, and ROS 1 / ROS 2 bags (nav_msgs/Odometry, sensor_msgs/Imu,
@@ -8,16 +8,13 @@ geometry_msgs/WrenchStamped) written with rosbags' writer.
 """
 
 import shutil
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
-
-import _ingest_truth as T  # noqa: E402
+from validation import ingest_truth as T  # noqa: E402
 from stripcoef.errors import InputError, SamplingWarning  # noqa: E402
 from stripcoef.ingest import load_map, parse_map, read_mapped_log  # noqa: E402
 from stripcoef.ingest.attitude import (body_rates, euler_from_matrices,  # noqa: E402
@@ -459,3 +456,19 @@ def test_iso_date_time_stamps(tmp_path):
     with pytest.raises(InputError, match=r"tel.csv: Timestamp: bad time in line 3; got "
                                          r"'2024-13-02 10:15:31'; expected an ISO 8601"):
         read_mapped_log(csv, m)
+
+
+def test_iso_stamps_by_the_standard_library():
+    """ISO 8601 text -> ns since the epoch by datetime.fromisoformat (offsets, 'Z', no offset
+    = UTC), the fraction kept to the nanosecond; no numpy warning to suppress."""
+    import warnings
+
+    from stripcoef.ingest.streams import iso_ns
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert iso_ns("1970-01-01T00:00:00.000000001Z") == 1
+        assert iso_ns("1970-01-01T02:00:01.5+02:00") == 1_500_000_000
+        assert iso_ns("1970-01-01 00:00:01,25") == 1_250_000_000
+        assert iso_ns("2024-05-02T12:15:30.500000001+02:00") == 1714644930_500000001
+    with pytest.raises(ValueError):
+        iso_ns("2024-13-02 10:15:31")

@@ -25,7 +25,10 @@ from validation.lift import (FT, LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_rad
                              bare_hull_derivatives, bare_hull_model, body_Yv, datcom_body_Yv,
                              flat_plate_points, fully_appended_Yv, hull_radius, increment_Yv,
                              plane_chord, planes_geometry, planes_interference,
-                             planes_root_radii, sail_geometry, sail_interference, val, within)
+                             planes_root_radii, sail_geometry, sail_interference, val, within,
+                             appendix_curve, odd_slope, stock_lift_slopes,
+                             SUBOFF_TOLERANCE, drift_curve_comparisons, suboff_comparisons,
+                             suboff_model)
 
 
 # ---------------------------------------------------------------------------
@@ -170,3 +173,186 @@ def test_fin_lift_slope_against_measured_flat_plates():
     ll = lifting_line_slope(ar)
     assert np.sum(np.abs(ll / cla - 1) > LIFT_TOLERANCE) == 6
     assert np.max(ll / cla - 1) == pytest.approx(0.713, abs=0.002)
+
+
+# ---------------------------------------------------------------------------
+# Roddy 1990 Table 4 and Appendix B (reference_tables/roddy1990_suboff, read from the OCR text)
+# ---------------------------------------------------------------------------
+FIRST_QUOTATION = {"Yv.bare_hull": "c3.Yv", "Nv.bare_hull": "c3.Nv", "Yr.bare_hull": "c3.Yr",
+                   "Nr.bare_hull": "c3.Nr", "Yv.hull_sail": "c4.Yv", "Nv.hull_sail": "c4.Nv",
+                   "Yv.hull_planes": "c5.Yv", "Nv.hull_planes": "c5.Nv",
+                   "Yv.fully_appended": "c2.Yv", "Nv.fully_appended": "c2.Nv",
+                   "Zw.config1": "c1.Zw", "Mw.config1": "c1.Mw", "hull.L_BP": "t1.L_BP"}
+
+
+@pytest.mark.parametrize("quoted,table4", sorted(FIRST_QUOTATION.items()))
+def test_first_quotation_equals_table4(quoted, table4):
+    assert val(quoted) == pytest.approx(val(table4), rel=1e-6)
+
+
+def test_table4_is_complete():
+    names = {r["name"] for r in ref.load_table(SOURCE, "table4_derivatives")}
+    horizontal = ("Yv", "Nv", "Kv", "Yr", "Nr", "Yvdot", "Nvdot", "Yrdot", "Nrdot", "G")
+    vertical = ("Zw", "Mw", "Zq", "Mq", "Zwdot", "Mwdot", "Zqdot", "Mqdot", "G", "Zds", "Mds")
+    expected = {f"c{c}.{d}" for c in (2, 3, 4, 5, 6) for d in horizontal}
+    expected |= {f"c1.{d}" for d in vertical} | {"c2.Ydr", "c2.Ndr", "c2.Kdr"}
+    assert expected <= names
+    assert val("moment_point.x") == pytest.approx(6.6042)
+    # Table 1: the planes' printed area is their trapezoid within 1.3 % (0.2637 from the
+    # printed chords and span, 0.267 printed), the aspect ratio span^2/area to print precision
+    assert 0.5 * (val("t1.plane.c_root") + val("t1.plane.c_tip")) * val("t1.plane.span") \
+        == pytest.approx(val("t1.plane.S"), rel=0.015)
+    assert val("t1.plane.span") ** 2 / val("t1.plane.S") == pytest.approx(val("t1.plane.AR"), abs=2e-3)
+    # the sail's printed area is 3 % below span x chord (0.881): its cap is rounded
+    assert val("t1.sail.span") * val("t1.sail.chord") == pytest.approx(val("t1.sail.S"), rel=0.035)
+
+
+def _stability_margin(c):
+    m = val(f"c{c}.m")
+    xgm = val(f"c{c}.xGm_1e4") * 1e-4
+    if c == 1:
+        return 1.0 - val("c1.Mw") * (val("c1.Zq") + m) / (val("c1.Zw") * (val("c1.Mq") - xgm))
+    return 1.0 - val(f"c{c}.Nv") * (val(f"c{c}.Yr") - m) / (val(f"c{c}.Yv") * (val(f"c{c}.Nr") - xgm))
+
+
+@pytest.mark.parametrize("config", [1, 2, 3, 4, 5, 6])
+def test_printed_stability_margin_follows_from_the_printed_derivatives(config):
+    """Roddy p. 6: G_h = 1 - N'_v (Y'_r - m') / [Y'_v (N'_r - x_G' m')] (G_v likewise): the
+    transcribed Table 4 and Table 1 rows reproduce each printed G to its printed precision
+    (a check of the transcription and of the sign convention)."""
+    assert _stability_margin(config) == pytest.approx(val(f"c{config}.G"), rel=2e-3)
+
+
+@pytest.mark.parametrize("config", [1, 2, 3, 4, 5, 6])
+def test_appendix_b_slopes_reproduce_table4(config):
+    """The least-squares slope of the Appendix B curves over |angle| <= 4 deg is Table 4's
+    derivative: the moment within 5 % (Roddy's static uncertainty) for every configuration,
+    with drift positive for v < 0 (v' = -sin beta) and incidence positive for w > 0; the force
+    of the appended configurations within 10 %. Without fins (3, 6) the force curve bends
+    upward already by 4 deg (the slope there is 17 % and 30 % above Roddy's, which is the
+    slope at the origin): the body's lift is non-linear from the start."""
+    force, moment = ("Z", "M") if config == 1 else ("Y", "N")
+    sign = 1.0 if config == 1 else -1.0
+    moment_slope = sign * odd_slope(*appendix_curve(config, moment))
+    assert moment_slope == pytest.approx(val(f"c{config}.{'Mw' if config == 1 else 'Nv'}"), rel=0.05)
+    ratio = sign * odd_slope(*appendix_curve(config, force)) / val(f"c{config}.{'Zw' if config == 1 else 'Yv'}")
+    if config in (3, 6):
+        assert 1.1 < ratio < 1.35
+    else:
+        assert ratio == pytest.approx(1.0, abs=0.10)
+
+
+def test_stock_lift_slopes():
+    """One stern appendage's own lift, measured on its stock: 1.1-1.3 /rad in drift, about 1.4
+    /rad deflected (rudder and sternplane agree within 2 %)."""
+    s = stock_lift_slopes()
+    assert 1.1 < s["drift"] < 1.3
+    assert s["rudder"] == pytest.approx(s["sternplane"], rel=0.02)
+    assert 1.3 < s["rudder"] < 1.5
+
+
+# ---------------------------------------------------------------------------
+# every configuration and derivative (docs/validation.md, 'Every configuration and derivative')
+# ---------------------------------------------------------------------------
+_BODY = ("Hopkins's separation station (0.825 l on SUBOFF, correlated on missile boat-tails) is "
+         "too far forward for SUBOFF's streamlined afterbody, whose flow stays attached longer: the "
+         "slender-body lift is 2.8 times the bare hull's Y'_v and its moment too small")
+#: (configuration, derivative) -> why the slender-body model misses the issue's tolerance.
+KNOWN_MISSES = {
+    (3, "Nv"): "bare hull N'_v 0.72 of measured (tolerance 10 %): " + _BODY,
+    (6, "Nv"): "hull + ring N'_v 0.71 of measured, the bare hull's model (no ring wing built): " + _BODY,
+    (4, "Yv"): "hull + sail Y'_v 1.51 times measured: " + _BODY,
+    (5, "Yv"): "hull + planes Y'_v 2.14 times measured: " + _BODY + "; the planes' own lift is "
+               "also 47-69 % above their measured stock force",
+    (5, "Nv"): "hull + planes N'_v 0.62 of measured: " + _BODY + "; the too-strong planes add "
+               "a stabilising moment",
+    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.46 times measured: " + _BODY,
+    (2, "Nv"): "fully appended N'_v 0.84 of measured (tolerance 15 %): " + _BODY,
+    (1, "Zw"): "configuration 1 Z'_w 1.61 times measured: " + _BODY,
+    (1, "Mw"): "configuration 1 M'_w 0.67 of measured: " + _BODY,
+    (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0011: the "
+               "sail's rotary force (-0.0018 about the moment point, from its lever 3 ft forward) "
+               "does not cancel the body's +0.0054",
+    (4, "Nr"): "hull + sail N'_r 1.56 times measured: the body's N'_r (bare hull 1.65 times) "
+               "carried over",
+    (5, "Yr"): "hull + planes Y'_r 1.26 times measured (tolerance 25 %): the body's Y'_r is 3 "
+               "times the bare hull's and the planes' own lift 47-69 % too strong",
+    (2, "Yr"): "fully appended Y'_r 0.70 of measured: the ring wing is not built; its measured "
+               "increment (configuration 6 - 3: +0.0020) would bring the model to 1.08",
+    (2, "Ndr"): "N'_dr 1.16 times measured (tolerance 15 %): the isolated fin is 47 % above the "
+                "measured stock force in deflection and the carry-over onto the afterbody is "
+                "missing; the two nearly cancel",
+    (3, "Yv"): "bare hull Y'_v 2.78 times measured (the issue asks only for the error stated): "
+               + _BODY,
+    (6, "Yv"): "hull + ring Y'_v 2.78 times measured (error stated only): " + _BODY,
+}
+_CASES = [(c, n) for c, built in {3: 3, 4: 4, 5: 5, 6: 3, 2: 2, 1: 2}.items()
+          for n in ((("Zw", "Mw", "Zq", "Mq", "Zds", "Mds") if c == 1 else ("Yv", "Nv", "Yr", "Nr"))
+                    + (("Ydr", "Ndr") if c == 2 else ()))]
+
+
+@pytest.mark.parametrize("config,name", [
+    pytest.param(c, n, marks=pytest.mark.xfail(strict=True, reason=KNOWN_MISSES[(c, n)]))
+    if (c, n) in KNOWN_MISSES else (c, n) for c, n in _CASES])
+def test_suboff_derivative_with_slender_body_lift(config, name):
+    """body_lift: slender against Roddy's Table 4 with the issue's tolerances: static and
+    control within 15 %, rotary right sign and within 25 % (configurations 1, 2, 4, 5); bare
+    hull and hull + ring: N'_v within 10 %, rotary signs (Y'_v's error stated: a strict xfail)."""
+    rows = {(r["config"], r["name"]): r for r in suboff_comparisons()}
+    r = rows[(config, name)]
+    if r["ok"] is None:      # Y'_v of 3 and 6: held to the static 15 %, its miss stated
+        assert abs(r["ratio"] - 1) <= SUBOFF_TOLERANCE["static"], r
+    else:
+        assert r["ok"], r
+
+
+def test_slender_body_lift_fixes_the_rotary_signs_that_hoerners_form_misses():
+    rows = {(r["config"], r["name"]): r for r in suboff_comparisons()}
+    bare_yr, bare_nr = rows[(3, "Yr")], rows[(3, "Nr")]
+    assert bare_yr["hoerner"] < 0 < bare_yr["measured"]          # Hoerner: wrong sign
+    assert abs(bare_nr["hoerner"]) < 0.01 * abs(bare_nr["measured"])  # Hoerner: nothing
+    assert bare_yr["slender"] > 0 and bare_nr["slender"] < 0
+    for c, n in ((1, "Zq"), (1, "Mq"), (2, "Nr")):             # within 6 % fully appended
+        assert rows[(c, n)]["ratio"] == pytest.approx(1.0, abs=0.06)
+
+
+@pytest.mark.xfail(strict=True, reason="one stern plane's own lift: Helmbold 2.08 /rad (AR_e 1.53) "
+                   "against 1.23 /rad measured on the stock in drift (+69 %) and 1.42 /rad deflected "
+                   "(+47 %): the thick NACA 0020 section in the afterbody's boundary layer lifts less "
+                   "than an isolated thin fin, and no published method for that was found in reach")
+def test_stern_plane_own_force_against_the_stock():
+    from stripcoef.hull.lift import fin_lift_slope
+    ar = suboff_model(5).conditions.lift["fin_lift"][0]["aspect_ratio"]
+    s = stock_lift_slopes()
+    for measured in (s["drift"], s["rudder"]):
+        assert float(fin_lift_slope(ar)) == pytest.approx(measured, rel=0.20)
+
+
+@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.3-4.4 times Roddy's from 4 to 16 deg "
+                   "(configurations 2-5, both body-lift methods): the linear body lift is too large "
+                   "(Hopkins's station) and the strips' linear damping D_L adds a second linear sway "
+                   "force at 6.5 knots; N'(beta) with the slender-body lift is within 20 % from 8 deg "
+                   "for configurations 2 and 4 only")
+def test_drift_curves_within_20_percent():
+    for c in drift_curve_comparisons():
+        if c["method"] == "slender":
+            assert c["model"] == pytest.approx(c["measured"], rel=0.20), c
+
+
+@pytest.mark.parametrize("config", [2, 3, 4, 5])
+def test_suboff_vehicle_files_are_current(config):
+    """validation/suboff/config<n>.yaml is what scripts/make_suboff_vehicles.py writes, and it
+    loads as a vehicle with the expected appendages."""
+    import yaml
+    from pathlib import Path
+
+    from stripcoef.geometry.vehicle import load_vehicle
+    from validation.lift import suboff_vehicle_data
+
+    path = Path(__file__).resolve().parents[1] / "validation" / "suboff" / f"config{config}.yaml"
+    assert yaml.safe_load(path.read_text()) == suboff_vehicle_data(config), \
+        "stale: run python -m scripts.make_suboff_vehicles"
+    vehicle = load_vehicle(path)
+    names = {b.name for b in vehicle.bodies}
+    assert ("sail" in names) == (config in (2, 4))
+    assert ("plane_top" in names) == (config in (2, 5))

@@ -1,6 +1,7 @@
 """The sample data shipped in the wheel: reachable by name, identical to what
 scripts/make_samples.py writes, and the logs' truth recovered by the commands it names."""
 
+import importlib
 import json
 import shlex
 
@@ -11,24 +12,24 @@ from stripcoef import samples
 from stripcoef.cli import main
 from stripcoef.errors import InputError
 
-from conftest import GEOMETRY, ROOT, load_module
+from conftest import GEOMETRY
 
 
 def _make_samples():
-    return load_module(ROOT / "scripts" / "make_samples.py")
+    return importlib.import_module("scripts.make_samples")
 
 
 def test_vehicles_are_the_repository_geometry():
     for f in GEOMETRY.glob("*.yaml"):
         assert samples.path(f.name).read_bytes() == f.read_bytes(), \
-            f"{f.name}: run python scripts/make_samples.py"
+            f"{f.name}: run python -m scripts.make_samples"
 
 
 def test_samples_are_what_the_script_writes():
     files = _make_samples().build()
     assert sorted(files) == samples.names()
     for name, data in files.items():
-        assert samples.path(name).read_bytes() == data, f"{name}: run python scripts/make_samples.py"
+        assert samples.path(name).read_bytes() == data, f"{name}: run python -m scripts.make_samples"
 
 
 def test_path_and_errors():

@@ -1,13 +1,10 @@
 """`stripcoef simulate` end to end: model file in, inputs CSV in, log CSV out; bad input."""
 
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-
-sys.path.insert(0, str(Path(__file__).parent))
 
 from stripcoef import cli  # noqa: E402
 from stripcoef.logfile import Log, read_log  # noqa: E402

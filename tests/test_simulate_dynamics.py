@@ -99,7 +99,7 @@ def test_thruster_commands_forward_and_backward_maps():
     model = make_model(thrusters=thr)
     t = np.linspace(0.0, 80.0, 801)
     n = np.where(t < 40.0, 60.0, -60.0)
-    # Seed 000 (sec. II.C) treats the DOFs as decoupled; with the Munk moment
+    # Wang & Clark (2006) (sec. II.C) treats the DOFs as decoupled; with the Munk moment
     # (Y_vdot - X_udot) u v and this small yaw damping the straight run is directionally
     # unstable and a rounding-level asymmetry turns it into a circle, so drop it here.
     log = simulate(model, t, commands={"port": n, "starboard": n}, munk=False)

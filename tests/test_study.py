@@ -194,3 +194,39 @@ def test_sweep_bad_keys_and_ranges_name_the_key(vary, needle, capsys):
 def test_parse_vary():
     v = parse_vary("mass.mass=10:12:3")
     np.testing.assert_allclose(v.values, [10, 11, 12])
+
+
+def test_sweep_says_why_a_limit_is_blank_and_plots_units(capsys):
+    """A blank limit (NaN) of a grid point comes with its reason (``limits_note``, and one
+    stderr line per reason from the CLI); the figure's axes carry units."""
+    pytest.importorskip("pandas")
+    pytest.importorskip("matplotlib")
+    from stripcoef.study.plots import sweep_figure
+    from stripcoef.study.sweep import blank_points
+    frame = sweep(MARES, ["thrusters[0].max_forward=10:20:2"], strips=200, workers=1,
+                  progress=False)
+    blank = frame["sway_speed_max"].isna()
+    assert blank.all()                      # MARES has no lateral thruster
+    assert all("sway_speed_max" in n for n in frame["limits_note"][blank])
+    assert sum(blank_points(frame).values()) == int(blank.sum())
+    ax = sweep_figure(frame, ["thrusters[0].max_forward"], "surge_speed_max").axes[0]
+    assert ax.get_xlabel() == "thrusters[0].max_forward [N]"
+    assert ax.get_ylabel() == "surge_speed_max [m/s]"
+    with pytest.raises(InputError, match="unknown output"):
+        sweep_figure(frame, ["thrusters[0].max_forward"], "limits_note")
+    assert main(["sweep", str(MARES), "--vary", "thrusters[0].max_forward=10:20:2",
+                 "--workers", "1", "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert "2 of 2 grid points have blank limits: blank: sway_speed_max" in err
+
+
+def test_coefficient_units_follow_the_matrix_entries():
+    from stripcoef.views import coefficient_unit, key_unit
+    assert coefficient_unit("X_udot") == "kg" and coefficient_unit("N_rdot") == "kg m^2"
+    assert coefficient_unit("Y_rdot") == "kg m" and coefficient_unit("X_u") == "kg/s"
+    assert coefficient_unit("X_uu") == "kg/m" and coefficient_unit("N_rr") == "kg m^2"
+    assert coefficient_unit("Y_uv") == "kg/m" and coefficient_unit("N_uv") == "kg"
+    assert coefficient_unit("Y_uudr") == "kg/m/rad" and coefficient_unit("mass") == "kg"
+    assert coefficient_unit("u_max@R=5") == "m/s" and coefficient_unit("nonsense") == ""
+    assert key_unit("hull.profile[1].radius") == "m" and key_unit("mass.zones[0].density") \
+        == "kg/m^3"

@@ -9,7 +9,6 @@ holds) fails here until the document is generated again.
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -65,9 +64,8 @@ def test_the_comparison_allows_a_rounding_and_nothing_else():
 
 
 def test_validation_doc_is_generated_from_the_current_code():
-    sys.path.insert(0, str(ROOT))
     from validation import build
     stored = (ROOT / "docs" / "validation.md").read_text()
     stale = stale_lines(stored, build())
-    assert not stale, ("docs/validation.md is stale: run python scripts/make_validation.py; "
+    assert not stale, ("docs/validation.md is stale: run python -m scripts.make_validation; "
                        f"first difference at line {stale[0][0]}:\n{stale[0][1]}\n{stale[0][2]}")

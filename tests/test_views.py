@@ -65,7 +65,6 @@ def test_blas_pinned_inside_estimate_without_the_cli():
     pytest.importorskip("threadpoolctl")
     code = f"""
 import sys
-sys.path[:0] = [{str(ROOT / 'src')!r}]
 from threadpoolctl import threadpool_info
 import importlib
 est = importlib.import_module("stripcoef.assembly.estimate")

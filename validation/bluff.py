@@ -1,10 +1,10 @@
 """Validation section: bluff shapes (boxes, short cylinders, ellipsoids, open frames) against
 converged Capytaine references and Lamb's exact ellipsoids (issue 14).
 
-The references are data (benchmarks/data/bem_bluff.csv, written by
-``python benchmarks/bluff_shapes.py --reference``); the accuracy tables are the stored output
+The references are data (reference_tables/bem/bem_bluff.csv, written by
+``python -m benchmarks.bluff_shapes --reference``); the accuracy tables are the stored output
 of the benchmark (benchmarks/data/bluff_accuracy_<mode>.md, written by
-``python benchmarks/bluff_shapes.py [--per-dof-axes | --method panels --bem-timing] --write``),
+``python -m benchmarks.bluff_shapes [--per-dof-axes | --method panels --bem-timing] --write``),
 so that this report does not rerun the 24 shapes.
 """
 
@@ -17,13 +17,15 @@ import numpy as np
 from validation import ROOT, markdown_table
 
 DATA = ROOT / "benchmarks" / "data"
+#: the stored Capytaine references (reference_tables/bem/README.md)
+BEM = ROOT / "reference_tables" / "bem"
 DOF = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
 
 
 def _convergence_rows():
     """Per shape: faces of the two resolutions and the largest change of a diagonal term from
     the finer run to the Richardson value, relative to that term (an error estimate)."""
-    lines = [ln for ln in open(DATA / "bem_bluff.csv") if not ln.startswith("#")]
+    lines = [ln for ln in open(BEM / "bem_bluff.csv") if not ln.startswith("#")]
     by = {}
     for r in csv.DictReader(lines):
         if r["i"] == r["j"]:
@@ -43,7 +45,7 @@ def section() -> str:
              "Eighteen shapes of `benchmarks/bluff_shapes.py` (body axes FRD, about the volume "
              "centroid, rho = 1000 kg/m^3). Reference: Capytaine 3.0.0, direct method, no free "
              "surface, two resolutions of at most 5000 faces and their Richardson extrapolation "
-             "(`benchmarks/data/bem_bluff.csv`); the ellipsoids' diagonals against Lamb's exact "
+             "(`reference_tables/bem/bem_bluff.csv`); the ellipsoids' diagonals against Lamb's exact "
              "values (`stripcoef.hull.lamb.ellipsoid_added_mass`, which the stored BEM matches "
              "within 0.5 %, tests/test_bluff_shapes.py). Reference convergence (largest change of "
              "a diagonal term from the finer run to the extrapolation):\n",

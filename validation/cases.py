@@ -77,7 +77,7 @@ def videoray_tether_gap(*, predicted: float = VIDEORAY_PREDICTED,
 
     References
     ----------
-    Seed 000, eq. 7 and Table I (experimental X_u, X_u|u|); Hoerner (1965) ch. 3 (C_d of a
+    Wang & Clark (2006), eq. 7 and Table I (experimental X_u, X_u|u|); Hoerner (1965) ch. 3 (C_d of a
     cylinder in cross-flow; skin friction of a cylinder along the flow).
     """
     model = rov_model() if model is None else model

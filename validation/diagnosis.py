@@ -36,7 +36,9 @@ def section() -> str:
         r = vr[key]
         s = r["per_dof"]["surge"]
         steps = ", ".join(f"{st['effect']} c_t = {st['parameters']['c_t']:.4f} ± "
-                          f"{st['std']['c_t']:.4f}" for st in r["steps"]) or "none"
+                          f"{st['std']['c_t']:.4f}"
+                          + (" (removed by the validation)" if st.get("kept") is False else "")
+                          for st in r["steps"]) or "none"
         rows.append([label, r["baseline_error"], r["calibrated_error"], r["final_error"],
                      f"{s['calibration']['band_z']['D_Q']:+.2f}", steps])
     out += ["Diagnosis of generated pool runs (n = 30 to 90, both ways; tether drag per metre "
@@ -48,7 +50,7 @@ def section() -> str:
             "length) identifies it and its coefficient. Without it the tether is a 20 % larger "
             "X_u|u|, inside strip theory's 30 % band: the calibration absorbs it and the "
             "diagnosis says so instead of naming an effect — the data of the paper could not "
-            "have told a tether from a larger drag coefficient.", ""]
+            "have told a tether from a larger drag coefficient." + _removed_text(vr), ""]
     rc = romeo_case(seed=0)
     shrink = [(abs(r["standard_buoyancy"] - r["weight_truth"]),
                abs(r["eta_buoyancy"] - r["weight_truth"])) for r in rc]
@@ -81,6 +83,21 @@ def section() -> str:
             + _within_text(rc) + " In the neutral experiment no buoyancy term is added "
             "at all.", ""]
     return "\n".join(out)
+
+
+def _removed_text(vr) -> str:
+    """What the validation by free simulation did with the tether (the final error is the
+    written model's: a removed step is not in it)."""
+    r = vr["with_tether_length"]
+    if all(st.get("kept", True) for st in r["steps"]):
+        return ""
+    val = r["validation"]
+    return (" The validation by free simulation (the last quarter of the fitting log, "
+            f"{val['validation_s'][0]:.0f}-{val['validation_s'][1]:.0f} s) then removed the "
+            "tether from the written model: its surge error there is "
+            f"{val['all_changes']['surge']:.4f} m/s with it and "
+            f"{val['kept_changes']['surge']:.4f} m/s without (prior "
+            f"{val['prior']['surge']:.4f}), so the final error is the calibrated model's.")
 
 
 def _within_text(rc) -> str:

@@ -1,17 +1,18 @@
 """Validation section: fins (the finned-circle sections and finned Myring hulls against the BEM).
 
 Generated from the same computations the tests assert (tests/test_fin_sections.py) and from the
-Capytaine references stored in benchmarks/data/bem_finned_bodies.csv
-(benchmarks/finned_bodies.py).
+Capytaine references stored in reference_tables/bem/ (validation/finned.py reads them;
+benchmarks/finned_bodies.py, benchmarks/fin_bem_refinement.py and benchmarks/plate_added_mass.py
+compute them).
 """
 
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 
-from validation import ROOT, markdown_table
+from validation import finned as fb
+from validation import markdown_table
+from validation.finned import finned_section
 
 RHO = 1000.0
 
@@ -19,8 +20,6 @@ RHO = 1000.0
 def _section_rows():
     from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
     from stripcoef.sections.panel import added_mass_contours
-    sys.path.insert(0, str(ROOT / "tests"))
-    from test_fin_sections import _section
     rows = []
     for r, fins in ((0.0, 2), (0.0, 4), (0.42, 2), (0.42, 4), (0.6, 4)):
         roll = finned_circle_roll(r, 1.0, fins=fins, rho=RHO)
@@ -28,7 +27,7 @@ def _section_rows():
         bare = np.pi / 8 if fins == 2 else 2 / np.pi
         e_roll, e_norm = [], []
         for t in (0.02, 0.01, 0.005):
-            m = added_mass_contours(_section(r, 1.0, fins, t), rho=RHO, panels=1200)
+            m = added_mass_contours(finned_section(r, 1.0, fins, t), rho=RHO, panels=1200)
             e_roll.append(m[2, 2] / roll - 1)
             e_norm.append(m[1, 1] / normal - 1)
 
@@ -42,13 +41,6 @@ def _section_rows():
     return rows
 
 
-def _finned_bodies():
-    """benchmarks/finned_bodies.py (the bodies, their vehicle files and the stored BEM)."""
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import finned_bodies as fb
-    return fb
-
-
 def fin_shares(cases=None) -> dict:
     """case -> (model M_A, the model's fins' share, the BEM's fins' share) of the finned hulls of
     benchmarks/finned_bodies.py (``cases``, default all) [kg, kg m, kg m^2], about mid-length.
@@ -60,7 +52,6 @@ def fin_shares(cases=None) -> dict:
 
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.vehicle import parse_vehicle
-    fb = _finned_bodies()
     bare_bem = fb.bare_hull_exact()
     refs = fb.load_references()
     out = {}
@@ -76,7 +67,6 @@ def fin_shares(cases=None) -> dict:
 
 
 def _bem_rows(results):
-    fb = _finned_bodies()
     refs = fb.load_references()
     rows = []
     names = {(0, 0): "surge", (1, 1): "sway", (2, 2): "heave", (3, 3): "roll", (4, 4): "pitch",
@@ -95,14 +85,12 @@ def _bem_rows(results):
 
 
 def _plate_rows():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import plate_added_mass as pa
     from stripcoef.data import load_table
     table = load_table("plate_added_mass_dnv")
     rows = []
-    for ratio, lv in sorted(pa.load().items()):
+    for ratio, lv in sorted(fb.load_plates().items()):
         dnv = table.interp(1.0 / ratio, "lambda")
-        if 0.01 not in lv:          # the thin level did not run (benchmarks/plate_added_mass.py)
+        if 0.01 not in lv:          # the thin level did not run (python -m benchmarks.plate_added_mass)
             rows.append([f"{ratio:g}", f"{lv[0.02]:.4f}", "not run", "",
                          f"{dnv:.3f}", f"{100 * (lv[0.02] - dnv) / dnv:+.2f} (t/a = 0.02)"])
             continue
@@ -118,7 +106,7 @@ SHARE_TERMS = (((0, 0), "surge"), ((1, 1), "sway"), ((5, 5), "yaw"), ((1, 5), "s
 
 def _refinement_case(fr, case, m) -> tuple:
     """(table rows, one sentence) of one case of the fin-refined BEM study."""
-    study = fr.load(case)
+    study = fr.load_refinement(case)
     terms = fr.COUPLINGS + fr.DIAGONAL
     rows = [[case if k == 0 else "", name, str(n)] + [f"{a[i, j]:.5g}" for i, j in terms]
             + [f"{100 * (a[1, 5] + a[2, 4]) / a[1, 5]:+.2f}"]
@@ -131,7 +119,7 @@ def _refinement_case(fr, case, m) -> tuple:
     roll_trend = ("falls" if roll == sorted(roll, reverse=True) else
                   "rises" if roll == sorted(roll) else "moves")
     off = {t: 100 * (m[t] / fine[t] - 1) for t in terms}
-    hull = fr.fb.bare_hull_exact()[1, 5]
+    hull = fr.bare_hull_exact()[1, 5]
     share_off = 100 * ((m[1, 5] - hull) / (mean[-1] - hull) - 1)
     mean_off = 100 * (fr.mean_coupling(m) / mean[-1] - 1)
     q = fr.in_plane_order(study, 1, 5)
@@ -151,8 +139,7 @@ def _refinement_case(fr, case, m) -> tuple:
 def _refinement_part(results) -> str:
     """The finned hulls' BEM with the fins refined alone and the hull's error removed
     (benchmarks/fin_bem_refinement.py), every case it has stored."""
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import fin_bem_refinement as fr
+    fr = fb
     terms = fr.COUPLINGS + fr.DIAGONAL
     rows, texts, below, roll_high, missed, scatters = [], [], [], [], [], []
     for case in fr.stored_cases():
@@ -172,7 +159,7 @@ def _refinement_part(results) -> str:
         "The three levels above refine hull and fins together and split the fin boxes by "
         "repeated halving: the 12 mm fins get a second panel across their thickness only at the "
         "finest level, which is where large_tail's coupling jumps. Here "
-        "(benchmarks/fin_bem_refinement.py, benchmarks/data/bem_fin_refinement.csv) the hull is "
+        "(benchmarks/fin_bem_refinement.py, reference_tables/bem/bem_fin_refinement.csv) the hull is "
         "meshed once and solved bare on the same mesh, so its discretisation error cancels: "
         "A = A_BEM(finned) - A_BEM(bare) + A_exact(bare); the fins are structured boxes, "
         "cosine-spaced along chord, thickness and span (the fin mesh column gives the panels in "
@@ -215,7 +202,6 @@ def _share_rows(results):
 
 
 def section() -> str:
-    fb = _finned_bodies()
     results = fin_shares()
     refs = fb.load_references()
     err, spread = {}, {}
@@ -241,10 +227,10 @@ def section() -> str:
              "corrections)\n",
              "REMUS-like Myring hull (L = 1.386 m, D = 0.191 m) with a cruciform of flat fins "
              "(benchmarks/finned_bodies.py CASES); BEM: quarter meshes with two reflection symmetries, "
-             "three refinements, Richardson from the two finest (benchmarks/data/bem_finned_bodies.csv); "
+             "three refinements, Richardson from the two finest (reference_tables/bem/bem_finned_bodies.csv); "
              "'BEM spread' is how far that value is from the two coarsest meshes' Richardson value "
              "(the meshes are built afresh at each level, so the BEM's convergence is not "
-             "monotone on every term: `python benchmarks/finned_bodies.py --order`); M_A about the "
+             "monotone on every term: `python -m benchmarks.finned_bodies --order`); M_A about the "
              "origin (mid-length) [kg, kg m, kg m^2]. Couplings also relative to "
              "sqrt(M_ii M_jj), since about mid-length they are differences of the hull's and the "
              "fins' shares.\n",
@@ -289,7 +275,7 @@ def section() -> str:
              "\n### Thin rectangular plates: DNV-RP-H103 table A-2 against Capytaine\n",
              "Normal added mass lambda = A_33 / (rho pi/4 a^2 b) of a plate a x b (a the shorter "
              "side) of thickness t, Capytaine on quarter meshes (benchmarks/plate_added_mass.py, "
-             "benchmarks/data/bem_plates.csv), t and the panel size halved together and extrapolated "
+             "reference_tables/bem/bem_plates.csv), t and the panel size halved together and extrapolated "
              "linearly to t = 0; the table (read from a public DNV-RP-H103 look-up table, "
              "reference_tables/dnv_rp_c205/table_a2_plates_3d.csv) is what the fins' 3D factor "
              "uses (tests/test_fin_plate.py: within 3 %).\n",

@@ -27,7 +27,7 @@ _DIAGONALS = {
 
 
 def videoray_table() -> dict:
-    """Seed 000 Table I and the surge test (sec. IV.A), from reference_tables/videoray_pro3.
+    """Wang & Clark (2006) Table I and the surge test (sec. IV.A), from reference_tables/videoray_pro3.
 
     Returns the diagonals of each Table I column (``None`` where the paper prints NA),
     the thrust coefficients, the inertias and the surge-test rows (dicts with ``value``

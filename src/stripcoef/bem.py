@@ -191,7 +191,7 @@ def bem_model(model, vehicle):
                                  "strip-theory damping",
                        "bem_faces": int(len(meshes[0].mesh.faces)),
                        "bem_seconds": round(seconds, 3)})
-    return replace(model, added_mass=a, provenance=provenance)
+    return replace(model, added_mass=a, provenance=provenance, added_mass_error=None)
 
 
 def comparison_figure(strip, bem, *, name: str = "", key: str = "plot"):

@@ -195,7 +195,7 @@ def kinematics(eta) -> np.ndarray:
 
     References
     ----------
-    Seed 000, eq. 2; Fossen (2011), eqs. 2.18 and 2.29 (blocks).
+    Wang & Clark (2006), eq. 2; Fossen (2011), eqs. 2.18 and 2.29 (blocks).
     """
     j = np.zeros((6, 6))
     j[:3, :3] = rotation_matrix(eta[3], eta[4], eta[5])

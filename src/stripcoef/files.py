@@ -9,11 +9,12 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, UnreachableError
 
 
 def _write_error(exc: OSError, path, key: str) -> InputError:
@@ -375,7 +376,6 @@ def load_yaml(text: str, *, file: str):
 
 def load_json(text: str, *, file: str):
     """Parse JSON text with nesting bounded by :data:`MAX_NESTING`; errors name the line."""
-    import json
 
     if len(text) > MAX_TEXT:
         raise InputError("file too large", file=file, value=f"{len(text)} characters",
@@ -393,7 +393,6 @@ def load_json(text: str, *, file: str):
 
 def _json_depth(text: str) -> int:
     """Deepest bracket nesting of JSON text, brackets inside strings ignored."""
-    import re
 
     # strings (with their escapes) removed, then the running count of [{ minus ]}
     stripped = re.sub(r'"(?:[^"\\]|\\.)*"', '""', text)
@@ -464,7 +463,6 @@ def check_finite_output(value, *, what: str, file: str | None = None) -> None:
     """
     where = first_non_finite(value)
     if where is not None:
-        from stripcoef.errors import UnreachableError
 
         raise UnreachableError(f"{file + ': ' if file else ''}{where}: {what} is not finite; "
                                "expected finite numbers (nothing written: the input leads "

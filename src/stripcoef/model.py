@@ -23,9 +23,9 @@ from types import MappingProxyType
 
 import numpy as np
 
-from stripcoef.conventions import (DOF, shift_operator, sname_coefficients, skew,
-                                   transform_matrix)
-from stripcoef.errors import InputError, ModelWarning
+from stripcoef.conventions import (DOF, FORCES, VELOCITIES, shift_operator, sname_coefficients,
+                                   skew, transform_matrix)
+from stripcoef.errors import InputError, ModelWarning, unknown_name
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
 
@@ -185,13 +185,75 @@ class ControlSurface:
 CONTROL_NAMES = {"rudder": "{F}_uudr", "elevator": "{F}_uuds"}
 
 
+#: DOF indices of a method band's group (stripcoef.study.sources.GROUPS).
+BAND_GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5), "all": (0, 1, 2, 3, 4, 5)}
+#: The two-sided 95 % quantile of the normal distribution [-].
+Z95 = 1.959963984540054
+#: A term whose 95 % band reaches past this relative change is named in the CLI's warning.
+UNCERTAIN = 0.5
+
+
+@dataclass(frozen=True)
+class MethodBand:
+    """The method's measured (or assumed) spread of one matrix's DOF group.
+
+    ``matrix``: added_mass | linear_damping | quadratic_damping | lift | control; ``dofs``:
+    translation | rotation | coupling | all; ``distribution``: lognormal (``sd`` of ln of a
+    term [-]) or normal (a coupling's error over sqrt(M_ii M_jj) [-]); ``basis``: measured |
+    assumed | not_predicted; ``in_scope``: False where the vehicle lies outside the reference
+    shapes the row was measured on (an extrapolation); ``source``: the row's justification.
+    From ``data/method_uncertainty.csv`` through :func:`stripcoef.study.bands.method_bands`.
+    """
+
+    matrix: str
+    dofs: str
+    distribution: str
+    sd: float
+    basis: str = "measured"
+    in_scope: bool = True
+    source: str = ""
+
+    def factor(self) -> float:
+        """The 95 % band of a lognormal row as a factor: model/true within [1/f, f] [-]."""
+        return float(np.exp(Z95 * self.sd))
+
+    def to_dict(self) -> dict:
+        return {"matrix": self.matrix, "dofs": self.dofs, "distribution": self.distribution,
+                "sd": float(self.sd), "basis": self.basis, "in_scope": bool(self.in_scope),
+                "source": self.source}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "MethodBand":
+        return cls(matrix=str(d["matrix"]), dofs=str(d["dofs"]),
+                   distribution=str(d["distribution"]), sd=float(d["sd"]),
+                   basis=str(d.get("basis", "measured")), in_scope=bool(d.get("in_scope", True)),
+                   source=str(d.get("source", "")))
+
+
+def band_sd(bands, matrix: str, i: int, j: int) -> float | None:
+    r"""sd of ln of entry (i, j) of ``matrix`` under the method bands (None: no band).
+
+    The method scales a matrix DOF by DOF, :math:`M'_{ij} = M_{ij}\sqrt{f_i f_j}` with
+    :math:`\ln f = \sigma_g z_g`, one :math:`z_g` per DOF group (stripcoef.study.sources):
+    so :math:`\sigma(\ln M'_{ij}) = \sigma_g` within a group and
+    :math:`	frac12\sqrt{\sigma_{g_i}^2 + \sigma_{g_j}^2}` across two independent groups.
+    """
+    rows = {b.dofs: b.sd for b in bands if b.matrix == matrix and b.distribution == "lognormal"}
+    if "all" in rows:
+        return rows["all"]
+    gi = next((g for g, idx in BAND_GROUPS.items() if i in idx and g in rows), None)
+    gj = next((g for g, idx in BAND_GROUPS.items() if j in idx and g in rows), None)
+    if gi is None or gj is None:
+        return None
+    return rows[gi] if gi == gj else 0.5 * float(np.hypot(rows[gi], rows[gj]))
+
+
 def control_derivative_names(surfaces) -> dict:
     """SNAME names of every non-zero control derivative, e.g. ``Y_uudr``, ``M_uuds``.
 
     Two surfaces of the same kind are told apart by their name (``Y_uudr_<name>``).
     Naming after Prestero 2001, sec. 3.7 (Y_uudr, Z_uuds, M_uuds, N_uudr).
     """
-    from stripcoef.conventions import FORCES
     out: dict[str, float] = {}
     kinds = [s.kind for s in surfaces]
     for s in surfaces:
@@ -208,7 +270,6 @@ def control_derivative_names(surfaces) -> dict:
 
 def lift_names() -> dict:
     """SNAME name of ``-L[i, j]`` (force -u L nu): ``Y_uv``, ``N_ur``, ... (Prestero 2001, sec. 3.6)."""
-    from stripcoef.conventions import FORCES, VELOCITIES
     return {(i, j): f"{FORCES[i]}_u{VELOCITIES[j]}" for i in range(6) for j in range(6)}
 
 
@@ -254,9 +315,19 @@ class Conditions(Mapping):
     form_factor : float
         Hoerner form factor FF [-]
     axial_drag_coefficient_wetted, axial_drag_coefficient_frontal : float
-        C_f FF on the wetted area, and the same drag on the frontal area [-]
+        The hull's axial drag (without a blunt hull's end drag) on the wetted area, and the
+        same drag on the frontal area [-]
+    axial_drag_method : str
+        How the hull's axial drag was obtained: ``form_factor`` (friction with Hoerner's
+        streamlined-body form factor, closed hull of L/D >= 3), ``measured_short_body`` (the
+        measured drag of ellipsoids, L/D <= 2), ``bridge`` (between the two), ``blunt``
+        (flat bow: the measured drag of flat-ended bodies end-on, plus plain friction) or
+        ``blunt_base`` (closed bow, flat stern: the measured drag of ellipsoids of its L/D,
+        plus plain friction)
     blunt_hull_cd : float
-        Axial pressure drag coefficient of a blunt hull end [-]
+        Axial whole-body drag coefficient of a blunt hull on its largest section [-]
+    blunt_hull_aspect_ratio : float
+        Width over height of that section, which sets a thin plate's drag [-]
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -283,6 +354,13 @@ class Conditions(Mapping):
         How M_A was obtained when not by the strips (the 3D panel method)
     added_mass_panels : int
         Panels of the finer resolution of the panel method
+    added_mass_error_max : float
+        Largest estimated error of a term of M_A over the diagonal scale [-]
+        (:attr:`HydroModel.added_mass_error`)
+    mirror_planes : str
+        The body's mirror planes through the reference point (``x``, ``y``, ``z``: the axis
+        each reverses, or ``none``) whose forbidden couplings of M_A were set to exactly zero
+        (:mod:`stripcoef.assembly.symmetry`; the 3D panel method)
     lift : mapping
         How the lift terms were built (body and fin lift, :mod:`stripcoef.assembly.lift`)
     strips : int
@@ -312,7 +390,9 @@ class Conditions(Mapping):
     form_factor: float | None = None
     axial_drag_coefficient_wetted: float | None = None
     axial_drag_coefficient_frontal: float | None = None
+    axial_drag_method: str | None = None
     blunt_hull_cd: float | None = None
+    blunt_hull_aspect_ratio: float | None = None
     hull_reynolds_diameter: float | None = None
     hull_crossflow_cd_y: float | None = None
     hull_crossflow_cd_z: float | None = None
@@ -331,6 +411,8 @@ class Conditions(Mapping):
     correction_panels: int | None = None
     added_mass_method: str | None = None
     added_mass_panels: int | None = None
+    added_mass_error_max: float | None = None
+    mirror_planes: str | None = None
     lift: Mapping | None = None
     strips: int | None = None
     corrections: bool | None = None
@@ -434,6 +516,10 @@ class HydroModel:
         ``-L[1, 1] = Y_uv``, ``-L[5, 5] = N_ur`` (docs/conventions.md; Prestero 2001, sec. 3.6)
     control_surfaces : tuple of ControlSurface
         Rudders and elevators: force ``u^2 b delta`` and deflection limits
+    added_mass_error : (6, 6) or None
+        Estimated absolute error of each term of M_A [kg, kg m, kg m^2] where the method
+        gives one (the 3D panel method: its two resolutions' Richardson correction,
+        :func:`stripcoef.hull.panels.panel_added_mass`); ``None`` otherwise
     """
 
     name: str
@@ -455,12 +541,17 @@ class HydroModel:
     provenance: Mapping = field(default_factory=dict)
     lift: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     control_surfaces: tuple = ()
+    bands: tuple = ()
+    added_mass_error: np.ndarray | None = None
 
     def __post_init__(self):
         for name in _ARRAYS:
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
+        if self.added_mass_error is not None:
+            object.__setattr__(self, "added_mass_error", frozen_array(self.added_mass_error))
         object.__setattr__(self, "thrusters", tuple(self.thrusters))
         object.__setattr__(self, "control_surfaces", tuple(self.control_surfaces))
+        object.__setattr__(self, "bands", tuple(self.bands))
         object.__setattr__(self, "effects", tuple(dict(e) if isinstance(e, Mapping) else e
                                                   for e in self.effects))
         object.__setattr__(self, "conditions", Conditions.from_dict(self.conditions))
@@ -562,7 +653,6 @@ class HydroModel:
         for s in self.control_surfaces:
             if s.name == name:
                 return s
-        from stripcoef.errors import unknown_name
         raise unknown_name("control surface", name, [s.name for s in self.control_surfaces])
 
     def restoring(self, eta) -> np.ndarray:
@@ -583,7 +673,6 @@ class HydroModel:
         for t in self.thrusters:
             if t.name == name:
                 return t
-        from stripcoef.errors import unknown_name
         raise unknown_name("thruster", name, [t.name for t in self.thrusters])
 
     def coefficients(self) -> dict:
@@ -600,6 +689,50 @@ class HydroModel:
         out.update(control_derivative_names(self.control_surfaces))
         return out
 
+    def coefficient_bands(self) -> dict:
+        r"""The 95 % method band of every coefficient of :meth:`coefficients` that has one:
+        name -> (low, high), in the coefficient's units and SNAME sign.
+
+        A term scaled by the method's lognormal factors lies in
+        :math:`[c\,e^{-1.96\sigma}, c\,e^{1.96\sigma}]` (:func:`band_sd`); an added-mass
+        coupling moves additively, :math:`c \pm 1.96\,\sigma_c \sqrt{M_{ii}M_{jj}}`; lift
+        terms and control derivatives take their one factor. Empty without :attr:`bands`.
+        """
+        if not self.bands:
+            return {}
+        from stripcoef.conventions import (added_mass_name, linear_damping_name,
+                                           quadratic_damping_name)
+        coeffs = self.coefficients()
+        named = {}
+        for matrix, namer, m in (("added_mass", added_mass_name, self.added_mass),
+                                 ("linear_damping", linear_damping_name, self.linear_damping),
+                                 ("quadratic_damping", quadratic_damping_name,
+                                  self.quadratic_damping)):
+            for i in range(6):
+                for j in range(6):
+                    named[namer(i, j)] = (matrix, i, j, m)
+        named.update({name: ("lift", i, j, self.lift) for (i, j), name in lift_names().items()})
+        coupling = next((b.sd for b in self.bands if b.matrix == "added_mass"
+                         and b.dofs == "coupling"), None)
+        control = next((b.sd for b in self.bands if b.matrix == "control"), None)
+        out = {}
+        for name, value in coeffs.items():
+            if "_uud" in name:
+                sd = control
+            elif name in named:
+                matrix, i, j, m = named[name]
+                if matrix == "added_mass" and i != j and coupling is not None:
+                    half = Z95 * coupling * float(np.sqrt(abs(m[i, i] * m[j, j])))
+                    out[name] = (value - half, value + half)
+                    continue
+                sd = band_sd(self.bands, matrix, i, j)
+            else:
+                sd = None
+            if sd is not None:
+                lo, hi = value * np.exp(-Z95 * sd), value * np.exp(Z95 * sd)
+                out[name] = (float(min(lo, hi)), float(max(lo, hi)))
+        return out
+
     # -- labelled views (stripcoef.views) -------------------------------------
     def frame(self, kind: str = "added_mass"):
         """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
@@ -607,7 +740,6 @@ class HydroModel:
         ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
         from stripcoef.views import MATRICES, matrix_frame
         if kind not in MATRICES:
-            from stripcoef.errors import unknown_name
             raise unknown_name("matrix", kind, MATRICES, key="kind")
         return matrix_frame(getattr(self, kind), kind)
 
@@ -642,9 +774,15 @@ class HydroModel:
         shift = shift_operator(-(point - old)).T     # tau_P = H(-r)^T tau_O
         surfaces = tuple(replace(s, derivative=shift @ np.asarray(s.derivative, float))
                          for s in self.control_surfaces)
+        error = self.added_mass_error
+        if error is not None:
+            # a bound: |H^T dA H| <= |H|^T |dA| |H| term by term (triangle inequality)
+            h = np.abs(shift_operator(-(point - old)))
+            error = h.T @ np.asarray(error) @ h
         return replace(self, reference_point=point, rigid_body_mass=t(self.rigid_body_mass),
                        added_mass=t(self.added_mass), linear_damping=t(self.linear_damping),
-                       quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces)
+                       quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces,
+                       added_mass_error=error)
 
     # -- serialisation ------------------------------------------------------
     def to_dict(self) -> dict:
@@ -652,7 +790,7 @@ class HydroModel:
         def mat(m):
             return [[float(x) for x in row] for row in np.asarray(m)]
 
-        return {
+        out = {
             "name": self.name,
             "dof": list(DOF),
             "reference_point": [float(x) for x in self.reference_point],
@@ -674,7 +812,12 @@ class HydroModel:
             "provenance": plain(self.provenance),
             "lift": mat(self.lift),
             "control_surfaces": [c.to_dict() for c in self.control_surfaces],
+            "bands": [b.to_dict() for b in self.bands],
+            "coefficient_bands": {k: list(v) for k, v in self.coefficient_bands().items()},
         }
+        if self.added_mass_error is not None:
+            out["added_mass_error"] = mat(self.added_mass_error)
+        return out
 
     @classmethod
     def from_dict(cls, data: dict) -> "HydroModel":
@@ -708,6 +851,9 @@ class HydroModel:
             lift=lift,
             control_surfaces=tuple(ControlSurface.from_dict(c)
                                    for c in data.get("control_surfaces", [])),
+            bands=tuple(MethodBand.from_dict(b) for b in data.get("bands", [])),
+            added_mass_error=(None if data.get("added_mass_error") is None
+                              else np.asarray(data["added_mass_error"], float)),
         )
 
 

@@ -71,7 +71,7 @@ class Thruster:
         r"""Thrust for command ``n`` [N]: :math:`T = \eta_\pm C_{t,\pm} n|n|`, saturated at the limits.
 
         ``n`` [command units]; zero for ``|n| <= deadband``; clipped to
-        ``[-max_backward, max_forward]`` [N]. Seed 000, eq. 6 (see module docstring).
+        ``[-max_backward, max_forward]`` [N]. Wang & Clark (2006), eq. 6 (see module docstring).
         """
         n = np.asarray(n, dtype=float)
         fwd = n >= 0.0

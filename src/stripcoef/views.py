@@ -47,6 +47,61 @@ def entry_unit(kind: str, i: int, j: int) -> str:
                      expected="one of " + ", ".join(MATRICES))
 
 
+#: Units of the study outputs that are not coefficients (stripcoef.study.evaluate).
+_OUTPUT_UNITS = {"mass": "kg", "surge_speed_max": "m/s", "heave_speed_max": "m/s",
+                 "sway_speed_max": "m/s", "yaw_rate_max": "rad/s", "min_turning_radius": "m"}
+
+#: Units of vehicle-file numbers by their last key (docs/vehicle-file.md); "" where a key's
+#: unit depends on its context.
+_KEY_UNITS = {"radius": "m", "length": "m", "x": "m", "span": "m", "chord": "m",
+              "thickness": "m", "diameter": "m", "inner_diameter": "m", "root": "m",
+              "center": "m", "size": "m", "position": "m", "center_of_gravity": "m",
+              "reference_point": "m", "mass": "kg", "density": "kg/m^3",
+              "default_density": "kg/m^3", "kinematic_viscosity": "m^2/s",
+              "temperature": "degC", "salinity": "PSU", "max_forward": "N",
+              "max_backward": "N", "inertia": "kg m^2", "area": "m^2"}
+
+
+def coefficient_unit(name: str) -> str:
+    """SI unit of an SNAME coefficient or study output by its name ("" when unknown).
+
+    ``X_udot`` (added mass), ``X_u`` (linear damping), ``X_uu`` (quadratic damping, and the
+    lift terms ``Y_uv``: force per u nu_j) take :func:`entry_unit` of their matrix entry; a
+    control derivative ``Y_uudr`` is force per (u^2 rad): the quadratic unit of a surge
+    column per rad; ``mass`` [kg], speeds [m/s], ``yaw_rate_max`` [rad/s], radii [m].
+    """
+    from stripcoef.conventions import FORCES, VELOCITIES
+
+    if name in _OUTPUT_UNITS:
+        return _OUTPUT_UNITS[name]
+    if name.startswith("u_max@"):
+        return "m/s"
+    force, _, rest = name.partition("_")
+    if force not in FORCES or not rest or rest[0] not in VELOCITIES:
+        return ""
+    i = FORCES.index(force)
+    if rest.endswith("dot") and len(rest) == 4:
+        return entry_unit("added_mass", i, VELOCITIES.index(rest[0]))
+    if len(rest) == 1:
+        return entry_unit("linear_damping", i, VELOCITIES.index(rest[0]))
+    if len(rest) == 2 and rest[1] in VELOCITIES:
+        return entry_unit("quadratic_damping", i, VELOCITIES.index(rest[1]))
+    if rest.startswith("uud"):
+        return entry_unit("quadratic_damping", i, 0) + "/rad"
+    return ""
+
+
+def key_unit(path: str) -> str:
+    """SI unit of a vehicle-file number by its key path (``hull.profile[1].radius`` -> m)."""
+    leaf = str(path).split(".")[-1].split("[")[0]
+    return _KEY_UNITS.get(leaf, "")
+
+
+def with_unit(label: str, unit: str) -> str:
+    """An axis label with its unit in brackets when one is known (``radius [m]``)."""
+    return f"{label} [{unit}]" if unit else label
+
+
 def labels():
     """Row labels (forces) and column labels (velocities): ``X (surge)``, ``u (surge)``."""
     return ([f"{f} ({d})" for f, d in zip(FORCES, DOF)],

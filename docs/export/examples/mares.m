@@ -1,7 +1,7 @@
 function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = mares(x, tau, Vc, delta)
 % MARES  hydrodynamic model exported by stripcoef 0.1.0 to format 'mss'
 % Compatible with MATLAB and the free software GNU Octave (www.octave.org).
-% Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).
+% Style of Fossen's MSS vehicle models (cybergalactic/MSS CRAFT/AUV/models/remus100.m).
 % reference point: CO = [0.00436665486209404, 0, 0.0013222979649128548] m (FRD body coordinates of the source model)
 % axes: FRD (x forward, y starboard, z down)
 % mass 41.32106391636393 kg, volume 0.04169631394247401 m^3, density 998.2063193823999 kg/m^3

@@ -25,11 +25,12 @@ the axis it passes freely: Ferreira et al. 2009, sec. IV.C).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
 from stripcoef.conventions import skew, transform_matrix
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.hull.lamb import end_correction_factors
 from stripcoef.sections import section_added_mass
 from stripcoef.strips import Strips
@@ -584,16 +585,36 @@ def added_mass_method(method, vehicle, strips: Strips) -> str:
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
-    :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), and its info."""
-    from stripcoef.hull.panels import DEFAULT_PANELS, panel_added_mass
+    :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
+    estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
+    :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
+    count that resolves it)."""
+    from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
+                                       panel_added_mass, relative_error)
 
     body = _mesh_of(vehicle)
     n = _panel_count(panels, DEFAULT_PANELS, "added_mass_panels")
+    source = getattr(vehicle, "source", "") or ""
     try:
-        m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n,
-                                     source=getattr(vehicle, "source", "") or "")
+        m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source)
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
+    error = info["error"]
+    rel = relative_error(m_a, error)
+    worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
+    if rel[worst] > ERROR_TOLERANCE:
+        from stripcoef.conventions import DOF
+
+        more = min(2 * n, MAX_PANELS)
+        fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
+               else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
+                    "(stripcoef compare FILE)")
+        warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "
+                      f"estimated error of M_A[{DOF[worst[0]]}, {DOF[worst[1]]}] is "
+                      f"{100 * rel[worst]:.1f} % of the diagonal scale (tolerance "
+                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {info['panels'][0]} and "
+                      f"{info['panels'][1]}); {fix}", ModelWarning, stacklevel=3)
     return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, Richardson "
                                       f"from {info['panels'][0]} and {info['panels'][1]} panels)",
-                 "added_mass_panels": int(info["panels"][1])}
+                 "added_mass_panels": int(info["panels"][1]),
+                 "added_mass_error_max": float(rel.max())}, error

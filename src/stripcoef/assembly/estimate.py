@@ -20,6 +20,8 @@ from stripcoef.assembly.added_mass import added_mass, added_mass_method, panel_v
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
+from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
+from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
 from stripcoef.conventions import clean_roundoff
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
 from stripcoef.threads import small_matrices
@@ -149,8 +151,15 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
     method = added_mass_method(options.added_mass_method, vehicle, st)
+    m_a_error = None
     if method == "panels":
-        m_a, am_info = panel_vehicle_added_mass(vehicle, rho, ref, options.added_mass_panels)
+        m_a, am_info, m_a_error = panel_vehicle_added_mass(vehicle, rho, ref,
+                                                           options.added_mass_panels)
+        # the mirror planes of the body through the reference point: the couplings they
+        # forbid are exactly zero (the panels of a symmetric body are not symmetric)
+        mirrors = strips_mirror_symmetries(st, ref, tol=SYMMETRY_ZERO_TOL)
+        m_a, m_a_error = enforce_symmetry(m_a, mirrors), enforce_symmetry(m_a_error, mirrors)
+        am_info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
     else:
         m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
                                   corrections=corrections, correction_panels=correction_panels,
@@ -172,7 +181,7 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
         thrusters=vehicle.thrusters, conditions=conditions, lift=lift,
-        control_surfaces=surfaces,
+        control_surfaces=surfaces, added_mass_error=m_a_error,
         provenance={"method": "strip theory" if method == "strips" else
                     "strip theory, added mass by the 3D panel method", "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},

@@ -26,6 +26,8 @@ from stripcoef.hull.lift import (
     MIN_SLENDERNESS,
     body_lift_matrix,
     cylindrical_root,
+    separation_station,
+    slender_body_lift_matrix,
     effective_aspect_ratio,
     fin_lift_matrix,
     fin_lift_slope,
@@ -33,6 +35,11 @@ from stripcoef.hull.lift import (
     lift_column,
 )
 from stripcoef.model import ControlSurface
+
+#: Stations sampling the hull for the slender-body lift (assumption: on the SUBOFF hull's
+#: tabulated profile the matrix changes by 0.7 % between 2001 and 8001 stations, because the
+#: steepest-closing station of a piecewise-linear profile moves with the sampling) [-].
+SLENDER_STATIONS = 2001
 
 #: Force direction of a positive deflection (Prestero 2001, sec. 3.7: Y_uudr > 0, Z_uuds < 0).
 DEFLECTION_FORCE = {"rudder": np.array([0.0, 1.0, 0.0]), "elevator": np.array([0.0, 0.0, -1.0])}
@@ -139,7 +146,10 @@ def _body_lift(vehicle, rho: float, ref, center):
 
     ``body_lift: auto`` (default) includes it when the vehicle has fins or control surfaces
     and a circular hull with l/d >= :data:`MIN_SLENDERNESS`; ``on`` asks for it (a hull that
-    is not slender and round is then an error), ``off`` leaves it out. Returns
+    is not slender and round is then an error), ``off`` leaves it out; ``slender`` asks for
+    the slender-body lift ahead of Hopkins's separation station instead of Hoerner's point
+    force (:func:`~stripcoef.hull.lift.slender_body_lift_matrix`: it answers the local
+    cross-flow, so a yaw or pitch rate gives rotary terms). Returns
     (L [kg/m, kg, kg m], info) or None.
     """
     hull = vehicle.hull
@@ -153,11 +163,17 @@ def _body_lift(vehicle, rho: float, ref, center):
     length = hi - lo
     d = hull.max_diameter()
     if not _round(hull) or length / d < MIN_SLENDERNESS:
-        if mode == "on":
+        if mode in ("on", "slender"):
             raise InputError("body lift needs a slender round hull", file=vehicle.source,
                              key="body_lift", value=f"l/d = {length / d:.3g}",
                              expected=f"a hull 'profile' (circular) with l/d >= {MIN_SLENDERNESS:g}")
         return None
+    if mode == "slender":
+        xs = np.linspace(lo, hi, SLENDER_STATIONS)
+        area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
+        x0 = separation_station(xs, area)
+        return (slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z, ref=ref),
+                {"method": "slender", "length": length, "diameter": d, "separation_x": x0})
     x_cp = hi - BODY_CP_FRACTION * length
     cp = np.array([x_cp, hull.y, hull.z]) - np.asarray(ref, float)
     return (body_lift_matrix(length, d, cp, rho=rho,

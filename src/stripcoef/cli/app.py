@@ -22,13 +22,14 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 from stripcoef.errors import InputError, StripcoefError
+from stripcoef.files import check_output_path
 
 #: Options that name a file a command writes: checked before any work (a folder, ``.``, a
 #: missing or unwritable folder is a one-line error, not a failure after minutes of work).
 OUTPUT_OPTIONS = ("output", "out", "report", "plot")
 
 #: Subcommands, in the order of the pipeline.
-COMMANDS = ("coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
+COMMANDS = ("mesh", "coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
             "diagnose", "uncertainty", "sweep", "samples")
 
 
@@ -82,7 +83,6 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
 
 def check_outputs(args) -> None:
     """Every output option of the command names a writable file path (before any work)."""
-    from stripcoef.files import check_output_path
 
     from stripcoef import samples
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import yaml
 
@@ -9,6 +11,7 @@ from stripcoef.conventions import DOF
 from stripcoef.cli.options import (add_fluid_arguments, add_mesh_arguments,
                                    estimate_from_args)
 from stripcoef.files import json_text, write_text
+from stripcoef.study.bands import band_lines, warn_uncertain, with_bands
 
 
 
@@ -59,11 +62,14 @@ def _pt(point) -> list:
 
 def format_table(model) -> str:
     """A readable summary: mass properties, the three matrices, conditions."""
-    def mat(name, m, unit):
+    bands = band_lines(model)
+
+    def mat(name, m, unit, matrix=None):
         lines = [f"{name} [{unit}] about {_pt(model.reference_point)} m:"]
         lines.append("        " + "".join(f"{d:>11s}" for d in DOF))
         for d, row in zip(DOF, np.asarray(m)):
             lines.append(f"{d:>7s} " + "".join(f"{v:11.4g}" for v in row))
+        lines += ["  method " + b for b in bands if matrix and b.startswith(matrix + " ")]
         return "\n".join(lines)
 
     c = model.conditions
@@ -76,16 +82,23 @@ def format_table(model) -> str:
            f"CB {_pt(model.center_of_buoyancy)} m",
            f"  fluid: rho = {model.density:.5g} kg/m^3, nu = {model.kinematic_viscosity:.4g} m^2/s",
            "",
-           mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2"),
+           mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2", "added_mass"),
            "",
-           mat("Linear damping D_L", model.linear_damping, "kg/s, kg m/s, kg m^2/s"),
+           *([mat("Estimated error of M_A (Richardson: the finer panel level's step to the "
+                  "extrapolation)", model.added_mass_error, "kg, kg m, kg m^2"),
+              f"  largest: {100 * c.get('added_mass_error_max', 0.0):.2g} % of the diagonal "
+              "scale sqrt(M_ii M_jj)", ""]
+             if model.added_mass_error is not None else []),
+           mat("Linear damping D_L", model.linear_damping, "kg/s, kg m/s, kg m^2/s",
+               "linear_damping"),
            "",
-           mat("Quadratic damping D_Q", model.quadratic_damping, "kg/m, kg, kg m^2"),
+           mat("Quadratic damping D_Q", model.quadratic_damping, "kg/m, kg, kg m^2",
+               "quadratic_damping"),
            "",
            mat("Rigid-body mass M_RB", model.rigid_body_mass, "kg, kg m, kg m^2"),
            ""]
     if np.any(model.lift) or model.control_surfaces:
-        out += [mat("Lift L (force -u L nu)", model.lift, "kg/m, kg, kg m"), ""]
+        out += [mat("Lift L (force -u L nu)", model.lift, "kg/m, kg, kg m", "lift"), ""]
         coeffs = model.coefficients()
         lift_names = [k for k in ("Y_uv", "Y_ur", "Z_uw", "Z_uq", "K_up", "M_uw", "M_uq",
                                   "N_uv", "N_ur") if k in coeffs]
@@ -101,6 +114,7 @@ def format_table(model) -> str:
         if ctrl:
             out.append("Control derivatives (SNAME): " + ", ".join(
                 f"{k} = {v:.4g}" for k, v in ctrl.items()))
+            out += ["  method " + b for b in bands if b.startswith("control ")]
         out.append("")
     torques = [t for t in model.thrusters if getattr(t, "torque_ratio", 0.0)]
     for t in torques:
@@ -113,7 +127,8 @@ def format_table(model) -> str:
             "cf_used", "form_factor", "axial_drag_coefficient_frontal", "hull_reynolds_diameter",
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
             "end_correction_sway", "end_correction_heave", "end_correction_pitch",
-            "end_correction_yaw", "correction_method", "added_mass_method")
+            "end_correction_yaw", "correction_method", "added_mass_method",
+            "added_mass_error_max", "mirror_planes")
     for k in keys:
         if k in c:
             v = c[k]
@@ -121,8 +136,10 @@ def format_table(model) -> str:
     lift = c.get("lift", {})
     if "body_lift" in lift:
         b = lift["body_lift"]
+        where = (f"x_0 = {b['separation_x']:.4g} m (slender body)" if "separation_x" in b
+                 else f"x_cp = {b['center_of_pressure_x']:.4g} m")
         out.append(f"  {'body_lift':32s} l = {b['length']:.4g} m, d = {b['diameter']:.4g} m, "
-                   f"x_cp = {b['center_of_pressure_x']:.4g} m")
+                   + where)
     for f in lift.get("fin_lift", []):
         out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
                    f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2"
@@ -151,10 +168,14 @@ def run(args) -> int:
         from stripcoef.figures import check_plot_path
         check_plot_path(args.plot, key="--plot")
     vehicle, model = estimate_from_args(args)
+    model = with_bands(model, vehicle)
     if args.method == "bem":
         from stripcoef import bem  # optional extra
 
         model = bem.bem_model(model, vehicle)
+        # the added mass is the BEM's: the strip method's added-mass bands do not apply
+        model = replace(model, bands=tuple(b for b in model.bands if b.matrix != "added_mass"))
+    warn_uncertain(model)
     data = model.to_dict()
     if args.json:
         text = json_text(data)

@@ -51,7 +51,7 @@ def run(args) -> int:
     from dataclasses import replace
 
     from stripcoef.diagnose.pipeline import (DEFAULT_WINDOW, VALIDATION_FRACTION, diagnose,
-                                             heldout_errors, prior_widths)
+                                             heldout_errors, load_prior)
     from stripcoef.diagnose.report import markdown_report, text_summary
     from stripcoef.effects.laws import get_effect
     from stripcoef.export import write_export
@@ -72,10 +72,9 @@ def run(args) -> int:
     # --validation by diagnose (its keys are reworded to the flags by cli.app)
     validation = VALIDATION_FRACTION if args.validation is None else args.validation
     log = read_log_from_args(args.log, args, required=("t",))
-    model = load_model(args.vehicle)
     # a vehicle file: the method uncertainty of its shape class sets the widths of the
     # calibration's priors and bounds the added mass (a model file: the fixed bands)
-    widths = prior_widths(args.vehicle)
+    model, widths = load_prior(args.vehicle)
     result = diagnose(log, model, dof=args.dof, window=args.window, effects=effects,
                       resimulate=not args.no_resimulate, validation=validation,
                       holdout=args.holdout, prior_widths=widths)

@@ -38,6 +38,17 @@ def add_parser(subparsers):
     p.add_argument("--fortress", action="store_true",
                    help="gazebo: a file for Ignition Gazebo Fortress (SDF 1.9, whose sdformat 12 "
                         "drops <fluid_added_mass>; ignition plugin names; legacy added mass)")
+    p.add_argument("--lumped-added-mass", dest="lumped_added_mass", action="store_true",
+                   default=None,
+                   help="gazebo: carry part of the added mass in the link's own mass and "
+                        "inertia so that the explicit legacy tags stay stable (default with "
+                        "--fortress)")
+    p.add_argument("--no-lumped-added-mass", dest="lumped_added_mass", action="store_false",
+                   help="gazebo: the whole added mass in the explicit legacy tags")
+    p.add_argument("--no-thrusters", dest="thrusters", action="store_false", default=None,
+                   help="gazebo: no Thruster systems (default: one per thruster)")
+    p.add_argument("--world", action="store_true",
+                   help="gazebo: a world file around the model (physics, buoyancy)")
     p.add_argument("--no-buoyancy-volume", dest="buoyancy_volume", action="store_false",
                    default=None,
                    help="gazebo: no displaced-volume box (the link's own collisions give the "
@@ -55,9 +66,16 @@ def run(args) -> int:
         raise InputError(f"format {args.to} is binary and is not printed", key="output",
                          expected="-o FILE")
     model = load_model(args.vehicle)
+    if model.provenance.get("method") == "strip theory" and not model.bands:
+        # estimated from a vehicle file here: its method bands go into the files' comments
+        from stripcoef.geometry.vehicle import load_vehicle
+        from stripcoef.study.bands import with_bands
+        model = with_bands(model, load_vehicle(args.vehicle))
     options = dict(point=args.point, axes=args.axes, link_name=args.link_name,
                    legacy_added_mass=args.legacy_added_mass, fortress=args.fortress,
-                   buoyancy_volume=args.buoyancy_volume)
+                   buoyancy_volume=args.buoyancy_volume,
+                   lumped_added_mass=args.lumped_added_mass, thrusters=args.thrusters,
+                   world=args.world)
     if args.output:
         path = write_export(model, args.to, args.output, **options)
         print(f"wrote {path}", file=sys.stderr)

@@ -98,7 +98,7 @@ def format_fit(fit, *, source: str) -> str:
 
 
 def format_comparison(cmp) -> str:
-    """Seed 001's yaw tables: one column per model and direction, then the ranking."""
+    """Indiveri's (1998) yaw tables: one column per model and direction, then the ranking."""
     lines = [f"steady-state model comparison, dof {cmp.dof}", ""]
     fits = cmp.single + [c.fits[0] for c in cmp.candidates if c.direction == "both"]
     names = []

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from stripcoef.errors import InputError
 
 
@@ -12,6 +14,9 @@ def add_fluid_arguments(parser, title: str):
     g.add_argument("--nu", type=float, metavar="M2_S", help="kinematic viscosity [m^2/s]")
     g.add_argument("--water-temperature", type=float, metavar="C", help="temperature [degC]")
     g.add_argument("--salinity", type=float, metavar="PSU", help="salinity [PSU]")
+    g.add_argument("--water-equation", choices=("eos80", "teos10"), default=None,
+                   help="density from temperature and salinity by EOS-80 (default) or TEOS-10 "
+                        "(needs pip install 'stripcoef[seawater]')")
     return g
 
 
@@ -25,6 +30,9 @@ def add_mesh_arguments(parser):
                    help="mesh axis along the body (default x)")
     m.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
                    help="length unit of the mesh file")
+    m.add_argument("--z-up", action="store_true",
+                   help="the mesh file is z-up (ROS REP 103, most CAD): turned 180 deg about "
+                        "x into the body axes (FRD, z down)")
     m.add_argument("--added-mass-method", choices=("auto", "strips", "panels"), default="auto",
                    help="M_A by the 3D panel method for a mesh that is neither round nor "
                         "slender, by strip theory otherwise (auto, default); always by strip "
@@ -56,6 +64,11 @@ def fluid_from_args(args, default):
 
     ts = args.water_temperature is not None or args.salinity is not None
     dn = args.rho is not None or args.nu is not None
+    equation = getattr(args, "water_equation", None)
+    if equation is not None and not ts:
+        raise InputError("an equation of state needs the water's temperature and salinity",
+                         key="--water-equation", value=equation,
+                         expected="--water-temperature and --salinity beside it")
     if ts and dn:
         raise InputError("conflicting fluid options", key="--rho/--nu",
                          expected="either --rho/--nu or --water-temperature/--salinity")
@@ -64,10 +77,12 @@ def fluid_from_args(args, default):
             raise InputError("incomplete fluid options", key="--water-temperature/--salinity",
                              expected="both --water-temperature and --salinity")
         try:
-            return Fluid.from_temperature_salinity(args.water_temperature, args.salinity)
+            return Fluid.from_temperature_salinity(args.water_temperature, args.salinity,
+                                                   equation=equation or "eos80")
         except InputError as exc:
-            raise exc.with_key("--" + str(exc.key).replace("temperature", "water-temperature")) \
-                from None
+            flag = {"temperature": "water-temperature", "equation": "water-equation"}.get(
+                str(exc.key), str(exc.key))
+            raise exc.with_key("--" + flag) from None
     if dn:
         base = default or Fluid()
         rho = args.rho if args.rho is not None else base.density
@@ -81,14 +96,14 @@ def fluid_from_args(args, default):
 
 def load_any_vehicle(args):
     """A Vehicle from a YAML vehicle file or from a mesh (with the mesh options)."""
-    from pathlib import Path
 
     from stripcoef.geometry.vehicle import MESH_SUFFIXES, load_vehicle
 
     path = Path(args.vehicle)
     if path.suffix.lower() in MESH_SUFFIXES:
         origin = "centroid" if args.origin == "centroid" else parse_point(args.origin, key="--origin")
-        return load_vehicle(path, axis=args.axis, length_unit=args.length_unit, origin=origin)
+        return load_vehicle(path, axis=args.axis, length_unit=args.length_unit, origin=origin,
+                            z_up=getattr(args, "z_up", False))
     return load_vehicle(path)
 
 

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import sys
+
+from stripcoef.cli.uncertainty import add_execution_arguments
+from stripcoef.errors import InputError
+
 
 def add_parser(sub):
-    from stripcoef.cli.uncertainty import add_execution_arguments
-
     p = sub.add_parser("sweep", help="the model and limits over a grid of vehicle-file values",
                        description="Set numbers of the vehicle file by key path "
                                    "(hull.profile[1].radius, thrusters[0].max_forward, "
@@ -28,7 +31,7 @@ def add_parser(sub):
 
 def run(args) -> int:
     from stripcoef.study.plots import sweep_figure
-    from stripcoef.study.sweep import parse_vary, sweep, write_table
+    from stripcoef.study.sweep import blank_points, parse_vary, sweep, write_table
 
     # --output and --plot are checked before any work (cli.app.check_outputs), and the
     # plot's format too: a long study must not end on a bad suffix
@@ -37,11 +40,13 @@ def run(args) -> int:
         check_plot_path(args.plot, key="--plot")
     axes = [parse_vary(v) for v in args.vary]
     if len(axes) > 2 and args.plot:
-        from stripcoef.errors import InputError
         raise InputError("a plot shows one or two swept keys", key="--plot",
                          value=len(axes), expected="--vary given once or twice with --plot")
     frame = sweep(args.vehicle, axes, limits=args.limits, workers=args.workers,
                   scheduler=args.scheduler, progress=getattr(args, "progress", None))
+    for reason, count in blank_points(frame).items():
+        print(f"sweep: {count} of {len(frame)} grid points have blank limits: {reason}",
+              file=sys.stderr)
     if args.plot:
         output = args.plot_output or ("surge_speed_max" if args.limits else "X_udot")
         sweep_figure(frame, [a.key for a in axes], output, path=args.plot, key="--plot")

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+from stripcoef.files import write_text
+
 
 def add_parser(sub):
     p = sub.add_parser("uncertainty", help="uncertainty bands of the model and the limits",
@@ -56,7 +58,6 @@ def format_table(result) -> str:
 
 
 def run(args) -> int:
-    from stripcoef.files import write_text
     from stripcoef.study.uncertainty import plot_band, uncertainty
 
     # --output and --plot are checked before any work (cli.app.check_outputs), and the

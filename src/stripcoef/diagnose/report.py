@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.files import write_text
-from stripcoef.diagnose.pipeline import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
-                                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN, Diagnosis)
+from stripcoef.diagnose.result import Diagnosis
+from stripcoef.diagnose.settings import (BANDS, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
+                                        MIN_Z, N_BLOCKS, TIE, UNEXPLAINED_GAIN)
 
 
 def _fmt(x, digits=4):
@@ -27,6 +28,21 @@ def _params(p, s=None):
                      for k, v in p.items())
 
 
+def _written(cal) -> dict:
+    """{coefficient: its value in the written model} of a DOF's calibration record (the
+    prior plus the final change for a record without ``written``)."""
+    if "written" in cal:
+        return dict(cal["written"])
+    return {k: cal["prior"][k] + v for k, v in cal.get("final_parameters",
+                                                        cal["parameters"]).items()}
+
+
+def _bands(cal, key, value):
+    """How many bands ``value`` is from the prior [-]."""
+    sd = cal["band_relative"][key] * abs(cal["prior"][key])
+    return (value - cal["prior"][key]) / sd if sd > 0 else None
+
+
 def text_summary(result) -> str:
     """Plain-text table for the terminal (of a :class:`Diagnosis` or its :meth:`to_dict`)."""
     if isinstance(result, Diagnosis):
@@ -40,18 +56,19 @@ def text_summary(result) -> str:
         cal = r["calibration"]
         lines.append("  calibration" + (" [removed: worse free simulation on the validation "
                                         "data]" if cal.get("kept") is False else "")
-                     + ": " + ", ".join(
-            f"{k} {_fmt(cal['prior'][k])} -> {_fmt(cal['prior'][k] + v)} "
-            f"({_fmt(cal['band_z'][k], 2)} bands)" for k, v in cal["parameters"].items()))
+                     + " (prior -> written model): " + ", ".join(
+            f"{k} {_fmt(cal['prior'][k])} -> {_fmt(w)} ({_fmt(_bands(cal, k, w), 2)} bands)"
+            for k, w in _written(cal).items()))
         for i, s in enumerate(r["steps"], 1):
             alt = (" (ties: " + ", ".join(a["effect"] for a in s["alternatives"]) + ")"
                    if s["alternatives"] else "")
             if s.get("kept") is False:
-                alt += " [removed: worse free simulation on the validation data]"
+                alt += (" [removed: worse free simulation on the validation data; not in the "
+                        "written model]")
             lines.append(f"  step {i}: {s['effect']}: {_params(s['parameters'], s['std'])}; "
-                         f"error {_fmt(s['error_before'])} -> {_fmt(s['error_after'])}, "
-                         f"held-out {_fmt(s['held_out_error_before'])} -> "
-                         f"{_fmt(s['held_out_error_after'])}{alt}")
+                         f"at its selection: error {_fmt(s['error_before'])} -> "
+                         f"{_fmt(s['error_after'])}, held-out {_fmt(s['held_out_error_before'])}"
+                         f" -> {_fmt(s['held_out_error_after'])}{alt}")
         if not r["steps"]:
             lines.append("  no effect is significant")
     kept = {d: v for d, v in (result.get("kept_at_prior") or {}).items() if v}
@@ -89,6 +106,10 @@ def text_summary(result) -> str:
                          f"{_fmt((val['kept_changes'] or {}).get(d))}")
         if val["removed"]:
             lines.append("  removed: " + ", ".join(val["removed"]))
+        for d, kept in (val.get("refitted") or {}).items():
+            if kept:
+                lines.append(f"  {d}: refitted without the removed changes: "
+                             + ", ".join(kept))
     hold = result.get("holdout")
     if hold:
         lines.append("\nheld-out free simulation, " + "-".join(
@@ -154,6 +175,12 @@ def _bands_text(widths) -> str:
     return "\n".join(out)
 
 
+def _step_names(steps) -> str:
+    """The steps of a DOF for the summary table, those the validation removed marked."""
+    return ", ".join(s["effect"] + (" (removed)" if s.get("kept") is False else "")
+                     for s in steps) or "-"
+
+
 def markdown_report(result: Diagnosis, path) -> None:
     """Write the markdown report (and one PNG per DOF beside it) atomically."""
     path = Path(path)
@@ -166,7 +193,7 @@ def markdown_report(result: Diagnosis, path) -> None:
     for d, r in pub["per_dof"].items():
         out.append(f"| {d} [{r['units']}] | {_fmt(r['baseline_error'])} | "
                    f"{_fmt(r['calibrated_error'])} | {_fmt(r['final_error'])} | "
-                   f"{', '.join(s['effect'] for s in r['steps']) or '-'} | "
+                   f"{_step_names(r['steps'])} | "
                    f"{_fmt(r['unexplained'])} |")
     if "resimulated_velocity_rms" in pub:
         out += ["", "Re-simulated velocity RMS [m/s or rad/s] (the log's inputs through each "
@@ -198,12 +225,14 @@ def markdown_report(result: Diagnosis, path) -> None:
     for d, r in pub["per_dof"].items():
         out += ["", f"## {d}", ""]
         cal = r["calibration"]
-        out += ["Calibration of the prior's coefficients (MAP within the bands):", "",
-                "| coefficient | prior | change | std | bands from prior |",
+        out += ["Calibration of the prior's coefficients (MAP within the bands)"
+                + (", removed by the validation" if cal.get("kept") is False else "")
+                + "; the value is the written model's:", "",
+                "| coefficient | prior | written | std | bands from prior |",
                 "| --- | --- | --- | --- | --- |"]
-        for k, v in cal["parameters"].items():
-            out.append(f"| {k}[{d}] | {_fmt(cal['prior'][k])} | {_fmt(v)} | "
-                       f"{_fmt(cal['std'][k], 2)} | {_fmt(cal['band_z'][k], 2)} |")
+        for k, w in _written(cal).items():
+            out.append(f"| {k}[{d}] | {_fmt(cal['prior'][k])} | {_fmt(w)} | "
+                       f"{_fmt(cal['std'][k], 2)} | {_fmt(_bands(cal, k, w), 2)} |")
         st = r["structure_before"]
         out += ["", "Residual after calibration: bias "
                 f"{_fmt(st['bias'])} (z = {_fmt(st['bias_z'], 2)}), lag-1 autocorrelation "
@@ -229,17 +258,21 @@ def markdown_report(result: Diagnosis, path) -> None:
         if not r["steps"]:
             out.append("No effect is significant.")
         for i, s in enumerate(r["steps"], 1):
-            out.append(f"{i}. **{s['effect']}**: {_params(s['parameters'], s['std'])}; error "
+            removed = (" **Removed by the validation** (worse free simulation on the "
+                       "validation data): not in the written model." if s.get("kept") is False
+                       else "")
+            out.append(f"{i}. **{s['effect']}**: {_params(s['parameters'], s['std'])}; at its "
+                       f"selection: error "
                        f"{_fmt(s['error_before'])} → {_fmt(s['error_after'])}, held-out "
                        f"{_fmt(s['held_out_error_before'])} → "
                        f"{_fmt(s['held_out_error_after'])} (ΔBIC {_fmt(s['delta_bic'], 3)}); "
                        f"evidence: {s['signature'] or 'coefficient outside its band'}; "
-                       f"source: {s['source']}.")
+                       f"source: {s['source']}.{removed}")
             for a in s["alternatives"]:
                 out.append(f"   - tie: {a['effect']} ({_params(a['parameters'])}), held-out "
                            f"{_fmt(a['held_out_error_after'])}: the data do not separate them.")
         ev = r["unexplained_evidence"]
-        out += ["", f"What remains: final error {_fmt(r['final_error'])}, held-out "
+        out += ["", f"What remains: final error (the written model) {_fmt(r['final_error'])}, held-out "
                 f"{_fmt(r['final_held_out_error'])}; a generic basis of "
                 f"{ev['generic_basis_columns']} columns changes the held-out error by "
                 f"{_fmt(-100 * ev['held_out_gain'], 3)} %: "

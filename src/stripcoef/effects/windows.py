@@ -15,10 +15,15 @@ correct model leaves residuals that are nearly independent.
 """
 
 from __future__ import annotations
+
 from dataclasses import dataclass, field
+
 import numpy as np
+from scipy.signal import savgol_coeffs
+
 from stripcoef.conventions import parse_dof
 from stripcoef.errors import InputError
+from stripcoef.ingest.attitude import euler_matrices
 
 
 #: Half-span of the end-value quadratics of :meth:`WindowData.rate` [s] (0.2 s: 5 samples
@@ -81,24 +86,12 @@ def damping_times_velocity(model, nu) -> np.ndarray:
 def rotation_matrices(eta) -> np.ndarray:
     """(n, 3, 3) body-to-NED rotations R(phi, theta, psi) (Fossen 2011, eq. 2.18).
 
-    R = R_z(psi) R_y(theta) R_x(phi) [-] for each row of ``eta`` (n, 6) [m, rad]; same as
-    :func:`stripcoef.conventions.rotation_matrix`.
+    R = R_z(psi) R_y(theta) R_x(phi) [-] for each row of ``eta`` (n, 6) [m, rad]: the
+    vectorised :func:`stripcoef.conventions.rotation_matrix`
+    (:func:`stripcoef.ingest.attitude.euler_matrices`).
     """
     eta = np.atleast_2d(eta)
-    cf, sf = np.cos(eta[:, 3]), np.sin(eta[:, 3])
-    ct, st = np.cos(eta[:, 4]), np.sin(eta[:, 4])
-    cp, sp = np.cos(eta[:, 5]), np.sin(eta[:, 5])
-    r = np.empty((eta.shape[0], 3, 3))
-    r[:, 0, 0] = cp * ct
-    r[:, 0, 1] = -sp * cf + cp * st * sf
-    r[:, 0, 2] = sp * sf + cp * cf * st
-    r[:, 1, 0] = sp * ct
-    r[:, 1, 1] = cp * cf + sf * st * sp
-    r[:, 1, 2] = -cp * sf + st * sp * cf
-    r[:, 2, 0] = -st
-    r[:, 2, 1] = ct * sf
-    r[:, 2, 2] = ct * cf
-    return r
+    return euler_matrices(eta[:, 3], eta[:, 4], eta[:, 5])
 
 
 def savgol_centre_weights(h: int) -> np.ndarray:
@@ -108,13 +101,10 @@ def savgol_centre_weights(h: int) -> np.ndarray:
     .. math:: w_k = \frac{3(3h^2 + 3h - 1) - 15k^2}{(2h+1)(4h^2 + 4h - 3)},\quad k = -h..h
 
     (dimensionless; they sum to 1, and :math:`\sum w_k^2 = w_0`, the factor by which white
-    noise variance is reduced). h = 0 or 1 gives the sample itself."""
-    if h <= 1:
-        w = np.zeros(2 * h + 1)
-        w[h] = 1.0
-        return w
-    k = np.arange(-h, h + 1, dtype=float)
-    return (3 * (3 * h * h + 3 * h - 1) - 15 * k ** 2) / ((2 * h + 1) * (4 * h * h + 4 * h - 3))
+    noise variance is reduced). h = 0 or 1 gives the sample itself. Computed by
+    ``scipy.signal.savgol_coeffs`` (polynomial order 2, or 2h when that is lower)."""
+    h = int(h)
+    return savgol_coeffs(2 * h + 1, min(2, 2 * h), use="dot")
 
 
 @dataclass

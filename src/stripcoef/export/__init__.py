@@ -56,7 +56,8 @@ def _check_link_name(name) -> str:
 def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = None,
                  link_name: str | None = None, legacy_added_mass: bool = False,
                  function_name: str | None = None, fortress: bool = False,
-                 buoyancy_volume: bool | None = None) -> str | bytes:
+                 buoyancy_volume: bool | None = None, lumped_added_mass: bool | None = None,
+                 thrusters: bool | None = None, world: bool = False) -> str | bytes:
     """Export a model to a simulator or data format.
 
     Parameters
@@ -85,6 +86,14 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
     buoyancy_volume : bool, optional
         ``gazebo`` only: write the non-colliding box of the displaced volume for gz-sim's
         Buoyancy system (default True; False when the link's own collisions carry the volume)
+    lumped_added_mass : bool, optional
+        ``gazebo`` only: carry part of M_A in the link's mass and inertia so that the explicit
+        legacy form stays stable (default: with ``fortress``;
+        :func:`stripcoef.export.gazebo.lumped_added_mass_split`)
+    thrusters : bool, optional
+        ``gazebo`` only: a propeller joint and a Thruster system per thruster (default True)
+    world : bool
+        ``gazebo`` only: a world file (physics, buoyancy, the model inside) instead of a model
 
     Returns
     -------
@@ -98,7 +107,8 @@ def export_model(model: HydroModel, fmt: str, *, point=None, axes: str | None = 
     spec = get_format(fmt)
     given = {"link_name": link_name, "legacy_added_mass": legacy_added_mass or None,
              "function_name": function_name, "fortress": fortress or None,
-             "buoyancy_volume": buoyancy_volume}
+             "buoyancy_volume": buoyancy_volume, "lumped_added_mass": lumped_added_mass,
+             "thrusters": thrusters, "world": world or None}
     options = {}
     for key, value in given.items():
         if value is None:

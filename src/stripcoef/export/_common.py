@@ -17,7 +17,8 @@ from typing import Callable
 
 import numpy as np
 
-from stripcoef.conventions import AXES, axes_operator, transform_matrix, transform_vector
+from stripcoef import __version__
+from stripcoef.conventions import AXES, DOF, axes_operator, transform_matrix, transform_vector
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.model import HydroModel, check_physical
 
@@ -264,7 +265,6 @@ def is_symmetric(m, *, rtol: float = 1e-9) -> tuple[bool, float]:
 
 def header_lines(view: ExportView, fmt_name: str) -> list[str]:
     """Provenance lines every text export starts with (as comments)."""
-    from stripcoef import __version__
     m = view.model
     lines = [
         f"{m.name}: hydrodynamic model exported by stripcoef {__version__} to format '{fmt_name}'",
@@ -274,6 +274,11 @@ def header_lines(view: ExportView, fmt_name: str) -> list[str]:
         ("y starboard, z down)" if view.axes == "FRD" else "y port, z up)"),
         f"mass {fmt(m.mass)} kg, volume {fmt(m.volume)} m^3, density {fmt(m.density)} kg/m^3",
     ]
+    for b in m.bands:                  # the method's uncertainty beside the point values
+        size = (f"factor {b.factor():.3g}" if b.distribution == "lognormal"
+                else f"+- {1.959963984540054 * b.sd:.3g} sqrt(M_ii M_jj)")
+        lines.append(f"method band {b.matrix} {b.dofs}: 95 % within {size} ({b.basis}"
+                     + ("" if b.in_scope else ", extrapolated") + ")")
     return lines
 
 
@@ -302,7 +307,6 @@ def explicit_added_mass_trap(prefix: str, added_mass, rigid_body_mass, why: str)
     ("Unbounded velocity growth"); UUV Simulator HydrodynamicModel.cc, ComputeAcc comment
     ("This can lead to an oscillating system"), issues #181 and #96.
     """
-    from stripcoef.conventions import DOF
     ma = np.asarray(added_mass, dtype=float)
     mrb = np.asarray(rigid_body_mass, dtype=float)
     big = [f"{DOF[i]} (M_A {ma[i, i]:.4g} > M_RB {mrb[i, i]:.4g})"

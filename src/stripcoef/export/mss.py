@@ -1,7 +1,7 @@
 r"""MSS (Marine Systems Simulator) export: a MATLAB / GNU Octave function file.
 
 The file follows the style of Fossen's MSS vehicle models (cybergalactic/MSS
-``VESSELS/models/remus100.m``): a self-contained function that returns the state
+``CRAFT/AUV/models/remus100.m``): a self-contained function that returns the state
 derivative of ``x = [u v w p q r x y z phi theta psi]'`` (FRD body velocities, NED
 position, Euler angles), the speed and the model matrices:
 
@@ -86,7 +86,7 @@ def render(view: ExportView, *, function_name: str | None = None) -> str:
         f"function [xdot, U, M, MRB, MA, D, g, DL, DQ, Bthr, L, Bdelta] = {fname}(x, tau, Vc, delta)",
         f"% {fname.upper()}  {head[0].split(': ', 1)[-1]}",
         "% Compatible with MATLAB and the free software GNU Octave (www.octave.org).",
-        "% Style of Fossen's MSS vehicle models (cybergalactic/MSS VESSELS/models/remus100.m).",
+        "% Style of Fossen's MSS vehicle models (cybergalactic/MSS CRAFT/AUV/models/remus100.m).",
     ]
     lines += ["% " + h for h in head[1:]]
     lines += [

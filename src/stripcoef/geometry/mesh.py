@@ -424,6 +424,24 @@ class MeshBody:
         self._topology_faces = mesh.faces
         self._overlap_reported = False
         self._bounds = None                     # (vertex array, bbox) of bbox()
+        self._united = None                     # united() of several bodies
+
+    def united(self):
+        """The body as one closed surface (a ``trimesh.Trimesh``, body axes [m]): the mesh
+        itself when it is one body; several bodies (shells, overlapping parts) united by the
+        boolean union of manifold3d (Lévy et al., "Manifold", https://github.com/elalish/
+        manifold: an exact, guaranteed-manifold mesh boolean), so that a surface inside another
+        body is not panelled.  Computed once; the union is reported in :attr:`repairs`."""
+        if self.n_bodies <= 1 or self._face_label is None:
+            return self.mesh
+        if self._united is None:
+            self._united = unite_bodies(self.mesh, self._face_label, where=self.source)
+            note = (f"united {self.n_bodies} bodies into one closed surface for the panel "
+                    f"method (manifold3d); {self._united.metadata['overlap']:.3g} m^3 of overlap "
+                    "removed")
+            self.repairs.append(note)
+            warnings.warn(f"{self.source}: {note}", ModelWarning, stacklevel=2)
+        return self._united
 
     @property
     def volume(self) -> float:
@@ -572,6 +590,40 @@ class MeshBody:
         return Strips(x=x, dx=dx, parts=self.parts(x, dx))
 
 
+def unite_bodies(mesh, labels, where=""):
+    """Boolean union of the bodies of a closed mesh (faces grouped by ``labels``), by
+    manifold3d through ``trimesh.boolean.union``.  Returns a watertight ``trimesh.Trimesh``
+    whose ``metadata['overlap']`` is the volume counted twice before [m^3]."""
+    import trimesh
+
+    try:
+        import manifold3d  # noqa: F401
+    except ImportError:  # pragma: no cover - a core dependency
+        raise InputError("uniting the bodies of a mesh needs manifold3d", file=where or None,
+                         expected="pip install manifold3d (a dependency of stripcoef)") from None
+    labels = np.asarray(labels)
+    parts = []
+    for k in range(int(labels.max()) + 1):
+        part = trimesh.Trimesh(mesh.vertices, np.asarray(mesh.faces)[labels == k], process=False)
+        part.remove_unreferenced_vertices()
+        parts.append(part)
+    total = float(sum(p.volume for p in parts))
+    try:
+        out = trimesh.boolean.union(parts, engine="manifold", check_volume=False)
+    except Exception as exc:  # manifold3d refuses a non-manifold input
+        raise InputError(f"the bodies of the mesh could not be united ({type(exc).__name__})",
+                         file=where or None, expected="closed, manifold bodies (stripcoef mesh "
+                         "FILE --repair writes a repaired copy)") from None
+    out = trimesh.Trimesh(np.asarray(out.vertices, float), np.asarray(out.faces), process=False)
+    topo = EdgeTopology(out.faces)
+    if len(out.faces) == 0 or not topo.consistent or not out.volume > 0:
+        raise InputError("the union of the mesh's bodies is not a closed surface",
+                         file=where or None, value=f"{topo.open_edges} open edges",
+                         expected="closed bodies")
+    out.metadata["overlap"] = max(total - float(out.volume), 0.0)
+    return out
+
+
 def _has_sharp_corners(rings) -> bool:
     from stripcoef.geometry.polygons import corner_flags, orient_contours
 
@@ -597,7 +649,10 @@ def _read(path: Path):
     if not path.is_file():
         raise _fail(path, "mesh file not found", expected="an existing mesh file")
     try:
-        loaded = trimesh.load(str(path), force="mesh", process=True)
+        # geometry only: an OBJ's materials and textures are not read (they need pillow,
+        # which the base install lacks, and carry nothing the hydrodynamics uses)
+        extra = {"skip_materials": True} if ext == ".obj" else {}
+        loaded = trimesh.load(str(path), force="mesh", process=True, **extra)
     except Exception as exc:  # trimesh raises many types for garbage input
         raise _fail(path, f"not a readable {ext[1:].upper()} mesh ({type(exc).__name__}: "
                           f"{str(exc).splitlines()[0][:80] if str(exc) else 'no detail'})",
@@ -613,7 +668,128 @@ def _read(path: Path):
     return loaded
 
 
-def _prepare(mesh, *, path, axis, length_unit, origin, transform):
+#: Vertices closer than this fraction of the body's largest extent are one vertex (split copies
+#: at texture or normal seams; CAD exports print 6-9 significant digits) [-].
+MERGE_TOL = 1e-7
+#: A body longer than this [m] in metres is more likely a file in millimetres (an underwater
+#: vehicle of 20-200 m is rare; beyond 200 m the loader refuses it).
+LONG_BODY = 20.0
+
+
+def merge_close_vertices(mesh, tol: float) -> int:
+    """Merge the vertices on open edges of ``mesh`` (in place) that lie within ``tol`` [m] of
+    another such vertex, the first of each group kept (groups: connected components of the
+    pairs closer than ``tol``, scipy's k-d tree).  Only the ends of open edges are merged:
+    a vertex split at a seam leaves the edges on both sides open, while closed bodies that
+    touch at a corner (parts of a frame) stay separate, manifold bodies.  Faces keep their
+    winding; a face that loses a vertex to the merge is dropped.  Returns the number of
+    vertices merged away."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    v = np.asarray(mesh.vertices, dtype=float)
+    if len(v) < 2 or not tol > 0:
+        return 0
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    e = np.sort(np.stack([f, np.roll(f, -1, axis=1)], axis=2).reshape(-1, 2), axis=1)
+    uniq, count = np.unique(e, axis=0, return_counts=True)
+    loose = np.unique(uniq[count == 1])
+    if loose.size < 2:
+        return 0
+    pairs = loose[cKDTree(v[loose]).query_pairs(tol, output_type="ndarray")]
+    if len(pairs) == 0:
+        return 0
+    n = len(v)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    k, lab = connected_components(graph, directed=False)
+    first = np.full(k, n, dtype=np.int64)
+    np.minimum.at(first, lab, np.arange(n))
+    f = first[lab][np.asarray(mesh.faces)]
+    keep = (f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])
+    mesh.faces = f[keep]
+    mesh.remove_unreferenced_vertices()
+    return int(n - k)
+
+
+def repair_degenerate_faces(mesh, height: float, passes: int = 10) -> tuple[int, int]:
+    """Remove zero-area faces without opening a closed surface (in place).
+
+    A face whose height over its longest edge is below ``height`` [m] is either a *needle*
+    (its shortest edge shorter than ``height``: the edge is collapsed, its two vertices merged
+    at their midpoint, and the faces on it vanish with it) or a *cap* (a vertex on the opposite
+    edge: that longest edge is flipped with the face beyond it, which splits that face at the
+    vertex and leaves the surface and its shape unchanged) -- the two operations of mesh
+    simplification and repair that keep a surface closed (Hoppe et al. 1993, "Mesh
+    optimization", SIGGRAPH: edge collapse and edge swap; Botsch et al. 2010, "Polygon Mesh
+    Processing", sec. 6.5).  Faces on edges without exactly one neighbour (an open mesh)
+    are left to the loader's removal.  Returns (edge flips, edges collapsed)."""
+    flips = collapses = 0
+    for _ in range(passes):
+        v = np.asarray(mesh.vertices, dtype=float)
+        f = np.array(mesh.faces, dtype=np.int64)
+        if len(f) == 0:
+            break
+        fv = _FaceVectors(v, f)
+        bad = np.flatnonzero(~fv.nondegenerate(height))
+        if bad.size == 0:
+            break
+        nv = len(v)
+        dkey = (f * nv + np.roll(f, -1, axis=1)).reshape(-1)      # directed edges k -> k+1
+        order = np.argsort(dkey, kind="stable")
+        sorted_keys = dkey[order]
+
+        def faces_on(a, b):
+            lo, hi = np.searchsorted(sorted_keys, [a * nv + b, a * nv + b + 1])
+            return [int(x) // 3 for x in order[lo:hi]]
+
+        changed = False
+        done = set()
+        for i in bad:
+            if i in done:
+                continue
+            t = v[f[i]]
+            elen = np.linalg.norm(t[[1, 2, 0]] - t, axis=1)          # edge k: k -> k+1
+            k_short, k_long = int(np.argmin(elen)), int(np.argmax(elen))
+            if elen[k_short] <= height or elen[k_short] <= 1e-9 * elen[k_long]:
+                a, b = f[i, k_short], f[i, (k_short + 1) % 3]
+                mid = 0.5 * (v[a] + v[b])
+                v[a] = mid
+                f[f == b] = a
+                done.update(faces_on(a, b) + faces_on(b, a))
+                collapses += 1
+                changed = True
+                mesh.vertices = v
+                break                   # the faces changed: rebuild the edge map
+            a, b, c = f[i, k_long], f[i, (k_long + 1) % 3], f[i, (k_long + 2) % 3]
+            other = faces_on(b, a)
+            if len(other) != 1 or len(faces_on(a, b)) != 1 or other[0] in done:
+                continue
+            j = other[0]
+            d = int([x for x in f[j] if x != a and x != b][0])
+            # faces (a, b, c) and (b, a, d) -> (a, d, c) and (d, b, c): c lies on edge ab
+            f[i] = (a, d, c)
+            f[j] = (d, b, c)
+            done.update((i, j))
+            flips += 1
+            changed = True
+        keep = (f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])
+        mesh.faces = f[keep]
+        if not changed:
+            break
+    mesh.remove_unreferenced_vertices()
+    return flips, collapses
+
+
+def _check_unit_and_axes(where, extent, length_unit, repairs) -> None:
+    """Warn (as a repair note) when the size suggests a wrong length unit."""
+    size = float(extent.max())
+    if length_unit == "m" and size > LONG_BODY:
+        repairs.append(f"the body is {size:.4g} m long: if the file is in millimetres, "
+                       "use --length-unit mm (Python: length_unit='mm')")
+
+
+def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
     import trimesh
 
     if length_unit not in LENGTH_UNITS:
@@ -639,6 +815,9 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
     mesh.vertices = np.asarray(mesh.vertices)[:, perm]
     if np.linalg.det(np.eye(3)[list(perm)]) < 0:  # pragma: no cover - cyclic perms keep handedness
         mesh.invert()
+    if z_up:
+        # a z-up file (ROS REP 103: x forward, y left, z up; most CAD): 180 deg about x -> FRD
+        mesh.vertices = np.asarray(mesh.vertices) * [1.0, -1.0, -1.0]
 
     repairs: list[str] = []
     where = str(path)
@@ -659,8 +838,20 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
                     expected=f"between {LENGTH_RANGE[0]:g} and {LENGTH_RANGE[1]:g} m "
                              "(check --length-unit)")
 
+    size = float(extent.max())
+    _check_unit_and_axes(where, extent, length_unit, repairs)
+    # vertices split at texture or normal seams (OBJ, glTF): merged by position
+    merged = merge_close_vertices(mesh, MERGE_TOL * size)
+    if merged:
+        repairs.append(f"merged {merged} vertices that repeat the position of another "
+                       f"(split at texture or normal seams; within {MERGE_TOL * size:.2g} m)")
     # faces: the per-face vectors are gathered once and reused while the faces are unchanged
     n0 = len(mesh.faces)
+    flipped_d, collapsed_d = repair_degenerate_faces(mesh, 1e-10 * length)
+    if flipped_d or collapsed_d:
+        repairs.append(f"repaired {flipped_d + collapsed_d} degenerate (zero-area) faces without "
+                       f"opening the surface ({flipped_d} edge flips, {collapsed_d} edges "
+                       "collapsed)")
     fv = _FaceVectors(mesh.vertices, mesh.faces)
     mask = fv.nondegenerate(1e-10 * length)
     if not mask.all():
@@ -739,7 +930,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform):
         p = p * scale
         if transform is not None:
             p = (np.asarray(transform, float) @ np.append(p, 1.0))[:3]
-        point = p[list(perm)]
+        point = p[list(perm)] * ([1.0, -1.0, -1.0] if z_up else 1.0)
     mesh.apply_translation(-point)
     return mesh, repairs, labels, n_bodies, topo
 
@@ -799,7 +990,8 @@ class _FaceVectors:
 
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-              transform=None, name: str | None = None, role: str = "hull") -> MeshBody:
+              transform=None, name: str | None = None, role: str = "hull",
+              z_up: bool = False) -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
 
     Parameters
@@ -822,6 +1014,9 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     role : {"hull", "appendage", "fin"}
         Role of the mesh's parts in the assembly (an appendage mesh in a vehicle file is
         ``appendage``).
+    z_up : bool
+        The file's z axis points up (ROS meshes, REP 103: x forward, y left, z up; most CAD
+        tools): the body is turned 180 deg about x into FRD (z down) after the axis mapping.
 
     Returns
     -------
@@ -840,7 +1035,7 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     mesh = _read(path)
     mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=path, axis=axis,
                                                      length_unit=length_unit, origin=origin,
-                                                     transform=transform)
+                                                     transform=transform, z_up=z_up)
     for note in repairs:
         warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,
@@ -848,11 +1043,11 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
 
 
 def mesh_body(mesh, *, name: str = "mesh", axis: str = "x", length_unit: str = "m",
-              origin="centroid", transform=None) -> MeshBody:
+              origin="centroid", transform=None, z_up: bool = False) -> MeshBody:
     """:func:`load_mesh` for an in-memory ``trimesh.Trimesh``."""
     mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=name, axis=axis,
                                                      length_unit=length_unit, origin=origin,
-                                                     transform=transform)
+                                                     transform=transform, z_up=z_up)
     return MeshBody(mesh, name=name, source=name, repairs=repairs, face_label=labels,
                     n_bodies=n_bodies, topology=topo)
 

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.fluid import Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from stripcoef.fluid import EQUATIONS, Fluid, RHO_FRESHWATER, RHO_SEAWATER
 from stripcoef.files import load_yaml, read_text
 from stripcoef.strips import MAX_STRIPS, Strips, uniform_stations
 from stripcoef.thrusters import Thruster
@@ -117,7 +117,8 @@ class Vehicle:
 
     @classmethod
     def from_mesh(cls, mesh, *, axis: str = "x", length_unit: str = "m", origin="centroid",
-                  fluid: Fluid | None = None, name: str | None = None) -> "Vehicle":
+                  fluid: Fluid | None = None, name: str | None = None,
+                  z_up: bool = False) -> "Vehicle":
         """A vehicle made of one closed CAD mesh, with default sea water and neutral buoyancy.
 
         Parameters
@@ -136,6 +137,8 @@ class Vehicle:
             Default: sea water (:data:`stripcoef.fluid.RHO_SEAWATER`, ``NU_SEAWATER``).
         name : str, optional
             Default: the file's stem, or "mesh".
+        z_up : bool
+            The file is z-up (ROS REP 103, most CAD): turned 180 deg about x into FRD.
         """
         from stripcoef.fluid import NU_SEAWATER
         from stripcoef.geometry import mesh as mesh_mod
@@ -151,7 +154,7 @@ class Vehicle:
                 raise InputError("not a point", key="origin", value=list(reference),
                                  expected="three finite coordinates [m]")
             body_origin = "file"
-        kw = dict(axis=axis, length_unit=length_unit, origin=body_origin)
+        kw = dict(axis=axis, length_unit=length_unit, origin=body_origin, z_up=bool(z_up))
         if isinstance(mesh, mesh_mod.MeshBody):
             body, source = mesh, mesh.source
         elif isinstance(mesh, (str, Path)):
@@ -473,16 +476,21 @@ def _fluid(r: _Reader, data) -> Fluid:
     if data is None:
         return Fluid()
     path = "fluid"
-    r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity"))
+    r.mapping(data, path, ("water", "density", "kinematic_viscosity", "temperature", "salinity",
+                           "equation"))
     water = r.string(data, "water", path, choices=("sea", "fresh"), default="sea")
+    if "equation" in data and "temperature" not in data and "salinity" not in data:
+        raise r.err(f"{path}.equation", "an equation of state needs temperature and salinity",
+                    data["equation"], expected="temperature and salinity beside it")
     if "temperature" in data or "salinity" in data:
         if "density" in data or "kinematic_viscosity" in data:
             raise r.err(path, "both temperature/salinity and density/viscosity given",
                         expected="either temperature + salinity, or density + kinematic_viscosity")
         t = r.number(data, "temperature", path, required=True)
         s = r.number(data, "salinity", path, required=True, nonneg=True)
+        equation = r.string(data, "equation", path, choices=EQUATIONS, default="eos80")
         try:
-            return Fluid.from_temperature_salinity(t, s)
+            return Fluid.from_temperature_salinity(t, s, equation=equation)
         except InputError as exc:            # the correlation's error, in the file's terms
             raise r.err(f"{path}.{exc.key}", exc.what, exc.value, exc.expected) from None
     rho = r.number(data, "density", path, positive=True,
@@ -757,8 +765,8 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
     body_lift = data.get("body_lift", "auto")
     if body_lift is True or body_lift is False:
         body_lift = "on" if body_lift else "off"
-    if body_lift not in ("auto", "on", "off"):
-        raise r.err("body_lift", "invalid value", body_lift, "auto, on or off")
+    if body_lift not in ("auto", "on", "off", "slender"):
+        raise r.err("body_lift", "invalid value", body_lift, "auto, on, off or slender")
     thrusters = [_thruster(r, t, f"thrusters[{i}]")
                  for i, t in enumerate(r.listing(data, "thrusters", ""))]
     if len({t.name for t in thrusters}) != len(thrusters):

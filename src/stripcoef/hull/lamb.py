@@ -37,6 +37,13 @@ def lamb_k_factors(length_over_diameter):
     ----------
     Lamb (1932), Hydrodynamics, sec. 373; Imlay (1961), DTMB 1528, eqs. 22-27;
     Fossen (2011), eqs. 6.97-6.101.
+
+    Examples
+    --------
+    >>> lamb_k_factors(1.0)                       # the sphere
+    (0.5, 0.5, 0.0)
+    >>> [round(k, 3) for k in lamb_k_factors(5.0)]
+    [0.059, 0.894, 0.7]
     """
     ld = np.asarray(length_over_diameter, dtype=float)
     if np.any(ld < 1.0):
@@ -71,6 +78,15 @@ def spheroid_added_mass(a, b, *, rho):
     References
     ----------
     Lamb (1932), sec. 373; Fossen (2011), eq. 6.96.
+
+    Examples
+    --------
+    The sphere: half its displaced mass in every translation, nothing in rotation:
+
+    >>> import numpy as np
+    >>> m = 1000.0 * 4.0 / 3.0 * np.pi
+    >>> [round(float(v) / m, 6) + 0.0 for v in spheroid_added_mass(1.0, 1.0, rho=1000.0)]
+    [0.5, 0.5, 0.5, 0.0, 0.0, 0.0]
     """
     k1, k2, kp = lamb_k_factors(a / b)
     m = 4.0 / 3.0 * np.pi * rho * a * b**2
@@ -92,6 +108,12 @@ def equivalent_spheroid(length, volume):
     ----------
     [assumption] equal-length, equal-volume spheroid, after Newman (1977), sec. 7.4 and
     the MARES equivalent ellipsoid (Ferreira et al. 2009, sec. IV.C).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [round(float(v), 9) for v in equivalent_spheroid(2.0, np.pi / 3.0)]  # V of a = 1, b = 0.5
+    [1.0, 0.5]
     """
     a = 0.5 * length
     b = np.sqrt(3.0 * volume / (4.0 * np.pi * a))
@@ -125,6 +147,12 @@ def end_correction_factors(length, volume):
     References
     ----------
     Lamb (1932), sec. 373 (k factors, see module docstring); Newman (1977), sec. 7.4.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [round(float(v), 4) for v in end_correction_factors(2.0, np.pi / 3.0)]   # L/D = 2
+    [0.7042, 0.2993, 0.21, 2.0]
     """
     a, b = equivalent_spheroid(length, volume)
     k1, k2, kp = lamb_k_factors(a / b)
@@ -154,6 +182,13 @@ def power_law_split(exponent):
     -------
     tuple of float or array
         (a_hat, b_hat) [-]
+
+    Examples
+    --------
+    >>> [round(float(v), 3) for v in power_law_split(1.5)]    # laminar friction
+    [0.381, 0.635]
+    >>> [round(float(v), 6) + 0.0 for v in power_law_split(2.0)]  # constant C_D: quadratic
+    [0.0, 1.0]
     """
     n = np.clip(np.asarray(exponent, dtype=float), 1.0, 2.0)
     a_hat = 240.0 * (1.0 / (5.0 * (n + 2.0)) - 1.0 / (4.0 * (n + 3.0)))
@@ -199,6 +234,15 @@ def ellipsoid_added_mass(a, b, c, *, rho):
     Lamb (1932), Hydrodynamics, sec. 114 and 373 (eqs. 7-8 of sec. 373); Korotkin (2009),
     *Added Masses of Ship Structures*, sec. 2.1.3; Carlson (1995), Numer. Algorithms 10, for
     :math:`R_D` (scipy.special.elliprd).
+
+    Examples
+    --------
+    Two equal semi-axes give Lamb's spheroid (:func:`spheroid_added_mass`):
+
+    >>> import numpy as np
+    >>> bool(np.allclose(ellipsoid_added_mass(5.0, 1.0, 1.0, rho=1.0),
+    ...                  spheroid_added_mass(5.0, 1.0, rho=1.0), rtol=1e-9))
+    True
     """
     from scipy.special import elliprd
 

@@ -320,3 +320,111 @@ def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
     for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
         out += k * np.outer(lift_column(e, center_of_pressure), lift_column(e, velocity_point))
     return out
+
+
+#: Hopkins's correlation for the station x_0 (from the nose) behind which a body's cross-flow
+#: stops being potential: x_0 = a l + b x_1, x_1 the station of the most negative dS/dx
+#: (Hopkins 1951, NACA RM A51C14, as USAF DATCOM sec. 4.2.1.1 uses it) [-].
+SEPARATION_A, SEPARATION_B = 0.378, 0.527
+
+
+def separation_station(x, area) -> float:
+    r"""Station x_0 [m] behind which a slender body's cross-flow lift stops (Hopkins's correlation).
+
+    .. math:: s_0 = 0.378\,l + 0.527\,s_1
+
+    with s measured aft from the nose, l the body length and :math:`s_1` the station where the
+    cross-section area S decreases fastest (most negative dS/ds).  Returned as a body-axes x
+    (forward positive): :math:`x_0 = x_{nose} - s_0`.
+
+    Parameters
+    ----------
+    x : (n,) array
+        Stations along the body, increasing [m] (body axes, x forward)
+    area : (n,) array
+        Cross-section area S(x) [m^2]
+
+    Returns
+    -------
+    float
+        x_0 [m]
+
+    References
+    ----------
+    Hopkins, E. J. (1951), "A semiempirical method for calculating the pitching moment of bodies
+    of revolution at low Mach numbers", NACA RM A51C14, eq. (13) and fig. 4; USAF DATCOM (Finck
+    1978) sec. 4.2.1.1 (the same x_0 for the body's lift).
+    """
+    x = np.asarray(x, dtype=float)
+    s = np.asarray(area, dtype=float)
+    nose, tail = float(x[-1]), float(x[0])
+    x1 = float(x[np.argmax(np.gradient(s, x))])   # dS/dx > 0 in x forward = S falling aft
+    s0 = SEPARATION_A * (nose - tail) + SEPARATION_B * (nose - x1)
+    return nose - s0
+
+
+def slender_body_lift_matrix(x, area, x_separation: float, *, rho: float, y: float = 0.0,
+                             z: float = 0.0, ref=(0.0, 0.0, 0.0)) -> np.ndarray:
+    r"""Lift matrix of a body of revolution whose cross-flow stays potential ahead of x_0 only.
+
+    Slender-body theory (Munk 1924) gives each station the force per unit length
+    :math:`f(x) = U\,\mathrm{d}[m(x)\,V(x)]/\mathrm{d}x` along a cross direction e, with
+    :math:`m = \rho S(x)` the section's added mass (circle) and :math:`V = e^T(v + \omega\times
+    r)` the local cross-flow velocity (:math:`v + x r` in sway, :math:`w - x q` in heave).  Over
+    the whole closed body this integrates to no force and the Munk moment, which the model has
+    in :math:`C_A(\nu)\nu`.  Behind the station x_0 the cross-flow separates and the sections
+    give nothing back (Hopkins 1951; DATCOM 4.2.1.1); the lift matrix is the difference, the
+    potential force of the stretch behind x_0 taken away:
+
+    .. math:: L = \rho\,\Big[S_0\, c_0 c_0^T - \int_{x_{tail}}^{x_0} S(x)\, c'(x)\, c(x)^T dx\Big]
+
+    with :math:`c(x) = [e;\ r(x)\times e]`, :math:`c' = \mathrm{d}c/\mathrm{d}x =
+    [0;\ \hat x \times e]` and the force :math:`-u L \nu`.  In sway about a point at x = 0:
+    :math:`Y_{uv} = -\rho S_0`, :math:`Y_{ur} = -\rho S_0 x_0`, :math:`N_{uv} = -\rho(S_0 x_0
+    - \int S\,dx)`, :math:`N_{ur} = -\rho(S_0 x_0^2 - \int S\,x\,dx)` (integrals over the
+    stretch behind x_0): a yaw rate gives the rotary terms through the local cross-flow.
+
+    Parameters
+    ----------
+    x : (n,) array
+        Stations, increasing [m] (body axes)
+    area : (n,) array
+        S(x) [m^2]
+    x_separation : float
+        x_0 [m] (:func:`separation_station`)
+    rho : float
+        Fluid density [kg/m^3]
+    y, z : float
+        The body's axis [m]
+    ref : (3,)
+        Reference point [m]
+
+    Returns
+    -------
+    (6, 6) array
+        [kg/m, kg, kg m]
+
+    References
+    ----------
+    Munk, M. M. (1924), NACA Report 184; Newman, *Marine Hydrodynamics* (1977), sec. 7.8
+    (slender-body force per unit length, :math:`-\frac{D}{Dt}(m V)`); Hopkins (1951), NACA RM
+    A51C14 (potential lift only ahead of x_0); USAF DATCOM sec. 4.2.1.1; Nielsen, *Missile
+    Aerodynamics* (1988), ch. 3.
+    """
+    x = np.asarray(x, dtype=float)
+    s = np.asarray(area, dtype=float)
+    ref = np.asarray(ref, dtype=float)
+    x0 = float(x_separation)
+    s0 = float(np.interp(x0, x, s))
+    aft = x <= x0
+    xa = np.append(x[aft], x0)
+    sa = np.append(s[aft], s0)
+    out = np.zeros((6, 6))
+    for e in (np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])):
+        c0 = lift_column(e, np.array([x0, y, z]) - ref)
+        out += rho * s0 * np.outer(c0, c0)
+        dc = np.concatenate([np.zeros(3), np.cross([1.0, 0.0, 0.0], e)])
+        cols = np.array([lift_column(e, np.array([t, y, z]) - ref) for t in xa])
+        integral = np.trapezoid(sa[:, None] * cols, xa, axis=0) if xa.size > 1 else np.zeros(6)
+        out -= rho * np.outer(dc, integral)
+    return out

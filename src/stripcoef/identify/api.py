@@ -4,6 +4,8 @@ a :class:`FitResult` out.  The CLI (``stripcoef identify``) is a thin layer over
 
 from __future__ import annotations
 
+import math
+
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError, unknown_name
 
@@ -95,7 +97,6 @@ def _check_settings(**settings) -> None:
     [N m/rad] > 0; trim [samples] >= 0; window [samples] >= 3 and order >= 1, order < window
     (a Savitzky-Golay filter, scipy.signal.savgol_filter).
     """
-    import math
 
     def bad(key, value, expected):
         raise InputError("invalid setting", key=key, value=value, expected=expected)

@@ -40,7 +40,7 @@ Dividing by the total inertia and matching terms with eq. 8:
     N_{r|r|} = \frac{\beta}{\gamma}, \quad b = \frac{\delta}{\gamma}
 
 with ``I`` the rigid-body inertia about the axis (I_zz for yaw) [kg m^2].  A damped motion
-gives :math:`\alpha < 0`.  Seed 000 prints :math:`\alpha = 0.6199 > 0` and lists the
+gives :math:`\alpha < 0`.  Wang & Clark (2006) prints :math:`\alpha = 0.6199 > 0` and lists the
 coefficients as positive magnitudes (Fossen's positive D matrix), so its eq. 8 must be read
 with the damping signs folded into the printed values: :math:`|N_r| = \alpha/\gamma`.
 """
@@ -248,7 +248,7 @@ def one_step_log(log, dof: str, *, model: str = "LQB", input=None, inertia=None,
 
 
 def videoray_table_i(alpha=0.6199, beta=1.1219, gamma=26.95, izz=0.02532) -> dict:
-    r"""Seed 000's yaw coefficients from its printed alpha, beta, gamma and I_zz (Table I).
+    r"""Wang & Clark's (2006) yaw coefficients from their printed alpha, beta, gamma and I_zz (Table I).
 
     Magnitudes, as Table I prints them:
     :math:`|N_r| = \alpha/\gamma`, :math:`|N_{r|r|}| = \beta/\gamma`,

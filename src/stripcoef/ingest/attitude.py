@@ -13,7 +13,10 @@ own inverse). Body rates come from the attitude by :math:`\dot R = R\,S(\omega)`
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from stripcoef.conventions import axes_operator, rotation_matrix, world_axes_operator
 from stripcoef.errors import InputError
@@ -52,6 +55,8 @@ def quaternion_matrices(q, *, file: str | None = None, key: str | None = None) -
     q : (n, 4) array
         Quaternions, scalar first [-]
 
+    Computed by ``scipy.spatial.transform.Rotation``.
+
     References
     ----------
     Fossen (2011), sec. 2.2.2 (unit quaternions, R(q)).
@@ -65,12 +70,8 @@ def quaternion_matrices(q, *, file: str | None = None, key: str | None = None) -
                          value=round(float(norm[k]), 6),
                          expected=f"a norm within {QUATERNION_NORM_TOLERANCE} of 1 "
                          "(check the columns and their order)")
-    w, x, y, z = (q / norm[:, None]).T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
-    ], axis=1)
+    # scipy's Rotation (scalar last) is the one quaternion implementation
+    return Rotation.from_quat((q / norm[:, None])[:, [1, 2, 3, 0]]).as_matrix()
 
 
 def to_ned_frd(r, *, world: str = "NED", body: str = "FRD") -> np.ndarray:
@@ -93,17 +94,18 @@ def euler_from_matrices(r) -> np.ndarray:
               \theta = -\arcsin R_{31},\quad \psi = \operatorname{atan2}(R_{21}, R_{11})
 
     :math:`\psi` is unwrapped (continuous over the log, as a simulation integrates it);
-    :math:`\phi` and :math:`\psi` are ill-defined at :math:`\theta = \pm 90^\circ`.
+    :math:`\phi` and :math:`\psi` are ill-defined at :math:`\theta = \pm 90^\circ`. Computed by
+    ``scipy.spatial.transform.Rotation.as_euler("ZYX")``.
 
     References
     ----------
     Fossen (2011), sec. 2.2.4 (Euler angles from a rotation matrix / unit quaternion).
     """
     r = np.asarray(r, float)
-    phi = np.arctan2(r[:, 2, 1], r[:, 2, 2])
-    theta = -np.arcsin(np.clip(r[:, 2, 0], -1.0, 1.0))
-    psi = np.unwrap(np.arctan2(r[:, 1, 0], r[:, 0, 0]))
-    return np.column_stack([phi, theta, psi])
+    with warnings.catch_warnings():       # at +-90 deg pitch: scipy warns, as the docstring says
+        warnings.simplefilter("ignore", UserWarning)
+        psi, theta, phi = Rotation.from_matrix(r).as_euler("ZYX").T
+    return np.column_stack([phi, theta, np.unwrap(psi)])
 
 
 def rotation_log(r) -> np.ndarray:
@@ -113,22 +115,14 @@ def rotation_log(r) -> np.ndarray:
               \omega\theta = \frac{\theta}{2\sin\theta}
               \begin{bmatrix} R_{32}-R_{23} \\ R_{13}-R_{31} \\ R_{21}-R_{12} \end{bmatrix}
 
-    (the factor tends to 1/2 as :math:`\theta \to 0`; valid for :math:`\theta < \pi`).
+    (valid for :math:`\theta < \pi`), computed by ``scipy.spatial.transform.Rotation``.
 
     References
     ----------
     Murray, Li & Sastry (1994), A Mathematical Introduction to Robotic Manipulation,
     sec. 2.2 (exponential coordinates of SO(3), the logarithm).
     """
-    r = np.asarray(r, float)
-    cos = np.clip((np.trace(r, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
-    angle = np.arccos(cos)
-    vee = np.column_stack([r[:, 2, 1] - r[:, 1, 2], r[:, 0, 2] - r[:, 2, 0],
-                           r[:, 1, 0] - r[:, 0, 1]])
-    sin = np.sin(angle)
-    small = angle < 1e-6
-    factor = np.where(small, 0.5 + angle ** 2 / 12.0, angle / (2.0 * np.where(small, 1.0, sin)))
-    return vee * factor[:, None]
+    return Rotation.from_matrix(np.asarray(r, float)).as_rotvec()
 
 
 def body_rates(t, r) -> np.ndarray:

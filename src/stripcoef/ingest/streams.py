@@ -9,11 +9,14 @@ one are each a :class:`~stripcoef.errors.SamplingWarning` (thresholds below, doc
 
 from __future__ import annotations
 
+import calendar
 import csv
 import io
 import math
+import re
 import warnings
 from dataclasses import dataclass
+from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -148,6 +151,27 @@ def read_csv_stream(path, spec: StreamSpec, needed) -> Table:
     return checked_table(spec, name, t, cols, lines=lines, time_key=spec.time.column or "t")
 
 
+#: The fractional seconds of an ISO 8601 time of day (kept to the nanosecond, which
+#: ``datetime`` would cut to the microsecond).
+_FRACTION = re.compile(r"(?<=\d{2}:\d{2}:\d{2})[.,](\d+)")
+
+
+def iso_ns(cell: str) -> int:
+    """An ISO 8601 date-time as integer nanoseconds since 1970-01-01 UTC.
+
+    ``datetime.fromisoformat`` reads the date, time and offset (``Z``, ``+02:00``; none
+    means UTC); the fractional seconds are read from the text to the nanosecond. A text that
+    is not an ISO date-time raises ``ValueError``.
+    """
+    m = _FRACTION.search(cell)
+    digits = m.group(1) if m else ""
+    stamp = datetime.fromisoformat(_FRACTION.sub("", cell, count=1) if m else cell)
+    if stamp.tzinfo is None:
+        stamp = stamp.replace(tzinfo=timezone.utc)
+    seconds = calendar.timegm(stamp.utctimetuple())
+    return seconds * 10**9 + int((digits + "0" * 9)[:9])
+
+
 def _stamp(cell: str, unit: str):
     """A time cell as an extended-precision number in ``unit`` (ISO 8601 date-times in ns
     since 1970-01-01 UTC, an explicit offset such as +02:00 converted to UTC); None if it is
@@ -157,10 +181,7 @@ def _stamp(cell: str, unit: str):
         return None
     try:
         if unit == "iso":
-            with warnings.catch_warnings():      # numpy warns that it drops the offset
-                warnings.simplefilter("ignore")
-                ns = np.datetime64(cell[:-1] if cell.endswith("Z") else cell, "ns")
-            return None if np.isnat(ns) else np.longdouble(int(ns.astype(np.int64)))
+            return np.longdouble(iso_ns(cell))
         value = np.longdouble(cell)
     except (ValueError, TypeError, OverflowError):
         return None

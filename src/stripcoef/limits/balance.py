@@ -19,7 +19,7 @@ class LimitOptions:
     Attributes
     ----------
     munk : bool
-        Keep the Munk moment (the moment part of C_A(nu) nu).  Seed 002 neglects it.
+        Keep the Munk moment (the moment part of C_A(nu) nu).  Ferreira et al. (2009) neglect it.
     coriolis : bool
         Keep C(nu) = C_RB + C_A at all.
     """

@@ -37,6 +37,11 @@ def circle(radius, *, rho=RHO):
     References
     ----------
     Newman, Marine Hydrodynamics (1977), sec. 4.13, table 4.2; DNV-RP-C205 table A-1.
+
+    Examples
+    --------
+    >>> round(float(circle(1.0, rho=1000.0)), 2)      # rho pi a^2
+    3141.59
     """
     return rho * np.pi * np.asarray(radius, dtype=float) ** 2
 
@@ -65,6 +70,12 @@ def ellipse(half_breadth, half_height, *, rho=RHO):
     References
     ----------
     Newman (1977), sec. 4.13, table 4.2 (ellipse); DNV-RP-C205 table A-1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [round(float(m) / (1000.0 * np.pi), 6) for m in ellipse(2.0, 1.0, rho=1000.0)]
+    [1.0, 4.0, 1.125]
     """
     b = np.asarray(half_breadth, dtype=float)
     h = np.asarray(half_height, dtype=float)
@@ -91,6 +102,12 @@ def flat_plate(half_width, *, rho=RHO):
     References
     ----------
     Newman (1977), table 4.2; DNV-RP-C205 table A-1 (plate: C_A = 1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [round(float(m) / np.pi, 6) for m in flat_plate(2.0, rho=1.0)]    # pi a^2, pi a^4 / 8
+    [4.0, 2.0]
     """
     a = np.asarray(half_width, dtype=float)
     return rho * np.pi * a**2, rho * np.pi * a**4 / 8.0
@@ -233,6 +250,14 @@ def circle_with_fins(radius, tip_radius, *, fins: int = 2, rho=RHO):
     two fins); Prestero (2001), MIT/WHOI thesis, sec. 3.4; Newman (1977), sec. 4.13 (Joukowski
     map :math:`z + R^2/z` of the finned circle onto a slit of half-length :math:`a + R^2/a`).
     m44: see :func:`finned_circle_roll`.
+
+    Examples
+    --------
+    A bare pair of fins (R = 0) is a flat plate of width 2a: :math:`\rho\pi a^2` and
+    :math:`\tfrac{\pi}{8}\rho a^4`:
+
+    >>> [round(float(m), 4) for m in circle_with_fins(0.0, 1.0, rho=1.0)]
+    [3.1416, 0.3927]
     """
     r = float(radius)
     a = float(tip_radius)
@@ -292,6 +317,13 @@ def finned_circle_roll(radius, tip_radius, *, fins: int = 2, rho=RHO):
     bodies, table 4.2); Blevins (1979), table 14-2 (the cruciform's 2/pi rho a^4); Prestero
     (2001), sec. 3.4 (uses 2/pi rho a^4 for the finned REMUS tail, K_pdot).  Checked against
     the 2D panel method (:mod:`stripcoef.sections.panel`) in tests/test_fin_sections.py.
+
+    Examples
+    --------
+    A bare cruciform (R = 0) has :math:`\tfrac{2}{\pi}\rho a^4` (Blevins 1979):
+
+    >>> round(finned_circle_roll(0.0, 1.0, fins=4, rho=1.0), 4)
+    0.6366
     """
     if fins not in (2, 4):
         raise ValueError(f"fins must be 2 or 4, got {fins}")
@@ -345,6 +377,11 @@ def plate_chordwise_factor(span, chord):
     ----------
     DNV-RP-H103 (2011), appendix A, table A-2 (rectangular plates); Brennen (1982), "A review of
     added mass and fluid inertial forces", NCEL CR 82.010, sec. 3 (3D plates).
+
+    Examples
+    --------
+    >>> plate_chordwise_factor(1.0, 1.0)       # the square plate, as DNV-RP-H103 prints it
+    0.579
     """
     w, c = float(span), float(chord)
     for key, v in (("span", w), ("chord", c)):

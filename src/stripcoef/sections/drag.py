@@ -177,6 +177,11 @@ def blasius_cf(reynolds):
     References
     ----------
     Schlichting & Gersten, Boundary-Layer Theory (8th ed.), eq. 6.59.
+
+    Examples
+    --------
+    >>> round(float(blasius_cf(1e4)), 6)        # 1.328 / 100
+    0.01328
     """
     return 1.328 / np.sqrt(np.asarray(reynolds, dtype=float))
 
@@ -189,6 +194,11 @@ def ittc57_cf(reynolds):
     References
     ----------
     ITTC (1957), Proc. 8th ITTC; ITTC 7.5-02-02-02.
+
+    Examples
+    --------
+    >>> round(float(ittc57_cf(1e7)), 6)         # 0.075 / (7 - 2)^2
+    0.003
     """
     return 0.075 / (np.log10(np.asarray(reynolds, dtype=float)) - 2.0) ** 2
 
@@ -220,6 +230,15 @@ def friction_coefficient(reynolds, *, regime: str = "auto"):
     -------
     (float, str)
         C_f [-] and the regime name: laminar, transitional or turbulent
+
+    Examples
+    --------
+    Continuous at the transition, Re_cr = 5e5:
+
+    >>> laminar, _ = friction_coefficient(5e5, regime="laminar")
+    >>> cf, name = friction_coefficient(5e5)
+    >>> round(cf / laminar, 9), name
+    (1.0, 'transitional')
     """
     re = float(reynolds)
     if regime == "laminar":
@@ -243,33 +262,164 @@ def hoerner_form_factor(diameter_over_length):
     ----------
     Hoerner, Fluid-Dynamic Drag (1965), ch. 6, eq. 6-27 (tagged "from memory" in
     shared/reference/formulas.md sec. 5.4; values L/D = 4: 1.297, 6: 1.135, 10: 1.054).
+    A fit to streamlined bodies: a closed hull uses it only from L/D 3 up
+    (:data:`FORM_FACTOR_LD`, :func:`closed_body_axial_cd`); shorter bodies, and any body with a
+    flat end (:func:`blunt_cylinder_axial_cd`), get measured whole-body drag instead.
+
+    Examples
+    --------
+    The formula at L/D = 4, 6, 10 (at L/D = 6 it gives 1.13447, quoted as 1.135):
+
+    >>> [round(float(hoerner_form_factor(1.0 / ld)), 3) for ld in (4.0, 6.0, 10.0)]
+    [1.297, 1.134, 1.054]
     """
     r = np.asarray(diameter_over_length, dtype=float)
     return 1.0 + 1.5 * r**1.5 + 7.0 * r**3
 
 
-def blunt_cylinder_axial_cd(length_over_diameter):
-    r"""Pressure drag of a blunt (flat-ended) cylinder in flow along its axis, on its frontal area.
+#: The blunt-body curve's last L/D [-]: a longer flat-ended body adds only skin friction, which
+#: the hull's friction line carries (Hoerner 1965, ch. 3: end-on cylinders up to L/d ~ 8)
+BLUNT_LD_MAX = 8.0
 
-    .. math:: F = \tfrac12 \rho\, C_D(L/D)\, A_{frontal}\, u|u|
 
-    Hoerner's values for flat-faced cylinders: C_D ~ 1.15 at L/D = 0.5, 0.9 at 1,
-    0.85 at 2, 0.87 at 4, 0.99 at 8 (Hoerner 1965, fig. 3-33; recalled, not re-checked
-    here: treat as assumed); linear interpolation between these points.  Outside
-    0.5 <= L/D <= 8 the end value is used: a shorter body is a disc (C_D ~ 1.1-1.2) and a
-    longer one adds only skin friction, which the hull friction line already carries.
+def blunt_cylinder_axial_cd(length_over_diameter, aspect_ratio=1.0):
+    r"""Whole-body drag of a flat-ended body in flow along its axis, on its frontal area.
+
+    .. math:: F = \tfrac12 \rho\, C_D\, A_{frontal}\, u|u|,\qquad
+              C_D = C_{D,cyl}\!\left(\min(L/D, 8)\right)\,
+              \frac{C_{D,plate}(AR)}{C_{D,plate}(1)}
+
+    :math:`C_{D,cyl}` is the measured curve of flat-ended circular cylinders end-on, from the
+    disc (L/D = 0: 1.17) through 1.15 at L/D = 0.5, 0.90 at 1, 0.85 at 2, 0.87 at 4 to 0.99 at 8
+    (data/blunt_body_axial_drag.csv), linear in L/D; a longer body keeps the value at 8 and
+    adds only skin friction, which the hull friction line carries (Hoerner 1965, ch. 3).  The
+    second factor carries the frontal section's aspect ratio AR (its width over its height,
+    either way round) as it acts on a thin plate normal to the flow (:func:`plate_cd`: 1.18
+    square, 1.2 at AR 5, 1.3 at 10, 2.0 as AR -> infinity), so a thin plate (L/D -> 0) gets its
+    measured drag: 1.17 x 1.2 / 1.18 = 1.19 at AR 5 [assumption: the aspect ratio scales a
+    blunt body's end-on drag as it scales a plate's; 1 for a round or square section, so the
+    cylinder and cube curves are unchanged].
 
     Parameters
     ----------
     length_over_diameter : float or array
-        L/D of the body along the flow [-]
+        L/D of the body along the flow, D the diameter of the frontal area's equal circle [-]
+    aspect_ratio : float or array
+        width over height of the frontal section (or its inverse) [-]
 
     Returns
     -------
     float or array
         C_D on the frontal area [-]
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 3 (discs, cylinders end-on, plates normal to the
+    flow), as tabulated in White, Fluid Mechanics, Table 7.3 (recalled: data files' headers).
+    """
+    ld = np.minimum(np.asarray(length_over_diameter, dtype=float), BLUNT_LD_MAX)
+    base = load_table("blunt_body_axial_drag").interp(ld, "Cd", what="L/D")
+    return base * plate_cd(aspect_ratio) / plate_cd(1.0)
+
+
+#: Reynolds numbers on the diameter [-] between which a smooth rounded body goes through its
+#: drag crisis (laminar to turbulent separation): the sphere's C_D starts to fall at about 2e5
+#: and reaches its supercritical minimum by about 4e5-5e5 (Achenbach 1972, J. Fluid Mech. 54,
+#: fig. 3; Hoerner 1965, ch. 3, fig. 3-25)
+RE_CRISIS = (2e5, 5e5)
+
+
+def ellipsoid_axial_cd(length_over_diameter, reynolds):
+    r"""Whole-body drag of a prolate ellipsoid (spheroid) nose-on, on its frontal area.
+
+    .. math:: F = \tfrac12\rho\,C_D(L/d, Re_d)\,\frac{\pi d^2}{4}\,u|u|
+
+    with :math:`C_D` interpolated linearly in L/d in data/ellipsoid_axial_drag.csv (L/d 0.75 to
+    8: sphere 0.47, 2:1 0.27 subcritical; 0.2 and 0.13 supercritical), in its subcritical column
+    for :math:`Re_d \le 2\times10^5`, its supercritical one for :math:`Re_d \ge 5\times10^5`
+    and, between, linearly in log10(Re_d) from one to the other (the drag crisis,
+    :data:`RE_CRISIS`) [assumption: every fineness ratio has the sphere's crisis range].
+    Outside the table's L/d the end value is used, with an ExtrapolationWarning.
+
+    Parameters
+    ----------
+    length_over_diameter : float or array
+        L/d [-]
+    reynolds : float or array
+        Re_d = U d / nu on the diameter [-]
+
+    Returns
+    -------
+    float or array
+        C_D on the frontal area pi d^2/4 [-]
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 3 and 6, as tabulated in White, Fluid Mechanics,
+    Table 7.3 (ellipsoids, laminar and turbulent columns; recalled: the data file's header);
+    Achenbach (1972), J. Fluid Mech. 54, 565-575 (the sphere's critical range).
+    """
+    t = load_table("ellipsoid_axial_drag")
+    sub = t.interp(length_over_diameter, "Cd_subcritical", what="L/d")
+    sup = t.interp(length_over_diameter, "Cd_supercritical", what="L/d")
+    lo, hi = np.log10(RE_CRISIS[0]), np.log10(RE_CRISIS[1])
+    w = np.clip((np.log10(np.asarray(reynolds, dtype=float)) - lo) / (hi - lo), 0.0, 1.0)
+    out = (1.0 - w) * sub + w * sup
+    return float(out) if np.ndim(out) == 0 else out
+
+
+#: L/D [-] range of the streamlined-body form factor (:func:`hoerner_form_factor`): below
+#: FORM_FACTOR_LD[0] a closed body's axial drag is the measured whole-body drag of ellipsoids
+#: (:func:`ellipsoid_axial_cd`); from FORM_FACTOR_LD[1] up it is friction times the form
+#: factor; between, a log-linear bridge (:func:`closed_body_axial_cd`). Hoerner's fit rests on
+#: streamlined bodies of fineness ratio about 3 and more (ch. 6, fig. 6-22 [recalled]); at
+#: L/D 2 and 1 it gives a tenth and a sixth of the measured drag of a 2:1 ellipsoid and a
+#: sphere (reference_tables/body_drag_3d)
+FORM_FACTOR_LD = (2.0, 3.0)
+
+
+def closed_body_axial_cd(length_over_diameter, reynolds_diameter, friction, wetted_over_frontal):
+    r"""Axial whole-body drag of a closed body without flat ends, on its frontal area.
+
+    .. math::
+        C_D = \begin{cases} C_{D,ell}(L/D, Re_D) & L/D \le 2 \\
+        C_f\,FF(D/L)\,S_{wet}/A_f & L/D \ge 3 \\
+        C_{D,ell}^{\,1-w}\,\left(C_f\,FF\,S_{wet}/A_f\right)^{w},\ w = L/D - 2 & \text{between}
+        \end{cases}
+
+    :math:`C_{D,ell}`: :func:`ellipsoid_axial_cd` (measured short bodies: the flow separates);
+    :math:`FF`: :func:`hoerner_form_factor` (streamlined bodies, attached flow), only inside the
+    range :data:`FORM_FACTOR_LD` of its source; the bridge between L/D 2 and 3 is geometric in
+    w [assumption: no measured body covers the change of regime; the model warns there].
+
+    Parameters
+    ----------
+    length_over_diameter : float or array
+        L/D, D the diameter of the largest section's equal circle [-]
+    reynolds_diameter : float or array
+        Re_D = U D / nu [-]
+    friction : float or array
+        C_f of the hull at Re_L [-] (:func:`friction_coefficient`)
+    wetted_over_frontal : float or array
+        S_wet / A_frontal [-]
+
+    Returns
+    -------
+    float or array
+        C_D on the frontal area [-]
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 3 and ch. 6, eq. 6-27; White, Fluid Mechanics,
+    Table 7.3.
     """
     ld = np.asarray(length_over_diameter, dtype=float)
-    xs = np.array([0.5, 1.0, 2.0, 4.0, 8.0])
-    ys = np.array([1.15, 0.90, 0.85, 0.87, 0.99])
-    return np.interp(np.clip(ld, xs[0], xs[-1]), xs, ys)
+    lo, hi = FORM_FACTOR_LD
+    streamlined = np.asarray(friction) * hoerner_form_factor(1.0 / ld) * \
+        np.asarray(wetted_over_frontal)
+    with np.errstate(invalid="ignore"):
+        short = ellipsoid_axial_cd(np.minimum(ld, hi), reynolds_diameter)
+    w = np.clip((ld - lo) / (hi - lo), 0.0, 1.0)
+    out = np.where(w <= 0.0, short, np.where(w >= 1.0, streamlined,
+                                              short ** (1.0 - w) * streamlined ** w))
+    return float(out) if out.ndim == 0 else out

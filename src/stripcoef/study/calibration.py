@@ -85,15 +85,17 @@ def inside(errors, sd) -> np.ndarray:
 def leave_one_group_out(errors, groups) -> np.ndarray:
     """For each item: is it inside the band set by the errors of every OTHER group (shape)?
     ``errors``: (n,) log errors of one class and family; ``groups``: (n,) shape labels. Items of
-    a class with one shape only have no band from the others: False."""
+    a class with one shape only have no band from the others: False. A NaN error (a model term
+    of the wrong sign, which no factor reaches) is outside and sets no band."""
     e = np.asarray(errors, float)
     g = np.asarray(groups)
     out = np.zeros(e.size, bool)
     for label in np.unique(g):
         own = g == label
-        if (~own).sum() == 0:
+        others = e[~own & np.isfinite(e)]
+        if others.size == 0:
             continue
-        out[own] = inside(e[own], sd_from_errors(e[~own]))
+        out[own] = inside(e[own], sd_from_errors(others))
     return out
 
 

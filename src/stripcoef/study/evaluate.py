@@ -9,7 +9,9 @@ Outputs are flat ``name -> float``: every SNAME coefficient of the model
 (:meth:`HydroModel.coefficients`; a term the model rounds to zero is 0.0), the mass, and with
 limits ``surge_speed_max`` [m/s], ``heave_speed_max`` [m/s], ``yaw_rate_max`` [rad/s],
 ``sway_speed_max`` [m/s], ``min_turning_radius`` [m] and ``u_max@R=<radius>`` [m/s] for each
-turning radius (NaN where the manoeuvre is unreachable).
+turning radius (NaN where the manoeuvre is unreachable). With limits, the one text output
+``limits_note`` says why a limit is blank (the solver's notes, or its refusal; empty when
+every limit was found), so that a sweep never leaves a point blank without a reason.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ class Job:
     whose factors each row carries after the inputs; ``limits``: solve the manoeuvre limits;
     ``radii``: turning radii for the limits [m]; ``strips``: strip count (None: the file's);
     ``mirrors``: the nominal body's mirror symmetries (``x``, ``y``, ``z``:
-    :func:`stripcoef.study.symmetry.mirror_symmetries`), which decide the couplings the method
+    :func:`stripcoef.assembly.symmetry.mirror_symmetries`), which decide the couplings the method
     source moves (None: none known, every coupling moves).
     """
 
@@ -46,6 +48,10 @@ class Job:
     mirrors: frozenset | None = None
 
 
+#: The text output that says why a limit of a point is blank (empty: none is).
+NOTE = "limits_note"
+
+
 def _limits_outputs(model, radii) -> dict:
     from stripcoef.limits.solver import solve_limits
 
@@ -54,7 +60,8 @@ def _limits_outputs(model, radii) -> dict:
     out.update({f"u_max@R={r:g}": math.nan for r in radii})
     try:
         res = solve_limits(model, radii=np.asarray(radii, dtype=float))
-    except StripcoefError:
+    except StripcoefError as exc:
+        out[NOTE] = f"limits not solved: {exc}"
         return out
     for key in ("surge_speed_max", "heave_speed_max", "yaw_rate_max", "sway_speed_max"):
         v = getattr(res, key)
@@ -63,6 +70,9 @@ def _limits_outputs(model, radii) -> dict:
         out["min_turning_radius"] = float(res.min_turning_radius)
     for t in res.turning:
         out[f"u_max@R={t.radius:g}"] = float(t.u_max)
+    blank = [k for k, v in out.items() if isinstance(v, float) and math.isnan(v)]
+    why = f" (the solver's notes: {'; '.join(res.notes)})" if res.notes else ""
+    out[NOTE] = f"blank: {', '.join(blank)}{why}" if blank else ""
     return out
 
 
@@ -72,7 +82,7 @@ def evaluate(job: Job, row) -> dict:
     from stripcoef.geometry.keypaths import set_value
     from stripcoef.geometry.vehicle import parse_vehicle
     from stripcoef.study.sources import couple, method_couplings, method_factors, scale_matrix
-    from stripcoef.study.symmetry import allowed_couplings
+    from stripcoef.assembly.symmetry import allowed_couplings
 
     row = [float(v) for v in row]
     n_in = len(job.paths)
@@ -111,11 +121,20 @@ def evaluate_batch(args) -> list[dict]:
 
 
 def table(results: list[dict]) -> tuple[list[str], np.ndarray]:
-    """Column names (first-seen order) and a (rows, columns) array; a missing term is 0.0."""
+    """Column names (first-seen order) and a (rows, columns) array of the numeric outputs; a
+    missing term is 0.0. Text outputs (``limits_note``) are left out: :func:`notes` reads them."""
     names: dict[str, None] = {}
     for r in results:
-        for k in r:
-            names.setdefault(k, None)
+        for k, v in r.items():
+            if not isinstance(v, str):
+                names.setdefault(k, None)
     cols = list(names)
     arr = np.array([[r.get(c, 0.0) for c in cols] for r in results], dtype=float)
     return cols, arr
+
+
+def notes(results: list[dict]) -> list[str] | None:
+    """Each result's ``limits_note`` (None when the evaluations solved no limits)."""
+    if not any(NOTE in r for r in results):
+        return None
+    return [r.get(NOTE, "") for r in results]

@@ -10,6 +10,8 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.figures import new_figure, save_figure
+from stripcoef.study.evaluate import NOTE
+from stripcoef.views import coefficient_unit, key_unit, with_unit
 
 
 def band_figure(result, *, path=None, key: str = "path"):
@@ -41,15 +43,16 @@ def band_figure(result, *, path=None, key: str = "path"):
 
 def sweep_figure(frame, keys, output: str, *, path=None, key: str = "path"):
     """One output over one swept key (a line) or two (filled contours), with units in labels."""
-    if output not in frame.columns:
+    if output not in frame.columns or output == NOTE:
         raise InputError("unknown output", key="output", value=output,
-                         expected="one of " + ", ".join(c for c in frame.columns if c not in keys))
+                         expected="one of " + ", ".join(c for c in frame.columns
+                                                       if c not in keys and c != NOTE))
     fig = new_figure(figsize=(6.5, 4.2), key=key)
     ax = fig.add_subplot()
     if len(keys) == 1:
         ax.plot(frame[keys[0]], frame[output], "o-")
-        ax.set_xlabel(keys[0])
-        ax.set_ylabel(output)
+        ax.set_xlabel(with_unit(keys[0], key_unit(keys[0])))
+        ax.set_ylabel(with_unit(output, coefficient_unit(output)))
     else:
         x, y = np.unique(frame[keys[0]]), np.unique(frame[keys[1]])
         z = frame.pivot_table(index=keys[1], columns=keys[0], values=output).to_numpy()
@@ -57,9 +60,9 @@ def sweep_figure(frame, keys, output: str, *, path=None, key: str = "path"):
             raise InputError("a contour needs two values of each key", key="vary",
                              expected="N >= 2 for both keys")
         cs = ax.contourf(x, y, z, levels=12)
-        fig.colorbar(cs, ax=ax, label=output)
-        ax.set_xlabel(keys[0])
-        ax.set_ylabel(keys[1])
+        fig.colorbar(cs, ax=ax, label=with_unit(output, coefficient_unit(output)))
+        ax.set_xlabel(with_unit(keys[0], key_unit(keys[0])))
+        ax.set_ylabel(with_unit(keys[1], key_unit(keys[1])))
     ax.set_title(f"{output} over {', '.join(keys)}")
     ax.grid(True, alpha=0.3)
     if path is not None:

@@ -17,7 +17,7 @@ strips (:meth:`stripcoef.geometry.vehicle.Vehicle.cut`, the same sections the mo
   an ellipsoid; small for a frame of tubes).
 
 The rule (thresholds between the reference shapes of the calibration set,
-benchmarks/data/method_errors.csv: round fraction 0.99-1 for the bodies of revolution,
+reference_tables/method_errors/method_errors.csv: round fraction 0.99-1 for the bodies of revolution,
 0.90-0.96 for the six finned hulls (0.82 MARES, 0.94 REMUS 100; the smallest margin is the
 small-fin hull's 0.955 against 0.97: fins much smaller still would make a hull ``revolution``),
 at most 0.18 for the bluff shapes; fill 0.09 for the open frame, 0.17 for the BlueROV2 Heavy

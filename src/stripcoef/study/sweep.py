@@ -13,10 +13,13 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.files import atomic_path, write_text
+from stripcoef.study.evaluate import NOTE
 
 #: Grid points per batch of parallel work.
 BATCH = 4
@@ -73,7 +76,7 @@ def sweep(vehicle, vary, *, limits: bool = True, radii=(0.5, 1.0, 2.0, 5.0, 10.0
                          expected="pip install 'stripcoef[study]'") from None
     from stripcoef.geometry.keypaths import nominal, set_value
     from stripcoef.geometry.vehicle import parse_vehicle, read_vehicle_data
-    from stripcoef.study.evaluate import Job, evaluate_batch, table
+    from stripcoef.study.evaluate import Job, evaluate_batch, notes, table
     from stripcoef.study.runner import run_batches
 
     file = str(vehicle)
@@ -103,15 +106,25 @@ def sweep(vehicle, vary, *, limits: bool = True, radii=(0.5, 1.0, 2.0, 5.0, 10.0
     frame = pd.DataFrame(arr, columns=names)
     for k, key in enumerate(keys):
         frame.insert(k, key, [p[k] for p in points])
+    why = notes(results)
+    if why is not None:
+        frame[NOTE] = why
     return frame
+
+
+def blank_points(frame) -> dict[str, int]:
+    """Why limits are blank in a sweep table: reason -> number of grid points (empty: none)."""
+    if NOTE not in frame.columns:
+        return {}
+    counts: dict[str, int] = {}
+    for note in frame[NOTE]:
+        if note:
+            counts[note] = counts.get(note, 0) + 1
+    return counts
 
 
 def write_table(frame, path, *, key: str = "path") -> None:
     """Write a sweep table atomically: ``.csv``, or ``.parquet`` (needs pyarrow)."""
-    from pathlib import Path
-
-    from stripcoef.files import atomic_path, write_text
-
     suffix = Path(path).suffix.lower()
     if suffix == ".csv":
         write_text(path, frame.to_csv(index=False), key=key)

@@ -98,9 +98,8 @@ def _draws(sources, n: int, seed: int) -> np.ndarray:
 def _nominal_model(vehicle, strips):
     """The nominal vehicle's model, warnings hidden (the nominal evaluation shows them): its
     reference point sets the mirror symmetries the method's couplings follow
-    (:func:`stripcoef.study.symmetry.mirror_symmetries`), its lift whether the lift rows are
+    (:func:`stripcoef.assembly.symmetry.mirror_symmetries`), its lift whether the lift rows are
     sampled."""
-    import warnings
 
     from stripcoef.assembly import estimate
 
@@ -153,7 +152,7 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     veh = parse_vehicle(data, file=file)
     mirrors, lift = None, False
     if method:
-        from stripcoef.study.symmetry import mirror_symmetries
+        from stripcoef.assembly.symmetry import mirror_symmetries
 
         model = _nominal_model(veh, strips)
         mirrors = mirror_symmetries(veh, model.reference_point, strips)

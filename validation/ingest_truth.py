@@ -1,6 +1,6 @@
 """A known truth for the log-ingestion tests: a 6-DOF simulation of a known model driven by a
 50 Hz piecewise-constant wrench, and that truth written the ways real logs come (tests/
-test_ingest_*.py): a navigation CSV at an irregular ~10 Hz with nanosecond stamps, ENU
+test_ingest_*.py, benchmarks/ingest_speed.py): a navigation CSV at an irregular ~10 Hz with nanosecond stamps, ENU
 positions, FLU-body quaternions (x, y, z, w) and earth-fixed velocities, and a header-less
 50 Hz wrench file in FLU axes."""
 

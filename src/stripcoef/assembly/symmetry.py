@@ -44,6 +44,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from stripcoef.errors import InputError
+
 #: the reflections, by the axis they reverse
 MIRRORS = ("x", "y", "z")
 #: parity of (u, v, w, p, q, r) under each reflection (module docstring: the table)
@@ -64,7 +66,6 @@ def allowed_couplings(mirrors) -> np.ndarray:
     ok = np.ones((6, 6), dtype=bool)
     for m in mirrors:
         if m not in PARITY:
-            from stripcoef.errors import InputError
 
             raise InputError("unknown reflection", key="mirrors", value=m,
                              expected="x, y or z (the axis it reverses)")
@@ -120,9 +121,13 @@ def mirror_symmetries(vehicle, point=(0.0, 0.0, 0.0), strips: int | None = None,
     expressed about, :attr:`stripcoef.model.HydroModel.reference_point`) that map the
     vehicle's strips (``strips`` of them; default its own count) onto themselves within
     ``tol`` of its volume (module docstring: the test)."""
+    return strips_mirror_symmetries(vehicle.cut(strips), point, tol)
+
+
+def strips_mirror_symmetries(st, point=(0.0, 0.0, 0.0), tol: float = MIRROR_TOL) -> frozenset:
+    """:func:`mirror_symmetries` of strips already cut (:class:`stripcoef.strips.Strips`)."""
     from shapely.affinity import scale
 
-    st = vehicle.cut(strips)
     secs, area = _sections(st)
     x0, y0, z0 = (float(v) for v in point)
     dx = np.asarray(st.dx, dtype=float)
@@ -139,3 +144,18 @@ def mirror_symmetries(vehicle, point=(0.0, 0.0, 0.0), strips: int | None = None,
             sum(_difference(a, b) * w for a, b, w in zip(secs, secs[::-1], dx)) <= limit:
         out.add("x")
     return frozenset(out)
+
+
+#: Tolerance of the mirror test when the forbidden couplings of a computed matrix are set to
+#: exactly zero (:func:`enforce_symmetry`) [-]: 0.1 % of the volume, so that a coupling is
+#: only removed where the asymmetry it could come from is below the 3D panel method's own
+#: estimated error (at least 0.1 % of the diagonal scale on the shapes measured, docs/meshes.md).
+ZERO_TOL = 1e-3
+
+
+def enforce_symmetry(matrix, mirrors):
+    """``matrix`` (6x6) with the couplings that the reflections ``mirrors`` forbid
+    (:func:`allowed_couplings`) set to exactly zero; a new array."""
+    out = np.array(matrix, dtype=float)
+    out[~allowed_couplings(mirrors)] = 0.0
+    return out

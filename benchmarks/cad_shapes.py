@@ -1,0 +1,355 @@
+"""A benchmark you cannot tune to: seeded CAD-style bluff shapes against Capytaine on the fly.
+
+Every run draws a fresh seed (printed; ``--seed S`` repeats a run) and from it ``--count``
+shapes from families of what CAD tools and simulators export (issue 32):
+
+- ``extrusion``: a random convex polygon (5-9 corners) extruded along a random axis, its caps
+  fan-triangulated from one corner as CAD exporters write them (sliver triangles);
+- ``chamfer_box`` / ``fillet_box``: boxes with chamfered edges, or rounded corners of a coarse
+  sphere, as the convex hull of their corners;
+- ``frame``: two side plates and two to four cross tubes, overlapping parts (no union);
+- ``plate``: a thin plate (thickness 2-5 % of its span);
+- ``coarse``: a cylinder of 8-12 facets or a low-polygon ellipsoid;
+- ``pod``: a box hull with a cylinder pod pushed into it (overlapping parts, asymmetric).
+
+Each shape is then written as a user would have it: in millimetres (half of them, read with
+``length_unit="mm"``) and as an OBJ with its vertices split at every face (half of them), else
+as an STL.  The model is ``estimate(load_vehicle(FILE, origin=(0, 0, 0)),
+added_mass_method="panels")`` -- the whole of ``stripcoef coefficients FILE
+--added-mass-method panels --origin 0,0,0`` but the printing -- timed on one thread.  The
+reference is Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
+on the shape's clean closed surface (the manifold union of its parts) at two resolutions
+(``--bem-faces``, at most 3000 faces, one solve at a time), Richardson-extrapolated as
+1/N, about the same point.
+
+Per shape: each diagonal term's error [%], each coupling's error over the diagonal scale
+sqrt(A_ii A_jj) [%], and whether the model's estimated error (``added_mass_error``) covers
+its actual error (every diagonal term and every coupling whose reference is at least 1 % of
+the scale).  Usage:
+
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.cad_shapes [--seed S] [--count N]
+                                                            [--csv out/cad_shapes.csv]
+
+``--references CSV`` re-runs the model alone on the seed of a stored run against that run's
+references (after a change of the panel method: minutes instead of the BEM's quarter hour).
+The stored run, reference_tables/bem/cad_shapes.csv (docs/validation.md), is seed 874081318 with 40
+shapes; its ``estimated_error_rel`` column comes from such a re-run (every other column
+reproduced within 1e-4).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import secrets
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+import trimesh  # noqa: E402
+
+RHO = 1000.0
+FAMILIES = ("extrusion", "chamfer_box", "fillet_box", "frame", "plate", "coarse", "pod")
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+#: a coupling is compared when the reference is at least this fraction of sqrt(A_ii A_jj)
+SIGNIFICANT = 0.01
+
+
+def _T(xyz):
+    return trimesh.transformations.translation_matrix(xyz)
+
+
+def _cyl(d, length, center, axis, sections):
+    c = trimesh.creation.cylinder(radius=0.5 * d, height=length, sections=sections)
+    c.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], np.asarray(axis, float)))
+    c.apply_translation(center)
+    return c
+
+
+def _fan_prism(poly, height, axis):
+    """A convex polygon (k, 2) extruded by ``height`` along ``axis`` (0, 1, 2), caps fanned
+    from corner 0 (the CAD way), sides two triangles each; outward normals."""
+    k = len(poly)
+    lo = np.column_stack([poly, np.full(k, -0.5 * height)])
+    hi = np.column_stack([poly, np.full(k, 0.5 * height)])
+    v = np.vstack([lo, hi])
+    faces = [[0, i + 1, i] for i in range(1, k - 1)]                  # bottom, facing -z
+    faces += [[k, k + i, k + i + 1] for i in range(1, k - 1)]         # top, facing +z
+    for i in range(k):
+        j = (i + 1) % k
+        faces += [[i, j, k + j], [i, k + j, k + i]]
+    m = trimesh.Trimesh(v, faces, process=False)
+    if m.volume < 0:
+        m.invert()
+    perm = {2: [0, 1, 2], 0: [2, 0, 1], 1: [1, 2, 0]}[axis]
+    return trimesh.Trimesh(np.asarray(m.vertices)[:, perm], m.faces, process=False)
+
+
+def make_shape(family, rng):
+    """(parts: list of closed meshes [m] centred near the origin, description)."""
+    u = rng.uniform
+    if family == "extrusion":
+        k = int(rng.integers(5, 10))
+        ang = np.sort(u(0, 2 * np.pi, k))
+        a, b = u(0.1, 0.3), u(0.1, 0.3)
+        poly = np.column_stack([a * np.cos(ang), b * np.sin(ang)])
+        h, axis = u(0.1, 0.5), int(rng.integers(0, 3))
+        m = _fan_prism(poly, h, axis)
+        return [m], f"{k}-gon {2 * a:.2f}x{2 * b:.2f} extruded {h:.2f} m along {'xyz'[axis]}"
+    if family in ("chamfer_box", "fillet_box"):
+        size = u(0.15, 0.6, 3)
+        r = u(0.1, 0.3) * size.min()
+        corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+        inner = corners * (0.5 * size - r)
+        if family == "chamfer_box":
+            pts = np.vstack([inner + np.eye(3)[i] * corners * r for i in range(3)])
+        else:
+            ball = trimesh.creation.icosphere(subdivisions=1, radius=r).vertices
+            pts = (inner[:, None, :] + ball[None, :, :]).reshape(-1, 3)
+        m = trimesh.convex.convex_hull(pts)
+        return [m], f"box {size.round(2).tolist()} with {r:.3f} m {family.split('_')[0]}s"
+    if family == "frame":
+        length, width, height = u(0.3, 0.6), u(0.25, 0.5), u(0.2, 0.4)
+        t = u(0.01, 0.03)
+        parts = [trimesh.creation.box([length, t, height], transform=_T([0, s * 0.5 * width, 0]))
+                 for s in (-1, 1)]
+        n = int(rng.integers(2, 5))
+        for _ in range(n):
+            d = u(0.03, 0.08)
+            x = u(-0.5, 0.5) * (length - d)
+            z = u(-0.5, 0.5) * (height - d)
+            parts.append(_cyl(d, width + t, [x, 0, z], [0, 1, 0], 16))
+        return parts, (f"frame {length:.2f}x{width:.2f}x{height:.2f}, plates {1000 * t:.0f} mm, "
+                       f"{n} tubes")
+    if family == "plate":
+        span, chord = u(0.2, 0.6), u(0.15, 0.4)
+        t = u(0.02, 0.05) * span
+        m = trimesh.creation.box([chord, span, t])
+        return [m], f"plate {chord:.2f}x{span:.2f}x{t:.3f} m"
+    if family == "coarse":
+        if rng.uniform() < 0.5:
+            k = int(rng.integers(8, 13))
+            d, length = u(0.1, 0.4), u(0.1, 0.5)
+            axis = np.eye(3)[int(rng.integers(0, 3))]
+            m = _cyl(d, length, [0, 0, 0], axis, k)
+            return [m], f"{k}-facet cylinder D {d:.2f} L {length:.2f}"
+        n = int(rng.integers(4, 7))
+        s = trimesh.creation.uv_sphere(radius=1.0, count=[n, 2 * n])
+        ax = u(0.08, 0.3, 3)
+        s.apply_scale(ax)
+        return [s], f"low-polygon ellipsoid {(2 * ax).round(2).tolist()} ({len(s.faces)} faces)"
+    if family == "pod":
+        size = u(0.2, 0.5, 3)
+        hull = trimesh.creation.box(size)
+        d = u(0.3, 0.6) * min(size[1], size[2])
+        pod = _cyl(d, u(0.5, 1.0) * size[0], [u(-0.2, 0.2) * size[0], 0.0,
+                                               -0.5 * size[2]], [1, 0, 0], 16)
+        return [hull, pod], f"box {size.round(2).tolist()} with a pod D {d:.2f} on top"
+    raise ValueError(family)
+
+
+def clean_surface(parts):
+    """The true closed surface: the parts' manifold union (one part: itself)."""
+    if len(parts) == 1:
+        return parts[0]
+    return trimesh.boolean.union(parts, engine="manifold")
+
+
+def subdivided(mesh, faces):
+    """Edges split until about ``faces`` triangles (longest-edge bound found by bisection)."""
+    base = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
+    if len(base.faces) >= faces:
+        return base
+    lo, hi = 1e-4, float(np.max(base.edges_unique_length))
+    best = base
+    for _ in range(18):
+        mid = np.sqrt(lo * hi)
+        v, f = trimesh.remesh.subdivide_to_size(base.vertices, base.faces, max_edge=mid)
+        if len(f) > faces:
+            lo = mid
+        else:
+            hi, best = mid, trimesh.Trimesh(v, f, process=True)
+    return best
+
+
+def write_as_user(parts, path_stem, rng):
+    """The shape as a user has it: mm or m, OBJ with split vertices or STL. Returns (path,
+    length_unit, description)."""
+    mm = rng.uniform() < 0.5
+    split = rng.uniform() < 0.5
+    scale = 1000.0 if mm else 1.0
+    mesh = trimesh.util.concatenate([p.copy() for p in parts])
+    v = np.asarray(mesh.vertices) * scale
+    if split:
+        path = Path(f"{path_stem}.obj")
+        tri = v[np.asarray(mesh.faces)].reshape(-1, 3)
+        lines = ["v %.9g %.9g %.9g" % tuple(p) for p in tri]
+        lines += [f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}" for k in range(len(mesh.faces))]
+        path.write_text("\n".join(lines) + "\n")
+    else:
+        path = Path(f"{path_stem}.stl")
+        trimesh.Trimesh(v, mesh.faces, process=False).export(path)
+    return path, ("mm" if mm else "m"), ("mm" if mm else "m") + (", split OBJ" if split else ", STL")
+
+
+def stored_references(path):
+    """{shape index: (6x6 reference, (faces_1, faces_2))} of a stored run's CSV (``--csv``)."""
+    refs = {}
+    with open(path, newline="") as fh:
+        fh.readline()
+        for r in csv.DictReader(fh):
+            if r["what"].startswith("FAILED"):
+                continue
+            k = int(r["shape"])
+            a = refs.setdefault(k, (np.zeros((6, 6)), tuple(map(int, r["bem_faces"].split("/")))))[0]
+            i, j = int(r["i"]), int(r["j"])
+            a[i, j] = a[j, i] = float(r["bem"])
+    return refs
+
+
+def run_one(family, rng, tmp, bem_faces, stored=None):
+    from stripcoef.assembly import estimate
+    from stripcoef.bem import bem_added_mass
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    parts, what = make_shape(family, rng)
+    path, unit, how = write_as_user(parts, Path(tmp) / family, rng)
+    t0 = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        veh = load_vehicle(path, length_unit=unit, origin=(0.0, 0.0, 0.0))
+        model = estimate(veh, added_mass_method="panels")
+    t_model = time.perf_counter() - t0
+    unconverged = any("has not converged" in str(w.message) for w in caught)
+    ref_point = np.asarray(model.reference_point)
+    t0 = time.perf_counter()
+    if stored is not None:              # the same seed's references, read back
+        ref, counts = stored
+        mats = [ref, ref]
+    else:
+        surface = clean_surface(parts)
+        mats, counts = [], []
+        for n in bem_faces:
+            m = subdivided(surface, n)
+            mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=3200))
+            counts.append(len(m.faces))
+        n1, n2 = counts
+        ref = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
+    t_bem = time.perf_counter() - t0
+    ours = np.asarray(model.added_mass) * RHO / model.density
+    est = np.asarray(model.added_mass_error) * RHO / model.density
+    d = np.sqrt(np.abs(np.diag(ref)))
+    scale = np.outer(d, d)
+    err = ours - ref
+    bem_step = np.abs(ref - mats[1]) / scale
+    rows = []
+    for i in range(6):
+        for j in range(i, 6):
+            significant = i == j or abs(ref[i, j]) >= SIGNIFICANT * scale[i, j]
+            rows.append(dict(i=i, j=j, ours=ours[i, j], ref=ref[i, j],
+                             est=est[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
+                             rel=err[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
+                             covered=bool(abs(err[i, j]) <= est[i, j]),
+                             significant=significant, bem_step=bem_step[i, j]))
+    return dict(family=family, what=what, how=how, rows=rows, t_model=t_model, t_bem=t_bem,
+                panels=model.conditions["added_mass_panels"], bem_faces=tuple(counts),
+                unconverged=unconverged, mirrors=model.conditions["mirror_planes"],
+                est_max=model.conditions["added_mass_error_max"])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seed", type=int, default=None, help="repeat a run (default: a fresh one)")
+    ap.add_argument("--count", type=int, default=10, help="shapes to draw (default 10)")
+    ap.add_argument("--bem-faces", type=int, nargs=2, default=(1300, 2900),
+                    help="faces of the two BEM resolutions (at most 3000 each)")
+    ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--references", default=None, metavar="CSV",
+                    help="take the BEM references from a stored run of the same --seed "
+                         "(re-evaluate the model only; its bem_richardson_step is then 0)")
+    args = ap.parse_args(argv)
+    stored = stored_references(args.references) if args.references else {}
+    seed = args.seed if args.seed is not None else secrets.randbits(32)
+    print(f"seed {seed}  (repeat: python -m benchmarks.cad_shapes --seed {seed} "
+          f"--count {args.count})", flush=True)
+    rng = np.random.default_rng(seed)
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k in range(args.count):
+            family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
+            try:
+                if args.references and k not in stored:
+                    raise ValueError("no stored reference for this shape")
+                r = run_one(family, rng, tmp, args.bem_faces, stored.get(k))
+            except Exception as exc:          # a refusal is a result too: say it, go on
+                print(f"{k:3d} {family:12s} FAILED: {type(exc).__name__}: {exc}", flush=True)
+                results.append(dict(family=family, failed=str(exc)))
+                continue
+            results.append(r)
+            diag = [x for x in r["rows"] if x["i"] == x["j"]]
+            coup = [x for x in r["rows"] if x["i"] != x["j"] and x["significant"]]
+            worst_d = max(diag, key=lambda x: abs(x["rel"]))
+            worst_c = max(coup, key=lambda x: abs(x["rel"])) if coup else None
+            sig = diag + coup
+            cov = sum(x["covered"] for x in sig)
+            print(f"{k:3d} {family:12s} {r['what']} [{r['how']}]\n"
+                  f"    panels {r['panels']}, mirrors {r['mirrors']}, BEM {r['bem_faces']}: "
+                  f"worst diagonal {DOFS[worst_d['i']]} {100 * worst_d['rel']:+.1f} %, "
+                  + (f"worst coupling {DOFS[worst_c['i']]}-{DOFS[worst_c['j']]} "
+                     f"{100 * worst_c['rel']:+.1f} % of scale, " if worst_c else "")
+                  + f"estimate covers {cov}/{len(sig)} terms (est. max "
+                  f"{100 * r['est_max']:.1f} %{', WARNED' if r['unconverged'] else ''}); "
+                  f"model {r['t_model']:.1f} s, BEM {r['t_bem']:.1f} s", flush=True)
+    ok = [r for r in results if "failed" not in r]
+    sig = [x for r in ok for x in r["rows"] if x["significant"]]
+    diag = [x for r in ok for x in r["rows"] if x["i"] == x["j"]]
+    coup = [x for r in ok for x in r["rows"] if x["i"] != x["j"] and x["significant"]]
+    print(f"\nseed {seed}: {len(ok)} of {len(results)} shapes solved")
+    if ok:
+        print(f"  diagonal terms within 5 %: {sum(abs(x['rel']) <= 0.05 for x in diag)} of "
+              f"{len(diag)}; couplings within 5 % of the scale: "
+              f"{sum(abs(x['rel']) <= 0.05 for x in coup)} of {len(coup)}")
+        print(f"  shapes with every term within 5 %: "
+              f"{sum(all(abs(x['rel']) <= 0.05 for x in r['rows'] if x['significant']) for r in ok)}"
+              f" of {len(ok)}")
+        print(f"  estimated error covers the actual error: {sum(x['covered'] for x in sig)} of "
+              f"{len(sig)} terms ({100 * np.mean([x['covered'] for x in sig]):.0f} %)")
+        print(f"  a warning where some term is off by more than 5 %: "
+              f"{sum(r['unconverged'] for r in ok if any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']))}"
+              f" of {sum(any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']) for r in ok)}")
+        t = np.array([r["t_model"] for r in ok])
+        tb = np.array([r["t_bem"] for r in ok])
+        print(f"  whole-estimate time: median {np.median(t):.2f} s (max {t.max():.2f} s); "
+              f"BEM reference (two resolutions): median {np.median(tb):.2f} s")
+    if args.csv:
+        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.csv, "w", newline="") as fh:
+            w = csv.writer(fh)
+            fh.write(f"# benchmarks/cad_shapes.py --seed {seed} --count {args.count}\n")
+            w.writerow(["shape", "family", "what", "how", "panels", "bem_faces", "mirrors",
+                        "warned", "t_model_s", "t_bem_s", "i", "j", "model", "bem",
+                        "error_rel", "covered", "significant", "bem_richardson_step_rel",
+                        "estimated_error_rel"])
+            for k, r in enumerate(results):
+                if "failed" in r:
+                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 16)
+                    continue
+                head = [k, r["family"], r["what"], r["how"], r["panels"],
+                        "/".join(map(str, r["bem_faces"])), r["mirrors"], int(r["unconverged"]),
+                        f"{r['t_model']:.3f}", f"{r['t_bem']:.3f}"]
+                for x in r["rows"]:
+                    w.writerow(head + [x["i"], x["j"], f"{x['ours']:.6g}", f"{x['ref']:.6g}",
+                                       f"{x['rel']:.4g}", int(x["covered"]),
+                                       int(x["significant"]), f"{x['bem_step']:.3g}",
+                                       f"{x['est']:.3g}"])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,182 @@
+"""Detection benchmark of `stripcoef diagnose` on logs of an independent 6-DOF simulator.
+
+The logs come from ``validation.independent`` (its own equations, integrator, thruster model,
+pilot and noise; no code of stripcoef's simulate), for a VideoRay-like and a BlueROV2-Heavy-like
+vehicle (the priors are stripcoef's models of ``geometry/videoray_pro3.yaml`` and
+``geometry/bluerov2_heavy.yaml``; the truths are those priors with every coefficient family
+scaled by U(0.75, 1.25)), one log per category and vehicle: each library effect at a random
+strength, a clean log, and dry (Coulomb) friction, which no library effect describes. Each log
+is diagnosed per DOF (the effect's DOF) and whole-log (``dof="all"``). A fresh seed every run
+unless ``--seed`` is given; the seed is printed so that a run can be repeated.
+
+Scores (issue 33's criteria):
+
+- library effects: the right effect named first; its magnitude within 15 % of the truth;
+  the error cut at least 3x (baseline / final); in whole-log mode, no step in a DOF the
+  effect does not act in;
+- clean logs: no effect added;
+- outside the library: ``unexplained``, or every step's held-out gain under 30 %.
+
+Usage:
+    python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
+        [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
+        [--modes dof,all] [--write FILE.md]
+"""
+
+from __future__ import annotations
+
+import argparse
+import multiprocessing
+import os
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+ROOT = Path(__file__).resolve().parent.parent
+VEHICLES = ("videoray_pro3", "bluerov2_heavy")
+
+
+def _prior(vehicle: str):
+    import stripcoef
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return stripcoef.estimate(ROOT / "geometry" / f"{vehicle}.yaml")
+
+
+def run_one(vehicle: str, category: str | None, seed: int, duration: float, mode: str) -> dict:
+    """One log diagnosed in one mode: the row of the score table."""
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.effects import get_effect
+    from validation.independent import OUTSIDE, STRENGTHS, generate
+
+    prior = _prior(vehicle)
+    dof_name = ({**STRENGTHS, **OUTSIDE}.get(category) or ("surge",))[0]
+    t0 = time.process_time()
+    log, truth = generate(prior.to_dict(), category, seed, duration=duration)
+    t1 = time.process_time()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all").to_dict()
+    t2 = time.process_time()
+    per = res.get("per_dof") or {dof_name: res}
+    own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
+    steps = own["steps"]                 # the steps of the effect's own DOF
+    every = [s for r in per.values() for s in r["steps"]]
+    row = {"vehicle": vehicle, "category": category or "clean", "seed": seed, "mode": mode,
+           "dof": dof_name, "truth": truth.strength, "first": steps[0]["effect"] if steps else None,
+           "n_steps": len(every), "unexplained": bool(res["unexplained"]),
+           "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
+           "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
+           "t_simulate": t1 - t0, "t_diagnose": t2 - t1,
+           "step_dofs": sorted(d for d, r in per.items() if r["steps"])}
+    if category in STRENGTHS:
+        match = [s for s in steps if s["effect"] == category]
+        if match:
+            est = get_effect(category).magnitude(match[0].get("final_parameters",
+                                                              match[0]["parameters"]))
+            row["estimate"] = float(est)
+            row["magnitude_error"] = abs(abs(est) - abs(truth.strength)) / abs(truth.strength)
+    return row
+
+
+def _run(args):
+    return run_one(*args)
+
+
+def summarise(rows: list[dict], seed: int, duration: float) -> str:
+    from validation.independent import OUTSIDE, STRENGTHS
+
+    lines = [f"Seed {seed}, logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.", ""]
+    lines += ["| effect | mode | logs | named first | magnitude within 15 % | error cut >= 3x "
+              "| spurious DOFs |", "| --- | --- | --- | --- | --- | --- | --- |"]
+    score, total = 0, 0
+    confusion: dict = {}
+    for cat in STRENGTHS:
+        for mode in ("dof", "all"):
+            rs = [r for r in rows if r["category"] == cat and r["mode"] == mode]
+            if not rs:
+                continue
+            n = len(rs)
+            first = sum(r["first"] == cat for r in rs)
+            mag = sum(r.get("magnitude_error", np.inf) <= 0.15 for r in rs)
+            cut = sum(r["cut"] >= 3 for r in rs)
+            spur = sum(any(d != r["dof"] for d in r["step_dofs"]) for r in rs) if mode == "all" \
+                else 0
+            score += first
+            total += n
+            for r in rs:
+                confusion.setdefault(cat, {}).setdefault(str(r["first"]), 0)
+                confusion[cat][str(r["first"])] += 1
+            lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {mag}/{n} | {cut}/{n} | "
+                         + (f"{spur}/{n}" if mode == "all" else "-") + " |")
+    clean = [r for r in rows if r["category"] == "clean"]
+    outside = [r for r in rows if r["category"] in OUTSIDE]
+    lines.append("")
+    lines.append(f"Library effects named first: {score}/{total}"
+                 + (f" ({100 * score / total:.0f} %)." if total else "."))
+    if clean:
+        fp = sum(r["n_steps"] > 0 for r in clean)
+        lines.append(f"Clean logs: an effect added in {fp} of {len(clean)}.")
+    if outside:
+        ok = sum(r["unexplained"] or r["max_gain"] < 0.3 for r in outside)
+        lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "
+                     f"under 30 % in {ok} of {len(outside)}; named: "
+                     + ", ".join(sorted({str(r['first']) for r in outside})) + ".")
+    if confusion:
+        lines += ["", "Confusion (truth -> effect named first, both modes):", ""]
+        for cat, named in confusion.items():
+            lines.append(f"- {cat}: " + ", ".join(f"{k} {v}" for k, v in sorted(named.items())))
+    ts = np.mean([r["t_simulate"] for r in rows])
+    td = np.mean([r["t_diagnose"] for r in rows])
+    lines += ["", f"Mean CPU time per log: independent simulation {ts:.1f} s, diagnosis "
+              f"{td:.1f} s."]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    from validation.independent import OUTSIDE, STRENGTHS
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seed", type=int, default=None, help="base seed (default: a fresh one)")
+    ap.add_argument("--duration", type=float, default=300.0, help="log length [s]")
+    ap.add_argument("--categories", default=None,
+                    help="comma-separated (default: every library effect, clean, "
+                         "coulomb_friction)")
+    ap.add_argument("--vehicles", default=",".join(VEHICLES))
+    ap.add_argument("--modes", default="dof,all")
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    args = ap.parse_args(argv)
+    seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
+    cats = (args.categories.split(",") if args.categories
+            else list(STRENGTHS) + ["clean"] + list(OUTSIDE))
+    jobs = []
+    for v, vehicle in enumerate(args.vehicles.split(",")):
+        for c, cat in enumerate(cats):
+            for mode in args.modes.split(","):
+                jobs.append((vehicle, None if cat == "clean" else cat,
+                             seed + 1000 * v + c, args.duration, mode))
+    print(f"seed {seed}: {len(jobs)} diagnoses", flush=True)
+    if args.jobs > 1:
+        with multiprocessing.Pool(args.jobs) as pool:
+            rows = pool.map(_run, jobs)
+    else:
+        rows = [_run(j) for j in jobs]
+    text = summarise(rows, seed, args.duration)
+    print(text)
+    if args.write:
+        from stripcoef.files import write_text
+        write_text(args.write, "# Diagnosis on an independent simulator\n\nMeasured by "
+                   "`python -m benchmarks.diagnose_independent "
+                   + " ".join(sys.argv[1:] if argv is None else argv) + "`.\n\n" + text + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,204 @@
+"""Model surgery: the fitted values of a diagnosis written into the prior model (a new
+:class:`~stripcoef.model.HydroModel`), the added mass kept within its bounds, and the
+coefficients at a bound listed.
+
+Depends on: model, conventions, diagnose.priors, diagnose.fit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.fit import _Config, _fit
+from stripcoef.diagnose.priors import added_mass_bounds
+
+
+def clip_added_mass(prior, calibrated, added_mass_sd=None):
+    """``(model, clipped)``: ``calibrated`` with each diagonal added mass clipped to
+    :func:`added_mass_bounds` of the prior's (a new model if anything moved), and
+    ``{dof: (value before, value after)}`` [kg or kg m^2] of the clipped ones. The fits are
+    bounded already; this catches what an effect adds to the matrix afterwards."""
+    ma = np.array(calibrated.added_mass, float)
+    clipped = {}
+    for i in range(6):
+        ma0 = float(prior.added_mass[i, i])
+        if ma0 == 0.0 or ma[i, i] == ma0:
+            continue
+        lo, hi = added_mass_bounds(i, ma0, None if added_mass_sd is None
+                                   else float(added_mass_sd[i]))
+        value = float(np.clip(ma[i, i], lo, hi))
+        if value != ma[i, i]:
+            clipped[DOF[i]] = (float(ma[i, i]), value)
+            ma[i, i] = value
+    if not clipped:
+        return calibrated, clipped
+    return replace(calibrated, added_mass=ma, added_mass_error=None), clipped
+
+
+def bounds_hit(prior, calibrated, added_mass_sd=None, clipped=None) -> dict:
+    """The coefficients of a calibrated model at a physical bound: DOF -> {name: text}, for
+    an added mass at a limit of :func:`added_mass_bounds` (the 99.7 % method band with
+    ``added_mass_sd``; ``clipped``: :func:`clip_added_mass`'s record), a drag at zero and
+    an effect written with a parameter at a bound of its fit (e.g. a thrust scale at its
+    lower bound 0.05; the model's provenance)."""
+    out = {}
+    clipped = clipped or {}
+    for i in range(6):
+        hits = {}
+        ma0, ma = float(prior.added_mass[i, i]), float(calibrated.added_mass[i, i])
+        if ma0 != 0.0:
+            sd = None if added_mass_sd is None else float(added_mass_sd[i])
+            lo, hi = added_mass_bounds(i, ma0, sd)
+            band = (f"the 99.7 % band of its method uncertainty ({100 * sd:g} % at 1 sigma) "
+                    "and its plausible range" if sd is not None and np.isfinite(sd) and sd > 0
+                    else "its plausible range")
+            for value, name in ((lo, "lower"), (hi, "upper")):
+                # within the bounded scalar search's tolerance (1e-6 of the DOF's whole
+                # inertia M_RB + M_A, a few 1e-6 of M_A): at the bound
+                if ma != ma0 and abs(ma - value) <= 1e-5 * max(abs(value), 1e-12):
+                    hits["M"] = (f"added mass {ma:.4g} at the {name} bound of {band} "
+                                 f"[{lo:.4g}, {hi:.4g}]")
+                    if DOF[i] in clipped:
+                        hits["M"] += f", clipped from {clipped[DOF[i]][0]:.4g}"
+        for key, attr in (("D_L", "linear_damping"), ("D_Q", "quadratic_damping")):
+            d0, d = float(getattr(prior, attr)[i, i]), float(getattr(calibrated, attr)[i, i])
+            if d0 != 0.0 and d != d0 and abs(d) <= 1e-9 * abs(d0):
+                hits[key] = f"{key} {d:.3g} at its bound 0 (no negative drag)"
+        for name, side in _effects_at_bound(calibrated, DOF[i]).items():
+            hits[name] = side
+        if hits:
+            out[DOF[i]] = hits
+    return out
+
+
+def _effects_at_bound(model, dof: str) -> dict:
+    """{effect: text} for the effects of DOF ``dof`` that a diagnosis wrote with a fitted
+    parameter at a bound of its fit (the model's provenance, :func:`calibrated_model`)."""
+    out = {}
+    for entry in model.provenance.get("diagnose", ()) or ():
+        if entry.get("dof") != dof:
+            continue
+        for name, side in (entry.get("at_bound") or {}).items():
+            params = (entry.get("parameters") or {}).get(name, {})
+            out[name] = (f"{name} " + ", ".join(f"{k} = {v:.4g}" for k, v in params.items())
+                         + f" at the {side} bound of its fit")
+    return out
+
+
+def _changes(per: dict) -> list:
+    """The changes a diagnosis makes to the prior: each DOF's calibration and each effect."""
+    out = []
+    for d, r in per.items():
+        if any(v != 0.0 for v in r["calibration"]["final_parameters"].values()):
+            out.append(("calibration", d))
+        out += [("effect", d, s["effect"]) for s in r["steps"]]
+    return out
+
+
+
+def _writable_matrices(model) -> dict:
+    """Writable copies of a model's M_A, D_L, D_Q under the calibration's names."""
+    return {"M": np.array(model.added_mass, float), "D_L": np.array(model.linear_damping, float),
+            "D_Q": np.array(model.quadratic_damping, float)}
+
+
+def _with_matrices(model, mats: dict):
+    """``model`` with the matrices of :func:`_writable_matrices` (a new model); a calibrated
+    added mass is no longer the panel method's, so its estimated error goes."""
+    changed = not np.array_equal(mats["M"], model.added_mass)
+    return replace(model, added_mass=mats["M"], linear_damping=mats["D_L"],
+                   quadratic_damping=mats["D_Q"],
+                   added_mass_error=None if changed else model.added_mass_error)
+
+
+def written_fit(d: str, result: dict, fit, exclude=frozenset()):
+    """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
+    ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
+    with some, the kept terms refitted without the removed ones (their nonlinear parameters
+    as selected), so that no kept parameter compensates a term that is not there -- and,
+    when the DOF's calibration is removed, without the calibration columns (its
+    coefficients stay at the prior): the effects fitted together with it are refitted
+    alone. ``theta`` starts with the calibration's values (none when it is removed)."""
+    cfg = fit.config
+    theta = fit.evaluation["full"]["theta"]
+    dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
+    no_cal = ("calibration", d) in exclude and len(cfg.cal.names) > 0
+    if no_cal:
+        cfg = _Config(cfg.data, cfg.dof, cfg.cal.subset([]), list(cfg.terms),
+                      settings=cfg.settings, budget=cfg.budget)
+    if dropped:
+        cfg = cfg.with_terms([t for t in cfg.terms if t not in dropped])
+    if (dropped or no_cal) and (cfg.terms or not no_cal):
+        theta = _fit(cfg)["theta"]
+    elif no_cal:
+        theta = np.zeros(0)
+    return cfg, theta
+
+
+def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
+    """The prior with its calibrated coefficients and the added effects (a new model);
+    ``per``: DOF -> its result (:func:`diagnose_dof`), ``fits``: DOF -> its :class:`DofFit`;
+    ``exclude``: changes left out, ``("calibration", dof)`` or ``("effect", dof, name)``
+    (see :func:`validate_changes`); the values written are those of :func:`written_fit`.
+
+    The calibration of DOF i adds its own M, D_L, D_Q and the other DOFs' added mass
+    ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed itself, whose own
+    calibration then holds. The model's provenance (``diagnose``) records, per DOF, the
+    calibration changes applied and the parameters of each effect as applied (a native
+    effect's, folded into the matrices or thrusters, included)."""
+    m = model
+    mats = _writable_matrices(m)
+    record = []
+    for d, r in per.items():
+        i = parse_dof(d)
+        cfg, theta = written_fit(d, r, fits[d], exclude)
+        k = len(cfg.cal.names)
+        applied = {}
+        for key, value in zip(cfg.cal.names, theta[:k]):
+            if key in ("M", "D_L", "D_Q"):
+                mats[key][i, i] += value
+                applied[key] = float(value)
+            elif key.startswith("M_") and key[2:] not in per:
+                j = parse_dof(key[2:])
+                mats["M"][j, j] += value
+                applied[key] = float(value)
+        kept_effects, parameters, at_bound = [], {}, {}
+        low, up = cfg.lower(), cfg.upper()
+        for eff, hyper in cfg.terms:
+            ncol = eff.design(cfg.data, i, hyper)[1].shape[1]
+            nuis = eff.nuisance(cfg.data, i)
+            kn = 0 if nuis is None else nuis.shape[1]
+            tn = theta[k:k + kn]
+            params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
+            side = _pinned(theta[k + kn:k + ncol], low[k + kn:k + ncol], up[k + kn:k + ncol])
+            if side:
+                at_bound[eff.name] = side
+            k += ncol
+            for name, value in zip(eff.nuisance_names, tn):
+                if name in mats:  # a prior coefficient released by this effect
+                    mats[name][i, i] += float(value)
+            step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
+            # a native effect adds its term to the matrices calibrated so far
+            m = eff.apply(_with_matrices(m, mats), i, params, step.get("std"))
+            mats = _writable_matrices(m)
+            kept_effects.append(eff.name)
+            parameters[eff.name] = {n: float(v) for n, v in params.items()}
+        record.append({"dof": d, "calibration": applied, "effects": kept_effects,
+                       "parameters": parameters, "at_bound": at_bound})
+    m = _with_matrices(m, mats).with_provenance(diagnose=record)
+    return replace(m, name=f"{model.name}-calibrated")
+
+
+def _pinned(theta, low, up) -> str:
+    """``"lower"``/``"upper"`` when a fitted column sits at its bound (within 1e-4 of the
+    bound's magnitude, the bounded solver's tolerance; :func:`stripcoef.diagnose.select._judge`
+    uses the same test), else ''."""
+    for values, bound, name in ((theta, low, "lower"), (theta, up, "upper")):
+        fin = np.isfinite(bound)
+        tol = 1e-4 * np.maximum(1.0, np.abs(np.where(fin, bound, 0.0)))
+        if np.any(fin & (np.abs(values - np.where(fin, bound, 0.0)) <= tol)):
+            return name
+    return ""

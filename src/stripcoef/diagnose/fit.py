@@ -1,0 +1,639 @@
+r"""The MAP least-squares fit of one DOF's window residual: calibration columns, effects'
+regressors and their band priors.
+
+- :func:`_solve`: maximum a posteriori least squares with Gaussian band priors (Tarantola
+  2005, eq. 3.37), the inertia change profiled on the noise-corrected cost (Golub & Pereyra
+  1973; Fuller 1987, sec. 2.2);
+- :class:`Calibration` (:func:`_calibration`): the prior's own coefficients of a DOF as
+  columns, with their bands; :func:`_identifiability` (Ljung 1999, eq. 9.29);
+- :class:`_Config`: the calibration plus a list of effects, its design matrix and bounds;
+  :func:`_evaluate`: its fit on all windows and its blocked cross-validation;
+- :func:`fit_effects`: a fixed list of effects fitted with the calibration.
+
+Depends on: effects, identify (residual statistics), diagnose.settings, diagnose.priors.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares, lsq_linear
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.priors import TERM_MATRIX, added_mass_bounds
+from stripcoef.diagnose.settings import (DEFAULT_WINDOW, MIN_INFORMATION_RATIO, N_BLOCKS,
+                                         UNLIMITED, Budget, DiagnoseSettings)
+from stripcoef.effects.laws import WindowData, coefficient_column, get_effect
+from stripcoef.effects.windows import window_data
+
+#: The settings of a fit outside a diagnosis (:func:`fit_effects`, tests): the fixed bands.
+DEFAULTS = DiagnoseSettings()
+
+
+# ---------------------------------------------------------------------------
+# least squares with band priors
+# ---------------------------------------------------------------------------
+
+def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None):
+    r"""MAP least squares: min |y - H theta|^2 / sigma^2 + sum_j (theta_j / s_j)^2,
+    subject to theta >= lower (physical bounds: no negative added mass or damping).
+
+    ``m = (columns, M, v)``: the columns that multiply the acceleration (inertia changes
+    :math:`\mu`, collinear), the prior inertia M of the DOF and the variance v of the
+    measured window acceleration's noise. The force balance is homogeneous: scaling
+    inertia, damping and thrust together leaves it unchanged, while the velocity noise
+    enters the residual as :math:`(M + \mu) n`; a plain fit follows that noise and shrinks
+    everything (errors in variables). :math:`\mu` is therefore profiled (variable
+    projection, Golub & Pereyra 1973) on the cost corrected for the expected noise term,
+    :math:`J(\mu) - N (M + \mu)^2 v / \sigma^2` (corrected least squares, Fuller 1987,
+    Measurement Error Models, sec. 2.2).
+
+    ``upper``: upper bounds (an added mass within its plausible factor of the prior,
+    :data:`ADDED_MASS_FACTOR`).
+
+    Returns theta, covariance (the unconstrained one at the solution), weighted residual.
+    """
+    if m is not None and len(m[0]):
+        return _solve_profiled(y, H, prior_sd, sigma, lower, m, upper)
+    return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper)
+
+
+def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None):
+    p = H.shape[1]
+    if p == 0:
+        return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
+    rows = [H * weight / sigma]
+    rhs = [y * weight / sigma]
+    finite = np.isfinite(prior_sd)
+    if finite.any():
+        reg = np.zeros((int(finite.sum()), p))
+        reg[np.arange(reg.shape[0]), np.nonzero(finite)[0]] = 1.0 / prior_sd[finite]
+        rows.append(reg)
+        rhs.append(np.zeros(reg.shape[0]))
+    a = np.vstack(rows)
+    b = np.concatenate(rhs)
+    scale = np.sqrt((a ** 2).sum(axis=0))
+    scale[scale == 0] = 1.0
+    theta_s, *_ = np.linalg.lstsq(a / scale, b, rcond=None)
+    low_bad = lower is not None and np.any(theta_s / scale < lower)
+    up_bad = upper is not None and np.any(theta_s / scale > upper)
+    if low_bad or up_bad:
+        lb = (np.full(p, -np.inf) if lower is None
+              else np.where(np.isfinite(lower), lower * scale, -np.inf))
+        ub = (np.full(p, np.inf) if upper is None
+              else np.where(np.isfinite(upper), upper * scale, np.inf))
+        theta_s = lsq_linear(a / scale, b, bounds=(lb, ub), method="bvls").x
+    theta = theta_s / scale
+    cov = np.linalg.pinv((a / scale).T @ (a / scale)) / np.outer(scale, scale)
+    return theta, cov, b - a @ theta
+
+
+def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None):
+    from scipy.optimize import minimize_scalar
+
+    mcols, m_total, noise_var = list(m[0]), float(m[1]), float(m[2])
+    keep = [j for j in range(H.shape[1]) if j not in mcols]
+    rate = H[:, mcols[0]]
+    msd = prior_sd[mcols]
+    mu_sd = np.inf if not np.all(np.isfinite(msd)) else float(np.sqrt(np.sum(msd ** 2)))
+    lo = -0.95 * m_total
+    if lower is not None:
+        lo = max(lo, float(np.max(lower[mcols])))
+    X, sdx = H[:, keep], prior_sd[keep]
+    lowx = None if lower is None else lower[keep]
+    upx = None if upper is None else upper[keep]
+
+    def inner(mu):
+        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx)
+        extra = np.array([mu / mu_sd]) if np.isfinite(mu_sd) else np.zeros(0)
+        return th, cov, np.concatenate([res, extra])
+
+    def cost(mu):
+        return float(np.sum(inner(mu)[2] ** 2)) - y.size * (m_total + mu) ** 2 * noise_var \
+            / sigma ** 2
+
+    hi = 5.0 * m_total
+    if upper is not None:
+        hi = min(hi, float(np.min(upper[mcols])))
+    # without active bounds the profiled cost is exactly quadratic in mu (a linear
+    # least-squares residual of y - mu * rate, plus quadratic prior and noise terms):
+    # three evaluations give its vertex; otherwise fall back to a bounded search
+    h = 0.1 * m_total
+    c0, cp, cm = cost(0.0), cost(h), cost(-h)
+    curv = (cp - 2 * c0 + cm) / h ** 2
+    mu = None
+    if curv > 0:
+        cand = float(np.clip(-(cp - cm) / (2 * h) / curv, lo, hi))
+        if cost(cand) <= min(c0, cp, cm) + 1e-9 * max(abs(c0), 1.0):
+            mu = cand
+    if mu is None:
+        sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-6 * m_total})
+        mu = float(sol.x)
+    th, covx, res = inner(mu)
+    if not (curv > 0 and lo + h <= mu <= hi - h):
+        c0, cp, cm = cost(mu), cost(min(mu + h, hi)), cost(max(mu - h, lo))
+        curv = (cp - 2 * c0 + cm) / h ** 2
+    var_mu = 2.0 / curv if curv > 0 else np.inf
+    theta = np.zeros(H.shape[1])
+    cov = np.zeros((H.shape[1], H.shape[1]))
+    theta[keep] = th
+    cov[np.ix_(keep, keep)] = covx
+    # the inertia change goes to the last inertia column (the released one if any)
+    j = mcols[-1] if not np.isfinite(mu_sd) and len(mcols) > 1 else mcols[0]
+    if not np.isfinite(mu_sd):
+        j = next((c for c in mcols if not np.isfinite(prior_sd[c])), mcols[-1])
+    theta[j] = mu
+    cov[j, j] = var_mu
+    return theta, cov, res
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """The calibration of one DOF (:func:`_calibration`): the window columns of its
+    coefficients (n_windows, k), the sd of each correction's Gaussian prior [units of the
+    coefficient], their names (``M``, ``D_L``, ``D_Q``, ``M_<dof>``), their prior values and
+    the relative bands by name [-]."""
+
+    cols: np.ndarray
+    sd: np.ndarray
+    names: tuple
+    prior: np.ndarray
+    band: Mapping
+
+    def subset(self, keep) -> Calibration:
+        """The calibration of the columns ``keep`` (indices) only."""
+        keep = list(keep)
+        return Calibration(self.cols[:, keep], np.asarray(self.sd, float)[keep],
+                           tuple(self.names[j] for j in keep),
+                           np.asarray(self.prior, float)[keep], self.band)
+
+
+class _Config:
+    """Calibration columns + accepted effects (+ a candidate) for one DOF.
+
+    ``settings`` (:class:`DiagnoseSettings`: the added-mass bands) and ``budget``
+    (:class:`Budget`, checked at every design) are those of the running diagnosis."""
+
+    def __init__(self, data: WindowData, dof: int, cal: Calibration, terms, *,
+                 settings: DiagnoseSettings = DEFAULTS, budget: Budget = UNLIMITED):
+        self.data, self.dof, self.cal = data, dof, cal
+        self.settings, self.budget = settings, budget
+        self.cal_cols, self.cal_sd = cal.cols, np.asarray(cal.sd, float)
+        # names of the calibration columns (for recomputing them); None without any
+        self.cal_names = list(cal.names) or None
+        prior = np.asarray(cal.prior, float)
+        # the calibrated coefficient stays >= 0: no negative added mass or drag
+        self.cal_lower = -np.abs(prior)
+        self.cal_upper = np.full(self.cal_lower.size, np.inf)
+        for j, key in enumerate(self.cal_names or ()):
+            if key == "M" or key.startswith("M_"):
+                owner = dof if key == "M" else parse_dof(key[2:])
+                lo, hi = added_mass_bounds(owner, prior[j], settings.band_sd(owner))
+                self.cal_lower[j] = max(self.cal_lower[j], lo - prior[j])
+                self.cal_upper[j] = hi - prior[j]
+        self.cal_has_m = (len(self.cal_sd) > 0
+                          and float(data.model.added_mass[dof, dof]) != 0.0
+                          and (self.cal_names is None or self.cal_names[:1] == ["M"]))
+        self.terms = terms  # list of (effect, hyper)
+
+    def with_terms(self, terms) -> _Config:
+        """The same calibration with the terms ``terms`` (a new configuration)."""
+        return _Config(self.data, self.dof, self.cal, list(terms), settings=self.settings,
+                       budget=self.budget)
+
+    def hyper_terms(self, hyper_override=None):
+        """(effect, hyper) of each term, the last one's hyper replaced by ``hyper_override``
+        when given (the candidate whose nonlinear parameters are being profiled)."""
+        last = len(self.terms) - 1
+        return [(eff, hyper_override if (hyper_override is not None and k == last) else hyper)
+                for k, (eff, hyper) in enumerate(self.terms)]
+
+    def lower(self, hyper_override=None):
+        """Lower bounds of all parameters (calibration: coefficient >= 0)."""
+        out = [self.cal_lower]
+        for eff, h in self.hyper_terms(hyper_override):
+            lo = eff.lower_bounds(self.data, self.dof, h) if hasattr(eff, "lower_bounds") \
+                else np.full(eff.design(self.data, self.dof, h)[1].shape[1], -np.inf)
+            out.append(lo)
+        return np.concatenate(out)
+
+    def upper(self, hyper_override=None):
+        """Upper bounds of all parameters (calibration: added mass within its factor)."""
+        out = [self.cal_upper]
+        for eff, h in self.hyper_terms(hyper_override):
+            n = eff.design(self.data, self.dof, h)[1].shape[1]
+            up = eff.upper_bounds(self.data, self.dof, h) if hasattr(eff, "upper_bounds") \
+                else np.full(n, np.inf)
+            out.append(up)
+        return np.concatenate(out)
+
+    def m_info(self, hyper_override=None):
+        """(indices of the inertia columns, prior inertia of the DOF) for :func:`_solve`."""
+        cols = []
+        if self.cal_has_m:
+            cols.append(0)
+        k = self.cal_cols.shape[1]
+        for eff, h in self.hyper_terms(hyper_override):
+            n = eff.design(self.data, self.dof, h)[1].shape[1]
+            if getattr(eff, "inertia", False):
+                cols.append(k + n - 1)
+            k += n
+        return (cols, float(self.data.model.mass_matrix[self.dof, self.dof]),
+                self.data.rate_noise_variance(self.dof))
+
+    def calibration_columns(self, hyper_override=None):
+        """The calibration columns, at the velocity relative to the water when a term (the
+        current) defines it -- drag and added mass act on nu_r (Fossen 2011, eq. 10.1)."""
+        for eff, h in self.hyper_terms(hyper_override):
+            if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
+                nur = eff.relative_velocity(self.data, h)
+                return np.column_stack([coefficient_column(self.data, self.dof, key, nur)
+                                        for key in self.cal_names])
+        return self.cal_cols
+
+    def design(self, hyper_override=None):
+        self.budget.check()
+        y = self.data.e0[:, self.dof].copy()
+        cols = [self.calibration_columns(hyper_override)]
+        sd = [self.cal_sd]
+        for eff, h in self.hyper_terms(hyper_override):
+            off, c = eff.design(self.data, self.dof, h)
+            if off is not None:
+                y = y - off
+            cols.append(c)
+            if hasattr(eff, "prior_sd"):
+                sd.append(eff.prior_sd(self.data, self.dof, h))
+            else:
+                sd.append(np.full(c.shape[1], np.inf))
+        return y, np.hstack(cols), np.concatenate(sd)
+
+
+class _Nuisance:
+    """The nuisance columns of an effect as a term of its own (the reference fit)."""
+
+    hyper = ()
+
+    def __init__(self, effect):
+        self.effect = effect
+        self.name = effect.name + "(reference)"
+
+    def design(self, data, dof, hyper=None):
+        return None, self.effect.nuisance(data, dof)
+
+    def prior_sd(self, data, dof, hyper=None):
+        return self.effect.nuisance_sd(data, dof)
+
+
+def _sigma(y, H, sd=None, lower=None, m=None, upper=None):
+    """Noise level of the window residual: iterate the MAP fit from sigma = RMS(y) (a free
+    fit could follow the scale degeneracy of the force balance to sigma = 0)."""
+    if H.shape[1] == 0:
+        return max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
+    sd = np.full(H.shape[1], np.inf) if sd is None else sd
+    sigma = max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
+    for _ in range(4):
+        theta, _, _ = _solve(y, H, sd, sigma, lower, m, upper)
+        r = y - H @ theta
+
+        p_eff = min(H.shape[1], y.size - 1)
+        sigma = max(float(np.sqrt(r @ r / max(y.size - p_eff, 1))), 1e-12)
+    return sigma
+
+
+def _fit(cfg: _Config, mask=None, hyper=None):
+    y, H, sd = cfg.design(hyper)
+    lower = cfg.lower(hyper)
+    upper = cfg.upper(hyper)
+    m = cfg.m_info(hyper)
+    yy, HH = (y, H) if mask is None else (y[mask], H[mask])
+    sigma = _sigma(yy, HH, sd, lower, m, upper)
+    theta, cov, _ = _solve(yy, HH, sd, sigma, lower, m, upper)
+    resid = y - H @ theta
+    return {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
+            "sd": sd}
+
+
+def _profile_hyper(cfg: _Config, mask):
+    """Optimise the nonlinear parameters of the last term on the fitting windows."""
+    eff, _ = cfg.terms[-1]
+    if not eff.hyper:
+        return None
+    h0 = eff.hyper_start(cfg.data, cfg.dof)
+    y0, H0, sd0 = cfg.design(h0)
+    sigma0 = _sigma(y0[mask], H0[mask], sd0, cfg.lower(h0), cfg.m_info(h0), cfg.upper(h0))
+
+    def cost_vec(h):
+        y, H, sd = cfg.design(h)
+        yy, HH = y[mask], H[mask]
+        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h), cfg.upper(h))
+        return wres
+
+    if hasattr(eff, "grid"):
+        # one nonlinear parameter on a bounded range (a time constant, a delay): a grid,
+        # then a bounded scalar search between the neighbours of the best grid point
+        from scipy.optimize import minimize_scalar
+        grid = eff.grid(cfg.data, cfg.dof)
+
+        def cost1(c):
+            return float(np.sum(cost_vec(np.array([c])) ** 2))
+        costs = np.array([cost1(c) for c in grid])
+        k = int(np.argmin(costs))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+        if hi > lo:
+            sol = minimize_scalar(cost1, bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-3 * (hi - lo)})
+            if sol.fun <= costs[k]:
+                return np.array([float(sol.x)])
+        return np.array([float(grid[k])])
+
+    if eff.name == "deadband":
+        cands = eff.candidates(cfg.data, cfg.dof)
+        if cands.size == 0:
+            return np.array([0.0])
+        def cost(c):
+            return float(np.sum(cost_vec(np.array([c])) ** 2))
+
+        costs = np.array([cost(c) for c in cands])
+        k = int(np.argmin(costs))
+        lo = cands[max(k - 1, 0)]
+        hi = cands[min(k + 1, cands.size - 1)]
+        # fine search: the cost only changes when the threshold crosses a command level of
+        # the fitting windows, so evaluate between consecutive levels near the coarse optimum
+        act = cfg.data.acting(cfg.dof)
+        rows = np.zeros(cfg.data.t.size, bool)
+        for a, b in zip(cfg.data.i0[mask], cfg.data.i1[mask]):
+            rows[a:b] = True
+        levels = np.unique(np.abs(cfg.data.commands[rows][:, act]))
+        levels = levels[(levels >= lo) & (levels <= hi)]
+        if levels.size >= 2:
+            mids = 0.5 * (levels[1:] + levels[:-1])
+            fine = np.array([cost(c) for c in mids])
+            j = int(np.argmin(fine))
+            # the threshold is only known to lie between two levels: take their middle
+            return np.array([mids[j]])
+        return np.array([cands[k]])
+    best = None
+    for start in ([0.0, 0.0], [0.2, 0.0], [0.0, 0.2], [-0.2, 0.0], [0.0, -0.2]):
+        sol = least_squares(cost_vec, np.asarray(start, float), method="lm", x_scale=0.1)
+        if best is None or sol.cost < best.cost:
+            best = sol
+    return best.x
+
+
+def _hyper_std(cfg: _Config, hyper, sigma):
+    """Std of nonlinear parameters: sigma^2 (J^T J)^-1 of the profiled residual."""
+    if hyper is None or len(np.atleast_1d(hyper)) == 0:
+        return np.zeros(0)
+    eff = cfg.terms[-1][0]
+    if eff.name == "deadband":
+        # one-sided steps between command levels: take the spacing of the candidate grid
+        cands = eff.candidates(cfg.data, cfg.dof)
+        h = float(hyper[0])
+        if cands.size < 2:
+            return np.array([np.nan])
+        k = int(np.argmin(np.abs(cands - h)))
+        lo = cands[max(k - 1, 0)]
+        hi = cands[min(k + 1, cands.size - 1)]
+        return np.array([0.5 * (hi - lo) / math.sqrt(3.0)])
+    hyper = np.asarray(hyper, float)
+
+    def vec(h):
+        y, H, sd = cfg.design(h)
+        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h))[2] * sigma
+
+    j = np.empty((vec(hyper).size, hyper.size))
+    for k in range(hyper.size):
+        step = 1e-4 * max(1.0, abs(hyper[k]))
+        hp, hm = hyper.copy(), hyper.copy()
+        hp[k] += step
+        hm[k] -= step
+        j[:, k] = (vec(hp) - vec(hm)) / (2 * step)
+    cov = sigma ** 2 * np.linalg.pinv(j.T @ j)
+    return np.sqrt(np.clip(np.diag(cov), 0, None))
+
+
+def _rms(x):
+    return float(np.sqrt(np.mean(np.asarray(x) ** 2))) if np.size(x) else float("nan")
+
+
+def _bic(resid, n_params):
+    n = resid.size
+    return n * math.log(max(float(resid @ resid), 1e-300) / n) + n_params * math.log(n)
+
+
+
+def _evaluate(cfg: _Config):
+    """Fit on all windows (parameters, error, BIC) and by blocked cross-validation (the
+    held-out error: each of ``N_BLOCKS`` contiguous blocks predicted by a fit on the others).
+
+    The nonlinear parameters of a new term are profiled once on all windows (not per fold):
+    a slight optimism for the two effects that have them (current, dead band)."""
+    hyper = None
+    everything = np.ones(cfg.data.n_windows, bool)
+    if cfg.terms and cfg.terms[-1][0].hyper and cfg.terms[-1][1] is None:
+        hyper = _profile_hyper(cfg, everything)
+        cfg.terms[-1] = (cfg.terms[-1][0], hyper)
+    full = _fit(cfg)
+    pred = np.empty(cfg.data.n_windows)
+    for fold in np.array_split(np.arange(cfg.data.n_windows), N_BLOCKS):
+        mask = everything.copy()
+        mask[fold] = False
+        tr = _fit(cfg, mask)
+        pred[fold] = tr["resid"][fold]
+    n_free = int(np.sum(~np.isfinite(full["sd"]))) + (
+        len(np.atleast_1d(hyper)) if hyper is not None else 0)
+    return {"full": full, "held_out_error": _rms(pred), "held_out_resid": pred,
+            "error": _rms(full["resid"]), "bic": _bic(full["resid"], n_free),
+            "hyper": hyper}
+
+
+def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAULTS,
+                 cross=None) -> Calibration:
+    r"""Calibration columns and band standard deviations for one DOF.
+
+    The relative bands: :meth:`DiagnoseSettings.band_table` (the bands given, else the
+    :class:`~stripcoef.diagnose.priors.PriorWidths` the diagnosis runs with, a vehicle file's
+    method-table rows, else :data:`~stripcoef.diagnose.settings.BANDS`); the standard deviation of
+    a correction is the band times the prior value's magnitude [units of the coefficient].
+
+    The DOF's own inertia, linear and quadratic damping, and the added mass
+    :math:`M_{jj}` of every *other* DOF j that reaches this one through the added-mass
+    Coriolis and centripetal force :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43: e.g.
+    :math:`M_{33}\,w q` and :math:`-M_{22}\,v r` in surge). Those are the prior's own
+    coefficients as well, with the band of their DOF: on a log with turns, strip theory's
+    error in the sway added mass shows in the surge residual as :math:`\Delta M_{22}\,v r`,
+    which no effect of the library should be asked to explain. Their column is the window
+    mean of :math:`\partial (C_A(\nu)\nu)_i / \partial M_{jj} = (C_A[E_{jj}](\nu)\nu)_i`
+    (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
+    when that product never moves in the log, or when DOF j is not in ``cross`` (the DOFs
+    whose added mass this DOF may calibrate: excited, and not diagnosed themselves, so that
+    one coefficient has one value; None = all).
+    """
+    bands = settings.band_table()
+    kind = "translational" if dof < 3 else "rotational"
+    b = dict(bands[kind])
+    m = data.model
+    cols, sd, names, prior = [], [], [], []
+    for key in ("M", "D_L", "D_Q"):
+        value = float({"M": m.added_mass, "D_L": m.linear_damping,
+                       "D_Q": m.quadratic_damping}[key][dof, dof])
+        if value == 0.0:
+            continue
+        cols.append(coefficient_column(data, dof, key))
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
+    for j in range(6):
+        value = float(m.added_mass[j, j])
+        if j == dof or value == 0.0 or (cross is not None and j not in cross):
+            continue
+        key = "M_" + DOF[j]
+        col = coefficient_column(data, dof, key)
+        if not np.any(np.abs(col) > 0.0):
+            continue
+        b[key] = bands["translational" if j < 3 else "rotational"]["M"]
+        cols.append(col)
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
+    cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
+    return Calibration(cols, np.asarray(sd, float), tuple(names), np.asarray(prior, float), b)
+
+
+def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:
+    """Where each calibrated coefficient's band came from: the method-table row (its text)
+    with a vehicle file's :class:`PriorWidths`, else the bands given or the fixed
+    :data:`BANDS`."""
+    widths = settings.widths
+    out = {}
+    for n in names:
+        owner = dof if n in TERM_MATRIX else parse_dof(n[2:])
+        kind = "translational" if owner < 3 else "rotational"
+        term = n if n in TERM_MATRIX else "M"
+        if widths is not None:
+            out[n] = widths.rows[kind][term]
+        elif settings.bands is not None:
+            out[n] = f"the bands given to diagnose ({kind} {term})"
+        else:
+            out[n] = f"BANDS {kind} {term}: Wang & Clark 2006 Table I"
+    return out
+
+
+def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> dict:
+    r"""Which calibration coefficients the log can determine, and why not the others.
+
+    A coefficient is kept at the prior when (1) the DOF it belongs to is not excited
+    (:func:`excited_dofs`), or (2) its conditional Fisher information is too small: with
+    the window residual's noise :math:`\sigma` (MAP fit of all columns) the Cramer-Rao
+    standard deviation of coefficient j given the others is
+    :math:`s_j = \sigma\sqrt{[(H^T H)^{-1}]_{jj}}`; it is calibrated only if
+    :math:`b_j / s_j \ge` :data:`MIN_INFORMATION_RATIO`, b_j its band (Ljung 1999,
+    sec. 9.2, eq. 9.29; a near-collinear pair has a large conditional variance, which is
+    the condition check).
+
+    Returns ``{"kept_at_prior": {name: reason}, "information_ratio": {name: b_j/s_j}}``.
+    """
+    reasons, ratios = {}, {}
+    for n in names:
+        owner = dof if n in ("M", "D_L", "D_Q") else parse_dof(n[2:])
+        if owner not in excited:
+            reasons[n] = f"{DOF[owner]} is not excited in this log"
+    keep = [j for j, n in enumerate(names) if n not in reasons]
+    if keep:
+        H = cols[:, keep]
+        sigma = _sigma(data.e0[:, dof], H, np.asarray(sd, float)[keep])
+        cov = np.linalg.pinv(H.T @ H) * sigma ** 2
+        for k, j in enumerate(keep):
+            s_data = math.sqrt(max(float(cov[k, k]), 0.0))
+            ratio = sd[j] / s_data if s_data > 0 else math.inf
+            ratios[names[j]] = float(ratio)
+            if ratio < MIN_INFORMATION_RATIO:
+                reasons[names[j]] = (f"the log determines it only to +-{s_data:.3g}, less than "
+                                     f"{MIN_INFORMATION_RATIO:g}x better than its band "
+                                     f"+-{sd[j]:.3g} (Fisher information)")
+    return {"kept_at_prior": reasons, "information_ratio": ratios}
+
+
+
+class _Generic:
+    """The generic basis as a term (free columns)."""
+
+    hyper = ()
+    name = "generic"
+
+    def __init__(self, basis):
+        self.basis = basis
+
+    def design(self, data, dof, hyper=None):
+        return None, self.basis
+
+
+
+@dataclass(frozen=True)
+class EffectFit:
+    """The result of :func:`fit_effects`: a fixed list of effects fitted with the calibration.
+
+    Attributes
+    ----------
+    parameters : dict
+        Effect name -> its fitted parameters (:meth:`Effect.to_parameters`)
+    std : dict
+        Effect name -> the standard deviations of those parameters
+    calibration : dict
+        Calibrated coefficient name -> value (the columns of :func:`_calibration`)
+    error : float
+        RMS window force residual of the fit [N or N m]
+    held_out_error : float
+        RMS residual of the blocked cross-validation: each block of windows predicted by a fit
+        on the others [N or N m]
+    """
+
+    parameters: dict
+    std: dict
+    calibration: dict
+    error: float
+    held_out_error: float
+
+
+def fit_effects(log, model, dof, effects, *, window: float = DEFAULT_WINDOW,
+                bands=None) -> EffectFit:
+    """Fit the calibration and a given list of effects (no selection): the "what if" of a
+    fixed model structure, e.g. Indiveri 1998's standard model (calibration + buoyancy) or its
+    eta model (+ thrust_asymmetry).
+
+    Returns
+    -------
+    EffectFit
+    """
+    data = window_data(log, model, window=window)
+    i = parse_dof(dof)
+    cal = _calibration(data, i, DiagnoseSettings(bands=bands))
+    cal_names = cal.names
+    cfg = _Config(data, i, cal, [])
+    ev = _evaluate(cfg)
+    for name in effects:
+        cfg = cfg.with_terms(list(cfg.terms) + [(get_effect(name), None)])
+        ev = _evaluate(cfg)
+    full = ev["full"]
+    theta, cov = full["theta"], full["cov"]
+    k = len(cal_names)
+    params, std = {}, {}
+    for eff, hyper in cfg.terms:
+        ncol = eff.design(data, i, hyper)[1].shape[1]
+        nuis = eff.nuisance(data, i)
+        kn = 0 if nuis is None else nuis.shape[1]
+        own = slice(k + kn, k + ncol)
+        hsd = np.zeros(0)
+        if hyper is not None:
+            probe = cfg.with_terms([t for t in cfg.terms if t[0] is not eff] + [(eff, hyper)])
+            hsd = _hyper_std(probe, hyper, full["sigma"])
+        params[eff.name] = eff.to_parameters(theta[own], hyper, theta[k:k + kn])
+        std[eff.name] = eff.std_of(theta[own], cov[own, own], hsd, cov[k:k + ncol, k:k + ncol])
+        k += ncol
+    return EffectFit(parameters=params, std=std,
+                     calibration={n: float(v) for n, v in zip(cal_names, theta[:len(cal_names)])},
+                     error=float(ev["error"]), held_out_error=float(ev["held_out_error"]))

@@ -1,0 +1,169 @@
+"""The diagnosis's thresholds, its options (:class:`DiagnoseSettings`) and its wall-clock
+budget (:class:`Budget`): passed as arguments to every stage, never stashed on the data.
+
+The thresholds of the selection are those of the method in :mod:`.pipeline`'s docstring
+(docs/diagnose.md).
+
+Depends on: errors.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from stripcoef.errors import UnreachableError
+
+#: 1-sigma relative bands on the prior's coefficients (:mod:`.pipeline`, step 2).
+BANDS = {"translational": {"M": 0.3, "D_L": 0.6, "D_Q": 0.3},
+         "rotational": {"M": 1.0, "D_L": 3.0, "D_Q": 3.0}}
+MIN_HELD_OUT_GAIN = 0.10
+MIN_DELTA_BIC = 10.0
+MIN_Z = 3.0
+TIE = 0.02
+MIMIC_BANDS = 2.5
+UNEXPLAINED_GAIN = 0.10
+#: The residual is unexplained also when, after the best candidates, its held-out error
+#: stays above this multiple of the noise floor F = M_ii sqrt(var(rate noise)) (the part of
+#: the window residual the velocity noise alone makes; effects/windows.py): a model that
+#: explained the log would leave about F (chi-square with one degree of freedom per window
+#: exceeds 5^2 with probability < 1e-6, so noise alone never crosses it) -- provided the
+#: generic basis predicts some of it (held-out gain > 0): the window residual also carries
+#: the quadrature error of the window integrals on a jittered log, which no basis predicts
+#: (measured: 7.4 floors on a 10 Hz log with 20 % jitter and 1-s windows diagnosed with its
+#: own true model, tests/test_ingest_cli.py; a missing effect such as Coulomb friction is
+#: partly predicted by the basis's sign column).
+NOISE_FLOOR_FACTOR = 5.0
+N_BLOCKS = 5
+MAX_STEPS = 4
+#: Wall-clock budget of one diagnosis [s]: the fits cost grows with the log's length (a
+#: 200,000-row log would take most of an hour); past the budget the diagnosis stops with an
+#: error saying so, instead of grinding.
+TIME_LIMIT = 300.0
+#: Plausible added mass as a factor of the prior's [-] (lower, upper): Wang & Clark 2006
+#: Table I has analytical/experimental ratios up to 2.7 (N_rdot); strip theory's translational
+#: added mass is closer (a factor 4 either way is an assumption that covers the synthetic
+#: benchmark's 2-3x truths), rotation is barely constrained (a factor 5).
+ADDED_MASS_FACTOR = {"translational": (0.25, 4.0), "rotational": (0.2, 5.0)}
+
+#: Identifiability: a coefficient is calibrated only when sd_band / sd_data >=
+#: MIN_INFORMATION_RATIO, with sd_data^2 = sigma^2 [(H^T H)^-1]_jj the conditional (Fisher)
+#: variance given the other columns (Cramer-Rao bound of the linear model; Ljung 1999,
+#: sec. 9.2, eq. 9.29). Below 0.3 the log adds less than 9 % (0.3^2) to the information of
+#: the band: the MAP estimate would move by less than about a tenth of a band, noise rather
+#: than a measurement, so the coefficient is kept exactly at the prior. (2.0 was tried
+#: first: it froze every heave coefficient of the short ROMEO trials, Indiveri 1998, whose
+#: data carry 0.4-0.9 of the band's information, and the thrust efficiency then absorbed
+#: the inertia and drag errors.)
+MIN_INFORMATION_RATIO = 0.3
+#: A DOF is excited when its velocity's standard deviation is this many times its noise
+#: (the noise from second differences, :meth:`WindowData.rate_noise_variance`'s estimator)
+#: and its applied force moves.
+EXCITATION_SNR = 3.0
+#: Fraction of the fitting log (its last part) kept to validate each change by free
+#: simulation: a calibration or an effect stays only if it lowers the validation error.
+VALIDATION_FRACTION = 0.25
+#: Default window of the one-step residual [s]. Velocity noise of standard deviation
+#: sigma_v enters the window residual as M_ii sqrt(2) sigma_v / T: 4 s windows halve the
+#: noise floor of 2 s ones, while 60 windows in a 4-minute log still resolve 6-20 s steps
+#: (measured: benchmarks/diagnose_detection.py --window 2 vs 4, docs/performance.md).
+DEFAULT_WINDOW = 4.0
+#: Velocity standard deviation above which ``dof="all"`` counts a DOF as excited [m/s, rad/s].
+EXCITATION_STD = 1e-3
+METRIC = "rms_window_force_residual"
+METRIC_TEXT = ("RMS of the one-step force residual: the generalized force the model misses, "
+               "averaged over non-overlapping windows [N or N m]")
+
+#: Horizon of the re-simulated velocity error [s] (:data:`stripcoef.diagnose.heldout.HORIZON`).
+RESIMULATION_HORIZON = 10.0
+
+
+@dataclass(frozen=True)
+class Budget:
+    """The wall-clock budget of one diagnosis: :meth:`check` raises once it is spent.
+
+    ``limit`` [s] (``inf``: none), ``rows`` and ``source`` (the log's, for the message) and
+    ``at``, the :func:`time.monotonic` deadline (None: no deadline). One is made per call of
+    :func:`stripcoef.diagnose.pipeline.diagnose` (:meth:`start`) and passed to every fit."""
+
+    limit: float = math.inf
+    rows: int = 0
+    source: str = ""
+    at: float | None = None
+
+    @classmethod
+    def start(cls, limit: float, *, rows: int = 0, source: str = "") -> Budget:
+        """A budget of ``limit`` seconds from now."""
+        limit = float(limit)
+        return cls(limit, int(rows), str(source),
+                   time.monotonic() + limit if math.isfinite(limit) else None)
+
+    def check(self) -> None:
+        """Raise :class:`~stripcoef.errors.UnreachableError` once past the deadline."""
+        if self.at is not None and time.monotonic() > self.at:
+            raise UnreachableError(
+                f"{self.source}: diagnosis stopped, over its time budget of {self.limit:g} s; "
+                f"got {self.rows} log rows; expected a log this machine can fit in time "
+                "(resample it, e.g. to 10 Hz, or cut it into parts)")
+
+
+#: No deadline (the fits of :func:`stripcoef.diagnose.fit.fit_effects` and of a report).
+UNLIMITED = Budget()
+
+
+@dataclass(frozen=True)
+class DiagnoseSettings:
+    r"""The options of one diagnosis, passed to every stage (:func:`diagnose`'s arguments).
+
+    Attributes
+    ----------
+    window : float
+        Window of the one-step residual [s]
+    effects : tuple of str or None
+        Candidate effects (None: the whole library)
+    resimulate : bool
+        Also compute the re-simulated velocity error
+    bands : mapping or None
+        Relative 1-sigma bands given by the caller (:data:`BANDS`' form), overriding
+        ``prior_widths``
+    max_steps : int
+        Most effects added per DOF
+    validation, holdout : float or None
+        Fractions of the log kept to validate the changes and never fitted (None: none)
+    added_mass_sd : (6,) array or None
+        1-sigma method uncertainty of the prior's added mass, sd of ln M_ii [-]
+    prior_widths : PriorWidths or None
+        The method table's widths of the calibration's priors (a vehicle file)
+    """
+
+    window: float = DEFAULT_WINDOW
+    effects: tuple | None = None
+    resimulate: bool = False
+    bands: Mapping | None = None
+    max_steps: int = MAX_STEPS
+    validation: float | None = None
+    holdout: float | None = None
+    added_mass_sd: np.ndarray | None = None
+    prior_widths: object = None
+
+    @property
+    def widths(self):
+        """The :class:`~stripcoef.diagnose.priors.PriorWidths` the calibration uses: None
+        when bands are given (they override the method table)."""
+        return self.prior_widths if self.bands is None else None
+
+    def band_table(self) -> Mapping:
+        """The relative 1-sigma bands of the calibration: those given, else the method
+        table's (:attr:`widths`), else :data:`BANDS`."""
+        widths = self.widths
+        return self.bands or (widths.bands if widths is not None else BANDS)
+
+    def band_sd(self, dof: int):
+        """The 1-sigma method uncertainty of DOF ``dof``'s added mass (sd of ln M_ii), or
+        None."""
+        sd = self.added_mass_sd
+        return None if sd is None else float(sd[dof])

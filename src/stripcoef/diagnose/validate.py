@@ -1,0 +1,164 @@
+r"""Validation by free simulation: each change of a diagnosis kept only if it improves the
+simulation of data it was not fitted on; the re-simulated and held-out velocity errors
+(:mod:`stripcoef.diagnose.heldout`).
+
+Depends on: diagnose.heldout, diagnose.calibrate, diagnose.settings, progress.
+"""
+
+from __future__ import annotations
+
+import math
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.calibrate import _changes, calibrated_model
+from stripcoef.diagnose.settings import RESIMULATION_HORIZON, UNLIMITED, Budget
+from stripcoef.progress import track
+
+
+def heldout_errors(result, prior, written) -> dict:
+    """Held-out free-simulation errors of the prior, the model as written and
+    hold-last-velocity on the held-out part of the log of a :func:`diagnose` result
+    (:mod:`stripcoef.diagnose.heldout`) [m/s or rad/s]."""
+    from stripcoef.diagnose.heldout import HORIZON, compare
+
+    test_log, dofs = result.test_log, list(result.diagnosed)
+    errors = compare(test_log, {"prior": prior, "calibrated": written}, dofs)
+    return {"description": "RMS free-simulation velocity error on the held-out end of the log "
+                           f"[m/s or rad/s]: {HORIZON:g}-s simulations from the logged state; "
+                           "hold_last_velocity predicts the velocity at each start",
+            "held_out_s": [float(test_log["t"][0]), float(test_log["t"][-1])],
+            "horizon_s": HORIZON, "errors": errors}
+
+
+
+def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
+                     budget: Budget = UNLIMITED) -> tuple[set, dict]:
+    r"""Keep a change only if it improves the free simulation of data it was not fitted on.
+
+    Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
+    log: with :math:`r_i = E_i / E_i^{prior}` the free-simulation error of DOF i [m/s or
+    rad/s] (:func:`stripcoef.diagnose.heldout.free_simulation_errors`) relative to the
+    prior's, a model's score is the pair (number of DOFs with :math:`r_i > 1`,
+    :math:`\sum_i r_i^2`), compared in that order; the change (a DOF's calibration or one
+    effect) whose removal gives the best score is removed while that score is no worse than
+    the current one (ties go to the simpler model), so the result never simulates an
+    excited DOF worse than the prior on the validation data unless every subset does.
+
+    A DOF's effects were fitted together with its calibration: removing the calibration
+    removes them with it (:func:`partners`; an effect whose values compensate a calibration
+    that is not written would be a silent wrong answer, issue 33); the effects kept after
+    another one is removed are refitted without it
+    (:func:`stripcoef.diagnose.calibrate.written_fit`).
+
+    Returns ``(excluded changes, record)``.
+    """
+    from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
+
+    base = free_simulation_errors(val_log, prior, dofs)
+    ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
+    ref = [max(e, 1e-12) for e in ref]
+    cache = {}
+
+    changes = _changes(per)
+
+    def score(excl):
+        key = frozenset(partners(excl, changes))
+        if key not in cache:
+            budget.check()
+            e = free_simulation_errors(val_log, calibrated_model(prior, per, fits, key), dofs)
+            if e is None:
+                cache[key] = ((math.inf, math.inf), None)
+            else:
+                r = [a / b for a, b in zip(e, ref)]
+                cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
+                              e)
+        return cache[key]
+
+    excl = set()
+    cur = score(excl)
+    first = cur[1]
+    while len(excl) < len(changes):
+        trials = [(score(excl | {c}), c) for c in
+                  track([c for c in changes if c not in excl],
+                        desc="diagnose: validating the changes", unit="model")]
+        (best, _), c = min(trials, key=lambda x: x[0][0])
+        if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
+            break
+        excl = partners(excl | {c}, changes)
+        cur = score(excl)
+
+    def named(e):
+        return _named(e, dofs)
+
+    for d, r in per.items():
+        r["calibration"]["kept"] = ("calibration", d) not in excl
+        for s in r["steps"]:
+            s["kept"] = ("effect", d, s["effect"]) not in excl
+    record = {"description": "RMS free-simulation velocity error [m/s or rad/s] on the last "
+                             "part of the fitting log, not used to fit: each change is kept "
+                             "only if removing it makes this worse",
+              "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
+              "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
+              "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
+                                                    "fitted with)"
+                                                    if ("calibration", c[1]) in excl else "")
+                           if c[0] == "effect" else f"{c[1]} calibration")
+                          for c in changes if c in excl],
+              # the changes fitted together with a removed one are refitted without it
+              # (calibrate.written_fit): their values as written differ from the selection's
+              "refitted": {d: kept for d, kept in (
+                  (d, [("calibration" if c[0] == "calibration" else c[2])
+                       for c in changes if c[1] == d and c not in excl])
+                  for d in per if any(c[1] == d for c in excl)) if kept}}
+    return excl, record
+
+
+
+def resimulated_errors(log, prior, per: dict, fits: dict, calibrated,
+                       exclude=frozenset()) -> dict:
+    """RMS of the re-simulated velocity of each diagnosed DOF for the prior, the prior with
+    only its calibrated coefficients, and the final model [m/s or rad/s] (None when the
+    simulation diverges)."""
+    no_effects = set(exclude) | {c for c in _changes(per) if c[0] == "effect"}
+    only_cal = calibrated_model(prior, per, fits, no_effects)
+    dofs = [parse_dof(d) for d in per]
+    rows = {name: resimulate_rms(log, m, dofs) for name, m in
+            track((("baseline", prior), ("calibrated", only_cal), ("final", calibrated)),
+                  desc="diagnose: re-simulating", unit="model")}
+    return {DOF[i]: {name: (None if rows[name] is None else rows[name][k])
+                     for name in rows} for k, i in enumerate(dofs)}
+
+
+
+
+def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
+    """RMS differences between the logged and the re-simulated velocities of ``dofs``
+    (list) over segments of ``horizon`` seconds, or None if a simulation diverges
+    (:func:`stripcoef.diagnose.heldout.free_simulation_errors`, tolerances 1e-6, 1e-8)."""
+    from stripcoef.diagnose.heldout import free_simulation_errors
+    return free_simulation_errors(log, model, dofs, horizon=horizon, tolerances=(1e-6, 1e-8))
+
+
+
+
+def partners(excl, changes) -> set:
+    """``excl`` with the changes fitted together with an excluded one that cannot stand
+    without it: the effects of a DOF whose calibration is excluded."""
+    out = set(excl)
+    for c in changes:
+        if c[0] == "effect" and ("calibration", c[1]) in out:
+            out.add(c)
+    return out
+
+
+def _named(errors, dofs):
+    """{DOF name: error} of a list of errors of ``dofs`` (indices), None for None."""
+    return None if errors is None else {DOF[i]: float(v) for i, v in zip(dofs, errors)}
+
+
+def validation_errors(val_log, model, dofs):
+    """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
+    rad/s] (the record's ``kept_changes`` form), None when a simulation diverges."""
+    from stripcoef.diagnose.heldout import free_simulation_errors
+
+    return _named(free_simulation_errors(val_log, model, dofs), dofs)

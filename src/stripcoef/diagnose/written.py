@@ -1,0 +1,99 @@
+r"""What a diagnosis reports, read back from the model it writes (issue 33: one model).
+
+After the selection and the validation, the calibrated model is built once
+(:func:`stripcoef.diagnose.calibrate.calibrated_model`) and written; every value the text,
+the JSON and the report print about it is then taken from that model, read back through its
+dictionary form (what ``--out`` writes), never from an earlier stage of the fits:
+
+- each calibrated coefficient's value (``calibration.written``) from the model's matrices;
+- each kept effect's parameters from the model (its ``effects`` entry; a native effect, folded
+  into the matrices or thrusters, from the model's ``provenance.diagnose`` record of what
+  was applied); the values at the step's selection stay as ``selected_parameters``;
+- the final error, the RMS window force residual of the written model on the fitting
+  windows (:mod:`stripcoef.effects.windows`; its own effects' window forces subtracted,
+  :func:`stripcoef.effects.laws.effect_window_forces`) [N or N m].
+
+Depends on: effects, conventions, diagnose.calibrate, diagnose.fit.
+"""
+
+from __future__ import annotations
+
+from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.calibrate import written_fit
+from stripcoef.diagnose.fit import _evaluate, _rms
+from stripcoef.effects.laws import effect_window_forces
+from stripcoef.effects.windows import window_data
+
+#: The coefficient of each calibration name in a model: (matrix attribute, owner DOF or None
+#: for the diagnosed DOF).
+_MATRIX = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping"}
+
+
+def coefficient(model, dof: int, name: str) -> float:
+    """The value in ``model`` of the calibration coefficient ``name`` of DOF ``dof``
+    (``M``, ``D_L``, ``D_Q``: the diagonal of that DOF; ``M_<dof>``: that DOF's added mass)
+    [kg, kg m^2, N s/m, ...]."""
+    if name in _MATRIX:
+        return float(getattr(model, _MATRIX[name])[dof, dof])
+    j = parse_dof(name[2:])
+    return float(model.added_mass[j, j])
+
+
+def written_effects(model, dof: str) -> dict:
+    """{effect name: parameters} of the effects a diagnosis wrote into ``model`` for DOF
+    ``dof``: a non-native effect's from its ``effects`` entry, a native one's from the
+    ``provenance.diagnose`` record of what was applied."""
+    out = {}
+    for entry in model.provenance.get("diagnose", ()) or ():
+        if entry.get("dof") == dof:
+            out.update({k: dict(v) for k, v in (entry.get("parameters") or {}).items()})
+    for entry in model.effects:
+        if isinstance(entry, dict) and entry.get("dof") == dof and entry.get("name") in out:
+            out[entry["name"]] = {k: float(v) for k, v in entry["parameters"].items()}
+    return out
+
+
+def window_errors(log, model, dofs, *, window: float) -> dict:
+    """RMS window force residual [N or N m] of ``model`` on ``log`` for each DOF index in
+    ``dofs``: DOF name -> error (the metric of :mod:`stripcoef.diagnose.pipeline`, with the
+    model's effects as part of its prediction)."""
+    data = window_data(log, model, window=window)
+    resid = data.e0 - effect_window_forces(data, model) if model.effects else data.e0
+    return {DOF[i]: _rms(resid[:, i]) for i in dofs}
+
+
+def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
+              exclude=frozenset()) -> None:
+    """Replace, in the per-DOF results ``per`` (:func:`stripcoef.diagnose.select.diagnose_dof`,
+    updated in place), every value that describes the written model by the value read back
+    from ``written`` (the model as written: ``type(m).from_dict(m.to_dict())``), on the
+    fitting log ``fit_log``:
+
+    - ``calibration.written``: each calibrated coefficient's value in the model, and
+      ``calibration.final_parameters``: its change from the prior there;
+    - each step: ``kept`` (in the model or not), ``parameters`` and ``final_parameters`` the
+      written ones when kept (``selected_parameters``: those it had when selected);
+    - ``final_error``: the written model's error; ``final_held_out_error``: the blocked
+      cross-validation of the written structure (refitted when the validation removed a
+      change of the DOF).
+    """
+    dofs = [parse_dof(d) for d in per]
+    errors = window_errors(fit_log, written, dofs, window=window)
+    for d, r in per.items():
+        i = parse_dof(d)
+        cal = r["calibration"]
+        cal["written"] = {n: coefficient(written, i, n) for n in cal["parameters"]}
+        cal["final_parameters"] = {n: cal["written"][n] - float(cal["prior"][n])
+                                   for n in cal["parameters"]}
+        effects = written_effects(written, d)
+        for s in r["steps"]:
+            s["selected_parameters"] = dict(s["parameters"])
+            s["kept"] = s["effect"] in effects
+            if s["kept"]:
+                s["parameters"] = dict(effects[s["effect"]])
+                s["final_parameters"] = dict(effects[s["effect"]])
+        r["final_error"] = errors[d]
+        if any(c[1] == d for c in exclude):
+            cfg, _ = written_fit(d, r, fits[d], exclude)
+            r["final_held_out_error"] = float(_evaluate(cfg)["held_out_error"])
+

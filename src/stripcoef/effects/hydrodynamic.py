@@ -1,0 +1,389 @@
+r"""Hydrodynamic effects the strip model lacks: tether drag, momentum drag, a buoyancy
+offset, a water current, linear drag and an added-mass error (the force laws of
+:mod:`stripcoef.effects.laws`' registry; each class's docstring has its equation, units and
+source).
+
+Depends on: effects.base, effects.windows.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from stripcoef.errors import InputError
+from stripcoef.effects.windows import (coefficient_column, coriolis_times_velocity,
+                                       damping_times_velocity, rotation_matrices)
+from stripcoef.effects.base import TRANSLATIONAL, Effect, _unit_vec
+
+
+class TetherDrag(Effect):
+    r"""Drag of a tether paid out behind the vehicle.
+
+    .. math:: F_i = -c_t\, L(t)\, \nu_{r,i}|\nu_{r,i}|, \qquad c_t = \tfrac12 \rho C_d d_t
+
+    with L the paid-out length [m] (log column ``tether_length``), d_t the tether diameter
+    [m] and C_d its drag coefficient (about 1.2 in cross-flow, Hoerner 1965, ch. 3, fig. 21;
+    much less along the cable). c_t [N s^2/m^3] is the drag per metre of tether per (m/s)^2.
+    Without a ``tether_length`` column L = 1 and the effect is a quadratic drag increase,
+    indistinguishable from a larger D_Q (it ``mimics`` that coefficient). With the column, a
+    free D_Q change is fitted alongside (nuisance) and the tether is judged on the
+    dependence on L alone.
+
+    Source: Hoerner, Fluid-Dynamic Drag (1965) ch. 3 (cylinder cross-flow drag); Wang &
+    Clark (Wang & Clark 2006, sec. IV.A): the unmodelled tether blamed for 0.47 vs 0.51 m/s.
+    """
+
+    name = "tether_drag"
+    nuisance_names = ("D_Q",)
+    summary = "tether drag, quadratic in speed, proportional to the paid-out length"
+    source = "Hoerner (1965) ch. 3; Wang & Clark 2006 sec. IV.A"
+    parameters = {"c_t": "N s^2/m^3"}
+    dofs = TRANSLATIONAL
+
+    def _length(self, data):
+        return data.columns.get("tether_length")
+
+    def signature(self, data, dof):
+        length = self._length(data)
+        if length is None or np.ptp(length) <= 1e-9 * max(1.0, float(np.max(np.abs(length)))):
+            return ""
+        return "dependence on tether_length"
+
+    @property
+    def mimics(self):  # decided per log in signature(); the prior term it can look like
+        return "D_Q"
+
+    def nuisance(self, data, dof):
+        return super().nuisance(data, dof) if self.signature(data, dof) else None
+
+    def own_design(self, data, dof, hyper=None):
+        length = self._length(data)
+        length = np.ones(data.t.size) if length is None else length
+        v = data.nu[:, dof]
+        return None, -data.mean(length * v * np.abs(v))[:, None]
+
+    def plausible(self, params):
+        return params["c_t"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -c_t L nu_r,i |nu_r,i|, c_t [N s^2/m^3], L [m], nu_r [m/s];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        c = params["c_t"]
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            length = inputs.get("columns", {}).get("tether_length", 1.0)
+            v = inputs.get("nu_r", nu)[dof]
+            return -c * length * v * abs(v) * e
+        return f
+
+
+
+class MomentumDrag(Effect):
+    r"""Drag proportional to another thruster group's speed times the velocity.
+
+    .. math:: F_i = -\alpha\, n_h(t)\, \nu_{r,i}
+
+    with :math:`n_h` the mean modulus of the commands of the thrusters that do not act in
+    DOF i [command units] and :math:`\alpha` [N s/m per command unit] (N m s/rad for a
+    rotation). The signature: dependence on another channel (those thrusters' speed).
+
+    Source: Caccia et al. (Indiveri 1998, the eta-md model, sec. 3.3.1 and the H_md regressor:
+    F_md = -alpha n_h w).
+    """
+
+    name = "momentum_drag"
+    nuisance_names = ("D_L",)
+    summary = "drag proportional to other thrusters' speed times the velocity"
+    source = "Indiveri 1998 eta-md model (sec. 3.3.1, eq. 4.17)"
+    parameters = {"alpha": "N s/m per command unit"}
+
+    def _nh(self, data, dof):
+        if data.commands is None:
+            return None
+        others = [k for k in range(data.commands.shape[1]) if k not in data.acting(dof)]
+        if not others:
+            return None
+        return np.mean(np.abs(data.commands[:, others]), axis=1)
+
+    def applicable(self, data, dof):
+        nh = self._nh(data, dof)
+        if nh is None:
+            return False, "needs commands of thrusters that do not act in this DOF"
+        if np.ptp(nh) == 0 and nh.max() == 0:
+            return False, "the other thrusters never run"
+        return True, ""
+
+    def signature(self, data, dof):
+        nh = self._nh(data, dof)
+        return "dependence on other thrusters' speed" if nh is not None and np.ptp(nh) > 0 \
+            else ""
+
+    @property
+    def mimics(self):
+        return "D_L"
+
+    def nuisance(self, data, dof):
+        return super().nuisance(data, dof) if self.signature(data, dof) else None
+
+    def own_design(self, data, dof, hyper=None):
+        nh = self._nh(data, dof)
+        return None, -data.mean(nh * data.nu[:, dof])[:, None]
+
+    def plausible(self, params):
+        return params["alpha"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -alpha n_h nu_r,i, alpha [N s/m per command unit], n_h [command units];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        a = params["alpha"]
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            model = inputs["model"]
+            b = inputs["allocation"][dof]
+            cmds = inputs.get("commands") or {}
+            others = [th.name for k, th in enumerate(model.thrusters) if abs(b[k]) <= 1e-9]
+            nh = float(np.mean([abs(cmds.get(n, 0.0)) for n in others])) if others else 0.0
+            return -a * nh * inputs.get("nu_r", nu)[dof] * e
+        return f
+
+
+class BuoyancyOffset(Effect):
+    r"""A constant force or moment: wrong weight or buoyancy, a trim or bias.
+
+    .. math:: F_i = b
+
+    [N or N m]. For heave this is the weight-buoyancy error W - B projected on the body z
+    axis (constant for small roll and pitch); for yaw the bias delta of Wang & Clark 2006's eq. 8.
+
+    Source: Caccia et al. (Indiveri 1998, eq. 4.15: the buoyancy term W); Wang & Clark (Wang & Clark 2006,
+    eq. 8: the bias delta); Fossen (2011) eq. 4.6.
+    """
+
+    name = "buoyancy_offset"
+    summary = "constant force or moment (weight/buoyancy error, bias)"
+    source = "Indiveri 1998 eq. 4.15; Wang & Clark 2006 eq. 8; Fossen (2011) eq. 4.6"
+    parameters = {"b": "N or N m"}
+
+    def signature(self, data, dof):
+        return "a bias"
+
+    input_driven = True
+
+    def own_design(self, data, dof, hyper=None):
+        return None, np.ones((data.n_windows, 1))
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = b, b [N or N m];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        e = params["b"] * _unit_vec(dof)
+        return lambda time, eta, nu, inputs: e
+
+
+class Current(Effect):
+    r"""A constant water current, so drag and added-mass forces act on the relative velocity.
+
+    .. math::
+        \Delta F = -\big[D(\nu_r)\nu_r - D(\nu)\nu\big] - \big[C_A(\nu_r)\nu_r - C_A(\nu)\nu\big]
+        + M_A\dot\nu_c,\qquad \nu_r = \nu - [R^T V_c;\ 0]
+
+    with the horizontal current :math:`V_c = [V_N, V_E, 0]` [m/s] in NED, fitted by
+    nonlinear least squares (variable projection). The signature: a force that rotates
+    with the heading (turns) and is not symmetric in the sign of the speed.
+
+    Source: Fossen (2011), eq. 10.1 and sec. 10.3 (relative velocity, irrotational current).
+    """
+
+    name = "current"
+    nuisance_names = ("D_L", "D_Q")
+    summary = "constant water current: drag on the relative velocity"
+    source = "Fossen (2011) eq. 10.1, sec. 10.3"
+    parameters = {"current_north": "m/s", "current_east": "m/s"}
+    hyper = ("current_north", "current_east")
+    dofs = (0, 1)
+
+    def signature(self, data, dof):
+        return ("a force that turns with the heading" if np.ptp(data.eta[:, 5]) > 0.5
+                else "a force asymmetric in the sign of the speed")
+
+    def _current_body(self, data, vc):
+        """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""
+        rot = rotation_matrices(data.eta)
+        v = np.array([vc[0], vc[1], 0.0])
+        nuc = np.zeros_like(data.nu)
+        nuc[:, :3] = np.einsum("nji,j->ni", rot, v)  # R^T V_c
+        return nuc
+
+    def relative_velocity(self, data, vc):
+        """nu_r = nu - [R^T V_c; 0] (n, 6) [m/s, rad/s]: the velocity the calibration's drag
+        and added-mass terms act on once the current is in the model (Fossen 2011, eq. 10.1)."""
+        return data.nu - self._current_body(data, vc)
+
+    def design(self, data, dof, hyper=None):
+        """Nuisance columns (released D_L, D_Q) at the relative velocity, then the offset."""
+        off, cols = self.own_design(data, dof, hyper)
+        nur = self.relative_velocity(data, (0.0, 0.0) if hyper is None else hyper)
+        nuis = np.column_stack([coefficient_column(data, dof, n, nur)
+                                for n in self.nuisance_names])
+        return off, np.hstack([nuis, cols])
+
+    def offset(self, data, dof, vc):
+        model = data.model
+        nuc = self._current_body(data, vc)
+        nur = data.nu - nuc
+        diff = (damping_times_velocity(model, nur) - damping_times_velocity(model, data.nu)
+                + coriolis_times_velocity(model.added_mass, nur)
+                - coriolis_times_velocity(model.added_mass, data.nu))
+        return -data.mean(diff[:, dof]) + data.rate(nuc @ model.added_mass[dof])
+
+    def own_design(self, data, dof, hyper=None):
+        vc = (0.0, 0.0) if hyper is None else hyper
+        return self.offset(data, dof, vc), np.zeros((data.n_windows, 0))
+
+    def hyper_start(self, data, dof):
+        return np.zeros(2)
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        return {"current_north": float(hyper[0]), "current_east": float(hyper[1])}
+
+    def magnitude(self, params):
+        return math.hypot(params["current_north"], params["current_east"])
+
+    def plausible(self, params):
+        return self.magnitude(params) < 5.0
+
+    def max_magnitude(self, data) -> float:
+        r"""Largest current the log can support [m/s]: the vehicle's 95th-percentile
+        horizontal speed over ground, :math:`|V_c| \le P_{95}(\sqrt{u^2 + v^2})`. A vehicle
+        driven around a basin against a current faster than itself would be swept away,
+        and a constant current larger than the speeds the log explores is an extrapolation
+        of the drag law, not a measurement (issue 16: 0.73 m/s accepted in a pool)."""
+        return float(np.percentile(np.hypot(data.nu[:, 0], data.nu[:, 1]), 95))
+
+    def implausible(self, params, data=None, dof=None):
+        if not self.plausible(params):
+            return "implausible parameters"
+        if data is not None and self.magnitude(params) > self.max_magnitude(data):
+            return (f"a current of {self.magnitude(params):.3g} m/s exceeds what the log "
+                    f"supports ({self.max_magnitude(data):.3g} m/s, the 95th-percentile "
+                    "horizontal speed)")
+        return ""
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        v = np.array([params["current_north"], params["current_east"], 0.0])
+        e = _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            from stripcoef.conventions import rotation_matrix, skew
+            model = inputs["model"]
+            rt = rotation_matrix(eta[3], eta[4], eta[5]).T
+            nuc = np.concatenate([rt @ v, np.zeros(3)])
+            nur = nu - nuc
+            nuc_dot = np.concatenate([-skew(nu[3:]) @ (rt @ v), np.zeros(3)])
+            diff = (model.damping(nur) @ nur - model.damping(nu) @ nu
+                    + model.coriolis(nur, rigid_body=False) @ nur
+                    - model.coriolis(nu, rigid_body=False) @ nu)
+            return (-diff[dof] + (model.added_mass @ nuc_dot)[dof]) * e
+        return f
+
+
+class LinearDrag(Effect):
+    r"""A linear damping term missing from a quadratic-only model.
+
+    .. math:: F_i = -d_L\, \nu_{r,i}
+
+    [N s/m or N m s/rad]. Dominant at low speed (Wang & Clark 2006, eq. 7; Indiveri 1998's yaw tables
+    where the linear no-bias LNB model is the best at rates below 10 deg/s). When the prior
+    already has this linear term the effect mimics its calibration.
+
+    Source: Fossen (2011) eq. 6.59; Wang & Clark 2006 eq. 7; Indiveri 1998 sec. 4.2.5.
+    """
+
+    name = "linear_drag"
+    summary = "linear damping missing from the model"
+    source = "Fossen (2011) eq. 6.59; Wang & Clark 2006 eq. 7; Indiveri 1998 sec. 4.2.5"
+    parameters = {"d_L": "N s/m or N m s/rad"}
+    native = True
+
+    def signature(self, data, dof):
+        return "" if data.model.linear_damping[dof, dof] != 0 else \
+            "linear damping where the prior has none"
+
+    @property
+    def mimics(self):
+        return "D_L"
+
+    def own_design(self, data, dof, hyper=None):
+        return None, -data.mean(data.nu[:, dof])[:, None]
+
+    def plausible(self, params):
+        return params["d_L"] > 0.0
+
+    def force_law(self, params, dof):
+        """Simulation force law: F_i = -d_L nu_r,i, d_L [N s/m or N m s/rad];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        d = params["d_L"]
+        e = _unit_vec(dof)
+        return lambda time, eta, nu, inputs: -d * inputs.get("nu_r", nu)[dof] * e
+
+    def apply(self, model, dof, params, std=None):
+        """The model with d_L added to D_L[dof, dof] (a new model)."""
+        dl = np.array(model.linear_damping, dtype=float)
+        dl[dof, dof] += params["d_L"]
+        return replace(model, linear_damping=dl)
+
+
+
+class AddedMassError(Effect):
+    r"""Wrong total inertia (added mass), visible in the transients.
+
+    .. math:: F_i = -\delta m\, \dot\nu_i
+
+    [kg or kg m^2]. The regressor is the prior's own inertia term, so the effect is the
+    inertia released from its band: it is reported only when the data force the inertia
+    far outside the band strip theory is known to have (Wang & Clark 2006, Table I: N_rdot 0.0321
+    analytical vs 0.0118 experimental).
+
+    Source: Fossen (2011) sec. 6.3 (added mass); Wang & Clark 2006 Table I.
+    """
+
+    name = "added_mass_error"
+    inertia = True  # its column multiplies the acceleration (profiled, see diagnose._solve)
+    summary = "wrong total inertia, visible in transients"
+    source = "Fossen (2011) sec. 6.3; Wang & Clark 2006 Table I"
+    parameters = {"delta_m": "kg or kg m^2"}
+    mimics = "M"
+    native = True
+
+    def signature(self, data, dof):
+        return ""
+
+    def lower_bounds(self, data, dof, hyper=None):
+        # no negative added mass (the released inertia stays >= the rigid-body one)
+        return np.array([-abs(float(data.model.added_mass[dof, dof]))])
+
+    def own_design(self, data, dof, hyper=None):
+        return None, coefficient_column(data, dof, "M")[:, None]
+
+    def plausible(self, params):
+        return True
+
+    def force_law(self, params, dof):
+        """Simulation force law: none, the effect is native (F_i = -delta_m nu_dot_i [N], delta_m [kg], is folded into M_A by apply);
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
+        raise InputError("added_mass_error is applied to the added-mass matrix, not as a force",
+                         key="effects", value=self.name, expected="a native model change")
+
+    def apply(self, model, dof, params, std=None):
+        """The model with delta_m added to M_A[dof, dof] (a new model)."""
+        ma = np.array(model.added_mass, dtype=float)
+        ma[dof, dof] += params["delta_m"]
+        return replace(model, added_mass=ma, added_mass_error=None)   # no longer the panels'
+
+

@@ -1,0 +1,184 @@
+"""One calibrated model (issue 33): every number `diagnose` prints or reports about the model
+it writes is that model's, recomputed here from the file `--out` wrote, read back.
+
+For several logs (the shipped tether sample, per DOF and whole-log, with hold-out and
+validation; seeded synthetic logs of validation/synthetic.py with a native effect) the
+command is run with --out, --json and --report, the model file is read back
+(`stripcoef.modelfile.load_model`) and each printed value is recomputed from it: the
+calibrated coefficients, the parameters of each kept effect, the absence of each removed
+one, the final window error on the fitting part of the log, the validation and held-out
+free-simulation errors. Equal within 1e-9 relative (the file holds the floats' repr).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from stripcoef import cli, samples
+from stripcoef.conventions import parse_dof
+from stripcoef.diagnose.calibrate import bounds_hit
+from stripcoef.diagnose.heldout import compare, split
+from stripcoef.diagnose.report import _fmt, text_summary
+from stripcoef.diagnose.settings import VALIDATION_FRACTION
+from stripcoef.diagnose.validate import validation_errors
+from stripcoef.diagnose.written import coefficient, window_errors, written_effects
+from stripcoef.effects.laws import get_effect
+from stripcoef.export import write_export
+from stripcoef.logfile import read_log
+from stripcoef.modelfile import load_model
+from validation.synthetic import generate
+
+REL = 1e-9
+
+
+def _synthetic(tmp, effect, seed, duration):
+    log, prior, _ = generate(effect, seed=seed, duration=duration)
+    log.write_csv(tmp / "log.csv")
+    write_export(prior, "json", tmp / "prior.json")
+    return str(tmp / "log.csv"), str(tmp / "prior.json")
+
+
+def _sample(tmp):
+    return str(samples.path("rov_tether.csv")), str(samples.path("rov_prior.json"))
+
+
+CASES = {
+    # the tutorial's run: M_heave of the written file was not the printed one
+    "sample-surge": (_sample, ["--dof", "surge"]),
+    # a hold-out: the validation removes the tether step, the calibration is refitted
+    "sample-surge-holdout": (_sample, ["--dof", "surge", "--holdout", "0.3"]),
+    # whole-log: several DOFs, cross added masses of DOFs diagnosed themselves
+    "sample-all": (_sample, ["--dof", "all"]),
+    # a native effect (folded into the thrusters), read back from the provenance
+    "synthetic-deadband": (lambda t: _synthetic(t, "deadband", 3, 120.0), ["--dof", "surge"]),
+    # a non-native effect with a nonlinear parameter
+    "synthetic-current": (lambda t: _synthetic(t, "current", 1, 120.0), ["--dof", "surge"]),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(CASES))
+def run(request, tmp_path_factory):
+    tmp = tmp_path_factory.mktemp(request.param)
+    make, extra = CASES[request.param]
+    log_path, prior_path = make(tmp)
+    out, report = tmp / "calibrated.yaml", tmp / "report.md"
+    import contextlib
+    import io
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        rc = cli.main(["diagnose", log_path, "--vehicle", prior_path, "--no-resimulate",
+                       "--json", "--out", str(out), "--report", str(report), *extra])
+    assert rc == 0
+    res = json.loads(buf.getvalue())
+    return {"res": res, "model": load_model(out), "log": read_log(log_path),
+            "prior": load_model(prior_path), "report": report.read_text(),
+            "text": text_summary(res), "holdout": "--holdout" in extra}
+
+
+def _same(a, b):
+    assert a == pytest.approx(b, rel=REL, abs=1e-12)
+
+
+def test_calibrated_coefficients_are_the_files(run):
+    res, model, text = run["res"], run["model"], run["text"]
+    for d, r in res["per_dof"].items():
+        i = parse_dof(d)
+        cal = r["calibration"]
+        assert set(cal["written"]) == set(cal["parameters"])
+        for k, w in cal["written"].items():
+            _same(w, coefficient(model, i, k))
+            _same(cal["prior"][k] + cal["final_parameters"][k], coefficient(model, i, k))
+            assert f"{k} {_fmt(cal['prior'][k])} -> {_fmt(w)}" in text
+            assert f"| {k}[{d}] | {_fmt(cal['prior'][k])} | {_fmt(w)} |" in run["report"]
+
+
+def test_effects_kept_are_the_files_and_removed_ones_are_absent(run):
+    res, model = run["res"], run["model"]
+    for d, r in res["per_dof"].items():
+        written = written_effects(model, d)
+        in_effects = {e["name"]: e for e in model.effects if e.get("dof") == d}
+        for s in r["steps"]:
+            if s["kept"]:
+                assert set(s["parameters"]) == set(written[s["effect"]])
+                for k, v in s["parameters"].items():
+                    _same(v, written[s["effect"]][k])
+                    _same(s["final_parameters"][k], v)
+                if not get_effect(s["effect"]).native:
+                    for k, v in s["parameters"].items():
+                        _same(v, in_effects[s["effect"]]["parameters"][k])
+            else:
+                assert s["effect"] not in written and s["effect"] not in in_effects
+                assert any(x.startswith(f"{s['effect']} {d}")
+                           for x in res["validation"]["removed"])
+        kept = [s["effect"] for s in r["steps"] if s["kept"]]
+        assert sorted(written) == sorted(kept)
+    removed = [s for r in res["per_dof"].values() for s in r["steps"] if not s["kept"]]
+    for s in removed:   # shown as removed in the text and in the report
+        assert "[removed" in run["text"] and f"{s['effect']} (removed)" in run["report"]
+
+
+def _parts(run):
+    """(fitting, validation, held-out) parts of the log, cut as diagnose cuts them."""
+    log = run["log"]
+    fit_log, test_log = split(log, 0.3) if run["holdout"] else (log, None)
+    train, val = split(fit_log, VALIDATION_FRACTION, key="validation")
+    t0, t1 = run["res"]["fitted_on_s"]
+    assert train["t"][0] == t0 and train["t"][-1] == t1
+    return train, val, test_log
+
+
+def test_final_error_is_the_written_models(run):
+    res, model = run["res"], run["model"]
+    train, _, _ = _parts(run)
+    dofs = [parse_dof(d) for d in res["per_dof"]]
+    errors = window_errors(train, model, dofs, window=res["window_s"])
+    for d, r in res["per_dof"].items():
+        _same(r["final_error"], errors[d])
+        row = [line for line in run["report"].splitlines() if line.startswith(f"| {d} [")][0]
+        assert f"| {_fmt(r['final_error'])} |" in row
+    if res["dof"] == "all":
+        rel = np.sqrt(np.mean([(errors[d] / r["baseline_error"]) ** 2
+                               for d, r in res["per_dof"].items()]))
+        _same(res["final_error"], rel)
+    else:
+        _same(res["final_error"], errors[res["dof"]])
+
+
+def test_validation_and_held_out_errors_are_the_written_models(run):
+    res, model, prior = run["res"], run["model"], run["prior"]
+    _, val, test_log = _parts(run)
+    dofs = [parse_dof(d) for d in res["per_dof"]]
+    kept = validation_errors(val, model, dofs)
+    for d in res["per_dof"]:
+        _same(res["validation"]["kept_changes"][d], kept[d])
+    if test_log is not None:
+        errors = compare(test_log, {"prior": prior, "calibrated": model}, dofs)
+        for d, e in res["holdout"]["errors"].items():
+            _same(e["calibrated"], errors[d]["calibrated"])
+            _same(e["prior"], errors[d]["prior"])
+
+
+def test_a_removed_step_leaves_its_partners_refitted(run):
+    """The effects of a DOF whose calibration is removed go with it; the changes kept
+    beside a removed one are refitted (and said so)."""
+    res = run["res"]
+    for d, r in res["per_dof"].items():
+        if r["calibration"].get("kept") is False:
+            assert not any(s["kept"] for s in r["steps"])
+        removed = (any(not s["kept"] for s in r["steps"])
+                   or r["calibration"].get("kept") is False)
+        kept = [s for s in r["steps"] if s["kept"]] or r["calibration"].get("kept") is not False
+        if removed and kept:
+            assert d in res["validation"]["refitted"]
+
+
+def test_bounds_hit_lists_an_effect_written_at_a_bound():
+    """A thrust scale written at its lower bound 0.05 is listed (issue 33: it was not)."""
+    prior = load_model(samples.path("rov_prior.json"))
+    cal = prior.with_provenance(diagnose=[{
+        "dof": "pitch", "calibration": {}, "effects": ["thrust_effectiveness"],
+        "parameters": {"thrust_effectiveness": {"scale": 0.05}},
+        "at_bound": {"thrust_effectiveness": "lower"}}])
+    hits = bounds_hit(prior, cal)
+    assert "0.05 at the lower bound" in hits["pitch"]["thrust_effectiveness"]

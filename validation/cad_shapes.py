@@ -1,0 +1,128 @@
+"""docs/validation.md: seeded CAD-style bluff shapes against Capytaine (issue 32).
+
+Reads the stored run of ``benchmarks/cad_shapes.py`` (``reference_tables/bem/cad_shapes.csv``: the
+seed and command on its first line, then one row per term of each shape), so the section
+states what that run measured; a new run (a fresh seed) replaces the file.
+"""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+
+from validation import ROOT, markdown_table
+
+DATA = ROOT / "reference_tables" / "bem" / "cad_shapes.csv"
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+def _read():
+    with open(DATA, newline="") as fh:
+        command = fh.readline().lstrip("# ").strip()
+        rows = list(csv.DictReader(fh))
+    return command, rows
+
+
+def section() -> str:
+    if not DATA.exists():
+        return ""
+    command, rows = _read()
+    shapes = {}
+    failed = []
+    for r in rows:
+        if r["what"].startswith("FAILED"):
+            failed.append((r["shape"], r["family"], r["what"]))
+            continue
+        shapes.setdefault(r["shape"], []).append(r)
+    table = []
+    diag_ok = diag_n = coup_ok = coup_n = cov = cov_n = 0
+    all_ok = warned_miss = missed = 0
+    t_model, t_bem = [], []
+    for k, terms in shapes.items():
+        head = terms[0]
+        sig = [t for t in terms if t["significant"] == "1"]
+        diag = [t for t in terms if t["i"] == t["j"]]
+        coup = [t for t in sig if t["i"] != t["j"]]
+        rel = {(int(t["i"]), int(t["j"])): float(t["error_rel"]) for t in terms}
+        wd = max(diag, key=lambda t: abs(float(t["error_rel"])))
+        wc = max(coup, key=lambda t: abs(float(t["error_rel"]))) if coup else None
+        diag_ok += sum(abs(float(t["error_rel"])) <= 0.05 for t in diag)
+        diag_n += len(diag)
+        coup_ok += sum(abs(float(t["error_rel"])) <= 0.05 for t in coup)
+        coup_n += len(coup)
+        c = sum(t["covered"] == "1" for t in sig)
+        cov += c
+        cov_n += len(sig)
+        ok = all(abs(float(t["error_rel"])) <= 0.05 for t in sig)
+        all_ok += ok
+        if not ok:
+            missed += 1
+            warned_miss += head["warned"] == "1"
+        t_model.append(float(head["t_model_s"]))
+        t_bem.append(float(head["t_bem_s"]))
+        table.append([k, head["family"], f"{head['what']} [{head['how']}]", head["panels"],
+                      head["mirrors"],
+                      f"{DOFS[int(wd['i'])]} {100 * rel[(int(wd['i']), int(wd['i']))]:+.1f} %",
+                      (f"{DOFS[int(wc['i'])]}-{DOFS[int(wc['j'])]} "
+                       f"{100 * float(wc['error_rel']):+.1f} %") if wc else "-",
+                      f"{c}/{len(sig)}", "yes" if head["warned"] == "1" else "no"])
+    n = len(shapes)
+    miss_steps = [float(t["bem_richardson_step_rel"]) for terms in shapes.values() for t in terms
+                  if t["significant"] == "1" and abs(float(t["error_rel"])) > 0.05]
+    miss_families = {t["family"] for terms in shapes.values() for t in terms
+                     if t["significant"] == "1" and abs(float(t["error_rel"])) > 0.05}
+    all_steps = [float(t["bem_richardson_step_rel"]) for terms in shapes.values() for t in terms
+                 if t["i"] == t["j"]]
+    note = (f" The {len(miss_steps)} terms off by more than 5 % are all ones whose reference is "
+            f"itself uncertain: its own Richardson step (finer BEM run to the extrapolation) is "
+            f"{100 * min(miss_steps):.1f} to {100 * max(miss_steps):.1f} % of the term there "
+            f"(median over all diagonal terms {100 * np.median(all_steps):.1f} %; families: "
+            f"{', '.join(sorted(miss_families))}). Finer references than 3000 faces are needed "
+            "to tell the panel method's error from the reference's there.") if miss_steps else ""
+    gci = ""
+    if rows and "estimated_error_rel" in rows[0]:
+        sig = [t for terms in shapes.values() for t in terms if t["significant"] == "1"]
+        err = np.array([abs(float(t["error_rel"])) for t in sig])
+        est = np.array([float(t["estimated_error_rel"]) for t in sig])
+        step = np.array([float(t["bem_richardson_step_rel"]) for t in sig])
+        worst = np.array([max(float(t["estimated_error_rel"]) for t in terms)
+                          for terms in shapes.values()])
+        gci = (f" With the safety factor 3 that Roache (1998, sec. 5.6) prescribes for a "
+               f"two-grid study (the grid convergence index, 3x the step) the estimate would "
+               f"cover {100 * np.mean(err <= 3 * est):.0f} % of the terms "
+               f"({100 * np.mean(err <= 3 * est + step):.0f} % when the reference's own step "
+               f"is added to it), but the 5 % warning would then go off on "
+               f"{int(np.sum(3 * worst > 0.05))} of {n} shapes at the default panels; the "
+               "shipped estimate is the step itself (a choice for the next step, not made "
+               "here). The estimated errors are those of `--references` (the model re-run on "
+               "the same seed against the stored references; every term reproduced within "
+               "1e-4).")
+    parts = ["## CAD-style bluff shapes, a fresh seed per run (issue 32)\n",
+             "`benchmarks/cad_shapes.py` draws shapes from families of what CAD tools export "
+             "(extruded convex polygons with fan-triangulated caps, chamfered and filleted "
+             "boxes, frames of plates and tubes as overlapping parts, thin plates, coarse "
+             "tessellations, box hulls with a pod pushed in), writes each as a user has it "
+             "(millimetres or metres, STL or an OBJ with its vertices split at every face), "
+             "and runs the whole estimate with `added_mass_method=\"panels\"` (default 1600 "
+             "panels) against Capytaine (direct method, no free surface) on the shape's clean "
+             "union at two resolutions of at most 3000 faces, Richardson-extrapolated, about the "
+             "same point. Nothing is fitted: every run draws a new seed. The stored run:\n",
+             f"    {command}\n",
+             f"{n} shapes solved" + (f", {len(failed)} refused" if failed else "") + ": "
+             f"diagonal terms within 5 %: {diag_ok} of {diag_n}; couplings (reference at least "
+             f"1 % of sqrt(A_ii A_jj)) within 5 % of that scale: {coup_ok} of {coup_n}; shapes "
+             f"with every such term within 5 %: {all_ok} of {n}. The estimated error "
+             f"(`added_mass_error`) covers the actual error in {cov} of {cov_n} terms "
+             f"({100 * cov / max(cov_n, 1):.0f} %; the issue asks for 90 %): the Richardson "
+             "step of two panel levels underestimates the error where the levels are not yet in "
+             f"the asymptotic range. Of the {missed} shapes with a term off by more than 5 %, "
+             f"{warned_miss} got the not-converged warning. Median whole-estimate time "
+             f"{np.median(t_model):.2f} s (loaded shared machine, one BLAS thread), the two BEM "
+             f"reference solves {np.median(t_bem):.2f} s." + note + gci + "\n",
+             markdown_table(["#", "family", "shape [file]", "panels", "mirrors",
+                             "worst diagonal", "worst coupling (of scale)", "estimate covers",
+                             "warned"], table)]
+    if failed:
+        parts.append("\nRefused: " + "; ".join(f"#{k} {fam}: {why}" for k, fam, why in failed))
+    return "\n".join(parts) + "\n"

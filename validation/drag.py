@@ -1,0 +1,98 @@
+"""Validation section: whole-body drag against measured simple bodies (issue 35).
+
+The bodies, sizes and Reynolds number are those of validation/drag_bodies.py (its docstring);
+the references are reference_tables/body_drag_3d (Hoerner 1965 via public copies). Each row is
+held out (no number of it is an input of the model) or built from one of the model's own
+curves (drag_bodies.BUILT_FROM): the latter check only that a mesh reaches its curve, and are
+not used to measure the method's band (scripts/make_method_uncertainty.py).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from validation import markdown_table
+
+#: the issue's target: every translational term within 25 % of its reference
+TARGET = 0.25
+
+
+def _rows():
+    from validation import drag_bodies as db
+    from stripcoef.assembly.estimate import estimate
+    from stripcoef.conventions import quadratic_damping_name
+    from stripcoef.study.shapes import shape_class
+
+    out = []
+    for name in db.BODIES:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            veh, model, rows = db.compare(name, lambda v: estimate(
+                v, added_mass_method="strips", speed=db.SPEED))
+        for r in rows:
+            out.append({"body": name, "class": shape_class(veh),
+                        "term": quadratic_damping_name(r["dof"], r["dof"]),
+                        "model": r["cd_model"], "ref": r["cd_ref"], "row": r["row"],
+                        "area": r["area"], "held_out": r["held_out"],
+                        "built_from": r["built_from"],
+                        "method": model.conditions.axial_drag_method if r["dof"] == 0 else
+                        "cross-flow strips"})
+    return out
+
+
+def section() -> str:
+    rows = _rows()
+    table = []
+    for r in rows:
+        err = r["model"] / r["ref"] - 1.0
+        table.append([r["body"], r["class"], r["term"], f"{r['model']:.3f}",
+                      f"{r['ref']:.3f} ({r['row']})", r["area"], f"{100 * err:+.1f} %",
+                      f"{np.log(r['model'] / r['ref']):+.3f}", r["method"],
+                      "held out" if r["held_out"] else f"built from {r['built_from']}"])
+    summary = []
+    for cls in sorted({r["class"] for r in rows}):
+        held = [np.log(r["model"] / r["ref"]) for r in rows
+                if r["class"] == cls and r["held_out"]]
+        if not held:
+            continue
+        within = sum(abs(np.exp(e) - 1.0) <= TARGET for e in held)
+        summary.append([cls, len(held), f"{within}/{len(held)}",
+                        f"{np.sqrt(np.mean(np.square(held))):.3f}",
+                        f"{np.std(held, ddof=1) if len(held) > 1 else 0.0:.3f}",
+                        f"{max(held, key=abs):+.3f}"])
+    built = [abs(np.log(r["model"] / r["ref"])) for r in rows if not r["held_out"]]
+    return "\n".join([
+        "## Whole-body drag against measured simple bodies (issue 35)\n",
+        "`python -m benchmarks.drag_bodies`: closed meshes of size D = 0.1 m in water at 1 m/s "
+        "(Re = 1e5 on D), the model's quadratic term over the reference's area, "
+        "C_D = |D_Q[k,k]| / (1/2 rho A), against the measured whole-body drag of "
+        "reference_tables/body_drag_3d (Hoerner 1965 via public copies: which copy, its page and "
+        "figure in each row). `method`: how the model got the axial term "
+        "(`damping.damping_matrices`: `measured_short_body` the measured drag of ellipsoids, "
+        "`blunt` (flat bow) the measured drag of flat-ended bodies end-on, `blunt_base` (closed "
+        "bow, flat stern) the measured drag of ellipsoids of its L/D, `form_factor` friction with "
+        "Hoerner's streamlined-body form factor); sway and heave are the strips' cross-flow drag. "
+        "A row *built from* one of the model's curves is not an independent check (the number "
+        "is the model's input): it shows that a mesh reaches its curve with the right L/D, "
+        "aspect ratio and area, and is not used to measure the method's band.\n",
+        markdown_table(["body", "class", "term", "C_D model", "C_D measured (row)", "area",
+                        "error", "ln(model/ref)", "method", "role"], table),
+        "\nHeld-out rows per shape class (the rows the method's translational drag band is "
+        "measured from, scripts/make_method_uncertainty.py); the target of issue 35 is every "
+        f"term within {100 * TARGET:.0f} % and sd(ln) below 0.25:\n",
+        markdown_table(["class", "held-out terms", f"within {100 * TARGET:.0f} %",
+                        "rms ln", "sd ln", "largest ln"], summary),
+        f"\nBuilt-from rows: largest |ln(model/ref)| {max(built):.3f} over {len(built)} rows "
+        "(the mesh's plain friction and its L/D against the curve's printed points). "
+        "A hull with a closed bow and a flat stern only (the cones apex-first, the hemisphere "
+        "dome-first: bow at +x) takes the measured drag of closed bodies of its L/D, the "
+        "ellipsoids: the rule was chosen after these rows had been seen with the flat-ended "
+        "curve (+0.64 to +1.06 in ln), so for that choice they are not a clean hold-out. Not met: "
+        "the hemisphere flat face first (the model's |u|u term is the drag going ahead, "
+        "dome first: astern, flat face first, it is 0.43 of the measured 1.17), the sphere "
+        "across the flow (the strips' cylinder curve with DNV's length factor at L/D 2, 0.58, "
+        "where the sphere's measured value is 0.39 of the 2D circle) and the cube turned 45 deg "
+        "in sway (the strips see rectangles, not the diamond planform).\n",
+    ])
