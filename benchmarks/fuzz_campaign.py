@@ -40,6 +40,7 @@ import io
 import json
 import os
 import re
+import shutil
 import signal
 import sys
 import tempfile
@@ -106,6 +107,7 @@ class Bases:
         t = np.round(np.arange(0, 20.0 + 1e-9, 0.1), 6)
         step = np.where((t // 4) % 2 == 0, 1.0, -0.5)
         self.inputs = Log({"t": t, "n_P1": step, "n_P2": 0.8 + 0 * t, "n_V1": 0.2 + 0 * t,
+                           "n_V2": 0 * t,
                            "X": 0.0 * t}).to_csv_text()
         # identification logs, as the tests make them
         from validation.experiments import (romeo_experiment, rov2_pendulum_log,
@@ -315,6 +317,23 @@ def alias_bomb() -> str:
     return "\n".join(lines) + "\n"
 
 
+def merge_bomb() -> str:
+    """~70 kB: a mapping of 3,000 keys merged (``<<: *a``) into 5,000 mappings (1.5e7 nodes;
+    55 s and 5.3 GB before the expansion was counted in true post-order, issue 36)."""
+    big = "a: &a {" + ",".join(f"k{i}: 1" for i in range(3000)) + "}\n"
+    return HULL + big + "b: [" + ",".join(["{<<: *a}"] * 5000) + "]\n"
+
+
+def wide_bomb() -> str:
+    """~100 kB: 20,000 references to one 5,000-item anchor, each in its own list."""
+    seq = "a: &a [" + ",".join(["x"] * 5000) + "]\n"
+    return HULL + seq + "b: [" + ",".join(["[*a]"] * 20000) + "]\n"
+
+
+def recursive_alias(rng) -> str:
+    return HULL + ["r: &r [1, *r]\n", "r: &r {a: *r}\n", "r: &r {<<: *r}\n"][rng.integers(3)]
+
+
 def deep_yaml(depth=10_000) -> str:
     return "hull: " + "[" * depth + "]" * depth + "\n"
 
@@ -371,6 +390,16 @@ PHYSICAL = [
      "strips: 200\n", True),
     ("reference point 1e300", HULL + "reference_point: [1.0e300, 0, 0]\n", True),
     ("duplicate key", HULL + "name: a\nname: b\n", True),
+    # issue 36
+    ("default_density alone", HULL + "mass: {default_density: 700}\n", False),
+    ("default_density 0", HULL + "mass: {default_density: 0}\n", True),
+    ("mass and default_density", HULL + "mass: {mass: 30, default_density: 700}\n", True),
+    ("zone outside the body", HULL + "mass:\n  zones:\n    - {name: far, x: [5, 6], "
+     "density: 900}\n", True),
+    ("zone narrower than a strip", HULL + "mass:\n  zones:\n    - {name: thin, x: [0.0001, "
+     "0.0002], density: 900}\n", True),
+    ("massless zones", HULL + "mass:\n  default_density: 500\n  zones:\n    - {x: [-0.8, "
+     "0.8], density: 0}\n", True),
     ("open frame along z", HULL + "appendages:\n  - {name: f, type: cylinder, axis: z, center: "
      "[0, 0, 0.3], diameter: 0.02, length: 0.5, inner_diameter: 0.018}\n", False),
 ]
@@ -392,8 +421,15 @@ def vehicle_case(rng, bases: Bases) -> Case:
         kind = "vehicle:physical:" + pname
     else:
         attack = ["alias bomb", "deep nesting", "truncated", "garbage", "empty", "not a mapping",
-                  "tabs"][rng.integers(7)]
+                  "tabs", "NUL byte", "control character", "undecodable bytes",
+                  "recursive alias", "merge-key bomb", "wide alias bomb"][rng.integers(13)]
         content, invalid = {
+            "NUL byte": (HULL + "name: a\x00b\n", True),
+            "control character": (HULL + "name: a\x07b\n", True),
+            "undecodable bytes": (HULL.encode() + b"name: \xff\xfe\n", True),
+            "recursive alias": (recursive_alias(rng), True),
+            "merge-key bomb": (merge_bomb(), True),
+            "wide alias bomb": (wide_bomb(), True),
             "alias bomb": (alias_bomb(), True),
             "deep nesting": (deep_yaml(), True),
             "truncated": (truncate(rng, text), False),
@@ -427,12 +463,42 @@ def vehicle_case(rng, bases: Bases) -> Case:
     return Case(command, kind, argv, files, invalid, outs)
 
 
+def _put(*path_value):
+    *path, value = path_value
+
+    def edit(d):
+        node = d
+        for k in path[:-1]:
+            node = node[k]
+        node[path[-1]] = value
+    return edit
+
+
+#: (name, edit) of a model file's parts that are invalid (issue 36)
+MODEL_PARTS = [
+    ("gravity nan", _put("gravity", NAN)), ("gravity 0", _put("gravity", 0)),
+    ("gravity negative", _put("gravity", -9.81)),
+    ("thrusters: position of 2 numbers", _put("thrusters", 0, "position", [1.0, 2.0])),
+    ("thrusters: direction zeros", _put("thrusters", 0, "direction", [0, 0, 0])),
+    ("thrusters: direction nan", _put("thrusters", 0, "direction", [NAN, 0, 0])),
+    ("thrusters: ct_forward a string", _put("thrusters", 0, "ct_forward", "fast")),
+    ("thrusters: ct_forward -1", _put("thrusters", 0, "ct_forward", -1)),
+    ("thrusters: empty name", _put("thrusters", 0, "name", "")),
+    ("effects a string", _put("effects", "tether_drag")),
+    ("effect parameter a string", _put("effects", [{"name": "tether_drag", "dof": "surge",
+                                                    "parameters": {"c_t": "abc"}}])),
+    ("effect on DOF 7", _put("effects", [{"name": "tether_drag", "dof": 7,
+                                          "parameters": {"c_t": 1.0}}])),
+    ("kinematic viscosity negative", _put("kinematic_viscosity", -1e-6)),
+]
+
+
 def model_case(rng, bases: Bases) -> Case:
     name = list(bases.models)[rng.integers(len(bases.models))]
     as_json = rng.random() < 0.6
     data = json.loads(bases.model_json[name])
     r = rng.random()
-    if r < 0.55:
+    if r < 0.45:
         mats = ["added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass"]
         key = mats[rng.integers(4)]
         i, j = int(rng.integers(6)), int(rng.integers(6))
@@ -461,7 +527,15 @@ def model_case(rng, bases: Bases) -> Case:
             invalid = False
         kind = "model:" + sub
         content = _dump_json(data) if as_json else _dump_yaml(data)
-    elif r < 0.8:
+    elif r < 0.75:
+        # issue 36: the parts beside the matrices, validated like a vehicle file
+        sub, edit = MODEL_PARTS[rng.integers(len(MODEL_PARTS))]
+        if name != "mares" and "thrusters" in sub and not data.get("thrusters"):
+            sub, edit = MODEL_PARTS[0]
+        edit(data)
+        kind, invalid = "model:" + sub, True
+        content = _dump_json(data) if as_json else _dump_yaml(data)
+    elif r < 0.85:
         kind, content, invalid = "model:reference point far", None, False
         data["reference_point"] = [1e300, 0.0, 0.0]
         content = _dump_json(data) if as_json else _dump_yaml(data)
@@ -503,7 +577,8 @@ def _csv_mutation(rng, text, needed):
     rows = lines[1:]
     sub = ["nan cell", "text cell", "10 MB cell", "one row", "header only", "empty",
            "1e300 column", "drop needed column", "ragged row", "duplicate time", "shuffled",
-           "duplicate header", "inf cell", "garbage", "huge log"][rng.integers(15)]
+           "duplicate header", "inf cell", "garbage", "huge log", "nanosecond time",
+           "millisecond time"][rng.integers(17)]
     if sub == "huge log" and rng.random() < 0.75:      # ~20 s each: a quarter as often
         return _csv_mutation(rng, text, needed)
     col = int(rng.integers(len(header)))
@@ -524,7 +599,7 @@ def _csv_mutation(rng, text, needed):
     elif sub == "1e300 column":
         rows = [",".join("1e300" if j == col else c for j, c in enumerate(r.split(",")))
                 for r in rows]
-        invalid = header[col] == "t"          # constant time is invalid; else odd
+        invalid = True      # constant time, or a magnitude no vehicle log has (issue 36)
     elif sub == "drop needed column":
         cands = [h for h in header if h in needed]
         if not cands:
@@ -546,6 +621,17 @@ def _csv_mutation(rng, text, needed):
         header[col] = header[(col + 1) % len(header)]
     elif sub == "garbage":
         return garbage(rng), sub, True
+    elif sub in ("nanosecond time", "millisecond time"):
+        if "t" not in header or len(rows) < 100:
+            return _csv_mutation(rng, text, needed)
+        j = header.index("t")
+        out = []
+        for r in rows:
+            cells = r.split(",")
+            t = float(cells[j])
+            cells[j] = repr(t * 1e-9) if sub == "nanosecond time" else str(round(t * 1000))
+            out.append(",".join(cells))
+        rows = out
     elif sub == "huge log":
         if "t" not in header:
             return _csv_mutation(rng, text, needed)
@@ -583,7 +669,7 @@ def log_case(rng, bases: Bases) -> Case:
         argv = ["diagnose", "{d}/log.csv", "--vehicle", "{d}/prior.yaml", "--dof", "surge",
                 "--no-resimulate", "--json", "--out", "{d}/out.json"]
     else:
-        text, needed = bases.inputs, ("t",)
+        text, needed = bases.inputs, ("t", "n_P1", "n_P2", "n_V1", "n_V2")
         argv = ["simulate", "geometry/mares.yaml", "--inputs", "{d}/log.csv", "--out",
                 "{d}/out.json"]
         argv[1] = str(ROOT / "geometry" / "mares.yaml")
@@ -672,6 +758,7 @@ OPTIONS = {
     + [(["--speed", "1e300"], False), (["--speed", "1e-300"], False)]
     + [(["--reference-point", v], True) for v in ("nan,0,0", "1,2", "a,b,c", "inf,0,0")]
     + [(["--reference-point", "1e300,0,0"], False), (["--reference-point", "origin"], False)]
+    + [(["--reference-point", ""], True)]
     + [(["--rho", v], True) for v in ("0", "-1", "nan", "inf")] + [(["--rho", "1e-9"], False)]
     + [(["--nu", v], True) for v in ("0", "-1e-6", "nan")]
     + [(["--water-temperature", t, "--salinity", s], inv) for t, s, inv in
@@ -711,7 +798,7 @@ OPTIONS = {
     + [(["--method", "pendulum", "--window", v], True) for v in ("0", "-1", "1", "100000000")]
     + [(["--method", "pendulum", "--order", v], True) for v in ("-1", "0", "1000")]
     + [(["--method", "bogus"], True), (["--method", "one-step", "--plot", "{d}"], True)],
-    "diagnose": [(["--window", v], True) for v in ("0", "-1", "nan", "inf", "1e9")]
+    "diagnose": [(["--window", v], True) for v in ("0", "-1", "nan", "inf", "1e9", "1e-6")]
     + [(["--dof", "bogus"], True), (["--effects", "bogus"], True),
        (["--report", "{d}"], True), (["--out", "."], True)],
     # compare: the cases that must fail before the BEM starts (the BEM itself takes minutes)
@@ -782,9 +869,12 @@ def result_case(rng, bases: Bases) -> Case:
             invalid = False
         content = _dump_json(data)
     else:
-        kind = ["deep", "garbage", "empty", "list"][rng.integers(4)]
+        kind = ["deep", "garbage", "empty", "list", "no method or dof"][rng.integers(5)]
+        if kind == "no method or dof":
+            data.pop("method", None)
+            data.pop("dof", None)
         content = {"deep": deep_json(), "garbage": garbage(rng), "empty": "",
-                   "list": "[1, 2]"}[kind]
+                   "list": "[1, 2]", "no method or dof": _dump_json(data)}[kind]
         invalid = True
     return Case("scale", "result:" + kind, ["scale", "{d}/r.json", "--ratio", "3.3", "--json",
                                             "-o", "{d}/out.json"],
@@ -901,7 +991,7 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
         app.in_cli_terms = in_cli_terms
     stdout, stderr = out.getvalue(), err.getvalue()
     after = {p.name: p for p in folder.iterdir() if p.is_file()}
-    leftovers = [n for n in after if n.endswith(".tmp")]
+    leftovers = [p.name for p in folder.iterdir() if p.name.endswith(".tmp")]
     if leftovers:
         return "partial output", f"temporary file left: {leftovers[0]}"
     if rc != 0:
@@ -960,9 +1050,7 @@ def run_campaign(cases, *, limit: float = CASE_LIMIT, progress=None):
                 bad.append((case, outcome, detail))
             if progress:
                 progress(k, case, outcome, detail)
-            for p in folder.iterdir():
-                p.unlink()
-            folder.rmdir()
+            shutil.rmtree(folder)
     run_campaign.seconds = seconds
     return counts, bad
 

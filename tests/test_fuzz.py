@@ -177,7 +177,8 @@ def test_simulate_budget_stops_a_grinding_run(tmp_path, capsys, monkeypatch):
         sim.simulate(model, t, commands={"P1": 1.0}, max_evaluations=50)
     monkeypatch.setattr(sim, "TIME_LIMIT", 1e-6)
     f = tmp_path / "in.csv"
-    f.write_text("t,n_P1\n" + "".join(f"{x:.1f},{1 if k % 2 else -1}\n" for k, x in enumerate(t)))
+    f.write_text("t,n_P1,n_P2,n_V1,n_V2\n" + "".join(f"{x:.1f},{1 if k % 2 else -1},0,0,0\n"
+                                                for k, x in enumerate(t)))
     line = _one_line(capsys, ["simulate", GEO / "mares.yaml", "--inputs", f, "--out",
                               tmp_path / "o.csv"], "time budget of 1e-06 s", "expected")
     assert "mares.yaml" in line
@@ -200,7 +201,7 @@ def test_diagnose_budget_stops_a_grinding_fit(tmp_path, monkeypatch):
     (["--dt", "1e-12"], ("--dt", "expected"))])
 def test_simulate_options_that_would_grind(extra, words, tmp_path, capsys):
     f = tmp_path / "in.csv"
-    f.write_text("t,n_P1\n0,1\n1,1\n2,0\n")
+    f.write_text("t,n_P1,n_P2,n_V1,n_V2\n0,1,0,0,0\n1,1,0,0,0\n2,0,0,0,0\n")
     _one_line(capsys, ["simulate", GEO / "mares.yaml", "--inputs", f, "--out",
                        tmp_path / "o.csv", *extra], *words)
 

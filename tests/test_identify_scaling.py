@@ -70,4 +70,4 @@ def test_bad_input():
     with pytest.raises(InputError, match="parameters"):
         scale_result({"method": "x"}, 2.0)
     with pytest.raises(InputError, match="no scalable"):
-        scale_result({"parameters": {"alpha": 1.0}, "std": {"alpha": 0.1}}, 2.0)
+        scale_result({"parameters": {"alpha": 1.0}, "std": {"alpha": 0.1}}, 2.0, rotational=False)

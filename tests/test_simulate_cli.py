@@ -44,7 +44,8 @@ def test_cli_writes_a_log_matching_the_api(tmp_path, suffix, capsys):
     model, mpath = videoray_like(tmp_path, suffix)
     t = np.linspace(0.0, 10.0, 101)
     n = np.where(t < 5.0, 60.0, 0.0)
-    write_inputs(tmp_path / "in.csv", {"t": t, "n_port": n, "n_starboard": n})
+    write_inputs(tmp_path / "in.csv", {"t": t, "n_port": n, "n_starboard": n,
+                                      "n_vertical": 0 * t})
     rc = cli.main(["simulate", str(mpath), "--inputs", str(tmp_path / "in.csv"),
                    "--out", str(tmp_path / "out.csv")])
     assert rc == 0
@@ -138,7 +139,7 @@ def test_cli_passes_other_columns_through_to_effects_and_log(tmp_path):
 def test_cli_vehicle_file_is_estimated_by_strip_theory(tmp_path):
     vehicle = Path(__file__).resolve().parents[1] / "geometry" / "videoray_pro3.yaml"
     write_inputs(tmp_path / "in.csv", {"t": [0.0, 10.0], "n_port": [60.0, 60.0],
-                                      "n_starboard": [60.0, 60.0]})
+                                      "n_starboard": [60.0, 60.0], "n_vertical": [0.0, 0.0]})
     rc = cli.main(["simulate", str(vehicle), "--inputs", str(tmp_path / "in.csv"),
                    "--out", str(tmp_path / "out.csv"), "--dt", "0.1"])
     assert rc == 0

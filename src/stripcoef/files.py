@@ -17,10 +17,44 @@ from pathlib import Path
 from stripcoef.errors import InputError, UnreachableError
 
 
+def _write_error(exc: OSError, path, key: str) -> InputError:
+    """One line for a write that failed (a full disk, a read-only file system, a quota)."""
+    return InputError(f"cannot write ({exc.strerror or exc.__class__.__name__}; the earlier "
+                      "file, if any, is kept)", key=key, value=str(path),
+                      expected="a path in a writable folder with free space")
+
+
+def _discard(tmp) -> None:
+    try:
+        os.unlink(tmp)
+    except OSError:
+        pass
+
+
 @contextmanager
 def atomic_path(path, *, key: str = "output"):
-    """Yield a temporary path next to ``path``; rename it onto ``path`` on success."""
+    """Yield a temporary path next to ``path``; rename it onto ``path`` on success.
+
+    A failure while writing (an ``OSError``: a full disk, a read-only file system) is one
+    :class:`InputError` naming ``key`` and the path; the temporary file is removed and an
+    existing ``path`` is left as it was.
+    """
     path = check_output_path(path, key=key)
+    tmp = _temporary(path, key)
+    try:
+        yield Path(tmp)
+        os.chmod(tmp, _final_mode(path))
+        os.replace(tmp, path)
+    except OSError as exc:
+        _discard(tmp)
+        raise _write_error(exc, path, key) from None
+    except BaseException:
+        _discard(tmp)
+        raise
+
+
+def _temporary(path: Path, key: str) -> str:
+    """A new empty temporary file next to ``path`` (same folder: the rename is atomic)."""
     folder = path.parent if str(path.parent) else Path(".")
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
@@ -28,16 +62,93 @@ def atomic_path(path, *, key: str = "output"):
         raise InputError(f"cannot write ({exc.strerror})", key=key, value=str(path),
                          expected="a path in an existing, writable folder") from None
     os.close(fd)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, _final_mode(path))
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    return tmp
+
+
+class OutputSet:
+    """The outputs of one run written as a set: all new or all old.
+
+    :meth:`path` gives, for each output, a path with the output's own name in a staging
+    folder beside it (hidden, ``.stripcoef-*.tmp``, on the same file system); the caller
+    writes every output there with any writer, and files a writer adds beside its output
+    (a report's plots) are staged with it. :meth:`commit` then moves every staged file onto
+    its destination, each move an atomic rename, after all of them were written completely.
+    A failure before the commit (an error, a full disk, an interrupted run) removes the
+    staging folders and leaves every earlier output as it was; the renames follow each other
+    with no work between them (a kill -9 in that window of microseconds is the one case that
+    can mix new and old files). As a context manager it commits on success::
+
+        with OutputSet() as outs:
+            write_export(model, "yaml", outs.path("cal.yaml", key="out"))
+            markdown_report(result, outs.path("report.md", key="report"))
+        # both (and the report's plots) renamed here, or none
+    """
+
+    def __init__(self):
+        self._staging: dict[Path, Path] = {}        # destination folder -> staging folder
+        self._finals: dict[Path, tuple[Path, str]] = {}   # staged path -> (output, key)
+
+    def path(self, path, *, key: str = "output") -> Path:
+        """Where to write the output ``path`` (renamed onto it by :meth:`commit`)."""
+        final = check_output_path(path, key=key)
+        folder = (final.parent if str(final.parent) else Path(".")).resolve()
+        if any(f.resolve() == final.resolve() for f, _ in self._finals.values()):
+            raise InputError("the same file twice among a run's outputs", key=key,
+                             value=str(path), expected="a different file for each output")
+        if folder not in self._staging:
+            try:
+                self._staging[folder] = Path(tempfile.mkdtemp(prefix=".stripcoef-",
+                                                              suffix=".tmp", dir=folder))
+            except OSError as exc:
+                self.discard()
+                raise _write_error(exc, final, key) from None
+        staged = self._staging[folder] / final.name
+        self._finals[staged] = (final, key)
+        return staged
+
+    def commit(self) -> None:
+        """Move every staged file onto its destination (each move an atomic rename)."""
+        moves = []
+        for folder, staging in self._staging.items():
+            for f in sorted(staging.iterdir()):
+                final, key = self._finals.get(f, (folder / f.name, "output"))
+                try:
+                    os.chmod(f, _final_mode(folder / f.name))
+                except OSError as exc:
+                    self.discard()
+                    raise _write_error(exc, final, key) from None
+                moves.append((f, folder / f.name))
+        for src, dst in moves:
+            os.replace(src, dst)
+        self.discard()
+
+    def discard(self) -> None:
+        """Remove the staging folders and what they hold; no output changes."""
+        import shutil
+
+        for staging in self._staging.values():
+            shutil.rmtree(staging, ignore_errors=True)
+        self._staging.clear()
+
+    def __enter__(self) -> "OutputSet":
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is None:
+            self.commit()
+            return False
+        staged = {str(k): v for k, v in self._finals.items()}
+        self.discard()
+        if isinstance(exc, InputError) and str(exc.value) in staged:
+            # a writer's error names the staged path: name the output instead
+            final, key = staged[str(exc.value)]
+            raise InputError(exc.what, file=exc.file, key=key, value=str(final),
+                             expected=exc.expected) from None
+        if isinstance(exc, OSError):
+            final, key = staged.get(str(getattr(exc, "filename", "")),
+                                    next(reversed(self._finals.values()), ("output", "output")))
+            raise _write_error(exc, final, key) from None
+        return False
 
 
 def _final_mode(path: Path) -> int:
@@ -75,9 +186,15 @@ def read_text(path, *, kind: str) -> str:
         raise InputError("file not found", file=str(path), expected=f"an existing {kind}") from None
     except IsADirectoryError:
         raise InputError("is a folder", file=str(path), expected=f"a {kind}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read ({exc.__class__.__name__})", file=str(path),
-                         expected=f"a readable UTF-8 {kind}") from None
+    except UnicodeDecodeError as exc:
+        data = path.read_bytes()
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise InputError(f"not UTF-8 text (byte 0x{data[exc.start]:02x} at offset {exc.start})",
+                         file=str(path), key=f"line {line}",
+                         expected=f"a UTF-8 {kind}") from None
+    except OSError as exc:
+        raise InputError(f"cannot read ({exc.strerror or exc.__class__.__name__})",
+                         file=str(path), expected=f"a readable {kind}") from None
 
 
 def strict_json(value):
@@ -128,9 +245,14 @@ def _yaml_loader(file: str):
     class Loader(yaml.SafeLoader):
         depth = 0
 
+        def __init__(self, stream):
+            self.anchor_of: dict[int, str] = {}
+            super().__init__(stream)
+
         def compose_node(self, parent, index):
             if self.check_event(yaml.AliasEvent):
                 return super().compose_node(parent, index)
+            anchor = self.peek_event().anchor
             self.depth += 1
             if self.depth > MAX_NESTING:
                 mark = self.peek_event().start_mark
@@ -138,9 +260,12 @@ def _yaml_loader(file: str):
                                  value=self.depth, expected=f"at most {MAX_NESTING} levels "
                                  "of mappings and lists")
             try:
-                return super().compose_node(parent, index)
+                node = super().compose_node(parent, index)
             finally:
                 self.depth -= 1
+            if anchor is not None:
+                self.anchor_of[id(node)] = anchor       # named in a recursive-alias error
+            return node
 
         def construct_mapping(self, node, deep=False):
             seen = {}
@@ -158,36 +283,56 @@ def _yaml_loader(file: str):
     return Loader
 
 
-def _expanded_size(node, limit: int, file: str) -> int:
-    """Nodes of a composed YAML document with every alias followed (memoised per node, so
-    a shared node is counted each time it is referenced without being walked again)."""
+def _node_children(node) -> list:
+    """The child nodes of a composed YAML node (keys and values of a mapping)."""
     import yaml
 
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    if isinstance(node, yaml.MappingNode):
+        return [c for kv in node.value for c in kv]
+    return []
+
+
+def _expanded_size(node, limit: int, file: str, anchors=None) -> int:
+    """Nodes of a composed YAML document with every alias followed, without building it.
+
+    A depth-first walk of the node graph (iterative, so a deep graph cannot exhaust the
+    stack) in true post-order: a node's size is known before any node that refers to it, a
+    shared node is walked once and counted each time it is referenced. A node reached again
+    while it is still being walked is a recursive alias (``&a [*a]``): an error, since its
+    expansion is infinite (and building it would make every later walk recurse forever).
+    The walk stops at the first node whose expansion passes ``limit``, so a "wide" alias
+    bomb (thousands of references to one large anchor, or merge keys ``<<: *a``) costs the
+    size of its text, not of its expansion.
+    """
     sizes: dict[int, int] = {}
-    order, stack = [], [node]
-    while stack:                       # post-order without recursion
-        n = stack.pop()
-        if id(n) in sizes:
+    open_: set[int] = set()                       # nodes on the current path of the walk
+    stack: list = [(node, False)]
+    while stack:
+        n, done = stack.pop()
+        key = id(n)
+        if done:
+            open_.discard(key)
+            total = 1 + sum(sizes[id(c)] for c in _node_children(n))
+            if total > limit:
+                raise InputError("document too large once its aliases are expanded",
+                                 file=file, key=f"line {n.start_mark.line + 1}",
+                                 value=f"> {limit} nodes",
+                                 expected=f"at most {limit} nodes (few or no YAML aliases)")
+            sizes[key] = total
             continue
-        sizes[id(n)] = -1
-        order.append(n)
-        if isinstance(n, yaml.SequenceNode):
-            stack.extend(n.value)
-        elif isinstance(n, yaml.MappingNode):
-            for k, v in n.value:
-                stack.extend((k, v))
-    for n in reversed(order):
-        if isinstance(n, yaml.SequenceNode):
-            total = 1 + sum(sizes[id(c)] for c in n.value)
-        elif isinstance(n, yaml.MappingNode):
-            total = 1 + sum(sizes[id(k)] + sizes[id(v)] for k, v in n.value)
-        else:
-            total = 1
-        if total > limit:
-            raise InputError("document too large once its aliases are expanded", file=file,
-                             key=f"line {n.start_mark.line + 1}", value=f"> {limit} nodes",
-                             expected=f"at most {limit} nodes (few or no YAML aliases)")
-        sizes[id(n)] = total
+        if key in sizes:
+            continue
+        if key in open_:
+            raise InputError("recursive alias (a node that contains itself)", file=file,
+                             key=f"line {n.start_mark.line + 1}",
+                             value=f"&{(anchors or {}).get(key, '?')}",
+                             expected="aliases that refer to nodes defined before, outside "
+                                      "themselves")
+        open_.add(key)
+        stack.append((n, True))
+        stack.extend((c, False) for c in _node_children(n) if id(c) not in sizes)
     return sizes[id(node)]
 
 
@@ -203,13 +348,21 @@ def load_yaml(text: str, *, file: str):
     if len(text) > MAX_TEXT:
         raise InputError("file too large", file=file, value=f"{len(text)} characters",
                          expected=f"at most {MAX_TEXT} characters")
-    loader = _yaml_loader(file)(text)
+    loader = None
     try:
+        loader = _yaml_loader(file)(text)      # the reader refuses unprintable characters here
         node = loader.get_single_node()
         if node is None:
             return None
-        _expanded_size(node, MAX_EXPANDED_NODES, file)
+        _expanded_size(node, MAX_EXPANDED_NODES, file, loader.anchor_of)
         return loader.construct_document(node)
+    except yaml.reader.ReaderError as exc:
+        # a NUL byte or another character YAML does not allow (YAML 1.1, sec. 5.1)
+        line = text.count("\n", 0, exc.position) + 1
+        raise InputError("invalid YAML (a character YAML does not allow)", file=file,
+                         key=f"line {line}", value=chr(exc.character) if isinstance(
+                             exc.character, int) else exc.character,
+                         expected="printable text (no NUL or control characters)") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or "syntax error"
@@ -217,7 +370,8 @@ def load_yaml(text: str, *, file: str):
                          key=f"line {mark.line + 1}" if mark is not None else None,
                          expected="a YAML mapping") from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 def load_json(text: str, *, file: str):

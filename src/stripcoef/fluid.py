@@ -25,6 +25,10 @@ NU_SEAWATER = 1.19e-6
 """Sea-water kinematic viscosity at 15 degC, S = 35 [m^2/s] (ITTC 7.5-02-01-03)."""
 G = 9.81
 """Gravitational acceleration [m/s^2]."""
+MAX_VEHICLE_SPEED = 100.0
+"""Bound of any speed through the water in stripcoef's inputs [m/s]: faster than any
+underwater vehicle (the supercavitating VA-111 torpedo reaches ~100 m/s); a larger value is in
+other units or corrupt (reference speeds, log velocities)."""
 
 
 def density_eos80(temperature, salinity):

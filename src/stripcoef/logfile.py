@@ -27,6 +27,7 @@ import numpy as np
 from stripcoef.conventions import FORCES, POSE, VELOCITIES
 from stripcoef.errors import InputError
 from stripcoef.files import read_text, write_text
+from stripcoef.fluid import MAX_VEHICLE_SPEED
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
 COMMAND_PREFIX = "n_"
@@ -216,8 +217,78 @@ def read_log(path, *, required=()) -> Log:
             what = "duplicated timestamp" if d[k] == 0 else "time goes backwards"
             raise InputError(f"{what} at row {k + 3}", file=name, key="t", value=float(t[k + 1]),
                              expected=f"strictly increasing time (previous {float(t[k]):g})")
+    check_magnitudes(log)
     log.require(*required) if required else None
     return log
+
+
+#: Largest magnitude of each kind of log column (SI units), with the reason: beyond it the
+#: value is in other units or corrupt, and a command would grind or answer nonsense.
+MAGNITUDE_BOUNDS = {
+    "velocity": (MAX_VEHICLE_SPEED, "m/s", "faster than any underwater vehicle"),
+    "rate": (100.0, "rad/s", "about 16 turns a second"),
+    "angle": (1.0e4, "rad", "over 1500 turns"),
+    "position": (1.0e8, "m", "over twice the Earth's circumference"),
+    "force": (1.0e9, "N or N m", "a thousand times a submarine's thrust"),
+    "other": (1.0e12, "", "no physical quantity of a vehicle log"),
+}
+#: Shortest median time step of a time series [s] (100 kHz; nanosecond stamps read as
+#: seconds give 1e-10 s).
+MIN_TIME_STEP = 1e-5
+#: Integer time stamps with a median step of at least this many "seconds" over at least
+#: :data:`MS_ROWS` rows are taken for milliseconds (a 10 Hz log in ms has steps of 100).
+MS_STEP = 10.0
+MS_ROWS = 100
+
+
+def _column_kind(name: str) -> str:
+    if name in VELOCITIES[:3]:
+        return "velocity"
+    if name in VELOCITIES[3:]:
+        return "rate"
+    if name in POSE[3:] or name == "theta_pendulum":
+        return "angle"
+    if name in POSE[:3]:
+        return "position"
+    if name in FORCES:
+        return "force"
+    return "other"
+
+
+def check_magnitudes(log: Log) -> None:
+    """Refuse a log whose values are in other units or corrupt (issue 36).
+
+    Each column's largest magnitude within :data:`MAGNITUDE_BOUNDS` (velocities 100 m/s,
+    rates 100 rad/s, angles 1e4 rad, positions 1e8 m, forces 1e9 N, anything else 1e12),
+    and for a time series a median step of at least :data:`MIN_TIME_STEP` (100 kHz) and no
+    integer stamps that look like milliseconds (steps of :data:`MS_STEP` or more over
+    :data:`MS_ROWS` rows or more). The error names the file, the column, the row and the
+    value.
+    """
+    for name, values in log.columns.items():
+        if name == "t" or not values.size:
+            continue
+        kind = _column_kind(name)
+        bound, unit, why = MAGNITUDE_BOUNDS[kind]
+        k = int(np.argmax(np.abs(values)))
+        if abs(values[k]) > bound:
+            raise InputError(f"absurd magnitude in row {k + 2} ({why})", file=log.source,
+                             key=name, value=float(values[k]),
+                             expected=f"|{name}| <= {bound:g}{' ' + unit if unit else ''} "
+                                      "(SI units, radians)")
+    t = log.columns.get("t")
+    if t is None or t.size < 2:
+        return
+    step = float(np.median(np.diff(t)))
+    if step < MIN_TIME_STEP:
+        raise InputError("time step too short: the time is not in seconds", file=log.source,
+                         key="t", value=f"median step {step:.3g} s over {t.size} rows",
+                         expected=f"time in seconds (a step >= {MIN_TIME_STEP:g} s, i.e. "
+                                  "sampled at 100 kHz or slower)")
+    if step >= MS_STEP and t.size >= MS_ROWS and np.allclose(t, np.round(t), rtol=1e-12, atol=1e-9):
+        raise InputError("time looks like milliseconds", file=log.source, key="t",
+                         value=f"integer stamps {t[0]:g}..{t[-1]:g}, median step {step:g}",
+                         expected="time in seconds (divide by 1000)")
 
 
 # --- the inputs of a log: the one replay rule ---------------------------------------------------

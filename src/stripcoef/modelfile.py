@@ -60,6 +60,7 @@ def model_from_dict(data, *, file: str | None = None) -> HydroModel:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
             raise InputError("not a positive number", file=file, key=key, value=v,
                              expected="a finite number > 0")
+    data = check_model_parts(data, file=file)
     try:
         model = HydroModel.from_dict(data)
     except (KeyError, TypeError, ValueError) as exc:
@@ -107,3 +108,152 @@ def _check_array(value, shape, file, key):
         for i, x in enumerate(v):
             walk(x, dims[1:], f"{where}[{i}]")
     walk(value, shape, key)
+
+
+# ---------------------------------------------------------------------------
+# The optional parts of a model file: scalars, thrusters, effects, control surfaces
+# ---------------------------------------------------------------------------
+
+def _thruster_keys() -> tuple:
+    """Keys of a thruster entry: the fields of :class:`~stripcoef.thrusters.Thruster`."""
+    from dataclasses import fields
+
+    from stripcoef.thrusters import Thruster
+
+    return tuple(f.name for f in fields(Thruster))
+
+_SURFACE_KEYS = ("name", "type", "derivative", "max_deflection", "stall_angle")
+
+
+def check_model_parts(data: dict, *, file: str | None = None) -> dict:
+    """Check what :meth:`HydroModel.from_dict` reads beside the matrices, like a vehicle file.
+
+    Types, shapes, finiteness and physical ranges, each error naming the file, the key path
+    (``thrusters[0].direction``), the value and what was expected:
+
+    - ``name`` a string; ``gravity`` g > 0 [m/s^2]; ``kinematic_viscosity`` nu > 0 [m^2/s]
+      (:class:`stripcoef.fluid.Fluid` checks the water as for a vehicle file);
+    - ``thrusters``: a list of mappings with a unique non-empty ``name``, ``position`` and
+      ``direction`` of 3 finite numbers, the direction not zero (it is normalised, as in a
+      vehicle file: the thrust is along its unit vector), thrust coefficients and
+      efficiencies > 0, limits >= 0 (``null`` = none), dead band >= 0;
+    - ``effects``: a list of ``{name, dof, parameters}`` mappings, ``dof`` one of the six
+      degrees of freedom (or ``all``), parameters finite numbers (the effect names and
+      their parameters are checked against the registry by :mod:`stripcoef.effects`);
+    - ``lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector ``derivative`` and
+      angles > 0 [rad]; ``conditions`` and ``provenance`` mappings.
+
+    Returns ``data`` with the thruster directions normalised (a new mapping).
+    """
+    from stripcoef.conventions import DOF
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.vehicle import Reader
+
+    r = Reader(file)
+    data = dict(data)
+    if "name" in data:
+        name = r.string(data, "name", "")
+        if not name.strip():
+            raise r.err("name", "empty name", name, "a non-empty string")
+    if data.get("gravity") is not None:
+        r.number(data, "gravity", "", positive=True)
+    if data.get("kinematic_viscosity") is not None:
+        nu = r.number(data, "kinematic_viscosity", "", positive=True)
+        try:
+            Fluid(density=float(data["density"]), kinematic_viscosity=nu, source="model file")
+        except InputError as exc:
+            raise InputError(exc.what, file=file, key=exc.key, value=exc.value,
+                             expected=exc.expected) from None
+    for key in ("conditions", "provenance"):
+        if data.get(key) is not None and not isinstance(data[key], dict):
+            raise r.err(key, "not a mapping", data[key], "a mapping of keys to values")
+    if data.get("lift") is not None:
+        _check_array(data["lift"], (6, 6), file, "lift")
+    data["thrusters"] = _check_thrusters(r, data)
+    effects = data.get("effects")
+    if effects is not None:
+        if not isinstance(effects, list):
+            raise r.err("effects", "wrong type", effects,
+                        "a list of {name, dof, parameters} mappings")
+        for k, entry in enumerate(effects):
+            path = f"effects[{k}]"
+            if not isinstance(entry, dict):       # other keys (std, units) are notes
+                raise r.err(path, "not a mapping", entry, "{name, dof, parameters}")
+            name = r.string(entry, "name", path, required=True)
+            if not name.strip():
+                raise r.err(f"{path}.name", "empty name", name, "an effect's name")
+            if "dof" in entry:
+                _check_dof(r, entry["dof"], f"{path}.dof", DOF)
+            params = entry.get("parameters", {})
+            if not isinstance(params, dict):
+                raise r.err(f"{path}.parameters", "not a mapping", params,
+                            "a mapping of parameter names to numbers")
+            for p in params:
+                r.number(params, p, f"{path}.parameters", required=True)
+    surfaces = r.listing(data, "control_surfaces", "")
+    for k, entry in enumerate(surfaces):
+        path = f"control_surfaces[{k}]"
+        r.mapping(entry, path, _SURFACE_KEYS)
+        r.string(entry, "name", path, required=True)
+        r.string(entry, "type", path)
+        r.vector(entry, "derivative", path, n=6, required=True)
+        r.number(entry, "max_deflection", path, positive=True, required=True)
+        r.number(entry, "stall_angle", path, positive=True)
+    return data
+
+
+def _check_dof(r, value, key, dof_names) -> None:
+    """An effect's degree of freedom: a DOF name (surge..yaw, u..r, X..N), an index 0-5 or
+    ``all``."""
+    from stripcoef.conventions import parse_dof
+
+    expected = "one of " + ", ".join(dof_names) + ", an index 0-5 or all"
+    if isinstance(value, bool):
+        raise r.err(key, "not a degree of freedom", value, expected)
+    if isinstance(value, int):
+        if not 0 <= value < 6:
+            raise r.err(key, "not a degree of freedom", value, expected)
+        return
+    if not isinstance(value, str):
+        raise r.err(key, "not a degree of freedom", value, expected)
+    if value.strip().lower() == "all":
+        return
+    try:
+        parse_dof(value)
+    except InputError:
+        raise r.err(key, "not a degree of freedom", value, expected) from None
+
+
+def _check_thrusters(r, data) -> list:
+    """The thruster entries of a model file, checked; directions normalised."""
+    out = []
+    names: set = set()
+    keys = _thruster_keys()
+    for k, t in enumerate(r.listing(data, "thrusters", "")):
+        path = f"thrusters[{k}]"
+        r.mapping(t, path, keys)
+        name = r.string(t, "name", path, required=True)
+        if not name.strip():
+            raise r.err(f"{path}.name", "empty name", name,
+                        "a non-empty name (logs carry its command in the column n_<name>)")
+        if name in names:
+            raise r.err(f"{path}.name", "duplicated thruster name", name, "unique names")
+        names.add(name)
+        r.vector(t, "position", path, required=True)
+        d = r.vector(t, "direction", path, required=True)
+        norm = float(np.linalg.norm(d))
+        if not norm > 1e-12:
+            raise r.err(f"{path}.direction", "zero vector", t["direction"],
+                        "a non-zero direction (of the unit vector of positive thrust)")
+        for key in ("ct_forward", "ct_backward", "eta_forward", "eta_backward"):
+            r.number(t, key, path, positive=True)
+        for key in ("max_forward", "max_backward"):
+            if t.get(key) is not None and not (isinstance(t[key], float)
+                                               and t[key] == float("inf")):
+                r.number(t, key, path, nonneg=True)
+        r.number(t, "deadband", path, nonneg=True)
+        r.number(t, "torque_ratio", path)
+        if "source" in t and not isinstance(t["source"], dict):
+            raise r.err(f"{path}.source", "not a mapping", t["source"], "a mapping")
+        out.append({**t, "direction": (d / norm).tolist()})
+    return out

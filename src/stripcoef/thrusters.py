@@ -142,3 +142,28 @@ def allocation_matrix(thrusters, reference_point=(0.0, 0.0, 0.0)) -> np.ndarray:
     if not thrusters:
         return np.zeros((6, 0))
     return np.column_stack([t.wrench_column(reference_point) for t in thrusters])
+
+
+def check_command_columns(commanded, thrusters, *, file: str | None = None) -> None:
+    """Command columns ``n_<name>`` of an inputs log against the model's thrusters.
+
+    ``commanded``: the thruster names that have a column. Each must be a thruster of the
+    model (a renamed column is an error), and when any thruster is commanded every one must
+    be: a missing column would run that thruster switched off without a word (issue 36).
+    A thruster that is off has a column of zeros.
+    """
+    from stripcoef.errors import InputError
+
+    names = [t.name for t in thrusters]
+    commanded = list(commanded)
+    for name in commanded:
+        if name not in names:
+            raise InputError("unknown thruster", file=file, key="n_" + name,
+                             expected="one of " + ", ".join("n_" + n for n in names))
+    missing = [n for n in names if n not in commanded]
+    if commanded and missing:
+        raise InputError(f"no command column for thruster {missing[0]!r}", file=file,
+                         key="n_" + missing[0],
+                         expected="a column for every thruster when any is commanded ("
+                                  + ", ".join("n_" + n for n in names)
+                                  + "; zeros for a thruster that is off)")

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.fluid import Fluid
+from stripcoef.fluid import MAX_VEHICLE_SPEED, Fluid
 from stripcoef.model import Conditions, HydroModel, check_physical, rigid_body_mass_matrix
 from stripcoef.assembly.added_mass import added_mass, added_mass_method, panel_vehicle_added_mass
 from stripcoef.assembly.damping import damping_matrices
@@ -137,10 +137,13 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
                          expected="auto, laminar or turbulent")
     fluid = fluid or vehicle.fluid
     rho, nu = fluid.density, fluid.kinematic_viscosity
+    from_file = speed is None
     speed = float(speed if speed is not None else vehicle.reference_speed)
-    if not np.isfinite(speed) or speed <= 0:
-        raise InputError("invalid reference speed", key="speed", value=speed,
-                         expected="a speed > 0 m/s")
+    if not np.isfinite(speed) or speed <= 0 or speed > MAX_VEHICLE_SPEED:
+        raise InputError("invalid reference speed", file=vehicle.source if from_file else None,
+                         key="reference_speed" if from_file else "speed", value=speed,
+                         expected=f"a speed > 0 and <= {MAX_VEHICLE_SPEED:g} m/s (more is "
+                                  "faster than any underwater vehicle)")
     corrections = vehicle.corrections if corrections is None else bool(corrections)
     st = vehicle.cut(strips)
     volume, cb = displaced_volume(st)

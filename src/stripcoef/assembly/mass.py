@@ -58,6 +58,36 @@ def _density_of(part, x, vehicle, rho_default):
     return dens
 
 
+def check_zones(strips: Strips, zones, *, file: str | None = None) -> None:
+    """Every density zone covers at least one strip of a body it applies to.
+
+    A zone that covers none would be ignored without a word: an error naming the zone, its
+    x range and the extent of its bodies (outside the body), or the strip width (a zone
+    narrower than one strip: more strips).
+    """
+    for i, z in enumerate(zones):
+        parts = [p for p in strips.parts if z.bodies is None or p.name in z.bodies]
+        if any(np.any((strips.x[p.index] >= z.x_aft) & (strips.x[p.index] <= z.x_fwd))
+               for p in parts):
+            continue
+        key = f"mass.zones[{i}].x"
+        value = [z.x_aft, z.x_fwd]
+        if not parts:
+            raise InputError("density zone over no body", file=file, key=key, value=value,
+                             expected="a zone over a body that has strips")
+        lo = min(float(np.min(strips.x[p.index] - 0.5 * strips.dx[p.index])) for p in parts)
+        hi = max(float(np.max(strips.x[p.index] + 0.5 * strips.dx[p.index])) for p in parts)
+        if z.x_fwd < lo or z.x_aft > hi:
+            raise InputError(f"density zone {z.name!r} entirely outside the body", file=file,
+                             key=key,
+                             value=value, expected=f"an x range overlapping the body "
+                                                   f"(x from {lo:.4g} to {hi:.4g} m)")
+        dx = float(min(np.max(strips.dx[p.index]) for p in parts))
+        raise InputError(f"density zone {z.name!r} covers no strip", file=file, key=key,
+                         value=value,
+                         expected=f"a zone wider than a strip ({dx:.3g} m; or more strips)")
+
+
 def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb):
     r"""Mass [kg], centre of gravity [m] and inertia tensor about the CG [kg m^2].
 
@@ -73,12 +103,17 @@ def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb
     """
     spec = vehicle.mass if vehicle is not None else None
     have_mass = spec is not None and spec.mass is not None
-    zones = spec is not None and bool(spec.zones)
     rho_default = rho_fluid
     if spec is not None and spec.default_density is not None:
         rho_default = spec.default_density
+    # densities per strip: zones, or a default density without zones (a uniform body of
+    # that density, not of the fluid's: issue 36, it was ignored)
+    zones = spec is not None and (bool(spec.zones) or (spec.default_density is not None
+                                                       and not have_mass))
     if have_mass and spec.center_of_gravity is not None and spec.inertia is not None:
         return spec.mass, np.asarray(spec.center_of_gravity, float), np.asarray(spec.inertia)
+    if spec is not None and spec.zones:
+        check_zones(strips, spec.zones, file=getattr(vehicle, "source", None))
     # distribute mass over the strips
     elems = []  # (dm, r, second-moment diag contribution)
     for p in strips.parts:
@@ -106,8 +141,10 @@ def mass_properties(strips: Strips, vehicle, rho_fluid: float, volume: float, cb
     sec = np.concatenate([e[2] for e in elems])
     total = dm.sum()
     if total <= 0:
-        raise InputError("density zones give no mass", key="mass.zones", value=float(total),
-                         expected="zones with positive density over the body")
+        key = "mass.zones" if spec.zones else "mass.default_density"
+        raise InputError("a massless body", file=getattr(vehicle, "source", None), key=key,
+                         value=float(total),
+                         expected="densities > 0 over the body (a mass > 0 kg)")
     scale = 1.0
     if have_mass:
         scale = spec.mass / total           # uniform distribution scaled to the given mass

@@ -13,6 +13,7 @@ import importlib
 import os
 import sys
 import warnings
+from pathlib import Path
 
 # The matrices here are small (strips, panels): threaded BLAS only adds contention, and on a
 # loaded 2-core machine makes a 160x160 solve 100x slower (docs/performance.md). Set before
@@ -83,10 +84,16 @@ def in_cli_terms(exc: StripcoefError, parser: argparse.ArgumentParser) -> Stripc
 def check_outputs(args) -> None:
     """Every output option of the command names a writable file path (before any work)."""
 
+    from stripcoef import samples
+
     for dest in OUTPUT_OPTIONS:
         path = getattr(args, dest, None)
         if path is not None:
             check_output_path(path, key=dest)
+            if path != "-" and Path(path).resolve().parent == samples.FOLDER:
+                raise InputError("an installed sample is read-only", key=dest, value=str(path),
+                                 expected="a path outside the package's samples (the sample "
+                                          "is read as sample:NAME; write a copy elsewhere)")
 
 
 def main(argv=None) -> int:

@@ -55,7 +55,7 @@ def run(args) -> int:
     from stripcoef.diagnose.report import markdown_report, text_summary
     from stripcoef.effects.laws import get_effect
     from stripcoef.export import write_export
-    from stripcoef.files import json_text
+    from stripcoef.files import OutputSet, json_text
     from stripcoef.modelfile import load_model
 
     if args.window is None:
@@ -79,16 +79,18 @@ def run(args) -> int:
                       resimulate=not args.no_resimulate, validation=validation,
                       holdout=args.holdout, prior_widths=widths)
     check_finite_output(result.model.to_dict(), what="the calibrated model", file=str(args.log))
-    if args.out:
-        write_export(result.model, "json" if str(args.out).lower().endswith(".json")
-                     else "yaml", args.out)
-        if result.holdout is not None:
-            # the held-out numbers printed are those of the file just written, read back
-            hold = dict(heldout_errors(result, model, load_model(args.out)),
-                        model_file=str(args.out))
-            result = replace(result, holdout=hold)
-    if args.report:
-        markdown_report(result, args.report)
+    with OutputSet() as outs:       # the model and the report: all new or all old
+        if args.out:
+            staged = outs.path(args.out, key="out")
+            write_export(result.model, "json" if str(args.out).lower().endswith(".json")
+                         else "yaml", staged)
+            if result.holdout is not None:
+                # the held-out numbers printed are those of the file just written, read back
+                hold = dict(heldout_errors(result, model, load_model(staged)),
+                            model_file=str(args.out))
+                result = replace(result, holdout=hold)
+        if args.report:
+            markdown_report(result, outs.path(args.report, key="report"))
     if args.json:
         sys.stdout.write(json_text(result.to_dict(), indent=1))
     else:

@@ -147,7 +147,7 @@ def run_identify(args):
 
 def run(args) -> int:
     fit, cmp = run_identify(args)
-    check_finite_output({"parameters": fit.to_dict().get("parameters")},
+    check_finite_output({k: fit.to_dict().get(k) for k in ("parameters", "std")},
                         what="the identified model", file=args.log)
     if args.json:
         data = fit.to_dict()

@@ -115,7 +115,7 @@ def estimate_options(args, vehicle):
     from stripcoef.assembly import EstimateOptions
 
     ref = None
-    if getattr(args, "reference_point", None):
+    if getattr(args, "reference_point", None) is not None:     # "" is an error, not unset
         rp = args.reference_point
         ref = rp if rp in ("center_of_buoyancy", "center_of_gravity", "origin") else \
             parse_point(rp, key="--reference-point")

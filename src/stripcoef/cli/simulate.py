@@ -113,6 +113,7 @@ def _log_window(log, start, duration):
 def run(args) -> int:
     from stripcoef.modelfile import load_model
     from stripcoef.logfile import log_inputs
+    from stripcoef.thrusters import check_command_columns
     from stripcoef.simulate import free_run_errors, initial_state, replay, simulate, summarize_motion
 
     if args.inputs is None and args.from_log is None:
@@ -158,6 +159,8 @@ def run(args) -> int:
     elif start_log is not None and log is not start_log:
         times = start_log.require("t")              # predict at the logged times
     inputs = log_inputs(log, model)
+    # every thruster has a column when any is commanded (a missing one is not "off": issue 36)
+    check_command_columns(inputs.commands, model.thrusters, file=log.source)
     if times is not None:
         inputs = inputs.at(times, args.interpolation)
     _warn_not_replayed(inputs, log.source, args.vehicle)

@@ -250,6 +250,11 @@ class WindowData:
         return [k for k in range(self.alloc.shape[1]) if abs(self.alloc[dof, k]) > tol]
 
 
+#: Fewest sampling intervals in a window: its mean and the velocity change across it need
+#: several samples (a window of one sample, e.g. ``--window 1e-6``, was silently widened).
+MIN_WINDOW_SAMPLES = 4
+
+
 def window_data(log, model, *, window: float = 1.0) -> WindowData:
     """Cut a log into non-overlapping windows of about ``window`` seconds.
 
@@ -290,6 +295,11 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
         u = nu[:, 0]
         tau = tau + (u * np.abs(u))[:, None] * (delta @ model.control_matrix.T)
     dt = float(np.median(np.diff(t)))
+    if window < MIN_WINDOW_SAMPLES * dt:
+        raise InputError("window shorter than the log's sampling resolves", key="window",
+                         value=window, expected=f"at least {MIN_WINDOW_SAMPLES} sampling "
+                         f"intervals of the log ({MIN_WINDOW_SAMPLES * dt:.3g} s; median "
+                         f"step {dt:.3g} s in {log.source})")
     w = max(1, int(round(window / dt)))
     i0 = np.arange(0, len(t) - w, w)
     i1 = i0 + w

@@ -662,6 +662,9 @@ def _read(path: Path):
                     expected="a surface mesh with faces")
     if len(loaded.faces) == 0:
         raise _fail(path, "mesh is empty", value="0 faces", expected="a closed surface")
+    if not loaded.is_watertight:   # holes: where trimesh dropped the faces of NaN vertices?
+        from stripcoef.geometry.mesh_checks import refuse_non_finite_vertices
+        refuse_non_finite_vertices(path)
     return loaded
 
 

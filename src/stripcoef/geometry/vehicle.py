@@ -307,6 +307,10 @@ class _Reader:
         return v
 
 
+#: The typed reader, also used for model files (:mod:`stripcoef.modelfile`).
+Reader = _Reader
+
+
 def _segment(r: _Reader, seg, path) -> Segment:
     r.mapping(seg, path, ("type", "x", "radius", "n", "theta_deg", "points", "length"),
               ("type", "x"))
@@ -504,7 +508,11 @@ def _mass(r: _Reader, data) -> MassSpec:
     r.mapping(data, path, ("mass", "center_of_gravity", "inertia", "zones", "default_density"))
     spec = MassSpec(mass=r.number(data, "mass", path, positive=True),
                     center_of_gravity=r.vector(data, "center_of_gravity", path),
-                    default_density=r.number(data, "default_density", path, nonneg=True))
+                    default_density=r.number(data, "default_density", path, positive=True))
+    if spec.mass is not None and spec.default_density is not None:
+        raise r.err(f"{path}.default_density", "both mass and default_density given",
+                    spec.default_density, "either mass (the body's mass is given) or "
+                    "default_density (the mass follows from the volume)")
     if "inertia" in data:
         v = data["inertia"]
         arr = None

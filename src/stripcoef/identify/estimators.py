@@ -304,8 +304,11 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
     if bad.any():
         raise InputError("non-finite value in the regression", key=what,
                          value=f"observation {int(np.nonzero(bad)[0][0])}", expected="finite data")
-    # Scale columns for conditioning, then QR.
-    scale = np.sqrt((H ** 2).sum(axis=0))
+    # Scale columns for conditioning, then QR (the norm of each column divided by its
+    # largest entry first: a 1e300 entry squared would overflow to inf)
+    peak = np.abs(H).max(axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = peak * np.sqrt(((H / np.where(peak > 0, peak, 1.0)) ** 2).sum(axis=0))
     for j, s in enumerate(scale):
         if s == 0.0:
             raise InputError("parameter not identifiable: its regressor column is all zero",
@@ -314,16 +317,21 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
     Hs = H / scale
     q, r = np.linalg.qr(Hs)
     dr = np.abs(np.diag(r))
-    if dr.min() < 1e-10 * dr.max():
+    if not dr.min() >= 1e-10 * dr.max():          # also NaN: nothing to solve
+        if not np.all(np.isfinite(dr)):
+            _refuse_magnitudes(H, y, names, what)
         # the column that is (nearly) a combination of the previous ones
         j = int(np.argmin(dr))
         raise InputError("parameter not identifiable: regressor column is a combination of the "
                          "others", key=what, value=names[j],
                          expected="data that separate it (vary the inputs, or drop the term)")
-    theta_s = np.linalg.solve(r, q.T @ y)
-    theta = theta_s / scale
-    resid = y - H @ theta
-    cost = float(resid @ resid)
+    with np.errstate(over="ignore", invalid="ignore"):
+        theta_s = np.linalg.solve(r, q.T @ y)
+        theta = theta_s / scale
+        resid = y - H @ theta
+        cost = float(resid @ resid)
+    if not (np.all(np.isfinite(theta)) and math.isfinite(cost)):
+        _refuse_magnitudes(H, y, names, what)
     rinv = np.linalg.inv(r)
     xtx_inv_s = rinv @ rinv.T                     # (Hs^T Hs)^-1
     xtx_inv = xtx_inv_s / np.outer(scale, scale)  # (H^T H)^-1
@@ -351,10 +359,24 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
         cov_s = xtx_inv_s @ s @ xtx_inv_s * (n / dof_)
         cov = cov_s / np.outer(scale, scale)
         label = f"hac({lags})"
+    if not np.all(np.isfinite(cov)):
+        _refuse_magnitudes(H, y, names, what)
     return FitResult(method=method, model=model, dof=dof, names=names, theta=theta, cov=cov,
                      residuals=resid, cost=cost, n_obs=n, covariance=label,
                      units=dict(units or {}),
                      data={"y": y, "fitted": H @ theta, "H": H})
+
+
+def _refuse_magnitudes(H, y, names, what):
+    """The regression overflows (a value near 1e300 among ordinary ones): an error naming the
+    observation of largest magnitude, instead of a non-finite estimate or error bar."""
+    peak_h = np.abs(H).max(axis=1)
+    k = int(np.argmax(np.maximum(peak_h, np.abs(y))))
+    value = float(y[k]) if abs(y[k]) >= peak_h[k] else float(H[k, np.argmax(np.abs(H[k]))])
+    raise InputError("the regression overflows (estimates or error bars not finite)", key=what,
+                     value=f"{value:.4g} at observation {k}",
+                     expected=f"data of ordinary magnitudes for the parameters "
+                              f"{', '.join(names)} (check the units and that value)")
 
 
 def residual_autocorrelation(residuals, max_lag: int = 20) -> np.ndarray:

@@ -82,6 +82,11 @@ def scale_result(result: dict, ratio: float, *, rotational: bool | None = None,
                                  expected="a finite number (the output of stripcoef identify "
                                           "--json)")
     if rotational is None:
+        if not result.get("method") and not result.get("dof"):
+            raise InputError("cannot tell a rotational from a translational result", file=file,
+                             key="method", expected='a result with its "method" and "dof" (the '
+                             "output of stripcoef identify --json), or rotational given "
+                             "(--rotational or --translational)")
         rotational = (str(result.get("method", "")).startswith("torsion")
                       or result.get("dof") in ("roll", "pitch", "yaw"))
     table = exponents(rotational)

@@ -40,7 +40,7 @@ from stripcoef.ingest.attitude import (body_rates, euler_from_matrices, euler_ma
 from stripcoef.ingest.bags import is_bag, read_bag_streams
 from stripcoef.ingest.mapfile import LogMap, load_map
 from stripcoef.ingest.streams import read_csv_stream
-from stripcoef.logfile import COMMAND_PREFIX, Log, read_log
+from stripcoef.logfile import COMMAND_PREFIX, Log, check_magnitudes, read_log
 
 
 def _needed(logmap: LogMap) -> dict:
@@ -323,6 +323,7 @@ def read_any_log(path, *, column_map=None, required=()) -> Log:
     through a column map a CSV or a ROS bag; a bag without a map is an error."""
     if column_map is not None:
         log = read_mapped_log(path, column_map)
+        check_magnitudes(log)            # in SI units once mapped (as read_log does)
         log.require(*required) if required else None
         return log
     if is_bag(path):

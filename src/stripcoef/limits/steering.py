@@ -400,8 +400,9 @@ def steering_limits(model, *, options=None, turn_speed: float | None = None) -> 
             break
         u *= 1.25
         if u > 1e3:
-            raise UnreachableError("level flight: no speed the thrusters can hold"
-                                   if lo is None else "level flight: no finite top speed")
+            raise UnreachableError("level flight: no speed from 0.1 to 1000 m/s the thrusters "
+                                   "can hold" if lo is None else "level flight: no top speed "
+                                   "below 1000 m/s")
     u_max = brentq(load, lo, u, xtol=1e-9)
     u_min = level_speed_min(model, u_max, _plant=p) if have_elevator else None
     if not have_elevator:
