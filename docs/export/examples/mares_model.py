@@ -239,36 +239,54 @@ def state_derivative(eta, nu, tau, current=(0.0, 0.0, 0.0)):
 class Vehicle:
     """The model as a vehicle of Fossen's PythonVehicleSimulator (same interface).
 
-    ``u_control`` and ``u_actual`` are the thruster commands (THRUSTERS order); ``T_n`` [s]
-    is a first-order lag of the actual commands (0: none, as in stripcoef simulate);
-    ``current`` [m/s] a constant NED current.
+    ``u_control`` and ``u_actual`` are the thruster commands (THRUSTERS order) followed by the
+    control-surface deflections [rad] (CONTROL_SURFACES order: rudders, elevators), as the
+    simulator's ``remus100`` takes its rudder and stern-plane angles beside the propeller.
+    ``T_n`` [s] is a first-order lag of the actual thruster commands and ``T_delta`` [s] of
+    the actual deflections (0: none, as in stripcoef simulate); the deflections are clipped
+    to +-MAX_DEFLECTION; ``current`` [m/s] a constant NED current.
     """
 
-    def __init__(self, controlSystem="stepInput", T_n=0.0, current=(0.0, 0.0, 0.0)):
+    def __init__(self, controlSystem="stepInput", T_n=0.0, current=(0.0, 0.0, 0.0),
+                 T_delta=0.0):
         self.name = NAME + " (stripcoef export)"
         self.L = None
-        self.controls = [f"{n} command" for n in THRUSTERS]
-        self.dimU = len(THRUSTERS)
+        self.controls = ([f"{n} command" for n in THRUSTERS]
+                         + [f"{n} deflection (rad)" for n in CONTROL_SURFACES])
+        self.dimU = len(THRUSTERS) + len(CONTROL_SURFACES)
         self.controlMode = controlSystem
-        self.controlDescription = "Step inputs of the thruster commands"
+        self.controlDescription = "Step inputs of the thruster commands and deflections"
         self.nu = np.zeros(6)
         self.u_actual = np.zeros(self.dimU)
         self.T_n = float(T_n)
+        self.T_delta = float(T_delta)
         self.current = np.asarray(current, dtype=float)
         self.u_step = np.zeros(self.dimU)
+
+    def forces(self, eta, nu, u_actual):
+        """tau [N, N m] of the actual inputs: B_THRUSTERS thrust(commands) plus the
+        control surfaces' u_r |u_r| B_DELTA delta (u_r: surge speed through the water)."""
+        u_actual = np.asarray(u_actual, dtype=float)
+        n = len(THRUSTERS)
+        tau = B_THRUSTERS @ thrust(u_actual[:n]) if n else np.zeros(6)
+        if CONTROL_SURFACES:
+            vc = rotation(*np.asarray(eta, dtype=float)[3:6]).T @ self.current
+            u_r = float(nu[0]) - vc[0]
+            tau = tau + u_r * abs(u_r) * (B_DELTA @ u_actual[n:])
+        return tau
 
     def dynamics(self, eta, nu, u_actual, u_control, sampleTime):
         """One forward-Euler step of sampleTime [s]: returns (nu, u_actual) at the next sample."""
         u_actual = np.asarray(u_actual, dtype=float)
-        tau = B_THRUSTERS @ thrust(u_actual) if self.dimU else np.zeros(6)
-        _, nu_dot = state_derivative(eta, nu, tau, self.current)
-        if self.T_n > 0.0:
-            u_dot = (np.asarray(u_control, dtype=float) - u_actual) / self.T_n
-            u_actual = u_actual + sampleTime * u_dot
-        else:
-            u_actual = np.asarray(u_control, dtype=float).copy()
+        _, nu_dot = state_derivative(eta, nu, self.forces(eta, nu, u_actual), self.current)
+        target = np.asarray(u_control, dtype=float).copy()
+        n = len(THRUSTERS)
+        target[n:] = np.clip(target[n:], -MAX_DEFLECTION, MAX_DEFLECTION)
+        lag = np.array([self.T_n] * n + [self.T_delta] * len(CONTROL_SURFACES))
+        step = np.where(lag > 0.0, sampleTime / np.where(lag > 0.0, lag, 1.0), 1.0)
+        u_actual = u_actual + np.minimum(step, 1.0) * (target - u_actual)
         return np.asarray(nu, dtype=float) + sampleTime * nu_dot, u_actual
 
     def stepInput(self, t):
-        """The commands of a step input at time t [s] (constant ``u_step``)."""
+        """The inputs of a step input at time t [s] (constant ``u_step``)."""
         return self.u_step.copy()
