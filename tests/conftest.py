@@ -73,6 +73,18 @@ RTOL = 1e-9
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
+#: The largest |got - want| / scale seen by the comparisons below since it was last reset
+#: (benchmarks/reproducibility.py reports it).
+WORST = {"deviation": 0.0}
+
+
+def _deviation(got: float, want: float, scale: float) -> float:
+    """|got - want| as a fraction of max(scale, |want|), recorded in :data:`WORST`."""
+    base = max(scale, abs(want))
+    d = abs(got - want) / base if base else (0.0 if got == want else float("inf"))
+    WORST["deviation"] = max(WORST["deviation"], d)
+    return d
+
 
 def array_scale(value) -> float:
     """Largest magnitude of the numbers in ``value`` (nested lists; 0 for anything else)."""
@@ -137,9 +149,8 @@ def assert_same_tree(got, want, path: str = "", *, rtol: float = RTOL, scale: fl
         if math.isnan(want) or math.isinf(want):
             assert got == want or (math.isnan(got) and math.isnan(want)), f"{path}: {got!r} != {want!r}"
         else:
-            tol = rtol * max(scale, abs(want))
-            assert abs(got - want) <= tol, \
-                f"{path}: {got!r} != {want!r} (differs by {abs(got - want):.3g} > {tol:.3g})"
+            d = _deviation(got, want, scale)
+            assert d <= rtol, f"{path}: {got!r} != {want!r} ({d:.3g} of its scale > {rtol:g})"
     else:
         assert type(got) is type(want) and got == want, f"{path}: {got!r} != {want!r}"
 
@@ -183,9 +194,9 @@ def assert_same_text(name: str, got: str, want: str, *, rtol: float = RTOL, hint
     for b, v in zip(block, w):
         scale[b] = max(scale.get(b, 0.0), abs(v))
     for k, (a, b) in enumerate(zip(g, w)):
-        tol = rtol * max(scale[block[k]], abs(b))
-        assert abs(a - b) <= tol, f"{name}: number {k} ({w_text[k]}): {a!r} != {b!r} " \
-                                  f"(differs by {abs(a - b):.3g} > {tol:.3g}){hint}"
+        d = _deviation(a, b, scale[block[k]])
+        assert d <= rtol, f"{name}: number {k} ({w_text[k]}): {a!r} != {b!r} " \
+                          f"({d:.3g} of its scale > {rtol:g}){hint}"
 
 
 def assert_same_csv(name: str, got: str, want: str, *, rtol: float = RTOL, hint: str = ""):
@@ -222,9 +233,9 @@ def assert_same_csv(name: str, got: str, want: str, *, rtol: float = RTOL, hint:
             if vy is None or vx is None:
                 assert x == y, f"{name}: row {i + 1} column {j + 1}: {x!r} != {y!r}{hint}"
                 continue
-            tol = rtol * max(scale[group(b), j], abs(vy))
-            assert abs(vx - vy) <= tol, f"{name}: row {i + 1} column {j + 1}: {x} != {y} " \
-                                        f"(differs by {abs(vx - vy):.3g} > {tol:.3g}){hint}"
+            d = _deviation(vx, vy, scale[group(b), j])
+            assert d <= rtol, f"{name}: row {i + 1} column {j + 1}: {x} != {y} " \
+                              f"({d:.3g} of its scale > {rtol:g}){hint}"
 
 
 def assert_same_file(name: str, got, want, *, rtol: float = RTOL, hint: str = ""):
