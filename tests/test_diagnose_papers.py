@@ -23,6 +23,7 @@ def videoray():
     return videoray_case(seed=0)
 
 
+@pytest.mark.slow
 def test_videoray_diagnosis_finds_the_tether_with_length_column(videoray):
     res = videoray["with_tether_length"]
     assert res["steps"] and res["steps"][0]["effect"] == "tether_drag"

@@ -24,6 +24,7 @@ def test_vehicles_are_the_repository_geometry():
             f"{f.name}: run python scripts/make_samples.py"
 
 
+@pytest.mark.slow
 def test_samples_are_what_the_script_writes():
     """Every sample is what the script writes now, compared as parsed numbers, not bytes
     (conftest.assert_same_file): the text exactly, each number within 1e-9 of the largest
