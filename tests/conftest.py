@@ -57,3 +57,230 @@ def cylinder_vehicle(length, diameter, *, rho=1000.0, **extra):
                                   "radius": 0.5 * diameter}]}}
     data.update(extra)
     return parse_vehicle(data, file="<cylinder>")
+
+
+# ---------------------------------------------------------------------------
+# Regenerated outputs against stored ones (golden files, samples, export examples)
+# ---------------------------------------------------------------------------
+
+#: How far a regenerated number may sit from its stored value, as a fraction of the scale of
+#: the array it belongs to (a matrix, a vector, a log column, a block of printed lines).
+#: Another CPU, BLAS or numpy/scipy release rounds the last bits of a result differently:
+#: measured up to 1.1e-11 of the matrix (the box mesh's M_A) and 1e-13 absolute in the
+#: sample logs (docs/development.md), while a change of the physics moves a matrix by far
+#: more than 1e-9 of its largest entry.  Each scalar by itself would not do: a coupling that
+#: is zero up to round-off (7.99e-9 beside a 41 kg diagonal) has no digits of its own.
+RTOL = 1e-9
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+#: The largest |got - want| / scale seen by the comparisons below since it was last reset
+#: (benchmarks/reproducibility.py reports it).
+WORST = {"deviation": 0.0}
+
+
+def _deviation(got: float, want: float, scale: float) -> float:
+    """|got - want| as a fraction of max(scale, |want|), recorded in :data:`WORST`."""
+    base = max(scale, abs(want))
+    d = abs(got - want) / base if base else (0.0 if got == want else float("inf"))
+    WORST["deviation"] = max(WORST["deviation"], d)
+    return d
+
+
+def array_scale(value) -> float:
+    """Largest magnitude of the numbers in ``value`` (nested lists; 0 for anything else)."""
+    if isinstance(value, (list, tuple)):
+        return max((array_scale(v) for v in value), default=0.0)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return abs(float(value))
+    return 0.0
+
+
+def coefficient_scales(doc: dict) -> dict:
+    """Scale of each SNAME derivative of ``doc["coefficients"]``: the largest entry of the
+    matrix it is read from (``X_udot`` from M_A, ``Y_v`` from D_L, ``Y_vv`` from D_Q, ``Y_uv``
+    from the lift matrix, ``Y_uudr`` from the control derivatives)."""
+    from stripcoef.conventions import (added_mass_name, linear_damping_name,
+                                       quadratic_damping_name)
+    from stripcoef.model import lift_names
+
+    scales: dict = {}
+
+    def add(name, scale):
+        scales[name] = max(scales.get(name, 0.0), scale)
+
+    for key, namer in (("added_mass", added_mass_name), ("linear_damping", linear_damping_name),
+                       ("quadratic_damping", quadratic_damping_name)):
+        s = array_scale(doc.get(key))
+        for i in range(6):
+            for j in range(6):
+                add(namer(i, j), s)
+    s = array_scale(doc.get("lift"))
+    for name in lift_names().values():
+        add(name, s)
+    control = array_scale([c.get("derivative") for c in doc.get("control_surfaces") or []])
+    return {name: scales.get(name, control) for name in doc.get("coefficients") or {}}
+
+
+def assert_same_tree(got, want, path: str = "", *, rtol: float = RTOL, scale: float = 0.0):
+    """Parsed JSON/YAML ``got`` equals ``want``: keys, strings, integers, booleans exactly;
+    floats within ``rtol`` of the scale of their array (:data:`RTOL`), the ``coefficients``
+    of a model by the scale of their matrix (:func:`coefficient_scales`)."""
+    if isinstance(want, dict):
+        assert isinstance(got, dict) and list(got) == list(want), \
+            f"{path}: keys {list(got) if isinstance(got, dict) else got!r} != {list(want)}"
+        coefficients = coefficient_scales(want) if isinstance(want.get("coefficients"), dict) else {}
+        for k in want:
+            if k == "coefficients" and coefficients:
+                assert list(got[k]) == list(want[k]), f"{path}.{k}: {list(got[k])} != {list(want[k])}"
+                for name, w in want[k].items():
+                    assert_same_tree(got[k][name], w, f"{path}.{k}.{name}", rtol=rtol,
+                                     scale=coefficients[name])
+            else:
+                assert_same_tree(got[k], want[k], f"{path}.{k}", rtol=rtol,
+                                 scale=array_scale(want[k]))
+    elif isinstance(want, (list, tuple)):
+        assert isinstance(got, (list, tuple)) and len(got) == len(want), \
+            f"{path}: {got!r} != {want!r}"
+        for i, (g, w) in enumerate(zip(got, want)):
+            assert_same_tree(g, w, f"{path}[{i}]", rtol=rtol, scale=scale)
+    elif isinstance(want, float):
+        import math
+        assert isinstance(got, (int, float)) and not isinstance(got, bool), f"{path}: {got!r} != {want!r}"
+        if math.isnan(want) or math.isinf(want):
+            assert got == want or (math.isnan(got) and math.isnan(want)), f"{path}: {got!r} != {want!r}"
+        else:
+            d = _deviation(got, want, scale)
+            assert d <= rtol, f"{path}: {got!r} != {want!r} ({d:.3g} of its scale > {rtol:g})"
+    else:
+        assert type(got) is type(want) and got == want, f"{path}: {got!r} != {want!r}"
+
+
+def _text_blocks(text: str):
+    """The numbers of ``text`` (as strings) and, for each, the index of its block: a run of
+    consecutive lines that all hold numbers (a matrix printed a row or an element a line)."""
+    import re
+
+    numbers, blocks, block, previous = [], [], 0, False
+    for line in text.splitlines():
+        found = re.findall(_NUMBER, line)
+        if found and not previous:
+            block += 1
+        previous = bool(found)
+        numbers += found
+        blocks += [block] * len(found)
+    return numbers, blocks
+
+
+def assert_same_text(name: str, got: str, want: str, *, rtol: float = RTOL, hint: str = ""):
+    """Text ``got`` is ``want`` up to round-off: the words between the numbers equal with any
+    run of whitespace read as one space (a longer number may wrap a line elsewhere), the same
+    count of numbers, each within ``rtol`` of the largest magnitude of its block of lines in
+    ``want`` (:func:`_text_blocks`)."""
+    import re
+
+    def words(text):
+        return [" ".join(part.split()) for part in re.split(_NUMBER, text)]
+
+    gw, ww = words(got), words(want)
+    if gw != ww:
+        first = next((k for k, (a, b) in enumerate(zip(gw, ww)) if a != b), min(len(gw), len(ww)))
+        raise AssertionError(f"{name}: text differs near {ww[first] if first < len(ww) else 'the end'!r}"
+                             f" (got {gw[first] if first < len(gw) else 'the end'!r}){hint}")
+    g = [float(v) for v in re.findall(_NUMBER, got)]
+    w_text, block = _text_blocks(want)
+    w = [float(v) for v in w_text]
+    assert len(g) == len(w), f"{name}: {len(g)} numbers != {len(w)}{hint}"
+    scale: dict = {}
+    for b, v in zip(block, w):
+        scale[b] = max(scale.get(b, 0.0), abs(v))
+    for k, (a, b) in enumerate(zip(g, w)):
+        d = _deviation(a, b, scale[block[k]])
+        assert d <= rtol, f"{name}: number {k} ({w_text[k]}): {a!r} != {b!r} " \
+                          f"({d:.3g} of its scale > {rtol:g}){hint}"
+
+
+def assert_same_csv(name: str, got: str, want: str, *, rtol: float = RTOL, hint: str = ""):
+    """CSV ``got`` is ``want`` up to round-off: the same rows and columns, text cells equal,
+    numbers within ``rtol`` of the largest magnitude of their column among the rows of the same
+    quantity (the first cell when it is text: one matrix of an export; else the whole column:
+    one signal of a log)."""
+    import csv
+    import io
+
+    def number(cell):
+        try:
+            return float(cell)
+        except ValueError:
+            return None
+
+    g = list(csv.reader(io.StringIO(got)))
+    w = list(csv.reader(io.StringIO(want)))
+    assert len(g) == len(w), f"{name}: {len(g)} rows != {len(w)}{hint}"
+
+    def group(row):
+        return row[0] if row and number(row[0]) is None else None
+
+    scale: dict = {}
+    for row in w:
+        for j, cell in enumerate(row):
+            v = number(cell)
+            if v is not None:
+                scale[group(row), j] = max(scale.get((group(row), j), 0.0), abs(v))
+    for i, (a, b) in enumerate(zip(g, w)):
+        assert len(a) == len(b), f"{name}: row {i + 1} has {len(a)} cells, not {len(b)}{hint}"
+        for j, (x, y) in enumerate(zip(a, b)):
+            vx, vy = number(x), number(y)
+            if vy is None or vx is None:
+                assert x == y, f"{name}: row {i + 1} column {j + 1}: {x!r} != {y!r}{hint}"
+                continue
+            d = _deviation(vx, vy, scale[group(b), j])
+            assert d <= rtol, f"{name}: row {i + 1} column {j + 1}: {x} != {y} " \
+                              f"({d:.3g} of its scale > {rtol:g}){hint}"
+
+
+def assert_same_file(name: str, got, want, *, rtol: float = RTOL, hint: str = ""):
+    """A regenerated file ``got`` (bytes or str) against the stored ``want``, by its suffix:
+    JSON and YAML parsed (:func:`assert_same_tree`; a YAML file's comment lines as text), CSV
+    by cell (:func:`assert_same_csv`), binary STL by its float32 records (within 4 float32 ulps
+    of the mesh's size: the float64 geometry rounds to float32 on writing, so a last-bit change
+    upstream may flip one rounding), any other text by :func:`assert_same_text`."""
+    import json
+
+    import numpy as np
+    import yaml
+
+    suffix = Path(name).suffix.lower()
+    if suffix == ".stl" and isinstance(want, bytes) and not want[:5] == b"solid":
+        assert isinstance(got, bytes) and len(got) == len(want), f"{name}: size differs{hint}"
+        assert got[:84] == want[:84], f"{name}: header or face count differs{hint}"
+        record = np.dtype([("f", "<f4", (12,)), ("attr", "<u2")])
+        g = np.frombuffer(got, record, offset=84)
+        w = np.frombuffer(want, record, offset=84)
+        assert np.array_equal(g["attr"], w["attr"]), f"{name}: attributes differ{hint}"
+        vg, vw = g["f"][:, 3:].astype(float), w["f"][:, 3:].astype(float)
+        tol = max(rtol, 4 * float(np.finfo(np.float32).eps)) * float(np.abs(vw).max())
+        assert np.abs(vg - vw).max() <= tol, f"{name}: vertices differ by {np.abs(vg - vw).max():.3g}{hint}"
+        ng, nw = g["f"][:, :3].astype(float), w["f"][:, :3].astype(float)
+        assert np.abs(ng - nw).max() <= 4 * float(np.finfo(np.float32).eps), \
+            f"{name}: normals differ by {np.abs(ng - nw).max():.3g}{hint}"
+        return
+    got = got.decode() if isinstance(got, bytes) else got
+    want = want.decode() if isinstance(want, bytes) else want
+    if suffix in (".json", ".yaml", ".yml"):
+        load = json.loads if suffix == ".json" else yaml.safe_load
+        try:
+            assert_same_tree(load(got), load(want), name, rtol=rtol)
+        except AssertionError as error:
+            raise AssertionError(f"{error}{hint}") from None
+    if suffix in (".yaml", ".yml"):
+
+        def comments(text):
+            return "\n".join(line for line in text.splitlines() if line.lstrip().startswith("#"))
+        assert_same_text(name, comments(got), comments(want), rtol=rtol, hint=hint)
+    elif suffix == ".json":
+        pass
+    elif suffix == ".csv":
+        assert_same_csv(name, got, want, rtol=rtol, hint=hint)
+    else:
+        assert_same_text(name, got, want, rtol=rtol, hint=hint)

@@ -26,6 +26,7 @@ def tether_case(tmp_path_factory):
     return d, truth
 
 
+@pytest.mark.slow
 def test_json_contract_report_and_calibrated_model(tether_case, capsys):
     d, truth = tether_case
     rc = cli.main(["diagnose", str(d / "log.csv"), "--vehicle", str(d / "prior.yaml"),
@@ -57,6 +58,7 @@ def test_json_contract_report_and_calibrated_model(tether_case, capsys):
     assert res["validation"]["kept_changes"]["surge"] <= res["validation"]["prior"]["surge"]
 
 
+@pytest.mark.slow
 def test_calibrated_model_simulates_the_log_better(tmp_path, capsys):
     # truth = prior + an undeclared tether (no coefficient perturbation): the prior's
     # re-simulation misses the tether, the calibrated model reproduces the log
@@ -81,6 +83,7 @@ def test_calibrated_model_simulates_the_log_better(tmp_path, capsys):
     assert len(read_log(tmp_path / "sim.csv")) == len(log)
 
 
+@pytest.mark.slow
 def test_all_dofs_text_output(tether_case, capsys):
     d, _ = tether_case
     rc = cli.main(["diagnose", str(d / "log.csv"), "--vehicle", str(d / "prior.yaml"),

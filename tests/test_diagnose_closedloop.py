@@ -56,6 +56,7 @@ def diag(m):
                            np.diag(m.quadratic_damping)])
 
 
+@pytest.mark.slow
 def test_surge_only_log_changes_no_other_dof_and_says_why():
     """The VideoRay surge-only case of issue 16: sway/yaw added mass and damping must stay
     at the prior, and the JSON names them as kept at the prior with a reason."""
@@ -74,6 +75,7 @@ def test_surge_only_log_changes_no_other_dof_and_says_why():
     assert "M" in res.per_dof["surge"]["calibration"]["parameters"]
 
 
+@pytest.mark.slow
 def test_single_dof_on_a_surge_log_keeps_cross_added_mass_unless_excited():
     log, prior, _ = make_log(2, surge_only=True)
     res = diagnose(log, prior, dof="surge", effects=[], validation=None)
@@ -83,6 +85,7 @@ def test_single_dof_on_a_surge_log_keeps_cross_added_mass_unless_excited():
                                   diag(prior)[[1, 2, 3, 4, 5]])
 
 
+@pytest.mark.slow
 def test_missing_velocity_column_is_an_error_not_zeros():
     log, prior, _ = make_log(3, duration=80.0)
     cols = {k: v for k, v in log.columns.items() if k != "r"}
@@ -93,6 +96,7 @@ def test_missing_velocity_column_is_an_error_not_zeros():
     assert "no column r" in res.dofs_not_diagnosed["yaw"]
 
 
+@pytest.mark.slow
 def test_excitation_is_measured_against_the_noise():
     log, prior, _ = make_log(4, duration=80.0, lateral=False)
     data = window_data(log, prior, window=4.0)
@@ -101,6 +105,7 @@ def test_excitation_is_measured_against_the_noise():
     assert 1 not in ex and 3 not in ex and 4 not in ex  # sway: no force; roll/pitch: none
 
 
+@pytest.mark.slow
 def test_physical_bounds():
     data = window_data(make_log(5, duration=80.0)[0], rov_model(), window=4.0)
     lo, hi = added_mass_bounds(0, 2.0)
@@ -116,6 +121,7 @@ def test_physical_bounds():
     assert not cur.implausible({"current_north": 0.5 * top, "current_east": 0.0}, data, 0)
 
 
+@pytest.mark.slow
 def test_a_calibrated_models_effects_are_in_its_residual():
     """A model carrying a buoyancy offset in heave: its window residual on a log of that
     very model has no bias left; the prior without the effect has the bias."""
@@ -160,6 +166,7 @@ def _shortfall_lag_forces(scale, lag, delay=0.0):
     ("actuation_delay", {"scale": 1.0, "lag": 0.0, "delay": 0.5}, "delay", 0.5),
     ("thrust_effectiveness", {"scale": 0.4, "lag": 0.0}, "scale", 0.4),
 ])
+@pytest.mark.slow
 def test_actuator_effects_recover_their_truth(effect, truth_kw, param, value):
     """Truth implemented here, independently of the effects library; the estimate must be
     within 3 of its standard deviations (plus 2 % for the window quadrature)."""
@@ -171,6 +178,7 @@ def test_actuator_effects_recover_their_truth(effect, truth_kw, param, value):
     assert abs(est - value) <= 3 * sd + 0.02 * value, (est, sd)
 
 
+@pytest.mark.slow
 def test_thruster_lag_force_law_simulates_the_same_as_the_truth():
     """The lag's simulation force law (input history, exact for held inputs) reproduces an
     independent implementation of the lagged truth."""
@@ -195,6 +203,7 @@ def test_hold_last_velocity_and_segments():
         split(log, 1.5)
 
 
+@pytest.mark.slow
 def test_holdout_numbers_are_those_of_the_written_model_and_validation_never_worse():
     log, prior, _ = make_log(9, duration=150.0)
     res = diagnose(log, prior, dof="all", effects=["tether_drag", "buoyancy_offset"],
@@ -215,6 +224,7 @@ def test_holdout_numbers_are_those_of_the_written_model_and_validation_never_wor
     assert np.all(np.diag(res.model.quadratic_damping) >= 0)
 
 
+@pytest.mark.slow
 def test_cli_holdout_prints_the_numbers_of_the_file_it_wrote(tmp_path, capsys):
     from stripcoef import cli
     from stripcoef.export import write_export
@@ -340,6 +350,7 @@ def test_added_mass_bounds_with_a_method_band():
     assert added_mass_bounds(0, 2.0, float("nan")) == added_mass_bounds(0, 2.0)
 
 
+@pytest.mark.slow
 def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reported():
     """A truth whose surge added mass is twice the prior's: with a 5 % method band the
     calibration stops at e^0.15 - 1 = +16 % (the 99.7 % band), and ``bounds_hit`` says so; without the band
@@ -370,6 +381,7 @@ def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reporte
         diagnose(log, prior, dof="surge", added_mass_sd=[0.1, 0.1])
 
 
+@pytest.mark.slow
 def test_cli_with_a_vehicle_file_bounds_the_added_mass_by_its_method_band(tmp_path, capsys):
     from stripcoef import cli
     from stripcoef.conventions import FORCES
@@ -469,6 +481,7 @@ def test_model_file_keeps_the_fixed_bands(tmp_path):
     assert res.prior_widths is None and res.to_dict()["prior_widths"] is None
 
 
+@pytest.mark.slow
 def test_method_prior_widths_recover_an_added_mass_within_the_band():
     """A synthetic surge log (seeded noise) of a truth whose surge added mass is 10 % above
     the prior's (inside the bluff class's translational band, sd(ln) 0.142) and whose drags

@@ -15,6 +15,7 @@ EFFECTS = sorted(MAGNITUDES)
 
 
 @pytest.mark.parametrize("effect", EFFECTS)
+@pytest.mark.slow
 def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
     log, prior, truth = generate(effect, seed=11)
     dof = MAGNITUDES[effect]["dof"]
@@ -37,6 +38,7 @@ def test_undeclared_effect_is_found_first_with_its_magnitude(effect):
 
 
 @pytest.mark.parametrize("seed", [21, 22])
+@pytest.mark.slow
 def test_clean_log_adds_no_effect(seed):
     log, prior, _ = generate(None, seed=seed)
     res = diagnose(log, prior, dof="surge").to_dict()
@@ -48,6 +50,7 @@ def test_clean_log_adds_no_effect(seed):
     assert res["final_error"] == pytest.approx(expected, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_effect_outside_the_library_is_not_claimed_as_a_large_gain():
     log, prior, truth = generate("coulomb_friction", seed=2)
     res = diagnose(log, prior, dof="surge").to_dict()
@@ -55,6 +58,7 @@ def test_effect_outside_the_library_is_not_claimed_as_a_large_gain():
     assert res["unexplained"] or max(gains, default=0.0) < 0.3
 
 
+@pytest.mark.slow
 def test_two_effects_at_once():
     log, prior, truth = generate("tether_drag", seed=1, second="thrust_asymmetry")
     res = diagnose(log, prior, dof="surge").to_dict()
@@ -67,6 +71,7 @@ def test_two_effects_at_once():
     assert res["baseline_error"] / res["final_error"] >= 3.0
 
 
+@pytest.mark.slow
 def test_tether_without_length_column_is_a_tie_with_quadratic_drag():
     """Without tether_length the tether only looks like a larger D_Q: with a moderate tether
     the calibrated D_Q absorbs it inside its band and no effect is claimed; the report says

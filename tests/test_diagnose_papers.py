@@ -23,6 +23,7 @@ def videoray():
     return videoray_case(seed=0)
 
 
+@pytest.mark.slow
 def test_videoray_diagnosis_finds_the_tether_with_length_column(videoray):
     res = videoray["with_tether_length"]
     assert res["steps"] and res["steps"][0]["effect"] == "tether_drag"
@@ -31,6 +32,7 @@ def test_videoray_diagnosis_finds_the_tether_with_length_column(videoray):
     assert res["baseline_error"] / res["final_error"] >= 3.0
 
 
+@pytest.mark.slow
 def test_videoray_without_length_the_tether_is_only_a_larger_drag(videoray):
     # the paper's situation: no tether_length channel; the tether looks like X_u|u| + 20 %,
     # inside strip theory's band, so the diagnosis calibrates D_Q and names no effect
@@ -47,6 +49,7 @@ def romeo():
     return romeo_case(seed=0)
 
 
+@pytest.mark.slow
 def test_romeo_finds_the_upward_efficiency_in_all_five(romeo):
     for row in romeo:
         steps = {s["effect"]: s for s in row["diagnosis"]["steps"]}
@@ -56,6 +59,7 @@ def test_romeo_finds_the_upward_efficiency_in_all_five(romeo):
         assert row["diagnosis"]["baseline_error"] / row["diagnosis"]["final_error"] >= 3.0
 
 
+@pytest.mark.slow
 def test_romeo_buoyancy_bias_disappears(romeo):
     z = []
     for row in romeo:
@@ -87,6 +91,7 @@ def test_romeo_buoyancy_bias_disappears(romeo):
     "with the earlier 500 kg body: b = 40.5 +- 2.2 N with raw window end values, and the same "
     "with 10x wider bands, so not the band priors); cause not traced. The bias still shrinks "
     "from 33.6 N to 6.3 N."))
+@pytest.mark.slow
 def test_romeo_experiment_5_buoyancy_within_three_sigma(romeo):
     row = romeo[4]
     assert abs(row["eta_buoyancy"] - row["weight_truth"]) < 3 * row["eta_buoyancy_std"]

@@ -18,8 +18,9 @@ from conftest import ROOT
 
 DOCS = ROOT / "docs"
 FENCE = re.compile(r"^```(bash|sh|python)[^\n]*\n(.*?)^```", re.S | re.M)
-#: Pages whose blocks take more than a few seconds (BEM, diagnosis): still run in CI.
-SLOW = {"tutorial.md", "diagnose.md"}
+#: Pages whose blocks take more than ~2.5 s of CPU (BEM, diagnosis, studies, limits plots;
+#: measured, docs/development.md): still run in CI.
+SLOW = {"tutorial.md", "diagnose.md", "uncertainty.md", "limits.md"}
 
 
 def blocks(page: Path):

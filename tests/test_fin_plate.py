@@ -156,6 +156,7 @@ def test_fin_thickness_factor_against_the_panel_method():
         assert _fin_thickness_factor(a - r, t / 2) == pytest.approx(panel, rel=0.015), (r, a)
 
 
+@pytest.mark.slow
 def test_fin_share_corrected_converges_like_the_bare_hull():
     # Y_rdot of the REMUS-like finned hull with the 3D corrections: within 0.1 % of its
     # 4000-strip value from 250 strips on (the bare hull's: 0.03 %), no spread from the fin edges

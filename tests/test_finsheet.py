@@ -131,6 +131,7 @@ def test_roll_added_mass_scales_as_length_to_the_fifth():
     assert big / base == pytest.approx(32.0, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_long_fins_tend_to_the_exact_2d_sections():
     # fins of chord 8 m on a 10 m cylinder: the water escapes only round the two ends, so 3D over
     # the exact 2D strip sum is just below 1, in roll (the cruciform; before the cross-plane
@@ -203,6 +204,7 @@ def test_a_cruciforms_heave_is_its_horizontal_pairs():
         assert abs(two[i, j]) < 1e-6 * abs(four[i, j]), (i, j)
 
 
+@pytest.mark.slow
 def test_mesh_refinement_changes_roll_by_under_one_percent():
     fins = _cruciform()
     coarse = roll_added_mass(sheet_mesh(_hull, -1.0, 1.0, fins), 1000.0)

@@ -32,6 +32,7 @@ def fuzz():
     return mod, mod.Bases()
 
 
+@pytest.mark.slow
 def test_quick_campaign_has_no_bad_outcome(fuzz):
     """250 seeded cases over vehicle files, model files, logs, meshes, results and options."""
     mod, bases = fuzz

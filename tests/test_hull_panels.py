@@ -59,6 +59,7 @@ def test_triaxial_ellipsoid_all_six():
     assert info["panels"][1] > info["panels"][0]
 
 
+@pytest.mark.slow
 def test_single_resolution_converges_as_one_over_n():
     """Constant panels: the error of one solve halves when the panels double (2nd order in
     h ~ N^-1/2), the premise of the Richardson extrapolation."""

@@ -48,6 +48,7 @@ def test_exact_data_recovers_truth():
     assert fit.metrics["free_run_rms"] < 1e-3
 
 
+@pytest.mark.slow
 def test_coverage_over_100_seeds_and_honest_sigma():
     """2-sigma coverage >= 88 % of 400 (4 params x 100 seeds) with the MA(1) sandwich;
     the textbook iid sigma overstates the scatter (differenced measurement noise)."""

@@ -24,6 +24,7 @@ def trials():
     return out
 
 
+@pytest.mark.slow
 def test_simulated_trials_reproduce_the_chapter(trials):
     """Standard-model W > 0 in all five; its residual sigma > 3x the eta model's; the eta
     model within 2 sigma of the truth for >= 17 of 20 estimates (nu = 8: t-coverage ~0.92)."""

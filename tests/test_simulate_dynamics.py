@@ -90,6 +90,7 @@ def test_constant_thrust_reaches_analytic_steady_speed(thrust):
     assert abs(log["v"][-1]) < 1e-9 and abs(log["psi"][-1]) < 1e-9
 
 
+@pytest.mark.slow
 def test_thruster_commands_forward_and_backward_maps():
     ct_f, ct_b = 2.5939e-4, 1.0086e-4  # Wang & Clark 2006, Table I (port/starboard)
     thr = [Thruster("port", np.array([0.0, -0.1, 0.0]), np.array([1.0, 0, 0]),
@@ -137,6 +138,7 @@ def test_passive_neutral_body_drifts_with_the_current():
     assert log["X"].max() == 0.0  # nothing applied
 
 
+@pytest.mark.slow
 def test_current_on_a_turning_body_is_seen_in_body_axes():
     # Spinning in yaw in a uniform current: the relative velocity in body axes rotates,
     # and the body velocity over ground still tends to the current in NED.

@@ -85,6 +85,7 @@ def test_scaling_keeps_added_mass_symmetric_and_positive_definite():
 
 # -- the study -----------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_declared_input_is_propagated_exactly(uncertain_spheroid):
     """The model's mass is the declared input itself: its sample sd is the declared sd."""
     res = uncertainty(uncertain_spheroid, samples=256, seed=1, limits=False, method=False,
@@ -109,6 +110,7 @@ def test_method_error_band_has_the_stated_width():
     assert all(s.reason for s in res.sources)
 
 
+@pytest.mark.slow
 def test_same_seed_same_numbers_in_process_in_processes_and_on_a_dask_cluster():
     pytest.importorskip("dask.distributed")
     from dask.distributed import LocalCluster
@@ -143,7 +145,7 @@ def test_uncertainty_cli_json_is_strict_and_names_its_sources(capsys):
 @pytest.mark.parametrize("argv,needle", [
     (["--samples", "1"], "samples"),
     (["--output", "."], "--output"),
-    (["--scheduler", "tcp://127.0.0.1:1"], "scheduler"),
+    pytest.param(["--scheduler", "tcp://127.0.0.1:1"], "scheduler", marks=pytest.mark.slow),
 ])
 def test_uncertainty_cli_errors_are_one_line(argv, needle, capsys):
     assert main(["uncertainty", str(SPHEROID), "--no-limits", "--quiet", *argv]) == 2

@@ -247,6 +247,7 @@ def test_drag_rows_carry_the_slenderness_of_their_references_and_flag_vehicles_o
     assert out[0].to_dict()["in_scope"] is False
 
 
+@pytest.mark.slow
 def test_mirror_symmetries_of_a_box_a_box_with_a_skid_and_the_videoray():
     box = trimesh.creation.box([0.4, 0.3, 0.2])
     assert mirror_symmetries(_mesh_vehicle(box, "box"), strips=40) == {"x", "y", "z"}
@@ -308,6 +309,7 @@ def test_couple_moves_every_allowed_coupling_zero_or_not_and_keeps_the_matrix_de
     assert couple(m, 0.05, allowed)[0, 1] == 1e-12
 
 
+@pytest.mark.slow
 def test_study_of_an_asymmetric_body_bands_the_couplings_the_model_leaves_at_zero():
     """The VideoRay: port-starboard symmetric only. X_wdot is zero in the strip model but
     allowed by its symmetry: the samples spread about zero; X_vdot, forbidden, stays zero."""
@@ -322,6 +324,7 @@ def test_study_of_an_asymmetric_body_bands_the_couplings_the_model_leaves_at_zer
     assert any("y -> -y" in n for n in res.notes)
 
 
+@pytest.mark.slow
 def test_study_band_of_a_diagonal_term_is_the_analytic_band_the_check_uses():
     """band_coverage.py's leave-one-out check uses a e^(+-1.96 sigma) for a diagonal term: the
     Monte Carlo study's [P2.5, P97.5] is that band (one lognormal factor per DOF group)."""

@@ -4,14 +4,25 @@ Every word the same, and every number within one unit of its last printed digit:
 print 4-5 significant digits of results whose last bits depend on the machine's BLAS kernels, so
 a rounding may flip.  A claim that changed with the code (a number, a "grows" that no longer
 holds) fails here until the document is generated again.
+
+The document is checked one section at a time (``validation.SECTIONS``, one ``## `` part of the
+document each), so that the sections regenerate in parallel on the test workers; together the
+tests cover every line that ``validation.build()`` writes.
 """
 
 from __future__ import annotations
 
+import importlib
 import re
 from pathlib import Path
 
+import pytest
+
+from validation import SECTIONS, build
+
 ROOT = Path(__file__).resolve().parent.parent
+#: the expensive sections (measured: docs/development.md)
+SLOW = {"lift", "identification", "meshes", "fins", "diagnosis"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent
@@ -63,9 +74,43 @@ def test_the_comparison_allows_a_rounding_and_nothing_else():
     assert stale_lines("a\nb", "a")
 
 
-def test_validation_doc_is_generated_from_the_current_code():
-    from validation import build
-    stored = (ROOT / "docs" / "validation.md").read_text()
-    stale = stale_lines(stored, build())
-    assert not stale, ("docs/validation.md is stale: run python -m scripts.make_validation; "
-                       f"first difference at line {stale[0][0]}:\n{stale[0][1]}\n{stale[0][2]}")
+def stored_parts(text: str) -> list:
+    """The stored document cut before each line that starts with ``## ``: the title and its
+    introduction, then one part per section (trailing blank lines dropped)."""
+    parts, current = [], []
+    for line in text.splitlines():
+        if line.startswith("## "):
+            parts.append(current)
+            current = []
+        current.append(line)
+    parts.append(current)
+    return ["\n".join(p).rstrip() + "\n" for p in parts]
+
+
+def _stale(name, stored, fresh):
+    stale = stale_lines(stored, fresh)
+    assert not stale, (f"docs/validation.md, section {name!r}, is stale: run python -m "
+                       f"scripts.make_validation; first difference at line {stale[0][0]} of "
+                       f"the section:\n{stale[0][1]}\n{stale[0][2]}")
+
+
+def test_the_document_has_the_introduction_and_one_part_per_section(monkeypatch):
+    """The title and introduction that ``build()`` writes (run with no section), and as many
+    ``## `` parts as sections: with the test below, every line of the document is checked."""
+    import validation
+
+    parts = stored_parts((ROOT / "docs" / "validation.md").read_text())
+    assert len(parts) == 1 + len(SECTIONS), \
+        f"{len(parts) - 1} sections in docs/validation.md, {len(SECTIONS)} in validation.SECTIONS"
+    monkeypatch.setattr(validation, "SECTIONS", ())
+    _stale("introduction", parts[0], build().rstrip() + "\n")
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n
+                                  for n in SECTIONS])
+def test_validation_doc_section_is_generated_from_the_current_code(name):
+    k = SECTIONS.index(name)
+    stored = stored_parts((ROOT / "docs" / "validation.md").read_text())
+    assert len(stored) == 1 + len(SECTIONS)
+    fresh = importlib.import_module(f"validation.{name}").section().rstrip() + "\n"
+    _stale(name, stored[1 + k], fresh)
