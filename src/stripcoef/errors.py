@@ -8,12 +8,18 @@ escaping to the user is a bug.
 
 from __future__ import annotations
 
+from os import PathLike
 from typing import Any
 
 
 def _fmt_value(value: Any) -> str:
+    """The value as the error shows it: a path whole (the user needs all of it to act), any
+    other value cut to 80 characters (a bad cell, a long list), a text to 240."""
+    if isinstance(value, PathLike):
+        return repr(str(value))
     text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
+    limit = 240 if isinstance(value, str) else 80
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 class StripcoefError(Exception):
