@@ -54,6 +54,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
 
+from benchmarks.bluff_shapes import refine  # noqa: E402  (the BEM meshes refined alike)
+
 RHO = 1000.0
 FAMILIES = ("extrusion", "chamfer_box", "fillet_box", "frame", "plate", "coarse", "pod")
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -161,23 +163,6 @@ def clean_surface(parts):
     return trimesh.boolean.union(parts, engine="manifold")
 
 
-def subdivided(mesh, faces):
-    """Edges split until about ``faces`` triangles (longest-edge bound found by bisection)."""
-    base = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
-    if len(base.faces) >= faces:
-        return base
-    lo, hi = 1e-4, float(np.max(base.edges_unique_length))
-    best = base
-    for _ in range(18):
-        mid = np.sqrt(lo * hi)
-        v, f = trimesh.remesh.subdivide_to_size(base.vertices, base.faces, max_edge=mid)
-        if len(f) > faces:
-            lo = mid
-        else:
-            hi, best = mid, trimesh.Trimesh(v, f, process=True)
-    return best
-
-
 def write_as_user(parts, path_stem, rng):
     """The shape as a user has it: mm or m, OBJ with split vertices or STL. Returns (path,
     length_unit, description)."""
@@ -236,7 +221,7 @@ def run_one(family, rng, tmp, bem_faces, stored=None):
         surface = clean_surface(parts)
         mats, counts = [], []
         for n in bem_faces:
-            m = subdivided(surface, n)
+            m = refine(surface, n)
             mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=3200))
             counts.append(len(m.faces))
         n1, n2 = counts
