@@ -532,3 +532,20 @@ def test_reference_speed_beyond_any_vehicle_is_named(tmp_path, capsys):
               "7500000.0", "<= 100 m/s")
     _one_line(capsys, ["coefficients", GEO / "sphere.yaml", "--strips", "40", "--speed",
                        "1e300"], "--speed", "<= 100 m/s")
+
+
+def test_a_huge_log_is_refused_up_front(tmp_path, capsys):
+    """A log over files.MAX_TEXT_BYTES (a 1 GB CSV) is refused before any byte is read: one
+    line with its size and the remedy, at once and in no memory (the file here is sparse)."""
+    import resource
+
+    from stripcoef.files import MAX_TEXT_BYTES
+
+    big = tmp_path / "huge.csv"
+    with open(big, "wb") as fh:
+        fh.write(b"t,u\n0,0\n")
+        fh.truncate(MAX_TEXT_BYTES * 4)            # 1 GiB, no disk used
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    _one_line(capsys, ["identify", str(big), "--method", "steady", "--dof", "surge"],
+              "huge.csv", "too large to read (1024 MiB", "split it")
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before < 200_000   # kB

@@ -174,12 +174,28 @@ def write_bytes(path, data: bytes, *, key: str = "output") -> None:
         tmp.write_bytes(data)
 
 
+#: Largest text file read [bytes] (256 MiB). Files are read whole and parsed in memory, at
+#: about ten times their size (a 1 GB CSV log took 11.2 GB): a larger one is refused before
+#: any byte is read, with the remedy. A one-hour 6-DOF log at 20 Hz is about 20 MB.
+MAX_TEXT_BYTES = 256 * 2**20
+
+
 def read_text(path, *, kind: str) -> str:
     """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
 
-    ``kind`` says what the file should be ("vehicle file", "CSV log", ...).
+    ``kind`` says what the file should be ("vehicle file", "CSV log", ...). A file over
+    :data:`MAX_TEXT_BYTES` is refused up front (its size, the limit and the remedy).
     """
     path = Path(path)
+    try:
+        size = path.stat().st_size
+    except OSError:
+        size = 0                          # reported below, by the read that fails
+    if size > MAX_TEXT_BYTES and path.is_file():
+        raise InputError(f"too large to read ({size / 2**20:.0f} MiB; files are parsed in "
+                         "memory at about ten times their size)", file=str(path),
+                         expected=f"a {kind} of at most {MAX_TEXT_BYTES // 2**20} MiB: split it "
+                                  "into shorter logs or decimate it")
     try:
         return path.read_text()
     except FileNotFoundError:
