@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parent.parent
 #: Topic modules, in pipeline order.
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
                              "identification", "meshes", "fins", "bluff", "cad_shapes", "drag",
-                             "bands", "diagnosis")
+                             "bands", "diagnosis", "diagnosis_independent")
 
 
 def build() -> str:
