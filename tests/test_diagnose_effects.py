@@ -55,6 +55,7 @@ DOFS = {"tether_drag": 0, "thrust_asymmetry": 0, "momentum_drag": 2, "buoyancy_o
         "current": 0}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_force_law_and_regressor_agree(name):
     """Simulate a model carrying the effect (noise-free); the prior's window residual must
@@ -125,6 +126,7 @@ def test_savgol_centre_weights_are_the_quadratic_fit():
         assert np.sum(w ** 2) == pytest.approx(w[h], rel=1e-12)
 
 
+@pytest.mark.slow
 def test_end_values_do_not_bias_the_true_model_and_cut_the_noise():
     """Noise-free log of the prior itself: its window residual is the discretisation error
     of the window operators only; with the smoothed end values it stays far below the noise

@@ -31,6 +31,9 @@ from validation.synthetic import generate
 
 REL = 1e-9
 
+#: each case diagnoses a log (5-11 s of CPU): slow, like the other diagnose tests
+pytestmark = pytest.mark.slow
+
 
 def _synthetic(tmp, effect, seed, duration):
     log, prior, _ = generate(effect, seed=seed, duration=duration)

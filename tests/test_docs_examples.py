@@ -20,7 +20,8 @@ DOCS = ROOT / "docs"
 FENCE = re.compile(r"^```(bash|sh|python)[^\n]*\n(.*?)^```", re.S | re.M)
 #: Pages whose blocks take more than ~2.5 s of CPU (BEM, diagnosis, studies, limits plots;
 #: measured, docs/development.md): still run in CI.
-SLOW = {"tutorial.md", "diagnose.md", "uncertainty.md", "limits.md"}
+SLOW = {"tutorial.md", "diagnose.md", "uncertainty.md", "limits.md", "identify.md",
+        "export/index.md", "export/gazebo.md", "export/python.md", "meshes.md"}
 
 
 def blocks(page: Path):

@@ -14,6 +14,7 @@ pytest.importorskip("mkdocstrings")
 pytest.importorskip("material")
 
 
+@pytest.mark.slow
 def test_site_builds_strictly(tmp_path):
     env = {**os.environ, "NO_MKDOCS_2_WARNING": "1",
            "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), str(ROOT)])}

@@ -28,6 +28,7 @@ def exported(tmp_path_factory):
     return model, _module(path)
 
 
+@pytest.mark.slow
 def test_same_trajectory_as_simulate(exported):
     model, m = exported
     t = np.linspace(0.0, 20.0, 201)
@@ -90,6 +91,7 @@ def test_flu_module_holds_data_only(tmp_path, exported):
     assert m.AXES == "FLU" and not hasattr(m, "state_derivative") and m.M_A.shape == (6, 6)
 
 
+@pytest.mark.slow
 def test_vehicle_class_steers_with_rudders_and_elevators(tmp_path):
     """REMUS 100: the exported Vehicle takes the rudder and elevator deflections after the
     propeller command (as the simulator's remus100 does), clips them to MAX_DEFLECTION and

@@ -88,6 +88,7 @@ def _fb():
     return finned
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["remus_tail", "large_tail", "midbody", "small_tail",
                                   "forward_fins", "wide_tail"])
 def test_finned_hulls_against_bem(case):

@@ -151,6 +151,7 @@ def test_fin_edges_are_where_the_fins_end():
     assert [round(e[1], 12) for e in edges] == [round(X_FIN - CHORD / 2, 12), round(X_FIN + CHORD / 2, 12)]
 
 
+@pytest.mark.slow
 def test_corrected_coupling_converges_with_the_strip_count():
     # the 3D corrections see the fins' step at their exact edges: the corrected Y_rdot moves by
     # less than 0.1 % between 500 and 2000 strips (0.5 % before the step, docs/performance.md)

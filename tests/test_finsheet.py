@@ -98,6 +98,7 @@ def _disc(radius, n_r, n_t):
     return np.array(nodes), np.array(quads), np.array(pts), np.array(areas)
 
 
+@pytest.mark.slow
 def test_disc_rotating_about_a_diameter_against_lamb():
     # the ellipsoid of Lamb (1932), sec. 373, flattened to the disc: 16 rho a^5 / 45 (measured
     # -1.3 % at 16 x 128 panels, -0.5 % at 32 x 128)
@@ -123,6 +124,7 @@ def _cruciform(scale=1.0, chord=0.15, tip=0.2, x=-0.3):
                         scale * tip) for k in range(4)]
 
 
+@pytest.mark.slow
 def test_roll_added_mass_scales_as_length_to_the_fifth():
     base = roll_added_mass(sheet_mesh(_hull, -1.0, 1.0, _cruciform()), 1000.0)
     big = roll_added_mass(sheet_mesh(lambda x: 2.0 * _hull(np.asarray(x) / 2.0), -2.0, 2.0,
@@ -170,6 +172,7 @@ def test_discrete_section_converges_to_the_exact_cruciform_and_pair():
             assert np.all(errs[1] < 0.025) and np.all(errs[1] <= errs[0] + 1e-3), (r, a, fins)
 
 
+@pytest.mark.slow
 def test_fins_share_symmetry_and_scaling():
     # a cruciform on a body of revolution: sway = heave, yaw = pitch, M[1,5] = -M[2,4], the
     # matrix symmetric and nothing coupling surge or roll to the lateral modes; scaled by 2 every
@@ -189,6 +192,7 @@ def test_fins_share_symmetry_and_scaling():
         assert big[i, j] / base[i, j] == pytest.approx(2.0 ** power, rel=1e-6), (i, j)
 
 
+@pytest.mark.slow
 def test_a_cruciforms_heave_is_its_horizontal_pairs():
     # in heave the flow past the hull is tangent to the plane y = 0, so thin vertical fins in it
     # are passive: the cruciform's share of heave and pitch is its horizontal pair's, and the

@@ -67,6 +67,7 @@ def test_coverage_over_100_seeds_and_honest_sigma():
     assert np.all(sd.mean(axis=0) < 2.5 * scatter) and np.all(sd.mean(axis=0) > 0.8 * scatter)
 
 
+@pytest.mark.slow
 def test_sigma_shrinks_as_one_over_sqrt_n():
     """4x the samples halves sigma of alpha, beta, gamma.  The bias delta converges faster
     (differenced noise telescopes: its scatter falls as 1/N), so its sigma is conservative."""

@@ -444,6 +444,7 @@ def test_output_set_full_disk_names_the_output(tmp_path, monkeypatch):
     assert a.read_text() == "old\n" and [p.name for p in tmp_path.iterdir()] == ["cal.yaml"]
 
 
+@pytest.mark.slow
 def test_diagnose_writes_its_model_and_report_as_a_set(tmp_path, capsys, monkeypatch):
     """A failure while writing the report (after the model was written) leaves the earlier
     model and report: never a new model beside an old report."""
