@@ -284,3 +284,18 @@ def assert_same_file(name: str, got, want, *, rtol: float = RTOL, hint: str = ""
         assert_same_csv(name, got, want, rtol=rtol, hint=hint)
     else:
         assert_same_text(name, got, want, rtol=rtol, hint=hint)
+
+
+def one_line_error(capsys, argv, *words):
+    """Run the CLI: exit 2 and one line on stderr (warnings aside) holding every one of
+    ``words``; returns that line."""
+    from stripcoef.cli import main
+
+    rc = main([str(a) for a in argv])
+    _, err = capsys.readouterr()
+    lines = [ln for ln in err.strip().splitlines() if not ln.startswith("warning:")]
+    assert rc == 2, err
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for w in words:
+        assert w in lines[0], lines[0]
+    return lines[0]

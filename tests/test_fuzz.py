@@ -15,6 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import one_line_error as _one_line
+
 from stripcoef.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -60,17 +62,6 @@ def test_the_classifier_sees_each_bad_outcome(fuzz, tmp_path):
         == "clean error"
     assert mod.classify_error("x", "a\nb\n") == "multi-line error"
     assert mod._non_finite_text('{"a": NaN}') and not mod._non_finite_text('{"info": 1}')
-
-
-def _one_line(capsys, argv, *words):
-    rc = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    lines = [ln for ln in err.strip().splitlines() if not ln.startswith("warning:")]
-    assert rc == 2, err
-    assert len(lines) == 1 and "Traceback" not in err, err
-    for w in words:
-        assert w in lines[0], lines[0]
-    return lines[0]
 
 
 # -- vehicle files: YAML resources, duplicate keys, physics ------------------------------

@@ -17,6 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import one_line_error as _one_line
+
 from stripcoef.cli import main
 from stripcoef.errors import InputError
 
@@ -26,18 +28,6 @@ HULL = ("hull:\n  profile:\n"
         "    - {type: ellipsoid_tail, x: [-0.75, -0.45], radius: 0.10}\n"
         "    - {type: cylinder, x: [-0.45, 0.55], radius: 0.10}\n"
         "    - {type: ellipsoid_nose, x: [0.55, 0.75], radius: 0.10}\nstrips: 100\n")
-
-
-def _one_line(capsys, argv, *words):
-    """Run the CLI; exit 2, one line (warnings aside) holding every one of ``words``."""
-    rc = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    lines = [ln for ln in err.strip().splitlines() if not ln.startswith("warning:")]
-    assert rc == 2, err
-    assert len(lines) == 1 and "Traceback" not in err, err
-    for w in words:
-        assert w in lines[0], lines[0]
-    return lines[0]
 
 
 # -- YAML read safely -------------------------------------------------------------------
