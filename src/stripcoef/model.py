@@ -217,6 +217,14 @@ class MethodBand:
         """The 95 % band of a lognormal row as a factor: model/true within [1/f, f] [-]."""
         return float(np.exp(Z95 * self.sd))
 
+    def describe(self) -> str:
+        """The band's size and basis as the text output and the exports' comments print it:
+        ``factor 2.35 (measured)`` for a lognormal row (:meth:`factor`), ``+- 0.102 sqrt(M_ii
+        M_jj) (measured)`` for a coupling; ``, extrapolated`` out of the row's scope."""
+        size = (f"factor {self.factor():.3g}" if self.distribution == "lognormal"
+                else f"+- {Z95 * self.sd:.3g} sqrt(M_ii M_jj)")
+        return f"{size} ({self.basis}{'' if self.in_scope else ', extrapolated'})"
+
     def to_dict(self) -> dict:
         return {"matrix": self.matrix, "dofs": self.dofs, "distribution": self.distribution,
                 "sd": float(self.sd), "basis": self.basis, "in_scope": bool(self.in_scope),

@@ -274,11 +274,8 @@ def header_lines(view: ExportView, fmt_name: str) -> list[str]:
         ("y starboard, z down)" if view.axes == "FRD" else "y port, z up)"),
         f"mass {fmt(m.mass)} kg, volume {fmt(m.volume)} m^3, density {fmt(m.density)} kg/m^3",
     ]
-    for b in m.bands:                  # the method's uncertainty beside the point values
-        size = (f"factor {b.factor():.3g}" if b.distribution == "lognormal"
-                else f"+- {1.959963984540054 * b.sd:.3g} sqrt(M_ii M_jj)")
-        lines.append(f"method band {b.matrix} {b.dofs}: 95 % within {size} ({b.basis}"
-                     + ("" if b.in_scope else ", extrapolated") + ")")
+    # the method's uncertainty beside the point values
+    lines += [f"method band {b.matrix} {b.dofs}: 95 % within {b.describe()}" for b in m.bands]
     return lines
 
 

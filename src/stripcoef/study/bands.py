@@ -76,16 +76,8 @@ def uncertain_terms(model, *, threshold: float = UNCERTAIN) -> list[str]:
 
 
 def band_lines(model) -> list[str]:
-    """One line per band row: the matrix, DOF group and its 95 % band (text and comments)."""
-    out = []
-    for b in model.bands:
-        if b.distribution == "lognormal":
-            size = f"factor {b.factor():.3g}"
-        else:
-            size = f"+- {1.959963984540054 * b.sd:.3g} sqrt(M_ii M_jj)"
-        note = "" if b.in_scope else ", extrapolated"
-        out.append(f"{b.matrix} {b.dofs}: 95 % band {size} ({b.basis}{note})")
-    return out
+    """One line per band row: the matrix, DOF group and its 95 % band (the text output)."""
+    return [f"{b.matrix} {b.dofs}: 95 % band {b.describe()}" for b in model.bands]
 
 
 def warn_uncertain(model) -> None:
