@@ -34,6 +34,23 @@ def geometry_dir():
     return GEOMETRY
 
 
+@pytest.fixture(scope="session")
+def remus_file(tmp_path_factory):
+    """REMUS 100 (a propeller, a rudder and an elevator) as a model file, estimated once."""
+    import warnings
+
+    from stripcoef.errors import ModelWarning
+    from stripcoef.export import write_export
+    from stripcoef.modelfile import load_model
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)          # REMUS is 7 % buoyant
+        model = load_model(GEOMETRY / "remus100.yaml")
+    path = tmp_path_factory.mktemp("remus") / "remus.json"
+    write_export(model, "json", path)
+    return path
+
+
 def spheroid_vehicle(length, diameter, *, rho=1000.0, strips=400, **extra):
     """A spheroid vehicle dict (semi-axes a = L/2, b = D/2)."""
     from stripcoef.geometry.vehicle import parse_vehicle

@@ -11,26 +11,12 @@ import pytest
 from stripcoef import cli
 from stripcoef.conventions import POSE, VELOCITIES
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.export import write_export
 from stripcoef.logfile import Log, read_log
 from stripcoef.modelfile import load_model
 from stripcoef.logfile import log_inputs
 from stripcoef.simulate import replay, simulate
 
 STATES = POSE + VELOCITIES
-
-
-@pytest.fixture(scope="module")
-def remus_file(tmp_path_factory):
-    """REMUS 100 (a propeller, a rudder and an elevator) as a model file (estimated once)."""
-    from conftest import GEOMETRY
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelWarning)          # REMUS is 7 % buoyant
-        model = load_model(GEOMETRY / "remus100.yaml")
-    path = tmp_path_factory.mktemp("remus") / "remus.json"
-    write_export(model, "json", path)
-    return path
 
 
 def _run(args, capsys):

@@ -113,23 +113,6 @@ def test_summary_warnings():
     assert summarize_motion(_synthetic(np.zeros(1001), np.zeros(1001))).warnings == ()
 
 
-@pytest.fixture(scope="module")
-def remus_file(tmp_path_factory):
-    """REMUS 100 (propeller, rudder, elevator) as a model file, estimated once."""
-    import warnings
-
-    from conftest import GEOMETRY
-    from stripcoef.errors import ModelWarning
-    from stripcoef.export import write_export
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelWarning)          # REMUS is 7 % buoyant
-        model = load_model(GEOMETRY / "remus100.yaml")
-    path = tmp_path_factory.mktemp("remus") / "remus.json"
-    write_export(model, "json", path)
-    return path
-
-
 def test_a_rudder_turn_is_commanded_not_a_runaway(remus_file, tmp_path, capsys):
     """A held rudder turns REMUS twice in 60 s: its yaw moment u|u| (B_delta delta)_N is steady,
     so the turn is commanded and the Munk warning stays silent; with --no-munk there is no Munk
