@@ -73,6 +73,10 @@ class UnreachableError(StripcoefError, RuntimeError):
     """A manoeuvre or computation that the model or thrusters cannot achieve."""
 
 
+class ExternalToolError(StripcoefError, RuntimeError):
+    """An external program (OpenFOAM) is missing, or failed on the input it was given."""
+
+
 class ExtrapolationWarning(UserWarning):
     """A tabulated curve was evaluated outside the range of its data (value clamped)."""
 

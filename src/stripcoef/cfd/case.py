@@ -358,7 +358,7 @@ def control_dict(spec: CaseSpec) -> str:
             "stopAt": "endTime", "endTime": spec.iterations, "deltaT": 1,
             "writeControl": "timeStep", "writeInterval": spec.iterations, "purgeWrite": 1,
             "writeFormat": "ascii", "writePrecision": 8, "writeCompression": False,
-            "timeFormat": "general", "timePrecision": 6, "runTimeModifiable": False,
+            "timeFormat": "general", "timePrecision": 6, "runTimeModifiable": True,
             "functions": functions}
     return foam_file("controlDict", body, location="system")
 

@@ -30,7 +30,7 @@ OUTPUT_OPTIONS = ("output", "out", "report", "plot")
 
 #: Subcommands, in the order of the pipeline.
 COMMANDS = ("mesh", "coefficients", "limits", "export", "simulate", "identify", "scale", "compare",
-            "diagnose", "uncertainty", "sweep", "samples")
+            "diagnose", "uncertainty", "sweep", "cfd", "samples")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -1,0 +1,213 @@
+"""Reading what OpenFOAM wrote: the forces function object's files and the solver's log.
+
+The ``forces`` function object of OpenFOAM v1912 writes ``postProcessing/forces/<t0>/
+force.dat`` and ``moment.dat``: a ``#`` header, then per iteration the time and three
+vectors in parentheses, total, pressure and viscous [N] or [N m] about ``CofR``. Older
+versions wrote one ``forces.dat`` with ``((p) (v)) ((p) (v))``; a restart adds a folder per
+start time. Both are read here; the rows of all start folders are joined in time order.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?(?:nan|inf)", re.I)
+
+
+@dataclass(frozen=True)
+class ForceHistory:
+    """Force and moment on the body per iteration.
+
+    Attributes
+    ----------
+    iteration : (n,) array
+    force, moment : (n, 3) arrays
+        Total (pressure + viscous) force [N] and moment about the reference point [N m].
+    pressure_force, viscous_force : (n, 3) arrays
+        Its two parts [N].
+    """
+
+    iteration: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+    pressure_force: np.ndarray
+    viscous_force: np.ndarray
+
+
+def _rows(path: Path) -> np.ndarray:
+    """The numeric rows of a .dat file (comment lines skipped): time and the numbers."""
+    rows = []
+    for line in path.read_text().splitlines():
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        vals = [float(v) for v in _NUMBER.findall(line)]
+        if vals:
+            rows.append(vals)
+    width = max((len(r) for r in rows), default=0)
+    rows = [r for r in rows if len(r) == width]          # a half-written last line
+    return np.asarray(rows, float).reshape(len(rows), width)
+
+
+def read_forces(folder) -> ForceHistory:
+    """The force history of a case (``folder`` = the case or its ``postProcessing/forces``).
+
+    Raises
+    ------
+    FileNotFoundError
+        No force file (the solver wrote no iteration).
+    """
+    folder = Path(folder)
+    if (folder / "postProcessing").is_dir():
+        folder = folder / "postProcessing" / "forces"
+    starts = sorted((d for d in folder.iterdir() if d.is_dir()), key=lambda d: float(d.name)) \
+        if folder.is_dir() else []
+    force, moment = [], []
+    for d in starts:
+        if (d / "force.dat").is_file():
+            f = _rows(d / "force.dat")
+            m = _rows(d / "moment.dat") if (d / "moment.dat").is_file() else np.zeros_like(f)
+            n = min(len(f), len(m))
+            force.append(f[:n])
+            moment.append(m[:n])
+        elif (d / "forces.dat").is_file():        # ((pressure) (viscous)) ((pressure) (viscous))
+            r = _rows(d / "forces.dat")
+            t, p, v, mp, mv = r[:, :1], r[:, 1:4], r[:, 4:7], r[:, 7:10], r[:, 10:13]
+            force.append(np.hstack([t, p + v, p, v]))
+            moment.append(np.hstack([t, mp + mv, mp, mv]))
+    if not force:
+        raise FileNotFoundError(str(folder))
+    f = np.vstack(force)
+    m = np.vstack(moment)
+    # a restart repeats iterations: keep the last row of each
+    _, last = np.unique(f[::-1, 0], return_index=True)
+    keep = np.sort(len(f) - 1 - last)
+    f, m = f[keep], m[keep]
+    return ForceHistory(iteration=f[:, 0].astype(int), force=f[:, 1:4], moment=m[:, 1:4],
+                        pressure_force=f[:, 4:7], viscous_force=f[:, 7:10])
+
+
+@dataclass(frozen=True)
+class Settled:
+    """The value of a force history and whether it settled.
+
+    Attributes
+    ----------
+    value : float
+        Mean over the last :data:`WINDOW` of the iterations (at least :data:`MIN_WINDOW`).
+    spread : float
+        Peak-to-peak over that window relative to ``|value|`` [-].
+    window : int
+        Iterations averaged.
+    finite : bool
+        No NaN or infinity in the history.
+    """
+
+    value: float
+    spread: float
+    window: int
+    finite: bool
+
+
+#: Share of the iterations averaged at the end of a steady run, and the fewest.
+WINDOW = 0.2
+MIN_WINDOW = 50
+#: Largest peak-to-peak over the window, relative to its mean, of a settled force [-]. Steady
+#: RANS of a bluff body often oscillates on a limit cycle (an unsteady wake): the mean of the
+#: window is then reported and the run marked not converged when the swing is wider.
+FORCE_TOLERANCE = 0.02
+
+
+def settle(values) -> Settled:
+    """The mean of the last :data:`WINDOW` of ``values`` and its relative peak-to-peak."""
+    v = np.asarray(values, float)
+    if v.size == 0:
+        return Settled(value=float("nan"), spread=float("inf"), window=0, finite=False)
+    finite = bool(np.all(np.isfinite(v)))
+    n = min(v.size, max(MIN_WINDOW, int(round(WINDOW * v.size))))
+    w = v[-n:]
+    mean = float(np.mean(w))
+    spread = float((np.max(w) - np.min(w)) / abs(mean)) if finite and mean != 0 else float("inf")
+    return Settled(value=mean, spread=spread, window=int(n), finite=finite)
+
+
+# ----------------------------------------------------------------------------- logs
+
+_TIME = re.compile(r"^Time = (\S+)", re.M)
+_RESIDUAL = re.compile(r"Solving for (\w+), Initial residual = ([^,]+),")
+
+
+@dataclass(frozen=True)
+class LogState:
+    """Where a solver run stands, read from its log.
+
+    Attributes
+    ----------
+    iteration : int
+        Last iteration begun (0 before the first).
+    residuals : dict
+        Initial residual of each solved field in that iteration.
+    converged : bool
+        The solver stopped on its residual criterion ("SIMPLE solution converged").
+    fatal : str
+        The first line of a FOAM FATAL ERROR or a floating point exception ("" if none).
+    """
+
+    iteration: int
+    residuals: dict
+    converged: bool
+    fatal: str
+
+
+def read_log(text: str) -> LogState:
+    """The state of a simpleFoam (or any OpenFOAM application's) log."""
+    times = list(_TIME.finditer(text))
+    iteration, residuals = 0, {}
+    if times:
+        try:
+            iteration = int(float(times[-1].group(1)))
+        except ValueError:
+            iteration = len(times)
+        # the residuals of the last iteration with any (a running solver's last block may
+        # hold none yet)
+        ends = [m.end() for m in times] + [len(text)]
+        for k in range(len(times) - 1, -1, -1):
+            for name, r in _RESIDUAL.findall(text[ends[k]:ends[k + 1]]):
+                residuals.setdefault(name, float(r))
+            if residuals:
+                break
+    return LogState(iteration=iteration, residuals=residuals,
+                    converged="solution converged in" in text, fatal=fatal_line(text))
+
+
+def fatal_line(text: str) -> str:
+    """The one line of an OpenFOAM log that says why it stopped ("" if it did not)."""
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        if "FOAM FATAL" in line:
+            for nxt in lines[i + 1:i + 8]:
+                msg = nxt.strip().lstrip("[0123456789] ").strip()
+                if msg:
+                    return msg
+            return line.strip()
+        if "Floating point exception" in line or "sigFpe" in line:
+            return "floating point exception (the solution diverged)"
+    return ""
+
+
+def mesh_report(text: str) -> tuple[int, dict, int]:
+    """From a checkMesh log: cells, faces per patch, and the number of failed checks."""
+    m = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
+    cells = int(m.group(1)) if m else 0
+    patches = {}
+    block = re.search(r"Patch\s+Faces\s+Points.*?\n(.*?)\n\s*\n", text, re.S)
+    if block:
+        for line in block.group(1).splitlines():
+            parts = line.split()
+            if len(parts) >= 3 and parts[1].isdigit():
+                patches[parts[0]] = int(parts[1])
+    m = re.search(r"Failed (\d+) mesh checks", text)
+    return cells, patches, int(m.group(1)) if m else 0
