@@ -69,8 +69,10 @@ def entries(d: dict, indent: str = "") -> str:
             key = f'"{key}"'
         if isinstance(val, NamedList):
             out.append(f"{indent}{key} {value_text(val, indent)};\n")
-        elif val is None:                     # a directive: #includeEtc "..."
+        elif val is None:                     # a directive without argument
             out.append(f"{indent}{key}\n")
+        elif key.startswith("#"):             # a directive: #includeEtc "file" (no ;)
+            out.append(f"{indent}{key} {value_text(val, indent)}\n")
         elif isinstance(val, dict):
             out.append(f"{indent}{key}\n{indent}{{\n{entries(val, indent + '    ')}{indent}}}\n")
         else:
@@ -113,7 +115,8 @@ def parse(text: str) -> dict:
 
     Numbers become ``int``/``float``, words and quoted strings stay ``str`` (quotes kept);
     an entry of several values (``type fixedValue;`` has one, ``value uniform (1 0 0);``
-    two) becomes a list of them when there are several. Enough for the files stripcoef
+    two) becomes a list of them when there are several; a list of named dictionaries
+    (``( inlet { ... } outlet { ... } )``) a ``dict``. Enough for the files stripcoef
     writes and for OpenFOAM's own ``polyMesh/owner`` header; not a full OpenFOAM parser
     (no macro expansion, no ``#include``).
     """
@@ -134,6 +137,9 @@ def parse(text: str) -> dict:
                 items.append(_atom(toks[pos]))
                 pos += 1
         pos += 1
+        if items and len(items) % 2 == 0 and all(isinstance(k, str) for k in items[::2]) \
+                and all(isinstance(v, dict) for v in items[1::2]):
+            return dict(zip(items[::2], items[1::2]))     # ( name { } name { } )
         return items
 
     def parse_dict(end):
@@ -146,6 +152,8 @@ def parse(text: str) -> dict:
                 if pos < len(toks) and toks[pos].startswith('"'):
                     out[key] = toks[pos]
                     pos += 1
+                    if pos < len(toks) and toks[pos] == ";":
+                        pos += 1
                 else:
                     out[key] = None
                 continue

@@ -53,7 +53,8 @@ def _rows(path: Path) -> np.ndarray:
 
 
 def read_forces(folder) -> ForceHistory:
-    """The force history of a case (``folder`` = the case or its ``postProcessing/forces``).
+    """The force history of a case (``folder``: the case, its ``postProcessing`` or its
+    ``postProcessing/forces``).
 
     Raises
     ------
@@ -62,7 +63,9 @@ def read_forces(folder) -> ForceHistory:
     """
     folder = Path(folder)
     if (folder / "postProcessing").is_dir():
-        folder = folder / "postProcessing" / "forces"
+        folder = folder / "postProcessing"
+    if (folder / "forces").is_dir():
+        folder = folder / "forces"
     starts = sorted((d for d in folder.iterdir() if d.is_dir()), key=lambda d: float(d.name)) \
         if folder.is_dir() else []
     force, moment = [], []
