@@ -290,3 +290,66 @@ def test_smoke_run_openfoam(tmp_path):
     assert run.status in (CONVERGED, NOT_CONVERGED)
     assert res.dofs[0].d_quadratic > 0
     assert (tmp_path / "c" / "surge_1m_s_L2" / "log.simpleFoam").is_file()
+
+
+def _fake_openfoam(tmp_path, monkeypatch, **scripts):
+    """Fake OpenFOAM programs on the PATH (each a bash script; ``name=body``)."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    etc = tmp_path / "foam" / "etc"
+    etc.mkdir(parents=True)
+    (etc / "controlDict").write_text("")
+    ok = "echo End; exit 0"
+    for name in ("blockMesh", "surfaceFeatureExtract", "snappyHexMesh", "checkMesh",
+                 "potentialFoam", "simpleFoam", "topoSet"):
+        f = bin_dir / name
+        f.write_text("#!/bin/bash\n" + scripts.get(name, ok) + "\n")
+        f.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bin_dir}:/usr/bin:/bin")
+    monkeypatch.setenv("WM_PROJECT_DIR", str(tmp_path / "foam"))
+
+
+CHECKMESH_OK = ("cat <<'X'\n    cells:            5000\n\n"
+                "                   Patch    Faces   Points\n"
+                "                    body      384      418\n\nMesh OK.\nX")
+
+
+def test_snappy_failure_is_one_line(capsys, monkeypatch, tmp_path):
+    _fake_openfoam(tmp_path, monkeypatch, snappyHexMesh=(
+        "echo '--> FOAM FATAL ERROR: '; echo '    Cannot find surface body.stl'; exit 1"))
+    line = one_line_error(capsys, ["cfd", CUBE, "--ranks", "1", "--levels", "3",
+                                   "--case-dir", tmp_path / "c", "-q"],
+                          "snappyHexMesh failed", "Cannot find surface body.stl", "log.")
+    assert line.startswith("stripcoef cfd: error:")
+
+
+def test_mesh_without_body_is_one_line(capsys, monkeypatch, tmp_path):
+    _fake_openfoam(tmp_path, monkeypatch, checkMesh=CHECKMESH_OK.replace("body", "inlet"))
+    one_line_error(capsys, ["cfd", CUBE, "--ranks", "1", "--levels", "3", "--case-dir",
+                            tmp_path / "c", "-q"], "no faces on the body")
+
+
+def test_diverged_run_is_marked_not_a_number(capsys, monkeypatch, tmp_path):
+    """A solver that stops on a floating point exception: the result says diverged, the
+    command warns, the JSON says converged false."""
+    from stripcoef.cli import main
+
+    diverge = ("mkdir -p postProcessing/forces/0; for i in 1 2 3; do echo \"Time = $i\"; "
+               "echo \"$i (-$i 0 0) (-$i 0 0) (0 0 0)\" >> postProcessing/forces/0/force.dat; "
+               "echo \"$i (0 0 0) (0 0 0) (0 0 0)\" >> postProcessing/forces/0/moment.dat; done;"
+               " echo '#0  Foam::sigFpe::sigHandler(int)'; echo 'Floating point exception';"
+               " exit 136")
+    _fake_openfoam(tmp_path, monkeypatch, checkMesh=CHECKMESH_OK, simpleFoam=diverge)
+    rc = main(["cfd", str(CUBE), "--ranks", "1", "--levels", "3", "--case-dir",
+               str(tmp_path / "c"), "--json", "-q"])
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert rc == 0 and out["converged"] is False
+    run = out["dofs"][0]["runs"][0]
+    assert run["status"] == DIVERGED and "diverged" in run["note"]
+    assert run["cells"] == 5000 and run["iterations"] == 3
+    assert "NOT CONVERGED" in captured.err or "not converge" in captured.err
+    # the text names it too
+    rc = main(["cfd", str(CUBE), "--ranks", "1", "--levels", "3", "--case-dir",
+               str(tmp_path / "d"), "-q"])
+    assert "DIVERGED" in capsys.readouterr().out
