@@ -353,3 +353,31 @@ def test_diverged_run_is_marked_not_a_number(capsys, monkeypatch, tmp_path):
     rc = main(["cfd", str(CUBE), "--ranks", "1", "--levels", "3", "--case-dir",
                str(tmp_path / "d"), "-q"])
     assert "DIVERGED" in capsys.readouterr().out
+
+
+def test_pipeline_fit_and_mesh_spread_on_a_fake_solver(monkeypatch, tmp_path):
+    """A fake simpleFoam writes F = -(d_L u + d_Q u^2), 10 % larger on the coarse level: the
+    result recovers d_L, d_Q and C_D from the fine runs, and a mesh spread of 10 %."""
+    d_l, d_q = 30.0, 512.5
+    solver = (
+        "u=$(awk '/^internalField/ {gsub(/[()]/, \"\"); print -$3}' 0/U); "
+        "case \"$PWD\" in *_L3) f=1.1;; *) f=1.0;; esac; mkdir -p postProcessing/forces/0; "
+        "for i in $(seq 1 60); do echo \"Time = $i\"; "
+        f"awk -v u=$u -v f=$f -v i=$i 'BEGIN {{F=-({d_l}*u+{d_q}*u*u)*f; "
+        "printf \"%d (%.10g 0 0) (%.10g 0 0) (0 0 0)\\n\", i, F, F}' "
+        ">> postProcessing/forces/0/force.dat; "
+        "echo \"$i (0 0 0) (0 0 0) (0 0 0)\" >> postProcessing/forces/0/moment.dat; done")
+    _fake_openfoam(tmp_path, monkeypatch, checkMesh=CHECKMESH_OK, simpleFoam=solver)
+    res = drag_by_cfd(trimesh.creation.box((1.0, 1.0, 1.0)), speeds=(0.5, 1.5), levels=(3, 4),
+                      ranks=1, case_dir=tmp_path / "c", fluid=None)
+    d = res.dofs[0]
+    assert [(r.speed, r.level) for r in d.runs] == [(0.5, 4), (1.5, 4), (0.5, 3)]
+    assert all(r.status == CONVERGED and r.iterations == 60 for r in d.runs)
+    assert d.d_linear == pytest.approx(d_l, rel=1e-8)
+    assert d.d_quadratic == pytest.approx(d_q, rel=1e-8)
+    assert d.mesh_spread == pytest.approx(0.1, rel=1e-8)
+    assert d.drag_coefficient == pytest.approx(d_q / (0.5 * res.density * 1.0), rel=1e-8)
+    out = res.to_dict()["dofs"][0]
+    assert out["X_uu"] == pytest.approx(-d_q) and out["X_u"] == pytest.approx(-d_l)
+    text = res.text()
+    assert f"{-d_q:.4g}" in text and "10.0%" in text and "NOT CONVERGED" not in text

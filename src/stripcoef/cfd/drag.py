@@ -151,13 +151,10 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
         fine = [r for r in runs if r.level == levels[-1]]
         d_l, d_q = fit_damping([r.speed for r in fine], [r.force for r in fine])
         spread = None
-        if len(levels) > 1:
-            coarse = runs[-1]
-            _, d_q0 = fit_damping([coarse.speed], [coarse.force])
-            spread = abs(d_q - d_q0) / abs(d_q) if d_q else float("inf")
-            if len(fine) > 1:        # compare at the same speed
-                _, d_qf = fit_damping([fine[0].speed], [fine[0].force])
-                spread = abs(d_qf - d_q0) / abs(d_qf) if d_qf else float("inf")
+        if len(levels) > 1:          # the two levels at the first speed
+            _, d_q0 = fit_damping([runs[-1].speed], [runs[-1].force])
+            _, d_qf = fit_damping([fine[0].speed], [fine[0].force])
+            spread = abs(d_qf - d_q0) / abs(d_qf) if d_qf else float("inf")
         cd = None if rotation else d_q / (0.5 * fluid.density * area)
         dof_results.append(DofResult(dof=dof, runs=tuple(runs), d_linear=d_l, d_quadratic=d_q,
                                      mesh_spread=spread, drag_coefficient=cd,
