@@ -178,7 +178,8 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
                          swing=float("inf"), force_vector=nan3, moment_vector=nan3,
                          case=str(case.folder),
                          note=outcome.solver_error or "no force written",
-                         cpu_seconds=outcome.cpu_seconds)
+                         cpu_seconds=outcome.cpu_seconds,
+                         wall_seconds=outcome.wall_seconds)
     series = (hist.moment if rotation else hist.force)[:, axis]
     s = settle(series)
     n = s.window
@@ -192,4 +193,5 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
                      swing=s.spread,
                      force_vector=tuple(float(v) for v in hist.force[-n:].mean(axis=0)),
                      moment_vector=tuple(float(v) for v in hist.moment[-n:].mean(axis=0)),
-                     case=str(case.folder), note=note, cpu_seconds=outcome.cpu_seconds)
+                     case=str(case.folder), note=note, cpu_seconds=outcome.cpu_seconds,
+                     wall_seconds=outcome.wall_seconds)

@@ -214,3 +214,10 @@ def mesh_report(text: str) -> tuple[int, dict, int]:
                 patches[parts[0]] = int(parts[1])
     m = re.search(r"Failed (\d+) mesh checks", text)
     return cells, patches, int(m.group(1)) if m else 0
+
+
+def execution_time(text: str) -> float:
+    """The last ``ExecutionTime = T s`` of an OpenFOAM log [s] (CPU time of the master
+    rank; 0 if none)."""
+    found = re.findall(r"ExecutionTime = ([0-9.eE+-]+) s", text)
+    return float(found[-1]) if found else 0.0

@@ -91,8 +91,8 @@ class RunResult:
         The case folder.
     note : str
         Why it is not converged, the failed mesh checks.
-    cpu_seconds : float
-        Wall-clock time times ranks [s].
+    cpu_seconds, wall_seconds : float
+        CPU time of OpenFOAM's programs, all ranks [s]; wall-clock time of the run [s].
     """
 
     dof: str
@@ -108,6 +108,7 @@ class RunResult:
     case: str
     note: str = ""
     cpu_seconds: float = 0.0
+    wall_seconds: float = 0.0
 
     @property
     def converged(self) -> bool:
@@ -118,7 +119,8 @@ class RunResult:
                 "iterations": self.iterations, "status": self.status, "force": self.force,
                 "swing": self.swing, "force_vector": list(self.force_vector),
                 "moment_vector": list(self.moment_vector), "case": self.case,
-                "note": self.note, "cpu_seconds": self.cpu_seconds}
+                "note": self.note, "cpu_seconds": self.cpu_seconds,
+                "wall_seconds": self.wall_seconds}
 
 
 @dataclass(frozen=True)
@@ -241,7 +243,8 @@ class CfdResult:
                 note = f" ({r.note})" if r.note else ""
                 lines.append(f"    {d.dof:6s} {r.speed:.4g} {unit}, level {r.level}, "
                              f"{r.cells} cells, {r.iterations} it: {r.force:.5g} {fu} "
-                             f"(swing {100 * r.swing:.1f}%){mark}{note}")
+                             f"(swing {100 * r.swing:.1f}%), {r.cpu_seconds / 60:.1f} CPU-min"
+                             f"{mark}{note}")
         lines.append("  mesh: the relative change of d_Q from the coarser to the finer mesh "
                      "(the discretisation error estimate)")
         return "\n".join(lines) + "\n"

@@ -21,7 +21,14 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.cfd.case import CaseFiles, copy_fields_shell
-from stripcoef.cfd.forces import FORCE_TOLERANCE, fatal_line, mesh_report, read_forces, read_log
+from stripcoef.cfd.forces import (
+    FORCE_TOLERANCE,
+    execution_time,
+    fatal_line,
+    mesh_report,
+    read_forces,
+    read_log,
+)
 from stripcoef.errors import ExternalToolError
 
 #: The Debian package that provides OpenFOAM, named in the error when it is missing.
@@ -82,7 +89,10 @@ class RunOutcome:
     solver_error : str
         Why simpleFoam stopped early ("" if it did not).
     cpu_seconds : float
-        Wall-clock time of the run times the ranks [s] (an upper bound of the CPU time).
+        CPU time [s]: OpenFOAM's ``ExecutionTime`` of each program (the master rank's CPU
+        time) times the ranks it ran on, summed.
+    wall_seconds : float
+        Wall-clock time of the run [s].
     """
 
     cells: int
@@ -91,6 +101,7 @@ class RunOutcome:
     residuals_met: bool
     solver_error: str
     cpu_seconds: float
+    wall_seconds: float = 0.0
 
 
 def _app(cmd: tuple) -> str:
@@ -115,6 +126,7 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
     cells, failed, patches = 0, 0, {}
     state = None
     solver_error = ""
+    cpu = 0.0
     for cmd in case.commands:
         if cmd[0] == "stripcoef-copy-fields":
             subprocess.run(["bash", "-c", copy_fields_shell(case.spec.ranks)], cwd=folder,
@@ -144,6 +156,7 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
                 proc.wait()
                 raise
         text = log.read_text(errors="replace")
+        cpu += execution_time(text) * (case.spec.ranks if cmd[0] == "mpirun" else 1)
         if app == "checkMesh":
             cells, patches, failed = mesh_report(text)
             if patches.get("body", 0) == 0:
@@ -164,7 +177,7 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
     return RunOutcome(cells=cells, failed_checks=failed,
                       iterations=state.iteration if state else 0,
                       residuals_met=bool(state and state.converged), solver_error=solver_error,
-                      cpu_seconds=(time.monotonic() - started) * case.spec.ranks)
+                      cpu_seconds=cpu, wall_seconds=time.monotonic() - started)
 
 
 #: Early stop: simpleFoam is told to write and stop once the force along the motion moved by
