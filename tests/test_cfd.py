@@ -202,6 +202,9 @@ def test_log_reader():
     err = "[1] --> FOAM FATAL ERROR: \n[1] \n[1]     Maximum number of iterations exceeded\n"
     assert fatal_line(err) == "Maximum number of iterations exceeded"
     assert "diverged" in fatal_line("#0 Foam::sigFpe::sigHandler(int)")
+    header = "sigFpe : Enabling floating point exception trapping (FOAM_SIGFPE).\n"
+    assert fatal_line(header + "End\n") == ""
+    assert fatal_line(header + err) == "Maximum number of iterations exceeded"
     cm = ("    cells:            6642\n\nChecking patch topology\n"
           "                   Patch    Faces   Points\n"
           "                   inlet      121      144\n"

@@ -371,7 +371,8 @@ def fv_schemes() -> str:
                            "div(phi,U)": "bounded Gauss linearUpwind grad(U)",
                            "div(phi,k)": "bounded Gauss upwind",
                            "div(phi,omega)": "bounded Gauss upwind",
-                           "div((nuEff*dev2(T(grad(U)))))": "Gauss linear"},
+                           "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
+                           "div(div(phi,U))": "Gauss linear"},        # potentialFoam -writep
             "laplacianSchemes": {"default": "Gauss linear limited corrected 0.33"},
             "interpolationSchemes": {"default": "linear"},
             "snGradSchemes": {"default": "limited corrected 0.33"},
@@ -454,7 +455,7 @@ def commands(spec: CaseSpec) -> tuple:
         out.append(mpi + ("topoSet",) + pflag)
     out.append(("stripcoef-copy-fields",))
     if not spec.rotation:
-        out.append(mpi + ("potentialFoam",) + pflag)
+        out.append(mpi + ("potentialFoam", "-writep") + pflag)
     out.append(mpi + ("simpleFoam",) + pflag)
     return tuple(out)
 

@@ -196,8 +196,9 @@ def fatal_line(text: str) -> str:
                 if msg:
                     return msg
             return line.strip()
-        if "Floating point exception" in line or "sigFpe" in line:
-            return "floating point exception (the solution diverged)"
+    # the header's "sigFpe : Enabling floating point exception trapping" is no error
+    if "sigFpe::sigHandler" in text or "Floating point exception" in text:
+        return "floating point exception (the solution diverged)"
     return ""
 
 
