@@ -384,3 +384,29 @@ def test_pipeline_fit_and_mesh_spread_on_a_fake_solver(monkeypatch, tmp_path):
     assert out["X_uu"] == pytest.approx(-d_q) and out["X_u"] == pytest.approx(-d_l)
     text = res.text()
     assert f"{-d_q:.4g}" in text and "10.0%" in text and "NOT CONVERGED" not in text
+
+
+def test_early_stop_on_a_settled_limit_cycle(tmp_path):
+    """A force on a 1 % limit cycle about a settled mean stops the run; a drifting one not."""
+    from stripcoef.cfd.runner import settled_early, stop_now
+
+    spec, box = _spec()
+    case = write_case(tmp_path / "c", spec, box)
+    d = case.folder / "postProcessing" / "forces" / "0"
+    d.mkdir(parents=True)
+
+    def write(values):
+        rows = "".join(f"{i + 1} ({v} 0 0) ({v} 0 0) (0 0 0)\n" for i, v in enumerate(values))
+        (d / "force.dat").write_text(rows)
+        (d / "moment.dat").write_text("".join(f"{i + 1} (0 0 0) (0 0 0) (0 0 0)\n"
+                                              for i in range(len(values))))
+
+    i = np.arange(400)
+    write(-100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25)))
+    assert settled_early(case.folder, spec)
+    write(-100.0 * (1 + 0.0002 * i))                      # drifts 2 % per 100 iterations
+    assert not settled_early(case.folder, spec)
+    write(-100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25))[:250])   # too early
+    assert not settled_early(case.folder, spec)
+    stop_now(case.folder)
+    assert _read(case.folder, "system/controlDict")["stopAt"] == "writeNow"
