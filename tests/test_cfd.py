@@ -410,3 +410,20 @@ def test_early_stop_on_a_settled_limit_cycle(tmp_path):
     assert not settled_early(case.folder, spec)
     stop_now(case.folder)
     assert _read(case.folder, "system/controlDict")["stopAt"] == "writeNow"
+
+
+def test_rewriting_a_case_replaces_it_and_a_foreign_folder_is_refused(tmp_path):
+    from stripcoef.errors import InputError
+
+    spec, box = _spec()
+    case = write_case(tmp_path / "c", spec, box)
+    stale = case.folder / "processor0" / "1000"
+    stale.mkdir(parents=True)
+    write_case(tmp_path / "c", spec, box)
+    assert not stale.exists() and (case.folder / "Allrun").is_file()
+    other = tmp_path / "mine"
+    other.mkdir()
+    (other / "notes.txt").write_text("keep")
+    with pytest.raises(InputError, match="not a case stripcoef wrote"):
+        write_case(other, spec, box)
+    assert (other / "notes.txt").read_text() == "keep"

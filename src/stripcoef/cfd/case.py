@@ -24,6 +24,7 @@ an ``Allrun`` script that runs it unchanged on another machine or a cluster node
 from __future__ import annotations
 
 import shlex
+import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -354,7 +355,7 @@ def control_dict(spec: CaseSpec) -> str:
             "rhoInf": spec.density, "CofR": cofr, "dragDir": [-v for v in e],
             "liftDir": lift, "pitchAxis": pitch, "magUInf": spec.speed, "lRef": spec.length,
             "Aref": spec.reference_area}
-    body = {"application": "simpleFoam", "startFrom": "latestTime", "startTime": 0,
+    body = {"application": "simpleFoam", "startFrom": "startTime", "startTime": 0,
             "stopAt": "endTime", "endTime": spec.iterations, "deltaT": 1,
             "writeControl": "timeStep", "writeInterval": spec.iterations, "purgeWrite": 1,
             "writeFormat": "ascii", "writePrecision": 8, "writeCompression": False,
@@ -471,7 +472,7 @@ def allrun(spec: CaseSpec) -> str:
     """A bash script that runs the case as :func:`commands` lists it (each log in
     ``log.<application>``); OpenFOAM's environment from Debian's package (v1912) unless one
     is set already."""
-    lines = ["#!/bin/bash", "# written by stripcoef: runs this case as `stripcoef cfd` did",
+    lines = ["#!/bin/bash", f"{MARK}: runs this case as `stripcoef cfd` did",
              "set -e", "cd \"$(dirname \"$0\")\"",
              ': "${WM_PROJECT_DIR:=/usr/share/openfoam}"', "export WM_PROJECT_DIR"]
     for cmd in commands(spec):
@@ -508,6 +509,7 @@ def write_case(folder, spec: CaseSpec, surface) -> CaseFiles:
     ``constant/triSurface/body.stl``.
     """
     folder = Path(folder)
+    _clear(folder)
     bg = background(spec)
     files = {"system/blockMeshDict": block_mesh_dict(spec, bg),
              "system/snappyHexMeshDict": snappy_dict(spec, bg),
@@ -538,6 +540,30 @@ def write_case(folder, spec: CaseSpec, surface) -> CaseFiles:
         raise InputError(f"cannot write the case ({exc.strerror or exc})", key="case_dir",
                          value=str(folder), expected="a writable folder") from None
     return CaseFiles(folder=folder, commands=commands(spec), background=bg, spec=spec)
+
+
+#: The first line of the Allrun script that marks a folder as a case stripcoef wrote.
+MARK = "# written by stripcoef"
+
+
+def _clear(folder: Path) -> None:
+    """Remove an earlier case of stripcoef at ``folder`` (its meshes, times and force files
+    would mix with the new run's); a folder that is not one is left alone and refused."""
+    if not folder.exists():
+        return
+    run = folder / "Allrun"
+    if folder.is_dir() and not any(folder.iterdir()):
+        return
+    if not (folder.is_dir() and run.is_file() and MARK in run.read_text(errors="replace")):
+        raise InputError("exists and is not a case stripcoef wrote", key="case_dir",
+                         value=str(folder), expected="a new folder, or one an earlier "
+                         "`stripcoef cfd` wrote (it is replaced)")
+    try:
+        shutil.rmtree(folder)
+    except OSError as exc:
+        raise InputError(f"cannot replace the earlier case ({exc.strerror or exc})",
+                         key="case_dir", value=str(folder),
+                         expected="a folder this user may write") from None
 
 
 def mrf_extent(vertices, reference_point, axis: int, margin: float) -> tuple[float, float]:
