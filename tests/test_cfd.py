@@ -24,7 +24,14 @@ from stripcoef.cfd.case import (
 )
 from stripcoef.cfd.drag import drag_by_cfd, frontal_area
 from stripcoef.cfd.foamdict import parse
-from stripcoef.cfd.forces import fatal_line, mesh_report, read_forces, read_log, settle
+from stripcoef.cfd.forces import (
+    Settled,
+    fatal_line,
+    mesh_report,
+    read_forces,
+    read_log,
+    settle,
+)
 from stripcoef.cfd.result import CONVERGED, DIVERGED, NOT_CONVERGED, fit_damping, judge
 from stripcoef.cfd.runner import openfoam_environment
 from stripcoef.errors import ExternalToolError
@@ -170,7 +177,7 @@ def test_force_reader_on_real_openfoam_output():
     assert np.allclose(hist.force, hist.pressure_force + hist.viscous_force, rtol=1e-6,
                        atol=1e-6)
     s = settle(hist.force[:, 0])
-    assert s.finite and s.spread < 0.02
+    assert s.finite and s.spread < 0.02 and s.window == 30 and s.settled
     assert -s.value / 500.0 == pytest.approx(1.06, abs=0.01)
 
 
@@ -223,10 +230,15 @@ def test_damping_fit_from_two_speeds_exact():
 
 
 def test_judge_marks_runs():
-    assert judge(-5.0, 0.001, True, False, "", 300)[0] == CONVERGED
-    assert judge(-5.0, 0.3, True, False, "", 1000)[0] == NOT_CONVERGED
-    assert judge(float("nan"), 0.0, False, False, "", 10)[0] == DIVERGED
-    assert judge(-5.0, 0.0, True, False, "floating point exception", 10)[0] == DIVERGED
+    def st(value=-5.0, spread=0.01, drift=0.001, finite=True):
+        return Settled(value=value, spread=spread, drift=drift, window=100, finite=finite)
+
+    assert judge(st(), False, "", 300)[0] == CONVERGED
+    assert judge(st(spread=0.3), False, "", 1000)[0] == NOT_CONVERGED     # a wide swing
+    assert judge(st(drift=0.02), False, "", 1000)[0] == NOT_CONVERGED     # a drifting mean
+    assert judge(st(drift=0.02), True, "", 400)[0] == CONVERGED           # residuals met
+    assert judge(st(value=float("nan"), finite=False), False, "", 10)[0] == DIVERGED
+    assert judge(st(), False, "floating point exception", 10)[0] == DIVERGED
 
 
 def test_openfoam_missing_is_one_line(capsys, monkeypatch, tmp_path):
@@ -405,6 +417,8 @@ def test_early_stop_on_a_settled_limit_cycle(tmp_path):
     write(-100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25)))
     assert settled_early(case.folder, spec)
     write(-100.0 * (1 + 0.0002 * i))                      # drifts 2 % per 100 iterations
+    assert not settled_early(case.folder, spec)
+    write(-100.0 * (1 + 0.08 * np.sin(2 * np.pi * i / 25)))   # swings 16 %
     assert not settled_early(case.folder, spec)
     write(-100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25))[:250])   # too early
     assert not settled_early(case.folder, spec)

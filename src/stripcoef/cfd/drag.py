@@ -175,7 +175,7 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
         nan3 = (float("nan"),) * 3
         return RunResult(dof=dof, speed=value, level=level, cells=outcome.cells,
                          iterations=outcome.iterations, status="diverged", force=float("nan"),
-                         swing=float("inf"), force_vector=nan3, moment_vector=nan3,
+                         swing=float("inf"), drift=float("inf"), force_vector=nan3, moment_vector=nan3,
                          case=str(case.folder),
                          note=outcome.solver_error or "no force written",
                          cpu_seconds=outcome.cpu_seconds,
@@ -183,14 +183,13 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
     series = (hist.moment if rotation else hist.force)[:, axis]
     s = settle(series)
     n = s.window
-    status, note = judge(s.value, s.spread, s.finite, outcome.residuals_met,
-                         outcome.solver_error, outcome.iterations)
+    status, note = judge(s, outcome.residuals_met, outcome.solver_error, outcome.iterations)
     if outcome.failed_checks:
         note = (note + "; " if note else "") + \
             f"checkMesh failed {outcome.failed_checks} check(s)"
     return RunResult(dof=dof, speed=value, level=level, cells=outcome.cells,
                      iterations=outcome.iterations, status=status, force=s.value,
-                     swing=s.spread,
+                     swing=s.spread, drift=s.drift,
                      force_vector=tuple(float(v) for v in hist.force[-n:].mean(axis=0)),
                      moment_vector=tuple(float(v) for v in hist.moment[-n:].mean(axis=0)),
                      case=str(case.folder), note=note, cpu_seconds=outcome.cpu_seconds,

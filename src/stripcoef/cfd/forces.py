@@ -100,9 +100,12 @@ class Settled:
     Attributes
     ----------
     value : float
-        Mean over the last :data:`WINDOW` of the iterations (at least :data:`MIN_WINDOW`).
+        Mean over the last :data:`WINDOW` iterations (half the history if shorter).
     spread : float
-        Peak-to-peak over that window relative to ``|value|`` [-].
+        Peak-to-peak over that window relative to ``|value|`` [-] (the swing).
+    drift : float
+        Change of that mean from the window before, relative to ``|value|`` [-] (infinite
+        without a window before).
     window : int
         Iterations averaged.
     finite : bool
@@ -111,30 +114,43 @@ class Settled:
 
     value: float
     spread: float
+    drift: float
     window: int
     finite: bool
 
+    @property
+    def settled(self) -> bool:
+        """The mean has settled (:data:`DRIFT_TOLERANCE`) and the swing is bounded
+        (:data:`SWING_TOLERANCE`)."""
+        return self.finite and self.drift < DRIFT_TOLERANCE and self.spread < SWING_TOLERANCE
 
-#: Share of the iterations averaged at the end of a steady run, and the fewest.
-WINDOW = 0.2
-MIN_WINDOW = 50
-#: Largest peak-to-peak over the window, relative to its mean, of a settled force [-]. Steady
-#: RANS of a bluff body often oscillates on a limit cycle (an unsteady wake): the mean of the
-#: window is then reported and the run marked not converged when the swing is wider.
-FORCE_TOLERANCE = 0.02
+
+#: Iterations averaged at the end of a steady run.
+WINDOW = 100
+#: Largest change of the mean force from one window to the one before, relative to it [-].
+DRIFT_TOLERANCE = 0.005
+#: Largest peak-to-peak of the force over the window, relative to its mean [-]. Steady RANS of
+#: a bluff body often settles on a limit cycle (an unsteady wake it cannot follow) that never
+#: meets the residual criterion; the mean over the window is then the value, the swing is
+#: reported beside it, and a wider swing marks the run not converged.
+SWING_TOLERANCE = 0.10
 
 
 def settle(values) -> Settled:
-    """The mean of the last :data:`WINDOW` of ``values`` and its relative peak-to-peak."""
+    """The mean of the last :data:`WINDOW` of ``values``, its swing and its drift."""
     v = np.asarray(values, float)
     if v.size == 0:
-        return Settled(value=float("nan"), spread=float("inf"), window=0, finite=False)
+        return Settled(value=float("nan"), spread=float("inf"), drift=float("inf"), window=0,
+                       finite=False)
     finite = bool(np.all(np.isfinite(v)))
-    n = min(v.size, max(MIN_WINDOW, int(round(WINDOW * v.size))))
-    w = v[-n:]
+    n = min(WINDOW, max(v.size // 2, 1))
+    w, before = v[-n:], v[-2 * n:-n]
     mean = float(np.mean(w))
-    spread = float((np.max(w) - np.min(w)) / abs(mean)) if finite and mean != 0 else float("inf")
-    return Settled(value=mean, spread=spread, window=int(n), finite=finite)
+    ok = finite and mean != 0
+    spread = float((np.max(w) - np.min(w)) / abs(mean)) if ok else float("inf")
+    drift = float(abs(mean - np.mean(before)) / abs(mean)) if ok and before.size else \
+        float("inf")
+    return Settled(value=mean, spread=spread, drift=drift, window=int(n), finite=finite)
 
 
 # ----------------------------------------------------------------------------- logs

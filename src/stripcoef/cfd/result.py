@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from stripcoef.cfd.forces import FORCE_TOLERANCE
+from stripcoef.cfd.forces import DRIFT_TOLERANCE, SWING_TOLERANCE, Settled
 from stripcoef.errors import InputError
 
 #: SNAME names of the linear and quadratic damping derivatives per DOF.
@@ -78,13 +78,15 @@ class RunResult:
     cells : int
     iterations : int
     status : str
-        ``converged``, ``not converged`` (the force still swings by more than the tolerance,
-        or the residuals and the force both missed) or ``diverged`` (a NaN, or the solver
-        stopped).
+        ``converged`` (the residuals met, or the mean force settled with a bounded swing:
+        :attr:`stripcoef.cfd.forces.Settled.settled`), ``not converged`` (neither) or
+        ``diverged`` (a NaN, or the solver stopped).
     force : float
-        Mean force [N] (moment [N m]) along the motion over the last iterations.
+        Mean force [N] (moment [N m]) along the motion over the last 100 iterations.
     swing : float
         Peak-to-peak of that force over the window, relative to it [-].
+    drift : float
+        Change of the mean from the window before, relative to it [-].
     force_vector, moment_vector : tuple
         Mean total force [N] and moment [N m] about the reference point, body axes.
     case : str
@@ -103,6 +105,7 @@ class RunResult:
     status: str
     force: float
     swing: float
+    drift: float
     force_vector: tuple
     moment_vector: tuple
     case: str
@@ -117,7 +120,7 @@ class RunResult:
     def to_dict(self) -> dict:
         return {"dof": self.dof, "speed": self.speed, "level": self.level, "cells": self.cells,
                 "iterations": self.iterations, "status": self.status, "force": self.force,
-                "swing": self.swing, "force_vector": list(self.force_vector),
+                "swing": self.swing, "drift": self.drift, "force_vector": list(self.force_vector),
                 "moment_vector": list(self.moment_vector), "case": self.case,
                 "note": self.note, "cpu_seconds": self.cpu_seconds,
                 "wall_seconds": self.wall_seconds}
@@ -243,21 +246,24 @@ class CfdResult:
                 note = f" ({r.note})" if r.note else ""
                 lines.append(f"    {d.dof:6s} {r.speed:.4g} {unit}, level {r.level}, "
                              f"{r.cells} cells, {r.iterations} it: {r.force:.5g} {fu} "
-                             f"(swing {100 * r.swing:.1f}%), {r.cpu_seconds / 60:.1f} CPU-min"
+                             f"(swing {100 * r.swing:.1f}%, drift {100 * r.drift:.2f}%), "
+                             f"{r.cpu_seconds / 60:.1f} CPU-min"
                              f"{mark}{note}")
         lines.append("  mesh: the relative change of d_Q from the coarser to the finer mesh "
                      "(the discretisation error estimate)")
         return "\n".join(lines) + "\n"
 
 
-def judge(run_force: float, swing: float, finite: bool, residuals_met: bool,
-          solver_error: str, iterations: int) -> tuple[str, str]:
+def judge(settled: Settled, residuals_met: bool, solver_error: str,
+          iterations: int) -> tuple[str, str]:
     """Status and note of a run from its settled force and how it ended."""
-    if solver_error or not finite or not math.isfinite(run_force):
+    if solver_error or not settled.finite or not math.isfinite(settled.value):
         return DIVERGED, solver_error or "non-finite force"
     if iterations == 0:
         return DIVERGED, "no iteration ran"
-    if residuals_met or swing <= FORCE_TOLERANCE:
+    if residuals_met or settled.settled:
         return CONVERGED, ""
-    return NOT_CONVERGED, (f"force swings {100 * swing:.1f}% over the last iterations "
-                           f"(tolerance {100 * FORCE_TOLERANCE:.0f}%); residuals not met")
+    return NOT_CONVERGED, (f"the mean force moved {100 * settled.drift:.2g}% over the last "
+                           f"{settled.window} iterations (tolerance "
+                           f"{100 * DRIFT_TOLERANCE:.1f}%), swing {100 * settled.spread:.2g}% "
+                           f"(tolerance {100 * SWING_TOLERANCE:.0f}%); residuals not met")

@@ -18,16 +18,16 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
 
 from stripcoef.cfd.case import CaseFiles, copy_fields_shell
 from stripcoef.cfd.forces import (
-    FORCE_TOLERANCE,
+    WINDOW,
     execution_time,
     fatal_line,
     mesh_report,
     read_forces,
     read_log,
+    settle,
 )
 from stripcoef.errors import ExternalToolError
 
@@ -180,31 +180,22 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
                       cpu_seconds=cpu, wall_seconds=time.monotonic() - started)
 
 
-#: Early stop: simpleFoam is told to write and stop once the mean force along the motion over
-#: the last EARLY_WINDOW iterations differs from the mean over the EARLY_WINDOW before by less
-#: than EARLY_TOLERANCE of it, and swings (peak to peak) by less than FORCE_TOLERANCE, after
-#: at least EARLY_MIN iterations. A bluff body's steady RANS often settles on a small limit
-#: cycle (a swing of 1-2 %) that never meets the residual criterion: its mean is the value.
-EARLY_WINDOW = 100
+#: Early stop: simpleFoam is told to write and stop once the force along the motion has
+#: settled (:attr:`stripcoef.cfd.forces.Settled.settled`: the mean of the last 100
+#: iterations within 0.5 % of the 100 before, the swing under 10 %), after EARLY_MIN
+#: iterations at least.
 EARLY_MIN = 300
-EARLY_TOLERANCE = 0.25 * FORCE_TOLERANCE
 
 
 def settled_early(folder: Path, spec) -> bool:
-    """Whether the force along the motion has settled (see :data:`EARLY_TOLERANCE`)."""
+    """Whether the force along the motion has settled after :data:`EARLY_MIN` iterations."""
     try:
         hist = read_forces(folder)
     except (OSError, ValueError, IndexError):
         return False
-    if hist.iteration.size < max(EARLY_MIN, 2 * EARLY_WINDOW):
+    if hist.iteration.size < max(EARLY_MIN, 2 * WINDOW):
         return False
-    v = (hist.moment if spec.rotation else hist.force)[-2 * EARLY_WINDOW:, spec.axis]
-    if not np.all(np.isfinite(v)):
-        return False
-    last, before = v[EARLY_WINDOW:], v[:EARLY_WINDOW]
-    mean = float(np.mean(last))
-    return bool(mean != 0 and abs(mean - np.mean(before)) / abs(mean) < EARLY_TOLERANCE
-                and (np.max(last) - np.min(last)) / abs(mean) < FORCE_TOLERANCE)
+    return settle((hist.moment if spec.rotation else hist.force)[:, spec.axis]).settled
 
 
 def stop_now(folder: Path) -> None:
