@@ -127,8 +127,11 @@ class Settled:
 
 #: Iterations averaged at the end of a steady run.
 WINDOW = 100
-#: Largest change of the mean force from one window to the one before, relative to it [-].
-DRIFT_TOLERANCE = 0.005
+#: Largest change of the mean force from one window to the one before, relative to it [-]:
+#: the mean of a limit cycle over a window that holds no whole number of its periods moves
+#: by about a third of its swing from window to window (the BlueROV2-sized box: 1.3 % at a
+#: 4 % swing), so the value is known to about this much.
+DRIFT_TOLERANCE = 0.02
 #: Largest peak-to-peak of the force over the window, relative to its mean [-]. Steady RANS of
 #: a bluff body often settles on a limit cycle (an unsteady wake it cannot follow) that never
 #: meets the residual criterion; the mean over the window is then the value, the swing is

@@ -182,7 +182,7 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
 
 #: Early stop: simpleFoam is told to write and stop once the force along the motion has
 #: settled (:attr:`stripcoef.cfd.forces.Settled.settled`: the mean of the last 100
-#: iterations within 0.5 % of the 100 before, the swing under 10 %), after EARLY_MIN
+#: iterations within 2 % of the 100 before, the swing under 10 %), after EARLY_MIN
 #: iterations at least.
 EARLY_MIN = 300
 
