@@ -66,6 +66,7 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
     (module docstring), or None when a simulation diverges."""
+    from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay
 
@@ -75,7 +76,17 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
     except StripcoefError:
         return None
     err = {i: [] for i in dofs}
-    for a, b in segments(t, horizon):
+    bounds = segments(t, horizon)
+    if supported(model, inputs):        # all segments at once (diagnose/freesim.py)
+        runs = batch_free_velocities(model, log, bounds, inputs, tolerances=tolerances)
+        if runs is None:
+            return None
+        zeros = np.zeros(t.size)
+        for (a, b), nu in zip(bounds, runs):
+            for i in dofs:
+                err[i].append(nu[:, i] - log.get(VELOCITIES[i], zeros)[a:b])
+        return [_rms(np.concatenate(err[i])) for i in dofs]
+    for a, b in bounds:
         part = log.slice(a, b)
         try:
             sim = replay(model, part, inputs=inputs.window(a, b),
