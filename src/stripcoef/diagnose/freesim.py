@@ -36,7 +36,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import RK45
 
-from stripcoef.effects.windows import coriolis_times_velocity, damping_times_velocity
 from stripcoef.model import restoring_forces
 
 #: Most integration steps per sample interval before a segment set counts as diverged (a
@@ -56,32 +55,53 @@ def _quat_matrices(q):
         axis=1)
 
 
+def _cross(a, b):
+    """Row-wise a x b of (S, 3) arrays (np.cross without its axis handling)."""
+    out = np.empty_like(a)
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
+
+
 class BatchRightHandSide:
-    """The state equation of S segments at once (module docstring); ``tau`` (S, 6) [N, N m]
-    the held applied force of each segment's current sample, set by :meth:`hold`."""
+    r"""The state equation of S segments at once (module docstring); ``tau`` (S, 6) [N, N m]
+    the held applied force of each segment's current sample, set by the caller.
+
+    :math:`C_{RB}(\nu)\nu + C_A(\nu)\nu = C_M(\nu)\nu` with :math:`M = M_{RB} + M_A`
+    (C is linear in the mass matrix, Fossen 2011, eq. 3.46: one product instead of two);
+    :math:`D(\nu)\nu = D_L\nu + D_Q(|\nu|\odot\nu) + u L\nu`
+    (:func:`stripcoef.effects.windows.damping_times_velocity`)."""
 
     def __init__(self, model, hooks=None, terms=None):
-        self.model = model
-        self.m_inv = np.linalg.inv(model.mass_matrix)
-        self.m_rb = np.asarray(model.rigid_body_mass, float)
-        self.m_a = np.asarray(model.added_mass, float)
+        self.m_inv_t = np.linalg.inv(model.mass_matrix).T
+        self.m_t = np.asarray(model.mass_matrix, float).T
+        self.dl_t = np.asarray(model.linear_damping, float).T
+        self.dq_t = np.asarray(model.quadratic_damping, float).T
+        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), float)
+        self.lift_t = lift.T if np.any(lift) else None
+        self.weight, self.buoyancy = model.weight, model.buoyancy
+        self.r_g, self.r_b = model.r_g, model.r_b
         self.terms = terms or []     # per segment: a list of scalar force laws
         self.hooks = hooks           # per segment: the hook of the current sample
-        self.r_g, self.r_b = model.r_g, model.r_b
         self.tau = None
 
     def __call__(self, times, x):
-        model = self.model
         quat, nu = x[:, 3:7], x[:, 7:]
+        v, w = nu[:, :3], nu[:, 3:]
         rmat = _quat_matrices(quat)
         phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
         theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
-        force = (self.tau - coriolis_times_velocity(self.m_rb, nu)
-                 - coriolis_times_velocity(self.m_a, nu) - damping_times_velocity(model, nu))
+        ab = nu @ self.m_t
+        force = self.tau - nu @ self.dl_t - (np.abs(nu) * nu) @ self.dq_t
+        force[:, :3] += _cross(ab[:, :3], w)
+        force[:, 3:] += _cross(ab[:, :3], v) + _cross(ab[:, 3:], w)
+        if self.lift_t is not None:
+            force -= nu[:, :1] * (nu @ self.lift_t)
         zeros = np.zeros_like(phi)
-        force = force - restoring_forces(np.array([zeros, zeros, zeros, phi, theta, zeros]),
-                                         weight=model.weight, buoyancy=model.buoyancy,
-                                         r_g=self.r_g, r_b=self.r_b).T
+        force -= restoring_forces(np.array([zeros, zeros, zeros, phi, theta, zeros]),
+                                  weight=self.weight, buoyancy=self.buoyancy,
+                                  r_g=self.r_g, r_b=self.r_b).T
         if any(self.terms):
             psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
             eta = np.column_stack([x[:, :3], phi, theta, psi])
@@ -90,13 +110,12 @@ class BatchRightHandSide:
                 hook["nu_r"] = nu[s]             # no current in a replay: nu_r = nu
                 for law in laws:
                     force[s] = force[s] + law(times[s], eta[s], nu[s], hook)
-        nu_dot = force @ self.m_inv.T
-        eps, q0, w = quat[:, :3], quat[:, 3], nu[:, 3:]
+        eps, q0 = quat[:, :3], quat[:, 3]
         out = np.empty_like(x)
-        out[:, :3] = np.einsum("sij,sj->si", rmat, nu[:, :3])
-        out[:, 3:6] = 0.5 * (q0[:, None] * w + np.cross(eps, w))
+        out[:, :3] = np.einsum("sij,sj->si", rmat, v)
+        out[:, 3:6] = 0.5 * (q0[:, None] * w + _cross(eps, w))
         out[:, 6] = -0.5 * np.sum(eps * w, axis=1)
-        out[:, 7:] = nu_dot
+        out[:, 7:] = force @ self.m_inv_t
         return out
 
 
@@ -114,14 +133,15 @@ def _interval(f, t0, h, x, rtol, atol):
         if steps > MAX_STEPS_PER_INTERVAL:
             return None
         ds = min(ds, 1.0 - s)
+        flat = k.reshape(7, -1)
         for i in range(1, 6):
-            xi = x + ds * np.tensordot(a[i, :i], k[:i], axes=(0, 0))
+            xi = x + ds * (a[i, :i] @ flat[:i]).reshape(x.shape)
             k[i] = f(t0 + (s + c[i] * ds) * h, xi) * hs
-        x_new = x + ds * np.tensordot(b, k[:6], axes=(0, 0))
+        x_new = x + ds * (b @ flat[:6]).reshape(x.shape)
         k[6] = f(t0 + (s + ds) * h, x_new) * hs
         if not np.all(np.isfinite(x_new)):
             return None
-        err = ds * np.tensordot(e, k, axes=(0, 0))
+        err = ds * (e @ flat).reshape(x.shape)
         scale = atol + rtol * np.maximum(np.abs(x), np.abs(x_new))
         norm = float(np.max(np.sqrt(np.mean((err / scale) ** 2, axis=1))))
         if norm <= 1.0:
