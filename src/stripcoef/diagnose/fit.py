@@ -31,6 +31,9 @@ from stripcoef.effects.windows import window_data
 
 #: The settings of a fit outside a diagnosis (:func:`fit_effects`, tests): the fixed bands.
 DEFAULTS = DiagnoseSettings()
+#: Most command levels the dead band's fine search evaluates between its coarse neighbours
+#: (:func:`_profile_hyper`) [-].
+FINE_LEVELS = 100
 
 
 # ---------------------------------------------------------------------------
@@ -424,6 +427,11 @@ def _profile_hyper(cfg: _Config, mask):
             rows[a:b] = True
         levels = np.unique(np.abs(cfg.data.commands[rows][:, act]))
         levels = levels[(levels >= lo) & (levels <= hi)]
+        if levels.size > FINE_LEVELS:
+            # a long log of continuous commands has thousands of levels here, each a pass
+            # over the log: every k-th level (the threshold is then known to the spacing of
+            # FINE_LEVELS levels, far below its uncertainty, the coarse grid's, _hyper_std)
+            levels = levels[np.round(np.linspace(0, levels.size - 1, FINE_LEVELS)).astype(int)]
         if levels.size >= 2:
             mids = 0.5 * (levels[1:] + levels[:-1])
             fine = np.array([cost(c) for c in mids])
