@@ -161,7 +161,7 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     (:func:`stripcoef.logfile.log_inputs` of the whole log): a list of (b - a, 6) arrays
     [m/s, rad/s], or None when a simulation diverges. Only for a model without control
     surfaces (:func:`supported`)."""
-    from stripcoef.effects.laws import effect_forces
+    from stripcoef.effects.laws import effect_force_terms
     from stripcoef.simulate import InputSampler, initial_state, state_vector
 
     t = np.asarray(log["t"], float)
@@ -175,9 +175,14 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     x = np.array([state_vector(*initial_state(log, int(a))[:2]) for a in starts])
     out = np.empty((len(bounds), int(lengths.max()), 6))
     out[:, 0] = x[:, 7:]
-    terms = hooks = None
+    terms = hooks = held = None
     if history:
-        terms = [effect_forces(model) for _ in bounds]
+        # each segment its own laws (a lag has a state); those of held effects
+        # (Effect.held: constant between samples) evaluated once per sample, the others at
+        # every evaluation of the right-hand side
+        laws = [effect_force_terms(model) for _ in bounds]
+        terms = [[law for eff, law in row if not eff.held] for row in laws]
+        held = [[law for eff, law in row if eff.held] for row in laws]
         names = sampler.names
         thrust_all = (np.column_stack([np.asarray(th.thrust(sampler.cmd[:, j]), float)
                                        .reshape(-1) for j, th in enumerate(sampler.thrusters)])
@@ -202,6 +207,11 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                             sampler.chan_names, sampler.chan_series[r])}
                             if sampler.chan_names else {})}
                        for s, r in zip(act, rows)]
+            for j, (s, r) in enumerate(zip(act, rows)):
+                hook = f.hooks[j]
+                hook["nu_r"] = x[s, 7:]
+                for law in held[s]:          # the state is not read by a held law
+                    f.tau[j] = f.tau[j] + law(t[r], np.zeros(6), x[s, 7:], hook)
         h = t[rows + 1] - t[rows]
         xa = _interval(f, t[rows], h, x[act], rtol, atol)
         if xa is None:

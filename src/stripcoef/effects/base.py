@@ -157,6 +157,10 @@ class Effect:
 
     #: the force depends only on the applied inputs (window-averaged exactly as a held input)
     input_driven = False
+    #: the force law depends on nothing but the inputs of the sample being held (not on the
+    #: time within the interval, nor on the state): constant between two samples, so a
+    #: free simulation evaluates it once per sample (stripcoef.diagnose.freesim)
+    held = False
 
     def implausible(self, params: dict, data=None, dof=None) -> str:
         """Why the parameters are physically impossible for this log ('' if they are not)."""

@@ -173,6 +173,7 @@ class BuoyancyOffset(Effect):
         return "a bias"
 
     input_driven = True
+    held = True
 
     def own_design(self, data, dof, hyper=None):
         return None, np.ones((data.n_windows, 1))

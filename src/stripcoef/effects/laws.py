@@ -61,6 +61,12 @@ def effect_forces(model) -> list:
     Native effects (linear drag, dead band, added mass) are already folded into the model's
     matrices and thrusters by :meth:`Effect.apply` and are skipped here.
     """
+    return [law for _, law in effect_force_terms(model)]
+
+
+def effect_force_terms(model) -> list:
+    """(effect, force law) of each of a model's effects that is not native
+    (:func:`effect_forces`, with the effect, e.g. to ask whether it is :attr:`Effect.held`)."""
     out = []
     for k, entry in enumerate(model.effects):
         if not isinstance(entry, Mapping) or "name" not in entry:
@@ -70,7 +76,7 @@ def effect_forces(model) -> list:
         if eff.native:
             continue
         dof, params = _entry(eff, entry, k)
-        out.append(eff.force_law(params, dof))
+        out.append((eff, eff.force_law(params, dof)))
     return out
 
 

@@ -98,6 +98,7 @@ class ThrustAsymmetry(Effect):
         return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
 
     input_driven = True
+    held = True
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F_i = (eta_+ - 1) F+_i + (eta_- - 1) F-_i, eta [-], F+-_i [N or N m];
@@ -232,6 +233,7 @@ class ThrustEffectiveness(Effect):
     source = "Fossen (2011) sec. 6.7; Indiveri 1998 eq. 4.16"
     parameters = {"scale": "-"}
     input_driven = True
+    held = True
     #: its regressor scales the prior's whole force balance (see the diagnosis's bands test)
     scales_prior = True
     #: plausible range of the scale [-]: at least 5 % and at most twice the prior's map
