@@ -166,7 +166,8 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
                                   section_panels=section_panels)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
-    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb)
+    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb, speed=speed,
+                                             viscosity=nu)
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
                             corrections=corrections, density=rho, kinematic_viscosity=nu,
