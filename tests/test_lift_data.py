@@ -258,31 +258,37 @@ def test_stock_lift_slopes():
 _BODY = ("Hopkins's separation station (0.825 l on SUBOFF, correlated on missile boat-tails) is "
          "too far forward for SUBOFF's streamlined afterbody, whose flow stays attached longer: the "
          "slender-body lift is 2.8 times the bare hull's Y'_v and its moment too small")
+_FIN = ("each plane's own force is 1.84 /rad on the printed area against 1.42 deflected and "
+        "1.23 in drift on its stock (+30 %, +50 %; Helmbold 2.08 x k_W(B) 0.94 x boundary-layer "
+        "q 0.91): the flat-plate boundary layer underestimates the closing afterbody's, and the "
+        "slowed potential flow at the stern is not modelled")
 #: (configuration, derivative) -> why the slender-body model misses the issue's tolerance.
 KNOWN_MISSES = {
     (3, "Nv"): "bare hull N'_v 0.72 of measured (tolerance 10 %): " + _BODY,
     (6, "Nv"): "hull + ring N'_v 0.71 of measured, the bare hull's model (no ring wing built): " + _BODY,
-    (4, "Yv"): "hull + sail Y'_v 1.51 times measured: " + _BODY,
-    (5, "Yv"): "hull + planes Y'_v 2.14 times measured: " + _BODY + "; the planes' own lift is "
-               "also 47-69 % above their measured stock force",
-    (5, "Nv"): "hull + planes N'_v 0.62 of measured: " + _BODY + "; the too-strong planes add "
+    (4, "Yv"): "hull + sail Y'_v 1.49 times measured: " + _BODY,
+    (5, "Yv"): "hull + planes Y'_v 2.29 times measured: " + _BODY + "; " + _FIN,
+    (5, "Nv"): "hull + planes N'_v 0.56 of measured: " + _BODY + "; the too-strong planes add "
                "a stabilising moment",
-    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.46 times measured: " + _BODY,
-    (2, "Nv"): "fully appended N'_v 0.84 of measured (tolerance 15 %): " + _BODY,
-    (1, "Zw"): "configuration 1 Z'_w 1.61 times measured: " + _BODY,
-    (1, "Mw"): "configuration 1 M'_w 0.67 of measured: " + _BODY,
-    (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0011: the "
-               "sail's rotary force (-0.0018 about the moment point, from its lever 3 ft forward) "
-               "does not cancel the body's +0.0054",
-    (4, "Nr"): "hull + sail N'_r 1.56 times measured: the body's N'_r (bare hull 1.65 times) "
+    (5, "Yr"): "hull + planes Y'_r 1.37 times measured (tolerance 25 %): the body's Y'_r is 3 "
+               "times the bare hull's; " + _FIN,
+    (5, "Nr"): "hull + planes N'_r 1.27 times measured (tolerance 25 %): the body's N'_r is "
+               "1.65 times the bare hull's; " + _FIN,
+    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.50 times measured: " + _BODY,
+    (2, "Nv"): "fully appended N'_v 0.79 of measured (tolerance 15 %): " + _BODY,
+    (1, "Zw"): "configuration 1 Z'_w 1.73 times measured: " + _BODY,
+    (1, "Mw"): "configuration 1 M'_w 0.61 of measured: " + _BODY,
+    (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0012: the "
+               "sail's rotary force (about -0.0018 about the moment point, from its lever 3 ft "
+               "forward) does not cancel the body's +0.0054",
+    (4, "Nr"): "hull + sail N'_r 1.55 times measured: the body's N'_r (bare hull 1.65 times) "
                "carried over",
-    (5, "Yr"): "hull + planes Y'_r 1.26 times measured (tolerance 25 %): the body's Y'_r is 3 "
-               "times the bare hull's and the planes' own lift 47-69 % too strong",
-    (2, "Yr"): "fully appended Y'_r 0.70 of measured: the ring wing is not built; its measured "
-               "increment (configuration 6 - 3: +0.0020) would bring the model to 1.08",
-    (2, "Ndr"): "N'_dr 1.16 times measured (tolerance 15 %): the isolated fin is 47 % above the "
-                "measured stock force in deflection and the carry-over onto the afterbody is "
-                "missing; the two nearly cancel",
+    (2, "Ydr"): "Y'_dr 1.27 times measured (tolerance 15 %): the carry-over onto the afterbody "
+                "is right (model 1.49, measured 1.53 times the stock forces), so " + _FIN,
+    (2, "Ndr"): "N'_dr 1.48 times measured (tolerance 15 %): " + _FIN + "; the lever of the "
+                "carry-over at the fin's quarter chord",
+    (1, "Zds"): "Z'_ds 1.34 times measured (tolerance 15 %): " + _FIN,
+    (1, "Mds"): "M'_ds 1.36 times measured (tolerance 15 %): " + _FIN,
     (3, "Yv"): "bare hull Y'_v 2.78 times measured (the issue asks only for the error stated): "
                + _BODY,
     (6, "Yv"): "hull + ring Y'_v 2.78 times measured (error stated only): " + _BODY,
@@ -313,27 +319,34 @@ def test_slender_body_lift_fixes_the_rotary_signs_that_hoerners_form_misses():
     assert bare_yr["hoerner"] < 0 < bare_yr["measured"]          # Hoerner: wrong sign
     assert abs(bare_nr["hoerner"]) < 0.01 * abs(bare_nr["measured"])  # Hoerner: nothing
     assert bare_yr["slender"] > 0 and bare_nr["slender"] < 0
-    for c, n in ((1, "Zq"), (1, "Mq"), (2, "Nr")):             # within 6 % fully appended
-        assert rows[(c, n)]["ratio"] == pytest.approx(1.0, abs=0.06)
+    for c, n in ((1, "Zq"), (1, "Mq"), (2, "Yr"), (2, "Nr")):   # the issue's 25 %, appended
+        assert rows[(c, n)]["ratio"] == pytest.approx(1.0, abs=0.25)
 
 
-@pytest.mark.xfail(strict=True, reason="one stern plane's own lift: Helmbold 2.08 /rad (AR_e 1.53) "
-                   "against 1.23 /rad measured on the stock in drift (+69 %) and 1.42 /rad deflected "
-                   "(+47 %): the thick NACA 0020 section in the afterbody's boundary layer lifts less "
-                   "than an isolated thin fin, and no published method for that was found in reach")
+def test_stern_plane_carry_over_against_the_stock():
+    """The whole-body force of the two deflected rudders over their own (stock) forces: Roddy's
+    Y'_dr over twice the stock force, 1.53, against slender-body theory's (k_W(B) + k_B(W)) /
+    k_W(B) at tau = R/s of the planes' mid-chord root, 1.49 (Pitts, Nielsen & Kaattari 1957;
+    nothing fitted). Tolerance 10 %: Roddy's control uncertainty (6-10 %)."""
+    from validation.lift import measured_carry_over, model_stock_slopes
+    assert measured_carry_over() == pytest.approx(1.529, abs=0.005)
+    assert model_stock_slopes()["carry"] == pytest.approx(measured_carry_over(), rel=0.10)
+
+
+@pytest.mark.xfail(strict=True, reason="one stern plane's own force (body_lift: slender): " + _FIN)
 def test_stern_plane_own_force_against_the_stock():
-    from stripcoef.hull.lift import fin_lift_slope
-    ar = suboff_model(5).conditions.lift["fin_lift"][0]["aspect_ratio"]
-    s = stock_lift_slopes()
-    for measured in (s["drift"], s["rudder"]):
-        assert float(fin_lift_slope(ar)) == pytest.approx(measured, rel=0.20)
+    """Each fin's own force within 20 % of the measured stock force (the issue's tolerance)."""
+    from validation.lift import model_stock_slopes
+    model, s = model_stock_slopes(), stock_lift_slopes()
+    for key in ("drift", "rudder", "sternplane"):
+        assert model[key] == pytest.approx(s[key], rel=0.20), key
 
 
-@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.3-4.4 times Roddy's from 4 to 16 deg "
-                   "(configurations 2-5, both body-lift methods): the linear body lift is too large "
+@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.25-2.7 times Roddy's from 4 to 16 deg "
+                   "(configurations 2-5, body_lift: slender): the linear body lift is too large "
                    "(Hopkins's station) and the strips' linear damping D_L adds a second linear sway "
-                   "force at 6.5 knots; N'(beta) with the slender-body lift is within 20 % from 8 deg "
-                   "for configurations 2 and 4 only")
+                   "force at 6.5 knots; N'(beta) is within 20 % from 8 deg for configurations 2 "
+                   "and 4, and configuration 3 from 12 deg")
 def test_drift_curves_within_20_percent():
     for c in drift_curve_comparisons():
         if c["method"] == "slender":

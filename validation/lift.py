@@ -134,6 +134,30 @@ def stock_lift_slopes() -> dict:
     return out
 
 
+def model_stock_slopes(config: int = 5) -> dict:
+    """The model's own lift slope [1/rad] of one SUBOFF stern plane, on the printed area (Table
+    1, 0.267 ft^2) like :func:`stock_lift_slopes`: Helmbold's slope of the exposed panel times
+    its boundary-layer dynamic pressure and, in drift, the body's upwash factor (K_W(B) ahead of
+    the separation station, k_W(B) behind it) or, deflected, k_W(B) (``body_lift: slender``,
+    stripcoef.assembly.lift). ``carry``: the whole-body force of a deflected plane over its own,
+    (k_W(B) + k_B(W)) / k_W(B)."""
+    fin = suboff_model(config).conditions.lift["fin_lift"][0]
+    on_printed = fin["area"] / (FT ** 2 * val("t1.plane.S"))
+    own = fin["lift_slope"] * fin["pressure_ratio"] * on_printed
+    drift = fin["K_WB"] if fin["body_upwash"] else fin["k_WB"]
+    return {"drift": own * drift, "rudder": own * fin["k_WB"], "sternplane": own * fin["k_WB"],
+            "carry": (fin["k_WB"] + fin["k_BW"]) / fin["k_WB"], "tau": fin["tau"],
+            "pressure_ratio": fin["pressure_ratio"], "lift_slope": fin["lift_slope"],
+            "aspect_ratio": fin["aspect_ratio"], "boundary_layer": fin["boundary_layer"]}
+
+
+def measured_carry_over() -> float:
+    """Roddy's whole-body rudder force over the two rudders' own (stock) forces: Y'_dr of
+    configuration 2 (Table 4) / (2 x the stock slope deflected x S / L_BP^2)."""
+    return val("c2.Ydr") / (2.0 * stock_lift_slopes()["rudder"] * val("t1.plane.S")
+                            / val("t1.L_BP") ** 2)
+
+
 def afterbody_radius(x):
     """SUBOFF afterbody radius [ft] at x [ft] (Groves et al. 1989 equation, constants as read:
     reference_tables/roddy1990_suboff/README.md)."""
