@@ -148,3 +148,18 @@ def test_bad_input_keeps_its_one_line_error(tmp_path, capsys, edit, key, text):
     err = capsys.readouterr().err
     assert not out.exists()
     assert err.count("\n") == 1 and key in err and text in err and "Traceback" not in err, err
+
+
+def test_axial_velocity_of_a_uniform_source_ramp():
+    """S rising linearly from 0 to S_0 over s in [0, a] and constant behind: the sources
+    S_0/a per unit length give u/U - 1 = S_0/(4 pi a) [1/sqrt((s - a)^2 + r^2) - 1/sqrt(s^2 + r^2)]
+    (the integral in closed form); a closing body slows the flow, a middle body speeds it."""
+    from stripcoef.hull.lift import axial_velocity_ratio
+    a, s0 = 1.0, 0.3
+    s = np.linspace(0.0, 4.0, 40001)
+    area = np.minimum(s / a, 1.0) * s0
+    for sp, rp in ((0.5, 0.2), (2.0, 0.4), (-0.5, 0.3)):
+        exact = 1.0 + s0 / (4 * math.pi * a) * (1 / math.hypot(sp - a, rp) - 1 / math.hypot(sp, rp))
+        assert axial_velocity_ratio(s, area, sp, rp) == pytest.approx(exact, rel=1e-6)
+    closing = s0 - area                     # the mirror: a closing tail slows the flow behind
+    assert axial_velocity_ratio(s, closing, 0.8, 0.2) < 1.0

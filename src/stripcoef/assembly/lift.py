@@ -36,6 +36,7 @@ from stripcoef.hull.lift import (
     wing_body_factors,
     boundary_layer_pressure_ratio,
     boundary_layer_thickness,
+    axial_velocity_ratio,
 )
 from stripcoef.model import ControlSurface
 
@@ -43,6 +44,11 @@ from stripcoef.model import ControlSurface
 #: tabulated profile the matrix changes by 0.7 % between 2001 and 8001 stations, because the
 #: steepest-closing station of a piecewise-linear profile moves with the sampling) [-].
 SLENDER_STATIONS = 2001
+
+#: Fractions of a fin's span (root to tip) at which the body's axial potential flow is averaged
+#: for its dynamic pressure under ``body_lift: slender`` (midpoint rule, 8 strips; assumption:
+#: on SUBOFF's stern planes 8 and 64 strips differ by < 0.1 %) [-].
+STREAM_SPAN_POINTS = tuple((i + 0.5) / 8 for i in range(8))
 
 #: Force direction of a positive deflection (Prestero 2001, sec. 3.7: Y_uudr > 0, Z_uuds < 0).
 DEFLECTION_FORCE = {"rudder": np.array([0.0, 1.0, 0.0]), "elevator": np.array([0.0, 0.0, -1.0])}
@@ -92,14 +98,18 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     fw, fb = (f["K_WB"], f["K_BW"]) if upwash else (f["k_WB"], f["k_BW"])
     delta = boundary_layer_thickness(slender["x_nose"] - float(panel.center[0]),
                                      slender["speed"], slender["viscosity"])
-    q_ratio = boundary_layer_pressure_ratio(panel.span, delta)
+    stream = float(np.mean([axial_velocity_ratio(slender["s"], slender["area"],
+                                                 slender["x_nose"] - float(panel.center[0]),
+                                                 panel.root + t * panel.span) ** 2
+                            for t in STREAM_SPAN_POINTS]))
+    q_ratio = boundary_layer_pressure_ratio(panel.span, delta) * stream
     k = 0.5 * rho * panel.area * cla * q_ratio
     c_f = lift_column(e, point)
     c_b = lift_column(e, np.array([x_q, slender["y"], slender["z"]]) - np.asarray(ref, float))
     return (k * np.outer(fw * c_f + fb * c_b, c_f), k * (f["k_WB"] * c_f + f["k_BW"] * c_b),
             {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
              "interference": fw + fb, "tau": tau, "body_upwash": upwash,
-             "boundary_layer": delta, "pressure_ratio": q_ratio, **f})
+             "boundary_layer": delta, "stream_ratio": stream, "pressure_ratio": q_ratio, **f})
 
 
 def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None = None,
@@ -142,6 +152,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
     slender = None
     if body is not None and body[1].get("method") == "slender":
         slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
+                   "s": body[2][0], "area": body[2][1],
                    "y": hull.y, "z": hull.z,
                    "speed": float(vehicle.reference_speed if speed is None else speed),
                    "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
@@ -196,7 +207,8 @@ def _body_lift(vehicle, rho: float, ref, center):
     the slender-body lift ahead of Hopkins's separation station instead of Hoerner's point
     force (:func:`~stripcoef.hull.lift.slender_body_lift_matrix`: it answers the local
     cross-flow, so a yaw or pitch rate gives rotary terms). Returns
-    (L [kg/m, kg, kg m], info) or None.
+    (L [kg/m, kg, kg m], info) or None; under ``slender`` also (s from the nose [m], S(s)
+    [m^2]), the sections the fins' stern flow is computed from.
     """
     hull = vehicle.hull
     mode = vehicle.body_lift
@@ -219,7 +231,8 @@ def _body_lift(vehicle, rho: float, ref, center):
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         x0 = separation_station(xs, area)
         return (slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z, ref=ref),
-                {"method": "slender", "length": length, "diameter": d, "separation_x": x0})
+                {"method": "slender", "length": length, "diameter": d, "separation_x": x0},
+                (hi - xs[::-1], area[::-1]))
     x_cp = hi - BODY_CP_FRACTION * length
     cp = np.array([x_cp, hull.y, hull.z]) - np.asarray(ref, float)
     return (body_lift_matrix(length, d, cp, rho=rho,

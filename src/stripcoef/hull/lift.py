@@ -549,3 +549,43 @@ def boundary_layer_pressure_ratio(span: float, delta: float) -> float:
     p = 2.0 * BL_PROFILE
     inside = min(span, delta)
     return (delta * (inside / delta) ** (p + 1.0) / (p + 1.0) + max(span - delta, 0.0)) / span
+
+
+def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
+    r"""Local axial speed over the free stream near a body of revolution in axial potential flow.
+
+    The body as a line of sources of strength :math:`U\,dS/ds` per unit length along its axis
+    (s from the nose, aft positive; Munk's slender-body source distribution), whose axial
+    perturbation velocity at (s, r) is
+
+    .. math:: \frac{u}{U} = 1 + \frac{1}{4\pi}\int_0^l \frac{dS}{d\sigma}\,
+              \frac{s - \sigma}{[(s - \sigma)^2 + r^2]^{3/2}}\,d\sigma
+
+    below 1 over a closing afterbody (the flow slows towards the tail's stagnation point), just
+    above 1 along the middle body.
+
+    Parameters
+    ----------
+    s : (n,) array
+        Stations from the nose, increasing [m]
+    area : (n,) array
+        Cross-section area S(s) [m^2]
+    s_point, r_point : float
+        Where [m]: distance from the nose and from the axis (r > 0)
+
+    Returns
+    -------
+    float
+        u/U [-]
+
+    References
+    ----------
+    Newman, *Marine Hydrodynamics* (1977), sec. 7.3-7.4 (slender body in axial flow: source
+    strength U S'(x)); Thwaites (ed.), *Incompressible Aerodynamics* (1960), ch. IX (line
+    source distributions for bodies of revolution); Hoerner & Borst 1985, ch. 8 (tail surfaces
+    in the reduced dynamic pressure at a body's stern).
+    """
+    s = np.asarray(s, dtype=float)
+    ds = np.gradient(np.asarray(area, dtype=float), s)
+    d = s_point - s
+    return 1.0 + float(np.trapezoid(ds * d / (d * d + r_point * r_point) ** 1.5, s)) / (4.0 * math.pi)
