@@ -144,7 +144,11 @@ def format_table(model) -> str:
         out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
                    f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2"
                    + (f", hull interference x{f['interference']:.4g}"
-                      if f.get("interference", 1.0) != 1.0 else ""))
+                      if f.get("interference", 1.0) != 1.0 else "")
+                   + (f" (K_W(B) {f['K_WB']:.3g}, k_W(B) {f['k_WB']:.3g}, tau {f['tau']:.3g}, "
+                      f"body upwash {'yes' if f['body_upwash'] else 'no'}), dynamic pressure "
+                      f"x{f['pressure_ratio']:.4g} (body's axial flow {f['stream_ratio']:.4g}, boundary "
+                      f"layer {f['boundary_layer']:.3g} m)" if "pressure_ratio" in f else ""))
     if lift.get("fins_without_lift"):
         out.append(f"  {'fins_without_lift':32s} " + ", ".join(lift["fins_without_lift"])
                    + " (not on the hull)")
