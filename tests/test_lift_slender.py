@@ -54,6 +54,23 @@ def test_wing_body_identities(tau):
     assert f["K_WB"] > f["k_WB"]                 # the body's upwash adds to the fin's own lift
 
 
+@pytest.mark.parametrize("tau", [0.2, 0.447, 0.7])
+def test_wing_in_presence_of_body_is_the_mapped_loading(tau):
+    """K_W(B) from its definition, independently of the closed form: the fin panels' span
+    loading of slender-body theory, the potential jump 2 V alpha sqrt(S^2 - (y + a^2/y)^2),
+    S = s + a^2/s (the finned circle mapped onto a slit), integrated over both panels, over the
+    exposed pair alone (jump 2 V alpha sqrt(b^2 - y^2), b = s - a, integral pi b^2 / 2 per
+    half): K_W(B) = 4 int_a^s sqrt(...) dy / (pi (s - a)^2) (Pitts, Nielsen & Kaattari 1957;
+    Nielsen 1988, ch. 5)."""
+    from scipy.integrate import quad
+    a, s = tau, 1.0
+    big = s + a * a / s
+    loading = quad(lambda y: math.sqrt(max(big * big - (y + a * a / y) ** 2, 0.0)), a, s,
+                   limit=200)[0]
+    assert wing_body_factors(tau)["K_WB"] == pytest.approx(4 * loading / (math.pi * (s - a) ** 2),
+                                                           rel=1e-7)
+
+
 def test_wing_body_limits():
     small, large = wing_body_factors(1e-4), wing_body_factors(0.9999)
     assert small["K_WB"] == pytest.approx(1.0, abs=1e-3) and small["k_WB"] == pytest.approx(1.0, abs=1e-3)
