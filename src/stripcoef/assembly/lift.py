@@ -79,9 +79,9 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     (u/U)^2 averaged over the span (:func:`~stripcoef.hull.lift.axial_velocity_ratio`). The
     same ratio scales the fin's sideslip lift: its incidence is taken as v/U (assumption: a
     cross-flow slowed in proportion with the axial flow; with the cross-flow at its free-stream
-    value the incidence would be v/u_local and the sideslip force sqrt(q_r) instead of q_r
-    times the fin's, 7 % more on SUBOFF's stern planes, where Roddy's plane lifts 13 % less in
-    drift than deflected).
+    value the incidence would be v/u_local and the sideslip force would take the square root
+    of the axial-flow ratio instead of the ratio, 8 % more on SUBOFF's stern planes, where
+    Roddy's plane lifts 13 % less in drift than deflected).
     """
     ar = float(effective_aspect_ratio(panel.span, panel.area))
     cla = float(fin_lift_slope(ar))
