@@ -27,8 +27,7 @@ from validation.lift import (FT, LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_rad
                              plane_chord, planes_geometry, planes_interference,
                              planes_root_radii, sail_geometry, sail_interference, val, within,
                              appendix_curve, odd_slope, stock_lift_slopes,
-                             SUBOFF_TOLERANCE, drift_curve_comparisons, suboff_comparisons,
-                             suboff_model)
+                             SUBOFF_TOLERANCE, drift_curve_comparisons, suboff_comparisons)
 
 
 # ---------------------------------------------------------------------------
