@@ -549,7 +549,19 @@ def suboff_comparisons() -> list[dict]:
     return out
 
 
-def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0)) -> list[dict]:
+def measured_odd(deg, coef, a: float) -> float:
+    """The measured coefficient at drift ``a`` [deg] less its zero tare: the odd part
+    (C(a) - C(-a))/2 where the curve reaches -a, else C(a) - C(0) (configuration 2 was run to
+    -13.4 deg only); an angle outside the curve is an error, never an extrapolation."""
+    deg, coef = np.asarray(deg, float), np.asarray(coef, float)
+    if not deg.min() <= 0.0 <= a <= deg.max():
+        raise ValueError(f"drift {a} deg outside Roddy's curve ({deg.min()} to {deg.max()} deg)")
+    if -a >= deg.min():
+        return float(0.5 * (np.interp(a, deg, coef) - np.interp(-a, deg, coef)))
+    return float(np.interp(a, deg, coef) - np.interp(0.0, deg, coef))
+
+
+def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict]:
     """The model's Y'(beta), N'(beta) of configurations 2 (without the ring wing), 3, 4 and 5
     against the odd part of Roddy's Appendix B curves (tares removed), at drift ``angles``
     [deg]: the whole non-linear force of the model (Munk part of C_A, damping with the
@@ -569,7 +581,7 @@ def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0)) -> list[dict]:
                 tau = tau / speed ** 2
                 for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
                     deg, coef = appendix_curve(config, q)
-                    measured = 0.5 * (np.interp(a, deg, coef) - np.interp(-a, deg, coef))
+                    measured = measured_odd(deg, coef, a)
                     out.append({"config": config, "method": method, "beta": a, "q": q,
                                 "measured": float(measured), "model": float(tau[i] / (h * lbp ** k))})
     return out
@@ -718,8 +730,10 @@ def suboff_table_section() -> list[str]:
         "the likely cause; not modelled.", "",
         "#### Force and moment against drift (Roddy 1990, Appendix B)", "",
         "The model's whole non-linear force (Munk part of C_A, the strips' cross-flow drag, "
-        "the lift) at drift beta against the odd part of Roddy's curves (zero tares removed); "
-        "in brackets model / measured. Configuration 2 without the ring wing:", "",
+        "the lift) at drift beta against the odd part of Roddy's curves (zero tares removed; "
+        "configuration 2, run to -13.4 deg only, as C(beta) - C(0) beyond it: "
+        "`validation.lift.measured_odd`); in brackets model / measured. Configuration 2 without "
+        "the ring wing:", "",
         markdown_table(["config", "beta [deg]", "", "measured", "Hoerner", "slender"], curve), "",
     ]
 
