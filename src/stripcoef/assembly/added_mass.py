@@ -32,7 +32,7 @@ import numpy as np
 from stripcoef.conventions import skew, transform_matrix
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.hull.lamb import end_correction_factors
-from stripcoef.sections import section_added_mass
+from stripcoef.sections import get_shape, section_added_mass
 from stripcoef.strips import Strips
 from stripcoef.strips import hole_widths, strip_added_mass
 
@@ -160,7 +160,8 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> list:
     from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
 
     shares: list[FinShare] = []
-    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull"
+              and get_shape(p.shape).elliptic]
     fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
     if not hulls or len(fins) < 2:
         return shares

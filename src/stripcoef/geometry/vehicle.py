@@ -23,6 +23,7 @@ from stripcoef.thrusters import Thruster
 from stripcoef.geometry.keypaths import nominal
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
 from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous
+from stripcoef.geometry.shapes import built_from_half_sizes
 
 #: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
 DEFAULT_STRIPS = 1000
@@ -396,7 +397,8 @@ def _profile(r: _Reader, segs, path):
 def _hull(r: _Reader, data) -> Hull:
     path = "hull"
     r.mapping(data, path, ("name", "section", "profile", "half_breadth", "half_height", "y", "z"))
-    section = r.string(data, "section", path, choices=("ellipse", "rectangle"), default="ellipse")
+    section = r.string(data, "section", path, choices=built_from_half_sizes(),
+                       default="ellipse")
     if "profile" in data:
         if "half_breadth" in data or "half_height" in data:
             raise r.err(path, "both profile and half_breadth/half_height given",

@@ -41,8 +41,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.geometry.bodies import section_half_chord
+from stripcoef.geometry.shapes import has_rings, section_half_chord
 from stripcoef.model import frozen_array
+from stripcoef.sections import get_shape
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
                                          mode_inertia, ring_body_added_mass)
 
@@ -191,7 +192,7 @@ def _section_chord(part, i, axis, offset):
             part.half_breadth[i]
     if abs(d) >= half_lat:
         return []
-    if part.shape != "polygon" or part.contours is None:
+    if not has_rings(part):
         h = float(section_half_chord(part.shape, half_lat, half_span, d))
         return [(centre - h, centre + h)]
     from shapely.geometry import LineString
@@ -275,7 +276,7 @@ def _axial_added_mass(strips, rho, panels):
     if np.any(area > 0):
         m11 += _equivalent_bodies(strips, area, rho, 0.0, panels, (0,))[0, 0]
     for p in others:
-        if p.role == "fin" and p.shape == "rectangle":
+        if p.role == "fin" and get_shape(p.shape).plate:
             m11 += _fin_axial_added_mass(strips, p, rho)
             continue
         cov = _coverage(p)
@@ -456,7 +457,7 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
         return None
     hull = hulls[0]
     b, h = hull.half_breadth, hull.half_height
-    if hull.shape != "ellipse" or not np.allclose(b, h, rtol=1e-6) \
+    if not get_shape(hull.shape).elliptic or not np.allclose(b, h, rtol=1e-6) \
             or np.any(np.abs(hull.y) > 1e-9 * b.max()) or np.any(np.abs(hull.z) > 1e-9 * b.max()):
         return None
     xh = strips.x[hull.index]
@@ -464,7 +465,7 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
     x_fore = xh[-1] + 0.5 * strips.dx[hull.index[-1]]
     planforms, thickness = [], []
     for f in fins:
-        if f.shape != "rectangle" or len(f.index) < 2:
+        if not get_shape(f.shape).plate or len(f.index) < 2:
             return None
         axis, offset, lo, hi = _fin_span_interval(f, len(f.index) // 2)
         tip = max(abs(lo), abs(hi))
@@ -529,7 +530,7 @@ def _polygon_roll_mode(strips, m44) -> int | None:
     """Symmetry order of the section with the largest roll added mass, for bodies made of
     polygon parts only (meshes); for vehicle files the finned section's
     (:func:`_fin_roll_mode`); None otherwise (roll left uncorrected)."""
-    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+    if not strips.parts or not all(has_rings(p) for p in strips.parts):
         return _fin_roll_mode(strips, m44)
     if len(strips.parts) != 1:
         return 2
@@ -706,7 +707,7 @@ def bore_area(strips):
     :func:`hull_corrections`, anything else the solid ones.
     """
     from stripcoef.geometry.mesh import ring_integrals
-    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+    if not strips.parts or not all(has_rings(p) for p in strips.parts):
         return None
     several = np.zeros(strips.n)        # a hole needs a second ring round it in the section
     for p in strips.parts:

@@ -73,6 +73,7 @@ import numpy as np
 
 from stripcoef.strips import shift_section_matrices
 from stripcoef.strips import Part, Strips
+from stripcoef.sections import get_shape
 
 #: Overlap area below which two components of adjacent strips are not connected
 #: (relative to the smaller component's area).
@@ -211,7 +212,8 @@ def decompose(strips: Strips, rho: float, joint=None,
     from stripcoef.sections import section_added_mass
     from stripcoef.sections.panel import added_mass_sections
 
-    if len(strips.parts) != 1 or strips.parts[0].shape != "polygon" or strips.holes:
+    if len(strips.parts) != 1 or not get_shape(strips.parts[0].shape).contoured \
+            or strips.holes:
         return None
     part = strips.parts[0]
     if part.contours is None or not np.allclose(part.coverage, 1.0):
