@@ -18,6 +18,8 @@ import pytest
 
 import stripcoef
 from stripcoef.assembly import EstimateOptions, estimate
+from stripcoef.assembly.methods import (ADDED_MASS_METHODS, AddedMassMethod, choose_method,
+                                        estimate_choices, get_method)
 from stripcoef.effects import EFFECTS, get_effect
 from stripcoef.errors import InputError
 from stripcoef.export import FORMATS, ExportFormat, get_format
@@ -166,7 +168,29 @@ def test_registries_hold_frozen_specs_and_list_valid_names():
         FORMATS["json"].binary = True
     with pytest.raises(FrozenInstanceError):
         EFFECTS["current"].name = "x"
-    for lookup, names in ((get_shape, SHAPES), (get_format, FORMATS), (get_effect, EFFECTS)):
+    assert all(isinstance(m, AddedMassMethod) and m.name == k
+               for k, m in ADDED_MASS_METHODS.items())
+    with pytest.raises(FrozenInstanceError):
+        ADDED_MASS_METHODS["strips"].in_estimate = False
+    for lookup, names in ((get_shape, SHAPES), (get_format, FORMATS), (get_effect, EFFECTS),
+                          (get_method, ADDED_MASS_METHODS)):
         with pytest.raises(InputError) as err:
             lookup("no-such-thing")
         assert all(n in str(err.value) for n in names)
+
+
+def test_added_mass_methods_registry_drives_the_option_and_the_cli(sphere):
+    from stripcoef.cli.app import build_parser
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    assert set(ADDED_MASS_METHODS) == {"strips", "panels", "bem"}
+    assert estimate_choices() == ("auto", "panels", "strips")     # the BEM runs after
+    sub = build_parser()._subparsers._group_actions[0].choices["coefficients"]
+    flag = next(a for a in sub._actions if a.dest == "added_mass_method")
+    assert tuple(flag.choices) == estimate_choices()
+    veh = load_vehicle(ROOT / "geometry" / "sphere.yaml")
+    assert choose_method("auto", veh, veh.cut(40)).name == "strips"   # no mesh
+    assert sphere.provenance["method"] == ADDED_MASS_METHODS["strips"].provenance
+    for name, expect in (("panels", "one closed mesh"), ("bem", "panels or strips or auto")):
+        with pytest.raises(InputError, match=expect):
+            choose_method(name, veh, veh.cut(40))

@@ -104,7 +104,7 @@ def uses_panels(vehicle, options=None) -> bool:
     """Whether :func:`stripcoef.assembly.estimate` takes ``vehicle``'s added mass from the 3D
     panel method with ``options`` (default: the default options, ``auto``)."""
     from stripcoef.assembly import EstimateOptions
-    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.assembly.methods import added_mass_method
 
     options = options or EstimateOptions()
     return added_mass_method(options.added_mass_method, vehicle,
