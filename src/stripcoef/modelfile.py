@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from stripcoef.effects.laws import check_effect_entries
 from stripcoef.errors import InputError
 from stripcoef.files import load_json, load_yaml, read_text
 from stripcoef.model import HydroModel, check_physical
@@ -138,8 +139,9 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
       vehicle file: the thrust is along its unit vector), thrust coefficients and
       efficiencies > 0, limits >= 0 (``null`` = none), dead band >= 0;
     - ``effects``: a list of ``{name, dof, parameters}`` mappings, ``dof`` one of the six
-      degrees of freedom (or ``all``), parameters finite numbers (the effect names and
-      their parameters are checked against the registry by :mod:`stripcoef.effects`);
+      degrees of freedom (or ``all``), parameters finite numbers; the effect names, the
+      DOFs they act in, their parameters and ranges checked against the effects library
+      (:func:`stripcoef.effects.laws.check_effect_entries`);
     - ``lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector ``derivative`` and
       angles > 0 [rad]; ``conditions`` and ``provenance`` mappings.
 
@@ -190,6 +192,7 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
                             "a mapping of parameter names to numbers")
             for p in params:
                 r.number(params, p, f"{path}.parameters", required=True)
+        check_effect_entries(effects, file=file)
     surfaces = r.listing(data, "control_surfaces", "")
     for k, entry in enumerate(surfaces):
         path = f"control_surfaces[{k}]"

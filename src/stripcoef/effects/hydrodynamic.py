@@ -65,6 +65,8 @@ class TetherDrag(Effect):
         v = data.nu[:, dof]
         return None, -data.mean(length * v * np.abs(v))[:, None]
 
+    admits = "c_t > 0"
+
     def plausible(self, params):
         return params["c_t"] > 0.0
 
@@ -132,6 +134,8 @@ class MomentumDrag(Effect):
     def own_design(self, data, dof, hyper=None):
         nh = self._nh(data, dof)
         return None, -data.mean(nh * data.nu[:, dof])[:, None]
+
+    admits = "alpha > 0"
 
     def plausible(self, params):
         return params["alpha"] > 0.0
@@ -253,6 +257,8 @@ class Current(Effect):
     def magnitude(self, params):
         return math.hypot(params["current_north"], params["current_east"])
 
+    admits = "a current speed hypot(current_north, current_east) < 5 m/s"
+
     def plausible(self, params):
         return self.magnitude(params) < 5.0
 
@@ -321,6 +327,8 @@ class LinearDrag(Effect):
 
     def own_design(self, data, dof, hyper=None):
         return None, -data.mean(data.nu[:, dof])[:, None]
+
+    admits = "d_L > 0"
 
     def plausible(self, params):
         return params["d_L"] > 0.0
