@@ -383,6 +383,9 @@ class Conditions(Mapping):
         Source of the fluid properties
     length : float
         Body length L [m]
+    breadth, height : float
+        The body's largest extent along y and along z [m] (its box B x H; the UUV
+        Simulator export's ``<box>``)
     extra : mapping
         Keys of a model file that are none of the above, kept as they were
     """
@@ -428,6 +431,8 @@ class Conditions(Mapping):
     kinematic_viscosity: float | None = None
     fluid: str | None = None
     length: float | None = None
+    breadth: float | None = None
+    height: float | None = None
     extra: Mapping = field(default_factory=dict)
 
     def __post_init__(self):

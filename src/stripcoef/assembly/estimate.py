@@ -25,6 +25,25 @@ from stripcoef.geometry.vehicle import Vehicle, load_vehicle
 from stripcoef.threads import small_matrices
 
 
+def _cross_extent(strips) -> dict:
+    """The body's largest extents along y and z [m]: over its parts, the rings of a part
+    that carries them (a mesh section), else the part's centre +- its half sizes."""
+    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+    for p in strips.parts:
+        if p.contours is not None:
+            pts = [np.asarray(r, float) for rings in p.contours for r in rings]
+            if pts:
+                pts = np.vstack(pts)
+                lo, hi = np.minimum(lo, pts.min(axis=0)), np.maximum(hi, pts.max(axis=0))
+            continue
+        c = np.column_stack([p.y, p.z])
+        half = np.column_stack([p.half_breadth, p.half_height])
+        lo, hi = np.minimum(lo, (c - half).min(axis=0)), np.maximum(hi, (c + half).max(axis=0))
+    if not np.all(np.isfinite(hi - lo)):
+        return {}
+    return {"breadth": float(hi[0] - lo[0]), "height": float(hi[1] - lo[1])}
+
+
 def _reference_point(ref, cb, cg):
     if isinstance(ref, str):
         return {"center_of_buoyancy": cb, "center_of_gravity": cg,
@@ -159,7 +178,8 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
                             corrections=corrections, density=rho, kinematic_viscosity=nu,
-                            fluid=fluid.source, length=st.length)
+                            fluid=fluid.source, length=st.length,
+                            **_cross_extent(st))
     if abs(mass - rho * volume) > 0.05 * rho * volume:
         warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
