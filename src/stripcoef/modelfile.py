@@ -9,12 +9,16 @@ options of ``stripcoef coefficients``: make a model file with it first.
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 
-from stripcoef.effects.laws import check_effect_entries
+from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError
+from stripcoef.fluid import Fluid
+from stripcoef.geometry.vehicle import Reader
+from stripcoef.thrusters import Thruster
 from stripcoef.files import load_json, load_yaml, read_text
 from stripcoef.model import HydroModel, check_physical
 
@@ -117,10 +121,6 @@ def _check_array(value, shape, file, key):
 
 def _thruster_keys() -> tuple:
     """Keys of a thruster entry: the fields of :class:`~stripcoef.thrusters.Thruster`."""
-    from dataclasses import fields
-
-    from stripcoef.thrusters import Thruster
-
     return tuple(f.name for f in fields(Thruster))
 
 _SURFACE_KEYS = ("name", "type", "derivative", "max_deflection", "stall_angle")
@@ -147,10 +147,6 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
 
     Returns ``data`` with the thruster directions normalised (a new mapping).
     """
-    from stripcoef.conventions import DOF
-    from stripcoef.fluid import Fluid
-    from stripcoef.geometry.vehicle import Reader
-
     r = Reader(file)
     data = dict(data)
     if "name" in data:
@@ -192,7 +188,10 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
                             "a mapping of parameter names to numbers")
             for p in params:
                 r.number(params, p, f"{path}.parameters", required=True)
-        check_effect_entries(effects, file=file)
+        if effects:
+            # the effects library loads scipy (its window regressors): only for a file with effects
+            from stripcoef.effects.laws import check_effect_entries
+            check_effect_entries(effects, file=file)
     surfaces = r.listing(data, "control_surfaces", "")
     for k, entry in enumerate(surfaces):
         path = f"control_surfaces[{k}]"
@@ -208,7 +207,6 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
 def _check_dof(r, value, key, dof_names) -> None:
     """An effect's degree of freedom: a DOF name (surge..yaw, u..r, X..N), an index 0-5 or
     ``all``."""
-    from stripcoef.conventions import parse_dof
 
     expected = "one of " + ", ".join(dof_names) + ", an index 0-5 or all"
     if isinstance(value, bool):

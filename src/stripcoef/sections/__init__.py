@@ -31,6 +31,8 @@ from stripcoef.errors import unknown_name
 from stripcoef.geometry.shapes import GEOMETRY, ShapeGeometry
 from stripcoef.sections import added_mass as am
 from stripcoef.sections import drag
+from stripcoef.sections.panel import added_mass_sections, part_rings
+from stripcoef.sections.polygon_drag import cross_flow_cd
 
 
 def _added_mass_ellipse(part, rho, panels=None):
@@ -44,7 +46,6 @@ def _added_mass_rectangle(part, rho, panels=None):
 
 
 def _added_mass_polygon(part, rho, panels=None):
-    from stripcoef.sections.panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
     # the part's rings, cleaned and oriented once (shared with the cross-flow drag)
     mats = added_mass_sections(part_rings(part), rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
@@ -70,7 +71,6 @@ def _drag_rectangle(part, re_y, re_z):
 
 
 def _drag_polygon(part, re_y, re_z):
-    from stripcoef.sections.polygon_drag import cross_flow_cd  # noqa: PLC0415 (mesh path only)
     return cross_flow_cd(part, re_y, re_z)
 
 
@@ -88,7 +88,6 @@ def _perimeter_polygon(part):
     :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` [m] (outer rings and holes: a duct's inner
     wall is wetted too), from the ring set :func:`panel.part_rings` the section solvers
     share."""
-    from stripcoef.sections.panel import part_rings  # noqa: PLC0415 (mesh path only)
     if not part.contours:
         return np.zeros(part.index.size)
     rs = part_rings(part)
