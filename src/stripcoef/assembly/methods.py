@@ -16,7 +16,7 @@ is run after the estimate, ``coefficients --method bem`` and ``compare``). The `
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -38,14 +38,15 @@ class AddedMassInputs:
     """What an added-mass method may read: the vehicle, its strips, the fluid density
     ``rho`` [kg/m^3], the point ``about`` [m], the displaced ``volume`` [m^3] and its
     ``center`` [m], and the options of the methods (``corrections``, ``correction_panels``,
-    ``section_panels`` for strips; ``added_mass_panels`` for panels)."""
+    ``section_panels`` for strips; ``added_mass_panels`` for panels). The BEM reads only the
+    vehicle, ``rho`` and ``about``."""
 
     vehicle: object
-    strips: Strips
+    strips: Strips | None
     rho: float
     about: np.ndarray
-    volume: float
-    center: np.ndarray
+    volume: float | None = None
+    center: np.ndarray | None = None
     corrections: bool = True
     correction_panels: int | None = None
     section_panels: int | None = None
@@ -94,12 +95,11 @@ def _any_vehicle(vehicle):
     return None
 
 
-def _one_mesh(label):
+def _one_mesh(label, expected):
     """``applies_to`` of a method on the vehicle's one closed mesh (``label`` names it)."""
     def applies_to(vehicle):
         if _mesh_of(vehicle) is None:
-            return (f"the {label} needs a vehicle made of one closed mesh",
-                    "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file")
+            return f"the {label} needs a vehicle made of one closed mesh", expected
         return None
     return applies_to
 
@@ -145,13 +145,14 @@ ADDED_MASS_METHODS = {m.name: m for m in (
     AddedMassMethod(
         "bem", "Capytaine's boundary-element method on the mesh (unbounded fluid; Ancellin & "
         "Dias 2019), the cross-check: coefficients --method bem, compare",
-        _one_mesh("BEM"), _bem, "none per run; measured against Lamb's exact values on spheroid "
+        _one_mesh("BEM", "a mesh file (STL, OBJ, PLY, GLB, ...)"), _bem, "none per run; measured against Lamb's exact values on spheroid "
         "meshes (benchmarks/mesh_reference_convergence.py)",
         provenance="bem (Capytaine, free_surface=inf, direct) added mass; strip-theory damping",
         in_estimate=False),
     AddedMassMethod(
         "panels", "3D panel method on the mesh (Newman 1977 eq. 4.148), Richardson-extrapolated "
-        "from two panel counts", _one_mesh("panel method"), _panels, "per term: the difference of the two "
+        "from two panel counts", _one_mesh("panel method",
+                  "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file"), _panels, "per term: the difference of the two "
         "panel resolutions (stripcoef.hull.panels), with a warning past its tolerance",
         provenance="strip theory, added mass by the 3D panel method",
         preferred=_not_round_nor_slender),
@@ -204,6 +205,24 @@ def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
                 and method.preferred(vehicle, strips)):
             return method
     return ADDED_MASS_METHODS["strips"]
+
+
+def with_added_mass_of(model, vehicle, name: str):
+    """``model`` (a :class:`~stripcoef.model.HydroModel` of ``vehicle``) with its M_A from the
+    method ``name`` about the same reference point (``coefficients --method bem``): damping
+    and rigid-body terms kept, the provenance naming the method and what it reports (the
+    BEM: faces and solver time [s]), no panel error estimate. A method that does not apply
+    to ``vehicle`` is a one-line error."""
+    method = get_method(name)
+    need = method.applies_to(vehicle)
+    if need is not None:
+        raise InputError(need[0], file=getattr(vehicle, "source", None) or None,
+                         key="method", value=name, expected=need[1])
+    m_a, info, error = method.compute(AddedMassInputs(
+        vehicle=vehicle, strips=None, rho=model.density, about=model.reference_point,
+        volume=model.volume, center=model.center_of_buoyancy))
+    provenance = {**model.provenance, "method": method.provenance, **info}
+    return replace(model, added_mass=m_a, provenance=provenance, added_mass_error=error)
 
 
 def added_mass_method(name, vehicle, strips: Strips) -> str:
