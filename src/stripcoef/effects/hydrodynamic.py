@@ -13,6 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from stripcoef.conventions import rotation_matrix, skew
 from stripcoef.errors import InputError
 from stripcoef.effects.windows import (coefficient_column, coriolis_times_velocity,
                                        damping_times_velocity, rotation_matrices)
@@ -286,7 +287,6 @@ class Current(Effect):
         e = _unit_vec(dof)
 
         def f(time, eta, nu, inputs):
-            from stripcoef.conventions import rotation_matrix, skew
             model = inputs["model"]
             rt = rotation_matrix(eta[3], eta[4], eta[5]).T
             nuc = np.concatenate([rt @ v, np.zeros(3)])
