@@ -5,7 +5,8 @@ r"""The registry of added-mass methods: name -> :class:`AddedMassMethod`.
 - ``bem``: Capytaine's boundary-element method on the vehicle's mesh (the cross-check,
   optional extra ``stripcoef[bem]``; :mod:`stripcoef.bem`);
 - ``panels``: the 3D panel method on the vehicle's mesh (:mod:`stripcoef.hull.panels`);
-- ``strips``: strip theory with its 3D corrections (:func:`stripcoef.assembly.added_mass.added_mass`).
+- ``strips``: strip theory with its 3D corrections
+  (:func:`stripcoef.assembly.added_mass.added_mass`).
 
 Each names what it applies to, computes M_A about a point from one :class:`AddedMassInputs`,
 says how its error is estimated, and whether the ``added_mass_method`` option of
@@ -143,23 +144,34 @@ def _bem(inp: AddedMassInputs):
 #: The registry of added-mass methods, most exact first: name -> :class:`AddedMassMethod`.
 ADDED_MASS_METHODS = {m.name: m for m in (
     AddedMassMethod(
-        "bem", "Capytaine's boundary-element method on the mesh (unbounded fluid; Ancellin & "
-        "Dias 2019), the cross-check: coefficients --method bem, compare",
-        _one_mesh("BEM", "a mesh file (STL, OBJ, PLY, GLB, ...)"), _bem, "none per run; measured against Lamb's exact values on spheroid "
-        "meshes (benchmarks/mesh_reference_convergence.py)",
+        name="bem",
+        description="Capytaine's boundary-element method on the mesh (unbounded fluid; "
+                    "Ancellin & Dias 2019), the cross-check: coefficients --method bem, compare",
+        applies_to=_one_mesh("BEM", "a mesh file (STL, OBJ, PLY, GLB, ...)"),
+        compute=_bem,
+        error_estimate="none per run; converges at second order against Lamb's exact values "
+                       "on spheroid meshes (benchmarks/mesh_reference_convergence.py)",
         provenance="bem (Capytaine, free_surface=inf, direct) added mass; strip-theory damping",
         in_estimate=False),
     AddedMassMethod(
-        "panels", "3D panel method on the mesh (Newman 1977 eq. 4.148), Richardson-extrapolated "
-        "from two panel counts", _one_mesh("panel method",
-                  "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file"), _panels, "per term: the difference of the two "
-        "panel resolutions (stripcoef.hull.panels), with a warning past its tolerance",
+        name="panels",
+        description="3D panel method on the mesh (Newman 1977 eq. 4.148), Richardson-"
+                    "extrapolated from two panel counts",
+        applies_to=_one_mesh("panel method",
+                             "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file"),
+        compute=_panels,
+        error_estimate="per term: the difference of the two panel resolutions "
+                       "(stripcoef.hull.panels), with a warning past its tolerance",
         provenance="strip theory, added mass by the 3D panel method",
         preferred=_not_round_nor_slender),
     AddedMassMethod(
-        "strips", "strip theory: 2D sections per strip, 3D end corrections on equivalent "
-        "bodies of revolution", _any_vehicle, _strips, "the method band of the vehicle's "
-        "shape class (stripcoef.study.sources, docs/validation.md)",
+        name="strips",
+        description="strip theory: 2D sections per strip, 3D end corrections on equivalent "
+                    "bodies of revolution",
+        applies_to=_any_vehicle,
+        compute=_strips,
+        error_estimate="the method band of the vehicle's shape class (stripcoef.study.sources, "
+                       "docs/validation.md)",
         provenance="strip theory"),
 )}
 
