@@ -20,6 +20,7 @@ import sys
 import weakref
 from contextvars import ContextVar
 from dataclasses import dataclass, replace
+
 #: Seconds of work before a bar appears [s].
 DELAY = float(os.environ.get("STRIPCOEF_PROGRESS_DELAY", "0.5"))   # [s]; tests set 0
 
