@@ -190,10 +190,14 @@ def test_model_file_effects_of_the_library_are_read(mares_model_dict):
     d["effects"] = [
         {"name": "tether_drag", "dof": "heave", "parameters": {"c_t": 3.0}, "std": {}},
         {"name": "thrust_effectiveness", "dof": "all", "parameters": {"scale": 0.6}},
-        {"name": "thruster_lag", "dof": "surge", "parameters": {"time_constant": 0.2}}]
+        {"name": "thruster_lag", "dof": "surge", "parameters": {"time_constant": 0.2}},
+        {"name": "tether_drag", "dof": 1, "parameters": {"c_t": 3.0}}]    # a DOF index
     model = model_from_dict(d, file="m.json")
     assert [e["name"] for e in model.effects] == ["tether_drag", "thrust_effectiveness",
-                                                  "thruster_lag"]
+                                                  "thruster_lag", "tether_drag"]
+    from stripcoef.effects.laws import effect_forces
+
+    assert len(effect_forces(model)) == 4        # the simulation reads every entry
 
 
 def test_model_file_direction_is_normalised_as_in_a_vehicle_file(mares_model_dict):

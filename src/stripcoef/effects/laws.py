@@ -55,6 +55,13 @@ def get_effect(name: str) -> Effect:
         raise unknown_name("effect", name, EFFECTS, key="effect") from None
 
 
+def _dof_index(raw) -> int:
+    """An effect entry's DOF: an index 0-5 (a model file may give one) or a DOF name."""
+    if isinstance(raw, int) and not isinstance(raw, bool) and 0 <= raw < 6:
+        return raw
+    return parse_dof(raw)
+
+
 def check_effect_entries(entries, *, file: str | None = None) -> None:
     """A model file's ``effects`` checked against the registry, like a vehicle file's keys.
 
@@ -79,7 +86,7 @@ def check_effect_entries(entries, *, file: str | None = None) -> None:
                 raise InputError(f"effect {name} does not act in all degrees of freedom",
                                  file=file, key=f"{path}.dof", value=raw,
                                  expected="one of " + acts)
-        elif parse_dof(raw) not in eff.dofs:
+        elif _dof_index(raw) not in eff.dofs:
             raise InputError(f"effect {name} does not act in this degree of freedom",
                              file=file, key=f"{path}.dof", value=raw, expected="one of " + acts)
         params = entry.get("parameters") or {}
@@ -120,7 +127,7 @@ def effect_forces(model) -> list:
 def _entry(eff, entry, k):
     """(dof or None for "all", parameters) of a model's effect entry number ``k``."""
     raw = entry.get("dof", "surge")
-    dof = None if str(raw).lower() == "all" else parse_dof(raw)
+    dof = None if str(raw).lower() == "all" else _dof_index(raw)
     params = entry.get("parameters", {})
     missing = [p for p in eff.parameters if p not in params]
     if missing:
