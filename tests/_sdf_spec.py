@@ -3,8 +3,11 @@
 sdformat 14's parser (src/parser.cc: readXml, readAttributes); see that folder's README.
 
 ``problems(text)`` lists, one line each, what sdformat 14 would warn about or refuse:
-undescribed elements and attributes, missing required attributes, repeated single
-elements, missing required children of a joint, and values that do not read as their type.
+undescribed elements and attributes, deprecated elements, missing required attributes,
+missing required children of a joint, and values that do not read as their type; and,
+stricter than the parser, a value element (one with a type) given twice (the parser keeps
+both, the API reads the first). As in parser.cc, an ``<include>``'s own ``required`` is not
+read: the included file's root element says it.
 """
 
 from __future__ import annotations
@@ -53,9 +56,8 @@ def _fill(spec: Spec, node, files) -> None:
             sub = _spec_of(child, files)
             spec.children[sub.name] = sub
         elif child.tag == "include":
-            inc = _file(child.get("filename"), files)
-            spec.children[inc.name] = Spec(inc.name, inc.type, child.get("required", "0"),
-                                           inc.attributes, inc.children, inc.copy_data)
+            inc = _file(child.get("filename"), files)      # parser.cc initXml: the file's
+            spec.children[inc.name] = inc                   # element, its own required
 
 
 def _file(name: str, files) -> Spec:
@@ -91,8 +93,11 @@ def _reads_as(kind: str | None, text: str) -> bool:
     if kind in ("double", "float"):
         return numbers(1)
     if kind in ("int", "unsigned int"):
-        return len(words) == 1 and words[0].lstrip("-").isdigit() and (
-            kind == "int" or not words[0].startswith("-"))
+        try:
+            value = int(words[0], 0) if len(words) == 1 else None    # 0xAB reads too
+        except ValueError:
+            return False
+        return value is not None and (kind == "int" or value >= 0)
     if kind == "bool":
         return len(words) == 1 and words[0].lower() in ("true", "false", "1", "0")
     if kind == "vector3":
@@ -119,7 +124,7 @@ def problems(text: str) -> list[str]:
 
 def _check(el, spec: Spec, path: str, out: list) -> None:
     for attr in el.attrib:
-        if attr not in spec.attributes:
+        if attr not in spec.attributes and not attr.startswith("{"):   # namespaced: custom
             out.append(f"{path}: attribute {attr!r} not defined in SDF 1.11")
     out += [f"{path}: required attribute {a!r} missing" for a, req in spec.attributes.items()
             if req and a not in el.attrib]
@@ -137,8 +142,10 @@ def _check(el, spec: Spec, path: str, out: list) -> None:
                 out.append(f"{where}: element not defined in SDF 1.11 under <{spec.name}>")
             continue
         seen[child.tag] = seen.get(child.tag, 0) + 1
-        if sub.required in ("0", "1") and seen[child.tag] == 2:
-            out.append(f"{where}: more than one <{child.tag}> (required={sub.required})")
+        if sub.required == "-1":
+            out.append(f"{where}: deprecated element")
+        if sub.type and sub.required in ("0", "1") and seen[child.tag] == 2:
+            out.append(f"{where}: value element <{child.tag}> given twice")
         _check(child, sub, where, out)
     if spec.name == "joint" and el.get("type") != "ball":
         out += [f"{path}: required element <{n}> missing" for n, s in spec.children.items()
