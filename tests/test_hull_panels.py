@@ -150,7 +150,7 @@ def test_estimate_panels_changes_only_the_added_mass():
 
 def test_auto_rule():
     from stripcoef.assembly import estimate
-    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.assembly.methods import added_mass_method
     from stripcoef.geometry.mesh import revolved_mesh
     from stripcoef.geometry.vehicle import Vehicle
 
@@ -202,7 +202,7 @@ def test_auto_keeps_the_strips_for_the_shipped_vehicles():
     from conftest import GEOMETRY
 
     from stripcoef import samples
-    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.assembly.methods import added_mass_method
     from stripcoef.geometry.vehicle import load_vehicle
 
     files = sorted(GEOMETRY.glob("*.yaml")) + [samples.path("capsule.stl")]

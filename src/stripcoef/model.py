@@ -23,11 +23,13 @@ from types import MappingProxyType
 
 import numpy as np
 
-from stripcoef.conventions import (DOF, FORCES, VELOCITIES, shift_operator, sname_coefficients,
-                                   skew, transform_matrix)
+from stripcoef.conventions import (DOF, FORCES, VELOCITIES, added_mass_name, linear_damping_name,
+                                   quadratic_damping_name, shift_operator, skew, sname_coefficients,
+                                   transform_matrix)
 from stripcoef.errors import InputError, ModelWarning, unknown_name
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
+from stripcoef.views import MATRICES, matrix_frame, model_html
 
 
 def coriolis_from_mass(mass_matrix, nu) -> np.ndarray:
@@ -383,6 +385,9 @@ class Conditions(Mapping):
         Source of the fluid properties
     length : float
         Body length L [m]
+    breadth, height : float
+        The body's largest extent along y and along z [m] (its box B x H; the UUV
+        Simulator export's ``<box>``)
     extra : mapping
         Keys of a model file that are none of the above, kept as they were
     """
@@ -428,6 +433,8 @@ class Conditions(Mapping):
     kinematic_viscosity: float | None = None
     fluid: str | None = None
     length: float | None = None
+    breadth: float | None = None
+    height: float | None = None
     extra: Mapping = field(default_factory=dict)
 
     def __post_init__(self):
@@ -708,8 +715,6 @@ class HydroModel:
         """
         if not self.bands:
             return {}
-        from stripcoef.conventions import (added_mass_name, linear_damping_name,
-                                           quadratic_damping_name)
         coeffs = self.coefficients()
         named = {}
         for matrix, namer, m in (("added_mass", added_mass_name, self.added_mass),
@@ -746,14 +751,12 @@ class HydroModel:
         """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
         ``quadratic_damping``) as a pandas DataFrame labelled with the DOFs, units in
         ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
-        from stripcoef.views import MATRICES, matrix_frame
         if kind not in MATRICES:
             raise unknown_name("matrix", kind, MATRICES, key="kind")
         return matrix_frame(getattr(self, kind), kind)
 
     def _repr_html_(self) -> str:
         """What a notebook shows: mass properties and the four labelled matrices."""
-        from stripcoef.views import model_html
         return model_html(self)
 
     # -- transforms ---------------------------------------------------------

@@ -32,7 +32,7 @@ import numpy as np
 from stripcoef.conventions import skew, transform_matrix
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.hull.lamb import end_correction_factors
-from stripcoef.sections import section_added_mass
+from stripcoef.sections import get_shape, section_added_mass
 from stripcoef.strips import Strips
 from stripcoef.strips import hole_widths, strip_added_mass
 
@@ -160,7 +160,8 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> list:
     from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
 
     shares: list[FinShare] = []
-    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull"
+              and get_shape(p.shape).elliptic]
     fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
     if not hulls or len(fins) < 2:
         return shares
@@ -509,8 +510,6 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     return 0.5 * (total + total.T), info
 
 
-#: Added-mass methods of :class:`~stripcoef.assembly.estimate.EstimateOptions`.
-ADDED_MASS_METHODS = ("strips", "panels", "auto")
 #: ``auto`` keeps strip theory for a body at least this slender, L / max(B, H) [-].
 #: [assumption] strip theory is the slender-body limit (Newman 1977, sec. 7.4): each section's
 #: flow is two-dimensional except within about one cross dimension of the ends, so at L / B = 5
@@ -549,37 +548,6 @@ def _round_along_x(strips: Strips) -> bool:
     b, h, a = 2 * p.half_breadth[i], 2 * p.half_height[i], p.area[i]
     return bool(abs(b - h) <= ROUND_TOLERANCE * max(b, h)
                 and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
-
-
-def added_mass_method(method, vehicle, strips: Strips) -> str:
-    r"""``strips`` or ``panels`` for the option ``added_mass_method`` (``strips``, ``panels``
-    or ``auto``).
-
-    ``auto``: the 3D panel method (:mod:`stripcoef.hull.panels`) for a vehicle that is one
-    mesh, not a body of revolution about x (round middle section, :func:`_round_along_x`) and
-    not slender (:math:`L / \max(B, H) <` :data:`SLENDER_RATIO`, B and H the largest breadth
-    and height of the strips [m]); strip theory otherwise.  ``panels`` needs a mesh vehicle:
-    a vehicle file's geometry has no closed surface to panel.
-    """
-    if method not in ADDED_MASS_METHODS:
-        raise InputError("unknown added-mass method", key="added_mass_method", value=method,
-                         expected=" or ".join(ADDED_MASS_METHODS))
-    if method == "strips":
-        return "strips"
-    mesh = _mesh_of(vehicle)
-    if method == "panels":
-        if mesh is None:
-            raise InputError("the panel method needs a vehicle made of one closed mesh",
-                             file=getattr(vehicle, "source", None) or None,
-                             key="added_mass_method", value=method,
-                             expected="a mesh file (STL, OBJ, ...), or strips/auto for a "
-                                      "vehicle file")
-        return "panels"
-    if mesh is None or _round_along_x(strips):
-        return "strips"
-    width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
-                for p in strips.parts)
-    return "panels" if strips.length < SLENDER_RATIO * width else "strips"
 
 
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):

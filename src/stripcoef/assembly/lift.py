@@ -20,6 +20,7 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.geometry.bodies import Fin
+from stripcoef.geometry.shapes import shape_geometry
 from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
 from stripcoef.hull.lift import (
     BODY_CP_FRACTION,
@@ -201,7 +202,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
 def _round(hull) -> bool:
     """A hull of circular sections (one radius profile): where body lift and the fin-hull
     interference of slender-body theory apply."""
-    return hull.half_breadth is hull.half_height and hull.section == "ellipse"
+    return hull.half_breadth is hull.half_height and shape_geometry(hull.section).elliptic
 
 
 def _body_lift(vehicle, rho: float, ref, center):

@@ -174,9 +174,9 @@ def run(args) -> int:
     vehicle, model = estimate_from_args(args)
     model = with_bands(model, vehicle)
     if args.method == "bem":
-        from stripcoef import bem  # optional extra
+        from stripcoef.assembly.methods import with_added_mass_of  # the BEM: optional extra
 
-        model = bem.bem_model(model, vehicle)
+        model = with_added_mass_of(model, vehicle, "bem")
         # the added mass is the BEM's: the strip method's added-mass bands do not apply
         model = replace(model, bands=tuple(b for b in model.bands if b.matrix != "added_mass"))
     warn_uncertain(model)
