@@ -6,7 +6,8 @@ The rules (docs/logs.md):
    (``scale * (raw - offset)``, angle and time units), the package's frames (NED, FRD:
    :mod:`.attitude`), and the derived quantities are computed on the stream's own samples:
    body rates from the attitude (:func:`.attitude.body_rates`), earth-fixed velocity from the
-   position (central differences, ``numpy.gradient``).
+   position (central differences, ``numpy.gradient``). A stream with ``align`` is moved onto
+   its reference stream's clock first (:func:`align_clocks`, :mod:`.clock`).
 2. The log spans the overlap of every stream used, [max of the first times, min of the last
    times]; an empty overlap is an error listing each stream's span. Nothing is extrapolated.
 3. The grid is uniform at ``output.rate`` (default: the fastest rate of the state streams,
@@ -48,7 +49,55 @@ def _needed(logmap: LogMap) -> dict:
     for _, block in logmap.blocks():
         if block.stream:
             need[block.stream] += [c for c in block.columns if c is not None]
-    return need
+    for name, spec in logmap.streams.items():
+        if spec.align is not None and spec.align.to is not None:
+            need[name].append(spec.align.signal[0])
+            need[spec.align.to].append(spec.align.signal[1])
+    return {k: list(dict.fromkeys(v)) for k, v in need.items()}
+
+
+def align_clocks(logmap: LogMap, tables: dict) -> dict:
+    """The tables with every ``align``-ed stream's stamps shifted onto its reference stream's
+    clock (:mod:`.clock`: the offset given, else estimated by cross-correlation of the shared
+    signal); a stream aligned to an aligned stream follows it (a chain), a cycle is an error.
+    Each shift is reported: the table's ``info["clock_offset"]`` and a
+    :class:`~stripcoef.errors.SamplingWarning` naming the override key."""
+    from stripcoef.ingest.clock import estimate_offset
+
+    todo = {k: s.align for k, s in logmap.streams.items() if s.align is not None}
+    tables = dict(tables)
+    while todo:
+        ready = [k for k, a in todo.items() if a.to is None or a.to not in todo]
+        if not ready:
+            raise InputError("streams aligned to each other in a cycle", file=logmap.path,
+                             key="streams", value=sorted(todo),
+                             expected="align.to chains that end at a stream without align")
+        for name in ready:
+            a = todo.pop(name)
+            tb = tables[name]
+            key = f"streams.{name}.align"
+            if a.offset is not None:
+                info = {"offset_s": a.offset, "to": a.to, "method": "given"}
+            else:
+                ref = tables[a.to]
+                base = np.floor(min(tb.t[0], ref.t[0]))
+                est = estimate_offset(np.asarray(tb.t - base, float), tb.column(a.signal[0]),
+                                      np.asarray(ref.t - base, float),
+                                      ref.column(a.signal[1]), max_offset=a.max,
+                                      where=logmap.path, key=key)
+                info = {"offset_s": est.offset, "to": a.to, "method": "cross-correlation",
+                        "signal": list(a.signal), "correlation": est.correlation,
+                        "lag_step_s": est.step}
+                warnings.warn(f"{logmap.path}: stream {name!r}: clock offset "
+                              f"{est.offset:+.4f} s to stream {a.to!r} estimated by "
+                              f"cross-correlation of {name}.{a.signal[0]} with "
+                              f"{a.to}.{a.signal[1]} (peak {est.correlation:.3f}, lag step "
+                              f"{est.step:.4g} s); to override: {key}.offset",
+                              SamplingWarning, stacklevel=3)
+            tables[name] = dataclasses.replace(
+                tb, t=tb.t + np.longdouble(info["offset_s"]),
+                info={**tb.info, "clock_offset": info})
+    return tables
 
 
 def read_streams(source, logmap: LogMap) -> dict:
@@ -81,7 +130,7 @@ def read_streams(source, logmap: LogMap) -> dict:
         tables[name] = read_csv_stream(path, spec, need[name])
     if topics:
         tables.update(read_bag_streams(source, topics))
-    return tables
+    return align_clocks(logmap, tables)
 
 
 def _values(block, table) -> np.ndarray:
@@ -294,7 +343,8 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
     meta = {"map": logmap.path, "time_base": int(base), "t0": float(grid[0]),
             "rate": float(rate),
             "streams": {k: {"samples": int(tb.t.size), "median_rate": tb.median_rate,
-                            "span": [float(tb.t[0] + base), float(tb.t[-1] + base)]}
+                            "span": [float(tb.t[0] + base), float(tb.t[-1] + base)],
+                            **tb.info}
                         for k, tb in tables.items()},
             "excluded": [list(r) for r in logmap.exclude]}
     return Log(out, source=source, meta=meta)
