@@ -111,3 +111,4 @@ def test_kill_before_the_commit_keeps_the_old_set(tmp_path):
         (staging / name).write_text("7\n")
     write_set(tmp_path, 1)
     assert generations(tmp_path) == [1, 1, 1] and leftovers(tmp_path) == []
+

@@ -300,23 +300,31 @@ def write_bytes(path, data: bytes, *, key: str = "output") -> None:
 MAX_TEXT_BYTES = 256 * 2**20
 
 
-def read_text(path, *, kind: str) -> str:
-    """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
-
-    ``kind`` says what the file should be ("vehicle file", "CSV log", ...). A file over
-    :data:`MAX_TEXT_BYTES` is refused up front (its size, the limit and the remedy).
-    """
+def check_size(path, *, kind: str) -> None:
+    """Refuse a file over :data:`MAX_TEXT_BYTES` before a byte of it is read (its size, the
+    limit and the remedy); first finish a killed run's output set in its folder
+    (:func:`recover_outputs`, roll-forward only)."""
     path = Path(path)
     recover_outputs(path.parent if str(path.parent) else ".", roll_back=False)
     try:
         size = path.stat().st_size
     except OSError:
-        size = 0                          # reported below, by the read that fails
+        return                            # reported by the read that fails
     if size > MAX_TEXT_BYTES and path.is_file():
-        raise InputError(f"too large to read ({size / 2**20:.0f} MiB; files are parsed in "
-                         "memory at about ten times their size)", file=str(path),
+        raise InputError(f"too large to read ({size / 2**20:.0f} MiB)", file=str(path),
                          expected=f"a {kind} of at most {MAX_TEXT_BYTES // 2**20} MiB: split it "
-                                  "into shorter logs or decimate it")
+                                  "into shorter logs (chunk files of a column map are read one "
+                                  "at a time) or decimate it")
+
+
+def read_text(path, *, kind: str) -> str:
+    """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
+
+    ``kind`` says what the file should be ("vehicle file", "CSV log", ...). A file over
+    :data:`MAX_TEXT_BYTES` is refused up front (:func:`check_size`).
+    """
+    path = Path(path)
+    check_size(path, kind=kind)
     try:
         return path.read_text()
     except FileNotFoundError:
