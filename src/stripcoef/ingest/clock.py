@@ -117,14 +117,17 @@ def estimate_offset(t, s, t_ref, s_ref, *, max_offset: float, where: str = "",
                          key=f"{key}.to", expected="streams sharing at least 10 samples "
                          "within align.max seconds")
     k = int(np.argmax(rho))
+    if k in (0, lags.size - 1) or not (np.isfinite(rho[k - 1]) and np.isfinite(rho[k + 1])):
+        weak = rho[k] < MIN_CORRELATION
+        raise InputError(f"the best offset is at the edge of the search ({lags[k]:+.4g} s, "
+                         f"peak correlation {rho[k]:.2f})", file=where, key=f"{key}.max",
+                         value=max_offset, expected="a larger align.max"
+                         + (", a column that logs the same varying quantity" if weak else "")
+                         + ", or align.offset: SECONDS (given)")
     if rho[k] < MIN_CORRELATION:
         raise InputError(f"the signals do not correlate (peak {rho[k]:.2f} at "
                          f"{lags[k]:+.4g} s)", file=where, key=f"{key}.signal",
                          expected=f"a peak correlation >= {MIN_CORRELATION:g}: " + remedy)
-    if k in (0, lags.size - 1) or not (np.isfinite(rho[k - 1]) and np.isfinite(rho[k + 1])):
-        raise InputError(f"the best offset is at the edge of the search ({lags[k]:+.4g} s)",
-                         file=where, key=f"{key}.max", value=max_offset,
-                         expected="a larger align.max, or align.offset: SECONDS (given)")
     a, b, c = rho[k - 1], rho[k], rho[k + 1]
     den = a - 2.0 * b + c
     frac = 0.5 * (a - c) / den if den < 0 else 0.0        # vertex of the parabola, |frac| <= 1/2
