@@ -31,3 +31,30 @@ def test_large_log_path_reads_and_names_bad_cells(tmp_path, monkeypatch):
     f.write_text(text.replace("4.0,", "40000.0,"))     # time going backwards: still checked
     with pytest.raises(InputError, match="time goes backwards"):
         logfile.read_log(f)
+
+
+def test_large_stream_path_gives_the_same_merged_log(tmp_path, monkeypatch):
+    """Streams of a column map over the threshold (here 0) are read by numpy.loadtxt in
+    extended precision: the merged log of chunked, offset, header-less streams is the one the
+    cell-by-cell reader gives, to one unit in the last place (values parsed in extended
+    precision, then rounded to float64)."""
+    import warnings
+
+    from stripcoef.ingest import read_mapped_log, streams
+    from test_ingest_chunks import write_cmd, write_map, write_nav_chunks
+
+    write_nav_chunks(tmp_path / "nav")
+    write_cmd(tmp_path / "cmd.csv")
+    m = write_map(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        small = read_mapped_log(tmp_path / "cmd.csv", m)
+        monkeypatch.setattr(streams, "PARSED_BYTES", 0)
+        big = read_mapped_log(tmp_path / "cmd.csv", m)
+    assert small.names == big.names
+    for k in small.names:
+        np.testing.assert_allclose(small[k], big[k], rtol=3e-16, atol=1e-15, err_msg=k)
+    for k in ("chunks", "overlap_dropped", "gaps", "samples"):
+        assert big.meta["streams"]["nav"][k] == small.meta["streams"]["nav"][k]
+    assert big.meta["streams"]["cmd"]["clock_offset"]["offset_s"] == pytest.approx(
+        small.meta["streams"]["cmd"]["clock_offset"]["offset_s"], abs=1e-9)
