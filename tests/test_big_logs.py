@@ -58,3 +58,25 @@ def test_large_stream_path_gives_the_same_merged_log(tmp_path, monkeypatch):
         assert big.meta["streams"]["nav"][k] == small.meta["streams"]["nav"][k]
     assert big.meta["streams"]["cmd"]["clock_offset"]["offset_s"] == pytest.approx(
         small.meta["streams"]["cmd"]["clock_offset"]["offset_s"], abs=1e-9)
+
+
+def test_attitude_in_blocks_is_seamless(tmp_path, monkeypatch):
+    """The attitude is turned into rotations in blocks of BLOCK_ROWS rows (bounded memory):
+    blocks of 7 rows give the log of one block, a heading spinning past 360 deg unwrapped
+    across the seams."""
+    from stripcoef.ingest import merge, read_mapped_log
+
+    t = np.arange(0.0, 30.0, 0.1)
+    yaw = 40.0 * t                                          # 1200 deg: over three turns
+    (tmp_path / "nav.csv").write_text("t,vn,ve,vd,roll,yaw\n" + "".join(
+        f"{a!r},{0.3 + 0.01 * a!r},0.1,0.0,{5 * float(np.sin(a))!r},{y!r}\n"
+        for a, y in zip(t.tolist(), yaw.tolist())))
+    (tmp_path / "map.yaml").write_text(
+        "streams:\n  nav: {time: t}\nattitude: {euler: [roll, null, yaw], unit: deg}\n"
+        "velocity: {columns: [vn, ve, vd], frame: world}\n")
+    one = read_mapped_log(tmp_path / "nav.csv", tmp_path / "map.yaml")
+    monkeypatch.setattr(merge, "BLOCK_ROWS", 7)
+    blocks = read_mapped_log(tmp_path / "nav.csv", tmp_path / "map.yaml")
+    for k in one.names:
+        np.testing.assert_array_equal(one[k], blocks[k], err_msg=k)
+    np.testing.assert_allclose(one["psi"], np.radians(yaw), atol=1e-12)

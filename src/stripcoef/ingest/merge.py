@@ -44,6 +44,11 @@ from stripcoef.ingest.streams import read_csv_stream
 from stripcoef.logfile import COMMAND_PREFIX, Log, check_magnitudes, read_log
 
 
+#: Rows of a stream turned into rotation matrices at a time [-]: the matrices and their
+#: temporaries (about 300 bytes a row) stay near 60 MB however long the log.
+BLOCK_ROWS = 200_000
+
+
 def _needed(logmap: LogMap) -> dict:
     need = {name: [] for name in logmap.streams}
     for _, block in logmap.blocks():
@@ -202,8 +207,14 @@ def _attitude_columns(logmap, tables, grid, cols):
     if block is None:
         return None
     tb = tables[block.stream]
-    euler = euler_from_matrices(_attitude_matrices(logmap, tb))
+    euler = np.empty((tb.t.size, 3))
+    for a in range(0, tb.t.size, BLOCK_ROWS):     # in blocks: bounded memory (issue 36)
+        part = dataclasses.replace(tb, t=tb.t[a:a + BLOCK_ROWS],
+                                   columns={k: v[a:a + BLOCK_ROWS] for k, v in
+                                            tb.columns.items()})
+        euler[a:a + BLOCK_ROWS] = euler_from_matrices(_attitude_matrices(logmap, part))
     euler[:, 0] = np.unwrap(euler[:, 0])
+    euler[:, 2] = np.unwrap(euler[:, 2])          # across the blocks' seams
     euler_grid = _linear(tb.t, euler, grid)
     present = [True] * 3 if block.kind == "quaternion" else [c is not None for c in block.columns]
     for i in range(3):
@@ -215,7 +226,10 @@ def _attitude_columns(logmap, tables, grid, cols):
         if missing and b is not None and (b.frame == "world" or b.derive):
             warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as 0 to "
                           f"{what}", ModelWarning, stacklevel=4)
-    return euler_matrices(*euler_grid.T)
+    r_grid = np.empty((grid.size, 3, 3))
+    for a in range(0, grid.size, BLOCK_ROWS):
+        r_grid[a:a + BLOCK_ROWS] = euler_matrices(*euler_grid[a:a + BLOCK_ROWS].T)
+    return r_grid
 
 
 def _position_columns(logmap, tables, grid, cols, a_w):
