@@ -68,11 +68,11 @@ def test_attitude_in_blocks_is_seamless(tmp_path, monkeypatch):
 
     t = np.arange(0.0, 30.0, 0.1)
     yaw = 40.0 * t                                          # 1200 deg: over three turns
-    (tmp_path / "nav.csv").write_text("t,vn,ve,vd,roll,yaw\n" + "".join(
-        f"{a!r},{0.3 + 0.01 * a!r},0.1,0.0,{5 * float(np.sin(a))!r},{y!r}\n"
+    (tmp_path / "nav.csv").write_text("t,vn,ve,vd,roll,pitch,yaw\n" + "".join(
+        f"{a!r},{0.3 + 0.01 * a!r},0.1,0.0,{5 * float(np.sin(a))!r},2.0,{y!r}\n"
         for a, y in zip(t.tolist(), yaw.tolist())))
     (tmp_path / "map.yaml").write_text(
-        "streams:\n  nav: {time: t}\nattitude: {euler: [roll, null, yaw], unit: deg}\n"
+        "streams:\n  nav: {time: t}\nattitude: {euler: [roll, pitch, yaw], unit: deg}\n"
         "velocity: {columns: [vn, ve, vd], frame: world}\n")
     one = read_mapped_log(tmp_path / "nav.csv", tmp_path / "map.yaml")
     monkeypatch.setattr(merge, "BLOCK_ROWS", 7)
