@@ -80,3 +80,22 @@ def test_attitude_in_blocks_is_seamless(tmp_path, monkeypatch):
     for k in one.names:
         np.testing.assert_array_equal(one[k], blocks[k], err_msg=k)
     np.testing.assert_allclose(one["psi"], np.radians(yaw), atol=1e-12)
+
+
+def test_streams_over_the_size_limit_together_are_refused_up_front(tmp_path, monkeypatch):
+    """Chunk files each under the limit but over it together: one line before any is read."""
+    from stripcoef import files
+    from stripcoef.errors import InputError
+    from stripcoef.ingest import merge, read_mapped_log
+
+    (tmp_path / "nav").mkdir()
+    for k in range(3):
+        (tmp_path / "nav" / f"c{k}.csv").write_text("t,u\n" + "".join(
+            f"{k * 100 + i}.0,0.1\n" for i in range(100)))
+    (tmp_path / "map.yaml").write_text("streams:\n  nav: {file: nav, time: t}\n"
+                                       "velocity: {columns: [u, null, null]}\n")
+    size = (tmp_path / "nav" / "c0.csv").stat().st_size
+    monkeypatch.setattr(files, "MAX_TEXT_BYTES", int(2.5 * size))
+    monkeypatch.setattr(merge, "MAX_TEXT_BYTES", int(2.5 * size))
+    with pytest.raises(InputError, match="streams: the streams' files total .* fewer chunk"):
+        read_mapped_log(tmp_path / "nav", tmp_path / "map.yaml")

@@ -40,7 +40,8 @@ from stripcoef.ingest.attitude import (body_rates, euler_from_matrices, euler_ma
                                        quaternion_matrices, to_ned_frd)
 from stripcoef.ingest.bags import is_bag, read_bag_streams
 from stripcoef.ingest.mapfile import LogMap, load_map
-from stripcoef.ingest.streams import read_csv_stream
+from stripcoef.files import MAX_TEXT_BYTES
+from stripcoef.ingest.streams import read_csv_stream, stream_files
 from stripcoef.logfile import COMMAND_PREFIX, Log, check_magnitudes, read_log
 
 
@@ -111,7 +112,7 @@ def read_streams(source, logmap: LogMap) -> dict:
     ``source`` itself, topics read the bag ``source``."""
     source = Path(source) if source is not None else None
     need = _needed(logmap)
-    tables, topics = {}, []
+    tables, topics, paths = {}, [], []
     for name, spec in logmap.streams.items():
         if spec.topic is not None:
             if source is None or not is_bag(source):
@@ -132,6 +133,16 @@ def read_streams(source, logmap: LogMap) -> dict:
             if not path.is_absolute():          # in the folder that holds LOG (else the map)
                 base = source.parent if source is not None else Path(logmap.path).parent
                 path = base / path
+        paths.append((name, spec, path))
+    files = {f.resolve() for _, spec, path in paths for f in stream_files(path, spec)
+             if f.is_file()}                     # a file two streams read counts once
+    total = sum(f.stat().st_size for f in files)
+    if total > MAX_TEXT_BYTES:
+        raise InputError(f"the streams' files total {total / 2**20:.0f} MiB", file=logmap.path,
+                         key="streams", expected=f"at most {MAX_TEXT_BYTES // 2**20} MiB "
+                         "together (they are merged in memory): fewer chunk files, a shorter "
+                         "log or a decimated one")
+    for name, spec, path in paths:
         tables[name] = read_csv_stream(path, spec, need[name])
     if topics:
         tables.update(read_bag_streams(source, topics))
