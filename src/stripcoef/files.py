@@ -137,14 +137,15 @@ class OutputSet:
             return
         moves = []
         for folder, staging in self._staging.items():
-            for f in sorted(staging.iterdir()):
-                final, key = self._finals.get(f, (folder / f.name, "output"))
-                try:
+            final, key = next(iter(self._finals.values()), (folder, "output"))
+            try:
+                for f in sorted(staging.iterdir()):
+                    final, key = self._finals.get(f, (folder / f.name, "output"))
                     os.chmod(f, _final_mode(folder / f.name))
-                except OSError as exc:
-                    self.discard()
-                    raise _write_error(exc, final, key) from None
-                moves.append((f, folder / f.name))
+                    moves.append((f, folder / f.name))
+            except OSError as exc:          # also a staging folder removed under the run
+                self.discard()
+                raise _write_error(exc, final, key) from None
         first, staging0 = next(iter(self._staging.items()))
         # .stripcoef-<pid>-<random>.tmp -> .stripcoef-commit-<pid>-<random>.json
         journal = first / f"{JOURNAL_PREFIX}{staging0.name[len(STAGING_PREFIX):-4]}.json"
