@@ -3,6 +3,7 @@ two loggers' clocks offset by a constant, and a header-less stream timed only by
 receive times. Every log is generated with a known truth: the chunks' contents, the offset
 (recovered within one sample) and the source's period."""
 
+import re
 import warnings
 
 import numpy as np
@@ -204,3 +205,20 @@ def test_chunk_errors_name_the_file(tmp_path):
     m.write_text(MAP % {"nav": "nav", "align": "align: {to: wrench, signal: [a, b]}"})
     with pytest.raises(InputError, match="streams.cmd.align.to: unknown stream"):
         read_mapped_log(tmp_path / "cmd.csv", m)
+
+
+def test_the_command_line_reports_chunks_and_offset(tmp_path, capsys):
+    """``stripcoef identify FOLDER --map MAP``: the chunk folder is the log; the joined chunks,
+    their gap and the estimated offset (with its override key) are printed as warnings."""
+    from stripcoef.cli import main
+
+    write_nav_chunks(tmp_path / "nav")
+    write_cmd(tmp_path / "cmd.csv")
+    m = write_map(tmp_path)
+    rc = main(["identify", str(tmp_path / "nav"), "--map", str(m), "--method", "one-step",
+               "--dof", "surge", "--json"])
+    err = capsys.readouterr().err
+    assert rc == 0, err
+    assert "6 chunk files joined by time" in err and "1 gap(s) between chunks" in err
+    assert "clock offset +0.8" in err and "streams.cmd.align.offset" in err
+    assert re.search(r"gap in t from 17000000(59\.9\d*) to 17000000(63|62\.9\d*) s", err), err

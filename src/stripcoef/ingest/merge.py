@@ -343,7 +343,7 @@ def _kept_rows(logmap, t, grid, tables) -> np.ndarray:
     idx = np.nonzero(keep)[0]
     for k in np.nonzero(np.diff(idx) > 1)[0]:
         warnings.warn(f"{logmap.path}: excluded range or stream gap leaves a gap in t from "
-                      f"{t[idx[k]]:.6g} to {t[idx[k + 1]]:.6g} s (methods that difference "
+                      f"{t[idx[k]]:.12g} to {t[idx[k + 1]]:.12g} s (methods that difference "
                       "consecutive samples span it)", SamplingWarning, stacklevel=4)
     return idx
 
