@@ -29,6 +29,7 @@ from stripcoef.files import check_size, read_text
 from stripcoef.ingest.clock import retime
 from stripcoef.ingest.mapfile import TIME_UNITS, StreamSpec
 from stripcoef.logfile import PARSED_BYTES
+from stripcoef.progress import track
 
 #: A step longer than GAP_FACTOR nominal periods is a gap [-].
 GAP_FACTOR = 2.5
@@ -118,7 +119,9 @@ def read_csv_stream(path, spec: StreamSpec, needed) -> Table:
     want = list(dict.fromkeys(([spec.time.column] if spec.time.column else []) + list(needed)))
     files = stream_files(path, spec)
     name = str(path)
-    parts = [(str(f), *_read_csv_file(f, spec, want)) for f in files]
+    parts = [(str(f), *_read_csv_file(f, spec, want)) for f in
+             (track(files, desc=f"stream {spec.name}", unit="file") if len(files) > 1
+              else files)]
     info = {}
     if len(parts) > 1:
         if not spec.time.column:
