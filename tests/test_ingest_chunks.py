@@ -222,3 +222,35 @@ def test_the_command_line_reports_chunks_and_offset(tmp_path, capsys):
     assert "6 chunk files joined by time" in err and "1 gap(s) between chunks" in err
     assert "clock offset +0.8" in err and "streams.cmd.align.offset" in err
     assert re.search(r"gap in t from 17000000(59\.9\d*) to 17000000(63|62\.9\d*) s", err), err
+
+
+def test_offset_from_a_command_and_the_rate_of_its_response(tmp_path):
+    """No shared signal: the commanded force X and the measured surge velocity u of
+    m du/dt = X(t - tau) - d u (exact between the steps of a held command). With
+    ``response: rate`` the offset found is the clock offset plus the actuator delay tau,
+    within one sample of the finer stream."""
+    m_, d_, tau, h = 30.0, 12.0, 0.3, 1.0 / NAV_RATE
+    fine = np.arange(0.0, DURATION, 1e-3)
+    x = force(fine - tau)
+    u = np.empty(fine.size)
+    u[0] = 0.0
+    decay = np.exp(-d_ / m_ * 1e-3)
+    for k in range(1, fine.size):                  # exact for a force held over each step
+        u[k] = u[k - 1] * decay + x[k - 1] / d_ * (1.0 - decay)
+    t_nav = np.arange(0.0, DURATION, h)
+    u_nav = np.interp(t_nav, fine, u)
+    (tmp_path / "nav.csv").write_text("stamp,u\n" + "".join(
+        f"{EPOCH + a:.6f},{float(b)!r}\n" for a, b in zip(t_nav, u_nav)))
+    t_cmd = np.arange(0.0, DURATION, 1.0 / CMD_RATE)
+    (tmp_path / "cmd.csv").write_text("".join(f"{EPOCH + a - OFFSET:.6f},{float(force(a))!r},0\n"
+                                              for a in t_cmd))
+    m = tmp_path / "map.yaml"
+    m.write_text(MAP % {"nav": "nav.csv", "align": "align: {to: nav, signal: [fx, u], "
+                        "response: rate, max: 3}"})
+    m.write_text(m.read_text().replace("attitude: {stream: nav, euler: [null, null, yaw], "
+                                       "unit: deg}\n", ""))
+    log, warned = read(tmp_path / "cmd.csv", m)
+    est = log.meta["streams"]["cmd"]["clock_offset"]
+    assert abs(est["offset_s"] - (OFFSET + tau)) < h, est
+    assert est["method"] == "response fit"
+    assert any("best fit of the rate of nav.u" in w and "actuator delay" in w for w in warned)

@@ -30,6 +30,10 @@ VELOCITY_FRAMES = ("body", "world")
 MISSING = ("error", "drop")
 HOLDS = ("linear", "previous")
 TIME_ORIGINS = ("start", "absolute")
+#: How the reference column of ``align.signal`` follows this stream's column: ``value`` (the
+#: same quantity logged twice) or ``rate`` (its rate of change does: a commanded force and the
+#: measured velocity; biased by the actuator's delay, :mod:`stripcoef.ingest.clock`).
+ALIGN_RESPONSES = ("value", "rate")
 BAG_TIMES = ("header", "bag")
 
 _TOP_KEYS = ("version", "frames", "streams", "position", "attitude", "velocity", "rates",
@@ -58,6 +62,7 @@ class Align:
     signal: tuple = ()
     max: float = 5.0
     offset: float | None = None
+    response: str = "value"
 
 
 @dataclass(frozen=True)
@@ -248,7 +253,7 @@ def _stream(r: _Reader, name, obj) -> StreamSpec:
 def _align(r: _Reader, obj, key) -> Align:
     """``align: {to: STREAM, signal: [COLUMN, REFERENCE_COLUMN], max: S}`` (estimated) and/or
     ``align: {offset: S}`` (given: overrides the estimate)."""
-    r.mapping(obj, key, ("to", "signal", "max", "offset"))
+    r.mapping(obj, key, ("to", "signal", "max", "offset", "response"))
     offset = r.number(obj.get("offset"), f"{key}.offset", allow_none=True)
     if "to" not in obj and offset is None:
         raise r.err(key, "nothing to align with", sorted(obj),
@@ -264,7 +269,9 @@ def _align(r: _Reader, obj, key) -> Align:
         signal = (r.name(sig[0], f"{key}.signal[0]"), r.name(sig[1], f"{key}.signal[1]"))
     return Align(to=r.name(obj["to"], f"{key}.to") if "to" in obj else None, signal=signal,
                  max=r.number(obj.get("max", 5.0), f"{key}.max", positive=True),
-                 offset=offset)
+                 offset=offset,
+                 response=r.choice(obj.get("response", "value"), f"{key}.response",
+                                   ALIGN_RESPONSES))
 
 
 def _columns(r, obj, key, n, *, allow_null=True):

@@ -68,7 +68,7 @@ def align_clocks(logmap: LogMap, tables: dict) -> dict:
     signal); a stream aligned to an aligned stream follows it (a chain), a cycle is an error.
     Each shift is reported: the table's ``info["clock_offset"]`` and a
     :class:`~stripcoef.errors.SamplingWarning` naming the override key."""
-    from stripcoef.ingest.clock import estimate_offset
+    from stripcoef.ingest.clock import estimate_offset, estimate_response_offset
 
     todo = {k: s.align for k, s in logmap.streams.items() if s.align is not None}
     tables = dict(tables)
@@ -87,18 +87,25 @@ def align_clocks(logmap: LogMap, tables: dict) -> dict:
             else:
                 ref = tables[a.to]
                 base = np.floor(min(tb.t[0], ref.t[0]))
-                est = estimate_offset(np.asarray(tb.t - base, float), tb.column(a.signal[0]),
-                                      np.asarray(ref.t - base, float),
-                                      ref.column(a.signal[1]), max_offset=a.max,
-                                      where=logmap.path, key=key)
-                info = {"offset_s": est.offset, "to": a.to, "method": "cross-correlation",
+                how = estimate_response_offset if a.response == "rate" else estimate_offset
+                est = how(np.asarray(tb.t - base, float), tb.column(a.signal[0]),
+                          np.asarray(ref.t - base, float), ref.column(a.signal[1]),
+                          max_offset=a.max, where=logmap.path, key=key)
+                info = {"offset_s": est.offset, "to": a.to,
+                        "method": "response fit" if a.response == "rate" else
+                        "cross-correlation",
                         "signal": list(a.signal), "correlation": est.correlation,
                         "lag_step_s": est.step}
+                rate = a.response == "rate"
+                what = (f"the best fit of the rate of {a.to}.{a.signal[1]} by "
+                        f"{name}.{a.signal[0]} (multiple correlation" if rate else
+                        f"cross-correlation of {name}.{a.signal[0]} with {a.to}.{a.signal[1]} "
+                        "(peak")
                 warnings.warn(f"{logmap.path}: stream {name!r}: clock offset "
-                              f"{est.offset:+.4f} s to stream {a.to!r} estimated by "
-                              f"cross-correlation of {name}.{a.signal[0]} with "
-                              f"{a.to}.{a.signal[1]} (peak {est.correlation:.3f}, lag step "
-                              f"{est.step:.4g} s); to override: {key}.offset",
+                              f"{est.offset:+.4f} s to stream {a.to!r} estimated by {what} "
+                              f"{est.correlation:.3f}, lag step {est.step:.4g} s"
+                              f"{'; it includes the actuator delay' if rate else ''}); "
+                              f"to override: {key}.offset",
                               SamplingWarning, stacklevel=3)
             tables[name] = dataclasses.replace(
                 tb, t=tb.t + np.longdouble(info["offset_s"]),
