@@ -602,19 +602,27 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     error = info["error"]
     rel = relative_error(m_a, error)
     worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
+    counts = "/".join(str(c) for c in info["panels"])
     if rel[worst] > ERROR_TOLERANCE:
         from stripcoef.conventions import DOF
 
-        more = min(2 * n, MAX_PANELS)
+        finest = int(info["panels"][-1])
+        more = min(2 * max(n, finest), MAX_PANELS)
         fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
                else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                     "(stripcoef compare FILE)")
+        if info["family"].startswith("refined"):
+            fix += "; install the remesher for three uniform levels (pip install " \
+                   "'stripcoef[remesh]')"
         warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "
                       f"estimated error of M_A[{DOF[worst[0]]}, {DOF[worst[1]]}] is "
                       f"{100 * rel[worst]:.1f} % of the diagonal scale (tolerance "
-                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {info['panels'][0]} and "
-                      f"{info['panels'][1]}); {fix}", ModelWarning, stacklevel=3)
-    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, Richardson "
-                                      f"from {info['panels'][0]} and {info['panels'][1]} panels)",
-                 "added_mass_panels": int(info["panels"][1]),
+                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {counts}); {fix}",
+                      ModelWarning, stacklevel=3)
+    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, "
+                                      f"{info['family']}, Richardson from {counts} panels, "
+                                      "error: grid convergence index)",
+                 "added_mass_panels": int(info["panels"][-1]),
+                 "added_mass_panel_levels": tuple(int(c) for c in info["panels"]),
+                 "added_mass_converged": bool(rel.max() <= ERROR_TOLERANCE),
                  "added_mass_error_max": float(rel.max())}, error
