@@ -30,6 +30,11 @@ import numpy as np
 #: Dihedral angle above which an edge is kept as a crease by the remesher [deg] (MeshLab's
 #: default of the filter).
 FEATURE_ANGLE = 30.0
+#: The crease angle of the second try when the first changed the volume by more than
+#: :data:`VOLUME_TOLERANCE` [deg]: a coarse faceted body (a 12-sided cylinder, a low-polygon
+#: hull) has facet edges below 30 degrees that the remesher would cut across; kept as creases,
+#: the remesh follows the polyhedron exactly (more panels on it).
+FACET_ANGLE = 10.0
 #: Remeshing passes (MeshLab's default) [-].
 ITERATIONS = 10
 #: Largest relative change of the enclosed volume a remesh may make [-] before it is refused
@@ -55,9 +60,35 @@ def edge_for_panels(area: float, panels: int) -> float:
 def remesh_isotropic(vertices, faces, edge: float, *, feature_angle: float = FEATURE_ANGLE,
                      iterations: int = ITERATIONS):
     """The closed mesh (vertices [m], faces) remeshed to triangles of about ``edge`` [m]
-    (module docstring).  Returns (vertices, faces) with the input's orientation (outward
+    (module docstring), creases above ``feature_angle`` [deg] kept (then above
+    :data:`FACET_ANGLE` if the volume changed).  Returns (vertices, faces) with the input's orientation (outward
     normals), or ``None`` when the result is not a closed, consistently wound surface of the
     input's volume within :data:`VOLUME_TOLERANCE`."""
+    for angle in dict.fromkeys((feature_angle, min(feature_angle, FACET_ANGLE))):
+        out = _remesh_once(vertices, faces, edge, angle, iterations)
+        if out is not None:
+            return out
+    return None
+
+
+def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25):
+    """Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
+    (:data:`FEATURE_ANGLE`, else :data:`FACET_ANGLE`), each with at least ``min_ratio`` times
+    the faces of the one before.  Returns (list of (vertices, faces), the angle [deg]) or
+    ``None``."""
+    for angle in (FEATURE_ANGLE, FACET_ANGLE):
+        levels = []
+        for h in edges:
+            lv = _remesh_once(vertices, faces, h, angle, ITERATIONS)
+            if lv is None or (levels and len(lv[1]) < min_ratio * len(levels[-1][1])):
+                break
+            levels.append(lv)
+        else:
+            return levels, angle
+    return None
+
+
+def _remesh_once(vertices, faces, edge, feature_angle, iterations):
     import pymeshlab
 
     v = np.asarray(vertices, float)
