@@ -223,7 +223,6 @@ def bem_reference(surface, bem_faces, ref_point):
 
 def run_one(family, rng, tmp, bem_faces, stored=None):
     from stripcoef.assembly import estimate
-    from stripcoef.bem import bem_added_mass
     from stripcoef.geometry.vehicle import load_vehicle
 
     parts, what = make_shape(family, rng)

@@ -218,7 +218,6 @@ def main(argv=None) -> int:
     ap.add_argument("--bem-faces", type=int, nargs="+", default=(500, 1000, 2000))
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
     args = ap.parse_args(argv)
-    rows_out = []
     summary = []
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in MESHES:
@@ -244,7 +243,7 @@ def main(argv=None) -> int:
                 runs["panels"] = run_cli(path, "--added-mass-method", "panels")
             print(f"{mesh.name}: as found exit {first['rc']}"
                   + (f" ({first['warnings'][-1][:160]})" if first["rc"] else "")
-                  + (f"; {note}" if note else "") + f"; auto -> "
+                  + (f"; {note}" if note else "") + "; auto -> "
                   + (method_of(auto) if auto["rc"] == 0 else f"exit {auto['rc']}")
                   + f" in {auto['seconds']:.1f} s", flush=True)
             for w in auto["warnings"]:
