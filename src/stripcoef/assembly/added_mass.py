@@ -582,13 +582,14 @@ def added_mass_method(method, vehicle, strips: Strips) -> str:
     return "panels" if strips.length < SLENDER_RATIO * width else "strips"
 
 
-def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
+def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None):
     r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
     :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
-    count that resolves it)."""
+    count that resolves it).  ``symmetrise``: a function applied to M_A and its error before
+    the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`)."""
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
@@ -600,6 +601,8 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
     error = info["error"]
+    if symmetrise is not None:
+        m_a, error = symmetrise(m_a), symmetrise(error)
     rel = relative_error(m_a, error)
     worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
     counts = "/".join(str(c) for c in info["panels"])

@@ -153,12 +153,13 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     method = added_mass_method(options.added_mass_method, vehicle, st)
     m_a_error = None
     if method == "panels":
-        m_a, am_info, m_a_error = panel_vehicle_added_mass(vehicle, rho, ref,
-                                                           options.added_mass_panels)
         # the mirror planes of the body through the reference point: the couplings they
-        # forbid are exactly zero (the panels of a symmetric body are not symmetric)
+        # forbid are exactly zero (the panels of a symmetric body are not symmetric), and so
+        # is their error (the convergence check looks at the terms that remain)
         mirrors = strips_mirror_symmetries(st, ref, tol=SYMMETRY_ZERO_TOL)
-        m_a, m_a_error = enforce_symmetry(m_a, mirrors), enforce_symmetry(m_a_error, mirrors)
+        m_a, am_info, m_a_error = panel_vehicle_added_mass(
+            vehicle, rho, ref, options.added_mass_panels,
+            symmetrise=lambda m: enforce_symmetry(m, mirrors))
         am_info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
     else:
         m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
