@@ -205,6 +205,23 @@ def compare(run: dict, ref, ref_err) -> list[dict]:
     return rows
 
 
+HEADER = ["mesh", "vehicle", "kind", "repo", "commit", "path", "license", "role", "note", "run",
+          "command", "method", "panel_levels", "warned", "seconds", "bem_faces", "bem_seconds",
+          "i", "j", "model", "bem", "error_rel", "estimated_error_rel", "bem_error_rel",
+          "significant", "covered", "covered_with_bem_error"]
+
+
+def csv_rows(s):
+    """The CSV rows of one run of one mesh (:data:`HEADER`)."""
+    m, run = s["mesh"], s["run"]
+    return [[m.name, m.vehicle, m.kind, m.repo, m.commit, m.path, m.license, m.role, s["note"],
+             s["label"], run["command"], method_of(run), s["levels"], int(s["warned"]),
+             f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])), f"{s['t_bem']:.1f}",
+             t["i"], t["j"], f"{t['model']:.6g}", f"{t['bem']:.6g}", f"{t['rel']:.4g}",
+             f"{t['est']:.4g}", f"{t['bem_err']:.4g}", int(t["significant"]),
+             int(t["covered"]), int(t["covered_vv"])] for t in s["terms"]]
+
+
 def method_of(run):
     c = (run["json"] or {}).get("conditions", {})
     return "panels" if c.get("added_mass_method") else "strips"
@@ -219,6 +236,12 @@ def main(argv=None) -> int:
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
     args = ap.parse_args(argv)
     summary = []
+    if args.csv:                          # written as the meshes finish (a long run)
+        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.csv, "w", newline="") as fh:
+            fh.write("# python -m benchmarks.public_meshes --mirror DIR --bem-faces "
+                     + " ".join(map(str, args.bem_faces)) + "\n")
+            csv.writer(fh).writerow(HEADER)
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in MESHES:
             if args.only and mesh.name not in args.only:
@@ -268,6 +291,9 @@ def main(argv=None) -> int:
                             t_bem=t_bem, warned=warned, note=note,
                             levels="/".join(map(str, c.get("added_mass_panel_levels") or ())))
                 summary.append(line)
+                if args.csv:
+                    with open(args.csv, "a", newline="") as fh:
+                        csv.writer(fh).writerows(csv_rows(line))
                 print(f"    {label}: worst diagonal {DOFS[wd['i']]} {100 * wd['rel']:+.1f} %"
                       + (f", worst coupling {DOFS[wc['i']]}-{DOFS[wc['j']]} "
                          f"{100 * wc['rel']:+.1f} %" if wc else "")
@@ -276,28 +302,6 @@ def main(argv=None) -> int:
                       f"{100 * (c.get('added_mass_error_max') or 0):.1f} %"
                       + (" WARNED" if warned else "") + f"; {run['seconds']:.1f} s; "
                       f"BEM {'/'.join(map(str, counts))} faces {t_bem:.1f} s", flush=True)
-    if args.csv:
-        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
-        with open(args.csv, "w", newline="") as fh:
-            fh.write("# python -m benchmarks.public_meshes --mirror DIR --bem-faces "
-                     + " ".join(map(str, args.bem_faces)) + "\n")
-            w = csv.writer(fh)
-            w.writerow(["mesh", "vehicle", "kind", "repo", "commit", "path", "license", "role",
-                        "note", "run", "command", "method", "panel_levels", "warned",
-                        "seconds", "bem_faces", "bem_seconds", "i", "j", "model", "bem",
-                        "error_rel", "estimated_error_rel", "bem_error_rel", "significant",
-                        "covered", "covered_with_bem_error"])
-            for s in summary:
-                m, run = s["mesh"], s["run"]
-                for t in s["terms"]:
-                    w.writerow([m.name, m.vehicle, m.kind, m.repo, m.commit, m.path, m.license,
-                                m.role, s["note"], s["label"], run["command"],
-                                method_of(run), s["levels"], int(s["warned"]),
-                                f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])),
-                                f"{s['t_bem']:.1f}", t["i"], t["j"], f"{t['model']:.6g}",
-                                f"{t['bem']:.6g}", f"{t['rel']:.4g}", f"{t['est']:.4g}",
-                                f"{t['bem_err']:.4g}", int(t["significant"]),
-                                int(t["covered"]), int(t["covered_vv"])])
     return 0
 
 
