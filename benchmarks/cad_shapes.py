@@ -207,13 +207,16 @@ def bem_reference(surface, bem_faces, ref_point):
     from stripcoef.bem import bem_added_mass
     from stripcoef.hull.convergence import grid_convergence_index, richardson
     from stripcoef.hull.panels import estimated_error
-    from stripcoef.hull.remesh import edge_for_panels, remesh_isotropic
+    from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
     v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
+    # one remesh family (one crease angle, each level 1.25x the faces of the one before),
+    # else the surface's edges bisected at every level (a family that refines)
+    family = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in bem_faces])
+    meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
+              else [refine(surface, n) for n in bem_faces])
     mats, counts = [], []
-    for n in bem_faces:
-        lv = remesh_isotropic(v, f, edge_for_panels(float(surface.area), n))
-        m = refine(surface, n) if lv is None else trimesh.Trimesh(*lv, process=False)
+    for m in meshes:
         mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=4000))
         counts.append(len(m.faces))
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])

@@ -158,18 +158,20 @@ def bem_reference(path: Path, bem_faces):
     from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.convergence import grid_convergence_index, richardson
     from stripcoef.hull.panels import estimated_error
-    from stripcoef.hull.remesh import edge_for_panels, remesh_isotropic
+    from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
     veh = load_vehicle(path)
     body = veh.bodies[0]
     surface = body.united() if hasattr(body, "united") else body.mesh
     v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
     t0 = time.perf_counter()
+    # one remesh family (one crease angle, each level 1.25x the faces of the one before),
+    # else the surface's edges bisected at every level (a family that refines)
+    family = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in bem_faces])
+    meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
+              else [refine(surface, n) for n in bem_faces])
     mats, counts = [], []
-    for n in bem_faces:
-        lv = remesh_isotropic(v, f, edge_for_panels(float(surface.area), n))
-        # the remesher refused (thin members): the surface's edges bisected instead
-        m = refine(surface, n) if lv is None else trimesh.Trimesh(*lv, process=False)
+    for m in meshes:
         mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3), max_faces=4000))
         counts.append(len(m.faces))
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
@@ -271,6 +273,16 @@ def main(argv=None) -> int:
                   + f" in {auto['seconds']:.1f} s", flush=True)
             for w in auto["warnings"]:
                 print("    " + w[:220], flush=True)
+            if auto["rc"] != 0:                 # refused as a user runs it: a result too
+                why = (auto["warnings"] or ["exit %d" % auto["rc"]])[-1]
+                print(f"    refused: {why[:300]}", flush=True)
+                if args.csv:
+                    with open(args.csv, "a", newline="") as fh:
+                        csv.writer(fh).writerow(
+                            [mesh.name, mesh.vehicle, mesh.kind, mesh.repo, mesh.commit,
+                             mesh.path, mesh.license, mesh.role, why, "refused",
+                             auto["command"]] + [""] * (len(HEADER) - 11))
+                continue
             try:
                 ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces)
             except Exception as exc:            # a refusal is a result: say it, go on
