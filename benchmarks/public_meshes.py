@@ -19,7 +19,8 @@ GitHub cannot be reached.  Per mesh:
    with its own grid convergence index (Roache 1998), moved to each run's reference point.
 
 Per term: the model's error (diagonal: of the term; couplings whose reference is at least 1 %
-of sqrt(A_ii A_jj): of that scale), whether the model's estimated error covers it, and
+of sqrt(A_ii A_jj): of that scale; a diagonal term below 1 % of the largest of its block, the
+roll of a body of revolution, scaled by that 1 % as the panel method's check does), whether the model's estimated error covers it, and
 whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  Usage:
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.public_meshes --mirror DIR
@@ -183,6 +184,7 @@ def bem_reference(path: Path, bem_faces):
 def compare(run: dict, ref, ref_err) -> list[dict]:
     """Per term of a CLI run: error against the reference moved to the run's reference point."""
     from stripcoef.conventions import transform_matrix
+    from stripcoef.hull.panels import NEGLIGIBLE
 
     d = run["json"]
     point = np.asarray(d["reference_point"], float)
@@ -192,13 +194,16 @@ def compare(run: dict, ref, ref_err) -> list[dict]:
     ours = np.asarray(d["added_mass"], float)
     est = d.get("added_mass_error")
     est = np.asarray(est, float) if est is not None else np.zeros((6, 6))
-    diag = np.sqrt(np.abs(np.diag(ref_p)))
+    dg = np.abs(np.diag(ref_p)).copy()
+    for block in (slice(0, 3), slice(3, 6)):   # the panel method's scale (NEGLIGIBLE floor)
+        dg[block] = np.maximum(dg[block], NEGLIGIBLE * dg[block].max())
+    diag = np.sqrt(dg)
     scale = np.outer(diag, diag)
     rows = []
     for i in range(6):
         for j in range(i, 6):
             sig = i == j or abs(ref_p[i, j]) >= SIGNIFICANT * scale[i, j]
-            s = abs(ref_p[i, i]) if i == j else scale[i, j]
+            s = scale[i, j]
             e = ours[i, j] - ref_p[i, j]
             rows.append(dict(i=i, j=j, model=ours[i, j], bem=ref_p[i, j], rel=e / s,
                              est=est[i, j] / s, bem_err=err_p[i, j] / s, significant=sig,
@@ -274,7 +279,8 @@ def main(argv=None) -> int:
             for w in auto["warnings"]:
                 print("    " + w[:220], flush=True)
             if auto["rc"] != 0:                 # refused as a user runs it: a result too
-                why = (auto["warnings"] or ["exit %d" % auto["rc"]])[-1]
+                why = (auto["warnings"] or ["exit %d" % auto["rc"]])[-1].replace(
+                    str(path.parent) + os.sep, "")
                 print(f"    refused: {why[:300]}", flush=True)
                 if args.csv:
                     with open(args.csv, "a", newline="") as fh:
