@@ -610,8 +610,8 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
         from stripcoef.conventions import DOF
 
         finest = int(info["panels"][-1])
-        # twice the panels asked for, or four times once the refinement went to twice
-        more = min((2 if finest < 2 * n else 4) * n, MAX_PANELS)
+        # twice the panels asked for, or four times once the refinement went on to about twice
+        more = min((2 if finest < 1.5 * n else 4) * n, MAX_PANELS)
         fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
                else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                     "(stripcoef compare FILE)")
