@@ -363,7 +363,13 @@ class Conditions(Mapping):
     added_mass_method : str
         How M_A was obtained when not by the strips (the 3D panel method)
     added_mass_panels : int
-        Panels of the finer resolution of the panel method
+        Panels of the finest resolution of the panel method
+    added_mass_panel_levels : tuple of int
+        Panels of each resolution of the panel method, coarse to fine (its grid convergence
+        study: :mod:`stripcoef.hull.convergence`)
+    added_mass_converged : bool
+        Whether every term's estimated error is within the panel method's tolerance
+        (:data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale)
     added_mass_error_max : float
         Largest estimated error of a term of M_A over the diagonal scale [-]
         (:attr:`HydroModel.added_mass_error`)
@@ -424,6 +430,8 @@ class Conditions(Mapping):
     correction_panels: int | None = None
     added_mass_method: str | None = None
     added_mass_panels: int | None = None
+    added_mass_panel_levels: tuple | None = None
+    added_mass_converged: bool | None = None
     added_mass_error_max: float | None = None
     mirror_planes: str | None = None
     lift: Mapping | None = None

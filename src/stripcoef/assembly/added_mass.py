@@ -550,13 +550,14 @@ def _round_along_x(strips: Strips) -> bool:
                 and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
 
 
-def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
+def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None):
     r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
     :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
-    count that resolves it)."""
+    count that resolves it).  ``symmetrise``: a function applied to M_A and its error before
+    the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`)."""
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
@@ -568,21 +569,32 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
     error = info["error"]
+    if symmetrise is not None:
+        m_a, error = symmetrise(m_a), symmetrise(error)
     rel = relative_error(m_a, error)
     worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
+    counts = "/".join(str(c) for c in info["panels"])
     if rel[worst] > ERROR_TOLERANCE:
         from stripcoef.conventions import DOF
 
-        more = min(2 * n, MAX_PANELS)
+        finest = int(info["panels"][-1])
+        # twice the panels asked for, or four times once the refinement went on to about twice
+        more = min((2 if finest < 1.5 * n else 4) * n, MAX_PANELS)
         fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
                else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                     "(stripcoef compare FILE)")
+        if info["family"].startswith("refined"):
+            fix += "; install the remesher for three uniform levels (pip install " \
+                   "'stripcoef[remesh]')"
         warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "
                       f"estimated error of M_A[{DOF[worst[0]]}, {DOF[worst[1]]}] is "
                       f"{100 * rel[worst]:.1f} % of the diagonal scale (tolerance "
-                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {info['panels'][0]} and "
-                      f"{info['panels'][1]}); {fix}", ModelWarning, stacklevel=3)
-    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, Richardson "
-                                      f"from {info['panels'][0]} and {info['panels'][1]} panels)",
-                 "added_mass_panels": int(info["panels"][1]),
+                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {counts}); {fix}",
+                      ModelWarning, stacklevel=3)
+    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, "
+                                      f"{info['family']}, Richardson from {counts} panels, "
+                                      "error: grid convergence index)",
+                 "added_mass_panels": int(info["panels"][-1]),
+                 "added_mass_panel_levels": tuple(int(c) for c in info["panels"]),
+                 "added_mass_converged": bool(rel.max() <= ERROR_TOLERANCE),
                  "added_mass_error_max": float(rel.max())}, error

@@ -125,13 +125,15 @@ def _strips(inp: AddedMassInputs):
 
 
 def _panels(inp: AddedMassInputs):
-    m_a, info, error = panel_vehicle_added_mass(inp.vehicle, inp.rho, inp.about,
-                                                inp.added_mass_panels)
     # the mirror planes of the body through the reference point: the couplings they
-    # forbid are exactly zero (the panels of a symmetric body are not symmetric)
+    # forbid are exactly zero (the panels of a symmetric body are not symmetric), and so is
+    # their error (the convergence check looks at the terms that remain)
     mirrors = strips_mirror_symmetries(inp.strips, inp.about, tol=SYMMETRY_ZERO_TOL)
+    m_a, info, error = panel_vehicle_added_mass(
+        inp.vehicle, inp.rho, inp.about, inp.added_mass_panels,
+        symmetrise=lambda m: enforce_symmetry(m, mirrors))
     info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
-    return enforce_symmetry(m_a, mirrors), info, enforce_symmetry(error, mirrors)
+    return m_a, info, error
 
 
 def _bem(inp: AddedMassInputs):
@@ -155,13 +157,13 @@ ADDED_MASS_METHODS = {m.name: m for m in (
         in_estimate=False),
     AddedMassMethod(
         name="panels",
-        description="3D panel method on the mesh (Newman 1977 eq. 4.148), Richardson-"
-                    "extrapolated from two panel counts",
+        description="3D panel method on the mesh (Newman 1977 eq. 4.148), levels refined "
+                    "until converged, Richardson-extrapolated from the two finest",
         applies_to=_one_mesh("panel method",
                              "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file"),
         compute=_panels,
-        error_estimate="per term: the difference of the two panel resolutions "
-                       "(stripcoef.hull.panels), with a warning past its tolerance",
+        error_estimate="per term: Roache's grid convergence index of the panel levels "
+                       "(stripcoef.hull.convergence), with a warning past its tolerance",
         provenance="strip theory, added mass by the 3D panel method",
         preferred=_not_round_nor_slender),
     AddedMassMethod(

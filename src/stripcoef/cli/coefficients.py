@@ -60,6 +60,11 @@ def _pt(point) -> list:
     return (np.round(np.asarray(point, dtype=float), 4) + 0.0).tolist()
 
 
+def _levels(c) -> str:
+    levels = c.get("added_mass_panel_levels")
+    return "/".join(str(n) for n in levels) if levels else str(c.get("added_mass_panels"))
+
+
 def format_table(model) -> str:
     """A readable summary: mass properties, the three matrices, conditions."""
     bands = band_lines(model)
@@ -84,8 +89,8 @@ def format_table(model) -> str:
            "",
            mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2", "added_mass"),
            "",
-           *([mat("Estimated error of M_A (Richardson: the finer panel level's step to the "
-                  "extrapolation)", model.added_mass_error, "kg, kg m, kg m^2"),
+           *([mat("Estimated error of M_A (grid convergence index of the panel levels "
+                  f"{_levels(c)}, Roache 1998)", model.added_mass_error, "kg, kg m, kg m^2"),
               f"  largest: {100 * c.get('added_mass_error_max', 0.0):.2g} % of the diagonal "
               "scale sqrt(M_ii M_jj)", ""]
              if model.added_mass_error is not None else []),
@@ -128,7 +133,8 @@ def format_table(model) -> str:
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
             "end_correction_sway", "end_correction_heave", "end_correction_pitch",
             "end_correction_yaw", "correction_method", "added_mass_method",
-            "added_mass_error_max", "mirror_planes")
+            "added_mass_panel_levels", "added_mass_converged", "added_mass_error_max",
+            "mirror_planes")
     for k in keys:
         if k in c:
             v = c[k]
