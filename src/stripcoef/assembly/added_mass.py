@@ -555,35 +555,42 @@ def added_mass_method(method, vehicle, strips: Strips) -> str:
     r"""``strips`` or ``panels`` for the option ``added_mass_method`` (``strips``, ``panels``
     or ``auto``).
 
-    ``auto``: the 3D panel method (:mod:`stripcoef.hull.panels`) for a vehicle that is one
-    mesh, not a body of revolution about x (round middle section, :func:`_round_along_x`) and
-    not slender (:math:`L / \max(B, H) <` :data:`SLENDER_RATIO`, B and H the largest breadth
-    and height of the strips [m]); strip theory otherwise.  ``panels`` needs a mesh vehicle:
-    a vehicle file's geometry has no closed surface to panel.
+    ``auto``: the 3D panel method (:mod:`stripcoef.hull.panels`) for a vehicle, a mesh or a
+    vehicle file alike, that is not a body of revolution about x (round middle section,
+    :func:`_round_along_x`) and not slender (:math:`L / \max(B, H) <`
+    :data:`SLENDER_RATIO`, B and H the largest breadth and height of the strips [m]); strip
+    theory otherwise.  A vehicle file is panelled on its closed surface, its parts united
+    (:func:`stripcoef.geometry.surface.vehicle_surface`); ``strips`` keeps strip theory for
+    any vehicle.
     """
     if method not in ADDED_MASS_METHODS:
         raise InputError("unknown added-mass method", key="added_mass_method", value=method,
                          expected=" or ".join(ADDED_MASS_METHODS))
-    if method == "strips":
-        return "strips"
-    mesh = _mesh_of(vehicle)
-    if method == "panels":
-        if mesh is None:
-            raise InputError("the panel method needs a vehicle made of one closed mesh",
-                             file=getattr(vehicle, "source", None) or None,
-                             key="added_mass_method", value=method,
-                             expected="a mesh file (STL, OBJ, ...), or strips/auto for a "
-                                      "vehicle file")
-        return "panels"
-    if mesh is None or _round_along_x(strips):
+    if method in ("strips", "panels"):
+        return method
+    if _round_along_x(strips):
         return "strips"
     width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
                 for p in strips.parts)
     return "panels" if strips.length < SLENDER_RATIO * width else "strips"
 
 
+def panel_surface(vehicle, panels: int):
+    """The closed surface the panel method solves on with ``panels`` panels: a mesh
+    vehicle's body (:class:`~stripcoef.geometry.mesh.MeshBody`, its bodies united by the
+    panel method), else the vehicle file's parts united
+    (:func:`stripcoef.geometry.surface.panel_surface`)."""
+    body = _mesh_of(vehicle)
+    if body is not None:
+        return body
+    from stripcoef.geometry.surface import panel_surface as united_parts
+
+    return united_parts(vehicle, panels)
+
+
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
-    r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
+    r"""M_A [kg, kg m, kg m^2] of a vehicle (a mesh, or a vehicle file's united surface:
+    :func:`panel_surface`) by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
@@ -592,8 +599,8 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
-    body = _mesh_of(vehicle)
     n = _panel_count(panels, DEFAULT_PANELS, "added_mass_panels")
+    body = panel_surface(vehicle, n)
     source = getattr(vehicle, "source", "") or ""
     try:
         m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source)
