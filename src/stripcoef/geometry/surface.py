@@ -43,16 +43,13 @@ def _ring_angles(n: int) -> np.ndarray:
 
 
 def _section_ring(shape: str, b, h, n: int):
-    r"""(n, 2) offsets (y, z) [m] of one hull station: the ellipse
-    :math:`(b\cos\theta, h\sin\theta)` or the rectangle 2b x 2h (the circle's directions
-    pushed onto the square, :math:`(\cos\theta, \sin\theta)/\max(|\cos\theta|, |\sin\theta|)`,
-    ``n`` a multiple of 8 so that the corners are vertices)."""
-    th = _ring_angles(n)
-    c, s = np.cos(th), np.sin(th)
+    r"""(n, 2) offsets (y, z) [m] of one hull station, counter-clockwise from +y: the ellipse
+    :math:`(b\cos\theta, h\sin\theta)`, :math:`\theta = 2\pi k / n`, or the rectangle
+    2b x 2h by its four corners (its sides are straight: ``n`` is ignored)."""
     if shape == "rectangle":
-        k = np.maximum(np.abs(c), np.abs(s))
-        c, s = c / k, s / k
-    return np.column_stack([b * c, h * s])
+        return np.array([[b, h], [-b, h], [-b, -h], [b, -h]], float)
+    th = _ring_angles(n)
+    return np.column_stack([b * np.cos(th), h * np.sin(th)])
 
 
 def hull_stations(hull, stations: int = DEFAULT_STATIONS) -> np.ndarray:
@@ -80,8 +77,7 @@ def hull_mesh(hull, *, sections: int = DEFAULT_SECTIONS, stations: int = DEFAULT
     rule of the loft (the ruled surface between stations)."""
     import trimesh
 
-    # a rectangle needs its corners and edge midpoints only (its sides are straight)
-    n = 8 if hull.section == "rectangle" else int(sections)
+    n = 4 if hull.section == "rectangle" else int(sections)
     x = hull_stations(hull, stations)
     b = np.asarray(hull.half_breadth(x), float)
     h = np.asarray(hull.half_height(x), float)

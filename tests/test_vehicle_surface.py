@@ -1,0 +1,215 @@
+"""A vehicle file's closed surface (geometry/surface.py) and the added-mass ``auto`` rule on
+vehicle files: a vehicle file and a mesh of the same parts give the same added mass."""
+
+import contextlib
+import warnings
+
+import numpy as np
+import pytest
+import trimesh
+from scipy.integrate import quad
+
+from stripcoef.assembly import estimate
+from stripcoef.assembly.added_mass import added_mass_method
+from stripcoef.errors import InputError, ModelWarning
+from stripcoef.geometry.profiles import myring_nose, myring_tail
+from stripcoef.geometry.surface import vehicle_surface
+from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
+
+from conftest import GEOMETRY
+
+RHO = 1000.0
+
+
+@contextlib.contextmanager
+def _quiet():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        yield
+
+
+def two_part(offset=(0.0, 0.0, 0.0)):
+    """A bluff two-part vehicle: a 0.4 x 0.3 x 0.2 m box hull (rectangular sections) and a
+    cylinder 0.12 m in diameter, 0.2 m long, along x, standing on its front face (touching,
+    no overlap: a sensor nose); every part moved by ``offset`` [m]."""
+    ox, oy, oz = (float(v) for v in offset)
+    return {
+        "name": "two_part", "fluid": {"density": RHO, "kinematic_viscosity": 1e-6},
+        "hull": {"section": "rectangle", "y": oy, "z": oz,
+                 "half_breadth": [{"type": "cylinder", "x": [ox - 0.2, ox + 0.2],
+                                   "radius": 0.15}],
+                 "half_height": [{"type": "cylinder", "x": [ox - 0.2, ox + 0.2],
+                                  "radius": 0.1}]},
+        "appendages": [{"name": "pod", "type": "cylinder", "axis": "x",
+                        "center": [ox + 0.3, oy, oz + 0.03], "diameter": 0.12,
+                        "length": 0.2}],
+        "mass": {"default_density": RHO},
+    }
+
+
+def two_part_trimesh(sections=64):
+    """The same two parts built independently from trimesh primitives, united (manifold)."""
+    box = trimesh.creation.box([0.4, 0.3, 0.2])
+    cyl = trimesh.creation.cylinder(radius=0.06, height=0.2, sections=sections)
+    cyl.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
+    cyl.apply_translation([0.3, 0.0, 0.03])
+    return trimesh.boolean.union([box, cyl], engine="manifold")
+
+
+def myring_data(sections=None):
+    return {"name": "myring", "fluid": {"density": RHO, "kinematic_viscosity": 1e-6},
+            "hull": {"profile": [
+                {"type": "myring_tail", "x": [-0.5, -0.2], "radius": 0.1, "theta_deg": 20},
+                {"type": "cylinder", "x": [-0.2, 0.3], "radius": 0.1},
+                {"type": "myring_nose", "x": [0.3, 0.5], "radius": 0.1, "n": 2.0}]}}
+
+
+def term_errors(a, b):
+    """|a - b| per term over the diagonal scale sqrt(b_ii b_jj) [-]."""
+    d = np.sqrt(np.abs(np.diag(b)))
+    return np.abs(a - b) / np.outer(d, d)
+
+
+# --------------------------------------------------------------------------- the surface
+
+def test_body_of_revolution_volume_is_the_profiles():
+    """Property: the lofted Myring hull encloses the profile's volume of revolution
+    V = int pi r^2 dx, to the polygon's area ratio (n / 2 pi) sin(2 pi / n) and the loft's
+    chord error (0.2 % at 128 sides, 48 stations a segment)."""
+    v = parse_vehicle(myring_data())
+    exact = (quad(lambda x: np.pi * myring_tail(x, -0.5, -0.2, 0.1, np.radians(20)) ** 2,
+                  -0.5, -0.2)[0] + np.pi * 0.01 * 0.5
+             + quad(lambda x: np.pi * myring_nose(x, 0.3, 0.5, 0.1, 2.0) ** 2, 0.3, 0.5)[0])
+    for n, tol in ((64, 0.004), (128, 0.002)):
+        s = vehicle_surface(v, sections=n, stations=48)
+        assert s.is_watertight and s.is_winding_consistent and s.volume > 0
+        polygon = n / (2 * np.pi) * np.sin(2 * np.pi / n)
+        assert s.volume / (polygon * exact) == pytest.approx(1.0, abs=tol)
+        assert s.volume < exact                    # inscribed polygons, chords inside
+        np.testing.assert_allclose(s.bounds, [[-0.5, -0.1, -0.1], [0.5, 0.1, 0.1]], atol=1e-12)
+
+
+def test_translation_moves_the_surface_and_nothing_else():
+    """Property: every part moved by d moves the surface by d (volume, centroid, bounds;
+    manifold3d rounds to about 1e-7 of the size)."""
+    a = vehicle_surface(parse_vehicle(two_part()))
+    d = np.array([0.7, -0.3, 0.25])
+    b = vehicle_surface(parse_vehicle(two_part(d)))
+    assert b.volume == pytest.approx(a.volume, rel=1e-6)
+    np.testing.assert_allclose(b.center_mass, a.center_mass + d, atol=1e-7)
+    np.testing.assert_allclose(b.bounds, a.bounds + d, atol=1e-7)
+    # touching parts: united without overlap; the volume is the two solids'
+    assert a.metadata["overlap"] == pytest.approx(0.0, abs=1e-9)
+    cyl = 64 / (2 * np.pi) * np.sin(2 * np.pi / 64) * np.pi * 0.06 ** 2 * 0.2
+    assert a.volume == pytest.approx(0.4 * 0.3 * 0.2 + cyl, rel=1e-6)
+
+
+def test_holes_ducts_and_overlaps():
+    """A through-hole is subtracted, a duct is a ring (its interior open), overlapping parts
+    are counted once; the result is one watertight surface."""
+    base = myring_data()
+    solid = vehicle_surface(parse_vehicle(base), sections=64)
+    holed = dict(base, holes=[{"axis": "z", "x": 0.0, "diameter": 0.08}])
+    s = vehicle_surface(parse_vehicle(holed), sections=64)
+    assert s.is_watertight and s.volume > 0
+    polygon = 64 / (2 * np.pi) * np.sin(2 * np.pi / 64)
+    # the hole's cylinder through the round hull: int over y of 2 sqrt(R^2 - y^2) dA, about
+    # pi r^2 * 2R for r << R; exact: the chord through a circle, integrated over the disc
+    r, big = 0.04, 0.1 * np.sqrt(polygon)
+    removed = quad(lambda y: 2 * np.sqrt(r * r - y * y) * 2 * np.sqrt(big ** 2 - y * y),
+                   -r, r)[0]
+    assert solid.volume - s.volume == pytest.approx(removed, rel=0.02)
+    assert s.euler_number == solid.euler_number - 2          # genus + 1
+    ducted = dict(base, appendages=[{"name": "duct", "type": "cylinder", "axis": "x",
+                                     "center": [-0.05, 0.0, 0.14], "diameter": 0.1,
+                                     "inner_diameter": 0.08, "length": 0.1}])
+    d = vehicle_surface(parse_vehicle(ducted), sections=64)
+    ring = polygon * np.pi * (0.05 ** 2 - 0.04 ** 2) * 0.1
+    assert d.volume + d.metadata["overlap"] - solid.volume == pytest.approx(ring, rel=1e-5)
+    assert 0 < d.metadata["overlap"] < ring
+    assert d.euler_number == solid.euler_number - 2
+    overlapping = dict(base, appendages=[{"name": "block", "type": "box",
+                                          "center": [0.0, 0.0, 0.1], "size": [0.2, 0.1, 0.1]}])
+    o = vehicle_surface(parse_vehicle(overlapping), sections=64)
+    assert o.is_watertight and o.metadata["overlap"] > 0.1 * 0.2 * 0.1 * 0.4
+    assert o.volume == pytest.approx(solid.volume + 0.2 * 0.1 * 0.1 - o.metadata["overlap"],
+                                     rel=1e-6)
+
+
+def test_mesh_appendage_in_millimetres(tmp_path):
+    """A mesh appendage written in millimetres, declared ``length_unit: mm``, enters the
+    surface in metres."""
+    box_mm = trimesh.creation.box([200.0, 100.0, 50.0])
+    box_mm.apply_translation([0.0, 0.0, 125.0])            # under the hull, overlapping it
+    box_mm.export(tmp_path / "skid.stl")
+    data = dict(myring_data(), appendages=[{"name": "skid", "type": "mesh", "mesh": "skid.stl",
+                                            "length_unit": "mm"}])
+    path = tmp_path / "v.yaml"
+    import yaml
+    path.write_text(yaml.safe_dump(data))
+    with _quiet():
+        v = load_vehicle(path)
+    s = vehicle_surface(v, sections=64)
+    bare = vehicle_surface(parse_vehicle(myring_data()), sections=64)
+    assert s.bounds[1, 2] == pytest.approx(0.15, abs=1e-7)
+    assert s.volume + s.metadata["overlap"] == pytest.approx(bare.volume + 0.2 * 0.1 * 0.05,
+                                                             rel=1e-6)
+
+
+def test_bad_resolution_is_an_input_error():
+    v = parse_vehicle(myring_data())
+    with pytest.raises(InputError, match="sections"):
+        vehicle_surface(v, sections=4)
+    with pytest.raises(InputError, match="stations"):
+        vehicle_surface(v, stations=1)
+
+
+# --------------------------------------------------------------------------- the auto rule
+
+def test_auto_rule_is_the_meshes_for_a_vehicle_file():
+    """Bluff vehicle files get the panel method, round or slender ones strip theory, as a
+    mesh does; ``strips`` and ``panels`` force either."""
+    bluff = parse_vehicle(two_part())
+    assert added_mass_method("auto", bluff, bluff.cut(200)) == "panels"
+    assert added_mass_method("strips", bluff, bluff.cut(200)) == "strips"
+    for name in ("remus100.yaml", "sphere.yaml", "spheroid.yaml"):
+        with _quiet():
+            v = load_vehicle(GEOMETRY / name)
+        assert added_mass_method("auto", v, v.cut(200)) == "strips", name
+    slender = parse_vehicle(myring_data())
+    assert added_mass_method("panels", slender, slender.cut(200)) == "panels"
+
+
+@pytest.mark.slow
+def test_vehicle_file_and_its_surface_stl_agree(tmp_path):
+    """The vehicle file and an STL written from its surface give the same M_A (each term
+    within 2 % of the diagonal scale), both by the panel method."""
+    v = parse_vehicle(two_part())
+    from stripcoef.assembly.added_mass import panel_surface
+
+    panel_surface(v, 1600).export(tmp_path / "two_part.stl")
+    with _quiet():
+        a = estimate(v, reference_point=np.zeros(3))
+        b = estimate(Vehicle.from_mesh(tmp_path / "two_part.stl", origin=(0.0, 0.0, 0.0),
+                                       fluid=v.fluid))
+    assert a.provenance["method"] == b.provenance["method"] == \
+        "strip theory, added mass by the 3D panel method"
+    assert term_errors(a.added_mass, b.added_mass).max() < 0.02
+    strips = estimate(v, reference_point=np.zeros(3), added_mass_method="strips")
+    assert strips.provenance["method"] == "strip theory"
+
+
+@pytest.mark.slow
+def test_vehicle_file_and_an_independent_mesh_agree(tmp_path):
+    """The two-part vehicle file against an STL of the same parts built from trimesh
+    primitives (not from vehicle_surface): every term within 2 % of the diagonal scale."""
+    two_part_trimesh().export(tmp_path / "prims.stl")
+    v = parse_vehicle(two_part())
+    with _quiet():
+        a = estimate(v, reference_point=np.zeros(3))
+        b = estimate(Vehicle.from_mesh(tmp_path / "prims.stl", origin=(0.0, 0.0, 0.0),
+                                       fluid=v.fluid))
+    assert "panel" in a.conditions["added_mass_method"]
+    err = term_errors(a.added_mass, b.added_mass)
+    assert err.max() < 0.02, np.round(err, 4)
+    assert a.volume == pytest.approx(b.volume, rel=0.002)
