@@ -865,7 +865,7 @@ class HydroModel:
         )
 
 
-def _indefinite_cause(m_rb, m_a, conditions) -> tuple[str, str]:
+def _indefinite_cause(m_rb, m_a, conditions, file=None) -> tuple[str, str]:
     r"""Why :math:`M = M_{RB} + M_A` is not positive definite, and the remedy, in words.
 
     The eigenvector v of the smallest eigenvalue of the symmetric part names the direction
@@ -873,14 +873,16 @@ def _indefinite_cause(m_rb, m_a, conditions) -> tuple[str, str]:
     :math:`M_{A,ii}` in it, else the coupling with the largest
     :math:`|M_{ij}| / \sqrt{M_{ii} M_{jj}}` (a 2x2 minor is positive only if it is < 1;
     Horn & Johnson 1985, "Matrix Analysis", sec. 7.1).  The remedy follows how the added mass
-    was computed (``conditions``: the 3D panel method or strip theory)."""
+    was computed (``conditions``: the 3D panel method or strip theory) and the input (``file``:
+    a mesh can be repaired by ``stripcoef mesh``)."""
     from stripcoef.conventions import DOF
 
     total = 0.5 * ((m_rb + m_a) + (m_rb + m_a).T)
     w, vec = np.linalg.eigh(total)
     v = vec[:, 0]
     dofs = [i for i in range(6) if abs(v[i]) >= 0.3 * np.abs(v).max()]
-    where = " + ".join(("-" if v[i] * v[dofs[0]] < 0 else "") + DOF[i] for i in dofs)
+    where = DOF[dofs[0]] + "".join((" - " if v[i] * v[dofs[0]] < 0 else " + ") + DOF[i]
+                                   for i in dofs[1:])
     neg = [i for i in dofs if m_a[i, i] < 0]
     if neg:
         i = min(neg, key=lambda k: m_a[k, k])
@@ -896,13 +898,15 @@ def _indefinite_cause(m_rb, m_a, conditions) -> tuple[str, str]:
                  f"large for the diagonal (|M_ij| / sqrt(M_ii M_jj) = {ratio[i, j]:.3g} of "
                  "M_RB + M_A, at most 1)")
     method = str((conditions or {}).get("added_mass_method") or "")
+    name = str(file or "FILE")
+    repair = ("" if name.lower().endswith((".yaml", ".yml")) else
+              f"a repaired mesh (stripcoef mesh {name} --repair -o FIXED.stl) or ")
     if "panel" in method:
         n = (conditions or {}).get("added_mass_panels") or 1600
-        remedy = (f"a finer panel solve (--added-mass-panels {min(2 * int(n), 6000)}) or a "
-                  "repaired mesh (stripcoef mesh FILE --repair -o FIXED.stl)")
+        remedy = f"{repair}a finer panel solve (--added-mass-panels {min(2 * int(n), 6000)})"
     elif (conditions or {}).get("strips"):
-        remedy = ("more strips (--strips), a repaired mesh (stripcoef mesh FILE --repair -o "
-                  "FIXED.stl) or the 3D panel method (--added-mass-method panels)")
+        remedy = (f"{repair}more strips (--strips) or the 3D panel method "
+                  "(--added-mass-method panels)")
     else:
         remedy = "check the model file's added_mass and rigid_body_mass"
     return cause, remedy
@@ -958,7 +962,7 @@ def check_physical(model, *, file: str | None = None) -> None:
     low, scale = lowest(m_rb + np.asarray(model.added_mass, dtype=float))
     if low <= 1e-12 * scale:
         cause, remedy = _indefinite_cause(m_rb, np.asarray(model.added_mass, dtype=float),
-                                          model.conditions)
+                                          model.conditions, file)
         fail("added_mass", f"M_RB + M_A not positive definite ({cause})",
              f"smallest eigenvalue {low:.4g}", f"a positive-definite total mass matrix: {remedy}")
     for key, mat in (("linear_damping", model.linear_damping),
