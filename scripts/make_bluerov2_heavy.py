@@ -4,9 +4,10 @@ Run from the repository root:  python -m scripts.make_bluerov2_heavy
 
 Writes geometry/bluerov2_heavy.yaml (the parts as a vehicle file) and
 geometry/bluerov2_heavy.stl (the same parts united into one watertight surface by
-:func:`stripcoef.geometry.surface.panel_surface`, at the tessellation the panel method uses by
-default), and the copies of both in src/stripcoef/samples/.  So the file and the mesh give the
-same added mass (tests/test_vehicle_surface.py).
+:func:`stripcoef.geometry.surface.vehicle_surface`, at the tessellation the panel method uses
+by default: :func:`stripcoef.assembly.added_mass.panel_surface`), and the copies of both in
+src/stripcoef/samples/.  So the file and the mesh give the same added mass
+(tests/test_vehicle_surface.py).
 
 Published by Blue Robotics [P] (product pages, "Technical Details"; bluerovs are sold as kits,
 no dimensioned drawing of the frame is published):
@@ -254,16 +255,16 @@ def bluerov2_heavy_parts():
 
 
 def bluerov2_heavy_mesh():
-    """The parts united (:func:`stripcoef.geometry.surface.panel_surface` at the panel
+    """The parts united (:func:`stripcoef.assembly.added_mass.panel_surface` at the panel
     method's default panel count): the surface the vehicle file is panelled on."""
-    from stripcoef.geometry.surface import panel_surface
+    from stripcoef.assembly.added_mass import panel_surface
     from stripcoef.hull.panels import DEFAULT_PANELS
 
     return panel_surface(build()[1], DEFAULT_PANELS)
 
 
 def main(argv=None):
-    from stripcoef.geometry.surface import panel_surface
+    from stripcoef.assembly.added_mass import panel_surface
     from stripcoef.hull.panels import DEFAULT_PANELS
 
     text, vehicle, foam = build()

@@ -576,16 +576,22 @@ def added_mass_method(method, vehicle, strips: Strips) -> str:
 
 
 def panel_surface(vehicle, panels: int):
-    """The closed surface the panel method solves on with ``panels`` panels: a mesh
+    r"""The closed surface the panel method solves on with ``panels`` panels (N): a mesh
     vehicle's body (:class:`~stripcoef.geometry.mesh.MeshBody`, its bodies united by the
     panel method), else the vehicle file's parts united
-    (:func:`stripcoef.geometry.surface.panel_surface`)."""
+    (:func:`stripcoef.geometry.surface.vehicle_surface`) at the finest tessellation that
+    :func:`stripcoef.hull.panels.panel_levels` refines instead of coarsening: at most N/4
+    faces (its two levels then one family: N/4 panels by longest-edge bisection and that
+    split in four), else at most :data:`~stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both
+    levels refine the surface itself).  Coarsening a surface of thin members (frame plates,
+    duct walls) by vertex clustering collapses them; refining keeps the geometry exactly."""
     body = _mesh_of(vehicle)
     if body is not None:
         return body
-    from stripcoef.geometry.surface import panel_surface as united_parts
+    from stripcoef.geometry.surface import coarsest_within
+    from stripcoef.hull.panels import MAX_PANELS
 
-    return united_parts(vehicle, panels)
+    return coarsest_within(vehicle, (int(panels) // 4, int(MAX_PANELS / 2.5)))
 
 
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):

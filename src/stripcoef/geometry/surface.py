@@ -281,23 +281,17 @@ def vehicle_surface(vehicle, *, sections: int = DEFAULT_SECTIONS,
     return out
 
 
-#: Polygon sides tried by :func:`panel_surface`, finest first [-].
+#: Polygon sides tried by :func:`coarsest_within`, finest first [-].
 SECTION_LADDER = (64, 48, 32, 24, 16, 12)
 
 
-def panel_surface(vehicle, panels: int):
+def coarsest_within(vehicle, limits):
     r"""The vehicle's surface (:func:`vehicle_surface`) at the finest tessellation of
-    :data:`SECTION_LADDER` that the panel method refines instead of coarsening
-    (:func:`stripcoef.hull.panels.panel_levels`): at most N/4 faces (N = ``panels``; then
-    its two levels are one family, N/4 panels by longest-edge bisection and that split in
-    four), else at most :data:`stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both levels
-    refine the surface itself), else the coarsest.  Coarsening a surface of thin members
-    (frame plates, duct walls) by vertex clustering collapses them; refining keeps the
-    geometry exactly.  Hull stations scale with the sides (at least 4 per curved segment).
-    Returns the ``trimesh.Trimesh``; ``metadata["sections"]`` the sides used."""
-    from stripcoef.hull.panels import MAX_PANELS
-
-    limits = (int(panels) // 4, int(MAX_PANELS / 2.5))
+    :data:`SECTION_LADDER` whose face count is within the first of ``limits`` (face counts,
+    tried in turn) that one of them meets, else the coarsest.  Hull stations scale with the
+    sides (at least 4 per curved segment).  The panel method passes its limits
+    (:func:`stripcoef.assembly.added_mass.panel_surface`: a surface it refines rather than
+    coarsens).  Returns the ``trimesh.Trimesh``; ``metadata["sections"]`` the sides used."""
     built = {}
     for limit in limits:
         for n in SECTION_LADDER:
@@ -306,6 +300,10 @@ def panel_surface(vehicle, panels: int):
                                            stations=max(4, round(DEFAULT_STATIONS * n
                                                                  / DEFAULT_SECTIONS)))
                 built[n].metadata["sections"] = n
-            if len(built[n].faces) <= limit:
+            if len(built[n].faces) <= int(limit):
                 return built[n]
-    return built[SECTION_LADDER[-1]]
+    n = SECTION_LADDER[-1]
+    if n not in built:
+        built[n] = vehicle_surface(vehicle, sections=n, stations=4)
+        built[n].metadata["sections"] = n
+    return built[n]
