@@ -19,7 +19,8 @@ no dimensioned drawing of the frame is published):
   https://bluerobotics.com/store/rov/bluerov2-upgrade-kits/brov2-heavy-retrofit/ and
   https://bluerobotics.com/store/rov/bluerov2/
 - T200 thruster: 113 mm long, 100 mm in diameter; 344 g in air and 156 g in water, so it
-  displaces 188 cm^3.  https://bluerobotics.com/store/thrusters/t100-t200-thrusters/t200-thruster-r2-rp/
+  displaces 188 cm^3.
+  https://bluerobotics.com/store/thrusters/t100-t200-thrusters/t200-thruster-r2-rp/
 - Watertight enclosures: the 4" series tube is 4.5" (114.3 mm) outside, the 3" series 3.5"
   (88.9 mm); the BlueROV2's electronics enclosure is a 4" x 11.75" (298 mm) tube with a
   dome, its battery enclosure a 3" tube.  https://bluerobotics.com/store/watertight-enclosures/
@@ -86,15 +87,16 @@ def appendages(foam_thickness: float) -> list[dict]:
     out = []
     for side, s in (("port", -1), ("starboard", 1)):
         # a side panel cut away to its rails (top, bottom) and posts (fore, aft) [A]
+        rail, post = [lx - 2 * RAIL, PLATE, RAIL], [RAIL, PLATE, lz]
         out += [
-            {"name": f"rail_top_{side}", "type": "box", "center": [0.0, s * y_mid, -hz + 0.5 * RAIL],
-             "size": [lx - 2 * RAIL, PLATE, RAIL]},
+            {"name": f"rail_top_{side}", "type": "box",
+             "center": [0.0, s * y_mid, -hz + 0.5 * RAIL], "size": rail},
             {"name": f"rail_bottom_{side}", "type": "box",
-             "center": [0.0, s * y_mid, hz - 0.5 * RAIL], "size": [lx - 2 * RAIL, PLATE, RAIL]},
-            {"name": f"post_fore_{side}", "type": "box", "center": [hx - 0.5 * RAIL, s * y_mid, 0.0],
-             "size": [RAIL, PLATE, lz]},
-            {"name": f"post_aft_{side}", "type": "box", "center": [-hx + 0.5 * RAIL, s * y_mid, 0.0],
-             "size": [RAIL, PLATE, lz]},
+             "center": [0.0, s * y_mid, hz - 0.5 * RAIL], "size": rail},
+            {"name": f"post_fore_{side}", "type": "box",
+             "center": [hx - 0.5 * RAIL, s * y_mid, 0.0], "size": post},
+            {"name": f"post_aft_{side}", "type": "box",
+             "center": [-hx + 0.5 * RAIL, s * y_mid, 0.0], "size": post},
         ]
     # the buoyancy foam block on top, between the panels, saddled 10 mm onto the
     # electronics tube [A]; its thickness closes the volume (main)
@@ -214,7 +216,7 @@ def yaml_text(data: dict, foam: float) -> str:
     lines.append("appendages:")
     lines += [f"  - {_flow(a)}" for a in data["appendages"]]
     m = data["mass"]
-    lines += ["mass:", f"  mass: {_fmt(m['mass'])}                                   # [P] in air, with ballast",
+    lines += ["mass:", f"  mass: {_fmt(m['mass'])}" + " " * 25 + "# [P] in air, with ballast",
               f"  center_of_gravity: {_fmt(m['center_of_gravity'])}   # [A] 0.02 m below the CB"]
     lines.append("thrusters:")
     lines.append("  # horizontal, vectored 45 deg [P]; forward-right / forward-left directions [A]")
