@@ -182,12 +182,12 @@ def test_compare_text_says_untrusted():
                    "+32 %, pitch +98 % at 400 strips)")
 @pytest.mark.slow
 def test_frame_union_and_overlapping_parts_agree():
-    from scripts.make_bluerov2_heavy import bluerov2_heavy_parts
+    from benchmarks.bluff_shapes import _bluerov2, former_bluerov2_parts
 
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.vehicle import Vehicle
-    union = Vehicle.from_mesh(ROOT / "geometry" / "bluerov2_heavy.stl")
-    parts = Vehicle.from_mesh(trimesh.util.concatenate(bluerov2_heavy_parts()))
+    union = Vehicle.from_mesh(_bluerov2())
+    parts = Vehicle.from_mesh(trimesh.util.concatenate(former_bluerov2_parts()))
     a = np.diag(estimate(union, strips=200).added_mass)
     b = np.diag(estimate(parts, strips=200).added_mass)
     np.testing.assert_allclose(b, a, rtol=0.05)
