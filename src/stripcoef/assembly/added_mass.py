@@ -588,9 +588,11 @@ def panel_surface(vehicle, panels: int):
     body = _mesh_of(vehicle)
     if body is not None:
         return body
-    from stripcoef.geometry.surface import coarsest_within
+    from stripcoef.geometry.surface import coarsest_within, vehicle_surface
     from stripcoef.hull.panels import MAX_PANELS
 
+    if not 50 <= int(panels) <= MAX_PANELS:     # refused by the panel method: build no ladder
+        return vehicle_surface(vehicle)
     return coarsest_within(vehicle, (int(panels) // 4, int(MAX_PANELS / 2.5)))
 
 
