@@ -581,9 +581,10 @@ def panel_surface(vehicle, panels: int):
     panel method), else the vehicle file's parts united
     (:func:`stripcoef.geometry.surface.vehicle_surface`) at the finest tessellation that
     :func:`stripcoef.hull.panels.panel_levels` refines instead of coarsening: at most N/4
-    faces (its two levels then one family: N/4 panels by longest-edge bisection and that
-    split in four), else at most :data:`~stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both
-    levels refine the surface itself).  Coarsening a surface of thin members (frame plates,
+    faces with at least 16 sides a circle (its two levels then one family: N/4 panels by
+    longest-edge bisection and that split in four), else at most
+    :data:`~stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both levels refine the surface
+    itself).  Coarsening a surface of thin members (frame plates,
     duct walls) by vertex clustering collapses them; refining keeps the geometry exactly."""
     body = _mesh_of(vehicle)
     if body is not None:
@@ -593,7 +594,7 @@ def panel_surface(vehicle, panels: int):
 
     if not 50 <= int(panels) <= MAX_PANELS:     # refused by the panel method: build no ladder
         return vehicle_surface(vehicle)
-    return coarsest_within(vehicle, (int(panels) // 4, int(MAX_PANELS / 2.5)))
+    return coarsest_within(vehicle, ((int(panels) // 4, 16), (int(MAX_PANELS / 2.5), 12)))
 
 
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
@@ -620,8 +621,10 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
     if rel[worst] > ERROR_TOLERANCE:
         from stripcoef.conventions import DOF
 
-        more = min(2 * n, MAX_PANELS)
-        fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
+        # a thin-member mesh refined past 2n: doubling n would change nothing
+        used = int(info["panels"][1]) if info["panels"][1] >= 2 * n else n
+        more = min(2 * used, MAX_PANELS)
+        fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > used
                else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                     "(stripcoef compare FILE)")
         warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "

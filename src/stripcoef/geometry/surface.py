@@ -287,23 +287,23 @@ SECTION_LADDER = (64, 48, 32, 24, 16, 12)
 
 def coarsest_within(vehicle, limits):
     r"""The vehicle's surface (:func:`vehicle_surface`) at the finest tessellation of
-    :data:`SECTION_LADDER` whose face count is within the first of ``limits`` (face counts,
-    tried in turn) that one of them meets, else the coarsest.  Hull stations scale with the
-    sides (at least 4 per curved segment).  The panel method passes its limits
+    :data:`SECTION_LADDER` that meets the first of ``limits`` it can: pairs (most faces, fewest
+    sides), tried in turn; else the coarsest.  Hull stations scale with the sides (at least 4
+    per curved segment).  The panel method passes its limits
     (:func:`stripcoef.assembly.added_mass.panel_surface`: a surface it refines rather than
     coarsens).  Returns the ``trimesh.Trimesh``; ``metadata["sections"]`` the sides used."""
     built = {}
-    for limit in limits:
+
+    def surface(n):
+        if n not in built:
+            built[n] = vehicle_surface(vehicle, sections=n,
+                                       stations=max(4, round(DEFAULT_STATIONS * n
+                                                             / DEFAULT_SECTIONS)))
+            built[n].metadata["sections"] = n
+        return built[n]
+
+    for most, fewest in limits:
         for n in SECTION_LADDER:
-            if n not in built:
-                built[n] = vehicle_surface(vehicle, sections=n,
-                                           stations=max(4, round(DEFAULT_STATIONS * n
-                                                                 / DEFAULT_SECTIONS)))
-                built[n].metadata["sections"] = n
-            if len(built[n].faces) <= int(limit):
-                return built[n]
-    n = SECTION_LADDER[-1]
-    if n not in built:
-        built[n] = vehicle_surface(vehicle, sections=n, stations=4)
-        built[n].metadata["sections"] = n
-    return built[n]
+            if n >= fewest and len(surface(n).faces) <= int(most):
+                return surface(n)
+    return surface(SECTION_LADDER[-1])
