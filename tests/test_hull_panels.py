@@ -167,7 +167,8 @@ def test_auto_rule():
     np.testing.assert_array_equal(a.added_mass, b.added_mass)    # bit for bit
 
 
-def test_panels_on_a_vehicle_file_and_a_known_method():
+@pytest.mark.slow
+def test_panels_on_a_vehicle_file():
     """A vehicle file takes the panel method on its united surface (issue 32: it used to be
     refused): the sphere's translations within 3 % of Lamb's rho V / 2 (measured -0.7 %,
     -2.3 %, -2.3 %: the default 1600 panels refine a surface of 16-sided sections, the
@@ -184,6 +185,11 @@ def test_panels_on_a_vehicle_file_and_a_known_method():
         m = estimate(GEOMETRY / "sphere.yaml", added_mass_method="panels")
     assert "panel" in m.conditions["added_mass_method"]
     np.testing.assert_allclose(np.diag(m.added_mass)[:3], 0.5 * m.density * m.volume, rtol=0.03)
+
+
+def test_panels_need_a_known_method_and_panel_count():
+    from stripcoef.assembly import estimate
+
     with pytest.raises(InputError, match="added_mass_method"):
         estimate(_box_vehicle(), added_mass_method="bem")
     with pytest.raises(InputError, match="added_mass_panels"):
