@@ -17,6 +17,7 @@ from stripcoef.geometry.surface import vehicle_surface
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
 
 from conftest import GEOMETRY
+from validation.vehicle_surface import term_errors, two_part, two_part_trimesh
 
 RHO = 1000.0
 
@@ -28,46 +29,12 @@ def _quiet():
         yield
 
 
-def two_part(offset=(0.0, 0.0, 0.0)):
-    """A bluff two-part vehicle: a 0.4 x 0.3 x 0.2 m box hull (rectangular sections) and a
-    cylinder 0.12 m in diameter, 0.2 m long, along x, standing on its front face (touching,
-    no overlap: a sensor nose); every part moved by ``offset`` [m]."""
-    ox, oy, oz = (float(v) for v in offset)
-    return {
-        "name": "two_part", "fluid": {"density": RHO, "kinematic_viscosity": 1e-6},
-        "hull": {"section": "rectangle", "y": oy, "z": oz,
-                 "half_breadth": [{"type": "cylinder", "x": [ox - 0.2, ox + 0.2],
-                                   "radius": 0.15}],
-                 "half_height": [{"type": "cylinder", "x": [ox - 0.2, ox + 0.2],
-                                  "radius": 0.1}]},
-        "appendages": [{"name": "pod", "type": "cylinder", "axis": "x",
-                        "center": [ox + 0.3, oy, oz + 0.03], "diameter": 0.12,
-                        "length": 0.2}],
-        "mass": {"default_density": RHO},
-    }
-
-
-def two_part_trimesh(sections=64):
-    """The same two parts built independently from trimesh primitives, united (manifold)."""
-    box = trimesh.creation.box([0.4, 0.3, 0.2])
-    cyl = trimesh.creation.cylinder(radius=0.06, height=0.2, sections=sections)
-    cyl.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
-    cyl.apply_translation([0.3, 0.0, 0.03])
-    return trimesh.boolean.union([box, cyl], engine="manifold")
-
-
 def myring_data(sections=None):
     return {"name": "myring", "fluid": {"density": RHO, "kinematic_viscosity": 1e-6},
             "hull": {"profile": [
                 {"type": "myring_tail", "x": [-0.5, -0.2], "radius": 0.1, "theta_deg": 20},
                 {"type": "cylinder", "x": [-0.2, 0.3], "radius": 0.1},
                 {"type": "myring_nose", "x": [0.3, 0.5], "radius": 0.1, "n": 2.0}]}}
-
-
-def term_errors(a, b):
-    """|a - b| per term over the diagonal scale sqrt(b_ii b_jj) [-]."""
-    d = np.sqrt(np.abs(np.diag(b)))
-    return np.abs(a - b) / np.outer(d, d)
 
 
 # --------------------------------------------------------------------------- the surface

@@ -19,7 +19,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 #: Topic modules, in pipeline order.
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
-                             "identification", "meshes", "fins", "bluff", "cad_shapes", "drag",
+                             "identification", "meshes", "fins", "bluff", "cad_shapes",
+                             "vehicle_surface", "drag",
                              "bands", "diagnosis", "diagnosis_independent")
 
 
