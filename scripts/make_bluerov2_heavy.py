@@ -197,9 +197,9 @@ HEADER = """\
 #   simulator: control of a BlueROV2 underwater robot", J. Mar. Sci. Eng. 10(12) 1898,
 #   doi:10.3390/jmse10121898 (BlueROV2 Heavy: X_udot 6.36, Y_vdot 7.12, Z_wdot 18.69 kg,
 #   K_pdot 0.186, M_qdot 0.135, N_rdot 0.222 kg m^2, magnitudes; m 13.5 kg, V 0.0134 m^3);
-# - Wu (2018), "6-DoF modelling and control of a remotely operated vehicle", MSc thesis,
-#   Flinders University (BlueROV2 Heavy: X_udot 5.5, Y_vdot 12.7, Z_wdot 14.57 kg,
-#   K_pdot = M_qdot = N_rdot 0.12 kg m^2, magnitudes).
+# - Wu (2018), MSc thesis, Flinders University (BlueROV2 Heavy: X_udot 5.5, Y_vdot 12.7,
+#   Z_wdot 14.57 kg, K_pdot = M_qdot = N_rdot 0.12 kg m^2, magnitudes; the set the public
+#   BlueROV2 simulator descriptions reuse, e.g. CentraleNantesROV/bluerov2 hydrodynamics.xacro).
 """
 
 
