@@ -15,7 +15,7 @@ closed surface with outward normals.  :func:`vehicle_surface` builds it from the
   them is the panel method's to move.
 
 The union and difference are the exact, guaranteed-manifold mesh booleans of manifold3d
-(Lévy et al., "Manifold", https://github.com/elalish/manifold, through
+(Lalish et al., "Manifold", https://github.com/elalish/manifold, through
 ``trimesh.boolean`` with ``engine="manifold"``): a maintained library that returns a
 watertight result for overlapping solids, which hand-written clipping does not.
 
