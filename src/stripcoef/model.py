@@ -876,6 +876,53 @@ class HydroModel:
         )
 
 
+def _indefinite_cause(m_rb, m_a, conditions, file=None) -> tuple[str, str]:
+    r"""Why :math:`M = M_{RB} + M_A` is not positive definite, and the remedy, in words.
+
+    The eigenvector v of the smallest eigenvalue of the symmetric part names the direction
+    (its DOFs with :math:`|v_i| \ge 0.3 \max|v|`); the cause is a negative diagonal term
+    :math:`M_{A,ii}` in it, else the coupling with the largest
+    :math:`|M_{ij}| / \sqrt{M_{ii} M_{jj}}` (a 2x2 minor is positive only if it is < 1;
+    Horn & Johnson 1985, "Matrix Analysis", sec. 7.1).  The remedy follows how the added mass
+    was computed (``conditions``: the 3D panel method or strip theory) and the input (``file``:
+    a mesh can be repaired by ``stripcoef mesh``)."""
+    from stripcoef.conventions import DOF
+
+    total = 0.5 * ((m_rb + m_a) + (m_rb + m_a).T)
+    w, vec = np.linalg.eigh(total)
+    v = vec[:, 0]
+    dofs = [i for i in range(6) if abs(v[i]) >= 0.3 * np.abs(v).max()]
+    where = DOF[dofs[0]] + "".join((" - " if v[i] * v[dofs[0]] < 0 else " + ") + DOF[i]
+                                   for i in dofs[1:])
+    neg = [i for i in dofs if m_a[i, i] < 0]
+    if neg:
+        i = min(neg, key=lambda k: m_a[k, k])
+        cause = f"along {where}: M_A[{DOF[i]}, {DOF[i]}] = {m_a[i, i]:.4g} is negative"
+    else:
+        d = np.sqrt(np.clip(np.diag(total), 1e-300, None))
+        ratio = np.abs(total) / np.outer(d, d)
+        np.fill_diagonal(ratio, 0.0)
+        pairs = [(ratio[i, j], i, j) for i in dofs for j in dofs if i < j] or \
+            [(ratio[i, j], i, j) for i in range(6) for j in range(i + 1, 6)]
+        _, i, j = max(pairs)
+        cause = (f"along {where}: the coupling M_A[{DOF[i]}, {DOF[j]}] = {m_a[i, j]:.4g} is too "
+                 f"large for the diagonal (|M_ij| / sqrt(M_ii M_jj) = {ratio[i, j]:.3g} of "
+                 "M_RB + M_A, at most 1)")
+    method = str((conditions or {}).get("added_mass_method") or "")
+    name = str(file or "FILE")
+    repair = ("" if name.lower().endswith((".yaml", ".yml")) else
+              f"a repaired mesh (stripcoef mesh {name} --repair -o FIXED.stl) or ")
+    if "panel" in method:
+        n = (conditions or {}).get("added_mass_panels") or 1600
+        remedy = f"{repair}a finer panel solve (--added-mass-panels {min(2 * int(n), 6000)})"
+    elif (conditions or {}).get("strips"):
+        remedy = (f"{repair}more strips (--strips) or the 3D panel method "
+                  "(--added-mass-method panels)")
+    else:
+        remedy = "check the model file's added_mass and rigid_body_mass"
+    return cause, remedy
+
+
 def check_physical(model, *, file: str | None = None) -> None:
     r"""Raise an :class:`InputError` if ``model`` is not a physically possible vehicle.
 
@@ -925,8 +972,10 @@ def check_physical(model, *, file: str | None = None) -> None:
              "a positive-definite M_RB (mass > 0, inertia satisfying the triangle inequality)")
     low, scale = lowest(m_rb + np.asarray(model.added_mass, dtype=float))
     if low <= 1e-12 * scale:
-        fail("added_mass", "M_RB + M_A not positive definite",
-             f"smallest eigenvalue {low:.4g}", "a positive-definite total mass matrix")
+        cause, remedy = _indefinite_cause(m_rb, np.asarray(model.added_mass, dtype=float),
+                                          model.conditions, file)
+        fail("added_mass", f"M_RB + M_A not positive definite ({cause})",
+             f"smallest eigenvalue {low:.4g}", f"a positive-definite total mass matrix: {remedy}")
     for key, mat in (("linear_damping", model.linear_damping),
                      ("quadratic_damping", model.quadratic_damping)):
         mat = np.asarray(mat, dtype=float)

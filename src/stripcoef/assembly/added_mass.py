@@ -550,8 +550,31 @@ def _round_along_x(strips: Strips) -> bool:
                 and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
 
 
+def panel_surface(vehicle, panels: int):
+    r"""The closed surface the panel method solves on with ``panels`` panels (N): a mesh
+    vehicle's body (:class:`~stripcoef.geometry.mesh.MeshBody`, its bodies united by the
+    panel method), else the vehicle file's parts united
+    (:func:`stripcoef.geometry.surface.vehicle_surface`) at the finest tessellation that
+    :func:`stripcoef.hull.panels.panel_levels` refines instead of coarsening: at most N/4
+    faces with at least 16 sides a circle (its two levels then one family: N/4 panels by
+    longest-edge bisection and that split in four), else at most
+    :data:`~stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both levels refine the surface
+    itself).  Coarsening a surface of thin members (frame plates,
+    duct walls) by vertex clustering collapses them; refining keeps the geometry exactly."""
+    body = _mesh_of(vehicle)
+    if body is not None:
+        return body
+    from stripcoef.geometry.surface import coarsest_within, vehicle_surface
+    from stripcoef.hull.panels import MAX_PANELS
+
+    if not 50 <= int(panels) <= MAX_PANELS:     # refused by the panel method: build no ladder
+        return vehicle_surface(vehicle)
+    return coarsest_within(vehicle, ((int(panels) // 4, 16), (int(MAX_PANELS / 2.5), 12)))
+
+
 def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None):
-    r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
+    r"""M_A [kg, kg m, kg m^2] of a vehicle (a mesh, or a vehicle file's united surface:
+    :func:`panel_surface`) by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
@@ -561,8 +584,8 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
-    body = _mesh_of(vehicle)
     n = _panel_count(panels, DEFAULT_PANELS, "added_mass_panels")
+    body = panel_surface(vehicle, n)
     source = getattr(vehicle, "source", "") or ""
     try:
         m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source)

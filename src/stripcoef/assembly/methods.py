@@ -106,10 +106,12 @@ def _one_mesh(label, expected):
 
 
 def _not_round_nor_slender(vehicle, strips: Strips) -> bool:
-    r"""A mesh that is not a body of revolution about x (:func:`_round_along_x`) and not
-    slender, :math:`L / \max(B, H) <` :data:`SLENDER_RATIO` (B, H the largest breadth and
-    height of the strips [m]): where strip theory's slender-body limit does not hold."""
-    if _mesh_of(vehicle) is None or _round_along_x(strips):
+    r"""A vehicle, a mesh or a vehicle file alike, that is not a body of revolution about x
+    (:func:`_round_along_x`) and not slender, :math:`L / \max(B, H) <`
+    :data:`SLENDER_RATIO` (B, H the largest breadth and height of the strips [m]): where strip
+    theory's slender-body limit does not hold.  A vehicle file is panelled on its parts united
+    into one closed surface (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
+    if _round_along_x(strips):
         return False
     width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
                 for p in strips.parts)
@@ -157,10 +159,10 @@ ADDED_MASS_METHODS = {m.name: m for m in (
         in_estimate=False),
     AddedMassMethod(
         name="panels",
-        description="3D panel method on the mesh (Newman 1977 eq. 4.148), levels refined "
+        description="3D panel method on the closed surface (a mesh, or a vehicle file's parts "
+                    "united; Newman 1977 eq. 4.148), levels refined "
                     "until converged, Richardson-extrapolated from the two finest",
-        applies_to=_one_mesh("panel method",
-                             "a mesh file (STL, OBJ, ...), or strips/auto for a vehicle file"),
+        applies_to=_any_vehicle,
         compute=_panels,
         error_estimate="per term: Roache's grid convergence index of the panel levels "
                        "(stripcoef.hull.convergence), with a warning past its tolerance",
@@ -198,11 +200,11 @@ def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
     r"""The method the estimate uses for the option ``added_mass_method`` = ``name``.
 
     ``auto``: the first method of :data:`ADDED_MASS_METHODS` that the estimate may use, that
-    applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle that is one
-    mesh, not a body of revolution about x and not slender
+    applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle (a mesh, or a
+    vehicle file on its parts united into one closed surface) that is not a body of
+    revolution about x and not slender
     (:math:`L / \max(B, H) <` :data:`~stripcoef.assembly.added_mass.SLENDER_RATIO`), strip
-    theory otherwise.  A method named outright must apply (``panels`` needs a mesh vehicle:
-    a vehicle file's geometry has no closed surface to panel).
+    theory otherwise.  A method named outright must apply (the BEM needs a mesh file).
     """
     if name != AUTO:
         if name not in estimate_choices():

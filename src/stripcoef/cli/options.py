@@ -35,12 +35,15 @@ def add_mesh_arguments(parser):
                         "x into the body axes (FRD, z down)")
     from stripcoef.assembly.methods import estimate_choices   # the command's own stack
 
-    m.add_argument("--added-mass-method", choices=estimate_choices(), default="auto",
-                   help="M_A by the 3D panel method for a mesh that is neither round nor "
-                        "slender, by strip theory otherwise (auto, default); always by strip "
-                        "theory (strips); always by the panel method (panels, mesh input)")
-    m.add_argument("--added-mass-panels", type=int, metavar="N",
-                   help="panels of the panel method's finer resolution (default 1600)")
+    a = parser.add_argument_group("added mass")
+    a.add_argument("--added-mass-method", choices=estimate_choices(), default="auto",
+                   help="M_A by the 3D panel method for a vehicle that is neither round nor "
+                        "slender (a mesh, or a vehicle file on its parts united into one "
+                        "closed surface), by strip theory otherwise (auto, default); always "
+                        "by strip theory (strips); always by the panel method (panels)")
+    a.add_argument("--added-mass-panels", type=int, metavar="N",
+                   help="panels of the panel method's finer resolution (default 1600; may "
+                        "exceed the mesh's face count: the mesh is refined)")
     return m
 
 
