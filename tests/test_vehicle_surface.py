@@ -10,7 +10,7 @@ import trimesh
 from scipy.integrate import quad
 
 from stripcoef.assembly import estimate
-from stripcoef.assembly.added_mass import added_mass_method
+from stripcoef.assembly.methods import added_mass_method
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.profiles import myring_nose, myring_tail
 from stripcoef.geometry.surface import vehicle_surface

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.geometry.shapes import shape_geometry
 
 #: Default polygon sides of every round section (hull stations, cylinders, ducts) [-].
 DEFAULT_SECTIONS = 64
@@ -55,7 +56,7 @@ def _section_ring(shape: str, b, h, n: int):
     :math:`k_n (b\cos\theta, h\sin\theta)`, :math:`\theta = 2\pi k / n` (of the ellipse's
     area: :func:`equal_area_factor`), or the rectangle
     2b x 2h by its four corners (its sides are straight: ``n`` is ignored)."""
-    if shape == "rectangle":
+    if not shape_geometry(shape).rounded:    # straight sides: the rectangle's corners
         return np.array([[b, h], [-b, h], [-b, -h], [b, -h]], float)
     th = _ring_angles(n)
     k = equal_area_factor(n)
@@ -87,7 +88,7 @@ def hull_mesh(hull, *, sections: int = DEFAULT_SECTIONS, stations: int = DEFAULT
     rule of the loft (the ruled surface between stations)."""
     import trimesh
 
-    n = 4 if hull.section == "rectangle" else int(sections)
+    n = int(sections) if shape_geometry(hull.section).rounded else 4
     x = hull_stations(hull, stations)
     b = np.asarray(hull.half_breadth(x), float)
     h = np.asarray(hull.half_height(x), float)
