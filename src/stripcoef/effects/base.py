@@ -122,6 +122,11 @@ class Effect:
         """The one number the benchmark compares with the truth."""
         return float(next(iter(params.values())))
 
+    #: The parameter values :meth:`plausible` admits, in words (a model file's error says it)
+    admits = "finite parameters"
+    #: The force law acts in all six DOFs at once (a model file's ``dof: all``)
+    all_dofs = False
+
     def plausible(self, params: dict) -> bool:
         return all(math.isfinite(v) for v in params.values())
 

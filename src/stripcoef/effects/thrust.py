@@ -94,6 +94,8 @@ class ThrustAsymmetry(Effect):
     def magnitude(self, params):
         return params["eta_backward"] / params["eta_forward"]
 
+    admits = "0.1 < eta_forward < 3 and 0.1 < eta_backward < 3"
+
     def plausible(self, params):
         return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
 
@@ -182,6 +184,8 @@ class Deadband(Effect):
     def to_parameters(self, theta, hyper, nuisance=None):
         return {"deadband": float(np.atleast_1d(hyper)[0])}
 
+    admits = "deadband > 0"
+
     def plausible(self, params):
         return params["deadband"] > 0.0
 
@@ -267,6 +271,9 @@ class ThrustEffectiveness(Effect):
 
     def window_force(self, data, params, dof):
         return (params["scale"] - 1.0) * data.mean_held(data.tau[:, dof])
+
+    admits = f"{BOUNDS[0]:g} <= scale <= {BOUNDS[1]:g}"
+    all_dofs = True
 
     def plausible(self, params):
         return self.BOUNDS[0] <= params["scale"] <= self.BOUNDS[1]

@@ -134,6 +134,12 @@ class _TimedInputEffect(Effect):
     def window_force(self, data, params, dof):
         return self.own_design(data, dof, [params[self.hyper[0]]])[0]
 
+    all_dofs = True
+
+    @property
+    def admits(self) -> str:
+        return f"0 < {self.hyper[0]} <= {self.GRID_MAX:g} s"
+
     def plausible(self, params):
         return 0.0 < params[self.hyper[0]] <= self.GRID_MAX
 
