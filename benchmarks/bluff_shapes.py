@@ -3,7 +3,8 @@
 Shapes (body axes FRD, metres, centred on their volume centroid): boxes from 1:4:1 to 4:1:1 in
 all orientations and a cube, short cylinders along x, y and z, a sphere, an oblate and two
 triaxial ellipsoids, an open frame of tubes with thruster pods, a VideoRay-like body, the
-BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl (18 shapes), and six asymmetric bluff
+BlueROV2-Heavy-like frame of the former geometry/bluerov2_heavy.stl (:func:`former_bluerov2_parts`,
+18 shapes), and six asymmetric bluff
 bodies for the off-diagonal terms (issue 14): a box with two skids below, a box with a pod on
 top aft, an L-shaped block (raised housing at the front), a cylinder with a float on top
 forward, a box with its front-top edge chamfered, and two cylinders joined by a top plate
@@ -199,8 +200,46 @@ def twin_hull():
     return _union(parts)
 
 
+def former_bluerov2_parts():
+    """The parts (overlapping trimesh solids) of the BlueROV2-Heavy-like frame that
+    geometry/bluerov2_heavy.stl held until issue 32 (scripts/make_bluerov2_heavy.py then; the
+    shipped files now hold the published parts): overall 0.457 x 0.575 x 0.254 m, two solid
+    side panels 12.7 mm thick, a buoyancy block, the 4" and 3" tubes, a lower tray, eight
+    T200 pods as solid 20-sided cylinders (D 0.10, L 0.11 m; the horizontal ones at 45 deg) and
+    the wings of the vertical ones.  Kept as it was: the stored BEM reference
+    (reference_tables/bem/bem_bluff.csv, bluerov2_heavy) is of their union."""
+    def box(size, center):
+        return trimesh.creation.box(size, transform=trimesh.transformations.translation_matrix(
+            center))
+
+    def cyl(diameter, length, center, direction):
+        c = trimesh.creation.cylinder(radius=0.5 * diameter, height=length, sections=20)
+        c.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], np.asarray(direction, float)))
+        c.apply_translation(center)
+        return c
+
+    lx, ly, lz = 0.457, 0.575, 0.254
+    pod_d, pod_l, y_panel = 0.10, 0.11, 0.17
+    parts = [box([lx, 0.0127, lz], [0.0, s * y_panel, 0.0]) for s in (-1, 1)]
+    parts.append(box([0.40, 2 * y_panel, 0.06], [0.0, 0.0, -0.5 * lz + 0.03]))
+    parts.append(cyl(0.114, 0.32, [0.02, 0.0, -0.01], [1, 0, 0]))
+    parts.append(cyl(0.089, 0.26, [0.0, 0.0, 0.075], [1, 0, 0]))
+    parts.append(box([0.30, 2 * y_panel, 0.0127], [0.0, 0.0, 0.5 * lz - 0.02]))
+    y_v = 0.5 * ly - 0.5 * pod_d
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            parts.append(cyl(pod_d, pod_l, [sx * 0.14, sy * 0.10, 0.06],
+                             [np.sqrt(0.5), -sx * sy * np.sqrt(0.5), 0.0]))
+            parts.append(cyl(pod_d, pod_l, [sx * 0.12, sy * y_v, -0.055], [0, 0, 1]))
+            parts.append(box([0.10, y_v - y_panel + 0.01, 0.0127],
+                             [sx * 0.12, sy * 0.5 * (y_v + y_panel), -0.055]))
+    return parts
+
+
 def _bluerov2():
-    return trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
+    """The union of :func:`former_bluerov2_parts` (manifold3d; byte for byte the former
+    geometry/bluerov2_heavy.stl)."""
+    return trimesh.boolean.union(former_bluerov2_parts(), engine="manifold")
 
 
 #: name -> (builder(faces) -> trimesh, smooth, what it is)
@@ -227,7 +266,8 @@ SHAPES = {
                       "triaxial ellipsoid 0.30, 0.15, 0.08 m (long)"),
     "open_frame": (lambda n: open_frame(), False, "open frame: 12 tubes, 3 thruster pods"),
     "videoray_like": (lambda n: videoray_like(), False, "VideoRay-like body (asymmetric)"),
-    "bluerov2_heavy": (lambda n: _bluerov2(), False, "geometry/bluerov2_heavy.stl"),
+    "bluerov2_heavy": (lambda n: _bluerov2(), False,
+                       "BlueROV2-Heavy-like frame (the former geometry/bluerov2_heavy.stl)"),
     "box_skid": (lambda n: box_skid(), False, "box 0.40 x 0.30 x 0.20 m, two skids below"),
     "box_pod_top_aft": (lambda n: box_pod_top_aft(), False,
                         "box 0.45 x 0.35 x 0.22 m, cylindrical pod on top aft"),

@@ -198,41 +198,62 @@ def stored_references(path):
     return refs
 
 
+def bem_reference(surface, bem_faces, ref_point):
+    """Capytaine on isotropic remeshes of the clean surface at the ``bem_faces`` (coarse to
+    fine; stripcoef.hull.remesh, the same remesher as the panel method's levels), the two
+    finest Richardson-extrapolated as 1/N, and the reference's own grid convergence index
+    (three levels: Fs 1.25 and the observed order; Roache 1998).  Returns (reference,
+    counts, its GCI + extrapolation step, the levels' matrices)."""
+    from stripcoef.bem import bem_added_mass
+    from stripcoef.hull.convergence import grid_convergence_index, richardson
+    from stripcoef.hull.panels import estimated_error
+    from stripcoef.hull.remesh import edge_for_panels, remesh_family
+
+    v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
+    # one remesh family (one crease angle, each level 1.25x the faces of the one before),
+    # else the surface's edges bisected at every level (a family that refines)
+    family = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in bem_faces])
+    meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
+              else [refine(surface, n) for n in bem_faces])
+    mats, counts = [], []
+    for m in meshes:
+        mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=4000))
+        counts.append(len(m.faces))
+    ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
+    gci, _, _ = grid_convergence_index(mats, counts)
+    return ref, counts, estimated_error(mats[-1], ref, gci), mats
+
+
 def run_one(family, rng, tmp, bem_faces, stored=None):
     from stripcoef.assembly import estimate
-    from stripcoef.bem import bem_added_mass
     from stripcoef.geometry.vehicle import load_vehicle
 
     parts, what = make_shape(family, rng)
     path, unit, how = write_as_user(parts, Path(tmp) / family, rng)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         veh = load_vehicle(path, length_unit=unit, origin=(0.0, 0.0, 0.0))
         model = estimate(veh, added_mass_method="panels")
     t_model = time.perf_counter() - t0
+    c_model = time.process_time() - c0          # CPU of this process (one BLAS thread)
     unconverged = any("has not converged" in str(w.message) for w in caught)
     ref_point = np.asarray(model.reference_point)
     t0 = time.perf_counter()
     if stored is not None:              # the same seed's references, read back
         ref, counts = stored
         mats = [ref, ref]
+        ref_gci = np.zeros((6, 6))
     else:
-        surface = clean_surface(parts)
-        mats, counts = [], []
-        for n in bem_faces:
-            m = refine(surface, n)
-            mats.append(bem_added_mass(m, rho=RHO, reference_point=ref_point, max_faces=3200))
-            counts.append(len(m.faces))
-        n1, n2 = counts
-        ref = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
+        ref, counts, ref_gci, mats = bem_reference(clean_surface(parts), bem_faces, ref_point)
     t_bem = time.perf_counter() - t0
     ours = np.asarray(model.added_mass) * RHO / model.density
     est = np.asarray(model.added_mass_error) * RHO / model.density
     d = np.sqrt(np.abs(np.diag(ref)))
     scale = np.outer(d, d)
     err = ours - ref
-    bem_step = np.abs(ref - mats[1]) / scale
+    bem_step = np.abs(ref - mats[-1]) / scale
+    ref_band = np.asarray(ref_gci) / scale
     rows = []
     for i in range(6):
         for j in range(i, 6):
@@ -241,9 +262,16 @@ def run_one(family, rng, tmp, bem_faces, stored=None):
                              est=est[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
                              rel=err[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
                              covered=bool(abs(err[i, j]) <= est[i, j]),
+                             ref_gci=ref_band[i, j] * (scale[i, j] / abs(ref[i, i])
+                                                       if i == j else 1.0),
+                             # ASME V&V 20-2009: the comparison error against the validation
+                             # band of both numerical uncertainties, root-sum-square
+                             covered_vv=bool(abs(err[i, j]) <= np.hypot(est[i, j],
+                                                                        ref_gci[i, j])),
                              significant=significant, bem_step=bem_step[i, j]))
     return dict(family=family, what=what, how=how, rows=rows, t_model=t_model, t_bem=t_bem,
-                panels=model.conditions["added_mass_panels"], bem_faces=tuple(counts),
+                c_model=c_model,
+                panels="/".join(map(str, model.conditions["added_mass_panel_levels"])), bem_faces=tuple(counts),
                 unconverged=unconverged, mirrors=model.conditions["mirror_planes"],
                 est_max=model.conditions["added_mass_error_max"])
 
@@ -252,9 +280,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=None, help="repeat a run (default: a fresh one)")
     ap.add_argument("--count", type=int, default=10, help="shapes to draw (default 10)")
-    ap.add_argument("--bem-faces", type=int, nargs=2, default=(1300, 2900),
-                    help="faces of the two BEM resolutions (at most 3000 each)")
+    ap.add_argument("--bem-faces", type=int, nargs="+", default=(750, 1500, 3000),
+                    help="faces of the BEM resolutions, coarse to fine (default three)")
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--shard", default=None, metavar="I/N",
+                    help="solve only the shapes k with k %% N == I (the others are drawn and "
+                         "skipped, so that N processes share one seed; merge their CSVs)")
     ap.add_argument("--references", default=None, metavar="CSV",
                     help="take the BEM references from a stored run of the same --seed "
                          "(re-evaluate the model only; its bem_richardson_step is then 0)")
@@ -264,18 +295,25 @@ def main(argv=None) -> int:
     print(f"seed {seed}  (repeat: python -m benchmarks.cad_shapes --seed {seed} "
           f"--count {args.count})", flush=True)
     rng = np.random.default_rng(seed)
+    shard = tuple(int(x) for x in args.shard.split("/")) if args.shard else None
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(args.count):
             family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
+            if shard and k % shard[1] != shard[0]:
+                make_shape(family, rng)                 # the draws of a skipped shape
+                rng.uniform(), rng.uniform()            # write_as_user's two draws
+                results.append(dict(family=family, skipped=True))
+                continue
             try:
                 if args.references and k not in stored:
                     raise ValueError("no stored reference for this shape")
                 r = run_one(family, rng, tmp, args.bem_faces, stored.get(k))
             except Exception as exc:          # a refusal is a result too: say it, go on
                 print(f"{k:3d} {family:12s} FAILED: {type(exc).__name__}: {exc}", flush=True)
-                results.append(dict(family=family, failed=str(exc)))
+                results.append(dict(family=family, failed=str(exc), k=k))
                 continue
+            r["k"] = k
             results.append(r)
             diag = [x for x in r["rows"] if x["i"] == x["j"]]
             coup = [x for x in r["rows"] if x["i"] != x["j"] and x["significant"]]
@@ -291,6 +329,7 @@ def main(argv=None) -> int:
                   + f"estimate covers {cov}/{len(sig)} terms (est. max "
                   f"{100 * r['est_max']:.1f} %{', WARNED' if r['unconverged'] else ''}); "
                   f"model {r['t_model']:.1f} s, BEM {r['t_bem']:.1f} s", flush=True)
+    results = [r for r in results if "skipped" not in r]
     ok = [r for r in results if "failed" not in r]
     sig = [x for r in ok for x in r["rows"] if x["significant"]]
     diag = [x for r in ok for x in r["rows"] if x["i"] == x["j"]]
@@ -304,26 +343,33 @@ def main(argv=None) -> int:
               f"{sum(all(abs(x['rel']) <= 0.05 for x in r['rows'] if x['significant']) for r in ok)}"
               f" of {len(ok)}")
         print(f"  estimated error covers the actual error: {sum(x['covered'] for x in sig)} of "
-              f"{len(sig)} terms ({100 * np.mean([x['covered'] for x in sig]):.0f} %)")
+              f"{len(sig)} terms ({100 * np.mean([x['covered'] for x in sig]):.0f} %); with the "
+              f"reference's own GCI (root-sum-square, ASME V&V 20): "
+              f"{sum(x['covered_vv'] for x in sig)} ({100 * np.mean([x['covered_vv'] for x in sig]):.0f} %)")
         print(f"  a warning where some term is off by more than 5 %: "
               f"{sum(r['unconverged'] for r in ok if any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']))}"
               f" of {sum(any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']) for r in ok)}")
         t = np.array([r["t_model"] for r in ok])
         tb = np.array([r["t_bem"] for r in ok])
+        c = np.array([r["c_model"] for r in ok])
+        print(f"  whole-estimate CPU time (one thread): median {np.median(c):.2f} s (max "
+              f"{c.max():.2f} s)")
         print(f"  whole-estimate time: median {np.median(t):.2f} s (max {t.max():.2f} s); "
-              f"BEM reference (two resolutions): median {np.median(tb):.2f} s")
+              f"BEM reference (all resolutions): median {np.median(tb):.2f} s")
     if args.csv:
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
         with open(args.csv, "w", newline="") as fh:
             w = csv.writer(fh)
-            fh.write(f"# benchmarks/cad_shapes.py --seed {seed} --count {args.count}\n")
+            fh.write(f"# benchmarks/cad_shapes.py --seed {seed} --count {args.count} "
+                     f"--bem-faces {' '.join(map(str, args.bem_faces))}\n")
             w.writerow(["shape", "family", "what", "how", "panels", "bem_faces", "mirrors",
                         "warned", "t_model_s", "t_bem_s", "i", "j", "model", "bem",
                         "error_rel", "covered", "significant", "bem_richardson_step_rel",
-                        "estimated_error_rel"])
-            for k, r in enumerate(results):
+                        "estimated_error_rel", "bem_gci_rel", "covered_with_bem_gci", "cpu_model_s"])
+            for r in results:
+                k = r["k"]
                 if "failed" in r:
-                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 16)
+                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 19)
                     continue
                 head = [k, r["family"], r["what"], r["how"], r["panels"],
                         "/".join(map(str, r["bem_faces"])), r["mirrors"], int(r["unconverged"]),
@@ -332,7 +378,8 @@ def main(argv=None) -> int:
                     w.writerow(head + [x["i"], x["j"], f"{x['ours']:.6g}", f"{x['ref']:.6g}",
                                        f"{x['rel']:.4g}", int(x["covered"]),
                                        int(x["significant"]), f"{x['bem_step']:.3g}",
-                                       f"{x['est']:.3g}"])
+                                       f"{x['est']:.3g}", f"{x['ref_gci']:.3g}",
+                                       int(x["covered_vv"]), f"{r['c_model']:.3f}"])
     return 0
 
 

@@ -681,6 +681,88 @@ def log_case(rng, bases: Bases) -> Case:
     return Case(command, f"log:{which}:{sub}", argv, files, invalid, ("out.json",))
 
 
+#: A column map of a yaw log in chunk files and a second stream with its own clock
+#: (issue 33): the navigation's chunks in nav/, the commands' stream aligned to it by the yaw
+#: rate both record.
+CHUNK_MAP = """\
+streams:
+  nav: {file: %(nav)s, time: {column: t%(retime)s}}
+  cmd:
+    file: cmd.csv
+    time: {column: t}
+    align: %(align)s
+rates: {stream: nav, columns: [null, null, r]}
+wrench: {stream: cmd, columns: [null, null, null, null, null, N]}
+output: {rate: 30}
+"""
+CHUNK_OFFSET = 0.4       # the command logger's clock behind the navigation's [s]
+
+
+def chunk_case(rng, bases: Bases) -> Case:
+    """A yaw log as users have it (issue 33): chunk files named out of time order with
+    overlaps, a command stream with a clock offset, and mutations of each part."""
+    log = read_log_text(bases.yaw)
+    t, r, n = (log[k].tolist() for k in ("t", "r", "N"))      # Python floats: repr is a number
+    t_arr = np.asarray(t)
+    sub = ["valid", "offset given", "glob", "nothing matches", "backwards in a chunk",
+           "unknown align stream", "uncorrelated signal", "offset beyond max",
+           "header-only chunk", "bursty receive times", "retime without column",
+           "chunk of other columns"][rng.integers(12)]
+    invalid = sub not in ("valid", "offset given", "glob", "bursty receive times")
+    cuts = np.sort(rng.choice(np.arange(50, t_arr.size - 50), 3, replace=False)).tolist()
+    bounds = [0, *cuts, t_arr.size]
+    names = [f"nav/part_{c}.csv" for c in "dbca"]
+    files = {}
+    for i, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+        a = max(0, a - int(rng.integers(0, 6))) if i else a          # overlapping rows
+        rows = [f"{t[k]!r},{r[k]!r}" for k in range(a, b)]
+        if sub == "backwards in a chunk" and i == 1:
+            rows[2], rows[3] = rows[3], rows[2]
+        files[names[i]] = "t,r\n" + "\n".join(rows) + "\n"
+    if sub == "header-only chunk":
+        files[names[2]] = "t,r\n"
+    if sub == "chunk of other columns":
+        files[names[3]] = files[names[3]].replace("t,r", "t,q")
+    if sub == "bursty receive times":        # one file, stamps of bursts of 1-5 samples
+        recv = t_arr.copy()
+        k = 0
+        while k < recv.size:
+            m = int(rng.integers(1, 6))
+            recv[k:k + m] = t_arr[min(k + m, recv.size) - 1]
+            k += m
+        recv = recv.tolist()
+        files = {"nav/all.csv": "t,r\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(recv, r))
+                 + "\n"}
+    echo = rng.standard_normal(len(t)).tolist() if sub == "uncorrelated signal" else r
+    files["cmd.csv"] = "t,N,r_echo\n" + "\n".join(
+        f"{a - CHUNK_OFFSET!r},{b!r},{c!r}" for a, b, c in zip(t, n, echo)) + "\n"
+    align = {"unknown align stream": "{to: dvl, signal: [r_echo, r]}",
+             "offset beyond max": "{to: nav, signal: [r_echo, r], max: 0.1}",
+             "offset given": f"{{offset: {CHUNK_OFFSET}}}"}.get(
+        sub, "{to: nav, signal: [r_echo, r], max: 2}")
+    files["map.yaml"] = CHUNK_MAP % {
+        "nav": {"glob": "nav/part_*.csv", "nothing matches": "nav/x_*.csv"}.get(sub, "nav"),
+        "retime": {"bursty receive times": ", retime: true"}.get(sub, ""), "align": align}
+    if sub == "retime without column":
+        files["map.yaml"] = files["map.yaml"].replace("{column: t}}", "{rate: 30, "
+                                                      "retime: true}}")
+    argv = ["identify", "{d}/nav", "--map", "{d}/map.yaml", "--method", "one-step", "--dof",
+            "yaw", "--json", "-o", "{d}/out.json"]
+    return Case("identify", f"chunks:{sub}", argv, files, invalid, ("out.json",))
+
+
+def read_log_text(text):
+    """A log from CSV text (the bases hold text)."""
+    import tempfile
+
+    from stripcoef.logfile import read_log
+
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / "log.csv"
+        p.write_text(text)
+        return read_log(p)
+
+
 def mesh_case(rng, bases: Bases) -> Case:
     import trimesh
     sub = ["truncated", "garbage", "empty", "open", "nan vertex", "degenerate", "huge",
@@ -883,7 +965,8 @@ def result_case(rng, bases: Bases) -> Case:
 
 GENERATORS = {"vehicle": (vehicle_case, 0.40), "model": (model_case, 0.17),
               "log": (log_case, 0.17), "mesh": (mesh_case, 0.08),
-              "options": (option_case, 0.15), "result": (result_case, 0.03)}
+              "options": (option_case, 0.15), "result": (result_case, 0.03),
+              "chunks": (chunk_case, 0.04)}
 # (compare runs the BEM on valid input; only its failing cases are in the options family)
 
 
@@ -950,6 +1033,7 @@ def run_case(case: Case, folder: Path, *, limit: float = CASE_LIMIT) -> tuple[st
 
     for name, content in case.files.items():
         p = folder / name
+        p.parent.mkdir(parents=True, exist_ok=True)
         if isinstance(content, bytes):
             p.write_bytes(content)
         else:

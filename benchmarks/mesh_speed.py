@@ -59,7 +59,8 @@ from benchmarks.mesh_accuracy import FLUID, RHO, lamb  # noqa: E402
 from benchmarks.mesh_shapes import (body_of_revolution, myring_profile, open_frame_rov,  # noqa: E402
                          refine_to, spheroid_profile)
 
-from stripcoef.assembly.estimate import added_mass, displaced_volume, estimate  # noqa: E402
+from stripcoef.assembly.added_mass import added_mass  # noqa: E402
+from stripcoef.assembly.estimate import displaced_volume, estimate  # noqa: E402
 from stripcoef.hull.corrections import hull_corrections, strip_section_added_mass  # noqa: E402
 from stripcoef.geometry.mesh import load_mesh, mesh_body  # noqa: E402
 from stripcoef.geometry.vehicle import MassSpec, Vehicle  # noqa: E402

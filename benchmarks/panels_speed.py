@@ -6,7 +6,8 @@ Run:  OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_speed
    panel_added_mass (coarsening + two solves + extrapolation) against Lamb's exact diagonal,
    best of 3; then the full model (stripcoef.assembly.estimate.estimate, M_A by the panels,
    damping and rigid-body terms by the strips) against the strips alone, best of 3.
-2. The BlueROV2-Heavy-like frame of geometry/bluerov2_heavy.stl refined to ~100k faces
+2. The BlueROV2-Heavy-like frame of benchmarks/bluff_shapes.py (the former
+   geometry/bluerov2_heavy.stl) refined to ~100k faces
    (longest-edge bisection: the same surface): panel_added_mass, best of 3, and its diagonal
    against the stored Richardson BEM of reference_tables/bem/bem_bluff.csv -- or the error that
    refuses it (its thin members need more panels than MAX_PANELS allows).
@@ -54,7 +55,7 @@ def main():
 
     from benchmarks import bluff_shapes as B
 
-    stl = trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
+    stl = B._bluerov2()          # the frame of the stored BEM reference
     base = mesh_body(stl, name="bluerov2").mesh
     base.apply_translation(-base.center_mass)
     rv, rf = P.refine(np.asarray(base.vertices), np.asarray(base.faces), 100_000)

@@ -9,7 +9,10 @@
 - docs/architecture.md names every module of src/stripcoef;
 - stored references live in reference_tables/ only, each computed csv named in its README;
 - no CLI vocabulary below the CLI: library errors name parameters (``radii``), and the CLI
-  rewords them into its flags (``--radii``).
+  rewords them into its flags (``--radii``);
+- no module-global mutable state in the library: no ``global`` statement, and no module-level
+  dict, list or set that the code changes (state lives in arguments, objects or a
+  ``ContextVar`` set for a block, as ``stripcoef.progress.bars``).
 """
 
 import ast
@@ -164,3 +167,46 @@ def test_stored_references_have_one_home():
         readme = (ROOT / "reference_tables" / folder / "README.md").read_text()
         for csv_file in (ROOT / "reference_tables" / folder).glob("*.csv"):
             assert f"`{csv_file.name}`" in readme, (folder, csv_file.name)
+
+
+_MUTATORS = {"append", "extend", "update", "setdefault", "pop", "popitem", "clear", "add",
+             "discard", "remove", "insert"}
+_CONTAINERS = (ast.Dict, ast.List, ast.Set, ast.DictComp, ast.ListComp, ast.SetComp)
+
+
+def _module_containers(tree) -> set[str]:
+    """Names bound at module level to a dict, list or set (literal, comprehension or call)."""
+    out = set()
+    for node in tree.body:
+        if isinstance(node, ast.Assign):
+            targets, value = node.targets, node.value
+        elif isinstance(node, ast.AnnAssign) and node.value is not None:
+            targets, value = [node.target], node.value
+        else:
+            continue
+        call = isinstance(value, ast.Call) and isinstance(value.func, ast.Name) \
+            and value.func.id in ("dict", "list", "set", "defaultdict", "OrderedDict")
+        if isinstance(value, _CONTAINERS) or call:
+            out |= {t.id for t in targets if isinstance(t, ast.Name)}
+    return out
+
+
+def test_no_module_global_mutable_state():
+    found = []
+    for path in sorted(SRC.rglob("*.py")):
+        tree = ast.parse(path.read_text(), filename=str(path))
+        names = _module_containers(tree)
+        where = path.relative_to(ROOT)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Global):
+                found.append(f"{where}:{node.lineno}: global {', '.join(node.names)}")
+            elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                  and isinstance(node.func.value, ast.Name) and node.func.value.id in names
+                  and node.func.attr in _MUTATORS):
+                found.append(f"{where}:{node.lineno}: {node.func.value.id}.{node.func.attr}()")
+            elif isinstance(node, (ast.Assign, ast.AugAssign, ast.Delete)):
+                targets = [node.target] if isinstance(node, ast.AugAssign) else node.targets
+                found += [f"{where}:{node.lineno}: {t.value.id}[...] changed" for t in targets
+                          if isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name)
+                          and t.value.id in names]
+    assert found == []

@@ -57,7 +57,10 @@ def test_model_file_round_trip_and_reference_point_keep_the_bands(rov_json):
 
 
 def test_text_output_and_the_warning(capsys):
-    assert main(["coefficients", str(GEOMETRY / "bluerov2_heavy.yaml")]) == 0
+    # strip theory's added mass: its rotation band is over 50 % (the panel method's, the
+    # default for this bluff vehicle file since issue 32, is narrower)
+    assert main(["coefficients", str(GEOMETRY / "bluerov2_heavy.yaml"),
+                 "--added-mass-method", "strips"]) == 0
     out, err = capsys.readouterr()
     assert "method added_mass rotation: 95 % band factor" in out
     assert "method quadratic_damping translation: 95 % band factor" in out

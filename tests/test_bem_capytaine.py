@@ -86,7 +86,10 @@ def test_coefficients_method_bem(spheroid_file, capsys):
     assert main(["coefficients", str(spheroid_file), "--method", "bem", "--rho", "1000",
                  "--strips", "40", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert "bem" in data["provenance"]["method"]
+    from stripcoef.assembly.methods import ADDED_MASS_METHODS   # the registry's BEM entry ran
+
+    assert data["provenance"]["method"] == ADDED_MASS_METHODS["bem"].provenance
+    assert data["provenance"]["bem_faces"] > 0 and data["provenance"]["bem_seconds"] >= 0
     assert data["added_mass"][1][1] == pytest.approx(np.pi * 4 / 3 * 0.6 * 0.01 * 1000 * 0.93,
                                                      rel=0.05)
 

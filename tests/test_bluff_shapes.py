@@ -131,7 +131,10 @@ def test_bluerov2_heavy_vehicle_file():
     from stripcoef.errors import ModelWarning
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelWarning)        # e.g. weight and buoyancy differ
-        m = estimate(ROOT / "geometry" / "bluerov2_heavy.yaml", strips=300)
+        # strip theory: the buoyancy check (the panel method's added mass of the frame warns
+        # that it has not converged at the default panels: tests/test_vehicle_surface.py)
+        m = estimate(ROOT / "geometry" / "bluerov2_heavy.yaml", strips=300,
+                     added_mass_method="strips")
     assert m.mass == pytest.approx(11.5)
     assert abs(m.volume * m.density - m.mass) < 0.05 * m.mass       # near neutral [P]
     assert len(m.thrusters) == 8
@@ -139,8 +142,10 @@ def test_bluerov2_heavy_vehicle_file():
 
 
 def test_bluerov2_mesh_dimensions():
+    """The published overall size; the round parts' polygons (16 sides, of the circles' areas:
+    geometry/surface.py) stand 1.3 % of their radius out at their vertices (0.65 mm)."""
     mesh = trimesh.load(ROOT / "geometry" / "bluerov2_heavy.stl", force="mesh")
-    np.testing.assert_allclose(np.ptp(mesh.vertices, axis=0), [0.457, 0.575, 0.254], atol=1e-3)
+    np.testing.assert_allclose(np.ptp(mesh.vertices, axis=0), [0.457, 0.575, 0.254], atol=1.5e-3)
 
 
 # --- BEM panel quality ---------------------------------------------------------------------
@@ -177,12 +182,12 @@ def test_compare_text_says_untrusted():
                    "+32 %, pitch +98 % at 400 strips)")
 @pytest.mark.slow
 def test_frame_union_and_overlapping_parts_agree():
-    from scripts.make_bluerov2_heavy import bluerov2_heavy_parts
+    from benchmarks.bluff_shapes import _bluerov2, former_bluerov2_parts
 
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.vehicle import Vehicle
-    union = Vehicle.from_mesh(ROOT / "geometry" / "bluerov2_heavy.stl")
-    parts = Vehicle.from_mesh(trimesh.util.concatenate(bluerov2_heavy_parts()))
+    union = Vehicle.from_mesh(_bluerov2())
+    parts = Vehicle.from_mesh(trimesh.util.concatenate(former_bluerov2_parts()))
     a = np.diag(estimate(union, strips=200).added_mass)
     b = np.diag(estimate(parts, strips=200).added_mass)
     np.testing.assert_allclose(b, a, rtol=0.05)

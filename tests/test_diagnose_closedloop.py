@@ -96,7 +96,6 @@ def test_missing_velocity_column_is_an_error_not_zeros():
     assert "no column r" in res.dofs_not_diagnosed["yaw"]
 
 
-@pytest.mark.slow
 def test_excitation_is_measured_against_the_noise():
     log, prior, _ = make_log(4, duration=80.0, lateral=False)
     data = window_data(log, prior, window=4.0)
@@ -105,7 +104,6 @@ def test_excitation_is_measured_against_the_noise():
     assert 1 not in ex and 3 not in ex and 4 not in ex  # sway: no force; roll/pitch: none
 
 
-@pytest.mark.slow
 def test_physical_bounds():
     data = window_data(make_log(5, duration=80.0)[0], rov_model(), window=4.0)
     lo, hi = added_mass_bounds(0, 2.0)
@@ -381,7 +379,6 @@ def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reporte
         diagnose(log, prior, dof="surge", added_mass_sd=[0.1, 0.1])
 
 
-@pytest.mark.slow
 def test_cli_with_a_vehicle_file_bounds_the_added_mass_by_its_method_band(tmp_path, capsys):
     from stripcoef import cli
     from stripcoef.conventions import FORCES

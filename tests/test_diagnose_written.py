@@ -160,6 +160,7 @@ def test_validation_and_held_out_errors_are_the_written_models(run):
         for d, e in res["holdout"]["errors"].items():
             _same(e["calibrated"], errors[d]["calibrated"])
             _same(e["prior"], errors[d]["prior"])
+            _same(e["zero_velocity"], errors[d]["zero_velocity"])
 
 
 def test_a_removed_step_leaves_its_partners_refitted(run):

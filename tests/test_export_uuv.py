@@ -159,3 +159,41 @@ def test_about_cg_and_back_gives_the_original():
         original = getattr(model, key)
         np.testing.assert_allclose(back, original, rtol=1e-12,
                                    atol=1e-12 * np.abs(original).max(), err_msg=key)
+
+
+def _plugin_volume(box, volume, z):
+    """BuoyantObject::GetBuoyancyForce (uuv_simulator bfb40cb, BuoyantObject.cc l. 82-120):
+    the buoyant volume with the link origin at world z (up, surface at 0) [m^3]."""
+    height = box["height"]
+    if z + height / 2 > 0 and z < 0:
+        return volume * (abs(z) + height / 2) / height
+    return volume if z + height / 2 < 0 else 0.0
+
+
+def test_box_is_the_body_extent_for_partial_submersion(geometry_dir):
+    """``<box>`` (HydrodynamicModel.cc l. 67-84: width along x, length along y, height along
+    z, centred on the link origin) carries L, B, H; with it the plugin's buoyancy is full at
+    a depth of H/2, half with the CoG at the surface."""
+    from stripcoef import estimate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = estimate(geometry_dir / "remus100.yaml", strips=120)
+        p = parse(export_model(model, "uuv"))
+    box = {c.tag: float(c.text) for c in p["link"].find("box")}
+    assert set(box) == {"width", "length", "height"}
+    assert box["width"] == pytest.approx(model.conditions["length"], rel=1e-12)
+    # REMUS 100: hull diameter 0.191 m, fins out to a span of 0.257 m (geometry/remus100.yaml)
+    assert box["length"] == pytest.approx(box["height"], rel=1e-9)
+    assert 0.19 < box["height"] < 0.30
+    v = p["volume"]
+    assert _plugin_volume(box, v, -box["height"]) == v
+    assert _plugin_volume(box, v, -1e-12) == pytest.approx(v / 2, rel=1e-9)
+
+
+def test_model_without_extents_has_no_box_and_says_so():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        text = export_model(torpedo(), "uuv")
+    assert parse(text)["link"].find("box") is None
+    assert "No <box>" in text

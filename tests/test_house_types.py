@@ -9,7 +9,8 @@ the registries hold frozen specs and refuse unknown names with the list of valid
 import copy
 import json
 import pickle
-from dataclasses import FrozenInstanceError, replace
+import re
+from dataclasses import FrozenInstanceError, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -17,11 +18,15 @@ import pytest
 
 import stripcoef
 from stripcoef.assembly import EstimateOptions, estimate
+from stripcoef.assembly.methods import (ADDED_MASS_METHODS, AddedMassMethod, choose_method,
+                                        estimate_choices, get_method)
 from stripcoef.effects import EFFECTS, get_effect
 from stripcoef.errors import InputError
 from stripcoef.export import FORMATS, ExportFormat, get_format
+from stripcoef.geometry.shapes import GEOMETRY, ShapeGeometry, built_from_half_sizes, shape_geometry
 from stripcoef.model import Conditions
 from stripcoef.sections import SHAPES, SectionShape, get_shape
+from stripcoef.strips import Part
 
 ROOT = Path(__file__).resolve().parents[1]
 GOLDEN = ROOT / "tests" / "golden"
@@ -121,6 +126,38 @@ def test_correction_factors_are_frozen():
     assert (c.translation, c.rotation, c.coupling) == (c.scale[1], c.scale[5], c.coupling_26)
 
 
+def test_section_shape_spec_carries_its_geometry():
+    # one shape = one geometry entry (below sections) + one coefficient entry, same names
+    assert set(SHAPES) == set(GEOMETRY)
+    for name, spec in SHAPES.items():
+        assert isinstance(spec, ShapeGeometry)
+        for f in fields(ShapeGeometry):
+            assert getattr(spec, f.name) is getattr(GEOMETRY[name], f.name)
+    # no shape name is tested outside the registries
+    src = Path(stripcoef.__file__).parent
+    pattern = re.compile(r"(shape|section)\s*[!=]=\s*[\"'](" + "|".join(SHAPES) + r")[\"']")
+    hits = [f"{p.relative_to(src)}:{i}" for p in src.rglob("*.py")
+            for i, line in enumerate(p.read_text().splitlines(), 1) if pattern.search(line)]
+    assert hits == []
+
+
+def test_section_shape_geometry_is_exact():
+    part = Part(name="p", shape="rectangle", index=[0], y=0.1, z=-0.2, half_breadth=0.3,
+                half_height=0.05, area=0.06)
+    ring = get_shape("rectangle").outline(part, 0, 8)[0]
+    assert ring.shape == (5, 2) and np.allclose(ring[0], ring[-1])
+    assert np.isclose(get_shape("rectangle").outer_area(part)[0], 4 * 0.3 * 0.05)
+    assert np.isclose(get_shape("rectangle").wetted_perimeter(part)[0], 4 * 0.35)
+    part = replace(part, shape="ellipse")
+    ring = get_shape("ellipse").outline(part, 0, 400)[0]
+    area = 0.5 * abs(np.sum(ring[:-1, 0] * ring[1:, 1] - ring[1:, 0] * ring[:-1, 1]))
+    assert np.isclose(area, np.pi * 0.3 * 0.05, rtol=1e-3)
+    assert np.isclose(get_shape("ellipse").half_chord(0.3, 0.05, 0.15), 0.05 * np.sqrt(0.75))
+    assert built_from_half_sizes() == ("ellipse", "rectangle")
+    with pytest.raises(InputError, match="polygon"):
+        shape_geometry("hexagon")
+
+
 def test_registries_hold_frozen_specs_and_list_valid_names():
     assert all(isinstance(s, SectionShape) and s.name == k for k, s in SHAPES.items())
     assert all(isinstance(f, ExportFormat) and f.name == k for k, f in FORMATS.items())
@@ -131,7 +168,30 @@ def test_registries_hold_frozen_specs_and_list_valid_names():
         FORMATS["json"].binary = True
     with pytest.raises(FrozenInstanceError):
         EFFECTS["current"].name = "x"
-    for lookup, names in ((get_shape, SHAPES), (get_format, FORMATS), (get_effect, EFFECTS)):
+    assert all(isinstance(m, AddedMassMethod) and m.name == k
+               for k, m in ADDED_MASS_METHODS.items())
+    with pytest.raises(FrozenInstanceError):
+        ADDED_MASS_METHODS["strips"].in_estimate = False
+    for lookup, names in ((get_shape, SHAPES), (get_format, FORMATS), (get_effect, EFFECTS),
+                          (get_method, ADDED_MASS_METHODS)):
         with pytest.raises(InputError) as err:
             lookup("no-such-thing")
         assert all(n in str(err.value) for n in names)
+
+
+def test_added_mass_methods_registry_drives_the_option_and_the_cli(sphere):
+    from stripcoef.cli.app import build_parser
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    assert set(ADDED_MASS_METHODS) == {"strips", "panels", "bem"}
+    assert estimate_choices() == ("auto", "panels", "strips")     # the BEM runs after
+    sub = build_parser()._subparsers._group_actions[0].choices["coefficients"]
+    flag = next(a for a in sub._actions if a.dest == "added_mass_method")
+    assert tuple(flag.choices) == estimate_choices()
+    veh = load_vehicle(ROOT / "geometry" / "sphere.yaml")
+    assert choose_method("auto", veh, veh.cut(40)).name == "strips"   # no mesh
+    assert sphere.provenance["method"] == ADDED_MASS_METHODS["strips"].provenance
+    # a vehicle file is panelled on its united surface; the BEM runs after the estimate
+    assert choose_method("panels", veh, veh.cut(40)).name == "panels"
+    with pytest.raises(InputError, match="panels or strips or auto"):
+        choose_method("bem", veh, veh.cut(40))

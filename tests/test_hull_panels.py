@@ -150,7 +150,7 @@ def test_estimate_panels_changes_only_the_added_mass():
 
 def test_auto_rule():
     from stripcoef.assembly import estimate
-    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.assembly.methods import added_mass_method
     from stripcoef.geometry.mesh import revolved_mesh
     from stripcoef.geometry.vehicle import Vehicle
 
@@ -167,13 +167,29 @@ def test_auto_rule():
     np.testing.assert_array_equal(a.added_mass, b.added_mass)    # bit for bit
 
 
-def test_panels_need_a_mesh_vehicle_and_a_known_method():
+@pytest.mark.slow
+def test_panels_on_a_vehicle_file():
+    """A vehicle file takes the panel method on its united surface (issue 32: it used to be
+    refused): the sphere's translations within 3 % of Lamb's rho V / 2 (measured -0.7 %,
+    -2.3 %, -2.3 %: the default 1600 panels refine a surface of 16-sided sections, the
+    finest at most N/4 faces, assembly.added_mass.panel_surface)."""
+    import warnings
+
     from conftest import GEOMETRY
 
     from stripcoef.assembly import estimate
+    from stripcoef.errors import ModelWarning
 
-    with pytest.raises(InputError, match="added_mass_method.*one closed mesh"):
-        estimate(GEOMETRY / "sphere.yaml", added_mass_method="panels")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)   # roll: zero for a sphere
+        m = estimate(GEOMETRY / "sphere.yaml", added_mass_method="panels")
+    assert "panel" in m.conditions["added_mass_method"]
+    np.testing.assert_allclose(np.diag(m.added_mass)[:3], 0.5 * m.density * m.volume, rtol=0.03)
+
+
+def test_panels_need_a_known_method_and_panel_count():
+    from stripcoef.assembly import estimate
+
     with pytest.raises(InputError, match="added_mass_method"):
         estimate(_box_vehicle(), added_mass_method="bem")
     with pytest.raises(InputError, match="added_mass_panels"):
@@ -197,18 +213,21 @@ def test_cli_flag(tmp_path, capsys):
 
 
 def test_auto_keeps_the_strips_for_the_shipped_vehicles():
-    """Every shipped vehicle file and the round sample mesh stay on the strips under ``auto``
-    (their output would not change); the BlueROV2 frame mesh and a box go to the panels."""
+    """The round and slender shipped vehicle files and the round sample mesh stay on the strips
+    under ``auto``; the bluff ones (VideoRay, BlueROV2 Heavy: vehicle files and meshes alike,
+    issue 32) go to the panels."""
     from conftest import GEOMETRY
 
     from stripcoef import samples
-    from stripcoef.assembly.added_mass import added_mass_method
+    from stripcoef.assembly.methods import added_mass_method
     from stripcoef.geometry.vehicle import load_vehicle
 
+    bluff = {"videoray_pro3.yaml", "bluerov2_heavy.yaml"}
     files = sorted(GEOMETRY.glob("*.yaml")) + [samples.path("capsule.stl")]
     for f in files:
         v = load_vehicle(f)
-        assert added_mass_method("auto", v, v.cut(200)) == "strips", f.name
+        want = "panels" if f.name in bluff else "strips"
+        assert added_mass_method("auto", v, v.cut(200)) == want, f.name
     rov = load_vehicle(GEOMETRY / "bluerov2_heavy.stl")
     assert added_mass_method("auto", rov, rov.cut(200)) == "panels"
 

@@ -346,7 +346,7 @@ def test_every_map_in_docs_logs_md_is_valid():
     import yaml
     text = (Path(__file__).parent.parent / "docs" / "logs.md").read_text()
     blocks = re.findall(r"```yaml\n(.*?)```", text, flags=re.S)
-    assert len(blocks) == 3
+    assert len(blocks) == 4
     for block in blocks:
         m = parse_map(yaml.safe_load(block), path="docs/logs.md")
         assert m.streams

@@ -27,8 +27,7 @@ from validation.lift import (FT, LIFT_TOLERANCE, SUBOFF as SOURCE, afterbody_rad
                              plane_chord, planes_geometry, planes_interference,
                              planes_root_radii, sail_geometry, sail_interference, val, within,
                              appendix_curve, odd_slope, stock_lift_slopes,
-                             SUBOFF_TOLERANCE, drift_curve_comparisons, suboff_comparisons,
-                             suboff_model)
+                             SUBOFF_TOLERANCE, drift_curve_comparisons, suboff_comparisons)
 
 
 # ---------------------------------------------------------------------------
@@ -258,31 +257,39 @@ def test_stock_lift_slopes():
 _BODY = ("Hopkins's separation station (0.825 l on SUBOFF, correlated on missile boat-tails) is "
          "too far forward for SUBOFF's streamlined afterbody, whose flow stays attached longer: the "
          "slender-body lift is 2.8 times the bare hull's Y'_v and its moment too small")
+_FIN = ("each plane's own force is 1.59 /rad on the printed area against 1.42 deflected (+12 %) "
+        "and 1.23 in drift (+30 %) on its stock (Helmbold 2.08 x k_W(B) 0.94 x stern dynamic "
+        "pressure 0.79: potential flow 0.86, boundary layer 0.91): the afterbody's viscous "
+        "cross-flow at the fins in drift and its boundary layer thicker than a flat plate's are "
+        "not modelled")
 #: (configuration, derivative) -> why the slender-body model misses the issue's tolerance.
 KNOWN_MISSES = {
     (3, "Nv"): "bare hull N'_v 0.72 of measured (tolerance 10 %): " + _BODY,
     (6, "Nv"): "hull + ring N'_v 0.71 of measured, the bare hull's model (no ring wing built): " + _BODY,
-    (4, "Yv"): "hull + sail Y'_v 1.51 times measured: " + _BODY,
-    (5, "Yv"): "hull + planes Y'_v 2.14 times measured: " + _BODY + "; the planes' own lift is "
-               "also 47-69 % above their measured stock force",
-    (5, "Nv"): "hull + planes N'_v 0.62 of measured: " + _BODY + "; the too-strong planes add "
+    (4, "Yv"): "hull + sail Y'_v 1.53 times measured: " + _BODY,
+    (5, "Yv"): "hull + planes Y'_v 2.19 times measured: " + _BODY + "; " + _FIN,
+    (5, "Nv"): "hull + planes N'_v 0.60 of measured: " + _BODY + "; the too-strong planes add "
                "a stabilising moment",
-    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.46 times measured: " + _BODY,
-    (2, "Nv"): "fully appended N'_v 0.84 of measured (tolerance 15 %): " + _BODY,
-    (1, "Zw"): "configuration 1 Z'_w 1.61 times measured: " + _BODY,
-    (1, "Mw"): "configuration 1 M'_w 0.67 of measured: " + _BODY,
-    (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0011: the "
-               "sail's rotary force (-0.0018 about the moment point, from its lever 3 ft forward) "
-               "does not cancel the body's +0.0054",
-    (4, "Nr"): "hull + sail N'_r 1.56 times measured: the body's N'_r (bare hull 1.65 times) "
+    (5, "Yr"): "hull + planes Y'_r 1.30 times measured (tolerance 25 %): the body's Y'_r is 3 "
+               "times the bare hull's; " + _FIN,
+    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.50 times measured: " + _BODY,
+    (2, "Nv"): "fully appended N'_v 0.83 of measured (tolerance 15 %): " + _BODY,
+    (2, "Yr"): "fully appended Y'_r 0.72 of measured: the ring wing is not built; its measured "
+               "increment (configuration 6 - 3: +0.0020) would bring the model to 1.10",
+    (1, "Zw"): "configuration 1 Z'_w 1.65 times measured: " + _BODY,
+    (1, "Mw"): "configuration 1 M'_w 0.65 of measured: " + _BODY,
+    (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0010: the "
+               "sail's rotary force (about -0.0018 about the moment point, from its lever 3 ft "
+               "forward) does not cancel the body's +0.0054",
+    (4, "Nr"): "hull + sail N'_r 1.57 times measured: the body's N'_r (bare hull 1.65 times) "
                "carried over",
-    (5, "Yr"): "hull + planes Y'_r 1.26 times measured (tolerance 25 %): the body's Y'_r is 3 "
-               "times the bare hull's and the planes' own lift 47-69 % too strong",
-    (2, "Yr"): "fully appended Y'_r 0.70 of measured: the ring wing is not built; its measured "
-               "increment (configuration 6 - 3: +0.0020) would bring the model to 1.08",
-    (2, "Ndr"): "N'_dr 1.16 times measured (tolerance 15 %): the isolated fin is 47 % above the "
-                "measured stock force in deflection and the carry-over onto the afterbody is "
-                "missing; the two nearly cancel",
+    (2, "Ndr"): "N'_dr 1.27 times measured (tolerance 15 %) while Y'_dr is 1.09: Roddy's "
+                "rudder force acts 0.44 L_BP - 0.37 L_BP = 0.9 ft ahead of the planes' quarter "
+                "chord in configuration 2 (with sail and ring wing), while configuration 1's "
+                "sternplane force acts where the model puts it (M'_ds/Z'_ds 0.430 measured, "
+                "0.436 model)",
+    (1, "Zds"): "Z'_ds 1.16 times measured (tolerance 15 %): " + _FIN,
+    (1, "Mds"): "M'_ds 1.17 times measured (tolerance 15 %): " + _FIN,
     (3, "Yv"): "bare hull Y'_v 2.78 times measured (the issue asks only for the error stated): "
                + _BODY,
     (6, "Yv"): "hull + ring Y'_v 2.78 times measured (error stated only): " + _BODY,
@@ -313,31 +320,57 @@ def test_slender_body_lift_fixes_the_rotary_signs_that_hoerners_form_misses():
     assert bare_yr["hoerner"] < 0 < bare_yr["measured"]          # Hoerner: wrong sign
     assert abs(bare_nr["hoerner"]) < 0.01 * abs(bare_nr["measured"])  # Hoerner: nothing
     assert bare_yr["slender"] > 0 and bare_nr["slender"] < 0
-    for c, n in ((1, "Zq"), (1, "Mq"), (2, "Nr")):             # within 6 % fully appended
-        assert rows[(c, n)]["ratio"] == pytest.approx(1.0, abs=0.06)
+    for c, n in ((1, "Zq"), (1, "Mq"), (2, "Nr"), (5, "Nr")):   # the issue's 25 %, appended
+        assert rows[(c, n)]["ratio"] == pytest.approx(1.0, abs=0.25)
 
 
-@pytest.mark.xfail(strict=True, reason="one stern plane's own lift: Helmbold 2.08 /rad (AR_e 1.53) "
-                   "against 1.23 /rad measured on the stock in drift (+69 %) and 1.42 /rad deflected "
-                   "(+47 %): the thick NACA 0020 section in the afterbody's boundary layer lifts less "
-                   "than an isolated thin fin, and no published method for that was found in reach")
-def test_stern_plane_own_force_against_the_stock():
-    from stripcoef.hull.lift import fin_lift_slope
-    ar = suboff_model(5).conditions.lift["fin_lift"][0]["aspect_ratio"]
-    s = stock_lift_slopes()
-    for measured in (s["drift"], s["rudder"]):
-        assert float(fin_lift_slope(ar)) == pytest.approx(measured, rel=0.20)
+def test_stern_plane_carry_over_against_the_stock():
+    """The whole-body force of the two deflected rudders over their own (stock) forces: Roddy's
+    Y'_dr over twice the stock force, 1.53, against slender-body theory's (k_W(B) + k_B(W)) /
+    k_W(B) at tau = R/s of the planes' mid-chord root, 1.49 (Pitts, Nielsen & Kaattari 1957;
+    nothing fitted). Tolerance 10 %: Roddy's control uncertainty (6-10 %)."""
+    from validation.lift import measured_carry_over, model_stock_slopes
+    assert measured_carry_over() == pytest.approx(1.529, abs=0.005)
+    assert model_stock_slopes()["carry"] == pytest.approx(measured_carry_over(), rel=0.10)
 
 
-@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.3-4.4 times Roddy's from 4 to 16 deg "
-                   "(configurations 2-5, both body-lift methods): the linear body lift is too large "
+def test_stern_plane_own_force_deflected_against_the_stock():
+    """A deflected plane's own force within 20 % of the measured stock force (the issue's
+    tolerance): model 1.59 /rad against 1.42 (upper rudder, configuration 2) and 1.41 (port
+    sternplane, configuration 1), on the printed area."""
+    from validation.lift import model_stock_slopes
+    model, s = model_stock_slopes(), stock_lift_slopes()
+    for key in ("rudder", "sternplane"):
+        assert model[key] == pytest.approx(s[key], rel=0.20), key
+
+
+@pytest.mark.xfail(strict=True, reason="one stern plane's own force in drift (body_lift: slender): "
+                   + _FIN)
+def test_stern_plane_own_force_in_drift_against_the_stock():
+    from validation.lift import model_stock_slopes
+    assert model_stock_slopes()["drift"] == pytest.approx(stock_lift_slopes()["drift"], rel=0.20)
+
+
+@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.14-2.7 times Roddy's from 4 to 18 deg "
+                   "(configurations 2-5, body_lift: slender): the linear body lift is too large "
                    "(Hopkins's station) and the strips' linear damping D_L adds a second linear sway "
-                   "force at 6.5 knots; N'(beta) with the slender-body lift is within 20 % from 8 deg "
-                   "for configurations 2 and 4 only")
+                   "force; N'(beta) is within 20 % at every angle for configuration 4, from 4 to "
+                   "16 deg for 2, from 12 deg for 3 and from 16 deg for 5")
 def test_drift_curves_within_20_percent():
     for c in drift_curve_comparisons():
         if c["method"] == "slender":
             assert c["model"] == pytest.approx(c["measured"], rel=0.20), c
+
+
+def test_measured_drift_point_never_extrapolates():
+    """Configuration 2 ran to -13.4 deg only: beyond it the tare C(0) replaces C(-beta); past
+    either end of a curve the comparison refuses."""
+    from validation.lift import measured_odd
+    deg, coef = np.array([-10.0, 0.0, 10.0, 20.0]), np.array([-1.0, 0.1, 1.2, 2.1])
+    assert measured_odd(deg, coef, 10.0) == pytest.approx(1.1)
+    assert measured_odd(deg, coef, 15.0) == pytest.approx(1.65 - 0.1)
+    with pytest.raises(ValueError, match="outside"):
+        measured_odd(deg, coef, 25.0)
 
 
 @pytest.mark.parametrize("config", [2, 3, 4, 5])

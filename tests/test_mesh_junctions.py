@@ -84,7 +84,8 @@ def test_a_duct_mesh_gets_its_tube_matrix(length, ri, ro):
 
     import trimesh
 
-    from stripcoef.assembly.estimate import added_mass, displaced_volume
+    from stripcoef.assembly.added_mass import added_mass
+    from stripcoef.assembly.estimate import displaced_volume
     from stripcoef.conventions import transform_matrix
     from stripcoef.geometry.mesh import mesh_body
     m = trimesh.creation.annulus(r_min=ri, r_max=ro, height=length, sections=256)

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import trimesh
 
-from stripcoef.assembly.estimate import added_mass, displaced_volume
+from stripcoef.assembly.added_mass import added_mass
+from stripcoef.assembly.estimate import displaced_volume
 from stripcoef.conventions import transform_matrix
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
 from stripcoef.hull.lamb import spheroid_added_mass

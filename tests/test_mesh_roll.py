@@ -7,7 +7,8 @@ import pytest
 import trimesh
 from scipy.special import elliprd
 
-from stripcoef.assembly.estimate import added_mass, displaced_volume
+from stripcoef.assembly.added_mass import added_mass
+from stripcoef.assembly.estimate import displaced_volume
 from stripcoef.hull.corrections import mode_inertia, roll_relief, roll_symmetry_order
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
 from stripcoef.geometry.profiles import myring_nose, myring_tail

@@ -72,17 +72,16 @@ def test_quiet_in_a_pipe_and_verbose_forces_it(tmp_path, inputs, geometry_dir, c
     out, err = capsys.readouterr()
     assert "simulate spheroid" in err and "/60 s" in err
     assert out == quiet_out                    # the bar changes nothing else
-    assert progress._DEPTH == 0
+    assert progress.depth() == 0
 
 
 def test_nested_bars_are_silent_and_depth_recovers(capsys):
-    progress.set_enabled(True)
-    try:
+    with progress.bars(True):
         items = list(progress.track(range(3), desc="outer"))
-        assert items == [0, 1, 2] and progress._DEPTH == 0
+        assert items == [0, 1, 2] and progress.depth() == 0
 
         def inner():
-            assert progress._DEPTH == 1
+            assert progress.depth() == 1
             clock = progress.TimeBar(0.0, 1.0, desc="inner")
             assert clock._bar is None           # silent inside the outer bar
             clock.advance(0.5)
@@ -97,7 +96,12 @@ def test_nested_bars_are_silent_and_depth_recovers(capsys):
             fails()
         import gc
         gc.collect()
-        assert progress._DEPTH == 0             # a bar lost in an exception is released
-    finally:
-        progress.set_enabled(None)
+        assert progress.depth() == 0             # a bar lost in an exception is released
     capsys.readouterr()
+
+
+def test_bars_setting_is_scoped_to_its_block():
+    with progress.bars(True):
+        with progress.bars(False):
+            assert not progress.enabled()
+        assert progress.enabled()

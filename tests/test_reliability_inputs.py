@@ -130,6 +130,29 @@ MODEL_CASES = [
     ("effect on DOF 7", _set(["effects"], [
         {"name": "tether_drag", "dof": 7, "parameters": {"c_t": 1.0}}]),
      ("effects[0].dof", "got 7", "surge")),
+    # effects checked against the effects library (stripcoef.effects.laws.EFFECTS)
+    ("unknown effect", _set(["effects"], [
+        {"name": "teather_drag", "dof": "surge", "parameters": {"c_t": 1.0}}]),
+     ("effects[0].name", "'teather_drag'", "tether_drag")),
+    ("unknown effect parameter", _set(["effects"], [
+        {"name": "tether_drag", "dof": "surge", "parameters": {"c_t": 1.0, "ct": 2.0}}]),
+     ("effects[0].parameters.ct", "unknown parameter", "c_t [N s^2/m^3]")),
+    ("effect parameter missing", _set(["effects"], [
+        {"name": "thrust_asymmetry", "dof": "surge", "parameters": {"eta_forward": 1.0}}]),
+     ("effects[0].parameters.eta_backward", "missing", "eta_forward")),
+    ("effect parameter out of range", _set(["effects"], [
+        {"name": "tether_drag", "dof": "surge", "parameters": {"c_t": -1.0}}]),
+     ("effects[0].parameters", "-1.0", "c_t > 0")),
+    ("current of 1e6 m/s", _set(["effects"], [
+        {"name": "current", "dof": "surge",
+         "parameters": {"current_north": 1e6, "current_east": 0.0}}]),
+     ("effects[0].parameters", "1000000.0", "< 5 m/s")),
+    ("effect in a DOF it does not act in", _set(["effects"], [
+        {"name": "tether_drag", "dof": "yaw", "parameters": {"c_t": 1.0}}]),
+     ("effects[0].dof", "'yaw'", "surge, sway, heave")),
+    ("effect in all DOFs", _set(["effects"], [
+        {"name": "tether_drag", "dof": "all", "parameters": {"c_t": 1.0}}]),
+     ("effects[0].dof", "'all'", "does not act in all")),
     ("kinematic viscosity negative", _set(["kinematic_viscosity"], -1e-6),
      ("kinematic_viscosity", "-1e-06", "> 0")),
     ("lift of 5 rows", lambda d: d.__setitem__("lift", d["lift"][:5]), ("lift", "6 entries")),
@@ -157,6 +180,24 @@ def test_model_file_errors(name, edit, words, command, mares_model_dict, tmp_pat
         argv = ["limits", f, "--json", "--radii", "1:10:3"]
     _one_line(capsys, argv, str(f), *words)
     assert sorted(p.name for p in tmp_path.iterdir()) in (["m.json"], ["in.csv", "m.json"])
+
+
+def test_model_file_effects_of_the_library_are_read(mares_model_dict):
+    """Entries the effects library admits load, ``all`` where the law acts in all DOFs."""
+    from stripcoef.modelfile import model_from_dict
+
+    d = copy.deepcopy(mares_model_dict)
+    d["effects"] = [
+        {"name": "tether_drag", "dof": "heave", "parameters": {"c_t": 3.0}, "std": {}},
+        {"name": "thrust_effectiveness", "dof": "all", "parameters": {"scale": 0.6}},
+        {"name": "thruster_lag", "dof": "surge", "parameters": {"time_constant": 0.2}},
+        {"name": "tether_drag", "dof": 1, "parameters": {"c_t": 3.0}}]    # a DOF index
+    model = model_from_dict(d, file="m.json")
+    assert [e["name"] for e in model.effects] == ["tether_drag", "thrust_effectiveness",
+                                                  "thruster_lag", "tether_drag"]
+    from stripcoef.effects.laws import effect_forces
+
+    assert len(effect_forces(model)) == 4        # the simulation reads every entry
 
 
 def test_model_file_direction_is_normalised_as_in_a_vehicle_file(mares_model_dict):

@@ -19,8 +19,9 @@ ROOT = Path(__file__).resolve().parent.parent
 
 #: Topic modules, in pipeline order.
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
-                             "identification", "meshes", "fins", "bluff", "cad_shapes", "drag",
-                             "bands", "diagnosis", "diagnosis_independent")
+                             "identification", "meshes", "fins", "bluff", "cad_shapes",
+                             "public_meshes", "vehicle_surface", "drag", "bands",
+                             "diagnosis", "diagnosis_independent")
 
 
 def build() -> str:

@@ -168,32 +168,6 @@ def timed_bem_added_mass(*args, **kwargs):
     return a, time.perf_counter() - t0
 
 
-def bem_model(model, vehicle):
-    """``model`` with its added-mass matrix replaced by the BEM one of ``vehicle``'s mesh.
-
-    The strip-theory model keeps its damping and rigid-body terms; the BEM added mass is
-    taken about the same reference point (:func:`bem_added_mass`). ``vehicle`` must be a
-    single mesh (:meth:`~stripcoef.geometry.vehicle.Vehicle.from_mesh`). Returns a new
-    HydroModel whose provenance names the method, the faces and the solver time [s].
-    """
-    from dataclasses import replace
-
-    from stripcoef.geometry.mesh import MeshBody
-
-    meshes = [b for b in vehicle.bodies if isinstance(b, MeshBody)]
-    if len(meshes) != 1 or len(vehicle.bodies) != 1:
-        raise InputError("the BEM needs a mesh as the whole vehicle", file=vehicle.source,
-                         key="method", expected="a .stl/.obj/.ply/.glb file")
-    a, seconds = timed_bem_added_mass(meshes[0], rho=model.density,
-                                      reference_point=model.reference_point)
-    provenance = dict(model.provenance)
-    provenance.update({"method": "bem (Capytaine, free_surface=inf, direct) added mass; "
-                                 "strip-theory damping",
-                       "bem_faces": int(len(meshes[0].mesh.faces)),
-                       "bem_seconds": round(seconds, 3)})
-    return replace(model, added_mass=a, provenance=provenance, added_mass_error=None)
-
-
 def comparison_figure(strip, bem, *, name: str = "", key: str = "plot"):
     """Strip theory against the BEM, per DOF: the diagonal added mass of each DOF side by side
     (translations [kg] and rotations [kg m^2] on their own axes) and the relative difference

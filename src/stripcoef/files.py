@@ -10,6 +10,7 @@ import json
 import math
 import os
 import re
+import shutil
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
@@ -65,18 +66,41 @@ def _temporary(path: Path, key: str) -> str:
     return tmp
 
 
+#: Name prefix of the staging folders and commit journals of :class:`OutputSet` (hidden).
+STAGING_PREFIX = ".stripcoef-"
+#: Name prefix of a commit journal (JSON: the renames of one committed set).
+JOURNAL_PREFIX = ".stripcoef-commit-"
+#: File in a staging folder naming the journal that commits it.
+JOURNAL_POINTER = ".journal"
+
+
 class OutputSet:
-    """The outputs of one run written as a set: all new or all old.
+    """The outputs of one run written as a set: all new or all old, even after a kill -9.
 
     :meth:`path` gives, for each output, a path with the output's own name in a staging
-    folder beside it (hidden, ``.stripcoef-*.tmp``, on the same file system); the caller
+    folder beside it (hidden, ``.stripcoef-<pid>-*.tmp``, on the same file system); the caller
     writes every output there with any writer, and files a writer adds beside its output
-    (a report's plots) are staged with it. :meth:`commit` then moves every staged file onto
-    its destination, each move an atomic rename, after all of them were written completely.
-    A failure before the commit (an error, a full disk, an interrupted run) removes the
-    staging folders and leaves every earlier output as it was; the renames follow each other
-    with no work between them (a kill -9 in that window of microseconds is the one case that
-    can mix new and old files). As a context manager it commits on success::
+    (a report's plots) are staged with it. :meth:`commit` then commits the set with a
+    write-ahead journal (the roll-forward recovery of database logs: Gray & Reuter,
+    *Transaction Processing*, 1993, sec. 9.3):
+
+    1. every staging folder gets a pointer to the journal's name (``.journal``);
+    2. the journal (``.stripcoef-commit-<pid>-*.json`` in the first output's folder: every
+       rename, source and destination) is written to a temporary name and renamed into place:
+       this one atomic rename is the commit point;
+    3. the staged files are renamed onto their destinations (each an atomic rename), the
+       staging folders removed, the journal deleted.
+
+    A kill -9 before step 2 leaves every earlier output as it was (and a staging folder); a
+    kill -9 after it leaves a journal that completes the set. :func:`recover_outputs` finishes
+    what a killed run left in a folder: it rolls a journal forward (the renames not yet done,
+    then its staging folders and itself removed) and removes a staging folder of a dead process
+    that no journal commits. It runs before a new set is staged in a folder and (roll-forward
+    only) before :func:`read_text` reads a file, so the next run and every reader of the
+    outputs see the whole new set or the whole old one. A staging folder or journal of a
+    process that is still running is left alone (its run is not over). A failure before the
+    commit (an error, a full disk) removes the staging folders at once. As a context manager it
+    commits on success::
 
         with OutputSet() as outs:
             write_export(model, "yaml", outs.path("cal.yaml", key="out"))
@@ -96,9 +120,10 @@ class OutputSet:
             raise InputError("the same file twice among a run's outputs", key=key,
                              value=str(path), expected="a different file for each output")
         if folder not in self._staging:
+            recover_outputs(folder)
             try:
-                self._staging[folder] = Path(tempfile.mkdtemp(prefix=".stripcoef-",
-                                                              suffix=".tmp", dir=folder))
+                self._staging[folder] = Path(tempfile.mkdtemp(
+                    prefix=f"{STAGING_PREFIX}{os.getpid()}-", suffix=".tmp", dir=folder))
             except OSError as exc:
                 self.discard()
                 raise _write_error(exc, final, key) from None
@@ -107,25 +132,41 @@ class OutputSet:
         return staged
 
     def commit(self) -> None:
-        """Move every staged file onto its destination (each move an atomic rename)."""
+        """Commit the staged files onto their destinations (class docstring)."""
+        if not self._staging:
+            return
         moves = []
         for folder, staging in self._staging.items():
-            for f in sorted(staging.iterdir()):
-                final, key = self._finals.get(f, (folder / f.name, "output"))
-                try:
+            final, key = next(iter(self._finals.values()), (folder, "output"))
+            try:
+                for f in sorted(staging.iterdir()):
+                    final, key = self._finals.get(f, (folder / f.name, "output"))
                     os.chmod(f, _final_mode(folder / f.name))
-                except OSError as exc:
-                    self.discard()
-                    raise _write_error(exc, final, key) from None
-                moves.append((f, folder / f.name))
-        for src, dst in moves:
-            os.replace(src, dst)
-        self.discard()
+                    moves.append((f, folder / f.name))
+            except OSError as exc:          # also a staging folder removed under the run
+                self.discard()
+                raise _write_error(exc, final, key) from None
+        first, staging0 = next(iter(self._staging.items()))
+        # .stripcoef-<pid>-<random>.tmp -> .stripcoef-commit-<pid>-<random>.json
+        journal = first / f"{JOURNAL_PREFIX}{staging0.name[len(STAGING_PREFIX):-4]}.json"
+        record = {"pid": os.getpid(), "moves": [[str(a), str(b)] for a, b in moves],
+                  "staging": [str(p) for p in self._staging.values()]}
+        part = journal.with_name(journal.name + ".part")        # not yet a journal's name
+        try:
+            for staging in self._staging.values():
+                (staging / JOURNAL_POINTER).write_text(str(journal) + "\n")
+            part.write_text(json.dumps(record) + "\n")
+            os.replace(part, journal)                            # the commit point
+        except OSError as exc:
+            _discard(part)
+            self.discard()
+            final, key = next(iter(self._finals.values()), (first, "output"))
+            raise _write_error(exc, final, key) from None
+        _roll_forward(journal, record)
+        self._staging.clear()
 
     def discard(self) -> None:
         """Remove the staging folders and what they hold; no output changes."""
-        import shutil
-
         for staging in self._staging.values():
             shutil.rmtree(staging, ignore_errors=True)
         self._staging.clear()
@@ -149,6 +190,86 @@ class OutputSet:
                                     next(reversed(self._finals.values()), ("output", "output")))
             raise _write_error(exc, final, key) from None
         return False
+
+
+def _roll_forward(journal: Path, record: dict) -> None:
+    """Do the renames of a committed set that are not done yet (a staged file that is gone was
+    moved), remove its staging folders, then the journal: idempotent, so a kill during it is
+    finished by the next :func:`recover_outputs`."""
+    for src, dst in record["moves"]:
+        try:
+            os.replace(src, dst)
+        except FileNotFoundError:
+            pass                                  # moved before the kill
+    for staging in record["staging"]:
+        shutil.rmtree(staging, ignore_errors=True)
+    _discard(journal)
+
+
+def _pid_alive(pid: int) -> bool:
+    """Whether process ``pid`` runs (this process counts as running)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:                               # another user's process: it exists
+        return True
+    return True
+
+
+def _owner(name: str, prefix: str):
+    """The process id in a staging folder's or journal's name (None if it has none)."""
+    head = name[len(prefix):].split("-", 1)[0]
+    return int(head) if head.isdigit() else None
+
+
+def recover_outputs(folder, *, roll_back: bool = True) -> None:
+    """Finish what a killed :class:`OutputSet` left in ``folder``: roll every journal of a
+    dead process forward (its set was committed), and (``roll_back``) remove every staging
+    folder of a dead process that no journal commits (its set was not). Best effort: a folder
+    that cannot be read or written is left as it is (the reader or writer then reports it)."""
+    try:
+        entries = [e for e in os.scandir(folder) if e.name.startswith(STAGING_PREFIX)]
+    except OSError:
+        return
+    for e in entries:
+        if not (e.name.startswith(JOURNAL_PREFIX) and e.name.endswith(".json")):
+            continue
+        pid = _owner(e.name, JOURNAL_PREFIX)
+        if pid is not None and _pid_alive(pid):
+            continue
+        try:
+            record = json.loads(Path(e.path).read_text())
+            _roll_forward(Path(e.path), record)
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+    if not roll_back:
+        return
+    for e in entries:
+        if e.name.startswith(JOURNAL_PREFIX) and e.name.endswith(".part"):
+            pid = _owner(e.name, JOURNAL_PREFIX)    # a journal not yet committed
+            if pid is not None and not _pid_alive(pid):
+                _discard(e.path)
+            continue
+        if not (e.name.endswith(".tmp") and e.is_dir()):
+            continue
+        pid = _owner(e.name, STAGING_PREFIX)
+        if pid is None or _pid_alive(pid):
+            continue
+        pointer = Path(e.path) / JOURNAL_POINTER
+        try:
+            journal = Path(pointer.read_text().strip())
+        except OSError:
+            journal = None
+        if journal is not None and journal.exists():
+            try:
+                _roll_forward(journal, json.loads(journal.read_text()))
+            except (OSError, ValueError, KeyError, TypeError):
+                pass
+            continue
+        shutil.rmtree(e.path, ignore_errors=True)
 
 
 def _final_mode(path: Path) -> int:
@@ -180,22 +301,31 @@ def write_bytes(path, data: bytes, *, key: str = "output") -> None:
 MAX_TEXT_BYTES = 256 * 2**20
 
 
+def check_size(path, *, kind: str) -> None:
+    """Refuse a file over :data:`MAX_TEXT_BYTES` before a byte of it is read (its size, the
+    limit and the remedy); first finish a killed run's output set in its folder
+    (:func:`recover_outputs`, roll-forward only)."""
+    path = Path(path)
+    recover_outputs(path.parent if str(path.parent) else ".", roll_back=False)
+    try:
+        size = path.stat().st_size
+    except OSError:
+        return                            # reported by the read that fails
+    if size > MAX_TEXT_BYTES and path.is_file():
+        raise InputError(f"too large to read ({size / 2**20:.0f} MiB)", file=str(path),
+                         expected=f"a {kind} of at most {MAX_TEXT_BYTES // 2**20} MiB: split it "
+                                  "into shorter logs (chunk files of a column map are read one "
+                                  "at a time) or decimate it")
+
+
 def read_text(path, *, kind: str) -> str:
     """Read a UTF-8 text file; a missing or unreadable file is an InputError naming it.
 
     ``kind`` says what the file should be ("vehicle file", "CSV log", ...). A file over
-    :data:`MAX_TEXT_BYTES` is refused up front (its size, the limit and the remedy).
+    :data:`MAX_TEXT_BYTES` is refused up front (:func:`check_size`).
     """
     path = Path(path)
-    try:
-        size = path.stat().st_size
-    except OSError:
-        size = 0                          # reported below, by the read that fails
-    if size > MAX_TEXT_BYTES and path.is_file():
-        raise InputError(f"too large to read ({size / 2**20:.0f} MiB; files are parsed in "
-                         "memory at about ten times their size)", file=str(path),
-                         expected=f"a {kind} of at most {MAX_TEXT_BYTES // 2**20} MiB: split it "
-                                  "into shorter logs or decimate it")
+    check_size(path, kind=kind)
     try:
         return path.read_text()
     except FileNotFoundError:

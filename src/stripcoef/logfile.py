@@ -26,7 +26,7 @@ import numpy as np
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES
 from stripcoef.errors import InputError
-from stripcoef.files import read_text, write_text
+from stripcoef.files import check_size, read_text, write_text
 from stripcoef.fluid import MAX_VEHICLE_SPEED
 
 KNOWN_COLUMNS = ("t",) + VELOCITIES + POSE + FORCES + ("theta_pendulum",)
@@ -149,23 +149,10 @@ def _fast_table(rows, width):
     return data if np.all(np.isfinite(data)) else None
 
 
-def read_log(path, *, required=()) -> Log:
-    """Read and validate a log CSV.
-
-    Parameters
-    ----------
-    path : str or Path
-    required : iterable of str
-        Columns that must be present.
-
-    Raises
-    ------
-    InputError
-        Unreadable file, empty file, duplicated or empty header names, a non-numeric or
-        NaN cell (names column and row), non-monotonic or duplicated time, missing columns.
-    """
-    path = Path(path)
-    name = str(path)
+def _parsed_table(path: Path, name: str):
+    """Header and data of a log CSV cell by cell, each bad cell named (the text in memory at
+    about ten times its size: used for files up to :data:`PARSED_BYTES`, and to name the
+    first bad cell of a file :func:`_numeric_table` could not read)."""
     text = read_text(path, kind="CSV log")
     reader = csv.reader(io.StringIO(text))
     try:
@@ -177,14 +164,7 @@ def read_log(path, *, required=()) -> Log:
     if not rows:
         raise InputError("empty file", file=name, expected="a header row and data rows")
     header = [h.strip() for h in rows[0]]
-    for h in header:
-        if not h:
-            raise InputError("empty column name in the header", file=name, key="row 1",
-                             expected="a name for every column")
-    if len(set(header)) != len(header):
-        dup = sorted({h for h in header if header.count(h) > 1})
-        raise InputError("duplicated column name", file=name, key=dup[0],
-                         expected="each column once")
+    _check_header(header, name)
     if len(rows) < 2:
         raise InputError("no data rows", file=name, expected="at least one row after the header")
     data = _fast_table(rows[1:], len(header))
@@ -204,6 +184,91 @@ def read_log(path, *, required=()) -> Log:
                 raise InputError(f"missing or non-finite value in row {i + 2}", file=name,
                                  key=header[j], value=cell, expected="a finite number (no gaps)")
             data[i, j] = v
+    return header, data
+
+
+def _check_header(header, name: str) -> None:
+    for h in header:
+        if not h:
+            raise InputError("empty column name in the header", file=name, key="row 1",
+                             expected="a name for every column")
+    if len(set(header)) != len(header):
+        dup = sorted({h for h in header if header.count(h) > 1})
+        raise InputError("duplicated column name", file=name, key=dup[0],
+                         expected="each column once")
+
+
+#: Largest log read cell by cell in memory [bytes] (about ten times its size in memory);
+#: a larger log is read by :func:`_numeric_table` at about its numbers' size (8 bytes a cell).
+PARSED_BYTES = 32 * 2**20
+
+
+def _numeric_table(path: Path):
+    """``(header, data)`` of a log CSV over :data:`PARSED_BYTES`, read by numpy's C parser
+    (``numpy.loadtxt``, in blocks) at about 8 bytes a cell: a 256 MiB log in well under 2 GB
+    (docs/reliability.md). None for a smaller file (:func:`_parsed_table` reads it and names
+    any bad cell). A bad row or cell of a large file is one error with numpy's row (counted
+    from 0 after the header) and column."""
+    check_size(path, kind="CSV log")
+    try:
+        if path.stat().st_size <= PARSED_BYTES:
+            return None
+        f = open(path, encoding="utf-8", newline="")
+    except OSError:
+        return None                              # read_text names the failure
+    name = str(path)
+    with f:
+        try:
+            first = f.readline()
+            while first and not first.strip():
+                first = f.readline()
+            header = [h.strip() for h in next(csv.reader([first]))] if first else []
+            _check_header(header, name)
+            data = np.loadtxt(f, delimiter=",", dtype=float, ndmin=2, quotechar='"')
+        except (ValueError, UnicodeDecodeError, csv.Error) as exc:
+            if isinstance(exc, InputError):
+                raise
+            msg = str(exc).splitlines()[0] if str(exc) else exc.__class__.__name__
+            raise InputError(f"unreadable CSV ({msg})", file=name,
+                             expected="a header row, then comma-separated finite numbers in "
+                             "every row (SI units, radians)") from None
+    if not header or data.size == 0:
+        return None                              # _parsed_table names what is missing
+    if data.shape[1] != len(header):
+        raise InputError(f"rows have {data.shape[1]} cells", file=name, key="row 2",
+                         expected=f"{len(header)} cells like the header")
+    bad = np.argwhere(~np.isfinite(data))
+    if bad.size:
+        i, j = (int(x) for x in bad[0])
+        raise InputError(f"missing or non-finite value in row {i + 2}", file=name,
+                         key=header[j], value=float(data[i, j]),
+                         expected="a finite number (no gaps)")
+    return header, data
+
+
+def read_log(path, *, required=()) -> Log:
+    """Read and validate a log CSV.
+
+    Parameters
+    ----------
+    path : str or Path
+    required : iterable of str
+        Columns that must be present.
+
+    Raises
+    ------
+    InputError
+        Unreadable file, empty file, duplicated or empty header names, a non-numeric or
+        NaN cell (names column and row), non-monotonic or duplicated time, missing columns.
+    """
+    path = Path(path)
+    name = str(path)
+    fast = _numeric_table(path)
+    if fast is not None:
+        header, data = fast
+        _check_header(header, name)
+    else:
+        header, data = _parsed_table(path, name)
     log = Log({h: data[:, j] for j, h in enumerate(header)}, source=name)
     if "t" in log.columns:
         t = log.columns["t"]

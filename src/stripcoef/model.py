@@ -23,11 +23,13 @@ from types import MappingProxyType
 
 import numpy as np
 
-from stripcoef.conventions import (DOF, FORCES, VELOCITIES, shift_operator, sname_coefficients,
-                                   skew, transform_matrix)
+from stripcoef.conventions import (DOF, FORCES, VELOCITIES, added_mass_name, linear_damping_name,
+                                   quadratic_damping_name, shift_operator, skew, sname_coefficients,
+                                   transform_matrix)
 from stripcoef.errors import InputError, ModelWarning, unknown_name
 from stripcoef.fluid import G, NU_SEAWATER
 from stripcoef.thrusters import Thruster, allocation_matrix
+from stripcoef.views import MATRICES, matrix_frame, model_html
 
 
 def coriolis_from_mass(mass_matrix, nu) -> np.ndarray:
@@ -361,7 +363,13 @@ class Conditions(Mapping):
     added_mass_method : str
         How M_A was obtained when not by the strips (the 3D panel method)
     added_mass_panels : int
-        Panels of the finer resolution of the panel method
+        Panels of the finest resolution of the panel method
+    added_mass_panel_levels : tuple of int
+        Panels of each resolution of the panel method, coarse to fine (its grid convergence
+        study: :mod:`stripcoef.hull.convergence`)
+    added_mass_converged : bool
+        Whether every term's estimated error is within the panel method's tolerance
+        (:data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale)
     added_mass_error_max : float
         Largest estimated error of a term of M_A over the diagonal scale [-]
         (:attr:`HydroModel.added_mass_error`)
@@ -383,6 +391,9 @@ class Conditions(Mapping):
         Source of the fluid properties
     length : float
         Body length L [m]
+    breadth, height : float
+        The body's largest extent along y and along z [m] (its box B x H; the UUV
+        Simulator export's ``<box>``)
     extra : mapping
         Keys of a model file that are none of the above, kept as they were
     """
@@ -419,6 +430,8 @@ class Conditions(Mapping):
     correction_panels: int | None = None
     added_mass_method: str | None = None
     added_mass_panels: int | None = None
+    added_mass_panel_levels: tuple | None = None
+    added_mass_converged: bool | None = None
     added_mass_error_max: float | None = None
     mirror_planes: str | None = None
     lift: Mapping | None = None
@@ -428,6 +441,8 @@ class Conditions(Mapping):
     kinematic_viscosity: float | None = None
     fluid: str | None = None
     length: float | None = None
+    breadth: float | None = None
+    height: float | None = None
     extra: Mapping = field(default_factory=dict)
 
     def __post_init__(self):
@@ -708,8 +723,6 @@ class HydroModel:
         """
         if not self.bands:
             return {}
-        from stripcoef.conventions import (added_mass_name, linear_damping_name,
-                                           quadratic_damping_name)
         coeffs = self.coefficients()
         named = {}
         for matrix, namer, m in (("added_mass", added_mass_name, self.added_mass),
@@ -746,14 +759,12 @@ class HydroModel:
         """One matrix (``rigid_body_mass``, ``added_mass``, ``linear_damping``,
         ``quadratic_damping``) as a pandas DataFrame labelled with the DOFs, units in
         ``frame.attrs["units"]`` (:func:`stripcoef.views.matrix_frame`; needs pandas)."""
-        from stripcoef.views import MATRICES, matrix_frame
         if kind not in MATRICES:
             raise unknown_name("matrix", kind, MATRICES, key="kind")
         return matrix_frame(getattr(self, kind), kind)
 
     def _repr_html_(self) -> str:
         """What a notebook shows: mass properties and the four labelled matrices."""
-        from stripcoef.views import model_html
         return model_html(self)
 
     # -- transforms ---------------------------------------------------------
@@ -865,6 +876,53 @@ class HydroModel:
         )
 
 
+def _indefinite_cause(m_rb, m_a, conditions, file=None) -> tuple[str, str]:
+    r"""Why :math:`M = M_{RB} + M_A` is not positive definite, and the remedy, in words.
+
+    The eigenvector v of the smallest eigenvalue of the symmetric part names the direction
+    (its DOFs with :math:`|v_i| \ge 0.3 \max|v|`); the cause is a negative diagonal term
+    :math:`M_{A,ii}` in it, else the coupling with the largest
+    :math:`|M_{ij}| / \sqrt{M_{ii} M_{jj}}` (a 2x2 minor is positive only if it is < 1;
+    Horn & Johnson 1985, "Matrix Analysis", sec. 7.1).  The remedy follows how the added mass
+    was computed (``conditions``: the 3D panel method or strip theory) and the input (``file``:
+    a mesh can be repaired by ``stripcoef mesh``)."""
+    from stripcoef.conventions import DOF
+
+    total = 0.5 * ((m_rb + m_a) + (m_rb + m_a).T)
+    w, vec = np.linalg.eigh(total)
+    v = vec[:, 0]
+    dofs = [i for i in range(6) if abs(v[i]) >= 0.3 * np.abs(v).max()]
+    where = DOF[dofs[0]] + "".join((" - " if v[i] * v[dofs[0]] < 0 else " + ") + DOF[i]
+                                   for i in dofs[1:])
+    neg = [i for i in dofs if m_a[i, i] < 0]
+    if neg:
+        i = min(neg, key=lambda k: m_a[k, k])
+        cause = f"along {where}: M_A[{DOF[i]}, {DOF[i]}] = {m_a[i, i]:.4g} is negative"
+    else:
+        d = np.sqrt(np.clip(np.diag(total), 1e-300, None))
+        ratio = np.abs(total) / np.outer(d, d)
+        np.fill_diagonal(ratio, 0.0)
+        pairs = [(ratio[i, j], i, j) for i in dofs for j in dofs if i < j] or \
+            [(ratio[i, j], i, j) for i in range(6) for j in range(i + 1, 6)]
+        _, i, j = max(pairs)
+        cause = (f"along {where}: the coupling M_A[{DOF[i]}, {DOF[j]}] = {m_a[i, j]:.4g} is too "
+                 f"large for the diagonal (|M_ij| / sqrt(M_ii M_jj) = {ratio[i, j]:.3g} of "
+                 "M_RB + M_A, at most 1)")
+    method = str((conditions or {}).get("added_mass_method") or "")
+    name = str(file or "FILE")
+    repair = ("" if name.lower().endswith((".yaml", ".yml")) else
+              f"a repaired mesh (stripcoef mesh {name} --repair -o FIXED.stl) or ")
+    if "panel" in method:
+        n = (conditions or {}).get("added_mass_panels") or 1600
+        remedy = f"{repair}a finer panel solve (--added-mass-panels {min(2 * int(n), 6000)})"
+    elif (conditions or {}).get("strips"):
+        remedy = (f"{repair}more strips (--strips) or the 3D panel method "
+                  "(--added-mass-method panels)")
+    else:
+        remedy = "check the model file's added_mass and rigid_body_mass"
+    return cause, remedy
+
+
 def check_physical(model, *, file: str | None = None) -> None:
     r"""Raise an :class:`InputError` if ``model`` is not a physically possible vehicle.
 
@@ -914,8 +972,10 @@ def check_physical(model, *, file: str | None = None) -> None:
              "a positive-definite M_RB (mass > 0, inertia satisfying the triangle inequality)")
     low, scale = lowest(m_rb + np.asarray(model.added_mass, dtype=float))
     if low <= 1e-12 * scale:
-        fail("added_mass", "M_RB + M_A not positive definite",
-             f"smallest eigenvalue {low:.4g}", "a positive-definite total mass matrix")
+        cause, remedy = _indefinite_cause(m_rb, np.asarray(model.added_mass, dtype=float),
+                                          model.conditions, file)
+        fail("added_mass", f"M_RB + M_A not positive definite ({cause})",
+             f"smallest eigenvalue {low:.4g}", f"a positive-definite total mass matrix: {remedy}")
     for key, mat in (("linear_damping", model.linear_damping),
                      ("quadratic_damping", model.quadratic_damping)):
         mat = np.asarray(mat, dtype=float)

@@ -9,11 +9,16 @@ options of ``stripcoef coefficients``: make a model file with it first.
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 
+from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError
+from stripcoef.fluid import Fluid
+from stripcoef.geometry.vehicle import Reader
+from stripcoef.thrusters import Thruster
 from stripcoef.files import load_json, load_yaml, read_text
 from stripcoef.model import HydroModel, check_physical
 
@@ -116,10 +121,6 @@ def _check_array(value, shape, file, key):
 
 def _thruster_keys() -> tuple:
     """Keys of a thruster entry: the fields of :class:`~stripcoef.thrusters.Thruster`."""
-    from dataclasses import fields
-
-    from stripcoef.thrusters import Thruster
-
     return tuple(f.name for f in fields(Thruster))
 
 _SURFACE_KEYS = ("name", "type", "derivative", "max_deflection", "stall_angle")
@@ -138,17 +139,14 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
       vehicle file: the thrust is along its unit vector), thrust coefficients and
       efficiencies > 0, limits >= 0 (``null`` = none), dead band >= 0;
     - ``effects``: a list of ``{name, dof, parameters}`` mappings, ``dof`` one of the six
-      degrees of freedom (or ``all``), parameters finite numbers (the effect names and
-      their parameters are checked against the registry by :mod:`stripcoef.effects`);
+      degrees of freedom (or ``all``), parameters finite numbers; the effect names, the
+      DOFs they act in, their parameters and ranges checked against the effects library
+      (:func:`stripcoef.effects.laws.check_effect_entries`);
     - ``lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector ``derivative`` and
       angles > 0 [rad]; ``conditions`` and ``provenance`` mappings.
 
     Returns ``data`` with the thruster directions normalised (a new mapping).
     """
-    from stripcoef.conventions import DOF
-    from stripcoef.fluid import Fluid
-    from stripcoef.geometry.vehicle import Reader
-
     r = Reader(file)
     data = dict(data)
     if "name" in data:
@@ -190,6 +188,10 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
                             "a mapping of parameter names to numbers")
             for p in params:
                 r.number(params, p, f"{path}.parameters", required=True)
+        if effects:
+            # the effects library loads scipy (its window regressors): only for a file with effects
+            from stripcoef.effects.laws import check_effect_entries
+            check_effect_entries(effects, file=file)
     surfaces = r.listing(data, "control_surfaces", "")
     for k, entry in enumerate(surfaces):
         path = f"control_surfaces[{k}]"
@@ -205,7 +207,6 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
 def _check_dof(r, value, key, dof_names) -> None:
     """An effect's degree of freedom: a DOF name (surge..yaw, u..r, X..N), an index 0-5 or
     ``all``."""
-    from stripcoef.conventions import parse_dof
 
     expected = "one of " + ", ".join(dof_names) + ", an index 0-5 or all"
     if isinstance(value, bool):

@@ -32,7 +32,7 @@ import numpy as np
 from stripcoef.conventions import skew, transform_matrix
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.hull.lamb import end_correction_factors
-from stripcoef.sections import section_added_mass
+from stripcoef.sections import get_shape, section_added_mass
 from stripcoef.strips import Strips
 from stripcoef.strips import hole_widths, strip_added_mass
 
@@ -160,7 +160,8 @@ def _combine_fins(strips: Strips, mats: list, rho: float) -> list:
     from stripcoef.sections.added_mass import circle_with_fins, finned_circle_roll
 
     shares: list[FinShare] = []
-    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull" and p.shape == "ellipse"]
+    hulls = [(k, p) for k, p in enumerate(strips.parts) if p.role == "hull"
+              and get_shape(p.shape).elliptic]
     fins = [(k, p) for k, p in enumerate(strips.parts) if p.role == "fin"]
     if not hulls or len(fins) < 2:
         return shares
@@ -509,8 +510,6 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
     return 0.5 * (total + total.T), info
 
 
-#: Added-mass methods of :class:`~stripcoef.assembly.estimate.EstimateOptions`.
-ADDED_MASS_METHODS = ("strips", "panels", "auto")
 #: ``auto`` keeps strip theory for a body at least this slender, L / max(B, H) [-].
 #: [assumption] strip theory is the slender-body limit (Newman 1977, sec. 7.4): each section's
 #: flow is two-dimensional except within about one cross dimension of the ends, so at L / B = 5
@@ -551,70 +550,74 @@ def _round_along_x(strips: Strips) -> bool:
                 and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
 
 
-def added_mass_method(method, vehicle, strips: Strips) -> str:
-    r"""``strips`` or ``panels`` for the option ``added_mass_method`` (``strips``, ``panels``
-    or ``auto``).
+def panel_surface(vehicle, panels: int):
+    r"""The closed surface the panel method solves on with ``panels`` panels (N): a mesh
+    vehicle's body (:class:`~stripcoef.geometry.mesh.MeshBody`, its bodies united by the
+    panel method), else the vehicle file's parts united
+    (:func:`stripcoef.geometry.surface.vehicle_surface`) at the finest tessellation that
+    :func:`stripcoef.hull.panels.panel_levels` refines instead of coarsening: at most N/4
+    faces with at least 16 sides a circle (its two levels then one family: N/4 panels by
+    longest-edge bisection and that split in four), else at most
+    :data:`~stripcoef.hull.panels.MAX_PANELS` / 2.5 faces (both levels refine the surface
+    itself).  Coarsening a surface of thin members (frame plates,
+    duct walls) by vertex clustering collapses them; refining keeps the geometry exactly."""
+    body = _mesh_of(vehicle)
+    if body is not None:
+        return body
+    from stripcoef.geometry.surface import coarsest_within, vehicle_surface
+    from stripcoef.hull.panels import MAX_PANELS
 
-    ``auto``: the 3D panel method (:mod:`stripcoef.hull.panels`) for a vehicle that is one
-    mesh, not a body of revolution about x (round middle section, :func:`_round_along_x`) and
-    not slender (:math:`L / \max(B, H) <` :data:`SLENDER_RATIO`, B and H the largest breadth
-    and height of the strips [m]); strip theory otherwise.  ``panels`` needs a mesh vehicle:
-    a vehicle file's geometry has no closed surface to panel.
-    """
-    if method not in ADDED_MASS_METHODS:
-        raise InputError("unknown added-mass method", key="added_mass_method", value=method,
-                         expected=" or ".join(ADDED_MASS_METHODS))
-    if method == "strips":
-        return "strips"
-    mesh = _mesh_of(vehicle)
-    if method == "panels":
-        if mesh is None:
-            raise InputError("the panel method needs a vehicle made of one closed mesh",
-                             file=getattr(vehicle, "source", None) or None,
-                             key="added_mass_method", value=method,
-                             expected="a mesh file (STL, OBJ, ...), or strips/auto for a "
-                                      "vehicle file")
-        return "panels"
-    if mesh is None or _round_along_x(strips):
-        return "strips"
-    width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
-                for p in strips.parts)
-    return "panels" if strips.length < SLENDER_RATIO * width else "strips"
+    if not 50 <= int(panels) <= MAX_PANELS:     # refused by the panel method: build no ladder
+        return vehicle_surface(vehicle)
+    return coarsest_within(vehicle, ((int(panels) // 4, 16), (int(MAX_PANELS / 2.5), 12)))
 
 
-def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None):
-    r"""M_A [kg, kg m, kg m^2] of a mesh vehicle by the 3D panel method about ``about`` [m]
+def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None):
+    r"""M_A [kg, kg m, kg m^2] of a vehicle (a mesh, or a vehicle file's united surface:
+    :func:`panel_surface`) by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
     :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
-    count that resolves it)."""
+    count that resolves it).  ``symmetrise``: a function applied to M_A and its error before
+    the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`)."""
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
-    body = _mesh_of(vehicle)
     n = _panel_count(panels, DEFAULT_PANELS, "added_mass_panels")
+    body = panel_surface(vehicle, n)
     source = getattr(vehicle, "source", "") or ""
     try:
         m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source)
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
     error = info["error"]
+    if symmetrise is not None:
+        m_a, error = symmetrise(m_a), symmetrise(error)
     rel = relative_error(m_a, error)
     worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
+    counts = "/".join(str(c) for c in info["panels"])
     if rel[worst] > ERROR_TOLERANCE:
         from stripcoef.conventions import DOF
 
-        more = min(2 * n, MAX_PANELS)
+        finest = int(info["panels"][-1])
+        # twice the panels asked for, or four times once the refinement went on to about twice
+        more = min((2 if finest < 1.5 * n else 4) * n, MAX_PANELS)
         fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
                else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                     "(stripcoef compare FILE)")
+        if info["family"].startswith("refined"):
+            fix += "; install the remesher for three uniform levels (pip install " \
+                   "'stripcoef[remesh]')"
         warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "
                       f"estimated error of M_A[{DOF[worst[0]]}, {DOF[worst[1]]}] is "
                       f"{100 * rel[worst]:.1f} % of the diagonal scale (tolerance "
-                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {info['panels'][0]} and "
-                      f"{info['panels'][1]}); {fix}", ModelWarning, stacklevel=3)
-    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, Richardson "
-                                      f"from {info['panels'][0]} and {info['panels'][1]} panels)",
-                 "added_mass_panels": int(info["panels"][1]),
+                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {counts}); {fix}",
+                      ModelWarning, stacklevel=3)
+    return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, "
+                                      f"{info['family']}, Richardson from {counts} panels, "
+                                      "error: grid convergence index)",
+                 "added_mass_panels": int(info["panels"][-1]),
+                 "added_mass_panel_levels": tuple(int(c) for c in info["panels"]),
+                 "added_mass_converged": bool(rel.max() <= ERROR_TOLERANCE),
                  "added_mass_error_max": float(rel.max())}, error

@@ -14,7 +14,7 @@ import warnings
 import numpy as np
 from stripcoef.hull.lamb import power_law_split
 from stripcoef.sections import drag as sdrag
-from stripcoef.sections import section_drag
+from stripcoef.sections import get_shape, section_drag
 from stripcoef.strips import Strips
 from stripcoef.conventions import clean_roundoff
 from stripcoef.strips import hole_widths
@@ -50,35 +50,15 @@ def local_exponent(fn, *re):
 def wetted_perimeter(part):
     r"""Wetted perimeter of each strip's section of a part [m].
 
-    Ellipse: :func:`_ellipse_perimeter`; polygon: sum of edge lengths
-    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (outer rings and holes: a duct's inner
-    wall is wetted too; wetted area for friction drag as in Hoerner 1965, ch. 2), taken from
-    the part's ring set :func:`stripcoef.sections.panel.part_rings`, which the section
-    solvers share (repeated points, closer than 1e-12 of the ring's size, are dropped
-    there); rectangle: P = 4 (b + h), half sizes b, h [m]. Exact geometry (the ellipse:
-    Ramanujan's approximation).
+    The shape's ``wetted_perimeter`` (:data:`stripcoef.sections.SHAPES`): ellipse, Ramanujan's
+    approximation (:func:`stripcoef.sections.drag.ellipse_perimeter`); polygon, the sum of
+    edge lengths :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` (outer rings and holes: a
+    duct's inner wall is wetted too; wetted area for friction drag as in Hoerner 1965,
+    ch. 2), taken from the part's ring set :func:`stripcoef.sections.panel.part_rings`,
+    which the section solvers share (repeated points, closer than 1e-12 of the ring's size,
+    are dropped there); rectangle: P = 4 (b + h), half sizes b, h [m].
     """
-    if part.shape == "ellipse":
-        return _ellipse_perimeter(part.half_breadth, part.half_height)
-    if part.shape == "polygon":
-        from stripcoef.sections.panel import part_rings
-        if not part.contours:
-            return np.zeros(part.index.size)
-        rs = part_rings(part)
-        return np.bincount(rs.section, rs.perimeters(), part.index.size)
-    return 4.0 * (part.half_breadth + part.half_height)
-
-
-def _ellipse_perimeter(b, h):
-    r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
-
-    .. math:: P \approx \pi(b + h)\left(1 + \frac{3\lambda}{10 + \sqrt{4 - 3\lambda}}\right),
-              \quad \lambda = \left(\frac{b-h}{b+h}\right)^2
-
-    Half-axes b, h [m]. Ramanujan (1914), Quart. J. Math. 45, the second approximation.
-    """
-    hh = ((b - h) / (b + h)) ** 2
-    return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))
+    return get_shape(part.shape).wetted_perimeter(part)
 
 
 def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
@@ -226,8 +206,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
     for p in strips.parts:
         if p.role == "hull":
             continue
-        a_front = float(np.max(p.area + p.entrained_area)) if p.shape != "rectangle" else \
-            float(np.max(4 * p.half_breadth * p.half_height))
+        a_front = float(np.max(get_shape(p.shape).outer_area(p)))
         ld = max(p.length, 1e-9) / max(2 * np.sqrt(a_front / np.pi), 1e-9)
         if p.role == "fin":
             cd_a = 2.0 * cf * p.length * np.max(2 * np.maximum(p.half_breadth, p.half_height)) \
@@ -272,7 +251,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         elems.append((np.column_stack([strips.x[p.index], p.y, p.z]),
                       np.column_stack([np.zeros(k), c_y, c_z]),
                       np.column_stack([np.full(k, 2.0), n_y, n_z])))
-        if p.shape == "rectangle":   # roll of a sharp part about its own centre
+        if get_shape(p.shape).corner_roll:   # roll of a sharp part about its own centre
             f_y, f_z = (kap_y, kap_z) if p.role == "fin" else (1.0, 1.0)   # fins: finite span
             c_self = 0.5 * rho * (f_z * cd_z * p.half_breadth**4
                                   + f_y * cd_y * p.half_height**4) / 2 * dx

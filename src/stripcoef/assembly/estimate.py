@@ -16,15 +16,32 @@ import numpy as np
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import MAX_VEHICLE_SPEED, Fluid
 from stripcoef.model import Conditions, HydroModel, check_physical, rigid_body_mass_matrix
-from stripcoef.assembly.added_mass import added_mass, added_mass_method, panel_vehicle_added_mass
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
-from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
-from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
+from stripcoef.assembly.methods import AddedMassInputs, choose_method
 from stripcoef.conventions import clean_roundoff
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle
 from stripcoef.threads import small_matrices
+
+
+def _cross_extent(strips) -> dict:
+    """The body's largest extents along y and z [m]: over its parts, the rings of a part
+    that carries them (a mesh section), else the part's centre +- its half sizes."""
+    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+    for p in strips.parts:
+        if p.contours is not None:
+            pts = [np.asarray(r, float) for rings in p.contours for r in rings]
+            if pts:
+                pts = np.vstack(pts)
+                lo, hi = np.minimum(lo, pts.min(axis=0)), np.maximum(hi, pts.max(axis=0))
+            continue
+        c = np.column_stack([p.y, p.z])
+        half = np.column_stack([p.half_breadth, p.half_height])
+        lo, hi = np.minimum(lo, (c - half).min(axis=0)), np.maximum(hi, (c + half).max(axis=0))
+    if not np.all(np.isfinite(hi - lo)):
+        return {}
+    return {"breadth": float(hi[0] - lo[0]), "height": float(hi[1] - lo[1])}
 
 
 def _reference_point(ref, cb, cg):
@@ -66,7 +83,7 @@ class EstimateOptions:
         ``auto`` (default: the 3D panel method of :mod:`stripcoef.hull.panels` for a vehicle
         made of one closed mesh that is neither a body of revolution about x nor slender,
         strip theory and its 3D corrections otherwise,
-        :func:`stripcoef.assembly.added_mass.added_mass_method`), ``strips`` (always strip
+        :func:`stripcoef.assembly.methods.choose_method`), ``strips`` (always strip
         theory) or ``panels`` (always the panel method; mesh vehicles only).  Only M_A changes: the
         damping stays from the strips.
     added_mass_panels : int, optional
@@ -150,27 +167,20 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     mass, cg, inertia = mass_properties(st, vehicle, rho, volume, cb)
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
-    method = added_mass_method(options.added_mass_method, vehicle, st)
-    m_a_error = None
-    if method == "panels":
-        m_a, am_info, m_a_error = panel_vehicle_added_mass(vehicle, rho, ref,
-                                                           options.added_mass_panels)
-        # the mirror planes of the body through the reference point: the couplings they
-        # forbid are exactly zero (the panels of a symmetric body are not symmetric)
-        mirrors = strips_mirror_symmetries(st, ref, tol=SYMMETRY_ZERO_TOL)
-        m_a, m_a_error = enforce_symmetry(m_a, mirrors), enforce_symmetry(m_a_error, mirrors)
-        am_info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
-    else:
-        m_a, am_info = added_mass(st, rho, about=ref, volume=volume, center=cb,
-                                  corrections=corrections, correction_panels=correction_panels,
-                                  section_panels=section_panels)
+    method = choose_method(options.added_mass_method, vehicle, st)
+    m_a, am_info, m_a_error = method.compute(AddedMassInputs(
+        vehicle=vehicle, strips=st, rho=rho, about=ref, volume=volume, center=cb,
+        corrections=corrections, correction_panels=correction_panels,
+        section_panels=section_panels, added_mass_panels=options.added_mass_panels))
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
-    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb)
+    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb, speed=speed,
+                                             viscosity=nu)
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
                             corrections=corrections, density=rho, kinematic_viscosity=nu,
-                            fluid=fluid.source, length=st.length)
+                            fluid=fluid.source, length=st.length,
+                            **_cross_extent(st))
     if abs(mass - rho * volume) > 0.05 * rho * volume:
         warnings.warn(f"{vehicle.name}: weight and buoyancy differ by "
                       f"{100 * (mass - rho * volume) / (rho * volume):+.1f} % "
@@ -182,8 +192,7 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
         thrusters=vehicle.thrusters, conditions=conditions, lift=lift,
         control_surfaces=surfaces, added_mass_error=m_a_error,
-        provenance={"method": "strip theory" if method == "strips" else
-                    "strip theory, added mass by the 3D panel method", "source": vehicle.source,
+        provenance={"method": method.provenance, "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},
     )
     check_physical(model, file=vehicle.source)   # no NaN or impossible model leaves here

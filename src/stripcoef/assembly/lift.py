@@ -20,6 +20,7 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.geometry.bodies import Fin
+from stripcoef.geometry.shapes import shape_geometry
 from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
 from stripcoef.hull.lift import (
     BODY_CP_FRACTION,
@@ -33,6 +34,10 @@ from stripcoef.hull.lift import (
     fin_lift_slope,
     interference_factor,
     lift_column,
+    wing_body_factors,
+    boundary_layer_pressure_ratio,
+    boundary_layer_thickness,
+    axial_velocity_ratio,
 )
 from stripcoef.model import ControlSurface
 
@@ -41,34 +46,81 @@ from stripcoef.model import ControlSurface
 #: steepest-closing station of a piecewise-linear profile moves with the sampling) [-].
 SLENDER_STATIONS = 2001
 
+#: Fractions of a fin's span (root to tip) at which the body's axial potential flow is averaged
+#: for its dynamic pressure under ``body_lift: slender`` (midpoint rule, 8 strips; assumption:
+#: on SUBOFF's stern planes 8 and 64 strips differ by < 0.1 %) [-].
+STREAM_SPAN_POINTS = tuple((i + 0.5) / 8 for i in range(8))
+
 #: Force direction of a positive deflection (Prestero 2001, sec. 3.7: Y_uudr > 0, Z_uuds < 0).
 DEFLECTION_FORCE = {"rudder": np.array([0.0, 1.0, 0.0]), "elevator": np.array([0.0, 0.0, -1.0])}
 
 
-def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool):
+def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender=None):
     """(L (6, 6), k c (6,), info) of one panel at its quarter chord (module docstring).
 
-    L = 1/2 rho S c_La K c c^T [kg/m, kg, kg m] (:func:`~stripcoef.hull.lift.fin_lift_matrix`),
-    with K the fin-hull interference factor (1 + R/s)^2 of a panel on a cylindrical stretch of
-    a round hull and 1 elsewhere (:func:`~stripcoef.hull.lift.interference_factor`);
-    k c = 1/2 rho S c_La c, the force per u^2 per rad of deflection [kg/m, kg] (Prestero 2001,
-    sec. 3.7; the deflection's own interference is not modelled).
+    Default: L = 1/2 rho S c_La K c c^T [kg/m, kg, kg m]
+    (:func:`~stripcoef.hull.lift.fin_lift_matrix`), with K the fin-hull interference factor
+    (1 + R/s)^2 of a panel on a cylindrical stretch of a round hull and 1 elsewhere
+    (:func:`~stripcoef.hull.lift.interference_factor`); k c = 1/2 rho S c_La c, the force per
+    u^2 per rad of deflection [kg/m, kg] (Prestero 2001, sec. 3.7).
+
+    ``slender`` (``body_lift: slender``; a dict with the nose x, the separation station x_0,
+    the hull axis, speed and viscosity): the slender-body factors of Pitts, Nielsen & Kaattari
+    (1957) at tau = R/s of the root's mid chord on any round hull
+    (:func:`~stripcoef.hull.lift.wing_body_factors`), the fin's own force at its quarter chord
+    and the carry-over on the hull axis at the same station,
+
+        L = q_r k (F_W c_f + F_B c_b) c_f^T,   b = q_r k (k_W(B) c_f + k_B(W) c_b),
+
+    F_W, F_B = K_W(B), K_B(W) for a fin ahead of x_0 (the body's potential upwash) and
+    k_W(B), k_B(W) behind it (the body's cross-flow separated there gives no upwash: the
+    premise of Hopkins's x_0), q_r the fin's mean dynamic pressure in the hull's turbulent
+    boundary layer (:func:`~stripcoef.hull.lift.boundary_layer_pressure_ratio`, the run
+    length from the nose to the root's mid chord) times the body's axial potential flow
+    (u/U)^2 averaged over the span (:func:`~stripcoef.hull.lift.axial_velocity_ratio`). The
+    same ratio scales the fin's sideslip lift: its incidence is taken as v/U (assumption: a
+    cross-flow slowed in proportion with the axial flow; with the cross-flow at its free-stream
+    value the incidence would be v/u_local and the sideslip force would take the square root
+    of the axial-flow ratio instead of the ratio, 8 % more on SUBOFF's stern planes, where
+    Roddy's plane lifts 13 % less in drift than deflected).
     """
     ar = float(effective_aspect_ratio(panel.span, panel.area))
     cla = float(fin_lift_slope(ar))
-    on_cylinder = round_hull and cylindrical_root(panel.root_radii)
-    factor = interference_factor(panel.root, panel.root + panel.span) if on_cylinder else 1.0
     point = np.asarray(panel.center, float) + np.array([0.25 * panel.chord, 0.0, 0.0]) \
         - np.asarray(ref, float)
     e = np.zeros(3)
     e["xyz".index(panel.normal)] = 1.0
-    column = 0.5 * rho * panel.area * cla * lift_column(e, point)
-    return (fin_lift_matrix(panel.area, cla * factor, e, point, rho=rho), column,
+    if slender is None:
+        on_cylinder = round_hull and cylindrical_root(panel.root_radii)
+        factor = interference_factor(panel.root, panel.root + panel.span) if on_cylinder else 1.0
+        column = 0.5 * rho * panel.area * cla * lift_column(e, point)
+        return (fin_lift_matrix(panel.area, cla * factor, e, point, rho=rho), column,
+                {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
+                 "interference": factor})
+    tau = panel.root / (panel.root + panel.span) if round_hull else 0.0
+    f = wing_body_factors(tau) if tau > 0.0 else {"K_WB": 1.0, "K_BW": 0.0, "k_WB": 1.0,
+                                                   "k_BW": 0.0}
+    x_q = float(panel.center[0]) + 0.25 * panel.chord
+    upwash = x_q >= slender["x_separation"]
+    fw, fb = (f["K_WB"], f["K_BW"]) if upwash else (f["k_WB"], f["k_BW"])
+    delta = boundary_layer_thickness(slender["x_nose"] - float(panel.center[0]),
+                                     slender["speed"], slender["viscosity"])
+    stream = float(np.mean([axial_velocity_ratio(slender["s"], slender["area"],
+                                                 slender["x_nose"] - float(panel.center[0]),
+                                                 panel.root + t * panel.span) ** 2
+                            for t in STREAM_SPAN_POINTS]))
+    q_ratio = boundary_layer_pressure_ratio(panel.span, delta) * stream
+    k = 0.5 * rho * panel.area * cla * q_ratio
+    c_f = lift_column(e, point)
+    c_b = lift_column(e, np.array([x_q, slender["y"], slender["z"]]) - np.asarray(ref, float))
+    return (k * np.outer(fw * c_f + fb * c_b, c_f), k * (f["k_WB"] * c_f + f["k_BW"] * c_b),
             {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
-             "interference": factor})
+             "interference": fw + fb, "tau": tau, "body_upwash": upwash,
+             "boundary_layer": delta, "stream_ratio": stream, "pressure_ratio": q_ratio, **f})
 
 
-def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, tuple, dict]:
+def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None = None,
+                 viscosity: float | None = None) -> tuple[np.ndarray, tuple, dict]:
     """Lift matrix L (force -u L nu), control surfaces and a summary, about ``ref`` [m].
 
     Parameters
@@ -80,6 +132,10 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
         Reference point [m]
     center : (3,), optional
         Centre of buoyancy [m], where the body lift's sideslip is measured (default ``ref``)
+    speed, viscosity : float, optional
+        Reference speed [m/s] and kinematic viscosity [m^2/s] of the fins' boundary-layer
+        reduction under ``body_lift: slender`` (default: the vehicle's reference speed and
+        fluid)
 
     Returns
     -------
@@ -99,6 +155,15 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
     in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
     hull = vehicle.hull
     round_ = _round(hull)
+    body = _body_lift(vehicle, rho, ref, ref if center is None else center)
+    slender = None
+    if body is not None and body[1].get("method") == "slender":
+        slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
+                   "s": body[2][0], "area": body[2][1],
+                   "y": hull.y, "z": hull.z,
+                   "speed": float(vehicle.reference_speed if speed is None else speed),
+                   "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
+                                      else viscosity)}
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
     no_lift = []
@@ -110,21 +175,20 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
             no_lift.append(fin.name)     # on another appendage, not on the hull
             continue
         for p in panels:
-            m, _, pinfo = _panel_terms(p, ref, rho, round_)
+            m, _, pinfo = _panel_terms(p, ref, rho, round_, slender)
             lift += m
             fin_info.append({"name": fin.name, **pinfo})
     surfaces = []
     for s in vehicle.control_surfaces:
         b = np.zeros(6)
         for p in s.panels:
-            m, column, pinfo = _panel_terms(p, ref, rho, round_)
+            m, column, pinfo = _panel_terms(p, ref, rho, round_, slender)
             lift += m
             b += column * float(DEFLECTION_FORCE[s.kind] @ column[:3] / abs(column[:3]).max())
             fin_info.append({"name": s.name, **pinfo})
         surfaces.append(ControlSurface(name=s.name, kind=s.kind, derivative=b,
                                        max_deflection=s.max_deflection,
                                        stall_angle=s.stall_angle))
-    body = _body_lift(vehicle, rho, ref, ref if center is None else center)
     if body is not None:
         lift += body[0]
         info["body_lift"] = body[1]
@@ -138,7 +202,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None) -> tuple[np.ndarray, 
 def _round(hull) -> bool:
     """A hull of circular sections (one radius profile): where body lift and the fin-hull
     interference of slender-body theory apply."""
-    return hull.half_breadth is hull.half_height and hull.section == "ellipse"
+    return hull.half_breadth is hull.half_height and shape_geometry(hull.section).elliptic
 
 
 def _body_lift(vehicle, rho: float, ref, center):
@@ -150,7 +214,8 @@ def _body_lift(vehicle, rho: float, ref, center):
     the slender-body lift ahead of Hopkins's separation station instead of Hoerner's point
     force (:func:`~stripcoef.hull.lift.slender_body_lift_matrix`: it answers the local
     cross-flow, so a yaw or pitch rate gives rotary terms). Returns
-    (L [kg/m, kg, kg m], info) or None.
+    (L [kg/m, kg, kg m], info) or None; under ``slender`` also (s from the nose [m], S(s)
+    [m^2]), the sections the fins' stern flow is computed from.
     """
     hull = vehicle.hull
     mode = vehicle.body_lift
@@ -173,7 +238,8 @@ def _body_lift(vehicle, rho: float, ref, center):
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         x0 = separation_station(xs, area)
         return (slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z, ref=ref),
-                {"method": "slender", "length": length, "diameter": d, "separation_x": x0})
+                {"method": "slender", "length": length, "diameter": d, "separation_x": x0},
+                (hi - xs[::-1], area[::-1]))
     x_cp = hi - BODY_CP_FRACTION * length
     cp = np.array([x_cp, hull.y, hull.z]) - np.asarray(ref, float)
     return (body_lift_matrix(length, d, cp, rho=rho,

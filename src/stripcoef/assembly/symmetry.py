@@ -45,6 +45,8 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.geometry.shapes import GEOMETRY, has_rings
+from stripcoef.sections import get_shape
 
 #: the reflections, by the axis they reverse
 MIRRORS = ("x", "y", "z")
@@ -75,24 +77,23 @@ def allowed_couplings(mirrors) -> np.ndarray:
 
 
 def _section(part, k: int):
-    """The k-th section of ``part`` as a shapely geometry (y, z) [m]."""
-    from shapely.geometry import Polygon, box
+    """The k-th section of ``part`` as a shapely geometry (y, z) [m]: the shape's outline
+    (:data:`stripcoef.sections.SHAPES`), its rings combined for a contoured shape."""
+    from shapely.geometry import Polygon
 
-    if part.contours is not None and part.shape == "polygon":
-        out = None
-        for ring in part.contours[k]:
-            r = np.asarray(ring, dtype=float)
-            poly = Polygon(r).buffer(0)
-            # outer rings counter-clockwise, holes clockwise (stripcoef.strips.Part)
-            hole = np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1]) < 0
-            out = poly if out is None else (out.difference(poly) if hole else out.union(poly))
-        if out is not None:
-            return out
-    hb, hh, y, z = part.half_breadth[k], part.half_height[k], part.y[k], part.z[k]
-    if part.shape == "rectangle":
-        return box(y - hb, z - hh, y + hb, z + hh)
-    t = np.linspace(0.0, 2.0 * np.pi, _RING, endpoint=False)
-    return Polygon(np.c_[y + hb * np.cos(t), z + hh * np.sin(t)])
+    rings = get_shape(part.shape).outline(part, k, _RING)
+    if not has_rings(part):
+        return Polygon(rings[0])
+    out = None
+    for ring in rings:
+        r = np.asarray(ring, dtype=float)
+        poly = Polygon(r).buffer(0)
+        # outer rings counter-clockwise, holes clockwise (stripcoef.strips.Part)
+        hole = np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1]) < 0
+        out = poly if out is None else (out.difference(poly) if hole else out.union(poly))
+    if out is not None:
+        return out
+    return Polygon(GEOMETRY["ellipse"].outline(part, k, _RING)[0])
 
 
 def _sections(strips):

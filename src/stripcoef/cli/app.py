@@ -109,10 +109,10 @@ def main(argv=None) -> int:
         return 2
     args = parser.parse_args(argv)
     from stripcoef import progress
-    progress.set_enabled(getattr(args, "progress", None))
     try:
         check_outputs(args)
-        return int(args.func(args) or 0)
+        with progress.bars(getattr(args, "progress", None)):
+            return int(args.func(args) or 0)
     except MemoryError:  # a resource limit missed by the input checks: say so, in one line
         print(f"stripcoef {args.command}: error: out of memory; expected inputs of a size this "
               "machine can hold (fewer strips, radii or log rows)", file=sys.stderr)

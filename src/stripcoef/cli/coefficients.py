@@ -60,6 +60,11 @@ def _pt(point) -> list:
     return (np.round(np.asarray(point, dtype=float), 4) + 0.0).tolist()
 
 
+def _levels(c) -> str:
+    levels = c.get("added_mass_panel_levels")
+    return "/".join(str(n) for n in levels) if levels else str(c.get("added_mass_panels"))
+
+
 def format_table(model) -> str:
     """A readable summary: mass properties, the three matrices, conditions."""
     bands = band_lines(model)
@@ -84,8 +89,8 @@ def format_table(model) -> str:
            "",
            mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2", "added_mass"),
            "",
-           *([mat("Estimated error of M_A (Richardson: the finer panel level's step to the "
-                  "extrapolation)", model.added_mass_error, "kg, kg m, kg m^2"),
+           *([mat("Estimated error of M_A (grid convergence index of the panel levels "
+                  f"{_levels(c)}, Roache 1998)", model.added_mass_error, "kg, kg m, kg m^2"),
               f"  largest: {100 * c.get('added_mass_error_max', 0.0):.2g} % of the diagonal "
               "scale sqrt(M_ii M_jj)", ""]
              if model.added_mass_error is not None else []),
@@ -128,7 +133,8 @@ def format_table(model) -> str:
             "hull_crossflow_cd_y", "hull_length_factor", "axial_added_mass",
             "end_correction_sway", "end_correction_heave", "end_correction_pitch",
             "end_correction_yaw", "correction_method", "added_mass_method",
-            "added_mass_error_max", "mirror_planes")
+            "added_mass_panel_levels", "added_mass_converged", "added_mass_error_max",
+            "mirror_planes")
     for k in keys:
         if k in c:
             v = c[k]
@@ -144,7 +150,11 @@ def format_table(model) -> str:
         out.append(f"  {'fin_lift ' + f['name']:32s} AR_e = {f['aspect_ratio']:.4g}, "
                    f"c_La = {f['lift_slope']:.4g} /rad, S = {f['area']:.4g} m^2"
                    + (f", hull interference x{f['interference']:.4g}"
-                      if f.get("interference", 1.0) != 1.0 else ""))
+                      if f.get("interference", 1.0) != 1.0 else "")
+                   + (f" (K_W(B) {f['K_WB']:.3g}, k_W(B) {f['k_WB']:.3g}, tau {f['tau']:.3g}, "
+                      f"body upwash {'yes' if f['body_upwash'] else 'no'}), dynamic pressure "
+                      f"x{f['pressure_ratio']:.4g} (body's axial flow {f['stream_ratio']:.4g}, boundary "
+                      f"layer {f['boundary_layer']:.3g} m)" if "pressure_ratio" in f else ""))
     if lift.get("fins_without_lift"):
         out.append(f"  {'fins_without_lift':32s} " + ", ".join(lift["fins_without_lift"])
                    + " (not on the hull)")
@@ -170,9 +180,9 @@ def run(args) -> int:
     vehicle, model = estimate_from_args(args)
     model = with_bands(model, vehicle)
     if args.method == "bem":
-        from stripcoef import bem  # optional extra
+        from stripcoef.assembly.methods import with_added_mass_of  # the BEM: optional extra
 
-        model = bem.bem_model(model, vehicle)
+        model = with_added_mass_of(model, vehicle, "bem")
         # the added mass is the BEM's: the strip method's added-mass bands do not apply
         model = replace(model, bands=tuple(b for b in model.bands if b.matrix != "added_mass"))
     warn_uncertain(model)

@@ -66,8 +66,9 @@ def run(args) -> int:
         raise InputError(f"format {args.to} is binary and is not printed", key="output",
                          expected="-o FILE")
     model = load_model(args.vehicle)
-    if model.provenance.get("method") == "strip theory" and not model.bands:
-        # estimated from a vehicle file here: its method bands go into the files' comments
+    if str(model.provenance.get("method", "")).startswith("strip theory") and not model.bands:
+        # estimated from a vehicle file here (its added mass by strip theory or, for a bluff
+        # one, the panel method): its method bands go into the files' comments
         from stripcoef.geometry.vehicle import load_vehicle
         from stripcoef.study.bands import with_bands
         model = with_bands(model, load_vehicle(args.vehicle))

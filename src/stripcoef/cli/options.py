@@ -33,12 +33,17 @@ def add_mesh_arguments(parser):
     m.add_argument("--z-up", action="store_true",
                    help="the mesh file is z-up (ROS REP 103, most CAD): turned 180 deg about "
                         "x into the body axes (FRD, z down)")
-    m.add_argument("--added-mass-method", choices=("auto", "strips", "panels"), default="auto",
-                   help="M_A by the 3D panel method for a mesh that is neither round nor "
-                        "slender, by strip theory otherwise (auto, default); always by strip "
-                        "theory (strips); always by the panel method (panels, mesh input)")
-    m.add_argument("--added-mass-panels", type=int, metavar="N",
-                   help="panels of the panel method's finer resolution (default 1600)")
+    from stripcoef.assembly.methods import estimate_choices   # the command's own stack
+
+    a = parser.add_argument_group("added mass")
+    a.add_argument("--added-mass-method", choices=estimate_choices(), default="auto",
+                   help="M_A by the 3D panel method for a vehicle that is neither round nor "
+                        "slender (a mesh, or a vehicle file on its parts united into one "
+                        "closed surface), by strip theory otherwise (auto, default); always "
+                        "by strip theory (strips); always by the panel method (panels)")
+    a.add_argument("--added-mass-panels", type=int, metavar="N",
+                   help="panels of the panel method's finer resolution (default 1600; may "
+                        "exceed the mesh's face count: the mesh is refined)")
     return m
 
 

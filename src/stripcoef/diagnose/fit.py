@@ -31,13 +31,16 @@ from stripcoef.effects.windows import window_data
 
 #: The settings of a fit outside a diagnosis (:func:`fit_effects`, tests): the fixed bands.
 DEFAULTS = DiagnoseSettings()
+#: Most command levels the dead band's fine search evaluates between its coarse neighbours
+#: (:func:`_profile_hyper`) [-].
+FINE_LEVELS = 100
 
 
 # ---------------------------------------------------------------------------
 # least squares with band priors
 # ---------------------------------------------------------------------------
 
-def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None):
+def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None, *, with_cov=True):
     r"""MAP least squares: min |y - H theta|^2 / sigma^2 + sum_j (theta_j / s_j)^2,
     subject to theta >= lower (physical bounds: no negative added mass or damping).
 
@@ -54,14 +57,18 @@ def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None):
     ``upper``: upper bounds (an added mass within its plausible factor of the prior,
     :data:`ADDED_MASS_FACTOR`).
 
-    Returns theta, covariance (the unconstrained one at the solution), weighted residual.
+    Returns theta, covariance (the unconstrained one at the solution; None with
+    ``with_cov=False``, for the fits that need only theta or the residual), weighted residual.
     """
     if m is not None and len(m[0]):
-        return _solve_profiled(y, H, prior_sd, sigma, lower, m, upper)
-    return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper)
+        return _solve_profiled(y, H, prior_sd, sigma, lower, m, upper, with_cov=with_cov)
+    return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper, with_cov=with_cov)
 
 
-def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None):
+def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
+                  with_cov=True):
+    """:func:`_solve` without inertia columns; ``with_cov=False`` skips the covariance
+    (None in its place: a cost evaluation needs only the residual)."""
     p = H.shape[1]
     if p == 0:
         return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
@@ -87,11 +94,13 @@ def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None):
               else np.where(np.isfinite(upper), upper * scale, np.inf))
         theta_s = lsq_linear(a / scale, b, bounds=(lb, ub), method="bvls").x
     theta = theta_s / scale
+    if not with_cov:
+        return theta, None, b - a @ theta
     cov = np.linalg.pinv((a / scale).T @ (a / scale)) / np.outer(scale, scale)
     return theta, cov, b - a @ theta
 
 
-def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None):
+def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None, *, with_cov=True):
     from scipy.optimize import minimize_scalar
 
     mcols, m_total, noise_var = list(m[0]), float(m[1]), float(m[2])
@@ -106,14 +115,15 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None):
     lowx = None if lower is None else lower[keep]
     upx = None if upper is None else upper[keep]
 
-    def inner(mu):
-        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx)
+    def inner(mu, with_cov=True):
+        th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx,
+                                     with_cov=with_cov)
         extra = np.array([mu / mu_sd]) if np.isfinite(mu_sd) else np.zeros(0)
         return th, cov, np.concatenate([res, extra])
 
     def cost(mu):
-        return float(np.sum(inner(mu)[2] ** 2)) - y.size * (m_total + mu) ** 2 * noise_var \
-            / sigma ** 2
+        return float(np.sum(inner(mu, False)[2] ** 2)) \
+            - y.size * (m_total + mu) ** 2 * noise_var / sigma ** 2
 
     hi = 5.0 * m_total
     if upper is not None:
@@ -133,22 +143,30 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None):
         sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
                               options={"xatol": 1e-6 * m_total})
         mu = float(sol.x)
-    th, covx, res = inner(mu)
+    th, covx, res = inner(mu, with_cov)
+    theta = np.zeros(H.shape[1])
+    theta[keep] = th
+    if not with_cov:
+        theta[_inertia_column(mcols, prior_sd, mu_sd)] = mu
+        return theta, None, res
     if not (curv > 0 and lo + h <= mu <= hi - h):
         c0, cp, cm = cost(mu), cost(min(mu + h, hi)), cost(max(mu - h, lo))
         curv = (cp - 2 * c0 + cm) / h ** 2
     var_mu = 2.0 / curv if curv > 0 else np.inf
-    theta = np.zeros(H.shape[1])
     cov = np.zeros((H.shape[1], H.shape[1]))
-    theta[keep] = th
     cov[np.ix_(keep, keep)] = covx
-    # the inertia change goes to the last inertia column (the released one if any)
-    j = mcols[-1] if not np.isfinite(mu_sd) and len(mcols) > 1 else mcols[0]
-    if not np.isfinite(mu_sd):
-        j = next((c for c in mcols if not np.isfinite(prior_sd[c])), mcols[-1])
+    j = _inertia_column(mcols, prior_sd, mu_sd)
     theta[j] = mu
     cov[j, j] = var_mu
     return theta, cov, res
+
+
+def _inertia_column(mcols, prior_sd, mu_sd) -> int:
+    """The column the profiled inertia change goes to: the first inertia column, or with a
+    released (free) one, that one."""
+    if not np.isfinite(mu_sd):
+        return next((c for c in mcols if not np.isfinite(prior_sd[c])), mcols[-1])
+    return mcols[0]
 
 
 @dataclass(frozen=True)
@@ -212,24 +230,19 @@ class _Config:
         return [(eff, hyper_override if (hyper_override is not None and k == last) else hyper)
                 for k, (eff, hyper) in enumerate(self.terms)]
 
+    def term(self, eff, hyper):
+        """:class:`_Term` of ``eff`` at ``hyper`` on this configuration's data and DOF."""
+        return _term(self.data, self.dof, eff, hyper)
+
     def lower(self, hyper_override=None):
         """Lower bounds of all parameters (calibration: coefficient >= 0)."""
-        out = [self.cal_lower]
-        for eff, h in self.hyper_terms(hyper_override):
-            lo = eff.lower_bounds(self.data, self.dof, h) if hasattr(eff, "lower_bounds") \
-                else np.full(eff.design(self.data, self.dof, h)[1].shape[1], -np.inf)
-            out.append(lo)
-        return np.concatenate(out)
+        return np.concatenate([self.cal_lower] + [self.term(eff, h).lower for eff, h in
+                                                  self.hyper_terms(hyper_override)])
 
     def upper(self, hyper_override=None):
         """Upper bounds of all parameters (calibration: added mass within its factor)."""
-        out = [self.cal_upper]
-        for eff, h in self.hyper_terms(hyper_override):
-            n = eff.design(self.data, self.dof, h)[1].shape[1]
-            up = eff.upper_bounds(self.data, self.dof, h) if hasattr(eff, "upper_bounds") \
-                else np.full(n, np.inf)
-            out.append(up)
-        return np.concatenate(out)
+        return np.concatenate([self.cal_upper] + [self.term(eff, h).upper for eff, h in
+                                                  self.hyper_terms(hyper_override)])
 
     def m_info(self, hyper_override=None):
         """(indices of the inertia columns, prior inertia of the DOF) for :func:`_solve`."""
@@ -238,7 +251,7 @@ class _Config:
             cols.append(0)
         k = self.cal_cols.shape[1]
         for eff, h in self.hyper_terms(hyper_override):
-            n = eff.design(self.data, self.dof, h)[1].shape[1]
+            n = self.term(eff, h).cols.shape[1]
             if getattr(eff, "inertia", False):
                 cols.append(k + n - 1)
             k += n
@@ -250,9 +263,18 @@ class _Config:
         current) defines it -- drag and added mass act on nu_r (Fossen 2011, eq. 10.1)."""
         for eff, h in self.hyper_terms(hyper_override):
             if h is not None and hasattr(eff, "relative_velocity") and self.cal_names:
+                # computed once per effect, parameters and columns (as :func:`_term`)
+                key = ("calibration", id(eff), self.dof, tuple(self.cal_names),
+                       tuple(np.atleast_1d(np.asarray(h, float)).tolist()))
+                cache = self.data.__dict__.setdefault("_term_cache", {})
+                hit = cache.get(key)
+                if hit is not None and hit[0] is eff:
+                    return hit[1]
                 nur = eff.relative_velocity(self.data, h)
-                return np.column_stack([coefficient_column(self.data, self.dof, key, nur)
-                                        for key in self.cal_names])
+                cols = np.column_stack([coefficient_column(self.data, self.dof, name, nur)
+                                        for name in self.cal_names])
+                cache[key] = (eff, cols)
+                return cols
         return self.cal_cols
 
     def design(self, hyper_override=None):
@@ -261,15 +283,50 @@ class _Config:
         cols = [self.calibration_columns(hyper_override)]
         sd = [self.cal_sd]
         for eff, h in self.hyper_terms(hyper_override):
-            off, c = eff.design(self.data, self.dof, h)
-            if off is not None:
-                y = y - off
-            cols.append(c)
-            if hasattr(eff, "prior_sd"):
-                sd.append(eff.prior_sd(self.data, self.dof, h))
-            else:
-                sd.append(np.full(c.shape[1], np.inf))
+            term = self.term(eff, h)
+            if term.offset is not None:
+                y = y - term.offset
+            cols.append(term.cols)
+            sd.append(term.sd)
         return y, np.hstack(cols), np.concatenate(sd)
+
+
+@dataclass(frozen=True)
+class _Term:
+    """One term of a configuration at given nonlinear parameters: its window offset (or
+    None) and columns (:meth:`Effect.design`), the prior sd, lower and upper bound of each
+    column."""
+
+    offset: np.ndarray | None
+    cols: np.ndarray
+    sd: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
+
+
+def _term(data: WindowData, dof: int, eff, hyper) -> _Term:
+    """The :class:`_Term` of effect ``eff`` in DOF ``dof`` at ``hyper``, computed once per
+    window data: a selection evaluates the same effect at the same parameters in every
+    configuration that holds it, each profiling step and each cross-validation fold, and
+    each evaluation is a pass over the whole log. Kept in the data's own cache (the data
+    are fixed once cut; the effect object is kept with its entry, so that its id is not
+    reused)."""
+    key = (id(eff), dof, None if hyper is None else
+           tuple(np.atleast_1d(np.asarray(hyper, float)).tolist()))
+    cache = data.__dict__.setdefault("_term_cache", {})
+    hit = cache.get(key)
+    if hit is not None and hit[0] is eff:
+        return hit[1]
+    off, c = eff.design(data, dof, hyper)
+    n = c.shape[1]
+    sd = eff.prior_sd(data, dof, hyper) if hasattr(eff, "prior_sd") else np.full(n, np.inf)
+    lo = eff.lower_bounds(data, dof, hyper) if hasattr(eff, "lower_bounds") \
+        else np.full(n, -np.inf)
+    up = eff.upper_bounds(data, dof, hyper) if hasattr(eff, "upper_bounds") \
+        else np.full(n, np.inf)
+    term = _Term(off, c, np.asarray(sd, float), np.asarray(lo, float), np.asarray(up, float))
+    cache[key] = (eff, term)
+    return term
 
 
 class _Nuisance:
@@ -296,7 +353,7 @@ def _sigma(y, H, sd=None, lower=None, m=None, upper=None):
     sd = np.full(H.shape[1], np.inf) if sd is None else sd
     sigma = max(float(np.sqrt(np.mean(y ** 2))), 1e-12)
     for _ in range(4):
-        theta, _, _ = _solve(y, H, sd, sigma, lower, m, upper)
+        theta, _, _ = _solve(y, H, sd, sigma, lower, m, upper, with_cov=False)
         r = y - H @ theta
 
         p_eff = min(H.shape[1], y.size - 1)
@@ -329,7 +386,8 @@ def _profile_hyper(cfg: _Config, mask):
     def cost_vec(h):
         y, H, sd = cfg.design(h)
         yy, HH = y[mask], H[mask]
-        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h), cfg.upper(h))
+        theta, _, wres = _solve(yy, HH, sd, sigma0, cfg.lower(h), cfg.m_info(h), cfg.upper(h),
+                                with_cov=False)
         return wres
 
     if hasattr(eff, "grid"):
@@ -369,6 +427,11 @@ def _profile_hyper(cfg: _Config, mask):
             rows[a:b] = True
         levels = np.unique(np.abs(cfg.data.commands[rows][:, act]))
         levels = levels[(levels >= lo) & (levels <= hi)]
+        if levels.size > FINE_LEVELS:
+            # a long log of continuous commands has thousands of levels here, each a pass
+            # over the log: every k-th level (the threshold is then known to the spacing of
+            # FINE_LEVELS levels, far below its uncertainty, the coarse grid's, _hyper_std)
+            levels = levels[np.round(np.linspace(0, levels.size - 1, FINE_LEVELS)).astype(int)]
         if levels.size >= 2:
             mids = 0.5 * (levels[1:] + levels[:-1])
             fine = np.array([cost(c) for c in mids])
@@ -403,7 +466,8 @@ def _hyper_std(cfg: _Config, hyper, sigma):
 
     def vec(h):
         y, H, sd = cfg.design(h)
-        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h))[2] * sigma
+        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h),
+                      with_cov=False)[2] * sigma
 
     j = np.empty((vec(hyper).size, hyper.size))
     for k in range(hyper.size):

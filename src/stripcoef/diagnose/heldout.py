@@ -11,7 +11,10 @@ directionally unstable vehicle drifts away whatever the model), and the error of
 
 The hold-last-velocity predictor :math:`\hat\nu(t_k) = \nu(t_{s,0})` on the same segments is
 the baseline a model must beat to be worth simulating (issue 16: on real logs the
-calibrated model beat it in only 2 of 6 DOFs). Held-out use: the model is fitted on one
+calibrated model beat it in only 2 of 6 DOFs). The zero-velocity predictor
+:math:`\hat\nu(t_k) = 0` is the other trivial one (issue 33: on real pool logs the calibrated
+model lost to it in 5 of 6 DOFs): its error is the RMS velocity itself, so a model that does
+not beat it predicts the motion worse than predicting none. Held-out use: the model is fitted on one
 part of the log (time-block split, :func:`split`) and these errors are measured on another.
 
 References: Ljung, System Identification (1999), sec. 16.4 (simulation error, cross
@@ -66,6 +69,7 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
     (module docstring), or None when a simulation diverges."""
+    from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay
 
@@ -75,7 +79,17 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
     except StripcoefError:
         return None
     err = {i: [] for i in dofs}
-    for a, b in segments(t, horizon):
+    bounds = segments(t, horizon)
+    if supported(model, inputs):        # all segments at once (diagnose/freesim.py)
+        runs = batch_free_velocities(model, log, bounds, inputs, tolerances=tolerances)
+        if runs is None:
+            return None
+        zeros = np.zeros(t.size)
+        for (a, b), nu in zip(bounds, runs):
+            for i in dofs:
+                err[i].append(nu[:, i] - log.get(VELOCITIES[i], zeros)[a:b])
+        return [_rms(np.concatenate(err[i])) for i in dofs]
+    for a, b in bounds:
         part = log.slice(a, b)
         try:
             sim = replay(model, part, inputs=inputs.window(a, b),
@@ -100,14 +114,33 @@ def hold_last_velocity_errors(log, dofs, *, horizon: float = HORIZON):
     return out
 
 
-def compare(log, models: dict, dofs, *, horizon: float = HORIZON) -> dict:
-    """Free-simulation errors of several models and of hold-last-velocity on one log.
+def zero_velocity_errors(log, dofs, *, horizon: float = HORIZON):
+    r"""RMS error of the predictor :math:`\hat\nu(t) = 0` on the same segments as the other
+    predictors [m/s or rad/s]: the RMS of the logged velocity over them (a DOF the log lacks
+    is 0)."""
+    t = log["t"]
+    zeros = np.zeros(t.size)
+    out = []
+    for i in dofs:
+        v = log.get(VELOCITIES[i], zeros)
+        out.append(_rms(np.concatenate([v[a:b] for a, b in segments(t, horizon)])))
+    return out
 
-    Returns ``{dof_name: {model_name: error or None, ..., "hold_last_velocity": error}}``
-    [m/s or rad/s]."""
+
+#: The trivial predictors every model is compared with (:func:`compare`), by name.
+TRIVIAL_PREDICTORS = ("hold_last_velocity", "zero_velocity")
+
+
+def compare(log, models: dict, dofs, *, horizon: float = HORIZON) -> dict:
+    """Free-simulation errors of several models and of the trivial predictors
+    (hold-last-velocity, zero velocity) on one log.
+
+    Returns ``{dof_name: {model_name: error or None, ..., "hold_last_velocity": error,
+    "zero_velocity": error}}`` [m/s or rad/s]."""
     rows = {name: free_simulation_errors(log, m, dofs, horizon=horizon)
             for name, m in models.items()}
     rows["hold_last_velocity"] = hold_last_velocity_errors(log, dofs, horizon=horizon)
+    rows["zero_velocity"] = zero_velocity_errors(log, dofs, horizon=horizon)
     return {DOF[i]: {name: (None if r is None else float(r[k])) for name, r in rows.items()}
             for k, i in enumerate(dofs)}
 

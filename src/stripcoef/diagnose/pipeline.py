@@ -75,7 +75,7 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
                                          UNEXPLAINED_GAIN, VALIDATION_FRACTION, Budget,
-                                         DiagnoseSettings)
+                                         DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
                                          resimulated_errors, validate_changes,
                                          validation_errors)
@@ -110,7 +110,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
     time_limit : float, optional
-        Wall-clock budget [s] (default :data:`TIME_LIMIT`; ``inf``: none); past it an
+        Wall-clock budget [s] (default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
+        proportion to the rows past :data:`BUDGET_ROWS`; ``inf``: none); past it an
         :class:`~stripcoef.errors.UnreachableError` says so instead of grinding.
     validation : float or None
         Fraction of the fitting log (its end) kept to validate every change by free
@@ -142,7 +143,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         calibrated HydroModel); :meth:`Diagnosis.to_dict` is the JSON contract (everything
         but the model).
     """
-    limit = TIME_LIMIT if time_limit is None else float(time_limit)
+    limit = default_time_limit(len(log)) if time_limit is None else float(time_limit)
     if not limit > 0:
         raise InputError("not a positive time budget", key="time_limit", value=time_limit,
                          expected="a number of seconds > 0 (inf: none)")

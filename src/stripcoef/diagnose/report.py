@@ -114,11 +114,12 @@ def text_summary(result) -> str:
     if hold:
         lines.append("\nheld-out free simulation, " + "-".join(
             f"{x:.0f}" for x in hold["held_out_s"]) + " s (prior / calibrated / "
-            "hold-last-velocity)" + (f", model read back from {hold['model_file']}"
+            "hold-last-velocity / zero velocity)" + (f", model read back from {hold['model_file']}"
                                      if hold.get("model_file") else "") + ":")
         for d, v in hold["errors"].items():
             lines.append(f"  {d}: {_fmt(v['prior'])} / {_fmt(v['calibrated'])} / "
-                         f"{_fmt(v['hold_last_velocity'])}")
+                         f"{_fmt(v['hold_last_velocity'])} / "
+                         f"{_fmt(v.get('zero_velocity'))}")
     if "resimulated_velocity_rms" in result:
         lines.append("\nre-simulated velocity RMS (baseline / calibrated / final):")
         for d, v in result["resimulated_velocity_rms"].items():

@@ -40,10 +40,21 @@ UNEXPLAINED_GAIN = 0.10
 NOISE_FLOOR_FACTOR = 5.0
 N_BLOCKS = 5
 MAX_STEPS = 4
-#: Wall-clock budget of one diagnosis [s]: the fits cost grows with the log's length (a
-#: 200,000-row log would take most of an hour); past the budget the diagnosis stops with an
-#: error saying so, instead of grinding.
+#: Wall-clock budget of one diagnosis of up to :data:`BUDGET_ROWS` log rows [s]; past the
+#: budget the diagnosis stops with an error saying so, instead of grinding.
 TIME_LIMIT = 300.0
+#: Log rows that :data:`TIME_LIMIT` covers: a longer log gets a budget in proportion to its
+#: rows (:func:`default_time_limit`; issue 33: no log is refused for its length alone). The
+#: cost of a diagnosis grows about linearly with the rows (window columns, the free
+#: simulations of the validation); measured, a whole-log run of 72,000 rows takes well under
+#: the 1,080 s this gives (docs/performance.md, benchmarks/diagnose_speed.py).
+BUDGET_ROWS = 20_000
+
+
+def default_time_limit(rows: int) -> float:
+    """The default wall-clock budget of a diagnosis of a log of ``rows`` rows [s]:
+    :data:`TIME_LIMIT`, times rows / :data:`BUDGET_ROWS` for a longer log."""
+    return TIME_LIMIT * max(1.0, float(rows) / BUDGET_ROWS)
 #: Plausible added mass as a factor of the prior's [-] (lower, upper): Wang & Clark 2006
 #: Table I has analytical/experimental ratios up to 2.7 (N_rdot); strip theory's translational
 #: added mass is closer (a factor 4 either way is an assumption that covers the synthetic

@@ -122,6 +122,11 @@ class Effect:
         """The one number the benchmark compares with the truth."""
         return float(next(iter(params.values())))
 
+    #: The parameter values :meth:`plausible` admits, in words (a model file's error says it)
+    admits = "finite parameters"
+    #: The force law acts in all six DOFs at once (a model file's ``dof: all``)
+    all_dofs = False
+
     def plausible(self, params: dict) -> bool:
         return all(math.isfinite(v) for v in params.values())
 
@@ -157,6 +162,10 @@ class Effect:
 
     #: the force depends only on the applied inputs (window-averaged exactly as a held input)
     input_driven = False
+    #: the force law depends on nothing but the inputs of the sample being held (not on the
+    #: time within the interval, nor on the state): constant between two samples, so a
+    #: free simulation evaluates it once per sample (stripcoef.diagnose.freesim)
+    held = False
 
     def implausible(self, params: dict, data=None, dof=None) -> str:
         """Why the parameters are physically impossible for this log ('' if they are not)."""

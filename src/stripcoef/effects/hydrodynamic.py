@@ -13,6 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from stripcoef.conventions import rotation_matrix, skew
 from stripcoef.errors import InputError
 from stripcoef.effects.windows import (coefficient_column, coriolis_times_velocity,
                                        damping_times_velocity, rotation_matrices)
@@ -64,6 +65,8 @@ class TetherDrag(Effect):
         length = np.ones(data.t.size) if length is None else length
         v = data.nu[:, dof]
         return None, -data.mean(length * v * np.abs(v))[:, None]
+
+    admits = "c_t > 0"
 
     def plausible(self, params):
         return params["c_t"] > 0.0
@@ -133,6 +136,8 @@ class MomentumDrag(Effect):
         nh = self._nh(data, dof)
         return None, -data.mean(nh * data.nu[:, dof])[:, None]
 
+    admits = "alpha > 0"
+
     def plausible(self, params):
         return params["alpha"] > 0.0
 
@@ -173,6 +178,7 @@ class BuoyancyOffset(Effect):
         return "a bias"
 
     input_driven = True
+    held = True
 
     def own_design(self, data, dof, hyper=None):
         return None, np.ones((data.n_windows, 1))
@@ -253,6 +259,8 @@ class Current(Effect):
     def magnitude(self, params):
         return math.hypot(params["current_north"], params["current_east"])
 
+    admits = "a current speed hypot(current_north, current_east) < 5 m/s"
+
     def plausible(self, params):
         return self.magnitude(params) < 5.0
 
@@ -280,7 +288,6 @@ class Current(Effect):
         e = _unit_vec(dof)
 
         def f(time, eta, nu, inputs):
-            from stripcoef.conventions import rotation_matrix, skew
             model = inputs["model"]
             rt = rotation_matrix(eta[3], eta[4], eta[5]).T
             nuc = np.concatenate([rt @ v, np.zeros(3)])
@@ -321,6 +328,8 @@ class LinearDrag(Effect):
 
     def own_design(self, data, dof, hyper=None):
         return None, -data.mean(data.nu[:, dof])[:, None]
+
+    admits = "d_L > 0"
 
     def plausible(self, params):
         return params["d_L"] > 0.0

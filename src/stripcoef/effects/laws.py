@@ -30,7 +30,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from stripcoef.conventions import parse_dof
+from stripcoef.conventions import DOF, parse_dof
 from stripcoef.errors import InputError, unknown_name
 from stripcoef.effects.base import Effect
 from stripcoef.effects.hydrodynamic import (AddedMassError, BuoyancyOffset, Current, LinearDrag,
@@ -55,12 +55,68 @@ def get_effect(name: str) -> Effect:
         raise unknown_name("effect", name, EFFECTS, key="effect") from None
 
 
+def _dof_index(raw) -> int:
+    """An effect entry's DOF: an index 0-5 (a model file may give one) or a DOF name."""
+    if isinstance(raw, int) and not isinstance(raw, bool) and 0 <= raw < 6:
+        return raw
+    return parse_dof(raw)
+
+
+def check_effect_entries(entries, *, file: str | None = None) -> None:
+    """A model file's ``effects`` checked against the registry, like a vehicle file's keys.
+
+    Each entry (``{name, dof, parameters}``, their types already checked by
+    :func:`stripcoef.modelfile.check_model_parts`) must name an effect of :data:`EFFECTS`,
+    a degree of freedom the effect acts in (:attr:`Effect.dofs`; ``all`` only for an effect
+    whose force law acts in all six, :attr:`Effect.all_dofs`), and exactly the effect's
+    parameters (:attr:`Effect.parameters`) with values its law admits
+    (:meth:`Effect.plausible`, said in words by :attr:`Effect.admits`). Each error names the
+    file, the key path (``effects[0].parameters.c_t``), the value and what was expected.
+    """
+    for k, entry in enumerate(entries):
+        path = f"effects[{k}]"
+        name = entry.get("name")
+        if name not in EFFECTS:
+            raise unknown_name("effect", name, EFFECTS, file=file, key=f"{path}.name")
+        eff = EFFECTS[name]
+        raw = entry.get("dof", "surge")
+        acts = ", ".join(DOF[i] for i in eff.dofs) + (" or all" if eff.all_dofs else "")
+        if str(raw).strip().lower() == "all":
+            if not eff.all_dofs:
+                raise InputError(f"effect {name} does not act in all degrees of freedom",
+                                 file=file, key=f"{path}.dof", value=raw,
+                                 expected="one of " + acts)
+        elif _dof_index(raw) not in eff.dofs:
+            raise InputError(f"effect {name} does not act in this degree of freedom",
+                             file=file, key=f"{path}.dof", value=raw, expected="one of " + acts)
+        params = entry.get("parameters") or {}
+        expected = "parameters " + ", ".join(f"{p} [{u}]" for p, u in eff.parameters.items())
+        for p in params:
+            if p not in eff.parameters:
+                raise InputError(f"unknown parameter of effect {name}", file=file,
+                                 key=f"{path}.parameters.{p}", value=p, expected=expected)
+        missing = [p for p in eff.parameters if p not in params]
+        if missing:
+            raise InputError(f"parameter of effect {name} missing", file=file,
+                             key=f"{path}.parameters.{missing[0]}", expected=expected)
+        values = {p: float(params[p]) for p in eff.parameters}
+        if not eff.plausible(values):
+            raise InputError(f"parameters of effect {name} out of range", file=file,
+                             key=f"{path}.parameters", value=values, expected=eff.admits)
+
+
 def effect_forces(model) -> list:
     """Force laws of a model's effects (``HydroModel.effects``) for the simulation.
 
     Native effects (linear drag, dead band, added mass) are already folded into the model's
     matrices and thrusters by :meth:`Effect.apply` and are skipped here.
     """
+    return [law for _, law in effect_force_terms(model)]
+
+
+def effect_force_terms(model) -> list:
+    """(effect, force law) of each of a model's effects that is not native
+    (:func:`effect_forces`, with the effect, e.g. to ask whether it is :attr:`Effect.held`)."""
     out = []
     for k, entry in enumerate(model.effects):
         if not isinstance(entry, Mapping) or "name" not in entry:
@@ -70,14 +126,14 @@ def effect_forces(model) -> list:
         if eff.native:
             continue
         dof, params = _entry(eff, entry, k)
-        out.append(eff.force_law(params, dof))
+        out.append((eff, eff.force_law(params, dof)))
     return out
 
 
 def _entry(eff, entry, k):
     """(dof or None for "all", parameters) of a model's effect entry number ``k``."""
     raw = entry.get("dof", "surge")
-    dof = None if str(raw).lower() == "all" else parse_dof(raw)
+    dof = None if str(raw).lower() == "all" else _dof_index(raw)
     params = entry.get("parameters", {})
     missing = [p for p in eff.parameters if p not in params]
     if missing:
@@ -107,4 +163,5 @@ def effect_window_forces(data: WindowData, model) -> np.ndarray:
     return out
 
 
-__all__ = ["EFFECTS", "Effect", "effect_forces", "effect_window_forces", "get_effect"]
+__all__ = ["EFFECTS", "Effect", "check_effect_entries", "effect_forces", "effect_window_forces",
+           "get_effect"]

@@ -94,10 +94,13 @@ class ThrustAsymmetry(Effect):
     def magnitude(self, params):
         return params["eta_backward"] / params["eta_forward"]
 
+    admits = "0.1 < eta_forward < 3 and 0.1 < eta_backward < 3"
+
     def plausible(self, params):
         return 0.1 < params["eta_forward"] < 3.0 and 0.1 < params["eta_backward"] < 3.0
 
     input_driven = True
+    held = True
 
     def force_law(self, params, dof):
         """Simulation force law: Delta F_i = (eta_+ - 1) F+_i + (eta_- - 1) F-_i, eta [-], F+-_i [N or N m];
@@ -181,6 +184,8 @@ class Deadband(Effect):
     def to_parameters(self, theta, hyper, nuisance=None):
         return {"deadband": float(np.atleast_1d(hyper)[0])}
 
+    admits = "deadband > 0"
+
     def plausible(self, params):
         return params["deadband"] > 0.0
 
@@ -232,6 +237,7 @@ class ThrustEffectiveness(Effect):
     source = "Fossen (2011) sec. 6.7; Indiveri 1998 eq. 4.16"
     parameters = {"scale": "-"}
     input_driven = True
+    held = True
     #: its regressor scales the prior's whole force balance (see the diagnosis's bands test)
     scales_prior = True
     #: plausible range of the scale [-]: at least 5 % and at most twice the prior's map
@@ -265,6 +271,9 @@ class ThrustEffectiveness(Effect):
 
     def window_force(self, data, params, dof):
         return (params["scale"] - 1.0) * data.mean_held(data.tau[:, dof])
+
+    admits = f"{BOUNDS[0]:g} <= scale <= {BOUNDS[1]:g}"
+    all_dofs = True
 
     def plausible(self, params):
         return self.BOUNDS[0] <= params["scale"] <= self.BOUNDS[1]

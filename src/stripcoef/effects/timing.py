@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.signal import lfilter
 
 from stripcoef.errors import InputError
 from stripcoef.effects.base import Effect, _unit_vec
@@ -43,8 +44,16 @@ def lagged_held(t, u, time_constant):
     y[0] = u[0]
     tc = max(float(time_constant), 1e-9)
     a = np.exp(-dt / tc)
-    for k in range(dt.size):
-        y[k + 1] = u[k] + (y[k] - u[k]) * a[k]
+    if dt.size and np.ptp(dt) <= 1e-9 * abs(float(dt[0])):
+        # evenly sampled: the same recursion, y_{k+1} - a y_k = (1 - a) u_k, as a first-order
+        # IIR filter (scipy.signal.lfilter, direct form II transposed; its initial state
+        # a y_0 starts it in equilibrium) instead of a loop over the samples
+        ak = float(a[0])
+        y[1:] = lfilter([1.0 - ak], [1.0, -ak], u[:-1], axis=0,
+                        zi=(ak * u[:1]).reshape((1,) + u.shape[1:]))[0]
+    else:
+        for k in range(dt.size):
+            y[k + 1] = u[k] + (y[k] - u[k]) * a[k]
     w = tc * (1.0 - a)
     if u.ndim > 1:
         dt, w = dt[:, None], w[:, None]
@@ -124,6 +133,12 @@ class _TimedInputEffect(Effect):
 
     def window_force(self, data, params, dof):
         return self.own_design(data, dof, [params[self.hyper[0]]])[0]
+
+    all_dofs = True
+
+    @property
+    def admits(self) -> str:
+        return f"0 < {self.hyper[0]} <= {self.GRID_MAX:g} s"
 
     def plausible(self, params):
         return 0.0 < params[self.hyper[0]] <= self.GRID_MAX

@@ -6,7 +6,8 @@ What the plugin reads (uuvsimulator/uuv_simulator, checked against the source)
 ``<fluid_density>``, ``<flow_velocity_topic>`` and one ``<link name="...">`` per link;
 ``src/HydrodynamicModel.cc`` then reads, per link:
 
-* ``<volume>``, ``<center_of_buoyancy>`` (x y z), ``<neutrally_buoyant>``, optional ``<box>``;
+* ``<volume>``, ``<center_of_buoyancy>`` (x y z), ``<neutrally_buoyant>``, optional ``<box>``
+  (below);
 * ``<hydrodynamic_model><type>fossen</type>`` (``HMFossen``) with
 
   - ``<added_mass>``: exactly 36 numbers, row-major (``GZ_ASSERT``), **positive** M_A;
@@ -30,6 +31,20 @@ body origin, the CoG), while it reads ``RelativeLinearVel()`` (the link frame's 
 the coefficients are about the CoG and the link origin should be placed at the CoG.
 ``<center_of_buoyancy>`` is in link axes relative to the CoG
 (``BuoyantObject.cc``: ``AddForceAtRelativePosition(buoyancyForce, GetCoB())``).
+
+Partial submersion: ``<box>``.  ``HydrodynamicModel.cc`` (uuvsimulator/uuv_simulator at
+commit bfb40cb153684a0703173117b6bbf4258e8e71c5, 2020-06-15, the repository's last; lines
+67-84) reads ``<box><width/><length/><height/></box>`` inside the plugin's ``<link>`` as a
+box centred on the link origin, ``Box((-width/2, -length/2, -height/2), (width/2, length/2,
+height/2))``: ``width`` along link x, ``length`` along y, ``height`` along z [m] (it replaces
+Gazebo's bounding box, which its FIXME says is invalid).  ``BuoyantObject::GetBuoyancyForce``
+(``BuoyantObject.cc`` lines 82-120) uses only its height H: with the link origin at depth
+z < 0 (world z up, surface at 0), the buoyant volume is V for z < -H/2 and
+:math:`V (|z| + H/2) / H` for -H/2 < z < 0 (and none for z > 0).  The export writes the
+body's extents: width = L, length = B, height = H (``Conditions.length``, ``breadth``,
+``height``); the linear law is exact for a prism centred on the CoG, an approximation
+otherwise.  A model file without breadth and height (written before they were recorded)
+gets no ``<box>`` and a comment saying so.
 
 Trap warnings (:class:`SimulatorTrapWarning`): quadratic cross terms (dropped, the plugin
 reads only the diagonal); an added-mass diagonal term larger than the rigid-body term (the
@@ -64,6 +79,16 @@ def _row(values) -> str:
 
 def _matrix_lines(m: np.ndarray, indent: str) -> list[str]:
     return [indent + "  " + _row(row) for row in m]
+
+
+def _box(model):
+    """(width, length, height) [m] of the plugin's ``<box>``: the body's extents along link
+    x, y, z (module docstring), or None when the model does not record them."""
+    c = model.conditions
+    dims = [c.length, c.breadth, c.height]
+    if any(d is None or not np.isfinite(d) or d <= 0 for d in dims):
+        return None
+    return tuple(float(d) for d in dims)
 
 
 def render(view: ExportView, *, link_name: str = "base_link") -> str:
@@ -108,6 +133,15 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
         f"CoG in link axes: ixx {fmt(ig[0, 0])} ixy {fmt(ig[0, 1])} ixz {fmt(ig[0, 2])} "
         f"iyy {fmt(ig[1, 1])} iyz {fmt(ig[1, 2])} izz {fmt(ig[2, 2])} kg m^2.",
     ]
+    box = _box(model)
+    if box is None:
+        notes.append("No <box>: the model has no breadth and height (re-estimate it); the "
+                     "plugin then uses Gazebo's bounding box for partial submersion.")
+    else:
+        notes += [f"<box>: the body's extents along link x, y, z (width {fmt(box[0])}, length "
+                  f"{fmt(box[1])}, height {fmt(box[2])} m), centred on the link origin; the",
+                  "plugin scales buoyancy linearly over the height near the surface "
+                  "(BuoyantObject.cc)."]
     if model.thrusters:
         notes.append("Thrusters not exported here: " + ", ".join(t.name for t in model.thrusters)
                      + " (uuv_thruster_ros_plugin per thruster).")
@@ -129,6 +163,10 @@ def render(view: ExportView, *, link_name: str = "base_link") -> str:
     out.append("    <neutrally_buoyant>0</neutrally_buoyant>")
     out.append(f"    <volume>{fmt(model.volume)}</volume>")
     out.append(f"    <center_of_buoyancy>{_row(cob)}</center_of_buoyancy>")
+    if box is not None:
+        out.append("    <box>")
+        out += [f"      <{k}>{fmt(v)}</{k}>" for k, v in zip(("width", "length", "height"), box)]
+        out.append("    </box>")
     out.append("    <hydrodynamic_model>")
     out.append("      <type>fossen</type>")
     out.append("      <added_mass>")

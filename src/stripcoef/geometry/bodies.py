@@ -2,11 +2,7 @@ r"""Bodies that make up a vehicle: the hull, appendages and through-holes.
 
 Each body turns the strip stations ``x`` (centres) into :class:`~stripcoef.strips.Part`
 sections (or :class:`~stripcoef.strips.HoleCut` for holes and duct interiors).
-Section properties of the primitive shapes:
-
-- ellipse with half-axes b (y) and h (z): area :math:`\pi b h`,
-  :math:`\int (y-y_c)^2 dA = \pi b^3 h / 4`, :math:`\int (z-z_c)^2 dA = \pi b h^3/4`;
-- rectangle 2b x 2h: area 4bh, second moments :math:`4 b^3 h/3` and :math:`4 b h^3 / 3`.
+Section properties, outlines and chords of the shapes: :mod:`stripcoef.geometry.shapes`.
 """
 
 from __future__ import annotations
@@ -17,6 +13,8 @@ import numpy as np
 
 from stripcoef.strips import HoleCut, Part
 from stripcoef.geometry.profiles import Profile
+from stripcoef.geometry.shapes import (ellipse_section, rectangle_section, section_half_chord,
+                                       shape_geometry)
 
 
 def _inside(x, lo, hi):
@@ -30,22 +28,6 @@ def _overlap(x, dx, lo, hi):
     b = np.minimum(x + 0.5 * dx, hi)
     idx = np.nonzero(b > a + 1e-15 * np.maximum(dx, 1.0))[0]
     return idx, (b[idx] - a[idx]) / dx[idx], 0.5 * (a[idx] + b[idx])
-
-
-def section_half_chord(shape: str, half_across, half_along, offset):
-    r"""Half the length [m] of a section's chord along one of its axes, at ``offset`` [m] from the
-    centre across it: an ellipse of half-axes b (across) and h (along) gives
-
-    .. math:: h\sqrt{1 - (d/b)^2}\quad(0 \text{ for } |d| \ge b),
-
-    a rectangle its half-side h (``shape`` "ellipse" or anything else; ``half_across`` b,
-    ``half_along`` h [m], scalars or arrays).  Reference: the ellipse's equation
-    :math:`(y/b)^2 + (z/h)^2 = 1`.
-    """
-    if shape != "ellipse":
-        return half_along * np.ones_like(np.asarray(offset, dtype=float))
-    frac = np.clip(1.0 - (offset / np.maximum(half_across, 1e-300)) ** 2, 0.0, 1.0)
-    return half_along * np.sqrt(frac)
 
 
 def mean_chord(x, dx, center, radius):
@@ -65,26 +47,6 @@ def mean_chord(x, dx, center, radius):
         return t * np.sqrt(np.maximum(radius**2 - t**2, 0.0)) + radius**2 * np.arcsin(t / radius)
 
     return (f(xi2) - f(xi1)) / dx
-
-
-def ellipse_section(b, h):
-    """Area [m^2] and second moments iyy, izz [m^4] of an ellipse with half-axes b (y), h (z).
-
-    A = pi b h, iyy = int y^2 dA = pi b^3 h / 4, izz = int z^2 dA = pi b h^3 / 4 (b, h [m];
-    the naming of :class:`stripcoef.strips.Part`). Reference: standard second moments of
-    area of an ellipse about its axes (elementary integration).
-    """
-    return np.pi * b * h, np.pi * b**3 * h / 4.0, np.pi * b * h**3 / 4.0
-
-
-def rectangle_section(b, h):
-    """Area [m^2] and second moments iyy, izz [m^4] of a 2b x 2h rectangle.
-
-    A = 4 b h, iyy = int y^2 dA = (2h)(2b)^3/12 = 4 b^3 h / 3, izz = 4 b h^3 / 3 (b, h [m];
-    the naming of :class:`stripcoef.strips.Part`). Reference: standard second moments of
-    area of a rectangle about its centroidal axes (elementary integration).
-    """
-    return 4.0 * b * h, 4.0 * b**3 * h / 3.0, 4.0 * b * h**3 / 3.0
 
 
 @dataclass
@@ -107,11 +69,12 @@ class Hull:
         h = self.half_height(x)
         idx = np.nonzero((b > 0) & (h > 0))[0]
         b, h = b[idx], h[idx]
-        area, iyy, izz = (ellipse_section if self.section == "ellipse" else rectangle_section)(b, h)
+        spec = shape_geometry(self.section)
+        area, iyy, izz = spec.properties(b, h)
         lo, hi = self.x_extent()
         return [Part(name=self.name, shape=self.section, index=idx, y=self.y, z=self.z,
                      half_breadth=b, half_height=h, area=area, iyy=iyy, izz=izz,
-                     rounded=self.section == "ellipse", length=hi - lo, role="hull")]
+                     rounded=spec.rounded, length=hi - lo, role="hull")]
 
     def max_diameter(self) -> float:
         xs = np.linspace(*self.x_extent(), 2001)

@@ -12,23 +12,16 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.figures import new_figure
+from stripcoef.geometry.shapes import shape_geometry
 from stripcoef.strips import Strips
 
 _ROLE_COLOUR = {"hull": "C0", "appendage": "C1", "fin": "C2"}
 
 
 def _section_outline(part, k):
-    """(y, z) outlines [m] of part ``part`` in its ``k``-th strip (ellipse, rectangle or the
-    polygon rings of a mesh section)."""
-    if part.shape == "polygon" and part.contours is not None:
-        return [np.asarray(ring, float) for ring in part.contours[k]]
-    yc, zc = part.y[k], part.z[k]
-    b, h = part.half_breadth[k], part.half_height[k]
-    if part.shape == "rectangle":
-        return [np.array([[yc - b, zc - h], [yc + b, zc - h], [yc + b, zc + h],
-                          [yc - b, zc + h], [yc - b, zc - h]])]
-    a = np.linspace(0.0, 2 * np.pi, 73)
-    return [np.column_stack([yc + b * np.cos(a), zc + h * np.sin(a)])]
+    """(y, z) outlines [m] of part ``part`` in its ``k``-th strip (the shape's outline,
+    :data:`stripcoef.geometry.shapes.GEOMETRY`)."""
+    return shape_geometry(part.shape).outline(part, k, 72)
 
 
 def body_figure(strips: Strips, *, name: str = "", points: dict | None = None,

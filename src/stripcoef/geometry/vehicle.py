@@ -16,13 +16,15 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.fluid import EQUATIONS, Fluid, RHO_FRESHWATER, RHO_SEAWATER
+from stripcoef.fluid import EQUATIONS, NU_SEAWATER, Fluid, RHO_FRESHWATER, RHO_SEAWATER
 from stripcoef.files import load_yaml, read_text
 from stripcoef.strips import MAX_STRIPS, Strips, uniform_stations
 from stripcoef.thrusters import Thruster
 from stripcoef.geometry.keypaths import nominal
 from stripcoef.geometry.bodies import Box, Cylinder, Fin, Hole, Hull
-from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous
+from stripcoef.geometry import mesh as mesh_mod
+from stripcoef.geometry.profiles import SEGMENT_TYPES, Segment, check_contiguous, myring_tail
+from stripcoef.geometry.shapes import built_from_half_sizes
 
 #: Default number of strips (converged to 0.1 % on the shipped vehicles; docs/vehicle-file.md).
 DEFAULT_STRIPS = 1000
@@ -140,9 +142,6 @@ class Vehicle:
         z_up : bool
             The file is z-up (ROS REP 103, most CAD): turned 180 deg about x into FRD.
         """
-        from stripcoef.fluid import NU_SEAWATER
-        from stripcoef.geometry import mesh as mesh_mod
-
         if isinstance(origin, str):
             if origin != "centroid":
                 raise InputError("unknown mesh origin", key="origin", value=origin,
@@ -363,7 +362,6 @@ def _segment(r: _Reader, seg, path) -> Segment:
                             "an angle from 0 to < 90 degrees")
             if "length" not in seg:
                 # the cubic must stay between the axis and the radius over the tail's length
-                from stripcoef.geometry.profiles import myring_tail
                 rs = myring_tail(np.linspace(xa, xf, 201), xa, xf, params["radius"],
                                  math.radians(th))
                 if np.min(rs) < -1e-12 * params["radius"] or \
@@ -396,7 +394,8 @@ def _profile(r: _Reader, segs, path):
 def _hull(r: _Reader, data) -> Hull:
     path = "hull"
     r.mapping(data, path, ("name", "section", "profile", "half_breadth", "half_height", "y", "z"))
-    section = r.string(data, "section", path, choices=("ellipse", "rectangle"), default="ellipse")
+    section = r.string(data, "section", path, choices=built_from_half_sizes(),
+                       default="ellipse")
     if "profile" in data:
         if "half_breadth" in data or "half_height" in data:
             raise r.err(path, "both profile and half_breadth/half_height given",
@@ -446,8 +445,7 @@ def _appendage(r: _Reader, data, path):
                    span=r.number(data, "span", path, positive=True, required=True),
                    chord=r.number(data, "chord", path, positive=True, required=True),
                    thickness=r.number(data, "thickness", path, positive=True, default=0.01))
-    # a mesh appendage (or hull) - needs the mesh module
-    from stripcoef.geometry import mesh as mesh_mod  # noqa: PLC0415  (optional path)
+    # a mesh appendage (or hull)
     mfile = r.string(data, "mesh", path, required=True)
     mpath = Path(r.file).parent / mfile
     if "transform" in data:

@@ -41,8 +41,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.geometry.bodies import section_half_chord
+from stripcoef.geometry.shapes import has_rings, section_half_chord
 from stripcoef.model import frozen_array
+from stripcoef.geometry.mesh import ring_integrals, section_geometry
+from stripcoef.hull.finsheet import FinPlanform, fins_added_mass
+from stripcoef.sections import get_shape, section_added_mass
+from stripcoef.sections.added_mass import fin_edgewise
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
                                          mode_inertia, ring_body_added_mass)
 
@@ -65,7 +69,6 @@ def strip_section_added_mass(strips, rho: float) -> np.ndarray:
     are used by :func:`hull_corrections` (they do not depend on the roll reference point).
     [assumption] sections add without interaction (strip theory, Newman 1977, sec. 7.4).
     """
-    from stripcoef.sections import section_added_mass
     out = np.zeros((strips.n, 3, 3))
     for p in strips.parts:
         np.add.at(out, p.index, section_added_mass(p, rho) * _coverage(p)[:, None, None])
@@ -191,12 +194,11 @@ def _section_chord(part, i, axis, offset):
             part.half_breadth[i]
     if abs(d) >= half_lat:
         return []
-    if part.shape != "polygon" or part.contours is None:
+    if not has_rings(part):
         h = float(section_half_chord(part.shape, half_lat, half_span, d))
         return [(centre - h, centre + h)]
     from shapely.geometry import LineString
 
-    from stripcoef.geometry.mesh import section_geometry
     geom = section_geometry(part.contours[i])
     big = 10.0 * (half_span + half_lat + abs(offset) + abs(centre) + 1.0)
     line = (LineString([(offset, -big), (offset, big)]) if axis == "z"
@@ -245,7 +247,6 @@ def _fin_axial_added_mass(strips, fin, rho) -> float:
     (benchmarks/finned_bodies.py) the fins' share of surge is within -15 % ... +37 % and the
     total within 1.3 %; the equal-area body of revolution it replaces gave -22 % ... +84 % and
     up to +5.0 % (docs/theory.md sec. 6)."""
-    from stripcoef.sections.added_mass import fin_edgewise
     cov = _coverage(fin)
     chord = float(np.sum(cov * strips.dx[fin.index]))
     if chord <= 0:
@@ -275,7 +276,7 @@ def _axial_added_mass(strips, rho, panels):
     if np.any(area > 0):
         m11 += _equivalent_bodies(strips, area, rho, 0.0, panels, (0,))[0, 0]
     for p in others:
-        if p.role == "fin" and p.shape == "rectangle":
+        if p.role == "fin" and get_shape(p.shape).plate:
             m11 += _fin_axial_added_mass(strips, p, rho)
             continue
         cov = _coverage(p)
@@ -382,7 +383,6 @@ def roll_symmetry_order(contours, max_order: int = 6) -> int:
     """
     from shapely import affinity
 
-    from stripcoef.geometry.mesh import section_geometry
     geom = section_geometry(contours)
     if geom.is_empty:
         return 2
@@ -448,15 +448,13 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
     a fin that is not a radial rectangle (span along y or z through the axis), or fins whose
     section is neither a cruciform nor an opposite pair (the 2D thickness equivalence needs one
     of the two).  ``rho`` [kg/m^3]."""
-    from stripcoef.hull.finsheet import FinPlanform
-
     hulls = [p for p in strips.parts if p.role == "hull"]
     fins = [p for p in strips.parts if p.role == "fin"]
     if len(hulls) != 1 or not fins or len(hulls) + len(fins) != len(strips.parts):
         return None
     hull = hulls[0]
     b, h = hull.half_breadth, hull.half_height
-    if hull.shape != "ellipse" or not np.allclose(b, h, rtol=1e-6) \
+    if not get_shape(hull.shape).elliptic or not np.allclose(b, h, rtol=1e-6) \
             or np.any(np.abs(hull.y) > 1e-9 * b.max()) or np.any(np.abs(hull.z) > 1e-9 * b.max()):
         return None
     xh = strips.x[hull.index]
@@ -464,7 +462,7 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
     x_fore = xh[-1] + 0.5 * strips.dx[hull.index[-1]]
     planforms, thickness = [], []
     for f in fins:
-        if f.shape != "rectangle" or len(f.index) < 2:
+        if not get_shape(f.shape).plate or len(f.index) < 2:
             return None
         axis, offset, lo, hi = _fin_span_interval(f, len(f.index) // 2)
         tip = max(abs(lo), abs(hi))
@@ -496,8 +494,6 @@ def _fins_sheet(xh, rh, x_aft, x_fore, planforms, thickness, tips, rho) -> np.nd
     """:func:`stripcoef.hull.finsheet.fins_added_mass` of the hull radius ``rh`` at the
     stations ``xh`` (float64 bytes: hashable, so that the roll correction and the assembly of
     one estimate solve it once), read-only."""
-    from stripcoef.hull.finsheet import fins_added_mass
-
     x, r = np.frombuffer(xh), np.frombuffer(rh)
     share = fins_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
                             list(thickness), list(tips), rho=rho)
@@ -529,7 +525,7 @@ def _polygon_roll_mode(strips, m44) -> int | None:
     """Symmetry order of the section with the largest roll added mass, for bodies made of
     polygon parts only (meshes); for vehicle files the finned section's
     (:func:`_fin_roll_mode`); None otherwise (roll left uncorrected)."""
-    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+    if not strips.parts or not all(has_rings(p) for p in strips.parts):
         return _fin_roll_mode(strips, m44)
     if len(strips.parts) != 1:
         return 2
@@ -705,8 +701,7 @@ def bore_area(strips):
     a bore along the whole body (a duct, a ring) gets the hollow equivalent bodies of
     :func:`hull_corrections`, anything else the solid ones.
     """
-    from stripcoef.geometry.mesh import ring_integrals
-    if not strips.parts or any(p.shape != "polygon" or p.contours is None for p in strips.parts):
+    if not strips.parts or not all(has_rings(p) for p in strips.parts):
         return None
     several = np.zeros(strips.n)        # a hole needs a second ring round it in the section
     for p in strips.parts:

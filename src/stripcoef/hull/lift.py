@@ -428,3 +428,164 @@ def slender_body_lift_matrix(x, area, x_separation: float, *, rho: float, y: flo
         integral = np.trapezoid(sa[:, None] * cols, xa, axis=0) if xa.size > 1 else np.zeros(6)
         out -= rho * np.outer(dc, integral)
     return out
+
+
+def wing_body_factors(tau) -> dict:
+    r"""Slender-body wing-body interference factors of Pitts, Nielsen & Kaattari (1957).
+
+    A fin pair (or one fin with its image) on a circular body of radius a, tip at s from the
+    axis, :math:`\tau = a/s`; each factor is a lift over the exposed fin pair's lift alone
+    (the "wing alone", span 2(s - a), at the same angle):
+
+    .. math::
+       K_{W(B)} &= \frac{2}{\pi}\,\frac{(1+\tau^4)\left[\tfrac12\arctan\tfrac12(\tau^{-1}-\tau)
+                   + \tfrac{\pi}{4}\right] - \tau^2\left[(\tau^{-1}-\tau) + 2\arctan\tau\right]}
+                   {(1-\tau)^2} \\
+       K_{B(W)} &= (1+\tau)^2 - K_{W(B)} \\
+       k_{W(B)} &= \frac{1}{\pi^2}\Big[\frac{\pi^2}{4}\frac{(\lambda+1)^2}{\lambda^2}
+                   + \pi B A - 2\pi C + B A^2 - 4 C A
+                   + \frac{8}{(\lambda-1)^2}\ln\frac{\lambda^2+1}{2\lambda}\Big] \\
+       k_{B(W)} &= K_{W(B)} - k_{W(B)}
+
+    with :math:`\lambda = 1/\tau`, :math:`A = \arcsin\frac{\lambda^2-1}{\lambda^2+1}`,
+    :math:`B = \frac{(\lambda^2+1)^2}{\lambda^2(\lambda-1)^2}`,
+    :math:`C = \frac{\lambda+1}{\lambda(\lambda-1)}`.  K: the combination at angle of attack
+    (the fin in the body's upwash, K_W(B); the lift carried onto the body, K_B(W)); k: the fin
+    deflected on a body at zero angle (its own lift k_W(B), the carry-over k_B(W), from the
+    reciprocity K_W(B) = k_W(B) + k_B(W)).  Limits: all K, k -> 1, 0, 1, 0 as tau -> 0;
+    K_W(B), K_B(W) -> 2, 2 and k_W(B), k_B(W) -> 1, 1 as tau -> 1.
+
+    Parameters
+    ----------
+    tau : float
+        a/s [-], 0 < tau < 1
+
+    Returns
+    -------
+    dict
+        ``K_WB``, ``K_BW``, ``k_WB``, ``k_BW`` [-]
+
+    References
+    ----------
+    Pitts, W. C., Nielsen, J. N. & Kaattari, G. E. (1957), NACA Report 1307, the slender-body
+    expressions for K_W(B) and k_W(B), K_W(B) + K_B(W) = (1 + a/s)^2 and the reciprocity
+    k_W(B) + k_B(W) = K_W(B) (the equation numbers of the report were not at hand: the forms
+    are checked against these identities and limits in tests/test_lift_control.py); Nielsen,
+    *Missile Aerodynamics* (1988), ch. 5.
+    """
+    t = float(tau)
+    if not 0.0 < t < 1.0:
+        raise ValueError(f"wing_body_factors needs 0 < a/s < 1, got {tau}")
+    kwb_cap = 2.0 / math.pi * ((1.0 + t ** 4) * (0.5 * math.atan(0.5 * (1.0 / t - t)) + math.pi / 4)
+                               - t * t * ((1.0 / t - t) + 2.0 * math.atan(t))) / (1.0 - t) ** 2
+    lam = 1.0 / t
+    a = math.asin((lam * lam - 1.0) / (lam * lam + 1.0))
+    b = (lam * lam + 1.0) ** 2 / (lam * lam * (lam - 1.0) ** 2)
+    c = (lam + 1.0) / (lam * (lam - 1.0))
+    kwb = (math.pi ** 2 / 4 * (lam + 1.0) ** 2 / lam ** 2 + math.pi * b * a - 2 * math.pi * c
+           + b * a * a - 4 * c * a + 8.0 / (lam - 1.0) ** 2
+           * math.log((lam * lam + 1.0) / (2 * lam))) / math.pi ** 2
+    return {"K_WB": kwb_cap, "K_BW": (1.0 + t) ** 2 - kwb_cap, "k_WB": kwb, "k_BW": kwb_cap - kwb}
+
+
+#: Turbulent flat-plate boundary layer, delta / x = 0.37 Re_x^(-1/5) (Prandtl's 1/7-power law
+#: with the Blasius friction law; Schlichting 1979, ch. XXI) [-].
+BL_COEFFICIENT, BL_EXPONENT = 0.37, 0.2
+#: Exponent of the power-law velocity profile u/U = (y/delta)^(1/7) (Schlichting 1979,
+#: ch. XXI) [-].
+BL_PROFILE = 1.0 / 7.0
+
+
+def boundary_layer_thickness(x: float, speed: float, viscosity: float) -> float:
+    r"""Thickness of a turbulent boundary layer run from the nose, as on a flat plate.
+
+    .. math:: \delta = 0.37\,x\,Re_x^{-1/5},\qquad Re_x = U x / \nu
+
+    Parameters
+    ----------
+    x : float
+        Run length from the nose [m], >= 0
+    speed : float
+        U [m/s], > 0
+    viscosity : float
+        Kinematic viscosity nu [m^2/s]
+
+    Returns
+    -------
+    float
+        delta [m]
+
+    References
+    ----------
+    Schlichting, *Boundary-Layer Theory*, 7th ed. (1979), ch. XXI (turbulent flat plate with
+    the 1/7-power profile); the closing afterbody thickens it further, which this does not
+    represent.
+    """
+    if x <= 0.0:
+        return 0.0
+    return BL_COEFFICIENT * x * (speed * x / viscosity) ** (-BL_EXPONENT)
+
+
+def boundary_layer_pressure_ratio(span: float, delta: float) -> float:
+    r"""Mean dynamic pressure over a fin's span rising out of a 1/7-power boundary layer, over q.
+
+    .. math:: \bar q / q = \frac{1}{b}\Big[\int_0^{\min(b,\delta)} (y/\delta)^{2/7}\,dy
+              + \max(b - \delta, 0)\Big]
+              = \frac{\delta}{b}\,\frac{7}{9} + 1 - \frac{\delta}{b} \quad (b \ge \delta)
+
+    each strip of the fin lifting with its local :math:`\tfrac12\rho u(y)^2` (strip
+    assumption). ``span`` b [m] > 0, ``delta`` [m] >= 0; returns the ratio [-] in (0, 1].
+
+    References
+    ----------
+    Schlichting 1979, ch. XXI (the profile); the strip-wise reduction of a tail's dynamic
+    pressure in a body's boundary layer as in Pitts, Nielsen & Kaattari 1957 (NACA Report 1307,
+    the wing's lift taken at the local dynamic pressure) and Hoerner & Borst 1985, ch. 8.
+    """
+    if span <= 0.0:
+        raise ValueError(f"boundary_layer_pressure_ratio needs a span > 0, got {span}")
+    if delta <= 0.0:
+        return 1.0
+    p = 2.0 * BL_PROFILE
+    inside = min(span, delta)
+    return (delta * (inside / delta) ** (p + 1.0) / (p + 1.0) + max(span - delta, 0.0)) / span
+
+
+def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
+    r"""Local axial speed over the free stream near a body of revolution in axial potential flow.
+
+    The body as a line of sources of strength :math:`U\,dS/ds` per unit length along its axis
+    (s from the nose, aft positive; Munk's slender-body source distribution), whose axial
+    perturbation velocity at (s, r) is
+
+    .. math:: \frac{u}{U} = 1 + \frac{1}{4\pi}\int_0^l \frac{dS}{d\sigma}\,
+              \frac{s - \sigma}{[(s - \sigma)^2 + r^2]^{3/2}}\,d\sigma
+
+    below 1 over a closing afterbody (the flow slows towards the tail's stagnation point), just
+    above 1 along the middle body.
+
+    Parameters
+    ----------
+    s : (n,) array
+        Stations from the nose, increasing [m]
+    area : (n,) array
+        Cross-section area S(s) [m^2]
+    s_point, r_point : float
+        Where [m]: distance from the nose and from the axis (r > 0)
+
+    Returns
+    -------
+    float
+        u/U [-]
+
+    References
+    ----------
+    Newman, *Marine Hydrodynamics* (1977), sec. 7.3-7.4 (slender body in axial flow: source
+    strength U S'(x)); Thwaites (ed.), *Incompressible Aerodynamics* (1960), ch. IX (line
+    source distributions for bodies of revolution); Hoerner & Borst 1985, ch. 8 (tail surfaces
+    in the reduced dynamic pressure at a body's stern).
+    """
+    s = np.asarray(s, dtype=float)
+    ds = np.gradient(np.asarray(area, dtype=float), s)
+    d = s_point - s
+    return 1.0 + float(np.trapezoid(ds * d / (d * d + r_point * r_point) ** 1.5, s)) / (4.0 * math.pi)

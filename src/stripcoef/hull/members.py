@@ -69,10 +69,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+import warnings
+
 import numpy as np
 
-from stripcoef.strips import shift_section_matrices
-from stripcoef.strips import Part, Strips
+from stripcoef.conventions import transform_matrix
+from stripcoef.errors import ModelWarning
+from stripcoef.geometry.mesh import rings_integrals, section_geometry, section_properties
+from stripcoef.hull.corrections import (DEFAULT_PANELS, _polygon_roll_mode, apply_corrections,
+                                        hull_corrections, roll_relief)
+from stripcoef.hull.lamb import lamb_k_factors
+from stripcoef.sections import get_shape, section_added_mass
+from stripcoef.sections.panel import added_mass_sections
+from stripcoef.strips import Part, Strips, shift_section_matrices, strip_added_mass
 
 #: Overlap area below which two components of adjacent strips are not connected
 #: (relative to the smaller component's area).
@@ -108,7 +117,6 @@ class Entity:
 
 def _components(rings):
     """Shapely polygons (outer ring with its holes) of one section's rings."""
-    from stripcoef.geometry.mesh import section_geometry
     geom = section_geometry(rings)
     return [g for g in getattr(geom, "geoms", [geom]) if not g.is_empty and g.area > 0]
 
@@ -179,7 +187,6 @@ def _junction_runs(comps):
 
 
 def _polygon_part(name, index, polys_per_strip, length, role):
-    from stripcoef.geometry.mesh import section_properties
     contours = [_rings(ps) for ps in polys_per_strip]
     props = section_properties(contours)
     return Part(name=name, shape="polygon", index=np.asarray(index), y=props[:, 1],
@@ -208,10 +215,8 @@ def decompose(strips: Strips, rho: float, joint=None,
     -------
     list of Entity or None
     """
-    from stripcoef.sections import section_added_mass
-    from stripcoef.sections.panel import added_mass_sections
-
-    if len(strips.parts) != 1 or strips.parts[0].shape != "polygon" or strips.holes:
+    if len(strips.parts) != 1 or not get_shape(strips.parts[0].shape).contoured \
+            or strips.holes:
         return None
     part = strips.parts[0]
     if part.contours is None or not np.allclose(part.coverage, 1.0):
@@ -386,8 +391,6 @@ def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
     now +0.10 kg).  ``polys_per_strip``: the piece's shapely
     polygons per strip [m]; ``length`` l [m].  Returns (s_y, s_z) [-].
     """
-    from stripcoef.hull.lamb import lamb_k_factors
-    from stripcoef.geometry.mesh import rings_integrals
     rings = [np.asarray(p.exterior.coords)[:-1] for ps in polys_per_strip for p in ps]
     ints = rings_integrals(rings)                       # per ring: A, S_y, S_z, Iyy, Izz, Iyz
     a = float(np.abs(ints[:, 0]).sum())
@@ -412,9 +415,6 @@ def crossing_weights(polys_per_strip, length: float) -> np.ndarray:
 def _too_short(what, x):
     """A member or junction one strip long cannot have its own equivalent body: warn and let
     the caller use the single equivalent body of the whole body (nothing is dropped)."""
-    import warnings
-
-    from stripcoef.errors import ModelWarning
     warnings.warn(f"a {what} at x = {x:.4g} m spans a single strip: the whole body is corrected "
                   f"as one (use more strips for the per-member correction)", ModelWarning,
                   stacklevel=3)
@@ -476,11 +476,6 @@ def member_added_mass(strips: Strips, rho: float, center, entities=None, joint=N
     ----------
     Module docstring; Fossen (2011) sec. 7.5.3.
     """
-    from stripcoef.strips import strip_added_mass
-    from stripcoef.conventions import transform_matrix
-    from stripcoef.hull.corrections import (DEFAULT_PANELS, _polygon_roll_mode, apply_corrections,
-                              hull_corrections, roll_relief)
-
     panels = DEFAULT_PANELS if panels is None else int(panels)
     if entities is None:
         entities = decompose(strips, rho, joint, section_panels)

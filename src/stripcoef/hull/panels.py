@@ -506,16 +506,57 @@ def _check_closed(faces, where):
                                   "load_mesh, which repairs what it can)")
 
 
+def remeshed_levels(vertices, faces, panels: int, count: int = 3):
+    r"""``count`` isotropic remeshes of the mesh (:func:`stripcoef.hull.remesh.remesh_family`)
+    at :math:`N_k = N/2^{count-1-k}` panels (N = ``panels``, coarse to fine: the edge shrinks by
+    :math:`\sqrt2` a level) and their crease angle [deg], or ``None`` when the remesher is not
+    installed or refuses one.  One family of uniform panellings of the same surface, whatever
+    the input's tessellation."""
+    from stripcoef.hull import remesh
+
+    if not remesh.available():
+        return None
+    area = _area(vertices, faces)
+    edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
+             for k in range(count)]
+    return remesh.remesh_family(vertices, faces, edges)
+
+
+#: Panel families of :func:`panel_added_mass` ("auto": the isotropic remesh when the remesher
+#: is installed, else the refined or coarsened input of :func:`panel_levels`).
+FAMILIES = ("auto", "remesh", "input")
+
+
+def _solve_level(pv, pf, scale, rho, about, near_factor):
+    ptri = pv[pf]
+    keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
+                          axis=1) > 1e-12 * scale ** 2
+    return int(keep.sum()), solve_added_mass(ptri[keep], rho=rho, about=about,
+                                             near_factor=near_factor)
+
+
 def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = DEFAULT_PANELS,
                      extrapolate: bool = True, near_factor: float = NEAR_FACTOR,
-                     source: str = "") -> tuple[np.ndarray, dict]:
+                     source: str = "", family: str = "auto", tolerance: float | None = None,
+                     max_panels: int | None = None) -> tuple[np.ndarray, dict]:
     r"""6x6 added mass of a closed body in unbounded fluid by the 3D panel method.
 
-    .. math:: A = \frac{N_2 A_2 - N_1 A_1}{N_2 - N_1},\qquad
-              A_k = -\rho \sum_p a_p\, n(x_p)\, \Phi_k(x_p)^T
+    .. math:: A = A_1 + \frac{A_1 - A_2}{r_{21}^2 - 1},\qquad
+              A_k = -\rho \sum_p a_p\, n(x_p)\, \Phi_k(x_p)^T,\qquad
+              r_{21} = \sqrt{N_1/N_2}
 
-    (module docstring; Richardson extrapolation of the two resolutions N_1 < N_2 of
-    :func:`panel_levels`, the error of constant panels ~ 1/N).  Symmetric part returned.
+    (module docstring; Richardson extrapolation of the two finest levels, the error of
+    constant panels ~ 1/N, i.e. :math:`(N_1 A_1 - N_2 A_2)/(N_1 - N_2)`), symmetric part.
+    The levels: with the remesher (``family`` "auto" or "remesh", the ``remesh`` extra) three
+    isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
+    ("input"), the two panellings of :func:`panel_levels`.  The estimated error of each term
+    is the grid convergence index of the finest level (:mod:`stripcoef.hull.convergence`,
+    Roache 1994/1998: :math:`F_s = 1.25` with three levels and the observed order, 3 with two)
+    plus the extrapolation's step from it (the index is a band about the finest solve; the
+    reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
+    While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
+    and a level of twice the finest panels fits within ``max_panels``, that level is added
+    and the estimate repeated on the finest three ("refine until converged").
 
     Parameters
     ----------
@@ -526,19 +567,30 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     about : (3,)
         Reference point of the rotations and moments, body axes [m].
     panels : int
-        Panels of the finer resolution (:data:`DEFAULT_PANELS`; at most :data:`MAX_PANELS`).
+        Panels of the finest first resolution (:data:`DEFAULT_PANELS`; at most
+        :data:`MAX_PANELS`).
     extrapolate : bool
-        Richardson from two resolutions (default); ``False``: one solve at ``panels``.
+        Several resolutions, extrapolated (default); ``False``: one solve at ``panels``.
     source : str
         Name of the mesh for error messages.
+    family : str
+        "auto", "remesh" (an error without the remesher) or "input" (:data:`FAMILIES`).
+    tolerance : float
+        Relative error [-] the refinement aims at (default :data:`ERROR_TOLERANCE`).
+    max_panels : int
+        Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`).
 
     Returns
     -------
     (ndarray (6, 6), dict)
-        M_A [kg, kg m, kg m^2] and ``{"panels": (N_1, N_2), "asymmetry": max|A - A^T| /
-        max|A| of the finer solve [-], "error": the estimated error of each term
-        (:func:`richardson_error`; ``None`` without extrapolation)}``.
+        M_A [kg, kg m, kg m^2] and ``{"panels": the levels' panel counts, coarse to fine,
+        "asymmetry": max|A - A^T| / max|A| of the finest solve [-], "error": the estimated
+        error of each term [kg, kg m, kg m^2] (``None`` without extrapolation), "order": the
+        order used per term [-], "safety": the safety factor per term [-], "family": the
+        panellings' family, "converged": whether every term is within ``tolerance``}``.
     """
+    from stripcoef.hull.convergence import grid_convergence_index, richardson
+
     # several bodies or overlapping parts: one closed surface (MeshBody.united, a boolean union)
     body = mesh.united() if hasattr(mesh, "united") else getattr(mesh, "mesh", mesh)
     v = np.asarray(body.vertices, float)
@@ -548,6 +600,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     if not (isinstance(panels, (int, np.integer)) and 50 <= panels <= MAX_PANELS):
         raise InputError("panel count out of range", key="panels", value=panels,
                          expected=f"an integer from 50 to {MAX_PANELS}")
+    if family not in FAMILIES:
+        raise InputError("unknown panel family", key="family", value=family,
+                         expected=" or ".join(FAMILIES))
+    tol = ERROR_TOLERANCE if tolerance is None else float(tolerance)
+    cap = min(MAX_PANELS, 2 * panels) if max_panels is None else min(MAX_PANELS, max_panels)
     if len(f) > MAX_INPUT_FACES:
         raise InputError("mesh too large for the panel method's time budget", file=where,
                          key="mesh", value=f"{len(f)} faces",
@@ -568,46 +625,83 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         raise InputError("the mesh's normals point into the body or it encloses no volume",
                          file=where, key="mesh", value=f"volume {vol:.3g} m^3",
                          expected="outward normals (load_mesh orients them)")
-    if extrapolate:
+    if not extrapolate:
+        lv = coarsen(v, f, panels) if len(f) > panels else refine(v, f, panels)
+        n, a = _solve_level(*lv, scale, rho, about, near_factor)
+        asym = float(np.abs(a - a.T).max() / np.abs(a).max())
+        return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
+                                 "order": None, "safety": None, "family": "input",
+                                 "converged": None}
+    family_out = remeshed_levels(v, f, panels) if family in ("auto", "remesh") else None
+    levels, angle = family_out if family_out is not None else (None, None)
+    if levels is None and family == "remesh":
+        raise InputError("the isotropic remesher is not installed or could not follow the "
+                         "surface", file=where, key="family", value=family,
+                         expected="pip install 'stripcoef[remesh]' (pymeshlab), or the input "
+                                  "family")
+    used = "isotropic remesh (pymeshlab)" if levels is not None else "refined/coarsened input"
+    if levels is None:
         levels = panel_levels(v, f, panels, where)
-    else:
-        levels = [coarsen(v, f, panels) if len(f) > panels else refine(v, f, panels)]
-    counts, mats = [], []
+    counts, mats, nominal = [], [], panels
     for pv, pf in levels:
-        ptri = pv[pf]
-        keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
-                              axis=1) > 1e-12 * scale ** 2
-        counts.append(int(keep.sum()))
-        mats.append(solve_added_mass(ptri[keep], rho=rho, about=about, near_factor=near_factor))
-    a = mats[-1]
-    error = None
-    if extrapolate:
-        if counts[1] <= counts[0]:
-            raise InputError("the two panel resolutions coincide", file=where, key="panels",
-                             value=counts, expected="a finer second resolution (more panels)")
-        n1, n2 = counts
-        a = (n2 * mats[1] - n1 * mats[0]) / (n2 - n1)
-        error = richardson_error(mats[0], mats[1], a)
+        n, a = _solve_level(pv, pf, scale, rho, about, near_factor)
+        counts.append(n)
+        mats.append(a)
+    while True:
+        if counts[-1] <= counts[-2]:
+            raise InputError("the panel resolutions do not refine", file=where, key="panels",
+                             value=counts, expected="a finer last resolution (more panels)")
+        a = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
+        gci, order, safety = grid_convergence_index(mats[-3:], counts[-3:])
+        error = estimated_error(mats[-1], a, gci)
+        converged = bool(relative_error(a, error).max() <= tol)
+        nxt = 2 * nominal
+        if converged or nxt > cap or used.startswith("refined"):
+            break
+        from stripcoef.hull import remesh
+
+        lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(_area(v, f), nxt),
+                                     feature_angle=angle)
+        if lv is None or len(lv[1]) < 1.25 * len(levels[-1][1]):
+            break
+        levels.append(lv)
+        n, m = _solve_level(*lv, scale, rho, about, near_factor)
+        counts.append(n)
+        mats.append(m)
+        nominal = nxt
     asym = float(np.abs(mats[-1] - mats[-1].T).max() / np.abs(mats[-1]).max())
-    return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym, "error": error}
+    return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym, "error": error,
+                             "order": order, "safety": safety, "family": used,
+                             "converged": converged}
+
+
+def estimated_error(fine, extrapolated, gci) -> np.ndarray:
+    r"""Estimated error of each term of the extrapolated added mass [kg, kg m, kg m^2].
+
+    .. math:: E_{ij} = \max\big(\mathrm{GCI}_{ij} + |A_{ij} - A^{(1)}_{ij}|,\
+              |A^{(1)}_{ij} - A^{(1)}_{ji}|\big)
+
+    symmetrised: the grid convergence index of the finest level :math:`A^{(1)}`
+    (:func:`stripcoef.hull.convergence.grid_convergence_index`, Roache 1998 ch. 5: a band about
+    :math:`A^{(1)}`) moved to the extrapolated value by the step between them (triangle
+    inequality), and no smaller than the finest solve's asymmetry (the exact matrix is
+    symmetric, Newman 1977 eq. 4.150).  ``fine`` is not symmetrised."""
+    fine = np.asarray(fine, float)
+    band = np.asarray(gci, float) + np.abs(np.asarray(extrapolated, float) - fine)
+    band = np.maximum(band, band.T)
+    return np.maximum(band, np.abs(fine - fine.T))
 
 
 def richardson_error(coarse, fine, extrapolated) -> np.ndarray:
-    r"""Estimated error of each term of the extrapolated added mass [kg, kg m, kg m^2].
-
-    .. math:: E_{ij} = \max\big(|A_{ij} - A^{(2)}_{ij}|,\ |A^{(2)}_{ij} - A^{(2)}_{ji}|\big)
-
-    symmetrised: the Richardson correction of the finer level (the whole step from the finer
-    solve to the extrapolation, which bounds the extrapolated value's error when the
-    levels are in the asymptotic range: Roache 1998, "Verification and Validation in
-    Computational Science and Engineering", sec. 5.4 and 5.6, the grid convergence index
-    with a safety factor of 1 on two grids), and no smaller than the finer solve's asymmetry
-    (the exact matrix is symmetric, Newman 1977 eq. 4.150).  ``coarse``, ``fine``: the two
-    levels' matrices (not symmetrised), ``extrapolated``: their extrapolation."""
+    r"""Estimated error [kg, kg m, kg m^2] of a two-level extrapolation: the two-grid index
+    (:math:`F_s = 3`, Roache 1994) about the finer level plus the step to the extrapolation
+    (:func:`estimated_error`).  ``coarse``, ``fine``: the two levels' matrices (not
+    symmetrised), ``extrapolated``: their extrapolation."""
     fine = np.asarray(fine, float)
     step = np.abs(np.asarray(extrapolated, float) - fine)
-    step = np.maximum(step, step.T)
-    return np.maximum(step, np.abs(fine - fine.T))
+    from stripcoef.hull.convergence import SAFETY_TWO_GRIDS
+
+    return estimated_error(fine, extrapolated, SAFETY_TWO_GRIDS * step)
 
 
 #: Largest estimated error of a term (:func:`richardson_error`) relative to the diagonal scale
@@ -616,9 +710,20 @@ def richardson_error(coarse, fine, extrapolated) -> np.ndarray:
 ERROR_TOLERANCE = 0.05
 
 
+#: A diagonal term below this fraction of the largest of its block (translations or
+#: rotations) is scaled by that fraction instead [-]: the roll added mass of a body of
+#: revolution is zero, and an error relative to a vanishing term says nothing (the same 1 %
+#: below which the benchmarks call a coupling insignificant).
+NEGLIGIBLE = 0.01
+
+
 def relative_error(matrix, error) -> np.ndarray:
     r"""Each term's estimated error over the diagonal scale, :math:`E_{ij} /
-    \sqrt{A_{ii} A_{jj}}` [-] (the diagonal terms relative to themselves)."""
-    d = np.sqrt(np.abs(np.diag(np.asarray(matrix, float))))
+    \sqrt{A_{ii} A_{jj}}` [-] (the diagonal terms relative to themselves), each
+    :math:`|A_{ii}|` no smaller than :data:`NEGLIGIBLE` of the largest of its block."""
+    d = np.abs(np.diag(np.asarray(matrix, float))).copy()
+    for block in (slice(0, 3), slice(3, 6)):
+        d[block] = np.maximum(d[block], NEGLIGIBLE * d[block].max())
+    d = np.sqrt(d)
     scale = np.outer(d, d)
     return np.asarray(error, float) / np.where(scale > 0, scale, np.inf)

@@ -30,6 +30,10 @@ VELOCITY_FRAMES = ("body", "world")
 MISSING = ("error", "drop")
 HOLDS = ("linear", "previous")
 TIME_ORIGINS = ("start", "absolute")
+#: How the reference column of ``align.signal`` follows this stream's column: ``value`` (the
+#: same quantity logged twice) or ``rate`` (its rate of change does: a commanded force and the
+#: measured velocity; biased by the actuator's delay, :mod:`stripcoef.ingest.clock`).
+ALIGN_RESPONSES = ("value", "rate")
 BAG_TIMES = ("header", "bag")
 
 _TOP_KEYS = ("version", "frames", "streams", "position", "attitude", "velocity", "rates",
@@ -46,6 +50,19 @@ class TimeSpec:
     rate: float | None = None
     start: float = 0.0
     source: str | None = None
+    retime: bool = False
+
+
+@dataclass(frozen=True)
+class Align:
+    """A stream's clock offset to another stream's clock [s]: ``offset`` given (it overrides
+    any estimate), or estimated by cross-correlation of ``signal`` (this stream's column, the
+    reference stream's column) within +-``max`` seconds (:mod:`stripcoef.ingest.clock`)."""
+    to: str | None = None
+    signal: tuple = ()
+    max: float = 5.0
+    offset: float | None = None
+    response: str = "value"
 
 
 @dataclass(frozen=True)
@@ -62,6 +79,7 @@ class StreamSpec:
     time: TimeSpec = field(default_factory=TimeSpec)
     rate: float | None = None
     max_gap: float | None = None
+    align: Align | None = None
 
 
 @dataclass(frozen=True)
@@ -167,7 +185,7 @@ def _time_spec(r: _Reader, obj, key, *, topic: bool) -> TimeSpec:
                     "{rate: HZ, start: S}")
     if isinstance(obj, str):
         obj = {"source": obj} if topic and obj in BAG_TIMES else {"column": obj}
-    r.mapping(obj, key, ("column", "unit", "offset", "rate", "start", "source"))
+    r.mapping(obj, key, ("column", "unit", "offset", "rate", "start", "source", "retime"))
     has_col, has_rate, has_src = "column" in obj, "rate" in obj, "source" in obj
     if has_col + has_rate + has_src != 1:
         raise r.err(key, "one time source needed", sorted(obj),
@@ -176,7 +194,13 @@ def _time_spec(r: _Reader, obj, key, *, topic: bool) -> TimeSpec:
         raise r.err(f"{key}.source", "applies to bag topics only", obj["source"],
                     "column or rate for a CSV stream")
     unit = r.choice(obj.get("unit", "s"), f"{key}.unit", tuple(TIME_UNITS))
-    return TimeSpec(column=r.name(obj["column"], f"{key}.column") if has_col else None,
+    retime = obj.get("retime", False)
+    if not isinstance(retime, bool):
+        raise r.err(f"{key}.retime", "not true/false", retime, "true or false")
+    if retime and not has_col:
+        raise r.err(f"{key}.retime", "re-times the stamps of a time column", retime,
+                    "a time column (receive times) with it")
+    return TimeSpec(retime=retime,column=r.name(obj["column"], f"{key}.column") if has_col else None,
                     unit=unit, offset=r.number(obj.get("offset", 0.0), f"{key}.offset"),
                     rate=r.number(obj["rate"], f"{key}.rate", positive=True) if has_rate
                     else None,
@@ -188,7 +212,7 @@ def _time_spec(r: _Reader, obj, key, *, topic: bool) -> TimeSpec:
 def _stream(r: _Reader, name, obj) -> StreamSpec:
     key = f"streams.{name}"
     r.mapping(obj or {}, key, ("file", "topic", "header", "columns", "delimiter", "comment",
-                               "missing", "time", "rate", "max_gap"))
+                               "missing", "time", "rate", "max_gap", "align"))
     obj = obj or {}
     if "file" in obj and "topic" in obj:
         raise r.err(key, "both file and topic", expected="a CSV file or a bag topic")
@@ -222,7 +246,32 @@ def _stream(r: _Reader, name, obj) -> StreamSpec:
         time=_time_spec(r, obj.get("time"), f"{key}.time", topic=topic is not None),
         rate=r.number(obj.get("rate"), f"{key}.rate", positive=True, allow_none=True),
         max_gap=r.number(obj.get("max_gap"), f"{key}.max_gap", positive=True,
-                         allow_none=True))
+                         allow_none=True),
+        align=_align(r, obj.get("align"), f"{key}.align") if "align" in obj else None)
+
+
+def _align(r: _Reader, obj, key) -> Align:
+    """``align: {to: STREAM, signal: [COLUMN, REFERENCE_COLUMN], max: S}`` (estimated) and/or
+    ``align: {offset: S}`` (given: overrides the estimate)."""
+    r.mapping(obj, key, ("to", "signal", "max", "offset", "response"))
+    offset = r.number(obj.get("offset"), f"{key}.offset", allow_none=True)
+    if "to" not in obj and offset is None:
+        raise r.err(key, "nothing to align with", sorted(obj),
+                    "to: STREAM with signal: [COLUMN, REFERENCE_COLUMN] (estimated), or "
+                    "offset: SECONDS (given)")
+    signal = ()
+    if "to" in obj:
+        sig = obj.get("signal")
+        if not isinstance(sig, list) or len(sig) != 2:
+            raise r.err(f"{key}.signal", "not two column names", sig,
+                        "[a column of this stream, the column of stream "
+                        f"{obj['to']!r} that logs the same quantity]")
+        signal = (r.name(sig[0], f"{key}.signal[0]"), r.name(sig[1], f"{key}.signal[1]"))
+    return Align(to=r.name(obj["to"], f"{key}.to") if "to" in obj else None, signal=signal,
+                 max=r.number(obj.get("max", 5.0), f"{key}.max", positive=True),
+                 offset=offset,
+                 response=r.choice(obj.get("response", "value"), f"{key}.response",
+                                   ALIGN_RESPONSES))
 
 
 def _columns(r, obj, key, n, *, allow_null=True):
@@ -388,6 +437,14 @@ def parse_map(data, *, path: str = "<map>") -> LogMap:
     blocks = [position, attitude, velocity, rates, wrench, *thrusters.values(),
               *channels.values()]
     used = {b.stream for b in blocks if b is not None and b.stream}
+    for name, spec in streams.items():
+        if spec.align is not None and spec.align.to is not None:
+            if spec.align.to not in streams or spec.align.to == name:
+                raise r.err(f"streams.{name}.align.to", "unknown stream", spec.align.to,
+                            "another stream of the map: "
+                            + ", ".join(k for k in streams if k != name))
+            if name in used:
+                used.add(spec.align.to)
     if not used:
         raise r.err("", "nothing mapped", expected="at least one of position, attitude, "
                     "velocity, rates, wrench, thrusters, channels")

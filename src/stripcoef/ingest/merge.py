@@ -6,7 +6,8 @@ The rules (docs/logs.md):
    (``scale * (raw - offset)``, angle and time units), the package's frames (NED, FRD:
    :mod:`.attitude`), and the derived quantities are computed on the stream's own samples:
    body rates from the attitude (:func:`.attitude.body_rates`), earth-fixed velocity from the
-   position (central differences, ``numpy.gradient``).
+   position (central differences, ``numpy.gradient``). A stream with ``align`` is moved onto
+   its reference stream's clock first (:func:`align_clocks`, :mod:`.clock`).
 2. The log spans the overlap of every stream used, [max of the first times, min of the last
    times]; an empty overlap is an error listing each stream's span. Nothing is extrapolated.
 3. The grid is uniform at ``output.rate`` (default: the fastest rate of the state streams,
@@ -39,8 +40,14 @@ from stripcoef.ingest.attitude import (body_rates, euler_from_matrices, euler_ma
                                        quaternion_matrices, to_ned_frd)
 from stripcoef.ingest.bags import is_bag, read_bag_streams
 from stripcoef.ingest.mapfile import LogMap, load_map
-from stripcoef.ingest.streams import read_csv_stream
+from stripcoef.files import MAX_TEXT_BYTES
+from stripcoef.ingest.streams import read_csv_stream, stream_files
 from stripcoef.logfile import COMMAND_PREFIX, Log, check_magnitudes, read_log
+
+
+#: Rows of a stream turned into rotation matrices at a time [-]: the matrices and their
+#: temporaries (about 300 bytes a row) stay near 60 MB however long the log.
+BLOCK_ROWS = 200_000
 
 
 def _needed(logmap: LogMap) -> dict:
@@ -48,7 +55,62 @@ def _needed(logmap: LogMap) -> dict:
     for _, block in logmap.blocks():
         if block.stream:
             need[block.stream] += [c for c in block.columns if c is not None]
-    return need
+    for name, spec in logmap.streams.items():
+        if spec.align is not None and spec.align.to is not None:
+            need[name].append(spec.align.signal[0])
+            need[spec.align.to].append(spec.align.signal[1])
+    return {k: list(dict.fromkeys(v)) for k, v in need.items()}
+
+
+def align_clocks(logmap: LogMap, tables: dict) -> dict:
+    """The tables with every ``align``-ed stream's stamps shifted onto its reference stream's
+    clock (:mod:`.clock`: the offset given, else estimated by cross-correlation of the shared
+    signal); a stream aligned to an aligned stream follows it (a chain), a cycle is an error.
+    Each shift is reported: the table's ``info["clock_offset"]`` and a
+    :class:`~stripcoef.errors.SamplingWarning` naming the override key."""
+    from stripcoef.ingest.clock import estimate_offset, estimate_response_offset
+
+    todo = {k: s.align for k, s in logmap.streams.items() if s.align is not None}
+    tables = dict(tables)
+    while todo:
+        ready = [k for k, a in todo.items() if a.to is None or a.to not in todo]
+        if not ready:
+            raise InputError("streams aligned to each other in a cycle", file=logmap.path,
+                             key="streams", value=sorted(todo),
+                             expected="align.to chains that end at a stream without align")
+        for name in ready:
+            a = todo.pop(name)
+            tb = tables[name]
+            key = f"streams.{name}.align"
+            if a.offset is not None:
+                info = {"offset_s": a.offset, "to": a.to, "method": "given"}
+            else:
+                ref = tables[a.to]
+                base = np.floor(min(tb.t[0], ref.t[0]))
+                how = estimate_response_offset if a.response == "rate" else estimate_offset
+                est = how(np.asarray(tb.t - base, float), tb.column(a.signal[0]),
+                          np.asarray(ref.t - base, float), ref.column(a.signal[1]),
+                          max_offset=a.max, where=logmap.path, key=key)
+                info = {"offset_s": est.offset, "to": a.to,
+                        "method": "response fit" if a.response == "rate" else
+                        "cross-correlation",
+                        "signal": list(a.signal), "correlation": est.correlation,
+                        "lag_step_s": est.step}
+                rate = a.response == "rate"
+                what = (f"the best fit of the rate of {a.to}.{a.signal[1]} by "
+                        f"{name}.{a.signal[0]} (multiple correlation" if rate else
+                        f"cross-correlation of {name}.{a.signal[0]} with {a.to}.{a.signal[1]} "
+                        "(peak")
+                warnings.warn(f"{logmap.path}: stream {name!r}: clock offset "
+                              f"{est.offset:+.4f} s to stream {a.to!r} estimated by {what} "
+                              f"{est.correlation:.3f}, lag step {est.step:.4g} s"
+                              f"{'; it includes the actuator delay' if rate else ''}); "
+                              f"to override: {key}.offset",
+                              SamplingWarning, stacklevel=3)
+            tables[name] = dataclasses.replace(
+                tb, t=tb.t + np.longdouble(info["offset_s"]),
+                info={**tb.info, "clock_offset": info})
+    return tables
 
 
 def read_streams(source, logmap: LogMap) -> dict:
@@ -57,7 +119,7 @@ def read_streams(source, logmap: LogMap) -> dict:
     ``source`` itself, topics read the bag ``source``."""
     source = Path(source) if source is not None else None
     need = _needed(logmap)
-    tables, topics = {}, []
+    tables, topics, paths = {}, [], []
     for name, spec in logmap.streams.items():
         if spec.topic is not None:
             if source is None or not is_bag(source):
@@ -78,10 +140,20 @@ def read_streams(source, logmap: LogMap) -> dict:
             if not path.is_absolute():          # in the folder that holds LOG (else the map)
                 base = source.parent if source is not None else Path(logmap.path).parent
                 path = base / path
+        paths.append((name, spec, path))
+    files = {f.resolve() for _, spec, path in paths for f in stream_files(path, spec)
+             if f.is_file()}                     # a file two streams read counts once
+    total = sum(f.stat().st_size for f in files)
+    if total > MAX_TEXT_BYTES:
+        raise InputError(f"the streams' files total {total / 2**20:.0f} MiB", file=logmap.path,
+                         key="streams", expected=f"at most {MAX_TEXT_BYTES // 2**20} MiB "
+                         "together (they are merged in memory): fewer chunk files, a shorter "
+                         "log or a decimated one")
+    for name, spec, path in paths:
         tables[name] = read_csv_stream(path, spec, need[name])
     if topics:
         tables.update(read_bag_streams(source, topics))
-    return tables
+    return align_clocks(logmap, tables)
 
 
 def _values(block, table) -> np.ndarray:
@@ -153,8 +225,14 @@ def _attitude_columns(logmap, tables, grid, cols):
     if block is None:
         return None
     tb = tables[block.stream]
-    euler = euler_from_matrices(_attitude_matrices(logmap, tb))
+    euler = np.empty((tb.t.size, 3))
+    for a in range(0, tb.t.size, BLOCK_ROWS):     # in blocks: bounded memory (issue 36)
+        part = dataclasses.replace(tb, t=tb.t[a:a + BLOCK_ROWS],
+                                   columns={k: v[a:a + BLOCK_ROWS] for k, v in
+                                            tb.columns.items()})
+        euler[a:a + BLOCK_ROWS] = euler_from_matrices(_attitude_matrices(logmap, part))
     euler[:, 0] = np.unwrap(euler[:, 0])
+    euler[:, 2] = np.unwrap(euler[:, 2])          # across the blocks' seams
     euler_grid = _linear(tb.t, euler, grid)
     present = [True] * 3 if block.kind == "quaternion" else [c is not None for c in block.columns]
     for i in range(3):
@@ -166,7 +244,10 @@ def _attitude_columns(logmap, tables, grid, cols):
         if missing and b is not None and (b.frame == "world" or b.derive):
             warnings.warn(f"{logmap.path}: attitude has no {', '.join(missing)}: taken as 0 to "
                           f"{what}", ModelWarning, stacklevel=4)
-    return euler_matrices(*euler_grid.T)
+    r_grid = np.empty((grid.size, 3, 3))
+    for a in range(0, grid.size, BLOCK_ROWS):
+        r_grid[a:a + BLOCK_ROWS] = euler_matrices(*euler_grid[a:a + BLOCK_ROWS].T)
+    return r_grid
 
 
 def _position_columns(logmap, tables, grid, cols, a_w):
@@ -269,7 +350,7 @@ def _kept_rows(logmap, t, grid, tables) -> np.ndarray:
     idx = np.nonzero(keep)[0]
     for k in np.nonzero(np.diff(idx) > 1)[0]:
         warnings.warn(f"{logmap.path}: excluded range or stream gap leaves a gap in t from "
-                      f"{t[idx[k]]:.6g} to {t[idx[k + 1]]:.6g} s (methods that difference "
+                      f"{t[idx[k]]:.12g} to {t[idx[k + 1]]:.12g} s (methods that difference "
                       "consecutive samples span it)", SamplingWarning, stacklevel=4)
     return idx
 
@@ -294,7 +375,8 @@ def build_log(logmap: LogMap, tables: dict, *, source: str = "<streams>") -> Log
     meta = {"map": logmap.path, "time_base": int(base), "t0": float(grid[0]),
             "rate": float(rate),
             "streams": {k: {"samples": int(tb.t.size), "median_rate": tb.median_rate,
-                            "span": [float(tb.t[0] + base), float(tb.t[-1] + base)]}
+                            "span": [float(tb.t[0] + base), float(tb.t[-1] + base)],
+                            **tb.info}
                         for k, tb in tables.items()},
             "excluded": [list(r) for r in logmap.exclude]}
     return Log(out, source=source, meta=meta)

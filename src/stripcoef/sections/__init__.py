@@ -8,21 +8,31 @@
 - ``cross_flow_drag(part, reynolds_y, reynolds_z) -> (cd_y, cd_z)``: the 2D drag coefficients
   for flow along y and along z (reference heights: 2h and 2b); ``cd_y`` depends on
   ``reynolds_y`` only and ``cd_z`` on ``reynolds_z`` only (the damping's power-law exponents
-  perturb both in one call).
+  perturb both in one call);
+- ``wetted_perimeter(part) -> (k,)``: the wetted perimeter of each section [m] (friction drag);
+
+and, from its :class:`~stripcoef.geometry.shapes.ShapeGeometry` in
+:data:`stripcoef.geometry.shapes.GEOMETRY` (the layer below, which the geometry reads), its
+outline, section properties, chord, outer area and the flags that select formulas in
+``hull`` and ``assembly`` (``contoured``, ``elliptic``, ``plate``, ``corner_roll``). A new
+shape is one entry in each of the two tables (a test checks they name the same shapes).
 
 An unknown shape is an error listing the registered ones (:func:`get_shape`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Callable
 
 import numpy as np
 
 from stripcoef.errors import unknown_name
+from stripcoef.geometry.shapes import GEOMETRY, ShapeGeometry
 from stripcoef.sections import added_mass as am
 from stripcoef.sections import drag
+from stripcoef.sections.panel import added_mass_sections, part_rings
+from stripcoef.sections.polygon_drag import cross_flow_cd
 
 
 def _added_mass_ellipse(part, rho, panels=None):
@@ -36,7 +46,6 @@ def _added_mass_rectangle(part, rho, panels=None):
 
 
 def _added_mass_polygon(part, rho, panels=None):
-    from stripcoef.sections.panel import added_mass_sections, part_rings  # noqa: PLC0415 (mesh path only)
     # the part's rings, cleaned and oriented once (shared with the cross-flow drag)
     mats = added_mass_sections(part_rings(part), rho=rho, about=None, panels=panels)
     return np.asarray(mats, dtype=float)
@@ -62,41 +71,71 @@ def _drag_rectangle(part, re_y, re_z):
 
 
 def _drag_polygon(part, re_y, re_z):
-    from stripcoef.sections.polygon_drag import cross_flow_cd  # noqa: PLC0415 (mesh path only)
     return cross_flow_cd(part, re_y, re_z)
 
 
-@dataclass(frozen=True)
-class SectionShape:
-    """One section shape of the registry :data:`SHAPES`.
+def _perimeter_ellipse(part):
+    return drag.ellipse_perimeter(part.half_breadth, part.half_height)
+
+
+def _perimeter_rectangle(part):
+    r"""Perimeter of a 2b x 2h rectangle: :math:`P = 4(b + h)` [m]."""
+    return 4.0 * (part.half_breadth + part.half_height)
+
+
+def _perimeter_polygon(part):
+    r"""Sum of the edge lengths of the section's rings,
+    :math:`P = \sum_{rings}\sum_i |p_{i+1} - p_i|` [m] (outer rings and holes: a duct's inner
+    wall is wetted too), from the ring set :func:`panel.part_rings` the section solvers
+    share."""
+    if not part.contours:
+        return np.zeros(part.index.size)
+    rs = part_rings(part)
+    return np.bincount(rs.section, rs.perimeters(), part.index.size)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SectionShape(ShapeGeometry):
+    """One section shape of the registry :data:`SHAPES`: its geometry
+    (:class:`~stripcoef.geometry.shapes.ShapeGeometry`, all of whose fields it carries) and
+    its 2D coefficients.
 
     Attributes
     ----------
-    name : str
-        The shape's name (``Part.shape``)
     added_mass : callable
         ``f(part, rho, panels) -> (k, 3, 3)`` added mass per unit length about the part's
         centre [kg/m, kg, kg m]
     cross_flow_drag : callable
         ``f(part, re_y, re_z) -> (cd_y, cd_z)`` 2D drag coefficients [-]
+    wetted_perimeter : callable
+        ``f(part) -> (k,)`` wetted perimeter of each section [m]
     description : str
-        What the two functions use (for docs and error messages)
+        What the functions use (for docs and error messages)
     """
 
-    name: str
     added_mass: Callable
     cross_flow_drag: Callable
+    wetted_perimeter: Callable
     description: str = ""
+
+
+def _shape(name, added_mass, cross_flow_drag, wetted_perimeter, description):
+    """The :class:`SectionShape` of ``name``: its geometry from
+    :data:`~stripcoef.geometry.shapes.GEOMETRY` and these coefficient functions."""
+    geo = GEOMETRY[name]
+    return SectionShape(**{f.name: getattr(geo, f.name) for f in fields(ShapeGeometry)},
+                        added_mass=added_mass, cross_flow_drag=cross_flow_drag,
+                        wetted_perimeter=wetted_perimeter, description=description)
 
 
 #: The registry of section shapes: name -> :class:`SectionShape`.
 SHAPES = {s.name: s for s in (
-    SectionShape("ellipse", _added_mass_ellipse, _drag_ellipse,
-                 "closed-form ellipse added mass; circle / ellipse cross-flow drag curves"),
-    SectionShape("rectangle", _added_mass_rectangle, _drag_rectangle,
-                 "DNV rectangle added mass; rectangle cross-flow drag curve"),
-    SectionShape("polygon", _added_mass_polygon, _drag_polygon,
-                 "2D panel method; cross-flow drag of the polygon's parts"),
+    _shape("ellipse", _added_mass_ellipse, _drag_ellipse, _perimeter_ellipse,
+           "closed-form ellipse added mass; circle / ellipse cross-flow drag curves"),
+    _shape("rectangle", _added_mass_rectangle, _drag_rectangle, _perimeter_rectangle,
+           "DNV rectangle added mass; rectangle cross-flow drag curve"),
+    _shape("polygon", _added_mass_polygon, _drag_polygon, _perimeter_polygon,
+           "2D panel method; cross-flow drag of the polygon's parts"),
 )}
 
 

@@ -423,3 +423,15 @@ def closed_body_axial_cd(length_over_diameter, reynolds_diameter, friction, wett
     out = np.where(w <= 0.0, short, np.where(w >= 1.0, streamlined,
                                               short ** (1.0 - w) * streamlined ** w))
     return float(out) if out.ndim == 0 else out
+
+
+def ellipse_perimeter(b, h):
+    r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
+
+    .. math:: P \approx \pi(b + h)\left(1 + \frac{3\lambda}{10 + \sqrt{4 - 3\lambda}}\right),
+              \quad \lambda = \left(\frac{b-h}{b+h}\right)^2
+
+    Half-axes b, h [m]. Ramanujan (1914), Quart. J. Math. 45, the second approximation.
+    """
+    hh = ((b - h) / (b + h)) ** 2
+    return np.pi * (b + h) * (1.0 + 3.0 * hh / (10.0 + np.sqrt(4.0 - 3.0 * hh)))

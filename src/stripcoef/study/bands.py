@@ -19,13 +19,17 @@ from stripcoef.model import UNCERTAIN, MethodBand
 
 def method_bands(vehicle, model) -> tuple:
     """The method rows of ``vehicle``'s shape class as MethodBand records (lift and control
-    rows only for a model with lift or control surfaces)."""
+    rows only for a model with lift or control surfaces; the added-mass rows of the panel
+    method when ``model``'s added mass is its)."""
     from stripcoef.study.sources import _method_table, method_sources
 
     lift = bool(np.any(np.asarray(model.lift) != 0.0) or model.control_surfaces)
+    # the added-mass rows of the method the model was estimated with (the panel method's or
+    # strip theory's: --added-mass-method), not of the default one
+    panels = "panel method" in str((model.provenance or {}).get("method", ""))
     basis = {(r["class"], r["matrix"], r["dofs"]): r["basis"] for r in _method_table()}
     out = []
-    for src in method_sources(vehicle, lift=lift):
+    for src in method_sources(vehicle, lift=lift, panels=panels):
         matrix, dofs = src.name.split(".")
         cls = src.reason.split(":", 1)[0]
         out.append(MethodBand(matrix=matrix, dofs=dofs, distribution=src.distribution,

@@ -29,8 +29,12 @@ from importlib import resources
 
 import numpy as np
 
+from stripcoef.assembly import EstimateOptions
+from stripcoef.assembly.methods import added_mass_method
 from stripcoef.errors import InputError
 from stripcoef.geometry.keypaths import UncertainValue
+from stripcoef.study.shapes import classify, features
+from stripcoef.study.shapes import shape_class as by_geometry
 
 MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "lift", "control")
 GROUPS = {"translation": (0, 1, 2), "rotation": (3, 4, 5), "all": (0, 1, 2, 3, 4, 5)}
@@ -89,8 +93,6 @@ def _method_table() -> tuple:
 def shape_class(vehicle) -> str:
     """``revolution``, ``finned``, ``bluff`` or ``open_frame``, from the vehicle's geometry
     (:func:`stripcoef.study.shapes.shape_class`: the documented rule)."""
-    from stripcoef.study.shapes import shape_class as by_geometry
-
     return by_geometry(vehicle)
 
 
@@ -103,9 +105,6 @@ PANELS = "panels"
 def uses_panels(vehicle, options=None) -> bool:
     """Whether :func:`stripcoef.assembly.estimate` takes ``vehicle``'s added mass from the 3D
     panel method with ``options`` (default: the default options, ``auto``)."""
-    from stripcoef.assembly import EstimateOptions
-    from stripcoef.assembly.added_mass import added_mass_method
-
     options = options or EstimateOptions()
     return added_mass_method(options.added_mass_method, vehicle,
                              vehicle.cut(options.strips)) == "panels"
@@ -134,8 +133,6 @@ def method_sources(vehicle, *, panels: bool | None = None, lift: bool = False) -
     reference shapes' slenderness range (its ``slenderness`` column) does not hold the
     vehicle's L/D (:func:`stripcoef.study.shapes.features`) is still used, but marked out of
     scope: its band is an extrapolation, not a measurement, for this vehicle."""
-    from stripcoef.study.shapes import classify, features
-
     f = features(vehicle)
     cls = classify(f)
     if panels is None:

@@ -1,0 +1,327 @@
+"""Public vehicle meshes, run as a user would, against Capytaine on remeshed copies (issue 32).
+
+The meshes are the ROV, AUV and glider meshes that open-source simulators and ROS description
+packages publish (:data:`MESHES`: repository, commit, path, license; the table is
+reference_tables/public_meshes/README.md).  They are not committed: ``--mirror DIR`` reads
+them from local clones, ``DIR/<owner>+<name>`` or ``DIR/<name>`` (a working tree or a bare
+git directory: the file is read with ``git show COMMIT:PATH``), so the benchmark runs where
+GitHub cannot be reached.  Per mesh:
+
+1. **as found**: ``stripcoef coefficients MESH --rho 1000 --json`` (default ``auto``): exit
+   code, the warnings (units, axes, repairs, convergence), the method chosen;
+   a COLLADA file (.dae), which stripcoef does not read, is converted to STL with trimesh
+   (pycollada) first -- the fix a user would try -- and that STL is run;
+2. **panels**: the same with ``--added-mass-method panels`` when ``auto`` chose the strips;
+3. **reference**: Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
+   on isotropic remeshes (:mod:`stripcoef.hull.remesh`) of the closed surface the panel method
+   solves (the loaded, repaired and united mesh) at ``--bem-faces`` (coarse to fine, default
+   500 1000 2000: each solve under a minute), the two finest Richardson-extrapolated as 1/N,
+   with its own grid convergence index (Roache 1998), moved to each run's reference point.
+
+Per term: the model's error (diagonal: of the term; couplings whose reference is at least 1 %
+of sqrt(A_ii A_jj): of that scale; a diagonal term below 1 % of the largest of its block, the
+roll of a body of revolution, scaled by that 1 % as the panel method's check does), whether the model's estimated error covers it, and
+whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  Usage:
+
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.public_meshes --mirror DIR
+        [--only NAME ...] [--csv reference_tables/public_meshes/public_meshes.csv]
+
+The stored run (reference_tables/public_meshes/public_meshes.csv, docs/validation.md) names
+its command and commit of every mesh on its first lines.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+from benchmarks.bluff_shapes import refine  # noqa: E402  (the BEM meshes refined alike)
+
+RHO = 1000.0
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+SIGNIFICANT = 0.01
+TOLERANCE = 0.05
+
+
+@dataclass(frozen=True)
+class PublicMesh:
+    name: str          # short name of the row
+    vehicle: str
+    kind: str          # ROV, AUV, glider
+    repo: str          # owner/name on GitHub
+    commit: str
+    path: str
+    license: str
+    role: str          # collision or visual mesh
+
+
+_UUV = "uuvsimulator/"
+_DAVE = ("Field-Robotics-Lab/dave", "e54ea16bdaf7d6dbb466cf141846a03f284a44dd")
+#: The public meshes (reference_tables/public_meshes/README.md repeats this table).
+MESHES = (
+    PublicMesh("rexrov", "RexROV (uuv_simulator)", "ROV", _UUV + "uuv_simulator",
+               "bfb40cb153684a0703173117b6bbf4258e8e71c5",
+               "uuv_descriptions/meshes/RexROV_no_props.stl", "Apache-2.0", "visual"),
+    PublicMesh("desistek_saga", "Desistek SAGA", "ROV", _UUV + "desistek_saga",
+               "4a1d10f597a6c1c3657f40338682dbbbc7cf72f6",
+               "desistek_saga_description/mesh/saga.stl", "Apache-2.0", "collision"),
+    PublicMesh("eca_a9", "ECA A9", "AUV", _UUV + "eca_a9",
+               "5c7e357253c0873d1441ae10910949871cfb944a",
+               "eca_a9_description/mesh/eca_a9.stl", "Apache-2.0", "collision"),
+    PublicMesh("lauv", "LAUV (OceanScan)", "AUV", _UUV + "lauv_gazebo",
+               "3529e028b2e7fcf33e92db0a319ce71afb3d9ea6",
+               "lauv_description/meshes/body.stl", "Apache-2.0", "collision"),
+    PublicMesh("slocum", "Slocum glider (DAVE)", "glider", *_DAVE,
+               "models/dave_robot_models/models/glider_slocum/mesh/COLLISION-Slocum-Glider.dae",
+               "Apache-2.0", "collision"),
+    PublicMesh("glider_hybrid_whoi", "WHOI hybrid glider (DAVE)", "glider", *_DAVE,
+               "models/dave_robot_models/models/glider_hybrid_whoi/mesh/"
+               "glider_hybrid_whoi_collision.dae", "Apache-2.0", "collision"),
+    PublicMesh("caldus", "Caldus ROV (DAVE)", "ROV", *_DAVE,
+               "urdf/robots/caldus_description/meshes/caldus_collision.dae", "Apache-2.0",
+               "collision"),
+    PublicMesh("caracara", "Caracara ROV (DAVE)", "ROV", *_DAVE,
+               "urdf/robots/caracara_description/meshes/caracara_collision.dae", "Apache-2.0",
+               "collision"),
+    PublicMesh("smilodon", "Smilodon ROV (DAVE)", "ROV", *_DAVE,
+               "urdf/robots/smilodon_description/meshes/smilodon_collision.dae", "Apache-2.0",
+               "collision"),
+    PublicMesh("erov", "eROV (DAVE)", "ROV", *_DAVE,
+               "models/dave_object_models/models/erov/mesh/erov.dae", "Apache-2.0", "visual"),
+)
+
+
+def read_from_mirror(mirror: Path, mesh: PublicMesh) -> bytes:
+    """The mesh file's bytes from a local clone under ``mirror`` (module docstring)."""
+    owner, name = mesh.repo.split("/")
+    for base in (mirror / f"{owner}+{name}", mirror / name, mirror / owner / name):
+        for cand in (base / "repo" / ".git", base / "repo", base / ".git", base):
+            if not cand.is_dir():
+                continue
+            probe = subprocess.run(["git", "--git-dir", str(cand), "cat-file", "-e",
+                                    f"{mesh.commit}:{mesh.path}"], capture_output=True)
+            if probe.returncode == 0:
+                return subprocess.run(["git", "--git-dir", str(cand), "show",
+                                       f"{mesh.commit}:{mesh.path}"], capture_output=True,
+                                      check=True).stdout
+        if (base / mesh.path).is_file():            # a plain checkout (commit not checked)
+            return (base / mesh.path).read_bytes()
+    raise FileNotFoundError(f"{mesh.repo}@{mesh.commit[:10]}:{mesh.path} not under {mirror}")
+
+
+def run_cli(path: Path, *extra) -> dict:
+    """``stripcoef coefficients PATH --rho 1000 --json`` in a subprocess: exit code, warnings,
+    the JSON, wall time [s]."""
+    cmd = [sys.executable, "-m", "stripcoef", "coefficients", str(path), "--rho", str(RHO),
+           "--json", *extra]
+    t0 = time.perf_counter()
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    data = None
+    if out.returncode == 0:
+        try:
+            data = json.loads(out.stdout)
+        except json.JSONDecodeError:
+            data = None
+    warns = [ln for ln in out.stderr.splitlines() if ln.startswith(("warning", "stripcoef"))]
+    return {"rc": out.returncode, "warnings": warns, "json": data, "seconds": dt,
+            "command": "stripcoef coefficients " + path.name + " --rho 1000 --json"
+                       + "".join(" " + e for e in extra)}
+
+
+def dae_to_stl(src: Path, dst: Path) -> None:
+    """A COLLADA file's triangles as one STL (trimesh with pycollada), units as written."""
+    import trimesh
+
+    scene = trimesh.load(src, force="mesh")
+    scene.export(dst)
+
+
+def bem_reference(path: Path, bem_faces):
+    """Capytaine on isotropic remeshes of the closed surface the panel method solves (the
+    loaded, repaired, united mesh), about the body origin.  Returns (M_A, its estimated
+    error, face counts, seconds)."""
+    import trimesh
+
+    from stripcoef.bem import bem_added_mass
+    from stripcoef.geometry.vehicle import load_vehicle
+    from stripcoef.hull.convergence import grid_convergence_index, richardson
+    from stripcoef.hull.panels import estimated_error
+    from stripcoef.hull.remesh import edge_for_panels, remesh_family
+
+    veh = load_vehicle(path)
+    body = veh.bodies[0]
+    surface = body.united() if hasattr(body, "united") else body.mesh
+    v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
+    t0 = time.perf_counter()
+    # one remesh family (one crease angle, each level 1.25x the faces of the one before),
+    # else the surface's edges bisected at every level (a family that refines)
+    family = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in bem_faces])
+    meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
+              else [refine(surface, n) for n in bem_faces])
+    mats, counts = [], []
+    for m in meshes:
+        mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3), max_faces=4000))
+        counts.append(len(m.faces))
+    ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
+    gci, _, _ = grid_convergence_index(mats, counts)
+    return 0.5 * (ref + ref.T), estimated_error(mats[-1], ref, gci), counts, \
+        time.perf_counter() - t0
+
+
+def compare(run: dict, ref, ref_err) -> list[dict]:
+    """Per term of a CLI run: error against the reference moved to the run's reference point."""
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.hull.panels import NEGLIGIBLE
+
+    d = run["json"]
+    point = np.asarray(d["reference_point"], float)
+    ref_p = transform_matrix(ref, from_point=(0, 0, 0), to_point=point)
+    # the error band moves with the matrix; its size is bounded by moving its magnitude
+    err_p = np.abs(transform_matrix(ref_err, from_point=(0, 0, 0), to_point=point))
+    ours = np.asarray(d["added_mass"], float)
+    est = d.get("added_mass_error")
+    est = np.asarray(est, float) if est is not None else np.zeros((6, 6))
+    dg = np.abs(np.diag(ref_p)).copy()
+    for block in (slice(0, 3), slice(3, 6)):   # the panel method's scale (NEGLIGIBLE floor)
+        dg[block] = np.maximum(dg[block], NEGLIGIBLE * dg[block].max())
+    diag = np.sqrt(dg)
+    scale = np.outer(diag, diag)
+    rows = []
+    for i in range(6):
+        for j in range(i, 6):
+            sig = i == j or abs(ref_p[i, j]) >= SIGNIFICANT * scale[i, j]
+            s = scale[i, j]
+            e = ours[i, j] - ref_p[i, j]
+            rows.append(dict(i=i, j=j, model=ours[i, j], bem=ref_p[i, j], rel=e / s,
+                             est=est[i, j] / s, bem_err=err_p[i, j] / s, significant=sig,
+                             covered=bool(abs(e) <= est[i, j]),
+                             covered_vv=bool(abs(e) <= np.hypot(est[i, j], err_p[i, j]))))
+    return rows
+
+
+HEADER = ["mesh", "vehicle", "kind", "repo", "commit", "path", "license", "role", "note", "run",
+          "command", "method", "panel_levels", "warned", "seconds", "bem_faces", "bem_seconds",
+          "i", "j", "model", "bem", "error_rel", "estimated_error_rel", "bem_error_rel",
+          "significant", "covered", "covered_with_bem_error"]
+
+
+def csv_rows(s):
+    """The CSV rows of one run of one mesh (:data:`HEADER`)."""
+    m, run = s["mesh"], s["run"]
+    return [[m.name, m.vehicle, m.kind, m.repo, m.commit, m.path, m.license, m.role, s["note"],
+             s["label"], run["command"], method_of(run), s["levels"], int(s["warned"]),
+             f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])), f"{s['t_bem']:.1f}",
+             t["i"], t["j"], f"{t['model']:.6g}", f"{t['bem']:.6g}", f"{t['rel']:.4g}",
+             f"{t['est']:.4g}", f"{t['bem_err']:.4g}", int(t["significant"]),
+             int(t["covered"]), int(t["covered_vv"])] for t in s["terms"]]
+
+
+def method_of(run):
+    c = (run["json"] or {}).get("conditions", {})
+    return "panels" if c.get("added_mass_method") else "strips"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--mirror", required=True, type=Path,
+                    help="folder of local clones (owner+name or name)")
+    ap.add_argument("--only", nargs="*", default=None, help="names of MESHES to run")
+    ap.add_argument("--bem-faces", type=int, nargs="+", default=(500, 1000, 2000))
+    ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    args = ap.parse_args(argv)
+    summary = []
+    if args.csv:                          # written as the meshes finish (a long run)
+        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.csv, "w", newline="") as fh:
+            fh.write("# python -m benchmarks.public_meshes --mirror DIR --bem-faces "
+                     + " ".join(map(str, args.bem_faces)) + "\n")
+            csv.writer(fh).writerow(HEADER)
+    with tempfile.TemporaryDirectory() as tmp:
+        for mesh in MESHES:
+            if args.only and mesh.name not in args.only:
+                continue
+            try:
+                raw = read_from_mirror(args.mirror, mesh)
+            except (FileNotFoundError, subprocess.CalledProcessError) as exc:
+                print(f"{mesh.name}: SKIPPED ({exc})", flush=True)
+                continue
+            found = Path(tmp) / (mesh.name + Path(mesh.path).suffix.lower())
+            found.write_bytes(raw)
+            first = run_cli(found)
+            note = ""
+            path = found
+            if found.suffix == ".dae":
+                path = found.with_suffix(".stl")
+                dae_to_stl(found, path)
+                note = "converted .dae to .stl (trimesh + pycollada)"
+            auto = run_cli(path) if path != found else first
+            runs = {"auto": auto}
+            if auto["rc"] == 0 and method_of(auto) == "strips":
+                runs["panels"] = run_cli(path, "--added-mass-method", "panels")
+            print(f"{mesh.name}: as found exit {first['rc']}"
+                  + (f" ({first['warnings'][-1][:160]})" if first["rc"] else "")
+                  + (f"; {note}" if note else "") + "; auto -> "
+                  + (method_of(auto) if auto["rc"] == 0 else f"exit {auto['rc']}")
+                  + f" in {auto['seconds']:.1f} s", flush=True)
+            for w in auto["warnings"]:
+                print("    " + w[:220], flush=True)
+            if auto["rc"] != 0:                 # refused as a user runs it: a result too
+                why = (auto["warnings"] or ["exit %d" % auto["rc"]])[-1].replace(
+                    str(path.parent) + os.sep, "")
+                print(f"    refused: {why[:300]}", flush=True)
+                if args.csv:
+                    with open(args.csv, "a", newline="") as fh:
+                        csv.writer(fh).writerow(
+                            [mesh.name, mesh.vehicle, mesh.kind, mesh.repo, mesh.commit,
+                             mesh.path, mesh.license, mesh.role, why, "refused",
+                             auto["command"]] + [""] * (len(HEADER) - 11))
+                continue
+            try:
+                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces)
+            except Exception as exc:            # a refusal is a result: say it, go on
+                print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
+                continue
+            for label, run in runs.items():
+                if run["rc"] != 0 or run["json"] is None:
+                    print(f"    {label}: exit {run['rc']}", flush=True)
+                    continue
+                terms = compare(run, ref, ref_err)
+                c = run["json"]["conditions"]
+                sig = [t for t in terms if t["significant"]]
+                wd = max((t for t in terms if t["i"] == t["j"]), key=lambda t: abs(t["rel"]))
+                coup = [t for t in sig if t["i"] != t["j"]]
+                wc = max(coup, key=lambda t: abs(t["rel"])) if coup else None
+                warned = any("has not converged" in w for w in run["warnings"])
+                line = dict(mesh=mesh, label=label, run=run, terms=terms, counts=counts,
+                            t_bem=t_bem, warned=warned, note=note,
+                            levels="/".join(map(str, c.get("added_mass_panel_levels") or ())))
+                summary.append(line)
+                if args.csv:
+                    with open(args.csv, "a", newline="") as fh:
+                        csv.writer(fh).writerows(csv_rows(line))
+                print(f"    {label}: worst diagonal {DOFS[wd['i']]} {100 * wd['rel']:+.1f} %"
+                      + (f", worst coupling {DOFS[wc['i']]}-{DOFS[wc['j']]} "
+                         f"{100 * wc['rel']:+.1f} %" if wc else "")
+                      + f"; estimate covers {sum(t['covered'] for t in sig)}/{len(sig)} "
+                      f"(with the BEM's: {sum(t['covered_vv'] for t in sig)}); est. max "
+                      f"{100 * (c.get('added_mass_error_max') or 0):.1f} %"
+                      + (" WARNED" if warned else "") + f"; {run['seconds']:.1f} s; "
+                      f"BEM {'/'.join(map(str, counts))} faces {t_bem:.1f} s", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

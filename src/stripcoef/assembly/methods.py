@@ -1,0 +1,246 @@
+r"""The registry of added-mass methods: name -> :class:`AddedMassMethod`.
+
+:data:`ADDED_MASS_METHODS` holds the ways stripcoef gets M_A, most exact first:
+
+- ``bem``: Capytaine's boundary-element method on the vehicle's mesh (the cross-check,
+  optional extra ``stripcoef[bem]``; :mod:`stripcoef.bem`);
+- ``panels``: the 3D panel method on the vehicle's mesh (:mod:`stripcoef.hull.panels`);
+- ``strips``: strip theory with its 3D corrections
+  (:func:`stripcoef.assembly.added_mass.added_mass`).
+
+Each names what it applies to, computes M_A about a point from one :class:`AddedMassInputs`,
+says how its error is estimated, and whether the ``added_mass_method`` option of
+:class:`~stripcoef.assembly.estimate.EstimateOptions` may choose it (``in_estimate``; the BEM
+is run after the estimate, ``coefficients --method bem`` and ``compare``). The ``auto`` rule
+(:func:`choose_method`) and the CLI's ``--added-mass-method`` choices read this table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, _round_along_x, added_mass,
+                                           panel_vehicle_added_mass)
+from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
+from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
+from stripcoef.bem import timed_bem_added_mass
+from stripcoef.errors import InputError, unknown_name
+from stripcoef.strips import Strips
+
+#: The option value that lets :func:`choose_method` pick the method.
+AUTO = "auto"
+
+
+@dataclass(frozen=True)
+class AddedMassInputs:
+    """What an added-mass method may read: the vehicle, its strips, the fluid density
+    ``rho`` [kg/m^3], the point ``about`` [m], the displaced ``volume`` [m^3] and its
+    ``center`` [m], and the options of the methods (``corrections``, ``correction_panels``,
+    ``section_panels`` for strips; ``added_mass_panels`` for panels). The BEM reads only the
+    vehicle, ``rho`` and ``about``."""
+
+    vehicle: object
+    strips: Strips | None
+    rho: float
+    about: np.ndarray
+    volume: float | None = None
+    center: np.ndarray | None = None
+    corrections: bool = True
+    correction_panels: int | None = None
+    section_panels: int | None = None
+    added_mass_panels: int | None = None
+
+
+@dataclass(frozen=True)
+class AddedMassMethod:
+    """One added-mass method of the registry :data:`ADDED_MASS_METHODS`.
+
+    Attributes
+    ----------
+    name : str
+        The option's value (``added_mass_method``, ``--added-mass-method``)
+    description : str
+        The method and its source (docs, CLI help)
+    applies_to : callable
+        ``f(vehicle) -> (message, expected) or None``: None where the method applies, else
+        the error's message and what it expects
+    compute : callable
+        ``f(AddedMassInputs) -> (M_A, info, error)``: (6, 6) M_A about ``about`` [kg, kg m,
+        kg m^2], the entries it adds to the model's conditions, and the (6, 6) estimated
+        error of each term (same units) or None
+    error_estimate : str
+        How its error is known
+    provenance : str
+        The model's ``provenance["method"]`` when the estimate uses it
+    in_estimate : bool
+        The ``added_mass_method`` option may choose it
+    preferred : callable
+        ``f(vehicle, strips) -> bool``: ``auto`` takes the first method in the table
+        (``in_estimate``, applying) for which it holds
+    """
+
+    name: str
+    description: str
+    applies_to: Callable
+    compute: Callable
+    error_estimate: str
+    provenance: str = ""
+    in_estimate: bool = True
+    preferred: Callable = lambda vehicle, strips: True
+
+
+def _any_vehicle(vehicle):
+    return None
+
+
+def _one_mesh(label, expected):
+    """``applies_to`` of a method on the vehicle's one closed mesh (``label`` names it)."""
+    def applies_to(vehicle):
+        if _mesh_of(vehicle) is None:
+            return f"the {label} needs a vehicle made of one closed mesh", expected
+        return None
+    return applies_to
+
+
+def _not_round_nor_slender(vehicle, strips: Strips) -> bool:
+    r"""A vehicle, a mesh or a vehicle file alike, that is not a body of revolution about x
+    (:func:`_round_along_x`) and not slender, :math:`L / \max(B, H) <`
+    :data:`SLENDER_RATIO` (B, H the largest breadth and height of the strips [m]): where strip
+    theory's slender-body limit does not hold.  A vehicle file is panelled on its parts united
+    into one closed surface (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
+    if _round_along_x(strips):
+        return False
+    width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
+                for p in strips.parts)
+    return strips.length < SLENDER_RATIO * width
+
+
+def _strips(inp: AddedMassInputs):
+    m_a, info = added_mass(inp.strips, inp.rho, about=inp.about, volume=inp.volume,
+                           center=inp.center, corrections=inp.corrections,
+                           correction_panels=inp.correction_panels,
+                           section_panels=inp.section_panels)
+    return m_a, info, None
+
+
+def _panels(inp: AddedMassInputs):
+    # the mirror planes of the body through the reference point: the couplings they
+    # forbid are exactly zero (the panels of a symmetric body are not symmetric), and so is
+    # their error (the convergence check looks at the terms that remain)
+    mirrors = strips_mirror_symmetries(inp.strips, inp.about, tol=SYMMETRY_ZERO_TOL)
+    m_a, info, error = panel_vehicle_added_mass(
+        inp.vehicle, inp.rho, inp.about, inp.added_mass_panels,
+        symmetrise=lambda m: enforce_symmetry(m, mirrors))
+    info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
+    return m_a, info, error
+
+
+def _bem(inp: AddedMassInputs):
+    m_a, seconds = timed_bem_added_mass(_mesh_of(inp.vehicle), rho=inp.rho,
+                                        reference_point=inp.about)
+    return m_a, {"bem_faces": int(len(_mesh_of(inp.vehicle).mesh.faces)),
+                 "bem_seconds": round(seconds, 3)}, None
+
+
+#: The registry of added-mass methods, most exact first: name -> :class:`AddedMassMethod`.
+ADDED_MASS_METHODS = {m.name: m for m in (
+    AddedMassMethod(
+        name="bem",
+        description="Capytaine's boundary-element method on the mesh (unbounded fluid; "
+                    "Ancellin & Dias 2019), the cross-check: coefficients --method bem, compare",
+        applies_to=_one_mesh("BEM", "a mesh file (STL, OBJ, PLY, GLB, ...)"),
+        compute=_bem,
+        error_estimate="none per run; converges at second order against Lamb's exact values "
+                       "on spheroid meshes (benchmarks/mesh_reference_convergence.py)",
+        provenance="bem (Capytaine, free_surface=inf, direct) added mass; strip-theory damping",
+        in_estimate=False),
+    AddedMassMethod(
+        name="panels",
+        description="3D panel method on the closed surface (a mesh, or a vehicle file's parts "
+                    "united; Newman 1977 eq. 4.148), levels refined "
+                    "until converged, Richardson-extrapolated from the two finest",
+        applies_to=_any_vehicle,
+        compute=_panels,
+        error_estimate="per term: Roache's grid convergence index of the panel levels "
+                       "(stripcoef.hull.convergence), with a warning past its tolerance",
+        provenance="strip theory, added mass by the 3D panel method",
+        preferred=_not_round_nor_slender),
+    AddedMassMethod(
+        name="strips",
+        description="strip theory: 2D sections per strip, 3D end corrections on equivalent "
+                    "bodies of revolution",
+        applies_to=_any_vehicle,
+        compute=_strips,
+        error_estimate="the method band of the vehicle's shape class (stripcoef.study.sources, "
+                       "docs/validation.md)",
+        provenance="strip theory"),
+)}
+
+
+def estimate_choices() -> tuple[str, ...]:
+    """The values of the ``added_mass_method`` option: ``auto`` and the methods the estimate
+    may use (``in_estimate``)."""
+    return (AUTO,) + tuple(n for n, m in ADDED_MASS_METHODS.items() if m.in_estimate)
+
+
+def get_method(name: str) -> AddedMassMethod:
+    """The :class:`AddedMassMethod` of ``name``; an unknown name is an error listing the
+    valid ones."""
+    try:
+        return ADDED_MASS_METHODS[name]
+    except (KeyError, TypeError):
+        raise unknown_name("added-mass method", name, ADDED_MASS_METHODS,
+                           key="added_mass_method") from None
+
+
+def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
+    r"""The method the estimate uses for the option ``added_mass_method`` = ``name``.
+
+    ``auto``: the first method of :data:`ADDED_MASS_METHODS` that the estimate may use, that
+    applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle (a mesh, or a
+    vehicle file on its parts united into one closed surface) that is not a body of
+    revolution about x and not slender
+    (:math:`L / \max(B, H) <` :data:`~stripcoef.assembly.added_mass.SLENDER_RATIO`), strip
+    theory otherwise.  A method named outright must apply (the BEM needs a mesh file).
+    """
+    if name != AUTO:
+        if name not in estimate_choices():
+            raise InputError("unknown added-mass method", key="added_mass_method", value=name,
+                             expected=" or ".join(estimate_choices()[1:] + (AUTO,)))
+        method = ADDED_MASS_METHODS[name]
+        need = method.applies_to(vehicle)
+        if need is not None:
+            raise InputError(need[0], file=getattr(vehicle, "source", None) or None,
+                             key="added_mass_method", value=name, expected=need[1])
+        return method
+    for method in ADDED_MASS_METHODS.values():
+        if (method.in_estimate and method.applies_to(vehicle) is None
+                and method.preferred(vehicle, strips)):
+            return method
+    return ADDED_MASS_METHODS["strips"]
+
+
+def with_added_mass_of(model, vehicle, name: str):
+    """``model`` (a :class:`~stripcoef.model.HydroModel` of ``vehicle``) with its M_A from the
+    method ``name`` about the same reference point (``coefficients --method bem``): damping
+    and rigid-body terms kept, the provenance naming the method and what it reports (the
+    BEM: faces and solver time [s]), no panel error estimate. A method that does not apply
+    to ``vehicle`` is a one-line error."""
+    method = get_method(name)
+    need = method.applies_to(vehicle)
+    if need is not None:
+        raise InputError(need[0], file=getattr(vehicle, "source", None) or None,
+                         key="method", value=name, expected=need[1])
+    m_a, info, error = method.compute(AddedMassInputs(
+        vehicle=vehicle, strips=None, rho=model.density, about=model.reference_point,
+        volume=model.volume, center=model.center_of_buoyancy))
+    provenance = {**model.provenance, "method": method.provenance, **info}
+    return replace(model, added_mass=m_a, provenance=provenance, added_mass_error=error)
+
+
+def added_mass_method(name, vehicle, strips: Strips) -> str:
+    """The name of :func:`choose_method`'s method (``strips`` or ``panels``)."""
+    return choose_method(name, vehicle, strips).name

@@ -1,0 +1,227 @@
+r"""Many short free simulations of one model at once: the segments of
+:func:`stripcoef.diagnose.heldout.free_simulation_errors`, integrated side by side.
+
+The held-out and validation errors re-simulate a log in segments of ``horizon`` seconds,
+each started from the logged state (:mod:`stripcoef.diagnose.heldout`). The segments are
+independent, so they are one system of S x 13 states, :math:`x_s = [p_s;\ q_s;\ \nu_s]`,
+with the state equation of :class:`stripcoef.simulate.RightHandSide` evaluated for all of
+them in one vectorised call:
+
+.. math::
+    M\dot\nu = \tau - C_{RB}(\nu)\nu - C_A(\nu)\nu - D(\nu)\nu - g(\eta) + \tau_{extra},
+    \qquad \dot p = R(q)\,v,\qquad
+    \dot\varepsilon = \tfrac12 (q_0\omega + \varepsilon\times\omega),\quad
+    \dot q_0 = -\tfrac12 \varepsilon^T\omega
+
+(Fossen 2011, eqs. 2.86, 3.46, 6.43, 7.190; no current: the replay of a log has none).
+Step k of every segment runs over that segment's own sample interval
+:math:`[t_{a_s+k}, t_{a_s+k+1}]`, with the inputs of its sample held (zero-order hold, the
+replay rule of :func:`stripcoef.simulate.replay`: the integrator restarts at each sample and
+never steps across an input jump). Each interval is integrated by the Dormand-Prince 5(4) pair
+(Dormand & Prince 1980, J. Comput. Appl. Math. 6, 19-26; the tableau of
+:class:`scipy.integrate.RK45`, the method ``simulate`` uses through ``solve_ivp``) on the
+normalised time :math:`s \in [0, 1]` of the interval, with the error control of Hairer,
+Norsett & Wanner (1993), Solving ODEs I, sec. II.4 (eq. 4.11: the RMS of the error over
+``atol + rtol |x|``, here the largest over the segments, so every segment meets it).
+
+The calibrated effects of the model (``model.effects``) keep their scalar force laws: each
+segment gets its own (:func:`stripcoef.effects.laws.effect_forces`; a lag has a state),
+called with the hook ``simulate`` gives them.
+
+Depends on: simulate (initial state, inputs), effects, model.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import RK45
+
+from stripcoef.model import restoring_forces
+
+#: Most integration steps per sample interval before a segment set counts as diverged (a
+#: smooth interval takes one or two; ``simulate``'s budget is 1e6 evaluations per run).
+MAX_STEPS_PER_INTERVAL = 2000
+
+
+def _quat_matrices(q):
+    """(S, 3, 3) R(q) of (S, 4) quaternions (x, y, z, w), normalised (Fossen 2011, eq. 2.72;
+    :func:`stripcoef.simulate._quaternion_matrix`, vectorised)."""
+    q = q / np.sqrt(np.sum(q * q, axis=1))[:, None]
+    x, y, z, w = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)],
+        axis=1)
+
+
+def _cross(a, b):
+    """Row-wise a x b of (S, 3) arrays (np.cross without its axis handling)."""
+    out = np.empty_like(a)
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
+
+
+class BatchRightHandSide:
+    r"""The state equation of S segments at once (module docstring); ``tau`` (S, 6) [N, N m]
+    the held applied force of each segment's current sample, set by the caller.
+
+    :math:`C_{RB}(\nu)\nu + C_A(\nu)\nu = C_M(\nu)\nu` with :math:`M = M_{RB} + M_A`
+    (C is linear in the mass matrix, Fossen 2011, eq. 3.46: one product instead of two);
+    :math:`D(\nu)\nu = D_L\nu + D_Q(|\nu|\odot\nu) + u L\nu`
+    (:func:`stripcoef.effects.windows.damping_times_velocity`)."""
+
+    def __init__(self, model, hooks=None, terms=None):
+        self.m_inv_t = np.linalg.inv(model.mass_matrix).T
+        self.m_t = np.asarray(model.mass_matrix, float).T
+        self.dl_t = np.asarray(model.linear_damping, float).T
+        self.dq_t = np.asarray(model.quadratic_damping, float).T
+        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), float)
+        self.lift_t = lift.T if np.any(lift) else None
+        self.weight, self.buoyancy = model.weight, model.buoyancy
+        self.r_g, self.r_b = model.r_g, model.r_b
+        self.terms = terms or []     # per segment: a list of scalar force laws
+        self.hooks = hooks           # per segment: the hook of the current sample
+        self.tau = None
+
+    def __call__(self, times, x):
+        quat, nu = x[:, 3:7], x[:, 7:]
+        v, w = nu[:, :3], nu[:, 3:]
+        rmat = _quat_matrices(quat)
+        phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
+        theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
+        ab = nu @ self.m_t
+        force = self.tau - nu @ self.dl_t - (np.abs(nu) * nu) @ self.dq_t
+        force[:, :3] += _cross(ab[:, :3], w)
+        force[:, 3:] += _cross(ab[:, :3], v) + _cross(ab[:, 3:], w)
+        if self.lift_t is not None:
+            force -= nu[:, :1] * (nu @ self.lift_t)
+        zeros = np.zeros_like(phi)
+        force -= restoring_forces(np.array([zeros, zeros, zeros, phi, theta, zeros]),
+                                  weight=self.weight, buoyancy=self.buoyancy,
+                                  r_g=self.r_g, r_b=self.r_b).T
+        if any(self.terms):
+            psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
+            eta = np.column_stack([x[:, :3], phi, theta, psi])
+            for s, laws in enumerate(self.terms):
+                hook = self.hooks[s]
+                hook["nu_r"] = nu[s]             # no current in a replay: nu_r = nu
+                for law in laws:
+                    force[s] = force[s] + law(times[s], eta[s], nu[s], hook)
+        eps, q0 = quat[:, :3], quat[:, 3]
+        out = np.empty_like(x)
+        out[:, :3] = np.einsum("sij,sj->si", rmat, v)
+        out[:, 3:6] = 0.5 * (q0[:, None] * w + _cross(eps, w))
+        out[:, 6] = -0.5 * np.sum(eps * w, axis=1)
+        out[:, 7:] = force @ self.m_inv_t
+        return out
+
+
+def _interval(f, t0, h, x, rtol, atol):
+    """Integrate every segment over its own interval [t0_s, t0_s + h_s] (Dormand-Prince
+    5(4) on the normalised time, module docstring). Returns the states at the ends, or None
+    when the steps shrink past :data:`MAX_STEPS_PER_INTERVAL` or leave the finite numbers."""
+    a, b, c, e = RK45.A, RK45.B, RK45.C, RK45.E
+    hs = h[:, None]
+    s, ds, steps = 0.0, 1.0, 0
+    k = np.empty((7,) + x.shape)
+    k[0] = f(t0, x) * hs
+    while s < 1.0 - 1e-12:
+        steps += 1
+        if steps > MAX_STEPS_PER_INTERVAL:
+            return None
+        ds = min(ds, 1.0 - s)
+        flat = k.reshape(7, -1)
+        for i in range(1, 6):
+            xi = x + ds * (a[i, :i] @ flat[:i]).reshape(x.shape)
+            k[i] = f(t0 + (s + c[i] * ds) * h, xi) * hs
+        x_new = x + ds * (b @ flat[:6]).reshape(x.shape)
+        k[6] = f(t0 + (s + ds) * h, x_new) * hs
+        if not np.all(np.isfinite(x_new)):
+            return None
+        err = ds * (e @ flat).reshape(x.shape)
+        scale = atol + rtol * np.maximum(np.abs(x), np.abs(x_new))
+        norm = float(np.max(np.sqrt(np.mean((err / scale) ** 2, axis=1))))
+        if norm <= 1.0:
+            s += ds
+            x = x_new
+            k[0] = k[6]
+            grow = 10.0 if norm == 0.0 else min(10.0, 0.9 * norm ** -0.2)
+            ds *= grow
+        else:
+            ds *= max(0.2, 0.9 * norm ** -0.2)
+    return x
+
+
+def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)):
+    """The re-simulated velocities of every segment ``(a, b)`` of ``bounds`` of ``log``,
+    each from the logged state at its row a with the inputs ``inputs``
+    (:func:`stripcoef.logfile.log_inputs` of the whole log): a list of (b - a, 6) arrays
+    [m/s, rad/s], or None when a simulation diverges. Only for a model without control
+    surfaces (:func:`supported`)."""
+    from stripcoef.effects.laws import effect_force_terms
+    from stripcoef.simulate import InputSampler, initial_state, state_vector
+
+    t = np.asarray(log["t"], float)
+    history = bool(model.effects)
+    sampler = InputSampler(model, t, forces=inputs.forces, commands=inputs.commands or None,
+                           deflections=None, channels=inputs.channels or None, current=None,
+                           interpolation="previous", history=True)
+    tau_all = sampler.tau_history                               # (n, 6) applied force
+    starts = np.array([a for a, _ in bounds])
+    lengths = np.array([b - a for a, b in bounds])
+    x = np.array([state_vector(*initial_state(log, int(a))[:2]) for a in starts])
+    out = np.empty((len(bounds), int(lengths.max()), 6))
+    out[:, 0] = x[:, 7:]
+    terms = hooks = held = None
+    if history:
+        # each segment its own laws (a lag has a state); those of held effects
+        # (Effect.held: constant between samples) evaluated once per sample, the others at
+        # every evaluation of the right-hand side
+        laws = [effect_force_terms(model) for _ in bounds]
+        terms = [[law for eff, law in row if not eff.held] for row in laws]
+        held = [[law for eff, law in row if eff.held] for row in laws]
+        names = sampler.names
+        thrust_all = (np.column_stack([np.asarray(th.thrust(sampler.cmd[:, j]), float)
+                                       .reshape(-1) for j, th in enumerate(sampler.thrusters)])
+                      if sampler.nthr else np.zeros((t.size, 0)))
+        alloc = sampler.alloc
+        hooks = [None] * len(bounds)
+    f = BatchRightHandSide(model, hooks, terms)
+    rtol, atol = tolerances
+    for k in range(int(lengths.max()) - 1):
+        act = np.nonzero(lengths > k + 1)[0]
+        rows = starts[act] + k
+        f.tau = tau_all[rows]
+        if history:
+            f.terms = [terms[s] for s in act]
+            f.hooks = [{"commands": dict(zip(names, sampler.cmd[r])),
+                        "thrust": dict(zip(names, thrust_all[r])), "tau": tau_all[r],
+                        "nu_c": np.zeros(6), "nu_r": None, "model": model,
+                        "allocation": alloc,
+                        "input_history": (t[starts[s]:starts[s] + lengths[s]],
+                                          tau_all[starts[s]:starts[s] + lengths[s]]),
+                        "columns": ({n: float(v) for n, v in zip(
+                            sampler.chan_names, sampler.chan_series[r])}
+                            if sampler.chan_names else {})}
+                       for s, r in zip(act, rows)]
+            for j, (s, r) in enumerate(zip(act, rows)):
+                hook = f.hooks[j]
+                hook["nu_r"] = x[s, 7:]
+                for law in held[s]:          # the state is not read by a held law
+                    f.tau[j] = f.tau[j] + law(t[r], np.zeros(6), x[s, 7:], hook)
+        h = t[rows + 1] - t[rows]
+        xa = _interval(f, t[rows], h, x[act], rtol, atol)
+        if xa is None:
+            return None
+        x[act] = xa
+        out[act, k + 1] = xa[:, 7:]
+    return [out[s, :lengths[s]] for s in range(len(bounds))]
+
+
+def supported(model, inputs) -> bool:
+    """Whether :func:`batch_free_velocities` replays these inputs of this model: sampled
+    inputs held between samples, no control surfaces deflected."""
+    return not inputs.deflections and not callable(inputs.forces)
