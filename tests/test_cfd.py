@@ -272,9 +272,23 @@ def test_bad_options_are_one_line(capsys, tmp_path, argv, words):
                    *words)
 
 
-def test_vehicle_file_not_yet(capsys, tmp_path):
-    one_line_error(capsys, ["cfd", ROOT / "geometry" / "remus100.yaml", "--write-only",
-                            "--case-dir", tmp_path / "c"], "vehicle files: not yet")
+def test_vehicle_file_writes_its_united_surface(capsys, tmp_path):
+    """A vehicle file: its parts united (geometry.surface.vehicle_surface), its reference
+    speed and water in the case."""
+    from stripcoef.cli import main
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    path = ROOT / "geometry" / "remus100.yaml"
+    vehicle = load_vehicle(path)
+    rc = main(["cfd", str(path), "--write-only", "--case-dir", str(tmp_path / "c"), "--json",
+               "-q"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["density"] == pytest.approx(vehicle.fluid.density)
+    folder = Path(out["written"][0])
+    body = trimesh.load(folder / "constant/triSurface/body.stl")
+    assert body.is_watertight and out["length"] == pytest.approx(max(body.extents), rel=1e-6)
+    u = _read(folder, "0.orig/U")["boundaryField"]["inlet"]["value"][1]
+    assert u[0] == pytest.approx(-vehicle.reference_speed)
 
 
 def test_open_surface_refused(tmp_path):

@@ -1,4 +1,4 @@
-"""``stripcoef cfd MESH``: the body's damping by OpenFOAM (steady RANS), with its mesh spread."""
+"""``stripcoef cfd MESH|VEHICLE``: the body's damping by OpenFOAM (steady RANS), with its mesh spread."""
 
 from __future__ import annotations
 
@@ -19,11 +19,14 @@ def add_parser(sub):
                                    "mesh levels give the mesh-convergence estimate, two "
                                    "speeds the linear term too. Each run is a case folder "
                                    "under --case-dir with an Allrun script (docs/cfd.md).")
-    p.add_argument("mesh", metavar="MESH", help="closed body: STL, OBJ, PLY or GLB file")
+    p.add_argument("mesh", metavar="MESH|VEHICLE",
+                   help="closed body: STL, OBJ, PLY or GLB file, or a vehicle file (its parts "
+                        "united into one closed surface)")
     p.add_argument("--dofs", default="surge", metavar="DOF[,DOF...]",
                    help="any of surge, sway, heave, roll, pitch, yaw, or all (default surge)")
     p.add_argument("--speeds", metavar="U[,U...]",
-                   help="speeds [m/s] (default the reference speed, 1 m/s); two give d_L")
+                   help="speeds [m/s] (default a vehicle file's reference speed, else 1 "
+                        "m/s); two give d_L")
     p.add_argument("--rates", metavar="R[,R...]",
                    help="rotation rates [rad/s] (default 2 U / L: tip speed U)")
     p.add_argument("--levels", default="3,4", metavar="COARSE,FINE",
@@ -115,15 +118,18 @@ def run(args) -> int:
     from stripcoef.cli.options import fluid_from_args
     from stripcoef.files import OutputSet, json_text
     from stripcoef.geometry.mesh import MESH_EXTENSIONS, load_mesh
-    from stripcoef.geometry.vehicle import DEFAULT_SPEED
+    from stripcoef.geometry.surface import vehicle_surface
+    from stripcoef.geometry.vehicle import DEFAULT_SPEED, load_vehicle
 
     path = Path(args.mesh)
-    if path.suffix.lower() in (".yaml", ".yml"):
-        raise InputError("vehicle files: not yet", file=str(path),
-                         expected="the vehicle's closed surface as a mesh file "
-                                  f"({', '.join(MESH_EXTENSIONS)}; stripcoef mesh --repair)")
+    vehicle = None
+    if path.suffix.lower() not in MESH_EXTENSIONS:
+        # a vehicle file: its parts united into one closed surface (the panel method's union),
+        # its reference speed and water the defaults
+        vehicle = load_vehicle(path)
     dofs = _dofs(args.dofs)
-    speeds = _numbers(args.speeds, "--speeds") or [DEFAULT_SPEED]
+    speeds = _numbers(args.speeds, "--speeds") or \
+        [vehicle.reference_speed if vehicle is not None else DEFAULT_SPEED]
     rates = _numbers(args.rates, "--rates")
     levels = _levels(args.levels)
     if args.ranks is not None and args.ranks < 1:
@@ -132,11 +138,17 @@ def run(args) -> int:
     if args.iterations < 10:
         raise InputError("too few iterations", key="--iterations", value=args.iterations,
                          expected="an integer >= 10")
-    body = load_mesh(path, axis=args.axis, length_unit=args.length_unit, z_up=args.z_up)
+    if vehicle is not None:
+        surface = vehicle_surface(vehicle)
+        fluid = fluid_from_args(args, vehicle.fluid) or vehicle.fluid
+    else:
+        surface = load_mesh(path, axis=args.axis, length_unit=args.length_unit,
+                            z_up=args.z_up).mesh
+        fluid = fluid_from_args(args, None)
     case_dir = args.case_dir or f"cfd-{path.stem}"
-    result = drag_by_cfd(body.mesh, dofs=dofs, speeds=speeds, rates=rates, levels=levels,
+    result = drag_by_cfd(surface, dofs=dofs, speeds=speeds, rates=rates, levels=levels,
                          ranks=args.ranks, case_dir=case_dir, iterations=args.iterations,
-                         fluid=fluid_from_args(args, None), write_only=args.write_only,
+                         fluid=fluid, write_only=args.write_only,
                          source=str(path), on_progress=_progress_printer())
     text = json_text(result.to_dict()) if args.json else result.text()
     if args.output:
