@@ -25,21 +25,18 @@ LEVELS = (3, 4)
 
 
 def frontal_area(surface, axis: int) -> float:
-    """Area of the body's shadow on the plane normal to ``axis`` [m^2] (trimesh's
-    projection; the bounding box's face if the projection fails)."""
-    from trimesh.path.polygons import projected
+    """Area of the body's shadow on the plane normal to ``axis`` [m^2]: the union of its
+    triangles projected onto that plane (shapely)."""
+    from shapely import union_all
+    from shapely.geometry import Polygon
 
-    normal = np.zeros(3)
-    normal[axis] = 1.0
-    try:
-        poly = projected(surface, normal=normal)
-        area = float(poly.area) if poly is not None else 0.0
-    except (ValueError, IndexError, AttributeError):
-        area = 0.0
-    if not area > 0:
-        ext = np.delete(surface.extents, axis)
-        area = float(ext[0] * ext[1])
-    return area
+    keep = [a for a in range(3) if a != axis]
+    tri = np.asarray(surface.triangles, float)[:, :, keep]
+    d1, d2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    twice = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    ok = twice > 1e-12 * max(float(np.max(twice, initial=0.0)), 1e-300)
+    shadow = union_all([Polygon(t) for t in tri[ok]])
+    return float(shadow.area)
 
 
 def default_rate(speed: float, length: float) -> float:
