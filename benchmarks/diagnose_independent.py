@@ -20,7 +20,7 @@ Scores (issue 33's criteria):
 Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
-        [--modes dof,all] [--write FILE.md]
+        [--modes dof,all] [--repeats 1] [--write FILE.md]
 """
 
 from __future__ import annotations
@@ -49,16 +49,26 @@ def _prior(vehicle: str):
         return stripcoef.estimate(ROOT / "geometry" / f"{vehicle}.yaml")
 
 
-def run_one(vehicle: str, category: str | None, seed: int, duration: float, mode: str) -> dict:
-    """One log diagnosed in one mode: the row of the score table."""
-    from stripcoef.diagnose.pipeline import diagnose
-    from stripcoef.effects import get_effect
+def run_one(vehicle: str, category: str | None, seed: int, duration: float,
+            modes: tuple) -> list[dict]:
+    """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
     dof_name = ({**STRENGTHS, **OUTSIDE}.get(category) or ("surge",))[0]
     t0 = time.process_time()
     log, truth = generate(prior.to_dict(), category, seed, duration=duration)
+    t1 = time.process_time()
+    return [_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0)
+            for mode in modes]
+
+
+def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim) -> dict:
+    """One log diagnosed in one mode: the row of the score table."""
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.effects import get_effect
+    from validation.independent import STRENGTHS
+
     t1 = time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -73,7 +83,7 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float, mode
            "n_steps": len(every), "unexplained": bool(res["unexplained"]),
            "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
            "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
-           "t_simulate": t1 - t0, "t_diagnose": t2 - t1,
+           "t_simulate": t_sim, "t_diagnose": t2 - t1,
            "step_dofs": sorted(d for d, r in per.items() if r["steps"])}
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
@@ -89,10 +99,23 @@ def _run(args):
     return run_one(*args)
 
 
+def _progress(row: dict) -> dict:
+    """Print one finished diagnosis (a line, its row as JSON after ``row``) and return it."""
+    import json
+    print(f"  {row['vehicle']} {row['category']} seed {row['seed']} {row['mode']}: first "
+          f"{row['first']}, steps in {row['step_dofs']}, cut {row['cut']:.2f}, "
+          f"magnitude error {row.get('magnitude_error', float('nan')):.2f}, "
+          f"unexplained {row['unexplained']} row " + json.dumps(row, default=float),
+          flush=True)
+    return row
+
+
 def summarise(rows: list[dict], seed: int, duration: float) -> str:
     from validation.independent import OUTSIDE, STRENGTHS
 
-    lines = [f"Seed {seed}, logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.", ""]
+    n_logs = len({(r["vehicle"], r["category"], r["seed"]) for r in rows})
+    lines = [f"Seed {seed}, {n_logs} logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.",
+             ""]
     lines += ["| effect | mode | logs | named first | magnitude within 15 % | error cut >= 3x "
               "| spurious DOFs |", "| --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
@@ -151,23 +174,37 @@ def main(argv=None) -> int:
     ap.add_argument("--vehicles", default=",".join(VEHICLES))
     ap.add_argument("--modes", default="dof,all")
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    ap.add_argument("--from-rows", default=None,
+                    help="summarise the 'row' lines of an earlier run's output (a partial "
+                         "run's too) instead of running")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
             else list(STRENGTHS) + ["clean"] + list(OUTSIDE))
     jobs = []
-    for v, vehicle in enumerate(args.vehicles.split(",")):
-        for c, cat in enumerate(cats):
-            for mode in args.modes.split(","):
+    modes = tuple(args.modes.split(","))
+    if args.from_rows:
+        import json
+        from stripcoef.files import read_text
+        rows = [json.loads(line.split(" row ", 1)[1])
+                for line in read_text(args.from_rows, kind="benchmark output").splitlines()
+                if " row {" in line]
+        print(summarise(rows, seed, args.duration))
+        return 0
+    for rep in range(args.repeats):
+        for v, vehicle in enumerate(args.vehicles.split(",")):
+            for c, cat in enumerate(cats):
                 jobs.append((vehicle, None if cat == "clean" else cat,
-                             seed + 1000 * v + c, args.duration, mode))
-    print(f"seed {seed}: {len(jobs)} diagnoses", flush=True)
+                             seed + 100000 * rep + 1000 * v + c, args.duration, modes))
+    print(f"seed {seed}: {len(jobs)} logs, {len(jobs) * len(modes)} diagnoses", flush=True)
     if args.jobs > 1:
         with multiprocessing.Pool(args.jobs) as pool:
-            rows = pool.map(_run, jobs)
+            rows = [_progress(r) for rs in pool.imap_unordered(_run, jobs) for r in rs]
     else:
-        rows = [_run(j) for j in jobs]
+        rows = [_progress(r) for j in jobs for r in _run(j)]
     text = summarise(rows, seed, args.duration)
     print(text)
     if args.write:
