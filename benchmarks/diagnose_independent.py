@@ -84,7 +84,12 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
            "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
            "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
            "t_simulate": t_sim, "t_diagnose": t2 - t1,
-           "step_dofs": sorted(d for d, r in per.items() if r["steps"])}
+           "step_dofs": sorted(d for d, r in per.items() if r["steps"]),
+           # what the written model holds: the steps the validation kept
+           "first_kept": next((s["effect"] for s in steps if s.get("kept", True)), None),
+           "step_dofs_kept": sorted(d for d, r in per.items()
+                                    if any(s.get("kept", True) for s in r["steps"])),
+           "n_steps_kept": sum(bool(s.get("kept", True)) for s in every)}
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
         if match:

@@ -83,7 +83,10 @@ def _generic_shapes(data: WindowData, dof: int) -> list:
       eq. 1);
     - ``v^3``: a force growing faster than the quadratic drag;
     - ``sqrt(|v|) v``: a force between the linear and the quadratic drag;
-    - ``|f|``: a force proportional to the magnitude of the applied force, whatever its sign.
+    - ``|f|``: a force proportional to the magnitude of the applied force, whatever its sign;
+    - ``sin(phi)``, ``sin(theta)`` (roll, pitch): a restoring moment of the wrong size, a
+      wrong metacentric height :math:`\overline{BG}` (Fossen 2011, eq. 4.15,
+      :math:`K = -\overline{BG}_z W \cos\theta \sin\phi`).
 
     The selection (:func:`diagnose_dof`) weighs each step's best library effect against the
     best of these: a residual that a shape outside the library explains better is not given
@@ -97,6 +100,11 @@ def _generic_shapes(data: WindowData, dof: int) -> list:
     if np.std(f) > 0:
         out.append(("|f|", "a force proportional to the magnitude of the applied force",
                     data.mean_held(np.abs(f))))
+    if dof in (3, 4):        # roll, pitch: a restoring-moment error, -W BG sin(angle)
+        angle = "phi" if dof == 3 else "theta"
+        out.append((f"sin({angle})", f"a moment proportional to sin({angle}), as a wrong "
+                    "metacentric height (the restoring moment of Fossen 2011, eq. 4.15)",
+                    data.mean(np.sin(data.eta[:, dof]))))
     return [(n, d, c) for n, d, c in out if np.std(c) > 0]
 
 
