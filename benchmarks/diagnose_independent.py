@@ -122,8 +122,10 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines = [f"Seed {seed}, {n_logs} logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.",
              ""]
     lines += ["| effect | mode | logs | named first | magnitude within 15 % | error cut >= 3x "
-              "| spurious DOFs |", "| --- | --- | --- | --- | --- | --- | --- |"]
+              "| spurious DOFs named | spurious DOFs kept |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
+    spurious_all, mag_all, cut_all = [0, 0], [0], [0]
     confusion: dict = {}
     for cat in STRENGTHS:
         for mode in ("dof", "all"):
@@ -136,21 +138,38 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             cut = sum(r["cut"] >= 3 for r in rs)
             spur = sum(any(d != r["dof"] for d in r["step_dofs"]) for r in rs) if mode == "all" \
                 else 0
+            # the written model's steps (rows of runs before the kept columns: not known)
+            known = [r for r in rs if "step_dofs_kept" in r]
+            spur_kept = (f"{sum(any(d != r['dof'] for d in r['step_dofs_kept']) for r in known)}"
+                         f"/{len(known)}" if mode == "all" and known else "-")
+            spurious_all[0] += spur if mode == "all" else 0
+            spurious_all[1] += n if mode == "all" else 0
             score += first
             total += n
             for r in rs:
                 confusion.setdefault(cat, {}).setdefault(str(r["first"]), 0)
                 confusion[cat][str(r["first"])] += 1
             lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {mag}/{n} | {cut}/{n} | "
-                         + (f"{spur}/{n}" if mode == "all" else "-") + " |")
+                         + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_kept} |")
+            mag_all[0] += mag
+            cut_all[0] += cut
     clean = [r for r in rows if r["category"] == "clean"]
     outside = [r for r in rows if r["category"] in OUTSIDE]
     lines.append("")
     lines.append(f"Library effects named first: {score}/{total}"
-                 + (f" ({100 * score / total:.0f} %)." if total else "."))
+                 + (f" ({100 * score / total:.0f} %)" if total else "")
+                 + f"; magnitude within 15 %: {mag_all[0]}/{total}; error cut >= 3x: "
+                 f"{cut_all[0]}/{total}.")
+    if spurious_all[1]:
+        lines.append(f"Whole-log runs of library-effect logs with a step named in another DOF: "
+                     f"{spurious_all[0]}/{spurious_all[1]}.")
     if clean:
         fp = sum(r["n_steps"] > 0 for r in clean)
-        lines.append(f"Clean logs: an effect added in {fp} of {len(clean)}.")
+        kept = [r for r in clean if "n_steps_kept" in r]
+        lines.append(f"Clean logs: an effect named in {fp} of {len(clean)}"
+                     + (f", kept in the written model in "
+                        f"{sum(r['n_steps_kept'] > 0 for r in kept)} of {len(kept)}"
+                        if kept else "") + ".")
     if outside:
         ok = sum(r["unexplained"] or r["max_gain"] < 0.3 for r in outside)
         lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "
@@ -197,7 +216,10 @@ def main(argv=None) -> int:
         rows = [json.loads(line.split(" row ", 1)[1])
                 for line in read_text(args.from_rows, kind="benchmark output").splitlines()
                 if " row {" in line]
-        print(summarise(rows, seed, args.duration))
+        text = summarise(rows, seed, args.duration)
+        print(text)
+        if args.write:
+            _write(args.write, " ".join(sys.argv[1:] if argv is None else argv), text)
         return 0
     for rep in range(args.repeats):
         for v, vehicle in enumerate(args.vehicles.split(",")):
@@ -213,11 +235,15 @@ def main(argv=None) -> int:
     text = summarise(rows, seed, args.duration)
     print(text)
     if args.write:
-        from stripcoef.files import write_text
-        write_text(args.write, "# Diagnosis on an independent simulator\n\nMeasured by "
-                   "`python -m benchmarks.diagnose_independent "
-                   + " ".join(sys.argv[1:] if argv is None else argv) + "`.\n\n" + text + "\n")
+        _write(args.write, " ".join(sys.argv[1:] if argv is None else argv), text)
     return 0
+
+
+def _write(path, args: str, text: str) -> None:
+    """The markdown file of a run: its command, then the summary."""
+    from stripcoef.files import write_text
+    write_text(path, "# Diagnosis on an independent simulator\n\nMeasured by "
+               f"`python -m benchmarks.diagnose_independent {args}`.\n\n{text}\n")
 
 
 if __name__ == "__main__":
