@@ -226,6 +226,9 @@ def main(argv=None) -> int:
             for c, cat in enumerate(cats):
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes))
+    # in a seeded random order: the rows of a run stopped early are a random sample of the
+    # categories and vehicles (summarise them with --from-rows)
+    jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]
     print(f"seed {seed}: {len(jobs)} logs, {len(jobs) * len(modes)} diagnoses", flush=True)
     if args.jobs > 1:
         with multiprocessing.Pool(args.jobs) as pool:
