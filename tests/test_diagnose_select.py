@@ -67,12 +67,11 @@ def test_dry_friction_ends_unexplained_with_its_signature():
 
     log, prior, truth = generate("coulomb_friction", seed=2)
     res = diagnose(log, prior, dof="surge").to_dict()
-    surge = res["per_dof"]["surge"] if "per_dof" in res else res
     assert res["unexplained"] is True
     assert res["steps"] == []
     sig = res["per_dof"]["surge"]["unexplained_signature"]
     assert sig.startswith("sign(v)") and "opposing the motion" in sig
-    assert surge is not None
+    assert "sign(v)" in res["per_dof"]["surge"]["stopped_by_shape"]["shape"]
 
 
 @pytest.mark.slow
