@@ -13,7 +13,8 @@ Scores (issue 33's criteria):
 
 - library effects: the right effect named first; its magnitude within 15 % of the truth;
   the error cut at least 3x (baseline / final); in whole-log mode, no step in a DOF the
-  effect does not act in;
+  effect does not act in (``ACTS_IN``: a thruster effect acts in every DOF the thrusters
+  drive), counted for the steps named and for those the validation kept;
 - clean logs: no effect added;
 - outside the library: ``unexplained``, or every step's held-out gain under 30 %.
 
@@ -89,7 +90,12 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
            "first_kept": next((s["effect"] for s in steps if s.get("kept", True)), None),
            "step_dofs_kept": sorted(d for d, r in per.items()
                                     if any(s.get("kept", True) for s in r["steps"])),
-           "n_steps_kept": sum(bool(s.get("kept", True)) for s in every)}
+           "n_steps_kept": sum(bool(s.get("kept", True)) for s in every),
+           "step_effects": {d: [s["effect"] for s in r["steps"]] for d, r in per.items()
+                            if r["steps"]},
+           "step_effects_kept": {d: [s["effect"] for s in r["steps"] if s.get("kept", True)]
+                                 for d, r in per.items()
+                                 if any(s.get("kept", True) for s in r["steps"])}}
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
         if match:
@@ -115,6 +121,28 @@ def _progress(row: dict) -> dict:
     return row
 
 
+#: The DOFs each undeclared effect of ``validation.independent`` acts in, beyond its own
+#: (STRENGTHS): the thruster effects change every thruster (so every DOF the thrusters
+#: drive), the current every translation and, through the Munk moment of C_A(nu_r) nu_r,
+#: yaw; the buoyancy acts at the centre of buoyancy (heave, and the roll and pitch
+#: restoring moments). A step naming the effect in one of these DOFs is not spurious.
+ACTS_IN = {name: ("surge", "sway", "heave", "roll", "pitch", "yaw")
+           for name in ("thrust_asymmetry", "deadband", "thruster_lag", "actuation_delay",
+                        "thrust_effectiveness")}
+ACTS_IN.update({"current": ("surge", "sway", "yaw"), "buoyancy_offset": ("heave", "roll",
+                                                                           "pitch")})
+
+
+def _spurious(row: dict, key: str):
+    """Whether a whole-log row has a step in a DOF where the truth has no such effect
+    (``key``: ``step_effects`` or ``step_effects_kept``), None when the row lacks it."""
+    if key not in row:
+        return None
+    acts = ACTS_IN.get(row["category"], ())
+    return any(d != row["dof"] and not (e == row["category"] and d in acts)
+               for d, effects in row[key].items() for e in effects)
+
+
 def summarise(rows: list[dict], seed: int, duration: float) -> str:
     from validation.independent import OUTSIDE, STRENGTHS
 
@@ -122,10 +150,11 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines = [f"Seed {seed}, {n_logs} logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.",
              ""]
     lines += ["| effect | mode | logs | named first | magnitude within 15 % | error cut >= 3x "
-              "| spurious DOFs named | spurious DOFs kept |",
-              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+              "| other DOFs named | spurious named | spurious kept |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
-    spurious_all, mag_all, cut_all = [0, 0], [0], [0]
+    spurious_all = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
+    mag_all, cut_all = [0], [0]
     confusion: dict = {}
     for cat in STRENGTHS:
         for mode in ("dof", "all"):
@@ -138,19 +167,22 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             cut = sum(r["cut"] >= 3 for r in rs)
             spur = sum(any(d != r["dof"] for d in r["step_dofs"]) for r in rs) if mode == "all" \
                 else 0
-            # the written model's steps (rows of runs before the kept columns: not known)
-            known = [r for r in rs if "step_dofs_kept" in r]
-            spur_kept = (f"{sum(any(d != r['dof'] for d in r['step_dofs_kept']) for r in known)}"
-                         f"/{len(known)}" if mode == "all" and known else "-")
-            spurious_all[0] += spur if mode == "all" else 0
-            spurious_all[1] += n if mode == "all" else 0
+            # a step where the truth has no such effect, named and kept (the written model)
+            cells = []
+            for key in ("step_effects", "step_effects_kept"):
+                known = [x for x in (_spurious(r, key) for r in rs) if x is not None]
+                cells.append(f"{sum(known)}/{len(known)}" if mode == "all" and known else "-")
+                if mode == "all" and known:
+                    spurious_all[key][0] += sum(known)
+                    spurious_all[key][1] += len(known)
+            spur_cells = " | ".join(cells)
             score += first
             total += n
             for r in rs:
                 confusion.setdefault(cat, {}).setdefault(str(r["first"]), 0)
                 confusion[cat][str(r["first"])] += 1
             lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {mag}/{n} | {cut}/{n} | "
-                         + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_kept} |")
+                         + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_cells} |")
             mag_all[0] += mag
             cut_all[0] += cut
     clean = [r for r in rows if r["category"] == "clean"]
@@ -160,9 +192,11 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                  + (f" ({100 * score / total:.0f} %)" if total else "")
                  + f"; magnitude within 15 %: {mag_all[0]}/{total}; error cut >= 3x: "
                  f"{cut_all[0]}/{total}.")
-    if spurious_all[1]:
-        lines.append(f"Whole-log runs of library-effect logs with a step named in another DOF: "
-                     f"{spurious_all[0]}/{spurious_all[1]}.")
+    named, kept = spurious_all["step_effects"], spurious_all["step_effects_kept"]
+    if named[1]:
+        lines.append(f"Whole-log runs of library-effect logs with a spurious step (an effect in "
+                     f"a DOF where the truth has none: ACTS_IN): named in {named[0]}/{named[1]}, "
+                     f"kept in the written model in {kept[0]}/{kept[1]}.")
     if clean:
         fp = sum(r["n_steps"] > 0 for r in clean)
         kept = [r for r in clean if "n_steps_kept" in r]
