@@ -325,8 +325,13 @@ def test_method_added_mass_sd_of_a_vehicle_file_and_none_for_a_model_file(tmp_pa
     assert cls == "bluff"           # stripcoef.study.shapes: by geometry
     rows = {s.name: s.spread for s in method_sources_of(str(ROOT / "geometry" / "videoray_pro3.yaml"),
                                                          method_sources)}
-    np.testing.assert_array_equal(sd, [rows["added_mass.translation"]] * 3
-                                  + [rows["added_mass.rotation"]] * 3)
+    from stripcoef.diagnose.priors import vehicle_mismatch
+
+    # the method band is the floor of the measured vehicle mismatch (issue 33)
+    mis = vehicle_mismatch()
+    np.testing.assert_array_equal(
+        sd, [max(rows["added_mass.translation"], mis["translational"]["M"][0])] * 3
+        + [max(rows["added_mass.rotation"], mis["rotational"]["M"][0])] * 3)
     write_export(rov_model(), "yaml", tmp_path / "model.yaml")
     assert prior_added_mass_sd(tmp_path / "model.yaml") == (None, None)
     assert prior_added_mass_sd(tmp_path / "model.json") == (None, None)
@@ -437,7 +442,7 @@ def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
 
     path = str(ROOT / "geometry" / "videoray_pro3.yaml")
     vehicle = load_vehicle(path)
-    widths = method_prior_widths(vehicle, panels=panels)
+    widths = method_prior_widths(vehicle, panels=panels, mismatch=False)
     rows = _rows_by_name(method_sources(vehicle, panels=panels))
     assert widths.shape_class == "bluff"
     for kind, group in (("translational", "translation"), ("rotational", "rotation")):
@@ -453,8 +458,59 @@ def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
         assert ("Published 3D drag" if kind == "translational" else "assumed") \
             in widths.rows[kind]["D_Q"]
     if panels is None:
-        assert prior_widths(path).sd_ln == widths.sd_ln
-        np.testing.assert_array_equal(widths.added_mass_sd, prior_added_mass_sd_of(path))
+        assert prior_widths(path).method_sd_ln == widths.sd_ln
+        np.testing.assert_array_equal(prior_widths(path).added_mass_sd,
+                                      prior_added_mass_sd_of(path))
+
+
+@pytest.mark.parametrize("name", ["videoray_pro3", "remus100", "bluerov2_heavy"])
+def test_vehicle_file_widths_are_the_measured_mismatch_floored_by_the_method_band(name):
+    """Issue 33: a vehicle file's prior width is the larger of the measured vehicle mismatch
+    (data/vehicle_mismatch.csv) and the method band; the row says which one it is."""
+    from stripcoef.diagnose.priors import vehicle_mismatch
+    from stripcoef.diagnose.pipeline import method_prior_widths
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    vehicle = load_vehicle(str(ROOT / "geometry" / f"{name}.yaml"))
+    widths = method_prior_widths(vehicle)
+    method = method_prior_widths(vehicle, mismatch=False)
+    table = vehicle_mismatch()
+    for kind in ("translational", "rotational"):
+        for term in ("M", "D_L", "D_Q"):
+            sd, text = table[kind][term]
+            assert widths.sd_ln[kind][term] == max(sd, method.sd_ln[kind][term])
+            assert widths.method_sd_ln[kind][term] == method.sd_ln[kind][term]
+            if sd > method.sd_ln[kind][term]:
+                assert widths.rows[kind][term].startswith("vehicle mismatch")
+            else:
+                assert widths.rows[kind][term] == method.rows[kind][term]
+    # a 2-3x added mass is inside the hard bound of every translational DOF
+    for i in range(3):
+        lo, hi = added_mass_bounds(i, 1.0, float(widths.added_mass_sd[i]))
+        assert lo <= 0.5 and hi >= 3.0
+
+
+def test_vehicle_mismatch_table_is_what_its_rows_give():
+    """The family table is the RMS of ln(identified / predicted) of its stored rows
+    (reference_tables/method_errors/vehicle_mismatch.csv), to its printed precision."""
+    import csv
+
+    from stripcoef.diagnose.priors import vehicle_mismatch
+
+    path = ROOT / "reference_tables" / "method_errors" / "vehicle_mismatch.csv"
+    rows = list(csv.DictReader(line for line in path.read_text().splitlines()
+                               if not line.startswith("#")))
+    table = vehicle_mismatch()
+    for kind in ("translational", "rotational"):
+        for term in ("M", "D_L", "D_Q"):
+            own = [r for r in rows if r["family"] == term and r["group"] == kind]
+            use = own if len({r["vehicle"] for r in own}) >= 2 else \
+                [r for r in rows if r["family"] == term]
+            rms = np.sqrt(np.mean([float(r["ln_ratio"]) ** 2 for r in use]))
+            assert table[kind][term][0] == pytest.approx(rms, abs=6e-5)
+            for r in use:     # each row is its own log ratio
+                assert float(r["ln_ratio"]) == pytest.approx(
+                    np.log(float(r["identified"]) / float(r["predicted"])), abs=1e-5)
 
 
 def prior_added_mass_sd_of(path):

@@ -156,8 +156,15 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
         i = parse_dof(d)
         cfg, theta = written_fit(d, r, fits[d], exclude)
         k = len(cfg.cal.names)
+        steps = {s["effect"]: s for s in r["steps"]}
+        # a released coefficient's calibration is written as part of its effect (one change)
+        fold = {eff.name: folded_key(eff, steps.get(eff.name, {}), cfg.cal.names)
+                for eff, _ in cfg.terms}
+        fold = {name: key for name, key in fold.items() if key}
         applied = {}
         for key, value in zip(cfg.cal.names, theta[:k]):
+            if key in fold.values():
+                continue
             if key in ("M", "D_L", "D_Q"):
                 mats[key][i, i] += value
                 applied[key] = float(value)
@@ -172,7 +179,10 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             nuis = eff.nuisance(cfg.data, i)
             kn = 0 if nuis is None else nuis.shape[1]
             tn = theta[k:k + kn]
-            params = eff.to_parameters(theta[k + kn:k + ncol], hyper, tn)
+            own = np.array(theta[k + kn:k + ncol], float)
+            if eff.name in fold:
+                own[0] += theta[list(cfg.cal.names).index(fold[eff.name])]
+            params = eff.to_parameters(own, hyper, tn)
             side = _pinned(theta[k + kn:k + ncol], low[k + kn:k + ncol], up[k + kn:k + ncol])
             if side:
                 at_bound[eff.name] = side
@@ -190,6 +200,20 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
                        "parameters": parameters, "at_bound": at_bound})
     m = _with_matrices(m, mats).with_provenance(diagnose=record)
     return replace(m, name=f"{model.name}-calibrated")
+
+
+def folded_key(eff, step: dict, cal_names) -> str:
+    """The calibration coefficient that an effect without a signature releases
+    (``step["mimics"]``, e.g. ``M`` for an added-mass error, ``D_L`` for a linear drag the
+    prior has), when it is calibrated too and the effect's one parameter is that
+    coefficient's change: the calibration and the effect are then one change of the same
+    coefficient, reported and written as the effect's, the total from the prior (issue 33:
+    an added mass 2x the prior's reported as the effect's share alone); else ''."""
+    key = step.get("mimics")
+    if key and key in cal_names and getattr(eff, "native", False) \
+            and len(eff.parameters) == 1 and not eff.nuisance_names:
+        return key
+    return ""
 
 
 def _pinned(theta, low, up) -> str:

@@ -17,7 +17,9 @@ Steps, for each degree of freedom (issue 7):
    sd of ln c per matrix and DOF group (:class:`PriorWidths`, issue 19: the added mass
    measured, the translational quadratic drag measured for the classes with published 3D
    body drag and assumed otherwise, the rotational drag assumed, the linear drag not
-   predicted: a very wide prior).
+   predicted: a very wide prior) as the floor of the measured vehicle mismatch (issue 33:
+   how far real vehicles' identified coefficients are from their geometric predictions,
+   :func:`~.priors.vehicle_mismatch`), the larger of the two.
    A coefficient the prior has as zero is not calibrated (strip theory says it is absent).
 3. **Structure** of the residual: bias, lag-1 autocorrelation, runs test, dependence on the
    sign of the velocity and of the thrust, correlation with each candidate's regressors.
@@ -36,7 +38,12 @@ Steps, for each degree of freedom (issue 7):
      that coefficient more than ``MIMIC_BANDS`` bands away from the prior.
    The significant effect with the lowest held-out error is added; effects within ``TIE``
    of it are reported as alternatives, and an effect with a signature is preferred over one
-   without. Repeat until nothing is significant.
+   without. No step raises the held-out error (a released coefficient included). Before a
+   step, one-column shapes outside the library (:func:`~.select._generic_shapes`: sign(v),
+   v^3, ...) are fitted in its place; one that explains the residual better (held-out error
+   below ``1 - MIN_HELD_OUT_GAIN`` of the best effect's) stops the selection, and the DOF is
+   ``unexplained`` with the residual's signature (``unexplained_signature``). Repeat until
+   nothing is significant.
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,

@@ -1,16 +1,21 @@
 """The calibration's priors: how far each coefficient of the prior model may move.
 
-The widths of the Gaussian priors from the method table (:class:`PriorWidths`, a vehicle
-file's shape class) or the fixed :data:`~stripcoef.diagnose.settings.BANDS` (a model file),
-and the plausible range of an added mass (:func:`added_mass_bounds`).
+The widths of the Gaussian priors of a vehicle file (:class:`PriorWidths`): how far a real
+vehicle is from the model of its file, measured (:func:`vehicle_mismatch`,
+``data/vehicle_mismatch.csv``), with the method table's band of its shape class as the
+floor; the fixed :data:`~stripcoef.diagnose.settings.BANDS` for a model file; and the
+plausible range of an added mass (:func:`added_mass_bounds`).
 
 Depends on: study (the method table), geometry, files, errors.
 """
 
 from __future__ import annotations
 
+import csv
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
 
 import numpy as np
 
@@ -19,7 +24,7 @@ from stripcoef.errors import InputError
 
 __all__ = ["ADDED_MASS_BAND_Z", "KIND_GROUP", "TERM_MATRIX", "PriorWidths", "added_mass_bounds",
            "load_prior", "method_added_mass_sd", "method_prior_widths",
-           "prior_added_mass_sd", "prior_widths"]
+           "prior_added_mass_sd", "prior_widths", "vehicle_mismatch"]
 
 
 #: Half-width of the method uncertainty band of the added mass, in standard deviations [-]:
@@ -48,6 +53,24 @@ def added_mass_bounds(dof: int, prior: float, sd: float | None = None) -> tuple[
     return lo, hi
 
 
+@lru_cache(maxsize=1)
+def vehicle_mismatch() -> dict:
+    r"""``{kind: {term: (sd, source text)}}``: how far a real vehicle's identified
+    coefficients are from those predicted from its geometry, the sd of
+    :math:`\ln(c_{identified} / c_{predicted})` [-] per coefficient family (term ``M``,
+    ``D_L``, ``D_Q``) and DOF group (kind ``translational``, ``rotational``), from
+    ``data/vehicle_mismatch.csv`` (``python -m scripts.make_vehicle_mismatch``: VideoRay
+    Pro III, Wang & Clark 2006 Table I, and ROV II, Eng et al. 2009 Tables III-IV; the root
+    mean square of the log ratios of 3-9 coefficients of 2 vehicles per family)."""
+    text = resources.files("stripcoef.data").joinpath("vehicle_mismatch.csv").read_text()
+    out: dict = {}
+    for row in csv.DictReader(line for line in text.splitlines() if not line.startswith("#")):
+        out.setdefault(row["group"], {})[row["term"]] = (
+            float(row["sd"]), f"vehicle mismatch ({row['basis']}, {row['n_rows']} "
+                              f"coefficients of {row['n_vehicles']} vehicles): {row['source']}")
+    return out
+
+
 #: The method-table matrix of each calibrated term (:mod:`stripcoef.study.sources`).
 TERM_MATRIX = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping"}
 #: The method-table DOF group of each band kind.
@@ -56,7 +79,14 @@ KIND_GROUP = {"translational": "translation", "rotational": "rotation"}
 
 @dataclass(frozen=True)
 class PriorWidths:
-    r"""Widths of the calibration's Gaussian priors from the method table (issue 19).
+    r"""Widths of the calibration's Gaussian priors of a vehicle file (issues 19 and 33).
+
+    Each width is the larger of the vehicle mismatch (:func:`vehicle_mismatch`: how far real
+    vehicles' identified coefficients are from their geometric predictions, measured on the
+    stored papers' vehicles) and the method band below, which is only the floor: the method
+    band says how far the method is from the exact answer for the file's shape, not how far
+    the vehicle is from its file (cables, payload, flooded volumes, missing parts; issue 33:
+    a 2-3x added mass was out of reach of the method's +-1 %).
 
     The method table (``data/method_uncertainty.csv``, docs/uncertainty.md) gives, per shape
     class, matrix and DOF group, the sd :math:`\sigma` of :math:`\ln c` of a coefficient c:
@@ -81,13 +111,16 @@ class PriorWidths:
 
     ``sd_ln``: ``{kind: {term: sigma}}`` (kind ``translational``/``rotational``, term
     ``M``/``D_L``/``D_Q``) [-]; ``rows``: ``{kind: {term: "CLASS MATRIX.GROUP: source
-    text"}}``, the row each width came from (CLASS ``panels`` for a panel-method added mass);
-    ``shape_class``: the vehicle's geometric class.
+    text"}}``, the row each width came from (CLASS ``panels`` for a panel-method added mass;
+    ``vehicle mismatch ...`` where the measured mismatch is the wider);
+    ``shape_class``: the vehicle's geometric class; ``method_sd_ln``: the method table's
+    widths alone (the floor), same form as ``sd_ln``.
     """
 
     shape_class: str
     sd_ln: Mapping
     rows: Mapping
+    method_sd_ln: Mapping | None = None
 
     @property
     def bands(self) -> dict:
@@ -103,18 +136,24 @@ class PriorWidths:
     def to_dict(self) -> dict:
         return {"shape_class": self.shape_class,
                 "sd_ln": {k: dict(v) for k, v in self.sd_ln.items()},
+                "method_sd_ln": ({k: dict(v) for k, v in self.method_sd_ln.items()}
+                                 if self.method_sd_ln is not None else None),
                 "rows": {k: dict(v) for k, v in self.rows.items()},
-                "description": "1-sigma widths of the calibration's Gaussian priors from the "
-                               "method table (sd of ln c, applied as sd |c0| sigma at the "
-                               "prior value c0); linear damping: not predicted by the method, "
-                               "a very wide prior"}
+                "description": "1-sigma widths of the calibration's Gaussian priors: the "
+                               "larger of the measured vehicle mismatch (real vehicles' "
+                               "identified coefficients against their geometric predictions, "
+                               "data/vehicle_mismatch.csv) and the method table's band (the "
+                               "floor); sd of ln c, applied as sd |c0| sigma at the prior "
+                               "value c0"}
 
 
-def method_prior_widths(vehicle, *, panels: bool | None = None) -> PriorWidths:
+def method_prior_widths(vehicle, *, panels: bool | None = None,
+                        mismatch: bool = True) -> PriorWidths:
     """:class:`PriorWidths` of a parsed vehicle: the rows of
     :func:`stripcoef.study.sources.method_sources` (its shape class; the ``panels`` rows for
     the added mass of a panel-method model: ``panels``, default what
-    :func:`stripcoef.study.sources.uses_panels` says for the default options)."""
+    :func:`stripcoef.study.sources.uses_panels` says for the default options) as the floor
+    of the measured :func:`vehicle_mismatch` (``mismatch=False``: the method rows alone)."""
     from stripcoef.study.sources import method_sources, shape_class
 
     found = {}
@@ -133,7 +172,17 @@ def method_prior_widths(vehicle, *, panels: bool | None = None) -> PriorWidths:
             cls, _, text = src.reason.partition(": ")
             sd_ln[kind][term] = float(src.spread)
             rows[kind][term] = f"{cls} {src.name}: {text}"
-    return PriorWidths(shape_class(vehicle), sd_ln, rows)
+    method = {k: dict(v) for k, v in sd_ln.items()}
+    if mismatch:
+        table = vehicle_mismatch()
+        for kind in sd_ln:
+            for term in sd_ln[kind]:
+                sd, text = table[kind][term]
+                if sd > sd_ln[kind][term]:
+                    rows[kind][term] = (f"{text} (wider than the method band "
+                                        f"{sd_ln[kind][term]:g}: {rows[kind][term]})")
+                    sd_ln[kind][term] = sd
+    return PriorWidths(shape_class(vehicle), sd_ln, rows, method)
 
 
 

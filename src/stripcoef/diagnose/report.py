@@ -53,6 +53,8 @@ def text_summary(result) -> str:
         lines.append(f"\n{d} [{r['units']}]  baseline {_fmt(r['baseline_error'])}  "
                      f"calibrated {_fmt(r['calibrated_error'])}  final {_fmt(r['final_error'])}"
                      f"  unexplained {_fmt(r['unexplained'])}")
+        if r.get("unexplained_signature"):
+            lines.append(f"  residual signature: {r['unexplained_signature']}")
         cal = r["calibration"]
         lines.append("  calibration" + (" [removed: worse free simulation on the validation "
                                         "data]" if cal.get("kept") is False else "")
@@ -279,7 +281,9 @@ def markdown_report(result: Diagnosis, path) -> None:
                 f"{_fmt(-100 * ev['held_out_gain'], 3)} %: "
                 + ("**the residual is still structured and no effect of the library "
                    "explains it (unexplained)**." if r["unexplained"] else
-                   "no structure left that the library or the generic basis explains.")]
+                   "no structure left that the library or the generic basis explains.")
+                + (f" Its signature: {r['unexplained_signature']}."
+                   if r.get("unexplained_signature") else "")]
         png = path.with_name(f"{path.stem}_{d}.png")
         if _plot(result, d, png):
             out += ["", f"![{d} residuals]({png.name})"]

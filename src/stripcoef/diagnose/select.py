@@ -4,7 +4,7 @@ nothing is significant; then the structure test of what remains (:mod:`.pipeline
 docstring, steps 3-5). Also which DOFs a log excites.
 
 Depends on: effects, identify (residual statistics), progress, diagnose.settings,
-diagnose.priors, diagnose.fit.
+diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key).
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
+from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
                                     _Generic, _hyper_std, _identifiability, _Nuisance, _rms)
 from stripcoef.diagnose.priors import added_mass_bounds
@@ -70,6 +71,76 @@ def _structure(data: WindowData, dof: int, resid, candidates):
         corr[eff.name] = float(np.corrcoef(x, r)[0, 1])
     out["correlation_with_candidates"] = corr
     return out
+
+
+def _generic_shapes(data: WindowData, dof: int) -> list:
+    r"""One-column shapes outside the library, each ``(name, description, column)``: what an
+    out-of-library force in DOF ``dof`` may look like, in the DOF's own velocity v
+    [m/s or rad/s] and applied force f [N or N m] (window means):
+
+    - ``sign(v)``: a force of constant magnitude opposing the motion, dry (Coulomb)
+      friction :math:`F = -F_c\,\mathrm{sign}(v)` (Olsson et al. 1998, Eur. J. Control 4,
+      eq. 1);
+    - ``v^3``: a force growing faster than the quadratic drag;
+    - ``sqrt(|v|) v``: a force between the linear and the quadratic drag;
+    - ``|f|``: a force proportional to the magnitude of the applied force, whatever its sign;
+    - ``sin(phi)``, ``sin(theta)`` (roll, pitch): a restoring moment of the wrong size, a
+      wrong metacentric height :math:`\overline{BG}` (Fossen 2011, eq. 4.15,
+      :math:`K = -\overline{BG}_z W \cos\theta \sin\phi`).
+
+    The selection (:func:`diagnose_dof`) weighs each step's best library effect against the
+    best of these: a residual that a shape outside the library explains better is not given
+    to a library effect (issue 33: dry friction named dead band with 47-66 % gains)."""
+    v = data.nu[:, dof]
+    out = [("sign(v)", "a force of constant magnitude opposing the velocity (sign(v)-shaped, "
+                       "as dry Coulomb friction)", data.mean(np.sign(v))),
+           ("v^3", "a force growing with the cube of the velocity", data.mean(v ** 3)),
+           ("sqrt(|v|) v", "a force growing with |v|^1.5", data.mean(np.sqrt(np.abs(v)) * v))]
+    f = data.tau[:, dof]
+    if np.std(f) > 0:
+        out.append(("|f|", "a force proportional to the magnitude of the applied force",
+                    data.mean_held(np.abs(f))))
+    if dof in (3, 4):        # roll, pitch: a restoring-moment error, -W BG sin(angle)
+        angle = "phi" if dof == 3 else "theta"
+        out.append((f"sin({angle})", f"a moment proportional to sin({angle}), as a wrong "
+                    "metacentric height (the restoring moment of Fossen 2011, eq. 4.15)",
+                    data.mean(np.sin(data.eta[:, dof]))))
+    return [(n, d, c) for n, d, c in out if np.std(c) > 0]
+
+
+def _best_shape(cfg, cur, data: WindowData, dof: int):
+    """The one-column out-of-library shape (:func:`_generic_shapes`) that lowers the
+    held-out error of ``cur`` (the current fit, :func:`_evaluate`) the most, with
+    ``gain`` (its held-out gain [-]), ``delta_bic``, ``amplitude`` (its fitted coefficient
+    [N or N m per unit of the shape]) and ``held_out_error_after``; None when no shape
+    can be fitted."""
+    best = None
+    for name, text, col in _generic_shapes(data, dof):
+        try:
+            ev = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Generic(col[:, None]), None)]))
+        except (np.linalg.LinAlgError, ValueError):
+            continue
+        if best is None or ev["held_out_error"] < best["held_out_error_after"]:
+            gain = 1.0 - ev["held_out_error"] / cur["held_out_error"] \
+                if cur["held_out_error"] > 0 else 0.0
+            best = {"shape": name, "description": text, "gain": float(gain),
+                    "delta_bic": float(ev["bic"] - cur["bic"]),
+                    "amplitude": float(ev["full"]["theta"][-1]),
+                    "held_out_error_after": float(ev["held_out_error"])}
+    return best
+
+
+def _signature_text(shape: dict | None, unit: str) -> str:
+    """The residual's signature in words (``unexplained_signature``), from
+    :func:`_best_shape`'s record, or '' when no shape lowers the held-out error."""
+    if not shape or shape["gain"] <= 0.0:
+        return ""
+    amp = shape["amplitude"]
+    size = (f"; amplitude {abs(amp):.3g} {unit}"
+            + (", opposing the motion" if shape["shape"] == "sign(v)" and amp < 0 else "")
+            if shape["shape"] == "sign(v)" else f"; coefficient {amp:.3g}")
+    return (f"{shape['shape']}: {shape['description']}{size}; it lowers the held-out error "
+            f"by {100 * shape['gain']:.0f} %")
 
 
 def _generic_basis(data: WindowData, dof: int):
@@ -171,6 +242,21 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             break
         good.sort(key=lambda t: t["held_out_error_after"])
         best = good[0]
+        # a shape outside the library that explains the residual clearly better (by
+        # MIN_HELD_OUT_GAIN of the best effect's held-out error) means the residual is not
+        # this effect: stop, and let the structure test call it unexplained
+        shape = _best_shape(cfg, cur, data, dof)
+        if (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
+                and shape["held_out_error_after"]
+                < (1.0 - MIN_HELD_OUT_GAIN) * best["held_out_error_after"]):
+            result["stopped_by_shape"] = {
+                **shape, "best_effect": best["effect"],
+                "best_effect_held_out_error_after": best["held_out_error_after"],
+                "reason": f"the out-of-library shape {shape['shape']} lowers the held-out "
+                          f"error to {shape['held_out_error_after']:.3g}, below "
+                          f"{1 - MIN_HELD_OUT_GAIN:g} x that of the best library effect "
+                          f"{best['effect']} ({best['held_out_error_after']:.3g})"}
+            break
         ties = [t for t in good[1:]
                 if t["held_out_error_after"] <= best["held_out_error_after"] * (1 + TIE)]
         if not best["signature"]:
@@ -198,8 +284,11 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         ncol = eff.design(data, dof, hyper)[1].shape[1]
         nuis = eff.nuisance(data, dof)
         kn = 0 if nuis is None else nuis.shape[1]
-        step["final_parameters"] = eff.to_parameters(th_all[k + kn:k + ncol], hyper,
-                                                     th_all[k:k + kn])
+        own = th_all[k + kn:k + ncol].copy()
+        key = folded_key(eff, step, cal_names)
+        if key:      # the released coefficient: its calibration and the effect are one change
+            own[0] += th_all[cal_names.index(key)]
+        step["final_parameters"] = eff.to_parameters(own, hyper, th_all[k:k + kn])
         k += ncol
     th = cur["full"]["theta"]
     result["calibration"]["final_parameters"] = {n: float(v) for n, v in
@@ -210,7 +299,15 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     result["final_held_out_error"] = cur["held_out_error"]
     result["structure_after"] = _structure(data, dof, cur["full"]["resid"], library)
     result["unexplained"], result["unexplained_evidence"] = _unexplained(cfg, cur)
+    stopped = result.get("stopped_by_shape")
+    if stopped:
+        result["unexplained"] = True
+        result["unexplained_evidence"]["stopped_by_shape"] = stopped
+    shape = stopped or (_best_shape(cfg, cur, data, dof) if result["unexplained"] else None)
+    result["unexplained_signature"] = (_signature_text(shape, unit)
+                                       if result["unexplained"] else "")
     return result, DofFit(config=cfg, evaluation=cur, prior_residual=e0)
+
 
 
 def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
@@ -261,6 +358,12 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
             reasons.append(f"no signature in this log and the {key} change it implies "
                            f"({total:.3g}) is within {MIMIC_BANDS:g} bands "
                            f"({MIMIC_BANDS * cal_sd[j]:.3g})")
+        # the released coefficient is the calibration's own column: when the calibration
+        # has already absorbed it the held-out error stays (within TIE, the prior's pull);
+        # a rise beyond that does not generalise
+        if gain < -TIE:
+            reasons.append(f"held-out error rises ({100 * gain:.1f}% gain, beyond "
+                           f"{100 * TIE:g}%): the released {key} does not generalise")
     else:
         if gain < MIN_HELD_OUT_GAIN:
             reasons.append(f"held-out gain {100 * gain:.1f}% < {100 * MIN_HELD_OUT_GAIN:.0f}%")

@@ -14,6 +14,12 @@ import numpy as np
 
 from stripcoef.effects.base import THRUST_BAND, Effect, _unit_vec
 
+#: Least share of the thrust (RMS over the windows) each direction must carry for a thrust
+#: asymmetry to be fitted [-]: the asymmetry is the ratio of the backward and forward
+#: branches, and a branch that carries under a tenth of the thrust is not measured by the log
+#: (a stated threshold, not a fitted one).
+MIN_BRANCH_SHARE = 0.1
+
 
 class ThrustAsymmetry(Effect):
     r"""Thrust efficiency that depends on the direction of thrust.
@@ -53,6 +59,17 @@ class ThrustAsymmetry(Effect):
         pos, neg = self._parts(data, dof)
         if np.abs(pos).max() == 0 or np.abs(neg).max() == 0:
             return False, "the thrust in this DOF never changes direction"
+        # each direction must carry a share of the thrust: an asymmetry is the ratio of the
+        # two branches, not measurable from a branch that is almost never used (issue 33:
+        # a pitch asymmetry claimed on a command that is never positive)
+        rms = {"forward": float(np.sqrt(np.mean(pos ** 2))),
+               "backward": float(np.sqrt(np.mean(neg ** 2)))}
+        for name, value in rms.items():
+            share = value / sum(rms.values())
+            if share < MIN_BRANCH_SHARE:
+                return False, (f"the {name} thrust in this DOF is {100 * share:.1f} % of the "
+                               f"thrust (RMS; at least {100 * MIN_BRANCH_SHARE:.0f} % needed "
+                               "to measure an asymmetry)")
         return True, ""
 
     def signature(self, data, dof):
