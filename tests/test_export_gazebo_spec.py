@@ -70,7 +70,7 @@ def test_the_spec_is_read_whole():
 
 @pytest.mark.parametrize("edit, expected", [
     (lambda t: t.replace("<mass>", "<masse>", 1).replace("</mass>", "</masse>", 1),
-     "/sdf/model[@name='BlueROV2 Heavy (like)']/link[@name='base_link']/inertial/masse: "
+     "/sdf/model[@name='BlueROV2 Heavy']/link[@name='base_link']/inertial/masse: "
      "element not defined in SDF 1.11 under <inertial>"),
     (lambda t: t.replace('<link name="base_link">', '<link name="base_link" kind="x">', 1),
      "attribute 'kind' not defined"),
