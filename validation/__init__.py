@@ -44,3 +44,14 @@ def markdown_table(header, rows) -> str:
              "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(cell(v) for v in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def read_stored_run(path) -> tuple[str, list[dict]]:
+    """A stored benchmark run: the command that wrote it (its first line, ``# COMMAND``) and
+    its rows (the CSV below, as dicts of strings)."""
+    import csv
+
+    with open(path, newline="") as fh:
+        command = fh.readline().lstrip("# ").strip()
+        rows = list(csv.DictReader(fh))
+    return command, rows

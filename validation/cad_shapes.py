@@ -7,21 +7,17 @@ states what that run measured; a new run (a fresh seed) replaces the file.
 
 from __future__ import annotations
 
-import csv
 
 import numpy as np
 
-from validation import ROOT, markdown_table
+from stripcoef.conventions import DOF as DOFS
+from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "bem" / "cad_shapes.csv"
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def _read():
-    with open(DATA, newline="") as fh:
-        command = fh.readline().lstrip("# ").strip()
-        rows = list(csv.DictReader(fh))
-    return command, rows
+    return read_stored_run(DATA)
 
 
 def section() -> str:

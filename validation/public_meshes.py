@@ -7,19 +7,14 @@ row per term of each mesh and run, with the mesh's repository, commit, path and 
 
 from __future__ import annotations
 
-import csv
-
-from validation import ROOT, markdown_table
+from stripcoef.conventions import DOF as DOFS
+from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "public_meshes" / "public_meshes.csv"
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def _read():
-    with open(DATA, newline="") as fh:
-        command = fh.readline().lstrip("# ").strip()
-        rows = list(csv.DictReader(fh))
-    return command, rows
+    return read_stored_run(DATA)
 
 
 def section() -> str:

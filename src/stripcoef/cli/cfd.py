@@ -5,9 +5,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from stripcoef.conventions import DOF as DOF_NAMES
 from stripcoef.errors import InputError
-
-DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def add_parser(sub):

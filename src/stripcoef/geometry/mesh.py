@@ -752,7 +752,6 @@ def revolved_mesh(x, r, *, sections: int = 64):
     trimesh.Trimesh
         Watertight mesh, outward normals, x along the axis.
     """
-    import trimesh
 
     x = np.asarray(x, dtype=float)
     r = np.asarray(r, dtype=float)
@@ -775,9 +774,21 @@ def revolved_mesh(x, r, *, sections: int = 64):
     th = 2.0 * np.pi * np.arange(n) / n
     rings = np.stack([np.column_stack([np.full(n, xi), ri * np.cos(th), ri * np.sin(th)])
                       for xi, ri in zip(x, r)])                   # (m, n, 3)
-    m = len(x)
-    verts = np.vstack([rings.reshape(-1, 3), [[x0, 0.0, 0.0], [x1, 0.0, 0.0]]])
-    nose, tail = m * n, m * n + 1
+    return closed_loft(rings, [x0, 0.0, 0.0], [x1, 0.0, 0.0])
+
+
+def closed_loft(rings, first, last):
+    """A closed ``trimesh.Trimesh`` lofted through ``rings`` ((m, n, 3) [m]: m stations of n
+    points each, in the same turning sense), each pair of neighbouring stations joined by 2n
+    triangles, closed by a fan from the point ``first`` to the first station and one from
+    ``last`` to the last (a tip where the point lies on the body, a flat cap where it is the
+    station's centre); turned outward (positive volume)."""
+    import trimesh
+
+    rings = np.asarray(rings, float)
+    m, n = rings.shape[:2]
+    verts = np.vstack([rings.reshape(-1, 3), [first, last]])
+    p_first, p_last = m * n, m * n + 1
     k = np.arange(n)
     k1 = (k + 1) % n
     faces = []
@@ -786,9 +797,9 @@ def revolved_mesh(x, r, *, sections: int = 64):
         c, d = (i + 1) * n + k, (i + 1) * n + k1
         faces.append(np.column_stack([a, c, d]))
         faces.append(np.column_stack([a, d, b]))
-    faces.append(np.column_stack([np.full(n, nose), k, k1]))          # nose fan (or cap)
-    last = (m - 1) * n
-    faces.append(np.column_stack([np.full(n, tail), last + k1, last + k]))
+    faces.append(np.column_stack([np.full(n, p_first), k, k1]))         # first fan (or cap)
+    end = (m - 1) * n
+    faces.append(np.column_stack([np.full(n, p_last), end + k1, end + k]))
     mesh = trimesh.Trimesh(verts, np.vstack(faces), process=False)
     if mesh.volume < 0:
         mesh.invert()

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
+from stripcoef.geometry.mesh import closed_loft
 from stripcoef.geometry.shapes import shape_geometry
 
 #: Default polygon sides of every round section (hull stations, cylinders, ducts) [-].
@@ -86,7 +87,6 @@ def hull_mesh(hull, *, sections: int = DEFAULT_SECTIONS, stations: int = DEFAULT
     an end station of zero half-breadth or half-height is a tip (one vertex), a non-zero one
     a flat cap.  Volume: :math:`\int A(x)\,dx` of the polygonal sections by the trapezoidal
     rule of the loft (the ruled surface between stations)."""
-    import trimesh
 
     n = int(sections) if shape_geometry(hull.section).rounded else 4
     x = hull_stations(hull, stations)
@@ -106,24 +106,7 @@ def hull_mesh(hull, *, sections: int = DEFAULT_SECTIONS, stations: int = DEFAULT
                                        hull.y + _section_ring(hull.section, bi, hi, n)[:, 0],
                                        hull.z + _section_ring(hull.section, bi, hi, n)[:, 1]])
                       for xi, bi, hi in zip(xr, br, hr)])
-    m = len(xr)
-    k = np.arange(n)
-    k1 = (k + 1) % n
-    faces = []
-    for i in range(m - 1):
-        a_, b_ = i * n + k, i * n + k1
-        c_, d_ = (i + 1) * n + k, (i + 1) * n + k1
-        faces += [np.column_stack([a_, c_, d_]), np.column_stack([a_, d_, b_])]
-    verts = [rings.reshape(-1, 3)]
-    last = (m - 1) * n
-    verts.append(np.array([[x[0], hull.y, hull.z], [x[-1], hull.y, hull.z]]))
-    p_aft, p_fwd = m * n, m * n + 1
-    faces.append(np.column_stack([np.full(n, p_aft), k, k1]))            # aft tip or cap fan
-    faces.append(np.column_stack([np.full(n, p_fwd), last + k1, last + k]))
-    mesh = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=False)
-    if mesh.volume < 0:
-        mesh.invert()
-    return mesh
+    return closed_loft(rings, [x[0], hull.y, hull.z], [x[-1], hull.y, hull.z])
 
 
 def _along(axis: str):
