@@ -72,6 +72,6 @@ def test_text_output_and_the_warning(capsys):
 def test_exports_write_the_bands_as_comments(tmp_path):
     for fmt, suffix in (("gazebo", ".sdf"), ("mss", ".m"), ("python", ".py"), ("uuv", ".xml")):
         out = tmp_path / f"rov_model{suffix}"
-        assert main(["export", str(GEOMETRY / "bluerov2_heavy.yaml"), "--to", fmt,
+        assert main(["export", str(GEOMETRY / "videoray_pro3.yaml"), "--to", fmt,
                      "-o", str(out)]) == 0
         assert "method band added_mass rotation: 95 % within factor" in out.read_text(), fmt
