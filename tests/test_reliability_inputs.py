@@ -581,3 +581,17 @@ def test_a_huge_log_is_refused_up_front(tmp_path, capsys):
     _one_line(capsys, ["identify", str(big), "--method", "steady", "--dof", "surge"],
               "huge.csv", "too large to read (1024 MiB", "split it")
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before < 200_000   # kB
+
+
+@pytest.mark.parametrize("segment, key", [
+    ("{type: ellipsoid_nose, x: [0.5, 1.0], radius: 1.0e+300}", "hull.profile[0].radius"),
+    ("{type: cylinder, x: [0.0, 1.0e+300], radius: 0.1}", "hull.profile[0].x"),
+    ("{type: cone, x: [0.0, 1.0], radius: [0.1, 5000.0]}", "hull.profile[0].radius"),
+])
+def test_absurd_lengths_are_refused_before_the_geometry_libraries(segment, key, tmp_path,
+                                                                     capsys):
+    """A 1e300 m radius reached shapely's overlay (GEOSException traceback, fuzz campaign
+    seed 3927): lengths beyond geometry.vehicle.MAX_DIMENSION are one-line errors."""
+    f = tmp_path / "v.yaml"
+    f.write_text(f"name: big\nhull:\n  profile:\n    - {segment}\n")
+    _one_line(capsys, ["coefficients", f], str(f), key, "too large", "2000 m")

@@ -31,6 +31,20 @@ DEFAULT_STRIPS = 1000
 #: Default reference speed for Reynolds numbers and the damping split [m/s].
 DEFAULT_SPEED = 1.0
 REFERENCE_NAMES = ("center_of_buoyancy", "center_of_gravity", "origin")
+#: The largest length a vehicle file may give [m]: ten times the largest submarine built
+#: (about 175 m); a larger value is a unit or typing error, and the geometry libraries lose
+#: their precision long before 1e300 (a one-line error instead of a traceback or a NaN).
+MAX_DIMENSION = 2000.0
+
+
+def _check_dimension(r, key, values, expected="lengths in metres"):
+    """Refuse ``values`` [m] (any nesting) whose magnitude exceeds :data:`MAX_DIMENSION`."""
+    arr = np.abs(np.asarray(values, dtype=float))
+    if arr.size and float(arr.max()) > MAX_DIMENSION:
+        raise r.err(key, "too large", float(arr.max()),
+                    f"{expected} up to {MAX_DIMENSION:g} m (a unit error?)")
+
+
 #: File suffixes read as CAD meshes (:mod:`stripcoef.geometry.mesh`); the rest must be YAML.
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -323,6 +337,7 @@ def _segment(r: _Reader, seg, path) -> Segment:
         raise r.err(f"{path}.x", "not finite", x, "finite numbers")
     if xf <= xa:
         raise r.err(f"{path}.x", "segment has no length", x, "x_aft < x_fwd")
+    _check_dimension(r, f"{path}.x", [xa, xf])
     params = {}
     if kind == "table":
         pts = seg.get("points")
@@ -342,6 +357,7 @@ def _segment(r: _Reader, seg, path) -> Segment:
         if arr[0, 0] > xa + 1e-9 or arr[-1, 0] < xf - 1e-9:
             raise r.err(f"{path}.points", "table does not cover the segment",
                         [float(arr[0, 0]), float(arr[-1, 0])], f"points from {xa} to {xf}")
+        _check_dimension(r, f"{path}.points", arr)
         params["points"] = arr
     elif kind == "cone":
         rad = seg.get("radius")
@@ -350,9 +366,11 @@ def _segment(r: _Reader, seg, path) -> Segment:
             raise r.err(f"{path}.radius", "wrong type", rad, "[r_aft, r_fwd] in metres")
         if any((not math.isfinite(a)) or a < 0 for a in rad) or max(rad) <= 0:
             raise r.err(f"{path}.radius", "invalid radii", rad, "radii >= 0, not both zero")
+        _check_dimension(r, f"{path}.radius", rad)
         params["radius"] = (float(rad[0]), float(rad[1]))
     else:
         params["radius"] = r.number(seg, "radius", path, positive=True, required=True)
+        _check_dimension(r, f"{path}.radius", params["radius"])
         if kind == "myring_nose":
             params["n"] = r.number(seg, "n", path, default=2.0, positive=True)
         if kind == "myring_tail":
@@ -438,7 +456,10 @@ def _appendage(r: _Reader, data, path):
         if np.any(size <= 0):
             raise r.err(f"{path}.size", "must be positive", size.tolist(),
                         "[lx, ly, lz] all > 0")
-        return Box(name=name, center=r.vector(data, "center", path, required=True), size=size)
+        center = r.vector(data, "center", path, required=True)
+        _check_dimension(r, f"{path}.size", size)
+        _check_dimension(r, f"{path}.center", center)
+        return Box(name=name, center=center, size=size)
     if kind == "fin":
         return Fin(name=name, center=r.vector(data, "center", path, required=True),
                    span_axis=r.string(data, "span_axis", path, choices=("y", "z"), required=True),
