@@ -22,6 +22,7 @@ def rov_json(tmp_path_factory):
     return json.loads(out.read_text())
 
 
+@pytest.mark.slow
 def test_json_carries_the_class_rows_and_each_coefficients_band(rov_json):
     from stripcoef.geometry.vehicle import load_vehicle
     rows = {s.name: s.spread for s in method_sources(load_vehicle(GEOMETRY /
@@ -46,6 +47,7 @@ def test_json_carries_the_class_rows_and_each_coefficients_band(rov_json):
         Z95 * 0.5 * np.hypot(sd_t, sd_r), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_model_file_round_trip_and_reference_point_keep_the_bands(rov_json):
     model = HydroModel.from_dict(rov_json)
     got = model.coefficient_bands()
@@ -69,6 +71,7 @@ def test_text_output_and_the_warning(capsys):
     assert "Y_rdot" not in warn[0].split(":", 2)[2].split(";")[0]   # couplings: own band
 
 
+@pytest.mark.slow
 def test_exports_write_the_bands_as_comments(tmp_path):
     for fmt, suffix in (("gazebo", ".sdf"), ("mss", ".m"), ("python", ".py"), ("uuv", ".xml")):
         out = tmp_path / f"rov_model{suffix}"

@@ -384,6 +384,7 @@ def test_calibrated_added_mass_outside_the_method_band_is_held_at_it_and_reporte
         diagnose(log, prior, dof="surge", added_mass_sd=[0.1, 0.1])
 
 
+@pytest.mark.slow
 def test_cli_with_a_vehicle_file_bounds_the_added_mass_by_its_method_band(tmp_path, capsys):
     from stripcoef import cli
     from stripcoef.conventions import FORCES

@@ -20,6 +20,10 @@ from stripcoef.modelfile import load_model
 CHECKER = Path(__file__).resolve().parent / "sdformat_check.cc"
 
 
+# the BlueROV2 Heavy vehicle file is panelled (about 8 s of CPU for the module fixture)
+pytestmark = pytest.mark.slow
+
+
 @pytest.fixture(scope="module")
 def rov():
     from conftest import GEOMETRY

@@ -19,8 +19,9 @@ from conftest import GEOMETRY
 from stripcoef.export import export_model
 from stripcoef.modelfile import load_model
 
-# the BlueROV2 (eight thrusters) in the quick loop, the others (1-3 s CPU each) marked slow
-VEHICLES = [pytest.param(v, marks=[] if v.startswith("bluerov2") else [pytest.mark.slow])
+# the REMUS (a thruster and control surfaces) in the quick loop, the others marked slow (the
+# BlueROV2's eight thrusters: its vehicle file is panelled, about 8 s of CPU)
+VEHICLES = [pytest.param(v, marks=[] if v.startswith("remus") else [pytest.mark.slow])
             for v in ("bluerov2_heavy.yaml", "mares.yaml", "remus100.yaml",
                       "videoray_pro3.yaml")]
 
@@ -68,6 +69,7 @@ def test_the_spec_is_read_whole():
     assert root.children["actor"].children["link"].required == "*"     # actor.sdf says "+"
 
 
+@pytest.mark.slow      # the BlueROV2 model fixture: its vehicle file is panelled (8 s)
 @pytest.mark.parametrize("edit, expected", [
     (lambda t: t.replace("<mass>", "<masse>", 1).replace("</mass>", "</masse>", 1),
      "/sdf/model[@name='BlueROV2 Heavy']/link[@name='base_link']/inertial/masse: "

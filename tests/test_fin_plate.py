@@ -125,6 +125,7 @@ def test_large_tail_couplings_within_3_percent():
     assert abs(fr.mean_coupling(m) / fr.mean_coupling(fine) - 1) < 0.03
 
 
+@pytest.mark.slow
 def test_fins_shares_against_bem():
     # the fins' share (finned minus bare hull) of sway, yaw and their coupling on all six bodies
     # within 5 % plus the BEM's own spread on that term, which a share (a 3-10 % difference of

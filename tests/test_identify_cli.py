@@ -140,6 +140,7 @@ def test_bad_options_one_line_exit_2(logs, tmp_path, capsys):
     assert "JSON" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_one_step_with_vehicle_thruster_map(tmp_path, capsys):
     """Commands n_port, n_starboard + the shipped VideoRay file: torque from the bench map
     (T = Ct n|n|, Wang & Clark 2006 Table I) and I_zz from the vehicle give the same fit as the torque."""

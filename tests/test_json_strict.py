@@ -69,6 +69,7 @@ def _all_outputs(tmp_path, capsys, vehicle):
     return out
 
 
+@pytest.mark.slow
 def test_every_json_output_is_strict_with_an_unlimited_thruster(tmp_path, capsys, unlimited):
     outputs = _all_outputs(tmp_path, capsys, unlimited)
     assert "Infinity" in json.dumps(float("inf"))          # what the old code wrote
