@@ -16,14 +16,10 @@ from validation import ROOT, markdown_table, read_stored_run
 DATA = ROOT / "reference_tables" / "bem" / "cad_shapes.csv"
 
 
-def _read():
-    return read_stored_run(DATA)
-
-
 def section() -> str:
     if not DATA.exists():
         return ""
-    command, rows = _read()
+    command, rows = read_stored_run(DATA)
     shapes = {}
     failed = []
     for r in rows:

@@ -13,14 +13,10 @@ from validation import ROOT, markdown_table, read_stored_run
 DATA = ROOT / "reference_tables" / "public_meshes" / "public_meshes.csv"
 
 
-def _read():
-    return read_stored_run(DATA)
-
-
 def section() -> str:
     if not DATA.exists():
         return ""
-    command, rows = _read()
+    command, rows = read_stored_run(DATA)
     runs, refused = {}, {}
     for r in rows:
         if r["run"] == "refused":
