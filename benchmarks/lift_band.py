@@ -2,7 +2,8 @@
 
 stripcoef's lift (static and rotary) and control derivatives of Roddy's configurations 1-5
 (validation.lift.suboff_comparisons: configurations 3, 4, 5 as built, 1 and 2 without the ring
-wing, whose geometry is not in the report; 6 is left out, its model being configuration 3's)
+wing, which is not built (Groves 1989 geometry stored; it lifts in yaw rotation and not in drift:
+docs/validation.md, 'The ring wing'); 6 is left out, its model being configuration 3's)
 against Roddy 1990's Table 4. For each term the error is ln(model/measured); a term whose model
 has the wrong sign, or whose measured value is zero within its uncertainty, has no such error
 and is counted as outside every factor band. The band is sd(ln) = q95(|ln|) / 1.96

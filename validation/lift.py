@@ -209,8 +209,9 @@ def bare_hull_vehicle(points: int = 600):
     return parse_vehicle(data, file="SUBOFF bare hull")
 
 
-#: Roddy's configurations that stripcoef can build (the ring wing's geometry is not in the
-#: report, so configurations 1, 2 and 6 are built without it): name -> (sail, stern planes).
+#: Roddy's configurations that stripcoef builds (the ring wing, geometry in ring_wing.csv, is
+#: not built: :func:`ring_wing_section`; configurations 1, 2 and 6 are built without it):
+#: name -> (sail, stern planes).
 SUBOFF_CONFIGS = {3: ("bare hull", False, False), 4: ("hull + sail", True, False),
                   5: ("hull + four stern planes", False, True),
                   2: ("fully appended without the ring wing", True, True)}
@@ -512,7 +513,8 @@ SUBOFF_TERMS = {"Yv": "static", "Nv": "static", "Yr": "rotary", "Nr": "rotary"}
 SUBOFF_VERTICAL = {"Zw": "static", "Mw": "static", "Zq": "rotary", "Mq": "rotary",
                    "Zds": "control", "Mds": "control"}
 #: Configurations compared -> the model configuration that represents them (the ring wing is not
-#: built: configurations 1 and 2 are compared without it, configuration 6 with the bare hull).
+#: built, :func:`ring_wing_section`: configurations 1 and 2 are compared without it,
+#: configuration 6 with the bare hull).
 SUBOFF_COMPARED = {3: 3, 4: 4, 5: 5, 6: 3, 2: 2, 1: 2}
 
 
@@ -957,11 +959,13 @@ def body_lift_section() -> list[str]:
         "#### Published body-lift methods on the bare hull", "",
         "Every body-lift method found with its constants, added to the model's Munk part (the "
         "bare hull with `body_lift: off`) about Roddy's moment point "
-        "(`validation.lift.body_lift_candidates`; in brackets model / measured). The "
-        "submarine-specific methods asked for (Jones, Clarke, Brayshaw et al. 2002, DSTO-TR-1329; "
-        "Feldman 1979; Bohlmann 1990; Humphreys 1975; Peterson's DTNSRDC evaluations) were found "
-        "as titles and abstracts only, without their body-lift formulae or constants, so none "
-        "is implemented (a constant recalled without its page would be a guess):", "",
+        "(`validation.lift.body_lift_candidates`; in brackets model / measured). Of the "
+        "submarine-specific methods, Jones, Clarke, Brayshaw et al. 2002 (DSTO-TR-1329) was "
+        "found as its title page and abstract only, and Feldman 1979 (DTNSRDC), Bohlmann 1990, "
+        "Humphreys 1975 and Peterson's DTNSRDC evaluation not at all; the public Digital DATCOM "
+        "code uses Hopkins's station (subroutine BODYRT). None of their body-lift formulae or "
+        "constants could be read, so none is implemented (a constant recalled without its page "
+        "would be a guess):", "",
         markdown_table(["method", "source", "Y'_v", "N'_v", "Y'_r", "N'_r"], rows), "",
         "The methods bracket the measurement and none reaches it. With the cross-flow attached "
         "to the tail, on the hull itself or on its boundary-layer displacement body (the "
