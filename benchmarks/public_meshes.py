@@ -8,9 +8,10 @@ git directory: the file is read with ``git show COMMIT:PATH``), so the benchmark
 GitHub cannot be reached.  Per mesh:
 
 1. **as found**: ``stripcoef coefficients MESH --rho 1000 --json`` (default ``auto``): exit
-   code, the warnings (units, axes, repairs, convergence), the method chosen;
-   a COLLADA file (.dae), which stripcoef does not read, is converted to STL with trimesh
-   (pycollada) first -- the fix a user would try -- and that STL is run;
+   code, the warnings (units, axes, repairs, convergence), the method chosen; a COLLADA file
+   (.dae) read directly (its declared unit and up axis);
+   a mesh refused as found whose error names ``stripcoef mesh MESH --repair -o OUT`` is
+   repaired so -- the fix the error tells a user -- and ``OUT`` is run (run ``repaired``);
 2. **panels**: the same with ``--added-mass-method panels`` when ``auto`` chose the strips;
 3. **reference**: Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
    on isotropic remeshes (:mod:`stripcoef.hull.remesh`) of the closed surface the panel method
@@ -24,10 +25,12 @@ roll of a body of revolution, scaled by that 1 % as the panel method's check doe
 whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  Usage:
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.public_meshes --mirror DIR
-        [--only NAME ...] [--csv reference_tables/public_meshes/public_meshes.csv]
+        [--only NAME ...] [--csv reference_tables/public_meshes/public_meshes.csv [--update]]
 
 The stored run (reference_tables/public_meshes/public_meshes.csv, docs/validation.md) names
-its command and commit of every mesh on its first lines.
+its command and commit of every mesh on its first lines.  ``--update`` with ``--only``
+replaces the rows of the meshes run in an existing CSV and keeps the others (their command
+is added to the first line).
 """
 
 from __future__ import annotations
@@ -141,12 +144,21 @@ def run_cli(path: Path, *extra) -> dict:
                        + "".join(" " + e for e in extra)}
 
 
-def dae_to_stl(src: Path, dst: Path) -> None:
-    """A COLLADA file's triangles as one STL (trimesh with pycollada), units as written."""
-    import trimesh
+REPAIR = "stripcoef mesh"
 
-    scene = trimesh.load(src, force="mesh")
-    scene.export(dst)
+
+def repair_named(run: dict, found: Path, out: Path):
+    """When a refusal names ``stripcoef mesh FILE --repair -o OUT``, that command run on the
+    file as found (a subprocess): the repaired copy ``out`` and a note, else (None, '')."""
+    why = " ".join(run["warnings"])
+    if run["rc"] != 2 or f"'{REPAIR} {found.name} --repair" not in why:
+        return None, ""
+    rep = subprocess.run([sys.executable, "-m", "stripcoef", "mesh", str(found), "--repair",
+                          "-o", str(out)], capture_output=True, text=True)
+    if rep.returncode != 0 or not out.exists():
+        return None, ""
+    notes = [ln.strip()[2:] for ln in rep.stdout.splitlines() if ln.strip().startswith("- ")]
+    return out, f"{REPAIR} {found.name} --repair -o {out.name}: " + "; ".join(notes)
 
 
 def bem_reference(path: Path, bem_faces):
@@ -241,14 +253,26 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="*", default=None, help="names of MESHES to run")
     ap.add_argument("--bem-faces", type=int, nargs="+", default=(500, 1000, 2000))
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--update", action="store_true",
+                    help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
     summary = []
+    command = ("python -m benchmarks.public_meshes --mirror DIR --bem-faces "
+               + " ".join(map(str, args.bem_faces)))
     if args.csv:                          # written as the meshes finish (a long run)
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        kept = []
+        if args.update and args.only and Path(args.csv).exists():
+            with open(args.csv, newline="") as fh:
+                first = fh.readline().lstrip("# ").strip()
+                kept = [r for r in csv.reader(fh)][1:]
+            kept = [r for r in kept if r and r[0] not in args.only]
+            command = first.split("; rows of ")[0] + "; rows of " + " ".join(args.only) \
+                + " from " + command + " --only " + " ".join(args.only) + " --update"
         with open(args.csv, "w", newline="") as fh:
-            fh.write("# python -m benchmarks.public_meshes --mirror DIR --bem-faces "
-                     + " ".join(map(str, args.bem_faces)) + "\n")
+            fh.write("# " + command + "\n")
             csv.writer(fh).writerow(HEADER)
+            csv.writer(fh).writerows(kept)
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in MESHES:
             if args.only and mesh.name not in args.only:
@@ -261,16 +285,18 @@ def main(argv=None) -> int:
             found = Path(tmp) / (mesh.name + Path(mesh.path).suffix.lower())
             found.write_bytes(raw)
             first = run_cli(found)
-            note = ""
-            path = found
-            if found.suffix == ".dae":
-                path = found.with_suffix(".stl")
-                dae_to_stl(found, path)
-                note = "converted .dae to .stl (trimesh + pycollada)"
+            note = "read .dae directly" if found.suffix == ".dae" else ""
+            path, label = found, "auto"
+            repaired, rnote = repair_named(first, found,
+                                           found.with_name(found.stem + "_closed.stl"))
+            if repaired is not None:               # the repair the refusal names
+                path, label, note = repaired, "repaired", rnote
+                print(f"{mesh.name}: refused as found; {rnote[:300]}", flush=True)
             auto = run_cli(path) if path != found else first
-            runs = {"auto": auto}
+            runs = {label: auto}
             if auto["rc"] == 0 and method_of(auto) == "strips":
-                runs["panels"] = run_cli(path, "--added-mass-method", "panels")
+                runs["panels" if label == "auto" else label + ", panels"] = run_cli(
+                    path, "--added-mass-method", "panels")
             print(f"{mesh.name}: as found exit {first['rc']}"
                   + (f" ({first['warnings'][-1][:160]})" if first["rc"] else "")
                   + (f"; {note}" if note else "") + "; auto -> "

@@ -11,13 +11,15 @@ from stripcoef.conventions import DOF as DOFS
 from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "public_meshes" / "public_meshes.csv"
+#: The note of a COLLADA mesh's rows (benchmarks/public_meshes.py).
+DAE = "read .dae directly"
 
 
 def section() -> str:
     if not DATA.exists():
         return ""
     command, rows = read_stored_run(DATA)
-    runs, refused = {}, {}
+    runs, refused, repaired = {}, {}, {}
     for r in rows:
         if r["run"] == "refused":
             refused[r["mesh"]] = (r["vehicle"], r["note"])
@@ -43,8 +45,10 @@ def section() -> str:
             n_sig += len(sig)
             cov += c
             cov_vv += cv
-        table.append([head["vehicle"], head["kind"], run + (" (.dae -> .stl)" if head["note"]
-                                                          else ""),
+        if head["note"].startswith("stripcoef mesh"):
+            repaired[mesh] = (head["vehicle"], head["note"])
+        table.append([head["vehicle"], head["kind"], run + (" (.dae read directly)"
+                                                          if head["note"] == DAE else ""),
                       head["method"], head["panel_levels"] or "-",
                       f"{DOFS[int(wd['i'])]} {100 * float(wd['error_rel']):+.1f} %",
                       (f"{DOFS[int(wc['i'])]}-{DOFS[int(wc['j'])]} "
@@ -60,8 +64,10 @@ def section() -> str:
              "`benchmarks/public_meshes.py` runs the ROV, AUV and glider meshes that open-source "
              "simulators and ROS description packages publish (repository, commit, path and "
              "license below and in reference_tables/public_meshes/README.md) as a user would: "
-             "`stripcoef coefficients MESH --rho 1000 --json` (`auto`; a COLLADA file, which "
-             "stripcoef does not read, converted to STL first), and with `--added-mass-method "
+             "`stripcoef coefficients MESH --rho 1000 --json` (`auto`; a COLLADA file read "
+             "directly, its declared unit and up axis honoured; a mesh refused as found "
+             "repaired by the command its one-line error names, `stripcoef mesh MESH --repair "
+             "-o OUT`, and OUT run: `repaired`), and with `--added-mass-method "
              "panels` where `auto` chose the strips, against Capytaine (direct method, no free "
              "surface) on isotropic remeshes of the closed surface the panel method solves, "
              "three resolutions, the two finest Richardson-extrapolated, moved to the run's "
@@ -83,6 +89,12 @@ def section() -> str:
              "",
              markdown_table(["mesh", "vehicle", "repository", "commit", "path", "license",
                              "role"], [[k, *v] for k, v in sources.items()])]
+    if repaired:
+        parts.append("\nRefused as found and repaired by the command the error names (one "
+                     "line, exit 2: 'mesh is not watertight: N open or non-manifold edges (k of "
+                     "n parts open) after hole filling; expected a closed surface: stripcoef "
+                     "mesh MESH --repair -o OUT ...'): "
+                     + "; ".join(f"{v} ({k}): `{why}`" for k, (v, why) in repaired.items()))
     if refused:
         parts.append("\nRefused as found (one-line error, exit 2; no reference computed): "
                      + "; ".join(f"{v} ({k}): {why.split(': error: ')[-1]}"

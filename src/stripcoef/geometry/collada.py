@@ -88,11 +88,15 @@ def read_collada(path):
         scene names but the file lacks), a bad ``<unit>`` or ``<up_axis>``, no ``<scene>``,
         no triangles in the scene.
     """
-    import collada
     import trimesh
 
     path = Path(path)
     where = str(path)
+    try:
+        import collada
+    except ImportError:  # pragma: no cover - a core dependency
+        raise InputError("reading a COLLADA file needs pycollada", file=where,
+                         expected="pip install pycollada (a dependency of stripcoef)") from None
     expected = "a COLLADA 1.4/1.5 document whose <scene> instances triangle geometry"
     try:
         # materials and images do not matter for the hydrodynamics: an unsupported effect is

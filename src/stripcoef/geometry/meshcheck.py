@@ -85,8 +85,8 @@ def check_mesh(path, *, axis: str = "x", length_unit: str = "m", z_up: bool = Fa
     path = Path(path)
     raw = _read(path)
     open_e = _open_edges(raw.faces)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelWarning)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelWarning)
         try:
             body = load_mesh(path, axis=axis, length_unit=length_unit, origin="file",
                              z_up=z_up)
@@ -98,6 +98,11 @@ def check_mesh(path, *, axis: str = "x", length_unit: str = "m", z_up: bool = Fa
                              z_up=z_up, close_parts=True)
             closed = True
         surface = body.united()
+    for w in caught:        # what is not a repair (the repairs are in the report): the axis
+        text = str(w.message)
+        if issubclass(w.category, ModelWarning) and not any(text.endswith(r) for r in
+                                                            body.repairs):
+            warnings.warn(text, ModelWarning, stacklevel=2)
     scale, rot, _ = _file_frame(raw.metadata, length_unit, axis, z_up)
     pts = (np.asarray(raw.vertices, float)[open_e] * scale) @ rot.T
     v = np.asarray(surface.vertices)
