@@ -195,7 +195,7 @@ def rotate_6(m, rot):
     return t @ np.asarray(m, float) @ t.T
 
 
-def bem_reference(path: Path, bem_faces):
+def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
     """Capytaine on isotropic remeshes of the closed surface the panel method solves (the
     loaded, repaired, united mesh), about the body origin.  Returns (M_A, its estimated
     error, face counts, seconds)."""
@@ -225,7 +225,8 @@ def bem_reference(path: Path, bem_faces):
                          + "/".join(str(len(m.faces)) for m in meshes) + " faces")
     mats, counts = [], []
     for m in meshes:
-        mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3), max_faces=4000))
+        mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3),
+                                   max_faces=max_faces))
         counts.append(len(m.faces))
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
     gci, _, _ = grid_convergence_index(mats, counts)
@@ -286,19 +287,38 @@ def method_of(run):
     return "panels" if c.get("added_mass_method") else "strips"
 
 
+def updated_command(first: str, only, command: str) -> str:
+    """The first line of a CSV whose rows of the meshes ``only`` come from ``command``: the
+    run's own command, then one '; rows of NAMES from COMMAND' clause per update, the meshes
+    of ``only`` taken out of the earlier clauses."""
+    base, *clauses = first.split("; rows of ")
+    out = [base]
+    for clause in clauses:
+        names, _, cmd = clause.partition(" from ")
+        left = [n for n in names.split() if n not in only]
+        if left:
+            out.append(" ".join(left) + " from " + cmd)
+    out.append(" ".join(only) + " from " + command)
+    return "; rows of ".join(out)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mirror", required=True, type=Path,
                     help="folder of local clones (owner+name or name)")
     ap.add_argument("--only", nargs="*", default=None, help="names of MESHES to run")
     ap.add_argument("--bem-faces", type=int, nargs="+", default=(500, 1000, 2000))
+    ap.add_argument("--bem-max-faces", type=int, default=4000,
+                    help="largest BEM level (Capytaine's dense matrices: ~56 N^2 bytes)")
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
     ap.add_argument("--update", action="store_true",
                     help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
     summary = []
     command = ("python -m benchmarks.public_meshes --mirror DIR --bem-faces "
-               + " ".join(map(str, args.bem_faces)))
+               + " ".join(map(str, args.bem_faces))
+               + (f" --bem-max-faces {args.bem_max_faces}" if args.bem_max_faces != 4000
+                  else ""))
     if args.csv:                          # written as the meshes finish (a long run)
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
         kept = []
@@ -307,8 +327,8 @@ def main(argv=None) -> int:
                 first = fh.readline().lstrip("# ").strip()
                 kept = [r for r in csv.reader(fh)][1:]
             kept = [r for r in kept if r and r[0] not in args.only]
-            command = first.split("; rows of ")[0] + "; rows of " + " ".join(args.only) \
-                + " from " + command + " --only " + " ".join(args.only) + " --update"
+            command = updated_command(first, args.only, command + " --only "
+                                      + " ".join(args.only) + " --update")
         with open(args.csv, "w", newline="") as fh:
             fh.write("# " + command + "\n")
             csv.writer(fh).writerow(HEADER)
@@ -363,7 +383,8 @@ def main(argv=None) -> int:
                              auto["command"]] + [""] * (len(HEADER) - 11))
                 continue
             try:
-                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces)
+                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces,
+                                                            args.bem_max_faces)
             except Exception as exc:            # a refusal is a result: say it, go on
                 print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
                 continue

@@ -57,3 +57,11 @@ def test_a_refusal_naming_the_repair_is_repaired_so(tmp_path):
     assert note.startswith("stripcoef mesh rov.stl --repair -o rov_closed.stl: ")
     assert "capped 2 holes of 1 open parts" in note
     assert PM.repair_named({"rc": 2, "warnings": ["error: other"]}, found, out) == (None, "")
+
+
+def test_an_update_names_the_command_of_every_row():
+    first = PM.updated_command("run A", ["m1", "m2"], "run B --only m1 m2 --update")
+    assert first == "run A; rows of m1 m2 from run B --only m1 m2 --update"
+    again = PM.updated_command(first, ["m2"], "run C --only m2 --update")
+    assert again == ("run A; rows of m1 from run B --only m1 m2 --update; rows of m2 from "
+                     "run C --only m2 --update")
