@@ -175,3 +175,20 @@ def test_open_part_refused_naming_the_repair_and_the_repair_closes_it(tmp_path, 
     # the box and the tube capped into a 20-gon prism
     tube = 0.5 * 20 * 0.05**2 * np.sin(2 * np.pi / 20) * 0.3
     assert fixed.volume == pytest.approx(0.8 * 0.3 * 0.3 + tube, rel=1e-6)
+
+
+def test_y_up_file_along_its_in_axis_names_the_axis_of_the_turned_frame(tmp_path):
+    """A Y_UP body whose length lies along the file's z ("in") axis: after the turn to z-up
+    that is the y axis, so the warning names --axis y, which reads it right way up."""
+    body_zup = _hull_with_fin()
+    yaw = trimesh.transformations.rotation_matrix(np.pi / 2, [0, 0, 1])[:3, :3]
+    to_file = TO_Z_UP["Y_UP"].T @ yaw                    # bow along z-up y, then to Y_UP
+    in_file = trimesh.Trimesh(np.asarray(body_zup.vertices) @ to_file.T, body_zup.faces,
+                              process=False)
+    path = write_dae(tmp_path / "hull.dae", [(in_file, np.eye(4))], up="Y_UP")
+    with pytest.warns(ModelWarning, match=r"file's y axis \(turned z-up\).*--axis y"):
+        load_mesh(path)
+    v = np.asarray(load_mesh(path, axis="y", origin="file").mesh.vertices)
+    assert np.ptp(v, axis=0) == pytest.approx([0.9, 0.3, 0.29], rel=1e-6)
+    fin = v[v[:, 2] < -0.11]
+    assert len(fin) and np.all(fin[:, 0] > 0.05)

@@ -503,8 +503,8 @@ def _axis_rotation(axis: str, z_up: bool) -> np.ndarray:
 
 
 def _file_frame(metadata, length_unit: str, axis: str, z_up: bool):
-    """(metres per file unit, the rotation (3x3) from the file's axes into the body axes, notes)
-    of a mesh.  A COLLADA file (``metadata`` from :func:`stripcoef.geometry.collada.read_collada`)
+    """(metres per file unit, the rotation (3x3) from the file's axes into the body axes, notes,
+    the part of that rotation that ``axis`` chooses (:func:`_axis_rotation`)) of a mesh.  A COLLADA file (``metadata`` from :func:`stripcoef.geometry.collada.read_collada`)
     declares both: its ``<unit meter>`` is the unit unless ``length_unit`` is not ``'m'`` (the
     default), which then overrides it (a note says so); its ``<up_axis>`` is turned to z-up
     (:data:`stripcoef.geometry.collada.TO_Z_UP`) and the body read as a z-up file."""
@@ -525,7 +525,11 @@ def _file_frame(metadata, length_unit: str, axis: str, z_up: bool):
         if z_up and up_axis != "Z_UP":
             notes.append(f"the file declares {up_axis}: z_up (--z-up) ignored, its up axis used")
         up, z_up = TO_Z_UP[up_axis], True
-    return scale, _axis_rotation(axis, z_up) @ up, notes
+        if up_axis != "Z_UP":
+            notes.append(f"the file declares {up_axis}: turned z-up (COLLADA's right, up and "
+                         "in axes), then read as a z-up file")
+    body = _axis_rotation(axis, z_up)
+    return scale, body @ up, notes, body
 
 
 def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False, axis_hint=False,
@@ -537,8 +541,8 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False, ax
                          expected="one of " + ", ".join(LENGTH_UNITS))
     if axis not in AXES:
         raise InputError("unknown body axis", key="axis", value=axis, expected="x, y or z")
-    scale, rot, repairs = _file_frame(getattr(mesh, "metadata", None) or {}, length_unit,
-                                      axis, z_up)
+    scale, rot, repairs, choice = _file_frame(getattr(mesh, "metadata", None) or {},
+                                              length_unit, axis, z_up)
     # a fresh mesh on copied arrays (Trimesh.copy also deep-copies its caches)
     mesh = trimesh.Trimesh(vertices=np.array(mesh.vertices, dtype=float),
                            faces=np.array(mesh.faces, dtype=np.int64), process=False)
@@ -576,8 +580,10 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False, ax
     _check_unit_and_axes(where, extent, length_unit, repairs)
     k = 1 + int(np.argmax(extent[1:]))
     if axis_hint and extent[k] > LONG_AXIS_RATIO * extent[0]:
-        named = "xyz"[int(np.argmax(np.abs(rot[k])))]
-        warnings.warn(f"{where}: the body is {extent[k]:.4g} m along the file's {named} axis "
+        named = "xyz"[int(np.argmax(np.abs(choice[k])))]      # of the frame --axis picks in
+        turned = " (turned z-up)" if np.any(rot != choice) else ""
+        warnings.warn(f"{where}: the body is {extent[k]:.4g} m along the file's {named} "
+                      f"axis{turned} "
                       f"but {extent[0]:.4g} m along body x (its length, surge): if the file's "
                       f"{named} axis is the body's length, use --axis {named} (Python: "
                       f"axis='{named}'; a z-up file is turned about its up axis)",

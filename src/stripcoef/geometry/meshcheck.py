@@ -103,7 +103,7 @@ def check_mesh(path, *, axis: str = "x", length_unit: str = "m", z_up: bool = Fa
         if issubclass(w.category, ModelWarning) and not any(text.endswith(r) for r in
                                                             body.repairs):
             warnings.warn(text, ModelWarning, stacklevel=2)
-    scale, rot, _ = _file_frame(raw.metadata, length_unit, axis, z_up)
+    scale, rot, _, _ = _file_frame(raw.metadata, length_unit, axis, z_up)
     pts = (np.asarray(raw.vertices, float)[open_e] * scale) @ rot.T
     v = np.asarray(surface.vertices)
     report = MeshCheck(
