@@ -8,9 +8,10 @@ git directory: the file is read with ``git show COMMIT:PATH``), so the benchmark
 GitHub cannot be reached.  Per mesh:
 
 1. **as found**: ``stripcoef coefficients MESH --rho 1000 --json`` (default ``auto``): exit
-   code, the warnings (units, axes, repairs, convergence), the method chosen;
-   a COLLADA file (.dae), which stripcoef does not read, is converted to STL with trimesh
-   (pycollada) first -- the fix a user would try -- and that STL is run;
+   code, the warnings (units, axes, repairs, convergence), the method chosen; a COLLADA file
+   (.dae) read directly (its declared unit and up axis);
+   a mesh refused as found whose error names ``stripcoef mesh MESH --repair -o OUT`` is
+   repaired so -- the fix the error tells a user -- and ``OUT`` is run (run ``repaired``);
 2. **panels**: the same with ``--added-mass-method panels`` when ``auto`` chose the strips;
 3. **reference**: Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
    on isotropic remeshes (:mod:`stripcoef.hull.remesh`) of the closed surface the panel method
@@ -24,10 +25,12 @@ roll of a body of revolution, scaled by that 1 % as the panel method's check doe
 whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  Usage:
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.public_meshes --mirror DIR
-        [--only NAME ...] [--csv reference_tables/public_meshes/public_meshes.csv]
+        [--only NAME ...] [--csv reference_tables/public_meshes/public_meshes.csv [--update]]
 
 The stored run (reference_tables/public_meshes/public_meshes.csv, docs/validation.md) names
-its command and commit of every mesh on its first lines.
+its command and commit of every mesh on its first lines.  ``--update`` with ``--only``
+replaces the rows of the meshes run in an existing CSV and keeps the others (their command
+is added to the first line).
 """
 
 from __future__ import annotations
@@ -141,15 +144,58 @@ def run_cli(path: Path, *extra) -> dict:
                        + "".join(" " + e for e in extra)}
 
 
-def dae_to_stl(src: Path, dst: Path) -> None:
-    """A COLLADA file's triangles as one STL (trimesh with pycollada), units as written."""
-    import trimesh
-
-    scene = trimesh.load(src, force="mesh")
-    scene.export(dst)
+REPAIR = "stripcoef mesh"
 
 
-def bem_reference(path: Path, bem_faces):
+def repair_named(run: dict, found: Path, out: Path):
+    """When a refusal names ``stripcoef mesh FILE --repair -o OUT``, that command run on the
+    file as found (a subprocess): the repaired copy ``out`` and a note, else (None, '')."""
+    why = " ".join(run["warnings"])
+    if run["rc"] != 2 or f"'{REPAIR} {found.name} --repair" not in why:
+        return None, ""
+    rep = subprocess.run([sys.executable, "-m", "stripcoef", "mesh", str(found), "--repair",
+                          "-o", str(out)], capture_output=True, text=True)
+    if rep.returncode != 0 or not out.exists():
+        return None, ""
+    notes = [ln.strip()[2:] for ln in rep.stdout.splitlines() if ln.strip().startswith("- ")]
+    return out, f"{REPAIR} {found.name} --repair -o {out.name}: " + "; ".join(notes)
+
+
+def axis_named(run: dict):
+    """The axis a run's warning tells the user to give (``use --axis y``), or None."""
+    import re
+
+    for w in run["warnings"]:
+        m = re.search(r"use --axis ([xyz])\b", w)
+        if m:
+            return m.group(1)
+    return None
+
+
+def frame_rotation(path: Path, axis: str) -> np.ndarray:
+    """The rotation R (3x3) from the body axes of ``path`` loaded as found to those with
+    ``--axis axis``: v_axis = R v_found, both about the volume centroid (least squares over
+    the loaded vertices, which the two loads give in the same order)."""
+    import warnings
+
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = np.asarray(load_vehicle(path).bodies[0].mesh.vertices, float)
+        b = np.asarray(load_vehicle(path, axis=axis).bodies[0].mesh.vertices, float)
+    q, *_ = np.linalg.lstsq(a, b, rcond=None)           # b = a q
+    return q.T
+
+
+def rotate_6(m, rot):
+    """A 6x6 matrix about a point in other axes: T M T^T, T = diag(R, R) (a rotation)."""
+    t = np.zeros((6, 6))
+    t[:3, :3] = t[3:, 3:] = rot
+    return t @ np.asarray(m, float) @ t.T
+
+
+def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
     """Capytaine on isotropic remeshes of the closed surface the panel method solves (the
     loaded, repaired, united mesh), about the body origin.  Returns (M_A, its estimated
     error, face counts, seconds)."""
@@ -168,12 +214,19 @@ def bem_reference(path: Path, bem_faces):
     t0 = time.perf_counter()
     # one remesh family (one crease angle, each level 1.25x the faces of the one before),
     # else the surface's edges bisected at every level (a family that refines)
-    family = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in bem_faces])
+    # (a surface whose creases hold the remesh near its own face count -- ECA A9's capped
+    # parts: 2354/2910/3860 faces at 10 deg -- refines by 1.2x, not 1.25x, per level)
+    edges = [edge_for_panels(float(surface.area), n) for n in bem_faces]
+    family = remesh_family(v, f, edges) or remesh_family(v, f, edges, min_ratio=1.2)
     meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
               else [refine(surface, n) for n in bem_faces])
+    if any(len(b.faces) <= len(a.faces) for a, b in zip(meshes, meshes[1:])):
+        raise ValueError("the BEM levels do not refine: "
+                         + "/".join(str(len(m.faces)) for m in meshes) + " faces")
     mats, counts = [], []
     for m in meshes:
-        mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3), max_faces=4000))
+        mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3),
+                                   max_faces=max_faces))
         counts.append(len(m.faces))
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
     gci, _, _ = grid_convergence_index(mats, counts)
@@ -234,21 +287,52 @@ def method_of(run):
     return "panels" if c.get("added_mass_method") else "strips"
 
 
+def updated_command(first: str, only, command: str) -> str:
+    """The first line of a CSV whose rows of the meshes ``only`` come from ``command``: the
+    run's own command, then one '; rows of NAMES from COMMAND' clause per update, the meshes
+    of ``only`` taken out of the earlier clauses."""
+    base, *clauses = first.split("; rows of ")
+    out = [base]
+    for clause in clauses:
+        names, _, cmd = clause.partition(" from ")
+        left = [n for n in names.split() if n not in only]
+        if left:
+            out.append(" ".join(left) + " from " + cmd)
+    out.append(" ".join(only) + " from " + command)
+    return "; rows of ".join(out)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mirror", required=True, type=Path,
                     help="folder of local clones (owner+name or name)")
     ap.add_argument("--only", nargs="*", default=None, help="names of MESHES to run")
     ap.add_argument("--bem-faces", type=int, nargs="+", default=(500, 1000, 2000))
+    ap.add_argument("--bem-max-faces", type=int, default=4000,
+                    help="largest BEM level (Capytaine's dense matrices: ~56 N^2 bytes)")
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--update", action="store_true",
+                    help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
     summary = []
+    command = ("python -m benchmarks.public_meshes --mirror DIR --bem-faces "
+               + " ".join(map(str, args.bem_faces))
+               + (f" --bem-max-faces {args.bem_max_faces}" if args.bem_max_faces != 4000
+                  else ""))
     if args.csv:                          # written as the meshes finish (a long run)
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        kept = []
+        if args.update and args.only and Path(args.csv).exists():
+            with open(args.csv, newline="") as fh:
+                first = fh.readline().lstrip("# ").strip()
+                kept = [r for r in csv.reader(fh)][1:]
+            kept = [r for r in kept if r and r[0] not in args.only]
+            command = updated_command(first, args.only, command + " --only "
+                                      + " ".join(args.only) + " --update")
         with open(args.csv, "w", newline="") as fh:
-            fh.write("# python -m benchmarks.public_meshes --mirror DIR --bem-faces "
-                     + " ".join(map(str, args.bem_faces)) + "\n")
+            fh.write("# " + command + "\n")
             csv.writer(fh).writerow(HEADER)
+            csv.writer(fh).writerows(kept)
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in MESHES:
             if args.only and mesh.name not in args.only:
@@ -261,16 +345,25 @@ def main(argv=None) -> int:
             found = Path(tmp) / (mesh.name + Path(mesh.path).suffix.lower())
             found.write_bytes(raw)
             first = run_cli(found)
-            note = ""
-            path = found
-            if found.suffix == ".dae":
-                path = found.with_suffix(".stl")
-                dae_to_stl(found, path)
-                note = "converted .dae to .stl (trimesh + pycollada)"
+            note = "read .dae directly" if found.suffix == ".dae" else ""
+            path, label = found, "auto"
+            repaired, rnote = repair_named(first, found,
+                                           found.with_name(found.stem + "_closed.stl"))
+            if repaired is not None:               # the repair the refusal names
+                path, label, note = repaired, "repaired", rnote
+                print(f"{mesh.name}: refused as found; {rnote[:300]}", flush=True)
             auto = run_cli(path) if path != found else first
-            runs = {"auto": auto}
+            runs = {label: auto}
             if auto["rc"] == 0 and method_of(auto) == "strips":
-                runs["panels"] = run_cli(path, "--added-mass-method", "panels")
+                runs["panels" if label == "auto" else label + ", panels"] = run_cli(
+                    path, "--added-mass-method", "panels")
+            axis = axis_named(auto) if auto["rc"] == 0 else None
+            if axis:                           # the fix the warning names
+                extra = ("--axis", axis)
+                runs[f"{label}, --axis {axis}"] = ax = run_cli(path, *extra)
+                if ax["rc"] == 0 and method_of(ax) == "strips":
+                    runs[f"{label}, --axis {axis}, panels"] = run_cli(
+                        path, *extra, "--added-mass-method", "panels")
             print(f"{mesh.name}: as found exit {first['rc']}"
                   + (f" ({first['warnings'][-1][:160]})" if first["rc"] else "")
                   + (f"; {note}" if note else "") + "; auto -> "
@@ -290,7 +383,8 @@ def main(argv=None) -> int:
                              auto["command"]] + [""] * (len(HEADER) - 11))
                 continue
             try:
-                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces)
+                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces,
+                                                            args.bem_max_faces)
             except Exception as exc:            # a refusal is a result: say it, go on
                 print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
                 continue
@@ -298,7 +392,12 @@ def main(argv=None) -> int:
                 if run["rc"] != 0 or run["json"] is None:
                     print(f"    {label}: exit {run['rc']}", flush=True)
                     continue
-                terms = compare(run, ref, ref_err)
+                if "--axis" in run["command"]:
+                    rot = frame_rotation(path, axis)
+                    terms = compare(run, rotate_6(ref, rot), np.abs(rotate_6(ref_err,
+                                                                             np.abs(rot))))
+                else:
+                    terms = compare(run, ref, ref_err)
                 c = run["json"]["conditions"]
                 sig = [t for t in terms if t["significant"]]
                 wd = max((t for t in terms if t["i"] == t["j"]), key=lambda t: abs(t["rel"]))

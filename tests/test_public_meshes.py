@@ -35,3 +35,33 @@ def test_read_from_a_clone_at_the_commit(tmp_path):
     missing = dataclasses.replace(mesh, path="meshes/none.stl")
     with pytest.raises(FileNotFoundError):
         PM.read_from_mirror(tmp_path / "mirror", missing)
+
+
+def test_a_refusal_naming_the_repair_is_repaired_so(tmp_path):
+    """The benchmark runs the command that a refusal names (stripcoef mesh FILE --repair -o
+    OUT) and then OUT, as a user told so would."""
+    import numpy as np
+    import trimesh
+
+    box = trimesh.creation.box([0.8, 0.3, 0.3])
+    tube = trimesh.creation.cylinder(radius=0.05, height=0.3, sections=20)
+    side = np.abs(np.asarray(tube.triangles_center)[:, 2]) < 0.149       # no end caps
+    tube = trimesh.Trimesh(tube.vertices, np.asarray(tube.faces)[side], process=False)
+    tube.apply_translation([0.0, 0.0, 0.5])
+    found = tmp_path / "rov.stl"
+    trimesh.util.concatenate([box, tube]).export(found)
+    run = PM.run_cli(found)
+    assert run["rc"] == 2
+    out, note = PM.repair_named(run, found, tmp_path / "rov_closed.stl")
+    assert out is not None and out.exists()
+    assert note.startswith("stripcoef mesh rov.stl --repair -o rov_closed.stl: ")
+    assert "capped 2 holes of 1 open parts" in note
+    assert PM.repair_named({"rc": 2, "warnings": ["error: other"]}, found, out) == (None, "")
+
+
+def test_an_update_names_the_command_of_every_row():
+    first = PM.updated_command("run A", ["m1", "m2"], "run B --only m1 m2 --update")
+    assert first == "run A; rows of m1 m2 from run B --only m1 m2 --update"
+    again = PM.updated_command(first, ["m2"], "run C --only m2 --update")
+    assert again == ("run A; rows of m1 from run B --only m1 m2 --update; rows of m2 from "
+                     "run C --only m2 --update")

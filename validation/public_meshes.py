@@ -11,13 +11,15 @@ from stripcoef.conventions import DOF as DOFS
 from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "public_meshes" / "public_meshes.csv"
+#: The note of a COLLADA mesh's rows (benchmarks/public_meshes.py).
+DAE = "read .dae directly"
 
 
 def section() -> str:
     if not DATA.exists():
         return ""
     command, rows = read_stored_run(DATA)
-    runs, refused = {}, {}
+    runs, refused, repaired = {}, {}, {}
     for r in rows:
         if r["run"] == "refused":
             refused[r["mesh"]] = (r["vehicle"], r["note"])
@@ -33,6 +35,7 @@ def section() -> str:
         wd = max(diag, key=lambda t: abs(float(t["error_rel"])))
         wc = max(coup, key=lambda t: abs(float(t["error_rel"]))) if coup else None
         est_max = max(float(t["estimated_error_rel"]) for t in sig)
+        bem_max = max(float(t["bem_error_rel"]) for t in sig)
         n_diag += len(diag)
         ok_diag += sum(abs(float(t["error_rel"])) <= 0.05 for t in diag)
         n_coup += len(coup)
@@ -43,13 +46,16 @@ def section() -> str:
             n_sig += len(sig)
             cov += c
             cov_vv += cv
-        table.append([head["vehicle"], head["kind"], run + (" (.dae -> .stl)" if head["note"]
-                                                          else ""),
+        if head["note"].startswith("stripcoef mesh"):
+            repaired[mesh] = (head["vehicle"], head["note"])
+        table.append([head["vehicle"], head["kind"], run + (" (.dae read directly)"
+                                                          if head["note"] == DAE else ""),
                       head["method"], head["panel_levels"] or "-",
                       f"{DOFS[int(wd['i'])]} {100 * float(wd['error_rel']):+.1f} %",
                       (f"{DOFS[int(wc['i'])]}-{DOFS[int(wc['j'])]} "
                        f"{100 * float(wc['error_rel']):+.1f} %") if wc else "-",
-                      f"{100 * est_max:.1f} %", "yes" if head["warned"] == "1" else "no",
+                      f"{100 * est_max:.1f} %", f"{100 * bem_max:.1f} %",
+                      "yes" if head["warned"] == "1" else "no",
                       f"{c}/{len(sig)} ({cv})", head["bem_faces"],
                       f"{float(head['seconds']):.1f}"])
     sources = {}
@@ -60,9 +66,13 @@ def section() -> str:
              "`benchmarks/public_meshes.py` runs the ROV, AUV and glider meshes that open-source "
              "simulators and ROS description packages publish (repository, commit, path and "
              "license below and in reference_tables/public_meshes/README.md) as a user would: "
-             "`stripcoef coefficients MESH --rho 1000 --json` (`auto`; a COLLADA file, which "
-             "stripcoef does not read, converted to STL first), and with `--added-mass-method "
-             "panels` where `auto` chose the strips, against Capytaine (direct method, no free "
+             "`stripcoef coefficients MESH --rho 1000 --json` (`auto`; a COLLADA file read "
+             "directly, its declared unit and up axis honoured; a mesh refused as found "
+             "repaired by the command its one-line error names, `stripcoef mesh MESH --repair "
+             "-o OUT`, and OUT run: `repaired`; where a warning names another axis, `use --axis y` "
+             "(the body longer across body x than along it), run again so: `auto, --axis y`, "
+             "against the same reference turned into those axes), and with "
+             "`--added-mass-method panels` where `auto` chose the strips, against Capytaine (direct method, no free "
              "surface) on isotropic remeshes of the closed surface the panel method solves, "
              "three resolutions, the two finest Richardson-extrapolated, moved to the run's "
              "reference point. The stored run:\n",
@@ -73,16 +83,24 @@ def section() -> str:
              f"of {n_diag}; couplings (reference at least 1 % of sqrt(A_ii A_jj)) within 5 % of "
              f"that scale: {ok_coup} of {n_coup}. In the panel-method runs the model's estimated "
              f"error covers the actual error in {cov} of {n_sig} terms; the root-sum-square of the model's and the "
-             f"reference's estimated errors (ASME V&V 20-2009) in {cov_vv}. A strip-theory run "
+             f"reference's estimated errors (ASME V&V 20-2009) in {cov_vv}; `BEM est. max`: the "
+             f"reference's own largest estimated error (its grid convergence index and "
+             f"Richardson step, of the same scale). A strip-theory run "
              "has no estimated error (zero in the table): its method band is the measured one "
              "of docs/validation.md, method-uncertainty table.\n",
              markdown_table(["vehicle", "kind", "run", "method", "panel levels",
                              "worst diagonal", "worst coupling (of scale)", "est. max",
-                             "warned", "estimate covers (with BEM's)", "BEM faces",
+                             "BEM est. max", "warned", "estimate covers (with BEM's)", "BEM faces",
                              "whole command [s]"], table),
              "",
              markdown_table(["mesh", "vehicle", "repository", "commit", "path", "license",
                              "role"], [[k, *v] for k, v in sources.items()])]
+    if repaired:
+        parts.append("\nRefused as found and repaired by the command the error names (one "
+                     "line, exit 2: 'mesh is not watertight: N open or non-manifold edges (k of "
+                     "n parts open) after hole filling; expected a closed surface: stripcoef "
+                     "mesh MESH --repair -o OUT ...'): "
+                     + "; ".join(f"{v} ({k}): `{why}`" for k, (v, why) in repaired.items()))
     if refused:
         parts.append("\nRefused as found (one-line error, exit 2; no reference computed): "
                      + "; ".join(f"{v} ({k}): {why.split(': error: ')[-1]}"

@@ -9,11 +9,12 @@ def add_parser(sub):
     p = sub.add_parser("mesh", help="check a mesh file, say what is repaired, write a repaired copy",
                        description="Read a mesh as found and as repaired (vertices split at "
                                    "seams merged, zero-area faces flipped or collapsed, holes "
-                                   "closed, winding and normals fixed, several bodies united) "
+                                   "closed, winding and normals fixed, several bodies united; a "
+                                   "mesh still open: each open part capped, the parts united) "
                                    "and say what was changed. --repair -o OUT writes the "
                                    "repaired closed surface (body axes FRD, metres, the file's "
                                    "origin); --plot draws it with the file's open edges in red.")
-    p.add_argument("mesh", metavar="MESH", help="STL, OBJ, PLY or GLB file")
+    p.add_argument("mesh", metavar="MESH", help="STL, OBJ, PLY, GLB or COLLADA (.dae) file")
     p.add_argument("--axis", choices=("x", "y", "z"), default="x",
                    help="mesh axis along the body (default x)")
     p.add_argument("--length-unit", choices=("m", "mm", "in"), default="m",
@@ -57,7 +58,11 @@ def run(args) -> int:
         print("  changed:" + (" nothing" if not report.repairs else ""))
         for note in report.repairs:
             print(f"    - {note}")
-        print("  body axes FRD (z down): a z-up file (ROS REP 103, most CAD) needs --z-up")
+        print("  body axes FRD (z down): a z-up file (ROS REP 103, most CAD) needs --z-up "
+              "(a COLLADA file: its <up_axis> is used)")
+        if report.closed_parts:
+            print(f"  the file as found is refused (open parts): use the repaired copy, "
+                  f"--repair -o {Path(args.mesh).stem}_closed.stl")
     if args.output is not None:
         ext = Path(args.output).suffix.lower()[1:]
         write_bytes(args.output, surface.export(file_type=ext), key="--output")

@@ -53,14 +53,16 @@ import numpy as np
 import warnings
 
 from stripcoef.errors import InputError, ModelWarning
+from stripcoef.geometry.mesh_close import close_open_parts, open_parts_text
 # the section geometry of a mesh (re-exported: its users import it from here)
 from stripcoef.geometry.slicing import (COLLINEAR_TOL, EdgeTopology, _chain_cycles,  # noqa: F401
                                         _corner_points, ring_integrals, rings_integrals,
                                         section_geometry, section_properties, slice_rings)
 from stripcoef.strips import Part, Strips, uniform_stations
 
-#: File extensions read through trimesh.
-MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".glb")
+#: File extensions read through trimesh (COLLADA through pycollada:
+#: :mod:`stripcoef.geometry.collada`).
+MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".glb", ".dae")
 #: Length units and their size in metres.
 LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254, "ft": 0.3048}
 #: Body lengths outside this range [m] mean a wrong length unit.
@@ -332,6 +334,10 @@ def _read(path: Path):
                     expected="one of " + ", ".join(MESH_EXTENSIONS))
     if not path.is_file():
         raise _fail(path, "mesh file not found", expected="an existing mesh file")
+    if ext == ".dae":
+        from stripcoef.geometry.collada import read_collada
+
+        return read_collada(path)       # its unit and up axis in metadata (_file_frame)
     try:
         # geometry only: an OBJ's materials and textures are not read (they need pillow,
         # which the base install lacks, and carry nothing the hydrodynamics uses)
@@ -473,7 +479,61 @@ def _check_unit_and_axes(where, extent, length_unit, repairs) -> None:
                        "use --length-unit mm (Python: length_unit='mm')")
 
 
-def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
+#: The body is said to lie along another file axis (a warning naming ``--axis``) when its extent
+#: across body x exceeds this multiple of its extent along x [-]: ROVs are often wider than
+#: long (BlueROV2: 0.58 / 0.46 = 1.26), a glider or torpedo AUV along y is 5-10 times longer.
+LONG_AXIS_RATIO = 1.5
+
+
+def _axis_rotation(axis: str, z_up: bool) -> np.ndarray:
+    """The rotation (3x3, determinant +1) from the file's axes (after the unit, the transform
+    and a COLLADA file's up axis) into the body axes (FRD), ``p_body = R @ p_file``.
+
+    Not z-up: the cyclic mapping of the module docstring (``axis='y'``: (y, z, x) -> body
+    (x, y, z)).  z-up (ROS REP 103: x forward, y left, z up; a COLLADA file, whose up axis is
+    turned to z first): 180 deg about x, (x, y, z) -> (x, -y, -z); with ``axis='y'`` (the length
+    along the file's y) turned about the up axis instead, so that up stays up: (x, y, z) ->
+    (y, x, -z); ``axis='z'`` (the length along up): the cyclic mapping, then 180 deg about x."""
+    perm = np.eye(3)[list(_AXIS_PERM[axis])]
+    if not z_up:
+        return perm
+    if axis == "y":
+        return np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+    return np.diag([1.0, -1.0, -1.0]) @ perm
+
+
+def _file_frame(metadata, length_unit: str, axis: str, z_up: bool):
+    """(metres per file unit, the rotation (3x3) from the file's axes into the body axes, notes,
+    the part of that rotation that ``axis`` chooses (:func:`_axis_rotation`)) of a mesh.  A COLLADA file (``metadata`` from :func:`stripcoef.geometry.collada.read_collada`)
+    declares both: its ``<unit meter>`` is the unit unless ``length_unit`` is not ``'m'`` (the
+    default), which then overrides it (a note says so); its ``<up_axis>`` is turned to z-up
+    (:data:`stripcoef.geometry.collada.TO_Z_UP`) and the body read as a z-up file."""
+    notes = []
+    scale = LENGTH_UNITS[length_unit]
+    unit = metadata.get("collada_unit_meter")
+    up_axis = metadata.get("collada_up_axis")
+    if unit is not None:
+        if length_unit == "m":
+            scale = float(unit)
+        elif not np.isclose(scale, unit, rtol=1e-9):
+            notes.append(f"the length unit '{length_unit}' ({scale:g} m) overrides the file's "
+                         f"declared <unit meter=\"{unit:g}\">")
+    up = np.eye(3)
+    if up_axis is not None:
+        from stripcoef.geometry.collada import TO_Z_UP
+
+        if z_up and up_axis != "Z_UP":
+            notes.append(f"the file declares {up_axis}: z_up (--z-up) ignored, its up axis used")
+        up, z_up = TO_Z_UP[up_axis], True
+        if up_axis != "Z_UP":
+            notes.append(f"the file declares {up_axis}: turned z-up (COLLADA's right, up and "
+                         "in axes), then read as a z-up file")
+    body = _axis_rotation(axis, z_up)
+    return scale, body @ up, notes, body
+
+
+def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False, axis_hint=False,
+             close_parts=False):
     import trimesh
 
     if length_unit not in LENGTH_UNITS:
@@ -481,10 +541,11 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
                          expected="one of " + ", ".join(LENGTH_UNITS))
     if axis not in AXES:
         raise InputError("unknown body axis", key="axis", value=axis, expected="x, y or z")
+    scale, rot, repairs, choice = _file_frame(getattr(mesh, "metadata", None) or {},
+                                              length_unit, axis, z_up)
     # a fresh mesh on copied arrays (Trimesh.copy also deep-copies its caches)
     mesh = trimesh.Trimesh(vertices=np.array(mesh.vertices, dtype=float),
                            faces=np.array(mesh.faces, dtype=np.int64), process=False)
-    scale = LENGTH_UNITS[length_unit]
     mesh.apply_scale(scale)
     if transform is not None:
         try:
@@ -495,15 +556,8 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
             raise InputError("transform must be a 4x4 matrix", key="transform",
                              value=f"shape {t.shape}", expected="4x4 finite")
         mesh.apply_transform(t)
-    perm = _AXIS_PERM[axis]
-    mesh.vertices = np.asarray(mesh.vertices)[:, perm]
-    if np.linalg.det(np.eye(3)[list(perm)]) < 0:  # pragma: no cover - cyclic perms keep handedness
-        mesh.invert()
-    if z_up:
-        # a z-up file (ROS REP 103: x forward, y left, z up; most CAD): 180 deg about x -> FRD
-        mesh.vertices = np.asarray(mesh.vertices) * [1.0, -1.0, -1.0]
+    mesh.vertices = np.asarray(mesh.vertices) @ rot.T      # a rotation: handedness kept
 
-    repairs: list[str] = []
     where = str(path)
     extent = np.ptp(mesh.vertices, axis=0)
     if not np.all(np.isfinite(extent)):
@@ -524,6 +578,16 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
 
     size = float(extent.max())
     _check_unit_and_axes(where, extent, length_unit, repairs)
+    k = 1 + int(np.argmax(extent[1:]))
+    if axis_hint and extent[k] > LONG_AXIS_RATIO * extent[0]:
+        named = "xyz"[int(np.argmax(np.abs(choice[k])))]      # of the frame --axis picks in
+        turned = " (turned z-up)" if np.any(rot != choice) else ""
+        warnings.warn(f"{where}: the body is {extent[k]:.4g} m along the file's {named} "
+                      f"axis{turned} "
+                      f"but {extent[0]:.4g} m along body x (its length, surge): if the file's "
+                      f"{named} axis is the body's length, use --axis {named} (Python: "
+                      f"axis='{named}'; a z-up file is turned about its up axis)",
+                      ModelWarning, stacklevel=3)
     # vertices split at texture or normal seams (OBJ, glTF): merged by position
     merged = merge_close_vertices(mesh, MERGE_TOL * size)
     if merged:
@@ -566,11 +630,17 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
         if topo.watertight:
             repairs.append(f"closed holes in the surface ({n_open} open edges; "
                            "trimesh.repair.fill_holes)")
+        elif close_parts:
+            mesh, notes = close_open_parts(mesh, where=where)
+            repairs += notes
+            topo, labels, fv = EdgeTopology(mesh.faces), None, None
         else:
-            n_left = topo.open_edges
-            raise _fail(where, f"mesh is not watertight: {n_left} open or non-manifold edges "
-                               "remain after hole filling",
-                        expected="a closed surface (close or boolean-union it in CAD)")
+            raise _fail(where, f"mesh is not watertight: {open_parts_text(mesh)} after hole "
+                               "filling",
+                        expected=f"a closed surface: 'stripcoef mesh {Path(where).name} --repair "
+                                 f"-o {Path(where).stem}_closed.stl' caps the open parts and "
+                                 "unites the parts (Python: close_parts=True); or close it in "
+                                 "CAD")
     if not topo.consistent:
         trimesh.repair.fix_winding(mesh)
         repairs.append("made the face winding consistent (trimesh.repair.fix_winding)")
@@ -614,7 +684,7 @@ def _prepare(mesh, *, path, axis, length_unit, origin, transform, z_up=False):
         p = p * scale
         if transform is not None:
             p = (np.asarray(transform, float) @ np.append(p, 1.0))[:3]
-        point = p[list(perm)] * ([1.0, -1.0, -1.0] if z_up else 1.0)
+        point = rot @ p
     mesh.apply_translation(-point)
     return mesh, repairs, labels, n_bodies, topo
 
@@ -675,17 +745,22 @@ class _FaceVectors:
 
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
               transform=None, name: str | None = None, role: str = "hull",
-              z_up: bool = False) -> MeshBody:
+              z_up: bool = False, close_parts: bool = False) -> MeshBody:
     """Read a mesh file, repair what can be repaired and return it in body axes.
 
     Parameters
     ----------
     path : str or Path
-        STL, OBJ, PLY or GLB file (scenes are merged with their node transforms).
+        STL, OBJ, PLY, GLB or COLLADA (.dae) file (scenes are merged with their node
+        transforms).
     axis : {"x", "y", "z"}
-        Mesh axis along the body's length; mapped cyclically onto body x.
+        Mesh axis along the body's length; mapped cyclically onto body x (a z-up file with
+        ``axis='y'``: turned about its up axis, :func:`_axis_rotation`).  A body more than
+        :data:`LONG_AXIS_RATIO` times longer across body x than along it is warned about,
+        naming the file's axis and this parameter.
     length_unit : {"m", "mm", "cm", "in", "ft"}
-        Unit of the file's coordinates.
+        Unit of the file's coordinates (a COLLADA file's declared ``<unit>`` when ``'m'``,
+        the default; another value overrides it, with a warning).
     origin : "centroid", "file" or (x, y, z)
         Body origin: the volume centroid (centre of buoyancy), the file's own
         origin (after unit, transform and axis mapping: for meshes placed in a
@@ -701,6 +776,11 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     z_up : bool
         The file's z axis points up (ROS meshes, REP 103: x forward, y left, z up; most CAD
         tools): the body is turned 180 deg about x into FRD (z down) after the axis mapping.
+        A COLLADA file is read with its declared ``<up_axis>`` turned to z-up, as z-up.
+    close_parts : bool
+        A mesh that stays open after hole filling: cap the holes of each open part and unite
+        the parts (:func:`stripcoef.geometry.mesh_close.close_open_parts`; ``stripcoef mesh
+        FILE --repair``) instead of refusing it.
 
     Returns
     -------
@@ -719,7 +799,8 @@ def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid
     mesh = _read(path)
     mesh, repairs, labels, n_bodies, topo = _prepare(mesh, path=path, axis=axis,
                                                      length_unit=length_unit, origin=origin,
-                                                     transform=transform, z_up=z_up)
+                                                     transform=transform, z_up=z_up,
+                                                     axis_hint=True, close_parts=close_parts)
     for note in repairs:
         warnings.warn(f"{path}: {note}", ModelWarning, stacklevel=2)
     return MeshBody(mesh, name=name or path.stem, source=str(path), repairs=repairs,

@@ -43,6 +43,10 @@ class MeshCheck:
         Enclosed volume of the repaired (united) surface [m^3].
     repairs : tuple of str
         What was found and changed, in words.
+    closed_parts : bool
+        The file is refused as found (open after hole filling): the repair capped its open
+        parts and united them (:mod:`stripcoef.geometry.mesh_close`); the other commands need
+        the repaired copy (``--repair -o OUT``).
     """
 
     source: str
@@ -56,6 +60,7 @@ class MeshCheck:
     extent: tuple
     volume: float
     repairs: tuple = field(default_factory=tuple)
+    closed_parts: bool = False
 
     def to_dict(self) -> dict:
         return {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.__dict__.items()}
@@ -74,25 +79,39 @@ def check_mesh(path, *, axis: str = "x", length_unit: str = "m", z_up: bool = Fa
 
     Returns (MeshCheck, the repaired surface as a ``trimesh.Trimesh`` in body axes [m] with the
     file's origin, the file's open edges as (k, 2, 3) segments in body axes [m])."""
-    from stripcoef.geometry.mesh import (LENGTH_UNITS, _AXIS_PERM, EdgeTopology, _read,
-                                         load_mesh)
+    from stripcoef.errors import InputError
+    from stripcoef.geometry.mesh import EdgeTopology, _file_frame, _read, load_mesh
 
     path = Path(path)
     raw = _read(path)
     open_e = _open_edges(raw.faces)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelWarning)
-        body = load_mesh(path, axis=axis, length_unit=length_unit, origin="file", z_up=z_up)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelWarning)
+        try:
+            body = load_mesh(path, axis=axis, length_unit=length_unit, origin="file",
+                             z_up=z_up)
+            closed = False
+        except InputError as exc:          # open after hole filling: the parts closed
+            if "not watertight" not in str(exc):
+                raise
+            body = load_mesh(path, axis=axis, length_unit=length_unit, origin="file",
+                             z_up=z_up, close_parts=True)
+            closed = True
         surface = body.united()
-    pts = np.asarray(raw.vertices, float)[open_e] * LENGTH_UNITS.get(length_unit, 1.0)
-    pts = pts[..., list(_AXIS_PERM[axis])] * ([1.0, -1.0, -1.0] if z_up else 1.0)
+    for w in caught:        # what is not a repair (the repairs are in the report): the axis
+        text = str(w.message)
+        if issubclass(w.category, ModelWarning) and not any(text.endswith(r) for r in
+                                                            body.repairs):
+            warnings.warn(text, ModelWarning, stacklevel=2)
+    scale, rot, _, _ = _file_frame(raw.metadata, length_unit, axis, z_up)
+    pts = (np.asarray(raw.vertices, float)[open_e] * scale) @ rot.T
     v = np.asarray(surface.vertices)
     report = MeshCheck(
         source=str(path), faces_found=len(raw.faces), vertices_found=len(raw.vertices),
         open_edges_found=len(open_e), faces=len(surface.faces), vertices=len(v),
         bodies=body.n_bodies, watertight=EdgeTopology(surface.faces).consistent,
         extent=tuple(float(x) for x in np.ptp(v, axis=0)), volume=float(surface.volume),
-        repairs=tuple(body.repairs))
+        repairs=tuple(body.repairs), closed_parts=closed)
     return report, surface, pts
 
 

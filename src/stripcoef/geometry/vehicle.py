@@ -46,7 +46,7 @@ def _check_dimension(r, key, values, expected="lengths in metres"):
 
 
 #: File suffixes read as CAD meshes (:mod:`stripcoef.geometry.mesh`); the rest must be YAML.
-MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
+MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off", ".dae")
 
 
 @dataclass
