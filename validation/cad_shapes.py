@@ -81,7 +81,9 @@ def section() -> str:
         worst_miss = max(missed_cov, key=lambda t: abs(float(t["error_rel"])) - float(
             t["estimated_error_rel"])) if missed_cov else None
         gci = (f" The estimate is the grid convergence index of the panel levels (Roache 1994, "
-               f"1998: safety factor 1.25 with three levels and the observed order, 3 with two) "
+               f"1998; safety factor and order as Oberkampf & Roy 2010, sec. 8.6.3.2: 1.25 and "
+               f"the formal order where the three finest levels' observed order is within 10 % "
+               f"of it, else 3 and the observed order, at least 0.5) "
                f"plus the extrapolation's step; the references carry their own (three BEM "
                f"levels). Counting both, root-sum-square as ASME V&V 20-2009 prescribes for a "
                f"comparison error, the band covers {vv} of {len(sig)} terms "
