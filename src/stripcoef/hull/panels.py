@@ -551,7 +551,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
     ("input"), the two panellings of :func:`panel_levels`.  The estimated error of each term
     is the grid convergence index of the finest level (:mod:`stripcoef.hull.convergence`,
-    Roache 1994/1998: :math:`F_s = 1.25` with three levels and the observed order, 3 with two)
+    Roache 1994/1998; :math:`F_s = 1.25` with three levels in the asymptotic range, else 3
+    with the observed order, Oberkampf & Roy 2010 sec. 8.6.3.2; 3 with two)
     plus the extrapolation's step from it (the index is a band about the finest solve; the
     reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
