@@ -42,7 +42,11 @@ def main(argv=None) -> int:
     ap.add_argument("--bem-faces", type=int, nargs="+", default=(1600, 3200),
                     help="remesh targets [faces], coarse to fine")
     ap.add_argument("--max-faces", type=int, default=5000, help="largest BEM mesh solved")
+    ap.add_argument("--csv", default=None,
+                    help="write each diagonal term's row to this CSV (validation/vehicle_surface.py "
+                         "reads reference_tables/bem/panels_vehicles.csv)")
     args = ap.parse_args(argv)
+    rows = []
 
     import trimesh
 
@@ -73,7 +77,7 @@ def main(argv=None) -> int:
         for w in caught:
             if "has not converged" in str(w.message):
                 print("  warned:", str(w.message).split(": ", 1)[1][:160])
-        mats, counts = [], []
+        mats, counts, pairs = [], [], []
         for target in args.bem_faces:
             lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(surf.area, target))
             if lv is None:
@@ -92,6 +96,7 @@ def main(argv=None) -> int:
             pan = 0.5 * (pan + pan.T)
             mats.append(bem)
             counts.append(len(lv[1]))
+            pairs.append((pan, bem))
             print(f"  {len(lv[1])} faces: Capytaine {np.diag(bem).round(4).tolist()} "
                   f"({t_bem:.1f} s); panel method on the same mesh "
                   f"{np.diag(pan).round(4).tolist()} ({t_pan:.1f} s); largest difference "
@@ -104,13 +109,32 @@ def main(argv=None) -> int:
         ref_err = estimated_error(mats[-1], ref, gci)
         print(f"  reference (Richardson {counts[-2]}/{counts[-1]}): "
               f"{np.diag(ref).round(4).tolist()}")
+        same = max(float(np.max(np.abs(np.diag(p) / np.diag(b) - 1))) for p, b in pairs)
         for i in range(6):
             e = ours[i, i] / ref[i, i] - 1.0
+            rows.append([path, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i, i]:.6g}", f"{e:.4g}",
+                         f"{est[i, i] / abs(ref[i, i]):.4g}",
+                         f"{ref_err[i, i] / abs(ref[i, i]):.4g}",
+                         "/".join(map(str, model.conditions.get("added_mass_panel_levels", ()))),
+                         "/".join(map(str, counts)), f"{same:.3g}", f"{cpu:.2f}"])
             print(f"  {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference {ref[i, i]:.5g} "
                   f"(+- {100 * ref_err[i, i] / abs(ref[i, i]):.1f} %)  error {100 * e:+.1f} %  "
                   f"estimated {100 * est[i, i] / abs(ref[i, i]):.1f} %  "
                   f"{'covered' if abs(ours[i, i] - ref[i, i]) <= est[i, i] else 'NOT covered'}",
                   flush=True)
+    if args.csv:
+        import csv
+        from pathlib import Path
+
+        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.csv, "w", newline="") as fh:
+            fh.write("# benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
+                     + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}\n")
+            w = csv.writer(fh)
+            w.writerow(["file", "dof", "estimate", "bem", "error_rel", "estimated_error_rel",
+                        "bem_gci_rel", "panel_levels", "bem_faces", "same_mesh_max_diff_rel",
+                        "cpu_estimate_s"])
+            w.writerows(rows)
     return 0
 
 
