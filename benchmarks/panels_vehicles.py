@@ -8,8 +8,9 @@ the ``remesh`` extra) at the ``--bem-faces`` targets, and on every remesh both C
 one-level solve (:func:`stripcoef.hull.panels.solve_added_mass`) are run: the same mesh, two
 codes.  The reference is the Capytaine levels' Richardson extrapolation (two finest, 1/N) with
 its grid convergence index (:mod:`stripcoef.hull.convergence`).  Then the estimate as a user
-runs it (``stripcoef coefficients FILE``: ``auto``, the default panels) is compared with it
-term by term, with its estimated error (``added_mass_error``), about the vehicle's reference
+runs it (``stripcoef coefficients FILE``: ``auto``, the default panels), with the ``remesh``
+extra and as a base install has it (the remesher switched off), is compared with it term by
+term, with its estimated error (``added_mass_error``), about the vehicle's reference
 point, rho = 1000 kg/m^3.
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_vehicles [FILE ...]
@@ -58,25 +59,38 @@ def main(argv=None) -> int:
     from stripcoef.hull.convergence import grid_convergence_index, richardson
     from stripcoef.hull.panels import estimated_error, solve_added_mass
 
-    for path in args.files:
-        veh = load_vehicle(path)
-        with warnings.catch_warnings(record=True) as caught:
+    def run(veh, remesher):
+        """The default estimate, with the remesher or as a base install has it (no
+        ``remesh`` extra: :func:`stripcoef.hull.remesh.available` False)."""
+        from unittest import mock
+
+        with warnings.catch_warnings(record=True) as caught, \
+                mock.patch.object(remesh, "available", lambda: remesher and real()):
             warnings.simplefilter("always")
             c0 = time.process_time()
             model = estimate(veh)
             cpu = time.process_time() - c0
+        warned = [str(w.message) for w in caught if "has not converged" in str(w.message)]
+        return model, cpu, warned
+
+    real = remesh.available
+    for path in args.files:
+        veh = load_vehicle(path)
+        runs = {}
+        for install, remesher in (("remesh extra", True), ("base", False)):
+            if remesher and not real():
+                continue
+            runs[install] = run(veh, remesher)
+        model = next(iter(runs.values()))[0]
         about = np.asarray(model.reference_point, float)
-        ours = np.asarray(model.added_mass) * RHO / model.density
-        est = np.asarray(model.added_mass_error) * RHO / model.density
         surf = vehicle_surface(veh)
         v, f = np.asarray(surf.vertices, float), np.asarray(surf.faces)
         print(f"{path}: surface {len(f)} faces, area {surf.area:.4f} m^2, volume "
-              f"{surf.volume:.6f} m^3; estimate ({model.conditions.get('added_mass_method')}): "
-              f"levels {model.conditions.get('added_mass_panel_levels')}, "
-              f"CPU {cpu:.1f} s", flush=True)
-        for w in caught:
-            if "has not converged" in str(w.message):
-                print("  warned:", str(w.message).split(": ", 1)[1][:160])
+              f"{surf.volume:.6f} m^3", flush=True)
+        for install, (m, cpu, warned) in runs.items():
+            print(f"  estimate ({install}): {m.conditions.get('added_mass_method')}, CPU "
+                  f"{cpu:.1f} s" + (f"; warned: {warned[0].split(': ', 1)[1][:140]}"
+                                    if warned else ""), flush=True)
         mats, counts, pairs = [], [], []
         for target in args.bem_faces:
             lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(surf.area, target))
@@ -110,18 +124,22 @@ def main(argv=None) -> int:
         print(f"  reference (Richardson {counts[-2]}/{counts[-1]}): "
               f"{np.diag(ref).round(4).tolist()}")
         same = max(float(np.max(np.abs(np.diag(p) / np.diag(b) - 1))) for p, b in pairs)
-        for i in range(6):
-            e = ours[i, i] / ref[i, i] - 1.0
-            rows.append([path, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i, i]:.6g}", f"{e:.4g}",
-                         f"{est[i, i] / abs(ref[i, i]):.4g}",
-                         f"{ref_err[i, i] / abs(ref[i, i]):.4g}",
-                         "/".join(map(str, model.conditions.get("added_mass_panel_levels", ()))),
-                         "/".join(map(str, counts)), f"{same:.3g}", f"{cpu:.2f}"])
-            print(f"  {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference {ref[i, i]:.5g} "
-                  f"(+- {100 * ref_err[i, i] / abs(ref[i, i]):.1f} %)  error {100 * e:+.1f} %  "
-                  f"estimated {100 * est[i, i] / abs(ref[i, i]):.1f} %  "
-                  f"{'covered' if abs(ours[i, i] - ref[i, i]) <= est[i, i] else 'NOT covered'}",
-                  flush=True)
+        for install, (m, cpu, warned) in runs.items():
+            ours = np.asarray(m.added_mass) * RHO / m.density
+            est = np.asarray(m.added_mass_error) * RHO / m.density
+            levels = "/".join(map(str, m.conditions.get("added_mass_panel_levels", ())))
+            for i in range(6):
+                e = ours[i, i] / ref[i, i] - 1.0
+                rows.append([path, install, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i, i]:.6g}",
+                             f"{e:.4g}", f"{est[i, i] / abs(ref[i, i]):.4g}",
+                             f"{ref_err[i, i] / abs(ref[i, i]):.4g}", levels,
+                             "/".join(map(str, counts)), f"{same:.3g}", f"{cpu:.2f}",
+                             int(bool(warned))])
+                print(f"  {install:12s} {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference "
+                      f"{ref[i, i]:.5g} (+- {100 * ref_err[i, i] / abs(ref[i, i]):.1f} %)  "
+                      f"error {100 * e:+.1f} %  estimated {100 * est[i, i] / abs(ref[i, i]):.1f}"
+                      f" %  {'covered' if abs(ours[i, i] - ref[i, i]) <= est[i, i] else 'NOT covered'}",
+                      flush=True)
     if args.csv:
         import csv
         from pathlib import Path
@@ -131,9 +149,9 @@ def main(argv=None) -> int:
             fh.write("# benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
                      + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}\n")
             w = csv.writer(fh)
-            w.writerow(["file", "dof", "estimate", "bem", "error_rel", "estimated_error_rel",
-                        "bem_gci_rel", "panel_levels", "bem_faces", "same_mesh_max_diff_rel",
-                        "cpu_estimate_s"])
+            w.writerow(["file", "install", "dof", "estimate", "bem", "error_rel",
+                        "estimated_error_rel", "bem_gci_rel", "panel_levels", "bem_faces",
+                        "same_mesh_max_diff_rel", "cpu_estimate_s", "warned"])
             w.writerows(rows)
     return 0
 
