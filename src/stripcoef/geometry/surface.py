@@ -282,7 +282,10 @@ def coarsest_within(vehicle, limits):
     built once: :math:`F_\cup \approx F_{parts}\,F_\cup^{(0)} / F_{parts}^{(0)}` with the
     ratio of the first union built (the seams add faces, hidden parts remove them); only when
     the union then exceeds its limit is the next coarser tessellation built (at most a few
-    unions instead of one per rung of the ladder)."""
+    unions instead of one per rung of the ladder).  The prediction is not a bound: where parts
+    hide much of each other a rung whose parts' faces exceed the limit may have a union within
+    it, and a coarser rung is then taken than a search uniting every rung would take (the
+    shipped files and the tests' vehicles take the same rung, tests/test_vehicle_surface.py)."""
     built = {}
     parts = {}
 
