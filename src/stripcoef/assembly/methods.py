@@ -239,8 +239,9 @@ def with_added_mass_of(model, vehicle, name: str):
     """``model`` (a :class:`~stripcoef.model.HydroModel` of ``vehicle``) with its M_A from the
     method ``name`` about the same reference point (``coefficients --method bem``): damping
     and rigid-body terms kept, the provenance naming the method and what it reports (the
-    BEM: faces and solver time [s]), no panel error estimate. A method that does not apply
-    to ``vehicle`` is a one-line error."""
+    BEM: faces and solver time [s]), the method's estimated error of each term (none for the
+    BEM; the panels' grid convergence index, their mirror planes found on the vehicle's own
+    strips). A method that does not apply to ``vehicle`` is a one-line error."""
     method = get_method(name)
     need = method.applies_to(vehicle)
     if need is not None:
