@@ -32,9 +32,9 @@ the scale).  Usage:
 
 ``--references CSV`` re-runs the model alone on the seed of a stored run against that run's
 references (after a change of the panel method: minutes instead of the BEM's quarter hour).
-The stored run, reference_tables/bem/cad_shapes.csv (docs/validation.md), is seed 874081318 with 40
-shapes; its ``estimated_error_rel`` column comes from such a re-run (every other column
-reproduced within 1e-4).
+The stored run, reference_tables/bem/cad_shapes.csv (docs/validation.md), is named on its
+first line (seed 3849713801, 40 shapes, BEM 750/1500/3000 faces, run as two ``--shard``
+processes and merged).
 """
 
 from __future__ import annotations

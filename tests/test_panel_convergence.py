@@ -22,20 +22,40 @@ def test_observed_order_is_exact_on_a_power_law(p, counts):
     assert got[0] == pytest.approx(p, rel=1e-6)
 
 
-def test_gci_three_levels_uses_the_observed_order_and_covers_the_truth():
+def test_gci_three_levels_in_the_asymptotic_range_take_safety_1_25_and_the_formal_order():
     counts = (400, 800, 1600)
-    levels = _sequence(1.0, counts)
+    levels = _sequence(2.0, counts)
     gci, order, safety = grid_convergence_index(levels, counts)
-    assert order[0] == pytest.approx(1.0, rel=1e-6)
+    assert order[0] == pytest.approx(2.0)
     assert safety[0] == SAFETY_THREE_GRIDS
     # with the exact order the band is 1.25 times the fine level's true error
     assert gci[0] == pytest.approx(1.25 * abs(levels[-1][0] - 2.0), rel=1e-6)
 
 
+@pytest.mark.parametrize("p", [0.8, 1.0, 1.5])
+def test_gci_outside_the_asymptotic_range_takes_safety_3_and_the_observed_order(p):
+    # Oberkampf & Roy 2010, sec. 8.6.3.2: |p - p_f| > 0.1 p_f -> F_s = 3, p = observed
+    counts = (400, 800, 1600)
+    levels = _sequence(p, counts)
+    gci, order, safety = grid_convergence_index(levels, counts)
+    assert order[0] == pytest.approx(p, rel=1e-6)
+    assert safety[0] == SAFETY_TWO_GRIDS
+    assert gci[0] == pytest.approx(3.0 * abs(levels[-1][0] - 2.0), rel=1e-6)
+
+
+def test_gci_order_within_ten_percent_counts_as_asymptotic():
+    counts = (400, 800, 1600)
+    _, order, safety = grid_convergence_index(_sequence(1.85, counts), counts)
+    assert safety[0] == SAFETY_THREE_GRIDS and order[0] == 2.0
+    _, order, safety = grid_convergence_index(_sequence(0.3, counts), counts)
+    assert safety[0] == SAFETY_TWO_GRIDS and order[0] == pytest.approx(0.5)
+
+
 def test_gci_order_capped_at_the_formal_order():
     counts = (400, 800, 1600)
-    gci, order, _ = grid_convergence_index(_sequence(3.0, counts), counts)
+    gci, order, safety = grid_convergence_index(_sequence(3.0, counts), counts)
     assert order[0] == pytest.approx(2.0)
+    assert safety[0] == SAFETY_TWO_GRIDS
 
 
 def test_gci_oscillating_or_two_levels_fall_back_to_safety_three():

@@ -268,3 +268,46 @@ def test_panels_beyond_a_coarse_box_face_count(tmp_path, capsys):
     assert out["conditions"]["added_mass_panels"] > 2000
     a = np.asarray(out["added_mass"], float)
     np.testing.assert_allclose(np.diag(a), np.diag(ref), rtol=0.025)
+
+
+def test_ladder_builds_the_union_once_or_twice_and_picks_the_rung_a_full_search_would(
+        monkeypatch):
+    """coarsest_within chooses the sides on the parts' face counts and unites once (issue 32:
+    the surface was united once per rung, five times per estimate of the BlueROV2 Heavy);
+    the surface it returns is the finest rung within each limit, as a search over every
+    rung's union finds it."""
+    import stripcoef.geometry.surface as surface
+
+    veh = load_vehicle(GEOMETRY / "videoray_pro3.yaml")
+    limits = ((400, 16), (2400, 12))
+    full = {n: len(vehicle_surface(veh, sections=n, stations=max(4, round(24 * n / 64))).faces)
+            for n in surface.SECTION_LADDER}
+    expect = next((n for most, fewest in limits for n in surface.SECTION_LADDER
+                   if n >= fewest and full[n] <= most), surface.SECTION_LADDER[-1])
+    calls = []
+    real = surface._boolean
+    monkeypatch.setattr(surface, "_boolean",
+                        lambda op, meshes, v: calls.append(op) or real(op, meshes, v))
+    got = surface.coarsest_within(veh, limits)
+    assert got.metadata["sections"] == expect
+    assert len(got.faces) == full[expect]
+    assert 1 <= calls.count("union") <= 2
+
+
+@pytest.mark.slow
+def test_with_added_mass_of_panels_needs_no_strips():
+    """``with_added_mass_of(model, vehicle, "panels")`` (no strips passed) gives the estimate's
+    panel M_A and its error, the mirror planes' couplings exactly zero (it crashed on the
+    strips' absence)."""
+    from stripcoef.assembly.methods import with_added_mass_of
+
+    veh = load_vehicle(GEOMETRY / "videoray_pro3.yaml")
+    with _quiet():
+        model = estimate(veh, added_mass_method="strips")
+        panels = estimate(veh, added_mass_method="panels")
+        got = with_added_mass_of(model, veh, "panels")
+    np.testing.assert_allclose(got.added_mass, panels.added_mass, rtol=1e-9, atol=1e-12)
+    assert got.added_mass_error is not None
+    assert got.provenance["mirror_planes"] == "y"
+    assert got.added_mass[0, 1] == 0.0 and got.added_mass[1, 2] == 0.0
+    np.testing.assert_allclose(got.rigid_body_mass, model.rigid_body_mass)

@@ -1,0 +1,160 @@
+"""The shipped vehicle files' panel added mass against Capytaine on the same closed surface.
+
+For each vehicle file (default: geometry/videoray_pro3.yaml and geometry/bluerov2_heavy.yaml)
+the surface the panel method solves on (its parts united, :func:`stripcoef.geometry.surface.
+vehicle_surface`, 64 sides a circle) is remeshed isotropically (:mod:`stripcoef.hull.remesh`,
+the ``remesh`` extra) at the ``--bem-faces`` targets, and on every remesh both Capytaine
+(direct method, no free surface; :func:`stripcoef.bem.bem_added_mass`) and the panel method's
+one-level solve (:func:`stripcoef.hull.panels.solve_added_mass`) are run: the same mesh, two
+codes.  The reference is the Capytaine levels' Richardson extrapolation (two finest, 1/N) with
+its grid convergence index (:mod:`stripcoef.hull.convergence`).  Then the estimate as a user
+runs it (``stripcoef coefficients FILE``: ``auto``, the default panels), with the ``remesh``
+extra and as a base install has it (the remesher switched off), is compared with it term by
+term, with its estimated error (``added_mass_error``), about the vehicle's reference
+point, rho = 1000 kg/m^3.
+
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_vehicles [FILE ...]
+        [--bem-faces 1600 3200] [--family auto|input]
+
+Needs the ``bem`` and ``remesh`` extras.  A remesh whose volume differs from the surface's by
+more than 2 % (members thinner than the edge collapsed) is skipped and said.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+import warnings
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+RHO = 1000.0
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("files", nargs="*", default=["geometry/videoray_pro3.yaml",
+                                                  "geometry/bluerov2_heavy.yaml"])
+    ap.add_argument("--bem-faces", type=int, nargs="+", default=(1600, 3200),
+                    help="remesh targets [faces], coarse to fine")
+    ap.add_argument("--max-faces", type=int, default=5000, help="largest BEM mesh solved")
+    ap.add_argument("--csv", default=None,
+                    help="write each diagonal term's row to this CSV (validation/vehicle_surface.py "
+                         "reads reference_tables/bem/panels_vehicles.csv)")
+    args = ap.parse_args(argv)
+    rows = []
+
+    import trimesh
+
+    from stripcoef.assembly import estimate
+    from stripcoef.bem import bem_added_mass
+    from stripcoef.geometry.surface import vehicle_surface
+    from stripcoef.geometry.vehicle import load_vehicle
+    from stripcoef.hull import remesh
+    from stripcoef.hull.convergence import grid_convergence_index, richardson
+    from stripcoef.hull.panels import estimated_error, solve_added_mass
+
+    def run(veh, remesher):
+        """The default estimate, with the remesher or as a base install has it (no
+        ``remesh`` extra: :func:`stripcoef.hull.remesh.available` False)."""
+        from unittest import mock
+
+        with warnings.catch_warnings(record=True) as caught, \
+                mock.patch.object(remesh, "available", lambda: remesher and real()):
+            warnings.simplefilter("always")
+            c0 = time.process_time()
+            model = estimate(veh)
+            cpu = time.process_time() - c0
+        warned = [str(w.message) for w in caught if "has not converged" in str(w.message)]
+        return model, cpu, warned
+
+    real = remesh.available
+    for path in args.files:
+        veh = load_vehicle(path)
+        runs = {}
+        for install, remesher in (("remesh extra", True), ("base", False)):
+            if remesher and not real():
+                continue
+            runs[install] = run(veh, remesher)
+        model = next(iter(runs.values()))[0]
+        about = np.asarray(model.reference_point, float)
+        surf = vehicle_surface(veh)
+        v, f = np.asarray(surf.vertices, float), np.asarray(surf.faces)
+        print(f"{path}: surface {len(f)} faces, area {surf.area:.4f} m^2, volume "
+              f"{surf.volume:.6f} m^3", flush=True)
+        for install, (m, cpu, warned) in runs.items():
+            print(f"  estimate ({install}): {m.conditions.get('added_mass_method')}, CPU "
+                  f"{cpu:.1f} s" + (f"; warned: {warned[0].split(': ', 1)[1][:140]}"
+                                    if warned else ""), flush=True)
+        mats, counts, pairs = [], [], []
+        for target in args.bem_faces:
+            lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(surf.area, target))
+            if lv is None:
+                print(f"  remesh at {target} faces: refused (volume changed > 2 %)")
+                continue
+            if len(lv[1]) > args.max_faces:
+                print(f"  remesh at {target} faces: {len(lv[1])} faces > --max-faces, skipped")
+                continue
+            t0 = time.perf_counter()
+            bem = bem_added_mass(trimesh.Trimesh(*lv, process=False), rho=RHO,
+                                 reference_point=about, max_faces=args.max_faces)
+            t_bem = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            pan = solve_added_mass(lv[0][lv[1]], rho=RHO, about=about)
+            t_pan = time.perf_counter() - t0
+            pan = 0.5 * (pan + pan.T)
+            mats.append(bem)
+            counts.append(len(lv[1]))
+            pairs.append((pan, bem))
+            print(f"  {len(lv[1])} faces: Capytaine {np.diag(bem).round(4).tolist()} "
+                  f"({t_bem:.1f} s); panel method on the same mesh "
+                  f"{np.diag(pan).round(4).tolist()} ({t_pan:.1f} s); largest difference "
+                  f"{100 * np.max(np.abs(np.diag(pan) / np.diag(bem) - 1)):.2f} %", flush=True)
+        if len(mats) < 2:
+            print("  fewer than two BEM levels: no reference")
+            continue
+        ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
+        gci, _, _ = grid_convergence_index(mats, counts)
+        ref_err = estimated_error(mats[-1], ref, gci)
+        print(f"  reference (Richardson {counts[-2]}/{counts[-1]}): "
+              f"{np.diag(ref).round(4).tolist()}")
+        same = max(float(np.max(np.abs(np.diag(p) / np.diag(b) - 1))) for p, b in pairs)
+        for install, (m, cpu, warned) in runs.items():
+            ours = np.asarray(m.added_mass) * RHO / m.density
+            est = np.asarray(m.added_mass_error) * RHO / m.density
+            levels = "/".join(map(str, m.conditions.get("added_mass_panel_levels", ())))
+            for i in range(6):
+                e = ours[i, i] / ref[i, i] - 1.0
+                rows.append([path, install, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i, i]:.6g}",
+                             f"{e:.4g}", f"{est[i, i] / abs(ref[i, i]):.4g}",
+                             f"{ref_err[i, i] / abs(ref[i, i]):.4g}", levels,
+                             "/".join(map(str, counts)), f"{same:.3g}", f"{cpu:.2f}",
+                             int(bool(warned))])
+                print(f"  {install:12s} {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference "
+                      f"{ref[i, i]:.5g} (+- {100 * ref_err[i, i] / abs(ref[i, i]):.1f} %)  "
+                      f"error {100 * e:+.1f} %  estimated {100 * est[i, i] / abs(ref[i, i]):.1f}"
+                      f" %  {'covered' if abs(ours[i, i] - ref[i, i]) <= est[i, i] else 'NOT covered'}",
+                      flush=True)
+    if args.csv:
+        import csv
+        from pathlib import Path
+
+        Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.csv, "w", newline="") as fh:
+            fh.write("# benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
+                     + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}\n")
+            w = csv.writer(fh)
+            w.writerow(["file", "install", "dof", "estimate", "bem", "error_rel",
+                        "estimated_error_rel", "bem_gci_rel", "panel_levels", "bem_faces",
+                        "same_mesh_max_diff_rel", "cpu_estimate_s", "warned"])
+            w.writerows(rows)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
