@@ -50,7 +50,9 @@ with ballast [BR-2]); each T200 a duct ring of its published outer size whose wa
 published displacement (motor and propeller lumped into the wall); the horizontal ducts
 drawn along x (a vehicle file's cylinder runs along x, y or z) and 0.012 m further out than
 their thrust point so that the duct reaches the side panel as the 45 deg duct does (its
-outer edge at y = 0.100 + 0.075 m); the heavy kit's thruster guards (open grilles; they make
+outer edge at y = 0.100 + 0.075 m); each vertical duct's screw boss a small pad against the
+side panel's top rail (so that duct and panel meet in a face, not along a tangent line, which
+the panel method resolves badly); the heavy kit's thruster guards (open grilles; they make
 the published 571 mm width) and fairings left out: potential flow passes them.  The mesh is
 therefore 0.457 x 0.536 x 0.254 m (the vertical ducts outside the 0.338 m frame).
 Body axes FRD (x forward, y starboard, z down), metres, origin at the frame's centre.
@@ -155,6 +157,13 @@ def appendages(foam_thickness: float) -> list[dict]:
         out.append({"name": f"t200_vert_{tag}", "type": "cylinder", "axis": "z",
                     "center": [sx * V_THRUSTER_X, sy * V_THRUSTER_Y, V_THRUSTER_Z],
                     "diameter": T200_D, "length": T200_L, "inner_diameter": T200_ID})
+        # its screw boss against the top rail [A]: a pad from 4 mm inside the panel to 4.5 mm
+        # into the duct's wall (the wall is 5.6 mm thick), so that the duct and the panel
+        # meet in a face, not along the line where a cylinder touches a plane
+        a, b = y_out - 0.004, V_THRUSTER_Y - 0.5 * T200_D + 0.0045
+        out.append({"name": f"mount_{tag}", "type": "box",
+                    "center": [sx * V_THRUSTER_X, sy * 0.5 * (a + b), MOUNT_Z],
+                    "size": [MOUNT[0], b - a, MOUNT[1]]})
     return out
 
 
@@ -163,6 +172,10 @@ BATTERY_Z = 0.5 * HEIGHT - PLATE - 0.5 * TUBE3_OD + 0.005
 DOME_R = 0.5 * TUBE4_OD
 #: the electronics tube's top this far into the foam block (a saddle) [m] [A]
 SADDLE = 0.004
+#: the vertical thrusters' mounting pads: width along x, height [m]; their middle 6.5 mm
+#: below the top rail's middle, where the rail and the duct overlap in height [A]
+MOUNT = (0.030, 0.022)
+MOUNT_Z = -0.5 * HEIGHT + 0.5 * RAIL + 0.0065
 
 
 def vehicle_data(foam_thickness: float, cg=(0.0, 0.0, 0.0)) -> dict:
@@ -218,11 +231,13 @@ HEADER = """\
 # buoyancy in fresh water); each T200 a duct ring 0.100 m outside, {t200_id:.4g} m inside,
 # 0.113 m long, its wall holding the published 188 cm^3; the horizontal ducts drawn along x,
 # 0.012 m outboard of their thrust points (to reach the side panels as the 45 deg ducts do);
-# the thruster guards (open grilles: the 0.571 m width) and fairings left out, so the surface
+# each vertical duct's screw boss a pad against the top rail (0.030 x 0.022 m); the thruster
+# guards (open grilles: the 0.571 m width) and fairings left out, so the surface
 # is 0.536 m wide; the CG 0.02 m below the CB.
 #
 # Published identified models of this vehicle (reference_tables/bluerov2/identified.csv;
-# compared in docs/validation.md, "BlueROV2 Heavy against published identified models"):
+# compared in docs/validation.md, "BlueROV2 Heavy against its published dimensions and
+# identified models"):
 # - von Benzon, Sorensen, Uth, Jouffroy, Liniger, Pedersen (2022), "An open-source benchmark
 #   simulator: control of a BlueROV2 underwater robot", J. Mar. Sci. Eng. 10(12) 1898,
 #   doi:10.3390/jmse10121898 (magnitudes X_udot 6.36, Y_vdot 7.12, Z_wdot 18.68 kg,
@@ -271,6 +286,8 @@ def build():
     t0, t1 = 0.02, 0.04
     v0, v1 = volume(t0)[0], volume(t1)[0]
     for _ in range(4):          # secant (nearly linear: the tube moves with the foam)
+        if v1 == v0:            # converged to the last bit
+            break
         t0, v0, t1 = t1, v1, t1 + (MASS / RHO - v1) * (t1 - t0) / (v1 - v0)
         v1 = volume(t1)[0]
     foam = t1

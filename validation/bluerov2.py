@@ -68,7 +68,7 @@ FILES = (
      ()),
 )
 COLUMNS = ("label", "file", "options", "dof", "added_mass", "estimated_error", "volume", "method",
-           "panel_levels", "converged", "extent", "seconds")
+           "panel_levels", "converged", "extent", "seconds", "error")
 
 
 # ---------------------------------------------------------------------------- the stored run
@@ -87,31 +87,42 @@ def _git_show(mirror: Path, path: str) -> bytes:
     raise FileNotFoundError(f"{SF_REPO}@{SF_COMMIT[:10]}:{path} not under {mirror}")
 
 
-def _run_cli(path: Path, extra=()) -> tuple[dict, float]:
+def _run_cli(path: Path, extra=()) -> tuple[dict | None, str, float]:
     """``stripcoef coefficients PATH --rho 1000 --json [EXTRA]`` as a user runs it:
-    (JSON, wall [s])."""
+    (JSON or None, the error line of a refused run, wall [s])."""
     cmd = [sys.executable, "-m", "stripcoef", "coefficients", str(path), "--rho", str(RHO),
            "--json", *extra]
     t0 = time.perf_counter()
-    out = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    return json.loads(out.stdout), time.perf_counter() - t0
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    if out.returncode != 0:
+        err = [ln for ln in out.stderr.splitlines() if "error:" in ln] or [f"exit {out.returncode}"]
+        return None, err[-1].split("error:", 1)[-1].strip().replace(str(path), path.name), dt
+    return json.loads(out.stdout), "", dt
 
 
-def _rows(label: str, file: str, extra, data: dict, seconds: float) -> list[dict]:
+def _rows(label: str, file: str, extra, data: dict | None, error: str,
+          seconds: float) -> list[dict]:
     import numpy as np
 
+    common = {"label": label, "file": file, "options": " ".join(extra), "error": error,
+              "seconds": f"{seconds:.1f}"}
+    if data is None:
+        return [{**common, "dof": d, "added_mass": "nan", "estimated_error": "nan",
+                 "volume": "nan", "method": "", "panel_levels": "", "converged": "0",
+                 "extent": ""} for d in DOFS]
     a = np.asarray(data["added_mass"], float)
     err = np.asarray(data.get("added_mass_error") or np.zeros((6, 6)), float)
     cond = data["conditions"]
     levels = cond.get("added_mass_panel_levels") or []
     extent = [cond.get(k) for k in ("length", "breadth", "height")]
-    return [{"label": label, "file": file, "options": " ".join(extra), "dof": DOFS[i], "added_mass": f"{a[i, i]:.6g}",
+    return [{**common, "dof": DOFS[i], "added_mass": f"{a[i, i]:.6g}",
              "estimated_error": f"{err[i, i]:.6g}", "volume": f"{data['volume']:.6g}",
              "method": cond.get("added_mass_method", ""),
              "panel_levels": "/".join(str(n) for n in levels),
              "converged": str(int(bool(cond.get("added_mass_converged", True)))),
-             "extent": " x ".join(f"{float(e):.4g}" for e in extent if e is not None),
-             "seconds": f"{seconds:.1f}"} for i in range(6)]
+             "extent": " x ".join(f"{float(e):.4g}" for e in extent if e is not None)}
+            for i in range(6)]
 
 
 def main(argv=None) -> int:
@@ -137,8 +148,8 @@ def main(argv=None) -> int:
         trimesh.util.concatenate([trimesh.load(base, force="mesh"), r]).export(heavy)
         paths = {"Stonefish physical mesh, base": base, "Stonefish physical mesh, heavy": heavy}
         for label, file, extra in FILES:
-            data, dt = _run_cli(paths.get(label, ROOT / file), extra)
-            rows += _rows(label, file, extra, data, dt)
+            data, error, dt = _run_cli(paths.get(label, ROOT / file), extra)
+            rows += _rows(label, file, extra, data, error, dt)
             print(f"{label}: {dt:.1f} s", file=sys.stderr)
     command = ("OPENBLAS_NUM_THREADS=1 python -m validation.bluerov2 --mirror MIRROR --csv "
                + str(args.csv))
@@ -248,6 +259,9 @@ def added_mass_table() -> tuple[str, list[list], dict]:
     for label, _, _ in FILES:
         terms = runs[label]
         head = terms[DOFS[0]]
+        if head["error"]:
+            table.append([label, *["refused"] * 6, "-", "no", "-", head["seconds"]])
+            continue
         table.append([label, *[f"{float(terms[d]['added_mass']):.4g} ± "
                                f"{float(terms[d]['estimated_error']):.2g}" for d in DOFS],
                       head["panel_levels"] or "-", "yes" if head["converged"] == "1" else "no",
@@ -255,23 +269,30 @@ def added_mass_table() -> tuple[str, list[list], dict]:
     for model in ("vb2022", "wu2018"):
         table.append([model + " (identified)", *[f"{ident[model][t]:.4g}" for t in TERMS],
                       "-", "-", "-", "-"])
-    ours = runs[FILES[0][0]]
+    # the shipped vehicle file as a user runs it: the default, else the run its error advises
+    ours_label = next((label for label, file, extra in FILES
+                       if file.endswith(".yaml") and "strips" not in extra
+                       and not runs[label][DOFS[0]]["error"]), FILES[0][0])
+    ours = runs[ours_label]
     a = {d: float(ours[d]["added_mass"]) for d in DOFS}
     e = {d: float(ours[d]["estimated_error"]) for d in DOFS}
     for model in ("vb2022", "wu2018"):
-        table.append([f"shipped vehicle file / {model}",
+        table.append([f"{ours_label} / {model}",
                       *[f"{a[d] / ident[model][t]:.2f}" for d, t in zip(DOFS, TERMS)],
                       "-", "-", "-", "-"])
     lo = {d: min(ident[m][t] for m in ident) for d, t in zip(DOFS, TERMS)}
     hi = {d: max(ident[m][t] for m in ident) for d, t in zip(DOFS, TERMS)}
     spread = max(DOFS, key=lambda d: hi[d] / lo[d])
     facts = {
+        "ours": ours_label,
         "in_range": [d for d in DOFS if lo[d] <= a[d] <= hi[d]],
         "in_range_with_error": [d for d in DOFS if lo[d] - e[d] <= a[d] <= hi[d] + e[d]],
         "spread_dof": spread, "spread": hi[spread] / lo[spread],
         "converged": {label: runs[label][DOFS[0]]["converged"] == "1" for label, _, _ in FILES},
         "volume": {label: float(runs[label][DOFS[0]]["volume"]) for label, _, _ in FILES},
         "worst_error": max(DOFS, key=lambda d: e[d] / max(abs(a[d]), 1e-12)),
+        "refused": {label: runs[label][DOFS[0]]["error"] for label, _, _ in FILES
+                    if runs[label][DOFS[0]]["error"]},
     }
     return command, table, facts
 
@@ -292,7 +313,10 @@ def section() -> str:
     if not RUN.exists():
         return "\n".join(parts)
     command, table, f = added_mass_table()
-    ours = FILES[0][0]
+    ours = f["ours"]
+    default = FILES[0][0]
+    first = ("The shipped vehicle file's default run was refused (listed above)"
+             if default in f["refused"] else "")
     n_in, n_err = len(f["in_range"]), len(f["in_range_with_error"])
     parts += [
         "Added mass (diagonal, magnitudes [kg; kg m^2 for roll, pitch, yaw], about each run's "
@@ -306,8 +330,12 @@ def section() -> str:
         f"    {command}\n",
         markdown_table(["run", *DOFS, "panel levels", "converged", "volume [m^3]", "time [s]"],
                        table),
+        *(["\nRefused runs (their one-line error):\n"]
+          + [f"- {label}: `{msg}`" for label, msg in f["refused"].items()] if f["refused"]
+          else []),
         "\nA measurement against published identified data, not a calibration: nothing was "
-        f"fitted. The shipped vehicle file's default run lies between the two identified "
+        "fitted. " + (first + "; the run " if first else "The run ")
+        + f"'{ours}' lies between the two identified "
         f"models in {n_in} of 6 DOFs ({', '.join(f['in_range']) or 'none'}), and within them "
         f"widened by its own estimated error in {n_err} of 6; its panel method "
         f"{'converged' if f['converged'][ours] else 'did not converge'} (largest estimated "
@@ -318,8 +346,8 @@ def section() -> str:
         "frequency, viscous and tether forces lumped into the inertia term), so agreement "
         "within their spread is the most a potential-flow added mass (Newman 1977, sec. 4.13) "
         "can be held to. SF's physical meshes are simulator proxies (solid slabs and posts, "
-        f"{f['volume'][FILES[4][0]]:.4g} m^3 against the shipped "
-        f"{f['volume'][ours]:.4g} m^3), not the vehicle's geometry; they are the public mesh "
+        f"{f['volume'][FILES[4][0]]:.4g} m^3 against the shipped mesh's "
+        f"{f['volume'][FILES[3][0]]:.4g} m^3), not the vehicle's geometry; they are the public mesh "
         "of this vehicle found with a license and a commit (Blue Robotics' own CAD is on "
         "GrabCAD; the meshes of bluerov_ros_playground and bluerov2_ignition are large files "
         "missing from the clones).\n"]
