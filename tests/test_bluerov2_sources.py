@@ -50,8 +50,10 @@ def test_tables_load_and_computed_rows_recompute():
 def test_readme_names_every_table_and_source():
     text = (ROOT / "reference_tables" / "bluerov2" / "README.md").read_text()
     assert "Citation" in text and "Inconsistencies" in text
-    for csv_file in (ROOT / "reference_tables" / "bluerov2").glob("*.csv"):
-        assert f"`{csv_file.name}`" in text, csv_file.name
+    folder = ROOT / "reference_tables" / "bluerov2"
+    for csv_file in [*folder.glob("*.csv"), *folder.glob("runs/*.csv")]:
+        name = csv_file.relative_to(folder).as_posix()
+        assert f"`{name}`" in text, name
     for tag in ("BR-H", "BR-2", "BR-A", "BR-W", "BR-T", "SF", "IG", "CN", "AP"):
         assert f"| {tag} |" in text, tag
     script = (ROOT / "scripts" / "make_bluerov2_heavy.py").read_text()

@@ -6,10 +6,10 @@ Two parts:
 - **dimensions**: the shipped vehicle file and mesh (``scripts/make_bluerov2_heavy.py``)
   against what Blue Robotics publishes (``reference_tables/bluerov2/dimensions.csv``; sources,
   commits and licenses in its README), read live (a YAML parse and an STL's bounds);
-- **added mass**: the stored run of this module (``reference_tables/bluerov2/stripcoef_run.csv``,
-  its command on the first line): ``stripcoef coefficients FILE --rho 1000 --json`` on the
-  shipped vehicle file and mesh and on the physical meshes of the public Stonefish BlueROV2
-  description, beside the identified added mass of von Benzon et al. (2022) and Wu (2018)
+- **added mass**: the stored run of this module
+  (``reference_tables/bluerov2/runs/stripcoef_run.csv``, its command on the first line):
+  ``stripcoef coefficients FILE --rho 1000 --json`` on the shipped vehicle file and mesh and
+  on the physical meshes of the public Stonefish BlueROV2 description, beside the identified added mass of von Benzon et al. (2022) and Wu (2018)
   (``reference_tables/bluerov2/identified.csv``). A measurement: nothing is fitted.
 
 Potential-flow added mass A_ii = rho * integral(phi_i n_i dS) (Newman 1977, *Marine
@@ -23,7 +23,7 @@ commit below, ``MIRROR/bvibhav+stonefish_bluerov2`` or ``MIRROR/stonefish_bluero
 tree or a bare git directory):
 
     OPENBLAS_NUM_THREADS=1 python -m validation.bluerov2 --mirror MIRROR \\
-        --csv reference_tables/bluerov2/stripcoef_run.csv
+        --csv reference_tables/bluerov2/runs/stripcoef_run.csv
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ from pathlib import Path
 from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "bluerov2"
-RUN = DATA / "stripcoef_run.csv"
+RUN = DATA / "runs" / "stripcoef_run.csv"
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 #: identified-model row names per DOF (reference_tables/bluerov2/identified.csv)
 TERMS = ("X_udot", "Y_vdot", "Z_wdot", "K_pdot", "M_qdot", "N_rdot")
