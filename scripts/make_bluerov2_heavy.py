@@ -225,8 +225,8 @@ HEADER = """\
 # (0.113 m long, 0.100 m in diameter, 344 g in air, 156 g in water: 188 cm^3; 5.1 kgf
 # forward, 4.1 kgf reverse at 16 V) [BR-T], thrusters 5-8 on the outside of the side panels
 # [BR-H].  Thruster places from the public Stonefish BlueROV2 Heavy description [SF].
-# Assumed [A]: the side panels cut away to rails ({rail} m) and posts ({post} m), the bottom panel to
-# two strips, the centre panels left out; the enclosures' places, the dome a hemisphere; the
+# Assumed [A]: the side panels cut away to rails ({rail} m) and posts ({post} m), the bottom
+# panel to two strips, the centre panels left out; the enclosures' places, the dome a hemisphere; the
 # buoyancy foam one block {foam:.4g} m thick (it closes the volume to 11.5 kg at neutral
 # buoyancy in fresh water); each T200 a duct ring 0.100 m outside, {t200_id:.4g} m inside,
 # 0.113 m long, its wall holding the published 188 cm^3; the horizontal ducts drawn along x,

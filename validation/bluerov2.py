@@ -9,7 +9,8 @@ Two parts:
 - **added mass**: the stored run of this module
   (``reference_tables/bluerov2/runs/stripcoef_run.csv``, its command on the first line):
   ``stripcoef coefficients FILE --rho 1000 --json`` on the shipped vehicle file and mesh and
-  on the physical meshes of the public Stonefish BlueROV2 description, beside the identified added mass of von Benzon et al. (2022) and Wu (2018)
+  on the physical meshes of the public Stonefish BlueROV2 description, beside the identified
+  added mass of von Benzon et al. (2022) and Wu (2018)
   (``reference_tables/bluerov2/identified.csv``). A measurement: nothing is fitted.
 
 Potential-flow added mass A_ii = rho * integral(phi_i n_i dS) (Newman 1977, *Marine
@@ -347,8 +348,8 @@ def section() -> str:
         "within their spread is the most a potential-flow added mass (Newman 1977, sec. 4.13) "
         "can be held to. SF's physical meshes are simulator proxies (solid slabs and posts, "
         f"{f['volume'][FILES[4][0]]:.4g} m^3 against the shipped mesh's "
-        f"{f['volume'][FILES[3][0]]:.4g} m^3), not the vehicle's geometry; they are the public mesh "
-        "of this vehicle found with a license and a commit (Blue Robotics' own CAD is on "
+        f"{f['volume'][FILES[3][0]]:.4g} m^3), not the vehicle's geometry; they are the public "
+        "mesh of this vehicle found with a license and a commit (Blue Robotics' own CAD is on "
         "GrabCAD; the meshes of bluerov_ros_playground and bluerov2_ignition are large files "
         "missing from the clones).\n"]
     return "\n".join(parts)
