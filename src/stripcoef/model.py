@@ -338,6 +338,16 @@ class Conditions(Mapping):
         Axial whole-body drag coefficient of a blunt hull on its largest section [-]
     blunt_hull_aspect_ratio : float
         Width over height of that section, which sets a thin plate's drag [-]
+    blunt_hull_cd_astern : float
+        The same going astern (the stern meets the flow: a flat stern, the flat-ended bodies'
+        drag), not in the |u|u term, which holds the drag going ahead [-]
+    surge_quadratic_damping_astern : float
+        The quadratic surge damping D_Q[0, 0] with that drag going astern [kg/m] (Fossen sign)
+    short_body_crossflow : mapping
+        Per part short across the flow (L/h < 2), per direction ``y``/``z``: the share
+        ``weight`` of the whole-body drag, its ``cd`` on the projected area, its ``class``
+        (``flat``/``closed``), the ``factor`` on the strips' cross-flow and ``length_over_height``
+        (:func:`stripcoef.assembly.damping.short_body_crossflow`)
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -412,6 +422,9 @@ class Conditions(Mapping):
     axial_drag_method: str | None = None
     blunt_hull_cd: float | None = None
     blunt_hull_aspect_ratio: float | None = None
+    blunt_hull_cd_astern: float | None = None
+    surge_quadratic_damping_astern: float | None = None
+    short_body_crossflow: Mapping | None = None
     hull_reynolds_diameter: float | None = None
     hull_crossflow_cd_y: float | None = None
     hull_crossflow_cd_z: float | None = None
@@ -449,6 +462,9 @@ class Conditions(Mapping):
         object.__setattr__(self, "extra", frozen_mapping(self.extra))
         if self.lift is not None:
             object.__setattr__(self, "lift", frozen_mapping(self.lift))
+        if self.short_body_crossflow is not None:
+            object.__setattr__(self, "short_body_crossflow",
+                               frozen_mapping(self.short_body_crossflow))
 
     @classmethod
     def from_dict(cls, data) -> "Conditions":
