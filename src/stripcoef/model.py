@@ -599,7 +599,8 @@ class HydroModel:
     def __reduce__(self):
         # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
         # mapping cannot be pickled)
-        args = tuple(dict(v) if isinstance(v, (MappingProxyType, Conditions)) else v
+        args = tuple(v.to_dict() if isinstance(v, Conditions) else
+                     dict(v) if isinstance(v, MappingProxyType) else v
                      for v in (getattr(self, f.name) for f in fields(self)))
         return (type(self), args)
 

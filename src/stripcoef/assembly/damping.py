@@ -73,42 +73,42 @@ def wetted_perimeter(part):
 FACE_TOL = 1e-3
 
 
+#: vertices of a curved outline (ellipse) when its section is drawn for :func:`_extremes`
+OUTLINE_POINTS = 96
+
+
 def _extremes(part, axis):
     """Per strip of ``part``: (lowest, highest) coordinate along ``axis`` (0: y, 1: z) [m] and
-    the width across the flow [m] of the section's face at each of them (0 for a rounded
-    contour or a vertex; the side for a rectangle; for a polygon, the spread across the flow
-    of the vertices within :data:`FACE_TOL` of the part's extent of that extreme)."""
+    the width across the flow [m] of the section's face at each of them: the spread across the
+    flow of the outline's vertices within :data:`FACE_TOL` of the part's extent of that
+    extreme (the shape's own outline, :data:`stripcoef.sections.SHAPES`: 0 for a rounded
+    contour or a vertex, the side for a flat face)."""
     k = part.index.size
-    c, half = (part.y, part.half_breadth) if axis == 0 else (part.z, part.half_height)
-    across = 2 * (part.half_height if axis == 0 else part.half_breadth)
-    lo, hi = c - half, c + half
+    outline = get_shape(part.shape).outline
+    pts = []
+    lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
+    for i in range(k):
+        rings = outline(part, i, OUTLINE_POINTS)
+        p = np.concatenate([np.asarray(r, float) for r in rings]) if len(rings) else \
+            np.zeros((0, 2))
+        pts.append(p)
+        if p.size:
+            lo[i], hi[i] = p[:, axis].min(), p[:, axis].max()
+    tol = FACE_TOL * max(float(np.max(hi) - np.min(lo)), 1e-300)
     w_lo, w_hi = np.zeros(k), np.zeros(k)
-    if part.shape == "rectangle":
-        w_lo, w_hi = across.copy(), across.copy()
-    elif part.shape == "polygon":
-        lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
-        pts = []
-        for i, rings in enumerate(part.contours):
-            p = np.concatenate([np.asarray(r, float) for r in rings]) if len(rings) else \
-                np.zeros((0, 2))
-            pts.append(p)
-            if p.size:
-                lo[i], hi[i] = p[:, axis].min(), p[:, axis].max()
-        tol = FACE_TOL * max(float(np.max(hi) - np.min(lo)), 1e-300)
-        for i, p in enumerate(pts):
-            if p.size:
-                a = p[p[:, axis] >= hi[i] - tol, 1 - axis]
-                b = p[p[:, axis] <= lo[i] + tol, 1 - axis]
-                w_hi[i], w_lo[i] = np.ptp(a), np.ptp(b)
+    for i, p in enumerate(pts):
+        if p.size:
+            w_hi[i] = np.ptp(p[p[:, axis] >= hi[i] - tol, 1 - axis])
+            w_lo[i] = np.ptp(p[p[:, axis] <= lo[i] + tol, 1 - axis])
     return lo, hi, w_lo, w_hi
 
 
 def _single_solid(part):
     """Whether every section of ``part`` is one solid part (no frame of several members)."""
-    if part.shape != "polygon":
+    if not get_shape(part.shape).contoured:
         return True
-    from stripcoef.sections.polygon_drag import _part_cache
-    return _part_cache(part)["owner"].size == part.index.size
+    from stripcoef.sections.panel import part_rings
+    return int(np.count_nonzero(part_rings(part).area > 0)) == part.index.size
 
 
 def short_body_crossflow(part, dx, heights, coeffs, rho, speed, nu):
