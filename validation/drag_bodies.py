@@ -246,6 +246,7 @@ def compare(name, estimate=None):
         astern = (name, row) in ASTERN
         q = float(model.conditions["surge_quadratic_damping_astern"]) if astern else dq[k]
         rows.append({"dof": k, "cd_model": float(q / (0.5 * RHO * area)), "astern": astern,
+                     "cd_d_q": float(dq[k] / (0.5 * RHO * area)),
                      "cd_ref": float(reference_value(SOURCE, row)["value"]), "row": row,
                      "area": area_text, "reynolds": SPEED * SIZE / NU,
                      "held_out": held_out(name, k), "built_from": BUILT_FROM.get((name, k), ""),
