@@ -350,7 +350,8 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
             ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)
             kap_y = sdrag.cylinder_length_factor(np.clip(ld_y, 2, 100), re_y)
             kap_z = sdrag.cylinder_length_factor(np.clip(ld_z, 2, 100), re_z)
-            # short parts (L/D < 2) keep the L/D = 2 factor: documented in theory.md
+            # short parts (L/D < 2) keep the L/D = 2 factor here; below, a part short
+            # against its section takes the short-body rule (docs/theory.md)
         else:   # a fin: the 2D plate in flow normal to it, reduced to its aspect ratio
             kap_y = kap_z = np.ones(p.index.size)
             span = 2.0 * float(np.max(np.maximum(p.half_breadth, p.half_height)))
