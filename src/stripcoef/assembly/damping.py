@@ -29,7 +29,7 @@ BRIDGE_QUIET = 0.02
 #: an end section larger than this fraction of the largest section is a flat (truncated) end
 FLAT_END = 0.25
 
-#: ratio of the axial whole-body drag going astern to going ahead (or its inverse) above which
+#: ratio of the vehicle's surge drag going astern to going ahead (or its inverse) above which
 #: the model warns that its one |u|u term (Fossen 2011, eq. 6.62: D_Q symmetric in the sign
 #: of u) misrepresents one direction: 1.5 is a factor the method's band (sd(ln) about 0.25 at
 #: its target) does not cover
@@ -270,14 +270,6 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                 sdrag.ellipsoid_axial_cd(ld_hull, re_d))
             cond["blunt_hull_cd_astern"] = cd_astern
             astern_delta += 0.5 * rho * (cd_astern - cd_b) * a_max
-            if max(cd_astern, cd_b) > ASTERN_RATIO_WARN * min(cd_astern, cd_b):
-                warnings.warn(
-                    f"{getattr(vehicle, 'name', 'vehicle')}: its ends differ (bow "
-                    f"{'flat' if bow > FLAT_END else 'closed'}, stern "
-                    f"{'flat' if stern > FLAT_END else 'closed'}): the quadratic X_uu holds the "
-                    f"drag going ahead (C_D {cd_b:.3g} on the frontal area), going astern its "
-                    f"class has C_D {cd_astern:.3g} (conditions blunt_hull_cd_astern); the "
-                    f"|u|u form cannot hold both", ModelWarning, stacklevel=3)
             elems.append((r_h, np.array([0.5 * rho * cd_b * a_max, 0, 0]),
                           np.array([2.0, 2, 2])))
             cond.update({"blunt_hull_cd": cd_b, "blunt_hull_aspect_ratio": aspect})
@@ -412,5 +404,14 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
     d_quad[:3] += g.sum(axis=0)
     d_quad[3:] += np.cross(rel[:, :, None], g, axisa=1, axisb=1, axisc=1).sum(axis=0)
     if "blunt_hull_cd_astern" in cond:
-        cond["surge_quadratic_damping_astern"] = float(d_quad[0, 0] + astern_delta)
+        ahead, astern = float(d_quad[0, 0]), float(d_quad[0, 0] + astern_delta)
+        cond["surge_quadratic_damping_astern"] = astern
+        if max(ahead, astern) > ASTERN_RATIO_WARN * min(ahead, astern):
+            warnings.warn(
+                f"{getattr(vehicle, 'name', 'vehicle')}: its hull's ends differ (bow "
+                f"{'flat' if cond['axial_drag_method'] == 'blunt' else 'closed'}): the "
+                f"quadratic X_uu holds the surge drag going ahead ({ahead:.4g} kg/m); going "
+                f"astern its class gives {astern:.4g} kg/m (conditions "
+                f"surge_quadratic_damping_astern); the |u|u form cannot hold both",
+                ModelWarning, stacklevel=3)
     return clean_roundoff(d_lin), clean_roundoff(d_quad), cond
