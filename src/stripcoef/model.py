@@ -346,7 +346,8 @@ class Conditions(Mapping):
     short_body_crossflow : mapping
         Per part short across the flow (L/h < 2), per direction ``y``/``z``: the share
         ``weight`` of the whole-body drag, its ``cd`` on the projected area, its ``class``
-        (``flat``/``closed``), the ``factor`` on the strips' cross-flow and ``length_over_height``
+        (``flat``/``closed``), the ``factor`` on the strips' cross-flow, ``length_over_height`` and
+        ``depth_over_diameter`` (weight 0: a closed part thinner than the measured ones)
         (:func:`stripcoef.assembly.damping.short_body_crossflow`)
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]

@@ -132,8 +132,13 @@ def short_body_crossflow(part, dx, heights, coeffs, rho, speed, nu):
     :data:`FLAT_END` of A. Every strip is scaled by the same factor, so the moments of the
     cross-flow (yaw, pitch, roll) keep the strips' distribution. Parts whose sections have
     several members (a frame) or holes keep the strips (interference, not a short body).
+    A closed part thinner along the flow than the measured closed bodies
+    (:func:`stripcoef.sections.drag.closed_body_depth_range`: \ell/D below 0.75) keeps its strips
+    (weight 0) rather than extrapolate their curve [a step: a circular cylinder across goes
+    from the bridge to the strips at L/D 1.4].
     Returns ((c_y', c_z'), info) with info per direction: ``weight``, ``cd`` (the whole-body
-    C_D on A), ``class`` (``flat``/``closed``), ``factor`` (c'/c) [-].
+    C_D on A), ``class`` (``flat``/``closed``), ``factor`` (c'/c), ``length_over_height``,
+    ``depth_over_diameter`` [-].
     """
     out, info = [], {}
     for axis, key in ((0, "y"), (1, "z")):
@@ -151,12 +156,20 @@ def short_body_crossflow(part, dx, heights, coeffs, rho, speed, nu):
         flat = face > FLAT_END * area
         d_eq = np.sqrt(4.0 * area / np.pi)
         aspect = max(part.length, 1e-12) / max(float(np.max(h)), 1e-12)
+        if not flat and depth / d_eq < sdrag.closed_body_depth_range()[0]:
+            # no measured closed body this thin along the flow: the strips alone (no
+            # extrapolation of the ellipsoids' curve)
+            out.append(c)
+            info[key] = {"weight": 0.0, "class": "closed", "factor": 1.0,
+                         "length_over_height": lh, "depth_over_diameter": depth / d_eq}
+            continue
         cd = sdrag.short_body_crossflow_cd(depth / d_eq, flat, aspect, speed * d_eq / nu)
         strip_total = float(c.sum())
         factor = ((1.0 - w) * strip_total + w * 0.5 * rho * cd * area) / strip_total
         out.append(c * factor)
         info[key] = {"weight": w, "cd": cd, "class": "flat" if flat else "closed",
-                     "factor": factor, "length_over_height": lh}
+                     "factor": factor, "length_over_height": lh,
+                     "depth_over_diameter": depth / d_eq}
     return tuple(out), info
 
 

@@ -490,6 +490,14 @@ def short_body_crossflow_cd(depth_over_diameter, flat, aspect_ratio, reynolds):
     return float(ellipsoid_axial_cd(depth_over_diameter, reynolds))
 
 
+def closed_body_depth_range():
+    """(lowest, highest) L/d [-] of the measured closed bodies (data/ellipsoid_axial_drag.csv):
+    a closed short body thinner along the flow than the lowest (an oblate body face-on, a
+    cylinder across longer than about 1.4 diameters) has no measured whole-body drag here."""
+    x = load_table("ellipsoid_axial_drag").column("L_over_d")
+    return float(np.min(x)), float(np.max(x))
+
+
 def ellipse_perimeter(b, h):
     r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
 
