@@ -135,3 +135,17 @@ def test_hemisphere_astern_drag_is_reported_and_warned():
     # held out: the solid hemisphere flat face first, 1.17 (the data book / Munson)
     ref = reference_value("body_drag_3d", "hemisphere_solid.Cd_high")["value"]
     assert astern == pytest.approx(ref, rel=0.25)
+
+
+def test_closed_part_thinner_than_the_measured_bodies_keeps_its_strips():
+    # a circular cylinder across of L/D 1.7: depth over equal-circle diameter 0.68, below the
+    # ellipsoids' first L/d (0.75): no extrapolation, the strips alone (weight 0)
+    m = trimesh.creation.cylinder(radius=0.5 * SIZE, height=1.7 * SIZE, sections=96)
+    m.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UserWarning)
+        model = estimate(Vehicle.from_mesh(m, name="body", fluid=WATER),
+                         added_mass_method="strips", speed=U)
+    (part,) = model.conditions.short_body_crossflow.values()
+    assert part["y"]["weight"] == 0.0 and part["y"]["factor"] == 1.0
+    assert part["y"]["depth_over_diameter"] < drag.closed_body_depth_range()[0]
