@@ -338,17 +338,10 @@ class Conditions(Mapping):
         Axial whole-body drag coefficient of a blunt hull on its largest section [-]
     blunt_hull_aspect_ratio : float
         Width over height of that section, which sets a thin plate's drag [-]
-    blunt_hull_cd_astern : float
-        The same going astern (the stern meets the flow: a flat stern, the flat-ended bodies'
-        drag), not in the |u|u term, which holds the drag going ahead [-]
-    surge_quadratic_damping_astern : float
-        The quadratic surge damping D_Q[0, 0] with that drag going astern [kg/m] (Fossen sign)
+    blunt_hull_cd_astern, surge_quadratic_damping_astern : float
+        The same going astern [-], and D_Q[0, 0] with it [kg/m] (not in D_Q: going ahead)
     short_body_crossflow : mapping
-        Per part short across the flow (L/h < 2), per direction ``y``/``z``: the share
-        ``weight`` of the whole-body drag, its ``cd`` on the projected area, its ``class``
-        (``flat``/``closed``), the ``factor`` on the strips' cross-flow, ``length_over_height`` and
-        ``depth_over_diameter`` (weight 0: a closed part thinner than the measured ones)
-        (:func:`stripcoef.assembly.damping.short_body_crossflow`)
+        Per short part and direction, :func:`stripcoef.assembly.damping.short_body_crossflow`
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -461,11 +454,9 @@ class Conditions(Mapping):
 
     def __post_init__(self):
         object.__setattr__(self, "extra", frozen_mapping(self.extra))
-        if self.lift is not None:
-            object.__setattr__(self, "lift", frozen_mapping(self.lift))
-        if self.short_body_crossflow is not None:
-            object.__setattr__(self, "short_body_crossflow",
-                               frozen_mapping(self.short_body_crossflow))
+        for name in ("lift", "short_body_crossflow"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, frozen_mapping(getattr(self, name)))
 
     @classmethod
     def from_dict(cls, data) -> "Conditions":
