@@ -5,6 +5,9 @@ The bodies, their meshes, the references and the rows held out are in
 the model against each reference:
 
     python -m benchmarks.drag_bodies
+
+A term marked ``astern`` is the model's surge drag going astern (the result's
+``conditions.surge_quadratic_damping_astern``), not its |u|u term (validation.drag_bodies.ASTERN).
 """
 
 from __future__ import annotations
@@ -25,7 +28,8 @@ def main():
         veh, _, rows = compare(name, lambda v: estimate(v, added_mass_method="strips",
                                                         speed=SPEED))
         for r in rows:
-            print(f"| {name} | {shape_class(veh)} | {quadratic_damping_name(r['dof'], r['dof'])} | "
+            term = quadratic_damping_name(r['dof'], r['dof']) + (" astern" if r["astern"] else "")
+            print(f"| {name} | {shape_class(veh)} | {term} | "
                   f"{r['cd_model']:.3f} | {r['cd_ref']:.3f} ({r['row']}) | "
                   f"{np.log(r['cd_model'] / r['cd_ref']):+.3f} | {r['area']} | {r['reynolds']:.0e} | "
                   f"{'yes' if r['held_out'] else 'no: ' + r['built_from']} |")

@@ -21,9 +21,17 @@ Bodies (x: the mesh axis the method cuts its strips along):
 - ``cone60``, ``cone30``: flat-based cones of apex angle 60 and 30 deg along x, against
   cone.apex60.Cd / cone.apex30.Cd (A = pi d^2/4, the base); the model's drag is symmetric in
   the flow direction (a |u| u term);
-- ``hemisphere``: a solid hemisphere along x, its one X_uu against both orientations
-  (hemisphere_solid.Cd_dome, dome on the flow, and hemisphere_solid.Cd_high, flat face on it;
-  A = pi d^2/4): the model cannot tell them apart;
+- ``cube_edge_x``: the cube turned 45 deg about x: y and z meet an edge (cube.edge_on.Cd),
+  x a face (cube.face_on.Cd); the same measured values as ``cube_edge`` through another path of
+  the model (diamond sections instead of rectangles): not independent data;
+- ``hemisphere``: a solid hemisphere along x, dome at the bow (+x): its X_uu (the drag going
+  ahead) against hemisphere_solid.Cd_dome, dome on the flow, and its surge drag going astern
+  (the result's ``conditions.surge_quadratic_damping_astern``, :data:`ASTERN`) against
+  hemisphere_solid.Cd_high, flat face on the flow (A = pi d^2/4); the |u|u term holds only the
+  first;
+- ``cyl_across_1``, ``cyl_across_2``: flat-ended circular cylinders of diameter D and length
+  D and 2D along x, in sway and heave, against the data book's finite cylinders at right
+  angles to the flow (cylinder_crossflow.l_over_d_1.Cd, _2; A = d l);
 - ``ellipsoid_2to1``: a prolate spheroid of length 2D along x against ellipsoid_2to1.Cd
   (nose-on, A = pi D^2/4; Re = 1e5 on D as the reference's table states);
 - ``cone20``: a flat-based cone of half-angle 10 deg (apex 20 deg, L/D 2.84) against Munson's
@@ -130,6 +138,20 @@ def cube_edge():
     return m
 
 
+def cube_edge_x():
+    """The cube turned 45 deg about x: y and z meet an edge, x a face (the strips' sections are
+    diamonds, classified by their bounding box)."""
+    m = cube()
+    m.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 4, [1, 0, 0]))
+    return m
+
+
+def cylinder_across(ld):
+    """Flat-ended circular cylinder of diameter SIZE and length ld * SIZE along x (the strip
+    axis), seen across its axis in y and z."""
+    return cylinder_end_on(ld)
+
+
 PI_D2 = np.pi * SIZE ** 2 / 4
 #: name -> (builder, reference area [m^2], what the area is, [(dof index, reference row)])
 BODIES = {
@@ -139,6 +161,15 @@ BODIES = {
     "cube_edge": (cube_edge, SIZE ** 2, "face a^2", [(0, "cube.edge_on.Cd"),
                                                     (1, "cube.edge_on.Cd"),
                                                     (2, "cube.face_on.Cd")]),
+    "cube_edge_x": (cube_edge_x, SIZE ** 2, "face a^2", [(0, "cube.face_on.Cd"),
+                                                        (1, "cube.edge_on.Cd"),
+                                                        (2, "cube.edge_on.Cd")]),
+    "cyl_across_1": (lambda: cylinder_across(1.0), SIZE ** 2, "d l",
+                     [(1, "cylinder_crossflow.l_over_d_1.Cd"),
+                      (2, "cylinder_crossflow.l_over_d_1.Cd")]),
+    "cyl_across_2": (lambda: cylinder_across(2.0), 2 * SIZE ** 2, "d l",
+                     [(1, "cylinder_crossflow.l_over_d_2.Cd"),
+                      (2, "cylinder_crossflow.l_over_d_2.Cd")]),
     "cone60": (lambda: cone(60.0), PI_D2, "base pi d^2/4", [(0, "cone.apex60.Cd")]),
     "cone30": (lambda: cone(30.0), PI_D2, "base pi d^2/4", [(0, "cone.apex30.Cd")]),
     "hemisphere": (hemisphere, PI_D2, "base pi d^2/4", [(0, "hemisphere_solid.Cd_dome"),
@@ -162,6 +193,12 @@ BODIES = {
 #: not held out, so not used to measure the method (module docstring)
 BUILT_FROM = {
     ("sphere", 0): "ellipsoid_axial_drag.csv (L/d 1: 0.47)",
+    ("sphere", 1): "ellipsoid_axial_drag.csv (L/d 1: 0.47; short-body cross-flow)",
+    ("sphere", 2): "ellipsoid_axial_drag.csv (L/d 1: 0.47; short-body cross-flow)",
+    ("cyl_across_2", 1): "cylinder_length_factor.csv (L/D 2: 0.58, DNV's copy of Hoerner's "
+                         "finite cylinders)",
+    ("cyl_across_2", 2): "cylinder_length_factor.csv (L/D 2: 0.58, DNV's copy of Hoerner's "
+                         "finite cylinders)",
     ("ellipsoid_2to1", 0): "ellipsoid_axial_drag.csv (L/d 2: 0.27)",
     ("square_plate", 0): "plate_drag_aspect_ratio.csv (1.18), blunt_body_axial_drag.csv (disc 1.17)",
     ("disc", 0): "blunt_body_axial_drag.csv (L/d 0: 1.17)",
@@ -170,6 +207,12 @@ BUILT_FROM = {
     ("cyl_end_2", 0): "blunt_body_axial_drag.csv (L/d 2: 0.85)",
     ("cyl_end_4", 0): "blunt_body_axial_drag.csv (L/d 4: 0.87)",
 }
+
+
+#: (body, reference row) compared with the model's surge drag going astern (the result's
+#: ``conditions.surge_quadratic_damping_astern``), not with its |u|u term, which holds the drag
+#: going ahead: the hemisphere flat face first (the benchmark's dome is at the bow, +x)
+ASTERN = {("hemisphere", "hemisphere_solid.Cd_high")}
 
 
 def held_out(name, dof):
@@ -200,7 +243,10 @@ def compare(name, estimate=None):
     dl = np.abs(np.diag(np.asarray(model.linear_damping)))
     rows = []
     for k, row in refs:
-        rows.append({"dof": k, "cd_model": float(dq[k] / (0.5 * RHO * area)),
+        astern = (name, row) in ASTERN
+        q = float(model.conditions["surge_quadratic_damping_astern"]) if astern else dq[k]
+        rows.append({"dof": k, "cd_model": float(q / (0.5 * RHO * area)), "astern": astern,
+                     "cd_d_q": float(dq[k] / (0.5 * RHO * area)),
                      "cd_ref": float(reference_value(SOURCE, row)["value"]), "row": row,
                      "area": area_text, "reynolds": SPEED * SIZE / NU,
                      "held_out": held_out(name, k), "built_from": BUILT_FROM.get((name, k), ""),

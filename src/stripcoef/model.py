@@ -338,6 +338,10 @@ class Conditions(Mapping):
         Axial whole-body drag coefficient of a blunt hull on its largest section [-]
     blunt_hull_aspect_ratio : float
         Width over height of that section, which sets a thin plate's drag [-]
+    blunt_hull_cd_astern, surge_quadratic_damping_astern : float
+        The same going astern [-], and D_Q[0, 0] with it [kg/m] (not in D_Q: going ahead)
+    short_body_crossflow : mapping
+        Per short part and direction, :func:`stripcoef.assembly.damping.short_body_crossflow`
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -412,6 +416,9 @@ class Conditions(Mapping):
     axial_drag_method: str | None = None
     blunt_hull_cd: float | None = None
     blunt_hull_aspect_ratio: float | None = None
+    blunt_hull_cd_astern: float | None = None
+    surge_quadratic_damping_astern: float | None = None
+    short_body_crossflow: Mapping | None = None
     hull_reynolds_diameter: float | None = None
     hull_crossflow_cd_y: float | None = None
     hull_crossflow_cd_z: float | None = None
@@ -447,8 +454,9 @@ class Conditions(Mapping):
 
     def __post_init__(self):
         object.__setattr__(self, "extra", frozen_mapping(self.extra))
-        if self.lift is not None:
-            object.__setattr__(self, "lift", frozen_mapping(self.lift))
+        for name in ("lift", "short_body_crossflow"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, frozen_mapping(getattr(self, name)))
 
     @classmethod
     def from_dict(cls, data) -> "Conditions":
@@ -583,7 +591,8 @@ class HydroModel:
     def __reduce__(self):
         # pickling and copy.deepcopy rebuild the model from plain fields (a read-only
         # mapping cannot be pickled)
-        args = tuple(dict(v) if isinstance(v, (MappingProxyType, Conditions)) else v
+        args = tuple(v.to_dict() if isinstance(v, Conditions) else
+                     dict(v) if isinstance(v, MappingProxyType) else v
                      for v in (getattr(self, f.name) for f in fields(self)))
         return (type(self), args)
 

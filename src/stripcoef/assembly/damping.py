@@ -29,6 +29,12 @@ BRIDGE_QUIET = 0.02
 #: an end section larger than this fraction of the largest section is a flat (truncated) end
 FLAT_END = 0.25
 
+#: ratio of the vehicle's surge drag going astern to going ahead (or its inverse) above which
+#: the model warns that its one |u|u term (Fossen 2011, eq. 6.62: D_Q symmetric in the sign
+#: of u) misrepresents one direction: 1.5 is a factor the method's band (sd(ln) about 0.25 at
+#: its target) does not cover
+ASTERN_RATIO_WARN = 1.5
+
 
 def local_exponent(fn, *re):
     """n_k = 2 + d ln C_D,k / d ln Re_k (power-law exponent of the drag force in speed).
@@ -59,6 +65,112 @@ def wetted_perimeter(part):
     are dropped there); rectangle: P = 4 (b + h), half sizes b, h [m].
     """
     return get_shape(part.shape).wetted_perimeter(part)
+
+
+#: a vertex within this fraction of a part's extent along the flow of its extreme lies on the
+#: face there (a faceted circle of 96 sides puts 2 vertices within 1e-3 of its diameter, a
+#: flat face all of its own)
+FACE_TOL = 1e-3
+
+
+#: vertices of a curved outline (ellipse) when its section is drawn for :func:`_extremes`
+OUTLINE_POINTS = 96
+
+
+def _extremes(part, axis):
+    """Per strip of ``part``: (lowest, highest) coordinate along ``axis`` (0: y, 1: z) [m] and
+    the width across the flow [m] of the section's face at each of them: the spread across the
+    flow of the outline's vertices within :data:`FACE_TOL` of the part's extent of that
+    extreme (the shape's own outline, :data:`stripcoef.sections.SHAPES`: 0 for a rounded
+    contour or a vertex, the side for a flat face)."""
+    k = part.index.size
+    outline = get_shape(part.shape).outline
+    pts = []
+    lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
+    for i in range(k):
+        rings = outline(part, i, OUTLINE_POINTS)
+        p = np.concatenate([np.asarray(r, float) for r in rings]) if len(rings) else \
+            np.zeros((0, 2))
+        pts.append(p)
+        if p.size:
+            lo[i], hi[i] = p[:, axis].min(), p[:, axis].max()
+    tol = FACE_TOL * max(float(np.max(hi) - np.min(lo)), 1e-300)
+    w_lo, w_hi = np.zeros(k), np.zeros(k)
+    for i, p in enumerate(pts):
+        if p.size:
+            w_hi[i] = np.ptp(p[p[:, axis] >= hi[i] - tol, 1 - axis])
+            w_lo[i] = np.ptp(p[p[:, axis] <= lo[i] + tol, 1 - axis])
+    return lo, hi, w_lo, w_hi
+
+
+def _single_solid(part):
+    """Whether every section of ``part`` is one solid part (no frame of several members)."""
+    if not get_shape(part.shape).contoured:
+        return True
+    from stripcoef.sections.panel import part_rings
+    return int(np.count_nonzero(part_rings(part).area > 0)) == part.index.size
+
+
+def short_body_crossflow(part, dx, heights, coeffs, rho, speed, nu):
+    r"""The cross-flow drag of a part that is short across the flow: the strips' coefficients
+    ``coeffs`` = (c_y, c_z) [kg/m per strip] scaled to the bridged whole-body drag.
+
+    For flow along k (y or z) with the part's length L, its largest extent across the flow
+    h (``heights``: per strip, the heights across y- and z-flow [m]) and its extent along the
+    flow :math:`\ell`, the slenderness :math:`L/h = L/\max(h, \ell)` (the strips' 2D flow
+    needs the part long against its section's size both across and along the flow: Hoerner
+    1965, ch. 3, the cross-flow principle; Newman 1977, sec. 7.4, slender bodies) sets the share
+    :math:`w = w(L/h)` (:func:`stripcoef.sections.drag.short_body_crossflow_weight`: 1 at
+    L/h <= 1, 0 from L/h = 2) of the force that is the whole-body drag of the part seen along
+    the flow (:func:`stripcoef.sections.drag.short_body_crossflow_cd`):
+
+    .. math:: \sum_e c_{k,e}' = (1 - w)\sum_e c_{k,e} + w\,\tfrac12\rho\,C_{D}(\ell/D,
+              \ldots)\,A,\qquad A = \sum_e h_{k,e}\,\Delta x_e,\ D = \sqrt{4A/\pi}
+
+    a flat class when its face at the
+    +k extreme (the face that meets the flow going +k, as the bow going ahead) covers more than
+    :data:`FLAT_END` of A. Every strip is scaled by the same factor, so the moments of the
+    cross-flow (yaw, pitch, roll) keep the strips' distribution. Parts whose sections have
+    several members (a frame) or holes keep the strips (interference, not a short body).
+    A closed part thinner along the flow than the measured closed bodies
+    (:func:`stripcoef.sections.drag.closed_body_depth_range`: \ell/D below 0.75) keeps its strips
+    (weight 0) rather than extrapolate their curve [a step: a circular cylinder across goes
+    from the bridge to the strips at L/D 1.4].
+    Returns ((c_y', c_z'), info) with info per direction: ``weight``, ``cd`` (the whole-body
+    C_D on A), ``class`` (``flat``/``closed``), ``factor`` (c'/c), ``length_over_height``,
+    ``depth_over_diameter`` [-].
+    """
+    out, info = [], {}
+    for axis, key in ((0, "y"), (1, "z")):
+        c, h = coeffs[axis], heights[axis]
+        lo, hi, _, w_hi = _extremes(part, axis)
+        depth = float(np.max(hi) - np.min(lo))
+        lh = max(part.length, 1e-12) / max(float(np.max(h)), depth, 1e-12)
+        w = float(sdrag.short_body_crossflow_weight(lh))
+        if w <= 0.0 or not np.any(c > 0):
+            out.append(c)
+            continue
+        area = float((h * dx).sum())
+        tol = FACE_TOL * max(depth, 1e-300)
+        face = float((np.where(hi >= np.max(hi) - tol, np.minimum(w_hi, h), 0.0) * dx).sum())
+        flat = face > FLAT_END * area
+        d_eq = np.sqrt(4.0 * area / np.pi)
+        aspect = max(part.length, 1e-12) / max(float(np.max(h)), 1e-12)
+        if not flat and depth / d_eq < sdrag.closed_body_depth_range()[0]:
+            # no measured closed body this thin along the flow: the strips alone (no
+            # extrapolation of the ellipsoids' curve)
+            out.append(c)
+            info[key] = {"weight": 0.0, "class": "closed", "factor": 1.0,
+                         "length_over_height": lh, "depth_over_diameter": depth / d_eq}
+            continue
+        cd = sdrag.short_body_crossflow_cd(depth / d_eq, flat, aspect, speed * d_eq / nu)
+        strip_total = float(c.sum())
+        factor = ((1.0 - w) * strip_total + w * 0.5 * rho * cd * area) / strip_total
+        out.append(c * factor)
+        info[key] = {"weight": w, "cd": cd, "class": "flat" if flat else "closed",
+                     "factor": factor, "length_over_height": lh,
+                     "depth_over_diameter": depth / d_eq}
+    return tuple(out), info
 
 
 def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
@@ -141,6 +253,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         # laminar separation does); its friction is the plain friction line, the
         # streamlined-body form factor being outside its source
         blunt = False
+        astern_delta = 0.0   # D_Q[0, 0] going astern minus going ahead [kg/m]
         blunt_kind = ""
         re_d = speed * max_d / nu
         for p in hull_parts:
@@ -157,12 +270,19 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                 continue
             width, height = 2 * float(np.max(p.half_breadth)), 2 * float(np.max(p.half_height))
             aspect = max(width, 1e-12) / max(height, 1e-12)
+            cd_flat = float(sdrag.blunt_cylinder_axial_cd(ld_hull, aspect))
             if bow > FLAT_END:           # the flat face meets the flow
-                cd_b = float(sdrag.blunt_cylinder_axial_cd(ld_hull, aspect))
+                cd_b = cd_flat
                 blunt_kind = "blunt"
             else:                        # a closed bow and a flat base
                 cd_b = float(sdrag.ellipsoid_axial_cd(ld_hull, re_d))
                 blunt_kind = blunt_kind or "blunt_base"
+            # going astern the stern meets the flow: the same rule by the stern (reported;
+            # the |u|u term holds the drag going ahead)
+            cd_astern = cd_flat if stern > FLAT_END else float(
+                sdrag.ellipsoid_axial_cd(ld_hull, re_d))
+            cond["blunt_hull_cd_astern"] = cd_astern
+            astern_delta += 0.5 * rho * (cd_astern - cd_b) * a_max
             elems.append((r_h, np.array([0.5 * rho * cd_b * a_max, 0, 0]),
                           np.array([2.0, 2, 2])))
             cond.update({"blunt_hull_cd": cd_b, "blunt_hull_aspect_ratio": aspect})
@@ -219,6 +339,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                       np.array([0.5 * rho * cd_a * a_front, 0, 0]), np.array([2.0, 2, 2])))
     # --- cross-flow per strip element
     hull_cd = {}
+    short_info = {}
     for p in strips.parts:
         dx = strips.width(p)
         hy, hz = 2 * p.half_height, 2 * p.half_breadth      # extents across y- and z-flow
@@ -234,7 +355,8 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
             ld_z = max(p.length, 1e-9) / np.maximum(hz, 1e-9)
             kap_y = sdrag.cylinder_length_factor(np.clip(ld_y, 2, 100), re_y)
             kap_z = sdrag.cylinder_length_factor(np.clip(ld_z, 2, 100), re_z)
-            # short parts (L/D < 2) keep the L/D = 2 factor: documented in theory.md
+            # short parts (L/D < 2) keep the L/D = 2 factor here; below, a part short
+            # against its section takes the short-body rule (docs/theory.md)
         else:   # a fin: the 2D plate in flow normal to it, reduced to its aspect ratio
             kap_y = kap_z = np.ones(p.index.size)
             span = 2.0 * float(np.max(np.maximum(p.half_breadth, p.half_height)))
@@ -246,6 +368,11 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
         cy, cz = hole_widths(strips, p)
         c_y = 0.5 * rho * cd_y * kap_y * np.maximum(hy - cy, 0.0) * dx
         c_z = 0.5 * rho * cd_z * kap_z * np.maximum(hz - cz, 0.0) * dx
+        if p.role != "fin" and not (np.any(cy > 0) or np.any(cz > 0)) and _single_solid(p):
+            # a part short across the flow: the whole-body drag of a short body, bridged
+            (c_y, c_z), sb = short_body_crossflow(p, dx, (hy, hz), (c_y, c_z), rho, speed, nu)
+            if sb:
+                short_info[p.name] = sb
         # one element per strip, appended as one block of rows (r, c, n), each (k, 3)
         k = p.index.size
         elems.append((np.column_stack([strips.x[p.index], p.y, p.z]),
@@ -262,6 +389,8 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
                        "hull_crossflow_cd_y": float(cd_y[mid]), "hull_crossflow_cd_z": float(cd_z[mid]),
                        "hull_length_factor": float(np.atleast_1d(kap_y)[mid])}
     cond.update(hull_cd)
+    if short_info:
+        cond["short_body_crossflow"] = short_info
     d_lin = np.zeros((6, 6))
     d_quad = np.zeros((6, 6))
     # point elements: single (3,) rows and (k, 3) blocks, stacked in order
@@ -287,4 +416,15 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
     g = (b_hat * c)[:, :, None] * np.abs(G) * G                     # (E, 3, 6)
     d_quad[:3] += g.sum(axis=0)
     d_quad[3:] += np.cross(rel[:, :, None], g, axisa=1, axisb=1, axisc=1).sum(axis=0)
+    if "blunt_hull_cd_astern" in cond:
+        ahead, astern = float(d_quad[0, 0]), float(d_quad[0, 0] + astern_delta)
+        cond["surge_quadratic_damping_astern"] = astern
+        if max(ahead, astern) > ASTERN_RATIO_WARN * min(ahead, astern):
+            warnings.warn(
+                f"{getattr(vehicle, 'name', 'vehicle')}: its hull's ends differ (bow "
+                f"{'flat' if cond['axial_drag_method'] == 'blunt' else 'closed'}): the "
+                f"quadratic X_uu holds the surge drag going ahead ({ahead:.4g} kg/m); going "
+                f"astern its class gives {astern:.4g} kg/m (conditions "
+                f"surge_quadratic_damping_astern); the |u|u form cannot hold both",
+                ModelWarning, stacklevel=3)
     return clean_roundoff(d_lin), clean_roundoff(d_quad), cond

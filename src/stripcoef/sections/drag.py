@@ -425,6 +425,79 @@ def closed_body_axial_cd(length_over_diameter, reynolds_diameter, friction, wett
     return float(out) if out.ndim == 0 else out
 
 
+#: L/h of a part (its length along x over its largest extent across the flow) up to which
+#: its cross-flow drag is the whole-body drag of a short body (:func:`short_body_crossflow_cd`),
+#: and from which it is the strips' (cross-flow principle with the length factor, whose table
+#: starts at L/D = 2: :func:`cylinder_length_factor`); linear in L/h between [assumption: at
+#: L/h <= 1 the body is no longer than it is high across the flow, and the flow passes its ends
+#: as much as its sides; no measured body covers the change of regime]
+SHORT_CROSSFLOW_LH = (1.0, 2.0)
+
+
+def short_body_crossflow_weight(length_over_height):
+    r"""Share w of the whole-body drag in a part's cross-flow drag [-].
+
+    .. math:: w = \mathrm{clip}\left(\frac{(L/h)_2 - L/h}{(L/h)_2 - (L/h)_1}, 0, 1\right)
+
+    with :math:`(L/h)_{1,2}` = :data:`SHORT_CROSSFLOW_LH`: 1 for a part no longer than it is
+    high across the flow, 0 from the length factor's first L/D (DNV-RP-C205 table 6-3) on.
+    ``length_over_height`` L/h [-].
+    """
+    lo, hi = SHORT_CROSSFLOW_LH
+    return np.clip((hi - np.asarray(length_over_height, dtype=float)) / (hi - lo), 0.0, 1.0)
+
+
+def short_body_crossflow_cd(depth_over_diameter, flat, aspect_ratio, reynolds):
+    r"""Whole-body drag of a short body in flow across its x axis, on its projected area.
+
+    The body is seen as the flow sees it: a body of length :math:`\ell` along the flow (its
+    depth) and projected area :math:`A` normal to it, :math:`D = \sqrt{4A/\pi}`; its class by
+    the face that meets the flow, as for the axial drag of a short hull
+    (:func:`blunt_cylinder_axial_cd`, :func:`ellipsoid_axial_cd`):
+
+    .. math:: C_D = \begin{cases} C_{D,blunt}(\ell/D, AR) & \text{a flat face normal to the
+              flow} \\ C_{D,ell}(\ell/D, Re_D) & \text{otherwise (closed: the flow
+              separates from a rounded contour, an edge or a ridge)}\end{cases}
+
+    so a sphere has the same drag in every direction, and a cube the same on each face
+    [assumption: the measured whole-body drag of bodies of revolution about the flow holds for
+    a short body of the same class seen along that flow; the sphere and the cube hold it
+    exactly by symmetry].
+
+    Parameters
+    ----------
+    depth_over_diameter : float
+        :math:`\ell/D` [-]
+    flat : bool
+        a flat face normal to the flow meets it
+    aspect_ratio : float
+        width over height of the projected area (or its inverse) [-] (flat faces only)
+    reynolds : float
+        :math:`Re_D = U D/\nu` [-] (closed bodies only)
+
+    Returns
+    -------
+    float
+        C_D on the projected area A [-]
+
+    References
+    ----------
+    Hoerner, Fluid-Dynamic Drag (1965), ch. 3 (bluff bodies: discs, cylinders end-on, plates,
+    spheres and ellipsoids), as tabulated in White, Fluid Mechanics, Table 7.3.
+    """
+    if flat:
+        return float(blunt_cylinder_axial_cd(depth_over_diameter, aspect_ratio))
+    return float(ellipsoid_axial_cd(depth_over_diameter, reynolds))
+
+
+def closed_body_depth_range():
+    """(lowest, highest) L/d [-] of the measured closed bodies (data/ellipsoid_axial_drag.csv):
+    a closed short body thinner along the flow than the lowest (an oblate body face-on, a
+    cylinder across longer than about 1.4 diameters) has no measured whole-body drag here."""
+    x = load_table("ellipsoid_axial_drag").column("L_over_d")
+    return float(np.min(x)), float(np.max(x))
+
+
 def ellipse_perimeter(b, h):
     r"""Ramanujan's approximation of an ellipse's perimeter [m] (exact for circles).
 
