@@ -35,7 +35,7 @@ fitted on the last 70 % (``diagnose(tail, prior, dof="all")``) and the model as 
 10-s simulations from the logged state (``diagnose/heldout.py``) of the prior, the calibrated
 model, hold-last-velocity and zero velocity [m/s or rad/s].
 
-Run:  python -m benchmarks.real_logs [--duration 480] [--seed 7] [--out FILE.csv]
+Run:  python -m benchmarks.real_logs [--duration 300] [--seed 7] [--jobs 4] [--out FILE.csv]
       [--mirror DIR]
 """
 
@@ -174,27 +174,51 @@ def read_back(folder, map_path):
     return log, [str(w.message) for w in caught]
 
 
-def real_style_logs(duration: float, seed: int):
-    """``(name, log, prior, widths, truth)`` of each real-style log before it is written
-    (module docstring)."""
-    import stripcoef
-    from stripcoef.diagnose.priors import prior_widths
-    from validation.independent import generate
-    from validation.synthetic import real_style_log
+def real_style_log(k: int, duration: float, seed: int):
+    """``(name, log, prior, widths, truth)`` of real-style log ``k`` (0..len(EFFECTS)) before
+    it is written (module docstring)."""
+    if k < len(EFFECTS):
+        import stripcoef
+        from stripcoef.diagnose.priors import prior_widths
+        from validation.independent import generate
 
-    vehicle = ROOT / "geometry" / "bluerov2_heavy.yaml"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        prior = stripcoef.estimate(vehicle)
-        widths = prior_widths(vehicle)
-    for k, effect in enumerate(EFFECTS):
+        vehicle = ROOT / "geometry" / "bluerov2_heavy.yaml"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            prior = stripcoef.estimate(vehicle)
+            widths = prior_widths(vehicle)
+        effect = EFFECTS[k]
         log, truth = generate(prior.to_dict(), effect, seed + k, duration=duration, rate=10.0)
-        yield (f"bluerov2_heavy, {effect}", log, prior, widths,
-               f"{effect} {truth.strength:.3g}, seed {seed + k}")
-    log, vr_prior, t = real_style_log(seed, "all", duration)
-    yield ("videoray, issue-16", log, vr_prior, None,
-           f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
-           f"{t['c_t']:.3f}, seed {seed}")
+        return (f"bluerov2_heavy, {effect}", log, prior, widths,
+                f"{effect} {truth.strength:.3g}, seed {seed + k}")
+    from validation.synthetic import real_style_log as videoray_log
+
+    log, vr_prior, t = videoray_log(seed, "all", duration)
+    return ("videoray, issue-16", log, vr_prior, None,
+            f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
+            f"{t['c_t']:.3f}, seed {seed}")
+
+
+#: How many real-style logs :func:`real_style_log` makes.
+N_LOGS = len(EFFECTS) + 1
+
+
+def run_real_style(k: int, duration: float, seed: int) -> list[dict]:
+    """Rows of real-style log ``k``: written, read back, diagnosed on both splits."""
+    name, log, prior, widths, truth = real_style_log(k, duration, seed)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+        chunks = (len(list((Path(tmp) / "nav").iterdir())),
+                  len(list((Path(tmp) / "cmd").iterdir())))
+    offset = read.meta["streams"]["cmd"]["clock_offset"]["offset_s"]
+    print(f"{name}: {len(read)} rows at {read.meta['rate']:.3g} Hz read back from "
+          f"{chunks[0]} + {chunks[1]} chunk files; clock offset {offset:+.4f} s", flush=True)
+    rows = [{"log": name, "kind": "real-style", "truth": truth, "rows": len(read),
+             "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
+             **row} for row in both_splits(read, prior, widths)]
+    for row in rows:
+        print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
+    return rows
 
 
 def _written(model):
@@ -267,32 +291,26 @@ FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--duration", type=float, default=480.0, help="real-style log length [s]")
+    ap.add_argument("--duration", type=float, default=300.0, help="real-style log length [s]")
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--mirror", type=Path, help="a checkout of ViktorNfa/bluerov2_dynamics "
                     "with its LFS objects: run its tank logs too")
+    ap.add_argument("--jobs", type=int, default=1, help="logs diagnosed in parallel")
     ap.add_argument("--out", type=Path, help=f"write the rows (CSV) here, e.g. {STORED}")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed)))
     out = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for k, (name, log, prior, widths, truth) in enumerate(
-                real_style_logs(args.duration, args.seed)):
-            folder = Path(tmp) / f"log{k}"
-            read, notes = read_back(folder, write_ros_chunks(log, folder, seed=args.seed + k))
-            offset = read.meta["streams"]["cmd"].get("clock_offset")
-            offset = offset.get("offset_s") if isinstance(offset, dict) else offset
-            print(f"{name}: {len(read)} rows at {read.meta['rate']:.3g} Hz read back from "
-                  f"{len(list((folder / 'nav').iterdir()))} + "
-                  f"{len(list((folder / 'cmd').iterdir()))} chunk files; clock offset "
-                  f"{offset}; " + " | ".join(n.split(': ', 1)[-1][:90] for n in notes))
-            for row in both_splits(read, prior, widths):
-                out.append({"log": name, "kind": "real-style", "truth": truth,
-                            "rows": len(read), "rate_hz": round(read.meta["rate"], 3),
-                            "clock_offset_s": "" if offset is None else round(float(offset), 4),
-                            **row})
-                print("  " + ", ".join(f"{k}={row[k]}" for k in row))
+    if args.jobs > 1:                  # one log a process: the logs are independent
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(args.jobs) as pool:
+            for rows in pool.map(run_real_style, range(N_LOGS), [args.duration] * N_LOGS,
+                                 [args.seed] * N_LOGS):
+                out += rows
+    else:
+        for k in range(N_LOGS):
+            out += run_real_style(k, args.duration, args.seed)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
             for row in both_splits(log, prior, widths):
