@@ -261,6 +261,19 @@ def both_splits(log, prior, widths) -> list[dict]:
     return rows
 
 
+def mirror_files(mirror: Path) -> list[Path]:
+    """The tank logs (``koopman_dataset_50Hz.csv``) under ``mirror`` whose data are there; a
+    Git LFS pointer (the data not pulled) is named and left out."""
+    out = []
+    for path in sorted(Path(mirror).rglob("koopman_dataset_50Hz.csv")):
+        with open(path, "rb") as fh:
+            if fh.read(40).startswith(b"version https://git-lfs"):
+                print(f"{path}: a Git LFS pointer (run git lfs pull): skipped")
+                continue
+        out.append(path)
+    return out
+
+
 def mirror_logs(mirror: Path):
     """``(name, log, prior, widths, source)`` of the real tank logs found under ``mirror``
     (a checkout of ViktorNfa/bluerov2_dynamics with its LFS objects), read through the map."""
@@ -273,10 +286,7 @@ def mirror_logs(mirror: Path):
         warnings.simplefilter("ignore")
         prior = stripcoef.estimate(vehicle)
         widths = prior_widths(vehicle)
-    for path in sorted(Path(mirror).rglob("koopman_dataset_50Hz.csv")):
-        if path.read_bytes()[:40].startswith(b"version https://git-lfs"):
-            print(f"{path}: a Git LFS pointer (run git lfs pull): skipped")
-            continue
+    for path in mirror_files(mirror):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             log = read_mapped_log(path, TABLES / "bluerov2_dynamics_map.yaml")

@@ -151,3 +151,16 @@ def test_a_piloted_rov_log_written_by_simulate_replays_to_its_printed_precision(
     assert len(rep) == len(log)
     for c in STATES + ("n_port", "n_starboard", "n_vertical"):
         np.testing.assert_allclose(rep[c], log[c], rtol=0, atol=1e-12, err_msg=c)
+
+
+def test_the_mirror_reads_pulled_tank_logs_and_names_lfs_pointers(tmp_path, capsys):
+    from benchmarks.real_logs import mirror_files
+
+    pointer = tmp_path / "rosbags" / "a" / "run1" / "koopman_dataset_50Hz.csv"
+    data = tmp_path / "rosbags" / "b" / "run2" / "koopman_dataset_50Hz.csv"
+    for p in (pointer, data):
+        p.parent.mkdir(parents=True)
+    pointer.write_text("version https://git-lfs.github.com/spec/v1\noid sha256:00\nsize 1\n")
+    data.write_text("t,x\n0.0,1.0\n")
+    assert mirror_files(tmp_path) == [data]
+    assert "Git LFS pointer" in capsys.readouterr().out
