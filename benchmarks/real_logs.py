@@ -72,6 +72,11 @@ PWM_NEUTRAL, PWM_PER_UNIT = 1500.0, 400.0
 HOLDOUT = 0.3
 #: Undeclared effects of the BlueROV2-Heavy-like real-style logs (validation.independent).
 EFFECTS = ("thruster_lag", "tether_drag", "current")
+#: Sampling (and piloting) rate of those logs [Hz]: at 10 Hz the simulator's pilot, whose PD
+#: holds run at the log's rate, shook the BlueROV2-Heavy-like vehicle in roll (std of p
+#: 4.3 rad/s on seed 8), leaving sway and yaw "not excited" under the roll's noise; at 20 Hz
+#: (benchmarks/diagnose_speed.py's rate) the roll is held (std of p 0.07 rad/s).
+INDEPENDENT_RATE = 20.0
 
 # NED -> ENU (x_e = y_n, y_e = x_n, z_e = -z_n) and FRD -> FLU (y and z reversed): both their
 # own inverses (REP 103; Fossen 2011, sec. 2.1).
@@ -188,7 +193,8 @@ def real_style_log(k: int, duration: float, seed: int):
             prior = stripcoef.estimate(vehicle)
             widths = prior_widths(vehicle)
         effect = EFFECTS[k]
-        log, truth = generate(prior.to_dict(), effect, seed + k, duration=duration, rate=10.0)
+        log, truth = generate(prior.to_dict(), effect, seed + k, duration=duration,
+                              rate=INDEPENDENT_RATE)
         return (f"bluerov2_heavy, {effect}", log, prior, widths,
                 f"{effect} {truth.strength:.3g}, seed {seed + k}")
     from validation.synthetic import real_style_log as videoray_log
@@ -247,6 +253,7 @@ def both_splits(log, prior, widths) -> list[dict]:
     reverse = (rev, errors, time.process_time() - c0)
     for name, (r, err, cpu) in (("forward", forward), ("reverse", reverse)):
         effects = "; ".join(f"{e['dof']} {e['name']}" for e in r.model.effects) or "none"
+        dropped = "; ".join(f"{d}: {why}" for d, why in r.dropped_dofs.items()) or "none"
         for dof, e in err.items():
             trivial = min(e["hold_last_velocity"], e["zero_velocity"])
             beats = (e["calibrated"] is not None and e["calibrated"] < e["prior"]
@@ -257,7 +264,8 @@ def both_splits(log, prior, widths) -> list[dict]:
                          "zero_velocity": e["zero_velocity"], "beats_all": int(beats),
                          "prior_beats_trivial": int(e["prior"] is not None
                                                     and e["prior"] < trivial),
-                         "effects_written": effects, "cpu_s": round(cpu, 1)})
+                         "effects_written": effects, "not_diagnosed": dropped,
+                         "cpu_s": round(cpu, 1)})
     return rows
 
 
@@ -296,7 +304,7 @@ def mirror_logs(mirror: Path):
 
 FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", "dof", "prior",
           "calibrated", "hold_last_velocity", "zero_velocity", "beats_all",
-          "prior_beats_trivial", "effects_written", "cpu_s")
+          "prior_beats_trivial", "effects_written", "not_diagnosed", "cpu_s")
 
 
 def main(argv=None) -> int:

@@ -26,7 +26,8 @@ def summary(rows) -> dict:
     return {"rows": len(rows), "beats": sum(r["beats_all"] == "1" for r in rows),
             "pairs": len(pairs), "pairs_all": sum(all(v) for v in pairs.values()),
             "prior_beats_trivial": sum(r["prior_beats_trivial"] == "1" for r in rows),
-            "real": sum(r["kind"] == "real" for r in rows)}
+            "real": sum(r["kind"] == "real" for r in rows),
+            "unchanged": sum(r["calibrated"] == r["prior"] for r in rows)}
 
 
 def section() -> str:
@@ -46,6 +47,8 @@ def section() -> str:
                  if r["clock_offset_s"] else f"- {name}: {r['truth']}"
                  for name, r in logs.items()]
     effects = sorted({(r["log"], r["split"], r["effects_written"]) for r in rows})
+    dropped = sorted({(r["log"], r["split"], r["not_diagnosed"]) for r in rows
+                      if r["not_diagnosed"] != "none"})
     parts = [
         "## Held-out prediction on logs as users have them (issue 33)\n",
         "The target: on held-out real-style logs (and on any real public log), the calibrated "
@@ -71,7 +74,14 @@ def section() -> str:
         f"The calibrated model beats the prior, hold-last-velocity and zero velocity in "
         f"**{s['beats']} of {s['rows']}** (log, split, excited DOF); in every excited DOF of "
         f"**{s['pairs_all']} of {s['pairs']}** (log, split) pairs. The prior alone beats both "
-        f"trivial predictors in {s['prior_beats_trivial']} of {s['rows']}.\n",
+        f"trivial predictors in {s['prior_beats_trivial']} of {s['rows']}. In {s['unchanged']} of "
+        f"{s['rows']} the calibrated model predicts exactly as the prior: the diagnosis's "
+        "validation by free simulation removed every change of that DOF (a change is kept only "
+        "if it improves the free simulation of data it was not fitted on), so it cannot beat "
+        "the prior there.\n",
         "Effects in the written models: " + "; ".join(
-            f"{log} ({split}): {eff}" for log, split, eff in effects) + ".\n"]
+            f"{log} ({split}): {eff}" for log, split, eff in effects) + ".\n",
+        *(["DOFs not diagnosed (`dof=\"all\"`): " + "; ".join(
+            f"{log} ({split}): {why}" for log, split, why in dropped) + ".\n"]
+          if dropped else [])]
     return "\n".join(parts)
