@@ -73,9 +73,11 @@ HOLDOUT = 0.3
 #: Undeclared effects of the BlueROV2-Heavy-like real-style logs (validation.independent).
 EFFECTS = ("thruster_lag", "tether_drag", "current")
 #: Sampling (and piloting) rate of those logs [Hz]: at 10 Hz the simulator's pilot, whose PD
-#: holds run at the log's rate, shook the BlueROV2-Heavy-like vehicle in roll (std of p
-#: 4.3 rad/s on seed 8), leaving sway and yaw "not excited" under the roll's noise; at 20 Hz
-#: (benchmarks/diagnose_speed.py's rate) the roll is held (std of p 0.07 rad/s).
+#: holds run at the log's rate, shakes the BlueROV2-Heavy-like vehicle in roll (120-s logs,
+#: tether drag, seeds 8 and 9: std of p 4.24 and 4.23 rad/s, of phi 0.40 and 0.38 rad),
+#: leaving sway and yaw "not excited" under the roll's noise; at 20 Hz
+#: (benchmarks/diagnose_speed.py's rate) std of p 0.09 and 0.52 rad/s, of phi 0.04 and
+#: 0.05 rad.
 INDEPENDENT_RATE = 20.0
 
 # NED -> ENU (x_e = y_n, y_e = x_n, z_e = -z_n) and FRD -> FLU (y and z reversed): both their
