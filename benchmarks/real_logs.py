@@ -316,6 +316,8 @@ def main(argv=None) -> int:
     ap.add_argument("--mirror", type=Path, help="a checkout of ViktorNfa/bluerov2_dynamics "
                     "with its LFS objects: run its tank logs too")
     ap.add_argument("--jobs", type=int, default=1, help="logs diagnosed in parallel")
+    ap.add_argument("--logs", type=int, nargs="+", default=list(range(N_LOGS)),
+                    help=f"which real-style logs (0..{N_LOGS - 1}; default all)")
     ap.add_argument("--out", type=Path, help=f"write the rows (CSV) here, e.g. {STORED}")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
@@ -325,11 +327,12 @@ def main(argv=None) -> int:
         from concurrent.futures import ProcessPoolExecutor
 
         with ProcessPoolExecutor(args.jobs) as pool:
-            for rows in pool.map(run_real_style, range(N_LOGS), [args.duration] * N_LOGS,
-                                 [args.seed] * N_LOGS):
+            n = len(args.logs)
+            for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
+                                 [args.seed] * n):
                 out += rows
     else:
-        for k in range(N_LOGS):
+        for k in args.logs:
             out += run_real_style(k, args.duration, args.seed)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
