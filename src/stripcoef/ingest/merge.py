@@ -209,8 +209,22 @@ def _linear(table_t, values, grid):
     return np.column_stack([np.interp(grid, table_t, v) for v in np.atleast_2d(values.T)])
 
 
+#: A sample stamped within this share of its stream's median step after an output time
+#: counts as at it in the zero-order hold [-]: the output times (t0 + k / rate) and the
+#: parsed stamps carry different round-off (a few ulp of the relative time, ~1e-15 s), and
+#: a command resampled onto its own grid (a 50-Hz CSV mapped at 50 Hz) otherwise takes the
+#: previous command at about one sample in 250 where the two round differently (found on a
+#: file of the layout of the public BlueROV2 tank logs, tests/test_real_logs.py). Small
+#: enough (2e-11 s at 50 Hz) to leave stamps that differ by a nanosecond in order.
+HOLD_TOLERANCE = 1e-9
+
+
 def _held(table_t, values, grid):
-    k = np.clip(np.searchsorted(table_t, grid, side="right") - 1, 0, table_t.size - 1)
+    """Zero-order hold: each output time takes the last sample at or before it
+    (:data:`HOLD_TOLERANCE`)."""
+    step = float(np.median(np.diff(table_t))) if table_t.size > 1 else 0.0
+    k = np.clip(np.searchsorted(table_t, grid + HOLD_TOLERANCE * step, side="right") - 1,
+                0, table_t.size - 1)
     return values[k]
 
 
