@@ -23,7 +23,7 @@ from validation import SECTIONS, build
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the expensive sections (measured: docs/development.md)
-SLOW = {"lift", "identification", "meshes", "fins", "drag"}
+SLOW = {"lift", "identification", "meshes", "drag"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent
@@ -120,6 +120,7 @@ def assert_section_is_current(name):
 #: section's own cache, computed once for both on one worker): section -> (module, test).
 ELSEWHERE = {
     "diagnosis": ("test_diagnose_papers", "test_validation_doc_diagnosis_section_is_current"),
+    "fins": ("test_fin_plate", "test_validation_doc_fins_section_is_current"),
     "vehicle_surface": ("test_vehicle_surface",
                         "test_validation_doc_vehicle_surface_section_is_current"),
 }
