@@ -95,3 +95,23 @@ def test_romeo_buoyancy_bias_disappears(romeo):
 def test_romeo_experiment_5_buoyancy_within_three_sigma(romeo):
     row = romeo[4]
     assert abs(row["eta_buoyancy"] - row["weight_truth"]) < 3 * row["eta_buoyancy_std"]
+
+
+@pytest.mark.slow
+def test_validation_doc_diagnosis_section_is_current(videoray, romeo, monkeypatch):
+    """docs/validation.md's section of these cases is what the code writes now
+    (tests/test_validation_doc.py), from the diagnoses of the module fixtures above: the
+    section calls ``videoray_case(seed=0)`` and ``romeo_case(seed=0)``, as they do."""
+    import validation.cases
+
+    from test_validation_doc import assert_section_is_current
+
+    def once(value):
+        def case(seed=0):
+            assert seed == 0
+            return value
+        return case
+
+    monkeypatch.setattr(validation.cases, "videoray_case", once(videoray))
+    monkeypatch.setattr(validation.cases, "romeo_case", once(romeo))
+    assert_section_is_current("diagnosis")

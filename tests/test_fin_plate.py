@@ -263,3 +263,13 @@ def test_other_couplings_and_the_rolls_against_the_fin_refined_bem():
         roll = [a[3, 3] for _, _, a in study]
         assert roll == sorted(roll, reverse=True), case
         assert 0.0 < fb.strip_model(case)[3, 3] / roll[-1] - 1 < 0.03, case
+
+
+@pytest.mark.slow
+def test_validation_doc_fins_section_is_current():
+    """docs/validation.md's section of these bodies is what the code writes now
+    (tests/test_validation_doc.py), checked here beside the tests that compute the same strip
+    models (``validation.finned.strip_model``, cached in the process)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("fins")

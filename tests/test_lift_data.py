@@ -82,7 +82,6 @@ def test_body_lift_against_suboff_bare_hull():
     assert within(body_Yv(), val("Yv.bare_hull"))
 
 
-@pytest.mark.slow
 def test_datcom_body_method_misses_suboff_too():
     """The DATCOM body method (sec. 4.2.1.1, Hopkins 1951), the published alternative to
     Hoerner's correlation, is not a way out: 2.5 times the measured bare-hull lift, with x_0 at

@@ -17,7 +17,7 @@ from stripcoef.geometry.surface import vehicle_surface
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
 
 from conftest import GEOMETRY
-from validation.vehicle_surface import term_errors, two_part, two_part_trimesh
+from validation.vehicle_surface import results, term_errors, two_part
 
 RHO = 1000.0
 
@@ -155,8 +155,8 @@ def test_vehicle_file_and_its_surface_stl_agree(tmp_path):
     from stripcoef.assembly.added_mass import panel_surface
 
     panel_surface(v, 1600).export(tmp_path / "two_part.stl")
+    a = results()[0][1]            # estimate(v, reference_point=np.zeros(3)), computed once
     with _quiet():
-        a = estimate(v, reference_point=np.zeros(3))
         b = estimate(Vehicle.from_mesh(tmp_path / "two_part.stl", origin=(0.0, 0.0, 0.0),
                                        fluid=v.fluid))
     assert a.provenance["method"] == b.provenance["method"] == \
@@ -167,15 +167,12 @@ def test_vehicle_file_and_its_surface_stl_agree(tmp_path):
 
 
 @pytest.mark.slow
-def test_vehicle_file_and_an_independent_mesh_agree(tmp_path):
+def test_vehicle_file_and_an_independent_mesh_agree():
     """The two-part vehicle file against an STL of the same parts built from trimesh
-    primitives (not from vehicle_surface): every term within 2 % of the diagonal scale."""
-    two_part_trimesh().export(tmp_path / "prims.stl")
-    v = parse_vehicle(two_part())
-    with _quiet():
-        a = estimate(v, reference_point=np.zeros(3))
-        b = estimate(Vehicle.from_mesh(tmp_path / "prims.stl", origin=(0.0, 0.0, 0.0),
-                                       fluid=v.fluid))
+    primitives (not from vehicle_surface): every term within 2 % of the diagonal scale.
+    (The models of docs/validation.md's section, ``validation.vehicle_surface.results``:
+    computed once for this test and the section's check below.)"""
+    _, a, b = results()[0]
     assert "panel" in a.conditions["added_mass_method"]
     err = term_errors(a.added_mass, b.added_mass)
     assert err.max() < 0.02, np.round(err, 4)
@@ -189,19 +186,26 @@ def test_bluerov2_heavy_yaml_and_stl_agree():
     """The shipped BlueROV2-Heavy vehicle file and mesh (scripts/make_bluerov2_heavy.py: one
     list of parts) give the same added mass, every term within 2 % of the diagonal scale, and
     volumes within 1.5 % (the vehicle file's strips count the parts' overlaps twice: 0.8 %);
-    they used to differ 2x in volume, 6.0 vs 13.5 kg in surge, 28.7 vs 48.3 kg in heave."""
-    v = load_vehicle(GEOMETRY / "bluerov2_heavy.yaml")
-    mesh = Vehicle.from_mesh(GEOMETRY / "bluerov2_heavy.stl", origin=(0.0, 0.0, 0.0),
-                             fluid=v.fluid)
-    with _quiet():
-        a = estimate(v, reference_point=np.zeros(3), strips=300)
-        b = estimate(mesh, strips=300)
+    they used to differ 2x in volume, 6.0 vs 13.5 kg in surge, 28.7 vs 48.3 kg in heave.
+    (The models of docs/validation.md's section, as above.)"""
+    name, a, b = results()[1]
+    assert "bluerov2_heavy.yaml" in name
     assert "panel" in a.conditions["added_mass_method"]
     assert "panel" in b.conditions["added_mass_method"]
     assert term_errors(a.added_mass, b.added_mass).max() < 0.02
     assert a.volume == pytest.approx(b.volume, rel=0.015)
+    mesh = Vehicle.from_mesh(GEOMETRY / "bluerov2_heavy.stl", origin=(0.0, 0.0, 0.0))
     np.testing.assert_allclose(np.ptp(mesh.bodies[0].mesh.vertices, axis=0),
                                [0.457, 0.5373, 0.254], atol=1.5e-3)
+
+
+@pytest.mark.slow
+def test_validation_doc_vehicle_surface_section_is_current():
+    """docs/validation.md's section of these two cases is what the code writes now
+    (tests/test_validation_doc.py, checked here on the same models)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("vehicle_surface")
 
 
 # --------------------------------------------------------------------------- the messages

@@ -196,8 +196,17 @@ def table_caption(source: str, name: str, *, root=None) -> list[str]:
 
 
 def _index(source: str, root) -> dict[str, dict]:
+    """Every row of ``source`` by name (read-only: callers copy a row before handing it out),
+    built once per set of tables (the tables' contents are read once already,
+    :func:`_read_table`)."""
+    base = _root(root)
+    return _index_of(source, str(base), tuple(tables(source, root=base)))
+
+
+@lru_cache(maxsize=None)
+def _index_of(source: str, root: str, names: tuple) -> dict[str, dict]:
     out: dict[str, dict] = {}
-    for t in tables(source, root=root):
+    for t in names:
         for row in load_table(source, t, root=root):
             if row["name"] in out:
                 first = out[row["name"]]
