@@ -258,7 +258,8 @@ def test_write_only_needs_no_openfoam(capsys, monkeypatch, tmp_path):
                str(tmp_path / "c"), "--json", "-q"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and len(out["written"]) == 4 and out["dofs"] == []
-    assert all((Path(w) / "Allrun").is_file() for w in out["written"])
+    assert all("/" not in w and (Path(out["case_dir"]) / w / "Allrun").is_file()
+               for w in out["written"])
 
 
 @pytest.mark.parametrize("argv,words", [
@@ -284,7 +285,7 @@ def test_vehicle_file_writes_its_united_surface(capsys, tmp_path):
                "-q"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["density"] == pytest.approx(vehicle.fluid.density)
-    folder = Path(out["written"][0])
+    folder = Path(out["case_dir"]) / out["written"][0]
     body = trimesh.load(folder / "constant/triSurface/body.stl")
     assert body.is_watertight and out["length"] == pytest.approx(max(body.extents), rel=1e-6)
     u = _read(folder, "0.orig/U")["boundaryField"]["inlet"]["value"][1]
@@ -319,6 +320,7 @@ def test_smoke_run_openfoam(tmp_path):
     assert run.status in (CONVERGED, NOT_CONVERGED)
     assert res.dofs[0].d_quadratic > 0
     assert (tmp_path / "c" / "surge_1m_s_L2" / "log.simpleFoam").is_file()
+    assert run.y_plus is not None and 0 < run.y_plus[0] <= run.y_plus[2] <= run.y_plus[1]
 
 
 def _fake_openfoam(tmp_path, monkeypatch, **scripts):

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.cfd.case import DOFS, ITERATIONS, CaseSpec, mrf_extent, write_case
-from stripcoef.cfd.forces import read_forces, settle
+from stripcoef.cfd.forces import STEADY_WINDOW, WINDOW, read_forces, read_y_plus, settle
 from stripcoef.cfd.result import CfdResult, DofResult, RunResult, fit_damping, judge
 from stripcoef.cfd.runner import openfoam_environment, run_case
 from stripcoef.errors import InputError
@@ -135,7 +135,7 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
                             ranks=ranks, iterations=iterations, mrf_radius=mrf_r,
                             mrf_half_length=mrf_h)
             case = write_case(case_dir / case_name(dof, value, level), spec, surface)
-            written.append(str(case.folder))
+            written.append(case.folder.name)
             if write_only:
                 continue
             label = f"{dof} {value:g} {'rad/s' if rotation else 'm/s'} level {level}"
@@ -173,12 +173,13 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
         return RunResult(dof=dof, speed=value, level=level, cells=outcome.cells,
                          iterations=outcome.iterations, status="diverged", force=float("nan"),
                          swing=float("inf"), drift=float("inf"), force_vector=nan3, moment_vector=nan3,
-                         case=str(case.folder),
+                         case=case.folder.name,
                          note=outcome.solver_error or "no force written",
                          cpu_seconds=outcome.cpu_seconds,
                          wall_seconds=outcome.wall_seconds)
     series = (hist.moment if rotation else hist.force)[:, axis]
-    s = settle(series)
+    # a run that met its residual criterion is a steady solution: its last iterates
+    s = settle(series, STEADY_WINDOW if outcome.residuals_met else WINDOW)
     n = s.window
     status, note = judge(s, outcome.residuals_met, outcome.solver_error, outcome.iterations)
     if outcome.failed_checks:
@@ -189,5 +190,5 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
                      swing=s.spread, drift=s.drift,
                      force_vector=tuple(float(v) for v in hist.force[-n:].mean(axis=0)),
                      moment_vector=tuple(float(v) for v in hist.moment[-n:].mean(axis=0)),
-                     case=str(case.folder), note=note, cpu_seconds=outcome.cpu_seconds,
-                     wall_seconds=outcome.wall_seconds)
+                     case=case.folder.name, note=note, cpu_seconds=outcome.cpu_seconds,
+                     wall_seconds=outcome.wall_seconds, y_plus=read_y_plus(case.folder))
