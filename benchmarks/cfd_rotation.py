@@ -121,13 +121,45 @@ def command(shape: str, dof: str) -> list[str]:
             "-o", f"{FOLDER}/{shape}_{dof}.json"]
 
 
+def table() -> str:
+    """Every stored result in reference_tables/cfd as a markdown table: mesh, iterations,
+    the value and its mesh spread, y+ and the cost of each DOF."""
+    import json
+
+    from stripcoef.cfd.result import NAMES, CfdResult
+
+    head = ("| file | DOF | levels | cells (fine / coarse) | iterations | SNAME d_Q (fine) | "
+            "mesh spread (GCI) | y+ fine: mean (min-max) | CPU-min | wall-min | status |")
+    lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
+    for path in sorted((ROOT / FOLDER).glob("*.json")):
+        res = CfdResult.from_dict(json.loads(path.read_text()))
+        for d in res.dofs:
+            fine, runs = d.runs[0], d.runs
+            yp = "-" if fine.y_plus is None else \
+                f"{fine.y_plus[2]:.0f} ({fine.y_plus[0]:.2g}-{fine.y_plus[1]:.0f})"
+            gci = "-" if d.gci is None else f"{100 * d.gci:.1f} %"
+            lines.append(
+                f"| `{path.name}` | {d.dof} | {'/'.join(str(r.level) for r in runs)} | "
+                f"{' / '.join(f'{r.cells:,}' for r in runs)} | "
+                f"{' / '.join(str(r.iterations) for r in runs)} | "
+                f"{NAMES[d.dof][1]} {-d.d_quadratic:.4g} | {gci} | {yp} | "
+                f"{sum(r.cpu_seconds for r in runs) / 60:.1f} | "
+                f"{sum(r.wall_seconds for r in runs) / 60:.1f} | "
+                f"{'converged' if d.converged else 'NOT CONVERGED'} |")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m benchmarks.cfd_rotation", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--shapes", action="store_true", help="write the shapes' STL files")
     p.add_argument("--list", action="store_true", help="print every reference's command")
     p.add_argument("--run", nargs=2, metavar=("SHAPE", "DOF"), help="run one reference")
+    p.add_argument("--table", action="store_true",
+                   help="print the stored results as markdown (cells, y+, cost)")
     args = p.parse_args(argv)
+    if args.table:
+        print(table())
     if args.shapes:
         for path in make_shapes():
             print(path.relative_to(ROOT))
