@@ -456,6 +456,11 @@ def test_early_stop_on_a_settled_limit_cycle(tmp_path):
     assert not settled_early(case.folder, spec)
     write(-100.0 * (1 + 0.08 * np.sin(2 * np.pi * i / 25)))   # swings 16 %
     assert not settled_early(case.folder, spec)
+    noisy = -100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25))
+    noisy[200:300] += 30.0 * np.sin(2 * np.pi * i[200:300] / 7)    # a transient window before
+    noisy[200:300] -= noisy[200:300].mean() + 100.0                # whose mean matches by chance
+    write(noisy)
+    assert not settled_early(case.folder, spec)
     write(-100.0 * (1 + 0.005 * np.sin(2 * np.pi * i / 25))[:250])   # too early
     assert not settled_early(case.folder, spec)
     stop_now(case.folder)
