@@ -245,6 +245,7 @@ class CfdResult:
     density, viscosity : float
         [kg/m^3], [m^2/s].
     levels : tuple of int
+        Every mesh level run (a DOF's own pair: its runs' ``level``).
     ranks : int
     case_dir : str
     dofs : tuple of DofResult

@@ -28,8 +28,9 @@ def add_parser(sub):
                         "m/s); two give d_L")
     p.add_argument("--rates", metavar="R[,R...]",
                    help="rotation rates [rad/s] (default 2 U / L: tip speed U)")
-    p.add_argument("--levels", default="3,4", metavar="COARSE,FINE",
-                   help="surface cells size/2^level (default 3,4; one level: no mesh estimate)")
+    p.add_argument("--levels", default=None, metavar="COARSE,FINE",
+                   help="surface cells size/2^level (default 3,4 for surge, sway, heave and "
+                        "4,5 for roll, pitch, yaw; one level: no mesh estimate)")
     p.add_argument("--iterations", type=int, default=1000, metavar="N",
                    help="most simpleFoam iterations per run (default 1000; a run stops "
                         "earlier once its force settles)")
@@ -136,7 +137,7 @@ def run(args) -> int:
     speeds = _numbers(args.speeds, "--speeds") or \
         [vehicle.reference_speed if vehicle is not None else DEFAULT_SPEED]
     rates = _numbers(args.rates, "--rates")
-    levels = _levels(args.levels)
+    levels = None if args.levels is None else _levels(args.levels)
     if args.ranks is not None and args.ranks < 1:
         raise InputError("must be positive", key="--ranks", value=args.ranks,
                          expected="an integer >= 1")
