@@ -22,7 +22,7 @@ from validation import SECTIONS, build
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the expensive sections (measured: docs/development.md)
-SLOW = {"lift", "identification", "meshes", "fins", "diagnosis", "drag", "vehicle_surface"}
+SLOW = {"lift", "identification", "meshes", "fins", "diagnosis", "drag", "vehicle_surface", "cfd"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent

@@ -37,18 +37,22 @@ def _vehicle(source: str):
 
 def stored():
     """Every stored result with the model beside it: (file name, CfdResult)."""
-    from stripcoef.cfd.compare import with_comparison
+    from stripcoef.cfd.compare import comparison_speed, model_for, with_comparison
     from stripcoef.cfd.result import CfdResult
     from stripcoef.fluid import Fluid
 
-    out = []
+    out, models = [], {}
     for path in sorted(FOLDER.glob("*.json")):
         res = CfdResult.from_dict(json.loads(path.read_text()))
         water = Fluid(density=res.density, kinematic_viscosity=res.viscosity,
                       source="the CFD's water")
+        key = (res.source, comparison_speed(res), res.density, res.viscosity)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            out.append((path.name, with_comparison(res, _vehicle(res.source), fluid=water)))
+            if key not in models:       # one model per body, speed and water
+                models[key] = model_for(_vehicle(res.source), speed=key[1], fluid=water)
+            out.append((path.name, with_comparison(res, None, fluid=water,
+                                                   model=models[key])))
     return out
 
 

@@ -105,18 +105,25 @@ def model_for(vehicle, *, speed: float, fluid):
                                              fluid=fluid, added_mass_method="strips"))
 
 
-def with_comparison(result, vehicle, *, fluid):
+def comparison_speed(result) -> float:
+    """The speed [m/s] the model is estimated at: the first translation's, else the first
+    rotation's tip speed ``rate L / 2`` (the model's own rate is ``U / (L/2)``)."""
+    first = result.dofs[0].runs[0].speed
+    translation = [d for d in result.dofs if not DOFS[d.dof][1]]
+    return float(translation[0].runs[0].speed if translation else first * 0.5 * result.length)
+
+
+def with_comparison(result, vehicle, *, fluid, model=None):
     """``result`` with its :attr:`~stripcoef.cfd.result.CfdResult.comparison` filled from
-    the default model of ``vehicle``."""
+    the default model of ``vehicle`` (or ``model``, one :func:`model_for` gave for
+    :func:`comparison_speed`)."""
     from dataclasses import replace
 
     if not result.dofs:
         return result
-    first = result.dofs[0].runs[0].speed
-    translation = [d for d in result.dofs if not DOFS[d.dof][1]]
-    speed = translation[0].runs[0].speed if translation else \
-        first * 0.5 * result.length          # a rotation's tip speed
-    model = model_for(vehicle, speed=speed, fluid=fluid)
+    speed = comparison_speed(result)
+    if model is None:
+        model = model_for(vehicle, speed=speed, fluid=fluid)
     return replace(result, comparison=compare_rows(result, model.linear_damping,
                                                    model.quadratic_damping),
                    compare_model={"name": model.name, "speed": float(speed),
@@ -124,4 +131,4 @@ def with_comparison(result, vehicle, *, fluid):
                                                       model.reference_point]})
 
 
-__all__ = ["CompareRow", "compare_rows", "model_for", "with_comparison"]
+__all__ = ["CompareRow", "compare_rows", "comparison_speed", "model_for", "with_comparison"]
