@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
                              "identification", "meshes", "fins", "bluff", "cad_shapes",
                              "public_meshes", "vehicle_surface", "drag", "bands",
-                             "diagnosis", "diagnosis_independent")
+                             "diagnosis", "diagnosis_independent", "cfd")
 
 
 def build() -> str:
