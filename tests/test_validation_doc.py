@@ -23,7 +23,7 @@ from validation import SECTIONS, build
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the expensive sections (measured: docs/development.md)
-SLOW = {"lift", "identification", "meshes", "drag"}
+SLOW = {"lift", "identification", "meshes", "drag", "cfd"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent

@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
                              "identification", "meshes", "fins", "bluff", "cad_shapes",
                              "public_meshes", "vehicle_surface", "bluerov2", "drag", "bands",
-                             "diagnosis", "diagnosis_independent", "real_logs")
+                             "diagnosis", "diagnosis_independent", "real_logs", "cfd")
 
 
 def build() -> str:

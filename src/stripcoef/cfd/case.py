@@ -347,6 +347,9 @@ def control_dict(spec: CaseSpec) -> str:
         "forces": {"type": "forces", "libs": ['"libforces.so"'], "writeControl": "timeStep",
                    "writeInterval": 1, "log": True, "patches": ["body"], "rho": "rhoInf",
                    "rhoInf": spec.density, "CofR": cofr},
+        # y+ of the wall cells when the fields are written (the wall functions' range)
+        "yPlus": {"type": "yPlus", "libs": ['"libfieldFunctionObjects.so"'],
+                  "writeControl": "writeTime", "log": False},
     }
     if not spec.rotation:
         functions["forceCoeffs"] = {

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.cfd.case import DOFS, ITERATIONS, CaseSpec, mrf_extent, write_case
-from stripcoef.cfd.forces import read_forces, settle
+from stripcoef.cfd.forces import STEADY_WINDOW, WINDOW, read_forces, read_y_plus, settle
 from stripcoef.cfd.result import CfdResult, DofResult, RunResult, fit_damping, judge
 from stripcoef.cfd.runner import openfoam_environment, run_case
 from stripcoef.errors import InputError
@@ -22,6 +22,11 @@ from stripcoef.fluid import Fluid
 
 #: Surface refinement levels (cells ``size / 2**level`` at the surface): coarse and fine.
 LEVELS = (3, 4)
+#: The default levels of a rotation, one finer: measured, levels 3 and 4 leave a rotation's
+#: damping mesh-limited (the BlueROV2-sized box's yaw moved 28 % from level 3 to 4 and 5 %
+#: from 4 to 5; the BlueROV2 Heavy's yaw 50 % from 3 to 4), while a translation's moves
+#: 1-20 % from 3 to 4 (reference_tables/cfd/README.md).
+ROTATION_LEVELS = (4, 5)
 
 
 def frontal_area(surface, axis: int) -> float:
@@ -53,7 +58,7 @@ def case_name(dof: str, speed: float, level: int) -> str:
     return f"{dof}_{speed:g}{unit}_L{level}".replace(".", "p").replace("-", "m")
 
 
-def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=LEVELS,
+def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=None,
                 ranks: int | None = None, case_dir="cfd-case", iterations: int = ITERATIONS,
                 fluid: Fluid | None = None, write_only: bool = False, source: str = "mesh",
                 on_progress=None) -> CfdResult:
@@ -69,8 +74,9 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
         Speeds of the translations [m/s]; two or more give d_L too.
     rates : sequence of float, optional
         Rates of the rotations [rad/s]; default :func:`default_rate` of each speed.
-    levels : sequence of int
-        Mesh levels, coarse to fine (one level: no mesh-convergence estimate).
+    levels : sequence of int, optional
+        Mesh levels, coarse to fine (one level: no mesh-convergence estimate); default
+        :data:`LEVELS` for a translation, :data:`ROTATION_LEVELS` for a rotation.
     ranks : int, optional
         MPI ranks (default: the cores available to this process).
     case_dir : str or Path
@@ -94,10 +100,11 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
         if d not in DOFS:
             raise InputError("unknown degree of freedom", key="dofs", value=d,
                              expected="surge, sway, heave, roll, pitch or yaw")
-    levels = tuple(sorted(int(v) for v in levels))
-    if not levels or levels[0] < 1 or levels[-1] > 8:
-        raise InputError("invalid mesh levels", key="levels", value=list(levels),
-                         expected="one or two integers from 1 to 8")
+    if levels is not None:
+        levels = tuple(sorted(int(v) for v in levels))
+        if not levels or levels[0] < 1 or levels[-1] > 8:
+            raise InputError("invalid mesh levels", key="levels", value=list(levels),
+                             expected="one or two integers from 1 to 8")
     speeds = tuple(float(s) for s in speeds)
     if not speeds or not all(np.isfinite(s) and s > 0 for s in speeds):
         raise InputError("speeds must be positive", key="speeds", value=list(speeds),
@@ -116,15 +123,17 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
     size = _digits(np.sort(surface.extents)[1])
     bounds = tuple(tuple(_digits(v) for v in row) for row in surface.bounds)
     case_dir = Path(case_dir)
-    dof_results, written = [], []
+    dof_results, written, used = [], [], set()
     for dof in dofs:
         axis, rotation = DOFS[dof]
         values = (tuple(rates) if rates else tuple(default_rate(s, length) for s in speeds)) \
             if rotation else speeds
         area = frontal_area(surface, axis)
-        plan = [(v, levels[-1]) for v in values]
-        if len(levels) > 1:
-            plan.append((values[0], levels[0]))
+        lv = levels or (ROTATION_LEVELS if rotation else LEVELS)
+        used.update(lv)
+        plan = [(v, lv[-1]) for v in values]
+        if len(lv) > 1:
+            plan.append((values[0], lv[0]))
         runs = []
         for value, level in plan:
             mrf_r, mrf_h = mrf_extent(surface.vertices, (0.0, 0.0, 0.0), axis, 0.25 * size) \
@@ -135,7 +144,7 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
                             ranks=ranks, iterations=iterations, mrf_radius=mrf_r,
                             mrf_half_length=mrf_h)
             case = write_case(case_dir / case_name(dof, value, level), spec, surface)
-            written.append(str(case.folder))
+            written.append(case.folder.name)
             if write_only:
                 continue
             label = f"{dof} {value:g} {'rad/s' if rotation else 'm/s'} level {level}"
@@ -145,10 +154,10 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
             runs.append(_judge_run(case, outcome, dof, value, level))
         if write_only:
             continue
-        fine = [r for r in runs if r.level == levels[-1]]
+        fine = [r for r in runs if r.level == lv[-1]]
         d_l, d_q = fit_damping([r.speed for r in fine], [r.force for r in fine])
         spread = None
-        if len(levels) > 1:          # the two levels at the first speed
+        if len(lv) > 1:              # the two levels at the first speed
             _, d_q0 = fit_damping([runs[-1].speed], [runs[-1].force])
             _, d_qf = fit_damping([fine[0].speed], [fine[0].force])
             spread = abs(d_qf - d_q0) / abs(d_qf) if d_qf else float("inf")
@@ -158,7 +167,7 @@ def drag_by_cfd(surface, *, dofs=("surge",), speeds=(1.0,), rates=None, levels=L
                                      reference_area=area,
                                      converged=all(r.converged for r in runs)))
     return CfdResult(source=source, length=length, size=size, density=fluid.density,
-                     viscosity=fluid.kinematic_viscosity, levels=levels, ranks=ranks,
+                     viscosity=fluid.kinematic_viscosity, levels=tuple(sorted(used)), ranks=ranks,
                      case_dir=str(case_dir), dofs=tuple(dof_results), written=tuple(written))
 
 
@@ -173,12 +182,13 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
         return RunResult(dof=dof, speed=value, level=level, cells=outcome.cells,
                          iterations=outcome.iterations, status="diverged", force=float("nan"),
                          swing=float("inf"), drift=float("inf"), force_vector=nan3, moment_vector=nan3,
-                         case=str(case.folder),
+                         case=case.folder.name,
                          note=outcome.solver_error or "no force written",
                          cpu_seconds=outcome.cpu_seconds,
                          wall_seconds=outcome.wall_seconds)
     series = (hist.moment if rotation else hist.force)[:, axis]
-    s = settle(series)
+    # a run that met its residual criterion is a steady solution: its last iterates
+    s = settle(series, STEADY_WINDOW if outcome.residuals_met else WINDOW)
     n = s.window
     status, note = judge(s, outcome.residuals_met, outcome.solver_error, outcome.iterations)
     if outcome.failed_checks:
@@ -189,5 +199,5 @@ def _judge_run(case, outcome, dof: str, value: float, level: int) -> RunResult:
                      swing=s.spread, drift=s.drift,
                      force_vector=tuple(float(v) for v in hist.force[-n:].mean(axis=0)),
                      moment_vector=tuple(float(v) for v in hist.moment[-n:].mean(axis=0)),
-                     case=str(case.folder), note=note, cpu_seconds=outcome.cpu_seconds,
-                     wall_seconds=outcome.wall_seconds)
+                     case=case.folder.name, note=note, cpu_seconds=outcome.cpu_seconds,
+                     wall_seconds=outcome.wall_seconds, y_plus=read_y_plus(case.folder))

@@ -26,6 +26,18 @@ NAMES = {"surge": ("X_u", "X_uu"), "sway": ("Y_v", "Y_vv"), "heave": ("Z_w", "Z_
          "roll": ("K_p", "K_pp"), "pitch": ("M_q", "M_qq"), "yaw": ("N_r", "N_rr")}
 #: Status of a run.
 CONVERGED, NOT_CONVERGED, DIVERGED = "converged", "not converged", "diverged"
+#: Roache's grid convergence index for two meshes (:attr:`DofResult.gci`): safety factor,
+#: refinement ratio of the surface cells, formal order of the schemes.
+GCI_SAFETY, GCI_RATIO, GCI_ORDER = 3.0, 2.0, 2.0
+
+
+def run_folder(path) -> str:
+    """A run's case folder as a result stores it: its name under the result's ``case_dir``
+    (older results stored the whole path; a stored result names no folder of the machine
+    that wrote it)."""
+    from pathlib import PurePath
+
+    return PurePath(str(path)).name
 
 
 def fit_damping(speeds, forces) -> tuple[float | None, float]:
@@ -90,11 +102,14 @@ class RunResult:
     force_vector, moment_vector : tuple
         Mean total force [N] and moment [N m] about the reference point, body axes.
     case : str
-        The case folder.
+        The case folder's name under :attr:`CfdResult.case_dir`.
     note : str
         Why it is not converged, the failed mesh checks.
     cpu_seconds, wall_seconds : float
         CPU time of OpenFOAM's programs, all ranks [s]; wall-clock time of the run [s].
+    y_plus : tuple or None
+        The body's y+ at the end: min, max, mean over its faces
+        (:func:`stripcoef.cfd.forces.read_y_plus`); None if not written.
     """
 
     dof: str
@@ -112,6 +127,7 @@ class RunResult:
     note: str = ""
     cpu_seconds: float = 0.0
     wall_seconds: float = 0.0
+    y_plus: tuple | None = None
 
     @property
     def converged(self) -> bool:
@@ -123,7 +139,19 @@ class RunResult:
                 "swing": self.swing, "drift": self.drift, "force_vector": list(self.force_vector),
                 "moment_vector": list(self.moment_vector), "case": self.case,
                 "note": self.note, "cpu_seconds": self.cpu_seconds,
-                "wall_seconds": self.wall_seconds}
+                "wall_seconds": self.wall_seconds,
+                **({} if self.y_plus is None else {"y_plus": list(self.y_plus)})}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> RunResult:
+        """A run back from :meth:`to_dict` (a stored ``--json`` result)."""
+        kw = {k: d[k] for k in cls.__dataclass_fields__ if k in d}
+        kw["force_vector"] = tuple(kw["force_vector"])
+        kw["moment_vector"] = tuple(kw["moment_vector"])
+        kw["case"] = run_folder(kw["case"])
+        if kw.get("y_plus") is not None:
+            kw["y_plus"] = tuple(kw["y_plus"])
+        return cls(**kw)
 
 
 @dataclass(frozen=True)
@@ -163,15 +191,45 @@ class DofResult:
     def names(self) -> tuple[str, str]:
         return NAMES[self.dof]
 
+    @property
+    def gci(self) -> float | None:
+        r"""Roache's grid convergence index of d_Q on the finer mesh [-] (None with one level).
+
+        .. math:: \mathrm{GCI} = F_s \frac{|\varepsilon|}{r^p - 1}
+
+        with :math:`\varepsilon` the mesh spread, the refinement ratio :math:`r = 2` (the
+        surface cells halve from one level to the next), the scheme's formal order
+        :math:`p = 2` (two levels cannot measure it) and the safety factor :math:`F_s = 3`
+        Roache gives for a two-grid study: GCI = |eps| here, an error band, not a correction.
+
+        References
+        ----------
+        Roache, P. J. (1994). Perspective: a method for uniform reporting of grid refinement
+        studies. J. Fluids Eng. 116(3), 405-413 (eq. 7 and the factor 3 for two grids).
+        """
+        if self.mesh_spread is None:
+            return None
+        return GCI_SAFETY * self.mesh_spread / (GCI_RATIO ** GCI_ORDER - 1.0)
+
     def to_dict(self) -> dict:
         lin, quad = self.names
         return {"dof": self.dof, "converged": self.converged,
                 "d_linear": self.d_linear, "d_quadratic": self.d_quadratic,
                 lin: None if self.d_linear is None else -self.d_linear,
                 quad: -self.d_quadratic, "mesh_spread": self.mesh_spread,
+                "gci": self.gci,
                 "drag_coefficient": self.drag_coefficient,
                 "reference_area": self.reference_area,
                 "runs": [r.to_dict() for r in self.runs]}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> DofResult:
+        """A DOF back from :meth:`to_dict`."""
+        runs = tuple(RunResult.from_dict(r) for r in d["runs"])
+        return cls(dof=d["dof"], runs=runs, d_linear=d["d_linear"],
+                   d_quadratic=d["d_quadratic"], mesh_spread=d["mesh_spread"],
+                   drag_coefficient=d["drag_coefficient"],
+                   reference_area=d["reference_area"], converged=d["converged"])
 
 
 @dataclass(frozen=True)
@@ -181,18 +239,24 @@ class CfdResult:
     Attributes
     ----------
     source : str
-        The mesh file.
+        The mesh or vehicle file, as given.
     length, size : float
         Body length and cell reference size [m].
     density, viscosity : float
         [kg/m^3], [m^2/s].
     levels : tuple of int
+        Every mesh level run (a DOF's own pair: its runs' ``level``).
     ranks : int
     case_dir : str
     dofs : tuple of DofResult
         Empty with ``write_only``.
     written : tuple of str
-        The case folders written.
+        The case folders written (names under ``case_dir``).
+    comparison : tuple of CompareRow
+        The default model's damping beside the CFD's per DOF (``--compare``;
+        :mod:`stripcoef.cfd.compare`), empty otherwise.
+    compare_model : dict
+        The model compared: its name, speed [m/s] and reference point [m].
     """
 
     source: str
@@ -205,6 +269,8 @@ class CfdResult:
     case_dir: str
     dofs: tuple = ()
     written: tuple = field(default=())
+    comparison: tuple = ()
+    compare_model: dict = field(default_factory=dict)
 
     @property
     def converged(self) -> bool:
@@ -215,7 +281,25 @@ class CfdResult:
                 "density": self.density, "viscosity": self.viscosity,
                 "levels": list(self.levels), "ranks": self.ranks, "case_dir": self.case_dir,
                 "converged": self.converged, "written": list(self.written),
-                "dofs": [d.to_dict() for d in self.dofs]}
+                "dofs": [d.to_dict() for d in self.dofs],
+                **({"compare": {"model": self.compare_model,
+                                "rows": [c.to_dict() for c in self.comparison]}}
+                   if self.comparison else {})}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> CfdResult:
+        """A result back from :meth:`to_dict` (``stripcoef cfd --json``; a stored
+        reference). Raises KeyError or TypeError on a dict that is not one."""
+        from stripcoef.cfd.compare import CompareRow
+
+        comp = d.get("compare") or {}
+        return cls(source=d["source"], length=d["length"], size=d["size"],
+                   density=d["density"], viscosity=d["viscosity"],
+                   levels=tuple(d["levels"]), ranks=d["ranks"], case_dir=d["case_dir"],
+                   dofs=tuple(DofResult.from_dict(x) for x in d["dofs"]),
+                   written=tuple(run_folder(w) for w in d.get("written", ())),
+                   comparison=tuple(CompareRow.from_dict(r) for r in comp.get("rows", ())),
+                   compare_model=dict(comp.get("model", {})))
 
     def text(self) -> str:
         """The result as the command prints it (every number read from this object)."""
@@ -225,7 +309,7 @@ class CfdResult:
         if not self.dofs:
             lines.append(f"  case written, not run ({len(self.written)} runs): "
                          "./Allrun in each folder")
-            lines += [f"    {w}" for w in self.written]
+            lines += [f"    {self.case_dir}/{w}" for w in self.written]
             return "\n".join(lines) + "\n"
         lines.append(f"  {'DOF':6s} {'term':6s} {'value':>11s} {'term':6s} {'value':>11s} "
                      f"{'C_D':>6s} {'mesh':>6s}  status")
@@ -250,8 +334,31 @@ class CfdResult:
                              f"{r.cpu_seconds / 60:.1f} CPU-min"
                              f"{mark}{note}")
         lines.append("  mesh: the relative change of d_Q from the coarser to the finer mesh "
-                     "(the discretisation error estimate)")
+                     "(the discretisation error estimate; Roache's two-grid GCI at order 2)")
+        if self.comparison:
+            lines += self._comparison_text()
         return "\n".join(lines) + "\n"
+
+    def _comparison_text(self) -> list[str]:
+        m = self.compare_model
+        lines = [f"  the default model ({m.get('name', '')}, speed {m.get('speed', 0):.4g} m/s, "
+                 f"moments about the same origin) against CFD, damping at the CFD's speed:",
+                 f"  {'DOF':6s} {'term':6s} {'CFD':>10s} {'model':>10s} {'d_L model':>10s} "
+                 f"{'at':>10s} {'F CFD':>10s} {'F model':>10s} {'model/CFD':>9s} "
+                 f"{'mesh':>6s}"]
+        for c in self.comparison:
+            quad = NAMES[c.dof][1]
+            rot = c.dof in ("roll", "pitch", "yaw")
+            at = f"{c.speed:.3g} {'rad/s' if rot else 'm/s'}"
+            ms = "-" if c.mesh_spread is None else f"{100 * c.mesh_spread:.1f}%"
+            mark = "" if c.converged else "  NOT CONVERGED"
+            lines.append(f"  {c.dof:6s} {quad:6s} {-c.cfd_d_quadratic:10.4g} "
+                         f"{-c.model_d_quadratic:10.4g} {0.0 - c.model_d_linear:10.4g} {at:>10s} "
+                         f"{c.cfd_force:10.4g} {c.model_force:10.4g} {c.ratio:9.3f} "
+                         f"{ms:>6s}{mark}")
+        lines.append("  (quadratic terms in SNAME sign; F = d_L u + d_Q u|u| opposing the "
+                     "motion [N or N m]; the CFD's d_Q holds its whole force at one speed)")
+        return lines
 
 
 def judge(settled: Settled, residuals_met: bool, solver_error: str,

@@ -181,8 +181,8 @@ def run_case(case: CaseFiles, *, env: dict, on_progress=None, poll: float = 2.0)
 
 
 #: Early stop: simpleFoam is told to write and stop once the force along the motion has
-#: settled (:attr:`stripcoef.cfd.forces.Settled.settled`: the mean of the last 100
-#: iterations within 2 % of the 100 before, the swing under 10 %), after EARLY_MIN
+#: settled quietly (:attr:`stripcoef.cfd.forces.Settled.quiet`: the mean of the last 100
+#: iterations within 2 % of the 100 before, the swing under 10 % in both), after EARLY_MIN
 #: iterations at least.
 EARLY_MIN = 300
 
@@ -195,7 +195,7 @@ def settled_early(folder: Path, spec) -> bool:
         return False
     if hist.iteration.size < max(EARLY_MIN, 2 * WINDOW):
         return False
-    return settle((hist.moment if spec.rotation else hist.force)[:, spec.axis]).settled
+    return settle((hist.moment if spec.rotation else hist.force)[:, spec.axis]).quiet
 
 
 def stop_now(folder: Path) -> None:

@@ -28,8 +28,9 @@ def add_parser(sub):
                         "m/s); two give d_L")
     p.add_argument("--rates", metavar="R[,R...]",
                    help="rotation rates [rad/s] (default 2 U / L: tip speed U)")
-    p.add_argument("--levels", default="3,4", metavar="COARSE,FINE",
-                   help="surface cells size/2^level (default 3,4; one level: no mesh estimate)")
+    p.add_argument("--levels", default=None, metavar="COARSE,FINE",
+                   help="surface cells size/2^level (default 3,4 for surge, sway, heave and "
+                        "4,5 for roll, pitch, yaw; one level: no mesh estimate)")
     p.add_argument("--iterations", type=int, default=1000, metavar="N",
                    help="most simpleFoam iterations per run (default 1000; a run stops "
                         "earlier once its force settles)")
@@ -40,6 +41,12 @@ def add_parser(sub):
                    help="folder of the cases, kept (default cfd-<mesh name>)")
     p.add_argument("--write-only", action="store_true",
                    help="write the cases (each with its Allrun) and stop")
+    p.add_argument("--compare", action="store_true",
+                   help="put the default model's damping (stripcoef coefficients, same water "
+                        "and speed, moments about the same origin) beside the CFD's per DOF")
+    p.add_argument("--result", metavar="FILE.json",
+                   help="read an earlier --json result (a stored reference) instead of "
+                        "running OpenFOAM; with --compare, compare it")
     p.add_argument("--json", action="store_true", help="the result as JSON")
     p.add_argument("-o", "--output", metavar="FILE", help="write the output to FILE")
     m = p.add_argument_group("mesh input")
@@ -130,25 +137,38 @@ def run(args) -> int:
     speeds = _numbers(args.speeds, "--speeds") or \
         [vehicle.reference_speed if vehicle is not None else DEFAULT_SPEED]
     rates = _numbers(args.rates, "--rates")
-    levels = _levels(args.levels)
+    levels = None if args.levels is None else _levels(args.levels)
     if args.ranks is not None and args.ranks < 1:
         raise InputError("must be positive", key="--ranks", value=args.ranks,
                          expected="an integer >= 1")
     if args.iterations < 10:
         raise InputError("too few iterations", key="--iterations", value=args.iterations,
                          expected="an integer >= 10")
-    if vehicle is not None:
-        surface = vehicle_surface(vehicle)
-        fluid = fluid_from_args(args, vehicle.fluid) or vehicle.fluid
+    if args.result:
+        result = _stored(args.result)
     else:
-        surface = load_mesh(path, axis=args.axis, length_unit=args.length_unit,
-                            z_up=args.z_up).mesh
-        fluid = fluid_from_args(args, None)
-    case_dir = args.case_dir or f"cfd-{path.stem}"
-    result = drag_by_cfd(surface, dofs=dofs, speeds=speeds, rates=rates, levels=levels,
-                         ranks=args.ranks, case_dir=case_dir, iterations=args.iterations,
-                         fluid=fluid, write_only=args.write_only,
-                         source=str(path), on_progress=_progress_printer())
+        if vehicle is not None:
+            surface = vehicle_surface(vehicle)
+            fluid = fluid_from_args(args, vehicle.fluid) or vehicle.fluid
+        else:
+            surface = load_mesh(path, axis=args.axis, length_unit=args.length_unit,
+                                z_up=args.z_up).mesh
+            fluid = fluid_from_args(args, None)
+        case_dir = args.case_dir or f"cfd-{path.stem}"
+        result = drag_by_cfd(surface, dofs=dofs, speeds=speeds, rates=rates, levels=levels,
+                             ranks=args.ranks, case_dir=case_dir, iterations=args.iterations,
+                             fluid=fluid, write_only=args.write_only,
+                             source=str(path), on_progress=_progress_printer())
+    if args.compare and result.dofs:
+        from stripcoef.cfd.compare import with_comparison
+        from stripcoef.fluid import Fluid
+
+        if vehicle is None:
+            vehicle = load_vehicle(path, axis=args.axis, length_unit=args.length_unit,
+                                   origin="centroid", z_up=args.z_up)
+        water = Fluid(density=result.density, kinematic_viscosity=result.viscosity,
+                      source="the CFD's water")
+        result = with_comparison(result, vehicle, fluid=water)
     text = json_text(result.to_dict()) if args.json else result.text()
     if args.output:
         with OutputSet() as outs:
@@ -159,3 +179,22 @@ def run(args) -> int:
         print("stripcoef cfd: warning: a run did not converge; its numbers are marked "
               "NOT CONVERGED and are not a reference", file=sys.stderr)
     return 0
+
+
+def _stored(path):
+    """A stored ``--json`` result, or a one-line error naming the file."""
+    import json
+
+    from stripcoef.cfd.result import CfdResult
+
+    try:
+        data = json.loads(Path(path).read_text())
+        return CfdResult.from_dict(data)
+    except OSError as exc:
+        raise InputError(f"cannot read it ({exc.strerror or exc})", key="--result",
+                         value=str(path), expected="a file written by stripcoef cfd --json") \
+            from None
+    except (ValueError, KeyError, TypeError, AttributeError) as exc:
+        raise InputError(f"not a stripcoef cfd result ({type(exc).__name__}: {exc})",
+                         key="--result", value=str(path),
+                         expected="a file written by stripcoef cfd --json") from None
