@@ -52,7 +52,7 @@ GRAVITY = 9.81
 #: quantity compared with the diagnosis's ``magnitude`` (the library effect's own).
 STRENGTHS = {
     "tether_drag": ("surge", (0.08, 0.3)),          # c_t [N s^2/m^3]
-    "thrust_asymmetry": ("surge", (0.5, 0.75)),     # eta_backward / eta_forward [-]
+    "thrust_asymmetry": ("surge", (0.5, 0.75)),     # eta_backward / eta_forward [-], of the prior's map
     "momentum_drag": ("heave", (0.03, 0.06)),       # alpha [N s/m per command unit]
     "buoyancy_offset": ("heave", (0.3, 0.8)),       # B - B_prior [N] (lighter than the prior)
     "current": ("surge", (0.1, 0.25)),              # |v_c| [m/s]
@@ -167,8 +167,11 @@ def with_effect(truth: Truth, name: str | None, rng, prior: dict) -> Truth:
     s = float(rng.uniform(lo, hi))
     truth.effect, truth.strength = name, s
     if name == "thrust_asymmetry":
+        # relative to the prior's own branches, the quantity the library's ratio is (the
+        # priors are not symmetric: the VideoRay's backward branch is 0.39 of its forward
+        # one, so ct_backward = s ct_forward was a backward thrust 1.3-1.9x the prior's)
         for t in truth.thrusters:
-            t["ct_backward"] = s * t["ct_forward"]
+            t["ct_backward"] = s * t["ct_backward"]
     elif name == "buoyancy_offset":
         # the offset from the prior's own buoyancy, the quantity the library's b is (the
         # prior need not be neutral: the VideoRay file's B - W is +0.30 N, so B = W + s
