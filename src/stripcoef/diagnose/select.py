@@ -259,6 +259,17 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             break
         ties = [t for t in good[1:]
                 if t["held_out_error_after"] <= best["held_out_error_after"] * (1 + TIE)]
+        if getattr(get_effect(best["effect"]), "scales_prior", False):
+            # a thrust scale changes inertia and drag together (the regressor is the sum of
+            # the calibration's columns, scaled): a significant release of one coefficient
+            # beyond its bands (an added-mass error) is the simpler change and goes first
+            # -- the scale, if still needed, is the next step (parsimony; issue 33: a 2.6x
+            # added mass named a thrust effectiveness of 0.77)
+            single = [t for t in good[1:] if t["mimics"] and t["band_excess"] is not None
+                      and abs(t["band_excess"]) >= MIMIC_BANDS]
+            if single:
+                ties = [best] + [t for t in ties if t is not single[0]]
+                best = single[0]
         if not best["signature"]:
             with_sig = [t for t in ties if t["signature"]]
             if with_sig:
