@@ -246,9 +246,13 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         # MIN_HELD_OUT_GAIN of the best effect's held-out error) means the residual is not
         # this effect: stop, and let the structure test call it unexplained
         shape = _best_shape(cfg, cur, data, dof)
+        # an effect without a signature whose coefficient the log could not calibrate (a
+        # free column, _held_coefficient) has no structure of its own to show: it must also
+        # beat every out-of-library shape (issue 33: dry friction named a linear drag)
+        free = not best["signature"] and best["_held"]
+        margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
         if (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
-                and shape["held_out_error_after"]
-                < (1.0 - MIN_HELD_OUT_GAIN) * best["held_out_error_after"]):
+                and shape["held_out_error_after"] < margin * best["held_out_error_after"]):
             result["stopped_by_shape"] = {
                 **shape, "best_effect": best["effect"],
                 "best_effect_held_out_error_after": best["held_out_error_after"],
@@ -443,7 +447,7 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
             "band_excess": band_excess,
             "error_after": ev["error"], "held_out_error_after": ev["held_out_error"],
             "held_out_gain": gain, "delta_bic": dbic, "z": z,
-            "significant": not reasons, "rejected_because": reasons,
+            "significant": not reasons, "rejected_because": reasons, "_held": held is not None,
             "magnitude": eff.magnitude(params), "source": eff.source,
             "_cfg": cfg, "_ev": ev}
 
