@@ -39,7 +39,8 @@ Steps, for each degree of freedom (issue 7):
      cannot calibrate that coefficient within its band (kept at the prior by the
      identifiability test), the effect's column is a new free column, judged by the
      held-out gain, BIC and z as an effect with a signature, and its change must also lie
-     beyond ``MIMIC_BANDS`` bands (issue 33: a linear drag 70x the prior's);
+     beyond ``MIMIC_BANDS`` bands (issue 33: a linear drag 70x the prior's); having no
+     structure of its own, it must also beat every out-of-library shape below;
    The significant effect with the lowest held-out error is added; effects within ``TIE``
    of it are reported as alternatives, and an effect with a signature is preferred over one
    without; a significant release of one coefficient beyond its bands goes before a thrust
