@@ -15,7 +15,12 @@ Scores (issue 33's criteria):
   the error cut at least 3x (baseline / final); in whole-log mode, no step in a DOF the
   effect does not act in (``ACTS_IN``: a thruster effect acts in every DOF the thrusters
   drive), counted for the steps named and for those the validation kept;
-- clean logs: no effect added;
+- the truth's background: every truth also carries a buoyancy drawn U(0.98, 1.02) x the
+  prior's (a buoyancy offset in heave, roll and pitch) and thruster coefficients drawn
+  U(0.75, 1.25) x the prior's (a thrust effectiveness of each DOF, :func:`thrust_gain`):
+  real differences from the prior (:data:`BACKGROUND`). "Named first after background"
+  passes over steps that name them; such a step is not spurious;
+- clean logs: no effect added (and no effect other than the background);
 - outside the library: ``unexplained``, or every step's held-out gain under 30 %.
 
 Usage:
@@ -60,8 +65,39 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t0 = time.process_time()
     log, truth = generate(prior.to_dict(), category, seed, duration=duration)
     t1 = time.process_time()
-    return [_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0)
-            for mode in modes]
+    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0),
+             **_background(truth, prior.to_dict())} for mode in modes]
+
+
+def thrust_gain(truth, prior: dict, dof: int) -> float:
+    r"""The truth's thrust in DOF ``dof`` per unit of the prior's thrust map [-]: the
+    per-thruster factors :math:`f_k = C_{t,k}^{truth} / C_{t,k}^{prior}` (forward branch;
+    they carry the U(0.75, 1.25) spread and a thrust effectiveness) averaged with the
+    weights :math:`|B_{ik}| C_{t,k}^{prior}` of each thruster's reach in the DOF. The force
+    balance :math:`\bar f\,\tau_{map} = M\dot\nu + D(\nu)\nu + F_{effect}` divided by
+    :math:`\bar f` is what a log determines: inertia, drag and every force effect only as
+    their ratio to :math:`\bar f` (the thrust map is the log's one absolute scale)."""
+    w, fw = 0.0, 0.0
+    for t, p in zip(truth.thrusters, prior["thrusters"]):
+        c0 = float(p.get("ct_forward", 1.0)) * float(p.get("eta_forward", 1.0))
+        b = np.concatenate([t["direction"], np.cross(t["position"], t["direction"])])[dof]
+        w += abs(b) * c0
+        fw += abs(b) * t["ct_forward"]
+    return fw / w if w > 0 else 1.0
+
+
+def _background(truth, prior: dict) -> dict:
+    """The row's record of the truth's background (:func:`background`): ``buoyancy_change``,
+    the truth's buoyancy minus the prior's [N] (the weight is the prior's; the buoyancy is
+    drawn U(0.98, 1.02) x the prior's in every truth but the buoyancy_offset one, a real
+    offset of up to 2 % of the weight in heave, roll and pitch), and ``thrust_gain`` per DOF
+    (:func:`thrust_gain`) [-]."""
+    from validation.independent import GRAVITY
+    b0 = float(prior["density"]) * float(prior["volume"]) * GRAVITY
+    from stripcoef.conventions import DOF
+    out = {"buoyancy_change": float(truth.buoyancy - b0),
+           "thrust_gain": {DOF[i]: float(thrust_gain(truth, prior, i)) for i in range(6)}}
+    return out
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim) -> dict:
@@ -136,6 +172,38 @@ ACTS_IN.update({"current": ("surge", "sway", "yaw"), "buoyancy_offset": ("heave"
                                                                            "pitch")})
 
 
+#: Differences from the prior that every truth of ``validation.independent`` carries besides
+#: its effect, as library effects: the buoyancy drawn U(0.98, 1.02) x the prior's (up to
+#: 1 N on the VideoRay, 2.3 N on the BlueROV2, more than the buoyancy_offset category's own
+#: 0.3-0.8 N) is a buoyancy offset in heave and, through the centre of buoyancy, roll and
+#: pitch. A step naming it there is a true difference, not spurious.
+#: The thruster coefficients, each drawn U(0.75, 1.25) x the prior's, are a thrust
+#: effectiveness of the DOF (:func:`thrust_gain`) where they differ from 1 by more than the
+#: thrust maps' bench uncertainty the library assumes (THRUST_BAND, 5 %): the data see it
+#: through the weighed rigid-body mass, which no calibration band moves.
+BACKGROUND = {"buoyancy_offset": ("heave", "roll", "pitch"),
+              "thrust_effectiveness": ("surge", "sway", "heave", "roll", "pitch", "yaw")}
+
+
+def background(row: dict, dof: str, effect: str) -> bool:
+    """Whether ``effect`` in ``dof`` is a difference the truth of ``row`` carries besides
+    its own effect (:data:`BACKGROUND`)."""
+    from stripcoef.effects.base import THRUST_BAND
+    if dof not in BACKGROUND.get(effect, ()):
+        return False
+    if effect == "buoyancy_offset":
+        return abs(row.get("buoyancy_change", 0.0)) > 0.0
+    gain = row.get("thrust_gain", {}).get(dof)
+    return gain is not None and abs(gain - 1.0) > THRUST_BAND
+
+
+def _first_after_background(row: dict):
+    """The effect named first in the row's own DOF once the steps that name a
+    :func:`background` difference are passed over."""
+    return next((e for e in row.get("step_effects", {}).get(row["dof"], [])
+                 if e == row["category"] or not background(row, row["dof"], e)), None)
+
+
 def _spurious(row: dict, key: str):
     """Whether a whole-log row has a step in a DOF where the truth has no such effect
     (``key``: ``step_effects`` or ``step_effects_kept``), None when the row lacks it."""
@@ -143,6 +211,7 @@ def _spurious(row: dict, key: str):
         return None
     acts = ACTS_IN.get(row["category"], ())
     return any(d != row["dof"] and not (e == row["category"] and d in acts)
+               and not background(row, d, e)
                for d, effects in row[key].items() for e in effects)
 
 
@@ -152,12 +221,13 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     n_logs = len({(r["vehicle"], r["category"], r["seed"]) for r in rows})
     lines = [f"Seed {seed}, {n_logs} logs of {duration:g} s at 10 Hz, {len(rows)} diagnoses.",
              ""]
-    lines += ["| effect | mode | logs | named first | magnitude within 15 % | error cut >= 3x "
+    lines += ["| effect | mode | logs | named first | named first after background "
+              "| magnitude within 15 % | error cut >= 3x "
               "| other DOFs named | spurious named | spurious kept |",
-              "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
     spurious_all = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
-    mag_all, cut_all = [0], [0]
+    mag_all, cut_all, after_all = [0], [0], [0]
     confusion: dict = {}
     for cat in STRENGTHS:
         for mode in ("dof", "all"):
@@ -166,6 +236,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                 continue
             n = len(rs)
             first = sum(r["first"] == cat for r in rs)
+            after = sum(_first_after_background(r) == cat for r in rs)
             mag = sum(r.get("magnitude_error", np.inf) <= 0.15 for r in rs)
             cut = sum(r["cut"] >= 3 for r in rs)
             spur = sum(any(d != r["dof"] for d in r["step_dofs"]) for r in rs) if mode == "all" \
@@ -184,7 +255,9 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             for r in rs:
                 confusion.setdefault(cat, {}).setdefault(str(r["first"]), 0)
                 confusion[cat][str(r["first"])] += 1
-            lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {mag}/{n} | {cut}/{n} | "
+            after_all[0] += after
+            lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {after}/{n} | {mag}/{n} | "
+                         f"{cut}/{n} | "
                          + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_cells} |")
             mag_all[0] += mag
             cut_all[0] += cut
@@ -193,8 +266,8 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines.append("")
     lines.append(f"Library effects named first: {score}/{total}"
                  + (f" ({100 * score / total:.0f} %)" if total else "")
-                 + f"; magnitude within 15 %: {mag_all[0]}/{total}; error cut >= 3x: "
-                 f"{cut_all[0]}/{total}.")
+                 + f"; named first after the truth's background (buoyancy, thrust gains): "
+                 f"{after_all[0]}/{total}; magnitude within 15 %: {mag_all[0]}/{total}; error cut >= 3x: {cut_all[0]}/{total}.")
     named, kept = spurious_all["step_effects"], spurious_all["step_effects_kept"]
     if named[1]:
         lines.append(f"Whole-log runs of library-effect logs with a spurious step (an effect in "
@@ -203,10 +276,14 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     if clean:
         fp = sum(r["n_steps"] > 0 for r in clean)
         kept = [r for r in clean if "n_steps_kept" in r]
+        real = sum(any(not background(r, d, e) for d, es in r.get("step_effects", {}).items()
+                       for e in es) for r in clean)
         lines.append(f"Clean logs: an effect named in {fp} of {len(clean)}"
                      + (f", kept in the written model in "
                         f"{sum(r['n_steps_kept'] > 0 for r in kept)} of {len(kept)}"
-                        if kept else "") + ".")
+                        if kept else "")
+                     + f"; an effect other than the background named in "
+                       f"{real} of {len(clean)}.")
     if outside:
         ok = sum(r["unexplained"] or r["max_gain"] < 0.3 for r in outside)
         lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "

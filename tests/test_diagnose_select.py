@@ -135,3 +135,50 @@ def test_thrust_asymmetry_needs_both_directions():
     data = window_data(Log(cols, source="one-signed"), prior, window=2.0)
     ok, why = get_effect("thrust_asymmetry").applicable(data, 0)
     assert not ok and "backward thrust" in why and "10 %" in why
+
+
+def test_a_mimic_whose_coefficient_is_kept_at_the_prior_is_judged_as_a_free_column():
+    """An effect without a signature that mimics a coefficient the log cannot calibrate
+    within its band (kept at the prior): its band, to test the change against, is the
+    prior's value times the band; a calibrated coefficient or a zero prior gives None."""
+    from types import SimpleNamespace
+
+    from stripcoef.diagnose.select import _held_coefficient
+    from stripcoef.diagnose.settings import BANDS
+    from stripcoef.effects.laws import get_effect
+
+    prior = rov_model()
+    data = SimpleNamespace(model=prior)
+    eff = get_effect("linear_drag")
+    theta = np.array([2.0])
+    band = _held_coefficient(eff, "D_L", "", ("M", "D_Q"), data, 0, theta)
+    assert band == pytest.approx(BANDS["translational"]["D_L"] * prior.linear_damping[0, 0])
+    assert _held_coefficient(eff, "D_L", "", ("M", "D_L", "D_Q"), data, 0, theta) is None
+    assert _held_coefficient(eff, "D_L", "a signature", ("M",), data, 0, theta) is None
+    zero = SimpleNamespace(model=replace(prior, linear_damping=np.zeros((6, 6))))
+    assert _held_coefficient(eff, "D_L", "", ("M",), zero, 0, theta) is None
+
+
+@pytest.mark.slow
+def test_a_linear_drag_far_beyond_a_prior_the_log_cannot_calibrate_is_named():
+    """Issue 33: a surge linear drag 70x the VideoRay prior's (independent simulator), whose
+    D_L the log cannot calibrate within its 60 % band, was rejected for 'no D_L to compare'
+    (42 % held-out gain, z = 6). It is named first, with the size the log determines: the
+    truth over the surge thrusters' gain f (the thrust map is the log's force scale)."""
+    import warnings
+
+    import stripcoef
+    from validation.independent import generate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        prior = stripcoef.estimate(ROOT / "geometry" / "videoray_pro3.yaml")
+    log, truth = generate(prior.to_dict(), "linear_drag", 111005, duration=120.0)
+    res = diagnose(log, prior, dof="surge").to_dict()
+    surge = res["per_dof"]["surge"]
+    assert "D_L" in surge["calibration"]["kept_at_prior"]
+    assert res["steps"] and res["steps"][0]["effect"] == "linear_drag"
+    gain = np.mean([t["ct_forward"] / p.ct_forward
+                    for t, p in zip(truth.thrusters, prior.thrusters) if p.direction[0] > 0.9])
+    d_l = res["steps"][0]["parameters"]["d_L"]
+    assert d_l == pytest.approx(truth.strength / gain - prior.linear_damping[0, 0], rel=0.15)

@@ -52,9 +52,9 @@ GRAVITY = 9.81
 #: quantity compared with the diagnosis's ``magnitude`` (the library effect's own).
 STRENGTHS = {
     "tether_drag": ("surge", (0.08, 0.3)),          # c_t [N s^2/m^3]
-    "thrust_asymmetry": ("surge", (0.5, 0.75)),     # eta_backward / eta_forward [-]
+    "thrust_asymmetry": ("surge", (0.5, 0.75)),     # eta_backward / eta_forward [-], of the prior's map
     "momentum_drag": ("heave", (0.03, 0.06)),       # alpha [N s/m per command unit]
-    "buoyancy_offset": ("heave", (0.3, 0.8)),       # B - W [N] (lighter than water)
+    "buoyancy_offset": ("heave", (0.3, 0.8)),       # B - B_prior [N] (lighter than the prior)
     "current": ("surge", (0.1, 0.25)),              # |v_c| [m/s]
     "linear_drag": ("surge", (1.5, 4.0)),           # X_u [N s/m]
     "deadband": ("surge", (0.15, 0.3)),             # dead band [share of full command]
@@ -167,10 +167,17 @@ def with_effect(truth: Truth, name: str | None, rng, prior: dict) -> Truth:
     s = float(rng.uniform(lo, hi))
     truth.effect, truth.strength = name, s
     if name == "thrust_asymmetry":
+        # relative to the prior's own branches, the quantity the library's ratio is (the
+        # priors are not symmetric: the VideoRay's backward branch is 0.39 of its forward
+        # one, so ct_backward = s ct_forward was a backward thrust 1.3-1.9x the prior's)
         for t in truth.thrusters:
-            t["ct_backward"] = s * t["ct_forward"]
+            t["ct_backward"] = s * t["ct_backward"]
     elif name == "buoyancy_offset":
-        truth.buoyancy = truth.weight + s
+        # the offset from the prior's own buoyancy, the quantity the library's b is (the
+        # prior need not be neutral: the VideoRay file's B - W is +0.30 N, so B = W + s
+        # with s = 0.3 N was no offset at all); as added_mass_error and linear_drag, the
+        # perturbed value is replaced
+        truth.buoyancy = float(prior["density"]) * float(prior["volume"]) * GRAVITY + s
     elif name == "current":
         ang = rng.uniform(0, 2 * np.pi)
         truth.current = s * np.array([np.cos(ang), np.sin(ang), 0.0])

@@ -35,10 +35,16 @@ Steps, for each degree of freedom (issue 7):
    - its parameters are physically plausible (a drag is positive, an efficiency in (0.1, 3)),
    - an effect without a signature in this log (it only mimics a prior coefficient, e.g. a
      tether drag without a ``tether_length`` column looks like a larger D_Q) must also push
-     that coefficient more than ``MIMIC_BANDS`` bands away from the prior.
+     that coefficient more than ``MIMIC_BANDS`` bands away from the prior; when the log
+     cannot calibrate that coefficient within its band (kept at the prior by the
+     identifiability test), the effect's column is a new free column, judged by the
+     held-out gain, BIC and z as an effect with a signature, and its change must also lie
+     beyond ``MIMIC_BANDS`` bands (issue 33: a linear drag 70x the prior's); having no
+     structure of its own, it must also beat every out-of-library shape below;
    The significant effect with the lowest held-out error is added; effects within ``TIE``
    of it are reported as alternatives, and an effect with a signature is preferred over one
-   without. No step raises the held-out error (a released coefficient included). Before a
+   without; a significant release of one coefficient beyond its bands goes before a thrust
+   scale (the simpler change). No step raises the held-out error (a released coefficient included). Before a
    step, one-column shapes outside the library (:func:`~.select._generic_shapes`: sign(v),
    v^3, ...) are fitted in its place; one that explains the residual better (held-out error
    below ``1 - MIN_HELD_OUT_GAIN`` of the best effect's) stops the selection, and the DOF is
