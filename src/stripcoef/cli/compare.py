@@ -8,6 +8,7 @@ import numpy as np
 
 from stripcoef.conventions import added_mass_name
 from stripcoef.errors import InputError
+from stripcoef.geometry.vehicle import MESH_SUFFIXES
 from stripcoef.files import check_finite_output, json_text, write_text
 from stripcoef.cli.coefficients import add_fluid_arguments, add_mesh_arguments
 
@@ -17,7 +18,7 @@ def add_parser(sub):
                        description="Added mass of a CAD mesh by strip theory and by the "
                                    "Capytaine boundary-element method (needs stripcoef[bem]), "
                                    "with each method's wall time and the % difference per term.")
-    p.add_argument("vehicle", metavar="MODEL", help="mesh file (.stl .obj .ply .glb)")
+    p.add_argument("vehicle", metavar="MODEL", help="mesh file (" + " ".join(MESH_SUFFIXES) + ")")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically)")
     p.add_argument("--plot", metavar="FILE.png",
@@ -74,7 +75,7 @@ def run(args) -> int:
     t_load = time.perf_counter() - t0
     if not (len(vehicle.bodies) == 1 and isinstance(vehicle.bodies[0], MeshBody)):
         raise InputError("compare needs a mesh file", file=str(args.vehicle),
-                         expected="a .stl/.obj/.ply/.glb file")
+                         expected="a mesh file (" + "/".join(MESH_SUFFIXES) + ")")
     body = vehicle.bodies[0]
     options = estimate_options(args, vehicle)
     t0 = time.perf_counter()
