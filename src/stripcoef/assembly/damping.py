@@ -15,6 +15,7 @@ import numpy as np
 from stripcoef.hull.lamb import power_law_split
 from stripcoef.sections import drag as sdrag
 from stripcoef.sections import get_shape, section_drag
+from stripcoef.sections.panel import part_rings
 from stripcoef.strips import Strips
 from stripcoef.conventions import clean_roundoff
 from stripcoef.strips import hole_widths
@@ -73,41 +74,46 @@ def wetted_perimeter(part):
 FACE_TOL = 1e-3
 
 
-#: vertices of a curved outline (ellipse) when its section is drawn for :func:`_extremes`
+#: vertices of a curved outline (ellipse) when its section is drawn for :func:`_outline_points`
 OUTLINE_POINTS = 96
 
 
-def _extremes(part, axis):
-    """Per strip of ``part``: (lowest, highest) coordinate along ``axis`` (0: y, 1: z) [m] and
-    the width across the flow [m] of the section's face at each of them: the spread across the
-    flow of the outline's vertices within :data:`FACE_TOL` of the part's extent of that
-    extreme (the shape's own outline, :data:`stripcoef.sections.SHAPES`: 0 for a rounded
-    contour or a vertex, the side for a flat face)."""
-    k = part.index.size
+def _outline_points(part):
+    """Per strip of ``part``: the vertices (m, 2) [m] of its section's outline, (y, z), as the
+    shape draws it (:data:`stripcoef.sections.SHAPES`; a curved outline with
+    :data:`OUTLINE_POINTS` vertices). Drawn once per part for both flow directions."""
     outline = get_shape(part.shape).outline
     pts = []
-    lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
-    for i in range(k):
+    for i in range(part.index.size):
         rings = outline(part, i, OUTLINE_POINTS)
-        p = np.concatenate([np.asarray(r, float) for r in rings]) if len(rings) else \
-            np.zeros((0, 2))
-        pts.append(p)
+        pts.append(np.concatenate([np.asarray(r, float) for r in rings]) if len(rings)
+                   else np.zeros((0, 2)))
+    return pts
+
+
+def _extremes(pts, axis):
+    """Per strip (``pts``: :func:`_outline_points`): the lowest and highest coordinate along
+    ``axis`` (0: y, 1: z) [m], and the width across the flow [m] of the section's face at the
+    highest: the spread across the flow of the outline's vertices within :data:`FACE_TOL` of
+    the part's extent of that extreme (0 for a rounded contour or a vertex, the side for a
+    flat face)."""
+    k = len(pts)
+    lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
+    for i, p in enumerate(pts):
         if p.size:
             lo[i], hi[i] = p[:, axis].min(), p[:, axis].max()
     tol = FACE_TOL * max(float(np.max(hi) - np.min(lo)), 1e-300)
-    w_lo, w_hi = np.zeros(k), np.zeros(k)
+    w_hi = np.zeros(k)
     for i, p in enumerate(pts):
         if p.size:
             w_hi[i] = np.ptp(p[p[:, axis] >= hi[i] - tol, 1 - axis])
-            w_lo[i] = np.ptp(p[p[:, axis] <= lo[i] + tol, 1 - axis])
-    return lo, hi, w_lo, w_hi
+    return lo, hi, w_hi
 
 
 def _single_solid(part):
     """Whether every section of ``part`` is one solid part (no frame of several members)."""
     if not get_shape(part.shape).contoured:
         return True
-    from stripcoef.sections.panel import part_rings
     return int(np.count_nonzero(part_rings(part).area > 0)) == part.index.size
 
 
@@ -141,9 +147,10 @@ def short_body_crossflow(part, dx, heights, coeffs, rho, speed, nu):
     ``depth_over_diameter`` [-].
     """
     out, info = [], {}
+    pts = _outline_points(part)
     for axis, key in ((0, "y"), (1, "z")):
         c, h = coeffs[axis], heights[axis]
-        lo, hi, _, w_hi = _extremes(part, axis)
+        lo, hi, w_hi = _extremes(pts, axis)
         depth = float(np.max(hi) - np.min(lo))
         lh = max(part.length, 1e-12) / max(float(np.max(h)), depth, 1e-12)
         w = float(sdrag.short_body_crossflow_weight(lh))
