@@ -53,7 +53,7 @@ import numpy as np
 import warnings
 
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.geometry.mesh_close import close_open_parts, open_parts_text
+from stripcoef.geometry.mesh_close import close_open_parts, closed_union, open_parts_text
 # the section geometry of a mesh (re-exported: its users import it from here)
 from stripcoef.geometry.slicing import (COLLINEAR_TOL, EdgeTopology, _chain_cycles,  # noqa: F401
                                         _corner_points, ring_integrals, rings_integrals,
@@ -282,11 +282,6 @@ def unite_bodies(mesh, labels, where=""):
     whose ``metadata['overlap']`` is the volume counted twice before [m^3]."""
     import trimesh
 
-    try:
-        import manifold3d  # noqa: F401
-    except ImportError:  # pragma: no cover - a core dependency
-        raise InputError("uniting the bodies of a mesh needs manifold3d", file=where or None,
-                         expected="pip install manifold3d (a dependency of stripcoef)") from None
     labels = np.asarray(labels)
     parts = []
     for k in range(int(labels.max()) + 1):
@@ -294,18 +289,9 @@ def unite_bodies(mesh, labels, where=""):
         part.remove_unreferenced_vertices()
         parts.append(part)
     total = float(sum(p.volume for p in parts))
-    try:
-        out = trimesh.boolean.union(parts, engine="manifold", check_volume=False)
-    except Exception as exc:  # manifold3d refuses a non-manifold input
-        raise InputError(f"the bodies of the mesh could not be united ({type(exc).__name__})",
-                         file=where or None, expected="closed, manifold bodies (stripcoef mesh "
-                         "FILE --repair writes a repaired copy)") from None
-    out = trimesh.Trimesh(np.asarray(out.vertices, float), np.asarray(out.faces), process=False)
-    topo = EdgeTopology(out.faces)
-    if len(out.faces) == 0 or not topo.consistent or not out.volume > 0:
-        raise InputError("the union of the mesh's bodies is not a closed surface",
-                         file=where or None, value=f"{topo.open_edges} open edges",
-                         expected="closed bodies")
+    out = closed_union(parts, what="bodies of the mesh", file=where or None,
+                       expected="closed, manifold bodies (stripcoef mesh FILE --repair writes a "
+                                "repaired copy)")
     out.metadata["overlap"] = max(total - float(out.volume), 0.0)
     return out
 

@@ -93,6 +93,40 @@ def cap_holes(vertices, faces):
     return np.vstack(new_v), np.vstack(new_f), loops
 
 
+def manifold_boolean(op: str, meshes, *, what: str, expected: str, file=None, key=None):
+    """The boolean ``op`` ('union' or 'difference') of closed ``meshes`` by manifold3d (exact,
+    guaranteed-manifold booleans; Lalish et al., https://github.com/elalish/manifold) through
+    ``trimesh.boolean``, as a plain ``trimesh.Trimesh`` [m].  Used by every union of the
+    package (a mesh's bodies, its capped parts, a vehicle file's parts).  A refusal of
+    manifold3d is an :class:`InputError` 'the ``what`` could not be united' with ``expected``."""
+    import trimesh
+
+    try:
+        import manifold3d  # noqa: F401
+    except ImportError:  # pragma: no cover - a core dependency
+        raise InputError(f"uniting the {what} needs manifold3d", file=file,
+                         expected="pip install manifold3d (a dependency of stripcoef)") from None
+    fn = trimesh.boolean.union if op == "union" else trimesh.boolean.difference
+    try:
+        out = fn(meshes, engine="manifold", check_volume=False)
+    except Exception as exc:  # noqa: BLE001 - manifold3d refuses a non-manifold input
+        raise InputError(f"the {what} could not be united ({type(exc).__name__})", file=file,
+                         key=key, expected=expected) from None
+    return trimesh.Trimesh(np.asarray(out.vertices, float), np.asarray(out.faces), process=False)
+
+
+def closed_union(parts, *, what: str, expected: str, file=None):
+    """:func:`manifold_boolean` union of closed ``parts`` that must give one closed surface
+    (winding consistent, volume > 0), else an :class:`InputError` naming its open edges."""
+    out = manifold_boolean("union", parts, what=what, expected=expected, file=file)
+    topo = EdgeTopology(out.faces)
+    if len(out.faces) == 0 or not topo.consistent or not out.volume > 0:
+        raise InputError(f"the union of the {what} is not a closed surface", file=file,
+                         value=f"{topo.open_edges} open edges",
+                         expected="closed parts that unite into one closed surface")
+    return out
+
+
 def close_open_parts(mesh, *, where: str = ""):
     """The mesh closed part by part and its parts united (module docstring).
 
@@ -150,18 +184,9 @@ def close_open_parts(mesh, *, where: str = ""):
                      "% of the parts' volume (a capped duct is solid)")
     if n_parts == 1:
         return parts[0], notes
-    try:
-        out = trimesh.boolean.union(parts, engine="manifold", check_volume=False)
-    except Exception as exc:  # noqa: BLE001 - manifold3d refuses a non-manifold input
-        raise InputError(f"the closed parts could not be united ({type(exc).__name__})",
-                         file=where or None, expected="closed, manifold parts") from None
-    out = trimesh.Trimesh(np.asarray(out.vertices, float), np.asarray(out.faces), process=False)
+    out = closed_union(parts, what="closed parts", expected="closed, manifold parts",
+                       file=where or None)
     out, n_frag = _drop_fragments(out)
-    topo = EdgeTopology(out.faces)
-    if len(out.faces) == 0 or not topo.consistent or not out.volume > 0:
-        raise InputError("the union of the closed parts is not a closed surface",
-                         file=where or None, value=f"{topo.open_edges} open edges",
-                         expected="closed parts")
     notes.append(f"united {n_parts} parts into one closed surface (manifold3d); "
                  f"{max(total - float(out.volume), 0.0):.3g} m^3 of overlap removed"
                  + (f"; {n_frag} slivers of the union under {FRAGMENT:g} of its volume dropped"

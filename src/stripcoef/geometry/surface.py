@@ -32,6 +32,7 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.geometry.mesh import closed_loft
+from stripcoef.geometry.mesh_close import manifold_boolean
 from stripcoef.geometry.shapes import shape_geometry
 
 #: Default polygon sides of every round section (hull stations, cylinders, ducts) [-].
@@ -196,24 +197,10 @@ def part_meshes(vehicle, *, sections: int = DEFAULT_SECTIONS,
 
 
 def _boolean(op: str, meshes, vehicle):
-    import trimesh
-
-    try:
-        import manifold3d  # noqa: F401
-    except ImportError:  # pragma: no cover - a core dependency
-        raise InputError("the surface of a vehicle file needs manifold3d",
-                         file=getattr(vehicle, "source", None) or None,
-                         expected="pip install manifold3d (a dependency of stripcoef)") from None
-    fn = trimesh.boolean.union if op == "union" else trimesh.boolean.difference
-    try:
-        out = fn(meshes, engine="manifold", check_volume=False)
-    except Exception as exc:  # manifold3d refuses a non-manifold input
-        raise InputError(f"the parts of the vehicle could not be united ({type(exc).__name__})",
-                         file=getattr(vehicle, "source", None) or None, key="appendages",
-                         expected="closed parts (a mesh appendage: stripcoef mesh FILE "
-                                  "--repair writes a repaired copy)") from None
-    return trimesh.Trimesh(np.asarray(out.vertices, float), np.asarray(out.faces),
-                           process=False)
+    return manifold_boolean(op, meshes, what="parts of the vehicle",
+                            file=getattr(vehicle, "source", None) or None, key="appendages",
+                            expected="closed parts (a mesh appendage: stripcoef mesh FILE "
+                                     "--repair writes a repaired copy)")
 
 
 def vehicle_surface(vehicle, *, sections: int = DEFAULT_SECTIONS,
