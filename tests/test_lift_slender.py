@@ -15,8 +15,10 @@ import yaml
 from stripcoef import estimate
 from stripcoef.cli import main
 from stripcoef.errors import ModelWarning
-from stripcoef.hull.lift import (boundary_layer_pressure_ratio, boundary_layer_thickness,
-                                 wing_body_factors)
+from stripcoef.hull.lift import (HEAD_SEPARATION_H, _head_h, _head_h1,
+                                 boundary_layer_pressure_ratio, boundary_layer_thickness,
+                                 power_law_exponent, surface_speed_ratio,
+                                 turbulent_boundary_layer, wing_body_factors)
 from stripcoef.sections.added_mass import circle_with_fins
 
 REMUS = Path(__file__).resolve().parents[1] / "geometry" / "remus100.yaml"
@@ -98,6 +100,72 @@ def test_boundary_layer_formulas():
     assert np.all(np.diff(q) < 0)
     with pytest.raises(ValueError, match="span"):
         boundary_layer_pressure_ratio(0.0, 0.1)
+
+
+def test_power_law_profiles():
+    """H = 1 + 2p (1/7: H = 9/7) and the mean q of a fin as tall as the layer 1/(1 + 2p)."""
+    assert power_law_exponent(9 / 7) == pytest.approx(1 / 7)
+    for p in (1 / 9, 1 / 7, 0.25, 0.4):
+        assert boundary_layer_pressure_ratio(1.0, 1.0, p) == pytest.approx(1 / (1 + 2 * p))
+    assert boundary_layer_pressure_ratio(0.7, 1.3, 1 / 7) == boundary_layer_pressure_ratio(0.7, 1.3)
+    with pytest.raises(ValueError, match="H > 1"):
+        power_law_exponent(1.0)
+
+
+def test_head_shape_factor_relation_inverts():
+    """Head's H1(H) (two branches meeting near H = 1.6) and its inverse round-trip."""
+    for h in (1.2, 1.3, 1.45, 1.59, 1.61, 1.8, 2.4, 3.0):
+        assert _head_h(_head_h1(h)) == pytest.approx(h, abs=1e-9)
+    assert _head_h1(1.3) > _head_h1(1.5) > _head_h1(2.0)      # H1 falls as H rises
+
+
+def test_head_method_on_a_flat_plate():
+    """A long cylinder (constant radius and edge speed): Head's momentum thickness within 10 %
+    of the 1/7-power flat plate's 0.036 x Re_x^-1/5 and H near the flat plate's 1.3-1.4
+    (Schlichting 1979, ch. XXI); no separation."""
+    s = np.linspace(0.0, 20.0, 401)
+    bl = turbulent_boundary_layer(s, np.full_like(s, 1.0), np.ones_like(s), speed=5.0,
+                                  viscosity=1e-6)
+    assert bl["separation"] is None and bl["end"] == pytest.approx(20.0)
+    for x in (5.0, 10.0, 20.0):
+        theta = np.interp(x, bl["s"], bl["theta"])
+        assert theta == pytest.approx(0.036 * x * (5.0 * x / 1e-6) ** -0.2, rel=0.10), x
+    assert 1.25 < bl["H"][-1] < 1.42
+    # Head's layer thickness delta = theta (H1 + H) is the flat plate's order, 0.37 x Re^-1/5
+    assert np.interp(10.0, bl["s"], bl["delta"]) == pytest.approx(
+        boundary_layer_thickness(10.0, 5.0, 1e-6), rel=0.35)
+
+
+def test_head_method_separates_in_a_strong_adverse_gradient():
+    """A decelerating edge speed U_e/U = 1 - k s: H grows and Head's criterion is reached,
+    earlier for the steeper gradient; an accelerating one thins the layer."""
+    s = np.linspace(0.0, 4.0, 401)
+    r = np.ones_like(s)
+    sep = []
+    for k in (0.15, 0.20):
+        bl = turbulent_boundary_layer(s, r, 1.0 - k * s, speed=5.0, viscosity=1e-6)
+        assert bl["separation"] is not None
+        assert bl["H"][-1] == pytest.approx(HEAD_SEPARATION_H, abs=1e-3)
+        sep.append(bl["separation"])
+    assert sep[1] < sep[0]
+    flat = turbulent_boundary_layer(s, r, np.ones_like(s), speed=5.0, viscosity=1e-6)
+    fast = turbulent_boundary_layer(s, r, 1.0 + 0.1 * s, speed=5.0, viscosity=1e-6)
+    assert fast["theta"][-1] < flat["theta"][-1]
+
+
+def test_surface_speed_of_a_slender_spheroid():
+    """The line-source surface speed of a prolate spheroid (l/d = 10) against the exact
+    potential flow at mid-length, U (1 + k1) with Lamb's k1 = 0.0207: within 0.5 %; it falls
+    below 1 towards the ends where the body closes."""
+    from stripcoef.hull.lamb import lamb_k_factors
+
+    a, b = 5.0, 0.5
+    s = np.linspace(0.0, 2 * a, 2001)
+    area = np.pi * b * b * np.clip(1.0 - ((s - a) / a) ** 2, 0.0, None)
+    ue = surface_speed_ratio(s, area)
+    k1 = lamb_k_factors(a / b)[0]
+    assert np.interp(a, s, ue) == pytest.approx(1.0 + k1, rel=0.005)
+    assert np.interp(0.02 * a, s, ue) < 1.0 + k1
 
 
 # ---------------------------------------------------------------------------

@@ -38,6 +38,9 @@ from stripcoef.hull.lift import (
     boundary_layer_pressure_ratio,
     boundary_layer_thickness,
     axial_velocity_ratio,
+    power_law_exponent,
+    surface_speed_ratio,
+    turbulent_boundary_layer,
 )
 from stripcoef.model import ControlSurface
 
@@ -103,20 +106,40 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     x_q = float(panel.center[0]) + 0.25 * panel.chord
     upwash = x_q >= slender["x_separation"]
     fw, fb = (f["K_WB"], f["K_BW"]) if upwash else (f["k_WB"], f["k_BW"])
-    delta = boundary_layer_thickness(slender["x_nose"] - float(panel.center[0]),
-                                     slender["speed"], slender["viscosity"])
+    delta, profile, method = _hull_boundary_layer(slender, slender["x_nose"]
+                                                  - float(panel.center[0]))
     stream = float(np.mean([axial_velocity_ratio(slender["s"], slender["area"],
                                                  slender["x_nose"] - float(panel.center[0]),
                                                  panel.root + t * panel.span) ** 2
                             for t in STREAM_SPAN_POINTS]))
-    q_ratio = boundary_layer_pressure_ratio(panel.span, delta) * stream
+    q_ratio = boundary_layer_pressure_ratio(panel.span, delta, profile) * stream
     k = 0.5 * rho * panel.area * cla * q_ratio
     c_f = lift_column(e, point)
     c_b = lift_column(e, np.array([x_q, slender["y"], slender["z"]]) - np.asarray(ref, float))
     return (k * np.outer(fw * c_f + fb * c_b, c_f), k * (f["k_WB"] * c_f + f["k_BW"] * c_b),
             {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
              "interference": fw + fb, "tau": tau, "body_upwash": upwash,
-             "boundary_layer": delta, "stream_ratio": stream, "pressure_ratio": q_ratio, **f})
+             "boundary_layer": delta, "boundary_layer_profile": profile,
+             "boundary_layer_method": method, "stream_ratio": stream,
+             "pressure_ratio": q_ratio, **f})
+
+
+def _hull_boundary_layer(slender: dict, run: float):
+    """(delta [m], power-law exponent p [-], method) of the hull's boundary layer at ``run`` [m]
+    from the nose: Head's method on the hull in axial flow (``slender["layer"]``,
+    :func:`~stripcoef.hull.lift.turbulent_boundary_layer`; delta = theta (H1 + H), p = (H - 1)/2)
+    where it was integrated; ahead of transition none (0, 1/7); behind its last station (a
+    separated or closing tail) the flat plate's 1/7-power layer
+    (:func:`~stripcoef.hull.lift.boundary_layer_thickness`)."""
+    layer = slender["layer"]
+    s = layer["s"]
+    if run < s[0]:
+        return 0.0, 1.0 / 7.0, "laminar"
+    if run > s[-1]:
+        return (boundary_layer_thickness(run, slender["speed"], slender["viscosity"]),
+                1.0 / 7.0, "flat plate")
+    h = float(np.interp(run, s, layer["H"]))
+    return float(np.interp(run, s, layer["delta"])), power_law_exponent(h), "Head"
 
 
 def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None = None,
@@ -164,6 +187,10 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
                    "speed": float(vehicle.reference_speed if speed is None else speed),
                    "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
                                       else viscosity)}
+        s_nose, area = slender["s"], slender["area"]
+        slender["layer"] = turbulent_boundary_layer(
+            s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
+            speed=slender["speed"], viscosity=slender["viscosity"])
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
     no_lift = []

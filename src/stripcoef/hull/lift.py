@@ -526,15 +526,17 @@ def boundary_layer_thickness(x: float, speed: float, viscosity: float) -> float:
     return BL_COEFFICIENT * x * (speed * x / viscosity) ** (-BL_EXPONENT)
 
 
-def boundary_layer_pressure_ratio(span: float, delta: float) -> float:
-    r"""Mean dynamic pressure over a fin's span rising out of a 1/7-power boundary layer, over q.
+def boundary_layer_pressure_ratio(span: float, delta: float, profile: float = BL_PROFILE) -> float:
+    r"""Mean dynamic pressure over a fin's span rising out of a power-law boundary layer, over q.
 
-    .. math:: \bar q / q = \frac{1}{b}\Big[\int_0^{\min(b,\delta)} (y/\delta)^{2/7}\,dy
+    .. math:: \bar q / q = \frac{1}{b}\Big[\int_0^{\min(b,\delta)} (y/\delta)^{2p}\,dy
               + \max(b - \delta, 0)\Big]
-              = \frac{\delta}{b}\,\frac{7}{9} + 1 - \frac{\delta}{b} \quad (b \ge \delta)
+              = \frac{\delta}{b}\,\frac{1}{1 + 2p} + 1 - \frac{\delta}{b} \quad (b \ge \delta)
 
     each strip of the fin lifting with its local :math:`\tfrac12\rho u(y)^2` (strip
-    assumption). ``span`` b [m] > 0, ``delta`` [m] >= 0; returns the ratio [-] in (0, 1].
+    assumption), :math:`u/U = (y/\delta)^p`, p = 1/7 by default (7/9 for b = delta).
+    ``span`` b [m] > 0, ``delta`` [m] >= 0, ``profile`` p [-] > 0 (:func:`power_law_exponent`
+    of a computed boundary layer); returns the ratio [-] in (0, 1].
 
     References
     ----------
@@ -546,7 +548,7 @@ def boundary_layer_pressure_ratio(span: float, delta: float) -> float:
         raise ValueError(f"boundary_layer_pressure_ratio needs a span > 0, got {span}")
     if delta <= 0.0:
         return 1.0
-    p = 2.0 * BL_PROFILE
+    p = 2.0 * profile
     inside = min(span, delta)
     return (delta * (inside / delta) ** (p + 1.0) / (p + 1.0) + max(span - delta, 0.0)) / span
 
@@ -589,3 +591,191 @@ def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
     ds = np.gradient(np.asarray(area, dtype=float), s)
     d = s_point - s
     return 1.0 + float(np.trapezoid(ds * d / (d * d + r_point * r_point) ** 1.5, s)) / (4.0 * math.pi)
+
+
+#: Head's entrainment method: F(H1) = 0.0306 (H1 - 3)^-0.6169 (Head 1958, ARC R&M 3152, as the
+#: fit of Cebeci & Bradshaw 1977 gives his curve; the same constants are coded in SUAVE,
+#: suavecode/SUAVE trunk/SUAVE/Methods/Aerodynamics/Airfoil_Panel_Method/heads_method.py,
+#: commit 0bc749a11557fdfd7a1166e69bff95591bb13be2) [-].
+HEAD_F = (0.0306, -0.6169)
+#: Head's mass-flow shape factor H1 = (delta - delta*)/theta = 3.3 + a (H - b)^c, (a, b, c)
+#: for H <= 1.6 and for H > 1.6 (the same sources) [-].
+HEAD_H1_LOW, HEAD_H1_HIGH = (0.8234, 1.1, -1.287), (1.5501, 0.6778, -3.064)
+#: Ludwieg & Tillmann's skin friction c_f = 0.246 x 10^(-0.678 H) Re_theta^-0.268
+#: (Ludwieg & Tillmann 1949; the same sources) [-].
+LUDWIEG_TILLMANN = (0.246, -0.678, -0.268)
+#: Shape factor H at which Head's method calls the turbulent layer separated (Cebeci &
+#: Bradshaw 1977: separation is taken at H between 1.8 and 2.4; the lower end is used here,
+#: the earliest separation the criterion allows; on SUBOFF H stays below 1.61 ahead of 0.999 l,
+#: so any value in the range gives the same answer) [-].
+HEAD_SEPARATION_H = 1.8
+#: Flat-plate critical Reynolds number Re_x at which the layer is taken turbulent from
+#: (Schlichting 1979, ch. XVI: 3.5e5 - 1e6; assumption: 5e5, the textbook value; on SUBOFF
+#: the layer at the stern planes changes by < 2 % between transition at 0.05 and 0.10 l) [-].
+TRANSITION_REYNOLDS = 5.0e5
+#: Initial shape factor of the turbulent layer at transition (flat plate, 1/7-power
+#: profile: H = 9/7; Schlichting 1979, ch. XXI) [-].
+FLAT_PLATE_H = 9.0 / 7.0
+
+
+def surface_speed_ratio(s, area) -> np.ndarray:
+    r"""Potential-flow speed along the surface of a body of revolution in axial flow, U_e/U.
+
+    .. math:: \frac{U_e}{U} = \sqrt{\Big(\frac{u}{U}\Big)^2 + \Big(\frac{dr}{ds}\Big)^2}
+
+    with u/U the line-source axial velocity at the surface (:func:`axial_velocity_ratio`,
+    r = sqrt(S/pi)) and the radial velocity :math:`U\,dr/ds` of the surface's tangency
+    (slender-body theory: the source :math:`U\,S'/(2\pi r)` at the surface).  On the SUBOFF
+    afterbody it is within 5 % of the axisymmetric panel solution
+    (:mod:`stripcoef.hull.axisymmetric`), lower at the shoulder's suction peak (1.07 against
+    1.12 at 0.78 l).
+
+    Parameters
+    ----------
+    s : (n,) array
+        Stations from the nose, increasing [m]
+    area : (n,) array
+        S(s) [m^2]
+
+    Returns
+    -------
+    (n,) array
+        U_e/U [-] (at the two ends, where r = 0, the axial value)
+
+    References
+    ----------
+    Newman 1977, sec. 7.3-7.4 (slender body in axial flow); Thwaites 1960, ch. IX.
+    """
+    s = np.asarray(s, dtype=float)
+    area = np.asarray(area, dtype=float)
+    r = np.sqrt(np.maximum(area, 0.0) / math.pi)
+    slope = np.gradient(r, s)
+    floor = 1e-3 * max(float(r.max()), 1e-300)
+    u = np.array([axial_velocity_ratio(s, area, t, max(rt, floor)) for t, rt in zip(s, r)])
+    return np.hypot(u, np.where(r > floor, slope, 0.0))
+
+
+def _head_h1(h: float) -> float:
+    """Head's mass-flow shape factor H1(H) (:data:`HEAD_H1_LOW`, :data:`HEAD_H1_HIGH`)."""
+    a, b, c = HEAD_H1_LOW if h <= 1.6 else HEAD_H1_HIGH
+    return 3.3 + a * (h - b) ** c
+
+
+def _head_h(h1: float) -> float:
+    """Inverse of :func:`_head_h1`, branch by branch: H = b + ((H1 - 3.3)/a)^(1/c), the
+    H <= 1.6 branch for H1 >= H1(1.6) of that branch (5.310), clipped to H in (1.1, 10)."""
+    a, b, c = HEAD_H1_LOW if h1 >= _head_h1(1.6) else HEAD_H1_HIGH
+    h = b + (max(h1 - 3.3, 1e-9) / a) ** (1.0 / c)
+    return min(max(h, 1.1 + 1e-6), 10.0)
+
+
+def turbulent_boundary_layer(s, radius, speed_ratio, *, speed: float, viscosity: float):
+    r"""Turbulent boundary layer along a body of revolution in axial flow (Head's method).
+
+    The axisymmetric momentum-integral and entrainment equations (thin layer, r the body's
+    radius; Head 1958, written for bodies of revolution as in Cebeci & Bradshaw 1977,
+    Head's own definitions):
+
+    .. math::
+       \frac{1}{r}\frac{d(r\theta)}{ds} &= \frac{c_f}{2} - (H + 2)\frac{\theta}{U_e}
+                                             \frac{dU_e}{ds} \\
+       \frac{1}{r U_e}\frac{d(r U_e \theta H_1)}{ds} &= F(H_1) = 0.0306\,(H_1 - 3)^{-0.6169}
+
+    with :math:`H_1(H)` Head's shape-factor relation and Ludwieg & Tillmann's
+    :math:`c_f = 0.246\times10^{-0.678H} Re_\theta^{-0.268}`, from the station where
+    :math:`Re_s` = :data:`TRANSITION_REYNOLDS` with the flat plate's
+    :math:`\theta = 0.036\,s\,Re_s^{-1/5}` and H = 9/7 (Schlichting 1979, ch. XXI).
+    Integrated with scipy's ``solve_ivp`` (RK45; a kept library, not a hand-written
+    stepper) until H reaches :data:`HEAD_SEPARATION_H`, the body ends or r falls below 2 % of
+    its largest value (the thin-layer equations fail at the tail).
+
+    Parameters
+    ----------
+    s : (n,) array
+        Stations from the nose, increasing [m]
+    radius : (n,) array
+        r(s) [m]
+    speed_ratio : (n,) array
+        U_e/U at the surface [-] (:func:`surface_speed_ratio`)
+    speed : float
+        U [m/s] > 0
+    viscosity : float
+        Kinematic viscosity [m^2/s] > 0
+
+    Returns
+    -------
+    dict
+        ``s`` [m], ``theta`` [m], ``H`` [-] along the integrated stretch, ``delta`` [m] the
+        layer's thickness from Head's definition :math:`\delta = \theta\,(H_1 + H)`;
+        ``separation`` the station [m] where H reached :data:`HEAD_SEPARATION_H`, or None;
+        ``end`` the last station [m]
+
+    References
+    ----------
+    Head, M. R. (1958), "Entrainment in the turbulent boundary layer", ARC R&M 3152;
+    Ludwieg, H. & Tillmann, W. (1949), Ing.-Arch. 17; Cebeci, T. & Bradshaw, P. (1977),
+    *Momentum Transfer in Boundary Layers* (the fits of H1(H) and F(H1), the separation range
+    H = 1.8-2.4; its axisymmetric form with r); Schlichting 1979, chs. XVI, XXI (transition,
+    flat plate).
+    """
+    from scipy.integrate import solve_ivp
+
+    s = np.asarray(s, dtype=float)
+    r = np.asarray(radius, dtype=float)
+    ue = np.asarray(speed_ratio, dtype=float)
+    if speed <= 0.0 or viscosity <= 0.0:
+        raise ValueError(f"turbulent_boundary_layer needs speed and viscosity > 0, got "
+                         f"{speed}, {viscosity}")
+    due = np.gradient(ue, s)
+    dr = np.gradient(r, s)
+    s0 = float(s[0]) + TRANSITION_REYNOLDS * viscosity / speed
+    r_min = 0.02 * float(r.max())
+    aft = s[(s > s0) & (r < r_min)]
+    s_end = float(aft[0]) if aft.size else float(s[-1])
+    if s0 >= s_end:
+        raise ValueError("turbulent_boundary_layer: the body is shorter than the laminar run "
+                         f"({s0 - s[0]:.3g} m at Re_x = {TRANSITION_REYNOLDS:g})")
+    cf0, cfh, cfr = LUDWIEG_TILLMANN
+    fa, fb = HEAD_F
+
+    def rhs(t, y):
+        theta, h1 = y
+        h = _head_h(h1)
+        u = float(np.interp(t, s, ue))
+        du = float(np.interp(t, s, due))
+        rr = max(float(np.interp(t, s, r)), r_min)
+        rs = float(np.interp(t, s, dr)) / rr
+        cf = cf0 * 10.0 ** (cfh * h) * (speed * u * theta / viscosity) ** cfr
+        dtheta = 0.5 * cf - (h + 2.0) * theta * du / u - theta * rs
+        f = fa * max(h1 - 3.0, 1e-6) ** fb
+        return [dtheta, (f - h1 * (theta * du / u + dtheta + theta * rs)) / theta]
+
+    def separated(t, y):
+        return _head_h(y[1]) - HEAD_SEPARATION_H
+    separated.terminal = True
+    run = s0 - s[0]
+    theta0 = 0.036 * run * (speed * run / viscosity) ** -0.2
+    sol = solve_ivp(rhs, (s0, s_end), [theta0, _head_h1(FLAT_PLATE_H)], events=separated,
+                    max_step=(s_end - s0) / 200.0, rtol=1e-6, atol=1e-12)
+    h = np.array([_head_h(v) for v in sol.y[1]])
+    sep = float(sol.t_events[0][0]) if sol.t_events[0].size else None
+    delta = sol.y[0] * (np.array([_head_h1(v) for v in h]) + h)
+    return {"s": sol.t, "theta": sol.y[0], "H": h, "delta": delta, "separation": sep,
+            "end": float(sol.t[-1])}
+
+
+def power_law_exponent(shape_factor: float) -> float:
+    r"""Exponent p of the power-law profile :math:`u/U = (y/\delta)^p` with shape factor H.
+
+    .. math:: H = \frac{\delta^*}{\theta} = 1 + 2p, \qquad p = \frac{H - 1}{2},
+              \qquad \frac{\delta^*}{\delta} = \frac{p}{1 + p}
+
+    (p = 1/7: H = 9/7, delta*/delta = 1/8).  ``shape_factor`` H [-] > 1; returns p [-].
+
+    References
+    ----------
+    Schlichting 1979, ch. XXI (power-law profiles and their thicknesses).
+    """
+    if shape_factor <= 1.0:
+        raise ValueError(f"power_law_exponent needs H > 1, got {shape_factor}")
+    return 0.5 * (shape_factor - 1.0)
