@@ -903,7 +903,11 @@ def body_lift_candidates() -> list[dict]:
     - the same on the boundary-layer displacement body, :math:`r^* = r + \delta^*`,
       :math:`\delta^* = \delta/8` of the turbulent flat plate run from the nose at Roddy's
       6.5 knots (Schlichting 1979, ch. XXI): the viscous correction of the potential lift
-      with the cross-flow attached to the tail.
+      with the cross-flow attached to the tail;
+    - the same on the displacement body of Head's turbulent layer computed on the hull's axial
+      potential flow (:func:`head_layer`), :math:`S^* = S + 2\pi r\delta^*`, to the aft
+      perpendicular: Head's criterion finds no separation ahead of the tail, so this is the
+      boundary-layer route's station (:func:`bare_hull_layer`).
 
     :func:`stripcoef.hull.lift.slender_body_lift_matrix` evaluates the last three on the
     hull's sections (x_0 the separation station or the aft perpendicular)."""
@@ -941,7 +945,44 @@ def body_lift_candidates() -> list[dict]:
         "displacement body to the aft perpendicular",
         slender_body_lift_matrix(xs, np.pi * r_star ** 2, x_ap, rho=rho, ref=point),
         jac_off, off, "Allen & Perkins 1951 base term on r + delta*"))
+    layer = head_layer(xs, r, nu, hi)
+    s_ap = hi - x_ap
+    dstar = np.interp(hi - xs, layer["s"], layer["theta"] * layer["H"], left=0.0, right=np.nan)
+    head_area = np.pi * r ** 2 + 2.0 * np.pi * r * np.nan_to_num(dstar)
+    rows.append(_candidate_row(
+        "Head's displacement body to the aft perpendicular",
+        slender_body_lift_matrix(xs, head_area, x_ap, rho=rho, ref=point), jac_off, off,
+        "Head 1958 turbulent layer on the axial potential flow (hull.lift."
+        "turbulent_boundary_layer); S* = S + 2 pi r delta*; Allen & Perkins base term"))
+    assert layer["separation"] is None and layer["end"] > s_ap   # no station to cut at
     return rows
+
+
+def head_layer(xs, r, viscosity: float, x_nose: float) -> dict:
+    """Head's turbulent boundary layer (:func:`stripcoef.hull.lift.turbulent_boundary_layer`)
+    along a hull of radii ``r`` [m] at body-axes stations ``xs`` [m] (increasing, nose at
+    ``x_nose``), on the line-source surface speed, at Roddy's 6.5 knots."""
+    from stripcoef.hull.lift import surface_speed_ratio, turbulent_boundary_layer
+
+    s, rr = x_nose - np.asarray(xs)[::-1], np.asarray(r)[::-1]
+    return turbulent_boundary_layer(s, rr, surface_speed_ratio(s, np.pi * rr ** 2),
+                                    speed=RODDY_SPEED, viscosity=viscosity)
+
+
+@functools.lru_cache(maxsize=1)
+def bare_hull_layer() -> dict:
+    """Head's layer on the bare SUBOFF hull (:func:`head_layer`), with the largest shape factor
+    H reached ahead of 0.999 l and where [fraction of l from the nose], and the separation
+    station Head's criterion gives (None: not ahead of the tail)."""
+    from stripcoef.geometry.vehicle import parse_vehicle
+
+    vehicle = parse_vehicle(suboff_vehicle_data(3, "off"), file="SUBOFF config 3")
+    lo, hi = vehicle.hull.x_extent()
+    xs = np.linspace(lo, hi, 2001)
+    layer = head_layer(xs, vehicle.hull.half_breadth(xs), float(vehicle.fluid.kinematic_viscosity),
+                       hi)
+    i = int(np.argmax(layer["H"]))
+    return {**layer, "H_max": float(layer["H"][i]), "at": float(layer["s"][i] / (hi - lo))}
 
 
 def body_lift_section() -> list[str]:

@@ -78,8 +78,9 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     F_W, F_B = K_W(B), K_B(W) for a fin ahead of x_0 (the body's potential upwash) and
     k_W(B), k_B(W) behind it (the body's cross-flow separated there gives no upwash: the
     premise of Hopkins's x_0), q_r the fin's mean dynamic pressure in the hull's turbulent
-    boundary layer (:func:`~stripcoef.hull.lift.boundary_layer_pressure_ratio`, the run
-    length from the nose to the root's mid chord) times the body's axial potential flow
+    boundary layer at the root's mid chord (:func:`~stripcoef.hull.lift.boundary_layer_pressure_ratio`
+    with the thickness and power-law profile of Head's layer, :func:`_hull_boundary_layer`)
+    times the body's axial potential flow
     (u/U)^2 averaged over the span (:func:`~stripcoef.hull.lift.axial_velocity_ratio`). The
     same ratio scales the fin's sideslip lift: its incidence is taken as v/U (assumption: a
     cross-flow slowed in proportion with the axial flow; with the cross-flow at its free-stream
@@ -128,13 +129,14 @@ def _hull_boundary_layer(slender: dict, run: float):
     """(delta [m], power-law exponent p [-], method) of the hull's boundary layer at ``run`` [m]
     from the nose: Head's method on the hull in axial flow (``slender["layer"]``,
     :func:`~stripcoef.hull.lift.turbulent_boundary_layer`; delta = theta (H1 + H), p = (H - 1)/2)
-    where it was integrated; ahead of transition none (0, 1/7); behind its last station (a
+    where it was integrated; ahead of transition, or on a hull shorter than the laminar run
+    (``layer`` None), none (0, 1/7: the thin laminar layer is neglected); behind its last station (a
     separated or closing tail) the flat plate's 1/7-power layer
     (:func:`~stripcoef.hull.lift.boundary_layer_thickness`)."""
     layer = slender["layer"]
-    s = layer["s"]
-    if run < s[0]:
+    if layer is None or run < layer["s"][0]:     # laminar there (or along the whole hull)
         return 0.0, 1.0 / 7.0, "laminar"
+    s = layer["s"]
     if run > s[-1]:
         return (boundary_layer_thickness(run, slender["speed"], slender["viscosity"]),
                 1.0 / 7.0, "flat plate")
@@ -188,9 +190,12 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
                    "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
                                       else viscosity)}
         s_nose, area = slender["s"], slender["area"]
-        slender["layer"] = turbulent_boundary_layer(
-            s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
-            speed=slender["speed"], viscosity=slender["viscosity"])
+        try:
+            slender["layer"] = turbulent_boundary_layer(
+                s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
+                speed=slender["speed"], viscosity=slender["viscosity"])
+        except ValueError:        # the hull is shorter than the laminar run: no turbulent layer
+            slender["layer"] = None
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
     no_lift = []

@@ -739,7 +739,7 @@ def turbulent_boundary_layer(s, radius, speed_ratio, *, speed: float, viscosity:
     fa, fb = HEAD_F
 
     def rhs(t, y):
-        theta, h1 = y
+        theta, h1 = max(y[0], 1e-12), y[1]      # a rejected trial step may go below 0
         h = _head_h(h1)
         u = float(np.interp(t, s, ue))
         du = float(np.interp(t, s, due))
