@@ -248,3 +248,26 @@ def test_axial_velocity_of_a_uniform_source_ramp():
         assert axial_velocity_ratio(s, area, sp, rp) == pytest.approx(exact, rel=1e-6)
     closing = s0 - area                     # the mirror: a closing tail slows the flow behind
     assert axial_velocity_ratio(s, closing, 0.8, 0.2) < 1.0
+
+
+def test_fins_in_heads_layer_and_a_hull_shorter_than_the_laminar_run(tmp_path):
+    """REMUS at its 1.5 m/s: the fins sit in Head's turbulent layer (thicker than a flat
+    plate's over the closing tail cone) and lose dynamic pressure to it; at 0.1 m/s the laminar
+    run (Re_x = 5e5, 5 m) is longer than the hull, no turbulent layer is computed and the fins
+    keep the body's axial-flow ratio alone, without an error."""
+    from stripcoef.hull.lift import boundary_layer_thickness
+
+    fins = {}
+    for speed in (1.5, 0.1):
+        path = tmp_path / f"remus_{speed}.yaml"
+        path.write_text(yaml.safe_dump(_remus_data(body_lift="slender", reference_speed=speed)))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ModelWarning)
+            fins[speed] = estimate(path).conditions.lift["fin_lift"]
+    for f in fins[1.5]:
+        assert f["boundary_layer_method"] == "Head"
+        assert f["boundary_layer"] > boundary_layer_thickness(1.2, 1.5, 1.2e-6)
+        assert f["pressure_ratio"] < f["stream_ratio"]
+    for f in fins[0.1]:
+        assert f["boundary_layer_method"] == "laminar" and f["boundary_layer"] == 0.0
+        assert f["pressure_ratio"] == pytest.approx(f["stream_ratio"])
