@@ -626,7 +626,7 @@ def surface_speed_ratio(s, area) -> np.ndarray:
     with u/U the line-source axial velocity at the surface (:func:`axial_velocity_ratio`,
     r = sqrt(S/pi)) and the radial velocity :math:`U\,dr/ds` of the surface's tangency
     (slender-body theory: the source :math:`U\,S'/(2\pi r)` at the surface).  On the SUBOFF
-    afterbody it is within 5 % of the axisymmetric panel solution
+    afterbody it is within 7 % of the axisymmetric panel solution
     (:mod:`stripcoef.hull.axisymmetric`), lower at the shoulder's suction peak (1.07 against
     1.12 at 0.78 l).
 
@@ -692,7 +692,9 @@ def turbulent_boundary_layer(s, radius, speed_ratio, *, speed: float, viscosity:
     Parameters
     ----------
     s : (n,) array
-        Stations from the nose, increasing [m]
+        Stations from the nose, increasing [m]; they stand for the arc length along the
+        meridian (a slender body: the arc is sqrt(1 + r'^2) ds, 4 % longer where the SUBOFF
+        afterbody is steepest)
     radius : (n,) array
         r(s) [m]
     speed_ratio : (n,) array
