@@ -479,14 +479,11 @@ def test_line_source_surface_speed_against_the_panel_solution_on_suboff():
     near = (xc > 0.74 * length) & (xc < 0.82 * length)
     assert panel[near].max() == pytest.approx(1.12, abs=0.01)
     assert line[(s > 0.74 * length) & (s < 0.82 * length)].max() == pytest.approx(1.07, abs=0.01)
-    # the layer at the stern planes' root mid chord (Roddy's 6.5 knots, fresh water), ft
-    from stripcoef.hull.lift import turbulent_boundary_layer
-    from validation.lift import RODDY_SPEED
+    # the layer at the stern planes' root mid chord (Roddy's 6.5 knots), ft, and the fins'
+    # dynamic pressure with the panel speed over the model's
+    from validation.lift import panel_speed_sensitivity
 
-    x_mid = val("t1.plane.x_te") - 0.25 * (val("t1.plane.c_root") + val("t1.plane.c_tip"))
-    delta = {}
-    for name, speed in (("line", line), ("panel", np.interp(s, xc, panel))):
-        bl = turbulent_boundary_layer(s * FT, r * FT, speed, speed=RODDY_SPEED, viscosity=1.14e-6)
-        delta[name] = np.interp(x_mid * FT, bl["s"], bl["delta"]) / FT
-    assert delta["line"] == pytest.approx(0.41, abs=0.01)
-    assert delta["panel"] == pytest.approx(0.46, abs=0.015)
+    sens = panel_speed_sensitivity()
+    assert sens["delta_line"] == pytest.approx(0.41, abs=0.01)
+    assert sens["delta_panel"] == pytest.approx(0.46, abs=0.01)
+    assert sens["scale"] == pytest.approx(0.91, abs=0.01)

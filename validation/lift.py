@@ -694,6 +694,7 @@ def suboff_table_section() -> list[str]:
     forces = [c["ratio"] for c in comps if c["name"] in ("Yv", "Zw")]
     moments = [c["ratio"] for c in comps if c["name"] in ("Nv", "Mw")]
     n_sign_h = sum(1 for c in comps if c["hoerner"] / c["measured"] > 0)
+    sens = panel_speed_sensitivity()
     n_ok_h, n_ok_s, n_checks = issue_checks("hoerner"), issue_checks("slender"), \
         sum(1 for c in suboff_comparisons() if c["ok"] is not None)
     within15 = [f"configuration {c['config']}'s {c['name'][0]}'_{c['name'][1]}" for c in comps
@@ -799,6 +800,13 @@ def suboff_table_section() -> list[str]:
         "k_W(B)). The control derivatives follow the deflected force and the carry-over: "
         + ", ".join(f"{c['name']}' {c['ratio']:.2f}" for c in suboff_comparisons()
                     if c["kind"] == "control") + " (tolerance 15 %). "
+        "The agreement is within the layer's own sensitivity: on the axisymmetric panel "
+        "solution's surface speed instead of the line sources' (whose suction peak at the "
+        "afterbody's shoulder they reach only in part) Head's layer at the planes is "
+        f"{sens['delta_panel']:.2f} ft against {sens['delta_line']:.2f} ft and every fin force "
+        f"{sens['scale']:.2f} times these ("
+        + ", ".join(f"{c['name']}' {c['ratio'] * sens['scale']:.2f}" for c in suboff_comparisons()
+                    if c["kind"] == "control") + "; `validation.lift.panel_speed_sensitivity`). "
         "Roddy's configuration-2 rudder force acts "
         f"{-val('c2.Ndr') / val('c2.Ydr'):.3f} L_BP behind the moment point (-N'_dr/Y'_dr) and "
         "configuration 1's sternplane force "
@@ -1066,6 +1074,42 @@ def body_lift_substitution() -> dict:
         else:
             out["head"] += ratio > 0 and abs(ratio - 1) <= c["tolerance"]
     return {k: int(v) for k, v in out.items()}
+
+
+@functools.lru_cache(maxsize=1)
+def panel_speed_sensitivity() -> dict:
+    """How much the stern planes' dynamic pressure depends on the surface speed Head's layer is
+    computed on: the line sources the model uses (:func:`stripcoef.hull.lift.surface_speed_ratio`)
+    against the axisymmetric panel solution of the same hull (:mod:`stripcoef.hull.axisymmetric`,
+    surge mode: U_e/U = |d phi/ds - t_x|). Returns {'delta_line', 'delta_panel'} [ft] at the
+    planes' root mid chord and 'scale', the panel layer's q ratio over the line sources' (every
+    fin force and control derivative scales with it)."""
+    from stripcoef.hull.axisymmetric import _influence, _meridian
+    from stripcoef.hull.lift import (boundary_layer_pressure_ratio, power_law_exponent,
+                                     surface_speed_ratio, turbulent_boundary_layer)
+
+    length = val("hull.L")
+    s = length * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 801)))
+    r = np.array([hull_radius(t) for t in s])
+    xn, rn = _meridian(s, r, 400)
+    S, D, (seg, nx, _, xc, _) = _influence(xn, rn, 0)
+    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
+    arc = np.concatenate([[0.0], np.cumsum(seg)])
+    panel = np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1])) - np.diff(xn) / seg)
+    fin = suboff_model(5).conditions.lift["fin_lift"][0]
+    span = math.sqrt(fin["aspect_ratio"] * fin["area"] / 2.0)
+    x_mid = FT * (val("t1.plane.x_te") - 0.25 * (val("t1.plane.c_root") + val("t1.plane.c_tip")))
+    out, q = {}, {}
+    for name, speed in (("line", surface_speed_ratio(s, np.pi * r ** 2)),
+                        ("panel", np.interp(s, xc, panel))):
+        bl = turbulent_boundary_layer(s * FT, r * FT, speed, speed=RODDY_SPEED,
+                                      viscosity=_fresh_viscosity())
+        delta = float(np.interp(x_mid, bl["s"], bl["delta"]))
+        h = float(np.interp(x_mid, bl["s"], bl["H"]))
+        out[f"delta_{name}"] = delta / FT
+        q[name] = boundary_layer_pressure_ratio(span, delta, power_law_exponent(h))
+    out["scale"] = q["panel"] / q["line"]
+    return out
 
 
 def head_layer(xs, r, viscosity: float, x_nose: float) -> dict:
