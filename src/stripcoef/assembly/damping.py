@@ -500,7 +500,9 @@ def positive_cube_integral(s, area):
         return np.where(pos, area * t[:, 0] * t[:, 1] * np.maximum(xi, 0.0) ** 3 / 10.0, 0.0)
 
     npos = (s > 0).sum(1)
-    return np.select([npos == 3, npos == 2, npos == 1], [whole, whole + corner(-s), corner(s)],
+    with np.errstate(divide="ignore", invalid="ignore"):   # rows np.select does not take
+        one, two = corner(s), corner(-s)
+    return np.select([npos == 3, npos == 2, npos == 1], [whole, whole + two, one],
                      0.0)
 
 
