@@ -166,3 +166,45 @@ def test_slender_bodies_keep_the_strip_integral(sample):
 
     veh = load_vehicle(sample_path(f"{sample}.yaml"))
     assert bluff_surface(veh, veh.cut(200)) is None
+
+
+def test_only_the_rotational_diagonal_changes(monkeypatch):
+    """The surface integral replaces K_pp, M_qq, N_rr and nothing else: translation,
+    couplings and D_L are the strips' (monkeypatched: no surface)."""
+    from stripcoef.assembly import damping
+
+    box = _box(0.8, 0.5, 0.3)
+    box.apply_translation([0.1, 0.05, -0.02])    # off the reference point: couplings
+    new = _mesh_model(box.copy())
+    monkeypatch.setattr(damping, "bluff_surface", lambda vehicle, strips: None)
+    old = _mesh_model(box.copy())
+    mask = ~np.eye(6, dtype=bool)
+    mask[:3, :3] = True
+    np.testing.assert_array_equal(new.quadratic_damping[mask], old.quadratic_damping[mask])
+    np.testing.assert_array_equal(new.linear_damping, old.linear_damping)
+    assert old.conditions.rotational_drag is None
+    np.testing.assert_allclose(new.conditions.rotational_drag["strips"],
+                               np.diag(old.quadratic_damping)[3:], rtol=1e-12)
+
+
+#: Stored CFD rotations (docs/validation.md "Drag and rotational damping against CFD"): the
+#: counted rows (converged, mesh spread within 25 %, finest levels, not friction-only) of the
+#: surface integral lie within a factor exp(2) of the CFD each, rms |ln(model/CFD)| below 1.0
+#: (measured 2026-11-28: 0.149-0.921, rms 0.92; the strips had 0.00143-0.808, rms 3.24); the
+#: coarse RANS band itself is about 0.16, so this is the model's gap, not a tolerance of the
+#: CFD.
+CFD_LN_MAX, CFD_RMS_MAX = 2.0, 1.0
+
+
+@pytest.mark.slow
+def test_stored_cfd_rotations_against_the_surface_integral():
+    from validation.cfd import rows, summary_rows
+
+    use = summary_rows([r for r in rows() if r["rotation"]])
+    assert len(use) >= 10 and len({r["body"] for r in use}) >= 6
+    ln = np.log([r["ratio"] for r in use])
+    before = np.log([r["strips_ratio"] for r in use])
+    assert np.all(np.abs(ln) < CFD_LN_MAX), [(r["body"], r["dof"], r["ratio"]) for r in use]
+    assert np.sqrt(np.mean(ln ** 2)) < CFD_RMS_MAX
+    # never further from the CFD than the strips were, row by row
+    assert np.all(np.abs(ln) <= np.abs(before) + 0.15)
