@@ -192,7 +192,7 @@ ROTATION_TEXT = (
     "water (`stripcoef.assembly.damping.rotational_pressure_drag`): an element at r with "
     "outward normal n has the normal velocity `v_n = (omega x r) . n`, takes "
     "`dF = -1/2 rho C(n) v_n^2 n dA` where `v_n > 0` (Morison's drag on the velocity of a "
-    "structure moving in still water, DNV-RP-C205 sec. 6.2.3; the element-wise form of the "
+    "structure moving in still water, DNV-RP-C205 sec. 6.2; the element-wise form of the "
     "simulators Stonefish and MuJoCo), and its moment about the axis integrates exactly on "
     "each triangle; the element coefficients `C(n) = sum_m n_m^2 C_m` are those whose sum in "
     "pure translation gives back the model's own X_uu, Y_vv, Z_ww (measured whole-body drag, "

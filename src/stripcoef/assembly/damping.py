@@ -503,8 +503,8 @@ def face_drag_coefficients(normals, areas, translational, rho):
 
     An element of area dA with outward normal n moving with normal velocity
     :math:`v_n = V\cdot n > 0` into the water takes the pressure drag (Morison's drag term on
-    the velocity of the structure relative to still water, DNV-RP-C205 (2010), sec. 6.2.3
-    "Moving structure in still water"; the element-wise form of the ROV simulators Stonefish,
+    the velocity of the structure relative to still water, DNV-RP-C205 (2010), sec. 6.2,
+    Morison's load formula, the case of a structure moving in still water; the element-wise form of the ROV simulators Stonefish,
     Cieslak 2019, and MuJoCo's inertia-box model, Todorov et al. 2012, docs "Fluid forces")
 
     .. math:: dF = -\tfrac12\rho\,C(n)\,v_n^2\,n\,dA,\qquad C(n) = \sum_m n_m^2 C_m
