@@ -9,6 +9,7 @@ plate-like box and an open frame of square bars (a box frame, 12 members united)
     python -m benchmarks.cfd_rotation --shapes           # write the STL files (manifold3d)
     nice -n 19 python -m benchmarks.cfd_rotation --run box2 roll   # one stored reference
     python -m benchmarks.cfd_rotation --list             # the commands of every reference
+    python -m benchmarks.cfd_rotation --rotational       # the model's rotations against them
 
 A DOF left out by the shape's symmetry is named in :data:`SYMMETRIC` (the cube's roll and
 pitch equal its yaw, a body of revolution's pitch its yaw, ...). The tests and
@@ -149,6 +150,32 @@ def table() -> str:
     return "\n".join(lines)
 
 
+def rotational() -> str:
+    """The rotational damping of the default model against every stored CFD rotation, per
+    shape: the strips' cross-flow at a lever arm (before) and the surface pressure drag of
+    :func:`stripcoef.assembly.damping.rotational_pressure_drag` (after), each as model/CFD of
+    the damping moment at the CFD's rate, and the summary over the rows docs/validation.md
+    counts (converged, mesh spread within its limit, finest levels, not friction-only)."""
+    from validation.cfd import rows, summary_rows
+
+    rs = [r for r in rows() if r["rotation"]]
+    counted = {id(r) for r in summary_rows(rs)}
+    head = ("| body | DOF | CFD d_Q [kg m^2] | GCI | strips/CFD (before) | surface/CFD (after) "
+            "| counted |")
+    lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
+    for r in rs:
+        lines.append(f"| {r['body']} | {r['dof']} | {-r['cfd_dq']:.4g} | "
+                     f"{100 * r['gci']:.1f} % | {r['strips_ratio']:.3f} | {r['ratio']:.3f} | "
+                     f"{'yes' if id(r) in counted else 'no'} |")
+    use = summary_rows(rs)
+    for key, label in (("strips_ratio", "before (strips)"), ("ratio", "after (surface)")):
+        ln = np.log([r[key] for r in use])
+        lines.append(f"\n{label}: {len(use)} rows, model/CFD {np.exp(ln.min()):.3g} to "
+                     f"{np.exp(ln.max()):.3g}, geometric mean {np.exp(ln.mean()):.3g}, rms "
+                     f"|ln| {np.sqrt(np.mean(ln ** 2)):.2f}, sd(ln) {np.std(ln, ddof=1):.2f}")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m benchmarks.cfd_rotation", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -157,7 +184,12 @@ def main(argv=None) -> int:
     p.add_argument("--run", nargs=2, metavar=("SHAPE", "DOF"), help="run one reference")
     p.add_argument("--table", action="store_true",
                    help="print the stored results as markdown (cells, y+, cost)")
+    p.add_argument("--rotational", action="store_true",
+                   help="the model's rotational damping against every stored CFD rotation, "
+                        "before (strips) and after (surface pressure drag)")
     args = p.parse_args(argv)
+    if args.rotational:
+        print(rotational())
     if args.table:
         print(table())
     if args.shapes:

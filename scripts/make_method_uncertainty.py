@@ -21,7 +21,11 @@ error, the reference's source). The references, all stored data or exact formula
   held-out rows only: a row whose number the model's own curves are built from (the sphere and
   the 2:1 ellipsoid nose-on, the disc, the square plate, cylinders end-on: drag_bodies.BUILT_FROM,
   issue 35) is not used, nor are the bodies of reference_tables/body_drag_3d/README.md that the
-  method reads from the same number.
+  method reads from the same number;
+- rotational quadratic drag: the stored OpenFOAM rotations of reference_tables/cfd (steady RANS,
+  the rows docs/validation.md counts: converged, mesh spread within 25 %, finest levels, not
+  friction-only; validation/cfd.py), error ln(model / CFD) of the damping moment at the CFD's
+  rate (``--measure-rotation`` refreshes these rows alone, in seconds of model time).
 
 Each shape is put in its class by its geometry (stripcoef.study.shapes.shape_class), never by
 its name. The second step reads that file and writes src/stripcoef/data/method_uncertainty.csv:
@@ -31,9 +35,10 @@ sigma = q95 / 1.96 from the split-conformal 95 % quantile q95 of |ln(strip / ref
 (the k-th smallest, k = min(n, ceil(0.95 (n + 1))): a new exchangeable term falls within it
 with probability k / (n + 1), stripcoef.study.calibration); couplings are measured as
 (strip - ref) / sqrt(A_ii A_jj) and sampled as an additive move c sqrt(A_ii A_jj)
-(stripcoef.study.sources.couple); rotational drag, and translational drag of a class with
-fewer measured shapes (finned, open_frame), have no independent reference stored (assumed rows,
-labelled so), and linear damping is not predicted by the method (placeholder rows, labelled so).
+(stripcoef.study.sources.couple); drag of a class and DOF group with fewer than MIN_SHAPES
+reference shapes (translation: finned, open_frame; rotation: all but bluff) has no independent
+reference stored (assumed rows, labelled so), and linear damping is not predicted by the method
+(placeholder rows, labelled so).
 """
 
 from __future__ import annotations
@@ -65,6 +70,8 @@ FIELDS = ("set", "shape", "class", "matrix", "family", "term", "strip", "referen
 #: fewest shapes of a class that make a measured row (leave-one-shape-out needs two)
 MIN_SHAPES = 2
 DRAG_SET = "Published 3D drag"
+#: the set of the rotational drag rows: stripcoef against the stored OpenFOAM rotations
+CFD_SET = "OpenFOAM rotations"
 #: drag with no independent reference stored for the class (rotation: none for any class)
 ASSUMED_DRAG = {
     "revolution": (0.15, 0.25), "finned": (0.15, 0.25), "bluff": (0.20, 0.30),
@@ -251,7 +258,34 @@ def measure() -> list[dict]:
                       _compared(bs, ref, panel), sym, ld)
         print(f"{name}: {rows[-1]['class']}", flush=True)
     rows += drag_rows(mirrors)
+    rows += cfd_rotation_rows()
     return rows
+
+
+def cfd_rotation_rows() -> list[dict]:
+    """One row per counted stored CFD rotation (validation.cfd.summary_rows): the model's
+    and the CFD's damping moment [N m] at the CFD's rate, error ln(model / CFD)."""
+    from stripcoef.conventions import quadratic_damping_name
+    from stripcoef.study.shapes import features, shape_class
+    from validation import cfd
+
+    out = []
+    for r in cfd.summary_rows([r for r in cfd.rows() if r["rotation"]]):
+        veh = cfd._vehicle(f"reference_tables/cfd/{r['body']}"
+                           if not r["body"].endswith(".yaml") else f"geometry/{r['body']}")
+        k = 3 + ("roll", "pitch", "yaw").index(r["dof"])
+        out.append({"set": CFD_SET, "shape": r["body"], "class": shape_class(veh),
+                    "matrix": "quadratic_damping", "family": "rotation",
+                    "term": quadratic_damping_name(k, k), "strip": f"{r['model']:.8g}",
+                    "reference": f"{r['cfd']:.8g}",
+                    "error": f"{float(np.log(r['ratio'])):.6g}", "mirrors": "", "allowed": "",
+                    "reference_source": f"reference_tables/cfd/{r['file']} (OpenFOAM steady "
+                                        f"RANS, levels {r['levels']}, GCI "
+                                        f"{100 * r['gci']:.1f} %; moment at "
+                                        f"{r['speed']:.3g} rad/s)",
+                    "slenderness": f"{features(veh)['slenderness']:.4g}"})
+        print(f"{r['body']} {r['dof']}: {out[-1]['class']} (CFD rotation)", flush=True)
+    return out
 
 
 def drag_rows(mirrors) -> list[dict]:
@@ -298,6 +332,9 @@ def write_errors(rows):
                  "# (set Published 3D drag, benchmarks/drag_bodies.py): strip and reference are the model's\n"
                  "# |D_Q[k, k]| / (1/2 rho A) and the measured whole-body drag coefficient on the reference's\n"
                  "# area A [-], error ln(strip / reference). reference_source: where the reference is stored.\n"
+                 "# set OpenFOAM rotations (validation/cfd.py): strip and reference are the model's and\n"
+                 "# the stored CFD's damping moment [N m] of a rotation at the CFD's rate, error\n"
+                 "# ln(strip / reference).\n"
                  "# slenderness: the shape's L/D [-] (stripcoef.study.shapes.features).\n"
                  "# Generated by python -m scripts.make_method_uncertainty --measure\n")
         w = csv.DictWriter(fh, FIELDS, lineterminator="\n")
@@ -324,7 +361,9 @@ HEADER = """\
 #   claim = k / (n + 1), the chance a new term of the class falls inside, distribution-free;
 #   stripcoef.study.calibration; added mass: Lamb and converged Capytaine runs; translational
 #   quadratic drag: measured whole-body drag of simple bodies, reference_tables/body_drag_3d,
-#   for a class with at least 2 such shapes) | assumed (no independent reference stored) |
+#   for a class with at least 2 such shapes; rotational quadratic drag: the stored OpenFOAM
+#   rotations, reference_tables/cfd, for a class with at least 2 such shapes) | assumed (no
+#   independent reference stored) |
 #   not_predicted (outside the model: a placeholder spread, not a calibrated band).
 # slenderness: for a measured drag row, the range of L/D [-] of its reference shapes
 #   (stripcoef.study.shapes.features): its scope, because the axial drag model changes regime
@@ -379,7 +418,9 @@ def make_table(rows) -> str:
             if len({r["shape"] for r in sel}) >= MIN_SHAPES:
                 w.writerow(_measured(cls, "quadratic_damping", fam, sel))
                 continue
-            what = ("no measured drag of a rotation is stored" if fam == "rotation" else
+            what = (f"stored CFD rotations of {len({r['shape'] for r in sel})} shape(s) of "
+                    f"the class (reference_tables/cfd; {MIN_SHAPES} needed)"
+                    if fam == "rotation" else
                     f"measured drag of {len({r['shape'] for r in sel})} shape(s) of the class "
                     f"stored (reference_tables/body_drag_3d; {MIN_SHAPES} needed)")
             w.writerow([cls, "quadratic_damping", fam, "lognormal", f"{sd:g}", "assumed", 0, 0, "", "",
@@ -406,11 +447,16 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--measure", action="store_true",
                     help="rerun stripcoef on the reference shapes (writes method_errors.csv)")
+    ap.add_argument("--measure-rotation", action="store_true",
+                    help="refresh only the rotational drag rows of method_errors.csv (the "
+                         "stored CFD rotations against the model)")
     ap.add_argument("--check", action="store_true",
                     help="exit 1 if the committed table differs from the regenerated one")
     args = ap.parse_args(argv)
     if args.measure:
         write_errors(measure())
+    elif args.measure_rotation:
+        write_errors([r for r in read_errors() if r["set"] != CFD_SET] + cfd_rotation_rows())
     text = make_table(read_errors())
     if args.check:
         return 0 if TABLE.read_text() == text else 1

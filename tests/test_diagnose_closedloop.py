@@ -435,8 +435,8 @@ def _rows_by_name(sources):
 def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
     """Added mass from the added_mass rows (the panels rows for a panel-method model: the
     VideoRay vehicle file is bluff, so ``auto`` panels it too),
-    quadratic damping from its rows (translation measured on published 3D drag, rotation
-    assumed), linear damping from the not_predicted rows;
+    quadratic damping from its rows (translation measured on published 3D drag, rotation on
+    the stored OpenFOAM rotations), linear damping from the not_predicted rows;
     each width names the row (its source text) it came from."""
     from stripcoef.diagnose.pipeline import method_prior_widths, prior_widths
     from stripcoef.geometry.vehicle import load_vehicle
@@ -458,7 +458,7 @@ def test_vehicle_file_prior_widths_are_the_method_table_rows(panels):
             assert widths.rows[kind][term].startswith(f"{cls} {matrix}.{group}: ")
         assert "not predicted" in widths.rows[kind]["D_L"]
         assert widths.sd_ln[kind]["D_L"] >= 2.5          # a very wide prior
-        assert ("Published 3D drag" if kind == "translational" else "assumed") \
+        assert ("Published 3D drag" if kind == "translational" else "OpenFOAM rotations") \
             in widths.rows[kind]["D_Q"]
     if panels is None:
         assert prior_widths(path).method_sd_ln == widths.sd_ln

@@ -40,7 +40,9 @@ def section() -> str:
              "quantile of |ln(strip/ref)| (couplings: |strip - ref| / sqrt(A_ii A_jj), sampled as an "
              "additive move of that scale). `claim` = k/(n+1), the chance that a new term of the class falls in the "
              "band. Translational drag rows of the revolution and bluff classes are measured on the "
-             "held-out bodies of the drag section above, the other drag rows are assumed, and "
+             "held-out bodies of the drag section above, the bluff class's rotational drag on "
+             "the stored OpenFOAM rotations of the CFD section below "
+             "(`--measure-rotation` refreshes those rows), the other drag rows are assumed, and "
              "linear damping is not predicted (docs/uncertainty.md).\n",
              markdown_table(["class", "DOF group", "distribution", "sd", "q95",
                              "terms / shapes", "claim"], _method_rows()),

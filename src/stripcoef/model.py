@@ -342,6 +342,10 @@ class Conditions(Mapping):
         The same going astern [-], and D_Q[0, 0] with it [kg/m] (not in D_Q: going ahead)
     short_body_crossflow : mapping
         Per short part and direction, :func:`stripcoef.assembly.damping.short_body_crossflow`
+    rotational_drag : mapping
+        A bluff body's K_pp, M_qq, N_rr from its surface's pressure drag
+        (:func:`stripcoef.assembly.damping.with_rotational_pressure_drag`): the element
+        coefficients, their rule, the strips' values it replaced [kg m^2], the faces
     hull_reynolds_diameter : float
         Re on the hull's largest cross-flow extent [-]
     hull_crossflow_cd_y, hull_crossflow_cd_z : float
@@ -419,6 +423,7 @@ class Conditions(Mapping):
     blunt_hull_cd_astern: float | None = None
     surge_quadratic_damping_astern: float | None = None
     short_body_crossflow: Mapping | None = None
+    rotational_drag: Mapping | None = None
     hull_reynolds_diameter: float | None = None
     hull_crossflow_cd_y: float | None = None
     hull_crossflow_cd_z: float | None = None
@@ -454,7 +459,7 @@ class Conditions(Mapping):
 
     def __post_init__(self):
         object.__setattr__(self, "extra", frozen_mapping(self.extra))
-        for name in ("lift", "short_body_crossflow"):
+        for name in ("lift", "short_body_crossflow", "rotational_drag"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, frozen_mapping(getattr(self, name)))
 
