@@ -213,7 +213,7 @@ def test_validation_doc_vehicle_surface_section_is_current():
 def _indefinite(model, m_a, conditions):
     from dataclasses import replace
 
-    from stripcoef.model import check_physical
+    from stripcoef.physical import check_physical
 
     bad = replace(model, added_mass=m_a, conditions=conditions)
     with pytest.raises(InputError) as exc:

@@ -20,7 +20,8 @@ from stripcoef.fluid import Fluid
 from stripcoef.geometry.vehicle import Reader
 from stripcoef.thrusters import Thruster
 from stripcoef.files import load_json, load_yaml, read_text
-from stripcoef.model import HydroModel, check_physical
+from stripcoef.model import HydroModel
+from stripcoef.physical import check_physical
 
 _MATRICES = ("added_mass", "linear_damping", "quadratic_damping", "rigid_body_mass")
 _REQUIRED = _MATRICES + ("reference_point", "mass", "volume", "center_of_gravity",

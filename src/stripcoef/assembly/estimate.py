@@ -15,7 +15,8 @@ import numpy as np
 
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import MAX_VEHICLE_SPEED, Fluid
-from stripcoef.model import Conditions, HydroModel, check_physical, rigid_body_mass_matrix
+from stripcoef.model import Conditions, HydroModel, rigid_body_mass_matrix
+from stripcoef.physical import check_physical
 from stripcoef.assembly.damping import damping_matrices
 from stripcoef.assembly.lift import vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties

@@ -20,7 +20,8 @@ import numpy as np
 from stripcoef import __version__
 from stripcoef.conventions import AXES, DOF, axes_operator, transform_matrix, transform_vector
 from stripcoef.errors import InputError, ModelWarning
-from stripcoef.model import HydroModel, check_physical
+from stripcoef.model import HydroModel
+from stripcoef.physical import check_physical
 
 #: Names of the special reference points (see :func:`resolve_point`).
 POINT_NAMES = ("CO", "CG", "CB", "origin")

@@ -61,7 +61,7 @@ from scipy.optimize import brentq, linprog
 from stripcoef.conventions import DOF, FORCES
 from stripcoef.errors import InputError, ModelWarning, UnreachableError
 from stripcoef.limits.balance import LimitOptions, required_force
-from stripcoef.model import check_physical
+from stripcoef.physical import check_physical
 
 #: Rows that have no hydrostatic stiffness and must always balance.
 _ALWAYS = (0, 1, 2, 5)
