@@ -114,7 +114,7 @@ def _with_matrices(model, mats: dict):
                    added_mass_error=None if changed else model.added_mass_error)
 
 
-def written_fit(d: str, result: dict, fit, exclude=frozenset()):
+def written_fit(d: str, result, fit, exclude=frozenset()):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
