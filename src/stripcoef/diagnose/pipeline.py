@@ -60,7 +60,8 @@ The stages, one module each: :mod:`.settings` (thresholds, :class:`DiagnoseSetti
 least-squares fit), :mod:`.select` (effect selection per DOF), :mod:`.calibrate` (the fitted
 values written into the model), :mod:`.validate` (validation by free simulation),
 :mod:`.written` (every value reported about the calibrated model read back from it as
-written), :mod:`.result` (:class:`Diagnosis`, per DOF :class:`DofResult`); this module runs them in order.
+written), :mod:`.result` (:class:`Diagnosis`, per DOF :class:`DofResult`); this module runs
+them in order.
 
 Depends on: the modules above, effects, logfile.
 """
