@@ -57,7 +57,7 @@ def run(log, prior) -> dict:
         res = diagnose(log, prior, dof="all", time_limit=float("inf"))
     cpu, wall = time.process_time() - c0, time.perf_counter() - w0
     return {"cpu": cpu, "wall": wall, "dofs": list(res.per_dof),
-            "steps": [f"{s['dof']} {s['effect']}" for s in res.steps],
+            "steps": [f"{s.dof} {s.effect}" for s in res.steps],
             "final_error": float(res.final_error)}
 
 

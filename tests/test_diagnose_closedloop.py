@@ -72,15 +72,15 @@ def test_surge_only_log_changes_no_other_dof_and_says_why():
         assert res.kept_at_prior[d]["all coefficients"]
         assert res.dofs_not_diagnosed[d]
     # surge itself is calibrated (the log determines it)
-    assert "M" in res.per_dof["surge"]["calibration"]["parameters"]
+    assert "M" in res.per_dof["surge"].calibration.parameters
 
 
 @pytest.mark.slow
 def test_single_dof_on_a_surge_log_keeps_cross_added_mass_unless_excited():
     log, prior, _ = make_log(2, surge_only=True)
     res = diagnose(log, prior, dof="surge", effects=[], validation=None)
-    cal = res.per_dof["surge"]["calibration"]
-    assert not any(k.startswith("M_") for k in cal["parameters"])
+    cal = res.per_dof["surge"].calibration
+    assert not any(k.startswith("M_") for k in cal.parameters)
     np.testing.assert_array_equal(diag(res.model)[[1, 2, 3, 4, 5]],
                                   diag(prior)[[1, 2, 3, 4, 5]])
 
@@ -133,7 +133,7 @@ def test_a_calibrated_models_effects_are_in_its_residual():
     assert abs(np.mean(with_effect)) < 3 * sem + 0.02
     assert abs(np.mean(data.e0[:, 2]) - (-0.6)) < 3 * sem + 0.05
     res = diagnose(log, truth, dof="heave", effects=["buoyancy_offset"], validation=None)
-    assert not [s for s in res.steps if s["effect"] == "buoyancy_offset"]
+    assert not [s for s in res.steps if s.effect == "buoyancy_offset"]
 
 
 def _shortfall_lag_forces(scale, lag, delay=0.0):
@@ -531,9 +531,9 @@ def test_model_file_keeps_the_fixed_bands(tmp_path):
     assert prior_widths(tmp_path / "model.json") is None
     log, prior, _ = make_log(21, surge_only=True, duration=60.0)
     res = diagnose(log, prior, dof="surge", effects=[], validation=None, resimulate=False)
-    cal = res.per_dof["surge"]["calibration"]
-    assert cal["band_relative"] == {n: BANDS["translational"][n] for n in cal["band_relative"]}
-    assert all(v.startswith("BANDS translational") for v in cal["band_source"].values())
+    cal = res.per_dof["surge"].calibration
+    assert cal.band_relative == {n: BANDS["translational"][n] for n in cal.band_relative}
+    assert all(v.startswith("BANDS translational") for v in cal.band_source.values())
     assert res.prior_widths is None and res.to_dict()["prior_widths"] is None
 
 
@@ -554,10 +554,10 @@ def test_method_prior_widths_recover_an_added_mass_within_the_band():
     log, _, _ = make_log(31, surge_only=True, truth=truth, duration=180.0)
     res = diagnose(log, prior, dof="surge", effects=[], validation=None, resimulate=False,
                    prior_widths=widths)
-    cal = res.per_dof["surge"]["calibration"]
-    assert cal["band_relative"]["M"] == widths.sd_ln["translational"]["M"]
-    assert cal["band_relative"]["D_Q"] == widths.sd_ln["translational"]["D_Q"]
-    assert cal["band_source"]["D_L"] == widths.rows["translational"]["D_L"]
+    cal = res.per_dof["surge"].calibration
+    assert cal.band_relative["M"] == widths.sd_ln["translational"]["M"]
+    assert cal.band_relative["D_Q"] == widths.sd_ln["translational"]["D_Q"]
+    assert cal.band_source["D_L"] == widths.rows["translational"]["D_L"]
     assert res.to_dict()["prior_widths"]["rows"] == widths.to_dict()["rows"]
     assert res.added_mass_band["relative_sd"]["surge"] == widths.sd_ln["translational"]["M"]
     assert res.model.added_mass[0, 0] == pytest.approx(ma[0, 0], rel=0.04)

@@ -14,8 +14,9 @@ Depends on: identify, simulate, effects, model, logfile, base.
 from stripcoef.diagnose.fit import EffectFit, fit_effects
 from stripcoef.diagnose.pipeline import diagnose
 from stripcoef.diagnose.priors import PriorWidths, load_prior, method_prior_widths, prior_widths
-from stripcoef.diagnose.result import Diagnosis, DofFit
+from stripcoef.diagnose.result import Calibration, Diagnosis, DofFit, DofResult, Step
 from stripcoef.diagnose.settings import Budget, DiagnoseSettings
 
-__all__ = ["Budget", "DiagnoseSettings", "Diagnosis", "DofFit", "EffectFit", "PriorWidths",
-           "diagnose", "fit_effects", "load_prior", "method_prior_widths", "prior_widths"]
+__all__ = ["Budget", "Calibration", "DiagnoseSettings", "Diagnosis", "DofFit", "DofResult",
+           "EffectFit", "PriorWidths", "Step", "diagnose", "fit_effects", "load_prior",
+           "method_prior_widths", "prior_widths"]

@@ -92,9 +92,9 @@ def _changes(per: dict) -> list:
     """The changes a diagnosis makes to the prior: each DOF's calibration and each effect."""
     out = []
     for d, r in per.items():
-        if any(v != 0.0 for v in r["calibration"]["final_parameters"].values()):
+        if any(v != 0.0 for v in r.calibration.final_parameters.values()):
             out.append(("calibration", d))
-        out += [("effect", d, s["effect"]) for s in r["steps"]]
+        out += [("effect", d, s.effect) for s in r.steps]
     return out
 
 
@@ -114,7 +114,7 @@ def _with_matrices(model, mats: dict):
                    added_mass_error=None if changed else model.added_mass_error)
 
 
-def written_fit(d: str, result: dict, fit, exclude=frozenset()):
+def written_fit(d: str, result, fit, exclude=frozenset()):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
@@ -140,7 +140,7 @@ def written_fit(d: str, result: dict, fit, exclude=frozenset()):
 
 def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     """The prior with its calibrated coefficients and the added effects (a new model);
-    ``per``: DOF -> its result (:func:`diagnose_dof`), ``fits``: DOF -> its :class:`DofFit`;
+    ``per``: DOF -> its result (:class:`DofResult`), ``fits``: DOF -> its :class:`DofFit`;
     ``exclude``: changes left out, ``("calibration", dof)`` or ``("effect", dof, name)``
     (see :func:`validate_changes`); the values written are those of :func:`written_fit`.
 
@@ -156,9 +156,9 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
         i = parse_dof(d)
         cfg, theta = written_fit(d, r, fits[d], exclude)
         k = len(cfg.cal.names)
-        steps = {s["effect"]: s for s in r["steps"]}
+        steps = {s.effect: s for s in r.steps}
         # a released coefficient's calibration is written as part of its effect (one change)
-        fold = {eff.name: folded_key(eff, steps.get(eff.name, {}), cfg.cal.names)
+        fold = {eff.name: folded_key(eff, steps[eff.name].mimics, cfg.cal.names)
                 for eff, _ in cfg.terms}
         fold = {name: key for name, key in fold.items() if key}
         applied = {}
@@ -190,9 +190,8 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             for name, value in zip(eff.nuisance_names, tn):
                 if name in mats:  # a prior coefficient released by this effect
                     mats[name][i, i] += float(value)
-            step = next((s for s in r["steps"] if s["effect"] == eff.name), {})
             # a native effect adds its term to the matrices calibrated so far
-            m = eff.apply(_with_matrices(m, mats), i, params, step.get("std"))
+            m = eff.apply(_with_matrices(m, mats), i, params, steps[eff.name].std)
             mats = _writable_matrices(m)
             kept_effects.append(eff.name)
             parameters[eff.name] = {n: float(v) for n, v in params.items()}
@@ -202,14 +201,14 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     return replace(m, name=f"{model.name}-calibrated")
 
 
-def folded_key(eff, step: dict, cal_names) -> str:
+def folded_key(eff, mimics: str | None, cal_names) -> str:
     """The calibration coefficient that an effect without a signature releases
-    (``step["mimics"]``, e.g. ``M`` for an added-mass error, ``D_L`` for a linear drag the
+    (``mimics``, its step's, e.g. ``M`` for an added-mass error, ``D_L`` for a linear drag the
     prior has), when it is calibrated too and the effect's one parameter is that
     coefficient's change: the calibration and the effect are then one change of the same
     coefficient, reported and written as the effect's, the total from the prior (issue 33:
     an added mass 2x the prior's reported as the effect's share alone); else ''."""
-    key = step.get("mimics")
+    key = mimics
     if key and key in cal_names and getattr(eff, "native", False) \
             and len(eff.parameters) == 1 and not eff.nuisance_names:
         return key

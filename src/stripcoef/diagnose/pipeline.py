@@ -60,7 +60,8 @@ The stages, one module each: :mod:`.settings` (thresholds, :class:`DiagnoseSetti
 least-squares fit), :mod:`.select` (effect selection per DOF), :mod:`.calibrate` (the fitted
 values written into the model), :mod:`.validate` (validation by free simulation),
 :mod:`.written` (every value reported about the calibrated model read back from it as
-written), :mod:`.result` (:class:`Diagnosis`); this module runs them in order.
+written), :mod:`.result` (:class:`Diagnosis`, per DOF :class:`DofResult`); this module runs
+them in order.
 
 Depends on: the modules above, effects, logfile.
 """
@@ -91,7 +92,7 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
                                          resimulated_errors, validate_changes,
-                                         validation_errors)
+                                         validation_errors, with_kept)
 from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import effect_window_forces
 from stripcoef.effects.windows import window_data
@@ -238,31 +239,32 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)
+        per = with_kept(per, exclude)
     calibrated = calibrated_model(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
     # one model: what is reported about the calibrated model is read back from it as written
     written = type(calibrated).from_dict(calibrated.to_dict())
-    read_back(per, fits, written, train_log, window=window, exclude=exclude)
+    per = read_back(per, fits, written, train_log, window=window, exclude=exclude)
     if record is not None and clipped:      # the validated model was clipped afterwards
         record["kept_changes"] = validation_errors(val_log, written, dofs)
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
-        summary = {"metric": METRIC, "dof": r["dof"], "units": r["units"],
-                   "baseline_error": r["baseline_error"],
-                   "calibrated_error": r["calibrated_error"],
-                   "steps": r["steps"], "final_error": r["final_error"],
-                   "unexplained": r["unexplained"]}
+        summary = {"metric": METRIC, "dof": r.dof, "units": r.units,
+                   "baseline_error": r.baseline_error,
+                   "calibrated_error": r.calibrated_error,
+                   "steps": r.steps, "final_error": r.final_error,
+                   "unexplained": r.unexplained}
     else:
         def rel(key):
-            return float(np.sqrt(np.mean([(per[d][key] / per[d]["baseline_error"]) ** 2
-                                          for d in per])))
+            return float(np.sqrt(np.mean([(getattr(r, key) / r.baseline_error) ** 2
+                                          for r in per.values()])))
         summary = {"metric": METRIC + "_relative", "dof": "all",
                    "units": "relative to each DOF's baseline",
                    "baseline_error": 1.0, "calibrated_error": rel("calibrated_error"),
-                   "steps": [s for d in per for s in per[d]["steps"]],
+                   "steps": [s for r in per.values() for s in r.steps],
                    "final_error": rel("final_error"),
-                   "unexplained": any(per[d]["unexplained"] for d in per)}
-    kept = {d: dict(per[d]["calibration"]["kept_at_prior"]) for d in per}
+                   "unexplained": any(r.unexplained for r in per.values())}
+    kept = {d: dict(r.calibration.kept_at_prior) for d, r in per.items()}
     for d, why in not_diagnosed.items():
         kept[d] = {"all coefficients": why}
     if settings.resimulate:

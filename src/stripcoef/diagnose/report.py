@@ -143,7 +143,7 @@ def residual_figure(result: Diagnosis, dof, *, key: str = "report"):
         ax.plot(tw, y, lw=1, label=label)
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("window mid time t [s]")
-    ax.set_ylabel(f"missing force [{result.per_dof[dof]['units']}]")
+    ax.set_ylabel(f"missing force [{result.per_dof[dof].units}]")
     ax.set_title(f"{dof}: window force residual before and after each step")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.grid(True, alpha=0.3)

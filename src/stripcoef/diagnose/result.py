@@ -1,5 +1,6 @@
 """The result of a diagnosis: :class:`Diagnosis` (its JSON is ``diagnose --json``) and, per
-diagnosed DOF, its final fit (:class:`DofFit`).
+diagnosed DOF, its result (:class:`DofResult`, with its :class:`Calibration` and its
+:class:`Step` s; JSON ``per_dof.<dof>``) and its final fit (:class:`DofFit`).
 
 Depends on: model, diagnose.fit, diagnose.priors.
 """
@@ -8,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -37,6 +38,215 @@ class DofFit:
     config: _Config
     evaluation: dict
     prior_residual: np.ndarray
+
+
+def _optional():
+    """A field left out of the JSON while unset (None): set by a later stage (the validation,
+    the read-back of the written model, a stop by a shape outside the library)."""
+    return field(default=None, metadata={"optional": True})
+
+
+def _frozen(value):
+    """``value`` read-only: a mapping as :func:`frozen_mapping`, a list as a tuple (its
+    mappings read-only too)."""
+    if isinstance(value, dict):
+        return frozen_mapping(value)
+    if isinstance(value, list):
+        return tuple(_frozen(v) for v in value)
+    return value
+
+
+class _Record:
+    """A per-DOF record: frozen, its mappings read-only, its JSON form :meth:`to_dict`
+    (the fields in order, a nested record as its own, an unset optional field left out)
+    and :meth:`from_dict` its inverse."""
+
+    def __post_init__(self):
+        for f in fields(self):
+            object.__setattr__(self, f.name, _frozen(getattr(self, f.name)))
+
+    def to_dict(self) -> dict:
+        """The JSON form (plain types, :func:`stripcoef.model.plain`)."""
+        out = {}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if value is None and f.metadata.get("optional"):
+                continue
+            if isinstance(value, _Record):
+                value = value.to_dict()
+            elif isinstance(value, tuple) and value and isinstance(value[0], _Record):
+                value = [v.to_dict() for v in value]
+            out[f.name] = plain(value)
+        return out
+
+
+@dataclass(frozen=True, kw_only=True)
+class Calibration(_Record):
+    """The calibration of one DOF's prior coefficients (JSON ``per_dof.<dof>.calibration``;
+    coefficient names ``M``, ``D_L``, ``D_Q``, ``M_<dof>``; values in the coefficient's
+    units [kg, kg m^2, N s/m, N s^2/m^2, ...]).
+
+    Attributes
+    ----------
+    parameters, std : mapping
+        The MAP change from the prior of each calibrated coefficient and its 1-sigma
+        uncertainty, fitted without effects
+    prior : mapping
+        The prior's value of each coefficient
+    band_relative, band_source : mapping
+        The 1-sigma width of its Gaussian prior relative to the prior value [-], and the row
+        it came from
+    band_z : mapping
+        ``parameters`` in bands [-]
+    kept_at_prior, information_ratio : mapping
+        Coefficients the log does not determine (-> why), and each one's Fisher information
+        ratio [-] (:func:`~stripcoef.diagnose.fit._identifiability`)
+    final_parameters : mapping
+        The change from the prior in the final fit (after :func:`read_back`: in the written
+        model)
+    kept : bool, optional
+        Whether the validation by free simulation kept it (None: no validation)
+    written : mapping, optional
+        Each coefficient's value in the written model (set by :func:`read_back`)
+    """
+
+    parameters: Mapping
+    std: Mapping
+    prior: Mapping
+    band_relative: Mapping
+    band_source: Mapping
+    band_z: Mapping
+    kept_at_prior: Mapping
+    information_ratio: Mapping
+    final_parameters: Mapping
+    kept: bool | None = _optional()
+    written: Mapping | None = _optional()
+
+
+@dataclass(frozen=True, kw_only=True)
+class Step(_Record):
+    """One effect added to a DOF (JSON ``steps[k]`` and ``per_dof.<dof>.steps[k]``).
+
+    Attributes
+    ----------
+    effect, source : str
+        The effect's name and its literature source
+    applicable, significant : bool
+        Always true for a step (the fields of a judged candidate)
+    parameters, std, units : mapping
+        Its parameters (as selected; after :func:`read_back` the written model's when kept),
+        their 1-sigma uncertainties and units
+    released : mapping
+        The prior coefficients it releases -> their change
+    signature, mimics : str or None
+        The log's signature of the effect; without one, the prior coefficient it mimics
+    band_excess : float or None
+        The change it implies of the coefficient it mimics, in bands [-]
+    error_before, error_after, held_out_error_before, held_out_error_after : float
+        The metric and the held-out error before and after it, at its selection
+        [N or N m]
+    held_out_gain, delta_bic, z, magnitude : float
+        Its relative held-out gain [-], the change of BIC [-], its largest parameter in
+        standard deviations [-], the effect's size (:meth:`Effect.magnitude`)
+    rejected_because : tuple of str
+        Empty for a step
+    alternatives : tuple of mapping
+        The effects within ``TIE`` of it (effect, parameters, held-out error, signature)
+    dof : str
+        The DOF it acts in
+    final_parameters : mapping
+        Its parameters refitted with every other step (after :func:`read_back`: the written
+        model's when kept)
+    kept : bool, optional
+        Whether it is in the written model (None before the validation and the read-back)
+    selected_parameters : mapping, optional
+        Its parameters at its selection (set by :func:`read_back`)
+    """
+
+    effect: str
+    applicable: bool
+    parameters: Mapping
+    std: Mapping
+    released: Mapping
+    units: Mapping
+    signature: str | None
+    mimics: str | None
+    band_excess: float | None
+    error_after: float
+    held_out_error_after: float
+    held_out_gain: float
+    delta_bic: float
+    z: float
+    significant: bool
+    rejected_because: tuple
+    magnitude: float
+    source: str
+    error_before: float
+    held_out_error_before: float
+    alternatives: tuple
+    dof: str
+    final_parameters: Mapping
+    kept: bool | None = _optional()
+    selected_parameters: Mapping | None = _optional()
+
+
+@dataclass(frozen=True, kw_only=True)
+class DofResult(_Record):
+    """The diagnosis of one DOF (:func:`~stripcoef.diagnose.select.diagnose_dof`; JSON
+    ``per_dof.<dof>``). Errors are RMS window force residuals [N or N m] (``units``).
+
+    Attributes
+    ----------
+    dof, metric, units : str
+    baseline_error, baseline_held_out_error : float
+        The prior's error (held-out: the same; the prior is not fitted)
+    calibration : Calibration
+    calibrated_error, calibrated_held_out_error : float
+        After the calibration, on all windows and blocked cross-validated
+    structure_before, structure_after : mapping
+        The residual's statistics after the calibration and at the end (bias, lag-1
+        autocorrelation, runs test, sign dependence, correlation with each candidate)
+    stopped_by_shape : mapping, optional
+        The shape outside the library that stopped the selection, and why
+    steps : tuple of Step
+        The effects added, in order
+    candidates : tuple of mapping
+        Every effect judged at the first step (or why it is not applicable)
+    final_error, final_held_out_error : float
+        At the end (after :func:`read_back`: the written model's)
+    unexplained : bool
+        A structured residual remains that no library effect explains
+    unexplained_evidence : mapping
+        The generic basis's gain, the noise floor, ...
+    unexplained_signature : str
+        The residual's signature in words ('' when explained)
+    """
+
+    dof: str
+    metric: str
+    units: str
+    baseline_error: float
+    baseline_held_out_error: float
+    calibration: Calibration
+    calibrated_error: float
+    calibrated_held_out_error: float
+    structure_before: Mapping
+    stopped_by_shape: Mapping | None = _optional()
+    steps: tuple
+    candidates: tuple
+    final_error: float
+    final_held_out_error: float
+    structure_after: Mapping
+    unexplained: bool
+    unexplained_evidence: Mapping
+    unexplained_signature: str
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> DofResult:
+        """The record of its JSON form (:meth:`to_dict`) or of the selection's working
+        dictionary."""
+        return cls(**{**d, "calibration": Calibration(**d["calibration"]),
+                      "steps": tuple(Step(**s) for s in d["steps"])})
 
 
 #: the keys of :meth:`Diagnosis.to_dict`, in order (the JSON contract of ``diagnose --json``)
@@ -76,12 +286,12 @@ class Diagnosis:
     baseline_error, calibrated_error, final_error : float
         The metric for the prior, after the calibration, after the added effects (several
         DOFs: RMS over the DOFs of each DOF's error relative to its baseline)
-    steps : tuple of dict
+    steps : tuple of Step
         The effects added, in order (effect, parameters, std, errors before and after ...)
     unexplained : bool
         A structured residual remains that no library effect explains
     per_dof : mapping
-        DOF name -> its detailed result (calibration, candidates, structure, steps ...)
+        DOF name -> its :class:`DofResult` (calibration, candidates, structure, steps ...)
     model : HydroModel
         The calibrated model (the prior with its calibration and the added effects)
     resimulated_velocity_rms : dict, optional
@@ -165,6 +375,10 @@ class Diagnosis:
         out = {}
         for key in _JSON_FIELDS:
             value = getattr(self, key)
+            if key == "per_dof":
+                value = {d: r.to_dict() for d, r in value.items()}
+            elif key == "steps":
+                value = [s.to_dict() for s in value]
             if value is not None or not key.startswith("resimulated"):
                 out[key] = value
         return _finite_or_none(plain(out))

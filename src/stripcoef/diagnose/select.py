@@ -18,7 +18,7 @@ from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
                                     _Generic, _hyper_std, _identifiability, _Nuisance, _rms)
 from stripcoef.diagnose.priors import added_mass_bounds
-from stripcoef.diagnose.result import DofFit
+from stripcoef.diagnose.result import DofFit, DofResult
 from stripcoef.diagnose.settings import (BANDS, EXCITATION_SNR, EXCITATION_STD,
                                          METRIC, MIMIC_BANDS, MIN_DELTA_BIC, MIN_HELD_OUT_GAIN,
                                          MIN_Z, NOISE_FLOOR_FACTOR, TIE, UNEXPLAINED_GAIN,
@@ -173,8 +173,8 @@ def _generic_basis(data: WindowData, dof: int):
 
 def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAULTS, *,
                  budget: Budget = UNLIMITED, excited=None, cross=None):
-    """Run steps 1-5 for one DOF; returns the per-DOF result (the JSON-ready dictionary of
-    :attr:`Diagnosis.per_dof`, see module) and its :class:`DofFit`.
+    """Run steps 1-5 for one DOF; returns the per-DOF result (a :class:`DofResult`, an entry
+    of :attr:`Diagnosis.per_dof`, see module) and its :class:`DofFit`.
 
     ``excited``: the excited DOFs (default: :func:`excited_dofs`); ``cross``: the other DOFs
     whose added mass this DOF may calibrate (:func:`_calibration`). Coefficients the log
@@ -300,7 +300,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         nuis = eff.nuisance(data, dof)
         kn = 0 if nuis is None else nuis.shape[1]
         own = th_all[k + kn:k + ncol].copy()
-        key = folded_key(eff, step, cal_names)
+        key = folded_key(eff, step["mimics"], cal_names)
         if key:      # the released coefficient: its calibration and the effect are one change
             own[0] += th_all[cal_names.index(key)]
         step["final_parameters"] = eff.to_parameters(own, hyper, th_all[k:k + kn])
@@ -321,7 +321,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     shape = stopped or (_best_shape(cfg, cur, data, dof) if result["unexplained"] else None)
     result["unexplained_signature"] = (_signature_text(shape, unit)
                                        if result["unexplained"] else "")
-    return result, DofFit(config=cfg, evaluation=cur, prior_residual=e0)
+    return DofResult.from_dict(result), DofFit(config=cfg, evaluation=cur, prior_residual=e0)
 
 
 

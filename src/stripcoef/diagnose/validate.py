@@ -8,6 +8,7 @@ Depends on: diagnose.heldout, diagnose.calibrate, diagnose.settings, progress.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import _changes, calibrated_model
@@ -50,7 +51,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     another one is removed are refitted without it
     (:func:`stripcoef.diagnose.calibrate.written_fit`).
 
-    Returns ``(excluded changes, record)``.
+    Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
+    results.
     """
     from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
 
@@ -90,10 +92,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     def named(e):
         return _named(e, dofs)
 
-    for d, r in per.items():
-        r["calibration"]["kept"] = ("calibration", d) not in excl
-        for s in r["steps"]:
-            s["kept"] = ("effect", d, s["effect"]) not in excl
     record = {"description": "RMS free-simulation velocity error [m/s or rad/s] on the last "
                              "part of the fitting log, not used to fit: each change is kept "
                              "only if removing it makes this worse",
@@ -112,6 +110,17 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
+
+
+def with_kept(per: dict, excl) -> dict:
+    """The per-DOF results ``per`` (DOF -> :class:`DofResult`, new ones) with ``kept`` set
+    on each calibration and step: not in the changes ``excl`` that :func:`validate_changes`
+    removed."""
+    return {d: replace(r, calibration=replace(r.calibration,
+                                              kept=("calibration", d) not in excl),
+                       steps=tuple(replace(s, kept=("effect", d, s.effect) not in excl)
+                                   for s in r.steps))
+            for d, r in per.items()}
 
 
 def resimulated_errors(log, prior, per: dict, fits: dict, calibrated,

@@ -18,6 +18,8 @@ Depends on: effects, conventions, diagnose.calibrate, diagnose.fit.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import written_fit
 from stripcoef.diagnose.fit import _evaluate, _rms
@@ -63,11 +65,11 @@ def window_errors(log, model, dofs, *, window: float) -> dict:
 
 
 def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
-              exclude=frozenset()) -> None:
-    """Replace, in the per-DOF results ``per`` (:func:`stripcoef.diagnose.select.diagnose_dof`,
-    updated in place), every value that describes the written model by the value read back
-    from ``written`` (the model as written: ``type(m).from_dict(m.to_dict())``), on the
-    fitting log ``fit_log``:
+              exclude=frozenset()) -> dict:
+    """The per-DOF results ``per`` (DOF -> :class:`~stripcoef.diagnose.result.DofResult` of
+    :func:`stripcoef.diagnose.select.diagnose_dof`; new ones returned) with every value that
+    describes the written model replaced by the value read back from ``written`` (the model
+    as written: ``type(m).from_dict(m.to_dict())``), on the fitting log ``fit_log``:
 
     - ``calibration.written``: each calibrated coefficient's value in the model, and
       ``calibration.final_parameters``: its change from the prior there;
@@ -79,21 +81,27 @@ def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
     """
     dofs = [parse_dof(d) for d in per]
     errors = window_errors(fit_log, written, dofs, window=window)
+    out = {}
     for d, r in per.items():
         i = parse_dof(d)
-        cal = r["calibration"]
-        cal["written"] = {n: coefficient(written, i, n) for n in cal["parameters"]}
-        cal["final_parameters"] = {n: cal["written"][n] - float(cal["prior"][n])
-                                   for n in cal["parameters"]}
+        cal = r.calibration
+        values = {n: coefficient(written, i, n) for n in cal.parameters}
+        cal = replace(cal, written=values,
+                      final_parameters={n: values[n] - float(cal.prior[n])
+                                        for n in cal.parameters})
         effects = written_effects(written, d)
-        for s in r["steps"]:
-            s["selected_parameters"] = dict(s["parameters"])
-            s["kept"] = s["effect"] in effects
-            if s["kept"]:
-                s["parameters"] = dict(effects[s["effect"]])
-                s["final_parameters"] = dict(effects[s["effect"]])
-        r["final_error"] = errors[d]
+        steps = []
+        for s in r.steps:
+            kept = s.effect in effects
+            steps.append(replace(s, selected_parameters=dict(s.parameters), kept=kept,
+                                 **({"parameters": dict(effects[s.effect]),
+                                     "final_parameters": dict(effects[s.effect])}
+                                    if kept else {})))
+        held_out = r.final_held_out_error
         if any(c[1] == d for c in exclude):
             cfg, _ = written_fit(d, r, fits[d], exclude)
-            r["final_held_out_error"] = float(_evaluate(cfg)["held_out_error"])
+            held_out = float(_evaluate(cfg)["held_out_error"])
+        out[d] = replace(r, calibration=cal, steps=tuple(steps), final_error=errors[d],
+                         final_held_out_error=held_out)
+    return out
 
