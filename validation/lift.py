@@ -222,9 +222,9 @@ def bare_hull_vehicle(points: int = 600):
     return parse_vehicle(data, file="SUBOFF bare hull")
 
 
-#: Roddy's configurations that stripcoef builds (the ring wing, geometry in ring_wing.csv, is
-#: not built: :func:`ring_wing_section`; configurations 1, 2 and 6 are built without it):
-#: name -> (sail, stern planes).
+#: Roddy's configurations that stripcoef builds as vehicle files (ring wing No. 1, geometry in
+#: ring_wing.csv, is no vehicle-file key: configurations 1, 2 and 6 add it to these models as a
+#: lift element, :func:`ring_wing_terms`): name -> (sail, stern planes).
 SUBOFF_CONFIGS = {3: ("bare hull", False, False), 4: ("hull + sail", True, False),
                   5: ("hull + four stern planes", False, True),
                   2: ("fully appended without the ring wing", True, True)}
