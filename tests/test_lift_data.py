@@ -265,16 +265,18 @@ _FIN = ("each plane's own force is 1.29 /rad on the printed area against 1.42 de
 #: (configuration, derivative) -> why the slender-body model misses the issue's tolerance.
 KNOWN_MISSES = {
     (3, "Nv"): "bare hull N'_v 0.72 of measured (tolerance 10 %): " + _BODY,
-    (6, "Nv"): "hull + ring N'_v 0.71 of measured, the bare hull's model (the ring wing is not "
-               "built: its measured increments lift in yaw rotation, not in drift): " + _BODY,
+    (6, "Nv"): "hull + ring N'_v 0.61 of measured (0.71 without the ring): the ring lifts in "
+               "drift in the model (Y'_v -0.0025 in the stern flow) and not in Roddy's data; "
+               + _BODY,
     (4, "Yv"): "hull + sail Y'_v 1.53 times measured: " + _BODY,
     (5, "Yv"): "hull + planes Y'_v 2.08 times measured: " + _BODY,
     (5, "Nv"): "hull + planes N'_v 0.64 of measured: " + _BODY,
-    (2, "Yv"): "fully appended (no ring wing) Y'_v 1.45 times measured: " + _BODY,
-    (2, "Yr"): "fully appended Y'_r 0.62 of measured: the ring wing is not built; its measured "
-               "increment (configuration 6 - 3: +0.0020) would bring the model to 1.00",
-    (1, "Zw"): "configuration 1 Z'_w 1.57 times measured: " + _BODY,
-    (1, "Mw"): "configuration 1 M'_w 0.70 of measured: " + _BODY,
+    (2, "Yv"): "fully appended Y'_v 1.54 times measured (1.45 without the ring wing): " + _BODY,
+    (2, "Nv"): "fully appended N'_v 0.78 of measured (0.87 without the ring wing): the model's "
+               "ring lifts in drift, Roddy's does not (configuration 6 - 3: Y'_v +0.000005)",
+    (1, "Zw"): "configuration 1 Z'_w 1.74 times measured (1.57 without the ring wing, which "
+               "lifts in the model's drift and not in Roddy's): " + _BODY,
+    (1, "Mw"): "configuration 1 M'_w 0.58 of measured (0.70 without the ring wing): " + _BODY,
     (4, "Yr"): "hull + sail Y'_r: measured -0.000023 (zero within its 10 %), model +0.0010: the "
                "sail's rotary force (about -0.0018 about the moment point, from its lever 3 ft "
                "forward) does not cancel the body's +0.0054",
@@ -282,9 +284,10 @@ KNOWN_MISSES = {
                "carried over",
     (3, "Yv"): "bare hull Y'_v 2.78 times measured (the issue asks only for the error stated): "
                + _BODY,
-    (6, "Yv"): "hull + ring Y'_v 2.78 times measured (error stated only): " + _BODY,
+    (6, "Yv"): "hull + ring Y'_v 3.19 times measured (error stated only; 2.78 without the ring, "
+               "which lifts in the model's drift and not in Roddy's): " + _BODY,
 }
-_CASES = [(c, n) for c, built in {3: 3, 4: 4, 5: 5, 6: 3, 2: 2, 1: 2}.items()
+_CASES = [(c, n) for c in (3, 4, 5, 6, 2, 1)
           for n in ((("Zw", "Mw", "Zq", "Mq", "Zds", "Mds") if c == 1 else ("Yv", "Nv", "Yr", "Nr"))
                     + (("Ydr", "Ndr") if c == 2 else ()))]
 
@@ -343,11 +346,12 @@ def test_stern_plane_own_force_in_drift_against_the_stock():
     assert model_stock_slopes()["drift"] == pytest.approx(stock_lift_slopes()["drift"], rel=0.20)
 
 
-@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.11-2.7 times Roddy's from 4 to 18 deg "
-                   "(configurations 2-5, body_lift: slender): the linear body lift is too large "
-                   "(Hopkins's station) and the strips' linear damping D_L adds a second linear sway "
-                   "force; N'(beta) is within 20 % at every angle for configuration 4, from 4 to "
-                   "16 deg for 2, from 12 deg for 3 and 5")
+@pytest.mark.xfail(strict=True, reason="the model's Y'(beta) is 1.13-2.7 times Roddy's from 4 to 18 deg "
+                   "(configurations 2-5, body_lift: slender; 2 with the ring wing): the linear body "
+                   "lift is too large (Hopkins's station) and the strips' linear damping D_L adds a "
+                   "second linear sway force; N'(beta) is within 20 % at every angle for "
+                   "configuration 4, from 8 to 18 deg for 2 (0.76 at 4 deg: the model's ring lifts "
+                   "in drift), from 12 deg for 3 and 5")
 def test_drift_curves_within_20_percent():
     for c in drift_curve_comparisons():
         if c["method"] == "slender":

@@ -39,6 +39,8 @@ from stripcoef.hull.lift import (
     boundary_layer_thickness,
     axial_velocity_ratio,
     power_law_exponent,
+    ring_wing_lift_matrix,
+    ring_wing_lift_slope,
     surface_speed_ratio,
     turbulent_boundary_layer,
 )
@@ -181,21 +183,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
     hull = vehicle.hull
     round_ = _round(hull)
     body = _body_lift(vehicle, rho, ref, ref if center is None else center)
-    slender = None
-    if body is not None and body[1].get("method") == "slender":
-        slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
-                   "s": body[2][0], "area": body[2][1],
-                   "y": hull.y, "z": hull.z,
-                   "speed": float(vehicle.reference_speed if speed is None else speed),
-                   "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
-                                      else viscosity)}
-        s_nose, area = slender["s"], slender["area"]
-        try:
-            slender["layer"] = turbulent_boundary_layer(
-                s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
-                speed=slender["speed"], viscosity=slender["viscosity"])
-        except ValueError:        # the hull is shorter than the laminar run: no turbulent layer
-            slender["layer"] = None
+    slender = _stern_flow(vehicle, body, speed, viscosity)
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
     no_lift = []
@@ -229,6 +217,122 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
     if no_lift:
         info["fins_without_lift"] = no_lift
     return lift, tuple(surfaces), info
+
+
+def _stern_flow(vehicle, body, speed, viscosity):
+    """The hull's flow that the fins (and a ring wing) sit in under ``body_lift: slender``:
+    a dict with the nose x, Hopkins's separation station, the sections (s from the nose, S),
+    the hull axis, speed, viscosity and Head's boundary layer (:func:`_hull_boundary_layer`);
+    None under the other rules (the fins then see the free stream)."""
+    if body is None or body[1].get("method") != "slender":
+        return None
+    hull = vehicle.hull
+    slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
+               "s": body[2][0], "area": body[2][1],
+               "y": hull.y, "z": hull.z,
+               "speed": float(vehicle.reference_speed if speed is None else speed),
+               "viscosity": float(vehicle.fluid.kinematic_viscosity if viscosity is None
+                                  else viscosity)}
+    s_nose, area = slender["s"], slender["area"]
+    try:
+        slender["layer"] = turbulent_boundary_layer(
+            s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
+            speed=slender["speed"], viscosity=slender["viscosity"])
+    except ValueError:        # the hull is shorter than the laminar run: no turbulent layer
+        slender["layer"] = None
+    return slender
+
+
+def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: float,
+                   r_te: float, speed: float | None = None,
+                   viscosity: float | None = None) -> tuple[np.ndarray, dict]:
+    r"""Lift matrix of a ring wing around the vehicle's hull (force :math:`-uL\nu`) and a summary.
+
+    The ring's chord line runs from (x_le, r_le) to (x_te, r_te) (body axes, x forward [m];
+    radii from the hull axis [m]); it lifts as an isolated ring of its mean radius
+    R = (r_le + r_te)/2 and chord c = |(x_le - x_te, r_le - r_te)|
+    (:func:`~stripcoef.hull.lift.ring_wing_lift_matrix`) at its quarter chord, with
+
+    - **the hull inside it**: slender-body theory gives the ring and the body section it
+      encloses the apparent mass of the ring alone (the enclosed fluid and body move as one,
+      :func:`~stripcoef.hull.lift.ring_wing_lift_slope`), so whatever the ring carries over
+      onto the body the pair lifts as the isolated ring: interference factor 1. The body's
+      upwash at the ring is not added: behind Hopkins's separation station (``body_lift:
+      slender``) there is none, as for the fins there (:func:`_panel_terms`); ahead of it
+      (``info["body_upwash"]``) it is left out (assumption). The struts inside the ring add
+      nothing (the same enclosed section);
+    - **the stern flow** (``body_lift: slender`` only, as for the fins): the dynamic pressure
+      of the hull's boundary layer at the ring's mid chord, :math:`(y/\delta)^{2p}` at the
+      ring's height y = R - r_hull above the surface (Head's layer, :func:`_hull_boundary_layer`;
+      1 above the layer), times the body's axial potential flow :math:`(u/U)^2` there
+      (:func:`~stripcoef.hull.lift.axial_velocity_ratio`);
+    - not modelled: the sidewash of the stern planes' and the body's trailing vortices at the
+      ring (the ring sits inside the planes' span behind their trailing edge), the ring's
+      added mass, and the ring's own effect on the planes.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        With a round hull (``hull.profile``)
+    rho : float
+        Fluid density [kg/m^3]
+    ref : (3,)
+        Reference point [m]
+    x_le, x_te, r_le, r_te : float
+        The chord line's ends [m], x_le > x_te, radii > 0
+    speed, viscosity : float, optional
+        As :func:`vehicle_lift`
+
+    Returns
+    -------
+    L : (6, 6) [kg/m, kg, kg m]
+    info : dict
+        radius, chord, aspect ratio, lift slope, pressure ratio and its parts
+
+    References
+    ----------
+    :func:`~stripcoef.hull.lift.ring_wing_lift_slope`; Pitts, Nielsen & Kaattari (1957), NACA
+    Report 1307 (slender-body interference from the cross-section's apparent mass); Newman
+    1977, sec. 7.8; Hoerner & Borst 1985, ch. 8 (tails in the stern's reduced dynamic pressure).
+    """
+    hull = vehicle.hull
+    if hull is None or not _round(hull):
+        raise InputError("a ring wing needs a round hull", file=vehicle.source, key="hull",
+                         value="none or not round", expected="a hull 'profile' (circular)")
+    lo, hi = hull.x_extent()
+    if not hi >= x_le > x_te >= lo or min(r_le, r_te) <= 0.0:
+        raise InputError("ring wing outside the hull's length", file=vehicle.source,
+                         key="ring_wing", value=f"x = {x_te:.4g}..{x_le:.4g} m, "
+                         f"r = {r_le:.4g}, {r_te:.4g} m",
+                         expected=f"x_le > x_te within {lo:.4g}..{hi:.4g} m, radii > 0")
+    radius = 0.5 * (r_le + r_te)
+    chord = float(np.hypot(x_le - x_te, r_le - r_te))
+    x_mid = 0.5 * (x_le + x_te)
+    r_hull = float(hull.half_breadth(np.array([x_mid]))[0]) if lo <= x_mid <= hi else 0.0
+    if radius <= r_hull:
+        raise InputError("ring wing inside the hull", file=vehicle.source, key="ring_wing",
+                         value=f"R = {radius:.4g} m at x = {x_mid:.4g} m",
+                         expected=f"a mean radius above the hull's {r_hull:.4g} m")
+    body = _body_lift(vehicle, rho, ref, ref)
+    slender = _stern_flow(vehicle, body, speed, viscosity)
+    info = {"radius": radius, "chord": chord, "aspect_ratio": 2.0 * radius / chord,
+            "lift_slope": float(ring_wing_lift_slope(2.0 * radius / chord)),
+            "x_quarter_chord": x_le - 0.25 * (x_le - x_te), "height": radius - r_hull}
+    q_ratio = 1.0
+    if slender is not None:
+        delta, profile, method = _hull_boundary_layer(slender, slender["x_nose"] - x_mid)
+        height = radius - r_hull
+        layer = (height / delta) ** (2.0 * profile) if 0.0 < height < delta else 1.0
+        stream = axial_velocity_ratio(slender["s"], slender["area"], slender["x_nose"] - x_mid,
+                                      radius) ** 2
+        q_ratio = layer * stream
+        info.update({"boundary_layer": delta, "boundary_layer_profile": profile,
+                     "boundary_layer_method": method, "layer_ratio": layer,
+                     "stream_ratio": stream,
+                     "body_upwash": info["x_quarter_chord"] >= slender["x_separation"]})
+    info["pressure_ratio"] = q_ratio
+    point = np.array([info["x_quarter_chord"], hull.y, hull.z]) - np.asarray(ref, float)
+    return ring_wing_lift_matrix(radius, chord, point, rho=rho, pressure_ratio=q_ratio), info
 
 
 def _round(hull) -> bool:

@@ -781,3 +781,106 @@ def power_law_exponent(shape_factor: float) -> float:
     if shape_factor <= 1.0:
         raise ValueError(f"power_law_exponent needs H > 1, got {shape_factor}")
     return 0.5 * (shape_factor - 1.0)
+
+
+def ring_wing_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
+    r"""Lift-curve slope of a ring (annular) wing of diameter D and chord c, on the area D c.
+
+    .. math:: C_{L\alpha} = \frac{a_\infty}{\sqrt{1 + x^2} + x},\qquad
+              a_\infty = \frac{\pi a_0}{2},\quad x = \frac{a_0}{4 A},\quad A = D/c,
+              \quad a_0 = 2\pi a
+
+    Helmbold's interpolation (:func:`fin_lift_slope`) between the ring's two exact limits:
+
+    - short chord (A large), Prandtl's lifting line on the ring: a circulation
+      :math:`\Gamma_0\cos\varphi` sheds a cylindrical vortex sheet of strength
+      :math:`(\Gamma_0/R)\sin\varphi` whose induced normal velocity at the ring is
+      :math:`\Gamma_0\cos\varphi/(4R)` (half its far-wake value, the uniform cross-flow
+      :math:`\Gamma_0/2R` inside the sheet), so :math:`C_{L\alpha} = a_\infty/(1 + a_0/4A)`;
+      at equal circulation the ring has twice the lift of the elliptic wing of span D at the
+      same induced velocity (half its induced drag, Ribner 1947's result);
+    - long chord (A -> 0), slender-body theory: the ring's cross-section has the apparent
+      mass of the circle outside it plus the enclosed fluid, which moves with it,
+      :math:`2\rho\pi R^2`, so the lift :math:`2 q \alpha\, 2\pi R^2` gives
+      :math:`C_{L\alpha} = \pi A`, twice the planar slender wing's :math:`\pi A/2`.
+
+    The form reproduces both (x -> 0: lifting line to first order in 1/A; x -> infinity:
+    :math:`a_\infty/2x = \pi A`) exactly as Helmbold's planar formula does for
+    :math:`\pi A/2` and Prandtl's :math:`a_0/(1 + a_0/\pi A)`; between them it is an
+    interpolation (assumption, as Helmbold's is for planar wings), not a lifting-surface
+    solution.  A converging ring is taken at its mean radius.
+
+    Parameters
+    ----------
+    aspect_ratio : float or array
+        A = D/c [-], > 0
+    efficiency : float
+        a, section slope over 2 pi [-] (0.9, as for the fins: Whicker & Fehlner 1958)
+
+    Returns
+    -------
+    float or array
+        C_Lalpha [1/rad] on the projected area D c
+
+    References
+    ----------
+    Helmbold (1942) (the interpolation, :func:`fin_lift_slope`); Prandtl's lifting line
+    applied to a closed ring and the ring's induced drag, Ribner, H. S. (1947), "The ring
+    airfoil in nonaxial flow", J. Aeronaut. Sci. 14 and NACA TN 1228 (not read: the limit is
+    derived here); Newman, *Marine Hydrodynamics* (1977), sec. 4.13 (the circle's apparent
+    mass pi rho R^2) and sec. 7.8 (slender-body lift from the section's apparent mass);
+    Katz & Plotkin, *Low-Speed Aerodynamics* (2001), sec. 8.1 (lifting line).
+    """
+    ar = np.asarray(aspect_ratio, dtype=float)
+    if np.any(ar <= 0.0):
+        raise ValueError(f"ring_wing_lift_slope needs D/c > 0, got {aspect_ratio}")
+    a0 = 2.0 * math.pi * efficiency
+    a_inf = 0.5 * math.pi * a0
+    x = a0 / (4.0 * ar)
+    out = a_inf / (np.sqrt(1.0 + x * x) + x)
+    return float(out) if out.ndim == 0 else out
+
+
+def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
+                          pressure_ratio: float = 1.0) -> np.ndarray:
+    r"""Lift matrix of a ring wing coaxial with the body x axis (force :math:`-uL\nu`).
+
+    .. math:: L = k\,(c_y c_y^T + c_z c_z^T),\qquad
+              k = \tfrac12\rho\,(2Rc)\,C_{L\alpha}\,\frac{\bar q}{q},\qquad
+              c_e = [e;\ r \times e]
+
+    the ring's lift (:func:`ring_wing_lift_slope`, A = 2R/c) at its quarter chord r on the
+    axis, answering the cross-flow there in sway and in heave alike (an axisymmetric
+    wing), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
+    boundary layer; 1 in the free stream).
+
+    Parameters
+    ----------
+    radius, chord : float
+        R (mean radius of the chord line) and c [m], > 0
+    point : (3,)
+        Quarter-chord point on the ring's axis, relative to the reference point [m]
+    rho : float
+        Fluid density [kg/m^3]
+    pressure_ratio : float
+        q_bar / q [-] in (0, 1]
+
+    Returns
+    -------
+    (6, 6) array
+        [kg/m, kg, kg m]
+
+    References
+    ----------
+    :func:`ring_wing_lift_slope`; :func:`fin_lift_matrix` (the same point-force form);
+    Prestero 2001, sec. 3.6.2.
+    """
+    if radius <= 0.0 or chord <= 0.0:
+        raise ValueError(f"ring_wing_lift_matrix needs R, c > 0, got R = {radius}, c = {chord}")
+    k = 0.5 * rho * 2.0 * radius * chord * ring_wing_lift_slope(2.0 * radius / chord) \
+        * pressure_ratio
+    out = np.zeros((6, 6))
+    for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
+        c = lift_column(e, point)
+        out += k * np.outer(c, c)
+    return out
