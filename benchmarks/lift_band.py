@@ -1,9 +1,9 @@
 """The lift and control uncertainty band measured on the DARPA SUBOFF captive-model data.
 
-stripcoef's lift (static and rotary) and control derivatives of Roddy's configurations 1-5
-(validation.lift.suboff_comparisons: configurations 3, 4, 5 as built, 1 and 2 without the ring
-wing, which is not built (Groves 1989 geometry stored; it lifts in yaw rotation and not in drift:
-docs/validation.md, 'The ring wing'); 6 is left out, its model being configuration 3's)
+stripcoef's lift (static and rotary) and control derivatives of Roddy's configurations 1-6
+(validation.lift.suboff_comparisons: every configuration as built, ring wing No. 1 included in 1, 2
+and 6 as the lift element of stripcoef.assembly.lift.ring_wing_lift; docs/validation.md, 'The ring
+wing')
 against Roddy 1990's Table 4. For each term the error is ln(model/measured); a term whose model
 has the wrong sign, or whose measured value is zero within its uncertainty, has no such error
 and is counted as outside every factor band. The band is sd(ln) = q95(|ln|) / 1.96
@@ -30,8 +30,8 @@ from validation.lift import suboff_comparisons
 ROOT = Path(__file__).resolve().parents[1]
 
 OUT = ROOT / "reference_tables" / "method_errors" / "lift_errors.csv"
-#: configurations whose model is their own geometry (6 is compared with the bare hull's model)
-CONFIGS = (1, 2, 3, 4, 5)
+#: configurations whose model is their own geometry (all six since the ring wing is built)
+CONFIGS = (1, 2, 3, 4, 5, 6)
 
 
 def rows(method: str = "on") -> list[dict]:
