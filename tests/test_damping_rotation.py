@@ -144,18 +144,35 @@ def test_a_bluff_mesh_takes_the_surface_integral_and_keeps_its_translation():
     want = [0.5 * 1000 * 0.5 * (cd[1] * 0.25 ** 4 + cd[2] * 0.25 ** 4),
             0.5 * 1000 * 0.25 * (cd[2] * 0.5 ** 4 + cd[0] * 0.25 ** 4),
             0.5 * 1000 * 0.25 * (cd[0] * 0.25 ** 4 + cd[1] * 0.5 ** 4)]
-    want[0] += info["roll_friction"]          # the skin friction in roll, kept
+    want = np.add(want, info["friction"])      # the skin friction, roll's law on every axis
+    assert info["friction"][0] == pytest.approx(info["roll_friction"], rel=1e-12)
     np.testing.assert_allclose(dq[3:], want, rtol=1e-6)
     # the element coefficients are the translational terms on the box's faces
     np.testing.assert_allclose(dq[:3], 0.5 * 1000 * cd * [0.25, 0.5, 0.5], rtol=1e-9)
 
 
-def test_a_sphere_mesh_keeps_only_friction_in_roll_and_nothing_in_pitch_and_yaw():
+def test_a_sphere_mesh_is_damped_by_friction_alike_about_every_axis():
+    """No pressure drag turns a sphere about its centre: its rotational damping is the skin
+    friction, the same law about every axis (isotropic to the faceting's 1 %), in D_Q and
+    in D_L."""
     model = _mesh_model(trimesh.creation.icosphere(subdivisions=4, radius=0.05))
     dq = np.diag(model.quadratic_damping)
+    dl = np.diag(model.linear_damping)
     info = model.conditions.rotational_drag
     assert dq[3] == pytest.approx(info["roll_friction"], abs=1e-2 * info["strips"][1])
-    assert dq[4] < 1e-3 * info["strips"][1] and dq[5] < 1e-3 * info["strips"][2]
+    np.testing.assert_allclose(dq[4:], dq[3], rtol=1e-2)
+    np.testing.assert_allclose(dl[4:] - dl[3], 0.0, atol=1e-2 * abs(dl[3]) + 1e-15)
+
+
+def test_the_friction_lever_integral_of_a_sphere_is_exact():
+    """:math:`\\int |e_k \\times r|_t^3 dA = 3\\pi^2 R^5 / 4` on a sphere of radius R, about
+    every axis (sin^3 of the polar angle over the surface); 0.5 % on a fine icosphere."""
+    from stripcoef.assembly.damping import rotational_friction_integral
+
+    r = 0.3
+    sphere = trimesh.creation.icosphere(subdivisions=5, radius=r)
+    got = rotational_friction_integral(sphere.vertices, sphere.faces, np.zeros(3))
+    np.testing.assert_allclose(got, 3 * np.pi ** 2 * r ** 5 / 4, rtol=5e-3)
 
 
 @pytest.mark.parametrize("sample", ["remus100", "mares", "spheroid", "capsule"])

@@ -412,6 +412,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
     pts = [tuple(np.reshape(np.asarray(v, float), (-1, 3)) for v in e)
            for e in elems if not isinstance(e[0], str)]
     roll_friction = 0.0     # the skin friction's share of D_Q[3, 3] [kg m^2]
+    roll_friction_lin = 0.0  # and of D_L[3, 3] [kg m^2/s]
     for r, c, n in elems:
         if isinstance(r, str):  # roll-only element: c [kg m^2], local speed ~ R * Omega
             a_hat, b_hat = power_law_split(n)
@@ -419,6 +420,7 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
             d_quad[3, 3] += b_hat * c
             if r == "roll friction":
                 roll_friction += float(b_hat * c)
+                roll_friction_lin += float(a_hat * c * omega)
     rel = np.concatenate([p[0] for p in pts]) - about              # (E, 3)
     c = np.concatenate([p[1] for p in pts])                         # (E, 3) [kg/m]
     a_hat, b_hat = power_law_split(np.concatenate([p[2] for p in pts]))   # (E, 3)
@@ -448,8 +450,10 @@ def damping_matrices(strips: Strips, vehicle, rho, nu, speed, about, regime):
     # --- rotation of a bluff body: the pressure drag of its surface moving into the water
     surface = bluff_surface(vehicle, strips)
     if surface is not None:
-        d_quad = with_rotational_pressure_drag(d_quad, surface, rho, about, cond,
-                                               roll_friction=roll_friction)
+        d_quad, ratio = with_rotational_pressure_drag(d_quad, surface, rho, about, cond,
+                                                      roll_friction=roll_friction)
+        d_lin[4, 4] += roll_friction_lin * ratio[1]   # friction's linear share, as in roll
+        d_lin[5, 5] += roll_friction_lin * ratio[2]
     return clean_roundoff(d_lin), clean_roundoff(d_quad), cond
 
 
@@ -578,6 +582,37 @@ def rotational_pressure_drag(vertices, faces, coefficients, about, rho):
     return out
 
 
+def rotational_friction_integral(vertices, faces, about):
+    r"""The skin friction's lever integral of a closed surface turning about each body axis,
+    :math:`I_k = \int |u_{t,k}|^3\,dA` [m^5], (3,).
+
+    A rotation :math:`\omega e_k` moves an element at r (about ``about``) tangentially at
+    :math:`\omega u_{t,k}`, :math:`u_{t,k} = w - (w\cdot n)n`, :math:`w = e_k\times r`; its
+    shear :math:`dF = -\tfrac12\rho C_f |\omega u_t|\,\omega u_t\,dA` (the flat-plate law
+    applied locally, Hoerner 1965, ch. 2) has the moment
+    :math:`e_k\cdot(r\times dF) = -\tfrac12\rho C_f\,\omega|\omega|\,|u_t|^3 dA`
+    (:math:`e_k\cdot(r\times u_t) = u_t\cdot w = |u_t|^2`). So the friction damping about
+    axis k is :math:`\tfrac12\rho C_f I_k`. Integrated on each triangle by the edge-midpoint
+    rule (exact for quadratics; Dunavant 1985). A sphere of radius R:
+    :math:`I_k = 3\pi^2 R^5/4` about every axis.  ``vertices`` (V, 3) [m], ``faces`` (F, 3).
+    """
+    v = np.asarray(vertices, float) - np.asarray(about, float)
+    tri = v[np.asarray(faces)]                                          # (F, 3, 3)
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    twice = np.linalg.norm(cross, axis=1)
+    keep = twice > 0
+    tri, cross, twice = tri[keep], cross[keep], twice[keep]
+    n = cross / twice[:, None]
+    mids = 0.5 * (tri + np.roll(tri, -1, axis=1))                       # (F, 3 points, 3)
+    out = np.zeros(3)
+    for k in range(3):
+        w = np.cross(np.eye(3)[k], mids)                                # e_k x r
+        ut = w - np.einsum("fpi,fi->fp", w, n)[:, :, None] * n[:, None, :]
+        cube = np.linalg.norm(ut, axis=2) ** 3                          # (F, 3)
+        out[k] = float((cube.mean(axis=1) * 0.5 * twice).sum())
+    return out
+
+
 def is_slender(strips) -> bool:
     r"""Whether the strips' body is slender, :math:`L \ge` SLENDER_RATIO :math:`\max(B, H)`
     (B, H the largest breadth and height of its sections [m];
@@ -624,11 +659,14 @@ def with_rotational_pressure_drag(d_quad, surface, rho, about, cond, *, roll_fri
     """``d_quad`` with its rotational diagonal (K_pp, M_qq, N_rr) from the surface integral
     :func:`rotational_pressure_drag` on ``surface`` (:func:`bluff_surface`), the element
     coefficients from ``d_quad``'s own translational diagonal
-    (:func:`face_drag_coefficients`), K_pp plus the hull's skin friction in roll
-    ``roll_friction`` [kg m^2] (its quadratic share, :func:`damping_matrices`: pressure drag
-    leaves a body of revolution about its axis undamped); the strips' values and the
-    coefficients go to ``cond["rotational_drag"]``.  The couplings and D_L stay from the
-    strips."""
+    (:func:`face_drag_coefficients`), plus the hull's skin friction: ``roll_friction``
+    [kg m^2] (its quadratic share in roll, :func:`damping_matrices`: pressure drag leaves a
+    body of revolution about its axis undamped) in roll, and in pitch and yaw the same
+    friction law on the same surface, ``roll_friction`` I_k / I_x
+    (:func:`rotational_friction_integral`: a sphere is damped alike about every axis).  The
+    strips' values and the coefficients go to ``cond["rotational_drag"]``; returns
+    (D_Q, friction ratios I / I_x (3,)), the ratios for the friction's linear share.  The
+    couplings and D_L's other terms stay from the strips."""
     vertices, faces = surface
     tri = vertices[faces]
     cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -639,10 +677,13 @@ def with_rotational_pressure_drag(d_quad, surface, rho, about, cond, *, roll_fri
     rot = rotational_pressure_drag(vertices, faces, coeffs, about, rho)
     out = np.array(d_quad, float)
     strip = np.diag(out)[3:].copy()
-    out[3, 3], out[4, 4], out[5, 5] = rot[0] + roll_friction, rot[1], rot[2]
+    lever = rotational_friction_integral(vertices, faces, about)
+    ratio = lever / lever[0]
+    out[3, 3], out[4, 4], out[5, 5] = rot + roll_friction * ratio
     cond["rotational_drag"] = {
         "method": "surface pressure drag", "element_cd": [float(v) for v in coeffs],
         "element_cd_rule": how, "strips": [float(v) for v in strip],
         "roll_friction": float(roll_friction),
+        "friction": [float(roll_friction * v) for v in ratio],
         "surface_faces": int(len(faces))}
-    return out
+    return out, ratio
