@@ -79,7 +79,7 @@ def remesh_isotropic(vertices, faces, edge: float, *, feature_angle: float = FEA
 
 
 def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
-                  max_faces: int = MAX_FACES):
+                  max_faces: int | None = None):
     r"""Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
     (:data:`FEATURE_ANGLE`, else :data:`FACET_ANGLE`), each with at least ``min_ratio`` times
     the faces of the one before.  Returns (list of (vertices, faces), the angle [deg]) or
@@ -94,11 +94,12 @@ def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
     glider's 124-face cylinder and the WHOI glider's 208-face hull, whose families
     1068/1932/2190 and 1192/2054/2518 were refused and the panel method fell back to the
     refined CAD faces, 11 and 16 % off)."""
+    cap = MAX_FACES if max_faces is None else max_faces
     for angle in (FEATURE_ANGLE, FACET_ANGLE):
         levels = []
         for h in edges:
             lv = _grown(vertices, faces, h, angle,
-                        min_ratio * len(levels[-1][1]) if levels else 0, max_faces)
+                        min_ratio * len(levels[-1][1]) if levels else 0, cap)
             if lv is None:
                 break
             levels.append(lv)
