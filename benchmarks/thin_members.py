@@ -54,8 +54,38 @@ def naca_section(thickness: float, chord: float, points: int = 48) -> np.ndarray
     return np.vstack([upper, lower]) * chord
 
 
+def wing_panels(thickness: float, chord: float, span: float, faces: int):
+    """A structured panelling of the wing (trimesh.Trimesh, about ``faces`` triangles): the
+    section at cosine-spaced points (dense at the leading and trailing edges, as wing panel
+    methods place them: Katz & Plotkin 2001, sec. 11.1), span stations about as far apart as
+    the mean chordwise spacing, flat tips fanned from their centroids."""
+    import trimesh
+
+    m = max(12, int(round(np.sqrt(faces * chord / span))))
+    sec = naca_section(thickness, chord, m // 2 + 1)
+    n = len(sec)
+    ns = max(2, int(round(span * n / (2.0 * chord))))
+    z = np.linspace(-0.5 * span, 0.5 * span, ns + 1)
+    verts = [np.column_stack([sec[:, 0] - 0.5 * chord, sec[:, 1], np.full(n, zj)]) for zj in z]
+    verts += [[[-0.5 * chord + sec[:, 0].mean(), 0.0, z[0]]],
+              [[-0.5 * chord + sec[:, 0].mean(), 0.0, z[-1]]]]
+    v = np.vstack(verts)
+    i = np.arange(n)
+    f = []
+    for j in range(ns):
+        a, b = j * n + i, j * n + (i + 1) % n
+        f += [np.column_stack([a, b, b + n]), np.column_stack([a, b + n, a + n])]
+    c0, c1 = (ns + 1) * n, (ns + 1) * n + 1
+    f += [np.column_stack([np.full(n, c0), (i + 1) % n, i]),
+          np.column_stack([np.full(n, c1), ns * n + i, ns * n + (i + 1) % n])]
+    mesh = trimesh.Trimesh(v, np.vstack(f), process=True)
+    trimesh.repair.fix_normals(mesh)
+    return mesh
+
+
 def make_member(kind: str, rng):
-    """(trimesh.Trimesh, description) of one drawn thin member, centred at the origin."""
+    """(trimesh.Trimesh, description, the reference's panelling: a function of the face
+    count, or None for the remesh family) of one drawn thin member, centred at the origin."""
     import trimesh
     from shapely.geometry import Polygon
 
@@ -63,37 +93,45 @@ def make_member(kind: str, rng):
         a = rng.uniform(0.1, 0.4)
         b, t = a * rng.uniform(1.0, 4.0), a * rng.uniform(0.01, 0.05)
         return (trimesh.creation.box([a, b, t]),
-                f"plate {a:.3f} x {b:.3f} x {1000 * t:.1f} mm (t/a {t / a:.3f})")
+                f"plate {a:.3f} x {b:.3f} x {1000 * t:.1f} mm (t/a {t / a:.3f})", None)
     c = rng.uniform(0.1, 0.3)
     tau, span = rng.uniform(0.01, 0.05), c * rng.uniform(1.5, 5.0)
     sec = naca_section(tau, c)
     m = trimesh.creation.extrude_polygon(Polygon(sec).buffer(0), span)
     m.apply_translation([-0.5 * c, 0.0, -0.5 * span])
-    return m, f"wing NACA 00{100 * tau:04.1f} chord {c:.3f} span {span:.3f} m"
+    return (m, f"wing NACA 00xx t/c {tau:.3f} chord {c:.3f} span {span:.3f} m",
+            lambda faces: wing_panels(tau, c, span, faces))
 
 
-def bem_reference(mesh, bem_faces, about, max_faces: int = 6000):
-    """Capytaine on one isotropic remesh family of ``mesh`` (:func:`stripcoef.hull.remesh.
-    remesh_family`) at ``bem_faces``, the two finest Richardson-extrapolated as 1/N, and its
-    own grid convergence index plus the extrapolation's step (Roache 1998).  Returns
-    (reference, face counts, its estimated error)."""
+def bem_reference(mesh, bem_faces, about, max_faces: int = 6000, panelling=None):
+    """Capytaine on panellings of ``mesh`` at about ``bem_faces`` faces -- ``panelling(n)``
+    where given (a wing's structured panels), else one isotropic remesh family
+    (:func:`stripcoef.hull.remesh.remesh_family`), else the member's faces bisected -- the two
+    finest Richardson-extrapolated as 1/N, and its own grid convergence index plus the
+    extrapolation's step (Roache 1998).  Returns (reference, face counts, its estimated
+    error)."""
     from stripcoef.bem import bem_added_mass
     from stripcoef.hull.convergence import grid_convergence_index, richardson
     from stripcoef.hull.panels import estimated_error
     from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
-    v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
-    family = remesh_family(v, f, [edge_for_panels(float(mesh.area), n) for n in bem_faces],
-                           max_faces=max_faces)
-    if family is None:
-        raise ValueError("the remesher could not follow the member at the BEM's resolutions")
-    mats, counts = [], []
-    for rv, rf in family[0]:
-        import trimesh
+    import trimesh
 
-        m = trimesh.Trimesh(rv, rf, process=False)
+    from benchmarks.bluff_shapes import refine
+
+    v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
+    family = None if panelling is not None else remesh_family(
+        v, f, [edge_for_panels(float(mesh.area), n) for n in bem_faces], max_faces=max_faces)
+    if panelling is not None:                   # a wing: its structured panellings
+        meshes = [panelling(n) for n in bem_faces]
+    elif family is not None:
+        meshes = [trimesh.Trimesh(rv, rf, process=False) for rv, rf in family[0]]
+    else:
+        meshes = [refine(mesh, n) for n in bem_faces]
+    mats, counts = [], []
+    for m in meshes:
         mats.append(bem_added_mass(m, rho=RHO, reference_point=about, max_faces=max_faces))
-        counts.append(len(rf))
+        counts.append(len(m.faces))
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
     gci, _, _ = grid_convergence_index(mats, counts)
     return ref, counts, estimated_error(mats[-1], ref, gci)
@@ -102,7 +140,7 @@ def bem_reference(mesh, bem_faces, about, max_faces: int = 6000):
 def run_one(kind, rng, bem_faces):
     from stripcoef.hull.panels import NEGLIGIBLE, panel_added_mass
 
-    mesh, what = make_member(kind, rng)
+    mesh, what, panelling = make_member(kind, rng)
     about = np.asarray(mesh.center_mass)
     t0 = time.perf_counter()
     with warnings.catch_warnings():
@@ -110,7 +148,7 @@ def run_one(kind, rng, bem_faces):
         ours, info = panel_added_mass(mesh, rho=RHO, about=about)
     t_model = time.perf_counter() - t0
     t0 = time.perf_counter()
-    ref, counts, ref_err = bem_reference(mesh, bem_faces, about)
+    ref, counts, ref_err = bem_reference(mesh, bem_faces, about, panelling=panelling)
     ref = 0.5 * (ref + ref.T)
     t_bem = time.perf_counter() - t0
     dg = np.abs(np.diag(ref)).copy()
@@ -148,7 +186,11 @@ def main(argv=None) -> int:
     rows = []
     for k in range(args.count):
         kind = ("plate", "wing")[k % 2]
-        r = run_one(kind, rng, args.bem_faces)
+        try:
+            r = run_one(kind, rng, args.bem_faces)
+        except Exception as exc:                # a failure is a result: say it, go on
+            print(f"{k} {kind}: FAILED: {type(exc).__name__}: {exc}", flush=True)
+            continue
         rows.append(r)
         w = int(np.argmax(np.abs(r["diag"])))
         print(f"{k} {r['what']}: panels {'/'.join(map(str, r['levels']))}, worst diagonal "
