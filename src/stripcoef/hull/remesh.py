@@ -21,6 +21,17 @@ install from PyPI as wheels (pymeshlab, gmsh, pyacvd with pyvista/VTK), it reach
 panel count within about 10 % (gmsh's count depends on the geometry's curves: 1.2 to 2x the
 target), in 0.03 to 0.3 s, and needs only ``libGL.so.1`` of the system (Debian ``libgl1``;
 gmsh's wheel needs the GLU, Xft, Xcursor and Xinerama libraries too).
+
+Thin members (issue 32), as measured: a plate's rims and a thruster duct's walls thinner than
+the edge are followed (creases kept; a 0.3 x 0.6 m plate 3 mm thick: normal added mass 0.822,
+0.792, 0.785, 0.777 of rho pi/4 a^2 b at 612 to 4048 panels, against 0.772 at t/a = 0.01 of
+docs/validation.md's plate table; a duct of 5.6 mm walls converges as smoothly).  What the
+remesher cannot follow is a knife edge: where a wing section (a NACA trailing edge, the ECA
+A9's fins) is thinner than the edge, the collapses cut it off, and the remesh loses planform
+area (NACA 00xx wings of t/c 0.012 to 0.036: 14 % at 400 panels, 4.5 % at 3200) more than
+volume; the family is then refused and the panel method falls back to the refined input.  A
+faceted body (a 30-sided cylinder) is followed at :data:`FACET_ANGLE`, where the facets' creases
+hold the face count: :func:`remesh_family` then shortens a level's edge until it refines.
 """
 
 from __future__ import annotations
