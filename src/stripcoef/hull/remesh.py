@@ -21,6 +21,17 @@ install from PyPI as wheels (pymeshlab, gmsh, pyacvd with pyvista/VTK), it reach
 panel count within about 10 % (gmsh's count depends on the geometry's curves: 1.2 to 2x the
 target), in 0.03 to 0.3 s, and needs only ``libGL.so.1`` of the system (Debian ``libgl1``;
 gmsh's wheel needs the GLU, Xft, Xcursor and Xinerama libraries too).
+
+Thin members (issue 32), as measured: a plate's rims and a thruster duct's walls thinner than
+the edge are followed (creases kept; a 0.3 x 0.6 m plate 3 mm thick: normal added mass 0.822,
+0.792, 0.785, 0.777 of rho pi/4 a^2 b at 612 to 4048 panels, against 0.772 at t/a = 0.01 of
+docs/validation.md's plate table; a duct of 5.6 mm walls converges as smoothly).  What the
+remesher cannot follow is a knife edge: where a wing section (a NACA trailing edge, the ECA
+A9's fins) is thinner than the edge, the collapses cut it off, and the remesh loses planform
+area (NACA 00xx wings of t/c 0.012 to 0.036: 14 % at 400 panels, 4.5 % at 3200) more than
+volume; the family is then refused and the panel method falls back to the refined input.  A
+faceted body (a 30-sided cylinder) is followed at :data:`FACET_ANGLE`, where the facets' creases
+hold the face count: :func:`remesh_family` then shortens a level's edge until it refines.
 """
 
 from __future__ import annotations
@@ -40,6 +51,13 @@ ITERATIONS = 10
 #: Largest relative change of the enclosed volume a remesh may make [-] before it is refused
 #: (the surface was not followed: members thinner than the edge collapsed).
 VOLUME_TOLERANCE = 0.02
+#: Factor by which :func:`remesh_family` shortens a level's edge while the level does not
+#: refine the one before (2^(1/4): a quarter of a panel-count doubling) [-].
+EDGE_STEP = 2.0 ** 0.25
+#: Most shortenings of one level's edge (4 halve it: four times the panels) [-].
+GROWTH_TRIES = 4
+#: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
+MAX_FACES = 6000
 
 
 def available() -> bool:
@@ -71,20 +89,46 @@ def remesh_isotropic(vertices, faces, edge: float, *, feature_angle: float = FEA
     return None
 
 
-def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25):
-    """Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
+def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
+                  max_faces: int | None = None):
+    r"""Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
     (:data:`FEATURE_ANGLE`, else :data:`FACET_ANGLE`), each with at least ``min_ratio`` times
     the faces of the one before.  Returns (list of (vertices, faces), the angle [deg]) or
-    ``None``."""
+    ``None``.
+
+    A level whose remesh does not reach ``min_ratio`` times the faces of the one before (the
+    creases of a faceted body -- a 30-sided cylinder kept as a polyhedron at
+    :data:`FACET_ANGLE` -- hold the face count near the creases' own until the edge is shorter
+    than the facets) is remeshed at edges shorter by :data:`EDGE_STEP` until it does, at most
+    :data:`GROWTH_TRIES` times and within ``max_faces``: the family refines, each level an
+    isotropic remesh of the same surface, at more faces than asked (issue 32: the Slocum
+    glider's 124-face cylinder and the WHOI glider's 208-face hull, whose families
+    1068/1932/2190 and 1192/2054/2518 were refused and the panel method fell back to the
+    refined CAD faces, 11 and 16 % off)."""
+    cap = MAX_FACES if max_faces is None else max_faces
     for angle in (FEATURE_ANGLE, FACET_ANGLE):
         levels = []
         for h in edges:
-            lv = _remesh_once(vertices, faces, h, angle, ITERATIONS)
-            if lv is None or (levels and len(lv[1]) < min_ratio * len(levels[-1][1])):
+            lv = _grown(vertices, faces, h, angle,
+                        min_ratio * len(levels[-1][1]) if levels else 0, cap)
+            if lv is None:
                 break
             levels.append(lv)
         else:
             return levels, angle
+    return None
+
+
+def _grown(vertices, faces, edge, angle, at_least, max_faces):
+    """The remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
+    ``at_least`` faces; ``None`` if the volume changes, or it exceeds ``max_faces``."""
+    for _ in range(GROWTH_TRIES + 1):
+        lv = _remesh_once(vertices, faces, edge, angle, ITERATIONS)
+        if lv is None or len(lv[1]) > max_faces:
+            return None
+        if len(lv[1]) >= at_least:
+            return lv
+        edge /= EDGE_STEP
     return None
 
 
