@@ -44,6 +44,19 @@ def remus():
 
 
 @pytest.fixture(scope="module")
+def remus_on(tmp_path_factory):
+    """REMUS under Hoerner's rule (``body_lift: on``): Prestero's own body lift and isolated
+    fins in the free stream."""
+    data = yaml.safe_load(REMUS.read_text())
+    data["body_lift"] = "on"
+    path = tmp_path_factory.mktemp("remus_on") / "remus_on.yaml"
+    path.write_text(yaml.safe_dump(data))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        return estimate(path)
+
+
+@pytest.fixture(scope="module")
 def remus_neutral(remus):
     """REMUS made neutrally buoyant, without propeller torque: a horizontal turn only."""
     mass = remus.density * remus.volume
@@ -138,9 +151,13 @@ def test_cylindrical_root():
 
 
 def test_fin_on_the_middle_body_gets_the_hull_interference(tmp_path):
-    """A fin on REMUS's cylinder gets (1 + R/s)^2 on its lift; the tail fins on the tapering
-    cone keep the isolated fin (and so REMUS's model is unchanged)."""
+    """Under Hoerner's rule (``body_lift: on``) a fin on REMUS's cylinder gets (1 + R/s)^2 on
+    its lift; the tail fins on the tapering cone keep the isolated fin (and so REMUS's model
+    under that rule is unchanged)."""
     data = yaml.safe_load(REMUS.read_text())
+    data["body_lift"] = "on"
+    plain_path = tmp_path / "remus_on.yaml"
+    plain_path.write_text(yaml.safe_dump(data))
     r, span, chord = 0.0955, 0.07, 0.1
     data["appendages"].append({"name": "sail", "type": "fin", "center": [0.1, 0.0, -(r + span / 2)],
                                "span_axis": "z", "span": span, "chord": chord, "thickness": 0.01})
@@ -148,7 +165,7 @@ def test_fin_on_the_middle_body_gets_the_hull_interference(tmp_path):
     path.write_text(yaml.safe_dump(data))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
-        plain, sail = estimate(REMUS), estimate(path)
+        plain, sail = estimate(plain_path), estimate(path)
     info = {f["name"]: f for f in sail.conditions["lift"]["fin_lift"]}
     k = (1 + r / (r + span)) ** 2
     assert info["sail"]["interference"] == pytest.approx(k, rel=1e-9)
@@ -174,7 +191,8 @@ def test_remus_lift_signs_and_symmetry(remus):
     assert c["Y_uudr"] == pytest.approx(-c["Z_uuds"])
     assert remus.thrusters[0].torque_ratio == pytest.approx(-0.1407)
     body = remus.conditions["lift"]["body_lift"]
-    assert body["center_of_pressure_x"] < 0.0             # 0.65 l aft of the nose
+    assert body["method"] == "slender"                    # the default rule
+    assert body["separation_x"] < 0.0                     # Hopkins's x_0: on the afterbody
 
 
 def test_lift_and_control_move_with_the_reference_point(remus):
@@ -261,12 +279,13 @@ def test_control_lever_against_prestero(remus):
     assert ref.agrees(row, -c["N_uudr"] / c["Y_uudr"])
 
 
-def test_fin_pair_is_the_formula_with_prestero_inputs(remus):
+def test_fin_pair_is_the_formula_with_prestero_inputs(remus_on):
     # rho c_La S for the pair (two fins of S each, 1/2 rho S c_La per fin) with his rho, S_fin and
-    # AR_e; c_La from Helmbold's slope (with his lifting-line c_La = 3.12 it is his 21.37 kg/m)
+    # AR_e; c_La from Helmbold's slope (with his lifting-line c_La = 3.12 it is his 21.37 kg/m).
+    # Isolated fins in the free stream: Prestero's rule, body_lift: on
     rho, s_fin, are = (ref.reference_value("prestero2001", k)["value"]
                        for k in ("rho", "fin.S", "fin.ARe"))
-    assert remus.coefficients()["Y_uudr"] == pytest.approx(
+    assert remus_on.coefficients()["Y_uudr"] == pytest.approx(
         rho * s_fin * float(fin_lift_slope(are)), rel=0.002)
     row = ref.reference_value("prestero2001", "control.formula_rho_cLa_S")
     assert rho * s_fin * float(lifting_line_slope(are)) == pytest.approx(row["value"], rel=0.002)
@@ -303,9 +322,13 @@ def test_level_trim_balances_and_a_neutral_vehicle_needs_none(remus, remus_neutr
     assert f.nu[2] == pytest.approx(1.5 * math.tan(f.pitch))     # level path
     assert f.pitch < 0.0          # buoyant: nose down
     g = level_trim(remus_neutral, 1.5)
-    # a neutral vehicle needs (almost) no trim: what is left, 1e-4 rad, comes from the
-    # fore-aft asymmetry of the hull's strip damping (D couples surge into pitch)
-    assert abs(g.pitch) < 3e-4 and abs(g.deflections["elevator"]) < 3e-4
+    # a neutral vehicle needs (almost) no trim: what is left, 1e-4 rad of pitch, comes from
+    # the fore-aft asymmetry of the hull's strip damping (D couples surge into pitch), and
+    # the elevator's moment is no more than that coupling's moment at zero pitch
+    assert abs(g.pitch) < 3e-4
+    coupling = required_force(remus_neutral, np.array([1.5, 0, 0, 0, 0, 0.0]), np.zeros(6))[4]
+    elevator_moment = remus_neutral.control_force(1.5, [0.0, g.deflections["elevator"]])[4]
+    assert abs(elevator_moment) <= abs(coupling)
 
 
 def test_dive_rate_kinematics(remus_neutral):
@@ -537,9 +560,12 @@ def test_limits_plot_of_a_steered_vehicle(tmp_path, capsys):
 def test_lift_scales_with_size(tmp_path, remus):
     """Doubling every length multiplies L and b by 2^(2 + number of rotation indices)
     (L = 1/2 rho S c_La c c^T: S ~ l^2, each moment arm ~ l; c_La and c_ydb depend only on
-    ratios) - a dimensional property of the formulas."""
+    ratios) - a dimensional property of the formulas. The default (slender-body) rule puts
+    the fins in the hull's boundary layer, a function of the Reynolds number U l / nu, so the
+    reference speed is divided by k to keep it."""
     d = _remus_data()
     k = 2.0
+    d["reference_speed"] = d["reference_speed"] / k
     for seg in d["hull"]["profile"]:
         seg["x"] = [k * v for v in seg["x"]]
         seg["radius"] = k * seg["radius"]

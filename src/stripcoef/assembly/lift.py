@@ -52,7 +52,7 @@ from stripcoef.model import ControlSurface
 SLENDER_STATIONS = 2001
 
 #: Fractions of a fin's span (root to tip) at which the body's axial potential flow is averaged
-#: for its dynamic pressure under ``body_lift: slender`` (midpoint rule, 8 strips; assumption:
+#: for its dynamic pressure under the slender-body rule (midpoint rule, 8 strips; assumption:
 #: on SUBOFF's stern planes 8 and 64 strips differ by < 0.1 %) [-].
 STREAM_SPAN_POINTS = tuple((i + 0.5) / 8 for i in range(8))
 
@@ -69,7 +69,7 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     (:func:`~stripcoef.hull.lift.interference_factor`); k c = 1/2 rho S c_La c, the force per
     u^2 per rad of deflection [kg/m, kg] (Prestero 2001, sec. 3.7).
 
-    ``slender`` (``body_lift: slender``; a dict with the nose x, the separation station x_0,
+    ``slender`` (the slender-body rule, ``body_lift: auto`` or ``slender``; a dict with the nose x, the separation station x_0,
     the hull axis, speed and viscosity): the slender-body factors of Pitts, Nielsen & Kaattari
     (1957) at tau = R/s of the root's mid chord on any round hull
     (:func:`~stripcoef.hull.lift.wing_body_factors`), the fin's own force at its quarter chord
@@ -161,7 +161,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
         Centre of buoyancy [m], where the body lift's sideslip is measured (default ``ref``)
     speed, viscosity : float, optional
         Reference speed [m/s] and kinematic viscosity [m^2/s] of the fins' boundary-layer
-        reduction under ``body_lift: slender`` (default: the vehicle's reference speed and
+        reduction under the slender-body rule (default: the vehicle's reference speed and
         fluid)
 
     Returns
@@ -220,10 +220,11 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
 
 
 def _stern_flow(vehicle, body, speed, viscosity):
-    """The hull's flow that the fins (and a ring wing) sit in under ``body_lift: slender``:
-    a dict with the nose x, Hopkins's separation station, the sections (s from the nose, S),
-    the hull axis, speed, viscosity and Head's boundary layer (:func:`_hull_boundary_layer`);
-    None under the other rules (the fins then see the free stream)."""
+    """The hull's flow that the fins (and a ring wing) sit in under the slender-body rule
+    (``body_lift: auto`` or ``slender``): a dict with the nose x, Hopkins's separation station,
+    the sections (s from the nose, S), the hull axis, speed, viscosity and Head's boundary
+    layer (:func:`_hull_boundary_layer`); None under Hoerner's rule (``on``) or without body
+    lift (the fins then see the free stream)."""
     if body is None or body[1].get("method") != "slender":
         return None
     hull = vehicle.hull
@@ -257,11 +258,11 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
       encloses the apparent mass of the ring alone (the enclosed fluid and body move as one,
       :func:`~stripcoef.hull.lift.ring_wing_lift_slope`), so whatever the ring carries over
       onto the body the pair lifts as the isolated ring: interference factor 1. The body's
-      upwash at the ring is not added: behind Hopkins's separation station (``body_lift:
-      slender``) there is none, as for the fins there (:func:`_panel_terms`); ahead of it
+      upwash at the ring is not added: behind Hopkins's separation station (the
+      slender-body rule) there is none, as for the fins there (:func:`_panel_terms`); ahead of it
       (``info["body_upwash"]``) it is left out (assumption). The struts inside the ring add
       nothing (the same enclosed section);
-    - **the stern flow** (``body_lift: slender`` only, as for the fins): the dynamic pressure
+    - **the stern flow** (the slender-body rule only, as for the fins): the dynamic pressure
       of the hull's boundary layer at the ring's mid chord, :math:`(y/\delta)^{2p}` at the
       ring's height y = R - r_hull above the surface (Head's layer, :func:`_hull_boundary_layer`;
       1 above the layer), times the body's axial potential flow :math:`(u/U)^2` there
@@ -342,16 +343,22 @@ def _round(hull) -> bool:
 
 
 def _body_lift(vehicle, rho: float, ref, center):
-    """Body lift of a slender hull of revolution (Hoerner & Borst 1985; Prestero 2001 sec. 3.6.1).
+    """Body lift of a slender hull of revolution.
 
-    ``body_lift: auto`` (default) includes it when the vehicle has fins or control surfaces
-    and a circular hull with l/d >= :data:`MIN_SLENDERNESS`; ``on`` asks for it (a hull that
-    is not slender and round is then an error), ``off`` leaves it out; ``slender`` asks for
-    the slender-body lift ahead of Hopkins's separation station instead of Hoerner's point
-    force (:func:`~stripcoef.hull.lift.slender_body_lift_matrix`: it answers the local
-    cross-flow, so a yaw or pitch rate gives rotary terms). Returns
-    (L [kg/m, kg, kg m], info) or None; under ``slender`` also (s from the nose [m], S(s)
-    [m^2]), the sections the fins' stern flow is computed from.
+    Two rules: the slender-body lift ahead of Hopkins's separation station (Hopkins 1951, NACA
+    RM A51C14; USAF DATCOM sec. 4.2.1.1; :func:`~stripcoef.hull.lift.slender_body_lift_matrix`:
+    it answers the local cross-flow, so a yaw or pitch rate gives rotary terms), with the fins
+    in the hull's stern flow (:func:`_stern_flow`), or Hoerner's point force at 0.65 l
+    answering the sideslip at the centre of buoyancy (Hoerner & Borst 1985, ch. 19; Prestero
+    2001 sec. 3.6.1) with isolated fins in the free stream. ``body_lift: auto`` (default)
+    takes the slender-body rule when the vehicle has fins or control surfaces and a circular
+    hull with l/d >= :data:`MIN_SLENDERNESS`, and no body lift otherwise; ``slender`` asks for
+    the slender-body rule and ``on`` for Hoerner's (a hull that is not slender and round is
+    then an error); ``off`` leaves body lift out. ``auto`` follows the slender-body rule
+    because on the measured SUBOFF captive-model data (Roddy 1990, Table 4) it is the better
+    one (docs/validation.md, 'Every configuration and derivative'). Returns
+    (L [kg/m, kg, kg m], info) or None; under the slender-body rule also (s from the nose [m],
+    S(s) [m^2]), the sections the fins' stern flow is computed from.
     """
     hull = vehicle.hull
     mode = vehicle.body_lift
@@ -369,7 +376,7 @@ def _body_lift(vehicle, rho: float, ref, center):
                              key="body_lift", value=f"l/d = {length / d:.3g}",
                              expected=f"a hull 'profile' (circular) with l/d >= {MIN_SLENDERNESS:g}")
         return None
-    if mode == "slender":
+    if mode in ("auto", "slender"):
         xs = np.linspace(lo, hi, SLENDER_STATIONS)
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         x0 = separation_station(xs, area)
