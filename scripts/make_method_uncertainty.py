@@ -77,30 +77,30 @@ ASSUMED_DRAG = {
     "revolution": (0.15, 0.25), "finned": (0.15, 0.25), "bluff": (0.20, 0.30),
     "open_frame": (0.20, 0.30)}
 #: lift derivatives: measured on the DARPA SUBOFF captive-model data (Roddy 1990 Table 4,
-#: configurations 1-5: benchmarks/lift_band.py writes their ln(model/measured) here)
+#: configurations 1-6: benchmarks/lift_band.py writes their ln(model/measured) here)
 LIFT_ERRORS = ROOT / "reference_tables" / "method_errors" / "lift_errors.csv"
-#: control derivatives: an assumed sd(ln). On SUBOFF the four control derivatives are within
-#: 16 % (sd(ln) 0.075), but only because two errors cancel: one stern plane's own lift is 47-69 %
-#: above the force measured on its stock, and the lift it carries onto the afterbody (the
-#: whole-body force is 1.53 times the stocks') is not modelled (docs/validation.md). A band
-#: that narrow would hold for this tail only; the assumed spread spans Prestero 2001's REMUS
-#: table (factors 0.44-3.8, |ln| up to 1.32) as before.
+#: control derivatives: an assumed sd(ln). On SUBOFF the default (slender-body) rule has the four
+#: control derivatives within 11 % (sd(ln) 0.060) and each stern plane's own force within 20 % of
+#: the force measured on its stock, the carry-over onto the afterbody from slender-body theory
+#: (docs/validation.md); but four terms of one tail measure no spread for other tails, and
+#: Prestero 2001's semi-empirical REMUS table differs from the model by larger factors, so the
+#: assumed spread is kept.
 ASSUMED_LIFT = 0.75
 CONTROL_REASON = ("not calibrated: on Roddy 1990's SUBOFF the four control derivatives (Y'_dr, "
-                  "N'_dr, Z'_ds, M'_ds) are within 16 % (sd(ln) 0.075, benchmarks/lift_band.py), but "
-                  "only because the stern plane's own lift is 47-69 % above its measured stock "
-                  "force and the carry-over onto the afterbody is missing (docs/validation.md); "
-                  "against Prestero 2001's semi-empirical REMUS 100 values the model's control "
-                  "derivatives (Y_uudr ... M_uuds) differ by factors 0.44-3.8 (|ln| up to 1.32); an "
-                  "assumed sd(ln) that spans them, one factor for all these terms: excluded from "
-                  "the coverage check")
+                  "N'_dr, Z'_ds, M'_ds) are within 11 % (sd(ln) 0.060, benchmarks/lift_band.py) "
+                  "and each stern plane's own force within 20 % of its measured stock force "
+                  "(docs/validation.md), but four terms of one tail measure no spread for other "
+                  "tails; against Prestero 2001's semi-empirical REMUS 100 values the model's "
+                  "control derivatives (Y_uudr ... M_uuds) differ by larger factors; an assumed "
+                  "sd(ln) that spans them, one factor for all these terms: excluded from the "
+                  "coverage check")
 
 
 #: classes whose lift the SUBOFF data measure (a slender body of revolution, with or without
 #: fins); other classes keep the assumed spread
 LIFT_MEASURED_CLASSES = ("revolution", "finned")
 LIFT_ELSEWHERE = ("not calibrated: lift is measured on a slender body of revolution only (Roddy "
-                  "1990's SUBOFF, sd(ln) 0.73 for the revolution and finned classes, "
+                  "1990's SUBOFF, sd(ln) 0.59 for the revolution and finned classes, "
                   "benchmarks/lift_band.py); for this class an assumed sd(ln) of the same size, "
                   "one factor for the lift matrix: excluded from the coverage check")
 
