@@ -540,7 +540,18 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3):
 FAMILIES = ("auto", "remesh", "input")
 
 
-def _solve_level(pv, pf, scale, rho, about, near_factor):
+def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
+    """(panels, 6x6 added mass) of one level; with ``mirrors`` the part of the panelling on
+    the planes' positive side and its images (:mod:`stripcoef.hull.mirror_panels`; panels:
+    those of the whole mirrored panelling)."""
+    if mirrors:
+        from stripcoef.hull.mirror_panels import mirror_half, solve_mirrored
+
+        half = mirror_half(pv, pf, mirrors, about)
+        if half is not None:
+            hv, hf = half
+            return (2 ** len(mirrors)) * len(hf), solve_mirrored(
+                hv[hf], mirrors, rho=rho, about=about, near_factor=near_factor)
     ptri = pv[pf]
     keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
                           axis=1) > 1e-12 * scale ** 2
@@ -551,7 +562,7 @@ def _solve_level(pv, pf, scale, rho, about, near_factor):
 def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = DEFAULT_PANELS,
                      extrapolate: bool = True, near_factor: float = NEAR_FACTOR,
                      source: str = "", family: str = "auto", tolerance: float | None = None,
-                     max_panels: int | None = None) -> tuple[np.ndarray, dict]:
+                     max_panels: int | None = None, mirrors=()) -> tuple[np.ndarray, dict]:
     r"""6x6 added mass of a closed body in unbounded fluid by the 3D panel method.
 
     .. math:: A = A_1 + \frac{A_1 - A_2}{r_{21}^2 - 1},\qquad
@@ -593,6 +604,12 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         Relative error [-] the refinement aims at (default :data:`ERROR_TOLERANCE`).
     max_panels : int
         Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`).
+    mirrors : iterable of str
+        Mirror planes of the body through ``about`` (``x``, ``y``, ``z``: the coordinate each
+        reverses; :func:`stripcoef.assembly.symmetry.strips_mirror_symmetries`): each level
+        is solved on the part of its panelling on the planes' positive side with image panels
+        (:mod:`stripcoef.hull.mirror_panels`: 2^k solves of N/2^k unknowns, the couplings the
+        planes forbid exactly zero); the panel counts are the whole mirrored panelling's.
 
     Returns
     -------
@@ -617,6 +634,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     if family not in FAMILIES:
         raise InputError("unknown panel family", key="family", value=family,
                          expected=" or ".join(FAMILIES))
+    planes = tuple(sorted(set(mirrors)))
+    if not set(planes) <= {"x", "y", "z"}:
+        raise InputError("unknown mirror plane", key="mirrors", value=",".join(planes),
+                         expected="x, y or z (the coordinate the reflection reverses)")
     tol = ERROR_TOLERANCE if tolerance is None else float(tolerance)
     cap = min(MAX_PANELS, 2 * panels) if max_panels is None else min(MAX_PANELS, max_panels)
     if len(f) > MAX_INPUT_FACES:
@@ -641,7 +662,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="outward normals (load_mesh orients them)")
     if not extrapolate:
         lv = coarsen(v, f, panels) if len(f) > panels else refine(v, f, panels)
-        n, a = _solve_level(*lv, scale, rho, about, near_factor)
+        n, a = _solve_level(*lv, scale, rho, about, near_factor, planes)
         asym = float(np.abs(a - a.T).max() / np.abs(a).max())
         return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
                                  "order": None, "safety": None, "family": "input",
@@ -658,7 +679,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         levels = panel_levels(v, f, panels, where)
     counts, mats, nominal = [], [], panels
     for pv, pf in levels:
-        n, a = _solve_level(pv, pf, scale, rho, about, near_factor)
+        n, a = _solve_level(pv, pf, scale, rho, about, near_factor, planes)
         counts.append(n)
         mats.append(a)
     while True:
@@ -679,7 +700,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         if lv is None or len(lv[1]) < 1.25 * len(levels[-1][1]):
             break
         levels.append(lv)
-        n, m = _solve_level(*lv, scale, rho, about, near_factor)
+        n, m = _solve_level(*lv, scale, rho, about, near_factor, planes)
         counts.append(n)
         mats.append(m)
         nominal = nxt
