@@ -603,7 +603,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     tolerance : float
         Relative error [-] the refinement aims at (default :data:`ERROR_TOLERANCE`).
     max_panels : int
-        Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`).
+        Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`),
+        times :math:`2^{k/2}` with k ``mirrors`` (the same influence-matrix work).
     mirrors : iterable of str
         Mirror planes of the body through ``about`` (``x``, ``y``, ``z``: the coordinate each
         reverses; :func:`stripcoef.assembly.symmetry.strips_mirror_symmetries`): each level
@@ -640,6 +641,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="x, y or z (the coordinate the reflection reverses)")
     tol = ERROR_TOLERANCE if tolerance is None else float(tolerance)
     cap = min(MAX_PANELS, 2 * panels) if max_panels is None else min(MAX_PANELS, max_panels)
+    # with k mirror planes a level of N panels is 2^k influence blocks of (N/2^k)^2 pairs and
+    # 2^k LUs of N/2^k unknowns: the refinement goes on while that is at most the influence
+    # matrix of one full solve of ``cap`` panels (N <= cap 2^(k/2); the LUs are then 2^(k/2)
+    # times cheaper than that solve's)
+    cap = int(cap * np.sqrt(2.0 ** len(planes)))
     if len(f) > MAX_INPUT_FACES:
         raise InputError("mesh too large for the panel method's time budget", file=where,
                          key="mesh", value=f"{len(f)} faces",
