@@ -4,7 +4,7 @@ A body that a reflection :math:`g` (through the plane of one coordinate about th
 point, :mod:`stripcoef.assembly.symmetry`) maps onto itself has, for each mode j of the
 radiation problem of :mod:`stripcoef.hull.panels`, a potential of definite parity: the
 generalised normal :math:`n_j` keeps or changes its sign under g (:math:`P_j(g) = \pm1`,
-:data:`stripcoef.assembly.symmetry.PARITY`), and so does :math:`\phi_j`,
+:data:`PARITY`), and so does :math:`\phi_j`,
 :math:`\phi_j(g x) = P_j(g)\,\phi_j(x)`.  With the group G of the k planes' reflections
 (:math:`|G| = 2^k`) the panels are those of one :math:`1/|G|` of the surface (:func:`mirror_half`)
 and their images, and the integral equation collocated on that part alone reads, for each
@@ -38,8 +38,17 @@ import itertools
 
 import numpy as np
 
-from stripcoef.hull.panels import (DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _FOUR_PI,
-                                   _frames, generalised_normals, triangle_integrals)
+from stripcoef.hull.panel_kernels import (DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR,
+                                          _FOUR_PI, _frames, generalised_normals,
+                                          triangle_integrals)
+
+#: Parity of (u, v, w, p, q, r), and of the generalised normals and potentials of the six
+#: modes, under the reflection that reverses each coordinate through the reference point:
+#: velocities are vectors, angular velocities pseudovectors (the table and its derivation:
+#: :mod:`stripcoef.assembly.symmetry`; Newman 1977, sec. 4.15) [-].
+PARITY = {"y": np.array([1, -1, 1, -1, 1, -1]),
+          "z": np.array([1, 1, -1, -1, -1, 1]),
+          "x": np.array([-1, 1, 1, 1, -1, -1])}
 
 #: The coordinate each reflection reverses.
 AXIS = {"x": 0, "y": 1, "z": 2}
@@ -52,8 +61,6 @@ SNAP_FRACTION = 0.25
 
 
 def _parity(planes):
-    from stripcoef.assembly.symmetry import PARITY
-
     return np.array([PARITY[p] for p in planes]).reshape(len(planes), 6)
 
 
