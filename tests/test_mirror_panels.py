@@ -100,11 +100,14 @@ def test_mirror_half_cuts_at_the_plane_without_slivers():
 
 
 def test_panel_added_mass_with_mirrors_zeroes_forbidden_couplings_and_agrees():
+    pytest.importorskip("pymeshlab")
     body = trimesh.creation.box(extents=[0.46, 0.58, 0.25])
-    full, info_full = panel_added_mass(body, rho=RHO, panels=400, family="input")
-    half, info = panel_added_mass(body, rho=RHO, panels=400, family="input",
+    full, info_full = panel_added_mass(body, rho=RHO, panels=400, family="remesh",
+                                       max_panels=400)
+    half, info = panel_added_mass(body, rho=RHO, panels=400, family="remesh", max_panels=400,
                                   mirrors=("x", "y", "z"))
     assert np.all(half[~allowed_couplings(("x", "y", "z"))] == 0.0)
     # the same surface, panelled differently: within the two estimated errors
     assert np.all(np.abs(half - full) <= info["error"] + info_full["error"] + 1e-12)
-    assert info["panels"][-1] == pytest.approx(info_full["panels"][-1], rel=0.25)
+    # the part's levels are remeshed at the whole body's edges: about as many panels
+    assert info["panels"][0] == pytest.approx(info_full["panels"][0], rel=0.3)

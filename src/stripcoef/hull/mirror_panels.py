@@ -273,3 +273,50 @@ def solve_mirrored(tri, planes, *, rho: float, about=(0.0, 0.0, 0.0),
         out[np.ix_(modes, modes)] = -rho * len(elements) * (nrm[:, modes]
                                                             * area[:, None]).T @ phi
     return out
+
+
+def capped_part(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
+    """The closed body on the positive side of each of ``planes`` through ``about`` [m]: the
+    surface cut there and each cut closed by a flat cap in the plane
+    (trimesh.intersections.slice_mesh_plane with ``cap``), to be remeshed as a whole (the cap's
+    rim a crease, so that the remesher keeps vertices on the plane) and its caps dropped by
+    :func:`drop_caps`.  Returns (vertices [m], faces) or ``None`` when the cut fails."""
+    import trimesh
+    from trimesh.intersections import slice_mesh_plane
+
+    mesh = trimesh.Trimesh(np.asarray(vertices, float), np.asarray(faces, np.int64),
+                           process=False)
+    p0 = np.asarray(about, float)
+    for p in planes:
+        normal = np.zeros(3)
+        normal[AXIS[p]] = 1.0
+        try:
+            mesh = slice_mesh_plane(mesh, normal, p0, cap=True)
+        except Exception:          # a cap that cannot be triangulated: no part, full solve
+            return None
+        if len(mesh.faces) < 4 or not mesh.is_watertight:
+            return None
+    return np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
+
+
+def drop_caps(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
+    """The remeshed :func:`capped_part` without its caps: the faces whose three vertices lie in
+    one of ``planes`` (within 1e-9 of the body's size; those vertices put exactly on it).
+    Returns (vertices [m], faces) of the open part, or ``None`` when nothing is left."""
+    v = np.array(vertices, float)
+    f = np.asarray(faces, np.int64)
+    p0 = np.asarray(about, float)
+    scale = float(np.ptp(v, axis=0).max())
+    cap = np.zeros(len(f), bool)
+    for p in planes:
+        a = AXIS[p]
+        on = np.abs(v[:, a] - p0[a]) <= 1e-9 * scale
+        v[on, a] = p0[a]
+        cap |= on[f].all(axis=1)
+    f = f[~cap]
+    if len(f) == 0:
+        return None
+    used = np.unique(f)
+    remap = np.full(len(v), -1, np.int64)
+    remap[used] = np.arange(len(used))
+    return v[used], remap[f]

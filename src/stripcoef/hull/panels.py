@@ -33,9 +33,9 @@ Wilton et al. 1984, IEEE Trans. Antennas Propag. 32(3), eq. for :math:`\int 1/R\
 van Oosterom & Strackee 1983, IEEE Trans. Biomed. Eng. 30(2), the solid angle of a triangle);
 pairs within :data:`MID_FACTOR` diameters a three-point rule, farther ones the one-point rule.  The self term is analytic (the same formulas, D = 0).
 
-A body with mirror planes through the reference point (``mirrors``) is solved on the part of
-each panelling on the planes' positive side with image panels
-(:mod:`stripcoef.hull.mirror_panels`): 2^k solves of N/2^k unknowns for k planes, the
+A body with mirror planes through the reference point (``mirrors``) and the remesher is solved
+on the part on the planes' positive side (cut, capped, remeshed, its caps dropped) with image
+panels (:mod:`stripcoef.hull.mirror_panels`): 2^k solves of N/2^k unknowns for k planes, the
 couplings the planes forbid exactly zero.
 
 Constant panels converge as 1/N (error ~ h^2, N panels).  :func:`panel_added_mass` solves two
@@ -64,7 +64,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.hull.mirror_panels import mirror_half, solve_mirrored
+from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -334,17 +334,19 @@ def _check_closed(faces, where):
                                   "load_mesh, which repairs what it can)")
 
 
-def remeshed_levels(vertices, faces, panels: int, count: int = 3):
+def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
     r"""``count`` isotropic remeshes of the mesh (:func:`stripcoef.hull.remesh.remesh_family`)
     at :math:`N_k = N/2^{count-1-k}` panels (N = ``panels``, coarse to fine: the edge shrinks by
     :math:`\sqrt2` a level) and their crease angle [deg], or ``None`` when the remesher is not
     installed or refuses one.  One family of uniform panellings of the same surface, whatever
-    the input's tessellation."""
+    the input's tessellation.  ``area``: the surface [m^2] whose N panels set the edges
+    (default the mesh's own; a :func:`~stripcoef.hull.mirror_panels.capped_part` is
+    remeshed at the whole body's edges)."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
         return None
-    area = _area(vertices, faces)
+    area = _area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
     return remesh.remesh_family(vertices, faces, edges)
@@ -356,15 +358,14 @@ FAMILIES = ("auto", "remesh", "input")
 
 
 def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
-    """(panels, 6x6 added mass) of one level; with ``mirrors`` the part of the panelling on
-    the planes' positive side and its images (:mod:`stripcoef.hull.mirror_panels`; panels:
-    those of the whole mirrored panelling)."""
+    """(panels, 6x6 added mass) of one level; with ``mirrors`` the level is a remeshed
+    :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with image
+    panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
+    panelling)."""
     if mirrors:
-        half = mirror_half(pv, pf, mirrors, about)
-        if half is not None:
-            hv, hf = half
-            return (2 ** len(mirrors)) * len(hf), solve_mirrored(
-                hv[hf], mirrors, rho=rho, about=about, near_factor=near_factor)
+        hv, hf = drop_caps(pv, pf, mirrors, about)
+        return (2 ** len(mirrors)) * len(hf), solve_mirrored(
+            hv[hf], mirrors, rho=rho, about=about, near_factor=near_factor)
     ptri = pv[pf]
     keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
                           axis=1) > 1e-12 * scale ** 2
@@ -420,10 +421,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         times :math:`2^{k/2}` with k ``mirrors`` (the same influence-matrix work).
     mirrors : iterable of str
         Mirror planes of the body through ``about`` (``x``, ``y``, ``z``: the coordinate each
-        reverses; :func:`stripcoef.assembly.symmetry.strips_mirror_symmetries`): each level
-        is solved on the part of its panelling on the planes' positive side with image panels
-        (:mod:`stripcoef.hull.mirror_panels`: 2^k solves of N/2^k unknowns, the couplings the
-        planes forbid exactly zero); the panel counts are the whole mirrored panelling's.
+        reverses; :func:`stripcoef.assembly.symmetry.strips_mirror_symmetries`): with the
+        remesher the levels are remeshes of the closed part on the planes' positive side
+        (:func:`~stripcoef.hull.mirror_panels.capped_part`, at the whole body's edges), solved
+        without their caps with image panels (:mod:`stripcoef.hull.mirror_panels`: 2^k
+        solves of N/2^k unknowns, the couplings the planes forbid exactly zero); the panel
+        counts are the whole mirrored panelling's.  Without the remesher (the input family)
+        the whole body is solved.
 
     Returns
     -------
@@ -454,11 +458,6 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="x, y or z (the coordinate the reflection reverses)")
     tol = ERROR_TOLERANCE if tolerance is None else float(tolerance)
     cap = min(MAX_PANELS, 2 * panels) if max_panels is None else min(MAX_PANELS, max_panels)
-    # with k mirror planes a level of N panels is 2^k influence blocks of (N/2^k)^2 pairs and
-    # 2^k LUs of N/2^k unknowns: the refinement goes on while that is at most the influence
-    # matrix of one full solve of ``cap`` panels (N <= cap 2^(k/2); the LUs are then 2^(k/2)
-    # times cheaper than that solve's)
-    cap = int(cap * np.sqrt(2.0 ** len(planes)))
     if len(f) > MAX_INPUT_FACES:
         raise InputError("mesh too large for the panel method's time budget", file=where,
                          key="mesh", value=f"{len(f)} faces",
@@ -481,12 +480,27 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="outward normals (load_mesh orients them)")
     if not extrapolate:
         lv = coarsen(v, f, panels) if len(f) > panels else refine(v, f, panels)
-        n, a = _solve_level(*lv, scale, rho, about, near_factor, planes)
+        n, a = _solve_level(*lv, scale, rho, about, near_factor)
         asym = float(np.abs(a - a.T).max() / np.abs(a).max())
         return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
                                  "order": None, "safety": None, "family": "input",
                                  "converged": None}
-    family_out = remeshed_levels(v, f, panels) if family in ("auto", "remesh") else None
+    # with mirror planes: the closed part on their positive side remeshed at the whole body's
+    # edges and solved with image panels (mirror_panels); else, or where that fails, the body
+    src, solve_planes, area = (v, f), (), _area(v, f)
+    family_out = None
+    if planes and family in ("auto", "remesh"):
+        part = capped_part(v, f, planes, about)
+        family_out = remeshed_levels(*part, panels, area=area) if part is not None else None
+        if family_out is not None:
+            src, solve_planes = part, planes
+            # with k planes a level of N panels is 2^k influence blocks of (N/2^k)^2 pairs
+            # and 2^k LUs of N/2^k unknowns: the refinement goes on while that is at most the
+            # influence matrix of one full solve of ``cap`` panels (N <= cap 2^(k/2); the LUs
+            # are then 2^(k/2) times cheaper than that solve's)
+            cap = int(cap * np.sqrt(2.0 ** len(planes)))
+    if family_out is None and family in ("auto", "remesh"):
+        family_out = remeshed_levels(v, f, panels)
     levels, angle = family_out if family_out is not None else (None, None)
     if levels is None and family == "remesh":
         raise InputError("the isotropic remesher is not installed or could not follow the "
@@ -498,7 +512,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         levels = panel_levels(v, f, panels, where)
     counts, mats, nominal = [], [], panels
     for pv, pf in levels:
-        n, a = _solve_level(pv, pf, scale, rho, about, near_factor, planes)
+        n, a = _solve_level(pv, pf, scale, rho, about, near_factor, solve_planes)
         counts.append(n)
         mats.append(a)
     while True:
@@ -514,12 +528,12 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             break
         from stripcoef.hull import remesh
 
-        lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(_area(v, f), nxt),
+        lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
                                      feature_angle=angle)
         if lv is None or len(lv[1]) < 1.25 * len(levels[-1][1]):
             break
         levels.append(lv)
-        n, m = _solve_level(*lv, scale, rho, about, near_factor, planes)
+        n, m = _solve_level(*lv, scale, rho, about, near_factor, solve_planes)
         counts.append(n)
         mats.append(m)
         nominal = nxt
