@@ -277,26 +277,32 @@ def solve_mirrored(tri, planes, *, rho: float, about=(0.0, 0.0, 0.0),
 
 def capped_part(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
     """The closed body on the positive side of each of ``planes`` through ``about`` [m]: the
-    surface cut there and each cut closed by a flat cap in the plane
-    (trimesh.intersections.slice_mesh_plane with ``cap``), to be remeshed as a whole (the cap's
-    rim a crease, so that the remesher keeps vertices on the plane) and its caps dropped by
-    :func:`drop_caps`.  Returns (vertices [m], faces) or ``None`` when the cut fails."""
-    import trimesh
-    from trimesh.intersections import slice_mesh_plane
+    surface cut there and each cut closed by a flat cap in the plane (manifold3d's
+    ``Manifold.trim_by_plane``, exact and manifold, the library of the package's unions:
+    :func:`stripcoef.geometry.mesh_close.manifold_boolean`), to be remeshed as a whole (the
+    cap's rim a crease, so that the remesher keeps vertices on the plane) and its caps dropped
+    by :func:`drop_caps`.  Returns (vertices [m], faces) or ``None`` when the cut fails."""
+    import manifold3d
 
-    mesh = trimesh.Trimesh(np.asarray(vertices, float), np.asarray(faces, np.int64),
-                           process=False)
     p0 = np.asarray(about, float)
-    for p in planes:
-        normal = np.zeros(3)
-        normal[AXIS[p]] = 1.0
-        try:
-            mesh = slice_mesh_plane(mesh, normal, p0, cap=True)
-        except Exception:          # a cap that cannot be triangulated: no part, full solve
-            return None
-        if len(mesh.faces) < 4 or not mesh.is_watertight:
-            return None
-    return np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
+    try:
+        body = manifold3d.Manifold(manifold3d.Mesh64(
+            vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+            tri_verts=np.ascontiguousarray(faces, dtype=np.uint64)))
+        for p in planes:
+            normal = np.zeros(3)
+            normal[AXIS[p]] = 1.0
+            body = body.trim_by_plane(normal, float(p0[AXIS[p]]))
+        out = body.to_mesh64()
+    except Exception:          # manifold3d refuses the input: no part, the full solve
+        return None
+    v = np.asarray(out.vert_properties, float)[:, :3]
+    f = np.asarray(out.tri_verts, np.int64)
+    if len(f) < 4:
+        return None
+    from stripcoef.geometry.mesh import EdgeTopology
+
+    return (v, f) if EdgeTopology(f).consistent else None
 
 
 def drop_caps(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
