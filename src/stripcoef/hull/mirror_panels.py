@@ -1,4 +1,4 @@
-r"""The panel method on half or a quarter of a body with mirror planes: image panels.
+r"""The panel method on half, a quarter or an eighth of a body with mirror planes: images.
 
 A body that a reflection :math:`g` (through the plane of one coordinate about the reference
 point, :mod:`stripcoef.assembly.symmetry`) maps onto itself has, for each mode j of the
@@ -6,12 +6,13 @@ radiation problem of :mod:`stripcoef.hull.panels`, a potential of definite parit
 generalised normal :math:`n_j` keeps or changes its sign under g (:math:`P_j(g) = \pm1`,
 :data:`PARITY`), and so does :math:`\phi_j`,
 :math:`\phi_j(g x) = P_j(g)\,\phi_j(x)`.  With the group G of the k planes' reflections
-(:math:`|G| = 2^k`) the panels are those of one :math:`1/|G|` of the surface (:func:`mirror_half`)
-and their images, and the integral equation collocated on that part alone reads, for each
-class :math:`\sigma` of modes (one parity per plane; Newman 1977, "Marine Hydrodynamics",
-sec. 4.15; the method of images of Hess & Smith 1967, "Calculation of potential flow about
-arbitrary bodies", Prog. Aero. Sci. 8, sec. 4.3, who halve the unknowns of a symmetric body
-by its plane of symmetry),
+(:math:`|G| = 2^k`) the panels are those of one :math:`1/|G|` of the surface and their images
+(the panel method remeshes the closed part, :func:`capped_part`, and drops its caps,
+:func:`drop_caps`; :func:`mirror_half` cuts a given panelling instead), and the integral
+equation collocated on that part alone reads, for each class :math:`\sigma` of modes (one parity per plane; Newman 1977, "Marine Hydrodynamics",
+sec. 4.15; the planes of symmetry of Hess & Smith 1967, "Calculation of potential flow about
+arbitrary bodies", Prog. Aero. Sci. 8, whose method takes the images of the panels in them so
+that only the part of the body on one side is panelled),
 
 .. math::
     \Big(\tfrac12 I - \sum_{g\in G}\chi_\sigma(g)\,D_g\Big)\Phi_\sigma
