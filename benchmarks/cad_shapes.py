@@ -300,14 +300,15 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(args.count):
             family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-            if shard and k % shard[1] != shard[0]:
+            # a shape skipped (another shard's, or one without a stored reference: its BEM
+            # failed in the stored run) still takes its draws, so that the shapes after it
+            # are the stored run's
+            if (shard and k % shard[1] != shard[0]) or (args.references and k not in stored):
                 make_shape(family, rng)                 # the draws of a skipped shape
                 rng.uniform(), rng.uniform()            # write_as_user's two draws
                 results.append(dict(family=family, skipped=True))
                 continue
             try:
-                if args.references and k not in stored:
-                    raise ValueError("no stored reference for this shape")
                 r = run_one(family, rng, tmp, args.bem_faces, stored.get(k))
             except Exception as exc:          # a refusal is a result too: say it, go on
                 print(f"{k:3d} {family:12s} FAILED: {type(exc).__name__}: {exc}", flush=True)

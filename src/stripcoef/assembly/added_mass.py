@@ -572,7 +572,8 @@ def panel_surface(vehicle, panels: int):
     return coarsest_within(vehicle, ((int(panels) // 4, 16), (int(MAX_PANELS / 2.5), 12)))
 
 
-def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None):
+def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise=None,
+                             mirrors=()):
     r"""M_A [kg, kg m, kg m^2] of a vehicle (a mesh, or a vehicle file's united surface:
     :func:`panel_surface`) by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
@@ -580,7 +581,10 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
     :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
     count that resolves it).  ``symmetrise``: a function applied to M_A and its error before
-    the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`)."""
+    the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`);
+    ``mirrors``: those planes (``x``, ``y``, ``z`` through ``about``), which shrink the solve
+    to half, a quarter or an eighth of the body with image panels (the ``mirrors`` of
+    :func:`~stripcoef.hull.panels.panel_added_mass`)."""
     from stripcoef.hull.panels import (DEFAULT_PANELS, ERROR_TOLERANCE, MAX_PANELS,
                                        panel_added_mass, relative_error)
 
@@ -588,7 +592,8 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     body = panel_surface(vehicle, n)
     source = getattr(vehicle, "source", "") or ""
     try:
-        m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source)
+        m_a, info = panel_added_mass(body, rho=rho, about=about, panels=n, source=source,
+                                     mirrors=mirrors)
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
     error = info["error"]

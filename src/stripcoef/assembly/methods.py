@@ -137,7 +137,7 @@ def _panels(inp: AddedMassInputs):
     mirrors = strips_mirror_symmetries(strips, inp.about, tol=SYMMETRY_ZERO_TOL)
     m_a, info, error = panel_vehicle_added_mass(
         inp.vehicle, inp.rho, inp.about, inp.added_mass_panels,
-        symmetrise=lambda m: enforce_symmetry(m, mirrors))
+        symmetrise=lambda m: enforce_symmetry(m, mirrors), mirrors=mirrors)
     info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
     return m_a, info, error
 

@@ -46,14 +46,14 @@ import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.geometry.shapes import GEOMETRY, has_rings
+from stripcoef.hull.mirror_panels import PARITY as MODE_PARITY
 from stripcoef.sections import get_shape
 
 #: the reflections, by the axis they reverse
 MIRRORS = ("x", "y", "z")
-#: parity of (u, v, w, p, q, r) under each reflection (module docstring: the table)
-PARITY = {"y": np.array([1, -1, 1, -1, 1, -1]),
-          "z": np.array([1, 1, -1, -1, -1, 1]),
-          "x": np.array([-1, 1, 1, 1, -1, -1])}
+#: parity of (u, v, w, p, q, r) under each reflection (module docstring: the table; kept
+#: beside the panel method's solve with image panels, which needs it too)
+PARITY = MODE_PARITY
 #: a reflection is a symmetry when the body and its image differ by at most this fraction of
 #: its volume [-] (a tessellated circle's facets differ by far less; a skid, a camera pod, a
 #: tether mount or a fore-aft asymmetric hull of the reference shapes by more)
