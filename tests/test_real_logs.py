@@ -16,8 +16,6 @@ from stripcoef.ingest.attitude import euler_from_matrices, euler_matrices
 from stripcoef.logfile import Log
 
 STATES = ("x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r")
-NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-FRD_FLU = np.diag([1.0, -1.0, -1.0])
 
 
 def _truth(duration, rate, names, seed=3):
@@ -65,17 +63,18 @@ def test_real_style_chunks_read_back_to_the_log(tmp_path):
 
 
 def test_the_tank_map_reads_the_public_layout(tmp_path):
-    """A file in the layout of ViktorNfa/bluerov2_dynamics' koopman_dataset_50Hz.csv (ENU
-    pose, zyx Euler angles of the FLU body, FLU body velocities and rates, PX4 motor commands
-    u1..u8) read through the stored map is the log in stripcoef's conventions; motors 5 and
-    8 push up where t5 and t8 of geometry/bluerov2_heavy.yaml push down."""
+    """A file in the layout of ViktorNfa/bluerov2_dynamics' koopman_dataset_50Hz.csv (the
+    motion capture's z-down world and forward-right-down body, as an independent check of
+    those recordings found them: the map's header; zyx Euler angles in [-pi, pi], body
+    velocities and rates, PX4 motor commands u1..u8) read through the stored map is the log
+    in stripcoef's conventions; motors 5 and 8 push up where t5 and t8 of
+    geometry/bluerov2_heavy.yaml push down."""
     truth = _truth(20.0, 50.0, [f"t{i}" for i in range(1, 9)])
     t = truth["t"]
-    r = NED_ENU @ euler_matrices(truth["phi"], truth["theta"], truth["psi"]) @ FRD_FLU
-    e = euler_from_matrices(r)
-    pos = np.column_stack([truth["x"], truth["y"], truth["z"]]) @ NED_ENU.T
-    vel = np.column_stack([truth["u"], truth["v"], truth["w"]]) @ FRD_FLU.T
-    rat = np.column_stack([truth["p"], truth["q"], truth["r"]]) @ FRD_FLU.T
+    e = euler_from_matrices(euler_matrices(truth["phi"], truth["theta"], truth["psi"]))
+    pos = np.column_stack([truth["x"], truth["y"], truth["z"]])
+    vel = np.column_stack([truth["u"], truth["v"], truth["w"]])
+    rat = np.column_stack([truth["p"], truth["q"], truth["r"]])
     motors = np.column_stack([truth[f"n_t{i}"] * (-1.0 if i in (5, 8) else 1.0)
                               for i in range(1, 9)])
     path = tmp_path / "koopman_dataset_50Hz.csv"
