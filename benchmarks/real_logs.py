@@ -181,9 +181,46 @@ def read_back(folder, map_path):
     return log, [str(w.message) for w in caught]
 
 
-def real_style_log(k: int, duration: float, seed: int):
+def truth_model(prior: dict, truth):
+    """The independent simulator's vehicle (:class:`validation.independent.Truth`) as a
+    stripcoef model: the prior's dictionary with the truth's added mass, damping, buoyancy
+    (as a volume, :math:`V = B/(\rho g)` [m^3]) and each thruster's two branches and limits.
+    Its undeclared effect (tether, lag, current...) is *not* in it: the oracle of the
+    held-out table is "the exact coefficients, no effect" (module docstring)."""
+    import copy
+
+    from stripcoef.model import HydroModel
+
+    d = copy.deepcopy(prior)
+    d["added_mass"] = np.asarray(truth.m_a).tolist()
+    d["linear_damping"] = np.asarray(truth.d_l).tolist()
+    d["quadratic_damping"] = np.asarray(truth.d_q).tolist()
+    d["volume"] = float(truth.buoyancy) / (float(d["density"]) * float(d["gravity"]))
+    for th, t in zip(d["thrusters"], truth.thrusters):
+        th["ct_forward"], th["ct_backward"] = float(t["ct_forward"]), float(t["ct_backward"])
+        th["eta_forward"] = th["eta_backward"] = 1.0
+        th["max_forward"] = float(t["max_forward"]) if np.isfinite(t["max_forward"]) else None
+        th["max_backward"] = (float(t["max_backward"]) if np.isfinite(t["max_backward"])
+                              else None)
+    return HydroModel.from_dict(d)
+
+
+def with_thrusters(model: dict, source: dict):
+    """``model`` (a dictionary) with the thrusters of ``source`` (a dictionary): the
+    attribution's swaps (:func:`attribution`)."""
+    import copy
+
+    from stripcoef.model import HydroModel
+
+    d = copy.deepcopy(model)
+    d["thrusters"] = copy.deepcopy(source["thrusters"])
+    return HydroModel.from_dict(d)
+
+
+def real_style_log(k: int, duration: float, seed: int, *, oracle: bool = False):
     """``(name, log, prior, widths, truth)`` of real-style log ``k`` (0..len(EFFECTS)) before
-    it is written (module docstring)."""
+    it is written (module docstring); with ``oracle``, a sixth item: the truth's
+    coefficients as a model (:func:`truth_model`; None for the VideoRay-like log)."""
     if k < len(EFFECTS):
         import stripcoef
         from stripcoef.diagnose.priors import prior_widths
@@ -197,14 +234,16 @@ def real_style_log(k: int, duration: float, seed: int):
         effect = EFFECTS[k]
         log, truth = generate(prior.to_dict(), effect, seed + k, duration=duration,
                               rate=INDEPENDENT_RATE)
-        return (f"bluerov2_heavy, {effect}", log, prior, widths,
-                f"{effect} {truth.strength:.3g}, seed {seed + k}")
+        out = (f"bluerov2_heavy, {effect}", log, prior, widths,
+               f"{effect} {truth.strength:.3g}, seed {seed + k}")
+        return (*out, truth_model(prior.to_dict(), truth)) if oracle else out
     from validation.synthetic import real_style_log as videoray_log
 
     log, vr_prior, t = videoray_log(seed, "all", duration)
-    return ("videoray, issue-16", log, vr_prior, None,
-            f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
-            f"{t['c_t']:.3f}, seed {seed}")
+    out = ("videoray, issue-16", log, vr_prior, None,
+           f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
+           f"{t['c_t']:.3f}, seed {seed}")
+    return (*out, None) if oracle else out
 
 
 #: How many real-style logs :func:`real_style_log` makes.
@@ -213,7 +252,7 @@ N_LOGS = len(EFFECTS) + 1
 
 def run_real_style(k: int, duration: float, seed: int) -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits."""
-    name, log, prior, widths, truth = real_style_log(k, duration, seed)
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
         chunks = (len(list((Path(tmp) / "nav").iterdir())),
@@ -223,7 +262,7 @@ def run_real_style(k: int, duration: float, seed: int) -> list[dict]:
           f"{chunks[0]} + {chunks[1]} chunk files; clock offset {offset:+.4f} s", flush=True)
     rows = [{"log": name, "kind": "real-style", "truth": truth, "rows": len(read),
              "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
-             **row} for row in both_splits(read, prior, widths)]
+             **row} for row in both_splits(read, prior, widths, oracle)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -233,8 +272,10 @@ def _written(model):
     return type(model).from_dict(model.to_dict())
 
 
-def both_splits(log, prior, widths) -> list[dict]:
-    """Held-out errors of both splits (module docstring): one row per split and DOF."""
+def both_splits(log, prior, widths, oracle=None) -> list[dict]:
+    """Held-out errors of both splits (module docstring): one row per split and DOF; with
+    ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
+    part too, and whether it beats both trivial predictors there."""
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, split
 
@@ -253,6 +294,14 @@ def both_splits(log, prior, widths) -> list[dict]:
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
+    oracle_err = {"forward": {}, "reverse": {}}
+    if oracle is not None:                           # on the same held-out parts
+        parts = {"forward": (split(log, HOLDOUT)[1], res), "reverse": (head, rev)}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for name, (part, r) in parts.items():
+                oracle_err[name] = compare(part, {"truth_coefficients": oracle},
+                                           list(r.diagnosed))
     for name, (r, err, cpu) in (("forward", forward), ("reverse", reverse)):
         effects = "; ".join(f"{e['dof']} {e['name']}" for e in r.model.effects) or "none"
         dropped = "; ".join(f"{d}: {why}" for d, why in r.dropped_dofs.items()) or "none"
@@ -260,14 +309,92 @@ def both_splits(log, prior, widths) -> list[dict]:
             trivial = min(e["hold_last_velocity"], e["zero_velocity"])
             beats = (e["calibrated"] is not None and e["calibrated"] < e["prior"]
                      and e["calibrated"] < trivial)
+            o = oracle_err[name].get(dof, {}).get("truth_coefficients")
             rows.append({"split": name, "dof": dof, "prior": e["prior"],
-                         "calibrated": e["calibrated"],
+                         "calibrated": e["calibrated"], "truth_coefficients": o,
+                         "truth_beats_trivial": ("" if o is None else int(o < trivial)),
                          "hold_last_velocity": e["hold_last_velocity"],
                          "zero_velocity": e["zero_velocity"], "beats_all": int(beats),
                          "prior_beats_trivial": int(e["prior"] is not None
                                                     and e["prior"] < trivial),
                          "effects_written": effects, "not_diagnosed": dropped,
                          "cpu_s": round(cpu, 1)})
+    return rows
+
+
+#: Horizons of the attribution [s]: half a second, two seconds and the held-out table's ten.
+ATTRIBUTION_HORIZONS = (0.5, 2.0, 10.0)
+#: Where the attribution's rows are stored (``--attribution K --out``...: see the README).
+ATTRIBUTION = TABLES / "attribution.csv"
+
+
+def attribution(k: int, duration: float, seed: int,
+                horizons=ATTRIBUTION_HORIZONS) -> list[dict]:
+    """Where the free-simulation error of a BlueROV2-Heavy-like real-style log comes from.
+
+    On the whole log as read back (no fit), the RMS free-simulation error per DOF
+    [m/s or rad/s] at each horizon of ``prior`` (the vehicle file's model), ``prior +
+    true thrusters`` (the prior with the truth's per-thruster coefficients), ``true
+    matrices + prior thrusters`` (the truth's added mass, damping and buoyancy with the
+    prior's thrusters), ``truth coefficients`` (:func:`truth_model`: both, the undeclared
+    effect left out) and the two trivial predictors. A DOF where even the truth's
+    coefficients lose to the trivial predictors is not predictable over that horizon from
+    a state known to the sensors' noise: the open-loop vehicle amplifies the initial error
+    (Ljung 1999, sec. 16.4: simulation error on fresh data; the horizon must stay below
+    the time over which an initial error grows to the signal's size, Lorenz 1969, Tellus
+    21: 289-307)."""
+    from stripcoef.diagnose.heldout import compare
+
+    if k >= len(EFFECTS):
+        raise ValueError("the attribution needs a BlueROV2-Heavy-like log (0..2)")
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+    pd, od = prior.to_dict(), oracle.to_dict()
+    models = {"prior": prior, "prior_true_thrusters": with_thrusters(pd, od),
+              "true_matrices_prior_thrusters": with_thrusters(od, pd),
+              "truth_coefficients": oracle}
+    rows = []
+    for h in horizons:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            err = compare(read, models, list(range(6)), horizon=h)
+        for dof, e in err.items():
+            rows.append({"log": name, "truth": truth, "horizon_s": h, "dof": dof, **e})
+            print(f"  h={h:g} s {dof:6s} " + " ".join(f"{m}={v:.4f}" for m, v in e.items()),
+                  flush=True)
+    return rows
+
+
+#: Where :func:`oracle_rows` are stored (``--oracle-only``): the truth's coefficients on the
+#: held-out parts of both splits, which do not depend on the diagnosis.
+ORACLE = TABLES / "oracle.csv"
+
+
+def oracle_rows(k: int, duration: float, seed: int) -> list[dict]:
+    """The held-out errors [m/s or rad/s] of the truth's coefficients (:func:`truth_model`)
+    and of the trivial predictors on the held-out parts of both splits of BlueROV2-Heavy-like
+    real-style log ``k``, in every DOF: what :func:`both_splits` adds to its rows, without
+    diagnosing (the held-out parts are fixed by the split alone)."""
+    from stripcoef.diagnose.heldout import compare, split
+
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+    parts = {"forward": split(read, HOLDOUT)[1], "reverse": split(read, 1.0 - HOLDOUT)[0]}
+    rows = []
+    for name_split, part in parts.items():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            err = compare(part, {"truth_coefficients": oracle}, list(range(6)))
+        for dof, e in err.items():
+            trivial = min(e["hold_last_velocity"], e["zero_velocity"])
+            o = e["truth_coefficients"]
+            rows.append({"log": name, "truth": truth, "split": name_split, "dof": dof,
+                         "truth_coefficients": o, "hold_last_velocity": e["hold_last_velocity"],
+                         "zero_velocity": e["zero_velocity"],
+                         "truth_beats_trivial": "" if o is None else int(o < trivial)})
+            print("  " + ", ".join(f"{key}={rows[-1][key]}" for key in rows[-1]), flush=True)
     return rows
 
 
@@ -305,7 +432,8 @@ def mirror_logs(mirror: Path):
 
 
 FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", "dof", "prior",
-          "calibrated", "hold_last_velocity", "zero_velocity", "beats_all",
+          "calibrated", "hold_last_velocity", "zero_velocity", "truth_coefficients",
+          "truth_beats_trivial", "beats_all",
           "prior_beats_trivial", "effects_written", "not_diagnosed", "cpu_s")
 
 
@@ -319,9 +447,35 @@ def main(argv=None) -> int:
     ap.add_argument("--logs", type=int, nargs="+", default=list(range(N_LOGS)),
                     help=f"which real-style logs (0..{N_LOGS - 1}; default all)")
     ap.add_argument("--out", type=Path, help=f"write the rows (CSV) here, e.g. {STORED}")
+    ap.add_argument("--attribution", type=int, metavar="K",
+                    help="instead of the held-out table: where the free-simulation error of "
+                         "BlueROV2-Heavy-like log K (0..2) comes from (prior, truth, swapped "
+                         f"thrusters at horizons {ATTRIBUTION_HORIZONS} s), e.g. with --out "
+                         f"{ATTRIBUTION}")
+    ap.add_argument("--oracle-only", action="store_true",
+                    help="instead of the held-out table: only the truth's coefficients on "
+                         "the held-out parts of the BlueROV2-Heavy-like logs (no diagnosis), "
+                         f"e.g. with --out {ORACLE}")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed)))
+    if args.attribution is not None or args.oracle_only:
+        if args.oracle_only:
+            rows = [r for k in args.logs if k < len(EFFECTS)
+                    for r in oracle_rows(k, args.duration, args.seed)]
+            flag = "--oracle-only"
+        else:
+            rows = attribution(args.attribution, args.duration, args.seed)
+            flag = f"--attribution {args.attribution}"
+        if args.out:
+            with open(args.out, "w", newline="") as fh:
+                fh.write(f"# {command} {flag}\n")
+                w = csv.DictWriter(fh, list(rows[0]))
+                w.writeheader()
+                for r in rows:
+                    w.writerow({f: (f"{v:.6g}" if isinstance(v, float) else v)
+                                for f, v in r.items()})
+        return 0
     out = []
     if args.jobs > 1:                  # one log a process: the logs are independent
         from concurrent.futures import ProcessPoolExecutor
