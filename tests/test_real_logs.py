@@ -163,3 +163,47 @@ def test_the_mirror_reads_pulled_tank_logs_and_names_lfs_pointers(tmp_path, caps
     data.write_text("t,x\n0.0,1.0\n")
     assert mirror_files(tmp_path) == [data]
     assert "Git LFS pointer" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_the_truth_model_replays_the_independent_simulator(monkeypatch):
+    """The oracle of the held-out table (:func:`benchmarks.real_logs.truth_model`) is the
+    independent simulator's vehicle: on a noise-free log of that simulator (no undeclared
+    effect) stripcoef's free simulation from the logged state reproduces the velocities to
+    1e-3 m/s or rad/s, while the unperturbed prior does not."""
+    import validation.independent as ind
+    from benchmarks.real_logs import truth_model
+    from stripcoef.diagnose.heldout import compare
+    from validation.synthetic import rov_model
+
+    monkeypatch.setattr(ind, "NOISE", {k: 0.0 for k in ind.NOISE})
+    prior = rov_model()
+    log, truth = ind.generate(prior.to_dict(), None, 5, duration=30.0, rate=20.0)
+    err = compare(log, {"truth": truth_model(prior.to_dict(), truth), "prior": prior},
+                  [0, 1, 2, 5], horizon=10.0)
+    assert max(e["truth"] for e in err.values()) < 1e-3
+    assert max(e["prior"] for e in err.values()) > 10 * max(e["truth"] for e in err.values())
+
+
+def test_the_oracle_run_is_joined_to_a_held_out_run_without_it(tmp_path, monkeypatch):
+    """validation/real_logs.py shows the truth's coefficients of a separate ``--oracle-only``
+    run beside a held-out run made without them, joined by log, split and DOF, and counts
+    the rows where even the truth loses to a trivial predictor."""
+    import validation.real_logs as vr
+
+    oracle = tmp_path / "oracle.csv"
+    oracle.write_text("# python -m benchmarks.real_logs --oracle-only\n"
+                      "log,truth,split,dof,truth_coefficients,hold_last_velocity,"
+                      "zero_velocity,truth_beats_trivial\n"
+                      "a,x,forward,roll,0.5,0.1,0.05,0\n"
+                      "a,x,forward,surge,0.01,0.1,0.4,1\n")
+    monkeypatch.setattr(vr, "ORACLE", oracle)
+    rows = [{"log": "a", "split": "forward", "dof": d, "beats_all": b}
+            for d, b in (("roll", "0"), ("surge", "1"))]
+    joined, command = vr.with_oracle(rows)
+    assert command.endswith("--oracle-only")
+    assert [r["truth_coefficients"] for r in joined] == ["0.5", "0.01"]
+    s = vr.summary([{**r, "kind": "real-style", "prior": "1", "calibrated": "0.5",
+                     "prior_beats_trivial": "0"} for r in joined])
+    assert (s["known"], s["unpredictable"], s["predictable"], s["beats_predictable"]) == \
+        (2, 1, 1, 1)

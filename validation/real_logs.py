@@ -10,6 +10,8 @@ from __future__ import annotations
 from validation import ROOT, markdown_table, read_stored_run
 
 DATA = ROOT / "reference_tables" / "real_logs" / "heldout.csv"
+#: The stored oracle run (``--oracle-only``), joined to a held-out run that lacks its columns.
+ORACLE = ROOT / "reference_tables" / "real_logs" / "oracle.csv"
 #: The stored attribution run (``python -m benchmarks.real_logs --attribution K``).
 ATTRIBUTION = ROOT / "reference_tables" / "real_logs" / "attribution.csv"
 #: Its models and predictors, as its columns name them, and as the table shows them.
@@ -60,10 +62,26 @@ def summary(rows) -> dict:
             "unchanged": sum(r["calibrated"] == r["prior"] for r in rows)}
 
 
+def with_oracle(rows) -> tuple:
+    """``rows`` with the columns of the stored oracle run (:data:`ORACLE`, joined by log,
+    split and DOF) where they lack them, and that run's command (or None)."""
+    if not ORACLE.exists() or any(r.get("truth_coefficients") for r in rows):
+        return rows, None
+    command, oracle = read_stored_run(ORACLE)
+    by_key = {(r["log"], r["split"], r["dof"]): r for r in oracle}
+    out = []
+    for r in rows:
+        o = by_key.get((r["log"], r["split"], r["dof"]), {})
+        out.append({**r, "truth_coefficients": o.get("truth_coefficients", ""),
+                    "truth_beats_trivial": o.get("truth_beats_trivial", "")})
+    return out, command
+
+
 def section() -> str:
     if not DATA.exists():
         return ""
     command, rows = read_stored_run(DATA)
+    rows, oracle_command = with_oracle(rows)
     s = summary(rows)
     table = [[r["log"], r["split"], r["dof"], _num(r["prior"]), _num(r["calibrated"]),
               _num(r["hold_last_velocity"]), _num(r["zero_velocity"]),
@@ -97,7 +115,8 @@ def section() -> str:
         "last 30 % (`diagnose --holdout 0.3`); *reverse*: fitted on the last 70 %, errors on "
         "the first 30 %. Errors: RMS of 10-s free simulations from the logged state [m/s or "
         "rad/s] (`diagnose/heldout.py`).\n",
-        f"Command: `{command}`\n",
+        f"Command: `{command}`" + (f"; the column *truth's coefficients*: "
+                                   f"`{oracle_command}`" if oracle_command else "") + "\n",
         *described, "",
         markdown_table(["log", "split", "DOF", "prior", "calibrated", "hold-last-velocity",
                         "zero velocity", "truth's coefficients", "calibrated beats all three"],
