@@ -366,6 +366,53 @@ def attribution(k: int, duration: float, seed: int,
     return rows
 
 
+#: State columns a twin start is perturbed in (:func:`twin_spread`): the velocities and the
+#: angles the restoring forces depend on.
+TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
+
+
+def white_noise_sd(x) -> float:
+    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
+    differences, :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2`, by the median absolute
+    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
+    Assoc. 88: 1273-1283) -- the estimator diagnose's excitation rule uses."""
+    x = np.asarray(x, float)
+    d2 = x[2:] - 2.0 * x[1:-1] + x[:-2]
+    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) \
+        if d2.size else 0.0
+
+
+def twin_spread(log, model, dofs, *, horizon: float = 10.0, seed: int = 0):
+    r"""Identical-twin predictability of ``log`` under ``model`` (Lorenz 1965, Tellus 17:
+    321-333): the RMS difference [m/s or rad/s] per DOF of ``dofs`` between the model's
+    free simulations (the held-out table's segments of ``horizon`` s) from the logged states
+    and from the logged states each perturbed by one draw of the log's own white noise
+    (:func:`white_noise_sd` of each of :data:`TWIN_COLUMNS`). Where it exceeds the trivial
+    predictors' error, no model can be told apart from them over that horizon: the state
+    the log gives is not known well enough (Ljung 1999, sec. 16.4). Needs no truth, so it
+    also applies to a real log; returns None where a simulation diverges or the model is
+    outside the batch simulator."""
+    from stripcoef.diagnose.freesim import batch_free_velocities, supported
+    from stripcoef.diagnose.heldout import segments
+    from stripcoef.logfile import Log, log_inputs
+
+    rng = np.random.default_rng(seed)
+    inputs = log_inputs(log, model)
+    if not supported(model, inputs):
+        return None
+    cols = {c: np.asarray(log[c], float) for c in log.columns}
+    for c in TWIN_COLUMNS:
+        if c in cols:
+            cols[c] = cols[c] + rng.normal(0.0, white_noise_sd(cols[c]), cols[c].size)
+    twin = Log(cols, source=f"{log.source} (twin)")
+    bounds = segments(np.asarray(log["t"], float), horizon)
+    runs = [batch_free_velocities(model, lg, bounds, inputs) for lg in (log, twin)]
+    if runs[0] is None or runs[1] is None:
+        return None
+    diff = np.concatenate([a - b for a, b in zip(*runs)])
+    return [float(np.sqrt(np.mean(diff[:, i] ** 2))) for i in dofs]
+
+
 #: Where :func:`oracle_rows` are stored (``--oracle-only``): the truth's coefficients on the
 #: held-out parts of both splits, which do not depend on the diagnosis.
 ORACLE = TABLES / "oracle.csv"
@@ -387,13 +434,19 @@ def oracle_rows(k: int, duration: float, seed: int) -> list[dict]:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             err = compare(part, {"truth_coefficients": oracle}, list(range(6)))
-        for dof, e in err.items():
+            twins = {m: twin_spread(part, model, list(range(6)), seed=seed + k)
+                     for m, model in (("prior", prior), ("truth", oracle))}
+        for i, (dof, e) in enumerate(err.items()):
             trivial = min(e["hold_last_velocity"], e["zero_velocity"])
             o = e["truth_coefficients"]
+            tw = {m: (None if v is None else v[i]) for m, v in twins.items()}
             rows.append({"log": name, "truth": truth, "split": name_split, "dof": dof,
                          "truth_coefficients": o, "hold_last_velocity": e["hold_last_velocity"],
                          "zero_velocity": e["zero_velocity"],
-                         "truth_beats_trivial": "" if o is None else int(o < trivial)})
+                         "truth_beats_trivial": "" if o is None else int(o < trivial),
+                         "twin_spread_prior": tw["prior"], "twin_spread_truth": tw["truth"],
+                         "prior_twin_below_trivial": ("" if tw["prior"] is None
+                                                      else int(tw["prior"] < trivial))})
             print("  " + ", ".join(f"{key}={rows[-1][key]}" for key in rows[-1]), flush=True)
     return rows
 
