@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import dataclasses
 import os
 import tempfile
 import time
@@ -181,12 +182,16 @@ def read_back(folder, map_path):
     return log, [str(w.message) for w in caught]
 
 
-def truth_model(prior: dict, truth):
+def truth_model(prior: dict, truth, *, effect: bool = True):
     """The independent simulator's vehicle (:class:`validation.independent.Truth`) as a
     stripcoef model: the prior's dictionary with the truth's added mass, damping, buoyancy
-    (as a volume, :math:`V = B/(\rho g)` [m^3]) and each thruster's two branches and limits.
-    Its undeclared effect (tether, lag, current...) is *not* in it: the oracle of the
-    held-out table is "the exact coefficients, no effect" (module docstring)."""
+    (as a volume, :math:`V = B/(\rho g)` [m^3]) and each thruster's two branches and limits,
+    and its undeclared effect as the effects library writes it (:data:`ORACLE_EFFECTS`): a
+    thruster lag of the truth's time constant in all DOFs (a first-order lag of each thrust
+    is one of the generalized force, the map being linear in the thrusts), a surge tether
+    drag of the truth's c_t, the truth's current in surge and sway (the library's current
+    acts there only: the oracle is approximate for that effect); ``effect=False``: the
+    coefficients alone."""
     import copy
 
     from stripcoef.model import HydroModel
@@ -202,7 +207,28 @@ def truth_model(prior: dict, truth):
         th["max_forward"] = float(t["max_forward"]) if np.isfinite(t["max_forward"]) else None
         th["max_backward"] = (float(t["max_backward"]) if np.isfinite(t["max_backward"])
                               else None)
+    d["effects"] = oracle_effects(truth) if effect else []
     return HydroModel.from_dict(d)
+
+
+#: The undeclared effects :func:`truth_model` writes into the oracle, by name.
+ORACLE_EFFECTS = ("thruster_lag", "tether_drag", "current")
+
+
+def oracle_effects(truth) -> list:
+    """The library's entries (``{name, dof, parameters}``) of the truth's undeclared effect
+    (:func:`truth_model`); none for an effect outside :data:`ORACLE_EFFECTS`."""
+    if truth.effect == "thruster_lag":
+        return [{"name": "thruster_lag", "dof": "all",
+                 "parameters": {"time_constant": float(truth.lag)}}]
+    if truth.effect == "tether_drag":
+        return [{"name": "tether_drag", "dof": "surge",
+                 "parameters": {"c_t": float(truth.strength)}}]
+    if truth.effect == "current":
+        vc = {"current_north": float(truth.current[0]), "current_east": float(truth.current[1])}
+        return [{"name": "current", "dof": dof, "parameters": dict(vc)}
+                for dof in ("surge", "sway")]
+    return []
 
 
 def with_thrusters(model: dict, source: dict):
@@ -350,7 +376,9 @@ def attribution(k: int, duration: float, seed: int,
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
-    pd, od = prior.to_dict(), oracle.to_dict()
+    pd = prior.to_dict()
+    oracle = dataclasses.replace(oracle, effects=())         # the coefficients alone
+    od = oracle.to_dict()
     models = {"prior": prior, "prior_true_thrusters": with_thrusters(pd, od),
               "true_matrices_prior_thrusters": with_thrusters(od, pd),
               "truth_coefficients": oracle}

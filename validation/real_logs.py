@@ -44,8 +44,8 @@ def _num(s):
 def summary(rows) -> dict:
     """Counts of the stored run: (log, split, DOF) rows, those where the calibrated model
     beats all three other predictors, and the (log, split) pairs where it does in every
-    excited DOF; for the logs whose truth is known (``truth_coefficients``), the rows where
-    even the truth's coefficients lose to a trivial predictor (not predictable over the
+    excited DOF; for the logs whose truth is known (``truth_coefficients``: the oracle), the
+    rows where even the truth loses to a trivial predictor (not predictable over the
     horizon) and the calibrated model's count on the others."""
     pairs = {}
     for r in rows:
@@ -66,18 +66,20 @@ def summary(rows) -> dict:
             "unchanged": sum(r["calibrated"] == r["prior"] for r in rows)}
 
 
+#: The columns a stored oracle run gives every held-out row (it supersedes the held-out
+#: run's own: the oracle is computed without diagnosing, :func:`with_oracle`).
+ORACLE_KEYS = ("truth_coefficients", "truth_beats_trivial", "twin_spread_prior",
+               "twin_spread_truth", "prior_twin_below_trivial")
+
+
 def with_oracle(rows) -> tuple:
     """``rows`` with the columns of the stored oracle run (:data:`ORACLE`, joined by log,
-    split and DOF) where they lack them, and that run's command (or None)."""
+    split and DOF; they supersede the rows' own), and that run's command (or None)."""
     if not ORACLE.exists():
         return rows, None
     command, oracle = read_stored_run(ORACLE)
     by_key = {(r["log"], r["split"], r["dof"]): r for r in oracle}
-    keys = [k for k in ("truth_coefficients", "truth_beats_trivial", "twin_spread_prior",
-                        "twin_spread_truth", "prior_twin_below_trivial")
-            if not any(r.get(k) for r in rows)]
-    if not keys:
-        return rows, None
+    keys = ORACLE_KEYS
     out = []
     for r in rows:
         o = by_key.get((r["log"], r["split"], r["dof"]), {})
@@ -124,11 +126,11 @@ def section() -> str:
         "last 30 % (`diagnose --holdout 0.3`); *reverse*: fitted on the last 70 %, errors on "
         "the first 30 %. Errors: RMS of 10-s free simulations from the logged state [m/s or "
         "rad/s] (`diagnose/heldout.py`).\n",
-        f"Command: `{command}`" + (f"; the column *truth's coefficients*: "
+        f"Command: `{command}`" + (f"; the columns *truth* and *twin spread*: "
                                    f"`{oracle_command}`" if oracle_command else "") + "\n",
         *described, "",
         markdown_table(["log", "split", "DOF", "prior", "calibrated", "hold-last-velocity",
-                        "zero velocity", "truth's coefficients", "twin spread (prior)",
+                        "zero velocity", "truth", "twin spread (prior)",
                         "calibrated beats all three"],
                        table),
         "",
@@ -140,15 +142,15 @@ def section() -> str:
         "validation by free simulation removed every change of that DOF (a change is kept only "
         "if it improves the free simulation of data it was not fitted on), so it cannot beat "
         "the prior there.\n",
-        *([f"**Which DOFs can be predicted at all over 10 s.** The column *truth's "
-           f"coefficients* is the BlueROV2-Heavy-like logs' own vehicle (the simulator's "
-           f"perturbed coefficients and thrusters, its undeclared effect left out) simulated "
-           f"the same way: it loses to a trivial predictor in **{s['unpredictable']} of "
+        *([f"**Which DOFs can be predicted at all over 10 s.** The column *truth* is the "
+           f"BlueROV2-Heavy-like logs' own vehicle (the simulator's perturbed coefficients and "
+           f"thrusters, its undeclared effect as the effects library writes it: "
+           f"`benchmarks.real_logs.truth_model`) simulated the same way: it loses to a trivial predictor in **{s['unpredictable']} of "
            f"{s['known']}** of those rows. There the log's state, known to the sensors' noise, "
            f"does not determine the motion 10 s ahead: the open-loop vehicle amplifies the "
            f"initial error (the simulation error is judged on fresh data over a horizon the "
            f"process is predictable on: Ljung 1999, sec. 16.4; Lorenz 1969). On the "
-           f"{s['predictable']} rows where the truth's coefficients do beat both trivial "
+           f"{s['predictable']} rows where the truth does beat both trivial "
            f"predictors, the calibrated model beats all three in {s['beats_predictable']}.\n"]
           if s["known"] else []),
         *([f"**A test that needs no truth.** *twin spread (prior)*: the RMS difference of the "
