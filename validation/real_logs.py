@@ -171,10 +171,7 @@ def section() -> str:
            f"Tellus 17, 1965). Where it exceeds a trivial predictor's error the sensors' "
            f"noise on the starting state grows past the motion itself within the horizon. "
            f"With the truth's own vehicle its verdict (spread below both trivial predictors) "
-           f"is the truth's in **{s['truth_twin_agrees']} of {s['known']}** rows (on the "
-           f"tether and current logs it explains the losses; on the lag log the truth loses "
-           f"with a small spread: there the library's thruster lag does not reproduce the "
-           f"simulator's, an open item in reference_tables/real_logs/README.md). With the "
+           f"is the truth's in **{s['truth_twin_agrees']} of {s['known']}** rows. With the "
            f"prior, the model a real log has before its diagnosis, it agrees in "
            f"{s['twin_agrees']} of {s['twin_known']}: the prior is less sensitive than the "
            f"vehicle, so on a real log the test needs the calibrated model.\n"]
