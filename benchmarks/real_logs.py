@@ -2,9 +2,9 @@
 (issue 33: "the calibrated model beats the prior, hold-last-velocity and zero velocity in every
 excited DOF, on both splits").
 
-**Real public logs.** No public log of an underwater vehicle with its actuation *and* its
-motion could be read here (reference_tables/real_logs/README.md lists the sources tried). The
-closest, the BlueROV2 Heavy tank runs of ViktorNfa/bluerov2_dynamics (MIT licence; motion
+**Real public logs.** No public log of an underwater vehicle with its actuation *and* enough
+of its motion could be read here (reference_tables/real_logs/README.md lists the sources
+tried). The closest, the BlueROV2 Heavy tank runs of ViktorNfa/bluerov2_dynamics (MIT licence; motion
 capture + PX4 motor commands, 50 Hz CSVs), are Git LFS objects absent from the mirror. With
 ``--mirror DIR`` (a checkout of that repository with ``git lfs pull`` done) this script runs
 them through the column map ``reference_tables/real_logs/bluerov2_dynamics_map.yaml`` and the
@@ -33,10 +33,15 @@ fitted on the last 70 % (``diagnose(tail, prior, dof="all")``) and the model as 
 (read back from its dictionary form) compared on the first 30 % with
 :func:`stripcoef.diagnose.heldout.compare`. Per excited DOF: the RMS free-simulation error of
 10-s simulations from the logged state (``diagnose/heldout.py``) of the prior, the calibrated
-model, hold-last-velocity and zero velocity [m/s or rad/s].
+model, hold-last-velocity and zero velocity [m/s or rad/s]; for the BlueROV2-Heavy-like
+logs also of the truth (:func:`truth_model`, the oracle), which tells a DOF no model can
+predict over the horizon from the log (:func:`twin_spread` says why, without a truth).
 
 Run:  python -m benchmarks.real_logs [--duration 300] [--seed 7] [--jobs 4] [--out FILE.csv]
-      [--mirror DIR]
+      [--mirror DIR] [--logs K ...]
+      python -m benchmarks.real_logs --oracle-only --out reference_tables/real_logs/oracle.csv
+      python -m benchmarks.real_logs --attribution 1 \
+          --out reference_tables/real_logs/attribution.csv
 """
 
 from __future__ import annotations
