@@ -5,7 +5,8 @@ excited DOF, on both splits").
 **Real public logs.** No public log of an underwater vehicle with its actuation *and* enough
 of its motion could be read here (reference_tables/real_logs/README.md lists the sources
 tried). The closest, the BlueROV2 Heavy tank runs of ViktorNfa/bluerov2_dynamics (MIT
-licence; motion capture + PX4 motor commands, 50 Hz CSVs), are Git LFS objects absent from the mirror. With
+licence; motion capture + PX4 motor commands, 50 Hz CSVs), are Git LFS objects absent from
+the mirror. With
 ``--mirror DIR`` (a checkout of that repository with ``git lfs pull`` done) this script runs
 them through the column map ``reference_tables/real_logs/bluerov2_dynamics_map.yaml`` and the
 vehicle file ``geometry/bluerov2_heavy.yaml`` (see the README for what the map assumes).
