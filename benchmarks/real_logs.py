@@ -2,10 +2,11 @@
 (issue 33: "the calibrated model beats the prior, hold-last-velocity and zero velocity in every
 excited DOF, on both splits").
 
-**Real public logs.** No public log of an underwater vehicle with its actuation *and* its
-motion could be read here (reference_tables/real_logs/README.md lists the sources tried). The
-closest, the BlueROV2 Heavy tank runs of ViktorNfa/bluerov2_dynamics (MIT licence; motion
-capture + PX4 motor commands, 50 Hz CSVs), are Git LFS objects absent from the mirror. With
+**Real public logs.** No public log of an underwater vehicle with its actuation *and* enough
+of its motion could be read here (reference_tables/real_logs/README.md lists the sources
+tried). The closest, the BlueROV2 Heavy tank runs of ViktorNfa/bluerov2_dynamics (MIT
+licence; motion capture + PX4 motor commands, 50 Hz CSVs), are Git LFS objects absent from
+the mirror. With
 ``--mirror DIR`` (a checkout of that repository with ``git lfs pull`` done) this script runs
 them through the column map ``reference_tables/real_logs/bluerov2_dynamics_map.yaml`` and the
 vehicle file ``geometry/bluerov2_heavy.yaml`` (see the README for what the map assumes).
@@ -33,16 +34,22 @@ fitted on the last 70 % (``diagnose(tail, prior, dof="all")``) and the model as 
 (read back from its dictionary form) compared on the first 30 % with
 :func:`stripcoef.diagnose.heldout.compare`. Per excited DOF: the RMS free-simulation error of
 10-s simulations from the logged state (``diagnose/heldout.py``) of the prior, the calibrated
-model, hold-last-velocity and zero velocity [m/s or rad/s].
+model, hold-last-velocity and zero velocity [m/s or rad/s]; for the BlueROV2-Heavy-like
+logs also of the truth (:func:`truth_model`, the oracle), which tells a DOF no model can
+predict over the horizon from the log (:func:`twin_spread` says why, without a truth).
 
 Run:  python -m benchmarks.real_logs [--duration 300] [--seed 7] [--jobs 4] [--out FILE.csv]
-      [--mirror DIR]
+      [--mirror DIR] [--logs K ...]
+      python -m benchmarks.real_logs --oracle-only --out reference_tables/real_logs/oracle.csv
+      python -m benchmarks.real_logs --attribution 1 \
+          --out reference_tables/real_logs/attribution.csv
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import dataclasses
 import os
 import tempfile
 import time
@@ -181,9 +188,71 @@ def read_back(folder, map_path):
     return log, [str(w.message) for w in caught]
 
 
-def real_style_log(k: int, duration: float, seed: int):
+def truth_model(prior: dict, truth, *, effect: bool = True):
+    """The independent simulator's vehicle (:class:`validation.independent.Truth`) as a
+    stripcoef model: the prior's dictionary with the truth's added mass, damping, buoyancy
+    (as a volume, :math:`V = B/(\rho g)` [m^3]) and each thruster's two branches and limits,
+    and its undeclared effect as the effects library writes it (:data:`ORACLE_EFFECTS`): a
+    thruster lag of the truth's time constant in all DOFs (a first-order lag of each thrust
+    is one of the generalized force, the map being linear in the thrusts), a surge tether
+    drag of the truth's c_t, the truth's current in surge and sway (the library's current
+    acts there only: the oracle is approximate for that effect); ``effect=False``: the
+    coefficients alone."""
+    import copy
+
+    from stripcoef.model import HydroModel
+
+    d = copy.deepcopy(prior)
+    d["added_mass"] = np.asarray(truth.m_a).tolist()
+    d["linear_damping"] = np.asarray(truth.d_l).tolist()
+    d["quadratic_damping"] = np.asarray(truth.d_q).tolist()
+    d["volume"] = float(truth.buoyancy) / (float(d["density"]) * float(d["gravity"]))
+    for th, t in zip(d["thrusters"], truth.thrusters):
+        th["ct_forward"], th["ct_backward"] = float(t["ct_forward"]), float(t["ct_backward"])
+        th["eta_forward"] = th["eta_backward"] = 1.0
+        th["max_forward"] = float(t["max_forward"]) if np.isfinite(t["max_forward"]) else None
+        th["max_backward"] = (float(t["max_backward"]) if np.isfinite(t["max_backward"])
+                              else None)
+    d["effects"] = oracle_effects(truth) if effect else []
+    return HydroModel.from_dict(d)
+
+
+#: The undeclared effects :func:`truth_model` writes into the oracle, by name.
+ORACLE_EFFECTS = ("thruster_lag", "tether_drag", "current")
+
+
+def oracle_effects(truth) -> list:
+    """The library's entries (``{name, dof, parameters}``) of the truth's undeclared effect
+    (:func:`truth_model`); none for an effect outside :data:`ORACLE_EFFECTS`."""
+    if truth.effect == "thruster_lag":
+        return [{"name": "thruster_lag", "dof": "all",
+                 "parameters": {"time_constant": float(truth.lag)}}]
+    if truth.effect == "tether_drag":
+        return [{"name": "tether_drag", "dof": "surge",
+                 "parameters": {"c_t": float(truth.strength)}}]
+    if truth.effect == "current":
+        vc = {"current_north": float(truth.current[0]), "current_east": float(truth.current[1])}
+        return [{"name": "current", "dof": dof, "parameters": dict(vc)}
+                for dof in ("surge", "sway")]
+    return []
+
+
+def with_thrusters(model: dict, source: dict):
+    """``model`` (a dictionary) with the thrusters of ``source`` (a dictionary): the
+    attribution's swaps (:func:`attribution`)."""
+    import copy
+
+    from stripcoef.model import HydroModel
+
+    d = copy.deepcopy(model)
+    d["thrusters"] = copy.deepcopy(source["thrusters"])
+    return HydroModel.from_dict(d)
+
+
+def real_style_log(k: int, duration: float, seed: int, *, oracle: bool = False):
     """``(name, log, prior, widths, truth)`` of real-style log ``k`` (0..len(EFFECTS)) before
-    it is written (module docstring)."""
+    it is written (module docstring); with ``oracle``, a sixth item: the truth's
+    coefficients as a model (:func:`truth_model`; None for the VideoRay-like log)."""
     if k < len(EFFECTS):
         import stripcoef
         from stripcoef.diagnose.priors import prior_widths
@@ -197,14 +266,16 @@ def real_style_log(k: int, duration: float, seed: int):
         effect = EFFECTS[k]
         log, truth = generate(prior.to_dict(), effect, seed + k, duration=duration,
                               rate=INDEPENDENT_RATE)
-        return (f"bluerov2_heavy, {effect}", log, prior, widths,
-                f"{effect} {truth.strength:.3g}, seed {seed + k}")
+        out = (f"bluerov2_heavy, {effect}", log, prior, widths,
+               f"{effect} {truth.strength:.3g}, seed {seed + k}")
+        return (*out, truth_model(prior.to_dict(), truth)) if oracle else out
     from validation.synthetic import real_style_log as videoray_log
 
     log, vr_prior, t = videoray_log(seed, "all", duration)
-    return ("videoray, issue-16", log, vr_prior, None,
-            f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
-            f"{t['c_t']:.3f}, seed {seed}")
+    out = ("videoray, issue-16", log, vr_prior, None,
+           f"shortfall {t['shortfall']:.2f}, lag {t['lag_s']:.2f} s, tether c_t "
+           f"{t['c_t']:.3f}, seed {seed}")
+    return (*out, None) if oracle else out
 
 
 #: How many real-style logs :func:`real_style_log` makes.
@@ -213,7 +284,7 @@ N_LOGS = len(EFFECTS) + 1
 
 def run_real_style(k: int, duration: float, seed: int) -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits."""
-    name, log, prior, widths, truth = real_style_log(k, duration, seed)
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
         chunks = (len(list((Path(tmp) / "nav").iterdir())),
@@ -223,7 +294,7 @@ def run_real_style(k: int, duration: float, seed: int) -> list[dict]:
           f"{chunks[0]} + {chunks[1]} chunk files; clock offset {offset:+.4f} s", flush=True)
     rows = [{"log": name, "kind": "real-style", "truth": truth, "rows": len(read),
              "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
-             **row} for row in both_splits(read, prior, widths)]
+             **row} for row in both_splits(read, prior, widths, oracle)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -233,8 +304,10 @@ def _written(model):
     return type(model).from_dict(model.to_dict())
 
 
-def both_splits(log, prior, widths) -> list[dict]:
-    """Held-out errors of both splits (module docstring): one row per split and DOF."""
+def both_splits(log, prior, widths, oracle=None) -> list[dict]:
+    """Held-out errors of both splits (module docstring): one row per split and DOF; with
+    ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
+    part too, and whether it beats both trivial predictors there."""
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, split
 
@@ -253,6 +326,14 @@ def both_splits(log, prior, widths) -> list[dict]:
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
+    oracle_err = {"forward": {}, "reverse": {}}
+    if oracle is not None:                           # on the same held-out parts
+        parts = {"forward": (split(log, HOLDOUT)[1], res), "reverse": (head, rev)}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for name, (part, r) in parts.items():
+                oracle_err[name] = compare(part, {"truth_coefficients": oracle},
+                                           list(r.diagnosed))
     for name, (r, err, cpu) in (("forward", forward), ("reverse", reverse)):
         effects = "; ".join(f"{e['dof']} {e['name']}" for e in r.model.effects) or "none"
         dropped = "; ".join(f"{d}: {why}" for d, why in r.dropped_dofs.items()) or "none"
@@ -260,14 +341,147 @@ def both_splits(log, prior, widths) -> list[dict]:
             trivial = min(e["hold_last_velocity"], e["zero_velocity"])
             beats = (e["calibrated"] is not None and e["calibrated"] < e["prior"]
                      and e["calibrated"] < trivial)
+            o = oracle_err[name].get(dof, {}).get("truth_coefficients")
             rows.append({"split": name, "dof": dof, "prior": e["prior"],
-                         "calibrated": e["calibrated"],
+                         "calibrated": e["calibrated"], "truth_coefficients": o,
+                         "truth_beats_trivial": ("" if o is None else int(o < trivial)),
                          "hold_last_velocity": e["hold_last_velocity"],
                          "zero_velocity": e["zero_velocity"], "beats_all": int(beats),
                          "prior_beats_trivial": int(e["prior"] is not None
                                                     and e["prior"] < trivial),
                          "effects_written": effects, "not_diagnosed": dropped,
                          "cpu_s": round(cpu, 1)})
+    return rows
+
+
+#: Horizons of the attribution [s]: half a second, two seconds and the held-out table's ten.
+ATTRIBUTION_HORIZONS = (0.5, 2.0, 10.0)
+#: Where the attribution's rows are stored (``--attribution K --out``...: see the README).
+ATTRIBUTION = TABLES / "attribution.csv"
+
+
+def attribution(k: int, duration: float, seed: int,
+                horizons=ATTRIBUTION_HORIZONS) -> list[dict]:
+    """Where the free-simulation error of a BlueROV2-Heavy-like real-style log comes from.
+
+    On the whole log as read back (no fit), the RMS free-simulation error per DOF
+    [m/s or rad/s] at each horizon of ``prior`` (the vehicle file's model), ``prior +
+    true thrusters`` (the prior with the truth's per-thruster coefficients), ``true
+    matrices + prior thrusters`` (the truth's added mass, damping and buoyancy with the
+    prior's thrusters), ``truth coefficients`` (:func:`truth_model`: both, the undeclared
+    effect left out) and the two trivial predictors. A DOF where even the truth's
+    coefficients lose to the trivial predictors is not predictable over that horizon from
+    a state known to the sensors' noise: the open-loop vehicle amplifies the initial error
+    (Ljung 1999, sec. 16.4: simulation error on fresh data; the horizon must stay below
+    the time over which an initial error grows to the signal's size, Lorenz 1969, Tellus
+    21: 289-307)."""
+    from stripcoef.diagnose.heldout import compare
+
+    if k >= len(EFFECTS):
+        raise ValueError("the attribution needs a BlueROV2-Heavy-like log (0..2)")
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+    pd = prior.to_dict()
+    oracle = dataclasses.replace(oracle, effects=())         # the coefficients alone
+    od = oracle.to_dict()
+    models = {"prior": prior, "prior_true_thrusters": with_thrusters(pd, od),
+              "true_matrices_prior_thrusters": with_thrusters(od, pd),
+              "truth_coefficients": oracle}
+    rows = []
+    for h in horizons:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            err = compare(read, models, list(range(6)), horizon=h)
+        for dof, e in err.items():
+            rows.append({"log": name, "truth": truth, "horizon_s": h, "dof": dof, **e})
+            print(f"  h={h:g} s {dof:6s} " + " ".join(f"{m}={v:.4f}" for m, v in e.items()),
+                  flush=True)
+    return rows
+
+
+#: State columns a twin start is perturbed in (:func:`twin_spread`): the velocities and the
+#: angles the restoring forces depend on.
+TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
+
+
+def white_noise_sd(x) -> float:
+    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
+    differences, :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2`, by the median absolute
+    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
+    Assoc. 88: 1273-1283) -- the estimator diagnose's excitation rule uses."""
+    x = np.asarray(x, float)
+    d2 = x[2:] - 2.0 * x[1:-1] + x[:-2]
+    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) \
+        if d2.size else 0.0
+
+
+def twin_spread(log, model, dofs, *, horizon: float = 10.0, seed: int = 0):
+    r"""Identical-twin predictability of ``log`` under ``model`` (Lorenz 1965, Tellus 17:
+    321-333): the RMS difference [m/s or rad/s] per DOF of ``dofs`` between the model's
+    free simulations (the held-out table's segments of ``horizon`` s) from the logged states
+    and from the logged states each perturbed by one draw of the log's own white noise
+    (:func:`white_noise_sd` of each of :data:`TWIN_COLUMNS`). Where it exceeds the trivial
+    predictors' error, no model can be told apart from them over that horizon: the state
+    the log gives is not known well enough (Ljung 1999, sec. 16.4). Needs no truth, so it
+    also applies to a real log; returns None where a simulation diverges or the model is
+    outside the batch simulator."""
+    from stripcoef.diagnose.freesim import batch_free_velocities, supported
+    from stripcoef.diagnose.heldout import segments
+    from stripcoef.logfile import Log, log_inputs
+
+    rng = np.random.default_rng(seed)
+    inputs = log_inputs(log, model)
+    if not supported(model, inputs):
+        return None
+    cols = {c: np.asarray(log[c], float) for c in log.columns}
+    for c in TWIN_COLUMNS:
+        if c in cols:
+            cols[c] = cols[c] + rng.normal(0.0, white_noise_sd(cols[c]), cols[c].size)
+    twin = Log(cols, source=f"{log.source} (twin)")
+    bounds = segments(np.asarray(log["t"], float), horizon)
+    runs = [batch_free_velocities(model, lg, bounds, inputs) for lg in (log, twin)]
+    if runs[0] is None or runs[1] is None:
+        return None
+    diff = np.concatenate([a - b for a, b in zip(*runs)])
+    return [float(np.sqrt(np.mean(diff[:, i] ** 2))) for i in dofs]
+
+
+#: Where :func:`oracle_rows` are stored (``--oracle-only``): the truth's coefficients on the
+#: held-out parts of both splits, which do not depend on the diagnosis.
+ORACLE = TABLES / "oracle.csv"
+
+
+def oracle_rows(k: int, duration: float, seed: int) -> list[dict]:
+    """The held-out errors [m/s or rad/s] of the truth's coefficients (:func:`truth_model`)
+    and of the trivial predictors on the held-out parts of both splits of BlueROV2-Heavy-like
+    real-style log ``k``, in every DOF: what :func:`both_splits` adds to its rows, without
+    diagnosing (the held-out parts are fixed by the split alone)."""
+    from stripcoef.diagnose.heldout import compare, split
+
+    name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+    parts = {"forward": split(read, HOLDOUT)[1], "reverse": split(read, 1.0 - HOLDOUT)[0]}
+    rows = []
+    for name_split, part in parts.items():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            err = compare(part, {"truth_coefficients": oracle}, list(range(6)))
+            twins = {m: twin_spread(part, model, list(range(6)), seed=seed + k)
+                     for m, model in (("prior", prior), ("truth", oracle))}
+        for i, (dof, e) in enumerate(err.items()):
+            trivial = min(e["hold_last_velocity"], e["zero_velocity"])
+            o = e["truth_coefficients"]
+            tw = {m: (None if v is None else v[i]) for m, v in twins.items()}
+            rows.append({"log": name, "truth": truth, "split": name_split, "dof": dof,
+                         "truth_coefficients": o, "hold_last_velocity": e["hold_last_velocity"],
+                         "zero_velocity": e["zero_velocity"],
+                         "truth_beats_trivial": "" if o is None else int(o < trivial),
+                         "twin_spread_prior": tw["prior"], "twin_spread_truth": tw["truth"],
+                         "prior_twin_below_trivial": ("" if tw["prior"] is None
+                                                      else int(tw["prior"] < trivial))})
+            print("  " + ", ".join(f"{key}={rows[-1][key]}" for key in rows[-1]), flush=True)
     return rows
 
 
@@ -305,7 +519,8 @@ def mirror_logs(mirror: Path):
 
 
 FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", "dof", "prior",
-          "calibrated", "hold_last_velocity", "zero_velocity", "beats_all",
+          "calibrated", "hold_last_velocity", "zero_velocity", "truth_coefficients",
+          "truth_beats_trivial", "beats_all",
           "prior_beats_trivial", "effects_written", "not_diagnosed", "cpu_s")
 
 
@@ -319,9 +534,35 @@ def main(argv=None) -> int:
     ap.add_argument("--logs", type=int, nargs="+", default=list(range(N_LOGS)),
                     help=f"which real-style logs (0..{N_LOGS - 1}; default all)")
     ap.add_argument("--out", type=Path, help=f"write the rows (CSV) here, e.g. {STORED}")
+    ap.add_argument("--attribution", type=int, metavar="K",
+                    help="instead of the held-out table: where the free-simulation error of "
+                         "BlueROV2-Heavy-like log K (0..2) comes from (prior, truth, swapped "
+                         f"thrusters at horizons {ATTRIBUTION_HORIZONS} s), e.g. with --out "
+                         f"{ATTRIBUTION}")
+    ap.add_argument("--oracle-only", action="store_true",
+                    help="instead of the held-out table: only the truth's coefficients on "
+                         "the held-out parts of the BlueROV2-Heavy-like logs (no diagnosis), "
+                         f"e.g. with --out {ORACLE}")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed)))
+    if args.attribution is not None or args.oracle_only:
+        if args.oracle_only:
+            rows = [r for k in args.logs if k < len(EFFECTS)
+                    for r in oracle_rows(k, args.duration, args.seed)]
+            flag = "--oracle-only"
+        else:
+            rows = attribution(args.attribution, args.duration, args.seed)
+            flag = f"--attribution {args.attribution}"
+        if args.out:
+            with open(args.out, "w", newline="") as fh:
+                fh.write(f"# {command} {flag}\n")
+                w = csv.DictWriter(fh, list(rows[0]))
+                w.writeheader()
+                for r in rows:
+                    w.writerow({f: (f"{v:.6g}" if isinstance(v, float) else v)
+                                for f, v in r.items()})
+        return 0
     out = []
     if args.jobs > 1:                  # one log a process: the logs are independent
         from concurrent.futures import ProcessPoolExecutor

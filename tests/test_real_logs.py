@@ -16,8 +16,6 @@ from stripcoef.ingest.attitude import euler_from_matrices, euler_matrices
 from stripcoef.logfile import Log
 
 STATES = ("x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r")
-NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-FRD_FLU = np.diag([1.0, -1.0, -1.0])
 
 
 def _truth(duration, rate, names, seed=3):
@@ -65,17 +63,18 @@ def test_real_style_chunks_read_back_to_the_log(tmp_path):
 
 
 def test_the_tank_map_reads_the_public_layout(tmp_path):
-    """A file in the layout of ViktorNfa/bluerov2_dynamics' koopman_dataset_50Hz.csv (ENU
-    pose, zyx Euler angles of the FLU body, FLU body velocities and rates, PX4 motor commands
-    u1..u8) read through the stored map is the log in stripcoef's conventions; motors 5 and
-    8 push up where t5 and t8 of geometry/bluerov2_heavy.yaml push down."""
+    """A file in the layout of ViktorNfa/bluerov2_dynamics' koopman_dataset_50Hz.csv (the
+    motion capture's z-down world and forward-right-down body, as an independent check of
+    those recordings found them: the map's header; zyx Euler angles in [-pi, pi], body
+    velocities and rates, PX4 motor commands u1..u8) read through the stored map is the log
+    in stripcoef's conventions; motors 5 and 8 push up where t5 and t8 of
+    geometry/bluerov2_heavy.yaml push down."""
     truth = _truth(20.0, 50.0, [f"t{i}" for i in range(1, 9)])
     t = truth["t"]
-    r = NED_ENU @ euler_matrices(truth["phi"], truth["theta"], truth["psi"]) @ FRD_FLU
-    e = euler_from_matrices(r)
-    pos = np.column_stack([truth["x"], truth["y"], truth["z"]]) @ NED_ENU.T
-    vel = np.column_stack([truth["u"], truth["v"], truth["w"]]) @ FRD_FLU.T
-    rat = np.column_stack([truth["p"], truth["q"], truth["r"]]) @ FRD_FLU.T
+    e = euler_from_matrices(euler_matrices(truth["phi"], truth["theta"], truth["psi"]))
+    pos = np.column_stack([truth["x"], truth["y"], truth["z"]])
+    vel = np.column_stack([truth["u"], truth["v"], truth["w"]])
+    rat = np.column_stack([truth["p"], truth["q"], truth["r"]])
     motors = np.column_stack([truth[f"n_t{i}"] * (-1.0 if i in (5, 8) else 1.0)
                               for i in range(1, 9)])
     path = tmp_path / "koopman_dataset_50Hz.csv"
@@ -164,3 +163,59 @@ def test_the_mirror_reads_pulled_tank_logs_and_names_lfs_pointers(tmp_path, caps
     data.write_text("t,x\n0.0,1.0\n")
     assert mirror_files(tmp_path) == [data]
     assert "Git LFS pointer" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_the_truth_model_replays_the_independent_simulator(monkeypatch):
+    """The oracle of the held-out table (:func:`benchmarks.real_logs.truth_model`) is the
+    independent simulator's vehicle: on a noise-free log of that simulator (no undeclared
+    effect) stripcoef's free simulation from the logged state reproduces the velocities to
+    1e-3 m/s or rad/s, while the unperturbed prior does not."""
+    import validation.independent as ind
+    from benchmarks.real_logs import truth_model
+    from stripcoef.diagnose.heldout import compare
+    from validation.synthetic import rov_model
+
+    monkeypatch.setattr(ind, "NOISE", {k: 0.0 for k in ind.NOISE})
+    prior = rov_model()
+    log, truth = ind.generate(prior.to_dict(), None, 5, duration=30.0, rate=20.0)
+    err = compare(log, {"truth": truth_model(prior.to_dict(), truth), "prior": prior},
+                  [0, 1, 2, 5], horizon=10.0)
+    assert max(e["truth"] for e in err.values()) < 1e-3
+    assert max(e["prior"] for e in err.values()) > 10 * max(e["truth"] for e in err.values())
+
+
+def test_the_oracle_run_is_joined_to_a_held_out_run_without_it(tmp_path, monkeypatch):
+    """validation/real_logs.py shows the truth's coefficients of a separate ``--oracle-only``
+    run beside a held-out run made without them, joined by log, split and DOF, and counts
+    the rows where even the truth loses to a trivial predictor."""
+    import validation.real_logs as vr
+
+    oracle = tmp_path / "oracle.csv"
+    oracle.write_text("# python -m benchmarks.real_logs --oracle-only\n"
+                      "log,truth,split,dof,truth_coefficients,hold_last_velocity,"
+                      "zero_velocity,truth_beats_trivial\n"
+                      "a,x,forward,roll,0.5,0.1,0.05,0\n"
+                      "a,x,forward,surge,0.01,0.1,0.4,1\n")
+    monkeypatch.setattr(vr, "ORACLE", oracle)
+    rows = [{"log": "a", "split": "forward", "dof": d, "beats_all": b}
+            for d, b in (("roll", "0"), ("surge", "1"))]
+    joined, command = vr.with_oracle(rows)
+    assert command.endswith("--oracle-only")
+    assert [r["truth_coefficients"] for r in joined] == ["0.5", "0.01"]
+    s = vr.summary([{**r, "kind": "real-style", "prior": "1", "calibrated": "0.5",
+                     "prior_beats_trivial": "0"} for r in joined])
+    assert (s["known"], s["unpredictable"], s["predictable"], s["beats_predictable"]) == \
+        (2, 1, 1, 1)
+
+
+def test_white_noise_sd_reads_the_noise_under_a_smooth_signal():
+    """The twin experiment's noise (benchmarks.real_logs.white_noise_sd): 0.01 of white noise
+    on a slow sine is read back to 5 %; a straight line has none."""
+    from benchmarks.real_logs import white_noise_sd
+
+    t = np.arange(0.0, 300.0, 0.05)
+    rng = np.random.default_rng(1)
+    x = 0.4 * np.sin(0.2 * t) + rng.normal(0.0, 0.01, t.size)
+    assert white_noise_sd(x) == pytest.approx(0.01, rel=0.05)
+    assert white_noise_sd(2.0 * t + 1.0) == pytest.approx(0.0, abs=1e-9)

@@ -160,7 +160,10 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     each from the logged state at its row a with the inputs ``inputs``
     (:func:`stripcoef.logfile.log_inputs` of the whole log): a list of (b - a, 6) arrays
     [m/s, rad/s], or None when a simulation diverges. Only for a model without control
-    surfaces (:func:`supported`)."""
+    surfaces (:func:`supported`). The effects with a state (a thruster lag, an actuation
+    delay) read the input history from the log's first sample: their state at a segment's
+    start is the one the logged inputs before it set (a first-order lag of the logged
+    commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input."""
     from stripcoef.effects.laws import effect_force_terms
     from stripcoef.simulate import InputSampler, initial_state, state_vector
 
@@ -201,8 +204,10 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                         "thrust": dict(zip(names, thrust_all[r])), "tau": tau_all[r],
                         "nu_c": np.zeros(6), "nu_r": None, "model": model,
                         "allocation": alloc,
-                        "input_history": (t[starts[s]:starts[s] + lengths[s]],
-                                          tau_all[starts[s]:starts[s] + lengths[s]]),
+                        # from the log's first sample: the state of a lag or a delay at
+                        # the segment's start is set by the logged inputs before it
+                        "input_history": (t[:starts[s] + lengths[s]],
+                                          tau_all[:starts[s] + lengths[s]]),
                         "columns": ({n: float(v) for n, v in zip(
                             sampler.chan_names, sampler.chan_series[r])}
                             if sampler.chan_names else {})}
