@@ -31,6 +31,20 @@ def load_module(path, name=None, *, cache=False):
 
 
 @lru_cache(maxsize=None)
+def shipped_model(name: str):
+    """``load_model(geometry/<name>)`` (warnings silenced) once per worker process for the
+    export tests that read the same shipped vehicle (the panelled BlueROV2 Heavy is about 8 s
+    of CPU); a HydroModel is immutable, so sharing it is safe."""
+    import warnings
+
+    from stripcoef.modelfile import load_model
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return load_model(GEOMETRY / name)
+
+
+@lru_cache(maxsize=None)
 def synthetic(effect, seed: int, **kw):
     """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per worker
     process for the tests that read the same log (a 240 s log is about 4.5 s of CPU to
