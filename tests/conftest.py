@@ -1,4 +1,5 @@
 import os
+from functools import lru_cache
 from pathlib import Path
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -27,6 +28,45 @@ def load_module(path, name=None, *, cache=False):
         sys.modules[name] = mod
     spec.loader.exec_module(mod)
     return mod
+
+
+@lru_cache(maxsize=None)
+def shipped_model(name: str):
+    """``load_model(geometry/<name>)`` (warnings silenced) once per worker process for the
+    export tests that read the same shipped vehicle (the panelled BlueROV2 Heavy is about 8 s
+    of CPU); a HydroModel is immutable, so sharing it is safe."""
+    import warnings
+
+    from stripcoef.modelfile import load_model
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return load_model(GEOMETRY / name)
+
+
+@lru_cache(maxsize=None)
+def synthetic(effect, seed: int, **kw):
+    """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per worker
+    process for the tests that read the same log (a 240 s log is about 4.5 s of CPU to
+    simulate).  The log, prior and truth are shared: read them, do not change them (the log's
+    columns are read-only arrays, so an in-place change fails where it happens)."""
+    from validation.synthetic import generate
+
+    log, prior, truth = generate(effect, seed=seed, **kw)
+    for column in log.columns.values():
+        column.flags.writeable = False
+    return log, prior, truth
+
+
+@lru_cache(maxsize=None)
+def synthetic_diagnosis(effect, seed: int, dof: str) -> dict:
+    """``diagnose(log, prior, dof=dof).to_dict()`` of :func:`synthetic` ``(effect, seed)``
+    with the default settings, once per worker process for the tests that assert on the same
+    diagnosis (read it, do not change it)."""
+    from stripcoef.diagnose.pipeline import diagnose
+
+    log, prior, _ = synthetic(effect, seed)
+    return diagnose(log, prior, dof=dof).to_dict()
 
 
 @pytest.fixture

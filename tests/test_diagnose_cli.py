@@ -26,6 +26,17 @@ def tether_case(tmp_path_factory):
     return d, truth
 
 
+@pytest.fixture(scope="module")
+def short_case(tmp_path_factory):
+    """A 20 s log and its prior for the refusals below (no diagnosis runs: the 160 s log of
+    ``tether_case`` cost 3.4 s of CPU to simulate for them in the fast loop)."""
+    d = tmp_path_factory.mktemp("diag-short")
+    log, prior, _ = generate("tether_drag", seed=3, duration=20.0)
+    log.write_csv(d / "log.csv")
+    save_model(prior, d / "prior.yaml")
+    return d
+
+
 @pytest.mark.slow
 def test_json_contract_report_and_calibrated_model(tether_case, capsys):
     d, truth = tether_case
@@ -101,16 +112,16 @@ def test_all_dofs_text_output(tether_case, capsys):
     (["--window", "0"], "--window"),
     (["--out", "/nonexistent/dir/cal.yaml"], "--out"),
 ])
-def test_bad_arguments_one_line_exit_2(tether_case, capsys, args, needle):
-    d, _ = tether_case
+def test_bad_arguments_one_line_exit_2(short_case, capsys, args, needle):
+    d = short_case
     rc = cli.main(["diagnose", str(d / "log.csv"), "--vehicle", str(d / "prior.yaml"),
                    "--no-resimulate", *args])
     err = capsys.readouterr().err
     assert rc == 2 and needle in err and len(err.strip().splitlines()) == 1
 
 
-def test_bad_logs(tmp_path, tether_case, capsys):
-    d, _ = tether_case
+def test_bad_logs(tmp_path, short_case, capsys):
+    d = short_case
     (tmp_path / "short.csv").write_text("t,u,n_port\n0,0,1\n1,0,1\n2,0,1\n")
     (tmp_path / "novel.csv").write_text("t,n_port\n" + "".join(f"{i},1\n" for i in range(100)))
     (tmp_path / "nan.csv").write_text("t,u,n_port\n0,0,1\n1,nan,1\n")

@@ -278,11 +278,14 @@ def test_real_style_log_meets_the_issue_16_done_when():
     thruster off): held-out free-simulation error below the prior's and hold-last-velocity's
     in every excited DOF; nothing of an unexcited DOF changes and the result says why; no
     negative drag, no added mass or current outside its bounds; the held-out errors are those
-    of the model as written."""
+    of the model as written.  (benchmarks/diagnose_heldout.py measures the rates on 300 s
+    logs; here 200 s: the held-out errors of surge, heave and yaw are 0.075, 0.22 and 0.053
+    of the prior's, 0.066, 0.22 and 0.070 of hold-last-velocity's; 0.073, 0.14, 0.061 and
+    0.084, 0.24, 0.10 at 300 s, which cost 34 s of CPU instead of 23.)"""
     from stripcoef.model import HydroModel
     from validation.synthetic import real_style_log
 
-    log, prior, _ = real_style_log(1, "sway-off", duration=300.0)
+    log, prior, _ = real_style_log(1, "sway-off", duration=200.0)
     res = diagnose(log, prior, dof="all", holdout=0.3, time_limit=float("inf"))
     model = res.model
     errors = res.holdout["errors"]

@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, synthetic, synthetic_diagnosis
 from stripcoef.diagnose.pipeline import diagnose, prior_widths
 from stripcoef.logfile import Log
 from stripcoef.simulate import simulate
@@ -67,10 +67,8 @@ def test_dry_friction_ends_unexplained_with_its_signature():
     """Coulomb friction (outside the library) is not given to a library effect: the
     selection stops because the sign(v) shape explains the residual better, and the
     residual's signature says so."""
-    from validation.synthetic import generate
-
-    log, prior, truth = generate("coulomb_friction", seed=2)
-    res = diagnose(log, prior, dof="surge").to_dict()
+    # the diagnosis test_diagnose_detection.py's outside-the-library test asserts on too
+    res = synthetic_diagnosis("coulomb_friction", 2, "surge")
     assert res["unexplained"] is True
     assert res["steps"] == []
     sig = res["per_dof"]["surge"]["unexplained_signature"]
@@ -84,9 +82,7 @@ def test_a_step_that_raises_the_held_out_error_is_rejected():
     (no signature, the calibration's own column) included beyond the tie tolerance TIE (2 %:
     a released coefficient the calibration had already absorbed leaves the error as it is);
     every step taken lowers the held-out error."""
-    from validation.synthetic import generate
-
-    log, prior, _ = generate("coulomb_friction", seed=2)
+    log, prior, _ = synthetic("coulomb_friction", 2)      # the log of the test above
     res = diagnose(log, prior, dof="surge", validation=None).to_dict()
     cands = [c for c in res["per_dof"]["surge"]["candidates"] if c.get("applicable")]
     from stripcoef.diagnose.settings import TIE

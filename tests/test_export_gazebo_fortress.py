@@ -15,7 +15,6 @@ import pytest
 from stripcoef.export import export_model, write_export
 from stripcoef.export._common import ExportView
 from stripcoef.export.gazebo import lumped_added_mass_split
-from stripcoef.modelfile import load_model
 
 CHECKER = Path(__file__).resolve().parent / "sdformat_check.cc"
 
@@ -26,8 +25,8 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def rov():
-    from conftest import GEOMETRY
-    return load_model(GEOMETRY / "bluerov2_heavy.yaml")
+    from conftest import shipped_model     # shared with test_export_gazebo_spec.py
+    return shipped_model("bluerov2_heavy.yaml")
 
 
 def _root(text):

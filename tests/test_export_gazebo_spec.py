@@ -14,10 +14,8 @@ import warnings
 import pytest
 from _sdf_spec import problems, root_spec
 
-from conftest import GEOMETRY
 
 from stripcoef.export import export_model
-from stripcoef.modelfile import load_model
 
 # the REMUS (a thruster and control surfaces) in the quick loop, the others marked slow (the
 # BlueROV2's eight thrusters: its vehicle file is panelled, about 8 s of CPU)
@@ -28,9 +26,9 @@ VEHICLES = [pytest.param(v, marks=[] if v.startswith("remus") else [pytest.mark.
 
 class _Models(dict):
     def __missing__(self, name):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            self[name] = load_model(GEOMETRY / name)
+        from conftest import shipped_model     # shared with the other export tests
+
+        self[name] = shipped_model(name)
         return self[name]
 
 

@@ -13,13 +13,12 @@ from stripcoef.conventions import axes_operator
 from stripcoef.export._common import SimulatorTrapWarning
 from stripcoef.export import export_model
 from stripcoef.export.gazebo import added_mass_tag
-from stripcoef.modelfile import load_model
 
 
 @pytest.fixture(scope="module")
 def mares():
-    from conftest import GEOMETRY
-    return load_model(GEOMETRY / "mares.yaml")
+    from conftest import shipped_model     # shared with test_export_gazebo_spec.py
+    return shipped_model("mares.yaml")
 
 
 def _export(model, **kw):

@@ -180,9 +180,9 @@ def test_simulate_budget_stops_a_grinding_run(tmp_path, capsys, monkeypatch):
 def test_diagnose_budget_stops_a_grinding_fit(tmp_path, monkeypatch):
     import stripcoef.diagnose.pipeline as pipe
     from stripcoef.errors import UnreachableError
-    from validation.synthetic import generate
+    from conftest import synthetic
 
-    log, prior, _ = generate(None, seed=1, duration=80.0)
+    log, prior, _ = synthetic(None, 1, duration=80.0)       # shared: read only
     with pytest.raises(UnreachableError, match="over its time budget of 1e-06 s; got"):
         pipe.diagnose(log, prior, dof="surge", time_limit=1e-6)
 

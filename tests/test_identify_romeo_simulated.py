@@ -9,19 +9,16 @@ import pytest
 
 pytest.importorskip("stripcoef.simulate")
 
-from validation.experiments import ROMEO_TRUTH, romeo_heave_log  # noqa: E402
-from stripcoef.identify.inputs import applied_force  # noqa: E402
-from stripcoef.identify.steady import fit_steady, steady_points  # noqa: E402
+from validation.experiments import ROMEO_TRUTH  # noqa: E402
+from validation.identification import romeo_simulated_trials  # noqa: E402
+from stripcoef.identify.steady import fit_steady  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def trials():
-    out = []
-    for i in range(1, 6):
-        log, model, w = romeo_heave_log(i, seed=i)
-        force, _ = applied_force(log, "heave", model)       # bench map: eta = 1
-        out.append((steady_points(log, "heave", force=force, settle=45.0), w))
-    return out
+    """(steady points, true W) of the five trials; the same (cached) computation the
+    identification section of docs/validation.md prints, checked below."""
+    return romeo_simulated_trials()
 
 
 @pytest.mark.slow
@@ -38,3 +35,13 @@ def test_simulated_trials_reproduce_the_chapter(trials):
         hits += sum(abs(eta.value(k) - truth[k]) <= 2 * eta.std[k]
                     for k in ("k_w", "k_ww", "W", "eta"))
     assert hits >= 17
+
+
+@pytest.mark.slow
+def test_validation_doc_identification_section_is_current():
+    """docs/validation.md's identification section is what the code writes now
+    (tests/test_validation_doc.py), checked here beside the test that simulates the same five
+    trials (``validation.identification.romeo_simulated_trials``, cached in the process)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("identification")

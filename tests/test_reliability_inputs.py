@@ -481,9 +481,9 @@ def test_diagnose_writes_its_model_and_report_as_a_set(tmp_path, capsys, monkeyp
     model and report: never a new model beside an old report."""
     import stripcoef.diagnose.report as report
     from stripcoef.export import export_model
-    from validation.synthetic import generate
+    from conftest import synthetic
 
-    log, prior, _ = generate(None, seed=1, duration=80.0)
+    log, prior, _ = synthetic(None, 1, duration=80.0)       # shared: read only
     (tmp_path / "log.csv").write_text(log.to_csv_text())
     (tmp_path / "prior.yaml").write_text(export_model(prior, "yaml"))
     (tmp_path / "cal.yaml").write_text("old model\n")
@@ -519,9 +519,9 @@ def test_empty_reference_point_is_an_error(capsys):
 def test_diagnose_window_shorter_than_the_sampling(tmp_path, capsys):
     """--window 1e-6 was widened to one sample without a word."""
     from stripcoef.export import export_model
-    from validation.synthetic import generate
+    from conftest import synthetic
 
-    log, prior, _ = generate(None, seed=1, duration=80.0)
+    log, prior, _ = synthetic(None, 1, duration=80.0)       # shared: read only
     (tmp_path / "log.csv").write_text(log.to_csv_text())
     (tmp_path / "prior.yaml").write_text(export_model(prior, "yaml"))
     _one_line(capsys, ["diagnose", tmp_path / "log.csv", "--vehicle", tmp_path / "prior.yaml",

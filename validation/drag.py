@@ -32,6 +32,7 @@ def _rows():
             veh, model, rows = db.compare(name, lambda v: estimate(
                 v, added_mass_method="strips", speed=db.SPEED))
         short = dict(model.conditions.get("short_body_crossflow", {}))
+        cls = shape_class(veh)             # slices the body: once per body, not per row
         for r in rows:
             k = r["dof"]
             sb = [v["yz"[k - 1]] for v in short.values() if k and "yz"[k - 1] in v]
@@ -39,7 +40,7 @@ def _rows():
                       if k == 0 else
                       f"short body ({sb[0]['class']}, w {sb[0]['weight']:.2f})" if sb else
                       "cross-flow strips")
-            out.append({"body": name, "class": shape_class(veh),
+            out.append({"body": name, "class": cls,
                         "term": quadratic_damping_name(k, k) + (" astern" if r["astern"] else ""),
                         "model": r["cd_model"], "ref": r["cd_ref"], "row": r["row"],
                         "area": r["area"], "held_out": r["held_out"],

@@ -6,6 +6,8 @@ paper is an assumption, stated in the docstring and in :data:`ASSUMPTIONS`.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from scipy.integrate import solve_ivp
 
@@ -126,6 +128,17 @@ def simulate_pendulum(alpha, beta, gamma, theta0, t, *, omega0=0.0, restoring="s
     return sol.y[0]
 
 
+@lru_cache(maxsize=16)
+def _noise_free_pendulum(alpha, beta, gamma, theta0, duration, fps, restoring):
+    """Frame times [s] and noise-free angle [rad] of :func:`simulate_pendulum` from rest at
+    ``theta0``, sampled at ``fps`` for ``duration`` [s]: the same for every seed of a virtual
+    experiment, so computed once per truth (read-only arrays; only the noise is seeded)."""
+    t = np.arange(0.0, duration, 1.0 / fps)
+    th = simulate_pendulum(alpha, beta, gamma, theta0, t, restoring=restoring)
+    t.flags.writeable = th.flags.writeable = False
+    return t, th
+
+
 def rov2_pendulum_log(seed: int, *, truth=ROV2_TRUTH, mass=ROV2_MASS, buoyancy=ROV2_BUOYANCY,
                       length=ROV2_LENGTH, noise=ROV2_NOISE, duration=ROV2_DURATION,
                       fps=ROV2_FPS, g=G) -> Log:
@@ -134,8 +147,7 @@ def rov2_pendulum_log(seed: int, *, truth=ROV2_TRUTH, mass=ROV2_MASS, buoyancy=R
     alpha = (buoyancy - mass * g) / (m * length)
     beta = truth["K_L"] / m
     gamma = truth["K_Q"] * length / m
-    t = np.arange(0.0, duration, 1.0 / fps)
-    th = simulate_pendulum(alpha, beta, gamma, ROV2_THETA0, t)
+    t, th = _noise_free_pendulum(alpha, beta, gamma, ROV2_THETA0, duration, fps, "sin")
     rng = np.random.default_rng(seed)
     return Log({"t": t, "theta_pendulum": th + rng.normal(0.0, noise, t.size)},
                source=f"ROV II virtual pendulum (seed {seed})")
@@ -160,7 +172,19 @@ def videoray_yaw_log(seed: int, *, truth=VIDEORAY_TRUTH, cycles: int = 8,
     Input: sinusoidal torque :math:`N(t) = A_j \sin(2\pi t / T)`, ``cycles`` periods per
     amplitude :math:`A_j`.
     """
-    a, b, c, d = (truth[k] for k in ("alpha", "beta", "gamma", "delta"))
+    t, out, torque = _noise_free_yaw(tuple(truth[k] for k in ("alpha", "beta", "gamma", "delta")),
+                                     cycles, fps)
+    rng = np.random.default_rng(seed)
+    return Log({"t": t, "r": out + rng.normal(0.0, noise, t.size), "N": torque},
+               source=f"VideoRay virtual pivot test (seed {seed})")
+
+
+@lru_cache(maxsize=16)
+def _noise_free_yaw(truth: tuple, cycles: int, fps: float):
+    """Frame times [s], noise-free yaw rate [rad/s] and torque [N m] of
+    :func:`videoray_yaw_log` for ``truth`` = (alpha, beta, gamma, delta): the same for every
+    seed, so simulated once per truth (read-only arrays; only the noise is seeded)."""
+    a, b, c, d = truth
     seg = cycles * VIDEORAY_PERIOD
     amps = np.asarray(VIDEORAY_AMPLITUDES)
 
@@ -175,10 +199,10 @@ def videoray_yaw_log(seed: int, *, truth=VIDEORAY_TRUTH, cycles: int = 8,
     tf = np.arange(t.size * sub) * (1.0 / fps / sub)
     fine = simulate_state(tf, torque(tf), 0.0, {"alpha": a, "beta": b, "gamma": c, "delta": d},
                           "LQB", substeps=2)
-    out = fine[::sub]
-    rng = np.random.default_rng(seed)
-    return Log({"t": t, "r": out + rng.normal(0.0, noise, t.size), "N": torque(t)},
-               source=f"VideoRay virtual pivot test (seed {seed})")
+    out, applied = fine[::sub], torque(t)
+    for column in (t, out, applied):
+        column.flags.writeable = False
+    return t, out, applied
 
 
 # --- ROV II torsion pendulum in yaw (Eng et al. 2009, eq. 12) ---------------------------------------
@@ -199,9 +223,8 @@ def rov2_torsion_log(seed: int, *, truth=ROV2_YAW_TRUTH, inertia=ROV2_YAW_INERTI
                      duration=ROV2_YAW_DURATION, fps=ROV2_FPS) -> Log:
     """A torsion-pendulum decay log (``t``, ``theta_pendulum``) of the ROV II scaled model."""
     total = inertia + truth["I_a"]
-    t = np.arange(0.0, duration, 1.0 / fps)
-    th = simulate_pendulum(-stiffness / total, truth["K_L"] / total, truth["K_Q"] / total,
-                           ROV2_YAW_THETA0, t, restoring="linear")
+    t, th = _noise_free_pendulum(-stiffness / total, truth["K_L"] / total, truth["K_Q"] / total,
+                                 ROV2_YAW_THETA0, duration, fps, "linear")
     rng = np.random.default_rng(seed)
     return Log({"t": t, "theta_pendulum": th + rng.normal(0.0, noise, t.size)},
                source=f"ROV II virtual torsion pendulum (seed {seed})")

@@ -4,6 +4,7 @@ experiments with a known truth.  The same computations are asserted in tests/tes
 
 from __future__ import annotations
 
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -214,22 +215,36 @@ def romeo() -> tuple[str, dict]:
     return "\n".join(out), {"fits": fits, "weights": weights}
 
 
+@lru_cache(maxsize=1)
+def romeo_simulated_trials() -> tuple:
+    """The five ROMEO heave trials simulated in 6 DOF (``romeo_heave_log(i, seed=i)``,
+    i = 1..5) as (steady points, true net weight W [N]): the steady velocity is the depth
+    slope after 45 s (Indiveri 1998, eq. 4.18), the force the bench thruster map.  Computed
+    once per process for this section and tests/test_identify_romeo_simulated.py."""
+    from validation.experiments import romeo_heave_log
+    from stripcoef.identify.inputs import applied_force
+    from stripcoef.identify.steady import steady_points
+
+    out = []
+    for i in range(1, 6):
+        log, model, w = romeo_heave_log(i, seed=i)
+        force, _ = applied_force(log, "heave", model)       # bench map: eta = 1
+        out.append((steady_points(log, "heave", force=force, settle=45.0), w))
+    return tuple(out)
+
+
 def romeo_simulated() -> tuple[str, dict]:
     """The five ROMEO trials from the 6-DOF simulation (needs stripcoef.simulate)."""
     try:
-        from validation.experiments import romeo_heave_log
+        from validation.experiments import romeo_heave_log  # noqa: F401
         from stripcoef.simulate import simulate  # noqa: F401
     except ImportError:
         return "", {}
     from validation.experiments import ROMEO_TRUTH
-    from stripcoef.identify.inputs import applied_force
-    from stripcoef.identify.steady import fit_steady, steady_points
+    from stripcoef.identify.steady import fit_steady
 
     rows = []
-    for i in range(1, 6):
-        log, model, w = romeo_heave_log(i, seed=i)
-        force, _ = applied_force(log, "heave", model)
-        pts = steady_points(log, "heave", force=force, settle=45.0)
+    for i, (pts, w) in enumerate(romeo_simulated_trials(), start=1):
         s, e = fit_steady(pts, "standard"), fit_steady(pts, "eta")
         rows.append([i, f"{w:+.2f}", _pm(s.value("W"), s.std["W"], 3),
                      _pm(e.value("W"), e.std["W"], 3), _pm(e.value("k_w"), e.std["k_w"], 3),
