@@ -73,10 +73,16 @@ def _kill_child(folder, start, delay, *, slow=0.002, stop_after_renames=0):
 
 
 def test_kill_at_random_moments_leaves_a_whole_set(tmp_path):
+    """Six kills at seeded random moments, then (a loaded machine may start a child too late
+    to commit anything within 0.25 s) kills at doubling delays until a child has committed a
+    set, so that the test always sees both kinds of moment: before any commit and after."""
     write_set(tmp_path, 0)
     last = 0
-    for trial in range(6):
-        delay = float(np.random.default_rng(3600 + trial).uniform(0.02, 0.25))
+    rng = np.random.default_rng(3600)
+    delays = [float(d) for d in rng.uniform(0.02, 0.25, 6)] + [0.5, 1.0, 2.0, 4.0, 8.0]
+    for trial, delay in enumerate(delays):
+        if trial >= 6 and last > 0:
+            break
         _kill_child(tmp_path, last + 1, delay)
         recover_outputs(tmp_path)                   # what the next run does first
         gens = generations(tmp_path)
