@@ -161,7 +161,8 @@ def held_out(samples):
             basis = bases[(PANELS if matrix == "added_mass" and panels else res.shape_class,
                            matrix, group)]
             basis = {"measured": "measured (BEM/exact sets)" if matrix == "added_mass" else
-                     "measured (published 3D drag)"}.get(basis, basis)
+                     "measured (published 3D drag)" if group == "translation" else
+                     "measured (stored OpenFOAM rotations)"}.get(basis, basis)
             if not scope.get(f"{matrix}.{group}", True):
                 basis += ", extrapolated (vehicle's L/D outside its reference bodies')"
             kk, nn = counts.get(basis, (0, 0))
