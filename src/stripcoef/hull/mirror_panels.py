@@ -40,8 +40,8 @@ import itertools
 import numpy as np
 
 from stripcoef.hull.panel_kernels import (DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR,
-                                          _FOUR_PI, _frames, generalised_normals,
-                                          triangle_integrals)
+                                          _frames, generalised_normals, influence_at,
+                                          squared_distances)
 
 #: Parity of (u, v, w, p, q, r), and of the generalised normals and potentials of the six
 #: modes, under the reflection that reverses each coordinate through the reference point:
@@ -129,105 +129,6 @@ def mirror_full(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
     return np.vstack(vs), np.vstack(fs)
 
 
-def _pairs(points, c, diam, mid_factor):
-    """Squared distances [m^2] of ``points`` to the centroids ``c`` and the mid-zone pairs
-    (k, l) (within ``mid_factor`` diameters of panel l), as :func:`stripcoef.hull.panels.
-    influence_matrices` finds them."""
-    shift = c.mean(axis=0)
-    x0, c0 = points - shift, c - shift
-    r2 = x0 @ c0.T
-    r2 *= -2.0
-    r2 += np.einsum("ij,ij->i", x0, x0)[:, None]
-    r2 += np.einsum("ij,ij->i", c0, c0)[None, :]
-    return r2
-
-
-def influence_at(points, tri, *, self_block: bool, dense: bool,
-                 near_factor: float = NEAR_FACTOR, mid_factor: float = MID_FACTOR):
-    r"""Source S [m] and dipole D [-] influence of the constant flat panels ``tri`` (n, 3, 3)
-    [m] at ``points`` (m, 3) [m]: the rules of :func:`stripcoef.hull.panels.
-    influence_matrices` (exact integrals within ``near_factor`` diameters, the three-point rule
-    within ``mid_factor``, one point beyond; the three-point rule for every pair when
-    ``dense``), ``self_block``: the points are the panels' own centroids (the panel itself:
-    exact source, no dipole)."""
-    c, n, area, diam = _frames(tri)
-    shift = c.mean(axis=0)
-    x0, c0 = points - shift, c - shift
-    r2 = _pairs(points, c, diam, mid_factor)
-    if self_block:
-        np.fill_diagonal(r2, 0.0)
-    k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
-    if self_block:
-        np.fill_diagonal(r2, 1.0)
-    np.maximum(r2, 1e-300, out=r2)
-    inv_r = np.sqrt(r2, out=r2)
-    np.divide(1.0, inv_r, out=inv_r)
-    w = area / _FOUR_PI
-    dd = x0 @ n.T
-    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
-    dd *= w[None, :]
-    dd *= inv_r
-    dd *= inv_r
-    dd *= inv_r
-    s = inv_r
-    s *= w[None, :]
-    d2 = np.einsum("ij,ij->i", points[k] - c[l], points[k] - c[l])
-    near = d2 < (near_factor * diam[l]) ** 2
-    if self_block:
-        near |= k == l
-    km, lm = k[~near], l[~near]
-    if dense:
-        _three_point(x0, n, tri - shift, w, s, dd)
-    elif len(km):
-        sk = np.zeros(len(km))
-        dk = np.zeros(len(km))
-        for q in range(3):
-            xi = (2.0 / 3.0) * tri[lm, q] + (1.0 / 6.0) * (tri[lm, (q + 1) % 3]
-                                                           + tri[lm, (q + 2) % 3])
-            dq = points[km] - xi
-            iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
-            sk += iq
-            dk += np.einsum("ij,ij->i", dq, n[lm]) * iq ** 3
-        s[km, lm] = sk * w[lm] / 3.0
-        dd[km, lm] = dk * w[lm] / 3.0
-    k, l = k[near], l[near]
-    for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
-        sk, dk = triangle_integrals(points[k[sl]], tri[l[sl]], n[l[sl]])
-        s[k[sl], l[sl]] = sk
-        dd[k[sl], l[sl]] = dk
-    if self_block:
-        np.fill_diagonal(dd, 0.0)       # principal value on the panel itself (flat: no dipole)
-    return s, dd
-
-
-def _three_point(x0, n, tri0, w, s, dd):
-    r"""S and D [m, -] by the three-point rule for every pair (Strang & Fix 1973, degree 2;
-    :func:`stripcoef.hull.panels._three_point_dense` for points apart from the panels):
-    :math:`S_{kl} = \frac{w_l}{3}\sum_q 1/|x_k - \xi_{lq}|`, :math:`D_{kl} = \frac{w_l}{3}
-    \sum_q (x_k - \xi_{lq})\cdot n_l/|x_k - \xi_{lq}|^3`, w = A/(4 pi)."""
-    xx = np.einsum("ij,ij->i", x0, x0)
-    xn = x0 @ n.T
-    s[:] = 0.0
-    dd[:] = 0.0
-    for q in range(3):
-        xi = (2.0 / 3.0) * tri0[:, q] + (1.0 / 6.0) * (tri0[:, (q + 1) % 3] + tri0[:, (q + 2) % 3])
-        r2 = x0 @ xi.T
-        r2 *= -2.0
-        r2 += xx[:, None]
-        r2 += np.einsum("ij,ij->i", xi, xi)[None, :]
-        np.maximum(r2, 1e-300, out=r2)
-        ir = np.sqrt(r2, out=r2)
-        np.divide(1.0, ir, out=ir)
-        s += ir
-        t = xn - np.einsum("ij,ij->i", xi, n)[None, :]
-        t *= ir
-        t *= ir
-        t *= ir
-        dd += t
-    s *= (w / 3.0)[None, :]
-    dd *= (w / 3.0)[None, :]
-
-
 def solve_mirrored(tri, planes, *, rho: float, about=(0.0, 0.0, 0.0),
                    near_factor: float = NEAR_FACTOR) -> np.ndarray:
     r"""6x6 added mass [kg, kg m, kg m^2] of the body that ``tri`` (n, 3, 3) [m], a part cut by
@@ -246,7 +147,7 @@ def solve_mirrored(tri, planes, *, rho: float, about=(0.0, 0.0, 0.0),
     # |G| times those of the blocks here, over (|G| n)^2 pairs
     mid = 0
     for e, x in zip(elements, points):
-        r2 = _pairs(x, c, diam, MID_FACTOR)
+        r2 = squared_distances(x, c)
         if not any(e):
             np.fill_diagonal(r2, 0.0)
         k, l = np.nonzero(r2 < ((MID_FACTOR * diam) ** 2)[None, :])

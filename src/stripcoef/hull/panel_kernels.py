@@ -97,25 +97,50 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
     :math:`S = A_l/(4\pi r)`, :math:`D = A_l\,(x_k - c_l)\cdot n_l/(4\pi r^3)` beyond
     (Katz & Plotkin 2001, sec. 10.4.1: the one-point error is the panel's second moment over
     r^2, below 0.3 % per pair beyond 4 diameters) -- or the three-point rule for all pairs
-    when more than :data:`DENSE_MID_FRACTION` of them are in the mid zone.
+    when more than :data:`DENSE_MID_FRACTION` of them are in the mid zone.  The panels'
+    own block of :func:`influence_at`.
     """
-    c, n, area, diam = _frames(tri)
-    c0 = c - c.mean(axis=0)                               # |x_k - c_l|^2 by matrix products
-    cc = np.einsum("ij,ij->i", c0, c0)
-    r2 = c0 @ c0.T
+    return influence_at(_frames(tri)[0], tri, self_block=True, near_factor=near_factor,
+                        mid_factor=mid_factor)
+
+
+def squared_distances(points, c):
+    """|x_k - c_l|^2 [m^2] of ``points`` (m, 3) to the centroids ``c`` (n, 3), by matrix
+    products about the centroids' mean (round-off of the size of the body, not of its place)."""
+    shift = c.mean(axis=0)
+    x0, c0 = points - shift, c - shift
+    r2 = x0 @ c0.T
     r2 *= -2.0
-    r2 += cc[:, None]
-    r2 += cc[None, :]
-    np.fill_diagonal(r2, 0.0)
+    r2 += np.einsum("ij,ij->i", x0, x0)[:, None]
+    r2 += np.einsum("ij,ij->i", c0, c0)[None, :]
+    return r2
+
+
+def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
+                 near_factor: float = NEAR_FACTOR, mid_factor: float = MID_FACTOR):
+    r"""Source S [m] and dipole D [-] influence of the constant flat panels ``tri`` (n, 3, 3)
+    [m] at ``points`` (m, 3) [m], by the rules of :func:`influence_matrices` (exact integrals
+    within ``near_factor`` diameters, the three-point rule within ``mid_factor``, one point
+    beyond); the three-point rule for every pair when ``dense`` (``None``: when more than
+    :data:`DENSE_MID_FRACTION` of the pairs are in the mid zone).  ``self_block``: the points
+    are the panels' own centroids (the panel itself: exact source, no dipole)."""
+    c, n, area, diam = _frames(tri)
+    shift = c.mean(axis=0)
+    x0, c0 = points - shift, c - shift
+    r2 = squared_distances(points, c)
+    if self_block:
+        np.fill_diagonal(r2, 0.0)
     # pairs within mid_factor diameters (near ones among them, the panel itself included),
     # found on r2 before it is reused
     k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
-    np.fill_diagonal(r2, 1.0)
+    if self_block:
+        np.fill_diagonal(r2, 1.0)
+    np.maximum(r2, 1e-300, out=r2)
     inv_r = np.sqrt(r2, out=r2)
     np.divide(1.0, inv_r, out=inv_r)
     w = area / _FOUR_PI
     # (x_k - c_l) . n_l A_l / (4 pi r^3)
-    dd = c0 @ n.T
+    dd = x0 @ n.T
     dd -= np.einsum("ij,ij->i", c0, n)[None, :]
     dd *= w[None, :]
     dd *= inv_r
@@ -123,20 +148,24 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
     dd *= inv_r
     s = inv_r
     s *= w[None, :]
-    d2 = np.einsum("ij,ij->i", c[k] - c[l], c[k] - c[l])
-    near = (d2 < (near_factor * diam[l]) ** 2) | (k == l)
+    d2 = np.einsum("ij,ij->i", points[k] - c[l], points[k] - c[l])
+    near = d2 < (near_factor * diam[l]) ** 2
+    if self_block:
+        near |= k == l
     km, lm = k[~near], l[~near]
-    if len(km) > DENSE_MID_FRACTION * len(c) ** 2:
+    if dense is None:
+        dense = len(km) > DENSE_MID_FRACTION * len(points) * len(c)
+    if dense:
         # many pairs in the mid zone (long panels: frames of thin tubes): the three-point rule
         # for every pair in dense matrix products is cheaper than gathering them one by one
-        _three_point_dense(c0, n, tri - c.mean(axis=0), w, s, dd)
+        _three_point_dense(x0, n, tri - shift, w, s, dd)
     elif len(km):
         sk = np.zeros(len(km))
         dk = np.zeros(len(km))
         for q in range(3):
             xi = (2.0 / 3.0) * tri[lm, q] + (1.0 / 6.0) * (tri[lm, (q + 1) % 3]
                                                            + tri[lm, (q + 2) % 3])
-            dq = c[km] - xi
+            dq = points[km] - xi
             iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
             sk += iq
             dk += np.einsum("ij,ij->i", dq, n[lm]) * iq ** 3
@@ -144,10 +173,11 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
         dd[km, lm] = dk * w[lm] / 3.0
     k, l = k[near], l[near]
     for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
-        sk, dk = triangle_integrals(c[k[sl]], tri[l[sl]], n[l[sl]])
+        sk, dk = triangle_integrals(points[k[sl]], tri[l[sl]], n[l[sl]])
         s[k[sl], l[sl]] = sk
         dd[k[sl], l[sl]] = dk
-    np.fill_diagonal(dd, 0.0)       # principal value on the panel itself (flat: no dipole)
+    if self_block:
+        np.fill_diagonal(dd, 0.0)       # principal value on the panel itself (flat: no dipole)
     return s, dd
 
 
