@@ -545,6 +545,18 @@ def face_drag_coefficients(normals, areas, translational, rho):
     return np.full(3, d.sum() / max(0.5 * rho * b.sum(), 1e-300)), "one for all"
 
 
+def _triangles_about(vertices, faces, about):
+    """The surface's triangles about ``about`` (F, 3, 3) [m], their unit outward normals
+    (F, 3) and areas (F,) [m^2], faces of zero area left out."""
+    v = np.asarray(vertices, float) - np.asarray(about, float)
+    tri = v[np.asarray(faces)]                                          # (F, 3, 3)
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    twice = np.linalg.norm(cross, axis=1)
+    keep = twice > 0
+    tri, cross, twice = tri[keep], cross[keep], twice[keep]
+    return tri, cross / twice[:, None], 0.5 * twice
+
+
 def rotational_pressure_drag(vertices, faces, coefficients, about, rho):
     r"""Quadratic damping of rotation about each body axis from the pressure drag of the
     surface elements moving into the water [kg m^2] (K_pp, M_qq, N_rr magnitudes, (3,)).
@@ -566,14 +578,7 @@ def rotational_pressure_drag(vertices, faces, coefficients, about, rho):
     ``vertices`` (V, 3) [m], ``faces`` (F, 3) int, ``coefficients`` (3,) [-] (the
     :math:`C_m`), ``about`` (3,) [m], ``rho`` [kg/m^3].
     """
-    v = np.asarray(vertices, float) - np.asarray(about, float)
-    tri = v[np.asarray(faces)]                                          # (F, 3, 3)
-    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    twice = np.linalg.norm(cross, axis=1)
-    keep = twice > 0
-    tri, cross, twice = tri[keep], cross[keep], twice[keep]
-    n = cross / twice[:, None]
-    area = 0.5 * twice
+    tri, n, area = _triangles_about(vertices, faces, about)
     c = (n ** 2) @ np.asarray(coefficients, float)
     out = np.zeros(3)
     for k in range(3):
@@ -596,20 +601,14 @@ def rotational_friction_integral(vertices, faces, about):
     rule (exact for quadratics; Dunavant 1985). A sphere of radius R:
     :math:`I_k = 3\pi^2 R^5/4` about every axis.  ``vertices`` (V, 3) [m], ``faces`` (F, 3).
     """
-    v = np.asarray(vertices, float) - np.asarray(about, float)
-    tri = v[np.asarray(faces)]                                          # (F, 3, 3)
-    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    twice = np.linalg.norm(cross, axis=1)
-    keep = twice > 0
-    tri, cross, twice = tri[keep], cross[keep], twice[keep]
-    n = cross / twice[:, None]
+    tri, n, area = _triangles_about(vertices, faces, about)
     mids = 0.5 * (tri + np.roll(tri, -1, axis=1))                       # (F, 3 points, 3)
     out = np.zeros(3)
     for k in range(3):
         w = np.cross(np.eye(3)[k], mids)                                # e_k x r
         ut = w - np.einsum("fpi,fi->fp", w, n)[:, :, None] * n[:, None, :]
         cube = np.linalg.norm(ut, axis=2) ** 3                          # (F, 3)
-        out[k] = float((cube.mean(axis=1) * 0.5 * twice).sum())
+        out[k] = float((cube.mean(axis=1) * area).sum())
     return out
 
 
