@@ -489,19 +489,12 @@ def test_line_source_surface_speed_against_the_panel_solution_on_suboff():
     shoulder's suction peak (1.07 against 1.12 near 0.78 l), so the adverse gradient behind it
     and the layer at the stern planes come out thinner (delta 0.41 against 0.46 ft with the
     panel speed: the fins' dynamic pressure ratio 0.74 against 0.68)."""
-    import math
 
-    from stripcoef.hull.axisymmetric import _influence, _meridian
     from stripcoef.hull.lift import surface_speed_ratio
+    from validation.lift import suboff_surface_speeds
 
     length = val("hull.L")
-    s = length * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 801)))
-    r = np.array([hull_radius(t) for t in s])
-    xn, rn = _meridian(s, r, 400)
-    S, D, (seg, nx, _, xc, _) = _influence(xn, rn, 0)
-    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
-    arc = np.concatenate([[0.0], np.cumsum(seg)])
-    panel = np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1])) - np.diff(xn) / seg)
+    s, r, xc, panel = suboff_surface_speeds()
     line = surface_speed_ratio(s, np.pi * r ** 2)
     for frac in np.linspace(0.5, 0.97, 48):
         p = np.interp(frac * length, xc, panel)

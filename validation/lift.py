@@ -1224,16 +1224,12 @@ def body_lift_substitution() -> dict:
 
 
 @functools.lru_cache(maxsize=1)
-def panel_speed_sensitivity() -> dict:
-    """How much the stern planes' dynamic pressure depends on the surface speed Head's layer is
-    computed on: the line sources the model uses (:func:`stripcoef.hull.lift.surface_speed_ratio`)
-    against the axisymmetric panel solution of the same hull (:mod:`stripcoef.hull.axisymmetric`,
-    surge mode: U_e/U = |d phi/ds - t_x|). Returns {'delta_line', 'delta_panel'} [ft] at the
-    planes' root mid chord and 'scale', the panel layer's q ratio over the line sources' (every
-    fin force and control derivative scales with it)."""
+def suboff_surface_speeds():
+    """The bare SUBOFF hull's axial surface speed U_e/U two ways: at 801 cosine-spaced stations
+    s [m] with radii r [m], and on the axisymmetric panel solution (:mod:`stripcoef.hull.
+    axisymmetric`, surge mode: U_e/U = |d phi/ds - t_x|) at its panels' centres xc [m].
+    Returns (s, r, xc, panel speed [-])."""
     from stripcoef.hull.axisymmetric import _influence, _meridian
-    from stripcoef.hull.lift import (boundary_layer_pressure_ratio, power_law_exponent,
-                                     surface_speed_ratio, turbulent_boundary_layer)
 
     length = val("hull.L")
     s = length * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 801)))
@@ -1243,6 +1239,21 @@ def panel_speed_sensitivity() -> dict:
     phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
     arc = np.concatenate([[0.0], np.cumsum(seg)])
     panel = np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1])) - np.diff(xn) / seg)
+    return s, r, xc, panel
+
+
+@functools.lru_cache(maxsize=1)
+def panel_speed_sensitivity() -> dict:
+    """How much the stern planes' dynamic pressure depends on the surface speed Head's layer is
+    computed on: the line sources the model uses (:func:`stripcoef.hull.lift.surface_speed_ratio`)
+    against the axisymmetric panel solution of the same hull (:mod:`stripcoef.hull.axisymmetric`,
+    surge mode: U_e/U = |d phi/ds - t_x|). Returns {'delta_line', 'delta_panel'} [ft] at the
+    planes' root mid chord and 'scale', the panel layer's q ratio over the line sources' (every
+    fin force and control derivative scales with it)."""
+    from stripcoef.hull.lift import (boundary_layer_pressure_ratio, power_law_exponent,
+                                     surface_speed_ratio, turbulent_boundary_layer)
+
+    s, r, xc, panel = suboff_surface_speeds()
     fin = suboff_model(5).conditions.lift["fin_lift"][0]
     span = math.sqrt(fin["aspect_ratio"] * fin["area"] / 2.0)
     x_mid = FT * (val("t1.plane.x_te") - 0.25 * (val("t1.plane.c_root") + val("t1.plane.c_tip")))
