@@ -75,6 +75,14 @@ def _signs(planes, element):
     return s
 
 
+def _compact(v, f):
+    """(vertices, faces) with only the vertices the faces use, renumbered."""
+    used = np.unique(f)
+    remap = np.full(len(v), -1, np.int64)
+    remap[used] = np.arange(len(used))
+    return v[used], remap[f]
+
+
 def mirror_half(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
     r"""The part of a closed panelling on the positive side of each of ``planes`` (``x``,
     ``y``, ``z``: the coordinate planes through ``about`` [m]), cut there (triangles across a
@@ -108,10 +116,7 @@ def mirror_half(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
     f = f[dbl > 1e-12 * scale ** 2]
     if len(f) == 0:
         return None
-    used = np.unique(f)
-    remap = np.full(len(v), -1, np.int64)
-    remap[used] = np.arange(len(used))
-    return v[used], remap[f]
+    return _compact(v, f)
 
 
 def mirror_full(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
@@ -224,7 +229,4 @@ def drop_caps(vertices, faces, planes, about=(0.0, 0.0, 0.0)):
     f = f[~cap]
     if len(f) == 0:
         return None
-    used = np.unique(f)
-    remap = np.full(len(v), -1, np.int64)
-    remap[used] = np.arange(len(used))
-    return v[used], remap[f]
+    return _compact(v, f)
