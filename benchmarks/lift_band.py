@@ -12,7 +12,12 @@ configuration's terms against the band set by the others (never against the term
 
 With the default body lift (``--method slender``: the rule of ``body_lift: auto`` since issue 34)
 writes reference_tables/method_errors/lift_errors.csv (scripts/make_method_uncertainty.py reads it);
-prints the bands. Usage: python -m benchmarks.lift_band [--method slender|on]  (about 40 s)
+prints the bands, then the issue's checks with the same rule: the Table 4 checks met
+(validation.lift.issue_checks), the Appendix B drift-curve points within 20 %
+(validation.lift.drift_curve_checks) and the fully appended body's stability indices G_H, G_V
+(validation.lift.stability_indices). ``--method datcom``: the slender rule's potential lift times
+Munk's k2 - k1 (USAF DATCOM sec. 4.2.1.1, ``body_lift: datcom``).
+Usage: python -m benchmarks.lift_band [--method slender|on|datcom]  (about 60 s)
 """
 
 from __future__ import annotations
@@ -26,7 +31,8 @@ from pathlib import Path
 import numpy as np
 
 from stripcoef.study.calibration import Z95, binomial_interval, leave_one_group_out, quantile95
-from validation.lift import suboff_comparisons
+from validation.lift import (METHOD_KEY, drift_curve_checks, issue_checks, stability_indices,
+                             suboff_comparisons)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -40,7 +46,7 @@ def rows(method: str = "slender") -> list[dict]:
     for c in suboff_comparisons():
         if c["config"] not in CONFIGS:
             continue
-        model = c["hoerner"] if method == "on" else c["slender"]
+        model = c[METHOD_KEY[method]]
         ratio = model / c["measured"]
         zero = abs(c["measured"]) < 0.05 * 0.01      # |value| below 5e-4 of a typical 0.01
         matrix = "control" if c["kind"] == "control" else "lift"
@@ -71,8 +77,9 @@ def leave_one_out(rs, matrix) -> tuple[int, int]:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--method", choices=("slender", "on"), default="slender",
-                    help="body lift: 'slender' (the default model's rule) or 'on' (Hoerner)")
+    ap.add_argument("--method", choices=("slender", "on", "datcom"), default="slender",
+                    help="body lift: 'slender' (the default model's rule), 'on' (Hoerner) or "
+                         "'datcom' (slender times Munk's k2 - k1)")
     args = ap.parse_args(argv)
     rs = rows(args.method)
     if args.method == "slender":
@@ -94,6 +101,14 @@ def main(argv=None):
         print(f"{args.method:8s} {matrix:8s} terms {b['n']:2d} (right sign {b['signed']:2d}) "
               f"q95|ln| {b['q95']:.3f} sd(ln) {b['sd']:.3f} (claim {b['claim']:.3f}); "
               f"leave one configuration out: {k}/{n} inside = {k / n:.2f} [{lo:.2f}, {hi:.2f}]")
+    key = METHOD_KEY[args.method]
+    checks = sum(1 for c in suboff_comparisons() if c["ok"] is not None)
+    k, n = drift_curve_checks(args.method)
+    stab = stability_indices()
+    print(f"{args.method:8s} issue checks (Table 4) {issue_checks(key)}/{checks}; drift curves "
+          f"within 20 %: {k}/{n}; G_H {stab['horizontal'][key]:+.2f} (measured "
+          f"{stab['horizontal']['measured']:+.2f}), G_V {stab['vertical'][key]:+.2f} (measured "
+          f"{stab['vertical']['measured']:+.2f})")
     return 0
 
 

@@ -34,6 +34,7 @@ from stripcoef.hull.lift import (
     fin_lift_slope,
     interference_factor,
     lift_column,
+    munk_factor,
     wing_body_factors,
     boundary_layer_pressure_ratio,
     boundary_layer_thickness,
@@ -225,7 +226,7 @@ def _stern_flow(vehicle, body, speed, viscosity):
     the sections (s from the nose, S), the hull axis, speed, viscosity and Head's boundary
     layer (:func:`_hull_boundary_layer`); None under Hoerner's rule (``on``) or without body
     lift (the fins then see the free stream)."""
-    if body is None or body[1].get("method") != "slender":
+    if body is None or body[1].get("method") not in ("slender", "datcom"):
         return None
     hull = vehicle.hull
     slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
@@ -354,7 +355,10 @@ def _body_lift(vehicle, rho: float, ref, center):
     takes the slender-body rule when the vehicle has fins or control surfaces and a circular
     hull with l/d >= :data:`MIN_SLENDERNESS`, and no body lift otherwise; ``slender`` asks for
     the slender-body rule and ``on`` for Hoerner's (a hull that is not slender and round is
-    then an error); ``off`` leaves body lift out. ``auto`` follows the slender-body rule
+    then an error); ``datcom`` the slender-body rule with the potential lift times Munk's
+    factor k2 - k1 of the body's fineness, the USAF DATCOM's body method as published (sec.
+    4.2.1.1, :func:`~stripcoef.hull.lift.munk_factor`; the fins as under ``slender``);
+    ``off`` leaves body lift out. ``auto`` follows the slender-body rule
     because on the measured SUBOFF captive-model data (Roddy 1990, Table 4) it is the better
     one (docs/validation.md, 'Every configuration and derivative'). Returns
     (L [kg/m, kg, kg m], info) or None; under the slender-body rule also (s from the nose [m],
@@ -371,18 +375,24 @@ def _body_lift(vehicle, rho: float, ref, center):
     length = hi - lo
     d = hull.max_diameter()
     if not _round(hull) or length / d < MIN_SLENDERNESS:
-        if mode in ("on", "slender"):
+        if mode in ("on", "slender", "datcom"):
             raise InputError("body lift needs a slender round hull", file=vehicle.source,
                              key="body_lift", value=f"l/d = {length / d:.3g}",
                              expected=f"a hull 'profile' (circular) with l/d >= {MIN_SLENDERNESS:g}")
         return None
-    if mode in ("auto", "slender"):
+    if mode in ("auto", "slender", "datcom"):
         xs = np.linspace(lo, hi, SLENDER_STATIONS)
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         x0 = separation_station(xs, area)
-        return (slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z, ref=ref),
-                {"method": "slender", "length": length, "diameter": d, "separation_x": x0},
-                (hi - xs[::-1], area[::-1]))
+        # datcom: the same potential lift times Munk's k2 - k1 (USAF DATCOM sec. 4.2.1.1)
+        factor = munk_factor(length, d) if mode == "datcom" else 1.0
+        info = {"method": "datcom" if mode == "datcom" else "slender", "length": length,
+                "diameter": d, "separation_x": x0}
+        if mode == "datcom":
+            info["munk_factor"] = factor
+        return (factor * slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z,
+                                                  ref=ref),
+                info, (hi - xs[::-1], area[::-1]))
     x_cp = hi - BODY_CP_FRACTION * length
     cp = np.array([x_cp, hull.y, hull.z]) - np.asarray(ref, float)
     return (body_lift_matrix(length, d, cp, rho=rho,

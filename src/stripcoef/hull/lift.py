@@ -67,6 +67,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import skew
+from stripcoef.hull.lamb import lamb_k_factors
 
 #: Section efficiency a = a_0 / 2 pi of the fin lift slope, Whicker & Fehlner's value
 #: (Prestero 2001, sec. 3.6.2) [-].
@@ -428,6 +429,41 @@ def slender_body_lift_matrix(x, area, x_separation: float, *, rho: float, y: flo
         integral = np.trapezoid(sa[:, None] * cols, xa, axis=0) if xa.size > 1 else np.zeros(6)
         out -= rho * np.outer(dc, integral)
     return out
+
+
+def munk_factor(length: float, diameter: float) -> float:
+    r"""Munk's apparent-mass factor :math:`k_2 - k_1` of a body of fineness l/d.
+
+    .. math:: k_2 - k_1 \quad\text{of Lamb's prolate spheroid with } a/b = l/d
+
+    the factor by which the USAF DATCOM's body method (sec. 4.2.1.1, after Munk 1924 and
+    Hopkins 1951) multiplies slender-body theory's sectional apparent mass
+    :math:`\rho S(x)` in the potential lift ahead of the separation station,
+    :math:`C_{N\alpha} = 2 (k_2 - k_1) S(x_0)/S_{ref}`: the finite body's cross-flow is
+    weaker than the slender sections' (k2 -> 1, k1 -> 0 as l/d -> infinity).  DATCOM
+    Fig. 4.2.1.1-20a tabulates the same factor; Digital DATCOM (subroutine BODYRT) takes it
+    from the fineness ratio as here.  SUBOFF (l/d = 8.575): 0.924; REMUS (6.98): 0.897.
+
+    Parameters
+    ----------
+    length, diameter : float
+        l and the largest diameter d [m], l/d >= 1
+
+    Returns
+    -------
+    float
+        k2 - k1 [-]
+
+    References
+    ----------
+    Munk, M. M. (1924), NACA Report 184 (the (k2 - k1) correction of the airship's moment);
+    Hopkins, E. J. (1951), NACA RM A51C14; USAF DATCOM (Finck 1978) sec. 4.2.1.1;
+    Lamb (1932), *Hydrodynamics*, sec. 373 (:func:`stripcoef.hull.lamb.lamb_k_factors`).
+    """
+    if not length >= diameter > 0.0:
+        raise ValueError(f"munk_factor needs l >= d > 0, got l = {length}, d = {diameter}")
+    k1, k2, _ = lamb_k_factors(length / diameter)
+    return float(k2 - k1)
 
 
 def wing_body_factors(tau) -> dict:
