@@ -191,7 +191,8 @@ def test_remus_lift_signs_and_symmetry(remus):
     assert c["Y_uudr"] == pytest.approx(-c["Z_uuds"])
     assert remus.thrusters[0].torque_ratio == pytest.approx(-0.1407)
     body = remus.conditions["lift"]["body_lift"]
-    assert body["method"] == "slender"                    # the default rule
+    assert body["method"] == "datcom"                     # the default rule (issue 34)
+    assert body["munk_factor"] == pytest.approx(0.897, abs=0.002)   # k2 - k1, l/d 6.98
     assert body["separation_x"] < 0.0                     # Hopkins's x_0: on the afterbody
 
 

@@ -98,3 +98,34 @@ def test_vehicle_option_errors():
     with pytest.raises(InputError, match="body_lift"):
         estimate(parse_vehicle({"name": "s", "body_lift": "slender", "hull": {"profile": [
             {"type": "cylinder", "x": [-0.2, 0.2], "radius": 0.15}]}}, file="s.yaml"))
+
+
+def test_munk_factor_limits_and_values():
+    """k2 - k1 of Lamb's spheroid (USAF DATCOM sec. 4.2.1.1): 0 for the sphere (k1 = k2 = 1/2),
+    rising with the fineness towards slender-body theory's 1; SUBOFF (l/d 8.575) 0.924."""
+    from stripcoef.hull.lift import munk_factor
+    assert munk_factor(1.0, 1.0) == pytest.approx(0.0, abs=1e-12)
+    assert munk_factor(8.575, 1.0) == pytest.approx(0.924, abs=0.001)
+    assert 0.99 < munk_factor(1000.0, 1.0) < 1.0
+    f = [munk_factor(ld, 1.0) for ld in (2.0, 4.0, 8.0, 16.0)]
+    assert np.all(np.diff(f) > 0)
+    with pytest.raises(ValueError, match="l >= d"):
+        munk_factor(0.5, 1.0)
+
+
+def test_vehicle_option_datcom_is_the_slender_rule_times_munk_factor():
+    """body_lift: datcom is the slender rule's lift matrix (every term, static and rotary)
+    times k2 - k1 of the hull's l/d; the summary names the rule and the factor."""
+    from stripcoef.hull.lift import munk_factor
+    s, d = estimate(_vehicle("slender")), estimate(_vehicle("datcom"))
+    info = d.conditions.lift["body_lift"]
+    assert info["method"] == "datcom"
+    k = munk_factor(info["length"], info["diameter"])
+    assert info["munk_factor"] == pytest.approx(k)
+    assert 0.8 < k < 1.0
+    np.testing.assert_allclose(d.lift, k * s.lift, rtol=1e-12, atol=1e-15)
+
+
+def test_vehicle_option_error_names_every_rule():
+    with pytest.raises(InputError, match="datcom"):
+        _vehicle("hopkins")

@@ -11,7 +11,7 @@ import warnings
 import numpy as np
 
 from stripcoef.geometry.mesh import LENGTH_UNITS
-from stripcoef.hull.lift import (body_lift_slope, boundary_layer_thickness, cylindrical_root,
+from stripcoef.hull.lift import (body_lift_slope, munk_factor, boundary_layer_thickness, cylindrical_root,
                                  effective_aspect_ratio,
                                  fin_lift_slope, interference_factor, lifting_line_slope,
                                  ring_wing_lift_slope)
@@ -580,7 +580,8 @@ def suboff_comparisons() -> list[dict]:
     tolerance: static within 15 % and control within 15 % for configurations 1, 2, 4, 5; rotary
     with the right sign and within 25 %; for 3 and 6 N'_v within 10 % and the rotary signs.
     Key 'datcom': the model with ``body_lift: datcom`` (the slender rule's potential lift times
-    Munk's k2 - k1, USAF DATCOM sec. 4.2.1.1)."""
+    Munk's k2 - k1, USAF DATCOM sec. 4.2.1.1), the default's rule (``body_lift: auto``) since
+    issue 34's second pass; 'ratio' and 'ok' are its."""
     out = []
     for config, (built, ring) in SUBOFF_COMPARED.items():
         terms = dict(SUBOFF_VERTICAL) if config == 1 else dict(SUBOFF_TERMS)
@@ -590,11 +591,12 @@ def suboff_comparisons() -> list[dict]:
         slender = suboff_derivatives(built, "slender", ring)
         datcom = suboff_derivatives(built, "datcom", ring)
         without = ({"hoerner": suboff_derivatives(built, "on"),
-                    "slender": suboff_derivatives(built, "slender")} if ring else None)
+                    "slender": suboff_derivatives(built, "slender"),
+                    "datcom": suboff_derivatives(built, "datcom")} if ring else None)
         for name, kind in terms.items():
             row = ref.reference_value(SUBOFF, f"c{config}.{name}")
             measured = row["value"]
-            ratio = slender[name] / measured
+            ratio = datcom[name] / measured          # the default's rule (body_lift: auto)
             same_sign = ratio > 0
             if config in (3, 6):
                 if name == "Nv":
@@ -613,7 +615,8 @@ def suboff_comparisons() -> list[dict]:
                         "tolerance": tol, "ok": ok,
                         **({} if without is None else
                            {"hoerner_no_ring": without["hoerner"][name],
-                            "slender_no_ring": without["slender"][name]})})
+                            "slender_no_ring": without["slender"][name],
+                            "datcom_no_ring": without["datcom"][name]})})
     return out
 
 
@@ -742,6 +745,37 @@ def lift_band_coverage(method: str) -> tuple[int, int]:
     return int(ok.sum()), len(errors)
 
 
+def drift_parts_section() -> list[str]:
+    """The drift-force decomposition paragraph of docs/validation.md (:func:`drift_force_parts`,
+    the default's rule): issue 34's suspected double count of D_L and the lift."""
+    rows = []
+    for config in (2, 3, 5):
+        for beta in (4.0, 18.0):
+            p = drift_force_parts(config, beta, "datcom")
+            total = sum(v[0] for v in p.values())
+            rows.append((str(config), f"{beta:.0f}",
+                         *(f"{p[k][0]:.5f}" for k in ("lift", "crossflow", "linear_damping")),
+                         f"{total:.5f}",
+                         f"{measured_odd(*appendix_curve(config, 'Y'), beta):.5f}"))
+    m = suboff_model(3, "datcom")
+    return [
+        "Where the excess comes from (`validation.lift.drift_force_parts`, the default rule): "
+        "the model's Y'(beta) is the lift (u L nu), the strips' quadratic cross-flow drag "
+        "(D_Q |nu| nu) and the linear damping (D_L nu); the Munk part of C_A gives no sway "
+        "force. The strips' D_L has no sway entry on SUBOFF at Roddy's speed (the hull's "
+        f"cross-flow Reynolds number {m.conditions.hull_reynolds_diameter:.3g} is above the "
+        "circle's drag crisis, where C_D rises with Re: the power-law exponent is clamped to 2, "
+        "all quadratic), so no linear damping adds to the lift there; and the two are not one "
+        "physics counted twice: the lift is the potential cross force of the stretch ahead of "
+        "the separation station (proportional to u v), the cross-flow drag the viscous force "
+        "of the cross-flow principle, which Allen & Perkins (1951, NACA Report 1048) and "
+        "Jorgensen (1977, NASA TR R-474) add to it as the model does. The excess at 4 deg is "
+        "the linear lift's (the static Y'_v above); at 18 deg the quadratic cross-flow is "
+        "41-89 % of the lift (configurations 2, 3, 5):", "",
+        markdown_table(["config", "beta [deg]", "lift", "cross-flow (D_Q)", "D_L", "model",
+                        "measured"], rows), ""]
+
+
 def stability_indices() -> dict:
     r"""Controls-fixed straight-line stability of the fully appended SUBOFF, from Table 4's
     derivatives and from the model's under both body-lift rules (configuration 2 in the
@@ -795,7 +829,8 @@ def remus_against_prestero(body_lift: str) -> dict:
 def issue_checks(method: str) -> int:
     """How many of the issue's Table 4 checks (:func:`suboff_comparisons`: static, rotary and
     control terms of configurations 1, 2, 4, 5; N'_v and the rotary signs of 3 and 6) the model
-    with ``method`` ('hoerner': ``body_lift: on``, 'slender': the default's rule) meets."""
+    with ``method`` ('hoerner' or 'on': ``body_lift: on``, 'slender', 'datcom': the default's
+    rule) meets."""
     n = 0
     for c in suboff_comparisons():
         if c["ok"] is None:
@@ -815,7 +850,7 @@ def suboff_table_section() -> list[str]:
         verdict = {True: "yes", False: "no (strict xfail)", None: "error stated"}[c["ok"]]
         rows.append((str(c["config"]), f"{c['name']}'", f"{c['measured']:.6f}",
                      f"{100 * c['uncertainty']:.0f} %", f"{c['hoerner']:.5f}",
-                     f"{c['slender']:.5f}", f"{c['ratio']:.2f}",
+                     f"{c['slender']:.5f}", f"{c['datcom']:.5f}", f"{c['ratio']:.2f}",
                      "sign" if c["tolerance"] is None and c["ok"] is not None else
                      ("" if c["tolerance"] is None else f"{100 * c['tolerance']:.0f} %"), verdict))
     curve = []
@@ -826,7 +861,8 @@ def suboff_table_section() -> list[str]:
         m = d["on"]["measured"]
         curve.append((str(config), f"{beta:.0f}", f"{q}'", f"{m:.5f}",
                       f"{d['on']['model']:.5f} ({d['on']['model'] / m:.2f})",
-                      f"{d['slender']['model']:.5f} ({d['slender']['model'] / m:.2f})"))
+                      f"{d['slender']['model']:.5f} ({d['slender']['model'] / m:.2f})",
+                      f"{d['datcom']['model']:.5f} ({d['datcom']['model'] / m:.2f})"))
     stock = stock_lift_slopes()
     carry = measured_carry_over()
     own = model_stock_slopes()
@@ -842,7 +878,10 @@ def suboff_table_section() -> list[str]:
                                    ("sternplane", "port sternplane deflected (configuration 1)"))]
     comps = [c for c in suboff_comparisons() if c["config"] in (1, 2, 3, 4, 5)
              and c["kind"] != "control"]
-    n_sign = sum(1 for c in comps if c["slender"] / c["measured"] > 0)
+    rows_by = {(c["config"], c["name"]): c for c in suboff_comparisons()}
+    away = [c for c in comps if c["ratio"] > 0
+            and abs(math.log(c["ratio"])) > abs(math.log(c["slender"] / c["measured"]))]
+    n_sign = sum(1 for c in comps if c["datcom"] / c["measured"] > 0)
     forces = [c["ratio"] for c in comps if c["name"] in ("Yv", "Zw")]
     moments = [c["ratio"] for c in comps if c["name"] in ("Nv", "Mw")]
     n_sign_h = sum(1 for c in comps if c["hoerner"] / c["measured"] > 0)
@@ -851,8 +890,10 @@ def suboff_table_section() -> list[str]:
     h_plain = [r for r, ring in h_moments if not ring]
     h_ring = [r for r, ring in h_moments if ring]
     sens = panel_speed_sensitivity()
-    n_ok_h, n_ok_s, n_checks = issue_checks("hoerner"), issue_checks("slender"), \
+    n_ok_h, n_ok_s, n_checks = issue_checks("hoerner"), issue_checks("datcom"), \
         sum(1 for c in suboff_comparisons() if c["ok"] is not None)
+    n_ok_sl = issue_checks("slender")
+    drift = {m: drift_curve_checks(m) for m in ("on", "slender", "datcom")}
     within15 = [f"configuration {c['config']}'s {c['name'][0]}'_{c['name'][1]}" for c in comps
                 if c["name"] in ("Yv", "Zw", "Nv", "Mw") and c["config"] not in (3, 6)
                 and abs(c["ratio"] - 1) <= SUBOFF_TOLERANCE["static"]] or ["none"]
@@ -864,10 +905,11 @@ def suboff_table_section() -> list[str]:
     s_ring = [r for r, ring in s_moments if ring]
     stab = stability_indices()
     gh = stab["horizontal"]
-    nearer = ("Hoerner's rule" if abs(gh["hoerner"] - gh["measured"])
-              < abs(gh["slender"] - gh["measured"]) else "the slender rule")
-    cover = {m: lift_band_coverage(m) for m in ("on", "slender")}
-    band_h, band_s = lift_band("on"), lift_band("slender")
+    nearer = min((("Hoerner's rule", "hoerner"), ("the slender rule", "slender"),
+                  ("the DATCOM rule", "datcom")),
+                 key=lambda t: abs(gh[t[1]] - gh["measured"]))[0]
+    cover = {m: lift_band_coverage(m) for m in ("on", "slender", "datcom")}
+    band_h, band_sl, band_s = lift_band("on"), lift_band("slender"), lift_band("datcom")
     d2 = suboff_derivatives(2, "slender")
     model_lever = d2["Mds"] / d2["Zds"]
     r_base = afterbody_radius(13.979167)
@@ -884,24 +926,28 @@ def suboff_table_section() -> list[str]:
         "derivatives with and without it). "
         "'Hoerner' is `body_lift: on` (a point force at 0.65 l answering the sideslip at "
         "the centre of buoyancy, isolated fins in the free stream: Prestero 2001's rules, the "
-        "default until issue 34); 'slender' is the default, `body_lift: auto` (or `slender`): "
-        "slender-body lift ahead of "
+        "default until issue 34); 'slender' is `body_lift: slender`: slender-body lift ahead of "
         "Hopkins's separation station, answering the local cross-flow, and the fins' "
-        "slender-body interference in the hull's boundary layer; docs/theory.md. Ratio "
-        "= slender / measured. Tolerances are the issue's: static and control 15 %, rotary "
+        "slender-body interference in the hull's boundary layer; 'DATCOM' is the default, "
+        "`body_lift: auto` (or `datcom`): the same with the potential lift times Munk's factor "
+        f"k2 - k1 of the hull's fineness ({munk_factor(val('hull.L'), val('hull.D')):.3f} on "
+        "SUBOFF), the USAF DATCOM's body method as published (sec. 4.2.1.1); docs/theory.md. "
+        "Ratio = DATCOM / measured. Tolerances are the issue's: static and control 15 %, rotary "
         "right sign and 25 % (configurations 1, 2, 4, 5); N'_v 10 % and rotary signs for 3 and "
         "6 (tests/test_lift_data.py; a miss is a strict xfail):", "",
         markdown_table(["config", "derivative", "measured", "uncertainty", "Hoerner",
-                        "slender", "ratio", "tolerance", "met"], rows), "",
-        "The slender-body rule gets the rotary terms from the local cross-flow: the bare hull's "
+                        "slender", "DATCOM", "ratio", "tolerance", "met"], rows), "",
+        "The slender-body rules get the rotary terms from the local cross-flow: the bare hull's "
         "Y'_r and N'_r now have the measured signs (Hoerner's form: Y'_r wrong, N'_r zero), "
         f"{n_sign} of 20 lift terms of configurations 1-5 have the measured sign (Hoerner's "
         f"form: {n_sign_h}), and the fully appended Y'_r, N'_r, Z'_q, M'_q are within 25 %. "
         "Its one published constant, "
         "Hopkins's separation station x_0 = 0.378 l + 0.527 x_1 (0.825 l on SUBOFF), was "
         "correlated on missile bodies with boat-tails; SUBOFF's streamlined afterbody keeps "
-        "its flow attached further aft, so the body lift is too large (bare-hull Y'_v 2.8 "
-        "times; DATCOM's (k2 - k1) factor changes it by 3 %) and the moments too small: this "
+        "its flow attached further aft, so the body lift is too large (bare-hull Y'_v "
+        f"{rows_by[(3, 'Yv')]['slender'] / rows_by[(3, 'Yv')]['measured']:.2f} times, "
+        f"{rows_by[(3, 'Yv')]['ratio']:.2f} with DATCOM's (k2 - k1)) and the moments too "
+        "small: under the default this "
         f"one error takes every static Y'_v, Z'_w ({min(forces):.2f}-{max(forces):.2f} times) and "
         f"N'_v, M'_w ({min(moments):.2f}-{max(moments):.2f}) of configurations 1-5 outside the "
         f"issue's 15 % but {' and '.join(within15)}. A "
@@ -914,13 +960,25 @@ def suboff_table_section() -> list[str]:
         "flow, the hull's boundary layer from Head's method (next subsections); Hoerner's "
         "rule with isolated fins has the control derivatives within 16 % only because two "
         "errors cancel (the fin's own force 52-76 % too strong, the carry-over missing). "
-        "Decision (issue 34): the default, `body_lift: auto`, takes the slender-body rule; "
-        "`body_lift: on` keeps Hoerner's. On these measured data it is the better one: "
-        f"{n_ok_s} of {n_checks} of the issue's checks above against {n_ok_h} (Hoerner); a "
-        "smaller lift band (`python -m benchmarks.lift_band`, "
-        f"{cover['slender'][1]} terms of configurations 1-6: sd(ln) {band_s['lift']:.3f} against "
+        "Decision (issue 34): the default, `body_lift: auto`, takes the slender-body rule, "
+        "since the second pass with DATCOM's (k2 - k1) (`datcom`); `body_lift: slender` keeps "
+        "it without the factor and `on` Hoerner's. DATCOM's factor moves every static term and "
+        "every rotary term with the measured sign towards the measured except "
+        + ", ".join(f"configuration {c['config']}'s {c['name'][0]}'_{c['name'][1]} "
+                    f"({c['slender'] / c['measured']:.2f} to {c['ratio']:.2f})" for c in away)
+        + ", meets as many of the issue's Table 4 checks "
+        f"({n_ok_s} of {n_checks}; slender {n_ok_sl}), more drift-curve points within 20 % "
+        f"({drift['datcom'][0]} of {drift['datcom'][1]} against {drift['slender'][0]}; "
+        f"Hoerner {drift['on'][0]}), a narrower lift band (sd(ln) {band_s['lift']:.3f} against "
+        f"{band_sl['lift']:.3f}) with the same leave-one-out coverage "
+        f"({cover['datcom'][0]}/{cover['datcom'][1]} against {cover['slender'][0]}/"
+        f"{cover['slender'][1]}), so it became the default; nothing in it is fitted (Lamb's "
+        "spheroid of the hull's l/d). On these measured data the slender rules are the better "
+        f"ones: {n_ok_s} of {n_checks} of the issue's checks above against {n_ok_h} (Hoerner); "
+        "a smaller lift band (`python -m benchmarks.lift_band [--method slender|on|datcom]`, "
+        f"{cover['datcom'][1]} terms of configurations 1-6: sd(ln) {band_s['lift']:.3f} against "
         f"{band_h['lift']:.3f} with `--method on`; leaving one configuration out "
-        f"{cover['slender'][0]}/{cover['slender'][1]} inside against "
+        f"{cover['datcom'][0]}/{cover['datcom'][1]} inside against "
         f"{cover['on'][0]}/{cover['on'][1]}) and control band ({band_s['control']:.3f} against "
         f"{band_h['control']:.3f}); each stern plane's own force within 20 % of its stock "
         "(Hoerner's isolated fin not); the bare hull's rotary terms with the measured signs "
@@ -929,26 +987,28 @@ def suboff_table_section() -> list[str]:
         f"{min(h_plain):.2f}-{max(h_plain):.2f} of measured against {min(s_plain):.2f}-"
         f"{max(s_plain):.2f}); with the ring (1 and 2) both are short "
         f"({min(h_ring):.2f}-{max(h_ring):.2f} Hoerner, {min(s_ring):.2f}-{max(s_ring):.2f} "
-        "slender). Those moments set the directional and pitch stability and so the turning "
+        "DATCOM). Those moments set the directional and pitch stability and so the turning "
         "circle of `limits`, and there neither rule has the measured behaviour: with the "
         f"model's m' = {stab['m']:.5f}, Table 4's derivatives give the fully appended body "
         f"(x'_G = {stab['x_G']:.5f}) G_H = 1 - N'_v (Y'_r - m') / (Y'_v (N'_r - m' x'_G)) = "
         f"{stab['horizontal']['measured']:.2f} (configuration 2: directionally unstable) and "
         f"G_V = {stab['vertical']['measured']:.2f} (configuration 1, without the hydrostatic "
-        "moment), where the model is stable under both rules (G_H "
+        "moment), where the model is stable under every rule (G_H "
         f"{stab['horizontal']['hoerner']:.2f} Hoerner, {stab['horizontal']['slender']:.2f} "
-        f"slender; G_V {stab['vertical']['hoerner']:.2f}, {stab['vertical']['slender']:.2f}; "
+        f"slender, {stab['horizontal']['datcom']:.2f} DATCOM; G_V "
+        f"{stab['vertical']['hoerner']:.2f}, {stab['vertical']['slender']:.2f}, "
+        f"{stab['vertical']['datcom']:.2f}; "
         "`validation.lift.stability_indices`): a stable model turns wider than the measured "
         f"body would, under {nearer} a little less so. No manoeuvre of REMUS or MARES measured in the "
         "water is in reach (MARES has no fins, so its model has no body lift under either "
-        "rule). Against Prestero's REMUS table the slender rule is further off (N_uv "
+        "rule). Against Prestero's REMUS table the default rule is further off (N_uv "
         f"{prestero['auto']['N_uv']:.2f} of his where Hoerner's gives "
         f"{prestero['on']['N_uv']:.2f}; Y_ur and N_ur {min(rot['auto']):.1f}-"
         f"{max(rot['auto']):.1f} times where Hoerner's gives {min(rot['on']):.1f}-"
         f"{max(rot['on']):.1f}), but that table is a prediction made with Hoerner's body lift "
         "and the lifting-line fin (reference_tables/prestero2001: its lift and control rows are "
         "semi-empirical, transcribed from public listings; none is a measurement), so agreeing "
-        "with it is agreeing with Hoerner's rule. The slender rule's remaining static error is "
+        "with it is agreeing with Hoerner's rule. The default rule's remaining static error is "
         "one published constant used outside its correlation (the next subsections), which a "
         "submarine correlation, once found, replaces.", "",
         *body_lift_section(), *ring_wing_section(),
@@ -1005,7 +1065,9 @@ def suboff_table_section() -> list[str]:
         "configuration 2, run to -13.4 deg only, as C(beta) - C(0) beyond it: "
         "`validation.lift.measured_odd`); in brackets model / measured. Configuration 2 with "
         "ring wing No. 1 ('The ring wing' above):", "",
-        markdown_table(["config", "beta [deg]", "", "measured", "Hoerner", "slender"], curve), "",
+        markdown_table(["config", "beta [deg]", "", "measured", "Hoerner", "slender", "DATCOM"],
+                       curve), "",
+        *drift_parts_section(),
     ]
 
 
@@ -1163,8 +1225,10 @@ def body_lift_candidates() -> list[dict]:
     point: a list of {'method', 'source', 'Yv', 'Nv', 'Yr', 'Nr'} on Roddy's scale.
 
     - Hoerner & Borst 1985 (``body_lift: on``): 0.003 (l/d) per degree on d^2 at 0.65 l;
-    - Hopkins 1951 / DATCOM 4.2.1.1 (the default, ``body_lift: auto`` or ``slender``): slender-body lift ahead of
+    - Hopkins 1951 (``body_lift: slender``): slender-body lift ahead of
       x_0 = 0.378 l + 0.527 x_1;
+    - DATCOM 4.2.1.1 (the default, ``body_lift: auto`` or ``datcom``): the same times Munk's
+      k2 - k1 of the hull's fineness;
     - Allen & Perkins 1951 (NACA Report 1048) / Jorgensen 1977 (NASA TR R-474), linear term:
       slender-body theory over the whole body to its base, taken at the aft perpendicular (the
       cap behind it is a 0.31 ft rounding of r = 0.1175 R_max),
@@ -1189,7 +1253,9 @@ def body_lift_candidates() -> list[dict]:
     rows = []
     for name, mode, source in (
             ("Hoerner (`on`)", "on", "Hoerner & Borst 1985, ch. 19; Prestero 2001 sec. 3.6.1"),
-            ("Hopkins x_0 (default, slender)", "slender", "Hopkins 1951, NACA RM A51C14; DATCOM 4.2.1.1")):
+            ("Hopkins x_0 (slender)", "slender", "Hopkins 1951, NACA RM A51C14"),
+            ("Hopkins x_0 times k2 - k1 (default, datcom)", "datcom",
+             "USAF DATCOM 4.2.1.1 (Hopkins 1951; Munk 1924's k2 - k1)")):
         rows.append(_candidate_row(name, jac_off - total_linear(suboff_model(3, mode)), jac_off,
                                    off, source))
     vehicle = parse_vehicle(suboff_vehicle_data(3, "off"), file="SUBOFF config 3")
@@ -1357,8 +1423,8 @@ def body_lift_section() -> list[str]:
             for r in body_lift_candidates()]
     rows.insert(0, ("measured (Roddy 1990 Table 4, configuration 3)", "",
                     *(f"{meas[k]:.6f}" for k in ("Yv", "Nv", "Yr", "Nr"))))
-    attached = [abs(r["Yv"] / meas["Yv"]) for r in body_lift_candidates()[2:5]]
-    head = {k: body_lift_candidates()[5][k] / meas[k] for k in ("Yv", "Nv", "Yr", "Nr")}
+    attached = [abs(r["Yv"] / meas["Yv"]) for r in body_lift_candidates()[3:6]]
+    head = {k: body_lift_candidates()[6][k] / meas[k] for k in ("Yv", "Nv", "Yr", "Nr")}
     layer = bare_hull_layer()
     sub = body_lift_substitution()
     aft = np.linspace(10.645833, 13.979167, 3001)

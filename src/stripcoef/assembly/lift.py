@@ -384,11 +384,13 @@ def _body_lift(vehicle, rho: float, ref, center):
         xs = np.linspace(lo, hi, SLENDER_STATIONS)
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         x0 = separation_station(xs, area)
-        # datcom: the same potential lift times Munk's k2 - k1 (USAF DATCOM sec. 4.2.1.1)
-        factor = munk_factor(length, d) if mode == "datcom" else 1.0
-        info = {"method": "datcom" if mode == "datcom" else "slender", "length": length,
+        # datcom (and auto, since issue 34): the same potential lift times Munk's k2 - k1
+        # (USAF DATCOM sec. 4.2.1.1)
+        datcom = mode in ("auto", "datcom")
+        factor = munk_factor(length, d) if datcom else 1.0
+        info = {"method": "datcom" if datcom else "slender", "length": length,
                 "diameter": d, "separation_x": x0}
-        if mode == "datcom":
+        if datcom:
             info["munk_factor"] = factor
         return (factor * slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z,
                                                   ref=ref),
