@@ -259,8 +259,17 @@ _MISS = ("Prestero's printed fin terms are rho c_La S = 9.64 kg/m, 45 % of two f
          "README, inconsistency 1); the model keeps the two-fin formula")
 
 
-@pytest.mark.parametrize("name", list(_COMBINED))
-@pytest.mark.xfail(strict=True, reason=_MISS)
+#: Prestero's combined coefficients the default model meets within his 20 %: Y_uv and Z_uw
+#: (1.15 times his under the DATCOM rule, the default since issue 34's second pass; 1.21 under
+#: the slender rule, 1.43 under his own Hoerner rule); N_uv, M_uw are 0.38 of his and the rotary
+#: terms 3.4-5.6 times (the body lift acts behind Hopkins's station and answers the local
+#: cross-flow, his at 0.65 l on the sideslip at the CB; docs/validation.md).
+_COMBINED_MET = ("Y_uv", "Z_uw")
+
+
+@pytest.mark.parametrize("name", [
+    n if n in _COMBINED_MET else pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=_MISS))
+    for n in _COMBINED])
 def test_combined_lift_coefficients_against_prestero(remus, name):
     i, j = _COMBINED[name]
     row = ref.reference_value("prestero2001", name)

@@ -575,7 +575,8 @@ SUBOFF_COMPARED = {3: (3, False), 4: (4, False), 5: (5, False), 6: (3, True), 2:
 def suboff_comparisons() -> list[dict]:
     """Every Table 4 derivative that stripcoef predicts, per configuration: measured (with
     Appendix C's uncertainty), the model with Hoerner's body lift (``body_lift: on``) and with
-    the slender-body lift (``body_lift: slender``, the default's rule), and whether the latter
+    the slender-body lift (``body_lift: slender``) and with the DATCOM rule (the default's), and
+    whether the latter
     meets the issue's
     tolerance: static within 15 % and control within 15 % for configurations 1, 2, 4, 5; rotary
     with the right sign and within 25 %; for 3 and 6 N'_v within 10 % and the rotary signs.
@@ -708,7 +709,7 @@ METHOD_KEY = {"on": "hoerner", "hoerner": "hoerner", "slender": "slender", "auto
 
 def lift_band(method: str) -> dict:
     """sd(ln(model/measured)) = q95|ln| / 1.96 of the SUBOFF lift and control terms of
-    configurations 1-6 with the right sign (``method``: 'on' Hoerner, 'slender' the default's
+    configurations 1-6 with the right sign (``method``: 'on' Hoerner, 'slender', 'datcom' the default's
     rule), the band benchmarks/lift_band.py measures and stores: {'lift': sd, 'control': sd}."""
     from stripcoef.study.calibration import Z95, quantile95
 
@@ -728,7 +729,7 @@ def lift_band(method: str) -> dict:
 def lift_band_coverage(method: str) -> tuple[int, int]:
     """(inside, total) of the SUBOFF lift terms (static and rotary, configurations 1-6) when
     each configuration's terms are checked against the band the others set (``method``: 'on'
-    Hoerner, 'slender' the default's rule); a wrong-signed term, or one measured as zero
+    Hoerner, 'slender', 'datcom' the default's rule); a wrong-signed term, or one measured as zero
     (below 5e-4), is outside (:func:`stripcoef.study.calibration.leave_one_group_out`, as
     benchmarks/lift_band.py counts it)."""
     from stripcoef.study.calibration import leave_one_group_out
@@ -807,7 +808,7 @@ def stability_indices() -> dict:
 
 
 def remus_against_prestero(body_lift: str) -> dict:
-    """geometry/remus100.yaml with ``body_lift`` ('auto' or 'slender': the default's rule, 'on':
+    """geometry/remus100.yaml with ``body_lift`` ('auto' or 'datcom': the default's rule, 'slender', 'on':
     Hoerner's) against
     Prestero 2001's combined lift coefficients (:data:`COMBINED`): {name: ours / his}."""
     import yaml
@@ -1100,7 +1101,8 @@ def section() -> str:
         "### REMUS 100 against Prestero 2001", "",
         "geometry/remus100.yaml (Myring hull and fins from Prestero's published dimensions) "
         "estimated by strip theory with the default lift (`body_lift: auto`): slender-body lift "
-        "ahead of Hopkins's separation station and Helmbold's fin lift slope with the "
+        "ahead of Hopkins's separation station times Munk's k2 - k1 (USAF DATCOM 4.2.1.1) and "
+        "Helmbold's fin lift slope with the "
         "wing-body factors in the hull's stern flow (docs/theory.md). 'combined' = lift + the Munk part of C_A(nu), linearised at "
         "u = 1 m/s, as Prestero sums them. Tolerance 20 % (reference_tables/prestero2001: "
         "semi-empirical lift, no fin-hull interference).", "",

@@ -346,22 +346,26 @@ def _round(hull) -> bool:
 def _body_lift(vehicle, rho: float, ref, center):
     """Body lift of a slender hull of revolution.
 
-    Two rules: the slender-body lift ahead of Hopkins's separation station (Hopkins 1951, NACA
+    Three rules: the slender-body lift ahead of Hopkins's separation station (Hopkins 1951, NACA
     RM A51C14; USAF DATCOM sec. 4.2.1.1; :func:`~stripcoef.hull.lift.slender_body_lift_matrix`:
     it answers the local cross-flow, so a yaw or pitch rate gives rotary terms), with the fins
     in the hull's stern flow (:func:`_stern_flow`), or Hoerner's point force at 0.65 l
     answering the sideslip at the centre of buoyancy (Hoerner & Borst 1985, ch. 19; Prestero
     2001 sec. 3.6.1) with isolated fins in the free stream. ``body_lift: auto`` (default)
-    takes the slender-body rule when the vehicle has fins or control surfaces and a circular
-    hull with l/d >= :data:`MIN_SLENDERNESS`, and no body lift otherwise; ``slender`` asks for
-    the slender-body rule and ``on`` for Hoerner's (a hull that is not slender and round is
-    then an error); ``datcom`` the slender-body rule with the potential lift times Munk's
-    factor k2 - k1 of the body's fineness, the USAF DATCOM's body method as published (sec.
-    4.2.1.1, :func:`~stripcoef.hull.lift.munk_factor`; the fins as under ``slender``);
-    ``off`` leaves body lift out. ``auto`` follows the slender-body rule
-    because on the measured SUBOFF captive-model data (Roddy 1990, Table 4) it is the better
-    one (docs/validation.md, 'Every configuration and derivative'). Returns
-    (L [kg/m, kg, kg m], info) or None; under the slender-body rule also (s from the nose [m],
+    takes the DATCOM rule when the vehicle has fins or control surfaces and a circular hull
+    with l/d >= :data:`MIN_SLENDERNESS`, and no body lift otherwise: the slender-body rule with
+    the potential lift times Munk's factor k2 - k1 of the body's fineness, the USAF DATCOM's
+    body method as published (sec. 4.2.1.1, :func:`~stripcoef.hull.lift.munk_factor`; the fins
+    as under ``slender``). The factor also keeps the lift consistent with C_A: L is the
+    potential force of the stretch behind x_0 taken from the whole body's, whose Munk moment
+    C_A(nu) nu holds with the finite body's added mass (about k2 - k1 times the slender
+    sections'), not the slender sections'. ``datcom`` asks for that rule, ``slender`` for the
+    slender-body rule without the factor and ``on`` for Hoerner's (a hull that is not slender
+    and round is then an error); ``off`` leaves body lift out. ``auto`` follows the DATCOM
+    rule because on the measured SUBOFF captive-model data (Roddy 1990, Table 4 and Appendix
+    B) it is the best of the three (docs/validation.md, 'Every configuration and
+    derivative'; ``python -m benchmarks.lift_band --method datcom``). Returns
+    (L [kg/m, kg, kg m], info) or None; under the slender-body rules also (s from the nose [m],
     S(s) [m^2]), the sections the fins' stern flow is computed from.
     """
     hull = vehicle.hull
