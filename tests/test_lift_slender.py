@@ -271,3 +271,29 @@ def test_fins_in_heads_layer_and_a_hull_shorter_than_the_laminar_run(tmp_path):
     for f in fins[0.1]:
         assert f["boundary_layer_method"] == "laminar" and f["boundary_layer"] == 0.0
         assert f["pressure_ratio"] == pytest.approx(f["stream_ratio"])
+
+
+def test_datcom_rule_changes_the_body_lift_only(remus_slender):
+    """``body_lift: datcom`` (the default's rule, also ``auto``) keeps the fins of the slender
+    rule (their stern flow, factors and deflection derivatives) and scales only the body's
+    slender-body lift by Munk's k2 - k1: L_datcom - L_slender = (k2 - k1 - 1) L_body."""
+    from stripcoef.assembly.lift import _body_lift
+    from stripcoef.geometry.vehicle import parse_vehicle
+    from stripcoef.hull.lift import munk_factor
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        datcom = estimate(parse_vehicle(_remus_data(body_lift="datcom"), file="remus.yaml"))
+        auto = estimate(parse_vehicle(_remus_data(), file="remus.yaml"))
+    np.testing.assert_array_equal(auto.lift, datcom.lift)
+    np.testing.assert_allclose(datcom.control_matrix, remus_slender.control_matrix, rtol=1e-12)
+    fins_s = remus_slender.conditions.lift["fin_lift"]
+    fins_d = datcom.conditions.lift["fin_lift"]
+    assert [f["pressure_ratio"] for f in fins_d] == pytest.approx(
+        [f["pressure_ratio"] for f in fins_s], rel=1e-12)
+    vehicle = parse_vehicle(_remus_data(body_lift="slender"), file="remus.yaml")
+    body = _body_lift(vehicle, datcom.density, datcom.reference_point, datcom.reference_point)
+    info = datcom.conditions.lift["body_lift"]
+    k = munk_factor(info["length"], info["diameter"])
+    np.testing.assert_allclose(datcom.lift - remus_slender.lift, (k - 1.0) * body[0],
+                               rtol=1e-9, atol=1e-9 * float(np.abs(body[0]).max()))
