@@ -36,7 +36,12 @@ hold the face count: :func:`remesh_family` then shortens a level's edge until it
 
 from __future__ import annotations
 
+import warnings
+from dataclasses import dataclass
+
 import numpy as np
+
+from stripcoef.errors import ModelWarning
 
 #: Dihedral angle above which an edge is kept as a crease by the remesher [deg] (MeshLab's
 #: default of the filter).
@@ -51,6 +56,19 @@ ITERATIONS = 10
 #: Largest relative change of the enclosed volume a remesh may make [-] before it is refused
 #: (the surface was not followed: members thinner than the edge collapsed).
 VOLUME_TOLERANCE = 0.02
+#: Largest relative change of the surface area a remesh may make [-] before it is refused.
+#: A knife edge cut off loses more area than volume (a NACA 0017 wing's trailing edge: 7.3 %
+#: of the area, 4.3 % of the volume at 1600 panels), and a thin member's added mass goes
+#: with its planform, not its volume: the volume check alone does not see it.
+AREA_TOLERANCE = 0.02
+#: Largest distance of the remesh from the input, a fraction of the bounding box's diagonal
+#: [-] (MeshLab's default of the filter, passed explicitly: :func:`_remesh_checked`).
+SURFACE_DISTANCE = 0.01
+#: The same in the thin-member modes (no flips) [-]: a NACA 0030 wing (chord 0.15 m, span
+#: 0.3 m) at 1600 panels keeps its aft tenth of chord within 3.6 % of its area (the whole
+#: surface within 0.7 %) at 0.002, against 12.6 % (1.5 %) at 0.01 and 7.7 % (0.9 %) at 0.0005
+#: (with flips, at 0.01: the family refused, area -5.9 %).
+KNIFE_DISTANCE = 0.002
 #: Factor by which :func:`remesh_family` shortens a level's edge while the level does not
 #: refine the one before (2^(1/4): a quarter of a panel-count doubling) [-].
 EDGE_STEP = 2.0 ** 0.25
@@ -58,6 +76,28 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
+
+
+@dataclass(frozen=True)
+class Mode:
+    """How a family is remeshed: the crease angle [deg] and whether the remesher flips edges
+    (valence-improving flips; off: the feature-preserving mode of thin members, module
+    docstring)."""
+
+    feature_angle: float
+    flips: bool = True
+    #: largest distance of the remesh from the input [-], a fraction of the bounding box's
+    #: diagonal (MeshLab's default of the filter 0.01, :data:`SURFACE_DISTANCE`; the
+    #: thin-member modes :data:`KNIFE_DISTANCE`)
+    surface_distance: float = SURFACE_DISTANCE
+
+
+#: The modes :func:`remesh_family` tries, in order: creases above :data:`FEATURE_ANGLE`, then
+#: above :data:`FACET_ANGLE`, each first with flips (the isotropic remesh of Botsch & Kobbelt)
+#: and then without (thin members: the knife edge kept).
+MODES = (Mode(FEATURE_ANGLE), Mode(FACET_ANGLE),
+         Mode(FEATURE_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE),
+         Mode(FACET_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE))
 
 
 def available() -> bool:
@@ -75,88 +115,137 @@ def edge_for_panels(area: float, panels: int) -> float:
     return float(np.sqrt(4.0 * area / (np.sqrt(3.0) * panels)))
 
 
-def remesh_isotropic(vertices, faces, edge: float, *, feature_angle: float = FEATURE_ANGLE,
+def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGLE,
                      iterations: int = ITERATIONS):
     """The closed mesh (vertices [m], faces) remeshed to triangles of about ``edge`` [m]
     (module docstring), creases above ``feature_angle`` [deg] kept (then above
-    :data:`FACET_ANGLE` if the volume changed).  Returns (vertices, faces) with the input's orientation (outward
-    normals), or ``None`` when the result is not a closed, consistently wound surface of the
-    input's volume within :data:`VOLUME_TOLERANCE`."""
-    for angle in dict.fromkeys((feature_angle, min(feature_angle, FACET_ANGLE))):
-        out = _remesh_once(vertices, faces, edge, angle, iterations)
+    :data:`FACET_ANGLE` if the volume or area changed); ``feature_angle`` may be a
+    :class:`Mode` (a family's, :func:`remesh_family`: that mode alone).  Returns (vertices,
+    faces) with the input's orientation (outward normals), or ``None`` when the result is not
+    a closed, consistently wound surface of the input's volume within
+    :data:`VOLUME_TOLERANCE` and area within :data:`AREA_TOLERANCE`."""
+    if isinstance(feature_angle, Mode):
+        modes = (feature_angle,)
+    else:
+        modes = tuple(Mode(a) for a in dict.fromkeys((float(feature_angle),
+                                                      min(float(feature_angle), FACET_ANGLE))))
+    for mode in modes:
+        out = _remesh_once(vertices, faces, edge, mode, iterations)
         if out is not None:
             return out
     return None
 
 
 def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
-                  max_faces: int | None = None):
-    r"""Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
-    (:data:`FEATURE_ANGLE`, else :data:`FACET_ANGLE`), each with at least ``min_ratio`` times
-    the faces of the one before.  Returns (list of (vertices, faces), the angle [deg]) or
-    ``None``.
+                  max_faces: int | None = None, modes=MODES):
+    r"""Remeshes at each of ``edges`` [m] (longest first) in one :class:`Mode` for all (the
+    first of ``modes`` that gives every level), each with at least ``min_ratio`` times the
+    faces of the one before.  Returns (list of (vertices, faces), the mode) or ``None``.
 
     A level whose remesh does not reach ``min_ratio`` times the faces of the one before (the
     creases of a faceted body -- a 30-sided cylinder kept as a polyhedron at
     :data:`FACET_ANGLE` -- hold the face count near the creases' own until the edge is shorter
-    than the facets) is remeshed at edges shorter by :data:`EDGE_STEP` until it does, at most
-    :data:`GROWTH_TRIES` times and within ``max_faces``: the family refines, each level an
-    isotropic remesh of the same surface, at more faces than asked (issue 32: the Slocum
-    glider's 124-face cylinder and the WHOI glider's 208-face hull, whose families
-    1068/1932/2190 and 1192/2054/2518 were refused and the panel method fell back to the
-    refined CAD faces, 11 and 16 % off)."""
+    than the facets), or changes the area or volume beyond :data:`AREA_TOLERANCE` and
+    :data:`VOLUME_TOLERANCE` (a member thinner than the edge), is remeshed at edges shorter
+    by :data:`EDGE_STEP` until it does, at most :data:`GROWTH_TRIES` times and within
+    ``max_faces``: the family refines, each level an isotropic remesh of the same surface, at
+    more faces than asked (issue 32: the Slocum glider's 124-face cylinder and the WHOI
+    glider's 208-face hull, whose families 1068/1932/2190 and 1192/2054/2518 were refused and
+    the panel method fell back to the refined CAD faces, 11 and 16 % off).  A family refused
+    in every mode because a remesh lost area or volume is said in a :class:`ModelWarning`
+    (never silent: the caller falls back to a family that follows the surface)."""
     cap = MAX_FACES if max_faces is None else max_faces
-    for angle in (FEATURE_ANGLE, FACET_ANGLE):
+    worst = None                              # the smallest area/volume change of a refusal
+    for mode in modes:
         levels = []
         for h in edges:
-            lv = _grown(vertices, faces, h, angle,
-                        min_ratio * len(levels[-1][1]) if levels else 0, cap)
+            lv, change = _grown(vertices, faces, h, mode,
+                                min_ratio * len(levels[-1][1]) if levels else 0, cap)
             if lv is None:
+                if change is not None and (worst is None or abs(change[0]) < abs(worst[0])):
+                    worst = change
                 break
             levels.append(lv)
         else:
-            return levels, angle
+            return levels, mode
+    if worst is not None:
+        warnings.warn(f"an isotropic remesh family was refused: it changed the surface area by "
+                      f"{100 * worst[0]:+.1f} % and the volume by {100 * worst[1]:+.1f} % at "
+                      f"best (limits {100 * AREA_TOLERANCE:.0f} and "
+                      f"{100 * VOLUME_TOLERANCE:.0f} %: members thinner than the edge); the "
+                      "panel levels are then a remesh of the whole body or the input's faces "
+                      "refined", ModelWarning, stacklevel=2)
     return None
 
 
-def _grown(vertices, faces, edge, angle, at_least, max_faces):
-    """The remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
-    ``at_least`` faces; ``None`` if the volume changes, or it exceeds ``max_faces``."""
+def _grown(vertices, faces, edge, mode, at_least, max_faces):
+    """(the remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
+    ``at_least`` faces and keeps the area and volume; the last (area, volume) change refused,
+    or None).  The remesh is ``None`` if no edge gives it within ``max_faces``."""
+    change = None
     for _ in range(GROWTH_TRIES + 1):
-        lv = _remesh_once(vertices, faces, edge, angle, ITERATIONS)
-        if lv is None or len(lv[1]) > max_faces:
-            return None
-        if len(lv[1]) >= at_least:
-            return lv
+        lv = _remesh_checked(vertices, faces, edge, mode, ITERATIONS)
+        if lv[0] is None:
+            if lv[1] is None:                 # not closed: a shorter edge will not mend it
+                return None, change
+            change = lv[1]
+        else:
+            if len(lv[0][1]) > max_faces:
+                return None, change
+            if len(lv[0][1]) >= at_least:
+                return lv[0], change
         edge /= EDGE_STEP
-    return None
+    return None, change
 
 
-def _remesh_once(vertices, faces, edge, feature_angle, iterations):
+def _remesh_once(vertices, faces, edge, mode, iterations):
+    """The remesh, or ``None`` (:func:`_remesh_checked`)."""
+    return _remesh_checked(vertices, faces, edge, mode, iterations)[0]
+
+
+def _remesh_checked(vertices, faces, edge, mode, iterations):
+    """((vertices, faces) or None, (relative area change, relative volume change) of a
+    refused remesh or None).  Every parameter of the filter is passed: pymeshlab keeps the
+    values of the previous call for those left out (pymeshlab 2025.7: a call with
+    ``collapseflag=False`` made the next plain call's remesh 5x finer)."""
     import pymeshlab
 
+    if not isinstance(mode, Mode):
+        mode = Mode(float(mode))
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int32)
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f))
-    ms.meshing_isotropic_explicit_remeshing(iterations=iterations,
-                                            targetlen=pymeshlab.PureValue(float(edge)),
-                                            featuredeg=float(feature_angle))
+    diag = float(np.linalg.norm(np.ptp(v, axis=0)))
+    ms.meshing_isotropic_explicit_remeshing(
+        iterations=iterations, adaptive=False, selectedonly=False,
+        targetlen=pymeshlab.PureValue(float(edge)), featuredeg=float(mode.feature_angle),
+        checksurfdist=True, maxsurfdist=pymeshlab.PureValue(mode.surface_distance * diag),
+        splitflag=True, collapseflag=True, swapflag=bool(mode.flips), smoothflag=True,
+        reprojectflag=True)
     m = ms.current_mesh()
     rv = np.asarray(m.vertex_matrix(), float)
     rf = np.asarray(m.face_matrix(), np.int64)
     if len(rf) < 4:
-        return None
+        return None, None
     from stripcoef.geometry.mesh import EdgeTopology
 
     if not EdgeTopology(rf).consistent:
-        return None
+        return None, None
     vol0, vol = _volume(v, np.asarray(faces)), _volume(rv, rf)
     if vol < 0:                  # the remesher kept the winding; guard against a flip anyway
         rf, vol = rf[:, ::-1], -vol
-    if abs(vol / vol0 - 1.0) > VOLUME_TOLERANCE:
-        return None
-    return rv, rf
+    change = (_area(rv, rf) / _area(v, np.asarray(faces)) - 1.0, vol / vol0 - 1.0)
+    if abs(change[0]) > AREA_TOLERANCE or abs(change[1]) > VOLUME_TOLERANCE:
+        return None, change
+    return (rv, rf), None
+
+
+def _area(vertices, faces) -> float:
+    """Surface area [m^2] (sum of the triangles' areas)."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
+                                      axis=1).sum())
 
 
 def _volume(vertices, faces) -> float:
