@@ -155,3 +155,27 @@ def test_a_thin_wing_keeps_its_trailing_edge():
                                                        rel=remesh.VOLUME_TOLERANCE)
     te = _trailing_edge_area(v, f, 0.15)
     assert _trailing_edge_area(*levels[-1], 0.15) == pytest.approx(te, rel=0.05)
+
+
+def test_where_no_remesh_keeps_the_area_the_levels_are_the_input_bisected():
+    """The last mode of MODES: the input's faces bisected to the levels' counts (the surface
+    exactly, each level refining the one before), said in a warning."""
+    pytest.importorskip("pymeshlab")
+    from stripcoef.errors import ModelWarning
+    from stripcoef.hull import remesh
+
+    assert remesh.MODES[-1].bisect
+    wing = _naca_wing()
+    v, f = np.asarray(wing.vertices, float), np.asarray(wing.faces)
+    edges = [remesh.edge_for_panels(wing.area, n) for n in (400, 800, 1600)]
+    with pytest.warns(ModelWarning, match="bisected"):
+        out = remesh.remesh_family(v, f, edges, modes=(remesh.Mode(remesh.FEATURE_ANGLE),
+                                                       remesh.MODES[-1]))
+    assert out is not None
+    levels, mode = out
+    assert mode.bisect
+    counts = [len(rf) for _, rf in levels]
+    assert all(b >= 1.25 * a for a, b in zip(counts, counts[1:])), counts
+    for rv, rf in levels:
+        assert remesh._area(rv, rf) == pytest.approx(wing.area, rel=1e-9)
+        assert remesh._volume(rv, rf) == pytest.approx(wing.volume, rel=1e-9)

@@ -26,10 +26,22 @@ Thin members (issue 32), as measured: a plate's rims and a thruster duct's walls
 the edge are followed (creases kept; a 0.3 x 0.6 m plate 3 mm thick: normal added mass 0.822,
 0.792, 0.785, 0.777 of rho pi/4 a^2 b at 612 to 4048 panels, against 0.772 at t/a = 0.01 of
 docs/validation.md's plate table; a duct of 5.6 mm walls converges as smoothly).  What the
-remesher cannot follow is a knife edge: where a wing section (a NACA trailing edge, the ECA
-A9's fins) is thinner than the edge, the collapses cut it off, and the remesh loses planform
-area (NACA 00xx wings of t/c 0.012 to 0.036: 14 % at 400 panels, 4.5 % at 3200) more than
-volume; the family is then refused and the panel method falls back to the refined input.  A
+remesher cannot follow with its defaults is a knife edge: where a wing section (a NACA
+trailing edge, the ECA A9's fins) is thinner than the edge, edge flips join the two faces of
+the thin wedge, the collapses then cut it off, and the remesh loses planform area (the seeded
+wings of benchmarks/thin_members.py, NACA 00xx of t/c 0.017 to 0.046: 12 to 16 % at 400
+panels, 5 % at 3200) more than volume.  Hence (:class:`Mode`, :data:`MODES`): a remesh is
+refused when its area changes by more than :data:`AREA_TOLERANCE` (or its volume by more
+than :data:`VOLUME_TOLERANCE`); the family is tried with creases above :data:`FEATURE_ANGLE`
+and then :data:`FACET_ANGLE` with flips, then at both angles without flips and with the
+remesh kept within :data:`KNIFE_DISTANCE` of the input (the thin-member modes:
+the same wings keep their area within 0.3 to 1.9 %, their aft tenth of chord within 4 % at
+1600 panels); and where no remesh keeps the area (the ECA A9's fins), the levels are the
+input's faces bisected (:func:`stripcoef.hull.panels.refine`, the surface exactly), said in a
+:class:`~stripcoef.errors.ModelWarning`: never a silent loss of area.  Measured
+(benchmarks/remesh_choice.py, benchmarks/public_meshes.py, benchmarks/thin_members.py;
+docs/validation.md): pymeshlab's adaptive flag changed nothing on these wings and a tighter
+surface-distance bound with flips did not keep the trailing edge.  A
 faceted body (a 30-sided cylinder) is followed at :data:`FACET_ANGLE`, where the facets' creases
 hold the face count: :func:`remesh_family` then shortens a level's edge until it refines.
 """
@@ -59,8 +71,12 @@ VOLUME_TOLERANCE = 0.02
 #: Largest relative change of the surface area a remesh may make [-] before it is refused.
 #: A knife edge cut off loses more area than volume (a NACA 0017 wing's trailing edge: 7.3 %
 #: of the area, 4.3 % of the volume at 1600 panels), and a thin member's added mass goes
-#: with its planform, not its volume: the volume check alone does not see it.
-AREA_TOLERANCE = 0.02
+#: with its planform, not its volume: the volume check alone does not see it.  The loss of
+#: a small member is a small part of the whole surface: the ECA A9's remeshes lost 1.0 to
+#: 1.9 % of its area, nearly all of it on the fins, and its roll (the fins' term) came out
+#: 0.208 to 0.215 kg m^2 on them against 0.261 and 0.263 on its faces bisected to 3000 and
+#: 6000 (Capytaine: 0.262); hence 1 %, not the volume's 2 %.
+AREA_TOLERANCE = 0.01
 #: Largest distance of the remesh from the input, a fraction of the bounding box's diagonal
 #: [-] (MeshLab's default of the filter, passed explicitly: :func:`_remesh_checked`).
 SURFACE_DISTANCE = 0.01
@@ -90,6 +106,10 @@ class Mode:
     #: diagonal (MeshLab's default of the filter 0.01, :data:`SURFACE_DISTANCE`; the
     #: thin-member modes :data:`KNIFE_DISTANCE`)
     surface_distance: float = SURFACE_DISTANCE
+    #: not a remesh: the input's faces bisected along their longest edges
+    #: (:func:`stripcoef.hull.panels.refine`) to the edge's panel count -- the surface exactly,
+    #: the last resort of :func:`remesh_family`
+    bisect: bool = False
 
 
 #: The modes :func:`remesh_family` tries, in order: creases above :data:`FEATURE_ANGLE`, then
@@ -97,7 +117,8 @@ class Mode:
 #: and then without (thin members: the knife edge kept).
 MODES = (Mode(FEATURE_ANGLE), Mode(FACET_ANGLE),
          Mode(FEATURE_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE),
-         Mode(FACET_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE))
+         Mode(FACET_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE),
+         Mode(180.0, flips=False, bisect=True))
 
 
 def available() -> bool:
@@ -113,6 +134,12 @@ def edge_for_panels(area: float, panels: int) -> float:
     r"""Edge [m] of ``panels`` equilateral triangles covering ``area`` [m^2]:
     :math:`h = \sqrt{4A/(\sqrt3 N)}`."""
     return float(np.sqrt(4.0 * area / (np.sqrt(3.0) * panels)))
+
+
+def panels_for_edge(area: float, edge: float) -> float:
+    r"""Equilateral triangles of side ``edge`` [m] covering ``area`` [m^2]:
+    :math:`N = 4A/(\sqrt3 h^2)` (the inverse of :func:`edge_for_panels`)."""
+    return float(4.0 * area / (np.sqrt(3.0) * edge * edge))
 
 
 def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGLE,
@@ -167,15 +194,24 @@ def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
                 break
             levels.append(lv)
         else:
+            if mode.bisect and worst is not None:
+                warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
+                              "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
+                              + " faces): the surface exactly, at the input's panel shapes",
+                              ModelWarning, stacklevel=2)
             return levels, mode
     if worst is not None:
-        warnings.warn(f"an isotropic remesh family was refused: it changed the surface area by "
-                      f"{100 * worst[0]:+.1f} % and the volume by {100 * worst[1]:+.1f} % at "
-                      f"best (limits {100 * AREA_TOLERANCE:.0f} and "
-                      f"{100 * VOLUME_TOLERANCE:.0f} %: members thinner than the edge); the "
-                      "panel levels are then a remesh of the whole body or the input's faces "
-                      "refined", ModelWarning, stacklevel=2)
+        warnings.warn(_refused(worst) + "; the panel levels are then a remesh of the whole "
+                      "body or the input's faces refined", ModelWarning, stacklevel=2)
     return None
+
+
+def _refused(change) -> str:
+    """The warning's first part: the smallest (area, volume) change of a refused remesh."""
+    return (f"the isotropic remesh was refused: it changed the surface area by "
+            f"{100 * change[0]:+.1f} % and the volume by {100 * change[1]:+.1f} % at best "
+            f"(limits {100 * AREA_TOLERANCE:.0f} and {100 * VOLUME_TOLERANCE:.0f} %: members "
+            "thinner than the edge, such as a fin's trailing edge, cut off)")
 
 
 def _grown(vertices, faces, edge, mode, at_least, max_faces):
@@ -212,6 +248,12 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
 
     if not isinstance(mode, Mode):
         mode = Mode(float(mode))
+    if mode.bisect:
+        from stripcoef.hull.panels import refine
+
+        rv, rf = refine(np.asarray(vertices, float), np.asarray(faces, np.int64),
+                        int(np.ceil(panels_for_edge(_area(vertices, faces), edge))))
+        return (np.asarray(rv, float), np.asarray(rf, np.int64)), None
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int32)
     ms = pymeshlab.MeshSet()
