@@ -34,9 +34,11 @@ panels, 5 % at 3200) more than volume.  Hence (:class:`Mode`, :data:`MODES`): a 
 refused when its area changes by more than :data:`AREA_TOLERANCE` (or its volume by more
 than :data:`VOLUME_TOLERANCE`); the family is tried with creases above :data:`FEATURE_ANGLE`
 and then :data:`FACET_ANGLE` with flips, then at both angles without flips and with the
-remesh kept within :data:`KNIFE_DISTANCE` of the input (the thin-member modes:
-the same wings keep their area within 0.3 to 1.9 %, their aft tenth of chord within 4 % at
-1600 panels); and where no remesh keeps the area (the ECA A9's fins), the levels are the
+remesh kept within :data:`KNIFE_DISTANCE` of the input (the thin-member modes: at 1600
+and 3200 panels the same wings keep their area within 0.3 to 1.4 % and the aft tenth of the
+chord within 0.8 to 7.4 % of its area, where the remeshes with flips lost 5.0 to 8.1 % of the
+whole area; ``python -m benchmarks.remesh_choice --knife``, benchmarks/data/
+remesh_knife_edges.md); and where no remesh keeps the area (the ECA A9's fins), the levels are the
 input's faces bisected (:func:`stripcoef.hull.panels.refine`, the surface exactly), said in a
 :class:`~stripcoef.errors.ModelWarning`: never a silent loss of area.  Measured
 (benchmarks/remesh_choice.py, benchmarks/public_meshes.py, benchmarks/thin_members.py;
