@@ -237,13 +237,21 @@ def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
 def compare(run: dict, ref, ref_err) -> list[dict]:
     """Per term of a CLI run: error against the reference moved to the run's reference point."""
     from stripcoef.conventions import transform_matrix
-    from stripcoef.hull.panels import NEGLIGIBLE
 
     d = run["json"]
     point = np.asarray(d["reference_point"], float)
     ref_p = transform_matrix(ref, from_point=(0, 0, 0), to_point=point)
     # the error band moves with the matrix; its size is bounded by moving its magnitude
     err_p = np.abs(transform_matrix(ref_err, from_point=(0, 0, 0), to_point=point))
+    return compare_at(run, ref_p, err_p)
+
+
+def compare_at(run: dict, ref_p, err_p) -> list[dict]:
+    """Per term of a CLI run: error against the reference ``ref_p`` and its estimated error
+    ``err_p``, both already at the run's reference point and in its frame."""
+    from stripcoef.hull.panels import NEGLIGIBLE
+
+    d = run["json"]
     ours = np.asarray(d["added_mass"], float)
     est = d.get("added_mass_error")
     est = np.asarray(est, float) if est is not None else np.zeros((6, 6))
@@ -282,6 +290,34 @@ def csv_rows(s):
              int(t["covered"]), int(t["covered_vv"])] for t in s["terms"]]
 
 
+def stored_references(path) -> dict:
+    """The references of a stored run (its CSV, :data:`HEADER`): ``{(mesh, run label):
+    (reference at the run's point and frame, its estimated error, BEM face counts,
+    BEM seconds)}``; the error is recovered from ``bem_error_rel`` times the scale of
+    :func:`compare_at`."""
+    from stripcoef.hull.panels import NEGLIGIBLE
+
+    with open(path, newline="") as fh:
+        fh.readline()
+        rows = [r for r in csv.DictReader(fh) if r.get("i")]
+    out = {}
+    for r in rows:
+        key = (r["mesh"], r["run"])
+        if key not in out:
+            out[key] = [np.zeros((6, 6)), np.zeros((6, 6)), r["bem_faces"],
+                        float(r["bem_seconds"] or 0.0)]
+        i, j = int(r["i"]), int(r["j"])
+        out[key][0][i, j] = out[key][0][j, i] = float(r["bem"])
+        out[key][1][i, j] = out[key][1][j, i] = float(r["bem_error_rel"])
+    for ref, rel, _, _ in out.values():
+        dg = np.abs(np.diag(ref)).copy()
+        for block in (slice(0, 3), slice(3, 6)):
+            dg[block] = np.maximum(dg[block], NEGLIGIBLE * dg[block].max())
+        rel *= np.sqrt(np.outer(dg, dg))           # in place: the error [kg, kg m, kg m^2]
+    return {k: (v[0], v[1], [int(c) for c in v[2].split("/") if c], v[3])
+            for k, v in out.items()}
+
+
 def method_of(run):
     c = (run["json"] or {}).get("conditions", {})
     return "panels" if c.get("added_mass_method") else "strips"
@@ -311,6 +347,10 @@ def main(argv=None) -> int:
     ap.add_argument("--bem-max-faces", type=int, default=4000,
                     help="largest BEM level (Capytaine's dense matrices: ~56 N^2 bytes)")
     ap.add_argument("--csv", default=None, help="write every term's row to this CSV")
+    ap.add_argument("--references", default=None, metavar="CSV",
+                    help="compare with the Capytaine references of a stored run (its CSV) "
+                         "instead of computing them (after a change of the model: minutes "
+                         "instead of the BEM's hour)")
     ap.add_argument("--update", action="store_true",
                     help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
@@ -319,6 +359,10 @@ def main(argv=None) -> int:
                + " ".join(map(str, args.bem_faces))
                + (f" --bem-max-faces {args.bem_max_faces}" if args.bem_max_faces != 4000
                   else ""))
+    stored = stored_references(args.references) if args.references else None
+    if stored is not None:
+        command = ("python -m benchmarks.public_meshes --mirror DIR --references "
+                   + args.references)
     if args.csv:                          # written as the meshes finish (a long run)
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
         kept = []
@@ -383,8 +427,9 @@ def main(argv=None) -> int:
                              auto["command"]] + [""] * (len(HEADER) - 11))
                 continue
             try:
-                ref, ref_err, counts, t_bem = bem_reference(path, args.bem_faces,
-                                                            args.bem_max_faces)
+                ref, ref_err, counts, t_bem = (bem_reference(path, args.bem_faces,
+                                                             args.bem_max_faces)
+                                               if stored is None else (None, None, [], 0.0))
             except Exception as exc:            # a refusal is a result: say it, go on
                 print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
                 continue
@@ -392,7 +437,13 @@ def main(argv=None) -> int:
                 if run["rc"] != 0 or run["json"] is None:
                     print(f"    {label}: exit {run['rc']}", flush=True)
                     continue
-                if "--axis" in run["command"]:
+                if stored is not None:
+                    if (mesh.name, label) not in stored:
+                        print(f"    {label}: no stored reference", flush=True)
+                        continue
+                    ref_p, err_p, counts, t_bem = stored[(mesh.name, label)]
+                    terms = compare_at(run, ref_p, err_p)
+                elif "--axis" in run["command"]:
                     rot = frame_rotation(path, axis)
                     terms = compare(run, rotate_6(ref, rot), np.abs(rotate_6(ref_err,
                                                                              np.abs(rot))))

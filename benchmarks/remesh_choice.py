@@ -18,6 +18,11 @@ panel counts reached against the asked, the remeshing time, the worst diagonal e
 the stored reference, and the coverage of the estimate.  Usage:
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.remesh_choice [--count 12]
+
+``--knife`` instead remeshes the wings of benchmarks.thin_members' stored seed (NACA 00xx
+sections, a knife-edge trailing edge) in each of :data:`KNIFE_SETTINGS` and tabulates the
+changes of area, volume and trailing-edge area: the measurement behind the thin-member modes
+of stripcoef.hull.remesh.
 """
 
 from __future__ import annotations
@@ -90,13 +95,75 @@ def levels(method, v, f):
     return [P.refine(v, f, n) for n in TARGETS]
 
 
+#: The thin members' seed of the stored run of benchmarks.thin_members (docs/validation.md).
+THIN_SEED = 1473826805
+#: The remesh settings compared on knife edges (``--knife``): name, crease angle [deg], edge
+#: flips, surface-distance bound [fraction of the bounding box's diagonal].
+KNIFE_SETTINGS = (("flips, creases 30 deg (MeshLab's defaults)", 30.0, True, 0.01),
+                  ("flips, creases 10 deg", 10.0, True, 0.01),
+                  ("flips, distance 0.0005", 30.0, True, 0.0005),
+                  ("no flips, distance 0.01", 30.0, False, 0.01),
+                  ("no flips, distance 0.002", 30.0, False, 0.002))
+
+
+def trailing_edge_area(vertices, faces, chord):
+    """Area [m^2] of a wing's sides (not its flat tips) over the aft tenth of the chord (the
+    wing of benchmarks.thin_members: chord along x, trailing edge at +chord/2)."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    side = np.abs(n[:, 2]) < 0.9 * np.linalg.norm(n, axis=1)
+    return 0.5 * float(np.linalg.norm(n[side & (t.mean(axis=1)[:, 0] > 0.4 * chord)],
+                                      axis=1).sum())
+
+
+def knife_edges(panels=(400, 1600, 3200)) -> int:
+    """The wings of benchmarks.thin_members' stored seed remeshed in each of
+    :data:`KNIFE_SETTINGS` at ``panels``: the changes of area, volume and the aft tenth of
+    the chord's area, and the faces reached (why stripcoef.hull.remesh's thin-member modes
+    have no flips and a 0.002 distance bound)."""
+    from benchmarks.thin_members import make_member
+    from stripcoef.hull import remesh as R
+
+    rng = np.random.default_rng(THIN_SEED)
+    members = [make_member(("plate", "wing")[k % 2], rng) for k in range(6)]
+    print(f"    python -m benchmarks.remesh_choice --knife (seed {THIN_SEED})\n")
+    print("| wing | panels asked | setting | faces | area | volume | aft tenth of chord |")
+    print("|---|---|---|---|---|---|---|")
+    for mesh, what, _ in members[1::2]:
+        v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
+        chord = float(np.ptp(v[:, 0]))
+        a0, v0, te0 = R._area(v, f), R._volume(v, f), trailing_edge_area(v, f, chord)
+        for n in panels:
+            for name, angle, flips, dist in KNIFE_SETTINGS:
+                out, change = R._remesh_checked(v, f, R.edge_for_panels(a0, n),
+                                                R.Mode(angle, flips, dist), R.ITERATIONS)
+                if out is None and change is None:
+                    print(f"| {what} | {n} | {name} | not closed | | | |")
+                    continue
+                if out is None:                  # refused: its changes
+                    print(f"| {what} | {n} | {name} | refused | {100 * change[0]:+.1f} % | "
+                          f"{100 * change[1]:+.1f} % | |")
+                    continue
+                rv, rf = out
+                print(f"| {what} | {n} | {name} | {len(rf)} | "
+                      f"{100 * (R._area(rv, rf) / a0 - 1):+.1f} % | "
+                      f"{100 * (R._volume(rv, rf) / v0 - 1):+.1f} % | "
+                      f"{100 * (trailing_edge_area(rv, rf, chord) / te0 - 1):+.1f} % |",
+                      flush=True)
+    return 0
+
+
 def main(argv=None) -> int:
     from stripcoef.hull import panels as P
     from stripcoef.hull.convergence import grid_convergence_index, richardson
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--count", type=int, default=12)
+    ap.add_argument("--knife", action="store_true",
+                    help="instead: the remesh settings on the thin members' knife edges")
     args = ap.parse_args(argv)
+    if args.knife:
+        return knife_edges()
     refs = C.stored_references(STORED)
     rng = np.random.default_rng(SEED)
     stats = {m: dict(err=[], cov=[], t=[], ratio=[], failed=0) for m in

@@ -65,3 +65,31 @@ def test_an_update_names_the_command_of_every_row():
     again = PM.updated_command(first, ["m2"], "run C --only m2 --update")
     assert again == ("run A; rows of m1 from run B --only m1 m2 --update; rows of m2 from "
                      "run C --only m2 --update")
+
+
+def test_stored_references_give_back_the_compared_matrices(tmp_path):
+    """--references reads a stored run's Capytaine matrix and its error back from the CSV
+    rows the run wrote (the error from bem_error_rel times the comparison's scale)."""
+    import csv
+
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    b = rng.normal(size=(6, 6))
+    ref = b @ b.T + 6.0 * np.eye(6)                  # symmetric, positive definite
+    err = np.abs(0.05 * ref)
+    ours = ref * (1.0 + 0.01 * rng.normal(size=(6, 6)))
+    run = {"json": {"added_mass": (0.5 * (ours + ours.T)).tolist(),
+                    "added_mass_error": err.tolist(), "reference_point": [0.0, 0.0, 0.0]},
+           "command": "stripcoef coefficients m.stl --rho 1000 --json", "seconds": 1.0}
+    line = dict(mesh=PM.MESHES[0], label="auto", run=run, terms=PM.compare_at(run, ref, err),
+                counts=[500, 1000, 2000], t_bem=12.5, warned=False, note="", levels="1/2/3")
+    path = tmp_path / "stored.csv"
+    with open(path, "w", newline="") as fh:
+        fh.write("# a command\n")
+        csv.writer(fh).writerow(PM.HEADER)
+        csv.writer(fh).writerows(PM.csv_rows(line))
+    back = PM.stored_references(path)[(PM.MESHES[0].name, "auto")]
+    np.testing.assert_allclose(back[0], ref, rtol=1e-5)
+    np.testing.assert_allclose(back[1], err, rtol=1e-3)
+    assert back[2] == [500, 1000, 2000] and back[3] == 12.5

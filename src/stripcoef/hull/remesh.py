@@ -26,17 +26,36 @@ Thin members (issue 32), as measured: a plate's rims and a thruster duct's walls
 the edge are followed (creases kept; a 0.3 x 0.6 m plate 3 mm thick: normal added mass 0.822,
 0.792, 0.785, 0.777 of rho pi/4 a^2 b at 612 to 4048 panels, against 0.772 at t/a = 0.01 of
 docs/validation.md's plate table; a duct of 5.6 mm walls converges as smoothly).  What the
-remesher cannot follow is a knife edge: where a wing section (a NACA trailing edge, the ECA
-A9's fins) is thinner than the edge, the collapses cut it off, and the remesh loses planform
-area (NACA 00xx wings of t/c 0.012 to 0.036: 14 % at 400 panels, 4.5 % at 3200) more than
-volume; the family is then refused and the panel method falls back to the refined input.  A
+remesher cannot follow with its defaults is a knife edge: where a wing section (a NACA
+trailing edge, the ECA A9's fins) is thinner than the edge, edge flips join the two faces of
+the thin wedge, the collapses then cut it off, and the remesh loses planform area (the seeded
+wings of benchmarks/thin_members.py, NACA 00xx of t/c 0.017 to 0.046: 12 to 16 % at 400
+panels, 5 % at 3200) more than volume.  Hence (:class:`Mode`, :data:`MODES`): a remesh is
+refused when its area changes by more than :data:`AREA_TOLERANCE` (or its volume by more
+than :data:`VOLUME_TOLERANCE`); the family is tried with creases above :data:`FEATURE_ANGLE`
+and then :data:`FACET_ANGLE` with flips, then at both angles without flips and with the
+remesh kept within :data:`KNIFE_DISTANCE` of the input (the thin-member modes: at 1600
+and 3200 panels the same wings keep their area within 0.3 to 1.4 % and the aft tenth of the
+chord within 0.8 to 7.4 % of its area, where the remeshes with flips lost 5.0 to 8.1 % of the
+whole area; ``python -m benchmarks.remesh_choice --knife``, benchmarks/data/
+remesh_knife_edges.md); and where no remesh keeps the area (the ECA A9's fins), the levels are the
+input's faces bisected (:func:`stripcoef.hull.panels.refine`, the surface exactly), said in a
+:class:`~stripcoef.errors.ModelWarning`: never a silent loss of area.  Measured
+(benchmarks/remesh_choice.py, benchmarks/public_meshes.py, benchmarks/thin_members.py;
+docs/validation.md): pymeshlab's adaptive flag changed nothing on these wings and a tighter
+surface-distance bound with flips did not keep the trailing edge.  A
 faceted body (a 30-sided cylinder) is followed at :data:`FACET_ANGLE`, where the facets' creases
 hold the face count: :func:`remesh_family` then shortens a level's edge until it refines.
 """
 
 from __future__ import annotations
 
+import warnings
+from dataclasses import dataclass
+
 import numpy as np
+
+from stripcoef.errors import ModelWarning
 
 #: Dihedral angle above which an edge is kept as a crease by the remesher [deg] (MeshLab's
 #: default of the filter).
@@ -51,6 +70,23 @@ ITERATIONS = 10
 #: Largest relative change of the enclosed volume a remesh may make [-] before it is refused
 #: (the surface was not followed: members thinner than the edge collapsed).
 VOLUME_TOLERANCE = 0.02
+#: Largest relative change of the surface area a remesh may make [-] before it is refused.
+#: A knife edge cut off loses more area than volume (a NACA 0017 wing's trailing edge: 7.3 %
+#: of the area, 4.3 % of the volume at 1600 panels), and a thin member's added mass goes
+#: with its planform, not its volume: the volume check alone does not see it.  The loss of
+#: a small member is a small part of the whole surface: the ECA A9's remeshes lost 1.0 to
+#: 1.9 % of its area, nearly all of it on the fins, and its roll (the fins' term) came out
+#: 0.208 to 0.215 kg m^2 on them against 0.261 and 0.263 on its faces bisected to 3000 and
+#: 6000 (Capytaine: 0.262); hence 1 %, not the volume's 2 %.
+AREA_TOLERANCE = 0.01
+#: Largest distance of the remesh from the input, a fraction of the bounding box's diagonal
+#: [-] (MeshLab's default of the filter, passed explicitly: :func:`_remesh_checked`).
+SURFACE_DISTANCE = 0.01
+#: The same in the thin-member modes (no flips) [-]: a NACA 0030 wing (chord 0.15 m, span
+#: 0.3 m) at 1600 panels keeps its aft tenth of chord within 3.6 % of its area (the whole
+#: surface within 0.7 %) at 0.002, against 12.6 % (1.5 %) at 0.01 and 7.7 % (0.9 %) at 0.0005
+#: (with flips, at 0.01: the family refused, area -5.9 %).
+KNIFE_DISTANCE = 0.002
 #: Factor by which :func:`remesh_family` shortens a level's edge while the level does not
 #: refine the one before (2^(1/4): a quarter of a panel-count doubling) [-].
 EDGE_STEP = 2.0 ** 0.25
@@ -58,6 +94,33 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
+
+
+@dataclass(frozen=True)
+class Mode:
+    """How a family is remeshed: the crease angle [deg] and whether the remesher flips edges
+    (valence-improving flips; off: the feature-preserving mode of thin members, module
+    docstring)."""
+
+    feature_angle: float
+    flips: bool = True
+    #: largest distance of the remesh from the input [-], a fraction of the bounding box's
+    #: diagonal (MeshLab's default of the filter 0.01, :data:`SURFACE_DISTANCE`; the
+    #: thin-member modes :data:`KNIFE_DISTANCE`)
+    surface_distance: float = SURFACE_DISTANCE
+    #: not a remesh: the input's faces bisected along their longest edges
+    #: (:func:`stripcoef.hull.panels.refine`) to the edge's panel count -- the surface exactly,
+    #: the last resort of :func:`remesh_family`
+    bisect: bool = False
+
+
+#: The modes :func:`remesh_family` tries, in order: creases above :data:`FEATURE_ANGLE`, then
+#: above :data:`FACET_ANGLE`, each first with flips (the isotropic remesh of Botsch & Kobbelt)
+#: and then without (thin members: the knife edge kept).
+MODES = (Mode(FEATURE_ANGLE), Mode(FACET_ANGLE),
+         Mode(FEATURE_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE),
+         Mode(FACET_ANGLE, flips=False, surface_distance=KNIFE_DISTANCE),
+         Mode(180.0, flips=False, bisect=True))
 
 
 def available() -> bool:
@@ -75,88 +138,158 @@ def edge_for_panels(area: float, panels: int) -> float:
     return float(np.sqrt(4.0 * area / (np.sqrt(3.0) * panels)))
 
 
-def remesh_isotropic(vertices, faces, edge: float, *, feature_angle: float = FEATURE_ANGLE,
+def panels_for_edge(area: float, edge: float) -> float:
+    r"""Equilateral triangles of side ``edge`` [m] covering ``area`` [m^2]:
+    :math:`N = 4A/(\sqrt3 h^2)` (the inverse of :func:`edge_for_panels`)."""
+    return float(4.0 * area / (np.sqrt(3.0) * edge * edge))
+
+
+def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGLE,
                      iterations: int = ITERATIONS):
     """The closed mesh (vertices [m], faces) remeshed to triangles of about ``edge`` [m]
     (module docstring), creases above ``feature_angle`` [deg] kept (then above
-    :data:`FACET_ANGLE` if the volume changed).  Returns (vertices, faces) with the input's orientation (outward
-    normals), or ``None`` when the result is not a closed, consistently wound surface of the
-    input's volume within :data:`VOLUME_TOLERANCE`."""
-    for angle in dict.fromkeys((feature_angle, min(feature_angle, FACET_ANGLE))):
-        out = _remesh_once(vertices, faces, edge, angle, iterations)
+    :data:`FACET_ANGLE` if the volume or area changed); ``feature_angle`` may be a
+    :class:`Mode` (a family's, :func:`remesh_family`: that mode alone).  Returns (vertices,
+    faces) with the input's orientation (outward normals), or ``None`` when the result is not
+    a closed, consistently wound surface of the input's volume within
+    :data:`VOLUME_TOLERANCE` and area within :data:`AREA_TOLERANCE`."""
+    if isinstance(feature_angle, Mode):
+        modes = (feature_angle,)
+    else:
+        modes = tuple(Mode(a) for a in dict.fromkeys((float(feature_angle),
+                                                      min(float(feature_angle), FACET_ANGLE))))
+    for mode in modes:
+        out = _remesh_once(vertices, faces, edge, mode, iterations)
         if out is not None:
             return out
     return None
 
 
 def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
-                  max_faces: int | None = None):
-    r"""Remeshes at each of ``edges`` [m] (longest first) with one crease angle for all
-    (:data:`FEATURE_ANGLE`, else :data:`FACET_ANGLE`), each with at least ``min_ratio`` times
-    the faces of the one before.  Returns (list of (vertices, faces), the angle [deg]) or
-    ``None``.
+                  max_faces: int | None = None, modes=MODES):
+    r"""Remeshes at each of ``edges`` [m] (longest first) in one :class:`Mode` for all (the
+    first of ``modes`` that gives every level), each with at least ``min_ratio`` times the
+    faces of the one before.  Returns (list of (vertices, faces), the mode) or ``None``.
 
     A level whose remesh does not reach ``min_ratio`` times the faces of the one before (the
     creases of a faceted body -- a 30-sided cylinder kept as a polyhedron at
     :data:`FACET_ANGLE` -- hold the face count near the creases' own until the edge is shorter
-    than the facets) is remeshed at edges shorter by :data:`EDGE_STEP` until it does, at most
-    :data:`GROWTH_TRIES` times and within ``max_faces``: the family refines, each level an
-    isotropic remesh of the same surface, at more faces than asked (issue 32: the Slocum
-    glider's 124-face cylinder and the WHOI glider's 208-face hull, whose families
-    1068/1932/2190 and 1192/2054/2518 were refused and the panel method fell back to the
-    refined CAD faces, 11 and 16 % off)."""
+    than the facets), or changes the area or volume beyond :data:`AREA_TOLERANCE` and
+    :data:`VOLUME_TOLERANCE` (a member thinner than the edge), is remeshed at edges shorter
+    by :data:`EDGE_STEP` until it does, at most :data:`GROWTH_TRIES` times and within
+    ``max_faces``: the family refines, each level an isotropic remesh of the same surface, at
+    more faces than asked (issue 32: the Slocum glider's 124-face cylinder and the WHOI
+    glider's 208-face hull, whose families 1068/1932/2190 and 1192/2054/2518 were refused and
+    the panel method fell back to the refined CAD faces, 11 and 16 % off).  A family refused
+    in every mode because a remesh lost area or volume is said in a :class:`ModelWarning`
+    (never silent: the caller falls back to a family that follows the surface)."""
     cap = MAX_FACES if max_faces is None else max_faces
-    for angle in (FEATURE_ANGLE, FACET_ANGLE):
+    worst = None                              # the smallest area/volume change of a refusal
+    for mode in modes:
         levels = []
         for h in edges:
-            lv = _grown(vertices, faces, h, angle,
-                        min_ratio * len(levels[-1][1]) if levels else 0, cap)
+            lv, change = _grown(vertices, faces, h, mode,
+                                min_ratio * len(levels[-1][1]) if levels else 0, cap)
             if lv is None:
+                if change is not None and (worst is None or abs(change[0]) < abs(worst[0])):
+                    worst = change
                 break
             levels.append(lv)
         else:
-            return levels, angle
+            if mode.bisect and worst is not None:
+                warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
+                              "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
+                              + " faces): the surface exactly, at the input's panel shapes",
+                              ModelWarning, stacklevel=2)
+            return levels, mode
+    if worst is not None:
+        warnings.warn(_refused(worst) + "; the panel levels are then a remesh of the whole "
+                      "body or the input's faces refined", ModelWarning, stacklevel=2)
     return None
 
 
-def _grown(vertices, faces, edge, angle, at_least, max_faces):
-    """The remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
-    ``at_least`` faces; ``None`` if the volume changes, or it exceeds ``max_faces``."""
+def _refused(change) -> str:
+    """The warning's first part: the smallest (area, volume) change of a refused remesh."""
+    return (f"the isotropic remesh was refused: it changed the surface area by "
+            f"{100 * change[0]:+.1f} % and the volume by {100 * change[1]:+.1f} % at best "
+            f"(limits {100 * AREA_TOLERANCE:.0f} and {100 * VOLUME_TOLERANCE:.0f} %: members "
+            "thinner than the edge, such as a fin's trailing edge, cut off)")
+
+
+def _grown(vertices, faces, edge, mode, at_least, max_faces):
+    """(the remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
+    ``at_least`` faces and keeps the area and volume; the last (area, volume) change refused,
+    or None).  The remesh is ``None`` if no edge gives it within ``max_faces``."""
+    change = None
     for _ in range(GROWTH_TRIES + 1):
-        lv = _remesh_once(vertices, faces, edge, angle, ITERATIONS)
-        if lv is None or len(lv[1]) > max_faces:
-            return None
-        if len(lv[1]) >= at_least:
-            return lv
+        lv = _remesh_checked(vertices, faces, edge, mode, ITERATIONS)
+        if lv[0] is None:
+            if lv[1] is None:                 # not closed: a shorter edge will not mend it
+                return None, change
+            change = lv[1]
+        else:
+            if len(lv[0][1]) > max_faces:
+                return None, change
+            if len(lv[0][1]) >= at_least:
+                return lv[0], change
         edge /= EDGE_STEP
-    return None
+    return None, change
 
 
-def _remesh_once(vertices, faces, edge, feature_angle, iterations):
+def _remesh_once(vertices, faces, edge, mode, iterations):
+    """The remesh, or ``None`` (:func:`_remesh_checked`)."""
+    return _remesh_checked(vertices, faces, edge, mode, iterations)[0]
+
+
+def _remesh_checked(vertices, faces, edge, mode, iterations):
+    """((vertices, faces) or None, (relative area change, relative volume change) of a
+    refused remesh or None).  Every parameter of the filter is passed: pymeshlab keeps the
+    values of the previous call for those left out (pymeshlab 2025.7: a call with
+    ``collapseflag=False`` made the next plain call's remesh 5x finer)."""
     import pymeshlab
 
+    if not isinstance(mode, Mode):
+        mode = Mode(float(mode))
+    if mode.bisect:
+        from stripcoef.hull.panels import refine
+
+        rv, rf = refine(np.asarray(vertices, float), np.asarray(faces, np.int64),
+                        int(np.ceil(panels_for_edge(_area(vertices, faces), edge))))
+        return (np.asarray(rv, float), np.asarray(rf, np.int64)), None
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int32)
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f))
-    ms.meshing_isotropic_explicit_remeshing(iterations=iterations,
-                                            targetlen=pymeshlab.PureValue(float(edge)),
-                                            featuredeg=float(feature_angle))
+    diag = float(np.linalg.norm(np.ptp(v, axis=0)))
+    ms.meshing_isotropic_explicit_remeshing(
+        iterations=iterations, adaptive=False, selectedonly=False,
+        targetlen=pymeshlab.PureValue(float(edge)), featuredeg=float(mode.feature_angle),
+        checksurfdist=True, maxsurfdist=pymeshlab.PureValue(mode.surface_distance * diag),
+        splitflag=True, collapseflag=True, swapflag=bool(mode.flips), smoothflag=True,
+        reprojectflag=True)
     m = ms.current_mesh()
     rv = np.asarray(m.vertex_matrix(), float)
     rf = np.asarray(m.face_matrix(), np.int64)
     if len(rf) < 4:
-        return None
+        return None, None
     from stripcoef.geometry.mesh import EdgeTopology
 
     if not EdgeTopology(rf).consistent:
-        return None
+        return None, None
     vol0, vol = _volume(v, np.asarray(faces)), _volume(rv, rf)
     if vol < 0:                  # the remesher kept the winding; guard against a flip anyway
         rf, vol = rf[:, ::-1], -vol
-    if abs(vol / vol0 - 1.0) > VOLUME_TOLERANCE:
-        return None
-    return rv, rf
+    change = (_area(rv, rf) / _area(v, np.asarray(faces)) - 1.0, vol / vol0 - 1.0)
+    if abs(change[0]) > AREA_TOLERANCE or abs(change[1]) > VOLUME_TOLERANCE:
+        return None, change
+    return (rv, rf), None
+
+
+def _area(vertices, faces) -> float:
+    """Surface area [m^2] (sum of the triangles' areas)."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
+                                      axis=1).sum())
 
 
 def _volume(vertices, faces) -> float:
