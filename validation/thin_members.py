@@ -26,10 +26,15 @@ def section() -> str:
         "the chordwise spacing apart: the panelling of wing panel methods, Katz & Plotkin 2001, "
         "sec. 11.1), the two finest Richardson-extrapolated. Each diagonal term's error over "
         "itself (a term under 1 % of the largest of its block over that 1 %). Plates are "
-        "followed by the remesher (their rims kept as creases). A wing is not: where its "
-        "section is thinner than the edge (the knife-edge trailing edge) the remesher's "
-        "collapses cut it off, the remesh loses planform area (4.5 % at 3200 panels) and "
-        "volume beyond the family's 2 %, the family is refused, and the panel method falls "
-        "back to the input's faces refined (one span-long strip per section point): an open "
-        "failure of issue 32. The stored run:",
+        "followed by the remesher (their rims kept as creases). A wing's knife-edge trailing "
+        "edge is where the remesher's edge flips join the two faces of the thin wedge and its "
+        "collapses then cut it off (5-8 % of the whole area lost with flips): a remesh level "
+        "whose area moves by more than 1 % is refused and remeshed without flips under a "
+        "tighter surface-distance bound, and where no remesh keeps the area the levels are "
+        "the input's faces split along their longest edges, with a warning "
+        "(`hull.remesh`; `python -m benchmarks.remesh_choice --knife`). The wings' sway and "
+        "roll are then within 2.6 % and 9.1 % (they were +5 to +8.5 % and +25 to +32 % when "
+        "the trailing edge was cut); yaw of the thinnest wing (t/c 0.017) is +8.3 % and roll "
+        "of the t/c 0.046 wing +9.1 %, both inside the estimated error, against Capytaine "
+        "references whose own estimated error is 24-27 %. The stored run:",
         "", STORED.read_text().strip(), ""])
