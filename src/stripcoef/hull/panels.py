@@ -337,7 +337,8 @@ def _check_closed(faces, where):
 def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
     r"""``count`` isotropic remeshes of the mesh (:func:`stripcoef.hull.remesh.remesh_family`)
     at :math:`N_k = N/2^{count-1-k}` panels (N = ``panels``, coarse to fine: the edge shrinks by
-    :math:`\sqrt2` a level) and their crease angle [deg], or ``None`` when the remesher is not
+    :math:`\sqrt2` a level) and the :class:`~stripcoef.hull.remesh.Mode` that made them, or
+    ``None`` when the remesher is not
     installed or refuses one.  One family of uniform panellings of the same surface, whatever
     the input's tessellation.  ``area``: the surface [m^2] whose N panels set the edges
     (default the mesh's own; a :func:`~stripcoef.hull.mirror_panels.capped_part` is
@@ -499,13 +500,18 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             src, solve_planes = part, planes
     if family_out is None and family in ("auto", "remesh"):
         family_out = remeshed_levels(v, f, panels)
-    levels, angle = family_out if family_out is not None else (None, None)
+    levels, mode = family_out if family_out is not None else (None, None)
     if levels is None and family == "remesh":
         raise InputError("the isotropic remesher is not installed or could not follow the "
                          "surface", file=where, key="family", value=family,
                          expected="pip install 'stripcoef[remesh]' (pymeshlab), or the input "
                                   "family")
-    used = "isotropic remesh (pymeshlab)" if levels is not None else "refined/coarsened input"
+    if levels is None:
+        used = "refined/coarsened input"
+    elif mode.bisect:
+        used = "input faces bisected (no remesh kept the area)"
+    else:
+        used = "isotropic remesh (pymeshlab" + ("" if mode.flips else ", no flips: thin members") + ")"
     if levels is None:
         levels = panel_levels(v, f, panels, where)
     counts, mats, nominal = [], [], panels
@@ -527,7 +533,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         from stripcoef.hull import remesh
 
         lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
-                                     feature_angle=angle)
+                                     feature_angle=mode)
         if lv is None or len(lv[1]) < 1.25 * len(levels[-1][1]):
             break
         levels.append(lv)
