@@ -4,8 +4,9 @@ interpreter each time (tests/test_docs_examples.py).
 A page's bash block runs in bash as written; each ``stripcoef`` and ``python`` command in it
 is its own process, with the block's arguments, working folder, environment, stdin, stdout
 and stderr, and its exit status goes back to bash.  What is shared is the start: a server
-process imports Python, numpy, scipy, matplotlib and every module of the package once, and
-forks a copy of itself for each command (``os.fork``: the copy's memory is the server's,
+process imports Python, numpy, scipy, matplotlib and every module of the package once (and
+draws one small figure: matplotlib loads its fonts on first use), and forks a copy of itself
+for each command (``os.fork``: the copy's memory is the server's,
 copied on write), so a command costs what it computes, not 0.5-1.5 s of imports.
 
 - ``stripcoef ARGS`` (the shim :func:`write_shims` writes) runs ``python -m stripcoef ARGS``
@@ -44,13 +45,13 @@ import sys
 import time
 from pathlib import Path
 
-#: imported by the server before it forks (what the pages' commands import; the optional
-#: ones, such as capytaine, when installed).  matplotlib.pyplot is not among them: a fork
-#: starts without it, as a fresh interpreter does.
+#: imported by the server before it forks, besides every module of the package (what most
+#: of the pages' commands import).  matplotlib.pyplot is not among them: a fork starts without
+#: it, as a fresh interpreter does; nor are the heavy optional ones that one or two commands
+#: import (capytaine, pandas): each test worker starts a server, and they would cost more there.
 PRELOAD = ("numpy", "scipy.linalg", "scipy.integrate", "scipy.optimize", "scipy.interpolate",
-           "scipy.stats", "scipy.special", "scipy.spatial", "scipy.sparse", "yaml",
-           "matplotlib", "matplotlib.figure", "matplotlib.backends.backend_agg", "trimesh",
-           "pandas", "capytaine", "concurrent.futures")
+           "scipy.stats", "scipy.special", "scipy.spatial", "yaml", "matplotlib",
+           "matplotlib.figure", "matplotlib.backends.backend_agg", "concurrent.futures")
 
 _HEADER = struct.Struct("!I")
 
@@ -261,6 +262,17 @@ def serve(sock: str) -> None:
                 importlib.import_module(info.name)
             except ImportError:                      # an optional dependency missing
                 pass
+    try:                        # load the fonts a figure draws with (once, not per --plot)
+        import io
+
+        from matplotlib.figure import Figure
+        fig = Figure()
+        ax = fig.add_subplot()
+        ax.plot([0.0, 1.0])
+        ax.set(xlabel="x [m]", title="t")
+        fig.savefig(io.BytesIO(), format="png")
+    except ImportError:
+        pass
     # Every process is waited for by its parent (command by handler, handler by server, server
     # by the test): an ignored SIGCHLD would reap the handlers with their CPU time uncounted.
     signal.signal(signal.SIGCHLD, lambda *_: _reap(os.WNOHANG))
