@@ -91,7 +91,7 @@ def write_shims(folder: Path, sock: str) -> None:
         exe.chmod(0o755)
 
 
-def start(folder: Path, env: dict, timeout: float = 120.0):
+def start(folder: Path, env: dict, timeout: float = 600.0):
     """Start the server in ``folder`` (its socket ``folder/s``) with ``env``; write the shims
     into ``folder``; return the server's ``Popen`` once it listens."""
     sock = str(folder / "s")
@@ -218,7 +218,6 @@ def _command_process(request: dict, fds: list) -> None:
 def _handle(conn) -> None:
     """In the handler process: fork the command, wait for it, send its status; never
     returns.  A client that hangs up kills the command."""
-    status = 1
     try:
         signal.signal(signal.SIGCHLD, signal.SIG_DFL)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -229,14 +228,18 @@ def _handle(conn) -> None:
             _command_process(request, fds)
         for fd in fds:
             os.close(fd)
-        pidfd = os.pidfd_open(pid)
+        # wake when the command ends (a pidfd; else look every 50 ms) or the client hangs up
+        pidfd = os.pidfd_open(pid) if hasattr(os, "pidfd_open") else None
         while True:
-            ready, _, _ = select.select([pidfd, conn], [], [])
-            if pidfd in ready:
+            watch = [conn] if pidfd is None else [pidfd, conn]
+            ready, _, _ = select.select(watch, [], [], None if pidfd is not None else 0.05)
+            done, wait = os.waitpid(pid, os.WNOHANG)
+            if done:
                 break
             if conn in ready and not conn.recv(1, socket.MSG_PEEK):
                 os.kill(pid, signal.SIGKILL)           # the client is gone
-        _, wait = os.waitpid(pid, 0)
+                done, wait = os.waitpid(pid, 0)
+                break
         status = os.waitstatus_to_exitcode(wait)
         status = 128 - status if status < 0 else status
         conn.sendall(str(status).encode())

@@ -17,6 +17,7 @@ interpreters (``python -m stripcoef``).
 import json
 import os
 import re
+import socket
 import subprocess
 import sys
 from pathlib import Path
@@ -82,9 +83,13 @@ def shim(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def forks(tmp_path_factory):
+def forks(tmp_path_factory, shim):
     """A bin folder with ``stripcoef`` and ``python`` running this checkout's code, each
-    command a fork of one server that imported the package (tests/_doc_commands.py)."""
+    command a fork of one server that imported the package (tests/_doc_commands.py); the
+    fresh interpreters of :func:`shim` where there is no fork or no descriptor passing."""
+    if not (hasattr(os, "fork") and hasattr(socket, "send_fds")):
+        yield shim
+        return
     folder = tmp_path_factory.mktemp("forks")
     server = _doc_commands.start(folder, ENV)
     yield folder
