@@ -59,9 +59,10 @@ from stripcoef.simulate import simulate
 from stripcoef.figures import motion_figure
 import numpy as np
 v = load_vehicle({str(ROOT / 'geometry' / 'videoray_pro3.yaml')!r})
-m = estimate(v)
+# MARES's model: strips only (the VideoRay's panel solve, 1.5 s of CPU, draws nothing)
+m = estimate(load_vehicle({str(ROOT / 'geometry' / 'mares.yaml')!r}))
 figs = [body_figure(v.cut(200)), limits_figure(solve_limits(m, radii=[1.0, 2.0])),
-        motion_figure(simulate(m, np.linspace(0, 2, 21), commands={{'port': 100.0}}))]
+        motion_figure(simulate(m, np.linspace(0, 2, 21), commands={{'P1': 5.0}}))]
 assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'
 print('ok', len(figs))
 """
