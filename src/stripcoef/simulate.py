@@ -183,7 +183,7 @@ def _quaternion_matrix(quat) -> np.ndarray:
     ----------
     Fossen (2011), eq. 2.72.
     """
-    x, y, z, w = quat / np.sqrt(quat @ quat)
+    x, y, z, w = (quat / np.sqrt(quat @ quat)).tolist()     # floats: faster than numpy's
     return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
