@@ -440,8 +440,8 @@ class RightHandSide:
             nu_r = nu - nu_c
             rhs_force = tau + self.m_added @ nu_c_dot
         if self.coriolis:
-            rhs_force = (rhs_force - coriolis_times_velocity(self.m_rb, nu)
-                         - coriolis_times_velocity(self.m_added, nu_r, munk=self.munk))
+            rhs_force = (rhs_force - _coriolis_times_velocity(self.m_rb, nu)
+                         - _coriolis_times_velocity(self.m_added, nu_r, munk=self.munk))
         # D(nu_r) nu_r = D_L nu_r + D_Q (|nu_r| o nu_r) + u_r L nu_r (HydroModel.damping)
         rhs_force = (rhs_force - self.d_l @ nu_r - self.d_q @ (np.abs(nu_r) * nu_r)
                      - restoring_forces(eta, **self.gravity))
@@ -474,7 +474,7 @@ _ZERO6 = np.zeros(6)
 _ZERO6.flags.writeable = False
 
 
-def coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray:
+def _coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray:
     r""":math:`C(\nu)\nu` [N, N m] of a 6x6 inertia matrix [kg, kg m, kg m^2] and one velocity
     ``nu`` (6,) [m/s, rad/s], with :math:`C` of :func:`stripcoef.model.coriolis_from_mass`
     (Fossen 2011, Theorem 3.2, eq. 3.46) as cross products, without building the matrix:
@@ -482,7 +482,8 @@ def coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray
     .. math:: C(\nu)\nu = [\omega\times a;\ v\times a + \omega\times b],\quad
               [a; b] = M\nu
 
-    ``munk=False`` drops :math:`v\times a` (the Munk moment, as ``HydroModel.coriolis``)."""
+    ``munk=False`` drops :math:`v\times a` (the Munk moment, as ``HydroModel.coriolis``).
+    The one-velocity form of :func:`stripcoef.effects.windows.coriolis_times_velocity`."""
     a0, a1, a2, b0, b1, b2 = (mass_matrix @ nu).tolist()
     u, v, w, p, q, r = nu.tolist()
     mu = 1.0 if munk else 0.0
