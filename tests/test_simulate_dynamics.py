@@ -295,3 +295,19 @@ def test_any_constant_rate_of_a_symmetric_top_gives_the_closed_form_attitude():
     np.testing.assert_allclose(log["phi"][0], 0.2, atol=1e-12)
     np.testing.assert_allclose(log["psi"][0], -0.4, atol=1e-12)
 
+
+
+@pytest.mark.parametrize("munk", [True, False])
+def test_right_hand_side_coriolis_product_is_the_models_matrix_times_nu(munk):
+    """The right-hand side forms C(nu) nu as cross products (simulate._coriolis_times_velocity);
+    it equals HydroModel.coriolis(nu) @ nu for a full (non-diagonal) inertia matrix, with and
+    without the Munk moment, to round-off."""
+    from stripcoef.simulate import _coriolis_times_velocity
+
+    model = make_model(coupled=True)            # a full added-mass matrix, CG off the origin
+    nu = np.random.default_rng(4).normal(size=6)
+    for mass, rigid in ((model.added_mass, False), (model.rigid_body_mass, True)):
+        want = model.coriolis(nu, rigid_body=rigid, added_mass=not rigid, munk=munk) @ nu
+        got = _coriolis_times_velocity(mass, nu, munk=munk or rigid)
+        np.testing.assert_allclose(got, want, rtol=0,
+                                   atol=1e-13 * np.abs(mass).max() * np.abs(nu).max() ** 2)

@@ -52,6 +52,7 @@ from scipy.spatial.transform import Rotation
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
+from stripcoef.model import restoring_forces
 from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log, LogInputs, log_inputs
 from stripcoef.progress import TimeBar
 
@@ -118,20 +119,20 @@ class _Sampler:
 
     def __call__(self, time: float) -> np.ndarray:
         t = self.t
-        if self.linear:
-            k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 2))
+        k = int(np.searchsorted(t, time, side="right")) - 1   # min/max: np.clip of a
+        if self.linear:                                         # scalar is slow
+            k = min(max(k, 0), t.size - 2)
             s = (time - t[k]) / (t[k + 1] - t[k])
             s = min(max(s, 0.0), 1.0)
             return self.values[k] * (1.0 - s) + self.values[k + 1] * s
-        k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 1))
-        return self.values[k]
+        return self.values[min(max(k, 0), t.size - 1)]
 
     def rate(self, time: float) -> np.ndarray:
         """Time derivative (piecewise constant for linear, zero for zero-order hold)."""
         if not self.linear:
             return np.zeros_like(self.values[0])
         t = self.t
-        k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 2))
+        k = min(max(int(np.searchsorted(t, time, side="right")) - 1, 0), t.size - 2)
         return (self.values[k + 1] - self.values[k]) / (t[k + 1] - t[k])
 
 
@@ -182,7 +183,7 @@ def _quaternion_matrix(quat) -> np.ndarray:
     ----------
     Fossen (2011), eq. 2.72.
     """
-    x, y, z, w = quat / np.sqrt(quat @ quat)
+    x, y, z, w = (quat / np.sqrt(quat @ quat)).tolist()     # floats: faster than numpy's
     return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
@@ -400,6 +401,14 @@ class RightHandSide:
             raise InputError("singular mass matrix M_RB + M_A", key="model",
                              expected="a positive definite inertia matrix") from None
         self.b_delta = model.control_matrix if inputs.surfaces else None
+        # the model's matrices and restoring constants read once per run, not per evaluation
+        self.m_rb = np.asarray(model.rigid_body_mass, dtype=float)
+        self.d_l = np.asarray(model.linear_damping, dtype=float)
+        self.d_q = np.asarray(model.quadratic_damping, dtype=float)
+        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), dtype=float)
+        self.lift = lift if np.any(lift) else None
+        self.gravity = {"weight": model.weight, "buoyancy": model.buoyancy,
+                        "r_g": model.r_g, "r_b": model.r_b}
         self.effect_terms = []
         if effects and model.effects:
             from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
@@ -424,16 +433,20 @@ class RightHandSide:
         rmat = _quaternion_matrix(quat)         # normalised: the integrator's drift of |q|
         eta = np.concatenate([y[:3], _matrix_euler(rmat, quat)])
         c, thrust, tau, delta = inputs(time)
-        nu_c, nu_c_dot = self.current(time, rmat, nu)
-        nu_r = nu - nu_c
-        rhs_force = tau
+        if inputs.current_fn is None:
+            nu_c, nu_r, rhs_force = _ZERO6, nu, tau
+        else:
+            nu_c, nu_c_dot = self.current(time, rmat, nu)
+            nu_r = nu - nu_c
+            rhs_force = tau + self.m_added @ nu_c_dot
         if self.coriolis:
-            rhs_force = (rhs_force - model.coriolis(nu, added_mass=False) @ nu
-                         - model.coriolis(nu_r, rigid_body=False, munk=self.munk) @ nu_r)
-        rhs_force = (rhs_force
-                     - model.damping(nu_r) @ nu_r
-                     - model.restoring(eta)
-                     + self.m_added @ nu_c_dot)
+            rhs_force = (rhs_force - _coriolis_times_velocity(self.m_rb, nu)
+                         - _coriolis_times_velocity(self.m_added, nu_r, munk=self.munk))
+        # D(nu_r) nu_r = D_L nu_r + D_Q (|nu_r| o nu_r) + u_r L nu_r (HydroModel.damping)
+        rhs_force = (rhs_force - self.d_l @ nu_r - self.d_q @ (np.abs(nu_r) * nu_r)
+                     - restoring_forces(eta, **self.gravity))
+        if self.lift is not None:
+            rhs_force = rhs_force - nu_r[0] * (self.lift @ nu_r)
         if self.b_delta is not None:
             rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
         if self.effect_terms or self.extra_force is not None:
@@ -448,10 +461,36 @@ class RightHandSide:
                 rhs_force = rhs_force + np.asarray(self.extra_force(time, eta, nu, hook),
                                                    dtype=float).reshape(6)
         nu_dot = self.m_inv @ rhs_force
-        eps, q0 = quat[:3], quat[3]
-        w = nu[3:]
-        eps_dot = 0.5 * (q0 * w + skew(eps) @ w)
-        return np.concatenate([rmat @ nu[:3], eps_dot, [-0.5 * (eps @ w)], nu_dot])
+        e1, e2, e3, q0 = quat.tolist()
+        p, q, r = nu[3:].tolist()
+        # p_dot = R v; eps_dot = (q0 w + eps x w) / 2; q0_dot = -eps . w / 2 (eq. 2.86)
+        return np.concatenate([rmat @ nu[:3], [0.5 * (q0 * p + e2 * r - e3 * q),
+                                               0.5 * (q0 * q + e3 * p - e1 * r),
+                                               0.5 * (q0 * r + e1 * q - e2 * p),
+                                               -0.5 * (e1 * p + e2 * q + e3 * r)], nu_dot])
+
+
+_ZERO6 = np.zeros(6)
+_ZERO6.flags.writeable = False
+
+
+def _coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray:
+    r""":math:`C(\nu)\nu` [N, N m] of a 6x6 inertia matrix [kg, kg m, kg m^2] and one velocity
+    ``nu`` (6,) [m/s, rad/s], with :math:`C` of :func:`stripcoef.model.coriolis_from_mass`
+    (Fossen 2011, Theorem 3.2, eq. 3.46) as cross products, without building the matrix:
+
+    .. math:: C(\nu)\nu = [\omega\times a;\ v\times a + \omega\times b],\quad
+              [a; b] = M\nu
+
+    ``munk=False`` drops :math:`v\times a` (the Munk moment, as ``HydroModel.coriolis``).
+    The one-velocity form of :func:`stripcoef.effects.windows.coriolis_times_velocity`."""
+    a0, a1, a2, b0, b1, b2 = (mass_matrix @ nu).tolist()
+    u, v, w, p, q, r = nu.tolist()
+    mu = 1.0 if munk else 0.0
+    return np.array([q * a2 - r * a1, r * a0 - p * a2, p * a1 - q * a0,
+                     mu * (v * a2 - w * a1) + q * b2 - r * b1,
+                     mu * (w * a0 - u * a2) + r * b0 - p * b2,
+                     mu * (u * a1 - v * a0) + p * b1 - q * b0])
 
 
 def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",

@@ -216,9 +216,22 @@ class Current(Effect):
         return ("a force that turns with the heading" if np.ptp(data.eta[:, 5]) > 0.5
                 else "a force asymmetric in the sign of the speed")
 
+    @staticmethod
+    def _on_log(data):
+        """(R per sample (n, 3, 3), D(nu)nu, C_A(nu)nu (n, 6)) of the log and the prior: the
+        same for every current a fit tries, so computed once per window data (cached on it,
+        as :meth:`~stripcoef.effects.windows.WindowData.rate` caches its half-widths)."""
+        cache = data.__dict__.get("_current_on_log")
+        if cache is None:
+            model = data.model
+            cache = (rotation_matrices(data.eta), damping_times_velocity(model, data.nu),
+                     coriolis_times_velocity(model.added_mass, data.nu))
+            data.__dict__["_current_on_log"] = cache
+        return cache
+
     def _current_body(self, data, vc):
         """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""
-        rot = rotation_matrices(data.eta)
+        rot = self._on_log(data)[0]
         v = np.array([vc[0], vc[1], 0.0])
         nuc = np.zeros_like(data.nu)
         nuc[:, :3] = np.einsum("nji,j->ni", rot, v)  # R^T V_c
@@ -241,9 +254,9 @@ class Current(Effect):
         model = data.model
         nuc = self._current_body(data, vc)
         nur = data.nu - nuc
-        diff = (damping_times_velocity(model, nur) - damping_times_velocity(model, data.nu)
-                + coriolis_times_velocity(model.added_mass, nur)
-                - coriolis_times_velocity(model.added_mass, data.nu))
+        _, d_nu, c_nu = self._on_log(data)
+        diff = (damping_times_velocity(model, nur) - d_nu
+                + coriolis_times_velocity(model.added_mass, nur) - c_nu)
         return -data.mean(diff[:, dof]) + data.rate(nuc @ model.added_mass[dof])
 
     def own_design(self, data, dof, hyper=None):

@@ -193,7 +193,8 @@ class ThrusterLag(_TimedInputEffect):
 
         def f(time, eta, nu, inputs):
             t, taus = _held_history(inputs)
-            k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 1))
+            # min/max, not np.clip: this runs at every evaluation of the right-hand side
+            k = min(max(int(np.searchsorted(t, time, side="right")) - 1, 0), t.size - 1)
             if state["y"] is None or k < state["k"]:
                 state["k"], state["y"] = 0, np.array(taus[0], float)
             while state["k"] < k:  # advance the lag state sample by sample (exact, held)
@@ -245,7 +246,7 @@ class ActuationDelay(_TimedInputEffect):
 
         def f(time, eta, nu, inputs):
             t, taus = _held_history(inputs)
-            k = int(np.clip(np.searchsorted(t, time - d, side="right") - 1, 0, t.size - 1))
+            k = min(max(int(np.searchsorted(t, time - d, side="right")) - 1, 0), t.size - 1)
             return (np.asarray(taus[k], float) - np.asarray(inputs["tau"], float)) * e
         return f
 

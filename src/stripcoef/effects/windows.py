@@ -17,6 +17,7 @@ correct model leaves residuals that are nearly independent.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy.signal import savgol_coeffs
@@ -104,8 +105,16 @@ def savgol_centre_weights(h: int) -> np.ndarray:
     (dimensionless; they sum to 1, and :math:`\sum w_k^2 = w_0`, the factor by which white
     noise variance is reduced). h = 0 or 1 gives the sample itself. Computed by
     ``scipy.signal.savgol_coeffs`` (polynomial order 2, or 2h when that is lower)."""
-    h = int(h)
-    return savgol_coeffs(2 * h + 1, min(2, 2 * h), use="dot")
+    return _savgol_centre_weights(int(h))
+
+
+@lru_cache(maxsize=64)
+def _savgol_centre_weights(h: int) -> np.ndarray:
+    """:func:`savgol_centre_weights`, computed once per half-width (a fit asks for the same
+    few thousands of times); read-only, as it is shared."""
+    w = savgol_coeffs(2 * h + 1, min(2, 2 * h), use="dot")
+    w.flags.writeable = False
+    return w
 
 
 @dataclass
