@@ -47,7 +47,7 @@ def shipped_model(name: str):
 @lru_cache(maxsize=None)
 def synthetic(effect, seed: int, **kw):
     """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per worker
-    process for the tests that read the same log (a 240 s log is about 4.5 s of CPU to
+    process for the tests that read the same log (a 240 s log is about 2-2.5 s of CPU to
     simulate).  The log, prior and truth are shared: read them, do not change them (the log's
     columns are read-only arrays, so an in-place change fails where it happens)."""
     from validation.synthetic import generate
