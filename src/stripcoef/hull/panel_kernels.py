@@ -104,6 +104,28 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
                         mid_factor=mid_factor)
 
 
+def _one_point(r2, x0, c0, n, w, self_block):
+    r"""The one-point rule for every pair, :math:`S_{kl} = w_l/r`, :math:`D_{kl} = w_l\,
+    (x_k - c_l)\cdot n_l/r^3`, :math:`w = A/(4\pi)` [m, -], from the squared distances ``r2``
+    [m^2] (overwritten: it becomes S); coordinates ``x0``, ``c0`` shifted by one common
+    point [m]; ``self_block``: the panel itself is left at r = 1 (overwritten afterwards)."""
+    if self_block:
+        np.fill_diagonal(r2, 1.0)
+    np.maximum(r2, 1e-300, out=r2)
+    inv_r = np.sqrt(r2, out=r2)
+    np.divide(1.0, inv_r, out=inv_r)
+    # (x_k - c_l) . n_l A_l / (4 pi r^3)
+    dd = x0 @ n.T
+    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
+    dd *= w[None, :]
+    dd *= inv_r
+    dd *= inv_r
+    dd *= inv_r
+    s = inv_r
+    s *= w[None, :]
+    return s, dd
+
+
 def squared_distances(points, c):
     """|x_k - c_l|^2 [m^2] of ``points`` (m, 3) to the centroids ``c`` (n, 3), by matrix
     products about the centroids' mean (round-off of the size of the body, not of its place)."""
@@ -133,21 +155,6 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
     # pairs within mid_factor diameters (near ones among them, the panel itself included),
     # found on r2 before it is reused
     k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
-    if self_block:
-        np.fill_diagonal(r2, 1.0)
-    np.maximum(r2, 1e-300, out=r2)
-    inv_r = np.sqrt(r2, out=r2)
-    np.divide(1.0, inv_r, out=inv_r)
-    w = area / _FOUR_PI
-    # (x_k - c_l) . n_l A_l / (4 pi r^3)
-    dd = x0 @ n.T
-    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
-    dd *= w[None, :]
-    dd *= inv_r
-    dd *= inv_r
-    dd *= inv_r
-    s = inv_r
-    s *= w[None, :]
     d2 = np.einsum("ij,ij->i", points[k] - c[l], points[k] - c[l])
     near = d2 < (near_factor * diam[l]) ** 2
     if self_block:
@@ -155,11 +162,16 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
     km, lm = k[~near], l[~near]
     if dense is None:
         dense = len(km) > DENSE_MID_FRACTION * len(points) * len(c)
+    w = area / _FOUR_PI
     if dense:
         # many pairs in the mid zone (long panels: frames of thin tubes): the three-point rule
         # for every pair in dense matrix products is cheaper than gathering them one by one
+        # (it overwrites every pair: the one-point rule is not computed)
+        s, dd = r2, np.empty_like(r2)
         _three_point_dense(x0, n, tri - shift, w, s, dd)
-    elif len(km):
+    else:
+        s, dd = _one_point(r2, x0, c0, n, w, self_block)
+    if not dense and len(km):
         sk = np.zeros(len(km))
         dk = np.zeros(len(km))
         for q in range(3):
