@@ -104,26 +104,34 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
                         mid_factor=mid_factor)
 
 
-def _one_point(r2, x0, c0, n, w, self_block):
+def _one_point(r2, x0, c0, n, w, self_block, rows: int = 256):
     r"""The one-point rule for every pair, :math:`S_{kl} = w_l/r`, :math:`D_{kl} = w_l\,
     (x_k - c_l)\cdot n_l/r^3`, :math:`w = A/(4\pi)` [m, -], from the squared distances ``r2``
     [m^2] (overwritten: it becomes S); coordinates ``x0``, ``c0`` shifted by one common
-    point [m]; ``self_block``: the panel itself is left at r = 1 (overwritten afterwards)."""
+    point [m]; ``self_block``: the panel itself is left at r = 1 (overwritten afterwards).
+    By blocks of ``rows`` points, so that the temporaries stay in cache (the same operations
+    in the same order as on whole matrices)."""
     if self_block:
         np.fill_diagonal(r2, 1.0)
-    np.maximum(r2, 1e-300, out=r2)
-    inv_r = np.sqrt(r2, out=r2)
-    np.divide(1.0, inv_r, out=inv_r)
-    # (x_k - c_l) . n_l A_l / (4 pi r^3)
-    dd = x0 @ n.T
-    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
-    dd *= w[None, :]
-    dd *= inv_r
-    dd *= inv_r
-    dd *= inv_r
-    s = inv_r
-    s *= w[None, :]
-    return s, dd
+    cn = np.einsum("ij,ij->i", c0, n)[None, :]
+    wr = w[None, :]
+    dd = np.empty_like(r2)
+    for a in range(0, len(r2), rows):
+        b = slice(a, a + rows)
+        inv_r = r2[b]
+        np.maximum(inv_r, 1e-300, out=inv_r)
+        np.sqrt(inv_r, out=inv_r)
+        np.divide(1.0, inv_r, out=inv_r)
+        # (x_k - c_l) . n_l A_l / (4 pi r^3)
+        db = dd[b]
+        np.matmul(x0[b], n.T, out=db)
+        db -= cn
+        db *= wr
+        db *= inv_r
+        db *= inv_r
+        db *= inv_r
+        inv_r *= wr
+    return r2, dd
 
 
 def squared_distances(points, c):
