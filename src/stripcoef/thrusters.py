@@ -73,6 +73,13 @@ class Thruster:
         ``n`` [command units]; zero for ``|n| <= deadband``; clipped to
         ``[-max_backward, max_forward]`` [N]. Wang & Clark (2006), eq. 6 (see module docstring).
         """
+        if np.ndim(n) == 0:     # one command (the simulation's right-hand side): floats,
+            x = float(n)        # the same operations as the array path below
+            t = (self.ct_forward * self.eta_forward if x >= 0.0
+                 else self.ct_backward * self.eta_backward) * x * abs(x)
+            if self.deadband > 0.0 and abs(x) <= self.deadband:
+                t = 0.0
+            return min(max(t, -self.max_backward), self.max_forward)     # a NaN stays NaN
         n = np.asarray(n, dtype=float)
         fwd = n >= 0.0
         ct = np.where(fwd, self.ct_forward * self.eta_forward, self.ct_backward * self.eta_backward)

@@ -99,21 +99,31 @@ def ring_velocity(points, nodes, quads) -> np.ndarray:
     :math:`\mathbf{r}_0 = B - A`; a point on a segment's line (or a zero-length segment, a
     closed end's collapsed edge) gets nothing from it.
     """
-    points = np.asarray(points, dtype=float)[:, None, :]
-    out = np.zeros((points.shape[0], len(quads), 3))
-    for k in range(4):
-        a = nodes[quads[:, k]][None]
-        b = nodes[quads[:, (k + 1) % 4]][None]
-        r1, r2, r0 = points - a, points - b, b - a
-        c = np.cross(r1, r2)
-        c2 = np.einsum("pqi,pqi->pq", c, c)
-        n1 = np.sqrt(np.einsum("pqi,pqi->pq", r1, r1))
-        n2 = np.sqrt(np.einsum("pqi,pqi->pq", r2, r2))
-        l0 = np.einsum("pqi,pqi->pq", r0, r0)
-        ok = (c2 > 1e-12 * l0 * l0) & (n1 > 0) & (n2 > 0) & (l0 > 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            f = (np.einsum("pqi,pqi->pq", r0, r1) / n1 - np.einsum("pqi,pqi->pq", r0, r2) / n2) / c2
-        out += c * np.where(ok, f, 0.0)[..., None]
+    points = np.asarray(points, dtype=float)
+    px, py, pz = (points[:, i, None] for i in range(3))
+    ox = oy = oz = 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for k in range(4):                  # by components: (P, Q) arrays, no (P, Q, 3) ones
+            a = nodes[quads[:, k]]
+            b = nodes[quads[:, (k + 1) % 4]]
+            r1x, r1y, r1z = px - a[:, 0], py - a[:, 1], pz - a[:, 2]
+            r2x, r2y, r2z = px - b[:, 0], py - b[:, 1], pz - b[:, 2]
+            r0x, r0y, r0z = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1], b[:, 2] - a[:, 2]
+            cx = r1y * r2z - r1z * r2y
+            cy = r1z * r2x - r1x * r2z
+            cz = r1x * r2y - r1y * r2x
+            c2 = cx * cx + cy * cy + cz * cz
+            n1 = np.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
+            n2 = np.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+            l0 = r0x * r0x + r0y * r0y + r0z * r0z
+            ok = (c2 > 1e-12 * l0 * l0) & (n1 > 0) & (n2 > 0) & (l0 > 0)
+            f = ((r0x * r1x + r0y * r1y + r0z * r1z) / n1
+                 - (r0x * r2x + r0y * r2y + r0z * r2z) / n2) / c2
+            f = np.where(ok, f, 0.0)
+            ox = ox + cx * f
+            oy = oy + cy * f
+            oz = oz + cz * f
+    out = np.stack(np.broadcast_arrays(ox, oy, oz), axis=-1)
     return out / (4.0 * np.pi)
 
 
@@ -241,16 +251,22 @@ def quad_solid_angle(points, nodes, quads) -> np.ndarray:
     the panel's normal points to, :math:`+2\pi` just behind it, 0 in its plane.  A unit
     vortex ring's potential is :math:`\Omega / 4\pi` (the constant doublet panel of Katz &
     Plotkin 2001, sec. 10.4.2; its gradient is :func:`ring_velocity`, tests)."""
-    points = np.asarray(points, dtype=float)[:, None, :]
-    r = [nodes[quads[:, k]][None] - points for k in range(4)]     # the shared diagonal's
-    norm = [np.sqrt(np.einsum("pqi,pqi->pq", v, v)) for v in r]   # ends serve both triangles
+    points = np.asarray(points, dtype=float)
+    # by components: (P, Q) arrays, no (P, Q, 3) ones
+    r = [[nodes[quads[:, k], i] - points[:, i, None] for i in range(3)] for k in range(4)]
+    norm = [np.sqrt(x * x + y * y + z * z) for x, y, z in r]     # the shared diagonal's
+                                                                    # ends serve both triangles
+
+    def dot(u, v):
+        return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 
     def triangle(a, b, c):
         r1, r2, r3 = r[a], r[b], r[c]
         n1, n2, n3 = norm[a], norm[b], norm[c]
-        num = np.einsum("pqi,pqi->pq", r1, np.cross(r2, r3))
-        den = (n1 * n2 * n3 + np.einsum("pqi,pqi->pq", r1, r2) * n3
-               + np.einsum("pqi,pqi->pq", r1, r3) * n2 + np.einsum("pqi,pqi->pq", r2, r3) * n1)
+        cross = (r2[1] * r3[2] - r2[2] * r3[1], r2[2] * r3[0] - r2[0] * r3[2],
+                 r2[0] * r3[1] - r2[1] * r3[0])
+        num = dot(r1, cross)
+        den = n1 * n2 * n3 + dot(r1, r2) * n3 + dot(r1, r3) * n2 + dot(r2, r3) * n1
         return 2.0 * np.arctan2(num, den)
 
     return triangle(0, 1, 2) + triangle(0, 2, 3)

@@ -104,6 +104,36 @@ def influence_matrices(tri, near_factor: float = NEAR_FACTOR, mid_factor: float 
                         mid_factor=mid_factor)
 
 
+def _one_point(r2, x0, c0, n, w, self_block, rows: int = 256):
+    r"""The one-point rule for every pair, :math:`S_{kl} = w_l/r`, :math:`D_{kl} = w_l\,
+    (x_k - c_l)\cdot n_l/r^3`, :math:`w = A/(4\pi)` [m, -], from the squared distances ``r2``
+    [m^2] (overwritten: it becomes S); coordinates ``x0``, ``c0`` shifted by one common
+    point [m]; ``self_block``: the panel itself is left at r = 1 (overwritten afterwards).
+    By blocks of ``rows`` points, so that the temporaries stay in cache (the same operations
+    in the same order as on whole matrices)."""
+    if self_block:
+        np.fill_diagonal(r2, 1.0)
+    cn = np.einsum("ij,ij->i", c0, n)[None, :]
+    wr = w[None, :]
+    dd = np.empty_like(r2)
+    for a in range(0, len(r2), rows):
+        b = slice(a, a + rows)
+        inv_r = r2[b]
+        np.maximum(inv_r, 1e-300, out=inv_r)
+        np.sqrt(inv_r, out=inv_r)
+        np.divide(1.0, inv_r, out=inv_r)
+        # (x_k - c_l) . n_l A_l / (4 pi r^3)
+        db = dd[b]
+        np.matmul(x0[b], n.T, out=db)
+        db -= cn
+        db *= wr
+        db *= inv_r
+        db *= inv_r
+        db *= inv_r
+        inv_r *= wr
+    return r2, dd
+
+
 def squared_distances(points, c):
     """|x_k - c_l|^2 [m^2] of ``points`` (m, 3) to the centroids ``c`` (n, 3), by matrix
     products about the centroids' mean (round-off of the size of the body, not of its place)."""
@@ -133,21 +163,6 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
     # pairs within mid_factor diameters (near ones among them, the panel itself included),
     # found on r2 before it is reused
     k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
-    if self_block:
-        np.fill_diagonal(r2, 1.0)
-    np.maximum(r2, 1e-300, out=r2)
-    inv_r = np.sqrt(r2, out=r2)
-    np.divide(1.0, inv_r, out=inv_r)
-    w = area / _FOUR_PI
-    # (x_k - c_l) . n_l A_l / (4 pi r^3)
-    dd = x0 @ n.T
-    dd -= np.einsum("ij,ij->i", c0, n)[None, :]
-    dd *= w[None, :]
-    dd *= inv_r
-    dd *= inv_r
-    dd *= inv_r
-    s = inv_r
-    s *= w[None, :]
     d2 = np.einsum("ij,ij->i", points[k] - c[l], points[k] - c[l])
     near = d2 < (near_factor * diam[l]) ** 2
     if self_block:
@@ -155,11 +170,16 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
     km, lm = k[~near], l[~near]
     if dense is None:
         dense = len(km) > DENSE_MID_FRACTION * len(points) * len(c)
+    w = area / _FOUR_PI
     if dense:
         # many pairs in the mid zone (long panels: frames of thin tubes): the three-point rule
         # for every pair in dense matrix products is cheaper than gathering them one by one
+        # (it overwrites every pair: the one-point rule is not computed)
+        s, dd = r2, np.empty_like(r2)
         _three_point_dense(x0, n, tri - shift, w, s, dd)
-    elif len(km):
+    else:
+        s, dd = _one_point(r2, x0, c0, n, w, self_block)
+    if not dense and len(km):
         sk = np.zeros(len(km))
         dk = np.zeros(len(km))
         for q in range(3):
@@ -187,33 +207,41 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
 DENSE_MID_FRACTION = 0.1
 
 
-def _three_point_dense(c0, n, tri0, w, s, dd):
+def _three_point_dense(c0, n, tri0, w, s, dd, rows: int = 256):
     r"""Overwrite S and D [m, -] by the three-point rule (Strang & Fix 1973, degree 2) for all
     pairs: :math:`S_{kl} = \frac{w_l}{3}\sum_q 1/|x_k - \xi_{lq}|`, :math:`D_{kl} =
     \frac{w_l}{3}\sum_q (x_k - \xi_{lq})\cdot n_l / |x_k - \xi_{lq}|^3`, w = A/(4 pi);
     coordinates ``c0``, ``tri0`` shifted by one common point [m] (the near pairs are
-    overwritten afterwards by the exact integrals)."""
+    overwritten afterwards by the exact integrals).  By blocks of ``rows`` points, so that the
+    temporaries stay in cache (the same operations in the same order as on whole matrices)."""
     cc = np.einsum("ij,ij->i", c0, c0)
-    cn = c0 @ n.T
-    s[:] = 0.0
-    dd[:] = 0.0
-    for q in range(3):
-        xi = (2.0 / 3.0) * tri0[:, q] + (1.0 / 6.0) * (tri0[:, (q + 1) % 3] + tri0[:, (q + 2) % 3])
-        r2 = c0 @ xi.T
-        r2 *= -2.0
-        r2 += cc[:, None]
-        r2 += np.einsum("ij,ij->i", xi, xi)[None, :]
-        np.maximum(r2, 1e-300, out=r2)
-        ir = np.sqrt(r2, out=r2)
-        np.divide(1.0, ir, out=ir)
-        s += ir
-        t = cn - np.einsum("ij,ij->i", xi, n)[None, :]
-        t *= ir
-        t *= ir
-        t *= ir
-        dd += t
-    s *= (w / 3.0)[None, :]
-    dd *= (w / 3.0)[None, :]
+    xis = [(2.0 / 3.0) * tri0[:, q] + (1.0 / 6.0) * (tri0[:, (q + 1) % 3] + tri0[:, (q + 2) % 3])
+           for q in range(3)]
+    xx = [np.einsum("ij,ij->i", xi, xi)[None, :] for xi in xis]
+    xn = [np.einsum("ij,ij->i", xi, n)[None, :] for xi in xis]
+    w3 = (w / 3.0)[None, :]
+    for a in range(0, len(c0), rows):
+        b = slice(a, a + rows)
+        cn = c0[b] @ n.T
+        sb, db = s[b], dd[b]
+        sb[:] = 0.0
+        db[:] = 0.0
+        for q in range(3):
+            r2 = c0[b] @ xis[q].T
+            r2 *= -2.0
+            r2 += cc[b, None]
+            r2 += xx[q]
+            np.maximum(r2, 1e-300, out=r2)
+            ir = np.sqrt(r2, out=r2)
+            np.divide(1.0, ir, out=ir)
+            sb += ir
+            t = cn - xn[q]
+            t *= ir
+            t *= ir
+            t *= ir
+            db += t
+        sb *= w3
+        db *= w3
 
 
 def generalised_normals(centers, normals, about=(0.0, 0.0, 0.0)):

@@ -35,7 +35,10 @@ class Job:
     ``radii``: turning radii for the limits [m]; ``strips``: strip count (None: the file's);
     ``mirrors``: the nominal body's mirror symmetries (``x``, ``y``, ``z``:
     :func:`stripcoef.assembly.symmetry.mirror_symmetries`), which decide the couplings the method
-    source moves (None: none known, every coupling moves).
+    source moves (None: none known, every coupling moves); ``model``: the model of ``data``
+    when no path varies (``paths`` empty), every row's model before its method factors, solved
+    once instead of once a row (None: each row solves its own; the estimate is deterministic,
+    so the numbers are the same).
     """
 
     data: dict
@@ -46,6 +49,7 @@ class Job:
     radii: tuple = (0.5, 1.0, 2.0, 5.0, 10.0, 20.0)
     strips: int | None = None
     mirrors: frozenset | None = None
+    model: object = None
 
 
 #: The text output that says why a limit of a point is blank (empty: none is).
@@ -89,9 +93,12 @@ def evaluate(job: Job, row) -> dict:
     data = job.data
     for path, value in zip(job.paths, row[:n_in]):
         data = set_value(data, path, value, file=job.file)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")          # the nominal run already showed them
-        model = estimate(parse_vehicle(data, file=job.file), strips=job.strips)
+    if job.model is not None and not n_in:
+        model = job.model                        # no input varies: the one nominal model
+    else:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")      # the nominal run already showed them
+            model = estimate(parse_vehicle(data, file=job.file), strips=job.strips)
     if job.sources:
         f = method_factors(list(job.sources), row[n_in:])
         c = method_couplings(list(job.sources), row[n_in:])

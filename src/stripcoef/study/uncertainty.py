@@ -150,7 +150,7 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     declared = uncertain_values(raw, file=file)
     data = nominal_data(raw, file=file)
     veh = parse_vehicle(data, file=file)
-    mirrors, lift = None, False
+    mirrors, lift, model = None, False, None
     if method:
         from stripcoef.assembly.symmetry import mirror_symmetries
 
@@ -167,7 +167,7 @@ def uncertainty(vehicle, *, samples: int = 256, seed: int = 0, limits: bool = Tr
     job = Job(data=data, file=file, paths=tuple(u.path for u in declared),
               sources=tuple(s for s in sources if s.kind == "method"), limits=limits,
               radii=tuple(float(r) for r in radii), strips=strips,
-              mirrors=mirrors)
+              mirrors=mirrors, model=None if declared else model)
     nominal_row = [u.value for u in declared] + [1.0] * len(job.sources)
     nominal_out = evaluate(job, nominal_row)
     # inputs first, then method factors: the order Job.evaluate reads a row in
