@@ -39,7 +39,7 @@ and 3200 panels the same wings keep their area within 0.3 to 1.4 % and the aft t
 chord within 0.8 to 7.4 % of its area, where the remeshes with flips lost 5.0 to 8.1 % of the
 whole area; ``python -m benchmarks.remesh_choice --knife``, benchmarks/data/
 remesh_knife_edges.md); and where no remesh keeps the area (the ECA A9's fins), the levels are the
-input's faces bisected (:func:`stripcoef.hull.panels.refine`, the surface exactly), said in a
+input's faces bisected (:func:`stripcoef.hull.bisection.refine`, the surface exactly), said in a
 :class:`~stripcoef.errors.ModelWarning`: never a silent loss of area.  Measured
 (benchmarks/remesh_choice.py, benchmarks/public_meshes.py, benchmarks/thin_members.py;
 docs/validation.md): pymeshlab's adaptive flag changed nothing on these wings and a tighter
@@ -56,6 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import ModelWarning
+from stripcoef.hull.bisection import refine
 
 #: Dihedral angle above which an edge is kept as a crease by the remesher [deg] (MeshLab's
 #: default of the filter).
@@ -109,7 +110,7 @@ class Mode:
     #: thin-member modes :data:`KNIFE_DISTANCE`)
     surface_distance: float = SURFACE_DISTANCE
     #: not a remesh: the input's faces bisected along their longest edges
-    #: (:func:`stripcoef.hull.panels.refine`) to the edge's panel count -- the surface exactly,
+    #: (:func:`stripcoef.hull.bisection.refine`) to the edge's panel count -- the surface exactly,
     #: the last resort of :func:`remesh_family`
     bisect: bool = False
 
@@ -251,8 +252,6 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
     if not isinstance(mode, Mode):
         mode = Mode(float(mode))
     if mode.bisect:
-        from stripcoef.hull.panels import refine
-
         rv, rf = refine(np.asarray(vertices, float), np.asarray(faces, np.int64),
                         int(np.ceil(panels_for_edge(_area(vertices, faces), edge))))
         return (np.asarray(rv, float), np.asarray(rf, np.int64)), None
