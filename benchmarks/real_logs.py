@@ -61,6 +61,10 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
+# the twin experiment (a real log needs it too) lives in the library
+from stripcoef.diagnose.heldout import (TWIN_COLUMNS, twin_spread,  # noqa: E402,F401
+                                        white_noise_sd)
+
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "reference_tables" / "real_logs"
 #: The stored run that docs/validation.md shows (``validation/real_logs.py``).
@@ -308,8 +312,9 @@ def both_splits(log, prior, widths, oracle=None) -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
     part too, and whether it beats both trivial predictors there."""
+    from stripcoef.conventions import DOF
     from stripcoef.diagnose import diagnose
-    from stripcoef.diagnose.heldout import compare, split
+    from stripcoef.diagnose.heldout import compare, predictable, split, twin_spread
 
     rows = []
     c0 = time.process_time()
@@ -326,17 +331,27 @@ def both_splits(log, prior, widths, oracle=None) -> list[dict]:
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
+    parts = {"forward": (split(log, HOLDOUT)[1], res), "reverse": (head, rev)}
     oracle_err = {"forward": {}, "reverse": {}}
-    if oracle is not None:                           # on the same held-out parts
-        parts = {"forward": (split(log, HOLDOUT)[1], res), "reverse": (head, rev)}
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            for name, (part, r) in parts.items():
-                oracle_err[name] = compare(part, {"truth_coefficients": oracle},
-                                           list(r.diagnosed))
+    twins = {"forward": {}, "reverse": {}}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name, (part, r) in parts.items():       # on the same held-out parts
+            dofs = list(r.diagnosed)
+            judged = {"calibrated": _written(r.model), "prior": prior}
+            if oracle is not None:
+                oracle_err[name] = compare(part, {"truth_coefficients": oracle}, dofs)
+                judged["truth"] = oracle
+            for m, model in judged.items():
+                spread = twin_spread(part, model, dofs)
+                twins[name][m] = dict(zip((DOF[i] for i in dofs),
+                                          spread if spread is not None else [None] * len(dofs)))
     for name, (r, err, cpu) in (("forward", forward), ("reverse", reverse)):
         effects = "; ".join(f"{e['dof']} {e['name']}" for e in r.model.effects) or "none"
         dropped = "; ".join(f"{d}: {why}" for d, why in r.dropped_dofs.items()) or "none"
+        tw = twins[name]
+        # the rule that needs no truth: the calibrated model's own twin spread
+        ok = predictable(err, [tw["calibrated"].get(dof) for dof in err])
         for dof, e in err.items():
             trivial = min(e["hold_last_velocity"], e["zero_velocity"])
             beats = (e["calibrated"] is not None and e["calibrated"] < e["prior"]
@@ -349,6 +364,10 @@ def both_splits(log, prior, widths, oracle=None) -> list[dict]:
                          "zero_velocity": e["zero_velocity"], "beats_all": int(beats),
                          "prior_beats_trivial": int(e["prior"] is not None
                                                     and e["prior"] < trivial),
+                         "twin_spread_calibrated": tw["calibrated"].get(dof),
+                         "twin_spread_prior": tw["prior"].get(dof),
+                         "twin_spread_truth": tw.get("truth", {}).get(dof),
+                         "predictable": int(ok[dof]),
                          "effects_written": effects, "not_diagnosed": dropped,
                          "cpu_s": round(cpu, 1)})
     return rows
@@ -398,53 +417,6 @@ def attribution(k: int, duration: float, seed: int,
             print(f"  h={h:g} s {dof:6s} " + " ".join(f"{m}={v:.4f}" for m, v in e.items()),
                   flush=True)
     return rows
-
-
-#: State columns a twin start is perturbed in (:func:`twin_spread`): the velocities and the
-#: angles the restoring forces depend on.
-TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
-
-
-def white_noise_sd(x) -> float:
-    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
-    differences, :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2`, by the median absolute
-    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
-    Assoc. 88: 1273-1283) -- the estimator diagnose's excitation rule uses."""
-    x = np.asarray(x, float)
-    d2 = x[2:] - 2.0 * x[1:-1] + x[:-2]
-    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) \
-        if d2.size else 0.0
-
-
-def twin_spread(log, model, dofs, *, horizon: float = 10.0, seed: int = 0):
-    r"""Identical-twin predictability of ``log`` under ``model`` (Lorenz 1965, Tellus 17:
-    321-333): the RMS difference [m/s or rad/s] per DOF of ``dofs`` between the model's
-    free simulations (the held-out table's segments of ``horizon`` s) from the logged states
-    and from the logged states each perturbed by one draw of the log's own white noise
-    (:func:`white_noise_sd` of each of :data:`TWIN_COLUMNS`). Where it exceeds the trivial
-    predictors' error, no model can be told apart from them over that horizon: the state
-    the log gives is not known well enough (Ljung 1999, sec. 16.4). Needs no truth, so it
-    also applies to a real log; returns None where a simulation diverges or the model is
-    outside the batch simulator."""
-    from stripcoef.diagnose.freesim import batch_free_velocities, supported
-    from stripcoef.diagnose.heldout import segments
-    from stripcoef.logfile import Log, log_inputs
-
-    rng = np.random.default_rng(seed)
-    inputs = log_inputs(log, model)
-    if not supported(model, inputs):
-        return None
-    cols = {c: np.asarray(log[c], float) for c in log.columns}
-    for c in TWIN_COLUMNS:
-        if c in cols:
-            cols[c] = cols[c] + rng.normal(0.0, white_noise_sd(cols[c]), cols[c].size)
-    twin = Log(cols, source=f"{log.source} (twin)")
-    bounds = segments(np.asarray(log["t"], float), horizon)
-    runs = [batch_free_velocities(model, lg, bounds, inputs) for lg in (log, twin)]
-    if runs[0] is None or runs[1] is None:
-        return None
-    diff = np.concatenate([a - b for a, b in zip(*runs)])
-    return [float(np.sqrt(np.mean(diff[:, i] ** 2))) for i in dofs]
 
 
 #: Where :func:`oracle_rows` are stored (``--oracle-only``): the truth's coefficients on the
@@ -521,7 +493,8 @@ def mirror_logs(mirror: Path):
 FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", "dof", "prior",
           "calibrated", "hold_last_velocity", "zero_velocity", "truth_coefficients",
           "truth_beats_trivial", "beats_all",
-          "prior_beats_trivial", "effects_written", "not_diagnosed", "cpu_s")
+          "prior_beats_trivial", "twin_spread_calibrated", "twin_spread_prior",
+          "twin_spread_truth", "predictable", "effects_written", "not_diagnosed", "cpu_s")
 
 
 def main(argv=None) -> int:
@@ -584,8 +557,11 @@ def main(argv=None) -> int:
                 print("  " + ", ".join(f"{k}={row[k]}" for k in row))
     n = len(out)
     k = sum(r["beats_all"] for r in out)
+    judged = [r for r in out if r["predictable"]]
     print(f"\ncalibrated beats the prior, hold-last-velocity and zero velocity in {k} of {n} "
-          "(log, split, excited DOF)")
+          "(log, split, excited DOF); in "
+          f"{sum(r['beats_all'] for r in judged)} of {len(judged)} excited and predictable "
+          "ones (twin spread of the calibrated model below both trivial predictors)")
     if args.out:
         with open(args.out, "w", newline="") as fh:
             fh.write(f"# {command}\n")

@@ -207,15 +207,3 @@ def test_the_oracle_run_is_joined_to_a_held_out_run_without_it(tmp_path, monkeyp
                      "prior_beats_trivial": "0"} for r in joined])
     assert (s["known"], s["unpredictable"], s["predictable"], s["beats_predictable"]) == \
         (2, 1, 1, 1)
-
-
-def test_white_noise_sd_reads_the_noise_under_a_smooth_signal():
-    """The twin experiment's noise (benchmarks.real_logs.white_noise_sd): 0.01 of white noise
-    on a slow sine is read back to 5 %; a straight line has none."""
-    from benchmarks.real_logs import white_noise_sd
-
-    t = np.arange(0.0, 300.0, 0.05)
-    rng = np.random.default_rng(1)
-    x = 0.4 * np.sin(0.2 * t) + rng.normal(0.0, 0.01, t.size)
-    assert white_noise_sd(x) == pytest.approx(0.01, rel=0.05)
-    assert white_noise_sd(2.0 * t + 1.0) == pytest.approx(0.0, abs=1e-9)

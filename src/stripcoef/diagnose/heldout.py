@@ -145,5 +145,93 @@ def compare(log, models: dict, dofs, *, horizon: float = HORIZON) -> dict:
             for k, i in enumerate(dofs)}
 
 
+#: State columns a twin start is perturbed in (:func:`twin_spread`): the velocities and the
+#: angles the restoring forces depend on.
+TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
+#: Noise draws of the twin experiment (:func:`twin_spread`): the spread is the RMS over them.
+TWIN_DRAWS = 3
+
+
+def white_noise_sd(x) -> float:
+    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
+    differences, :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2`, by the median absolute
+    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
+    Assoc. 88: 1273-1283) -- the estimator diagnose's excitation rule uses."""
+    x = np.asarray(x, float)
+    d2 = x[2:] - 2.0 * x[1:-1] + x[:-2]
+    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) \
+        if d2.size else 0.0
+
+
+def twin_spread(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
+                draws: int = TWIN_DRAWS):
+    r"""Identical-twin spread of ``model`` on ``log`` per DOF of ``dofs`` [m/s or rad/s], or
+    None where a simulation diverges or the model is outside the batch simulator.
+
+    The free simulations of :func:`free_simulation_errors` (segments of ``horizon`` s) are run
+    from the logged states and again from those states with each of :data:`TWIN_COLUMNS`
+    perturbed by a draw of the log's own white noise (:func:`white_noise_sd`, normal, seeded);
+    the spread of DOF i is
+
+    .. math:: S_i = \sqrt{\frac{1}{D N}\sum_{d=1}^{D}\sum_{s}\sum_{k \in s}
+              \big(\hat\nu_i^{(d)}(t_k) - \hat\nu_i(t_k)\big)^2}
+
+    over ``draws`` = D draws: the error the sensors' noise on the starting state alone puts
+    on the model's own predictions, grown by the model's dynamics over the horizon (Lorenz
+    1965, Tellus 17: 321-333, the identical-twin experiment). Needs no truth: it uses the
+    log and the model only."""
+    from stripcoef.diagnose.freesim import batch_free_velocities, supported
+    from stripcoef.logfile import Log, log_inputs
+
+    rng = np.random.default_rng(seed)
+    try:
+        inputs = log_inputs(log, model)
+    except StripcoefError:
+        return None
+    if not supported(model, inputs):
+        return None
+    bounds = segments(np.asarray(log["t"], float), horizon)
+    base = batch_free_velocities(model, log, bounds, inputs)
+    if base is None:
+        return None
+    sd = {c: white_noise_sd(log[c]) for c in TWIN_COLUMNS if c in log.columns}
+    sq = np.zeros(len(dofs))
+    n = 0
+    for _ in range(max(1, int(draws))):
+        cols = {c: np.asarray(log[c], float) for c in log.columns}
+        for c, s in sd.items():
+            cols[c] = cols[c] + rng.normal(0.0, s, cols[c].size)
+        twin = batch_free_velocities(model, Log(cols, source=f"{log.source} (twin)"),
+                                     bounds, inputs)
+        if twin is None:
+            return None
+        diff = np.concatenate([a - b for a, b in zip(twin, base)])[:, list(dofs)]
+        sq += np.sum(diff ** 2, axis=0)
+        n += diff.shape[0]
+    return [float(v) for v in np.sqrt(sq / n)]
+
+
+def predictable(errors: dict, spread) -> dict:
+    r"""Which DOFs of ``errors`` (:func:`compare`'s dictionary) a model can be judged on over
+    the horizon: ``{dof_name: True/False}``, True when the model's twin spread ``spread``
+    (:func:`twin_spread`, one value per DOF in the order of ``errors``) is below the smaller
+    of the trivial predictors' errors (:data:`TRIVIAL_PREDICTORS`).
+
+    Where it is not, the sensors' noise on the logged starting state alone, grown by the
+    model's own dynamics (an open-loop vehicle that is unstable under way, e.g. by the Munk
+    moment of its added mass, :math:`(Y_{\dot v} - X_{\dot u})uv` in yaw: the C_A of Fossen
+    2011, eq. 6.43; Ferreira et al. 2009, sec. V.D), moves its
+    predictions farther from the data than predicting no change or no motion: whatever the
+    model's coefficients, its comparison with the trivial predictors then measures the noise,
+    not the model (a simulation error is judged over a horizon on which the process is
+    predictable from the data: Ljung 1999, sec. 16.4; Lorenz 1965). A diverged model
+    (``spread`` None) is never exempted: every DOF counts as predictable."""
+    out = {}
+    for k, (dof, e) in enumerate(errors.items()):
+        trivial = min(e[name] for name in TRIVIAL_PREDICTORS)
+        out[dof] = spread is None or spread[k] is None or bool(spread[k] < trivial)
+    return out
+
+
 def _rms(x):
     return float(np.sqrt(np.mean(np.asarray(x) ** 2))) if np.size(x) else float("nan")
