@@ -66,7 +66,7 @@ def test_a_lag_restarted_mid_log_carries_the_commands_before_it():
     np.testing.assert_allclose(runs[1], logged[k:], atol=2e-5)
 
 
-def _steady_log(u0, seed=1, duration=20.0):
+def _steady_log(u0, seed=1, duration=15.0):
     """A log of the synthetic ROV in steady straight motion at ``u0`` [m/s]: the applied force
     the drag at u0 (an equilibrium), the states with white noise of the independent
     simulator's sensor levels."""
@@ -98,29 +98,43 @@ def test_white_noise_sd_reads_the_noise_under_a_smooth_signal_in_the_library():
     assert abs(white_noise_sd(2.0 * t + 1.0)) < 1e-9
 
 
-def test_twin_spread_grows_where_the_vehicle_is_unstable_under_way():
+def test_start_noise_grows_where_the_vehicle_is_unstable_under_way():
     """Issue 33: on the BlueROV2-Heavy-like logs even the simulator's own vehicle, restarted
     from the noisy logged state, lost to zero velocity in pitch and yaw. The reason is the
     vehicle, not the replay: under way, the Munk moment (Y_vdot - X_udot) u v of a vehicle
     whose sway added mass exceeds its surge one turns it away from a straight course (no
-    restoring moment in yaw). The identical-twin spread shows it from the log and the model
-    alone: at rest the synthetic ROV's yaw twin stays at the noise (below 0.01 rad/s); at
-    0.5 m/s it grows more than 50-fold, past both trivial predictors, so yaw is not
-    predictable over 10 s there while heave stays so."""
-    from stripcoef.diagnose.heldout import predictable, twin_spread
+    restoring moment in yaw). The noise on the starting state, carried along the logged
+    motion (noise_growth) and along the model's own (twin_spread), shows it from the log and
+    the model alone: at rest the synthetic ROV's yaw stays at the noise (below 0.01 rad/s);
+    at 0.5 m/s it grows more than 50-fold, past both trivial predictors, so yaw is not
+    predictable over 10 s there."""
+    from stripcoef.diagnose.heldout import noise_growth, predictable, twin_spread
 
     model, rest = _steady_log(0.0)
     _, ahead = _steady_log(0.5)
     assert model.added_mass[1, 1] > model.added_mass[0, 0]      # the Munk moment destabilises
-    s_rest = twin_spread(rest, model, [0, 2, 5])
-    s_ahead = twin_spread(ahead, model, [0, 2, 5])
-    assert s_rest[2] < 0.01
-    assert s_ahead[2] > 50.0 * s_rest[2]
-    ok = predictable(compare(ahead, {}, [0, 2, 5]), s_ahead)
-    assert ok["yaw"] is False
-    assert ok["heave"] is True
+    for spread in (noise_growth, twin_spread):
+        s_rest = spread(rest, model, [0, 2, 5])
+        s_ahead = spread(ahead, model, [0, 2, 5])
+        assert s_rest[2] < 0.01, spread.__name__
+        assert s_ahead[2] > 50.0 * s_rest[2], spread.__name__
+        ok = predictable(compare(ahead, {}, [0, 2, 5]), s_ahead)
+        assert ok["yaw"] is False, spread.__name__
     assert predictable(compare(ahead, {}, [0, 2, 5]), None) == \
         {"surge": True, "heave": True, "yaw": True}          # a diverged model is judged
+
+
+def test_noise_growth_along_the_log_is_the_noise_free_replay_of_a_stable_vehicle():
+    """At rest (a stable equilibrium) the start-state noise carried along the log decays: the
+    surge spread is at most the noise put on u (0.01 m/s) and shrinks with the noise."""
+    from stripcoef.diagnose.heldout import noise_growth
+
+    model, rest = _steady_log(0.0)
+    s = noise_growth(rest, model, [0])[0]
+    assert 0.0 < s < 0.01
+    quiet = Log({c: (rest[c] if c == "t" or c in "XYZKMN" else 0.1 * rest[c])
+                 for c in rest.columns})
+    assert noise_growth(quiet, model, [0])[0] < 0.2 * s
 
 
 def test_predictable_compares_the_spread_with_the_better_trivial_predictor():
