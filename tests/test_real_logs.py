@@ -207,3 +207,31 @@ def test_the_oracle_run_is_joined_to_a_held_out_run_without_it(tmp_path, monkeyp
                      "prior_beats_trivial": "0"} for r in joined])
     assert (s["known"], s["unpredictable"], s["predictable"], s["beats_predictable"]) == \
         (2, 1, 1, 1)
+
+
+def test_the_count_is_made_on_the_excited_and_predictable_rows():
+    """validation/real_logs.py counts the calibrated model's wins on the rows the rule of
+    heldout.predictable keeps (column ``predictable``), per row and per (log, split) pair,
+    and says how often each model's noise-growth verdict is the truth's."""
+    from validation.real_logs import summary
+
+    def row(split, dof, beats, ok, growth, truth_ok):
+        return {"log": "a", "kind": "real-style", "split": split, "dof": dof,
+                "beats_all": beats, "predictable": ok, "prior": "1", "calibrated": "0.5",
+                "prior_beats_trivial": "0", "hold_last_velocity": "0.2",
+                "zero_velocity": "0.1", "truth_beats_trivial": truth_ok,
+                "noise_growth_calibrated": growth, "noise_growth_prior": growth,
+                "noise_growth_truth": "0.5"}
+
+    rows = [row("forward", "surge", "1", "1", "0.05", "1"),
+            row("forward", "yaw", "0", "0", "0.3", "0"),
+            row("reverse", "surge", "0", "1", "0.05", "1"),
+            row("reverse", "yaw", "1", "1", "0.01", "0")]
+    s = summary(rows)
+    assert (s["rows"], s["beats"], s["pairs_all"]) == (4, 2, 0)
+    assert (s["judged"], s["beats_judged"]) == (3, 2)
+    assert (s["pairs_judged"], s["pairs_judged_all"]) == (2, 1)
+    assert (s["growth_known"], s["growth_agrees_calibrated"], s["growth_agrees_truth"]) == \
+        (4, 3, 2)
+    old = summary([{k: v for k, v in r.items() if k != "predictable"} for r in rows])
+    assert old["judged"] == 4                     # a run without the column judges every row
