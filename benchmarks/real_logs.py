@@ -426,6 +426,131 @@ def attribution(k: int, duration: float, seed: int,
     return rows
 
 
+#: Where :func:`why` is stored (``--why K --out``...: see the README).
+WHY = TABLES / "why.csv"
+#: Steady surge speeds at which :func:`why` linearises the truth [m/s].
+WHY_SPEEDS = (0.0, 0.2, 0.4, 0.6)
+
+
+def _simulator_free_runs(truth, start, inputs, bounds):
+    """The independent simulator's own free simulations (``validation.independent``: its
+    RK4, thrusters and effect) of the segments ``bounds``, each from the state of ``start``
+    (a log: pose and velocities) at its first row, with the commands and tether of
+    ``inputs`` (a log) held over each sample: a list of (b - a, 6) velocity arrays; a
+    thruster lag starts in equilibrium with the segment's first command."""
+    from scipy.spatial.transform import Rotation
+
+    from validation.independent import Simulator, _thrust
+
+    sim = Simulator(truth)
+    t = np.asarray(inputs["t"], float)
+    cmd = np.column_stack([inputs["n_" + th["name"]] for th in truth.thrusters])
+    tether = np.asarray(inputs["tether_length"], float)
+    sub = int(round((t[1] - t[0]) / sim.dt))
+    runs = []
+    for a, b in bounds:
+        qx, qy, qz, qw = Rotation.from_euler(
+            "ZYX", [start["psi"][a], start["theta"][a], start["phi"][a]]).as_quat()
+        x = np.zeros(13 + sim.k)
+        x[:3] = [start[c][a] for c in ("x", "y", "z")]
+        x[3:7] = [qw, qx, qy, qz]                       # the simulator's scalar-first order
+        x[7:13] = [start[c][a] for c in ("u", "v", "w", "p", "q", "r")]
+        x[13:] = [_thrust(th, n) for th, n in zip(truth.thrusters, cmd[a])]
+        nus = [x[7:13].copy()]
+        for i in range(a, b - 1):
+            for _ in range(sub):
+                x = sim.step(x, cmd[i], tether[i])
+            nus.append(x[7:13].copy())
+        runs.append(np.array(nus))
+    return runs
+
+
+def why(k: int, duration: float, seed: int) -> list[dict]:
+    """Why even the truth loses to a trivial predictor on BlueROV2-Heavy-like log ``k``
+    (issue 33): the log made without sensor noise (``validation.independent.NOISE`` set to
+    zero: the pilot's holds then see the true state), then the same log with that noise
+    added to its states (seeded). Rows per DOF [m/s or rad/s]: the truth's free-simulation
+    error (:func:`truth_model`, replayed by ``diagnose/heldout.py``) on the noise-free log
+    (the replay is exact: frames, thrusters, effect) and on the noisy one; the independent
+    simulator's own free simulations from the noisy starting states against the noise-free
+    velocities (the same loss without stripcoef); the start-state noise carried along the
+    log by the truth's and the prior's dynamics (:func:`heldout.noise_growth`) and along the
+    models' own simulations (:func:`heldout.twin_spread`); the trivial predictors. Rows per
+    speed: the largest real part [1/s] of the eigenvalues of the truth's equations of motion
+    linearised (central differences) about steady surge at that speed, and the DOF whose
+    velocity leads its eigenvector: a positive one is an open-loop instability, whose
+    e-folding time bounds the horizon a noisy start predicts over (Lorenz 1965)."""
+    from unittest import mock
+
+    import stripcoef
+    import validation.independent as ind
+    from stripcoef.conventions import DOF
+    from stripcoef.diagnose.heldout import compare, noise_growth, segments, twin_spread
+    from stripcoef.logfile import Log
+
+    if k >= len(EFFECTS):
+        raise ValueError("the analysis needs a BlueROV2-Heavy-like log (0..2)")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        prior = stripcoef.estimate(ROOT / "geometry" / "bluerov2_heavy.yaml")
+    with mock.patch.object(ind, "NOISE", {c: 0.0 for c in ind.NOISE}):
+        clean, truth = ind.generate(prior.to_dict(), EFFECTS[k], seed + k,
+                                    duration=duration, rate=INDEPENDENT_RATE)
+    rng = np.random.default_rng(seed + k)
+    cols = {c: np.asarray(clean[c], float) for c in clean.columns}
+    for c, sd in ind.NOISE.items():
+        cols[c] = cols[c] + rng.normal(0.0, sd, cols[c].size)
+    noisy = Log(cols, source=f"{clean.source} + sensor noise")
+    oracle = truth_model(prior.to_dict(), truth)
+    name = f"bluerov2_heavy, {EFFECTS[k]}"
+    label = f"{EFFECTS[k]} {truth.strength:.3g}, seed {seed + k}, {duration:g} s"
+    dofs = list(range(6))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        e_clean = compare(clean, {"truth": oracle}, dofs)
+        e_noisy = compare(noisy, {"truth": oracle}, dofs)
+        bounds = segments(np.asarray(clean["t"], float), 10.0)
+        runs = _simulator_free_runs(truth, noisy, clean, bounds)
+        ref = np.column_stack([clean[c] for c in ("u", "v", "w", "p", "q", "r")])
+        diff = np.concatenate([r - ref[a:b] for r, (a, b) in zip(runs, bounds)])
+        sim_err = np.sqrt(np.mean(diff ** 2, axis=0))
+        growth = {m: noise_growth(noisy, model, dofs) for m, model in
+                  (("truth", oracle), ("prior", prior))}
+        twins = {m: twin_spread(noisy, model, dofs) for m, model in
+                 (("truth", oracle), ("prior", prior))}
+    rows = []
+    for i, dof in enumerate(DOF):
+        rows.append({"log": name, "truth": label, "kind": "dof", "dof": dof,
+                     "truth_noise_free": e_clean[dof]["truth"],
+                     "truth_noisy": e_noisy[dof]["truth"],
+                     "simulator_noisy_start": float(sim_err[i]),
+                     "noise_growth_truth": growth["truth"][i],
+                     "noise_growth_prior": growth["prior"][i],
+                     "twin_spread_truth": twins["truth"][i],
+                     "twin_spread_prior": twins["prior"][i],
+                     "hold_last_velocity": e_noisy[dof]["hold_last_velocity"],
+                     "zero_velocity": e_noisy[dof]["zero_velocity"]})
+    sim = ind.Simulator(truth)
+    for u in WHY_SPEEDS:
+        x = np.zeros(13 + sim.k)
+        x[3], x[7] = 1.0, u
+        jac = np.zeros((10, 10))
+        for j in range(10):                  # quaternion (4) and velocities (6)
+            dx = np.zeros_like(x)
+            dx[3 + j] = 1e-6
+            jac[:, j] = (sim.rhs(x + dx, np.zeros(sim.k), 10.0)[3:13]
+                         - sim.rhs(x - dx, np.zeros(sim.k), 10.0)[3:13]) / 2e-6
+        val, vec = np.linalg.eig(jac)
+        top = int(np.argmax(val.real))
+        rows.append({"log": name, "truth": label, "kind": "speed", "speed_m_s": u,
+                     "largest_real_part": float(val.real[top]),
+                     "leading_dof": DOF[int(np.argmax(np.abs(vec[4:, top])))]})
+    for r in rows:
+        print("  " + ", ".join(f"{key}={v:.4g}" if isinstance(v, float) else f"{key}={v}"
+                               for key, v in r.items()), flush=True)
+    return rows
+
+
 #: Where :func:`oracle_rows` are stored (``--oracle-only``): the truth's coefficients on the
 #: held-out parts of both splits, which do not depend on the diagnosis.
 ORACLE = TABLES / "oracle.csv"
@@ -519,6 +644,10 @@ def main(argv=None) -> int:
                          "BlueROV2-Heavy-like log K (0..2) comes from (prior, truth, swapped "
                          f"thrusters at horizons {ATTRIBUTION_HORIZONS} s), e.g. with --out "
                          f"{ATTRIBUTION}")
+    ap.add_argument("--why", type=int, metavar="K",
+                    help="instead of the held-out table: why the truth of BlueROV2-Heavy-like "
+                         "log K (0..2) loses to a trivial predictor (noise-free and noisy "
+                         f"replays, noise growth, linearised stability), e.g. with --out {WHY}")
     ap.add_argument("--oracle-only", action="store_true",
                     help="instead of the held-out table: only the truth's coefficients on "
                          "the held-out parts of the BlueROV2-Heavy-like logs (no diagnosis), "
@@ -526,8 +655,11 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed)))
-    if args.attribution is not None or args.oracle_only:
-        if args.oracle_only:
+    if args.attribution is not None or args.oracle_only or args.why is not None:
+        if args.why is not None:
+            rows = why(args.why, args.duration, args.seed)
+            flag = f"--why {args.why}"
+        elif args.oracle_only:
             rows = [r for k in args.logs if k < len(EFFECTS)
                     for r in oracle_rows(k, args.duration, args.seed)]
             flag = "--oracle-only"
@@ -537,7 +669,7 @@ def main(argv=None) -> int:
         if args.out:
             with open(args.out, "w", newline="") as fh:
                 fh.write(f"# {command} {flag}\n")
-                w = csv.DictWriter(fh, list(rows[0]))
+                w = csv.DictWriter(fh, list(dict.fromkeys(f for r in rows for f in r)))
                 w.writeheader()
                 for r in rows:
                     w.writerow({f: (f"{v:.6g}" if isinstance(v, float) else v)

@@ -37,6 +37,40 @@ def attribution_section() -> list:
             markdown_table(["horizon [s]", "DOF", *ATTRIBUTION_COLUMNS.values()], table), ""]
 
 
+#: The stored analysis of why even the truth loses (``python -m benchmarks.real_logs --why K``).
+WHY = ROOT / "reference_tables" / "real_logs" / "why.csv"
+#: Its per-DOF columns, as the table shows them.
+WHY_COLUMNS = {"truth_noise_free": "truth, noise-free log",
+               "truth_noisy": "truth, noisy log",
+               "simulator_noisy_start": "simulator itself, noisy start",
+               "noise_growth_truth": "noise growth (truth)",
+               "noise_growth_prior": "noise growth (prior)",
+               "twin_spread_prior": "twin spread (prior)",
+               "hold_last_velocity": "hold-last-velocity", "zero_velocity": "zero velocity"}
+
+
+def why_section() -> list:
+    """The stored analysis of why even the truth loses in some DOFs (per DOF, and the
+    linearised stability per speed), and its command, or nothing."""
+    if not WHY.exists():
+        return []
+    command, rows = read_stored_run(WHY)
+    per_dof = [r for r in rows if r["kind"] == "dof"]
+    speeds = [r for r in rows if r["kind"] == "speed"]
+    table = [[r["dof"], *(_num(r[c]) for c in WHY_COLUMNS)] for r in per_dof]
+    stab = "; ".join(f"{float(r['speed_m_s']):g} m/s: {float(r['largest_real_part']):+.3f} 1/s "
+                     f"({r['leading_dof']})" for r in speeds)
+    return [f"The analysis, on {per_dof[0]['log']} ({per_dof[0]['truth']}) made without "
+            f"sensor noise and then with it added: `{command}` (`benchmarks.real_logs.why`; "
+            "*simulator itself*: the independent simulator's own 10-s free simulations from "
+            "the noisy starting states against the noise-free velocities; *twin spread*: the "
+            "noise carried along the model's own simulation instead of the log) [m/s or "
+            "rad/s].\n",
+            markdown_table(["DOF", *WHY_COLUMNS.values()], table), "",
+            f"Largest real part of the truth's linearised eigenvalues at steady surge, and "
+            f"the DOF leading its eigenvector: {stab}.\n"]
+
+
 def _num(s):
     return f"{float(s):.4f}" if s not in ("", "None") else "diverged"
 
@@ -192,6 +226,7 @@ def section() -> str:
            f"predictability study, Lorenz 1965, Tellus 17; Kalnay 2003, sec. 6.3); with the "
            f"truth's dynamics it is of the size of the truth's own error where the truth "
            f"loses.\n"] if s["known"] else []),
+        *why_section(),
         "**Excited and predictable** (`stripcoef.diagnose.heldout.predictable`): a DOF the "
         "diagnosis found excited whose *noise growth (calibrated)* stays below both trivial "
         "predictors' errors. Where it does not, the noise on the starting state alone moves "
