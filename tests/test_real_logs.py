@@ -235,3 +235,21 @@ def test_the_count_is_made_on_the_excited_and_predictable_rows():
         (4, 3, 2)
     old = summary([{k: v for k, v in r.items() if k != "predictable"} for r in rows])
     assert old["judged"] == 4                     # a run without the column judges every row
+
+
+def test_the_why_table_reads_its_stored_rows(tmp_path, monkeypatch):
+    """validation/real_logs.py shows a ``--why`` run: one row per DOF and the linearised
+    stability per speed."""
+    import validation.real_logs as vr
+
+    why = tmp_path / "why.csv"
+    cols = list(vr.WHY_COLUMNS)
+    why.write_text("# python -m benchmarks.real_logs --duration 100 --seed 7 --why 1\n"
+                   "log,truth,kind,dof," + ",".join(cols) + ",speed_m_s,largest_real_part,"
+                   "leading_dof\n"
+                   "a,x,dof,yaw," + ",".join(["0.5"] * len(cols)) + ",,,\n"
+                   "a,x,speed,,," + "," * (len(cols) - 1) + "0.4,1.334,yaw\n")
+    monkeypatch.setattr(vr, "WHY", why)
+    text = "\n".join(vr.why_section())
+    assert "--why 1" in text and "| yaw | 0.5000 |" in text
+    assert "0.4 m/s: +1.334 1/s (yaw)" in text
