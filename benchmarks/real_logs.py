@@ -43,6 +43,16 @@ Run:  python -m benchmarks.real_logs [--duration 300] [--seed 7] [--jobs 4] [--o
       python -m benchmarks.real_logs --oracle-only --out reference_tables/real_logs/oracle.csv
       python -m benchmarks.real_logs --attribution 1 \
           --out reference_tables/real_logs/attribution.csv
+      python -m benchmarks.real_logs --duration 100 --why 1 \
+          --out reference_tables/real_logs/why.csv
+
+**Excited and predictable.** The count is made on the (log, split, DOF) rows the diagnosis
+found excited and where the calibrated model's :func:`stripcoef.diagnose.heldout.noise_growth`
+(the sensors' noise on a segment's starting state carried along the logged motion) stays
+below both trivial predictors' errors (:func:`stripcoef.diagnose.heldout.predictable`): the
+BlueROV2-Heavy-like vehicle is unstable open-loop under way (its Munk moments; the pilot's
+holds steady it in the log), and where that noise grows past the motion within the horizon
+no model can be told from the trivial predictors (:func:`why` shows it with the truth).
 """
 
 from __future__ import annotations
