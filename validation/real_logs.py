@@ -106,11 +106,17 @@ def _growth_verdict(r, key) -> str:
     return "1" if float(r[key]) < trivial else "0"
 
 
+def predictable(r) -> bool:
+    """Whether row ``r`` counts among the excited and predictable ones: the rule of
+    heldout.predictable with the prior's noise growth (a row without it counts)."""
+    return _growth_verdict(r, "noise_growth_prior") != "0"
+
+
 def _predictable_counts(rows, known) -> dict:
-    """The counts on the excited and predictable rows (column ``predictable``, the rule of
-    heldout.predictable with the calibrated model's noise growth; a run without the column
-    judges every row), and how often each model's noise-growth verdict is the truth's."""
-    judged = [r for r in rows if r.get("predictable", "1") != "0"]
+    """The counts on the excited and predictable rows (:func:`predictable`; a run without the
+    noise growth judges every row), and how often each model's noise-growth verdict is the
+    truth's."""
+    judged = [r for r in rows if predictable(r)]
     pairs = {}
     for r in judged:
         pairs.setdefault((r["log"], r["split"]), []).append(r["beats_all"] == "1")
@@ -118,14 +124,15 @@ def _predictable_counts(rows, known) -> dict:
                     for r in known) for m in ("calibrated", "prior", "truth")}
     return {"judged": len(judged), "beats_judged": sum(r["beats_all"] == "1" for r in judged),
             "pairs_judged": len(pairs), "pairs_judged_all": sum(all(v) for v in pairs.values()),
-            "growth_known": sum(r.get("noise_growth_calibrated", "") not in ("", "None")
+            "growth_known": sum(r.get("noise_growth_prior", "") not in ("", "None")
                                 for r in known),
             **{f"growth_agrees_{m}": n for m, n in agree.items()}}
 
 
 #: The columns a stored oracle run gives the held-out rows that lack them (the oracle is
 #: computed without diagnosing, :func:`with_oracle`).
-ORACLE_KEYS = ("truth_coefficients", "truth_beats_trivial")
+ORACLE_KEYS = ("truth_coefficients", "truth_beats_trivial", "noise_growth_prior",
+               "noise_growth_truth")
 
 
 def with_oracle(rows) -> tuple:
@@ -155,8 +162,9 @@ def section() -> str:
               _num(r["hold_last_velocity"]), _num(r["zero_velocity"]),
               _num(r["truth_coefficients"]) if r.get("truth_coefficients") else "-",
               *(_num(r[k]) if r.get(k, "") not in ("", "None") else "-"
-                for k in ("noise_growth_calibrated", "noise_growth_truth")),
-              {"1": "yes", "0": "no"}.get(r.get("predictable", ""), "-"),
+                for k in ("noise_growth_prior", "noise_growth_truth")),
+              ("yes" if predictable(r) else "no") if r.get("noise_growth_prior", "") not in
+              ("", "None") else "-",
               "yes" if r["beats_all"] == "1" else "**no**"] for r in rows]
     logs = {}
     for r in rows:
@@ -190,7 +198,7 @@ def section() -> str:
                                    f"`{oracle_command}`" if oracle_command else "") + "\n",
         *described, "",
         markdown_table(["log", "split", "DOF", "prior", "calibrated", "hold-last-velocity",
-                        "zero velocity", "truth", "noise growth (calibrated)",
+                        "zero velocity", "truth", "noise growth (prior)",
                         "noise growth (truth)", "predictable", "calibrated beats all three"],
                        table),
         "",
@@ -228,16 +236,19 @@ def section() -> str:
            f"loses.\n"] if s["known"] else []),
         *why_section(),
         "**Excited and predictable** (`stripcoef.diagnose.heldout.predictable`): a DOF the "
-        "diagnosis found excited whose *noise growth (calibrated)* stays below both trivial "
+        "diagnosis found excited whose *noise growth (prior)* stays below both trivial "
         "predictors' errors. Where it does not, the noise on the starting state alone moves "
         "any prediction farther from the data than predicting no change or no motion, and the "
         "comparison measures the noise, not the model (a simulation error is judged on fresh "
         "data over a horizon on which the process is predictable: Ljung 1999, sec. 16.4). "
-        "The rule uses the log and the calibrated model only" + (
+        "The rule uses the log and the vehicle file's model only: no truth, and no fitted "
+        "number, so no calibration can exempt its own DOFs" + (
             f"; its verdict is the truth's (the truth beats both trivial predictors or not) "
-            f"in **{s['growth_agrees_calibrated']} of {s['growth_known']}** rows, with the "
-            f"prior's dynamics in {s['growth_agrees_prior']}, with the truth's in "
-            f"{s['growth_agrees_truth']}.\n" if s["growth_known"] else ".\n"),
+            f"in **{s['growth_agrees_prior']} of {s['growth_known']}** rows (with the "
+            f"truth's own dynamics in {s['growth_agrees_truth']}"
+            + (f", with the calibrated model's in {s['growth_agrees_calibrated']}"
+               if s["growth_agrees_calibrated"] else "") + ").\n"
+            if s["growth_known"] else ".\n"),
         *attribution_section(),
         "Effects in the written models: " + "; ".join(
             f"{log} ({split}): {eff}" for log, split, eff in effects) + ".\n",
