@@ -551,7 +551,8 @@ def why(k: int, duration: float, seed: int) -> list[dict]:
         top = int(np.argmax(val.real))
         rows.append({"log": name, "truth": label, "kind": "speed", "speed_m_s": u,
                      "largest_real_part": float(val.real[top]),
-                     "leading_dof": DOF[int(np.argmax(np.abs(vec[4:, top])))]})
+                     "leading_dof": (DOF[int(np.argmax(np.abs(vec[4:, top])))]
+                                     if val.real[top] > 1e-3 else "none")})
     for r in rows:
         print("  " + ", ".join(f"{key}={v:.4g}" if isinstance(v, float) else f"{key}={v}"
                                for key, v in r.items()), flush=True)
