@@ -209,13 +209,49 @@ def test_the_oracle_run_is_joined_to_a_held_out_run_without_it(tmp_path, monkeyp
         (2, 1, 1, 1)
 
 
-def test_white_noise_sd_reads_the_noise_under_a_smooth_signal():
-    """The twin experiment's noise (benchmarks.real_logs.white_noise_sd): 0.01 of white noise
-    on a slow sine is read back to 5 %; a straight line has none."""
-    from benchmarks.real_logs import white_noise_sd
+def test_the_count_is_made_on_the_excited_and_predictable_rows():
+    """validation/real_logs.py counts the calibrated model's wins on the rows the rule of
+    heldout.predictable keeps (the prior's noise growth below both trivial predictors' errors),
+    per row and per (log, split) pair, and says how often each model's noise-growth verdict is
+    the truth's."""
+    from validation.real_logs import summary
 
-    t = np.arange(0.0, 300.0, 0.05)
-    rng = np.random.default_rng(1)
-    x = 0.4 * np.sin(0.2 * t) + rng.normal(0.0, 0.01, t.size)
-    assert white_noise_sd(x) == pytest.approx(0.01, rel=0.05)
-    assert white_noise_sd(2.0 * t + 1.0) == pytest.approx(0.0, abs=1e-9)
+    def row(split, dof, beats, ok, growth, truth_ok):
+        return {"log": "a", "kind": "real-style", "split": split, "dof": dof,
+                "beats_all": beats, "predictable": ok, "prior": "1", "calibrated": "0.5",
+                "prior_beats_trivial": "0", "hold_last_velocity": "0.2",
+                "zero_velocity": "0.1", "truth_beats_trivial": truth_ok,
+                "noise_growth_calibrated": growth, "noise_growth_prior": growth,
+                "noise_growth_truth": "0.5"}
+
+    rows = [row("forward", "surge", "1", "1", "0.05", "1"),
+            row("forward", "yaw", "0", "0", "0.3", "0"),
+            row("reverse", "surge", "0", "1", "0.05", "1"),
+            row("reverse", "yaw", "1", "1", "0.01", "0")]
+    s = summary(rows)
+    assert (s["rows"], s["beats"], s["pairs_all"]) == (4, 2, 0)
+    assert (s["judged"], s["beats_judged"]) == (3, 2)
+    assert (s["pairs_judged"], s["pairs_judged_all"]) == (2, 1)
+    assert (s["growth_known"], s["growth_agrees_prior"], s["growth_agrees_truth"]) == \
+        (4, 3, 2)
+    old = summary([{k: v for k, v in r.items() if not k.startswith("noise_growth")}
+                   for r in rows])
+    assert old["judged"] == 4                     # a run without the column judges every row
+
+
+def test_the_why_table_reads_its_stored_rows(tmp_path, monkeypatch):
+    """validation/real_logs.py shows a ``--why`` run: one row per DOF and the linearised
+    stability per speed."""
+    import validation.real_logs as vr
+
+    why = tmp_path / "why.csv"
+    cols = list(vr.WHY_COLUMNS)
+    why.write_text("# python -m benchmarks.real_logs --duration 100 --seed 7 --why 1\n"
+                   "log,truth,kind,dof," + ",".join(cols) + ",speed_m_s,largest_real_part,"
+                   "leading_dof\n"
+                   "a,x,dof,yaw," + ",".join(["0.5"] * len(cols)) + ",,,\n"
+                   "a,x,speed,,," + "," * (len(cols) - 1) + "0.4,1.334,yaw\n")
+    monkeypatch.setattr(vr, "WHY", why)
+    text = "\n".join(vr.why_section())
+    assert "--why 1" in text and "| yaw | 0.5000 |" in text
+    assert "0.4 m/s: +1.334 1/s (yaw)" in text

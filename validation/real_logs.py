@@ -37,17 +37,42 @@ def attribution_section() -> list:
             markdown_table(["horizon [s]", "DOF", *ATTRIBUTION_COLUMNS.values()], table), ""]
 
 
+#: The stored analysis of why even the truth loses (``python -m benchmarks.real_logs --why K``).
+WHY = ROOT / "reference_tables" / "real_logs" / "why.csv"
+#: Its per-DOF columns, as the table shows them.
+WHY_COLUMNS = {"truth_noise_free": "truth, noise-free log",
+               "truth_noisy": "truth, noisy log",
+               "simulator_noisy_start": "simulator itself, noisy start",
+               "noise_growth_truth": "noise growth (truth)",
+               "noise_growth_prior": "noise growth (prior)",
+               "twin_spread_prior": "twin spread (prior)",
+               "hold_last_velocity": "hold-last-velocity", "zero_velocity": "zero velocity"}
+
+
+def why_section() -> list:
+    """The stored analysis of why even the truth loses in some DOFs (per DOF, and the
+    linearised stability per speed), and its command, or nothing."""
+    if not WHY.exists():
+        return []
+    command, rows = read_stored_run(WHY)
+    per_dof = [r for r in rows if r["kind"] == "dof"]
+    speeds = [r for r in rows if r["kind"] == "speed"]
+    table = [[r["dof"], *(_num(r[c]) for c in WHY_COLUMNS)] for r in per_dof]
+    stab = "; ".join(f"{float(r['speed_m_s']):g} m/s: {float(r['largest_real_part']):+.3f} 1/s "
+                     f"({r['leading_dof']})" for r in speeds)
+    return [f"The analysis, on {per_dof[0]['log']} ({per_dof[0]['truth']}) made without "
+            f"sensor noise and then with it added: `{command}` (`benchmarks.real_logs.why`; "
+            "*simulator itself*: the independent simulator's own 10-s free simulations from "
+            "the noisy starting states against the noise-free velocities; *twin spread*: the "
+            "noise carried along the model's own simulation instead of the log) [m/s or "
+            "rad/s].\n",
+            markdown_table(["DOF", *WHY_COLUMNS.values()], table), "",
+            f"Largest real part of the truth's linearised eigenvalues at steady surge, and "
+            f"the DOF leading its eigenvector: {stab}.\n"]
+
+
 def _num(s):
     return f"{float(s):.4f}" if s not in ("", "None") else "diverged"
-
-
-def _twin_verdict(r, key) -> str:
-    """'1' when the twin spread ``key`` of row ``r`` is below both trivial predictors' errors,
-    '0' when not, '' when the row has none."""
-    if not r.get(key):
-        return ""
-    trivial = min(float(r["hold_last_velocity"]), float(r["zero_velocity"]))
-    return "1" if float(r[key]) < trivial else "0"
 
 
 def summary(rows) -> dict:
@@ -65,37 +90,66 @@ def summary(rows) -> dict:
             "known": len(known), "unpredictable": len(known) - len(predictable),
             "predictable": len(predictable),
             "beats_predictable": sum(r["beats_all"] == "1" for r in predictable),
-            "twin_known": sum(r.get("prior_twin_below_trivial", "") in ("0", "1")
-                              for r in known),
-            "twin_agrees": sum(r.get("prior_twin_below_trivial", "") == r["truth_beats_trivial"]
-                               for r in known),
-            "truth_twin_agrees": sum(_twin_verdict(r, "twin_spread_truth")
-                                     == r["truth_beats_trivial"] for r in known),
             "pairs": len(pairs), "pairs_all": sum(all(v) for v in pairs.values()),
+            **_predictable_counts(rows, known),
             "prior_beats_trivial": sum(r["prior_beats_trivial"] == "1" for r in rows),
             "real": sum(r["kind"] == "real" for r in rows),
             "unchanged": sum(r["calibrated"] == r["prior"] for r in rows)}
 
 
-#: The columns a stored oracle run gives every held-out row (it supersedes the held-out
-#: run's own: the oracle is computed without diagnosing, :func:`with_oracle`).
-ORACLE_KEYS = ("truth_coefficients", "truth_beats_trivial", "twin_spread_prior",
-               "twin_spread_truth", "prior_twin_below_trivial")
+def _growth_verdict(r, key) -> str:
+    """'1' when the noise growth ``key`` of row ``r`` is below both trivial predictors'
+    errors (heldout.predictable), '0' when not, '' when the row has none."""
+    if r.get(key, "") in ("", "None"):
+        return ""
+    trivial = min(float(r["hold_last_velocity"]), float(r["zero_velocity"]))
+    return "1" if float(r[key]) < trivial else "0"
+
+
+def predictable(r) -> bool:
+    """Whether row ``r`` counts among the excited and predictable ones: the rule of
+    heldout.predictable with the prior's noise growth (a row without it counts)."""
+    return _growth_verdict(r, "noise_growth_prior") != "0"
+
+
+def _predictable_counts(rows, known) -> dict:
+    """The counts on the excited and predictable rows (:func:`predictable`; a run without the
+    noise growth judges every row), and how often each model's noise-growth verdict is the
+    truth's."""
+    judged = [r for r in rows if predictable(r)]
+    pairs = {}
+    for r in judged:
+        pairs.setdefault((r["log"], r["split"]), []).append(r["beats_all"] == "1")
+    agree = {m: sum(_growth_verdict(r, f"noise_growth_{m}") == r["truth_beats_trivial"]
+                    for r in known) for m in ("calibrated", "prior", "truth")}
+    return {"judged": len(judged), "beats_judged": sum(r["beats_all"] == "1" for r in judged),
+            "pairs_judged": len(pairs), "pairs_judged_all": sum(all(v) for v in pairs.values()),
+            "growth_known": sum(r.get("noise_growth_prior", "") not in ("", "None")
+                                for r in known),
+            **{f"growth_agrees_{m}": n for m, n in agree.items()}}
+
+
+#: The columns a stored oracle run gives the held-out rows that lack them (the oracle is
+#: computed without diagnosing, :func:`with_oracle`).
+ORACLE_KEYS = ("truth_coefficients", "truth_beats_trivial", "noise_growth_prior",
+               "noise_growth_truth")
 
 
 def with_oracle(rows) -> tuple:
     """``rows`` with the columns of the stored oracle run (:data:`ORACLE`, joined by log,
-    split and DOF; they supersede the rows' own), and that run's command (or None)."""
+    split and DOF) that the rows lack, and that run's command (or None)."""
     if not ORACLE.exists():
         return rows, None
     command, oracle = read_stored_run(ORACLE)
     by_key = {(r["log"], r["split"], r["dof"]): r for r in oracle}
     keys = ORACLE_KEYS
-    out = []
+    out, used = [], False
     for r in rows:
         o = by_key.get((r["log"], r["split"], r["dof"]), {})
-        out.append({**r, **{k: o.get(k, "") for k in keys}})
-    return out, command
+        fill = {k: o.get(k, "") for k in keys if r.get(k, "") in ("", None)}
+        used = used or any(fill.values())
+        out.append({**r, **fill})
+    return out, (command if used else None)
 
 
 def section() -> str:
@@ -107,8 +161,10 @@ def section() -> str:
     table = [[r["log"], r["split"], r["dof"], _num(r["prior"]), _num(r["calibrated"]),
               _num(r["hold_last_velocity"]), _num(r["zero_velocity"]),
               _num(r["truth_coefficients"]) if r.get("truth_coefficients") else "-",
-              _num(r["twin_spread_prior"]) if r.get("twin_spread_prior") else "-",
-              _num(r["twin_spread_truth"]) if r.get("twin_spread_truth") else "-",
+              *(_num(r[k]) if r.get(k, "") not in ("", "None") else "-"
+                for k in ("noise_growth_prior", "noise_growth_truth")),
+              ("yes" if predictable(r) else "no") if r.get("noise_growth_prior", "") not in
+              ("", "None") else "-",
               "yes" if r["beats_all"] == "1" else "**no**"] for r in rows]
     logs = {}
     for r in rows:
@@ -138,44 +194,61 @@ def section() -> str:
         "last 30 % (`diagnose --holdout 0.3`); *reverse*: fitted on the last 70 %, errors on "
         "the first 30 %. Errors: RMS of 10-s free simulations from the logged state [m/s or "
         "rad/s] (`diagnose/heldout.py`).\n",
-        f"Command: `{command}`" + (f"; the columns *truth* and *twin spread*: "
+        f"Command: `{command}`" + (f"; the column *truth*: "
                                    f"`{oracle_command}`" if oracle_command else "") + "\n",
         *described, "",
         markdown_table(["log", "split", "DOF", "prior", "calibrated", "hold-last-velocity",
-                        "zero velocity", "truth", "twin spread (prior)", "twin spread (truth)",
-                        "calibrated beats all three"],
+                        "zero velocity", "truth", "noise growth (prior)",
+                        "noise growth (truth)", "predictable", "calibrated beats all three"],
                        table),
         "",
         f"The calibrated model beats the prior, hold-last-velocity and zero velocity in "
         f"**{s['beats']} of {s['rows']}** (log, split, excited DOF); in every excited DOF of "
-        f"**{s['pairs_all']} of {s['pairs']}** (log, split) pairs. The prior alone beats both "
+        f"**{s['pairs_all']} of {s['pairs']}** (log, split) pairs. In the **excited and "
+        f"predictable** DOFs (column *predictable*, the rule below) it beats all three in "
+        f"**{s['beats_judged']} of {s['judged']}**, in every one of them in "
+        f"**{s['pairs_judged_all']} of {s['pairs_judged']}** pairs. The prior alone beats both "
         f"trivial predictors in {s['prior_beats_trivial']} of {s['rows']}. In {s['unchanged']} of "
         f"{s['rows']} the calibrated model predicts exactly as the prior: the diagnosis's "
         "validation by free simulation removed every change of that DOF (a change is kept only "
         "if it improves the free simulation of data it was not fitted on), so it cannot beat "
         "the prior there.\n",
-        *([f"**Which DOFs can be predicted at all over 10 s.** The column *truth* is the "
+        *([f"**Why even the vehicle's own model loses in some DOFs.** The column *truth* is the "
            f"BlueROV2-Heavy-like logs' own vehicle (the simulator's perturbed coefficients "
            f"and thrusters, its undeclared effect as the effects library writes it: "
            f"`benchmarks.real_logs.truth_model`) simulated the same way: it loses to a "
-           f"trivial predictor in **{s['unpredictable']} of {s['known']}** of those rows. "
-           f"There the log does not determine the motion 10 s ahead (a simulation error is "
-           f"judged on fresh data over a horizon the process is predictable on: Ljung 1999, "
-           f"sec. 16.4; Lorenz 1969). On the {s['predictable']} rows where the truth does "
-           f"beat both trivial predictors, the calibrated model beats all three in "
-           f"{s['beats_predictable']}.\n"] if s["known"] else []),
-        *([f"**Why, and a test that needs no truth.** *twin spread*: the RMS difference of a "
-           f"model's free simulations from the logged states and from the same states "
-           f"perturbed by one draw of the log's own white noise (second differences; "
-           f"`benchmarks.real_logs.twin_spread`, Lorenz's identical-twin experiment, "
-           f"Tellus 17, 1965). Where it exceeds a trivial predictor's error the sensors' "
-           f"noise on the starting state grows past the motion itself within the horizon. "
-           f"With the truth's own vehicle its verdict (spread below both trivial predictors) "
-           f"is the truth's in **{s['truth_twin_agrees']} of {s['known']}** rows. With the "
-           f"prior, the model a real log has before its diagnosis, it agrees in "
-           f"{s['twin_agrees']} of {s['twin_known']}: the prior is less sensitive than the "
-           f"vehicle, so on a real log the test needs the calibrated model.\n"]
-          if s["twin_known"] else []),
+           f"trivial predictor in **{s['unpredictable']} of {s['known']}** of those rows (on "
+           f"the {s['predictable']} others the calibrated model beats all three in "
+           f"{s['beats_predictable']}). Not the replay: on a noise-free log of the simulator "
+           f"the truth, replayed as here, gives its velocities back to 1e-3 m/s or rad/s "
+           f"(`tests/test_real_logs.py`), and the log read back through `stripcoef.ingest` "
+           f"(frames, PWM, clocks) gives the truth the errors of the simulator's own log. The "
+           f"starting state is: the sensors' noise on it grows within the 10 s because the "
+           f"vehicle, steadied in the log by its pilot's holds, is unstable open-loop under "
+           f"way (the Munk moment of its added mass, (Y_vdot - X_udot) u v in yaw and "
+           f"(Z_wdot - X_udot) u w in pitch, against no restoring moment in yaw and the small "
+           f"metacentric one in pitch; roll and pitch are almost undamped). *noise growth*: "
+           f"that noise (the log's own white noise, second differences, 3 draws) carried "
+           f"along the logged motion by a model's dynamics, RMS over the segments "
+           f"(`stripcoef.diagnose.heldout.noise_growth`: the tangent-linear growth of a "
+           f"predictability study, Lorenz 1965, Tellus 17; Kalnay 2003, sec. 6.3); with the "
+           f"truth's dynamics it is of the size of the truth's own error where the truth "
+           f"loses.\n"] if s["known"] else []),
+        *why_section(),
+        "**Excited and predictable** (`stripcoef.diagnose.heldout.predictable`): a DOF the "
+        "diagnosis found excited whose *noise growth (prior)* stays below both trivial "
+        "predictors' errors. Where it does not, the noise on the starting state alone moves "
+        "any prediction farther from the data than predicting no change or no motion, and the "
+        "comparison measures the noise, not the model (a simulation error is judged on fresh "
+        "data over a horizon on which the process is predictable: Ljung 1999, sec. 16.4). "
+        "The rule uses the log and the vehicle file's model only: no truth, and no fitted "
+        "number, so no calibration can exempt its own DOFs" + (
+            f"; its verdict is the truth's (the truth beats both trivial predictors or not) "
+            f"in **{s['growth_agrees_prior']} of {s['growth_known']}** rows (with the "
+            f"truth's own dynamics in {s['growth_agrees_truth']}"
+            + (f", with the calibrated model's in {s['growth_agrees_calibrated']}"
+               if s["growth_agrees_calibrated"] else "") + ").\n"
+            if s["growth_known"] else ".\n"),
         *attribution_section(),
         "Effects in the written models: " + "; ".join(
             f"{log} ({split}): {eff}" for log, split, eff in effects) + ".\n",
