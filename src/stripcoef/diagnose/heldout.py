@@ -276,7 +276,7 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
         delta[j] = states({c: v[starts] for c, v in noisy.items()}) - base[starts]
     f = BatchRightHandSide(model)
     sq = np.sum(delta[:, :, 7:] ** 2, axis=(0, 1))
-    count = d * n_seg
+    count, ds = d * n_seg, 1.0           # ds: the step the error control proposes next
     for k in range(int(lengths.max()) - 1):
         act = np.nonzero(lengths > k + 1)[0]
         rows = starts[act] + k
@@ -284,9 +284,11 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
         stack = np.concatenate([x0] + [x0 + delta[j, act] for j in range(d)])
         f.tau = np.tile(tau_all[rows], (d + 1, 1))
         h = np.tile(t[rows + 1] - t[rows], d + 1)
-        end = _interval(f, np.tile(t[rows], d + 1), h, stack, *tolerances)
-        if end is None:
+        got = _interval(f, np.tile(t[rows], d + 1), h, stack, *tolerances, ds)
+        if got is None:
             return None
+        end, ds = got
+        ds = min(ds, 1.0)
         m = act.size
         new = end[m:].reshape(d, m, 13) - end[:m]
         # the next logged state's quaternion may be the other sign of the same attitude
