@@ -46,6 +46,30 @@ def _tracked(iterable, total: int, label: str, progress: bool | None):
     return track(iterable, desc=label, total=total, unit="batch")
 
 
+def _refused(address: str) -> None:
+    """An InputError at once when nothing listens at a ``tcp://host:port`` scheduler address
+    (the connection is refused), instead of Dask's retries until its 10 s timeout; any other
+    address, or one that answers or times out, is left to Dask's Client."""
+    import socket
+    from urllib.parse import urlsplit
+
+    parts = urlsplit(address)
+    try:
+        host, port = parts.hostname, parts.port
+    except ValueError:                       # a port that is not a number: Dask says so
+        return
+    if parts.scheme != "tcp" or not host or port is None:
+        return
+    try:
+        socket.create_connection((host, port), timeout=10.0).close()
+    except ConnectionRefusedError:
+        raise InputError("cannot reach the Dask scheduler", key="scheduler", value=address,
+                         expected="a running scheduler (nothing listens there: connection "
+                                  "refused)") from None
+    except OSError:
+        return
+
+
 def _client(scheduler):
     try:
         from dask.distributed import Client
@@ -56,6 +80,7 @@ def _client(scheduler):
         return scheduler, False
     if hasattr(scheduler, "scheduler_address"):          # a LocalCluster or similar
         return Client(scheduler), True
+    _refused(str(scheduler))
     try:
         return Client(str(scheduler), timeout="10s"), True
     except (OSError, TimeoutError) as exc:
