@@ -128,7 +128,7 @@ class BatchRightHandSide:
         return out
 
 
-def _interval(f, t0, h, x, rtol, atol, ds=1.0):
+def integrate_interval(f, t0, h, x, rtol, atol, ds=1.0):
     """Integrate every segment over its own interval [t0_s, t0_s + h_s] (Dormand-Prince
     5(4) on the normalised time, module docstring), with ``ds`` the first step tried (a
     fraction of the interval). Returns the states at the ends and the step the error
@@ -232,7 +232,7 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                 for law in held[s]:          # the state is not read by a held law
                     f.tau[j] = f.tau[j] + law(t[r], np.zeros(6), x[s, 7:], hook)
         h = t[rows + 1] - t[rows]
-        got = _interval(f, t[rows], h, x[act], rtol, atol, ds)
+        got = integrate_interval(f, t[rows], h, x[act], rtol, atol, ds)
         if got is None:
             return None
         xa, ds = got

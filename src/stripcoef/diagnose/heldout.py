@@ -236,7 +236,7 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     terms set the growth)."""
     from scipy.spatial.transform import Rotation
 
-    from stripcoef.diagnose.freesim import BatchRightHandSide, _interval, supported
+    from stripcoef.diagnose.freesim import BatchRightHandSide, integrate_interval, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import InputSampler
 
@@ -284,7 +284,7 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
         stack = np.concatenate([x0] + [x0 + delta[j, act] for j in range(d)])
         f.tau = np.tile(tau_all[rows], (d + 1, 1))
         h = np.tile(t[rows + 1] - t[rows], d + 1)
-        got = _interval(f, np.tile(t[rows], d + 1), h, stack, *tolerances, ds)
+        got = integrate_interval(f, np.tile(t[rows], d + 1), h, stack, *tolerances, ds)
         if got is None:
             return None
         end, ds = got
