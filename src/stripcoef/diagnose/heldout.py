@@ -163,6 +163,28 @@ def white_noise_sd(x) -> float:
         if d2.size else 0.0
 
 
+def _batch_inputs(log, model):
+    """The log's inputs (:func:`stripcoef.logfile.log_inputs`) when the batch simulator
+    (:mod:`.freesim`) replays them for ``model``, else None."""
+    from stripcoef.diagnose.freesim import supported
+    from stripcoef.logfile import log_inputs
+
+    try:
+        inputs = log_inputs(log, model)
+    except StripcoefError:
+        return None
+    return inputs if supported(model, inputs) else None
+
+
+def _with_noise(cols: dict, sd: dict, rng) -> dict:
+    """``cols`` with normal white noise of standard deviation ``sd[c]`` added to each column
+    c of ``sd`` (drawn in ``sd``'s order); the other columns as they are."""
+    out = dict(cols)
+    for c, s in sd.items():
+        out[c] = out[c] + rng.normal(0.0, s, out[c].size)
+    return out
+
+
 def twin_spread(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
                 draws: int = TWIN_DRAWS):
     r"""Identical-twin spread of ``model`` on ``log`` per DOF of ``dofs`` [m/s or rad/s], or
@@ -180,15 +202,12 @@ def twin_spread(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     on the model's own predictions, grown by the model's dynamics over the horizon (Lorenz
     1965, Tellus 17: 321-333, the identical-twin experiment). Needs no truth: it uses the
     log and the model only."""
-    from stripcoef.diagnose.freesim import batch_free_velocities, supported
-    from stripcoef.logfile import Log, log_inputs
+    from stripcoef.diagnose.freesim import batch_free_velocities
+    from stripcoef.logfile import Log
 
     rng = np.random.default_rng(seed)
-    try:
-        inputs = log_inputs(log, model)
-    except StripcoefError:
-        return None
-    if not supported(model, inputs):
+    inputs = _batch_inputs(log, model)
+    if inputs is None:
         return None
     bounds = segments(np.asarray(log["t"], float), horizon)
     base = batch_free_velocities(model, log, bounds, inputs)
@@ -198,9 +217,7 @@ def twin_spread(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     sq = np.zeros(len(dofs))
     n = 0
     for _ in range(max(1, int(draws))):
-        cols = {c: np.asarray(log[c], float) for c in log.columns}
-        for c, s in sd.items():
-            cols[c] = cols[c] + rng.normal(0.0, s, cols[c].size)
+        cols = _with_noise({c: np.asarray(log[c], float) for c in log.columns}, sd, rng)
         twin = batch_free_velocities(model, Log(cols, source=f"{log.source} (twin)"),
                                      bounds, inputs)
         if twin is None:
@@ -236,16 +253,12 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     terms set the growth)."""
     from scipy.spatial.transform import Rotation
 
-    from stripcoef.diagnose.freesim import BatchRightHandSide, integrate_interval, supported
-    from stripcoef.logfile import log_inputs
+    from stripcoef.diagnose.freesim import BatchRightHandSide, integrate_interval
     from stripcoef.simulate import InputSampler
 
     t = np.asarray(log["t"], float)
-    try:
-        inputs = log_inputs(log, model)
-    except StripcoefError:
-        return None
-    if not supported(model, inputs):
+    inputs = _batch_inputs(log, model)
+    if inputs is None:
         return None
     sampler = InputSampler(model, t, forces=inputs.forces, commands=inputs.commands or None,
                            deflections=None, channels=inputs.channels or None, current=None,
@@ -270,9 +283,7 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     n_seg, d = len(bounds), max(1, int(draws))
     delta = np.empty((d, n_seg, 13))
     for j in range(d):
-        noisy = {c: v.copy() for c, v in cols.items()}
-        for c, s in sd.items():
-            noisy[c] = noisy[c] + rng.normal(0.0, s, t.size)
+        noisy = _with_noise(cols, sd, rng)
         delta[j] = states({c: v[starts] for c, v in noisy.items()}) - base[starts]
     f = BatchRightHandSide(model)
     sq = np.sum(delta[:, :, 7:] ** 2, axis=(0, 1))
