@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES
+from stripcoef.effects.windows import white_noise_sd  # noqa: F401  (the log's noise)
 from stripcoef.errors import InputError, StripcoefError
 
 #: Horizon of the free simulations [s].
@@ -150,17 +151,6 @@ def compare(log, models: dict, dofs, *, horizon: float = HORIZON) -> dict:
 TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
 #: Noise draws of the twin experiment (:func:`twin_spread`): the spread is the RMS over them.
 TWIN_DRAWS = 3
-
-
-def white_noise_sd(x) -> float:
-    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
-    differences, :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2`, by the median absolute
-    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
-    Assoc. 88: 1273-1283) -- the estimator diagnose's excitation rule uses."""
-    x = np.asarray(x, float)
-    d2 = x[2:] - 2.0 * x[1:-1] + x[:-2]
-    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) \
-        if d2.size else 0.0
 
 
 def _batch_inputs(log, model):

@@ -24,6 +24,7 @@ from stripcoef.diagnose.settings import (BANDS, EXCITATION_SNR, EXCITATION_STD,
                                          MIN_Z, NOISE_FLOOR_FACTOR, TIE, UNEXPLAINED_GAIN,
                                          UNLIMITED, Budget, DiagnoseSettings)
 from stripcoef.effects.laws import EFFECTS, WindowData, get_effect
+from stripcoef.effects.windows import white_noise_sd
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
 from stripcoef.progress import track
 
@@ -502,12 +503,9 @@ def _excitation(data: WindowData, i: int):
 
     The noise of the velocity :math:`\sigma_{v,i}` [m/s or rad/s] is estimated from second
     differences, :math:`\mathrm{var}(\Delta^2\nu) = 6\sigma_v^2`, by the median absolute
-    deviation (scale 1.4826 for a normal distribution; Rousseeuw & Croux 1993, J. Am. Stat.
-    Assoc. 88) -- the estimator of :meth:`WindowData.rate_noise_variance`."""
+    deviation (:func:`stripcoef.effects.windows.white_noise_sd`)."""
     v = data.nu[:, i]
-    d2 = v[2:] - 2 * v[1:-1] + v[:-2]
-    noise = 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / math.sqrt(6.0) \
-        if d2.size else 0.0
+    noise = white_noise_sd(v)
     std = float(np.std(v))
     unit = "m/s" if i < 3 else "rad/s"
     snr = std / noise if noise > 0 else (math.inf if std > 1e-12 else 0.0)

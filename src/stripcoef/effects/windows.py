@@ -72,6 +72,24 @@ def coriolis_times_velocity(mass_matrix, nu) -> np.ndarray:
     return out
 
 
+def white_noise_sd(x) -> float:
+    r"""Standard deviation of the white noise on a sampled signal [its unit], from second
+    differences: :math:`\mathrm{var}(\Delta^2 x) = 6\sigma^2` for white noise, the spread of
+    :math:`\Delta^2 x` by the median absolute deviation (scale 1.4826 for a normal
+    distribution; Rousseeuw & Croux 1993, J. Am. Stat. Assoc. 88: 1273-1283), robust to the
+    signal itself (a smooth signal's second differences are small). 0 for fewer than three
+    samples. The one estimator of the log's noise: :meth:`WindowData.rate_noise_variance`,
+    diagnose's excitation rule and the held-out noise growth read it."""
+    return float(_second_difference_mad(x) / np.sqrt(6.0))
+
+
+def _second_difference_mad(x) -> float:
+    """1.4826 MAD of the second differences of ``x`` (:func:`white_noise_sd`, times sqrt 6)."""
+    x = np.asarray(x, dtype=float)
+    d2 = x[2:] - 2 * x[1:-1] + x[:-2]
+    return float(1.4826 * np.median(np.abs(d2 - np.median(d2)))) if d2.size else 0.0
+
+
 def damping_times_velocity(model, nu) -> np.ndarray:
     r""":math:`D(\nu)\nu = D_L\nu + u L\nu + D_Q(|\nu|\odot\nu)` for (n, 6) velocities [N, N m]
     (Fossen 2011, eq. 6.59 with the diagonal-in-|nu| quadratic form of HydroModel.damping and
@@ -238,10 +256,7 @@ class WindowData:
         """
         cache = self.__dict__.setdefault("_noise_cache", {})
         if dof not in cache:
-            v = self.nu[:, dof]
-            d2 = v[2:] - 2 * v[1:-1] + v[:-2]
-            mad = 1.4826 * np.median(np.abs(d2 - np.median(d2))) if d2.size else 0.0
-            var_v = mad ** 2 / 6.0
+            var_v = _second_difference_mad(self.nu[:, dof]) ** 2 / 6.0   # white_noise_sd^2
             h0, h1 = self._endpoint_halfwidths()
             c = np.array([savgol_centre_weights(int(h))[int(h)] for h in range(
                 int(max(h0.max(initial=0), h1.max(initial=0))) + 1)])
