@@ -266,7 +266,7 @@ class _Config:
                 # computed once per effect, parameters and columns (as :func:`_term`)
                 key = ("calibration", id(eff), self.dof, tuple(self.cal_names),
                        tuple(np.atleast_1d(np.asarray(h, float)).tolist()))
-                cache = self.data.__dict__.setdefault("_term_cache", {})
+                cache = self.data.cached("terms", dict)
                 hit = cache.get(key)
                 if hit is not None and hit[0] is eff:
                     return hit[1]
@@ -313,7 +313,7 @@ def _term(data: WindowData, dof: int, eff, hyper) -> _Term:
     reused)."""
     key = (id(eff), dof, None if hyper is None else
            tuple(np.atleast_1d(np.asarray(hyper, float)).tolist()))
-    cache = data.__dict__.setdefault("_term_cache", {})
+    cache = data.cached("terms", dict)
     hit = cache.get(key)
     if hit is not None and hit[0] is eff:
         return hit[1]

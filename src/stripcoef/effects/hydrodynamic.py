@@ -219,15 +219,12 @@ class Current(Effect):
     @staticmethod
     def _on_log(data):
         """(R per sample (n, 3, 3), D(nu)nu, C_A(nu)nu (n, 6)) of the log and the prior: the
-        same for every current a fit tries, so computed once per window data (cached on it,
-        as :meth:`~stripcoef.effects.windows.WindowData.rate` caches its half-widths)."""
-        cache = data.__dict__.get("_current_on_log")
-        if cache is None:
-            model = data.model
-            cache = (rotation_matrices(data.eta), damping_times_velocity(model, data.nu),
-                     coriolis_times_velocity(model.added_mass, data.nu))
-            data.__dict__["_current_on_log"] = cache
-        return cache
+        same for every current a fit tries, so computed once per window data
+        (:meth:`~stripcoef.effects.windows.WindowData.cached`)."""
+        model = data.model
+        return data.cached("current_on_log", lambda: (
+            rotation_matrices(data.eta), damping_times_velocity(model, data.nu),
+            coriolis_times_velocity(model.added_mass, data.nu)))
 
     def _current_body(self, data, vc):
         """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""

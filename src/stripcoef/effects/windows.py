@@ -167,10 +167,21 @@ class WindowData:
     columns: dict = field(default_factory=dict)
     source: str = ""
     endpoint_halfwidth: int = 0
+    #: what :meth:`cached` computed from these data, by key (not an input: a copy made by
+    #: ``dataclasses.replace`` starts without it)
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def n_windows(self) -> int:
         return self.i0.size
+
+    def cached(self, key, make):
+        """``make()``, computed once per window data and ``key`` (the data are fixed once
+        cut): the end-value half-widths, the rate noise, the effects' design terms and the
+        current effect's log-side terms are asked for many times in one diagnosis."""
+        if key not in self._cache:
+            self._cache[key] = make()
+        return self._cache[key]
 
     # window operators -----------------------------------------------------
     def mean(self, f) -> np.ndarray:
@@ -194,9 +205,9 @@ class WindowData:
         ``endpoint_halfwidth`` where the velocity is smooth, fewer near an input jump (a
         kink of the velocity: the acceleration jumps with a held input; see
         :data:`JUMP_FRACTION`), none at it."""
-        cache = self.__dict__.get("_halfwidths")
-        if cache is not None:
-            return cache
+        return self.cached("endpoint_halfwidths", self._halfwidths_of_the_log)
+
+    def _halfwidths_of_the_log(self):
         n, hmax = self.t.size, int(self.endpoint_halfwidth)
         tau = np.asarray(self.tau, float)
         # a jump: a step of the applied force of more than JUMP_FRACTION of its range (the
@@ -214,9 +225,7 @@ class WindowData:
             h = np.maximum(h, 0)
             return np.where(h < 2, 0, h)  # a 3-point quadratic fit is the sample itself
 
-        cache = (widths(self.i0), widths(self.i1))
-        self.__dict__["_halfwidths"] = cache
-        return cache
+        return widths(self.i0), widths(self.i1)
 
     def _end_values(self, f, idx, hs):
         out = np.empty((idx.size,) + f.shape[1:])
@@ -254,14 +263,13 @@ class WindowData:
         :math:`\sigma_v^2 (c_{h_0} + c_{h_1}) / T^2`, with :math:`c_h` the centre weight of
         the end-value quadratic (its variance factor; 1 for a raw sample).
         """
-        cache = self.__dict__.setdefault("_noise_cache", {})
-        if dof not in cache:
+        def make():
             var_v = _second_difference_mad(self.nu[:, dof]) ** 2 / 6.0   # white_noise_sd^2
             h0, h1 = self._endpoint_halfwidths()
             c = np.array([savgol_centre_weights(int(h))[int(h)] for h in range(
                 int(max(h0.max(initial=0), h1.max(initial=0))) + 1)])
-            cache[dof] = float(var_v * np.mean((c[h0] + c[h1]) / self.T ** 2))
-        return cache[dof]
+            return float(var_v * np.mean((c[h0] + c[h1]) / self.T ** 2))
+        return self.cached(("rate_noise_variance", dof), make)
 
     def thruster_force(self, dof: int):
         """Per-sample generalized force in ``dof`` from each thruster (n, k), or None."""
