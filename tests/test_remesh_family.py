@@ -4,6 +4,8 @@ closed panellings of the NACA section (issue 32)."""
 import numpy as np
 import pytest
 
+from stripcoef.hull.bisection import enclosed_volume, surface_area
+
 
 def test_a_faceted_cylinder_gets_a_family_that_refines():
     """A 30-sided cylinder (the Slocum glider's collision mesh is one): at the facet angle the
@@ -23,7 +25,7 @@ def test_a_faceted_cylinder_gets_a_family_that_refines():
     assert all(b >= 1.25 * a for a, b in zip(counts, counts[1:])), counts
     assert max(counts) <= remesh.MAX_FACES
     for rv, rf in levels:
-        assert remesh._volume(rv, rf) == pytest.approx(cyl.volume, rel=remesh.VOLUME_TOLERANCE)
+        assert enclosed_volume(rv, rf) == pytest.approx(cyl.volume, rel=remesh.VOLUME_TOLERANCE)
 
 
 def test_remesh_family_respects_its_face_limit():
@@ -150,8 +152,8 @@ def test_a_thin_wing_keeps_its_trailing_edge():
     levels, mode = out
     assert not mode.flips
     for rv, rf in levels:
-        assert remesh._area(rv, rf) == pytest.approx(wing.area, rel=remesh.AREA_TOLERANCE)
-        assert remesh._volume(rv, rf) == pytest.approx(wing.volume,
+        assert surface_area(rv, rf) == pytest.approx(wing.area, rel=remesh.AREA_TOLERANCE)
+        assert enclosed_volume(rv, rf) == pytest.approx(wing.volume,
                                                        rel=remesh.VOLUME_TOLERANCE)
     te = _trailing_edge_area(v, f, 0.15)
     assert _trailing_edge_area(*levels[-1], 0.15) == pytest.approx(te, rel=0.05)
@@ -177,5 +179,5 @@ def test_where_no_remesh_keeps_the_area_the_levels_are_the_input_bisected():
     counts = [len(rf) for _, rf in levels]
     assert all(b >= 1.25 * a for a, b in zip(counts, counts[1:])), counts
     for rv, rf in levels:
-        assert remesh._area(rv, rf) == pytest.approx(wing.area, rel=1e-9)
-        assert remesh._volume(rv, rf) == pytest.approx(wing.volume, rel=1e-9)
+        assert surface_area(rv, rf) == pytest.approx(wing.area, rel=1e-9)
+        assert enclosed_volume(rv, rf) == pytest.approx(wing.volume, rel=1e-9)

@@ -1,4 +1,5 @@
-"""Longest-edge bisection of a closed triangle mesh: the input's own surface at more panels.
+"""Longest-edge bisection of a closed triangle mesh (the input's own surface at more panels),
+and the surface area and enclosed volume both the panel levels and the remesh are checked by.
 
 The panel method's input family (:func:`stripcoef.hull.panels.panel_levels`) and the remesher's
 last resort (:func:`stripcoef.hull.remesh.remesh_family`, where no remesh keeps the area) both
@@ -81,3 +82,18 @@ def refine(vertices, faces, panels: int):
         if 0.97 * panels <= len(best[1]):
             break
     return best
+
+
+def surface_area(vertices, faces) -> float:
+    """Surface area [m^2] of a triangle mesh (vertices [m], faces): the sum of the triangles'
+    areas, |(b - a) x (c - a)| / 2."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
+                                      axis=1).sum())
+
+
+def enclosed_volume(vertices, faces) -> float:
+    """Enclosed volume [m^3] of a closed, outward-wound triangle mesh: the sum of the signed
+    tetrahedra a . (b x c) / 6 (divergence theorem)."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)

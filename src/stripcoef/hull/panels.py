@@ -64,7 +64,8 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.hull.bisection import bisect_longest, refine  # noqa: F401  (re-exported)
+from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
+    bisect_longest, enclosed_volume, refine, surface_area)
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
@@ -149,18 +150,6 @@ def _cluster(vertices, faces, h, quadrics=None):
     return nv[used], remap[f]
 
 
-def _volume(vertices, faces):
-    """Enclosed volume [m^3] (divergence theorem, sum of signed tetrahedra)."""
-    t = vertices[faces]
-    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
-
-
-def _area(vertices, faces):
-    t = vertices[faces]
-    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
-                                      axis=1).sum())
-
-
 def coarsen(vertices, faces, panels: int, quadrics=None):
     r"""At most about ``panels`` triangles of a finer closed mesh by quadric vertex clustering
     (:func:`_cluster`) on cells of :math:`0.75 h`, :math:`h = \sqrt{4A/(\sqrt3 N)}` the side of
@@ -169,7 +158,7 @@ def coarsen(vertices, faces, panels: int, quadrics=None):
     (computed if omitted).  Returns (vertices, faces)."""
     if quadrics is None:
         quadrics = vertex_quadrics(vertices, faces)
-    h = 0.75 * np.sqrt(4.0 * _area(vertices, faces) / (np.sqrt(3.0) * panels))
+    h = 0.75 * np.sqrt(4.0 * surface_area(vertices, faces) / (np.sqrt(3.0) * panels))
     best = None
     for _ in range(4):
         cv, cf = _cluster(vertices, faces, h, quadrics)
@@ -221,10 +210,10 @@ def panel_levels(vertices, faces, panels: int, where=None):
         return [coarse, split_in_four(*coarse)]
     n = panels
     quadrics = vertex_quadrics(v, f) if len(f) > n else None
-    vol = _volume(v, f)
+    vol = enclosed_volume(v, f)
     while len(f) > n:           # coarsen, with twice the panels while thin members collapse
         levels = [coarsen(v, f, k, quadrics) for k in (n // 2, n)]
-        dv = max(abs(_volume(*lv) / vol - 1.0) for lv in levels)
+        dv = max(abs(enclosed_volume(*lv) / vol - 1.0) for lv in levels)
         if dv <= VOLUME_TOLERANCE:
             return levels
         if 2 * n > MAX_PANELS:
@@ -276,7 +265,7 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | 
 
     if not remesh.available():
         return None
-    area = _area(vertices, faces) if area is None else float(area)
+    area = surface_area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
     return remesh.remesh_family(vertices, faces, edges)
@@ -402,7 +391,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         raise InputError("degenerate (zero-area) faces", file=where, key="mesh",
                          value=f"{int(np.sum(dbl <= 1e-12 * scale ** 2))} faces",
                          expected="faces of non-zero area (load_mesh removes them)")
-    vol = _volume(v, f)
+    vol = enclosed_volume(v, f)
     if not vol > 1e-9 * scale ** 3:
         raise InputError("the mesh's normals point into the body or it encloses no volume",
                          file=where, key="mesh", value=f"volume {vol:.3g} m^3",
@@ -416,7 +405,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                                  "converged": None}
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
-    src, solve_planes, area = (v, f), (), _area(v, f)
+    src, solve_planes, area = (v, f), (), surface_area(v, f)
     family_out = None
     if planes and family in ("auto", "remesh"):
         part = capped_part(v, f, planes, about)

@@ -56,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stripcoef.errors import ModelWarning
-from stripcoef.hull.bisection import refine
+from stripcoef.hull.bisection import enclosed_volume, refine, surface_area
 
 #: Dihedral angle above which an edge is kept as a crease by the remesher [deg] (MeshLab's
 #: default of the filter).
@@ -253,7 +253,7 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
         mode = Mode(float(mode))
     if mode.bisect:
         rv, rf = refine(np.asarray(vertices, float), np.asarray(faces, np.int64),
-                        int(np.ceil(panels_for_edge(_area(vertices, faces), edge))))
+                        int(np.ceil(panels_for_edge(surface_area(vertices, faces), edge))))
         return (np.asarray(rv, float), np.asarray(rf, np.int64)), None
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int32)
@@ -275,23 +275,10 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
 
     if not EdgeTopology(rf).consistent:
         return None, None
-    vol0, vol = _volume(v, np.asarray(faces)), _volume(rv, rf)
+    vol0, vol = enclosed_volume(v, np.asarray(faces)), enclosed_volume(rv, rf)
     if vol < 0:                  # the remesher kept the winding; guard against a flip anyway
         rf, vol = rf[:, ::-1], -vol
-    change = (_area(rv, rf) / _area(v, np.asarray(faces)) - 1.0, vol / vol0 - 1.0)
+    change = (surface_area(rv, rf) / surface_area(v, np.asarray(faces)) - 1.0, vol / vol0 - 1.0)
     if abs(change[0]) > AREA_TOLERANCE or abs(change[1]) > VOLUME_TOLERANCE:
         return None, change
     return (rv, rf), None
-
-
-def _area(vertices, faces) -> float:
-    """Surface area [m^2] (sum of the triangles' areas)."""
-    t = np.asarray(vertices, float)[np.asarray(faces)]
-    return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]),
-                                      axis=1).sum())
-
-
-def _volume(vertices, faces) -> float:
-    """Enclosed volume [m^3] (sum of signed tetrahedra, divergence theorem)."""
-    t = np.asarray(vertices, float)[np.asarray(faces)]
-    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
