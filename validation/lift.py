@@ -703,7 +703,7 @@ def drift_force_parts(config: int, beta_deg: float, method: str = "slender") -> 
 
 #: Body-lift rule (``body_lift`` value, or the comparison key) -> key of the model's value in
 #: :func:`suboff_comparisons` rows.
-METHOD_KEY = {"on": "hoerner", "hoerner": "hoerner", "slender": "slender", "auto": "slender",
+METHOD_KEY = {"on": "hoerner", "hoerner": "hoerner", "slender": "slender", "auto": "datcom",
               "datcom": "datcom"}
 
 
