@@ -1,0 +1,47 @@
+"""The refined Capytaine references of the CAD-style shapes (validation.cad_shapes, issue 32):
+the extrapolation on exact convergence, and the stored levels file's completeness."""
+
+import numpy as np
+
+from validation.cad_shapes import FINE, THIN_OFFSET, fine_comparison, fine_reference, read_levels
+
+
+def test_fine_reference_recovers_an_exact_second_order_sequence():
+    """Levels that converge exactly as 1/N (order 2 in h ~ N^-1/2): the extrapolated value is
+    the limit and the band shrinks to the last step's Richardson estimate (Roache 1998)."""
+    rng = np.random.default_rng(0)
+    limit = rng.normal(size=(6, 6))
+    c = rng.normal(size=(6, 6))
+    counts = [1500, 3000, 6000, 12000]
+    mats = [limit + c * 1000.0 / n for n in counts]
+    ref, band, order = fine_reference(counts, mats)
+    np.testing.assert_allclose(ref, limit, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(order, 2.0)
+    np.testing.assert_allclose(band, 1.25 * np.abs(mats[-1] - limit), rtol=1e-6, atol=1e-12)
+
+
+def test_fine_reference_uses_the_observed_order_below_the_formal_one():
+    """Levels converging as N^-1/4 (order 0.5 in h, a sharp edge's rate): the order used is
+    the observed one and the extrapolation reaches the limit."""
+    counts = np.array([1500.0, 3000.0, 6000.0, 12000.0])
+    vals = 2.0 + 3.0 * counts ** -0.25
+    mats = [np.full((6, 6), v) for v in vals]
+    ref, band, order = fine_reference(list(counts), mats)
+    np.testing.assert_allclose(order, 0.5, rtol=1e-6)
+    np.testing.assert_allclose(ref, 2.0, rtol=1e-9)
+    assert np.all(band > np.abs(vals[-1] - 2.0))            # safety factor 3 over the step
+
+
+def test_stored_levels_refine_every_shape():
+    levels = read_levels(FINE)
+    cad = {k: lv for k, lv in levels.items() if k < THIN_OFFSET}
+    thin = {k: lv for k, lv in levels.items() if k >= THIN_OFFSET}
+    assert len(cad) == 40 and len(thin) == 6
+    for k, lv in levels.items():
+        faces = [lv[x][0] for x in sorted(lv)]
+        assert len(faces) >= 3 and faces == sorted(faces) and faces[-1] >= 5800, (k, faces)
+        for _, a in lv.values():               # symmetric, positive diagonal
+            assert np.all(np.diag(a) > 0)
+    rows = fine_comparison()
+    assert {r["shape"] for r in rows} <= set(cad)
+    assert all(np.isfinite(r["err"]) and r["band"] >= 0 for r in rows)
