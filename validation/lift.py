@@ -591,9 +591,11 @@ def suboff_comparisons() -> list[dict]:
         hoerner = suboff_derivatives(built, "on", ring)
         slender = suboff_derivatives(built, "slender", ring)
         datcom = suboff_derivatives(built, "datcom", ring)
+        stratford = suboff_derivatives(built, "stratford", ring)
         without = ({"hoerner": suboff_derivatives(built, "on"),
                     "slender": suboff_derivatives(built, "slender"),
-                    "datcom": suboff_derivatives(built, "datcom")} if ring else None)
+                    "datcom": suboff_derivatives(built, "datcom"),
+                    "stratford": suboff_derivatives(built, "stratford")} if ring else None)
         for name, kind in terms.items():
             row = ref.reference_value(SUBOFF, f"c{config}.{name}")
             measured = row["value"]
@@ -612,12 +614,13 @@ def suboff_comparisons() -> list[dict]:
             out.append({"config": config, "built": built, "ring": ring, "name": name,
                         "kind": kind, "measured": measured, "uncertainty": row["rtol"],
                         "hoerner": hoerner[name], "slender": slender[name],
-                        "datcom": datcom[name], "ratio": ratio,
+                        "datcom": datcom[name], "stratford": stratford[name], "ratio": ratio,
                         "tolerance": tol, "ok": ok,
                         **({} if without is None else
                            {"hoerner_no_ring": without["hoerner"][name],
                             "slender_no_ring": without["slender"][name],
-                            "datcom_no_ring": without["datcom"][name]})})
+                            "datcom_no_ring": without["datcom"][name],
+                            "stratford_no_ring": without["stratford"][name]})})
     return out
 
 
@@ -642,7 +645,7 @@ def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict]:
     speed = RODDY_SPEED
     out = []
     for config in (2, 3, 4, 5):
-        for method in ("on", "slender", "datcom"):
+        for method in ("on", "slender", "datcom", "stratford"):
             model = suboff_model(config, method, config == 2)
             h = 0.5 * model.density
             lbp = FT * val("t1.L_BP")
@@ -704,7 +707,7 @@ def drift_force_parts(config: int, beta_deg: float, method: str = "slender") -> 
 #: Body-lift rule (``body_lift`` value, or the comparison key) -> key of the model's value in
 #: :func:`suboff_comparisons` rows.
 METHOD_KEY = {"on": "hoerner", "hoerner": "hoerner", "slender": "slender", "auto": "datcom",
-              "datcom": "datcom"}
+              "datcom": "datcom", "stratford": "stratford"}
 
 
 def lift_band(method: str) -> dict:
@@ -799,7 +802,7 @@ def stability_indices() -> dict:
     m = rb[0, 0] / (0.5 * model.density * lbp ** 3)
     xg = rb[1, 5] / rb[0, 0] / lbp
     out = {"m": float(m), "x_G": float(xg), "horizontal": {}, "vertical": {}}
-    for src in ("measured", "hoerner", "slender", "datcom"):
+    for src in ("measured", "hoerner", "slender", "datcom", "stratford"):
         h = {k: comps[(2, k)][src] for k in ("Yv", "Nv", "Yr", "Nr")}
         v = {k: comps[(1, k)][src] for k in ("Zw", "Mw", "Zq", "Mq")}
         out["horizontal"][src] = float(1 - h["Nv"] * (h["Yr"] - m) / (h["Yv"] * (h["Nr"] - m * xg)))
