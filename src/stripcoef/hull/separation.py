@@ -48,7 +48,8 @@ def stratford_separation(s, speed_ratio, *, speed: float, viscosity: float,
               \ \ge\ k
 
     searched from the peak surface speed :math:`U_m` (its largest value within
-    :data:`PEAK_SEARCH` of the length) aft (module docstring; :math:`dC_p'/ds \le 0` stretches
+    :data:`PEAK_SEARCH` of the length; the aftmost station of a plateau, where the rise starts)
+    aft (module docstring; :math:`dC_p'/ds \le 0` stretches
     skipped), with :math:`k` from the sign of :math:`d^2C_p'/ds^2`, which is that of
     :math:`d^2p/ds^2`.
 
@@ -91,7 +92,8 @@ def stratford_separation(s, speed_ratio, *, speed: float, viscosity: float,
     length = float(s[-1] - s[0])
     lo, hi = (s[0] + f * length for f in PEAK_SEARCH)
     window = (s >= lo) & (s <= hi)
-    im = int(np.argmax(np.where(window, ue, -np.inf)))
+    masked = np.where(window, ue, -np.inf)
+    im = len(s) - 1 - int(np.argmax(masked[::-1]))     # the last station of the peak speed
     um = float(ue[im])
     turbulent = (s >= transition) & (s <= s[im])
     x_peak = float(np.trapezoid((ue[turbulent] / um) ** 3, s[turbulent])) \
