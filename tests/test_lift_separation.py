@@ -178,3 +178,17 @@ def test_rudder_step_reaches_the_steady_turn_of_limits_under_stratford():
     assert final[5] == pytest.approx(turn.yaw_rate, rel=0.01)
     assert final[1] == pytest.approx(turn.nu[1], rel=0.02)
     assert math.hypot(final[0], final[1]) / abs(final[5]) == pytest.approx(turn.radius, rel=0.01)
+
+
+def test_a_rise_past_the_criterions_range_is_said():
+    """A pressure rise that reaches C_p' = 4/7 before the criterion is met (a layer turbulent
+    just ahead of the rise at Re_x' up to 3.4e8: F stays below k) returns no separation with
+    the reason, never a station outside the criterion's range; with a long turbulent run the
+    same rise separates inside it."""
+    s, ue = _convex_recovery(0.2)
+    out = stratford_separation(s, ue, speed=200.0, viscosity=1e-6, transition=5.999)
+    assert out["separation"] is None and out["limit"] == "cp"
+    out = stratford_separation(s, ue, speed=200.0, viscosity=1e-6, transition=0.0)
+    assert out["limit"] is None and out["cp"] < 4 / 7
+    flat = stratford_separation(s, np.ones_like(s), speed=2.0, viscosity=1e-6, transition=0.5)
+    assert flat["limit"] == "end"

@@ -16,9 +16,11 @@ elevator gives -Z).
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.bodies import Fin
 from stripcoef.geometry.shapes import shape_geometry
 from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
@@ -407,6 +409,11 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
                                        viscosity=nu, transition=TRANSITION_REYNOLDS * nu / u)
             x0 = lo if sep["separation"] is None else hi - sep["separation"]
             info["stratford"] = sep
+            if sep["limit"] == "cp":
+                warnings.warn("body_lift: stratford: the afterbody's pressure rise reaches "
+                              "C_p' = 4/7, the end of Stratford's criterion's range, before the "
+                              "criterion is met; the separation station is put at the tail "
+                              "(no body lift)", ModelWarning, stacklevel=3)
         else:
             x0 = separation_station(xs, area)
         info["separation_x"] = x0

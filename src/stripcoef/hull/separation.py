@@ -74,7 +74,9 @@ def stratford_separation(s, speed_ratio, *, speed: float, viscosity: float,
         ``separation`` [m] from the nose (None when the criterion is not met ahead of the end
         of the search, or only where C_p' >= 4/7: no separation the criterion can state);
         ``peak`` s_m [m], ``peak_speed`` U_m/U [-], ``effective_length`` x' at the peak [m],
-        ``cp`` C_p' and ``k`` at the separation (None without one)
+        ``cp`` C_p' and ``k`` at the separation (None without one); ``limit`` why there is
+        none: ``"end"`` (the search reached :data:`PEAK_SEARCH`'s end) or ``"cp"`` (C_p'
+        reached 4/7 first, outside the criterion's range), None with a separation
 
     References
     ----------
@@ -102,9 +104,12 @@ def stratford_separation(s, speed_ratio, *, speed: float, viscosity: float,
     dcp = np.gradient(cp, s)
     d2cp = np.gradient(dcp, s)
     out = {"separation": None, "peak": float(s[im]), "peak_speed": um,
-           "effective_length": x_peak, "cp": None, "k": None}
+           "effective_length": x_peak, "cp": None, "k": None, "limit": "end"}
     for i in range(im + 1, len(s)):
-        if s[i] > hi or cp[i] >= STRATFORD_CP_LIMIT:
+        if s[i] > hi:
+            break
+        if cp[i] >= STRATFORD_CP_LIMIT:
+            out["limit"] = "cp"
             break
         if cp[i] <= 0.0 or dcp[i] <= 0.0:
             continue
@@ -112,6 +117,6 @@ def stratford_separation(s, speed_ratio, *, speed: float, viscosity: float,
         k = STRATFORD_CONVEX if d2cp[i] > 0.0 else STRATFORD_CONCAVE
         f = cp[i] * math.sqrt(xp * dcp[i]) * (1e-6 * speed * um * xp / viscosity) ** -0.1
         if f >= k:
-            out.update(separation=float(s[i]), cp=float(cp[i]), k=k)
+            out.update(separation=float(s[i]), cp=float(cp[i]), k=k, limit=None)
             break
     return out
