@@ -77,9 +77,10 @@ def leave_one_out(rs, matrix) -> tuple[int, int]:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--method", choices=("datcom", "slender", "on"), default="datcom",
+    ap.add_argument("--method", choices=("datcom", "slender", "on", "stratford"), default="datcom",
                     help="body lift: 'datcom' (the default model's rule: slender times Munk's "
-                         "k2 - k1), 'slender' or 'on' (Hoerner)")
+                         "k2 - k1), 'slender', 'on' (Hoerner) or 'stratford' (the DATCOM "
+                         "rule cut at Stratford's separation station)")
     args = ap.parse_args(argv)
     rs = rows(args.method)
     if args.method == "datcom":

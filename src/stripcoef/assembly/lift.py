@@ -16,9 +16,11 @@ elevator gives -Z).
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.bodies import Fin
 from stripcoef.geometry.shapes import shape_geometry
 from stripcoef.geometry.vehicle import SurfacePanel, exposed_panels
@@ -44,7 +46,9 @@ from stripcoef.hull.lift import (
     ring_wing_lift_slope,
     surface_speed_ratio,
     turbulent_boundary_layer,
+    TRANSITION_REYNOLDS,
 )
+from stripcoef.hull.separation import stratford_separation
 from stripcoef.model import ControlSurface
 
 #: Stations sampling the hull for the slender-body lift (assumption: on the SUBOFF hull's
@@ -183,7 +187,8 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
     in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
     hull = vehicle.hull
     round_ = _round(hull)
-    body = _body_lift(vehicle, rho, ref, ref if center is None else center)
+    body = _body_lift(vehicle, rho, ref, ref if center is None else center, speed=speed,
+                      viscosity=viscosity)
     slender = _stern_flow(vehicle, body, speed, viscosity)
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
     fin_info = []
@@ -226,7 +231,7 @@ def _stern_flow(vehicle, body, speed, viscosity):
     the sections (s from the nose, S), the hull axis, speed, viscosity and Head's boundary
     layer (:func:`_hull_boundary_layer`); None under Hoerner's rule (``on``) or without body
     lift (the fins then see the free stream)."""
-    if body is None or body[1].get("method") not in ("slender", "datcom"):
+    if body is None or body[1].get("method") not in ("slender", "datcom", "stratford"):
         return None
     hull = vehicle.hull
     slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
@@ -315,7 +320,7 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
         raise InputError("ring wing inside the hull", file=vehicle.source, key="ring_wing",
                          value=f"R = {radius:.4g} m at x = {x_mid:.4g} m",
                          expected=f"a mean radius above the hull's {r_hull:.4g} m")
-    body = _body_lift(vehicle, rho, ref, ref)
+    body = _body_lift(vehicle, rho, ref, ref, speed=speed, viscosity=viscosity)
     slender = _stern_flow(vehicle, body, speed, viscosity)
     info = {"radius": radius, "chord": chord, "aspect_ratio": 2.0 * radius / chord,
             "lift_slope": float(ring_wing_lift_slope(2.0 * radius / chord)),
@@ -343,7 +348,8 @@ def _round(hull) -> bool:
     return hull.half_breadth is hull.half_height and shape_geometry(hull.section).elliptic
 
 
-def _body_lift(vehicle, rho: float, ref, center):
+def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
+               viscosity: float | None = None):
     """Body lift of a slender hull of revolution.
 
     Three rules: the slender-body lift ahead of Hopkins's separation station (Hopkins 1951, NACA
@@ -361,7 +367,14 @@ def _body_lift(vehicle, rho: float, ref, center):
     C_A(nu) nu holds with the finite body's added mass (about k2 - k1 times the slender
     sections'), not the slender sections'. ``datcom`` asks for that rule, ``slender`` for the
     slender-body rule without the factor and ``on`` for Hoerner's (a hull that is not slender
-    and round is then an error); ``off`` leaves body lift out. ``auto`` follows the DATCOM
+    and round is then an error); ``off`` leaves body lift out. ``stratford`` is the DATCOM rule
+    with the separation station from the hull's own boundary layer instead of Hopkins's
+    correlation: where Stratford's turbulent separation criterion (Stratford 1959) is met in
+    the pressure recovery of the hull's axial potential flow (line sources,
+    :func:`~stripcoef.hull.lift.surface_speed_ratio`) at the reference speed (or ``speed``,
+    ``viscosity``), the layer turbulent from Re_x = :data:`~stripcoef.hull.lift.TRANSITION_REYNOLDS`
+    (:func:`~stripcoef.hull.separation.stratford_separation`); no separation ahead of the tail
+    cap puts the station at the tail (no potential lift left). ``auto`` follows the DATCOM
     rule because on the measured SUBOFF captive-model data (Roddy 1990, Table 4 and Appendix
     B) it is the best of the three (docs/validation.md, 'Every configuration and
     derivative'; ``python -m benchmarks.lift_band --method datcom``). Returns
@@ -379,21 +392,35 @@ def _body_lift(vehicle, rho: float, ref, center):
     length = hi - lo
     d = hull.max_diameter()
     if not _round(hull) or length / d < MIN_SLENDERNESS:
-        if mode in ("on", "slender", "datcom"):
+        if mode in ("on", "slender", "datcom", "stratford"):
             raise InputError("body lift needs a slender round hull", file=vehicle.source,
                              key="body_lift", value=f"l/d = {length / d:.3g}",
                              expected=f"a hull 'profile' (circular) with l/d >= {MIN_SLENDERNESS:g}")
         return None
-    if mode in ("auto", "slender", "datcom"):
+    if mode in ("auto", "slender", "datcom", "stratford"):
         xs = np.linspace(lo, hi, SLENDER_STATIONS)
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
-        x0 = separation_station(xs, area)
-        # datcom (and auto, since issue 34): the same potential lift times Munk's k2 - k1
-        # (USAF DATCOM sec. 4.2.1.1)
-        datcom = mode in ("auto", "datcom")
+        info = {"method": {"auto": "datcom"}.get(mode, mode), "length": length, "diameter": d}
+        if mode == "stratford":
+            s_nose, a_nose = hi - xs[::-1], area[::-1]
+            u = float(vehicle.reference_speed if speed is None else speed)
+            nu = float(vehicle.fluid.kinematic_viscosity if viscosity is None else viscosity)
+            sep = stratford_separation(s_nose, surface_speed_ratio(s_nose, a_nose), speed=u,
+                                       viscosity=nu, transition=TRANSITION_REYNOLDS * nu / u)
+            x0 = lo if sep["separation"] is None else hi - sep["separation"]
+            info["stratford"] = sep
+            if sep["limit"] == "cp":
+                warnings.warn("body_lift: stratford: the afterbody's pressure rise reaches "
+                              "C_p' = 4/7, the end of Stratford's criterion's range, before the "
+                              "criterion is met; the separation station is put at the tail "
+                              "(no body lift)", ModelWarning, stacklevel=3)
+        else:
+            x0 = separation_station(xs, area)
+        info["separation_x"] = x0
+        # datcom (and auto, since issue 34; stratford): the same potential lift times Munk's
+        # k2 - k1 (USAF DATCOM sec. 4.2.1.1)
+        datcom = mode != "slender"
         factor = munk_factor(length, d) if datcom else 1.0
-        info = {"method": "datcom" if datcom else "slender", "length": length,
-                "diameter": d, "separation_x": x0}
         if datcom:
             info["munk_factor"] = factor
         return (factor * slender_body_lift_matrix(xs, area, x0, rho=rho, y=hull.y, z=hull.z,
