@@ -22,18 +22,20 @@ def bisect_longest(vertices, faces, max_edge):
     return _bisect(vertices, faces, lambda centroids: np.full(len(centroids), float(max_edge)))
 
 
-def bisect_graded(vertices, faces, size):
+def bisect_graded(vertices, faces, size, max_faces: int | None = None):
     r"""Split faces until every face's longest edge is at most ``size(centroids)`` [m] at its
     centroid (``size``: (n, 3) points [m] -> (n,) edge lengths [m], a sizing field such as
     :func:`stripcoef.hull.remesh.edge_graded_size`), always at the midpoint of the longest
     edge with Rivara's conforming closure (:func:`bisect_longest`, whose rule this is with a
     bound that varies over the surface): the surface unchanged, the mesh closed and its
-    winding kept.  Returns (vertices, faces)."""
-    return _bisect(vertices, faces, size)
+    winding kept.  Returns (vertices, faces), or ``None`` once the mesh would exceed
+    ``max_faces`` (a field finer than the caller can solve)."""
+    return _bisect(vertices, faces, size, max_faces)
 
 
-def _bisect(vertices, faces, bound):
-    """Longest-edge bisection until each face's longest edge is at most ``bound(centroids)``."""
+def _bisect(vertices, faces, bound, max_faces=None):
+    """Longest-edge bisection until each face's longest edge is at most ``bound(centroids)``
+    (``None`` beyond ``max_faces``)."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
     for _ in range(60):
@@ -43,6 +45,8 @@ def _bisect(vertices, faces, bound):
         limit = np.asarray(bound(t.mean(axis=1)), float)
         if (elen.max(axis=1) <= limit).all():
             break
+        if max_faces is not None and len(f) > max_faces:
+            return None
         a = f.reshape(-1)
         b = np.roll(f, -1, axis=1).reshape(-1)
         key = np.minimum(a, b) * len(v) + np.maximum(a, b)

@@ -360,13 +360,14 @@ def edge_graded_size(points, segments, edge: float, length: float,
 
 def graded_remesh(vertices, faces, edge: float, *, beta: float = GRADING_BETA,
                   length: float | None = None, angle: float = SHARP_ANGLE,
-                  mode: Mode | None = None):
+                  mode: Mode | None = None, max_faces: int | None = None):
     """The closed mesh remeshed at ``edge`` [m] (:func:`remesh_isotropic` in ``mode``, default
     the first of :data:`MODES`), then its faces bisected along their longest edges
     (:func:`stripcoef.hull.bisection.bisect_graded`) to the sizing field
     :func:`edge_graded_size` towards the input's edges sharper than ``angle`` [deg]; graded
     zone ``length`` [m] (default :data:`GRADING_LENGTH` of the bounding box's diagonal).
-    Returns (vertices, faces) or ``None`` when the remesh is refused.  Not used by default:
+    Returns (vertices, faces) or ``None`` when the remesh is refused or the graded mesh would
+    exceed ``max_faces``.  Not used by default:
     an option measured by ``python -m benchmarks.edge_grading``."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
@@ -377,7 +378,8 @@ def graded_remesh(vertices, faces, edge: float, *, beta: float = GRADING_BETA,
     if length is None:
         length = GRADING_LENGTH * float(np.linalg.norm(np.ptp(v, axis=0)))
     return bisect_graded(base[0], base[1],
-                         lambda c: edge_graded_size(c, segments, edge, length, beta))
+                         lambda c: edge_graded_size(c, segments, edge, length, beta),
+                         max_faces=max_faces)
 
 
 def graded_for_panels(vertices, faces, panels: int, *, beta: float = GRADING_BETA,
@@ -385,15 +387,19 @@ def graded_for_panels(vertices, faces, panels: int, *, beta: float = GRADING_BET
                       mode: Mode | None = None, tries: int = 6):
     """:func:`graded_remesh` at the far-field edge that gives about ``panels`` faces (within
     10 %, the far edge corrected by sqrt(faces/panels) up to ``tries`` times; the closest
-    kept).  Returns (vertices, faces) or ``None``."""
+    kept; a far edge whose graded mesh exceeds 4 x ``panels`` is doubled).  Returns
+    (vertices, faces) or ``None``."""
     area = surface_area(vertices, faces)
     edge = edge_for_panels(area, panels)
     best = None
     for _ in range(tries):
         out = graded_remesh(vertices, faces, edge, beta=beta, length=length, angle=angle,
-                            mode=mode)
+                            mode=mode, max_faces=4 * panels)
         if out is None:
-            return best
+            if remesh_isotropic(vertices, faces, edge, feature_angle=mode or MODES[0]) is None:
+                return best
+            edge *= 2.0
+            continue
         if best is None or abs(len(out[1]) - panels) < abs(len(best[1]) - panels):
             best = out
         ratio = len(out[1]) / panels
