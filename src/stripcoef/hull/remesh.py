@@ -51,7 +51,7 @@ Panels graded towards sharp edges (:func:`graded_for_panels`, an option the pane
 use): the remesh bisected to the algebraic grading of :func:`edge_graded_size`.  Measured on
 two thin plates, a box with a pod and a low-polygon ellipsoid of the CAD-shape seed
 (``python -m benchmarks.edge_grading``, benchmarks/data/edge_grading.md), by Capytaine and by
-this project's panel method (which agree within 0.2 % on every mesh there): at about 6000
+this project's panel method (which agree within 0.25 % on every mesh there): at about 6000
 faces the graded plates' slow terms (in-plane sway, yaw, surge) lie where the uniform remesh
 lies at about 12,000, but the observed order stays 0.4 to 1.1 (beta 2 and 3) and the grid
 convergence index of the graded levels is not smaller; the box with a pod gains nothing on
