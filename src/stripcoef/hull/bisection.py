@@ -19,14 +19,34 @@ def bisect_longest(vertices, faces, max_edge):
     bisection with its conforming closure): slivers become well-shaped triangles, the mesh
     stays closed and its winding kept, and the new vertices lie on the flat faces (the
     geometry is unchanged).  Returns (vertices, faces)."""
+    return _bisect(vertices, faces, lambda centroids: np.full(len(centroids), float(max_edge)))
+
+
+def bisect_graded(vertices, faces, size, max_faces: int | None = None):
+    r"""Split faces until every face's longest edge is at most ``size(centroids)`` [m] at its
+    centroid (``size``: (n, 3) points [m] -> (n,) edge lengths [m], a sizing field such as
+    :func:`stripcoef.hull.remesh.edge_graded_size`), always at the midpoint of the longest
+    edge with Rivara's conforming closure (:func:`bisect_longest`, whose rule this is with a
+    bound that varies over the surface): the surface unchanged, the mesh closed and its
+    winding kept.  Returns (vertices, faces), or ``None`` once the mesh would exceed
+    ``max_faces`` (a field finer than the caller can solve)."""
+    return _bisect(vertices, faces, size, max_faces)
+
+
+def _bisect(vertices, faces, bound, max_faces=None):
+    """Longest-edge bisection until each face's longest edge is at most ``bound(centroids)``
+    (``None`` beyond ``max_faces``)."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
     for _ in range(60):
         t = v[f]
         elen = np.linalg.norm(t[:, [1, 2, 0]] - t, axis=2)      # edge k: vertex k -> k+1
         longest = np.argmax(elen, axis=1)
-        if elen.max() <= max_edge:
+        limit = np.asarray(bound(t.mean(axis=1)), float)
+        if (elen.max(axis=1) <= limit).all():
             break
+        if max_faces is not None and len(f) > max_faces:
+            return None
         a = f.reshape(-1)
         b = np.roll(f, -1, axis=1).reshape(-1)
         key = np.minimum(a, b) * len(v) + np.maximum(a, b)
@@ -34,7 +54,7 @@ def bisect_longest(vertices, faces, max_edge):
         inv = inv.reshape(-1, 3)
         rows = np.arange(len(f))
         marked = np.zeros(len(uniq), bool)
-        marked[inv[rows, longest][elen[rows, longest] > max_edge]] = True
+        marked[inv[rows, longest][elen[rows, longest] > limit]] = True
         while True:          # closure: a face with a marked edge has its longest edge marked
             need = marked[inv].any(axis=1) & ~marked[inv[rows, longest]]
             if not need.any():
