@@ -22,12 +22,13 @@ from typing import Callable
 
 import numpy as np
 
-from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, _round_along_x, added_mass,
+from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, added_mass,
                                            panel_vehicle_added_mass)
 from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
 from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
 from stripcoef.bem import timed_bem_added_mass
 from stripcoef.errors import InputError, unknown_name
+from stripcoef.geometry.shape_class import classify, strip_features
 from stripcoef.strips import Strips
 
 #: The option value that lets :func:`choose_method` pick the method.
@@ -105,17 +106,32 @@ def _one_mesh(label, expected):
     return applies_to
 
 
-def _not_round_nor_slender(vehicle, strips: Strips) -> bool:
-    r"""A vehicle, a mesh or a vehicle file alike, that is not a body of revolution about x
-    (:func:`_round_along_x`) and not slender, :math:`L / \max(B, H) <`
+def _outside_strip_range(vehicle, strips: Strips) -> bool:
+    r"""A vehicle, a mesh or a vehicle file alike, outside strip theory's range: not of a
+    shape class whose strip-theory error is measured small (:mod:`stripcoef.geometry.
+    shape_class`: ``revolution``, every section round, where the strips and their axisymmetric
+    3D corrections are exact; ``finned``, a slender round hull over most of its length,
+    :data:`STRIP_CLASSES`) and not slender, :math:`L / \max(B, H) <`
     :data:`SLENDER_RATIO` (B, H the largest breadth and height of the strips [m]): where strip
-    theory's slender-body limit does not hold.  A vehicle file is panelled on its parts united
-    into one closed surface (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
-    if _round_along_x(strips):
+    theory's slender-body limit does not hold.  The class reads every section of the strips
+    (the share of the length that is round), not one: a round middle body with bulky
+    appendages over most of its length (the ECA A9's 39 % round) is no body of revolution.
+    A vehicle file is panelled on its parts united into one closed surface
+    (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
+    if classify(strip_features(strips)) in STRIP_CLASSES:
         return False
     width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
                 for p in strips.parts)
     return strips.length < SLENDER_RATIO * width
+
+
+#: The shape classes (:mod:`stripcoef.geometry.shape_class`) that ``auto`` keeps on strip
+#: theory whatever their L / max(B, H): strip theory is exact on bodies of revolution and
+#: within 3.4 % on the finned Myring hulls and the finned torpedo mesh (docs/validation.md,
+#: "Finned Myring hulls against Capytaine"; docs/performance.md, the general-mesh
+#: references); the ``bluff`` and ``open_frame`` classes' bands are tens of percent
+#: (docs/validation.md, method-uncertainty table).
+STRIP_CLASSES = ("revolution", "finned")
 
 
 def _strips(inp: AddedMassInputs):
@@ -179,7 +195,7 @@ ADDED_MASS_METHODS = {m.name: m for m in (
         error_estimate="per term: Roache's grid convergence index of the panel levels "
                        "(stripcoef.hull.convergence), with a warning past its tolerance",
         provenance="strip theory, added mass by the 3D panel method",
-        preferred=_not_round_nor_slender),
+        preferred=_outside_strip_range),
     AddedMassMethod(
         name="strips",
         description="strip theory: 2D sections per strip, 3D end corrections on equivalent "
@@ -213,10 +229,10 @@ def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
 
     ``auto``: the first method of :data:`ADDED_MASS_METHODS` that the estimate may use, that
     applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle (a mesh, or a
-    vehicle file on its parts united into one closed surface) that is not a body of
-    revolution about x and not slender
+    vehicle file on its parts united into one closed surface) that is neither of the shape
+    classes :data:`STRIP_CLASSES` (a body of revolution, a finned round hull) nor slender
     (:math:`L / \max(B, H) <` :data:`~stripcoef.assembly.added_mass.SLENDER_RATIO`), strip
-    theory otherwise.  A method named outright must apply (the BEM needs a mesh file).
+    theory otherwise (:func:`_outside_strip_range`).  A method named outright must apply (the BEM needs a mesh file).
     """
     if name != AUTO:
         if name not in estimate_choices():
