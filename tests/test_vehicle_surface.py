@@ -165,8 +165,9 @@ def test_auto_rule_reads_every_section_not_the_middle(tmp_path):
     """A round middle body with bulky appendages over most of its length (as the ECA A9's
     collision mesh: 39 % of its length round) is no body of revolution: L / max(B, H) = 3.6
     < 5 sends it to the panel method, though its middle section is round; the same hull with
-    thin tail fins (a finned torpedo, 90 % round) stays on strip theory, as do the shipped
-    finned and round vehicle files."""
+    thin tail fins (a finned torpedo, 90 % round, fins 1.4 hull diameters across) stays on
+    strip theory, as do the shipped finned and round vehicle files; with wings 3.5 diameters
+    across (beyond the measured finned hulls) it goes to the panel method."""
     bulky = _round_hull_with(tmp_path, [((0.3, 0.28, 0.16), (-0.3, 0.0, 0.0)),
                                         ((0.3, 0.16, 0.28), (0.3, 0.0, 0.0))], "bulky")
     st = bulky.cut(200)
@@ -177,6 +178,12 @@ def test_auto_rule_reads_every_section_not_the_middle(tmp_path):
     st = finned.cut(200)
     assert classify(strip_features(st)) == "finned"
     assert added_mass_method("auto", finned, st) == "strips"
+    # wings 3.5 hull diameters across: beyond the measured finned hulls' 2.30 (and not slender)
+    winged = _round_hull_with(tmp_path, [((0.1, 0.7, 0.01), (-0.4, 0.0, 0.0))], "winged")
+    st = winged.cut(200)
+    f = strip_features(st)
+    assert classify(f) == "finned" and f["span_ratio"] == pytest.approx(3.5, rel=0.01)
+    assert added_mass_method("auto", winged, st) == "panels"
     for name in ("mares.yaml", "capsule.yaml"):
         with _quiet():
             v = load_vehicle(GEOMETRY / name)

@@ -107,31 +107,39 @@ def _one_mesh(label, expected):
 
 
 def _outside_strip_range(vehicle, strips: Strips) -> bool:
-    r"""A vehicle, a mesh or a vehicle file alike, outside strip theory's range: not of a
-    shape class whose strip-theory error is measured small (:mod:`stripcoef.geometry.
-    shape_class`: ``revolution``, every section round, where the strips and their axisymmetric
-    3D corrections are exact; ``finned``, a slender round hull over most of its length,
-    :data:`STRIP_CLASSES`) and not slender, :math:`L / \max(B, H) <`
-    :data:`SLENDER_RATIO` (B, H the largest breadth and height of the strips [m]): where strip
-    theory's slender-body limit does not hold.  The class reads every section of the strips
-    (the share of the length that is round), not one: a round middle body with bulky
-    appendages over most of its length (the ECA A9's 39 % round) is no body of revolution.
-    A vehicle file is panelled on its parts united into one closed surface
+    r"""A vehicle, a mesh or a vehicle file alike, outside the range where strip theory's
+    error is measured small, and not slender.  In range: the shape classes of
+    :mod:`stripcoef.geometry.shape_class` read off every section of the strips (not one) --
+    ``revolution`` (every section round: the strips and their axisymmetric 3D corrections are
+    exact), or ``finned`` (a slender round hull over most of its length) with appendages no
+    larger across x than those of the finned hulls that measured the class's error,
+    span ratio :math:`S/D \le` :data:`FINNED_SPAN_MEASURED`.  Slender:
+    :math:`L / \max(B, H) \ge` :data:`SLENDER_RATIO` (B, H the largest breadth and height of
+    the strips [m]), strip theory's slender-body limit.  A round middle body with bulky
+    appendages over most of its length (the ECA A9's collision mesh: 39 % round, ``bluff``)
+    or a round hull with wings 3.2 hull diameters across (the WHOI hybrid glider's) is
+    neither.  A vehicle file is panelled on its parts united into one closed surface
     (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
-    if classify(strip_features(strips)) in STRIP_CLASSES:
+    f = strip_features(strips)
+    cls = classify(f)
+    if cls == "revolution" or (cls == "finned" and f["span_ratio"] <= FINNED_SPAN_MEASURED):
         return False
     width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
                 for p in strips.parts)
     return strips.length < SLENDER_RATIO * width
 
 
-#: The shape classes (:mod:`stripcoef.geometry.shape_class`) that ``auto`` keeps on strip
-#: theory whatever their L / max(B, H): strip theory is exact on bodies of revolution and
-#: within 3.4 % on the finned Myring hulls and the finned torpedo mesh (docs/validation.md,
-#: "Finned Myring hulls against Capytaine"; docs/performance.md, the general-mesh
-#: references); the ``bluff`` and ``open_frame`` classes' bands are tens of percent
-#: (docs/validation.md, method-uncertainty table).
-STRIP_CLASSES = ("revolution", "finned")
+#: Largest span ratio S/D [-] (:mod:`stripcoef.geometry.shape_class`: the widest section,
+#: fins included, over the round hull's diameter) of the finned hulls whose strip-theory error
+#: measured the ``finned`` class's band (reference_tables/method_errors/method_errors.csv, the
+#: six hulls of validation/finned.py CASES, chosen to span fin size before their errors were
+#: known): the ``wide_tail`` hull, fins to a tip radius of 0.22 m on a 0.191 m hull, 2.304.
+#: Within it the class's errors are a few percent (q95 1.3 % on translations, 2.9 % on
+#: rotations: docs/validation.md, "Uncertainty bands"), below the panel method's (3.3 %,
+#: 6.6 %); beyond it they are not measured, and ``auto`` does not extrapolate them (a panel
+#: solve estimates its own error).  The ``bluff`` and ``open_frame`` classes' strip errors are
+#: tens of percent (q95 28 to 490 %).
+FINNED_SPAN_MEASURED = 2 * 0.22 / 0.191
 
 
 def _strips(inp: AddedMassInputs):
@@ -230,7 +238,8 @@ def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
     ``auto``: the first method of :data:`ADDED_MASS_METHODS` that the estimate may use, that
     applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle (a mesh, or a
     vehicle file on its parts united into one closed surface) that is neither of the shape
-    classes :data:`STRIP_CLASSES` (a body of revolution, a finned round hull) nor slender
+    classes where strip theory's error is measured small (a body of revolution, a finned
+    round hull within the measured fins' span) nor slender
     (:math:`L / \max(B, H) <` :data:`~stripcoef.assembly.added_mass.SLENDER_RATIO`), strip
     theory otherwise (:func:`_outside_strip_range`).  A method named outright must apply (the BEM needs a mesh file).
     """

@@ -3,7 +3,8 @@ r"""Which shape class a vehicle belongs to, from its geometry (never its name or
 The method error of strip theory depends on the shape (docs/validation.md): exact for bodies
 of revolution, a few percent for finned torpedoes, tens of percent to orders of magnitude for
 the rotations of bluff bodies. :func:`shape_class` reads three numbers off the vehicle's
-strips (:meth:`stripcoef.geometry.vehicle.Vehicle.cut`, the same sections the model uses):
+strips (:meth:`stripcoef.geometry.vehicle.Vehicle.cut`, the same sections the model uses; the
+span ratio is read by the added-mass ``auto`` rule, :mod:`stripcoef.assembly.methods`):
 
 - **round fraction** :math:`\rho_r = \sum_{round} \Delta x / L` [-]: the share of the length
   whose whole section (every part of the strip) is round about the x axis: equal extents,
@@ -12,6 +13,8 @@ strips (:meth:`stripcoef.geometry.vehicle.Vehicle.cut`, the same sections the mo
   [m], A: its area [m^2]);
 - **slenderness** :math:`L / D` [-]: length over the largest extent across x of the round
   sections (of every section when none is round) [m / m];
+- **span ratio** :math:`S / D` [-]: the largest extent across x of any section (fins, wings
+  and appendages included) over D [m / m] (1 for a body of revolution);
 - **fill** :math:`\phi = \sum A \Delta x / (L B_{max} H_{max})` [-]: displaced volume over
   the volume of the bounding box (1 for a box, :math:`\pi/4` for a cylinder, :math:`\pi/6` for
   an ellipsoid; small for a frame of tubes).
@@ -52,7 +55,7 @@ OPEN_FILL = 0.20
 
 
 def features(vehicle, strips: int | None = None) -> dict:
-    """``round_fraction``, ``slenderness``, ``fill`` [-] and ``length`` [m] of a vehicle
+    """``round_fraction``, ``slenderness``, ``fill``, ``span_ratio`` [-] and ``length`` [m] of a vehicle
     (module docstring: the formulas), on ``strips`` strips (default: the vehicle's own count,
     the sections its model is made of: a body too short for fewer strips is still seen)."""
     return strip_features(vehicle.cut(strips))
@@ -88,7 +91,7 @@ def strip_features(st) -> dict:
     box = length * float(np.max(b)) * float(np.max(h))
     fill = float(np.sum(area * st.dx) / box) if box > 0 else 0.0
     return {"round_fraction": round_fraction, "slenderness": length / d, "fill": fill,
-            "length": length}
+            "length": length, "span_ratio": float(np.max(big)) / d}
 
 
 def classify(f: dict) -> str:
