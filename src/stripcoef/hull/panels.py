@@ -452,7 +452,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
 
         lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
                                      feature_angle=mode)
-        if lv is None or len(lv[1]) < remesh.MIN_FACE_RATIO * len(levels[-1][1]):
+        if lv is None or len(lv[1]) < remesh.LEAST_FACE_RATIO * len(levels[-1][1]):
             break
         levels.append(lv)
         n, m = _solve_level(*lv, scale, rho, about, near_factor, solve_planes)

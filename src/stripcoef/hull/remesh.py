@@ -95,19 +95,24 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
-#: Smallest refinement ratio between two levels of a family, :math:`r = h_{coarse}/h_{fine}`
-#: [-]: Celik et al. 2008 ("Procedure for estimation and reporting of uncertainty due to
-#: discretization in CFD applications", J. Fluids Eng. 130(7) 078001, step 2: "it is
-#: desirable that the grid refinement factor r be greater than 1.3").  The Richardson step
-#: multiplies the difference of the two finest levels by :math:`1/(r^2 - 1)` (error ~ 1/N):
-#: 4 at the 1.25 times the faces this replaces (r = 1.12), 1.45 at 1.3.  Where the
-#: creases of thin members hold a level's face count, a level of 1.25 times the faces gave the
-#: shipped BlueROV2 Heavy an estimated error of 56-61 % and its vehicle file and mesh (the same
-#: surface, 2.6 micrometres apart) 2.6 % apart: two remeshes of one surface differ by 0.1-0.4 %
-#: per level, and the step multiplied that by 4 (docs/validation.md).
+#: Refinement ratio a family's levels aim at, :math:`r = h_{coarse}/h_{fine}` [-]: Celik et al.
+#: 2008 ("Procedure for estimation and reporting of uncertainty due to discretization in CFD
+#: applications", J. Fluids Eng. 130(7) 078001, step 2: "it is desirable that the grid
+#: refinement factor r be greater than 1.3").  The Richardson step multiplies the difference
+#: of the two finest levels by :math:`1/(r^2 - 1)` (error ~ 1/N): 4 at 1.25 times the faces
+#: (r = 1.12), 1.45 at 1.3.  Where the creases of thin members hold a level's face count, a
+#: level of 1.25 times the faces gave the shipped BlueROV2 Heavy an estimated error of 56-61 %
+#: and its vehicle file and mesh (the same surface, 2.6 micrometres apart) 2.6 % apart: two
+#: remeshes of one surface differ by 0.1-0.4 % per level, and the step multiplied that by 4
+#: (python -m benchmarks.vehicle_file_mesh).
 MIN_REFINEMENT = 1.3
 #: :data:`MIN_REFINEMENT` in faces, :math:`N_{fine}/N_{coarse} = r^2` (h ~ N^-1/2) [-].
 MIN_FACE_RATIO = MIN_REFINEMENT ** 2
+#: The least refinement in faces a family accepts where no level of :data:`MIN_FACE_RATIO`
+#: fits within its face limit [-] (the input's faces bisected on a large CAD mesh, the ECA
+#: A9's 2,690: its levels 2690/4346/6158 would need 12,400 faces at r = 1.3): a family that
+#: refines, at the larger step the level's estimated error then says.
+LEAST_FACE_RATIO = 1.25
 
 
 @dataclass(frozen=True)
@@ -180,10 +185,14 @@ def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGL
 
 
 def remesh_family(vertices, faces, edges, *, min_ratio: float = MIN_FACE_RATIO,
-                  max_faces: int | None = None, modes=MODES):
+                  least_ratio: float = LEAST_FACE_RATIO, max_faces: int | None = None,
+                  modes=MODES):
     r"""Remeshes at each of ``edges`` [m] (longest first) in one :class:`Mode` for all (the
     first of ``modes`` that gives every level), each with at least ``min_ratio`` times the
-    faces of the one before.  Returns (list of (vertices, faces), the mode) or ``None``.
+    faces of the one before (:data:`MIN_FACE_RATIO`, Celik et al.'s r = 1.3), or
+    ``least_ratio`` times (:data:`LEAST_FACE_RATIO`) in the modes where only the face limit
+    ``max_faces`` stopped every family of ``min_ratio`` (none was refused for its area or
+    volume).  Returns (list of (vertices, faces), the mode) or ``None``.
 
     A level whose remesh does not reach ``min_ratio`` times the faces of the one before (the
     creases of a faceted body -- a 30-sided cylinder kept as a polyhedron at
@@ -199,23 +208,27 @@ def remesh_family(vertices, faces, edges, *, min_ratio: float = MIN_FACE_RATIO,
     (never silent: the caller falls back to a family that follows the surface)."""
     cap = MAX_FACES if max_faces is None else max_faces
     worst = None                              # the smallest area/volume change of a refusal
-    for mode in modes:
-        levels = []
-        for h in edges:
-            lv, change = _grown(vertices, faces, h, mode,
-                                min_ratio * len(levels[-1][1]) if levels else 0, cap)
-            if lv is None:
-                if change is not None and (worst is None or abs(change[0]) < abs(worst[0])):
-                    worst = change
-                break
-            levels.append(lv)
-        else:
-            if mode.bisect and worst is not None:
-                warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
-                              "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
-                              + " faces): the surface exactly, at the input's panel shapes",
-                              ModelWarning, stacklevel=2)
-            return levels, mode
+    retry = []                                # modes stopped by the face limit alone
+    for ratio in dict.fromkeys((min_ratio, min(least_ratio, min_ratio))):
+        for mode in (modes if ratio == min_ratio else retry):
+            levels = []
+            for h in edges:
+                lv, change = _grown(vertices, faces, h, mode,
+                                    ratio * len(levels[-1][1]) if levels else 0, cap)
+                if lv is None:
+                    if change is None:
+                        retry.append(mode)
+                    elif worst is None or abs(change[0]) < abs(worst[0]):
+                        worst = change
+                    break
+                levels.append(lv)
+            else:
+                if mode.bisect and worst is not None:
+                    warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
+                                  "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
+                                  + " faces): the surface exactly, at the input's panel shapes",
+                                  ModelWarning, stacklevel=2)
+                return levels, mode
     if worst is not None:
         warnings.warn(_refused(worst) + "; the panel levels are then a remesh of the whole "
                       "body or the input's faces refined", ModelWarning, stacklevel=2)
