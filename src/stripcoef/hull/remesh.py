@@ -95,7 +95,9 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
-#: Refinement ratio a family's levels aim at, :math:`r = h_{coarse}/h_{fine}` [-]: Celik et al.
+#: Refinement ratio of a level the refinement adds where the family has not converged and
+#: its next level does not refine by :data:`LEAST_FACE_RATIO`, :math:`r = h_{coarse}/h_{fine}`
+#: [-] (:func:`stripcoef.hull.panels.panel_added_mass`, :func:`grown_level`): Celik et al.
 #: 2008 ("Procedure for estimation and reporting of uncertainty due to discretization in CFD
 #: applications", J. Fluids Eng. 130(7) 078001, step 2: "it is desirable that the grid
 #: refinement factor r be greater than 1.3").  The Richardson step multiplies the difference
@@ -184,15 +186,11 @@ def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGL
     return None
 
 
-def remesh_family(vertices, faces, edges, *, min_ratio: float = MIN_FACE_RATIO,
-                  least_ratio: float = LEAST_FACE_RATIO, max_faces: int | None = None,
-                  modes=MODES):
+def remesh_family(vertices, faces, edges, *, min_ratio: float = LEAST_FACE_RATIO,
+                  max_faces: int | None = None, modes=MODES):
     r"""Remeshes at each of ``edges`` [m] (longest first) in one :class:`Mode` for all (the
     first of ``modes`` that gives every level), each with at least ``min_ratio`` times the
-    faces of the one before (:data:`MIN_FACE_RATIO`, Celik et al.'s r = 1.3), or
-    ``least_ratio`` times (:data:`LEAST_FACE_RATIO`) in the modes where only the face limit
-    ``max_faces`` stopped every family of ``min_ratio`` (none was refused for its area or
-    volume).  Returns (list of (vertices, faces), the mode) or ``None``.
+    faces of the one before.  Returns (list of (vertices, faces), the mode) or ``None``.
 
     A level whose remesh does not reach ``min_ratio`` times the faces of the one before (the
     creases of a faceted body -- a 30-sided cylinder kept as a polyhedron at
@@ -208,27 +206,23 @@ def remesh_family(vertices, faces, edges, *, min_ratio: float = MIN_FACE_RATIO,
     (never silent: the caller falls back to a family that follows the surface)."""
     cap = MAX_FACES if max_faces is None else max_faces
     worst = None                              # the smallest area/volume change of a refusal
-    retry = []                                # modes stopped by the face limit alone
-    for ratio in dict.fromkeys((min_ratio, min(least_ratio, min_ratio))):
-        for mode in (modes if ratio == min_ratio else retry):
-            levels = []
-            for h in edges:
-                lv, change = _grown(vertices, faces, h, mode,
-                                    ratio * len(levels[-1][1]) if levels else 0, cap)
-                if lv is None:
-                    if change is None:
-                        retry.append(mode)
-                    elif worst is None or abs(change[0]) < abs(worst[0]):
-                        worst = change
-                    break
-                levels.append(lv)
-            else:
-                if mode.bisect and worst is not None:
-                    warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
-                                  "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
-                                  + " faces): the surface exactly, at the input's panel shapes",
-                                  ModelWarning, stacklevel=2)
-                return levels, mode
+    for mode in modes:
+        levels = []
+        for h in edges:
+            lv, change = grown_level(vertices, faces, h, mode,
+                                min_ratio * len(levels[-1][1]) if levels else 0, cap)
+            if lv is None:
+                if change is not None and (worst is None or abs(change[0]) < abs(worst[0])):
+                    worst = change
+                break
+            levels.append(lv)
+        else:
+            if mode.bisect and worst is not None:
+                warnings.warn(_refused(worst) + "; the panel levels are the input's faces "
+                              "bisected (" + "/".join(str(len(lv[1])) for lv in levels)
+                              + " faces): the surface exactly, at the input's panel shapes",
+                              ModelWarning, stacklevel=2)
+            return levels, mode
     if worst is not None:
         warnings.warn(_refused(worst) + "; the panel levels are then a remesh of the whole "
                       "body or the input's faces refined", ModelWarning, stacklevel=2)
@@ -243,7 +237,7 @@ def _refused(change) -> str:
             "thinner than the edge, such as a fin's trailing edge, cut off)")
 
 
-def _grown(vertices, faces, edge, mode, at_least, max_faces):
+def grown_level(vertices, faces, edge, mode, at_least, max_faces):
     """(the remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
     ``at_least`` faces and keeps the area and volume; the last (area, volume) change refused,
     or None).  The remesh is ``None`` if no edge gives it within ``max_faces``."""
