@@ -190,6 +190,18 @@ def test_auto_rule_reads_every_section_not_the_middle(tmp_path):
         assert added_mass_method("auto", v, v.cut(None)) == "strips", name
 
 
+def test_finned_span_bound_is_the_measured_hulls_largest():
+    """The ``auto`` rule's bound on a finned hull's span ratio is the largest of the finned
+    hulls that measured the class's strip error (validation/finned.py CASES, the shapes of
+    reference_tables/method_errors/method_errors.csv)."""
+    from stripcoef.assembly.methods import FINNED_SPAN_MEASURED
+    from stripcoef.geometry.shape_class import features
+    from validation.finned import CASES, vehicle_dict
+
+    spans = [features(parse_vehicle(vehicle_dict(c)))["span_ratio"] for c in CASES]
+    assert max(spans) == pytest.approx(FINNED_SPAN_MEASURED, rel=1e-9)
+
+
 @pytest.mark.slow
 def test_vehicle_file_and_its_surface_stl_agree(tmp_path):
     """The vehicle file and an STL written from its surface give the same M_A (each term
