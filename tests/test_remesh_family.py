@@ -22,6 +22,7 @@ def test_a_faceted_cylinder_gets_a_family_that_refines():
     assert out is not None
     levels, _ = out
     counts = [len(lv[1]) for lv in levels]
+    assert remesh.MIN_FACE_RATIO == pytest.approx(1.69)
     assert all(b >= 1.25 * a for a, b in zip(counts, counts[1:])), counts
     assert max(counts) <= remesh.MAX_FACES
     for rv, rf in levels:
@@ -177,6 +178,7 @@ def test_where_no_remesh_keeps_the_area_the_levels_are_the_input_bisected():
     levels, mode = out
     assert mode.bisect
     counts = [len(rf) for _, rf in levels]
+    assert remesh.MIN_FACE_RATIO == pytest.approx(1.69)
     assert all(b >= 1.25 * a for a, b in zip(counts, counts[1:])), counts
     for rv, rf in levels:
         assert surface_area(rv, rf) == pytest.approx(wing.area, rel=1e-9)

@@ -13,6 +13,7 @@ from stripcoef.assembly import estimate
 from stripcoef.assembly.methods import added_mass_method
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.profiles import myring_nose, myring_tail
+from stripcoef.geometry.shape_class import classify, strip_features
 from stripcoef.geometry.surface import vehicle_surface
 from stripcoef.geometry.vehicle import Vehicle, load_vehicle, parse_vehicle
 
@@ -145,6 +146,60 @@ def test_auto_rule_is_the_meshes_for_a_vehicle_file():
         assert added_mass_method("auto", v, v.cut(200)) == "strips", name
     slender = parse_vehicle(myring_data())
     assert added_mass_method("panels", slender, slender.cut(200)) == "panels"
+
+
+def _round_hull_with(tmp_path, boxes, name):
+    """A mesh vehicle: a cylinder 1 m long, 0.2 m in diameter, along x (64 sides), united
+    with ``boxes`` ((size, centre) pairs [m])."""
+    cyl = trimesh.creation.cylinder(radius=0.1, height=1.0, sections=64)
+    cyl.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], [1, 0, 0]))
+    parts = [cyl] + [trimesh.creation.box(size, transform=trimesh.transformations
+                                          .translation_matrix(c)) for size, c in boxes]
+    path = tmp_path / f"{name}.stl"
+    trimesh.boolean.union(parts, engine="manifold").export(path)
+    with _quiet():
+        return Vehicle.from_mesh(path)
+
+
+def test_auto_rule_reads_every_section_not_the_middle(tmp_path):
+    """A round middle body with bulky appendages over most of its length (as the ECA A9's
+    collision mesh: 39 % of its length round) is no body of revolution: L / max(B, H) = 3.6
+    < 5 sends it to the panel method, though its middle section is round; the same hull with
+    thin tail fins (a finned torpedo, 90 % round, fins 1.4 hull diameters across) stays on
+    strip theory, as do the shipped finned and round vehicle files; with wings 3.5 diameters
+    across (beyond the measured finned hulls) it goes to the panel method."""
+    bulky = _round_hull_with(tmp_path, [((0.3, 0.28, 0.16), (-0.3, 0.0, 0.0)),
+                                        ((0.3, 0.16, 0.28), (0.3, 0.0, 0.0))], "bulky")
+    st = bulky.cut(200)
+    assert classify(strip_features(st)) == "bluff"
+    assert added_mass_method("auto", bulky, st) == "panels"
+    finned = _round_hull_with(tmp_path, [((0.1, 0.01, 0.28), (-0.4, 0.0, 0.0)),
+                                         ((0.1, 0.28, 0.01), (-0.4, 0.0, 0.0))], "finned")
+    st = finned.cut(200)
+    assert classify(strip_features(st)) == "finned"
+    assert added_mass_method("auto", finned, st) == "strips"
+    # wings 3.5 hull diameters across: beyond the measured finned hulls' 2.30 (and not slender)
+    winged = _round_hull_with(tmp_path, [((0.1, 0.7, 0.01), (-0.4, 0.0, 0.0))], "winged")
+    st = winged.cut(200)
+    f = strip_features(st)
+    assert classify(f) == "finned" and f["span_ratio"] == pytest.approx(3.5, rel=0.01)
+    assert added_mass_method("auto", winged, st) == "panels"
+    for name in ("mares.yaml", "capsule.yaml"):
+        with _quiet():
+            v = load_vehicle(GEOMETRY / name)
+        assert added_mass_method("auto", v, v.cut(None)) == "strips", name
+
+
+def test_finned_span_bound_is_the_measured_hulls_largest():
+    """The ``auto`` rule's bound on a finned hull's span ratio is the largest of the finned
+    hulls that measured the class's strip error (validation/finned.py CASES, the shapes of
+    reference_tables/method_errors/method_errors.csv)."""
+    from stripcoef.assembly.methods import FINNED_SPAN_MEASURED
+    from stripcoef.geometry.shape_class import features
+    from validation.finned import CASES, vehicle_dict
+
+    spans = [features(parse_vehicle(vehicle_dict(c)))["span_ratio"] for c in CASES]
+    assert max(spans) == pytest.approx(FINNED_SPAN_MEASURED, rel=1e-9)
 
 
 @pytest.mark.slow

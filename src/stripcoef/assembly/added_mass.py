@@ -517,13 +517,6 @@ def added_mass(strips: Strips, rho: float, *, about, volume: float, center,
 #: bodies of revolution, stripcoef.hull.corrections) account for them.  Not fitted to any
 #: benchmark shape.
 SLENDER_RATIO = 5.0
-#: A section is round when its breadth and height agree and its area is pi/4 B H, both within
-#: this fraction [-] (then the body is one of revolution about x, where the strips and their
-#: axisymmetric 3D corrections are exact to 0.2 %: docs/validation.md).  A CAD tessellation of
-#: a circle by n >= 16 sides passes: its area is (n / 2 pi) sin(2 pi / n) of the circle's
-#: (-2.6 % at n = 16) and its flat-to-flat width cos(pi / n) of the diameter (-1.9 %); a square
-#: (+27 %) or an octagon (-10 % or +5.5 %) does not.
-ROUND_TOLERANCE = 0.03
 
 
 def _mesh_of(vehicle):
@@ -535,19 +528,6 @@ def _mesh_of(vehicle):
             and isinstance(bodies[0], MeshBody) and not getattr(vehicle, "holes", [])):
         return bodies[0]
     return None
-
-
-def _round_along_x(strips: Strips) -> bool:
-    """The middle strip has one part whose section is a circle (:data:`ROUND_TOLERANCE`)."""
-    mid = strips.n // 2
-    here = [(p, int(np.nonzero(p.index == mid)[0][0])) for p in strips.parts
-            if np.any(p.index == mid)]
-    if len(here) != 1:
-        return False
-    p, i = here[0]
-    b, h, a = 2 * p.half_breadth[i], 2 * p.half_height[i], p.area[i]
-    return bool(abs(b - h) <= ROUND_TOLERANCE * max(b, h)
-                and abs(a / (0.25 * np.pi * b * h) - 1.0) <= ROUND_TOLERANCE)
 
 
 def panel_surface(vehicle, panels: int):

@@ -82,7 +82,7 @@ class EstimateOptions:
         round section is within 0.01 % of its exact value with 32 (docs/meshes.md).
     added_mass_method : str
         ``auto`` (default: the 3D panel method of :mod:`stripcoef.hull.panels` for a vehicle
-        made of one closed mesh that is neither a body of revolution about x nor slender,
+        that is neither a body of revolution, a finned round hull nor slender,
         strip theory and its 3D corrections otherwise,
         :func:`stripcoef.assembly.methods.choose_method`), ``strips`` (always strip
         theory) or ``panels`` (always the panel method; mesh vehicles only).  Only M_A changes: the

@@ -22,12 +22,13 @@ from typing import Callable
 
 import numpy as np
 
-from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, _round_along_x, added_mass,
+from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, added_mass,
                                            panel_vehicle_added_mass)
 from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
 from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
 from stripcoef.bem import timed_bem_added_mass
 from stripcoef.errors import InputError, unknown_name
+from stripcoef.geometry.shape_class import classify, strip_features
 from stripcoef.strips import Strips
 
 #: The option value that lets :func:`choose_method` pick the method.
@@ -105,17 +106,40 @@ def _one_mesh(label, expected):
     return applies_to
 
 
-def _not_round_nor_slender(vehicle, strips: Strips) -> bool:
-    r"""A vehicle, a mesh or a vehicle file alike, that is not a body of revolution about x
-    (:func:`_round_along_x`) and not slender, :math:`L / \max(B, H) <`
-    :data:`SLENDER_RATIO` (B, H the largest breadth and height of the strips [m]): where strip
-    theory's slender-body limit does not hold.  A vehicle file is panelled on its parts united
-    into one closed surface (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
-    if _round_along_x(strips):
+def _outside_strip_range(vehicle, strips: Strips) -> bool:
+    r"""A vehicle, a mesh or a vehicle file alike, outside the range where strip theory's
+    error is measured small, and not slender.  In range: the shape classes of
+    :mod:`stripcoef.geometry.shape_class` read off every section of the strips (not one) --
+    ``revolution`` (every section round: the strips and their axisymmetric 3D corrections are
+    exact), or ``finned`` (a slender round hull over most of its length) with appendages no
+    larger across x than those of the finned hulls that measured the class's error,
+    span ratio :math:`S/D \le` :data:`FINNED_SPAN_MEASURED`.  Slender:
+    :math:`L / \max(B, H) \ge` :data:`SLENDER_RATIO` (B, H the largest breadth and height of
+    the strips [m]), strip theory's slender-body limit.  A round middle body with bulky
+    appendages over most of its length (the ECA A9's collision mesh: 39 % round, ``bluff``)
+    or a round hull with wings 3.2 hull diameters across (the WHOI hybrid glider's) is
+    neither.  A vehicle file is panelled on its parts united into one closed surface
+    (:func:`stripcoef.geometry.surface.vehicle_surface`)."""
+    f = strip_features(strips)
+    cls = classify(f)
+    if cls == "revolution" or (cls == "finned" and f["span_ratio"] <= FINNED_SPAN_MEASURED):
         return False
     width = max(max(float(np.max(2 * p.half_breadth)), float(np.max(2 * p.half_height)))
                 for p in strips.parts)
     return strips.length < SLENDER_RATIO * width
+
+
+#: Largest span ratio S/D [-] (:mod:`stripcoef.geometry.shape_class`: the widest section,
+#: fins included, over the round hull's diameter) of the finned hulls whose strip-theory error
+#: measured the ``finned`` class's band (reference_tables/method_errors/method_errors.csv, the
+#: six hulls of validation/finned.py CASES, chosen to span fin size before their errors were
+#: known): the ``wide_tail`` hull, fins to a tip radius of 0.22 m on a 0.191 m hull, 2.304.
+#: Within it the class's errors are a few percent (q95 1.3 % on translations, 2.9 % on
+#: rotations: docs/validation.md, "Uncertainty bands"), below the panel method's (3.3 %,
+#: 6.6 %); beyond it they are not measured, and ``auto`` does not extrapolate them (a panel
+#: solve estimates its own error).  The ``bluff`` and ``open_frame`` classes' strip errors are
+#: tens of percent (q95 28 to 490 %).
+FINNED_SPAN_MEASURED = 2 * 0.22 / 0.191
 
 
 def _strips(inp: AddedMassInputs):
@@ -179,7 +203,7 @@ ADDED_MASS_METHODS = {m.name: m for m in (
         error_estimate="per term: Roache's grid convergence index of the panel levels "
                        "(stripcoef.hull.convergence), with a warning past its tolerance",
         provenance="strip theory, added mass by the 3D panel method",
-        preferred=_not_round_nor_slender),
+        preferred=_outside_strip_range),
     AddedMassMethod(
         name="strips",
         description="strip theory: 2D sections per strip, 3D end corrections on equivalent "
@@ -213,10 +237,11 @@ def choose_method(name, vehicle, strips: Strips) -> AddedMassMethod:
 
     ``auto``: the first method of :data:`ADDED_MASS_METHODS` that the estimate may use, that
     applies to ``vehicle`` and that it prefers: the 3D panel method for a vehicle (a mesh, or a
-    vehicle file on its parts united into one closed surface) that is not a body of
-    revolution about x and not slender
+    vehicle file on its parts united into one closed surface) that is neither of the shape
+    classes where strip theory's error is measured small (a body of revolution, a finned
+    round hull within the measured fins' span) nor slender
     (:math:`L / \max(B, H) <` :data:`~stripcoef.assembly.added_mass.SLENDER_RATIO`), strip
-    theory otherwise.  A method named outright must apply (the BEM needs a mesh file).
+    theory otherwise (:func:`_outside_strip_range`).  A method named outright must apply (the BEM needs a mesh file).
     """
     if name != AUTO:
         if name not in estimate_choices():

@@ -450,10 +450,16 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             break
         from stripcoef.hull import remesh
 
-        lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
-                                     feature_angle=mode)
-        if lv is None or len(lv[1]) < 1.25 * len(levels[-1][1]):
-            break
+        edge = remesh.edge_for_panels(area, nxt)
+        lv = remesh.remesh_isotropic(*src, edge, feature_angle=mode)
+        if lv is None or len(lv[1]) < remesh.LEAST_FACE_RATIO * len(levels[-1][1]):
+            # creases hold the face count (thin members): a level grown to Celik et al.'s
+            # r >= 1.3 over the finest, or none (remesh.MIN_REFINEMENT)
+            lv = remesh.grown_level(*src, edge, mode,
+                                    remesh.MIN_FACE_RATIO * len(levels[-1][1]),
+                                    remesh.MAX_FACES)[0]
+            if lv is None:
+                break
         levels.append(lv)
         n, m = _solve_level(*lv, scale, rho, about, near_factor, solve_planes)
         counts.append(n)

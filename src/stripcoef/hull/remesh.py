@@ -106,6 +106,26 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
+#: Refinement ratio of a level the refinement adds where the family has not converged and
+#: its next level does not refine by :data:`LEAST_FACE_RATIO`, :math:`r = h_{coarse}/h_{fine}`
+#: [-] (:func:`stripcoef.hull.panels.panel_added_mass`, :func:`grown_level`): Celik et al.
+#: 2008 ("Procedure for estimation and reporting of uncertainty due to discretization in CFD
+#: applications", J. Fluids Eng. 130(7) 078001, step 2: "it is desirable that the grid
+#: refinement factor r be greater than 1.3").  The Richardson step multiplies the difference
+#: of the two finest levels by :math:`1/(r^2 - 1)` (error ~ 1/N): 4 at 1.25 times the faces
+#: (r = 1.12), 1.45 at 1.3.  Where the creases of thin members hold a level's face count, a
+#: level of 1.25 times the faces gave the shipped BlueROV2 Heavy an estimated error of 56-61 %
+#: and its vehicle file and mesh (the same surface, 2.6 micrometres apart) 2.6 % apart: two
+#: remeshes of one surface differ by 0.1-0.4 % per level, and the step multiplied that by 4
+#: (python -m benchmarks.vehicle_file_mesh).
+MIN_REFINEMENT = 1.3
+#: :data:`MIN_REFINEMENT` in faces, :math:`N_{fine}/N_{coarse} = r^2` (h ~ N^-1/2) [-].
+MIN_FACE_RATIO = MIN_REFINEMENT ** 2
+#: The least refinement in faces a family accepts where no level of :data:`MIN_FACE_RATIO`
+#: fits within its face limit [-] (the input's faces bisected on a large CAD mesh, the ECA
+#: A9's 2,690: its levels 2690/4346/6158 would need 12,400 faces at r = 1.3): a family that
+#: refines, at the larger step the level's estimated error then says.
+LEAST_FACE_RATIO = 1.25
 
 
 @dataclass(frozen=True)
@@ -177,7 +197,7 @@ def remesh_isotropic(vertices, faces, edge: float, *, feature_angle=FEATURE_ANGL
     return None
 
 
-def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
+def remesh_family(vertices, faces, edges, *, min_ratio: float = LEAST_FACE_RATIO,
                   max_faces: int | None = None, modes=MODES):
     r"""Remeshes at each of ``edges`` [m] (longest first) in one :class:`Mode` for all (the
     first of ``modes`` that gives every level), each with at least ``min_ratio`` times the
@@ -200,7 +220,7 @@ def remesh_family(vertices, faces, edges, *, min_ratio: float = 1.25,
     for mode in modes:
         levels = []
         for h in edges:
-            lv, change = _grown(vertices, faces, h, mode,
+            lv, change = grown_level(vertices, faces, h, mode,
                                 min_ratio * len(levels[-1][1]) if levels else 0, cap)
             if lv is None:
                 if change is not None and (worst is None or abs(change[0]) < abs(worst[0])):
@@ -228,7 +248,7 @@ def _refused(change) -> str:
             "thinner than the edge, such as a fin's trailing edge, cut off)")
 
 
-def _grown(vertices, faces, edge, mode, at_least, max_faces):
+def grown_level(vertices, faces, edge, mode, at_least, max_faces):
     """(the remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
     ``at_least`` faces and keeps the area and volume; the last (area, volume) change refused,
     or None).  The remesh is ``None`` if no edge gives it within ``max_faces``."""
