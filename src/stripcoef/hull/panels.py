@@ -260,7 +260,27 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | 
     installed or refuses one.  One family of uniform panellings of the same surface, whatever
     the input's tessellation.  ``area``: the surface [m^2] whose N panels set the edges
     (default the mesh's own; a :func:`~stripcoef.hull.mirror_panels.capped_part` is
-    remeshed at the whole body's edges)."""
+    remeshed at the whole body's edges).
+
+    Thin members (issue 32): where the finest edge exceeds :data:`THIN_EDGE_RATIO` times the
+    body's :func:`member_thickness` t, the family is remeshed in the thin-member modes of
+    :mod:`stripcoef.hull.remesh` first (no edge flips, creases kept, the remesh within
+    ``KNIFE_DISTANCE`` of the input).  Basis: a constant-panel solution approximates the
+    potential by one value per flat panel (Hess & Smith 1967), so a member narrower than a
+    panel -- the two faces of a plate closer than the edge -- is not represented by panels
+    of its own, and Richardson extrapolation and the grid convergence index hold only once
+    the levels are in the asymptotic range, whose precondition is that the grids resolve the
+    geometry's smallest length scale (Roache 1998 ch. 5; Oberkampf & Roy 2010 ch. 8); the
+    rule taken is the plain one, edge no longer than the thickness (argued, not a published
+    constant).  Below that edge
+    the remesh with flips, whose area and volume stay within the remesher's tolerances, joins
+    the two faces of a plate and the levels converge to another surface: the frames of the
+    seed 1375923287 of benchmarks/cad_shapes.py (plates 17-27 mm, edges 22-36 mm) came out
+    +2.3 to +4.7 % in surge against the Capytaine references at 12,000-17,000 faces
+    (reference_tables/bem/cad_shapes_fine_levels.csv) with estimates of 0.2-2.1 %; frame 21
+    (17-mm plates) in one y-mirrored level at 7232 panels: surge 3.528 with flips, 3.471
+    without (reference 3.467).  In the thin-member modes: +0.8 % (docs/performance.md,
+    "Thin members and the panel family")."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
@@ -268,7 +288,77 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | 
     area = surface_area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
-    return remesh.remesh_family(vertices, faces, edges)
+    out = remesh.remesh_family(vertices, faces, edges)
+    if out is None or not out[1].flips or out[1].bisect:
+        return out
+    if edges[-1] <= THIN_EDGE_RATIO * member_thickness(*out[0][0]):
+        return out
+    # a member thinner than the finest edge: the remeshes with flips join its faces (module
+    # docstring, "Thin members"); the family in the feature-preserving modes first
+    thin = remesh.remesh_family(vertices, faces, edges, modes=_thin_modes())
+    return out if thin is None or thin[1].bisect else thin
+
+
+#: Area fraction [-] below which the thinner members of a body are not counted in
+#: :func:`member_thickness` (the area-weighted percentile: a member with less than this
+#: share of the surface does not set the panel size).
+THICKNESS_PERCENTILE = 0.05
+#: Largest finest-level edge over the member thickness [-] before the thin-member family is
+#: used (the edge no longer than the thickness: panels resolve the member).
+THIN_EDGE_RATIO = 1.0
+
+
+def _thin_modes():
+    from stripcoef.hull.remesh import MODES
+
+    return tuple(m for m in MODES if not m.flips and not m.bisect) + tuple(
+        m for m in MODES if m.flips) + tuple(m for m in MODES if m.bisect)
+
+
+def member_thickness(vertices, faces, rays: int = 600) -> float:
+    r"""Thickness of the body's thinnest members that matter [m]: the distance from a face's
+    centroid along its inward normal to the first face hit (the shape diameter of Shapira
+    et al. 2008, "Consistent mesh partitioning and skeletonisation using the shape diameter
+    function", Visual Computer 24, with one ray on the normal), its area-weighted
+    :data:`THICKNESS_PERCENTILE` quantile over at most ``rays`` faces (every k-th face of a
+    uniform panelling); the ray-triangle test of Moeller & Trumbore 1997 ("Fast, minimum
+    storage ray-triangle intersection", J. Graphics Tools 2(1)), vectorised (trimesh's
+    ray casting needs rtree or embree, neither in the base install).  ``inf`` when no ray
+    hits (an open surface)."""
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    tri = v[f]
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    cr = np.cross(e1, e2)
+    dbl = np.linalg.norm(cr, axis=1)
+    ok_face = dbl > 0
+    scale = float(np.ptp(v, axis=0).max())
+    src = np.flatnonzero(ok_face)[::max(1, int(np.ceil(ok_face.sum() / rays)))]
+    orig = tri[src].mean(axis=1)
+    d = -cr[src] / dbl[src, None]
+    depth = np.full(len(src), np.inf)
+    chunk = max(1, 2_000_000 // len(f))
+    for s in range(0, len(src), chunk):
+        o, dd = orig[s:s + chunk], d[s:s + chunk]
+        p = np.cross(dd[:, None, :], e2[None])                   # (rays, faces, 3)
+        det = np.einsum("mk,rmk->rm", e1, p)
+        ok = np.abs(det) > 1e-12 * scale ** 2
+        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        tv = o[:, None, :] - tri[None, :, 0]
+        u = np.einsum("rmk,rmk->rm", tv, p) * inv
+        q = np.cross(tv, e1[None])
+        w = np.einsum("rk,rmk->rm", dd, q) * inv
+        t = np.einsum("mk,rmk->rm", e2, q) * inv
+        hit = ok & (u >= 0) & (w >= 0) & (u + w <= 1) & (t > 1e-9 * scale)
+        hit[np.arange(len(o)), src[s:s + chunk]] = False          # not the face itself
+        depth[s:s + chunk] = np.where(hit, t, np.inf).min(axis=1)
+    good = np.isfinite(depth)
+    if not good.any():
+        return float("inf")
+    x, w = depth[good], dbl[src][good]
+    o = np.argsort(x)
+    cw = np.cumsum(w[o])
+    return float(x[o][min(len(x) - 1, np.searchsorted(cw, THICKNESS_PERCENTILE * cw[-1]))])
 
 
 #: Panel families of :func:`panel_added_mass` ("auto": the isotropic remesh when the remesher
