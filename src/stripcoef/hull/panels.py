@@ -253,6 +253,11 @@ def _check_closed(faces, where):
 
 
 def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
+    """The family of :func:`_remeshed_levels` ((levels, mode) or ``None``)."""
+    return _remeshed_levels(vertices, faces, panels, count, area)[0]
+
+
+def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
     r"""``count`` isotropic remeshes of the mesh (:func:`stripcoef.hull.remesh.remesh_family`)
     at :math:`N_k = N/2^{count-1-k}` panels (N = ``panels``, coarse to fine: the edge shrinks by
     :math:`\sqrt2` a level) and the :class:`~stripcoef.hull.remesh.Mode` that made them, or
@@ -284,19 +289,39 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | 
     from stripcoef.hull import remesh
 
     if not remesh.available():
-        return None
+        return None, float("inf")
     area = surface_area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
     out = remesh.remesh_family(vertices, faces, edges)
-    if out is None or not out[1].flips or out[1].bisect:
-        return out
-    if edges[-1] <= THIN_EDGE_RATIO * member_thickness(*out[0][0]):
-        return out
+    if out is None or out[1].bisect:
+        return out, float("inf")
+    thickness = member_thickness(*out[0][0])
+    if edges[-1] <= THIN_EDGE_RATIO * thickness or not out[1].flips:
+        return out, thickness
     # a member thinner than the finest edge: the remeshes with flips join its faces (module
     # docstring, "Thin members"); the family in the feature-preserving modes first
     thin = remesh.remesh_family(vertices, faces, edges, modes=_thin_modes())
-    return out if thin is None or thin[1].bisect else thin
+    return (out if thin is None or thin[1].bisect else thin), thickness
+
+
+def _pre_asymptotic(mats, counts, gci, safety):
+    r"""The grid convergence index of levels that cannot be in the asymptotic range (their
+    finest edge longer than the member thickness, :func:`remeshed_levels`): the terms whose
+    observed order happened to match the formal one (:math:`F_s = 1.25`) get
+    :math:`F_s = 3` with the observed order within [0.5, 2] (Oberkampf & Roy 2010, sec.
+    8.6.3.2: 1.25 only where the asymptotic range is shown) [the levels' unit]."""
+    from stripcoef.hull.convergence import (MIN_ORDER, SAFETY_THREE_GRIDS, SAFETY_TWO_GRIDS,
+                                            observed_order)
+
+    h = np.asarray(counts[-3:], float) ** -0.5
+    r21, r32 = h[1] / h[2], h[0] / h[1]
+    p = observed_order(mats[-1], mats[-2], mats[-3], r21, r32)
+    p = np.minimum(np.maximum(np.where(np.isfinite(p), p, 2.0), MIN_ORDER), 2.0)
+    wide = SAFETY_TWO_GRIDS * np.abs(mats[-2] - mats[-1]) / (r21 ** p - 1.0)
+    three = np.asarray(safety) == SAFETY_THREE_GRIDS
+    return np.where(three, np.maximum(gci, wide), gci), np.where(three, SAFETY_TWO_GRIDS,
+                                                                  safety)
 
 
 #: Area fraction [-] below which the thinner members of a body are not counted in
@@ -306,6 +331,14 @@ THICKNESS_PERCENTILE = 0.05
 #: Largest finest-level edge over the member thickness [-] before the thin-member family is
 #: used (the edge no longer than the thickness: panels resolve the member).
 THIN_EDGE_RATIO = 1.0
+
+
+def remesh_edge(area, panels):
+    """Edge [m] of ``panels`` equilateral triangles on ``area`` [m^2]
+    (:func:`stripcoef.hull.remesh.edge_for_panels`)."""
+    from stripcoef.hull.remesh import edge_for_panels
+
+    return edge_for_panels(area, int(panels))
 
 
 def _thin_modes():
@@ -372,12 +405,15 @@ def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
     panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
     panelling)."""
     if mirrors:
-        hv, hf = drop_caps(pv, pf, mirrors, about)
-        return (2 ** len(mirrors)) * len(hf), solve_mirrored(
-            hv[hf], mirrors, rho=rho, about=about, near_factor=near_factor)
+        pv, pf = drop_caps(pv, pf, mirrors, about)
     ptri = pv[pf]
+    # zero-area panels (a collinear triangle of a remesh without flips) carry no area and
+    # would make the influence matrices singular (NaN)
     keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
                           axis=1) > 1e-12 * scale ** 2
+    if mirrors:
+        return (2 ** len(mirrors)) * int(keep.sum()), solve_mirrored(
+            ptri[keep], mirrors, rho=rho, about=about, near_factor=near_factor)
     return int(keep.sum()), solve_added_mass(ptri[keep], rho=rho, about=about,
                                              near_factor=near_factor)
 
@@ -496,10 +532,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
     src, solve_planes, area = (v, f), (), surface_area(v, f)
-    family_out = None
+    family_out, thickness = None, float("inf")
     if planes and family in ("auto", "remesh"):
         part = capped_part(v, f, planes, about)
-        family_out = remeshed_levels(*part, panels, area=area) if part is not None else None
+        family_out, thickness = (_remeshed_levels(*part, panels, area=area)
+                                 if part is not None else (None, float("inf")))
         if family_out is not None:
             # (the refinement keeps the whole body's cap: a fifth level of 2^(k/2) cap panels,
             # as cheap with k planes as a full solve of cap, cut the warnings on a fresh seed
@@ -507,7 +544,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             # covered their error in 91 % of terms instead of 96 %: docs/performance.md)
             src, solve_planes = part, planes
     if family_out is None and family in ("auto", "remesh"):
-        family_out = remeshed_levels(v, f, panels)
+        family_out, thickness = _remeshed_levels(v, f, panels)
     levels, mode = family_out if family_out is not None else (None, None)
     if levels is None and family == "remesh":
         raise InputError("the isotropic remesher is not installed or could not follow the "
@@ -533,6 +570,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                              value=counts, expected="a finer last resolution (more panels)")
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
         gci, order, safety = grid_convergence_index(mats[-3:], counts[-3:])
+        if len(mats) >= 3 and remesh_edge(area, counts[-1]) > THIN_EDGE_RATIO * thickness:
+            gci, safety = _pre_asymptotic(mats, counts, gci, safety)
         error = estimated_error(mats[-1], a, gci)
         converged = bool(relative_error(a, error).max() <= tol)
         nxt = 2 * nominal
