@@ -284,8 +284,8 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
     +2.3 to +4.7 % in surge against the Capytaine references at 12,000-17,000 faces
     (reference_tables/bem/cad_shapes_fine_levels.csv) with estimates of 0.2-2.1 %; frame 21
     (17-mm plates) in one y-mirrored level at 7232 panels: surge 3.528 with flips, 3.471
-    without (reference 3.467).  In the thin-member modes: +0.8 % (docs/performance.md,
-    "Thin members and the panel family")."""
+    without (reference 3.467).  In the thin-member modes: -0.5 to +0.8 %
+    (docs/performance.md, "Thin members and the panel family")."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
@@ -348,7 +348,7 @@ def _thin_modes():
         m for m in MODES if m.flips) + tuple(m for m in MODES if m.bisect)
 
 
-def member_thickness(vertices, faces, rays: int = 600) -> float:
+def member_thickness(vertices, faces, rays: int = 256) -> float:
     r"""Thickness of the body's thinnest members that matter [m]: the distance from a face's
     centroid along its inward normal to the first face hit (the shape diameter of Shapira
     et al. 2008, "Consistent mesh partitioning and skeletonisation using the shape diameter
@@ -440,7 +440,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
     and a level of twice the finest panels fits within ``max_panels``, that level is added
-    and the estimate repeated on the finest three ("refine until converged").
+    and the estimate repeated on the finest three ("refine until converged").  Levels whose
+    finest edge is longer than the body's :func:`member_thickness` (thin plates and walls)
+    are remeshed without edge flips (:func:`remeshed_levels`) and are not in the asymptotic
+    range: their index takes :math:`F_s = 3` on every term (:func:`_pre_asymptotic`).
 
     Parameters
     ----------
