@@ -253,6 +253,11 @@ def _check_closed(faces, where):
 
 
 def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
+    """The family of :func:`_remeshed_levels` ((levels, mode) or ``None``)."""
+    return _remeshed_levels(vertices, faces, panels, count, area)[0]
+
+
+def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | None = None):
     r"""``count`` isotropic remeshes of the mesh (:func:`stripcoef.hull.remesh.remesh_family`)
     at :math:`N_k = N/2^{count-1-k}` panels (N = ``panels``, coarse to fine: the edge shrinks by
     :math:`\sqrt2` a level) and the :class:`~stripcoef.hull.remesh.Mode` that made them, or
@@ -260,15 +265,133 @@ def remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float | 
     installed or refuses one.  One family of uniform panellings of the same surface, whatever
     the input's tessellation.  ``area``: the surface [m^2] whose N panels set the edges
     (default the mesh's own; a :func:`~stripcoef.hull.mirror_panels.capped_part` is
-    remeshed at the whole body's edges)."""
+    remeshed at the whole body's edges).
+
+    Thin members (issue 32): where the finest edge exceeds :data:`THIN_EDGE_RATIO` times the
+    body's :func:`member_thickness` t, the family is remeshed in the thin-member modes of
+    :mod:`stripcoef.hull.remesh` first (no edge flips, creases kept, the remesh within
+    ``KNIFE_DISTANCE`` of the input).  Basis: a constant-panel solution approximates the
+    potential by one value per flat panel (Hess & Smith 1967), so a member narrower than a
+    panel -- the two faces of a plate closer than the edge -- is not represented by panels
+    of its own, and Richardson extrapolation and the grid convergence index hold only once
+    the levels are in the asymptotic range, whose precondition is that the grids resolve the
+    geometry's smallest length scale (Roache 1998 ch. 5; Oberkampf & Roy 2010 ch. 8); the
+    rule taken is the plain one, edge no longer than the thickness (argued, not a published
+    constant).  Below that edge
+    the remesh with flips, whose area and volume stay within the remesher's tolerances, joins
+    the two faces of a plate and the levels converge to another surface: the frames of the
+    seed 1375923287 of benchmarks/cad_shapes.py (plates 17-27 mm, edges 22-36 mm) came out
+    +2.3 to +4.7 % in surge against the Capytaine references at 12,000-17,000 faces
+    (reference_tables/bem/cad_shapes_fine_levels.csv) with estimates of 0.2-2.1 %; frame 21
+    (17-mm plates) in one y-mirrored level at 7232 panels: surge 3.528 with flips, 3.471
+    without (reference 3.467).  In the thin-member modes: -0.5 to +0.8 %
+    (docs/performance.md, "Thin members and the panel family")."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
-        return None
+        return None, float("inf")
     area = surface_area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
-    return remesh.remesh_family(vertices, faces, edges)
+    out = remesh.remesh_family(vertices, faces, edges)
+    if out is None or out[1].bisect:
+        return out, float("inf")
+    thickness = member_thickness(*out[0][0])
+    if edges[-1] <= THIN_EDGE_RATIO * thickness or not out[1].flips:
+        return out, thickness
+    # a member thinner than the finest edge: the remeshes with flips join its faces (module
+    # docstring, "Thin members"); the family in the feature-preserving modes first
+    thin = remesh.remesh_family(vertices, faces, edges, modes=_thin_modes())
+    return (out if thin is None or thin[1].bisect else thin), thickness
+
+
+def _pre_asymptotic(mats, counts, gci, safety):
+    r"""The grid convergence index of levels that cannot be in the asymptotic range (their
+    finest edge longer than the member thickness, :func:`remeshed_levels`): the terms whose
+    observed order happened to match the formal one (:math:`F_s = 1.25`) get
+    :math:`F_s = 3` with the observed order within [0.5, 2] (Oberkampf & Roy 2010, sec.
+    8.6.3.2: 1.25 only where the asymptotic range is shown) [the levels' unit]."""
+    from stripcoef.hull.convergence import (MIN_ORDER, SAFETY_THREE_GRIDS, SAFETY_TWO_GRIDS,
+                                            observed_order)
+
+    h = np.asarray(counts[-3:], float) ** -0.5
+    r21, r32 = h[1] / h[2], h[0] / h[1]
+    p = observed_order(mats[-1], mats[-2], mats[-3], r21, r32)
+    p = np.minimum(np.maximum(np.where(np.isfinite(p), p, 2.0), MIN_ORDER), 2.0)
+    wide = SAFETY_TWO_GRIDS * np.abs(mats[-2] - mats[-1]) / (r21 ** p - 1.0)
+    three = np.asarray(safety) == SAFETY_THREE_GRIDS
+    return np.where(three, np.maximum(gci, wide), gci), np.where(three, SAFETY_TWO_GRIDS,
+                                                                  safety)
+
+
+#: Area fraction [-] below which the thinner members of a body are not counted in
+#: :func:`member_thickness` (the area-weighted percentile: a member with less than this
+#: share of the surface does not set the panel size).
+THICKNESS_PERCENTILE = 0.05
+#: Largest finest-level edge over the member thickness [-] before the thin-member family is
+#: used (the edge no longer than the thickness: panels resolve the member).
+THIN_EDGE_RATIO = 1.0
+
+
+def remesh_edge(area, panels):
+    """Edge [m] of ``panels`` equilateral triangles on ``area`` [m^2]
+    (:func:`stripcoef.hull.remesh.edge_for_panels`)."""
+    from stripcoef.hull.remesh import edge_for_panels
+
+    return edge_for_panels(area, int(panels))
+
+
+def _thin_modes():
+    from stripcoef.hull.remesh import MODES
+
+    return tuple(m for m in MODES if not m.flips and not m.bisect) + tuple(
+        m for m in MODES if m.flips) + tuple(m for m in MODES if m.bisect)
+
+
+def member_thickness(vertices, faces, rays: int = 256) -> float:
+    r"""Thickness of the body's thinnest members that matter [m]: the distance from a face's
+    centroid along its inward normal to the first face hit (the shape diameter of Shapira
+    et al. 2008, "Consistent mesh partitioning and skeletonisation using the shape diameter
+    function", Visual Computer 24, with one ray on the normal), its area-weighted
+    :data:`THICKNESS_PERCENTILE` quantile over at most ``rays`` faces (every k-th face of a
+    uniform panelling); the ray-triangle test of Moeller & Trumbore 1997 ("Fast, minimum
+    storage ray-triangle intersection", J. Graphics Tools 2(1)), vectorised (trimesh's
+    ray casting needs rtree or embree, neither in the base install).  ``inf`` when no ray
+    hits (an open surface)."""
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    tri = v[f]
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    cr = np.cross(e1, e2)
+    dbl = np.linalg.norm(cr, axis=1)
+    ok_face = dbl > 0
+    scale = float(np.ptp(v, axis=0).max())
+    src = np.flatnonzero(ok_face)[::max(1, int(np.ceil(ok_face.sum() / rays)))]
+    orig = tri[src].mean(axis=1)
+    d = -cr[src] / dbl[src, None]
+    depth = np.full(len(src), np.inf)
+    chunk = max(1, 2_000_000 // len(f))
+    for s in range(0, len(src), chunk):
+        o, dd = orig[s:s + chunk], d[s:s + chunk]
+        p = np.cross(dd[:, None, :], e2[None])                   # (rays, faces, 3)
+        det = np.einsum("mk,rmk->rm", e1, p)
+        ok = np.abs(det) > 1e-12 * scale ** 2
+        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        tv = o[:, None, :] - tri[None, :, 0]
+        u = np.einsum("rmk,rmk->rm", tv, p) * inv
+        q = np.cross(tv, e1[None])
+        w = np.einsum("rk,rmk->rm", dd, q) * inv
+        t = np.einsum("mk,rmk->rm", e2, q) * inv
+        hit = ok & (u >= 0) & (w >= 0) & (u + w <= 1) & (t > 1e-9 * scale)
+        hit[np.arange(len(o)), src[s:s + chunk]] = False          # not the face itself
+        depth[s:s + chunk] = np.where(hit, t, np.inf).min(axis=1)
+    good = np.isfinite(depth)
+    if not good.any():
+        return float("inf")
+    x, w = depth[good], dbl[src][good]
+    o = np.argsort(x)
+    cw = np.cumsum(w[o])
+    return float(x[o][min(len(x) - 1, np.searchsorted(cw, THICKNESS_PERCENTILE * cw[-1]))])
 
 
 #: Panel families of :func:`panel_added_mass` ("auto": the isotropic remesh when the remesher
@@ -282,12 +405,15 @@ def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
     panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
     panelling)."""
     if mirrors:
-        hv, hf = drop_caps(pv, pf, mirrors, about)
-        return (2 ** len(mirrors)) * len(hf), solve_mirrored(
-            hv[hf], mirrors, rho=rho, about=about, near_factor=near_factor)
+        pv, pf = drop_caps(pv, pf, mirrors, about)
     ptri = pv[pf]
+    # zero-area panels (a collinear triangle of a remesh without flips) carry no area and
+    # would make the influence matrices singular (NaN)
     keep = np.linalg.norm(np.cross(ptri[:, 1] - ptri[:, 0], ptri[:, 2] - ptri[:, 0]),
                           axis=1) > 1e-12 * scale ** 2
+    if mirrors:
+        return (2 ** len(mirrors)) * int(keep.sum()), solve_mirrored(
+            ptri[keep], mirrors, rho=rho, about=about, near_factor=near_factor)
     return int(keep.sum()), solve_added_mass(ptri[keep], rho=rho, about=about,
                                              near_factor=near_factor)
 
@@ -314,7 +440,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
     and a level of twice the finest panels fits within ``max_panels``, that level is added
-    and the estimate repeated on the finest three ("refine until converged").
+    and the estimate repeated on the finest three ("refine until converged").  Levels whose
+    finest edge is longer than the body's :func:`member_thickness` (thin plates and walls)
+    are remeshed without edge flips (:func:`remeshed_levels`) and are not in the asymptotic
+    range: their index takes :math:`F_s = 3` on every term (:func:`_pre_asymptotic`).
 
     Parameters
     ----------
@@ -406,10 +535,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
     src, solve_planes, area = (v, f), (), surface_area(v, f)
-    family_out = None
+    family_out, thickness = None, float("inf")
     if planes and family in ("auto", "remesh"):
         part = capped_part(v, f, planes, about)
-        family_out = remeshed_levels(*part, panels, area=area) if part is not None else None
+        family_out, thickness = (_remeshed_levels(*part, panels, area=area)
+                                 if part is not None else (None, float("inf")))
         if family_out is not None:
             # (the refinement keeps the whole body's cap: a fifth level of 2^(k/2) cap panels,
             # as cheap with k planes as a full solve of cap, cut the warnings on a fresh seed
@@ -417,7 +547,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             # covered their error in 91 % of terms instead of 96 %: docs/performance.md)
             src, solve_planes = part, planes
     if family_out is None and family in ("auto", "remesh"):
-        family_out = remeshed_levels(v, f, panels)
+        family_out, thickness = _remeshed_levels(v, f, panels)
     levels, mode = family_out if family_out is not None else (None, None)
     if levels is None and family == "remesh":
         raise InputError("the isotropic remesher is not installed or could not follow the "
@@ -443,6 +573,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                              value=counts, expected="a finer last resolution (more panels)")
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
         gci, order, safety = grid_convergence_index(mats[-3:], counts[-3:])
+        if len(mats) >= 3 and remesh_edge(area, counts[-1]) > THIN_EDGE_RATIO * thickness:
+            gci, safety = _pre_asymptotic(mats, counts, gci, safety)
         error = estimated_error(mats[-1], a, gci)
         converged = bool(relative_error(a, error).max() <= tol)
         nxt = 2 * nominal
