@@ -413,3 +413,21 @@ def one_line_error(capsys, argv, *words):
     for w in words:
         assert w in lines[0], lines[0]
     return lines[0]
+
+
+def pytest_collection_modifyitems(config, items):
+    """Under xdist (two workers on two cores), the test files with ``slow`` tests run first,
+    most slow tests first, each file's tests together and in order: the workers then end the
+    run on the quick tests, not one of them on a minute of the documentation pages or the
+    wheel while the other waits (with ``--dist worksteal`` an idle worker takes queued tests
+    from the back of the other's queue, and a test already started cannot move). Run in
+    this process (``-n0``), the order is the files' own."""
+    if not hasattr(config, "workerinput"):
+        return
+    slow = {}
+    for item in items:
+        slow.setdefault(item.nodeid.split("::")[0], 0)
+        if item.get_closest_marker("slow") is not None:
+            slow[item.nodeid.split("::")[0]] += 1
+    rank = {f: k for k, f in enumerate(sorted(slow, key=lambda f: -slow[f]))}  # stable
+    items.sort(key=lambda item: rank[item.nodeid.split("::")[0]])
