@@ -112,6 +112,12 @@ def run_once(tmp_path_factory, worker_id):
     return once
 
 
+def shipped_model_once(once, name: str):
+    """:func:`shipped_model` ``(name)`` once per test run, shared by the xdist workers
+    (:func:`run_once`): the panelled BlueROV2 Heavy of the Gazebo tests, about 8 s of CPU."""
+    return once(("load_model", name), lambda: shipped_model(name))
+
+
 def coefficients_json(once, *argv) -> dict:
     """``stripcoef coefficients ARGV --json`` parsed, as tests/golden/make_golden.py runs it
     (the provenance's absolute source path dropped), once per test run (:func:`run_once`):
