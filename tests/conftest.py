@@ -69,6 +69,69 @@ def synthetic_diagnosis(effect, seed: int, dof: str) -> dict:
     return diagnose(log, prior, dof=dof).to_dict()
 
 
+@pytest.fixture(scope="session")
+def run_once(tmp_path_factory, worker_id):
+    """``once(key, compute)``: ``compute()`` once per test run for the results several test
+    files read (a panelled BlueROV2 Heavy is about 8 s of CPU), shared by the xdist workers:
+    the first worker to ask computes it and pickles it into the run's own temporary folder
+    (``pytest-N/``, new each run), holding a lock (fcntl) while it does; the others read it.
+    Under ``-n0``, or without fcntl, once per process. ``key``: a tuple of strings naming the
+    computation exactly (e.g. the command line). Read the value, do not change it."""
+    import hashlib
+    import pickle
+
+    try:
+        import fcntl
+    except ImportError:                     # no POSIX locks: once per worker
+        fcntl = None
+    memo = {}
+    root = (tmp_path_factory.getbasetemp().parent / "run_once"
+            if worker_id != "master" and fcntl is not None else None)
+
+    def once(key, compute):
+        if key in memo:
+            return memo[key]
+        if root is None:
+            memo[key] = compute()
+            return memo[key]
+        root.mkdir(exist_ok=True)
+        name = hashlib.sha256(repr(key).encode()).hexdigest()[:32]
+        data = root / f"{name}.pickle"
+        with open(root / f"{name}.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if data.is_file():
+                value = pickle.loads(data.read_bytes())
+            else:
+                value = compute()
+                part = root / f"{name}.part"
+                part.write_bytes(pickle.dumps(value))
+                part.replace(data)
+        memo[key] = value
+        return value
+
+    return once
+
+
+def shipped_model_once(once, name: str):
+    """:func:`shipped_model` ``(name)`` once per test run, shared by the xdist workers
+    (:func:`run_once`): the panelled BlueROV2 Heavy of the Gazebo tests, about 8 s of CPU."""
+    return once(("load_model", name), lambda: shipped_model(name))
+
+
+def coefficients_json(once, *argv) -> dict:
+    """``stripcoef coefficients ARGV --json`` parsed, as tests/golden/make_golden.py runs it
+    (the provenance's absolute source path dropped), once per test run (:func:`run_once`):
+    the golden case of a shipped vehicle file and the tests that read the same output. A copy
+    of the shared value."""
+    import copy
+
+    argv = tuple(str(a) for a in argv)
+    make_golden = load_module(ROOT / "tests" / "golden" / "make_golden.py", "make_golden",
+                              cache=True)
+    return copy.deepcopy(once(("coefficients --json",) + argv,
+                              lambda: make_golden.run(list(argv))))
+
+
 @pytest.fixture
 def geometry_dir():
     return GEOMETRY
@@ -356,3 +419,21 @@ def one_line_error(capsys, argv, *words):
     for w in words:
         assert w in lines[0], lines[0]
     return lines[0]
+
+
+def pytest_collection_modifyitems(config, items):
+    """Under xdist (two workers on two cores), the test files with ``slow`` tests run first,
+    most slow tests first, each file's tests together and in order: the workers then end the
+    run on the quick tests, not one of them on a minute of the documentation pages or the
+    wheel while the other waits (with ``--dist worksteal`` an idle worker takes queued tests
+    from the back of the other's queue, and a test already started cannot move). Run in
+    this process (``-n0``), the order is the files' own."""
+    if not hasattr(config, "workerinput"):
+        return
+    slow = {}
+    for item in items:
+        slow.setdefault(item.nodeid.split("::")[0], 0)
+        if item.get_closest_marker("slow") is not None:
+            slow[item.nodeid.split("::")[0]] += 1
+    rank = {f: k for k, f in enumerate(sorted(slow, key=lambda f: -slow[f]))}  # stable
+    items.sort(key=lambda item: rank[item.nodeid.split("::")[0]])

@@ -2,7 +2,6 @@
 the JSON (``bands``, ``coefficient_bands``), the exporters' comments and one warning naming the
 terms uncertain by more than 50 % (95 % band), all read from the model's ``bands``."""
 
-import json
 
 import numpy as np
 import pytest
@@ -11,15 +10,14 @@ from stripcoef.cli import main
 from stripcoef.model import Z95, HydroModel
 from stripcoef.study.sources import method_sources
 
-from conftest import GEOMETRY
+from conftest import GEOMETRY, coefficients_json
 
 
 @pytest.fixture(scope="module")
-def rov_json(tmp_path_factory):
-    out = tmp_path_factory.mktemp("bands") / "rov.json"
-    assert main(["coefficients", str(GEOMETRY / "bluerov2_heavy.yaml"), "--json",
-                 "-o", str(out)]) == 0
-    return json.loads(out.read_text())
+def rov_json(run_once):
+    """``coefficients bluerov2_heavy.yaml --json``: the panelled estimate (about 8 s of CPU)
+    computed once per run for this file and its golden case (tests/test_golden.py)."""
+    return coefficients_json(run_once, GEOMETRY / "bluerov2_heavy.yaml")
 
 
 @pytest.mark.slow

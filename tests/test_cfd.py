@@ -306,40 +306,56 @@ def _need_openfoam():
         pytest.skip("OpenFOAM not installed (apt-get install openfoam)")
 
 
-@pytest.mark.slow
-def test_smoke_run_openfoam(tmp_path):
-    """A real run on a tiny case (a 0.2 m cube, about 4k cells, 60 iterations, one rank):
-    the pipeline from the mesh to the damping works; the number is not a reference."""
+@pytest.fixture(scope="module")
+def serial_smoke(tmp_path_factory):
+    """The tiny serial case (a 0.2 m cube, about 4k cells, 60 iterations, one rank), run once
+    for the smoke test and as the two-rank test's reference mesh size."""
     _need_openfoam()
+    folder = tmp_path_factory.mktemp("cfd_serial") / "c"
     cube = trimesh.creation.box((0.2, 0.2, 0.2))
     res = drag_by_cfd(cube, dofs=("surge",), speeds=(1.0,), levels=(2,), ranks=1,
-                      iterations=60, case_dir=tmp_path / "c")
+                      iterations=60, case_dir=folder)
+    return res, folder
+
+
+@pytest.mark.slow
+def test_smoke_run_openfoam(serial_smoke):
+    """A real run on a tiny case (a 0.2 m cube, about 4k cells, 60 iterations, one rank):
+    the pipeline from the mesh to the damping works; the number is not a reference."""
+    res, folder = serial_smoke
     run = res.dofs[0].runs[0]
     assert run.cells > 1000 and run.iterations == 60
     assert np.isfinite(run.force) and run.force < 0          # drag opposes the motion
     assert run.status in (CONVERGED, NOT_CONVERGED)
     assert res.dofs[0].d_quadratic > 0
-    assert (tmp_path / "c" / "surge_1m_s_L2" / "log.simpleFoam").is_file()
+    assert (folder / "surge_1m_s_L2" / "log.simpleFoam").is_file()
     assert run.y_plus is not None and 0 < run.y_plus[0] <= run.y_plus[2] <= run.y_plus[1]
 
 
 @pytest.mark.slow
-def test_smoke_run_two_ranks_decomposed(tmp_path):
+def test_smoke_run_two_ranks_decomposed(serial_smoke, tmp_path, monkeypatch):
     """The same tiny case decomposed for 2 ranks (decomposePar, mpirun -np 2 ... -parallel)
     runs through: a mesh of the serial one's size (snappyHexMesh in parallel refines the
-    decomposed blocks: measured 3,968 against 3,891 cells) and a finite drag (60 iterations
-    are a start-up transient, not a value)."""
+    decomposed blocks: measured 3,968 against 3,891 cells) and a finite drag after 20
+    iterations (a start-up transient, not a value: the test is that the decomposed solver
+    runs and reconstructs, which 20 iterations show as well as 60).
+
+    Open MPI's ranks poll for messages in a busy loop by default; on a machine whose other
+    cores run other tests that spin is most of this test's CPU (measured 22.9 s of CPU for
+    both runs, 12.1 s with ``mpi_yield_when_idle``): the ranks yield here, which changes no
+    number of the run."""
     _need_openfoam()
     if shutil.which("mpirun") is None:
         pytest.skip("mpirun not installed")
+    monkeypatch.setenv("OMPI_MCA_mpi_yield_when_idle", "1")
     cube = trimesh.creation.box((0.2, 0.2, 0.2))
-    kw = dict(dofs=("surge",), speeds=(1.0,), levels=(2,), iterations=60)
-    one = drag_by_cfd(cube, ranks=1, case_dir=tmp_path / "one", **kw).dofs[0].runs[0]
-    two = drag_by_cfd(cube, ranks=2, case_dir=tmp_path / "two", **kw).dofs[0].runs[0]
+    one = serial_smoke[0].dofs[0].runs[0]
+    two = drag_by_cfd(cube, ranks=2, case_dir=tmp_path / "two", dofs=("surge",),
+                      speeds=(1.0,), levels=(2,), iterations=20).dofs[0].runs[0]
     folder = tmp_path / "two" / two.case
     assert (folder / "processor0").is_dir() and (folder / "processor1").is_dir()
     assert "mpirun -np 2 simpleFoam -parallel" in (folder / "Allrun").read_text()
-    assert two.iterations == 60 and two.cells == pytest.approx(one.cells, rel=0.05)
+    assert two.iterations == 20 and two.cells == pytest.approx(one.cells, rel=0.05)
     assert np.isfinite(two.force) and two.status != "diverged"
 
 

@@ -151,6 +151,7 @@ def test_a_bluff_mesh_takes_the_surface_integral_and_keeps_its_translation():
     np.testing.assert_allclose(dq[:3], 0.5 * 1000 * cd * [0.25, 0.5, 0.5], rtol=1e-9)
 
 
+@pytest.mark.slow     # 3.2 s of CPU (-n 0, load ~11): the icosphere's 1,000 strips
 def test_a_sphere_mesh_is_damped_by_friction_alike_about_every_axis():
     """No pressure drag turns a sphere about its centre: its rotational damping is the skin
     friction, the same law about every axis (isotropic to the faceting's 1 %), in D_Q and

@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from conftest import ROOT, synthetic, synthetic_diagnosis
+from conftest import ROOT, shipped_model, synthetic, synthetic_diagnosis
 from stripcoef.diagnose.pipeline import diagnose, prior_widths
 from stripcoef.logfile import Log
 from stripcoef.simulate import simulate
@@ -99,14 +99,9 @@ def test_a_step_that_raises_the_held_out_error_is_rejected():
 def test_a_clean_log_of_the_independent_simulator_gets_no_effect():
     """A clean log of the independent simulator (truth: every coefficient family of the
     prior x U(0.75, 1.25)) is calibrated, with no effect added."""
-    import warnings
-
-    import stripcoef
     from validation.independent import generate
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        prior = stripcoef.estimate(ROOT / "geometry" / "videoray_pro3.yaml")
+    prior = shipped_model("videoray_pro3.yaml")     # its default estimate, once per worker
     log, _ = generate(prior.to_dict(), None, 7, duration=120.0)
     res = diagnose(log, prior, dof="surge").to_dict()
     assert res["steps"] == []
@@ -161,14 +156,9 @@ def test_a_linear_drag_far_beyond_a_prior_the_log_cannot_calibrate_is_named():
     D_L the log cannot calibrate within its 60 % band, was rejected for 'no D_L to compare'
     (42 % held-out gain, z = 6). It is named first, with the size the log determines: the
     truth over the surge thrusters' gain f (the thrust map is the log's force scale)."""
-    import warnings
-
-    import stripcoef
     from validation.independent import generate
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        prior = stripcoef.estimate(ROOT / "geometry" / "videoray_pro3.yaml")
+    prior = shipped_model("videoray_pro3.yaml")     # its default estimate, once per worker
     log, truth = generate(prior.to_dict(), "linear_drag", 111005, duration=120.0)
     res = diagnose(log, prior, dof="surge").to_dict()
     surge = res["per_dof"]["surge"]

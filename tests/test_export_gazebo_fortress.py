@@ -24,9 +24,9 @@ pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
-def rov():
-    from conftest import shipped_model     # shared with test_export_gazebo_spec.py
-    return shipped_model("bluerov2_heavy.yaml")
+def rov(run_once):
+    from conftest import shipped_model_once     # shared with test_export_gazebo_spec.py
+    return shipped_model_once(run_once, "bluerov2_heavy.yaml")
 
 
 def _root(text):

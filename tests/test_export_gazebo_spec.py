@@ -25,17 +25,21 @@ VEHICLES = [pytest.param(v, marks=[] if v.startswith("remus") else [pytest.mark.
 
 
 class _Models(dict):
-    def __missing__(self, name):
-        from conftest import shipped_model     # shared with the other export tests
+    def __init__(self, once):
+        super().__init__()
+        self.once = once
 
-        self[name] = shipped_model(name)
+    def __missing__(self, name):
+        from conftest import shipped_model_once     # shared with the other export tests
+
+        self[name] = shipped_model_once(self.once, name)
         return self[name]
 
 
 @pytest.fixture(scope="module")
-def models():
-    """Vehicle file name -> its model, estimated on first use."""
-    return _Models()
+def models(run_once):
+    """Vehicle file name -> its model, estimated on first use (once per run)."""
+    return _Models(run_once)
 
 
 def _export(model, **kw):

@@ -19,7 +19,7 @@ import stripcoef
 from stripcoef.export import FORMATS, SimulatorTrapWarning, export_model, write_export
 from stripcoef.export.csvtable import read as read_csv
 from stripcoef.model import HydroModel
-from conftest import load_module
+from conftest import load_module, shipped_model
 
 ROOT = Path(__file__).resolve().parent.parent
 VEHICLES = ("mares", "videoray_pro3")
@@ -28,8 +28,8 @@ MATRICES = ("rigid_body_mass", "added_mass", "linear_damping", "quadratic_dampin
 
 @pytest.fixture(scope="module", params=VEHICLES)
 def vehicle(request):
-    path = ROOT / "geometry" / f"{request.param}.yaml"
-    return request.param, stripcoef.estimate(stripcoef.load_vehicle(path))
+    # the vehicle file's default estimate, shared with the other tests that read it
+    return request.param, shipped_model(f"{request.param}.yaml")
 
 
 def test_every_format_reads_back(vehicle, tmp_path):

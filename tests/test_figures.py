@@ -107,9 +107,9 @@ def test_simulate_plot(tmp_path, capsys, geometry_dir):
 def test_limits_legends_outside_and_limit_lines_named(geometry_dir):
     from stripcoef.limits import solve_limits
     from stripcoef.limits.plots import limits_figure
-    from stripcoef.modelfile import load_model
+    from conftest import shipped_model     # load_model of the file, shared with other tests
 
-    fig = limits_figure(solve_limits(load_model(geometry_dir / "videoray_pro3.yaml"),
+    fig = limits_figure(solve_limits(shipped_model("videoray_pro3.yaml"),
                                      radii=np.linspace(0.5, 3.0, 6)))
     _axes_labelled(fig)
     fig.canvas.draw()

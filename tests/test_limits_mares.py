@@ -9,7 +9,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import stripcoef
 from stripcoef.limits.solver import LimitOptions, solve_limits, turning_curve
 
 MARES = Path(__file__).resolve().parent.parent / "geometry" / "mares.yaml"
@@ -18,7 +17,9 @@ RADII = [2.0, 4.0, 8.0, 16.0, 32.0]
 
 @pytest.fixture(scope="module")
 def model():
-    return stripcoef.estimate(stripcoef.load_vehicle(MARES))
+    from conftest import shipped_model     # the default estimate, shared with other tests
+
+    return shipped_model(MARES.name)
 
 
 def _yaw_moment(model, point):

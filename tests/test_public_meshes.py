@@ -37,6 +37,7 @@ def test_read_from_a_clone_at_the_commit(tmp_path):
         PM.read_from_mirror(tmp_path / "mirror", missing)
 
 
+@pytest.mark.slow     # 2.8 s of CPU (-n 0, load ~11): two CLI runs and a repair
 def test_a_refusal_naming_the_repair_is_repaired_so(tmp_path):
     """The benchmark runs the command that a refusal names (stripcoef mesh FILE --repair -o
     OUT) and then OUT, as a user told so would."""

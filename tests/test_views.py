@@ -59,6 +59,7 @@ def test_notebook_html(mares):
     assert f"{mares.added_mass[1, 1]:.4g}" in html
 
 
+@pytest.mark.slow     # 2.7-2.9 s of CPU (-n 0, load ~11): two fresh interpreters
 def test_blas_pinned_inside_estimate_without_the_cli():
     """In a plain Python process (no CLI, no thread variables) estimate runs with one BLAS
     thread; a user's OPENBLAS_NUM_THREADS is left alone."""
