@@ -84,8 +84,9 @@ def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
     :math:`\sum_{k \in s}(\hat\nu_i(t_k) - \nu_i(t_k))^2` [(m/s)^2 or (rad/s)^2], an
     array (segments, DOFs), and the samples of each segment; None when a simulation
     diverges. The segments restart from the logged state, so they are the independent
-    units of a paired comparison of two models (:func:`stripcoef.diagnose.validate.
-    paired_gain`); :func:`free_simulation_errors` is their pooled RMS."""
+    units of a paired comparison of two models (Hastie, Tibshirani & Friedman 2009,
+    sec. 7.10: the standard error of a cross-validated difference);
+    :func:`free_simulation_errors` is their pooled RMS."""
     from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay

@@ -32,52 +32,18 @@ def heldout_errors(result, prior, written) -> dict:
 
 
 
-def paired_gain(without, with_) -> float:
-    r"""The mean per-segment gain of a change in standard errors [-]: with
-    :math:`\delta_s = S_s^{without} - S_s^{with}` the drop of the sum of squared
-    free-simulation errors of segment s [(m/s)^2 or (rad/s)^2] (:func:`stripcoef.diagnose.
-    heldout.segment_squared_errors`: each segment restarts from the logged state, so the
-    segments are the independent units of a paired comparison),
-
-    .. math:: g = \bar\delta \,/\, (s_\delta / \sqrt{n}),
-
-    the paired t statistic (Student 1908; Hastie, Tibshirani & Friedman 2009, sec. 7.10).
-    ``inf`` when every segment gains the same positive amount, 0 for no gain, ``-inf`` for
-    the same loss everywhere; with one segment (no standard error) ``inf`` times the sign of
-    its gain: a change is then kept if it lowers the error at all."""
-    import numpy as np
-
-    d = np.asarray(without, float) - np.asarray(with_, float)
-    mean = float(np.mean(d)) if d.size else 0.0
-    if d.size < 2:
-        return math.copysign(math.inf, mean) if mean != 0.0 else 0.0
-    se = float(np.std(d, ddof=1) / np.sqrt(d.size))
-    if se > 1e-12 * max(float(np.max(np.abs(d))), 1e-300):
-        return mean / se
-    return math.copysign(math.inf, mean) if mean != 0.0 else 0.0
-
-
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED) -> tuple[set, dict]:
-    r"""Keep a change only if it lowers the free-simulation error of its own DOF on data it
-    was not fitted on.
+    r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
-    log, cut into the segments of the free simulations (10-s simulations restarted from the
-    logged state: :func:`stripcoef.diagnose.heldout.segment_squared_errors`). A change (a
-    DOF's calibration or one effect) is judged in the DOF whose equation it changes: its
-    gain is the paired t statistic :func:`paired_gain` of that DOF's per-segment squared
-    errors without it and with it, the other kept changes in place. While some change's
-    gain is not above :data:`MIN_VALIDATION_GAIN` (0: the change does not lower its own
-    DOF's validation error), the one with the smallest gain is removed and the rest judged
-    again; ties go to the simpler model.
-
-    Why per DOF (issue 33): the earlier score, summed over the DOFs, kept a surge
-    calibration with a thrust effectiveness that made the surge simulation of the validation
-    data worse than the prior's (0.248 vs 0.193 m/s on a real-style current log) because,
-    through the coupling terms, the whole model scored better; on the held-out part it then
-    lost to the prior in surge and heave. A change that does not predict its own DOF better
-    is not supported by the data, whatever it does to the others.
+    log: with :math:`r_i = E_i / E_i^{prior}` the free-simulation error of DOF i [m/s or
+    rad/s] (:func:`stripcoef.diagnose.heldout.free_simulation_errors`) relative to the
+    prior's, a model's score is the pair (number of DOFs with :math:`r_i > 1`,
+    :math:`\sum_i r_i^2`), compared in that order; the change (a DOF's calibration or one
+    effect) whose removal gives the best score is removed while that score is no worse than
+    the current one (ties go to the simpler model), so the result never simulates an
+    excited DOF worse than the prior on the validation data unless every subset does.
 
     A DOF's effects were fitted together with its calibration: removing the calibration
     removes them with it (:func:`partners`; an effect whose values compensate a calibration
@@ -88,64 +54,49 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
-    import numpy as np
+    from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
 
-    from stripcoef.diagnose.heldout import segment_squared_errors
-
+    base = free_simulation_errors(val_log, prior, dofs)
+    ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
+    ref = [max(e, 1e-12) for e in ref]
     cache = {}
-    changes = _changes(per)
-    col = {DOF[i]: k for k, i in enumerate(dofs)}
 
-    def sse(excl):
-        """(segments, DOFs) squared errors of the model without ``excl`` (None: diverged)."""
+    changes = _changes(per)
+
+    def score(excl):
         key = frozenset(partners(excl, changes))
         if key not in cache:
             budget.check()
-            got = segment_squared_errors(val_log, calibrated_model(prior, per, fits, key),
-                                         dofs)
-            cache[key] = None if got is None else got[0]
-            if got is not None:
-                cache["counts"] = got[1]
+            e = free_simulation_errors(val_log, calibrated_model(prior, per, fits, key), dofs)
+            if e is None:
+                cache[key] = ((math.inf, math.inf), None)
+            else:
+                r = [a / b for a, b in zip(e, ref)]
+                cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
+                              e)
         return cache[key]
 
-    def gain(excl, c):
-        """:func:`paired_gain` of change ``c`` in its own DOF, the changes ``excl`` out."""
-        with_, without = sse(excl), sse(excl | {c})
-        if with_ is None:
-            return -math.inf if without is not None else 0.0
-        if without is None:
-            return math.inf
-        k = col[c[1]]
-        return paired_gain(without[:, k], with_[:, k])
-
-    base = sse(set(changes))
-    first = sse(set())
-    excl, gains = set(), {}
+    excl = set()
+    cur = score(excl)
+    first = cur[1]
     while len(excl) < len(changes):
-        left = [c for c in changes if c not in excl]
-        gains = {c: gain(excl, c) for c in
-                 track(left, desc="diagnose: validating the changes", unit="model")}
-        c = min(left, key=lambda x: gains[x])
-        if gains[c] > MIN_VALIDATION_GAIN:
+        trials = [(score(excl | {c}), c) for c in
+                  track([c for c in changes if c not in excl],
+                        desc="diagnose: validating the changes", unit="model")]
+        (best, _), c = min(trials, key=lambda x: x[0][0])
+        if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
             break
         excl = partners(excl | {c}, changes)
-    gains = {c: gains[c] for c in changes if c not in excl and c in gains}
-    counts = cache.get("counts")
+        cur = score(excl)
 
     def named(e):
-        if e is None or counts is None:
-            return None
-        return _named([float(v) for v in np.sqrt(np.sum(e, axis=0) / np.sum(counts))], dofs)
+        return _named(e, dofs)
 
     record = {"description": "RMS free-simulation velocity error [m/s or rad/s] on the last "
                              "part of the fitting log, not used to fit: each change is kept "
-                             "only if it lowers its own DOF's error there (mean gain over the "
-                             "10-s segments, kept_gains: in standard errors)",
+                             "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
-              "prior": named(base), "all_changes": named(first),
-              "kept_changes": named(sse(excl)),
-              "kept_gains": {" ".join(c[1:][::-1]) if c[0] == "effect"
-                             else f"{c[1]} calibration": float(g) for c, g in gains.items()},
+              "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
                                                     "fitted with)"
                                                     if ("calibration", c[1]) in excl else "")
@@ -159,16 +110,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
-
-#: The smallest gain in standard errors (:func:`paired_gain`) of a change the validation
-#: keeps: 0, the change must lower its own DOF's validation error (a positive mean paired
-#: gain). The one-standard-error rule (1; Breiman, Friedman, Olshen & Stone 1984,
-#: Classification and Regression Trees, sec. 3.4.3; Hastie et al. 2009, sec. 7.10) was
-#: measured too weak a test for the validation parts there are: on a real-style current log
-#: (seed 9, 300 s, forward split: 52 s of validation, six segments) it removed every change,
-#: the sway calibration too (gain 0.94 standard errors), whose held-out error was 35 % below
-#: the prior's (benchmarks/real_logs.py).
-MIN_VALIDATION_GAIN = 0.0
 
 
 def with_kept(per: dict, excl) -> dict:
