@@ -70,6 +70,23 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
     (module docstring), or None when a simulation diverges."""
+    got = segment_squared_errors(log, model, dofs, horizon=horizon, tolerances=tolerances)
+    if got is None:
+        return None
+    sse, counts = got
+    return [float(np.sqrt(v)) for v in np.sum(sse, axis=0) / np.sum(counts)]
+
+
+def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
+                           tolerances=TOLERANCES):
+    r"""``(sse, counts)``: per segment s of :func:`segments` the sum of the squared
+    free-simulation errors of each DOF of ``dofs``,
+    :math:`\sum_{k \in s}(\hat\nu_i(t_k) - \nu_i(t_k))^2` [(m/s)^2 or (rad/s)^2], an
+    array (segments, DOFs), and the samples of each segment; None when a simulation
+    diverges. The segments restart from the logged state, so they are the independent
+    units of a paired comparison of two models (Hastie, Tibshirani & Friedman 2009,
+    sec. 7.10: the standard error of a cross-validated difference);
+    :func:`free_simulation_errors` is their pooled RMS."""
     from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay
@@ -79,18 +96,19 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
         inputs = log_inputs(log, model)       # the one replay rule (simulate --from-log's)
     except StripcoefError:
         return None
-    err = {i: [] for i in dofs}
     bounds = segments(t, horizon)
+    sse = np.zeros((len(bounds), len(dofs)))
+    counts = np.array([b - a for a, b in bounds], float)
     if supported(model, inputs):        # all segments at once (diagnose/freesim.py)
         runs = batch_free_velocities(model, log, bounds, inputs, tolerances=tolerances)
         if runs is None:
             return None
         zeros = np.zeros(t.size)
-        for (a, b), nu in zip(bounds, runs):
-            for i in dofs:
-                err[i].append(nu[:, i] - log.get(VELOCITIES[i], zeros)[a:b])
-        return [_rms(np.concatenate(err[i])) for i in dofs]
-    for a, b in bounds:
+        for s, ((a, b), nu) in enumerate(zip(bounds, runs)):
+            for k, i in enumerate(dofs):
+                sse[s, k] = np.sum((nu[:, i] - log.get(VELOCITIES[i], zeros)[a:b]) ** 2)
+        return sse, counts
+    for s, (a, b) in enumerate(bounds):
         part = log.slice(a, b)
         try:
             sim = replay(model, part, inputs=inputs.window(a, b),
@@ -98,10 +116,10 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
         except StripcoefError:
             return None
         zeros = np.zeros(b - a)
-        for i in dofs:
+        for k, i in enumerate(dofs):
             v = VELOCITIES[i]
-            err[i].append(sim[v] - part.get(v, zeros))
-    return [_rms(np.concatenate(err[i])) for i in dofs]
+            sse[s, k] = np.sum((np.asarray(sim[v]) - part.get(v, zeros)) ** 2)
+    return sse, counts
 
 
 def hold_last_velocity_errors(log, dofs, *, horizon: float = HORIZON):
