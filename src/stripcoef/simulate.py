@@ -402,11 +402,6 @@ class RightHandSide:
                              expected="a positive definite inertia matrix") from None
         self.b_delta = model.control_matrix if inputs.surfaces else None
         # the model's matrices and restoring constants read once per run, not per evaluation
-        self.m_rb = np.asarray(model.rigid_body_mass, dtype=float)
-        self.d_l = np.asarray(model.linear_damping, dtype=float)
-        self.d_q = np.asarray(model.quadratic_damping, dtype=float)
-        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), dtype=float)
-        self.lift = lift if np.any(lift) else None
         self.gravity = {"weight": model.weight, "buoyancy": model.buoyancy,
                         "r_g": model.r_g, "r_b": model.r_b}
         self.effect_terms = []
@@ -439,14 +434,10 @@ class RightHandSide:
             nu_c, nu_c_dot = self.current(time, rmat, nu)
             nu_r = nu - nu_c
             rhs_force = tau + self.m_added @ nu_c_dot
-        if self.coriolis:
-            rhs_force = (rhs_force - _coriolis_times_velocity(self.m_rb, nu)
-                         - _coriolis_times_velocity(self.m_added, nu_r, munk=self.munk))
-        # D(nu_r) nu_r = D_L nu_r + D_Q (|nu_r| o nu_r) + u_r L nu_r (HydroModel.damping)
-        rhs_force = (rhs_force - self.d_l @ nu_r - self.d_q @ (np.abs(nu_r) * nu_r)
+        # C_RB(nu) nu + C_A(nu_r) nu_r + D(nu_r) nu_r, lift included (HydroModel.velocity_forces)
+        rhs_force = (rhs_force - model.velocity_forces(nu, None if nu_r is nu else nu_r,
+                                                       munk=self.munk, coriolis=self.coriolis)
                      - restoring_forces(eta, **self.gravity))
-        if self.lift is not None:
-            rhs_force = rhs_force - nu_r[0] * (self.lift @ nu_r)
         if self.b_delta is not None:
             rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
         if self.effect_terms or self.extra_force is not None:
@@ -472,25 +463,6 @@ class RightHandSide:
 
 _ZERO6 = np.zeros(6)
 _ZERO6.flags.writeable = False
-
-
-def _coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray:
-    r""":math:`C(\nu)\nu` [N, N m] of a 6x6 inertia matrix [kg, kg m, kg m^2] and one velocity
-    ``nu`` (6,) [m/s, rad/s], with :math:`C` of :func:`stripcoef.model.coriolis_from_mass`
-    (Fossen 2011, Theorem 3.2, eq. 3.46) as cross products, without building the matrix:
-
-    .. math:: C(\nu)\nu = [\omega\times a;\ v\times a + \omega\times b],\quad
-              [a; b] = M\nu
-
-    ``munk=False`` drops :math:`v\times a` (the Munk moment, as ``HydroModel.coriolis``).
-    The one-velocity form of :func:`stripcoef.effects.windows.coriolis_times_velocity`."""
-    a0, a1, a2, b0, b1, b2 = (mass_matrix @ nu).tolist()
-    u, v, w, p, q, r = nu.tolist()
-    mu = 1.0 if munk else 0.0
-    return np.array([q * a2 - r * a1, r * a0 - p * a2, p * a1 - q * a0,
-                     mu * (v * a2 - w * a1) + q * b2 - r * b1,
-                     mu * (w * a0 - u * a2) + r * b0 - p * b2,
-                     mu * (u * a1 - v * a0) + p * b1 - q * b0])
 
 
 def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
