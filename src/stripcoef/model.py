@@ -125,17 +125,27 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
     """
     phi, theta = eta[3], eta[4]
     cf, sf, ct, st = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
+    return restoring_from_down((-st, ct * sf, ct * cf), weight=weight, buoyancy=buoyancy,
+                               r_g=r_g, r_b=r_b)
+
+
+def restoring_from_down(down, *, weight: float, buoyancy: float, r_g, r_b) -> np.ndarray:
+    r"""Restoring forces g [N, N m] of :func:`restoring_forces` from the NED down axis in body
+    axes, :math:`k = R^T e_z = (-s\theta,\ c\theta s\phi,\ c\theta c\phi)`, the third row of
+    R (Fossen 2011, eq. 2.18), without the Euler angles (a simulation has R):
+
+    .. math::
+        g = -\begin{bmatrix} (W - B)\,k \\ (W r_g - B r_b)\times k \end{bmatrix}
+
+    (Fossen 2011, eqs. 4.5-4.6). ``down`` three floats or three arrays (n,) [-]; ``weight``,
+    ``buoyancy`` [N]; ``r_g``, ``r_b`` (3,) [m]. Returns (6,) or (6, n)."""
+    k0, k1, k2 = down
     w, b = weight, buoyancy
     xg, yg, zg = r_g
     xb, yb, zb = r_b
-    return np.array([
-        (w - b) * st,
-        -(w - b) * ct * sf,
-        -(w - b) * ct * cf,
-        -(yg * w - yb * b) * ct * cf + (zg * w - zb * b) * ct * sf,
-        (zg * w - zb * b) * st + (xg * w - xb * b) * ct * cf,
-        -(xg * w - xb * b) * ct * sf - (yg * w - yb * b) * st,
-    ])
+    a0, a1, a2 = xg * w - xb * b, yg * w - yb * b, zg * w - zb * b
+    return np.array([(w - b) * -k0, -(w - b) * k1, -(w - b) * k2,
+                     a2 * k1 - a1 * k2, a0 * k2 - a2 * k0, a1 * k0 - a0 * k1])
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import RK45
 
-from stripcoef.model import restoring_forces
+from stripcoef.model import restoring_from_down
 
 #: Most integration steps per sample interval before a segment set counts as diverged (a
 #: smooth interval takes one or two; ``simulate``'s budget is 1e6 evaluations per run).
@@ -96,12 +96,12 @@ class BatchRightHandSide:
         quat, nu = x[:, 3:7], x[:, 7:]
         v, w = nu[:, :3], nu[:, 3:]
         rmat = _quat_matrices(quat)
-        phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
-        theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
         force = self.tau - self.model.velocity_forces(nu)
-        force -= restoring_forces((None, None, None, phi, theta), weight=self.weight,
-                                  buoyancy=self.buoyancy, r_g=self.r_g, r_b=self.r_b).T
+        force -= restoring_from_down(rmat[:, 2].T, weight=self.weight, buoyancy=self.buoyancy,
+                                     r_g=self.r_g, r_b=self.r_b).T
         if any(self.terms):
+            phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
+            theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
             psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
             eta = np.column_stack([x[:, :3], phi, theta, psi])
             for s, laws in enumerate(self.terms):
