@@ -706,34 +706,20 @@ class HydroModel:
 
     def velocity_forces(self, nu, nu_r=None, *, coriolis: bool = True, munk: bool = True,
                         rigid_body: bool = True) -> np.ndarray:
-        r"""The velocity-dependent forces of the equations of motion [N, N m] of one velocity
-        ``nu`` (6,) or many (n, 6) [m/s, rad/s]; ``nu_r`` the velocity through the water
-        (``nu`` minus the current; ``None``: no current):
+        r"""The velocity-dependent forces [N, N m] of one velocity ``nu`` (6,) or many (n, 6)
+        [m/s, rad/s]; ``nu_r`` the velocity through the water (``None``: no current):
 
         .. math::
-            C_{RB}(
-u)
-u + C_A(
-u_r)
-u_r + D(
-u_r)
-u_r,\qquad
-            C(
-u) + D(
-u) = D_L + \sum_j 
-u_j K_j + \sum_j |
-u_j| Q_j
+            C_{RB}(\nu)\nu + C_A(\nu_r)\nu_r + D(\nu_r)\nu_r,\qquad
+            C(\nu) + D(\nu) = D_L + \sum_j \nu_j K_j + \sum_j |\nu_j| Q_j
 
-        (Fossen 2011, eq. 7.190, C of Theorem 3.2, eq. 3.46, as :meth:`coriolis`; D as
-        :meth:`damping`, with the lift :math:`uL` of Prestero 2001, sec. 3.6, in
-        :math:`K_0`): C and D are linear in :math:`[
-u, |
-u|]`, so the matrix of each row
-        is one product with the model's 12 x 36 table of :math:`K_j = C(e_j) + \delta_{j0}L`
-        and :math:`Q_j = D_Q e_j e_j^T`, built once per model. ``coriolis=False`` drops
-        both C terms, ``munk=False`` the Munk moment of C_A (as :meth:`coriolis`),
-        ``rigid_body=False`` C_RB (the water's forces alone). The one rule of the simulation's
-        right-hand side, the diagnose batch simulation and the log windows' force terms.
+        (Fossen 2011, eq. 7.190; C of Theorem 3.2, eq. 3.46, as :meth:`coriolis`; D as
+        :meth:`damping`, the lift :math:`uL` of Prestero 2001, sec. 3.6, in :math:`K_0`): C
+        and D are linear in :math:`[\nu, |\nu|]`, so each row's matrix is one product with a
+        12 x 36 table (:func:`coriolis_table`, :math:`Q_j = D_Q e_j e_j^T`) built once per
+        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A,
+        ``rigid_body=False`` C_RB. The one rule of the simulation's right-hand side, the
+        diagnose batch simulation and the log windows' force terms.
         """
         nu = np.asarray(nu, dtype=float)
         if nu_r is None:
@@ -747,15 +733,13 @@ u|]`, so the matrix of each row
 
     @cached_property
     def _velocity_tables(self) -> dict:
-        """The tables of :meth:`velocity_forces` built so far, by choice of terms (the model
-        is immutable, so each is built once)."""
+        """:meth:`velocity_forces`' tables built so far, by choice of terms (immutable model)."""
         return {}
 
     def _velocity_terms(self, rigid_body: bool, added_mass: bool, munk: bool,
                         damping: bool) -> tuple:
         """(table on [nu, |nu|] (12, 36), or on nu (6, 36) without the damping; D_L (36,) or
-        ``None``) of :meth:`velocity_forces`:
-        row j the flattened :math:`K_j` (:func:`coriolis_table` of the chosen masses, and the
+        ``None``) of :meth:`velocity_forces`: row j :math:`K_j` (:func:`coriolis_table`, the
         lift L in row 0 with the damping), row 6 + j :math:`Q_j = D_Q e_j e_j^T`."""
         key = (rigid_body, added_mass, munk, damping)
         tables = self._velocity_tables
