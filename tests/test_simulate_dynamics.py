@@ -298,16 +298,22 @@ def test_any_constant_rate_of_a_symmetric_top_gives_the_closed_form_attitude():
 
 
 @pytest.mark.parametrize("munk", [True, False])
-def test_right_hand_side_coriolis_product_is_the_models_matrix_times_nu(munk):
-    """The right-hand side forms C(nu) nu as cross products (simulate._coriolis_times_velocity);
-    it equals HydroModel.coriolis(nu) @ nu for a full (non-diagonal) inertia matrix, with and
-    without the Munk moment, to round-off."""
-    from stripcoef.simulate import _coriolis_times_velocity
-
+def test_right_hand_side_velocity_forces_are_the_models_matrices_times_nu(munk):
+    """The right-hand side forms C_RB(nu) nu + C_A(nu_r) nu_r + D(nu_r) nu_r by
+    HydroModel.velocity_forces (one table product per velocity); it equals the model's matrices
+    times the velocities, C and D of coriolis() and damping(), for a full (non-diagonal) inertia
+    matrix, with and without the Munk moment and a current, one velocity or many, to round-off."""
     model = make_model(coupled=True)            # a full added-mass matrix, CG off the origin
-    nu = np.random.default_rng(4).normal(size=6)
-    for mass, rigid in ((model.added_mass, False), (model.rigid_body_mass, True)):
-        want = model.coriolis(nu, rigid_body=rigid, added_mass=not rigid, munk=munk) @ nu
-        got = _coriolis_times_velocity(mass, nu, munk=munk or rigid)
-        np.testing.assert_allclose(got, want, rtol=0,
-                                   atol=1e-13 * np.abs(mass).max() * np.abs(nu).max() ** 2)
+    rng = np.random.default_rng(4)
+    nu = rng.normal(size=6)
+    nu_r = nu - np.r_[rng.normal(size=3), 0.0, 0.0, 0.0]
+    want = (model.coriolis(nu, added_mass=False) @ nu
+            + model.coriolis(nu_r, rigid_body=False, munk=munk) @ nu_r
+            + model.damping(nu_r) @ nu_r)
+    scale = np.abs(want).max()
+    got = model.velocity_forces(nu, nu_r, munk=munk)
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * scale)
+    rows = model.velocity_forces(np.vstack([nu, nu_r]), np.vstack([nu_r, nu_r]), munk=munk)
+    np.testing.assert_allclose(rows[0], want, rtol=0, atol=1e-13 * scale)
+    np.testing.assert_allclose(model.velocity_forces(nu_r, coriolis=False),
+                               model.damping(nu_r) @ nu_r, rtol=0, atol=1e-13 * scale)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
+from functools import cached_property
 from types import MappingProxyType
 
 import numpy as np
@@ -124,17 +125,27 @@ def restoring_forces(eta, *, weight: float, buoyancy: float, r_g, r_b) -> np.nda
     """
     phi, theta = eta[3], eta[4]
     cf, sf, ct, st = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
+    return restoring_from_down((-st, ct * sf, ct * cf), weight=weight, buoyancy=buoyancy,
+                               r_g=r_g, r_b=r_b)
+
+
+def restoring_from_down(down, *, weight: float, buoyancy: float, r_g, r_b) -> np.ndarray:
+    r"""Restoring forces g [N, N m] of :func:`restoring_forces` from the NED down axis in body
+    axes, :math:`k = R^T e_z = (-s\theta,\ c\theta s\phi,\ c\theta c\phi)`, the third row of
+    R (Fossen 2011, eq. 2.18), without the Euler angles (a simulation has R):
+
+    .. math::
+        g = -\begin{bmatrix} (W - B)\,k \\ (W r_g - B r_b)\times k \end{bmatrix}
+
+    (Fossen 2011, eqs. 4.5-4.6). ``down`` three floats or three arrays (n,) [-]; ``weight``,
+    ``buoyancy`` [N]; ``r_g``, ``r_b`` (3,) [m]. Returns (6,) or (6, n)."""
+    k0, k1, k2 = down
     w, b = weight, buoyancy
     xg, yg, zg = r_g
     xb, yb, zb = r_b
-    return np.array([
-        (w - b) * st,
-        -(w - b) * ct * sf,
-        -(w - b) * ct * cf,
-        -(yg * w - yb * b) * ct * cf + (zg * w - zb * b) * ct * sf,
-        (zg * w - zb * b) * st + (xg * w - xb * b) * ct * cf,
-        -(xg * w - xb * b) * ct * sf - (yg * w - yb * b) * st,
-    ])
+    a0, a1, a2 = xg * w - xb * b, yg * w - yb * b, zg * w - zb * b
+    return np.array([(w - b) * -k0, -(w - b) * k1, -(w - b) * k2,
+                     a2 * k1 - a1 * k2, a0 * k2 - a2 * k0, a1 * k0 - a0 * k1])
 
 
 @dataclass(frozen=True)
@@ -520,6 +531,30 @@ _ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
            "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift")
 
 
+def coriolis_table(mass_matrix, *, munk: bool = True) -> np.ndarray:
+    r"""The Coriolis-centripetal matrix of :func:`coriolis_from_mass` as a table linear in the
+    velocity: row j the flattened :math:`K_j = C(e_j)` (6, 36), so that
+    :math:`C(\nu) = \sum_j \nu_j K_j` (C is linear in nu; Fossen 2011, Theorem 3.2,
+    eq. 3.46). ``munk=False`` zeroes the lower-left block (the moments from linear momentum,
+    as :meth:`HydroModel.coriolis`). [kg, kg m, kg m^2]"""
+    table = np.array([coriolis_from_mass(mass_matrix, e) for e in np.eye(6)])
+    if not munk:
+        table[:, 3:, :3] = 0.0
+    return table.reshape(6, 36)
+
+
+def velocity_product(table, d_l, nu) -> np.ndarray:
+    r""":math:`(D_L + \sum_j z_j T_j)\,\nu` of one velocity (6,) or row by row of (n, 6)
+    [m/s, rad/s] -> [N, N m]: ``table`` (6, 36) on :math:`z = \nu` or (12, 36) on
+    :math:`z = [\nu, |\nu|]`, the flattened 6 x 6 matrices :math:`T_j`; ``d_l`` (36,) or
+    ``None`` (:meth:`HydroModel.velocity_forces`; Fossen 2011, eq. 7.190)."""
+    z = nu if table.shape[0] == 6 else np.concatenate([nu, np.abs(nu)], axis=-1)
+    mat = z @ table if d_l is None else z @ table + d_l
+    if nu.ndim == 1:
+        return mat.reshape(6, 6) @ nu
+    return np.einsum("nik,nk->ni", mat.reshape(-1, 6, 6), nu)
+
+
 @dataclass(frozen=True)
 class HydroModel:
     """A vehicle's hydrodynamic model about one reference point (FRD body axes).
@@ -666,10 +701,64 @@ class HydroModel:
         (sec. 3.6), which the UUV Simulator calls the forward-speed linear damping.
         """
         nu = np.asarray(nu, dtype=float)
-        d = self.linear_damping + self.quadratic_damping * np.abs(nu)
-        if np.any(self.lift):
-            d = d + nu[0] * np.asarray(self.lift, dtype=float)
-        return d
+        table, d_l = self._velocity_terms(False, False, True, True)   # velocity_forces' rule
+        return (np.concatenate([nu, np.abs(nu)]) @ table + d_l).reshape(6, 6)
+
+    def velocity_forces(self, nu, nu_r=None, *, coriolis: bool = True, munk: bool = True,
+                        rigid_body: bool = True) -> np.ndarray:
+        r"""The velocity-dependent forces [N, N m] of one velocity ``nu`` (6,) or many (n, 6)
+        [m/s, rad/s]; ``nu_r`` the velocity through the water (``None``: no current):
+
+        .. math::
+            C_{RB}(\nu)\nu + C_A(\nu_r)\nu_r + D(\nu_r)\nu_r,\qquad
+            C(\nu) + D(\nu) = D_L + \sum_j \nu_j K_j + \sum_j |\nu_j| Q_j
+
+        (Fossen 2011, eq. 7.190; C of Theorem 3.2, eq. 3.46, as :meth:`coriolis`; D as
+        :meth:`damping`, the lift :math:`uL` of Prestero 2001, sec. 3.6, in :math:`K_0`): C
+        and D are linear in :math:`[\nu, |\nu|]`, so each row's matrix is one product with a
+        12 x 36 table (:func:`coriolis_table`, :math:`Q_j = D_Q e_j e_j^T`) built once per
+        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A,
+        ``rigid_body=False`` C_RB. The one rule of the simulation's right-hand side, the
+        diagnose batch simulation and the log windows' force terms.
+        """
+        nu = np.asarray(nu, dtype=float)
+        if nu_r is None:
+            table, d_l = self._velocity_terms(rigid_body and coriolis, coriolis, munk, True)
+            return velocity_product(table, d_l, nu)
+        out = velocity_product(*self._velocity_terms(False, coriolis, munk, True),
+                                np.asarray(nu_r, dtype=float))
+        if rigid_body and coriolis:
+            out = out + velocity_product(*self._velocity_terms(True, False, munk, False), nu)
+        return out
+
+    @cached_property
+    def _velocity_tables(self) -> dict:
+        """:meth:`velocity_forces`' tables built so far, by choice of terms (immutable model)."""
+        return {}
+
+    def _velocity_terms(self, rigid_body: bool, added_mass: bool, munk: bool,
+                        damping: bool) -> tuple:
+        """(table on [nu, |nu|] (12, 36), or on nu (6, 36) without the damping; D_L (36,) or
+        ``None``) of :meth:`velocity_forces`: row j :math:`K_j` (:func:`coriolis_table`, the
+        lift L in row 0 with the damping), row 6 + j :math:`Q_j = D_Q e_j e_j^T`."""
+        key = (rigid_body, added_mass, munk, damping)
+        tables = self._velocity_tables
+        if key not in tables:
+            table = np.zeros((12, 36))
+            if rigid_body:
+                table[:6] += coriolis_table(self.rigid_body_mass)
+            if added_mass:
+                table[:6] += coriolis_table(self.added_mass, munk=munk)
+            d_l = None
+            if damping:
+                quad = np.zeros((6, 6, 6))
+                for j in range(6):
+                    quad[j][:, j] = np.asarray(self.quadratic_damping, dtype=float)[:, j]
+                table[6:] = quad.reshape(6, 36)
+                table[0] += np.asarray(self.lift, dtype=float).reshape(36)
+                d_l = np.asarray(self.linear_damping, dtype=float).reshape(36)
+            tables[key] = (table if damping else table[:6].copy(), d_l)
+        return tables[key]
 
     @property
     def control_matrix(self) -> np.ndarray:

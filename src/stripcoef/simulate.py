@@ -43,6 +43,7 @@ and the integrator (:func:`integrate`); :func:`replay` runs it on a log's own in
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import math
 import time as _time
 from typing import Callable
 
@@ -52,7 +53,7 @@ from scipy.spatial.transform import Rotation
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
-from stripcoef.model import restoring_forces
+from stripcoef.model import restoring_from_down
 from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log, LogInputs, log_inputs
 from stripcoef.progress import TimeBar
 
@@ -402,13 +403,9 @@ class RightHandSide:
                              expected="a positive definite inertia matrix") from None
         self.b_delta = model.control_matrix if inputs.surfaces else None
         # the model's matrices and restoring constants read once per run, not per evaluation
-        self.m_rb = np.asarray(model.rigid_body_mass, dtype=float)
-        self.d_l = np.asarray(model.linear_damping, dtype=float)
-        self.d_q = np.asarray(model.quadratic_damping, dtype=float)
-        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), dtype=float)
-        self.lift = lift if np.any(lift) else None
-        self.gravity = {"weight": model.weight, "buoyancy": model.buoyancy,
-                        "r_g": model.r_g, "r_b": model.r_b}
+        # floats: the restoring force's arithmetic on numpy scalars cost a tenth of f
+        self.gravity = {"weight": float(model.weight), "buoyancy": float(model.buoyancy),
+                        "r_g": tuple(map(float, model.r_g)), "r_b": tuple(map(float, model.r_b))}
         self.effect_terms = []
         if effects and model.effects:
             from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
@@ -431,7 +428,6 @@ class RightHandSide:
         model, inputs = self.model, self.inputs
         quat, nu = y[3:7], y[7:]
         rmat = _quaternion_matrix(quat)         # normalised: the integrator's drift of |q|
-        eta = np.concatenate([y[:3], _matrix_euler(rmat, quat)])
         c, thrust, tau, delta = inputs(time)
         if inputs.current_fn is None:
             nu_c, nu_r, rhs_force = _ZERO6, nu, tau
@@ -439,17 +435,14 @@ class RightHandSide:
             nu_c, nu_c_dot = self.current(time, rmat, nu)
             nu_r = nu - nu_c
             rhs_force = tau + self.m_added @ nu_c_dot
-        if self.coriolis:
-            rhs_force = (rhs_force - _coriolis_times_velocity(self.m_rb, nu)
-                         - _coriolis_times_velocity(self.m_added, nu_r, munk=self.munk))
-        # D(nu_r) nu_r = D_L nu_r + D_Q (|nu_r| o nu_r) + u_r L nu_r (HydroModel.damping)
-        rhs_force = (rhs_force - self.d_l @ nu_r - self.d_q @ (np.abs(nu_r) * nu_r)
-                     - restoring_forces(eta, **self.gravity))
-        if self.lift is not None:
-            rhs_force = rhs_force - nu_r[0] * (self.lift @ nu_r)
+        # C_RB(nu) nu + C_A(nu_r) nu_r + D(nu_r) nu_r, lift included (HydroModel.velocity_forces)
+        rhs_force = (rhs_force - model.velocity_forces(nu, None if nu_r is nu else nu_r,
+                                                       munk=self.munk, coriolis=self.coriolis)
+                     - restoring_from_down(rmat[2].tolist(), **self.gravity))
         if self.b_delta is not None:
             rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
         if self.effect_terms or self.extra_force is not None:
+            eta = np.concatenate([y[:3], _matrix_euler(rmat, quat)])
             names = inputs.names
             hook = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
                     "tau": tau, "nu_c": nu_c, "nu_r": nu_r, "model": model,
@@ -472,25 +465,6 @@ class RightHandSide:
 
 _ZERO6 = np.zeros(6)
 _ZERO6.flags.writeable = False
-
-
-def _coriolis_times_velocity(mass_matrix, nu, *, munk: bool = True) -> np.ndarray:
-    r""":math:`C(\nu)\nu` [N, N m] of a 6x6 inertia matrix [kg, kg m, kg m^2] and one velocity
-    ``nu`` (6,) [m/s, rad/s], with :math:`C` of :func:`stripcoef.model.coriolis_from_mass`
-    (Fossen 2011, Theorem 3.2, eq. 3.46) as cross products, without building the matrix:
-
-    .. math:: C(\nu)\nu = [\omega\times a;\ v\times a + \omega\times b],\quad
-              [a; b] = M\nu
-
-    ``munk=False`` drops :math:`v\times a` (the Munk moment, as ``HydroModel.coriolis``).
-    The one-velocity form of :func:`stripcoef.effects.windows.coriolis_times_velocity`."""
-    a0, a1, a2, b0, b1, b2 = (mass_matrix @ nu).tolist()
-    u, v, w, p, q, r = nu.tolist()
-    mu = 1.0 if munk else 0.0
-    return np.array([q * a2 - r * a1, r * a0 - p * a2, p * a1 - q * a0,
-                     mu * (v * a2 - w * a1) + q * b2 - r * b1,
-                     mu * (w * a0 - u * a2) + r * b0 - p * b2,
-                     mu * (u * a1 - v * a0) + p * b1 - q * b0])
 
 
 def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, method="RK45",
@@ -521,7 +495,7 @@ def integrate(f, t, y0, bounds, *, start_segment=None, rtol=1e-8, atol=1e-10, me
             raise _OverBudget(time, f"over the time budget of {time_limit:g} s")
         clock.advance(time)
         out = f(time, y)
-        if not np.all(np.isfinite(out)):
+        if not math.isfinite(out.sum()):       # inf or NaN in any entry (np.all: 3 us more)
             raise _OverBudget(time, "the state or its rate is no longer finite (the motion "
                                     "diverged)")
         return out

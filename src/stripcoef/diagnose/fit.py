@@ -65,26 +65,34 @@ def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None, *, with_cov=Tr
     return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper, with_cov=with_cov)
 
 
-def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
-                  with_cov=True):
-    """:func:`_solve` without inertia columns; ``with_cov=False`` skips the covariance
-    (None in its place: a cost evaluation needs only the residual)."""
+def _linear_system(H, prior_sd, sigma, weight=1.0) -> tuple:
+    """(a, a / scale, column scale, prior rows) of :func:`_solve_linear`'s stacked system: the
+    same for every right-hand side y (the profiled inertia tries several)."""
     p = H.shape[1]
-    if p == 0:
-        return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
     rows = [H * weight / sigma]
-    rhs = [y * weight / sigma]
     finite = np.isfinite(prior_sd)
     if finite.any():
         reg = np.zeros((int(finite.sum()), p))
         reg[np.arange(reg.shape[0]), np.nonzero(finite)[0]] = 1.0 / prior_sd[finite]
         rows.append(reg)
-        rhs.append(np.zeros(reg.shape[0]))
     a = np.vstack(rows)
-    b = np.concatenate(rhs)
     scale = np.sqrt((a ** 2).sum(axis=0))
     scale[scale == 0] = 1.0
-    theta_s, *_ = np.linalg.lstsq(a / scale, b, rcond=None)
+    return a, a / scale, scale, a.shape[0] - H.shape[0]
+
+
+def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
+                  with_cov=True, system=None):
+    """:func:`_solve` without inertia columns; ``with_cov=False`` skips the covariance
+    (None in its place: a cost evaluation needs only the residual); ``system``: the
+    :func:`_linear_system` of H, prior_sd, sigma and weight, built once by the caller."""
+    p = H.shape[1]
+    if p == 0:
+        return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
+    a, a_s, scale, n_prior = _linear_system(H, prior_sd, sigma, weight) if system is None \
+        else system
+    b = np.concatenate([y * weight / sigma, np.zeros(n_prior)])
+    theta_s, *_ = np.linalg.lstsq(a_s, b, rcond=None)
     low_bad = lower is not None and np.any(theta_s / scale < lower)
     up_bad = upper is not None and np.any(theta_s / scale > upper)
     if low_bad or up_bad:
@@ -92,11 +100,11 @@ def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
               else np.where(np.isfinite(lower), lower * scale, -np.inf))
         ub = (np.full(p, np.inf) if upper is None
               else np.where(np.isfinite(upper), upper * scale, np.inf))
-        theta_s = lsq_linear(a / scale, b, bounds=(lb, ub), method="bvls").x
+        theta_s = lsq_linear(a_s, b, bounds=(lb, ub), method="bvls").x
     theta = theta_s / scale
     if not with_cov:
         return theta, None, b - a @ theta
-    cov = np.linalg.pinv((a / scale).T @ (a / scale)) / np.outer(scale, scale)
+    cov = np.linalg.pinv(a_s.T @ a_s) / np.outer(scale, scale)
     return theta, cov, b - a @ theta
 
 
@@ -115,9 +123,11 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None, *, with_cov=Tru
     lowx = None if lower is None else lower[keep]
     upx = None if upper is None else upper[keep]
 
+    system = _linear_system(X, sdx, sigma) if X.shape[1] else None
+
     def inner(mu, with_cov=True):
         th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx,
-                                     with_cov=with_cov)
+                                     with_cov=with_cov, system=system)
         extra = np.array([mu / mu_sd]) if np.isfinite(mu_sd) else np.zeros(0)
         return th, cov, np.concatenate([res, extra])
 

@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import RK45
 
-from stripcoef.model import restoring_forces
+from stripcoef.model import restoring_from_down
 
 #: Most integration steps per sample interval before a segment set counts as diverged (a
 #: smooth interval takes one or two; ``simulate``'s budget is 1e6 evaluations per run).
@@ -79,18 +79,13 @@ class BatchRightHandSide:
     r"""The state equation of S segments at once (module docstring); ``tau`` (S, 6) [N, N m]
     the held applied force of each segment's current sample, set by the caller.
 
-    :math:`C_{RB}(\nu)\nu + C_A(\nu)\nu = C_M(\nu)\nu` with :math:`M = M_{RB} + M_A`
-    (C is linear in the mass matrix, Fossen 2011, eq. 3.46: one product instead of two);
-    :math:`D(\nu)\nu = D_L\nu + D_Q(|\nu|\odot\nu) + u L\nu`
-    (:func:`stripcoef.effects.windows.damping_times_velocity`)."""
+    :math:`C_{RB}(\nu)\nu + C_A(\nu)\nu + D(\nu)\nu` of every segment by
+    :meth:`stripcoef.model.HydroModel.velocity_forces` (Fossen 2011, eq. 7.190; no current in
+    a replay, so :math:`\nu_r = \nu`)."""
 
     def __init__(self, model, hooks=None, terms=None):
+        self.model = model
         self.m_inv_t = np.linalg.inv(model.mass_matrix).T
-        self.m_t = np.asarray(model.mass_matrix, float).T
-        self.dl_t = np.asarray(model.linear_damping, float).T
-        self.dq_t = np.asarray(model.quadratic_damping, float).T
-        lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), float)
-        self.lift_t = lift.T if np.any(lift) else None
         self.weight, self.buoyancy = model.weight, model.buoyancy
         self.r_g, self.r_b = tuple(map(float, model.r_g)), tuple(map(float, model.r_b))
         self.terms = terms or []     # per segment: a list of scalar force laws
@@ -101,17 +96,12 @@ class BatchRightHandSide:
         quat, nu = x[:, 3:7], x[:, 7:]
         v, w = nu[:, :3], nu[:, 3:]
         rmat = _quat_matrices(quat)
-        phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
-        theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
-        ab = nu @ self.m_t
-        force = self.tau - nu @ self.dl_t - (np.abs(nu) * nu) @ self.dq_t
-        force[:, :3] += _cross(ab[:, :3], w)
-        force[:, 3:] += _cross(ab[:, :3], v) + _cross(ab[:, 3:], w)
-        if self.lift_t is not None:
-            force -= nu[:, :1] * (nu @ self.lift_t)
-        force -= restoring_forces((None, None, None, phi, theta), weight=self.weight,
-                                  buoyancy=self.buoyancy, r_g=self.r_g, r_b=self.r_b).T
+        force = self.tau - self.model.velocity_forces(nu)
+        force -= restoring_from_down(rmat[:, 2].T, weight=self.weight, buoyancy=self.buoyancy,
+                                     r_g=self.r_g, r_b=self.r_b).T
         if any(self.terms):
+            phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
+            theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
             psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
             eta = np.column_stack([x[:, :3], phi, theta, psi])
             for s, laws in enumerate(self.terms):

@@ -15,8 +15,7 @@ import numpy as np
 
 from stripcoef.conventions import rotation_matrix, skew
 from stripcoef.errors import InputError
-from stripcoef.effects.windows import (coefficient_column, coriolis_times_velocity,
-                                       damping_times_velocity, rotation_matrices)
+from stripcoef.effects.windows import coefficient_column, rotation_matrices
 from stripcoef.effects.base import TRANSLATIONAL, Effect, _unit_vec
 
 
@@ -218,13 +217,13 @@ class Current(Effect):
 
     @staticmethod
     def _on_log(data):
-        """(R per sample (n, 3, 3), D(nu)nu, C_A(nu)nu (n, 6)) of the log and the prior: the
-        same for every current a fit tries, so computed once per window data
+        """(R per sample (n, 3, 3), C_A(nu)nu + D(nu)nu (n, 6)) of the log and the prior
+        (:meth:`~stripcoef.model.HydroModel.velocity_forces`, the water's part): the same for
+        every current a fit tries, so computed once per window data
         (:meth:`~stripcoef.effects.windows.WindowData.cached`)."""
         model = data.model
         return data.cached("current_on_log", lambda: (
-            rotation_matrices(data.eta), damping_times_velocity(model, data.nu),
-            coriolis_times_velocity(model.added_mass, data.nu)))
+            rotation_matrices(data.eta), model.velocity_forces(data.nu, rigid_body=False)))
 
     def _current_body(self, data, vc):
         """nu_c = [R^T V_c; 0] per sample (n, 6) [m/s]."""
@@ -251,9 +250,7 @@ class Current(Effect):
         model = data.model
         nuc = self._current_body(data, vc)
         nur = data.nu - nuc
-        _, d_nu, c_nu = self._on_log(data)
-        diff = (damping_times_velocity(model, nur) - d_nu
-                + coriolis_times_velocity(model.added_mass, nur) - c_nu)
+        diff = model.velocity_forces(nur, rigid_body=False) - self._on_log(data)[1]
         return -data.mean(diff[:, dof]) + data.rate(nuc @ model.added_mass[dof])
 
     def own_design(self, data, dof, hyper=None):
@@ -303,9 +300,8 @@ class Current(Effect):
             nuc = np.concatenate([rt @ v, np.zeros(3)])
             nur = nu - nuc
             nuc_dot = np.concatenate([-skew(nu[3:]) @ (rt @ v), np.zeros(3)])
-            diff = (model.damping(nur) @ nur - model.damping(nu) @ nu
-                    + model.coriolis(nur, rigid_body=False) @ nur
-                    - model.coriolis(nu, rigid_body=False) @ nu)
+            diff = (model.velocity_forces(nur, rigid_body=False)
+                    - model.velocity_forces(nu, rigid_body=False))
             return (-diff[dof] + (model.added_mass @ nuc_dot)[dof]) * e
         return f
 

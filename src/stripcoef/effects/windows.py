@@ -26,6 +26,7 @@ from stripcoef.conventions import parse_dof
 from stripcoef.errors import InputError
 from stripcoef.ingest.attitude import euler_matrices
 from stripcoef.logfile import log_inputs
+from stripcoef.model import coriolis_table, velocity_product
 
 
 #: Half-span of the end-value quadratics of :meth:`WindowData.rate` [s] (0.2 s: 5 samples
@@ -44,32 +45,12 @@ JUMP_FRACTION = 0.05
 
 
 def coriolis_times_velocity(mass_matrix, nu) -> np.ndarray:
-    r"""C(nu) nu for many velocities at once, C from :func:`stripcoef.model.coriolis_from_mass`.
-
-    .. math:: C(\nu)\nu = [-a\times\nu_2;\ -a\times\nu_1 - b\times\nu_2],\quad
-              a = M_{11}\nu_1 + M_{12}\nu_2,\ b = M_{21}\nu_1 + M_{22}\nu_2
-
-    Parameters
-    ----------
-    mass_matrix : (6, 6) array [kg, kg m, kg m^2]
-    nu : (n, 6) array [m/s, rad/s]
-
-    Returns
-    -------
-    (n, 6) array [N, N m]
-
-    References
-    ----------
-    Fossen (2011), Theorem 3.2, eq. 3.46.
-    """
+    r"""C(nu) nu [N, N m] of a 6x6 inertia matrix [kg, kg m, kg m^2] for (n, 6) velocities
+    [m/s, rad/s]: the rule of :meth:`stripcoef.model.HydroModel.velocity_forces`
+    (:func:`stripcoef.model.coriolis_table`; Fossen 2011, Theorem 3.2, eq. 3.46), for a bare
+    mass matrix (a coefficient's regressor, :func:`coefficient_column`)."""
     nu = np.atleast_2d(np.asarray(nu, dtype=float))
-    m = np.asarray(mass_matrix, dtype=float)
-    ab = nu @ m.T
-    a, b = ab[:, :3], ab[:, 3:]
-    out = np.empty_like(nu)
-    out[:, :3] = -np.cross(a, nu[:, 3:])
-    out[:, 3:] = -np.cross(a, nu[:, :3]) - np.cross(b, nu[:, 3:])
-    return out
+    return velocity_product(coriolis_table(mass_matrix), None, nu)
 
 
 def white_noise_sd(x) -> float:
@@ -91,16 +72,11 @@ def _second_difference_mad(x) -> float:
 
 
 def damping_times_velocity(model, nu) -> np.ndarray:
-    r""":math:`D(\nu)\nu = D_L\nu + u L\nu + D_Q(|\nu|\odot\nu)` for (n, 6) velocities [N, N m]
-    (Fossen 2011, eq. 6.59 with the diagonal-in-|nu| quadratic form of HydroModel.damping and
-    its lift L, Prestero 2001 sec. 3.6)."""
-    nu = np.atleast_2d(np.asarray(nu, dtype=float))
-    out = nu @ np.asarray(model.linear_damping).T + (np.abs(nu) * nu) @ np.asarray(
-        model.quadratic_damping).T
-    lift = np.asarray(getattr(model, "lift", np.zeros((6, 6))), dtype=float)
-    if np.any(lift):
-        out = out + nu[:, :1] * (nu @ lift.T)
-    return out
+    r""":math:`D(\nu)\nu = D_L\nu + u L\nu + D_Q(|\nu|\odot\nu)` for (n, 6) velocities [N, N m]:
+    :meth:`stripcoef.model.HydroModel.velocity_forces` without C (Fossen 2011, eq. 6.59 with
+    the diagonal-in-|nu| quadratic form of HydroModel.damping and its lift L, Prestero 2001
+    sec. 3.6)."""
+    return model.velocity_forces(np.atleast_2d(np.asarray(nu, dtype=float)), coriolis=False)
 
 
 def rotation_matrices(eta) -> np.ndarray:
@@ -392,8 +368,5 @@ def prior_residual(data: WindowData, model) -> np.ndarray:
     Wang & Clark 2006, eqs. 14-17 and Fossen (2011), eq. 7.190.
     """
     nu, eta = data.nu, data.eta
-    rest = (coriolis_times_velocity(model.rigid_body_mass, nu)
-            + coriolis_times_velocity(model.added_mass, nu)
-            + damping_times_velocity(model, nu)
-            + np.array([model.restoring(e) for e in eta]))
+    rest = model.velocity_forces(nu) + model.restoring(eta.T).T     # rows at once
     return (data.rate(nu) @ model.mass_matrix.T + data.mean(rest) - data.mean_held(data.tau))

@@ -85,9 +85,10 @@ class FinPlanform:
     tip: float
 
 
-def ring_velocity(points, nodes, quads) -> np.ndarray:
+def ring_velocity(points, nodes, quads, normals=None) -> np.ndarray:
     r"""Velocity [m/s] at ``points`` (P, 3) induced by unit vortex rings ``quads`` (Q, 4 node
-    indices into ``nodes`` (N, 3)) [m]; returns (P, Q, 3).
+    indices into ``nodes`` (N, 3)) [m]; returns (P, Q, 3), or with ``normals`` (P, 3) the
+    component along each point's normal (P, Q).
 
     Each straight segment A -> B of circulation 1 gives (Katz & Plotkin 2001, eq. 10.115)
 
@@ -97,33 +98,54 @@ def ring_velocity(points, nodes, quads) -> np.ndarray:
 
     with :math:`\mathbf{r}_1 = P - A`, :math:`\mathbf{r}_2 = P - B`,
     :math:`\mathbf{r}_0 = B - A`; a point on a segment's line (or a zero-length segment, a
-    closed end's collapsed edge) gets nothing from it.
+    closed end's collapsed edge) gets nothing from it.  B -> A gives exactly minus A -> B, so
+    each edge the rings share is evaluated once (a sheet's inner edges belong to two rings).
     """
     points = np.asarray(points, dtype=float)
-    px, py, pz = (points[:, i, None] for i in range(3))
-    ox = oy = oz = 0.0
+    quads = np.asarray(quads)
+    px, py, pz = points.T
+    start = quads
+    end = np.roll(quads, -1, axis=1)
+    forward = start < end
+    pairs = np.stack([np.where(forward, start, end), np.where(forward, end, start)], axis=-1)
+    edges, which = np.unique(pairs.reshape(-1, 2), axis=0, return_inverse=True)
+    which = which.reshape(quads.shape)
+    a, b = nodes[edges[:, 0]], nodes[edges[:, 1]]
+    ax, ay, az = (a[:, i, None] for i in range(3))
+    bx, by, bz = (b[:, i, None] for i in range(3))
     with np.errstate(divide="ignore", invalid="ignore"):
-        for k in range(4):                  # by components: (P, Q) arrays, no (P, Q, 3) ones
-            a = nodes[quads[:, k]]
-            b = nodes[quads[:, (k + 1) % 4]]
-            r1x, r1y, r1z = px - a[:, 0], py - a[:, 1], pz - a[:, 2]
-            r2x, r2y, r2z = px - b[:, 0], py - b[:, 1], pz - b[:, 2]
-            r0x, r0y, r0z = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1], b[:, 2] - a[:, 2]
-            cx = r1y * r2z - r1z * r2y
-            cy = r1z * r2x - r1x * r2z
-            cz = r1x * r2y - r1y * r2x
-            c2 = cx * cx + cy * cy + cz * cz
-            n1 = np.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
-            n2 = np.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-            l0 = r0x * r0x + r0y * r0y + r0z * r0z
-            ok = (c2 > 1e-12 * l0 * l0) & (n1 > 0) & (n2 > 0) & (l0 > 0)
-            f = ((r0x * r1x + r0y * r1y + r0z * r1z) / n1
-                 - (r0x * r2x + r0y * r2y + r0z * r2z) / n2) / c2
-            f = np.where(ok, f, 0.0)
-            ox = ox + cx * f
-            oy = oy + cy * f
-            oz = oz + cz * f
-    out = np.stack(np.broadcast_arrays(ox, oy, oz), axis=-1)
+        # by components: (E, P) arrays (an edge's row is gathered whole for its rings), no
+        # (E, P, 3) ones
+        r1x, r1y, r1z = px - ax, py - ay, pz - az
+        r2x, r2y, r2z = px - bx, py - by, pz - bz
+        r0x, r0y, r0z = bx - ax, by - ay, bz - az
+        cx = r1y * r2z - r1z * r2y
+        cy = r1z * r2x - r1x * r2z
+        cz = r1x * r2y - r1y * r2x
+        c2 = cx * cx + cy * cy + cz * cz
+        n1 = np.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
+        n2 = np.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+        l0 = r0x * r0x + r0y * r0y + r0z * r0z
+        ok = (c2 > 1e-12 * l0 * l0) & (n1 > 0) & (n2 > 0) & (l0 > 0)
+        f = ((r0x * r1x + r0y * r1y + r0z * r1z) / n1
+             - (r0x * r2x + r0y * r2y + r0z * r2z) / n2) / c2
+        f = np.where(ok, f, 0.0)
+    sign = np.where(forward, 1.0, -1.0)[:, :, None]
+    if normals is not None:
+        nx, ny, nz = np.asarray(normals, dtype=float).T
+        g = (cx * nx + cy * ny + cz * nz) * f
+        out = 0.0
+        for k in range(4):
+            out = out + sign[:, k] * g[which[:, k]]
+        return out.T / (4.0 * np.pi)
+    vx, vy, vz = cx * f, cy * f, cz * f
+    ox = oy = oz = 0.0
+    for k in range(4):
+        rows, sk = which[:, k], sign[:, k]
+        ox = ox + sk * vx[rows]
+        oy = oy + sk * vy[rows]
+        oz = oz + sk * vz[rows]
+    out = np.stack(np.broadcast_arrays(ox.T, oy.T, oz.T), axis=-1)
     return out / (4.0 * np.pi)
 
 
@@ -293,8 +315,7 @@ def sheet_added_mass(mesh: SheetMesh, rho: float) -> tuple[np.ndarray, np.ndarra
     a = np.empty((n, n))
     for i in range(0, n, _ROW_BLOCK):
         j = min(n, i + _ROW_BLOCK)
-        v = ring_velocity(mesh.points[i:j], mesh.nodes, mesh.quads)
-        a[i:j] = np.einsum("pqi,pi->pq", v, mesh.normals[i:j])
+        a[i:j] = ring_velocity(mesh.points[i:j], mesh.nodes, mesh.quads, mesh.normals[i:j])
     hull = np.flatnonzero(~mesh.fin)
     phi = np.empty((len(hull), n))
     for i in range(0, len(hull), _ROW_BLOCK):

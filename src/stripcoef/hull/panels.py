@@ -61,6 +61,8 @@ their observed order wanders; the grid convergence index
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from stripcoef.errors import InputError
@@ -403,7 +405,33 @@ def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
     """(panels, 6x6 added mass) of one level; with ``mirrors`` the level is a remeshed
     :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with image
     panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
-    panelling)."""
+    panelling).  Solved once per process for the same panels and settings
+    (:func:`_solved_level`: a vehicle file's surface is estimated by many commands and tests,
+    the BlueROV2 Heavy's two levels about 8 s each time)."""
+    pv = np.ascontiguousarray(pv, dtype=float)
+    pf = np.ascontiguousarray(pf, dtype=np.int64)
+    n, a = _solved_level(pv.tobytes(), pv.shape, pf.tobytes(), pf.shape, float(scale),
+                         float(rho), tuple(float(x) for x in np.ravel(about)), float(near_factor),
+                         tuple(mirrors))
+    return n, a.copy()
+
+
+@functools.lru_cache(maxsize=32)
+def _solved_level(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, scale: float,
+                  rho: float, about: tuple, near_factor: float, mirrors: tuple):
+    """:func:`_solve_level` of the level's vertices and faces as bytes (hashable, immutable:
+    the memo's key); the result is read-only (the caller copies it)."""
+    pv = np.frombuffer(vertices, dtype=float).reshape(vshape).copy()
+    pf = np.frombuffer(faces, dtype=np.int64).reshape(fshape).copy()
+    about = np.array(about)
+    n, a = _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors)
+    a = np.array(a, dtype=float)
+    a.flags.writeable = False
+    return n, a
+
+
+def _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors=()):
+    """:func:`_solve_level`, computed."""
     if mirrors:
         pv, pf = drop_caps(pv, pf, mirrors, about)
     ptri = pv[pf]

@@ -1,0 +1,73 @@
+"""CPU time of the library code the test suite spends most of its time in (issue 31).
+
+- a simulation: the 240 s manoeuvre of ``benchmarks.simulate_speed`` at rtol 1e-6 (the
+  right-hand side, :meth:`stripcoef.model.HydroModel.velocity_forces`), and a synthetic log
+  with a current (``validation.synthetic.generate("current", 11)``, which the diagnose tests
+  build by the dozen);
+- the panel method: ``estimate`` of the BlueROV2 Heavy and the VideoRay Pro 3 vehicle files,
+  twice each in one process (the second reads the level solves of
+  ``stripcoef.hull.panels`` solved by the first);
+- the thin-sheet method: ``ring_velocity`` of 256 points on a finned body of 1600 panels
+  (``stripcoef.hull.finsheet``).
+
+Each number is the least CPU time (``time.process_time``) of ``--repeat`` runs, BLAS on one
+thread, as in the tests.
+
+Usage: python -m benchmarks.library_hotpaths [--repeat 3]
+"""
+
+import argparse
+import os
+import time
+import warnings
+from pathlib import Path
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import numpy as np  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def least(f, repeat: int) -> float:
+    """Least CPU seconds of ``repeat`` calls of f."""
+    out = []
+    for _ in range(repeat):
+        t0 = time.process_time()
+        f()
+        out.append(time.process_time() - t0)
+    return min(out)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args(argv)
+    from stripcoef import estimate
+    from stripcoef.hull.finsheet import FinPlanform, ring_velocity, sheet_mesh
+    from stripcoef.simulate import simulate
+    from validation.synthetic import generate, manoeuvre, rov_model
+
+    model = rov_model()
+    t, cmds = manoeuvre(np.random.default_rng(0))
+    print(f"simulate, 240 s manoeuvre, rtol 1e-6: "
+          f"{least(lambda: simulate(model, t, commands=cmds, rtol=1e-6, atol=1e-8), args.repeat):.2f} s")
+    print(f"generate('current', 11): {least(lambda: generate('current', 11), args.repeat):.2f} s")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name in ("bluerov2_heavy", "videoray_pro3"):
+            path = ROOT / "geometry" / f"{name}.yaml"
+            times = [least(lambda: estimate(path), 1) for _ in range(2)]
+            print(f"estimate({name}.yaml): first {times[0]:.2f} s, second {times[1]:.2f} s")
+    fins = [FinPlanform(k * np.pi / 2, -0.9, -0.6, 0.25) for k in range(4)]
+    mesh = sheet_mesh(lambda x: np.where(np.abs(x) < 1,
+                                         0.1 * np.sqrt(np.clip(1 - x * x, 0, None)), 0.0),
+                      -1.0, 1.0, fins)
+    pts = mesh.points[:256]
+    print(f"ring_velocity, 256 points x {len(mesh.quads)} panels: "
+          f"{least(lambda: ring_velocity(pts, mesh.nodes, mesh.quads), args.repeat + 1):.3f} s")
+
+
+if __name__ == "__main__":
+    main()
