@@ -107,19 +107,16 @@ def lumped_added_mass_split(added_mass, rigid_body_mass, r_g):
     so that its rigid-body matrix about the link origin grows by
 
     .. math::
-        M_{lump} = m_t egin{bmatrix} I & -S(r_g) \ S(r_g) & -S(r_g)^2 \end{bmatrix}
+        M_{lump} = m_t \begin{bmatrix} I & -S(r_g) \\ S(r_g) & -S(r_g)^2 \end{bmatrix}
                  + \operatorname{diag}(0, 0, 0, J)
 
     (Fossen 2011, eq. 3.44: a mass at the CG) and the plugin applies only
     :math:`M_A - M_{lump}` explicitly. The physics engine integrates the lumped part
     implicitly, with its exact rigid-body Coriolis (equal to C_A for an isotropic
     translational and a diagonal rotational added mass). The explicit feedback
-    :math:`\dot
-u_{k+1} = M'^{-1}(F - (M_A - M_{lump})\dot
-u_k)`,
+    :math:`\dot\nu_{k+1} = M'^{-1}(F - (M_A - M_{lump})\dot\nu_k)`,
     :math:`M' = M_{RB} + M_{lump}`, is stable when the spectral radius
-    :math:`
-ho(M'^{-1}(M_A - M_{lump})) < 1` (the explicit form's divergence: gz-sim issue
+    :math:`\rho(M'^{-1}(M_A - M_{lump})) < 1` (the explicit form's divergence: gz-sim issue
     #1923); it is returned so that the caller can say so.
 
     Parameters
