@@ -386,7 +386,7 @@ def datcom_body_Yv(samples: int = 20001):
     after Hopkins 1951, NACA RM A51C14): slender-body lift up to the station x_0 where the flow
     stops being potential, none behind it,
 
-    .. math:: N = 2\,q\,lpha\,(k_2 - k_1)\,S(x_0), \qquad x_0 = 0.378\,l + 0.527\,x_1
+    .. math:: N = 2\,q\,\alpha\,(k_2 - k_1)\,S(x_0), \qquad x_0 = 0.378\,l + 0.527\,x_1
 
     with x_1 the station of the most negative dS/dx and k_2 - k_1 Munk's factor, Lamb's for the
     prolate spheroid of the body's fineness (DATCOM Fig. 4.2.1.1-20a tabulates the same values;

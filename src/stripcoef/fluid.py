@@ -126,9 +126,9 @@ def density_teos10(temperature, salinity):
     r"""Sea-water density at the surface from TEOS-10 (needs the ``seawater`` extra, gsw).
 
     .. math::
-        S_R = rac{35.16504}{35} S_P,\qquad
+        S_R = \frac{35.16504}{35} S_P,\qquad
         \Theta = \Theta(S_R, t, p = 0),\qquad
-        ho = ho(S_R, \Theta, p = 0)
+        \rho = \rho(S_R, \Theta, p = 0)
 
     Reference-composition salinity :math:`S_R` [g/kg] stands for the absolute salinity where
     the location is not known (IOC et al. 2010, sec. 2.5); conservative temperature and the
