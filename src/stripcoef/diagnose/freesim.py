@@ -40,7 +40,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import RK45
 
-from stripcoef.conventions import VELOCITIES
 from stripcoef.model import restoring_from_down
 
 #: Most integration steps per sample interval before a segment set counts as diverged (a
@@ -159,8 +158,7 @@ def integrate_interval(f, t0, h, x, rtol, atol, ds=1.0):
     return x, ds
 
 
-def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7),
-                          prescribed=()):
+def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)):
     """The re-simulated velocities of every segment ``(a, b)`` of ``bounds`` of ``log``,
     each from the logged state at its row a with the inputs ``inputs``
     (:func:`stripcoef.logfile.log_inputs` of the whole log): a list of (b - a, 6) arrays
@@ -168,13 +166,7 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     surfaces (:func:`supported`). The effects with a state (a thruster lag, an actuation
     delay) read the input history from the log's first sample: their state at a segment's
     start is the one the logged inputs before it set (a first-order lag of the logged
-    commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input.
-
-    ``prescribed``: DOF indices whose velocity is not simulated freely but set to the
-    logged value at the start of every sample interval (the series-parallel form of
-    Narendra & Parthasarathy 1990, IEEE Trans. Neural Netw. 1(1), 4-27: measured values in
-    the place of the model's own for those outputs; a missing column counts as 0); the other
-    DOFs are free. Default: every DOF free."""
+    commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input."""
     from stripcoef.effects.laws import effect_force_terms
     from stripcoef.simulate import InputSampler, initial_state, state_vector
 
@@ -189,9 +181,6 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     x = np.array([state_vector(*initial_state(log, int(a))[:2]) for a in starts])
     out = np.empty((len(bounds), int(lengths.max()), 6))
     out[:, 0] = x[:, 7:]
-    fixed = sorted({int(j) for j in prescribed})
-    logged = (np.column_stack([np.asarray(log.get(VELOCITIES[j], np.zeros(t.size)), float)
-                               for j in fixed]) if fixed else None)
     terms = hooks = held = None
     if history:
         # each segment its own laws (a lag has a state); those of held effects
@@ -212,8 +201,6 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     for k in range(int(lengths.max()) - 1):
         act = np.nonzero(lengths > k + 1)[0]
         rows = starts[act] + k
-        if fixed:
-            x[np.ix_(act, [7 + j for j in fixed])] = logged[rows]
         f.tau = tau_all[rows]
         if history:
             f.terms = [terms[s] for s in act]

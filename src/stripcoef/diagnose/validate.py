@@ -38,8 +38,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
     log: with :math:`r_i = E_i / E_i^{prior}` the free-simulation error of DOF i [m/s or
-    rad/s] (:func:`conditional_errors`: the diagnosed DOFs free, the others following the
-    log, as in the fit) relative to the prior's, a model's score is the pair (number of DOFs with :math:`r_i > 1`,
+    rad/s] (:func:`stripcoef.diagnose.heldout.free_simulation_errors`) relative to the
+    prior's, a model's score is the pair (number of DOFs with :math:`r_i > 1`,
     :math:`\sum_i r_i^2`), compared in that order; the change (a DOF's calibration or one
     effect) whose removal gives the best score is removed while that score is no worse than
     the current one (ties go to the simpler model), so the result never simulates an
@@ -54,9 +54,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
-    from stripcoef.diagnose.heldout import hold_last_velocity_errors
+    from stripcoef.diagnose.heldout import free_simulation_errors, hold_last_velocity_errors
 
-    base = conditional_errors(val_log, prior, dofs)
+    base = free_simulation_errors(val_log, prior, dofs)
     ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
     ref = [max(e, 1e-12) for e in ref]
     cache = {}
@@ -67,7 +67,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         key = frozenset(partners(excl, changes))
         if key not in cache:
             budget.check()
-            e = conditional_errors(val_log, calibrated_model(prior, per, fits, key), dofs)
+            e = free_simulation_errors(val_log, calibrated_model(prior, per, fits, key), dofs)
             if e is None:
                 cache[key] = ((math.inf, math.inf), None)
             else:
@@ -167,55 +167,7 @@ def _named(errors, dofs):
 
 def validation_errors(val_log, model, dofs):
     """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
-    rad/s] (the record's ``kept_changes`` form, :func:`conditional_errors`), None when a
-    simulation diverges."""
-    return _named(conditional_errors(val_log, model, dofs), dofs)
+    rad/s] (the record's ``kept_changes`` form), None when a simulation diverges."""
+    from stripcoef.diagnose.heldout import free_simulation_errors
 
-
-def conditional_errors(log, model, dofs):
-    r"""RMS free-simulation error of each diagnosed DOF in ``dofs`` [m/s or rad/s] with the
-    velocities of the other DOFs following the log (prescribed at every sample,
-    :func:`stripcoef.diagnose.freesim.batch_free_velocities`), in the segments of
-    :func:`stripcoef.diagnose.heldout.segments`; None when a simulation diverges.
-
-    The changes :func:`validate_changes` judges were fitted to the window residual of each
-    diagnosed DOF *given* the logged motion of the others (the coupling terms
-    :math:`C(\nu)\nu` read the logged velocities, :mod:`stripcoef.effects.windows`); the
-    other DOFs' equations are the prior's in every model compared. Simulated freely, their
-    errors (the same prior in both models, unstable under way: the Munk moments) feed back
-    into the diagnosed DOF through the couplings and swamp the difference a change makes:
-    on the independent simulator's 120-s logs a dead band and a thrust asymmetry found to
-    within 1 % of the truth were removed (issue 33). Validating under the fit's own
-    conditioning, the series-parallel form of Narendra & Parthasarathy (1990), IEEE Trans.
-    Neural Netw. 1(1), 4-27, compares the models on what they differ in; the diagnosed DOFs
-    stay free (parallel), so a change that only fits one step ahead still has to hold over
-    the horizon. A model :func:`~stripcoef.diagnose.freesim.supported` does not replay (control
-    surfaces) is simulated with every DOF free
-    (:func:`stripcoef.diagnose.heldout.free_simulation_errors`)."""
-    import numpy as np
-
-    from stripcoef.conventions import VELOCITIES
-    from stripcoef.diagnose.freesim import batch_free_velocities, supported
-    from stripcoef.diagnose.heldout import free_simulation_errors, segments
-    from stripcoef.errors import StripcoefError
-    from stripcoef.logfile import log_inputs
-
-    try:
-        inputs = log_inputs(log, model)
-    except StripcoefError:
-        return None
-    if not supported(model, inputs):
-        return free_simulation_errors(log, model, dofs)
-    t = np.asarray(log["t"], float)
-    bounds = segments(t)
-    others = [j for j in range(6) if j not in dofs]
-    runs = batch_free_velocities(model, log, bounds, inputs, prescribed=others)
-    if runs is None:
-        return None
-    zeros = np.zeros(t.size)
-    out = []
-    for i in dofs:
-        v = np.asarray(log.get(VELOCITIES[i], zeros), float)
-        d = np.concatenate([nu[:, i] - v[a:b] for (a, b), nu in zip(bounds, runs)])
-        out.append(float(np.sqrt(np.mean(d ** 2))))
-    return out
+    return _named(free_simulation_errors(val_log, model, dofs), dofs)
