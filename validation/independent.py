@@ -18,7 +18,9 @@ thruster data of ``HydroModel.to_dict()``) and integrates them with its own equa
   (forward and backward branches) -> limits -> first-order lag of the thrust
   (:math:`\dot T = (T_{cmd} - T)/\tau`), applied at each thruster's position along its axis;
 - undeclared effects: tether drag :math:`-c_t L u_r|u_r|` (L the paid-out length), thrust
-  asymmetry, momentum drag :math:`-\alpha\,\overline{|n|}\,w_r`, buoyancy offset, current, linear
+  asymmetry, momentum drag :math:`-\alpha\,n_h\,w_r` (:math:`n_h` the mean |command| of the
+  thrusters that do not push in heave, Indiveri 1998; :func:`momentum_drag`), buoyancy offset,
+  current, linear
   drag, dead band, added-mass error, thruster lag, actuation delay, thrust effectiveness, and
   one effect no library describes: Coulomb (dry) friction :math:`-F_c \tanh(u_r/0.02)`;
 - a fixed-step classical Runge-Kutta integrator (RK4, 10 ms), the delay and lag states
@@ -53,7 +55,10 @@ GRAVITY = 9.81
 STRENGTHS = {
     "tether_drag": ("surge", (0.08, 0.3)),          # c_t [N s^2/m^3]
     "thrust_asymmetry": ("surge", (0.5, 0.75)),     # eta_backward / eta_forward [-], of the prior's map
-    "momentum_drag": ("heave", (0.03, 0.06)),       # alpha [N s/m per command unit]
+    # s = alpha n_h,full / d_w [-]: the momentum drag's linear coefficient at the non-acting
+    # thrusters' full command, a share of the hull's heave drag (momentum_drag_alpha); the
+    # truth's strength is alpha [N s/m per command unit]
+    "momentum_drag": ("heave", (0.5, 1.0)),
     "buoyancy_offset": ("heave", (0.3, 0.8)),       # B - B_prior [N] (lighter than the prior)
     "current": ("surge", (0.1, 0.25)),              # |v_c| [m/s]
     "linear_drag": ("surge", (1.5, 4.0)),           # X_u [N s/m]
@@ -193,6 +198,8 @@ def with_effect(truth: Truth, name: str | None, rng, prior: dict) -> Truth:
         truth.m_a = truth.m_a.copy()
         truth.m_a[0, 0] = s * float(prior["added_mass"][0][0])
         truth.strength = truth.m_a[0, 0] - float(prior["added_mass"][0][0])
+    elif name == "momentum_drag":
+        truth.strength = momentum_drag_alpha(truth, s)
     elif name == "thruster_lag":
         truth.lag = s
     elif name == "actuation_delay":
@@ -202,6 +209,56 @@ def with_effect(truth: Truth, name: str | None, rng, prior: dict) -> Truth:
             t["ct_forward"] *= s
             t["ct_backward"] *= s
     return truth
+
+
+#: The DOF of the momentum drag (STRENGTHS) as a body axis index (a translation).
+_AXIS = {"surge": 0, "sway": 1, "heave": 2}
+
+
+def idle_thrusters(truth: Truth, axis: int) -> list[int]:
+    """Indices of the thrusters whose force has no component along body axis ``axis`` (0-2):
+    for heave, the horizontal thrusters, the "four horizontal thrusters" of Indiveri (1998)."""
+    return [k for k, t in enumerate(truth.thrusters) if abs(t["direction"][axis]) <= 1e-9]
+
+
+def momentum_drag(alpha: float, n_cmd, idle: list[int], w_r: float) -> float:
+    r"""Momentum drag in the DOF [N] (Indiveri 1998, ch. 4, sec. 4.2.4, the eta-md heave model:
+    :math:`\eta F = k_w w + k_{w|w|} w|w| - W + \alpha n_h w`, i.e.
+
+    .. math:: F_{md} = -\alpha\, n_h\, w_r,\qquad n_h = \frac{1}{|H|}\sum_{k\in H} |n_k|
+
+    with :math:`H` the thrusters that do not act in the DOF (the paper's "mean propeller
+    revolution rate modulus of the four horizontal thrusters" for heave), :math:`n_k` their
+    commands [command units], :math:`\alpha` [N s/m per command unit] and :math:`w_r` the
+    velocity through the water in the DOF [m/s]. Zero when those thrusters are idle, or when
+    there are none."""
+    if not idle:
+        return 0.0
+    n_h = float(np.mean(np.abs(np.asarray(n_cmd, float)[idle])))
+    return -alpha * n_h * w_r
+
+
+def momentum_drag_alpha(truth: Truth, share: float) -> float:
+    r"""alpha [N s/m per command unit] of a momentum drag whose linear coefficient at the idle
+    thrusters' full command is ``share`` of the hull's heave drag [-]:
+    :math:`\alpha = s\, d_w / \bar n_{full}`, :math:`\bar n_{full}` the mean full command of
+    the thrusters not acting in the DOF (:func:`_full_command`) and :math:`d_w = F_{max}/w_{max}
+    = D_L + D_Q w_{max}` [N s/m] the hull's drag linearised at the speed where it balances the
+    full thrust in the DOF (:math:`D_L w + D_Q w^2 = F_{max}`, the truth's drag, Fossen 2011
+    eq. 6.59; :math:`F_{max}` the sum of the thrusters' forward limits along the axis). The
+    same share is the same physical size on any vehicle, whatever its command units (a
+    VideoRay's are ~220, a BlueROV2's 1)."""
+    axis = _AXIS[STRENGTHS["momentum_drag"][0]]
+    idle = idle_thrusters(truth, axis)
+    if not idle:
+        return 0.0
+    f_max = sum(abs(t["direction"][axis]) * (t["max_forward"] if np.isfinite(t["max_forward"])
+                                             else t["ct_forward"]) for t in truth.thrusters)
+    dl, dq = float(truth.d_l[axis, axis]), float(truth.d_q[axis, axis])
+    w_max = (2.0 * f_max / (dl + np.sqrt(dl * dl + 4.0 * dq * f_max)) if dq > 0.0
+             else f_max / dl)
+    n_full = float(np.mean([_full_command(truth.thrusters[k]) for k in idle]))
+    return share * (dl + dq * w_max) / n_full
 
 
 def _full_command(t) -> float:
@@ -229,6 +286,8 @@ class Simulator:
                                                                      th["direction"])])
                            for th in t.thrusters]).T
         self.k = len(t.thrusters)
+        self.md_axis = _AXIS[STRENGTHS["momentum_drag"][0]]
+        self.md_idle = idle_thrusters(t, self.md_axis)
 
     def _restoring(self, r):
         """g(q): the force is -g [N, N m] (weight down at the CG, buoyancy up at the CB)."""
@@ -256,8 +315,9 @@ class Simulator:
         if t.effect == "tether_drag":
             tau = tau + np.array([-t.strength * tether * nu_r[0] * abs(nu_r[0]), 0, 0, 0, 0, 0])
         elif t.effect == "momentum_drag":
-            tau = tau + np.array([0, 0, -t.strength * np.mean(np.abs(n_cmd)) * nu_r[2],
-                                  0, 0, 0])
+            tau = tau.copy()
+            tau[self.md_axis] += momentum_drag(t.strength, n_cmd, self.md_idle,
+                                               nu_r[self.md_axis])
         elif t.effect == "coulomb_friction":
             tau = tau + np.array([-t.strength * np.tanh(nu_r[0] / 0.02), 0, 0, 0, 0, 0])
         damping = (t.d_l + t.d_q * np.abs(nu_r)) @ nu_r
