@@ -40,7 +40,76 @@ def test_coefficients_json_unchanged(name, cases, run_once):
     tests that read the same command's output: conftest.coefficients_json.)"""
     expected = json.loads((GOLDEN / f"{name}.json").read_text())
     got = coefficients_json(run_once, *cases[name])
+    if _remeshed_panels(got, expected):
+        got = _panel_terms_within_their_error(got, expected, name)
     assert_same_tree(got, expected, name, rtol=TOLERANCE)
+
+
+#: The keys of ``conditions`` that describe the panel family and its levels (they name the
+#: family, its panel counts and whether it converged: another family, other values).
+PANEL_CONDITIONS = ("added_mass_method", "added_mass_panels", "added_mass_panel_levels",
+                    "added_mass_converged", "added_mass_error_max")
+
+
+def _remeshed_panels(got, want) -> bool:
+    """Whether ``got`` is a panelled case whose levels are the remesher's (the ``remesh`` extra,
+    pymeshlab, installed) where the golden file holds the base install's family (the input's
+    faces refined or coarsened): the golden files are written by the base install, as CI
+    runs. Without the remesher a change of family is a change, compared as one."""
+    from stripcoef.hull import remesh
+
+    method = want.get("conditions", {}).get("added_mass_method", "")
+    return (remesh.available() and "refined/coarsened input" in method
+            and got.get("conditions", {}).get("added_mass_method") != method)
+
+
+def _panel_terms_within_their_error(got, want, name):
+    r"""``got`` (the remesher's panel family) checked against the golden file's family where the
+    two families differ, and returned with those parts replaced by the golden values, so that
+    everything else is compared to 1e-9 as for every case.
+
+    Each term of M_A: :math:`|A^{remesh}_{ij} - A^{input}_{ij}| \le E^{remesh}_{ij} +
+    E^{input}_{ij}`, the sum of the two families' estimated errors (``added_mass_error``,
+    :func:`stripcoef.hull.panels.estimated_error`: each bounds its own family's distance to the
+    converged matrix, so their difference is bounded by the sum; measured: 0.44 of it on the
+    VideoRay, 0.12 on the box).  A coupling zero in either (forbidden by a mirror plane) is
+    exactly zero in both.  The M_A derivatives (``X_udot`` = -M_A[0, 0]) are read from that
+    matrix; their 95 % bands move with the value: within the same bound times the band's
+    size relative to the value (measured 0.47 of it)."""
+    import copy
+
+    import numpy as np
+
+    from stripcoef.conventions import added_mass_name
+
+    a_got, a_want = np.asarray(got["added_mass"]), np.asarray(want["added_mass"])
+    bound = np.asarray(got["added_mass_error"]) + np.asarray(want["added_mass_error"])
+    slack = TOLERANCE * np.abs(a_want).max()
+    for i, j in zip(*np.nonzero(np.abs(a_got - a_want) > bound + slack)):
+        raise AssertionError(f"{name}.added_mass[{i}][{j}]: {a_got[i, j]} != {a_want[i, j]} "
+                             f"beyond the two panel families' estimated errors {bound[i, j]:.3g}")
+    assert np.array_equal(a_got == 0.0, a_want == 0.0), \
+        f"{name}: the couplings forbidden by symmetry differ between the panel families"
+    out = copy.deepcopy(got)
+    out["added_mass"], out["added_mass_error"] = want["added_mass"], want["added_mass_error"]
+    for k in PANEL_CONDITIONS:
+        if k in want["conditions"]:
+            out["conditions"][k] = want["conditions"][k]
+    for i, j in np.ndindex(6, 6):
+        c = added_mass_name(i, j)
+        if c in want["coefficients"]:
+            assert got["coefficients"][c] == pytest.approx(-a_got[i, j], rel=TOLERANCE,
+                                                           abs=slack), c
+            out["coefficients"][c] = want["coefficients"][c]
+        if c in want.get("coefficient_bands", {}):
+            band_got, band_want = (np.asarray(b, float) for b in
+                                   (got["coefficient_bands"][c], want["coefficient_bands"][c]))
+            value = abs(float(a_want[i, j]))
+            size = np.abs(band_want).max() / value if value > 0 else 1.0
+            assert np.all(np.abs(band_got - band_want) <= bound[i, j] * max(1.0, size) + slack), \
+                f"{name}.coefficient_bands.{c}: {band_got} != {band_want}"
+            out["coefficient_bands"][c] = want["coefficient_bands"][c]
+    return out
 
 
 def test_the_comparison_scales_by_the_matrix():

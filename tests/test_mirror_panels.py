@@ -111,3 +111,28 @@ def test_panel_added_mass_with_mirrors_zeroes_forbidden_couplings_and_agrees():
     assert np.all(np.abs(half - full) <= info["error"] + info_full["error"] + 1e-12)
     # the part's levels are remeshed at the whole body's edges: about as many panels
     assert info["panels"][0] == pytest.approx(info_full["panels"][0], rel=0.3)
+
+
+def test_mirror_planes_off_the_reference_point_zero_their_couplings_about_the_centre():
+    """A body symmetric top-bottom and port-starboard about its centre C, expressed about a
+    point P 1 cm below and 9 mm aft of C (the VideoRay's centre of gravity): with the
+    forbidden couplings about C polluted (a remeshed panelling is not symmetric),
+    enforce_symmetry_about gives back the symmetric matrix moved to P exactly: X_wdot (the
+    translational block, the same about every point) exactly zero, X_qdot = -z X_udot."""
+    from stripcoef.assembly.symmetry import enforce_symmetry, enforce_symmetry_about
+    from stripcoef.conventions import transform_matrix
+
+    rng = np.random.default_rng(3)
+    b = rng.normal(size=(6, 6))
+    spd = b @ b.T + 6 * np.eye(6)
+    clean = enforce_symmetry(spd, ("y", "z"))
+    noise = 1e-2 * rng.normal(size=(6, 6))
+    noisy = clean + np.where(allowed_couplings(("y", "z")), 0.0, noise + noise.T)
+    c, p = np.array([0.0, 0.0, 0.0]), np.array([-0.009, 0.0, 0.01])
+    got = enforce_symmetry_about(transform_matrix(noisy, from_point=c, to_point=p), ("y", "z"),
+                                 c, p)
+    want = transform_matrix(clean, from_point=c, to_point=p)
+    assert np.allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
+    assert got[0, 2] == 0.0 and got[2, 0] == 0.0 and got[0, 1] == 0.0
+    # X_qdot about P: -r_z X_udot (Fossen 2011 eq. 7.248), r = P - C; zero about C
+    assert got[0, 4] == pytest.approx(-0.01 * clean[0, 0], rel=1e-12)

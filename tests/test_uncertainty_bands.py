@@ -321,9 +321,12 @@ def test_couple_moves_every_allowed_coupling_zero_or_not_and_keeps_the_matrix_de
 
 @pytest.mark.slow
 def test_study_of_an_asymmetric_body_bands_the_couplings_the_model_leaves_at_zero():
-    """The VideoRay: port-starboard symmetric only. X_wdot is zero in the model but allowed
-    by its symmetry: the samples spread about zero; X_vdot, forbidden, stays zero (12 samples,
-    each a panel solve of the bluff vehicle file)."""
+    """The VideoRay: port-starboard symmetric only about its reference point (the centre of
+    gravity, 1 cm below the parts' top-bottom mirror plane). X_wdot is zero in the model (the
+    plane forbids it about any point: exactly zero with either panel family, the base install's
+    or the remesh extra's) but allowed by the mirror planes through the reference point: the
+    samples spread about zero; X_vdot, forbidden, stays zero (12 samples, each a panel solve
+    of the bluff vehicle file)."""
     from stripcoef.study.uncertainty import uncertainty
 
     res = uncertainty(ROOT / "geometry" / "videoray_pro3.yaml", samples=12, seed=0,

@@ -13,6 +13,7 @@ test module computes anyway is checked there (:data:`ELSEWHERE`), from the same 
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import re
 from pathlib import Path
@@ -130,8 +131,42 @@ ELSEWHERE = {
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n
                                   for n in SECTIONS if n not in ELSEWHERE])
-def test_validation_doc_section_is_generated_from_the_current_code(name):
+def test_validation_doc_section_is_generated_from_the_current_code(name, monkeypatch):
+    if name in PANEL_FAMILY:
+        with _base_panel_family(name, monkeypatch):
+            assert_section_is_current(name)
+        return
     assert_section_is_current(name)
+
+
+#: Sections whose numbers are a bluff vehicle file's 3D panel solve, whose levels are the
+#: input's faces refined (the base install, as CI runs and as the document is written) or,
+#: with the ``remesh`` extra, isotropic remeshes: other levels, other numbers within their
+#: estimated error (tests/test_golden.py checks the VideoRay's remeshed M_A against the base
+#: family's within the two estimated errors).
+PANEL_FAMILY = {"videoray"}
+
+
+@contextlib.contextmanager
+def _base_panel_family(name, monkeypatch):
+    """The section ``name`` computed as the base install computes it: the remesher (the
+    ``remesh`` extra) hidden, the module's cached results cleared before and after."""
+    from stripcoef.hull import remesh
+
+    if not remesh.available():
+        yield
+        return
+    module = importlib.import_module(f"validation.{name}")
+    caches = [f for f in vars(module).values() if callable(getattr(f, "cache_clear", None))]
+    for f in caches:
+        f.cache_clear()
+    monkeypatch.setattr(remesh, "available", lambda: False)
+    try:
+        yield
+    finally:
+        monkeypatch.undo()
+        for f in caches:
+            f.cache_clear()
 
 
 def test_every_section_is_checked_somewhere():

@@ -25,7 +25,8 @@ import numpy as np
 from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, added_mass,
                                            panel_vehicle_added_mass)
 from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
-from stripcoef.assembly.symmetry import enforce_symmetry, strips_mirror_symmetries
+from stripcoef.assembly.symmetry import (enforce_symmetry, enforce_symmetry_about,
+                                         strips_mirror_symmetries)
 from stripcoef.bem import timed_bem_added_mass
 from stripcoef.errors import InputError, unknown_name
 from stripcoef.geometry.shape_class import classify, strip_features
@@ -163,7 +164,30 @@ def _panels(inp: AddedMassInputs):
         inp.vehicle, inp.rho, inp.about, inp.added_mass_panels,
         symmetrise=lambda m: enforce_symmetry(m, mirrors), mirrors=mirrors)
     info["mirror_planes"] = "".join(sorted(mirrors)) or "none"
+    # the body's own mirror planes, through its centre, where they miss the reference point
+    # (the VideoRay: top-bottom symmetric, its centre of gravity 1 cm below the plane): the
+    # couplings they forbid are zero about the centre, and X_wdot, Y_wdot, ... (the
+    # translational block, the same about every point) exactly zero about any point; the
+    # remeshed panels are not symmetric (X_wdot 0.4 % of the diagonal scale otherwise)
+    centre = _symmetry_centre(strips, inp.center)
+    if centre is not None:
+        own = strips_mirror_symmetries(strips, centre, tol=SYMMETRY_ZERO_TOL)
+        if own - mirrors:
+            m_a = enforce_symmetry_about(m_a, own, centre, inp.about)
+            if error is not None:
+                error = np.where(m_a == 0.0, 0.0, error)
     return m_a, info, error
+
+
+def _symmetry_centre(strips, center):
+    """The point [m] a body's own mirror planes pass through, if it has any: the middle of its
+    length (x) and its centre of buoyancy ``center`` (y, z; a reflection maps the displaced
+    volume onto itself, so its centroid lies on every mirror plane); None without a centre."""
+    if center is None:
+        return None
+    c = np.asarray(center, dtype=float).copy()
+    c[0] = 0.5 * (float(strips.x_min) + float(strips.x_max))
+    return c
 
 
 #: Strips the panel method's mirror test cuts (:func:`stripcoef.assembly.symmetry.

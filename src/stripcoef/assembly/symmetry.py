@@ -160,3 +160,30 @@ def enforce_symmetry(matrix, mirrors):
     out = np.array(matrix, dtype=float)
     out[~allowed_couplings(mirrors)] = 0.0
     return out
+
+
+def enforce_symmetry_about(matrix, mirrors, centre, about):
+    r"""``matrix`` (6x6, about the point ``about`` [m]) with the couplings forbidden by the
+    reflections ``mirrors`` through another point ``centre`` [m] (the body's own mirror
+    planes, which need not pass through the reference point: a body symmetric top-bottom
+    with its centre of gravity below the plane) set to zero *about ``centre``*, and the
+    result moved back to ``about``; a new array.
+
+    .. math:: A_C = H(-r)^T A_P H(-r),\quad A_C \to P A_C P\ \text{(forbidden terms
+              zero)},\quad A_P = H(r)^T A_C H(r), \quad r = C - P
+
+    (:func:`stripcoef.conventions.transform_matrix`, Fossen 2011 sec. 7.5.3; the parities of
+    the module docstring, Newman 1977 sec. 4.15).  The translational block does not depend on
+    the point, so its forbidden couplings (X_wdot of a top-bottom symmetric body) are exactly
+    zero about any point; the others are the exact congruence of the symmetric matrix (X_qdot
+    about a point z below the plane: z X_udot, not zero)."""
+    from stripcoef.conventions import transform_matrix
+
+    if not mirrors:
+        return np.array(matrix, dtype=float)
+    at_centre = enforce_symmetry(transform_matrix(matrix, from_point=about, to_point=centre),
+                                 mirrors)
+    out = transform_matrix(at_centre, from_point=centre, to_point=about)
+    # the translational block is the same about every point (exact zeros kept)
+    out[:3, :3] = at_centre[:3, :3]
+    return out
