@@ -343,11 +343,15 @@ def test_smoke_run_two_ranks_decomposed(serial_smoke, tmp_path, monkeypatch):
     Open MPI's ranks poll for messages in a busy loop by default; on a machine whose other
     cores run other tests that spin is most of this test's CPU (measured 22.9 s of CPU for
     both runs, 12.1 s with ``mpi_yield_when_idle``): the ranks yield here, which changes no
-    number of the run."""
+    number of the run.  Open MPI also pins each rank to a core by default: beside another
+    test worker that keeps one core busy, the rank pinned there starves and the other waits
+    for it at every exchange (measured beside one busy process: 42.0 s with the pinning,
+    6.4 s without; 2.8 s on an idle machine), so the ranks are not pinned here either."""
     _need_openfoam()
     if shutil.which("mpirun") is None:
         pytest.skip("mpirun not installed")
     monkeypatch.setenv("OMPI_MCA_mpi_yield_when_idle", "1")
+    monkeypatch.setenv("OMPI_MCA_hwloc_base_binding_policy", "none")
     cube = trimesh.creation.box((0.2, 0.2, 0.2))
     one = serial_smoke[0].dofs[0].runs[0]
     two = drag_by_cfd(cube, ranks=2, case_dir=tmp_path / "two", dofs=("surge",),
