@@ -57,12 +57,11 @@ def test_pre_asymptotic_levels_get_safety_three():
     """Levels converging exactly as 1/N look asymptotic (F_s = 1.25); with an edge longer
     than the member thickness the index takes F_s = 3 on the same order: 3/1.25 times."""
     from stripcoef.hull.convergence import SAFETY_THREE_GRIDS, grid_convergence_index
-    from stripcoef.hull.panels import _pre_asymptotic
 
     counts = [400, 800, 1600]
     mats = [np.full((2, 2), 1.0 + 50.0 / n) for n in counts]
     gci, _, safety = grid_convergence_index(mats, counts)
     assert np.all(safety == SAFETY_THREE_GRIDS)
-    wide, s = _pre_asymptotic(mats, counts, gci, safety)
+    wide, _, s = grid_convergence_index(mats, counts, asymptotic_possible=False)
     assert np.all(s == 3.0)
     np.testing.assert_allclose(wide, gci * 3.0 / SAFETY_THREE_GRIDS, rtol=1e-6)

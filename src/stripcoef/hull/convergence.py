@@ -78,7 +78,8 @@ def observed_order(f1, f2, f3, r21, r32, *, iterations: int = 50):
     return np.where(ok, p, np.nan)
 
 
-def grid_convergence_index(levels, counts, *, formal_order: float = 2.0, dimension: int = 2):
+def grid_convergence_index(levels, counts, *, formal_order: float = 2.0, dimension: int = 2,
+                           asymptotic_possible: bool = True):
     r"""Per term, the grid convergence index of the finest of ``levels`` (arrays of one shape,
     coarse to fine) [their unit], the order used [-] and the safety factor used [-].
 
@@ -89,7 +90,11 @@ def grid_convergence_index(levels, counts, *, formal_order: float = 2.0, dimensi
     :math:`F_s = 1.25`, :math:`p = p_f`, else :math:`F_s = 3`, :math:`p = \min(\max(0.5,
     \hat p), p_f)` (Oberkampf & Roy 2010, sec. 8.6.3.2); an oscillating sequence or one with
     no observed order: the two-grid index on the larger of the last two changes
-    (:math:`F_s = 3`, formal order).  Two levels: :math:`F_s = 3` (module docstring)."""
+    (:math:`F_s = 3`, formal order).  Two levels: :math:`F_s = 3` (module docstring).
+    ``asymptotic_possible=False``: levels known to be outside the asymptotic range (a panel
+    larger than the body's thinnest member, :mod:`stripcoef.hull.panels`): no term takes
+    :math:`F_s = 1.25`, whatever its observed order (1.25 only where the asymptotic range is
+    shown, Oberkampf & Roy 2010, sec. 8.6.3.2)."""
     mats = [np.asarray(m, float) for m in levels]
     n = np.asarray(counts, float)
     h = n ** (-1.0 / dimension)
@@ -106,7 +111,7 @@ def grid_convergence_index(levels, counts, *, formal_order: float = 2.0, dimensi
     observed = np.isfinite(p)
     p_obs = np.where(observed, p, formal_order)
     asymptotic = observed & (np.abs(p_obs - formal_order)
-                             <= ASYMPTOTIC_ORDER_TOLERANCE * formal_order)
+                             <= ASYMPTOTIC_ORDER_TOLERANCE * formal_order) & asymptotic_possible
     p_used = np.where(asymptotic, formal_order,
                       np.minimum(np.maximum(p_obs, MIN_ORDER), formal_order))
     safety = np.where(asymptotic, SAFETY_THREE_GRIDS, SAFETY_TWO_GRIDS)

@@ -69,6 +69,7 @@ from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
     bisect_longest, enclosed_volume, refine, surface_area)
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
+from stripcoef.hull.remesh import edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -307,25 +308,6 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
     return (out if thin is None or thin[1].bisect else thin), thickness
 
 
-def _pre_asymptotic(mats, counts, gci, safety):
-    r"""The grid convergence index of levels that cannot be in the asymptotic range (their
-    finest edge longer than the member thickness, :func:`remeshed_levels`): the terms whose
-    observed order happened to match the formal one (:math:`F_s = 1.25`) get
-    :math:`F_s = 3` with the observed order within [0.5, 2] (Oberkampf & Roy 2010, sec.
-    8.6.3.2: 1.25 only where the asymptotic range is shown) [the levels' unit]."""
-    from stripcoef.hull.convergence import (MIN_ORDER, SAFETY_THREE_GRIDS, SAFETY_TWO_GRIDS,
-                                            observed_order)
-
-    h = np.asarray(counts[-3:], float) ** -0.5
-    r21, r32 = h[1] / h[2], h[0] / h[1]
-    p = observed_order(mats[-1], mats[-2], mats[-3], r21, r32)
-    p = np.minimum(np.maximum(np.where(np.isfinite(p), p, 2.0), MIN_ORDER), 2.0)
-    wide = SAFETY_TWO_GRIDS * np.abs(mats[-2] - mats[-1]) / (r21 ** p - 1.0)
-    three = np.asarray(safety) == SAFETY_THREE_GRIDS
-    return np.where(three, np.maximum(gci, wide), gci), np.where(three, SAFETY_TWO_GRIDS,
-                                                                  safety)
-
-
 #: Area fraction [-] below which the thinner members of a body are not counted in
 #: :func:`member_thickness` (the area-weighted percentile: a member with less than this
 #: share of the surface does not set the panel size).
@@ -333,14 +315,6 @@ THICKNESS_PERCENTILE = 0.05
 #: Largest finest-level edge over the member thickness [-] before the thin-member family is
 #: used (the edge no longer than the thickness: panels resolve the member).
 THIN_EDGE_RATIO = 1.0
-
-
-def remesh_edge(area, panels):
-    """Edge [m] of ``panels`` equilateral triangles on ``area`` [m^2]
-    (:func:`stripcoef.hull.remesh.edge_for_panels`)."""
-    from stripcoef.hull.remesh import edge_for_panels
-
-    return edge_for_panels(area, int(panels))
 
 
 def _thin_modes():
@@ -471,7 +445,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     and the estimate repeated on the finest three ("refine until converged").  Levels whose
     finest edge is longer than the body's :func:`member_thickness` (thin plates and walls)
     are remeshed without edge flips (:func:`remeshed_levels`) and are not in the asymptotic
-    range: their index takes :math:`F_s = 3` on every term (:func:`_pre_asymptotic`).
+    range: their index takes :math:`F_s = 3` on every term (``asymptotic_possible`` of
+    :func:`~stripcoef.hull.convergence.grid_convergence_index`).
 
     Parameters
     ----------
@@ -600,9 +575,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             raise InputError("the panel resolutions do not refine", file=where, key="panels",
                              value=counts, expected="a finer last resolution (more panels)")
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
-        gci, order, safety = grid_convergence_index(mats[-3:], counts[-3:])
-        if len(mats) >= 3 and remesh_edge(area, counts[-1]) > THIN_EDGE_RATIO * thickness:
-            gci, safety = _pre_asymptotic(mats, counts, gci, safety)
+        # levels whose finest edge exceeds the member thickness cannot be in the asymptotic
+        # range (_remeshed_levels): no term takes the safety factor of 1.25
+        gci, order, safety = grid_convergence_index(
+            mats[-3:], counts[-3:], asymptotic_possible=edge_for_panels(area, counts[-1])
+            <= THIN_EDGE_RATIO * thickness)
         error = estimated_error(mats[-1], a, gci)
         converged = bool(relative_error(a, error).max() <= tol)
         nxt = 2 * nominal
