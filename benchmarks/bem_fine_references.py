@@ -38,7 +38,6 @@ from pathlib import Path
 import numpy as np
 
 LEVELS = (1500, 3000, 6000, 12000, 24000)
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 RHO = 1000.0
 
 
@@ -74,18 +73,18 @@ def prepare(seed: int, count: int, out: Path, levels=LEVELS) -> None:
 
 
 THIN_LEVELS = (1000, 2000, 4000, 8000, 16000)
-#: the thin members' shape numbers start here (a CAD seed's shapes are 0 to count - 1)
-THIN_OFFSET = 100
 
 
 def prepare_thin(seed: int, count: int, out: Path, levels=THIN_LEVELS) -> None:
     """The thin plates and wings of ``seed`` as benchmarks.thin_members draws them (the
     model's own draws skipped: it draws nothing), about their volume centroid (moved to the
     origin), at the reference panellings of that benchmark (a wing's structured panels, a
-    plate's remesh family) at ``levels`` faces; ``out/shape_{100 + k}.npz``."""
+    plate's remesh family) at ``levels`` faces; ``out/shape_{THIN_OFFSET + k}.npz``
+    (validation.cad_shapes.THIN_OFFSET)."""
     import trimesh
 
     from benchmarks.thin_members import make_member
+    from validation.cad_shapes import THIN_OFFSET
     from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
     out.mkdir(parents=True, exist_ok=True)
@@ -150,7 +149,9 @@ def _solver():
 
 def added_mass(solver, vertices, faces, rho=RHO):
     """Capytaine's 6x6 added mass [kg, kg m, kg m^2] about the origin, no free surface
-    (the same problem as stripcoef.bem.bem_added_mass)."""
+    (the same problem as stripcoef.bem.bem_added_mass, set up here because ``solve`` runs
+    where neither stripcoef's dependencies (trimesh) are installed nor its solver can take a
+    GPU linear solver)."""
     import capytaine as cpt
     names = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
     mesh = cpt.Mesh(vertices=vertices, faces=faces, name="body")
@@ -205,6 +206,7 @@ def solve(meshes: Path, csv_path: Path, max_level: int | None = None, order=None
 def compare(levels_csv, model_csv) -> None:
     """The model rows of a stored benchmarks.cad_shapes run against the fine references
     (validation.cad_shapes.fine_comparison: the same numbers as docs/validation.md)."""
+    from stripcoef.conventions import DOF as DOFS
     from validation.cad_shapes import fine_comparison
 
     rows = fine_comparison(levels_csv, model_csv)
