@@ -235,6 +235,9 @@ def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
         mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3),
                                    max_faces=max_faces))
         counts.append(len(m.faces))
+        print(f"    BEM {len(m.faces)} faces (area {m.area / surface.area - 1:+.2%}, volume "
+              f"{m.volume / surface.volume - 1:+.2%} of the surface): diagonal "
+              + " ".join(f"{a:.5g}" for a in np.diag(mats[-1])), flush=True)
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
     gci, _, _ = grid_convergence_index(mats, counts)
     return 0.5 * (ref + ref.T), estimated_error(mats[-1], ref, gci), counts, \
