@@ -16,8 +16,10 @@ GitHub cannot be reached.  Per mesh:
 3. **reference**: Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
    on isotropic remeshes (:mod:`stripcoef.hull.remesh`) of the closed surface the panel method
    solves (the loaded, repaired and united mesh) at ``--bem-faces`` (coarse to fine, default
-   500 1000 2000: each solve under a minute), the two finest Richardson-extrapolated as 1/N,
-   with its own grid convergence index (Roache 1998), moved to each run's reference point.
+   500 1000 2000: each solve under a minute; the stored run: 2000 4000 8000 with
+   ``--bem-max-faces 9000``, 3-8 min and 4 GB per mesh), one remesh family for all levels
+   (printed with each level's diagonal), the two finest Richardson-extrapolated as 1/N, with
+   its own grid convergence index (Roache 1998), moved to each run's reference point.
 
 Per term: the model's error (diagonal: of the term; couplings whose reference is at least 1 %
 of sqrt(A_ii A_jj): of that scale; a diagonal term below 1 % of the largest of its block, the
