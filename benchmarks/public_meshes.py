@@ -197,10 +197,11 @@ def rotate_6(m, rot):
     return t @ np.asarray(m, float) @ t.T
 
 
-def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
+def bem_reference(path: Path, bem_faces, max_faces: int = 4000, levels=None):
     """Capytaine on isotropic remeshes of the closed surface the panel method solves (the
     loaded, repaired, united mesh), about the body origin.  Returns (M_A, its estimated
-    error, face counts, seconds)."""
+    error, face counts, seconds); ``levels``, a list, gets (family, faces, M_A) of every
+    level appended (``--levels-csv``)."""
     import trimesh
 
     from stripcoef.bem import bem_added_mass
@@ -237,6 +238,9 @@ def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
         mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3),
                                    max_faces=max_faces))
         counts.append(len(m.faces))
+        if levels is not None:
+            levels.append((str(family[1]) if family is not None else "bisected input",
+                           len(m.faces), mats[-1]))
         print(f"    BEM {len(m.faces)} faces (area {m.area / surface.area - 1:+.2%}, volume "
               f"{m.volume / surface.volume - 1:+.2%} of the surface): diagonal "
               + " ".join(f"{a:.5g}" for a in np.diag(mats[-1])), flush=True)
@@ -330,6 +334,34 @@ def stored_references(path) -> dict:
             for k, v in out.items()}
 
 
+LEVELS_HEADER = ["mesh", "commit", "family", "level", "faces", "i", "j", "added_mass"]
+
+
+def write_levels(path, mesh: PublicMesh, levels, command: str) -> None:
+    """Append the Capytaine levels of one mesh (:func:`bem_reference`'s ``levels``: family,
+    faces, M_A about the body origin [kg, kg m, kg m^2], symmetrised) to the CSV ``path``
+    (:data:`LEVELS_HEADER`, one row per upper-triangle term), replacing that mesh's earlier
+    rows; the first line is the command."""
+    rows = []
+    if Path(path).exists():
+        with open(path, newline="") as fh:
+            fh.readline()
+            rows = [r for r in list(csv.reader(fh))[1:] if r and r[0] != mesh.name]
+    for k, (family, faces, m) in enumerate(levels):
+        m = 0.5 * (np.asarray(m, float) + np.asarray(m, float).T)
+        rows += [[mesh.name, mesh.commit, family, k, faces, i, j, f"{m[i, j]:.9g}"]
+                 for i in range(6) for j in range(i, 6)]
+    order = {m.name: k for k, m in enumerate(MESHES)}
+    rows.sort(key=lambda r: (order.get(r[0], len(order)), int(r[3])))
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        fh.write("# " + command + " --only NAME --levels-csv CSV, for each NAME below (the "
+                 "levels of each mesh's Capytaine reference, about the body origin, "
+                 "rho = 1000 kg/m^3)\n")
+        csv.writer(fh).writerow(LEVELS_HEADER)
+        csv.writer(fh).writerows(rows)
+
+
 def method_of(run):
     c = (run["json"] or {}).get("conditions", {})
     return "panels" if c.get("added_mass_method") else "strips"
@@ -363,6 +395,9 @@ def main(argv=None) -> int:
                     help="compare with the Capytaine references of a stored run (its CSV) "
                          "instead of computing them (after a change of the model: minutes "
                          "instead of the BEM's hour)")
+    ap.add_argument("--levels-csv", default=None, metavar="CSV",
+                    help="append every Capytaine level's matrix (about the body origin, each "
+                         "upper-triangle term) to this CSV, to re-extrapolate without the BEM")
     ap.add_argument("--update", action="store_true",
                     help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
@@ -371,6 +406,7 @@ def main(argv=None) -> int:
                + " ".join(map(str, args.bem_faces))
                + (f" --bem-max-faces {args.bem_max_faces}" if args.bem_max_faces != 4000
                   else ""))
+    base_command = command                       # (the levels CSV's first line)
     stored = stored_references(args.references) if args.references else None
     if stored is not None:
         command = ("python -m benchmarks.public_meshes --mirror DIR --references "
@@ -439,12 +475,15 @@ def main(argv=None) -> int:
                              auto["command"]] + [""] * (len(HEADER) - 11))
                 continue
             try:
+                levels = []
                 ref, ref_err, counts, t_bem = (bem_reference(path, args.bem_faces,
-                                                             args.bem_max_faces)
+                                                             args.bem_max_faces, levels)
                                                if stored is None else (None, None, [], 0.0))
             except Exception as exc:            # a refusal is a result: say it, go on
                 print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
                 continue
+            if args.levels_csv and levels:
+                write_levels(args.levels_csv, mesh, levels, base_command)
             for label, run in runs.items():
                 if run["rc"] != 0 or run["json"] is None:
                     print(f"    {label}: exit {run['rc']}", flush=True)

@@ -94,3 +94,25 @@ def test_stored_references_give_back_the_compared_matrices(tmp_path):
     np.testing.assert_allclose(back[0], ref, rtol=1e-5)
     np.testing.assert_allclose(back[1], err, rtol=1e-3)
     assert back[2] == [500, 1000, 2000] and back[3] == 12.5
+
+
+def test_levels_csv_replaces_a_mesh_and_keeps_the_others(tmp_path):
+    """--levels-csv: one row per upper-triangle term of each level; a mesh run again
+    replaces its own rows, the other meshes' rows stay, in the table's order."""
+    import csv
+
+    import numpy as np
+
+    path = tmp_path / "levels.csv"
+    a, b = PM.MESHES[0], PM.MESHES[1]
+    m = np.arange(36.0).reshape(6, 6)
+    PM.write_levels(path, b, [("fam", 100, m), ("fam", 200, 2 * m)], "cmd")
+    PM.write_levels(path, a, [("fam", 50, m)], "cmd")
+    PM.write_levels(path, b, [("fam", 300, m)], "cmd")
+    with open(path, newline="") as fh:
+        assert fh.readline().startswith("# cmd --only NAME --levels-csv")
+        rows = list(csv.DictReader(fh))
+    assert [r["mesh"] for r in rows] == [a.name] * 21 + [b.name] * 21
+    assert {r["faces"] for r in rows if r["mesh"] == b.name} == {"300"}
+    r01 = next(r for r in rows if r["mesh"] == a.name and r["i"] == "0" and r["j"] == "1")
+    assert float(r01["added_mass"]) == 0.5 * (m[0, 1] + m[1, 0])
