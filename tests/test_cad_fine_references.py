@@ -21,12 +21,12 @@ def test_fine_reference_recovers_an_exact_second_order_sequence():
 
 
 def test_fine_reference_uses_the_observed_order_below_the_formal_one():
-    """Levels converging as N^-1/4 (order 0.5 in h, a sharp edge's rate): the order used is
-    the observed one and the extrapolation reaches the limit."""
+    """Levels converging as N^-1/4 (order 0.5 in h, a sharp edge's rate), by the three-level
+    rule: the order used is the observed one and the extrapolation reaches the limit."""
     counts = np.array([1500.0, 3000.0, 6000.0, 12000.0])
     vals = 2.0 + 3.0 * counts ** -0.25
     mats = [np.full((6, 6), v) for v in vals]
-    ref, band, order = fine_reference(list(counts), mats)
+    ref, band, order = fine_reference(list(counts), mats, method="gci")
     np.testing.assert_allclose(order, 0.5, rtol=1e-6)
     np.testing.assert_allclose(ref, 2.0, rtol=1e-9)
     assert np.all(band > np.abs(vals[-1] - 2.0))            # safety factor 3 over the step
@@ -45,3 +45,20 @@ def test_stored_levels_refine_every_shape():
     rows = fine_comparison()
     assert {r["shape"] for r in rows} <= set(cad)
     assert all(np.isfinite(r["err"]) and r["band"] >= 0 for r in rows)
+
+
+def test_fine_reference_by_eca_hoekstra_over_all_levels():
+    """Four levels of order 1.2 in h (within [0.5, 2]): the least-squares fit of free order
+    over all four (Eça & Hoekstra 2014) finds the limit and the order, and its band is
+    1.25 times the finest level's error (sigma = 0); three levels fall back to the GCI."""
+    counts = [1500, 3000, 6000, 12000]
+    vals = [2.0 + 3.0 * n ** -0.6 for n in counts]
+    mats = [np.full((6, 6), v) for v in vals]
+    ref, band, order = fine_reference(counts, mats)
+    np.testing.assert_allclose(ref, 2.0, atol=1e-9)
+    np.testing.assert_allclose(order, 1.2, rtol=1e-5)
+    np.testing.assert_allclose(band, 1.25 * (vals[-1] - 2.0), rtol=1e-5)
+    r3 = fine_reference(counts[1:], mats[1:])
+    g3 = fine_reference(counts[1:], mats[1:], method="gci")
+    for a, b in zip(r3, g3):
+        np.testing.assert_array_equal(a, b)

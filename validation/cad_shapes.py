@@ -36,23 +36,59 @@ def read_levels(path) -> dict:
     return out
 
 
-def fine_reference(counts, mats):
-    """(reference, band, order) per term of BEM levels ``mats`` (coarse to fine, ``counts``
-    faces) by the library's rules (:mod:`stripcoef.hull.convergence`): the grid convergence
-    index of the finest level over the three finest with the order it uses (the formal order
-    2 in h in the asymptotic range, else the observed order within [0.5, 2] and a safety
-    factor 3: Oberkampf & Roy 2010, sec. 8.6.3.2), and the two finest
-    Richardson-extrapolated with that order (Roache 1998, eq. 5.4.1); h ~ N^(-1/2)."""
-    from stripcoef.hull.convergence import grid_convergence_index, richardson
+#: the reference's estimate from the BEM levels: "eca-hoekstra" (four levels or more; fewer:
+#: "gci") or "gci" (the three finest, the panel method's own rule)
+FINE_METHODS = ("eca-hoekstra", "gci")
 
+
+def fine_reference(counts, mats, method: str = "eca-hoekstra", extra_orders=()):
+    """(reference, band, order) per term of BEM levels ``mats`` (coarse to fine, ``counts``
+    faces); h ~ N^(-1/2).
+
+    ``method="eca-hoekstra"`` (four levels or more): the least-squares procedure of Eça &
+    Hoekstra 2014 over all the levels (:func:`stripcoef.hull.convergence.eca_hoekstra`: the
+    fit phi_0 + alpha h^p of least standard deviation, with or without weights, or where p is
+    out of [0.5, 2] the best of the fixed orders 1, 2 and 1 & 2; sec. 3 and App. A): the
+    reference is that fit's limit phi_0, the band the paper's uncertainty U of the finest
+    level (eqs. 20-21; it contains phi_0), the order the chosen fit's (the observed p, or
+    the fixed order of the alternative fit, 1 for the fit in h and h^2);
+    ``extra_orders`` join the fixed-order fits (:func:`~stripcoef.hull.convergence.
+    eca_hoekstra`).  ``method="gci"``, and any shape with three levels: the library's rule
+    for the panel levels (:mod:`stripcoef.hull.convergence`): the grid convergence index of
+    the finest level over the three finest with the order it uses (the formal order 2 in h
+    in the asymptotic range, else the observed order within [0.5, 2] and a safety factor 3:
+    Oberkampf & Roy 2010, sec. 8.6.3.2), and the two finest Richardson-extrapolated with
+    that order (Roache 1998, eq. 5.4.1)."""
+    from stripcoef.hull.convergence import (EH_MIN_LEVELS, eca_hoekstra,
+                                            grid_convergence_index, richardson)
+
+    if method not in FINE_METHODS:
+        raise ValueError(f"method {method!r}: expected one of {', '.join(FINE_METHODS)}")
+    if method == "eca-hoekstra" and len(counts) >= EH_MIN_LEVELS:
+        mats = [np.asarray(m, float) for m in mats]
+        shape = mats[0].shape
+        ref, band, order = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        symmetric = len(shape) == 2 and all(np.array_equal(m, m.T) for m in mats)
+        for idx in np.ndindex(shape):
+            if symmetric and idx[0] > idx[1]:
+                continue                              # an added mass: the upper triangle
+            r = eca_hoekstra(counts, [m[idx] for m in mats], extra_orders=extra_orders)
+            ref[idx], band[idx], order[idx] = r.extrapolated, r.uncertainty, r.fit_order
+        if symmetric:
+            for x in (ref, band, order):
+                low = np.tril_indices(shape[0], -1)
+                x[low] = x.T[low]
+        return ref, band, order
     gci, order, _ = grid_convergence_index(mats, counts)
     return richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=order), gci, order
 
 
-def fine_comparison(levels_path=FINE, model_path=DATA) -> list[dict]:
+def fine_comparison(levels_path=FINE, model_path=DATA, method: str = "eca-hoekstra",
+                    extra_orders=()) -> list[dict]:
     """Per term of every CAD shape in both files: the model (the stored run's rows), the
-    stored 3000-face reference and the fine reference with its band, errors relative to the
-    fine reference's diagonal term (a coupling: to sqrt(A_ii A_jj))."""
+    stored 3000-face reference and the fine reference with its band (:func:`fine_reference`
+    by ``method``), errors relative to the fine reference's diagonal term (a coupling: to
+    sqrt(A_ii A_jj))."""
     levels = read_levels(levels_path)
     _, stored = read_stored_run(model_path)
     rows = []
@@ -66,7 +102,7 @@ def fine_comparison(levels_path=FINE, model_path=DATA) -> list[dict]:
             continue
         n = [lv[x][0] for x in sorted(lv)]
         mats = [lv[x][1] for x in sorted(lv)]
-        ref, band, order = fine_reference(n, mats)
+        ref, band, order = fine_reference(n, mats, method, extra_orders)
         d = np.sqrt(np.abs(np.diag(ref)))
         for t in terms:
             i, j = int(t["i"]), int(t["j"])
