@@ -2,8 +2,10 @@
 the extrapolation on exact convergence, and the stored levels file's completeness."""
 
 import numpy as np
+import pytest
 
-from validation.cad_shapes import FINE, THIN_OFFSET, fine_comparison, fine_reference, read_levels
+from validation.cad_shapes import (FINE, FINE_750, FINE_ALL, THIN_OFFSET, fine_comparison,
+                                   fine_holdout, fine_reference, read_levels)
 
 
 def test_fine_reference_recovers_an_exact_second_order_sequence():
@@ -62,3 +64,28 @@ def test_fine_reference_by_eca_hoekstra_over_all_levels():
     g3 = fine_reference(counts[1:], mats[1:], method="gci")
     for a, b in zip(r3, g3):
         np.testing.assert_array_equal(a, b)
+
+
+def test_the_750_face_level_joins_its_family_below_the_fine_levels():
+    """The 750-face level (cad_shapes_fine_levels_750.csv) of the 35 shapes whose family it is:
+    merged per shape below the fine levels, coarse to fine; the frames of another family
+    have none."""
+    fine, coarse, merged = read_levels(FINE), read_levels(FINE_750), read_levels(*FINE_ALL)
+    assert len(coarse) == 35 and not {21, 23, 26, 34, 37} & set(coarse)
+    for k, lv in coarse.items():
+        assert len(lv) == 1 and lv[0][0] < fine[k][0][0]
+        faces = [merged[k][x][0] for x in sorted(merged[k])]
+        assert faces == [lv[0][0]] + [fine[k][x][0] for x in sorted(fine[k])]
+        np.testing.assert_array_equal(merged[k][0][1], lv[0][1])
+        assert np.all(np.diag(lv[0][1]) > 0)
+
+
+@pytest.mark.slow
+def test_eca_hoekstra_bands_contain_the_level_they_did_not_see():
+    """On the shapes with five levels, the band of the last level but one estimated without
+    the finest must contain the finest level's move (a necessary condition): Eça & Hoekstra
+    over four levels in every significant term, at least as often as the three-level GCI."""
+    h = fine_holdout()
+    assert h["shapes"] >= 30
+    eh, gci = h["seen"]["Eca-Hoekstra, 4 levels"], h["seen"]["GCI, 3 levels"]
+    assert eh[0] == eh[1] and eh[0] >= gci[0]
