@@ -83,6 +83,20 @@ constant panels, whose error goes as 1/N.  ``extra_orders`` adds one-term fits
 edge singularity implies); the paper's own set is the default.  Section and equation
 numbers as the paper's Appendix A cites them (read from published implementations of it that
 quote the paper; to be checked against the paper).
+
+An edge's order, as a hypothesis (not a default): in a wedge of fluid of angle
+:math:`\omega` the potential goes as :math:`r^{\lambda}`, :math:`\lambda = \pi/\omega` (2/3
+at a right-angled convex edge, 1/2 at a plate's rim; the edge singularities of von
+Petersdorff & Stephan 1990, Math. Methods Appl. Sci. 12, 229-249).  A Galerkin boundary
+element solution on uniform panels then converges in the energy norm as :math:`h^{\lambda}`
+(ibid.: the reduced rate that their graded meshes restore), and a smooth linear functional such as an added-mass term, by the duality
+argument, as :math:`h^{2\lambda}`: order 4/3 at a right-angled edge, 1 at a plate's rim
+(the latter is :math:`\delta_1`).  Collocation, which Capytaine and the panel method use,
+has no such estimate on polyhedral surfaces (Atkinson 1997, "The Numerical Solution of
+Integral Equations of the Second Kind", Cambridge, ch. 9), so the order stays an
+alternative the standard deviation chooses or not: on the CAD shapes' BEM levels 4/3 is
+chosen for one diagonal term in 216 and changes no count of
+``python -m benchmarks.bem_fine_references compare ... --edge-orders 1.3333333333333333``.
 """
 
 from __future__ import annotations
