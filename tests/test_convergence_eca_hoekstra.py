@@ -128,3 +128,15 @@ def test_terms_of_a_matrix():
     np.testing.assert_allclose(order, 2.0, rtol=1e-4)
     np.testing.assert_allclose(band, 1.25 * np.abs(mats[-1] - limit), rtol=1e-4, atol=1e-10)
     assert np.all(safety == EH_SAFETY_GOOD)
+
+
+@pytest.mark.parametrize("p, covers", [(0.2, False), (0.3, False), (0.35, True), (0.45, True),
+                                       (2.5, True), (4.0, True)])
+def test_the_band_on_exact_power_laws_out_of_range(p, covers):
+    """Out of [0.5, 2] the fixed orders 1, 2 and 1 & 2 take over: with F_s = 3 they cover an
+    exact sequence's error from p of about 0.35 up, but not a slower one (p = 0.2, 0.3:
+    delta_12 extrapolates too little), a limit of the procedure stated in the docstring."""
+    phi, _ = _levels(p, c=0.7, f0=1.0)
+    r = eca_hoekstra(COUNTS, phi)
+    assert r.safety == EH_SAFETY_POOR
+    assert bool(abs(phi[-1] - 1.0) <= r.uncertainty) == covers

@@ -308,7 +308,13 @@ def eca_hoekstra(counts, values, *, dimension: int = 2,
     one-term fits :math:`\alpha h^q` that join the alternative fits (:math:`\delta_1,
     \delta_2[, \delta_{12}]`) where the free order is out of [0.5, 2] (not in the paper: a
     hypothesis to test, named in the result's ``fit``).  Raises ValueError below four
-    levels or with counts not all distinct."""
+    levels or with counts not all distinct.
+
+    A limit measured on exact power laws (four levels, h ratio sqrt 2): U covers the finest
+    level's error for orders from about 0.35 up (1.25 times it in [0.5, 2], 1.1 at 0.35, 6
+    to 36 times it at 2.5 to 4), but not below: U is 0.62 of the error at p = 0.2 and 0.94
+    at 0.3, the fixed orders 1 and 2 extrapolating too little (tests/
+    test_convergence_eca_hoekstra.py)."""
     n = np.asarray(counts, float)
     phi = np.asarray(values, float)
     if len(n) < EH_MIN_LEVELS or len(phi) != len(n):
