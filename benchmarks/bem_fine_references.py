@@ -284,7 +284,7 @@ def compare(levels_csv, model_csv, edge_orders=()) -> None:
     levels_csv = [levels_csv] if isinstance(levels_csv, (str, Path)) else list(levels_csv)
     methods = [("GCI, 3 finest", levels_csv, "gci", ())]
     if len(levels_csv) > 1:
-        methods.append(("E-H, first file's", levels_csv[:1], "eca-hoekstra", ()))
+        methods.append(("E-H, first file only", levels_csv[:1], "eca-hoekstra", ()))
     methods.append(("E-H, all levels", levels_csv, "eca-hoekstra", ()))
     if edge_orders:
         methods.append((f"E-H + orders {'/'.join(f'{q:.3g}' for q in edge_orders)}",
