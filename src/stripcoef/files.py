@@ -206,6 +206,23 @@ def _roll_forward(journal: Path, record: dict) -> None:
     _discard(journal)
 
 
+def _journal_named(staging: Path):
+    """The journal a staging folder's pointer names, or None: no pointer, or one that a kill
+    cut short (empty, or without its final newline). The pointers are written before the
+    commit point, so a set whose pointer is incomplete was not committed: it is rolled back.
+    (An empty pointer read as ``Path("")`` is the current folder, which "exists": a staging
+    folder was then never removed.)"""
+    try:
+        text = (staging / JOURNAL_POINTER).read_text()
+    except (OSError, UnicodeDecodeError):
+        return None
+    journal = Path(text[:-1]) if text.endswith("\n") else None
+    if journal is None or not (journal.is_absolute() and journal.name.startswith(JOURNAL_PREFIX)
+                               and journal.name.endswith(".json")):
+        return None
+    return journal
+
+
 def _pid_alive(pid: int) -> bool:
     """Whether process ``pid`` runs (this process counts as running)."""
     if pid == os.getpid():
@@ -258,12 +275,8 @@ def recover_outputs(folder, *, roll_back: bool = True) -> None:
         pid = _owner(e.name, STAGING_PREFIX)
         if pid is None or _pid_alive(pid):
             continue
-        pointer = Path(e.path) / JOURNAL_POINTER
-        try:
-            journal = Path(pointer.read_text().strip())
-        except OSError:
-            journal = None
-        if journal is not None and journal.exists():
+        journal = _journal_named(Path(e.path))
+        if journal is not None and journal.is_file():
             try:
                 _roll_forward(journal, json.loads(journal.read_text()))
             except (OSError, ValueError, KeyError, TypeError):
