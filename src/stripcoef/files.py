@@ -101,21 +101,25 @@ class OutputSet:
     A kill -9 before step 2 leaves every earlier output as it was (and a staging folder); a
     kill -9 after it leaves a journal that completes the set. :func:`recover_outputs` finishes
     what a killed run left in a folder: it rolls a journal forward (the renames not yet done,
-    then its staging folders and itself removed) and removes a staging folder of a dead process
-    that no journal commits. It runs before a new set is staged in a folder and (roll-forward
-    only) before :func:`read_text` reads a file, so the next run and every reader of the
-    outputs see the whole new set or the whole old one. A staging folder or journal of a
-    process that is still running is left alone (its run is not over). Which run is over is
-    told by a lock, not by the process id in the name: the writer holds an exclusive advisory
-    lock (``flock``, POSIX) on each staging folder from the moment it makes it until the folder
-    is removed, and the kernel drops the lock when the process ends, however it ends; a journal
-    lives while the first staging folder does (it is deleted before that folder) and shares
-    its lock. A process id can be reused by another process (it would make a dead run look
-    alive) and a killed process that its parent has not yet reaped (a zombie) still answers
-    ``kill(pid, 0)``; neither holds the lock. Where locks are not available (no ``fcntl``: Windows;
-    a file system that refuses ``flock`` on a folder) the process id is checked instead. A
-    failure before the commit (an error, a full disk) removes the staging folders at once. As
-    a context manager it commits on success::
+    then itself and its staging folders removed) and removes a staging folder of a run that is
+    over that no journal commits. It runs before a new set is staged in a folder and
+    (roll-forward only) before :func:`read_text` reads a file, so the next run and every reader
+    of the outputs see the whole new set or the whole old one. A staging folder or journal of
+    a process that is still running is left alone (its run is not over).
+
+    Which run is over is told by a lock, not by the process id in the name: the writer holds
+    an exclusive advisory lock (``flock``, POSIX) on each staging folder from the moment it
+    makes it until the folder is removed, and the kernel drops the lock when the process ends,
+    however it ends; a journal lives while the first staging folder does (it is deleted before
+    that folder) and shares its lock. A process id can be reused by another process (it would
+    make a dead run look alive) and a killed process that its parent has not yet reaped (a
+    zombie) still answers ``kill(pid, 0)``; neither holds the lock (a child forked without exec
+    while a set is open shares it: the run is over when both ended). Where locks are not
+    available (no ``fcntl``: Windows; a file system that refuses ``flock`` on a folder) the
+    process id is checked instead (:func:`_pid_alive`).
+
+    A failure before the commit (an error, a full disk) removes the staging folders at once.
+    As a context manager it commits on success::
 
         with OutputSet() as outs:
             write_export(model, "yaml", outs.path("cal.yaml", key="out"))
@@ -381,9 +385,10 @@ def recover_outputs(folder, *, roll_back: bool = True) -> None:
     except OSError:
         return
     for e in entries:
-        if not (e.name.startswith(JOURNAL_PREFIX) and e.name.endswith(".json")):
+        pid = _owner(e.name, JOURNAL_PREFIX)
+        if pid is None or not e.name.endswith(".json"):     # not a journal OutputSet names
             continue
-        over, fd = _run_over(_staging_of(e.name, folder), _owner(e.name, JOURNAL_PREFIX))
+        over, fd = _run_over(_staging_of(e.name, folder), pid)
         try:
             if over:
                 _roll_forward(Path(e.path), json.loads(Path(e.path).read_text()))
@@ -395,16 +400,17 @@ def recover_outputs(folder, *, roll_back: bool = True) -> None:
         return
     for e in entries:
         if e.name.startswith(JOURNAL_PREFIX):
-            if e.name.endswith(".part"):            # a journal not yet committed
-                over, fd = _run_over(_staging_of(e.name, folder),
-                                     _owner(e.name, JOURNAL_PREFIX))
+            pid = _owner(e.name, JOURNAL_PREFIX)
+            if pid is not None and e.name.endswith(".part"):    # a journal not yet committed
+                over, fd = _run_over(_staging_of(e.name, folder), pid)
                 if over:
                     _discard(e.path)
                 _release(fd)
             continue
-        if not (e.name.endswith(".tmp") and e.is_dir()):
+        pid = _owner(e.name, STAGING_PREFIX)
+        if pid is None or not (e.name.endswith(".tmp") and e.is_dir()):
             continue
-        over, fd = _run_over(Path(e.path), _owner(e.name, STAGING_PREFIX))
+        over, fd = _run_over(Path(e.path), pid)
         try:
             if not over:
                 continue
