@@ -252,8 +252,63 @@ def lift_column(direction, point) -> np.ndarray:
     return np.concatenate([e, skew(np.asarray(point, dtype=float)) @ e])
 
 
-def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: float) -> np.ndarray:
-    r"""Lift matrix of one fin: :math:`L = \tfrac12 \rho S c_{L\alpha}\, c\, c^T` (force :math:`-uL\nu`).
+#: Chord fraction, from the leading edge, at which a lifting surface's incidence from the body's
+#: rotation is taken: the three-quarter-chord point (thin-airfoil theory, Pistolesi's theorem;
+#: USAF DATCOM sec. 7.1.1.1 and Roskam 1985, Airplane Design VI, sec. 10.2.7: the wing's
+#: C_Lq = (1/2 + 2 x_w/c) C_La on q c/2U, x_w the reference point's distance ahead of the
+#: quarter chord) [-].
+ROTARY_CHORD_FRACTION = 0.75
+
+
+def rotary_incidence_point(point, chord: float) -> np.ndarray:
+    r"""Where a fin's (or ring wing's) incidence from the body's rotation is taken: its
+    three-quarter-chord point, half a chord aft of the quarter-chord ``point`` (x forward).
+
+    .. math:: r_\omega = r_{c/4} - \tfrac12 c\,\hat x
+
+    A surface at its quarter chord :math:`r_{c/4}` in the rotation :math:`\omega` lifts, to
+    first order, as a flat plate in the curved flow :math:`v + \omega\times r` along its chord,
+    whose lift is that of the incidence at the three-quarter chord, acting at the quarter chord
+    (thin-airfoil theory, Pistolesi's theorem).  This is the USAF DATCOM's wing lift due to pitch
+    rate, :math:`C_{Lq} = (\tfrac12 + 2\bar x_w/\bar c)\,C_{L\alpha}` on :math:`q\bar c/2U`
+    (:math:`\bar x_w` from the reference point aft to the quarter chord): the lift
+    :math:`C_{L\alpha}\,q\,(\bar x_w + \bar c/4)/U`, the incidence at
+    :math:`\bar x_w + \bar c/4`.  The sideslip incidence does not move (:math:`e^T v` is the
+    same at every point), nor the force's point.
+
+    Parameters
+    ----------
+    point : (3,)
+        Quarter-chord point at mid span [m] (body axes, x forward)
+    chord : float
+        Mean chord c [m], >= 0
+
+    Returns
+    -------
+    (3,) array
+        :math:`r_\omega` [m]
+
+    References
+    ----------
+    USAF DATCOM (Finck 1978) sec. 7.1.1.1 (wing C_Lq, subsonic); Roskam, J. (1985), *Airplane
+    Design* part VI, sec. 10.2.7 (the same, eq. for C_Lq of the wing); Katz & Plotkin,
+    *Low-Speed Aerodynamics* (2001), sec. 5.3 (thin airfoil: the three-quarter-chord point).
+    """
+    if chord < 0.0:
+        raise ValueError(f"rotary_incidence_point needs a chord >= 0, got {chord}")
+    out = np.array(point, dtype=float)
+    out[0] -= (ROTARY_CHORD_FRACTION - 0.25) * chord
+    return out
+
+
+def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: float,
+                    incidence_point=None) -> np.ndarray:
+    r"""Lift matrix of one fin: :math:`L = \tfrac12 \rho S c_{L\alpha}\, c\, a^T` (force :math:`-uL\nu`).
+
+    :math:`c = [e;\ r \times e]` at the force's point r (the quarter chord) and
+    :math:`a = [e;\ r_\omega \times e]` at ``incidence_point`` :math:`r_\omega`, where the
+    rotation's incidence is taken (:func:`rotary_incidence_point`, the three-quarter chord;
+    default r: :math:`a = c`).
 
     Parameters
     ----------
@@ -267,6 +322,8 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
         Quarter-chord point at mid span, relative to the reference point [m]
     rho : float
         Fluid density [kg/m^3]
+    incidence_point : (3,), optional
+        :math:`r_\omega` relative to the reference point [m] (default ``point``)
 
     Returns
     -------
@@ -277,10 +334,12 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
     ----------
     Prestero 2001, sec. 3.6.2 (Y_uvf = -rho c_La S_fin for a fin pair, Y_urf, N_uvf,
     N_urf from the fin's lever arm); the cross velocity at the fin is
-    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring).
+    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring); USAF DATCOM sec. 7.1.1.1
+    (the rotation's incidence at the three-quarter chord, :func:`rotary_incidence_point`).
     """
     c = lift_column(direction, point)
-    return 0.5 * rho * area * lift_slope * np.outer(c, c)
+    a = c if incidence_point is None else lift_column(direction, incidence_point)
+    return 0.5 * rho * area * lift_slope * np.outer(c, a)
 
 
 def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
@@ -881,13 +940,14 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
                           pressure_ratio: float = 1.0) -> np.ndarray:
     r"""Lift matrix of a ring wing coaxial with the body x axis (force :math:`-uL\nu`).
 
-    .. math:: L = k\,(c_y c_y^T + c_z c_z^T),\qquad
+    .. math:: L = k\,(c_y a_y^T + c_z a_z^T),\qquad
               k = \tfrac12\rho\,(2Rc)\,C_{L\alpha}\,\frac{\bar q}{q},\qquad
-              c_e = [e;\ r \times e]
+              c_e = [e;\ r \times e],\quad a_e = [e;\ r_\omega \times e]
 
     the ring's lift (:func:`ring_wing_lift_slope`, A = 2R/c) at its quarter chord r on the
-    axis, answering the cross-flow there in sway and in heave alike (an axisymmetric
-    wing), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
+    axis, answering the cross-flow in sway and in heave alike (an axisymmetric wing), the
+    rotation's at the three-quarter chord :math:`r_\omega` half a chord aft of r
+    (:func:`rotary_incidence_point`; a converging ring's chord taken along x), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
     boundary layer; 1 in the free stream).
 
     Parameters
@@ -916,7 +976,7 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
     k = 0.5 * rho * 2.0 * radius * chord * ring_wing_lift_slope(2.0 * radius / chord) \
         * pressure_ratio
     out = np.zeros((6, 6))
+    turning = rotary_incidence_point(point, chord)
     for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
-        c = lift_column(e, point)
-        out += k * np.outer(c, c)
+        out += k * np.outer(lift_column(e, point), lift_column(e, turning))
     return out
