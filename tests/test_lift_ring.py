@@ -37,7 +37,7 @@ def test_ring_slope_has_the_slender_and_lifting_line_limits():
 
 def test_ring_lift_matrix_is_axisymmetric_and_answers_the_local_cross_flow():
     """Sway and heave alike; a force at the quarter chord x answering v + x_w r, the rotation's
-    incidence at the three-quarter chord x_w = x - c/2 (DATCOM sec. 7.1.1.1): Y_ur = x_w Y_uv,
+    incidence at the three-quarter chord x_w = x - c/2 (hull.lift.rotary_incidence_point): Y_ur = x_w Y_uv,
     N_uv = x Y_uv, N_ur = x x_w Y_uv; the sideslip and heave terms symmetric (N_uv = Y_ur
     only where x_w = x)."""
     x, c = -1.7, 0.23

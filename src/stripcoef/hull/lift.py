@@ -253,10 +253,9 @@ def lift_column(direction, point) -> np.ndarray:
 
 
 #: Chord fraction, from the leading edge, at which a lifting surface's incidence from the body's
-#: rotation is taken: the three-quarter-chord point (thin-airfoil theory, Pistolesi's theorem;
-#: USAF DATCOM sec. 7.1.1.1 and Roskam 1985, Airplane Design VI, sec. 10.2.7: the wing's
-#: C_Lq = (1/2 + 2 x_w/c) C_La on q c/2U, x_w the reference point's distance ahead of the
-#: quarter chord) [-].
+#: rotation is taken: the three-quarter-chord point (thin-airfoil theory: Pistolesi's theorem;
+#: the control point of Weissinger's 1947 lifting-surface method, NACA TM 1120, and of the
+#: vortex-lattice method, Katz & Plotkin 2001, sec. 12.1) [-].
 ROTARY_CHORD_FRACTION = 0.75
 
 
@@ -266,15 +265,20 @@ def rotary_incidence_point(point, chord: float) -> np.ndarray:
 
     .. math:: r_\omega = r_{c/4} - \tfrac12 c\,\hat x
 
-    A surface at its quarter chord :math:`r_{c/4}` in the rotation :math:`\omega` lifts, to
-    first order, as a flat plate in the curved flow :math:`v + \omega\times r` along its chord,
-    whose lift is that of the incidence at the three-quarter chord, acting at the quarter chord
-    (thin-airfoil theory, Pistolesi's theorem).  This is the USAF DATCOM's wing lift due to pitch
-    rate, :math:`C_{Lq} = (\tfrac12 + 2\bar x_w/\bar c)\,C_{L\alpha}` on :math:`q\bar c/2U`
-    (:math:`\bar x_w` from the reference point aft to the quarter chord): the lift
-    :math:`C_{L\alpha}\,q\,(\bar x_w + \bar c/4)/U`, the incidence at
-    :math:`\bar x_w + \bar c/4`.  The sideslip incidence does not move (:math:`e^T v` is the
-    same at every point), nor the force's point.
+    A surface in the rotation :math:`\omega` meets the curved cross-flow
+    :math:`v + \omega\times r`, varying linearly along its chord: a flow a flat plate meets as a
+    parabolic camber line, whose lift (thin-airfoil theory) is that of the incidence at the
+    three-quarter chord, acting at the quarter chord (Pistolesi's theorem; the 3/4-chord rule of
+    Weissinger's lifting-surface method and of the vortex lattice).  The sideslip incidence
+    :math:`e^T v` is the same at every point, and the force stays at the quarter chord.  A
+    planar vortex lattice of rectangular wings (``validation.lift.rotary_point_lattice``) puts
+    the point at 0.50 c aft of the quarter chord for AR 20, 0.55 c at AR 1.5, 0.58 c at AR 1,
+    tending to the trailing edge (0.75 c, slender-wing theory) as AR -> 0: the rule is the
+    large-aspect-ratio limit, a little forward for the low-aspect-ratio fins.  The wing term of
+    Roskam (1985, *Airplane Design* VI, sec. 10.2.7), :math:`C_{Lq} = (\tfrac12 + 2\bar x_w/
+    \bar c)\,C_{L\alpha}` on :math:`q\bar c/2U`, has this arm term :math:`2\bar x_w/\bar c`
+    (the quarter chord :math:`\bar x_w` aft of the reference point) but an own term 1/2 that
+    puts the incidence at the half chord, which the lattice does not give at any aspect ratio.
 
     Parameters
     ----------
@@ -290,9 +294,10 @@ def rotary_incidence_point(point, chord: float) -> np.ndarray:
 
     References
     ----------
-    USAF DATCOM (Finck 1978) sec. 7.1.1.1 (wing C_Lq, subsonic); Roskam, J. (1985), *Airplane
-    Design* part VI, sec. 10.2.7 (the same, eq. for C_Lq of the wing); Katz & Plotkin,
-    *Low-Speed Aerodynamics* (2001), sec. 5.3 (thin airfoil: the three-quarter-chord point).
+    Katz, J. & Plotkin, A. (2001), *Low-Speed Aerodynamics*, 2nd ed., sec. 5.3-5.4 (thin
+    airfoil: the lift of a cambered plate; the lumped vortex with its collocation point at the
+    three-quarter chord) and sec. 12.1 (vortex lattice); Weissinger, J. (1947), "The lift
+    distribution of swept-back wings", NACA TM 1120 (the 3/4-chord rule on finite wings).
     """
     if chord < 0.0:
         raise ValueError(f"rotary_incidence_point needs a chord >= 0, got {chord}")
@@ -334,8 +339,8 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
     ----------
     Prestero 2001, sec. 3.6.2 (Y_uvf = -rho c_La S_fin for a fin pair, Y_urf, N_uvf,
     N_urf from the fin's lever arm); the cross velocity at the fin is
-    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring); USAF DATCOM sec. 7.1.1.1
-    (the rotation's incidence at the three-quarter chord, :func:`rotary_incidence_point`).
+    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring); the rotation's incidence at
+    the three-quarter chord (:func:`rotary_incidence_point`).
     """
     c = lift_column(direction, point)
     a = c if incidence_point is None else lift_column(direction, incidence_point)
