@@ -4,10 +4,11 @@ The formulas are in :mod:`stripcoef.hull.lift` (Hoerner & Borst 1985; Helmbold 1
 1958; Prestero 2001, secs. 3.6-3.7); this module walks the vehicle's hull, fin appendages
 and control surfaces and sums them:
 
-.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f} K_f\, c_f c_f^T,
+.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f} K_f\, c_f a_f^T,
           \qquad b_s = \sum_{panels\ of\ s} \tfrac12\rho S_p c_{L\alpha,p}\, c_p\, \sigma_s
 
-with :math:`c = [e;\ r\times e]` at the panel's quarter chord, :math:`K_f` the fin-hull
+with :math:`c = [e;\ r\times e]` at the panel's quarter chord (:math:`a_f` the same at its
+three-quarter chord, where the rotation's incidence is taken), :math:`K_f` the fin-hull
 interference factor (Pitts, Nielsen & Kaattari 1957) of a fin on a cylindrical stretch of a
 round hull (1 elsewhere) and :math:`\sigma_s` the sign
 of the deflection convention (Prestero 2001: a positive rudder gives +Y, a positive

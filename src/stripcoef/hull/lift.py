@@ -34,9 +34,10 @@ slope
 
 and the force :math:`\tfrac12 \rho u^2 S c_{L\alpha} \alpha_e` normal to its plane, with
 :math:`\alpha_e = \delta - v_f/u` the effective angle of attack, :math:`v_f` the cross
-velocity at its quarter chord.  A fin of lift direction e at r (relative to the reference
-point) adds :math:`k\,c\,c^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m],
-:math:`c = [e;\ r \times e]`, and a control surface deflected by :math:`\delta` gives
+velocity at its quarter chord (the rotation's part at its three-quarter chord,
+:func:`rotary_incidence_point`).  A fin of lift direction e at r (relative to the reference
+point) adds :math:`k\,c\,a^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m],
+:math:`c = [e;\ r \times e]`, :math:`a = [e;\ r_\omega \times e]`, and a control surface deflected by :math:`\delta` gives
 :math:`u^2 k\,c\,\delta` (Prestero 2001, sec. 3.7: :math:`Y_{uu\delta_r}`,
 :math:`N_{uu\delta_r}`, ...).  The linear law holds up to the stall angle; beyond it the
 lift falls (Hoerner & Borst 1985, ch. 4), which this model does not represent: deflections
