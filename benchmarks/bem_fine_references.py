@@ -16,9 +16,20 @@ three steps:
     #    OpenMP Fortran; the LU factorisation on a GPU through torch where there is one, else
     #    Capytaine's own LAPACK LU), writing one CSV row per matrix term as it goes:
     python -m benchmarks.bem_fine_references solve --meshes DIR --csv levels.csv
-    # 3. the extrapolation and the comparison with the model rows of a stored run:
-    python -m benchmarks.bem_fine_references compare --levels levels.csv \\
-        --model reference_tables/bem/cad_shapes.csv
+    # 3. the estimate from the levels and the comparison with the model rows of a stored
+    #    run, by the three finest levels' grid convergence index (before) and by Eça &
+    #    Hoekstra's least squares over all the levels (validation.cad_shapes.fine_reference),
+    #    in one table; --holdout: the bands tested on a level they did not see:
+    python -m benchmarks.bem_fine_references compare --levels levels.csv [more.csv] \\
+        --model reference_tables/bem/cad_shapes.csv [--holdout] [--edge-orders Q ...]
+
+The 750-face level of the same remesh family (that of benchmarks.cad_shapes' stored
+references, whose 1,500- and 3,000-face levels are the fine levels' two coarsest):
+
+    python -m benchmarks.bem_fine_references prepare --seed 1375923287 --count 40 --out DIR \\
+        --levels 750 1500 3000 --cad-shapes-cap
+    python -m benchmarks.bem_fine_references solve --meshes DIR --csv levels_750.csv \\
+        --max-level 0 --same-family reference_tables/bem/cad_shapes_fine_levels.csv
 
 ``prepare --thin --seed S --count N`` writes the thin plates and wings of
 benchmarks.thin_members instead (shapes 100 and up).  The stored levels are
@@ -42,9 +53,11 @@ RHO = 1000.0
 
 
 # ----------------------------------------------------------------------------- prepare
-def prepare(seed: int, count: int, out: Path, levels=LEVELS) -> None:
+def prepare(seed: int, count: int, out: Path, levels=LEVELS, max_faces: int | None = -1) -> None:
     """Draw the shapes of ``seed`` exactly as benchmarks.cad_shapes does and write each one's
-    remesh family (float64 vertices [m], int32 faces) to ``out/shape_KK.npz``."""
+    remesh family (float64 vertices [m], int32 faces) to ``out/shape_KK.npz``; ``max_faces``
+    the family's face cap (-1: 1.6 times the finest level's target; None: the remesher's
+    default, as benchmarks.cad_shapes.bem_reference calls it)."""
     from benchmarks.cad_shapes import FAMILIES, clean_surface, make_shape
     from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
@@ -58,7 +71,7 @@ def prepare(seed: int, count: int, out: Path, levels=LEVELS) -> None:
         v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
         t0 = time.perf_counter()
         fam = remesh_family(v, f, [edge_for_panels(float(surface.area), n) for n in levels],
-                            max_faces=int(1.6 * levels[-1]))
+                            max_faces=int(1.6 * levels[-1]) if max_faces == -1 else max_faces)
         if fam is None:
             print(f"{k:3d} {family:12s} no remesh family: skipped", flush=True)
             continue
@@ -167,14 +180,31 @@ def added_mass(solver, vertices, faces, rho=RHO):
 
 
 def solve(meshes: Path, csv_path: Path, max_level: int | None = None, order=None,
-          min_level: int = 0) -> None:
+          min_level: int = 0, same_family: Path | None = None) -> None:
     """Every level of every ``meshes/shape_*.npz``, coarse levels of all shapes first (within
     a level, the shapes listed in ``order`` first), one CSV row per upper-triangle term,
-    flushed after every solve (a run cut short keeps what it solved)."""
+    flushed after every solve (a run cut short keeps what it solved).  ``same_family``: a
+    levels CSV; only the shapes whose levels 1 and 2 have the faces of its levels 0 and 1 (one
+    remesh family, the remesher being deterministic) are solved."""
     import logging
     logging.getLogger("capytaine").setLevel(logging.ERROR)
     files = sorted(meshes.glob("shape_*.npz"))
     data = {p.stem: np.load(p) for p in files}
+    if same_family is not None:
+        known: dict = {}
+        with open(same_family, newline="") as fh:
+            for r in csv.DictReader(fh):
+                known.setdefault(int(r["shape"]), {})[int(r["level"])] = int(r["faces"])
+        keep = {}
+        for name, d in data.items():
+            lv = known.get(int(name.split("_")[1]), {})
+            faces = [len(d[f"f{i}"]) for i in (1, 2) if f"f{i}" in d.files]
+            if faces == [lv.get(0), lv.get(1)]:
+                keep[name] = d
+            else:
+                print(f"{name}: levels {faces} are not {[lv.get(0), lv.get(1)]}: another "
+                      "family, skipped", flush=True)
+        data = keep
     named = {int(n.split("_")[1]): n for n in data}
     first = [named[k] for k in (order or []) if k in named]
     data = {name: data[name] for name in first + [n for n in data if n not in first]}
@@ -203,33 +233,97 @@ def solve(meshes: Path, csv_path: Path, max_level: int | None = None, order=None
 
 
 # ----------------------------------------------------------------------------- compare
-def compare(levels_csv, model_csv) -> None:
-    """The model rows of a stored benchmarks.cad_shapes run against the fine references
-    (validation.cad_shapes.fine_comparison: the same numbers as docs/validation.md)."""
-    from stripcoef.conventions import DOF as DOFS
-    from validation.cad_shapes import fine_comparison
-
-    rows = fine_comparison(levels_csv, model_csv)
+def _measures(rows, misses) -> dict:
+    """The comparison's counts of ``rows`` (validation.cad_shapes.fine_comparison) as
+    {label: text}; ``misses``: the (shape, i) of the diagonal terms off by more than 5 %
+    against the references of the first method (the before)."""
     diag = [r for r in rows if r["i"] == r["j"]]
     sig = [r for r in rows if r["significant"]]
     coup = [r for r in sig if r["i"] != r["j"]]
-    print(f"{len({r['shape'] for r in rows})} shapes")
-    print(f"  model diagonal terms within 5 % of the fine reference: "
-          f"{sum(abs(r['err']) <= 0.05 for r in diag)} of {len(diag)}")
+    bands = np.array([r["band"] for r in diag])
+    hard = [r for r in diag if (r["shape"], r["i"]) in misses]
+
+    def frac(good, of):
+        return f"{good} of {len(of)}"
+
+    out = {"diagonal within 5 %": frac(sum(abs(r["err"]) <= 0.05 for r in diag), diag)}
     for limit in (0.05, 0.02):
         tight = [r for r in diag if r["band"] <= limit]
-        print(f"    where the fine reference's band is at most {100 * limit:.0f} %: "
-              f"{sum(abs(r['err']) <= 0.05 for r in tight)} of {len(tight)}")
-    print(f"  couplings within 5 % of the scale: {sum(abs(r['err']) <= 0.05 for r in coup)} "
-          f"of {len(coup)}")
-    print(f"  the model's estimate covers its error: {sum(abs(r['err']) <= r['est'] for r in sig)}"
-          f" of {len(sig)}")
-    print(f"  the stored references within 5 % of the fine ones (diagonal): "
-          f"{sum(abs(r['stored_err']) <= 0.05 for r in diag)} of {len(diag)}")
-    for r in sorted(diag, key=lambda r: -abs(r["err"]))[:12]:
-        print(f"    shape {r['shape']:2d} {r['family']:12s} {DOFS[r['i']]:6s} model "
-              f"{100 * r['err']:+6.1f} % (est. {100 * r['est']:.1f} %), stored reference "
-              f"{100 * r['stored_err']:+6.1f} %, fine reference's band {100 * r['band']:.1f} %")
+        out[f"  where the reference's band <= {100 * limit:.0f} %"] = frac(
+            sum(abs(r["err"]) <= 0.05 for r in tight), tight)
+    out["couplings within 5 % of the scale"] = frac(
+        sum(abs(r["err"]) <= 0.05 for r in coup), coup)
+    out["the model's estimate covers its error"] = frac(
+        sum(abs(r["err"]) <= r["est"] for r in sig), sig)
+    out["  with the reference's band, root-sum-square"] = frac(
+        sum(abs(r["err"]) <= np.hypot(r["est"], r["band"]) for r in sig), sig)
+    out["3,000-face references within 5 % (diagonal)"] = frac(
+        sum(abs(r["stored_err"]) <= 0.05 for r in diag), diag)
+    out["reference's band, diagonal: median / max"] = (
+        f"{100 * np.median(bands):.1f} % / {100 * bands.max():.0f} %")
+    out["reference's band over 5 % (diagonal)"] = frac(int((bands > 0.05).sum()), diag)
+    out[f"the {len(misses)} terms missed before: band <= 5 %"] = frac(
+        sum(r["band"] <= 0.05 for r in hard), hard)
+    out[f"the {len(misses)} terms missed before: model within 5 %"] = frac(
+        sum(abs(r["err"]) <= 0.05 for r in hard), hard)
+    out[f"the {len(misses)} terms missed before: error within band"] = frac(
+        sum(abs(r["err"]) <= r["band"] for r in hard), hard)
+    return out
+
+
+def compare(levels_csv, model_csv, edge_orders=()) -> None:
+    """The model rows of a stored benchmarks.cad_shapes run against the fine references
+    (validation.cad_shapes.fine_comparison: the same numbers as docs/validation.md), by
+    each way of estimating the reference from the levels, in one table: the three finest
+    levels' grid convergence index (before), Eça & Hoekstra's least squares over all levels,
+    and (``edge_orders``) the latter with fixed orders that edge singularities imply among
+    its alternative fits."""
+    from stripcoef.conventions import DOF as DOFS
+    from validation.cad_shapes import fine_comparison
+
+    levels_csv = [levels_csv] if isinstance(levels_csv, (str, Path)) else list(levels_csv)
+    methods = [("GCI, 3 finest", levels_csv, "gci", ())]
+    if len(levels_csv) > 1:
+        methods.append(("E-H, first file only", levels_csv[:1], "eca-hoekstra", ()))
+    methods.append(("E-H, all levels", levels_csv, "eca-hoekstra", ()))
+    if edge_orders:
+        methods.append((f"E-H + orders {'/'.join(f'{q:.3g}' for q in edge_orders)}",
+                        levels_csv, "eca-hoekstra", tuple(edge_orders)))
+    runs = [(label, fine_comparison(lv, model_csv, m, extra))
+            for label, lv, m, extra in methods]
+    first = runs[0][1]
+    misses = {(r["shape"], r["i"]) for r in first if r["i"] == r["j"] and abs(r["err"]) > 0.05}
+    table = [(label, _measures(rows, misses)) for label, rows in runs]
+    print(f"{len({r['shape'] for r in first})} shapes, "
+          f"{sum(r['i'] == r['j'] for r in first)} diagonal terms")
+    width = max(len(k) for k in table[0][1])
+    print(" " * width + " | " + " | ".join(f"{label:>22s}" for label, _ in table))
+    for key in table[0][1]:
+        print(f"{key:{width}s} | " + " | ".join(f"{m[key]:>22s}" for _, m in table))
+    by = [{(r["shape"], r["i"]): r for r in rows if r["i"] == r["j"]} for _, rows in runs]
+    every = {k for b in by for k, r in b.items() if abs(r["err"]) > 0.05}
+    print(f"\nThe {len(every)} diagonal terms off by more than 5 % by any method (model - "
+          "reference, the reference's band, the order of its fit in h):")
+    for key in sorted(every, key=lambda k: -abs(by[0][k]["err"])):
+        r0 = by[0][key]
+        cells = [f"{100 * b[key]['err']:+6.1f} % +-{100 * b[key]['band']:5.1f} % "
+                 f"p {b[key]['order']:4.2f}" for b in by]
+        print(f"  shape {key[0]:2d} {r0['family']:12s} {DOFS[key[1]]:6s} " + " | ".join(cells))
+
+
+def holdout(levels_csv) -> None:
+    """The bands tested on a level they did not see (validation.cad_shapes.fine_holdout)."""
+    from validation.cad_shapes import fine_holdout
+
+    h = fine_holdout(levels_csv)
+    print(f"{h['shapes']} shapes with five levels or more: the finest level's move within the "
+          "band estimated without it (significant terms; the diagonal band's median / max)")
+    for label, (good, of, bands) in h["seen"].items():
+        print(f"  {label:24s} {good} of {of}   {100 * np.median(bands):.1f} % / "
+              f"{100 * max(bands):.0f} %")
+    print("the diagonal terms' reference of one procedure within another's band:")
+    for (b, a), (good, of) in h["inside"].items():
+        print(f"  {b:14s} within {a:14s} band: {good} of {of}")
 
 
 def main(argv=None) -> int:
@@ -241,24 +335,46 @@ def main(argv=None) -> int:
     p.add_argument("--out", type=Path, required=True)
     p.add_argument("--thin", action="store_true",
                    help="the thin members of benchmarks.thin_members instead of CAD shapes")
+    p.add_argument("--levels", type=int, nargs="+", default=None,
+                   help=f"target face counts of the CAD shapes' family (default {LEVELS}); "
+                   "750 1500 3000 with --cad-shapes-cap: the family of benchmarks.cad_shapes' "
+                   "stored references")
+    p.add_argument("--cad-shapes-cap", action="store_true",
+                   help="the remesher's default face cap, as benchmarks.cad_shapes")
     s = sub.add_parser("solve")
     s.add_argument("--meshes", type=Path, required=True)
     s.add_argument("--csv", type=Path, required=True)
     s.add_argument("--max-level", type=int, default=None)
     s.add_argument("--min-level", type=int, default=0)
+    s.add_argument("--same-family", type=Path, default=None,
+                   help="a levels CSV: solve only the shapes whose levels 1 and 2 are its 0 and 1")
     s.add_argument("--order", default="", help="shape indices solved first at every level "
                    "(comma-separated)")
     c = sub.add_parser("compare")
-    c.add_argument("--levels", type=Path, required=True)
+    c.add_argument("--levels", type=Path, nargs="+", required=True,
+                   help="levels CSVs of the same remesh families, merged per shape")
     c.add_argument("--model", type=Path, required=True)
+    c.add_argument("--holdout", action="store_true",
+                   help="also the bands tested on the finest level they did not see")
+    c.add_argument("--edge-orders", type=float, nargs="*", default=[],
+                   help="fixed orders in h added to Eca & Hoekstra's alternative fits (a third "
+                   "column)")
     args = ap.parse_args(argv)
     if args.cmd == "prepare":
-        (prepare_thin if args.thin else prepare)(args.seed, args.count, args.out)
+        if args.thin:
+            prepare_thin(args.seed, args.count, args.out)
+        else:
+            prepare(args.seed, args.count, args.out, tuple(args.levels or LEVELS),
+                    None if args.cad_shapes_cap else -1)
     elif args.cmd == "solve":
         solve(args.meshes, args.csv, args.max_level,
-              [int(x) for x in args.order.split(",") if x.strip()], args.min_level)
+              [int(x) for x in args.order.split(",") if x.strip()], args.min_level,
+              args.same_family)
     else:
-        compare(args.levels, args.model)
+        compare(args.levels, args.model, args.edge_orders)
+        if args.holdout:
+            print()
+            holdout(args.levels)
     return 0
 
 

@@ -2,8 +2,10 @@
 the extrapolation on exact convergence, and the stored levels file's completeness."""
 
 import numpy as np
+import pytest
 
-from validation.cad_shapes import FINE, THIN_OFFSET, fine_comparison, fine_reference, read_levels
+from validation.cad_shapes import (FINE, FINE_750, FINE_ALL, THIN_OFFSET, fine_comparison,
+                                   fine_holdout, fine_reference, read_levels)
 
 
 def test_fine_reference_recovers_an_exact_second_order_sequence():
@@ -21,12 +23,12 @@ def test_fine_reference_recovers_an_exact_second_order_sequence():
 
 
 def test_fine_reference_uses_the_observed_order_below_the_formal_one():
-    """Levels converging as N^-1/4 (order 0.5 in h, a sharp edge's rate): the order used is
-    the observed one and the extrapolation reaches the limit."""
+    """Levels converging as N^-1/4 (order 0.5 in h, a sharp edge's rate), by the three-level
+    rule: the order used is the observed one and the extrapolation reaches the limit."""
     counts = np.array([1500.0, 3000.0, 6000.0, 12000.0])
     vals = 2.0 + 3.0 * counts ** -0.25
     mats = [np.full((6, 6), v) for v in vals]
-    ref, band, order = fine_reference(list(counts), mats)
+    ref, band, order = fine_reference(list(counts), mats, method="gci")
     np.testing.assert_allclose(order, 0.5, rtol=1e-6)
     np.testing.assert_allclose(ref, 2.0, rtol=1e-9)
     assert np.all(band > np.abs(vals[-1] - 2.0))            # safety factor 3 over the step
@@ -45,3 +47,45 @@ def test_stored_levels_refine_every_shape():
     rows = fine_comparison()
     assert {r["shape"] for r in rows} <= set(cad)
     assert all(np.isfinite(r["err"]) and r["band"] >= 0 for r in rows)
+
+
+def test_fine_reference_by_eca_hoekstra_over_all_levels():
+    """Four levels of order 1.2 in h (within [0.5, 2]): the least-squares fit of free order
+    over all four (Eça & Hoekstra 2014) finds the limit and the order, and its band is
+    1.25 times the finest level's error (sigma = 0); three levels fall back to the GCI."""
+    counts = [1500, 3000, 6000, 12000]
+    vals = [2.0 + 3.0 * n ** -0.6 for n in counts]
+    mats = [np.full((6, 6), v) for v in vals]
+    ref, band, order = fine_reference(counts, mats)
+    np.testing.assert_allclose(ref, 2.0, atol=1e-9)
+    np.testing.assert_allclose(order, 1.2, rtol=1e-5)
+    np.testing.assert_allclose(band, 1.25 * (vals[-1] - 2.0), rtol=1e-5)
+    r3 = fine_reference(counts[1:], mats[1:])
+    g3 = fine_reference(counts[1:], mats[1:], method="gci")
+    for a, b in zip(r3, g3):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_the_750_face_level_joins_its_family_below_the_fine_levels():
+    """The 750-face level (cad_shapes_fine_levels_750.csv) of the 35 shapes whose family it is:
+    merged per shape below the fine levels, coarse to fine; the frames of another family
+    have none."""
+    fine, coarse, merged = read_levels(FINE), read_levels(FINE_750), read_levels(*FINE_ALL)
+    assert len(coarse) == 35 and not {21, 23, 26, 34, 37} & set(coarse)
+    for k, lv in coarse.items():
+        assert len(lv) == 1 and lv[0][0] < fine[k][0][0]
+        faces = [merged[k][x][0] for x in sorted(merged[k])]
+        assert faces == [lv[0][0]] + [fine[k][x][0] for x in sorted(fine[k])]
+        np.testing.assert_array_equal(merged[k][0][1], lv[0][1])
+        assert np.all(np.diag(lv[0][1]) > 0)
+
+
+@pytest.mark.slow
+def test_eca_hoekstra_bands_contain_the_level_they_did_not_see():
+    """On the shapes with five levels, the band of the last level but one estimated without
+    the finest must contain the finest level's move (a necessary condition): Eça & Hoekstra
+    over four levels in every significant term, at least as often as the three-level GCI."""
+    h = fine_holdout()
+    assert h["shapes"] >= 30
+    eh, gci = h["seen"]["Eca-Hoekstra, 4 levels"], h["seen"]["GCI, 3 levels"]
+    assert eh[0] == eh[1] and eh[0] >= gci[0]

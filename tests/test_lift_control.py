@@ -24,7 +24,8 @@ from stripcoef import estimate
 from stripcoef.cli import main
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.hull.lift import (body_lift_slope, cylindrical_root, effective_aspect_ratio,
-                                 fin_lift_slope, interference_factor, lifting_line_slope)
+                                 fin_lift_matrix, fin_lift_slope, interference_factor,
+                                 lifting_line_slope, rotary_incidence_point)
 from stripcoef.sections.added_mass import circle_with_fins
 from stripcoef.limits.steering import dive, level_trim, rudder_turn
 from stripcoef.model import HydroModel, rigid_body_mass_matrix
@@ -139,6 +140,38 @@ def test_single_fin_interference_by_the_2d_panel_method():
             assert factor == pytest.approx(k, rel=0.01)
         else:
             assert -0.05 < factor / k - 1 < -0.03
+
+
+def test_rotary_incidence_at_the_three_quarter_chord():
+    """Thin-airfoil theory (Pistolesi; Weissinger's 3/4-chord rule): a fin whose quarter chord is
+    x_w aft of the reference point lifts C_La q (x_w + c/2)/U in a pitch rate q, the incidence
+    at its three-quarter chord; the sideslip/heave incidence and the force's point (the quarter
+    chord: the moment of the heave force) do not move; without an incidence point the matrix is
+    the symmetric k c c^T."""
+    x, c, k = -0.6, 0.08, 0.5 * 1000.0 * 0.01 * 2.5
+    np.testing.assert_allclose(rotary_incidence_point([x, 0.0, 0.1], c), [x - 0.5 * c, 0.0, 0.1])
+    m = fin_lift_matrix(0.01, 2.5, [0, 0, 1], [x, 0.0, 0.0], rho=1000.0,
+                        incidence_point=rotary_incidence_point([x, 0.0, 0.0], c))
+    assert -m[2, 4] == pytest.approx(-k * (-x + 0.5 * c))      # Z_uq: the tail lifts up (-z)
+    assert m[2, 2] == pytest.approx(k) and m[4, 2] == pytest.approx(-x * k)    # M_uw: c/4 arm
+    assert m[4, 4] == pytest.approx(x * (x - 0.5 * c) * k)
+    np.testing.assert_allclose(fin_lift_matrix(0.01, 2.5, [0, 0, 1], [x, 0, 0], rho=1000.0),
+                               k * np.outer([0, 0, 1, 0, -x, 0], [0, 0, 1, 0, -x, 0]))
+    with pytest.raises(ValueError, match="chord >= 0"):
+        rotary_incidence_point([0, 0, 0], -0.1)
+
+
+@pytest.mark.slow
+def test_rotary_incidence_point_against_the_vortex_lattice():
+    """The planar vortex lattice puts a rectangular wing's pitch-rate incidence 0.50 c aft of
+    its quarter chord at AR 20 (the three-quarter chord of the rule), 0.55 c at AR 1.5 and
+    further aft as AR falls (the trailing edge, 0.75 c, is slender-wing theory's limit): the
+    rule is the large-aspect-ratio limit, within 0.06 c of the lattice on the SUBOFF fins
+    (AR_e 1.1-1.5)."""
+    from validation.lift import rotary_point_lattice
+    assert rotary_point_lattice(20.0) == pytest.approx(0.50, abs=0.005)
+    assert rotary_point_lattice(1.5) == pytest.approx(0.554, abs=0.003)
+    assert 0.5 < rotary_point_lattice(1.0) < rotary_point_lattice(0.25) < 0.75
 
 
 def test_cylindrical_root():

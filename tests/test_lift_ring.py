@@ -36,15 +36,20 @@ def test_ring_slope_has_the_slender_and_lifting_line_limits():
 
 
 def test_ring_lift_matrix_is_axisymmetric_and_answers_the_local_cross_flow():
-    """Sway and heave alike; Y_ur = x Y_uv (a force at the quarter chord x answering v + x r),
-    N_ur = x^2 Y_uv; symmetric (the force's point is where its cross-flow is taken)."""
-    x = -1.7
-    m = ring_wing_lift_matrix(0.12, 0.23, [x, 0.0, 0.0], rho=1000.0, pressure_ratio=0.5)
-    k = 0.5 * 1000.0 * 2 * 0.12 * 0.23 * ring_wing_lift_slope(2 * 0.12 / 0.23) * 0.5
+    """Sway and heave alike; a force at the quarter chord x answering v + x_w r, the rotation's
+    incidence at the three-quarter chord x_w = x - c/2 (hull.lift.rotary_incidence_point): Y_ur = x_w Y_uv,
+    N_uv = x Y_uv, N_ur = x x_w Y_uv; the sideslip and heave terms symmetric (N_uv = Y_ur
+    only where x_w = x)."""
+    x, c = -1.7, 0.23
+    xw = x - 0.5 * c
+    m = ring_wing_lift_matrix(0.12, c, [x, 0.0, 0.0], rho=1000.0, pressure_ratio=0.5)
+    k = 0.5 * 1000.0 * 2 * 0.12 * c * ring_wing_lift_slope(2 * 0.12 / c) * 0.5
     assert m[1, 1] == pytest.approx(k) and m[2, 2] == pytest.approx(k)
-    assert m[1, 5] == pytest.approx(x * k) and m[5, 5] == pytest.approx(x * x * k)
-    assert m[2, 4] == pytest.approx(-x * k) and m[4, 4] == pytest.approx(x * x * k)
-    np.testing.assert_allclose(m, m.T, atol=1e-12)
+    assert m[1, 5] == pytest.approx(xw * k) and m[5, 1] == pytest.approx(x * k)
+    assert m[5, 5] == pytest.approx(x * xw * k)
+    assert m[2, 4] == pytest.approx(-xw * k) and m[4, 2] == pytest.approx(-x * k)
+    assert m[4, 4] == pytest.approx(x * xw * k)
+    np.testing.assert_allclose(m[:3, :3], m[:3, :3].T, atol=1e-12)
     with pytest.raises(ValueError, match="R, c > 0"):
         ring_wing_lift_matrix(0.0, 0.2, [0, 0, 0], rho=1000.0)
 

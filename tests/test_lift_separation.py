@@ -139,8 +139,9 @@ def test_stratford_rule_against_table4_and_the_drift_curves():
     """The measured result that keeps the rule an option (docs/validation.md): more of Table 4's
     checks (18 of 26 against the default's 15) and the static terms of the appended
     configurations within 25 %, but fewer drift-curve points (19 of 40 against 22), the rotary
-    terms short (configuration 2's Y'_r 0.24) and a wider lift band (sd(ln) 0.727 against
-    0.557)."""
+    terms short (configuration 2's Y'_r 0.44, 0.24 before the fins' rotary incidence was taken
+    at their three-quarter chord) and a narrower lift band (sd(ln) 0.419 against 0.557; 0.727
+    before)."""
     from validation.lift import (drift_curve_checks, issue_checks, lift_band,
                                  suboff_comparisons)
 
@@ -151,9 +152,9 @@ def test_stratford_rule_against_table4_and_the_drift_curves():
     for (config, name), c in rows.items():
         if c["kind"] == "static" and config in (1, 2, 4, 5):
             assert c["stratford"] / c["measured"] == pytest.approx(1.0, abs=0.25), (config, name)
-    assert rows[(2, "Yr")]["stratford"] / rows[(2, "Yr")]["measured"] == pytest.approx(0.24,
+    assert rows[(2, "Yr")]["stratford"] / rows[(2, "Yr")]["measured"] == pytest.approx(0.44,
                                                                                        abs=0.01)
-    assert lift_band("stratford")["lift"] == pytest.approx(0.727, abs=0.002)
+    assert lift_band("stratford")["lift"] == pytest.approx(0.419, abs=0.002)
     assert lift_band("datcom")["lift"] == pytest.approx(0.557, abs=0.002)
 
 
@@ -192,3 +193,28 @@ def test_a_rise_past_the_criterions_range_is_said():
     assert out["limit"] is None and out["cp"] < 4 / 7
     flat = stratford_separation(s, np.ones_like(s), speed=2.0, viscosity=1e-6, transition=0.5)
     assert flat["limit"] == "end"
+
+
+@pytest.mark.slow
+def test_rotary_buildup_says_where_the_rotary_terms_go():
+    """Why the Stratford option's rotary terms are short (validation.lift.rotary_buildup,
+    docs/validation.md): the body's Y'_r falls with its Y'_v (0.57 and 0.64 of measured: its
+    lever without the Munk part, -0.45 L_BP, is near the measured -0.42), not by a rotary defect
+    of its own; the sail's Y'_r is twice the measured under both rules (lever +0.19 against
+    +0.11); the measured stern planes' lever is -0.99, twice a lifting surface's at their
+    station (-0.45), and the ring wing's yaw-rate force comes with no drift force."""
+    from validation.lift import rotary_buildup
+
+    r = {(x["component"], x["source"]): x for x in rotary_buildup()}
+    body, sail = r[("body", "stratford")], r[("sail", "stratford")]
+    assert body["Yr"] / r[("body", "measured")]["Yr"] == pytest.approx(0.57, abs=0.01)
+    assert body["Yv"] / r[("body", "measured")]["Yv"] == pytest.approx(0.64, abs=0.01)
+    assert body["lever"] == pytest.approx(-0.45, abs=0.01)
+    assert r[("body", "measured")]["lever"] == pytest.approx(-0.42, abs=0.01)
+    for rule in ("datcom", "stratford"):
+        assert r[("sail", rule)]["Yr"] / r[("sail", "measured")]["Yr"] == pytest.approx(1.97, abs=0.02)
+        assert r[("stern planes", rule)]["lever"] == pytest.approx(-0.45, abs=0.01)
+    assert sail["lever"] == pytest.approx(0.19, abs=0.01)
+    assert r[("stern planes", "measured")]["lever"] == pytest.approx(-0.99, abs=0.01)
+    ring = r[("ring wing", "measured")]
+    assert abs(ring["Yv"]) < 1e-5 < 1e-3 < ring["Yr"]

@@ -40,6 +40,18 @@ def leftovers(folder):
     return sorted(p.name for p in folder.iterdir() if p.name.startswith("."))
 
 
+def described(folder):
+    """What a failed check shows of each leftover: its files and its journal pointer's text
+    (a pointer cut short by the kill was the cause of a leftover folder: issue 31)."""
+    out = []
+    for name in leftovers(folder):
+        p = folder / name
+        pointer = p / ".journal"
+        out.append((name, sorted(c.name for c in p.iterdir()) if p.is_dir() else "file",
+                    pointer.read_text() if pointer.is_file() else None))
+    return out
+
+
 def _writer(folder, start, slow, stop_after_renames):
     """The child: writes generations start, start+1, ... (renames slowed by ``slow`` s, or
     stopped forever after ``stop_after_renames`` renames of a commit)."""
@@ -87,7 +99,7 @@ def test_kill_at_random_moments_leaves_a_whole_set(tmp_path):
         recover_outputs(tmp_path)                   # what the next run does first
         gens = generations(tmp_path)
         assert len(set(gens)) == 1, (trial, delay, gens)
-        assert gens[0] >= last and leftovers(tmp_path) == [], (trial, leftovers(tmp_path))
+        assert gens[0] >= last and leftovers(tmp_path) == [], (trial, described(tmp_path))
         last = gens[0]
     assert last > 0                                 # the children did commit sets
 

@@ -6,6 +6,7 @@ by a complete new one.
 
 from __future__ import annotations
 
+import errno
 import json
 import math
 import os
@@ -16,6 +17,11 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from stripcoef.errors import InputError, UnreachableError
+
+try:                        # POSIX advisory locks: the liveness of a run's staging folders
+    import fcntl
+except ImportError:         # (Windows): the process-id check alone, see _run_over
+    fcntl = None
 
 
 def _write_error(exc: OSError, path, key: str) -> InputError:
@@ -84,23 +90,36 @@ class OutputSet:
     write-ahead journal (the roll-forward recovery of database logs: Gray & Reuter,
     *Transaction Processing*, 1993, sec. 9.3):
 
-    1. every staging folder gets a pointer to the journal's name (``.journal``);
+    1. every staging folder gets a pointer to the journal's name (``.journal``, one line: a
+       pointer that a kill cut short is no pointer, the set was not committed);
     2. the journal (``.stripcoef-commit-<pid>-*.json`` in the first output's folder: every
        rename, source and destination) is written to a temporary name and renamed into place:
        this one atomic rename is the commit point;
     3. the staged files are renamed onto their destinations (each an atomic rename), the
-       staging folders removed, the journal deleted.
+       journal deleted, the staging folders removed (then holding only the pointers).
 
     A kill -9 before step 2 leaves every earlier output as it was (and a staging folder); a
     kill -9 after it leaves a journal that completes the set. :func:`recover_outputs` finishes
     what a killed run left in a folder: it rolls a journal forward (the renames not yet done,
-    then its staging folders and itself removed) and removes a staging folder of a dead process
-    that no journal commits. It runs before a new set is staged in a folder and (roll-forward
-    only) before :func:`read_text` reads a file, so the next run and every reader of the
-    outputs see the whole new set or the whole old one. A staging folder or journal of a
-    process that is still running is left alone (its run is not over). A failure before the
-    commit (an error, a full disk) removes the staging folders at once. As a context manager it
-    commits on success::
+    then itself and its staging folders removed) and removes a staging folder of a run that is
+    over that no journal commits. It runs before a new set is staged in a folder and
+    (roll-forward only) before :func:`read_text` reads a file, so the next run and every reader
+    of the outputs see the whole new set or the whole old one. A staging folder or journal of
+    a process that is still running is left alone (its run is not over).
+
+    Which run is over is told by a lock, not by the process id in the name: the writer holds
+    an exclusive advisory lock (``flock``, POSIX) on each staging folder from the moment it
+    makes it until the folder is removed, and the kernel drops the lock when the process ends,
+    however it ends; a journal lives while the first staging folder does (it is deleted before
+    that folder) and shares its lock. A process id can be reused by another process (it would
+    make a dead run look alive) and a killed process that its parent has not yet reaped (a
+    zombie) still answers ``kill(pid, 0)``; neither holds the lock (a child forked without exec
+    while a set is open shares it: the run is over when both ended). Where locks are not
+    available (no ``fcntl``: Windows; a file system that refuses ``flock`` on a folder) the
+    process id is checked instead (:func:`_pid_alive`).
+
+    A failure before the commit (an error, a full disk) removes the staging folders at once.
+    As a context manager it commits on success::
 
         with OutputSet() as outs:
             write_export(model, "yaml", outs.path("cal.yaml", key="out"))
@@ -110,6 +129,7 @@ class OutputSet:
 
     def __init__(self):
         self._staging: dict[Path, Path] = {}        # destination folder -> staging folder
+        self._locks: list[int] = []                  # descriptors holding the staging locks
         self._finals: dict[Path, tuple[Path, str]] = {}   # staged path -> (output, key)
 
     def path(self, path, *, key: str = "output") -> Path:
@@ -122,8 +142,7 @@ class OutputSet:
         if folder not in self._staging:
             recover_outputs(folder)
             try:
-                self._staging[folder] = Path(tempfile.mkdtemp(
-                    prefix=f"{STAGING_PREFIX}{os.getpid()}-", suffix=".tmp", dir=folder))
+                self._staging[folder] = _new_staging(folder, self._locks)
             except OSError as exc:
                 self.discard()
                 raise _write_error(exc, final, key) from None
@@ -162,14 +181,23 @@ class OutputSet:
             self.discard()
             final, key = next(iter(self._finals.values()), (first, "output"))
             raise _write_error(exc, final, key) from None
-        _roll_forward(journal, record)
-        self._staging.clear()
+        try:
+            _roll_forward(journal, record)
+        finally:                  # unlocked even if a rename failed: the next run finishes it
+            self._staging.clear()
+            self._unlock()
 
     def discard(self) -> None:
         """Remove the staging folders and what they hold; no output changes."""
         for staging in self._staging.values():
             shutil.rmtree(staging, ignore_errors=True)
         self._staging.clear()
+        self._unlock()
+
+    def _unlock(self) -> None:
+        """Close the descriptors that hold the staging folders' locks (folders removed)."""
+        while self._locks:
+            os.close(self._locks.pop())
 
     def __enter__(self) -> "OutputSet":
         return self
@@ -194,21 +222,128 @@ class OutputSet:
 
 def _roll_forward(journal: Path, record: dict) -> None:
     """Do the renames of a committed set that are not done yet (a staged file that is gone was
-    moved), remove its staging folders, then the journal: idempotent, so a kill during it is
-    finished by the next :func:`recover_outputs`."""
+    moved), delete the journal, then remove its staging folders: idempotent, so a kill during
+    it is finished by the next :func:`recover_outputs` (a staging folder left after its journal
+    was deleted holds only its pointer, to a journal that is gone: it is removed)."""
     for src, dst in record["moves"]:
         try:
             os.replace(src, dst)
         except FileNotFoundError:
             pass                                  # moved before the kill
+    _discard(journal)
     for staging in record["staging"]:
         shutil.rmtree(staging, ignore_errors=True)
-    _discard(journal)
+
+
+#: Tries at making a staging folder that a recovery did not remove before it was locked.
+STAGING_TRIES = 100
+
+
+def _open_folder(path) -> int:
+    """A read-only descriptor of the folder ``path`` (what its lock is taken on)."""
+    return os.open(path, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+
+
+def _lock(fd: int, *, wait: bool):
+    """Take the exclusive advisory lock (``flock``) of the open folder ``fd``: True when taken,
+    False when another open descriptor holds it (a running writer, or a recovery removing
+    it), None when locks are not available here (no ``fcntl``; a file system that refuses
+    ``flock``: ENOLCK, EOPNOTSUPP, EBADF for a folder on NFS)."""
+    if fcntl is None:
+        return None
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+    except BlockingIOError:
+        return False
+    except OSError:
+        return None
+    return True
+
+
+def _new_staging(folder: Path, locks: list) -> Path:
+    """A new staging folder in ``folder``, locked (its descriptor appended to ``locks``).
+
+    Made by ``mkdtemp`` then locked: in between, a recovery in another process may find it
+    unlocked and remove it (a recovery removes a folder only while it holds its lock). So the
+    lock is taken waiting (a recovery holds it for the time of a removal), then the folder is
+    checked to be still the one locked; if it is gone, another is made.
+    """
+    for _ in range(STAGING_TRIES):
+        staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-",
+                                        suffix=".tmp", dir=folder))
+        try:
+            fd = _open_folder(staging)
+        except FileNotFoundError:
+            continue                                # removed before it was opened
+        if _lock(fd, wait=True) is None:
+            os.close(fd)
+            return staging                          # no locks here: the process id tells
+        try:
+            st, now = os.fstat(fd), os.stat(staging)
+            kept = (st.st_dev, st.st_ino) == (now.st_dev, now.st_ino)
+        except FileNotFoundError:
+            kept = False
+        if kept:
+            locks.append(fd)
+            return staging
+        os.close(fd)
+    raise OSError(errno.EAGAIN, "staging folders removed as they were made")
+
+
+def _run_over(staging: Path, pid):
+    """Whether the run that made the staging folder ``staging`` is over, and the descriptor
+    that holds its lock (None if none; the caller closes it once it has recovered the folder,
+    so that no other recovery works on it meanwhile).
+
+    Over: the folder is gone (a journal outlives nothing of a running set), or its lock can be
+    taken (the writer's process has ended: the kernel dropped its lock). Where locks are not
+    available, the process id ``pid`` of its name is checked (:func:`_pid_alive`).
+    """
+    try:
+        fd = _open_folder(staging)
+    except FileNotFoundError:
+        return True, None
+    except OSError:
+        return pid is not None and not _pid_alive(pid), None
+    locked = _lock(fd, wait=False)
+    if locked:
+        return True, fd
+    os.close(fd)
+    if locked is None:
+        return pid is not None and not _pid_alive(pid), None
+    return False, None
+
+
+def _release(fd) -> None:
+    if fd is not None:
+        os.close(fd)
+
+
+def _journal_named(staging: Path):
+    """The journal a staging folder's pointer names, or None: no pointer, or one that a kill
+    cut short (empty, or without its final newline). The pointers are written before the
+    commit point, so a set whose pointer is incomplete was not committed: it is rolled back.
+    (An empty pointer read as ``Path("")`` is the current folder, which "exists": a staging
+    folder was then never removed.)"""
+    try:
+        text = (staging / JOURNAL_POINTER).read_text()
+    except (OSError, UnicodeDecodeError):
+        return None
+    journal = Path(text[:-1]) if text.endswith("\n") else None
+    if journal is None or not (journal.is_absolute() and journal.name.startswith(JOURNAL_PREFIX)
+                               and journal.name.endswith(".json")):
+        return None
+    return journal
 
 
 def _pid_alive(pid: int) -> bool:
-    """Whether process ``pid`` runs (this process counts as running)."""
-    if pid == os.getpid():
+    """Whether process ``pid`` runs (this process counts as running): the check where locks
+    are not available (:func:`_run_over`). A zombie (ended, not yet reaped by its parent) is
+    not running (state Z in ``/proc/<pid>/stat``, Linux; proc(5)). A pid reused by another
+    process still fools it: the folder is then recovered once that process ends. On Windows
+    ``os.kill(pid, 0)`` is a Ctrl-C event, not a probe: every process counts as running there
+    (nothing of a run is recovered, nothing of a running one removed)."""
+    if pid == os.getpid() or os.name == "nt":
         return True
     try:
         os.kill(pid, 0)
@@ -216,7 +351,12 @@ def _pid_alive(pid: int) -> bool:
         return False
     except OSError:                               # another user's process: it exists
         return True
-    return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            stat = f.read()
+        return stat[stat.rindex(b")") + 2:][:1] not in (b"Z", b"X")     # after "(comm) "
+    except (OSError, ValueError):
+        return True
 
 
 def _owner(name: str, prefix: str):
@@ -225,51 +365,65 @@ def _owner(name: str, prefix: str):
     return int(head) if head.isdigit() else None
 
 
+def _staging_of(journal_name: str, folder) -> Path:
+    """The first staging folder of a journal (or ``.part``) named ``journal_name``: the same
+    ``<pid>-<random>`` in the same folder (:meth:`OutputSet.commit`); its lock is the
+    journal's."""
+    stem = journal_name[len(JOURNAL_PREFIX):].split(".", 1)[0]
+    return Path(folder) / f"{STAGING_PREFIX}{stem}.tmp"
+
+
 def recover_outputs(folder, *, roll_back: bool = True) -> None:
     """Finish what a killed :class:`OutputSet` left in ``folder``: roll every journal of a
-    dead process forward (its set was committed), and (``roll_back``) remove every staging
-    folder of a dead process that no journal commits (its set was not). Best effort: a folder
-    that cannot be read or written is left as it is (the reader or writer then reports it)."""
+    run that is over forward (its set was committed), and (``roll_back``) remove every staging
+    folder of a run that is over that no journal commits (its set was not). A run is over when
+    its staging folder's lock is free (its process ended; :class:`OutputSet`), not when no
+    process has its id. Best effort: a folder that cannot be read or written is left as it is
+    (the reader or writer then reports it)."""
     try:
         entries = [e for e in os.scandir(folder) if e.name.startswith(STAGING_PREFIX)]
     except OSError:
         return
     for e in entries:
-        if not (e.name.startswith(JOURNAL_PREFIX) and e.name.endswith(".json")):
-            continue
         pid = _owner(e.name, JOURNAL_PREFIX)
-        if pid is not None and _pid_alive(pid):
+        if pid is None or not e.name.endswith(".json"):     # not a journal OutputSet names
             continue
+        over, fd = _run_over(_staging_of(e.name, folder), pid)
         try:
-            record = json.loads(Path(e.path).read_text())
-            _roll_forward(Path(e.path), record)
+            if over:
+                _roll_forward(Path(e.path), json.loads(Path(e.path).read_text()))
         except (OSError, ValueError, KeyError, TypeError):
-            continue
+            pass
+        finally:
+            _release(fd)
     if not roll_back:
         return
     for e in entries:
-        if e.name.startswith(JOURNAL_PREFIX) and e.name.endswith(".part"):
-            pid = _owner(e.name, JOURNAL_PREFIX)    # a journal not yet committed
-            if pid is not None and not _pid_alive(pid):
-                _discard(e.path)
-            continue
-        if not (e.name.endswith(".tmp") and e.is_dir()):
+        if e.name.startswith(JOURNAL_PREFIX):
+            pid = _owner(e.name, JOURNAL_PREFIX)
+            if pid is not None and e.name.endswith(".part"):    # a journal not yet committed
+                over, fd = _run_over(_staging_of(e.name, folder), pid)
+                if over:
+                    _discard(e.path)
+                _release(fd)
             continue
         pid = _owner(e.name, STAGING_PREFIX)
-        if pid is None or _pid_alive(pid):
+        if pid is None or not (e.name.endswith(".tmp") and e.is_dir()):
             continue
-        pointer = Path(e.path) / JOURNAL_POINTER
+        over, fd = _run_over(Path(e.path), pid)
         try:
-            journal = Path(pointer.read_text().strip())
-        except OSError:
-            journal = None
-        if journal is not None and journal.exists():
-            try:
-                _roll_forward(journal, json.loads(journal.read_text()))
-            except (OSError, ValueError, KeyError, TypeError):
-                pass
-            continue
-        shutil.rmtree(e.path, ignore_errors=True)
+            if not over:
+                continue
+            journal = _journal_named(Path(e.path))
+            if journal is not None and journal.is_file():
+                try:
+                    _roll_forward(journal, json.loads(journal.read_text()))
+                except (OSError, ValueError, KeyError, TypeError):
+                    pass
+                continue
+            shutil.rmtree(e.path, ignore_errors=True)
+        finally:
+            _release(fd)
 
 
 def _final_mode(path: Path) -> int:

@@ -4,10 +4,11 @@ The formulas are in :mod:`stripcoef.hull.lift` (Hoerner & Borst 1985; Helmbold 1
 1958; Prestero 2001, secs. 3.6-3.7); this module walks the vehicle's hull, fin appendages
 and control surfaces and sums them:
 
-.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f} K_f\, c_f c_f^T,
+.. math:: L = L_{body} + \sum_{fins} \tfrac12\rho S_f c_{L\alpha,f} K_f\, c_f a_f^T,
           \qquad b_s = \sum_{panels\ of\ s} \tfrac12\rho S_p c_{L\alpha,p}\, c_p\, \sigma_s
 
-with :math:`c = [e;\ r\times e]` at the panel's quarter chord, :math:`K_f` the fin-hull
+with :math:`c = [e;\ r\times e]` at the panel's quarter chord (:math:`a_f` the same at its
+three-quarter chord, where the rotation's incidence is taken), :math:`K_f` the fin-hull
 interference factor (Pitts, Nielsen & Kaattari 1957) of a fin on a cylindrical stretch of a
 round hull (1 elsewhere) and :math:`\sigma_s` the sign
 of the deflection convention (Prestero 2001: a positive rudder gives +Y, a positive
@@ -44,6 +45,7 @@ from stripcoef.hull.lift import (
     power_law_exponent,
     ring_wing_lift_matrix,
     ring_wing_lift_slope,
+    rotary_incidence_point,
     surface_speed_ratio,
     turbulent_boundary_layer,
     TRANSITION_REYNOLDS,
@@ -68,8 +70,9 @@ DEFLECTION_FORCE = {"rudder": np.array([0.0, 1.0, 0.0]), "elevator": np.array([0
 def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender=None):
     """(L (6, 6), k c (6,), info) of one panel at its quarter chord (module docstring).
 
-    Default: L = 1/2 rho S c_La K c c^T [kg/m, kg, kg m]
-    (:func:`~stripcoef.hull.lift.fin_lift_matrix`), with K the fin-hull interference factor
+    Default: L = 1/2 rho S c_La K c a^T [kg/m, kg, kg m]
+    (:func:`~stripcoef.hull.lift.fin_lift_matrix`; a the incidence column at the three-quarter
+    chord, :func:`~stripcoef.hull.lift.rotary_incidence_point`: the rotation's incidence), with K the fin-hull interference factor
     (1 + R/s)^2 of a panel on a cylindrical stretch of a round hull and 1 elsewhere
     (:func:`~stripcoef.hull.lift.interference_factor`); k c = 1/2 rho S c_La c, the force per
     u^2 per rad of deflection [kg/m, kg] (Prestero 2001, sec. 3.7).
@@ -80,7 +83,7 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     (:func:`~stripcoef.hull.lift.wing_body_factors`), the fin's own force at its quarter chord
     and the carry-over on the hull axis at the same station,
 
-        L = q_r k (F_W c_f + F_B c_b) c_f^T,   b = q_r k (k_W(B) c_f + k_B(W) c_b),
+        L = q_r k (F_W c_f + F_B c_b) a_f^T,   b = q_r k (k_W(B) c_f + k_B(W) c_b),
 
     F_W, F_B = K_W(B), K_B(W) for a fin ahead of x_0 (the body's potential upwash) and
     k_W(B), k_B(W) behind it (the body's cross-flow separated there gives no upwash: the
@@ -101,11 +104,13 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
         - np.asarray(ref, float)
     e = np.zeros(3)
     e["xyz".index(panel.normal)] = 1.0
+    turning = rotary_incidence_point(point, panel.chord)    # the rotation's incidence at 3c/4
     if slender is None:
         on_cylinder = round_hull and cylindrical_root(panel.root_radii)
         factor = interference_factor(panel.root, panel.root + panel.span) if on_cylinder else 1.0
         column = 0.5 * rho * panel.area * cla * lift_column(e, point)
-        return (fin_lift_matrix(panel.area, cla * factor, e, point, rho=rho), column,
+        return (fin_lift_matrix(panel.area, cla * factor, e, point, rho=rho,
+                                incidence_point=turning), column,
                 {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
                  "interference": factor})
     tau = panel.root / (panel.root + panel.span) if round_hull else 0.0
@@ -124,7 +129,8 @@ def _panel_terms(panel: SurfacePanel, ref, rho: float, round_hull: bool, slender
     k = 0.5 * rho * panel.area * cla * q_ratio
     c_f = lift_column(e, point)
     c_b = lift_column(e, np.array([x_q, slender["y"], slender["z"]]) - np.asarray(ref, float))
-    return (k * np.outer(fw * c_f + fb * c_b, c_f), k * (f["k_WB"] * c_f + f["k_BW"] * c_b),
+    return (k * np.outer(fw * c_f + fb * c_b, lift_column(e, turning)),
+            k * (f["k_WB"] * c_f + f["k_BW"] * c_b),
             {"aspect_ratio": ar, "lift_slope": cla, "area": panel.area,
              "interference": fw + fb, "tau": tau, "body_upwash": upwash,
              "boundary_layer": delta, "boundary_layer_profile": profile,

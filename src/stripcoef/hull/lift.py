@@ -34,9 +34,10 @@ slope
 
 and the force :math:`\tfrac12 \rho u^2 S c_{L\alpha} \alpha_e` normal to its plane, with
 :math:`\alpha_e = \delta - v_f/u` the effective angle of attack, :math:`v_f` the cross
-velocity at its quarter chord.  A fin of lift direction e at r (relative to the reference
-point) adds :math:`k\,c\,c^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m],
-:math:`c = [e;\ r \times e]`, and a control surface deflected by :math:`\delta` gives
+velocity at its quarter chord (the rotation's part at its three-quarter chord,
+:func:`rotary_incidence_point`).  A fin of lift direction e at r (relative to the reference
+point) adds :math:`k\,c\,a^T` to L, :math:`k = \tfrac12\rho S c_{L\alpha}` [kg/m],
+:math:`c = [e;\ r \times e]`, :math:`a = [e;\ r_\omega \times e]`, and a control surface deflected by :math:`\delta` gives
 :math:`u^2 k\,c\,\delta` (Prestero 2001, sec. 3.7: :math:`Y_{uu\delta_r}`,
 :math:`N_{uu\delta_r}`, ...).  The linear law holds up to the stall angle; beyond it the
 lift falls (Hoerner & Borst 1985, ch. 4), which this model does not represent: deflections
@@ -252,8 +253,68 @@ def lift_column(direction, point) -> np.ndarray:
     return np.concatenate([e, skew(np.asarray(point, dtype=float)) @ e])
 
 
-def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: float) -> np.ndarray:
-    r"""Lift matrix of one fin: :math:`L = \tfrac12 \rho S c_{L\alpha}\, c\, c^T` (force :math:`-uL\nu`).
+#: Chord fraction, from the leading edge, at which a lifting surface's incidence from the body's
+#: rotation is taken: the three-quarter-chord point (thin-airfoil theory: Pistolesi's theorem;
+#: the control point of Weissinger's 1947 lifting-surface method, NACA TM 1120, and of the
+#: vortex-lattice method, Katz & Plotkin 2001, sec. 12.1) [-].
+ROTARY_CHORD_FRACTION = 0.75
+
+
+def rotary_incidence_point(point, chord: float) -> np.ndarray:
+    r"""Where a fin's (or ring wing's) incidence from the body's rotation is taken: its
+    three-quarter-chord point, half a chord aft of the quarter-chord ``point`` (x forward).
+
+    .. math:: r_\omega = r_{c/4} - \tfrac12 c\,\hat x
+
+    A surface in the rotation :math:`\omega` meets the curved cross-flow
+    :math:`v + \omega\times r`, varying linearly along its chord: a flow a flat plate meets as a
+    parabolic camber line, whose lift (thin-airfoil theory) is that of the incidence at the
+    three-quarter chord, acting at the quarter chord (Pistolesi's theorem; the 3/4-chord rule of
+    Weissinger's lifting-surface method and of the vortex lattice).  The sideslip incidence
+    :math:`e^T v` is the same at every point, and the force stays at the quarter chord.  A
+    planar vortex lattice of rectangular wings (``validation.lift.rotary_point_lattice``) puts
+    the point at 0.50 c aft of the quarter chord for AR 20, 0.55 c at AR 1.5, 0.58 c at AR 1,
+    tending to the trailing edge (0.75 c, slender-wing theory) as AR -> 0: the rule is the
+    large-aspect-ratio limit, a little forward for the low-aspect-ratio fins.  The wing term of
+    Roskam (1985, *Airplane Design* VI, sec. 10.2.7), :math:`C_{Lq} = (\tfrac12 + 2\bar x_w/
+    \bar c)\,C_{L\alpha}` on :math:`q\bar c/2U`, has this arm term :math:`2\bar x_w/\bar c`
+    (the quarter chord :math:`\bar x_w` aft of the reference point) but an own term 1/2 that
+    puts the incidence at the half chord, which the lattice does not give at any aspect ratio.
+
+    Parameters
+    ----------
+    point : (3,)
+        Quarter-chord point at mid span [m] (body axes, x forward)
+    chord : float
+        Mean chord c [m], >= 0
+
+    Returns
+    -------
+    (3,) array
+        :math:`r_\omega` [m]
+
+    References
+    ----------
+    Katz, J. & Plotkin, A. (2001), *Low-Speed Aerodynamics*, 2nd ed., sec. 5.3-5.4 (thin
+    airfoil: the lift of a cambered plate; the lumped vortex with its collocation point at the
+    three-quarter chord) and sec. 12.1 (vortex lattice); Weissinger, J. (1947), "The lift
+    distribution of swept-back wings", NACA TM 1120 (the 3/4-chord rule on finite wings).
+    """
+    if chord < 0.0:
+        raise ValueError(f"rotary_incidence_point needs a chord >= 0, got {chord}")
+    out = np.array(point, dtype=float)
+    out[0] -= (ROTARY_CHORD_FRACTION - 0.25) * chord
+    return out
+
+
+def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: float,
+                    incidence_point=None) -> np.ndarray:
+    r"""Lift matrix of one fin: :math:`L = \tfrac12 \rho S c_{L\alpha}\, c\, a^T` (force :math:`-uL\nu`).
+
+    :math:`c = [e;\ r \times e]` at the force's point r (the quarter chord) and
+    :math:`a = [e;\ r_\omega \times e]` at ``incidence_point`` :math:`r_\omega`, where the
+    rotation's incidence is taken (:func:`rotary_incidence_point`, the three-quarter chord;
+    default r: :math:`a = c`).
 
     Parameters
     ----------
@@ -267,6 +328,8 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
         Quarter-chord point at mid span, relative to the reference point [m]
     rho : float
         Fluid density [kg/m^3]
+    incidence_point : (3,), optional
+        :math:`r_\omega` relative to the reference point [m] (default ``point``)
 
     Returns
     -------
@@ -277,10 +340,12 @@ def fin_lift_matrix(area: float, lift_slope: float, direction, point, *, rho: fl
     ----------
     Prestero 2001, sec. 3.6.2 (Y_uvf = -rho c_La S_fin for a fin pair, Y_urf, N_uvf,
     N_urf from the fin's lever arm); the cross velocity at the fin is
-    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring).
+    :math:`e^T(v + \omega \times r) = c^T \nu` (module docstring); the rotation's incidence at
+    the three-quarter chord (:func:`rotary_incidence_point`).
     """
     c = lift_column(direction, point)
-    return 0.5 * rho * area * lift_slope * np.outer(c, c)
+    a = c if incidence_point is None else lift_column(direction, incidence_point)
+    return 0.5 * rho * area * lift_slope * np.outer(c, a)
 
 
 def body_lift_matrix(length: float, diameter: float, center_of_pressure, *,
@@ -881,13 +946,14 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
                           pressure_ratio: float = 1.0) -> np.ndarray:
     r"""Lift matrix of a ring wing coaxial with the body x axis (force :math:`-uL\nu`).
 
-    .. math:: L = k\,(c_y c_y^T + c_z c_z^T),\qquad
+    .. math:: L = k\,(c_y a_y^T + c_z a_z^T),\qquad
               k = \tfrac12\rho\,(2Rc)\,C_{L\alpha}\,\frac{\bar q}{q},\qquad
-              c_e = [e;\ r \times e]
+              c_e = [e;\ r \times e],\quad a_e = [e;\ r_\omega \times e]
 
     the ring's lift (:func:`ring_wing_lift_slope`, A = 2R/c) at its quarter chord r on the
-    axis, answering the cross-flow there in sway and in heave alike (an axisymmetric
-    wing), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
+    axis, answering the cross-flow in sway and in heave alike (an axisymmetric wing), the
+    rotation's at the three-quarter chord :math:`r_\omega` half a chord aft of r
+    (:func:`rotary_incidence_point`; a converging ring's chord taken along x), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
     boundary layer; 1 in the free stream).
 
     Parameters
@@ -916,7 +982,7 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
     k = 0.5 * rho * 2.0 * radius * chord * ring_wing_lift_slope(2.0 * radius / chord) \
         * pressure_ratio
     out = np.zeros((6, 6))
+    turning = rotary_incidence_point(point, chord)
     for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
-        c = lift_column(e, point)
-        out += k * np.outer(c, c)
+        out += k * np.outer(lift_column(e, point), lift_column(e, turning))
     return out
