@@ -147,8 +147,8 @@ def _converged_part() -> str:
     tight = [t for t in terms if t["u"] <= 0.05]
     return "\n".join([
         "\nThe references extrapolated again (reference_tables/public_meshes/bem_levels.csv: "
-        "the Capytaine levels of the meshes where four are stored, the three finest those of "
-        "the table above): the least-squares procedure of Eça & Hoekstra (2014) on the four "
+        "the Capytaine levels of the meshes where four are stored, the two finest those of "
+        "the table above's 1/N reference): the least-squares procedure of Eça & Hoekstra (2014) on the four "
         "levels, order fitted (stripcoef.hull.convergence.eca_hoekstra_terms), instead of the "
         "1/N Richardson of the two finest; U its uncertainty of the finest level; runs in "
         f"other axes left out. Of {n} diagonal terms, "
