@@ -151,7 +151,8 @@ def _converged_part() -> str:
         "the table above's 1/N reference): the least-squares procedure of Eça & Hoekstra (2014) on the four "
         "levels, order fitted (stripcoef.hull.convergence.eca_hoekstra_terms), instead of the "
         "1/N Richardson of the two finest; U its uncertainty of the finest level; runs in "
-        f"other axes left out. Of {n} diagonal terms, "
+        "other axes left out, and meshes whose stored levels have another finest pair than "
+        f"the reference. Of {n} diagonal terms, "
         f"{sum(abs(t['error_eh']) <= 0.05 for t in terms)} are within 5 % of that "
         f"extrapolation; {len(tight)} have U within 5 %, "
         f"{sum(abs(t['error_eh']) <= 0.05 for t in tight)} of them within 5 %.\n",
@@ -186,7 +187,8 @@ def converged_terms(levels_path=LEVELS, data_path=DATA) -> list[dict]:
     which the CSV does not keep: P is the point that moves the levels' 1/N Richardson onto the
     run's stored reference (:func:`stripcoef.conventions.transform_matrix`, least squares over
     the 36 terms; ``fit``: the largest residual over the largest term, ~1e-6 from the CSV's six
-    digits).  Runs in other axes (``--axis``) are left out.  Per diagonal term: the model, the
+    digits).  Runs in other axes (``--axis``) are left out, and meshes whose stored levels
+    have another finest pair than the reference's (``bem_faces``).  Per diagonal term: the model, the
     1/N reference and its band (``bem_error_rel``), the E&H value and its uncertainty U (of the
     finest level, Eça & Hoekstra eqs. 18-21), the observed order, the model's error against
     each [-] (of the term)."""
@@ -204,6 +206,9 @@ def converged_terms(levels_path=LEVELS, data_path=DATA) -> list[dict]:
     for r in rows:
         if r["run"] == "refused" or "--axis" in r["run"] or r["mesh"] not in levels:
             continue
+        faces = [int(n) for n in r.get("bem_faces", "").split("/") if n]
+        if faces and faces[-2:] != levels[r["mesh"]][0][-2:]:
+            continue                      # another finest pair: not the stored reference
         d = runs.setdefault((r["mesh"], r["run"]), {k: np.zeros((6, 6)) for k in
                                                     ("bem", "model", "bem_error_rel")})
         i, j = int(r["i"]), int(r["j"])
