@@ -3,21 +3,25 @@
 For each vehicle file (default: geometry/videoray_pro3.yaml and geometry/bluerov2_heavy.yaml)
 the surface the panel method solves on (its parts united, :func:`stripcoef.geometry.surface.
 vehicle_surface`, 64 sides a circle) is remeshed isotropically (:mod:`stripcoef.hull.remesh`,
-the ``remesh`` extra) at the ``--bem-faces`` targets, and on every remesh both Capytaine
-(direct method, no free surface; :func:`stripcoef.bem.bem_added_mass`) and the panel method's
-one-level solve (:func:`stripcoef.hull.panels.solve_added_mass`) are run: the same mesh, two
-codes.  The reference is the Capytaine levels' Richardson extrapolation (two finest, 1/N) with
-its grid convergence index (:mod:`stripcoef.hull.convergence`).  Then the estimate as a user
+the ``remesh`` extra) at the ``--bem-faces`` targets as one family
+(:func:`stripcoef.hull.remesh.remesh_family`: one crease angle and mode for every level, a
+level grown until it refines the one before by 1.25x and keeps the area and volume), and on
+every remesh both Capytaine (direct method, no free surface;
+:func:`stripcoef.bem.bem_added_mass`) and the panel method's one-level solve
+(:func:`stripcoef.hull.panels.solve_added_mass`) are run: the same mesh, two codes.  The
+reference is the Capytaine levels' Richardson extrapolation (two finest, 1/N) with its grid
+convergence index (:mod:`stripcoef.hull.convergence`).  Then the estimate as a user
 runs it (``stripcoef coefficients FILE``: ``auto``, the default panels), with the ``remesh``
 extra and as a base install has it (the remesher switched off), is compared with it term by
 term, with its estimated error (``added_mass_error``), about the vehicle's reference
 point, rho = 1000 kg/m^3.
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_vehicles [FILE ...]
-        [--bem-faces 1600 3200] [--family auto|input]
+        [--bem-faces 1600 3200] [--max-faces 5000] [--csv CSV]
 
-Needs the ``bem`` and ``remesh`` extras.  A remesh whose volume differs from the surface's by
-more than 2 % (members thinner than the edge collapsed) is skipped and said.
+Needs the ``bem`` and ``remesh`` extras.  A surface that no family remeshes within
+``--max-faces`` keeping its area and volume (members thinner than the edge collapsed) gets no
+reference, and that is said.
 """
 
 from __future__ import annotations
@@ -46,6 +50,9 @@ def main(argv=None) -> int:
     ap.add_argument("--csv", default=None,
                     help="write each diagonal term's row to this CSV (validation/vehicle_surface.py "
                          "reads reference_tables/bem/panels_vehicles.csv)")
+    ap.add_argument("--update", action="store_true",
+                    help="with --csv: replace the rows of FILES in the existing CSV and keep "
+                         "the others (the first line then names both commands)")
     args = ap.parse_args(argv)
     rows = []
 
@@ -92,14 +99,19 @@ def main(argv=None) -> int:
                   f"{cpu:.1f} s" + (f"; warned: {warned[0].split(': ', 1)[1][:140]}"
                                     if warned else ""), flush=True)
         mats, counts, pairs = [], [], []
-        for target in args.bem_faces:
-            lv = remesh.remesh_isotropic(v, f, remesh.edge_for_panels(surf.area, target))
-            if lv is None:
-                print(f"  remesh at {target} faces: refused (volume changed > 2 %)")
-                continue
-            if len(lv[1]) > args.max_faces:
-                print(f"  remesh at {target} faces: {len(lv[1])} faces > --max-faces, skipped")
-                continue
+        # one remesh family (remesh.remesh_family: one crease angle and mode for every level,
+        # each level at least 1.25x the faces of the one before), so that the levels refine
+        # one discretisation and Richardson applies; none: the file is skipped and said
+        edges = [remesh.edge_for_panels(surf.area, n) for n in args.bem_faces]
+        family = remesh.remesh_family(v, f, edges, max_faces=args.max_faces)
+        if family is None:
+            print(f"  no remesh family at {'/'.join(map(str, args.bem_faces))} faces within "
+                  f"--max-faces {args.max_faces} (area or volume changed: members thinner "
+                  "than the edge): no reference", flush=True)
+            continue
+        print(f"  BEM levels: one remesh family, {family[1]}: "
+              + "/".join(str(len(lv[1])) for lv in family[0]) + " faces", flush=True)
+        for lv in family[0]:
             t0 = time.perf_counter()
             bem = bem_added_mass(trimesh.Trimesh(*lv, process=False), rho=RHO,
                                  reference_point=about, max_faces=args.max_faces)
@@ -145,14 +157,30 @@ def main(argv=None) -> int:
         from pathlib import Path
 
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
+        command = ("benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
+                   + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}")
+        kept = []
+        if args.update and Path(args.csv).exists():    # the other files' rows and command
+            with open(args.csv, newline="") as fh:
+                first = fh.readline().lstrip("# ").strip()
+                kept = [r for r in list(csv.reader(fh))[1:] if r and r[0] not in args.files]
+            base, *clauses = first.split("; rows of ")    # as benchmarks.public_meshes
+            out = [base]
+            for clause in clauses:
+                names, _, cmd = clause.partition(" from ")
+                left = [n for n in names.split() if n not in args.files]
+                if left:
+                    out.append(" ".join(left) + " from " + cmd)
+            out.append(" ".join(args.files) + " from " + command + " --csv " + args.csv
+                       + " --update")
+            command = "; rows of ".join(out)
         with open(args.csv, "w", newline="") as fh:
-            fh.write("# benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
-                     + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}\n")
+            fh.write("# " + command + "\n")
             w = csv.writer(fh)
             w.writerow(["file", "install", "dof", "estimate", "bem", "error_rel",
                         "estimated_error_rel", "bem_gci_rel", "panel_levels", "bem_faces",
                         "same_mesh_max_diff_rel", "cpu_estimate_s", "warned"])
-            w.writerows(rows)
+            w.writerows(kept + rows)
     return 0
 
 

@@ -16,8 +16,10 @@ GitHub cannot be reached.  Per mesh:
 3. **reference**: Capytaine (direct method, no free surface, :func:`stripcoef.bem.bem_added_mass`)
    on isotropic remeshes (:mod:`stripcoef.hull.remesh`) of the closed surface the panel method
    solves (the loaded, repaired and united mesh) at ``--bem-faces`` (coarse to fine, default
-   500 1000 2000: each solve under a minute), the two finest Richardson-extrapolated as 1/N,
-   with its own grid convergence index (Roache 1998), moved to each run's reference point.
+   500 1000 2000: each solve under a minute; the stored run: 2000 4000 8000 with
+   ``--bem-max-faces 9000``, 3-8 min and 4 GB per mesh), one remesh family for all levels
+   (printed with each level's diagonal), the two finest Richardson-extrapolated as 1/N, with
+   its own grid convergence index (Roache 1998), moved to each run's reference point.
 
 Per term: the model's error (diagonal: of the term; couplings whose reference is at least 1 %
 of sqrt(A_ii A_jj): of that scale; a diagonal term below 1 % of the largest of its block, the
@@ -195,17 +197,18 @@ def rotate_6(m, rot):
     return t @ np.asarray(m, float) @ t.T
 
 
-def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
+def bem_reference(path: Path, bem_faces, max_faces: int = 4000, levels=None):
     """Capytaine on isotropic remeshes of the closed surface the panel method solves (the
     loaded, repaired, united mesh), about the body origin.  Returns (M_A, its estimated
-    error, face counts, seconds)."""
+    error, face counts, seconds); ``levels``, a list, gets (family, faces, M_A) of every
+    level appended (``--levels-csv``)."""
     import trimesh
 
     from stripcoef.bem import bem_added_mass
     from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.convergence import grid_convergence_index, richardson
     from stripcoef.hull.panels import estimated_error
-    from stripcoef.hull.remesh import edge_for_panels, remesh_family
+    from stripcoef.hull.remesh import MAX_FACES, edge_for_panels, remesh_family
 
     veh = load_vehicle(path)
     body = veh.bodies[0]
@@ -216,10 +219,17 @@ def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
     # else the surface's edges bisected at every level (a family that refines)
     # (a surface whose creases hold the remesh near its own face count -- ECA A9's capped
     # parts: 2354/2910/3860 faces at 10 deg -- refines by 1.2x, not 1.25x, per level)
+    # (the remesh's own cap, MAX_FACES 6000, raised to the BEM's limit: a family asked for
+    # 8000 faces is a remesh too, not the fallback below)
     edges = [edge_for_panels(float(surface.area), n) for n in bem_faces]
-    family = remesh_family(v, f, edges) or remesh_family(v, f, edges, min_ratio=1.2)
+    cap = max(max_faces, MAX_FACES)
+    family = (remesh_family(v, f, edges, max_faces=cap)
+              or remesh_family(v, f, edges, min_ratio=1.2, max_faces=cap))
     meshes = ([trimesh.Trimesh(*lv, process=False) for lv in family[0]] if family is not None
               else [refine(surface, n) for n in bem_faces])
+    print("    BEM levels: " + ("one remesh family, " + repr(family[1]) if family is not None
+                               else "the surface's edges bisected (no remesh family)")
+          + ": " + "/".join(str(len(m.faces)) for m in meshes) + " faces", flush=True)
     if any(len(b.faces) <= len(a.faces) for a, b in zip(meshes, meshes[1:])):
         raise ValueError("the BEM levels do not refine: "
                          + "/".join(str(len(m.faces)) for m in meshes) + " faces")
@@ -228,6 +238,12 @@ def bem_reference(path: Path, bem_faces, max_faces: int = 4000):
         mats.append(bem_added_mass(m, rho=RHO, reference_point=np.zeros(3),
                                    max_faces=max_faces))
         counts.append(len(m.faces))
+        if levels is not None:
+            levels.append((str(family[1]) if family is not None else "bisected input",
+                           len(m.faces), mats[-1]))
+        print(f"    BEM {len(m.faces)} faces (area {m.area / surface.area - 1:+.2%}, volume "
+              f"{m.volume / surface.volume - 1:+.2%} of the surface): diagonal "
+              + " ".join(f"{a:.5g}" for a in np.diag(mats[-1])), flush=True)
     ref = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
     gci, _, _ = grid_convergence_index(mats, counts)
     return 0.5 * (ref + ref.T), estimated_error(mats[-1], ref, gci), counts, \
@@ -318,6 +334,34 @@ def stored_references(path) -> dict:
             for k, v in out.items()}
 
 
+LEVELS_HEADER = ["mesh", "commit", "family", "level", "faces", "i", "j", "added_mass"]
+
+
+def write_levels(path, mesh: PublicMesh, levels, command: str) -> None:
+    """Append the Capytaine levels of one mesh (:func:`bem_reference`'s ``levels``: family,
+    faces, M_A about the body origin [kg, kg m, kg m^2], symmetrised) to the CSV ``path``
+    (:data:`LEVELS_HEADER`, one row per upper-triangle term), replacing that mesh's earlier
+    rows; the first line is the command."""
+    rows = []
+    if Path(path).exists():
+        with open(path, newline="") as fh:
+            fh.readline()
+            rows = [r for r in list(csv.reader(fh))[1:] if r and r[0] != mesh.name]
+    for k, (family, faces, m) in enumerate(levels):
+        m = 0.5 * (np.asarray(m, float) + np.asarray(m, float).T)
+        rows += [[mesh.name, mesh.commit, family, k, faces, i, j, f"{m[i, j]:.9g}"]
+                 for i in range(6) for j in range(i, 6)]
+    order = {m.name: k for k, m in enumerate(MESHES)}
+    rows.sort(key=lambda r: (order.get(r[0], len(order)), int(r[3])))
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        fh.write("# " + command + " --only NAME --levels-csv CSV, for each NAME below (the "
+                 "levels of each mesh's Capytaine reference, about the body origin, "
+                 "rho = 1000 kg/m^3)\n")
+        csv.writer(fh).writerow(LEVELS_HEADER)
+        csv.writer(fh).writerows(rows)
+
+
 def method_of(run):
     c = (run["json"] or {}).get("conditions", {})
     return "panels" if c.get("added_mass_method") else "strips"
@@ -351,6 +395,9 @@ def main(argv=None) -> int:
                     help="compare with the Capytaine references of a stored run (its CSV) "
                          "instead of computing them (after a change of the model: minutes "
                          "instead of the BEM's hour)")
+    ap.add_argument("--levels-csv", default=None, metavar="CSV",
+                    help="append every Capytaine level's matrix (about the body origin, each "
+                         "upper-triangle term) to this CSV, to re-extrapolate without the BEM")
     ap.add_argument("--update", action="store_true",
                     help="with --csv and --only: replace those meshes' rows, keep the others")
     args = ap.parse_args(argv)
@@ -359,6 +406,7 @@ def main(argv=None) -> int:
                + " ".join(map(str, args.bem_faces))
                + (f" --bem-max-faces {args.bem_max_faces}" if args.bem_max_faces != 4000
                   else ""))
+    base_command = command                       # (the levels CSV's first line)
     stored = stored_references(args.references) if args.references else None
     if stored is not None:
         command = ("python -m benchmarks.public_meshes --mirror DIR --references "
@@ -427,12 +475,15 @@ def main(argv=None) -> int:
                              auto["command"]] + [""] * (len(HEADER) - 11))
                 continue
             try:
+                levels = []
                 ref, ref_err, counts, t_bem = (bem_reference(path, args.bem_faces,
-                                                             args.bem_max_faces)
+                                                             args.bem_max_faces, levels)
                                                if stored is None else (None, None, [], 0.0))
             except Exception as exc:            # a refusal is a result: say it, go on
                 print(f"    reference FAILED: {type(exc).__name__}: {exc}", flush=True)
                 continue
+            if args.levels_csv and levels:
+                write_levels(args.levels_csv, mesh, levels, base_command)
             for label, run in runs.items():
                 if run["rc"] != 0 or run["json"] is None:
                     print(f"    {label}: exit {run['rc']}", flush=True)

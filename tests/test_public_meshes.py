@@ -94,3 +94,62 @@ def test_stored_references_give_back_the_compared_matrices(tmp_path):
     np.testing.assert_allclose(back[0], ref, rtol=1e-5)
     np.testing.assert_allclose(back[1], err, rtol=1e-3)
     assert back[2] == [500, 1000, 2000] and back[3] == 12.5
+
+
+def test_levels_csv_replaces_a_mesh_and_keeps_the_others(tmp_path):
+    """--levels-csv: one row per upper-triangle term of each level; a mesh run again
+    replaces its own rows, the other meshes' rows stay, in the table's order."""
+    import csv
+
+    import numpy as np
+
+    path = tmp_path / "levels.csv"
+    a, b = PM.MESHES[0], PM.MESHES[1]
+    m = np.arange(36.0).reshape(6, 6)
+    PM.write_levels(path, b, [("fam", 100, m), ("fam", 200, 2 * m)], "cmd")
+    PM.write_levels(path, a, [("fam", 50, m)], "cmd")
+    PM.write_levels(path, b, [("fam", 300, m)], "cmd")
+    with open(path, newline="") as fh:
+        assert fh.readline().startswith("# cmd --only NAME --levels-csv")
+        rows = list(csv.DictReader(fh))
+    assert [r["mesh"] for r in rows] == [a.name] * 21 + [b.name] * 21
+    assert {r["faces"] for r in rows if r["mesh"] == b.name} == {"300"}
+    r01 = next(r for r in rows if r["mesh"] == a.name and r["i"] == "0" and r["j"] == "1")
+    assert float(r01["added_mass"]) == 0.5 * (m[0, 1] + m[1, 0])
+
+
+def test_converged_terms_recover_the_run_point_and_extrapolate(tmp_path):
+    """validation.public_meshes.converged_terms: four exact 1/N levels about the origin (so
+    that the Eça & Hoekstra value is their limit), a stored run about another point: the
+    point is recovered and the model's error against the limit is exact."""
+    import csv
+
+    import numpy as np
+
+    from stripcoef.conventions import transform_matrix
+    from validation import public_meshes as V
+
+    rng = np.random.default_rng(3)
+    b = rng.normal(size=(6, 6))
+    limit = b @ b.T + 6.0 * np.eye(6)
+    counts = [1000, 2000, 4000, 8000]
+    mats = [limit * (1.0 + 50.0 / n) for n in counts]          # error exactly 1/N
+    mesh = PM.MESHES[0]
+    PM.write_levels(tmp_path / "levels.csv", mesh, [("f", n, m) for n, m in zip(counts, mats)],
+                    "cmd")
+    point = np.array([0.1, -0.2, 0.05])
+    ref_p = transform_matrix(limit, to_point=point)
+    model_p = 1.02 * ref_p
+    with open(tmp_path / "run.csv", "w", newline="") as fh:
+        fh.write("# cmd\n")
+        w = csv.writer(fh)
+        w.writerow(["mesh", "run", "i", "j", "model", "bem", "bem_error_rel"])
+        for i in range(6):
+            for j in range(i, 6):
+                w.writerow([mesh.name, "auto", i, j, f"{model_p[i, j]:.12g}",
+                            f"{ref_p[i, j]:.12g}", 0.01])
+    terms = V.converged_terms(tmp_path / "levels.csv", tmp_path / "run.csv")
+    assert len(terms) == 6
+    for t in terms:
+        assert t["fit"] < 1e-8
+        assert abs(t["error_eh"] - 0.02) < 1e-6 and abs(t["error_bem"] - 0.02) < 1e-9

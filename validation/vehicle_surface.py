@@ -132,11 +132,15 @@ def shipped_against_bem() -> str:
                       r["panel_levels"], r["bem_faces"]))
     return "\n".join([
         "### The shipped vehicle files against Capytaine on the same surface (issue 32)", "",
-        f"`OPENBLAS_NUM_THREADS=1 python -m {module} {rest}`"
+        # (an --update run: '; rows of FILE from COMMAND', each command in its own quotes)
+        f"`OPENBLAS_NUM_THREADS=1 python -m {module} {rest}`".replace(
+            "from " + script, "from `python -m " + module).replace(
+            "; rows of ", "`; rows of ") +
         " (the `bem` and `remesh` extras installed). The surface the panel method solves on "
         "(the parts united, 64 sides a circle) remeshed isotropically at the BEM resolutions "
-        "named (a remesh that changes the volume by more than 2 % is skipped: thin members "
-        "collapsed); on each remesh Capytaine and the panel method's one-level solve agree "
+        "named, one remesh family (one crease angle and mode for every level, each level "
+        "keeping the surface's area and volume: members thinner than the edge not collapsed); "
+        "on each remesh Capytaine and the panel method's one-level solve agree "
         f"within {100 * max(same):.2f} % on every diagonal term (the solver and its near-field "
         "integrals are not the error); the reference is Capytaine's two finest remeshes "
         "Richardson-extrapolated, with its own grid convergence index. The estimate is the "
