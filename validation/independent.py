@@ -25,9 +25,12 @@ thruster data of ``HydroModel.to_dict()``) and integrates them with its own equa
   one effect no library describes: Coulomb (dry) friction :math:`-F_c \tanh(u_r/0.02)`;
 - a fixed-step classical Runge-Kutta integrator (RK4, 10 ms), the delay and lag states
   stepped with it;
-- a pilot of steps, doublets, chirps and PD holds of depth and heading (on the *measured*
-  state), turned into thruster commands by the pseudo-inverse allocation and the inverse thrust
-  map;
+- a pilot (:class:`Pilot`) of steps, doublets, chirps and holds of depth, heading, roll and
+  pitch (on the *measured* state), flown for persistent excitation: the net buoyancy trimmed
+  out, the demands symmetric about the trim and scaled to the authority left, so that every
+  driven DOF moves both ways and the thrusters rarely saturate (:func:`excitation` measures
+  it); the wrench turned into thruster commands by the pseudo-inverse allocation and the
+  vehicle file's thrust map;
 - seeded sensor noise (:data:`NOISE`, the same levels as ``validation.synthetic``, a stated
   assumption) at 10 Hz.
 
@@ -402,7 +405,7 @@ class Pilot:
 
     A log identifies a coefficient only if the inputs excite its DOF persistently, in both
     directions and over a range of frequencies (Ljung 1999, ch. 13, "persistence of
-    excitation"; Åström & Eykhoff 1971, sec. 5): a velocity of one sign only makes a
+    excitation"; Åström & Eykhoff 1971): a velocity of one sign only makes a
     Coulomb term :math:`\mathrm{sign}(w)`, a constant (a buoyancy offset) and a linear drag
     :math:`w` nearly collinear. The earlier pilot (PD gains a share of the thrusters' whole
     reach per metre or radian, at 10 Hz) made :math:`K_d T / M_{ii}` about 3 in the
@@ -421,14 +424,14 @@ class Pilot:
       pitch (where the thrusters reach them) by PD loops designed from the vehicle file's
       inertia (:data:`LOOPS`), and flies the yaw stick as a rate loop with the vehicle
       file's drag as feed-forward (:data:`RATE_BANDWIDTH`);
-    - allocates the wrench by the pseudo-inverse of the thruster configuration (Fossen 2011,
-      sec. 12.3.2) and turns thrust into commands by the vehicle file's thrust map, each
+    - allocates the wrench by the pseudo-inverse of the thruster configuration (Johansen &
+      Fossen 2013) and turns thrust into commands by the vehicle file's thrust map, each
       branch its own (the pilot's software knows the file, not the truth);
     - keeps within authority: the trim and the holds come first; the manoeuvre (the
       demands of :func:`pilot_wrench` and the yaw-rate loop) is scaled by the largest share
       :math:`\lambda \in [0, 1]` that keeps every planned thrust within :data:`MARGIN` of its
       limit in its own branch (the direction-preserving scaling of a constrained allocation,
-      Johansen & Fossen 2013, sec. 2.2.4), so that a demand never saturates a thruster and
+      Johansen & Fossen 2013), so that a demand never saturates a thruster and
       the thrusters keep authority for the holds; saturation remains only where the truth's
       thrusters are weaker than the file's (U(0.75, 1.25)).
     """
