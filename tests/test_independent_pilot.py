@@ -112,16 +112,15 @@ def test_a_bluerov2_like_log_heaves_both_ways_without_saturating(effect):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("vehicle", ["videoray_pro3.yaml", "bluerov2_heavy.yaml"])
-@pytest.mark.parametrize("effect", [None, "momentum_drag", "thrust_effectiveness",
-                                    "actuation_delay"])
+@pytest.mark.parametrize("effect", [None, "actuation_delay"])
 def test_the_shipped_vehicles_logs_excite_every_driven_dof_both_ways(vehicle, effect):
-    """The benchmark's own priors (stripcoef's models of the shipped files), 120-s logs,
-    seed 5: every driven DOF both ways, saturation rare; a truth whose thrusters are weaker
-    than the file's (thrust effectiveness) or late (a 0.2-0.5 s delay) included."""
+    """The benchmark's own priors (stripcoef's models of the shipped files), 60-s logs,
+    seed 5: every driven DOF both ways, saturation rare, a truth whose commands act 0.2-0.5 s
+    late (the loops' hardest case) included."""
     from conftest import shipped_model
 
     prior = shipped_model(vehicle)
-    log, truth = generate(prior.to_dict(), effect, 5, duration=120.0)
+    log, truth = generate(prior.to_dict(), effect, 5, duration=60.0)
     e = excitation(log, truth)
     for c in e["driven"]:
         assert min(e[c]["pos"], e[c]["neg"]) >= TWO_WAY, (c, e[c])
