@@ -27,6 +27,11 @@ Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md]
+    python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
+
+``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
+DOFs (``validation.independent.excitation``): per driven DOF the shares of samples moving
+each way, per thruster the share at its limit.
 """
 
 from __future__ import annotations
@@ -147,6 +152,52 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
 
 def _run(args):
     return run_one(*args)
+
+
+def excitation_row(vehicle: str, category: str | None, seed: int, duration: float,
+                   modes: tuple = ()) -> list[dict]:
+    """One log, not diagnosed: its excitation (``validation.independent.excitation``) as a
+    row: per driven DOF the shares of samples [-] moving each way, per thruster the share
+    saturated, and ``two_way``, the smallest share of one direction over the driven DOFs."""
+    from validation.independent import excitation, generate
+
+    prior = _prior(vehicle)
+    log, truth = generate(prior.to_dict(), category, seed, duration=duration)
+    e = excitation(log, truth)
+    return [{"vehicle": vehicle, "category": category or "clean", "seed": seed,
+             "velocity": {c: e[c] for c in e["driven"]}, "saturated": e["saturated"],
+             "two_way": min(min(e[c]["pos"], e[c]["neg"]) for c in e["driven"]),
+             "max_saturated": max(e["saturated"].values(), default=0.0)}]
+
+
+def _run_excitation(args):
+    return excitation_row(*args)
+
+
+def summarise_excitation(rows: list[dict]) -> str:
+    """Per vehicle and category, over its logs: for each driven DOF the mean shares of
+    samples moving each way (+/-, in %), the smallest one-direction share of any DOF of any
+    log, and the largest share of samples with a thruster at its limit."""
+    lines = ["| vehicle | category | logs | u +/- % | v +/- % | w +/- % | r +/- % "
+             "| smallest one-way share % | most saturated thruster % |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    keys = sorted({(r["vehicle"], r["category"]) for r in rows})
+    for vehicle, cat in keys:
+        rs = [r for r in rows if r["vehicle"] == vehicle and r["category"] == cat]
+        cells = []
+        for c in ("u", "v", "w", "r"):
+            vals = [r["velocity"][c] for r in rs if c in r["velocity"]]
+            cells.append(f"{100 * np.mean([v['pos'] for v in vals]):.0f}/"
+                         f"{100 * np.mean([v['neg'] for v in vals]):.0f}" if vals else "-")
+        lines.append(f"| {vehicle} | {cat} | {len(rs)} | " + " | ".join(cells) +
+                     f" | {100 * min(r['two_way'] for r in rs):.0f} | "
+                     f"{100 * max(r['max_saturated'] for r in rs):.0f} |")
+    worst = min(rows, key=lambda r: r["two_way"])
+    lines += ["", f"Smallest one-way share of a driven DOF over all {len(rows)} logs: "
+              f"{100 * worst['two_way']:.1f} % ({worst['vehicle']} {worst['category']} seed "
+              f"{worst['seed']}); largest share of samples with a thruster at its limit: "
+              f"{100 * max(r['max_saturated'] for r in rows):.1f} %."]
+    return "\n".join(lines)
 
 
 def _progress(row: dict) -> dict:
@@ -315,6 +366,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    ap.add_argument("--excitation", action="store_true",
+                    help="generate the logs and print their excitation, no diagnosis")
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of an earlier run's output (a partial "
                          "run's too) instead of running")
@@ -343,6 +396,21 @@ def main(argv=None) -> int:
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]
+    if args.excitation:
+        import json
+        print(f"seed {seed}: {len(jobs)} logs, excitation only", flush=True)
+        if args.jobs > 1:
+            with multiprocessing.Pool(args.jobs) as pool:
+                rows = [r for rs in pool.imap_unordered(_run_excitation, jobs) for r in rs]
+        else:
+            rows = [r for j in jobs for r in _run_excitation(j)]
+        for r in sorted(rows, key=lambda r: (r["vehicle"], r["category"], r["seed"])):
+            print("  excitation row " + json.dumps(r), flush=True)
+        text = summarise_excitation(rows)
+        print(text)
+        if args.write:
+            _write(args.write, " ".join(sys.argv[1:] if argv is None else argv), text)
+        return 0
     print(f"seed {seed}: {len(jobs)} logs, {len(jobs) * len(modes)} diagnoses", flush=True)
     if args.jobs > 1:
         with multiprocessing.Pool(args.jobs) as pool:

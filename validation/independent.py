@@ -25,9 +25,12 @@ thruster data of ``HydroModel.to_dict()``) and integrates them with its own equa
   one effect no library describes: Coulomb (dry) friction :math:`-F_c \tanh(u_r/0.02)`;
 - a fixed-step classical Runge-Kutta integrator (RK4, 10 ms), the delay and lag states
   stepped with it;
-- a pilot of steps, doublets, chirps and PD holds of depth and heading (on the *measured*
-  state), turned into thruster commands by the pseudo-inverse allocation and the inverse thrust
-  map;
+- a pilot (:class:`Pilot`) of steps, doublets, chirps and holds of depth, heading, roll and
+  pitch (on the *measured* state), flown for persistent excitation: the net buoyancy trimmed
+  out, the demands symmetric about the trim and scaled to the authority left, so that every
+  driven DOF moves both ways and the thrusters rarely saturate (:func:`excitation` measures
+  it); the wrench turned into thruster commands by the pseudo-inverse allocation and the
+  vehicle file's thrust map;
 - seeded sensor noise (:data:`NOISE`, the same levels as ``validation.synthetic``, a stated
   assumption) at 10 Hz.
 
@@ -339,9 +342,29 @@ class Simulator:
         return x
 
 
+#: The pilot's closed loops, each designed as a second-order response of the vehicle file's
+#: inertia :math:`M_{ii}` (rigid body plus added mass): (natural frequency [rad/s], damping
+#: ratio [-]); gains :math:`K_p = M_{ii}\omega^2`, :math:`K_d = 2\zeta\omega M_{ii}`. The
+#: frequencies are far under the 10-Hz command rate (:math:`K_d T / M_{ii} =
+#: 2\zeta\omega T \le 0.36`, the sampled loop's limit is 2; the earlier pilot's roll hold
+#: had ~3). The attitude loop is as fast as the benchmark's largest actuation delay (0.5 s)
+#: allows: measured on a BlueROV2-Heavy-like log (seed 906317, 60 s), mean |roll| 0.16, 0.11
+#: and 0.07 rad at 1, 2 and 3 rad/s, but 0.27, 0.23 and 0.59 rad with a 0.5-s delay.
+LOOPS = {"depth": (0.5, 0.9), "attitude": (2.0, 0.9), "heading": (0.5, 0.9)}
+#: The yaw-rate stick's loop bandwidth [1/s] (a first-order rate response).
+RATE_BANDWIDTH = 1.0
+#: The depth hold's integral time [s] (a slow trim correction; the integral is frozen during
+#: heave manoeuvres and bounded to a tenth of the heave authority).
+INTEGRAL_TIME = 20.0
+#: The share of each thruster's limit that the allocation plans with [-].
+MARGIN = 0.9
+
+
 def pilot_wrench(rng, t, dofs):
     """Open-loop wrench demands [N, N m] (unit scale) over time: random steps, a doublet and a
-    chirp in each DOF of ``dofs``, with quiet spells; the PD holds are added in the loop."""
+    chirp in each DOF of ``dofs``, with quiet spells; the PD holds are added in the loop. The
+    amplitudes' signs are drawn with equal odds: the demands are symmetric about zero, hence
+    about the pilot's trim (:class:`Pilot`)."""
     n = t.size
     out = np.zeros((n, 6))
     for d in dofs:
@@ -364,35 +387,150 @@ def pilot_wrench(rng, t, dofs):
     return out
 
 
+def _feasible_share(base, extra, lo, hi) -> float:
+    """The largest :math:`\\lambda \\in [0, 1]` with ``lo <= base + lambda extra <= hi`` for every
+    thruster (``base`` inside the limits) [-]."""
+    lam = 1.0
+    for b, e, low, high in zip(base, extra, lo, hi):
+        if e > 0.0:
+            lam = min(lam, (high - b) / e)
+        elif e < 0.0:
+            lam = min(lam, (low - b) / e)
+    return max(lam, 0.0)
+
+
+class Pilot:
+    r"""The pilot and autopilot of :func:`generate`: how a ROV pilot flies an identification
+    run, written for persistent excitation.
+
+    A log identifies a coefficient only if the inputs excite its DOF persistently, in both
+    directions and over a range of frequencies (Ljung 1999, ch. 13, "persistence of
+    excitation"; Åström & Eykhoff 1971): a velocity of one sign only makes a
+    Coulomb term :math:`\mathrm{sign}(w)`, a constant (a buoyancy offset) and a linear drag
+    :math:`w` nearly collinear. The earlier pilot (PD gains a share of the thrusters' whole
+    reach per metre or radian, at 10 Hz) made :math:`K_d T / M_{ii}` about 3 in the
+    BlueROV2-Heavy's roll (above the sampled loop's stability limit of 2): the level hold
+    limit-cycled, the vertical thrusters ran at their limit 70 % of the time in alternate
+    directions, and as their backward branch is 0.8 of the forward one the mean heave thrust
+    pushed down: w > 0 in ~100 % of samples. So this pilot:
+
+    - trims: the net buoyancy of the real vehicle (the truth's :math:`B - W`, as a pilot
+      finds it by ballasting or hovering before the run) and the static moment of a CG not
+      below the CB are cancelled by a feed-forward wrench :math:`\tau_{trim} = g(\eta)`
+      (force at the measured roll and pitch, moment at level; Fossen 2011 eq. 4.6), and
+      a slow integral of the depth error (:data:`INTEGRAL_TIME`) takes up what the trim
+      misses, so that the heave demands are symmetric about the trim;
+    - holds depth (between heave manoeuvres), heading (between yaw manoeuvres), roll and
+      pitch (where the thrusters reach them) by PD loops designed from the vehicle file's
+      inertia (:data:`LOOPS`), and flies the yaw stick as a rate loop with the vehicle
+      file's drag as feed-forward (:data:`RATE_BANDWIDTH`);
+    - allocates the wrench by the pseudo-inverse of the thruster configuration (Johansen &
+      Fossen 2013) and turns thrust into commands by the vehicle file's thrust map, each
+      branch its own (the pilot's software knows the file, not the truth);
+    - keeps within authority: the trim and the holds come first; the manoeuvre (the
+      demands of :func:`pilot_wrench` and the yaw-rate loop) is scaled by the largest share
+      :math:`\lambda \in [0, 1]` that keeps every planned thrust within :data:`MARGIN` of its
+      limit in its own branch (the direction-preserving scaling of a constrained allocation,
+      Johansen & Fossen 2013), so that a demand never saturates a thruster and
+      the thrusters keep authority for the holds; saturation remains only where the truth's
+      thrusters are weaker than the file's (U(0.75, 1.25)).
+    """
+
+    def __init__(self, vehicle: dict, truth: Truth, b: np.ndarray):
+        self.b = b
+        self.b_pinv = np.linalg.pinv(b) if b.size else np.zeros((0, 6))
+        thr = vehicle["thrusters"]
+        self.ct_f = np.array([float(t.get("ct_forward", 1.0)) * float(t.get("eta_forward", 1.0))
+                              for t in thr])
+        self.ct_b = np.array([float(t.get("ct_backward", 1.0)) *
+                              float(t.get("eta_backward", 1.0)) for t in thr])
+        # thrust limits [N]; an unlimited thruster: its thrust at command 1
+        self.lim_f = np.array([_limit(t.get("max_forward")) for t in thr])
+        self.lim_f = np.where(np.isfinite(self.lim_f), self.lim_f, self.ct_f)
+        self.lim_b = np.array([_limit(t.get("max_backward")) for t in thr])
+        self.lim_b = np.where(np.isfinite(self.lim_b), self.lim_b, self.ct_b)
+        # the command range [command units]: the file's commands of full thrust
+        self.n_f = np.sqrt(self.lim_f / self.ct_f)
+        self.n_b = np.sqrt(self.lim_b / self.ct_b)
+        self.m = (np.asarray(vehicle["rigid_body_mass"], float)
+                  + np.asarray(vehicle["added_mass"], float))
+        self.inertia = np.diag(self.m).copy()
+        self.d_l = np.diag(np.asarray(vehicle["linear_damping"], float))
+        self.d_q = np.diag(np.asarray(vehicle["quadratic_damping"], float))
+        self.reach = np.abs(b) @ self.lim_f if b.size else np.zeros(6)   # full wrench per DOF
+        self.net = truth.weight - truth.buoyancy                          # W - B [N]
+        self.moment = -(np.cross(truth.r_g, [0.0, 0.0, truth.weight])
+                        + np.cross(truth.r_b, [0.0, 0.0, -truth.buoyancy]))  # [N m]
+
+    def gains(self, loop: str, dof: int) -> tuple[float, float]:
+        """(K_p, K_d) of a hold [N/m, N s/m or N m/rad, N m s/rad] (:data:`LOOPS`)."""
+        omega, zeta = LOOPS[loop]
+        m = self.inertia[dof]
+        return m * omega ** 2, 2.0 * zeta * omega * m
+
+    def coriolis(self, nu: np.ndarray) -> np.ndarray:
+        r"""The feed-forward :math:`C(\nu)\nu` [N, N m] of the vehicle file's inertia
+        :math:`M_{RB} + M_A` (:func:`_coriolis`, Fossen 2011 eq. 6.43) at the measured
+        velocity: its roll and pitch moments (the Munk moment :math:`(Z_{\dot w} -
+        X_{\dot u}) u w` above all) are cancelled by the level hold, a feedback linearisation
+        (Fossen 2011, ch. 13) of what the vehicle file knows."""
+        return _coriolis(self.m, nu) @ nu
+
+    def trim(self, phi: float, theta: float) -> np.ndarray:
+        r"""The trim wrench [N, N m]: :math:`\tau = g(\eta)` of the truth's weight and
+        buoyancy, the force :math:`-(W - B) R^T e_z` at the measured roll and pitch
+        (:math:`R^T e_z = [-\sin\theta, \cos\theta\sin\phi, \cos\theta\cos\phi]`, Fossen 2011
+        eq. 2.18), the moment at level (the righting moment is the vehicle's own)."""
+        down = np.array([-np.sin(theta), np.cos(theta) * np.sin(phi),
+                         np.cos(theta) * np.cos(phi)])
+        return np.concatenate([-self.net * down, self.moment])
+
+    def allocate(self, hold: np.ndarray, manoeuvre: np.ndarray) -> tuple[np.ndarray, float]:
+        """Commands [command units] for ``hold + lambda manoeuvre`` (class docstring), and
+        lambda [-]."""
+        lo, hi = -MARGIN * self.lim_b, MARGIN * self.lim_f
+        base, extra = self.b_pinv @ hold, self.b_pinv @ manoeuvre
+        over = np.max(np.where(base >= 0.0, base / hi, base / lo), initial=0.0)
+        if over > 1.0:                      # the holds alone exceed: scaled, no manoeuvre
+            base, lam = base / over, 0.0
+        else:
+            lam = _feasible_share(base, extra, lo, hi)
+        thrust = base + lam * extra
+        n = np.where(thrust >= 0.0, np.sqrt(np.abs(thrust) / self.ct_f),
+                     -np.sqrt(np.abs(thrust) / self.ct_b))
+        return np.clip(n, -self.n_b, self.n_f), lam
+
+
 def generate(vehicle: dict, effect: str | None, seed: int, *, duration: float = 300.0,
              rate: float = 10.0):
-    """A noisy log of ``vehicle`` (``HydroModel.to_dict()`` of the prior) with ``effect``.
+    """A noisy log of ``vehicle`` (``HydroModel.to_dict()`` of the prior) with ``effect``,
+    flown by :class:`Pilot`.
 
     Returns ``(log, truth)``: the :class:`~stripcoef.logfile.Log` (t, pose, velocities,
-    ``n_<thruster>`` commands, ``tether_length``) and the :class:`Truth` (its ``strength`` is
-    the effect's magnitude in the library's terms, STRENGTHS)."""
+    ``n_<thruster>`` commands, ``tether_length``; ``meta["command_range"]``: each thruster's
+    (lowest, highest) command) and the :class:`Truth` (its ``strength`` is the effect's
+    magnitude in the library's terms, STRENGTHS)."""
     rng = np.random.default_rng(seed)
     truth = with_effect(perturbed_truth(vehicle, rng), effect, rng, vehicle)
     sim = Simulator(truth)
     t_out = np.arange(0.0, duration + 1e-9, 1.0 / rate)
+    dt = 1.0 / rate
     sub = int(round(1.0 / (rate * sim.dt)))
-    b_pinv = np.linalg.pinv(sim.b) if sim.k else np.zeros((0, 6))
     reach = np.abs(sim.b).sum(axis=1)                     # DOFs the thrusters move
     dofs = [d for d in range(6) if reach[d] > 1e-6 and d not in (3, 4)]
     demand = pilot_wrench(rng, t_out, dofs)
-    full = np.array([_full_command(th) for th in truth.thrusters])
-    fmax = np.array([th["max_forward"] if np.isfinite(th["max_forward"]) else th["ct_forward"]
-                     for th in truth.thrusters])                   # full thrust [N]
+    pilot = Pilot(vehicle, truth, sim.b if sim.k else np.zeros((6, 0)))
     # demand -> wrench: a fifth of the thrusters' reach in translation; the yaw stick a rate
     # of up to 0.6 rad/s (a pilot's moderate inputs)
-    reach_n = np.abs(sim.b) @ fmax if sim.k else np.zeros(6)      # full wrench per DOF
-    scale = np.array([0.2] * 3 + [0.06] * 3) * reach_n
+    scale = np.array([0.2] * 3 + [0.0] * 3) * pilot.reach
     tether = 2.0 + (t_out / t_out[-1]) * rng.uniform(10.0, 30.0)
     x = np.zeros(13 + sim.k)
     x[3] = 1.0
     delay = deque([np.zeros(sim.k)] * int(round(truth.delay / sim.dt)))  # pure delay buffer
     rows, cmds = [], []
-    z_hold, psi_hold = 0.0, 0.0
+    z_hold, psi_hold, z_int = 0.0, 0.0, 0.0
+    kp_z, kd_z = pilot.gains("depth", 2)
+    kp_psi, kd_psi = pilot.gains("heading", 5)
     for i, time in enumerate(t_out):
         phi, theta, psi = _euler(x[3:7])
         meas = {"z": x[2] + rng.normal(0, NOISE["z"]), "psi": psi + rng.normal(0, NOISE["psi"]),
@@ -400,25 +538,33 @@ def generate(vehicle: dict, effect: str | None, seed: int, *, duration: float = 
                 "phi": phi + rng.normal(0, NOISE["phi"]), "p": x[10] + rng.normal(0, NOISE["p"]),
                 "theta": theta + rng.normal(0, NOISE["theta"]),
                 "q": x[11] + rng.normal(0, NOISE["q"])}
-        wrench = demand[i] * scale
+        meas["u"] = x[7] + rng.normal(0, NOISE["u"])
+        meas["v"] = x[8] + rng.normal(0, NOISE["v"])
+        manoeuvre = demand[i] * scale
+        hold = pilot.trim(meas["phi"], meas["theta"])
         if demand[i, 5] != 0.0:                          # the yaw stick asks for a rate
-            wrench[5] = reach_n[5] * np.clip(0.5 * (0.6 * demand[i, 5] - meas["r"]), -0.5, 0.5)
-        # PD holds on the measured state, gains a share of the full wrench per metre or radian
+            r_cmd = 0.6 * demand[i, 5]
+            manoeuvre[5] = ((pilot.d_l[5] + pilot.d_q[5] * abs(r_cmd)) * r_cmd
+                            + pilot.inertia[5] * RATE_BANDWIDTH * (r_cmd - meas["r"]))
+            psi_hold = meas["psi"]
+        else:                                            # heading hold
+            err = np.angle(np.exp(1j * (meas["psi"] - psi_hold)))
+            hold[5] += -(kp_psi * err + kd_psi * meas["r"])
         if demand[i, 2] == 0.0:                          # depth, between heave manoeuvres
-            wrench[2] += -reach_n[2] * (0.5 * (meas["z"] - z_hold) + 0.5 * meas["w"])
+            err = meas["z"] - z_hold
+            z_int = float(np.clip(z_int + err * dt, -0.1 * pilot.reach[2] / max(kp_z, 1e-12)
+                                  * INTEGRAL_TIME, 0.1 * pilot.reach[2] / max(kp_z, 1e-12)
+                                  * INTEGRAL_TIME))
+            hold[2] += -(kp_z * (err + z_int / INTEGRAL_TIME) + kd_z * meas["w"])
         else:
             z_hold = meas["z"]
-        if demand[i, 5] == 0.0:                          # heading
-            err = np.angle(np.exp(1j * (meas["psi"] - psi_hold)))
-            wrench[5] += -reach_n[5] * (0.3 * err + 0.3 * meas["r"])
-        else:
-            psi_hold = meas["psi"]
-        for d, a, rate in ((3, "phi", "p"), (4, "theta", "q")):   # level, where reachable
-            wrench[d] += -reach_n[d] * (0.5 * meas[a] + 0.3 * meas[rate])
-        thrust = b_pinv @ wrench if sim.k else np.zeros(0)
-        ct = np.array([th["ct_forward"] for th in truth.thrusters])
-        n = np.sign(thrust) * np.sqrt(np.abs(thrust) / ct)
-        n = np.clip(n, -full, full)
+        nu = np.array([meas[c] for c in VELOCITIES])
+        ff = pilot.coriolis(nu)
+        for d, a, rt in ((3, "phi", "p"), (4, "theta", "q")):   # level, where reachable
+            if pilot.reach[d] > 1e-9:
+                kp, kd = pilot.gains("attitude", d)
+                hold[d] += ff[d] - (kp * meas[a] + kd * meas[rt])
+        n = pilot.allocate(hold, manoeuvre)[0] if sim.k else np.zeros(0)
         cmds.append(n)
         rows.append(np.concatenate([[time], x[:3], [phi, theta, psi], x[7:13]]))
         if i == len(t_out) - 1:
@@ -435,4 +581,40 @@ def generate(vehicle: dict, effect: str | None, seed: int, *, duration: float = 
     for k, th in enumerate(truth.thrusters):
         cols[f"n_{th['name']}"] = np.array([c[k] for c in cmds])
     cols["tether_length"] = tether
-    return Log(cols, source=f"independent({effect or 'clean'}, seed {seed})"), truth
+    meta = {"command_range": [(-float(a), float(b)) for a, b in zip(pilot.n_b, pilot.n_f)]}
+    return Log(cols, source=f"independent({effect or 'clean'}, seed {seed})", meta=meta), truth
+
+
+#: Velocity columns of the six DOFs.
+VELOCITIES = ("u", "v", "w", "p", "q", "r")
+
+
+def excitation(log: Log, truth: Truth) -> dict:
+    r"""How a log excites each DOF, the property :class:`Pilot` is written for: per velocity
+    column, the shares of samples [-] above ``+3 sigma`` and below ``-3 sigma`` of its sensor
+    noise (:data:`NOISE`; ``pos``, ``neg``); per thruster, the share of samples [-] at which it
+    saturates (``saturated``): its thrust by the truth's map (:func:`_thrust`) at the truth's
+    limit in its branch, or its command at the end of the log's command range
+    (``meta["command_range"]``, when given); and ``driven``, the DOFs (velocity columns) the
+    thrusters push in, roll and pitch left out (held level, not flown)."""
+    out = {}
+    for c in VELOCITIES:
+        v = np.asarray(log[c], float)
+        thr = 3.0 * NOISE[c]
+        out[c] = {"pos": float(np.mean(v > thr)), "neg": float(np.mean(v < -thr))}
+    rng_ = log.meta.get("command_range") if getattr(log, "meta", None) else None
+    sat = {}
+    for k, t in enumerate(truth.thrusters):
+        n = np.asarray(log[f"n_{t['name']}"], float)
+        thrust = np.array([_thrust({**t, "deadband": 0.0}, x) for x in n])
+        at = (thrust >= (1 - 1e-6) * t["max_forward"]) | (thrust <= -(1 - 1e-6) *
+                                                         t["max_backward"])
+        if rng_:
+            lo, hi = rng_[k]
+            at |= (n <= (1 - 1e-6) * lo) | (n >= (1 - 1e-6) * hi)
+        sat[t["name"]] = float(np.mean(at))
+    out["saturated"] = sat
+    b = np.array([np.concatenate([t["direction"], np.cross(t["position"], t["direction"])])
+                  for t in truth.thrusters]).T
+    out["driven"] = [VELOCITIES[d] for d in (0, 1, 2, 5) if np.abs(b[d]).sum() > 1e-6]
+    return out
