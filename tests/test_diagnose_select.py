@@ -155,7 +155,10 @@ def test_a_linear_drag_far_beyond_a_prior_the_log_cannot_calibrate_is_named():
     """Issue 33: a surge linear drag 70x the VideoRay prior's (independent simulator), whose
     D_L the log cannot calibrate within its 60 % band, was rejected for 'no D_L to compare'
     (42 % held-out gain, z = 6). It is named first, with the size the log determines: the
-    truth over the surge thrusters' gain f (the thrust map is the log's force scale)."""
+    truth over the surge thrusters' gain f (the thrust map is the log's force scale). The
+    gain itself (f = 1.24, an inertia change of the log beyond 2.5 bands of the added mass)
+    is named after it as a thrust effectiveness s ~ f; the written model's forces are then
+    in the thrusters' true units, so its D_L over s is the truth over f."""
     from validation.independent import generate
 
     prior = shipped_model("videoray_pro3.yaml")     # its default estimate, once per worker
@@ -167,4 +170,59 @@ def test_a_linear_drag_far_beyond_a_prior_the_log_cannot_calibrate_is_named():
     gain = np.mean([t["ct_forward"] / p.ct_forward
                     for t, p in zip(truth.thrusters, prior.thrusters) if p.direction[0] > 0.9])
     d_l = res["steps"][0]["parameters"]["d_L"]
-    assert d_l == pytest.approx(truth.strength / gain - prior.linear_damping[0, 0], rel=0.15)
+    scales = [s["parameters"]["scale"] for s in res["steps"]
+              if s["effect"] == "thrust_effectiveness"]
+    scale = scales[0] if scales else 1.0
+    assert scale == pytest.approx(gain, rel=0.15)
+    assert (prior.linear_damping[0, 0] + d_l) / scale == pytest.approx(truth.strength / gain,
+                                                                       rel=0.15)
+
+
+def test_a_thrust_scale_must_change_the_inertia_the_log_shows():
+    """A thrust scale s fitted with the calibration's inertia change mu is kept only when
+    the inertia the log shows in the prior's thrust units, (M_ii + mu) / s, differs from
+    the prior's M_ii by 2.5 bands of the added mass (the rigid-body mass is weighed). The
+    numbers of issue 33: the VideoRay pool log (no thrust error, a tether: s = 0.73 with
+    mu = -M_A, an inertia change of 0.06 kg) and a thrust effectiveness of 0.69 on the
+    independent simulator (mu = 0.14 kg: +3.2 kg, 7 bands of 0.45 kg)."""
+    from types import SimpleNamespace
+
+    from stripcoef.diagnose.select import _scale_inertia_test
+    from stripcoef.effects.laws import get_effect
+
+    eff = get_effect("thrust_effectiveness")
+
+    def reasons(m_rb, m_a, s, mu, names=("M", "D_Q")):
+        model = SimpleNamespace(mass_matrix=np.diag([m_rb + m_a] * 6),
+                                added_mass=np.diag([m_a] * 6))
+        full = {"theta": np.array([mu, 0.0, s - 1.0])}
+        return _scale_inertia_test(eff, {"scale": s}, full, SimpleNamespace(model=model), 0,
+                                   list(names))
+
+    pool = reasons(3.6, 1.9404, 0.73, -1.455)
+    assert pool and "within 2.5 bands" in pool[0]
+    assert reasons(5.344, 1.499, 0.693, 0.141) == []
+    # without the calibration's inertia the scale alone implies M_ii (1/s - 1)
+    assert reasons(5.344, 1.499, 0.8, 0.0, names=("D_Q",)) == []      # +1.71 kg > 1.12 kg
+    assert reasons(5.344, 1.499, 0.95, 0.0, names=("D_Q",))           # +0.36 kg: within
+    assert "no added mass" in reasons(5.0, 0.0, 0.5, 0.0)[0]
+
+
+def test_released_drag_is_bounded_at_zero():
+    """A released prior coefficient (an effect's nuisance column: D_L, D_Q) keeps its total
+    at or above zero, the calibration's own physical bound, so the bounded fit cannot
+    reject the effect for a negative drag the log does not determine."""
+    from stripcoef.diagnose.fit import _Nuisance, _term
+    from stripcoef.effects.laws import get_effect
+    from stripcoef.effects.windows import window_data
+
+    prior = rov_model()
+    data = window_data(_surge_log(prior, 3, duration=30.0), prior, window=2.0)
+    current = get_effect("current")
+    low = current.nuisance_lower(data, 0)
+    np.testing.assert_allclose(low, [-prior.linear_damping[0, 0],
+                                     -prior.quadratic_damping[0, 0]])
+    np.testing.assert_allclose(_term(data, 0, current, (0.0, 0.0)).lower[:2], low)
+    np.testing.assert_allclose(_term(data, 0, _Nuisance(current), None).lower, low)
+    # the thrust asymmetry's nuisance (a thrust scale) keeps its own bound
+    assert _term(data, 0, get_effect("thrust_asymmetry"), None).lower[0] == -0.9

@@ -44,7 +44,10 @@ Steps, for each degree of freedom (issue 7):
    The significant effect with the lowest held-out error is added; effects within ``TIE``
    of it are reported as alternatives, and an effect with a signature is preferred over one
    without; a significant release of one coefficient beyond its bands goes before a thrust
-   scale (the simpler change). No step raises the held-out error (a released coefficient included). Before a
+   scale (the simpler change); a thrust scale must change
+   the inertia the log shows by ``MIMIC_BANDS`` bands of the added mass
+   (:func:`~.select._scale_inertia_test`); an effect's released prior coefficients keep
+   their physical bound (drag >= 0). No step raises the held-out error (a released coefficient included). Before a
    step, one-column shapes outside the library (:func:`~.select._generic_shapes`: sign(v),
    v^3, ...) are fitted in its place; one that explains the residual better (held-out error
    below ``1 - MIN_HELD_OUT_GAIN`` of the best effect's) stops the selection, and the DOF is
