@@ -81,7 +81,10 @@ def pair_integrals(points, tri, normal, k, l):
     r = [np.sqrt(x * x + y * y + z * z) for x, y, z in R]
 
     def dot(a, b):
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+        # (+ 0.0: a sum of zeros is +0, as numpy's einsum and matmul give it; the sign of a
+        # zero numerator is the side of the plane arctan2 takes for a point on a panel's
+        # plane -- overlapping coplanar panels of a faceted input)
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 0.0
 
     (x1, y1, z1), (x2, y2, z2) = R[1], R[2]
     num = dot(R[0], (y1 * z2 - z1 * y2, z1 * x2 - x1 * z2, x1 * y2 - y1 * x2))
