@@ -332,7 +332,7 @@ def finned_circle_roll(radius, tip_radius, *, fins: int = 2, rho=RHO):
 
 @lru_cache(maxsize=2)
 def _cos_k_theta(k: int) -> np.ndarray:
-    """:math:`\cos k\theta` on the :data:`ROLL_SERIES_POINTS` angles
+    r""":math:`\cos k\theta` on the :data:`ROLL_SERIES_POINTS` angles
     :math:`\theta_j = 2\pi j/N` of :func:`_unit_roll_series` (read-only; the same for every
     radius and tip, so computed once per k)."""
     theta = 2.0 * np.pi * np.arange(ROLL_SERIES_POINTS) / ROLL_SERIES_POINTS
