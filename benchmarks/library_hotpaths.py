@@ -8,7 +8,14 @@
   twice each in one process (the second reads the level solves of
   ``stripcoef.hull.panels`` solved by the first);
 - the thin-sheet method: ``ring_velocity`` of 256 points on a finned body of 1600 panels
-  (``stripcoef.hull.finsheet``).
+  (``stripcoef.hull.finsheet``);
+- the 3D panel kernels: ``influence_matrices`` of the BlueROV2 Heavy's finest panel level
+  (``stripcoef.hull.panel_kernels``, the level ``estimate`` solves);
+- repeated estimates of one vehicle (a study's samples, the tests' many commands on the
+  shipped files): ``estimate(mares.yaml)``, the first and the mean of the next 10 in one
+  process (the equivalent bodies of the 3D corrections, ``stripcoef.hull.axisymmetric``);
+- the finned circle's exact roll series (``stripcoef.sections.added_mass``), 240 hull
+  radii and tips, each computed afresh (its memo bypassed).
 
 Each number is the least CPU time (``time.process_time``) of ``--repeat`` runs, BLAS on one
 thread, as in the tests.
@@ -67,6 +74,44 @@ def main(argv=None):
     pts = mesh.points[:256]
     print(f"ring_velocity, 256 points x {len(mesh.quads)} panels: "
           f"{least(lambda: ring_velocity(pts, mesh.nodes, mesh.quads), args.repeat + 1):.3f} s")
+    panel_kernels(args.repeat)
+    repeated_estimates()
+    roll_series(args.repeat)
+
+
+def panel_kernels(repeat: int):
+    """``influence_matrices`` of the BlueROV2 Heavy's finest level of the input family."""
+    from stripcoef.assembly.added_mass import panel_surface
+    from stripcoef.geometry.vehicle import load_vehicle
+    from stripcoef.hull.panel_kernels import influence_matrices
+    from stripcoef.hull.panels import panel_levels
+
+    surface = panel_surface(load_vehicle(ROOT / "geometry" / "bluerov2_heavy.yaml"), 1600)
+    v, f = panel_levels(surface.vertices, surface.faces, 1600)[-1]
+    tri = np.asarray(v, float)[np.asarray(f)]
+    print(f"influence_matrices, BlueROV2 Heavy level of {len(tri)} panels: "
+          f"{least(lambda: influence_matrices(tri), repeat):.2f} s")
+
+
+def repeated_estimates():
+    """The first ``estimate`` of MARES in this process and the mean of the next 10."""
+    from stripcoef import estimate
+
+    path = ROOT / "geometry" / "mares.yaml"
+    first = least(lambda: estimate(path), 1)
+    rest = sum(least(lambda: estimate(path), 1) for _ in range(10)) / 10
+    print(f"estimate(mares.yaml): first {first:.3f} s, next 10 {rest:.3f} s each")
+
+
+def roll_series(repeat: int):
+    """The finned circle's roll series for 240 (radius, tip, fins), memo bypassed."""
+    from stripcoef.sections.added_mass import _unit_roll_series
+
+    cases = [(r, a, k) for r in (0.0, 0.05, 0.1) for a in np.linspace(0.11, 0.3, 40)
+             for k in (2, 4)]
+    series = _unit_roll_series.__wrapped__
+    print(f"finned-circle roll series, 240 cases: "
+          f"{least(lambda: [series(*c) for c in cases], repeat):.2f} s")
 
 
 if __name__ == "__main__":

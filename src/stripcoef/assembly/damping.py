@@ -81,8 +81,12 @@ OUTLINE_POINTS = 96
 def _outline_points(part):
     """Per strip of ``part``: the vertices (m, 2) [m] of its section's outline, (y, z), as the
     shape draws it (:data:`stripcoef.sections.SHAPES`; a curved outline with
-    :data:`OUTLINE_POINTS` vertices). Drawn once per part for both flow directions."""
-    outline = get_shape(part.shape).outline
+    :data:`OUTLINE_POINTS` vertices). Drawn once per part for both flow directions; a shape
+    with ``outlines`` draws every strip's at once, as a (k, m, 2) array."""
+    shape = get_shape(part.shape)
+    if shape.outlines is not None:
+        return shape.outlines(part, OUTLINE_POINTS)
+    outline = shape.outline
     pts = []
     for i in range(part.index.size):
         rings = outline(part, i, OUTLINE_POINTS)
@@ -97,6 +101,15 @@ def _extremes(pts, axis):
     highest: the spread across the flow of the outline's vertices within :data:`FACE_TOL` of
     the part's extent of that extreme (0 for a rounded contour or a vertex, the side for a
     flat face)."""
+    if isinstance(pts, np.ndarray):
+        # every strip's outline in one (k, m, 2) array: the same values row by row
+        along, across = pts[..., axis], pts[..., 1 - axis]
+        lo, hi = along.min(axis=1), along.max(axis=1)
+        tol = FACE_TOL * max(float(np.max(hi) - np.min(lo)), 1e-300)
+        on = along >= (hi - tol)[:, None]
+        w_hi = (np.where(on, across, -np.inf).max(axis=1)
+                - np.where(on, across, np.inf).min(axis=1))
+        return lo, hi, w_hi
     k = len(pts)
     lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
     for i, p in enumerate(pts):

@@ -26,7 +26,7 @@ from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, added_mass,
                                            panel_vehicle_added_mass)
 from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
 from stripcoef.assembly.symmetry import (enforce_symmetry, enforce_symmetry_about,
-                                         strips_mirror_symmetries)
+                                         strip_sections, strips_mirror_symmetries)
 from stripcoef.bem import timed_bem_added_mass
 from stripcoef.errors import InputError, unknown_name
 from stripcoef.geometry.shape_class import classify, strip_features
@@ -159,7 +159,9 @@ def _panels(inp: AddedMassInputs):
     strips = inp.strips
     if strips is None or strips.n > MIRROR_STRIPS:
         strips = inp.vehicle.cut(MIRROR_STRIPS)
-    mirrors = strips_mirror_symmetries(strips, inp.about, tol=SYMMETRY_ZERO_TOL)
+    sections = strip_sections(strips)           # drawn once for both points
+    mirrors = strips_mirror_symmetries(strips, inp.about, tol=SYMMETRY_ZERO_TOL,
+                                       sections=sections)
     m_a, info, error = panel_vehicle_added_mass(
         inp.vehicle, inp.rho, inp.about, inp.added_mass_panels,
         symmetrise=lambda m: enforce_symmetry(m, mirrors), mirrors=mirrors)
@@ -171,7 +173,8 @@ def _panels(inp: AddedMassInputs):
     # remeshed panels are not symmetric (X_wdot 0.4 % of the diagonal scale otherwise)
     centre = _symmetry_centre(strips, inp.center)
     if centre is not None:
-        own = strips_mirror_symmetries(strips, centre, tol=SYMMETRY_ZERO_TOL)
+        own = strips_mirror_symmetries(strips, centre, tol=SYMMETRY_ZERO_TOL,
+                                       sections=sections)
         if own - mirrors:
             m_a = enforce_symmetry_about(m_a, own, centre, inp.about)
             if error is not None:

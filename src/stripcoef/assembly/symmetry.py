@@ -96,8 +96,9 @@ def _section(part, k: int):
     return Polygon(GEOMETRY["ellipse"].outline(part, k, _RING)[0])
 
 
-def _sections(strips):
-    """Per strip: (the union of its parts' sections, or None; covered area [m^2])."""
+def strip_sections(strips):
+    """Per strip: (the union of its parts' sections as a shapely geometry (y, z) [m], or None;
+    covered area [m^2]), the input of :func:`strips_mirror_symmetries`."""
     from shapely.ops import unary_union
 
     geo = [[] for _ in range(strips.n)]
@@ -125,11 +126,14 @@ def mirror_symmetries(vehicle, point=(0.0, 0.0, 0.0), strips: int | None = None,
     return strips_mirror_symmetries(vehicle.cut(strips), point, tol)
 
 
-def strips_mirror_symmetries(st, point=(0.0, 0.0, 0.0), tol: float = MIRROR_TOL) -> frozenset:
-    """:func:`mirror_symmetries` of strips already cut (:class:`stripcoef.strips.Strips`)."""
+def strips_mirror_symmetries(st, point=(0.0, 0.0, 0.0), tol: float = MIRROR_TOL,
+                             sections=None) -> frozenset:
+    """:func:`mirror_symmetries` of strips already cut (:class:`stripcoef.strips.Strips`);
+    ``sections``: their :func:`strip_sections` when already drawn (the test about several
+    points draws them once)."""
     from shapely.affinity import scale
 
-    secs, area = _sections(st)
+    secs, area = strip_sections(st) if sections is None else sections
     x0, y0, z0 = (float(v) for v in point)
     dx = np.asarray(st.dx, dtype=float)
     volume = float(np.sum(area * dx))

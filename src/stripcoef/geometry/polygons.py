@@ -54,12 +54,24 @@ def signed_area(ring) -> float:
 
 
 def point_in_ring(p, ring) -> bool:
+    """Whether the point ``p`` (y, z) lies inside ``ring`` (:func:`points_in_ring`)."""
+    return bool(points_in_ring(np.asarray(p, float)[None, :], ring)[0])
+
+
+def points_in_ring(points, ring) -> np.ndarray:
+    r"""Whether each of ``points`` (P, 2) lies inside ``ring`` (n, 2) [m]: the even-odd
+    (crossing-number) rule, a ray from the point towards +y crossing the edges
+    :math:`(y_i, z_i) \to (y_{i+1}, z_{i+1})` with :math:`z_i > z_p \ne z_{i+1} > z_p` at
+    :math:`y = y_i + (z_p - z_i)(y_{i+1} - y_i)/(z_{i+1} - z_i) > y_p` an odd number of times
+    (Shimrat 1962, "Algorithm 112: position of point relative to polygon", Commun. ACM 5(8)
+    434; O'Rourke 1998, "Computational Geometry in C", 2nd ed., sec. 7.4).  Returns (P,) bool."""
     y, z = ring[:, 0], ring[:, 1]
     y2, z2 = np.roll(y, -1), np.roll(z, -1)
-    cond = (z > p[1]) != (z2 > p[1])
+    py, pz = points[:, :1], points[:, 1:]
+    cond = (z > pz) != (z2 > pz)
     with np.errstate(divide="ignore", invalid="ignore"):
-        yc = y + (p[1] - z) * (y2 - y) / (z2 - z)
-    return bool(np.count_nonzero(cond & (p[0] < yc)) % 2)
+        yc = y + (pz - z) * (y2 - y) / (z2 - z)
+    return np.count_nonzero(cond & (py < yc), axis=1) % 2 == 1
 
 
 def orient_contours(contours, where: str = "contours") -> list[np.ndarray]:

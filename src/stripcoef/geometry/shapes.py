@@ -68,15 +68,27 @@ def _box_half_chord(half_across, half_along, offset):
     return half_along * np.ones_like(np.asarray(offset, dtype=float))
 
 
+def ellipse_rings(yc, zc, b, h, points):
+    r"""Closed rings (..., points + 1, 2) of ellipses centred at (yc, zc), half-axes b, h [m]
+    (scalars or arrays of one shape): :math:`(y_c + b\cos a_j,\ z_c + h\sin a_j)`,
+    :math:`a_j = 2\pi j/n`, the first point repeated at the end."""
+    a = np.linspace(0.0, 2.0 * np.pi, points, endpoint=False)
+    yc, zc, b, h = (np.asarray(v, dtype=float)[..., None] for v in (yc, zc, b, h))
+    ring = np.stack(np.broadcast_arrays(yc + b * np.cos(a), zc + h * np.sin(a)), axis=-1)
+    return np.concatenate([ring, ring[..., :1, :]], axis=-2)
+
+
 def _ellipse_ring(yc, zc, b, h, points):
     """Closed (points + 1, 2) ring of an ellipse centred at (yc, zc), half-axes b, h [m]."""
-    a = np.linspace(0.0, 2.0 * np.pi, points, endpoint=False)
-    ring = np.column_stack([yc + b * np.cos(a), zc + h * np.sin(a)])
-    return np.vstack([ring, ring[:1]])
+    return ellipse_rings(yc, zc, b, h, points)
 
 
 def _outline_ellipse(part, k, points):
     return [_ellipse_ring(part.y[k], part.z[k], part.half_breadth[k], part.half_height[k], points)]
+
+
+def _outlines_ellipse(part, points):
+    return ellipse_rings(part.y, part.z, part.half_breadth, part.half_height, points)
 
 
 def _outline_rectangle(part, k, points):
@@ -133,6 +145,10 @@ class ShapeGeometry:
         A fin of this shape is a flat plate (fin axial added mass, the fin sheet)
     corner_roll : bool
         The section's flat sides give roll drag about its own centre
+    outlines : callable or None
+        ``f(part, points) -> (k, m, 2)``: every section's outline at once, for a shape whose
+        outline is one ring of the same vertex count on every strip (``outline`` of each k,
+        stacked); None where it is not
     """
 
     name: str
@@ -145,12 +161,14 @@ class ShapeGeometry:
     elliptic: bool = False
     plate: bool = False
     corner_roll: bool = False
+    outlines: Callable | None = None
 
 
 #: The geometry of the section shapes: name -> :class:`ShapeGeometry`.
 GEOMETRY = {g.name: g for g in (
     ShapeGeometry("ellipse", _outline_ellipse, _ellipse_half_chord, _filled_area,
-                  properties=ellipse_section, rounded=True, elliptic=True),
+                  properties=ellipse_section, rounded=True, elliptic=True,
+                  outlines=_outlines_ellipse),
     ShapeGeometry("rectangle", _outline_rectangle, _box_half_chord, _box_area,
                   properties=rectangle_section, plate=True, corner_roll=True),
     ShapeGeometry("polygon", _outline_polygon, _box_half_chord, _filled_area, contoured=True),

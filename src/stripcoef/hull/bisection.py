@@ -9,6 +9,8 @@ refine the faces as they are: every new vertex lies on a face, so the geometry i
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 
@@ -83,9 +85,23 @@ def _bisect(vertices, faces, bound, max_faces=None):
 def refine(vertices, faces, panels: int):
     """About ``panels`` triangles (the most at or below it) by longest-edge bisection
     (:func:`bisect_longest`), the edge bound found by bisection on the count.  A mesh of
-    ``panels`` faces or more is returned as it is.  Returns (vertices, faces)."""
+    ``panels`` faces or more is returned as it is.  Returns (vertices, faces).  Computed once
+    per process for the same mesh and count (:func:`_refined`: the panel method refines a
+    vehicle's surface the same way at every estimate of it)."""
     if len(faces) >= panels:
         return vertices, faces
+    v = np.ascontiguousarray(vertices, dtype=float)
+    f = np.ascontiguousarray(faces, dtype=np.int64)
+    rv, rf = _refined(v.tobytes(), v.shape, f.tobytes(), f.shape, int(panels))
+    return rv.copy(), rf.copy()
+
+
+@functools.lru_cache(maxsize=32)
+def _refined(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, panels: int):
+    """:func:`refine` of the mesh as bytes (hashable, immutable: the memo's key); the arrays
+    returned are read-only (the caller copies them)."""
+    vertices = np.frombuffer(vertices, dtype=float).reshape(vshape).copy()
+    faces = np.frombuffer(faces, dtype=np.int64).reshape(fshape).copy()
     t = vertices[faces]
     hi = float(np.linalg.norm(t[:, [1, 2, 0]] - t, axis=2).max())
     lo = 1e-3 * hi
@@ -101,6 +117,8 @@ def refine(vertices, faces, panels: int):
                 best = (v, f)
         if 0.97 * panels <= len(best[1]):
             break
+    for a in best:
+        a.flags.writeable = False
     return best
 
 

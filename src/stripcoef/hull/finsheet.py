@@ -113,18 +113,23 @@ def ring_velocity(points, nodes, quads, normals=None) -> np.ndarray:
     a, b = nodes[edges[:, 0]], nodes[edges[:, 1]]
     ax, ay, az = (a[:, i, None] for i in range(3))
     bx, by, bz = (b[:, i, None] for i in range(3))
+    # the points' offsets from each node and distances to it, (N', P) for the N' nodes the
+    # edges use, gathered per edge end (the same values as computed per edge)
+    used, end = np.unique(edges, return_inverse=True)
+    end = end.reshape(edges.shape)
+    dx, dy, dz = (p - nodes[used, i, None] for i, p in enumerate((px, py, pz)))
+    dist = np.sqrt(dx * dx + dy * dy + dz * dz)
     with np.errstate(divide="ignore", invalid="ignore"):
         # by components: (E, P) arrays (an edge's row is gathered whole for its rings), no
         # (E, P, 3) ones
-        r1x, r1y, r1z = px - ax, py - ay, pz - az
-        r2x, r2y, r2z = px - bx, py - by, pz - bz
+        r1x, r1y, r1z = dx[end[:, 0]], dy[end[:, 0]], dz[end[:, 0]]          # P - A
+        r2x, r2y, r2z = dx[end[:, 1]], dy[end[:, 1]], dz[end[:, 1]]          # P - B
         r0x, r0y, r0z = bx - ax, by - ay, bz - az
         cx = r1y * r2z - r1z * r2y
         cy = r1z * r2x - r1x * r2z
         cz = r1x * r2y - r1y * r2x
         c2 = cx * cx + cy * cy + cz * cz
-        n1 = np.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
-        n2 = np.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+        n1, n2 = dist[end[:, 0]], dist[end[:, 1]]
         l0 = r0x * r0x + r0y * r0y + r0z * r0z
         ok = (c2 > 1e-12 * l0 * l0) & (n1 > 0) & (n2 > 0) & (l0 > 0)
         f = ((r0x * r1x + r0y * r1y + r0z * r1z) / n1

@@ -56,33 +56,57 @@ def triangle_integrals(points, tri, normal):
     + (R_1\cdot R_3) r_2 + (R_2\cdot R_3) r_1)`, :math:`R_k = v_k - x`; zero on the panel
     itself (principal value).
     """
-    R = tri - points[:, None, :]                          # (k, 3, 3) vertex - point
-    r = np.linalg.norm(R, axis=2)
-    num = np.einsum("ij,ij->i", R[:, 0], np.cross(R[:, 1], R[:, 2]))
-    def dot(a, b):
-        return np.einsum("ij,ij->i", R[:, a], R[:, b])
+    idx = np.arange(len(points))
+    return pair_integrals(points, tri, normal, idx, idx)
 
-    den = r[:, 0] * r[:, 1] * r[:, 2] + dot(0, 1) * r[:, 2] + dot(0, 2) * r[:, 1] \
-        + dot(1, 2) * r[:, 0]
+
+def pair_integrals(points, tri, normal, k, l):
+    r""":func:`triangle_integrals` of the pairs (point ``k``, panel ``l``) [m, -]: ``points``
+    (m, 3), ``tri`` (n, 3, 3), ``normal`` (n, 3), index arrays ``k``, ``l``.  Each panel's
+    edges (unit tangent, in-plane outward normal, length) are computed once and gathered per
+    pair, and the sums run by coordinate components (the same formulas as
+    :func:`triangle_integrals`; equal to round-off)."""
+    edge = tri[:, [1, 2, 0]] - tri                             # (n, 3, 3) edge e: v_e -> v_e+1
+    elen = np.linalg.norm(edge, axis=2)                        # (n, 3)
+    lt = edge / elen[..., None]
+    u = np.cross(lt, normal[:, None, :])                       # in-plane, out of the triangle
+    tv = np.ascontiguousarray(tri.transpose(1, 2, 0))          # (3 vertices, 3 coords, n)
+    ltc = np.ascontiguousarray(lt.transpose(1, 2, 0))
+    uc = np.ascontiguousarray(u.transpose(1, 2, 0))
+    lnc = np.ascontiguousarray(elen.T)
+    nc = np.ascontiguousarray(normal.T)
+    pc = np.ascontiguousarray(np.asarray(points, float).T)
+    px, py, pz = pc[0][k], pc[1][k], pc[2][k]
+    R = [(tv[v, 0][l] - px, tv[v, 1][l] - py, tv[v, 2][l] - pz) for v in range(3)]
+    r = [np.sqrt(x * x + y * y + z * z) for x, y, z in R]
+
+    def dot(a, b):
+        # (+ 0.0: a sum of zeros is +0, as numpy's einsum and matmul give it; the sign of a
+        # zero numerator is the side of the plane arctan2 takes for a point on a panel's
+        # plane -- overlapping coplanar panels of a faceted input)
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 0.0
+
+    (x1, y1, z1), (x2, y2, z2) = R[1], R[2]
+    num = dot(R[0], (y1 * z2 - z1 * y2, z1 * x2 - x1 * z2, x1 * y2 - y1 * x2))
+    den = r[0] * r[1] * r[2] + dot(R[0], R[1]) * r[2] + dot(R[0], R[2]) * r[1] \
+        + dot(R[1], R[2]) * r[0]
     omega = 2.0 * np.arctan2(num, den)
-    h = -np.einsum("ij,ij->i", R[:, 0], normal)           # height of the point above the plane
+    h = -dot(R[0], (nc[0][l], nc[1][l], nc[2][l]))       # height of the point above the plane
     ah = np.abs(h)
-    total = np.zeros(len(points))
-    for k in range(3):
-        a, b = R[:, k], R[:, (k + 1) % 3]
-        edge = b - a
-        ln = np.linalg.norm(edge, axis=1)
-        lt = edge / ln[:, None]
-        u = np.cross(lt, normal)                           # in-plane, out of the triangle
-        t0 = np.einsum("ij,ij->i", a, u)
-        sm = np.einsum("ij,ij->i", a, lt)
+    h2 = h * h
+    total = np.zeros(len(k))
+    for e in range(3):
+        a = R[e]
+        ln = lnc[e][l]
+        t0 = dot(a, (uc[e, 0][l], uc[e, 1][l], uc[e, 2][l]))
+        sm = dot(a, (ltc[e, 0][l], ltc[e, 1][l], ltc[e, 2][l]))
         sp = sm + ln
-        r02 = t0 * t0 + h * h
+        r02 = t0 * t0 + h2
         ok = r02 > 1e-24 * ln * ln
         r0 = np.sqrt(np.where(ok, r02, 1.0))
         term = t0 * (np.arcsinh(sp / r0) - np.arcsinh(sm / r0)) - ah * (
-            np.arctan(t0 * sp / (r02 + ah * r[:, (k + 1) % 3] + 1e-300))
-            - np.arctan(t0 * sm / (r02 + ah * r[:, k] + 1e-300)))
+            np.arctan(t0 * sp / (r02 + ah * r[(e + 1) % 3] + 1e-300))
+            - np.arctan(t0 * sm / (r02 + ah * r[e] + 1e-300)))
         total += np.where(ok, term, 0.0)
     return total / _FOUR_PI, -omega / _FOUR_PI
 
@@ -162,14 +186,11 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
         np.fill_diagonal(r2, 0.0)
     # pairs within mid_factor diameters (near ones among them, the panel itself included),
     # found on r2 before it is reused
-    k, l = np.nonzero(r2 < ((mid_factor * diam) ** 2)[None, :])
-    d2 = np.einsum("ij,ij->i", points[k] - c[l], points[k] - c[l])
-    near = d2 < (near_factor * diam[l]) ** 2
-    if self_block:
-        near |= k == l
-    km, lm = k[~near], l[~near]
+    mid = r2 < ((mid_factor * diam) ** 2)[None, :]
+    kn, ln = _near_pairs(points, c, diam, r2, near_factor, mid_factor, self_block)
+    mid[kn, ln] = False                    # (a near pair is within mid_factor diameters)
     if dense is None:
-        dense = len(km) > DENSE_MID_FRACTION * len(points) * len(c)
+        dense = int(np.count_nonzero(mid)) > DENSE_MID_FRACTION * len(points) * len(c)
     w = area / _FOUR_PI
     if dense:
         # many pairs in the mid zone (long panels: frames of thin tubes): the three-point rule
@@ -179,26 +200,50 @@ def influence_at(points, tri, *, self_block: bool, dense: bool | None = None,
         _three_point_dense(x0, n, tri - shift, w, s, dd)
     else:
         s, dd = _one_point(r2, x0, c0, n, w, self_block)
-    if not dense and len(km):
+    km, lm = np.nonzero(mid) if not dense else ((), ())
+    if len(km):
+        # the three-point rule pair by pair (each panel's points computed once, then gathered)
         sk = np.zeros(len(km))
         dk = np.zeros(len(km))
+        pk, nl = points[km], n[lm]
         for q in range(3):
-            xi = (2.0 / 3.0) * tri[lm, q] + (1.0 / 6.0) * (tri[lm, (q + 1) % 3]
-                                                           + tri[lm, (q + 2) % 3])
-            dq = points[km] - xi
+            xi = (2.0 / 3.0) * tri[:, q] + (1.0 / 6.0) * (tri[:, (q + 1) % 3]
+                                                          + tri[:, (q + 2) % 3])
+            dq = pk - xi[lm]
             iq = 1.0 / np.sqrt(np.einsum("ij,ij->i", dq, dq))
             sk += iq
-            dk += np.einsum("ij,ij->i", dq, n[lm]) * iq ** 3
+            dk += np.einsum("ij,ij->i", dq, nl) * iq ** 3
         s[km, lm] = sk * w[lm] / 3.0
         dd[km, lm] = dk * w[lm] / 3.0
-    k, l = k[near], l[near]
-    for sl in np.array_split(np.arange(len(k)), max(1, len(k) // 200000)):
-        sk, dk = triangle_integrals(points[k[sl]], tri[l[sl]], n[l[sl]])
-        s[k[sl], l[sl]] = sk
-        dd[k[sl], l[sl]] = dk
+    for sl in np.array_split(np.arange(len(kn)), max(1, len(kn) // 200000)):
+        sk, dk = pair_integrals(points, tri, n, kn[sl], ln[sl])
+        s[kn[sl], ln[sl]] = sk
+        dd[kn[sl], ln[sl]] = dk
     if self_block:
         np.fill_diagonal(dd, 0.0)       # principal value on the panel itself (flat: no dipole)
     return s, dd
+
+
+def _near_pairs(points, c, diam, r2, near_factor, mid_factor, self_block):
+    r"""Indices (k, l) of the pairs within ``near_factor`` diameters, :math:`|x_k - c_l|^2 <
+    (f\,d_l)^2` with the distance taken directly (not from the matrix products of ``r2``,
+    whose round-off is of the size of the body), row by row, among the pairs that ``r2``
+    places within ``mid_factor`` diameters; and the panel itself when ``self_block``.  Only
+    the pairs that ``r2`` places within the threshold plus a bound on
+    its round-off (:math:`64\,\epsilon\,(\max|x_k - m| + \max|c_l - m|)^2`, m the centroids'
+    mean as in :func:`squared_distances`) are measured again: the same pairs as measuring
+    every pair."""
+    shift = c.mean(axis=0)
+    reach = (np.sqrt(np.einsum("ij,ij->i", points - shift, points - shift)).max()
+             + np.sqrt(np.einsum("ij,ij->i", c - shift, c - shift)).max())
+    slack = 64.0 * np.finfo(float).eps * reach * reach
+    limit = (near_factor * diam) ** 2
+    k, l = np.nonzero(r2 < np.minimum(limit + slack, (mid_factor * diam) ** 2)[None, :])
+    dkl = points[k] - c[l]
+    near = np.einsum("ij,ij->i", dkl, dkl) < limit[l]
+    if self_block:
+        near |= k == l
+    return k[near], l[near]
 
 
 #: Share of all pairs in the mid zone beyond which the three-point rule is applied to every

@@ -330,17 +330,27 @@ def finned_circle_roll(radius, tip_radius, *, fins: int = 2, rho=RHO):
     return rho * _unit_roll_series(float(radius), float(tip_radius), fins)
 
 
+@lru_cache(maxsize=2)
+def _cos_k_theta(k: int) -> np.ndarray:
+    r""":math:`\cos k\theta` on the :data:`ROLL_SERIES_POINTS` angles
+    :math:`\theta_j = 2\pi j/N` of :func:`_unit_roll_series` (read-only; the same for every
+    radius and tip, so computed once per k)."""
+    theta = 2.0 * np.pi * np.arange(ROLL_SERIES_POINTS) / ROLL_SERIES_POINTS
+    out = np.cos(k * theta)
+    out.flags.writeable = False
+    return out
+
+
 @lru_cache(maxsize=4096)
 def _unit_roll_series(r: float, a: float, fins: int) -> float:
     """:func:`finned_circle_roll` for rho = 1 [m^4] (cached: the strips of one fin share it)."""
     k = 1 if fins == 2 else 2
-    theta = 2.0 * np.pi * np.arange(ROLL_SERIES_POINTS) / ROLL_SERIES_POINTS
     c = a**k + r**(2 * k) / a**k
-    zz = np.abs(c * np.cos(k * theta))
+    zz = np.abs(c * _cos_k_theta(k))
     on_fin = zz > 2.0 * r**k
-    f = np.full(theta.size, r * r)
+    f = np.full(zz.size, r * r)
     f[on_fin] = (0.5 * (zz[on_fin] + np.sqrt(zz[on_fin]**2 - 4.0 * r**(2 * k)))) ** (2.0 / k)
-    cn = np.fft.rfft(f) / theta.size
+    cn = np.fft.rfft(f) / zz.size
     n = np.arange(cn.size)
     return float(np.pi * np.sum(n[1:] * np.abs(cn[1:]) ** 2))
 

@@ -49,7 +49,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.errors import InputError
-from stripcoef.geometry.polygons import CORNER_ANGLE, orient_contours, point_in_ring
+from stripcoef.geometry.polygons import CORNER_ANGLE, orient_contours, points_in_ring
 
 #: Default number of panels per section (all contours together).
 DEFAULT_PANELS = 96
@@ -509,10 +509,13 @@ def _ring_set(sections, where: str = "sections", single: bool = False) -> "_Ring
     want_ccw = np.ones(len(count), bool)
     bounds = np.searchsorted(section, np.arange(nsec + 1))
     for s in np.nonzero(np.diff(bounds) > 1)[0]:
-        mine = [pts[r, :count[r]] for r in range(bounds[s], bounds[s + 1])]
-        for i, r in enumerate(mine):
-            depth = sum(point_in_ring(r[0], other) for j, other in enumerate(mine) if j != i)
-            want_ccw[bounds[s] + i] = depth % 2 == 0
+        probes = pts[bounds[s]:bounds[s + 1], 0]                        # each ring's first point
+        depth = np.zeros(len(probes), int)
+        for j in range(bounds[s], bounds[s + 1]):                        # inside ring j?
+            inside = points_in_ring(probes, pts[j, :count[j]])
+            inside[j - bounds[s]] = False
+            depth += inside
+        want_ccw[bounds[s]:bounds[s + 1]] = depth % 2 == 0
     flip = (area > 0) != want_ccw
     if flip.any():                                                       # as r[::-1]
         area = np.where(flip, -area, area)
