@@ -654,7 +654,7 @@ def boundary_layer_pressure_ratio(span: float, delta: float, profile: float = BL
     return (delta * (inside / delta) ** (p + 1.0) / (p + 1.0) + max(span - delta, 0.0)) / span
 
 
-def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
+def axial_velocity_ratio(s, area, s_point, r_point):
     r"""Local axial speed over the free stream near a body of revolution in axial potential flow.
 
     The body as a line of sources of strength :math:`U\,dS/ds` per unit length along its axis
@@ -673,12 +673,12 @@ def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
         Stations from the nose, increasing [m]
     area : (n,) array
         Cross-section area S(s) [m^2]
-    s_point, r_point : float
+    s_point, r_point : float or arrays of one shape
         Where [m]: distance from the nose and from the axis (r > 0)
 
     Returns
     -------
-    float
+    float or array of that shape
         u/U [-]
 
     References
@@ -690,8 +690,11 @@ def axial_velocity_ratio(s, area, s_point: float, r_point: float) -> float:
     """
     s = np.asarray(s, dtype=float)
     ds = np.gradient(np.asarray(area, dtype=float), s)
-    d = s_point - s
-    return 1.0 + float(np.trapezoid(ds * d / (d * d + r_point * r_point) ** 1.5, s)) / (4.0 * math.pi)
+    s_point, r_point = np.broadcast_arrays(np.asarray(s_point, float), np.asarray(r_point, float))
+    d = s_point[..., None] - s
+    kernel = ds * d / (d * d + r_point[..., None] ** 2) ** 1.5
+    u = 1.0 + np.trapezoid(kernel, s, axis=-1) / (4.0 * math.pi)
+    return float(u) if u.ndim == 0 else u
 
 
 #: Head's entrainment method: F(H1) = 0.0306 (H1 - 3)^-0.6169 (Head 1958, ARC R&M 3152, as the
@@ -752,7 +755,7 @@ def surface_speed_ratio(s, area) -> np.ndarray:
     r = np.sqrt(np.maximum(area, 0.0) / math.pi)
     slope = np.gradient(r, s)
     floor = 1e-3 * max(float(r.max()), 1e-300)
-    u = np.array([axial_velocity_ratio(s, area, t, max(rt, floor)) for t, rt in zip(s, r)])
+    u = axial_velocity_ratio(s, area, s, np.maximum(r, floor))
     return np.hypot(u, np.where(r > floor, slope, 0.0))
 
 
