@@ -23,9 +23,11 @@ SPHEROID = ROOT / "geometry" / "spheroid.yaml"
 
 @pytest.fixture
 def uncertain_spheroid(tmp_path):
-    """The shipped spheroid with a declared mass (normal) and a uniform thrust limit."""
+    """The shipped spheroid with a declared mass (normal) and a uniform thrust limit; 40
+    strips: the declared mass is propagated whatever the strip count (the same 256 masses to
+    round-off at 200 strips: sd 0.50513, median 20.00016; 5.6 instead of 14 s of CPU)."""
     data = yaml.safe_load(SPHEROID.read_text())
-    data["strips"] = 200
+    data["strips"] = 40
     data.setdefault("mass", {})
     data["mass"] = {"mass": {"value": 20.0, "sd": 0.5}}
     path = tmp_path / "spheroid_uq.yaml"
