@@ -226,3 +226,13 @@ def test_stored_cfd_rotations_against_the_surface_integral():
     assert np.sqrt(np.mean(ln ** 2)) < CFD_RMS_MAX
     # never further from the CFD than the strips were, row by row
     assert np.all(np.abs(ln) <= np.abs(before) + 0.15)
+
+
+@pytest.mark.slow
+def test_validation_doc_cfd_section_is_current():
+    """docs/validation.md's CFD section is what the code writes now (tests/test_validation_doc.py,
+    checked here on the models of the test above: ``validation.cfd.stored`` is computed once
+    per process, and this module's tests run on one worker)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("cfd")

@@ -24,7 +24,7 @@ from validation import SECTIONS, build
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the expensive sections (measured: docs/development.md)
-SLOW = {"lift", "meshes", "drag", "cfd"}
+SLOW = {"lift", "meshes", "drag"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent
@@ -120,6 +120,7 @@ def assert_section_is_current(name):
 #: Sections checked in the test module that computes the same results (a module fixture or the
 #: section's own cache, computed once for both on one worker): section -> (module, test).
 ELSEWHERE = {
+    "cfd": ("test_damping_rotation", "test_validation_doc_cfd_section_is_current"),
     "diagnosis": ("test_diagnose_papers", "test_validation_doc_diagnosis_section_is_current"),
     "fins": ("test_fin_plate", "test_validation_doc_fins_section_is_current"),
     "identification": ("test_identify_romeo_simulated",
