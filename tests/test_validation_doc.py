@@ -108,12 +108,13 @@ def test_the_document_has_the_introduction_and_one_part_per_section(monkeypatch)
     _stale("introduction", parts[0], build().rstrip() + "\n")
 
 
-def assert_section_is_current(name):
-    """The stored section ``name`` of docs/validation.md is what its module writes now."""
+def assert_section_is_current(name, **section_args):
+    """The stored section ``name`` of docs/validation.md is what its module writes now
+    (``section(**section_args)``)."""
     k = SECTIONS.index(name)
     stored = stored_parts((ROOT / "docs" / "validation.md").read_text())
     assert len(stored) == 1 + len(SECTIONS)
-    fresh = importlib.import_module(f"validation.{name}").section().rstrip() + "\n"
+    fresh = importlib.import_module(f"validation.{name}").section(**section_args).rstrip() + "\n"
     _stale(name, stored[1 + k], fresh)
 
 
