@@ -3,7 +3,6 @@ Capytaine on thin plates, and finned Myring hulls against their converged BEM
 (benchmarks/finned_bodies.py, benchmarks/plate_added_mass.py)."""
 
 import importlib
-import warnings
 
 import numpy as np
 import pytest
