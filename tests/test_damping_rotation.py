@@ -127,12 +127,19 @@ def test_element_coefficients_give_back_the_translational_drag():
         assert force == pytest.approx([5.0, 6.0, 7.0][k], rel=1e-10)
 
 
+#: these tests read the damping only, which does not read the 2D sections' added mass: 16
+#: panels per section instead of the adaptive 96+ (every estimate's linear and quadratic
+#: damping and drag conditions bit for bit the same, measured), a fraction of the CPU
+DAMPING_ONLY = {"section_panels": 16}
+
+
 def _mesh_model(mesh):
     mesh.apply_translation(-mesh.center_mass)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return estimate(Vehicle.from_mesh(mesh, name="body", fluid=WATER),
-                        added_mass_method="strips", speed=1.0, reference_point="origin")
+                        added_mass_method="strips", speed=1.0, reference_point="origin",
+                        **DAMPING_ONLY)
 
 
 def test_a_bluff_mesh_takes_the_surface_integral_and_keeps_its_translation():
@@ -226,3 +233,13 @@ def test_stored_cfd_rotations_against_the_surface_integral():
     assert np.sqrt(np.mean(ln ** 2)) < CFD_RMS_MAX
     # never further from the CFD than the strips were, row by row
     assert np.all(np.abs(ln) <= np.abs(before) + 0.15)
+
+
+@pytest.mark.slow
+def test_validation_doc_cfd_section_is_current():
+    """docs/validation.md's CFD section is what the code writes now (tests/test_validation_doc.py,
+    checked here on the models of the test above: ``validation.cfd.stored`` is computed once
+    per process, and this module's tests run on one worker)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("cfd")

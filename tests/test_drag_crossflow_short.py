@@ -25,6 +25,10 @@ from validation.reference import reference_value
 RHO, NU, U = 1000.0, 1e-6, 1.0
 WATER = Fluid(density=RHO, kinematic_viscosity=NU, source="test: water")
 SIZE = 0.1
+#: these tests read the damping only, which does not read the 2D sections' added mass: 16
+#: panels per section instead of the adaptive 96+ (every estimate's linear and quadratic
+#: damping and drag conditions bit for bit the same, measured), a fraction of the CPU
+DAMPING_ONLY = {"section_panels": 16}
 
 
 def _model(mesh):
@@ -32,7 +36,7 @@ def _model(mesh):
     veh = Vehicle.from_mesh(mesh, name="body", fluid=WATER)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return estimate(veh, added_mass_method="strips", speed=U)
+        return estimate(veh, added_mass_method="strips", speed=U, **DAMPING_ONLY)
 
 
 def _cd(model, k, area):
@@ -73,7 +77,6 @@ def test_sphere_has_one_drag_in_every_direction():
     assert part["y"]["class"] == "closed" and part["y"]["weight"] == pytest.approx(1.0, abs=1e-3)
 
 
-@pytest.mark.slow
 def test_cube_face_on_same_drag_in_sway_and_heave_and_flat():
     model = _model(trimesh.creation.box([SIZE] * 3))
     (part,) = model.conditions.short_body_crossflow.values()
@@ -84,7 +87,6 @@ def test_cube_face_on_same_drag_in_sway_and_heave_and_flat():
     assert _cd(model, 1, SIZE ** 2) == pytest.approx(ref, rel=0.25)
 
 
-@pytest.mark.slow
 def test_cube_edge_on_sway_equals_its_surge_and_is_closed():
     m = trimesh.creation.box([SIZE] * 3)
     m.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 4, [0, 0, 1]))
@@ -127,7 +129,7 @@ def test_hemisphere_astern_drag_is_reported_and_warned():
     m.apply_translation(-m.center_mass)
     veh = Vehicle.from_mesh(m, name="hemisphere", fluid=WATER)
     with pytest.warns(ModelWarning, match="going astern"):
-        model = estimate(veh, added_mass_method="strips", speed=U)
+        model = estimate(veh, added_mass_method="strips", speed=U, **DAMPING_ONLY)
     area = np.pi * SIZE ** 2 / 4
     astern = model.conditions.surge_quadratic_damping_astern / (0.5 * RHO * area)
     ahead = _cd(model, 0, area)
@@ -145,7 +147,7 @@ def test_closed_part_thinner_than_the_measured_bodies_keeps_its_strips():
     with warnings.catch_warnings():
         warnings.simplefilter("error", UserWarning)
         model = estimate(Vehicle.from_mesh(m, name="body", fluid=WATER),
-                         added_mass_method="strips", speed=U)
+                         added_mass_method="strips", speed=U, **DAMPING_ONLY)
     (part,) = model.conditions.short_body_crossflow.values()
     assert part["y"]["weight"] == 0.0 and part["y"]["factor"] == 1.0
     assert part["y"]["depth_over_diameter"] < drag.closed_body_depth_range()[0]

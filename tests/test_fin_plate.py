@@ -3,7 +3,6 @@ Capytaine on thin plates, and finned Myring hulls against their converged BEM
 (benchmarks/finned_bodies.py, benchmarks/plate_added_mass.py)."""
 
 import importlib
-import warnings
 
 import numpy as np
 import pytest
@@ -163,13 +162,11 @@ def test_fin_share_corrected_converges_like_the_bare_hull():
     # Y_rdot of the REMUS-like finned hull with the 3D corrections: within 0.1 % of its
     # 4000-strip value from 250 strips on (the bare hull's: 0.03 %), no spread from the fin edges
     fb = _fb()
-    from stripcoef.assembly.estimate import estimate
-    from stripcoef.geometry.vehicle import parse_vehicle
 
     def coupling(n):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return estimate(parse_vehicle(fb.vehicle_dict("remus_tail", n), file="<c>")).added_mass[1, 5]
+        # validation.finned.strip_model: the same estimate, once per process (1000 strips:
+        # the model test_finned_hulls_against_bem[remus_tail] reads)
+        return fb.strip_model("remus_tail", n)[1, 5]
 
     ref = coupling(4000)
     for n in (250, 500, 1000):

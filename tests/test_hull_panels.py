@@ -59,18 +59,19 @@ def test_triaxial_ellipsoid_all_six():
     assert info["panels"][1] > info["panels"][0]
 
 
-@pytest.mark.slow
 def test_single_resolution_converges_as_one_over_n():
     """Constant panels: the error of one solve halves when the panels double (2nd order in
-    h ~ N^-1/2), the premise of the Richardson extrapolation."""
+    h ~ N^-1/2), the premise of the Richardson extrapolation.  320 and 1280 panels (measured
+    4.28; 5.4 from 1280 to 5120, whose dense solve is 3.4 s of CPU of the 3.6): the solver
+    without its near-field integrals (``near_factor=0``) fails both pairs (6.8 and -3.6)."""
     r = 0.15
     exact = 0.5 * RHO * 4 / 3 * np.pi * r**3
     e = []
-    for sub in (3, 4):
+    for sub in (2, 3):
         m = _ellipsoid(r, r, r, sub)
         e.append(solve_added_mass(m.triangles, rho=RHO)[0, 0] / exact - 1.0)
     ratio = e[0] / e[1]
-    assert 3.0 < ratio < 6.0          # 4x the panels: error / 4 (measured 5.4)
+    assert 3.0 < ratio < 6.0          # 4x the panels: error / 4 (measured 4.28)
 
 
 def test_reference_point_shift_is_the_rigid_transform():

@@ -1,33 +1,18 @@
 """A mesh made by revolving a shipped profile gives the profile's matrices (within 1 %)."""
 
-import warnings
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-from stripcoef.assembly.estimate import estimate
 from stripcoef.assembly.damping import wetted_perimeter
 from stripcoef.geometry.mesh import mesh_body, revolved_mesh
-from stripcoef.geometry.vehicle import MassSpec, Vehicle, load_vehicle
-
-GEOMETRY = Path(__file__).resolve().parents[1] / "geometry"
-
 
 def _pair(name):
-    v = load_vehicle(GEOMETRY / f"{name}.yaml")
-    hull = v.bodies[0]
-    lo, hi = hull.x_extent()
-    x = lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, np.pi, 401)))
-    body = mesh_body(revolved_mesh(x, hull.half_breadth(x), sections=256), origin="file",
-                     name="hull")
-    kw = dict(source="test", fluid=v.fluid, holes=[], mass=MassSpec(), thrusters=[],
-              reference="center_of_buoyancy")
-    prof = Vehicle(name="profile", hull=hull, bodies=[hull], **kw)
-    mesh = Vehicle(name="mesh", hull=None, bodies=[body], **kw)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return estimate(prof, strips=200), estimate(mesh, strips=200)
+    """(profile model, revolved-mesh model): ``validation.meshes.consistency_pair``, the
+    models docs/validation.md's meshes section prints (computed once per process, checked
+    below)."""
+    from validation.meshes import consistency_pair
+
+    return consistency_pair(name)
 
 
 @pytest.fixture(scope="module", params=["capsule", "spheroid", "mares"])
@@ -68,3 +53,12 @@ def test_polygon_perimeter_of_circle():
     body = mesh_body(revolved_mesh(0.5 * np.cos(t), 0.1 * np.sin(t), sections=256))
     p = body.strips(41).parts[0]
     np.testing.assert_allclose(wetted_perimeter(p)[20], 2 * np.pi * p.half_breadth[20], rtol=1e-4)
+
+
+@pytest.mark.slow
+def test_validation_doc_meshes_section_is_current():
+    """docs/validation.md's meshes section is what the code writes now
+    (tests/test_validation_doc.py), checked here on the models of the tests above."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("meshes")

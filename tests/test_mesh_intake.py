@@ -174,7 +174,9 @@ def test_symmetric_frame_couplings_exactly_zero():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
         veh = Vehicle.from_mesh(_frame_rov(), name="frame")
-        model = estimate(veh, added_mass_method="panels", added_mass_panels=1600)
+        # 400 panels (the next test's frame): the couplings are zero by the mirrored solve at
+        # any panel count (0.0 at 400 and 1600 alike; 1.3 instead of 2.4 s of CPU)
+        model = estimate(veh, added_mass_method="panels", added_mass_panels=400)
     assert model.conditions["mirror_planes"] == "yz"
     forbidden = ~allowed_couplings({"y", "z"})
     assert np.all(model.added_mass[forbidden] == 0.0)

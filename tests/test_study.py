@@ -23,9 +23,11 @@ SPHEROID = ROOT / "geometry" / "spheroid.yaml"
 
 @pytest.fixture
 def uncertain_spheroid(tmp_path):
-    """The shipped spheroid with a declared mass (normal) and a uniform thrust limit."""
+    """The shipped spheroid with a declared mass (normal) and a uniform thrust limit; 40
+    strips: the declared mass is propagated whatever the strip count (the same 256 masses to
+    round-off at 200 strips: sd 0.50513, median 20.00016; 5.6 instead of 14 s of CPU)."""
     data = yaml.safe_load(SPHEROID.read_text())
-    data["strips"] = 200
+    data["strips"] = 40
     data.setdefault("mass", {})
     data["mass"] = {"mass": {"value": 20.0, "sd": 0.5}}
     path = tmp_path / "spheroid_uq.yaml"
@@ -115,7 +117,9 @@ def test_same_seed_same_numbers_in_process_in_processes_and_on_a_dask_cluster():
     pytest.importorskip("dask.distributed")
     from dask.distributed import LocalCluster
 
-    kw = dict(samples=16, seed=7, limits=True, radii=(2.0, 10.0), strips=200, progress=False)
+    # 50 strips: the same numbers in every execution is what is checked, whatever the model's
+    # resolution (a run of 16 samples: 1.2 instead of 2.1 s of CPU at 200 strips)
+    kw = dict(samples=16, seed=7, limits=True, radii=(2.0, 10.0), strips=50, progress=False)
     one = uncertainty(MARES, workers=1, **kw)
     two = uncertainty(MARES, workers=2, **kw)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,

@@ -9,6 +9,7 @@ code behind ``stripcoef cfd MESH --result FILE --compare``. Nothing runs OpenFOA
 
 from __future__ import annotations
 
+import functools
 import json
 import warnings
 
@@ -38,8 +39,11 @@ def _vehicle(source: str):
     return load_vehicle(path)
 
 
+@functools.lru_cache(maxsize=1)
 def stored():
-    """Every stored result with the model beside it: (file name, CfdResult, HydroModel)."""
+    """Every stored result with the model beside it: (file name, CfdResult, HydroModel),
+    computed once per process (the section and tests/test_damping_rotation.py read the same
+    models; about 5 s of CPU)."""
     from stripcoef.cfd.compare import comparison_speed, model_for, with_comparison
     from stripcoef.cfd.result import CfdResult
     from stripcoef.fluid import Fluid
@@ -56,7 +60,7 @@ def stored():
                 models[key] = model_for(_vehicle(res.source), speed=key[1], fluid=water)
             out.append((path.name, with_comparison(res, None, fluid=water,
                                                    model=models[key]), models[key]))
-    return out
+    return tuple(out)
 
 
 def strips_rotation(model, dof: str) -> float:

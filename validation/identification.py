@@ -367,8 +367,10 @@ def romeo_yaw_tables() -> tuple[str, dict]:
 
 
 # ---------------------------------------------------------------------------
-def figures(results: dict, folder: Path = FIGURES) -> list[str]:
-    """Write the figures (if matplotlib is installed); returns markdown image links."""
+def figures(results: dict, folder: Path = FIGURES, *, draw: bool = True) -> list[str]:
+    """Write the figures (if matplotlib is installed); returns markdown image links.
+    ``draw=False``: the links only, as written, nothing drawn (a check of the text: drawing
+    the four figures is about 5 s of CPU)."""
     from stripcoef.errors import InputError
     from stripcoef.figures import new_figure, save_figure
     from stripcoef.identify.plots import plot_fit
@@ -378,8 +380,17 @@ def figures(results: dict, folder: Path = FIGURES) -> list[str]:
     except InputError:                     # no matplotlib
         return []
 
+    plots = (("identify_videoray_yaw.png", results["videoray"]["fit"],
+              "VideoRay virtual pivot test, one-step LS"),
+             ("identify_rov2_pendulum.png", results["rov2"]["pendulum"],
+              "ROV II virtual pendulum, output error"),
+             ("identify_rov2_pendulum_ee.png", results["rov2"]["pendulum_ee"],
+              "ROV II virtual pendulum, equation error (paper)"))
+    links = ["![ROMEO heave estimates](figures/identify_romeo.png)"]
+    links += [f"![{title}](figures/{name})" for name, _, title in plots]
+    if not draw:
+        return links
     folder.mkdir(parents=True, exist_ok=True)
-    links = []
     fits, weights = results["romeo"]["fits"], results["romeo"]["weights"]
     ax = fig.subplots(1, 3)
     x = np.arange(1, 6)
@@ -396,20 +407,14 @@ def figures(results: dict, folder: Path = FIGURES) -> list[str]:
         ax[j].legend(fontsize=8)
     fig.suptitle("ROMEO heave, five virtual experiments (cf. Indiveri 1998 Figs. 4.10-4.12)")
     save_figure(fig, folder / "identify_romeo.png", key="figure", dpi=100)
-    links.append("![ROMEO heave estimates](figures/identify_romeo.png)")
-    for name, fit, title in (
-            ("identify_videoray_yaw.png", results["videoray"]["fit"],
-             "VideoRay virtual pivot test, one-step LS"),
-            ("identify_rov2_pendulum.png", results["rov2"]["pendulum"],
-             "ROV II virtual pendulum, output error"),
-            ("identify_rov2_pendulum_ee.png", results["rov2"]["pendulum_ee"],
-             "ROV II virtual pendulum, equation error (paper)")):
+    for name, fit, title in plots:
         plot_fit(fit, folder / name, title=title)
-        links.append(f"![{title}](figures/{name})")
     return links
 
 
-def section() -> str:
+def section(*, draw_figures: bool = True) -> str:
+    """The section's markdown; ``draw_figures``: write its figures into docs/figures (off:
+    the same text, nothing written: :func:`figures`)."""
     parts = ["## Identification (issue 6)", "",
              "Estimators: `stripcoef.identify` (docs/identify.md). Every number below is "
              "computed by the same code the tests in `tests/test_identify_*.py` assert.", ""]
@@ -421,7 +426,7 @@ def section() -> str:
         if text:
             parts.append(text)
         results[name] = res
-    links = figures(results)
+    links = figures(results, draw=draw_figures)
     if links:
         parts += ["### Figures", "", *[l + "\n" for l in links]]
     return "\n".join(parts)

@@ -6,6 +6,7 @@ tests/test_mesh_corrections.py, tests/test_mesh_consistency.py).
 
 from __future__ import annotations
 
+import functools
 import warnings
 
 import numpy as np
@@ -84,23 +85,33 @@ def _axisym_rows():
     return rows
 
 
-def _consistency_rows():
+@functools.lru_cache(maxsize=None)
+def consistency_pair(name: str):
+    """(profile model, mesh model) of the shipped vehicle ``name``'s hull, by its profile and
+    by a mesh revolved from it (256 sections), 200 strips each: computed once per process
+    (this section and tests/test_mesh_consistency.py read the same models)."""
     from stripcoef.assembly.estimate import estimate
     from stripcoef.geometry.mesh import mesh_body, revolved_mesh
     from stripcoef.geometry.vehicle import MassSpec, Vehicle, load_vehicle
+
+    v = load_vehicle(ROOT / "geometry" / f"{name}.yaml")
+    hull = v.bodies[0]
+    lo, hi = hull.x_extent()
+    xs = lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, np.pi, 401)))
+    body = mesh_body(revolved_mesh(xs, hull.half_breadth(xs), sections=256), origin="file")
+    kw = dict(source="report", fluid=v.fluid, holes=[], mass=MassSpec(), thrusters=[],
+              reference="center_of_buoyancy")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = estimate(Vehicle(name="p", hull=hull, bodies=[hull], **kw), strips=200)
+        b = estimate(Vehicle(name="m", hull=None, bodies=[body], **kw), strips=200)
+    return a, b
+
+
+def _consistency_rows():
     rows = []
     for name in ("spheroid", "capsule", "mares"):
-        v = load_vehicle(ROOT / "geometry" / f"{name}.yaml")
-        hull = v.bodies[0]
-        lo, hi = hull.x_extent()
-        xs = lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, np.pi, 401)))
-        body = mesh_body(revolved_mesh(xs, hull.half_breadth(xs), sections=256), origin="file")
-        kw = dict(source="report", fluid=v.fluid, holes=[], mass=MassSpec(), thrusters=[],
-                  reference="center_of_buoyancy")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            a = estimate(Vehicle(name="p", hull=hull, bodies=[hull], **kw), strips=200)
-            b = estimate(Vehicle(name="m", hull=None, bodies=[body], **kw), strips=200)
+        a, b = consistency_pair(name)
         d = np.diag(a.added_mass)
         e = np.diag(b.added_mass)
         err = np.max(np.abs(e - d)[d > 0] / d[d > 0]) * 100
