@@ -35,13 +35,15 @@ from stripcoef.files import OutputSet, recover_outputs
 NAMES = ("cal.yaml", "report.md", "result.json")
 
 
-def _write_set(folder: Path, generation: int, size: int = 20_000) -> None:
+def write_set(folder: Path, generation: int, size: int = 20_000) -> None:
+    """One set of :data:`NAMES`, each file starting with its generation's number."""
     with OutputSet() as outs:
         for name in NAMES:
             outs.path(folder / name).write_text(f"{generation}\n" + "x" * size)
 
 
-def _generations(folder: Path) -> list[int]:
+def generations(folder: Path) -> list[int]:
+    """The generation of each output as it is on disk (raw reads: no recovery)."""
     out = []
     for name in NAMES:
         with open(folder / name) as f:
@@ -49,19 +51,29 @@ def _generations(folder: Path) -> list[int]:
     return out
 
 
-def _writer(folder: Path, start: int, slow: float, nice: int) -> None:
-    os.nice(nice)
+def writer(folder: Path, start: int, slow: float, stop_after_renames: int = 0,
+           nice: int = 0) -> None:
+    """The child: writes generations start, start+1, ... with the set's renames slowed by
+    ``slow`` [s] (or stopped for a minute after ``stop_after_renames`` renames of a commit,
+    where the kill test kills it), at niceness ``nice``."""
+    if nice:
+        os.nice(nice)
     real = os.replace
+    count = [0]
 
-    def replace(src, dst):                      # slow the set's own renames only
+    def replace(src, dst):
         real(src, dst)
-        if ".stripcoef-" in str(src) and not str(src).endswith((".tmp", ".part")):
-            time.sleep(slow)
+        if str(src).endswith((".tmp", ".part")) or ".stripcoef-" not in str(src):
+            return                                # not a staged output's rename
+        count[0] += 1
+        if stop_after_renames and count[0] == stop_after_renames:
+            time.sleep(60)                        # killed here
+        time.sleep(slow)
 
     files.os.replace = replace
     generation = start
     while True:
-        _write_set(folder, generation)
+        write_set(folder, generation)
         generation += 1
 
 
@@ -78,17 +90,17 @@ def run(kills: int, load: int, child_nice: int, seed: int) -> dict:
         p.start()
     rng = np.random.default_rng(seed)
     folder = Path(tempfile.mkdtemp(prefix="stripcoef-kills-"))
-    _write_set(folder, 0)
+    write_set(folder, 0)
     last, mixed, leftovers = 0, 0, []
     try:
         for trial in range(kills):
-            p = ctx.Process(target=_writer, args=(folder, last + 1, 0.002, child_nice))
+            p = ctx.Process(target=writer, args=(folder, last + 1, 0.002, 0, child_nice))
             p.start()
             time.sleep(float(rng.uniform(0.02, 0.25)))
             os.kill(p.pid, signal.SIGKILL)
             p.join()
             recover_outputs(folder)
-            gens = _generations(folder)
+            gens = generations(folder)
             mixed += len(set(gens)) != 1
             left = sorted(x for x in folder.iterdir() if x.name.startswith("."))
             if left:

@@ -14,26 +14,11 @@ import time
 import numpy as np
 import pytest
 
-from stripcoef import files
-from stripcoef.files import OutputSet, read_text, recover_outputs
+from benchmarks.output_set_kills import NAMES, generations, write_set
+from benchmarks.output_set_kills import writer as _writer
+from stripcoef.files import read_text, recover_outputs
 
-NAMES = ("cal.yaml", "report.md", "result.json")
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork")
-
-
-def write_set(folder, gen, size=20_000):
-    with OutputSet() as outs:
-        for name in NAMES:
-            outs.path(folder / name).write_text(f"{gen}\n" + "x" * size)
-
-
-def generations(folder):
-    """The generation of each output as it is on disk (raw reads: no recovery)."""
-    out = []
-    for name in NAMES:
-        with open(folder / name) as f:
-            out.append(int(f.readline()))
-    return out
 
 
 def leftovers(folder):
@@ -50,28 +35,6 @@ def described(folder):
         out.append((name, sorted(c.name for c in p.iterdir()) if p.is_dir() else "file",
                     pointer.read_text() if pointer.is_file() else None))
     return out
-
-
-def _writer(folder, start, slow, stop_after_renames):
-    """The child: writes generations start, start+1, ... (renames slowed by ``slow`` s, or
-    stopped forever after ``stop_after_renames`` renames of a commit)."""
-    real = os.replace
-    count = [0]
-
-    def replace(src, dst):
-        real(src, dst)
-        if str(src).endswith((".tmp", ".part")) or ".stripcoef-" not in str(src):
-            return                                # not a staged output's rename
-        count[0] += 1
-        if stop_after_renames and count[0] == stop_after_renames:
-            time.sleep(60)                        # killed here
-        time.sleep(slow)
-
-    files.os.replace = replace
-    gen = start
-    while True:
-        write_set(folder, gen)
-        gen += 1
 
 
 def _kill_child(folder, start, delay, *, slow=0.002, stop_after_renames=0):
