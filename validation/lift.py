@@ -1131,9 +1131,10 @@ def suboff_table_section() -> list[str]:
         "Decision (issue 34): the default, `body_lift: auto`, takes the slender-body rule, "
         "since the second pass with DATCOM's (k2 - k1) (`datcom`); `body_lift: slender` keeps "
         "it without the factor and `on` Hoerner's. DATCOM's factor moves every static term and "
-        "every rotary term with the measured sign towards the measured except "
-        + ", ".join(f"configuration {c['config']}'s {c['name'][0]}'_{c['name'][1]} "
-                    f"({c['slender'] / c['measured']:.2f} to {c['ratio']:.2f})" for c in away)
+        "every rotary term with the measured sign towards the measured"
+        + ("" if not away else " except " + ", ".join(
+            f"configuration {c['config']}'s {c['name'][0]}'_{c['name'][1]} "
+            f"({c['slender'] / c['measured']:.2f} to {c['ratio']:.2f})" for c in away))
         + ", meets as many of the issue's Table 4 checks "
         f"({n_ok_s} of {n_checks}; slender {n_ok_sl}), more drift-curve points within 20 % "
         f"({drift['datcom'][0]} of {drift['datcom'][1]} against {drift['slender'][0]}; "
