@@ -198,10 +198,12 @@ def richardson(coarse, fine, n_coarse, n_fine, order: float = 2.0, dimension: in
 #: Fewest levels of the least-squares procedure [-] (Eça & Hoekstra 2014, App. A: n_g >= 4).
 EH_MIN_LEVELS = 4
 #: Safety factor where the observed order lies in [EH_ORDER_LOW, EH_ORDER_HIGH) and the fit's
-#: standard deviation is below the data range [-] (Eça & Hoekstra 2014, sec. 3).
-EH_SAFETY_GOOD = 1.25
-#: Safety factor otherwise [-] (Eça & Hoekstra 2014, sec. 3).
-EH_SAFETY_POOR = 3.0
+#: standard deviation is below the data range [-] (Eça & Hoekstra 2014, sec. 3): Roache's
+#: three-grid factor, :data:`SAFETY_THREE_GRIDS`, as they adopt it.
+EH_SAFETY_GOOD = SAFETY_THREE_GRIDS
+#: Safety factor otherwise [-] (Eça & Hoekstra 2014, sec. 3): Roache's factor of an order not
+#: established, :data:`SAFETY_TWO_GRIDS`.
+EH_SAFETY_POOR = SAFETY_TWO_GRIDS
 #: Observed orders in [EH_ORDER_LOW, EH_ORDER_FIXED] take the fit of free order; below, the
 #: fixed orders 1, 2 and 1 & 2; above, 1 and 2 [-] (Eça & Hoekstra 2014, sec. 3, App. A).
 EH_ORDER_LOW = 0.5
