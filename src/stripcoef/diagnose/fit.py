@@ -332,10 +332,6 @@ def _term(data: WindowData, dof: int, eff, hyper) -> _Term:
     sd = eff.prior_sd(data, dof, hyper) if hasattr(eff, "prior_sd") else np.full(n, np.inf)
     lo = eff.lower_bounds(data, dof, hyper) if hasattr(eff, "lower_bounds") \
         else np.full(n, -np.inf)
-    lo = np.asarray(lo, float)
-    if hasattr(eff, "nuisance_lower"):       # released prior coefficients stay >= 0
-        kn = eff.nuisance_lower(data, dof)
-        lo = np.concatenate([np.maximum(lo[:kn.size], kn), lo[kn.size:]])
     up = eff.upper_bounds(data, dof, hyper) if hasattr(eff, "upper_bounds") \
         else np.full(n, np.inf)
     term = _Term(off, c, np.asarray(sd, float), np.asarray(lo, float), np.asarray(up, float))

@@ -118,6 +118,14 @@ class Effect:
         sd = self.nuisance_sd(data, dof)
         return np.concatenate([sd, np.full(ncols - sd.size, np.inf)])
 
+    def lower_bounds(self, data, dof, hyper=None) -> np.ndarray:
+        """Lower bounds of all columns of :meth:`design`: :meth:`nuisance_lower` for the
+        nuisance columns, none (-inf) for the effect's own (an effect with bounds of its own
+        overrides this and keeps the nuisance bounds first)."""
+        ncols = self.design(data, dof, hyper)[1].shape[1]
+        low = self.nuisance_lower(data, dof)
+        return np.concatenate([low, np.full(ncols - low.size, -np.inf)])
+
     def own_design(self, data, dof, hyper=None):
         """(offset, columns) of the effect's own parameters."""
         raise NotImplementedError
