@@ -22,8 +22,11 @@ Munk's k2 - k1 (USAF DATCOM sec. 4.2.1.1, ``body_lift: datcom``).
 bare hull's axisymmetric panel solution's surface speed (validation.lift.suboff_surface_speeds,
 the suction peak the line sources reach only in part: 0.876 l instead of 0.902 l) in place of
 the line sources ``body_lift: stratford`` uses; the fins' stern flow is unchanged.
+``--sidewash`` (with ``--method datcom`` or ``stratford``): the same checks with and without
+the appendages' trailing-vortex sidewash (stripcoef.assembly.sidewash, Pitts, Nielsen & Kaattari
+1957; validation.lift.sidewash_checks), an option outside the default model; writes nothing.
 Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford] [--terms]
-[--surface-speed line|panel]  (about 60 s)
+[--surface-speed line|panel] [--sidewash]  (about 60 s; --sidewash about 2 min)
 """
 
 from __future__ import annotations
@@ -97,6 +100,24 @@ def _stratford_on_panel_speed():
     assembly.stratford_separation = on_panel_speed
 
 
+def _sidewash(method: str, terms: bool) -> int:
+    """Print the issue's checks without and with the sidewash (validation.lift.sidewash_checks)
+    and, with ``terms``, every Table 4 term's ratio without and with it."""
+    from validation.lift import sidewash_checks, sidewash_comparisons
+
+    if terms:
+        for r in sidewash_comparisons():
+            if r["method"] == method:
+                print(f"{method:9s} config {r['config']} {r['name']:4s} measured "
+                      f"{r['measured']:+.6f} without {r['without'] / r['measured']:+.2f} "
+                      f"with sidewash {r['with'] / r['measured']:+.2f}")
+    c = sidewash_checks(method)
+    print(f"{method:9s} sidewash: issue checks (Table 4) {c['table4'][0]}/{c['table4'][2]} -> "
+          f"{c['table4'][1]}/{c['table4'][2]}; drift curves within 20 %: {c['drift'][0]}/"
+          f"{c['drift'][2]} -> {c['drift'][1]}/{c['drift'][2]}")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--method", choices=("datcom", "slender", "on", "stratford"), default="datcom",
@@ -109,7 +130,14 @@ def main(argv=None):
                     help="with --method stratford: the surface speed Stratford's criterion reads "
                          "('line': the model's line sources; 'panel': the axisymmetric panel "
                          "solution, a what-if)")
+    ap.add_argument("--sidewash", action="store_true",
+                    help="with --method datcom or stratford: the Table 4 and drift-curve checks "
+                         "without and with the appendages' trailing-vortex sidewash")
     args = ap.parse_args(argv)
+    if args.sidewash:
+        if args.method not in ("datcom", "stratford"):
+            ap.error("--sidewash needs --method datcom or stratford")
+        return _sidewash(args.method, args.terms)
     if args.surface_speed == "panel":
         if args.method != "stratford":
             ap.error("--surface-speed panel needs --method stratford")

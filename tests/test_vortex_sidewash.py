@@ -1,0 +1,102 @@
+"""The appendages' trailing-vortex sidewash (hull.vortex, assembly.sidewash; issue 34): exact
+properties of a line vortex with its image in a circular body, the ring's first harmonic, and the
+lift matrix's structure (a tail behind a source only)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stripcoef.assembly.sidewash import appendage_sidewash
+from stripcoef.geometry.vehicle import load_vehicle, parse_vehicle
+from stripcoef.hull.vortex import (ROLLED_UP_CENTROID, circulation_per_crossflow,
+                                   induced_velocity, panel_sidewash, ring_sidewash,
+                                   vortex_position)
+
+GEOMETRY = Path(__file__).resolve().parents[1] / "geometry"
+
+
+def test_image_keeps_the_body_impermeable():
+    """Circle theorem: with the image at a^2/f the radial velocity on the body's circle is 0."""
+    a = 0.3
+    theta = np.linspace(0.0, 2.0 * math.pi, 37)
+    rim = a * np.column_stack([np.cos(theta), np.sin(theta)])
+    for vortex in ([0.0, 0.7], [0.5, -0.45]):
+        v = np.asarray(vortex)
+        e = np.array([v[1], -v[0]]) / np.linalg.norm(v)
+        u = induced_velocity(rim, v, e, a)
+        radial = np.einsum("ij,ij->i", u, rim / a)
+        assert np.max(np.abs(radial)) < 1e-12 * np.max(np.abs(u))
+        assert np.max(np.abs(u)) > 0.1
+
+
+def test_free_vortex_speed_and_the_downwash_of_its_own_span():
+    """Without a body: |u| = 1/(2 pi d), normal to the radius; between the root and the vortex
+    the velocity is against the panel's lift (its own downwash), outboard of the vortex with
+    it (upwash)."""
+    v, e = np.array([0.0, 1.0]), np.array([1.0, 0.0])
+    pts = np.array([[0.0, 0.5], [0.0, 1.5], [0.3, 2.0]])
+    u = induced_velocity(pts, v, e, 0.0)
+    d = pts - v
+    assert np.linalg.norm(u, axis=1) == pytest.approx(1.0 / (2 * math.pi * np.linalg.norm(d, axis=1)))
+    assert np.einsum("ij,ij->i", u, d) == pytest.approx(0.0, abs=1e-15)
+    assert u[0] @ e < 0.0 < u[1] @ e
+    with_body = induced_velocity(pts[:1], v, e, 0.3)     # the image adds to the downwash
+    assert with_body[0] @ e < u[0] @ e
+
+
+def test_strength_and_position():
+    """f = r + pi/4 b; Gamma/w = k / rho (f - a^2/f) (Kutta-Joukowski with the image)."""
+    assert vortex_position(0.2, 0.4) == pytest.approx(0.2 + math.pi / 10.0)
+    assert ROLLED_UP_CENTROID == pytest.approx(0.7853981634)
+    assert circulation_per_crossflow(3.0, 0.5, 0.0, rho=1000.0) == pytest.approx(3.0 / 500.0)
+    assert circulation_per_crossflow(3.0, 0.5, 0.3, rho=1000.0) == pytest.approx(
+        3.0 / (1000.0 * (0.5 - 0.09 / 0.5)))
+    with pytest.raises(ValueError, match="a < f"):
+        circulation_per_crossflow(3.0, 0.5, 0.5, rho=1000.0)
+    with pytest.raises(ValueError, match="outside the body"):
+        induced_velocity([[1.0, 1.0]], [0.0, 0.2], [1.0, 0.0], 0.3)
+
+
+def test_ring_answers_a_uniform_cross_flow_as_itself():
+    """A vortex far away (no body) gives a nearly uniform cross-flow at the ring: its first
+    harmonic is that velocity; the panel's strip mean likewise."""
+    far = np.array([0.0, 1000.0])
+    e = np.array([1.0, 0.0])
+    uniform = induced_velocity([[0.0, 0.0]], far, e, 0.0)[0]
+    assert ring_sidewash(far, e, 0.0, radius=0.4) == pytest.approx(uniform, rel=1e-5)
+    h = panel_sidewash(far, e, 0.0, root=0.1, span=0.3, span_direction=[0.0, -1.0],
+                       direction=e)
+    assert h == pytest.approx(uniform @ e, rel=1e-3)
+
+
+def _tandem(x_tail: float, z_tail: float = -0.15) -> dict:
+    """A cylinder with a fin on top at x = 0.4 m and a tail fin at ``x_tail``, ``z_tail``."""
+    return {"name": "tandem", "fluid": {"water": "fresh"}, "reference_speed": 2.0,
+            "hull": {"name": "hull", "profile": [{"type": "cylinder", "x": [-1.0, 1.0],
+                                                 "radius": 0.1}]},
+            "appendages": [
+                {"name": "front", "type": "fin", "span_axis": "z", "span": 0.1, "chord": 0.1,
+                 "thickness": 0.01, "center": [0.4, 0.0, -0.15]},
+                {"name": "back", "type": "fin", "span_axis": "z", "span": 0.1, "chord": 0.1,
+                 "thickness": 0.01, "center": [x_tail, 0.0, z_tail]}]}
+
+
+def test_only_a_surface_behind_another_is_changed_and_against_the_source():
+    """Two fins in tandem: dL is the tail's force column times the source's incidence row,
+    reducing the tail's sway lift (it sits in the source's downwash); side by side: none;
+    REMUS (all fins at one station): none."""
+    v = parse_vehicle(_tandem(-0.6), file="tandem")
+    dl, info = appendage_sidewash(v, 1000.0, [0.0, 0.0, 0.0])
+    assert [(p["source"], p["tail"]) for p in info["pairs"]] == [("front", "back")]
+    assert info["pairs"][0]["sidewash"] < 0.0
+    assert np.linalg.matrix_rank(dl, tol=1e-9 * np.abs(dl).max()) == 1
+    assert dl[1, 1] < 0.0                 # less sway force (L[1, 1] > 0 is the fins' own)
+    assert dl[5, 1] / dl[1, 1] == pytest.approx(-0.6 + 0.025, rel=1e-9)  # tail c/4
+    same = parse_vehicle(_tandem(0.4, 0.15), file="tandem")
+    assert not np.any(appendage_sidewash(same, 1000.0, [0.0, 0.0, 0.0])[0])
+    remus = load_vehicle(GEOMETRY / "remus100.yaml")
+    assert not np.any(appendage_sidewash(remus, 1025.0, [0.0, 0.0, 0.0])[0])
