@@ -91,7 +91,7 @@ def test_only_a_surface_behind_another_is_changed_and_against_the_source():
     REMUS (all fins at one station): none."""
     v = parse_vehicle(_tandem(-0.6), file="tandem")
     dl, info = appendage_sidewash(v, 1000.0, [0.0, 0.0, 0.0])
-    assert [(p["source"], p["tail"]) for p in info["pairs"]] == [("front", "back")]
+    assert [(p["source"], p["tail"]) for p in info["pairs"]] == [("front (top)", "back (top)")]
     assert info["pairs"][0]["sidewash"] < 0.0
     assert np.linalg.matrix_rank(dl, tol=1e-9 * np.abs(dl).max()) == 1
     assert dl[1, 1] < 0.0                 # less sway force (L[1, 1] > 0 is the fins' own)
@@ -100,3 +100,20 @@ def test_only_a_surface_behind_another_is_changed_and_against_the_source():
     assert not np.any(appendage_sidewash(same, 1000.0, [0.0, 0.0, 0.0])[0])
     remus = load_vehicle(GEOMETRY / "remus100.yaml")
     assert not np.any(appendage_sidewash(remus, 1025.0, [0.0, 0.0, 0.0])[0])
+
+
+@pytest.mark.slow
+def test_suboff_sail_vortex_on_the_upper_rudder():
+    """Roddy's configuration 2 (validation.lift.sidewash_terms): the sail's vortex (f = 0.833 +
+    pi/4 0.729 ft) lies above the upper rudder, which it washes against the sail's incidence,
+    more than it washes the lower one with it; the bare hull and hull + planes have no pair."""
+    from validation.lift import FT, sidewash_terms
+
+    _, info = sidewash_terms(2, "datcom", True)
+    by = {(p["source"], p["tail"]): p for p in info["pairs"]}
+    upper, lower = by[("sail (top)", "rudder (top)")], by[("sail (top)", "rudder (bottom)")]
+    assert upper["f"] / FT == pytest.approx(0.833333 + math.pi / 4 * 0.729, rel=1e-3)
+    assert upper["sidewash"] < -abs(lower["sidewash"]) < 0.0 < lower["sidewash"]
+    for config in (3, 5):
+        dl, info = sidewash_terms(config, "datcom", False)
+        assert not np.any(dl) and not info["pairs"]

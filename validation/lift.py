@@ -2087,7 +2087,7 @@ def sidewash_terms(config: int, body_lift: str = "datcom", ring: bool = False):
     from stripcoef.geometry.vehicle import parse_vehicle
 
     vehicle = parse_vehicle(suboff_vehicle_data(config, body_lift), file=f"SUBOFF config {config}")
-    return appendage_sidewash(vehicle, suboff_model(config, body_lift).density, _moment_point(),
+    return appendage_sidewash(vehicle, vehicle.fluid.density, _moment_point(),
                               ring=ring_wing_chord_line() if ring else None)
 
 

@@ -82,7 +82,9 @@ def _panel_record(name, panel, hull, ref, rho, round_, slender):
         c_b = lift_column(e3, np.array([x + 0.25 * panel.chord, hull.y, hull.z])
                           - np.asarray(ref, float))
         column = (fw * c_f + fb * c_b) / (fw + fb) if fw + fb > 0.0 else c_f
-    return {"name": name, "x_le": x + 0.5 * panel.chord, "x_te": x - 0.5 * panel.chord,
+    side = {("z", -1.0): "top", ("z", 1.0): "bottom", ("y", -1.0): "port",
+            ("y", 1.0): "starboard"}[(span_axis, float(np.sign(offset)))]
+    return {"name": f"{name} ({side})", "x_le": x + 0.5 * panel.chord, "x_te": x - 0.5 * panel.chord,
             "root": panel.root, "span": panel.span, "span_dir": span_dir,
             "lift_dir": _AXES[lift_axis], "k_own": k * fw, "k_tail": k * (fw + fb),
             "column": column, "incidence": lift_column(e3, rotary_incidence_point(point,
@@ -147,7 +149,6 @@ def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
                           "sidewash": g * h})
         if ring is not None and s["x_te"] >= ring["x_le"]:
             radius = 0.5 * (ring["r_le"] + ring["r_te"])
-            chord = float(np.hypot(ring["x_le"] - ring["x_te"], ring["r_le"] - ring["r_te"]))
             x_mid = 0.5 * (ring["x_le"] + ring["x_te"])
             a_t = float(hull.half_breadth(np.array([x_mid]))[0])
             if f <= a_t:

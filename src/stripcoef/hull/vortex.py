@@ -100,7 +100,7 @@ def circulation_per_crossflow(k_own: float, f: float, body_radius: float, *, rho
     ----------
     Pitts, Nielsen & Kaattari 1957, NACA Report 1307 (the wing panel's vortex strength from its
     lift with the vortex's image in the body); Kutta-Joukowski theorem for a vortex pair's
-    impulse (Katz & Plotkin 2001, sec. 3.11).
+    impulse.
     """
     if not 0.0 <= body_radius < f:
         raise ValueError(f"circulation_per_crossflow needs 0 <= a < f, got a = {body_radius}, "
@@ -206,9 +206,11 @@ def ring_sidewash(vortex, lift_direction, body_radius: float, *, radius: float) 
 
     References
     ----------
-    Thin-airfoil theory of the ring in a cross-flow (the lift of each chordwise strip in
-    proportion to its normal incidence; Weissinger's ring-wing theory in its first harmonic,
-    as in Ribner 1947, NACA TN 1354 and Fletcher 1957, NACA TN 4117).
+    Derived here by strip theory round the ring, as :func:`panel_sidewash` along a panel: each
+    chordwise strip lifts on its own normal incidence; a uniform cross-flow's first harmonic is
+    the cross-flow, so the ring's lift slope (:func:`stripcoef.hull.lift.ring_wing_lift_slope`)
+    applies to :math:`\bar{\mathbf w}`. Not checked against a lifting-surface solution of a
+    ring in a vortex's field.
     """
     theta = 2.0 * math.pi * (np.arange(RING_POINTS) + 0.5) / RING_POINTS
     rhat = np.column_stack([np.cos(theta), np.sin(theta)])
