@@ -117,3 +117,20 @@ def test_suboff_sail_vortex_on_the_upper_rudder():
     for config in (3, 5):
         dl, info = sidewash_terms(config, "datcom", False)
         assert not np.any(dl) and not info["pairs"]
+
+
+def test_closed_forms_match_quadrature():
+    """The panel's log mean and the ring's Laurent harmonic against brute-force quadrature
+    (a vortex off the panel's line; inside and outside the ring)."""
+    e = np.array([1.0, 0.0])
+    v = np.array([0.05, 0.5])
+    r = 0.15 + 0.3 * (np.arange(200000) + 0.5) / 200000
+    u = induced_velocity(r[:, None] * np.array([0.0, 1.0])[None, :], v, e, 0.1)
+    h = panel_sidewash(v, e, 0.1, root=0.15, span=0.3, span_direction=[0.0, 1.0], direction=e)
+    assert h == pytest.approx(np.mean(u @ e), rel=1e-6)
+    theta = 2 * math.pi * (np.arange(4096) + 0.5) / 4096
+    rhat = np.column_stack([np.cos(theta), np.sin(theta)])
+    for radius in (0.3, 0.8):
+        ur = np.einsum("ij,ij->i", induced_velocity(radius * rhat, v, e, 0.1), rhat)
+        quad = (2.0 / theta.size) * (ur[:, None] * rhat).sum(axis=0)
+        assert ring_sidewash(v, e, 0.1, radius=radius) == pytest.approx(quad, rel=1e-6, abs=1e-9)

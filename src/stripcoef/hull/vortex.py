@@ -46,14 +46,6 @@ import numpy as np
 #: downwash behind wings", J. Aero. Sci. 18, p. 21; the fully rolled-up vortex of Pitts, Nielsen
 #: & Kaattari 1957, NACA Report 1307, wing-tail interference) [-].
 ROLLED_UP_CENTROID = math.pi / 4.0
-#: Points round a ring wing at which the sidewash's first harmonic is integrated (midpoint rule;
-#: assumption: the integrand is smooth away from the vortex, 64 and 512 points differ by
-#: < 0.1 % on SUBOFF's ring) [-].
-RING_POINTS = 64
-#: Strips along a tail panel's span at which its sidewash is averaged (midpoint rule;
-#: assumption: 32 and 256 strips differ by < 1 % on SUBOFF's planes) [-].
-SPAN_STRIPS = 32
-
 
 def vortex_position(root: float, span: float) -> float:
     r"""Distance from the body axis of a panel's rolled-up trailing vortex [m].
@@ -140,21 +132,27 @@ def induced_velocity(points, vortex, lift_direction, body_radius: float) -> np.n
     1957 (the same images at the tail's station).
     """
     p = np.atleast_2d(np.asarray(points, float))
+    out = np.zeros_like(p)
+    for pos, gamma in _images(vortex, lift_direction, body_radius):
+        d = p - pos
+        d2 = np.einsum("ij,ij->i", d, d)
+        out += (gamma / (2.0 * math.pi)) * np.column_stack([-d[:, 1], d[:, 0]]) / d2[:, None]
+    return out
+
+
+def _images(vortex, lift_direction, body_radius: float):
+    """[(position (2,), circulation per unit)] of a vortex in the sense of
+    :func:`induced_velocity` and its image (counter-clockwise positive in (y, z))."""
     v = np.asarray(vortex, float)
-    e = np.asarray(lift_direction, float)
     r2 = float(v @ v)
     if body_radius < 0.0 or r2 <= body_radius ** 2:
         raise ValueError(f"induced_velocity needs the vortex outside the body: |P_v| = "
                          f"{math.sqrt(r2):.4g}, a = {body_radius}")
     span_dir = v / math.sqrt(r2)
-    sense = float(np.array([-span_dir[1], span_dir[0]]) @ e)   # (J s) . e = +-1
-    out = np.zeros_like(p)
-    for pos, gamma in ((v, sense), ((body_radius ** 2 / r2) * v, -sense)):
-        if gamma == 0.0 or (pos is not v and body_radius == 0.0):
-            continue
-        d = p - pos
-        d2 = np.einsum("ij,ij->i", d, d)
-        out += (gamma / (2.0 * math.pi)) * np.column_stack([-d[:, 1], d[:, 0]]) / d2[:, None]
+    sense = float(np.array([-span_dir[1], span_dir[0]]) @ np.asarray(lift_direction, float))
+    out = [(v, sense)]
+    if body_radius > 0.0:
+        out.append(((body_radius ** 2 / r2) * v, -sense))
     return out
 
 
@@ -162,11 +160,14 @@ def panel_sidewash(vortex, lift_direction, body_radius: float, *, root: float, s
                    span_direction, direction) -> float:
     r"""Strip-theory mean sidewash per unit circulation over a tail panel's span [1/m].
 
-    .. math:: \bar h = \frac1b \int_{r_t}^{r_t + b} \mathbf e_t\cdot
-              \mathbf u\big(r\,\hat s_t\big)\,dr
+    .. math:: \bar h = \frac1b \int_{r_1}^{r_2} \mathbf e_t\cdot\mathbf u(r\,\hat s_t)\,dr
+              = \sum_k \frac{\Gamma_k\,\sigma}{4\pi b}
+              \ln\frac{(r_2 - \zeta_k)^2 + h_k^2}{(r_1 - \zeta_k)^2 + h_k^2}
 
-    (a constant chord: strip theory's chord weighting is uniform), midpoint rule on
-    :data:`SPAN_STRIPS` strips.
+    (a constant chord: strip theory's chord weighting is uniform), in closed form: each vortex
+    k (the source's and its image, :func:`induced_velocity`) at :math:`\zeta_k` along the
+    panel's span line and :math:`h_k` off it, :math:`\sigma = \mathbf e_t\cdot J\hat s_t =
+    \pm 1`; a vortex on the span line (h = 0) gives the integral's principal value.
 
     Parameters
     ----------
@@ -174,7 +175,7 @@ def panel_sidewash(vortex, lift_direction, body_radius: float, *, root: float, s
         The source's vortex (:func:`induced_velocity`), the image in the tail's body section of
         radius ``body_radius`` [m]
     root, span : float
-        The tail panel's root radius and span [m]
+        The tail panel's root radius r_1 and span b = r_2 - r_1 [m]
     span_direction, direction : (2,)
         Unit vectors (y, z): the tail panel's span (root to tip) and its lift direction e_t
 
@@ -183,21 +184,31 @@ def panel_sidewash(vortex, lift_direction, body_radius: float, *, root: float, s
     Pitts, Nielsen & Kaattari 1957, NACA Report 1307 (the tail interference factor by strip
     theory).
     """
-    t = (np.arange(SPAN_STRIPS) + 0.5) / SPAN_STRIPS
-    pts = (root + t * span)[:, None] * np.asarray(span_direction, float)[None, :]
-    u = induced_velocity(pts, vortex, lift_direction, body_radius)
-    return float(np.mean(u @ np.asarray(direction, float)))
+    s_hat = np.asarray(span_direction, float)
+    e_t = np.asarray(direction, float)
+    sigma = float(e_t @ np.array([-s_hat[1], s_hat[0]]))
+    r1, r2 = root, root + span
+    total = 0.0
+    for pos, gamma in _images(vortex, lift_direction, body_radius):
+        zeta, h = float(pos @ s_hat), float(pos @ e_t)
+        num, den = (r2 - zeta) ** 2 + h * h, (r1 - zeta) ** 2 + h * h
+        if num == 0.0 or den == 0.0:
+            raise ValueError("panel_sidewash: a vortex at the panel's root or tip")
+        total += gamma * sigma * math.log(num / den) / (4.0 * math.pi * span)
+    return total
 
 
 def ring_sidewash(vortex, lift_direction, body_radius: float, *, radius: float) -> np.ndarray:
-    r"""A ring wing's effective cross-flow per unit circulation of a vortex outside or inside it
-    [1/m]: the first circumferential harmonic of the radial velocity at its radius R,
+    r"""A ring wing's effective cross-flow per unit circulation of a vortex (and its image) [1/m]:
+    the first circumferential harmonic of the radial velocity at its radius R,
 
-    .. math:: \bar{\mathbf w} = \frac1\pi \oint (\mathbf u\cdot\hat r)\,\hat r\,d\theta
+    .. math:: \bar{\mathbf w} = \frac1\pi \oint (\mathbf u\cdot\hat r)\,\hat r\,d\theta,
+              \qquad \bar w_y + i\,\bar w_z = -\frac{i\Gamma}{2\pi}\times
+              \begin{cases} z_0/R^2 & |z_0| \le R \\ 1/\bar z_0 & |z_0| \ge R\end{cases}
 
-    which is the cross-flow itself for a uniform one (the ring's lift answers it as it answers a
-    uniform cross-flow, :func:`stripcoef.hull.lift.ring_wing_lift_matrix`); midpoint rule on
-    :data:`RING_POINTS` points.
+    for a counter-clockwise vortex Γ at :math:`z_0 = y_0 + i z_0` (the Laurent series of its
+    velocity on the circle; continuous at :math:`|z_0| = R`), summed over the vortex and its
+    image. A uniform cross-flow's harmonic is the cross-flow itself.
 
     Returns
     -------
@@ -212,8 +223,9 @@ def ring_sidewash(vortex, lift_direction, body_radius: float, *, radius: float) 
     applies to :math:`\bar{\mathbf w}`. Not checked against a lifting-surface solution of a
     ring in a vortex's field.
     """
-    theta = 2.0 * math.pi * (np.arange(RING_POINTS) + 0.5) / RING_POINTS
-    rhat = np.column_stack([np.cos(theta), np.sin(theta)])
-    u = induced_velocity(radius * rhat, vortex, lift_direction, body_radius)
-    radial = np.einsum("ij,ij->i", u, rhat)
-    return (2.0 / RING_POINTS) * (radial[:, None] * rhat).sum(axis=0)
+    out = 0j
+    for pos, gamma in _images(vortex, lift_direction, body_radius):
+        z0 = complex(pos[0], pos[1])
+        factor = z0 / radius ** 2 if abs(z0) <= radius else 1.0 / z0.conjugate()
+        out += -1j * gamma / (2.0 * math.pi) * factor
+    return np.array([out.real, out.imag])
