@@ -22,9 +22,10 @@ Munk's k2 - k1 (USAF DATCOM sec. 4.2.1.1, ``body_lift: datcom``).
 bare hull's axisymmetric panel solution's surface speed (validation.lift.suboff_surface_speeds,
 the suction peak the line sources reach only in part: 0.876 l instead of 0.902 l) in place of
 the line sources ``body_lift: stratford`` uses; the fins' stern flow is unchanged.
-``--sidewash`` (with ``--method datcom`` or ``stratford``): the same checks with and without
-the appendages' trailing-vortex sidewash (stripcoef.assembly.sidewash, Pitts, Nielsen & Kaattari
-1957; validation.lift.sidewash_checks), an option outside the default model; writes nothing.
+``--sidewash`` (with ``--method datcom`` or ``stratford``): the same checks without the
+sidewash, with the appendages' trailing vortices and with the body's separated pair too
+(stripcoef.assembly.sidewash, Pitts, Nielsen & Kaattari 1957; validation.lift.sidewash_checks),
+an option outside the default model; writes nothing.
 Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford] [--terms]
 [--surface-speed line|panel] [--sidewash]  (about 60 s; --sidewash about 2 min)
 """
@@ -110,11 +111,13 @@ def _sidewash(method: str, terms: bool) -> int:
             if r["method"] == method:
                 print(f"{method:9s} config {r['config']} {r['name']:4s} measured "
                       f"{r['measured']:+.6f} without {r['without'] / r['measured']:+.2f} "
-                      f"with sidewash {r['with'] / r['measured']:+.2f}")
+                      f"appendages' vortices {r['with'] / r['measured']:+.2f} "
+                      f"+ body pair {r['with_body'] / r['measured']:+.2f}")
     c = sidewash_checks(method)
-    print(f"{method:9s} sidewash: issue checks (Table 4) {c['table4'][0]}/{c['table4'][2]} -> "
-          f"{c['table4'][1]}/{c['table4'][2]}; drift curves within 20 %: {c['drift'][0]}/"
-          f"{c['drift'][2]} -> {c['drift'][1]}/{c['drift'][2]}")
+    for name, i in (("appendages' vortices", 1), ("+ body pair", 2)):
+        print(f"{method:9s} sidewash, {name}: issue checks (Table 4) {c['table4'][0]}/"
+              f"{c['table4'][3]} -> {c['table4'][i]}/{c['table4'][3]}; drift curves within "
+              f"20 %: {c['drift'][0]}/{c['drift'][3]} -> {c['drift'][i]}/{c['drift'][3]}")
     return 0
 
 

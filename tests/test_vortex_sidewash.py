@@ -134,3 +134,22 @@ def test_closed_forms_match_quadrature():
         ur = np.einsum("ij,ij->i", induced_velocity(radius * rhat, v, e, 0.1), rhat)
         quad = (2.0 / theta.size) * (ur[:, None] * rhat).sum(axis=0)
         assert ring_sidewash(v, e, 0.1, radius=radius) == pytest.approx(quad, rel=1e-6, abs=1e-9)
+
+
+def test_body_pair_keeps_the_body_impulse():
+    """The body's pair (assembly.sidewash._body_pair): two vortices at +-pi/4 a_0 in the plane
+    normal to the cross-flow, of strength Gamma_0 = 2 k a_0 per unit cross-flow, so that their
+    impulse Gamma_0 2 f is the plate's (and the circle's) k pi a_0^2."""
+    from stripcoef.assembly.sidewash import _body_pair
+
+    v = parse_vehicle(_tandem(-0.6), file="tandem")
+    pair = _body_pair({"separation_x": -0.2, "munk_factor": 0.9}, v.hull, [0.0, 0.0, 0.0])
+    a0 = 0.1
+    assert [p["name"] for p in pair] == ["body (cross-flow y)", "body (cross-flow z)"]
+    for p in pair:
+        assert p["g"] * 2.0 * p["f"] == pytest.approx(0.9 * math.pi * a0 ** 2)
+        for vortex in p["vortices"]:
+            assert abs(vortex @ p["lift_dir"]) < 1e-15
+            assert np.linalg.norm(vortex) == pytest.approx(math.pi / 4 * a0)
+        assert p["incidence"][5 if p["lift_dir"][0] else 4] == pytest.approx(
+            -0.2 if p["lift_dir"][0] else 0.2)

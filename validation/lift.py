@@ -2079,23 +2079,27 @@ SIDEWASH_METHODS = ("datcom", "stratford")
 
 
 @functools.lru_cache(maxsize=None)
-def sidewash_terms(config: int, body_lift: str = "datcom", ring: bool = False):
+def sidewash_terms(config: int, body_lift: str = "datcom", ring: bool = False,
+                   body_vortices: bool = False):
     """(dL [kg/m, kg, kg m], info) of the appendages' trailing-vortex sidewash on configuration
     ``config``'s model about Roddy's moment point (``stripcoef.assembly.sidewash``; ``ring``:
-    ring wing No. 1 a tail surface too)."""
+    ring wing No. 1 a tail surface too; ``body_vortices``: the body's separated pair too)."""
     from stripcoef.assembly.sidewash import appendage_sidewash
     from stripcoef.geometry.vehicle import parse_vehicle
 
     vehicle = parse_vehicle(suboff_vehicle_data(config, body_lift), file=f"SUBOFF config {config}")
     return appendage_sidewash(vehicle, vehicle.fluid.density, _moment_point(),
-                              ring=ring_wing_chord_line() if ring else None)
+                              ring=ring_wing_chord_line() if ring else None,
+                              body_vortices=body_vortices)
 
 
 @functools.lru_cache(maxsize=None)
-def sidewash_model(config: int, body_lift: str = "datcom", ring: bool = False):
+def sidewash_model(config: int, body_lift: str = "datcom", ring: bool = False,
+                   body_vortices: bool = False):
     """:func:`suboff_model` with the sidewash's dL (:func:`sidewash_terms`) added to its lift."""
     model = suboff_model(config, body_lift, ring)
-    return dataclasses.replace(model, lift=model.lift + sidewash_terms(config, body_lift, ring)[0])
+    return dataclasses.replace(model, lift=model.lift + sidewash_terms(
+        config, body_lift, ring, body_vortices)[0])
 
 
 def _roddy_derivatives(model) -> dict:
@@ -2122,105 +2126,125 @@ def _issue_ok(config: int, name: str, ratio: float, tolerance) -> bool | None:
 
 def sidewash_comparisons() -> list[dict]:
     """Every Table 4 term of :func:`suboff_comparisons` under :data:`SIDEWASH_METHODS`, without
-    and with the appendages' trailing-vortex sidewash: rows {'config', 'name', 'kind',
-    'measured', 'method', 'without', 'with', 'ok_without', 'ok_with'} (control terms: unchanged)."""
+    the sidewash, with the appendages' trailing vortices ('with') and with the body's separated
+    pair too ('with_body'): rows {'config', 'name', 'kind', 'measured', 'method', 'without',
+    'with', 'with_body', 'ok_without', 'ok_with', 'ok_with_body'} (control terms: unchanged)."""
     out = []
     for c in suboff_comparisons():
         for method in SIDEWASH_METHODS:
-            without = c[method]
-            if c["kind"] == "control":
-                with_ = without
-            else:
-                with_ = _roddy_derivatives(sidewash_model(c["built"], method, c["ring"]))[c["name"]]
-            ok = [_issue_ok(c["config"], c["name"], v / c["measured"], c["tolerance"])
-                  for v in (without, with_)]
-            out.append({"config": c["config"], "name": c["name"], "kind": c["kind"],
-                        "measured": c["measured"], "method": method, "without": without,
-                        "with": with_, "ok_without": ok[0], "ok_with": ok[1]})
+            row = {"config": c["config"], "name": c["name"], "kind": c["kind"],
+                   "measured": c["measured"], "method": method, "without": c[method]}
+            for key, body in (("with", False), ("with_body", True)):
+                row[key] = c[method] if c["kind"] == "control" else _roddy_derivatives(
+                    sidewash_model(c["built"], method, c["ring"], body))[c["name"]]
+            for key in ("without", "with", "with_body"):
+                row[f"ok_{key}"] = _issue_ok(c["config"], c["name"], row[key] / c["measured"],
+                                             c["tolerance"])
+            out.append(row)
     return out
 
 
 @functools.lru_cache(maxsize=1)
 def sidewash_drift_comparisons(angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict]:
-    """:func:`drift_curve_comparisons` of the models with the sidewash (:func:`sidewash_model`),
-    configurations 2 (with ring wing No. 1) to 5, :data:`SIDEWASH_METHODS`: rows {'config',
-    'method', 'beta', 'q', 'measured', 'model'}."""
+    """:func:`drift_curve_comparisons` of the models with the sidewash (:func:`sidewash_model`;
+    'body': False, the appendages' vortices; True, the body's pair too), configurations 2 (with
+    ring wing No. 1) to 5, :data:`SIDEWASH_METHODS`: rows {'config', 'method', 'body', 'beta',
+    'q', 'measured', 'model'}."""
     speed = RODDY_SPEED
     out = []
     for config in (2, 3, 4, 5):
         for method in SIDEWASH_METHODS:
-            model = sidewash_model(config, method, config == 2)
-            h = 0.5 * model.density
-            lbp = FT * val("t1.L_BP")
-            for a in angles:
-                b = math.radians(a)
-                nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
-                tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
-                tau = tau / speed ** 2
-                for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
-                    deg, coef = appendix_curve(config, q)
-                    out.append({"config": config, "method": method, "beta": a, "q": q,
-                                "measured": measured_odd(deg, coef, a),
-                                "model": float(tau[i] / (h * lbp ** k))})
+            for body in (False, True):
+                model = sidewash_model(config, method, config == 2, body)
+                h = 0.5 * model.density
+                lbp = FT * val("t1.L_BP")
+                for a in angles:
+                    b = math.radians(a)
+                    nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
+                    tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
+                    tau = tau / speed ** 2
+                    for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
+                        deg, coef = appendix_curve(config, q)
+                        out.append({"config": config, "method": method, "body": body,
+                                    "beta": a, "q": q, "measured": measured_odd(deg, coef, a),
+                                    "model": float(tau[i] / (h * lbp ** k))})
     return out
 
 
 def sidewash_checks(method: str) -> dict:
-    """The issue's counts for body-lift ``method`` without and with the sidewash: Table 4 checks
-    met (of those :func:`issue_checks` counts) and Appendix B drift points within 20 %:
-    {'table4': (without, with, n), 'drift': (without, with, n)}."""
-    rows = [r for r in sidewash_comparisons() if r["method"] == method and r["ok_with"] is not None
+    """The issue's counts for body-lift ``method`` without the sidewash, with the appendages'
+    vortices and with the body's pair too: Table 4 checks met (of those :func:`issue_checks`
+    counts) and Appendix B drift points within 20 %: {'table4': (without, with, with_body, n),
+    'drift': (without, with, with_body, n)}."""
+    rows = [r for r in sidewash_comparisons() if r["method"] == method
             and r["ok_without"] is not None]
     drift = [r for r in sidewash_drift_comparisons() if r["method"] == method]
-    inside = sum(abs(r["model"] / r["measured"] - 1) <= 0.20 for r in drift)
-    return {"table4": (sum(bool(r["ok_without"]) for r in rows),
-                       sum(bool(r["ok_with"]) for r in rows), len(rows)),
-            "drift": (drift_curve_checks(method)[0], int(inside), len(drift))}
+
+    def inside(body):
+        return int(sum(abs(r["model"] / r["measured"] - 1) <= 0.20 for r in drift
+                       if r["body"] == body))
+    return {"table4": (*(sum(bool(r[f"ok_{k}"]) for r in rows)
+                         for k in ("without", "with", "with_body")), len(rows)),
+            "drift": (drift_curve_checks(method)[0], inside(False), inside(True),
+                      len(drift) // 2)}
 
 
 def sidewash_section() -> list[str]:
     """The 'Trailing-vortex sidewash' paragraph and tables of docs/validation.md: the
-    appendages' wing-tail interference (Pitts, Nielsen & Kaattari 1957) measured on Roddy's
-    data, an option outside the default model."""
-    _, info = sidewash_terms(2, "datcom", True)
-    pairs = [(p["source"], p["tail"], f"{FT ** -1 * p['f']:.3f}", f"{p['sidewash']:+.3f}")
-             for p in info["pairs"]]
+    appendages' wing-tail interference (Pitts, Nielsen & Kaattari 1957) and the body's separated
+    pair measured on Roddy's data, an option outside the default model."""
+    pairs = []
+    for method in SIDEWASH_METHODS:
+        _, info = sidewash_terms(2, method, True, True)
+        pairs += [(method, p["source"], p["tail"], f"{p['f'] / FT:.3f}", f"{p['sidewash']:+.3f}")
+                  for p in info["pairs"] if abs(p["sidewash"]) > 1e-9
+                  and (method == "datcom" or p["source"].startswith("body"))]
     rows = sidewash_comparisons()
     changed = [(r["config"], r["name"], r["method"], f"{r['measured']:+.5f}",
-                f"{r['without'] / r['measured']:.2f}", f"{r['with'] / r['measured']:.2f}")
-               for r in rows if r["kind"] != "control" and abs(r["with"] - r["without"])
+                *(f"{r[k] / r['measured']:.2f}" for k in ("without", "with", "with_body")))
+               for r in rows if r["kind"] != "control"
+               and max(abs(r["with"] - r["without"]), abs(r["with_body"] - r["without"]))
                > 1e-3 * abs(r["measured"])]
     checks = {m: sidewash_checks(m) for m in SIDEWASH_METHODS}
-    summary = [(m, f"{checks[m]['table4'][0]}/{checks[m]['table4'][2]}",
-                f"{checks[m]['table4'][1]}/{checks[m]['table4'][2]}",
-                f"{checks[m]['drift'][0]}/{checks[m]['drift'][2]}",
-                f"{checks[m]['drift'][1]}/{checks[m]['drift'][2]}") for m in SIDEWASH_METHODS]
+    summary = [(m, *(f"{checks[m][q][i]}/{checks[m][q][3]}" for q in ("table4", "drift")
+                     for i in range(3))) for m in SIDEWASH_METHODS]
     return [
-        "### Trailing-vortex sidewash of the appendages (an option, issue 34)", "",
+        "### Trailing-vortex sidewash at the stern appendages (an option, issue 34)", "",
         "A surface behind another meets the trailing vortex of the one ahead: the wing-tail "
         "interference of Pitts, Nielsen & Kaattari (1957, NACA Report 1307) in its linear form "
         "(`stripcoef.hull.vortex`, `stripcoef.assembly.sidewash`): each panel's vorticity rolled "
         "up at pi/4 of its span from the root (Spreiter & Sacks 1951), its circulation from its "
         "own lift by Kutta-Joukowski with the vortex's image in the body, trailing straight aft; "
         "at the tail the vortex and its image in the local body section, averaged over the tail "
-        "panel's span by strip theory (a ring wing: the first harmonic of the radial velocity "
-        "round it). Every constant is the method's own; nothing is fitted to Roddy's data. Not "
-        "in the default model: `python -m benchmarks.lift_band --method datcom --sidewash` "
-        "measures it. On configuration 2 (f: the vortex's distance from the axis [ft]; "
-        "sidewash: the tail's mean cross-flow per unit cross-flow at the source, negative "
-        "against it):", "",
-        markdown_table(["source", "tail", "f [ft]", "sidewash"], pairs), "",
-        "The terms it changes, model/measured without and with it:", "",
-        markdown_table(["config", "term", "body lift", "measured", "without", "with"], changed),
-        "",
-        markdown_table(["body lift", "Table 4 checks without", "with", "drift points within 20 % "
-                        "without", "with"], summary), "",
-        "Only configurations with an appendage ahead of another change (2 and 1: the sail ahead "
-        "of the rudders and the ring, the stern planes ahead of the ring); configurations 3-6 "
-        "have no such pair, and what their stern appendages miss (the planes' and the ring's "
-        "larger answer to yaw than to drift, the ring's zero drift force) is not this "
-        "interference: it needs the body's own separated vortices at the tail, for which no "
-        "published strength and position at small incidence was found (the missile "
-        "correlations of body-vortex strength and position start at the vortex onset angle, "
-        "beyond the linear range). The deflected planes' vortices on the ring (control "
-        "derivatives) are not included.", ""]
+        "panel's span by strip theory in closed form (a ring wing: the first harmonic of the "
+        "radial velocity round it). 'Body pair' adds the body's separated vortices behind the "
+        "separation station x_0 of the body-lift rule: the cross-flow impulse rho k S_0 w(x_0) "
+        "that the body lift keeps (`hull.lift.slender_body_lift_matrix`, k the Munk factor) "
+        "shed as the elliptic sheet of a flat plate of the body's width at x_0 (the plate and "
+        "the circle have the same cross-flow apparent mass; an assumption of this model, not a "
+        "published body-vortex method) and rolled up at +-pi/4 a_0 (Spreiter & Sacks), in the "
+        "plane normal to the cross-flow. No constant is fitted to Roddy's data. Not in the "
+        "default model: `python -m benchmarks.lift_band --method datcom --sidewash` measures "
+        "it. On configuration 2 (f: the vortex's distance from the axis [ft]; sidewash: the "
+        "tail's mean cross-flow per unit cross-flow at the source, negative against it):", "",
+        markdown_table(["body lift", "source", "tail", "f [ft]", "sidewash"], pairs), "",
+        "The terms they change, model/measured without, with the appendages' vortices and with "
+        "the body pair too:", "",
+        markdown_table(["config", "term", "body lift", "measured", "without", "appendages",
+                        "+ body pair"], changed), "",
+        markdown_table(["body lift", "Table 4 checks without", "appendages", "+ body pair",
+                        "drift points within 20 % without", "appendages", "+ body pair"],
+                       summary), "",
+        "The appendages' vortices change configurations 1 and 2 only (the sail ahead of the "
+        "rudders and the ring, the stern planes ahead of the ring). The body pair takes the "
+        "drift incidence off the surfaces behind x_0, and with it as much of the yaw-rate "
+        "incidence, because its strength answers the cross-flow at x_0, close to the tail: "
+        "under the DATCOM rule the planes' and ring's drift force falls towards the measured "
+        "one and their yaw-rate force below it; under the Stratford option x_0 lies behind the "
+        "planes and only the ring changes. What the measured appendages show, a larger answer "
+        "to yaw than to drift (configurations 5 - 3 and 6 - 3: the ring's drift force zero, its "
+        "yaw-rate force 1.5 times a surface's at its station), is a sidewash that answers the "
+        "cross-flow of a station far ahead of the moment point; no published method that puts "
+        "it there was found (the missile correlations of body-vortex strength and position start "
+        "at the vortex onset angle, beyond the linear range). The deflected planes' vortices on "
+        "the ring (control derivatives) are not included.", ""]

@@ -91,8 +91,39 @@ def _panel_record(name, panel, hull, ref, rho, round_, slender):
                                                                                   panel.chord))}
 
 
+def _body_pair(info: dict, hull, ref) -> list[dict]:
+    r"""The body's separated vortex pair as two sources (a cross-flow along y and along z):
+    behind the separation station :math:`x_0` the body's cross-flow impulse
+    :math:`\rho\,k\,S_0\,w(x_0)` (the body lift's first term,
+    :func:`stripcoef.hull.lift.slender_body_lift_matrix`, with the DATCOM rule's Munk factor k)
+    leaves the body as a trailing vortex system. Assumption: it is that of the flat plate of the
+    body's width at x_0, normal to the cross-flow (the plate of semi-span :math:`a_0` and the
+    circle of radius :math:`a_0` have the same cross-flow apparent mass :math:`\rho\pi a_0^2`,
+    Newman 1977, table 4.2), elliptically loaded with root circulation
+    :math:`\Gamma_0 = 2 k a_0 w` and rolled up (Spreiter & Sacks 1951) into a pair at
+    :math:`\pm(\pi/4)\,a_0` of strength :math:`\Gamma_0` (impulse :math:`\rho\Gamma_0\,
+    2 (\pi/4) a_0 = \rho k \pi a_0^2 w`, the same), trailing straight aft in the plane normal
+    to the cross-flow."""
+    x0 = float(info["separation_x"])
+    a0 = float(hull.half_breadth(np.array([x0]))[0])
+    if a0 <= 0.0:
+        return []
+    k = float(info.get("munk_factor", 1.0))
+    f = vortex_position(0.0, a0)
+    out = []
+    for lift_axis, span_axis in (("y", "z"), ("z", "y")):
+        e3 = np.zeros(3)
+        e3["xyz".index(lift_axis)] = 1.0
+        out.append({"name": f"body (cross-flow {lift_axis})", "x_te": x0, "f": f,
+                    "vortices": [f * _AXES[span_axis], -f * _AXES[span_axis]],
+                    "lift_dir": _AXES[lift_axis], "g": 2.0 * k * a0,
+                    "incidence": lift_column(e3, np.array([x0, hull.y, hull.z])
+                                             - np.asarray(ref, float))})
+    return out
+
+
 def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
-                       speed: float | None = None,
+                       body_vortices: bool = False, speed: float | None = None,
                        viscosity: float | None = None) -> tuple[np.ndarray, dict]:
     r"""The lift matrix of the appendages' trailing-vortex sidewash, :math:`\Delta L`
     (module docstring), and a summary.
@@ -108,6 +139,9 @@ def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
     ring : dict, optional
         A ring wing's chord line, ``x_le``, ``x_te``, ``r_le``, ``r_te`` [m] (as
         ``stripcoef.assembly.lift.ring_wing_lift``): a tail surface too
+    body_vortices : bool
+        Also the body's separated vortex pair behind the separation station
+        (:func:`_body_pair`), at the surfaces behind that station (slender-body rules only)
     speed, viscosity : float, optional
         As ``stripcoef.assembly.lift.vehicle_lift``
 
@@ -131,36 +165,42 @@ def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
     slender = _stern_flow(vehicle, body, speed, viscosity)
     round_ = _round(hull)
     recs = [_panel_record(n, p, hull, ref, rho, round_, slender) for n, p in _panels(vehicle)]
-    pairs = []
+    sources = []
     for s in recs:
         f = vortex_position(s["root"], s["span"])
-        g = circulation_per_crossflow(s["k_own"], f, s["root"], rho=rho)
-        vortex = f * s["span_dir"]
+        sources.append({"name": s["name"], "x_te": s["x_te"], "f": f,
+                        "vortices": [f * s["span_dir"]], "lift_dir": s["lift_dir"],
+                        "g": circulation_per_crossflow(s["k_own"], f, s["root"], rho=rho),
+                        "incidence": s["incidence"], "record": s})
+    if body_vortices and body is not None and "separation_x" in body[1]:
+        sources += _body_pair(body[1], hull, ref)
+    ring_terms = None
+    if ring is not None:
+        ring_l, ring_info = ring_wing_lift(vehicle, rho, ref, speed=speed, viscosity=viscosity,
+                                           **ring)
+        x_mid = 0.5 * (ring["x_le"] + ring["x_te"])
+        ring_terms = {"k": ring_l[1, 1], "radius": 0.5 * (ring["r_le"] + ring["r_te"]),
+                      "a": float(hull.half_breadth(np.array([x_mid]))[0]),
+                      "point": np.array([ring_info["x_quarter_chord"], hull.y, hull.z])
+                      - np.asarray(ref, float)}
+    pairs = []
+    for s in sources:
+        f, g = s["f"], s["g"]
         for t in recs:
-            if t is s or s["x_te"] < t["x_le"]:
-                continue
-            a_t = t["root"]
-            if f <= a_t:
-                continue          # the vortex inside the tail's body section: no field there
-            h = panel_sidewash(vortex, s["lift_dir"], a_t, root=t["root"], span=t["span"],
-                               span_direction=t["span_dir"], direction=t["lift_dir"])
+            if t is s.get("record") or s["x_te"] < t["x_le"] or f <= t["root"]:
+                continue      # not behind the source, or the vortex inside the tail's section
+            h = sum(panel_sidewash(v, s["lift_dir"], t["root"], root=t["root"], span=t["span"],
+                                   span_direction=t["span_dir"], direction=t["lift_dir"])
+                    for v in s["vortices"])
             out += t["k_tail"] * g * h * np.outer(t["column"], s["incidence"])
             pairs.append({"source": s["name"], "tail": t["name"], "f": f, "g": g,
                           "sidewash": g * h})
-        if ring is not None and s["x_te"] >= ring["x_le"]:
-            radius = 0.5 * (ring["r_le"] + ring["r_te"])
-            x_mid = 0.5 * (ring["x_le"] + ring["x_te"])
-            a_t = float(hull.half_breadth(np.array([x_mid]))[0])
-            if f <= a_t:
-                continue
-            w = g * ring_sidewash(vortex, s["lift_dir"], a_t, radius=radius)
-            ring_l, ring_info = ring_wing_lift(vehicle, rho, ref, speed=speed,
-                                               viscosity=viscosity, **ring)
-            k_ring = ring_l[1, 1]
-            point = np.array([ring_info["x_quarter_chord"], hull.y, hull.z]) \
-                - np.asarray(ref, float)
+        if ring_terms is not None and s["x_te"] >= ring["x_le"] and f > ring_terms["a"]:
+            w = g * sum(ring_sidewash(v, s["lift_dir"], ring_terms["a"],
+                                      radius=ring_terms["radius"]) for v in s["vortices"])
             for i, e3 in ((0, np.array([0.0, 1.0, 0.0])), (1, np.array([0.0, 0.0, 1.0]))):
-                out += k_ring * w[i] * np.outer(lift_column(e3, point), s["incidence"])
+                out += ring_terms["k"] * w[i] * np.outer(lift_column(e3, ring_terms["point"]),
+                                                         s["incidence"])
             pairs.append({"source": s["name"], "tail": "ring wing", "f": f, "g": g,
                           "sidewash": float(w @ s["lift_dir"])})
     return out, {"pairs": pairs}
