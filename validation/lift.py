@@ -2189,6 +2189,27 @@ def sidewash_checks(method: str) -> dict:
                       len(drift) // 2)}
 
 
+def sidewash_station_diagnosis() -> dict:
+    """What Roddy's appendage increments say about a sidewash at the stern (a diagnosis read from
+    the measured data, used by no model): if a surface's incidence lost a fraction kappa of the
+    cross-flow at a station l_s (lever from the moment point [L_BP], forward positive), its drift
+    force would be (1 - kappa) times the model's and its yaw-rate force the model's drift slope
+    times (l_t - kappa l_s), l_t the model's lever (:func:`rotary_buildup`). Solved for kappa and
+    l_s from the measured increments, for the ring wing (6 - 3) and the stern planes (5 - 3)
+    against the Stratford option's surfaces (which have the wing-body upwash): {component:
+    {'kappa', 'lever', 'x_from_nose' [ft], 'fraction' of the overall length, 'yaw_ratio'}}."""
+    rows = {(r["component"], r["source"]): r for r in rotary_buildup()}
+    out = {}
+    for comp in ("ring wing", "stern planes"):
+        m, s = rows[(comp, "measured")], rows[(comp, "stratford")]
+        kappa = 1.0 - m["Yv"] / s["Yv"]
+        lever = (s["Yr"] / s["Yv"] - m["Yr"] / s["Yv"]) / kappa
+        x = val("moment_point.x") - lever * val("t1.L_BP")
+        out[comp] = {"kappa": kappa, "lever": lever, "x_from_nose": x,
+                     "fraction": x / val("t1.LOA"), "yaw_ratio": m["Yr"] / s["Yr"]}
+    return out
+
+
 def sidewash_section() -> list[str]:
     """The 'Trailing-vortex sidewash' paragraph and tables of docs/validation.md: the
     appendages' wing-tail interference (Pitts, Nielsen & Kaattari 1957) and the body's separated
@@ -2206,6 +2227,8 @@ def sidewash_section() -> list[str]:
                and max(abs(r["with"] - r["without"]), abs(r["with_body"] - r["without"]))
                > 1e-3 * abs(r["measured"])]
     checks = {m: sidewash_checks(m) for m in SIDEWASH_METHODS}
+    diag = sidewash_station_diagnosis()
+    ring, planes = diag["ring wing"], diag["stern planes"]
     summary = [(m, *(f"{checks[m][q][i]}/{checks[m][q][3]}" for q in ("table4", "drift")
                      for i in range(3))) for m in SIDEWASH_METHODS]
     return [
@@ -2243,8 +2266,19 @@ def sidewash_section() -> list[str]:
         "one and their yaw-rate force below it; under the Stratford option x_0 lies behind the "
         "planes and only the ring changes. What the measured appendages show, a larger answer "
         "to yaw than to drift (configurations 5 - 3 and 6 - 3: the ring's drift force zero, its "
-        "yaw-rate force 1.5 times a surface's at its station), is a sidewash that answers the "
-        "cross-flow of a station far ahead of the moment point; no published method that puts "
-        "it there was found (the missile correlations of body-vortex strength and position start "
-        "at the vortex onset angle, beyond the linear range). The deflected planes' vortices on "
-        "the ring (control derivatives) are not included.", ""]
+        f"yaw-rate force {ring['yaw_ratio']:.2f} times a surface's at its station), is a "
+        "sidewash that answers the cross-flow of a station far ahead of the moment point. Read "
+        "from the measured increments (`validation.lift.sidewash_station_diagnosis`, a "
+        "diagnosis that no model uses): a surface losing a fraction kappa of the cross-flow at "
+        "a station x_s gives the measured drift and yaw-rate forces for kappa = "
+        f"{ring['kappa']:.2f}, x_s = {ring['x_from_nose']:.2f} ft from the nose "
+        f"({ring['fraction']:.3f} of the length) at the ring, and kappa = {planes['kappa']:.2f}, "
+        f"x_s = {planes['x_from_nose']:.2f} ft ({planes['fraction']:.3f}) at the stern planes "
+        "(against the Stratford option's surfaces, which have the wing-body upwash): both near "
+        "the end of the bow (3.333 ft, Groves et al.'s bow equation in "
+        "`validation.lift.hull_radius`), "
+        "where slender-body theory generates the body's lift, not "
+        "at a separation station on the afterbody. No published method that sheds the bow's "
+        "lift to the stern in the linear range was found (the missile correlations of "
+        "body-vortex strength and position start at the vortex onset angle, beyond it). The "
+        "deflected planes' vortices on the ring (control derivatives) are not included.", ""]
