@@ -41,7 +41,8 @@ def test_free_vortex_speed_and_the_downwash_of_its_own_span():
     pts = np.array([[0.0, 0.5], [0.0, 1.5], [0.3, 2.0]])
     u = induced_velocity(pts, v, e, 0.0)
     d = pts - v
-    assert np.linalg.norm(u, axis=1) == pytest.approx(1.0 / (2 * math.pi * np.linalg.norm(d, axis=1)))
+    dist = np.linalg.norm(d, axis=1)
+    assert np.linalg.norm(u, axis=1) == pytest.approx(1.0 / (2 * math.pi * dist))
     assert np.einsum("ij,ij->i", u, d) == pytest.approx(0.0, abs=1e-15)
     assert u[0] @ e < 0.0 < u[1] @ e
     with_body = induced_velocity(pts[:1], v, e, 0.3)     # the image adds to the downwash

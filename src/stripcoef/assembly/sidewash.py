@@ -84,7 +84,8 @@ def _panel_record(name, panel, hull, ref, rho, round_, slender):
         column = (fw * c_f + fb * c_b) / (fw + fb) if fw + fb > 0.0 else c_f
     side = {("z", -1.0): "top", ("z", 1.0): "bottom", ("y", -1.0): "port",
             ("y", 1.0): "starboard"}[(span_axis, float(np.sign(offset)))]
-    return {"name": f"{name} ({side})", "x_le": x + 0.5 * panel.chord, "x_te": x - 0.5 * panel.chord,
+    return {"name": f"{name} ({side})", "x_le": x + 0.5 * panel.chord,
+            "x_te": x - 0.5 * panel.chord,
             "root": panel.root, "span": panel.span, "span_dir": span_dir,
             "lift_dir": _AXES[lift_axis], "k_own": k * fw, "k_tail": k * (fw + fb),
             "column": column, "incidence": lift_column(e3, rotary_incidence_point(point,

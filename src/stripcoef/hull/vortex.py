@@ -31,7 +31,8 @@ Kaattari (1957, NACA Report 1307, the section on wing-tail interference), in its
 Everything is linear in the source panel's incidence, so the interference adds a term
 :math:`k_t\,g\,\bar h\;c_t\,a_s^T` to the lift matrix (force :math:`-uL\nu`), with
 :math:`g = k_s/(\rho (f - a_s^2/f))` [m] the circulation per unit cross-flow at the source and
-:math:`\bar h` [1/m] the tail's mean sidewash per unit circulation (``stripcoef.assembly.sidewash``).
+:math:`\bar h` [1/m] the tail's mean sidewash per unit circulation
+(``stripcoef.assembly.sidewash``).
 """
 
 from __future__ import annotations
