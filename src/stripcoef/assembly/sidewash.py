@@ -32,7 +32,9 @@ from stripcoef.hull.lift import lift_column, rotary_incidence_point
 from stripcoef.hull.vortex import (circulation_per_crossflow, panel_sidewash, ring_sidewash,
                                    vortex_position)
 
-_AXES = {"y": np.array([1.0, 0.0]), "z": np.array([0.0, 1.0])}
+def _axis(name: str) -> np.ndarray:
+    """The unit vector of body axis ``name`` ('y' or 'z') in the cross-flow plane (y, z)."""
+    return np.array([1.0, 0.0]) if name == "y" else np.array([0.0, 1.0])
 
 
 def _panels(vehicle):
@@ -69,7 +71,7 @@ def _panel_record(name, panel, hull, ref, rho, round_, slender):
     span_axis = "z" if lift_axis == "y" else "y"
     axis = np.array([hull.y, hull.z])
     offset = float(panel.center["xyz".index(span_axis)]) - axis["yz".index(span_axis)]
-    span_dir = np.sign(offset) * _AXES[span_axis]
+    span_dir = np.sign(offset) * _axis(span_axis)
     e3 = np.zeros(3)
     e3["xyz".index(lift_axis)] = 1.0
     x = float(panel.center[0])
@@ -87,7 +89,7 @@ def _panel_record(name, panel, hull, ref, rho, round_, slender):
     return {"name": f"{name} ({side})", "x_le": x + 0.5 * panel.chord,
             "x_te": x - 0.5 * panel.chord,
             "root": panel.root, "span": panel.span, "span_dir": span_dir,
-            "lift_dir": _AXES[lift_axis], "k_own": k * fw, "k_tail": k * (fw + fb),
+            "lift_dir": _axis(lift_axis), "k_own": k * fw, "k_tail": k * (fw + fb),
             "column": column, "incidence": lift_column(e3, rotary_incidence_point(point,
                                                                                   panel.chord))}
 
@@ -116,8 +118,8 @@ def _body_pair(info: dict, hull, ref) -> list[dict]:
         e3 = np.zeros(3)
         e3["xyz".index(lift_axis)] = 1.0
         out.append({"name": f"body (cross-flow {lift_axis})", "x_te": x0, "f": f,
-                    "vortices": [f * _AXES[span_axis], -f * _AXES[span_axis]],
-                    "lift_dir": _AXES[lift_axis], "g": 2.0 * k * a0,
+                    "vortices": [f * _axis(span_axis), -f * _axis(span_axis)],
+                    "lift_dir": _axis(lift_axis), "g": 2.0 * k * a0,
                     "incidence": lift_column(e3, np.array([x0, hull.y, hull.z])
                                              - np.asarray(ref, float))})
     return out
