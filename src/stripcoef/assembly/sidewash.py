@@ -16,7 +16,9 @@ cross-flow from its own lift (:func:`stripcoef.hull.vortex.circulation_per_cross
 :math:`\bar h_{st}` the tail's mean sidewash per unit circulation with the vortex's image in the
 tail station's body section (:func:`stripcoef.hull.vortex.panel_sidewash`,
 :func:`stripcoef.hull.vortex.ring_sidewash`) and :math:`a_s` the source's incidence column (its
-three-quarter chord's for the rotation). Not in the default model: the validation and
+three-quarter chord's for the rotation). ``body_vortices``: the body's separated pair behind
+the body-lift rule's separation station too (:func:`_body_pair`; its position is an assumption
+of this model, not a published body-vortex method). Not in the default model: the validation and
 ``python -m benchmarks.lift_band --sidewash`` add it to measure it on Roddy's SUBOFF data.
 """
 
