@@ -399,8 +399,8 @@ def write_points(mirror: Path, path) -> None:
                                     "--repair", "-o", str(repaired)], capture_output=True,
                                    check=True)
                     src = repaired
-                extra = tuple(label.split("--axis ")[1].split(",")[0].split()[:1])
-                extra = ("--axis", *extra) if extra else ()
+                axis = label.split("--axis ")[1][:1] if "--axis " in label else ""
+                extra = ("--axis", axis) if axis else ()
                 run = run_cli(src, *extra, "--added-mass-method", "strips")
                 if run["rc"] != 0 or run["json"] is None:
                     own = ("--added-mass-method", "panels") if "panels" in label else ()
