@@ -32,7 +32,9 @@ whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  U
 The stored run (reference_tables/public_meshes/public_meshes.csv, docs/validation.md) names
 its command and commit of every mesh on its first lines.  ``--update`` with ``--only``
 replaces the rows of the meshes run in an existing CSV and keeps the others (their command
-is added to the first line).
+is added to the first line).  ``--points --csv CSV`` writes each stored run's reference point
+(``ref_x, ref_y, ref_z`` [m], the run's JSON ``reference_point``) into CSV, recomputed from
+the mesh without the BEM (:func:`write_points`).
 """
 
 from __future__ import annotations
