@@ -311,6 +311,37 @@ def compare(levels_csv, model_csv, edge_orders=()) -> None:
         print(f"  shape {key[0]:2d} {r0['family']:12s} {DOFS[key[1]]:6s} " + " | ".join(cells))
 
 
+#: The shape classes of the uncovered terms' listing: which of the body's features sets the
+#: order of its slowest terms (hull.panels.edge_order)
+CLASSES = {"plate": "thin plate", "frame": "thin members", "extrusion": "sharp edges",
+           "chamfer_box": "sharp edges", "fillet_box": "sharp edges", "coarse": "sharp edges",
+           "pod": "sharp edges"}
+
+
+def uncovered(levels_csv, model_csv) -> None:
+    """The significant terms whose model estimate does not cover the model's error against
+    the fine references (Eça & Hoekstra over all levels), by shape class (:data:`CLASSES`):
+    the error and the estimate [% of the scale], the reference's band and its fit's order."""
+    from stripcoef.conventions import DOF as DOFS
+    from validation.cad_shapes import fine_comparison
+
+    rows = [r for r in fine_comparison(list(levels_csv), model_csv) if r["significant"]]
+    miss = [r for r in rows if abs(r["err"]) > r["est"]]
+    est = [r["est"] for r in rows if r["i"] == r["j"]]
+    print(f"the model's estimate covers {len(rows) - len(miss)} of {len(rows)} terms; the "
+          f"diagonal estimate's median {100 * np.median(est):.2f} % (90th percentile "
+          f"{100 * np.percentile(est, 90):.1f} %); not covered, by shape class:")
+    for cls in sorted(set(CLASSES.values())):
+        of = [r for r in rows if CLASSES.get(r["family"]) == cls]
+        mine = sorted((r for r in miss if CLASSES.get(r["family"]) == cls),
+                      key=lambda r: (r["shape"], r["i"], r["j"]))
+        print(f"  {cls}: {len(mine)} of {len(of)}")
+        for r in mine:
+            print(f"    shape {r['shape']:2d} {r['family']:11s} {DOFS[r['i']]}-{DOFS[r['j']]:6s}"
+                  f" error {100 * r['err']:+5.1f} %, estimate {100 * r['est']:4.1f} %, "
+                  f"reference's band {100 * r['band']:4.1f} % (order {r['order']:.2f})")
+
+
 def holdout(levels_csv) -> None:
     """The bands tested on a level they did not see (validation.cad_shapes.fine_holdout)."""
     from validation.cad_shapes import fine_holdout
@@ -372,6 +403,8 @@ def main(argv=None) -> int:
               args.same_family)
     else:
         compare(args.levels, args.model, args.edge_orders)
+        print()
+        uncovered(args.levels, args.model)
         if args.holdout:
             print()
             holdout(args.levels)

@@ -32,7 +32,9 @@ whether the root-sum-square of both estimated errors does (ASME V&V 20-2009).  U
 The stored run (reference_tables/public_meshes/public_meshes.csv, docs/validation.md) names
 its command and commit of every mesh on its first lines.  ``--update`` with ``--only``
 replaces the rows of the meshes run in an existing CSV and keeps the others (their command
-is added to the first line).
+is added to the first line).  ``--points --csv CSV`` writes each stored run's reference point
+(``ref_x, ref_y, ref_z`` [m], the run's JSON ``reference_point``) into CSV, recomputed from
+the mesh without the BEM (:func:`write_points`).
 """
 
 from __future__ import annotations
@@ -53,6 +55,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from benchmarks.bluff_shapes import refine  # noqa: E402  (the BEM meshes refined alike)
+from validation.public_meshes import POINT_COLUMNS, moved_uncertainty  # noqa: E402
 
 RHO = 1000.0
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -257,8 +260,9 @@ def compare(run: dict, ref, ref_err) -> list[dict]:
     d = run["json"]
     point = np.asarray(d["reference_point"], float)
     ref_p = transform_matrix(ref, from_point=(0, 0, 0), to_point=point)
-    # the error band moves with the matrix; its size is bounded by moving its magnitude
-    err_p = np.abs(transform_matrix(ref_err, from_point=(0, 0, 0), to_point=point))
+    # the error band moves with the matrix, each term's bound through the rigid transfer's
+    # coefficients (validation.public_meshes.moved_uncertainty)
+    err_p = moved_uncertainty(ref_err, point)
     return compare_at(run, ref_p, err_p)
 
 
@@ -292,7 +296,7 @@ def compare_at(run: dict, ref_p, err_p) -> list[dict]:
 HEADER = ["mesh", "vehicle", "kind", "repo", "commit", "path", "license", "role", "note", "run",
           "command", "method", "panel_levels", "warned", "seconds", "bem_faces", "bem_seconds",
           "i", "j", "model", "bem", "error_rel", "estimated_error_rel", "bem_error_rel",
-          "significant", "covered", "covered_with_bem_error"]
+          "significant", "covered", "covered_with_bem_error", *POINT_COLUMNS]
 
 
 def csv_rows(s):
@@ -303,7 +307,13 @@ def csv_rows(s):
              f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])), f"{s['t_bem']:.1f}",
              t["i"], t["j"], f"{t['model']:.6g}", f"{t['bem']:.6g}", f"{t['rel']:.4g}",
              f"{t['est']:.4g}", f"{t['bem_err']:.4g}", int(t["significant"]),
-             int(t["covered"]), int(t["covered_vv"])] for t in s["terms"]]
+             int(t["covered"]), int(t["covered_vv"]), *point_cells(run)] for t in s["terms"]]
+
+
+def point_cells(run) -> list[str]:
+    """The run's reference point [m] (its JSON ``reference_point``, the axes of the run) as
+    the CSV's :data:`~validation.public_meshes.POINT_COLUMNS` cells."""
+    return [repr(float(x)) for x in run["json"]["reference_point"]]
 
 
 def stored_references(path) -> dict:
@@ -362,6 +372,60 @@ def write_levels(path, mesh: PublicMesh, levels, command: str) -> None:
         csv.writer(fh).writerows(rows)
 
 
+def write_points(mirror: Path, path) -> None:
+    """Write the reference point of every run stored in the CSV ``path`` into its
+    :data:`~validation.public_meshes.POINT_COLUMNS` (added where the CSV has none), without
+    the BEM: per mesh and run label, the mesh as the run had it (as found, or the repair its
+    refusal names, ``--axis`` as the label says) run through ``stripcoef coefficients ...
+    --added-mass-method strips`` (seconds), whose JSON ``reference_point`` is the run's (the
+    centre of buoyancy of the loaded mesh, computed before the added-mass method is chosen:
+    stripcoef.assembly.estimate); a run refused so is run with its own options."""
+    with open(path, newline="") as fh:
+        first = fh.readline()
+        rows = list(csv.DictReader(fh))
+    points: dict = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for mesh in MESHES:
+            labels = sorted({r["run"] for r in rows if r["mesh"] == mesh.name
+                             and r["run"] != "refused"})
+            if not labels:
+                continue
+            raw = read_from_mirror(mirror, mesh)
+            found = Path(tmp) / (mesh.name + Path(mesh.path).suffix.lower())
+            found.write_bytes(raw)
+            repaired = found.with_name(found.stem + "_closed.stl")
+            for label in labels:
+                src = found
+                if label.startswith("repaired"):
+                    subprocess.run([sys.executable, "-m", "stripcoef", "mesh", str(found),
+                                    "--repair", "-o", str(repaired)], capture_output=True,
+                                   check=True)
+                    src = repaired
+                axis = label.split("--axis ")[1][:1] if "--axis " in label else ""
+                extra = ("--axis", axis) if axis else ()
+                run = run_cli(src, *extra, "--added-mass-method", "strips")
+                if run["rc"] != 0 or run["json"] is None:
+                    own = ("--added-mass-method", "panels") if "panels" in label else ()
+                    run = run_cli(src, *extra, *own)
+                points[(mesh.name, label)] = point_cells(run)
+                print(f"{mesh.name} [{label}]: reference point "
+                      + ", ".join(f"{float(x):.6g}" for x in points[(mesh.name, label)])
+                      + " m", flush=True)
+    header = list(rows[0].keys()) if rows else list(HEADER)
+    header += [c for c in POINT_COLUMNS if c not in header]
+    with open(path, "w", newline="") as fh:
+        fh.write(first.rstrip("\n") + "; reference points (" + ", ".join(POINT_COLUMNS)
+                 + ") from python -m benchmarks.public_meshes --mirror DIR --points --csv CSV"
+                 "\n" if "--points" not in first else first)
+        w = csv.DictWriter(fh, fieldnames=header)
+        w.writeheader()
+        for r in rows:
+            cells = points.get((r["mesh"], r["run"]))
+            if cells is not None:
+                r.update(dict(zip(POINT_COLUMNS, cells)))
+            w.writerow({k: r.get(k) or "" for k in header})
+
+
 def method_of(run):
     c = (run["json"] or {}).get("conditions", {})
     return "panels" if c.get("added_mass_method") else "strips"
@@ -400,7 +464,15 @@ def main(argv=None) -> int:
                          "upper-triangle term) to this CSV, to re-extrapolate without the BEM")
     ap.add_argument("--update", action="store_true",
                     help="with --csv and --only: replace those meshes' rows, keep the others")
+    ap.add_argument("--points", action="store_true",
+                    help="only write each run's reference point into the stored --csv "
+                         "(recomputed from the mesh, no BEM)")
     args = ap.parse_args(argv)
+    if args.points:
+        if not args.csv:
+            ap.error("--points needs --csv (the stored run to complete)")
+        write_points(args.mirror, args.csv)
+        return 0
     summary = []
     command = ("python -m benchmarks.public_meshes --mirror DIR --bem-faces "
                + " ".join(map(str, args.bem_faces))

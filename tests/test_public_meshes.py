@@ -153,3 +153,78 @@ def test_converged_terms_recover_the_run_point_and_extrapolate(tmp_path):
     for t in terms:
         assert t["fit"] < 1e-8
         assert abs(t["error_eh"] - 0.02) < 1e-6 and abs(t["error_bem"] - 0.02) < 1e-9
+
+
+def test_converged_terms_take_the_stored_point_and_move_u_with_it(tmp_path):
+    """With the run's reference point in the CSV (ref_x, ref_y, ref_z) converged_terms uses it
+    (no fit), and U about the origin is carried to it by moved_uncertainty."""
+    import csv
+
+    import numpy as np
+
+    from stripcoef.conventions import transform_matrix
+    from stripcoef.hull.convergence import eca_hoekstra_terms
+    from validation import public_meshes as V
+
+    rng = np.random.default_rng(5)
+    b = rng.normal(size=(6, 6))
+    limit = b @ b.T + 6.0 * np.eye(6)
+    counts = [1000, 2000, 4000, 8000]
+    # order-1 levels with scatter: U is not zero
+    mats = [limit * (1.0 + 3.0 / np.sqrt(n)) + 0.002 * rng.normal(size=(6, 6)) for n in counts]
+    mats = [0.5 * (m + m.T) for m in mats]
+    mesh = PM.MESHES[0]
+    PM.write_levels(tmp_path / "levels.csv", mesh, [("f", n, m) for n, m in zip(counts, mats)],
+                    "cmd")
+    point = np.array([0.3, -0.1, 0.2])
+    ref_p = transform_matrix(limit, to_point=point)
+    with open(tmp_path / "run.csv", "w", newline="") as fh:
+        fh.write("# cmd\n")
+        w = csv.writer(fh)
+        w.writerow(["mesh", "run", "i", "j", "model", "bem", "bem_error_rel", *V.POINT_COLUMNS])
+        for i in range(6):
+            for j in range(i, 6):
+                w.writerow([mesh.name, "auto", i, j, f"{ref_p[i, j]:.12g}",
+                            f"{ref_p[i, j]:.12g}", 0.01, *(repr(float(x)) for x in point)])
+    terms = V.converged_terms(tmp_path / "levels.csv", tmp_path / "run.csv")
+    _, unc, _, _ = eca_hoekstra_terms(counts, [np.asarray(m) for m in mats])
+    moved = V.moved_uncertainty(unc, point)
+    scale = np.abs(np.diag(ref_p))
+    for k, t in enumerate(terms):
+        assert t["point_from"] == "stored" and np.allclose(t["point"], point)
+        assert t["u"] == pytest.approx(moved[k, k] / max(scale[k], 0.01 * scale[
+            slice(0, 3) if k < 3 else slice(3, 6)].max()), rel=1e-4)   # levels at 9 digits
+    assert any(t["u"] > t["u_origin"] * 1.01 for t in terms[3:])   # the lever arms add
+
+
+def test_moved_uncertainty_bounds_every_error_within_the_bands():
+    """The moved band contains the moved error of every symmetric error within the bands
+    about the origin (random and extreme sign patterns), and is attained by one of them."""
+    import numpy as np
+
+    from stripcoef.conventions import transform_matrix
+    from validation.public_meshes import moved_uncertainty
+
+    rng = np.random.default_rng(11)
+    u = np.abs(rng.normal(size=(6, 6)))
+    u = 0.5 * (u + u.T)
+    point = np.array([0.4, -0.25, 0.1])
+    bound = moved_uncertainty(u, point)
+    np.testing.assert_allclose(moved_uncertainty(u, np.zeros(3)), u, rtol=1e-12)
+    worst = np.zeros((6, 6))
+    for _ in range(400):
+        s = rng.choice([-1.0, 1.0], size=(6, 6))
+        s = np.triu(s) + np.triu(s, 1).T
+        moved = np.abs(transform_matrix(s * u, to_point=point))
+        assert np.all(moved <= bound * (1 + 1e-12) + 1e-15)
+        worst = np.maximum(worst, moved)
+    # the bound is attained term by term by the signs of the transfer's coefficients
+    i, j = 3, 4
+    signs = np.zeros((6, 6))
+    for k in range(6):
+        for m in range(k, 6):
+            unit = np.zeros((6, 6))
+            unit[k, m] = unit[m, k] = 1.0
+            signs[k, m] = signs[m, k] = np.sign(transform_matrix(unit, to_point=point)[i, j])
+    assert abs(transform_matrix(signs * u, to_point=point)[i, j]) == pytest.approx(
+        bound[i, j], rel=1e-12)

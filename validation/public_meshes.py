@@ -184,23 +184,63 @@ def _levels(path=LEVELS) -> dict:
             for m, d in out.items()}
 
 
+def moved_uncertainty(u, to_point, from_point=(0.0, 0.0, 0.0)):
+    r"""The uncertainties ``u`` (6x6, symmetric, [kg, kg m, kg m^2]) of the terms of an added-mass
+    matrix about ``from_point``, carried with the matrix to ``to_point`` [m, body axes].
+
+    The rigid transfer :math:`A_P = H^T A_O H`, :math:`H = H(-(P - O))` (Fossen 2011, sec.
+    7.5.3; :func:`stripcoef.conventions.transform_matrix`) makes each term about P a linear
+    combination of the 21 distinct terms about O, :math:`A_{P,ij} = \sum_{k \le l}
+    c^{ij}_{kl} A_{O,kl}`, :math:`c^{ij}_{kl} = H_{ki} H_{lj} + H_{li} H_{kj}` (k < l) and
+    :math:`H_{ki} H_{kj}` (k = l).  The terms' errors come from the same panellings and are
+    correlated by an unknown amount, so the uncertainty taken is the law of propagation for
+    fully correlated inputs (JCGM 100:2008, "Guide to the expression of uncertainty in
+    measurement", sec. 5.2.2, r = 1), the bound for any correlation:
+
+    .. math:: U_{P,ij} = \sum_{k \le l} |c^{ij}_{kl}|\, U_{O,kl}
+              \quad [\mathrm{kg},\ \mathrm{kg\,m},\ \mathrm{kg\,m^2}]
+
+    (transforming the matrix of U itself, :math:`|H^T U H|`, lets the terms' bands cancel
+    one another: no bound)."""
+    import numpy as np
+
+    from stripcoef.conventions import transform_matrix
+
+    u = np.asarray(u, float)
+    out = np.zeros((6, 6))
+    for k in range(6):
+        for m in range(k, 6):
+            unit = np.zeros((6, 6))
+            unit[k, m] = unit[m, k] = 1.0
+            out += np.abs(transform_matrix(unit, from_point=from_point,
+                                           to_point=to_point)) * abs(u[k, m])
+    return out
+
+
+#: The columns of the stored runs' reference point (benchmarks/public_meshes.py) [m].
+POINT_COLUMNS = ("ref_x", "ref_y", "ref_z")
+
+
 def converged_terms(levels_path=LEVELS, data_path=DATA) -> list[dict]:
     r"""The stored runs' diagonal terms against the Eça & Hoekstra (2014) extrapolation of the
     four Capytaine levels (:func:`stripcoef.hull.convergence.eca_hoekstra_terms`, free order
     fitted) instead of the 1/N Richardson of the two finest.
 
-    The levels are about the body origin; each run's matrices are about its reference point P,
-    which the CSV does not keep: P is the point that moves the levels' 1/N Richardson onto the
-    run's stored reference (:func:`stripcoef.conventions.transform_matrix`, least squares over
-    the 36 terms; ``fit``: the largest residual over the largest term, ~1e-6 from the CSV's six
-    digits).  Runs in other axes (``--axis``) are left out, and meshes whose stored levels
+    The levels are about the body origin; each run's matrices are about its reference point P
+    (the run's JSON ``reference_point``: the loaded mesh's centre of buoyancy), stored in the
+    CSV's :data:`POINT_COLUMNS`; both the E&H value and its uncertainty U are moved there
+    (:func:`stripcoef.conventions.transform_matrix`, :func:`moved_uncertainty`).  ``fit``:
+    the largest difference between the levels' 1/N Richardson moved to P and the run's
+    stored reference, over the largest term (a check of P, ~1e-6 from the CSV's six digits);
+    a CSV without the point columns (a run before they were written): P recovered as the
+    point that minimises that difference (least squares over the 36 terms, ``point``
+    "fitted").  Runs in other axes (``--axis``) are left out, and meshes whose stored levels
     have another finest pair than the reference's (``bem_faces``).  Per diagonal term: the model, the
     1/N reference and its band (``bem_error_rel``), the E&H value and its uncertainty U (of the
-    finest level, Eça & Hoekstra eqs. 18-21), the observed order, the model's error against
-    each [-]; errors and U of the term, a term below NEGLIGIBLE of its block's largest of that
-    floor (the stored rows' scale, benchmarks/public_meshes.py)."""
+    finest level, Eça & Hoekstra eqs. 18-21, at P), the observed order, the model's error
+    against each [-]; errors and U of the term, a term below NEGLIGIBLE of its block's largest
+    of that floor (the stored rows' scale, benchmarks/public_meshes.py)."""
     import numpy as np
-    from scipy.optimize import least_squares
 
     from stripcoef.conventions import transform_matrix
     from stripcoef.hull.convergence import eca_hoekstra_terms, richardson
@@ -219,8 +259,10 @@ def converged_terms(levels_path=LEVELS, data_path=DATA) -> list[dict]:
             continue                      # another finest pair: not the stored reference
         d = runs.setdefault((r["mesh"], r["run"]), {k: np.zeros((6, 6)) for k in
                                                     ("bem", "model", "bem_error_rel")})
+        if all(r.get(c) for c in POINT_COLUMNS):
+            d["point"] = np.array([float(r[c]) for c in POINT_COLUMNS])
         i, j = int(r["i"]), int(r["j"])
-        for k in d:
+        for k in ("bem", "model", "bem_error_rel"):
             d[k][i, j] = d[k][j, i] = float(r[k])
     out = []
     for (mesh, run), d in runs.items():
@@ -228,21 +270,27 @@ def converged_terms(levels_path=LEVELS, data_path=DATA) -> list[dict]:
         if len(mats) < 4:
             continue
         ref0 = richardson(mats[-2], mats[-1], counts[-2], counts[-1])
-        fit = least_squares(lambda p: (transform_matrix(ref0, to_point=p) - d["bem"]).ravel(),
-                            np.zeros(3))
-        point = fit.x
+        point, how = d.get("point"), "stored"
+        if point is None:
+            from scipy.optimize import least_squares
+
+            point, how = least_squares(lambda p: (transform_matrix(ref0, to_point=p)
+                                                  - d["bem"]).ravel(), np.zeros(3)).x, "fitted"
         residual = float(np.max(np.abs(transform_matrix(ref0, to_point=point) - d["bem"]))
                          / np.max(np.abs(d["bem"])))
         ext, unc, order, _ = eca_hoekstra_terms(counts, mats)
         ext_p = transform_matrix(ext, to_point=point)
+        unc_p = moved_uncertainty(unc, point)
         scale = np.abs(np.diag(d["bem"])).copy()      # the stored rows' scale (NEGLIGIBLE
         for block in (slice(0, 3), slice(3, 6)):     # floor: a body of revolution's roll)
             scale[block] = np.maximum(scale[block], NEGLIGIBLE * scale[block].max())
         for k in range(6):
             out.append(dict(mesh=mesh, run=run, dof=DOFS[k], faces=counts, fit=residual,
+                            point=tuple(float(x) for x in point), point_from=how,
                             model=d["model"][k, k], bem=d["bem"][k, k],
                             band=d["bem_error_rel"][k, k], eh=ext_p[k, k],
-                            u=abs(unc[k, k]) / scale[k], order=float(order[k, k]),
+                            u=unc_p[k, k] / scale[k], u_origin=abs(unc[k, k]) / scale[k],
+                            order=float(order[k, k]),
                             error_bem=(d["model"][k, k] - d["bem"][k, k]) / scale[k],
                             error_eh=(d["model"][k, k] - ext_p[k, k]) / scale[k]))
     return out
