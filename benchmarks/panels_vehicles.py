@@ -18,6 +18,11 @@ point, rho = 1000 kg/m^3.
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.panels_vehicles [FILE ...]
         [--bem-faces 1600 3200] [--max-faces 5000] [--csv CSV]
+        [--references CSV]
+
+``--references CSV`` re-runs the estimate only, against the Capytaine references stored in
+CSV (its ``bem``, ``bem_gci_rel``, ``bem_faces`` and ``same_mesh_max_diff_rel`` columns):
+minutes instead of the solves, for a change of the panel method or of its estimated error.
 
 Needs the ``bem`` and ``remesh`` extras.  A surface that no family remeshes within
 ``--max-faces`` keeping its area and volume (members thinner than the edge collapsed) gets no
@@ -38,6 +43,7 @@ import numpy as np  # noqa: E402
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 RHO = 1000.0
+RERUN = "; model rows re-run by "
 
 
 def main(argv=None) -> int:
@@ -53,7 +59,11 @@ def main(argv=None) -> int:
     ap.add_argument("--update", action="store_true",
                     help="with --csv: replace the rows of FILES in the existing CSV and keep "
                          "the others (the first line then names both commands)")
+    ap.add_argument("--references", default=None, metavar="CSV",
+                    help="re-run the estimate only, against the Capytaine references stored "
+                         "in this CSV (a file without rows there is an error)")
     args = ap.parse_args(argv)
+    stored = _stored_references(args.references, args.files) if args.references else None
     rows = []
 
     import trimesh
@@ -98,6 +108,11 @@ def main(argv=None) -> int:
             print(f"  estimate ({install}): {m.conditions.get('added_mass_method')}, CPU "
                   f"{cpu:.1f} s" + (f"; warned: {warned[0].split(': ', 1)[1][:140]}"
                                     if warned else ""), flush=True)
+        if stored is not None:
+            ref, ref_err, counts, same = stored[path]
+            print(f"  references from {args.references} (Capytaine, {counts} faces)")
+            rows += _rows(path, runs, ref, ref_err, counts, same)
+            continue
         mats, counts, pairs = [], [], []
         # one remesh family (remesh.remesh_family: one crease angle and mode for every level,
         # each level at least 1.25x the faces of the one before), so that the levels refine
@@ -136,22 +151,8 @@ def main(argv=None) -> int:
         print(f"  reference (Richardson {counts[-2]}/{counts[-1]}): "
               f"{np.diag(ref).round(4).tolist()}")
         same = max(float(np.max(np.abs(np.diag(p) / np.diag(b) - 1))) for p, b in pairs)
-        for install, (m, cpu, warned) in runs.items():
-            ours = np.asarray(m.added_mass) * RHO / m.density
-            est = np.asarray(m.added_mass_error) * RHO / m.density
-            levels = "/".join(map(str, m.conditions.get("added_mass_panel_levels", ())))
-            for i in range(6):
-                e = ours[i, i] / ref[i, i] - 1.0
-                rows.append([path, install, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i, i]:.6g}",
-                             f"{e:.4g}", f"{est[i, i] / abs(ref[i, i]):.4g}",
-                             f"{ref_err[i, i] / abs(ref[i, i]):.4g}", levels,
-                             "/".join(map(str, counts)), f"{same:.3g}", f"{cpu:.2f}",
-                             int(bool(warned))])
-                print(f"  {install:12s} {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference "
-                      f"{ref[i, i]:.5g} (+- {100 * ref_err[i, i] / abs(ref[i, i]):.1f} %)  "
-                      f"error {100 * e:+.1f} %  estimated {100 * est[i, i] / abs(ref[i, i]):.1f}"
-                      f" %  {'covered' if abs(ours[i, i] - ref[i, i]) <= est[i, i] else 'NOT covered'}",
-                      flush=True)
+        rows += _rows(path, runs, np.diag(ref), np.diag(ref_err), "/".join(map(str, counts)),
+                      f"{same:.3g}")
     if args.csv:
         import csv
         from pathlib import Path
@@ -159,8 +160,14 @@ def main(argv=None) -> int:
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
         command = ("benchmarks/panels_vehicles.py " + " ".join(args.files) + " --bem-faces "
                    + " ".join(map(str, args.bem_faces)) + f" --max-faces {args.max_faces}")
+        if args.references:    # the references' own command, then this re-run's
+            with open(args.references) as fh:
+                first = fh.readline().lstrip("# ").strip().split(RERUN)[0]
+            command = (first + RERUN + "benchmarks/panels_vehicles.py " + " ".join(args.files)
+                       + f" --references {args.references}")
         kept = []
-        if args.update and Path(args.csv).exists():    # the other files' rows and command
+        if args.update and not args.references and Path(args.csv).exists():
+            # the other files' rows and command
             with open(args.csv, newline="") as fh:
                 first = fh.readline().lstrip("# ").strip()
                 kept = [r for r in list(csv.reader(fh))[1:] if r and r[0] not in args.files]
@@ -182,6 +189,51 @@ def main(argv=None) -> int:
                         "same_mesh_max_diff_rel", "cpu_estimate_s", "warned"])
             w.writerows(kept + rows)
     return 0
+
+
+def _rows(path, runs, ref, ref_err, counts, same):
+    """One CSV row per diagonal term and install: the estimate against the reference ``ref``
+    (its diagonal [kg, kg m, kg m^2]) with the reference's band ``ref_err`` (same units),
+    printed as it goes."""
+    rows = []
+    for install, (m, cpu, warned) in runs.items():
+        ours = np.asarray(m.added_mass) * RHO / m.density
+        est = np.asarray(m.added_mass_error) * RHO / m.density
+        levels = "/".join(map(str, m.conditions.get("added_mass_panel_levels", ())))
+        for i in range(6):
+            e = ours[i, i] / ref[i] - 1.0
+            rows.append([path, install, DOFS[i], f"{ours[i, i]:.6g}", f"{ref[i]:.6g}",
+                         f"{e:.4g}", f"{est[i, i] / abs(ref[i]):.4g}",
+                         f"{ref_err[i] / abs(ref[i]):.4g}", levels, counts, same,
+                         f"{cpu:.2f}", int(bool(warned))])
+            print(f"  {install:12s} {DOFS[i]:6s} estimate {ours[i, i]:.5g}  reference "
+                  f"{ref[i]:.5g} (+- {100 * ref_err[i] / abs(ref[i]):.1f} %)  "
+                  f"error {100 * e:+.1f} %  estimated {100 * est[i, i] / abs(ref[i]):.1f}"
+                  f" %  {'covered' if abs(ours[i, i] - ref[i]) <= est[i, i] else 'NOT covered'}",
+                  flush=True)
+    return rows
+
+
+def _stored_references(csv_path, files):
+    """The Capytaine references of ``files`` in a CSV this script wrote: per file the
+    diagonal reference and its band [kg, kg m, kg m^2], the BEM levels' face counts and the
+    same-mesh difference, as read (one install's rows; every install shares them)."""
+    import csv
+
+    with open(csv_path, newline="") as fh:
+        fh.readline()
+        table = list(csv.DictReader(fh))
+    out = {}
+    for path in files:
+        rows = {r["dof"]: r for r in table if r["file"] == path}
+        if set(rows) != set(DOFS):
+            raise SystemExit(f"{csv_path}: no reference rows for {path} (dof column has "
+                             f"{sorted(rows)}; expected {list(DOFS)})")
+        ref = np.array([float(rows[d]["bem"]) for d in DOFS])
+        band = np.array([float(rows[d]["bem_gci_rel"]) for d in DOFS]) * np.abs(ref)
+        first = rows[DOFS[0]]
+        out[path] = (ref, band, first["bem_faces"], first["same_mesh_max_diff_rel"])
+    return out
 
 
 if __name__ == "__main__":
