@@ -61,13 +61,12 @@ their observed order wanders; the grid convergence index
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
     bisect_longest, enclosed_volume, refine, surface_area)
+from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.remesh import edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
@@ -382,26 +381,19 @@ def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
     panelling).  Solved once per process for the same panels and settings
     (:func:`_solved_level`: a vehicle file's surface is estimated by many commands and tests,
     the BlueROV2 Heavy's two levels about 8 s each time)."""
-    pv = np.ascontiguousarray(pv, dtype=float)
-    pf = np.ascontiguousarray(pf, dtype=np.int64)
-    n, a = _solved_level(pv.tobytes(), pv.shape, pf.tobytes(), pf.shape, float(scale),
-                         float(rho), tuple(float(x) for x in np.ravel(about)), float(near_factor),
+    return _solved_level(np.ascontiguousarray(pv, dtype=float),
+                         np.ascontiguousarray(pf, dtype=np.int64), float(scale), float(rho),
+                         tuple(float(x) for x in np.ravel(about)), float(near_factor),
                          tuple(mirrors))
-    return n, a.copy()
 
 
-@functools.lru_cache(maxsize=32)
-def _solved_level(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, scale: float,
-                  rho: float, about: tuple, near_factor: float, mirrors: tuple):
-    """:func:`_solve_level` of the level's vertices and faces as bytes (hashable, immutable:
-    the memo's key); the result is read-only (the caller copies it)."""
-    pv = np.frombuffer(vertices, dtype=float).reshape(vshape).copy()
-    pf = np.frombuffer(faces, dtype=np.int64).reshape(fshape).copy()
-    about = np.array(about)
-    n, a = _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors)
-    a = np.array(a, dtype=float)
-    a.flags.writeable = False
-    return n, a
+@array_memo(maxsize=32)
+def _solved_level(pv, pf, scale: float, rho: float, about: tuple, near_factor: float,
+                  mirrors: tuple):
+    """:func:`_solve_level` of float64 vertices, int64 faces and plain numbers (the memo's
+    key, :func:`stripcoef.hull.memo.array_memo`)."""
+    n, a = _solve_level_now(pv, pf, scale, rho, np.array(about), near_factor, mirrors)
+    return n, np.array(a, dtype=float)
 
 
 def _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors=()):
