@@ -63,6 +63,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
     bisect_longest, enclosed_volume, refine, surface_area)
@@ -375,16 +376,38 @@ FAMILIES = ("auto", "remesh", "input")
 
 
 def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
-    """(panels, 6x6 added mass) of one level; with ``mirrors`` the level is a remeshed
-    :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with image
-    panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
+    r"""(panels, 6x6 added mass about ``about``) of one level; with ``mirrors`` the level is a
+    remeshed :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with
+    image panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
     panelling).  Solved once per process for the same panels and settings
     (:func:`_solved_level`: a vehicle file's surface is estimated by many commands and tests,
-    the BlueROV2 Heavy's two levels about 8 s each time)."""
-    return _solved_level(np.ascontiguousarray(pv, dtype=float),
-                         np.ascontiguousarray(pf, dtype=np.int64), float(scale), float(rho),
-                         tuple(float(x) for x in np.ravel(about)), float(near_factor),
-                         tuple(mirrors))
+    the BlueROV2 Heavy's two levels about 8 s each time).
+
+    Without mirrors the level is solved about the origin of its own coordinates and moved to
+    ``about`` (:math:`p`) by the rigid-body transfer of the matrix,
+
+    .. math:: A_p = H(-p)^T A_0\, H(-p),\qquad
+              H(-p) = \begin{bmatrix} I & S(p) \\ 0 & I \end{bmatrix}
+
+    (:func:`stripcoef.conventions.transform_matrix`; Fossen 2011 sec. 7.5.3, eq. 7.248), exact
+    for each level's unsymmetrised matrix: the generalised normals (Newman 1977 eq. 4.104)
+    about p are those about the origin times :math:`H(-p)`, row by row
+    :math:`(n^T, ((x - p)\times n)^T) = (n^T, (x\times n)^T)\, H(-p)` since
+    :math:`n^T S(p) = -(p\times n)^T`; the potentials are linear in them, so
+    :math:`A = -\rho \sum a\, N^T \Phi` (eq. 4.148) takes the congruence.  Files of one
+    surface that differ only by their reference point or centre of gravity share one solve
+    [kg, kg m, kg m^2].  A mirrored level's planes pass through ``about``: solved there."""
+    pv = np.ascontiguousarray(pv, dtype=float)
+    pf = np.ascontiguousarray(pf, dtype=np.int64)
+    about = tuple(float(x) for x in np.ravel(about))
+    if mirrors:
+        return _solved_level(pv, pf, float(scale), float(rho), about, float(near_factor),
+                             tuple(mirrors))
+    n, a = _solved_level(pv, pf, float(scale), float(rho), (0.0, 0.0, 0.0), float(near_factor),
+                         ())
+    if any(about):
+        a = transform_matrix(a, to_point=about)
+    return n, a
 
 
 @array_memo(maxsize=32)
