@@ -485,9 +485,9 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
             tips.append(2)
         else:
             return None
-    return _fins_sheet(np.ascontiguousarray(xh, dtype=float), np.asarray(b, dtype=float),
-                       float(x_aft), float(x_fore), tuple(planforms), tuple(thickness),
-                       tuple(tips), float(rho))
+    return frozen_array(_fins_sheet(np.ascontiguousarray(xh, dtype=float),
+                                    np.asarray(b, dtype=float), float(x_aft), float(x_fore),
+                                    tuple(planforms), tuple(thickness), tuple(tips), float(rho)))
 
 
 @array_memo(maxsize=16)
