@@ -15,12 +15,18 @@
   shipped files): ``estimate(mares.yaml)``, the first and the mean of the next 10 in one
   process (the equivalent bodies of the 3D corrections, ``stripcoef.hull.axisymmetric``);
 - the finned circle's exact roll series (``stripcoef.sections.added_mass``), 240 hull
-  radii and tips, each computed afresh (its memo bypassed).
+  radii and tips, each computed afresh (its memo bypassed);
+- one surface about another reference point: ``estimate(bluerov2_heavy.yaml)`` about its
+  centre of gravity after the file's own estimate (about the centre of buoyancy) in the same
+  process (``stripcoef.hull.panels``: the level solves are kept about the surface's own
+  origin and moved to each reference point);
+- the CFD comparison's models: ``validation.cfd.stored()`` (``stripcoef.cfd.compare.model_for``
+  of every stored CFD case), in a process of its own (``--cfd``; it reads the hull memos).
 
 Each number is the least CPU time (``time.process_time``) of ``--repeat`` runs, BLAS on one
 thread, as in the tests.
 
-Usage: python -m benchmarks.library_hotpaths [--repeat 3]
+Usage: python -m benchmarks.library_hotpaths [--repeat 3] [--cfd]
 """
 
 import argparse
@@ -50,7 +56,11 @@ def least(f, repeat: int) -> float:
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--cfd", action="store_true", help="time validation.cfd.stored() only")
     args = ap.parse_args(argv)
+    if args.cfd:
+        cfd_models()
+        return
     from stripcoef import estimate
     from stripcoef.hull.finsheet import FinPlanform, ring_velocity, sheet_mesh
     from stripcoef.simulate import simulate
@@ -77,6 +87,7 @@ def main(argv=None):
     panel_kernels(args.repeat)
     repeated_estimates()
     roll_series(args.repeat)
+    moved_reference()
 
 
 def panel_kernels(repeat: int):
@@ -112,6 +123,29 @@ def roll_series(repeat: int):
     series = _unit_roll_series.__wrapped__
     print(f"finned-circle roll series, 240 cases: "
           f"{least(lambda: [series(*c) for c in cases], repeat):.2f} s")
+
+
+def moved_reference():
+    """``estimate`` of the BlueROV2 Heavy vehicle file about its centre of gravity, after the
+    file's own estimate (about the centre of buoyancy) in this process."""
+    from stripcoef import estimate
+
+    path = ROOT / "geometry" / "bluerov2_heavy.yaml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        estimate(path, reference_point=[0.0, 0.0, 0.0])
+        moved = least(lambda: estimate(path, reference_point="center_of_gravity"), 1)
+    print(f"estimate(bluerov2_heavy.yaml) about its CG after one about the origin: {moved:.2f} s")
+
+
+def cfd_models():
+    """``validation.cfd.stored()``: the comparison model of every stored CFD case."""
+    from validation.cfd import stored
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        print(f"validation.cfd.stored(), every stored CFD case's model: "
+              f"{least(stored, 1):.2f} s")
 
 
 if __name__ == "__main__":

@@ -139,3 +139,26 @@ def test_run_folder_of_an_old_absolute_path():
 
     assert run_folder("/tmp/ref-box/surge_1m_s_L4") == "surge_1m_s_L4"
     assert run_folder(str(PurePosixPath("surge_1m_s_L3"))) == "surge_1m_s_L3"
+
+
+def test_comparison_model_damping_is_the_default_estimates():
+    """The comparison model's coarse section panels (COMPARE_SECTION_PANELS) change only its
+    added mass: the damping compared is the default estimate's, bit for bit."""
+    import warnings
+
+    from stripcoef.assembly import EstimateOptions, estimate
+    from stripcoef.cfd.compare import model_for
+    from stripcoef.fluid import Fluid
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    vehicle = load_vehicle(Path(__file__).resolve().parent.parent / "reference_tables" / "cfd"
+                           / "cylinder_ld1.stl", origin="centroid")
+    water = Fluid(density=998.0, kinematic_viscosity=1e-6, source="test water")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fast = model_for(vehicle, speed=0.5, fluid=water)
+        full = estimate(vehicle, EstimateOptions(speed=0.5, reference_point="origin",
+                                                 fluid=water, added_mass_method="strips"))
+    np.testing.assert_array_equal(fast.linear_damping, full.linear_damping)
+    np.testing.assert_array_equal(fast.quadratic_damping, full.quadratic_damping)
+    assert not np.array_equal(fast.added_mass, full.added_mass)   # the option took effect

@@ -95,14 +95,25 @@ def compare_rows(result, linear_damping, quadratic_damping) -> tuple[CompareRow,
     return tuple(rows)
 
 
+#: Panels per 2D section of the comparison model's strip added mass (:func:`model_for`): the
+#: damping compared does not read the added mass (``assembly.damping.damping_matrices`` takes
+#: the strips, not M_A), so the coarse count only saves time: the stored CFD cases' damping
+#: matrices and docs/validation.md's cfd section identical bit for bit to the default
+#: adaptive count, validation.cfd.stored() 8.1-9.6 -> 3.8 s of CPU (docs/performance.md).
+COMPARE_SECTION_PANELS = 16
+
+
 def model_for(vehicle, *, speed: float, fluid):
     """The default model of ``vehicle`` for the comparison: the CFD's water and speed,
     moments about the vehicle's origin (where the CFD's surface has its origin), strip
-    theory's added mass (only the damping is compared; the panel method would cost time)."""
+    theory's added mass on :data:`COMPARE_SECTION_PANELS` panels per section (only the
+    damping is compared, and it does not read the added mass; the panel method would cost
+    time)."""
     from stripcoef.assembly import EstimateOptions, estimate
 
     return estimate(vehicle, EstimateOptions(speed=speed, reference_point="origin",
-                                             fluid=fluid, added_mass_method="strips"))
+                                             fluid=fluid, added_mass_method="strips",
+                                             section_panels=COMPARE_SECTION_PANELS))
 
 
 def comparison_speed(result) -> float:
@@ -131,4 +142,4 @@ def with_comparison(result, vehicle, *, fluid, model=None):
                                                       model.reference_point]})
 
 
-__all__ = ["CompareRow", "compare_rows", "comparison_speed", "model_for", "with_comparison"]
+__all__ = ["COMPARE_SECTION_PANELS", "CompareRow", "compare_rows", "comparison_speed", "model_for", "with_comparison"]

@@ -50,6 +50,7 @@ import math
 import numpy as np
 from scipy.special import ellipe, ellipk
 from stripcoef.errors import InputError
+from stripcoef.hull.memo import array_memo
 
 
 #: Meridian panels used by default.
@@ -527,25 +528,22 @@ def body_of_revolution_added_mass(x, r, *, rho: float, x_ref: float = 0.0,
     ----------
     Newman (1977) sec. 4.13-4.15; Hess & Smith (1967) sec. 5; Lamb (1932) sec. 373.
     """
-    x = np.ascontiguousarray(x, dtype=float)
-    r = np.ascontiguousarray(r, dtype=float)
-    return _body_of_revolution(x.tobytes(), x.shape, r.tobytes(), r.shape, float(rho),
+    return _body_of_revolution(np.ascontiguousarray(x, dtype=float),
+                               np.ascontiguousarray(r, dtype=float), float(rho),
                                float(x_ref), int(panels), tuple(int(k) for k in modes),
-                               bool(area_linear)).copy()
+                               bool(area_linear))
 
 
-@functools.lru_cache(maxsize=256)
-def _body_of_revolution(x: bytes, xshape: tuple, r: bytes, rshape: tuple, rho: float,
-                        x_ref: float, panels: int, modes: tuple, area_linear: bool):
-    """:func:`body_of_revolution_added_mass` of the profile as bytes (hashable, immutable: the
-    memo's key), read-only.  Solved once per process for the same profile and settings: the
-    3D corrections of every estimate of a vehicle solve the same equivalent bodies (a study of
-    512 samples of one vehicle, 514 solves of 2 distinct bodies: tests/test_study.py)."""
-    xn, rn = _meridian(np.frombuffer(x).reshape(xshape).copy(),
-                       np.frombuffer(r).reshape(rshape).copy(), panels, area_linear)
-    out = _meridian_added_mass(xn - x_ref, rn, rho, _influence, modes)
-    out.flags.writeable = False
-    return out
+@array_memo(maxsize=256)
+def _body_of_revolution(x, r, rho: float, x_ref: float, panels: int, modes: tuple,
+                        area_linear: bool):
+    """:func:`body_of_revolution_added_mass` of float64 profile arrays and plain numbers (the
+    memo's key, :func:`stripcoef.hull.memo.array_memo`).  Solved once per process for the
+    same profile and settings: the 3D corrections of every estimate of a vehicle solve the
+    same equivalent bodies (a study of 512 samples of one vehicle, 514 solves of 2 distinct
+    bodies: tests/test_study.py)."""
+    xn, rn = _meridian(x, r, panels, area_linear)
+    return _meridian_added_mass(xn - x_ref, rn, rho, _influence, modes)
 
 
 def _meridian_added_mass(xn, rn, rho, influence, modes=(0, 1)) -> np.ndarray:

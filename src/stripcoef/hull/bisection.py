@@ -9,9 +9,9 @@ refine the faces as they are: every new vertex lies on a face, so the geometry i
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
+
+from stripcoef.hull.memo import array_memo
 
 
 def bisect_longest(vertices, faces, max_edge):
@@ -90,18 +90,14 @@ def refine(vertices, faces, panels: int):
     vehicle's surface the same way at every estimate of it)."""
     if len(faces) >= panels:
         return vertices, faces
-    v = np.ascontiguousarray(vertices, dtype=float)
-    f = np.ascontiguousarray(faces, dtype=np.int64)
-    rv, rf = _refined(v.tobytes(), v.shape, f.tobytes(), f.shape, int(panels))
-    return rv.copy(), rf.copy()
+    return _refined(np.ascontiguousarray(vertices, dtype=float),
+                    np.ascontiguousarray(faces, dtype=np.int64), int(panels))
 
 
-@functools.lru_cache(maxsize=32)
-def _refined(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, panels: int):
-    """:func:`refine` of the mesh as bytes (hashable, immutable: the memo's key); the arrays
-    returned are read-only (the caller copies them)."""
-    vertices = np.frombuffer(vertices, dtype=float).reshape(vshape).copy()
-    faces = np.frombuffer(faces, dtype=np.int64).reshape(fshape).copy()
+@array_memo(maxsize=32)
+def _refined(vertices, faces, panels: int):
+    """:func:`refine` of float64 vertices and int64 faces (the memo's key,
+    :func:`stripcoef.hull.memo.array_memo`)."""
     t = vertices[faces]
     hi = float(np.linalg.norm(t[:, [1, 2, 0]] - t, axis=2).max())
     lo = 1e-3 * hi
@@ -117,8 +113,6 @@ def _refined(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, panels
                 best = (v, f)
         if 0.97 * panels <= len(best[1]):
             break
-    for a in best:
-        a.flags.writeable = False
     return best
 
 

@@ -34,7 +34,6 @@ sec. 373 (the exact spheroid), Hess & Smith (1967): the solver's references, in 
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 
@@ -45,6 +44,7 @@ from stripcoef.geometry.shapes import has_rings, section_half_chord
 from stripcoef.model import frozen_array
 from stripcoef.geometry.mesh import ring_integrals, section_geometry
 from stripcoef.hull.finsheet import FinPlanform, fins_added_mass
+from stripcoef.hull.memo import array_memo
 from stripcoef.sections import get_shape, section_added_mass
 from stripcoef.sections.added_mass import fin_edgewise
 from stripcoef.hull.axisymmetric import (DEFAULT_PANELS, body_of_revolution_added_mass,
@@ -485,20 +485,18 @@ def fin_sheet_3d(strips, rho: float) -> np.ndarray | None:
             tips.append(2)
         else:
             return None
-    return _fins_sheet(xh.tobytes(), np.asarray(b, dtype=float).tobytes(), float(x_aft),
-                       float(x_fore), tuple(planforms), tuple(thickness), tuple(tips), float(rho))
+    return frozen_array(_fins_sheet(np.ascontiguousarray(xh, dtype=float),
+                                    np.asarray(b, dtype=float), float(x_aft), float(x_fore),
+                                    tuple(planforms), tuple(thickness), tuple(tips), float(rho)))
 
 
-@functools.lru_cache(maxsize=16)
-def _fins_sheet(xh, rh, x_aft, x_fore, planforms, thickness, tips, rho) -> np.ndarray:
-    """:func:`stripcoef.hull.finsheet.fins_added_mass` of the hull radius ``rh`` at the
-    stations ``xh`` (float64 bytes: hashable, so that the roll correction and the assembly of
-    one estimate solve it once), read-only."""
-    x, r = np.frombuffer(xh), np.frombuffer(rh)
-    share = fins_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
-                            list(thickness), list(tips), rho=rho)
-    share.flags.writeable = False
-    return share
+@array_memo(maxsize=16)
+def _fins_sheet(x, r, x_aft, x_fore, planforms, thickness, tips, rho) -> np.ndarray:
+    """:func:`stripcoef.hull.finsheet.fins_added_mass` of the hull radius ``r`` at the
+    stations ``x`` (float64 arrays; the memo of :func:`stripcoef.hull.memo.array_memo`, so
+    that the roll correction and the assembly of one estimate solve it once)."""
+    return fins_added_mass(lambda s: np.interp(s, x, r), x_aft, x_fore, list(planforms),
+                           list(thickness), list(tips), rho=rho)
 
 
 def _roll_is_roundoff(strips, m44, rho) -> bool:

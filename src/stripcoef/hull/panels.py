@@ -67,13 +67,13 @@ CAD-style shapes its estimate then covers 272 of 281 terms against Capytaine ref
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
+from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
     bisect_longest, enclosed_volume, refine, surface_area)
+from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.remesh import edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
@@ -382,32 +382,47 @@ FAMILIES = ("auto", "remesh", "input")
 
 
 def _solve_level(pv, pf, scale, rho, about, near_factor, mirrors=()):
-    """(panels, 6x6 added mass) of one level; with ``mirrors`` the level is a remeshed
-    :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with image
-    panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
+    r"""(panels, 6x6 added mass about ``about``) of one level; with ``mirrors`` the level is a
+    remeshed :func:`~stripcoef.hull.mirror_panels.capped_part`, solved without its caps with
+    image panels (:mod:`stripcoef.hull.mirror_panels`; panels: those of the whole mirrored
     panelling).  Solved once per process for the same panels and settings
     (:func:`_solved_level`: a vehicle file's surface is estimated by many commands and tests,
-    the BlueROV2 Heavy's two levels about 8 s each time)."""
+    the BlueROV2 Heavy's two levels about 8 s each time).
+
+    Without mirrors the level is solved about the origin of its own coordinates and moved to
+    ``about`` (:math:`p`) by the rigid-body transfer of the matrix,
+
+    .. math:: A_p = H(-p)^T A_0\, H(-p),\qquad
+              H(-p) = \begin{bmatrix} I & S(p) \\ 0 & I \end{bmatrix}
+
+    (:func:`stripcoef.conventions.transform_matrix`; Fossen 2011 sec. 7.5.3, eq. 7.248), exact
+    for each level's unsymmetrised matrix: the generalised normals (Newman 1977 eq. 4.104)
+    about p are those about the origin times :math:`H(-p)`, row by row
+    :math:`(n^T, ((x - p)\times n)^T) = (n^T, (x\times n)^T)\, H(-p)` since
+    :math:`n^T S(p) = -(p\times n)^T`; the potentials are linear in them, so
+    :math:`A = -\rho \sum a\, N^T \Phi` (eq. 4.148) takes the congruence.  Files of one
+    surface that differ only by their reference point or centre of gravity share one solve
+    [kg, kg m, kg m^2].  A mirrored level's planes pass through ``about``: solved there."""
     pv = np.ascontiguousarray(pv, dtype=float)
     pf = np.ascontiguousarray(pf, dtype=np.int64)
-    n, a = _solved_level(pv.tobytes(), pv.shape, pf.tobytes(), pf.shape, float(scale),
-                         float(rho), tuple(float(x) for x in np.ravel(about)), float(near_factor),
-                         tuple(mirrors))
-    return n, a.copy()
-
-
-@functools.lru_cache(maxsize=32)
-def _solved_level(vertices: bytes, vshape: tuple, faces: bytes, fshape: tuple, scale: float,
-                  rho: float, about: tuple, near_factor: float, mirrors: tuple):
-    """:func:`_solve_level` of the level's vertices and faces as bytes (hashable, immutable:
-    the memo's key); the result is read-only (the caller copies it)."""
-    pv = np.frombuffer(vertices, dtype=float).reshape(vshape).copy()
-    pf = np.frombuffer(faces, dtype=np.int64).reshape(fshape).copy()
-    about = np.array(about)
-    n, a = _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors)
-    a = np.array(a, dtype=float)
-    a.flags.writeable = False
+    about = tuple(float(x) for x in np.ravel(about))
+    if mirrors:
+        return _solved_level(pv, pf, float(scale), float(rho), about, float(near_factor),
+                             tuple(mirrors))
+    n, a = _solved_level(pv, pf, float(scale), float(rho), (0.0, 0.0, 0.0), float(near_factor),
+                         ())
+    if any(about):
+        a = transform_matrix(a, to_point=about)
     return n, a
+
+
+@array_memo(maxsize=32)
+def _solved_level(pv, pf, scale: float, rho: float, about: tuple, near_factor: float,
+                  mirrors: tuple):
+    """:func:`_solve_level` of float64 vertices, int64 faces and plain numbers (the memo's
+    key, :func:`stripcoef.hull.memo.array_memo`)."""
+    n, a = _solve_level_now(pv, pf, scale, rho, np.array(about), near_factor, mirrors)
+    return n, np.array(a, dtype=float)
 
 
 def _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors=()):
