@@ -21,6 +21,7 @@ import yaml
 
 from stripcoef import estimate
 from stripcoef.assembly.lift import fin_munk_compensation, lifting_fins, munk_lift_matrix
+from stripcoef.conventions import shift_operator, transform_matrix
 from stripcoef.errors import ModelWarning
 from stripcoef.geometry.vehicle import parse_vehicle
 from stripcoef.hull.lift import fin_lift_matrix, rotary_incidence_point
@@ -74,7 +75,8 @@ def test_flat_plate_lift_carries_its_munk_moment():
     mass, lift = _plate(chord)
     thin_airfoil = -0.5 * RHO * chord ** 2 * (math.pi / 2.0)   # N_v, c_m,mid = pi alpha / 2
     assert mass[1, 1] == pytest.approx(-thin_airfoil, rel=1e-12)   # the identity itself
-    once = _jacobian(mass, lift - munk_lift_matrix(mass))
+    once = _jacobian(mass, lift - munk_lift_matrix(mass, surge=False))
+    assert np.array_equal(munk_lift_matrix(mass, surge=False), munk_lift_matrix(mass))
     twice = _jacobian(mass, lift)
     assert once[5, 1] == pytest.approx(thin_airfoil, rel=1e-6)
     assert once[1, 1] == pytest.approx(-RHO * math.pi * chord, rel=1e-6)  # 2 pi q c per alpha
@@ -95,6 +97,13 @@ def test_munk_lift_matrix_is_the_linearised_munk_moment():
     # the surge column: exact at pure surge, -u^2 L_M e1 = the Munk part at nu = u e1
     nu = np.array([u, 0, 0, 0, 0, 0.0])
     assert np.allclose(-u * lm @ nu, _munk_force(mass, nu), atol=1e-9 * np.abs(mass).max())
+    # without the surge added mass's part: the same couple about every point
+    r = np.array([0.3, -0.2, 0.1])
+    moved = transform_matrix(mass, from_point=np.zeros(3), to_point=r)
+    nu = rng.normal(size=6)
+    nu_b = np.linalg.solve(shift_operator(-r), nu)    # the same motion's velocity at r
+    assert np.allclose(munk_lift_matrix(mass, surge=False) @ nu,
+                       munk_lift_matrix(moved, surge=False) @ nu_b, rtol=1e-10, atol=1e-10)
 
 
 def _tail_vehicle(fins: bool):
@@ -149,6 +158,6 @@ def test_compensation_is_per_lift_axis():
     mass[2, 4] = mass[4, 2] = 0.7
     delta, info = fin_munk_compensation(mass, lambda v: 0.5 * mass, one)
     assert np.allclose(delta[[0, 1, 2, 3, 4]], 0.0)
-    assert delta[5, 1] == pytest.approx(-0.5 * (5.0 - 1.0))
+    assert delta[5, 1] == pytest.approx(-0.5 * 5.0)     # m22 only: the m11 stays in C_A
     assert delta[5, 5] == pytest.approx(-0.5 * -1.5)
     assert info == {"y": {"fins": ["fin_top"], "added_mass": 2.5}}

@@ -167,7 +167,7 @@ def _hull_boundary_layer(slender: dict, run: float):
     return float(np.interp(run, s, layer["delta"])), power_law_exponent(h), "Head"
 
 
-def munk_lift_matrix(mass_matrix) -> np.ndarray:
+def munk_lift_matrix(mass_matrix, *, surge: bool = True) -> np.ndarray:
     r"""The Munk moment of an added mass written as a lift matrix (force :math:`-uL\nu`).
 
     The moments of :math:`-C_A(\nu)\nu` from the added mass's linear momentum
@@ -181,12 +181,19 @@ def munk_lift_matrix(mass_matrix) -> np.ndarray:
 
     (S the cross-product matrix; the surge column exact at pure surge, zero for a body with
     a mirror plane y = 0 or z = 0). Terms of second order in the cross velocities (the roll
-    moment :math:`(m_{33} - m_{22})vw`) are not of this form.
+    moment :math:`(m_{33} - m_{22})vw`) are not of this form. ``surge=False`` keeps only the
+    moment of the linear momentum carried at the surge speed, :math:`u\,e_1 \times a`
+    (:math:`L_M = [0;\ S(e_1)M_{11},\ S(e_1)M_{12}]`: the :math:`m_{22}` of
+    :math:`(m_{22} - m_{11})`), leaving out that of the surge added mass carried at the cross
+    velocities (:math:`-S(M_{11}e_1)`, the :math:`m_{11}`); a is the same about every point, so
+    that part is a couple, the same about every reference point.
 
     Parameters
     ----------
     mass_matrix : (6, 6)
         Symmetric added mass about the reference point [kg, kg m, kg m^2]
+    surge : bool
+        With the surge added mass's part (the whole Munk moment)
 
     Returns
     -------
@@ -204,7 +211,7 @@ def munk_lift_matrix(mass_matrix) -> np.ndarray:
     e1 = np.array([1.0, 0.0, 0.0])
     a0 = m[:3, :3] @ e1
     out = np.zeros((6, 6))
-    out[3:, :3] = skew(e1) @ m[:3, :3] - skew(a0)
+    out[3:, :3] = skew(e1) @ m[:3, :3] - (skew(a0) if surge else 0.0)
     out[3:, 0] = skew(e1) @ a0
     out[3:, 3:] = skew(e1) @ m[:3, 3:]
     return out
@@ -246,12 +253,15 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
 
     .. math:: \Delta L_{k,:} = -L_M(M_A - M_A^{-n})_{k,:},\qquad k = 5\ (n = y),\ 4\ (n = z),
 
-    :math:`L_M` of :func:`munk_lift_matrix`, :math:`M_A^{-n}` the added mass of the vehicle
-    without those fins (:func:`lifting_fins`) by the same method about the same point: the
-    difference is their share, their interference with the hull and the other fins included;
-    the moment row k is the one their lift makes (the yaw moment of the sway force), so a
-    fin's added mass along its span (the sail's in heave), which makes no lift, keeps its
-    Munk moment.
+    :math:`L_M` of :func:`munk_lift_matrix` without the surge added mass's part
+    (``surge=False``), :math:`M_A^{-n}` the added mass of the vehicle without those fins
+    (:func:`lifting_fins`) by the same method about the same point: the difference is their
+    share, their interference with the hull and the other fins included; the moment row k is
+    the one their lift makes (the yaw moment of the sway force), so a fin's added mass along
+    its span (the sail's in heave), which makes no lift, keeps its Munk moment. The fins'
+    surge added mass (:math:`m_{11}` of :math:`(m_{22} - m_{11})`, second order in their
+    thickness, zero for the plate below) keeps its part in C_A: so :math:`\Delta L` is a
+    couple, the same whichever reference point the model is estimated about.
 
     Why: a lifting surface's lift at its aerodynamic centre (the quarter chord,
     :func:`_panel_terms`) is its whole potential-flow force and moment, the Munk moment
@@ -311,7 +321,7 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
                                       bodies=[b for b in vehicle.bodies if b.name not in names])
         share = m_a - np.asarray(added_mass_of(without), dtype=float)
         k = _MOMENT_ROW[axis]
-        out[k] = -munk_lift_matrix(share)[k]
+        out[k] = -munk_lift_matrix(share, surge=False)[k]
         info[axis] = {"fins": list(names), "added_mass": float(share[" yz".index(axis),
                                                                      " yz".index(axis)])}
     return out, info
