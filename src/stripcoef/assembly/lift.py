@@ -239,6 +239,10 @@ def lifting_fins(vehicle) -> dict:
     return out
 
 
+#: Entries of the fins' share of M_A below this fraction of M_A's largest are round-off of the
+#: difference (set to zero, as :func:`stripcoef.conventions.clean_roundoff`) [-].
+ROUNDOFF = 1e-12
+
 #: The moment row of the lift matrix that a fin's lift along each axis makes (yaw for a
 #: sway force, pitch for a heave force) [-].
 _MOMENT_ROW = {"y": 5, "z": 4}
@@ -320,6 +324,7 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
         without = dataclasses.replace(vehicle, control_surfaces=[],
                                       bodies=[b for b in vehicle.bodies if b.name not in names])
         share = m_a - np.asarray(added_mass_of(without), dtype=float)
+        share[np.abs(share) < ROUNDOFF * np.abs(m_a).max()] = 0.0   # the difference's round-off
         k = _MOMENT_ROW[axis]
         out[k] = -munk_lift_matrix(share, surge=False)[k]
         info[axis] = {"fins": list(names), "added_mass": float(share[" yz".index(axis),
