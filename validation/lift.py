@@ -1050,6 +1050,8 @@ def fin_munk_section() -> list[str]:
     rows = fin_munk_rows()
     towards = [f"configuration {r['config']}'s {r['name'][0]}'_{r['name'][1]}" for r in rows
                if abs(r["once"] / r["measured"] - 1) < abs(r["twice"] / r["measured"] - 1)]
+    towards_stratford = sum(abs(r["once"] / r["measured"] - 1) < abs(r["twice"] / r["measured"] - 1)
+                            for r in fin_munk_rows("stratford"))
     table = [(str(r["config"]), f"{r['name'][0]}'_{r['name'][1]}", f"{r['measured']:+.5f}",
               f"{r['twice']:+.5f} ({r['twice'] / r['measured']:.2f})",
               f"{r['once']:+.5f} ({r['once'] / r['measured']:.2f})") for r in rows]
@@ -1106,8 +1108,9 @@ def fin_munk_section() -> list[str]:
         "becomes more "
         f"stable still (G_H {g['twice'][0]:+.2f} -> {g['once'][0]:+.2f}, G_V "
         f"{g['twice'][1]:+.2f} -> {g['once'][1]:+.2f}; measured {g['measured'][0]:+.2f}, "
-        f"{g['measured'][1]:+.2f}). The rule is not chosen by these data: the fin's centre of "
-        "pressure is where its lift puts it. REMUS turns wider: the neutral REMUS's steady turn "
+        f"{g['measured'][1]:+.2f}). Under `body_lift: stratford` {towards_stratford} of the "
+        f"{len(rows)} move towards the measured. The rule is "
+        "not chosen by these data: the fin's centre of pressure is where its lift puts it. REMUS turns wider: the neutral REMUS's steady turn "
         f"at 1.2 m/s with 10 deg of rudder ('Rudder step' below) has R = {r_once:.3f} m, "
         f"{r_twice:.3f} m with the fins' Munk moment counted twice "
         f"({100 * (r_once / r_twice - 1):+.1f} %). Prestero 2001 adds his fin lift at the fin "
