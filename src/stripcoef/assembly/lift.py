@@ -252,20 +252,22 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
     r"""The lift matrix that takes the lifting fins' Munk moment off C_A: each fin's Munk
     moment counted once, in its lift.
 
-    For the fins lifting along y (spanning z: rudders, a sail) and those lifting along z
-    (spanning y), each set n on its own,
-
-    .. math:: \Delta L_{k,:} = -L_M(M_A - M_A^{-n})_{k,:},\qquad k = 5\ (n = y),\ 4\ (n = z),
+    .. math:: \Delta L_{k,:} = -L_M(M_A - M_A^{-})_{k,:},\qquad k = 5\ \text{if a fin
+              lifts along y},\quad k = 4\ \text{if one lifts along z},
 
     :math:`L_M` of :func:`munk_lift_matrix` without the surge added mass's part
-    (``surge=False``), :math:`M_A^{-n}` the added mass of the vehicle without those fins
+    (``surge=False``), :math:`M_A^{-}` the added mass of the vehicle without its lifting fins
     (:func:`lifting_fins`) by the same method about the same point: the difference is their
-    share, their interference with the hull and the other fins included; the moment row k is
-    the one their lift makes (the yaw moment of the sway force), so a fin's added mass along
-    its span (the sail's in heave), which makes no lift, keeps its Munk moment. The fins'
-    surge added mass (:math:`m_{11}` of :math:`(m_{22} - m_{11})`, second order in their
-    thickness, zero for the plate below) keeps its part in C_A: so :math:`\Delta L` is a
-    couple, the same whichever reference point the model is estimated about.
+    share, their interference with the hull included; the moment row k is the one a lift
+    along y (spanning z: rudders, a sail) or z makes (the yaw moment of the sway force), so a
+    fin's added mass along its span (the sail's in heave), which makes no lift, keeps its
+    Munk moment where no other fin lifts that way. [assumption] In a cruciform the fins
+    lifting along y take the whole share in sway, the other pair's edgewise part with it
+    (second order in its thickness: 0.45 of 14.8 kg on SUBOFF's NACA 0020 planes, by removing
+    one pair at a time, which costs a 3D fin solve per pair: about 2 s of CPU on REMUS). The
+    fins' surge added mass (:math:`m_{11}` of :math:`(m_{22} - m_{11})`, second order in
+    their thickness, zero for the plate below) keeps its part in C_A: so :math:`\Delta L` is
+    a couple, the same whichever reference point the model is estimated about.
 
     Why: a lifting surface's lift at its aerodynamic centre (the quarter chord,
     :func:`_panel_terms`) is its whole potential-flow force and moment, the Munk moment
@@ -318,17 +320,21 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
     eq. 3.46.
     """
     out = np.zeros((6, 6))
-    info: dict = {}
+    fins = lifting_fins(vehicle)
+    if not fins:
+        return out, {}
+    names = {n for group in fins.values() for n in group}
     m_a = np.asarray(added_mass, dtype=float)
-    for axis, names in lifting_fins(vehicle).items():
-        without = dataclasses.replace(vehicle, control_surfaces=[],
-                                      bodies=[b for b in vehicle.bodies if b.name not in names])
-        share = m_a - np.asarray(added_mass_of(without), dtype=float)
-        share[np.abs(share) < ROUNDOFF * np.abs(m_a).max()] = 0.0   # the difference's round-off
-        k = _MOMENT_ROW[axis]
-        out[k] = -munk_lift_matrix(share, surge=False)[k]
-        info[axis] = {"fins": list(names), "added_mass": float(share[" yz".index(axis),
-                                                                     " yz".index(axis)])}
+    without = dataclasses.replace(vehicle, control_surfaces=[],
+                                  bodies=[b for b in vehicle.bodies if b.name not in names])
+    share = m_a - np.asarray(added_mass_of(without), dtype=float)
+    share[np.abs(share) < ROUNDOFF * np.abs(m_a).max()] = 0.0   # the difference's round-off
+    lm = munk_lift_matrix(share, surge=False)
+    info: dict = {}
+    for axis, group in fins.items():
+        out[_MOMENT_ROW[axis]] = -lm[_MOMENT_ROW[axis]]
+        i = " yz".index(axis)
+        info[axis] = {"fins": list(group), "added_mass": float(share[i, i])}
     return out, info
 
 
