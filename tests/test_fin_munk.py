@@ -128,7 +128,7 @@ def test_fin_force_acts_at_its_quarter_chord(tail_models):
     """REMUS's hull with and without its four tail fins (no body lift, the same reference
     point): what the fins add to the linearised sway force and yaw moment (lift + the Munk
     part of C_A) acts at their quarter chord, where their lift is; before the fins' Munk
-    moment was counted once it sat 0.97 chords ahead of it."""
+    moment was counted once it sat about a chord ahead of it."""
     finned, bare = tail_models
     vehicle = _tail_vehicle(True)
     fin = next(b for b in vehicle.bodies if b.name == "fin_top")
