@@ -1075,7 +1075,8 @@ def fin_munk_section() -> list[str]:
                                m, xg)
     model = remus()
     twice_remus = dataclasses.replace(
-        model, lift=model.lift - fin_munk_lift(model, load_vehicle(ROOT / "geometry" / "remus100.yaml")))
+        model,
+        lift=model.lift - fin_munk_lift(model, load_vehicle(ROOT / "geometry" / "remus100.yaml")))
     r_once, r_twice = turn_agreement(model)[0].radius, turn_agreement(twice_remus)[0].radius
     return [
         "### Each fin's Munk moment counted once", "",
@@ -1109,13 +1110,15 @@ def fin_munk_section() -> list[str]:
         f"stable still (G_H {g['twice'][0]:+.2f} -> {g['once'][0]:+.2f}, G_V "
         f"{g['twice'][1]:+.2f} -> {g['once'][1]:+.2f}; measured {g['measured'][0]:+.2f}, "
         f"{g['measured'][1]:+.2f}). Under `body_lift: stratford` {towards_stratford} of the "
-        f"{len(rows)} move towards the measured. The rule is "
-        "not chosen by these data: the fin's centre of pressure is where its lift puts it. REMUS turns wider: the neutral REMUS's steady turn "
+        f"{len(rows)} move towards the measured. The rule is not chosen by these data: the "
+        "fin's centre of pressure is where its lift puts it. REMUS turns wider: the neutral "
+        "REMUS's steady turn "
         f"at 1.2 m/s with 10 deg of rudder ('Rudder step' below) has R = {r_once:.3f} m, "
         f"{r_twice:.3f} m with the fins' Munk moment counted twice "
         f"({100 * (r_once / r_twice - 1):+.1f} %). Prestero 2001 adds his fin lift at the fin "
         "post to the Munk moment -(X_udot - Y_vdot) of the whole vehicle's Y_vdot, fins "
-        "included (reference_tables/prestero2001, N_uv): the count this removes. Not modelled: the quasi-steady rotation's camber moment about the "
+        "included (reference_tables/prestero2001, N_uv): the count this removes. Not "
+        "modelled: the quasi-steady rotation's camber moment about the "
         "quarter chord (Theodorsen's -pi rho b^3 U alpha_dot / 2), about 1e-3 of a stern fin's "
         "rotary moment at its lever arm.", ""]
 

@@ -280,9 +280,12 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
     exactly the plate's Munk moment: in Theodorsen's (1935) solution the apparent-mass
     (non-circulatory) terms hold no term in :math:`U^2\alpha`, which is all in the circulatory
     lift at the quarter chord. C_A(nu) of M_A (Fossen 2011, eq. 3.46), which holds the fins'
-    added mass, adds that moment again, with the fins' whole share of M_A (their finned-circle
-    sections with the hull's interference, :func:`stripcoef.assembly.added_mass.fin_share_corrections`):
-    several times the lift's own quarter-chord moment on a low-aspect-ratio fin. Keeping the
+    added mass, adds that moment again, with the fins' whole share of M_A (their
+    finned-circle sections with the hull's interference,
+    :func:`stripcoef.assembly.added_mass.fin_share_corrections`): several times the lift's own
+    quarter-chord moment on a low-aspect-ratio fin (6.7 times on SUBOFF's stern planes, whose
+    centre of pressure the double count put 1.7 chords ahead of their quarter chord,
+    docs/validation.md). Keeping the
     lift and taking the fins' Munk part off C_A (not the reverse) keeps the fin's centre of
     pressure where the lift puts it and leaves M_A whole for the accelerations; it is written
     into L so that every consumer of M_A and L (simulate, limits, the exports, whose
