@@ -137,17 +137,17 @@ def test_stratford_station_on_suboff():
 @pytest.mark.slow
 def test_stratford_rule_against_table4_and_the_drift_curves():
     """The measured result that keeps the rule an option (docs/validation.md): more of Table 4's
-    checks (18 of 26 against the default's 15) and the static terms of the appended
-    configurations within 25 %, but fewer drift-curve points (19 of 40 against 22), the rotary
+    checks (19 of 26 against the default's 15) and the static terms of the appended
+    configurations within 25 %, but fewer drift-curve points (20 of 40 against 21), the rotary
     terms short (configuration 2's Y'_r 0.44, 0.24 before the fins' rotary incidence was taken
     at their three-quarter chord) and a narrower lift band (sd(ln) 0.419 against 0.557; 0.727
     before)."""
     from validation.lift import (drift_curve_checks, issue_checks, lift_band,
                                  suboff_comparisons)
 
-    assert issue_checks("stratford") == 18 and issue_checks("datcom") == 15
-    assert drift_curve_checks("stratford") == (19, 40)
-    assert drift_curve_checks("datcom") == (22, 40)
+    assert issue_checks("stratford") == 19 and issue_checks("datcom") == 15
+    assert drift_curve_checks("stratford") == (20, 40)
+    assert drift_curve_checks("datcom") == (21, 40)
     rows = {(c["config"], c["name"]): c for c in suboff_comparisons()}
     for (config, name), c in rows.items():
         if c["kind"] == "static" and config in (1, 2, 4, 5):

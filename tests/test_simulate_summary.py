@@ -114,13 +114,14 @@ def test_summary_warnings():
 
 
 def test_a_rudder_turn_is_commanded_not_a_runaway(remus_file, tmp_path, capsys):
-    """A held rudder turns REMUS more than once in 120 s (0.65 turns in 60 s under the default
-    slender-body lift, whose turning circle is wider than Hoerner's): its yaw moment
+    """A held rudder turns REMUS more than once in 150 s (0.45 turns in 60 s under the default
+    lift, whose turning circle is wider than Hoerner's; 150 s since each fin's Munk moment is
+    counted once, in its lift, which widens it by 10 %): its yaw moment
     u|u| (B_delta delta)_N is steady,
     so the turn is commanded and the Munk warning stays silent; with --no-munk there is no Munk
     moment to blame (issue 37: it fired in both cases)."""
     f = tmp_path / "turn.csv"
-    f.write_text("t,n_propeller,delta_rudder\n0,1500,0.12\n120,1500,0.12\n")
+    f.write_text("t,n_propeller,delta_rudder\n0,1500,0.12\n150,1500,0.12\n")
     for flags in ([], ["--no-munk"]):
         out = tmp_path / "log.csv"
         assert main(["simulate", str(remus_file), "--inputs", str(f), "--out", str(out),

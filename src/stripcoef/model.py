@@ -676,6 +676,8 @@ class HydroModel:
                  munk: bool = True) -> np.ndarray:
         """C(nu) = C_RB(nu) + C_A(nu); ``munk=False`` drops the C_A terms that multiply
         linear velocities into moments (the Munk moment, Ferreira et al. 2009 sec. V.D).
+        The lifting fins' share of it is taken off again in :attr:`lift`, whose fin lift
+        carries it (``stripcoef.assembly.lift.fin_munk_compensation``).
 
         ``nu`` [m/s, rad/s]; returns C [kg/s, kg m/s, kg m^2/s] (C nu in [N, N m]).
         Each term from :func:`coriolis_from_mass` (Fossen 2011, Theorem 3.2, eq. 3.46).

@@ -169,14 +169,16 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     ref = _reference_point(reference_point if reference_point is not None else vehicle.reference,
                            cb, cg)
     method = choose_method(options.added_mass_method, vehicle, st)
-    m_a, am_info, m_a_error = method.compute(AddedMassInputs(
+    inputs = AddedMassInputs(
         vehicle=vehicle, strips=st, rho=rho, about=ref, volume=volume, center=cb,
         corrections=corrections, correction_panels=correction_panels,
-        section_panels=section_panels, added_mass_panels=options.added_mass_panels))
+        section_panels=section_panels, added_mass_panels=options.added_mass_panels)
+    m_a, am_info, m_a_error = method.compute(inputs)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
-    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb, speed=speed,
-                                             viscosity=nu)
+    lift, surfaces, lift_info = vehicle_lift(      # the fins' Munk moment once (in their lift)
+        vehicle, rho, ref, center=cb, speed=speed, viscosity=nu, added_mass=m_a,
+        added_mass_of=lambda v: method.compute(replace(inputs, vehicle=v, strips=v.cut(strips)))[0])
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
                             corrections=corrections, density=rho, kinematic_viscosity=nu,

@@ -13,14 +13,24 @@ interference factor (Pitts, Nielsen & Kaattari 1957) of a fin on a cylindrical s
 round hull (1 elsewhere) and :math:`\sigma_s` the sign
 of the deflection convention (Prestero 2001: a positive rudder gives +Y, a positive
 elevator gives -Z).
+
+A fin's Munk moment is counted once, in its lift (:func:`munk_lift_matrix`): the lift at the
+quarter chord is the fin's whole potential-flow force and moment, and C_A(nu) of the model's
+M_A (Fossen 2011, eq. 3.46) would add the fins' share of the Munk moment a second time, so
+:func:`vehicle_lift` takes it off the lift matrix (given the model's M_A and how it was
+computed):
+
+.. math:: L \leftarrow L - L_{Munk}(M_A - M_A^{without\ lifting\ fins}).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 
 import numpy as np
 
+from stripcoef.conventions import skew
 from stripcoef.errors import InputError, ModelWarning
 from stripcoef.geometry.bodies import Fin
 from stripcoef.geometry.shapes import shape_geometry
@@ -157,8 +167,183 @@ def _hull_boundary_layer(slender: dict, run: float):
     return float(np.interp(run, s, layer["delta"])), power_law_exponent(h), "Head"
 
 
+def munk_lift_matrix(mass_matrix, *, surge: bool = True) -> np.ndarray:
+    r"""The Munk moment of an added mass written as a lift matrix (force :math:`-uL\nu`).
+
+    The moments of :math:`-C_A(\nu)\nu` from the added mass's linear momentum
+    :math:`a = M_{11}\nu_1 + M_{12}\nu_2` (C_A's lower-left block, Fossen 2011 eq. 3.46; what
+    ``HydroModel.coriolis(munk=False)`` drops) are :math:`a \times \nu_1`, e.g.
+    :math:`N = -(m_{22} - m_{11})uv - m_{26}ur`: the Munk moment (Newman 1977, ch. 4). At
+    forward speed u they are :math:`-uL_M\nu` to first order in the cross velocities, with
+
+    .. math:: L_M = \begin{bmatrix} 0 & 0 \\ S(e_1)M_{11} - S(M_{11}e_1) & S(e_1)M_{12}
+              \end{bmatrix},\qquad L_M[3{:}6, 0] = S(e_1)M_{11}e_1
+
+    (S the cross-product matrix; the surge column exact at pure surge, zero for a body with
+    a mirror plane y = 0 or z = 0). Terms of second order in the cross velocities (the roll
+    moment :math:`(m_{33} - m_{22})vw`) are not of this form. ``surge=False`` keeps only the
+    moment of the linear momentum carried at the surge speed, :math:`u\,e_1 \times a`
+    (:math:`L_M = [0;\ S(e_1)M_{11},\ S(e_1)M_{12}]`: the :math:`m_{22}` of
+    :math:`(m_{22} - m_{11})`), leaving out that of the surge added mass carried at the cross
+    velocities (:math:`-S(M_{11}e_1)`, the :math:`m_{11}`); a is the same about every point, so
+    that part is a couple, the same about every reference point.
+
+    Parameters
+    ----------
+    mass_matrix : (6, 6)
+        Symmetric added mass about the reference point [kg, kg m, kg m^2]
+    surge : bool
+        With the surge added mass's part (the whole Munk moment)
+
+    Returns
+    -------
+    (6, 6) array
+        L_M [kg, kg m] in the moment rows (zero force rows)
+
+    References
+    ----------
+    Fossen, T. I. (2011), *Handbook of Marine Craft Hydrodynamics and Motion Control*,
+    Theorem 3.2 (eq. 3.46) and eq. 6.43; Newman, J. N. (1977), *Marine Hydrodynamics*, ch. 4
+    (the moment :math:`(m_{11} - m_{22})U^2\sin\alpha\cos\alpha` of a body in steady
+    translation).
+    """
+    m = np.asarray(mass_matrix, dtype=float)
+    e1 = np.array([1.0, 0.0, 0.0])
+    a0 = m[:3, :3] @ e1
+    out = np.zeros((6, 6))
+    out[3:, :3] = skew(e1) @ m[:3, :3] - (skew(a0) if surge else 0.0)
+    out[3:, 0] = skew(e1) @ a0
+    out[3:, 3:] = skew(e1) @ m[:3, 3:]
+    return out
+
+
+def lifting_fins(vehicle) -> dict:
+    """The fin appendages whose lift the model carries, by the axis their lift is along:
+    {"y": names of the fins spanning z, "z": names of those spanning y}. Those of the control
+    surfaces and the other fins with a panel outside the hull (:func:`vehicle_lift`; a fin on
+    another appendage has none)."""
+    out: dict = {}
+    if vehicle.hull is None:
+        return out
+    in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
+    for b in vehicle.bodies:
+        if not isinstance(b, Fin):
+            continue
+        if b.name not in in_surface:
+            try:
+                exposed_panels(vehicle.hull, b.center, b.span, b.chord, b.span_axis,
+                               path=f"appendages[{b.name}]")
+            except InputError:
+                continue
+        out.setdefault("y" if b.span_axis == "z" else "z", []).append(b.name)
+    return out
+
+
+#: Entries of the fins' share of M_A below this fraction of M_A's largest are round-off of the
+#: difference (set to zero, as :func:`stripcoef.conventions.clean_roundoff`) [-].
+ROUNDOFF = 1e-12
+
+#: The moment row of the lift matrix that a fin's lift along each axis makes (yaw for a
+#: sway force, pitch for a heave force) [-].
+_MOMENT_ROW = {"y": 5, "z": 4}
+
+
+def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarray, dict]:
+    r"""The lift matrix that takes the lifting fins' Munk moment off C_A: each fin's Munk
+    moment counted once, in its lift.
+
+    .. math:: \Delta L_{k,:} = -L_M(M_A - M_A^{-})_{k,:},\qquad k = 5\ \text{if a fin
+              lifts along y},\quad k = 4\ \text{if one lifts along z},
+
+    :math:`L_M` of :func:`munk_lift_matrix` without the surge added mass's part
+    (``surge=False``), :math:`M_A^{-}` the added mass of the vehicle without its lifting fins
+    (:func:`lifting_fins`) by the same method about the same point: the difference is their
+    share, their interference with the hull included; the moment row k is the one a lift
+    along y (spanning z: rudders, a sail) or z makes (the yaw moment of the sway force), so a
+    fin's added mass along its span (the sail's in heave), which makes no lift, keeps its
+    Munk moment where no other fin lifts that way. [assumption] In a cruciform the fins
+    lifting along y take the whole share in sway, the other pair's edgewise part with it
+    (second order in its thickness: 0.45 of 14.8 kg on SUBOFF's NACA 0020 planes, by removing
+    one pair at a time, which costs a 3D fin solve per pair: about 2 s of CPU on REMUS). The
+    fins' surge added mass (:math:`m_{11}` of :math:`(m_{22} - m_{11})`, second order in
+    their thickness, zero for the plate below) keeps its part in C_A: so :math:`\Delta L` is
+    a couple, the same whichever reference point the model is estimated about.
+
+    Why: a lifting surface's lift at its aerodynamic centre (the quarter chord,
+    :func:`_panel_terms`) is its whole potential-flow force and moment, the Munk moment
+    included. For the flat plate of thin-airfoil theory, c_l = 2 pi alpha at the quarter
+    chord, the moment about the mid chord is
+
+    .. math:: L'\frac c4 = \pi\rho U^2 \frac{c^2}{4}\alpha = (m_{22} - m_{11})\,U^2\alpha,
+              \qquad m_{22} = \rho\pi(c/2)^2,\ m_{11} = 0,
+
+    exactly the plate's Munk moment: in Theodorsen's (1935) solution the apparent-mass
+    (non-circulatory) terms hold no term in :math:`U^2\alpha`, which is all in the circulatory
+    lift at the quarter chord. C_A(nu) of M_A (Fossen 2011, eq. 3.46), which holds the fins'
+    added mass, adds that moment again, with the fins' whole share of M_A (their
+    finned-circle sections with the hull's interference,
+    :func:`stripcoef.assembly.added_mass.fin_share_corrections`): several times the lift's own
+    quarter-chord moment on a low-aspect-ratio fin (6.7 times on SUBOFF's stern planes, whose
+    centre of pressure the double count put 1.7 chords ahead of their quarter chord,
+    docs/validation.md). Keeping the
+    lift and taking the fins' Munk part off C_A (not the reverse) keeps the fin's centre of
+    pressure where the lift puts it and leaves M_A whole for the accelerations; it is written
+    into L so that every consumer of M_A and L (simulate, limits, the exports, whose
+    simulators build C_A from M_A) counts it once. The body's own Munk moment stays in C_A
+    (the body lift is the potential force behind the separation station taken from it,
+    :func:`_body_lift`).
+
+    Not modelled (assumption): the quasi-steady rotation's moment about the quarter chord
+    beyond the 3/4-chord incidence (Theodorsen's :math:`-\pi\rho b^3 U\dot\alpha/2`, the
+    camber moment of the curved cross-flow, :math:`-k(c/4)^2 q` for a lift k per unit
+    incidence velocity), of the order :math:`(c/4x)^2` of a fin's rotary moment at the lever
+    arm x (1e-3 on SUBOFF's stern planes).
+
+    Parameters
+    ----------
+    added_mass : (6, 6)
+        The model's M_A about the reference point [kg, kg m, kg m^2]
+    added_mass_of : callable
+        ``f(vehicle) -> (6, 6)``: M_A of a vehicle by the same method, options, point,
+        volume and centre
+    vehicle : Vehicle
+
+    Returns
+    -------
+    (6, 6) array, dict
+        :math:`\Delta L` [kg/m, kg, kg m] and a summary (per axis the fins and their share's
+        added mass along it [kg]); zeros and {} without lifting fins
+
+    References
+    ----------
+    Theodorsen, T. (1935), NACA Report 496 (the circulatory and apparent-mass parts of the
+    thin aerofoil's force and moment); Katz, J. & Plotkin, A. (2001), *Low-Speed
+    Aerodynamics*, 2nd ed., sec. 5.3 (the flat plate's c_m about the quarter chord is 0);
+    Newman 1977, ch. 4 (the Munk moment; table 4.2, the plate's added mass); Fossen 2011,
+    eq. 3.46.
+    """
+    out = np.zeros((6, 6))
+    fins = lifting_fins(vehicle)
+    if not fins:
+        return out, {}
+    names = {n for group in fins.values() for n in group}
+    m_a = np.asarray(added_mass, dtype=float)
+    without = dataclasses.replace(vehicle, control_surfaces=[],
+                                  bodies=[b for b in vehicle.bodies if b.name not in names])
+    share = m_a - np.asarray(added_mass_of(without), dtype=float)
+    share[np.abs(share) < ROUNDOFF * np.abs(m_a).max()] = 0.0   # the difference's round-off
+    lm = munk_lift_matrix(share, surge=False)
+    info: dict = {}
+    for axis, group in fins.items():
+        out[_MOMENT_ROW[axis]] = -lm[_MOMENT_ROW[axis]]
+        i = " yz".index(axis)
+        info[axis] = {"fins": list(group), "added_mass": float(share[i, i])}
+    return out, info
+
+
 def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None = None,
-                 viscosity: float | None = None) -> tuple[np.ndarray, tuple, dict]:
+                 viscosity: float | None = None, added_mass=None,
+                 added_mass_of=None) -> tuple[np.ndarray, tuple, dict]:
     """Lift matrix L (force -u L nu), control surfaces and a summary, about ``ref`` [m].
 
     Parameters
@@ -174,6 +359,11 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
         Reference speed [m/s] and kinematic viscosity [m^2/s] of the fins' boundary-layer
         reduction under the slender-body rule (default: the vehicle's reference speed and
         fluid)
+    added_mass, added_mass_of : optional
+        The model's M_A about ``ref`` [kg, kg m, kg m^2] and ``f(vehicle) -> M_A`` by the same
+        method: with both, the lifting fins' Munk moment is taken off C_A
+        (:func:`fin_munk_compensation`, ``info["fin_munk"]``), each fin's counted once, in
+        its lift
 
     Returns
     -------
@@ -228,6 +418,11 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
         info["fin_lift"] = fin_info
     if no_lift:
         info["fins_without_lift"] = no_lift
+    if added_mass is not None and added_mass_of is not None:
+        munk, munk_info = fin_munk_compensation(added_mass, added_mass_of, vehicle)
+        if munk_info:
+            lift += munk
+            info["fin_munk"] = munk_info
     return lift, tuple(surfaces), info
 
 
