@@ -27,7 +27,7 @@ Outcomes of a pair (Davidson & MacKinnon 1981, sec. 2): A needed and B not -> A;
 and A not -> B (A only borrowed B's force); both needed -> both, fitted together (a thrust
 gain and a drag both off); neither -> the log cannot tell them apart.
 
-Depends on: diagnose.fit, diagnose.settings.
+Depends on: diagnose.fit.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ nothing is significant; then the structure test of what remains (:mod:`.pipeline
 docstring, steps 3-5). Also which DOFs a log excites.
 
 Depends on: effects, identify (residual statistics), progress, diagnose.settings,
-diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key).
+diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key), diagnose.compare.
 """
 
 from __future__ import annotations
