@@ -161,6 +161,11 @@ class Step(_Record):
         Whether it is in the written model (None before the validation and the read-back)
     selected_parameters : mapping, optional
         Its parameters at its selection (set by :func:`read_back`)
+    comparison : mapping, optional
+        The step's comparison of competing effects in the model holding both
+        (:func:`~stripcoef.diagnose.select._competing`): each pair's likelihood-ratio tests,
+        their Holm-adjusted p-values, the level, the effects a partner dominated, and the
+        pair named together (``joint``), when there were competing effects
     """
 
     effect: str
@@ -188,6 +193,7 @@ class Step(_Record):
     final_parameters: Mapping
     kept: bool | None = _optional()
     selected_parameters: Mapping | None = _optional()
+    comparison: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)
