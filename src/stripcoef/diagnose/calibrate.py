@@ -153,13 +153,23 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed itself, whose own
     calibration then holds. The model's provenance (``diagnose``) records, per DOF, the
     calibration changes applied and the parameters of each effect as applied (a native
-    effect's, folded into the matrices or thrusters, included)."""
+    effect's, folded into the matrices or thrusters, included). A timing effect of
+    :data:`SHARED_TIMING` written in several DOFs (:func:`share_timing`: one value) is
+    written once, as one entry for all DOFs (``dof: all``: one force law of the
+    thrusters' lag in a simulation instead of one per DOF, the same forces)."""
     m = model
     mats = _writable_matrices(m)
     record = []
+    # DOFs whose written fit holds each shared timing effect (share_timing)
+    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
+    shared_in = {}
+    for cfg, _ in fitted.values():
+        for eff, _ in cfg.terms:
+            shared_in[eff.name] = shared_in.get(eff.name, 0) + 1
+    shared = {}
     for d, r in per.items():
         i = parse_dof(d)
-        cfg, theta = written_fit(d, r, fits[d], exclude)
+        cfg, theta = fitted[d]
         k = len(cfg.cal.names)
         steps = {s.effect: s for s in r.steps}
         # a released coefficient's calibration is written as part of its effect (one change)
@@ -195,14 +205,23 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             for name, value in zip(eff.nuisance_names, tn):
                 if name in mats:  # a prior coefficient released by this effect
                     mats[name][i, i] += float(value)
-            # a native effect adds its term to the matrices calibrated so far
-            m = eff.apply(_with_matrices(m, mats), i, params, steps[eff.name].std)
-            mats = _writable_matrices(m)
+            if eff.name in SHARED_TIMING and shared_in.get(eff.name, 0) > 1:
+                # the thrusters' one lag or delay (share_timing): one entry for all DOFs,
+                # written once below (one force law, not one per DOF, in a simulation)
+                shared[eff.name] = (eff, params, steps[eff.name].std)
+            else:
+                # a native effect adds its term to the matrices calibrated so far
+                m = eff.apply(_with_matrices(m, mats), i, params, steps[eff.name].std)
+                mats = _writable_matrices(m)
             kept_effects.append(eff.name)
             parameters[eff.name] = {n: float(v) for n, v in params.items()}
         record.append({"dof": d, "calibration": applied, "effects": kept_effects,
                        "parameters": parameters, "at_bound": at_bound})
-    m = _with_matrices(m, mats).with_provenance(diagnose=record)
+    m = _with_matrices(m, mats)
+    for eff, params, std in shared.values():
+        m = m.with_effects({"name": eff.name, "dof": "all", "parameters": dict(params),
+                            "std": dict(std or {}), "units": dict(eff.parameters)})
+    m = m.with_provenance(diagnose=record)
     return replace(m, name=f"{model.name}-calibrated")
 
 
