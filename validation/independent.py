@@ -362,19 +362,36 @@ MARGIN = 0.9
 
 def pilot_wrench(rng, t, dofs):
     """Open-loop wrench demands [N, N m] (unit scale) over time: random steps, a doublet and a
-    chirp in each DOF of ``dofs``, with quiet spells; the PD holds are added in the loop. The
-    amplitudes' signs are drawn with equal odds: the demands are symmetric about zero, hence
-    about the pilot's trim (:class:`Pilot`)."""
+    chirp in each DOF of ``dofs``, with quiet spells; the PD holds are added in the loop.
+
+    The sign of the manoeuvres alternates within each DOF (the first one's drawn with equal
+    odds, then +, -, +, ... over the manoeuvres that are not quiet spells): the demands
+    are symmetric about zero, hence about the pilot's trim (:class:`Pilot`), in every log,
+    not only on average over logs. With independently drawn signs a short log can push a
+    DOF one way only (e.g. 3 steps of one sign in 30 s happen with probability 1/4), and a
+    model fitted on it is not identifiable for the other branch of a thruster, a drag's
+    sign dependence or a thrust asymmetry: the input must excite both signs, the
+    persistent-excitation condition of the input for the model class (Ljung 1999, System
+    Identification, ch. 13, sec. 13.2 on informative experiments and 13.3 on input
+    design: symmetric binary-like signals about the operating point). The random draws are
+    the same in number and order as with independent signs (the sign of each manoeuvre is
+    still drawn, only the first is used), so the amplitudes, durations and kinds of a seed
+    and everything drawn after them (noise) are unchanged."""
     n = t.size
     out = np.zeros((n, 6))
     for d in dofs:
         k = 0
+        first, m = 0.0, 0       # the DOF's first sign, and its manoeuvres so far
         while k < n:
             hold = int(rng.uniform(4.0, 12.0) / (t[1] - t[0]))
             kind = rng.choice(["step", "doublet", "chirp", "zero"], p=[0.45, 0.2, 0.2, 0.15])
             seg = slice(k, min(k + hold, n))
             tt = t[seg] - t[seg][0]
-            amp = rng.uniform(0.3, 1.0) * rng.choice([-1, 1])
+            size, drawn = rng.uniform(0.3, 1.0), float(rng.choice([-1, 1]))
+            if kind != "zero":
+                first = first or drawn
+                m += 1
+            amp = size * first * (-1.0) ** (m - 1)
             if kind == "step":
                 out[seg, d] = amp
             elif kind == "doublet":

@@ -211,8 +211,10 @@ def section() -> str:
         f"trivial predictors in {s['prior_beats_trivial']} of {s['rows']}. In {s['unchanged']} of "
         f"{s['rows']} the calibrated model predicts exactly as the prior: the diagnosis's "
         "validation by free simulation removed every change of that DOF (a change is kept only "
-        "if it improves the free simulation of data it was not fitted on), so it cannot beat "
-        "the prior there.\n",
+        "if it improves the free simulation of data it was not fitted on, and a DOF's own "
+        "changes only if that DOF then simulates the validation part better than the prior: "
+        "`diagnose/validate.py`), so it cannot beat the prior there. The thrusters' lag is "
+        "fitted once for all DOFs (`diagnose.calibrate.share_timing`).\n",
         *([f"**Why even the vehicle's own model loses in some DOFs.** The column *truth* is the "
            f"BlueROV2-Heavy-like logs' own vehicle (the simulator's perturbed coefficients "
            f"and thrusters, its undeclared effect as the effects library writes it: "

@@ -2,6 +2,9 @@
 :class:`~stripcoef.model.HydroModel`), the added mass kept within its bounds, and the
 coefficients at a bound listed.
 
+The thrusters' timing (a first-order lag, a pure delay) is one property of the actuators,
+not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive.
+
 Depends on: model, conventions, diagnose.priors, diagnose.fit.
 """
 
@@ -9,10 +12,12 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import math
+
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.fit import _Config, _fit
+from stripcoef.diagnose.fit import _Config, _evaluate, _fit, _solve
 from stripcoef.diagnose.priors import added_mass_bounds
 
 
@@ -148,13 +153,23 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed itself, whose own
     calibration then holds. The model's provenance (``diagnose``) records, per DOF, the
     calibration changes applied and the parameters of each effect as applied (a native
-    effect's, folded into the matrices or thrusters, included)."""
+    effect's, folded into the matrices or thrusters, included). A timing effect of
+    :data:`SHARED_TIMING` written in several DOFs (:func:`share_timing`: one value) is
+    written once, as one entry for all DOFs (``dof: all``: one force law of the
+    thrusters' lag in a simulation instead of one per DOF, the same forces)."""
     m = model
     mats = _writable_matrices(m)
     record = []
+    # DOFs whose written fit holds each shared timing effect (share_timing)
+    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
+    shared_in = {}
+    for cfg, _ in fitted.values():
+        for eff, _ in cfg.terms:
+            shared_in[eff.name] = shared_in.get(eff.name, 0) + 1
+    shared = {}
     for d, r in per.items():
         i = parse_dof(d)
-        cfg, theta = written_fit(d, r, fits[d], exclude)
+        cfg, theta = fitted[d]
         k = len(cfg.cal.names)
         steps = {s.effect: s for s in r.steps}
         # a released coefficient's calibration is written as part of its effect (one change)
@@ -190,14 +205,23 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             for name, value in zip(eff.nuisance_names, tn):
                 if name in mats:  # a prior coefficient released by this effect
                     mats[name][i, i] += float(value)
-            # a native effect adds its term to the matrices calibrated so far
-            m = eff.apply(_with_matrices(m, mats), i, params, steps[eff.name].std)
-            mats = _writable_matrices(m)
+            if eff.name in SHARED_TIMING and shared_in.get(eff.name, 0) > 1:
+                # the thrusters' one lag or delay (share_timing): one entry for all DOFs,
+                # written once below (one force law, not one per DOF, in a simulation)
+                shared[eff.name] = (eff, params, steps[eff.name].std)
+            else:
+                # a native effect adds its term to the matrices calibrated so far
+                m = eff.apply(_with_matrices(m, mats), i, params, steps[eff.name].std)
+                mats = _writable_matrices(m)
             kept_effects.append(eff.name)
             parameters[eff.name] = {n: float(v) for n, v in params.items()}
         record.append({"dof": d, "calibration": applied, "effects": kept_effects,
                        "parameters": parameters, "at_bound": at_bound})
-    m = _with_matrices(m, mats).with_provenance(diagnose=record)
+    m = _with_matrices(m, mats)
+    for eff, params, std in shared.values():
+        m = m.with_effects({"name": eff.name, "dof": "all", "parameters": dict(params),
+                            "std": dict(std or {}), "units": dict(eff.parameters)})
+    m = m.with_provenance(diagnose=record)
     return replace(m, name=f"{model.name}-calibrated")
 
 
@@ -225,3 +249,124 @@ def _pinned(theta, low, up) -> str:
         if np.any(fin & (np.abs(values - np.where(fin, bound, 0.0)) <= tol)):
             return name
     return ""
+
+
+#: Effects of the thrusters' timing: one value for all of a vehicle's thrusters
+#: (:func:`share_timing`); the validation keeps or removes each as one change
+#: (:func:`stripcoef.diagnose.validate.partners`).
+SHARED_TIMING = ("thruster_lag", "actuation_delay")
+
+
+def _with_value(cfg, eff, value):
+    """``cfg`` (a DOF's final configuration) with effect ``eff`` at the one parameter
+    ``value``: its term's parameter replaced, or the term appended (a new configuration)."""
+    terms = [(e, h) for e, h in cfg.terms]
+    at = [k for k, (e, _) in enumerate(terms) if e.name == eff.name]
+    if at:
+        terms[at[0]] = (terms[at[0]][0], np.array([float(value)]))
+    else:
+        terms.append((eff, np.array([float(value)])))
+    return cfg.with_terms(terms)
+
+
+def _joint_cost(cfgs: dict, sigmas: dict, eff, value) -> float:
+    """Sum over the DOFs of ``cfgs`` of the squared whitened MAP residuals (data and prior
+    terms, :func:`~stripcoef.diagnose.fit._solve`) of each DOF's configuration with ``eff``
+    at ``value``, each weighted by its own noise level ``sigmas[d]`` [-]: minus twice the
+    joint log posterior, the DOFs' window residuals independent."""
+    total = 0.0
+    for d, cfg in cfgs.items():
+        c = _with_value(cfg, eff, value)
+        y, H, sd = c.design()
+        wres = _solve(y, H, sd, sigmas[d], c.lower(), c.m_info(), c.upper(), with_cov=False)[2]
+        total += float(wres @ wres)
+    return total
+
+
+def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
+    r"""``(per, fits)`` (new dictionaries) with each timing effect of :data:`SHARED_TIMING`
+    that the selection found in some DOF fitted once for all the diagnosed DOFs the
+    thrusters drive, and written in each of them with that one value.
+
+    A thruster lag (delay) is the actuators' own: every thrust follows its command with the
+    same time constant :math:`T_l` [s], so every component of the generalized force
+    :math:`\tau = B f` lags with it (the map B being linear in the thrusts; Fossen 2011,
+    sec. 9.3). Fitted per DOF, each DOF gets its own :math:`T_l` and the DOFs where the
+    per-DOF test missed it get none (the issue-33 real-style lag log: lags in sway, heave and
+    pitch, none in roll and yaw, whose free simulations then ring). Here it is one parameter
+    of a multiresponse model (Seber & Wild 1989, Nonlinear Regression, ch. 11): the value
+    minimising the joint cost
+
+    .. math:: S(T) = \sum_{i} \lVert W_i (y_i - H_i(T)\,\hat\theta_i(T)) \rVert^2
+
+    over the diagnosed DOFs i where the thrusters act (each DOF's window residual whitened
+    by its own noise level :math:`\sigma_i` and its calibration's prior,
+    :func:`_joint_cost`; each DOF's linear parameters :math:`\hat\theta_i` profiled), by
+    the grid of the effect (:meth:`grid`) and a bounded scalar search between the best
+    point's neighbours, as :func:`stripcoef.diagnose.fit._profile_hyper` does for one DOF;
+    its 1-sigma uncertainty :math:`\sqrt{2 / S''(T)}` (S is minus twice the log
+    likelihood). Each of those DOFs' fits is then redone with that value (the effect added
+    where the selection had not added it: a step marked not significant on its own, its
+    ``signature`` saying it is shared). The validation keeps or removes it in all DOFs at
+    once (:func:`stripcoef.diagnose.validate.partners`)."""
+    from scipy.optimize import minimize_scalar
+
+    per, fits = dict(per), dict(fits)
+    for name in SHARED_TIMING:
+        have = [d for d, f in fits.items() if any(e.name == name for e, _ in f.config.terms)]
+        if not have:
+            continue
+        eff = next(e for e, _ in fits[have[0]].config.terms if e.name == name)
+        template = next(s for s in per[have[0]].steps if s.effect == name)
+        targets = [d for d in fits
+                   if eff.applicable(fits[d].config.data, parse_dof(d))[0]]
+        cfgs = {d: fits[d].config for d in targets}
+        sigmas = {d: float(fits[d].evaluation["full"]["sigma"]) for d in targets}
+        d0 = targets[0]
+        grid = eff.grid(cfgs[d0].data, parse_dof(d0))
+
+        def cost(c):
+            return _joint_cost(cfgs, sigmas, eff, c)
+        costs = np.array([cost(c) for c in grid])
+        k = int(np.argmin(costs))
+        value, best = float(grid[k]), float(costs[k])
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+        if hi > lo:
+            sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-3 * (hi - lo)})
+            if sol.fun <= best:
+                value, best = float(sol.x), float(sol.fun)
+        h = 1e-2 * value
+        curv = (cost(value + h) - 2.0 * best + cost(max(value - h, 1e-9))) / h ** 2
+        std = math.sqrt(2.0 / curv) if curv > 0 else float("nan")
+        key = eff.hyper[0]
+        share = ", ".join(targets)
+        for d in targets:
+            cfg = _with_value(cfgs[d], eff, value)
+            ev = _evaluate(cfg)
+            before = fits[d].evaluation
+            fits[d] = replace(fits[d], config=cfg, evaluation=ev)
+            r = per[d]
+            steps = list(r.steps)
+            if d not in have:
+                n = cfg.data.n_windows
+                gain = 1.0 - ev["held_out_error"] / max(before["held_out_error"], 1e-300)
+                steps.append(replace(
+                    template, dof=d, parameters={key: value}, std={key: std}, released={},
+                    signature=(f"shared: the thrusters' one {key} [s], fitted jointly on "
+                               f"{share} (selected alone in {', '.join(have)})"),
+                    mimics=None, band_excess=None, error_before=before["error"],
+                    error_after=ev["error"],
+                    held_out_error_before=before["held_out_error"],
+                    held_out_error_after=ev["held_out_error"], held_out_gain=float(gain),
+                    delta_bic=float(ev["bic"] + math.log(n) - before["bic"]),
+                    z=float(value / std) if std > 0 else float("nan"),
+                    significant=False, rejected_because=(), alternatives=(),
+                    magnitude=float(eff.magnitude({key: value})),
+                    final_parameters={key: value}))
+            else:
+                steps = [replace(s, final_parameters={key: value}) if s.effect == name
+                         else s for s in steps]
+            per[d] = replace(r, steps=tuple(steps), final_error=float(ev["error"]),
+                              final_held_out_error=float(ev["held_out_error"]))
+    return per, fits

@@ -79,7 +79,7 @@ import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass)
+                                          clip_added_mass, share_timing)
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -239,6 +239,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     for i in dofs:
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
                                                  excited=excited, cross=cross)
+    per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)

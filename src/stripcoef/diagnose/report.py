@@ -102,10 +102,18 @@ def text_summary(result) -> str:
     elif val:
         lines.append("\nvalidation (free simulation, " + "-".join(
             f"{x:.0f}" for x in val["validation_s"]) + " s; prior / all changes / kept):")
+        tests = val.get("per_dof_test") or {}
         for d in val["prior"] or {}:
+            dm = tests.get(d)
             lines.append(f"  {d}: {_fmt((val['prior'] or {}).get(d))} / "
                          f"{_fmt((val['all_changes'] or {}).get(d))} / "
-                         f"{_fmt((val['kept_changes'] or {}).get(d))}")
+                         f"{_fmt((val['kept_changes'] or {}).get(d))}"
+                         + (f" (Diebold-Mariano kept vs prior {dm['statistic']:+.2f}, "
+                            f"p {dm['p_value']:.2f}, {dm['segments']} segments)"
+                            if dm and dm.get("statistic") is not None else ""))
+        if val.get("removed_for_own_dof"):
+            lines.append("  removed because their own DOF simulated no better than the "
+                         "prior: " + ", ".join(val["removed_for_own_dof"]))
         if val["removed"]:
             lines.append("  removed: " + ", ".join(val["removed"]))
         for d, kept in (val.get("refitted") or {}).items():

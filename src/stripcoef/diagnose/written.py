@@ -50,7 +50,9 @@ def written_effects(model, dof: str) -> dict:
         if entry.get("dof") == dof:
             out.update({k: dict(v) for k, v in (entry.get("parameters") or {}).items()})
     for entry in model.effects:
-        if isinstance(entry, dict) and entry.get("dof") == dof and entry.get("name") in out:
+        # a shared timing effect (the thrusters' one lag) is one entry for all DOFs
+        if isinstance(entry, dict) and entry.get("dof") in (dof, "all") \
+                and entry.get("name") in out:
             out[entry["name"]] = {k: float(v) for k, v in entry["parameters"].items()}
     return out
 
