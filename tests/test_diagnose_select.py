@@ -288,7 +288,11 @@ def test_a_dead_band_is_named_first_without_a_linear_drag():
     holding both, with the thrust scale free, the linear drag is not needed beside the dead
     band (dominated): the dead band is named first, within 15 %, and no linear drag. (The
     scale named with it, 0.78, is still off the truth's gain 0.93: with the inertia, D_L
-    and D_Q all kept at the prior the scale carries their errors too.)"""
+    and D_Q all kept at the prior the scale carries their errors too.) Since the pilot
+    alternates each manoeuvre's demand sign the same seed's log no longer makes the linear drag
+    a candidate beside the dead band at all, so the comparison itself is asserted on the seeded
+    truth of test_of_two_competing_drags_the_one_in_the_truth_is_needed_in_the_joint_model;
+    this log keeps the outcome."""
     from validation.independent import generate
 
     prior = shipped_model("videoray_pro3.yaml")
@@ -298,5 +302,3 @@ def test_a_dead_band_is_named_first_without_a_linear_drag():
     assert named and named[0] == "deadband"
     assert "linear_drag" not in named
     assert res["steps"][0]["parameters"]["deadband"] == pytest.approx(truth.strength, rel=0.15)
-    comparison = res["steps"][0]["comparison"]
-    assert "linear_drag" in comparison["dominated"]
