@@ -23,8 +23,8 @@ import pytest
 from validation import SECTIONS, build
 
 ROOT = Path(__file__).resolve().parent.parent
-#: the expensive sections (measured: docs/development.md)
-SLOW = {"lift", "drag"}
+#: the expensive sections (measured: docs/development.md; cad_shapes 3.8 s of CPU, -n 0)
+SLOW = {"lift", "drag", "cad_shapes"}
 
 #: a number as the documents print it: sign (ASCII or the minus sign), digits (with thousands
 #: commas), decimals, exponent
