@@ -540,3 +540,15 @@ def test_line_source_surface_speed_against_the_panel_solution_on_suboff():
     assert sens["delta_line"] == pytest.approx(0.41, abs=0.01)
     assert sens["delta_panel"] == pytest.approx(0.46, abs=0.01)
     assert sens["scale"] == pytest.approx(0.91, abs=0.01)
+
+
+@pytest.mark.slow
+def test_validation_doc_lift_section_is_current():
+    """docs/validation.md's lift section is what the code writes now (tests/test_validation_doc.py),
+    checked here beside the tests that build the same SUBOFF models (``validation.lift``'s
+    ``suboff_model``, ``bare_hull_model``: cached in the process). Under two xdist workers the
+    section and this module landed on different workers and each built them: 7.2 and 7.9 s of
+    CPU more than in one process (measured, issue 31)."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("lift")

@@ -79,6 +79,14 @@ def _skew(a):
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
+def _cross(a, b):
+    """a x b of two 3-vectors: numpy.cross's products and differences in its order (the
+    same floats) without its per-call overhead (the right-hand side calls it three times a
+    stage: 18 of 40 s of a 120 s log's profile)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
 def _coriolis(m, nu):
     """C(nu) of a symmetric 6x6 inertia (Fossen 2011, eqs. 3.46 and 6.43): the blocks of
     [[0, -S(M11 v + M12 w)], [-S(M11 v + M12 w), -S(M21 v + M22 w)]]."""
@@ -275,7 +283,7 @@ def _thrust(t, n):
     if abs(n) <= t["deadband"]:
         return 0.0
     ct = t["ct_forward"] if n >= 0 else t["ct_backward"]
-    return float(np.clip(ct * n * abs(n), -t["max_backward"], t["max_forward"]))
+    return float(min(max(ct * n * abs(n), -t["max_backward"]), t["max_forward"]))
 
 
 class Simulator:
@@ -297,7 +305,7 @@ class Simulator:
         t = self.truth
         fw = r.T @ np.array([0.0, 0.0, t.weight])
         fb = r.T @ np.array([0.0, 0.0, -t.buoyancy])
-        return -np.concatenate([fw + fb, np.cross(t.r_g, fw) + np.cross(t.r_b, fb)])
+        return -np.concatenate([fw + fb, _cross(t.r_g, fw) + _cross(t.r_b, fb)])
 
     def rhs(self, x, n_cmd, tether):
         t = self.truth
@@ -328,7 +336,7 @@ class Simulator:
                  - self._restoring(r) + t.m_a @ nu_c_dot)
         nu_dot = np.linalg.solve(self.m, force)
         w = nu[3:]
-        q_dot = 0.5 * np.array([-q[1:] @ w, *(q[0] * w + np.cross(q[1:], w))])
+        q_dot = 0.5 * np.array([-q[1:] @ w, *(q[0] * w + _cross(q[1:], w))])
         return np.concatenate([r @ nu[:3], q_dot, nu_dot, thrust_dot])
 
     def step(self, x, n_cmd, tether):
