@@ -266,6 +266,24 @@ def _spurious(row: dict, key: str):
                for d, effects in row[key].items() for e in effects)
 
 
+def spurious_steps(rows: list[dict]) -> list[str]:
+    """The spurious steps (:func:`_spurious`) of the whole-log rows, one text per row:
+    ``vehicle truth seed: dof effect`` (``*`` when the written model kept it)."""
+    out = []
+    for r in sorted(rows, key=lambda r: (r["vehicle"], r["category"], r["seed"])):
+        if r["mode"] != "all" or "step_effects" not in r:
+            continue
+        acts = ACTS_IN.get(r["category"], ())
+        kept = r.get("step_effects_kept", {})
+        steps = [f"{d} {e}" + ("*" if e in kept.get(d, ()) else "")
+                 for d, effects in r["step_effects"].items() for e in effects
+                 if d != r["dof"] and not (e == r["category"] and d in acts)
+                 and not background(r, d, e)]
+        if steps:
+            out.append(f"{r['vehicle']} {r['category']} {r['seed']}: " + ", ".join(steps))
+    return out
+
+
 def summarise(rows: list[dict], seed: int, duration: float) -> str:
     from validation.independent import OUTSIDE, STRENGTHS
 
@@ -324,6 +342,10 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
         lines.append(f"Whole-log runs of library-effect logs with a spurious step (an effect in "
                      f"a DOF where the truth has none: ACTS_IN): named in {named[0]}/{named[1]}, "
                      f"kept in the written model in {kept[0]}/{kept[1]}.")
+        which = spurious_steps(rows)
+        if which:
+            lines.append("Spurious whole-log steps (vehicle, truth, seed: DOF effect, "
+                         "* = kept in the written model): " + "; ".join(which) + ".")
     if clean:
         fp = sum(r["n_steps"] > 0 for r in clean)
         kept = [r for r in clean if "n_steps_kept" in r]

@@ -52,7 +52,11 @@ Steps, for each degree of freedom (issue 7):
    v^3, ...) are fitted in its place; one that explains the residual better (held-out error
    below ``1 - MIN_HELD_OUT_GAIN`` of the best effect's) stops the selection, and the DOF is
    ``unexplained`` with the residual's signature (``unexplained_signature``). Repeat until
-   nothing is significant.
+   nothing is significant. In a whole-log diagnosis (``dof="all"``) an effect of the
+   thrusters (dead band, thrust asymmetry, lag, delay: :data:`~.select.THRUSTER_EFFECTS`)
+   found in one DOF must also hold in every other diagnosed DOF the same thrusters drive:
+   at its parameters it must not raise their held-out error by more than ``TIE``
+   (:class:`~.select.Siblings`).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -85,8 +89,8 @@ from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: 
                                        added_mass_bounds, load_prior, method_added_mass_sd,
                                        method_prior_widths, prior_added_mass_sd, prior_widths)
 from stripcoef.diagnose.result import Diagnosis, DofFit, _band_record  # noqa: F401
-from stripcoef.diagnose.select import (_physical_problems, diagnose_dof,  # noqa: F401
-                                       excited_dofs, select_dofs)
+from stripcoef.diagnose.select import (Siblings, _physical_problems,  # noqa: F401
+                                       diagnose_dof, excited_dofs, select_dofs)
 from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # noqa: F401
                                          METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
@@ -235,10 +239,14 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
     cross = [j for j in excited if j not in dofs]
+    # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
+    siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
+                if len(dofs) > 1 else None)
     per, fits = {}, {}
     for i in dofs:
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
-                                                 excited=excited, cross=cross)
+                                                 excited=excited, cross=cross,
+                                                 siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     exclude, record = set(), None
     if val_log is not None:

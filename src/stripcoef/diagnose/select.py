@@ -172,20 +172,30 @@ def _generic_basis(data: WindowData, dof: int):
 # the diagnosis of one DOF
 # ---------------------------------------------------------------------------
 
+def _dof_calibration(data: WindowData, dof: int, settings: DiagnoseSettings, excited, cross):
+    """``(calibration, identifiability)`` of DOF ``dof``: :func:`_calibration`'s columns
+    less the coefficients the log does not determine (:func:`_identifiability`)."""
+    cal = _calibration(data, dof, settings, cross)
+    ident = _identifiability(data, dof, cal.cols, cal.sd, list(cal.names), excited)
+    return (cal.subset([j for j, n in enumerate(cal.names) if n not in ident["kept_at_prior"]]),
+            ident)
+
+
 def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAULTS, *,
-                 budget: Budget = UNLIMITED, excited=None, cross=None):
+                 budget: Budget = UNLIMITED, excited=None, cross=None, siblings=None):
     """Run steps 1-5 for one DOF; returns the per-DOF result (a :class:`DofResult`, an entry
     of :attr:`Diagnosis.per_dof`, see module) and its :class:`DofFit`.
 
     ``excited``: the excited DOFs (default: :func:`excited_dofs`); ``cross``: the other DOFs
     whose added mass this DOF may calibrate (:func:`_calibration`). Coefficients the log
-    does not determine are kept at the prior (:func:`_identifiability`)."""
+    does not determine are kept at the prior (:func:`_identifiability`). ``siblings``: in a
+    whole-log diagnosis, the other diagnosed DOFs (:class:`Siblings`): a thruster effect
+    (:data:`THRUSTER_EFFECTS`) they contradict is not significant here; None (one DOF):
+    no such test."""
     names = list(settings.effects) if settings.effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
     excited = excited_dofs(data) if excited is None else list(excited)
-    cal = _calibration(data, dof, settings, cross)
-    ident = _identifiability(data, dof, cal.cols, cal.sd, list(cal.names), excited)
-    cal = cal.subset([j for j, n in enumerate(cal.names) if n not in ident["kept_at_prior"]])
+    cal, ident = _dof_calibration(data, dof, settings, excited, cross)
     cal_sd, cal_names, band = cal.sd, list(cal.names), cal.band
     e0 = data.e0[:, dof]
     unit = "N" if dof < 3 else "N m"
@@ -236,6 +246,11 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
             trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
                                  settings))
+        if siblings is not None:     # whole-log: a thruster effect the other DOFs refute
+            for t in trials:
+                if t["significant"]:
+                    t["rejected_because"] += siblings.contradictions(t, dof)
+                    t["significant"] = not t["rejected_because"]
         if not steps:
             evaluated += [{k: v for k, v in t.items() if not k.startswith("_")} for t in trials]
         good = [t for t in trials if t["significant"]]
@@ -732,6 +747,156 @@ def _unexplained(cfg, cur):
         "held_out_error_over_noise_floor": float(ratio),
         "above_noise_floor": bool(above)}
 
+
+
+# ---------------------------------------------------------------------------
+# whole-log: an effect of the thrusters is one effect in every DOF they drive
+# ---------------------------------------------------------------------------
+
+#: The library's effects whose parameter belongs to the thrusters, not to a DOF: a dead zone
+#: of each thruster's command (:class:`~stripcoef.effects.thrust.Deadband`, written into the
+#: thrusters themselves), its thrust per direction
+#: (:class:`~stripcoef.effects.thrust.ThrustAsymmetry`, the ratio of the backward to the
+#: forward branch), its first-order response and its delay
+#: (:mod:`stripcoef.effects.timing`; Yoerger, Cooke & Slotine 1990 for both as thruster
+#: dynamics). Through the allocation :math:`\tau = B\,T` (Wang & Clark 2006, eq. 1) a
+#: thruster's thrust enters every DOF whose row of B it has. The thrust effectiveness is
+#: not one of them: it is a scale per axis (wake and hull interaction differ by axis).
+THRUSTER_EFFECTS = ("deadband", "thrust_asymmetry", "thruster_lag", "actuation_delay")
+
+
+class _Fixed:
+    """An effect at fixed parameters as a term: its force at ``hyper`` (nonlinear) and
+    ``theta`` (its own linear coefficients) an offset; its nuisance columns, if any, free,
+    as in its reference fit (:class:`~stripcoef.diagnose.fit._Nuisance`)."""
+
+    hyper = ()
+
+    def __init__(self, effect, hyper, theta):
+        self.effect, self.value, self.theta = effect, hyper, np.asarray(theta, float)
+        self.name = effect.name + "(fixed)"
+
+    def _kn(self, data, dof):
+        nuis = self.effect.nuisance(data, dof)
+        return 0 if nuis is None else nuis.shape[1]
+
+    def design(self, data, dof, hyper=None):
+        off, cols = self.effect.design(data, dof, self.value)
+        kn = self._kn(data, dof)
+        force = np.zeros(data.n_windows) if off is None else np.asarray(off, float)
+        if cols.shape[1] > kn:
+            force = force + cols[:, kn:] @ self.theta
+        return force, cols[:, :kn]
+
+    def prior_sd(self, data, dof, hyper=None):
+        return self.effect.nuisance_sd(data, dof)[:self._kn(data, dof)]
+
+    def lower_bounds(self, data, dof, hyper=None):
+        return self.effect.nuisance_lower(data, dof)[:self._kn(data, dof)]
+
+
+class Siblings:
+    r"""The diagnosed DOFs of a whole-log diagnosis, each with its calibration alone (no
+    effect): what a thruster effect found in one DOF must also explain in the others.
+
+    A thruster effect (:data:`THRUSTER_EFFECTS`) selected in DOF i is a property of the
+    thrusters acting in i; in every other diagnosed DOF j driven by exactly those thrusters
+    (the same non-zero entries in B's rows i and j) and where the effect applies, the same
+    effect at the same parameters (fixed, j's calibration refitted) must not raise j's
+    held-out error by more than ``TIE`` -- the rule that no step raises the held-out error
+    (:mod:`.pipeline`), applied to every DOF the change acts in -- unless j's own fit of the
+    effect agrees with i's: the two estimates :math:`\hat p_i, \hat p_j` (each parameter of
+    the effect, with its standard deviation :math:`s`) differ by less than ``MIN_Z``
+    standard deviations, :math:`|\hat p_i - \hat p_j| / \sqrt{s_i^2 + s_j^2}` (the z test
+    of equal coefficients of two independent fits, Paternoster et al. 1998, Criminology 36,
+    859, eq. 4). When both fail the effect is contradicted by the log in j and is not
+    significant in i (issue 33: a yaw dead band of 79 +- 0.4 command units, 44 % held-out
+    gain in yaw, on a VideoRay log without one; surge, driven by the same two thrusters,
+    fits 48 +- 3.7 and the 79-unit dead band raises its held-out error by 148 %; a true
+    BlueROV2 lag of 0.36 s fitted 0.50 +- 0.09 s in sway raised yaw's held-out error by
+    11 %, where yaw's own fit, 0.21 +- 0.08 s, agrees within 2.4 sd). The test is
+    order-free: j is taken at its calibration alone, whatever its own selection finds.
+
+    ``dofs``: the diagnosed DOFs; ``excited``, ``cross`` as for :func:`diagnose_dof`."""
+
+    def __init__(self, data: WindowData, dofs, settings: DiagnoseSettings = DEFAULTS, *,
+                 budget: Budget = UNLIMITED, excited=None, cross=None):
+        excited = excited_dofs(data) if excited is None else list(excited)
+        self.data = data
+        self.configs = {j: _Config(data, j, _dof_calibration(data, j, settings, excited,
+                                                             cross)[0], [],
+                                   settings=settings, budget=budget) for j in dofs}
+        self._references = {}
+
+    def _reference(self, j: int, eff):
+        """j's calibration (with the effect's nuisance columns, free) evaluated once."""
+        key = (j, eff.name)
+        if key not in self._references:
+            cfg = self.configs[j]
+            if eff.nuisance(self.data, j) is not None:
+                cfg = cfg.with_terms([(_Nuisance(eff), None)])
+            self._references[key] = _evaluate(cfg)
+        return self._references[key]
+
+    def contradictions(self, trial: dict, dof: int) -> list:
+        """Why the significant ``trial`` (:func:`_judge`'s record) of DOF ``dof`` is
+        contradicted by a sibling DOF (class docstring); [] when it is not, or when it is
+        not a thruster effect."""
+        eff = get_effect(trial["effect"])
+        data = self.data
+        act = set(data.acting(dof))
+        if eff.name not in THRUSTER_EFFECTS or not act:
+            return []
+        cfg = trial["_cfg"]
+        hyper = cfg.terms[-1][1]
+        theta, value, sd = _own_estimate(cfg, trial["_ev"])
+        out = []
+        for j, base in self.configs.items():
+            if j == dof or set(data.acting(j)) != act or not eff.applicable(data, j)[0]:
+                continue
+            ref = self._reference(j, eff)
+            try:
+                fixed = _evaluate(base.with_terms([(_Fixed(eff, hyper, theta), None)]))
+                own_cfg = base.with_terms([(eff, None)])
+                _, value_j, sd_j = _own_estimate(own_cfg, _evaluate(own_cfg))
+            except (np.linalg.LinAlgError, ValueError):
+                continue
+            if ref["held_out_error"] <= 0:
+                continue
+            gain = 1.0 - fixed["held_out_error"] / ref["held_out_error"]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                z = np.abs(value - value_j) / np.sqrt(sd ** 2 + sd_j ** 2)
+            z = float(np.max(np.where(np.isfinite(z), z, 0.0))) if z.size else 0.0
+            if gain < -TIE and z >= MIN_Z:
+                values = ", ".join(f"{k} = {v:.3g}" for k, v in trial["parameters"].items())
+                out.append(f"contradicted by {DOF[j]} (driven by the same thrusters): "
+                           f"{eff.name} with {values} raises its held-out error by "
+                           f"{-100 * gain:.1f} % (beyond {100 * TIE:g} %), and its own fit "
+                           f"there differs by {z:.1f} standard deviations (>= {MIN_Z:g})")
+        return out
+
+
+def _own_estimate(cfg, ev):
+    r"""``(theta, value, sd)`` of the last term of ``cfg`` (an effect) in the evaluation
+    ``ev`` (:func:`_evaluate`): its own linear coefficients ``theta`` (after its nuisance
+    columns), and ``value``, ``sd``: those coefficients followed by its nonlinear
+    parameters, with their standard deviations (the fit's covariance;
+    :func:`~stripcoef.diagnose.fit._hyper_std`) [units of each]."""
+    eff, hyper = cfg.terms[-1]
+    data, dof = cfg.data, cfg.dof
+    k0 = cfg.cal_cols.shape[1] + sum(cfg.term(e, h).cols.shape[1] for e, h in cfg.terms[:-1])
+    nuis = eff.nuisance(data, dof)
+    kn = 0 if nuis is None else nuis.shape[1]
+    ncol = cfg.term(eff, hyper).cols.shape[1]
+    full = ev["full"]
+    theta = np.asarray(full["theta"][k0 + kn:k0 + ncol], float)
+    sd = np.sqrt(np.clip(np.diag(full["cov"])[k0 + kn:k0 + ncol], 0, None))
+    if hyper is not None and len(np.atleast_1d(hyper)):
+        value = np.concatenate([theta, np.atleast_1d(np.asarray(hyper, float))])
+        sd = np.concatenate([sd, _hyper_std(cfg, hyper, full["sigma"])])
+    else:
+        value = theta
+    return theta, value, np.asarray(sd, float)
 
 
 def excited_dofs(data: WindowData) -> list:
