@@ -702,24 +702,35 @@ def drift_curve_comparisons(angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict]:
     [deg]: the whole non-linear force of the model (Munk part of C_A, damping with the
     cross-flow drag, lift) at nu = U (cos beta, -sin beta, 0, 0, 0, 0), U = Roddy's 6.5 knots
     (report p. 3), the three body-lift rules ('on', 'slender', 'datcom')."""
-    speed = RODDY_SPEED
     out = []
     for config in (2, 3, 4, 5):
         for method in ("on", "slender", "datcom", "stratford"):
             model = suboff_model(config, method, config == 2)
-            h = 0.5 * model.density
-            lbp = FT * val("t1.L_BP")
-            for a in angles:
-                b = math.radians(a)
-                nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
-                tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
-                tau = tau / speed ** 2
-                for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
-                    deg, coef = appendix_curve(config, q)
-                    measured = measured_odd(deg, coef, a)
-                    out.append({"config": config, "method": method, "beta": a, "q": q,
-                                "measured": float(measured), "model": float(tau[i] / (h * lbp ** k))})
+            out += [{"config": config, "method": method, **row}
+                    for row in _drift_rows(model, config, angles)]
     return out
+
+
+def _drift_rows(model, config, angles) -> list[dict]:
+    """One model's whole non-linear Y', N' at each drift angle of ``angles`` [deg] against the
+    odd part of Roddy's Appendix B curve of ``config``: rows {'beta', 'q', 'measured',
+    'model'}, the model's force tau = -C_A(nu) nu - D(nu) nu at nu = U (cos beta, -sin beta, 0,
+    0, 0, 0) [N, N m] over 0.5 rho U^2 L^2 (Y') and 0.5 rho U^2 L^3 (N'), U = Roddy's 6.5 knots
+    (Roddy 1990 p. 3; Fossen 2011 eq. 6.1 for the force)."""
+    speed = RODDY_SPEED
+    h = 0.5 * model.density
+    lbp = FT * val("t1.L_BP")
+    rows = []
+    for a in angles:
+        b = math.radians(a)
+        nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
+        tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
+        tau = tau / speed ** 2
+        for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
+            deg, coef = appendix_curve(config, q)
+            rows.append({"beta": a, "q": q, "measured": float(measured_odd(deg, coef, a)),
+                         "model": float(tau[i] / (h * lbp ** k))})
+    return rows
 
 
 def drift_curve_checks(method: str) -> tuple[int, int]:
@@ -2323,24 +2334,13 @@ def sidewash_drift_comparisons(angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict
     'body': False, the appendages' vortices; True, the body's pair too), configurations 2 (with
     ring wing No. 1) to 5, :data:`SIDEWASH_METHODS`: rows {'config', 'method', 'body', 'beta',
     'q', 'measured', 'model'}."""
-    speed = RODDY_SPEED
     out = []
     for config in (2, 3, 4, 5):
         for method in SIDEWASH_METHODS:
             for body in (False, True):
                 model = sidewash_model(config, method, config == 2, body)
-                h = 0.5 * model.density
-                lbp = FT * val("t1.L_BP")
-                for a in angles:
-                    b = math.radians(a)
-                    nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
-                    tau = -(model.coriolis(nu, rigid_body=False) @ nu) - model.damping(nu) @ nu
-                    tau = tau / speed ** 2
-                    for q, k, i in (("Y", 2, 1), ("N", 3, 5)):
-                        deg, coef = appendix_curve(config, q)
-                        out.append({"config": config, "method": method, "body": body,
-                                    "beta": a, "q": q, "measured": measured_odd(deg, coef, a),
-                                    "model": float(tau[i] / (h * lbp ** k))})
+                out += [{"config": config, "method": method, "body": body, **row}
+                        for row in _drift_rows(model, config, angles)]
     return out
 
 
