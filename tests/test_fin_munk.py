@@ -167,3 +167,23 @@ def test_compensation_is_per_lift_axis():
     assert delta[5, 1] == pytest.approx(-0.5 * 5.0)     # m22 only: the m11 stays in C_A
     assert delta[5, 5] == pytest.approx(-0.5 * -1.5)
     assert info == {"y": {"fins": ["fin_top"], "added_mass": 2.5}}
+
+
+@pytest.mark.slow
+def test_dropping_the_munk_moment_of_a_finned_vehicle_warns():
+    """``munk=False`` drops C_A's Munk block while the lifting fins' compensation stays in L
+    (their Munk moment then taken off twice): a finned model says so, in both paths
+    (``coriolis`` and the simulator's ``velocity_forces``); a vehicle without lifting fins
+    (MARES) does not."""
+    from conftest import shipped_model
+
+    nu = np.array([1.0, 0.1, 0.0, 0.0, 0.0, 0.1])
+    remus, mares = shipped_model("remus100.yaml"), shipped_model("mares.yaml")
+    assert remus.conditions.lift["fin_munk"]
+    for call in (lambda m: m.coriolis(nu, munk=False),
+                 lambda m: m.velocity_forces(nu, munk=False)):
+        with pytest.warns(ModelWarning, match="taken off twice"):
+            call(remus)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", ModelWarning)
+            call(mares)

@@ -677,7 +677,8 @@ class HydroModel:
         """C(nu) = C_RB(nu) + C_A(nu); ``munk=False`` drops the C_A terms that multiply
         linear velocities into moments (the Munk moment, Ferreira et al. 2009 sec. V.D).
         The lifting fins' share of it is taken off again in :attr:`lift`, whose fin lift
-        carries it (``stripcoef.assembly.lift.fin_munk_compensation``).
+        carries it (``stripcoef.assembly.lift.fin_munk_compensation``); ``munk=False`` keeps
+        that compensation, so it warns (:meth:`_warn_no_munk`).
 
         ``nu`` [m/s, rad/s]; returns C [kg/s, kg m/s, kg m^2/s] (C nu in [N, N m]).
         Each term from :func:`coriolis_from_mass` (Fossen 2011, Theorem 3.2, eq. 3.46).
@@ -688,11 +689,21 @@ class HydroModel:
         if added_mass:
             ca = coriolis_from_mass(self.added_mass, nu)
             if not munk:
+                self._warn_no_munk()
                 ca = ca.copy()
                 # Munk moment: moments from the linear momentum of the added mass.
                 ca[3:, :3] = 0.0
             c += ca
         return c
+
+    def _warn_no_munk(self) -> None:
+        """Warn that the Munk moment dropped from C_A leaves the lifting fins' compensation in
+        L (conditions ``lift.fin_munk``): their moment is then short by their Munk moment."""
+        if (self.conditions.lift or {}).get("fin_munk"):
+            warnings.warn(f"{self.name}: without the Munk moment the lifting fins' Munk moment, "
+                          "taken off C_A in the lift matrix, is taken off twice: the fins' "
+                          "moments are short by it (keep the Munk moment on for a finned "
+                          "vehicle)", ModelWarning, stacklevel=3)
 
     def damping(self, nu) -> np.ndarray:
         """D(nu) = D_L + u L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
@@ -750,6 +761,8 @@ class HydroModel:
             if rigid_body:
                 table[:6] += coriolis_table(self.rigid_body_mass)
             if added_mass:
+                if not munk:
+                    self._warn_no_munk()
                 table[:6] += coriolis_table(self.added_mass, munk=munk)
             d_l = None
             if damping:
