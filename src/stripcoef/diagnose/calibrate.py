@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.fit import _Config, _evaluate, _fit, _solve
+from stripcoef.diagnose.fit import _Config, _evaluate, _fit, _solve, grid_minimum
 from stripcoef.diagnose.priors import added_mass_bounds
 
 
@@ -309,8 +309,6 @@ def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
     where the selection had not added it: a step marked not significant on its own, its
     ``signature`` saying it is shared). The validation keeps or removes it in all DOFs at
     once (:func:`stripcoef.diagnose.validate.partners`)."""
-    from scipy.optimize import minimize_scalar
-
     per, fits = dict(per), dict(fits)
     for name in SHARED_TIMING:
         have = [d for d, f in fits.items() if any(e.name == name for e, _ in f.config.terms)]
@@ -323,19 +321,10 @@ def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
         cfgs = {d: fits[d].config for d in targets}
         sigmas = {d: float(fits[d].evaluation["full"]["sigma"]) for d in targets}
         d0 = targets[0]
-        grid = eff.grid(cfgs[d0].data, parse_dof(d0))
 
         def cost(c):
             return _joint_cost(cfgs, sigmas, eff, c)
-        costs = np.array([cost(c) for c in grid])
-        k = int(np.argmin(costs))
-        value, best = float(grid[k]), float(costs[k])
-        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-        if hi > lo:
-            sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
-                                  options={"xatol": 1e-3 * (hi - lo)})
-            if sol.fun <= best:
-                value, best = float(sol.x), float(sol.fun)
+        value, best = grid_minimum(cost, eff.grid(cfgs[d0].data, parse_dof(d0)))
         h = 1e-2 * value
         curv = (cost(value + h) - 2.0 * best + cost(max(value - h, 1e-9))) / h ** 2
         std = math.sqrt(2.0 / curv) if curv > 0 else float("nan")

@@ -32,8 +32,6 @@ Depends on: diagnose.fit.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from scipy.stats import chi2
 
@@ -129,20 +127,12 @@ def pair_tests(cfg, first, second) -> dict:
     from the joint (:func:`lr_test` against :func:`_without`)."""
     base = list(cfg.terms)
     ha = None
-    if first.hyper:
-        ha = _profiled(cfg.with_terms(base + [(second, None)])).terms[-1][1] \
-            if second.hyper else None
-        ha = _profiled(cfg.with_terms(base + ([(second, ha)] if second.hyper else
-                                              [(second, None)]) + [(first, None)])).terms[-1][1]
+    if first.hyper:         # first's profiled with second present (second's own profiled)
+        hb = _profiled(cfg.with_terms(base + [(second, None)])).terms[-1][1]
+        ha = _profiled(cfg.with_terms(base + [(second, hb), (first, None)])).terms[-1][1]
     joint = cfg.with_terms(base + [(first, ha), (second, None)])
     ev = _evaluate(joint)
     (ea, ha), (eb, hb) = joint.terms[-2], joint.terms[-1]
     return {"joint": joint, "ev": ev,
             "tests": {ea.name: lr_test(joint, ev, _without(cfg, ea, eb), own_free(joint, ea, ha)),
                       eb.name: lr_test(joint, ev, _without(cfg, eb, ea), own_free(joint, eb, hb))}}
-
-
-def z_of(p: float) -> float:
-    """The two-sided normal deviate of a p-value [-] (for reports)."""
-    from scipy.stats import norm
-    return float(norm.isf(p / 2.0)) if p > 0 else math.inf

@@ -387,6 +387,25 @@ def _fit(cfg: _Config, mask=None, hyper=None):
             "sd": sd}
 
 
+def grid_minimum(cost, grid) -> tuple[float, float]:
+    """``(value, cost(value))``: the minimum of a scalar ``cost`` of one parameter on a
+    bounded range, by the ``grid`` (increasing), then a bounded scalar search (Brent's
+    method, scipy's ``minimize_scalar``) between the neighbours of the best grid point,
+    kept when it is no worse than that point."""
+    from scipy.optimize import minimize_scalar
+
+    costs = np.array([cost(c) for c in grid])
+    k = int(np.argmin(costs))
+    value, best = float(grid[k]), float(costs[k])
+    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    if hi > lo:
+        sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-3 * (hi - lo)})
+        if sol.fun <= best:
+            value, best = float(sol.x), float(sol.fun)
+    return value, best
+
+
 def _profile_hyper(cfg: _Config, mask):
     """Optimise the nonlinear parameters of the last term on the fitting windows."""
     eff, _ = cfg.terms[-1]
@@ -404,22 +423,10 @@ def _profile_hyper(cfg: _Config, mask):
         return wres
 
     if hasattr(eff, "grid"):
-        # one nonlinear parameter on a bounded range (a time constant, a delay): a grid,
-        # then a bounded scalar search between the neighbours of the best grid point
-        from scipy.optimize import minimize_scalar
-        grid = eff.grid(cfg.data, cfg.dof)
-
+        # one nonlinear parameter on a bounded range (a time constant, a delay)
         def cost1(c):
             return float(np.sum(cost_vec(np.array([c])) ** 2))
-        costs = np.array([cost1(c) for c in grid])
-        k = int(np.argmin(costs))
-        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-        if hi > lo:
-            sol = minimize_scalar(cost1, bounds=(lo, hi), method="bounded",
-                                  options={"xatol": 1e-3 * (hi - lo)})
-            if sol.fun <= costs[k]:
-                return np.array([float(sol.x)])
-        return np.array([float(grid[k])])
+        return np.array([grid_minimum(cost1, eff.grid(cfg.data, cfg.dof))[0]])
 
     if eff.name == "deadband":
         cands = eff.candidates(cfg.data, cfg.dof)

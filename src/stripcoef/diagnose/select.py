@@ -519,15 +519,11 @@ def _scale_inertia_test(eff, params, full, data, dof, cal_names,
     rejected thrust effectiveness 0.69 on the independent simulator's logs; and the
     change |1/s - 1| M_ii / M_A,ii without the fitted mu, which let the pool log's 0.73
     through.)"""
-    s = float(eff.magnitude(params))
-    m_ii = float(data.model.mass_matrix[dof, dof])
-    m_a = abs(float(data.model.added_mass[dof, dof]))
-    band = float((settings.bands or BANDS)["translational"]["M"]) * m_a
+    change, band, m_ii, mu = _scale_inertia_change(eff, params, full, data, dof, cal_names,
+                                                   settings)
     if band <= 0.0:
         return ["the prior has no added mass in this DOF to compare the scale's inertia "
                 "change with"]
-    mu = float(full["theta"][cal_names.index("M")]) if "M" in cal_names else 0.0
-    change = (m_ii + mu) / s - m_ii
     if abs(change) < MIMIC_BANDS * band:
         return [f"the scale implies an inertia change of {change:.3g} (the calibrated "
                 f"inertia {m_ii + mu:.4g} over the scale, less the prior's {m_ii:.4g}), "
@@ -548,14 +544,26 @@ def _scale_inertia_z(eff, params, full, data, dof, cal_names,
     without the scale, sqrt(b^2 + s_M^2); it removed a 0.78 scale from a dead-band log whose
     truth gain is 0.93, but also the right scales 0.64 and 0.56 of both thrust-effectiveness
     logs of the verification seed 738291, whose inertia the log keeps at the prior.)"""
+    if not float(eff.magnitude(params)) > 0.0:
+        return 0.0
+    change, band, _, _ = _scale_inertia_change(eff, params, full, data, dof, cal_names,
+                                               settings)
+    return change / band if band > 0.0 else 0.0
+
+
+def _scale_inertia_change(eff, params, full, data, dof, cal_names,
+                          settings: DiagnoseSettings = DEFAULTS) -> tuple:
+    r"""``(change, band, M_ii, mu)`` of a thrust scale s (:func:`_scale_inertia_test`): the
+    inertia change :math:`(M_{ii} + \mu)/s - M_{ii}` it implies with the calibration's
+    inertia change :math:`\mu` (0 when the calibration has no ``M`` column), the band b of
+    the added mass (the translational band times :math:`|M_{A,ii}|`), the prior's
+    :math:`M_{ii}` and :math:`\mu` [kg, or kg m^2 in a rotation]; for a scale s > 0."""
     s = float(eff.magnitude(params))
     m_ii = float(data.model.mass_matrix[dof, dof])
     m_a = abs(float(data.model.added_mass[dof, dof]))
     band = float((settings.bands or BANDS)["translational"]["M"]) * m_a
-    if band <= 0.0 or s <= 0.0:
-        return 0.0
     mu = float(full["theta"][cal_names.index("M")]) if "M" in cal_names else 0.0
-    return ((m_ii + mu) / s - m_ii) / band
+    return (m_ii + mu) / s - m_ii, band, m_ii, mu
 
 
 def _pairs_with_scale(eff) -> bool:
