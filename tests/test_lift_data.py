@@ -380,7 +380,7 @@ def test_stern_plane_own_force_in_drift_against_the_stock():
 
 @pytest.mark.xfail(strict=True, reason="the default model's Y'(beta) is 1.09-2.5 times Roddy's from 4 "
                    "to 18 deg (configurations 2-5, body_lift: auto, the DATCOM rule; 2 with the "
-                   "ring wing; 22 of 40 points within 20 %): the linear body lift is too large "
+                   "ring wing; 21 of 40 points within 20 %): the linear body lift is too large "
                    "(Hopkins's station), and at 18 deg the quadratic cross-flow adds 41-89 % of "
                    "the lift (the strips' D_L has no sway entry on SUBOFF: "
                    "test_suboff_linear_damping_has_no_sway); N'(beta) is within 20 % at every "

@@ -248,7 +248,8 @@ ROUNDOFF = 1e-12
 _MOMENT_ROW = {"y": 5, "z": 4}
 
 
-def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarray, dict]:
+def fin_munk_compensation(added_mass, added_mass_of, vehicle,
+                          fins: dict | None = None) -> tuple[np.ndarray, dict]:
     r"""The lift matrix that takes the lifting fins' Munk moment off C_A: each fin's Munk
     moment counted once, in its lift.
 
@@ -307,6 +308,8 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
         ``f(vehicle) -> (6, 6)``: M_A of a vehicle by the same method, options, point,
         volume and centre
     vehicle : Vehicle
+    fins : dict, optional
+        Its lifting fins (:func:`lifting_fins`, computed when not given)
 
     Returns
     -------
@@ -323,7 +326,7 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle) -> tuple[np.ndarra
     eq. 3.46.
     """
     out = np.zeros((6, 6))
-    fins = lifting_fins(vehicle)
+    fins = lifting_fins(vehicle) if fins is None else fins
     if not fins:
         return out, {}
     names = {n for group in fins.values() for n in group}
@@ -387,16 +390,16 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
                       viscosity=viscosity)
     slender = _stern_flow(vehicle, body, speed, viscosity)
     fins = [b for b in vehicle.bodies if isinstance(b, Fin) and b.name not in in_surface]
+    lifting = lifting_fins(vehicle)        # the one rule of which fins lift
+    lifts = {n for group in lifting.values() for n in group}
     fin_info = []
     no_lift = []
     for fin in fins:
-        try:
-            panels = exposed_panels(hull, fin.center, fin.span, fin.chord, fin.span_axis,
-                                    path=f"appendages[{fin.name}]")
-        except InputError:
+        if fin.name not in lifts:
             no_lift.append(fin.name)     # on another appendage, not on the hull
             continue
-        for p in panels:
+        for p in exposed_panels(hull, fin.center, fin.span, fin.chord, fin.span_axis,
+                                path=f"appendages[{fin.name}]"):
             m, _, pinfo = _panel_terms(p, ref, rho, round_, slender)
             lift += m
             fin_info.append({"name": fin.name, **pinfo})
@@ -419,7 +422,7 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
     if no_lift:
         info["fins_without_lift"] = no_lift
     if added_mass is not None and added_mass_of is not None:
-        munk, munk_info = fin_munk_compensation(added_mass, added_mass_of, vehicle)
+        munk, munk_info = fin_munk_compensation(added_mass, added_mass_of, vehicle, lifting)
         if munk_info:
             lift += munk
             info["fin_munk"] = munk_info

@@ -27,8 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from stripcoef.assembly.lift import (_body_lift, _panel_terms, _round, _stern_flow,
-                                     ring_wing_lift)
-from stripcoef.errors import InputError
+                                     lifting_fins, ring_wing_lift)
 from stripcoef.geometry.vehicle import Fin, exposed_panels
 from stripcoef.hull.lift import lift_column, rotary_incidence_point
 from stripcoef.hull.vortex import (circulation_per_crossflow, panel_sidewash, ring_sidewash,
@@ -44,15 +43,13 @@ def _panels(vehicle):
     takes them."""
     hull = vehicle.hull
     in_surface = {n for s in vehicle.control_surfaces for n in s.fins}
+    lifts = {n for group in lifting_fins(vehicle).values() for n in group}
     out = []
-    for fin in vehicle.bodies:
-        if isinstance(fin, Fin) and fin.name not in in_surface:
-            try:
-                out += [(fin.name, p) for p in exposed_panels(
-                    hull, fin.center, fin.span, fin.chord, fin.span_axis,
-                    path=f"appendages[{fin.name}]")]
-            except InputError:
-                continue          # on another appendage: no lift in the model either
+    for fin in vehicle.bodies:       # a fin on another appendage has no lift in the model
+        if isinstance(fin, Fin) and fin.name not in in_surface and fin.name in lifts:
+            out += [(fin.name, p) for p in exposed_panels(
+                hull, fin.center, fin.span, fin.chord, fin.span_axis,
+                path=f"appendages[{fin.name}]")]
     for s in vehicle.control_surfaces:
         out += [(s.name, p) for p in s.panels]
     return out
