@@ -133,11 +133,12 @@ class BatchRightHandSide:
             theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
             psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
             eta = np.column_stack([x[:, :3], phi, theta, psi])
-            for s, laws in enumerate(self.terms):
-                hook = self.hooks[s]
-                hook["nu_r"] = nu[s]             # no current in a replay: nu_r = nu
+            # rows as lists of views, the times as floats: one indexing per segment
+            for laws, hook, t_s, eta_s, nu_s, f_s in zip(self.terms, self.hooks,
+                                                        times.tolist(), eta, nu, force):
+                hook["nu_r"] = nu_s              # no current in a replay: nu_r = nu
                 for law in laws:
-                    force[s] = force[s] + law(times[s], eta[s], nu[s], hook)
+                    f_s += law(t_s, eta_s, nu_s, hook)
         out = np.empty_like(x)
         out[:, :3] = np.einsum("sij,sj->si", rmat, nu[:, :3])
         out[:, 3:7] = (nu[:, 3:, None] * quat[:, None, :]).reshape(-1, 12) @ _QUAT_RATE
