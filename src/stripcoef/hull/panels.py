@@ -62,7 +62,12 @@ Edges: at a convex edge the flow is singular and the added mass converges at the
 :func:`edge_order` gives (4/3 in the panel size at a right-angled edge, 1 at a plate's rim),
 not the smooth body's 2; the grid convergence index takes it as its formal order (on the
 CAD-style shapes its estimate then covers 272 of 281 terms against Capytaine refined to
-12,000-24,000 faces, 250 with the order 2: benchmarks/data/estimate_coverage.md).
+12,000-24,000 faces, 250 with the order 2: benchmarks/data/estimate_coverage.md).  The edges
+are read independently of the input's tessellation (:func:`edge_features`): a crease whose
+normals turn by no more than the feature angle of mesh processing (30 degrees) is a facet of
+a smooth surface, a fold (two faces in one plane, one folded back) a double sheet whose rim
+is a knife edge only where it is a panel wide, and the members' thickness is measured with
+or without the remesher.
 """
 
 from __future__ import annotations
@@ -714,7 +719,9 @@ class EdgeFeatures:
         probes = (self.fold_points + width * self.fold_inward)[::step]
         for p, nf in zip(probes, self.fold_normal[::step]):
             d = p - tri[:, 0]
-            on_plane = np.abs(np.einsum("ij,ij->i", d, n)) <= 1e-6 * scale
+            # in the fold's plane, to round-off and the fold's own tilt over the width
+            on_plane = np.abs(np.einsum("ij,ij->i", d, n)) <= (
+                1e-6 * scale + width * np.sin(np.radians(FOLD_ANGLE)))
             aligned = np.abs(n @ nf) >= np.cos(np.radians(FOLD_ANGLE))
             # barycentric coordinates of p in each triangle's plane
             d20, d21 = np.einsum("ij,ij->i", d, e1), np.einsum("ij,ij->i", d, e2)
