@@ -173,3 +173,18 @@ def test_the_thin_member_rule_applies_in_every_install(monkeypatch, without_reme
         box = trimesh.creation.box([0.3, 0.2, 0.15])
         _, info = panel_added_mass(box, rho=1000.0, panels=400, family="input")
         assert info["formal_order"] == pytest.approx(4.0 / 3.0)
+
+
+def test_the_estimate_reads_one_order_for_a_body_exported_coarse_or_fine():
+    """The whole estimate (input family, 400 panels): a capsule of a fresh seed exported with
+    12 to 24 facets and with 48 gets the smooth order 2 both times (before the feature
+    angle, the facets gave 1.71 to 1.85 coarse and 1.92 with 48: two orders for one body)."""
+    rng = _rng(200)
+    radius, length = rng.uniform(0.05, 0.15), rng.uniform(0.2, 0.5)
+    coarse = int(rng.integers(12, 25))
+    orders = []
+    for n in (coarse, 48):
+        cap = _capsule(radius, length, n)
+        _, info = panel_added_mass(cap, rho=1000.0, panels=400, family="input")
+        orders.append(info["formal_order"])
+    assert orders == [2.0, 2.0], f"seed {SEED}, {coarse} facets: orders {orders}"
