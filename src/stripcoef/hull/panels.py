@@ -752,7 +752,19 @@ def edge_features(vertices, faces) -> EdgeFeatures:
       caller).
 
     The turning :math:`\theta = \pi - \alpha` for an interior dihedral angle :math:`\alpha`,
-    from trimesh's face adjacency (``face_adjacency_angles``, ``face_adjacency_convex``)."""
+    from trimesh's face adjacency (``face_adjacency_angles``, ``face_adjacency_convex``).
+
+    Limits: a real edge turning by no more than the feature angle (a shallow chine) is read
+    as smooth, order 2 instead of at least 1.71 (the index at most 1.23 times smaller at
+    r = sqrt 2); a smooth surface faceted coarser than it (an 8-sided cylinder) is read as
+    the polyhedron it is, which is what the panels and the references solve.
+
+    Measured (issue 32): eROV's visual mesh (DAVE, erov.dae) has 24 folds, each a sliver
+    1.8 mm wide (3.5e-5 m^2) folded onto a larger face, in two mirror-image rings of 12 of
+    radius about 0.09 m: an export artefact, not a fin; its sharpest edge is then 99 degrees
+    (order 1.29, not the fold's 1).  On the shipped vehicle files, the CAD draw of seed
+    1375923287 and the other public meshes every order is set by real edges (90 degrees and
+    more) or thin members, as before."""
     import trimesh
 
     v = np.asarray(vertices, float)
