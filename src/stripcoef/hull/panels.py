@@ -762,7 +762,7 @@ def edge_features(vertices, faces) -> EdgeFeatures:
     Measured (issue 32): eROV's visual mesh (DAVE, erov.dae) has 24 folds, each a sliver
     1.8 mm wide (3.5e-5 m^2) folded onto a larger face, in two mirror-image rings of 12 of
     radius about 0.09 m: an export artefact, not a fin; its sharpest edge is then 99 degrees
-    (order 1.29, not the fold's 1).  On the shipped vehicle files, the CAD draw of seed
+    (order 1.29 where its members are thicker than the panels, not the fold's 1).  On the shipped vehicle files, the CAD draw of seed
     1375923287 and the other public meshes every order is set by real edges (90 degrees and
     more) or thin members, as before."""
     import trimesh
