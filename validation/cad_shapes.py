@@ -28,6 +28,12 @@ FINE_ALL = (FINE, FINE_750)
 THIN_OFFSET = 100
 
 
+def number(cell) -> float:
+    """A stored run's CSV cell as a number; an empty or missing cell is unknown (NaN), never
+    0 (``benchmarks.cad_shapes`` writes what it cannot know so)."""
+    return float(cell) if cell not in (None, "") else float("nan")
+
+
 def read_levels(*paths) -> dict:
     """{shape: {level: (faces, 6x6 added mass [kg, kg m, kg m^2])}} of one or more levels
     CSVs (``benchmarks.bem_fine_references solve``: one row per upper-triangle term); the
@@ -354,7 +360,7 @@ def section() -> str:
             missed += 1
             warned_miss += head["warned"] == "1"
         t_model.append(float(head["t_model_s"]))
-        t_bem.append(float(head["t_bem_s"]))
+        t_bem.append(number(head.get("t_bem_s")))
         table.append([k, head["family"], f"{head['what']} [{head['how']}]", head["panels"],
                       head["mirrors"],
                       f"{DOFS[int(wd['i'])]} {100 * rel[(int(wd['i']), int(wd['i']))]:+.1f} %",
@@ -362,24 +368,33 @@ def section() -> str:
                        f"{100 * float(wc['error_rel']):+.1f} %") if wc else "-",
                       f"{c}/{len(sig)}", "yes" if head["warned"] == "1" else "no"])
     n = len(shapes)
-    miss_steps = [float(t["bem_richardson_step_rel"]) for terms in shapes.values() for t in terms
-                  if t["significant"] == "1" and abs(float(t["error_rel"])) > 0.05]
+    miss = [t for terms in shapes.values() for t in terms
+            if t["significant"] == "1" and abs(float(t["error_rel"])) > 0.05]
+    miss_steps = [x for x in (number(t.get("bem_richardson_step_rel")) for t in miss)
+                  if np.isfinite(x)]
     miss_families = {t["family"] for terms in shapes.values() for t in terms
                      if t["significant"] == "1" and abs(float(t["error_rel"])) > 0.05}
-    all_steps = [float(t["bem_richardson_step_rel"]) for terms in shapes.values() for t in terms
-                 if t["i"] == t["j"]]
-    note = (f" Of the {len(miss_steps)} terms off by more than 5 %, the reference's own "
-            f"Richardson step (finest BEM level to the extrapolation) is "
-            f"{100 * min(miss_steps):.1f} to {100 * max(miss_steps):.1f} % of the term there "
-            f"(median over all diagonal terms {100 * np.median(all_steps):.1f} %; families: "
-            f"{', '.join(sorted(miss_families))}).") if miss_steps else ""
+    all_steps = [x for x in (number(t.get("bem_richardson_step_rel"))
+                             for terms in shapes.values() for t in terms if t["i"] == t["j"])
+                 if np.isfinite(x)]
+    note = ((f" Of the {len(miss)} terms off by more than 5 %, the reference's own "
+             f"Richardson step (finest BEM level to the extrapolation) is "
+             + (f"{100 * min(miss_steps):.1f} to {100 * max(miss_steps):.1f} % of the term "
+                f"there" if miss_steps else "unknown (not in the stored run)")
+             + (f", unknown on {len(miss) - len(miss_steps)}"
+                if miss_steps and len(miss_steps) < len(miss) else "")
+             + (f" (median over all diagonal terms {100 * np.median(all_steps):.1f} %"
+                if all_steps else " (")
+             + f"{'; ' if all_steps else ''}families: {', '.join(sorted(miss_families))}).")
+            if miss else "")
     gci = ""
     if rows and "covered_with_bem_gci" in rows[0]:
         sig = [t for terms in shapes.values() for t in terms if t["significant"] == "1"]
-        vv = sum(t["covered_with_bem_gci"] == "1" for t in sig)
+        known = [t for t in sig if t["covered_with_bem_gci"] in ("0", "1")]
+        vv = sum(t["covered_with_bem_gci"] == "1" for t in known)
         cpu = [float(terms[0]["cpu_model_s"]) for terms in shapes.values()]
         warned_all = sum(terms[0]["warned"] == "1" for terms in shapes.values())
-        missed_cov = [t for t in sig if t["covered_with_bem_gci"] != "1"]
+        missed_cov = [t for t in known if t["covered_with_bem_gci"] != "1"]
         worst_miss = max(missed_cov, key=lambda t: abs(float(t["error_rel"])) - float(
             t["estimated_error_rel"])) if missed_cov else None
         gci = (f" The estimate is the grid convergence index of the panel levels (Roache 1994, "
@@ -388,8 +403,12 @@ def section() -> str:
                f"of it, else 3 and the observed order, at least 0.5) "
                f"plus the extrapolation's step; the references carry their own (three BEM "
                f"levels). Counting both, root-sum-square as ASME V&V 20-2009 prescribes for a "
-               f"comparison error, the band covers {vv} of {len(sig)} terms "
-               f"({100 * vv / max(len(sig), 1):.0f} %)"
+               f"comparison error, the band covers "
+               + (f"{vv} of {len(known)} terms ({100 * vv / len(known):.0f} %)" if known
+                  else "an unknown number of terms (the references' own band is not in the "
+                       "stored run)")
+               + (f", the reference's band unknown on the other {len(sig) - len(known)}"
+                  if known and len(known) < len(sig) else "")
                + (f"; the worst miss is {DOFS[int(worst_miss['i'])]}-"
                   f"{DOFS[int(worst_miss['j'])]} of shape {worst_miss['shape']} "
                   f"({worst_miss['family']}): error {100 * float(worst_miss['error_rel']):+.1f} %"
@@ -423,7 +442,11 @@ def section() -> str:
                 "No shape has a term off by more than 5 %. ")
              + f"Median whole-estimate time "
              f"{np.median(t_model):.2f} s (loaded shared machine, one BLAS thread), the BEM "
-             f"reference solves (all levels) {np.median(t_bem):.2f} s." + note + gci + "\n",
+             f"reference solves (all levels, the references' own run) "
+             + (f"{np.nanmedian(t_bem):.2f} s" if np.isfinite(t_bem).any() else "unknown")
+             + (f" (unknown on {int(np.isnan(t_bem).sum())} shapes)"
+                if 0 < np.isnan(t_bem).sum() < len(t_bem) else "")
+             + "." + note + gci + "\n",
              markdown_table(["#", "family", "shape [file]", "panels", "mirrors",
                              "worst diagonal", "worst coupling (of scale)", "estimate covers",
                              "warned"], table)]
