@@ -117,6 +117,7 @@ def test_the_section_says_unknown_where_the_file_has_no_reference_band(tmp_path,
         w.writerows(rows)
     monkeypatch.setattr(V, "DATA", path)
     monkeypatch.setattr(V, "fine_section", lambda: "")
+    monkeypatch.setattr(V, "graded_section", lambda: "")
     text = V.section()
     assert "reference solves (all levels, the references' own run) unknown" in text
     assert "0.00 s" not in text and "the reference's 0.0 %" not in text
