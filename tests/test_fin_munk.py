@@ -210,6 +210,7 @@ def test_without_the_munk_moment_the_fins_lift_alone_acts_at_the_quarter_chord(t
     assert old[5, 1] / old[1, 1] - x_qc < -0.5 * fin.chord       # measured: -0.99 chord
 
 
+@pytest.mark.slow        # the shipped REMUS and MARES estimates: about 10 s of CPU
 def test_the_compensation_is_counted_with_the_munk_moment_and_dropped_with_it():
     """REMUS (lifting fins) and MARES (none): with the Munk moment the forces are C_A's and
     L + dL's (the model's forces before dL had a field of its own); without it, or without C,
@@ -248,3 +249,54 @@ def test_the_compensation_is_counted_with_the_munk_moment_and_dropped_with_it():
             np.testing.assert_allclose(limits_no_c, no_c + g, atol=scale)
             np.testing.assert_allclose(model.damping(nu) @ nu, drag + u * model.total_lift @ nu,
                                        atol=scale)
+
+def _toy_method(monkeypatch, factor: float, *, fins_only: bool = False):
+    """Register an added-mass method ``toy``: strip theory's M_A times ``factor`` (a seeded
+    truth: the fins' share, and so their compensation, is ``factor`` times the strips');
+    ``fins_only``: it does not apply to a vehicle without fins (no solve without them)."""
+    from stripcoef.assembly import methods
+    from stripcoef.geometry.bodies import Fin
+
+    strips = methods.ADDED_MASS_METHODS["strips"]
+
+    def compute(inp):
+        m_a = strips.compute(dataclasses.replace(inp, strips=inp.vehicle.cut(None)))[0]
+        return factor * m_a, {"toy_factor": factor}, None
+
+    def applies_to(vehicle):
+        if fins_only and not any(isinstance(b, Fin) for b in vehicle.bodies):
+            return "the toy method needs fins", "a vehicle with fins"
+        return None
+
+    monkeypatch.setitem(methods.ADDED_MASS_METHODS, "toy", methods.AddedMassMethod(
+        name="toy", description="strips times a factor (test)", applies_to=applies_to,
+        compute=compute, error_estimate="none", provenance="toy", in_estimate=False))
+
+
+@pytest.mark.slow
+def test_an_added_mass_swapped_in_gets_its_own_fins_compensation(tail_models, monkeypatch):
+    """``with_added_mass_of``: the compensation is the swapped method's own fins' share (a
+    method giving twice the strips' M_A gives twice their compensation, the lift unchanged);
+    where that method cannot solve the vehicle without its fins, the estimate's compensation
+    is kept and a warning says so."""
+    from stripcoef.assembly.methods import with_added_mass_of
+
+    finned, _ = tail_models
+    vehicle = _tail_vehicle(True)
+    _toy_method(monkeypatch, 2.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)
+        got = with_added_mass_of(finned, vehicle, "toy")
+    np.testing.assert_allclose(got.added_mass, 2.0 * finned.added_mass, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(got.fin_munk_lift, 2.0 * finned.fin_munk_lift, rtol=1e-9,
+                               atol=1e-12 * np.abs(finned.fin_munk_lift).max())
+    assert np.array_equal(got.lift, finned.lift)
+    info = got.conditions.lift["fin_munk"]
+    assert info["method"] == "toy"
+    assert info["y"]["added_mass"] == pytest.approx(
+        2.0 * finned.conditions.lift["fin_munk"]["y"]["added_mass"], rel=1e-9)
+    _toy_method(monkeypatch, 2.0, fins_only=True)
+    with pytest.warns(ModelWarning, match="kept from the estimate's added-mass method"):
+        kept = with_added_mass_of(finned, vehicle, "toy")
+    assert np.array_equal(kept.fin_munk_lift, finned.fin_munk_lift)
+    np.testing.assert_allclose(kept.added_mass, 2.0 * finned.added_mass, rtol=1e-12, atol=1e-12)
