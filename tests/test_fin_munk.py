@@ -300,3 +300,27 @@ def test_an_added_mass_swapped_in_gets_its_own_fins_compensation(tail_models, mo
         kept = with_added_mass_of(finned, vehicle, "toy")
     assert np.array_equal(kept.fin_munk_lift, finned.fin_munk_lift)
     np.testing.assert_allclose(kept.added_mass, 2.0 * finned.added_mass, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.slow        # two REMUS estimates and a panel swap: about 9 s
+def test_panels_swapped_in_give_the_panel_estimates_compensation():
+    """REMUS: strip theory's model with the panel method's M_A swapped in has the same
+    compensation as the panel estimate itself (the panels' fins' share: 1.294 kg in sway, the
+    strips' 1.408 kg, which the swapped model kept before)."""
+    from stripcoef.assembly.methods import with_added_mass_of
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    vehicle = load_vehicle(ROOT / "geometry" / "remus100.yaml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        strips = estimate(vehicle)
+        panels = estimate(vehicle, added_mass_method="panels")
+        got = with_added_mass_of(strips, vehicle, "panels")
+    scale = np.abs(panels.fin_munk_lift).max()
+    np.testing.assert_allclose(got.fin_munk_lift, panels.fin_munk_lift, rtol=0, atol=1e-9 * scale)
+    assert got.conditions.lift["fin_munk"]["method"] == "panels"
+    share = {k: got.conditions.lift["fin_munk"][k]["added_mass"] for k in "yz"}
+    assert share == pytest.approx({k: panels.conditions.lift["fin_munk"][k]["added_mass"]
+                                   for k in "yz"}, rel=1e-9)
+    # the strips' share differs (by +9 %): the swap changed the compensation
+    assert abs(strips.fin_munk_lift[5, 1] / got.fin_munk_lift[5, 1] - 1.0) > 0.03
