@@ -528,8 +528,7 @@ def frozen_mapping(value) -> Mapping:
 
 #: the array fields of a HydroModel, frozen by ``__post_init__``
 _ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
-           "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift",
-           "fin_munk_lift")
+           "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift", "fin_munk_lift")
 
 
 def coriolis_table(mass_matrix, *, munk: bool = True) -> np.ndarray:
@@ -588,9 +587,8 @@ class HydroModel:
         L, the speed-dependent linear (lift) terms: force ``-u L nu`` [kg/m, kg, kg m];
         ``-L[1, 1] = Y_uv``, ``-L[5, 5] = N_ur`` (docs/conventions.md; Prestero 2001, sec. 3.6)
     fin_munk_lift : (6, 6)
-        dL, the lifting fins' Munk moment taken off C_A (their lift carries it): force
-        ``-u dL nu`` [kg/m, kg, kg m], counted with C_A's Munk moment and dropped with it
-        (:attr:`total_lift`; :mod:`stripcoef.assembly.fin_munk`)
+        dL, the lifting fins' Munk moment taken off C_A (their lift carries it): force ``-u dL
+        nu`` [kg/m, kg, kg m], counted and dropped with C_A's Munk moment (:attr:`total_lift`)
     control_surfaces : tuple of ControlSurface
         Rudders and elevators: force ``u^2 b delta`` and deflection limits
     added_mass_error : (6, 6) or None
@@ -702,8 +700,8 @@ class HydroModel:
 
     @property
     def total_lift(self) -> np.ndarray:
-        """L + dL [kg/m, kg, kg m]: :attr:`lift` with :attr:`fin_munk_lift`, the matrix of the
-        u-terms beside C_A with its Munk moment (the coefficients, every export)."""
+        """L + dL [kg/m, kg, kg m], the u-terms beside C_A with its Munk moment (the
+        coefficients, every export; :mod:`stripcoef.assembly.fin_munk`)."""
         return self.lift + self.fin_munk_lift
 
     def damping(self, nu, *, munk: bool = True) -> np.ndarray:
@@ -732,9 +730,9 @@ class HydroModel:
         :meth:`damping`, the lift :math:`uL` of Prestero 2001, sec. 3.6, in :math:`K_0`): C
         and D are linear in :math:`[\nu, |\nu|]`, so each row's matrix is one product with a
         12 x 36 table (:func:`coriolis_table`, :math:`Q_j = D_Q e_j e_j^T`) built once per
-        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A (each
-        with :attr:`fin_munk_lift`), ``rigid_body=False`` C_RB. The one rule of the simulation's right-hand side, the
-        diagnose batch simulation and the log windows' force terms.
+        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A (each with
+        :attr:`fin_munk_lift`), ``rigid_body=False`` C_RB. The one rule of the simulation's
+        right-hand side, the diagnose batch simulation and the log windows' force terms.
         """
         nu = np.asarray(nu, dtype=float)
         if nu_r is None:
@@ -756,7 +754,8 @@ class HydroModel:
                         damping: bool) -> tuple:
         """(table on [nu, |nu|] (12, 36), or on nu (6, 36) without the damping; D_L (36,) or
         ``None``) of :meth:`velocity_forces`: row j :math:`K_j` (:func:`coriolis_table`, the
-        lift L in row 0 with the damping, :attr:`fin_munk_lift` with ``munk``), row 6 + j :math:`Q_j = D_Q e_j e_j^T`."""
+        lift L in row 0 with the damping, :attr:`fin_munk_lift` with ``munk``), row 6 + j
+        :math:`Q_j = D_Q e_j e_j^T`."""
         key = (rigid_body, added_mass, munk, damping)
         tables = self._velocity_tables
         if key not in tables:
@@ -852,7 +851,7 @@ class HydroModel:
             for i in range(6):
                 for j in range(6):
                     named[namer(i, j)] = (matrix, i, j, m)
-        named.update({name: ("lift", i, j, self.total_lift) for (i, j), name in lift_names().items()})
+        named.update({n: ("lift", i, j, self.total_lift) for (i, j), n in lift_names().items()})
         coupling = next((b.sd for b in self.bands if b.matrix == "added_mass"
                          and b.dofs == "coupling"), None)
         control = next((b.sd for b in self.bands if b.matrix == "control"), None)

@@ -160,7 +160,8 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
       degrees of freedom (or ``all``), parameters finite numbers; the effect names, the
       DOFs they act in, their parameters and ranges checked against the effects library
       (:func:`stripcoef.effects.laws.check_effect_entries`);
-    - ``lift`` and ``fin_munk_lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector ``derivative`` and
+    - ``lift`` and ``fin_munk_lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector
+      ``derivative`` and
       angles > 0 [rad]; ``conditions`` and ``provenance`` mappings.
 
     Returns ``data`` with the thruster directions normalised (a new mapping).

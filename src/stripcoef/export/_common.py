@@ -199,7 +199,8 @@ class ExportView:
 
         ``name`` is one of rigid_body_mass, added_mass, linear_damping, quadratic_damping,
         lift (:attr:`HydroModel.total_lift`: L with the lifting fins' Munk compensation, the
-        u-terms beside the simulator's C_A with its Munk moment). The axis change is :func:`transform_matrix` (``T A T`` with T = diag(1,-1,-1,1,-1,-1)
+        u-terms beside the simulator's C_A with its Munk moment). The axis change is
+        :func:`transform_matrix` (``T A T`` with T = diag(1,-1,-1,1,-1,-1)
         for FLU), also exact for D_Q because ``|T nu| = |nu|``.
         """
         return transform_matrix(getattr(self.model, "total_lift" if name == "lift" else name),
