@@ -249,6 +249,8 @@ def test_estimate_about_another_point_equals_about(remus):
         direct = estimate(REMUS, reference_point=point)
         moved = remus.about(point)
     assert np.allclose(direct.lift, moved.lift, atol=1e-10)
+    assert np.any(direct.fin_munk_lift)       # the fins' Munk compensation: a couple, moved too
+    assert np.allclose(direct.fin_munk_lift, moved.fin_munk_lift, atol=1e-10)
     assert np.allclose(direct.control_matrix, moved.control_matrix, atol=1e-10)
 
 
