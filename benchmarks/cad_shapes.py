@@ -31,10 +31,12 @@ the scale).  Usage:
                                                             [--csv out/cad_shapes.csv]
 
 ``--references CSV`` re-runs the model alone on the seed of a stored run against that run's
-references (after a change of the panel method: minutes instead of the BEM's quarter hour).
-The stored run, reference_tables/bem/cad_shapes.csv (docs/validation.md), is named on its
-first line (seed 3849713801, 40 shapes, BEM 750/1500/3000 faces, run as two ``--shard``
-processes and merged).
+references (after a change of the panel method: minutes instead of the BEM's quarter hour);
+the references keep their own grid convergence index, Richardson step and solve time as the
+stored run wrote them (what it does not hold is written empty: unknown, never 0), and the
+first line names the references' command and the re-run.  The stored run,
+reference_tables/bem/cad_shapes.csv (docs/validation.md), names both on its first line (seed
+1375923287, 40 shapes, BEM 750/1500/3000 faces, run as two ``--shard`` processes and merged).
 """
 
 from __future__ import annotations
@@ -183,8 +185,33 @@ def write_as_user(parts, path_stem, rng):
     return path, ("mm" if mm else "m"), ("mm" if mm else "m") + (", split OBJ" if split else ", STL")
 
 
+#: the CSV's columns (one row per upper-triangle term of a shape)
+HEADER = ["shape", "family", "what", "how", "panels", "bem_faces", "mirrors", "warned",
+          "t_model_s", "t_bem_s", "i", "j", "model", "bem", "error_rel", "covered",
+          "significant", "bem_richardson_step_rel", "estimated_error_rel", "bem_gci_rel",
+          "covered_with_bem_gci", "cpu_model_s"]
+
+
+def _cell(x, fmt):
+    """A number's CSV cell; an unknown one (NaN) is an empty cell, never 0."""
+    return "" if x is None or not np.isfinite(x) else format(x, fmt)
+
+
+def _number(cell) -> float:
+    """A CSV cell back to a number; an empty or missing cell is unknown (NaN)."""
+    return float(cell) if cell not in (None, "") else float("nan")
+
+
 def stored_references(path):
-    """{shape index: (6x6 reference, (faces_1, faces_2))} of a stored run's CSV (``--csv``)."""
+    """The references of a stored run's CSV (``--csv``, :data:`HEADER`): ``{shape index:
+    dict(ref=6x6 reference, counts=(faces, ...), gci=its grid convergence index, step=the
+    Richardson step |extrapolated - finest level|, t_bem=its solves' wall time [s])}``, the
+    matrices in [kg, kg m, kg m^2], the bands recovered from ``bem_gci_rel`` and
+    ``bem_richardson_step_rel`` times the comparison's scale sqrt(|A_ii A_jj|) (on the
+    diagonal |A_ii|: :func:`compare_terms`).  What the file does not hold is unknown (NaN),
+    never 0: an empty or missing cell, and the all-zero bands a re-run wrote before the
+    references' own uncertainty was carried through (no three-level solve gives a diagonal
+    term a zero index)."""
     refs = {}
     with open(path, newline="") as fh:
         fh.readline()
@@ -192,10 +219,68 @@ def stored_references(path):
             if r["what"].startswith("FAILED"):
                 continue
             k = int(r["shape"])
-            a = refs.setdefault(k, (np.zeros((6, 6)), tuple(map(int, r["bem_faces"].split("/")))))[0]
+            if k not in refs:
+                refs[k] = dict(ref=np.zeros((6, 6)), gci=np.zeros((6, 6)),
+                               step=np.zeros((6, 6)),
+                               counts=tuple(map(int, r["bem_faces"].split("/"))),
+                               t_bem=_number(r.get("t_bem_s")))
             i, j = int(r["i"]), int(r["j"])
-            a[i, j] = a[j, i] = float(r["bem"])
+            x = refs[k]
+            x["ref"][i, j] = x["ref"][j, i] = float(r["bem"])
+            x["gci"][i, j] = x["gci"][j, i] = _number(r.get("bem_gci_rel"))
+            x["step"][i, j] = x["step"][j, i] = _number(r.get("bem_richardson_step_rel"))
+    for x in refs.values():
+        d = np.sqrt(np.abs(np.diag(x["ref"])))
+        scale = np.outer(d, d)
+        for band in ("gci", "step"):
+            if not np.any(np.diag(x[band])):      # a re-run's lost band: unknown
+                x[band][:] = np.nan
+            x[band] *= scale
+        if not x["t_bem"]:                        # likewise a re-run's 0 s
+            x["t_bem"] = float("nan")
     return refs
+
+
+def compare_terms(ours, est, ref, ref_gci, ref_step):
+    """Per upper-triangle term (i, j) of the model ``ours`` with its estimated error ``est``
+    against the reference ``ref`` with its grid convergence index ``ref_gci`` and Richardson
+    step ``ref_step`` (all 6x6 [kg, kg m, kg m^2]; an unknown band is NaN): the error and the
+    bands relative to the scale sqrt(|A_ii A_jj|) of the reference (on the diagonal |A_ii|),
+    whether the model's estimate covers the error, and whether the validation band of both
+    numerical uncertainties does, root-sum-square (ASME V&V 20-2009, sec. 2-4:
+    u_val = sqrt(u_num,model^2 + u_num,ref^2); None where the reference's is unknown)."""
+    d = np.sqrt(np.abs(np.diag(ref)))
+    scale = np.outer(d, d)
+    err = ours - ref
+    rows = []
+    for i in range(6):
+        for j in range(i, 6):
+            significant = i == j or abs(ref[i, j]) >= SIGNIFICANT * scale[i, j]
+            vv = np.hypot(est[i, j], ref_gci[i, j])
+            rows.append(dict(i=i, j=j, ours=ours[i, j], ref=ref[i, j],
+                             est=est[i, j] / scale[i, j], rel=err[i, j] / scale[i, j],
+                             covered=bool(abs(err[i, j]) <= est[i, j]),
+                             ref_gci=ref_gci[i, j] / scale[i, j],
+                             covered_vv=bool(abs(err[i, j]) <= vv) if np.isfinite(vv)
+                             else None,
+                             significant=significant, bem_step=ref_step[i, j] / scale[i, j]))
+    return rows
+
+
+def csv_rows(r) -> list[list]:
+    """The CSV rows (:data:`HEADER`) of one shape's result (:func:`run_one`)."""
+    k = r["k"]
+    if "failed" in r:
+        return [[k, r["family"], "FAILED: " + r["failed"]] + [""] * (len(HEADER) - 3)]
+    head = [k, r["family"], r["what"], r["how"], r["panels"],
+            "/".join(map(str, r["bem_faces"])), r["mirrors"], int(r["unconverged"]),
+            f"{r['t_model']:.3f}", _cell(r["t_bem"], ".3f")]
+    return [head + [x["i"], x["j"], f"{x['ours']:.6g}", f"{x['ref']:.6g}",
+                    f"{x['rel']:.4g}", int(x["covered"]), int(x["significant"]),
+                    _cell(x["bem_step"], ".3g"), f"{x['est']:.3g}",
+                    _cell(x["ref_gci"], ".3g"),
+                    "" if x["covered_vv"] is None else int(x["covered_vv"]),
+                    f"{r['c_model']:.3f}"] for x in r["rows"]]
 
 
 def bem_reference(surface, bem_faces, ref_point):
@@ -240,40 +325,31 @@ def run_one(family, rng, tmp, bem_faces, stored=None):
     unconverged = any("has not converged" in str(w.message) for w in caught)
     ref_point = np.asarray(model.reference_point)
     t0 = time.perf_counter()
-    if stored is not None:              # the same seed's references, read back
-        ref, counts = stored
-        mats = [ref, ref]
-        ref_gci = np.zeros((6, 6))
+    if stored is not None:              # the same seed's references, read back with their
+        ref, counts = stored["ref"], stored["counts"]    # own bands and solve time
+        ref_gci, ref_step, t_bem = stored["gci"], stored["step"], stored["t_bem"]
     else:
         ref, counts, ref_gci, mats = bem_reference(clean_surface(parts), bem_faces, ref_point)
-    t_bem = time.perf_counter() - t0
+        ref_step = np.abs(ref - mats[-1])
+        t_bem = time.perf_counter() - t0
     ours = np.asarray(model.added_mass) * RHO / model.density
     est = np.asarray(model.added_mass_error) * RHO / model.density
-    d = np.sqrt(np.abs(np.diag(ref)))
-    scale = np.outer(d, d)
-    err = ours - ref
-    bem_step = np.abs(ref - mats[-1]) / scale
-    ref_band = np.asarray(ref_gci) / scale
-    rows = []
-    for i in range(6):
-        for j in range(i, 6):
-            significant = i == j or abs(ref[i, j]) >= SIGNIFICANT * scale[i, j]
-            rows.append(dict(i=i, j=j, ours=ours[i, j], ref=ref[i, j],
-                             est=est[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
-                             rel=err[i, j] / (abs(ref[i, i]) if i == j else scale[i, j]),
-                             covered=bool(abs(err[i, j]) <= est[i, j]),
-                             ref_gci=ref_band[i, j] * (scale[i, j] / abs(ref[i, i])
-                                                       if i == j else 1.0),
-                             # ASME V&V 20-2009: the comparison error against the validation
-                             # band of both numerical uncertainties, root-sum-square
-                             covered_vv=bool(abs(err[i, j]) <= np.hypot(est[i, j],
-                                                                        ref_gci[i, j])),
-                             significant=significant, bem_step=bem_step[i, j]))
+    rows = compare_terms(ours, est, ref, ref_gci, ref_step)
     return dict(family=family, what=what, how=how, rows=rows, t_model=t_model, t_bem=t_bem,
                 c_model=c_model,
                 panels="/".join(map(str, model.conditions["added_mass_panel_levels"])), bem_faces=tuple(counts),
                 unconverged=unconverged, mirrors=model.conditions["mirror_planes"],
                 est_max=model.conditions["added_mass_error_max"])
+
+
+def vv_count(terms) -> str:
+    """How many ``terms`` the root-sum-square band covers, of how many, the terms whose
+    reference band is unknown named apart (never counted as covered or missed)."""
+    known = [x["covered_vv"] for x in terms if x["covered_vv"] is not None]
+    out = (f"{sum(known)} of {len(known)} ({100 * np.mean(known):.0f} %)" if known
+           else "unknown")
+    return out + (f"; {len(terms) - len(known)} terms' reference band unknown"
+                  if len(known) < len(terms) else "")
 
 
 def main(argv=None) -> int:
@@ -288,7 +364,8 @@ def main(argv=None) -> int:
                          "skipped, so that N processes share one seed; merge their CSVs)")
     ap.add_argument("--references", default=None, metavar="CSV",
                     help="take the BEM references from a stored run of the same --seed "
-                         "(re-evaluate the model only; its bem_richardson_step is then 0)")
+                         "(re-evaluate the model only; the references' bands and solve "
+                         "times are the stored run's, unknown where it has none)")
     args = ap.parse_args(argv)
     stored = stored_references(args.references) if args.references else {}
     seed = args.seed if args.seed is not None else secrets.randbits(32)
@@ -329,7 +406,9 @@ def main(argv=None) -> int:
                      f"{100 * worst_c['rel']:+.1f} % of scale, " if worst_c else "")
                   + f"estimate covers {cov}/{len(sig)} terms (est. max "
                   f"{100 * r['est_max']:.1f} %{', WARNED' if r['unconverged'] else ''}); "
-                  f"model {r['t_model']:.1f} s, BEM {r['t_bem']:.1f} s", flush=True)
+                  f"model {r['t_model']:.1f} s, BEM "
+                  + (f"{r['t_bem']:.1f} s" if np.isfinite(r["t_bem"]) else "time unknown")
+                  + (" (stored)" if args.references else ""), flush=True)
     results = [r for r in results if "skipped" not in r]
     ok = [r for r in results if "failed" not in r]
     sig = [x for r in ok for x in r["rows"] if x["significant"]]
@@ -346,41 +425,36 @@ def main(argv=None) -> int:
         print(f"  estimated error covers the actual error: {sum(x['covered'] for x in sig)} of "
               f"{len(sig)} terms ({100 * np.mean([x['covered'] for x in sig]):.0f} %); with the "
               f"reference's own GCI (root-sum-square, ASME V&V 20): "
-              f"{sum(x['covered_vv'] for x in sig)} ({100 * np.mean([x['covered_vv'] for x in sig]):.0f} %)")
+              + vv_count(sig))
         print(f"  a warning where some term is off by more than 5 %: "
               f"{sum(r['unconverged'] for r in ok if any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']))}"
               f" of {sum(any(abs(x['rel']) > 0.05 for x in r['rows'] if x['significant']) for r in ok)}")
         t = np.array([r["t_model"] for r in ok])
-        tb = np.array([r["t_bem"] for r in ok])
+        tb = np.array([r["t_bem"] for r in ok if np.isfinite(r["t_bem"])])
         c = np.array([r["c_model"] for r in ok])
         print(f"  whole-estimate CPU time (one thread): median {np.median(c):.2f} s (max "
               f"{c.max():.2f} s)")
         print(f"  whole-estimate time: median {np.median(t):.2f} s (max {t.max():.2f} s); "
-              f"BEM reference (all resolutions): median {np.median(tb):.2f} s")
+              f"BEM reference (all resolutions"
+              + (", the stored run's" if args.references else "") + "): "
+              + (f"median {np.median(tb):.2f} s" if len(tb) else "unknown")
+              + (f" ({len(ok) - len(tb)} shapes unknown)" if 0 < len(tb) < len(ok) else ""))
     if args.csv:
         Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
         with open(args.csv, "w", newline="") as fh:
             w = csv.writer(fh)
-            fh.write(f"# benchmarks/cad_shapes.py --seed {seed} --count {args.count} "
-                     f"--bem-faces {' '.join(map(str, args.bem_faces))}\n")
-            w.writerow(["shape", "family", "what", "how", "panels", "bem_faces", "mirrors",
-                        "warned", "t_model_s", "t_bem_s", "i", "j", "model", "bem",
-                        "error_rel", "covered", "significant", "bem_richardson_step_rel",
-                        "estimated_error_rel", "bem_gci_rel", "covered_with_bem_gci", "cpu_model_s"])
+            first = f"benchmarks/cad_shapes.py --seed {seed} --count {args.count}"
+            if args.references:    # the references' own command, then this re-run's
+                with open(args.references) as ref_fh:
+                    origin = ref_fh.readline().lstrip("# ").strip().split("; model rows")[0]
+                first = (f"{origin}; model rows re-run by {first} --references "
+                         f"{args.references}")
+            else:
+                first += f" --bem-faces {' '.join(map(str, args.bem_faces))}"
+            fh.write(f"# {first}\n")
+            w.writerow(HEADER)
             for r in results:
-                k = r["k"]
-                if "failed" in r:
-                    w.writerow([k, r["family"], "FAILED: " + r["failed"]] + [""] * 19)
-                    continue
-                head = [k, r["family"], r["what"], r["how"], r["panels"],
-                        "/".join(map(str, r["bem_faces"])), r["mirrors"], int(r["unconverged"]),
-                        f"{r['t_model']:.3f}", f"{r['t_bem']:.3f}"]
-                for x in r["rows"]:
-                    w.writerow(head + [x["i"], x["j"], f"{x['ours']:.6g}", f"{x['ref']:.6g}",
-                                       f"{x['rel']:.4g}", int(x["covered"]),
-                                       int(x["significant"]), f"{x['bem_step']:.3g}",
-                                       f"{x['est']:.3g}", f"{x['ref_gci']:.3g}",
-                                       int(x["covered_vv"]), f"{r['c_model']:.3f}"])
+                w.writerows(csv_rows(r))
     return 0
 
 

@@ -304,7 +304,8 @@ def csv_rows(s):
     m, run = s["mesh"], s["run"]
     return [[m.name, m.vehicle, m.kind, m.repo, m.commit, m.path, m.license, m.role, s["note"],
              s["label"], run["command"], method_of(run), s["levels"], int(s["warned"]),
-             f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])), f"{s['t_bem']:.1f}",
+             f"{run['seconds']:.2f}", "/".join(map(str, s["counts"])),
+             f"{s['t_bem']:.1f}" if np.isfinite(s["t_bem"]) else "",      # unknown: empty
              t["i"], t["j"], f"{t['model']:.6g}", f"{t['bem']:.6g}", f"{t['rel']:.4g}",
              f"{t['est']:.4g}", f"{t['bem_err']:.4g}", int(t["significant"]),
              int(t["covered"]), int(t["covered_vv"]), *point_cells(run)] for t in s["terms"]]
@@ -320,7 +321,7 @@ def stored_references(path) -> dict:
     """The references of a stored run (its CSV, :data:`HEADER`): ``{(mesh, run label):
     (reference at the run's point and frame, its estimated error, BEM face counts,
     BEM seconds)}``; the error is recovered from ``bem_error_rel`` times the scale of
-    :func:`compare_at`."""
+    :func:`compare_at`; seconds the file does not hold are unknown (NaN), never 0."""
     from stripcoef.hull.panels import NEGLIGIBLE
 
     with open(path, newline="") as fh:
@@ -331,7 +332,7 @@ def stored_references(path) -> dict:
         key = (r["mesh"], r["run"])
         if key not in out:
             out[key] = [np.zeros((6, 6)), np.zeros((6, 6)), r["bem_faces"],
-                        float(r["bem_seconds"] or 0.0)]
+                        float(r["bem_seconds"] or "nan")]      # not in the file: unknown
         i, j = int(r["i"]), int(r["j"])
         out[key][0][i, j] = out[key][0][j, i] = float(r["bem"])
         out[key][1][i, j] = out[key][1][j, i] = float(r["bem_error_rel"])
@@ -592,7 +593,9 @@ def main(argv=None) -> int:
                       f"(with the BEM's: {sum(t['covered_vv'] for t in sig)}); est. max "
                       f"{100 * (c.get('added_mass_error_max') or 0):.1f} %"
                       + (" WARNED" if warned else "") + f"; {run['seconds']:.1f} s; "
-                      f"BEM {'/'.join(map(str, counts))} faces {t_bem:.1f} s", flush=True)
+                      f"BEM {'/'.join(map(str, counts))} faces "
+                      + (f"{t_bem:.1f} s" if np.isfinite(t_bem) else "time unknown"),
+                      flush=True)
     return 0
 
 

@@ -11,6 +11,7 @@ added mass adds no moment of its own).
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import warnings
 from pathlib import Path
@@ -170,20 +171,156 @@ def test_compensation_is_per_lift_axis():
 
 
 @pytest.mark.slow
-def test_dropping_the_munk_moment_of_a_finned_vehicle_warns():
-    """``munk=False`` drops C_A's Munk block while the lifting fins' compensation stays in L
-    (their Munk moment then taken off twice): a finned model says so, in both paths
-    (``coriolis`` and the simulator's ``velocity_forces``); a vehicle without lifting fins
-    (MARES) does not."""
-    from conftest import shipped_model
+def test_without_the_munk_moment_the_fins_lift_alone_acts_at_the_quarter_chord(tail_models):
+    """``munk=False`` drops C_A's Munk block and the lifting fins' compensation with it: what
+    the fins add to the linearised sway force and yaw moment is then their lift alone (their
+    Munk moment counted zero times, in C_A and in the compensation), at the quarter chord with
+    nothing kept; while the compensation stayed in L it was taken off once with nothing to take
+    it from (about a chord behind the quarter chord)."""
+    finned, bare = tail_models
+    vehicle = _tail_vehicle(True)
+    fin = next(b for b in vehicle.bodies if b.name == "fin_top")
+    x_qc = fin.center[0] + 0.25 * fin.chord - (-0.1)
 
-    nu = np.array([1.0, 0.1, 0.0, 0.0, 0.0, 0.1])
-    remus, mares = shipped_model("remus100.yaml"), shipped_model("mares.yaml")
-    assert remus.conditions.lift["fin_munk"]
-    for call in (lambda m: m.coriolis(nu, munk=False),
-                 lambda m: m.velocity_forces(nu, munk=False)):
-        with pytest.warns(ModelWarning, match="taken off twice"):
-            call(remus)
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", ModelWarning)
-            call(mares)
+    def no_munk(model, u=1.0):
+        """d(force)/d(v, w) / u at nu = [u, 0...] without the Munk moment, less D_L: C_A's
+        other blocks hold no v or w column there, so it is the lift's [kg/m, kg]."""
+        base = np.array([u, 0, 0, 0, 0, 0.0])
+        jac = np.zeros((6, 6))
+        for j in (1, 2):
+            e = np.zeros(6)
+            e[j] = 1e-6
+            jac[:, j] = -(model.velocity_forces(base + e, munk=False, rigid_body=False)
+                          - model.velocity_forces(base - e, munk=False, rigid_body=False)
+                          ) / 2e-6 / u + np.asarray(model.linear_damping)[:, j] / u
+        return jac
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)     # the old warning is gone
+        d = no_munk(finned) - no_munk(bare)
+    assert np.any(finned.fin_munk_lift) and not np.any(bare.fin_munk_lift)
+    assert d[5, 1] / d[1, 1] == pytest.approx(x_qc, abs=1e-3 * fin.chord)
+    assert d[4, 2] / d[2, 2] == pytest.approx(-x_qc, abs=1e-3 * fin.chord)
+    np.testing.assert_allclose(d[:, 1:3], -(finned.lift - bare.lift)[:, 1:3], rtol=1e-6,
+                               atol=1e-6 * np.abs(finned.lift).max())
+    # the old model (the compensation folded into L) put it a chord aft of it
+    folded = dataclasses.replace(finned, lift=finned.total_lift,
+                                 fin_munk_lift=np.zeros((6, 6)))
+    old = no_munk(folded) - no_munk(bare)
+    assert old[5, 1] / old[1, 1] - x_qc < -0.5 * fin.chord       # measured: -0.99 chord
+
+
+@pytest.mark.slow        # the shipped REMUS and MARES estimates: about 10 s of CPU
+def test_the_compensation_is_counted_with_the_munk_moment_and_dropped_with_it():
+    """REMUS (lifting fins) and MARES (none): with the Munk moment the forces are C_A's and
+    L + dL's (the model's forces before dL had a field of its own); without it, or without C,
+    neither C_A's Munk block nor dL; ``limits``' balance and the simulator's forces agree in
+    each case; MARES has no compensation. No warning either way."""
+    from conftest import shipped_model
+    from stripcoef.limits.balance import LimitOptions, required_force
+
+    rng = np.random.default_rng(341)
+    for name in ("remus100.yaml", "mares.yaml"):
+        model = shipped_model(name)
+        fin = np.asarray(model.fin_munk_lift)
+        assert np.any(fin) == (name == "remus100.yaml")
+        assert np.array_equal(model.total_lift, model.lift + fin)
+        for nu in rng.normal(scale=[1.0, 0.2, 0.2, 0.1, 0.1, 0.2], size=(4, 6)):
+            u = nu[0]
+            c_a = model.coriolis(nu, rigid_body=False)
+            c_a_no = model.coriolis(nu, rigid_body=False, munk=False)
+            c_rb = model.coriolis(nu, added_mass=False)
+            drag = (model.linear_damping + model.quadratic_damping * np.abs(nu)) @ nu
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", ModelWarning)
+                on = model.velocity_forces(nu)
+                off = model.velocity_forces(nu, munk=False)
+                no_c = model.velocity_forces(nu, coriolis=False)
+                limits_off = required_force(model, nu, options=LimitOptions(munk=False))
+                limits_no_c = required_force(model, nu, options=LimitOptions(coriolis=False))
+            scale = 1e-12 * (1.0 + np.abs(on).max())
+            np.testing.assert_allclose(on, (c_rb + c_a) @ nu + drag + u * model.total_lift @ nu,
+                                       atol=scale)
+            np.testing.assert_allclose(off, (c_rb + c_a_no) @ nu + drag + u * model.lift @ nu,
+                                       atol=scale)
+            np.testing.assert_allclose(no_c, drag + u * model.lift @ nu, atol=scale)
+            g = model.restoring(np.zeros(6))
+            np.testing.assert_allclose(limits_off, off + g, atol=scale)
+            np.testing.assert_allclose(limits_no_c, no_c + g, atol=scale)
+            np.testing.assert_allclose(model.damping(nu) @ nu, drag + u * model.total_lift @ nu,
+                                       atol=scale)
+
+def _toy_method(monkeypatch, factor: float, *, fins_only: bool = False):
+    """Register an added-mass method ``toy``: strip theory's M_A times ``factor`` (a seeded
+    truth: the fins' share, and so their compensation, is ``factor`` times the strips');
+    ``fins_only``: it does not apply to a vehicle without fins (no solve without them)."""
+    from stripcoef.assembly import methods
+    from stripcoef.geometry.bodies import Fin
+
+    strips = methods.ADDED_MASS_METHODS["strips"]
+
+    def compute(inp):
+        m_a = strips.compute(dataclasses.replace(inp, strips=inp.vehicle.cut(None)))[0]
+        return factor * m_a, {"toy_factor": factor}, None
+
+    def applies_to(vehicle):
+        if fins_only and not any(isinstance(b, Fin) for b in vehicle.bodies):
+            return "the toy method needs fins", "a vehicle with fins"
+        return None
+
+    monkeypatch.setitem(methods.ADDED_MASS_METHODS, "toy", methods.AddedMassMethod(
+        name="toy", description="strips times a factor (test)", applies_to=applies_to,
+        compute=compute, error_estimate="none", provenance="toy", in_estimate=False))
+
+
+@pytest.mark.slow
+def test_an_added_mass_swapped_in_gets_its_own_fins_compensation(tail_models, monkeypatch):
+    """``with_added_mass_of``: the compensation is the swapped method's own fins' share (a
+    method giving twice the strips' M_A gives twice their compensation, the lift unchanged);
+    where that method cannot solve the vehicle without its fins, the estimate's compensation
+    is kept and a warning says so."""
+    from stripcoef.assembly.methods import with_added_mass_of
+
+    finned, _ = tail_models
+    vehicle = _tail_vehicle(True)
+    _toy_method(monkeypatch, 2.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)
+        got = with_added_mass_of(finned, vehicle, "toy")
+    np.testing.assert_allclose(got.added_mass, 2.0 * finned.added_mass, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(got.fin_munk_lift, 2.0 * finned.fin_munk_lift, rtol=1e-9,
+                               atol=1e-12 * np.abs(finned.fin_munk_lift).max())
+    assert np.array_equal(got.lift, finned.lift)
+    info = got.conditions.lift["fin_munk"]
+    assert info["method"] == "toy"
+    assert info["y"]["added_mass"] == pytest.approx(
+        2.0 * finned.conditions.lift["fin_munk"]["y"]["added_mass"], rel=1e-9)
+    _toy_method(monkeypatch, 2.0, fins_only=True)
+    with pytest.warns(ModelWarning, match="kept from the estimate's added-mass method"):
+        kept = with_added_mass_of(finned, vehicle, "toy")
+    assert np.array_equal(kept.fin_munk_lift, finned.fin_munk_lift)
+    np.testing.assert_allclose(kept.added_mass, 2.0 * finned.added_mass, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.slow        # two REMUS estimates and a panel swap: about 9 s
+def test_panels_swapped_in_give_the_panel_estimates_compensation():
+    """REMUS: strip theory's model with the panel method's M_A swapped in has the same
+    compensation as the panel estimate itself (the panels' fins' share: 1.294 kg in sway, the
+    strips' 1.408 kg, which the swapped model kept before)."""
+    from stripcoef.assembly.methods import with_added_mass_of
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    vehicle = load_vehicle(ROOT / "geometry" / "remus100.yaml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        strips = estimate(vehicle)
+        panels = estimate(vehicle, added_mass_method="panels")
+        got = with_added_mass_of(strips, vehicle, "panels")
+    scale = np.abs(panels.fin_munk_lift).max()
+    np.testing.assert_allclose(got.fin_munk_lift, panels.fin_munk_lift, rtol=0, atol=1e-9 * scale)
+    assert got.conditions.lift["fin_munk"]["method"] == "panels"
+    share = {k: got.conditions.lift["fin_munk"][k]["added_mass"] for k in "yz"}
+    assert share == pytest.approx({k: panels.conditions.lift["fin_munk"][k]["added_mass"]
+                                   for k in "yz"}, rel=1e-9)
+    # the strips' share differs (by +9 %): the swap changed the compensation
+    assert abs(strips.fin_munk_lift[5, 1] / got.fin_munk_lift[5, 1] - 1.0) > 0.03

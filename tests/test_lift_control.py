@@ -249,17 +249,23 @@ def test_estimate_about_another_point_equals_about(remus):
         direct = estimate(REMUS, reference_point=point)
         moved = remus.about(point)
     assert np.allclose(direct.lift, moved.lift, atol=1e-10)
+    assert np.any(direct.fin_munk_lift)       # the fins' Munk compensation: a couple, moved too
+    assert np.allclose(direct.fin_munk_lift, moved.fin_munk_lift, atol=1e-10)
     assert np.allclose(direct.control_matrix, moved.control_matrix, atol=1e-10)
 
 
 def test_model_round_trip_and_old_files(remus):
     data = json.loads(json.dumps(remus.to_dict()))
     back = HydroModel.from_dict(data)
-    assert np.array_equal(back.lift, remus.lift)
+    # the file's lift is L + dL, its fin_munk_lift dL (stripcoef.assembly.fin_munk)
+    assert np.allclose(data["lift"], remus.total_lift, rtol=0, atol=0)
+    assert np.array_equal(back.fin_munk_lift, remus.fin_munk_lift)
+    assert np.allclose(back.lift, remus.lift, rtol=0, atol=1e-14 * np.abs(remus.lift).max())
     assert np.array_equal(back.control_matrix, remus.control_matrix)
     assert [s.name for s in back.control_surfaces] == ["rudder", "elevator"]
     assert back.thrusters[0].torque_ratio == pytest.approx(-0.1407)
-    old = {k: v for k, v in data.items() if k not in ("lift", "control_surfaces")}
+    old = {k: v for k, v in data.items()
+           if k not in ("lift", "control_surfaces", "fin_munk_lift")}
     for t in old["thrusters"]:
         t.pop("torque_ratio", None)
     legacy = HydroModel.from_dict(old)
@@ -275,6 +281,9 @@ def test_propeller_torque_in_the_allocation(remus):
 def test_lift_is_in_the_damping(remus):
     nu = np.array([1.5, 0.1, 0.0, 0.0, 0.0, 0.0])
     d = remus.damping(nu) - (remus.linear_damping + remus.quadratic_damping * np.abs(nu))
+    assert np.allclose(d, 1.5 * remus.total_lift)     # with the Munk moment: L + dL
+    d = remus.damping(nu, munk=False) - (remus.linear_damping
+                                         + remus.quadratic_damping * np.abs(nu))
     assert np.allclose(d, 1.5 * remus.lift)
 
 
@@ -518,21 +527,21 @@ def test_exports_carry_the_lift(remus, tmp_path):
     block = re.search(r"<linear_damping_forward_speed>(.*?)</linear_damping_forward_speed>",
                       uuv, re.DOTALL).group(1)
     vals = np.array([float(v) for v in block.split()]).reshape(6, 6)
-    assert np.allclose(vals, -at_cg.lift, atol=1e-12)
+    assert np.allclose(vals, -at_cg.total_lift, atol=1e-12)   # L + dL: C_A with its Munk
     # gz-sim: about the CO in FLU, <yVabsU> = Y_uv (unchanged by the y, z flip)
-    flu = transform_matrix(remus.lift, axes="FLU")
+    flu = transform_matrix(remus.total_lift, axes="FLU")
     assert float(re.search(r"<yVabsU>(.*?)</yVabsU>", sdf).group(1)) == pytest.approx(-flu[1, 1])
     assert float(re.search(r"<nRabsU>(.*?)</nRabsU>", sdf).group(1)) == pytest.approx(-flu[5, 5])
     d = read_csv(csv_text)
-    assert np.allclose(d["lift"], remus.lift) and d["control_surfaces"] == ["rudder", "elevator"]
+    assert np.allclose(d["lift"], remus.total_lift) and d["control_surfaces"] == ["rudder", "elevator"]
     assert np.allclose(d["control_derivatives"], remus.control_matrix)
     with np.load(io.BytesIO(npz)) as arc:
-        assert np.allclose(arc["L"], remus.lift) and np.allclose(arc["B_delta"],
+        assert np.allclose(arc["L"], remus.total_lift) and np.allclose(arc["B_delta"],
                                                                   remus.control_matrix)
     path = tmp_path / "remus_model.py"
     path.write_text(py)
     mod = load_module(path, "remus_model")
-    assert np.allclose(mod.L, remus.lift) and np.allclose(mod.B_DELTA, remus.control_matrix)
+    assert np.allclose(mod.L, remus.total_lift) and np.allclose(mod.B_DELTA, remus.control_matrix)
     assert mod.COEFFICIENTS["Y_uv"] == pytest.approx(remus.coefficients()["Y_uv"])
     assert "Bdelta = [" in mss and "D = DL + nu_r(1) * L" in mss
 

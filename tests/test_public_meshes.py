@@ -228,3 +228,27 @@ def test_moved_uncertainty_bounds_every_error_within_the_bands():
             signs[k, m] = signs[m, k] = np.sign(transform_matrix(unit, to_point=point)[i, j])
     assert abs(transform_matrix(signs * u, to_point=point)[i, j]) == pytest.approx(
         bound[i, j], rel=1e-12)
+
+
+def test_a_stored_run_without_the_bem_time_reads_it_as_unknown(tmp_path):
+    """A stored row whose ``bem_seconds`` is empty: the time reads back as unknown (NaN) and
+    a re-run writes it empty again, never as 0 s."""
+    import csv
+
+    import numpy as np
+
+    ref = np.diag([4.0, 5.0, 6.0, 0.4, 0.5, 0.6])
+    run = {"json": {"added_mass": ref.tolist(), "added_mass_error": (0.01 * ref).tolist(),
+                    "reference_point": [0.0, 0.0, 0.0]},
+           "command": "stripcoef coefficients m.stl --rho 1000 --json", "seconds": 1.0}
+    line = dict(mesh=PM.MESHES[0], label="auto", run=run,
+                terms=PM.compare_at(run, ref, 0.02 * ref), counts=[500, 1000, 2000],
+                t_bem=float("nan"), warned=False, note="", levels="1/2/3")
+    rows = PM.csv_rows(line)
+    assert {r[PM.HEADER.index("bem_seconds")] for r in rows} == {""}
+    path = tmp_path / "stored.csv"
+    with open(path, "w", newline="") as fh:
+        fh.write("# a command\n")
+        csv.writer(fh).writerow(PM.HEADER)
+        csv.writer(fh).writerows(rows)
+    assert np.isnan(PM.stored_references(path)[(PM.MESHES[0].name, "auto")][3])

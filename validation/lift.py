@@ -361,48 +361,17 @@ def suboff_model(config: int, body_lift: str = "slender", ring: bool = False):
         return stripcoef.estimate(vehicle).about(_moment_point())
 
 
-def fin_munk_lift(model, vehicle) -> np.ndarray:
-    """The lift matrix ``stripcoef.assembly.lift.fin_munk_compensation`` adds to ``model`` (the
-    estimate of ``vehicle``, default options, about any point): the lifting fins' Munk moment
-    taken off C_A, recomputed with the estimate's added-mass method and inputs about the
-    model's reference point [kg/m, kg, kg m]."""
-    from stripcoef.assembly.lift import fin_munk_compensation
-    from stripcoef.assembly.mass import displaced_volume
-    from stripcoef.assembly.methods import AddedMassInputs, choose_method
-
-    strips = vehicle.cut(None)
-    volume, center = displaced_volume(strips)
-    method = choose_method("auto", vehicle, strips)
-    inputs = AddedMassInputs(vehicle=vehicle, strips=strips, rho=model.density,
-                             about=np.asarray(model.reference_point, float), volume=volume,
-                             center=center, corrections=vehicle.corrections)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return fin_munk_compensation(model.added_mass, lambda v: method.compute(
-            dataclasses.replace(inputs, vehicle=v, strips=v.cut(None)))[0], vehicle)[0]
-
-
-@functools.lru_cache(maxsize=None)
-def suboff_fin_munk_lift(config: int, body_lift: str = "slender") -> np.ndarray:
-    """:func:`fin_munk_lift` of configuration ``config``'s model about Roddy's moment point."""
-    from stripcoef.geometry.vehicle import parse_vehicle
-
-    vehicle = parse_vehicle(suboff_vehicle_data(config, body_lift), file=f"SUBOFF config {config}")
-    return fin_munk_lift(suboff_model(config, body_lift), vehicle)
-
-
 def suboff_derivatives(config: int, body_lift: str = "slender", ring: bool = False,
                        fin_munk_twice: bool = False) -> dict:
     """Roddy's nondimensional derivatives of stripcoef's model of a configuration (``ring``:
     with ring wing No. 1): static, rotary (the Munk part of C_A plus the lift,
     :func:`total_linear`) and control (the surfaces' force per u^2 per rad), on
     1/2 rho L_BP^k U^2. ``fin_munk_twice``: the model with each lifting fin's Munk moment
-    counted twice, in its lift and in C_A (the model before issue 34's fix, the lift less
-    :func:`suboff_fin_munk_lift`)."""
+    counted twice, in its lift and in C_A (the model before issue 34's fix, without its
+    ``fin_munk_lift``)."""
     model = suboff_model(config, body_lift, ring)
     if fin_munk_twice:
-        model = dataclasses.replace(model,
-                                    lift=model.lift - suboff_fin_munk_lift(config, body_lift))
+        model = dataclasses.replace(model, fin_munk_lift=np.zeros((6, 6)))
     jac = total_linear(model)
     h = 0.5 * model.density
     lbp = FT * val("t1.L_BP")
@@ -547,7 +516,7 @@ def total_linear(model, u: float = 1.0) -> np.ndarray:
     Prestero calls the combined coefficient), by central differences."""
     def force(nu):
         nu = np.asarray(nu, float)
-        return -(model.coriolis(nu, rigid_body=False) @ nu) - nu[0] * model.lift @ nu
+        return -(model.coriolis(nu, rigid_body=False) @ nu) - nu[0] * model.total_lift @ nu
 
     jac = np.zeros((6, 6))
     base = np.array([u, 0, 0, 0, 0, 0.0])
@@ -769,7 +738,7 @@ def drift_force_parts(config: int, beta_deg: float, method: str = "slender") -> 
     nu = speed * np.array([math.cos(b), -math.sin(b), 0.0, 0.0, 0.0, 0.0])
     parts = {"munk": -(model.coriolis(nu, rigid_body=False) @ nu),
              "linear_damping": -(np.asarray(model.linear_damping) @ nu),
-             "lift": -nu[0] * (np.asarray(model.lift) @ nu),
+             "lift": -nu[0] * (np.asarray(model.total_lift) @ nu),
              "crossflow": -((np.asarray(model.quadratic_damping) * np.abs(nu)) @ nu)}
     return {k: (float(f[1] / (h * lbp ** 2 * speed ** 2)), float(f[5] / (h * lbp ** 3 * speed ** 2)))
             for k, f in parts.items()}
@@ -1073,7 +1042,6 @@ def fin_munk_rows(method: str = "datcom") -> list[dict]:
 
 def fin_munk_section() -> list[str]:
     """The 'each fin's Munk moment counted once' subsection of docs/validation.md."""
-    from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.lift import fin_lift_matrix
     from stripcoef.sections.added_mass import flat_plate
 
@@ -1108,9 +1076,7 @@ def fin_munk_section() -> list[str]:
                                {k: comps[(1, k)]["measured"] for k in ("Zw", "Mw", "Zq", "Mq")},
                                m, xg)
     model = remus()
-    twice_remus = dataclasses.replace(
-        model,
-        lift=model.lift - fin_munk_lift(model, load_vehicle(ROOT / "geometry" / "remus100.yaml")))
+    twice_remus = dataclasses.replace(model, fin_munk_lift=np.zeros((6, 6)))
     r_once, r_twice = turn_agreement(model)[0].radius, turn_agreement(twice_remus)[0].radius
     return [
         "### Each fin's Munk moment counted once", "",
@@ -1122,11 +1088,13 @@ def fin_munk_section() -> list[str]:
         "(`hull.lift.fin_lift_matrix` against `sections.added_mass.flat_plate`; in "
         "Theodorsen's 1935 solution the apparent-mass terms hold no U^2 alpha term). The model's "
         "C_A(nu), built from M_A by Fossen's formula, held the fins' added mass too and added "
-        "their Munk moment a second time. Since issue 34 the lift matrix takes the lifting "
+        "their Munk moment a second time. Since issue 34 the model takes the lifting "
         "fins' share of it off again (`stripcoef.assembly.lift.fin_munk_compensation`: the "
         "share is M_A less the added mass of the vehicle without those fins, by the same "
         "method; per lift axis, so a fin's added mass along its span keeps its Munk moment), "
-        "in L so that simulate, limits and every export count it once "
+        "kept beside L as the model's `fin_munk_lift` (`stripcoef.assembly.fin_munk`): "
+        "simulate, limits and every export count it once, with C_A's Munk moment, and drop "
+        "it with that moment (`--no-munk`) "
         "(tests/test_fin_munk.py: the plate's moment once, not twice; on REMUS's hull the "
         "fins' force and moment act at their quarter chord). On SUBOFF configuration 5 the "
         f"rudder pair's share in sway is {share:.2f} kg; with its lift of {k_pair:.1f} kg/m per "
@@ -1434,7 +1402,7 @@ def section() -> str:
     for name, (i, j) in COMBINED.items():
         row = ref.reference_value("prestero2001", name)
         ours = jac[i, j]
-        rows.append((name, f"{row['value']:g}", f"{ours:.3g}", f"{-m.lift[i, j]:.3g}",
+        rows.append((name, f"{row['value']:g}", f"{ours:.3g}", f"{-m.total_lift[i, j]:.3g}",
                      f"{100 * (ours / row['value'] - 1):+.0f} %",
                      "yes" if ref.agrees(row, ours) else "no (strict xfail)"))
     for name in ("Y_uudr", "Z_uuds", "M_uuds", "N_uudr"):

@@ -528,7 +528,7 @@ def frozen_mapping(value) -> Mapping:
 
 #: the array fields of a HydroModel, frozen by ``__post_init__``
 _ARRAYS = ("reference_point", "rigid_body_mass", "added_mass", "linear_damping",
-           "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift")
+           "quadratic_damping", "center_of_gravity", "center_of_buoyancy", "lift", "fin_munk_lift")
 
 
 def coriolis_table(mass_matrix, *, munk: bool = True) -> np.ndarray:
@@ -586,6 +586,9 @@ class HydroModel:
     lift : (6, 6)
         L, the speed-dependent linear (lift) terms: force ``-u L nu`` [kg/m, kg, kg m];
         ``-L[1, 1] = Y_uv``, ``-L[5, 5] = N_ur`` (docs/conventions.md; Prestero 2001, sec. 3.6)
+    fin_munk_lift : (6, 6)
+        dL, the lifting fins' Munk moment taken off C_A (their lift carries it): force ``-u dL
+        nu`` [kg/m, kg, kg m], counted and dropped with C_A's Munk moment (:attr:`total_lift`)
     control_surfaces : tuple of ControlSurface
         Rudders and elevators: force ``u^2 b delta`` and deflection limits
     added_mass_error : (6, 6) or None
@@ -615,6 +618,7 @@ class HydroModel:
     control_surfaces: tuple = ()
     bands: tuple = ()
     added_mass_error: np.ndarray | None = None
+    fin_munk_lift: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
 
     def __post_init__(self):
         for name in _ARRAYS:
@@ -676,9 +680,8 @@ class HydroModel:
                  munk: bool = True) -> np.ndarray:
         """C(nu) = C_RB(nu) + C_A(nu); ``munk=False`` drops the C_A terms that multiply
         linear velocities into moments (the Munk moment, Ferreira et al. 2009 sec. V.D).
-        The lifting fins' share of it is taken off again in :attr:`lift`, whose fin lift
-        carries it (``stripcoef.assembly.lift.fin_munk_compensation``); ``munk=False`` keeps
-        that compensation, so it warns (:meth:`_warn_no_munk`).
+        The lifting fins' share of it, which their lift carries, is taken off again by
+        :attr:`fin_munk_lift`, counted with it (:meth:`damping` ``munk``).
 
         ``nu`` [m/s, rad/s]; returns C [kg/s, kg m/s, kg m^2/s] (C nu in [N, N m]).
         Each term from :func:`coriolis_from_mass` (Fossen 2011, Theorem 3.2, eq. 3.46).
@@ -689,24 +692,21 @@ class HydroModel:
         if added_mass:
             ca = coriolis_from_mass(self.added_mass, nu)
             if not munk:
-                self._warn_no_munk()
                 ca = ca.copy()
                 # Munk moment: moments from the linear momentum of the added mass.
                 ca[3:, :3] = 0.0
             c += ca
         return c
 
-    def _warn_no_munk(self) -> None:
-        """Warn that the Munk moment dropped from C_A leaves the lifting fins' compensation in
-        L (conditions ``lift.fin_munk``): their moment is then short by their Munk moment."""
-        if (self.conditions.lift or {}).get("fin_munk"):
-            warnings.warn(f"{self.name}: without the Munk moment the lifting fins' Munk moment, "
-                          "taken off C_A in the lift matrix, is taken off twice: the fins' "
-                          "moments are short by it (keep the Munk moment on for a finned "
-                          "vehicle)", ModelWarning, stacklevel=3)
+    @property
+    def total_lift(self) -> np.ndarray:
+        """L + dL [kg/m, kg, kg m], the u-terms beside C_A with its Munk moment (the
+        coefficients, every export; :mod:`stripcoef.assembly.fin_munk`)."""
+        return self.lift + self.fin_munk_lift
 
-    def damping(self, nu) -> np.ndarray:
-        """D(nu) = D_L + u L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu.
+    def damping(self, nu, *, munk: bool = True) -> np.ndarray:
+        """D(nu) = D_L + u L + D_Q diag(|nu|) [kg/s, ...]; hydrodynamic force = -D(nu) nu;
+        with C_A's Munk moment (``munk``) L holds :attr:`fin_munk_lift` (:attr:`total_lift`).
 
         ``nu`` [m/s, rad/s]; D_L [kg/s, kg m^2/s], D_Q [kg/m, kg m^2], L [kg/m, kg, kg m]
         (lift, :attr:`lift`). Quadratic diagonal drag of Wang & Clark 2006, eq. 7 (see module
@@ -714,7 +714,7 @@ class HydroModel:
         (sec. 3.6), which the UUV Simulator calls the forward-speed linear damping.
         """
         nu = np.asarray(nu, dtype=float)
-        table, d_l = self._velocity_terms(False, False, True, True)   # velocity_forces' rule
+        table, d_l = self._velocity_terms(False, False, munk, True)   # velocity_forces' rule
         return (np.concatenate([nu, np.abs(nu)]) @ table + d_l).reshape(6, 6)
 
     def velocity_forces(self, nu, nu_r=None, *, coriolis: bool = True, munk: bool = True,
@@ -730,15 +730,16 @@ class HydroModel:
         :meth:`damping`, the lift :math:`uL` of Prestero 2001, sec. 3.6, in :math:`K_0`): C
         and D are linear in :math:`[\nu, |\nu|]`, so each row's matrix is one product with a
         12 x 36 table (:func:`coriolis_table`, :math:`Q_j = D_Q e_j e_j^T`) built once per
-        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A,
-        ``rigid_body=False`` C_RB. The one rule of the simulation's right-hand side, the
-        diagnose batch simulation and the log windows' force terms.
+        model. ``coriolis=False`` drops both C, ``munk=False`` the Munk moment of C_A (each with
+        :attr:`fin_munk_lift`), ``rigid_body=False`` C_RB. The one rule of the simulation's
+        right-hand side, the diagnose batch simulation and the log windows' force terms.
         """
         nu = np.asarray(nu, dtype=float)
         if nu_r is None:
-            table, d_l = self._velocity_terms(rigid_body and coriolis, coriolis, munk, True)
+            table, d_l = self._velocity_terms(rigid_body and coriolis, coriolis,
+                                              munk and coriolis, True)
             return velocity_product(table, d_l, nu)
-        out = velocity_product(*self._velocity_terms(False, coriolis, munk, True),
+        out = velocity_product(*self._velocity_terms(False, coriolis, munk and coriolis, True),
                                 np.asarray(nu_r, dtype=float))
         if rigid_body and coriolis:
             out = out + velocity_product(*self._velocity_terms(True, False, munk, False), nu)
@@ -753,7 +754,8 @@ class HydroModel:
                         damping: bool) -> tuple:
         """(table on [nu, |nu|] (12, 36), or on nu (6, 36) without the damping; D_L (36,) or
         ``None``) of :meth:`velocity_forces`: row j :math:`K_j` (:func:`coriolis_table`, the
-        lift L in row 0 with the damping), row 6 + j :math:`Q_j = D_Q e_j e_j^T`."""
+        lift L in row 0 with the damping, :attr:`fin_munk_lift` with ``munk``), row 6 + j
+        :math:`Q_j = D_Q e_j e_j^T`."""
         key = (rigid_body, added_mass, munk, damping)
         tables = self._velocity_tables
         if key not in tables:
@@ -761,8 +763,6 @@ class HydroModel:
             if rigid_body:
                 table[:6] += coriolis_table(self.rigid_body_mass)
             if added_mass:
-                if not munk:
-                    self._warn_no_munk()
                 table[:6] += coriolis_table(self.added_mass, munk=munk)
             d_l = None
             if damping:
@@ -770,7 +770,7 @@ class HydroModel:
                 for j in range(6):
                     quad[j][:, j] = np.asarray(self.quadratic_damping, dtype=float)[:, j]
                 table[6:] = quad.reshape(6, 36)
-                table[0] += np.asarray(self.lift, dtype=float).reshape(36)
+                table[0] += (self.total_lift if munk else self.lift).reshape(36)
                 d_l = np.asarray(self.linear_damping, dtype=float).reshape(36)
             tables[key] = (table if damping else table[:6].copy(), d_l)
         return tables[key]
@@ -823,7 +823,7 @@ class HydroModel:
         secs. 3.6-3.7)."""
         out = sname_coefficients(self.added_mass, self.linear_damping, self.quadratic_damping,
                                  tol=1e-12)
-        lift = np.asarray(self.lift, dtype=float)
+        lift = self.total_lift
         scale = max(float(np.abs(lift).max()), 1e-300)
         for (i, j), name in lift_names().items():
             if lift[i, j] != 0.0 and abs(lift[i, j]) > 1e-12 * scale:
@@ -851,7 +851,7 @@ class HydroModel:
             for i in range(6):
                 for j in range(6):
                     named[namer(i, j)] = (matrix, i, j, m)
-        named.update({name: ("lift", i, j, self.lift) for (i, j), name in lift_names().items()})
+        named.update({n: ("lift", i, j, self.total_lift) for (i, j), n in lift_names().items()})
         coupling = next((b.sd for b in self.bands if b.matrix == "added_mass"
                          and b.dofs == "coupling"), None)
         control = next((b.sd for b in self.bands if b.matrix == "control"), None)
@@ -920,11 +920,12 @@ class HydroModel:
         return replace(self, reference_point=point, rigid_body_mass=t(self.rigid_body_mass),
                        added_mass=t(self.added_mass), linear_damping=t(self.linear_damping),
                        quadratic_damping=dq, lift=t(self.lift), control_surfaces=surfaces,
-                       added_mass_error=error)
+                       added_mass_error=error, fin_munk_lift=t(self.fin_munk_lift))
 
     # -- serialisation ------------------------------------------------------
     def to_dict(self) -> dict:
-        """The JSON output contract (docs/conventions.md)."""
+        """The JSON output contract (docs/conventions.md): ``lift`` is :attr:`total_lift`,
+        ``fin_munk_lift`` (where not zero) the part of it :attr:`fin_munk_lift`."""
         def mat(m):
             return [[float(x) for x in row] for row in np.asarray(m)]
 
@@ -948,13 +949,15 @@ class HydroModel:
             "conditions": plain(self.conditions.to_dict()),
             "effects": plain(self.effects),
             "provenance": plain(self.provenance),
-            "lift": mat(self.lift),
+            "lift": mat(self.total_lift),
             "control_surfaces": [c.to_dict() for c in self.control_surfaces],
             "bands": [b.to_dict() for b in self.bands],
             "coefficient_bands": {k: list(v) for k, v in self.coefficient_bands().items()},
         }
         if self.added_mass_error is not None:
             out["added_mass_error"] = mat(self.added_mass_error)
+        if np.any(self.fin_munk_lift):
+            out["fin_munk_lift"] = mat(self.fin_munk_lift)
         return out
 
     @classmethod
@@ -970,7 +973,8 @@ class HydroModel:
                         deadband=t.get("deadband", 0.0),
                         torque_ratio=t.get("torque_ratio", 0.0))
                for t in data.get("thrusters", [])]
-        lift = np.asarray(data.get("lift", np.zeros((6, 6))), float)
+        fin = np.asarray(data.get("fin_munk_lift", np.zeros((6, 6))), float)
+        lift = np.asarray(data.get("lift", np.zeros((6, 6))), float) - fin   # lift: L + dL
         return cls(
             name=data.get("name", "model"),
             reference_point=np.asarray(data["reference_point"], float),
@@ -986,7 +990,7 @@ class HydroModel:
             gravity=float(data.get("gravity", G)),
             thrusters=thr, conditions=data.get("conditions", {}),
             effects=list(data.get("effects", [])), provenance=data.get("provenance", {}),
-            lift=lift,
+            lift=lift, fin_munk_lift=fin,
             control_surfaces=tuple(ControlSurface.from_dict(c)
                                    for c in data.get("control_surfaces", [])),
             bands=tuple(MethodBand.from_dict(b) for b in data.get("bands", [])),

@@ -9,13 +9,14 @@ options of ``stripcoef coefficients``: make a model file with it first.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.errors import InputError
+from stripcoef.errors import InputError, ModelWarning
 from stripcoef.fluid import Fluid
 from stripcoef.geometry.vehicle import Reader
 from stripcoef.thrusters import Thruster
@@ -74,7 +75,23 @@ def model_from_dict(data, *, file: str | None = None) -> HydroModel:
                          expected="a model file from HydroModel.to_dict()") from None
     check_physical(model, file=file)
     _check_about_reference_point(model, file)
+    _note_folded_fin_munk(data, file)
     return model
+
+
+def _note_folded_fin_munk(data: dict, file) -> None:
+    """A model file written before the lifting fins' Munk compensation had a key of its own
+    (``fin_munk_lift``, :mod:`stripcoef.assembly.fin_munk`) holds it inside ``lift``: read as
+    it is (the same forces with the Munk moment), but without the Munk moment (``--no-munk``,
+    ``--no-coriolis``) it cannot be dropped, so the fins' Munk moment is taken off twice. Its
+    conditions (``lift.fin_munk``) tell such a file; a :class:`ModelWarning` says so."""
+    lift = (data.get("conditions") or {}).get("lift")
+    if "fin_munk_lift" not in data and isinstance(lift, dict) and lift.get("fin_munk"):
+        warnings.warn(f"{file or 'model'}: written before 'fin_munk_lift': its 'lift' holds the "
+                      "lifting fins' Munk compensation, read as it is (the same with the Munk "
+                      "moment); without the Munk moment (--no-munk, --no-coriolis) the fins' "
+                      "Munk moment is taken off twice: write the model file again "
+                      "(stripcoef coefficients VEHICLE --json)", ModelWarning, stacklevel=3)
 
 
 def _check_about_reference_point(model, file) -> None:
@@ -143,7 +160,8 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
       degrees of freedom (or ``all``), parameters finite numbers; the effect names, the
       DOFs they act in, their parameters and ranges checked against the effects library
       (:func:`stripcoef.effects.laws.check_effect_entries`);
-    - ``lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector ``derivative`` and
+    - ``lift`` and ``fin_munk_lift`` 6 x 6 finite; ``control_surfaces`` with a 6-vector
+      ``derivative`` and
       angles > 0 [rad]; ``conditions`` and ``provenance`` mappings.
 
     Returns ``data`` with the thruster directions normalised (a new mapping).
@@ -166,8 +184,9 @@ def check_model_parts(data: dict, *, file: str | None = None) -> dict:
     for key in ("conditions", "provenance"):
         if data.get(key) is not None and not isinstance(data[key], dict):
             raise r.err(key, "not a mapping", data[key], "a mapping of keys to values")
-    if data.get("lift") is not None:
-        _check_array(data["lift"], (6, 6), file, "lift")
+    for key in ("lift", "fin_munk_lift"):
+        if data.get(key) is not None:
+            _check_array(data[key], (6, 6), file, key)
     data["thrusters"] = _check_thrusters(r, data)
     effects = data.get("effects")
     if effects is not None:

@@ -18,7 +18,7 @@ from stripcoef.fluid import MAX_VEHICLE_SPEED, Fluid
 from stripcoef.model import Conditions, HydroModel, rigid_body_mass_matrix
 from stripcoef.physical import check_physical
 from stripcoef.assembly.damping import damping_matrices
-from stripcoef.assembly.lift import vehicle_lift
+from stripcoef.assembly.lift import fin_munk_compensation, vehicle_lift
 from stripcoef.assembly.mass import displaced_volume, mass_properties
 from stripcoef.assembly.methods import AddedMassInputs, choose_method
 from stripcoef.conventions import clean_roundoff
@@ -130,7 +130,9 @@ def estimate(vehicle, options: EstimateOptions | None = None, **keywords) -> Hyd
         :func:`~stripcoef.assembly.damping.damping_matrices`, M_RB from
         :func:`mass_properties` (Fossen 2011, eqs. 3.44-3.45), the lift matrix and control
         surfaces from :func:`~stripcoef.assembly.lift.vehicle_lift` (Prestero 2001, secs.
-        3.6-3.7). See the module docstring.
+        3.6-3.7), the lifting fins' Munk compensation (``fin_munk_lift``) from
+        :func:`~stripcoef.assembly.lift.fin_munk_compensation` by the same added-mass
+        method. See the module docstring.
     """
     if options is None:
         options = EstimateOptions(**keywords)
@@ -176,9 +178,13 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
     m_a, am_info, m_a_error = method.compute(inputs)
     d_l, d_q, cond = damping_matrices(st, vehicle, rho, nu, speed, ref, regime)
     m_rb = rigid_body_mass_matrix(mass, cg - ref, inertia)
-    lift, surfaces, lift_info = vehicle_lift(      # the fins' Munk moment once (in their lift)
-        vehicle, rho, ref, center=cb, speed=speed, viscosity=nu, added_mass=m_a,
-        added_mass_of=lambda v: method.compute(replace(inputs, vehicle=v, strips=v.cut(strips)))[0])
+    lift, surfaces, lift_info = vehicle_lift(vehicle, rho, ref, center=cb, speed=speed,
+                                             viscosity=nu)
+    fin_munk, munk_info = fin_munk_compensation(   # the fins' Munk moment once (in their lift)
+        m_a, lambda v: method.compute(replace(inputs, vehicle=v, strips=v.cut(strips)))[0],
+        vehicle)
+    if munk_info:
+        lift_info["fin_munk"] = munk_info
     m_a, m_rb = clean_roundoff(m_a), clean_roundoff(m_rb)
     conditions = Conditions(**cond, **am_info, lift=lift_info or None, strips=st.n,
                             corrections=corrections, density=rho, kinematic_viscosity=nu,
@@ -193,7 +199,7 @@ def _estimate(vehicle, options: EstimateOptions) -> HydroModel:
         name=vehicle.name, reference_point=ref, rigid_body_mass=m_rb, added_mass=m_a,
         linear_damping=d_l, quadratic_damping=d_q, mass=mass, volume=volume,
         center_of_gravity=cg, center_of_buoyancy=cb, density=rho, kinematic_viscosity=nu,
-        thrusters=vehicle.thrusters, conditions=conditions, lift=lift,
+        thrusters=vehicle.thrusters, conditions=conditions, lift=lift, fin_munk_lift=fin_munk,
         control_surfaces=surfaces, added_mass_error=m_a_error,
         provenance={"method": method.provenance, "source": vehicle.source,
                     "corrections": corrections, "strips": st.n},

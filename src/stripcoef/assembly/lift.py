@@ -17,10 +17,12 @@ elevator gives -Z).
 A fin's Munk moment is counted once, in its lift (:func:`munk_lift_matrix`): the lift at the
 quarter chord is the fin's whole potential-flow force and moment, and C_A(nu) of the model's
 M_A (Fossen 2011, eq. 3.46) would add the fins' share of the Munk moment a second time, so
-:func:`vehicle_lift` takes it off the lift matrix (given the model's M_A and how it was
-computed):
+:func:`fin_munk_compensation` takes it off (given the model's M_A and how it was computed):
 
-.. math:: L \leftarrow L - L_{Munk}(M_A - M_A^{without\ lifting\ fins}).
+.. math:: \Delta L = -L_{Munk}(M_A - M_A^{without\ lifting\ fins}),
+
+kept beside L as the model's ``fin_munk_lift`` (:mod:`stripcoef.assembly.fin_munk`), counted
+with C_A's Munk moment and dropped with it.
 """
 
 from __future__ import annotations
@@ -288,9 +290,10 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle,
     centre of pressure the double count put 1.7 chords ahead of their quarter chord,
     docs/validation.md). Keeping the
     lift and taking the fins' Munk part off C_A (not the reverse) keeps the fin's centre of
-    pressure where the lift puts it and leaves M_A whole for the accelerations; it is written
-    into L so that every consumer of M_A and L (simulate, limits, the exports, whose
-    simulators build C_A from M_A) counts it once. The body's own Munk moment stays in C_A
+    pressure where the lift puts it and leaves M_A whole for the accelerations; it is kept as
+    the model's ``fin_munk_lift``, beside L (:mod:`stripcoef.assembly.fin_munk`): every
+    consumer of M_A with its Munk moment (simulate, limits, the exports, whose simulators build
+    C_A from M_A) counts it once, with L, and drops it with the Munk moment. The body's own Munk moment stays in C_A
     (the body lift is the potential force behind the separation station taken from it,
     :func:`_body_lift`).
 
@@ -345,8 +348,7 @@ def fin_munk_compensation(added_mass, added_mass_of, vehicle,
 
 
 def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None = None,
-                 viscosity: float | None = None, added_mass=None,
-                 added_mass_of=None) -> tuple[np.ndarray, tuple, dict]:
+                 viscosity: float | None = None) -> tuple[np.ndarray, tuple, dict]:
     """Lift matrix L (force -u L nu), control surfaces and a summary, about ``ref`` [m].
 
     Parameters
@@ -362,11 +364,6 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
         Reference speed [m/s] and kinematic viscosity [m^2/s] of the fins' boundary-layer
         reduction under the slender-body rule (default: the vehicle's reference speed and
         fluid)
-    added_mass, added_mass_of : optional
-        The model's M_A about ``ref`` [kg, kg m, kg m^2] and ``f(vehicle) -> M_A`` by the same
-        method: with both, the lifting fins' Munk moment is taken off C_A
-        (:func:`fin_munk_compensation`, ``info["fin_munk"]``), each fin's counted once, in
-        its lift
 
     Returns
     -------
@@ -421,11 +418,6 @@ def vehicle_lift(vehicle, rho: float, ref, *, center=None, speed: float | None =
         info["fin_lift"] = fin_info
     if no_lift:
         info["fins_without_lift"] = no_lift
-    if added_mass is not None and added_mass_of is not None:
-        munk, munk_info = fin_munk_compensation(added_mass, added_mass_of, vehicle, lifting)
-        if munk_info:
-            lift += munk
-            info["fin_munk"] = munk_info
     return lift, tuple(surfaces), info
 
 

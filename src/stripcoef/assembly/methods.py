@@ -24,6 +24,7 @@ import numpy as np
 
 from stripcoef.assembly.added_mass import (SLENDER_RATIO, _mesh_of, added_mass,
                                            panel_vehicle_added_mass)
+from stripcoef.assembly.fin_munk import NoFinSolve, recompute
 from stripcoef.assembly.symmetry import ZERO_TOL as SYMMETRY_ZERO_TOL
 from stripcoef.assembly.symmetry import (enforce_symmetry, enforce_symmetry_about,
                                          strip_sections, strips_mirror_symmetries)
@@ -293,17 +294,28 @@ def with_added_mass_of(model, vehicle, name: str):
     and rigid-body terms kept, the provenance naming the method and what it reports (the
     BEM: faces and solver time [s]), the method's estimated error of each term (none for the
     BEM; the panels' grid convergence index, their mirror planes found on the vehicle's own
-    strips). A method that does not apply to ``vehicle`` is a one-line error."""
+    strips), and the lifting fins' Munk compensation of the method's own fins' share
+    (:func:`stripcoef.assembly.fin_munk.recompute`: one more solve of the vehicle without its
+    lifting fins; kept, with a warning, where the method cannot solve it). A method that does
+    not apply to ``vehicle`` is a one-line error."""
     method = get_method(name)
     need = method.applies_to(vehicle)
     if need is not None:
         raise InputError(need[0], file=getattr(vehicle, "source", None) or None,
                          key="method", value=name, expected=need[1])
-    m_a, info, error = method.compute(AddedMassInputs(
-        vehicle=vehicle, strips=None, rho=model.density, about=model.reference_point,
-        volume=model.volume, center=model.center_of_buoyancy))
+    inputs = AddedMassInputs(vehicle=vehicle, strips=None, rho=model.density,
+                             about=model.reference_point, volume=model.volume,
+                             center=model.center_of_buoyancy)
+    m_a, info, error = method.compute(inputs)
     provenance = {**model.provenance, "method": method.provenance, **info}
-    return replace(model, added_mass=m_a, provenance=provenance, added_mass_error=error)
+    model = replace(model, added_mass=m_a, provenance=provenance, added_mass_error=error)
+
+    def without_fins(v):
+        need = method.applies_to(v)
+        if need is not None:
+            raise NoFinSolve(need[0])
+        return method.compute(replace(inputs, vehicle=v))[0]
+    return recompute(model, vehicle, without_fins, method=name)
 
 
 def added_mass_method(name, vehicle, strips: Strips) -> str:

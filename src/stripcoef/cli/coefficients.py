@@ -103,7 +103,7 @@ def format_table(model) -> str:
            mat("Rigid-body mass M_RB", model.rigid_body_mass, "kg, kg m, kg m^2"),
            ""]
     if np.any(model.lift) or model.control_surfaces:
-        out += [mat("Lift L (force -u L nu)", model.lift, "kg/m, kg, kg m", "lift"), ""]
+        out += [mat("Lift L (force -u L nu)", model.total_lift, "kg/m, kg, kg m", "lift"), ""]
         coeffs = model.coefficients()
         lift_names = [k for k in ("Y_uv", "Y_ur", "Z_uw", "Z_uq", "K_up", "M_uw", "M_uq",
                                   "N_uv", "N_ur") if k in coeffs]

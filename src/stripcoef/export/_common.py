@@ -197,11 +197,14 @@ class ExportView:
     def matrix(self, name: str) -> np.ndarray:
         """A 6x6 matrix of the model about the view's point, in the view's axes.
 
-        ``name`` is one of rigid_body_mass, added_mass, linear_damping, quadratic_damping.
-        The axis change is :func:`transform_matrix` (``T A T`` with T = diag(1,-1,-1,1,-1,-1)
+        ``name`` is one of rigid_body_mass, added_mass, linear_damping, quadratic_damping,
+        lift (:attr:`HydroModel.total_lift`: L with the lifting fins' Munk compensation, the
+        u-terms beside the simulator's C_A with its Munk moment). The axis change is
+        :func:`transform_matrix` (``T A T`` with T = diag(1,-1,-1,1,-1,-1)
         for FLU), also exact for D_Q because ``|T nu| = |nu|``.
         """
-        return transform_matrix(getattr(self.model, name), axes=self.axes)
+        return transform_matrix(getattr(self.model, "total_lift" if name == "lift" else name),
+                                axes=self.axes)
 
     def vector(self, vec) -> np.ndarray:
         """A 3-vector of FRD body axes in the view's axes."""

@@ -62,10 +62,17 @@ Edges: at a convex edge the flow is singular and the added mass converges at the
 :func:`edge_order` gives (4/3 in the panel size at a right-angled edge, 1 at a plate's rim),
 not the smooth body's 2; the grid convergence index takes it as its formal order (on the
 CAD-style shapes its estimate then covers 272 of 281 terms against Capytaine refined to
-12,000-24,000 faces, 250 with the order 2: benchmarks/data/estimate_coverage.md).
+12,000-24,000 faces, 250 with the order 2: benchmarks/data/estimate_coverage.md).  The edges
+are read independently of the input's tessellation (:func:`edge_features`): a crease whose
+normals turn by no more than the feature angle of mesh processing (30 degrees) is a facet of
+a smooth surface, a fold (two faces in one plane, one folded back) a double sheet whose rim
+is a knife edge only where it is a panel wide, and the members' thickness is measured with
+or without the remesher.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -589,7 +596,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         used = "isotropic remesh (pymeshlab" + ("" if mode.flips else ", no flips: thin members") + ")"
     if levels is None:
         levels = panel_levels(v, f, panels, where)
-    turning = max_convex_turning(v, f)           # the sharpest convex edge of the body [rad]
+    # the body's sharpest convex edge, facets of smooth parts and folds left out [rad]
+    features = edge_features(v, f)
+    if not np.isfinite(thickness):
+        # the input family (no remesher) or the input's faces bisected: the members'
+        # thickness from the finest panelling, by the same ray casts (member_thickness needs
+        # neither pymeshlab nor rtree), so the knife-edge rule applies in every install
+        thickness = member_thickness(*levels[-1])
     counts, mats, nominal = [], [], panels
     for pv, pf in levels:
         n, a = _solve_level(pv, pf, scale, rho, about, near_factor, solve_planes)
@@ -604,7 +617,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         # range (_remeshed_levels): no term takes the safety factor of 1.25; the order the
         # index may use is that of the body's sharpest edge (edge_order)
         finest_edge = edge_for_panels(area, counts[-1])
-        formal = edge_order(turning, finest_edge, thickness)
+        formal = edge_order(features.turning, finest_edge, thickness,
+                            sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         gci, order, safety = grid_convergence_index(
             mats[-3:], counts[-3:], formal_order=formal,
             asymptotic_possible=finest_edge <= THIN_EDGE_RATIO * thickness)
@@ -641,24 +655,158 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
 SMOOTH_ORDER = 2.0
 
 
-def max_convex_turning(vertices, faces) -> float:
-    r"""The largest angle [rad] between the outward normals of two faces that meet at a convex
-    edge of the closed surface: :math:`\theta = \pi - \alpha` for an interior dihedral angle
-    :math:`\alpha` (a box's edge :math:`\pi/2`; 0 for a surface without convex edges), from
-    trimesh's face adjacency (``face_adjacency_angles``, ``face_adjacency_convex``)."""
+#: Turning of the normal [deg] up to which a convex crease of the input mesh is read as the
+#: tessellation of a smooth surface, not an edge of the body: the feature (crease) angle of
+#: mesh processing, 30 degrees in VTK's vtkFeatureEdges and vtkPolyDataNormals (Schroeder,
+#: Martin & Lorensen 2006, "The Visualization Toolkit", 4th ed., Kitware, ch. 9, feature
+#: edges) and in MeshLab's remesher (:data:`stripcoef.hull.remesh.FEATURE_ANGLE`, the crease
+#: angle the remeshed levels keep).  A cylinder exported with 12 or more facets (CAD tools'
+#: coarsest angular tolerance, 30 degrees) is smooth; a box's, a chamfer's (45 degrees) or a
+#: plate's rim is an edge.
+FEATURE_ANGLE = 30.0
+#: Largest departure from 180 degrees [deg] of the turning at a fold: the two faces lie in one
+#: plane, one folded back onto the other (a double sheet of zero thickness; eROV's visual
+#: mesh has 24 such slivers, 1.8 mm wide, turning 179.985-179.997 degrees).
+FOLD_ANGLE = 0.1
+#: Most folds :meth:`EdgeFeatures.sheet_wider_than` probes (every k-th beyond) [-]: a bound
+#: on its time (one pass over the faces per fold), not a tolerance.
+MAX_FOLD_PROBES = 64
+
+
+@dataclass(frozen=True)
+class EdgeFeatures:
+    """The convex edges of a closed surface that set the panel method's formal order
+    (:func:`edge_features`)."""
+
+    #: the largest turning of the normal at a convex edge [rad], creases up to
+    #: :data:`FEATURE_ANGLE` and folds left out (0: no edge)
+    turning: float
+    #: per fold (:data:`FOLD_ANGLE`): the midpoint of its edge [m] (k, 3)
+    fold_points: np.ndarray
+    #: per fold: the unit vector in the folded faces' plane, normal to the edge, towards them
+    fold_inward: np.ndarray
+    #: per fold: the unit normal of one of its two faces
+    fold_normal: np.ndarray
+    #: the surface's triangles (m, 3, 3) [m], for :meth:`sheet_wider_than`
+    triangles: np.ndarray
+
+    @property
+    def folds(self) -> int:
+        """Number of fold edges [-]."""
+        return len(self.fold_points)
+
+    def sheet_wider_than(self, width: float) -> bool:
+        r"""Whether some fold closes a double sheet at least ``width`` [m] wide: the point
+        ``width`` into the fold from its edge's midpoint lies on two faces of opposite
+        normals in the fold's plane (within :math:`10^{-6}` of the body's size).  A sheet
+        narrower than a panel is not resolved by the panels (a tessellation artefact such as
+        eROV's slivers); a wider one is a member of zero thickness, whose rim is a knife
+        edge (:func:`edge_order`)."""
+        if not self.folds or not width > 0.0:
+            return False
+        tri = self.triangles
+        scale = float(np.ptp(tri.reshape(-1, 3), axis=0).max())
+        e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+        cr = np.cross(e1, e2)
+        dbl = np.linalg.norm(cr, axis=1)
+        n = cr / np.where(dbl > 0, dbl, 1.0)[:, None]
+        d00, d01, d11 = (np.einsum("ij,ij->i", e1, e1), np.einsum("ij,ij->i", e1, e2),
+                         np.einsum("ij,ij->i", e2, e2))
+        den = d00 * d11 - d01 * d01
+        ok = den > 0
+        den = np.where(ok, den, 1.0)
+        step = max(1, int(np.ceil(self.folds / MAX_FOLD_PROBES)))
+        probes = (self.fold_points + width * self.fold_inward)[::step]
+        for p, nf in zip(probes, self.fold_normal[::step]):
+            d = p - tri[:, 0]
+            # in the fold's plane, to round-off and the fold's own tilt over the width
+            on_plane = np.abs(np.einsum("ij,ij->i", d, n)) <= (
+                1e-6 * scale + width * np.sin(np.radians(FOLD_ANGLE)))
+            aligned = np.abs(n @ nf) >= np.cos(np.radians(FOLD_ANGLE))
+            # barycentric coordinates of p in each triangle's plane
+            d20, d21 = np.einsum("ij,ij->i", d, e1), np.einsum("ij,ij->i", d, e2)
+            b1 = (d11 * d20 - d01 * d21) / den
+            b2 = (d00 * d21 - d01 * d20) / den
+            tol = 1e-9
+            inside = ok & (b1 >= -tol) & (b2 >= -tol) & (b1 + b2 <= 1 + tol)
+            hit = on_plane & aligned & inside
+            sides = np.sign(n[hit] @ nf)
+            if (sides > 0).any() and (sides < 0).any():
+                return True
+        return False
+
+
+def edge_features(vertices, faces) -> EdgeFeatures:
+    r"""The convex edges of a closed surface (vertices [m], faces) that the formal order of
+    the panel method reads (:func:`edge_order`), independent of how a smooth part of it was
+    tessellated:
+
+    - **edges**: convex creases whose normals turn by more than :data:`FEATURE_ANGLE` (the
+      feature angle of mesh processing); a crease up to it is a facet edge of a smooth
+      surface (a 12- to 24-sided cylinder, a CAD export's curved face), which the panels'
+      own remeshed creases follow with the same 1/N error as a smooth body's;
+    - **folds**: creases turning within :data:`FOLD_ANGLE` of 180 degrees, the two faces
+      in one plane, one folded back onto the other: no wedge of fluid but a double sheet of
+      zero thickness, whose rim is a knife edge only where the sheet is at least a panel
+      wide (:meth:`EdgeFeatures.sheet_wider_than`; the panel size is known only to the
+      caller).
+
+    The turning :math:`\theta = \pi - \alpha` for an interior dihedral angle :math:`\alpha`,
+    from trimesh's face adjacency (``face_adjacency_angles``, ``face_adjacency_convex``).
+
+    Limits: a real edge turning by no more than the feature angle (a shallow chine) is read
+    as smooth, order 2 instead of at least 1.71 (the index at most 1.23 times smaller at
+    r = sqrt 2); a smooth surface faceted coarser than it (an 8-sided cylinder) is read as
+    the polyhedron it is, which is what the panels and the references solve.
+
+    Measured (issue 32): eROV's visual mesh (DAVE, erov.dae) has 24 folds, each a sliver
+    1.8 mm wide (3.5e-5 m^2) folded onto a larger face, in two mirror-image rings of 12 of
+    radius about 0.09 m: an export artefact, not a fin; its sharpest edge is then 99 degrees
+    (order 1.29 where its members are thicker than the panels, not the fold's 1).  On the shipped vehicle files, the CAD draw of seed
+    1375923287 and the other public meshes every order is set by real edges (90 degrees and
+    more) or thin members, as before."""
     import trimesh
 
-    mesh = trimesh.Trimesh(np.asarray(vertices, float), np.asarray(faces, np.int64),
-                           process=False)
-    convex = mesh.face_adjacency_convex
-    if not convex.any():
-        return 0.0
-    return float(np.max(mesh.face_adjacency_angles[convex]))
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    mesh = trimesh.Trimesh(v, f, process=False)
+    ang = np.asarray(mesh.face_adjacency_angles, float)
+    convex = np.asarray(mesh.face_adjacency_convex, bool)
+    fold = ang >= np.pi - np.radians(FOLD_ANGLE)
+    edge = convex & ~fold & (ang > np.radians(FEATURE_ANGLE) * (1.0 + 1e-9))
+    turning = float(ang[edge].max()) if edge.any() else 0.0
+    pairs = mesh.face_adjacency[fold]
+    ends = mesh.face_adjacency_edges[fold]
+    mid = v[ends].mean(axis=1) if len(ends) else np.zeros((0, 3))
+    nrm = np.asarray(mesh.face_normals, float)[pairs[:, 0]] if len(pairs) else np.zeros((0, 3))
+    if len(pairs):
+        # towards the folded faces: from the edge to the first face's third vertex, in plane
+        third = np.asarray(mesh.face_adjacency_unshared, np.int64)[fold][:, 0]
+        d = v[third] - mid
+        along = v[ends[:, 1]] - v[ends[:, 0]]
+        along /= np.linalg.norm(along, axis=1, keepdims=True)
+        d -= np.einsum("ij,ij->i", d, along)[:, None] * along
+        d -= np.einsum("ij,ij->i", d, nrm)[:, None] * nrm
+        inward = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-300)
+    else:
+        inward = np.zeros((0, 3))
+    return EdgeFeatures(turning, mid, inward, nrm, v[f])
 
 
-def edge_order(turning: float, edge: float = 0.0, thickness: float = float("inf")) -> float:
+def max_convex_turning(vertices, faces) -> float:
+    r"""The largest turning [rad] between the outward normals of two faces that meet at a
+    convex edge of the closed surface that is an edge of the body: :math:`\theta = \pi -
+    \alpha` for an interior dihedral angle :math:`\alpha` (a box's edge :math:`\pi/2`; 0 for
+    a surface without convex edges or one faceted no coarser than :data:`FEATURE_ANGLE`),
+    folds left out (:func:`edge_features`)."""
+    return edge_features(vertices, faces).turning
+
+
+def edge_order(turning: float, edge: float = 0.0, thickness: float = float("inf"),
+               sheet: bool = False) -> float:
     r"""Formal order in the panel size h [-] of an added-mass term of a body whose sharpest
-    convex edge turns the normal by ``turning`` [rad] (:func:`max_convex_turning`).
+    convex edge turns the normal by ``turning`` [rad] (:func:`max_convex_turning`; creases up
+    to the feature angle are a smooth surface's facets, :func:`edge_features`).
 
     .. math:: p_f = \min(2,\ 2\lambda),\qquad \lambda = \pi/\omega,\qquad
               \omega = \pi + \theta \quad [-]
@@ -675,6 +823,9 @@ def edge_order(turning: float, edge: float = 0.0, thickness: float = float("inf"
     edge turns the flow.  A member thinner than the panel edge (``thickness`` <
     ``edge`` [m], :func:`member_thickness`) is a knife edge at the panels' scale: its two rims
     lie within one panel, the normal turns by :math:`\pi` across it, so :math:`\omega = 2\pi`.
+    So is the rim of a double sheet of zero thickness at least a panel wide (``sheet``: a
+    fold, :meth:`EdgeFeatures.sheet_wider_than`); a narrower fold is below the panels'
+    resolution and sets no order.
 
     This is the formal order of the grid convergence index (the largest order it may use,
     Oberkampf & Roy 2010, sec. 8.6.3.2: :math:`p = \min(\max(0.5, \hat p), p_f)`), not a
@@ -683,7 +834,8 @@ def edge_order(turning: float, edge: float = 0.0, thickness: float = float("inf"
     are 0.5-1.3 on the bodies with edges and about 1 on the plates, where the panel levels'
     own observed order (at 400-3,000 panels) is 2.4 to 22 on the terms the smooth order's
     index missed."""
-    theta = float(np.pi) if float(edge) > float(thickness) else min(float(turning), np.pi)
+    knife = bool(sheet) or float(edge) > float(thickness)
+    theta = float(np.pi) if knife else min(float(turning), np.pi)
     if not theta > 0.0:
         return SMOOTH_ORDER
     return float(min(SMOOTH_ORDER, 2.0 * np.pi / (np.pi + theta)))

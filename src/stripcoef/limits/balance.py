@@ -54,7 +54,9 @@ def required_force(model, nu, eta=None, *, options: LimitOptions = LimitOptions(
     """
     nu = np.asarray(nu, dtype=float)
     eta = np.zeros(6) if eta is None else np.asarray(eta, dtype=float)
-    tau = model.damping(nu) @ nu + model.restoring(eta)
+    # the lifting fins' Munk compensation (in D) counted with C_A's Munk moment only
+    tau = (model.damping(nu, munk=options.coriolis and options.munk) @ nu
+           + model.restoring(eta))
     if options.coriolis:
         tau = tau + model.coriolis(nu, munk=options.munk) @ nu
     return tau

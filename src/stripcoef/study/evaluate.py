@@ -86,6 +86,7 @@ def evaluate(job: Job, row) -> dict:
     from stripcoef.geometry.keypaths import set_value
     from stripcoef.geometry.vehicle import parse_vehicle
     from stripcoef.study.sources import couple, method_couplings, method_factors, scale_matrix
+    from stripcoef.assembly.fin_munk import scaled
     from stripcoef.assembly.symmetry import allowed_couplings
 
     row = [float(v) for v in row]
@@ -109,6 +110,8 @@ def evaluate(job: Job, row) -> dict:
                         quadratic_damping=scale_matrix(model.quadratic_damping,
                                                        f["quadratic_damping"]),
                         lift=np.asarray(model.lift, float) * f["lift"][0],
+                        # the fins' Munk compensation follows M_A, not the lift factor
+                        fin_munk_lift=scaled(model.fin_munk_lift, f["added_mass"]),
                         control_surfaces=tuple(replace(cs, derivative=np.asarray(
                             cs.derivative, float) * f["control"][0])
                             for cs in model.control_surfaces))
