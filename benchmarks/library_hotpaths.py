@@ -23,10 +23,20 @@
 - the CFD comparison's models: ``validation.cfd.stored()`` (``stripcoef.cfd.compare.model_for``
   of every stored CFD case), in a process of its own (``--cfd``; it reads the hull memos).
 
+- the issue-16 real-style diagnosis (``--diagnose``): ``diagnose`` of
+  ``validation.synthetic.real_style_log(1, "sway-off", duration=200.0)`` with ``dof="all"``
+  and ``holdout=0.3`` (the MAP fits of ``stripcoef.diagnose.fit``, the batch free simulations
+  of ``stripcoef.diagnose.freesim``), the log's generation timed apart;
+- the SUBOFF comparison's models (``--suboff``): ``validation.lift.suboff_comparisons()``
+  (every configuration's ``estimate`` under the slender-body rule: the stern flow of
+  ``stripcoef.hull.lift`` and ``stripcoef.hull.boundary_layer``), in a process of its own
+  (it reads the hull memos); and ``validation.independent.generate`` of the BlueROV2 Heavy
+  with an actuation delay, 60 s.
+
 Each number is the least CPU time (``time.process_time``) of ``--repeat`` runs, BLAS on one
 thread, as in the tests.
 
-Usage: python -m benchmarks.library_hotpaths [--repeat 3] [--cfd]
+Usage: python -m benchmarks.library_hotpaths [--repeat 3] [--cfd | --diagnose | --suboff]
 """
 
 import argparse
@@ -57,9 +67,19 @@ def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cfd", action="store_true", help="time validation.cfd.stored() only")
+    ap.add_argument("--diagnose", action="store_true",
+                    help="time the issue-16 real-style diagnosis only")
+    ap.add_argument("--suboff", action="store_true",
+                    help="time validation.lift.suboff_comparisons() and an independent log only")
     args = ap.parse_args(argv)
     if args.cfd:
         cfd_models()
+        return
+    if args.diagnose:
+        real_style_diagnosis(args.repeat)
+        return
+    if args.suboff:
+        suboff_and_independent()
         return
     from stripcoef import estimate
     from stripcoef.hull.finsheet import FinPlanform, ring_velocity, sheet_mesh
@@ -146,6 +166,36 @@ def cfd_models():
         warnings.simplefilter("ignore")
         print(f"validation.cfd.stored(), every stored CFD case's model: "
               f"{least(stored, 1):.2f} s")
+
+
+def real_style_diagnosis(repeat: int):
+    """``diagnose`` of the issue-16 real-style log (the slowest diagnose test's), and the
+    log's generation."""
+    from stripcoef.diagnose import diagnose
+    from validation.synthetic import real_style_log
+
+    made = least(lambda: real_style_log(1, "sway-off", duration=200.0), 1)
+    log, prior, _ = real_style_log(1, "sway-off", duration=200.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cpu = least(lambda: diagnose(log, prior, dof="all", holdout=0.3,
+                                     time_limit=float("inf")), repeat)
+    print(f"real_style_log(1, 'sway-off', 200 s): {made:.2f} s; its diagnose: {cpu:.2f} s")
+
+
+def suboff_and_independent():
+    """``validation.lift.suboff_comparisons()`` in a fresh process, and 60 s of the independent
+    simulator."""
+    from stripcoef.modelfile import load_model
+    from validation.independent import generate
+    from validation.lift import suboff_comparisons
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        print(f"validation.lift.suboff_comparisons(): {least(suboff_comparisons, 1):.2f} s")
+        prior = load_model(ROOT / "geometry" / "bluerov2_heavy.yaml").to_dict()
+        print("validation.independent.generate(bluerov2_heavy, actuation_delay, 60 s): "
+              f"{least(lambda: generate(prior, 'actuation_delay', 5, duration=60.0), 1):.2f} s")
 
 
 if __name__ == "__main__":

@@ -76,15 +76,17 @@ OUTSIDE = {"coulomb_friction": ("surge", (0.3, 0.6))}
 
 
 def _skew(a):
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    x, y, z = a.tolist() if isinstance(a, np.ndarray) else a    # floats: the same values,
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])  # without numpy scalars
 
 
 def _cross(a, b):
     """a x b of two 3-vectors: numpy.cross's products and differences in its order (the
     same floats) without its per-call overhead (the right-hand side calls it three times a
     stage: 18 of 40 s of a 120 s log's profile)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]])
+    a0, a1, a2 = a.tolist() if isinstance(a, np.ndarray) else a   # floats: the same
+    b0, b1, b2 = b.tolist() if isinstance(b, np.ndarray) else b   # IEEE products
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
 def _coriolis(m, nu):
@@ -94,8 +96,7 @@ def _coriolis(m, nu):
     a = m[:3, :3] @ v + m[:3, 3:] @ w
     b = m[3:, :3] @ v + m[3:, 3:] @ w
     c = np.zeros((6, 6))
-    c[:3, 3:] = -_skew(a)
-    c[3:, :3] = -_skew(a)
+    c[:3, 3:] = c[3:, :3] = -_skew(a)
     c[3:, 3:] = -_skew(b)
     return c
 
@@ -299,15 +300,19 @@ class Simulator:
         self.k = len(t.thrusters)
         self.md_axis = _AXIS[STRENGTHS["momentum_drag"][0]]
         self.md_idle = idle_thrusters(t, self.md_axis)
+        self.down_weight = np.array([0.0, 0.0, t.weight])
+        self.up_buoyancy = np.array([0.0, 0.0, -t.buoyancy])
 
     def _restoring(self, r):
         """g(q): the force is -g [N, N m] (weight down at the CG, buoyancy up at the CB)."""
         t = self.truth
-        fw = r.T @ np.array([0.0, 0.0, t.weight])
-        fb = r.T @ np.array([0.0, 0.0, -t.buoyancy])
+        fw = r.T @ self.down_weight
+        fb = r.T @ self.up_buoyancy
         return -np.concatenate([fw + fb, _cross(t.r_g, fw) + _cross(t.r_b, fb)])
 
-    def rhs(self, x, n_cmd, tether):
+    def rhs(self, x, n_cmd, tether, target=None):
+        """The state's rate; ``target`` the thrusts the commands ``n_cmd`` ask for (given by
+        :meth:`step`, the same for its four stages), else computed here."""
         t = self.truth
         q = x[3:7] / np.linalg.norm(x[3:7])
         nu, thrust = x[7:13], x[13:13 + self.k]
@@ -315,7 +320,8 @@ class Simulator:
         vc = r.T @ t.current
         nu_r = nu - np.concatenate([vc, np.zeros(3)])
         nu_c_dot = np.concatenate([-_skew(nu[3:]) @ vc, np.zeros(3)])
-        target = np.array([_thrust(th, n) for th, n in zip(t.thrusters, n_cmd)])
+        if target is None:
+            target = self.target(n_cmd)
         if t.lag > 0.0:
             thrust_dot = (target - thrust) / t.lag
             applied = thrust
@@ -339,12 +345,17 @@ class Simulator:
         q_dot = 0.5 * np.array([-q[1:] @ w, *(q[0] * w + _cross(q[1:], w))])
         return np.concatenate([r @ nu[:3], q_dot, nu_dot, thrust_dot])
 
+    def target(self, n_cmd) -> np.ndarray:
+        """The thrusts [N] the commands ``n_cmd`` ask for (:func:`_thrust`)."""
+        return np.array([_thrust(th, n) for th, n in zip(self.truth.thrusters, n_cmd)])
+
     def step(self, x, n_cmd, tether):
         h = self.dt
-        k1 = self.rhs(x, n_cmd, tether)
-        k2 = self.rhs(x + 0.5 * h * k1, n_cmd, tether)
-        k3 = self.rhs(x + 0.5 * h * k2, n_cmd, tether)
-        k4 = self.rhs(x + h * k3, n_cmd, tether)
+        target = self.target(n_cmd)
+        k1 = self.rhs(x, n_cmd, tether, target)
+        k2 = self.rhs(x + 0.5 * h * k1, n_cmd, tether, target)
+        k3 = self.rhs(x + 0.5 * h * k2, n_cmd, tether, target)
+        k4 = self.rhs(x + h * k3, n_cmd, tether, target)
         x = x + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
         x[3:7] /= np.linalg.norm(x[3:7])
         return x

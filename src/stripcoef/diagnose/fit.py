@@ -65,9 +65,16 @@ def _solve(y, H, prior_sd, sigma, lower=None, m=None, upper=None, *, with_cov=Tr
     return _solve_linear(y, H, prior_sd, sigma, lower, upper=upper, with_cov=with_cov)
 
 
-def _linear_system(H, prior_sd, sigma, weight=1.0) -> tuple:
-    """(a, a / scale, column scale, prior rows) of :func:`_solve_linear`'s stacked system: the
-    same for every right-hand side y (the profiled inertia tries several)."""
+def _linear_system(H, prior_sd, sigma, weight=1.0, *, factor=False) -> tuple:
+    r"""(a, a / scale, column scale, prior rows, pseudo-inverse) of :func:`_solve_linear`'s
+    stacked system: the same for every right-hand side y (the profiled inertia tries several).
+
+    ``factor``: with the pseudo-inverse :math:`A_s^+ = V \Sigma^{-1} U^T` of the scaled
+    matrix (its singular value decomposition, the singular values at or below
+    :math:`\epsilon \max(m, n)\,\sigma_1` dropped: the cut-off of ``numpy.linalg.lstsq``
+    with ``rcond=None``, whose minimum-norm solution :math:`A_s^+ b` it then gives; Golub &
+    Van Loan 2013, Matrix Computations, sec. 5.5), built once so that each right-hand side costs one product
+    instead of a decomposition; else None (a system solved once)."""
     p = H.shape[1]
     rows = [H * weight / sigma]
     finite = np.isfinite(prior_sd)
@@ -78,7 +85,13 @@ def _linear_system(H, prior_sd, sigma, weight=1.0) -> tuple:
     a = np.vstack(rows)
     scale = np.sqrt((a ** 2).sum(axis=0))
     scale[scale == 0] = 1.0
-    return a, a / scale, scale, a.shape[0] - H.shape[0]
+    a_s = a / scale
+    pinv = None
+    if factor:
+        u, sv, vt = np.linalg.svd(a_s, full_matrices=False)
+        keep = sv > np.finfo(float).eps * max(a_s.shape) * sv[0] if sv.size else sv > 0
+        pinv = (vt[keep].T / sv[keep]) @ u[:, keep].T
+    return a, a_s, scale, a.shape[0] - H.shape[0], pinv
 
 
 def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
@@ -89,10 +102,10 @@ def _solve_linear(y, H, prior_sd, sigma, lower=None, weight=1.0, upper=None, *,
     p = H.shape[1]
     if p == 0:
         return np.zeros(0), np.zeros((0, 0)), y * weight / sigma
-    a, a_s, scale, n_prior = _linear_system(H, prior_sd, sigma, weight) if system is None \
-        else system
+    a, a_s, scale, n_prior, pinv = _linear_system(H, prior_sd, sigma, weight) \
+        if system is None else system
     b = np.concatenate([y * weight / sigma, np.zeros(n_prior)])
-    theta_s, *_ = np.linalg.lstsq(a_s, b, rcond=None)
+    theta_s = np.linalg.lstsq(a_s, b, rcond=None)[0] if pinv is None else pinv @ b
     low_bad = lower is not None and np.any(theta_s / scale < lower)
     up_bad = upper is not None and np.any(theta_s / scale > upper)
     if low_bad or up_bad:
@@ -123,7 +136,8 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None, *, with_cov=Tru
     lowx = None if lower is None else lower[keep]
     upx = None if upper is None else upper[keep]
 
-    system = _linear_system(X, sdx, sigma) if X.shape[1] else None
+    # built and factored once: the profile below solves it for five or more values of mu
+    system = _linear_system(X, sdx, sigma, factor=True) if X.shape[1] else None
 
     def inner(mu, with_cov=True):
         th, cov, res = _solve_linear(y - mu * rate, X, sdx, sigma, lowx, upper=upx,
