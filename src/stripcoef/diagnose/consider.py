@@ -46,12 +46,15 @@ of the time when the truth's held coefficients lie within their bands (the bands
 prior's 1-sigma widths). It does not cover errors outside the model's terms (an effect the
 library lacks) nor the thrust maps' own uncertainty, which no calibration column holds.
 
-Depends on: diagnose.fit (only its solver and designs, imported inside the functions).
+Depends on: effects.windows (the held columns); the fit's solver is passed in
+(:mod:`.fit` imports this module).
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from stripcoef.effects.windows import coefficient_column
 
 
 def held_design(cfg, hyper_override=None) -> tuple:
@@ -59,8 +62,6 @@ def held_design(cfg, hyper_override=None) -> tuple:
     calibration holds at the prior (:attr:`Calibration.held_names`), at the velocity relative
     to the water when a term (the current) defines it, as the calibration's own columns
     (:meth:`_Config.calibration_columns`) [N or N m per unit, units of each coefficient]."""
-    from stripcoef.effects.windows import coefficient_column
-
     cal = cfg.cal
     names = tuple(cal.held_names)
     if not names:
@@ -89,21 +90,17 @@ def sensitivities(solve, y, cols, sd) -> np.ndarray:
     return np.column_stack(out) if out else np.zeros((0, 0))
 
 
-def consider_term(cfg, y, H, sd, sigma, lower, m, upper, hyper=None) -> tuple:
-    r"""``(d, names)``: the responses :math:`d_k` (p, k) of the MAP fit of ``(y, H)`` (prior
-    sds ``sd``, bounds, inertia columns ``m``, noise level ``sigma`` held fixed; the
-    arguments of :func:`~stripcoef.diagnose.fit._solve`) to each coefficient ``cfg`` holds
-    at the prior (:func:`held_design`), and those coefficients' names; the consider term of
-    the covariance is :math:`d d^T`."""
-    from stripcoef.diagnose.fit import _solve
-
+def consider_term(cfg, estimate, y, hyper=None) -> tuple:
+    r"""``(d, names)``: the responses :math:`d_k` (p, k) of a fit's estimate, ``estimate(y)``
+    (:math:`\hat\theta` of the window residual y: the MAP fit of
+    :func:`~stripcoef.diagnose.fit._solve` at fixed noise level, bounds and inertia columns),
+    to each coefficient ``cfg`` holds at the prior (:func:`held_design`), and those
+    coefficients' names; the consider term of the covariance is :math:`d d^T`."""
     cols, bands, names = held_design(cfg, hyper)
-    p = H.shape[1]
+    p = np.asarray(estimate(y)).size
     if not names or p == 0:
         return np.zeros((p, 0)), ()
-    d = sensitivities(lambda yy: _solve(yy, H, sd, sigma, lower, m, upper,
-                                        with_cov=False)[0], y, cols, bands)
-    return d, names
+    return sensitivities(estimate, y, cols, bands), names
 
 
 def covariance(full, exclude=()) -> np.ndarray:
@@ -141,40 +138,21 @@ def consider_sd(cov, term) -> np.ndarray:
     return np.sqrt(np.clip(np.diag(np.asarray(cov) + np.asarray(term)), 0, None))
 
 
-def hyper_consider_variance(cfg, hyper, sigma, jac=None, step=None) -> np.ndarray:
+def hyper_consider_variance(cfg, hyper, residual, jac) -> np.ndarray:
     r"""(q,): the variance the last term's nonlinear parameters ``hyper`` inherit from the
-    held coefficients (module docstring: :math:`d_k = -(J^T J)^{-1} J^T \Delta r_k`, with the
-    profiled residual of :func:`~stripcoef.diagnose.fit._hyper_std`). ``jac``: that
-    residual's Jacobian when the caller has it; else central differences with ``step`` per
-    parameter (default :math:`10^{-4}\max(1, |p|)`)."""
-    from stripcoef.diagnose.fit import _solve
-
+    held coefficients (module docstring: :math:`d_k = -(J^T J)^{-1} J^T \Delta r_k`), with
+    ``residual(h, shift)`` the profiled residual at parameters h of the window residual
+    moved by ``shift`` (that of :func:`~stripcoef.diagnose.fit._hyper_std`) and ``jac`` its
+    Jacobian in h (q columns) [residual units per unit of each parameter]."""
     hyper = np.atleast_1d(np.asarray(hyper, float))
     cols, bands, _ = held_design(cfg, hyper)
     if cols.shape[1] == 0 or hyper.size == 0:
         return np.zeros(hyper.size)
-
-    def vec(h, shift=None):
-        y, H, sd = cfg.design(h)
-        if shift is not None:
-            y = y + shift
-        return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h),
-                      with_cov=False)[2] * sigma
-
-    if jac is None:
-        steps = (1e-4 * np.maximum(1.0, np.abs(hyper)) if step is None
-                 else np.broadcast_to(np.asarray(step, float), hyper.shape))
-        jac = np.empty((vec(hyper).size, hyper.size))
-        for k in range(hyper.size):
-            hp, hm = hyper.copy(), hyper.copy()
-            hp[k] += steps[k]
-            hm[k] -= steps[k]
-            jac[:, k] = (vec(hp) - vec(hm)) / (2 * steps[k])
-    pinv = np.linalg.pinv(jac)
+    pinv = np.linalg.pinv(np.asarray(jac, float))
     var = np.zeros(hyper.size)
     for k in range(cols.shape[1]):
         shift = bands[k] * cols[:, k]
-        dr = 0.5 * (vec(hyper, shift) - vec(hyper, -shift))
+        dr = 0.5 * (residual(hyper, shift) - residual(hyper, -shift))
         var += (pinv @ dr) ** 2
     return var
 

@@ -23,6 +23,7 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.consider import consider_term, hyper_consider_variance
 from stripcoef.diagnose.priors import TERM_MATRIX, added_mass_bounds
 from stripcoef.diagnose.settings import (DEFAULT_WINDOW, MIN_INFORMATION_RATIO, N_BLOCKS,
                                          UNLIMITED, Budget, DiagnoseSettings)
@@ -397,8 +398,8 @@ def _fit(cfg: _Config, mask=None, hyper=None):
     out = {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
            "sd": sd}
     if mask is None:    # with the bands of the coefficients held at the prior (.consider)
-        from stripcoef.diagnose.consider import consider_term
-        d, held = consider_term(cfg, y, H, sd, sigma, lower, m, upper, hyper)
+        d, held = consider_term(cfg, lambda yy: _solve(yy, H, sd, sigma, lower, m, upper,
+                                                       with_cov=False)[0], y, hyper)
         out.update(cov_data=cov, cov=cov + d @ d.T, consider=(d, held))
     return out
 
@@ -497,18 +498,21 @@ def _hyper_std(cfg: _Config, hyper, sigma):
         k = int(np.argmin(np.abs(cands - h)))
         lo = cands[max(k - 1, 0)]
         hi = cands[min(k + 1, cands.size - 1)]
-        # plus what the coefficients held at the prior move it by (.consider; a secant
-        # over the candidates' spacing: the cost is flat between command levels)
-        from stripcoef.diagnose.consider import hyper_consider_variance
-        grid_sd = 0.5 * (hi - lo) / math.sqrt(3.0)
-        extra = hyper_consider_variance(cfg, hyper, sigma, step=0.25 * (hi - lo))
-        return np.sqrt(grid_sd ** 2 + extra)
     hyper = np.asarray(hyper, float)
 
-    def vec(h):
+    def vec(h, shift=None):
         y, H, sd = cfg.design(h)
+        y = y if shift is None else y + shift
         return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h),
                       with_cov=False)[2] * sigma
+
+    if eff.name == "deadband":
+        # plus what the coefficients held at the prior move it by (.consider; a secant
+        # over the candidates' spacing: the cost is flat between command levels)
+        grid_sd = 0.5 * (hi - lo) / math.sqrt(3.0)
+        step = 0.25 * (hi - lo)
+        jac = ((vec(hyper + step) - vec(hyper - step)) / (2 * step))[:, None]
+        return np.sqrt(grid_sd ** 2 + hyper_consider_variance(cfg, hyper, vec, jac))
 
     j = np.empty((vec(hyper).size, hyper.size))
     for k in range(hyper.size):
@@ -519,8 +523,7 @@ def _hyper_std(cfg: _Config, hyper, sigma):
         j[:, k] = (vec(hp) - vec(hm)) / (2 * step)
     cov = sigma ** 2 * np.linalg.pinv(j.T @ j)
     # plus what the coefficients held at the prior move them by (.consider)
-    from stripcoef.diagnose.consider import hyper_consider_variance
-    return np.sqrt(np.clip(np.diag(cov) + hyper_consider_variance(cfg, hyper, sigma, jac=j),
+    return np.sqrt(np.clip(np.diag(cov) + hyper_consider_variance(cfg, hyper, vec, j),
                            0, None))
 
 
