@@ -121,7 +121,9 @@ def scale_ratio_variance(full, i_mu, i_s, m_ii: float) -> float:
     consider term of every held coefficient except the DOF's own added mass ``M``, whose
     band the test adds itself (:func:`stripcoef.diagnose.select._scale_inertia_change`).
     ``i_mu``: the index of the inertia change (None when the calibration holds it),
-    ``i_s``: the scale's column."""
+    ``i_s``: the scale's column. 0 for a record without a covariance (the band alone)."""
+    if "cov" not in full:
+        return 0.0
     cov = covariance(full, exclude=("M",))
     theta = np.asarray(full["theta"], float)
     s = 1.0 + float(theta[i_s])
