@@ -282,7 +282,7 @@ def test_a_clean_log_whose_thrust_gain_is_off_names_no_linear_drag():
     res = diagnose(log, prior, dof="surge").to_dict()
     assert res["steps"] == []
     ld = next(c for c in res["per_dof"]["surge"]["candidates"] if c["effect"] == "linear_drag")
-    # alone it passed every gate of a single step (2.6 N s/m, z = 13) until its standard
+    # alone it passed every gate of a single step (2.6 N s/m) until its standard
     # deviation carried the bands of the coefficients held at the prior (the sway added
     # mass, sway not excited, and D_L; diagnose.consider): 2.6 +- 2.5, z = 1.1
     assert not ld["significant"]
