@@ -83,24 +83,32 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
              f"{', '.join(CATEGORIES)}).", "",
              "| band | within 1 sd (claimed 68.3 %) | within 1.96 sd (claimed 95 %) "
              "| RMS of (s - gain)/sd |", "| --- | --- | --- | --- |"]
-    for key, label in (("sd_data", "data alone (before)"),
-                       ("sd_consider", "with the held coefficients (consider)")):
-        z = np.array([(r["scale"] - r["gain"]) / r[key] if r[key] > 0 else np.inf
-                      for r in rows])
-        cells = []
-        for q, _claim in LEVELS:
-            k = int(np.sum(np.abs(z) <= q))
-            ci = binomtest(k, n).proportion_ci(0.95, method="exact") if n else None
-            cells.append(f"{k}/{n} ({100 * k / n:.0f} %, CI {100 * ci.low:.0f}-"
-                         f"{100 * ci.high:.0f} %)" if n else "-")
-        lines.append(f"| {label} | " + " | ".join(cells)
-                     + f" | {float(np.sqrt(np.mean(z ** 2))):.2f} |")
+    lines[2] = "| logs " + lines[2]
+    lines[3] = "| --- " + lines[3]
+    groups = [("all", rows)] + [(v, [r for r in rows if r["vehicle"] == v])
+                                for v in sorted({r["vehicle"] for r in rows})]
+    for group, rs in groups:
+        m = len(rs)
+        for key, label in (("sd_data", "data alone (before)"),
+                           ("sd_consider", "with the held coefficients (consider)")):
+            z = np.array([(r["scale"] - r["gain"]) / r[key] if r[key] > 0 else np.inf
+                          for r in rs])
+            cells = []
+            for q, _claim in LEVELS:
+                k = int(np.sum(np.abs(z) <= q))
+                ci = binomtest(k, m).proportion_ci(0.95, method="exact") if m else None
+                cells.append(f"{k}/{m} ({100 * k / m:.0f} %, CI {100 * ci.low:.0f}-"
+                             f"{100 * ci.high:.0f} %)" if m else "-")
+            lines.append(f"| {group} | {label} | " + " | ".join(cells)
+                         + f" | {float(np.sqrt(np.mean(z ** 2))):.2f} |")
     lines += ["", "| vehicle | category | seed | scale | sd data | sd consider | truth gain |",
               "| --- | --- | --- | --- | --- | --- | --- |"]
     for r in sorted(rows, key=lambda r: (r["vehicle"], r["category"], r["seed"])):
         lines.append(f"| {r['vehicle']} | {r['category']} | {r['seed']} | {r['scale']:.3f} | "
                      f"{r['sd_data']:.3f} | {r['sd_consider']:.3f} | {r['gain']:.3f} |")
-    lines += ["", f"Mean CPU time of a fit: {np.mean([r['cpu'] for r in rows]):.2f} s."]
+    cpu = [r["cpu"] for r in rows if "cpu" in r]
+    if cpu:
+        lines += ["", f"Mean CPU time of a fit: {np.mean(cpu):.2f} s."]
     return "\n".join(lines)
 
 
@@ -112,8 +120,25 @@ def main(argv=None) -> int:
     ap.add_argument("--duration", type=float, default=120.0, help="log length [s]")
     ap.add_argument("--vehicles", default=",".join(VEHICLES))
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    ap.add_argument("--from-output", default=None,
+                    help="summarise the per-log table of an earlier run's output instead of "
+                         "running")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
+    if args.from_output:
+        from stripcoef.files import read_text
+        rows = []
+        for line in read_text(args.from_output, kind="benchmark output").splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if len(cells) == 7 and cells[1] in CATEGORIES:
+                rows.append({"vehicle": cells[0], "category": cells[1], "seed": int(cells[2]),
+                             **{k: float(v) for k, v in zip(
+                                 ("scale", "sd_data", "sd_consider", "gain"), cells[3:])}})
+        text = summarise(rows, seed, args.duration)
+        print(text)
+        if args.write:
+            _write(args.write, argv, text)
+        return 0
     print(f"seed {seed}", flush=True)
     rows = []
     for rep in range(args.repeats):
@@ -127,11 +152,16 @@ def main(argv=None) -> int:
     text = summarise(rows, seed, args.duration)
     print(text)
     if args.write:
-        from stripcoef.files import write_text
-        write_text(args.write, "# Thrust scale bands against the truth\n\nMeasured by "
-                   f"`python -m benchmarks.consider_coverage "
-                   f"{' '.join(sys.argv[1:] if argv is None else argv)}`.\n\n{text}\n")
+        _write(args.write, argv, text)
     return 0
+
+
+def _write(path, argv, text: str) -> None:
+    """The markdown file of a run: its command, then the summary."""
+    from stripcoef.files import write_text
+    write_text(path, "# Thrust scale bands against the truth\n\nMeasured by "
+               f"`python -m benchmarks.consider_coverage "
+               f"{' '.join(sys.argv[1:] if argv is None else argv)}`.\n\n{text}\n")
 
 
 if __name__ == "__main__":
