@@ -3,7 +3,8 @@
 coefficients at a bound listed.
 
 The thrusters' timing (a first-order lag, a pure delay) is one property of the actuators,
-not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive.
+not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
+water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
 Depends on: model, conventions, diagnose.priors, diagnose.fit.
 """
@@ -255,6 +256,12 @@ def _pinned(theta, low, up) -> str:
 #: (:func:`share_timing`); the validation keeps or removes each as one change
 #: (:func:`stripcoef.diagnose.validate.partners`).
 SHARED_TIMING = ("thruster_lag", "actuation_delay")
+#: Effects fitted once for the whole vehicle: the thrusters' timing (:func:`share_timing`)
+#: and the water current (:func:`stripcoef.diagnose.current.share_current`, one earth-frame
+#: current written with the same value in each DOF it acts in): the validation keeps or
+#: removes each as one change in all its DOFs, and not with one DOF's calibration
+#: (:func:`stripcoef.diagnose.validate.partners`).
+SHARED_EFFECTS = SHARED_TIMING + ("current",)
 
 
 def _with_value(cfg, eff, value):

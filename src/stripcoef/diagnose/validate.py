@@ -13,7 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.calibrate import SHARED_TIMING, _changes, calibrated_model
+from stripcoef.diagnose.calibrate import SHARED_EFFECTS, _changes, calibrated_model
 from stripcoef.diagnose.settings import RESIMULATION_HORIZON, UNLIMITED, Budget
 from stripcoef.progress import track
 
@@ -115,9 +115,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         cur = score(excl)
 
     def own(d):
-        """The changes of DOF ``d`` still kept, the shared timing left out."""
+        """The changes of DOF ``d`` still kept, the shared timing and current left out."""
         return {c for c in changes if c[1] == d and c not in excl
-                and not (c[0] == "effect" and c[2] in SHARED_TIMING)}
+                and not (c[0] == "effect" and c[2] in SHARED_EFFECTS)}
 
     vetoed = []
     while cur[1] is not None:
@@ -204,15 +204,15 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
 def partners(excl, changes) -> set:
     """``excl`` with the changes fitted together with an excluded one that cannot stand
     without it: the effects of a DOF whose calibration is excluded, except the thrusters'
-    shared timing (:data:`~stripcoef.diagnose.calibrate.SHARED_TIMING`: refitted without
-    that calibration, :func:`~stripcoef.diagnose.calibrate.written_fit`), which goes in all
-    its DOFs when it goes in one."""
+    shared timing and the one current (:data:`~stripcoef.diagnose.calibrate.SHARED_EFFECTS`:
+    refitted without that calibration, :func:`~stripcoef.diagnose.calibrate.written_fit`),
+    each of which goes in all its DOFs when it goes in one."""
     out = set(excl)
-    shared = {c[2] for c in out if c[0] == "effect" and c[2] in SHARED_TIMING}
+    shared = {c[2] for c in out if c[0] == "effect" and c[2] in SHARED_EFFECTS}
     for c in changes:
         if c[0] != "effect":
             continue
-        if c[2] in SHARED_TIMING:         # the thrusters' one timing: all its DOFs at once
+        if c[2] in SHARED_EFFECTS:        # one timing, one current: all its DOFs at once
             if c[2] in shared:
                 out.add(c)
         elif ("calibration", c[1]) in out:
