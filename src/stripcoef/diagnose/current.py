@@ -11,8 +11,10 @@ multiresponse model (Seber & Wild 1989, Nonlinear Regression, ch. 11):
 
 .. math:: S(V_c) = \sum_i \lVert W_i\,(y_i - H_i(V_c)\,\hat\theta_i(V_c)) \rVert^2
 
-over the diagnosed DOFs i where the current acts (surge, sway: the effect's ``dofs``), each
-DOF's window residual whitened by its own noise level :math:`\sigma_i` and its calibration's
+over every diagnosed DOF i (the water's drag and added-mass forces act on :math:`\nu_r` in
+all six: the Munk moments of :math:`C_A(\nu_r)\nu_r` in roll, pitch and yaw, the heave
+drag once the vehicle pitches; where the DOF's selection did not name the current, its
+force alone, :class:`_Water`), each DOF's window residual whitened by its own noise level :math:`\sigma_i` and its calibration's
 band priors (:func:`stripcoef.diagnose.fit._solve`), each DOF's linear parameters
 :math:`\hat\theta_i` profiled (variable projection, Golub & Pereyra 1973). The prior of the
 current is the effect's own law (:meth:`Current.max_magnitude`): a current no faster than
@@ -47,10 +49,10 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.stats import chi2
 
-from stripcoef.conventions import parse_dof
 from stripcoef.diagnose.compare import ALPHA, posterior_cost
 from stripcoef.diagnose.fit import _evaluate, _solve, grid_minimum
 from stripcoef.diagnose.settings import N_BLOCKS
+from stripcoef.effects.hydrodynamic import Current
 
 #: The effect shared: the water current (:class:`~stripcoef.effects.hydrodynamic.Current`).
 CURRENT = "current"
@@ -58,11 +60,28 @@ CURRENT = "current"
 KEYS = ("current_north", "current_east")
 
 
+class _Water(Current):
+    """The shared current as a term of a DOF whose selection did not name it: its force
+    (:meth:`Current.offset`, in any of the six DOFs) and the relative velocity the DOF's
+    calibration acts on, releasing no prior coefficient (the selection's current releases
+    D_L and D_Q to judge its own signature; here the current is already judged)."""
+
+    nuisance_names = ()
+    dofs = tuple(range(6))
+
+    def design(self, data, dof, hyper=None):
+        return self.own_design(data, dof, hyper)
+
+
+#: The one instance (an effect is immutable; a fit's terms are cached by its identity).
+WATER = _Water()
+
+
 def _with_current(cfg, eff, vc):
     """``cfg`` with the current at ``vc`` = (V_N, V_E) [m/s]: its term's value replaced, or
-    the term appended (a new configuration)."""
+    the term appended (a new configuration; ``eff``: the term appended)."""
     terms = list(cfg.terms)
-    at = [k for k, (e, _) in enumerate(terms) if e.name == eff.name]
+    at = [k for k, (e, _) in enumerate(terms) if e.name == CURRENT]
     value = np.asarray(vc, float).copy()
     if at:
         terms[at[0]] = (terms[at[0]][0], value)
@@ -95,7 +114,8 @@ def joint_current(cfgs: dict, sigmas: dict, eff, starts, vmax: float) -> dict:
     r"""The one current minimising :math:`S(V_c)` (module docstring) over the DOFs of
     ``cfgs`` (DOF -> configuration; ``sigmas``: DOF -> noise level [N or N m]), within
     :math:`|V_c| \le` ``vmax`` [m/s]: Levenberg-Marquardt from each of ``starts`` (as the
-    per-DOF profile, :func:`stripcoef.diagnose.fit._profile_hyper`), the best kept; a
+    per-DOF profile, :func:`stripcoef.diagnose.fit._profile_hyper`; to 1e-6 of 0.1 m/s),
+    the best kept; a
     minimum outside the disk replaced by the minimum on its edge (a bounded scalar search
     of the direction, :func:`stripcoef.diagnose.fit.grid_minimum`). Returns ``value`` (2,),
     ``cov`` (2, 2) [m^2/s^2], ``cost`` and ``at_bound`` ('' or ``"upper"``)."""
@@ -104,7 +124,8 @@ def joint_current(cfgs: dict, sigmas: dict, eff, starts, vmax: float) -> dict:
 
     best = None
     for start in starts:
-        sol = least_squares(vec, np.asarray(start, float), method="lm", x_scale=0.1)
+        sol = least_squares(vec, np.asarray(start, float), method="lm", x_scale=0.1,
+                            xtol=1e-6)
         if best is None or sol.cost < best.cost:
             best = sol
     value, at_bound = np.asarray(best.x, float), ""
@@ -129,19 +150,30 @@ def joint_current(cfgs: dict, sigmas: dict, eff, starts, vmax: float) -> dict:
 def block_jackknife(cfgs: dict, sigmas: dict, eff, value) -> np.ndarray:
     r"""The block-jackknife covariance of the joint current (2, 2) [m^2/s^2]: the joint fit
     redone without each of the :data:`~stripcoef.diagnose.settings.N_BLOCKS` contiguous
-    blocks of windows of the blocked cross-validation (Levenberg-Marquardt from ``value``),
+    blocks of windows of the blocked cross-validation,
     :math:`C_J = \frac{g-1}{g}\sum_b (\hat V_{(b)} - \bar V)(\hat V_{(b)} - \bar V)^T`
-    (Kunsch 1989, the jackknife for dependent data). Unlike :math:`(J^TJ)^{-1}` it does not
+    (Kunsch 1989, the jackknife for dependent data). Each refit is one Gauss-Newton step from
+    the joint value on the reduced data, every DOF's linear parameters profiled again there
+    (:math:`\hat V_{(b)} = \hat V - (J_b^T J_b)^{-1} J_b^T r_b`, forward differences; the
+    jackknife's linear approximation, whose difference from the full refit is of second
+    order in the shift; Efron & Tibshirani 1993, ch. 11). Unlike :math:`(J^TJ)^{-1}` it does not
     assume the model right: a current that different parts of the log set differently
     (coefficients the log keeps at the prior, a thrust map off) shows in it."""
     n = next(iter(cfgs.values())).data.n_windows
     folds = np.array_split(np.arange(n), N_BLOCKS)
+    value = np.asarray(value, float)
     got = []
     for fold in folds:
         mask = np.ones(n, bool)
         mask[fold] = False
-        got.append(least_squares(lambda v: _stacked(cfgs, sigmas, eff, v, mask),
-                                 np.asarray(value, float), method="lm", x_scale=0.1).x)
+        r0 = _stacked(cfgs, sigmas, eff, value, mask)
+        jac = np.empty((r0.size, 2))
+        for k in range(2):
+            step = 1e-4 * max(1.0, abs(value[k]))
+            hp = value.copy()
+            hp[k] += step
+            jac[:, k] = (_stacked(cfgs, sigmas, eff, hp, mask) - r0) / step
+        got.append(value - np.linalg.pinv(jac.T @ jac) @ (jac.T @ r0))
     got = np.array(got)
     dev = got - got.mean(axis=0)
     return (len(folds) - 1) / len(folds) * dev.T @ dev
@@ -174,7 +206,7 @@ def share_current(per: dict, fits: dict) -> tuple[dict, dict]:
     if not have:
         return per, fits
     eff = next(e for e, _ in fits[have[0]].config.terms if e.name == CURRENT)
-    targets = [d for d in fits if eff.applicable(fits[d].config.data, parse_dof(d))[0]]
+    targets = list(fits)        # every DOF sees the water: D and C_A act on nu_r in all six
     if len(targets) < 2:
         return per, fits
     per, fits = dict(per), dict(fits)
@@ -183,10 +215,10 @@ def share_current(per: dict, fits: dict) -> tuple[dict, dict]:
     data = cfgs[targets[0]].data
     vmax = float(eff.max_magnitude(data))
     own = [np.asarray(h, float) for d in have for e, h in cfgs[d].terms if e.name == CURRENT]
-    starts = own + ([np.mean(own, axis=0)] if len(own) > 1 else [])
-    fit = joint_current(cfgs, sigmas, eff, starts, vmax)
+    starts = [np.mean(own, axis=0)]     # the DOFs' own currents lie close: their mean
+    fit = joint_current(cfgs, sigmas, WATER, starts, vmax)
     value = fit["value"]
-    jack = block_jackknife(cfgs, sigmas, eff, value)
+    jack = block_jackknife(cfgs, sigmas, WATER, value)
     # the band reported: the model's (J^T J)^-1, widened (never narrowed) until it holds
     # the block jackknife's in every direction (its largest generalized eigenvalue)
     gn = fit["cov"]
@@ -196,7 +228,7 @@ def share_current(per: dict, fits: dict) -> tuple[dict, dict]:
     speed = float(np.hypot(*value))
     g = value / speed if speed > 0 else np.zeros(2)
     speed_sd = float(math.sqrt(max(float(g @ cov @ g), 0.0)))
-    test = joint_test(cfgs, sigmas, eff, value)
+    test = joint_test(cfgs, sigmas, WATER, value)
     params = {k: float(v) for k, v in zip(KEYS, value)}
     std = {k: float(s) for k, s in zip(KEYS, sd)}
     record = {"current_north": params["current_north"], "current_east": params["current_east"],
@@ -214,7 +246,7 @@ def share_current(per: dict, fits: dict) -> tuple[dict, dict]:
         return _removed(per, fits, have, record)
     share = ", ".join(targets)
     for d in targets:
-        cfg = _with_current(cfgs[d], eff, value)
+        cfg = _with_current(cfgs[d], WATER, value)
         ev = _evaluate(cfg)
         before = fits[d].evaluation
         fits[d] = replace(fits[d], config=cfg, evaluation=ev)
