@@ -216,7 +216,8 @@ def _progress(row: dict) -> dict:
 #: drive), the current every DOF (the relative velocity in D(nu_r) nu_r and C_A(nu_r) nu_r:
 #: the translations' drag and the Munk moments in roll, pitch and yaw; one current written
 #: for all six, stripcoef.diagnose.current); the buoyancy acts at the centre of buoyancy
-#: (heave, and the roll and pitch restoring moments). A step naming the effect in one of these DOFs is not spurious.
+#: (heave, and the roll and pitch restoring moments). A step naming the effect in one of
+#: these DOFs is not spurious.
 ACTS_IN = {name: ("surge", "sway", "heave", "roll", "pitch", "yaw")
            for name in ("thrust_asymmetry", "deadband", "thruster_lag", "actuation_delay",
                         "thrust_effectiveness")}
