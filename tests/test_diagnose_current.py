@@ -122,3 +122,24 @@ def test_a_clean_log_gets_no_shared_current():
     named = {d: [s.effect for s in r.steps] for d, r in per.items()}
     assert not any(CURRENT in e for e in named.values()), f"seed {seed}: {named}"
     assert not _written_currents(calibrated_model(prior, per, fits))
+
+
+@pytest.mark.slow
+def test_a_current_the_dofs_do_not_support_together_is_removed_from_all(monkeypatch):
+    """When the joint likelihood ratio does not reject "no current" (here forced: a level
+    no p-value is under), the current leaves every DOF that selected it; each DOF's
+    candidates say why, and the model writes none."""
+    from stripcoef.diagnose import current
+    from validation.independent import generate
+
+    prior = shipped_model("bluerov2_heavy.yaml")
+    log, _ = generate(prior.to_dict(), CURRENT, 4242, duration=120.0)
+    monkeypatch.setattr(current, "ALPHA", -1.0)
+    before, per, fits = _surge_and_sway(log, prior)
+    assert all(any(s.effect == CURRENT for s in r.steps) for r in before.values())
+    for d, r in per.items():
+        assert not any(s.effect == CURRENT for s in r.steps)
+        assert not any(e.name == CURRENT for e, _ in fits[d].config.terms)
+        why = [c for c in r.candidates if "shared_current" in c]
+        assert why and "not supported" in why[0]["rejected_because"][0]
+    assert not _written_currents(calibrated_model(prior, per, fits))
