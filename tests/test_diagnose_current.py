@@ -27,6 +27,9 @@ def test_the_current_is_one_change_in_all_its_dofs():
     out = partners({("calibration", "sway")}, changes)
     assert ("effect", "sway", "linear_drag") in out
     assert ("effect", "sway", CURRENT) not in out and ("effect", "surge", CURRENT) not in out
+    # a one-DOF diagnosis's current is that DOF's: it goes with its calibration
+    alone = [("calibration", "surge"), ("effect", "surge", CURRENT)]
+    assert partners({("calibration", "surge")}, alone) == set(alone)
 
 
 def _surge_and_sway(log, prior):
