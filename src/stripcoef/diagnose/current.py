@@ -1,5 +1,5 @@
-r"""One water current for the whole vehicle: the earth-frame current fitted jointly over the
-diagnosed DOFs it acts in, then every DOF's calibration conditioned on it (issue 33).
+r"""One water current for the whole vehicle: the earth-frame current fitted jointly over every
+diagnosed DOF, then every DOF's calibration conditioned on it (issue 33).
 
 A current is one vector of the water, :math:`V_c = [V_N, V_E, 0]` [m/s] in NED (constant
 here), that every DOF sees through the rotation to the body frame: the relative velocity
@@ -14,9 +14,10 @@ multiresponse model (Seber & Wild 1989, Nonlinear Regression, ch. 11):
 over every diagnosed DOF i (the water's drag and added-mass forces act on :math:`\nu_r` in
 all six: the Munk moments of :math:`C_A(\nu_r)\nu_r` in roll, pitch and yaw, the heave
 drag once the vehicle pitches; where the DOF's selection did not name the current, its
-force alone, :class:`_Water`), each DOF's window residual whitened by its own noise level :math:`\sigma_i` and its calibration's
-band priors (:func:`stripcoef.diagnose.fit._solve`), each DOF's linear parameters
-:math:`\hat\theta_i` profiled (variable projection, Golub & Pereyra 1973). The prior of the
+force alone, :class:`_Water`), each DOF's window residual whitened by its own noise level
+:math:`\sigma_i` and its calibration's band priors (:func:`stripcoef.diagnose.fit._solve`),
+each DOF's linear parameters :math:`\hat\theta_i` profiled (variable projection, Golub &
+Pereyra 1973). The prior of the
 current is the effect's own law (:meth:`Current.max_magnitude`): a current no faster than
 the log's 95th-percentile horizontal speed; a minimum outside that disk is replaced by the
 minimum on its edge and reported at the bound.
@@ -26,8 +27,9 @@ whitened residual (S is minus twice the log likelihood; Seber & Wild 1989, sec. 
 holds when the model is right, widened by :math:`\max(1, \lambda_{max}(C^{-1} C_J))` so that
 it holds the block jackknife's :math:`C_J` in every direction (:func:`block_jackknife`,
 Kunsch 1989: refits without each block of windows, which need no right model); both are
-recorded. The speed's :math:`s_{|V|} = \sqrt{g^T C g}`,
-:math:`g = V_c/|V_c|` (delta method).
+recorded. The speed's :math:`s_{|V|} = \sqrt{g^T C g}`, :math:`g = V_c/|V_c|` (delta
+method). The model writes the current once (``dof: all``,
+:func:`stripcoef.diagnose.calibrate.calibrated_model`).
 
 Whether the log supports it at all, counted once: the likelihood ratio of "no current" (the
 current's released drag kept, :func:`stripcoef.diagnose.compare.posterior_cost`) against the
@@ -37,7 +39,7 @@ parameters of the whole model, not two per DOF. When it does not reject at
 :data:`~stripcoef.diagnose.compare.ALPHA`, the current each DOF found is one the other DOFs
 refute, and it is removed from every DOF (the DOF's candidates say why).
 
-Depends on: effects, diagnose.fit, diagnose.compare.
+Depends on: effects, diagnose.fit, diagnose.compare, diagnose.settings.
 """
 
 from __future__ import annotations
