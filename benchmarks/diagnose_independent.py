@@ -252,14 +252,16 @@ def _progress(row: dict) -> dict:
 
 #: The DOFs each undeclared effect of ``validation.independent`` acts in, beyond its own
 #: (STRENGTHS): the thruster effects change every thruster (so every DOF the thrusters
-#: drive), the current every translation and, through the Munk moment of C_A(nu_r) nu_r,
-#: yaw; the buoyancy acts at the centre of buoyancy (heave, and the roll and pitch
-#: restoring moments). A step naming the effect in one of these DOFs is not spurious.
+#: drive), the current every DOF (the relative velocity in D(nu_r) nu_r and C_A(nu_r) nu_r:
+#: the translations' drag and the Munk moments in roll, pitch and yaw; one current written
+#: for all six, stripcoef.diagnose.current); the buoyancy acts at the centre of buoyancy
+#: (heave, and the roll and pitch restoring moments). A step naming the effect in one of
+#: these DOFs is not spurious.
 ACTS_IN = {name: ("surge", "sway", "heave", "roll", "pitch", "yaw")
            for name in ("thrust_asymmetry", "deadband", "thruster_lag", "actuation_delay",
                         "thrust_effectiveness")}
-ACTS_IN.update({"current": ("surge", "sway", "yaw"), "buoyancy_offset": ("heave", "roll",
-                                                                           "pitch")})
+ACTS_IN.update({"current": ("surge", "sway", "heave", "roll", "pitch", "yaw"),
+                "buoyancy_offset": ("heave", "roll", "pitch")})
 
 
 #: Differences from the prior that every truth of ``validation.independent`` carries besides

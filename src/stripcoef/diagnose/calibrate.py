@@ -3,7 +3,8 @@
 coefficients at a bound listed.
 
 The thrusters' timing (a first-order lag, a pure delay) is one property of the actuators,
-not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive.
+not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
+water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
 Depends on: model, conventions, diagnose.priors, diagnose.fit.
 """
@@ -156,7 +157,9 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     effect's, folded into the matrices or thrusters, included). A timing effect of
     :data:`SHARED_TIMING` written in several DOFs (:func:`share_timing`: one value) is
     written once, as one entry for all DOFs (``dof: all``: one force law of the
-    thrusters' lag in a simulation instead of one per DOF, the same forces)."""
+    thrusters' lag in a simulation instead of one per DOF, the same forces); so is the one
+    water current (:func:`stripcoef.diagnose.current.share_current`), which acts in all six
+    DOFs through the relative velocity."""
     m = model
     mats = _writable_matrices(m)
     record = []
@@ -205,7 +208,7 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             for name, value in zip(eff.nuisance_names, tn):
                 if name in mats:  # a prior coefficient released by this effect
                     mats[name][i, i] += float(value)
-            if eff.name in SHARED_TIMING and shared_in.get(eff.name, 0) > 1:
+            if eff.name in SHARED_EFFECTS and shared_in.get(eff.name, 0) > 1:
                 # the thrusters' one lag or delay (share_timing): one entry for all DOFs,
                 # written once below (one force law, not one per DOF, in a simulation)
                 shared[eff.name] = (eff, params, steps[eff.name].std)
@@ -255,6 +258,12 @@ def _pinned(theta, low, up) -> str:
 #: (:func:`share_timing`); the validation keeps or removes each as one change
 #: (:func:`stripcoef.diagnose.validate.partners`).
 SHARED_TIMING = ("thruster_lag", "actuation_delay")
+#: Effects fitted once for the whole vehicle: the thrusters' timing (:func:`share_timing`)
+#: and the water current (:func:`stripcoef.diagnose.current.share_current`, one earth-frame
+#: current written with the same value in each DOF it acts in): the validation keeps or
+#: removes each as one change in all its DOFs, and not with one DOF's calibration
+#: (:func:`stripcoef.diagnose.validate.partners`).
+SHARED_EFFECTS = SHARED_TIMING + ("current",)
 
 
 def _with_value(cfg, eff, value):

@@ -84,6 +84,7 @@ import numpy as np
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
                                           clip_added_mass, share_timing)
+from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -248,6 +249,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
+    per, fits = share_current(per, fits)    # the water's one current (current.py)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)

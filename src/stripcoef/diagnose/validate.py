@@ -13,7 +13,8 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.calibrate import SHARED_TIMING, _changes, calibrated_model
+from stripcoef.diagnose.calibrate import (SHARED_EFFECTS, SHARED_TIMING, _changes,
+                                          calibrated_model)
 from stripcoef.diagnose.settings import RESIMULATION_HORIZON, UNLIMITED, Budget
 from stripcoef.progress import track
 
@@ -115,9 +116,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         cur = score(excl)
 
     def own(d):
-        """The changes of DOF ``d`` still kept, the shared timing left out."""
+        """The changes of DOF ``d`` still kept, the shared timing and current left out."""
         return {c for c in changes if c[1] == d and c not in excl
-                and not (c[0] == "effect" and c[2] in SHARED_TIMING)}
+                and not (c[0] == "effect" and c[2] in _shared(changes))}
 
     vetoed = []
     while cur[1] is not None:
@@ -204,20 +205,33 @@ def resimulate_rms(log, model, dofs, *, horizon: float = RESIMULATION_HORIZON):
 def partners(excl, changes) -> set:
     """``excl`` with the changes fitted together with an excluded one that cannot stand
     without it: the effects of a DOF whose calibration is excluded, except the thrusters'
-    shared timing (:data:`~stripcoef.diagnose.calibrate.SHARED_TIMING`: refitted without
-    that calibration, :func:`~stripcoef.diagnose.calibrate.written_fit`), which goes in all
-    its DOFs when it goes in one."""
+    shared timing and the one current of several DOFs (:func:`_shared`: refitted without
+    that calibration, :func:`~stripcoef.diagnose.calibrate.written_fit`), each of which goes
+    in all its DOFs when it goes in one."""
     out = set(excl)
-    shared = {c[2] for c in out if c[0] == "effect" and c[2] in SHARED_TIMING}
+    names = _shared(changes)
+    shared = {c[2] for c in out if c[0] == "effect" and c[2] in names}
     for c in changes:
         if c[0] != "effect":
             continue
-        if c[2] in SHARED_TIMING:         # the thrusters' one timing: all its DOFs at once
+        if c[2] in names:                 # one timing, one current: all its DOFs at once
             if c[2] in shared:
                 out.add(c)
         elif ("calibration", c[1]) in out:
             out.add(c)
     return out
+
+
+def _shared(changes) -> set:
+    """The effects of :data:`~stripcoef.diagnose.calibrate.SHARED_EFFECTS` that are one
+    change of several DOFs in ``changes``: the thrusters' timing always, the current when
+    more than one DOF holds it (:func:`stripcoef.diagnose.current.share_current`; a
+    one-DOF diagnosis's current is that DOF's, and goes with its calibration)."""
+    count = {}
+    for c in changes:
+        if c[0] == "effect":
+            count[c[2]] = count.get(c[2], 0) + 1
+    return set(SHARED_TIMING) | {e for e in SHARED_EFFECTS if count.get(e, 0) > 1}
 
 
 def _named(errors, dofs):

@@ -288,11 +288,19 @@ class Current(Effect):
                     "horizontal speed)")
         return ""
 
+    #: one current of the water acts in every DOF (a model's ``dof: all`` entry, written by
+    #: :func:`stripcoef.diagnose.current.share_current`): drag and C_A act on nu_r in all six
+    all_dofs = True
+
+    def window_force(self, data, params, dof):
+        """Window mean of Delta F_i along the log [N or N m]: :meth:`offset` (vectorised)."""
+        return self.offset(data, dof, (params["current_north"], params["current_east"]))
+
     def force_law(self, params, dof):
-        """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2];
+        """Simulation force law: Delta F_i of the class docstring at nu_r = nu - [R^T V_c; 0], V_c [m/s] in NED, nu_c_dot = [-S(omega) R^T V_c; 0] [m/s^2], in DOF ``dof`` (all six for None);
         returns f(time, eta, nu, inputs) -> (6,) [N, N m]. Equation and source: class docstring."""
         v = np.array([params["current_north"], params["current_east"], 0.0])
-        e = _unit_vec(dof)
+        e = np.ones(6) if dof is None else _unit_vec(dof)
 
         def f(time, eta, nu, inputs):
             model = inputs["model"]
@@ -302,7 +310,7 @@ class Current(Effect):
             nuc_dot = np.concatenate([-skew(nu[3:]) @ (rt @ v), np.zeros(3)])
             diff = (model.velocity_forces(nur, rigid_body=False)
                     - model.velocity_forces(nu, rigid_body=False))
-            return (-diff[dof] + (model.added_mass @ nuc_dot)[dof]) * e
+            return (-diff + model.added_mass @ nuc_dot) * e
         return f
 
 
