@@ -522,7 +522,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
         level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
     """
-    from stripcoef.hull.convergence import grid_convergence_index, richardson
+    from stripcoef.hull.convergence import (grid_convergence_index, least_squares_band,
+                                            richardson)
 
     # several bodies or overlapping parts: one closed surface (MeshBody.united, a boolean union)
     body = mesh.united() if hasattr(mesh, "united") else getattr(mesh, "mesh", mesh)
@@ -627,6 +628,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         gci, order, safety = grid_convergence_index(
             mats[-3:], counts[-3:], formal_order=formal,
             asymptotic_possible=finest_edge <= THIN_EDGE_RATIO * thickness)
+        if len(mats) >= 4:
+            # four levels or more: Eça & Hoekstra's least-squares band over all of them
+            # instead of the three finest (convergence.least_squares_band)
+            gci, order, safety = least_squares_band(counts, mats)
         error = estimated_error(mats[-1], a, gci)
         converged = bool(relative_error(a, error).max() <= tol)
         nxt = 2 * nominal
