@@ -472,7 +472,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
     and a level of twice the finest panels fits within ``max_panels``, that level is added
-    and the estimate repeated on the finest three ("refine until converged").  Levels whose
+    and the estimate repeated ("refine until converged"); with four levels or more the band
+    is Eça & Hoekstra's (2014) least squares over all of them
+    (:func:`~stripcoef.hull.convergence.least_squares_band`) instead of the index of the
+    finest three.  Levels whose
     finest edge is longer than the body's :func:`member_thickness` (thin plates and walls)
     are remeshed without edge flips (:func:`remeshed_levels`) and are not in the asymptotic
     range: their index takes :math:`F_s = 3` on every term (``asymptotic_possible`` of
