@@ -140,3 +140,28 @@ def test_the_band_on_exact_power_laws_out_of_range(p, covers):
     r = eca_hoekstra(COUNTS, phi)
     assert r.safety == EH_SAFETY_POOR
     assert bool(abs(phi[-1] - 1.0) <= r.uncertainty) == covers
+
+
+def test_least_squares_band_is_eca_hoekstra_per_term_symmetric_and_covers_exact_laws():
+    """The panel method's band over four levels or more (convergence.least_squares_band):
+    each term's U is eca_hoekstra's of that term's sequence (upper triangle, mirrored), and
+    on exact power laws of seeded orders in [0.6, 2] it covers the finest level's error
+    with F_s = 1.25; a term constant over the levels (a coupling zero by symmetry) has none."""
+    from stripcoef.hull.convergence import least_squares_band
+
+    rng = np.random.default_rng(5)
+    counts = (400, 800, 1600, 3200)
+    orders = rng.uniform(0.6, 2.0, (3, 3))
+    limits = rng.uniform(1.0, 5.0, (3, 3))
+    h = (counts[-1] / np.asarray(counts, float)) ** 0.5
+    mats = [limits + 0.3 * hk ** orders for hk in h]
+    for m in mats:
+        m[0, 2] = m[2, 0] = 0.0
+    band, order, safety = least_squares_band(counts, mats)
+    assert np.array_equal(band, band.T) and band[0, 2] == 0.0
+    for i, j in ((0, 0), (0, 1), (1, 2), (2, 2)):
+        r = eca_hoekstra(counts, [m[i, j] for m in mats])
+        assert band[i, j] == pytest.approx(r.uncertainty, rel=1e-12)
+        assert order[i, j] == pytest.approx(orders[i, j], rel=1e-4)
+        assert safety[i, j] == EH_SAFETY_GOOD
+        assert band[i, j] >= abs(mats[-1][i, j] - limits[i, j])

@@ -136,3 +136,21 @@ def test_mirror_planes_off_the_reference_point_zero_their_couplings_about_the_ce
     assert got[0, 2] == 0.0 and got[2, 0] == 0.0 and got[0, 1] == 0.0
     # X_qdot about P: -r_z X_udot (Fossen 2011 eq. 7.248), r = P - C; zero about C
     assert got[0, 4] == pytest.approx(-0.01 * clean[0, 0], rel=1e-12)
+
+
+def test_a_mirrored_refinement_may_pass_the_one_solve_cap(monkeypatch):
+    # MAX_PANELS caps one solve's unknowns: with k mirror planes a level of N panels is 2^k
+    # solves of N/2^k, so the forced refinement of a box with three planes goes past it (here
+    # a cap of 500 lowered for the test's time) up to max_panels; the whole body cannot
+    pytest.importorskip("pymeshlab")
+    from stripcoef.hull import panels
+
+    monkeypatch.setattr(panels, "MAX_PANELS", 500)
+    body = trimesh.creation.box(extents=[0.46, 0.58, 0.25])
+    _, mirrored = panel_added_mass(body, rho=RHO, panels=200, family="remesh", tolerance=0.0,
+                                   max_panels=1600, mirrors=("x", "y", "z"))
+    assert mirrored["panels"][-1] > 500 and mirrored["panels"][-1] <= 1.3 * 1600
+    assert len(mirrored["levels"]) == len(mirrored["panels"])
+    _, whole = panel_added_mass(body, rho=RHO, panels=200, family="remesh", tolerance=0.0,
+                                max_panels=1600)
+    assert whole["panels"][-1] <= 1.3 * 500

@@ -87,6 +87,13 @@ def test_panel_added_mass_reports_levels_error_and_convergence():
     for i in range(3):
         assert abs(a[i, i] - exact) <= 0.01 * exact
     assert info["converged"] in (True, False)
+    # every level's matrix, coarse to fine: the reported value is the Richardson value of the
+    # two finest (1/N), symmetrised
+    levels = info["levels"]
+    assert len(levels) == len(info["panels"]) and all(m.shape == (6, 6) for m in levels)
+    n = info["panels"]
+    again = richardson(levels[-2], levels[-1], n[-2], n[-1])
+    np.testing.assert_allclose(a, 0.5 * (again + again.T), rtol=1e-12, atol=1e-12 * abs(a).max())
 
 
 def test_remesh_keeps_a_box_and_reaches_the_panels():

@@ -472,7 +472,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     reported value is the extrapolation), and no smaller than the finest solve's asymmetry.
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`)
     and a level of twice the finest panels fits within ``max_panels``, that level is added
-    and the estimate repeated on the finest three ("refine until converged").  Levels whose
+    and the estimate repeated ("refine until converged"); with four levels or more the band
+    is Eça & Hoekstra's (2014) least squares over all of them
+    (:func:`~stripcoef.hull.convergence.least_squares_band`) instead of the index of the
+    finest three.  Levels whose
     finest edge is longer than the body's :func:`member_thickness` (thin plates and walls)
     are remeshed without edge flips (:func:`remeshed_levels`) and are not in the asymptotic
     range: their index takes :math:`F_s = 3` on every term (``asymptotic_possible`` of
@@ -498,7 +501,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     tolerance : float
         Relative error [-] the refinement aims at (default :data:`ERROR_TOLERANCE`).
     max_panels : int
-        Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`).
+        Most panels of an added level (default ``2 * panels`` within :data:`MAX_PANELS`);
+        a level solved with k mirror planes (2^k solves of N/2^k unknowns) may have up to
+        ``MAX_PANELS * 2^k`` panels.
     mirrors : iterable of str
         Mirror planes of the body through ``about`` (``x``, ``y``, ``z``: the coordinate each
         reverses; :func:`stripcoef.assembly.symmetry.strips_mirror_symmetries`): with the
@@ -517,9 +522,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         error of each term [kg, kg m, kg m^2] (``None`` without extrapolation), "order": the
         order used per term [-], "safety": the safety factor per term [-], "family": the
         panellings' family, "converged": whether every term is within ``tolerance``,
-        "formal_order": the index's formal order [-] (:func:`edge_order`)}``.
+        "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
+        level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
     """
-    from stripcoef.hull.convergence import grid_convergence_index, richardson
+    from stripcoef.hull.convergence import (grid_convergence_index, least_squares_band,
+                                            richardson)
 
     # several bodies or overlapping parts: one closed surface (MeshBody.united, a boolean union)
     body = mesh.united() if hasattr(mesh, "united") else getattr(mesh, "mesh", mesh)
@@ -538,7 +545,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         raise InputError("unknown mirror plane", key="mirrors", value=",".join(planes),
                          expected="x, y or z (the coordinate the reflection reverses)")
     tol = ERROR_TOLERANCE if tolerance is None else float(tolerance)
-    cap = min(MAX_PANELS, 2 * panels) if max_panels is None else min(MAX_PANELS, max_panels)
+    # (the cap on one solve's unknowns, MAX_PANELS, is applied below: with k mirror planes a
+    # level of N panels is 2^k solves of N/2^k unknowns)
+    cap = min(MAX_PANELS, 2 * panels) if max_panels is None else int(max_panels)
     if len(f) > MAX_INPUT_FACES:
         raise InputError("mesh too large for the panel method's time budget", file=where,
                          key="mesh", value=f"{len(f)} faces",
@@ -565,7 +574,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         asym = float(np.abs(a - a.T).max() / np.abs(a).max())
         return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
                                  "order": None, "safety": None, "family": "input",
-                                 "converged": None, "formal_order": None}
+                                 "converged": None, "formal_order": None, "levels": (a,)}
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
     src, solve_planes, area = (v, f), (), surface_area(v, f)
@@ -622,10 +631,15 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         gci, order, safety = grid_convergence_index(
             mats[-3:], counts[-3:], formal_order=formal,
             asymptotic_possible=finest_edge <= THIN_EDGE_RATIO * thickness)
+        if len(mats) >= 4:
+            # four levels or more: Eça & Hoekstra's least-squares band over all of them
+            # instead of the three finest (convergence.least_squares_band)
+            gci, order, safety = least_squares_band(counts, mats)
         error = estimated_error(mats[-1], a, gci)
         converged = bool(relative_error(a, error).max() <= tol)
         nxt = 2 * nominal
-        if converged or nxt > cap or used.startswith("refined"):
+        if converged or nxt > min(cap, MAX_PANELS * 2 ** len(solve_planes)) \
+                or used.startswith("refined"):
             break
         from stripcoef.hull import remesh
 
@@ -647,7 +661,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     asym = float(np.abs(mats[-1] - mats[-1].T).max() / np.abs(mats[-1]).max())
     return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym, "error": error,
                              "order": order, "safety": safety, "family": used,
-                             "converged": converged, "formal_order": formal}
+                             "converged": converged, "formal_order": formal,
+                             "levels": tuple(np.array(m) for m in mats)}
 
 
 #: Formal order in the panel size of constant panels on a smooth closed body [-] (their error
