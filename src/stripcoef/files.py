@@ -538,11 +538,41 @@ MAX_TEXT = 50_000_000
 
 
 def _yaml_loader(file: str):
-    """A SafeLoader class that refuses duplicate keys, nesting deeper than
-    :data:`MAX_NESTING` and documents expanding past :data:`MAX_EXPANDED_NODES` nodes."""
+    """A safe loader class that refuses duplicate keys, nesting deeper than
+    :data:`MAX_NESTING` and documents expanding past :data:`MAX_EXPANDED_NODES` nodes.
+
+    The scanner and parser are libyaml's (PyYAML's ``CParser``) when PyYAML was built with
+    it, else PyYAML's pure-Python ones (``yaml.SafeLoader``); the composer, the resolver and
+    the safe constructor stay PyYAML's Python classes in both cases, so the checks below and
+    the line numbers of the marks are the same. The C parser makes a vehicle file's parse
+    several times faster (docs/performance.md, "YAML parsing").
+    """
     import yaml
 
-    class Loader(yaml.SafeLoader):
+    if getattr(yaml, "__with_libyaml__", False):
+        from yaml.composer import Composer
+        from yaml.constructor import SafeConstructor
+        from yaml.cyaml import CParser
+        from yaml.resolver import Resolver
+
+        class Base(Composer, CParser, SafeConstructor, Resolver):
+            """libyaml's events, PyYAML's Python composer (first in the MRO: its
+            ``compose_node`` is the one overridden below) and safe constructor."""
+
+            def __init__(self, stream):
+                bad = yaml.reader.Reader.NON_PRINTABLE.search(stream)  # as the Python reader
+                if bad:
+                    raise yaml.reader.ReaderError("<unicode string>", bad.start(),
+                                                  ord(bad.group()), "unicode",
+                                                  "special characters are not allowed")
+                CParser.__init__(self, stream)
+                Composer.__init__(self)
+                SafeConstructor.__init__(self)
+                Resolver.__init__(self)
+    else:                                                   # pragma: no cover
+        Base = yaml.SafeLoader
+
+    class Loader(Base):
         depth = 0
 
         def __init__(self, stream):
@@ -666,6 +696,11 @@ def load_yaml(text: str, *, file: str):
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or "syntax error"
+        if "maximum nesting depth" in problem:      # libyaml's own limit (1000 levels)
+            raise InputError("nesting too deep", file=file,
+                             key=f"line {mark.line + 1}" if mark is not None else None,
+                             value=f"> {MAX_NESTING}", expected=f"at most {MAX_NESTING} "
+                             "levels of mappings and lists") from None
         raise InputError(f"invalid YAML ({problem})", file=file,
                          key=f"line {mark.line + 1}" if mark is not None else None,
                          expected="a YAML mapping") from None

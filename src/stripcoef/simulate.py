@@ -53,7 +53,7 @@ from scipy.spatial.transform import Rotation
 
 from stripcoef.conventions import FORCES, POSE, VELOCITIES, skew
 from stripcoef.errors import InputError, UnreachableError, unknown_name
-from stripcoef.model import restoring_from_down
+from stripcoef.model import restoring_from_down, velocity_product
 from stripcoef.logfile import COMMAND_PREFIX, DEFLECTION_PREFIX, Log, LogInputs, log_inputs
 from stripcoef.progress import TimeBar
 
@@ -406,6 +406,11 @@ class RightHandSide:
         # floats: the restoring force's arithmetic on numpy scalars cost a tenth of f
         self.gravity = {"weight": float(model.weight), "buoyancy": float(model.buoyancy),
                         "r_g": tuple(map(float, model.r_g)), "r_b": tuple(map(float, model.r_b))}
+        # HydroModel.velocity_forces' tables for these options, read once: (table, D_L) of
+        # the still-water rule, of the water-relative terms and of C_RB on nu (with a current)
+        self.terms_still = model._velocity_terms(coriolis, coriolis, munk and coriolis, True)
+        self.terms_water = model._velocity_terms(False, coriolis, munk and coriolis, True)
+        self.terms_body = model._velocity_terms(True, False, munk, False) if coriolis else None
         self.effect_terms = []
         if effects and model.effects:
             from stripcoef.effects.laws import effect_forces  # calibrated effects (issue 7)
@@ -425,23 +430,39 @@ class RightHandSide:
         return nu_c, nu_c_dot
 
     def __call__(self, time, y):
+        # floats, not 3-vectors: numpy's call overhead (~1 us) dwarfs a 3 x 3 product; the
+        # velocity forces' tables are the model's, read once (docs/performance.md)
         model, inputs = self.model, self.inputs
         quat, nu = y[3:7], y[7:]
-        rmat = _quaternion_matrix(quat)         # normalised: the integrator's drift of |q|
+        e1, e2, e3, q0, u, v, w, p, q, r = y[3:].tolist()
+        # R(q), eq. 2.72, of the normalised q (the integrator's drift of |q|)
+        norm = math.sqrt(e1 * e1 + e2 * e2 + e3 * e3 + q0 * q0)
+        x_, y_, z_, w_ = e1 / norm, e2 / norm, e3 / norm, q0 / norm
+        r00, r01, r02 = 1 - 2 * (y_ * y_ + z_ * z_), 2 * (x_ * y_ - z_ * w_), 2 * (x_ * z_ + y_ * w_)
+        r10, r11, r12 = 2 * (x_ * y_ + z_ * w_), 1 - 2 * (x_ * x_ + z_ * z_), 2 * (y_ * z_ - x_ * w_)
+        r20, r21, r22 = 2 * (x_ * z_ - y_ * w_), 2 * (y_ * z_ + x_ * w_), 1 - 2 * (x_ * x_ + y_ * y_)
+        rmat = None
         c, thrust, tau, delta = inputs(time)
         if inputs.current_fn is None:
-            nu_c, nu_r, rhs_force = _ZERO6, nu, tau
+            nu_c, nu_r = _ZERO6, nu
+            # C_RB(nu) nu + C_A(nu) nu + D(nu) nu, lift included (HydroModel.velocity_forces)
+            rhs_force = tau - velocity_product(*self.terms_still, nu)
         else:
+            rmat = np.array([[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]])
             nu_c, nu_c_dot = self.current(time, rmat, nu)
             nu_r = nu - nu_c
             rhs_force = tau + self.m_added @ nu_c_dot
-        # C_RB(nu) nu + C_A(nu_r) nu_r + D(nu_r) nu_r, lift included (HydroModel.velocity_forces)
-        rhs_force = (rhs_force - model.velocity_forces(nu, None if nu_r is nu else nu_r,
-                                                       munk=self.munk, coriolis=self.coriolis)
-                     - restoring_from_down(rmat[2].tolist(), **self.gravity))
+            # C_RB(nu) nu + C_A(nu_r) nu_r + D(nu_r) nu_r (HydroModel.velocity_forces)
+            vel = velocity_product(*self.terms_water, nu_r)
+            if self.terms_body is not None:
+                vel = vel + velocity_product(*self.terms_body, nu)
+            rhs_force = rhs_force - vel
+        rhs_force = rhs_force - restoring_from_down((r20, r21, r22), **self.gravity)
         if self.b_delta is not None:
             rhs_force = rhs_force + nu_r[0] * abs(nu_r[0]) * (self.b_delta @ delta)
         if self.effect_terms or self.extra_force is not None:
+            if rmat is None:
+                rmat = np.array([[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]])
             eta = np.concatenate([y[:3], _matrix_euler(rmat, quat)])
             names = inputs.names
             hook = {"commands": dict(zip(names, c)), "thrust": dict(zip(names, thrust)),
@@ -453,14 +474,12 @@ class RightHandSide:
             if self.extra_force is not None:
                 rhs_force = rhs_force + np.asarray(self.extra_force(time, eta, nu, hook),
                                                    dtype=float).reshape(6)
-        nu_dot = self.m_inv @ rhs_force
-        e1, e2, e3, q0 = quat.tolist()
-        p, q, r = nu[3:].tolist()
         # p_dot = R v; eps_dot = (q0 w + eps x w) / 2; q0_dot = -eps . w / 2 (eq. 2.86)
-        return np.concatenate([rmat @ nu[:3], [0.5 * (q0 * p + e2 * r - e3 * q),
-                                               0.5 * (q0 * q + e3 * p - e1 * r),
-                                               0.5 * (q0 * r + e1 * q - e2 * p),
-                                               -0.5 * (e1 * p + e2 * q + e3 * r)], nu_dot])
+        return np.array([r00 * u + r01 * v + r02 * w, r10 * u + r11 * v + r12 * w,
+                         r20 * u + r21 * v + r22 * w,
+                         0.5 * (q0 * p + e2 * r - e3 * q), 0.5 * (q0 * q + e3 * p - e1 * r),
+                         0.5 * (q0 * r + e1 * q - e2 * p), -0.5 * (e1 * p + e2 * q + e3 * r),
+                         *(self.m_inv @ rhs_force).tolist()])
 
 
 _ZERO6 = np.zeros(6)
