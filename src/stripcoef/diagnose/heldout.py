@@ -179,27 +179,29 @@ def diebold_mariano(loss_a, loss_b, *, overlap: int = 1) -> dict:
 
     ``overlap`` = h > 1: the units are h-step forecasts whose windows overlap
     (:func:`rolling_segments`), so d is serially correlated to lag h - 1 even for a correct
-    model; the lag truncation is then at least 2 (h - 1) (the serial correlation is of order
-    h - 1, Diebold & Mariano 1995, sec. 1.1; twice that, so that Bartlett's weights keep most
-    of it) and
-    the small-sample factor Harvey et al.'s for h steps,
-    :math:`\sqrt{(S + 1 - 2h + h(h-1)/S)/S}`; Bartlett weights keep the variance positive
-    (Newey & West 1987)."""
+    model; the long-run variance is then Diebold & Mariano's (1995, sec. 1.1): the
+    autocovariances to lag h - 1 with uniform weights (Bartlett's where that sum is not
+    positive), and the small-sample factor Harvey et al.'s for h steps,
+    :math:`\sqrt{(S + 1 - 2h + h(h-1)/S)/S}`. Measured (test_heldout_paired, MA(4)
+    differential, S = 41): about 8 % rejections at a nominal 5 % (Harvey et al. 1997 report
+    the same mild excess), against 10-12 % with Bartlett weights to lag 8-12."""
     from scipy.stats import t as student
 
     d = np.asarray(loss_a, float) - np.asarray(loss_b, float)
     n = d.size
     h = max(1, int(overlap))
-    lags = max(int(np.floor(4.0 * (n / 100.0) ** (2.0 / 9.0))), 2 * (h - 1))
+    lags = h - 1 if h > 1 else int(np.floor(4.0 * (n / 100.0) ** (2.0 / 9.0)))
     lags = min(lags, max(n - 1, 0))
     mean = float(np.mean(d)) if n else float("nan")
     if n < 2:
         return {"statistic": float("nan"), "p_value": float("nan"), "mean_difference": mean,
                 "segments": n, "lags": lags}
     c = d - mean
-    var = float(c @ c) / n
-    for k in range(1, lags + 1):
-        var += 2.0 * (1.0 - k / (lags + 1.0)) * float(c[k:] @ c[:-k]) / n
+    gamma = [float(c[k:] @ c[:n - k]) / n for k in range(lags + 1)]
+    var = gamma[0] + 2.0 * sum(gamma[1:]) if h > 1 else -1.0
+    if not var > 0.0:
+        var = gamma[0] + sum(2.0 * (1.0 - k / (lags + 1.0)) * gamma[k]
+                             for k in range(1, lags + 1))
     if not var > 0.0:
         stat = 0.0 if mean == 0.0 else math.copysign(math.inf, mean)
     else:
