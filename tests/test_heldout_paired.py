@@ -87,6 +87,7 @@ def test_paired_verdicts_win_loss_and_not_distinguishable():
     assert paired_verdicts(dict(losses, calibrated=None), [0])["surge"]["verdict"] == "loss"
 
 
+@pytest.mark.slow
 def test_segment_losses_of_the_trivial_predictors_pool_to_their_errors():
     model = rov_model()
     t = np.arange(0.0, 30.0, 0.2)
@@ -105,3 +106,36 @@ def test_segment_losses_of_the_trivial_predictors_pool_to_their_errors():
     assert got["model"].shape == (len(bounds), 2)
     # the model that made the log (noise aside) beats zero velocity in surge
     assert np.mean(got["model"][:, 0]) < np.mean(got["zero_velocity"][:, 0])
+
+
+@pytest.mark.slow
+def test_diagnose_records_the_paired_tests_of_the_written_model():
+    """The held-out record holds the verdicts of the written model (recomputed here from
+    the model read back) and the validation's per-DOF test runs on the rolling origins."""
+    import json
+
+    from conftest import ROOT  # noqa: F401  (the tests' package root)
+    from test_diagnose_closedloop import make_log
+
+    from stripcoef.conventions import DOF
+    from stripcoef.diagnose.heldout import paired_record, split
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.model import HydroModel
+
+    log, prior, _ = make_log(9, duration=150.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof="all", effects=["tether_drag"], holdout=0.3)
+        written = HydroModel.from_dict(json.loads(json.dumps(res.model.to_dict())))
+        test_log = split(log, 0.3)[1]
+        dofs = [DOF.index(d) for d in res.holdout["errors"]]
+        again = paired_record(test_log, {"prior": prior, "calibrated": written}, dofs)
+    got = res.holdout["paired_tests"]
+    assert got["segments"] == len(rolling_segments(np.asarray(test_log["t"]))) > \
+        len(segments(np.asarray(test_log["t"])))
+    for d in res.holdout["errors"]:
+        assert got[d]["verdict"] == again[d]["verdict"] in ("win", "loss",
+                                                           "not distinguishable")
+        assert got[d]["statistic"] == pytest.approx(again[d]["statistic"], rel=1e-6)
+    per = res.validation["per_dof_test"]
+    assert all(per[d]["segments"] > 6 for d in res.validation["prior"])

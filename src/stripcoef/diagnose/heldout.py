@@ -309,6 +309,37 @@ def compare(log, models: dict, dofs, *, horizon: float = HORIZON) -> dict:
             for k, i in enumerate(dofs)}
 
 
+def paired_record(log, models: dict, dofs, *, candidate: str = "calibrated",
+                  horizon: float = HORIZON, step: float = ROLLING_STEP) -> dict:
+    """The paired tests of ``candidate`` against the other models of ``models`` and the
+    trivial predictors on ``log`` (:func:`segment_losses` on :func:`rolling_segments`,
+    :func:`paired_verdicts` with their overlap) as a JSON-ready record: ``{"description",
+    "segments", "horizon_s", "step_s", dof_name: {"verdict", "statistic": {name: DM},
+    "p_value": {name: one-sided p}}}``; ``{"segments": 0, ...}`` when the log is shorter
+    than one horizon."""
+    t = np.asarray(log["t"], float)
+    bounds = rolling_segments(t, horizon, step)
+    out = {"description": f"Diebold-Mariano tests of the {candidate} model's {horizon:g}-s "
+                          f"free-simulation losses against each other predictor's, "
+                          f"restarted every {step:g} s (overlapping: Diebold-Mariano's "
+                          "h-step variance, Harvey et al.'s factor); a negative statistic "
+                          f"favours the {candidate} model; verdict 'win' (below all, one-sided "
+                          f"{ALPHA:g} each), 'loss' (above one, Bonferroni) or 'not "
+                          "distinguishable'",
+           "segments": len(bounds), "horizon_s": horizon, "step_s": step}
+    if not bounds:
+        return out
+    losses = segment_losses(log, models, dofs, bounds)
+    against = tuple(n for n in models if n != candidate) + TRIVIAL_PREDICTORS
+    got = paired_verdicts(losses, dofs, candidate=candidate, against=against,
+                          overlap=overlap_steps(horizon, step))
+    for d, v in got.items():
+        out[d] = {"verdict": v["verdict"],
+                  "statistic": {n: x["statistic"] for n, x in v["tests"].items()},
+                  "p_value": {n: x["p_value"] for n, x in v["tests"].items()}}
+    return out
+
+
 #: State columns a twin start is perturbed in (:func:`twin_spread`): the velocities and the
 #: angles the restoring forces depend on.
 TWIN_COLUMNS = ("u", "v", "w", "p", "q", "r", "phi", "theta")
