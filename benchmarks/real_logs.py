@@ -347,6 +347,12 @@ def both_splits(log, prior, widths, oracle=None) -> list[dict]:
     parts = {"forward": (split(log, HOLDOUT)[1], res), "reverse": (head, rev)}
     oracle_err = {"forward": {}, "reverse": {}}
     twins = {"forward": {}, "reverse": {}}
+    tests = {"forward": {}, "reverse": {}}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name, (part, r) in parts.items():
+            tests[name] = paired_tests(part, prior, _written(r.model), list(r.diagnosed),
+                                       oracle)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name, (part, r) in parts.items():       # on the same held-out parts
@@ -384,8 +390,54 @@ def both_splits(log, prior, widths, oracle=None) -> list[dict]:
                          "noise_growth_truth": tw.get("truth", {}).get(dof),
                          "predictable": int(ok[dof]),
                          "effects_written": effects, "not_diagnosed": dropped,
-                         "cpu_s": round(cpu, 1)})
+                         "cpu_s": round(cpu, 1), **tests[name].get(dof, {})})
     return rows
+
+
+#: The baselines of the paired tests (:func:`paired_tests`), by their column's suffix.
+BASELINES = {"prior": "prior", "hold_last_velocity": "hold", "zero_velocity": "zero"}
+
+
+def paired_tests(part, prior, calibrated, dofs, oracle=None) -> dict:
+    """Per DOF of ``dofs`` the paired Diebold-Mariano tests of the calibrated model against
+    the prior, hold-last-velocity and zero velocity on the held-out ``part``
+    (:func:`stripcoef.diagnose.heldout.paired_verdicts`), on two sets of segments: the
+    table's consecutive 10-s segments (``seg10_*``: 9 on a 90-s held-out part) and 10-s
+    segments restarted every :data:`~stripcoef.diagnose.heldout.ROLLING_STEP` s (``roll_*``:
+    41, overlapping, the tests' lags and small-sample factor for that overlap). Columns per
+    protocol: the segment count, the statistic against each baseline (negative: the
+    calibrated model's loss lower) and the verdict (win / loss / not distinguishable); on
+    the rolling segments also the calibrated model's RMS error over them and the truth's
+    verdict against the two trivial predictors (``roll_truth_verdict``: could any model
+    have won the cell)."""
+    from stripcoef.conventions import DOF
+    from stripcoef.diagnose.heldout import (HORIZON, overlap_steps, paired_verdicts,
+                                            rolling_segments, segment_losses, segments)
+
+    t = np.asarray(part["t"], float)
+    out = {DOF[i]: {} for i in dofs}
+    models = {"prior": prior, "calibrated": calibrated}
+    if oracle is not None:
+        models["truth"] = oracle
+    for tag, bounds, h in (("seg10", segments(t, HORIZON), 1),
+                           ("roll", rolling_segments(t), overlap_steps())):
+        losses = segment_losses(part, models, dofs, bounds)
+        verdicts = paired_verdicts(losses, dofs, overlap=h)
+        truth = (paired_verdicts(losses, dofs, candidate="truth",
+                                 against=("hold_last_velocity", "zero_velocity"), overlap=h)
+                 if oracle is not None and tag == "roll" else {})
+        for k, i in enumerate(dofs):
+            v, row = verdicts[DOF[i]], out[DOF[i]]
+            row[f"{tag}_segments"] = len(bounds)
+            for base, suffix in BASELINES.items():
+                row[f"{tag}_dm_{suffix}"] = v["tests"].get(base, {}).get("statistic", "")
+            row[f"{tag}_verdict"] = v["verdict"]
+            if tag == "roll":
+                c = losses.get("calibrated")
+                row["roll_calibrated"] = ("" if c is None
+                                          else float(np.sqrt(np.mean(c[:, k]))))
+                row["roll_truth_verdict"] = truth.get(DOF[i], {}).get("verdict", "")
+    return out
 
 
 #: Horizons of the attribution [s]: half a second, two seconds and the held-out table's ten.
@@ -637,7 +689,19 @@ FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", 
           "calibrated", "hold_last_velocity", "zero_velocity", "truth_coefficients",
           "truth_beats_trivial", "beats_all",
           "prior_beats_trivial", "noise_growth_calibrated", "noise_growth_prior",
-          "noise_growth_truth", "predictable", "effects_written", "not_diagnosed", "cpu_s")
+          "noise_growth_truth", "predictable", "effects_written", "not_diagnosed", "cpu_s",
+          "seg10_segments", "seg10_dm_prior", "seg10_dm_hold", "seg10_dm_zero", "seg10_verdict",
+          "roll_segments", "roll_dm_prior", "roll_dm_hold", "roll_dm_zero", "roll_verdict",
+          "roll_calibrated", "roll_truth_verdict")
+
+
+def verdict_counts(rows, column: str) -> dict:
+    """``{"win": n, "loss": n, "not distinguishable": n}`` of ``column`` over ``rows``."""
+    out = {"win": 0, "loss": 0, "not distinguishable": 0}
+    for r in rows:
+        if r.get(column) in out:
+            out[r[column]] += 1
+    return out
 
 
 def main(argv=None) -> int:
@@ -713,14 +777,19 @@ def main(argv=None) -> int:
           f"{sum(r['beats_all'] for r in judged)} of {len(judged)} excited and predictable "
           "ones (the start-state noise grown along the log by the prior's dynamics stays "
           "below both trivial predictors' errors)")
+    for col, what in (("seg10_verdict", "consecutive 10-s segments"),
+                      ("roll_verdict", "10-s segments restarted every 2 s")):
+        c = verdict_counts(out, col)
+        print(f"paired tests on {what}: {c['win']} wins, {c['loss']} losses, "
+              f"{c['not distinguishable']} not distinguishable of {n}")
     if args.out:
         with open(args.out, "w", newline="") as fh:
             fh.write(f"# {command}\n")
             w = csv.DictWriter(fh, FIELDS)
             w.writeheader()
             for r in out:
-                w.writerow({f: (f"{r[f]:.6g}" if isinstance(r[f], float) else r[f])
-                            for f in FIELDS})
+                w.writerow({f: (f"{r.get(f, '')}" if not isinstance(r.get(f), float)
+                                else f"{r[f]:.6g}") for f in FIELDS})
     return 0
 
 
