@@ -111,7 +111,7 @@ def test_segment_losses_of_the_trivial_predictors_pool_to_their_errors():
 @pytest.mark.slow
 def test_diagnose_records_the_paired_tests_of_the_written_model():
     """The held-out record holds the verdicts of the written model (recomputed here from
-    the model read back) and the validation's per-DOF test runs on the rolling origins."""
+    the model read back); the validation's per-DOF test is recorded for every DOF it scored."""
     import json
 
     from conftest import ROOT  # noqa: F401  (the tests' package root)
@@ -138,4 +138,4 @@ def test_diagnose_records_the_paired_tests_of_the_written_model():
                                                            "not distinguishable")
         assert got[d]["statistic"] == pytest.approx(again[d]["statistic"], rel=1e-6)
     per = res.validation["per_dof_test"]
-    assert all(per[d]["segments"] > 6 for d in res.validation["prior"])
+    assert all(per[d]["segments"] >= 2 for d in res.validation["prior"])

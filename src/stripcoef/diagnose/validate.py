@@ -65,11 +65,10 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     timing) are removed while its validation error is not below the prior's there
     (:math:`r_i \ge 1`), the DOF with the largest :math:`r_i` first, and the rest scored
     again. The Diebold-Mariano statistic of each DOF's free-simulation losses against the
-    prior's over the validation part (:func:`stripcoef.diagnose.heldout.diebold_mariano`,
-    HAC variance; 10-s simulations restarted every 2 s, :func:`~stripcoef.diagnose.heldout.
-    rolling_segments`, about 4x the 5-6 consecutive segments) is recorded
-    (``per_dof_test``): it says how strong the evidence behind each kept DOF is. It is not
-    made the rule: on 5-6 consecutive segments it has little power, and
+    prior's over the validation segments (:func:`stripcoef.diagnose.heldout.diebold_mariano`,
+    HAC variance) is recorded (``per_dof_test``): it says how strong the evidence behind
+    each kept DOF is (the held-out part's test on rolling segments is ``--holdout``'s
+    ``paired_tests``). It is not made the rule: on 5-6 segments it has little power, and
     keeping only what it finds significant (a t statistic beyond 1, the one-standard-error
     rule) removed on the current log a sway calibration whose held-out error was 35 % below
     the prior's (README of reference_tables/real_logs).
@@ -78,7 +77,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     results.
     """
     from stripcoef.diagnose.heldout import (diebold_mariano, hold_last_velocity_errors,
-                                            overlap_steps, rolling_segments, segment_losses,
                                             segment_squared_errors)
 
     def errors(got):
@@ -138,20 +136,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         cur = score(excl)
     tests = {}
     if base_sse is not None and cur[2] is not None:
-        # the test on 10-s simulations restarted every 2 s (heldout.rolling_segments: about
-        # 4x the consecutive segments, their overlap in the test's variance); the
-        # consecutive segments where the validation part is shorter than one horizon
-        bounds = rolling_segments(np.asarray(val_log["t"], float))
-        budget.check()
-        got = (segment_losses(val_log, {"kept": calibrated_model(
-            prior, per, fits, frozenset(partners(excl, changes))), "prior": prior}, dofs,
-            bounds) if bounds else {})
+        # on the consecutive segments the scoring already simulated: the rolling segments
+        # (heldout.rolling_segments, about 4x as many) cost a third more CPU per diagnosis
+        # for a record that decides nothing; --holdout reports them (holdout.paired_tests)
         for k, i in enumerate(dofs):
-            if got.get("kept") is not None and got.get("prior") is not None:
-                tests[DOF[i]] = diebold_mariano(got["kept"][:, k], got["prior"][:, k],
-                                                overlap=overlap_steps())
-            else:
-                tests[DOF[i]] = diebold_mariano(cur[2][:, k], base_sse[0][:, k])
+            tests[DOF[i]] = diebold_mariano(cur[2][:, k], base_sse[0][:, k])
     def named(e):
         return _named(e, dofs)
 
@@ -164,8 +153,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
                                               "Harvey et al. small-sample factor) of the kept "
                                               "model's free-simulation losses per validation "
-                                              "segment (10 s, restarted every 2 s) against "
-                                              "the prior's: a negative "
+                                              "segment against the prior's: a negative "
                                               "statistic favours the kept model; p_value "
                                               "one-sided", **tests},
               "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
