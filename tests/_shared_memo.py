@@ -55,14 +55,24 @@ def _stored(root: Path, digest: str, compute):
     data = root / f"{digest}.pickle"
     if data.is_file():                  # written whole (renamed into place): no lock needed
         return pickle.loads(data.read_bytes())
-    with open(root / f"{digest}.lock", "w") as lock:
+    try:
+        lock = open(root / f"{digest}.lock", "w")
+    except OSError:                     # nowhere to lock: computed here, unshared
+        return compute()
+    with lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if data.is_file():
             return pickle.loads(data.read_bytes())
         value = compute()
+        # the built-in open, not Path.write_bytes: a test may make those fail (a full disk);
+        # a store that cannot be written only leaves the value unshared
         part = root / f"{digest}.{os.getpid()}.part"
-        part.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
-        part.replace(data)
+        try:
+            with open(part, "wb") as f:
+                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(part, data)
+        except OSError:
+            part.unlink(missing_ok=True)
         return value
 
 

@@ -66,3 +66,19 @@ def test_the_hull_functions_are_shared_and_keep_their_own_function():
         assert not hasattr(memoised.__wrapped__, "cache_info")
     import stripcoef.hull.memo as memo
     assert getattr(memo.array_memo, "shared_by_tests", False)
+
+
+def test_a_store_that_cannot_be_written_leaves_the_value_unshared(tmp_path, monkeypatch):
+    """A test that makes every Path write fail (a full disk) still gets its value."""
+    import errno
+    from pathlib import Path
+
+    def full(self, *a, **k):
+        raise OSError(errno.ENOSPC, "No space left on device", str(self))
+
+    monkeypatch.setenv(_shared_memo.ENV, str(tmp_path / "shared"))
+    monkeypatch.setattr(Path, "write_bytes", full)
+    monkeypatch.setattr(Path, "write_text", full)
+    calls = []
+    assert _shared_memo.shared(_level(calls))(np.ones(2), 2.0)[1][0] == 2
+    assert _shared_memo.once(("x",), lambda: 3) == 3 and len(calls) == 1
