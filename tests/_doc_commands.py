@@ -26,8 +26,11 @@ forks the command and waits for it (``pidfd``): a client that goes away (bash ki
 timeout) takes its command with it.  Every process is waited for by its parent, so the
 commands' CPU time adds up in the test's (``RUSAGE_CHILDREN``, ``time -v``).
 
-Nothing is cached between commands: each fork starts from the server's state, which holds
-imported modules only (no computed results).  tests/test_docs_examples.py keeps one page on
+Nothing is cached between commands in the server: each fork starts from its state, which
+holds imported modules only (no computed results).  The hull's memoised pure functions (panel
+levels, ...) read and write the test run's shared folder (tests/_shared_memo.py, installed in
+the server before it imports the package), as the test processes do: a command gets the bits
+its function computes, once per run.  tests/test_docs_examples.py keeps one page on
 fresh interpreters and checks that forks print what fresh interpreters and the installed
 console script print.
 """
@@ -249,7 +252,15 @@ def _handle(conn) -> None:
 
 def serve(sock: str) -> None:
     import importlib
+    import importlib.util
 
+    # the hull's memoised results shared with the test run's other processes (the run's own
+    # folder, tests/_shared_memo.py), installed before the package's modules are imported
+    spec = importlib.util.spec_from_file_location("_shared_memo",
+                                                  Path(__file__).with_name("_shared_memo.py"))
+    shared = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(shared)
+    shared.install()
     for name in PRELOAD:
         try:
             importlib.import_module(name)

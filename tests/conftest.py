@@ -7,8 +7,23 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import pytest
 
+import _shared_memo
+
+# before any test module imports the hull: its memoised functions shared by the run's processes
+_shared_memo.install()
+
 ROOT = Path(__file__).resolve().parent.parent
 GEOMETRY = ROOT / "geometry"
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_configure(config):
+    """The run's shared folder (tests/_shared_memo.py): ``pytest-N/shared_memo``, the run's own
+    temporary folder (new each run), the same for the xdist workers (their ``basetemp`` is
+    ``pytest-N/popen-gwK``) and for the commands they start (the environment)."""
+    base = config._tmp_path_factory.getbasetemp()
+    root = (base.parent if hasattr(config, "workerinput") else base) / "shared_memo"
+    os.environ[_shared_memo.ENV] = str(root)
 
 
 def load_module(path, name=None, *, cache=False):
@@ -32,16 +47,20 @@ def load_module(path, name=None, *, cache=False):
 
 @lru_cache(maxsize=None)
 def shipped_model(name: str):
-    """``load_model(geometry/<name>)`` (warnings silenced) once per worker process for the
-    export tests that read the same shipped vehicle (the panelled BlueROV2 Heavy is about 8 s
-    of CPU); a HydroModel is immutable, so sharing it is safe."""
+    """``load_model(geometry/<name>)`` (warnings silenced) once per test run, shared by the
+    xdist workers (tests/_shared_memo.py), for the tests that read the same shipped vehicle
+    (the panelled BlueROV2 Heavy is about 8 s of CPU); a HydroModel is immutable, so sharing
+    it is safe."""
     import warnings
 
     from stripcoef.modelfile import load_model
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return load_model(GEOMETRY / name)
+    def load():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return load_model(GEOMETRY / name)
+
+    return _shared_memo.once(("load_model", name), load)
 
 
 @lru_cache(maxsize=None)
@@ -70,52 +89,28 @@ def synthetic_diagnosis(effect, seed: int, dof: str) -> dict:
 
 
 @pytest.fixture(scope="session")
-def run_once(tmp_path_factory, worker_id):
+def run_once():
     """``once(key, compute)``: ``compute()`` once per test run for the results several test
-    files read (a panelled BlueROV2 Heavy is about 8 s of CPU), shared by the xdist workers:
-    the first worker to ask computes it and pickles it into the run's own temporary folder
-    (``pytest-N/``, new each run), holding a lock (fcntl) while it does; the others read it.
-    Under ``-n0``, or without fcntl, once per process. ``key``: a tuple of strings naming the
-    computation exactly (e.g. the command line). Read the value, do not change it."""
-    import hashlib
-    import pickle
-
-    try:
-        import fcntl
-    except ImportError:                     # no POSIX locks: once per worker
-        fcntl = None
+    files read, shared by the xdist workers and kept in the process (tests/_shared_memo.py:
+    the first worker to ask computes it and pickles it into the run's own temporary folder,
+    ``pytest-N/``, new each run, holding a lock while it does; the others read it).  ``key``:
+    a tuple of strings naming the computation exactly (e.g. the command line). Read the value,
+    do not change it."""
     memo = {}
-    root = (tmp_path_factory.getbasetemp().parent / "run_once"
-            if worker_id != "master" and fcntl is not None else None)
 
     def once(key, compute):
-        if key in memo:
-            return memo[key]
-        if root is None:
-            memo[key] = compute()
-            return memo[key]
-        root.mkdir(exist_ok=True)
-        name = hashlib.sha256(repr(key).encode()).hexdigest()[:32]
-        data = root / f"{name}.pickle"
-        with open(root / f"{name}.lock", "w") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            if data.is_file():
-                value = pickle.loads(data.read_bytes())
-            else:
-                value = compute()
-                part = root / f"{name}.part"
-                part.write_bytes(pickle.dumps(value))
-                part.replace(data)
-        memo[key] = value
-        return value
+        if key not in memo:
+            memo[key] = _shared_memo.once(("run_once",) + tuple(key), compute)
+        return memo[key]
 
     return once
 
 
 def shipped_model_once(once, name: str):
-    """:func:`shipped_model` ``(name)`` once per test run, shared by the xdist workers
-    (:func:`run_once`): the panelled BlueROV2 Heavy of the Gazebo tests, about 8 s of CPU."""
-    return once(("load_model", name), lambda: shipped_model(name))
+    """:func:`shipped_model` ``(name)``, shared by the xdist workers: the panelled BlueROV2
+    Heavy of the Gazebo tests, about 8 s of CPU (``once``: kept for the tests that pass the
+    :func:`run_once` fixture)."""
+    return shipped_model(name)
 
 
 def coefficients_json(once, *argv) -> dict:
