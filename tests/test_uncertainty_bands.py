@@ -416,7 +416,14 @@ def test_lift_and_control_terms_carry_a_stated_uncertainty():
     job = Job(data=data, file="remus100.yaml", sources=tuple(srcs[n] for n in order),
               limits=False, model=nominal)
     base, moved = evaluate(job, [1.0, 1.0]), evaluate(job, [2.0, 0.5])
-    assert moved["Y_uv"] == pytest.approx(2.0 * base["Y_uv"])
-    assert moved["N_ur"] == pytest.approx(2.0 * base["N_ur"])
+    # the factor scales the lift alone, not the fins' Munk compensation
+    # (HydroModel.fin_munk_lift, scaled with M_A): Y_uv(f) = munk + f (Y_uv(1) - munk)
+    third = evaluate(job, [3.0, 0.5])
+    for name in ("Y_uv", "N_ur"):
+        munk = 2.0 * base[name] - moved[name]
+        assert third[name] == pytest.approx(munk + 3.0 * (base[name] - munk))
+    # the compensation is a couple: it reaches the yaw row (N_ur), not Y_uv
+    assert 2.0 * base["N_ur"] - moved["N_ur"] != pytest.approx(0.0, abs=1e-3 * abs(base["N_ur"]))
+    assert 2.0 * base["Y_uv"] - moved["Y_uv"] == pytest.approx(0.0, abs=1e-9 * abs(base["Y_uv"]))
     assert moved["Y_uudr"] == pytest.approx(0.5 * base["Y_uudr"])
     assert moved["Y_vdot"] == pytest.approx(base["Y_vdot"])
