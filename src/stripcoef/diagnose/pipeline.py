@@ -85,6 +85,7 @@ from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
                                           clip_added_mass, share_timing)
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
+from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
                                        method_prior_widths, prior_added_mass_sd, prior_widths)
@@ -239,6 +240,19 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
     cross = [j for j in excited if j not in dofs]
+    # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
+    # they are the prior of the rest of the diagnosis and written with the model
+    prior, gains = model, None
+    if len(dofs) > 1:
+        gains = fit_thruster_gains(data, dofs, settings, excited=excited, cross=cross,
+                                   budget=budget)
+        if gains is not None:
+            gains = validated(gains, val_log, model, dofs)
+        if gains is not None and gains.applied:
+            model = gains.model(model)
+            data = window_data(train_log, model, window=window)
+            if model.effects:
+                data.e0 = data.e0 - effect_window_forces(data, model)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)
@@ -296,10 +310,11 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                      and bands is None else None),
                        validation=record if skipped is None else {"skipped": skipped},
                        fitted_on_s=(float(train_log["t"][0]), float(train_log["t"][-1])),
-                       test_log=test_log, diagnosed=tuple(dofs), **summary)
+                       test_log=test_log, diagnosed=tuple(dofs),
+                       thruster_gains=None if gains is None else gains.to_dict(), **summary)
     if test_log is not None:
         # recomputed from the model as it is written (its dictionary form, read back)
-        result = replace(result, holdout=heldout_errors(result, model, written))
+        result = replace(result, holdout=heldout_errors(result, prior, written))
     return result
 
 

@@ -1,0 +1,363 @@
+r"""Per-thruster gains, fitted jointly over every DOF of a whole-log diagnosis (issue 33).
+
+Real thrusters of one model differ from each other (a few per cent to 10-15 % of their
+bench thrust). A diagnosis that has only a common thrust scale per DOF
+(:class:`~stripcoef.effects.thrust.ThrustEffectiveness`) or a per-DOF asymmetry sees the
+spread as forces it cannot explain: with the four vectored thrusters of a BlueROV2 at
+different gains a sway or yaw command pushes in surge, which the surge diagnosis then
+names a drag or a thrust asymmetry (issue 33, whole-log failure kind (3)). The thrust
+model of the library is :math:`\tau = T(\alpha) K u` (Fossen 2011, sec. 11.2.1, eq. 11.14):
+the gains are the diagonal of K relative to the bench map,
+:class:`~stripcoef.effects.thrust.ThrusterGain`.
+
+**The joint fit.** With :math:`y_i` the window force residual of diagnosed DOF i
+[N or N m] (:attr:`WindowData.e0`), :math:`H_i` its calibration columns (the DOF's own
+inertia and drag, :func:`~stripcoef.diagnose.select._dof_calibration`, with their band
+priors :math:`s_i`) and :math:`G_{i,k}` the window mean of :math:`B_{ik} T_k` (thruster
+k's prior thrust in DOF i),
+
+.. math:: \min_{\theta, a}\ \sum_i \frac{\lVert y_i - H_i\theta_i - G_i P a\rVert^2}
+          {\sigma_i^2} + \sum_i \lVert \theta_i / s_i \rVert^2 + \frac{\lVert a\rVert^2}
+          {\sigma_g^2},\qquad g = 1 + P a
+
+(maximum a posteriori least squares, Tarantola 2005 eq. 3.37, the DOFs' window residuals
+independent, a multiresponse model as in Seber & Wild 1989, ch. 11), subject to the
+calibration's physical bounds. P is an orthonormal basis of the contrasts
+:math:`\sum_k (g_k - 1) = 0`: a gain common to all thrusters is each DOF's thrust
+effectiveness (one rule per concept), and it is also the direction the force balance's
+homogeneity leaves to the priors. Each :math:`\sigma_i` is re-estimated from the joint
+fit's residual of its DOF (three passes).
+
+**The prior.** :math:`\sigma_g` = :data:`GAIN_SD`, the bench uncertainty of the thrust
+maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I: thrust
+coefficients measured on a load cell). The vehicle file has no per-thruster uncertainty
+key; where a bench record gives one it belongs there.
+
+**What the log determines.** Some gain combinations are not excited by a given log (with
+N thrusters and at most six DOFs, and a pilot that drives them through the
+pseudo-inverse allocation, some combinations never change a force). The Fisher
+information of the contrasts, the calibration profiled out (the Schur complement of the
+information matrix, the calibration's band priors included), is decomposed into its
+eigenvectors :math:`v_j` and eigenvalues :math:`\lambda_j`; a combination is determined
+by the log when its data-only standard deviation :math:`1/\sqrt{\lambda_j}` is within
+:data:`~stripcoef.diagnose.settings.MIN_INFORMATION_RATIO` of its prior's, the rule of the
+calibration's own coefficients (Ljung 1999, sec. 9.2, eq. 9.29;
+:func:`~stripcoef.diagnose.fit._identifiability`). The MAP estimate keeps the others at
+the prior (their gains stay near 1); the record lists each combination in thruster
+weights with its value and standard deviation.
+
+**When the gains are written.** The fit with the contrasts is tested against the fit
+without them by the likelihood ratio of the joint posterior costs at the joint noise
+levels (as :func:`stripcoef.diagnose.compare.lr_test`; Wilks 1938), :math:`\chi^2` with
+as many degrees of freedom as determined combinations, at
+:data:`~stripcoef.diagnose.compare.ALPHA`. A significant fit is then validated like every
+other change (:mod:`.validate`): on the validation log the prior with the gains must not
+simulate the diagnosed DOFs worse than the prior, :math:`\sum_i r_i^2 \le n`
+(:math:`r_i` each DOF's free-simulation error relative to the prior's). The gains, when
+kept, are the prior of the rest of the diagnosis: each DOF's calibration and effects are
+fitted on the thrusts of the gained maps, and the written model's thrusters carry them in
+their efficiencies (:meth:`ThrusterGain.apply`).
+
+Depends on: effects, diagnose.settings, diagnose.fit, diagnose.select, diagnose.compare.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.linalg import null_space
+from scipy.stats import chi2
+
+from stripcoef.conventions import DOF
+from stripcoef.diagnose.compare import ALPHA
+from stripcoef.diagnose.fit import _sigma
+from stripcoef.diagnose.settings import (MIN_INFORMATION_RATIO, UNLIMITED, Budget,
+                                         DiagnoseSettings)
+from stripcoef.effects.base import THRUST_BAND
+from stripcoef.effects.laws import get_effect
+
+#: Prior standard deviation of each thruster's gain about 1 [-]: the bench uncertainty of
+#: the thrust maps (THRUST_BAND; Wang & Clark 2006 Table I).
+GAIN_SD = THRUST_BAND
+#: Passes of the joint fit that re-estimate each DOF's noise level from its residual [-].
+NOISE_PASSES = 3
+#: Largest prior standard deviation of the gains the log may set (:func:`spread_sd`) [-]:
+#: a thruster within +-100 % of its map at 1 sigma (a bound of the search, not a band).
+MAX_GAIN_SD = 1.0
+
+
+@dataclass(frozen=True)
+class ThrusterGains:
+    """The joint fit of the thrusters' gains (module docstring).
+
+    Attributes
+    ----------
+    names : tuple of str
+        The thrusters, in the model's order
+    gains, std : tuple of float
+        The fitted gain of each thruster and its posterior standard deviation [-]
+    prior_sd : float
+        The gains' prior standard deviation [-] (:data:`GAIN_SD`)
+    combinations : tuple of dict
+        Per eigenvector of the contrasts' Fisher information: ``weights`` (thruster ->
+        weight of the unit combination), ``value`` (the combination of the fitted gains
+        less 1), ``std`` (its posterior sd), ``information_ratio`` (prior sd / data-only
+        sd) and ``determined`` (by the log)
+    test : dict
+        The likelihood-ratio test of the gains (``statistic``, ``dof``, ``p_value``,
+        ``alpha``)
+    noise : dict
+        DOF -> the joint fit's noise level [N or N m]
+    dofs : tuple of str
+        The DOFs fitted jointly
+    applied : bool
+        Whether the gains are the prior of the rest of the diagnosis (and written)
+    reason : str
+        Why they are or are not
+    validation : dict, optional
+        The validation errors [m/s or rad/s] of the prior with and without the gains
+    """
+
+    names: tuple
+    gains: tuple
+    std: tuple
+    prior_sd: float
+    combinations: tuple
+    test: dict
+    noise: dict
+    dofs: tuple
+    applied: bool = False
+    reason: str = ""
+    validation: dict | None = None
+    calibration: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def significant(self) -> bool:
+        return bool(self.test.get("p_value", 1.0) <= ALPHA)
+
+    def parameters(self) -> dict:
+        """``gain_<thruster>`` -> gain [-] (:class:`ThrusterGain`'s parameters)."""
+        return {f"gain_{n}": float(g) for n, g in zip(self.names, self.gains)}
+
+    def model(self, prior):
+        """``prior`` with the gains in its thrusters' efficiencies (a new model)."""
+        return get_effect("thruster_gain").apply(prior, None, self.parameters())
+
+    def to_dict(self) -> dict:
+        return {"effect": "thruster_gain", "source": get_effect("thruster_gain").source,
+                "gains": dict(zip(self.names, map(float, self.gains))),
+                "std": dict(zip(self.names, map(float, self.std))),
+                "prior_sd": float(self.prior_sd),
+                "prior_source": "THRUST_BAND: bench uncertainty of the thrust maps "
+                                "(Wang & Clark 2006 Table I)",
+                "constraint": "contrasts only: the gains' sum is the number of thrusters "
+                              "(a common gain is each DOF's thrust_effectiveness)",
+                "combinations": [dict(c) for c in self.combinations],
+                "test": dict(self.test), "noise": dict(self.noise), "dofs": list(self.dofs),
+                "applied": bool(self.applied), "reason": self.reason,
+                "validation": self.validation}
+
+
+def _blocks(data, dofs, settings, excited, cross):
+    """Per DOF where a thruster acts: (dof, y, calibration, gain columns, noise term) with
+    the noise term ``(column of M or None, n v M_ii)`` of :func:`_normal_equations`."""
+    from stripcoef.diagnose.select import _dof_calibration
+
+    out = []
+    for i in dofs:
+        if not np.any(np.abs(data.alloc[i]) > 1e-9):
+            continue
+        cal = _dof_calibration(data, i, settings, excited, cross)[0]
+        g = data.mean_held(data.thruster_force(i))
+        j = cal.names.index("M") if "M" in cal.names else None
+        nv = data.n_windows * data.rate_noise_variance(i)
+        out.append((i, data.e0[:, i], cal, g, (j, nv, float(data.model.mass_matrix[i, i]))))
+    return out
+
+
+def _normal_equations(blocks, sigmas, p_basis, gain_sd, with_gains=True):
+    r"""``(Lambda, b, kc)``: the corrected normal equations of the joint MAP fit (module
+    docstring), the calibration's columns first (``kc`` of them), then the contrasts.
+
+    Each DOF's rows are whitened by its noise level :math:`\sigma_i`; the band priors add
+    their precisions :math:`1/s^2` to the diagonal. The inertia column of DOF i (minus the
+    window rate of its velocity) carries the velocity noise, of variance :math:`v_i` per
+    window (:meth:`WindowData.rate_noise_variance`), which the residual also carries times
+    the DOF's inertia :math:`M_{ii}`: corrected least squares (Fuller 1987, Measurement
+    Error Models, sec. 2.2; the profiled inertia of :func:`stripcoef.diagnose.fit._solve`)
+    takes :math:`N v_i/\sigma_i^2` off that column's diagonal entry and adds
+    :math:`N v_i M_{ii}/\sigma_i^2` to its right-hand side, so that the noise does not
+    shrink the inertia and with it the thrust of the thrusters that drive the DOF [-]."""
+    ncal = [blk[2].cols.shape[1] for blk in blocks]
+    kc = sum(ncal)
+    na = p_basis.shape[1] if with_gains else 0
+    lam = np.zeros((kc + na, kc + na))
+    rhs = np.zeros(kc + na)
+    start = 0
+    for (i, y, cal, g, (jm, nv, m_ii)), s, k in zip(blocks, sigmas, ncal):
+        h = np.zeros((y.size, kc + na))
+        h[:, start:start + k] = cal.cols
+        if with_gains:
+            h[:, kc:] = g @ p_basis
+        lam += h.T @ h / s ** 2
+        rhs += h.T @ y / s ** 2
+        sd = np.asarray(cal.sd, float)
+        fin = np.isfinite(sd)
+        idx = start + np.nonzero(fin)[0]
+        lam[idx, idx] += 1.0 / sd[fin] ** 2
+        if jm is not None:
+            lam[start + jm, start + jm] -= nv / s ** 2
+            rhs[start + jm] += nv * m_ii / s ** 2
+        start += k
+    return lam, rhs, kc
+
+
+def _information(lam, rhs, kc):
+    r"""``(F, r)``: the information of the contrasts and their right-hand side with the
+    calibration profiled out (the Schur complement),
+    :math:`F = \Lambda_{aa} - \Lambda_{ac}\Lambda_{cc}^{-1}\Lambda_{ca}`,
+    :math:`r = b_a - \Lambda_{ac}\Lambda_{cc}^{-1} b_c` [-]."""
+    inv_cc = np.linalg.pinv(lam[:kc, :kc])
+    f = lam[kc:, kc:] - lam[kc:, :kc] @ inv_cc @ lam[:kc, kc:]
+    r = rhs[kc:] - lam[kc:, :kc] @ inv_cc @ rhs[:kc]
+    return 0.5 * (f + f.T), r
+
+
+def _map(lam, rhs, kc, gain_sd):
+    """The joint MAP estimate (calibration, then contrasts) of the normal equations with
+    the contrasts' prior precision :math:`1/s^2` [units of each]."""
+    full = lam.copy()
+    na = full.shape[0] - kc
+    full[kc:, kc:] += np.eye(na) / gain_sd ** 2
+    return np.linalg.lstsq(full, rhs, rcond=None)[0]
+
+
+def spread_sd(f, r, floor: float = GAIN_SD, ceiling: float = MAX_GAIN_SD) -> float:
+    r"""The gains' prior standard deviation from the log (type-II maximum likelihood,
+    MacKay 1992, Neural Computation 4, 415, sec. 2; Gelman et al. 2013, Bayesian Data
+    Analysis, sec. 5.3): in the eigenbasis of the information F (:math:`F v_j = \lambda_j
+    v_j`) the data-only estimates of the combinations, :math:`z_j = v_j^T r / \lambda_j`,
+    are independent with variance :math:`1/\lambda_j + s^2` under a prior of sd s on each
+    contrast; s maximises their marginal likelihood
+
+    .. math:: \min_s \sum_j \log(1/\lambda_j + s^2) + \frac{z_j^2}{1/\lambda_j + s^2}
+
+    on [``floor``, ``ceiling``]: never below the bench uncertainty of the thrust maps
+    (``floor``, :data:`GAIN_SD`), the log widening it when its thrusters differ by more
+    [-]."""
+    from scipy.optimize import minimize_scalar
+
+    eig, vec = np.linalg.eigh(f)
+    keep = eig > 1e-12 * max(float(eig.max(initial=0.0)), 1e-300)
+    if not np.any(keep):
+        return floor
+    lam = eig[keep]
+    z = (vec[:, keep].T @ r) / lam
+
+    def cost(s):
+        v = 1.0 / lam + s * s
+        return float(np.sum(np.log(v) + z * z / v))
+    sol = minimize_scalar(cost, bounds=(floor, ceiling), method="bounded",
+                          options={"xatol": 1e-4})
+    best = min((floor, ceiling, float(sol.x)), key=cost)
+    return float(best)
+
+
+def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings(), *,
+                       excited=None, cross=None, budget: Budget = UNLIMITED):
+    """The joint fit of the thrusters' gains over the diagnosed ``dofs`` (module
+    docstring): a :class:`ThrusterGains`, or None when the log has no thrusters' commands,
+    fewer than two thrusters or no diagnosed DOF they drive."""
+    if data.thrust is None or data.thrust.shape[1] < 2:
+        return None
+    budget.check()
+    blocks = _blocks(data, dofs, settings, excited, cross)
+    if not blocks:
+        return None
+    names = tuple(th.name for th in data.model.thrusters)
+    n = len(names)
+    p_basis = null_space(np.ones((1, n)))           # orthonormal contrasts (n, n - 1)
+    sigmas = [_sigma(y, cal.cols, np.asarray(cal.sd, float)) for _, y, cal, _, _ in blocks]
+    gain_sd = GAIN_SD
+    for _ in range(NOISE_PASSES):
+        budget.check()
+        lam, rhs, kc = _normal_equations(blocks, sigmas, p_basis, gain_sd)
+        f, r = _information(lam, rhs, kc)
+        gain_sd = spread_sd(f, r)
+        x = _map(lam, rhs, kc, gain_sd)
+        start, new = 0, []
+        for _, y, cal, g, _ in blocks:
+            k = cal.cols.shape[1]
+            res = y - cal.cols @ x[start:start + k] - g @ p_basis @ x[kc:]
+            new.append(max(float(np.sqrt(res @ res / max(y.size - k, 1))), 1e-12))
+            start += k
+        sigmas = new
+    lam, rhs, kc = _normal_equations(blocks, sigmas, p_basis, gain_sd)
+    f, r = _information(lam, rhs, kc)
+    post = f + np.eye(f.shape[0]) / gain_sd ** 2
+    cov_a = np.linalg.pinv(post)
+    a = cov_a @ r
+    x = _map(lam, rhs, kc, gain_sd)
+    gains = 1.0 + p_basis @ a
+    cov_g = p_basis @ cov_a @ p_basis.T
+    eig, vec = np.linalg.eigh(f)
+    combos = []
+    for j in np.argsort(eig)[::-1]:
+        w = p_basis @ vec[:, j]
+        w = w * np.sign(w[np.argmax(np.abs(w))])
+        ratio = gain_sd * math.sqrt(max(float(eig[j]), 0.0))
+        combos.append({"weights": dict(zip(names, map(float, w))),
+                       "value": float(w @ (gains - 1.0)),
+                       "std": float(math.sqrt(max(float(w @ cov_g @ w), 0.0))),
+                       "information_ratio": float(ratio),
+                       "determined": bool(ratio >= MIN_INFORMATION_RATIO)})
+    # likelihood ratio of the contrasts: the fall of the joint posterior cost (a quadratic
+    # form: its minimum is const - b^T Lambda^-1 b) when they are added, r^T (F + I/s^2)^-1 r
+    k = sum(c["determined"] for c in combos)
+    stat = max(float(r @ a), 0.0)
+    test = {"statistic": stat, "dof": int(k),
+            "p_value": float(chi2.sf(stat, k)) if k else 1.0, "alpha": ALPHA,
+            "method": "likelihood ratio of the joint fit with and without the gains' "
+                      "contrasts (Wilks 1938), at the joint noise levels"}
+    dof_names = tuple(DOF[b[0]] for b in blocks)
+    calib, start = {}, 0
+    for blk in blocks:
+        kk = blk[2].cols.shape[1]
+        calib[DOF[blk[0]]] = {nm: float(v) for nm, v in zip(blk[2].names, x[start:start + kk])}
+        start += kk
+    out = ThrusterGains(names=names, gains=tuple(map(float, gains)),
+                        std=tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov_g)),
+                        prior_sd=gain_sd, combinations=tuple(combos), test=test,
+                        noise=dict(zip(dof_names, map(float, sigmas))), dofs=dof_names,
+                        calibration=calib)
+    if not out.significant:
+        return replace(out, reason=f"not significant: p = {test['p_value']:.3g} > {ALPHA:g} "
+                                   f"({k} combinations determined by the log)")
+    return replace(out, applied=True,
+                   reason=f"significant: p = {test['p_value']:.3g} <= {ALPHA:g} ({k} "
+                          "combinations determined by the log)")
+
+
+def validated(gains: ThrusterGains, val_log, prior, dofs) -> ThrusterGains:
+    """``gains`` kept only if the prior with them simulates the validation log no worse
+    than the prior (module docstring: :math:`\\sum_i r_i^2 \\le n`); unchanged without a
+    validation log or when not applied."""
+    if val_log is None or not gains.applied:
+        return gains
+    from stripcoef.diagnose.validate import validation_errors
+
+    before = validation_errors(val_log, prior, dofs)
+    after = validation_errors(val_log, gains.model(prior), dofs)
+    record = {"prior": before, "with_gains": after}
+    if before is None or after is None:
+        return replace(gains, validation=record)
+    r2 = [(after[d] / max(before[d], 1e-12)) ** 2 for d in before]
+    record["sum_squared_ratio"] = float(sum(r2))
+    if sum(r2) > len(r2):
+        return replace(gains, applied=False, validation=record,
+                       reason=gains.reason + "; removed by the validation: the prior with the "
+                       f"gains simulates it worse (sum of squared error ratios {sum(r2):.3g} "
+                       f"> {len(r2)})")
+    return replace(gains, validation=record)
