@@ -160,6 +160,26 @@ class ThrusterGains:
                 "validation": self.validation}
 
 
+def thruster_groups(alloc, tol: float = 1e-9) -> list:
+    """The thrusters grouped by the set of DOFs they act in (the non-zero entries of their
+    column of the allocation matrix B, (6, N)): lists of thruster indices, in order."""
+    keys = {}
+    for k in range(alloc.shape[1]):
+        keys.setdefault(tuple(np.abs(alloc[:, k]) > tol), []).append(k)
+    return list(keys.values())
+
+
+def contrast_basis(groups, n: int) -> np.ndarray:
+    r"""An orthonormal basis P (n, n - number of groups) of the gains' contrasts within each
+    group of :func:`thruster_groups`, :math:`\sum_{k \in G}(g_k - 1) = 0` for every group
+    G: a gain common to a group is a thrust scale of the DOFs it drives (the thrust
+    effectiveness), not a spread [-]."""
+    c = np.zeros((len(groups), n))
+    for row, members in enumerate(groups):
+        c[row, members] = 1.0
+    return null_space(c)
+
+
 def _blocks(data, dofs, settings, excited, cross):
     """Per DOF where a thruster acts: (dof, y, calibration, gain columns, noise term) with
     the noise term ``(column of M or None, n v M_ii)`` of :func:`_normal_equations`."""
@@ -278,7 +298,10 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
         return None
     names = tuple(th.name for th in data.model.thrusters)
     n = len(names)
-    p_basis = null_space(np.ones((1, n)))           # orthonormal contrasts (n, n - 1)
+    groups = thruster_groups(data.alloc)
+    p_basis = contrast_basis(groups, n)
+    if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
+        return None
     sigmas = [_sigma(y, cal.cols, np.asarray(cal.sd, float)) for _, y, cal, _, _ in blocks]
     gain_sd = GAIN_SD
     for _ in range(NOISE_PASSES):
