@@ -70,7 +70,7 @@ import numpy as np
 from scipy.linalg import null_space
 from scipy.stats import chi2
 
-from stripcoef.conventions import DOF
+from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.compare import ALPHA
 from stripcoef.diagnose.fit import _sigma
 from stripcoef.diagnose.settings import (MIN_INFORMATION_RATIO, UNLIMITED, Budget,
@@ -180,26 +180,61 @@ def contrast_basis(groups, n: int) -> np.ndarray:
     return null_space(c)
 
 
-def _blocks(data, dofs, settings, excited, cross):
-    """Per DOF where a thruster acts: (dof, y, calibration, gain columns, noise term) with
-    the noise term ``(column of M or None, n v M_ii)`` of :func:`_normal_equations`."""
+def _blocks(data, dofs, settings, excited):
+    """``(blocks, names, sd)``: per DOF where a thruster acts, ``(dof, y, columns, index,
+    gain columns, (inertia parameter or None, N v_i, M_ii))``, and the joint calibration's
+    parameters (``<dof>.<coefficient>``) with their prior sd [units of each].
+
+    Each DOF's calibration (:func:`~stripcoef.diagnose.select._dof_calibration`) holds its
+    own inertia and drag and the added mass :math:`M_{jj}` of every other DOF that reaches
+    it through :math:`C_A(\nu)\nu` (``M_<dof>``); an added mass that is also a
+    diagnosed DOF's own is one parameter of the joint fit (one coefficient, one value),
+    with that DOF's band. A free constant per DOF (``offset``): a static force or moment
+    the prior lacks (a buoyancy or trim offset, held by constant thrusts) is not a gain,
+    which is fitted on the thrusts' variation."""
     from stripcoef.diagnose.select import _dof_calibration
 
-    out = []
+    names, sd, own_m, raw = [], [], {}, []
     for i in dofs:
         if not np.any(np.abs(data.alloc[i]) > 1e-9):
             continue
-        cal = _dof_calibration(data, i, settings, excited, cross)[0]
+        cal = _dof_calibration(data, i, settings, excited, None)[0]
+        idx = []
+        for n, s_n in zip(cal.names, np.asarray(cal.sd, float)):
+            if n.startswith("M_"):
+                idx.append(None)
+                continue
+            idx.append(len(names))
+            names.append(f"{DOF[i]}.{n}")
+            sd.append(s_n)
+            if n == "M":
+                own_m[i] = idx[-1]
+        idx.append(len(names))
+        names.append(f"{DOF[i]}.offset")
+        sd.append(np.inf)
+        raw.append((i, cal, idx))
+    blocks = []
+    for i, cal, idx in raw:
+        for c, n in enumerate(cal.names):
+            if idx[c] is None:
+                j = parse_dof(n[2:])
+                if j in own_m:
+                    idx[c] = own_m[j]
+                else:
+                    idx[c] = len(names)
+                    names.append(f"{DOF[i]}.{n}")
+                    sd.append(float(cal.sd[c]))
+        cols = np.column_stack([cal.cols, np.ones(data.n_windows)])
         g = data.mean_held(data.thruster_force(i))
-        j = cal.names.index("M") if "M" in cal.names else None
         nv = data.n_windows * data.rate_noise_variance(i)
-        out.append((i, data.e0[:, i], cal, g, (j, nv, float(data.model.mass_matrix[i, i]))))
-    return out
+        blocks.append((i, data.e0[:, i], cols, np.asarray(idx, int), g,
+                       (own_m.get(i), nv, float(data.model.mass_matrix[i, i]))))
+    return blocks, names, np.asarray(sd, float)
 
 
-def _normal_equations(blocks, sigmas, p_basis, gain_sd, with_gains=True):
+def _normal_equations(blocks, prior_sd, sigmas, p_basis, with_gains=True):
     r"""``(Lambda, b, kc)``: the corrected normal equations of the joint MAP fit (module
-    docstring), the calibration's columns first (``kc`` of them), then the contrasts.
+    docstring), the calibration's parameters first (``kc`` of them), then the contrasts.
 
     Each DOF's rows are whitened by its noise level :math:`\sigma_i`; the band priors add
     their precisions :math:`1/s^2` to the diagonal. The inertia column of DOF i (minus the
@@ -210,27 +245,22 @@ def _normal_equations(blocks, sigmas, p_basis, gain_sd, with_gains=True):
     takes :math:`N v_i/\sigma_i^2` off that column's diagonal entry and adds
     :math:`N v_i M_{ii}/\sigma_i^2` to its right-hand side, so that the noise does not
     shrink the inertia and with it the thrust of the thrusters that drive the DOF [-]."""
-    ncal = [blk[2].cols.shape[1] for blk in blocks]
-    kc = sum(ncal)
+    kc = prior_sd.size
     na = p_basis.shape[1] if with_gains else 0
     lam = np.zeros((kc + na, kc + na))
     rhs = np.zeros(kc + na)
-    start = 0
-    for (i, y, cal, g, (jm, nv, m_ii)), s, k in zip(blocks, sigmas, ncal):
+    for (i, y, cols, idx, g, (jm, nv, m_ii)), s in zip(blocks, sigmas):
         h = np.zeros((y.size, kc + na))
-        h[:, start:start + k] = cal.cols
+        h[:, idx] = cols
         if with_gains:
             h[:, kc:] = g @ p_basis
         lam += h.T @ h / s ** 2
         rhs += h.T @ y / s ** 2
-        sd = np.asarray(cal.sd, float)
-        fin = np.isfinite(sd)
-        idx = start + np.nonzero(fin)[0]
-        lam[idx, idx] += 1.0 / sd[fin] ** 2
         if jm is not None:
-            lam[start + jm, start + jm] -= nv / s ** 2
-            rhs[start + jm] += nv * m_ii / s ** 2
-        start += k
+            lam[jm, jm] -= nv / s ** 2
+            rhs[jm] += nv * m_ii / s ** 2
+    fin = np.nonzero(np.isfinite(prior_sd))[0]
+    lam[fin, fin] += 1.0 / prior_sd[fin] ** 2
     return lam, rhs, kc
 
 
@@ -293,31 +323,29 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     if data.thrust is None or data.thrust.shape[1] < 2:
         return None
     budget.check()
-    blocks = _blocks(data, dofs, settings, excited, cross)
-    if not blocks:
-        return None
     names = tuple(th.name for th in data.model.thrusters)
     n = len(names)
     groups = thruster_groups(data.alloc)
     p_basis = contrast_basis(groups, n)
     if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
         return None
-    sigmas = [_sigma(y, cal.cols, np.asarray(cal.sd, float)) for _, y, cal, _, _ in blocks]
+    blocks, cal_names, prior_sd = _blocks(data, dofs, settings, excited)
+    if not blocks:
+        return None
+    sigmas = [_sigma(y, cols, np.full(cols.shape[1], np.inf)) for _, y, cols, *_ in blocks]
     gain_sd = GAIN_SD
     for _ in range(NOISE_PASSES):
         budget.check()
-        lam, rhs, kc = _normal_equations(blocks, sigmas, p_basis, gain_sd)
+        lam, rhs, kc = _normal_equations(blocks, prior_sd, sigmas, p_basis)
         f, r = _information(lam, rhs, kc)
         gain_sd = spread_sd(f, r)
         x = _map(lam, rhs, kc, gain_sd)
-        start, new = 0, []
-        for _, y, cal, g, _ in blocks:
-            k = cal.cols.shape[1]
-            res = y - cal.cols @ x[start:start + k] - g @ p_basis @ x[kc:]
-            new.append(max(float(np.sqrt(res @ res / max(y.size - k, 1))), 1e-12))
-            start += k
-        sigmas = new
-    lam, rhs, kc = _normal_equations(blocks, sigmas, p_basis, gain_sd)
+        sigmas = []
+        for _, y, cols, idx, g, _ in blocks:
+            res = y - cols @ x[idx] - g @ p_basis @ x[kc:]
+            sigmas.append(max(float(np.sqrt(res @ res / max(y.size - cols.shape[1], 1))),
+                              1e-12))
+    lam, rhs, kc = _normal_equations(blocks, prior_sd, sigmas, p_basis)
     f, r = _information(lam, rhs, kc)
     post = f + np.eye(f.shape[0]) / gain_sd ** 2
     cov_a = np.linalg.pinv(post)
@@ -345,11 +373,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
             "method": "likelihood ratio of the joint fit with and without the gains' "
                       "contrasts (Wilks 1938), at the joint noise levels"}
     dof_names = tuple(DOF[b[0]] for b in blocks)
-    calib, start = {}, 0
-    for blk in blocks:
-        kk = blk[2].cols.shape[1]
-        calib[DOF[blk[0]]] = {nm: float(v) for nm, v in zip(blk[2].names, x[start:start + kk])}
-        start += kk
+    calib = {n: float(v) for n, v in zip(cal_names, x[:kc])}
     out = ThrusterGains(names=names, gains=tuple(map(float, gains)),
                         std=tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov_g)),
                         prior_sd=gain_sd, combinations=tuple(combos), test=test,
