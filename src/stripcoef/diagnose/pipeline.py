@@ -86,6 +86,7 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa:
                                           clip_added_mass, share_timing)
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
                                        method_prior_widths, prior_added_mass_sd, prior_widths)
@@ -262,6 +263,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
+    if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
+        per, fits, _ = compare_timing(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)
