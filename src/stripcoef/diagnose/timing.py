@@ -81,10 +81,18 @@ def compare_timing(per: dict, fits: dict) -> tuple[dict, dict, dict | None]:
     d0 = targets[0]
     t_l, s_l, sd_l = _profile(lag, base, sigmas, d0)
     t_d, s_d, sd_d = _profile(delay, base, sigmas, d0)
+    # both: one parameter profiled with the other at its value alone, then the other with
+    # it, in both orders (the cost is not separable); the lower of the two
     t_d2, _, sd_d2 = _profile(delay, {d: _with_value(c, lag, t_l) for d, c in base.items()},
                               sigmas, d0)
     t_l2, s_ld, sd_l2 = _profile(lag, {d: _with_value(c, delay, t_d2)
                                        for d, c in base.items()}, sigmas, d0)
+    t_l3, _, sd_l3 = _profile(lag, {d: _with_value(c, delay, t_d) for d, c in base.items()},
+                              sigmas, d0)
+    t_d3, s_ld3, sd_d3 = _profile(delay, {d: _with_value(c, lag, t_l3)
+                                          for d, c in base.items()}, sigmas, d0)
+    if s_ld3 < s_ld:
+        t_l2, t_d2, sd_l2, sd_d2, s_ld = t_l3, t_d3, sd_l3, sd_d3, s_ld3
     s_ld = min(s_ld, s_l, s_d)
     stats = {LAG: max(s_d - s_ld, 0.0), DELAY: max(s_l - s_ld, 0.0)}
     p = {n: float(chi2.sf(v, 1)) for n, v in stats.items()}
@@ -108,7 +116,10 @@ def compare_timing(per: dict, fits: dict) -> tuple[dict, dict, dict | None]:
               "tests": {n: {"statistic": stats[n], "dof": 1, "p_value": p[n],
                             "adjusted": adjusted[n]} for n in p},
               "selected_in": {n: list(v) for n, v in have.items()}, "outcome": outcome}
-    if keep is None:
+    if keep is None:        # recorded on the selection's timing steps
+        per = {d: replace(r, steps=tuple(
+            replace(s, comparison={**(s.comparison or {}), "timing": record})
+            if s.effect in (LAG, DELAY) else s for s in r.steps)) for d, r in per.items()}
         return per, fits, record
     return (*_rewritten(per, fits, base, keep, have, record), record)
 
