@@ -128,3 +128,26 @@ def test_whole_log_clean_log_names_no_effect_outside_the_truths_background():
                   "thrust_effectiveness": {"surge", "sway", "heave", "roll", "pitch", "yaw"}}
     named = [(d, s.effect) for d, r in res.per_dof.items() for s in r.steps]
     assert all(d in background.get(e, ()) for d, e in named), named
+
+
+@pytest.mark.slow
+def test_whole_log_lag_is_compared_with_the_delay_over_every_dof():
+    # issue 33, whole-log kind (2): a thruster lag and an actuation delay compared over all
+    # the DOFs the thrusters drive (diagnose.timing), one outcome for all of them
+    from validation.independent import generate
+
+    prior = _prior("videoray_pro3")
+    log, truth = generate(prior.to_dict(), "thruster_lag", 31, duration=120.0)
+    res = diagnose(log, prior, dof="all", time_limit=float("inf"))
+    timing = [(d, s) for d, r in res.per_dof.items() for s in r.steps
+              if s.effect in ("thruster_lag", "actuation_delay")]
+    assert timing
+    assert {s.effect for _, s in timing} == {"thruster_lag"}, timing
+    record = timing[0][1].comparison["timing"]
+    assert record["outcome"] == "the lag needed, the delay not"
+    tests = record["tests"]
+    assert tests["thruster_lag"]["adjusted"] <= 0.05 < tests["actuation_delay"]["adjusted"]
+    assert {d for d, _ in timing} == set(record["dofs"])
+    values = {s.parameters["time_constant"] for _, s in timing}
+    assert len(values) == 1
+    assert values.pop() == pytest.approx(truth.strength, rel=0.15)

@@ -56,7 +56,11 @@ Steps, for each degree of freedom (issue 7):
    thrusters (dead band, thrust asymmetry, lag, delay: :data:`~.select.THRUSTER_EFFECTS`)
    found in one DOF must also hold in every other diagnosed DOF the same thrusters drive:
    at its parameters it must not raise their held-out error by more than ``TIE``
-   (:class:`~.select.Siblings`).
+   (:class:`~.select.Siblings`). Before the DOFs are diagnosed, a whole-log diagnosis fits
+   the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
+   thrusters, kept when significant and not worse on the validation log; the rest of the
+   run then diagnoses against the prior with them); after it, a thruster lag and an
+   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
