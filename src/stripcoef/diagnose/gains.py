@@ -12,26 +12,33 @@ the gains are the diagonal of K relative to the bench map,
 
 **The joint fit.** With :math:`y_i` the window force residual of diagnosed DOF i
 [N or N m] (:attr:`WindowData.e0`), :math:`H_i` its calibration columns (the DOF's own
-inertia and drag, :func:`~stripcoef.diagnose.select._dof_calibration`, with their band
-priors :math:`s_i`) and :math:`G_{i,k}` the window mean of :math:`B_{ik} T_k` (thruster
-k's prior thrust in DOF i),
+inertia and drag and the added masses that reach it through :math:`C_A(\nu)\nu`,
+:func:`~stripcoef.diagnose.select._dof_calibration`, with their band priors; an added
+mass that is also a diagnosed DOF's own is *one* parameter of the joint fit, so that the
+Munk and centripetal terms of a mis-sized added mass are not read as a gain; and a free
+constant per DOF, a static force or trim moment held by constant thrusts) and
+:math:`G_{i,k}` the window mean of :math:`B_{ik} T_k` (thruster k's prior thrust in DOF i),
 
-.. math:: \min_{\theta, a}\ \sum_i \frac{\lVert y_i - H_i\theta_i - G_i P a\rVert^2}
-          {\sigma_i^2} + \sum_i \lVert \theta_i / s_i \rVert^2 + \frac{\lVert a\rVert^2}
+.. math:: \min_{\theta, a}\ \sum_i \frac{\lVert y_i - H_i\theta - G_i P a\rVert^2}
+          {\sigma_i^2} + \lVert \theta / s \rVert^2 + \frac{\lVert a\rVert^2}
           {\sigma_g^2},\qquad g = 1 + P a
 
 (maximum a posteriori least squares, Tarantola 2005 eq. 3.37, the DOFs' window residuals
-independent, a multiresponse model as in Seber & Wild 1989, ch. 11), subject to the
-calibration's physical bounds. P is an orthonormal basis of the contrasts
-:math:`\sum_k (g_k - 1) = 0`: a gain common to all thrusters is each DOF's thrust
-effectiveness (one rule per concept), and it is also the direction the force balance's
-homogeneity leaves to the priors. Each :math:`\sigma_i` is re-estimated from the joint
-fit's residual of its DOF (three passes).
+independent, a multiresponse model as in Seber & Wild 1989, ch. 11; the inertia columns'
+velocity noise corrected as in Fuller 1987, :func:`_normal_equations`). P is an
+orthonormal basis of the contrasts within each group of thrusters that drive the same
+DOFs (:func:`thruster_groups`, :func:`contrast_basis`), :math:`\sum_{k\in G}(g_k - 1) = 0`:
+a gain common to a group is the thrust effectiveness of the DOFs it drives (one rule per
+concept), and it is also the direction the force balance's homogeneity leaves to the
+calibration's bands. Each :math:`\sigma_i` is re-estimated from the joint fit's residual
+of its DOF (:data:`NOISE_PASSES` passes).
 
-**The prior.** :math:`\sigma_g` = :data:`GAIN_SD`, the bench uncertainty of the thrust
-maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I: thrust
-coefficients measured on a load cell). The vehicle file has no per-thruster uncertainty
-key; where a bench record gives one it belongs there.
+**The prior.** :math:`\sigma_g` is at least :data:`GAIN_SD`, the bench uncertainty of the
+thrust maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I:
+thrust coefficients measured on a load cell), widened to the spread the log itself shows
+(type-II maximum likelihood, :func:`spread_sd`), as the calibration's prior widths take the
+measured vehicle mismatch with the method band as their floor. The vehicle file has no
+per-thruster uncertainty key; where a bench record gives one it belongs there.
 
 **What the log determines.** Some gain combinations are not excited by a given log (with
 N thrusters and at most six DOFs, and a pilot that drives them through the
