@@ -323,7 +323,7 @@ def spread_sd(f, r, floor: float = GAIN_SD, ceiling: float = MAX_GAIN_SD) -> flo
 
 
 def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings(), *,
-                       excited=None, cross=None, budget: Budget = UNLIMITED):
+                       excited=None, budget: Budget = UNLIMITED):
     """The joint fit of the thrusters' gains over the diagnosed ``dofs`` (module
     docstring): a :class:`ThrusterGains`, or None when the log has no thrusters' commands,
     fewer than two thrusters or no diagnosed DOF they drive."""

@@ -249,8 +249,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # they are the prior of the rest of the diagnosis and written with the model
     prior, gains = model, None
     if len(dofs) > 1:
-        gains = fit_thruster_gains(data, dofs, settings, excited=excited, cross=cross,
-                                   budget=budget)
+        gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
             gains = validated(gains, val_log, model, dofs)
         if gains is not None and gains.applied:
