@@ -56,7 +56,11 @@ Steps, for each degree of freedom (issue 7):
    thrusters (dead band, thrust asymmetry, lag, delay: :data:`~.select.THRUSTER_EFFECTS`)
    found in one DOF must also hold in every other diagnosed DOF the same thrusters drive:
    at its parameters it must not raise their held-out error by more than ``TIE``
-   (:class:`~.select.Siblings`).
+   (:class:`~.select.Siblings`). Before the DOFs are diagnosed, a whole-log diagnosis fits
+   the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
+   thrusters, kept when significant and not worse on the validation log; the rest of the
+   run then diagnoses against the prior with them); after it, a thruster lag and an
+   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -86,6 +90,8 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa:
                                           clip_added_mass, share_timing)
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
+from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
                                        method_prior_widths, prior_added_mass_sd, prior_widths)
@@ -240,6 +246,18 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
     cross = [j for j in excited if j not in dofs]
+    # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
+    # they are the prior of the rest of the diagnosis and written with the model
+    prior, gains = model, None
+    if len(dofs) > 1:
+        gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
+        if gains is not None:
+            gains = validated(gains, val_log, model, dofs)
+        if gains is not None and gains.applied:
+            model = gains.model(model)
+            data = window_data(train_log, model, window=window)
+            if model.effects:
+                data.e0 = data.e0 - effect_window_forces(data, model)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)
@@ -249,6 +267,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
+    if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
+        per, fits, _ = compare_timing(per, fits)
     per, fits = share_current(per, fits)    # the water's one current (current.py)
     exclude, record = set(), None
     if val_log is not None:
@@ -298,10 +318,11 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                      and bands is None else None),
                        validation=record if skipped is None else {"skipped": skipped},
                        fitted_on_s=(float(train_log["t"][0]), float(train_log["t"][-1])),
-                       test_log=test_log, diagnosed=tuple(dofs), **summary)
+                       test_log=test_log, diagnosed=tuple(dofs),
+                       thruster_gains=None if gains is None else gains.to_dict(), **summary)
     if test_log is not None:
         # recomputed from the model as it is written (its dictionary form, read back)
-        result = replace(result, holdout=heldout_errors(result, model, written))
+        result = replace(result, holdout=heldout_errors(result, prior, written))
     return result
 
 

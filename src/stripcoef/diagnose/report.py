@@ -96,6 +96,16 @@ def text_summary(result) -> str:
         lines.append("\nat a physical bound in the calibrated model:")
         for d, v in hits.items():
             lines += [f"  {d} {k}: {why}" for k, why in v.items()]
+    gains = result.get("thruster_gains")
+    if gains:
+        lines.append(f"\nthruster gains (fitted jointly over the DOFs, prior sd "
+                     f"{_fmt(gains['prior_sd'], 3)}; {'written' if gains['applied'] else 'not written'}"
+                     f": {gains['reason']}):")
+        lines += [f"  {n}: {_fmt(g)} +- {_fmt(gains['std'][n], 2)}"
+                  for n, g in gains["gains"].items()]
+        det = [c for c in gains["combinations"] if c["determined"]]
+        lines.append(f"  the log determines {len(det)} of {len(gains['combinations'])} "
+                     "combinations (Fisher information)")
     val = result.get("validation")
     if val and "skipped" in val:
         lines.append(f"\nvalidation skipped (every change kept): {val['skipped']}")

@@ -260,7 +260,7 @@ _JSON_FIELDS = ("metric", "metric_description", "window_s", "log", "vehicle", "d
                 "baseline_error", "calibrated_error", "steps", "final_error", "unexplained",
                 "per_dof", "dropped_dofs", "excited_dofs", "dofs_not_diagnosed",
                 "kept_at_prior", "bounds_hit", "added_mass_band", "prior_widths", "fitted_on_s",
-                "validation", "holdout",
+                "validation", "holdout", "thruster_gains",
                 "resimulated_velocity_rms", "resimulated_velocity_description")
 
 
@@ -336,6 +336,9 @@ class Diagnosis:
         The held-out end of the log (not in the JSON)
     diagnosed : tuple of int
         Indices of the diagnosed DOFs (not in the JSON)
+    thruster_gains : dict, optional
+        Whole-log: the thrusters' gains fitted jointly over the DOFs
+        (:meth:`~stripcoef.diagnose.gains.ThrusterGains.to_dict`), None otherwise
     """
 
     metric: str
@@ -365,6 +368,8 @@ class Diagnosis:
     holdout: dict | None = None
     added_mass_band: dict | None = None
     prior_widths: dict | None = None
+    #: whole-log: the thrusters' gains fitted jointly (stripcoef.diagnose.gains), or None
+    thruster_gains: dict | None = None
     fits: Mapping = field(default_factory=dict, repr=False, compare=False)
     test_log: object = field(default=None, repr=False, compare=False)
     diagnosed: tuple = field(default=(), repr=False, compare=False)

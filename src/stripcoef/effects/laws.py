@@ -35,7 +35,8 @@ from stripcoef.errors import InputError, unknown_name
 from stripcoef.effects.base import Effect
 from stripcoef.effects.hydrodynamic import (AddedMassError, BuoyancyOffset, Current, LinearDrag,
                                            MomentumDrag, TetherDrag)
-from stripcoef.effects.thrust import Deadband, ThrustAsymmetry, ThrustEffectiveness
+from stripcoef.effects.thrust import (Deadband, ThrustAsymmetry, ThrustEffectiveness,
+                                     ThrusterGain)
 from stripcoef.effects.timing import ActuationDelay, ThrusterLag
 # the window data effects are fitted to, re-exported for the callers of this module
 from stripcoef.effects.windows import (WindowData, coefficient_column,  # noqa: F401
@@ -45,7 +46,7 @@ from stripcoef.effects.windows import (WindowData, coefficient_column,  # noqa: 
 EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
                                BuoyancyOffset(), Current(), LinearDrag(), Deadband(),
                                AddedMassError(), ThrustEffectiveness(), ThrusterLag(),
-                               ActuationDelay())}
+                               ActuationDelay(), ThrusterGain())}
 
 
 def get_effect(name: str) -> Effect:

@@ -303,3 +303,102 @@ class ThrustEffectiveness(Effect):
         return lambda time, eta, nu, inputs: k * np.asarray(inputs["tau"], float) * e
 
 
+
+
+class ThrusterGain(Effect):
+    r"""Thrusters that differ from each other: one thrust gain per thruster.
+
+    .. math:: \tau = T(\alpha)\,K\,u,\qquad K = \mathrm{diag}(g_1, \dots, g_N),\qquad
+              \Delta F_i = \sum_k B_{ik}\,T_k\,(g_k - 1)
+
+    with :math:`T(\alpha)` the thruster configuration (allocation) matrix B [-, m],
+    :math:`K u` the thrusts, :math:`T_k` [N] thruster k's thrust from the prior's map
+    (both branches) and :math:`g_k` [-] its gain: the share of its bench map it delivers
+    on the vehicle (Fossen 2011, sec. 11.2.1, eq. 11.14: :math:`\tau = T(\alpha) K u`, the
+    force coefficient matrix K diagonal, one entry per actuator). Real thrusters of one
+    model differ from each other by a few per cent to 10-15 % (wear, fouling, a bent
+    blade, motor and ESC spread, the mount's inflow), which no symmetric per-DOF scale
+    (:class:`ThrustEffectiveness`) describes: the spread leaks the commands of one DOF
+    into the others (issue 33).
+
+    The gains are a property of the whole vehicle, not of one DOF: they are fitted jointly
+    over every diagnosed DOF of a whole-log diagnosis (:mod:`stripcoef.diagnose.gains`),
+    never by the per-DOF selection (:meth:`applicable`), with a Gaussian prior of standard
+    deviation :data:`~stripcoef.effects.base.THRUST_BAND` about 1 (the bench uncertainty
+    of the thrust maps), and only as *contrasts*, :math:`\sum_k (g_k - 1) = 0`: a common
+    gain of all thrusters is the thrust effectiveness of each DOF (one rule per concept).
+    The fitted gains are folded into each thruster's efficiency ``eta_forward`` and
+    ``eta_backward`` (:meth:`apply`; native: the written model's thrust maps carry them).
+    The thrust limits [N] are unchanged.
+
+    Parameters: ``gain_<thruster name>`` [-], one per thruster (:attr:`parameters` names
+    the family).
+
+    Source: Fossen (2011), Handbook of Marine Craft Hydrodynamics and Motion Control,
+    sec. 11.2.1 (eq. 11.14); Wang & Clark 2006 Table I (bench-measured thrust maps).
+    """
+
+    name = "thruster_gain"
+    summary = "thrusters differ from each other: one thrust gain per thruster"
+    source = "Fossen (2011) sec. 11.2.1, eq. 11.14"
+    parameters = {"gain": "-"}
+    native = True
+    input_driven = True
+    held = True
+    all_dofs = True
+
+    def applicable(self, data, dof):
+        return False, ("a property of every thruster at once: fitted jointly over the DOFs "
+                       "of a whole-log diagnosis (stripcoef.diagnose.gains)")
+
+    def signature(self, data, dof):
+        return "commands of other DOFs leaking through thrusters of unequal gains"
+
+    @staticmethod
+    def gains(model, params: dict) -> np.ndarray:
+        """The gains of ``model``'s thrusters from ``params`` (``gain_<name>``; 1 where
+        absent) [-]."""
+        return np.array([float(params.get(f"gain_{th.name}", 1.0)) for th in model.thrusters])
+
+    def own_design(self, data, dof, hyper=None):
+        """Columns: window means of :math:`B_{ik} T_k`, one per thruster [N or N m]."""
+        if data.thrust is None:
+            return None, np.zeros((data.n_windows, 0))
+        return None, data.mean_held(data.thruster_force(dof))
+
+    def to_parameters(self, theta, hyper, nuisance=None):
+        raise NotImplementedError("thruster_gain names its parameters by thruster: "
+                                  "stripcoef.diagnose.gains.ThrusterGains.parameters")
+
+    def magnitude(self, params):
+        """The largest relative deviation of a gain from 1 [-]."""
+        return max((abs(v - 1.0) for v in params.values()), default=0.0)
+
+    admits = "0.1 < gain < 3 for every thruster"
+
+    def plausible(self, params):
+        return all(0.1 < v < 3.0 for v in params.values())
+
+    def force_law(self, params, dof):
+        """Simulation force law: Delta F_i = sum_k B_ik T_k (g_k - 1), g_k [-], T_k [N];
+        returns f(time, eta, nu, inputs) -> (6,) [N, N m] (all six with ``dof`` None).
+        Equation and source: class docstring."""
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+
+        def f(time, eta, nu, inputs):
+            model = inputs["model"]
+            thrust = inputs.get("thrust") or {}
+            if not (model.thrusters and thrust):
+                return np.zeros(6)
+            g = self.gains(model, params) - 1.0
+            tk = np.array([thrust[th.name] for th in model.thrusters])
+            return (inputs["allocation"] @ (g * tk)) * e
+        return f
+
+    def apply(self, model, dof, params, std=None):
+        """The model whose thrusters' efficiencies carry their gains (a new model)."""
+        g = self.gains(model, params)
+        return replace(model, thrusters=[
+            replace(th, eta_forward=th.eta_forward * float(gk),
+                    eta_backward=th.eta_backward * float(gk))
+            for th, gk in zip(model.thrusters, g)])

@@ -1,0 +1,155 @@
+"""Per-thruster gains fitted jointly over the DOFs of a whole-log diagnosis (issue 33, kind 3).
+
+The truths are logs of the independent simulator (validation.independent): every thruster's
+coefficient drawn U(0.75, 1.25) x the vehicle file's, so the thrusters differ from each other
+by up to 25 %. The gains are fitted as contrasts within each group of thrusters driving the
+same DOFs (a group's common gain is the thrust effectiveness of its DOFs), so the truth they
+are compared with is each thruster's factor over its group's mean.
+"""
+
+import numpy as np
+import pytest
+
+from conftest import shipped_model
+from stripcoef.diagnose.gains import (GAIN_SD, contrast_basis, fit_thruster_gains,
+                                      spread_sd, thruster_groups)
+from stripcoef.diagnose.pipeline import diagnose
+from stripcoef.diagnose.select import select_dofs
+from stripcoef.effects.base import THRUST_BAND
+from stripcoef.effects.laws import get_effect
+from stripcoef.effects.windows import window_data
+from stripcoef.errors import ModelWarning
+
+
+def _prior(vehicle):
+    return shipped_model(f"{vehicle}.yaml")
+
+
+def _truth_contrasts(truth, prior, groups) -> np.ndarray:
+    """Each truth thruster's factor over the file's map, divided by its group's mean [-]."""
+    thr = prior.to_dict()["thrusters"]
+    g = np.array([t["ct_forward"] / (float(p.get("ct_forward", 1.0))
+                                     * float(p.get("eta_forward", 1.0)))
+                  for t, p in zip(truth.thrusters, thr)])
+    out = g.copy()
+    for members in groups:
+        out[members] = g[members] / g[members].mean()
+    return out
+
+
+def test_groups_and_contrasts_of_a_vectored_eight_thruster_layout():
+    # the BlueROV2 Heavy's layout: four vectored thrusters at 45 deg (surge, sway, yaw) and
+    # four vertical ones at the corners (heave, roll, pitch)
+    c, x, y = np.sqrt(0.5), 0.15, 0.2
+    horizontal = [((x, y), (c, -c)), ((x, -y), (c, c)), ((-x, y), (c, c)), ((-x, -y), (c, -c))]
+    cols = [[dx, dy, 0, 0, 0, px * dy - py * dx] for (px, py), (dx, dy) in horizontal]
+    cols += [[0, 0, 1, py, -px, 0] for (px, py), _ in horizontal]
+    groups = thruster_groups(np.array(cols, float).T)
+    assert groups == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    p = contrast_basis(groups, 8)
+    assert p.shape == (8, 6)
+    np.testing.assert_allclose(p.T @ p, np.eye(6), atol=1e-12)
+    for members in groups:          # no common gain of a group: that is a thrust scale
+        np.testing.assert_allclose(p[members].sum(axis=0), 0.0, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_gains_fold_into_the_thrusters_efficiencies():
+    prior = _prior("bluerov2_heavy")
+    params = {f"gain_{th.name}": 1.0 + 0.05 * k for k, th in enumerate(prior.thrusters)}
+    gained = get_effect("thruster_gain").apply(prior, None, params)
+    for k, (a, b) in enumerate(zip(prior.thrusters, gained.thrusters)):
+        assert b.eta_forward == pytest.approx(a.eta_forward * (1.0 + 0.05 * k), rel=1e-12)
+        assert b.eta_backward == pytest.approx(a.eta_backward * (1.0 + 0.05 * k), rel=1e-12)
+        assert b.max_forward == a.max_forward
+        assert b.thrust(0.3) == pytest.approx((1.0 + 0.05 * k) * a.thrust(0.3), rel=1e-12)
+    # the force law is the same change: B (g - 1) T
+    law = get_effect("thruster_gain").force_law(params, None)
+    thrust = {th.name: 2.0 for th in prior.thrusters}
+    f = law(0.0, np.zeros(6), np.zeros(6), {"model": prior, "thrust": thrust,
+                                             "allocation": prior.allocation()})
+    g = np.array([params[f"gain_{th.name}"] for th in prior.thrusters])
+    np.testing.assert_allclose(f, prior.allocation() @ ((g - 1.0) * 2.0), atol=1e-12)
+
+
+def test_the_spread_never_falls_below_the_bench_band():
+    # no information: the prior stays at the bench uncertainty of the maps
+    assert spread_sd(np.zeros((3, 3)), np.zeros(3)) == GAIN_SD
+    # combinations measured exactly (huge information) at 0.2: the spread follows them
+    f = np.eye(3) * 1e8
+    r = f @ np.array([0.2, -0.2, 0.2])
+    assert spread_sd(f, r) == pytest.approx(0.2, rel=1e-3)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("vehicle", ["bluerov2_heavy", "videoray_pro3"])
+def test_gains_of_a_fresh_truth_are_recovered_within_their_bands(vehicle):
+    from validation.independent import generate
+
+    seed = int(np.random.SeedSequence().entropy % 10**6)      # a fresh truth every run
+    prior = _prior(vehicle)
+    log, truth = generate(prior.to_dict(), None, seed, duration=120.0)
+    data = window_data(log, prior, window=4.0)
+    excited, _ = select_dofs(data)
+    fit = fit_thruster_gains(data, excited, excited=excited)
+    groups = thruster_groups(data.alloc)
+    want = _truth_contrasts(truth, prior, groups)
+    got, sd = np.array(fit.gains), np.array(fit.std)
+    err = np.abs(got - want)
+    msg = f"seed {seed}: truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
+    # within 3 posterior sd or the bench band of the maps, whichever is wider
+    assert np.all(err <= np.maximum(3.0 * sd, THRUST_BAND)), msg
+    # and far closer than the file's maps (all 1): at most a quarter of their RMS error
+    spread = np.sqrt(np.mean((want - 1.0) ** 2))
+    if spread > THRUST_BAND:
+        assert np.sqrt(np.mean(err ** 2)) <= 0.25 * spread, msg
+    # what the log determines is reported, in thruster weights
+    assert fit.combinations and all(set(c["weights"]) == set(fit.names)
+                                    for c in fit.combinations)
+
+
+@pytest.mark.slow
+def test_whole_log_clean_log_names_no_effect_outside_the_truths_background():
+    from validation.independent import generate
+
+    prior = _prior("bluerov2_heavy")
+    log, truth = generate(prior.to_dict(), None, 5, duration=120.0)
+    res = diagnose(log, prior, dof="all", time_limit=float("inf"))
+    gains = res.thruster_gains
+    assert gains is not None and gains["applied"], gains and gains["reason"]
+    # the written model's thrusters carry the gains in their efficiencies
+    for th in res.model.thrusters:
+        assert th.eta_forward == pytest.approx(gains["gains"][th.name], rel=1e-9)
+    # the vectored four: each within 3 % of its truth over the group's mean
+    want = _truth_contrasts(truth, prior, thruster_groups(prior.allocation()))
+    for k, th in enumerate(prior.thrusters[:4]):
+        assert gains["gains"][th.name] == pytest.approx(want[k], abs=0.03)
+    # no step outside the background every truth carries (a buoyancy, the thrust scales)
+    background = {"buoyancy_offset": {"heave", "roll", "pitch"},
+                  "thrust_effectiveness": {"surge", "sway", "heave", "roll", "pitch", "yaw"}}
+    named = [(d, s.effect) for d, r in res.per_dof.items() for s in r.steps]
+    assert all(d in background.get(e, ()) for d, e in named), named
+
+
+@pytest.mark.slow
+def test_whole_log_lag_is_compared_with_the_delay_over_every_dof():
+    # issue 33, whole-log kind (2): a thruster lag and an actuation delay compared over all
+    # the DOFs the thrusters drive (diagnose.timing), one outcome for all of them
+    from validation.independent import generate
+
+    prior = _prior("videoray_pro3")
+    log, truth = generate(prior.to_dict(), "thruster_lag", 31, duration=120.0)
+    with pytest.warns(ModelWarning, match="drops sway"):      # the VideoRay has no sway thruster
+        res = diagnose(log, prior, dof="all", time_limit=float("inf"))
+    timing = [(d, s) for d, r in res.per_dof.items() for s in r.steps
+              if s.effect in ("thruster_lag", "actuation_delay")]
+    assert timing
+    assert {s.effect for _, s in timing} == {"thruster_lag"}, timing
+    record = timing[0][1].comparison["timing"]
+    assert record["outcome"] == "the lag needed, the delay not"
+    tests = record["tests"]
+    assert tests["thruster_lag"]["adjusted"] <= 0.05 < tests["actuation_delay"]["adjusted"]
+    assert {d for d, _ in timing} == set(record["dofs"])
+    values = {s.parameters["time_constant"] for _, s in timing}
+    assert len(values) == 1
+    assert values.pop() == pytest.approx(truth.strength, rel=0.15)
