@@ -27,7 +27,7 @@ Outcomes of a pair (Davidson & MacKinnon 1981, sec. 2): A needed and B not -> A;
 and A not -> B (A only borrowed B's force); both needed -> both, fitted together (a thrust
 gain and a drag both off); neither -> the log cannot tell them apart.
 
-Depends on: diagnose.fit, diagnose.consider.
+Depends on: diagnose.fit.
 """
 
 from __future__ import annotations
@@ -35,7 +35,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.stats import chi2
 
-from stripcoef.diagnose.consider import marginal_design
 from stripcoef.diagnose.fit import _evaluate, _Nuisance, _profile_hyper, _solve
 
 #: Family-wise significance level of the tests of one selection step (Holm 1979) [-]: the
@@ -48,17 +47,12 @@ def posterior_cost(cfg, sigma: float) -> float:
     :math:`C = |y - H\theta|^2/\sigma^2 + \sum_j (\theta_j/s_j)^2 - N (M + \mu)^2 v/\sigma^2`
     at its minimum (:func:`stripcoef.diagnose.fit._solve`: Tarantola 2005, eq. 3.37, for
     the band priors; Fuller 1987, sec. 2.2, for the noise correction of the profiled inertia
-    change :math:`\mu`), i.e. :math:`-2\log` of the posterior up to a constant [-], with
-    the coefficients the calibration holds at the prior marginalised over their bands
-    (:func:`stripcoef.diagnose.consider.marginal_design`: their columns appended with
-    their Gaussian priors).
+    change :math:`\mu`), i.e. :math:`-2\log` of the posterior up to a constant [-].
     The terms' nonlinear parameters are those stored in ``cfg`` (profiled by
     :func:`stripcoef.diagnose.fit._evaluate`)."""
     y, H, sd = cfg.design()
     m = cfg.m_info()
-    # the coefficients held at the prior marginalised over their bands (.consider)
-    H, sd, lower, upper = marginal_design(cfg, y, H, sd, cfg.lower(), cfg.upper())
-    theta, _, wres = _solve(y, H, sd, sigma, lower, m, upper, with_cov=False)
+    theta, _, wres = _solve(y, H, sd, sigma, cfg.lower(), m, cfg.upper(), with_cov=False)
     cost = float(wres @ wres)
     if m is not None and len(m[0]):
         mu = float(np.sum(theta[list(m[0])]))

@@ -23,7 +23,6 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.consider import consider_term, hyper_consider_variance
 from stripcoef.diagnose.priors import TERM_MATRIX, added_mass_bounds
 from stripcoef.diagnose.settings import (DEFAULT_WINDOW, MIN_INFORMATION_RATIO, N_BLOCKS,
                                          UNLIMITED, Budget, DiagnoseSettings)
@@ -206,24 +205,13 @@ class Calibration:
     names: tuple
     prior: np.ndarray
     band: Mapping
-    #: the coefficients held at the prior (dropped by :meth:`subset`): their columns, bands
-    #: and names, whose uncertainty the fit carries (:mod:`.consider`)
-    held_cols: np.ndarray | None = None
-    held_sd: tuple = ()
-    held_names: tuple = ()
 
     def subset(self, keep) -> Calibration:
-        """The calibration of the columns ``keep`` (indices) only; the others are held at
-        the prior (``held_*``, with those held before)."""
+        """The calibration of the columns ``keep`` (indices) only."""
         keep = list(keep)
-        drop = [j for j in range(len(self.names)) if j not in keep]
-        held = [c for c in (self.held_cols, self.cols[:, drop]) if c is not None and c.size]
         return Calibration(self.cols[:, keep], np.asarray(self.sd, float)[keep],
                            tuple(self.names[j] for j in keep),
-                           np.asarray(self.prior, float)[keep], self.band,
-                           np.hstack(held) if held else None,
-                           tuple(self.held_sd) + tuple(float(self.sd[j]) for j in drop),
-                           tuple(self.held_names) + tuple(self.names[j] for j in drop))
+                           np.asarray(self.prior, float)[keep], self.band)
 
 
 class _Config:
@@ -409,13 +397,8 @@ def _fit(cfg: _Config, mask=None, hyper=None):
     sigma = _sigma(yy, HH, sd, lower, m, upper)
     theta, cov, _ = _solve(yy, HH, sd, sigma, lower, m, upper)
     resid = y - H @ theta
-    out = {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
-           "sd": sd}
-    if mask is None:    # with the bands of the coefficients held at the prior (.consider)
-        d, held = consider_term(cfg, lambda yy: _solve(yy, H, sd, sigma, lower, m, upper,
-                                                       with_cov=False)[0], y, hyper)
-        out.update(cov_data=cov, cov=cov + d @ d.T, consider=(d, held))
-    return out
+    return {"theta": theta, "cov": cov, "resid": resid, "sigma": sigma, "y": y, "H": H,
+            "sd": sd}
 
 
 def grid_minimum(cost, grid) -> tuple[float, float]:
@@ -512,21 +495,13 @@ def _hyper_std(cfg: _Config, hyper, sigma):
         k = int(np.argmin(np.abs(cands - h)))
         lo = cands[max(k - 1, 0)]
         hi = cands[min(k + 1, cands.size - 1)]
+        return np.array([0.5 * (hi - lo) / math.sqrt(3.0)])
     hyper = np.asarray(hyper, float)
 
-    def vec(h, shift=None):
+    def vec(h):
         y, H, sd = cfg.design(h)
-        y = y if shift is None else y + shift
         return _solve(y, H, sd, sigma, cfg.lower(h), cfg.m_info(h), cfg.upper(h),
                       with_cov=False)[2] * sigma
-
-    if eff.name == "deadband":
-        # plus what the coefficients held at the prior move it by (.consider; a secant
-        # over the candidates' spacing: the cost is flat between command levels)
-        grid_sd = 0.5 * (hi - lo) / math.sqrt(3.0)
-        step = 0.25 * (hi - lo)
-        jac = ((vec(hyper + step) - vec(hyper - step)) / (2 * step))[:, None]
-        return np.sqrt(grid_sd ** 2 + hyper_consider_variance(cfg, hyper, vec, jac))
 
     j = np.empty((vec(hyper).size, hyper.size))
     for k in range(hyper.size):
@@ -536,9 +511,7 @@ def _hyper_std(cfg: _Config, hyper, sigma):
         hm[k] -= step
         j[:, k] = (vec(hp) - vec(hm)) / (2 * step)
     cov = sigma ** 2 * np.linalg.pinv(j.T @ j)
-    # plus what the coefficients held at the prior move them by (.consider)
-    return np.sqrt(np.clip(np.diag(cov) + hyper_consider_variance(cfg, hyper, vec, j),
-                           0, None))
+    return np.sqrt(np.clip(np.diag(cov), 0, None))
 
 
 def _rms(x):
@@ -596,16 +569,13 @@ def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
     when that product never moves in the log, or when DOF j is not in ``cross`` (the DOFs
     whose added mass this DOF may calibrate: excited, and not diagnosed themselves, so that
-    one coefficient has one value; None = all). Those left out by ``cross`` are held at the
-    prior: the calibration records them (``held_*``) with their bands, which the fit's
-    uncertainty carries (:mod:`.consider`).
+    one coefficient has one value; None = all).
     """
     bands = settings.band_table()
     kind = "translational" if dof < 3 else "rotational"
     b = dict(bands[kind])
     m = data.model
     cols, sd, names, prior = [], [], [], []
-    held = ([], [], [])             # (columns, bands, names) held at the prior: not in cross
     for key in ("M", "D_L", "D_Q"):
         value = float({"M": m.added_mass, "D_L": m.linear_damping,
                        "D_Q": m.quadratic_damping}[key][dof, dof])
@@ -617,25 +587,19 @@ def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         prior.append(value)
     for j in range(6):
         value = float(m.added_mass[j, j])
-        if j == dof or value == 0.0:
+        if j == dof or value == 0.0 or (cross is not None and j not in cross):
             continue
         key = "M_" + DOF[j]
         col = coefficient_column(data, dof, key)
         if not np.any(np.abs(col) > 0.0):
             continue
         b[key] = bands["translational" if j < 3 else "rotational"]["M"]
-        if cross is not None and j not in cross:
-            for lst, v in zip(held, (col, b[key] * abs(value), key)):
-                lst.append(v)
-            continue
         cols.append(col)
         sd.append(b[key] * abs(value))
         names.append(key)
         prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
-    return Calibration(cols, np.asarray(sd, float), tuple(names), np.asarray(prior, float), b,
-                       np.column_stack(held[0]) if held[0] else None, tuple(held[1]),
-                       tuple(held[2]))
+    return Calibration(cols, np.asarray(sd, float), tuple(names), np.asarray(prior, float), b)
 
 
 def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:

@@ -15,7 +15,6 @@ import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import folded_key
-from stripcoef.diagnose.consider import scale_ratio_variance
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
                                     _Generic, _hyper_std, _identifiability, _Nuisance, _rms)
 from stripcoef.diagnose.priors import added_mass_bounds
@@ -556,21 +555,14 @@ def _scale_inertia_change(eff, params, full, data, dof, cal_names,
                           settings: DiagnoseSettings = DEFAULTS) -> tuple:
     r"""``(change, band, M_ii, mu)`` of a thrust scale s (:func:`_scale_inertia_test`): the
     inertia change :math:`(M_{ii} + \mu)/s - M_{ii}` it implies with the calibration's
-    inertia change :math:`\mu` (0 when the calibration has no ``M`` column), its standard
-    deviation under the null of an added-mass change, :math:`\sqrt{b^2 + \mathrm{var}\,r}`:
-    the band b of the added mass (the translational band times :math:`|M_{A,ii}|`) and the
-    variance of the fitted ratio :math:`r = (M_{ii} + \mu)/s` with the consider covariance
-    of the other held coefficients (:func:`~stripcoef.diagnose.consider.scale_ratio_variance`),
-    the prior's :math:`M_{ii}` and :math:`\mu` [kg, or kg m^2 in a rotation]; for a scale
-    s > 0."""
+    inertia change :math:`\mu` (0 when the calibration has no ``M`` column), the band b of
+    the added mass (the translational band times :math:`|M_{A,ii}|`), the prior's
+    :math:`M_{ii}` and :math:`\mu` [kg, or kg m^2 in a rotation]; for a scale s > 0."""
     s = float(eff.magnitude(params))
     m_ii = float(data.model.mass_matrix[dof, dof])
     m_a = abs(float(data.model.added_mass[dof, dof]))
     band = float((settings.bands or BANDS)["translational"]["M"]) * m_a
     mu = float(full["theta"][cal_names.index("M")]) if "M" in cal_names else 0.0
-    if band > 0.0:          # and the ratio's own uncertainty, held coefficients included
-        band = math.hypot(band, math.sqrt(scale_ratio_variance(
-            full, cal_names.index("M") if "M" in cal_names else None, -1, m_ii)))
     return (m_ii + mu) / s - m_ii, band, m_ii, mu
 
 
