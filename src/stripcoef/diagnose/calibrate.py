@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.fit import _Config, _evaluate, _fit, _solve, grid_minimum
+from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
 
 
@@ -341,9 +341,7 @@ def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
         share = ", ".join(targets)
         for d in targets:
             cfg = _with_value(cfgs[d], eff, value)
-            ev = _evaluate(cfg)
-            before = fits[d].evaluation
-            fits[d] = replace(fits[d], config=cfg, evaluation=ev)
+            before, ev = refit(fits, d, cfg)
             r = per[d]
             steps = list(r.steps)
             if d not in have:

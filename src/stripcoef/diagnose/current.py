@@ -52,7 +52,7 @@ from scipy.optimize import least_squares
 from scipy.stats import chi2
 
 from stripcoef.diagnose.compare import ALPHA, posterior_cost
-from stripcoef.diagnose.fit import _evaluate, _solve, grid_minimum
+from stripcoef.diagnose.fit import _solve, grid_minimum, refit
 from stripcoef.diagnose.settings import N_BLOCKS
 from stripcoef.effects.hydrodynamic import Current
 
@@ -249,9 +249,7 @@ def share_current(per: dict, fits: dict) -> tuple[dict, dict]:
     share = ", ".join(targets)
     for d in targets:
         cfg = _with_current(cfgs[d], WATER, value)
-        ev = _evaluate(cfg)
-        before = fits[d].evaluation
-        fits[d] = replace(fits[d], config=cfg, evaluation=ev)
+        before, ev = refit(fits, d, cfg)
         r = per[d]
         steps = list(r.steps)
         if d in have:
@@ -288,9 +286,7 @@ def _removed(per: dict, fits: dict, have, record) -> tuple[dict, dict]:
            f"supported by them together: likelihood ratio {test['statistic']:.3g}, "
            f"p = {test['p_value']:.3g} > {ALPHA:g} (chi-squared, 2 degrees of freedom)")
     for d in have:
-        cfg = _without_current(fits[d].config)
-        ev = _evaluate(cfg)
-        fits[d] = replace(fits[d], config=cfg, evaluation=ev)
+        _, ev = refit(fits, d, _without_current(fits[d].config))
         r = per[d]
         step = next(s for s in r.steps if s.effect == CURRENT)
         cand = {**step.to_dict(), "significant": False, "rejected_because": [why],

@@ -524,6 +524,17 @@ def _bic(resid, n_params):
 
 
 
+def refit(fits: dict, dof: str, cfg: _Config) -> tuple[dict, dict]:
+    """Write a configuration with a shared value in it (one lag, one current) into
+    ``fits[dof]``, evaluated again (:func:`_evaluate`); returns the evaluation before and
+    after."""
+    from dataclasses import replace
+
+    before, ev = fits[dof].evaluation, _evaluate(cfg)
+    fits[dof] = replace(fits[dof], config=cfg, evaluation=ev)
+    return before, ev
+
+
 def _evaluate(cfg: _Config):
     """Fit on all windows (parameters, error, BIC) and by blocked cross-validation (the
     held-out error: each of ``N_BLOCKS`` contiguous blocks predicted by a fit on the others).
