@@ -15,6 +15,16 @@ STORED = ROOT / "reference_tables" / "bem" / "cad_shapes.csv"
 REF_COLUMNS = ("bem", "bem_faces", "t_bem_s", "bem_richardson_step_rel", "bem_gci_rel")
 
 
+def _write_run(path, rows):
+    """``rows`` written as a stored run of benchmarks.cad_shapes (a command line, the header)."""
+    with open(path, "w", newline="") as fh:
+        fh.write("# a command\n")
+        w = csv.DictWriter(fh, fieldnames=CS.HEADER)
+        w.writeheader()
+        w.writerows(rows)
+    return path
+
+
 def _rerun_rows(refs_path):
     """The CSV rows a ``--references refs_path`` re-run writes, the model taken from the
     stored rows themselves (its value and estimated error): the reference side of
@@ -68,12 +78,7 @@ def test_a_lost_band_reads_back_as_unknown_never_zero(tmp_path):
             r.update(bem_gci_rel="0", bem_richardson_step_rel="0", t_bem_s="0.000")
         else:
             r.update(bem_gci_rel="", bem_richardson_step_rel="", t_bem_s="")
-    path = tmp_path / "lost.csv"
-    with open(path, "w", newline="") as fh:
-        fh.write("# a command\n")
-        w = csv.DictWriter(fh, fieldnames=CS.HEADER)
-        w.writeheader()
-        w.writerows(rows)
+    path = _write_run(tmp_path / "lost.csv", rows)
     refs = CS.stored_references(path)
     for x in refs.values():
         assert np.isnan(x["t_bem"]) and np.isnan(x["gci"]).all() and np.isnan(x["step"]).all()
@@ -109,12 +114,7 @@ def test_the_section_says_unknown_where_the_file_has_no_reference_band(tmp_path,
     for r in rows:
         r.update(bem_gci_rel="", bem_richardson_step_rel="", t_bem_s="",
                  covered_with_bem_gci="")
-    path = tmp_path / "cad.csv"
-    with open(path, "w", newline="") as fh:
-        fh.write("# a command\n")
-        w = csv.DictWriter(fh, fieldnames=CS.HEADER)
-        w.writeheader()
-        w.writerows(rows)
+    path = _write_run(tmp_path / "cad.csv", rows)
     monkeypatch.setattr(V, "DATA", path)
     monkeypatch.setattr(V, "fine_section", lambda: "")
     monkeypatch.setattr(V, "graded_section", lambda: "")
