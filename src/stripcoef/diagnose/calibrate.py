@@ -292,6 +292,21 @@ def _joint_cost(cfgs: dict, sigmas: dict, eff, value) -> float:
     return total
 
 
+def joint_profile(eff, cfgs: dict, sigmas: dict, d0: str) -> tuple[float, float, float]:
+    """``(value, cost, std)`` of ``eff``'s one parameter profiled jointly over the DOFs'
+    configurations ``cfgs`` (:func:`_joint_cost`): the grid then Brent
+    (:func:`~stripcoef.diagnose.fit.grid_minimum`) on ``d0``'s grid; its sd from the cost's
+    curvature, :math:`\sqrt{2/S''}` [s] (the cost is minus twice a log-likelihood, so half
+    its curvature is the Fisher information), the step 1 % of the value (at least 1e-5 s)."""
+    def cost(c):
+        return _joint_cost(cfgs, sigmas, eff, c)
+    data = cfgs[d0].data
+    value, best = grid_minimum(cost, eff.grid(data, parse_dof(d0)))
+    h = 1e-2 * max(value, 1e-3)
+    curv = (cost(value + h) - 2.0 * best + cost(max(value - h, 1e-9))) / h ** 2
+    return value, best, (math.sqrt(2.0 / curv) if curv > 0 else float("nan"))
+
+
 def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
     r"""``(per, fits)`` (new dictionaries) with each timing effect of :data:`SHARED_TIMING`
     that the selection found in some DOF fitted once for all the diagnosed DOFs the
@@ -329,14 +344,7 @@ def share_timing(per: dict, fits: dict) -> tuple[dict, dict]:
                    if eff.applicable(fits[d].config.data, parse_dof(d))[0]]
         cfgs = {d: fits[d].config for d in targets}
         sigmas = {d: float(fits[d].evaluation["full"]["sigma"]) for d in targets}
-        d0 = targets[0]
-
-        def cost(c):
-            return _joint_cost(cfgs, sigmas, eff, c)
-        value, best = grid_minimum(cost, eff.grid(cfgs[d0].data, parse_dof(d0)))
-        h = 1e-2 * value
-        curv = (cost(value + h) - 2.0 * best + cost(max(value - h, 1e-9))) / h ** 2
-        std = math.sqrt(2.0 / curv) if curv > 0 else float("nan")
+        value, _, std = joint_profile(eff, cfgs, sigmas, targets[0])
         key = eff.hyper[0]
         share = ", ".join(targets)
         for d in targets:

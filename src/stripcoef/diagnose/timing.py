@@ -38,9 +38,9 @@ import numpy as np
 from scipy.stats import chi2
 
 from stripcoef.conventions import parse_dof
-from stripcoef.diagnose.calibrate import _joint_cost, _with_value
+from stripcoef.diagnose.calibrate import _with_value, joint_profile
 from stripcoef.diagnose.compare import ALPHA, holm
-from stripcoef.diagnose.fit import _evaluate, grid_minimum
+from stripcoef.diagnose.fit import refit
 from stripcoef.effects.laws import get_effect
 
 LAG, DELAY = "thruster_lag", "actuation_delay"
@@ -48,18 +48,6 @@ LAG, DELAY = "thruster_lag", "actuation_delay"
 
 def _without(cfg, name):
     return cfg.with_terms([(e, h) for e, h in cfg.terms if e.name != name])
-
-
-def _profile(eff, cfgs, sigmas, d0):
-    """(value, cost, std) of ``eff``'s one parameter profiled jointly over ``cfgs``: the
-    grid then Brent (:func:`grid_minimum`); its sd :math:`\\sqrt{2/S''}` [s]."""
-    def cost(c):
-        return _joint_cost(cfgs, sigmas, eff, c)
-    data = next(iter(cfgs.values())).data
-    value, best = grid_minimum(cost, eff.grid(data, parse_dof(d0)))
-    h = 1e-2 * max(value, 1e-3)
-    curv = (cost(value + h) - 2.0 * best + cost(max(value - h, 1e-9))) / h ** 2
-    return value, best, (math.sqrt(2.0 / curv) if curv > 0 else float("nan"))
 
 
 def compare_timing(per: dict, fits: dict) -> tuple[dict, dict, dict | None]:
@@ -79,17 +67,17 @@ def compare_timing(per: dict, fits: dict) -> tuple[dict, dict, dict | None]:
     base = {d: _without(_without(fits[d].config, LAG), DELAY) for d in targets}
     sigmas = {d: float(fits[d].evaluation["full"]["sigma"]) for d in targets}
     d0 = targets[0]
-    t_l, s_l, sd_l = _profile(lag, base, sigmas, d0)
-    t_d, s_d, sd_d = _profile(delay, base, sigmas, d0)
+    t_l, s_l, sd_l = joint_profile(lag, base, sigmas, d0)
+    t_d, s_d, sd_d = joint_profile(delay, base, sigmas, d0)
     # both: one parameter profiled with the other at its value alone, then the other with
     # it, in both orders (the cost is not separable); the lower of the two
-    t_d2, _, sd_d2 = _profile(delay, {d: _with_value(c, lag, t_l) for d, c in base.items()},
+    t_d2, _, sd_d2 = joint_profile(delay, {d: _with_value(c, lag, t_l) for d, c in base.items()},
                               sigmas, d0)
-    t_l2, s_ld, sd_l2 = _profile(lag, {d: _with_value(c, delay, t_d2)
+    t_l2, s_ld, sd_l2 = joint_profile(lag, {d: _with_value(c, delay, t_d2)
                                        for d, c in base.items()}, sigmas, d0)
-    t_l3, _, sd_l3 = _profile(lag, {d: _with_value(c, delay, t_d) for d, c in base.items()},
+    t_l3, _, sd_l3 = joint_profile(lag, {d: _with_value(c, delay, t_d) for d, c in base.items()},
                               sigmas, d0)
-    t_d3, s_ld3, sd_d3 = _profile(delay, {d: _with_value(c, lag, t_l3)
+    t_d3, s_ld3, sd_d3 = joint_profile(delay, {d: _with_value(c, lag, t_l3)
                                           for d, c in base.items()}, sigmas, d0)
     if s_ld3 < s_ld:
         t_l2, t_d2, sd_l2, sd_d2, s_ld = t_l3, t_d3, sd_l3, sd_d3, s_ld3
@@ -133,9 +121,7 @@ def _rewritten(per, fits, base, keep, have, record):
     for d, cfg in base.items():
         for name, (value, _) in keep.items():
             cfg = _with_value(cfg, get_effect(name), value)
-        before = fits[d].evaluation
-        ev = _evaluate(cfg)
-        fits[d] = replace(fits[d], config=cfg, evaluation=ev)
+        before, ev = refit(fits, d, cfg)
         steps, done = [], set()
         for s in per[d].steps:
             if s.effect not in (LAG, DELAY):
