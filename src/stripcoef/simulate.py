@@ -171,25 +171,6 @@ def _attitude_euler(rot) -> np.ndarray:
         return rot.as_euler("ZYX")[..., ::-1]
 
 
-def _quaternion_matrix(quat) -> np.ndarray:
-    r"""R(q) [-], body to NED, of a quaternion (vector part x, y, z, then scalar w; normalised
-    here), and the same R as :meth:`scipy.spatial.transform.Rotation.as_matrix`:
-
-    .. math:: R(q) = I + 2 w S(\varepsilon) + 2 S(\varepsilon)^2
-
-    Written out because it runs at every evaluation of the right-hand side, where building a
-    ``Rotation`` costs ~50 us of the ~90 us of the rest (benchmarks/simulate_speed.py).
-
-    References
-    ----------
-    Fossen (2011), eq. 2.72.
-    """
-    x, y, z, w = (quat / np.sqrt(quat @ quat)).tolist()     # floats: faster than numpy's
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
 def _matrix_euler(rmat, quat) -> np.ndarray:
     r"""(phi, theta, psi) [rad] of R = R_zyx (Fossen 2011 eq. 2.18):
 

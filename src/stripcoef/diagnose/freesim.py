@@ -71,7 +71,7 @@ _QUAT_FORM = _quadratic_form()
 
 def _quat_matrices(q):
     r"""(S, 3, 3) R(q) of (S, 4) quaternions (x, y, z, w), normalised (Fossen 2011, eq. 2.72;
-    :func:`stripcoef.simulate._quaternion_matrix`, vectorised). Each entry of R of a unit
+    the R(q) of :class:`stripcoef.simulate.RightHandSide`, vectorised). Each entry of R of a unit
     quaternion is a quadratic form in q, e.g. :math:`R_{11} = 1 - 2(y^2 + z^2) = x^2 - y^2 -
     z^2 + w^2`, so that :math:`R(q/|q|) = (q q^T : W_{ij}) / |q|^2` with constant W
     (:func:`_quadratic_form`): one product of the (S, 16) outer products with a (16, 9) table
