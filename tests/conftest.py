@@ -237,10 +237,24 @@ def coefficient_scales(doc: dict) -> dict:
     return {name: scales.get(name, control) for name in doc.get("coefficients") or {}}
 
 
+def band_scale(bound: float, doc: dict, name: str, scales: dict) -> float:
+    """Scale of one bound of ``doc["coefficient_bands"][name]``: its matrix's scale times the
+    bound's ratio to the coefficient's value. A lognormal band's bound is the value times
+    exp(+-z sd), up to 129 times the value for a rotational term (the box mesh's K_pdot), so the
+    value's round-off, small beside its matrix, is multiplied by that factor in the bound."""
+    value = doc["coefficients"].get(name)
+    scale = scales.get(name, abs(bound))
+    if isinstance(value, (int, float)) and value:
+        scale *= max(1.0, abs(bound / value))
+    return scale
+
+
 def assert_same_tree(got, want, path: str = "", *, rtol: float = RTOL, scale: float = 0.0):
     """Parsed JSON/YAML ``got`` equals ``want``: keys, strings, integers, booleans exactly;
     floats within ``rtol`` of the scale of their array (:data:`RTOL`), the ``coefficients``
-    of a model by the scale of their matrix (:func:`coefficient_scales`)."""
+    of a model by the scale of their matrix (:func:`coefficient_scales`), the bounds of its
+    ``coefficient_bands`` by that scale times the bound's ratio to the value
+    (:func:`band_scale`)."""
     if isinstance(want, dict):
         assert isinstance(got, dict) and list(got) == list(want), \
             f"{path}: keys {list(got) if isinstance(got, dict) else got!r} != {list(want)}"
@@ -251,6 +265,13 @@ def assert_same_tree(got, want, path: str = "", *, rtol: float = RTOL, scale: fl
                 for name, w in want[k].items():
                     assert_same_tree(got[k][name], w, f"{path}.{k}.{name}", rtol=rtol,
                                      scale=coefficients[name])
+            elif k == "coefficient_bands" and coefficients and isinstance(want[k], dict):
+                assert list(got[k]) == list(want[k]), f"{path}.{k}: {list(got[k])} != {list(want[k])}"
+                for name, bounds in want[k].items():
+                    for i, bound in enumerate(bounds):
+                        assert_same_tree(got[k][name][i], bound, f"{path}.{k}.{name}[{i}]",
+                                         rtol=rtol, scale=band_scale(bound, want, name,
+                                                                     coefficients))
             else:
                 assert_same_tree(got[k], want[k], f"{path}.{k}", rtol=rtol,
                                  scale=array_scale(want[k]))

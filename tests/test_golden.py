@@ -126,3 +126,21 @@ def test_the_comparison_scales_by_the_matrix():
         assert_same_tree(got, want)
     with pytest.raises(AssertionError, match="added_mass"):
         assert_same_tree({**want, "added_mass": [[41.0 + 1e-7, 8e-9], [8e-9, 5.8]]}, want)
+
+
+def test_a_band_bound_scales_by_its_matrix_times_its_factor():
+    """A lognormal band's bound is the value times exp(z sd): the value's round-off (here 1e-10
+    of M_A's 79 kg, as measured between two CPUs on the box mesh's K_pdot) is multiplied by the
+    bound's factor (129) and passes; a band 1e-6 wider (another sd: a change) does not."""
+    want = {"added_mass": [[79.4, 0.0], [0.0, 1.19]], "linear_damping": [[0.0]],
+            "quadratic_damping": [[0.0]], "lift": [[0.0]], "control_surfaces": [],
+            "coefficients": {"K_pdot": -1.19, "Y_rdot": 1.5e-9},
+            "coefficient_bands": {"K_pdot": [-154.19, -0.0092], "Y_rdot": [1.52e-9, 1.7e-9]}}
+    got = json.loads(json.dumps(want))
+    got["coefficients"]["K_pdot"] = -1.19 * (1 + 7e-9)           # 1e-10 of 79.4 kg
+    got["coefficient_bands"]["K_pdot"][0] = -154.19 * (1 + 7e-9)
+    got["coefficient_bands"]["Y_rdot"][0] = 1.52e-9 * (1 + 2.4e-7)  # a zero coupling's round-off
+    assert_same_tree(got, want)
+    got["coefficient_bands"]["K_pdot"][1] = -0.0092 * (1 + 1e-6) - 5e-6
+    with pytest.raises(AssertionError, match="coefficient_bands.K_pdot"):
+        assert_same_tree(got, want)

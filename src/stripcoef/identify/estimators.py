@@ -247,6 +247,10 @@ def _loglik_term(cost: float, n: int) -> float:
     return n * math.log(max(cost, 1e-300) / n)
 
 
+#: Largest magnitude whose square is finite in double precision [-] (IEEE 754 binary64).
+_SQUARE_LIMIT = math.sqrt(np.finfo(float).max)
+
+
 def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: str = "",
                  covariance: str = "iid", lags: int = 0, units: dict | None = None,
                  what: str = "regression") -> FitResult:
@@ -304,6 +308,12 @@ def linear_lstsq(H, y, names, *, method: str = "lstsq", model: str = "", dof: st
     if bad.any():
         raise InputError("non-finite value in the regression", key=what,
                          value=f"observation {int(np.nonzero(bad)[0][0])}", expected="finite data")
+    # A value whose square overflows (|x| > sqrt(max double), about 1.34e154) makes the sums of
+    # squares of the cost and the covariance overflow, or not, depending on the BLAS kernel's
+    # order of operations (an exact fit passed on one CPU and overflowed on another): refused
+    # here, by the same rule on every machine.
+    if max(np.abs(H).max(), np.abs(y).max()) > _SQUARE_LIMIT:
+        _refuse_magnitudes(H, y, names, what)
     # Scale columns for conditioning, then QR (the norm of each column divided by its
     # largest entry first: a 1e300 entry squared would overflow to inf)
     peak = np.abs(H).max(axis=0)
