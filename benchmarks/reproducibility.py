@@ -21,8 +21,11 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _load(path: Path, name: str):
+    import sys
+
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module      # importable by the modules loaded after it
     spec.loader.exec_module(module)
     return module
 
@@ -34,6 +37,7 @@ def main() -> int:
     import stripcoef
     from stripcoef.export import write_export
 
+    _load(ROOT / "tests" / "_shared_memo.py", "_shared_memo")     # conftest imports it
     conftest = _load(ROOT / "tests" / "conftest.py", "_stripcoef_conftest")
     golden = _load(ROOT / "tests" / "golden" / "make_golden.py", "_stripcoef_make_golden")
     make_samples = _load(ROOT / "scripts" / "make_samples.py", "_stripcoef_make_samples")
