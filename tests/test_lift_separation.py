@@ -278,6 +278,7 @@ def test_stratford_panel_rule_against_table4_configuration_by_configuration():
     assert sorted(k for k, (_, e) in choice.items() if e < default[k]["mean_ln"]) == [1, 3, 4, 5, 6]
 
 
+@pytest.mark.slow
 def test_stratford_panel_station_is_not_converged_in_the_panels():
     """The option's stated limit (docs/validation.md): on the SUBOFF polyline (400 vertices)
     the station moves aft-to-fore as the panels grow finer than its segments (0.8755, 0.8750,
