@@ -26,8 +26,11 @@ the line sources ``body_lift: stratford`` uses; the fins' stern flow is unchange
 sidewash, with the appendages' trailing vortices and with the body's separated pair too
 (stripcoef.assembly.sidewash, Pitts, Nielsen & Kaattari 1957; validation.lift.sidewash_checks),
 an option outside the default model; writes nothing.
-Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford] [--terms]
-[--surface-speed line|panel] [--sidewash]  (about 60 s; --sidewash about 2 min)
+``--method stratford_panel``: ``body_lift: stratford_panel``, Stratford's criterion and the
+fins' stern flow on the axisymmetric panel solution's axial flow (an option of the library);
+``--panels N`` solves that flow on N meridian panels (the library's 400 otherwise).
+Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford|stratford_panel] [--terms]
+[--surface-speed line|panel] [--sidewash] [--panels N]  (about 60 s; --sidewash about 2 min)
 """
 
 from __future__ import annotations
@@ -101,6 +104,18 @@ def _stratford_on_panel_speed():
     assembly.stratford_separation = on_panel_speed
 
 
+def _panels(count: int) -> None:
+    """Make this process's ``body_lift: stratford_panel`` solve the axial flow on ``count``
+    meridian panels (stripcoef.hull.axisymmetric.axial_surface_speed; the library's default
+    SURFACE_SPEED_PANELS): the --panels sensitivity."""
+    import functools
+
+    import stripcoef.assembly.lift as assembly
+    from stripcoef.hull.axisymmetric import axial_surface_speed
+
+    assembly.axial_surface_speed = functools.partial(axial_surface_speed, panels=count)
+
+
 def _sidewash(method: str, terms: bool) -> int:
     """Print the issue's checks without and with the sidewash (validation.lift.sidewash_checks)
     and, with ``terms``, every Table 4 term's ratio without and with it."""
@@ -123,10 +138,12 @@ def _sidewash(method: str, terms: bool) -> int:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--method", choices=("datcom", "slender", "on", "stratford"), default="datcom",
+    ap.add_argument("--method", choices=("datcom", "slender", "on", "stratford", "stratford_panel"),
+                    default="datcom",
                     help="body lift: 'datcom' (the default model's rule: slender times Munk's "
-                         "k2 - k1), 'slender', 'on' (Hoerner) or 'stratford' (the DATCOM "
-                         "rule cut at Stratford's separation station)")
+                         "k2 - k1), 'slender', 'on' (Hoerner), 'stratford' (the DATCOM "
+                         "rule cut at Stratford's separation station) or 'stratford_panel' "
+                         "(the same on the axisymmetric panel solution's axial flow)")
     ap.add_argument("--terms", action="store_true",
                     help="print every Table 4 term: measured, model, ratio")
     ap.add_argument("--surface-speed", choices=("line", "panel"), default="line",
@@ -136,7 +153,14 @@ def main(argv=None):
     ap.add_argument("--sidewash", action="store_true",
                     help="with --method datcom or stratford: the Table 4 and drift-curve checks "
                          "without and with the appendages' trailing-vortex sidewash")
+    ap.add_argument("--panels", type=int, default=None,
+                    help="with --method stratford_panel: meridian panels of the axial flow "
+                         "(a sensitivity; the library's default otherwise)")
     args = ap.parse_args(argv)
+    if args.panels is not None:
+        if args.method != "stratford_panel" or args.panels < 20:
+            ap.error("--panels needs --method stratford_panel and at least 20 panels")
+        _panels(args.panels)
     if args.sidewash:
         if args.method not in ("datcom", "stratford"):
             ap.error("--sidewash needs --method datcom or stratford")

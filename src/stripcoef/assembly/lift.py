@@ -62,6 +62,7 @@ from stripcoef.hull.lift import (
     turbulent_boundary_layer,
     TRANSITION_REYNOLDS,
 )
+from stripcoef.hull.axisymmetric import axial_surface_speed
 from stripcoef.hull.separation import stratford_separation
 from stripcoef.model import ControlSurface
 
@@ -427,7 +428,7 @@ def _stern_flow(vehicle, body, speed, viscosity):
     the sections (s from the nose, S), the hull axis, speed, viscosity and Head's boundary
     layer (:func:`_hull_boundary_layer`); None under Hoerner's rule (``on``) or without body
     lift (the fins then see the free stream)."""
-    if body is None or body[1].get("method") not in ("slender", "datcom", "stratford"):
+    if body is None or body[1].get("method") not in STERN_FLOW_RULES:
         return None
     hull = vehicle.hull
     slender = {"x_nose": hull.x_extent()[1], "x_separation": body[1]["separation_x"],
@@ -439,11 +440,26 @@ def _stern_flow(vehicle, body, speed, viscosity):
     s_nose, area = slender["s"], slender["area"]
     try:
         slender["layer"] = turbulent_boundary_layer(
-            s_nose, np.sqrt(area / np.pi), surface_speed_ratio(s_nose, area),
+            s_nose, np.sqrt(area / np.pi), _surface_speed(body[1]["method"], s_nose, area),
             speed=slender["speed"], viscosity=slender["viscosity"])
     except ValueError:        # the hull is shorter than the laminar run: no turbulent layer
         slender["layer"] = None
     return slender
+
+
+#: Body-lift rules under which the fins (and a ring wing) sit in the hull's stern flow.
+STERN_FLOW_RULES = ("slender", "datcom", "stratford", "stratford_panel")
+
+
+def _surface_speed(rule: str, s, area) -> np.ndarray:
+    """U_e/U [-] along the hull in axial potential flow at stations ``s`` [m] from the nose
+    with sections ``area`` [m^2], as body-lift ``rule`` computes it: the axisymmetric panel
+    solution under ``stratford_panel`` (:func:`~stripcoef.hull.axisymmetric.axial_surface_speed`,
+    Hess & Smith 1967), the line sources of slender-body theory otherwise
+    (:func:`~stripcoef.hull.lift.surface_speed_ratio`)."""
+    if rule == "stratford_panel":
+        return axial_surface_speed(s, np.sqrt(np.maximum(area, 0.0) / np.pi))
+    return surface_speed_ratio(s, area)
 
 
 def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: float,
@@ -570,7 +586,13 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
     :func:`~stripcoef.hull.lift.surface_speed_ratio`) at the reference speed (or ``speed``,
     ``viscosity``), the layer turbulent from Re_x = :data:`~stripcoef.hull.lift.TRANSITION_REYNOLDS`
     (:func:`~stripcoef.hull.separation.stratford_separation`); no separation ahead of the tail
-    cap puts the station at the tail (no potential lift left). ``auto`` follows the DATCOM
+    cap puts the station at the tail (no potential lift left). ``stratford_panel`` is the
+    same criterion on the exact axisymmetric potential flow of the hull (the surge mode of the
+    panel method, :func:`~stripcoef.hull.axisymmetric.axial_surface_speed`; Hess & Smith
+    1967) instead of the line sources, for the station and for the fins' stern flow (Head's
+    layer) alike: Stratford's criterion is stated on the body's actual pressure distribution,
+    whose suction peak at the afterbody's shoulder the line sources underestimate (SUBOFF: 1.07
+    against 1.12). An option, measured in docs/validation.md. ``auto`` follows the DATCOM
     rule because on the measured SUBOFF captive-model data (Roddy 1990, Table 4 and Appendix
     B) it is the best of the three (docs/validation.md, 'Every configuration and
     derivative'; ``python -m benchmarks.lift_band --method datcom``). Returns
@@ -588,25 +610,25 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
     length = hi - lo
     d = hull.max_diameter()
     if not _round(hull) or length / d < MIN_SLENDERNESS:
-        if mode in ("on", "slender", "datcom", "stratford"):
+        if mode in ("on", *STERN_FLOW_RULES):
             raise InputError("body lift needs a slender round hull", file=vehicle.source,
                              key="body_lift", value=f"l/d = {length / d:.3g}",
                              expected=f"a hull 'profile' (circular) with l/d >= {MIN_SLENDERNESS:g}")
         return None
-    if mode in ("auto", "slender", "datcom", "stratford"):
+    if mode in ("auto", *STERN_FLOW_RULES):
         xs = np.linspace(lo, hi, SLENDER_STATIONS)
         area = np.pi * hull.half_breadth(xs) * hull.half_height(xs)
         info = {"method": {"auto": "datcom"}.get(mode, mode), "length": length, "diameter": d}
-        if mode == "stratford":
+        if mode in ("stratford", "stratford_panel"):
             s_nose, a_nose = hi - xs[::-1], area[::-1]
             u = float(vehicle.reference_speed if speed is None else speed)
             nu = float(vehicle.fluid.kinematic_viscosity if viscosity is None else viscosity)
-            sep = stratford_separation(s_nose, surface_speed_ratio(s_nose, a_nose), speed=u,
+            sep = stratford_separation(s_nose, _surface_speed(mode, s_nose, a_nose), speed=u,
                                        viscosity=nu, transition=TRANSITION_REYNOLDS * nu / u)
             x0 = lo if sep["separation"] is None else hi - sep["separation"]
             info["stratford"] = sep
             if sep["limit"] == "cp":
-                warnings.warn("body_lift: stratford: the afterbody's pressure rise reaches "
+                warnings.warn(f"body_lift: {mode}: the afterbody's pressure rise reaches "
                               "C_p' = 4/7, the end of Stratford's criterion's range, before the "
                               "criterion is met; the separation station is put at the tail "
                               "(no body lift)", ModelWarning, stacklevel=3)

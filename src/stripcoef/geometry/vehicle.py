@@ -784,9 +784,9 @@ def parse_vehicle(data, *, file: str = "<vehicle>") -> Vehicle:
     body_lift = data.get("body_lift", "auto")
     if body_lift is True or body_lift is False:
         body_lift = "on" if body_lift else "off"
-    if body_lift not in ("auto", "on", "off", "slender", "datcom", "stratford"):
+    if body_lift not in ("auto", "on", "off", "slender", "datcom", "stratford", "stratford_panel"):
         raise r.err("body_lift", "invalid value", body_lift,
-                    "auto, on, off, slender, datcom or stratford")
+                    "auto, on, off, slender, datcom, stratford or stratford_panel")
     thrusters = [_thruster(r, t, f"thrusters[{i}]")
                  for i, t in enumerate(r.listing(data, "thrusters", ""))]
     if len({t.name for t in thrusters}) != len(thrusters):

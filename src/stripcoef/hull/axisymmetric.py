@@ -666,3 +666,65 @@ def ring_body_added_mass(xm, rm, *, rho: float, x_ref: float = 0.0,
     """
     xn, rn = _closed_meridian(xm, rm, int(panels))
     return _meridian_added_mass(xn - x_ref, rn, rho, _influence_closed)
+
+
+#: Meridian panels of the axial-flow surface speed (:func:`axial_surface_speed`; assumption:
+#: 400, as many as the SUBOFF vehicles' tabulated profile has points. Not converged on such a
+#: polyline: finer panels resolve the speed peaks at its vertices, and Stratford's station on
+#: SUBOFF moves 0.8755, 0.8750, 0.8720, 0.8645 l on 200, 400, 800, 1600 panels,
+#: validation.lift.panel_stations) [-].
+SURFACE_SPEED_PANELS = 400
+
+
+def axial_surface_speed(s, r, *, panels: int = SURFACE_SPEED_PANELS) -> np.ndarray:
+    r"""Surface speed of a body of revolution in axial potential flow, :math:`U_e/U`, from the
+    exact (panel) solution: the surge mode m = 0 of this module's boundary-element method.
+
+    .. math:: \tfrac12\phi_0 + \int \phi_0\,D_0\,ds = \int S_0\,n_x\,ds,\qquad
+              \frac{U_e}{U} = \Big|\frac{d\phi_0}{ds_m} - t_x\Big|
+
+    (:math:`\phi_0` the potential of the body moving at unit speed along +x, :math:`\partial
+    \phi_0/\partial n = n_x`; in the body's frame the stream along -x adds :math:`-t_x`;
+    :math:`s_m` the arc length along the
+    meridian, :math:`t_x` its tangent's x component), at the panels' mid-points and
+    interpolated linearly to the stations ``s``. The line-source approximation of slender-body
+    theory (:func:`stripcoef.hull.lift.surface_speed_ratio`) is within 7 % of it on the SUBOFF
+    afterbody but lower at the shoulder's suction peak (1.07 against 1.12), where a pressure-
+    recovery criterion such as Stratford's starts.
+
+    Parameters
+    ----------
+    s : (n,) array
+        Stations from the nose, increasing [m]
+    r : (n,) array
+        Radii r(s) >= 0 [m]
+    panels : int
+        Meridian panels (cosine-clustered towards the ends, :func:`_meridian`)
+
+    Returns
+    -------
+    (n,) array
+        U_e/U [-] at ``s`` (0 at a stagnation point)
+
+    References
+    ----------
+    Hess, J. L. & Smith, A. M. O. (1967), "Calculation of potential flow about arbitrary
+    bodies", *Prog. Aerosp. Sci.* 8 (the axisymmetric source-panel method and its surface
+    velocity); Lamb (1932), *Hydrodynamics*, sec. 373 (a prolate spheroid's exact surface speed
+    :math:`U(1 + k_1)|t_x|`, the check in tests/test_lift_separation.py).
+    """
+    s = np.asarray(s, dtype=float)
+    r = np.asarray(r, dtype=float)
+    return _axial_surface_speed(s, r, int(panels))
+
+
+@array_memo(maxsize=16)
+def _axial_surface_speed(s, r, panels) -> np.ndarray:
+    """:func:`axial_surface_speed` of float arrays and an int (the memo's key: one solve per
+    process for each hull)."""
+    xn, rn = _meridian(s, r, panels)
+    S, D, (seg, nx, _, xc, _) = _influence(xn, rn, 0)
+    phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
+    arc = np.concatenate([[0.0], np.cumsum(seg)])
+    speed = np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1])) - np.diff(xn) / seg)
+    return np.interp(s, xc, speed)
