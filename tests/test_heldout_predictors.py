@@ -145,3 +145,19 @@ def test_predictable_compares_the_spread_with_the_better_trivial_predictor():
     assert predictable(errors, [0.19, 0.09]) == {"surge": True, "pitch": True}
     assert predictable(errors, [0.21, 0.11]) == {"surge": False, "pitch": False}
     assert predictable(errors, [0.05, None]) == {"surge": True, "pitch": True}
+
+
+def test_predictable_exempts_a_dof_only_where_every_model_says_so():
+    """issue 33: a prior whose dynamics are wrong (its noise growth past the trivial
+    predictors' errors) must not exempt a DOF the calibrated model's dynamics predict, nor a
+    calibrated model exempt itself where the prior predicts the DOF."""
+    from stripcoef.diagnose.heldout import predictable
+
+    errors = {"surge": {"calibrated": 0.1, "hold_last_velocity": 0.3, "zero_velocity": 0.2},
+              "roll": {"calibrated": 0.8, "hold_last_velocity": 0.26, "zero_velocity": 0.19}}
+    prior, calibrated = [0.07, 0.54], [0.008, 0.045]
+    assert predictable(errors, prior) == {"surge": True, "roll": False}
+    assert predictable(errors, prior, calibrated) == {"surge": True, "roll": True}
+    assert predictable(errors, calibrated, prior) == {"surge": True, "roll": True}
+    assert predictable(errors, [0.07, 0.54], [0.3, 0.6]) == {"surge": True, "roll": False}
+    assert predictable(errors, [0.25, 0.54], [0.3, None]) == {"surge": False, "roll": True}

@@ -239,6 +239,22 @@ def test_the_count_is_made_on_the_excited_and_predictable_rows():
     assert old["judged"] == 4                     # a run without the column judges every row
 
 
+def test_a_wrong_prior_alone_does_not_exempt_a_row():
+    """A row is left out of the excited and predictable ones only where both the prior's and
+    the calibrated model's noise growth reach the trivial predictors' errors
+    (heldout.predictable with both spreads); a row with the prior's growth alone (an older
+    run) is judged by it."""
+    from validation.real_logs import predictable
+
+    base = {"hold_last_velocity": "0.26", "zero_velocity": "0.19"}
+    assert predictable({**base, "noise_growth_prior": "0.54", "noise_growth_calibrated": "0.045"})
+    assert predictable({**base, "noise_growth_prior": "0.05", "noise_growth_calibrated": "0.6"})
+    assert not predictable({**base, "noise_growth_prior": "0.54",
+                            "noise_growth_calibrated": "0.3"})
+    assert not predictable({**base, "noise_growth_prior": "0.54"})
+    assert predictable(base)
+
+
 def test_the_why_table_reads_its_stored_rows(tmp_path, monkeypatch):
     """validation/real_logs.py shows a ``--why`` run: one row per DOF and the linearised
     stability per speed."""
@@ -255,3 +271,26 @@ def test_the_why_table_reads_its_stored_rows(tmp_path, monkeypatch):
     text = "\n".join(vr.why_section())
     assert "--why 1" in text and "| yaw | 0.5000 |" in text
     assert "0.4 m/s: +1.334 1/s (yaw)" in text
+
+
+def test_the_paired_verdicts_are_counted_per_record():
+    """validation/real_logs.py counts the paired tests' verdicts of each record a stored run
+    has (10-s rolling, 2-s), over all rows and the excited and predictable ones, with the
+    truth's; a run without them gives no paragraph."""
+    from validation.real_logs import paired_section
+
+    def row(v10, t10, v2, t2, growth):
+        return {"roll_verdict": v10, "roll_truth_verdict": t10, "h2_verdict": v2,
+                "h2_truth_verdict": t2, "hold_last_velocity": "0.2", "zero_velocity": "0.1",
+                "noise_growth_prior": growth, "noise_growth_calibrated": growth}
+
+    rows = [row("win", "win", "win", "win", "0.01"),
+            row("loss", "not distinguishable", "not distinguishable", "win", "0.3"),
+            row("not distinguishable", "win", "win", "win", "0.01")]
+    text = paired_section(rows)[0]
+    assert "restarted every 2 s: 1 wins, 1 losses, 1 not distinguishable of 3 " \
+           "(1 / 0 / 1 of the excited and predictable); the truth beats both trivial " \
+           "predictors in 2 of 3" in text
+    assert "2-s simulations: 2 wins, 0 losses, 1 not distinguishable of 3 (2 / 0 / 0" in text
+    assert paired_section([{k: v for k, v in r.items() if "verdict" not in k}
+                           for r in rows]) == []

@@ -97,6 +97,45 @@ def summary(rows) -> dict:
             "unchanged": sum(r["calibrated"] == r["prior"] for r in rows)}
 
 
+#: The paired tests' records of a stored run (``benchmarks.real_logs.paired_tests``): the
+#: verdict column, the truth's verdict column and what the segments are.
+PAIRED = (("roll_verdict", "roll_truth_verdict", "10-s simulations restarted every 2 s"),
+          ("h2_verdict", "h2_truth_verdict", "consecutive 2-s simulations"))
+
+
+def verdicts(rows, column) -> dict:
+    """``{"win": n, "loss": n, "not distinguishable": n}`` of ``column`` over ``rows``."""
+    out = {"win": 0, "loss": 0, "not distinguishable": 0}
+    for r in rows:
+        if r.get(column, "") in out:
+            out[r[column]] += 1
+    return out
+
+
+def paired_section(rows) -> list:
+    """A paragraph on the paired Diebold-Mariano verdicts of the stored run (the columns of
+    :data:`PAIRED` it has; none: nothing): the calibrated model's against the prior and the
+    two trivial predictors, over all rows and the excited and predictable ones, and the
+    truth's against the two trivial predictors (could any model win the cell)."""
+    parts = []
+    for col, truth_col, what in PAIRED:
+        if not any(r.get(col, "") for r in rows):
+            continue
+        a, p = verdicts(rows, col), verdicts([r for r in rows if predictable(r)], col)
+        t = verdicts(rows, truth_col)
+        parts.append(f"on {what}: {a['win']} wins, {a['loss']} losses, "
+                     f"{a['not distinguishable']} not distinguishable of {sum(a.values())} "
+                     f"({p['win']} / {p['loss']} / {p['not distinguishable']} of the excited "
+                     f"and predictable); the truth beats both trivial predictors in "
+                     f"{t['win']} of {sum(t.values())}")
+    if not parts:
+        return []
+    return ["**Paired tests per cell** (`stripcoef.diagnose.heldout.paired_verdicts`: the "
+            "Diebold-Mariano test of the per-segment losses; win: below the prior, "
+            "hold-last-velocity and zero velocity, one-sided 5 % each; loss: above one of "
+            "them at 5 %/3; otherwise not distinguishable): " + "; ".join(parts) + ".\n"]
+
+
 def _growth_verdict(r, key) -> str:
     """'1' when the noise growth ``key`` of row ``r`` is below both trivial predictors'
     errors (heldout.predictable), '0' when not, '' when the row has none."""
@@ -108,8 +147,12 @@ def _growth_verdict(r, key) -> str:
 
 def predictable(r) -> bool:
     """Whether row ``r`` counts among the excited and predictable ones: the rule of
-    heldout.predictable with the prior's noise growth (a row without it counts)."""
-    return _growth_verdict(r, "noise_growth_prior") != "0"
+    heldout.predictable with the prior's and the calibrated model's noise growth (exempted
+    only where each of them reaches both trivial predictors' errors; a row without a growth
+    counts, a row with the prior's alone is judged by it)."""
+    verdicts = [_growth_verdict(r, f"noise_growth_{m}") for m in ("prior", "calibrated")]
+    known = [v for v in verdicts if v]
+    return not known or any(v != "0" for v in known)
 
 
 def _predictable_counts(rows, known) -> dict:
@@ -122,7 +165,10 @@ def _predictable_counts(rows, known) -> dict:
         pairs.setdefault((r["log"], r["split"]), []).append(r["beats_all"] == "1")
     agree = {m: sum(_growth_verdict(r, f"noise_growth_{m}") == r["truth_beats_trivial"]
                     for r in known) for m in ("calibrated", "prior", "truth")}
+    rule = sum(("1" if predictable(r) else "0") == r["truth_beats_trivial"] for r in known
+               if r.get("noise_growth_prior", "") not in ("", "None"))
     return {"judged": len(judged), "beats_judged": sum(r["beats_all"] == "1" for r in judged),
+            "growth_agrees_rule": rule,
             "pairs_judged": len(pairs), "pairs_judged_all": sum(all(v) for v in pairs.values()),
             "growth_known": sum(r.get("noise_growth_prior", "") not in ("", "None")
                                 for r in known),
@@ -215,6 +261,7 @@ def section() -> str:
         "changes only if that DOF then simulates the validation part better than the prior: "
         "`diagnose/validate.py`), so it cannot beat the prior there. The thrusters' lag is "
         "fitted once for all DOFs (`diagnose.calibrate.share_timing`).\n",
+        *paired_section(rows),
         *([f"**Why even the vehicle's own model loses in some DOFs.** The column *truth* is the "
            f"BlueROV2-Heavy-like logs' own vehicle (the simulator's perturbed coefficients "
            f"and thrusters, its undeclared effect as the effects library writes it: "
@@ -238,16 +285,19 @@ def section() -> str:
            f"loses.\n"] if s["known"] else []),
         *why_section(),
         "**Excited and predictable** (`stripcoef.diagnose.heldout.predictable`): a DOF the "
-        "diagnosis found excited whose *noise growth (prior)* stays below both trivial "
-        "predictors' errors. Where it does not, the noise on the starting state alone moves "
+        "diagnosis found excited whose noise growth with the prior's or with the calibrated "
+        "model's dynamics stays below both trivial predictors' errors (exempted only where "
+        "both reach them). Where it does not, the noise on the starting state alone moves "
         "any prediction farther from the data than predicting no change or no motion, and the "
         "comparison measures the noise, not the model (a simulation error is judged on fresh "
         "data over a horizon on which the process is predictable: Ljung 1999, sec. 16.4). "
-        "The rule uses the log and the vehicle file's model only: no truth, and no fitted "
-        "number, so no calibration can exempt its own DOFs" + (
+        "The rule uses no truth; the prior is fixed before the fit, so no calibration can "
+        "exempt its own DOFs, and a prior whose dynamics are wrong cannot exempt a DOF the "
+        "calibrated model predicts" + (
             f"; its verdict is the truth's (the truth beats both trivial predictors or not) "
-            f"in **{s['growth_agrees_prior']} of {s['growth_known']}** rows (with the "
-            f"truth's own dynamics in {s['growth_agrees_truth']}"
+            f"in **{s['growth_agrees_rule']} of {s['growth_known']}** rows (the prior's "
+            f"growth alone: {s['growth_agrees_prior']}; the truth's own dynamics: "
+            f"{s['growth_agrees_truth']}"
             + (f", with the calibrated model's in {s['growth_agrees_calibrated']}"
                if s["growth_agrees_calibrated"] else "") + ").\n"
             if s["growth_known"] else ".\n"),
