@@ -40,6 +40,34 @@ def _convergence_rows():
     return rows
 
 
+def _graded_boxes() -> str:
+    """The boxes' references: the edge-graded Capytaine diagonal, and how far the stored
+    two-level Richardson lies from it (a sentence; empty without the file)."""
+    from validation.graded_bodies import BOXES, box_references
+
+    boxes = box_references()
+    if not boxes:
+        return ""
+    lines = [ln for ln in open(BEM / "bem_bluff.csv") if not ln.startswith("#")]
+    rich: dict = {}
+    for r in csv.DictReader(lines):
+        if r["i"] == r["j"] and r["shape"] in boxes:
+            rich.setdefault(r["shape"], {})[int(r["i"])] = float(r["richardson"])
+    dev = [(abs(rich[k][i] / ref[i] - 1), k, i) for k, (ref, _) in boxes.items()
+           for i in range(6)]
+    bands = [band[i] / ref[i] for ref, band in boxes.values() for i in range(6)]
+    worst = max(dev)
+    return (f"The {len(boxes)} boxes' diagonal references are Capytaine on panels graded "
+            f"towards every edge (`{BOXES.relative_to(ROOT)}`, `python -m "
+            "benchmarks.graded_references boxes`: four or five levels, Eça & Hoekstra's least "
+            f"squares, which assume no order; bands {100 * min(bands):.2f} to "
+            f"{100 * max(bands):.2f} %): the two-level Richardson above assumes order 2 at the "
+            f"edges and lies up to {100 * worst[0]:.1f} % from them ({worst[1]} "
+            f"{DOF[worst[2]]}; within 1 % on {sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} "
+            "terms). The accuracy tables below take the graded diagonals "
+            "(`benchmarks.bluff_shapes.reference_matrix`).\n")
+
+
 def section() -> str:
     parts = ["## Bluff shapes: boxes, short cylinders, ellipsoids, open frames (issue 14)\n",
              "Eighteen shapes of `benchmarks/bluff_shapes.py` (body axes FRD, about the volume "
@@ -50,7 +78,8 @@ def section() -> str:
              "within 0.5 %, tests/test_bluff_shapes.py). Reference convergence (largest change of "
              "a diagonal term from the finer run to the extrapolation):\n",
              markdown_table(["shape", "faces", "finer run to Richardson"], _convergence_rows()),
-             "\nThe BEM meshes of `open_frame` (50 % of the area) and `bluerov2_heavy` (3 %) "
+             "\n" + _graded_boxes(),
+             "The BEM meshes of `open_frame` (50 % of the area) and `bluerov2_heavy` (3 %) "
              "have panels of aspect ratio above 20 (thin tubes at <= 5000 faces; "
              "`stripcoef.bem.panel_quality`): their references are less certain than the "
              "convergence column says. The cylinders were first meshed with trimesh's end-cap "
