@@ -18,6 +18,8 @@ h ~ N^(-1/2)): references that assume no order.
   their centre (= their volume centroid, the stored references' point), built as
   :func:`benchmarks.plate_graded.eighth_box` and solved on their quarter
   (:func:`benchmarks.plate_graded.capytaine_eighth`);
+- ``bluff``: the bluff set's prism (``chamfer_box``: a box with one edge chamfered, a pentagon
+  extruded), about its volume centroid, meshed and solved as the extrusions below;
 - ``extrusions``: the extruded convex polygons of the CAD benchmark's seed (family
   ``extrusion`` of :mod:`benchmarks.cad_shapes`, drawn again exactly as it draws them), about
   the origin as that benchmark takes them: each cap a fan of quadrilateral sectors from the
@@ -36,6 +38,8 @@ Usage (one BLAS thread; the finest level at most 13,000 faces (a box's quarter s
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references boxes \\
         --csv reference_tables/bem/graded_boxes.csv
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references bluff \\
+        --levels 13 16 19 23 27 32 38 --csv reference_tables/bem/graded_bluff.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references extrusions \\
         --seed 1375923287 --count 40 --csv reference_tables/bem/graded_extrusions.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references checks
@@ -210,6 +214,46 @@ def prism_added_mass(poly, height, axis_perm, m):
     return t @ a @ t.T, n, sec
 
 
+#: the bluff set's prisms (benchmarks.bluff_shapes.SHAPES): a convex polygon extruded
+BLUFF_PRISMS = ("chamfer_box",)
+
+
+def bluff_prism(name: str):
+    """(polygon (k, 2) [m], height [m], perm) of a prism of the bluff set about its volume
+    centroid (:func:`benchmarks.bluff_shapes.shape_mesh`'s point), read from its builder's
+    convex hull: the extrusion axis is the one whose coordinate takes two values; the
+    polygon, in the axes of :func:`benchmarks.cad_shapes._fan_prism` (global[:, k] =
+    local[:, perm[k]]), ordered about its centroid."""
+    from benchmarks.bluff_shapes import SHAPES
+
+    mesh = SHAPES[name][0](None)
+    v = np.asarray(mesh.vertices, float) - np.asarray(mesh.center_mass, float)
+    axis = next(k for k in range(3) if len(np.unique(np.round(v[:, k], 12))) == 2)
+    perm = {2: [0, 1, 2], 0: [2, 0, 1], 1: [1, 2, 0]}[axis]
+    local = np.empty_like(v)
+    local[:, perm] = v
+    top = local[local[:, 2] > 0][:, :2]
+    c = top.mean(axis=0)
+    poly = top[np.argsort(np.arctan2(top[:, 1] - c[1], top[:, 0] - c[0]))]
+    return poly, float(np.ptp(local[:, 2])), perm
+
+
+def run_bluff(path, levels):
+    """The bluff set's prisms at every level, about their volume centroid."""
+    fh, w = _writer(path, "python -m benchmarks.graded_references bluff --levels "
+                    + " ".join(map(str, levels)))
+    with fh:
+        for name in BLUFF_PRISMS:
+            poly, h, perm = bluff_prism(name)
+            fit = [m for m in levels if 2 * len(half_prism(poly, h, m)[1]) <= PRISM_MAX_FACES]
+            for lev, m in enumerate(fit[-MAX_LEVELS:]):
+                a, n, sec = prism_added_mass(poly, h, perm, m)
+                print(f"{name}: m {m}, {n} faces, {sec:.1f} s: "
+                      + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
+                _rows(w, name, f"{len(poly)}-gon prism {h:g} m long", lev, m, n, a, sec)
+                fh.flush()
+
+
 def extrusions_of_seed(seed: int, count: int) -> dict:
     """{shape: (polygon (k, 2) [m], height [m], perm)} of the extrusions among the first
     ``count`` shapes of ``seed`` of :mod:`benchmarks.cad_shapes`, drawn exactly as it draws
@@ -343,7 +387,7 @@ def checks(levels):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("boxes", "extrusions", "checks"))
+    ap.add_argument("what", choices=("boxes", "bluff", "extrusions", "checks"))
     ap.add_argument("--seed", type=int, default=1375923287, help="the CAD benchmark's seed")
     ap.add_argument("--count", type=int, default=40, help="its shape count (default 40)")
     ap.add_argument("--levels", type=int, nargs="+", default=None,
@@ -358,6 +402,8 @@ def main(argv=None) -> int:
         ap.error(f"{args.what} needs --csv")
     if args.what == "boxes":
         run_boxes(args.csv, args.levels or BOX_LEVELS, args.only)
+    elif args.what == "bluff":
+        run_bluff(args.csv, args.levels or PRISM_LEVELS)
     else:
         run_extrusions(args.csv, args.seed, args.count, args.levels or PRISM_LEVELS,
                        [int(x) for x in args.only] if args.only else None)

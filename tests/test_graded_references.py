@@ -62,6 +62,23 @@ def test_the_extrusions_are_the_cad_benchmarks_own():
     assert seen == len(ext) >= 3
 
 
+def test_the_bluff_prism_is_the_chamfered_box_about_its_centroid():
+    from benchmarks.bluff_shapes import shape_mesh
+
+    poly, h, perm = GR.bluff_prism("chamfer_box")
+    x, y = poly[:, 0], poly[:, 1]
+    area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    mesh = shape_mesh("chamfer_box", 100)
+    assert area * h == pytest.approx(mesh.volume, rel=1e-12)
+    cx = np.sum((x + np.roll(x, -1)) * (x * np.roll(y, -1) - np.roll(x, -1) * y)) / (6 * area)
+    cy = np.sum((y + np.roll(y, -1)) * (x * np.roll(y, -1) - np.roll(x, -1) * y)) / (6 * area)
+    assert abs(cx) < 1e-12 and abs(cy) < 1e-12          # about the volume centroid
+    local = np.column_stack([poly, np.full(len(poly), h / 2)])
+    pts = local[:, perm]
+    gap = np.linalg.norm(pts[:, None, :] - np.asarray(mesh.vertices)[None], axis=-1).min(axis=1)
+    assert np.all(gap < 1e-9)                           # its corners are the box's
+
+
 @pytest.mark.slow
 def test_the_half_solve_turned_back_is_the_rotated_solve():
     """An asymmetric prism solved along each axis permutation gives one matrix turned by the

@@ -41,30 +41,32 @@ def _convergence_rows():
 
 
 def _graded_boxes() -> str:
-    """The boxes' references: the edge-graded Capytaine diagonal, and how far the stored
-    two-level Richardson lies from it (a sentence; empty without the file)."""
-    from validation.graded_bodies import BOXES, box_references
+    """The boxes' and the chamfered box's references: the edge-graded Capytaine matrices, and
+    how far the stored two-level Richardson lies from them on the diagonal (a sentence;
+    empty without the files)."""
+    from validation.graded_bodies import bluff_references
 
-    boxes = box_references()
-    if not boxes:
+    graded = bluff_references()
+    if not graded:
         return ""
     lines = [ln for ln in open(BEM / "bem_bluff.csv") if not ln.startswith("#")]
     rich: dict = {}
     for r in csv.DictReader(lines):
-        if r["i"] == r["j"] and r["shape"] in boxes:
+        if r["i"] == r["j"] and r["shape"] in graded:
             rich.setdefault(r["shape"], {})[int(r["i"])] = float(r["richardson"])
-    dev = [(abs(rich[k][i] / ref[i] - 1), k, i) for k, (ref, _) in boxes.items()
+    dev = [(abs(rich[k][i] / ref[i, i] - 1), k, i) for k, (ref, _) in graded.items()
            for i in range(6)]
-    bands = [band[i] / ref[i] for ref, band in boxes.values() for i in range(6)]
+    bands = [band[i, i] / ref[i, i] for ref, band in graded.values() for i in range(6)]
     worst = max(dev)
-    return (f"The {len(boxes)} boxes' diagonal references are Capytaine on panels graded "
-            f"towards every edge (`{BOXES.relative_to(ROOT)}`, `python -m "
-            "benchmarks.graded_references boxes`: four or five levels, Eça & Hoekstra's least "
-            f"squares, which assume no order; bands {100 * min(bands):.2f} to "
-            f"{100 * max(bands):.2f} %): the two-level Richardson above assumes order 2 at the "
-            f"edges and lies up to {100 * worst[0]:.1f} % from them ({worst[1]} "
-            f"{DOF[worst[2]]}; within 1 % on {sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} "
-            "terms). The accuracy tables below take the graded diagonals "
+    return (f"The references of {', '.join(sorted(graded))} are Capytaine on panels graded "
+            "towards every edge (`reference_tables/bem/graded_boxes.csv`, `graded_bluff.csv`; "
+            "`python -m benchmarks.graded_references boxes` and `bluff`: four or five levels, "
+            "Eça & Hoekstra's least squares, which assume no order; diagonal bands "
+            f"{100 * min(bands):.2f} to {100 * max(bands):.2f} %): the two-level Richardson "
+            f"above assumes order 2 at the edges and lies up to {100 * worst[0]:.1f} % from "
+            f"them ({worst[1]} {DOF[worst[2]]}; within 1 % on "
+            f"{sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} diagonal terms). The accuracy "
+            "tables below take the graded matrices "
             "(`benchmarks.bluff_shapes.reference_matrix`).\n")
 
 

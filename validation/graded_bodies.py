@@ -19,6 +19,8 @@ from validation import ROOT
 
 BOXES = ROOT / "reference_tables" / "bem" / "graded_boxes.csv"
 EXTRUSIONS = ROOT / "reference_tables" / "bem" / "graded_extrusions.csv"
+#: the bluff set's prisms (``benchmarks.graded_references bluff``)
+BLUFF = ROOT / "reference_tables" / "bem" / "graded_bluff.csv"
 
 
 def read(path) -> dict:
@@ -56,3 +58,14 @@ def box_references(path=BOXES) -> dict:
         return {}
     return {k: (np.diag(ref).copy(), np.diag(band).copy())
             for k, (ref, band, _, _) in references(path).items()}
+
+
+def bluff_references(paths=(BOXES, BLUFF)) -> dict:
+    """{shape: (reference 6x6, band 6x6) [kg, kg m, kg m^2]} of every shape of the bluff set
+    with graded levels (the boxes, the prisms), about its volume centroid; files that do not
+    exist are skipped."""
+    out: dict = {}
+    for path in paths:
+        if path.exists():
+            out.update({k: (ref, band) for k, (ref, band, _, _) in references(path).items()})
+    return out

@@ -65,9 +65,10 @@ CAD-style shapes its estimate then covers 272 of 281 terms against Capytaine ref
 12,000-24,000 faces, 250 with the order 2: benchmarks/data/estimate_coverage.md), and the
 value is extrapolated at it: against Capytaine on panels graded towards the edges (references
 that assume no order, Eça & Hoekstra's least squares over four or five levels: the bluff
-set's boxes, the CAD benchmark's plates and extruded polygons), the value at the edge's
-order is closer than the value at order 2 on 127 of 144 terms, within 5 % on 142 (122 at
-order 2), median error 0.51 % (1.25 %) (benchmarks/data/graded_value_order.md).  The edges
+set's boxes and chamfered box, the CAD benchmark's plates and extruded polygons), the value
+at the edge's order is closer than the value at order 2 on 134 of 155 terms, within 5 % on
+153 (133 at order 2), median error 0.46 % (1.23 %), the estimate covering 154
+(benchmarks/data/graded_value_order.md).  The edges
 are read independently of the input's tessellation (:func:`edge_features`): a crease whose
 normals turn by no more than the feature angle of mesh processing (30 degrees) is a facet of
 a smooth surface, a fold (two faces in one plane, one folded back) a double sheet whose rim
