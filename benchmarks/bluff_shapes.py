@@ -380,12 +380,20 @@ def read_references(column="richardson"):
 def reference_matrix(name, refs=None):
     """The reference M_A of a shape: the stored Richardson BEM (``refs``, default
     :func:`read_references`), with Lamb's exact diagonal for the ellipsoids
-    (:func:`stripcoef.hull.lamb.ellipsoid_added_mass`) [kg, kg m, kg m^2]."""
+    (:func:`stripcoef.hull.lamb.ellipsoid_added_mass`), and the edge-graded Capytaine matrix
+    for the boxes and the chamfered box (:func:`validation.graded_bodies.bluff_references`:
+    Eça & Hoekstra over four or five graded levels, bands 0.1-0.8 % but for the roll of the
+    long boxes about their long axis (2-5.5 %), where the stored two-level Richardson at
+    order 2 is up to 5.0 % off: benchmarks/data/graded_value_order.md) [kg, kg m, kg m^2]."""
     from stripcoef.hull.lamb import ellipsoid_added_mass
+    from validation.graded_bodies import bluff_references
 
     ref = (read_references() if refs is None else refs)[name].copy()
     if name in ELLIPSOIDS:
         ref[np.diag_indices(6)] = ellipsoid_added_mass(*ELLIPSOIDS[name], rho=RHO)
+    graded = bluff_references()
+    if name in graded:
+        ref = graded[name][0].copy()
     return ref
 
 

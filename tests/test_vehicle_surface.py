@@ -329,21 +329,17 @@ def test_panels_beyond_a_coarse_box_face_count(tmp_path, capsys):
     """--added-mass-panels may exceed the input mesh's face count: a 12-face box
     0.46 x 0.58 x 0.25 m asked for 3000 panels is refined (longest-edge bisection, then split
     in four: 640 and 2560 panels), not capped at 12, and gives the box's converged value: the
-    stored Capytaine Richardson extrapolation (reference_tables/bem/bem_bluff.csv,
-    box_bluerov), every diagonal within 2.5 % (measured: surge +0.01 %, sway -0.04 %, heave
-    +0.7 %, roll +1.4 %, pitch +1.9 %, yaw -1.2 %; the reference's own Richardson step on
-    the rotations is 1.1-2.3 %)."""
-    import csv
+    edge-graded Capytaine reference (reference_tables/bem/graded_boxes.csv, box_bluerov,
+    bands 0.1-0.4 %; ``benchmarks.bluff_shapes.reference_matrix``), every diagonal within
+    2.5 % (measured with the value at the edge's order: surge +0.2 %, sway +0.4 %, heave
+    +0.0 %, roll +0.5 %, pitch -0.2 %, yaw +1.6 %; the former order-2 reference,
+    bem_bluff.csv, is itself 4.3 % high in yaw)."""
     import json
 
+    from benchmarks.bluff_shapes import reference_matrix
     from stripcoef.cli import main
 
-    ref = np.zeros((6, 6))
-    data = GEOMETRY.parent / "reference_tables" / "bem" / "bem_bluff.csv"
-    lines = [ln for ln in data.read_text().splitlines() if not ln.startswith("#")]
-    for r in csv.DictReader(lines):
-        if r["shape"] == "box_bluerov":
-            ref[int(r["i"]), int(r["j"])] = ref[int(r["j"]), int(r["i"])] = float(r["richardson"])
+    ref = reference_matrix("box_bluerov")
     box = trimesh.creation.box([0.46, 0.58, 0.25])
     assert len(box.faces) == 12
     box.export(tmp_path / "box.stl")

@@ -40,6 +40,36 @@ def _convergence_rows():
     return rows
 
 
+def _graded_boxes() -> str:
+    """The boxes' and the chamfered box's references: the edge-graded Capytaine matrices, and
+    how far the stored two-level Richardson lies from them on the diagonal (a sentence;
+    empty without the files)."""
+    from validation.graded_bodies import bluff_references
+
+    graded = bluff_references()
+    if not graded:
+        return ""
+    lines = [ln for ln in open(BEM / "bem_bluff.csv") if not ln.startswith("#")]
+    rich: dict = {}
+    for r in csv.DictReader(lines):
+        if r["i"] == r["j"] and r["shape"] in graded:
+            rich.setdefault(r["shape"], {})[int(r["i"])] = float(r["richardson"])
+    dev = [(abs(rich[k][i] / ref[i, i] - 1), k, i) for k, (ref, _) in graded.items()
+           for i in range(6)]
+    bands = [band[i, i] / ref[i, i] for ref, band in graded.values() for i in range(6)]
+    worst = max(dev)
+    return (f"The references of {', '.join(sorted(graded))} are Capytaine on panels graded "
+            "towards every edge (`reference_tables/bem/graded_boxes.csv`, `graded_bluff.csv`; "
+            "`python -m benchmarks.graded_references boxes` and `bluff`: four or five levels, "
+            "Eça & Hoekstra's least squares, which assume no order; diagonal bands "
+            f"{100 * min(bands):.2f} to {100 * max(bands):.2f} %): the two-level Richardson "
+            f"above assumes order 2 at the edges and lies up to {100 * worst[0]:.1f} % from "
+            f"them ({worst[1]} {DOF[worst[2]]}; within 1 % on "
+            f"{sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} diagonal terms). The accuracy "
+            "tables below take the graded matrices "
+            "(`benchmarks.bluff_shapes.reference_matrix`).\n")
+
+
 def section() -> str:
     parts = ["## Bluff shapes: boxes, short cylinders, ellipsoids, open frames (issue 14)\n",
              "Eighteen shapes of `benchmarks/bluff_shapes.py` (body axes FRD, about the volume "
@@ -50,7 +80,8 @@ def section() -> str:
              "within 0.5 %, tests/test_bluff_shapes.py). Reference convergence (largest change of "
              "a diagonal term from the finer run to the extrapolation):\n",
              markdown_table(["shape", "faces", "finer run to Richardson"], _convergence_rows()),
-             "\nThe BEM meshes of `open_frame` (50 % of the area) and `bluerov2_heavy` (3 %) "
+             "\n" + _graded_boxes(),
+             "The BEM meshes of `open_frame` (50 % of the area) and `bluerov2_heavy` (3 %) "
              "have panels of aspect ratio above 20 (thin tubes at <= 5000 faces; "
              "`stripcoef.bem.panel_quality`): their references are less certain than the "
              "convergence column says. The cylinders were first meshed with trimesh's end-cap "

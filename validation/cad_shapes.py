@@ -569,8 +569,11 @@ def graded_section() -> str:
         f"{sum(abs(r['err']) <= 0.05 for r in inplane)} of {len(inplane)}; on the normal and "
         f"rotary terms (heave, roll, pitch) {100 * min(r['err'] for r in normal):+.1f} to "
         f"{100 * max(r['err'] for r in normal):+.1f} %. Its levels converge at order about "
-        f"1 in h (the knife edge's) while its value is extrapolated at order 2 "
-        f"(`benchmarks/cad_value_order.py`, `benchmarks/data/cad_value_order.md`).",
+        f"1 in h (the knife edge's), and its value is extrapolated at that formal order "
+        f"(`stripcoef.hull.panels.edge_order`; order 2 before: `benchmarks/cad_value_order.py`"
+        f", `benchmarks/data/cad_value_order.md`), as Capytaine on edge-graded panels of the "
+        f"bluff set's boxes, these plates and the seed's extruded polygons decided "
+        f"(`benchmarks/graded_value_order.py`, `benchmarks/data/graded_value_order.md`).",
         ("- The procedure checked (`reference_tables/bem/plates_graded_checks.csv`): "
          + "; ".join(checks["lines"]) + ".") if checks else "",
         f"- Against the most resolved reference this repository holds for each term (the "

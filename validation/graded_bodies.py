@@ -1,0 +1,71 @@
+"""Edge-graded Capytaine references of bodies with edges (issue 32): the readers shared by the
+benchmarks and tests.
+
+``benchmarks.graded_references`` writes the levels (Capytaine on structured quadrilaterals
+graded towards every edge, four or five levels per body): ``reference_tables/bem/
+graded_boxes.csv`` (the boxes of ``benchmarks.bluff_shapes``) and ``graded_extrusions.csv``
+(the extruded polygons of ``benchmarks.cad_shapes``' seed 1375923287).  Each term's reference
+is Eça & Hoekstra's least squares over the levels (:func:`validation.cad_shapes.fine_reference`,
+h ~ N^(-1/2)): it assumes no order of convergence.
+"""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+
+from validation import ROOT
+
+BOXES = ROOT / "reference_tables" / "bem" / "graded_boxes.csv"
+EXTRUSIONS = ROOT / "reference_tables" / "bem" / "graded_extrusions.csv"
+#: the bluff set's prisms (``benchmarks.graded_references bluff``)
+BLUFF = ROOT / "reference_tables" / "bem" / "graded_bluff.csv"
+
+
+def read(path) -> dict:
+    """{shape: (what, faces per level, [6x6 per level] [kg, kg m, kg m^2])} of a graded
+    references CSV (``benchmarks.graded_references``: one row per level and upper-triangle
+    term), levels coarse to fine; shape: a name, or the CAD benchmark's index as an int."""
+    out: dict = {}
+    with open(path, newline="") as fh:
+        fh.readline()
+        for r in csv.DictReader(fh):
+            key = int(r["shape"]) if r["shape"].isdigit() else r["shape"]
+            what, lv = out.setdefault(key, (r["what"], {}))
+            n, a = lv.setdefault(int(r["level"]), (int(r["faces"]), np.zeros((6, 6))))
+            i, j = int(r["i"]), int(r["j"])
+            a[i, j] = a[j, i] = float(r["added_mass"])
+    return {k: (what, [lv[x][0] for x in sorted(lv)], [lv[x][1] for x in sorted(lv)])
+            for k, (what, lv) in out.items()}
+
+
+def references(path) -> dict:
+    """{shape: (reference 6x6, band 6x6, order 6x6, faces)}: Eça & Hoekstra over each shape's
+    levels (:func:`validation.cad_shapes.fine_reference`), shapes with fewer than its four
+    levels left out."""
+    from stripcoef.hull.convergence import EH_MIN_LEVELS
+    from validation.cad_shapes import fine_reference
+
+    return {k: (*fine_reference(n, mats), n) for k, (_, n, mats) in read(path).items()
+            if len(n) >= EH_MIN_LEVELS}
+
+
+def box_references(path=BOXES) -> dict:
+    """{box name: (diagonal reference (6,), its band (6,))} of the bluff set's graded boxes
+    [kg, kg m^2] (empty without the file)."""
+    if not path.exists():
+        return {}
+    return {k: (np.diag(ref).copy(), np.diag(band).copy())
+            for k, (ref, band, _, _) in references(path).items()}
+
+
+def bluff_references(paths=(BOXES, BLUFF)) -> dict:
+    """{shape: (reference 6x6, band 6x6) [kg, kg m, kg m^2]} of every shape of the bluff set
+    with graded levels (the boxes, the prisms), about its volume centroid; files that do not
+    exist are skipped."""
+    out: dict = {}
+    for path in paths:
+        if path.exists():
+            out.update({k: (ref, band) for k, (ref, band, _, _) in references(path).items()})
+    return out
