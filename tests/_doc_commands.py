@@ -30,7 +30,9 @@ Nothing is cached between commands in the server: each fork starts from its stat
 holds imported modules only (no computed results).  The hull's memoised pure functions (panel
 levels, ...) read and write the test run's shared folder (tests/_shared_memo.py, installed in
 the server before it imports the package), as the test processes do: a command gets the bits
-its function computes, once per run.  tests/test_docs_examples.py keeps one page on
+its function computes, once per run.  So does ``diagnose()`` (``_shared_memo.share_diagnose``):
+the tutorial's and diagnose.md's held-out diagnoses of the shipped sample are those of
+tests/test_diagnose_written.py, computed once per run (its warnings issued again).  tests/test_docs_examples.py keeps one page on
 fresh interpreters and checks that forks print what fresh interpreters and the installed
 console script print.
 """
@@ -259,6 +261,7 @@ def serve(sock: str) -> None:
     spec = importlib.util.spec_from_file_location("_shared_memo",
                                                   Path(__file__).with_name("_shared_memo.py"))
     shared = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = shared             # what a shared value's pickle names
     spec.loader.exec_module(shared)
     shared.install()
     for name in PRELOAD:
@@ -276,6 +279,8 @@ def serve(sock: str) -> None:
                 importlib.import_module(info.name)
             except ImportError:                      # an optional dependency missing
                 pass
+    # the diagnoses of the shipped sample that tests/test_diagnose_written.py runs too
+    shared.share_diagnose()
     try:                        # load the fonts a figure draws with (once, not per --plot)
         import io
 

@@ -21,11 +21,15 @@ computes for itself, as the library does.
 
 from __future__ import annotations
 
+import copyreg
 import functools
 import hashlib
+import io
 import os
 import pickle
+import warnings
 from pathlib import Path
+from types import MappingProxyType
 
 #: The folder of the shared results (set for the test processes and the commands they start).
 ENV = "STRIPCOEF_TESTS_SHARED_MEMO"
@@ -69,11 +73,26 @@ def _stored(root: Path, digest: str, compute):
         part = root / f"{digest}.{os.getpid()}.part"
         try:
             with open(part, "wb") as f:
-                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
+                _pickler(f).dump(value)
             os.replace(part, data)
         except OSError:
             part.unlink(missing_ok=True)
         return value
+
+
+def _mappingproxy(mapping):
+    """A read-only view of ``mapping`` (how :func:`_pickler` rebuilds one)."""
+    return MappingProxyType(mapping)
+
+
+def _pickler(f):
+    """A pickler to ``f`` that also writes read-only mappings (``types.MappingProxyType``,
+    which pickle refuses: the records of a diagnosis hold them) as :func:`_mappingproxy` of a
+    copy; the process's own pickling is left as it is."""
+    p = pickle.Pickler(f, protocol=pickle.HIGHEST_PROTOCOL)
+    p.dispatch_table = {**copyreg.dispatch_table,
+                        MappingProxyType: lambda m: (_mappingproxy, (dict(m),))}
+    return p
 
 
 def once(key, compute):
@@ -135,3 +154,51 @@ def install() -> None:
 
     array_memo.shared_by_tests = True
     memo.array_memo = array_memo
+
+
+def shared_call(fn, name: str):
+    """``fn`` (a pure function of picklable arguments) computed once per test run for the
+    processes that share :data:`ENV`, keyed by ``name`` and the pickle of its arguments
+    (arguments that pickle alike are equal; ones that pickle differently are only computed
+    again).  The warnings ``fn`` issued are recorded with its result and issued again, in
+    order, by every call that reads it, so a caller sees the warnings and the value of a
+    call of its own.  An exception is raised, not stored."""
+
+    @functools.wraps(fn)
+    def call(*args, **kwargs):
+        root = folder()
+        if root is None:
+            return fn(*args, **kwargs)
+        blob = io.BytesIO()
+        try:
+            _pickler(blob).dump((name, args, sorted(kwargs.items())))
+        except (pickle.PicklingError, TypeError, AttributeError):
+            return fn(*args, **kwargs)
+
+        def compute():
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                value = fn(*args, **kwargs)
+            return value, [(w.message, w.category, w.filename, w.lineno) for w in caught]
+
+        value, issued = _stored(root, "call-" + hashlib.sha256(blob.getvalue()).hexdigest(),
+                                compute)
+        for message, category, filename, lineno in issued:
+            warnings.warn_explicit(message, category, filename, lineno)
+        return value
+
+    call.shared_by_tests = True
+    return call
+
+
+def share_diagnose() -> None:
+    """From now on ``stripcoef.diagnose.pipeline.diagnose`` (which ``stripcoef diagnose``
+    imports when it runs) is :func:`shared_call` of itself: the documentation's forked
+    commands (tests/_doc_commands.py) and tests/test_diagnose_written.py diagnose the
+    shipped sample with the same arguments (the tutorial's and diagnose.md's held-out
+    command), once per run.  Only those processes call it: the diagnose tests that change
+    the pipeline's functions (monkeypatch) keep their own calls."""
+    import stripcoef.diagnose.pipeline as pipeline
+
+    if not getattr(pipeline.diagnose, "shared_by_tests", False):
+        pipeline.diagnose = shared_call(pipeline.diagnose, "stripcoef.diagnose.pipeline.diagnose")

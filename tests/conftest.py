@@ -65,13 +65,18 @@ def shipped_model(name: str):
 
 @lru_cache(maxsize=None)
 def synthetic(effect, seed: int, **kw):
-    """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per worker
-    process for the tests that read the same log (a 240 s log is about 2-2.5 s of CPU to
-    simulate).  The log, prior and truth are shared: read them, do not change them (the log's
+    """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per test run
+    for the tests that read the same log, in whichever worker asks first
+    (tests/_shared_memo.py; a 240 s log is about 1 s of CPU to simulate) and kept in each
+    worker.  The log, prior and truth are shared: read them, do not change them (the log's
     columns are read-only arrays, so an in-place change fails where it happens)."""
-    from validation.synthetic import generate
+    def generate():
+        from validation.synthetic import generate
 
-    log, prior, truth = generate(effect, seed=seed, **kw)
+        return generate(effect, seed=seed, **kw)
+
+    log, prior, truth = _shared_memo.once(
+        ("synthetic", repr(effect), repr(seed), repr(sorted(kw.items()))), generate)
     for column in log.columns.values():
         column.flags.writeable = False
     return log, prior, truth
@@ -80,12 +85,16 @@ def synthetic(effect, seed: int, **kw):
 @lru_cache(maxsize=None)
 def synthetic_diagnosis(effect, seed: int, dof: str) -> dict:
     """``diagnose(log, prior, dof=dof).to_dict()`` of :func:`synthetic` ``(effect, seed)``
-    with the default settings, once per worker process for the tests that assert on the same
-    diagnosis (read it, do not change it)."""
-    from stripcoef.diagnose.pipeline import diagnose
+    with the default settings, once per test run for the tests that assert on the same
+    diagnosis (tests/test_diagnose_detection.py and test_diagnose_select.py, often on two
+    workers: tests/_shared_memo.py), kept in each worker (read it, do not change it)."""
+    def run():
+        from stripcoef.diagnose.pipeline import diagnose
 
-    log, prior, _ = synthetic(effect, seed)
-    return diagnose(log, prior, dof=dof).to_dict()
+        log, prior, _ = synthetic(effect, seed)
+        return diagnose(log, prior, dof=dof).to_dict()
+
+    return _shared_memo.once(("synthetic_diagnosis", repr(effect), repr(seed), dof), run)
 
 
 @pytest.fixture(scope="session")

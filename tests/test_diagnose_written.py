@@ -15,6 +15,7 @@ import json
 import numpy as np
 import pytest
 
+import stripcoef.diagnose.pipeline as pipeline
 from stripcoef import cli, samples
 from stripcoef.conventions import parse_dof
 from stripcoef.diagnose.calibrate import SHARED_TIMING, bounds_hit
@@ -28,6 +29,8 @@ from stripcoef.export import write_export
 from stripcoef.logfile import read_log
 from stripcoef.modelfile import load_model
 from validation.synthetic import generate
+
+import _shared_memo
 
 REL = 1e-9
 
@@ -69,7 +72,13 @@ def run(request, tmp_path_factory):
     import contextlib
     import io
     buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
+    # diagnose() once per run for the arguments the documentation's commands also run (the
+    # tutorial's is sample-surge, diagnose.md's held-out check sample-surge-holdout:
+    # tests/_shared_memo.py), its warnings issued again
+    with contextlib.redirect_stdout(buf), pytest.MonkeyPatch.context() as mp:
+        mp.setattr(pipeline, "diagnose",
+                   _shared_memo.shared_call(pipeline.diagnose,
+                                            "stripcoef.diagnose.pipeline.diagnose"))
         rc = cli.main(["diagnose", log_path, "--vehicle", prior_path, "--no-resimulate",
                        "--json", "--out", str(out), "--report", str(report), *extra])
     assert rc == 0

@@ -1,7 +1,10 @@
 """tests/_shared_memo.py: a memoised hull function's result computed once per test run and
 read back bit for bit by the run's other processes; without the shared folder, a plain call."""
 
+import warnings
+
 import numpy as np
+import pytest
 
 import _shared_memo
 
@@ -82,3 +85,43 @@ def test_a_store_that_cannot_be_written_leaves_the_value_unshared(tmp_path, monk
     calls = []
     assert _shared_memo.shared(_level(calls))(np.ones(2), 2.0)[1][0] == 2
     assert _shared_memo.once(("x",), lambda: 3) == 3 and len(calls) == 1
+
+
+def test_a_shared_call_reads_the_value_and_issues_the_warnings_again(tmp_path, monkeypatch):
+    """``shared_call`` (the diagnoses the documentation's commands share): a second caller
+    with the same arguments reads the first one's value (read-only mappings included) and
+    gets its warnings, in order; other arguments are computed; an exception is not stored."""
+    from types import MappingProxyType
+
+    monkeypatch.setenv(_shared_memo.ENV, str(tmp_path / "shared"))
+    calls = []
+
+    def fn(x, *, scale=1.0):
+        calls.append(x)
+        if x < 0:
+            raise ValueError("negative")
+        warnings.warn(f"first {x}", UserWarning)
+        warnings.warn("second", RuntimeWarning)
+        return {"view": MappingProxyType({"x": x * scale}), "a": np.arange(3.0) * x}
+
+    first = _shared_memo.shared_call(fn, "fn")             # as in one process
+    second = _shared_memo.shared_call(fn, "fn")            # in another
+    with warnings.catch_warnings(record=True) as w1:
+        warnings.simplefilter("always")
+        a = first(2.0, scale=3.0)
+    with warnings.catch_warnings(record=True) as w2:
+        warnings.simplefilter("always")
+        b = second(2.0, scale=3.0)
+    assert calls == [2.0]
+    assert isinstance(b["view"], MappingProxyType) and b["view"]["x"] == a["view"]["x"] == 6.0
+    assert b["a"].tobytes() == a["a"].tobytes()
+    seen = [[(type(w.message), str(w.message)) for w in ws] for ws in (w1, w2)]
+    assert seen[0] == seen[1] == [(UserWarning, "first 2.0"), (RuntimeWarning, "second")]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        second(2.0, scale=4.0)                             # another argument: computed
+    assert calls == [2.0, 2.0]
+    for _ in range(2):
+        with pytest.raises(ValueError, match="negative"):
+            second(-1.0)
+    assert calls == [2.0, 2.0, -1.0, -1.0]
