@@ -293,7 +293,7 @@ def _joint_cost(cfgs: dict, sigmas: dict, eff, value) -> float:
 
 
 def joint_profile(eff, cfgs: dict, sigmas: dict, d0: str) -> tuple[float, float, float]:
-    """``(value, cost, std)`` of ``eff``'s one parameter profiled jointly over the DOFs'
+    r"""``(value, cost, std)`` of ``eff``'s one parameter profiled jointly over the DOFs'
     configurations ``cfgs`` (:func:`_joint_cost`): the grid then Brent
     (:func:`~stripcoef.diagnose.fit.grid_minimum`) on ``d0``'s grid; its sd from the cost's
     curvature, :math:`\sqrt{2/S''}` [s] (the cost is minus twice a log-likelihood, so half
