@@ -343,14 +343,26 @@ def _term(data: WindowData, dof: int, eff, hyper) -> _Term:
         return hit[1]
     off, c = eff.design(data, dof, hyper)
     n = c.shape[1]
-    sd = eff.prior_sd(data, dof, hyper) if hasattr(eff, "prior_sd") else np.full(n, np.inf)
-    lo = eff.lower_bounds(data, dof, hyper) if hasattr(eff, "lower_bounds") \
-        else np.full(n, -np.inf)
+    # the base rules of an effect's prior sd and bounds ask for the design's width: given
+    # here, so that the design (a pass over the log) is not computed twice more
+    sized = {"ncols": n}
+    sd = eff.prior_sd(data, dof, hyper, **_sized(eff, "prior_sd", sized)) \
+        if hasattr(eff, "prior_sd") else np.full(n, np.inf)
+    lo = eff.lower_bounds(data, dof, hyper, **_sized(eff, "lower_bounds", sized)) \
+        if hasattr(eff, "lower_bounds") else np.full(n, -np.inf)
     up = eff.upper_bounds(data, dof, hyper) if hasattr(eff, "upper_bounds") \
         else np.full(n, np.inf)
     term = _Term(off, c, np.asarray(sd, float), np.asarray(lo, float), np.asarray(up, float))
     cache[key] = (eff, term)
     return term
+
+
+def _sized(eff, method: str, sized: dict) -> dict:
+    """``sized`` when ``eff``'s ``method`` is the base rule of :class:`Effect` (which takes
+    the design's width), else no keyword (an effect's own rule)."""
+    from stripcoef.effects.base import Effect
+
+    return sized if getattr(type(eff), method, None) is getattr(Effect, method) else {}
 
 
 class _Nuisance:

@@ -109,9 +109,16 @@ class BatchRightHandSide:
 
     :math:`C_{RB}(\nu)\nu + C_A(\nu)\nu + D(\nu)\nu` of every segment by
     :meth:`stripcoef.model.HydroModel.velocity_forces` (Fossen 2011, eq. 7.190; no current in
-    a replay, so :math:`\nu_r = \nu`)."""
+    a replay, so :math:`\nu_r = \nu`).
 
-    def __init__(self, model, hooks=None, terms=None):
+    The model's effects that are not held, in the model's order: ``batch`` holds, per
+    effect, its law for all segments at once (an effect's ``batch_force_law``, called with
+    the times, ``rows`` the sample each segment holds and ``last`` the last sample of its
+    input history, both set by the caller) or None, where ``terms`` (per segment, a list
+    with a scalar force law at that place) and ``hooks`` (per segment, the hook of its
+    current sample) give it segment by segment. Without ``batch`` every place is scalar."""
+
+    def __init__(self, model, hooks=None, terms=None, batch=None):
         self.model = model
         self.m_inv_t = np.linalg.inv(model.mass_matrix).T
         # g(eta) is linear in the down axis k (restoring_from_down): g = k G, G (3, 6) its
@@ -122,23 +129,30 @@ class BatchRightHandSide:
                                            r_b=tuple(map(float, model.r_b))).T
         self.terms = terms or []     # per segment: a list of scalar force laws
         self.hooks = hooks           # per segment: the hook of the current sample
-        self.tau = None
+        self.batch = list(batch or [])
+        self.tau = self.rows = self.last = None
 
     def __call__(self, times, x):
         quat, nu = x[:, 3:7], x[:, 7:]
         rmat = _quat_matrices(quat)
         force = self.tau - self.model.velocity_forces(nu) - rmat[:, 2] @ self.g_table
-        if any(self.terms):
-            phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
-            theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
-            psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
-            eta = np.column_stack([x[:, :3], phi, theta, psi])
+        places = self.batch or [None] * max((len(t) for t in self.terms), default=0)
+        eta = None
+        for p, law in enumerate(places):
+            if law is not None:          # all segments at once, the same numbers
+                force += law(times, self.rows, self.last)
+                continue
+            if eta is None:
+                phi = np.arctan2(rmat[:, 2, 1], rmat[:, 2, 2])
+                theta = np.arcsin(np.clip(-rmat[:, 2, 0], -1.0, 1.0))
+                psi = np.arctan2(rmat[:, 1, 0], rmat[:, 0, 0])
+                eta = np.column_stack([x[:, :3], phi, theta, psi])
+                when = times.tolist()
             # rows as lists of views, the times as floats: one indexing per segment
-            for laws, hook, t_s, eta_s, nu_s, f_s in zip(self.terms, self.hooks,
-                                                        times.tolist(), eta, nu, force):
+            for laws, hook, t_s, eta_s, nu_s, f_s in zip(self.terms, self.hooks, when, eta,
+                                                        nu, force):
                 hook["nu_r"] = nu_s              # no current in a replay: nu_r = nu
-                for law in laws:
-                    f_s += law(t_s, eta_s, nu_s, hook)
+                f_s += laws[p](t_s, eta_s, nu_s, hook)
         out = np.empty_like(x)
         out[:, :3] = np.einsum("sij,sj->si", rmat, nu[:, :3])
         out[:, 3:7] = (nu[:, 3:, None] * quat[:, None, :]).reshape(-1, 12) @ _QUAT_RATE
@@ -195,7 +209,7 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     delay) read the input history from the log's first sample: their state at a segment's
     start is the one the logged inputs before it set (a first-order lag of the logged
     commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input."""
-    from stripcoef.effects.laws import effect_force_terms
+    from stripcoef.effects.laws import effect_entries
     from stripcoef.simulate import InputSampler, initial_state, state_vector
 
     t = np.asarray(log["t"], float)
@@ -210,27 +224,45 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     out = np.empty((len(bounds), int(lengths.max()), 6))
     out[:, 0] = x[:, 7:]
     terms = hooks = held = None
+    batch, held_batch, scalar = [], [], False
     if history:
-        # each segment its own laws (a lag has a state); those of held effects
-        # (Effect.held: constant between samples) evaluated once per sample, the others at
-        # every evaluation of the right-hand side
-        laws = [effect_force_terms(model) for _ in bounds]
-        terms = [[law for eff, law in row if not eff.held] for row in laws]
-        held = [[law for eff, law in row if eff.held] for row in laws]
         names = sampler.names
         thrust_all = (np.column_stack([np.asarray(th.thrust(sampler.cmd[:, j]), float)
                                        .reshape(-1) for j, th in enumerate(sampler.thrusters)])
                       if sampler.nthr else np.zeros((t.size, 0)))
         alloc = sampler.alloc
+        # the laws of all segments at once where the effect has them (the same numbers as
+        # its scalar law, Effect.batch_force_law), else each segment its own scalar laws (a
+        # lag has a state); those of held effects (Effect.held: constant between samples)
+        # evaluated once per sample, the others at every evaluation of the right-hand side
+        entries = effect_entries(model)
+        shared = {"t": t, "tau": tau_all, "allocation": alloc,
+                  "thrust": thrust_all if sampler.nthr and model.thrusters else None}
+        unique = len(set(names)) == len(names)
+        made = [eff.batch_force_law(params, dof, shared)
+                if unique and hasattr(eff, "batch_force_law") else None
+                for eff, dof, params in entries]
+        batch = [g for (eff, _, _), g in zip(entries, made) if not eff.held]
+        held_batch = [g for (eff, _, _), g in zip(entries, made) if eff.held]
+        scalar = any(g is None for g in made)
+        if scalar:
+            laws = [[None if g is not None else eff.force_law(params, dof)
+                     for (eff, dof, params), g in zip(entries, made)] for _ in bounds]
+            terms = [[law for (eff, _, _), law in zip(entries, row) if not eff.held]
+                     for row in laws]
+            held = [[law for (eff, _, _), law in zip(entries, row) if eff.held]
+                    for row in laws]
         hooks = [None] * len(bounds)
-    f = BatchRightHandSide(model, hooks, terms)
+    f = BatchRightHandSide(model, hooks, terms, batch)
     rtol, atol = tolerances
     ds = 1.0
+    ends = starts + lengths - 1                 # the last sample of each segment's history
     for k in range(int(lengths.max()) - 1):
         act = np.nonzero(lengths > k + 1)[0]
         rows = starts[act] + k
         f.tau = tau_all[rows]
-        if history:
+        f.rows, f.last = rows, ends[act]
+        if scalar:
             f.terms = [terms[s] for s in act]
             f.hooks = [{"commands": dict(zip(names, sampler.cmd[r])),
                         "thrust": dict(zip(names, thrust_all[r])), "tau": tau_all[r],
@@ -244,11 +276,14 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                             sampler.chan_names, sampler.chan_series[r])}
                             if sampler.chan_names else {})}
                        for s, r in zip(act, rows)]
+        for p, g in enumerate(held_batch):      # the held laws, in the model's order
+            if g is not None:
+                f.tau = f.tau + g(None, rows, f.last)
+                continue
             for j, (s, r) in enumerate(zip(act, rows)):
                 hook = f.hooks[j]
-                hook["nu_r"] = x[s, 7:]
-                for law in held[s]:          # the state is not read by a held law
-                    f.tau[j] = f.tau[j] + law(t[r], np.zeros(6), x[s, 7:], hook)
+                hook["nu_r"] = x[s, 7:]          # the state is not read by a held law
+                f.tau[j] = f.tau[j] + held[s][p](t[r], np.zeros(6), x[s, 7:], hook)
         h = t[rows + 1] - t[rows]
         got = integrate_interval(f, t[rows], h, x[act], rtol, atol, ds)
         if got is None:

@@ -112,17 +112,21 @@ class Effect:
         nuis = self.nuisance(data, dof)
         return np.full(0 if nuis is None else nuis.shape[1], np.inf)
 
-    def prior_sd(self, data, dof, hyper=None) -> np.ndarray:
-        """Prior standard deviations of all columns of :meth:`design` (inf = free)."""
-        ncols = self.design(data, dof, hyper)[1].shape[1]
+    def prior_sd(self, data, dof, hyper=None, *, ncols=None) -> np.ndarray:
+        """Prior standard deviations of all columns of :meth:`design` (inf = free);
+        ``ncols``: their number, when the caller has the design already."""
+        if ncols is None:
+            ncols = self.design(data, dof, hyper)[1].shape[1]
         sd = self.nuisance_sd(data, dof)
         return np.concatenate([sd, np.full(ncols - sd.size, np.inf)])
 
-    def lower_bounds(self, data, dof, hyper=None) -> np.ndarray:
+    def lower_bounds(self, data, dof, hyper=None, *, ncols=None) -> np.ndarray:
         """Lower bounds of all columns of :meth:`design`: :meth:`nuisance_lower` for the
         nuisance columns, none (-inf) for the effect's own (an effect with bounds of its own
-        overrides this and keeps the nuisance bounds first)."""
-        ncols = self.design(data, dof, hyper)[1].shape[1]
+        overrides this and keeps the nuisance bounds first); ``ncols`` as in
+        :meth:`prior_sd`."""
+        if ncols is None:
+            ncols = self.design(data, dof, hyper)[1].shape[1]
         low = self.nuisance_lower(data, dof)
         return np.concatenate([low, np.full(ncols - low.size, -np.inf)])
 
@@ -163,9 +167,17 @@ class Effect:
     def window_force(self, data, params: dict, dof: int) -> np.ndarray:
         """Window mean of the effect's force in ``dof`` along the log [N or N m], (m,): the
         force law evaluated at every sample (the log's state and inputs), averaged as a held
-        input (:attr:`input_driven`) or by the trapezoidal rule."""
-        law = self.force_law(params, dof)
+        input (:attr:`input_driven`) or by the trapezoidal rule. A held effect with a law for
+        many samples at once (``batch_force_law``, the same numbers) evaluates it at all
+        samples in one call."""
         names = [th.name for th in data.model.thrusters]
+        if self.held and hasattr(self, "batch_force_law") and len(set(names)) == len(names):
+            law = self.batch_force_law(params, dof, {
+                "t": data.t, "tau": data.tau, "allocation": data.alloc,
+                "thrust": data.thrust if names else None})
+            f = np.array(law(None, np.arange(data.t.size), None)[:, dof], float)
+            return data.mean_held(f) if self.input_driven else data.mean(f)
+        law = self.force_law(params, dof)
         f = np.zeros(data.t.size)
         for n in range(data.t.size):
             cmd = {} if data.commands is None else dict(zip(names, data.commands[n]))

@@ -188,6 +188,12 @@ class BuoyancyOffset(Effect):
         e = params["b"] * _unit_vec(dof)
         return lambda time, eta, nu, inputs: e
 
+    def batch_force_law(self, params, dof, history):
+        """:meth:`force_law` for many segments of one log at once (the free simulations of
+        :mod:`stripcoef.diagnose.freesim`): g(times, rows (S,), last) -> (S, 6) [N, N m]."""
+        e = params["b"] * _unit_vec(dof)
+        return lambda times, rows, last: np.broadcast_to(e, (len(rows), 6))
+
 
 class Current(Effect):
     r"""A constant water current, so drag and added-mass forces act on the relative velocity.

@@ -118,6 +118,12 @@ def effect_forces(model) -> list:
 def effect_force_terms(model) -> list:
     """(effect, force law) of each of a model's effects that is not native
     (:func:`effect_forces`, with the effect, e.g. to ask whether it is :attr:`Effect.held`)."""
+    return [(eff, eff.force_law(params, dof)) for eff, dof, params in effect_entries(model)]
+
+
+def effect_entries(model) -> list:
+    """(effect, dof or None for "all", parameters) of each of a model's effects that is not
+    native, in the model's order (:func:`effect_force_terms` makes their force laws)."""
     out = []
     for k, entry in enumerate(model.effects):
         if not isinstance(entry, Mapping) or "name" not in entry:
@@ -127,7 +133,7 @@ def effect_force_terms(model) -> list:
         if eff.native:
             continue
         dof, params = _entry(eff, entry, k)
-        out.append((eff, eff.force_law(params, dof)))
+        out.append((eff, dof, params))
     return out
 
 

@@ -139,6 +139,28 @@ class ThrustAsymmetry(Effect):
             return (kp * pos + kn * neg) * e
         return f
 
+    def batch_force_law(self, params, dof, history):
+        r""":meth:`force_law` for many segments of one log at once (the free simulations of
+        :mod:`stripcoef.diagnose.freesim`), the same numbers: ``history`` holds the log's
+        ``tau`` (n, 6) [N, N m], ``thrust`` (n, k) [N] (the model's thrusters in order, or
+        None) and ``allocation`` (6, k); returns g(times, rows (S,), last) -> (S, 6)
+        [N, N m] at the samples ``rows``."""
+        kp, kn = params["eta_forward"] - 1.0, params["eta_backward"] - 1.0
+        e = _unit_vec(dof)
+        thrust, tau = history.get("thrust"), history["tau"]
+        b = history["allocation"][dof]
+
+        def g(times, rows, last):
+            if thrust is not None:
+                tk = thrust[rows]
+                pos = np.sum(np.where(tk >= 0, b * tk, 0.0), axis=1)
+                neg = np.sum(np.where(tk < 0, b * tk, 0.0), axis=1)
+            else:
+                fi = tau[rows, dof]
+                pos, neg = np.maximum(fi, 0.0), np.minimum(fi, 0.0)
+            return (kp * pos + kn * neg)[:, None] * e
+        return g
+
 
 
 class Deadband(Effect):
@@ -189,10 +211,12 @@ class Deadband(Effect):
         return cands
 
     def offset(self, data, dof, delta):
-        act = data.acting(dof)
-        fk = data.thruster_force(dof)[:, act]
-        dead = np.abs(data.commands[:, act]) <= delta
-        return -data.mean_held(np.where(dead, fk, 0.0).sum(axis=1))
+        # the acting thrusters' forces and command magnitudes: the same for every threshold
+        # the search tries, so taken once per window data
+        fk, size = data.cached(("deadband_parts", dof), lambda: (
+            data.thruster_force(dof)[:, data.acting(dof)],
+            np.abs(data.commands[:, data.acting(dof)])))
+        return -data.mean_held(np.where(size <= delta, fk, 0.0).sum(axis=1))
 
     def own_design(self, data, dof, hyper=None):
         delta = 0.0 if hyper is None else float(np.atleast_1d(hyper)[0])
@@ -301,6 +325,15 @@ class ThrustEffectiveness(Effect):
         k = params["scale"] - 1.0
         e = np.ones(6) if dof is None else _unit_vec(dof)
         return lambda time, eta, nu, inputs: k * np.asarray(inputs["tau"], float) * e
+
+    def batch_force_law(self, params, dof, history):
+        r""":meth:`force_law` for many segments of one log at once (as
+        :meth:`ThrustAsymmetry.batch_force_law`): g(times, rows (S,), last) -> (S, 6)
+        [N, N m], :math:`(s - 1)\tau` at the samples ``rows``."""
+        k = params["scale"] - 1.0
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+        tau = history["tau"]
+        return lambda times, rows, last: k * tau[rows] * e
 
 
 

@@ -207,6 +207,42 @@ class ThrusterLag(_TimedInputEffect):
             return (y - u) * e
         return f
 
+    def batch_force_law(self, params, dof, history):
+        r""":meth:`force_law` for many segments of one log at once (the free simulations of
+        :mod:`stripcoef.diagnose.freesim`), the same numbers: the lag state
+        :math:`y_{j+1} = \tau_j + (y_j - \tau_j)e^{-\Delta t_j/T_l}` from the log's first
+        sample, :math:`y_0 = \tau_0`, is the same for every segment, so it is computed once
+        per sample (the recursion and the rounding of :meth:`force_law`) instead of once per
+        segment from the log's start, and once for the lag of every DOF (one time constant).
+        ``history``: ``t`` (n,) [s] and ``tau`` (n, 6) [N, N m] of the log, and a dict that
+        the laws of one simulation share. Returns g(times (S,), rows (S,), last (S,)) ->
+        (S, 6) [N, N m]: segment s at time ``times[s]`` [s], holding the input of sample
+        ``rows[s]``, its input history ending at sample ``last[s]``."""
+        tc = params["time_constant"]
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+        t, taus = history["t"], history["tau"]
+        shared = history.setdefault(("thruster_lag", tc), {"at": None})
+        if "y" not in shared:
+            y = np.empty((t.size, 6))
+            y[0] = np.array(taus[0], float)
+            for j in range(t.size - 1):          # force_law's recursion, sample by sample
+                y[j + 1] = taus[j] + (y[j] - taus[j]) * math.exp(-(t[j + 1] - t[j]) / tc)
+            shared["y"] = y
+        y = shared["y"]
+
+        def g(times, rows, last):
+            at = shared["at"]
+            if at is None or at[0] is not times or at[1] is not rows:
+                # the lag of every DOF at these times: once per evaluation
+                k = np.minimum(np.maximum(np.searchsorted(t, times, side="right") - 1, 0),
+                               last)
+                decay = np.array([math.exp(-max(tm - tk, 0.0) / tc)
+                                  for tm, tk in zip(times.tolist(), t[k].tolist())])
+                u = taus[rows]
+                shared["at"] = at = (times, rows, u + (y[k] - u) * decay[:, None] - u)
+            return at[2] * e
+        return g
+
 
 class ActuationDelay(_TimedInputEffect):
     r"""A pure delay between the logged command and the force it produces.
@@ -249,5 +285,24 @@ class ActuationDelay(_TimedInputEffect):
             k = min(max(int(np.searchsorted(t, time - d, side="right")) - 1, 0), t.size - 1)
             return (np.asarray(taus[k], float) - np.asarray(inputs["tau"], float)) * e
         return f
+
+    def batch_force_law(self, params, dof, history):
+        r""":meth:`force_law` for many segments of one log at once (as
+        :meth:`ThrusterLag.batch_force_law`, the same numbers, once per evaluation for the
+        delay of every DOF): g(times (S,), rows (S,), last (S,)) -> (S, 6) [N, N m],
+        :math:`\tau(t - d) - \tau(t)` of each segment."""
+        d = params["delay"]
+        e = np.ones(6) if dof is None else _unit_vec(dof)
+        t, taus = history["t"], history["tau"]
+        shared = history.setdefault(("actuation_delay", d), {"at": None})
+
+        def g(times, rows, last):
+            at = shared["at"]
+            if at is None or at[0] is not times or at[1] is not rows:
+                k = np.minimum(np.maximum(np.searchsorted(t, times - d, side="right") - 1, 0),
+                               last)
+                shared["at"] = at = (times, rows, taus[k] - taus[rows])
+            return at[2] * e
+        return g
 
 

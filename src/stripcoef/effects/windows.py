@@ -160,10 +160,18 @@ class WindowData:
         return self._cache[key]
 
     # window operators -----------------------------------------------------
+    def _dt(self) -> np.ndarray:
+        """The sampling intervals, np.diff(t) (n - 1,) [s], computed once (read-only)."""
+        def make():
+            dt = np.diff(self.t)
+            dt.flags.writeable = False
+            return dt
+        return self.cached("dt", make)
+
     def mean(self, f) -> np.ndarray:
         """Trapezoidal window mean of a sampled state function (n,) or (n, c)."""
         f = np.asarray(f, dtype=float)
-        dt = np.diff(self.t)
+        dt = self._dt()
         seg = 0.5 * (f[1:] + f[:-1]) * (dt if f.ndim == 1 else dt[:, None])
         cum = np.concatenate([np.zeros((1,) + f.shape[1:]), np.cumsum(seg, axis=0)])
         return (cum[self.i1] - cum[self.i0]) / (self.T if f.ndim == 1 else self.T[:, None])
@@ -171,7 +179,7 @@ class WindowData:
     def mean_held(self, f) -> np.ndarray:
         """Window mean of a zero-order-hold input (n,) or (n, c): exact for held inputs."""
         f = np.asarray(f, dtype=float)
-        dt = np.diff(self.t)
+        dt = self._dt()
         seg = f[:-1] * (dt if f.ndim == 1 else dt[:, None])
         cum = np.concatenate([np.zeros((1,) + f.shape[1:]), np.cumsum(seg, axis=0)])
         return (cum[self.i1] - cum[self.i0]) / (self.T if f.ndim == 1 else self.T[:, None])
@@ -248,10 +256,16 @@ class WindowData:
         return self.cached(("rate_noise_variance", dof), make)
 
     def thruster_force(self, dof: int):
-        """Per-sample generalized force in ``dof`` from each thruster (n, k), or None."""
+        """Per-sample generalized force in ``dof`` from each thruster (n, k), or None
+        (computed once per DOF, read-only)."""
         if self.thrust is None:
             return None
-        return self.thrust * self.alloc[dof][None, :]
+
+        def make():
+            fk = self.thrust * self.alloc[dof][None, :]
+            fk.flags.writeable = False
+            return fk
+        return self.cached(("thruster_force", dof), make)
 
     def acting(self, dof: int, tol: float = 1e-9) -> list:
         """Indices of thrusters that act in ``dof``."""
