@@ -196,3 +196,27 @@ def test_bounds_hit_lists_an_effect_written_at_a_bound():
         "at_bound": {"thrust_effectiveness": "lower"}}])
     hits = bounds_hit(prior, cal)
     assert "0.05 at the lower bound" in hits["pitch"]["thrust_effectiveness"]
+
+
+def test_a_report_asked_after_the_budget_deadline_is_written(monkeypatch):
+    """The report's residual curves refit the stored configurations: they ran under the
+    diagnosis's own budget, a deadline 300 s after the call began, so a report asked later
+    (a notebook, a shared result, a long log's report after 290 s of diagnosing) stopped with
+    'over its time budget'. The figure's fits are not the diagnosis's: no deadline."""
+    import warnings
+
+    import stripcoef.diagnose.settings as settings
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.logfile import read_log
+    from stripcoef.modelfile import load_model
+
+    log = read_log(samples.path("rov_tether.csv"))
+    model = load_model(samples.path("rov_prior.json"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = diagnose(log, model, dof="surge", resimulate=False, time_limit=300.0)
+    real = settings.time.monotonic
+    monkeypatch.setattr(settings.time, "monotonic", lambda: real() + 1000.0)
+    t, curves = result.residual_curves("surge")
+    assert [label for label, _ in curves][:2] == ["prior", "calibrated"]
+    assert all(np.all(np.isfinite(c)) and len(c) == len(t) for _, c in curves)

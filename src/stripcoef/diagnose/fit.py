@@ -242,10 +242,11 @@ class _Config:
                           and (self.cal_names is None or self.cal_names[:1] == ["M"]))
         self.terms = terms  # list of (effect, hyper)
 
-    def with_terms(self, terms) -> _Config:
-        """The same calibration with the terms ``terms`` (a new configuration)."""
+    def with_terms(self, terms, *, budget: Budget | None = None) -> _Config:
+        """The same calibration with the terms ``terms`` (a new configuration), under
+        ``budget`` (None: this configuration's)."""
         return _Config(self.data, self.dof, self.cal, list(terms), settings=self.settings,
-                       budget=self.budget)
+                       budget=self.budget if budget is None else budget)
 
     def hyper_terms(self, hyper_override=None):
         """(effect, hyper) of each term, the last one's hyper replaced by ``hyper_override``

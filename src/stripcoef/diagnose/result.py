@@ -16,6 +16,7 @@ import numpy as np
 from stripcoef.conventions import DOF
 from stripcoef.diagnose.fit import _Config, _fit
 from stripcoef.diagnose.priors import ADDED_MASS_BAND_Z
+from stripcoef.diagnose.settings import UNLIMITED
 from stripcoef.model import frozen_mapping, plain
 
 
@@ -404,7 +405,9 @@ class Diagnosis:
         tw = 0.5 * (data.t[data.i0] + data.t[data.i1])
         curves = [("prior", fit.prior_residual)]
         for k in range(len(cfg.terms) + 1):
-            c = cfg.with_terms(cfg.terms[:k])
+            # a finished diagnosis's figure: its fits were under the budget of the call
+            # that made them, a deadline long past when a report asks for them later
+            c = cfg.with_terms(cfg.terms[:k], budget=UNLIMITED)
             label = "calibrated" if k == 0 else f"+ {cfg.terms[k - 1][0].name}"
             curves.append((label, _fit(c)["resid"]))
         return tw, curves
