@@ -48,7 +48,11 @@ judges itself without the BIC and held-out gain gates -- the release of a calibr
 coefficient (an added-mass error: its gate is the change from the prior in bands) -- must
 pass it too: the release is named only if it explains more of the residual than the
 calibration already did (issue 33: a clean VideoRay log, seed 531988, named a surge
-added-mass error 2.5 bands from the prior with a 1 % held-out gain).
+added-mass error 2.5 bands from the prior with a 1 % held-out gain). The one exception is
+the choice between such a release and a thrust scale that both explain an inertia change
+(:func:`~stripcoef.diagnose.select.diagnose_dof`): there the release, the simpler change,
+is judged by its change from the prior in bands, which its calibration may have made
+already (a record that failed only this gate carries ``_only_evidence``).
 
 Depends on: diagnose.compare, diagnose.heldout, identify (residual autocorrelation).
 """
@@ -138,6 +142,7 @@ def judge_family(trials: list, n_dofs: int = 1, alpha: float = ALPHA) -> None:
                 f"{ev['p_value']:.2g}, Holm-adjusted over {len(tested)} candidates "
                 f"{q:.2g} > {level:.2g})"]
             t["significant"] = False
+            t["_only_evidence"] = True      # every other gate passed
 
 
 def supported(t: dict, n_candidates: int, n_dofs: int = 1, alpha: float = ALPHA) -> bool:

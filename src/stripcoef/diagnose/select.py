@@ -318,7 +318,11 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             # inertia column is fitted by corrected least squares and so leaves the noise
             # term in its residual, which a noise-free column recovers: residual sizes do
             # not compare the two)
-            single = [t for t in good[1:] if t["mimics"] and t["band_excess"] is not None
+            # -- a release whose calibration already made most of the change passes every
+            # gate but the evidence beyond it (evidence.py): as the simpler alternative to
+            # the scale its test is its change in bands
+            single = [t for t in good[1:] + [t for t in trials if t.get("_only_evidence")]
+                      if t["mimics"] and t["band_excess"] is not None
                       and abs(t["band_excess"]) >= MIMIC_BANDS]
             if single:
                 ties = [best] + [t for t in ties if t is not single[0]]
