@@ -39,7 +39,7 @@ windows of a 2-5 minute log its squared-loss differences are heavy-tailed and it
 power (measured, issue 33, the BlueROV2 buoyancy-offset log of seed 432980, 120 s: a 0.42 N
 offset with a 57 % held-out gain had p = 0.0015, against 8e-13 for the likelihood ratio on
 its effective windows; with Holm over ten candidates and six DOFs that test named nothing
-on four of six logs with real effects; the held-out gain gate of
+on that log nor on the added-mass log 432984; the held-out gain gate of
 :func:`~stripcoef.diagnose.select._judge` stays).
 
 The test adds a gate; it removes none: a candidate must still pass the held-out gain, BIC,
