@@ -570,7 +570,7 @@ def _evaluate(cfg: _Config):
         len(np.atleast_1d(hyper)) if hyper is not None else 0)
     return {"full": full, "held_out_error": _rms(pred), "held_out_resid": pred,
             "error": _rms(full["resid"]), "bic": _bic(full["resid"], n_free),
-            "hyper": hyper}
+            "hyper": hyper, "n_free": n_free}
 
 
 def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAULTS,

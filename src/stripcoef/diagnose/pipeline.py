@@ -32,6 +32,11 @@ Steps, for each degree of freedom (issue 7):
      ``MIN_DELTA_BIC`` (Schwarz 1978; windows do not overlap, so residuals are close to
      independent and N is the number of windows),
    - a parameter of the effect is at least ``MIN_Z`` standard deviations from zero,
+   - its likelihood ratio, counted on the effective number of windows of the coloured
+     residual (Bretherton et al. 1999, eq. 31), is significant at 5 % after Holm's
+     adjustment over the step's candidates and, whole-log, Bonferroni's over the DOFs
+     (:mod:`.evidence`; issue 33: clean logs named effects the BIC and z of white
+     residuals let through),
    - its parameters are physically plausible (a drag is positive, an efficiency in (0.1, 3)),
    - an effect without a signature in this log (it only mimics a prior coefficient, e.g. a
      tether drag without a ``tether_length`` column looks like a larger D_Q) must also push

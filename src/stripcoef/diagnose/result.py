@@ -167,6 +167,11 @@ class Step(_Record):
         (:func:`~stripcoef.diagnose.select._competing`): each pair's likelihood-ratio tests,
         their Holm-adjusted p-values, the level, the effects a partner dominated, and the
         pair named together (``joint``), when there were competing effects
+    evidence : mapping, optional
+        The test of it against the model without it (:mod:`~stripcoef.diagnose.evidence`:
+        the likelihood ratio on the effective number of windows, its p-value, the
+        Holm-adjusted p-value, the level, the number of candidates; the paired held-out
+        test's p-value, recorded)
     """
 
     effect: str
@@ -195,6 +200,7 @@ class Step(_Record):
     kept: bool | None = _optional()
     selected_parameters: Mapping | None = _optional()
     comparison: Mapping | None = _optional()
+    evidence: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)

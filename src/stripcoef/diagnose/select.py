@@ -15,6 +15,7 @@ import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import folded_key
+from stripcoef.diagnose.evidence import judge_family, step_test, supported
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
                                     _Generic, _hyper_std, _identifiability, _Nuisance, _rms)
 from stripcoef.diagnose.priors import added_mass_bounds
@@ -222,6 +223,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
 
     steps, evaluated = [], []
     accepted_names = set()
+    n_dofs = len(siblings.configs) if siblings is not None else 1
     for step_index in range(settings.max_steps):
         trials = []
         for eff in track(library, desc=f"diagnose {DOF[dof]}: step {step_index + 1}, effects",
@@ -251,13 +253,16 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 if t["significant"]:
                     t["rejected_because"] += siblings.contradictions(t, dof)
                     t["significant"] = not t["rejected_because"]
+        # beyond chance: the effective windows, Holm over the step (evidence.py)
+        judge_family(trials, n_dofs)
         if not steps:
             evaluated += [{k: v for k, v in t.items() if not k.startswith("_")} for t in trials]
         good = [t for t in trials if t["significant"]]
         # competing effects (a pair that explains the same residual, a thrust scale with
         # the effect it competes with): compared in the model holding both
         competing = _competing(cfg, cur, trials, good, data, dof, cal_names, cal_sd, settings)
-        if competing is not None and competing["joint"] is not None:
+        if competing is not None and competing["joint"] is not None and all(
+                supported(t, len(trials), n_dofs) for t in competing["joint"]["steps"]):
             joint = competing["joint"]
             shape = _best_shape(cfg, cur, data, dof)
             free = any(not t["signature"] and t["_held"] for t in joint["steps"])
@@ -313,7 +318,11 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             # inertia column is fitted by corrected least squares and so leaves the noise
             # term in its residual, which a noise-free column recovers: residual sizes do
             # not compare the two)
-            single = [t for t in good[1:] if t["mimics"] and t["band_excess"] is not None
+            # -- a release whose calibration already made most of the change passes every
+            # gate but the evidence beyond it (evidence.py): as the simpler alternative to
+            # the scale its test is its change in bands
+            single = [t for t in good[1:] + [t for t in trials if t.get("_only_evidence")]
+                      if t["mimics"] and t["band_excess"] is not None
                       and abs(t["band_excess"]) >= MIMIC_BANDS]
             if single:
                 ties = [best] + [t for t in ties if t is not single[0]]
@@ -481,6 +490,7 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
             "band_excess": band_excess,
             "error_after": ev["error"], "held_out_error_after": ev["held_out_error"],
             "held_out_gain": gain, "delta_bic": dbic, "z": z,
+            "evidence": step_test(cur, ev, ev["n_free"] - cur["n_free"]),
             "significant": not reasons, "rejected_because": reasons, "_held": held is not None,
             "magnitude": eff.magnitude(params), "source": eff.source,
             "_cfg": cfg, "_ev": ev}
