@@ -99,9 +99,13 @@ def test_gains_of_a_fresh_truth_are_recovered_within_their_bands(vehicle):
     msg = f"seed {seed}: truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
     # within 3 posterior sd or the bench band of the maps, whichever is wider
     assert np.all(err <= np.maximum(3.0 * sd, THRUST_BAND)), msg
-    # and far closer than the file's maps (all 1): at most a quarter of their RMS error
+    # and far closer than the file's maps (all 1): at most a quarter of their RMS error,
+    # where the log can tell that much (the spread at least 12 RMS posterior sd, so that 3 sd
+    # fit inside a quarter of it: a fresh BlueROV2 truth with a spread of 0.07 and vertical
+    # gains known to 0.016 failed the quarter in 2 of 31 draws while every gain lay within
+    # 3 sd, measured)
     spread = np.sqrt(np.mean((want - 1.0) ** 2))
-    if spread > THRUST_BAND:
+    if spread > max(THRUST_BAND, 12.0 * np.sqrt(np.mean(sd ** 2))):
         assert np.sqrt(np.mean(err ** 2)) <= 0.25 * spread, msg
     # what the log determines is reported, in thruster weights
     assert fit.combinations and all(set(c["weights"]) == set(fit.names)
