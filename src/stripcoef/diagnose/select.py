@@ -4,7 +4,8 @@ nothing is significant; then the structure test of what remains (:mod:`.pipeline
 docstring, steps 3-5). Also which DOFs a log excites.
 
 Depends on: effects, identify (residual statistics), progress, diagnose.settings,
-diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key), diagnose.compare.
+diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key), diagnose.compare,
+diagnose.gainfree.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
+from stripcoef.diagnose import gainfree
 from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.evidence import judge_family, step_test, supported
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
@@ -248,6 +250,12 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
             trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
                                  settings))
+            alt = gainfree.variant(eff)   # the tether's test repeated with the gains free
+            if alt is not None and gainfree.needs_retest(trials[-1]):
+                a_cfg = cfg.with_terms(list(cfg.terms) + [(alt, None)])
+                a_ref = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Nuisance(alt), None)]))
+                trials[-1] = gainfree.with_retest(trials[-1], _judge(
+                    alt, a_cfg, _evaluate(a_cfg), a_ref, data, dof, cal_names, cal_sd, settings))
         if siblings is not None:     # whole-log: a thruster effect the other DOFs refute
             for t in trials:
                 if t["significant"]:

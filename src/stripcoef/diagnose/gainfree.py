@@ -1,0 +1,59 @@
+r"""The tether's signature tested with the thrust map's per-thruster gains free (issue 33).
+
+A tether is told from a change of the hull's own drag by its dependence on the paid-out
+length L (:class:`~stripcoef.effects.hydrodynamic.TetherDrag`; Hoerner 1965, ch. 3: drag per
+unit length of cable). A thrust map that is off (each thruster's gain g_k, Fossen 2011,
+sec. 11.2.1) leaves a residual that follows the drag balance, and so leans on
+:math:`L u|u|` as the speeds change along the log: it hides the tether or biases c_t. When the
+tether's test fails, the selection repeats it with those gains free in the reference and
+with the tether (:class:`~stripcoef.effects.hydrodynamic.TetherDragGainsFree`); the
+candidate is then significant when that test passes (held-out gain, BIC, z, the same
+thresholds) and the fit without the gains has no physical objection of its own. The step
+reports the repeated test's statistics (the selection compares them), and its ``signature``
+says so; the model it adds is the fit without the gains (its parameters refitted with the
+other steps, :func:`stripcoef.diagnose.select.diagnose_dof`, and written: the gains are
+not).
+
+Depends on: effects.
+"""
+
+from __future__ import annotations
+
+from stripcoef.effects.hydrodynamic import TetherDrag, TetherDragGainsFree
+
+#: The one instance of the repeated test's effect (frozen, as every effect)
+GAINS_FREE = TetherDragGainsFree()
+
+#: The rejections that are statistics of the test (the repeated test may answer them); any
+#: other (an implausible or pinned parameter, a physical problem) stands
+_STATISTICAL = ("held-out gain ", "delta BIC ", "z = ")
+
+
+def variant(eff):
+    """The effect whose test is repeated with the thrust gains free for ``eff``, or None."""
+    return GAINS_FREE if isinstance(eff, TetherDrag) and \
+        not isinstance(eff, TetherDragGainsFree) else None
+
+
+def needs_retest(trial: dict) -> bool:
+    """Whether a rejected candidate failed only on the test's statistics."""
+    reasons = trial["rejected_because"]
+    return bool(reasons) and all(r.startswith(_STATISTICAL) for r in reasons)
+
+
+def with_retest(trial: dict, retest: dict) -> dict:
+    """``trial`` (the fit without the gains) judged by ``retest`` (the same candidate with
+    the gains free, :func:`stripcoef.diagnose.select._judge`'s record): when the retest is
+    significant, its statistics (z, held-out gain, delta BIC, the errors after it, its
+    parameters, at the selection), which the selection compares with the other candidates
+    and the out-of-library shapes, with ``trial``'s model (``_cfg``, ``_ev``: the fit without
+    the gains, what is refitted and written) and released coefficients, and a signature text
+    that says so; else ``trial`` unchanged."""
+    if not retest["significant"]:
+        return trial
+    text = (f"{trial['signature']} (tested with each thruster's gain free: "
+            f"{', '.join(f'{k} = {v:.3g}' for k, v in retest['parameters'].items())}, "
+            f"z = {retest['z']:.1f}, held-out gain {100 * retest['held_out_gain']:.1f} %, "
+            f"delta BIC {retest['delta_bic']:.1f}; written without the gains)")
+    return {**retest, "effect": trial["effect"], "signature": text,
+            "released": trial["released"], "_cfg": trial["_cfg"], "_ev": trial["_ev"]}

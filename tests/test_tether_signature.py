@@ -1,0 +1,104 @@
+"""The tether's signature, its dependence on the paid-out length, tested again with the thrust
+map's per-thruster gains free when the test without them fails (``stripcoef.diagnose.gainfree``,
+issue 33): seeded known truths whose thrusters deliver other than the prior's map (a real
+vehicle's thrusters differ from their bench map; the independent benchmark draws each
+x U(0.75, 1.25)).
+"""
+
+import warnings
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import stripcoef
+from stripcoef.diagnose.gainfree import GAINS_FREE, variant
+from stripcoef.diagnose.pipeline import diagnose
+from stripcoef.effects.laws import get_effect
+from stripcoef.effects.windows import window_data
+from stripcoef.logfile import Log
+from validation.synthetic import generate, rov_model
+
+ROOT = Path(__file__).resolve().parent.parent
+#: the truth's thrust per unit of the prior's map, per thruster [-]
+GAINS = {"port": 0.8, "starboard": 1.2, "vertical": 1.0, "lateral": 1.0}
+
+
+def _log(effect, seed, duration=240.0):
+    """A log of the prior's vehicle whose thrusters deliver GAINS x the prior's map, and that
+    prior (the model the diagnosis is given)."""
+    prior = rov_model()
+    truth = replace(prior, thrusters=[
+        replace(th, eta_forward=th.eta_forward * GAINS[th.name],
+                eta_backward=th.eta_backward * GAINS[th.name]) for th in prior.thrusters])
+    log, _, known = generate(effect, seed, prior=truth, duration=duration)
+    return log, prior, known
+
+
+def test_retest_holds_one_gain_per_thruster_acting_in_the_dof():
+    log, prior, _ = _log(None, 1, duration=40.0)
+    assert variant(get_effect("tether_drag")) is GAINS_FREE
+    assert variant(GAINS_FREE) is None and variant(get_effect("current")) is None
+    data = window_data(log, prior)
+    # the written effect releases D_Q only
+    assert get_effect("tether_drag").nuisance(data, 0).shape == (data.n_windows, 1)
+    eff = GAINS_FREE
+    nuis = eff.nuisance(data, 0)
+    # D_Q, then port and starboard (the two thrusters that push in surge)
+    assert nuis.shape == (data.n_windows, 3)
+    acting = data.acting(0)
+    assert [prior.thrusters[k].name for k in acting] == ["port", "starboard"]
+    np.testing.assert_allclose(nuis[:, 1:].sum(axis=1), data.mean_held(data.tau[:, 0]),
+                               rtol=1e-12, atol=1e-12)
+    low = eff.nuisance_lower(data, 0)
+    assert low[0] == pytest.approx(-abs(prior.quadratic_damping[0, 0]))
+    np.testing.assert_allclose(low[1:], -0.9)
+    assert len(eff.prior_sd(data, 0)) == 4 and np.all(np.isinf(eff.prior_sd(data, 0)))
+    # without the length column there is no signature and no nuisance
+    no_length = Log({k: v for k, v in log.columns.items() if k != "tether_length"})
+    assert eff.nuisance(window_data(no_length, prior), 0) is None
+
+
+@pytest.mark.slow
+def test_tether_hidden_by_the_thrust_map_is_named_first_with_its_magnitude():
+    """The independent simulator's VideoRay-like vehicle, seed 12 (truth: every coefficient
+    family x U(0.75, 1.25), surge thrust 1.049 x the prior's map, c_t = 0.283): without the
+    retest the tether's test gave z = 2.1 and nothing was named; with the gains free z = 4.9,
+    and the tether written without them has c_t = 0.273."""
+    from validation.independent import generate as independent
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        prior = stripcoef.estimate(ROOT / "geometry" / "videoray_pro3.yaml")
+        log, truth = independent(prior.to_dict(), "tether_drag", 12, duration=300.0)
+        res = diagnose(log, prior, dof="surge").to_dict()
+    assert res["steps"] and res["steps"][0]["effect"] == "tether_drag"
+    assert "gain free" in res["steps"][0]["signature"]
+    got = res["steps"][0]["final_parameters"]["c_t"]
+    assert got == pytest.approx(truth.strength, rel=0.15)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="a tether found by the test without the gains is "
+                   "written with the c_t of that fit: the thrust map's error (0.8 and 1.2) "
+                   "biases it, 0.180 for a truth of 0.225 (the retest's fit, with the gains "
+                   "free, gives 0.226, but its gains are not written)")
+def test_tether_magnitude_when_the_thrust_map_is_off():
+    log, prior, known = _log("tether_drag", 2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof="surge").to_dict()
+    assert res["steps"] and res["steps"][0]["effect"] == "tether_drag"
+    got = res["steps"][0]["final_parameters"]["c_t"]
+    assert got == pytest.approx(known["magnitude"], rel=0.05)
+
+
+def test_no_tether_is_named_on_a_clean_log_with_the_thrust_map_off():
+    log, prior, _ = _log(None, 2, duration=120.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof="surge", effects=["tether_drag"]).to_dict()
+    assert not any(s["effect"] == "tether_drag" for s in res["steps"])
+    cand = {c["effect"]: c for c in res["per_dof"]["surge"]["candidates"]}["tether_drag"]
+    assert cand["signature"] == "dependence on tether_length"
+    assert not cand["significant"]
