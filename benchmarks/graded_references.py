@@ -63,7 +63,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from benchmarks.plate_graded import _merge, capytaine_eighth, eighth_box, graded_nodes  # noqa: E402
+from benchmarks.plate_graded import (_merge, capytaine_eighth, eighth_box,  # noqa: E402
+                                     graded_nodes, solve_added_mass)
 from validation.graded_bodies import read, references  # noqa: E402,F401  (re-exported)
 
 RHO = 1000.0
@@ -183,16 +184,7 @@ def capytaine_half(v, f, rotation):
     t0 = time.perf_counter()
     half = cpt.Mesh(vertices=v @ rot.T, faces=f)
     mesh = cpt.ReflectionSymmetricMesh(half=half, plane="xOz")
-    body = cpt.FloatingBody(mesh=mesh, dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)))
-    names = list(body.dofs)
-    problems = [cpt.RadiationProblem(body=body, radiating_dof=d, free_surface=np.inf,
-                                     omega=np.inf, rho=RHO) for d in names]
-    res = cpt.BEMSolver(method="direct").solve_all(problems, progress_bar=False)
-    a = np.zeros((6, 6))
-    for j, r in enumerate(res):
-        for i, d in enumerate(names):
-            a[i, j] = float(np.real(r.added_mass[d]))
-    a = 0.5 * (a + a.T)
+    a = solve_added_mass(mesh)
     t = np.zeros((6, 6))
     t[:3, :3] = t[3:, 3:] = rot.T                     # solve axes -> body axes (det +1)
     return t @ a @ t.T, 2 * len(f), time.perf_counter() - t0

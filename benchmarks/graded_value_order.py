@@ -77,22 +77,31 @@ def box_rows(paths=(BOXES, BLUFF)):
         counts, mats = list(info["panels"]), [np.asarray(m, float) for m in info["levels"]]
         vals = _values(counts, mats, float(info["formal_order"]))
         check = _library(vals, a)
-        d = np.sqrt(np.abs(np.diag(ref)))
-        for i in range(6):
-            for j in range(i, 6):
-                norm = d[i] * d[j]
-                if i != j and abs(ref[i, j]) < SIGNIFICANT * norm:
-                    continue
-                r = ref[i, j]
-                rows.append(dict(set="bluff box" if name.startswith(("box", "cube"))
-                                 else "bluff prism", shape=name, i=i, j=j, ref=r,
-                                 band=band[i, j] / norm, order=order[i, j], faces=faces[-1],
-                                 formal=info["formal_order"], panels=counts, check=check,
-                                 est=float(np.asarray(info["error"])[i, j]) / norm,
-                                 err={k: (v[i, j] - r) / norm for k, v in vals.items()},
-                                 stored=(rich[name][i, j] - r) / norm,
-                                 stored_fine=(fine[name][i, j] - r) / norm))
+        kind = "bluff box" if name.startswith(("box", "cube")) else "bluff prism"
+        for row, i, j, norm in _matrix_rows(kind, name, ref, band, order, faces,
+                                            float(info["formal_order"]), counts, check,
+                                            np.asarray(info["error"]), vals):
+            row.update(stored=(rich[name][i, j] - ref[i, j]) / norm,
+                       stored_fine=(fine[name][i, j] - ref[i, j]) / norm)
+            rows.append(row)
     return rows
+
+
+def _matrix_rows(kind, name, ref, band, order, faces, formal, counts, check, error, vals):
+    """``(row, i, j, norm)`` per diagonal term and significant coupling (at least
+    :data:`SIGNIFICANT` of the scale) of one shape: the model's values ``vals`` against the
+    graded reference ``ref``, relative to ``norm``, the reference's diagonal scale."""
+    d = np.sqrt(np.abs(np.diag(ref)))
+    for i in range(6):
+        for j in range(i, 6):
+            norm = d[i] * d[j]
+            if i != j and abs(ref[i, j]) < SIGNIFICANT * norm:
+                continue
+            yield (dict(set=kind, shape=name, i=i, j=j, ref=ref[i, j], band=band[i, j] / norm,
+                        order=order[i, j], faces=faces[-1], formal=formal, panels=counts,
+                        check=check, est=float(error[i, j]) / norm,
+                        err={o: (x[i, j] - ref[i, j]) / norm for o, x in vals.items()}),
+                   i, j, norm)
 
 
 def cad_rows(extrusions=EXTRUSIONS, recorded=None):
@@ -128,18 +137,9 @@ def cad_rows(extrusions=EXTRUSIONS, recorded=None):
         counts, mats, formal, value, error = rec[k]
         vals = _values(counts, mats, formal)
         check = _library(vals, value)
-        d = np.sqrt(np.abs(np.diag(ref)))
-        for i in range(6):
-            for j in range(i, 6):
-                norm = d[i] * d[j]
-                if i != j and abs(ref[i, j]) < SIGNIFICANT * norm:
-                    continue
-                rows.append(dict(set="CAD extrusion", shape=k, i=i, j=j, ref=ref[i, j],
-                                 band=band[i, j] / norm, order=order[i, j], faces=faces[-1],
-                                 formal=formal, panels=counts, check=check,
-                                 est=float(error[i, j]) / norm,
-                                 err={o: (x[i, j] - ref[i, j]) / norm
-                                      for o, x in vals.items()}))
+        rows += [row for row, *_ in _matrix_rows("CAD extrusion", k, ref, band, order, faces,
+                                                  formal, counts, check, np.asarray(error),
+                                                  vals)]
     return rows
 
 
