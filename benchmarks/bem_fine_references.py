@@ -58,15 +58,11 @@ def prepare(seed: int, count: int, out: Path, levels=LEVELS, max_faces: int | No
     remesh family (float64 vertices [m], int32 faces) to ``out/shape_KK.npz``; ``max_faces``
     the family's face cap (-1: 1.6 times the finest level's target; None: the remesher's
     default, as benchmarks.cad_shapes.bem_reference calls it)."""
-    from benchmarks.cad_shapes import FAMILIES, clean_surface, make_shape
+    from benchmarks.cad_shapes import clean_surface, drawn_shapes
     from stripcoef.hull.remesh import edge_for_panels, remesh_family
 
     out.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(seed)
-    for k in range(count):
-        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-        parts, what = make_shape(family, rng)
-        rng.uniform(), rng.uniform()                 # write_as_user's two draws
+    for k, family, parts, what in drawn_shapes(seed, count):
         surface = clean_surface(parts)
         v, f = np.asarray(surface.vertices, float), np.asarray(surface.faces)
         t0 = time.perf_counter()

@@ -165,6 +165,19 @@ def clean_surface(parts):
     return trimesh.boolean.union(parts, engine="manifold")
 
 
+def drawn_shapes(seed: int, count: int):
+    """``(k, family, parts, what)`` of the first ``count`` shapes of ``seed``, drawn exactly
+    as :func:`main` draws them: each shape's :func:`make_shape` draws, then
+    :func:`write_as_user`'s two (its file is not written), so that shape k is the stored
+    run's shape k."""
+    rng = np.random.default_rng(seed)
+    for k in range(count):
+        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
+        parts, what = make_shape(family, rng)
+        rng.uniform(), rng.uniform()                 # write_as_user's two draws
+        yield k, family, parts, what
+
+
 def write_as_user(parts, path_stem, rng):
     """The shape as a user has it: mm or m, OBJ with split vertices or STL. Returns (path,
     length_unit, description)."""

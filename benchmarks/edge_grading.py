@@ -46,14 +46,10 @@ OUTPUT = Path(__file__).parent / "data" / "edge_grading.md"
 
 def draw(seed=SEED, wanted=SHAPES):
     """{shape number: (family, description, vertices [m], faces)} as prepare draws them."""
-    from benchmarks.cad_shapes import FAMILIES, clean_surface, make_shape
+    from benchmarks.cad_shapes import clean_surface, drawn_shapes
 
-    rng = np.random.default_rng(seed)
     out = {}
-    for k in range(max(wanted) + 1):
-        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-        parts, what = make_shape(family, rng)
-        rng.uniform(), rng.uniform()                 # write_as_user's two draws
+    for k, family, parts, what in drawn_shapes(seed, max(wanted) + 1):
         if k in wanted:
             s = clean_surface(parts)
             out[k] = (family, what, np.asarray(s.vertices, float), np.asarray(s.faces))

@@ -251,15 +251,11 @@ def extrusions_of_seed(seed: int, count: int) -> dict:
     ``count`` shapes of ``seed`` of :mod:`benchmarks.cad_shapes`, drawn exactly as it draws
     them; polygon and height read back from the prism's vertices (its first k vertices are
     the bottom cap, local = global[:, inverse perm])."""
-    from benchmarks.cad_shapes import FAMILIES, make_shape
+    from benchmarks.cad_shapes import drawn_shapes
 
     perms = {2: [0, 1, 2], 0: [2, 0, 1], 1: [1, 2, 0]}
-    rng = np.random.default_rng(seed)
     out = {}
-    for k in range(count):
-        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-        parts, what = make_shape(family, rng)
-        rng.uniform(), rng.uniform()                 # write_as_user's two draws
+    for k, family, parts, what in drawn_shapes(seed, count):
         if family != "extrusion":
             continue
         g = np.asarray(parts[0].vertices, float)

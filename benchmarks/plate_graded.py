@@ -184,17 +184,10 @@ def plates_of_seed(seed: int, count: int) -> dict:
     """{shape index: (chord [m] along x, span [m] along y, thickness [m] along z)} of the
     plates among the first ``count`` shapes of ``seed``, drawn exactly as
     benchmarks.cad_shapes draws them (each plate a box about the origin)."""
-    from benchmarks.cad_shapes import FAMILIES, make_shape
+    from benchmarks.cad_shapes import drawn_shapes
 
-    rng = np.random.default_rng(seed)
-    out = {}
-    for k in range(count):
-        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-        parts, _ = make_shape(family, rng)
-        rng.uniform(), rng.uniform()                 # write_as_user's two draws
-        if family == "plate":
-            out[k] = tuple(float(x) for x in parts[0].extents)
-    return out
+    return {k: tuple(float(x) for x in parts[0].extents)
+            for k, family, parts, _ in drawn_shapes(seed, count) if family == "plate"}
 
 
 def extrapolated(rows):
