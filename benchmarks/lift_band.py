@@ -28,7 +28,8 @@ sidewash, with the appendages' trailing vortices and with the body's separated p
 an option outside the default model; writes nothing.
 ``--method stratford_panel``: ``body_lift: stratford_panel``, Stratford's criterion and the
 fins' stern flow on the axisymmetric panel solution's axial flow (an option of the library);
-``--panels N`` solves that flow on N meridian panels (the library's 400 otherwise).
+``--panels N`` solves that flow on N meridian panels (the library's 400 otherwise; placed on
+the C2 interpolant of the hull's offsets, converged: 20 Table 4 checks on 200-1600).
 Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford|stratford_panel] [--terms]
 [--surface-speed line|panel] [--sidewash] [--panels N]  (about 60 s; --sidewash about 2 min)
 """

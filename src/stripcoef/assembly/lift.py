@@ -62,7 +62,7 @@ from stripcoef.hull.lift import (
     turbulent_boundary_layer,
     TRANSITION_REYNOLDS,
 )
-from stripcoef.hull.axisymmetric import axial_surface_speed
+from stripcoef.hull.axisymmetric import axial_surface_speed, smooth_radius
 from stripcoef.hull.separation import stratford_separation
 from stripcoef.model import ControlSurface
 
@@ -439,8 +439,10 @@ def _stern_flow(vehicle, body, speed, viscosity):
                                   else viscosity)}
     s_nose, area = slender["s"], slender["area"]
     try:
+        rule = body[1]["method"]
         slender["layer"] = turbulent_boundary_layer(
-            s_nose, np.sqrt(area / np.pi), _surface_speed(body[1]["method"], s_nose, area),
+            s_nose, _layer_radius(rule, s_nose, area, hull),
+            _surface_speed(rule, s_nose, area, hull),
             speed=slender["speed"], viscosity=slender["viscosity"])
     except ValueError:        # the hull is shorter than the laminar run: no turbulent layer
         slender["layer"] = None
@@ -451,15 +453,34 @@ def _stern_flow(vehicle, body, speed, viscosity):
 STERN_FLOW_RULES = ("slender", "datcom", "stratford", "stratford_panel")
 
 
-def _surface_speed(rule: str, s, area) -> np.ndarray:
-    """U_e/U [-] along the hull in axial potential flow at stations ``s`` [m] from the nose
-    with sections ``area`` [m^2], as body-lift ``rule`` computes it: the axisymmetric panel
-    solution under ``stratford_panel`` (:func:`~stripcoef.hull.axisymmetric.axial_surface_speed`,
-    Hess & Smith 1967), the line sources of slender-body theory otherwise
+def _surface_speed(rule: str, s, area, hull) -> np.ndarray:
+    """U_e/U [-] along the (round) ``hull`` in axial potential flow at stations ``s`` [m] from
+    the nose with sections ``area`` [m^2], as body-lift ``rule`` computes it: the axisymmetric
+    panel solution under ``stratford_panel``, on the smooth body through the hull's offsets
+    (:func:`_hull_offsets`; :func:`~stripcoef.hull.axisymmetric.axial_surface_speed`, Hess &
+    Smith 1967), the line sources of slender-body theory on the sections otherwise
     (:func:`~stripcoef.hull.lift.surface_speed_ratio`)."""
     if rule == "stratford_panel":
-        return axial_surface_speed(s, np.sqrt(np.maximum(area, 0.0) / np.pi))
+        return axial_surface_speed(*_hull_offsets(hull), at=s)
     return surface_speed_ratio(s, area)
+
+
+def _hull_offsets(hull) -> tuple[np.ndarray, np.ndarray]:
+    """A round hull's offsets from the nose: s [m] from the nose, non-decreasing, and r [m]
+    (:meth:`~stripcoef.geometry.profiles.Profile.offsets`: a table's own points, an analytic
+    segment's exact values)."""
+    x, r = hull.half_breadth.offsets()
+    return hull.x_extent()[1] - x[::-1], r[::-1]
+
+
+def _layer_radius(rule: str, s, area, hull) -> np.ndarray:
+    """r [m] of the hull at stations ``s`` [m] from the nose that Head's layer is computed on
+    under body-lift ``rule``: the smooth interpolant of the offsets the panel solution sees
+    under ``stratford_panel`` (:func:`~stripcoef.hull.axisymmetric.smooth_radius`), the
+    sections' sqrt(S/pi) otherwise."""
+    if rule == "stratford_panel":
+        return smooth_radius(*_hull_offsets(hull), s)
+    return np.sqrt(area / np.pi)
 
 
 def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: float,
@@ -623,7 +644,7 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
             s_nose, a_nose = hi - xs[::-1], area[::-1]
             u = float(vehicle.reference_speed if speed is None else speed)
             nu = float(vehicle.fluid.kinematic_viscosity if viscosity is None else viscosity)
-            sep = stratford_separation(s_nose, _surface_speed(mode, s_nose, a_nose), speed=u,
+            sep = stratford_separation(s_nose, _surface_speed(mode, s_nose, a_nose, hull), speed=u,
                                        viscosity=nu, transition=TRANSITION_REYNOLDS * nu / u)
             x0 = lo if sep["separation"] is None else hi - sep["separation"]
             info["stratford"] = sep

@@ -87,6 +87,30 @@ def myring_tail(x, x_aft, x_fwd, radius, theta=np.radians(25.0), length=None):
     return np.maximum(r, 0.0)
 
 
+#: Turn of the profile's slope at a junction of two segments above which
+#: :meth:`Profile.offsets` marks it a corner [deg] (assumption: 1 degree; two segments that
+#: meet tangentially, as a Myring nose or tail or an ellipsoid on a cylinder, turn by 0 there) [-].
+KINK_DEGREES = 1.0
+
+
+def _end_slope(seg, x, r, end: int) -> float:
+    """dr/dx [-] of segment ``seg`` at its aft (``end`` 0) or forward (-1) end, from its offsets
+    ``x``, ``r`` [m] there: a table's end chord, an analytic segment's one-sided difference
+    over 1e-6 of its length."""
+    if seg.kind == "table":
+        i = (0, 1) if end == 0 else (-2, -1)
+        return float((r[i[1]] - r[i[0]]) / (x[i[1]] - x[i[0]]))
+    h = 1e-6 * (seg.x_fwd - seg.x_aft)
+    a = seg.x_aft if end == 0 else seg.x_fwd - h
+    return float((seg(np.array([a + h]))[0] - seg(np.array([a]))[0]) / h)
+
+
+#: Stations at which :meth:`Profile.offsets` samples an analytic segment (cosine-spaced,
+#: so that a round nose or tail is resolved; assumption: 201, finer than the 400 offsets of
+#: the whole SUBOFF hull per segment) [-].
+OFFSET_POINTS = 201
+
+
 @dataclass
 class Segment:
     """One profile segment (already validated)."""
@@ -133,6 +157,37 @@ class Profile:
     @property
     def x_fwd(self) -> float:
         return self.segments[-1].x_fwd
+
+    def offsets(self) -> tuple[np.ndarray, np.ndarray]:
+        """The profile's offsets, aft to forward: x [m] non-decreasing, r [m]. A ``table``
+        segment gives its own points inside it (and its two ends, evaluated), an analytic
+        segment its exact values at :data:`OFFSET_POINTS` cosine-spaced stations (dense
+        samples of a smooth curve). What a smooth interpolant of the hull is built from
+        (:func:`stripcoef.hull.axisymmetric.smooth_meridian`), where the chords between a
+        table's points are a polyline: each segment is taken as smooth inside. A junction's
+        point is given once where the two segments meet with the same slope, twice where the
+        slope turns there by more than :data:`KINK_DEGREES` (a corner, e.g. a cone on a
+        cylinder), and both segments' radii where they differ (a step)."""
+        xs, rs = [], []
+        prev = None
+        for seg in self.segments:
+            if seg.kind == "table":
+                pts = seg.params["points"]
+                inner = (pts[:, 0] > seg.x_aft) & (pts[:, 0] < seg.x_fwd)
+                x = np.concatenate([[seg.x_aft], pts[inner, 0], [seg.x_fwd]])
+            else:
+                x = seg.x_aft + (seg.x_fwd - seg.x_aft) * 0.5 * (
+                    1.0 - np.cos(np.linspace(0.0, np.pi, OFFSET_POINTS)))
+            r = seg(x)
+            if prev is not None and abs(r[0] - rs[-1][-1]) <= 1e-12 * max(abs(r[0]), 1.0):
+                turn = abs(np.degrees(np.arctan(_end_slope(seg, x, r, 0))
+                                      - np.arctan(_end_slope(prev, xs[-1], rs[-1], -1))))
+                if turn <= KINK_DEGREES:
+                    x, r = x[1:], r[1:]
+            xs.append(x)
+            rs.append(r)
+            prev = seg
+        return np.concatenate(xs), np.concatenate(rs)
 
     def __call__(self, x) -> np.ndarray:
         x = np.asarray(x, dtype=float)

@@ -669,16 +669,135 @@ def ring_body_added_mass(xm, rm, *, rho: float, x_ref: float = 0.0,
 
 
 #: Meridian panels of the axial-flow surface speed (:func:`axial_surface_speed`; assumption:
-#: 400, as many as the SUBOFF vehicles' tabulated profile has points. Not converged on such a
-#: polyline: finer panels resolve the speed peaks at its vertices, and Stratford's station on
-#: SUBOFF moves 0.8755, 0.8750, 0.8720, 0.8645 l on 200, 400, 800, 1600 panels,
-#: validation.lift.panel_stations) [-].
+#: 400. Converged on the smooth meridian of :func:`smooth_meridian`: Stratford's station on the
+#: SUBOFF hull is 0.8745, 0.8750, 0.8745, 0.8745 l on 200, 400, 800, 1600 panels, within the
+#: 0.0005 l of its 2001 stations; on the tabulated polyline itself it moved 0.8755 -> 0.8645 l
+#: as the panels resolved the speed peaks at its vertices; validation.lift.panel_stations) [-].
 SURFACE_SPEED_PANELS = 400
 
+#: Points at which a smooth run of the meridian is sampled between two offsets to place the
+#: panel nodes by arc length (:func:`smooth_meridian`; the nodes themselves lie on the
+#: interpolant, so this sets only their spacing, not the surface) [-].
+_ARC_SAMPLES = 16
 
-def axial_surface_speed(s, r, *, panels: int = SURFACE_SPEED_PANELS) -> np.ndarray:
+
+def _smooth_runs(x, r):
+    r"""The offsets (x, r) of a body of revolution (x non-decreasing, r >= 0) cut into runs that
+    are smooth: at a point given twice in a row (a corner, such as the junction of a cone and a
+    cylinder: :meth:`stripcoef.geometry.profiles.Profile.offsets` repeats it) and at both ends
+    of a stretch along a repeated x (a step, or a flat cap: ends with r > 0 get one). Returns a
+    list of (x, r) arrays, one per run, each run's ends shared with its neighbours; a run of
+    >= 4 points with x increasing is interpolated by :func:`_run_interpolant`, a shorter one or
+    one along a repeated x is straight. Every other point is taken as an offset of a smooth
+    curve (turns between chords are not read as corners: a round nose tabulated at a few
+    points turns by more than 20 degrees between its chords)."""
+    x = np.asarray(x, dtype=float)
+    r = np.asarray(r, dtype=float)
+    if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) < 0) \
+            or np.any(r < 0) or not np.all(np.isfinite(x)) or not np.all(np.isfinite(r)):
+        raise InputError("profile must be non-decreasing x with finite radii >= 0",
+                         key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
+    tiny = 1e-12 * max(x[-1] - x[0], 1e-300)
+    if r[0] > 0:
+        x, r = np.concatenate([x[:1], x]), np.concatenate([[0.0], r])
+    if r[-1] > 0:
+        x, r = np.concatenate([x, x[-1:]]), np.concatenate([r, [0.0]])
+    same = np.hypot(np.diff(x), np.diff(r)) <= tiny       # point i + 1 repeats point i
+    keep = np.concatenate([[True], ~same])
+    index = np.cumsum(keep) - 1                          # each point's index once repeats go
+    x, r = x[keep], r[keep]
+    cut = np.zeros(x.size, dtype=bool)
+    cut[index[:-1][same]] = True                         # a repeated point: a corner
+    flat = np.flatnonzero(np.diff(x) <= tiny)            # a stretch along a repeated x
+    cut[flat] = cut[flat + 1] = True
+    cut[0] = cut[-1] = True
+    ends = np.flatnonzero(cut)
+    return [(x[a:b + 1], r[a:b + 1]) for a, b in zip(ends[:-1], ends[1:])]
+
+
+def _run_interpolant(x, r):
+    r"""r(x) [m] on one smooth run of offsets (:func:`_smooth_runs`): the square root of the
+    not-a-knot cubic spline through :math:`r^2` (C2; de Boor 1978, *A Practical Guide to
+    Splines*, ch. IV; ``scipy.interpolate.make_interp_spline``, k = 3), linear along a run of
+    fewer than 4 points or one that does not advance in x. The spline is of r^2, the section's
+    area over pi, because at a round tip :math:`r \propto \sqrt{x}` has an infinite slope while
+    :math:`r^2` is smooth there (a spheroid's :math:`r^2` is a quadratic: the interpolant is the
+    spheroid exactly)."""
+    from scipy.interpolate import make_interp_spline
+
+    if x.size < 4 or np.any(np.diff(x) <= 0.0):
+        return lambda t: np.interp(t, x, r) if x[-1] > x[0] else np.full_like(t, r[0])
+    spline = make_interp_spline(x, r * r, k=3)
+    return lambda t: np.sqrt(np.maximum(spline(t), 0.0))
+
+
+def smooth_meridian(x, r, panels: int):
+    r"""Panel nodes of a body of revolution on a C2 interpolant of its offsets, from the nose
+    tip (r = 0) to the tail tip.
+
+    A tabulated hull is a set of offsets of a smooth body; joined by chords (:func:`_meridian`)
+    it is a polyline whose slope jumps at every offset, and the axial potential flow has a speed
+    peak at each such vertex that finer panels resolve (on SUBOFF's 400 offsets Stratford's
+    station moved 0.8755 -> 0.8645 l from 200 to 1600 panels while the peak speed rose). Here
+    each smooth run of the offsets (:func:`_smooth_runs`: split at corners, steps and flat caps,
+    which stay corners) is interpolated by :func:`_run_interpolant` (the cubic spline of
+    :math:`r^2`), and its panels (in proportion to its arc length, at least 4,
+    cosine-clustered towards its ends as in :func:`_meridian`) are placed by arc length on the
+    interpolant, every node on it: the panel solution then converges to the flow about that
+    smooth body.
+
+    ``x`` [m] non-decreasing, ``r`` [m] >= 0 (ends with r > 0 get flat caps), ``panels``
+    about how many; returns the nodes (xn, rn) [m].
+    """
+    runs = _smooth_runs(x, r)
+    curves, arcs = [], []
+    for xr, rr in runs:
+        f = _run_interpolant(xr, rr)
+        if xr[-1] > xr[0]:
+            u = np.linspace(0.0, 1.0, _ARC_SAMPLES + 1)[1:]
+            xd = np.concatenate([xr[:1], (xr[:-1, None] + np.diff(xr)[:, None] * u).ravel()])
+            rd = f(xd)
+            rd[0], rd[-1] = rr[0], rr[-1]
+        else:                                           # a flat cap or a step: straight
+            xd, rd = xr[[0, -1]], rr[[0, -1]]
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(xd), np.diff(rd)))])
+        curves.append((f, xd, rd, arc, rr))
+        arcs.append(arc[-1])
+    runs_len = np.asarray(arcs)
+    n_run = np.maximum(4, np.round(panels * runs_len / runs_len.sum())).astype(int)
+    xs, rs = [np.zeros(1) + curves[0][1][0]], [np.zeros(1) + curves[0][2][0]]
+    for (f, xd, rd, arc, rr), n in zip(curves, n_run):
+        t = arc[-1] * 0.5 * (1.0 - np.cos(np.pi * np.arange(1, n + 1) / n))
+        xn = np.interp(t, arc, xd)
+        if xd[-1] > xd[0]:
+            rn = f(xn)
+            rn[-1] = rr[-1]
+        else:
+            rn = np.interp(t, arc, rd)
+        xs.append(xn)
+        rs.append(rn)
+    xn, rn = np.concatenate(xs), np.concatenate(rs)
+    rn[0] = rn[-1] = 0.0
+    return xn, rn
+
+
+def smooth_radius(x, r, at) -> np.ndarray:
+    """r [m] at the stations ``at`` [m] of the C2 interpolant of the offsets ``x``, ``r`` [m]
+    that :func:`smooth_meridian` places the panels on (:func:`_run_interpolant`, run by run;
+    0 outside the offsets)."""
+    at = np.asarray(at, dtype=float)
+    out = np.zeros_like(at)
+    for xr, rr in _smooth_runs(x, r):
+        if xr[-1] > xr[0]:
+            inside = (at >= xr[0]) & (at <= xr[-1])
+            out[inside] = _run_interpolant(xr, rr)(at[inside])
+    return out
+
+
+def axial_surface_speed(s, r, *, panels: int = SURFACE_SPEED_PANELS, at=None) -> np.ndarray:
     r"""Surface speed of a body of revolution in axial potential flow, :math:`U_e/U`, from the
-    exact (panel) solution: the surge mode m = 0 of this module's boundary-element method.
+    exact (panel) solution: the surge mode m = 0 of this module's boundary-element method on
+    the smooth body through the offsets ``s``, ``r`` (:func:`smooth_meridian`).
 
     .. math:: \tfrac12\phi_0 + \int \phi_0\,D_0\,ds = \int S_0\,n_x\,ds,\qquad
               \frac{U_e}{U} = \Big|\frac{d\phi_0}{ds_m} - t_x\Big|
@@ -687,7 +806,7 @@ def axial_surface_speed(s, r, *, panels: int = SURFACE_SPEED_PANELS) -> np.ndarr
     \phi_0/\partial n = n_x`; in the body's frame the stream along -x adds :math:`-t_x`;
     :math:`s_m` the arc length along the
     meridian, :math:`t_x` its tangent's x component), at the panels' mid-points and
-    interpolated linearly to the stations ``s``. The line-source approximation of slender-body
+    interpolated linearly to the stations ``at``. The line-source approximation of slender-body
     theory (:func:`stripcoef.hull.lift.surface_speed_ratio`) is within 7 % of it on the SUBOFF
     afterbody but lower at the shoulder's suction peak (1.07 against 1.12), where a pressure-
     recovery criterion such as Stratford's starts.
@@ -695,36 +814,42 @@ def axial_surface_speed(s, r, *, panels: int = SURFACE_SPEED_PANELS) -> np.ndarr
     Parameters
     ----------
     s : (n,) array
-        Stations from the nose, increasing [m]
+        Offsets' stations from the nose, non-decreasing [m] (a table's own points, or dense
+        samples of an analytic profile: not samples of a polyline, whose vertices the
+        interpolant would follow)
     r : (n,) array
-        Radii r(s) >= 0 [m]
+        Radii r(s) >= 0 [m] at ``s``
     panels : int
-        Meridian panels (cosine-clustered towards the ends, :func:`_meridian`)
+        Meridian panels (cosine-clustered towards the ends of each smooth run)
+    at : (m,) array, optional
+        Stations from the nose [m] at which the speed is returned (default ``s``)
 
     Returns
     -------
-    (n,) array
-        U_e/U [-] at ``s`` (0 at a stagnation point)
+    (m,) array
+        U_e/U [-] at ``at`` (0 at a stagnation point)
 
     References
     ----------
     Hess, J. L. & Smith, A. M. O. (1967), "Calculation of potential flow about arbitrary
     bodies", *Prog. Aerosp. Sci.* 8 (the axisymmetric source-panel method and its surface
     velocity); Lamb (1932), *Hydrodynamics*, sec. 373 (a prolate spheroid's exact surface speed
-    :math:`U(1 + k_1)|t_x|`, the check in tests/test_lift_separation.py).
+    :math:`U(1 + k_1)|t_x|`, the check in tests/test_lift_separation.py); de Boor (1978) ch. IV
+    (the cubic spline of the offsets).
     """
     s = np.asarray(s, dtype=float)
     r = np.asarray(r, dtype=float)
-    return _axial_surface_speed(s, r, int(panels))
+    at = s if at is None else np.asarray(at, dtype=float)
+    return _axial_surface_speed(s, r, at, int(panels))
 
 
 @array_memo(maxsize=16)
-def _axial_surface_speed(s, r, panels) -> np.ndarray:
+def _axial_surface_speed(s, r, at, panels) -> np.ndarray:
     """:func:`axial_surface_speed` of float arrays and an int (the memo's key: one solve per
     process for each hull)."""
-    xn, rn = _meridian(s, r, panels)
+    xn, rn = smooth_meridian(s, r, panels)
     S, D, (seg, nx, _, xc, _) = _influence(xn, rn, 0)
     phi = np.linalg.solve(D + 0.5 * np.eye(D.shape[0]), S @ nx)
     arc = np.concatenate([[0.0], np.cumsum(seg)])
     speed = np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1])) - np.diff(xn) / seg)
-    return np.interp(s, xc, speed)
+    return np.interp(at, xc, speed)
