@@ -2018,8 +2018,9 @@ def panel_stations() -> dict:
     interpolant of the table's 400 offsets, as the library places them
     (:func:`stripcoef.hull.axisymmetric.smooth_meridian`); ``"polyline"``, on the chords
     between the offsets (:func:`stripcoef.hull.axisymmetric._meridian`, the library's meridian
-    before issue 34's smoothing). Each {panels: (station [fraction of l from the nose], peak
-    speed U_m/U [-])}."""
+    before issue 34's smoothing); ``"groves"``, on the Groves et al. (1989) equations themselves
+    (:func:`hull_radius` at 4001 cosine-spaced offsets, the same interpolant: the exact hull to
+    round-off). Each {panels: (station [fraction of l from the nose], peak speed U_m/U [-])}."""
     from stripcoef.assembly.lift import _hull_offsets
     from stripcoef.geometry.vehicle import parse_vehicle
     from stripcoef.hull.axisymmetric import _influence, _meridian, axial_surface_speed
@@ -2040,10 +2041,13 @@ def panel_stations() -> dict:
         arc = np.concatenate([[0.0], np.cumsum(seg)])
         return np.interp(s, xc, np.abs(np.gradient(phi, 0.5 * (arc[1:] + arc[:-1]))
                                        - np.diff(xn) / seg))
-    out = {"smooth": {}, "polyline": {}}
+    dense = val("t1.LOA") * 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, 4001)))
+    groves = (FT * dense, FT * hull_radius(dense))
+    out = {"smooth": {}, "polyline": {}, "groves": {}}
     for n in PANEL_COUNTS:
         for name, speed in (("smooth", axial_surface_speed(*offsets, panels=n, at=s)),
-                            ("polyline", polyline(n))):
+                            ("polyline", polyline(n)),
+                            ("groves", axial_surface_speed(*groves, panels=n, at=s))):
             sep = stratford_separation(s, speed, speed=RODDY_SPEED, viscosity=nu,
                                        transition=TRANSITION_REYNOLDS * nu / RODDY_SPEED)
             out[name][n] = (sep["separation"] / (hi - lo), sep["peak_speed"])
@@ -2192,7 +2196,9 @@ def stratford_panel_section() -> list[str]:
         + ", ".join(f"{ps['smooth'][n][1]:.4f}" for n in PANEL_COUNTS) + "; the 2001 "
         "stations resolve 0.0005 l); on the polyline it was "
         + ", ".join(f"{ps['polyline'][n][0]:.4f}" for n in PANEL_COUNTS) + " l (peak "
-        + ", ".join(f"{ps['polyline'][n][1]:.4f}" for n in PANEL_COUNTS) + "). The model "
+        + ", ".join(f"{ps['polyline'][n][1]:.4f}" for n in PANEL_COUNTS) + "); on the "
+        "Groves et al. equations themselves (4001 offsets) "
+        + ", ".join(f"{ps['groves'][n][0]:.4f}" for n in PANEL_COUNTS) + " l. The model "
         "uses 400 panels; `python -m benchmarks.lift_band --method stratford_panel --panels N` "
         "gives the same 20 Table 4 checks and 25 drift points on 200, 400, 800 and 1600 "
         "(`validation.lift.panel_stations`; tests/test_lift_separation.py). The rudder's "
