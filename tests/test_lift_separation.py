@@ -270,6 +270,15 @@ def test_stratford_panel_rule_against_table4_configuration_by_configuration():
     ratio = {k: c["stratford_panel"] / c["measured"] for k, c in rows.items()}
     assert ratio[(2, "Yr")] == pytest.approx(0.44, abs=0.01)
     assert ratio[(2, "Ydr")] == pytest.approx(0.81, abs=0.01)
+    # the rudder's shortfall is its dynamic pressure in Head's layer alone (validation.lift.
+    # rudder_trace): the same carry-over factors, Y'_dr in the ratio of the q_r
+    from validation.lift import rudder_trace
+
+    tr = rudder_trace()
+    panel, default = tr["stratford_panel"], tr["datcom"]
+    assert (panel["k_WB"], panel["k_BW"]) == (default["k_WB"], default["k_BW"])
+    assert panel["Ydr"] / default["Ydr"] == pytest.approx(panel["q"] / default["q"], rel=1e-9)
+    assert panel["delta"] > default["delta"] and panel["profile"] > default["profile"]
     errs = configuration_errors("stratford_panel")
     assert all(v["wrong_sign"] == 0 for v in errs.values())
     choice = held_out_choice()

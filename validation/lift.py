@@ -2061,9 +2061,14 @@ def rudder_trace() -> dict:
     chord (thickness ``delta`` [m], power-law exponent ``profile`` [-]), its dynamic-pressure
     ratio ``q`` [-], the axial flow's surface speed there ``speed`` and its peak on the
     afterbody ``peak`` (U_e/U [-]: line sources under the default, the panel solution under
-    ``stratford_panel``), the carry-over ``k_WB``, ``k_BW`` [-] and Y'_dr / measured
-    ``Ydr`` [-]; ``at`` the root mid chord [fraction of l from the nose]."""
-    from stripcoef.assembly.lift import _surface_speed
+    ``stratford_panel``), the carry-over ``k_WB``, ``k_BW`` [-], Y'_dr / measured ``Ydr`` [-]
+    and ``axial_root``, the axial flow's u/U on the hull at the root [-] (the line sources'
+    :func:`stripcoef.hull.lift.axial_velocity_ratio`, which the fins' (u/U)^2 over the span
+    uses under both rules; the panel solution's U_e/U |t_x| under ``stratford_panel``, what a
+    consistent stern flow would use); ``at`` the root mid chord [fraction of l from the nose]."""
+    from stripcoef.assembly.lift import _hull_offsets, _surface_speed
+    from stripcoef.hull.axisymmetric import smooth_radius
+    from stripcoef.hull.lift import axial_velocity_ratio
 
     comps = {(c["config"], c["name"]): c for c in suboff_comparisons()}
     out = {}
@@ -2080,7 +2085,12 @@ def rudder_trace() -> dict:
                      for p in sf.panels)
         run = hi - float(panel.center[0])
         aft = (s > 0.5 * (hi - lo)) & (s < 0.97 * (hi - lo))
-        out[method] = {"delta": fin["boundary_layer"], "profile": fin["boundary_layer_profile"],
+        root = smooth_radius(*_hull_offsets(vehicle.hull), run + np.array([-1e-4, 0.0, 1e-4]))
+        slope = (root[2] - root[0]) / 2e-4
+        axial = (float(np.interp(run, s, speed)) / math.sqrt(1.0 + slope ** 2)
+                 if method == "stratford_panel" else
+                 float(axial_velocity_ratio(s, area, run, float(root[1]))))
+        out[method] = {"axial_root": axial, "delta": fin["boundary_layer"], "profile": fin["boundary_layer_profile"],
                        "q": fin["pressure_ratio"], "k_WB": fin["k_WB"], "k_BW": fin["k_BW"],
                        "speed": float(np.interp(run, s, speed)),
                        "peak": float(speed[aft].max()),
@@ -2218,7 +2228,11 @@ def stratford_panel_section() -> list[str]:
         f"{tr['datcom']['Ydr']:.2f}. Both rules compute the layer on the inviscid "
         "recovery, with no interaction with the layer's own displacement body (Lighthill "
         "1958), which at a stern weakens the recovery the layer grows in; how much of the "
-        "rudder's shortfall that interaction would return is not measured. Decision: an "
+        "rudder's shortfall that interaction would return is not measured. The fins' (u/U)^2 "
+        "over the span is the line sources' under both rules; the panel flow's axial speed on "
+        f"the hull at the root is {tr['stratford_panel']['axial_root']:.3f} against the line "
+        f"sources' {tr['datcom']['axial_root']:.3f}, so a stern flow taken wholly from the "
+        "panel solution would lower Y'_dr further. Decision: an "
         "option, "
         "not the default. It meets more Table 4 checks and drift points and beats the default "
         f"on the held-out configurations, but it loses {len(vs['lost'])} Table 4 checks the "
