@@ -89,7 +89,7 @@ def myring_tail(x, x_aft, x_fwd, radius, theta=np.radians(25.0), length=None):
 
 #: Turn of the profile's slope at a junction of two segments above which
 #: :meth:`Profile.offsets` marks it a corner [deg] (assumption: 1 degree; two segments that
-#: meet tangentially, as a Myring nose or tail or an ellipsoid on a cylinder, turn by 0 there) [-].
+#: meet tangentially, as a Myring nose or tail or an ellipsoid on a cylinder, turn by 0 there).
 KINK_DEGREES = 1.0
 
 
