@@ -20,7 +20,7 @@ from stripcoef.errors import InputError
 ROOT = ref.reference_dir()
 DATA = Path(stripcoef.data.__file__).resolve().parent   # the runtime curves (src/stripcoef/data)
 SOURCES = ("videoray_pro3", "romeo", "rov2", "mares", "dnv_rp_c205", "hoerner", "capytaine_anchor",
-           "prestero2001", "body_drag_3d", "roddy1990_suboff", "flat_plate_lift")
+           "prestero2001", "body_drag_3d", "roddy1990_suboff", "flat_plate_lift", "annular_wing")
 
 
 def val(source, name):

@@ -331,30 +331,33 @@ def _moment_point() -> list:
 
 
 @functools.lru_cache(maxsize=None)
-def ring_wing_terms(config: int, body_lift: str = "slender"):
+def ring_wing_terms(config: int, body_lift: str = "slender", wake: bool = True):
     """(L [kg/m, kg, kg m], info) of ring wing No. 1 on configuration ``config``'s model
     (:func:`ring_wing_chord_line`, ``stripcoef.assembly.lift.ring_wing_lift``) about Roddy's
-    moment point."""
+    moment point; ``wake``: the ring answers the cross-flow relative to the hull's separated
+    wake (the library's default), or (False) the undisturbed local cross-flow."""
     from stripcoef.assembly.lift import ring_wing_lift
     from stripcoef.geometry.vehicle import parse_vehicle
 
     vehicle = parse_vehicle(suboff_vehicle_data(config, body_lift), file=f"SUBOFF config {config}")
     return ring_wing_lift(vehicle, suboff_model(config, body_lift).density, _moment_point(),
-                          **ring_wing_chord_line())
+                          wake=wake, **ring_wing_chord_line())
 
 
 @functools.lru_cache(maxsize=None)
-def suboff_model(config: int, body_lift: str = "slender", ring: bool = False):
+def suboff_model(config: int, body_lift: str = "slender", ring: bool = False,
+                 wake: bool = True):
     """stripcoef's model of Roddy's configuration ``config`` about Roddy's moment point
     (6.6042 ft aft of the nose on the axis); ``ring``: with ring wing No. 1's lift added
-    (:func:`ring_wing_terms`)."""
+    (:func:`ring_wing_terms`, ``wake`` as there)."""
     import stripcoef
     from stripcoef.errors import ModelWarning
     from stripcoef.geometry.vehicle import parse_vehicle
 
     if ring:
         model = suboff_model(config, body_lift)
-        return dataclasses.replace(model, lift=model.lift + ring_wing_terms(config, body_lift)[0])
+        return dataclasses.replace(model, lift=model.lift
+                                   + ring_wing_terms(config, body_lift, wake)[0])
     vehicle = parse_vehicle(suboff_vehicle_data(config, body_lift), file=f"SUBOFF config {config}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
@@ -362,14 +365,14 @@ def suboff_model(config: int, body_lift: str = "slender", ring: bool = False):
 
 
 def suboff_derivatives(config: int, body_lift: str = "slender", ring: bool = False,
-                       fin_munk_twice: bool = False) -> dict:
+                       fin_munk_twice: bool = False, wake: bool = True) -> dict:
     """Roddy's nondimensional derivatives of stripcoef's model of a configuration (``ring``:
     with ring wing No. 1): static, rotary (the Munk part of C_A plus the lift,
     :func:`total_linear`) and control (the surfaces' force per u^2 per rad), on
     1/2 rho L_BP^k U^2. ``fin_munk_twice``: the model with each lifting fin's Munk moment
     counted twice, in its lift and in C_A (the model before issue 34's fix, without its
     ``fin_munk_lift``)."""
-    model = suboff_model(config, body_lift, ring)
+    model = suboff_model(config, body_lift, ring, wake)
     if fin_munk_twice:
         model = dataclasses.replace(model, fin_munk_lift=np.zeros((6, 6)))
     jac = total_linear(model)
@@ -2421,10 +2424,13 @@ def ring_wing_section() -> list[str]:
     lbp = val("t1.L_BP")
     d = {k: val(f"c6.{k}") - val(f"c3.{k}") for k in ("Yv", "Nv", "Yr", "Nr", "Yvdot")}
     inc = {}
-    for method in ("on", "slender"):
-        a, b = suboff_derivatives(3, method), suboff_derivatives(3, method, True)
-        inc[method] = {k: b[k] - a[k] for k in ("Yv", "Nv", "Yr", "Nr")}
-    info = ring_wing_terms(3, "slender")[1]
+    for key, method, wake in (("on", "on", True), ("slender", "slender", False),
+                              ("datcom", "datcom", True), ("panel", "stratford_panel", True),
+                              ("panel_off", "stratford_panel", False)):
+        a, b = suboff_derivatives(3, method), suboff_derivatives(3, method, True, wake=wake)
+        inc[key] = {k: b[k] - a[k] for k in ("Yv", "Nv", "Yr", "Nr")}
+    info = ring_wing_terms(3, "slender", False)[1]
+    wake_info = {m: ring_wing_terms(3, m)[1] for m in ("datcom", "stratford", "stratford_panel")}
     lever = (FT * (0.5 * val("t1.LOA") - val("moment_point.x")) - info["x_quarter_chord"]) \
         / (FT * lbp)
     from_rotary = d["Yr"] / -lever
@@ -2437,8 +2443,14 @@ def ring_wing_section() -> list[str]:
                      f"{c['hoerner_no_ring'] / m:.2f}", f"{c['hoerner'] / m:.2f}",
                      f"{c['slender_no_ring'] / m:.2f}", f"{c['slender'] / m:.2f}",
                      {True: "yes", False: "no", None: "stated"}[c["ok"]]))
-    lattice = {a: (ring_vortex_lattice(a, 64, 8), float(ring_wing_lift_slope(a, efficiency=1.0)))
+    lattice = {a: (ring_vortex_lattice(a, 64, 8), float(ring_wing_lift_slope(a)))
                for a in (0.3, info["aspect_ratio"], 3.0, 10.0)}
+    fletcher = []
+    for i in range(1, 6):
+        a = ref.reference_value("annular_wing", f"A.{i}")["value"]
+        fletcher.append((a, math.degrees(ref.reference_value("annular_wing", f"CLa.{i}")["value"]),
+                         float(ring_wing_lift_slope(a))))
+    fletcher_spread = max(abs(h / v - 1.0) for _, v, h in fletcher)
     spread = max(abs(h / v - 1.0) for v, h in lattice.values())
     run = FT * (val("rw1.x_le") + val("rw1.x_te")) / 2.0
     flat = boundary_layer_thickness(run, RODDY_SPEED, _fresh_viscosity())
@@ -2446,9 +2458,13 @@ def ring_wing_section() -> list[str]:
     r_hull_mid = afterbody_radius(0.5 * (val("rw1.x_le") + val("rw1.x_te")))
     inc_rows = [("measured (configuration 6 - 3)", *(f"{d[k]:+.6f}" for k in
                                                     ("Yv", "Nv", "Yr", "Nr")))]
-    for method, label in (("on", "ring, free stream (Hoerner rule)"),
-                          ("slender", "ring in the stern flow (slender rule)")):
-        inc_rows.append((label, *(f"{inc[method][k]:+.6f}" for k in ("Yv", "Nv", "Yr", "Nr"))))
+    for key, label in (("on", "ring, free stream (Hoerner rule)"),
+                       ("slender", "ring in the stern flow, undisturbed cross-flow (slender rule)"),
+                       ("panel_off", "ring in the stern flow, undisturbed cross-flow "
+                                     "(Stratford, panel flow)"),
+                       ("datcom", "ring in the separated wake (DATCOM, default)"),
+                       ("panel", "ring in the separated wake (Stratford, panel flow)")):
+        inc_rows.append((label, *(f"{inc[key][k]:+.6f}" for k in ("Yv", "Nv", "Yr", "Nr"))))
     return [
         "#### The ring wing (configurations 1, 2 and 6)", "",
         "Groves et al. 1989 (DTRC/SHD-1298-01, Table 4, p. 15; Table 5, pp. 19-20) define ring "
@@ -2460,20 +2476,38 @@ def ring_wing_section() -> list[str]:
         f"planes: it starts {rw['x_le'] - val('t1.plane.x_te'):.2f} ft behind their trailing "
         f"edge, inside their span (tip radius {val('planes.r_tip'):.3f} ft). The model "
         "(`stripcoef.assembly.lift.ring_wing_lift`, `hull.lift.ring_wing_lift_slope`) lifts it "
-        "as an isolated ring of its mean radius at its quarter chord, answering the local "
-        "cross-flow v + x r (w - x q): Helmbold's interpolation between the ring's lifting line "
-        "(C_La = (pi a0/2)/(1 + a0/4A), A = D/c) and slender-body theory (C_La = pi A: the "
-        "exterior apparent mass of the circle plus the enclosed fluid), with the fins' section "
-        f"efficiency a = 0.9: A = {info['aspect_ratio']:.2f}, C_La = {info['lift_slope']:.2f} "
-        "/rad on D c. The interpolation is checked against a lifting-surface solution, the "
+        "as an isolated ring of its mean radius at its quarter chord with Weissinger's lift "
+        "slope (Weissinger 1955, the closed form C_La = pi^2 / (1 + pi lambda/2 + lambda "
+        "arctan(1.2 lambda)), lambda = c/D, as quoted by Wagner 2021 eq. 15; its limits are "
+        "Ribner's lifting line pi^2 and slender-body theory's pi A, Hoerner's L = q pi D^2 "
+        f"alpha): A = D/c = {info['aspect_ratio']:.2f}, C_La = {info['lift_slope']:.2f} /rad on "
+        "D c (Helmbold's interpolation with the fins' a = 0.9 gave 2.93 before). Against "
+        "Fletcher's five measured rings (NACA TN 4117, 1957, Fig. 11, read second-hand: "
+        "reference_tables/annular_wing): "
+        + ", ".join(f"A = {a:.2f}: {v:.3f} against {h:.3f}" for a, v, h in fletcher)
+        + f" /rad, within {100 * fletcher_spread:.1f} %; against a lifting-surface solution, the "
         "vortex lattice of a thin cylindrical ring (`validation.lift.ring_vortex_lattice`: "
         "horseshoe vortices at the panels' quarter chord, tangency at their three-quarter "
-        "chord, 64 x 8 panels; at A = 1.05, 32 x 6 and 96 x 12 agree within 0.01 %; a = 1 in "
-        "both): "
+        "chord, 64 x 8 panels; at A = 1.05, 32 x 6 and 96 x 12 agree within 0.01 %): "
         + ", ".join(f"A = {a:.2f}: {v:.3f} against {h:.3f}" for a, (v, h) in lattice.items())
-        + f" /rad, within {100 * spread:.1f} %. The hull inside it: by slender-body theory the ring and the section it "
-        "encloses lift as the ring alone (interference factor 1; the struts inside add "
-        "nothing), and behind Hopkins's station the body gives it no upwash. Under "
+        + f" /rad, within {100 * spread:.1f} %. The hull inside it, attached flow: in the wake "
+        "far behind the ring the fluid inside its vortex cylinder moves with it and the hull "
+        "that closes inside leaves no impulse, so the pair lifts as the ring alone "
+        "(interference factor 1; the struts inside add nothing). The hull's separated wake "
+        "(`ring_wing_lift(wake=True)`, the default): behind the body rule's separation "
+        "station x_0 the rule stops the body's potential lift, i.e. it carries the section's "
+        "cross-flow impulse rho S(x_0) w(x_0) into the wake unchanged; a ring behind x_0 and "
+        "inside that section turns only the cross-flow relative to the wake, w - w(x_0): "
+        "nothing in drift or heave, (x_r - x_0) r in yaw rotation (a fraction "
+        "f = min(1, S(x_0)/(pi R^2)) of w(x_0) is taken off; between a ring inside the wake, "
+        "f = 1, and one much wider, f -> 0, the interpolation is an assumption). On SUBOFF the "
+        f"section at x_0 has radius {wake_info['datcom']['separation_radius'] / FT:.3f} ft "
+        f"(DATCOM, Hopkins's station), {wake_info['stratford']['separation_radius'] / FT:.3f} ft "
+        f"(Stratford, line sources: f = {wake_info['stratford']['wake_fraction']:.2f}) and "
+        f"{wake_info['stratford_panel']['separation_radius'] / FT:.3f} ft (Stratford, panel "
+        f"flow), against the ring's {r_mean:.3f} ft. The rule was written after Roddy's "
+        "configuration 6 showed the ring without a drift force; it has no constant of its own "
+        "(the station and the section are the body rule's). Under "
         "`body_lift: slender` it sits in the stern flow, as the fins do: Head's layer at its mid "
         f"chord is {info['boundary_layer'] / FT:.2f} ft thick and the ring "
         f"{info['height'] / FT:.2f} ft above the surface (dynamic pressure "
@@ -2492,28 +2526,30 @@ def ring_wing_section() -> list[str]:
         "fitted to Roddy's data. The ring's increments (configuration 6 minus 3, about the "
         "moment point):", "",
         markdown_table(["", "Y'_v", "N'_v", "Y'_r", "N'_r"], inc_rows), "",
-        f"In yaw rotation the ring in the stern flow gives {inc['slender']['Yr'] / d['Yr']:.2f} "
-        f"of the measured Y'_r and {inc['slender']['Nr'] / d['Nr']:.2f} of N'_r (a force at "
-        f"{lever:.3f} L_BP aft of the moment point with Y'_v = {from_rotary:.5f} would give the "
-        "measured Y'_r exactly); in drift it adds "
+        "The measured ring lifts in yaw rotation and not in drift. In the undisturbed local "
+        f"cross-flow the model's ring gives {inc['slender']['Yr'] / d['Yr']:.2f} of the measured "
+        f"Y'_r and {inc['slender']['Nr'] / d['Nr']:.2f} of N'_r but adds "
         f"{inc['slender']['Yv']:+.5f} to Y'_v where Roddy measured {d['Yv']:+.6f} (and "
-        f"{inc['on']['Yv']:+.5f} in the free stream). The measured ring lifts in yaw rotation "
-        "and not in drift; a lifting ring answering the local cross-flow cannot do both (its "
-        "Y'_r is its Y'_v times its lever). The likely cause is the sidewash of the vortices "
-        "the afterbody sheds in drift (in yaw rotation about the moment point the cross-flow "
-        "ahead of the ring is smaller and changes sign along the body), which the model's "
-        "separated stern (Hopkins's station) does not represent; no published method for it "
-        "was found. Configurations 1, 2 and 6 without and with the ring (ratio model / "
-        "measured; met: the issue's tolerance with the ring under `body_lift: slender`, as in "
-        "the table above):", "",
+        f"{inc['on']['Yv']:+.5f} in the free stream): a ring answering the local cross-flow "
+        "cannot do both (its Y'_r is its Y'_v times its lever). In the separated wake it adds "
+        f"nothing in drift ({inc['datcom']['Yv']:+.6f}), as measured, and "
+        f"{inc['datcom']['Yr'] / d['Yr']:.2f} of Y'_r, {inc['datcom']['Nr'] / d['Nr']:.2f} of "
+        f"N'_r (DATCOM; {inc['panel']['Yr'] / d['Yr']:.2f} and "
+        f"{inc['panel']['Nr'] / d['Nr']:.2f} under Stratford's station on the panel flow, nearer "
+        "the ring). The measured rotary increment acts "
+        f"{-d['Nr'] / d['Yr']:.2f} L_BP aft of the moment point, ahead of the ring "
+        f"({lever:.2f} L_BP; a force there with Y'_v = {from_rotary:.5f} would give the "
+        "measured Y'_r): the ring changes the force on the afterbody ahead of it in rotation, "
+        "which neither form models; no published method for it was found "
+        "(`python -m benchmarks.ring_wing`). Configurations 1, 2 and 6 without and with the "
+        "ring (ratio model / measured; met: the issue's tolerance with the ring under "
+        "`body_lift: slender`, as in the table above):", "",
         markdown_table(["config", "derivative", "measured", "Hoerner, no ring", "Hoerner, ring",
                         "slender, no ring", "slender, ring", "met"], rows), "",
-        "The ring brings the rotary terms of the fully appended model closer where they "
-        "were short (configuration 2's Y'_r) and moves every static force further from the "
-        "measured (Y'_v, Z'_w already too large under both rules: the body lift's error, "
-        "'Every configuration' above) and the static moments lower; under Hoerner's rule, "
-        f"at the free stream's dynamic pressure, it is {1.0 / info['pressure_ratio']:.1f} times "
-        "stronger. The control "
+        "In the separated wake the ring leaves every static term as without it (the measured "
+        "increments: Y'_v +0.000005) and adds a little to the rotary terms; under Hoerner's "
+        "rule (no separation station, the free stream's dynamic pressure) it lifts in drift, "
+        f"{1.0 / info['pressure_ratio']:.1f} times stronger than in the stern flow. The control "
         "derivatives are unchanged (the ring is fixed and the planes' wake on it is not "
         "modelled). The ring wing is a lift element of the library, not a vehicle-file key: "
         "no shipped vehicle has one.", ""]
@@ -2543,8 +2579,10 @@ def sidewash_terms(config: int, body_lift: str = "datcom", ring: bool = False,
 @functools.lru_cache(maxsize=None)
 def sidewash_model(config: int, body_lift: str = "datcom", ring: bool = False,
                    body_vortices: bool = False):
-    """:func:`suboff_model` with the sidewash's dL (:func:`sidewash_terms`) added to its lift."""
-    model = suboff_model(config, body_lift, ring)
+    """:func:`suboff_model` with the sidewash's dL (:func:`sidewash_terms`) added to its lift
+    (the ring in the undisturbed cross-flow, ``wake=False``: the vortices' sidewash is the
+    option's model of the flow at the ring, in place of the separated-wake rule)."""
+    model = suboff_model(config, body_lift, ring, wake=False)
     return dataclasses.replace(model, lift=model.lift + sidewash_terms(
         config, body_lift, ring, body_vortices)[0])
 
@@ -2632,9 +2670,13 @@ def sidewash_station_diagnosis() -> dict:
     force would be (1 - kappa) times the model's and its yaw-rate force the model's drift slope
     times (l_t - kappa l_s), l_t the model's lever (:func:`rotary_buildup`). Solved for kappa and
     l_s from the measured increments, for the ring wing (6 - 3) and the stern planes (5 - 3)
-    against the Stratford option's surfaces (which have the wing-body upwash): {component:
+    against the Stratford option's surfaces (which have the wing-body upwash; the ring in the
+    undisturbed cross-flow, ``ring_wing_lift(wake=False)``): {component:
     {'kappa', 'lever', 'x_from_nose' [ft], 'fraction' of the overall length, 'yaw_ratio'}}."""
     rows = {(r["component"], r["source"]): r for r in rotary_buildup()}
+    bare = suboff_derivatives(3, "stratford")
+    undisturbed = suboff_derivatives(3, "stratford", True, wake=False)
+    rows[("ring wing", "stratford")] = {k: undisturbed[k] - bare[k] for k in ("Yv", "Yr")}
     out = {}
     for comp in ("ring wing", "stern planes"):
         m, s = rows[(comp, "measured")], rows[(comp, "stratford")]

@@ -28,6 +28,7 @@ with C_A's Munk moment and dropped with it.
 from __future__ import annotations
 
 import dataclasses
+import math
 import warnings
 
 import numpy as np
@@ -485,22 +486,34 @@ def _layer_radius(rule: str, s, area, hull) -> np.ndarray:
 
 def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: float,
                    r_te: float, speed: float | None = None,
-                   viscosity: float | None = None) -> tuple[np.ndarray, dict]:
+                   viscosity: float | None = None,
+                   wake: bool = True) -> tuple[np.ndarray, dict]:
     r"""Lift matrix of a ring wing around the vehicle's hull (force :math:`-uL\nu`) and a summary.
 
     The ring's chord line runs from (x_le, r_le) to (x_te, r_te) (body axes, x forward [m];
     radii from the hull axis [m]); it lifts as an isolated ring of its mean radius
     R = (r_le + r_te)/2 and chord c = |(x_le - x_te, r_le - r_te)|
-    (:func:`~stripcoef.hull.lift.ring_wing_lift_matrix`) at its quarter chord, with
+    (:func:`~stripcoef.hull.lift.ring_wing_lift_matrix`; Weissinger's lift slope,
+    :func:`~stripcoef.hull.lift.ring_wing_lift_slope`) at its quarter chord, with
 
-    - **the hull inside it**: slender-body theory gives the ring and the body section it
-      encloses the apparent mass of the ring alone (the enclosed fluid and body move as one,
-      :func:`~stripcoef.hull.lift.ring_wing_lift_slope`), so whatever the ring carries over
-      onto the body the pair lifts as the isolated ring: interference factor 1. The body's
-      upwash at the ring is not added: behind Hopkins's separation station (the
-      slender-body rule) there is none, as for the fins there (:func:`_panel_terms`); ahead of it
-      (``info["body_upwash"]``) it is left out (assumption). The struts inside the ring add
-      nothing (the same enclosed section);
+    - **the hull inside it**, attached flow: in the wake far behind the ring (Trefftz plane)
+      the fluid inside the ring's vortex cylinder moves with the ring and the hull that closes
+      inside it leaves no impulse of its own, so the pair lifts as the isolated ring
+      (slender-body theory, Newman 1977 sec. 7.8; Pitts, Nielsen & Kaattari 1957): interference
+      factor 1. The body's upwash ahead of the separation station is left out (assumption,
+      ``info["body_upwash"]``). The struts inside the ring add nothing (the same section);
+    - **the hull's separated wake** (``wake``, default; the slender-body rules only): behind
+      the body rule's separation station x_0 the body's potential lift stops, i.e. the rule
+      carries the section's cross-flow impulse rho S(x_0) w(x_0) into the wake unchanged
+      (Hopkins 1951; USAF DATCOM sec. 4.2.1.1): that wake moves with the body's cross-velocity
+      at x_0, w_0 = v + x_0 r. A ring behind x_0 and inside the wake's section
+      (pi R^2 <= S(x_0)) turns only the cross-flow relative to it, w - w_0: no force in
+      drift or heave (w = w_0), a force (x_r - x_0) r in yaw rotation (pitch alike). The
+      fraction f = min(1, S(x_0)/(pi R^2)) of w_0 is taken off (``wake_fraction`` of
+      :func:`~stripcoef.hull.lift.ring_wing_lift_matrix`): 1 inside the wake, tending to the
+      undisturbed ring (0) for a ring much wider than the wake; between the two the
+      interpolation is an assumption. ``wake=False`` is the ring in the undisturbed cross-flow
+      (the model before issue 34's ring pass);
     - **the stern flow** (the slender-body rule only, as for the fins): the dynamic pressure
       of the hull's boundary layer at the ring's mid chord, :math:`(y/\delta)^{2p}` at the
       ring's height y = R - r_hull above the surface (Head's layer, :func:`_hull_boundary_layer`;
@@ -522,12 +535,15 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
         The chord line's ends [m], x_le > x_te, radii > 0
     speed, viscosity : float, optional
         As :func:`vehicle_lift`
+    wake : bool
+        The ring answers the cross-flow relative to the hull's separated wake (above)
 
     Returns
     -------
     L : (6, 6) [kg/m, kg, kg m]
     info : dict
-        radius, chord, aspect ratio, lift slope, pressure ratio and its parts
+        radius, chord, aspect ratio, lift slope, pressure ratio and its parts, the wake
+        fraction f and the separation station's radius
 
     References
     ----------
@@ -558,7 +574,7 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
     info = {"radius": radius, "chord": chord, "aspect_ratio": 2.0 * radius / chord,
             "lift_slope": float(ring_wing_lift_slope(2.0 * radius / chord)),
             "x_quarter_chord": x_le - 0.25 * (x_le - x_te), "height": radius - r_hull}
-    q_ratio = 1.0
+    q_ratio, wake_fraction, wake_point = 1.0, 0.0, None
     if slender is not None:
         delta, profile, method = _hull_boundary_layer(slender, slender["x_nose"] - x_mid)
         height = radius - r_hull
@@ -570,9 +586,17 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
                      "boundary_layer_method": method, "layer_ratio": layer,
                      "stream_ratio": stream,
                      "body_upwash": info["x_quarter_chord"] >= slender["x_separation"]})
+        x_0 = slender["x_separation"]
+        s_0 = float(np.interp(slender["x_nose"] - x_0, slender["s"], slender["area"]))
+        info["separation_radius"] = math.sqrt(max(s_0, 0.0) / math.pi)
+        if wake and info["x_quarter_chord"] < x_0:
+            wake_fraction = min(1.0, s_0 / (math.pi * radius ** 2))
+            wake_point = np.array([x_0, hull.y, hull.z]) - np.asarray(ref, float)
     info["pressure_ratio"] = q_ratio
+    info["wake_fraction"] = wake_fraction
     point = np.array([info["x_quarter_chord"], hull.y, hull.z]) - np.asarray(ref, float)
-    return ring_wing_lift_matrix(radius, chord, point, rho=rho, pressure_ratio=q_ratio), info
+    return ring_wing_lift_matrix(radius, chord, point, rho=rho, pressure_ratio=q_ratio,
+                                 wake_point=wake_point, wake_fraction=wake_fraction), info
 
 
 def _round(hull) -> bool:

@@ -140,7 +140,9 @@ def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
         Reference point [m]
     ring : dict, optional
         A ring wing's chord line, ``x_le``, ``x_te``, ``r_le``, ``r_te`` [m] (as
-        ``stripcoef.assembly.lift.ring_wing_lift``): a tail surface too
+        ``stripcoef.assembly.lift.ring_wing_lift``): a tail surface too, its own stiffness
+        that of the ring in the undisturbed cross-flow (``wake=False`` there: add this dL to a
+        model whose ring has ``wake=False``)
     body_vortices : bool
         Also the body's separated vortex pair behind the separation station
         (:func:`_body_pair`), at the surfaces behind that station (slender-body rules only)
@@ -178,8 +180,10 @@ def appendage_sidewash(vehicle, rho: float, ref, *, ring: dict | None = None,
         sources += _body_pair(body[1], hull, ref)
     ring_terms = None
     if ring is not None:
+        # the ring's own sideslip stiffness, in the undisturbed cross-flow: the vortices'
+        # sidewash here replaces ring_wing_lift's separated-wake rule (not added to it)
         ring_l, ring_info = ring_wing_lift(vehicle, rho, ref, speed=speed, viscosity=viscosity,
-                                           **ring)
+                                           wake=False, **ring)
         x_mid = 0.5 * (ring["x_le"] + ring["x_te"])
         ring_terms = {"k": ring_l[1, 1], "radius": 0.5 * (ring["r_le"] + ring["r_te"]),
                       "a": float(hull.half_breadth(np.array([x_mid]))[0]),

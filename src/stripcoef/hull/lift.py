@@ -770,39 +770,34 @@ def power_law_exponent(shape_factor: float) -> float:
     return 0.5 * (shape_factor - 1.0)
 
 
-def ring_wing_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
-    r"""Lift-curve slope of a ring (annular) wing of diameter D and chord c, on the area D c.
+def ring_wing_lift_slope(aspect_ratio):
+    r"""Lift-curve slope of a thin ring (annular) wing of diameter D and chord c, on the area D c.
 
-    .. math:: C_{L\alpha} = \frac{a_\infty}{\sqrt{1 + x^2} + x},\qquad
-              a_\infty = \frac{\pi a_0}{2},\quad x = \frac{a_0}{4 A},\quad A = D/c,
-              \quad a_0 = 2\pi a
+    .. math:: C_{L\alpha} = \frac{\pi^2}{1 + \tfrac{\pi}{2}\lambda
+              + \lambda \arctan(1.2\,\lambda)},\qquad \lambda = \frac{c}{D} = \frac1A
 
-    Helmbold's interpolation (:func:`fin_lift_slope`) between the ring's two exact limits:
+    Weissinger's approximation to his lifting-surface solution of the thin ring wing
+    (Weissinger 1955; the closed form as quoted by Wagner 2021, eq. 15), published for
+    lambda < 5 and with both exact limits:
 
-    - short chord (A large), Prandtl's lifting line on the ring: a circulation
-      :math:`\Gamma_0\cos\varphi` sheds a cylindrical vortex sheet of strength
-      :math:`(\Gamma_0/R)\sin\varphi` whose induced normal velocity at the ring is
-      :math:`\Gamma_0\cos\varphi/(4R)` (half its far-wake value, the uniform cross-flow
-      :math:`\Gamma_0/2R` inside the sheet), so :math:`C_{L\alpha} = a_\infty/(1 + a_0/4A)`;
-      at equal circulation the ring has twice the lift of the elliptic wing of span D at the
-      same induced velocity (half its induced drag, Ribner 1947's result);
-    - long chord (A -> 0), slender-body theory: the ring's cross-section has the apparent
-      mass of the circle outside it plus the enclosed fluid, which moves with it,
-      :math:`2\rho\pi R^2`, so the lift :math:`2 q \alpha\, 2\pi R^2` gives
-      :math:`C_{L\alpha} = \pi A`, twice the planar slender wing's :math:`\pi A/2`.
+    - short chord (A -> infinity): :math:`\pi^2`, Ribner's (1947) lifting-line result for the
+      ring (twice the lift of the elliptic wing of span D at the same induced velocity);
+    - long chord (A -> 0): :math:`\pi A` (:math:`\arctan(1.2\lambda) \to \pi/2 - 1/(1.2\lambda)`),
+      slender-body theory's ring, whose cross-section carries the apparent mass of the circle
+      outside it plus the enclosed fluid, :math:`2\rho\pi R^2`: :math:`L = q\,\pi D^2\alpha`,
+      Hoerner's ring of small aspect ratio (*Fluid-Dynamic Lift*, 1985, p. 7-13), twice the
+      solid body of the same diameter.
 
-    The form reproduces both (x -> 0: lifting line to first order in 1/A; x -> infinity:
-    :math:`a_\infty/2x = \pi A`) exactly as Helmbold's planar formula does for
-    :math:`\pi A/2` and Prandtl's :math:`a_0/(1 + a_0/\pi A)`; between them it is an
-    interpolation (assumption, as Helmbold's is for planar wings), not a lifting-surface
-    solution.  A converging ring is taken at its mean radius.
+    Measured: Fletcher's five annular airfoils (NACA TN 4117, 1957, Fig. 11, p. 19; A = 1/3 to
+    3, Mach 0.13) lie within 2.3 % of it (tests/test_lift_ring.py); a vortex lattice of the
+    thin ring (``validation.lift.ring_vortex_lattice``) within 1.2 % from A = 0.3 to 10. No
+    section-efficiency factor: Fletcher's thick rings meet the thin-ring formula as published.
+    A converging ring is taken at its mean radius.
 
     Parameters
     ----------
     aspect_ratio : float or array
         A = D/c [-], > 0
-    efficiency : float
-        a, section slope over 2 pi [-] (0.9, as for the fins: Whicker & Fehlner 1958)
 
     Returns
     -------
@@ -811,36 +806,40 @@ def ring_wing_lift_slope(aspect_ratio, *, efficiency: float = FIN_EFFICIENCY):
 
     References
     ----------
-    Helmbold (1942) (the interpolation, :func:`fin_lift_slope`); Prandtl's lifting line
-    applied to a closed ring and the ring's induced drag, Ribner, H. S. (1947), "The ring
-    airfoil in nonaxial flow", J. Aeronaut. Sci. 14 and NACA TN 1228 (not read: the limit is
-    derived here); Newman, *Marine Hydrodynamics* (1977), sec. 4.13 (the circle's apparent
-    mass pi rho R^2) and sec. 7.8 (slender-body lift from the section's apparent mass);
-    Katz & Plotkin, *Low-Speed Aerodynamics* (2001), sec. 8.1 (lifting line).
+    Weissinger, J. (1955), "Zur Aerodynamik des Ringflügels I. Die Druckverteilung dünner, fast
+    drehsymmetrischer Flügel in Unterschallströmung", DVL Bericht 2 (the closed form as quoted
+    by Wagner 2021, eq. 15; read second-hand); Ribner, H. S. (1947), "The ring airfoil in
+    nonaxial flow", J. Aeronaut. Sci. 14 (the lifting-line limit, Wagner 2021 eq. 13);
+    Fletcher, H. S. (1957), NACA TN 4117, Fig. 11 (the measured slopes); Hoerner & Borst 1985,
+    p. 7-13 (the slender limit).
     """
     ar = np.asarray(aspect_ratio, dtype=float)
     if np.any(ar <= 0.0):
         raise ValueError(f"ring_wing_lift_slope needs D/c > 0, got {aspect_ratio}")
-    a0 = 2.0 * math.pi * efficiency
-    a_inf = 0.5 * math.pi * a0
-    x = a0 / (4.0 * ar)
-    out = a_inf / (np.sqrt(1.0 + x * x) + x)
+    lam = 1.0 / ar
+    out = math.pi ** 2 / (1.0 + 0.5 * math.pi * lam + lam * np.arctan(1.2 * lam))
     return float(out) if out.ndim == 0 else out
 
 
 def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
-                          pressure_ratio: float = 1.0) -> np.ndarray:
+                          pressure_ratio: float = 1.0, wake_point=None,
+                          wake_fraction: float = 0.0) -> np.ndarray:
     r"""Lift matrix of a ring wing coaxial with the body x axis (force :math:`-uL\nu`).
 
     .. math:: L = k\,(c_y a_y^T + c_z a_z^T),\qquad
               k = \tfrac12\rho\,(2Rc)\,C_{L\alpha}\,\frac{\bar q}{q},\qquad
               c_e = [e;\ r \times e],\quad a_e = [e;\ r_\omega \times e]
+              - f\,[e;\ r_0 \times e]
 
     the ring's lift (:func:`ring_wing_lift_slope`, A = 2R/c) at its quarter chord r on the
     axis, answering the cross-flow in sway and in heave alike (an axisymmetric wing), the
     rotation's at the three-quarter chord :math:`r_\omega` half a chord aft of r
-    (:func:`rotary_incidence_point`; a converging ring's chord taken along x), at the local dynamic pressure :math:`\bar q` (the body's stern flow and
-    boundary layer; 1 in the free stream).
+    (:func:`rotary_incidence_point`; a converging ring's chord taken along x), at the local
+    dynamic pressure :math:`\bar q` (the body's stern flow and boundary layer; 1 in the free
+    stream). ``wake_fraction`` f in [0, 1] and ``wake_point`` r_0 (relative to the reference
+    point [m]): the ring answers the cross-flow relative to a fluid that moves with the body's
+    cross-velocity at r_0 (the separated wake, :func:`stripcoef.assembly.lift.ring_wing_lift`);
+    f = 0 (default) is the ring in undisturbed cross-flow.
 
     Parameters
     ----------
@@ -852,6 +851,10 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
         Fluid density [kg/m^3]
     pressure_ratio : float
         q_bar / q [-] in (0, 1]
+    wake_point : (3,), optional
+        r_0 [m], needed when ``wake_fraction`` > 0
+    wake_fraction : float
+        f [-] in [0, 1]
 
     Returns
     -------
@@ -867,8 +870,14 @@ def ring_wing_lift_matrix(radius: float, chord: float, point, *, rho: float,
         raise ValueError(f"ring_wing_lift_matrix needs R, c > 0, got R = {radius}, c = {chord}")
     k = 0.5 * rho * 2.0 * radius * chord * ring_wing_lift_slope(2.0 * radius / chord) \
         * pressure_ratio
+    if not 0.0 <= wake_fraction <= 1.0 or (wake_fraction > 0.0 and wake_point is None):
+        raise ValueError(f"ring_wing_lift_matrix needs 0 <= f <= 1 (and r_0 when f > 0), got "
+                         f"f = {wake_fraction}")
     out = np.zeros((6, 6))
     turning = rotary_incidence_point(point, chord)
     for e in ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]):
-        out += k * np.outer(lift_column(e, point), lift_column(e, turning))
+        answer = lift_column(e, turning)
+        if wake_fraction > 0.0:
+            answer = answer - wake_fraction * lift_column(e, wake_point)
+        out += k * np.outer(lift_column(e, point), answer)
     return out
