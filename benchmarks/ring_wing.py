@@ -11,7 +11,9 @@ Prints
    undisturbed local cross-flow (``wake=False``), with the wake fraction f and the separation
    station's radius;
 3. every Table 4 term of the configurations that carry the ring (1, 2, 6), model / measured,
-   under each rule with and without the wake.
+   under each rule with and without the wake;
+4. configuration 6's Y'(beta), N'(beta) against Roddy's Appendix B curve, 4 to 18 deg
+   (``validation.lift.ring_drift_rows``), and the measured configuration 6 over 3.
 
 Usage: python -m benchmarks.ring_wing [--methods datcom,stratford_panel]  (about 5 s of CPU)
 """
@@ -23,7 +25,8 @@ import math
 
 from stripcoef.hull.lift import ring_wing_lift_slope
 from validation import reference as ref
-from validation.lift import (FT, ring_vortex_lattice, ring_wing_terms, suboff_derivatives, val)
+from validation.lift import (FT, ring_drift_rows, ring_vortex_lattice, ring_wing_terms,
+                             suboff_derivatives, val)
 
 TERMS = ("Yv", "Nv", "Yr", "Nr")
 RING_CONFIGS = {6: ("Yv", "Nv", "Yr", "Nr"), 2: ("Yv", "Nv", "Yr", "Nr"),
@@ -83,6 +86,15 @@ def main(argv=None) -> None:
                 model = suboff_derivatives(BUILT[config], method, True, wake=wake)
                 parts += [f"{config}:{n} {model[n] / val(f'c{config}.{n}'):5.2f}" for n in names]
             print(f"  {method:15s} wake {'on ' if wake else 'off'} " + "  ".join(parts))
+
+    print("\nconfiguration 6 against Appendix B, model / measured at beta [deg]")
+    for method in methods:
+        for wake in (True, False):
+            rows = ring_drift_rows(method, wake)
+            print(f"  {method:15s} wake {'on ' if wake else 'off'} " + "  ".join(
+                f"{r['q']}'({r['beta']:.0f}) {r['model'] / r['measured']:4.2f}" for r in rows))
+    print("  measured, configuration 6 / 3    " + "  ".join(
+        f"{r['q']}'({r['beta']:.0f}) {r['measured'] / r['bare']:4.2f}" for r in rows))
 
 
 if __name__ == "__main__":
