@@ -6,8 +6,8 @@ Prints
    Fletcher's five measured rings (reference_tables/annular_wing) and against the vortex lattice
    of the thin ring (``validation.lift.ring_vortex_lattice``, 64 x 8 panels);
 2. the ring's increments (configuration 6 minus 3, about Roddy's moment point), measured and
-   modelled under each body-lift rule, with the ring in the hull's separated wake (the
-   library's default, ``wake=True`` of ``stripcoef.assembly.lift.ring_wing_lift``) and in the
+   modelled under each body-lift rule, with the ring in the hull's separated wake (an
+   option, ``wake=True`` of ``stripcoef.assembly.lift.ring_wing_lift``) and in the
    undisturbed local cross-flow (``wake=False``), with the wake fraction f and the separation
    station's radius;
 3. every Table 4 term of the configurations that carry the ring (1, 2, 6), model / measured,

@@ -47,16 +47,15 @@ def test_crossflow_behind_the_station_is_a_small_share():
 @pytest.mark.slow
 def test_no_crossflow_placement_removes_the_stratford_moment_excess():
     """The drift points within 20 % (of 40) per placement, as docs/validation.md states them,
-    and the finding: Stratford's N'(beta) at 12-18 deg stays 1.27-1.62 times the measured under
-    every placement and c_dc, so its excess is not the viscous term's (1.27-1.51 before the
-    ring wing's separated-wake rule took the ring's drift force off configuration 2)."""
+    and the finding: Stratford's N'(beta) at 12-18 deg stays 1.27-1.51 times the measured under
+    every placement and c_dc, so its excess is not the viscous term's."""
     from validation.lift import crossflow_variant_checks, crossflow_variants
     assert crossflow_variant_checks() == {
-        ("datcom", "model"): (22, 40), ("datcom", "subcritical"): (16, 40),
-        ("datcom", "aft"): (24, 40), ("datcom", "aft_subcritical"): (25, 40),
-        ("stratford", "model"): (20, 40), ("stratford", "subcritical"): (8, 40),
-        ("stratford", "aft"): (9, 40), ("stratford", "aft_subcritical"): (11, 40)}
+        ("datcom", "model"): (21, 40), ("datcom", "subcritical"): (16, 40),
+        ("datcom", "aft"): (23, 40), ("datcom", "aft_subcritical"): (23, 40),
+        ("stratford", "model"): (20, 40), ("stratford", "subcritical"): (6, 40),
+        ("stratford", "aft"): (11, 40), ("stratford", "aft_subcritical"): (13, 40)}
     ratios = np.array([c["model"] / c["measured"] for c in crossflow_variants()
                        if c["method"] == "stratford" and c["q"] == "N" and c["beta"] >= 12.0])
     assert ratios.size == 4 * 3 * 4
-    assert np.all((ratios > 1.25) & (ratios < 1.65)), ratios
+    assert np.all((ratios > 1.25) & (ratios < 1.55)), ratios

@@ -152,17 +152,20 @@ def test_ring_inside_the_separated_wake_lifts_only_in_rotation():
     """On the test hull (slender rule: Hopkins's station at x = -0.805 m, where the section's
     radius 0.059 m is above the ring's) the ring behind it has f = 1: no sway force; ahead of
     the station, or under Hoerner's rule (no station), f = 0; a ring wider than the wake's
-    section takes f = S(x_0) / (pi R^2)."""
+    section takes f = S(x_0) / (pi R^2). The rule is an option (``wake=True``); the default is
+    the ring in the undisturbed cross-flow."""
     ring = {"x_le": -0.82, "x_te": -0.95, "r_le": 0.055, "r_te": 0.055}
+    assert ring_wing_lift(_hull(), 1000.0, [0, 0, 0], **ring)[1]["wake_fraction"] == 0.0
+    ring = {**ring, "wake": True}
     m, info = ring_wing_lift(_hull(), 1000.0, [0, 0, 0], **ring)
     assert info["wake_fraction"] == 1.0 and info["separation_radius"] > 0.055
     assert m[1, 1] == pytest.approx(0.0, abs=1e-12) and m[1, 5] < 0.0     # Y_ur = -L[1, 5] > 0
-    off, info_off = ring_wing_lift(_hull(), 1000.0, [0, 0, 0], wake=False, **ring)
+    off, info_off = ring_wing_lift(_hull(), 1000.0, [0, 0, 0], **{**ring, "wake": False})
     assert info_off["wake_fraction"] == 0.0 and off[1, 1] > 0.0
-    ahead = {"x_le": -0.75, "x_te": -0.9, "r_le": 0.09, "r_te": 0.09}
+    ahead = {"x_le": -0.75, "x_te": -0.9, "r_le": 0.09, "r_te": 0.09, "wake": True}
     assert ring_wing_lift(_hull(), 1000.0, [0, 0, 0], **ahead)[1]["wake_fraction"] == 0.0
     assert ring_wing_lift(_hull("on"), 1000.0, [0, 0, 0], **ring)[1]["wake_fraction"] == 0.0
-    wide = {"x_le": -0.82, "x_te": -0.95, "r_le": 0.09, "r_te": 0.09}
+    wide = {"x_le": -0.82, "x_te": -0.95, "r_le": 0.09, "r_te": 0.09, "wake": True}
     f = ring_wing_lift(_hull(), 1000.0, [0, 0, 0], **wide)[1]
     assert f["wake_fraction"] == pytest.approx((f["separation_radius"] / 0.09) ** 2)
     assert 0.0 < f["wake_fraction"] < 1.0

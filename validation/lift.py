@@ -331,7 +331,7 @@ def _moment_point() -> list:
 
 
 @functools.lru_cache(maxsize=None)
-def ring_wing_terms(config: int, body_lift: str = "slender", wake: bool = True):
+def ring_wing_terms(config: int, body_lift: str = "slender", wake: bool = False):
     """(L [kg/m, kg, kg m], info) of ring wing No. 1 on configuration ``config``'s model
     (:func:`ring_wing_chord_line`, ``stripcoef.assembly.lift.ring_wing_lift``) about Roddy's
     moment point; ``wake``: the ring answers the cross-flow relative to the hull's separated
@@ -346,7 +346,7 @@ def ring_wing_terms(config: int, body_lift: str = "slender", wake: bool = True):
 
 @functools.lru_cache(maxsize=None)
 def suboff_model(config: int, body_lift: str = "slender", ring: bool = False,
-                 wake: bool = True):
+                 wake: bool = False):
     """stripcoef's model of Roddy's configuration ``config`` about Roddy's moment point
     (6.6042 ft aft of the nose on the axis); ``ring``: with ring wing No. 1's lift added
     (:func:`ring_wing_terms`, ``wake`` as there)."""
@@ -365,7 +365,7 @@ def suboff_model(config: int, body_lift: str = "slender", ring: bool = False,
 
 
 def suboff_derivatives(config: int, body_lift: str = "slender", ring: bool = False,
-                       fin_munk_twice: bool = False, wake: bool = True) -> dict:
+                       fin_munk_twice: bool = False, wake: bool = False) -> dict:
     """Roddy's nondimensional derivatives of stripcoef's model of a configuration (``ring``:
     with ring wing No. 1): static, rotary (the Munk part of C_A plus the lift,
     :func:`total_linear`) and control (the surfaces' force per u^2 per rad), on
@@ -710,7 +710,7 @@ def _drift_rows(model, config, angles) -> list[dict]:
     return rows
 
 
-def ring_drift_rows(method: str, wake: bool = True,
+def ring_drift_rows(method: str, wake: bool = False,
                     angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> list[dict]:
     """:func:`_drift_rows` of configuration 6 (the bare hull with ring wing No. 1, ``wake`` as
     :func:`ring_wing_terms`) against its Appendix B curve, with the measured configuration 3
@@ -2441,8 +2441,9 @@ def ring_wing_section() -> list[str]:
         a, b = suboff_derivatives(3, method), suboff_derivatives(3, method, True, wake=wake)
         inc[key] = {k: b[k] - a[k] for k in ("Yv", "Nv", "Yr", "Nr")}
     info = ring_wing_terms(3, "slender", False)[1]
-    wake_info = {m: ring_wing_terms(3, m)[1] for m in ("datcom", "stratford", "stratford_panel")}
-    c6 = ring_drift_rows("datcom")
+    wake_info = {m: ring_wing_terms(3, m, True)[1]
+                 for m in ("datcom", "stratford", "stratford_panel")}
+    c6 = ring_drift_rows("datcom", True)
     c6y = [r["measured"] / r["bare"] for r in c6 if r["q"] == "Y"]
     c6n = [r["measured"] / r["bare"] for r in c6 if r["q"] == "N"]
     lever = (FT * (0.5 * val("t1.LOA") - val("moment_point.x")) - info["x_quarter_chord"]) \
@@ -2476,8 +2477,8 @@ def ring_wing_section() -> list[str]:
                        ("slender", "ring in the stern flow, undisturbed cross-flow (slender rule)"),
                        ("panel_off", "ring in the stern flow, undisturbed cross-flow "
                                      "(Stratford, panel flow)"),
-                       ("datcom", "ring in the separated wake (DATCOM, default)"),
-                       ("panel", "ring in the separated wake (Stratford, panel flow)")):
+                       ("datcom", "ring in the separated wake (DATCOM; option)"),
+                       ("panel", "ring in the separated wake (Stratford, panel flow; option)")):
         inc_rows.append((label, *(f"{inc[key][k]:+.6f}" for k in ("Yv", "Nv", "Yr", "Nr"))))
     return [
         "#### The ring wing (configurations 1, 2 and 6)", "",
@@ -2508,7 +2509,8 @@ def ring_wing_section() -> list[str]:
         "far behind the ring the fluid inside its vortex cylinder moves with it and the hull "
         "that closes inside leaves no impulse, so the pair lifts as the ring alone "
         "(interference factor 1; the struts inside add nothing). The hull's separated wake "
-        "(`ring_wing_lift(wake=True)`, the default): behind the body rule's separation "
+        "(`ring_wing_lift(wake=True)`, an option, not the default): behind the body rule's "
+        "separation "
         "station x_0 the rule stops the body's potential lift, i.e. it carries the section's "
         "cross-flow impulse rho S(x_0) w(x_0) into the wake unchanged; a ring behind x_0 and "
         "inside that section turns only the cross-flow relative to the wake, w - w(x_0): "
@@ -2521,7 +2523,11 @@ def ring_wing_section() -> list[str]:
         f"{wake_info['stratford_panel']['separation_radius'] / FT:.3f} ft (Stratford, panel "
         f"flow), against the ring's {r_mean:.3f} ft. The rule was written after Roddy's "
         "configuration 6 showed the ring without a drift force; it has no constant of its own "
-        "(the station and the section are the body rule's). Under "
+        "(the station and the section are the body rule's). It is not the default: it was chosen "
+        "on the only ring data there are (configurations 1, 2 and 6 all carry the ring, so no "
+        "configuration can be held out to test it), and under Stratford's station on the panel "
+        "flow it halves the rotary terms of configurations 1 and 2 (the lift band's sd 0.415 -> "
+        "0.749 when it was tried as the default). Under "
         "`body_lift: slender` it sits in the stern flow, as the fins do: Head's layer at its mid "
         f"chord is {info['boundary_layer'] / FT:.2f} ft thick and the ring "
         f"{info['height'] / FT:.2f} ft above the surface (dynamic pressure "

@@ -487,7 +487,7 @@ def _layer_radius(rule: str, s, area, hull) -> np.ndarray:
 def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: float,
                    r_te: float, speed: float | None = None,
                    viscosity: float | None = None,
-                   wake: bool = True) -> tuple[np.ndarray, dict]:
+                   wake: bool = False) -> tuple[np.ndarray, dict]:
     r"""Lift matrix of a ring wing around the vehicle's hull (force :math:`-uL\nu`) and a summary.
 
     The ring's chord line runs from (x_le, r_le) to (x_te, r_te) (body axes, x forward [m];
@@ -502,8 +502,9 @@ def ring_wing_lift(vehicle, rho: float, ref, *, x_le: float, x_te: float, r_le: 
       (slender-body theory, Newman 1977 sec. 7.8; Pitts, Nielsen & Kaattari 1957): interference
       factor 1. The body's upwash ahead of the separation station is left out (assumption,
       ``info["body_upwash"]``). The struts inside the ring add nothing (the same section);
-    - **the hull's separated wake** (``wake``, default; the slender-body rules only): behind
-      the body rule's separation station x_0 the body's potential lift stops, i.e. the rule
+    - **the hull's separated wake** (``wake``, an option, not the default; the slender-body rules
+      only): behind the body rule's separation station x_0 the body's potential lift stops,
+      i.e. the rule
       carries the section's cross-flow impulse rho S(x_0) w(x_0) into the wake unchanged
       (Hopkins 1951; USAF DATCOM sec. 4.2.1.1): that wake moves with the body's cross-velocity
       at x_0, w_0 = v + x_0 r. A ring behind x_0 and inside the wake's section
