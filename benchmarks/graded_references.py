@@ -1,5 +1,6 @@
 """Capytaine references of bodies with edges on panels graded towards the edges (issue 32): the
-boxes of the bluff set and the extruded polygons of the CAD benchmark.
+boxes, the chamfered box and the unions of prisms of the bluff set, and the extruded polygons
+of the CAD benchmark.
 
 The stored uniform-mesh references of these bodies (``reference_tables/bem/bem_bluff.csv``:
 two subdivided levels, Richardson at order 2, i.e. error ~ 1/N) assume the smooth body's order
@@ -20,6 +21,12 @@ h ~ N^(-1/2)): references that assume no order.
   (:func:`benchmarks.plate_graded.capytaine_eighth`);
 - ``bluff``: the bluff set's prism (``chamfer_box``: a box with one edge chamfered, a pentagon
   extruded), about its volume centroid, meshed and solved as the extrusions below;
+- ``unions``: the bluff set's unions of prisms along x (``box_skid``, ``l_block``,
+  ``twin_hull``, ``cyl_float``, ``box_pod_top_aft``: boxes and trimesh's 24-sided cylinders,
+  :data:`benchmarks.bluff_shapes.PRISM_PARTS`), about their volume centroid, panelled by
+  :mod:`benchmarks.graded_unions` (graded towards the sharp edges only, not the cylinders'
+  15 deg facet joints), their y >= 0 half solved on Capytaine's xOz plane, and the x >= 0
+  quarter on xOz and yOz for the two that are mirror-symmetric in x too;
 - ``extrusions``: the extruded convex polygons of the CAD benchmark's seed (family
   ``extrusion`` of :mod:`benchmarks.cad_shapes`, drawn again exactly as it draws them), about
   the origin as that benchmark takes them: each cap a fan of quadrilateral sectors from the
@@ -40,6 +47,8 @@ Usage (one BLAS thread; the finest level at most 13,000 faces (a box's quarter s
         --csv reference_tables/bem/graded_boxes.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references bluff \\
         --levels 13 16 19 23 27 32 38 --csv reference_tables/bem/graded_bluff.csv
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references unions \\
+        --csv reference_tables/bem/graded_unions.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references extrusions \\
         --seed 1375923287 --count 40 --csv reference_tables/bem/graded_extrusions.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references checks
@@ -325,6 +334,60 @@ def run_extrusions(path, seed, count, levels, only=None):
                 fh.flush()
 
 
+#: the bluff set's unions of prisms along x (benchmarks.bluff_shapes.PRISM_PARTS), cheapest
+#: first (the mirror-symmetric in x are solved on a quarter)
+UNIONS = ("box_skid", "l_block", "twin_hull", "cyl_float", "box_pod_top_aft")
+#: panels on the longest extent of a union, one level each (the five finest within
+#: :data:`MAX_FACES` for a quarter, :data:`PRISM_MAX_FACES` for a half)
+UNION_LEVELS = (8, 10, 13, 16, 19, 23, 27, 32)
+
+
+def union_added_mass(prisms, quarter, m):
+    """6x6 added mass about the origin (the shape's volume centroid) of a union of prisms
+    along x (:mod:`benchmarks.graded_unions`) on its graded panels with ``m`` on the longest
+    extent: Capytaine on its y >= 0 half (``quarter``: its x >= 0 quarter) and the mirror
+    planes; (matrix, faces of the whole body, wall time [s])."""
+    import logging
+
+    import capytaine as cpt
+
+    from benchmarks.graded_unions import graded_part
+
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    t0 = time.perf_counter()
+    v, f = graded_part(prisms, m, quarter)
+    mesh = cpt.ReflectionSymmetricMesh(half=cpt.Mesh(vertices=v, faces=f), plane="xOz")
+    if quarter:
+        mesh = cpt.ReflectionSymmetricMesh(half=mesh, plane="yOz")
+    return solve_added_mass(mesh), (4 if quarter else 2) * len(f), time.perf_counter() - t0
+
+
+def union_levels(prisms, quarter, levels):
+    """The five finest of ``levels`` whose whole body is within the face cap."""
+    from benchmarks.graded_unions import graded_part
+
+    cap, k = (MAX_FACES, 4) if quarter else (PRISM_MAX_FACES, 2)
+    return [m for m in levels if k * len(graded_part(prisms, m, quarter)[1]) <= cap][-MAX_LEVELS:]
+
+
+def run_unions(path, levels, only=None):
+    """The bluff set's unions of prisms at every level, about their volume centroid."""
+    from benchmarks.graded_unions import shape_prisms
+
+    fh, w = _writer(path, "python -m benchmarks.graded_references unions --levels "
+                    + " ".join(map(str, levels)) + (f" --only {' '.join(only)}" if only else ""))
+    with fh:
+        for name in (only or UNIONS):
+            prisms, quarter = shape_prisms(name)
+            what = f"{len(prisms)} prisms along x, {'quarter' if quarter else 'half'} solved"
+            for lev, m in enumerate(union_levels(prisms, quarter, levels)):
+                a, n, sec = union_added_mass(prisms, quarter, m)
+                print(f"{name}: m {m}, {n} faces, {sec:.1f} s: "
+                      + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
+                _rows(w, name, what, lev, m, n, a, sec)
+                fh.flush()
+
+
 def checks(levels):
     """Capytaine on the sphere and a triaxial ellipsoid against Lamb's exact values, a level of
     ``bem_bluff.csv`` re-solved, and the extrusion mesher against the box mesher on one
@@ -375,7 +438,7 @@ def checks(levels):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("boxes", "bluff", "extrusions", "checks"))
+    ap.add_argument("what", choices=("boxes", "bluff", "unions", "extrusions", "checks"))
     ap.add_argument("--seed", type=int, default=1375923287, help="the CAD benchmark's seed")
     ap.add_argument("--count", type=int, default=40, help="its shape count (default 40)")
     ap.add_argument("--levels", type=int, nargs="+", default=None,
@@ -392,6 +455,8 @@ def main(argv=None) -> int:
         run_boxes(args.csv, args.levels or BOX_LEVELS, args.only)
     elif args.what == "bluff":
         run_bluff(args.csv, args.levels or PRISM_LEVELS)
+    elif args.what == "unions":
+        run_unions(args.csv, args.levels or UNION_LEVELS, args.only)
     else:
         run_extrusions(args.csv, args.seed, args.count, args.levels or PRISM_LEVELS,
                        [int(x) for x in args.only] if args.only else None)
