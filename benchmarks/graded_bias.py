@@ -91,6 +91,7 @@ def rows(names=None):
 
 
 def table(res) -> str:
+    auto = ", ".join(sorted({auto_method(n) for n in res}))
     lines = ["| shape | graded file | diagonal bias: median / max | largest (term) | couplings: "
              "largest bias | graded band (diagonal): max | panels within 5 %: vs stored / vs "
              "graded (diagonal; couplings) | panels' worst: vs stored / vs graded |",
@@ -133,10 +134,14 @@ def table(res) -> str:
         lines += [f"| {name} | {_name(t)} | {100 * t['bias']:+.2f} % | {100 * t['band']:.2f} % | "
                   f"{100 * t['vs_old']:+.2f} % | {100 * t['vs_graded']:+.2f} % |"
                   for t in r["terms"]]
+    from stripcoef.hull import remesh
+
     lines += ["", "(A diagonal term relative to the graded diagonal term, a coupling to "
               "sqrt(A_ii A_jj) of the graded matrix; couplings significant (1 % of the scale) "
               "in either reference. Panels: `benchmarks.bluff_shapes.panel_matrix`, the "
-              "library's default panels, as `--method panels` and the CLI's `auto` run them.)"]
+              "library's default panels, as `--method panels` and the CLI's `auto` run them "
+              f"(`auto` takes the panels on every shape here: {auto}); the remesher "
+              f"(pymeshlab, the `remesh` extra) {'installed' if remesh.available() else 'not installed: the base install'}.)"]
     return "\n".join(lines) + "\n"
 
 

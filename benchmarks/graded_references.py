@@ -72,8 +72,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from benchmarks.plate_graded import (_merge, capytaine_eighth, eighth_box,  # noqa: E402
-                                     graded_nodes, solve_added_mass)
+from benchmarks.plate_graded import (_merge, capytaine_eighth, cosine_nodes,  # noqa: E402,F401
+                                     eighth_box, graded_nodes, solve_added_mass)
 from validation.graded_bodies import read, references  # noqa: E402,F401  (re-exported)
 
 RHO = 1000.0
@@ -101,12 +101,6 @@ def box_extents(name: str) -> tuple:
     from benchmarks.bluff_shapes import SHAPES
 
     return tuple(float(x) for x in SHAPES[name][0](None).extents)
-
-
-def cosine_nodes(length: float, n: int) -> np.ndarray:
-    """n + 1 nodes on [0, length] graded towards both ends, x_k = length (1 - cos(pi k/n))/2:
-    :func:`~benchmarks.plate_graded.graded_nodes` on each half [m]."""
-    return 0.5 * length * (1.0 - np.cos(np.pi * np.arange(n + 1) / n))
 
 
 def half_prism(poly, height: float, m: int):
@@ -277,14 +271,14 @@ def extrusions_of_seed(seed: int, count: int) -> dict:
     return out
 
 
-def _writer(path, command):
+def _writer(path, command, graded="every edge"):
     import capytaine
 
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fh = open(path, "w", newline="")
     fh.write(f"# {command}: Capytaine {capytaine.__version__} (direct method, no free "
-             "surface, rho = 1000 kg/m^3), structured quadrilaterals graded towards every "
-             "edge, mirror planes used; upper-triangle 6x6 added mass [kg, kg m, kg m^2]\n")
+             f"surface, rho = 1000 kg/m^3), structured quadrilaterals graded towards {graded}"
+             ", mirror planes used; upper-triangle 6x6 added mass [kg, kg m, kg m^2]\n")
     w = csv.writer(fh)
     w.writerow(HEADER)
     return fh, w
@@ -340,6 +334,9 @@ UNIONS = ("box_skid", "l_block", "twin_hull", "cyl_float", "box_pod_top_aft")
 #: panels on the longest extent of a union, one level each (the five finest within
 #: :data:`MAX_FACES` for a quarter, :data:`PRISM_MAX_FACES` for a half)
 UNION_LEVELS = (8, 10, 13, 16, 19, 23, 27, 32)
+#: the unions' grading, as their file's header says it
+UNION_GRADING = ("every sharp edge (not the 15 deg facet joints of the 24-sided cylinders; "
+                 "benchmarks.graded_unions)")
 
 
 def union_added_mass(prisms, quarter, m):
@@ -375,7 +372,8 @@ def run_unions(path, levels, only=None):
     from benchmarks.graded_unions import shape_prisms
 
     fh, w = _writer(path, "python -m benchmarks.graded_references unions --levels "
-                    + " ".join(map(str, levels)) + (f" --only {' '.join(only)}" if only else ""))
+                    + " ".join(map(str, levels)) + (f" --only {' '.join(only)}" if only else ""),
+                    UNION_GRADING)
     with fh:
         for name in (only or UNIONS):
             prisms, quarter = shape_prisms(name)
@@ -386,6 +384,33 @@ def run_unions(path, levels, only=None):
                       + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
                 _rows(w, name, what, lev, m, n, a, sec)
                 fh.flush()
+
+
+def union_check(name="box_bluerov", levels=(13, 16, 19, 23, 27)):
+    """The unions' mesher (:mod:`benchmarks.graded_unions`, quarter solve) on one box of the
+    bluff set against its stored graded reference (``graded_boxes.csv``: the eighth-box
+    mesher): two independent panellings, one limit; printed."""
+    from shapely.geometry import box as rect
+
+    from validation.cad_shapes import fine_reference
+    from validation.graded_bodies import BOXES
+
+    x, y, z = box_extents(name)
+    prisms = [(-x / 2, x / 2, rect(-y / 2, -z / 2, y / 2, z / 2))]
+    counts, mats = [], []
+    for m in levels:
+        a, n, sec = union_added_mass(prisms, True, m)
+        counts.append(n)
+        mats.append(a)
+        print(f"{name} by the unions' mesher: m {m}, {n} faces, {sec:.1f} s: "
+              + " ".join(f"{v:.6g}" for v in np.diag(a)), flush=True)
+    ref, band, _ = fine_reference(counts, mats)
+    stored, sband, _, _ = references(BOXES)[name]
+    for i in range(6):
+        print(f"{DOFS[i]}: unions' mesher {ref[i, i]:.6g} (band {100 * band[i, i] / ref[i, i]:.2f}"
+              f" %), graded_boxes.csv {stored[i, i]:.6g} (band "
+              f"{100 * sband[i, i] / stored[i, i]:.2f} %), difference "
+              f"{100 * (ref[i, i] / stored[i, i] - 1):+.2f} %")
 
 
 def checks(levels):
@@ -438,7 +463,8 @@ def checks(levels):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("boxes", "bluff", "unions", "extrusions", "checks"))
+    ap.add_argument("what", choices=("boxes", "bluff", "unions", "extrusions", "checks",
+                                     "union-check"))
     ap.add_argument("--seed", type=int, default=1375923287, help="the CAD benchmark's seed")
     ap.add_argument("--count", type=int, default=40, help="its shape count (default 40)")
     ap.add_argument("--levels", type=int, nargs="+", default=None,
@@ -448,6 +474,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.what == "checks":
         checks(args.levels or (8, 11, 16, 23))
+        return 0
+    if args.what == "union-check":
+        union_check(levels=tuple(args.levels or (13, 16, 19, 23, 27)))
         return 0
     if not args.csv:
         ap.error(f"{args.what} needs --csv")

@@ -32,8 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmarks.graded_references import cosine_nodes
-from benchmarks.plate_graded import graded_nodes
+from benchmarks.plate_graded import cosine_nodes, graded_nodes
 
 #: a vertex of a section's boundary whose turning angle exceeds this is a sharp edge [rad]
 #: (boxes 90 deg, part junctions 35-90 deg; the 24-sided cylinders' facet joints 15 deg)
