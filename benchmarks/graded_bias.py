@@ -10,11 +10,14 @@ along x), per diagonal term and per coupling significant in either reference (at
   bem_bluff.csv``) minus the graded reference (Eça & Hoekstra over four or five graded
   levels), relative to the diagonal term (a coupling: to sqrt(A_ii A_jj) of the graded
   matrix), with the graded reference's own band;
-- the panel method as ``benchmarks.bluff_shapes --method panels`` runs it (what the CLI's
-  default ``auto`` runs on these meshes: :func:`auto_method` says which it takes) against
-  the stored reference and against the graded one: errors and within-5 % counts.
+- the library's default (``estimate`` with ``auto``: what ``stripcoef coefficients`` and
+  ``scripts.make_method_uncertainty --measure`` run on these meshes, the panel method with
+  the body's mirror planes; :func:`auto_method` says which method it takes) against the
+  stored reference and against the graded one: errors and within-5 % counts.
 
-Usage (about 10 s of CPU):
+Usage (about 10 s of CPU; the stored records: ``graded_bias.md`` in the base install, as
+the stored accuracy tables and ``method_errors.csv`` were made, ``graded_bias_remesh.md``
+with the ``remesh`` extra):
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_bias [--md benchmarks/data/graded_bias.md]
 """
@@ -51,18 +54,40 @@ def _rel(x, ref, i, j):
     return float((x[i, j] - ref[i, j]) / (ref[i, i] if i == j else np.sqrt(d[i] * d[j])))
 
 
-def auto_method(name) -> str:
-    """The added-mass method the library's default (``auto``) takes for the shape's mesh as
-    ``benchmarks.bluff_shapes`` loads it (:func:`stripcoef.assembly.methods.choose_method`)."""
+def _vehicle(name):
+    """The shape's mesh as a vehicle (``benchmarks.bluff_shapes.strip_mesh``, about its volume
+    centroid), as ``scripts.make_method_uncertainty`` takes it."""
     from benchmarks import bluff_shapes as bs
-    from stripcoef.assembly.methods import choose_method
     from stripcoef.fluid import Fluid
     from stripcoef.geometry.vehicle import Vehicle
 
-    veh = Vehicle.from_mesh(bs.strip_mesh(name), name=name,
-                            fluid=Fluid(density=bs.RHO, kinematic_viscosity=1e-6,
-                                        source="benchmark"))
+    return Vehicle.from_mesh(bs.strip_mesh(name), name=name,
+                             fluid=Fluid(density=bs.RHO, kinematic_viscosity=1e-6,
+                                         source="benchmark"))
+
+
+def auto_method(name) -> str:
+    """The added-mass method the library's default (``auto``) takes for the shape's mesh
+    (:func:`stripcoef.assembly.methods.choose_method`)."""
+    from stripcoef.assembly.methods import choose_method
+
+    veh = _vehicle(name)
     return choose_method("auto", veh, veh.cut(None)).name
+
+
+def model_matrix(name):
+    """M_A [kg, kg m, kg m^2] of the shape by the library's default (``estimate``, ``auto``:
+    what ``stripcoef coefficients`` computes for the mesh, mirror planes used), about its
+    volume centroid, and the panel counts of its levels."""
+    import warnings
+
+    from stripcoef.assembly.estimate import estimate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = estimate(_vehicle(name))
+    return (np.asarray(model.added_mass, float),
+            list(model.conditions.get("added_mass_panel_levels", ())))
 
 
 def rows(names=None):
@@ -79,10 +104,10 @@ def rows(names=None):
             continue
         ref, band, path = graded[name]
         old = stored[name]
-        a, dt, info = bs.panel_matrix(name)
+        a, panels = model_matrix(name)
         terms = _terms(ref, old, bs.SIGNIFICANT)
         d = np.abs(np.diag(ref))
-        out[name] = dict(path=path, panels=list(info["panels"]), seconds=dt, terms=[
+        out[name] = dict(path=path, panels=panels, terms=[
             dict(i=i, j=j, bias=_rel(old, ref, i, j),
                  band=float(band[i, j] / (d[i] if i == j else np.sqrt(d[i] * d[j]))),
                  vs_old=_rel(a, old, i, j), vs_graded=_rel(a, ref, i, j))
@@ -138,9 +163,10 @@ def table(res) -> str:
 
     lines += ["", "(A diagonal term relative to the graded diagonal term, a coupling to "
               "sqrt(A_ii A_jj) of the graded matrix; couplings significant (1 % of the scale) "
-              "in either reference. Panels: `benchmarks.bluff_shapes.panel_matrix`, the "
-              "library's default panels, as `--method panels` and the CLI's `auto` run them "
-              f"(`auto` takes the panels on every shape here: {auto}); the remesher "
+              "in either reference. Model: the library's default, `estimate(vehicle)` with "
+              "`auto`, as `stripcoef coefficients` runs it on the mesh and "
+              "`scripts.make_method_uncertainty --measure` measures it (`auto` takes "
+              f"{auto} on every shape here); the remesher "
               f"(pymeshlab, the `remesh` extra) {'installed' if remesh.available() else 'not installed: the base install'}.)"]
     return "\n".join(lines) + "\n"
 
