@@ -153,33 +153,53 @@ def videoray_like():
 _ASYM_SECTIONS = 24
 
 
-def box_skid():
-    """Box 0.40 x 0.30 x 0.20 m with two skid bars 0.36 x 0.03 x 0.04 m below it at
-    y = +-0.10 m (z 0.10-0.14 m: on the box's bottom face): asymmetric top-bottom."""
+def box_skid_parts():
+    """The parts of :func:`box_skid` (trimesh solids, before their union)."""
     parts = [_box([0.40, 0.30, 0.20])]
     for y in (-0.10, 0.10):
         parts.append(_box([0.36, 0.03, 0.04], [0.0, y, 0.12]))
-    return _union(parts)
+    return parts
+
+
+def box_skid():
+    """Box 0.40 x 0.30 x 0.20 m with two skid bars 0.36 x 0.03 x 0.04 m below it at
+    y = +-0.10 m (z 0.10-0.14 m: on the box's bottom face): asymmetric top-bottom."""
+    return _union(box_skid_parts())
+
+
+def box_pod_top_aft_parts():
+    """The parts of :func:`box_pod_top_aft` (trimesh solids, before their union)."""
+    return [_box([0.45, 0.35, 0.22]),
+            _cyl(0.10, 0.20, [-0.12, 0.0, -0.14], [1, 0, 0], _ASYM_SECTIONS)]
 
 
 def box_pod_top_aft():
     """Box 0.45 x 0.35 x 0.22 m with a cylindrical pod (D 0.10, L 0.20 m, along x) on top, aft,
     centred at (-0.12, 0, -0.14) m: asymmetric fore-aft and top-bottom."""
-    return _union([_box([0.45, 0.35, 0.22]),
-                   _cyl(0.10, 0.20, [-0.12, 0.0, -0.14], [1, 0, 0], _ASYM_SECTIONS)])
+    return _union(box_pod_top_aft_parts())
+
+
+def l_block_parts():
+    """The parts of :func:`l_block` (trimesh solids, before their union)."""
+    return [_box([0.40, 0.30, 0.12]), _box([0.15, 0.30, 0.15], [0.125, 0.0, -0.13])]
 
 
 def l_block():
     """Box 0.40 x 0.30 x 0.12 m with a raised housing 0.15 x 0.30 x 0.15 m on top at the front
     (centred at (0.125, 0, -0.13) m, 0.005 m into the box): an L-shaped side profile."""
-    return _union([_box([0.40, 0.30, 0.12]), _box([0.15, 0.30, 0.15], [0.125, 0.0, -0.13])])
+    return _union(l_block_parts())
+
+
+def cyl_float_parts():
+    """The parts of :func:`cyl_float` (trimesh solids, before their union)."""
+    return [_cyl(0.15, 0.40, [0.0, 0.0, 0.0], [1, 0, 0], _ASYM_SECTIONS),
+            _box([0.30, 0.20, 0.06], [0.04, 0.0, -0.095])]
 
 
 def cyl_float():
     """Cylinder along x (D 0.15, L 0.40 m) with a float block 0.30 x 0.20 x 0.06 m on top,
     shifted forward (centred at (0.04, 0, -0.095) m)."""
-    return _union([_cyl(0.15, 0.40, [0.0, 0.0, 0.0], [1, 0, 0], _ASYM_SECTIONS),
-                   _box([0.30, 0.20, 0.06], [0.04, 0.0, -0.095])])
+    return _union(cyl_float_parts())
 
 
 def chamfer_box():
@@ -192,12 +212,17 @@ def chamfer_box():
     return trimesh.convex.convex_hull(np.array(pts, float))
 
 
+def twin_hull_parts():
+    """The parts of :func:`twin_hull` (trimesh solids, before their union)."""
+    parts = [_cyl(0.12, 0.50, [0.0, y, 0.0], [1, 0, 0], _ASYM_SECTIONS) for y in (-0.15, 0.15)]
+    parts.append(_box([0.30, 0.42, 0.04], [0.0, 0.0, -0.07]))
+    return parts
+
+
 def twin_hull():
     """Two cylinders along x (D 0.12, L 0.50 m) at y = +-0.15 m joined by a top plate
     0.30 x 0.42 x 0.04 m centred at (0, 0, -0.07) m: a catamaran-like body."""
-    parts = [_cyl(0.12, 0.50, [0.0, y, 0.0], [1, 0, 0], _ASYM_SECTIONS) for y in (-0.15, 0.15)]
-    parts.append(_box([0.30, 0.42, 0.04], [0.0, 0.0, -0.07]))
-    return _union(parts)
+    return _union(twin_hull_parts())
 
 
 def former_bluerov2_parts():
@@ -241,6 +266,12 @@ def _bluerov2():
     geometry/bluerov2_heavy.stl)."""
     return trimesh.boolean.union(former_bluerov2_parts(), engine="manifold")
 
+
+#: the bluff set's unions of prisms along x (boxes, 24-sided cylinders): their parts
+#: (benchmarks.graded_references unions)
+PRISM_PARTS = {"box_skid": box_skid_parts, "l_block": l_block_parts,
+               "box_pod_top_aft": box_pod_top_aft_parts, "cyl_float": cyl_float_parts,
+               "twin_hull": twin_hull_parts}
 
 #: name -> (builder(faces) -> trimesh, smooth, what it is)
 SHAPES = {
@@ -377,14 +408,34 @@ def read_references(column="richardson"):
     return out
 
 
+def reference_source(name) -> str:
+    """Where :func:`reference_matrix` takes the shape's reference from (a file and how; the
+    graded file's band of the diagonal, its largest relative term)."""
+    from validation.graded_bodies import bluff_sources
+
+    graded = bluff_sources()
+    if name in graded:
+        ref, band, path = graded[name]
+        d = np.diag(ref)
+        on = d > 1e-9 * d.max()
+        return (f"{path} (Eca & Hoekstra over edge-graded levels; diagonal band up to "
+                f"{100 * np.max(np.diag(band)[on] / d[on]):.2g} %)")
+    source = "reference_tables/bem/bem_bluff.csv (richardson)"
+    if name in ELLIPSOIDS:
+        source += "; diagonal: Lamb (stripcoef.hull.lamb.ellipsoid_added_mass)"
+    return source
+
+
 def reference_matrix(name, refs=None):
     """The reference M_A of a shape: the stored Richardson BEM (``refs``, default
     :func:`read_references`), with Lamb's exact diagonal for the ellipsoids
     (:func:`stripcoef.hull.lamb.ellipsoid_added_mass`), and the edge-graded Capytaine matrix
-    for the boxes and the chamfered box (:func:`validation.graded_bodies.bluff_references`:
+    for the boxes, the chamfered box and the unions of prisms (box_skid, l_block,
+    box_pod_top_aft, cyl_float, twin_hull) (:func:`validation.graded_bodies.bluff_references`:
     Eça & Hoekstra over four or five graded levels, bands 0.1-0.8 % but for the roll of the
     long boxes about their long axis (2-5.5 %), where the stored two-level Richardson at
-    order 2 is up to 5.0 % off: benchmarks/data/graded_value_order.md) [kg, kg m, kg m^2]."""
+    order 2 is up to 5.0 % off: benchmarks/data/graded_value_order.md,
+    benchmarks/data/graded_bias.md) [kg, kg m, kg m^2]."""
     from stripcoef.hull.lamb import ellipsoid_added_mass
     from validation.graded_bodies import bluff_references
 
@@ -395,6 +446,22 @@ def reference_matrix(name, refs=None):
     if name in graded:
         ref = graded[name][0].copy()
     return ref
+
+
+def _reference_note(names) -> str:
+    """Which reference each shape of ``names`` is compared with, and the graded ones' bands
+    (the accuracy tables' note)."""
+    from validation.graded_bodies import bluff_sources
+
+    graded = {k: v for k, v in bluff_sources().items() if k in names}
+    note = "Richardson BEM (bem_bluff.csv); ellipsoid diagonals: Lamb exact"
+    if graded:
+        bands = [band[i, i] / ref[i, i] for ref, band, _ in graded.values() for i in range(6)]
+        files = sorted({p.split("/")[-1] for _, _, p in graded.values()})
+        note = (f"edge-graded Capytaine for {len(graded)} shapes ({', '.join(files)}; "
+                f"Eça & Hoekstra, diagonal bands {100 * min(bands):.2f}-{100 * max(bands):.1f} %"
+                f", median {100 * float(np.median(bands)):.2f} %), otherwise " + note)
+    return note
 
 
 def strip_matrix(name, corrections=True):
@@ -619,7 +686,7 @@ def main(argv=None):
                      + extra + " |")
     summary = (f"worst diagonal {100 * worst_d:.1f} %, worst off-diagonal {100 * worst_o:.1f} % "
                f"of the diagonal scale, median wall time {np.median(times):.3f} s "
-               f"(reference: Richardson BEM; ellipsoid diagonals: Lamb exact)")
+               f"(reference: {_reference_note(names)})")
     if ratios:
         summary += (f"; Capytaine at equal accuracy / panel method: median {np.median(ratios):.2f}x, "
                     f"range {min(ratios):.2f}-{max(ratios):.2f}x over {len(ratios)} shapes")

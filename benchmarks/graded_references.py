@@ -1,5 +1,6 @@
 """Capytaine references of bodies with edges on panels graded towards the edges (issue 32): the
-boxes of the bluff set and the extruded polygons of the CAD benchmark.
+boxes, the chamfered box and the unions of prisms of the bluff set, and the extruded polygons
+of the CAD benchmark.
 
 The stored uniform-mesh references of these bodies (``reference_tables/bem/bem_bluff.csv``:
 two subdivided levels, Richardson at order 2, i.e. error ~ 1/N) assume the smooth body's order
@@ -20,6 +21,12 @@ h ~ N^(-1/2)): references that assume no order.
   (:func:`benchmarks.plate_graded.capytaine_eighth`);
 - ``bluff``: the bluff set's prism (``chamfer_box``: a box with one edge chamfered, a pentagon
   extruded), about its volume centroid, meshed and solved as the extrusions below;
+- ``unions``: the bluff set's unions of prisms along x (``box_skid``, ``l_block``,
+  ``twin_hull``, ``cyl_float``, ``box_pod_top_aft``: boxes and trimesh's 24-sided cylinders,
+  :data:`benchmarks.bluff_shapes.PRISM_PARTS`), about their volume centroid, panelled by
+  :mod:`benchmarks.graded_unions` (graded towards the sharp edges only, not the cylinders'
+  15 deg facet joints), their y >= 0 half solved on Capytaine's xOz plane, and the x >= 0
+  quarter on xOz and yOz for the two that are mirror-symmetric in x too;
 - ``extrusions``: the extruded convex polygons of the CAD benchmark's seed (family
   ``extrusion`` of :mod:`benchmarks.cad_shapes`, drawn again exactly as it draws them), about
   the origin as that benchmark takes them: each cap a fan of quadrilateral sectors from the
@@ -40,6 +47,8 @@ Usage (one BLAS thread; the finest level at most 13,000 faces (a box's quarter s
         --csv reference_tables/bem/graded_boxes.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references bluff \\
         --levels 13 16 19 23 27 32 38 --csv reference_tables/bem/graded_bluff.csv
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references unions \\
+        --csv reference_tables/bem/graded_unions.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references extrusions \\
         --seed 1375923287 --count 40 --csv reference_tables/bem/graded_extrusions.csv
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.graded_references checks
@@ -63,8 +72,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from benchmarks.plate_graded import (_merge, capytaine_eighth, eighth_box,  # noqa: E402
-                                     graded_nodes, solve_added_mass)
+from benchmarks.plate_graded import (_merge, capytaine_eighth, cosine_nodes,  # noqa: E402,F401
+                                     eighth_box, graded_nodes, solve_added_mass)
 from validation.graded_bodies import read, references  # noqa: E402,F401  (re-exported)
 
 RHO = 1000.0
@@ -92,12 +101,6 @@ def box_extents(name: str) -> tuple:
     from benchmarks.bluff_shapes import SHAPES
 
     return tuple(float(x) for x in SHAPES[name][0](None).extents)
-
-
-def cosine_nodes(length: float, n: int) -> np.ndarray:
-    """n + 1 nodes on [0, length] graded towards both ends, x_k = length (1 - cos(pi k/n))/2:
-    :func:`~benchmarks.plate_graded.graded_nodes` on each half [m]."""
-    return 0.5 * length * (1.0 - np.cos(np.pi * np.arange(n + 1) / n))
 
 
 def half_prism(poly, height: float, m: int):
@@ -268,14 +271,14 @@ def extrusions_of_seed(seed: int, count: int) -> dict:
     return out
 
 
-def _writer(path, command):
+def _writer(path, command, graded="every edge"):
     import capytaine
 
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fh = open(path, "w", newline="")
     fh.write(f"# {command}: Capytaine {capytaine.__version__} (direct method, no free "
-             "surface, rho = 1000 kg/m^3), structured quadrilaterals graded towards every "
-             "edge, mirror planes used; upper-triangle 6x6 added mass [kg, kg m, kg m^2]\n")
+             f"surface, rho = 1000 kg/m^3), structured quadrilaterals graded towards {graded}"
+             ", mirror planes used; upper-triangle 6x6 added mass [kg, kg m, kg m^2]\n")
     w = csv.writer(fh)
     w.writerow(HEADER)
     return fh, w
@@ -323,6 +326,91 @@ def run_extrusions(path, seed, count, levels, only=None):
                       + " ".join(f"{v:.6g}" for v in np.diag(a)), flush=True)
                 _rows(w, k, what, lev, m, n, a, sec)
                 fh.flush()
+
+
+#: the bluff set's unions of prisms along x (benchmarks.bluff_shapes.PRISM_PARTS), cheapest
+#: first (the mirror-symmetric in x are solved on a quarter)
+UNIONS = ("box_skid", "l_block", "twin_hull", "cyl_float", "box_pod_top_aft")
+#: panels on the longest extent of a union, one level each (the five finest within
+#: :data:`MAX_FACES` for a quarter, :data:`PRISM_MAX_FACES` for a half)
+UNION_LEVELS = (8, 10, 13, 16, 19, 23, 27, 32)
+#: the unions' grading, as their file's header says it
+UNION_GRADING = ("every sharp edge (not the 15 deg facet joints of the 24-sided cylinders; "
+                 "benchmarks.graded_unions)")
+
+
+def union_added_mass(prisms, quarter, m):
+    """6x6 added mass about the origin (the shape's volume centroid) of a union of prisms
+    along x (:mod:`benchmarks.graded_unions`) on its graded panels with ``m`` on the longest
+    extent: Capytaine on its y >= 0 half (``quarter``: its x >= 0 quarter) and the mirror
+    planes; (matrix, faces of the whole body, wall time [s])."""
+    import logging
+
+    import capytaine as cpt
+
+    from benchmarks.graded_unions import graded_part
+
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    t0 = time.perf_counter()
+    v, f = graded_part(prisms, m, quarter)
+    mesh = cpt.ReflectionSymmetricMesh(half=cpt.Mesh(vertices=v, faces=f), plane="xOz")
+    if quarter:
+        mesh = cpt.ReflectionSymmetricMesh(half=mesh, plane="yOz")
+    return solve_added_mass(mesh), (4 if quarter else 2) * len(f), time.perf_counter() - t0
+
+
+def union_levels(prisms, quarter, levels):
+    """The five finest of ``levels`` whose whole body is within the face cap."""
+    from benchmarks.graded_unions import graded_part
+
+    cap, k = (MAX_FACES, 4) if quarter else (PRISM_MAX_FACES, 2)
+    return [m for m in levels if k * len(graded_part(prisms, m, quarter)[1]) <= cap][-MAX_LEVELS:]
+
+
+def run_unions(path, levels, only=None):
+    """The bluff set's unions of prisms at every level, about their volume centroid."""
+    from benchmarks.graded_unions import shape_prisms
+
+    fh, w = _writer(path, "python -m benchmarks.graded_references unions --levels "
+                    + " ".join(map(str, levels)) + (f" --only {' '.join(only)}" if only else ""),
+                    UNION_GRADING)
+    with fh:
+        for name in (only or UNIONS):
+            prisms, quarter = shape_prisms(name)
+            what = f"{len(prisms)} prisms along x, {'quarter' if quarter else 'half'} solved"
+            for lev, m in enumerate(union_levels(prisms, quarter, levels)):
+                a, n, sec = union_added_mass(prisms, quarter, m)
+                print(f"{name}: m {m}, {n} faces, {sec:.1f} s: "
+                      + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
+                _rows(w, name, what, lev, m, n, a, sec)
+                fh.flush()
+
+
+def union_check(name="box_bluerov", levels=(13, 16, 19, 23, 27)):
+    """The unions' mesher (:mod:`benchmarks.graded_unions`, quarter solve) on one box of the
+    bluff set against its stored graded reference (``graded_boxes.csv``: the eighth-box
+    mesher): two independent panellings, one limit; printed."""
+    from shapely.geometry import box as rect
+
+    from validation.cad_shapes import fine_reference
+    from validation.graded_bodies import BOXES
+
+    x, y, z = box_extents(name)
+    prisms = [(-x / 2, x / 2, rect(-y / 2, -z / 2, y / 2, z / 2))]
+    counts, mats = [], []
+    for m in levels:
+        a, n, sec = union_added_mass(prisms, True, m)
+        counts.append(n)
+        mats.append(a)
+        print(f"{name} by the unions' mesher: m {m}, {n} faces, {sec:.1f} s: "
+              + " ".join(f"{v:.6g}" for v in np.diag(a)), flush=True)
+    ref, band, _ = fine_reference(counts, mats)
+    stored, sband, _, _ = references(BOXES)[name]
+    for i in range(6):
+        print(f"{DOFS[i]}: unions' mesher {ref[i, i]:.6g} (band {100 * band[i, i] / ref[i, i]:.2f}"
+              f" %), graded_boxes.csv {stored[i, i]:.6g} (band "
+              f"{100 * sband[i, i] / stored[i, i]:.2f} %), difference "
+              f"{100 * (ref[i, i] / stored[i, i] - 1):+.2f} %")
 
 
 def checks(levels):
@@ -375,7 +463,8 @@ def checks(levels):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("boxes", "bluff", "extrusions", "checks"))
+    ap.add_argument("what", choices=("boxes", "bluff", "unions", "extrusions", "checks",
+                                     "union-check"))
     ap.add_argument("--seed", type=int, default=1375923287, help="the CAD benchmark's seed")
     ap.add_argument("--count", type=int, default=40, help="its shape count (default 40)")
     ap.add_argument("--levels", type=int, nargs="+", default=None,
@@ -386,12 +475,17 @@ def main(argv=None) -> int:
     if args.what == "checks":
         checks(args.levels or (8, 11, 16, 23))
         return 0
+    if args.what == "union-check":
+        union_check(levels=tuple(args.levels or (13, 16, 19, 23, 27)))
+        return 0
     if not args.csv:
         ap.error(f"{args.what} needs --csv")
     if args.what == "boxes":
         run_boxes(args.csv, args.levels or BOX_LEVELS, args.only)
     elif args.what == "bluff":
         run_bluff(args.csv, args.levels or PRISM_LEVELS)
+    elif args.what == "unions":
+        run_unions(args.csv, args.levels or UNION_LEVELS, args.only)
     else:
         run_extrusions(args.csv, args.seed, args.count, args.levels or PRISM_LEVELS,
                        [int(x) for x in args.only] if args.only else None)

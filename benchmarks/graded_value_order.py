@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from validation.graded_bodies import BLUFF, BOXES, EXTRUSIONS
+from validation.graded_bodies import BLUFF, BOXES, EXTRUSIONS, UNIONS
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 #: a coupling is compared when the reference is at least this fraction of sqrt(A_ii A_jj)
@@ -57,27 +57,30 @@ def _library(vals, value):
     return k, diff[k]
 
 
-def box_rows(paths=(BOXES, BLUFF)):
+#: the set a graded file of the bluff set's shapes is counted in
+KINDS = {BOXES.name: "bluff box", BLUFF.name: "bluff prism", UNIONS.name: "bluff union"}
+
+
+def box_rows(paths=(BOXES, BLUFF, UNIONS)):
     """Per diagonal term and significant coupling (at least :data:`SIGNIFICANT` of the scale)
-    of each shape of the bluff set in ``paths`` (the boxes, the chamfered box): the model's
-    values against the graded reference, with the stored uniform reference (``bem_bluff.csv``:
-    Richardson at order 2, and its finest level) against it too, relative to the reference's
-    diagonal scale."""
+    of each shape of the bluff set in ``paths`` (the boxes, the chamfered box, the unions of
+    prisms): the model's values against the graded reference, with the stored uniform
+    reference (``bem_bluff.csv``: Richardson at order 2, and its finest level) against it
+    too, relative to the reference's diagonal scale."""
     from benchmarks.bluff_shapes import panel_matrix, read_references
     from validation.graded_bodies import references
 
     refs = {}
     for path in paths:
         if Path(path).exists():
-            refs.update(references(path))
+            refs.update({k: (*x, KINDS.get(Path(path).name, "bluff")) for k, x in references(path).items()})
     rich, fine = read_references("richardson"), read_references("a_2")
     rows = []
-    for name, (ref, band, order, faces) in refs.items():
+    for name, (ref, band, order, faces, kind) in refs.items():
         a, _, info = panel_matrix(name)
         counts, mats = list(info["panels"]), [np.asarray(m, float) for m in info["levels"]]
         vals = _values(counts, mats, float(info["formal_order"]))
         check = _library(vals, a)
-        kind = "bluff box" if name.startswith(("box", "cube")) else "bluff prism"
         for row, i, j, norm in _matrix_rows(kind, name, ref, band, order, faces,
                                             float(info["formal_order"]), counts, check,
                                             np.asarray(info["error"]), vals):
@@ -207,11 +210,13 @@ def main(argv=None) -> int:
     ap.add_argument("--md", default=None, help="write the summary here")
     ap.add_argument("--boxes", default=str(BOXES), help="the graded boxes' levels CSV")
     ap.add_argument("--bluff", default=str(BLUFF), help="the graded bluff prisms' levels CSV")
+    ap.add_argument("--unions", default=str(UNIONS),
+                    help="the graded bluff unions' levels CSV")
     ap.add_argument("--extrusions", default=str(EXTRUSIONS),
                     help="the graded extrusions' levels CSV")
-    ap.add_argument("--no-cad", action="store_true", help="the bluff set's boxes only")
+    ap.add_argument("--no-cad", action="store_true", help="the bluff set's shapes only")
     args = ap.parse_args(argv)
-    rows = box_rows((args.boxes, args.bluff))
+    rows = box_rows((args.boxes, args.bluff, args.unions))
     if not args.no_cad:
         rows += cad_rows(args.extrusions)
     text = summary(rows)

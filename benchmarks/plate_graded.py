@@ -71,6 +71,12 @@ def graded_nodes(half: float, m: int) -> np.ndarray:
     return half * np.sin(0.5 * np.pi * np.arange(m + 1) / m)
 
 
+def cosine_nodes(length: float, n: int) -> np.ndarray:
+    """n + 1 nodes on [0, length] graded towards both ends, x_k = length (1 - cos(pi k/n))/2:
+    :func:`graded_nodes` on each half [m]."""
+    return 0.5 * length * (1.0 - np.cos(np.pi * np.arange(n + 1) / n))
+
+
 def _grid(p0, du, dv, u, v):
     """Quadrilaterals of the grid p0 + u_i du + v_j dv (u, v node arrays; du, dv unit
     vectors), vertices and faces, ordered so that du x dv is the outward normal."""

@@ -14,7 +14,9 @@ error, the reference's source). The references, all stored data or exact formula
 - three finned Myring hulls against Capytaine (reference_tables/bem/bem_finned_bodies.csv,
   the Richardson rows; vehicle files of validation/finned.py);
 - the 24 bluff shapes against Capytaine (reference_tables/bem/bem_bluff.csv, Richardson), the
-  ellipsoids' diagonals against Lamb (as benchmarks/bluff_shapes.py does);
+  ellipsoids' diagonals against Lamb, and the edge-graded references where stored (the boxes,
+  the chamfered box, the unions of prisms: reference_tables/bem/graded_*.csv) as
+  benchmarks/bluff_shapes.py does (``reference_matrix``, ``reference_source``);
 - translational quadratic drag: a sphere (across), a cube face-on and edge-on, three cones and a
   hemisphere against their measured whole-body drag coefficients (reference_tables/body_drag_3d,
   Hoerner 1965 via public copies; bodies, sizes and Re = 1e5 in benchmarks/drag_bodies.py), the
@@ -242,9 +244,7 @@ def measure() -> list[dict]:
     refs = bs.read_references()
     for name in bs.SHAPES:
         ref = bs.reference_matrix(name, refs)
-        source = "reference_tables/bem/bem_bluff.csv (richardson)"
-        if name in bs.ELLIPSOIDS:
-            source += "; diagonal: Lamb (stripcoef.hull.lamb.ellipsoid_added_mass)"
+        source = bs.reference_source(name)
         veh = Vehicle.from_mesh(bs.strip_mesh(name), name=name,
                                 fluid=Fluid(density=bs.RHO, kinematic_viscosity=1e-6,
                                             source="benchmark"))

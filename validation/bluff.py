@@ -41,12 +41,12 @@ def _convergence_rows():
 
 
 def _graded_boxes() -> str:
-    """The boxes' and the chamfered box's references: the edge-graded Capytaine matrices, and
-    how far the stored two-level Richardson lies from them on the diagonal (a sentence;
-    empty without the files)."""
-    from validation.graded_bodies import bluff_references
+    """The references of the shapes with edge-graded Capytaine levels (the boxes, the
+    chamfered box, the unions of prisms), and how far the stored two-level Richardson lies
+    from them on the diagonal (a sentence; empty without the files)."""
+    from validation.graded_bodies import bluff_sources
 
-    graded = bluff_references()
+    graded = bluff_sources()
     if not graded:
         return ""
     lines = [ln for ln in open(BEM / "bem_bluff.csv") if not ln.startswith("#")]
@@ -54,20 +54,21 @@ def _graded_boxes() -> str:
     for r in csv.DictReader(lines):
         if r["i"] == r["j"] and r["shape"] in graded:
             rich.setdefault(r["shape"], {})[int(r["i"])] = float(r["richardson"])
-    dev = [(abs(rich[k][i] / ref[i, i] - 1), k, i) for k, (ref, _) in graded.items()
+    dev = [(abs(rich[k][i] / ref[i, i] - 1), k, i) for k, (ref, _, _) in graded.items()
            for i in range(6)]
-    bands = [band[i, i] / ref[i, i] for ref, band in graded.values() for i in range(6)]
+    bands = [band[i, i] / ref[i, i] for ref, band, _ in graded.values() for i in range(6)]
+    files = sorted({p.split("/")[-1] for _, _, p in graded.values()})
     worst = max(dev)
     return (f"The references of {', '.join(sorted(graded))} are Capytaine on panels graded "
-            "towards every edge (`reference_tables/bem/graded_boxes.csv`, `graded_bluff.csv`; "
-            "`python -m benchmarks.graded_references boxes` and `bluff`: four or five levels, "
-            "Eça & Hoekstra's least squares, which assume no order; diagonal bands "
+            "towards every sharp edge (" + ", ".join(f"`reference_tables/bem/{f}`" for f in files)
+            + "; `python -m benchmarks.graded_references boxes`, `bluff` and `unions`: four or "
+            "five levels, Eça & Hoekstra's least squares, which assume no order; diagonal bands "
             f"{100 * min(bands):.2f} to {100 * max(bands):.2f} %): the two-level Richardson "
             f"above assumes order 2 at the edges and lies up to {100 * worst[0]:.1f} % from "
             f"them ({worst[1]} {DOF[worst[2]]}; within 1 % on "
-            f"{sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} diagonal terms). The accuracy "
-            "tables below take the graded matrices "
-            "(`benchmarks.bluff_shapes.reference_matrix`).\n")
+            f"{sum(d <= 0.01 for d, _, _ in dev)} of {len(dev)} diagonal terms; per term: "
+            "`benchmarks/data/graded_bias.md`). The accuracy tables below take the graded "
+            "matrices (`benchmarks.bluff_shapes.reference_matrix`).\n")
 
 
 def section() -> str:

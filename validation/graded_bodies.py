@@ -3,8 +3,12 @@ benchmarks and tests.
 
 ``benchmarks.graded_references`` writes the levels (Capytaine on structured quadrilaterals
 graded towards every edge, four or five levels per body): ``reference_tables/bem/
-graded_boxes.csv`` (the boxes of ``benchmarks.bluff_shapes``) and ``graded_extrusions.csv``
-(the extruded polygons of ``benchmarks.cad_shapes``' seed 1375923287).  Each term's reference
+graded_boxes.csv`` (the boxes of ``benchmarks.bluff_shapes``), ``graded_bluff.csv`` (its
+chamfered box), ``graded_unions.csv`` (its unions of prisms along x: the box with skids, the
+L-shaped block, the box with a pod, the cylinder with a float, the twin hull; graded towards
+their sharp edges only, not the facet joints of their 24-sided cylinders) and
+``graded_extrusions.csv`` (the extruded polygons of ``benchmarks.cad_shapes``' seed
+1375923287).  Each term's reference
 is Eça & Hoekstra's least squares over the levels (:func:`validation.cad_shapes.fine_reference`,
 h ~ N^(-1/2)): it assumes no order of convergence.
 """
@@ -21,6 +25,10 @@ BOXES = ROOT / "reference_tables" / "bem" / "graded_boxes.csv"
 EXTRUSIONS = ROOT / "reference_tables" / "bem" / "graded_extrusions.csv"
 #: the bluff set's prisms (``benchmarks.graded_references bluff``)
 BLUFF = ROOT / "reference_tables" / "bem" / "graded_bluff.csv"
+#: the bluff set's unions of prisms along x (``benchmarks.graded_references unions``)
+UNIONS = ROOT / "reference_tables" / "bem" / "graded_unions.csv"
+#: every graded file of the bluff set's shapes, about their volume centroid
+BLUFF_FILES = (BOXES, BLUFF, UNIONS)
 
 
 def read(path) -> dict:
@@ -60,12 +68,19 @@ def box_references(path=BOXES) -> dict:
             for k, (ref, band, _, _) in references(path).items()}
 
 
-def bluff_references(paths=(BOXES, BLUFF)) -> dict:
+def bluff_references(paths=BLUFF_FILES) -> dict:
     """{shape: (reference 6x6, band 6x6) [kg, kg m, kg m^2]} of every shape of the bluff set
-    with graded levels (the boxes, the prisms), about its volume centroid; files that do not
-    exist are skipped."""
+    with graded levels (the boxes, the prism, the unions), about its volume centroid; files
+    that do not exist are skipped."""
+    return {k: (ref, band) for k, (ref, band, _) in bluff_sources(paths).items()}
+
+
+def bluff_sources(paths=BLUFF_FILES) -> dict:
+    """{shape: (reference 6x6, band 6x6, the file's path relative to the repository)} of
+    :func:`bluff_references`."""
     out: dict = {}
     for path in paths:
         if path.exists():
-            out.update({k: (ref, band) for k, (ref, band, _, _) in references(path).items()})
+            rel = path.relative_to(ROOT).as_posix()
+            out.update({k: (ref, band, rel) for k, (ref, band, _, _) in references(path).items()})
     return out
