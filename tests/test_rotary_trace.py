@@ -1,7 +1,7 @@
 """The traces of the SUBOFF model's yaw-rate force and large-drift yaw moment
-(validation.rotary_trace; issue 34; docs/validation.md, 'Tracing the rotary and large-drift
-misses'): the parts add up to the model, the properties of each part, and Roddy's Table 4 and
-Appendix B facts the traces rest on."""
+(validation.rotary_trace; issue 34; docs/validation.md, 'SUBOFF: where the rotary and
+large-drift misses come from'): the parts add up to the model, the properties of each part, and
+Roddy's Table 4 and Appendix B facts the traces rest on."""
 
 from __future__ import annotations
 

@@ -1352,7 +1352,7 @@ def suboff_table_section() -> list[str]:
         "one published constant used outside its correlation (the next subsections), which a "
         "submarine correlation, once found, replaces.", "",
         *body_lift_section(), *stratford_section(), *stratford_panel_section(),
-        *rotary_buildup_section(), *_rotary_trace_section(),
+        *rotary_buildup_section(),
         *ring_wing_section(),
         "#### One stern appendage's own force, measured on its stock", "",
         f"The model's stern plane (`body_lift: slender`): AR_e = {ar:.2f}, Helmbold slope "
@@ -2293,14 +2293,6 @@ def body_munk_Yr() -> float:
     model = suboff_model(3, "stratford")
     munk = total_linear(dataclasses.replace(model, lift=np.zeros((6, 6))))
     return float(munk[1, 5] / (0.5 * model.density * (FT * val("t1.L_BP")) ** 3))
-
-
-def _rotary_trace_section() -> list[str]:
-    """:func:`validation.rotary_trace.rotary_trace_section` (imported here: that module reads
-    this one)."""
-    from validation.rotary_trace import rotary_trace_section
-
-    return rotary_trace_section()
 
 
 def rotary_buildup_section() -> list[str]:

@@ -250,10 +250,17 @@ def _fmt(d: dict) -> list[str]:
     return [f"{d[k]:+.6f}" for k in TERMS]
 
 
+def section() -> str:
+    """The section 'SUBOFF: where the rotary and large-drift misses come from' of
+    docs/validation.md (validation.SECTIONS, after the lift section): :func:`rotary_trace_section`."""
+    return "\n".join(["## SUBOFF: where the rotary and large-drift misses come from (issue 34)",
+                      "", *rotary_trace_section()])
+
+
 def rotary_trace_section() -> list[str]:
-    """The 'Tracing the rotary and large-drift misses' paragraphs and tables of
-    docs/validation.md (:func:`planes_trace`, :func:`yaw_rate_split`, :func:`rest_arm`,
-    :func:`implied_station`; ``python -m benchmarks.rotary_trace``)."""
+    """The paragraphs and table of :func:`section` (:func:`planes_trace`,
+    :func:`yaw_rate_split`, :func:`rest_arm`, :func:`implied_station`;
+    ``python -m benchmarks.rotary_trace``)."""
     from validation import markdown_table
 
     rows = []
@@ -284,8 +291,8 @@ def rotary_trace_section() -> list[str]:
     low = [c["model"] / c["measured"] for c in drift_curve_comparisons()
            if c["method"] == "datcom" and c["q"] == "N" and c["beta"] == LINEAR_THROUGH]
     return [
-        "Tracing the rotary and large-drift misses (`validation.rotary_trace`, "
-        "`python -m benchmarks.rotary_trace`). Configuration 5's Y'_r, N'_r, Y'_v, N'_v by part "
+        "The lift section's Table 4 and drift-curve comparisons traced part by part "
+        "(`validation.rotary_trace`, `python -m benchmarks.rotary_trace`). Configuration 5's Y'_r, N'_r, Y'_v, N'_v by part "
         "(the body's viscous cross-flow is the strips' quadratic D_Q and adds nothing to a linear "
         "derivative; lever = Y'_r / Y'_v [L_BP] from Roddy's moment point, x forward):", "",
         markdown_table(["rule", "part", "Y'_v", "N'_v", "Y'_r", "N'_r", "lever"], rows), "",
