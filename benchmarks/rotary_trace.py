@@ -5,7 +5,7 @@ Prints configuration 5's horizontal-plane derivatives by part under the default'
 configuration 5 - 3), the non-linear part of the drift curves' yaw moment and its arm, and the
 separation station the bare hull's N'(beta) would need (validation.rotary_trace; docs/validation.md,
 'SUBOFF: where the rotary and large-drift misses come from').
-Usage: python -m benchmarks.rotary_trace [--config 5|2]   (about 5 s of CPU)
+Usage: python -m benchmarks.rotary_trace [--config 5|2]   (about 4 s of CPU)
 """
 
 from __future__ import annotations

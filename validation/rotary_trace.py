@@ -34,8 +34,8 @@ import math
 import numpy as np
 
 from validation import reference as ref
-from validation.lift import (FT, SUBOFF, SUBOFF_COMPARED, _moment_point, drift_curve_comparisons,
-                             drift_force_parts, parse_vehicle_quiet, ring_wing_terms,
+from validation.lift import (FT, SUBOFF, SUBOFF_COMPARED, _moment_point, drift_curve_checks,
+                             drift_curve_comparisons, drift_force_parts, parse_vehicle_quiet, ring_wing_terms,
                              suboff_derivatives, suboff_model, suboff_vehicle_data, total_linear,
                              val)
 
@@ -183,6 +183,56 @@ def drift_moment_split(config: int, method: str, angles=(4.0, 8.0, 12.0, 16.0, 1
     return out
 
 
+def local_reynolds_crossflow(method: str, angles=(4.0, 8.0, 12.0, 16.0, 18.0)) -> dict:
+    r"""The drift-curve check with the hull's viscous cross-flow coefficient taken, section by
+    section, at its own cross-flow Reynolds number :math:`Re_c = U \sin\beta\, 2r(x)/\nu`
+    (Allen & Perkins 1951, NACA Report 1048, and Jorgensen 1977, NASA TR R-474: c_dc at the
+    cross-flow Reynolds number; the circle's C_D(Re) of DNV-RP-C205,
+    :func:`stripcoef.sections.drag.circle_cd`, times the hull's finite-length factor kappa(L/D)
+    in the column of its largest section's Re_c, :func:`stripcoef.sections.drag.cylinder_length_factor`)
+    in place of the model's coefficient at the axial speed's Reynolds number
+    (:func:`validation.lift.hull_crossflow_integrals`' 'model'); everything else the model's.
+    Returns {'inside', 'total' (configurations 2-5, Y' and N', within 20 %), 'arm': {beta: the
+    term's centre, N'/Y' [L_BP from Roddy's moment point]}, 'ratio': {(config, q, beta):
+    model/measured}}."""
+    from stripcoef.sections import drag as sdrag
+    from validation.lift import RODDY_SPEED, hull_crossflow_integrals
+
+    vehicle = parse_vehicle_quiet(suboff_vehicle_data(3, method))
+    hull = vehicle.hull
+    lo, hi = hull.x_extent()
+    x = np.linspace(lo, hi, 4001)
+    two_r = 2.0 * np.sqrt(hull.half_breadth(x) * hull.half_height(x))
+    xm = float(_moment_point()[0])
+    nu = float(vehicle.fluid.kinematic_viscosity)
+    dmax = hull.max_diameter()
+    lbp = FT * val("t1.L_BP")
+    h = hull_crossflow_integrals(method)
+
+    def terms(beta):
+        speed = RODDY_SPEED * math.sin(math.radians(beta))
+        # the DNV curve's range (circle_cd warns and clamps outside it): the ends' thin sections
+        re_c = np.clip(speed * two_r / nu, 1.03e4, 4.9e6)
+        c = sdrag.circle_cd(re_c) * float(sdrag.cylinder_length_factor((hi - lo) / dmax,
+                                                                       speed * dmax / nu))
+        return float(np.trapezoid(c * two_r, x)), float(np.trapezoid(c * two_r * (x - xm), x))
+
+    out = {"inside": 0, "total": 0, "arm": {}, "ratio": {}}
+    for c in drift_curve_comparisons(angles):
+        if c["method"] != method:
+            continue
+        s2 = math.sin(math.radians(c["beta"])) ** 2
+        k, scale = (0, lbp ** 2) if c["q"] == "Y" else (1, lbp ** 3)
+        local = terms(c["beta"])
+        value = c["model"] - h["model"] * h["whole"][k] * s2 / scale + local[k] * s2 / scale
+        ratio = value / c["measured"]
+        out["ratio"][(c["config"], c["q"], c["beta"])] = ratio
+        out["inside"] += int(abs(ratio - 1.0) <= 0.20)
+        out["total"] += 1
+        out["arm"][c["beta"]] = local[1] / local[0] / lbp
+    return out
+
+
 def rest_arm(config: int, method: str, beta: float) -> dict:
     """The moment arm N'/Y' [L_BP from Roddy's moment point, x forward] of the non-linear force
     at drift ``beta`` [deg]: measured ('measured_rest' of :func:`drift_moment_split`) and the
@@ -246,6 +296,12 @@ def implied_station(method: str, beta: float, *, tol: float = 1e-6) -> dict:
 TRACE_METHODS = ("datcom", "stratford_panel")
 
 
+def _span(a: float, b: float) -> str:
+    """'lo-hi' of two arms aft of the moment point (x forward: their negatives) [L_BP]."""
+    lo, hi = sorted((-a, -b))
+    return f"{lo:.2f}-{hi:.2f}"
+
+
 def _fmt(d: dict) -> list[str]:
     return [f"{d[k]:+.6f}" for k in TERMS]
 
@@ -288,6 +344,8 @@ def rotary_trace_section() -> list[str]:
     stations = {b: implied_station("stratford_panel", b) for b in (8.0, 12.0, 16.0, 18.0)}
     n3 = {r["beta"]: r for r in drift_moment_split(3, "stratford_panel") if r["q"] == "N"}
     n5 = {r["beta"]: r for r in drift_moment_split(5, "stratford_panel") if r["q"] == "N"}
+    rey = local_reynolds_crossflow("stratford_panel")
+    rey3 = [v for (c, q, b), v in rey["ratio"].items() if c == 3 and q == "N" and b >= 12.0]
     low = [c["model"] / c["measured"] for c in drift_curve_comparisons()
            if c["method"] == "datcom" and c["q"] == "N" and c["beta"] == LINEAR_THROUGH]
     return [
@@ -334,15 +392,21 @@ def rotary_trace_section() -> list[str]:
         "below its small-angle line (the 4-deg value times sin(beta)cos(beta)/sin 4 cos 4, the "
         "form of the Munk part and of the lift): at 18 deg by "
         f"{n3[18.0]['measured_rest']:+.5f} and {n5[18.0]['measured_rest']:+.5f}, a non-linear "
-        f"force acting {-arm12[3]['measured']:.2f}-{-arms[3]['measured']:.2f} L_BP (bare hull) and "
-        f"{-arm12[5]['measured']:.2f}-{-arms[5]['measured']:.2f} L_BP (with planes) aft of the "
+        f"force acting {_span(arm12[3]['measured'], arms[3]['measured'])} L_BP (bare hull) and "
+        f"{_span(arm12[5]['measured'], arms[5]['measured'])} L_BP (with planes) aft of the "
         "moment point at 12-18 deg. The model's one non-linear force, the viscous cross-flow of "
         "the whole hull (Allen & Perkins 1951; Jorgensen 1977: at the planform's centroid), acts "
         f"{-arms[3]['model']:.3f} L_BP aft (bare hull; {-arms[5]['model']:.3f} with the planes' "
         "cross-flow): its moment is "
         f"{n3[18.0]['model_rest']:+.5f} at 18 deg. Hence the lost points: not the fins (the bare "
-        "hull loses them too) and not the cross-flow coefficient (its Reynolds-number regime "
-        "moves the force, not its centre; `validation.lift.crossflow_variants`). The default "
+        "hull loses them too) and not the cross-flow coefficient: its Reynolds-number regime "
+        "moves the force, not its centre (`validation.lift.crossflow_variants`; with each "
+        "section's coefficient at its own cross-flow Reynolds number U sin(beta) 2r/nu, "
+        "Allen & Perkins's and Jorgensen's c_dc on the DNV circle curve, the term's centre stays "
+        f"within {max(abs(a) for a in rey['arm'].values()):.3f} L_BP of the moment point, N'(beta) "
+        f"of the bare hull at 12-18 deg is {min(rey3):.2f}-{max(rey3):.2f} of the measured and "
+        f"{rey['inside']} of {rey['total']} drift points are within 20 %, against "
+        f"{drift_curve_checks('stratford_panel')[0]} as modelled). The default "
         f"meets them with N'(4 deg) {min(low):.2f}-{max(low):.2f} of the measured "
         "(configurations 2-5), short by about the moment the model lacks at 12-18 deg. A "
         "separation station moving forward with drift "
