@@ -346,6 +346,9 @@ def rotary_trace_section() -> list[str]:
     n5 = {r["beta"]: r for r in drift_moment_split(5, "stratford_panel") if r["q"] == "N"}
     rey = local_reynolds_crossflow("stratford_panel")
     rey3 = [v for (c, q, b), v in rey["ratio"].items() if c == 3 and q == "N" and b >= 12.0]
+    c2 = yaw_rate_split(2, "stratford_panel")
+    sail = component(c2, "sail")
+    sail_inc, ring_inc = measured_increment(4, 3), measured_increment(6, 3)
     low = [c["model"] / c["measured"] for c in drift_curve_comparisons()
            if c["method"] == "datcom" and c["q"] == "N" and c["beta"] == LINEAR_THROUGH]
     return [
@@ -383,7 +386,15 @@ def rotary_trace_section() -> list[str]:
         f"({(d['body']['Yr'] + d['munk']['Yr']) / measured(3)['Yr']:.2f} times the bare hull's, "
         f"from the body lift that makes its Y'_v {d['config3']['model']['Yv'] / measured(3)['Yv']:.2f} "
         "times the measured) where its planes are "
-        f"{d['model']['Yr'] / inc['Yr']:.2f} of theirs.", "",
+        f"{d['model']['Yr'] / inc['Yr']:.2f} of theirs. Configuration 2's Y'_r under "
+        f"`stratford_panel` ({c2['model']['Yr'] / measured(2)['Yr']:.2f} of the measured) has "
+        "the same planes and two more parts off (`python -m benchmarks.rotary_trace --config "
+        f"2`): the sail's Y'_r is {sail['Yr'] / sail_inc['Yr']:.2f} times Roddy's increment "
+        f"(4 - 3) with its Y'_v {sail['Yv'] / sail_inc['Yv']:.2f} times (its lever "
+        f"{sail['Yr'] / sail['Yv']:+.3f} against {sail_inc['Yr'] / sail_inc['Yv']:+.3f} "
+        "measured: this appendage too answers the yaw rate as if its incidence were taken aft "
+        f"of its 3/4 chord), and the ring's Y'_r is {c2['ring']['Yr'] / ring_inc['Yr']:.2f} of "
+        "its increment (6 - 3).", "",
         "The yaw moment at large drift: under `stratford_panel` N'(beta) is "
         f"{n3[4.0]['model'] / n3[4.0]['measured']:.2f} (bare hull) and "
         f"{n5[4.0]['model'] / n5[4.0]['measured']:.2f} (hull + planes) of Roddy's at 4 deg and "
