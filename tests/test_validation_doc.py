@@ -126,6 +126,7 @@ ELSEWHERE = {
     "diagnosis": ("test_diagnose_papers", "test_validation_doc_diagnosis_section_is_current"),
     "fins": ("test_fin_plate", "test_validation_doc_fins_section_is_current"),
     "lift": ("test_lift_data", "test_validation_doc_lift_section_is_current"),
+    "rotary_trace": ("test_rotary_trace", "test_validation_doc_rotary_trace_section_is_current"),
     "identification": ("test_identify_romeo_simulated",
                        "test_validation_doc_identification_section_is_current"),
     "meshes": ("test_mesh_consistency", "test_validation_doc_meshes_section_is_current"),
