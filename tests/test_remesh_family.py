@@ -183,3 +183,36 @@ def test_where_no_remesh_keeps_the_area_the_levels_are_the_input_bisected():
     for rv, rf in levels:
         assert surface_area(rv, rf) == pytest.approx(wing.area, rel=1e-9)
         assert enclosed_volume(rv, rf) == pytest.approx(wing.volume, rel=1e-9)
+
+
+def test_a_remesh_with_collinear_triangles_is_refused():
+    """MeshLab's remesher left triangles of three collinear vertices along a crease of the
+    bluff set's box_pod_top_aft (a box with a pod on top): a zero-area constant panel makes the
+    panel matrix singular (pitch +380 %), so such a remesh is refused like an open one; every
+    remesh that is accepted has no triangle below the least quality."""
+    pytest.importorskip("pymeshlab")
+    from benchmarks.bluff_shapes import strip_mesh
+    from stripcoef.geometry.mesh import mesh_body
+    from stripcoef.hull import remesh
+
+    body = mesh_body(strip_mesh("box_pod_top_aft"), name="box_pod_top_aft")
+    v, f = np.asarray(body.mesh.vertices), np.asarray(body.mesh.faces)
+    h = remesh.edge_for_panels(surface_area(v, f), 884)
+    assert remesh._remesh_checked(v, f, h, remesh.MODES[0], remesh.ITERATIONS) == (None, None)
+    for mode in remesh.MODES[2:]:
+        out, _ = remesh._remesh_checked(v, f, h, mode, remesh.ITERATIONS)
+        assert out is None or not remesh._degenerate(*out)
+
+
+def test_triangle_quality_rule():
+    """Quality 4 sqrt(3) A / (a^2 + b^2 + c^2): 1 for an equilateral triangle, 0 for three
+    collinear vertices; a tetrahedron is not degenerate, the same with one vertex moved onto
+    an edge's line is."""
+    from stripcoef.hull import remesh
+
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    assert not remesh._degenerate(v, f)
+    flat = v.copy()
+    flat[3] = [2.0, 0.0, 0.0]                  # on the line through vertices 0 and 1
+    assert remesh._degenerate(flat, f)

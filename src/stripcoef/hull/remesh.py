@@ -304,7 +304,7 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
         return None, None
     from stripcoef.geometry.mesh import EdgeTopology
 
-    if not EdgeTopology(rf).consistent:
+    if not EdgeTopology(rf).consistent or _degenerate(rv, rf):
         return None, None
     vol0, vol = enclosed_volume(v, np.asarray(faces)), enclosed_volume(rv, rf)
     if vol < 0:                  # the remesher kept the winding; guard against a flip anyway
@@ -313,6 +313,23 @@ def _remesh_checked(vertices, faces, edge, mode, iterations):
     if abs(change[0]) > AREA_TOLERANCE or abs(change[1]) > VOLUME_TOLERANCE:
         return None, change
     return (rv, rf), None
+
+
+#: Smallest triangle quality q = 4 sqrt(3) A / (a^2 + b^2 + c^2) [-] (1 for an equilateral
+#: triangle, 0 for three collinear vertices; Bank 1998's shape measure) a remesh may leave.
+#: MeshLab's remesher can leave triangles of three collinear vertices along a crease (the
+#: bluff set's box_pod_top_aft at 780-3,192 faces: two to 26 of them, q = 0): a constant-panel
+#: triangle of zero area makes the panel method's matrix singular (rcond 1e-23, pitch +380 %),
+#: so such a remesh is refused like an open one and the next mode is tried.
+LEAST_QUALITY = 1e-3
+
+
+def _degenerate(vertices, faces) -> bool:
+    """Whether any triangle's quality is below :data:`LEAST_QUALITY`."""
+    t = np.asarray(vertices, float)[np.asarray(faces)]
+    area2 = np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1)
+    edges2 = (np.diff(t, axis=1, append=t[:, :1]) ** 2).sum(axis=(1, 2))
+    return bool(np.any(2.0 * np.sqrt(3.0) * area2 < LEAST_QUALITY * edges2))
 
 
 # ------------------------------------------------------------------ graded towards edges
