@@ -64,8 +64,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     0.243 held out). A DOF's own changes (its calibration and effects, not the shared
     timing) are removed while its validation error is not below the prior's there
     (:math:`r_i \ge 1`), the DOF with the largest :math:`r_i` first, and the rest scored
-    again. The Diebold-Mariano statistic of each DOF's free-simulation losses against the
-    prior's over the validation segments (:func:`stripcoef.diagnose.heldout.diebold_mariano`,
+    again. The backward elimination then runs again on what is left, the two in turn until
+    neither removes a change: a shared change (the current, the thrusters' timing) kept
+    beside calibrations the veto removed is judged without them. The Diebold-Mariano
+    statistic of each DOF's free-simulation losses against the prior's over the validation
+    segments (:func:`stripcoef.diagnose.heldout.diebold_mariano`,
     HAC variance) is recorded (``per_dof_test``): it says how strong the evidence behind
     each kept DOF is (the held-out part's test on rolling segments is ``--holdout``'s
     ``paired_tests``). It is not made the rule: on 5-6 segments it has little power, and
@@ -106,34 +109,46 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                               e, got[0])
         return cache[key]
 
-    excl = set()
-    cur = score(excl)
-    first = cur[1]
-    while len(excl) < len(changes):
-        trials = [(score(excl | {c}), c) for c in
-                  track([c for c in changes if c not in excl],
-                        desc="diagnose: validating the changes", unit="model")]
-        (best, *_), c = min(trials, key=lambda x: x[0][0])
-        if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
-            break
-        excl = partners(excl | {c}, changes)
-        cur = score(excl)
+    def eliminate(excl, cur):
+        """Backward elimination from ``excl`` (the summed score, above)."""
+        while len(excl) < len(changes):
+            trials = [(score(excl | {c}), c) for c in
+                      track([c for c in changes if c not in excl],
+                            desc="diagnose: validating the changes", unit="model")]
+            (best, *_), c = min(trials, key=lambda x: x[0][0])
+            if best[0] > cur[0][0] or (best[0] == cur[0][0] and best[1] > cur[0][1]):
+                break
+            excl = partners(excl | {c}, changes)
+            cur = score(excl)
+        return excl, cur
 
-    def own(d):
+    def own(d, excl):
         """The changes of DOF ``d`` still kept, the shared timing and current left out."""
         return {c for c in changes if c[1] == d and c not in excl
                 and not (c[0] == "effect" and c[2] in _shared(changes))}
 
+    excl = set()
+    cur = score(excl)
+    first = cur[1]
     vetoed = []
-    while cur[1] is not None:
-        worse = [(e / b, DOF[i]) for e, b, i in zip(cur[1], ref, dofs)
-                 if e >= b and own(DOF[i])]
-        if not worse:
+    while True:
+        excl, cur = eliminate(excl, cur)
+        before = len(excl)
+        while cur[1] is not None:
+            worse = [(e / b, DOF[i]) for e, b, i in zip(cur[1], ref, dofs)
+                     if e >= b and own(DOF[i], excl)]
+            if not worse:
+                break
+            _, d = max(worse)
+            vetoed.append(d)
+            excl = partners(excl | own(d, excl), changes)
+            cur = score(excl)
+        # the veto removed changes the shared ones (current, timing) were kept beside: the
+        # summed score is judged again on what is left (issue 33: the seed-7 current log's
+        # shared current, once the DOFs' calibrations were vetoed, simulated five of six
+        # DOFs worse than the prior on the validation part and was still written)
+        if len(excl) == before:
             break
-        _, d = max(worse)
-        vetoed.append(d)
-        excl = partners(excl | own(d), changes)
-        cur = score(excl)
     tests = {}
     if base_sse is not None and cur[2] is not None:
         # on the consecutive segments the scoring already simulated: the rolling segments
@@ -252,3 +267,4 @@ def validation_errors(val_log, model, dofs):
     from stripcoef.diagnose.heldout import free_simulation_errors
 
     return _named(free_simulation_errors(val_log, model, dofs), dofs)
+
