@@ -113,3 +113,18 @@ def test_the_warning_names_every_flagged_term_worst_first_and_the_remedy():
     two = unconverged_message(rel, {"panels": (400, 1600), "family": "refined/coarsened input"},
                               1600, 0.05, 6000)
     assert "--added-mass-panels 3200" in two and "stripcoef[remesh]" in two
+
+
+def test_the_input_levels_refine_at_least_twice_the_input_faces():
+    """Base install, a mesh of at most N/4 faces: the coarse level is bisected to at least
+    twice the input's faces (its long facets split, not kept), the fine one splits it in
+    four (panel_levels)."""
+    from stripcoef.hull.panels import panel_levels
+
+    m = trimesh.creation.cylinder(radius=0.05, height=0.6, sections=24)
+    f = len(m.faces)
+    coarse, fine = panel_levels(np.asarray(m.vertices), np.asarray(m.faces), 4 * f)
+    assert len(coarse[1]) > 1.5 * f
+    assert len(fine[1]) == 4 * len(coarse[1])
+    edges = np.linalg.norm(np.diff(coarse[0][coarse[1]][:, [0, 1, 2, 0]], axis=1), axis=2)
+    assert edges.max() < 0.6           # no panel as long as the body
