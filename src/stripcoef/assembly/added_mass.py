@@ -579,30 +579,51 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     error = info["error"]
     if symmetrise is not None:
         m_a, error = symmetrise(m_a), symmetrise(error)
-    rel = relative_error(m_a, error)
-    worst = np.unravel_index(int(np.argmax(rel)), rel.shape)
+    rel = relative_error(m_a, error, info.get("length"))
     counts = "/".join(str(c) for c in info["panels"])
-    if rel[worst] > ERROR_TOLERANCE:
-        from stripcoef.conventions import DOF
-
-        finest = int(info["panels"][-1])
-        # twice the panels asked for, or four times once the refinement went on to about twice
-        more = min((2 if finest < 1.5 * n else 4) * n, MAX_PANELS)
-        fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > n
-               else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
-                    "(stripcoef compare FILE)")
-        if info["family"].startswith("refined"):
-            fix += "; install the remesher for three uniform levels (pip install " \
-                   "'stripcoef[remesh]')"
-        warnings.warn(f"{source or vehicle.name}: the 3D panel method has not converged: the "
-                      f"estimated error of M_A[{DOF[worst[0]]}, {DOF[worst[1]]}] is "
-                      f"{100 * rel[worst]:.1f} % of the diagonal scale (tolerance "
-                      f"{100 * ERROR_TOLERANCE:.0f} %; panels {counts}); {fix}",
-                      ModelWarning, stacklevel=3)
+    if rel.max() > ERROR_TOLERANCE:
+        warnings.warn(f"{source or vehicle.name}: " + unconverged_message(
+            rel, info, n, ERROR_TOLERANCE, MAX_PANELS), ModelWarning, stacklevel=3)
     return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, "
                                       f"{info['family']}, Richardson from {counts} panels, "
-                                      "error: grid convergence index)",
+                                      + ("error: the extrapolation's step plus its last change)"
+                                         if len(info["panels"]) >= 3
+                                         else "error: grid convergence index)"),
                  "added_mass_panels": int(info["panels"][-1]),
                  "added_mass_panel_levels": tuple(int(c) for c in info["panels"]),
                  "added_mass_converged": bool(rel.max() <= ERROR_TOLERANCE),
                  "added_mass_error_max": float(rel.max())}, error
+
+
+#: Most terms a not-converged warning names (the worst first; the rest counted) [-].
+WARNED_TERMS = 6
+
+
+def unconverged_message(rel, info, panels: int, tolerance: float, max_panels: int) -> str:
+    """The not-converged warning of the panel method (:func:`panel_vehicle_added_mass`): every
+    upper-triangle term whose estimated error ``rel`` (6x6, over the diagonal scale,
+    :func:`stripcoef.hull.panels.relative_error`) exceeds ``tolerance`` [-], the worst first
+    (at most :data:`WARNED_TERMS` named), the levels solved, and the option or command that
+    resolves it: more panels (twice those asked, or four times once the refinement went on to
+    about twice; at most ``max_panels``), else a look at the mesh or a BEM cross-check; the
+    remesher where the input's two levels were used."""
+    from stripcoef.conventions import DOF
+
+    iu = np.triu_indices(6)
+    over = [(float(rel[i, j]), int(i), int(j)) for i, j in zip(*iu) if rel[i, j] > tolerance]
+    over.sort(reverse=True)
+    named = ", ".join(f"M_A[{DOF[i]}, {DOF[j]}] {100 * r:.1f} %" for r, i, j in
+                      over[:WARNED_TERMS])
+    if len(over) > WARNED_TERMS:
+        named += f" and {len(over) - WARNED_TERMS} more"
+    counts = "/".join(str(c) for c in info["panels"])
+    finest = int(info["panels"][-1])
+    more = min((2 if finest < 1.5 * panels else 4) * panels, max_panels)
+    fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > panels
+           else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
+                "(stripcoef compare FILE)")
+    if info["family"].startswith("refined"):
+        fix += ("; install the remesher for three uniform levels (pip install "
+                "'stripcoef[remesh]')")
+    return (f"the 3D panel method has not converged: estimated error over the diagonal scale "
+            f"of {named} (tolerance {100 * tolerance:.0f} %; panels {counts}); {fix}")
