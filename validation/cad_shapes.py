@@ -22,8 +22,11 @@ FINE = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels.csv"
 #: it is one (35 of the 40 shapes: the family of benchmarks.cad_shapes' stored references,
 #: whose 1,500- and 3,000-face levels are FINE's two coarsest)
 FINE_750 = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_750.csv"
+#: finer levels of the same family where its fine levels stopped short (frame 34: three
+#: levels to 5,954 faces, then 8,744, 11,844 and 15,988)
+FINE_EXTRA = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_extra.csv"
 #: the level files of the fine references: every level of a shape, in one family
-FINE_ALL = (FINE, FINE_750)
+FINE_ALL = (FINE, FINE_750, FINE_EXTRA)
 #: the thin members' shape numbers in FINE start here
 THIN_OFFSET = 100
 #: the seed's plates solved with panels graded towards the edges (benchmarks.plate_graded)
