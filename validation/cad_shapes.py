@@ -22,14 +22,20 @@ FINE = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels.csv"
 #: it is one (35 of the 40 shapes: the family of benchmarks.cad_shapes' stored references,
 #: whose 1,500- and 3,000-face levels are FINE's two coarsest)
 FINE_750 = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_750.csv"
+#: finer levels of the same family where its fine levels stopped short (frame 34: three
+#: levels to 5,954 faces, then 8,744, 11,844 and 15,988)
+FINE_EXTRA = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_extra.csv"
 #: the level files of the fine references: every level of a shape, in one family
-FINE_ALL = (FINE, FINE_750)
+FINE_ALL = (FINE, FINE_750, FINE_EXTRA)
 #: the thin members' shape numbers in FINE start here
 THIN_OFFSET = 100
 #: the seed's plates solved with panels graded towards the edges (benchmarks.plate_graded)
 GRADED = ROOT / "reference_tables" / "bem" / "cad_plates_graded.csv"
 #: that procedure on the thin disc and on plates of DNV-RP-H103 table A-2
 GRADED_CHECKS = ROOT / "reference_tables" / "bem" / "plates_graded_checks.csv"
+#: the seed's coarse tessellations and a filleted box on panels graded towards every edge
+#: (benchmarks.graded_polyhedra: the whole 6x6 per level)
+GRADED_COARSE = ROOT / "reference_tables" / "bem" / "graded_coarse.csv"
 
 
 def number(cell) -> float:
@@ -652,13 +658,31 @@ def graded_checks(path=GRADED_CHECKS) -> dict:
     return dict(disc=disc, plates=plates, bands=max(bands), lines=lines)
 
 
+def read_graded_levels(path) -> dict:
+    """{shape: {level: (faces, 6x6 [kg, kg m, kg m^2])}} of a graded references CSV whose
+    first line is its ``# `` command (``benchmarks.graded_polyhedra``: one row per level and
+    upper-triangle term; the shape the CAD benchmark's index)."""
+    import csv
+
+    out: dict = {}
+    with open(path, newline="") as fh:
+        fh.readline()
+        for r in csv.DictReader(fh):
+            lv = out.setdefault(int(r["shape"]), {})
+            _, a = lv.setdefault(int(r["level"]), (int(r["faces"]), np.zeros((6, 6))))
+            i, j = int(r["i"]), int(r["j"])
+            a[i, j] = a[j, i] = float(r["added_mass"])
+    return out
+
+
 def best_references(model_path=DATA) -> dict:
     """{(shape, i, j): (reference, band [kg, kg m, kg m^2], source)} of every term of the
     stored run: of the references this repository holds for the term -- the stored run's own
     (``bem``, 750-3,000 faces, its grid convergence index ``bem_gci_rel``), the fine levels'
-    (up to 12,000-17,000 faces, Eça & Hoekstra, :func:`fine_reference`) and, on the plates'
-    diagonal terms, the edge-graded levels' (:func:`read_graded`) -- the most resolved: the
-    edge-graded, else the fine, else the stored one.  Not the smallest band: a three-level
+    (up to 12,000-17,000 faces, Eça & Hoekstra, :func:`fine_reference`) and the edge-graded
+    levels' (on the plates' diagonal terms :func:`read_graded`; every term of the coarse
+    cylinders, the low-polygon ellipsoid 14 and the filleted box 18, :data:`GRADED_COARSE`)
+    -- the most resolved: the edge-graded, else the fine, else the stored one.  Not the smallest band: a three-level
     index of levels before the asymptotic range can be small and wrong (the plates' stored
     references, bands of 2-6 %, lie up to 18 % from the edge-graded ones, whose bands are
     0.3-2.5 %: docs/validation.md); an unknown band is never chosen."""
@@ -671,6 +695,11 @@ def best_references(model_path=DATA) -> dict:
         shapes.setdefault(int(r["shape"]), []).append(r)
     levels = read_levels(*FINE_ALL)
     graded = read_graded() if GRADED.exists() else {}
+    coarse = {}
+    if GRADED_COARSE.exists():
+        for k, lv in read_graded_levels(GRADED_COARSE).items():
+            n = [lv[x][0] for x in sorted(lv)]
+            coarse[k] = (*fine_reference(n, [lv[x][1] for x in sorted(lv)]), n)
     for k, terms in shapes.items():
         ref = np.zeros((6, 6))
         for t in terms:
@@ -690,6 +719,11 @@ def best_references(model_path=DATA) -> dict:
             for (i, j) in list(cands):
                 cands[(i, j)].append((float(f_band[i, j]), float(f_ref[i, j]),
                                       f"fine, {lv[max(lv)][0]} faces"))
+        if k in coarse:
+            c_ref, c_band, _, c_faces = coarse[k]
+            for (i, j) in list(cands):
+                cands[(i, j)].append((float(c_band[i, j]), float(c_ref[i, j]),
+                                      f"edge-graded, {c_faces[-1]} faces"))
         if k in graded:
             faces, g_terms = graded[k][3], graded[k][4]
             for i, vals in g_terms.items():

@@ -45,6 +45,10 @@ N_1 < N_2, at the body's formal order p (:func:`edge_order`; on a smooth body p 
 takes the symmetric part (the exact A is symmetric, Newman 1977 eq. 4.150; the discrete one is
 not, and its asymmetry is returned as a measure of the discretisation error).
 
+A box or a plate (a parallelepiped) is panelled as its Capytaine references are, tensor grids
+graded towards every edge (:mod:`stripcoef.hull.graded_panels`): the isotropic remesh put one
+panel across a plate's rim and its in-plane terms came out up to 7.6 % high.
+
 Thin members (frame plates 12.7 mm, duct walls 5.6 mm, issue 32): on the same mesh this
 method and Capytaine agree within 0.09 % on every diagonal term of the BlueROV2 Heavy's
 united surface (2780 and 3914 faces) and within 0.03 % on the VideoRay Pro III's
@@ -87,6 +91,8 @@ from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
     bisect_longest, enclosed_volume, refine, surface_area)
+from stripcoef.hull.graded_panels import box_faces, box_level
+from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.remesh import edge_for_panels
@@ -476,8 +482,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     order :math:`p_f` in the panel size, :func:`edge_order`: on a smooth body 2, the error of
     constant panels ~ 1/N, i.e. :math:`(N_1 A_1 - N_2 A_2)/(N_1 - N_2)`; 4/3 at a
     right-angled edge, 1 at a knife edge), symmetric part.
-    The levels: with the remesher (``family`` "auto" or "remesh", the ``remesh`` extra) three
-    isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
+    The levels: a box or a plate (``family`` "auto", a parallelepiped,
+    :func:`stripcoef.hull.graded_panels.box_faces`) three tensor grids graded towards its
+    edges at about N/4, N/2 and N panels, its thickness crossed by several rows
+    (:mod:`stripcoef.hull.graded_panels`; the seed's plates within 2.3 % of their edge-graded
+    references where the isotropic remesh was up to 7.6 % off: benchmarks/data/
+    plate_panels.md); else with the remesher (``family`` "auto" or "remesh", the ``remesh``
+    extra) three isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
     ("input"), the two panellings of :func:`panel_levels`.  The estimated error of each term
     of the extrapolated value, with three levels or more, is its step from the finest level
     plus its change since the level before (:func:`extrapolation_error`), with two levels
@@ -591,7 +602,12 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
     src, solve_planes, area = (v, f), (), surface_area(v, f)
     family_out, thickness = None, float("inf")
-    if planes and family in ("auto", "remesh"):
+    # a box or a plate (a parallelepiped): panels graded towards its edges (graded_panels),
+    # with or without the remesher
+    box = box_faces(v, f) if family == "auto" else None
+    if box is not None:
+        family_out, thickness = (None, None), box_thickness(box)
+    if planes and family in ("auto", "remesh") and box is None:
         part = capped_part(v, f, planes, about)
         family_out, thickness = (_remeshed_levels(*part, panels, area=area)
                                  if part is not None else (None, float("inf")))
@@ -604,12 +620,25 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     if family_out is None and family in ("auto", "remesh"):
         family_out, thickness = _remeshed_levels(v, f, panels)
     levels, mode = family_out if family_out is not None else (None, None)
+    if box is not None:
+        # (each level at least LEAST_FACE_RATIO times the panels of the one before: the
+        # graded counts are steps)
+        from stripcoef.hull.remesh import LEAST_FACE_RATIO
+
+        levels, whole = [], 0
+        for k in range(3):
+            want = max(50, round(panels / 2 ** (2 - k)), int(LEAST_FACE_RATIO * whole) + 1)
+            pv, pf, solve_planes, row = box_level(box, want, planes, about)
+            levels.append((pv, pf))
+            whole = len(pf) * 2 ** len(solve_planes)
     if levels is None and family == "remesh":
         raise InputError("the isotropic remesher is not installed or could not follow the "
                          "surface", file=where, key="family", value=family,
                          expected="pip install 'stripcoef[remesh]' (pymeshlab), or the input "
                                   "family")
-    if levels is None:
+    if box is not None:
+        used = "graded towards the edges (a box)"
+    elif levels is None:
         used = "refined/coarsened input"
     elif mode.bisect:
         used = "input faces bisected (no remesh kept the area)"
@@ -640,7 +669,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         # range (_remeshed_levels): no term takes the safety factor of 1.25; the order the
         # index may use, and the value's extrapolation takes, is that of the body's sharpest
         # edge (edge_order; module docstring: benchmarks/data/graded_value_order.md)
-        finest_edge = edge_for_panels(area, counts[-1])
+        # (the graded box: its largest row across the thickness, far below it)
+        finest_edge = row if box is not None else edge_for_panels(area, counts[-1])
         formal = edge_order(features.turning, finest_edge, thickness,
                             sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=formal)
@@ -669,12 +699,18 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             break
         from stripcoef.hull import remesh
 
-        edge = remesh.edge_for_panels(area, nxt)
-        lv = remesh.remesh_isotropic(*src, edge, feature_angle=mode)
-        if lv is None or len(lv[1]) < remesh.LEAST_FACE_RATIO * len(levels[-1][1]):
+        if box is not None:
+            pv, pf, _, row = box_level(box, max(nxt, int(remesh.LEAST_FACE_RATIO * counts[-1])
+                                                + 1), solve_planes, about)
+            lv = (pv, pf)
+        else:
+            lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
+                                         feature_angle=mode)
+        if box is None and (lv is None or len(lv[1]) < remesh.LEAST_FACE_RATIO
+                            * len(levels[-1][1])):
             # creases hold the face count (thin members): a level grown to Celik et al.'s
             # r >= 1.3 over the finest, or none (remesh.MIN_REFINEMENT)
-            lv = remesh.grown_level(*src, edge, mode,
+            lv = remesh.grown_level(*src, remesh.edge_for_panels(area, nxt), mode,
                                     remesh.MIN_FACE_RATIO * len(levels[-1][1]),
                                     remesh.MAX_FACES)[0]
             if lv is None:
