@@ -201,7 +201,8 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             if eff.name in fold:
                 own[0] += theta[list(cfg.cal.names).index(fold[eff.name])]
             params = eff.to_parameters(own, hyper, tn)
-            side = _pinned(theta[k + kn:k + ncol], low[k + kn:k + ncol], up[k + kn:k + ncol])
+            side = (_pinned(theta[k + kn:k + ncol], low[k + kn:k + ncol], up[k + kn:k + ncol])
+                    or (eff.at_bound(params) if hasattr(eff, "at_bound") else ""))
             if side:
                 at_bound[eff.name] = side
             k += ncol

@@ -48,11 +48,12 @@ judges itself without the BIC and held-out gain gates -- the release of a calibr
 coefficient (an added-mass error: its gate is the change from the prior in bands) -- must
 pass it too: the release is named only if it explains more of the residual than the
 calibration already did (issue 33: a clean VideoRay log, seed 531988, named a surge
-added-mass error 2.5 bands from the prior with a 1 % held-out gain). The one exception is
-the choice between such a release and a thrust scale that both explain an inertia change
-(:func:`~stripcoef.diagnose.select.diagnose_dof`): there the release, the simpler change,
-is judged by its change from the prior in bands, which its calibration may have made
-already (a record that failed only this gate carries ``_only_evidence``).
+added-mass error 2.5 bands from the prior with a 1 % held-out gain). The release of the
+added mass and a thrust scale, which both explain an inertia change the calibration may
+have made already within its bands, are tested instead by the likelihood ratio of the
+posteriors, band priors included (:func:`stripcoef.diagnose.scalechoice.scale_evidence`),
+adjusted here with the others (a record that failed only this gate carries
+``_only_evidence``).
 
 Depends on: diagnose.compare, diagnose.heldout, identify (residual autocorrelation).
 """

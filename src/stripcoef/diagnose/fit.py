@@ -280,8 +280,24 @@ class _Config:
             if getattr(eff, "inertia", False):
                 cols.append(k + n - 1)
             k += n
+        # the columns are divided by the residual scale (design): so is their noise
         return (cols, float(self.data.model.mass_matrix[self.dof, self.dof]),
-                self.data.rate_noise_variance(self.dof))
+                self.data.rate_noise_variance(self.dof)
+                / self.residual_scale(hyper_override) ** 2)
+
+    def residual_scale(self, hyper_override=None) -> float:
+        r"""The factor [-] the residual of this configuration is divided by to be in the
+        units of the commanded force: the product of its terms' ``residual_scale`` (a
+        thrust scale s, :class:`~stripcoef.effects.thrust.ThrustEffectiveness`: the
+        balance :math:`s\tau = M\dot\nu + \dots` divided by s), 1 without one. The log
+        determines every force only as its ratio to the thrust map, so fits with and
+        without a scale are compared in those units."""
+        s = 1.0
+        for eff, h in self.hyper_terms(hyper_override):
+            rule = getattr(eff, "residual_scale", None)
+            if rule is not None and h is not None:
+                s *= float(rule(h))
+        return s
 
     def calibration_columns(self, hyper_override=None):
         """The calibration columns, at the velocity relative to the water when a term (the
@@ -313,6 +329,9 @@ class _Config:
                 y = y - term.offset
             cols.append(term.cols)
             sd.append(term.sd)
+        scale = self.residual_scale(hyper_override)
+        if scale != 1.0:      # the residual in the commanded force's units
+            return y / scale, np.hstack(cols) / scale, np.concatenate(sd)
         return y, np.hstack(cols), np.concatenate(sd)
 
 

@@ -48,8 +48,11 @@ Steps, for each degree of freedom (issue 7):
      structure of its own, it must also beat every out-of-library shape below;
    The significant effect with the lowest held-out error is added; effects within ``TIE``
    of it are reported as alternatives, and an effect with a signature is preferred over one
-   without; a significant release of one coefficient beyond its bands goes before a thrust
-   scale (the simpler change); a thrust scale must change
+   without; a thrust scale and the release of the added mass are judged with the band
+   priors (the posterior likelihood ratio, :mod:`.scalechoice`; the scale's residual in
+   the commanded force's units) and, when both are candidates, the model holding both says
+   which the log needs, or that it cannot tell them apart (the step then names the other
+   in ``ambiguous_with``); a thrust scale must change
    the inertia the log shows by ``MIMIC_BANDS`` bands of the added mass
    (:func:`~.select._scale_inertia_test`); an effect's released prior coefficients keep
    their physical bound (drag >= 0). No step raises the held-out error (a released coefficient included). Before a

@@ -64,6 +64,9 @@ def text_summary(result) -> str:
         for i, s in enumerate(r["steps"], 1):
             alt = (" (ties: " + ", ".join(a["effect"] for a in s["alternatives"]) + ")"
                    if s["alternatives"] else "")
+            if s.get("ambiguous_with"):
+                alt += (" (the log does not tell it from "
+                        + ", ".join(s["ambiguous_with"]) + ")")
             if s.get("kept") is False:
                 alt += (" [removed: worse free simulation on the validation data; not in the "
                         "written model]")
@@ -289,6 +292,9 @@ def markdown_report(result: Diagnosis, path) -> None:
                        f"{_fmt(s['held_out_error_after'])} (ΔBIC {_fmt(s['delta_bic'], 3)}); "
                        f"evidence: {s['signature'] or 'coefficient outside its band'}; "
                        f"source: {s['source']}.{removed}")
+            if s.get("ambiguous_with"):
+                out.append(f"   - not told apart from: {', '.join(s['ambiguous_with'])} "
+                           f"({s['choice']['reason']})")
             for a in s["alternatives"]:
                 out.append(f"   - tie: {a['effect']} ({_params(a['parameters'])}), held-out "
                            f"{_fmt(a['held_out_error_after'])}: the data do not separate them.")

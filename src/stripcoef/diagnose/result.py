@@ -172,6 +172,13 @@ class Step(_Record):
         the likelihood ratio on the effective number of windows, its p-value, the
         Holm-adjusted p-value, the level, the number of candidates; the paired held-out
         test's p-value, recorded)
+    ambiguous_with : tuple of str, optional
+        The effects the log does not tell from this one (:mod:`~stripcoef.diagnose.
+        scalechoice`: a thrust scale and an added-mass change); the step is one of them,
+        the one with the lower posterior cost
+    choice : mapping, optional
+        The test of a thrust scale against an added-mass change in the model holding both
+        (:func:`~stripcoef.diagnose.scalechoice.choose`), when both were candidates
     """
 
     effect: str
@@ -201,6 +208,8 @@ class Step(_Record):
     selected_parameters: Mapping | None = _optional()
     comparison: Mapping | None = _optional()
     evidence: Mapping | None = _optional()
+    ambiguous_with: tuple | None = _optional()
+    choice: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
-from stripcoef.diagnose import gainfree
+from stripcoef.diagnose import gainfree, scalechoice
 from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.evidence import judge_family, step_test, supported
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
@@ -267,8 +267,11 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             evaluated += [{k: v for k, v in t.items() if not k.startswith("_")} for t in trials]
         good = [t for t in trials if t["significant"]]
         # competing effects (a pair that explains the same residual, a thrust scale with
-        # the effect it competes with): compared in the model holding both
-        competing = _competing(cfg, cur, trials, good, data, dof, cal_names, cal_sd, settings)
+        # the effect it competes with): compared in the model holding both; a thrust scale
+        # and an added-mass change, both candidates, have their own choice (below)
+        pair = {t["effect"]: t for t in trials if scalechoice.contender(t)}
+        competing = None if len(pair) == 2 else _competing(cfg, cur, trials, good, data, dof,
+                                                           cal_names, cal_sd, settings)
         if competing is not None and competing["joint"] is not None and all(
                 supported(t, len(trials), n_dofs) for t in competing["joint"]["steps"]):
             joint = competing["joint"]
@@ -277,7 +280,9 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
             if not (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
                     and shape["held_out_error_after"] < margin * joint["ev"]["held_out_error"]):
-                for t in joint["steps"]:
+                # the member whose removal costs more is named first (scalechoice.named_order)
+                order, joint["cfg"], joint["ev"] = scalechoice.named_order(joint)
+                for t in order:
                     step = {k: v for k, v in t.items() if not k.startswith("_")}
                     step["error_before"] = t["_ref"]["error"]
                     step["held_out_error_before"] = t["_ref"]["held_out_error"]
@@ -303,7 +308,10 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         # beat every out-of-library shape (issue 33: dry friction named a linear drag)
         free = not best["signature"] and best["_held"]
         margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
+        # (not for a scale or an added-mass release: judged with the bands, they explain
+        # what the calibration's bands held, not the residual the shape is fitted to)
         if (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
+                and not scalechoice.judged_with_bands(get_effect(best["effect"]))
                 and shape["held_out_error_after"] < margin * best["held_out_error_after"]):
             result["stopped_by_shape"] = {
                 **shape, "best_effect": best["effect"],
@@ -315,31 +323,23 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             break
         ties = [t for t in good[1:]
                 if t["held_out_error_after"] <= best["held_out_error_after"] * (1 + TIE)]
-        if getattr(get_effect(best["effect"]), "scales_prior", False):
-            # a thrust scale changes inertia and drag together (the regressor is the sum of
-            # the calibration's columns, scaled): a significant release of one coefficient
-            # beyond its bands (an added-mass error) is the simpler change and goes first
-            # -- the scale, if still needed, is the next step (parsimony; issue 33: a 2.6x
-            # added mass named a thrust effectiveness of 0.77; tried, issue 33: the release
-            # first only when its BIC is at least as low as the scale's -- the scale then
-            # took that 2.6x added mass again, 23 % held-out gain over the release, whose
-            # inertia column is fitted by corrected least squares and so leaves the noise
-            # term in its residual, which a noise-free column recovers: residual sizes do
-            # not compare the two)
-            # -- a release whose calibration already made most of the change passes every
-            # gate but the evidence beyond it (evidence.py): as the simpler alternative to
-            # the scale its test is its change in bands
-            single = [t for t in good[1:] + [t for t in trials if t.get("_only_evidence")]
-                      if t["mimics"] and t["band_excess"] is not None
-                      and abs(t["band_excess"]) >= MIMIC_BANDS]
-            if single:
-                ties = [best] + [t for t in ties if t is not single[0]]
-                best = single[0]
+        choice = None
+        if best["effect"] in pair and len(pair) == 2:
+            # a thrust scale or an added-mass change (scalechoice.py; issue 33: the release
+            # went first by parsimony, then the scale, fitted with the inertia free, took
+            # 0.54 for a true 0.69): the model holding both says which, or that it cannot
+            choice = scalechoice.choose(cfg, pair[scalechoice.SCALE],
+                                        pair[scalechoice.RELEASE])
+            ties, best = [t for t in ties if t is not choice["first"]], choice["first"]
         if not best["signature"]:
             with_sig = [t for t in ties if t["signature"]]
             if with_sig:
                 ties = [best] + [t for t in ties if t is not with_sig[0]]
                 best = with_sig[0]
+        both = (scalechoice.both(cfg, cur, choice, lambda e, c, ev, r: _judge(
+            e, c, ev, r, data, dof, cal_names, cal_sd, settings))
+            if choice is not None and choice["both"] else None)
+        best = best if both is None else both[0]    # at the joint fit's scale
         step = {k: v for k, v in best.items() if not k.startswith("_")}
         step["error_before"] = cur["error"]
         step["held_out_error_before"] = cur["held_out_error"]
@@ -347,12 +347,24 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                                  "held_out_error_after": t["held_out_error_after"],
                                  "signature": t["signature"]} for t in ties]
         step["dof"] = DOF[dof]
+        if choice is not None:
+            step["choice"] = choice["record"]
+            if choice["ambiguous"]:
+                step["ambiguous_with"] = [choice["other"]["effect"]]
         if competing is not None and competing["record"]["tests"]:
             step["comparison"] = competing["record"]
         steps.append(step)
         accepted_names.add(best["effect"])
         cfg = best["_cfg"]
         cur = best["_ev"]
+        t = None if both is None else both[1]     # the other, needed beside it
+        if t is not None and t["significant"] and supported(t, len(trials), n_dofs):
+            steps.append({**{k: v for k, v in t.items() if not k.startswith("_")},
+                          "error_before": cur["error"], "alternatives": [],
+                          "held_out_error_before": cur["held_out_error"],
+                          "dof": DOF[dof], "choice": choice["record"]})
+            accepted_names.add(t["effect"])
+            cfg, cur = t["_cfg"], t["_ev"]
 
     # parameters of every added effect refitted with all the others (the step's own values
     # are those it had when it was added)
@@ -385,7 +397,6 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     result["unexplained_signature"] = (_signature_text(shape, unit)
                                        if result["unexplained"] else "")
     return DofResult.from_dict(result), DofFit(config=cfg, evaluation=cur, prior_residual=e0)
-
 
 
 def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
@@ -455,10 +466,16 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
                            f"({MIMIC_BANDS * held:.3g})")
         if held is not None:
             band_excess = float(theta_eff[0] / held)
-        if gain < MIN_HELD_OUT_GAIN:
-            reasons.append(f"held-out gain {100 * gain:.1f}% < {100 * MIN_HELD_OUT_GAIN:.0f}%")
-        if dbic > -MIN_DELTA_BIC:
-            reasons.append(f"delta BIC {dbic:.1f} > -{MIN_DELTA_BIC:g}")
+        if getattr(eff, "scales_prior", False):     # judged with the bands (scalechoice)
+            if gain < -TIE:
+                reasons.append(f"held-out error rises ({100 * gain:.1f}% gain, beyond "
+                               f"{100 * TIE:g}%): the scale does not generalise")
+        else:
+            if gain < MIN_HELD_OUT_GAIN:
+                reasons.append(f"held-out gain {100 * gain:.1f}% < "
+                               f"{100 * MIN_HELD_OUT_GAIN:.0f}%")
+            if dbic > -MIN_DELTA_BIC:
+                reasons.append(f"delta BIC {dbic:.1f} > -{MIN_DELTA_BIC:g}")
     if z < MIN_Z:
         reasons.append(f"z = {z:.1f} < {MIN_Z:g} (parameter / its std)")
     why = eff.implausible(params, data, dof)
@@ -498,7 +515,9 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
             "band_excess": band_excess,
             "error_after": ev["error"], "held_out_error_after": ev["held_out_error"],
             "held_out_gain": gain, "delta_bic": dbic, "z": z,
-            "evidence": step_test(cur, ev, ev["n_free"] - cur["n_free"]),
+            "evidence": (scalechoice.scale_evidence(cfg, ev, cur)
+                         if scalechoice.judged_with_bands(eff)
+                         else step_test(cur, ev, ev["n_free"] - cur["n_free"])),
             "significant": not reasons, "rejected_because": reasons, "_held": held is not None,
             "magnitude": eff.magnitude(params), "source": eff.source,
             "_cfg": cfg, "_ev": ev}
@@ -655,8 +674,7 @@ def _competing(cfg, cur, trials, good, data, dof, cal_names, cal_sd,
             hyps.append((k, name, "force", r["tests"][name]["p_value"]))
         if scale is not None and b == scale["effect"]:
             eff = get_effect(b)
-            th = r["ev"]["full"]["theta"][-1:]
-            params = eff.to_parameters(th, None)
+            params = eff.to_parameters(np.zeros(0), r["joint"].terms[-1][1])
             z = _scale_inertia_z(eff, params, r["ev"]["full"], data, dof, cal_names, settings)
             r["inertia_z"] = float(z)
             hyps.append((k, b, "inertia", float(2.0 * norm.sf(abs(z)))))
@@ -772,7 +790,6 @@ def _unexplained(cfg, cur):
         "delta_bic": float(dbic), "threshold": UNEXPLAINED_GAIN, "noise_floor": floor,
         "held_out_error_over_noise_floor": float(ratio),
         "above_noise_floor": bool(above)}
-
 
 
 # ---------------------------------------------------------------------------

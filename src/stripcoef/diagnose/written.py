@@ -11,7 +11,8 @@ dictionary form (what ``--out`` writes), never from an earlier stage of the fits
   was applied); the values at the step's selection stay as ``selected_parameters``;
 - the final error, the RMS window force residual of the written model on the fitting
   windows (:mod:`stripcoef.effects.windows`; its own effects' window forces subtracted,
-  :func:`stripcoef.effects.laws.effect_window_forces`) [N or N m].
+  :func:`stripcoef.effects.laws.effect_window_forces`), in the commanded force's units
+  (divided by the DOF's thrust scale, :func:`thrust_scale`) [N or N m].
 
 Depends on: effects, conventions, diagnose.calibrate, diagnose.fit.
 """
@@ -63,7 +64,20 @@ def window_errors(log, model, dofs, *, window: float) -> dict:
     model's effects as part of its prediction)."""
     data = window_data(log, model, window=window)
     resid = data.e0 - effect_window_forces(data, model) if model.effects else data.e0
-    return {DOF[i]: _rms(resid[:, i]) for i in dofs}
+    return {DOF[i]: _rms(resid[:, i]) / thrust_scale(model, DOF[i]) for i in dofs}
+
+
+def thrust_scale(model, dof: str) -> float:
+    """The product of the thrust scales ``model`` holds in DOF ``dof`` (its
+    ``thrust_effectiveness`` entries for the DOF or for all six), 1 without one [-]: the
+    residual of a scaled balance is divided by it, in the commanded force's units as the
+    selection measures it (:meth:`stripcoef.diagnose.fit._Config.residual_scale`)."""
+    s = 1.0
+    for entry in model.effects:
+        if isinstance(entry, dict) and entry.get("name") == "thrust_effectiveness" \
+                and entry.get("dof") in (dof, "all"):
+            s *= float(entry["parameters"]["scale"])
+    return s
 
 
 def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
