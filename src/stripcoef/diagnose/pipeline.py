@@ -308,7 +308,12 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                    "unexplained": any(r.unexplained for r in per.values())}
     kept = {d: dict(r.calibration.kept_at_prior) for d, r in per.items()}
     for d, why in not_diagnosed.items():
-        kept[d] = {"all coefficients": why}
+        j = parse_dof(d)
+        # a DOF that moves without being diagnosed: its added mass may have been
+        # calibrated through C_A in the diagnosed DOFs (cross.py); its drags stay
+        moved = float(calibrated.added_mass[j, j]) != float(model.added_mass[j, j])
+        kept[d] = ({"linear and quadratic damping": why} if moved
+                   else {"all coefficients": why})
     if settings.resimulate:
         summary["resimulated_velocity_rms"] = resimulated_errors(train_log, model, per, fits,
                                                                  calibrated, exclude)
