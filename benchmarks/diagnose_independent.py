@@ -74,8 +74,20 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t0 = time.process_time()
     log, truth = generate(prior.to_dict(), category, seed, duration=duration)
     t1 = time.process_time()
+    found = _oracle(log, prior, truth)
     return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0),
-             **_background(truth, prior.to_dict())} for mode in modes]
+             **_background(truth, prior.to_dict()), **found} for mode in modes]
+
+
+def _oracle(log, prior, truth) -> dict:
+    """The row's record of the oracle test (``validation.detectability``): ``detectable``
+    and ``oracle`` (the test on the truth's model and on the prior), for an effect the
+    oracle covers; {} otherwise."""
+    from validation.detectability import oracle
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        got = oracle(log, prior, truth)
+    return {} if got is None else {"detectable": got["detectable"], "oracle": got}
 
 
 def thrust_gain(truth, prior: dict, dof: int) -> float:
@@ -414,6 +426,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
         lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "
                      f"under 30 % in {ok} of {len(outside)}; named: "
                      + ", ".join(sorted({str(r['first']) for r in outside})) + ".")
+    lines += detectability_lines(rows)
     if confusion:
         lines += ["", "Confusion (truth -> effect named first, both modes):", ""]
         for cat, named in confusion.items():
@@ -423,6 +436,49 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines += ["", f"Mean CPU time per log: independent simulation {ts:.1f} s, diagnosis "
               f"{td:.1f} s."]
     return "\n".join(lines)
+
+
+def detectability_lines(rows: list[dict]) -> list[str]:
+    """The oracle's verdict (``validation.detectability``) on the rows that carry one: per
+    effect and mode the logs named first among all and among the detectable ones, then one
+    line per log (its likelihood ratio on the truth's model against the level, and on the
+    prior with the true force fixed)."""
+    tested = [r for r in rows if "detectable" in r]
+    if not tested:
+        return []
+    out = ["", "Detectability (`validation.detectability`: the effect's own test, its "
+           "coefficient free with its nuisance, on the truth's model without the effect, "
+           "passes the evidence gate at alpha / candidates; no threshold changed):", ""]
+    for cat in sorted({r["category"] for r in tested}):
+        for mode in ("dof", "all"):
+            rs = [r for r in tested if r["category"] == cat and r["mode"] == mode]
+            if not rs:
+                continue
+            det = [r for r in rs if r["detectable"]]
+            out.append(f"- {cat} {mode}: named first {sum(r['first'] == cat for r in rs)}/"
+                       f"{len(rs)}; detectable {len(det)}/{len(rs)}, of them named first "
+                       f"{sum(r['first'] == cat for r in det)}/{len(det)}, magnitude within "
+                       f"15 % {sum(r.get('magnitude_error', np.inf) <= 0.15 for r in det)}/"
+                       f"{len(det)}")
+    seen = set()
+    out += ["", "Per log (truth's model: z, likelihood ratio, p against the level; prior: "
+            "p of the true force fixed, the true force beyond the reference's columns over "
+            "its noise):", ""]
+    for r in sorted(tested, key=lambda r: (r["category"], r["vehicle"], r["seed"])):
+        key = (r["category"], r["vehicle"], r["seed"])
+        if key in seen:
+            continue
+        seen.add(key)
+        t, p = r["oracle"]["truth"], r["oracle"]["prior"]
+        named = ", ".join(f"{x['mode']} {x['first']}" for x in tested
+                          if (x["category"], x["vehicle"], x["seed"]) == key)
+        out.append(f"- {r['category']} {r['vehicle']} {r['seed']} (truth {r['truth']:.3g}): "
+                   f"{'detectable' if r['detectable'] else 'not detectable'}: truth's model "
+                   f"z {t['z']:.1f}, LR {t['statistic']:.1f}, p {t['p_value']:.2g} vs "
+                   f"{t['level']:.2g}, estimate {t['estimate']:.3g}, force/noise "
+                   f"{t['snr']:.2f}; prior: p {p['fixed_p_value']:.2g}, force/noise "
+                   f"{p['snr']:.2f}; named first: {named}")
+    return out
 
 
 def main(argv=None) -> int:

@@ -6,7 +6,7 @@ The thrusters' timing (a first-order lag, a pure delay) is one property of the a
 not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
 water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
-Depends on: model, conventions, diagnose.priors, diagnose.fit.
+Depends on: model, conventions, diagnose.priors, diagnose.fit, diagnose.cross.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.cross import shared_value
 from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
 
@@ -152,7 +153,8 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
 
     The calibration of DOF i adds its own M, D_L, D_Q and the other DOFs' added mass
     ``M_<dof>`` seen through C_A -- unless that DOF is diagnosed itself, whose own
-    calibration then holds. The model's provenance (``diagnose``) records, per DOF, the
+    calibration then holds; an added mass calibrated in several DOFs is written once, their
+    inverse-variance weighted mean (:func:`stripcoef.diagnose.cross.shared_value`). The model's provenance (``diagnose``) records, per DOF, the
     calibration changes applied and the parameters of each effect as applied (a native
     effect's, folded into the matrices or thrusters, included). A timing effect of
     :data:`SHARED_TIMING` written in several DOFs (:func:`share_timing`: one value) is
@@ -169,7 +171,7 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     for cfg, _ in fitted.values():
         for eff, _ in cfg.terms:
             shared_in[eff.name] = shared_in.get(eff.name, 0) + 1
-    shared = {}
+    shared, cross = {}, {}
     for d, r in per.items():
         i = parse_dof(d)
         cfg, theta = fitted[d]
@@ -187,8 +189,10 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
                 mats[key][i, i] += value
                 applied[key] = float(value)
             elif key.startswith("M_") and key[2:] not in per:
-                j = parse_dof(key[2:])
-                mats["M"][j, j] += value
+                # a DOF that moves but is not diagnosed: its added mass may be calibrated
+                # in several DOFs, one value written after the loop (cross.shared_value)
+                cross.setdefault(key, []).append(
+                    (float(value), float(r.calibration.std.get(key, math.nan))))
                 applied[key] = float(value)
         kept_effects, parameters, at_bound = [], {}, {}
         low, up = cfg.lower(), cfg.upper()
@@ -221,6 +225,8 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
             parameters[eff.name] = {n: float(v) for n, v in params.items()}
         record.append({"dof": d, "calibration": applied, "effects": kept_effects,
                        "parameters": parameters, "at_bound": at_bound})
+    for key, estimates in cross.items():
+        mats["M"][parse_dof(key[2:]), parse_dof(key[2:])] += shared_value(estimates)[0]
     m = _with_matrices(m, mats)
     for eff, params, std in shared.values():
         m = m.with_effects({"name": eff.name, "dof": "all", "parameters": dict(params),

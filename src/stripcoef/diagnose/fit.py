@@ -611,8 +611,8 @@ def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     mean of :math:`\partial (C_A(\nu)\nu)_i / \partial M_{jj} = (C_A[E_{jj}](\nu)\nu)_i`
     (C_A is linear in M_A); they are named ``M_<dof>`` (e.g. ``M_sway``) and are omitted
     when that product never moves in the log, or when DOF j is not in ``cross`` (the DOFs
-    whose added mass this DOF may calibrate: excited, and not diagnosed themselves, so that
-    one coefficient has one value; None = all).
+    whose added mass this DOF may calibrate: those that move, a thruster-less one
+    included; one value is written, :mod:`stripcoef.diagnose.cross`; None = all).
     """
     bands = settings.band_table()
     kind = "translational" if dof < 3 else "rotational"

@@ -56,4 +56,16 @@ def with_retest(trial: dict, retest: dict) -> dict:
             f"z = {retest['z']:.1f}, held-out gain {100 * retest['held_out_gain']:.1f} %, "
             f"delta BIC {retest['delta_bic']:.1f}; written without the gains)")
     return {**retest, "effect": trial["effect"], "signature": text,
-            "released": trial["released"], "_cfg": trial["_cfg"], "_ev": trial["_ev"]}
+            "released": trial["released"], "_cfg": trial["_cfg"], "_ev": trial["_ev"],
+            "_retested": True}
+
+
+def borrows_from_scale(trial: dict) -> bool:
+    """Whether a thrust scale may be paired with ``trial`` to take its force
+    (:func:`stripcoef.diagnose.select._competing`): not when the trial was judged by the
+    retest, whose reference holds every thruster's gain of the DOF free, so a common scale
+    of those thrusters (their gains moving together) is already in it: the retest found
+    the tether beyond any thrust scale (issue 33: on a BlueROV2-like log, seed 1731, the
+    pair test without the gains gave the tether p = 0.62 beside a scale that alone was
+    not significant, and nothing was named where the retest had z = 6.9)."""
+    return not trial.get("_retested", False)

@@ -96,6 +96,7 @@ import numpy as np
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
                                           clip_added_mass, share_timing)
+from stripcoef.diagnose.cross import cross_dofs
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
@@ -253,7 +254,6 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
-    cross = [j for j in excited if j not in dofs]
     # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
     # they are the prior of the rest of the diagnosis and written with the model
     prior, gains = model, None
@@ -266,6 +266,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             data = window_data(train_log, model, window=window)
             if model.effects:
                 data.e0 = data.e0 - effect_window_forces(data, model)
+    # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
+    # reach; written once (a diagnosed DOF's own calibration; cross.py)
+    cross = cross_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)
@@ -308,7 +311,12 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                    "unexplained": any(r.unexplained for r in per.values())}
     kept = {d: dict(r.calibration.kept_at_prior) for d, r in per.items()}
     for d, why in not_diagnosed.items():
-        kept[d] = {"all coefficients": why}
+        j = parse_dof(d)
+        # a DOF that moves without being diagnosed: its added mass may have been
+        # calibrated through C_A in the diagnosed DOFs (cross.py); its drags stay
+        moved = float(calibrated.added_mass[j, j]) != float(model.added_mass[j, j])
+        kept[d] = ({"linear and quadratic damping": why} if moved
+                   else {"all coefficients": why})
     if settings.resimulate:
         summary["resimulated_velocity_rms"] = resimulated_errors(train_log, model, per, fits,
                                                                  calibrated, exclude)

@@ -177,9 +177,11 @@ def _generic_basis(data: WindowData, dof: int):
 
 def _dof_calibration(data: WindowData, dof: int, settings: DiagnoseSettings, excited, cross):
     """``(calibration, identifiability)`` of DOF ``dof``: :func:`_calibration`'s columns
-    less the coefficients the log does not determine (:func:`_identifiability`)."""
+    less the coefficients the log does not determine (:func:`_identifiability`); the
+    added masses of ``cross`` are those of DOFs that move (:mod:`.cross`)."""
     cal = _calibration(data, dof, settings, cross)
-    ident = _identifiability(data, dof, cal.cols, cal.sd, list(cal.names), excited)
+    owned = sorted(set(excited) | set(cross or ()))
+    ident = _identifiability(data, dof, cal.cols, cal.sd, list(cal.names), owned)
     return (cal.subset([j for j, n in enumerate(cal.names) if n not in ident["kept_at_prior"]]),
             ident)
 
@@ -644,7 +646,8 @@ def _competing(cfg, cur, trials, good, data, dof, cal_names, cal_sd,
     pairs = []
     if scale is not None and scale["held_out_gain"] > 0.0:
         pairs += [(t["effect"], scale["effect"]) for t in trials
-                  if t is not scale and _pairs_with_scale(get_effect(t["effect"]))]
+                  if t is not scale and _pairs_with_scale(get_effect(t["effect"]))
+                  and gainfree.borrows_from_scale(t)]
     singles = sorted((t for t in good if t is not scale),
                      key=lambda t: t["held_out_error_after"])
     if singles:

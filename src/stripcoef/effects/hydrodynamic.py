@@ -51,6 +51,12 @@ class TetherDrag(Effect):
       written for them, and the tether's parameters are those of the fit without them (the
       calibrated model keeps the prior's thrust map).
 
+    On that benchmark the larger hider was another DOF's added mass: a VideoRay's sway
+    (no thruster, so not diagnosed) and, whole-log, the diagnosed sway and heave, whose
+    errors reach surge as :math:`M_{22} v r - M_{33} w q` (Fossen 2011, eq. 6.43) and lean
+    on :math:`L u|u|` too; surge's calibration now holds them
+    (:mod:`stripcoef.diagnose.cross`; ``benchmarks/data/diagnose_independent_tether33c.md``).
+
     Source: Hoerner, Fluid-Dynamic Drag (1965) ch. 3 (cylinder cross-flow drag); Wang &
     Clark (Wang & Clark 2006, sec. IV.A): the unmodelled tether blamed for 0.47 vs 0.51 m/s;
     Fossen (2011) sec. 11.2.1 (the thrust configuration and gain matrices).

@@ -1,0 +1,79 @@
+r"""The added masses of the DOFs a log moves but does not diagnose: which DOF's calibration
+holds each (issue 33).
+
+A diagnosed DOF i feels the added mass :math:`M_{jj}` of every other DOF j through the
+added-mass Coriolis and centripetal force :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43: in
+surge :math:`M_{22}\,v r - M_{33}\,w q`), whenever j's velocity moves, whether or not a
+thruster pushes in j. A DOF with no thruster (a VideoRay's sway) is not diagnosed
+(:func:`~stripcoef.diagnose.select.select_dofs`: no applied force, so its own force balance
+has no scale), yet it slips sideways in every turn, and its added mass's error (strip
+theory's, or the vehicle's difference from its file) is then a force in the surge residual
+that no calibration column took up: on the independent benchmark's VideoRay-like tether
+logs (issue 33, seeds 12, 481516 and 581516, 300 s) a sway added mass 8-23 % off left a
+surge residual of 0.11-0.24 N RMS beside a tether force of 0.07 N, and the tether's test
+failed (z 0.9-2.2); with ``M_sway`` calibrated the residual fell to 0.04-0.06 N and the
+tether's z rose to 5-6 on two of the three.
+
+So a DOF's calibration (:func:`~stripcoef.diagnose.fit._calibration`) may hold the added
+mass of every DOF whose velocity moves (:func:`moving_dofs`) and that is not diagnosed
+itself (:func:`cross_dofs`); its Fisher information still decides whether the log
+determines it (:func:`~stripcoef.diagnose.fit._identifiability`, Ljung 1999 eq. 9.29).
+One coefficient has one value: in a whole-log diagnosis several diagnosed DOFs may each
+calibrate such an added mass (a VideoRay's sway added mass reaches surge through
+:math:`M_{22} v r` and yaw through the Munk moment :math:`(M_{22} - M_{11}) u v`); the
+model written holds their inverse-variance weighted mean (:func:`shared_value`,
+:func:`stripcoef.diagnose.calibrate.calibrated_model`), and every value reported about it
+is read back from that model (:mod:`.written`). (Tried: each such added mass held by the
+one diagnosed DOF that determines it best; on the VideoRay tether log of seed 481516 that
+was yaw, and the surge residual kept the sway added mass's error.)
+
+Depends on: effects (windows), diagnose.settings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stripcoef.conventions import VELOCITIES
+from stripcoef.diagnose.settings import EXCITATION_SNR, EXCITATION_STD
+from stripcoef.effects.windows import white_noise_sd
+
+
+def moving_dofs(data) -> list:
+    r"""The DOFs whose velocity moves in the log [indices]: the column is there, its standard
+    deviation is above ``EXCITATION_STD`` [m/s or rad/s] and at least ``EXCITATION_SNR``
+    times its white noise (:func:`~stripcoef.effects.windows.white_noise_sd`), the velocity
+    rules of :func:`~stripcoef.diagnose.select.select_dofs` without its applied-force rule.
+    """
+    out = []
+    for i in range(6):
+        if VELOCITIES[i] not in data.log:
+            continue
+        v = data.nu[:, i]
+        std = float(np.std(v))
+        noise = white_noise_sd(v)
+        if std > EXCITATION_STD and (noise <= 0.0 or std / noise >= EXCITATION_SNR):
+            out.append(i)
+    return out
+
+
+def cross_dofs(data, moving=None) -> list:
+    """The DOFs (indices) whose added mass the calibration of a diagnosed DOF may hold: every
+    DOF that moves (:func:`moving_dofs`; the DOF's own is its calibration's ``M``)."""
+    return moving_dofs(data) if moving is None else list(moving)
+
+
+def shared_value(estimates) -> tuple:
+    r"""``(value, sd)`` of one coefficient estimated in several DOFs' calibrations,
+    ``estimates`` a list of (value, sd): the inverse-variance weighted mean
+    :math:`\hat x = \sum_k x_k / s_k^2 / \sum_k 1 / s_k^2`, sd
+    :math:`(\sum_k 1/s_k^2)^{-1/2}` (the combination of independent estimates, e.g.
+    Bevington & Robinson 2003, Data Reduction and Error Analysis, eq. 4.17); an estimate
+    without a finite positive sd is left out unless none has one (then the plain mean)."""
+    est = [(float(v), float(s)) for v, s in estimates]
+    good = [(v, s) for v, s in est if np.isfinite(s) and s > 0.0]
+    if not good:
+        return float(np.mean([v for v, _ in est])), float("nan")
+    w = np.array([1.0 / s ** 2 for _, s in good])
+    x = np.array([v for v, _ in good])
+    return float(w @ x / w.sum()), float(1.0 / np.sqrt(w.sum()))
