@@ -157,6 +157,15 @@ def both(cfg, cur: dict, choice: dict, judge):
     return t1, {**t2, "rejected_because": kept, "significant": not kept}
 
 
+def partner_step(t: dict, cur: dict, dof: str, choice: dict) -> dict:
+    """The step of the other member of a pair both needed (:func:`both`), added after the
+    first (evaluated: ``cur``), in DOF ``dof``, with the choice's record."""
+    return {**{k: v for k, v in t.items() if not k.startswith("_")},
+            "error_before": cur["error"], "alternatives": [],
+            "held_out_error_before": cur["held_out_error"], "dof": dof,
+            "choice": choice["record"]}
+
+
 def named_order(joint: dict):
     """``(steps, cfg, ev)`` of a joint pair of the selection
     (:func:`stripcoef.diagnose.select._competing`'s ``joint``: its two judged records

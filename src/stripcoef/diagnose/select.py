@@ -361,10 +361,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         cur = best["_ev"]
         t = None if both is None else both[1]     # the other, needed beside it
         if t is not None and t["significant"] and supported(t, len(trials), n_dofs):
-            steps.append({**{k: v for k, v in t.items() if not k.startswith("_")},
-                          "error_before": cur["error"], "alternatives": [],
-                          "held_out_error_before": cur["held_out_error"],
-                          "dof": DOF[dof], "choice": choice["record"]})
+            steps.append(scalechoice.partner_step(t, cur, DOF[dof], choice))
             accepted_names.add(t["effect"])
             cfg, cur = t["_cfg"], t["_ev"]
 
