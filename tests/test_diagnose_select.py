@@ -151,11 +151,6 @@ def test_a_mimic_whose_coefficient_is_kept_at_the_prior_is_judged_as_a_free_colu
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 33, branch tether33c: with the sway and heave "
-                   "added masses calibrated in surge (stripcoef.diagnose.cross) the linear drag "
-                   "is still named first (d_L 1.55, not kept by the validation) but no thrust "
-                   "scale is named after it (truth gain 1.24); the cross added masses "
-                   "may take the inertia change its test needs: not traced")
 def test_a_linear_drag_far_beyond_a_prior_the_log_cannot_calibrate_is_named():
     """Issue 33: a surge linear drag 70x the VideoRay prior's (independent simulator), whose
     D_L the log cannot calibrate within its 60 % band, was rejected for 'no D_L to compare'
