@@ -445,11 +445,10 @@ def _self_kernels(xc, rc, xq, rq, nxq, nrq, mode):
     return s, d
 
 
-def _meridian(x, r, panels, area_linear=False):
-    r"""Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
-    with cosine clustering towards both ends; between the given points r is linear in x, or
-    with ``area_linear`` the area :math:`\pi r^2` is (r = sqrt of the linear interpolant of
-    r^2: round noses and tails sampled at a few stations are followed, not cut by chords)."""
+def _closed_profile(x, r):
+    """The offsets (x, r) as float arrays, checked (x non-decreasing, r >= 0, finite; else an
+    :class:`~stripcoef.errors.InputError` naming the profile), closed on the axis: a point at
+    r = 0 added at an end whose radius is not zero (a flat nose or tail cap)."""
     x = np.asarray(x, dtype=float)
     r = np.asarray(r, dtype=float)
     if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) < 0) \
@@ -460,6 +459,15 @@ def _meridian(x, r, panels, area_linear=False):
         x, r = np.concatenate([x[:1], x]), np.concatenate([[0.0], r])
     if r[-1] > 0:
         x, r = np.concatenate([x, x[-1:]]), np.concatenate([r, [0.0]])
+    return x, r
+
+
+def _meridian(x, r, panels, area_linear=False):
+    r"""Closed meridian from the nose tip (r = 0) to the tail tip, resampled by arc length
+    with cosine clustering towards both ends; between the given points r is linear in x, or
+    with ``area_linear`` the area :math:`\pi r^2` is (r = sqrt of the linear interpolant of
+    r^2: round noses and tails sampled at a few stations are followed, not cut by chords)."""
+    x, r = _closed_profile(x, r)
     seg = np.hypot(np.diff(x), np.diff(r))
     keep = seg > 1e-12 * max(x[-1] - x[0], 1e-300)      # x is non-decreasing
     if not keep.all():                                  # drop repeated points
@@ -691,17 +699,8 @@ def _smooth_runs(x, r):
     one along a repeated x is straight. Every other point is taken as an offset of a smooth
     curve (turns between chords are not read as corners: a round nose tabulated at a few
     points turns by more than 20 degrees between its chords)."""
-    x = np.asarray(x, dtype=float)
-    r = np.asarray(r, dtype=float)
-    if x.ndim != 1 or x.shape != r.shape or x.size < 2 or np.any(np.diff(x) < 0) \
-            or np.any(r < 0) or not np.all(np.isfinite(x)) or not np.all(np.isfinite(r)):
-        raise InputError("profile must be non-decreasing x with finite radii >= 0",
-                         key="profile", value=f"{x.size} points", expected="x increasing, r >= 0")
+    x, r = _closed_profile(x, r)
     tiny = 1e-12 * max(x[-1] - x[0], 1e-300)
-    if r[0] > 0:
-        x, r = np.concatenate([x[:1], x]), np.concatenate([[0.0], r])
-    if r[-1] > 0:
-        x, r = np.concatenate([x, x[-1:]]), np.concatenate([r, [0.0]])
     same = np.hypot(np.diff(x), np.diff(r)) <= tiny       # point i + 1 repeats point i
     keep = np.concatenate([[True], ~same])
     index = np.cumsum(keep) - 1                          # each point's index once repeats go
