@@ -43,7 +43,7 @@ from stripcoef.diagnose.evidence import family_level, step_test
 from stripcoef.diagnose.fit import _Config, _evaluate, _Nuisance
 from stripcoef.diagnose.heldout import split
 from stripcoef.diagnose.select import _dof_calibration, _Fixed, _judge, select_dofs
-from stripcoef.diagnose.cross import cross_dofs
+from stripcoef.diagnose.cross import moving_dofs
 from stripcoef.diagnose.settings import DEFAULT_WINDOW, VALIDATION_FRACTION, DiagnoseSettings
 from stripcoef.effects.laws import EFFECTS, get_effect
 from stripcoef.effects.windows import window_data
@@ -77,7 +77,7 @@ def _test(data, dof: int, effect: str, strength: float, settings) -> dict:
     (:func:`~stripcoef.diagnose.select._judge`), the fixed true force's likelihood ratio,
     and the share of the true force beyond the reference's columns over its noise."""
     excited = select_dofs(data)[0]
-    cal, _ = _dof_calibration(data, dof, settings, excited, cross_dofs(data))
+    cal, _ = _dof_calibration(data, dof, settings, excited, moving_dofs(data))
     cfg = _Config(data, dof, cal, [], settings=settings)
     eff = get_effect(effect)
     ref = _evaluate(cfg.with_terms([(_Nuisance(eff), None)])

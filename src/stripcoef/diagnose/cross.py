@@ -15,8 +15,8 @@ failed (z 0.9-2.2); with ``M_sway`` calibrated the residual fell to 0.04-0.06 N 
 tether's z rose to 5-6 on two of the three.
 
 So a DOF's calibration (:func:`~stripcoef.diagnose.fit._calibration`) may hold the added
-mass of every DOF whose velocity moves (:func:`moving_dofs`) and that is not diagnosed
-itself (:func:`cross_dofs`); its Fisher information still decides whether the log
+mass of every DOF whose velocity moves (:func:`moving_dofs`; where that DOF is diagnosed
+itself, its own calibration's value is written); its Fisher information still decides whether the log
 determines it (:func:`~stripcoef.diagnose.fit._identifiability`, Ljung 1999 eq. 9.29).
 One coefficient has one value: in a whole-log diagnosis several diagnosed DOFs may each
 calibrate such an added mass (a VideoRay's sway added mass reaches surge through
@@ -32,6 +32,8 @@ Depends on: effects (windows), diagnose.settings.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from stripcoef.conventions import VELOCITIES
@@ -39,28 +41,36 @@ from stripcoef.diagnose.settings import EXCITATION_SNR, EXCITATION_STD
 from stripcoef.effects.windows import white_noise_sd
 
 
+def velocity_snr(data, i: int) -> tuple:
+    r"""``(std, noise, snr)`` of DOF ``i``'s velocity [m/s or rad/s, -]: its standard
+    deviation, its white noise :math:`\sigma_{v,i}` estimated from second differences,
+    :math:`\mathrm{var}(\Delta^2\nu) = 6\sigma_v^2`, by the median absolute deviation
+    (:func:`~stripcoef.effects.windows.white_noise_sd`), and their ratio (infinite for a
+    noise-free velocity that varies, 0 for a constant one). The one rule of a velocity that
+    moves, read by :func:`moving_dofs` and :func:`stripcoef.diagnose.select.select_dofs`."""
+    v = data.nu[:, i]
+    noise = white_noise_sd(v)
+    std = float(np.std(v))
+    snr = std / noise if noise > 0 else (math.inf if std > 1e-12 else 0.0)
+    return std, noise, snr
+
+
 def moving_dofs(data) -> list:
     r"""The DOFs whose velocity moves in the log [indices]: the column is there, its standard
     deviation is above ``EXCITATION_STD`` [m/s or rad/s] and at least ``EXCITATION_SNR``
-    times its white noise (:func:`~stripcoef.effects.windows.white_noise_sd`), the velocity
-    rules of :func:`~stripcoef.diagnose.select.select_dofs` without its applied-force rule.
+    times its white noise (:func:`velocity_snr`), the velocity rules of
+    :func:`~stripcoef.diagnose.select.select_dofs` without its applied-force rule. The DOFs
+    whose added mass the calibration of a diagnosed DOF may hold (a diagnosed DOF's own is
+    its calibration's ``M``).
     """
     out = []
     for i in range(6):
         if VELOCITIES[i] not in data.log:
             continue
-        v = data.nu[:, i]
-        std = float(np.std(v))
-        noise = white_noise_sd(v)
-        if std > EXCITATION_STD and (noise <= 0.0 or std / noise >= EXCITATION_SNR):
+        std, _, snr = velocity_snr(data, i)
+        if std > EXCITATION_STD and snr >= EXCITATION_SNR:
             out.append(i)
     return out
-
-
-def cross_dofs(data, moving=None) -> list:
-    """The DOFs (indices) whose added mass the calibration of a diagnosed DOF may hold: every
-    DOF that moves (:func:`moving_dofs`; the DOF's own is its calibration's ``M``)."""
-    return moving_dofs(data) if moving is None else list(moving)
 
 
 def shared_value(estimates) -> tuple:

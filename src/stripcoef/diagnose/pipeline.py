@@ -96,7 +96,7 @@ import numpy as np
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
                                           clip_added_mass, share_timing)
-from stripcoef.diagnose.cross import cross_dofs
+from stripcoef.diagnose.cross import moving_dofs
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
@@ -268,7 +268,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                 data.e0 = data.e0 - effect_window_forces(data, model)
     # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
-    cross = cross_dofs(data)
+    cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)

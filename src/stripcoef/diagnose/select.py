@@ -17,6 +17,7 @@ import numpy as np
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
 from stripcoef.diagnose import gainfree, scalechoice
 from stripcoef.diagnose.calibrate import folded_key
+from stripcoef.diagnose.cross import velocity_snr
 from stripcoef.diagnose.evidence import judge_family, step_test, supported
 from stripcoef.diagnose.fit import (DEFAULTS, _band_sources, _calibration, _Config, _evaluate,
                                     _Generic, _hyper_std, _identifiability, _Nuisance, _rms)
@@ -27,7 +28,6 @@ from stripcoef.diagnose.settings import (BANDS, EXCITATION_SNR, EXCITATION_STD,
                                          MIN_Z, NOISE_FLOOR_FACTOR, TIE, UNEXPLAINED_GAIN,
                                          UNLIMITED, Budget, DiagnoseSettings)
 from stripcoef.effects.laws import EFFECTS, WindowData, get_effect
-from stripcoef.effects.windows import white_noise_sd
 from stripcoef.identify.estimators import residual_autocorrelation, runs_test_z
 from stripcoef.progress import track
 
@@ -950,14 +950,9 @@ def excited_dofs(data: WindowData) -> list:
 def _excitation(data: WindowData, i: int):
     r"""(velocity std / its noise, reason the DOF is not excited or '').
 
-    The noise of the velocity :math:`\sigma_{v,i}` [m/s or rad/s] is estimated from second
-    differences, :math:`\mathrm{var}(\Delta^2\nu) = 6\sigma_v^2`, by the median absolute
-    deviation (:func:`stripcoef.effects.windows.white_noise_sd`)."""
-    v = data.nu[:, i]
-    noise = white_noise_sd(v)
-    std = float(np.std(v))
+    The velocity's noise and ratio: :func:`stripcoef.diagnose.cross.velocity_snr`."""
+    std, noise, snr = velocity_snr(data, i)
     unit = "m/s" if i < 3 else "rad/s"
-    snr = std / noise if noise > 0 else (math.inf if std > 1e-12 else 0.0)
     if np.ptp(data.tau[:, i]) == 0.0:
         return snr, (f"no applied force moves in {DOF[i]} ({FORCES[i]} is constant "
                      f"at {float(data.tau[0, i]):.3g})")
