@@ -729,6 +729,12 @@ class _FaceVectors:
         return (la > 1e-8) & (lb > 1e-8) & (twice_area > height * la) & (twice_area > height * lb)
 
 
+def volume_centroid(vertices, faces) -> np.ndarray:
+    """Volume centroid [m] of a closed, outward-oriented triangle mesh (vertices [m], faces):
+    :meth:`_FaceVectors.centroid`."""
+    return _FaceVectors(vertices, faces).centroid()
+
+
 def load_mesh(path, *, axis: str = "x", length_unit: str = "m", origin="centroid",
               transform=None, name: str | None = None, role: str = "hull",
               z_up: bool = False, close_parts: bool = False) -> MeshBody:

@@ -552,6 +552,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
         level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
     """
+    from stripcoef.geometry.mesh import volume_centroid
     from stripcoef.hull.convergence import grid_convergence_index, richardson
 
     # several bodies or overlapping parts: one closed surface (MeshBody.united, a boolean union)
@@ -657,9 +658,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         # neither pymeshlab nor rtree), so the knife-edge rule applies in every install
         thickness = member_thickness(*levels[-1])
     counts, mats, nominal = [], [], panels
-    # the volume centroid: signed tetrahedra from the origin, each at (a + b + c) / 4 [m]
-    vt = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
-    centroid = (vt[:, None] * tri.sum(axis=1)).sum(axis=0) / (4.0 * vt.sum())
+    centroid = volume_centroid(v, f)         # where the refinement is judged (below)
     for pv, pf in levels:
         n, a = _solve_level(pv, pf, scale, rho, about, near_factor, solve_planes)
         counts.append(n)
