@@ -168,9 +168,22 @@ def remus() -> None:
             info = body_lift_info(_load(path, with_rule(data, rule)), speed=speed)
             row.append(f"{rule} {info['fraction']:.4f} l ({info['limit']})")
         print(f"   U = {speed:.1f} m/s: " + ", ".join(row))
+    from stripcoef.assembly.lift import _body_lift
+    from validation.lift import total_linear
+
     for rule in RULES:
-        model = _estimate(_load(path, with_rule(data, rule)))
+        veh = _load(path, with_rule(data, rule))
+        body = _body_lift(veh, float(veh.fluid.density), [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])[0]
+        model = _estimate(veh)
         lift = np.asarray(model.lift)
+        # controls-fixed directional stability (Crane, Eda & Landsburg 1989, PNA III sec. 9.2),
+        # the lift and Munk parts at the reference speed, as validation.lift.stability_indices
+        jac = total_linear(model, float(veh.reference_speed))
+        mass = float(model.rigid_body_mass[0, 0])
+        xg = float(model.rigid_body_mass[1, 5]) / mass
+        g_h = 1.0 - jac[5, 1] * (jac[1, 5] - mass) / (jac[1, 1] * (jac[5, 5] - mass * xg))
+        print(f"   {rule:16s} body lift alone Y_uv {-body[1, 1]:+.3f} kg/m, N_uv {-body[5, 1]:+.4f} kg; "
+              f"directional stability G_H {g_h:+.3f}")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             t0 = time.process_time()
@@ -277,7 +290,8 @@ def main(argv=None) -> int:
     remus()
     myring_family(args.quick)
     non_round()
-    print(f"total {time.process_time() - t0:.1f} s CPU")
+    print(f"this process {time.process_time() - t0:.1f} s CPU (the fresh interpreters of part 1 "
+          "not counted)")
     return 0
 
 
