@@ -40,3 +40,7 @@ def test_placement_counts_and_the_linear_terms_unchanged():
     assert 1.18 < lo and hi > 1.45
     assert {(c, q, b) for c, q, b, _ in outside("stratford_panel", "hoerner")} == \
         {(c, "Y", 4.0) for c in (2, 3, 4, 5)}
+    # configuration 6 (bare hull + ring wing, outside the issue's 40): its N' at 12-18 deg too
+    assert placement_checks((6,)) == {("datcom", "centroid"): (4, 10), ("datcom", "hoerner"): (1, 10),
+                                      ("stratford_panel", "centroid"): (6, 10),
+                                      ("stratford_panel", "hoerner"): (8, 10)}
