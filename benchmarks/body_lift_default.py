@@ -12,7 +12,8 @@ solution's axial flow (``stratford_panel``, Stratford 1959; Hess & Smith 1967), 
 2. REMUS 100 (geometry/remus100.yaml, the one shipped vehicle with body lift): the station against
    the reference speed, the body lift's Y_uv, N_uv (about the file's reference point) and the
    steady manoeuvre limits' minimum turning radius at half the top speed
-   (``stripcoef.limits.solve_limits``, as ``stripcoef limits`` prints it);
+   (``stripcoef.limits.solve_limits``, as ``stripcoef limits`` prints it); SUBOFF's station
+   against the speed, for comparison;
 3. a family of finned Myring hulls (the REMUS hull and fins of validation/finned.py, tail
    half-angle 10-27.5 deg, middle body 1 or 2 times as long: l/d 7.3 and 10.7) at 0.5-3 m/s: where Stratford's
    criterion separates and where it finds no separation (station at the tail, body lift only
@@ -257,6 +258,22 @@ def myring_family(quick: bool) -> None:
             print(f"   theta {theta:4.1f} deg, l/d {length / MYRING['d']:5.2f}: " + "; ".join(cells))
 
 
+def suboff_speeds() -> None:
+    """Roddy's configuration 5 (validation.lift.suboff_vehicle_data: the Groves et al. hull with
+    four stern planes): the station against the speed, 0.5 to 8 m/s (Roddy's 3.34 m/s among
+    them): how the rule behaves on the hull it was measured on."""
+    from validation.lift import RODDY_SPEED, suboff_vehicle_data
+
+    print("2b. SUBOFF (Roddy's configuration 5): station against the speed")
+    for speed in (0.5, 1.0, 2.0, RODDY_SPEED, 5.0, 8.0):
+        row = []
+        for rule in RULES:
+            info = body_lift_info(_vehicle(suboff_vehicle_data(5, rule), "<SUBOFF 5>"),
+                                  speed=speed)
+            row.append(f"{rule} {info['fraction']:.4f} l ({info['limit']})")
+        print(f"   U = {speed:.2f} m/s: " + ", ".join(row))
+
+
 def non_round() -> None:
     """REMUS 100 with its hull made elliptic (half-height 1.2 times the half-breadth), fins
     unchanged: 'auto' leaves body lift out under either default; an explicit rule is refused
@@ -288,6 +305,7 @@ def main(argv=None) -> int:
     t0 = time.process_time()
     shipped(args.repeats)
     remus()
+    suboff_speeds()
     myring_family(args.quick)
     non_round()
     print(f"this process {time.process_time() - t0:.1f} s CPU (the fresh interpreters of part 1 "
