@@ -174,7 +174,10 @@ def remus() -> None:
 
     for rule in RULES:
         veh = _load(path, with_rule(data, rule))
-        body = _body_lift(veh, float(veh.fluid.density), [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])[0]
+        with warnings.catch_warnings():     # said in part 1 (the 'warnings' count)
+            warnings.simplefilter("ignore")
+            body = _body_lift(veh, float(veh.fluid.density), [0.0, 0.0, 0.0],
+                              [0.0, 0.0, 0.0])[0]
         model = _estimate(veh)
         lift = np.asarray(model.lift)
         # controls-fixed directional stability (Crane, Eda & Landsburg 1989, PNA III sec. 9.2),
