@@ -141,7 +141,8 @@ def section() -> str:
         "",
         "The hull's viscous cross-flow force at drift (Allen & Perkins 1951, the strips' D_Q) "
         f"acts at the planform's centroid, {centroid:.3f} L_BP aft of Roddy's moment point; the measured "
-        "non-linear force acts 0.17-0.28 L_BP aft (previous section). Hoerner & Borst (1985, ch. "
+        "non-linear force acts 0.17-0.28 L_BP aft ('SUBOFF: where the rotary and large-drift "
+        "misses come from'). Hoerner & Borst (1985, ch. "
         "19; Prestero 2001 sec. 3.6.1) put the centre of a streamlined body's lift at 0.65 l "
         f"from the nose, {-centre['arm']:.3f} L_BP aft of Roddy's point. The same force moved "
         "there, everything else the model's (`validation.crossflow_center`; Y' is unchanged, "
