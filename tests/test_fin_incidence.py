@@ -1,0 +1,87 @@
+"""The published rules for a fin's incidence in drift and in rotation on SUBOFF
+(validation.fin_incidence, issue 34)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from validation.fin_incidence import (CANDIDATES, candidate_lift, candidate_model, checks,
+                                      chord_over_length, component_rows, epsilon_at)
+from validation.lift import _roddy_derivatives, issue_checks, suboff_model
+
+
+def test_the_models_own_rule_adds_nothing():
+    """The 3/4-chord candidate is the model: dL = 0 to round-off."""
+    dl = candidate_lift(5, "datcom", "three_quarter")
+    assert np.abs(dl).max() <= 1e-12 * np.abs(suboff_model(5, "datcom").lift).max()
+
+
+@pytest.mark.slow
+def test_a_lifting_surface_rule_moves_only_the_rotation_column():
+    """Moving the rotation's incidence point changes the yaw-rate column only, by the fins'
+    drift column times the shift (the lift's u (a' - a)^T): Y'_r and N'_r move, Y'_v and N'_v
+    do not, and the trailing edge is a quarter chord aft of the 3/4 chord on the planes'
+    lever."""
+    base = _roddy_derivatives(suboff_model(5, "datcom"))
+    te = _roddy_derivatives(candidate_model(5, "datcom", "trailing_edge"))
+    assert te["Yv"] == pytest.approx(base["Yv"], rel=1e-12)
+    assert te["Nv"] == pytest.approx(base["Nv"], rel=1e-12)
+    fins = {r["candidate"]: r for r in component_rows("datcom")
+            if r["component"] == "stern planes"}
+    shift = fins["trailing_edge"]["lever"] - fins["three_quarter"]["lever"]
+    # the increment's lever holds the planes' added mass and Munk part too: within 10 %
+    assert shift == pytest.approx(-0.25 * chord_over_length(), rel=0.10)
+    assert fins["three_quarter"]["lever"] > fins["lattice"]["lever"] > fins["trailing_edge"][
+        "lever"]
+
+
+@pytest.mark.slow
+def test_the_downwash_on_the_static_terms_keeps_the_rotary_terms():
+    """The aircraft tail's rule scales the drift terms by 1 - epsilon and keeps the yaw-rate
+    terms; epsilon is the body pair's sidewash at the rudders (large under datcom's forward
+    station, small under stratford_panel's)."""
+    rows = {(r["method"], r["component"], r["candidate"]): r
+            for m in ("datcom", "stratford_panel") for r in component_rows(m)}
+    eps = epsilon_at(5, "datcom")
+    assert 0.3 < eps < 0.6
+    assert epsilon_at(5, "stratford_panel") < 0.1
+    d, b = (rows[("datcom", "stern planes", c)] for c in ("static_downwash", "three_quarter"))
+    assert d["Yr"] == pytest.approx(b["Yr"], rel=1e-9)
+    assert d["Yv"] < b["Yv"]
+    assert d["lever"] < b["lever"] < 0.0
+
+
+@pytest.mark.slow
+def test_no_rule_reaches_roddys_levers():
+    """None of the rules gives the stern planes' measured lever (-0.99) or the sail's (+0.11)
+    within 0.05 of the length (the closest: the downwash on the static terms, -0.85 under
+    datcom; the sail's trailing edge, +0.17)."""
+    for m in ("datcom", "stratford_panel"):
+        for r in component_rows(m):
+            assert abs(r["lever"] - r["measured_lever"]) > 0.05, r
+
+
+def test_an_unknown_rule_is_an_error():
+    with pytest.raises(ValueError, match="incidence candidate"):
+        candidate_lift(5, "datcom", "quarter_chord")
+
+
+@pytest.mark.slow
+def test_the_models_rule_counts_what_lift_band_counts():
+    """The checks of the model's own rule are the library's (validation.lift.issue_checks,
+    drift_curve_checks)."""
+    from validation.lift import drift_curve_checks
+
+    c = checks("stratford_panel", "three_quarter")
+    assert c["table4"][0] == issue_checks("stratford_panel")
+    assert c["drift"] == drift_curve_checks("stratford_panel")
+    assert set(CANDIDATES) >= {"three_quarter", "trailing_edge"}
+
+
+@pytest.mark.slow
+def test_validation_doc_fin_incidence_section_is_current():
+    """docs/validation.md's section of these rules is what the code writes now."""
+    from test_validation_doc import assert_section_is_current
+
+    assert_section_is_current("fin_incidence")
