@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from validation.fin_incidence import (CANDIDATES, candidate_lift, candidate_model, checks,
-                                      chord_over_length, component_rows, epsilon_at)
+                                      chord_over_length, component_rows, epsilon_at,
+                                      sail_diagnosis)
 from validation.lift import _roddy_derivatives, issue_checks, suboff_model
 
 
@@ -85,3 +86,22 @@ def test_validation_doc_fin_incidence_section_is_current():
     from test_validation_doc import assert_section_is_current
 
     assert_section_is_current("fin_incidence")
+
+
+def test_the_sail_diagnosis_solves_its_own_equations():
+    """The two elements reproduce the measured Y'_v, N'_v and Y'_r of the sail's increment
+    (4 - 3) exactly and put the sail's incidence between its 3/4 chord and, within 0.01 L_BP,
+    its trailing edge; N'_r, left free, within 30 %."""
+    from validation.rotary_trace import measured_increment
+
+    d = sail_diagnosis("stratford_panel")
+    inc = measured_increment(4, 3)
+    k_s, k_b = d["k_s"], d["k_b"]
+    assert -(k_s + k_b) == pytest.approx(inc["Yv"], rel=1e-12)
+    assert -(k_s * d["x_s"] + k_b * d["x_b"]) == pytest.approx(inc["Nv"], rel=1e-12)
+    assert -(k_s * d["x_i"] + k_b * d["x_b"]) == pytest.approx(inc["Yr"], rel=1e-12)
+    assert 0.0 < d["strength_ratio"] < 1.0 and 0.0 < d["body_ratio"] < 1.0
+    assert d["x_te"] - 0.01 < d["x_i"] < d["x_i_model"]
+    assert abs(d["Nr_ratio"] - 1.0) < 0.3
+    assert d["x_b"] == pytest.approx(-0.418, abs=0.01)
+    assert inc["Yr"] / inc["Yv"] == pytest.approx(0.108, abs=0.002)

@@ -197,6 +197,36 @@ def epsilon_at(built: int, method: str, prefix: str = "rudder") -> float:
     return float(np.mean(eps)) if eps else 0.0
 
 
+def sail_diagnosis(method: str = "stratford_panel") -> dict:
+    r"""What Roddy's sail increment (4 - 3) says if it is two lifting elements (a diagnosis read
+    from the measured data, used by no model): the sail, acting at the model's force station
+    x_s (its quarter chord with the carry-over) with an unknown incidence station x_i and
+    strength K_s, and a change K_b of the hull's own lift at the measured body's lever x_b
+    (bare hull: (Y'_r less the model's Munk part) / Y'_v; its force and incidence station, a
+    lifting element at its own station). Y'_v, N'_v give K_s and K_b, Y'_r gives x_i, and N'_r
+    is left to check: {'x_s', 'x_b', 'x_i', 'x_i_model' (3/4 chord), 'x_te' (the trailing edge),
+    'k_s', 'k_b' the two strengths [-], 'strength_ratio' K_s over the model's sail lift, 'body_ratio' K_b over the bare hull's
+    measured |Y'_v|, 'Nr_ratio' the two elements' N'_r over the measured increment's} [L_BP, x
+    forward; -]."""
+    from validation.rotary_trace import component, measured, yaw_rate_split
+
+    split = yaw_rate_split(4, method)
+    fin = next(f for f in split["fins"] if f["name"].startswith("sail"))
+    x_s, x_i_model = fin["force_station"], fin["incidence_station"]
+    bare = measured(3)
+    x_b = (bare["Yr"] - yaw_rate_split(3, method)["munk"]["Yr"]) / bare["Yv"]
+    inc = measured_increment(4, 3)
+    # -Y'_v = K_s + K_b, -N'_v = K_s x_s + K_b x_b
+    k_s, k_b = np.linalg.solve([[1.0, 1.0], [x_s, x_b]], [-inc["Yv"], -inc["Nv"]])
+    x_i = (-inc["Yr"] - k_b * x_b) / k_s
+    nr = -(k_s * x_s * x_i + k_b * x_b ** 2)
+    return {"x_s": x_s, "x_b": x_b, "x_i": float(x_i), "x_i_model": x_i_model,
+            "k_s": float(k_s), "k_b": float(k_b),
+            "x_te": x_s - 0.75 * 2.0 * (x_s - x_i_model),
+            "strength_ratio": float(k_s / -component(split, "sail")["Yv"]),
+            "body_ratio": float(k_b / -bare["Yv"]), "Nr_ratio": float(nr / inc["Nr"])}
+
+
 #: What each candidate is called in the document.
 LABEL = {"three_quarter": "3/4 chord (the model)", "lattice": "vortex lattice",
          "trailing_edge": "trailing edge (slender wing)",
@@ -224,6 +254,7 @@ def section() -> str:
     chord = chord_over_length()
     lattice_aft = rotary_point_lattice(1.5)
     base = {m: count[(m, "three_quarter")] for m in RULES}
+    sd = sail_diagnosis()
     return "\n".join([
         "## SUBOFF: published rules for a fin's incidence in drift and in rotation (issue 34)",
         "",
@@ -296,4 +327,18 @@ def section() -> str:
         f"{by[('datcom', 'stern planes', 'three_quarter')]['Yr']:.2f} under `datcom`) and the "
         f"sail's {by[('stratford_panel', 'sail', 'three_quarter')]['Yr']:.2f} times it: a "
         "yaw-rate force beyond its drift force's (planes) and short of it (sail), which no "
-        "lifting element answering its local cross-flow gives.", ""])
+        "lifting element answering its local cross-flow gives.", "",
+        "What the sail's increment says if it is two lifting elements (a diagnosis read from "
+        "the measured data, used by no model; `validation.fin_incidence.sail_diagnosis`): the "
+        f"sail acting at the model's force station ({sd['x_s']:+.3f}) and a change of the "
+        "hull's own lift at the measured bare hull's lever "
+        f"({sd['x_b']:+.3f}, its force and incidence station). Y'_v and N'_v give the sail "
+        f"{sd['strength_ratio']:.2f} of the model's sail lift and the hull's lift raised by "
+        f"{sd['body_ratio']:.2f} of the bare hull's |Y'_v|; Y'_r then puts the sail's "
+        f"incidence at {sd['x_i']:+.3f} (the model's 3/4 chord {sd['x_i_model']:+.3f}, its "
+        f"trailing edge {sd['x_te']:+.3f}), and the two elements' N'_r is "
+        f"{sd['Nr_ratio']:.2f} of the measured. Read so, the sail answers the yaw rate near "
+        "its trailing edge, as slender-wing theory has it, and what the model lacks is a "
+        "larger lift of the afterbody behind the sail (its separation moved by the sail's "
+        "wake, a candidate) and a weaker sail; the stations are the model's and the split "
+        "is not unique, so nothing is changed.", ""])
