@@ -84,7 +84,8 @@ def _candidates() -> int:
         for c in CANDIDATES:
             k = checks(method, c)
             print(f"{method:15s} {c:15s} issue checks (Table 4) {k['table4'][0]}/"
-                  f"{k['table4'][1]}; drift curves within 20 %: {k['drift'][0]}/{k['drift'][1]}")
+                  f"{k['table4'][1]}; drift curves within 20 %: {k['drift'][0]}/{k['drift'][1]}; "
+                  f"lift sd(ln) {k['band']:.3f}")
     return 0
 
 

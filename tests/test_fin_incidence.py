@@ -77,6 +77,8 @@ def test_the_models_rule_counts_what_lift_band_counts():
     c = checks("stratford_panel", "three_quarter")
     assert c["table4"][0] == issue_checks("stratford_panel")
     assert c["drift"] == drift_curve_checks("stratford_panel")
+    from validation.lift import lift_band
+    assert c["band"] == pytest.approx(lift_band("stratford_panel")["lift"], rel=1e-9)
     assert set(CANDIDATES) >= {"three_quarter", "trailing_edge"}
 
 
