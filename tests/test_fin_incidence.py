@@ -107,3 +107,25 @@ def test_the_sail_diagnosis_solves_its_own_equations():
     assert abs(d["Nr_ratio"] - 1.0) < 0.3
     assert d["x_b"] == pytest.approx(-0.418, abs=0.01)
     assert inc["Yr"] / inc["Yv"] == pytest.approx(0.108, abs=0.002)
+
+
+@pytest.mark.slow
+def test_the_rank_one_change_is_the_model_built_with_the_rule(monkeypatch):
+    """dL = sum u (a' - a)^T is exactly the model estimated with the lift's rotary incidence
+    point moved to the trailing edge (configuration 2 as built, sail and planes)."""
+    import warnings
+
+    import stripcoef
+    import stripcoef.assembly.lift as lift
+    from stripcoef.geometry.vehicle import parse_vehicle
+    from validation.lift import _moment_point, suboff_vehicle_data
+
+    via_rule = _roddy_derivatives(candidate_model(2, "stratford_panel", "trailing_edge"))
+    monkeypatch.setattr(lift, "rotary_incidence_point",
+                        lambda p, c: np.asarray(p, float) - np.array([0.75 * c, 0.0, 0.0]))
+    vehicle = parse_vehicle(suboff_vehicle_data(2, "stratford_panel"), file="SUBOFF config 2")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        direct = _roddy_derivatives(stripcoef.estimate(vehicle).about(_moment_point()))
+    for k, v in direct.items():
+        assert via_rule[k] == pytest.approx(v, rel=1e-9, abs=1e-12), k
