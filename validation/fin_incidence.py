@@ -15,17 +15,18 @@ is applied here as :math:`\Delta L = \sum_p u_p (a'_p - a_p)^T` on the unchanged
 - ``lattice``: at the station a planar vortex lattice of the panel's aspect ratio gives
   (:func:`validation.lift.rotary_point_lattice`; Katz & Plotkin 2001, sec. 12.1);
 - ``trailing_edge``: at the trailing edge, slender-wing theory's limit (Jones 1946, NACA Report
-  835: the lift of a slender wing-body section answers the cross-flow where its span stops
-  growing, the trailing edge of a fin whose span is reached there);
+  835: the force per length is U d(m w)/dx, m the section's apparent mass and w its cross-flow,
+  so the whole wing's lift is U m w at its trailing edge, whatever w does ahead of it);
 - ``sidewash``: the option of :mod:`stripcoef.assembly.sidewash` (Pitts, Nielsen & Kaattari
   1957, NACA Report 1307) with the body's separated pair: the tail loses the sidewash
   :math:`\varepsilon\,(v + x_0 r)` of the body's vortices, shed with the body lift's impulse at
   its separation station x_0 (and the appendages' vortices);
 - ``static_downwash``: the aircraft tail's rule, the downwash factor on the static terms only
-  (:math:`a' = [(1 - \varepsilon) e;\ p \times e]`: a tail's M_q carries no
-  :math:`1 - d\varepsilon/d\alpha`, its M_w does; e.g. Cook 1997, *Flight Dynamics Principles*,
-  ch. 13, as summarised in Matthews 2002, *Aeronautical Engineer's Data Book*, p. 249) with the
-  same :math:`\varepsilon` as ``sidewash``'s body pair. Its premise is a wing near the centre
+  (:math:`a' = [(1 - \varepsilon) e;\ p \times e]`: in the standard approximations a tail's
+  M_q is its lift slope times its lever alone, while M_w goes through the static margin, whose
+  neutral point holds the tail's :math:`1 - d\varepsilon/d\alpha`; read second-hand in
+  Matthews 2002, *Aeronautical Engineer's Data Book*, p. 249) with the same
+  :math:`\varepsilon` as ``sidewash``'s body pair. Its premise is a wing near the centre
   of rotation, whose lift and so whose downwash do not answer the rotation; the body lift here
   acts at x_0, near the stern, so on this body the rule contradicts the body's own model and is
   shown for its size only.
@@ -286,14 +287,16 @@ def section() -> str:
         "(thin-airfoil theory, Weissinger's rule); the station a planar vortex lattice of the "
         "panel's aspect ratio gives (Katz & Plotkin 2001, sec. 12.1; "
         f"{lattice_aft:.2f} chords aft of the quarter chord at A = 1.5); the trailing edge, "
-        "slender-wing theory's limit (Jones 1946, NACA Report 835: the section's lift answers "
-        "the cross-flow where its span stops growing); the sidewash option "
+        "slender-wing theory's limit (Jones 1946, NACA Report 835: the force per length is "
+        "U d(m w)/dx, so a slender wing's whole lift is U m w at its trailing edge); the "
+        "sidewash option "
         "(`stripcoef.assembly.sidewash`, Pitts, Nielsen & Kaattari 1957) with the body's "
         "separated pair, whose strength is the body lift's impulse at its separation station "
         "x_0 and so answers v + x_0 r; and the aircraft tail's rule, the downwash factor on the "
-        "static terms only (a tail's M_q carries no 1 - d epsilon/d alpha where its M_w does: "
-        "Cook 1997, Flight Dynamics Principles, ch. 13, as summarised in Matthews 2002, "
-        "Aeronautical Engineer's Data Book, p. 249), with the body pair's epsilon at the "
+        "static terms only (in the standard approximations a tail's M_q is its lift slope times "
+        "its lever alone, while M_w goes through the static margin, whose neutral point holds "
+        "the tail's 1 - d epsilon/d alpha; read second-hand in Matthews 2002, Aeronautical "
+        "Engineer's Data Book, p. 249), with the body pair's epsilon at the "
         f"rudders ({eps['datcom']:.3f} under `datcom`, {eps['stratford_panel']:.3f} under "
         "`stratford_panel`, whose station is further aft and whose vortices lie inside the "
         "planes' roots). That rule assumes a wing near the centre of rotation, whose lift does "
