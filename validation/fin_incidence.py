@@ -58,9 +58,10 @@ DRIFT_CONFIGS = (2, 3, 4, 5)
 
 
 def _panels(built: int, method: str):
-    """(vehicle, [(record name, panel, force column u (6,), incidence column a (6,))]) of a built
-    SUBOFF configuration's lifting fin panels, in the order of
-    :func:`stripcoef.assembly.sidewash._panels` (its record names)."""
+    """(vehicle, [(record name, panel, force column u (6,), incidence column a (6,), lift axis e
+    (3,), quarter-chord point from the moment point (3,) [m])]) of a built SUBOFF
+    configuration's lifting fin panels, in the order and with the record names of
+    :func:`stripcoef.assembly.sidewash._panels` and ``_panel_record``."""
     from stripcoef.assembly.lift import _body_lift, _panel_terms, _round, _stern_flow
     from stripcoef.assembly.sidewash import _panel_record, _panels as sidewash_panels
     from stripcoef.hull.lift import lift_column, rotary_incidence_point
