@@ -98,7 +98,7 @@ from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, relative_error,
     richardson_error)
-from stripcoef.hull.remesh import edge_for_panels
+from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -744,10 +744,8 @@ SMOOTH_ORDER = 2.0
 #: coarsest angular tolerance, 30 degrees) is smooth; a box's, a chamfer's (45 degrees) or a
 #: plate's rim is an edge.
 FEATURE_ANGLE = 30.0
-#: Largest departure from 180 degrees [deg] of the turning at a fold: the two faces lie in one
-#: plane, one folded back onto the other (a double sheet of zero thickness; eROV's visual
-#: mesh has 24 such slivers, 1.8 mm wide, turning 179.985-179.997 degrees).
-FOLD_ANGLE = 0.1
+# FOLD_ANGLE (imported from stripcoef.hull.remesh): the largest departure from 180 degrees
+# of the turning at a fold, two faces in one plane, one folded back onto the other
 #: Most folds :meth:`EdgeFeatures.sheet_wider_than` probes (every k-th beyond) [-]: a bound
 #: on its time (one pass over the faces per fold), not a tolerance.
 MAX_FOLD_PROBES = 64
