@@ -95,9 +95,10 @@ from stripcoef.hull.graded_panels import box_faces, box_level
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
+from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
-    ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, relative_error,
-    richardson_error)
+    ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
+    relative_error, richardson_error)
 from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
@@ -648,8 +649,16 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         used = "input faces bisected (no remesh kept the area)"
     else:
         used = "isotropic remesh (pymeshlab" + ("" if mode.flips else ", no flips: thin members") + ")"
+    ladder = False
     if levels is None:
-        levels = panel_levels(v, f, panels, where)
+        # the input family: two nested pairs where they fit one solve (input_ladder), else
+        # the two levels of panel_levels
+        levels = ladder_levels(v, f, panels, MAX_PANELS)
+        ladder = levels is not None
+        if ladder:
+            used = "refined/coarsened input, two nested pairs"
+        else:
+            levels = panel_levels(v, f, panels, where)
     # the body's sharpest convex edge, facets of smooth parts and folds left out [rad]
     features = edge_features(v, f)
     if not np.isfinite(thickness):
@@ -676,7 +685,15 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         formal = edge_order(features.turning, finest_edge, thickness,
                             sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=formal)
-        if len(mats) >= 3:
+        if ladder:
+            # two nested pairs: the finer pair's extrapolation, its step plus its change
+            # since the coarser pair's (panel_error.ladder_extrapolation)
+            a, error = ladder_extrapolation(mats, counts, formal)
+            order, safety = np.full((6, 6), formal), np.ones((6, 6))
+            at_c = [transform_matrix(m, from_point=about, to_point=centroid) for m in mats]
+            converged = bool(relative_error(*ladder_extrapolation(at_c, counts, formal),
+                                            scale).max() <= tol)
+        elif len(mats) >= 3:
             # the extrapolated value's own error: its step from the finest level plus its
             # change since the level before (extrapolation_error; benchmarks/data/
             # panel_estimate_rule.md)
