@@ -493,7 +493,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     references where the isotropic remesh was up to 7.6 % off: benchmarks/data/
     plate_panels.md); else with the remesher (``family`` "auto" or "remesh", the ``remesh``
     extra) three isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
-    ("input"), the two panellings of :func:`panel_levels`.  The estimated error of each term
+    ("input"), on an input of at most N/4 faces two nested pairs of its faces bisected and
+    split in four (:mod:`stripcoef.hull.input_ladder`, its value the finer pair's
+    extrapolation, :func:`ladder_extrapolation`), else the two panellings of
+    :func:`panel_levels`.  The estimated error of each term
     of the extrapolated value, with three levels or more, is its step from the finest level
     plus its change since the level before (:func:`extrapolation_error`), with two levels
     Roache's two-grid index (:math:`F_s = 3`) about the finest plus the step
