@@ -53,7 +53,7 @@ from benchmarks.cad_shapes import (DOFS, FAMILIES, SIGNIFICANT, make_shape,  # n
 RHO = 1000.0
 TOL = 0.05
 RULES = ("gci+step", "step", "change", "max(step,change)", "step+change",
-         "stern-oscillatory", "eca-hoekstra-oscillatory")
+         "step+change/(r^p-1)", "stern-oscillatory", "eca-hoekstra-oscillatory")
 #: the rules whose value is not the Richardson extrapolation on every term
 OSCILLATORY = ("stern-oscillatory", "eca-hoekstra-oscillatory")
 MODES = ("3 levels", "4 levels", "5 levels", "refine to 4", "refine to 5")
@@ -137,6 +137,11 @@ def rules_at(shape: dict, k_levels: int) -> tuple:
            "step": np.maximum(step, asym), "change": np.maximum(change, asym),
            "max(step,change)": np.maximum(np.maximum(step, change), asym),
            "step+change": extrapolation_error(mats, n, p)}
+    # the change read as Richardson's error estimate of the finer of the two extrapolations,
+    # a refinement r = sqrt(N_1 / N_2) apart at the formal order (Roache 1998 eq. 5.4.1)
+    r = np.sqrt(n[-1] / n[-2])
+    e = step + change / (r ** p - 1.0)
+    out["step+change/(r^p-1)"] = np.maximum(np.maximum(e, e.T), asym)
     values = {r: sym for r in out}
     for rule in OSCILLATORY:
         values[rule], out[rule] = oscillatory(mats, n, sym, out["step+change"], rule)
