@@ -177,22 +177,3 @@ def test_the_input_family_of_a_small_mesh_is_two_nested_pairs():
     want, err = ladder_extrapolation(info["levels"], counts, info["formal_order"])
     np.testing.assert_allclose(a, want, rtol=1e-12)
     np.testing.assert_allclose(info["error"], err, rtol=1e-12)
-
-
-def test_the_nested_pairs_use_the_mirror_planes():
-    """A 12-sided cylinder with three mirror planes: the ladder's levels cut at the planes and
-    solved with their images (eight solves of N/8 unknowns) give the whole solve's terms
-    within 0.2 % (the tiny axial rotation within the two estimates); a body that is not
-    symmetric about the plane is refused (its half and images another volume)."""
-    from stripcoef.hull.input_ladder import ladder_levels, mirrored_ladder
-
-    m = trimesh.creation.cylinder(radius=0.1, height=0.3, sections=12)
-    a, whole = panel_added_mass(m, rho=RHO, panels=800, family="input")
-    b, cut = panel_added_mass(m, rho=RHO, panels=800, family="input", mirrors=("x", "y", "z"))
-    assert "two nested pairs" in cut["family"] and len(cut["panels"]) == 4
-    np.testing.assert_allclose(np.diag(b)[:5], np.diag(a)[:5], rtol=2e-3)
-    assert abs(b[5, 5] - a[5, 5]) <= cut["error"][5, 5] + whole["error"][5, 5]
-    skew = m.copy()
-    skew.vertices[skew.vertices[:, 1] > 0.05] *= [1.0, 1.5, 1.0]     # not y-symmetric
-    lv = ladder_levels(skew.vertices, skew.faces, 800, 6000)
-    assert lv is not None and mirrored_ladder(lv, ("y",), (0.0, 0.0, 0.0)) is None

@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.hull.bisection import enclosed_volume, refine
-from stripcoef.hull.remesh import LEAST_FACE_RATIO, VOLUME_TOLERANCE
+from stripcoef.hull.bisection import refine
+from stripcoef.hull.remesh import LEAST_FACE_RATIO
 
 
 def ladder_levels(vertices, faces, panels: int, limit: int):
@@ -47,30 +47,3 @@ def ladder_levels(vertices, faces, panels: int, limit: int):
     if 4 * len(b2[1]) > limit or len(b2[1]) < LEAST_FACE_RATIO * len(b1[1]):
         return None
     return [b1, b2, trimesh.remesh.subdivide(*b1), trimesh.remesh.subdivide(*b2)]
-
-
-def mirrored_ladder(levels, planes, about):
-    """The ladder's levels cut at the mirror ``planes`` through ``about`` [m]
-    (:func:`stripcoef.hull.mirror_panels.mirror_half`: the part on the planes' positive side,
-    to be solved with its image panels), or ``None`` when a cut level and its images do not
-    close into one consistently wound surface of the level's volume within the remesh's
-    :data:`~stripcoef.hull.remesh.VOLUME_TOLERANCE` (the bisected input need not be symmetric
-    to round-off: a level whose cut leaves a gap, or a body not symmetric about the planes, is
-    solved whole, all four levels then)."""
-    import trimesh
-
-    from stripcoef.geometry.mesh import EdgeTopology
-    from stripcoef.hull.mirror_panels import mirror_full, mirror_half
-
-    out = []
-    for v, f in levels:
-        half = mirror_half(v, f, planes, about)
-        if half is None:
-            return None
-        whole = trimesh.Trimesh(*mirror_full(*half, planes, about), process=True)
-        if not EdgeTopology(np.asarray(whole.faces)).consistent or abs(
-                enclosed_volume(whole.vertices, whole.faces) / enclosed_volume(v, f) - 1.0) \
-                > VOLUME_TOLERANCE:
-            return None
-        out.append(half)
-    return out

@@ -95,7 +95,7 @@ from stripcoef.hull.graded_panels import box_faces, box_level
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
-from stripcoef.hull.input_ladder import ladder_levels, mirrored_ladder
+from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
     relative_error, richardson_error)
@@ -656,17 +656,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     if levels is None:
         # the input family: two nested pairs where they fit one solve (input_ladder), else
         # the two levels of panel_levels
-        # (with mirror planes each level is cut there and solved with its images, 2^k solves
-        # of N/2^k unknowns, where every cut level closes with its images)
-        levels = ladder_levels(v, f, panels, MAX_PANELS * 2 ** len(planes))
-        halves = None
-        if levels is not None:
-            thickness = member_thickness(*levels[-1])          # of the whole finest level
-            halves = mirrored_ladder(levels, planes, about) if planes else None
-            if halves is not None:
-                levels, solve_planes = halves, planes
-            elif len(levels[-1][1]) > MAX_PANELS:
-                levels = None
+        levels = ladder_levels(v, f, panels, MAX_PANELS)
         ladder = levels is not None
         if ladder:
             used = "refined/coarsened input, two nested pairs"
