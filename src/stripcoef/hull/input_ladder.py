@@ -4,8 +4,8 @@ Without the remesher a small input (at most N/4 faces for N panels asked; boxes 
 excepted, :mod:`stripcoef.hull.graded_panels`) was solved on two levels, the input bisected to
 :math:`N_1 = \max(N/4, 2F)` panels and that split in four (:func:`stripcoef.hull.panels.
 panel_levels`).  Two levels have no change to measure: their estimate is Roache's two-grid
-index (:math:`F_s = 3`) plus the step, which warned on 25 of the 30 CAD shapes of seed
-1375923287 that are neither boxes nor plates (5 of them off by more than 5 %), and cannot
+index (:math:`F_s = 3`) plus the step, which warned on 28 of the 30 CAD shapes of seed
+1375923287 that are neither boxes nor plates (8 of them off by more than 5 %), and cannot
 see a term whose two values agree by chance.
 
 :func:`ladder_levels` adds a second pair of the same kind: the input bisected to
@@ -16,7 +16,8 @@ pairs one refinement apart; the value is the finer pair's Richardson extrapolati
 error the step to the finest level plus the change since the coarser pair's
 (:func:`stripcoef.hull.panel_error.ladder_extrapolation`).  Measured on those 30 shapes
 against the most resolved references (``python -m benchmarks.base_levels --whole``,
-docs/performance.md): see there.
+docs/performance.md): 179 of 180 diagonal terms within 5 % (168 with two levels), 9 of 30
+shapes warned (28), 207 of 235 terms covered (226).
 """
 
 from __future__ import annotations
