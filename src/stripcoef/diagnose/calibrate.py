@@ -6,14 +6,15 @@ The thrusters' timing (a first-order lag, a pure delay) is one property of the a
 not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
 water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
-Depends on: model, conventions, diagnose.priors, diagnose.fit, diagnose.cross.
+Depends on: model, conventions, effects (windows), diagnose.priors, diagnose.fit,
+diagnose.cross.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
-
+import copy
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -21,6 +22,7 @@ from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.cross import shared_value
 from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
+from stripcoef.effects.windows import coefficient_column
 
 
 def clip_added_mass(prior, calibrated, added_mass_sd=None):
@@ -121,14 +123,19 @@ def _with_matrices(model, mats: dict):
                    added_mass_error=None if changed else model.added_mass_error)
 
 
-def written_fit(d: str, result, fit, exclude=frozenset()):
+def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
     as selected), so that no kept parameter compensates a term that is not there -- and,
     when the DOF's calibration is removed, without the calibration columns (its
     coefficients stay at the prior): the effects fitted together with it are refitted
-    alone. ``theta`` starts with the calibration's values (none when it is removed)."""
+    alone. ``theta`` starts with the calibration's values (none when it is removed).
+
+    ``known``: {``M_<dof>``: change [kg or kg m^2]} of other DOFs' added masses that the
+    written model holds from their own DOF's calibration (:func:`consistent_fits`): their
+    force through :math:`C_A(\nu)\nu` is a known part of this DOF's balance, and the kept
+    terms are refitted with it (a calibration column of the same name is then dropped)."""
     cfg = fit.config
     theta = fit.evaluation["full"]["theta"]
     dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
@@ -138,11 +145,89 @@ def written_fit(d: str, result, fit, exclude=frozenset()):
                       settings=cfg.settings, budget=cfg.budget)
     if dropped:
         cfg = cfg.with_terms([t for t in cfg.terms if t not in dropped])
-    if (dropped or no_cal) and (cfg.terms or not no_cal):
+    known = {k: v for k, v in (known or {}).items() if v != 0.0}
+    if known:
+        cfg = _with_known(cfg, known)
+    if (dropped or no_cal or known) and (cfg.terms or not no_cal):
         theta = _fit(cfg)["theta"]
     elif no_cal:
         theta = np.zeros(0)
     return cfg, theta
+
+
+def _with_known(cfg, known: dict):
+    r"""``cfg`` with the force of the added-mass changes ``known`` ({``M_<dof>``: change})
+    moved from the fit to its target: the window residual of the DOF less
+    :math:`\sum_j \Delta M_{jj}\,(C_A[E_{jj}](\nu)\nu)_i` (the calibration column of
+    ``M_<dof>``, at the velocity relative to the water when a term defines it, as
+    :meth:`~stripcoef.diagnose.fit._Config.calibration_columns`), and those columns left out
+    of the calibration (a new configuration on a copy of the window data)."""
+    i = cfg.dof
+    nur = next((eff.relative_velocity(cfg.data, h) for eff, h in cfg.terms
+                if h is not None and hasattr(eff, "relative_velocity")), None)
+    force = np.zeros(cfg.data.n_windows)
+    for key, value in known.items():
+        force += coefficient_column(cfg.data, i, key, nur) * float(value)
+    data = copy.copy(cfg.data)          # the same log and cached designs, its own residual
+    data.e0 = np.array(cfg.data.e0, float)
+    data.e0[:, i] -= force
+    keep = [j for j, n in enumerate(cfg.cal.names) if n not in known]
+    return _Config(data, i, cfg.cal.subset(keep), list(cfg.terms), settings=cfg.settings,
+                   budget=cfg.budget)
+
+
+#: Sweeps of :func:`consistent_fits` at most, and the relative change of the diagnosed DOFs'
+#: added masses [-] below which the sweeps stop (the fits are linear given the selected
+#: nonlinear parameters; a fixed point of one coefficient per DOF)
+CONSISTENT_SWEEPS, CONSISTENT_TOL = 8, 1e-6
+
+
+def consistent_fits(model, per: dict, fits: dict, exclude=frozenset()) -> dict:
+    r"""DOF -> :func:`written_fit` of each DOF of ``per``, the added mass of every other
+    diagnosed DOF it feels through :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43) at the value
+    written for it -- that DOF's own calibration (:mod:`stripcoef.diagnose.cross`: one
+    coefficient, one value) -- so that no written DOF was fitted with another value of a
+    coefficient than the one written (issue 33: on the VideoRay-like issue-16 log the yaw
+    fit's Munk moment held a sway added mass 5.2 kg above the prior where sway's own
+    balance, which is written, gave 0.5 kg). Each DOF's own added mass moves with the
+    others' (Gauss-Seidel sweeps of the linear refits until the written added masses change
+    by less than ``CONSISTENT_TOL`` relative, at most ``CONSISTENT_SWEEPS``). One DOF:
+    its :func:`written_fit`."""
+    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
+    if len(per) < 2:
+        return fitted
+    felt = {d: [e for e in per if e != d and _felt(fits[d].config, e)] for d in per}
+    if not any(felt.values()):
+        return fitted
+    prior = np.diag(np.asarray(model.added_mass, float))
+    own = _own_added_mass(model, per, fitted)
+    for _ in range(CONSISTENT_SWEEPS):
+        for d, r in per.items():
+            known = {f"M_{e}": own[e] - prior[parse_dof(e)] for e in felt[d]}
+            fitted[d] = written_fit(d, r, fits[d], exclude, known)
+        new = _own_added_mass(model, per, fitted)
+        moved = max(abs(new[e] - own[e]) / max(abs(prior[parse_dof(e)]), 1e-12) for e in per)
+        own = new
+        if moved < CONSISTENT_TOL:
+            break
+    return fitted
+
+
+def _felt(cfg, other: str) -> bool:
+    """Whether DOF ``other``'s added mass moves the balance of ``cfg``'s DOF (its column,
+    :func:`~stripcoef.effects.windows.coefficient_column`, is not zero; the prior's added
+    mass of ``other`` is not zero)."""
+    j = parse_dof(other)
+    if j == cfg.dof or float(cfg.data.model.added_mass[j, j]) == 0.0:
+        return False
+    return bool(np.any(np.abs(coefficient_column(cfg.data, cfg.dof, f"M_{other}")) > 0.0))
+
+
+def _own_added_mass(model, per: dict, fitted: dict) -> dict:
+    """DOF -> its diagonal added mass in the model :func:`_build` writes from ``fitted``
+    [kg or kg m^2] (its calibration, an added-mass effect folded in)."""
+    m = _build(model, per, fitted)
+    return {d: float(m.added_mass[parse_dof(d), parse_dof(d)]) for d in per}
 
 
 def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
@@ -162,11 +247,16 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     thrusters' lag in a simulation instead of one per DOF, the same forces); so is the one
     water current (:func:`stripcoef.diagnose.current.share_current`), which acts in all six
     DOFs through the relative velocity."""
+    return _build(model, per, consistent_fits(model, per, fits, exclude))
+
+
+def _build(model, per: dict, fitted: dict):
+    """The model :func:`calibrated_model` writes from the fits ``fitted`` (DOF ->
+    ``(config, theta)``, :func:`written_fit`)."""
     m = model
     mats = _writable_matrices(m)
     record = []
     # DOFs whose written fit holds each shared timing effect (share_timing)
-    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
     shared_in = {}
     for cfg, _ in fitted.values():
         for eff, _ in cfg.terms:

@@ -267,8 +267,10 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             if model.effects:
                 data.e0 = data.e0 - effect_window_forces(data, model)
     # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
-    # reach; written once (a diagnosed DOF's own calibration; cross.py)
-    cross = moving_dofs(data)
+    # reach -- a diagnosed DOF's own is its own calibration's, which is written: the others
+    # hold it at the prior in their selection and are refitted with its written value
+    # (cross.py, calibrate.consistent_fits)
+    cross = [j for j in moving_dofs(data) if j not in dofs or len(dofs) == 1]
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)
