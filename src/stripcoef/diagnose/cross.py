@@ -15,9 +15,17 @@ failed (z 0.9-2.2); with ``M_sway`` calibrated the residual fell to 0.04-0.06 N 
 tether's z rose to 5-6 on two of the three.
 
 So a DOF's calibration (:func:`~stripcoef.diagnose.fit._calibration`) may hold the added
-mass of every DOF whose velocity moves (:func:`moving_dofs`; where that DOF is diagnosed
-itself, its own calibration's value is written); its Fisher information still decides whether the log
-determines it (:func:`~stripcoef.diagnose.fit._identifiability`, Ljung 1999 eq. 9.29).
+mass of every DOF whose velocity moves (:func:`moving_dofs`); its Fisher information still
+decides whether the log determines it (:func:`~stripcoef.diagnose.fit._identifiability`,
+Ljung 1999 eq. 9.29). Where that DOF is diagnosed itself, its own calibration's value is
+written, so in a whole-log diagnosis the other DOFs do not calibrate it: they select with
+the prior's value and are refitted with the written one
+(:func:`stripcoef.diagnose.calibrate.consistent_fits`). Freed in every DOF, it took the
+place of a thrust scale the written model then lacked: the balance is homogeneous in the
+thrust, inertia and drag, and the other DOFs' added masses are among the few forces that
+anchor it (:mod:`.scalechoice`); on the VideoRay-like issue-16 log (seed 7, 0.49 of the
+thrust acting) yaw's Munk moment took the sway added mass to +5.2 kg (sd 0.57) where
+sway's own balance, written, gave +0.5 kg, and yaw named no thrust scale.
 One coefficient has one value: in a whole-log diagnosis several diagnosed DOFs may each
 calibrate such an added mass (a VideoRay's sway added mass reaches surge through
 :math:`M_{22} v r` and yaw through the Munk moment :math:`(M_{22} - M_{11}) u v`); the
