@@ -32,7 +32,8 @@ Usage:
         [--duration 300]
 
 The seeds are those of ``python -m benchmarks.diagnose_independent --seed S --categories
-clean --repeats R`` (the same logs).
+clean --repeats R`` (the same logs); ``--category-index 11`` gives those of a run of every
+category (clean is the twelfth).
 """
 
 from __future__ import annotations
@@ -141,6 +142,9 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--vehicles", default=",".join(VEHICLES))
     ap.add_argument("--duration", type=float, default=300.0)
+    ap.add_argument("--category-index", type=int, default=0,
+                    help="the clean category's place in the run's list of categories (0 with "
+                         "--categories clean; 11 in a run of every category)")
     args = ap.parse_args(argv)
     print("| vehicle | seed | DOF | effect | kept | parameters | truth eta+ | truth eta- "
           "| truth eta-/eta+ | truth gain | truth thrust not on the prior's (RMS share) "
@@ -148,9 +152,10 @@ def main(argv=None) -> int:
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     cpu = 0.0
     for rep in range(args.repeats):
-        # the seeds of diagnose_independent --categories clean (category index 0)
+        # the seeds of diagnose_independent's clean logs (seed + 100000 rep + 1000 v + c)
         for v, vehicle in enumerate(args.vehicles.split(",")):
-            rows = trace(vehicle, args.seed + 100000 * rep + 1000 * v, args.duration)
+            rows = trace(vehicle, args.seed + 100000 * rep + 1000 * v + args.category_index,
+                         args.duration)
             cpu += rows[0]["cpu_s"]
             for r in rows:
                 if r["effect"] is None:

@@ -1,6 +1,7 @@
 """One value per added mass in a whole-log diagnosis (``stripcoef.diagnose.calibrate.
-consistent_fits``): a diagnosed DOF's added mass is its own calibration's, and the other DOFs
-are fitted with the value written, not with one of their own (issue 33)."""
+contradicted``, ``consistent_fits``): a diagnosed DOF's added mass is its own calibration's;
+a DOF whose fit contradicts it is selected again without it and written refitted with it
+(issue 33)."""
 
 from __future__ import annotations
 
@@ -19,8 +20,9 @@ def test_the_videoray_issue16_log_keeps_its_yaw_thrust_scale():
     acts in every DOF): with the sway added mass free in yaw's calibration its Munk moment
     took the yaw thrust scale (+5.2 kg against sway's own +0.5 kg, which was written), no
     yaw scale was named, and the written yaw model's window error was 4x the prior's
-    (0.155 against 0.039 N m). Now yaw names a thrust scale near the truth's, and every
-    DOF's written error is below its baseline."""
+    (0.155 against 0.039 N m). Now yaw names a thrust scale near the truth's, every DOF's
+    written error is below its baseline, and the held-out part is predicted better than
+    by the prior, hold-last-velocity and zero velocity in every DOF."""
     name, log, prior, widths, truth = real_style_log(3, 300.0, 7)
     with tempfile.TemporaryDirectory() as tmp:
         read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=10))

@@ -6,23 +6,21 @@ The thrusters' timing (a first-order lag, a pure delay) is one property of the a
 not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
 water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
-Depends on: model, conventions, effects (windows), diagnose.priors, diagnose.fit,
+Depends on: model, conventions, diagnose.priors, diagnose.settings, diagnose.fit,
 diagnose.cross.
 """
 
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import replace
 
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.cross import shared_value
+from stripcoef.diagnose.cross import shared_value, with_known
 from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
-from stripcoef.effects.windows import coefficient_column
 
 
 def clip_added_mass(prior, calibrated, added_mass_sd=None):
@@ -132,10 +130,10 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     coefficients stay at the prior): the effects fitted together with it are refitted
     alone. ``theta`` starts with the calibration's values (none when it is removed).
 
-    ``known``: {``M_<dof>``: change [kg or kg m^2]} of other DOFs' added masses that the
-    written model holds from their own DOF's calibration (:func:`consistent_fits`): their
-    force through :math:`C_A(\nu)\nu` is a known part of this DOF's balance, and the kept
-    terms are refitted with it (a calibration column of the same name is then dropped)."""
+    ``known``: {``M_<dof>``: change [kg or kg m^2]} of other DOFs' added masses beyond
+    those the DOF's window data already hold as known forces (:func:`consistent_fits`):
+    their force through :math:`C_A(\nu)\nu` is taken out too and the kept terms are
+    refitted (a calibration column of the same name is then dropped)."""
     cfg = fit.config
     theta = fit.evaluation["full"]["theta"]
     dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
@@ -156,55 +154,45 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
 
 
 def _with_known(cfg, known: dict):
-    r"""``cfg`` with the force of the added-mass changes ``known`` ({``M_<dof>``: change})
-    moved from the fit to its target: the window residual of the DOF less
-    :math:`\sum_j \Delta M_{jj}\,(C_A[E_{jj}](\nu)\nu)_i` (the calibration column of
-    ``M_<dof>``, at the velocity relative to the water when a term defines it, as
-    :meth:`~stripcoef.diagnose.fit._Config.calibration_columns`), and those columns left out
-    of the calibration (a new configuration on a copy of the window data)."""
-    i = cfg.dof
+    """``cfg`` with the added-mass changes ``known`` taken out of its DOF's residual as known
+    forces (:func:`stripcoef.diagnose.cross.with_known`, at the velocity relative to the
+    water when a term defines it, as
+    :meth:`~stripcoef.diagnose.fit._Config.calibration_columns`) and those columns left out
+    of the calibration (a new configuration)."""
     nur = next((eff.relative_velocity(cfg.data, h) for eff, h in cfg.terms
                 if h is not None and hasattr(eff, "relative_velocity")), None)
-    force = np.zeros(cfg.data.n_windows)
-    for key, value in known.items():
-        force += coefficient_column(cfg.data, i, key, nur) * float(value)
-    data = copy.copy(cfg.data)          # the same log and cached designs, its own residual
-    data.e0 = np.array(cfg.data.e0, float)
-    data.e0[:, i] -= force
+    data = with_known(cfg.data, cfg.dof, known, nur)
     keep = [j for j, n in enumerate(cfg.cal.names) if n not in known]
-    return _Config(data, i, cfg.cal.subset(keep), list(cfg.terms), settings=cfg.settings,
+    return _Config(data, cfg.dof, cfg.cal.subset(keep), list(cfg.terms), settings=cfg.settings,
                    budget=cfg.budget)
 
 
 #: Sweeps of :func:`consistent_fits` at most, and the relative change of the diagnosed DOFs'
 #: added masses [-] below which the sweeps stop (the fits are linear given the selected
-#: nonlinear parameters; a fixed point of one coefficient per DOF)
+#: nonlinear parameters: a fixed point of one coefficient per DOF)
 CONSISTENT_SWEEPS, CONSISTENT_TOL = 8, 1e-6
 
 
 def consistent_fits(model, per: dict, fits: dict, exclude=frozenset()) -> dict:
-    r"""DOF -> :func:`written_fit` of each DOF of ``per``, the added mass of every other
-    diagnosed DOF it feels through :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43) at the value
-    written for it -- that DOF's own calibration (:mod:`stripcoef.diagnose.cross`: one
-    coefficient, one value) -- so that no written DOF was fitted with another value of a
-    coefficient than the one written (issue 33: on the VideoRay-like issue-16 log the yaw
-    fit's Munk moment held a sway added mass 5.2 kg above the prior where sway's own
-    balance, which is written, gave 0.5 kg). Each DOF's own added mass moves with the
-    others' (Gauss-Seidel sweeps of the linear refits until the written added masses change
-    by less than ``CONSISTENT_TOL`` relative, at most ``CONSISTENT_SWEEPS``). One DOF:
-    its :func:`written_fit`."""
+    r"""DOF -> :func:`written_fit` of each DOF of ``per``; a DOF selected with other diagnosed
+    DOFs' added masses as known forces (:func:`contradicted`; its window data's
+    ``known_added_mass``) is refitted with the values written for them, so that it is written
+    beside the same values it is fitted with (one coefficient, one value:
+    :mod:`stripcoef.diagnose.cross`). Each DOF's own added mass moves with the others'
+    (Gauss-Seidel sweeps of the linear refits until the written added masses change by less
+    than ``CONSISTENT_TOL`` relative, at most ``CONSISTENT_SWEEPS``)."""
     fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
-    if len(per) < 2:
-        return fitted
-    felt = {d: [e for e in per if e != d and _felt(fits[d].config, e)] for d in per}
-    if not any(felt.values()):
+    held = {d: dict(fits[d].config.data.known_added_mass) for d in per}
+    if not any(held.values()):
         return fitted
     prior = np.diag(np.asarray(model.added_mass, float))
     own = _own_added_mass(model, per, fitted)
     for _ in range(CONSISTENT_SWEEPS):
         for d, r in per.items():
-            known = {f"M_{e}": own[e] - prior[parse_dof(e)] for e in felt[d]}
-            fitted[d] = written_fit(d, r, fits[d], exclude, known)
+            if held[d]:
+                known = {k: own[k[2:]] - prior[parse_dof(k[2:])] - v
+                         for k, v in held[d].items()}
+                fitted[d] = written_fit(d, r, fits[d], exclude, known)
         new = _own_added_mass(model, per, fitted)
         moved = max(abs(new[e] - own[e]) / max(abs(prior[parse_dof(e)]), 1e-12) for e in per)
         own = new
@@ -213,14 +201,35 @@ def consistent_fits(model, per: dict, fits: dict, exclude=frozenset()) -> dict:
     return fitted
 
 
-def _felt(cfg, other: str) -> bool:
-    """Whether DOF ``other``'s added mass moves the balance of ``cfg``'s DOF (its column,
-    :func:`~stripcoef.effects.windows.coefficient_column`, is not zero; the prior's added
-    mass of ``other`` is not zero)."""
-    j = parse_dof(other)
-    if j == cfg.dof or float(cfg.data.model.added_mass[j, j]) == 0.0:
-        return False
-    return bool(np.any(np.abs(coefficient_column(cfg.data, cfg.dof, f"M_{other}")) > 0.0))
+def contradicted(model, per: dict, fits: dict) -> dict:
+    r"""The DOFs of a whole-log diagnosis whose fit holds another diagnosed DOF's added mass
+    ``M_<dof>`` (:mod:`stripcoef.diagnose.cross`) at a value that contradicts the one written
+    for it, its own DOF's (:func:`calibrated_model` before the validation): more than
+    ``MIN_Z`` of the fit's standard deviation from it (the selection's rule of a parameter
+    told from a value, :data:`~stripcoef.diagnose.settings.MIN_Z`). DOF -> {``M_<dof>``:
+    the written change [kg or kg m^2]} of every diagnosed DOF it feels: the known forces it
+    is selected again with (:func:`stripcoef.diagnose.cross.with_known`). Issue 33: on the
+    VideoRay-like issue-16 log (seed 7, 0.49 of the thrust acting) yaw's Munk moment held the
+    sway added mass at +5.2 kg (sd 0.57) where sway's own balance, written, gave +0.5 kg: the
+    free added mass had taken the yaw thrust scale (the balance is homogeneous in thrust,
+    inertia and drag; :mod:`stripcoef.diagnose.scalechoice`) and the model written had
+    neither."""
+    from stripcoef.diagnose.settings import MIN_Z
+    fitted = {d: written_fit(d, r, fits[d]) for d, r in per.items()}
+    prior = np.diag(np.asarray(model.added_mass, float))
+    own = _own_added_mass(model, per, fitted)
+    out = {}
+    for d in per:
+        ev = fits[d].evaluation["full"]
+        names = list(fits[d].config.cal.names)
+        mine = {n: k for k, n in enumerate(names) if n.startswith("M_") and n[2:] in per}
+        written = {n: own[n[2:]] - prior[parse_dof(n[2:])] for n in mine}
+        far = [n for n, k in mine.items()
+               if abs(ev["theta"][k] - written[n])
+               > MIN_Z * math.sqrt(max(float(ev["cov"][k, k]), 0.0))]
+        if far:
+            out[d] = written
+    return out
 
 
 def _own_added_mass(model, per: dict, fitted: dict) -> dict:

@@ -95,8 +95,9 @@ import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass, share_timing)
-from stripcoef.diagnose.cross import moving_dofs
+                                          clip_added_mass, contradicted,
+                                          share_timing)
+from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
@@ -267,10 +268,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             if model.effects:
                 data.e0 = data.e0 - effect_window_forces(data, model)
     # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
-    # reach -- a diagnosed DOF's own is its own calibration's, which is written: the others
-    # hold it at the prior in their selection and are refitted with its written value
-    # (cross.py, calibrate.consistent_fits)
-    cross = [j for j in moving_dofs(data) if j not in dofs or len(dofs) == 1]
+    # reach; written once (a diagnosed DOF's own calibration; cross.py)
+    cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
     siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
                 if len(dofs) > 1 else None)
@@ -279,6 +278,15 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
+    # one value per added mass: a DOF whose fit contradicts a diagnosed DOF's own added mass
+    # is selected again with the diagnosed DOFs' added masses held at the prior, and written
+    # refitted with their written values (calibrate.contradicted, consistent_fits)
+    undiagnosed = [j for j in cross if DOF[j] not in per]
+    for d, known in (contradicted(model, per, fits) if len(dofs) > 1 else {}).items():
+        i = parse_dof(d)
+        per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
+                                       settings, budget=budget, excited=excited,
+                                       cross=undiagnosed, siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
