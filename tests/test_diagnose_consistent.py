@@ -1,7 +1,7 @@
 """One value per added mass in a whole-log diagnosis (``stripcoef.diagnose.calibrate.
 contradicted``, ``consistent_fits``): a diagnosed DOF's added mass is its own calibration's;
 a DOF whose fit contradicts it is selected again without it and written refitted with it
-(issue 33)."""
+(issue 33; an option, ``diagnose(..., one_added_mass=True)``)."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ def test_the_videoray_issue16_log_keeps_its_yaw_thrust_scale():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(read, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
-                       prior_widths=widths)
+                       prior_widths=widths, one_added_mass=True)
     shortfall = float(truth.split("shortfall ")[1].split(",")[0])
     yaw = [s for s in res.per_dof["yaw"].steps if s.effect == "thrust_effectiveness"]
     assert yaw and yaw[0].kept

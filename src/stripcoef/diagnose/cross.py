@@ -18,8 +18,9 @@ So a DOF's calibration (:func:`~stripcoef.diagnose.fit._calibration`) may hold t
 mass of every DOF whose velocity moves (:func:`moving_dofs`); its Fisher information still
 decides whether the log determines it (:func:`~stripcoef.diagnose.fit._identifiability`,
 Ljung 1999 eq. 9.29). Where that DOF is diagnosed itself, its own calibration's value is
-written; a DOF whose fit contradicts that value is selected again without it and refitted
-with it (:func:`stripcoef.diagnose.calibrate.contradicted`,
+written, and the others keep the value they fitted; with the option ``one_added_mass`` a
+DOF whose fit contradicts the written value is selected again without it and refitted with
+it (:func:`stripcoef.diagnose.calibrate.contradicted`,
 :func:`~stripcoef.diagnose.calibrate.consistent_fits`, :func:`with_known`).
 One coefficient has one value: in a whole-log diagnosis several diagnosed DOFs may each
 calibrate such an added mass (a VideoRay's sway added mass reaches surge through
