@@ -22,8 +22,8 @@ thrust in the step's DOF against the prior's map on the log's commands:
 - ``other``: the RMS of the truth's thrust in the DOF that the two factors on the prior's
   parts do not explain, relative to its RMS [-] (the thrusters' own f_k within a branch);
 - the verdict: a thrust asymmetry is the truth's when its fitted change
-  :math:`\\eta_-/\\eta_+ - 1` is nearer the truth's than zero (the same direction, and
-  less than twice it), a thrust effectiveness likewise with :math:`s - 1` against
+  :math:`\\eta_-/\\eta_+ - 1` is within a factor 2 of the truth's (the same direction,
+  between half and twice it), a thrust effectiveness likewise with :math:`s - 1` against
   :math:`g - 1`, a buoyancy offset when the truth's buoyancy differs from the prior's
   (always, it is drawn); any other effect is a false positive. (The benchmark's own rule
   asks the truth's gain to differ from 1 by more than ``THRUST_BAND``, 5 %: an asymmetry of
@@ -103,7 +103,7 @@ def verdict(effect: str, factors: dict, buoyancy_change: float, parameters: dict
         return "false positive"
     if truth * fitted <= 0.0:
         return "false positive (wrong direction)"
-    return "background" if abs(fitted - truth) < abs(fitted) else "false positive"
+    return "background" if 0.5 < fitted / truth < 2.0 else "false positive"
 
 
 def trace(vehicle: str, seed: int, duration: float) -> list[dict]:

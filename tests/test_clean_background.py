@@ -1,5 +1,5 @@
 """benchmarks.clean_background: a clean-log step is the truth's background only when its
-fitted change is nearer the truth's own change on the log than zero."""
+fitted change is within a factor 2 of the truth's own change on the log."""
 
 from __future__ import annotations
 
@@ -15,8 +15,8 @@ def test_an_asymmetry_the_truth_has_is_background_and_the_wrong_way_is_not():
     other = {"eta_forward": 0.982, "eta_backward": 1.032, "gain": 1.010}
     assert verdict("thrust_asymmetry", other, -1.6,
                    {"eta_forward": 0.854, "eta_backward": 0.766}).startswith("false positive")
-    # a scale the other way from the truth's gain (BlueROV2 282147 pitch), and one more than
-    # twice the truth's change
+    # a scale the other way from the truth's gain (BlueROV2 282147 pitch), and one three
+    # times the truth's change
     assert verdict("thrust_effectiveness", truth, 1.8,
                    {"scale": 1.17}) == "false positive (wrong direction)"
     assert verdict("thrust_effectiveness", {**truth, "gain": 0.95}, 1.8,
