@@ -95,8 +95,9 @@ import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass, share_timing)
-from stripcoef.diagnose.cross import moving_dofs
+                                          clip_added_mass, contradicted,
+                                          share_timing)
+from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
@@ -128,7 +129,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation: float | None = VALIDATION_FRACTION,
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
-             ) -> Diagnosis:
+             one_added_mass: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -168,6 +169,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         of :data:`BANDS`; ``bands``, when given, overrides them. Recorded in the JSON with
         the row each width came from (``prior_widths``, ``per_dof.<dof>.calibration.
         band_source``).
+    one_added_mass : bool
+        Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
+        (:attr:`DiagnoseSettings.one_added_mass`; off by default).
 
     Returns
     -------
@@ -205,7 +209,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         window=window, effects=None if effects is None else tuple(effects),
         resimulate=bool(resimulate), bands=bands, max_steps=max_steps,
         validation=validation or None, holdout=holdout or None,
-        added_mass_sd=added_mass_sd, prior_widths=prior_widths)
+        added_mass_sd=added_mass_sd, prior_widths=prior_widths,
+        one_added_mass=bool(one_added_mass))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -277,6 +282,18 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
+    # option (settings.one_added_mass): a DOF whose fit contradicts a diagnosed DOF's own
+    # added mass is selected again with the diagnosed DOFs' added masses held at the prior,
+    # and written refitted with their written values (calibrate.contradicted,
+    # consistent_fits)
+    undiagnosed = [j for j in cross if DOF[j] not in per]
+    again = (contradicted(model, per, fits) if len(dofs) > 1 and settings.one_added_mass
+             else {})
+    for d, known in again.items():
+        i = parse_dof(d)
+        per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
+                                       settings, budget=budget, excited=excited,
+                                       cross=undiagnosed, siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)

@@ -149,6 +149,13 @@ class DiagnoseSettings:
         1-sigma method uncertainty of the prior's added mass, sd of ln M_ii [-]
     prior_widths : PriorWidths or None
         The method table's widths of the calibration's priors (a vehicle file)
+    one_added_mass : bool
+        Whole-log: a DOF whose fit holds a diagnosed DOF's added mass more than ``MIN_Z``
+        sd from that DOF's own (written) value is selected again with it at the prior and
+        written refitted with the written value
+        (:func:`stripcoef.diagnose.calibrate.contradicted`). Off by default: it wins the
+        VideoRay-like issue-16 real-style log's held-out cells back but loses named-first
+        effects on the independent simulator (benchmarks/data/one_added_mass.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -160,6 +167,7 @@ class DiagnoseSettings:
     holdout: float | None = None
     added_mass_sd: np.ndarray | None = None
     prior_widths: object = None
+    one_added_mass: bool = False
 
     @property
     def widths(self):
