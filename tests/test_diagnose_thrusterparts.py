@@ -53,7 +53,7 @@ def _trial(parts: ThrusterParts, name: str, dof: int) -> dict:
 
 
 def test_the_parts_of_the_videorays_pitch_are_surge_heave_and_yaw():
-    parts, _ = _parts("tether_drag", 5092026, 10.0)
+    parts, _ = _parts("tether_drag", 5092026, 30.0)
     assert parts.parts(PITCH) == [SURGE, HEAVE, YAW]
     assert parts.parts(SURGE) == [] and parts.parts(HEAVE) == []   # yaw: the same pair
 
