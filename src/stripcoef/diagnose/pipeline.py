@@ -64,7 +64,9 @@ Steps, for each degree of freedom (issue 7):
    thrusters (dead band, thrust asymmetry, lag, delay: :data:`~.select.THRUSTER_EFFECTS`)
    found in one DOF must also hold in every other diagnosed DOF the same thrusters drive:
    at its parameters it must not raise their held-out error by more than ``TIE``
-   (:class:`~.select.Siblings`). Before the DOFs are diagnosed, a whole-log diagnosis fits
+   (:class:`~.select.Siblings`); one of each thruster's own map (dead band, asymmetry) found
+   in a DOF that several groups of thrusters drive must not be contradicted by every DOF
+   that parts of them drive alone (:mod:`.thrusterparts`). Before the DOFs are diagnosed, a whole-log diagnosis fits
    the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
@@ -101,6 +103,7 @@ from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -275,8 +278,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
     cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
-                if len(dofs) > 1 else None)
+    siblings = (ThrusterParts(data, dofs, settings, budget=budget, excited=excited,
+                              cross=cross) if len(dofs) > 1 else None)
     per, fits = {}, {}
     for i in dofs:
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
