@@ -215,6 +215,7 @@ LEVELS = {"videoray_like": (0.045, 0.032, 0.0226, 0.016, 0.0135),
           "open_frame": (0.064, 0.045, 0.032, 0.024),
           "bluerov2_heavy": (0.064, 0.045, 0.032, 0.024)}
 HEADER = ["shape", "what", "level", "m", "faces", "i", "j", "added_mass", "seconds"]
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def capytaine_mirror(v, f):
@@ -327,6 +328,41 @@ def public_levels(body, faces=PUBLIC_FACES):
     return out
 
 
+
+def centred_box(body):
+    """(x, y, z) extents [m] of a body that is an axis-aligned box centred on the origin (eight
+    vertices, its volume that of its bounds), else None."""
+    v = np.asarray(body.vertices, float)
+    ext = np.ptp(v, axis=0)
+    if (len(np.unique(np.round(v, 9), axis=0)) != 8
+            or abs(body.volume / np.prod(ext) - 1.0) > 1e-6
+            or np.max(np.abs(v.max(axis=0) + v.min(axis=0))) > 1e-6 * ext.max()):
+        return None
+    return tuple(float(x) for x in ext)
+
+
+def _public_box(w, fh, name, extents):
+    """A box's levels as the bluff set's boxes are solved (:mod:`benchmarks.graded_references`
+    boxes: structured quadrilaterals cosine-graded towards every edge,
+    :func:`benchmarks.plate_graded.eighth_box`, the quarter solved on two mirror planes): the
+    five finest of its BOX_LEVELS within MAX_FACES, rows as :func:`run_public` (m: the
+    panels on the longest horizontal half-edge)."""
+    from benchmarks.graded_references import BOX_LEVELS, MAX_FACES, MAX_LEVELS
+    from benchmarks.plate_graded import capytaine_eighth, eighth_box
+
+    x, y, z = extents
+    fit = [m for m in BOX_LEVELS if 8 * len(eighth_box(x, y, z, m)[1]) <= MAX_FACES]
+    what = (f"box {x:.5g} x {y:.5g} x {z:.5g} m, structured quadrilaterals graded towards "
+            "every edge (benchmarks.plate_graded.eighth_box)")
+    for lev, m in enumerate(fit[-MAX_LEVELS:]):
+        a, n, sec = capytaine_eighth(*eighth_box(x, y, z, m))
+        print(f"{name}: {what}, m {m}, {n} faces, {sec:.1f} s: "
+              + " ".join(f"{q:.6g}" for q in np.diag(a)), flush=True)
+        w.writerows([name, what, lev, m, n, i, j, f"{a[i, j]:.9g}", f"{sec:.2f}"]
+                    for i in range(6) for j in range(i, 6))
+        fh.flush()
+
+
 def run_public(path, mirror, names, faces=PUBLIC_FACES):
     """Every level of each public mesh of ``names``: Capytaine (the whole body, about the body
     origin), rows of :data:`HEADER` appended to ``path`` (``m`` holds H [m])."""
@@ -355,6 +391,10 @@ def run_public(path, mirror, names, faces=PUBLIC_FACES):
         w = csv.writer(fh)
         for name in names:
             body = public_surface(mirror, name)
+            box = centred_box(body)
+            if box is not None:
+                _public_box(w, fh, name, box)
+                continue
             for lev, (H, (v, f)) in enumerate(public_levels(body, faces)):
                 c = check(v, f, body, False)
                 t0 = time.perf_counter()
@@ -370,11 +410,61 @@ def run_public(path, mirror, names, faces=PUBLIC_FACES):
                 fh.flush()
 
 
+
+def compare_public(levels_csv, stored_csv):
+    """Per mesh of ``levels_csv`` (:func:`run_public`) and term: its graded reference (Eça &
+    Hoekstra over the levels, :func:`validation.graded_bodies.references`) moved to each
+    stored run's reference point (``stored_csv``: reference_tables/public_meshes/
+    public_meshes.csv, its ``ref_x, ref_y, ref_z``), against the stored run's model and
+    uniform reference; a diagonal term relative to itself, a coupling to sqrt(A_ii A_jj) (the
+    public benchmark's scale, :func:`benchmarks.public_meshes.compare_at`).  Returns rows
+    (dicts) and prints them."""
+    import csv
+
+    from stripcoef.conventions import transform_matrix
+    from validation.graded_bodies import references
+    from validation.public_meshes import moved_uncertainty
+
+    with open(stored_csv, newline="") as fh:
+        stored = [r for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))]
+    out = []
+    for name, (ref, band, order, faces) in references(levels_csv).items():
+        runs = {}
+        for r in stored:
+            if r["mesh"] == name and r["run"] in ("auto", "repaired"):
+                runs.setdefault(r["run"], []).append(r)
+        for run, rows in runs.items():
+            point = np.array([float(rows[0][k]) for k in ("ref_x", "ref_y", "ref_z")])
+            ref_p = transform_matrix(ref, from_point=(0, 0, 0), to_point=point)
+            band_p = moved_uncertainty(band, point)
+            d = np.sqrt(np.abs(np.diag(ref_p)))
+            for r in rows:
+                i, j = int(r["i"]), int(r["j"])
+                if i != j and r["significant"] not in ("1", "True"):
+                    continue
+                s = d[i] * d[j]
+                row = dict(mesh=name, run=run, i=i, j=j, faces="/".join(map(str, faces)),
+                           graded=ref_p[i, j], band=band_p[i, j] / s, order=order[i, j],
+                           model=(float(r["model"]) - ref_p[i, j]) / s,
+                           uniform=(float(r["bem"]) - ref_p[i, j]) / s,
+                           model_vs_uniform=float(r["error_rel"]))
+                out.append(row)
+                print(f"{name} ({run}) [{DOFS[i]}, {DOFS[j]}]: graded {ref_p[i, j]:.6g} (band "
+                      f"{100 * row['band']:.2f} %, order {row['order']:.2f}); model "
+                      f"{100 * row['model']:+.2f} %, uniform reference "
+                      f"{100 * row['uniform']:+.2f} % (model against it "
+                      f"{100 * row['model_vs_uniform']:+.2f} %)")
+    return out
+
+
 def main(argv=None) -> int:
     import argparse
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--csv", required=True, help="append the levels here")
+    ap.add_argument("--csv", required=True, help="append the levels here (--compare: read)")
+    ap.add_argument("--compare", default=None, metavar="STORED_CSV",
+                    help="compare the public meshes' levels of --csv with this stored run "
+                    "(reference_tables/public_meshes/public_meshes.csv) and stop")
     ap.add_argument("--public", nargs="+", default=None, choices=PUBLIC,
                     help="these public meshes (benchmarks.public_meshes) instead of the "
                     "bluff shapes; needs --mirror")
@@ -384,6 +474,9 @@ def main(argv=None) -> int:
     ap.add_argument("--levels", type=float, nargs="+", default=None,
                     help="largest panel H [m] of each level (default: the shape's LEVELS)")
     args = ap.parse_args(argv)
+    if args.compare:
+        compare_public(args.csv, args.compare)
+        return 0
     if args.public:
         if not args.mirror:
             ap.error("--public needs --mirror")
