@@ -94,3 +94,19 @@ def test_the_stored_levels_refine_keep_the_mirror_and_are_the_bluff_sets_referen
             for i, j in forbidden:
                 assert abs(a[i, j]) <= 1e-9 * np.sqrt(a[i, i] * a[j, j])
         assert bluff_sources()[name][2].endswith("graded_meshes.csv")
+
+
+def test_a_remesh_that_is_not_the_body_is_refused_in_one_line():
+    """A level whose triangles are wound inconsistently, or whose volume is off by more than
+    MAX_VOLUME_CHANGE, raises a one-line error naming it; a good one passes."""
+    box = _box()
+    v, f = np.asarray(box.vertices, float), np.asarray(box.faces)
+    good = GM.check(v, f, box, False)
+    assert good["consistent"] and abs(good["volume"]) < 1e-12
+    assert GM.accepted(good, "box") is good
+    bad = f.copy()
+    bad[0] = bad[0][::-1]
+    with pytest.raises(RuntimeError, match=r"^box at H = 1 m: .*not consistently wound"):
+        GM.accepted(GM.check(v, bad, box, False), "box at H = 1 m")
+    with pytest.raises(RuntimeError, match=r"volume differs by \+10\.0 %"):
+        GM.accepted(dict(good, volume=0.10), "box")
