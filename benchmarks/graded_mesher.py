@@ -505,6 +505,9 @@ def main(argv=None) -> int:
                     "bluff shapes; needs --mirror")
     ap.add_argument("--mirror", default=None, help="the public meshes' clones (as "
                     "benchmarks.public_meshes --mirror)")
+    ap.add_argument("--faces", type=int, nargs="+", default=list(PUBLIC_FACES),
+                    help="face counts a public mesh's levels aim at (default "
+                    + " ".join(map(str, PUBLIC_FACES)) + ")")
     ap.add_argument("--only", nargs="+", default=list(SHAPES), choices=SHAPES)
     ap.add_argument("--levels", type=float, nargs="+", default=None,
                     help="largest panel H [m] of each level (default: the shape's LEVELS)")
@@ -515,7 +518,7 @@ def main(argv=None) -> int:
     if args.public:
         if not args.mirror:
             ap.error("--public needs --mirror")
-        run_public(args.csv, args.mirror, args.public)
+        run_public(args.csv, args.mirror, args.public, tuple(args.faces))
         return 0
     run(args.csv, args.only, args.levels)
     return 0

@@ -110,3 +110,26 @@ def test_a_remesh_that_is_not_the_body_is_refused_in_one_line():
         GM.accepted(GM.check(v, bad, box, False), "box at H = 1 m")
     with pytest.raises(RuntimeError, match=r"volume differs by \+10\.0 %"):
         GM.accepted(dict(good, volume=0.10), "box")
+
+
+PUBLIC_LEVELS = MESHES.parents[1] / "public_meshes" / "graded_levels.csv"
+
+
+@pytest.mark.skipif(not PUBLIC_LEVELS.exists(), reason="no stored graded public levels")
+def test_the_public_meshes_graded_levels_refine_and_give_a_reference_with_a_band():
+    """graded_levels.csv: the command and Capytaine's version first; every mesh of it is one of
+    the public benchmark's, with four levels or more that refine, and a reference (Eça &
+    Hoekstra) positive definite with a finite positive diagonal band."""
+    from benchmarks.public_meshes import MESHES as PUBLIC
+    from validation.graded_bodies import references
+
+    with open(PUBLIC_LEVELS) as fh:
+        first = fh.readline()
+    assert first.startswith("# python -m benchmarks.graded_mesher") and "Capytaine" in first
+    names = {m.name for m in PUBLIC}
+    got = read(PUBLIC_LEVELS)
+    assert got and set(got) <= names
+    for name, (ref, band, _, faces) in references(PUBLIC_LEVELS).items():
+        assert len(faces) >= 4 and faces == sorted(set(faces)), name
+        assert np.all(np.linalg.eigvalsh(ref) > 0.0), name
+        assert np.all(np.isfinite(band)) and np.all(np.diag(band) > 0.0), name
