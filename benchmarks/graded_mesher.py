@@ -398,7 +398,7 @@ def _public_box(w, fh, name, extents):
         fh.flush()
 
 
-def run_public(path, mirror, names, faces=PUBLIC_FACES):
+def run_public(path, mirror, names, faces=PUBLIC_FACES, boxes=True):
     """Every level of each public mesh of ``names``: Capytaine (the whole body, about the body
     origin), rows of :data:`HEADER` appended to ``path`` (``m`` holds H [m])."""
     import csv
@@ -426,7 +426,7 @@ def run_public(path, mirror, names, faces=PUBLIC_FACES):
         w = csv.writer(fh)
         for name in names:
             body = public_surface(mirror, name)
-            box = centred_box(body)
+            box = centred_box(body) if boxes else None
             if box is not None:
                 _public_box(w, fh, name, box)
                 continue
@@ -508,6 +508,9 @@ def main(argv=None) -> int:
     ap.add_argument("--faces", type=int, nargs="+", default=list(PUBLIC_FACES),
                     help="face counts a public mesh's levels aim at (default "
                     + " ".join(map(str, PUBLIC_FACES)) + ")")
+    ap.add_argument("--gmsh-boxes", action="store_true",
+                    help="a public mesh that is a box remeshed by gmsh too (the mesher's check "
+                    "against the structured box panels)")
     ap.add_argument("--only", nargs="+", default=list(SHAPES), choices=SHAPES)
     ap.add_argument("--levels", type=float, nargs="+", default=None,
                     help="largest panel H [m] of each level (default: the shape's LEVELS)")
@@ -518,7 +521,8 @@ def main(argv=None) -> int:
     if args.public:
         if not args.mirror:
             ap.error("--public needs --mirror")
-        run_public(args.csv, args.mirror, args.public, tuple(args.faces))
+        run_public(args.csv, args.mirror, args.public, tuple(args.faces),
+                   boxes=not args.gmsh_boxes)
         return 0
     run(args.csv, args.only, args.levels)
     return 0
