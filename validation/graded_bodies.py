@@ -8,7 +8,8 @@ chamfered box), ``graded_unions.csv`` (its unions of prisms along x: the box wit
 L-shaped block, the box with a pod, the cylinder with a float, the twin hull; graded towards
 their sharp edges only, not the facet joints of their 24-sided cylinders) and
 ``graded_extrusions.csv`` (the extruded polygons of ``benchmarks.cad_shapes``' seed
-1375923287).  Each term's reference
+1375923287); ``benchmarks.graded_mesher`` writes ``graded_meshes.csv`` (the VideoRay-like body
+of the bluff set, gmsh triangles graded towards its convex edges).  Each term's reference
 is Eça & Hoekstra's least squares over the levels (:func:`validation.cad_shapes.fine_reference`,
 h ~ N^(-1/2)): it assumes no order of convergence.
 """
@@ -27,8 +28,11 @@ EXTRUSIONS = ROOT / "reference_tables" / "bem" / "graded_extrusions.csv"
 BLUFF = ROOT / "reference_tables" / "bem" / "graded_bluff.csv"
 #: the bluff set's unions of prisms along x (``benchmarks.graded_references unions``)
 UNIONS = ROOT / "reference_tables" / "bem" / "graded_unions.csv"
+#: the bluff set's shapes remeshed by gmsh towards their convex edges (``benchmarks.
+#: graded_mesher``: the VideoRay-like body)
+MESHES = ROOT / "reference_tables" / "bem" / "graded_meshes.csv"
 #: every graded file of the bluff set's shapes, about their volume centroid
-BLUFF_FILES = (BOXES, BLUFF, UNIONS)
+BLUFF_FILES = (BOXES, BLUFF, UNIONS, MESHES)
 
 
 def read(path) -> dict:
