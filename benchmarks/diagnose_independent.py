@@ -12,7 +12,8 @@ unless ``--seed`` is given; the seed is printed so that a run can be repeated.
 Scores (issue 33's criteria):
 
 - library effects: the right effect named first; its magnitude within 15 % of the truth
-  (:func:`magnitude_truth`: for the thrust effectiveness, the DOF's whole thrust gain);
+  (:func:`magnitude_truth`: for the thrust effectiveness, the DOF's whole thrust gain; a
+  force effect or an added mass in the thrust's units, as the log determines them);
   apart from it, the right effect named first or in the first step's ambiguous set (a
   thrust scale and an added-mass change the log does not tell apart,
   ``stripcoef.diagnose.scalechoice``; not counted as named first);
@@ -189,7 +190,8 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             scale = float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
                 "scale", s["parameters"].get("scale", 1.0)) for s in steps
                 if s["effect"] == "thrust_effectiveness"]))
-            ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale)
+            ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale,
+                                  written_gain(res, prior.to_dict(), dof_name))
             row["magnitude_truth"] = float(ref)
             row["magnitude_error"] = abs(abs(est) - abs(ref)) / abs(ref)
             row["magnitude_error_drawn"] = (abs(abs(est) - abs(truth.strength))
@@ -197,8 +199,33 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
     return row
 
 
+#: The effects whose magnitude is a force (per unit of its law's regressor) in the DOF's
+#: balance: a log determines it only as its ratio to the thrust (:func:`magnitude_truth`)
+FORCE_EFFECTS = ("tether_drag", "momentum_drag", "linear_drag", "buoyancy_offset")
+
+
+def written_gain(res: dict, prior: dict, dof_name: str) -> float:
+    r"""The thrust the diagnosis's written model gives DOF ``dof_name`` per unit of the
+    prior's map [-]: 1, or with the whole-log thruster gains applied (``res``'s
+    ``thruster_gains``, :class:`stripcoef.diagnose.gains.ThrusterGains`) their mean over the
+    DOF's thrusters with :func:`thrust_gain`'s weights :math:`|B_{ik}| C_{t,k}^{prior}`."""
+    from stripcoef.conventions import parse_dof
+    rec = res.get("thruster_gains") or {}
+    if not rec.get("applied"):
+        return 1.0
+    i, w, fw = parse_dof(dof_name), 0.0, 0.0
+    for p in prior["thrusters"]:
+        c0 = float(p.get("ct_forward", 1.0)) * float(p.get("eta_forward", 1.0))
+        d = np.asarray(p["direction"], float) / np.linalg.norm(p["direction"])
+        r = np.asarray(p["position"], float) - np.asarray(prior["reference_point"], float)
+        b = abs(np.concatenate([d, np.cross(r, d)])[i]) * c0
+        w += b
+        fw += b * float(rec["gains"].get(p["name"], 1.0))
+    return fw / w if w > 0 else 1.0
+
+
 def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
-                    scale: float = 1.0) -> float:
+                    scale: float = 1.0, written: float = 1.0) -> float:
     r"""The size of the truth's effect that the diagnosis's ``magnitude`` is compared with,
     in the units the log determines it in: the drawn strength
     (:data:`~validation.independent.STRENGTHS`), except
@@ -210,7 +237,16 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
       :math:`(M_{RB} + M_A)/g`; expressed at the thrust scale ``scale`` the diagnosis
       fitted in the DOF (s, 1 without one) the truth's change is
       :math:`(M_{RB} + M_{A,true})\,s/g - (M_{RB} + M_{A,prior})`, the drawn strength
-      when s = g. (The row's ``magnitude_error_drawn`` compares with the drawn strength.)"""
+      when s = g;
+    - a force effect (:data:`FORCE_EFFECTS`: tether, momentum and linear drag, buoyancy
+      offset): the same rule, :math:`\bar f\,\tau_{map} = \dots + F` divided by
+      :math:`\bar f`: its coefficient as the log determines it is the drawn one times
+      :math:`s\,g_w/g`, ``written`` :math:`g_w` the thrust of the written model's thrusters
+      per unit of the prior's map (:func:`written_gain`: the whole-log thruster gains; 1
+      without). Issue 33: the whole-log c_t of a BlueROV2-like tether log, 0.204 for a drawn
+      0.2196, is 0.2026 in the thrust's units (g = 1.084).
+
+    (The row's ``magnitude_error_drawn`` compares with the drawn strength.)"""
     from stripcoef.conventions import parse_dof
     i = parse_dof(dof_name)
     if category == "thrust_effectiveness":
@@ -220,6 +256,8 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
         m_a0 = float(np.asarray(prior["added_mass"], float)[i, i])
         g = thrust_gain(truth, prior, i)
         return (m_rb + float(truth.m_a[i, i])) * scale / g - (m_rb + m_a0)
+    if category in FORCE_EFFECTS:
+        return float(truth.strength) * scale * written / thrust_gain(truth, prior, i)
     return float(truth.strength)
 
 

@@ -41,20 +41,25 @@ def test_retest_holds_one_gain_per_thruster_acting_in_the_dof():
     assert variant(get_effect("tether_drag")) is GAINS_FREE
     assert variant(GAINS_FREE) is None and variant(get_effect("current")) is None
     data = window_data(log, prior)
-    # the written effect releases D_Q only
-    assert get_effect("tether_drag").nuisance(data, 0).shape == (data.n_windows, 1)
+    # the written effect releases D_Q; the buoyancy change is fitted with it, not written
+    tether = get_effect("tether_drag").nuisance(data, 0)
+    assert tether.shape == (data.n_windows, 2)
+    # surge: a buoyancy change Delta B changes the restoring force by -Delta B sin(theta)
+    np.testing.assert_allclose(tether[:, 1], data.mean(np.sin(data.eta[:, 4])), rtol=1e-12,
+                               atol=1e-15)
     eff = GAINS_FREE
     nuis = eff.nuisance(data, 0)
-    # D_Q, then port and starboard (the two thrusters that push in surge)
-    assert nuis.shape == (data.n_windows, 3)
+    # D_Q, the buoyancy change, then port and starboard (the two thrusters that push in surge)
+    assert nuis.shape == (data.n_windows, 4)
     acting = data.acting(0)
     assert [prior.thrusters[k].name for k in acting] == ["port", "starboard"]
-    np.testing.assert_allclose(nuis[:, 1:].sum(axis=1), data.mean_held(data.tau[:, 0]),
+    np.testing.assert_allclose(nuis[:, 2:].sum(axis=1), data.mean_held(data.tau[:, 0]),
                                rtol=1e-12, atol=1e-12)
     low = eff.nuisance_lower(data, 0)
     assert low[0] == pytest.approx(-abs(prior.quadratic_damping[0, 0]))
-    np.testing.assert_allclose(low[1:], -0.9)
-    assert len(eff.prior_sd(data, 0)) == 4 and np.all(np.isinf(eff.prior_sd(data, 0)))
+    assert low[1] == -np.inf
+    np.testing.assert_allclose(low[2:], -0.9)
+    assert len(eff.prior_sd(data, 0)) == 5 and np.all(np.isinf(eff.prior_sd(data, 0)))
     # without the length column there is no signature and no nuisance
     no_length = Log({k: v for k, v in log.columns.items() if k != "tether_length"})
     assert eff.nuisance(window_data(no_length, prior), 0) is None
@@ -111,3 +116,20 @@ def test_no_tether_is_named_on_a_clean_log_with_the_thrust_map_off():
     cand = {c["effect"]: c for c in res["per_dof"]["surge"]["candidates"]}["tether_drag"]
     assert cand["signature"] == "dependence on tether_length"
     assert not cand["significant"]
+
+
+def test_the_buoyancy_column_is_the_restoring_force_of_a_buoyancy_change():
+    """A model lighter by Delta B [N] (a larger displaced volume) leaves, against the same log,
+    a window residual larger by Delta B times the column in every translation: the window
+    mean of sin(theta), -cos(theta) sin(phi), -cos(theta) cos(phi) (Fossen 2011, eq. 4.6)."""
+    from stripcoef.effects.hydrodynamic import buoyancy_column
+
+    log, prior, _ = _log(None, 1, duration=40.0)
+    delta_b = 1.5
+    lighter = replace(prior, volume=prior.volume + delta_b / (prior.density * prior.gravity))
+    d0, d1 = window_data(log, prior), window_data(log, lighter)
+    assert np.ptp(d0.eta[:, 4]) > 0.01 and np.ptp(d0.eta[:, 3]) > 0.01
+    for dof in range(3):
+        np.testing.assert_allclose(d0.e0[:, dof] - d1.e0[:, dof],
+                                   delta_b * buoyancy_column(d0, dof), rtol=1e-6,
+                                   atol=1e-9 * delta_b)
