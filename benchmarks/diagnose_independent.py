@@ -92,7 +92,8 @@ def _oracle(log, prior, truth) -> dict:
     if got is None:
         return {}
     return {"detectable": got["detectable"], "detectable_all": got["detectable_all"],
-            "truth_cut": got["truth_cut"], "oracle": got}
+            "first_step_on_prior": got["first_step_on_prior"], "truth_cut": got["truth_cut"],
+            "oracle": got}
 
 
 def thrust_gain(truth, prior: dict, dof: int) -> float:
@@ -493,16 +494,22 @@ def detectability_lines(rows: list[dict]) -> list[str]:
                        f"the diagnosis's {sum(r['cut'] >= 3 for r in allowed)}/{len(allowed)}")
     missed = [r for r in tested if r["first"] != r["category"]]
     if missed:
+        def said(rs):
+            return ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} {r['mode']} -> "
+                             f"{r['first']}" for r in rs) or "none"
         det = [r for r in missed if _detectable(r)]
-        out += ["", f"Misses (not named first): {len(missed)}; detectable (detection misses) "
-                f"{len(det)}: " + ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} "
-                                            f"{r['mode']} -> {r['first']}" for r in det)
-                + f"; not detectable (the draw) {len(missed) - len(det)}: "
-                + ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} {r['mode']} -> "
-                            f"{r['first']}" for r in missed if not _detectable(r)) + "."]
+        sel = [r for r in det if r.get("first_step_on_prior")]
+        hid = [r for r in det if not r.get("first_step_on_prior")]
+        out += ["", f"Misses (not named first): {len(missed)}. Not detectable on the truth's "
+                f"model (the draw): {len(missed) - len(det)}: "
+                + said([r for r in missed if not _detectable(r)])
+                + f". Detectable, but the effect's own test fails on the prior (the prior's "
+                f"other errors hide it at the first step): {len(hid)}: " + said(hid)
+                + f". Detectable and passing its test on the prior (the selection's misses): "
+                f"{len(sel)}: " + said(sel) + "."]
     seen = set()
     out += ["", "Per log (truth's model: z, likelihood ratio, p against the level, the gates "
-            "it fails; prior: p of the true force fixed, the true force beyond the "
+            "it fails; prior: the same test, and p of the true force fixed, the true force beyond the "
             "reference's columns over its noise; the truth's cut, and per mode the effect "
             "named first and the diagnosis's cut):", ""]
     for r in sorted(tested, key=lambda r: (r["category"], r["vehicle"], r["seed"])):
@@ -520,7 +527,11 @@ def detectability_lines(rows: list[dict]) -> list[str]:
                    f": truth's model z {t['z']:.1f}, LR {t['statistic']:.1f}, p "
                    f"{t['p_value']:.2g} vs {t['level']:.2g}, estimate {t['estimate']:.3g}, "
                    f"force/noise {t['snr']:.2f}" + (f", fails: {fails}" if fails else "")
-                   + f"; prior: p {p['fixed_p_value']:.2g}, force/noise {p['snr']:.2f}; "
+                   + f"; prior: the effect's test z {p['z']:.1f}, p {p['p_value']:.2g}"
+                   + ("" if r.get("first_step_on_prior") else
+                      " (fails: " + "; ".join(p.get("rejected_because") or ["evidence"]) + ")")
+                   + f", the true force fixed p {p['fixed_p_value']:.2g}, force/noise "
+                   f"{p['snr']:.2f}; "
                    f"the truth's cut {r.get('truth_cut', np.nan):.2f}; named first: {named}")
     return out
 
