@@ -65,8 +65,9 @@ def _prior(vehicle: str):
 
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
-            modes: tuple) -> list[dict]:
-    """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table."""
+            modes: tuple, validation_others: str = "logged") -> list[dict]:
+    """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
+    (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -75,7 +76,8 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     log, truth = generate(prior.to_dict(), category, seed, duration=duration)
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
-    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0),
+    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
+                          validation_others),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
 
 
@@ -127,7 +129,8 @@ def _background(truth, prior: dict) -> dict:
     return out
 
 
-def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim) -> dict:
+def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
+               validation_others: str = "logged") -> dict:
     """One log diagnosed in one mode: the row of the score table."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
@@ -139,7 +142,8 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         # no wall-clock budget: on a shared machine the 300-s default stops whole-log runs
         # (CPU time is what the table reports)
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
-                       time_limit=float("inf")).to_dict()
+                       time_limit=float("inf"),
+                       validation_others=validation_others).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
@@ -213,7 +217,7 @@ def _run(args):
 
 
 def excitation_row(vehicle: str, category: str | None, seed: int, duration: float,
-                   modes: tuple = ()) -> list[dict]:
+                   modes: tuple = (), validation_others: str = "") -> list[dict]:
     """One log, not diagnosed: its excitation (``validation.independent.excitation``) as a
     row: per driven DOF the shares of samples [-] moving each way, per thruster the share
     saturated, and ``two_way``, the smallest share of one direction over the driven DOFs."""
@@ -558,6 +562,9 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    ap.add_argument("--validation-others", default="logged", choices=("logged", "simulated"),
+                    help="how the validation's free simulations move the DOFs not diagnosed "
+                         "(diagnose's validation_others)")
     ap.add_argument("--same-seeds", action="store_true",
                     help="seed each log as a run of every category would (a run of a few "
                          "categories then diagnoses the same logs as the full run)")
@@ -589,7 +596,8 @@ def main(argv=None) -> int:
             for c, cat in enumerate(cats):
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
-                             seed + 100000 * rep + 1000 * v + c, args.duration, modes))
+                             seed + 100000 * rep + 1000 * v + c, args.duration, modes,
+                             args.validation_others))
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]
