@@ -502,15 +502,18 @@ def detectability_lines(rows: list[dict]) -> list[str]:
             return ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} {r['mode']} -> "
                              f"{r['first']}" for r in rs) or "none"
         det = [r for r in missed if _detectable(r)]
-        sel = [r for r in det if r.get("first_step_on_prior")]
-        hid = [r for r in det if not r.get("first_step_on_prior")]
+        sel = [r for r in det if r.get("first_step_on_prior") is True]
+        hid = [r for r in det if r.get("first_step_on_prior") is False]
+        unknown = [r for r in det if "first_step_on_prior" not in r]
         out += ["", f"Misses (not named first): {len(missed)}. Not detectable on the truth's "
                 f"model (the draw): {len(missed) - len(det)}: "
                 + said([r for r in missed if not _detectable(r)])
                 + f". Detectable, but the effect's own test fails on the prior (the prior's "
                 f"other errors hide it at the first step): {len(hid)}: " + said(hid)
                 + f". Detectable and passing its test on the prior (the selection's misses): "
-                f"{len(sel)}: " + said(sel) + "."]
+                f"{len(sel)}: " + said(sel)
+                + (f". Detectable, rows without the test on the prior: {len(unknown)}: "
+                   + said(unknown) if unknown else "") + "."]
     seen = set()
     out += ["", "Per log (truth's model: z, likelihood ratio, p against the level, the gates "
             "it fails; prior: the same test, and p of the true force fixed, the true force beyond the "

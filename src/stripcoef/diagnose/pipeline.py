@@ -170,9 +170,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         the row each width came from (``prior_widths``, ``per_dof.<dof>.calibration.
         band_source``).
     validation_others : str
-        ``"logged"`` (default): the validation's free simulations take the DOFs that are
-        not diagnosed from the log; ``"simulated"``: from the model
-        (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
+        ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
+        take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
+        diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
 
     Returns
     -------

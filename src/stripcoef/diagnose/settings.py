@@ -135,7 +135,12 @@ UNLIMITED = Budget()
 #: roll and pitch 0.82 and 0.76 rad/s off on the validation part, and even the truth's own
 #: surge coefficients and thrust scale on the prior simulate surge 0.108 m/s against the
 #: prior's 0.114: the right surge scale was removed; with roll, pitch and the rest logged,
-#: 0.059 against 0.138). "simulated": every DOF by the model, as before.
+#: 0.059 against 0.138). "simulated": every DOF by the model, as before. Only a one-DOF
+#: diagnosis takes the others from the log: in a whole-log one the DOFs not diagnosed are
+#: those the log hardly moves, while diagnosed ones whose changes the validation removes
+#: (a VideoRay's pitch, a BlueROV2's roll and pitch) still reach the others at the prior;
+#: logging the undiagnosed ones there moved one whole-log deadband cut from 1.00 to 11.4
+#: (seed 5470) and another from 22.1 to 1.03 (seed 5192032): no measured gain, not adopted.
 VALIDATION_OTHERS = ("logged", "simulated")
 
 
@@ -164,10 +169,10 @@ class DiagnoseSettings:
         The method table's widths of the calibration's priors (a vehicle file)
     validation_others : str
         How the validation's free simulations (:func:`~stripcoef.diagnose.validate.
-        validate_changes`) move the DOFs that are not diagnosed: ``"logged"`` (their
-        velocities, and the attitude when roll and pitch both are, follow the log) or
-        ``"simulated"`` (the model, the prior's where nothing was diagnosed)
-        (:data:`VALIDATION_OTHERS`)
+        validate_changes`) move the DOFs that are not diagnosed: ``"logged"`` (in a
+        one-DOF diagnosis their velocities, and the attitude when roll and pitch both
+        are, follow the log) or ``"simulated"`` (the model, the prior's where nothing
+        was diagnosed; a whole-log diagnosis always) (:data:`VALIDATION_OTHERS`)
     """
 
     window: float = DEFAULT_WINDOW
@@ -182,11 +187,13 @@ class DiagnoseSettings:
     validation_others: str = "logged"
 
     def logged_dofs(self, dofs) -> list:
-        """The DOFs (indices) the validation's free simulations take from the log: those
-        not in ``dofs`` with ``validation_others`` ``"logged"``, else none."""
-        if self.validation_others != "logged":
+        """The DOFs (indices) the validation's free simulations take from the log: in a
+        one-DOF diagnosis (``dofs`` one index) with ``validation_others`` ``"logged"``,
+        every other DOF; else none (:data:`VALIDATION_OTHERS`)."""
+        dofs = [int(i) for i in dofs]
+        if self.validation_others != "logged" or len(dofs) != 1:
             return []
-        return [j for j in range(6) if j not in set(int(i) for i in dofs)]
+        return [j for j in range(6) if j not in dofs]
 
     @property
     def widths(self):
