@@ -139,8 +139,11 @@ UNLIMITED = Budget()
 #: diagnosis takes the others from the log: in a whole-log one the DOFs not diagnosed are
 #: those the log hardly moves, while diagnosed ones whose changes the validation removes
 #: (a VideoRay's pitch, a BlueROV2's roll and pitch) still reach the others at the prior;
-#: logging the undiagnosed ones there moved one whole-log deadband cut from 1.00 to 11.4
-#: (seed 5470) and another from 22.1 to 1.03 (seed 5192032): no measured gain, not adopted.
+#: logging the undiagnosed ones there (measured on the 24 whole-log rows of seeds 5092026
+#: and 5469, benchmarks/data/diagnose_independent_detect33.md) gave the error cut >= 3x in
+#: 14 rows instead of 12 (three up, one down: a deadband cut 22.1 -> 1.03) and kept a
+#: spurious pitch thrust asymmetry (0 -> 1 of 16): not adopted. One-DOF rows: 8 -> 13 of
+#: 22 on the same logs, none lower.
 VALIDATION_OTHERS = ("logged", "simulated")
 
 
