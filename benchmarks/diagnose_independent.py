@@ -27,10 +27,18 @@ Scores (issue 33's criteria):
 - clean logs: no effect added (and no effect other than the background);
 - outside the library: ``unexplained``, or every step's held-out gain under 30 %.
 
+Beside them, for every library effect, the oracle (``validation.detectability``): whether
+the effect is detectable on the truth's own model without it, whether its own test passes
+on the prior at the first step, and the error cut the truth's own model makes against the
+prior (the ceiling of "error cut >= 3x"); the misses sorted into the draw, the prior's
+other errors hiding the effect, and the selection's. ``--same-seeds`` seeds a run of a few
+categories as a run of all would (the same logs); ``--validation-others`` is diagnose's.
+
 Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
-        [--modes dof,all] [--repeats 1] [--write FILE.md]
+        [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
+        [--validation-others logged|simulated]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
