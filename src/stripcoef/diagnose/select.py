@@ -279,7 +279,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
             joint = competing["joint"]
             shape = _best_shape(cfg, cur, data, dof)
             free = any(not t["signature"] and t["_held"] for t in joint["steps"])
-            margin = 1.0 - TIE if free else 1.0 - MIN_HELD_OUT_GAIN
+            margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
             if not (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
                     and shape["held_out_error_after"] < margin * joint["ev"]["held_out_error"]):
                 # the member whose removal costs more is named first (scalechoice.named_order)
@@ -306,10 +306,10 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         # this effect: stop, and let the structure test call it unexplained
         shape = _best_shape(cfg, cur, data, dof)
         # an effect without a signature whose coefficient the log could not calibrate (a
-        # free column, _held_coefficient) has no structure of its own to show: a shape within
-        # a TIE of it is a tie, one beyond stops it (issue 33: dry friction named linear drag)
+        # free column, _held_coefficient) has no structure of its own to show: it must also
+        # beat every out-of-library shape (issue 33: dry friction named a linear drag)
         free = not best["signature"] and best["_held"]
-        margin = 1.0 - TIE if free else 1.0 - MIN_HELD_OUT_GAIN
+        margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
         # (not for a scale or an added-mass release: judged with the bands, they explain
         # what the calibration's bands held, not the residual the shape is fitted to)
         if (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
