@@ -72,16 +72,38 @@ def _prior(vehicle: str):
         return stripcoef.estimate(ROOT / "geometry" / f"{vehicle}.yaml")
 
 
+def with_truth_maps(prior, truth):
+    """``prior`` whose thrusters carry the truth's thrust maps (each thruster's forward and
+    backward :math:`C_t` in its efficiencies): the prior without the truth's thruster-gain
+    background, the allocation matrix unchanged (the truth's thrusters sit where the
+    prior's do: ``validation.independent`` keeps their positions, about the reference
+    point)."""
+    from dataclasses import replace
+    # the log's own thruster effect stays out of the prior (validation.independent's
+    # with_effect: a thrust effectiveness scales both branches, an asymmetry the backward)
+    fwd = truth.strength if truth.effect == "thrust_effectiveness" else 1.0
+    bwd = truth.strength if truth.effect in ("thrust_effectiveness", "thrust_asymmetry") else 1.0
+    return replace(prior, thrusters=[
+        replace(th, eta_forward=t["ct_forward"] / fwd / th.ct_forward,
+                eta_backward=t["ct_backward"] / bwd / th.ct_backward)
+        for th, t in zip(prior.thrusters, truth.thrusters)])
+
+
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
-            modes: tuple, validation_others: str = "logged") -> list[dict]:
+            modes: tuple, validation_others: str = "logged",
+            truth_maps: bool = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
-    (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s)."""
+    (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
+    against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
+    the background removed)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
     dof_name = ({**STRENGTHS, **OUTSIDE}.get(category) or ("surge",))[0]
     t0 = time.process_time()
     log, truth = generate(prior.to_dict(), category, seed, duration=duration)
+    if truth_maps:
+        prior = with_truth_maps(prior, truth)
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
     return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
@@ -225,7 +247,8 @@ def _run(args):
 
 
 def excitation_row(vehicle: str, category: str | None, seed: int, duration: float,
-                   modes: tuple = (), validation_others: str = "") -> list[dict]:
+                   modes: tuple = (), validation_others: str = "",
+                   truth_maps: bool = False) -> list[dict]:
     """One log, not diagnosed: its excitation (``validation.independent.excitation``) as a
     row: per driven DOF the shares of samples [-] moving each way, per thruster the share
     saturated, and ``two_way``, the smallest share of one direction over the driven DOFs."""
@@ -581,6 +604,10 @@ def main(argv=None) -> int:
                          "categories then diagnoses the same logs as the full run)")
     ap.add_argument("--excitation", action="store_true",
                     help="generate the logs and print their excitation, no diagnosis")
+    ap.add_argument("--truth-maps", action="store_true",
+                    help="diagnose against the prior with the truth's thrust maps (each "
+                         "thruster's C_t; the log's own thruster effect left out): the "
+                         "thruster-gain background removed, an oracle")
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of an earlier run's output (a partial "
                          "run's too) instead of running")
@@ -608,7 +635,7 @@ def main(argv=None) -> int:
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
-                             args.validation_others))
+                             args.validation_others, args.truth_maps))
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]

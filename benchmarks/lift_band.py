@@ -28,10 +28,13 @@ sidewash, with the appendages' trailing vortices and with the body's separated p
 an option outside the default model; writes nothing.
 ``--method stratford_panel``: ``body_lift: stratford_panel``, Stratford's criterion and the
 fins' stern flow on the axisymmetric panel solution's axial flow (an option of the library);
+``--crossflow-center hoerner`` (with ``datcom`` or ``stratford_panel``): the drift-curve check
+with the hull's viscous cross-flow force at Hoerner's centre of body lift (0.65 l) instead of the
+strips' planform centroid (validation.crossflow_center, a what-if; the linear terms unchanged);
 ``--panels N`` solves that flow on N meridian panels (the library's 400 otherwise; placed on
 the C2 interpolant of the hull's offsets, converged: 20 Table 4 checks on 200-1600).
 Usage: python -m benchmarks.lift_band [--method datcom|slender|on|stratford|stratford_panel] [--terms]
-[--surface-speed line|panel] [--sidewash] [--panels N]  (about 60 s; --sidewash about 2 min)
+[--surface-speed line|panel] [--sidewash] [--panels N] [--crossflow-center centroid|hoerner]  (about 60 s; --sidewash about 2 min)
 """
 
 from __future__ import annotations
@@ -154,10 +157,17 @@ def main(argv=None):
     ap.add_argument("--sidewash", action="store_true",
                     help="with --method datcom or stratford: the Table 4 and drift-curve checks "
                          "without and with the appendages' trailing-vortex sidewash")
+    ap.add_argument("--crossflow-center", choices=("centroid", "hoerner"), default="centroid",
+                    help="with --method datcom or stratford_panel: where the hull's viscous "
+                         "cross-flow force acts in the drift-curve check ('centroid': the "
+                         "strips, the model; 'hoerner': Hoerner's centre of body lift, 0.65 l, "
+                         "a what-if of validation.crossflow_center)")
     ap.add_argument("--panels", type=int, default=None,
                     help="with --method stratford_panel: meridian panels of the axial flow "
                          "(a sensitivity; the library's default otherwise)")
     args = ap.parse_args(argv)
+    if args.crossflow_center != "centroid" and args.method not in ("datcom", "stratford_panel"):
+        ap.error("--crossflow-center needs --method datcom or stratford_panel")
     if args.panels is not None:
         if args.method != "stratford_panel" or args.panels < 20:
             ap.error("--panels needs --method stratford_panel and at least 20 panels")
@@ -197,6 +207,13 @@ def main(argv=None):
     key = METHOD_KEY[args.method]
     checks = sum(1 for c in suboff_comparisons() if c["ok"] is not None)
     k, n = drift_curve_checks(args.method)
+    if args.crossflow_center != "centroid":
+        from validation.crossflow_center import placement_checks
+        k0 = k
+        k, n = placement_checks()[(args.method, args.crossflow_center)]
+        print(f"{args.method:8s} hull's viscous cross-flow at Hoerner's centre (0.65 l): "
+              f"drift curves within 20 % {k0}/{n} -> {k}/{n} (Table 4 and the bands: linear "
+              "terms, unchanged)")
     stab = stability_indices()
     print(f"{args.method:8s} issue checks (Table 4) {issue_checks(key)}/{checks}; drift curves "
           f"within 20 %: {k}/{n}; G_H {stab['horizontal'][key]:+.2f} (measured "

@@ -5,7 +5,12 @@ Prints configuration 5's horizontal-plane derivatives by part under the default'
 configuration 5 - 3), the non-linear part of the drift curves' yaw moment and its arm, and the
 separation station the bare hull's N'(beta) would need (validation.rotary_trace; docs/validation.md,
 'SUBOFF: where the rotary and large-drift misses come from').
-Usage: python -m benchmarks.rotary_trace [--config 5|2]   (about 4 s of CPU)
+``--candidates``: the published rules for a fin's incidence in drift and in rotation, each
+applied to the stern planes (5 - 3) and the sail (4 - 3) and to the issue's Table 4 and drift
+checks under both rules (validation.fin_incidence; docs/validation.md, 'SUBOFF: published rules
+for a fin's incidence in drift and in rotation').
+Usage: python -m benchmarks.rotary_trace [--config 5|2] [--candidates]
+(about 4 s of CPU; --candidates about 12 s)
 """
 
 from __future__ import annotations
@@ -22,7 +27,14 @@ def main(argv=None):
     ap.add_argument("--config", type=int, choices=(2, 5), default=5,
                     help="Roddy's configuration split by part (5: hull + planes; 2: fully "
                          "appended with ring wing No. 1)")
+    ap.add_argument("--candidates", action="store_true",
+                    help="the published incidence rules (3/4 chord, vortex lattice, trailing "
+                         "edge, the sidewash option, downwash on the static terms only) "
+                         "against the stern planes' and the sail's increments and the "
+                         "issue's checks")
     args = ap.parse_args(argv)
+    if args.candidates:
+        return _candidates()
     head = "  ".join(f"{k:>10s}" for k in TERMS)
     for method in TRACE_METHODS:
         s = yaw_rate_split(args.config, method)
@@ -56,6 +68,24 @@ def main(argv=None):
         print(f"bare hull N'({beta:.0f} deg) met with the potential lift cut at "
               f"{s['station']:.4f} l (rule: {s['station_model']:.4f} l); Y' there "
               f"{s['Y_ratio']:.2f} of measured")
+    return 0
+
+
+def _candidates() -> int:
+    """Print validation.fin_incidence's rows and checks."""
+    from validation.fin_incidence import CANDIDATES, RULES, checks, component_rows
+
+    for method in RULES:
+        for r in component_rows(method):
+            print(f"{method:15s} {r['component']:12s} {r['candidate']:15s} "
+                  + "  ".join(f"{k} {r[k]:5.2f}" for k in TERMS)
+                  + f"  lever {r['lever']:+.3f} (measured {r['measured_lever']:+.3f})")
+    for method in RULES:
+        for c in CANDIDATES:
+            k = checks(method, c)
+            print(f"{method:15s} {c:15s} issue checks (Table 4) {k['table4'][0]}/"
+                  f"{k['table4'][1]}; drift curves within 20 %: {k['drift'][0]}/{k['drift'][1]}; "
+                  f"lift sd(ln) {k['band']:.3f}")
     return 0
 
 

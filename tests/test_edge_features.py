@@ -169,7 +169,7 @@ def test_the_thin_member_rule_applies_in_every_install(monkeypatch, without_reme
         pytest.skip("needs the remesh extra (pymeshlab)")
     info = _thin_plate_order(monkeypatch, without_remesher)
     if without_remesher:
-        assert info["family"] == "refined/coarsened input"
+        assert info["family"].startswith("refined/coarsened input")
     assert info["formal_order"] == pytest.approx(1.0)
     box_plate = trimesh.creation.box([0.3, 0.2, 0.004])
     _, info = panel_added_mass(box_plate, rho=1000.0, panels=400, family="auto",

@@ -128,3 +128,52 @@ def test_the_input_levels_refine_at_least_twice_the_input_faces():
     assert len(fine[1]) == 4 * len(coarse[1])
     edges = np.linalg.norm(np.diff(coarse[0][coarse[1]][:, [0, 1, 2, 0]], axis=1), axis=2)
     assert edges.max() < 0.6           # no panel as long as the body
+
+
+def test_the_ladder_extrapolates_each_pair_of_one_family():
+    """Two nested pairs (L1, L3) and (L2, L4), each one polyhedron with h halved, each with
+    its own error constant (the bisected and the split meshes are not similar): exact power
+    laws f_0 + c_k h^p give A = f_0 from the finer pair, the change since the coarser pair's
+    zero, so the estimate is the step to the finest level alone."""
+    from stripcoef.hull.panel_error import ladder_extrapolation
+
+    f0 = np.diag([10.0, 20.0, 30.0, 1.0, 2.0, 3.0])
+    p = 4.0 / 3.0
+    counts = [400, 800, 1600, 3200]
+    c_odd, c_even = np.full((6, 6), 0.3) + 2 * np.eye(6), np.full((6, 6), -0.2) + 5 * np.eye(6)
+    mats = [f0 + (c_odd if k % 2 == 0 else c_even) * (n ** -0.5) ** p
+            for k, n in enumerate(counts)]
+    a, err = ladder_extrapolation(mats, counts, p)
+    np.testing.assert_allclose(a, f0, atol=1e-12)
+    np.testing.assert_allclose(err, np.abs(mats[-1] - f0), rtol=1e-9, atol=1e-12)
+    # consecutive levels of different constants: the three-level rule sees a change
+    assert np.all(extrapolation_error(mats, counts, p) > 2 * err)
+    with pytest.raises(ValueError, match="four levels"):
+        ladder_extrapolation(mats[:3], counts[:3], p)
+
+
+def test_the_input_family_of_a_small_mesh_is_two_nested_pairs():
+    """Base install, a mesh of at most N/4 faces: the input bisected to N_1 = max(N/4, 2F)
+    and 2 N_1 panels, each split in four (4 N_1 and 8 N_1), while 8 N_1 fits one solve; the
+    value is the finer pair's extrapolation.  A larger limit than the finest level is refused
+    (the caller's two levels)."""
+    from stripcoef.hull.input_ladder import ladder_levels
+    from stripcoef.hull.panel_error import ladder_extrapolation
+
+    m = trimesh.creation.cylinder(radius=0.1, height=0.3, sections=12)
+    v, f = np.asarray(m.vertices), np.asarray(m.faces)
+    lv = ladder_levels(v, f, 800, 6000)
+    counts = [len(x[1]) for x in lv]
+    assert 1.5 * len(f) < counts[0] <= 200 and 1.25 * counts[0] <= counts[1] <= 400
+    assert counts[2] == 4 * counts[0] and counts[3] == 4 * counts[1]
+    assert ladder_levels(v, f, 800, counts[3] - 1) is None
+    assert ladder_levels(v, f, 4 * len(f) - 1, 6000) is None       # not small
+    # a uniform input the bisection cannot take to 2 N_1 (24 equal side faces split at once)
+    c24 = trimesh.creation.cylinder(radius=0.05, height=0.6, sections=24)
+    assert ladder_levels(c24.vertices, c24.faces, 4 * len(c24.faces), 6000) is None
+    a, info = panel_added_mass(m, rho=RHO, panels=800, family="input")
+    assert tuple(info["panels"]) == tuple(counts)
+    assert "two nested pairs" in info["family"]
+    want, err = ladder_extrapolation(info["levels"], counts, info["formal_order"])
+    np.testing.assert_allclose(a, want, rtol=1e-12)
+    np.testing.assert_allclose(info["error"], err, rtol=1e-12)

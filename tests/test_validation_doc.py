@@ -127,6 +127,8 @@ ELSEWHERE = {
     "fins": ("test_fin_plate", "test_validation_doc_fins_section_is_current"),
     "lift": ("test_lift_data", "test_validation_doc_lift_section_is_current"),
     "rotary_trace": ("test_rotary_trace", "test_validation_doc_rotary_trace_section_is_current"),
+    "fin_incidence": ("test_fin_incidence",
+                      "test_validation_doc_fin_incidence_section_is_current"),
     "identification": ("test_identify_romeo_simulated",
                        "test_validation_doc_identification_section_is_current"),
     "meshes": ("test_mesh_consistency", "test_validation_doc_meshes_section_is_current"),

@@ -64,7 +64,7 @@ from stripcoef.hull.lift import (
     TRANSITION_REYNOLDS,
 )
 from stripcoef.hull.axisymmetric import axial_surface_speed, smooth_radius
-from stripcoef.hull.separation import stratford_separation
+from stripcoef.hull.separation import PEAK_SEARCH, stratford_separation
 from stripcoef.model import ControlSurface
 
 #: Stations sampling the hull for the slender-body lift (assumption: on the SUBOFF hull's
@@ -632,7 +632,8 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
     :func:`~stripcoef.hull.lift.surface_speed_ratio`) at the reference speed (or ``speed``,
     ``viscosity``), the layer turbulent from Re_x = :data:`~stripcoef.hull.lift.TRANSITION_REYNOLDS`
     (:func:`~stripcoef.hull.separation.stratford_separation`); no separation ahead of the tail
-    cap puts the station at the tail (no potential lift left). ``stratford_panel`` is the
+    cap puts the station at the tail (no potential lift left but the base's; a ModelWarning
+    says so). ``stratford_panel`` is the
     same criterion on the exact axisymmetric potential flow of the hull (the surge mode of the
     panel method, :func:`~stripcoef.hull.axisymmetric.axial_surface_speed`; Hess & Smith
     1967) instead of the line sources, for the station and for the fins' stern flow (Head's
@@ -678,6 +679,14 @@ def _body_lift(vehicle, rho: float, ref, center, *, speed: float | None = None,
                               "C_p' = 4/7, the end of Stratford's criterion's range, before the "
                               "criterion is met; the separation station is put at the tail "
                               "(no body lift)", ModelWarning, stacklevel=3)
+            elif sep["limit"] == "end":
+                # e.g. REMUS 100's truncated Myring tail, Myring tails of 15 deg or less
+                # (benchmarks/body_lift_default.py): the body lift all but vanishes, say so
+                warnings.warn(f"body_lift: {mode}: Stratford's criterion is not met ahead of "
+                              f"{PEAK_SEARCH[1]:g} l at {u:.3g} m/s: the afterbody's layer is "
+                              "taken attached to the tail, which keeps only its base's potential "
+                              "lift (body_lift: datcom puts Hopkins's station on it)",
+                              ModelWarning, stacklevel=3)
         else:
             x0 = separation_station(xs, area)
         info["separation_x"] = x0

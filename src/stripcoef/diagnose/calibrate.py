@@ -6,19 +6,19 @@ The thrusters' timing (a first-order lag, a pure delay) is one property of the a
 not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters drive (the
 water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
-Depends on: model, conventions, diagnose.priors, diagnose.fit, diagnose.cross.
+Depends on: model, conventions, diagnose.priors, diagnose.settings, diagnose.fit,
+diagnose.cross.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
-from stripcoef.diagnose.cross import shared_value
+from stripcoef.diagnose.cross import shared_value, with_known
 from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
 
@@ -121,14 +121,19 @@ def _with_matrices(model, mats: dict):
                    added_mass_error=None if changed else model.added_mass_error)
 
 
-def written_fit(d: str, result, fit, exclude=frozenset()):
+def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
     as selected), so that no kept parameter compensates a term that is not there -- and,
     when the DOF's calibration is removed, without the calibration columns (its
     coefficients stay at the prior): the effects fitted together with it are refitted
-    alone. ``theta`` starts with the calibration's values (none when it is removed)."""
+    alone. ``theta`` starts with the calibration's values (none when it is removed).
+
+    ``known``: {``M_<dof>``: change [kg or kg m^2]} of other DOFs' added masses beyond
+    those the DOF's window data already hold as known forces (:func:`consistent_fits`):
+    their force through :math:`C_A(\nu)\nu` is taken out too and the kept terms are
+    refitted (a calibration column of the same name is then dropped)."""
     cfg = fit.config
     theta = fit.evaluation["full"]["theta"]
     dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
@@ -138,11 +143,100 @@ def written_fit(d: str, result, fit, exclude=frozenset()):
                       settings=cfg.settings, budget=cfg.budget)
     if dropped:
         cfg = cfg.with_terms([t for t in cfg.terms if t not in dropped])
-    if (dropped or no_cal) and (cfg.terms or not no_cal):
+    known = {k: v for k, v in (known or {}).items() if v != 0.0}
+    if known:
+        cfg = _with_known(cfg, known)
+    if (dropped or no_cal or known) and (cfg.terms or not no_cal):
         theta = _fit(cfg)["theta"]
     elif no_cal:
         theta = np.zeros(0)
     return cfg, theta
+
+
+def _with_known(cfg, known: dict):
+    """``cfg`` with the added-mass changes ``known`` taken out of its DOF's residual as known
+    forces (:func:`stripcoef.diagnose.cross.with_known`, at the velocity relative to the
+    water when a term defines it, as
+    :meth:`~stripcoef.diagnose.fit._Config.calibration_columns`) and those columns left out
+    of the calibration (a new configuration)."""
+    nur = next((eff.relative_velocity(cfg.data, h) for eff, h in cfg.terms
+                if h is not None and hasattr(eff, "relative_velocity")), None)
+    data = with_known(cfg.data, cfg.dof, known, nur)
+    keep = [j for j, n in enumerate(cfg.cal.names) if n not in known]
+    return _Config(data, cfg.dof, cfg.cal.subset(keep), list(cfg.terms), settings=cfg.settings,
+                   budget=cfg.budget)
+
+
+#: Sweeps of :func:`consistent_fits` at most, and the relative change of the diagnosed DOFs'
+#: added masses [-] below which the sweeps stop (the fits are linear given the selected
+#: nonlinear parameters: a fixed point of one coefficient per DOF)
+CONSISTENT_SWEEPS, CONSISTENT_TOL = 8, 1e-6
+
+
+def consistent_fits(model, per: dict, fits: dict, exclude=frozenset()) -> dict:
+    r"""DOF -> :func:`written_fit` of each DOF of ``per``; a DOF selected with other diagnosed
+    DOFs' added masses as known forces (:func:`contradicted`; its window data's
+    ``known_added_mass``) is refitted with the values written for them, so that it is written
+    beside the same values it is fitted with (one coefficient, one value:
+    :mod:`stripcoef.diagnose.cross`). Each DOF's own added mass moves with the others'
+    (Gauss-Seidel sweeps of the linear refits until the written added masses change by less
+    than ``CONSISTENT_TOL`` relative, at most ``CONSISTENT_SWEEPS``)."""
+    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
+    held = {d: dict(fits[d].config.data.known_added_mass) for d in per}
+    if not any(held.values()):
+        return fitted
+    prior = np.diag(np.asarray(model.added_mass, float))
+    own = _own_added_mass(model, per, fitted)
+    for _ in range(CONSISTENT_SWEEPS):
+        for d, r in per.items():
+            if held[d]:
+                known = {k: own[k[2:]] - prior[parse_dof(k[2:])] - v
+                         for k, v in held[d].items()}
+                fitted[d] = written_fit(d, r, fits[d], exclude, known)
+        new = _own_added_mass(model, per, fitted)
+        moved = max(abs(new[e] - own[e]) / max(abs(prior[parse_dof(e)]), 1e-12) for e in per)
+        own = new
+        if moved < CONSISTENT_TOL:
+            break
+    return fitted
+
+
+def contradicted(model, per: dict, fits: dict) -> dict:
+    r"""The DOFs of a whole-log diagnosis whose fit holds another diagnosed DOF's added mass
+    ``M_<dof>`` (:mod:`stripcoef.diagnose.cross`) at a value that contradicts the one written
+    for it, its own DOF's (:func:`calibrated_model` before the validation): more than
+    ``MIN_Z`` of the fit's standard deviation from it (the selection's rule of a parameter
+    told from a value, :data:`~stripcoef.diagnose.settings.MIN_Z`). DOF -> {``M_<dof>``:
+    the written change [kg or kg m^2]} of every diagnosed DOF it feels: the known forces it
+    is selected again with (:func:`stripcoef.diagnose.cross.with_known`). Issue 33: on the
+    VideoRay-like issue-16 log (seed 7, 0.49 of the thrust acting) yaw's Munk moment held the
+    sway added mass at +5.2 kg (sd 0.57) where sway's own balance, written, gave +0.5 kg: the
+    free added mass had taken the yaw thrust scale (the balance is homogeneous in thrust,
+    inertia and drag; :mod:`stripcoef.diagnose.scalechoice`) and the model written had
+    neither."""
+    from stripcoef.diagnose.settings import MIN_Z
+    fitted = {d: written_fit(d, r, fits[d]) for d, r in per.items()}
+    prior = np.diag(np.asarray(model.added_mass, float))
+    own = _own_added_mass(model, per, fitted)
+    out = {}
+    for d in per:
+        ev = fits[d].evaluation["full"]
+        names = list(fits[d].config.cal.names)
+        mine = {n: k for k, n in enumerate(names) if n.startswith("M_") and n[2:] in per}
+        written = {n: own[n[2:]] - prior[parse_dof(n[2:])] for n in mine}
+        far = [n for n, k in mine.items()
+               if abs(ev["theta"][k] - written[n])
+               > MIN_Z * math.sqrt(max(float(ev["cov"][k, k]), 0.0))]
+        if far:
+            out[d] = written
+    return out
+
+
+def _own_added_mass(model, per: dict, fitted: dict) -> dict:
+    """DOF -> its diagonal added mass in the model :func:`_build` writes from ``fitted``
+    [kg or kg m^2] (its calibration, an added-mass effect folded in)."""
+    m = _build(model, per, fitted)
+    return {d: float(m.added_mass[parse_dof(d), parse_dof(d)]) for d in per}
 
 
 def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
@@ -162,11 +256,16 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     thrusters' lag in a simulation instead of one per DOF, the same forces); so is the one
     water current (:func:`stripcoef.diagnose.current.share_current`), which acts in all six
     DOFs through the relative velocity."""
+    return _build(model, per, consistent_fits(model, per, fits, exclude))
+
+
+def _build(model, per: dict, fitted: dict):
+    """The model :func:`calibrated_model` writes from the fits ``fitted`` (DOF ->
+    ``(config, theta)``, :func:`written_fit`)."""
     m = model
     mats = _writable_matrices(m)
     record = []
     # DOFs whose written fit holds each shared timing effect (share_timing)
-    fitted = {d: written_fit(d, r, fits[d], exclude) for d, r in per.items()}
     shared_in = {}
     for cfg, _ in fitted.values():
         for eff, _ in cfg.terms:

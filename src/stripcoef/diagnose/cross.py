@@ -15,9 +15,13 @@ failed (z 0.9-2.2); with ``M_sway`` calibrated the residual fell to 0.04-0.06 N 
 tether's z rose to 5-6 on two of the three.
 
 So a DOF's calibration (:func:`~stripcoef.diagnose.fit._calibration`) may hold the added
-mass of every DOF whose velocity moves (:func:`moving_dofs`; where that DOF is diagnosed
-itself, its own calibration's value is written); its Fisher information still decides whether the log
-determines it (:func:`~stripcoef.diagnose.fit._identifiability`, Ljung 1999 eq. 9.29).
+mass of every DOF whose velocity moves (:func:`moving_dofs`); its Fisher information still
+decides whether the log determines it (:func:`~stripcoef.diagnose.fit._identifiability`,
+Ljung 1999 eq. 9.29). Where that DOF is diagnosed itself, its own calibration's value is
+written, and the others keep the value they fitted; with the option ``one_added_mass`` a
+DOF whose fit contradicts the written value is selected again without it and refitted with
+it (:func:`stripcoef.diagnose.calibrate.contradicted`,
+:func:`~stripcoef.diagnose.calibrate.consistent_fits`, :func:`with_known`).
 One coefficient has one value: in a whole-log diagnosis several diagnosed DOFs may each
 calibrate such an added mass (a VideoRay's sway added mass reaches surge through
 :math:`M_{22} v r` and yaw through the Munk moment :math:`(M_{22} - M_{11}) u v`); the
@@ -32,13 +36,14 @@ Depends on: effects (windows), diagnose.settings.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
 
 from stripcoef.conventions import VELOCITIES
 from stripcoef.diagnose.settings import EXCITATION_SNR, EXCITATION_STD
-from stripcoef.effects.windows import white_noise_sd
+from stripcoef.effects.windows import coefficient_column, white_noise_sd
 
 
 def velocity_snr(data, i: int) -> tuple:
@@ -70,6 +75,25 @@ def moving_dofs(data) -> list:
         std, _, snr = velocity_snr(data, i)
         if std > EXCITATION_STD and snr >= EXCITATION_SNR:
             out.append(i)
+    return out
+
+
+def with_known(data, dof: int, values: dict, nu=None):
+    r"""A copy of the window data ``data`` whose residual in DOF ``dof`` has the force of the
+    other DOFs' added-mass changes ``values`` ({``M_<dof>``: change [kg or kg m^2]}) taken
+    out as a known force, :math:`e_0 - \sum_j \Delta M_{jj} (C_A[E_{jj}](\nu)\nu)_i` (the
+    calibration column of ``M_<dof>``, :func:`~stripcoef.effects.windows.coefficient_column`,
+    at the velocity ``nu`` relative to the water when given), recorded in its
+    ``known_added_mass`` (added to what it held). The copy shares the log and the cached
+    designs (they do not depend on the residual)."""
+    out = copy.copy(data)
+    out.e0 = np.array(data.e0, float)
+    known = dict(data.known_added_mass)
+    for key, value in values.items():
+        if value != 0.0:
+            out.e0[:, dof] -= coefficient_column(data, dof, key, nu) * float(value)
+        known[key] = known.get(key, 0.0) + float(value)
+    out.known_added_mass = known
     return out
 
 

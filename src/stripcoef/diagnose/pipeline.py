@@ -64,7 +64,9 @@ Steps, for each degree of freedom (issue 7):
    thrusters (dead band, thrust asymmetry, lag, delay: :data:`~.select.THRUSTER_EFFECTS`)
    found in one DOF must also hold in every other diagnosed DOF the same thrusters drive:
    at its parameters it must not raise their held-out error by more than ``TIE``
-   (:class:`~.select.Siblings`). Before the DOFs are diagnosed, a whole-log diagnosis fits
+   (:class:`~.select.Siblings`); one of each thruster's own map (dead band, asymmetry) found
+   in a DOF that several groups of thrusters drive must not be contradicted by every DOF
+   that parts of them drive alone (:mod:`.thrusterparts`). Before the DOFs are diagnosed, a whole-log diagnosis fits
    the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
@@ -95,11 +97,13 @@ import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
 from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass, share_timing)
-from stripcoef.diagnose.cross import moving_dofs
+                                          clip_added_mass, contradicted,
+                                          share_timing)
+from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -129,7 +133,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation: float | None = VALIDATION_FRACTION,
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
-             validation_others: str = "logged") -> Diagnosis:
+             validation_others: str = "logged",
+             one_added_mass: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -173,6 +178,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
         take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
         diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
+    one_added_mass : bool
+        Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
+        (:attr:`DiagnoseSettings.one_added_mass`; off by default).
 
     Returns
     -------
@@ -215,7 +223,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         resimulate=bool(resimulate), bands=bands, max_steps=max_steps,
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
-        validation_others=validation_others)
+        validation_others=validation_others,
+        one_added_mass=bool(one_added_mass))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -280,13 +289,25 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
     cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (Siblings(data, dofs, settings, budget=budget, excited=excited, cross=cross)
-                if len(dofs) > 1 else None)
+    siblings = (ThrusterParts(data, dofs, settings, budget=budget, excited=excited,
+                              cross=cross) if len(dofs) > 1 else None)
     per, fits = {}, {}
     for i in dofs:
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
+    # option (settings.one_added_mass): a DOF whose fit contradicts a diagnosed DOF's own
+    # added mass is selected again with the diagnosed DOFs' added masses held at the prior,
+    # and written refitted with their written values (calibrate.contradicted,
+    # consistent_fits)
+    undiagnosed = [j for j in cross if DOF[j] not in per]
+    again = (contradicted(model, per, fits) if len(dofs) > 1 and settings.one_added_mass
+             else {})
+    for d, known in again.items():
+        i = parse_dof(d)
+        per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
+                                       settings, budget=budget, excited=excited,
+                                       cross=undiagnosed, siblings=siblings)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)

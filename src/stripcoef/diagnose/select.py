@@ -885,38 +885,36 @@ class Siblings:
         """Why the significant ``trial`` (:func:`_judge`'s record) of DOF ``dof`` is
         contradicted by a sibling DOF (class docstring); [] when it is not, or when it is
         not a thruster effect."""
-        eff = get_effect(trial["effect"])
-        data = self.data
-        act = set(data.acting(dof))
-        if eff.name not in THRUSTER_EFFECTS or not act:
+        act = set(self.data.acting(dof))
+        if trial["effect"] not in THRUSTER_EFFECTS or not act:
             return []
-        cfg = trial["_cfg"]
-        hyper = cfg.terms[-1][1]
-        theta, value, sd = _own_estimate(cfg, trial["_ev"])
-        out = []
-        for j, base in self.configs.items():
-            if j == dof or set(data.acting(j)) != act or not eff.applicable(data, j)[0]:
-                continue
-            ref = self._reference(j, eff)
-            try:
-                fixed = _evaluate(base.with_terms([(_Fixed(eff, hyper, theta), None)]))
-                own_cfg = base.with_terms([(eff, None)])
-                _, value_j, sd_j = _own_estimate(own_cfg, _evaluate(own_cfg))
-            except (np.linalg.LinAlgError, ValueError):
-                continue
-            if ref["held_out_error"] <= 0:
-                continue
-            gain = 1.0 - fixed["held_out_error"] / ref["held_out_error"]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                z = np.abs(value - value_j) / np.sqrt(sd ** 2 + sd_j ** 2)
-            z = float(np.max(np.where(np.isfinite(z), z, 0.0))) if z.size else 0.0
-            if gain < -TIE and z >= MIN_Z:
-                values = ", ".join(f"{k} = {v:.3g}" for k, v in trial["parameters"].items())
-                out.append(f"contradicted by {DOF[j]} (driven by the same thrusters): "
-                           f"{eff.name} with {values} raises its held-out error by "
-                           f"{-100 * gain:.1f} % (beyond {100 * TIE:g} %), and its own fit "
-                           f"there differs by {z:.1f} standard deviations (>= {MIN_Z:g})")
-        return out
+        return [f"contradicted by {DOF[j]} (driven by the same thrusters): {why}"
+                for j in self.configs if j != dof and set(self.data.acting(j)) == act
+                for why in [self.contradicted_in(trial, j)] if why]
+
+    def contradicted_in(self, trial: dict, j: int) -> str:
+        """Why DOF ``j`` contradicts ``trial`` (class docstring's test), '' if it does not."""
+        eff, data, base = get_effect(trial["effect"]), self.data, self.configs[j]
+        if not eff.applicable(data, j)[0]:
+            return ""
+        hyper, ref = trial["_cfg"].terms[-1][1], self._reference(j, eff)
+        theta, value, sd = _own_estimate(trial["_cfg"], trial["_ev"])
+        try:
+            fixed = _evaluate(base.with_terms([(_Fixed(eff, hyper, theta), None)]))
+            own_cfg = base.with_terms([(eff, None)])
+            _, value_j, sd_j = _own_estimate(own_cfg, _evaluate(own_cfg))
+        except (np.linalg.LinAlgError, ValueError):
+            return ""
+        if ref["held_out_error"] <= 0:
+            return ""
+        gain = 1.0 - fixed["held_out_error"] / ref["held_out_error"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = np.abs(value - value_j) / np.sqrt(sd ** 2 + sd_j ** 2)
+        z = float(np.max(np.where(np.isfinite(z), z, 0.0))) if z.size else 0.0
+        values = ", ".join(f"{k} = {v:.3g}" for k, v in trial["parameters"].items())
+        return (f"{eff.name} with {values} raises its held-out error by {-100 * gain:.1f} % "
+                f"(beyond {100 * TIE:g} %), and its own fit there differs by {z:.1f} "
+                f"standard deviations (>= {MIN_Z:g})") if gain < -TIE and z >= MIN_Z else ""
 
 
 def _own_estimate(cfg, ev):

@@ -176,6 +176,13 @@ class DiagnoseSettings:
         one-DOF diagnosis their velocities, and the attitude when roll and pitch both
         are, follow the log) or ``"simulated"`` (the model, the prior's where nothing
         was diagnosed; a whole-log diagnosis always) (:data:`VALIDATION_OTHERS`)
+    one_added_mass : bool
+        Whole-log: a DOF whose fit holds a diagnosed DOF's added mass more than ``MIN_Z``
+        sd from that DOF's own (written) value is selected again with it at the prior and
+        written refitted with the written value
+        (:func:`stripcoef.diagnose.calibrate.contradicted`). Off by default: it wins the
+        VideoRay-like issue-16 real-style log's held-out cells back but loses named-first
+        effects on the independent simulator (benchmarks/data/one_added_mass.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -188,6 +195,7 @@ class DiagnoseSettings:
     added_mass_sd: np.ndarray | None = None
     prior_widths: object = None
     validation_others: str = "logged"
+    one_added_mass: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

@@ -143,6 +143,9 @@ class WindowData:
     columns: dict = field(default_factory=dict)
     source: str = ""
     endpoint_halfwidth: int = 0
+    #: other DOFs' added-mass changes {``M_<dof>``: change [kg or kg m^2]} already taken out
+    #: of ``e0`` as known forces (:func:`stripcoef.diagnose.cross.with_known`)
+    known_added_mass: dict = field(default_factory=dict)
     #: what :meth:`cached` computed from these data, by key (not an input: a copy made by
     #: ``dataclasses.replace`` starts without it)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)

@@ -74,6 +74,33 @@ def extrapolation_error(levels, counts, order: float) -> np.ndarray:
     return np.maximum(band, np.abs(fine - fine.T))
 
 
+def ladder_extrapolation(levels, counts, order: float) -> tuple:
+    r"""(extrapolated M_A, its estimated error) [kg, kg m, kg m^2] of the input family's four
+    levels :math:`L_1 < L_2 < L_3 < L_4` (6x6 matrices, not symmetrised; ``counts`` panels),
+    two nested pairs :math:`(L_1, L_3)` and :math:`(L_2, L_4)`, each one polyhedron with the
+    panel size halved (:func:`stripcoef.hull.input_ladder.ladder_levels`):
+
+    .. math:: A = R(L_2, L_4),\quad A' = R(L_1, L_3),\quad
+              E_{ij} = \max\big(|A_{ij} - L_{4,ij}| + |A_{ij} - A'_{ij}|,\
+              |L_{4,ij} - L_{4,ji}|\big)
+
+    R the Richardson extrapolation at ``order`` (Roache 1998 eq. 5.4.1), A and A' and the
+    error symmetrised: the rule of :func:`extrapolation_error` (the step plus the last
+    change, no safety factor), its two extrapolations each of one pair of similar meshes."""
+    from stripcoef.hull.convergence import richardson
+
+    m = [np.asarray(x, float) for x in levels]
+    if len(m) != 4:
+        raise ValueError(f"the ladder has four levels; got {len(m)}")
+    a = richardson(m[1], m[3], counts[1], counts[3], order=order)
+    before = richardson(m[0], m[2], counts[0], counts[2], order=order)
+    a, before = 0.5 * (a + a.T), 0.5 * (before + before.T)
+    fine = m[3]
+    band = np.abs(a - 0.5 * (fine + fine.T)) + np.abs(a - before)
+    band = np.maximum(band, band.T)
+    return a, np.maximum(band, np.abs(fine - fine.T))
+
+
 def richardson_error(coarse, fine, extrapolated) -> np.ndarray:
     r"""Estimated error [kg, kg m, kg m^2] of a two-level extrapolation: the two-grid index
     (:math:`F_s = 3`, Roache 1994) about the finer level plus the step to the extrapolation

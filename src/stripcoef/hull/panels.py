@@ -95,10 +95,11 @@ from stripcoef.hull.graded_panels import box_faces, box_level
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
+from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
-    ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, relative_error,
-    richardson_error)
-from stripcoef.hull.remesh import edge_for_panels
+    ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
+    relative_error, richardson_error)
+from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -492,7 +493,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     references where the isotropic remesh was up to 7.6 % off: benchmarks/data/
     plate_panels.md); else with the remesher (``family`` "auto" or "remesh", the ``remesh``
     extra) three isotropic remeshes at N/4, N/2 and N panels (:func:`remeshed_levels`); without it
-    ("input"), the two panellings of :func:`panel_levels`.  The estimated error of each term
+    ("input"), on an input of at most N/4 faces two nested pairs of its faces bisected and
+    split in four (:mod:`stripcoef.hull.input_ladder`, its value the finer pair's
+    extrapolation, :func:`ladder_extrapolation`), else the two panellings of
+    :func:`panel_levels`.  The estimated error of each term
     of the extrapolated value, with three levels or more, is its step from the finest level
     plus its change since the level before (:func:`extrapolation_error`), with two levels
     Roache's two-grid index (:math:`F_s = 3`) about the finest plus the step
@@ -648,8 +652,16 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         used = "input faces bisected (no remesh kept the area)"
     else:
         used = "isotropic remesh (pymeshlab" + ("" if mode.flips else ", no flips: thin members") + ")"
+    ladder = False
     if levels is None:
-        levels = panel_levels(v, f, panels, where)
+        # the input family: two nested pairs where they fit one solve (input_ladder), else
+        # the two levels of panel_levels
+        levels = ladder_levels(v, f, panels, MAX_PANELS)
+        ladder = levels is not None
+        if ladder:
+            used = "refined/coarsened input, two nested pairs"
+        else:
+            levels = panel_levels(v, f, panels, where)
     # the body's sharpest convex edge, facets of smooth parts and folds left out [rad]
     features = edge_features(v, f)
     if not np.isfinite(thickness):
@@ -676,7 +688,15 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         formal = edge_order(features.turning, finest_edge, thickness,
                             sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=formal)
-        if len(mats) >= 3:
+        if ladder:
+            # two nested pairs: the finer pair's extrapolation, its step plus its change
+            # since the coarser pair's (panel_error.ladder_extrapolation)
+            a, error = ladder_extrapolation(mats, counts, formal)
+            order, safety = np.full((6, 6), formal), np.ones((6, 6))
+            at_c = [transform_matrix(m, from_point=about, to_point=centroid) for m in mats]
+            converged = bool(relative_error(*ladder_extrapolation(at_c, counts, formal),
+                                            scale).max() <= tol)
+        elif len(mats) >= 3:
             # the extrapolated value's own error: its step from the finest level plus its
             # change since the level before (extrapolation_error; benchmarks/data/
             # panel_estimate_rule.md)
@@ -744,10 +764,8 @@ SMOOTH_ORDER = 2.0
 #: coarsest angular tolerance, 30 degrees) is smooth; a box's, a chamfer's (45 degrees) or a
 #: plate's rim is an edge.
 FEATURE_ANGLE = 30.0
-#: Largest departure from 180 degrees [deg] of the turning at a fold: the two faces lie in one
-#: plane, one folded back onto the other (a double sheet of zero thickness; eROV's visual
-#: mesh has 24 such slivers, 1.8 mm wide, turning 179.985-179.997 degrees).
-FOLD_ANGLE = 0.1
+# FOLD_ANGLE (imported from stripcoef.hull.remesh): the largest departure from 180 degrees
+# of the turning at a fold, two faces in one plane, one folded back onto the other
 #: Most folds :meth:`EdgeFeatures.sheet_wider_than` probes (every k-th beyond) [-]: a bound
 #: on its time (one pass over the faces per fold), not a tolerance.
 MAX_FOLD_PROBES = 64
