@@ -28,10 +28,18 @@ Scores (issue 33's criteria):
 - clean logs: no effect added (and no effect other than the background);
 - outside the library: ``unexplained``, or every step's held-out gain under 30 %.
 
+Beside them, for every library effect, the oracle (``validation.detectability``): whether
+the effect is detectable on the truth's own model without it, whether its own test passes
+on the prior at the first step, and the error cut the truth's own model makes against the
+prior (the ceiling of "error cut >= 3x"); the misses sorted into the draw, the prior's
+other errors hiding the effect, and the selection's. ``--same-seeds`` seeds a run of a few
+categories as a run of all would (the same logs); ``--validation-others`` is diagnose's.
+
 Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
-        [--modes dof,all] [--repeats 1] [--write FILE.md]
+        [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
+        [--validation-others logged|simulated]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -83,10 +91,12 @@ def with_truth_maps(prior, truth):
 
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
-            modes: tuple, truth_maps: bool = False) -> list[dict]:
+            modes: tuple, validation_others: str = "logged",
+            truth_maps: bool = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
-    (``truth_maps``: against the prior with the truth's thrust maps, :func:`with_truth_maps`,
-    the gains of the background removed)."""
+    (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
+    against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
+    the background removed)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -97,19 +107,26 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
         prior = with_truth_maps(prior, truth)
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
-    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0),
+    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
+                          validation_others),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
 
 
 def _oracle(log, prior, truth) -> dict:
     """The row's record of the oracle test (``validation.detectability``): ``detectable``
-    and ``oracle`` (the test on the truth's model and on the prior), for an effect the
-    oracle covers; {} otherwise."""
+    (one-DOF evidence gate), ``detectable_all`` (whole-log), ``truth_cut`` (the error cut
+    the truth's own model makes against the prior in the effect's DOF, the ceiling of the
+    row's ``cut``) and ``oracle`` (the test on the truth's model and on the prior), for a
+    library effect; {} otherwise (clean, outside the library)."""
     from validation.detectability import oracle
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         got = oracle(log, prior, truth)
-    return {} if got is None else {"detectable": got["detectable"], "oracle": got}
+    if got is None:
+        return {}
+    return {"detectable": got["detectable"], "detectable_all": got["detectable_all"],
+            "first_step_on_prior": got["first_step_on_prior"], "truth_cut": got["truth_cut"],
+            "oracle": got}
 
 
 def thrust_gain(truth, prior: dict, dof: int) -> float:
@@ -143,7 +160,8 @@ def _background(truth, prior: dict) -> dict:
     return out
 
 
-def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim) -> dict:
+def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
+               validation_others: str = "logged") -> dict:
     """One log diagnosed in one mode: the row of the score table."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
@@ -155,7 +173,8 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         # no wall-clock budget: on a shared machine the 300-s default stops whole-log runs
         # (CPU time is what the table reports)
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
-                       time_limit=float("inf")).to_dict()
+                       time_limit=float("inf"),
+                       validation_others=validation_others).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
@@ -266,7 +285,8 @@ def _run(args):
 
 
 def excitation_row(vehicle: str, category: str | None, seed: int, duration: float,
-                   modes: tuple = (), truth_maps: bool = False) -> list[dict]:
+                   modes: tuple = (), validation_others: str = "",
+                   truth_maps: bool = False) -> list[dict]:
     """One log, not diagnosed: its excitation (``validation.independent.excitation``) as a
     row: per driven DOF the shares of samples [-] moving each way, per thruster the share
     saturated, and ``two_way``, the smallest share of one direction over the driven DOFs."""
@@ -405,12 +425,13 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
              ""]
     lines += ["| effect | mode | logs | named first | first or in its ambiguous set "
               "| named first after background "
-              "| magnitude within 15 % | error cut >= 3x "
+              "| magnitude within 15 % | error cut >= 3x | the truth's own cut >= 3x "
               "| other DOFs named | spurious named | spurious kept |",
-              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
     spurious_all = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
     mag_all, cut_all, after_all, set_all, mag_drawn = [0], [0], [0], [0], [0]
+    ceiling = [0, 0, 0]     # rows with the truth's cut, of them >= 3x, of those measured >= 3x
     confusion: dict = {}
     for cat in STRENGTHS:
         for mode in ("dof", "all"):
@@ -425,6 +446,12 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             mag_drawn[0] += sum(r.get("magnitude_error_drawn", r.get("magnitude_error", np.inf))
                                 <= 0.15 for r in rs)
             cut = sum(r["cut"] >= 3 for r in rs)
+            known = [r for r in rs if "truth_cut" in r]
+            allowed = [r for r in known if r["truth_cut"] >= 3]
+            ceiling[0] += len(known)
+            ceiling[1] += len(allowed)
+            ceiling[2] += sum(r["cut"] >= 3 for r in allowed)
+            ceiling_cell = f"{len(allowed)}/{len(known)}" if known else "-"
             spur = sum(any(d != r["dof"] for d in r["step_dofs"]) for r in rs) if mode == "all" \
                 else 0
             # a step where the truth has no such effect, named and kept (the written model)
@@ -445,7 +472,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             set_all[0] += in_set
             lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {in_set}/{n} | {after}/{n} "
                          f"| {mag}/{n} | "
-                         f"{cut}/{n} | "
+                         f"{cut}/{n} | {ceiling_cell} | "
                          + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_cells} |")
             mag_all[0] += mag
             cut_all[0] += cut
@@ -459,7 +486,11 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                  + f"; named first after the truth's background (buoyancy, thrust gains): "
                  f"{after_all[0]}/{total}; magnitude within 15 %: {mag_all[0]}/{total} (of the drawn "
                  f"strength, magnitude_error_drawn: {mag_drawn[0]}/{total}); error cut >= 3x: "
-                 f"{cut_all[0]}/{total}.")
+                 f"{cut_all[0]}/{total}"
+                 + (f" (the truth's own model cuts the prior's error >= 3x in "
+                    f"{ceiling[1]}/{ceiling[0]} of the rows with the oracle; of those the "
+                    f"diagnosis does in {ceiling[2]}/{ceiling[1]})" if ceiling[0] else "")
+                 + ".")
     named, kept = spurious_all["step_effects"], spurious_all["step_effects_kept"]
     if named[1]:
         lines.append(f"Whole-log runs of library-effect logs with a spurious step (an effect in "
@@ -497,47 +528,95 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     return "\n".join(lines)
 
 
+def _detectable(row: dict) -> bool:
+    """Whether the row's effect passes the oracle's gate at its mode's level (one DOF:
+    ``detectable``; whole-log: ``detectable_all``, Bonferroni over the excited DOFs)."""
+    return bool(row.get("detectable_all" if row["mode"] == "all" else "detectable"))
+
+
 def detectability_lines(rows: list[dict]) -> list[str]:
     """The oracle's verdict (``validation.detectability``) on the rows that carry one: per
-    effect and mode the logs named first among all and among the detectable ones, then one
-    line per log (its likelihood ratio on the truth's model against the level, and on the
-    prior with the true force fixed)."""
+    effect and mode the logs named first among all and among the detectable ones, the
+    measured error cut against the truth's own; then one line per log (its test on the
+    truth's model against the level, on the prior with the true force fixed, the truth's cut
+    and the diagnosis's cut per mode), and the misses sorted: detection misses (detectable,
+    not named first) and undetectable draws."""
     tested = [r for r in rows if "detectable" in r]
     if not tested:
         return []
     out = ["", "Detectability (`validation.detectability`: the effect's own test, its "
            "coefficient free with its nuisance, on the truth's model without the effect, "
-           "passes the evidence gate at alpha / candidates; no threshold changed):", ""]
-    for cat in sorted({r["category"] for r in tested}):
+           "passes every gate of a step and the evidence gate at alpha / candidates, "
+           "whole-log rows at alpha / (candidates x excited DOFs); no threshold changed). "
+           "The truth's cut: the prior's RMS window residual in the effect's DOF over the "
+           "truth's own model's, on the windows of the diagnosis's baseline and final "
+           "errors (the cut a log allows):", ""]
+    for cat in [c for c in _categories(tested)]:
         for mode in ("dof", "all"):
             rs = [r for r in tested if r["category"] == cat and r["mode"] == mode]
             if not rs:
                 continue
-            det = [r for r in rs if r["detectable"]]
+            det = [r for r in rs if _detectable(r)]
+            allowed = [r for r in rs if r.get("truth_cut", 0.0) >= 3]
             out.append(f"- {cat} {mode}: named first {sum(r['first'] == cat for r in rs)}/"
                        f"{len(rs)}; detectable {len(det)}/{len(rs)}, of them named first "
                        f"{sum(r['first'] == cat for r in det)}/{len(det)}, magnitude within "
                        f"15 % {sum(r.get('magnitude_error', np.inf) <= 0.15 for r in det)}/"
-                       f"{len(det)}")
+                       f"{len(det)}; error cut >= 3x {sum(r['cut'] >= 3 for r in rs)}/"
+                       f"{len(rs)}, the truth's >= 3x {len(allowed)}/{len(rs)}, of those "
+                       f"the diagnosis's {sum(r['cut'] >= 3 for r in allowed)}/{len(allowed)}")
+    missed = [r for r in tested if r["first"] != r["category"]]
+    if missed:
+        def said(rs):
+            return ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} {r['mode']} -> "
+                             f"{r['first']}" for r in rs) or "none"
+        det = [r for r in missed if _detectable(r)]
+        sel = [r for r in det if r.get("first_step_on_prior") is True]
+        hid = [r for r in det if r.get("first_step_on_prior") is False]
+        unknown = [r for r in det if "first_step_on_prior" not in r]
+        out += ["", f"Misses (not named first): {len(missed)}. Not detectable on the truth's "
+                f"model (the draw): {len(missed) - len(det)}: "
+                + said([r for r in missed if not _detectable(r)])
+                + f". Detectable, but the effect's own test fails on the prior (the prior's "
+                f"other errors hide it at the first step): {len(hid)}: " + said(hid)
+                + f". Detectable and passing its test on the prior (the selection's misses): "
+                f"{len(sel)}: " + said(sel)
+                + (f". Detectable, rows without the test on the prior: {len(unknown)}: "
+                   + said(unknown) if unknown else "") + "."]
     seen = set()
-    out += ["", "Per log (truth's model: z, likelihood ratio, p against the level; prior: "
-            "p of the true force fixed, the true force beyond the reference's columns over "
-            "its noise):", ""]
+    out += ["", "Per log (truth's model: z, likelihood ratio, p against the level, the gates "
+            "it fails; prior: the same test, and p of the true force fixed, the true force beyond the "
+            "reference's columns over its noise; the truth's cut, and per mode the effect "
+            "named first and the diagnosis's cut):", ""]
     for r in sorted(tested, key=lambda r: (r["category"], r["vehicle"], r["seed"])):
         key = (r["category"], r["vehicle"], r["seed"])
         if key in seen:
             continue
         seen.add(key)
         t, p = r["oracle"]["truth"], r["oracle"]["prior"]
-        named = ", ".join(f"{x['mode']} {x['first']}" for x in tested
+        named = ", ".join(f"{x['mode']} {x['first']} (cut {x['cut']:.2f})" for x in tested
                           if (x["category"], x["vehicle"], x["seed"]) == key)
+        fails = "; ".join(t.get("rejected_because") or [])
         out.append(f"- {r['category']} {r['vehicle']} {r['seed']} (truth {r['truth']:.3g}): "
-                   f"{'detectable' if r['detectable'] else 'not detectable'}: truth's model "
-                   f"z {t['z']:.1f}, LR {t['statistic']:.1f}, p {t['p_value']:.2g} vs "
-                   f"{t['level']:.2g}, estimate {t['estimate']:.3g}, force/noise "
-                   f"{t['snr']:.2f}; prior: p {p['fixed_p_value']:.2g}, force/noise "
-                   f"{p['snr']:.2f}; named first: {named}")
+                   f"{'detectable' if r['detectable'] else 'not detectable'}"
+                   f"{'' if r.get('detectable_all', r['detectable']) == r['detectable'] else ' (not whole-log)'}"
+                   f": truth's model z {t['z']:.1f}, LR {t['statistic']:.1f}, p "
+                   f"{t['p_value']:.2g} vs {t['level']:.2g}, estimate {t['estimate']:.3g}, "
+                   f"force/noise {t['snr']:.2f}" + (f", fails: {fails}" if fails else "")
+                   + f"; prior: the effect's test z {p['z']:.1f}, p {p['p_value']:.2g}"
+                   + ("" if r.get("first_step_on_prior") else
+                      " (fails: " + "; ".join(p.get("rejected_because") or ["evidence"]) + ")")
+                   + f", the true force fixed p {p['fixed_p_value']:.2g}, force/noise "
+                   f"{p['snr']:.2f}; "
+                   f"the truth's cut {r.get('truth_cut', np.nan):.2f}; named first: {named}")
     return out
+
+
+def _categories(rows: list[dict]) -> list[str]:
+    """The rows' categories in the order of ``validation.independent.STRENGTHS``."""
+    from validation.independent import STRENGTHS
+    present = {r["category"] for r in rows}
+    return [c for c in STRENGTHS if c in present]
 
 
 def main(argv=None) -> int:
@@ -555,6 +634,12 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
+    ap.add_argument("--validation-others", default="logged", choices=("logged", "simulated"),
+                    help="how the validation's free simulations move the DOFs not diagnosed "
+                         "(diagnose's validation_others)")
+    ap.add_argument("--same-seeds", action="store_true",
+                    help="seed each log as a run of every category would (a run of a few "
+                         "categories then diagnoses the same logs as the full run)")
     ap.add_argument("--excitation", action="store_true",
                     help="generate the logs and print their excitation, no diagnosis")
     ap.add_argument("--truth-maps", action="store_true",
@@ -581,12 +666,14 @@ def main(argv=None) -> int:
         if args.write:
             _write(args.write, " ".join(sys.argv[1:] if argv is None else argv), text)
         return 0
+    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
     for rep in range(args.repeats):
         for v, vehicle in enumerate(args.vehicles.split(",")):
             for c, cat in enumerate(cats):
+                c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
-                             args.truth_maps))
+                             args.validation_others, args.truth_maps))
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]

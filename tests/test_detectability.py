@@ -15,7 +15,8 @@ from stripcoef.diagnose.pipeline import diagnose
 from stripcoef.diagnose.select import _dof_calibration, select_dofs
 from stripcoef.diagnose.settings import DEFAULT_WINDOW, VALIDATION_FRACTION, DiagnoseSettings
 from stripcoef.effects.windows import window_data
-from validation.detectability import FORCE_EFFECTS, oracle, truth_model
+from validation.detectability import (FORCE_EFFECTS, effect_force, oracle,
+                                      truth_model, truth_without)
 from validation.independent import generate
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -51,7 +52,7 @@ def test_the_truth_model_leaves_only_the_noise(videoray):
 def test_oracle_tells_a_tether_from_none(videoray):
     """A 0.28 N s^2/m^3 tether (seed 12's draw) is detectable on the truth's model with its
     coefficient within 3 standard deviations; the same claim on the clean log of that seed (no tether in it)
-    is not; an effect the simulator folds into the truth's coefficients has no oracle."""
+    is not; a clean log has no oracle."""
     log, truth = generate(videoray.to_dict(), "tether_drag", 12, duration=150.0)
     got = oracle(log, videoray, truth)
     assert got["detectable"]
@@ -60,8 +61,37 @@ def test_oracle_tells_a_tether_from_none(videoray):
     clean, clean_truth = generate(videoray.to_dict(), None, 12, duration=150.0)
     clean_truth.effect, clean_truth.strength = "tether_drag", truth.strength
     assert not oracle(clean, videoray, clean_truth)["detectable"]
-    _, other = generate(videoray.to_dict(), "linear_drag", 12, duration=1.0)
-    assert "linear_drag" not in FORCE_EFFECTS and oracle(clean, videoray, other) is None
+    assert "tether_drag" in FORCE_EFFECTS
+    _, none = generate(videoray.to_dict(), None, 12, duration=1.0)
+    assert oracle(clean, videoray, none) is None
+
+
+@pytest.mark.slow
+def test_oracle_of_an_effect_written_into_the_truths_coefficients(videoray):
+    """A linear surge drag (seed 12's draw, X_u = 3.81 N s/m, written into the truth's D_L):
+    the truth's model without it has the prior's D_L, its true force is the difference of
+    the residuals without and with it (adding it to the residual doubles it, taking it away
+    leaves the noise), it is detectable with its coefficient within 3 standard deviations of
+    the change from the prior, and the truth's own model cuts the prior's surge error more
+    than 3x; the same claim on the clean log of that seed is not detectable."""
+    log, truth = generate(videoray.to_dict(), "linear_drag", 12, duration=120.0)
+    assert truth_without(videoray, truth).d_l[0, 0] == videoray.linear_damping[0, 0]
+    assert truth.d_l[0, 0] == truth.strength                 # the truth itself untouched
+    train, _ = split(log, VALIDATION_FRACTION, key="validation")
+    without, force, resid = effect_force(train, videoray, truth)
+    rms = lambda x: float(np.sqrt(np.mean(x ** 2)))           # noqa: E731
+    assert rms(resid[:, 0]) < 0.2 * rms(without.e0[:, 0]) < 0.2 * rms(without.e0[:, 0]
+                                                                       + force[:, 0])
+    got = oracle(log, videoray, truth)
+    assert got["detectable"] and got["detectable_all"]
+    t = got["truth"]
+    change = truth.strength - videoray.linear_damping[0, 0]
+    assert abs(t["estimate"] - change) < 3.0 * t["std"]
+    assert got["truth_cut"] > 3.0
+    assert got["truth_cut"] == pytest.approx(got["prior_error"] / got["truth_error"])
+    clean, clean_truth = generate(videoray.to_dict(), None, 12, duration=120.0)
+    clean_truth.effect, clean_truth.strength = "linear_drag", truth.strength
+    assert not oracle(clean, videoray, clean_truth)["detectable"]
 
 
 def test_a_moving_dof_without_thrust_is_calibrated_through_the_coupling(videoray):

@@ -29,3 +29,35 @@ def test_segment_squared_errors_pool_to_the_free_simulation_errors():
         pooled = free_simulation_errors(log, other, [0, 5], horizon=10.0)
     assert sse.shape == (3, 2) and counts.sum() == t.size
     assert np.sqrt(sse.sum(axis=0) / counts.sum()) == pytest.approx(pooled, rel=1e-12)
+
+
+def test_logged_dofs_follow_the_log_and_leave_the_others_to_the_model():
+    """The validation's equation decoupling (``logged``, diagnose.settings.VALIDATION_OTHERS):
+    a model whose yaw is wrong (N_r x 3) simulates surge and yaw off on a log of the true
+    model; with yaw taken from the log its yaw error is nil (the logged velocity at every
+    sample), and surge, whose own coefficients are right, is simulated as the truth does
+    (within the interpolation's error); the true model with every other DOF logged
+    reproduces surge (gentle inputs, 20 Hz: the light ROV's roll and pitch are fast)."""
+    model = rov_model()
+    t = np.arange(0.0, 25.0, 0.05)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        tau = np.zeros((t.size, 6))
+        tau[:, 0] = np.where(t % 8 < 4, 4.0, -2.0)
+        tau[:, 5] = np.where(t % 6 < 3, 0.1, -0.1)
+        log = simulate(model, t, forces=tau)
+        d = model.to_dict()
+        dl = np.array(d["linear_damping"], float)
+        dl[5, 5] *= 3.0
+        wrong = model.__class__.from_dict({**d, "linear_damping": dl.tolist()})
+        free = free_simulation_errors(log, wrong, [0, 5], horizon=10.0)
+        logged = free_simulation_errors(log, wrong, [0, 5], horizon=10.0, logged=[5])
+        true_free = free_simulation_errors(log, model, [0], horizon=10.0)
+        true_logged = free_simulation_errors(log, model, [0], horizon=10.0,
+                                             logged=[1, 2, 3, 4, 5])
+    assert free[1] > 10.0 * logged[0]
+    assert logged[1] < 1e-12
+    assert logged[0] < 0.2 * free[0]
+    # the logged velocities are linear between the samples: an error of second order in
+    # the sample interval (0.006 m/s at 0.2 s, 0.0004 m/s at 0.05 s on this light ROV)
+    assert true_free[0] < 1e-5 and true_logged[0] < 1e-3

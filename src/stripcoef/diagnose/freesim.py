@@ -131,6 +131,24 @@ class BatchRightHandSide:
         self.hooks = hooks           # per segment: the hook of the current sample
         self.batch = list(batch or [])
         self.tau = self.rows = self.last = None
+        self.logged, self.slope = [], None       # prescribed DOFs (:meth:`prescribe`)
+
+    def prescribe(self, dofs) -> None:
+        r"""Make the velocities of ``dofs`` (indices) follow the log: their rate is the
+        logged one, ``slope`` (S, len(dofs)) set by the caller for each sample interval,
+        and the others' rates solve :math:`M_{ff}\dot
+u_f = F_f - M_{fl}\dot
+u_l`, the
+        partition of :math:`M\dot
+u = F` with the logged rates known (the equation
+        decoupling of output-error identification: measured states of the equations not
+        being tested enter as inputs)."""
+        self.logged = sorted(int(i) for i in dofs)
+        free = [i for i in range(6) if i not in self.logged]
+        m = np.asarray(self.model.mass_matrix, float)
+        self.free = free
+        self.m_ff_inv_t = np.linalg.inv(m[np.ix_(free, free)]).T
+        self.m_fl_t = m[np.ix_(free, self.logged)].T
 
     def __call__(self, times, x):
         quat, nu = x[:, 3:7], x[:, 7:]
@@ -156,7 +174,12 @@ class BatchRightHandSide:
         out = np.empty_like(x)
         out[:, :3] = np.einsum("sij,sj->si", rmat, nu[:, :3])
         out[:, 3:7] = (nu[:, 3:, None] * quat[:, None, :]).reshape(-1, 12) @ _QUAT_RATE
-        out[:, 7:] = force @ self.m_inv_t
+        if self.logged:
+            out[:, 7 + np.array(self.logged)] = self.slope
+            out[:, 7 + np.array(self.free)] = ((force[:, self.free] - self.slope @ self.m_fl_t)
+                                              @ self.m_ff_inv_t)
+        else:
+            out[:, 7:] = force @ self.m_inv_t
         return out
 
 
@@ -200,7 +223,8 @@ def integrate_interval(f, t0, h, x, rtol, atol, ds=1.0):
     return x, ds
 
 
-def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)):
+def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7),
+                          logged=()):
     """The re-simulated velocities of every segment ``(a, b)`` of ``bounds`` of ``log``,
     each from the logged state at its row a with the inputs ``inputs``
     (:func:`stripcoef.logfile.log_inputs` of the whole log): a list of (b - a, 6) arrays
@@ -208,7 +232,13 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     surfaces (:func:`supported`). The effects with a state (a thruster lag, an actuation
     delay) read the input history from the log's first sample: their state at a segment's
     start is the one the logged inputs before it set (a first-order lag of the logged
-    commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input."""
+    commands, Fossen 2011 sec. 9.3), not an equilibrium with the segment's first input.
+
+    ``logged``: DOFs (indices) whose velocity follows the log instead
+    (:meth:`BatchRightHandSide.prescribe`): at each sample its logged value, in between the
+    logged rate of the interval (linear between the samples); when roll and pitch both
+    follow the log the attitude is the logged one at each sample (the restoring moments
+    read it). A DOF without its velocity column in the log is simulated."""
     from stripcoef.effects.laws import effect_entries
     from stripcoef.simulate import InputSampler, initial_state, state_vector
 
@@ -254,6 +284,17 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                     for row in laws]
         hooks = [None] * len(bounds)
     f = BatchRightHandSide(model, hooks, terms, batch)
+    from stripcoef.conventions import VELOCITIES
+    logged = [int(i) for i in logged if VELOCITIES[int(i)] in log]
+    if logged:
+        f.prescribe(logged)
+        nu_log = log.velocities()[:, logged]
+        att = None
+        if 3 in logged and 4 in logged:
+            from scipy.spatial.transform import Rotation
+            from stripcoef.conventions import POSE
+            eta = np.column_stack([log.get(c, np.zeros(t.size)) for c in POSE])
+            att = Rotation.from_euler("ZYX", eta[:, 5:2:-1]).as_quat()
     rtol, atol = tolerances
     ds = 1.0
     ends = starts + lengths - 1                 # the last sample of each segment's history
@@ -285,6 +326,11 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
                 hook["nu_r"] = x[s, 7:]          # the state is not read by a held law
                 f.tau[j] = f.tau[j] + held[s][p](t[r], np.zeros(6), x[s, 7:], hook)
         h = t[rows + 1] - t[rows]
+        if logged:
+            x[np.ix_(act, 7 + np.array(logged))] = nu_log[rows]
+            f.slope = (nu_log[rows + 1] - nu_log[rows]) / h[:, None]
+            if att is not None:
+                x[act, 3:7] = att[rows]
         got = integrate_interval(f, t[rows], h, x[act], rtol, atol, ds)
         if got is None:
             return None

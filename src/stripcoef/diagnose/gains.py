@@ -394,7 +394,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
                           "combinations determined by the log)")
 
 
-def validated(gains: ThrusterGains, val_log, prior, dofs) -> ThrusterGains:
+def validated(gains: ThrusterGains, val_log, prior, dofs, logged=()) -> ThrusterGains:
     """``gains`` kept only if the prior with them simulates the validation log no worse
     than the prior (module docstring: :math:`\\sum_i r_i^2 \\le n`); unchanged without a
     validation log or when not applied."""
@@ -402,8 +402,8 @@ def validated(gains: ThrusterGains, val_log, prior, dofs) -> ThrusterGains:
         return gains
     from stripcoef.diagnose.validate import validation_errors
 
-    before = validation_errors(val_log, prior, dofs)
-    after = validation_errors(val_log, gains.model(prior), dofs)
+    before = validation_errors(val_log, prior, dofs, logged)
+    after = validation_errors(val_log, gains.model(prior), dofs, logged)
     record = {"prior": before, "with_gains": after}
     if before is None or after is None:
         return replace(gains, validation=record)

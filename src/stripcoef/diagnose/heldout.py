@@ -69,10 +69,12 @@ TOLERANCES = (1e-5, 1e-7)
 
 
 def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
-                           tolerances=TOLERANCES):
+                           tolerances=TOLERANCES, logged=()):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
-    (module docstring), or None when a simulation diverges."""
-    got = segment_squared_errors(log, model, dofs, horizon=horizon, tolerances=tolerances)
+    (module docstring), or None when a simulation diverges; ``logged`` as for
+    :func:`segment_squared_errors`."""
+    got = segment_squared_errors(log, model, dofs, horizon=horizon, tolerances=tolerances,
+                                 logged=logged)
     if got is None:
         return None
     sse, counts = got
@@ -80,7 +82,7 @@ def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
 
 
 def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
-                           tolerances=TOLERANCES, bounds=None):
+                           tolerances=TOLERANCES, bounds=None, logged=()):
     r"""``(sse, counts)``: per segment s of :func:`segments` the sum of the squared
     free-simulation errors of each DOF of ``dofs``,
     :math:`\sum_{k \in s}(\hat\nu_i(t_k) - \nu_i(t_k))^2` [(m/s)^2 or (rad/s)^2], an
@@ -89,7 +91,10 @@ def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
     units of a paired comparison of two models (Hastie, Tibshirani & Friedman 2009,
     sec. 7.10: the standard error of a cross-validated difference);
     :func:`free_simulation_errors` is their pooled RMS. ``bounds``: other segments
-    (e.g. :func:`rolling_segments`) instead of :func:`segments`."""
+    (e.g. :func:`rolling_segments`) instead of :func:`segments`. ``logged``: DOFs whose
+    velocity (and, for roll and pitch together, attitude) follows the log instead of the
+    model (:func:`stripcoef.diagnose.freesim.batch_free_velocities`; a model the batch
+    integrator does not replay, one with control surfaces, is simulated in every DOF)."""
     from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay
@@ -103,7 +108,8 @@ def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
     sse = np.zeros((len(bounds), len(dofs)))
     counts = np.array([b - a for a, b in bounds], float)
     if supported(model, inputs):        # all segments at once (diagnose/freesim.py)
-        runs = batch_free_velocities(model, log, bounds, inputs, tolerances=tolerances)
+        runs = batch_free_velocities(model, log, bounds, inputs, tolerances=tolerances,
+                                     logged=logged)
         if runs is None:
             return None
         zeros = np.zeros(t.size)

@@ -115,7 +115,8 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
-                                         UNEXPLAINED_GAIN, VALIDATION_FRACTION, Budget,
+                                         UNEXPLAINED_GAIN, VALIDATION_FRACTION, VALIDATION_OTHERS,
+                                         Budget,
                                          DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
                                          resimulated_errors, validate_changes,
@@ -132,6 +133,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation: float | None = VALIDATION_FRACTION,
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
+             validation_others: str = "logged",
              one_added_mass: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
@@ -172,6 +174,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         of :data:`BANDS`; ``bands``, when given, overrides them. Recorded in the JSON with
         the row each width came from (``prior_widths``, ``per_dof.<dof>.calibration.
         band_source``).
+    validation_others : str
+        ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
+        take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
+        diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
     one_added_mass : bool
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
         (:attr:`DiagnoseSettings.one_added_mass`; off by default).
@@ -200,6 +206,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not prior widths", key="prior_widths",
                          value=type(prior_widths).__name__,
                          expected="a PriorWidths (method_prior_widths(vehicle)) or None")
+    if validation_others not in VALIDATION_OTHERS:
+        raise InputError("not a way to move the DOFs not diagnosed", key="validation_others",
+                         value=validation_others,
+                         expected="one of " + ", ".join(VALIDATION_OTHERS))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -213,6 +223,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         resimulate=bool(resimulate), bands=bands, max_steps=max_steps,
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
+        validation_others=validation_others,
         one_added_mass=bool(one_added_mass))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
@@ -268,7 +279,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
-            gains = validated(gains, val_log, model, dofs)
+            gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))
         if gains is not None and gains.applied:
             model = gains.model(model)
             data = window_data(train_log, model, window=window)
@@ -303,7 +314,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     per, fits = share_current(per, fits)    # the water's one current (current.py)
     exclude, record = set(), None
     if val_log is not None:
-        exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget)
+        exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
+                                           logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
     calibrated = calibrated_model(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
@@ -311,7 +323,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     written = type(calibrated).from_dict(calibrated.to_dict())
     per = read_back(per, fits, written, train_log, window=window, exclude=exclude)
     if record is not None and clipped:      # the validated model was clipped afterwards
-        record["kept_changes"] = validation_errors(val_log, written, dofs)
+        record["kept_changes"] = validation_errors(val_log, written, dofs,
+                                                   settings.logged_dofs(dofs))
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
         summary = {"metric": METRIC, "dof": r.dof, "units": r.units,

@@ -39,7 +39,7 @@ def heldout_errors(result, prior, written) -> dict:
 
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
-                     budget: Budget = UNLIMITED) -> tuple[set, dict]:
+                     budget: Budget = UNLIMITED, logged=()) -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -76,6 +76,10 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     rule) removed on the current log a sway calibration whose held-out error was 35 % below
     the prior's (README of reference_tables/real_logs).
 
+    ``logged``: the DOFs (indices, not diagnosed) whose velocities the free simulations
+    take from the log (:func:`stripcoef.diagnose.heldout.segment_squared_errors`;
+    :data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
@@ -86,7 +90,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         return None if got is None else \
             [float(np.sqrt(v)) for v in np.sum(got[0], axis=0) / np.sum(got[1])]
 
-    base_sse = segment_squared_errors(val_log, prior, dofs)
+    logged = sorted(int(j) for j in logged)
+    base_sse = segment_squared_errors(val_log, prior, dofs, logged=logged)
     base = errors(base_sse)
     ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
     ref = [max(e, 1e-12) for e in ref]
@@ -99,7 +104,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         if key not in cache:
             budget.check()
             got = segment_squared_errors(val_log, calibrated_model(prior, per, fits, key),
-                                         dofs)
+                                         dofs, logged=logged)
             e = errors(got)
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
@@ -163,6 +168,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                              "part of the fitting log, not used to fit: each change is kept "
                              "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
+              "logged_dofs": [DOF[j] for j in logged],
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed_for_own_dof": vetoed,
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
@@ -261,10 +267,11 @@ def _named(errors, dofs):
     return None if errors is None else {DOF[i]: float(v) for i, v in zip(dofs, errors)}
 
 
-def validation_errors(val_log, model, dofs):
+def validation_errors(val_log, model, dofs, logged=()):
     """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
-    rad/s] (the record's ``kept_changes`` form), None when a simulation diverges."""
+    rad/s] (the record's ``kept_changes`` form), None when a simulation diverges;
+    ``logged`` as for :func:`validate_changes`."""
     from stripcoef.diagnose.heldout import free_simulation_errors
 
-    return _named(free_simulation_errors(val_log, model, dofs), dofs)
+    return _named(free_simulation_errors(val_log, model, dofs, logged=logged), dofs)
 
