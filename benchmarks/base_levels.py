@@ -49,8 +49,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from benchmarks.cad_shapes import (DOFS, FAMILIES, SIGNIFICANT, make_shape,  # noqa: E402
-                                   stored_references, write_as_user)
+from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, stored_references,  # noqa: E402
+                                   user_files)
 
 RHO = 1000.0
 TOL = 0.05
@@ -77,15 +77,8 @@ def capture(seed: int, count: int, panels: int, only=None) -> dict:
         return real(mesh, **k)
 
     out = {}
-    rng = np.random.default_rng(seed)
     with tempfile.TemporaryDirectory() as tmp:
-        for k in range(count):
-            family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
-            parts, _ = make_shape(family, rng)
-            if only is not None and k not in only:
-                rng.uniform(), rng.uniform()                # write_as_user's two draws
-                continue
-            path, unit, _ = write_as_user(parts, Path(tmp) / family, rng)
+        for k, family, path, unit in user_files(seed, count, tmp, only):
             rec.clear()
             try:
                 panels_mod.panel_added_mass = spy

@@ -178,6 +178,22 @@ def drawn_shapes(seed: int, count: int):
         yield k, family, parts, what
 
 
+def user_files(seed: int, count: int, directory, only=None):
+    """``(k, family, path, length_unit)`` of the first ``count`` shapes of ``seed`` written as a
+    user has them (:func:`write_as_user`, in ``directory``), drawn exactly as :func:`main`
+    draws them; a shape not in ``only`` is drawn (its :func:`write_as_user` draws too) but not
+    written, so that shape k is the stored run's shape k."""
+    rng = np.random.default_rng(seed)
+    for k in range(count):
+        family = FAMILIES[int(rng.integers(0, len(FAMILIES)))]
+        parts, _ = make_shape(family, rng)
+        if only is not None and k not in only:
+            rng.uniform(), rng.uniform()                # write_as_user's two draws
+            continue
+        path, unit, _ = write_as_user(parts, Path(directory) / family, rng)
+        yield k, family, path, unit
+
+
 def write_as_user(parts, path_stem, rng):
     """The shape as a user has it: mm or m, OBJ with split vertices or STL. Returns (path,
     length_unit, description)."""
