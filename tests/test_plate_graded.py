@@ -128,3 +128,15 @@ def test_the_graded_procedure_meets_the_disc_and_dnv_table_a2():
     assert len(c["plates"]) == 3
     for ratio, (lam, dnv, err) in c["plates"].items():
         assert abs(lam - dnv) <= 0.03 * dnv + 0.0005, (ratio, lam, dnv)
+
+
+def test_another_seeds_run_gets_only_its_own_references():
+    """The fine and graded reference files number the shapes of one seed
+    (validation.cad_shapes.REFERENCE_SEED): a stored run of another seed (its command names
+    it) is compared with its own stored references only, never with another shape's."""
+    from validation import ROOT
+    from validation.cad_shapes import best_references
+
+    other = ROOT / "reference_tables" / "bem" / "cad_shapes_3068041537.csv"
+    best = best_references(other)
+    assert best and {source for _, _, source in best.values()} == {"3,000 faces"}

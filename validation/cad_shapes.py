@@ -7,6 +7,7 @@ states what that run measured; a new run (a fresh seed) replaces the file.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +28,8 @@ FINE_750 = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_750.csv"
 FINE_EXTRA = ROOT / "reference_tables" / "bem" / "cad_shapes_fine_levels_extra.csv"
 #: the level files of the fine references: every level of a shape, in one family
 FINE_ALL = (FINE, FINE_750, FINE_EXTRA)
+#: the seed whose shapes the fine and graded reference files hold (shape k of that seed)
+REFERENCE_SEED = 1375923287
 #: the thin members' shape numbers in FINE start here
 THIN_OFFSET = 100
 #: the seed's plates solved with panels graded towards the edges (benchmarks.plate_graded)
@@ -686,17 +689,21 @@ def best_references(model_path=DATA) -> dict:
     index of levels before the asymptotic range can be small and wrong (the plates' stored
     references, bands of 2-6 %, lie up to 18 % from the edge-graded ones, whose bands are
     0.3-2.5 %: docs/validation.md); an unknown band is never chosen."""
-    _, stored = read_stored_run(model_path)
+    command, stored = read_stored_run(model_path)
     out: dict = {}
     shapes: dict = {}
     for r in stored:
         if r["what"].startswith("FAILED"):
             continue
         shapes.setdefault(int(r["shape"]), []).append(r)
-    levels = read_levels(*FINE_ALL)
-    graded = read_graded() if GRADED.exists() else {}
+    # the fine and graded files number the shapes of REFERENCE_SEED: another seed's run (its
+    # command names its seed) has only its own stored references
+    seed = re.search(r"--seed (\d+)", command)
+    ours = seed is None or int(seed.group(1)) == REFERENCE_SEED
+    levels = read_levels(*FINE_ALL) if ours else {}
+    graded = read_graded() if ours and GRADED.exists() else {}
     coarse = {}
-    if GRADED_COARSE.exists():
+    if ours and GRADED_COARSE.exists():
         for k, lv in read_graded_levels(GRADED_COARSE).items():
             n = [lv[x][0] for x in sorted(lv)]
             coarse[k] = (*fine_reference(n, [lv[x][1] for x in sorted(lv)]), n)
