@@ -65,7 +65,10 @@ CANDIDATES = ("three_quarter", "lattice", "trailing_edge", "sidewash", "static_d
 #: Yasukawa & Yoshimura (2015), J. Mar. Sci. Technol. 20, 37-52, their table of the KVLCC2
 #: model's rudder interaction coefficients (0.395 for beta_R < 0, 0.640 for beta_R > 0: the
 #: propeller's swirl makes them differ; a linear derivative at beta_R = 0 takes their mean).
-#: A ship's value with its propeller, outside its range on a body of revolution (module
+#: The values were read second-hand, from the KVLCC2 L7 model's parameters of the ShipMMG.jl
+#: package (GitHub ShipMMG/ShipMMG.jl, src/data.jl; with x'_R = -0.500, so l'_R / x'_R = 1.42),
+#: not from the paper's page; Kijima et al.'s (1990) regression of gamma_R on C_b B/L was not
+#: found in a readable form and is not used. A ship's value with its propeller, outside its range on a body of revolution (module
 #: docstring); a what-if constant, not the model's.
 MMG_GAMMA_R = 0.5 * (0.395 + 0.640)
 #: The MMG effective longitudinal coordinate of the rudder position l'_R [-, from midship, x
