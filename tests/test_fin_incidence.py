@@ -129,3 +129,36 @@ def test_the_rank_one_change_is_the_model_built_with_the_rule(monkeypatch):
         direct = _roddy_derivatives(stripcoef.estimate(vehicle).about(_moment_point()))
     for k, v in direct.items():
         assert via_rule[k] == pytest.approx(v, rel=1e-9, abs=1e-12), k
+
+
+@pytest.mark.slow
+def test_the_mmg_inflow_scales_both_terms_and_moves_the_lever_aft():
+    """The MMG what-if (gamma_R (v + l_R r) at the rudder, KVLCC2 constants of Yasukawa &
+    Yoshimura 2015) changes the planes' panels only: the sail's increment is the model's, the
+    planes' drift column is gamma_R times the model's fin part, the lever moves aft to near the
+    effective station l'_R L_BP from midship (the increment holds added mass and Munk part:
+    within 0.03 L_BP), still short of Roddy's -0.99; the rudders alone give the same yaw-plane
+    rows (the horizontal planes answer w and q only)."""
+    from validation.fin_incidence import MMG_GAMMA_R, MMG_L_R, mmg_station
+    from validation.lift import FT, val
+
+    assert MMG_GAMMA_R == pytest.approx(0.5175) and MMG_L_R == -0.710
+    rows = {(r["component"], r["candidate"]): r for r in component_rows("datcom")}
+    for cand in ("mmg_planes", "mmg_rudder"):
+        sail, base = rows[("sail", cand)], rows[("sail", "three_quarter")]
+        for k in ("Yv", "Nv", "Yr", "Nr", "lever"):
+            assert sail[k] == pytest.approx(base[k], rel=1e-12), k
+    p, r = rows[("stern planes", "mmg_planes")], rows[("stern planes", "mmg_rudder")]
+    for k in ("Yv", "Nv", "Yr", "Nr"):
+        assert p[k] == pytest.approx(r[k], rel=1e-9), k
+    x_r = mmg_station() / (FT * val("t1.L_BP"))
+    assert x_r == pytest.approx(MMG_L_R + (val("moment_point.x") - 0.5 * val("t1.L_BP"))
+                                / val("t1.L_BP"), rel=1e-12)
+    assert p["lever"] == pytest.approx(x_r, abs=0.03)
+    assert p["measured_lever"] < p["lever"] - 0.2
+    # the yaw-plane rows differ from the model's by the fins' lift alone: Y'_v drops by
+    # (1 - gamma_R) of the planes' lift, which is most of the increment
+    b = rows[("stern planes", "three_quarter")]
+    assert 0.4 < p["Yv"] / b["Yv"] < 0.6
+    dl = candidate_lift(5, "datcom", "mmg_rudder")
+    assert np.abs(dl[2]).max() == 0.0 and np.abs(dl[4]).max() == 0.0   # no Z, M from rudders

@@ -29,7 +29,18 @@ is applied here as :math:`\Delta L = \sum_p u_p (a'_p - a_p)^T` on the unchanged
   :math:`\varepsilon` as ``sidewash``'s body pair. Its premise is a wing near the centre
   of rotation, whose lift and so whose downwash do not answer the rotation; the body lift here
   acts at x_0, near the stern, so on this body the rule contradicts the body's own model and is
-  shown for its size only.
+  shown for its size only;
+- ``mmg_planes`` and ``mmg_rudder``: the ship manoeuvring standard's rudder inflow (MMG:
+  Yasukawa & Yoshimura 2015, J. Mar. Sci. Technol. 20, 37-52, sec. 2, the rudder force model:
+  :math:`v_R = U \gamma_R \beta_R`, :math:`\beta_R = \beta - \ell'_R r'`, with
+  :math:`\beta = -v/U`, :math:`r' = r L/U` and x from midship, so the rudder sees
+  :math:`\gamma_R (v + \ell'_R L r)`: :math:`a' = \gamma_R [e;\ p_R \times e]`, p_R at
+  :math:`\ell'_R L_{BP}` from midship) on all four stern appendages (the horizontal planes by
+  the body's symmetry, in pitch) or on the two rudders only, with the KVLCC2 constants that
+  paper tabulates (:data:`MMG_GAMMA_R`, :data:`MMG_L_R`). These are captive-test values of a
+  single-screw tanker hull behind its propeller (C_b 0.81, B/L 0.18), far outside any range for
+  a body of revolution (SUBOFF's B/L 0.116, no propeller): a what-if measurement of the form,
+  never the model.
 
 Nothing is fitted to Roddy's data. ``python -m benchmarks.rotary_trace --candidates``.
 """
@@ -48,7 +59,21 @@ from validation.lift import (FT, SUBOFF_COMPARED, _drift_rows, _issue_ok, _momen
 from validation.rotary_trace import TERMS, measured_increment
 
 #: The incidence rules compared, in order (module docstring).
-CANDIDATES = ("three_quarter", "lattice", "trailing_edge", "sidewash", "static_downwash")
+CANDIDATES = ("three_quarter", "lattice", "trailing_edge", "sidewash", "static_downwash",
+              "mmg_planes", "mmg_rudder")
+#: The MMG flow-straightening coefficient gamma_R [-]: the mean of the two KVLCC2 values of
+#: Yasukawa & Yoshimura (2015), J. Mar. Sci. Technol. 20, 37-52, their table of the KVLCC2
+#: model's rudder interaction coefficients (0.395 for beta_R < 0, 0.640 for beta_R > 0: the
+#: propeller's swirl makes them differ; a linear derivative at beta_R = 0 takes their mean).
+#: The values were read second-hand, from the KVLCC2 L7 model's parameters of the ShipMMG.jl
+#: package (GitHub ShipMMG/ShipMMG.jl, src/data.jl; with x'_R = -0.500, so l'_R / x'_R = 1.42),
+#: not from the paper's page; Kijima et al.'s (1990) regression of gamma_R on C_b B/L was not
+#: found in a readable form and is not used. A ship's value with its propeller, outside its range on a body of revolution (module
+#: docstring); a what-if constant, not the model's.
+MMG_GAMMA_R = 0.5 * (0.395 + 0.640)
+#: The MMG effective longitudinal coordinate of the rudder position l'_R [-, from midship, x
+#: forward, over L_pp]: the KVLCC2 value -0.710 of the same table (Yasukawa & Yoshimura 2015).
+MMG_L_R = -0.710
 #: The body-lift rules they are measured under (the default's and the closest option).
 RULES = ("datcom", "stratford_panel")
 #: Drift angles of Appendix B's checks [deg] (validation.lift.drift_curve_comparisons).
@@ -118,12 +143,24 @@ def candidate_lift(built: int, method: str, candidate: str, ring: bool = False) 
         elif candidate == "static_downwash":
             new = a.copy()
             new[:3] *= 1.0 - eps.get(name, 0.0)
+        elif candidate.startswith("mmg"):
+            if not name.startswith("rudder" if candidate == "mmg_rudder" else ("rudder",
+                                                                                 "sternplane")):
+                continue
+            new = MMG_GAMMA_R * lift_column(e, np.array([mmg_station(), x_q[1], x_q[2]]))
         else:
             aft = (rotary_point_lattice(float(effective_aspect_ratio(p.span, p.area)))
                    if candidate == "lattice" else 0.75)      # chords aft of the 1/4 chord
             new = lift_column(e, x_q - np.array([aft * p.chord, 0.0, 0.0]))
         out += np.outer(u, new - a)
     return out
+
+
+def mmg_station() -> float:
+    r"""The MMG rudder's effective station :math:`x_R = \ell'_R L_{BP} + x_{mid}` from Roddy's
+    moment point [m, x forward]: :data:`MMG_L_R` from midship (half L_BP aft of the nose,
+    Yasukawa & Yoshimura 2015's origin), the moment point 6.6042 ft aft of the nose."""
+    return FT * (MMG_L_R * val("t1.L_BP") + val("moment_point.x") - 0.5 * val("t1.L_BP"))
 
 
 def candidate_model(built: int, method: str, candidate: str, ring: bool = False):
@@ -251,7 +288,9 @@ def sail_diagnosis(method: str = "stratford_panel") -> dict:
 LABEL = {"three_quarter": "3/4 chord (the model)", "lattice": "vortex lattice",
          "trailing_edge": "trailing edge (slender wing)",
          "sidewash": "sidewash option with the body pair",
-         "static_downwash": "downwash on the static terms only"}
+         "static_downwash": "downwash on the static terms only",
+         "mmg_planes": "MMG gamma_R (v + l_R r), four stern planes (what-if)",
+         "mmg_rudder": "MMG gamma_R (v + l_R r), rudders only (what-if)"}
 
 
 def section() -> str:
@@ -273,6 +312,7 @@ def section() -> str:
     by = {(r["method"], r["component"], r["candidate"]): r for m in RULES for r in comp[m]}
     eps = {m: epsilon_at(5, m) for m in RULES}
     chord = chord_over_length()
+    ref_length = FT * val("t1.L_BP")
     lattice_aft = rotary_point_lattice(1.5)
     base = {m: count[(m, "three_quarter")] for m in RULES}
     sd = sail_diagnosis()
@@ -350,7 +390,23 @@ def section() -> str:
         "coefficient and an effective lever longer than the rudder's own, the form of Roddy's "
         "stern planes, but its constants are captive-test values of single ships or regressions "
         "on a ship's block coefficient, beam and draught behind a propeller, defined for no body "
-        "of revolution: not used. So the model is not changed and the default keeps the 3/4 "
+        "of revolution (SUBOFF's B/L is 0.116, with no propeller). Measured as a what-if only, "
+        f"with that paper's KVLCC2 constants (gamma_R {MMG_GAMMA_R:.4f}, the mean of its 0.395 "
+        f"and 0.640; l'_R {MMG_L_R:+.3f} from midship, {mmg_station() / ref_length:+.3f} L_BP "
+        "from the moment point) on the four stern appendages or on the rudders alone (the same "
+        "yaw-plane rows): the planes' Y'_v falls to "
+        f"{by[('datcom', 'stern planes', 'mmg_planes')]['Yv']:.2f} of the increment under "
+        f"`datcom` ({by[('stratford_panel', 'stern planes', 'mmg_planes')]['Yv']:.2f} under "
+        f"`stratford_panel`), their Y'_r to "
+        f"{by[('datcom', 'stern planes', 'mmg_planes')]['Yr']:.2f} "
+        f"({by[('stratford_panel', 'stern planes', 'mmg_planes')]['Yr']:.2f}), the lever "
+        f"moves to {by[('stratford_panel', 'stern planes', 'mmg_planes')]['lever']:+.3f}, "
+        "and the drift points go "
+        f"{base['datcom']['drift'][0]} -> {count[('datcom', 'mmg_planes')]['drift'][0]} "
+        f"(`datcom`), {base['stratford_panel']['drift'][0]} -> "
+        f"{count[('stratford_panel', 'mmg_planes')]['drift'][0]} (`stratford_panel`): the "
+        "ship's constants reach neither the measured lever nor the measured size, and are not "
+        "used. So the model is not changed and the default keeps the 3/4 "
         "chord; the stern planes' yaw-rate force stays "
         f"{by[('stratford_panel', 'stern planes', 'three_quarter')]['Yr']:.2f} of Roddy's "
         f"increment under `stratford_panel` ("
