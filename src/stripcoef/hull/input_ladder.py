@@ -24,19 +24,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from stripcoef.hull.bisection import refine
+from stripcoef.hull.bisection import refine, split_in_four
 from stripcoef.hull.remesh import LEAST_FACE_RATIO
 
 
 def ladder_levels(vertices, faces, panels: int, limit: int):
     """The four levels (coarse to fine, (vertices, faces) each) of a closed mesh of at most
     ``panels`` / 4 faces: the input bisected to N_1 = max(N/4, 2F) and 2 N_1 panels, each
-    split in four at the edge midpoints (trimesh.remesh.subdivide, as
-    :func:`stripcoef.hull.panels.split_in_four`), or ``None`` when the input is larger or the
-    finest level would exceed ``limit`` panels or the bisection cannot reach a second pair
-    (the caller's two levels then)."""
-    import trimesh.remesh
-
+    split in four at the edge midpoints (:func:`stripcoef.hull.bisection.split_in_four`), or
+    ``None`` when the input is larger or the finest level would exceed ``limit`` panels or the
+    bisection cannot reach a second pair (the caller's two levels then)."""
     v, f = np.asarray(vertices, float), np.asarray(faces, np.int64)
     if 4 * len(f) > panels:
         return None
@@ -47,4 +44,4 @@ def ladder_levels(vertices, faces, panels: int, limit: int):
     # LEAST_FACE_RATIO times the first's panels, the remeshed families' least step)
     if 4 * len(b2[1]) > limit or len(b2[1]) < LEAST_FACE_RATIO * len(b1[1]):
         return None
-    return [b1, b2, trimesh.remesh.subdivide(*b1), trimesh.remesh.subdivide(*b2)]
+    return [b1, b2, split_in_four(*b1), split_in_four(*b2)]

@@ -89,8 +89,8 @@ import numpy as np
 
 from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
-from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine re-exported)
-    bisect_longest, enclosed_volume, refine, surface_area)
+from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine, split_in_four re-exported)
+    bisect_longest, enclosed_volume, refine, split_in_four, surface_area)
 from stripcoef.hull.graded_panels import box_faces, box_level
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
@@ -99,7 +99,7 @@ from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
     relative_error, richardson_error)
-from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels
+from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels, fold_mask
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -207,15 +207,6 @@ def coarsen(vertices, faces, panels: int, quadrics=None):
 #: Largest change of the enclosed volume by the coarsening [-]: beyond it the mesh has members
 #: thinner than the panels (tubes, plates) that the clustering collapsed.
 VOLUME_TOLERANCE = 0.02
-
-
-def split_in_four(vertices, faces):
-    """Every face split into four at its edge midpoints (trimesh.remesh.subdivide): the same
-    polyhedron with the panel size halved, so that the two levels of the extrapolation are one
-    family of meshes.  Returns (vertices, faces)."""
-    import trimesh.remesh
-
-    return trimesh.remesh.subdivide(vertices, faces)
 
 
 def panel_levels(vertices, faces, panels: int, where=None):
@@ -870,7 +861,7 @@ def edge_features(vertices, faces) -> EdgeFeatures:
     mesh = trimesh.Trimesh(v, f, process=False)
     ang = np.asarray(mesh.face_adjacency_angles, float)
     convex = np.asarray(mesh.face_adjacency_convex, bool)
-    fold = ang >= np.pi - np.radians(FOLD_ANGLE)
+    fold = fold_mask(ang)
     edge = convex & ~fold & (ang > np.radians(FEATURE_ANGLE) * (1.0 + 1e-9))
     turning = float(ang[edge].max()) if edge.any() else 0.0
     pairs = mesh.face_adjacency[fold]

@@ -342,15 +342,21 @@ def _degenerate(vertices, faces) -> bool:
 FOLD_ANGLE = 0.1
 
 
+def fold_mask(turning) -> np.ndarray:
+    """Which adjacent face pairs are folds, from their turning angles [rad] (trimesh's
+    ``face_adjacency_angles``): the normals turn by at least 180 - :data:`FOLD_ANGLE`
+    degrees, one face folded back onto the other.  The one fold rule, read by :func:`folds`
+    and :func:`stripcoef.hull.panels.edge_features`."""
+    return np.asarray(turning, float) >= np.pi - np.radians(FOLD_ANGLE)
+
+
 def folds(vertices, faces) -> int:
-    """The number of fold edges of a closed mesh: two adjacent faces whose normals turn by
-    more than 180 - :data:`FOLD_ANGLE` degrees (one folded back onto the other; trimesh's
-    ``face_adjacency_angles``)."""
+    """The number of fold edges of a closed mesh (:func:`fold_mask`)."""
     import trimesh
 
     ang = trimesh.Trimesh(np.asarray(vertices, float), np.asarray(faces, np.int64),
                           process=False).face_adjacency_angles
-    return int(np.count_nonzero(np.asarray(ang) >= np.pi - np.radians(FOLD_ANGLE)))
+    return int(np.count_nonzero(fold_mask(ang)))
 
 
 def _new_folds(vertices, faces, rv, rf) -> bool:
