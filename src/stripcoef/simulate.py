@@ -187,13 +187,20 @@ def _matrix_euler(rmat, quat) -> np.ndarray:
                      np.arctan2(rmat[1, 0], rmat[0, 0])])
 
 
+def attitude_quaternion(eta) -> np.ndarray:
+    r"""The unit quaternion(s) (scipy's order: vector part, then scalar) of :math:`R(\Theta)`
+    of a pose ``eta`` (6,) or poses (n, 6) = (x, y, z [m], phi, theta, psi [rad]): the
+    zyx-convention rotation psi about z, then theta about y, then phi about x (Fossen 2011,
+    eq. 2.18)."""
+    return Rotation.from_euler("ZYX", np.asarray(eta, dtype=float)[..., 5:2:-1]).as_quat()
+
+
 def state_vector(eta, nu) -> np.ndarray:
     r"""The integrated state :math:`x = [p;\ q;\ \nu]` (13,) of a pose ``eta`` = (x, y, z [m],
     phi, theta, psi [rad]) and a body velocity ``nu`` [m/s, rad/s]: position in NED, the unit
-    quaternion of :math:`R(\Theta)` (scipy's order: vector part, then scalar) and nu."""
+    quaternion of :math:`R(\Theta)` (:func:`attitude_quaternion`) and nu."""
     eta = np.asarray(eta, dtype=float)
-    quat = Rotation.from_euler("ZYX", eta[5:2:-1]).as_quat()
-    return np.concatenate([eta[:3], quat, np.asarray(nu, dtype=float)])
+    return np.concatenate([eta[:3], attitude_quaternion(eta), np.asarray(nu, dtype=float)])
 
 
 def pose(states, eta0=None) -> np.ndarray:

@@ -240,7 +240,8 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
     follow the log the attitude is the logged one at each sample (the restoring moments
     read it). A DOF without its velocity column in the log is simulated."""
     from stripcoef.effects.laws import effect_entries
-    from stripcoef.simulate import InputSampler, initial_state, state_vector
+    from stripcoef.simulate import (InputSampler, attitude_quaternion, initial_state,
+                                    state_vector)
 
     t = np.asarray(log["t"], float)
     history = bool(model.effects)
@@ -291,10 +292,9 @@ def batch_free_velocities(model, log, bounds, inputs, *, tolerances=(1e-5, 1e-7)
         nu_log = log.velocities()[:, logged]
         att = None
         if 3 in logged and 4 in logged:
-            from scipy.spatial.transform import Rotation
             from stripcoef.conventions import POSE
             eta = np.column_stack([log.get(c, np.zeros(t.size)) for c in POSE])
-            att = Rotation.from_euler("ZYX", eta[:, 5:2:-1]).as_quat()
+            att = attitude_quaternion(eta)
     rtol, atol = tolerances
     ds = 1.0
     ends = starts + lengths - 1                 # the last sample of each segment's history

@@ -441,10 +441,8 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
     is the RMS of the velocity part of :math:`\delta` over the samples and ``draws`` draws.
     The model's effects are left out (the vehicle's matrices, restoring forces and Coriolis
     terms set the growth)."""
-    from scipy.spatial.transform import Rotation
-
     from stripcoef.diagnose.freesim import BatchRightHandSide, integrate_interval
-    from stripcoef.simulate import InputSampler
+    from stripcoef.simulate import InputSampler, attitude_quaternion
 
     t = np.asarray(log["t"], float)
     inputs = _batch_inputs(log, model)
@@ -460,7 +458,7 @@ def noise_growth(log, model, dofs, *, horizon: float = HORIZON, seed: int = 0,
         n = len(next(iter(cols.values())))
         get = [np.asarray(cols[c], float) if c in cols else np.zeros(n)
                for c in ("x", "y", "z", "phi", "theta", "psi") + VELOCITIES]
-        quat = Rotation.from_euler("ZYX", np.column_stack(get[5:2:-1])).as_quat()
+        quat = attitude_quaternion(np.column_stack(get[:6]))
         return np.column_stack([*get[:3], quat, *get[6:]])
 
     cols = {c: np.asarray(log[c], float) for c in log.columns}
