@@ -587,3 +587,16 @@ def test_method_prior_widths_recover_an_added_mass_within_the_band():
     assert res.model.added_mass[0, 0] == pytest.approx(ma[0, 0], rel=0.04)
     assert res.model.quadratic_damping[0, 0] == pytest.approx(truth.quadratic_damping[0, 0],
                                                               rel=0.03)
+
+
+def test_an_unknown_way_to_move_the_other_dofs_is_a_one_line_input_error():
+    """``validation_others`` names how the validation moves the DOFs not diagnosed
+    (settings.VALIDATION_OTHERS): anything else is refused before any fit, naming the key,
+    the value and the choices."""
+    t = np.arange(0.0, 30.0, 0.1)
+    log = Log({"t": t, "u": np.full(t.size, 0.3), "X": np.full(t.size, 1.0)})
+    with pytest.raises(InputError) as exc:
+        diagnose(log, rov_model(), dof="surge", validation_others="frozen")
+    text = str(exc.value)
+    assert "validation_others" in text and "frozen" in text and "logged" in text
+    assert "\n" not in text
