@@ -282,15 +282,10 @@ def main(argv=None) -> int:
     ap.add_argument("--whole", action="store_true",
                     help="solve the whole body (no mirror planes), as the base install does")
     args = ap.parse_args(argv)
-    from validation.cad_shapes import best_references
+    from validation.cad_shapes import best_matrices
 
     stored = stored_references(args.references)
-    refs, bands = {}, {}
-    for (k, i, j), (value, band, _) in best_references(args.references).items():
-        refs.setdefault(k, np.zeros((6, 6)))
-        bands.setdefault(k, np.zeros((6, 6)))
-        refs[k][i, j] = refs[k][j, i] = value
-        bands[k][i, j] = bands[k][j, i] = band
+    refs, bands = best_matrices(args.references)
     only = set(stored) if args.only is None else set(args.only) & set(stored)
     shapes = capture(args.seed, args.count, args.panels, only=only)
     results = {}

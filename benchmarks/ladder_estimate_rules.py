@@ -230,14 +230,10 @@ def references(path) -> tuple:
     """({shape: 6x6 reference}, which): the most resolved references of seed 1375923287's
     stored run, else the stored run's own (the fine and graded references of
     ``best_references`` are that seed's shapes)."""
-    from validation.cad_shapes import DATA, best_references
+    from validation.cad_shapes import DATA, best_matrices
 
     if Path(path).resolve() == Path(DATA).resolve():
-        refs: dict = {}
-        for (k, i, j), (value, _, _) in best_references(path).items():
-            refs.setdefault(k, np.zeros((6, 6)))
-            refs[k][i, j] = refs[k][j, i] = value
-        return refs, "the most resolved reference of each term"
+        return best_matrices(path)[0], "the most resolved reference of each term"
     return ({k: x["ref"] for k, x in stored_references(path).items()},
             "the stored run's references")
 

@@ -273,16 +273,10 @@ def main(argv=None) -> int:
     sets = {"the references of " + args.references: (
         {k: x["ref"] for k, x in stored.items()}, {k: x["gci"] for k, x in stored.items()})}
     if args.best:
-        from validation.cad_shapes import best_references
+        from validation.cad_shapes import best_matrices
 
-        refs, bands = {}, {}
-        for (k, i, j), (value, band, _) in best_references(args.references).items():
-            refs.setdefault(k, np.zeros((6, 6)))
-            bands.setdefault(k, np.zeros((6, 6)))
-            refs[k][i, j] = refs[k][j, i] = value
-            bands[k][i, j] = bands[k][j, i] = band
         sets["the most resolved reference of each term (validation.cad_shapes."
-             "best_references)"] = (refs, bands)
+             "best_references)"] = best_matrices(args.references)
     shapes = capture(args.seed, args.count, args.max_panels, only=set(stored))
     cpu = np.array([s["cpu"] for s in shapes.values()])
     text = (f"`python -m benchmarks.panel_estimate_rule --seed {args.seed} --count "

@@ -743,6 +743,18 @@ def best_references(model_path=DATA) -> dict:
     return out
 
 
+def best_matrices(model_path=DATA) -> tuple[dict, dict]:
+    """``({shape: 6x6 reference}, {shape: 6x6 band})`` [kg, kg m, kg m^2] of
+    :func:`best_references`, each term and its transpose (a term without a reference: 0)."""
+    refs: dict = {}
+    bands: dict = {}
+    for (k, i, j), (value, band, _) in best_references(model_path).items():
+        ref, bnd = refs.setdefault(k, np.zeros((6, 6))), bands.setdefault(k, np.zeros((6, 6)))
+        ref[i, j] = ref[j, i] = value
+        bnd[i, j] = bnd[j, i] = band
+    return refs, bands
+
+
 def best_comparison(model_path=DATA) -> list[dict]:
     """Per term of the stored run: the model against :func:`best_references`, the error and
     the band relative to the best reference's diagonal scale (a coupling: sqrt(A_ii A_jj))."""
