@@ -799,6 +799,9 @@ def main(argv=None) -> int:
                     help="diagnose against the prior with the truth's thrust maps (each "
                          "thruster's C_t; the log's own thruster effect left out): the "
                          "thruster-gain background removed, an oracle")
+    ap.add_argument("--only-seeds", default=None,
+                    help="comma-separated log seeds: diagnose only these logs of the run (a "
+                         "log's seed names its vehicle and category)")
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of an earlier run's output (a partial "
                          "run's too) instead of running")
@@ -827,6 +830,9 @@ def main(argv=None) -> int:
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
                              args.validation_others, args.truth_maps))
+    if args.only_seeds:
+        keep = {int(x) for x in args.only_seeds.split(",")}
+        jobs = [j for j in jobs if j[2] in keep]
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]
