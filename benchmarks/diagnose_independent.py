@@ -803,8 +803,9 @@ def main(argv=None) -> int:
                     help="comma-separated log seeds: diagnose only these logs of the run (a "
                          "log's seed names its vehicle and category)")
     ap.add_argument("--from-rows", default=None,
-                    help="summarise the 'row' lines of an earlier run's output (a partial "
-                         "run's too) instead of running")
+                    help="summarise the 'row' lines of earlier runs' outputs (comma-separated "
+                         "files; partial runs' too; with --only-seeds and --modes, those rows) "
+                         "instead of running")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
@@ -814,9 +815,13 @@ def main(argv=None) -> int:
     if args.from_rows:
         import json
         from stripcoef.files import read_text
-        rows = [json.loads(line.split(" row ", 1)[1])
-                for line in read_text(args.from_rows, kind="benchmark output").splitlines()
+        rows = [json.loads(line.split(" row ", 1)[1]) for path in args.from_rows.split(",")
+                for line in read_text(path, kind="benchmark output").splitlines()
                 if " row {" in line]
+        if args.only_seeds:
+            keep = {int(x) for x in args.only_seeds.split(",")}
+            rows = [r for r in rows if r["seed"] in keep]
+        rows = [r for r in rows if r["mode"] in modes]
         text = summarise(rows, seed, args.duration)
         print(text)
         if args.write:
