@@ -237,6 +237,43 @@ def _step_detail(step: dict) -> dict:
             "parameters": {k: float(v) for k, v in par.items() if isinstance(v, (int, float))}}
 
 
+def truth_thrust(log, truth, dof: int) -> np.ndarray:
+    """The truth's thruster force in ``dof`` at each sample of ``log`` [N or N m]: each
+    thruster's thrust by the truth's own map (``validation.independent._thrust``: both
+    branches, limits; a clean truth has no dead band, lag or delay) times its allocation in
+    the truth (its direction, and its moment arm about the truth's reference point)."""
+    from validation.independent import _thrust
+    out = np.zeros(len(np.asarray(log["t"])))
+    for t in truth.thrusters:
+        b = np.concatenate([t["direction"], np.cross(t["position"], t["direction"])])[dof]
+        if b == 0.0:
+            continue
+        n = np.asarray(log[f"n_{t['name']}"], float)
+        out += b * np.array([_thrust(t, x) for x in n])
+    return out
+
+
+def truth_factors(log, truth, prior, dof: int) -> dict:
+    """The truth's thrust in DOF ``dof`` against the prior's map on this log (module
+    docstring): ``eta_forward``, ``eta_backward``, ``gain`` [-] and ``other`` [-]."""
+    from stripcoef.effects.windows import window_data
+    data = window_data(log, prior)
+    fk = data.thruster_force(dof)
+    y = truth_thrust(log, truth, dof)
+    if fk is None or not np.any(fk):
+        return {"eta_forward": np.nan, "eta_backward": np.nan, "gain": np.nan,
+                "other": 1.0 if np.any(y) else 0.0}
+    pos = np.where(data.thrust >= 0, fk, 0.0).sum(axis=1)
+    neg = np.where(data.thrust < 0, fk, 0.0).sum(axis=1)
+    (ef, eb), *_ = np.linalg.lstsq(np.column_stack([pos, neg]), y, rcond=None)
+    total = pos + neg
+    g = float(total @ y / (total @ total)) if np.any(total) else np.nan
+    resid = y - ef * pos - eb * neg
+    rms = float(np.sqrt(np.mean(y ** 2)))
+    return {"eta_forward": float(ef), "eta_backward": float(eb), "gain": g,
+            "other": float(np.sqrt(np.mean(resid ** 2)) / rms) if rms > 0 else 0.0}
+
+
 #: The thruster effects whose truth on a log :func:`truth_effects` measures from the truth's
 #: own thrusters: their change from the diagnosis's map [-] (the branches' ratio minus one, or
 #: the DOF's thrust gain minus one) on the log's commands
@@ -266,13 +303,12 @@ def truth_effects(log, truth, prior, row: dict) -> dict:
     thrust asymmetry or thrust effectiveness (:data:`TRUTH_MEASURED`) by the truth's
     thrusters' forward and backward thrust in the DOF regressed on the forward and backward
     parts of the map the diagnosis used (the prior with the whole-log thruster gains) on the
-    log's commands (``benchmarks.clean_background.truth_factors``: each thruster's own
+    log's commands (:func:`truth_factors`, as ``benchmarks.clean_background``: each thruster's own
     factor f_k, so a DOF pushed forward and backward by different thrusters has an asymmetry
     of the truth); a buoyancy offset in heave, roll or pitch by the truth's buoyancy change
     (heave: the offset's force b against minus the truth's buoyancy change, by
     :func:`truth_has`; roll and pitch: :func:`background`); any other effect: none. Returns ``{dof: [{effect, truth, fitted,
     z, has}]}``."""
-    from benchmarks.clean_background import truth_factors
     from stripcoef.conventions import parse_dof
     from stripcoef.effects import get_effect
     model = prior
