@@ -50,7 +50,7 @@ def test_xing_stern_and_the_bounded_gci_on_an_exact_power_law(p):
                                (1.0 + XS_FS1) * step, rtol=1e-6)
     np.testing.assert_allclose(out["GCI F_s 1.25, p = min(observed, formal)"][1],
                                (1.0 + FS_KNOWN_ORDER) * step, rtol=1e-6)
-    split = out["E&H U shown, warn step + change"]
+    split = out["E&H U shown, warn step + change (default)"]
     np.testing.assert_allclose(split[1], out["Eça & Hoekstra"][1], rtol=1e-12)
     np.testing.assert_allclose(split[2], out[RULES[0]][1], rtol=1e-12)
 
