@@ -95,7 +95,11 @@ def capture(seed: int, count: int, only=None) -> dict:
     from stripcoef.assembly import estimate
     from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.panel_error import ladder_extrapolation
+    from stripcoef.hull.remesh import available
 
+    # (with the remesher no shape is on the ladder: the rules differ only in the default's
+    # least-squares band of the shapes with four levels or more)
+    remesher = available()
     real_pam, real_centroid = panels.panel_added_mass, mesh_mod.volume_centroid
     rec: dict = {}
 
@@ -135,18 +139,19 @@ def capture(seed: int, count: int, only=None) -> dict:
             counts = tuple(info["panels"])
             ladder = False
             # (the warning's estimate; the band shown before four levels had their own)
-            estimate = info.get("estimate", info["error"])
-            if len(levels) == 4 and estimate is not None:
+            warned_on = info.get("estimate", info["error"])
+            if len(levels) == 4 and warned_on is not None:
                 _, e = ladder_extrapolation(levels, counts, info["formal_order"])
-                ladder = bool(np.allclose(e, np.asarray(estimate) * f, rtol=1e-9,
+                ladder = bool(np.allclose(e, np.asarray(warned_on) * f, rtol=1e-9,
                                           atol=1e-12))
             out[k] = dict(family=family, value=rec["value"] * f,
                           error=None if info["error"] is None else np.asarray(info["error"]) * f,
-                          estimate=None if estimate is None else np.asarray(estimate) * f,
+                          estimate=None if warned_on is None else np.asarray(warned_on) * f,
                           warned=not info["converged"], counts=counts, levels=levels,
                           formal=info["formal_order"], centroid=rec.get("centroid"),
                           length=info["length"], ladder=ladder,
                           mirrors=tuple(model.conditions["mirror_planes"] or ()),
+                          remesher=remesher,
                           cpu=time.process_time() - c0)
             print(f"{k:3d} {family:12s} panels {'/'.join(map(str, counts))}"
                   f"{' ladder' if ladder else ''}, CPU {out[k]['cpu']:.2f} s", flush=True)
@@ -283,8 +288,11 @@ def evaluate(shapes: dict, refs: dict) -> tuple:
                               > TOL) for x in RULES}
             if warned[DEFAULT] != s["warned"]:
                 print(f"{k}: the default rule's warning differs from the estimate's", flush=True)
+            # (Eça & Hoekstra's order search stops at a relative tolerance: the levels scaled
+            # to rho 1000 move it by about 1e-8)
             if s.get("estimate") is not None and not np.allclose(
-                    per[DEFAULT][1], s["error"], rtol=1e-9, atol=1e-12):
+                    per[DEFAULT][1], s["error"], rtol=1e-6,
+                    atol=1e-9 * np.abs(s["error"]).max()):
                 print(f"{k}: the default rule's band differs from the estimate's", flush=True)
         else:
             # the estimate's own value and warning; its band the step plus the change under
@@ -391,8 +399,10 @@ def main(argv=None) -> int:
                 pickle.dump(shapes, fh)
     stats, misses = evaluate(shapes, refs)
     cpu = sorted(s["cpu"] for s in shapes.values())
+    install = ("with the remesher" if any(s.get("remesher") for s in shapes.values())
+               else "base install, no remesher")
     text = (f"`python -m benchmarks.ladder_estimate_rules --seed {args.seed} --count "
-            f"{args.count} --references {args.references}` (base install, no remesher; "
+            f"{args.count} --references {args.references}` ({install}; "
             f"{len(shapes)} shapes, {sum(s['ladder'] for s in shapes.values())} on the "
             f"four-level ladder; against {which}; estimate CPU median "
             f"{cpu[len(cpu) // 2]:.2f} s)\n\n" + table(stats, misses) + "\n")
