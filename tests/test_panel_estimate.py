@@ -200,3 +200,30 @@ def test_the_input_family_of_a_small_mesh_is_two_nested_pairs():
     np.testing.assert_allclose(info["estimate"], err, rtol=1e-12)
     band, _ = least_squares_error(info["levels"], counts, want)
     np.testing.assert_allclose(info["error"], band, rtol=1e-12)
+
+
+def test_the_command_shows_the_band_and_warns_on_the_estimate(tmp_path, capsys, monkeypatch):
+    """Base install, a 48-face cylinder on the four-level ladder: the JSON and the text show
+    Eça & Hoekstra's band and name it; the warning, and added_mass_converged, follow the
+    extrapolation's step plus its last change (stripcoef.hull.panel_error)."""
+    import json
+
+    import stripcoef.hull.remesh
+    from stripcoef.cli import main
+
+    monkeypatch.setattr(stripcoef.hull.remesh, "available", lambda: False)
+    path = tmp_path / "cyl.stl"
+    trimesh.creation.cylinder(radius=0.1, height=0.3, sections=12).export(path)
+    argv = ["coefficients", str(path), "--rho", "1000", "--added-mass-method", "panels",
+            "--added-mass-panels", "800"]
+    assert main(argv + ["--json"]) == 0
+    cap = capsys.readouterr()
+    c = json.loads(cap.out)["conditions"]
+    assert len(c["added_mass_panel_levels"]) == 4
+    assert "Eça & Hoekstra's least-squares uncertainty" in c["added_mass_method"]
+    assert ("has not converged" in cap.err) is (not c["added_mass_converged"])
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "Estimated error of M_A (Eça & Hoekstra 2014's least-squares uncertainty, panel " \
+           "levels " in text
+    assert "the warning reads the extrapolation's step plus its last change" in text
