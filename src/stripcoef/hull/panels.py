@@ -98,7 +98,7 @@ from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
-    relative_error, richardson_error)
+    least_squares_error, relative_error, richardson_error)
 from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels, fold_mask
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
@@ -491,7 +491,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     of the extrapolated value, with three levels or more, is its step from the finest level
     plus its change since the level before (:func:`extrapolation_error`), with two levels
     Roache's two-grid index (:math:`F_s = 3`) about the finest plus the step
-    (:func:`estimated_error`), each no smaller than the finest solve's asymmetry; the order
+    (:func:`estimated_error`), each no smaller than the finest solve's asymmetry; with four
+    levels or more the error returned (the band shown) is Eça & Hoekstra's least-squares
+    uncertainty moved to the value (:func:`least_squares_error`) and the estimate above
+    decides the refinement and the warning alone; the order
     is that of the body's sharpest convex edge (:func:`edge_order`: 2 on a smooth body, 4/3
     at a right-angled edge, 1 at a knife edge or a member thinner than the panels).
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`:
@@ -539,10 +542,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     (ndarray (6, 6), dict)
         M_A [kg, kg m, kg m^2] and ``{"panels": the levels' panel counts, coarse to fine,
         "asymmetry": max|A - A^T| / max|A| of the finest solve [-], "error": the estimated
-        error of each term [kg, kg m, kg m^2] (``None`` without extrapolation), "order": the
-        order used per term [-], "safety": the safety factor per term [-] (1 with three
-        levels or more: :func:`extrapolation_error` has none), "family": the
-        panellings' family, "converged": whether every term is within ``tolerance``,
+        error of each term [kg, kg m, kg m^2] (``None`` without extrapolation; four levels or
+        more: the least-squares band), "estimate": the estimate the refinement and
+        "converged" read [kg, kg m, kg m^2] (the error itself below four levels), "order":
+        the order used per term [-], "safety": the safety factor per term [-] (1 with three
+        levels: :func:`extrapolation_error` has none; Eça & Hoekstra's with four or more),
+        "family": the panellings' family, "converged": whether every term's estimate
+        (about the volume centroid) is within ``tolerance``,
         "length": the body's largest extent [m] (:func:`relative_error`),
         "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
         level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
@@ -595,7 +601,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         n, a = _solve_level(*lv, scale, rho, about, near_factor)
         asym = float(np.abs(a - a.T).max() / np.abs(a).max())
         return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
-                                 "order": None, "safety": None, "family": "input",
+                                 "estimate": None, "order": None, "safety": None, "family": "input",
                                  "converged": None, "formal_order": None, "levels": (a,)}
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
@@ -734,7 +740,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         mats.append(m)
         nominal = nxt
     asym = float(np.abs(mats[-1] - mats[-1].T).max() / np.abs(mats[-1]).max())
+    # four levels or more: the band shown is Eça & Hoekstra's least-squares uncertainty; the
+    # refinement and the warning read the step plus the change (panel_error's docstring)
+    estimate = error
+    if len(mats) >= 4:
+        error, safety = least_squares_error(mats, counts, a)
     return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym, "error": error,
+                             "estimate": estimate,
                              "order": order, "safety": safety, "family": used,
                              "converged": converged, "formal_order": formal,
                              "length": float(scale),
