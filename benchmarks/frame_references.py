@@ -42,7 +42,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 import csv  # noqa: E402
-import resource  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -108,18 +107,6 @@ def surfaces() -> dict:
     the bluff set's two frames about their volume centroids (as graded_mesher solves them)."""
     return {NAME: vehicle_surface(), "open_frame": GM.shape_body("open_frame"),
             "bluerov2_heavy": GM.shape_body("bluerov2_heavy")}
-
-
-def predicted_gb(faces: int) -> float:
-    """Memory [GB] of a half solve of ``faces`` faces (whole body): S and K N x N/2
-    complex128 and K's two diagonal blocks N/2 x N/2 (module docstring): 24 N^2 bytes (22.8
-    measured at 18,210 faces), and 0.5 GB for the interpreter and the mesher."""
-    return 24.0 * faces ** 2 / 1e9 + 0.5
-
-
-def peak_gb() -> float:
-    """Peak resident memory of this process so far [GB] (Linux: ru_maxrss in kB)."""
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
 
 
 def solve_half(v, f, full: bool = False):
@@ -201,7 +188,7 @@ def run(path, levels=LEVELS, max_gb: float = MAX_GB):
             v, f = GM.graded_mesh(body, H, mirror=True)
             c = GM.accepted(GM.check(v, f, body, True), f"{NAME} at H = {H:g} m")
             mesh_s = time.process_time() - t0
-            need = predicted_gb(c["faces"])
+            need = GM.predicted_gb(c["faces"])
             if need > max_gb:
                 print(f"{NAME}: H {H:g} m, {c['faces']} faces: predicted {need:.1f} GB > "
                       f"{max_gb:g} GB, not solved", flush=True)
@@ -209,7 +196,7 @@ def run(path, levels=LEVELS, max_gb: float = MAX_GB):
             a, sec = solve_half(v, f)
             print(f"{NAME}: H {H:g} m, {c['faces']} faces (area {c['area']:+.1e}, volume "
                   f"{c['volume']:+.1e}, least quality {c['quality']:.3f}), mesh {mesh_s:.1f} s, "
-                  f"solve {sec:.1f} s CPU, peak {peak_gb():.2f} GB (predicted {need:.2f}): "
+                  f"solve {sec:.1f} s CPU, peak {GM.peak_gb():.2f} GB (predicted {need:.2f}): "
                   + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
             w.writerows([NAME, f"{STL} remeshed by gmsh, mirror xOz", lev, f"{H:g}",
                          c["faces"], i, j, f"{a[i, j]:.9g}", f"{sec:.2f}"]

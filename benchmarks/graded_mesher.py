@@ -248,6 +248,21 @@ def check(v, f, mesh, mirror: bool) -> dict:
             "consistent": bool(closed.is_winding_consistent)}
 
 
+def predicted_gb(faces: int) -> float:
+    """Memory [GB] of Capytaine's half solve (one mirror plane) of ``faces`` faces (whole
+    body): S and K N x N/2 complex128 and K's two diagonal blocks N/2 x N/2, 24 N^2 bytes
+    (22.8 measured at 18,210 faces: :mod:`benchmarks.frame_references`), and 0.5 GB for the
+    interpreter and the mesher."""
+    return 24.0 * faces ** 2 / 1e9 + 0.5
+
+
+def peak_gb() -> float:
+    """Peak resident memory of this process so far [GB] (Linux: ru_maxrss in kB)."""
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
+
+
 RHO = 1000.0
 #: the bluff set's shapes that are no union of prisms along x, mirror-symmetric in y = 0
 #: (benchmarks.bluff_shapes.SHAPES): the frames and the VideoRay-like body
@@ -296,7 +311,7 @@ def run(path, names, levels=None, curvature=None, max_gb=None, first_level=0):
     """Every level of each shape of ``names``: Capytaine on the graded half, rows of
     :data:`HEADER` appended to ``path`` as they come (``m`` holds H [m]).  ``curvature``:
     :func:`graded_mesh`'s (the ``what`` column says it); ``max_gb``: a level whose half solve
-    is predicted over it (:func:`benchmarks.frame_references.predicted_gb`) is said and not
+    is predicted over it (:func:`predicted_gb`) is said and not
     solved; ``first_level``: the first level's index (a finer level appended to a shape's
     rows)."""
     import csv
@@ -324,8 +339,6 @@ def run(path, names, levels=None, curvature=None, max_gb=None, first_level=0):
                 v, f = graded_mesh(body, H, mirror=True, curvature=curvature)
                 c = accepted(check(v, f, body, True), f"{name} at H = {H:g} m")
                 if max_gb is not None:
-                    from benchmarks.frame_references import peak_gb, predicted_gb
-
                     if predicted_gb(2 * len(f)) > max_gb:
                         print(f"{name}: H {H:g} m, {2 * len(f)} faces: predicted "
                               f"{predicted_gb(2 * len(f)):.1f} GB > {max_gb:g} GB, not solved",
