@@ -238,76 +238,35 @@ GOLDEN = Path("tests") / "golden" / "bluerov2_heavy.json"
 
 
 def compare(levels_csv, stored_csv=None, golden=None) -> list:
-    """The vehicle file's graded reference (Eça & Hoekstra over the levels of ``levels_csv``,
-    :func:`validation.graded_bodies.references`) moved from its origin to the model's reference
-    point (the golden model's, the centre of buoyancy; ``conventions.transform_matrix``, Fossen
-    2011 sec. 7.5.3, its band by :func:`validation.public_meshes.moved_uncertainty`), against
-    the stored model rows: each diagonal term of ``stored_csv`` (both installs; the error
-    relative to the term, the stored estimate's relative error and whether it covers it, the
-    stored uniform Capytaine reference against the graded one) and the golden model's
-    couplings (over sqrt(A_ii A_jj), its estimated error likewise).  Returns rows (dicts),
-    printed as a table."""
-    import json
-
-    from stripcoef.conventions import transform_matrix
+    """The stored model rows against the vehicle file's graded reference
+    (:func:`validation.graded_frames.frame_terms`: the reference moved to the golden model's
+    point, each diagonal term of both installs and the golden couplings, the estimate's
+    coverage), printed as tables; returns the rows."""
     from validation import ROOT
-    from validation.graded_bodies import references
-    from validation.public_meshes import moved_uncertainty
+    from validation.graded_frames import frame_terms, term_name
 
-    ref, band, order, faces = references(levels_csv)[NAME]
-    gold = json.loads((ROOT / (golden or GOLDEN)).read_text())
-    point = np.asarray(gold["reference_point"], float)
-    ref_p = transform_matrix(ref, from_point=(0, 0, 0), to_point=point)
-    band_p = moved_uncertainty(band, point)
-    d = np.sqrt(np.abs(np.diag(ref_p)))
-    with open(ROOT / (stored_csv or PANELS_VEHICLES), newline="") as fh:
-        stored = [r for r in csv.DictReader(ln for ln in fh if not ln.startswith("#"))
-                  if r["file"].endswith("bluerov2_heavy.yaml")]
-    out = []
-    print(f"{NAME}: graded reference over {'/'.join(map(str, faces))} faces, about "
-          f"{np.round(point, 5).tolist()} m")
-    from validation.graded_bodies import read
-
-    _, counts, mats = read(levels_csv)[NAME]
+    t = frame_terms(ROOT / levels_csv, ROOT / (stored_csv or PANELS_VEHICLES),
+                    ROOT / (golden or GOLDEN))
+    if not t:
+        print(f"{levels_csv}: no levels of {NAME}")
+        return []
+    print(f"{NAME}: graded reference over {'/'.join(map(str, t['faces']))} faces, about "
+          f"{np.round(t['point'], 5).tolist()} m")
     print("| faces | " + " | ".join(DOFS) + " |  (each level's diagonal about that point)")
     print("|---" * 7 + "|")
-    for n, m in zip(counts, mats):
-        m = transform_matrix(m, from_point=(0, 0, 0), to_point=point)
-        print(f"| {n} | " + " | ".join(f"{x:.6g}" for x in np.diag(m)) + " |")
+    for n, dg in t["levels"]:
+        print(f"| {n} | " + " | ".join(f"{x:.6g}" for x in dg) + " |")
     print()
     print("| install | term | model | graded reference | its band | order | model error | "
           "estimated error | covered | stored uniform reference's error |")
     print("|---" * 10 + "|")
-    for r in stored:
-        i = DOFS.index(r["dof"])
-        g = ref_p[i, i]
-        row = dict(install=r["install"], i=i, j=i, model=float(r["estimate"]), graded=g,
-                   band=band_p[i, i] / g, order=order[i, i],
-                   error=float(r["estimate"]) / g - 1.0,
-                   estimated=float(r["estimated_error_rel"]),
-                   uniform=float(r["bem"]) / g - 1.0)
-        row["covered"] = abs(row["error"]) <= row["estimated"]
-        out.append(row)
-    a = np.asarray(gold["added_mass"], float)
-    e = np.asarray(gold["added_mass_error"], float)
-    for i in range(6):
-        for j in range(i + 1, 6):
-            s = d[i] * d[j]
-            if a[i, j] == 0.0 and abs(ref_p[i, j]) < 1e-9 * s:
-                continue                      # a coupling the mirror plane forbids in both
-            row = dict(install="base (golden)", i=i, j=j, model=a[i, j], graded=ref_p[i, j],
-                       band=band_p[i, j] / s, order=order[i, j],
-                       error=(a[i, j] - ref_p[i, j]) / s, estimated=e[i, j] / s,
-                       uniform=float("nan"))
-            row["covered"] = abs(row["error"]) <= row["estimated"]
-            out.append(row)
-    for row in out:
-        term = DOFS[row["i"]] if row["i"] == row["j"] else f"{DOFS[row['i']]}-{DOFS[row['j']]}"
-        print(f"| {row['install']} | {term} | {row['model']:.6g} | {row['graded']:.6g} | "
-              f"{100 * row['band']:.2f} % | {row['order']:.2f} | {100 * row['error']:+.1f} % | "
-              f"{100 * row['estimated']:.1f} % | {'yes' if row['covered'] else 'no'} | "
+    for row in t["rows"]:
+        print(f"| {row['install']} | {term_name(row)} | {row['model']:.6g} | "
+              f"{row['graded']:.6g} | {100 * row['band']:.2f} % | {row['order']:.2f} | "
+              f"{100 * row['error']:+.1f} % | {100 * row['estimated']:.1f} % | "
+              f"{'yes' if row['covered'] else 'no'} | "
               + ("" if np.isnan(row["uniform"]) else f"{100 * row['uniform']:+.2f} %") + " |")
-    return out
+    return t["rows"]
 
 
 def symmetry_report() -> dict:
