@@ -71,6 +71,10 @@ Steps, for each degree of freedom (issue 7):
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
    actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
+   In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
+   found only with each thruster's gain free, or whose c_t moves when they are freed) is
+   named with its value "not determined by one DOF" and not written
+   (:mod:`.undetermined`: the whole-log diagnosis writes the gains).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -102,6 +106,7 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa:
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
+from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.diagnose.timing import compare_timing
@@ -312,6 +317,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
     per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) == 1:      # a value that depends on the thrusters' gains: not written
+        per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
