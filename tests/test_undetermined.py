@@ -130,3 +130,19 @@ def test_the_benchmark_scores_a_value_not_determined_as_named_not_claimed():
     assert "no magnitude claimed: 1" in text and "of the 1 claimed: 1 within" in text
     assert "0.23 ± 0.01 (+15.0 %), prior map 0.38 (+90.0 %)" in text
     assert np.isfinite(claimed["magnitude_error"])
+
+
+@pytest.mark.slow
+def test_the_option_off_writes_the_prior_maps_fit_as_before(surge):
+    """``not_determined=False``: the same step written from the fit with the prior's map,
+    its c_t the value the rule reports as the prior map's."""
+    log, prior, _, res = surge
+    nd = res.per_dof["surge"].steps[0].not_determined
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        old = diagnose(log, prior, dof="surge", not_determined=False)
+    step = old.per_dof["surge"].steps[0]
+    assert step.effect == "tether_drag" and step.not_determined is None
+    assert step.kept
+    assert written_effects(old.model, "surge")["tether_drag"]["c_t"] == pytest.approx(
+        nd["prior_map"], rel=1e-6)

@@ -139,7 +139,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -186,6 +186,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     one_added_mass : bool
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
         (:attr:`DiagnoseSettings.one_added_mass`; off by default).
+    not_determined : bool
+        One DOF: a tether found only with the thrusters' gains free is named with its c_t
+        not determined by one DOF and not written (:mod:`.undetermined`; on by default);
+        False: written from the fit with the prior's thrust map
+        (:attr:`DiagnoseSettings.not_determined`).
 
     Returns
     -------
@@ -229,7 +234,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=bool(one_added_mass))
+        one_added_mass=bool(one_added_mass), not_determined=bool(not_determined))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -317,7 +322,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
     per, fits = share_current(per, fits)    # the water's one current (current.py)
-    if len(dofs) == 1:      # a value that depends on the thrusters' gains: not written
+    if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
