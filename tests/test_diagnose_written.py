@@ -3,7 +3,8 @@ it writes is that model's, recomputed here from the file `--out` wrote, read bac
 
 For several logs (the shipped tether sample, per DOF and whole-log, with hold-out and
 validation; seeded synthetic logs of validation/synthetic.py with a native effect) the
-command is run with --out, --json and --report, the model file is read back
+command is run with --out, --json and --report (and a tether that one DOF names without
+determining its c_t: not written), the model file is read back
 (`stripcoef.modelfile.load_model`) and each printed value is recomputed from it: the
 calibrated coefficients, the parameters of each kept effect, the absence of each removed
 one, the final window error on the fitting part of the log, the validation and held-out
@@ -45,6 +46,26 @@ def _synthetic(tmp, effect, seed, duration):
     return str(tmp / "log.csv"), str(tmp / "prior.json")
 
 
+def _gains_off(tmp):
+    """The synthetic ROV whose port and starboard thrusters deliver 0.8 and 1.2 of the
+    prior's map, with a tether (seed 1, 120 s): one DOF names the tether only with the gains
+    free, its value not determined by one DOF, and writes nothing for it
+    (stripcoef.diagnose.undetermined)."""
+    from dataclasses import replace
+
+    from validation.synthetic import rov_model
+    gains = {"port": 0.8, "starboard": 1.2}
+    prior = rov_model()
+    truth = replace(prior, thrusters=[
+        replace(th, eta_forward=th.eta_forward * gains.get(th.name, 1.0),
+                eta_backward=th.eta_backward * gains.get(th.name, 1.0))
+        for th in prior.thrusters])
+    log, _, _ = generate("tether_drag", 1, prior=truth, duration=120.0)
+    log.write_csv(tmp / "log.csv")
+    write_export(prior, "json", tmp / "prior.json")
+    return str(tmp / "log.csv"), str(tmp / "prior.json")
+
+
 def _sample(tmp):
     return str(samples.path("rov_tether.csv")), str(samples.path("rov_prior.json"))
 
@@ -60,6 +81,8 @@ CASES = {
     "synthetic-deadband": (lambda t: _synthetic(t, "deadband", 3, 120.0), ["--dof", "surge"]),
     # a non-native effect with a nonlinear parameter
     "synthetic-current": (lambda t: _synthetic(t, "current", 1, 120.0), ["--dof", "surge"]),
+    # a tether named whose c_t one DOF does not determine: nothing written for it
+    "synthetic-tether-gains-off": (_gains_off, ["--dof", "surge"]),
 }
 
 
@@ -85,7 +108,7 @@ def run(request, tmp_path_factory):
     res = json.loads(buf.getvalue())
     return {"res": res, "model": load_model(out), "log": read_log(log_path),
             "prior": load_model(prior_path), "report": report.read_text(),
-            "text": text_summary(res), "holdout": "--holdout" in extra}
+            "text": text_summary(res), "holdout": "--holdout" in extra, "case": request.param}
 
 
 def _same(a, b):
@@ -119,15 +142,36 @@ def test_effects_kept_are_the_files_and_removed_ones_are_absent(run):
                 if not get_effect(s["effect"]).native:
                     for k, v in s["parameters"].items():
                         _same(v, in_effects[s["effect"]]["parameters"][k])
+            elif s.get("not_determined"):
+                # named, its value not determined by one DOF: not written, reported with
+                # the gain-free value, said so (stripcoef.diagnose.undetermined)
+                nd = s["not_determined"]
+                assert s["effect"] not in written and s["effect"] not in in_effects
+                assert s["parameters"] == {nd["parameter"]: nd["gains_free"]}
+                assert f"{nd['parameter']} not determined by one DOF" in run["text"]
+                assert nd["advice"] in run["text"] and nd["advice"] in run["report"]
+                assert f"{s['effect']} (not determined by one DOF)" in run["report"]
             else:
                 assert s["effect"] not in written and s["effect"] not in in_effects
                 assert any(x.startswith(f"{s['effect']} {d}")
                            for x in res["validation"]["removed"])
         kept = [s["effect"] for s in r["steps"] if s["kept"]]
         assert sorted(written) == sorted(kept)
-    removed = [s for r in res["per_dof"].values() for s in r["steps"] if not s["kept"]]
+    removed = [s for r in res["per_dof"].values() for s in r["steps"]
+               if not s["kept"] and not s.get("not_determined")]
     for s in removed:   # shown as removed in the text and in the report
         assert "[removed" in run["text"] and f"{s['effect']} (removed)" in run["report"]
+
+
+def test_the_gains_off_case_names_a_tether_one_dof_does_not_determine(run):
+    """The case is what it is meant to be: the tether named first, not written."""
+    steps = run["res"]["per_dof"]["surge"]["steps"]
+    named = [s for s in steps if s.get("not_determined")]
+    if run["case"] == "synthetic-tether-gains-off":
+        assert steps[0]["effect"] == "tether_drag" and named == [steps[0]]
+        assert steps[0]["kept"] is False
+    elif run["res"]["dof"] == "all" or run["case"].startswith("sample"):
+        assert not named
 
 
 def _parts(run):
@@ -183,7 +227,7 @@ def test_a_removed_step_leaves_its_partners_refitted(run):
     for d, r in res["per_dof"].items():
         if r["calibration"].get("kept") is False:
             assert not any(s["kept"] for s in r["steps"] if s["effect"] not in SHARED_TIMING)
-        removed = (any(not s["kept"] for s in r["steps"])
+        removed = (any(not s["kept"] and not s.get("not_determined") for s in r["steps"])
                    or r["calibration"].get("kept") is False)
         kept = [s for s in r["steps"] if s["kept"]] or r["calibration"].get("kept") is not False
         if removed and kept:

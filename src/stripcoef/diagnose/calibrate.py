@@ -101,7 +101,8 @@ def _changes(per: dict) -> list:
     for d, r in per.items():
         if any(v != 0.0 for v in r.calibration.final_parameters.values()):
             out.append(("calibration", d))
-        out += [("effect", d, s.effect) for s in r.steps]
+        # a step one DOF does not determine is never written (diagnose.undetermined)
+        out += [("effect", d, s.effect) for s in r.steps if not s.not_determined]
     return out
 
 
@@ -125,7 +126,8 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
-    as selected), so that no kept parameter compensates a term that is not there -- and,
+    as selected), so that no kept parameter compensates a term that is not there (so too
+    without a step whose value one DOF does not determine, ``Step.not_determined``) -- and,
     when the DOF's calibration is removed, without the calibration columns (its
     coefficients stay at the prior): the effects fitted together with it are refitted
     alone. ``theta`` starts with the calibration's values (none when it is removed).
@@ -136,7 +138,11 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     refitted (a calibration column of the same name is then dropped)."""
     cfg = fit.config
     theta = fit.evaluation["full"]["theta"]
-    dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
+    # the changes removed, and the steps named whose value one DOF does not determine
+    # (diagnose.undetermined: nothing written for them)
+    unwritten = {s.effect for s in result.steps if s.not_determined}
+    dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude
+               or t[0].name in unwritten]
     no_cal = ("calibration", d) in exclude and len(cfg.cal.names) > 0
     if no_cal:
         cfg = _Config(cfg.data, cfg.dof, cfg.cal.subset([]), list(cfg.terms),

@@ -71,6 +71,10 @@ Steps, for each degree of freedom (issue 7):
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
    actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
+   In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
+   found only with each thruster's gain free, or whose c_t moves when they are freed) is
+   named with its value "not determined by one DOF" and not written
+   (:mod:`.undetermined`: the whole-log diagnosis writes the gains).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -102,6 +106,7 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa:
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
+from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.diagnose.timing import compare_timing
@@ -134,7 +139,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -181,6 +186,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     one_added_mass : bool
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
         (:attr:`DiagnoseSettings.one_added_mass`; off by default).
+    not_determined : bool
+        One DOF: a tether found only with the thrusters' gains free is named with its c_t
+        not determined by one DOF and not written (:mod:`.undetermined`; on by default);
+        False: written from the fit with the prior's thrust map
+        (:attr:`DiagnoseSettings.not_determined`).
 
     Returns
     -------
@@ -224,7 +234,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=bool(one_added_mass))
+        one_added_mass=bool(one_added_mass), not_determined=bool(not_determined))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -312,6 +322,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
     per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
+        per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,

@@ -179,6 +179,12 @@ class Step(_Record):
     choice : mapping, optional
         The test of a thrust scale against an added-mass change in the model holding both
         (:func:`~stripcoef.diagnose.scalechoice.choose`), when both were candidates
+    not_determined : mapping, optional
+        One DOF: the effect is named but its value depends on the thrusters' gains, which
+        one DOF does not determine (:mod:`~stripcoef.diagnose.undetermined`): nothing is
+        written for it (``kept`` false); its parameter fitted with each thruster's gain
+        free and with the prior's map, their standard deviations, the test, the reason and
+        the advice (run the whole-log diagnosis)
     """
 
     effect: str
@@ -210,6 +216,7 @@ class Step(_Record):
     evidence: Mapping | None = _optional()
     ambiguous_with: tuple | None = _optional()
     choice: Mapping | None = _optional()
+    not_determined: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -183,6 +183,13 @@ class DiagnoseSettings:
         (:func:`stripcoef.diagnose.calibrate.contradicted`). Off by default: it wins the
         VideoRay-like issue-16 real-style log's held-out cells back but loses named-first
         effects on the independent simulator (benchmarks/data/one_added_mass.md)
+    not_determined : bool
+        One DOF: a step found only with the thrusters' gains free (a tether) is named with
+        its value not determined by one DOF and not written
+        (:mod:`stripcoef.diagnose.undetermined`; on by default). False: written from the
+        fit with the prior's thrust map, as before (its c_t +88 % on an independent
+        BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
+        three such logs measured, docs/performance.md, ``tether33e``)
     """
 
     window: float = DEFAULT_WINDOW
@@ -196,6 +203,7 @@ class DiagnoseSettings:
     prior_widths: object = None
     validation_others: str = "logged"
     one_added_mass: bool = False
+    not_determined: bool = True
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

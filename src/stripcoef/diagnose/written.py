@@ -90,10 +90,12 @@ def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
     - ``calibration.written``: each calibrated coefficient's value in the model, and
       ``calibration.final_parameters``: its change from the prior there;
     - each step: ``kept`` (in the model or not), ``parameters`` and ``final_parameters`` the
-      written ones when kept (``selected_parameters``: those it had when selected);
+      written ones when kept (``selected_parameters``: those it had when selected); for a
+      step whose value one DOF does not determine (``not_determined``, never written) the
+      value fitted with each thruster's gain free and its sd, as its record says;
     - ``final_error``: the written model's error; ``final_held_out_error``: the blocked
       cross-validation of the written structure (refitted when the validation removed a
-      change of the DOF).
+      change of the DOF or a step is not written, ``Step.not_determined``).
     """
     dofs = [parse_dof(d) for d in per]
     errors = window_errors(fit_log, written, dofs, window=window)
@@ -109,12 +111,18 @@ def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
         steps = []
         for s in r.steps:
             kept = s.effect in effects
+            nd = s.not_determined
+            # a step one DOF does not determine (diagnose.undetermined) is reported with
+            # its gain-free fit's value, said so; never the prior map's fit's
+            unset = ({"parameters": {nd["parameter"]: nd["gains_free"]},
+                      "final_parameters": {nd["parameter"]: nd["gains_free"]},
+                      "std": {nd["parameter"]: nd["gains_free_std"]}} if nd else {})
             steps.append(replace(s, selected_parameters=dict(s.parameters), kept=kept,
                                  **({"parameters": dict(effects[s.effect]),
                                      "final_parameters": dict(effects[s.effect])}
-                                    if kept else {})))
+                                    if kept else unset)))
         held_out = r.final_held_out_error
-        if any(c[1] == d for c in exclude):
+        if any(c[1] == d for c in exclude) or any(s.not_determined for s in r.steps):
             cfg, _ = written_fit(d, r, fits[d], exclude)
             held_out = float(_evaluate(cfg)["held_out_error"])
         out[d] = replace(r, calibration=cal, steps=tuple(steps), final_error=errors[d],
