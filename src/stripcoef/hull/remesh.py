@@ -117,7 +117,9 @@ MAX_FACES = 6000
 #: level of 1.25 times the faces gave the shipped BlueROV2 Heavy an estimated error of 56-61 %
 #: and its vehicle file and mesh (the same surface, 2.6 micrometres apart) 2.6 % apart: two
 #: remeshes of one surface differ by 0.1-0.4 % per level, and the step multiplied that by 4
-#: (python -m benchmarks.vehicle_file_mesh).
+#: (python -m benchmarks.vehicle_file_mesh).  The panel method's remeshed families refine by it
+#: too wherever some mode fits it (:func:`stripcoef.hull.panels.remeshed_levels`; the BlueROV2
+#: Heavy's no-flip levels at r = 1.19 and 1.25 were extrapolated to surge -22.8 %, yaw -34.4 %).
 MIN_REFINEMENT = 1.3
 #: :data:`MIN_REFINEMENT` in faces, :math:`N_{fine}/N_{coarse} = r^2` (h ~ N^-1/2) [-].
 MIN_FACE_RATIO = MIN_REFINEMENT ** 2
