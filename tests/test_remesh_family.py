@@ -269,3 +269,21 @@ def test_panel_levels_refine_by_celiks_ratio_where_it_fits():
     counts = [len(lv[1]) for lv in levels]
     assert all(b >= remesh.MIN_FACE_RATIO * a for a, b in zip(counts, counts[1:])), counts
     assert max(counts) <= remesh.MAX_FACES
+
+
+def test_a_bisected_level_grows_straight_to_the_count_it_needs():
+    """The bisection mode reaches the count it is asked for: a level that must have at least
+    3000 faces is bisected to them, where the edge's steps (at most a halving, four times the
+    panels) would stop at 1600 and refuse the level."""
+    pytest.importorskip("pymeshlab")
+    trimesh = pytest.importorskip("trimesh")
+    from stripcoef.hull import remesh
+
+    cyl = trimesh.creation.cylinder(radius=0.22, height=3.0, sections=30)
+    v, f = np.asarray(cyl.vertices), np.asarray(cyl.faces)
+    mode = next(m for m in remesh.MODES if m.bisect)
+    lv, _ = remesh.grown_level(v, f, remesh.edge_for_panels(cyl.area, 400), mode, 3000, 6000)
+    assert lv is not None
+    assert 3000 <= len(lv[1]) <= 6000
+    assert enclosed_volume(*lv) == pytest.approx(cyl.volume, rel=1e-9)
+    assert surface_area(*lv) == pytest.approx(cyl.area, rel=1e-9)
