@@ -326,10 +326,9 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
     faces and the knife edge's p = 1.  The BlueROV2 Heavy's no-flip levels 1942/2760/4306
     (r = 1.19, 1.25; one-level surge +23, +13, +6 % of its Capytaine reference, pre-asymptotic
     at 5.6-mm duct walls) were extrapolated to surge -22.8 %, yaw -34.4 %; with r >= 1.3 no
-    remesh mode refines so and its levels are the input's faces bisected, 1712/3176/6544:
-    every diagonal term within -5.9 to +6.9 % (the same at 3200 and 6000 panels; python -m
-    benchmarks.frame_remesh_trace, docs/performance.md, "The remesh family on the BlueROV2
-    Heavy")."""
+    remesh mode refines so and its levels are the input's faces bisected, 1712/3966/9120:
+    every diagonal term within -8.5 to -1.7 % (python -m benchmarks.frame_remesh_trace,
+    docs/performance.md, "The remesh family on the BlueROV2 Heavy: traced")."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
