@@ -256,7 +256,15 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     thrusters' lag in a simulation instead of one per DOF, the same forces); so is the one
     water current (:func:`stripcoef.diagnose.current.share_current`), which acts in all six
     DOFs through the relative velocity."""
-    return _build(model, per, consistent_fits(model, per, fits, exclude))
+    return calibrated_fits(model, per, fits, exclude)[0]
+
+
+def calibrated_fits(model, per: dict, fits: dict, exclude=frozenset()):
+    """``(model, fitted)``: :func:`calibrated_model` and the fits it writes from (DOF ->
+    ``(config, theta)``, :func:`consistent_fits`), for :func:`stripcoef.diagnose.written.
+    read_back` to say which values each DOF was fitted beside."""
+    fitted = consistent_fits(model, per, fits, exclude)
+    return _build(model, per, fitted), fitted
 
 
 def _build(model, per: dict, fitted: dict):

@@ -96,8 +96,8 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
-from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass, contradicted,
+from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: F401
+                                          calibrated_model, clip_added_mass, contradicted,
                                           share_timing)
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
@@ -317,11 +317,12 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
-    calibrated = calibrated_model(model, per, fits, exclude)
+    calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
     # one model: what is reported about the calibrated model is read back from it as written
     written = type(calibrated).from_dict(calibrated.to_dict())
-    per = read_back(per, fits, written, train_log, window=window, exclude=exclude)
+    per = read_back(per, fits, written, train_log, window=window, exclude=exclude,
+                    fitted=fitted)
     if record is not None and clipped:      # the validated model was clipped afterwards
         record["kept_changes"] = validation_errors(val_log, written, dofs,
                                                    settings.logged_dofs(dofs))
