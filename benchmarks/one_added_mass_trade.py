@@ -32,8 +32,8 @@ from benchmarks.diagnose_independent import (VEHICLES, _background, _diagnosed,
                                              _first_after_background, _prior, _spurious,
                                              background)
 
-#: the option's two settings, compared pairwise
-VARIANTS = {"main": False, "one_added_mass": True}
+#: the option's settings, each compared with main pairwise (``--variant``)
+VARIANTS = {"main": False, "one_added_mass": True, "difference": "difference"}
 
 #: the categories in which another DOF's added mass enters a whole-log diagnosis's balance
 #: through C_A(nu) nu (the ones the option can move), beside the clean logs
@@ -42,9 +42,9 @@ DEFAULT_CATEGORIES = ("tether_drag", "momentum_drag", "thrust_effectiveness",
 
 
 def run_log(vehicle: str, category: str | None, seed: int, duration: float,
-            modes: tuple) -> list[dict]:
+            modes: tuple, variants: tuple = ("main", "one_added_mass")) -> list[dict]:
     """One log simulated once; the rows of each (mode, variant): per-DOF once (variant
-    ``"both"``), whole-log once per :data:`VARIANTS`."""
+    ``"both"``), whole-log once per variant of :data:`VARIANTS` named in ``variants``."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -55,8 +55,9 @@ def run_log(vehicle: str, category: str | None, seed: int, duration: float,
     back = _background(truth, prior.to_dict())
     rows = []
     for mode in modes:
-        variants = VARIANTS.items() if mode == "all" else (("both", False),)
-        for name, flag in variants:
+        todo = ([(v, VARIANTS[v]) for v in variants] if mode == "all"
+                else (("both", False),))
+        for name, flag in todo:
             row = _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
                              one_added_mass=flag)
             row.update(back, variant=name)
@@ -107,16 +108,15 @@ def sign_test(wins: int, losses: int) -> float:
     return min(1.0, 2.0 * p)
 
 
-def summarise(rows: list[dict]) -> str:
-    """The paired table: per criterion the count met by each variant and the option's
-    wins/losses/ties with the sign test; then the composite per log."""
+def summarise(rows: list[dict], variant: str = "one_added_mass") -> str:
+    """The paired table of ``variant`` against main: per criterion the count met by each and
+    the variant's wins/losses/ties with the sign test; then the composite per log."""
     key = (lambda r: (r["vehicle"], r["category"], r["seed"]))
     whole = {}
     for r in rows:
         if r["mode"] == "all":
             whole.setdefault(key(r), {})[r["variant"]] = r
-    pairs = [(v["main"], v["one_added_mass"]) for v in whole.values()
-             if "main" in v and "one_added_mass" in v]
+    pairs = [(v["main"], v[variant]) for v in whole.values() if "main" in v and variant in v]
     per_dof = [r for r in rows if r["mode"] == "dof"]
     names = []
     for a, _ in pairs:
@@ -125,7 +125,7 @@ def summarise(rows: list[dict]) -> str:
                 names.append(n)
     lines = [f"Whole-log pairs: {len(pairs)} logs (per-DOF rows: {len(per_dof)}, the option "
              "does not act there: ties by construction).", "",
-             "| criterion | logs | main | one_added_mass | wins / losses / ties | sign test p |",
+             f"| criterion | logs | main | {variant} | wins / losses / ties | sign test p |",
              "| --- | --- | --- | --- | --- | --- |"]
     for n in names:
         got = [(criteria(a).get(n), criteria(b).get(n)) for a, b in pairs]
@@ -147,10 +147,12 @@ def summarise(rows: list[dict]) -> str:
     diff = [f"{a['vehicle']} {a['category']} {a['seed']}: first {a['first']} -> {b['first']}"
             f", cut {a['cut']:.2f} -> {b['cut']:.2f}, magnitude error "
             f"{a.get('magnitude_error', float('nan')):.2f} -> "
-            f"{b.get('magnitude_error', float('nan')):.2f}"
+            f"{b.get('magnitude_error', float('nan')):.2f}; "
+            + ", ".join(("+ " if criteria(b)[n] else "- ") + n for n in criteria(a)
+                        if criteria(a)[n] != criteria(b).get(n))
             for a, b in pairs if criteria(a) != criteria(b)]
     if diff:
-        lines += ["", "Logs whose criteria differ (main -> option):", ""]
+        lines += ["", f"Logs whose criteria differ (main -> {variant}; + gained, - lost):", ""]
         lines += [f"- {d}" for d in sorted(diff)]
     ta = np.mean([a["t_diagnose"] for a, _ in pairs]) if pairs else float("nan")
     tb = np.mean([b["t_diagnose"] for _, b in pairs]) if pairs else float("nan")
@@ -169,6 +171,14 @@ def main(argv=None) -> int:
     ap.add_argument("--modes", default="all,dof")
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--variant", default="one_added_mass", choices=sorted(set(VARIANTS) - {"main"}),
+                    help="the setting compared with main")
+    ap.add_argument("--only", default=None,
+                    help="only these logs, comma-separated vehicle:category:seed (e.g. the "
+                         "logs where another variant differs from main)")
+    ap.add_argument("--skip-main", action="store_true",
+                    help="diagnose only --variant (pair it with main's rows of an earlier run "
+                         "of the same seeds through --from-rows)")
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of earlier runs' output files "
                          "(comma-separated)")
@@ -178,7 +188,7 @@ def main(argv=None) -> int:
         rows = [json.loads(line.split(" row ", 1)[1]) for f in args.from_rows.split(",")
                 for line in read_text(f, kind="benchmark output").splitlines()
                 if " row {" in line]
-        print(summarise(rows))
+        print(summarise(rows, args.variant))
         return 0
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
@@ -187,9 +197,12 @@ def main(argv=None) -> int:
         for v, vehicle in enumerate(args.vehicles.split(",")):
             for cat in args.categories.split(","):
                 # diagnose_independent --same-seeds: a log seeded as a run of every category
-                jobs.append((vehicle, None if cat == "clean" else cat,
-                             seed + 100000 * rep + 1000 * v + every.index(cat), args.duration,
-                             tuple(args.modes.split(","))))
+                s = seed + 100000 * rep + 1000 * v + every.index(cat)
+                if args.only and f"{vehicle}:{cat}:{s}" not in args.only.split(","):
+                    continue
+                jobs.append((vehicle, None if cat == "clean" else cat, s, args.duration,
+                             tuple(args.modes.split(",")),
+                             (args.variant,) if args.skip_main else ("main", args.variant)))
     print(f"seed {seed}: {len(jobs)} logs", flush=True)
     if args.jobs > 1:
         import multiprocessing
@@ -197,7 +210,7 @@ def main(argv=None) -> int:
             rows = [r for rs in pool.imap_unordered(_run, jobs) for r in rs]
     else:
         rows = [r for j in jobs for r in _run(j)]
-    print(summarise(rows))
+    print(summarise(rows, args.variant))
     return 0
 
 

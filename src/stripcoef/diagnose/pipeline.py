@@ -115,8 +115,8 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
-                                         UNEXPLAINED_GAIN, VALIDATION_FRACTION, VALIDATION_OTHERS,
-                                         Budget,
+                                         ONE_ADDED_MASS, UNEXPLAINED_GAIN,
+                                         VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
                                          resimulated_errors, validate_changes,
@@ -178,9 +178,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
         take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
         diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
-    one_added_mass : bool
+    one_added_mass : bool or str
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
-        (:attr:`DiagnoseSettings.one_added_mass`; off by default).
+        (:attr:`DiagnoseSettings.one_added_mass`; off by default; ``"difference"``: judged
+        on the sd of the two estimates' difference, :data:`~stripcoef.diagnose.settings.
+        ONE_ADDED_MASS`).
 
     Returns
     -------
@@ -210,6 +212,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a way to move the DOFs not diagnosed", key="validation_others",
                          value=validation_others,
                          expected="one of " + ", ".join(VALIDATION_OTHERS))
+    if one_added_mass not in ONE_ADDED_MASS:
+        raise InputError("not a rule for one added mass", key="one_added_mass",
+                         value=one_added_mass,
+                         expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -224,7 +230,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=bool(one_added_mass))
+        one_added_mass=one_added_mass)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -301,8 +307,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # and written refitted with their written values (calibrate.contradicted,
     # consistent_fits)
     undiagnosed = [j for j in cross if DOF[j] not in per]
-    again = (contradicted(model, per, fits) if len(dofs) > 1 and settings.one_added_mass
-             else {})
+    again = (contradicted(model, per, fits,
+                          difference=settings.one_added_mass == "difference")
+             if len(dofs) > 1 and settings.one_added_mass else {})
     for d, known in again.items():
         i = parse_dof(d)
         per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
