@@ -217,9 +217,9 @@ def contradicted(model, per: dict, fits: dict, difference: bool = False) -> dict
 
     ``difference``: the two estimates contradict each other only when their difference is
     more than ``MIN_Z`` sd of the difference, :math:`\sqrt{s_d^2 + s_j^2}` with
-    :math:`s_j` the sd of DOF j's own calibrated added mass (independent estimates; e.g.
-    Bevington & Robinson 2003, eq. 3.13); 0 where DOF j's own added mass is not
-    calibrated."""
+    :math:`s_j` the sd of DOF j's own calibrated added mass, 0 where its calibration does
+    not hold it (independent estimates: the variance of their difference is the sum of
+    their variances, Bevington & Robinson 2003, Data Reduction and Error Analysis, ch. 3)."""
     from stripcoef.diagnose.settings import MIN_Z
     fitted = {d: written_fit(d, r, fits[d]) for d, r in per.items()}
     prior = np.diag(np.asarray(model.added_mass, float))
