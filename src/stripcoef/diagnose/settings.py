@@ -187,9 +187,10 @@ class DiagnoseSettings:
         sd from that DOF's own (written) value is selected again with it at the prior and
         written refitted with the written value
         (:func:`stripcoef.diagnose.calibrate.contradicted`); ``"difference"``: more than
-        ``MIN_Z`` sd of the two estimates' difference (:data:`ONE_ADDED_MASS`). Off by default: it wins the
-        VideoRay-like issue-16 real-style log's held-out cells back but loses named-first
-        effects on the independent simulator (benchmarks/data/one_added_mass.md)
+        ``MIN_Z`` sd of the two estimates' difference (:data:`ONE_ADDED_MASS`). Off by
+        default: it wins the VideoRay-like issue-16 real-style log's held-out cells back
+        but, paired on 30 whole-log logs of the independent simulator, wins 2 and loses 5
+        (benchmarks/data/one_added_mass.md, section 5)
     """
 
     window: float = DEFAULT_WINDOW
