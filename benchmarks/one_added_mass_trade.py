@@ -137,9 +137,9 @@ def summarise(rows: list[dict], variant: str = "one_added_mass") -> str:
     comp = [(sum(criteria(a).values()), sum(criteria(b).values())) for a, b in pairs]
     w = sum(y > x for x, y in comp)
     lo = sum(y < x for x, y in comp)
-    lines += ["", f"Composite (criteria met per log): the option wins {w}, loses {lo}, ties "
+    lines += ["", f"Composite (criteria met per log): {variant} wins {w}, loses {lo}, ties "
               f"{len(comp) - w - lo} of {len(comp)} (sign test p {sign_test(w, lo):.2f}); "
-              f"criteria met in all: main {sum(x for x, _ in comp)}, option "
+              f"criteria met in all: main {sum(x for x, _ in comp)}, {variant} "
               f"{sum(y for _, y in comp)}."]
     same = sum(a["step_effects"] == b["step_effects"] and abs(a["cut"] - b["cut"])
                <= 1e-9 * abs(a["cut"]) for a, b in pairs)
