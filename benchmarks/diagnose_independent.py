@@ -43,7 +43,7 @@ Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
-        [--validation-others logged|simulated]
+        [--validation-others logged|simulated] [--one-added-mass]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -96,11 +96,11 @@ def with_truth_maps(prior, truth):
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
             modes: tuple, validation_others: str = "logged",
-            truth_maps: bool = False) -> list[dict]:
+            truth_maps: bool = False, one_added_mass: bool = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
     (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
     against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
-    the background removed)."""
+    the background removed; ``one_added_mass``: diagnose's)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -112,7 +112,7 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
     return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
-                          validation_others),
+                          validation_others, one_added_mass),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
 
 
@@ -165,8 +165,9 @@ def _background(truth, prior: dict) -> dict:
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
-               validation_others: str = "logged") -> dict:
-    """One log diagnosed in one mode: the row of the score table."""
+               validation_others: str = "logged", one_added_mass: bool = False) -> dict:
+    """One log diagnosed in one mode: the row of the score table (``one_added_mass``:
+    diagnose's option, recorded in the row)."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS
@@ -178,14 +179,16 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         # (CPU time is what the table reports)
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                        time_limit=float("inf"),
-                       validation_others=validation_others).to_dict()
+                       validation_others=validation_others,
+                       one_added_mass=one_added_mass).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
     steps = own["steps"]                 # the steps of the effect's own DOF
     every = [s for r in per.values() for s in r["steps"]]
     row = {"vehicle": vehicle, "category": category or "clean", "seed": seed, "mode": mode,
-           "dof": dof_name, "truth": truth.strength, "first": steps[0]["effect"] if steps else None,
+           "dof": dof_name, "truth": truth.strength, "one_added_mass": bool(one_added_mass),
+           "first": steps[0]["effect"] if steps else None,
            "n_steps": len(every), "unexplained": bool(res["unexplained"]),
            "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
            "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
@@ -691,6 +694,9 @@ def main(argv=None) -> int:
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of an earlier run's output (a partial "
                          "run's too) instead of running")
+    ap.add_argument("--one-added-mass", action="store_true",
+                    help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
+                         "a diagnosed DOF's own added mass selected again)")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
@@ -715,7 +721,7 @@ def main(argv=None) -> int:
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
-                             args.validation_others, args.truth_maps))
+                             args.validation_others, args.truth_maps, args.one_added_mass))
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]

@@ -50,6 +50,17 @@ def _step_params(s) -> str:
             f"{_fmt(nd['z'], 2)} sd)")
 
 
+def _beside(cal) -> str:
+    """The sentence on the other DOFs' added masses a DOF was fitted beside at another value
+    than the written one (its calibration record's ``fitted_with``)."""
+    w = _written(cal)
+    return ("fitted beside " + ", ".join(f"{k} {_fmt(v)} (written {_fmt(w[k])})"
+                                         for k, v in cal["fitted_with"].items())
+            + ": each added mass is written once (its own DOF's calibration); this DOF's "
+            "other values were fitted beside these, and its final error is the written "
+            "model's")
+
+
 def _bands(cal, key, value):
     """How many bands ``value`` is from the prior [-]."""
     sd = cal["band_relative"][key] * abs(cal["prior"][key])
@@ -74,6 +85,8 @@ def text_summary(result) -> str:
                      + " (prior -> written model): " + ", ".join(
             f"{k} {_fmt(cal['prior'][k])} -> {_fmt(w)} ({_fmt(_bands(cal, k, w), 2)} bands)"
             for k, w in _written(cal).items()))
+        if cal.get("fitted_with"):
+            lines.append("  " + _beside(cal))
         for i, s in enumerate(r["steps"], 1):
             alt = (" (ties: " + ", ".join(a["effect"] for a in s["alternatives"]) + ")"
                    if s["alternatives"] else "")
@@ -274,6 +287,8 @@ def markdown_report(result: Diagnosis, path) -> None:
         for k, w in _written(cal).items():
             out.append(f"| {k}[{d}] | {_fmt(cal['prior'][k])} | {_fmt(w)} | "
                        f"{_fmt(cal['std'][k], 2)} | {_fmt(_bands(cal, k, w), 2)} |")
+        if cal.get("fitted_with"):
+            out += ["", _beside(cal)[0].upper() + _beside(cal)[1:] + "."]
         st = r["structure_before"]
         out += ["", "Residual after calibration: bias "
                 f"{_fmt(st['bias'])} (z = {_fmt(st['bias_z'], 2)}), lag-1 autocorrelation "

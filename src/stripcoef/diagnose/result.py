@@ -109,6 +109,12 @@ class Calibration(_Record):
         Whether the validation by free simulation kept it (None: no validation)
     written : mapping, optional
         Each coefficient's value in the written model (set by :func:`read_back`)
+    fitted_with : mapping, optional
+        {``M_<dof>``: value [kg or kg m^2]} of each other DOF's added mass that this DOF's
+        final fit held at a value other than the one written (that DOF's own calibration, or
+        the weighted mean of several DOFs' fits: :mod:`stripcoef.diagnose.cross`): this
+        DOF's written coefficients and effects were fitted beside it, and its final error is
+        the written model's (set by :func:`read_back`; absent when there is none)
     """
 
     parameters: Mapping
@@ -122,6 +128,7 @@ class Calibration(_Record):
     final_parameters: Mapping
     kept: bool | None = _optional()
     written: Mapping | None = _optional()
+    fitted_with: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)
