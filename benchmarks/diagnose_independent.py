@@ -13,8 +13,12 @@ Scores (issue 33's criteria):
 
 - library effects: the right effect named first; its magnitude within 15 % of the truth
   (:func:`magnitude_truth`: for the thrust effectiveness, the DOF's whole thrust gain; a
-  force effect or an added mass in the thrust's units, as the log determines them);
-  apart from it, the right effect named first or in the first step's ambiguous set (a
+  force effect or an added mass in the thrust's units, as the log determines them); an
+  effect named with its value "not determined by one DOF" (``not_determined``: a one-DOF
+  tether whose c_t depends on the thrusters' gains, ``stripcoef.diagnose.undetermined``;
+  nothing written) counts as named first, and its magnitude as not claimed: not within
+  15 %, counted apart (``N not claimed``), the gain-free value it reports compared with the
+  truth in the row only (``gains_free_error``); apart from it, the right effect named first or in the first step's ambiguous set (a
   thrust scale and an added-mass change the log does not tell apart,
   ``stripcoef.diagnose.scalechoice``; not counted as named first);
   the error cut at least 3x (baseline / final); in whole-log mode, no step in a DOF the
@@ -39,7 +43,7 @@ Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
-        [--validation-others logged|simulated]
+        [--validation-others logged|simulated] [--one-added-mass]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -92,11 +96,11 @@ def with_truth_maps(prior, truth):
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
             modes: tuple, validation_others: str = "logged",
-            truth_maps: bool = False) -> list[dict]:
+            truth_maps: bool = False, one_added_mass: bool = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
     (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
     against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
-    the background removed)."""
+    the background removed; ``one_added_mass``: diagnose's)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -108,7 +112,7 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
     rows = [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
-                          validation_others),
+                          validation_others, one_added_mass),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
     for row in rows:
         if row["mode"] == "all":
@@ -165,8 +169,9 @@ def _background(truth, prior: dict) -> dict:
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
-               validation_others: str = "logged") -> dict:
-    """One log diagnosed in one mode: the row of the score table."""
+               validation_others: str = "logged", one_added_mass: bool = False) -> dict:
+    """One log diagnosed in one mode: the row of the score table (``one_added_mass``:
+    diagnose's option, recorded in the row)."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS
@@ -178,14 +183,16 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         # (CPU time is what the table reports)
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                        time_limit=float("inf"),
-                       validation_others=validation_others).to_dict()
+                       validation_others=validation_others,
+                       one_added_mass=one_added_mass).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
     steps = own["steps"]                 # the steps of the effect's own DOF
     every = [s for r in per.values() for s in r["steps"]]
     row = {"vehicle": vehicle, "category": category or "clean", "seed": seed, "mode": mode,
-           "dof": dof_name, "truth": truth.strength, "first": steps[0]["effect"] if steps else None,
+           "dof": dof_name, "truth": truth.strength, "one_added_mass": bool(one_added_mass),
+           "first": steps[0]["effect"] if steps else None,
            "n_steps": len(every), "unexplained": bool(res["unexplained"]),
            "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
            "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
@@ -213,15 +220,28 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
         if match:
-            est = get_effect(category).magnitude(match[0].get("final_parameters",
-                                                              match[0]["parameters"]))
-            row["estimate"] = float(est)
             scale = float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
                 "scale", s["parameters"].get("scale", 1.0)) for s in steps
                 if s["effect"] == "thrust_effectiveness"]))
             ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale,
                                   written_gain(res, prior.to_dict(), dof_name))
             row["magnitude_truth"] = float(ref)
+        nd = match[0].get("not_determined") if match else None
+        if nd:
+            # named, its value not determined by one DOF (stripcoef.diagnose.undetermined):
+            # no magnitude is claimed (nothing written); the gain-free fit's value, which
+            # the diagnosis reports, and the prior map's are compared with the truth for
+            # the record only
+            row["magnitude_not_claimed"] = True
+            row["not_determined"] = {k: nd[k] for k in ("gains_free", "gains_free_std",
+                                                        "prior_map", "prior_map_std", "z",
+                                                        "retested")}
+            row["gains_free_error"] = (nd["gains_free"] - ref) / ref
+            row["prior_map_error"] = (nd["prior_map"] - ref) / ref
+        elif match:
+            est = get_effect(category).magnitude(match[0].get("final_parameters",
+                                                              match[0]["parameters"]))
+            row["estimate"] = float(est)
             row["magnitude_error"] = abs(abs(est) - abs(ref)) / abs(ref)
             row["magnitude_error_drawn"] = (abs(abs(est) - abs(truth.strength))
                                             / abs(truth.strength))
@@ -463,7 +483,8 @@ def _progress(row: dict) -> dict:
     import json
     print(f"  {row['vehicle']} {row['category']} seed {row['seed']} {row['mode']}: first "
           f"{row['first']}, steps in {row['step_dofs']}, cut {row['cut']:.2f}, "
-          f"magnitude error {row.get('magnitude_error', float('nan')):.2f}, "
+          f"magnitude error {row.get('magnitude_error', float('nan')):.2f}"
+          f"{' (not claimed: not determined by one DOF)' if row.get('magnitude_not_claimed') else ''}, "
           f"unexplained {row['unexplained']} row " + json.dumps(row, default=float),
           flush=True)
     return row
@@ -585,7 +606,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     score, total = 0, 0
     spurious_all = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
     spurious_old = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
-    mag_all, cut_all, after_all, set_all, mag_drawn = [0], [0], [0], [0], [0]
+    mag_all, cut_all, after_all, set_all, mag_drawn = [0, 0], [0], [0], [0], [0]
     ceiling = [0, 0, 0]     # rows with the truth's cut, of them >= 3x, of those measured >= 3x
     confusion: dict = {}
     for cat in STRENGTHS:
@@ -598,6 +619,9 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             in_set = sum(cat in r.get("first_set", [r["first"]]) for r in rs)
             after = sum(_first_after_background(r) == cat for r in rs)
             mag = sum(r.get("magnitude_error", np.inf) <= 0.15 for r in rs)
+            # named, the value not determined by one DOF: no magnitude claimed
+            unclaimed = sum(bool(r.get("magnitude_not_claimed")) for r in rs)
+            mag_all[1] += unclaimed
             mag_drawn[0] += sum(r.get("magnitude_error_drawn", r.get("magnitude_error", np.inf))
                                 <= 0.15 for r in rs)
             cut = sum(r["cut"] >= 3 for r in rs)
@@ -630,7 +654,8 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
             after_all[0] += after
             set_all[0] += in_set
             lines.append(f"| {cat} | {mode} | {n} | {first}/{n} | {in_set}/{n} | {after}/{n} "
-                         f"| {mag}/{n} | "
+                         f"| {mag}/{n}" + (f" ({unclaimed} not claimed)" if unclaimed else "")
+                         + " | "
                          f"{cut}/{n} | {ceiling_cell} | "
                          + (f"{spur}/{n}" if mode == "all" else "-") + f" | {spur_cells} |")
             mag_all[0] += mag
@@ -644,12 +669,32 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                  f"does not tell apart, counted apart from 'named first'): {set_all[0]}/{total}"
                  + f"; named first after the truth's background (buoyancy, thrust gains): "
                  f"{after_all[0]}/{total}; magnitude within 15 %: {mag_all[0]}/{total} (of the drawn "
-                 f"strength, magnitude_error_drawn: {mag_drawn[0]}/{total}); error cut >= 3x: "
+                 f"strength, magnitude_error_drawn: {mag_drawn[0]}/{total})"
+                 + (f" (named with the value not determined by one DOF, no magnitude "
+                    f"claimed: {mag_all[1]}, counted as named first and not as within 15 %; "
+                    f"of the {total - mag_all[1]} claimed: {mag_all[0]} within)"
+                    if mag_all[1] else "") + "; error cut >= 3x: "
                  f"{cut_all[0]}/{total}"
                  + (f" (the truth's own model cuts the prior's error >= 3x in "
                     f"{ceiling[1]}/{ceiling[0]} of the rows with the oracle; of those the "
                     f"diagnosis does in {ceiling[2]}/{ceiling[1]})" if ceiling[0] else "")
                  + ".")
+    unclaimed = [r for r in rows if r.get("magnitude_not_claimed")]
+    if unclaimed:
+        lines.append("Named, the value not determined by one DOF (nothing written; vehicle, "
+                     "truth, seed: the gain-free fit's value ± sd and the prior map's, each "
+                     "against the truth in the thrust's units, and the difference in sd): "
+                     + "; ".join(
+                         f"{r['vehicle']} {r['category']} {r['seed']}: "
+                         f"{r['not_determined']['gains_free']:.3g} ± "
+                         f"{r['not_determined']['gains_free_std']:.2g} "
+                         f"({100 * r['gains_free_error']:+.1f} %), prior map "
+                         f"{r['not_determined']['prior_map']:.3g} "
+                         f"({100 * r['prior_map_error']:+.1f} %), "
+                         f"{r['not_determined']['z']:.1f} sd"
+                         + (", found only with the gains free"
+                            if r['not_determined']['retested'] else "")
+                         for r in unclaimed) + ".")
     named, kept = spurious_all["step_effects"], spurious_all["step_effects_kept"]
     if named[1]:
         measured = sum("truth_has" in r for r in rows if r["mode"] == "all")
@@ -842,6 +887,9 @@ def main(argv=None) -> int:
                     help="summarise the 'row' lines of earlier runs' outputs (comma-separated "
                          "files; partial runs' too; with --only-seeds and --modes, those rows) "
                          "instead of running")
+    ap.add_argument("--one-added-mass", action="store_true",
+                    help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
+                         "a diagnosed DOF's own added mass selected again)")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
@@ -870,7 +918,7 @@ def main(argv=None) -> int:
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
-                             args.validation_others, args.truth_maps))
+                             args.validation_others, args.truth_maps, args.one_added_mass))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

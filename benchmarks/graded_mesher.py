@@ -100,12 +100,16 @@ def half_mesh(mesh):
 
 def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
                 convex_only: bool = True, patch_angle: float = PATCH_ANGLE,
-                verbose: bool = False):
+                verbose: bool = False, curvature: float = None):
     """(vertices (n, 3) [m], triangles (k, 3)) of ``mesh`` (a closed trimesh) remeshed by gmsh
     with panels graded towards its sharp edges (module docstring; ``H`` the largest panel
     [m], ``L`` the grading length [m]); with ``mirror`` its y >= 0 half only (the body must
     be mirror-symmetric in y = 0), the cut's nodes on y = 0 exactly.  Normals as the input's
-    (outward)."""
+    (outward).  ``curvature`` (a length R_c [m], off by default): where the surface is curved
+    with a radius R [m] the panel is also at most H R / R_c (gmsh's size from curvature,
+    ``Mesh.MeshSizeFromCurvature``, 2 pi R_c / H panels per 2 pi radians), so that a tube
+    thinner than R_c gets panels in proportion to its radius at every level (the levels stay
+    one family scaled by H)."""
     import gmsh
     from scipy.spatial import cKDTree
 
@@ -124,16 +128,19 @@ def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
             gmsh.model.mesh.classifySurfaces(np.radians(patch_angle), True, True, np.pi)
             gmsh.model.mesh.createGeometry()
             gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-            gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+            gmsh.option.setNumber("Mesh.MeshSizeFromCurvature",
+                                  0 if curvature is None else
+                                  max(1, int(round(2.0 * np.pi * curvature / H))))
             gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
             gmsh.option.setNumber("Mesh.MeshSizeMin", h0)
             gmsh.option.setNumber("Mesh.MeshSizeMax", H)
             gmsh.option.setNumber("Mesh.Algorithm", 6)
 
             def size(dim, tag, x, y, z, lc):
+                cap = H if curvature is None else min(H, lc)
                 if tree is None:
-                    return H
-                return float(h(tree.query((x, y, z))[0]))
+                    return cap
+                return float(min(cap, h(tree.query((x, y, z))[0])))
 
             gmsh.model.mesh.setSizeCallback(size)
             gmsh.model.mesh.generate(2)
@@ -241,6 +248,21 @@ def check(v, f, mesh, mirror: bool) -> dict:
             "consistent": bool(closed.is_winding_consistent)}
 
 
+def predicted_gb(faces: int) -> float:
+    """Memory [GB] of Capytaine's half solve (one mirror plane) of ``faces`` faces (whole
+    body): S and K N x N/2 complex128 and K's two diagonal blocks N/2 x N/2, 24 N^2 bytes
+    (22.8 measured at 18,210 faces: :mod:`benchmarks.frame_references`), and 0.5 GB for the
+    interpreter and the mesher."""
+    return 24.0 * faces ** 2 / 1e9 + 0.5
+
+
+def peak_gb() -> float:
+    """Peak resident memory of this process so far [GB] (Linux: ru_maxrss in kB)."""
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
+
+
 RHO = 1000.0
 #: the bluff set's shapes that are no union of prisms along x, mirror-symmetric in y = 0
 #: (benchmarks.bluff_shapes.SHAPES): the frames and the VideoRay-like body
@@ -285,11 +307,16 @@ def shape_body(name):
     return m
 
 
-def run(path, names, levels=None):
+def run(path, names, levels=None, curvature=None, max_gb=None, first_level=0):
     """Every level of each shape of ``names``: Capytaine on the graded half, rows of
-    :data:`HEADER` appended to ``path`` as they come (``m`` holds H [m])."""
+    :data:`HEADER` appended to ``path`` as they come (``m`` holds H [m]).  ``curvature``:
+    :func:`graded_mesh`'s (the ``what`` column says it); ``max_gb``: a level whose half solve
+    is predicted over it (:func:`predicted_gb`) is said and not
+    solved; ``first_level``: the first level's index (a finer level appended to a shape's
+    rows)."""
     import csv
     import sys
+    import time
 
     import capytaine
 
@@ -308,14 +335,27 @@ def run(path, names, levels=None):
         w = csv.writer(fh)
         for name in names:
             body = shape_body(name)
-            for lev, H in enumerate(levels or LEVELS[name]):
-                v, f = graded_mesh(body, H, mirror=True)
+            for lev, H in enumerate(levels or LEVELS[name], start=first_level):
+                v, f = graded_mesh(body, H, mirror=True, curvature=curvature)
                 c = accepted(check(v, f, body, True), f"{name} at H = {H:g} m")
+                if max_gb is not None:
+                    if predicted_gb(2 * len(f)) > max_gb:
+                        print(f"{name}: H {H:g} m, {2 * len(f)} faces: predicted "
+                              f"{predicted_gb(2 * len(f)):.1f} GB > {max_gb:g} GB, not solved",
+                              flush=True)
+                        continue
+                cpu = time.process_time()
                 a, n, sec = capytaine_mirror(v, f)
+                cpu = time.process_time() - cpu
+                if max_gb is not None:
+                    print(f"{name}: H {H:g} m: solve {cpu:.1f} s CPU, peak {peak_gb():.2f} GB",
+                          flush=True)
                 print(f"{name}: H {H:g} m, {n} faces (area {c['area']:+.1e}, volume "
                       f"{c['volume']:+.1e}, least quality {c['quality']:.3f}), {sec:.1f} s: "
                       + " ".join(f"{x:.6g}" for x in np.diag(a)), flush=True)
-                w.writerows([name, f"{name} remeshed by gmsh, mirror xOz", lev, f"{H:g}", n,
+                what = f"{name} remeshed by gmsh, mirror xOz" + (
+                    "" if curvature is None else f", curvature length {curvature:g} m")
+                w.writerows([name, what, lev, f"{H:g}", n,
                              i, j, f"{a[i, j]:.9g}", f"{sec:.2f}"]
                             for i in range(6) for j in range(i, 6))
                 fh.flush()
@@ -514,6 +554,13 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="+", default=list(SHAPES), choices=SHAPES)
     ap.add_argument("--levels", type=float, nargs="+", default=None,
                     help="largest panel H [m] of each level (default: the shape's LEVELS)")
+    ap.add_argument("--curvature", type=float, default=None, metavar="R_C",
+                    help="panels also at most H R / R_C where the surface has a radius R "
+                    "(graded_mesh's curvature; off by default)")
+    ap.add_argument("--max-gb", type=float, default=None,
+                    help="skip a level whose half solve is predicted over this many GB")
+    ap.add_argument("--first-level", type=int, default=0,
+                    help="index of the first level written (to append finer levels)")
     args = ap.parse_args(argv)
     if args.compare:
         compare_public(args.csv, args.compare)
@@ -524,7 +571,7 @@ def main(argv=None) -> int:
         run_public(args.csv, args.mirror, args.public, tuple(args.faces),
                    boxes=not args.gmsh_boxes)
         return 0
-    run(args.csv, args.only, args.levels)
+    run(args.csv, args.only, args.levels, args.curvature, args.max_gb, args.first_level)
     return 0
 
 

@@ -40,3 +40,24 @@ def test_the_videoray_issue16_log_keeps_its_yaw_thrust_scale():
     for d, e in errors.items():
         assert e["calibrated"] < min(e["prior"], e["hold_last_velocity"], e["zero_velocity"]), d
 
+
+
+def test_an_unknown_rule_for_one_added_mass_is_a_one_line_input_error():
+    """``one_added_mass`` is off, on (the DOF's fit's own sd) or ``"difference"`` (the sd of
+    the two estimates' difference; settings.ONE_ADDED_MASS): anything else is refused before
+    any fit, naming the key, the value and the choices."""
+    import numpy as np
+
+    from stripcoef.errors import InputError
+    from stripcoef.logfile import Log
+    from stripcoef.modelfile import load_model
+    from stripcoef import samples
+
+    t = np.arange(0.0, 30.0, 0.1)
+    log = Log({"t": t, "u": np.full(t.size, 0.3), "X": np.full(t.size, 1.0)})
+    with pytest.raises(InputError) as exc:
+        diagnose(log, load_model(samples.path("rov_prior.json")), dof="all",
+                 one_added_mass="joint")
+    text = str(exc.value)
+    assert "one_added_mass" in text and "joint" in text and "difference" in text
+    assert "\n" not in text

@@ -219,6 +219,7 @@ def test_unconverged_panels_warn_with_the_remedy_and_report_the_error(tmp_path, 
     assert data["conditions"]["added_mass_error_max"] > 0.05
     rel = err / np.sqrt(np.outer(np.diag(ma), np.diag(ma)))
     assert rel.max() == pytest.approx(data["conditions"]["added_mass_error_max"], rel=1e-9)
+    assert data["conditions"]["added_mass_converged"] is False
     model = HydroModel.from_dict(data)
     np.testing.assert_array_equal(model.added_mass_error, err)
     # moved to another point: a bound that still covers every term

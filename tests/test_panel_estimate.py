@@ -152,13 +152,32 @@ def test_the_ladder_extrapolates_each_pair_of_one_family():
         ladder_extrapolation(mats[:3], counts[:3], p)
 
 
+@pytest.mark.parametrize("p", [1.0, 4.0 / 3.0, 2.0])
+def test_the_band_shown_with_four_levels_is_eca_hoekstras_moved_by_the_step(p):
+    """An exact power law f_0 + c h^p of an order in [0.5, 2] on four levels: Eça &
+    Hoekstra's free-order fit is exact (sigma 0), so U = 1.25 |f_1 - f_0| (their eqs. 20-21,
+    F_s 1.25), and moved to the exact value A = f_0 by the step |A - f_1| the band is 2.25
+    times the finest level's error; symmetric and no smaller than the finest asymmetry."""
+    from stripcoef.hull.panel_error import least_squares_error
+
+    f0 = np.diag([10.0, 20.0, 30.0, 1.0, 2.0, 3.0]) + 0.4 * (np.eye(6, k=1) + np.eye(6, k=-1))
+    counts = [400, 800, 1600, 3200]
+    c = np.full((6, 6), 0.3) + 2 * np.eye(6)
+    mats = [f0 + c * (n ** -0.5) ** p for n in counts]
+    band, safety = least_squares_error(mats, counts, f0)
+    np.testing.assert_allclose(band, 2.25 * np.abs(mats[-1] - f0), rtol=1e-6)
+    np.testing.assert_allclose(safety, 1.25)
+    with pytest.raises(ValueError, match="4 levels or more"):
+        least_squares_error(mats[:3], counts[:3], f0)
+
+
 def test_the_input_family_of_a_small_mesh_is_two_nested_pairs():
     """Base install, a mesh of at most N/4 faces: the input bisected to N_1 = max(N/4, 2F)
     and 2 N_1 panels, each split in four (4 N_1 and 8 N_1), while 8 N_1 fits one solve; the
     value is the finer pair's extrapolation.  A larger limit than the finest level is refused
     (the caller's two levels)."""
     from stripcoef.hull.input_ladder import ladder_levels
-    from stripcoef.hull.panel_error import ladder_extrapolation
+    from stripcoef.hull.panel_error import ladder_extrapolation, least_squares_error
 
     m = trimesh.creation.cylinder(radius=0.1, height=0.3, sections=12)
     v, f = np.asarray(m.vertices), np.asarray(m.faces)
@@ -176,4 +195,35 @@ def test_the_input_family_of_a_small_mesh_is_two_nested_pairs():
     assert "two nested pairs" in info["family"]
     want, err = ladder_extrapolation(info["levels"], counts, info["formal_order"])
     np.testing.assert_allclose(a, want, rtol=1e-12)
-    np.testing.assert_allclose(info["error"], err, rtol=1e-12)
+    # the refinement and the warning read the step plus the change; the band shown is Eça &
+    # Hoekstra's least-squares uncertainty moved to the value (panel_error.least_squares_error)
+    np.testing.assert_allclose(info["estimate"], err, rtol=1e-12)
+    band, _ = least_squares_error(info["levels"], counts, want)
+    np.testing.assert_allclose(info["error"], band, rtol=1e-12)
+
+
+def test_the_command_shows_the_band_and_warns_on_the_estimate(tmp_path, capsys, monkeypatch):
+    """Base install, a 48-face cylinder on the four-level ladder: the JSON and the text show
+    Eça & Hoekstra's band and name it; the warning, and added_mass_converged, follow the
+    extrapolation's step plus its last change (stripcoef.hull.panel_error)."""
+    import json
+
+    import stripcoef.hull.remesh
+    from stripcoef.cli import main
+
+    monkeypatch.setattr(stripcoef.hull.remesh, "available", lambda: False)
+    path = tmp_path / "cyl.stl"
+    trimesh.creation.cylinder(radius=0.1, height=0.3, sections=12).export(path)
+    argv = ["coefficients", str(path), "--rho", "1000", "--added-mass-method", "panels",
+            "--added-mass-panels", "800"]
+    assert main(argv + ["--json"]) == 0
+    cap = capsys.readouterr()
+    c = json.loads(cap.out)["conditions"]
+    assert len(c["added_mass_panel_levels"]) == 4
+    assert "Eça & Hoekstra's least-squares uncertainty" in c["added_mass_method"]
+    assert ("has not converged" in cap.err) is (not c["added_mass_converged"])
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "Estimated error of M_A (Eça & Hoekstra 2014's least-squares uncertainty, panel " \
+           "levels " in text
+    assert "the warning reads the extrapolation's step plus its last change" in text

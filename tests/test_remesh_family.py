@@ -250,3 +250,40 @@ def test_a_remesh_that_folds_triangles_is_refused():
     assert remesh._remesh_checked(v, f, h, remesh.MODES[2], remesh.ITERATIONS) == (None, None)
     (levels, _), _ = panels._remeshed_levels(v, f, 1600)
     assert all(remesh.folds(*lv) == 0 for lv in levels)
+
+
+def test_panel_levels_refine_by_celiks_ratio_where_it_fits():
+    """The panel method's remeshed levels (stripcoef.hull.panels.remeshed_levels) each refine
+    the one before by r >= 1.3 (Celik et al. 2008: N_fine/N_coarse >= 1.69) where the family
+    fits: on the 30-sided cylinder, whose creases hold the asked levels' counts (the family of
+    remesh_family alone refines by 1.25x there), and the family falls back to 1.25x only where
+    no mode fits 1.69x within the face limit."""
+    pytest.importorskip("pymeshlab")
+    trimesh = pytest.importorskip("trimesh")
+    from stripcoef.hull import remesh
+    from stripcoef.hull.panels import remeshed_levels
+
+    cyl = trimesh.creation.cylinder(radius=0.22, height=3.0, sections=30)
+    v, f = np.asarray(cyl.vertices), np.asarray(cyl.faces)
+    levels, _ = remeshed_levels(v, f, 1600)
+    counts = [len(lv[1]) for lv in levels]
+    assert all(b >= remesh.MIN_FACE_RATIO * a for a, b in zip(counts, counts[1:])), counts
+    assert max(counts) <= remesh.MAX_FACES
+
+
+def test_a_bisected_level_grows_straight_to_the_count_it_needs():
+    """The bisection mode reaches the count it is asked for: a level that must have at least
+    3000 faces is bisected to them, where the edge's steps (at most a halving, four times the
+    panels) would stop at 1600 and refuse the level."""
+    pytest.importorskip("pymeshlab")
+    trimesh = pytest.importorskip("trimesh")
+    from stripcoef.hull import remesh
+
+    cyl = trimesh.creation.cylinder(radius=0.22, height=3.0, sections=30)
+    v, f = np.asarray(cyl.vertices), np.asarray(cyl.faces)
+    mode = next(m for m in remesh.MODES if m.bisect)
+    lv, _ = remesh.grown_level(v, f, remesh.edge_for_panels(cyl.area, 400), mode, 3000, 6000)
+    assert lv is not None
+    assert 3000 <= len(lv[1]) <= 6000
+    assert enclosed_volume(*lv) == pytest.approx(cyl.volume, rel=1e-9)
+    assert surface_area(*lv) == pytest.approx(cyl.area, rel=1e-9)

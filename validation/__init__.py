@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
                              "rotary_trace", "fin_incidence", "crossflow_center", "identification", "meshes", "fins", "bluff", "cad_shapes",
                              "public_meshes", "public_graded", "thin_members",
-                             "vehicle_surface", "bluerov2",
+                             "vehicle_surface", "graded_frames", "bluerov2",
                              "drag", "bands",
                              "diagnosis", "diagnosis_independent", "real_logs", "cfd")
 

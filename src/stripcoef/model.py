@@ -388,11 +388,11 @@ class Conditions(Mapping):
         Panels of each resolution of the panel method, coarse to fine (its grid convergence
         study: :mod:`stripcoef.hull.convergence`)
     added_mass_converged : bool
-        Whether every term's estimated error is within the panel method's tolerance
-        (:data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale)
+        Whether every term's estimate (the levels' step plus last change) is within the
+        tolerance (:data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale)
     added_mass_error_max : float
-        Largest estimated error of a term of M_A over the diagonal scale [-]
-        (:attr:`HydroModel.added_mass_error`)
+        Largest term of the band shown over the diagonal scale [-] (four levels or more: Eça
+        & Hoekstra's uncertainty, wider than the estimate; :attr:`HydroModel.added_mass_error`)
     mirror_planes : str
         The body's mirror planes through the reference point (``x``, ``y``, ``z``: the axis
         each reverses, or ``none``) whose forbidden couplings of M_A were set to exactly zero

@@ -558,9 +558,11 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     :func:`panel_surface`) by the 3D panel method about ``about`` [m]
     (:func:`stripcoef.hull.panels.panel_added_mass`: the unbounded-fluid Neumann problem,
     :math:`A_{ij} = -\rho\iint_S \phi_j n_i\,dS`, Newman 1977 eq. 4.148), its info and the
-    estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when one exceeds
+    estimated error of each term [kg, kg m, kg m^2] (a :class:`ModelWarning` when a term's
+    estimate, the extrapolation's step plus its last change, exceeds
     :data:`stripcoef.hull.panels.ERROR_TOLERANCE` of the diagonal scale, naming the panel
-    count that resolves it).  ``symmetrise``: a function applied to M_A and its error before
+    count that resolves it; with four levels or more the error returned is the wider band
+    of Eça & Hoekstra's least squares, :func:`stripcoef.hull.panel_error.least_squares_error`).  ``symmetrise``: a function applied to M_A and its error before
     the check (the body's mirror planes, :func:`stripcoef.assembly.symmetry.enforce_symmetry`);
     ``mirrors``: those planes (``x``, ``y``, ``z`` through ``about``), which shrink the solve
     to half, a quarter or an eighth of the body with image panels (the ``mirrors`` of
@@ -577,21 +579,30 @@ def panel_vehicle_added_mass(vehicle, rho: float, about, panels=None, symmetrise
     except InputError as exc:
         raise (exc.with_key("added_mass_panels") if exc.key == "panels" else exc) from None
     error = info["error"]
+    estimate = info.get("estimate")
+    estimate = error if estimate is None else estimate
     if symmetrise is not None:
-        m_a, error = symmetrise(m_a), symmetrise(error)
+        m_a, error, estimate = symmetrise(m_a), symmetrise(error), symmetrise(estimate)
     rel = relative_error(m_a, error, info.get("length"))
+    # the warning reads the estimate (the step plus the last change), the band shown the
+    # error (four levels or more: Eça & Hoekstra's uncertainty; stripcoef.hull.panel_error)
+    warn = relative_error(m_a, estimate, info.get("length"))
     counts = "/".join(str(c) for c in info["panels"])
-    if rel.max() > ERROR_TOLERANCE:
+    if warn.max() > ERROR_TOLERANCE:
         warnings.warn(f"{source or vehicle.name}: " + unconverged_message(
-            rel, info, n, ERROR_TOLERANCE, MAX_PANELS), ModelWarning, stacklevel=3)
+            warn, info, n, ERROR_TOLERANCE, MAX_PANELS), ModelWarning, stacklevel=3)
+    levels = len(info["panels"])
+    how = ("error: Eça & Hoekstra's least-squares uncertainty of the levels; warned where "
+           "the extrapolation's step plus its last change exceeds "
+           f"{100 * ERROR_TOLERANCE:.0f} %)" if levels >= 4
+           else "error: the extrapolation's step plus its last change)" if levels == 3
+           else "error: grid convergence index)")
     return m_a, {"added_mass_method": "3D panel method (stripcoef.hull.panels, "
                                       f"{info['family']}, Richardson from {counts} panels, "
-                                      + ("error: the extrapolation's step plus its last change)"
-                                         if len(info["panels"]) >= 3
-                                         else "error: grid convergence index)"),
+                                      + how,
                  "added_mass_panels": int(info["panels"][-1]),
                  "added_mass_panel_levels": tuple(int(c) for c in info["panels"]),
-                 "added_mass_converged": bool(rel.max() <= ERROR_TOLERANCE),
+                 "added_mass_converged": bool(warn.max() <= ERROR_TOLERANCE),
                  "added_mass_error_max": float(rel.max())}, error
 
 
@@ -601,7 +612,8 @@ WARNED_TERMS = 6
 
 def unconverged_message(rel, info, panels: int, tolerance: float, max_panels: int) -> str:
     """The not-converged warning of the panel method (:func:`panel_vehicle_added_mass`): every
-    upper-triangle term whose estimated error ``rel`` (6x6, over the diagonal scale,
+    upper-triangle term whose estimated error ``rel`` (6x6, over the diagonal scale; three
+    levels or more: the extrapolation's step plus its last change,
     :func:`stripcoef.hull.panels.relative_error`) exceeds ``tolerance`` [-], the worst first
     (at most :data:`WARNED_TERMS` named), the levels solved, and the option or command that
     resolves it: more panels (twice those asked, or four times once the refinement went on to
@@ -625,5 +637,7 @@ def unconverged_message(rel, info, panels: int, tolerance: float, max_panels: in
     if info["family"].startswith("refined"):
         fix += ("; install the remesher for three uniform levels (pip install "
                 "'stripcoef[remesh]')")
-    return (f"the 3D panel method has not converged: estimated error over the diagonal scale "
+    what = ("the extrapolation's step plus its last change" if len(info["panels"]) >= 3
+            else "estimated error")
+    return (f"the 3D panel method has not converged: {what} over the diagonal scale "
             f"of {named} (tolerance {100 * tolerance:.0f} %; panels {counts}); {fix}")

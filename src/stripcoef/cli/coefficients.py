@@ -65,6 +65,20 @@ def _levels(c) -> str:
     return "/".join(str(n) for n in levels) if levels else str(c.get("added_mass_panels"))
 
 
+def _level_count(c) -> int:
+    return len(c.get("added_mass_panel_levels") or ())
+
+
+def _error_rule(c) -> str:
+    """The band the panel method shows (stripcoef.hull.panel_error): Eça & Hoekstra's
+    least-squares uncertainty with four levels or more, the extrapolation's step plus its last
+    change with three, Roache's grid convergence index with two."""
+    n = _level_count(c)
+    return ("Eça & Hoekstra 2014's least-squares uncertainty" if n >= 4 else
+            "the extrapolation's step plus its last change" if n == 3 else
+            "grid convergence index, Roache 1998")
+
+
 def format_table(model) -> str:
     """A readable summary: mass properties, the three matrices, conditions."""
     bands = band_lines(model)
@@ -89,10 +103,12 @@ def format_table(model) -> str:
            "",
            mat("Added mass M_A", model.added_mass, "kg, kg m, kg m^2", "added_mass"),
            "",
-           *([mat("Estimated error of M_A (grid convergence index of the panel levels "
-                  f"{_levels(c)}, Roache 1998)", model.added_mass_error, "kg, kg m, kg m^2"),
+           *([mat(f"Estimated error of M_A ({_error_rule(c)}, panel levels {_levels(c)})",
+                  model.added_mass_error, "kg, kg m, kg m^2"),
               f"  largest: {100 * c.get('added_mass_error_max', 0.0):.2g} % of the diagonal "
-              "scale sqrt(M_ii M_jj)", ""]
+              "scale sqrt(M_ii M_jj)" + ("" if _level_count(c) < 4 else
+                                         "; the warning reads the extrapolation's step plus "
+                                         "its last change (added_mass_converged)"), ""]
              if model.added_mass_error is not None else []),
            mat("Linear damping D_L", model.linear_damping, "kg/s, kg m/s, kg m^2/s",
                "linear_damping"),

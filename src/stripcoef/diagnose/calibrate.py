@@ -101,7 +101,8 @@ def _changes(per: dict) -> list:
     for d, r in per.items():
         if any(v != 0.0 for v in r.calibration.final_parameters.values()):
             out.append(("calibration", d))
-        out += [("effect", d, s.effect) for s in r.steps]
+        # a step one DOF does not determine is never written (diagnose.undetermined)
+        out += [("effect", d, s.effect) for s in r.steps if not s.not_determined]
     return out
 
 
@@ -125,7 +126,8 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     """``(config, theta)``: the fit of DOF ``d`` whose values are written, given the changes
     ``exclude``d (:func:`calibrated_model`). Without exclusions, the diagnosis's final fit;
     with some, the kept terms refitted without the removed ones (their nonlinear parameters
-    as selected), so that no kept parameter compensates a term that is not there -- and,
+    as selected), so that no kept parameter compensates a term that is not there (so too
+    without a step whose value one DOF does not determine, ``Step.not_determined``) -- and,
     when the DOF's calibration is removed, without the calibration columns (its
     coefficients stay at the prior): the effects fitted together with it are refitted
     alone. ``theta`` starts with the calibration's values (none when it is removed).
@@ -136,7 +138,11 @@ def written_fit(d: str, result, fit, exclude=frozenset(), known=None):
     refitted (a calibration column of the same name is then dropped)."""
     cfg = fit.config
     theta = fit.evaluation["full"]["theta"]
-    dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude]
+    # the changes removed, and the steps named whose value one DOF does not determine
+    # (diagnose.undetermined: nothing written for them)
+    unwritten = {s.effect for s in result.steps if s.not_determined}
+    dropped = [t for t in cfg.terms if ("effect", d, t[0].name) in exclude
+               or t[0].name in unwritten]
     no_cal = ("calibration", d) in exclude and len(cfg.cal.names) > 0
     if no_cal:
         cfg = _Config(cfg.data, cfg.dof, cfg.cal.subset([]), list(cfg.terms),
@@ -201,7 +207,7 @@ def consistent_fits(model, per: dict, fits: dict, exclude=frozenset()) -> dict:
     return fitted
 
 
-def contradicted(model, per: dict, fits: dict) -> dict:
+def contradicted(model, per: dict, fits: dict, difference: bool = False) -> dict:
     r"""The DOFs of a whole-log diagnosis whose fit holds another diagnosed DOF's added mass
     ``M_<dof>`` (:mod:`stripcoef.diagnose.cross`) at a value that contradicts the one written
     for it, its own DOF's (:func:`calibrated_model` before the validation): more than
@@ -213,7 +219,13 @@ def contradicted(model, per: dict, fits: dict) -> dict:
     sway added mass at +5.2 kg (sd 0.57) where sway's own balance, written, gave +0.5 kg: the
     free added mass had taken the yaw thrust scale (the balance is homogeneous in thrust,
     inertia and drag; :mod:`stripcoef.diagnose.scalechoice`) and the model written had
-    neither."""
+    neither.
+
+    ``difference``: the two estimates contradict each other only when their difference is
+    more than ``MIN_Z`` sd of the difference, :math:`\sqrt{s_d^2 + s_j^2}` with
+    :math:`s_j` the sd of DOF j's own calibrated added mass, 0 where its calibration does
+    not hold it (independent estimates: the variance of their difference is the sum of
+    their variances, Bevington & Robinson 2003, Data Reduction and Error Analysis, ch. 3)."""
     from stripcoef.diagnose.settings import MIN_Z
     fitted = {d: written_fit(d, r, fits[d]) for d, r in per.items()}
     prior = np.diag(np.asarray(model.added_mass, float))
@@ -226,10 +238,21 @@ def contradicted(model, per: dict, fits: dict) -> dict:
         written = {n: own[n[2:]] - prior[parse_dof(n[2:])] for n in mine}
         far = [n for n, k in mine.items()
                if abs(ev["theta"][k] - written[n])
-               > MIN_Z * math.sqrt(max(float(ev["cov"][k, k]), 0.0))]
+               > MIN_Z * math.sqrt(max(float(ev["cov"][k, k]), 0.0)
+                                   + (_own_variance(fits[n[2:]]) if difference else 0.0))]
         if far:
             out[d] = written
     return out
+
+
+def _own_variance(fit) -> float:
+    """The variance of a DOF's own calibrated added mass ``M`` in its final fit [kg^2 or
+    kg^2 m^4]; 0 when its calibration does not hold it."""
+    names = list(fit.config.cal.names)
+    if "M" not in names:
+        return 0.0
+    k = names.index("M")
+    return max(float(fit.evaluation["full"]["cov"][k, k]), 0.0)
 
 
 def _own_added_mass(model, per: dict, fitted: dict) -> dict:
@@ -256,7 +279,15 @@ def calibrated_model(model, per: dict, fits: dict, exclude=frozenset()):
     thrusters' lag in a simulation instead of one per DOF, the same forces); so is the one
     water current (:func:`stripcoef.diagnose.current.share_current`), which acts in all six
     DOFs through the relative velocity."""
-    return _build(model, per, consistent_fits(model, per, fits, exclude))
+    return calibrated_fits(model, per, fits, exclude)[0]
+
+
+def calibrated_fits(model, per: dict, fits: dict, exclude=frozenset()):
+    """``(model, fitted)``: :func:`calibrated_model` and the fits it writes from (DOF ->
+    ``(config, theta)``, :func:`consistent_fits`), for :func:`stripcoef.diagnose.written.
+    read_back` to say which values each DOF was fitted beside."""
+    fitted = consistent_fits(model, per, fits, exclude)
+    return _build(model, per, fitted), fitted
 
 
 def _build(model, per: dict, fitted: dict):

@@ -29,6 +29,16 @@ GAINS_FREE = TetherDragGainsFree()
 _STATISTICAL = ("held-out gain ", "delta BIC ", "z = ")
 
 
+#: The words a retested step's signature carries (:func:`with_retest`, :func:`retested`)
+RETESTED = "tested with each thruster's gain free"
+
+
+def retested(step) -> bool:
+    """Whether a step (a :class:`~stripcoef.diagnose.result.Step`) was judged by the retest
+    with the thrust gains free (:func:`with_retest`: its signature says so)."""
+    return RETESTED in (step.signature or "")
+
+
 def variant(eff):
     """The effect whose test is repeated with the thrust gains free for ``eff``, or None."""
     return GAINS_FREE if isinstance(eff, TetherDrag) and \
@@ -51,7 +61,7 @@ def with_retest(trial: dict, retest: dict) -> dict:
     that says so; else ``trial`` unchanged."""
     if not retest["significant"]:
         return trial
-    text = (f"{trial['signature']} (tested with each thruster's gain free: "
+    text = (f"{trial['signature']} ({RETESTED}: "
             f"{', '.join(f'{k} = {v:.3g}' for k, v in retest['parameters'].items())}, "
             f"z = {retest['z']:.1f}, held-out gain {100 * retest['held_out_gain']:.1f} %, "
             f"delta BIC {retest['delta_bic']:.1f}; written without the gains)")

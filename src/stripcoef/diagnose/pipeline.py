@@ -72,6 +72,10 @@ Steps, for each degree of freedom (issue 7):
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
    actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
+   In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
+   found only with each thruster's gain free, or whose c_t moves when they are freed) is
+   named with its value "not determined by one DOF" and not written
+   (:mod:`.undetermined`: the whole-log diagnosis writes the gains).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -97,12 +101,13 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF, VELOCITIES, parse_dof
-from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_model,  # noqa: F401
-                                          clip_added_mass, contradicted,
+from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: F401
+                                          calibrated_model, clip_added_mass, contradicted,
                                           share_timing)
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
+from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.diagnose.timing import compare_timing
@@ -116,8 +121,8 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
-                                         UNEXPLAINED_GAIN, VALIDATION_FRACTION, VALIDATION_OTHERS,
-                                         Budget,
+                                         ONE_ADDED_MASS, UNEXPLAINED_GAIN,
+                                         VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
                                          resimulated_errors, validate_changes,
@@ -135,7 +140,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -179,9 +184,16 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
         take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
         diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
-    one_added_mass : bool
+    one_added_mass : bool or str
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
-        (:attr:`DiagnoseSettings.one_added_mass`; off by default).
+        (:attr:`DiagnoseSettings.one_added_mass`; off by default; ``"difference"``: judged
+        on the sd of the two estimates' difference, :data:`~stripcoef.diagnose.settings.
+        ONE_ADDED_MASS`).
+    not_determined : bool
+        One DOF: a tether found only with the thrusters' gains free is named with its c_t
+        not determined by one DOF and not written (:mod:`.undetermined`; on by default);
+        False: written from the fit with the prior's thrust map
+        (:attr:`DiagnoseSettings.not_determined`).
 
     Returns
     -------
@@ -211,6 +223,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a way to move the DOFs not diagnosed", key="validation_others",
                          value=validation_others,
                          expected="one of " + ", ".join(VALIDATION_OTHERS))
+    if one_added_mass not in ONE_ADDED_MASS:
+        raise InputError("not a rule for one added mass", key="one_added_mass",
+                         value=one_added_mass,
+                         expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -225,7 +241,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=bool(one_added_mass))
+        one_added_mass=one_added_mass, not_determined=bool(not_determined))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -302,8 +318,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # and written refitted with their written values (calibrate.contradicted,
     # consistent_fits)
     undiagnosed = [j for j in cross if DOF[j] not in per]
-    again = (contradicted(model, per, fits) if len(dofs) > 1 and settings.one_added_mass
-             else {})
+    again = (contradicted(model, per, fits,
+                          difference=settings.one_added_mass == "difference")
+             if len(dofs) > 1 and settings.one_added_mass else {})
     for d, known in again.items():
         i = parse_dof(d)
         per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
@@ -313,16 +330,19 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
     per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
+        per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
-    calibrated = calibrated_model(model, per, fits, exclude)
+    calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
     # one model: what is reported about the calibrated model is read back from it as written
     written = type(calibrated).from_dict(calibrated.to_dict())
-    per = read_back(per, fits, written, train_log, window=window, exclude=exclude)
+    per = read_back(per, fits, written, train_log, window=window, exclude=exclude,
+                    fitted=fitted)
     if record is not None and clipped:      # the validated model was clipped afterwards
         record["kept_changes"] = validation_errors(val_log, written, dofs,
                                                    settings.logged_dofs(dofs))

@@ -37,6 +37,30 @@ def _written(cal) -> dict:
                                                         cal["parameters"]).items()}
 
 
+def _step_params(s) -> str:
+    """A step's parameters in words; for one whose value one DOF does not determine
+    (``not_determined``, :mod:`stripcoef.diagnose.undetermined`) that, with the values
+    fitted with each thruster's gain free and with the prior's thrust map."""
+    nd = s.get("not_determined")
+    if not nd:
+        return _params(s["parameters"], s["std"])
+    return (f"{nd['parameter']} not determined by one DOF (with each thruster's gain free "
+            f"{_fmt(nd['gains_free'])} ± {_fmt(nd['gains_free_std'], 2)}, with the prior's "
+            f"thrust map {_fmt(nd['prior_map'])} ± {_fmt(nd['prior_map_std'], 2)}; difference "
+            f"{_fmt(nd['z'], 2)} sd)")
+
+
+def _beside(cal) -> str:
+    """The sentence on the other DOFs' added masses a DOF was fitted beside at another value
+    than the written one (its calibration record's ``fitted_with``)."""
+    w = _written(cal)
+    return ("fitted beside " + ", ".join(f"{k} {_fmt(v)} (written {_fmt(w[k])})"
+                                         for k, v in cal["fitted_with"].items())
+            + ": each added mass is written once (its own DOF's calibration); this DOF's "
+            "other values were fitted beside these, and its final error is the written "
+            "model's")
+
+
 def _bands(cal, key, value):
     """How many bands ``value`` is from the prior [-]."""
     sd = cal["band_relative"][key] * abs(cal["prior"][key])
@@ -61,16 +85,21 @@ def text_summary(result) -> str:
                      + " (prior -> written model): " + ", ".join(
             f"{k} {_fmt(cal['prior'][k])} -> {_fmt(w)} ({_fmt(_bands(cal, k, w), 2)} bands)"
             for k, w in _written(cal).items()))
+        if cal.get("fitted_with"):
+            lines.append("  " + _beside(cal))
         for i, s in enumerate(r["steps"], 1):
             alt = (" (ties: " + ", ".join(a["effect"] for a in s["alternatives"]) + ")"
                    if s["alternatives"] else "")
             if s.get("ambiguous_with"):
                 alt += (" (the log does not tell it from "
                         + ", ".join(s["ambiguous_with"]) + ")")
-            if s.get("kept") is False:
+            nd = s.get("not_determined")
+            if nd:
+                alt += f" [named, not written: {nd['reason']}; {nd['advice']}]"
+            elif s.get("kept") is False:
                 alt += (" [removed: worse free simulation on the validation data; not in the "
                         "written model]")
-            lines.append(f"  step {i}: {s['effect']}: {_params(s['parameters'], s['std'])}; "
+            lines.append(f"  step {i}: {s['effect']}: {_step_params(s)}; "
                          f"at its selection: error {_fmt(s['error_before'])} -> "
                          f"{_fmt(s['error_after'])}, held-out {_fmt(s['held_out_error_before'])}"
                          f" -> {_fmt(s['held_out_error_after'])}{alt}")
@@ -201,7 +230,8 @@ def _bands_text(widths) -> str:
 
 def _step_names(steps) -> str:
     """The steps of a DOF for the summary table, those the validation removed marked."""
-    return ", ".join(s["effect"] + (" (removed)" if s.get("kept") is False else "")
+    return ", ".join(s["effect"] + (" (not determined by one DOF)" if s.get("not_determined")
+                                    else " (removed)" if s.get("kept") is False else "")
                      for s in steps) or "-"
 
 
@@ -257,6 +287,8 @@ def markdown_report(result: Diagnosis, path) -> None:
         for k, w in _written(cal).items():
             out.append(f"| {k}[{d}] | {_fmt(cal['prior'][k])} | {_fmt(w)} | "
                        f"{_fmt(cal['std'][k], 2)} | {_fmt(_bands(cal, k, w), 2)} |")
+        if cal.get("fitted_with"):
+            out += ["", _beside(cal)[0].upper() + _beside(cal)[1:] + "."]
         st = r["structure_before"]
         out += ["", "Residual after calibration: bias "
                 f"{_fmt(st['bias'])} (z = {_fmt(st['bias_z'], 2)}), lag-1 autocorrelation "
@@ -282,10 +314,12 @@ def markdown_report(result: Diagnosis, path) -> None:
         if not r["steps"]:
             out.append("No effect is significant.")
         for i, s in enumerate(r["steps"], 1):
-            removed = (" **Removed by the validation** (worse free simulation on the "
+            nd = s.get("not_determined")
+            removed = (f" **Named, not written**: {nd['reason']}; {nd['advice']}." if nd
+                       else " **Removed by the validation** (worse free simulation on the "
                        "validation data): not in the written model." if s.get("kept") is False
                        else "")
-            out.append(f"{i}. **{s['effect']}**: {_params(s['parameters'], s['std'])}; at its "
+            out.append(f"{i}. **{s['effect']}**: {_step_params(s)}; at its "
                        f"selection: error "
                        f"{_fmt(s['error_before'])} → {_fmt(s['error_after'])}, held-out "
                        f"{_fmt(s['held_out_error_before'])} → "

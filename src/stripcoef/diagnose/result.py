@@ -109,6 +109,12 @@ class Calibration(_Record):
         Whether the validation by free simulation kept it (None: no validation)
     written : mapping, optional
         Each coefficient's value in the written model (set by :func:`read_back`)
+    fitted_with : mapping, optional
+        {``M_<dof>``: value [kg or kg m^2]} of each other DOF's added mass that this DOF's
+        final fit held at a value other than the one written (that DOF's own calibration, or
+        the weighted mean of several DOFs' fits: :mod:`stripcoef.diagnose.cross`): this
+        DOF's written coefficients and effects were fitted beside it, and its final error is
+        the written model's (set by :func:`read_back`; absent when there is none)
     """
 
     parameters: Mapping
@@ -122,6 +128,7 @@ class Calibration(_Record):
     final_parameters: Mapping
     kept: bool | None = _optional()
     written: Mapping | None = _optional()
+    fitted_with: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -179,6 +186,12 @@ class Step(_Record):
     choice : mapping, optional
         The test of a thrust scale against an added-mass change in the model holding both
         (:func:`~stripcoef.diagnose.scalechoice.choose`), when both were candidates
+    not_determined : mapping, optional
+        One DOF: the effect is named but its value depends on the thrusters' gains, which
+        one DOF does not determine (:mod:`~stripcoef.diagnose.undetermined`): nothing is
+        written for it (``kept`` false); its parameter fitted with each thruster's gain
+        free and with the prior's map, their standard deviations, the test, the reason and
+        the advice (run the whole-log diagnosis)
     """
 
     effect: str
@@ -210,6 +223,7 @@ class Step(_Record):
     evidence: Mapping | None = _optional()
     ambiguous_with: tuple | None = _optional()
     choice: Mapping | None = _optional()
+    not_determined: Mapping | None = _optional()
 
 
 @dataclass(frozen=True, kw_only=True)

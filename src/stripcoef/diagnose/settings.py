@@ -146,6 +146,12 @@ UNLIMITED = Budget()
 #: 22 on the same logs, none lower.
 VALIDATION_OTHERS = ("logged", "simulated")
 
+#: The rules of :attr:`DiagnoseSettings.one_added_mass`: off (False), a DOF's fit more than
+#: ``MIN_Z`` of its own sd from a diagnosed DOF's written added mass (True), or more than
+#: ``MIN_Z`` sd of the difference of the two estimates (``"difference"``). Issue 33
+#: (benchmarks/data/one_added_mass.md).
+ONE_ADDED_MASS = (False, True, "difference")
+
 
 @dataclass(frozen=True)
 class DiagnoseSettings:
@@ -176,13 +182,22 @@ class DiagnoseSettings:
         one-DOF diagnosis their velocities, and the attitude when roll and pitch both
         are, follow the log) or ``"simulated"`` (the model, the prior's where nothing
         was diagnosed; a whole-log diagnosis always) (:data:`VALIDATION_OTHERS`)
-    one_added_mass : bool
+    one_added_mass : bool or str
         Whole-log: a DOF whose fit holds a diagnosed DOF's added mass more than ``MIN_Z``
         sd from that DOF's own (written) value is selected again with it at the prior and
         written refitted with the written value
-        (:func:`stripcoef.diagnose.calibrate.contradicted`). Off by default: it wins the
-        VideoRay-like issue-16 real-style log's held-out cells back but loses named-first
-        effects on the independent simulator (benchmarks/data/one_added_mass.md)
+        (:func:`stripcoef.diagnose.calibrate.contradicted`); ``"difference"``: more than
+        ``MIN_Z`` sd of the two estimates' difference (:data:`ONE_ADDED_MASS`). Off by
+        default: it wins the VideoRay-like issue-16 real-style log's held-out cells back
+        but, paired on 30 whole-log logs of the independent simulator, wins 2 and loses 5
+        (benchmarks/data/one_added_mass.md, section 5)
+    not_determined : bool
+        One DOF: a step found only with the thrusters' gains free (a tether) is named with
+        its value not determined by one DOF and not written
+        (:mod:`stripcoef.diagnose.undetermined`; on by default). False: written from the
+        fit with the prior's thrust map, as before (its c_t +88 % on an independent
+        BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
+        three such logs measured, docs/performance.md, ``tether33e``)
     """
 
     window: float = DEFAULT_WINDOW
@@ -195,7 +210,8 @@ class DiagnoseSettings:
     added_mass_sd: np.ndarray | None = None
     prior_widths: object = None
     validation_others: str = "logged"
-    one_added_mass: bool = False
+    one_added_mass: bool | str = False
+    not_determined: bool = True
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

@@ -80,8 +80,29 @@ def thrust_scale(model, dof: str) -> float:
     return s
 
 
+def fitted_with(d: str, cfg, theta, written, prior_values) -> dict:
+    r"""{``M_<dof>``: value [kg or kg m^2]} of the other DOFs' added masses that DOF ``d``'s
+    fit ``(cfg, theta)`` (:func:`~stripcoef.diagnose.calibrate.written_fit`, calibration
+    columns first) holds at a value other than the one in the model ``written``: the prior's
+    value ``prior_values[name]`` plus the fitted change, where it differs from the written one
+    by more than 1e-9 relative. In a whole-log diagnosis another DOF's added mass enters
+    DOF d's balance through :math:`C_A(\nu)\nu` (Fossen 2011, eq. 6.43) and is written once
+    (:mod:`stripcoef.diagnose.cross`); a DOF fitted beside another value has its other
+    coefficients written as fitted, and its final error is then the written model's, not
+    its fit's."""
+    out = {}
+    for name, change in zip(cfg.cal.names, theta[:len(cfg.cal.names)]):
+        if not name.startswith("M_") or name[2:] == d:
+            continue
+        value = float(prior_values[name]) + float(change)
+        have = coefficient(written, parse_dof(d), name)
+        if abs(value - have) > 1e-9 * max(abs(have), 1e-12):
+            out[name] = value
+    return out
+
+
 def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
-              exclude=frozenset()) -> dict:
+              exclude=frozenset(), fitted=None) -> dict:
     """The per-DOF results ``per`` (DOF -> :class:`~stripcoef.diagnose.result.DofResult` of
     :func:`stripcoef.diagnose.select.diagnose_dof`; new ones returned) with every value that
     describes the written model replaced by the value read back from ``written`` (the model
@@ -90,10 +111,16 @@ def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
     - ``calibration.written``: each calibrated coefficient's value in the model, and
       ``calibration.final_parameters``: its change from the prior there;
     - each step: ``kept`` (in the model or not), ``parameters`` and ``final_parameters`` the
-      written ones when kept (``selected_parameters``: those it had when selected);
+      written ones when kept (``selected_parameters``: those it had when selected); for a
+      step whose value one DOF does not determine (``not_determined``, never written) the
+      value fitted with each thruster's gain free and its sd, as its record says;
     - ``final_error``: the written model's error; ``final_held_out_error``: the blocked
       cross-validation of the written structure (refitted when the validation removed a
-      change of the DOF).
+      change of the DOF or a step is not written, ``Step.not_determined``);
+    - ``calibration.fitted_with``: the other DOFs' added masses the DOF's written fit held at
+      another value than the written one (:func:`fitted_with`; ``fitted``: DOF -> ``(config,
+      theta)`` the model was written from, :func:`~stripcoef.diagnose.calibrate.
+      calibrated_fits`; none recorded without it).
     """
     dofs = [parse_dof(d) for d in per]
     errors = window_errors(fit_log, written, dofs, window=window)
@@ -102,19 +129,28 @@ def read_back(per: dict, fits: dict, written, fit_log, *, window: float,
         i = parse_dof(d)
         cal = r.calibration
         values = {n: coefficient(written, i, n) for n in cal.parameters}
+        beside = (fitted_with(d, *fitted[d], written, cal.prior)
+                  if fitted is not None and d in fitted else {})
         cal = replace(cal, written=values,
                       final_parameters={n: values[n] - float(cal.prior[n])
-                                        for n in cal.parameters})
+                                        for n in cal.parameters},
+                      fitted_with=beside or None)
         effects = written_effects(written, d)
         steps = []
         for s in r.steps:
             kept = s.effect in effects
+            nd = s.not_determined
+            # a step one DOF does not determine (diagnose.undetermined) is reported with
+            # its gain-free fit's value, said so; never the prior map's fit's
+            unset = ({"parameters": {nd["parameter"]: nd["gains_free"]},
+                      "final_parameters": {nd["parameter"]: nd["gains_free"]},
+                      "std": {nd["parameter"]: nd["gains_free_std"]}} if nd else {})
             steps.append(replace(s, selected_parameters=dict(s.parameters), kept=kept,
                                  **({"parameters": dict(effects[s.effect]),
                                      "final_parameters": dict(effects[s.effect])}
-                                    if kept else {})))
+                                    if kept else unset)))
         held_out = r.final_held_out_error
-        if any(c[1] == d for c in exclude):
+        if any(c[1] == d for c in exclude) or any(s.not_determined for s in r.steps):
             cfg, _ = written_fit(d, r, fits[d], exclude)
             held_out = float(_evaluate(cfg)["held_out_error"])
         out[d] = replace(r, calibration=cal, steps=tuple(steps), final_error=errors[d],

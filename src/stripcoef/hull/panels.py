@@ -83,6 +83,7 @@ or without the remesher.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -98,7 +99,7 @@ from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
-    relative_error, richardson_error)
+    least_squares_error, relative_error, richardson_error)
 from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels, fold_mask
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
@@ -316,7 +317,18 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
     (reference_tables/bem/cad_shapes_fine_levels.csv) with estimates of 0.2-2.1 %; frame 21
     (17-mm plates) in one y-mirrored level at 7232 panels: surge 3.528 with flips, 3.471
     without (reference 3.467).  In the thin-member modes: -0.5 to +0.8 %
-    (docs/performance.md, "Thin members and the panel family")."""
+    (docs/performance.md, "Thin members and the panel family").
+
+    Each level refines the one before by Celik et al. 2008's r >= 1.3 (``MIN_FACE_RATIO``
+    in faces) where some mode fits it within the face limit, else by ``LEAST_FACE_RATIO``
+    (:func:`_family`): the creases of thin members hold the coarse levels' counts, and the
+    Richardson step multiplies the last change by :math:`1/(r^p - 1)`, 4 at r = 1.25 in
+    faces and the knife edge's p = 1.  The BlueROV2 Heavy's no-flip levels 1942/2760/4306
+    (r = 1.19, 1.25; one-level surge +23, +13, +6 % of its Capytaine reference, pre-asymptotic
+    at 5.6-mm duct walls) were extrapolated to surge -22.8 %, yaw -34.4 %; with r >= 1.3 no
+    remesh mode refines so and its levels are the input's faces bisected, 1712/3966/9120:
+    every diagonal term within -8.5 to -1.7 % (python -m benchmarks.frame_remesh_trace,
+    docs/performance.md, "The remesh family on the BlueROV2 Heavy: traced")."""
     from stripcoef.hull import remesh
 
     if not remesh.available():
@@ -324,7 +336,7 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
     area = surface_area(vertices, faces) if area is None else float(area)
     edges = [remesh.edge_for_panels(area, max(50, int(round(panels / 2 ** (count - 1 - k)))))
              for k in range(count)]
-    out = remesh.remesh_family(vertices, faces, edges)
+    out = _family(vertices, faces, edges, remesh.MODES)
     if out is None or out[1].bisect:
         return out, float("inf")
     thickness = member_thickness(*out[0][0])
@@ -332,8 +344,26 @@ def _remeshed_levels(vertices, faces, panels: int, count: int = 3, area: float |
         return out, thickness
     # a member thinner than the finest edge: the remeshes with flips join its faces (module
     # docstring, "Thin members"); the family in the feature-preserving modes first
-    thin = remesh.remesh_family(vertices, faces, edges, modes=_thin_modes())
+    thin = _family(vertices, faces, edges, _thin_modes())
     return (out if thin is None or thin[1].bisect else thin), thickness
+
+
+def _family(vertices, faces, edges, modes):
+    """The first of ``modes`` whose levels each refine the one before by Celik et al.'s
+    r >= 1.3 (:data:`~stripcoef.hull.remesh.MIN_FACE_RATIO` in faces), else by
+    :data:`~stripcoef.hull.remesh.LEAST_FACE_RATIO` (:func:`stripcoef.hull.remesh.
+    remesh_family`; (levels, mode) or ``None``)."""
+    from stripcoef.hull import remesh
+
+    with warnings.catch_warnings(record=True) as first:
+        warnings.simplefilter("always")
+        out = remesh.remesh_family(vertices, faces, edges, min_ratio=remesh.MIN_FACE_RATIO,
+                                   modes=modes)
+    if out is None:
+        return remesh.remesh_family(vertices, faces, edges, modes=modes)
+    for w in first:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return out
 
 
 #: Area fraction [-] below which the thinner members of a body are not counted in
@@ -491,7 +521,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     of the extrapolated value, with three levels or more, is its step from the finest level
     plus its change since the level before (:func:`extrapolation_error`), with two levels
     Roache's two-grid index (:math:`F_s = 3`) about the finest plus the step
-    (:func:`estimated_error`), each no smaller than the finest solve's asymmetry; the order
+    (:func:`estimated_error`), each no smaller than the finest solve's asymmetry; with four
+    levels or more the error returned (the band shown) is Eça & Hoekstra's least-squares
+    uncertainty moved to the value (:func:`least_squares_error`) and the estimate above
+    decides the refinement and the warning alone; the order
     is that of the body's sharpest convex edge (:func:`edge_order`: 2 on a smooth body, 4/3
     at a right-angled edge, 1 at a knife edge or a member thinner than the panels).
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`:
@@ -539,10 +572,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     (ndarray (6, 6), dict)
         M_A [kg, kg m, kg m^2] and ``{"panels": the levels' panel counts, coarse to fine,
         "asymmetry": max|A - A^T| / max|A| of the finest solve [-], "error": the estimated
-        error of each term [kg, kg m, kg m^2] (``None`` without extrapolation), "order": the
-        order used per term [-], "safety": the safety factor per term [-] (1 with three
-        levels or more: :func:`extrapolation_error` has none), "family": the
-        panellings' family, "converged": whether every term is within ``tolerance``,
+        error of each term [kg, kg m, kg m^2] (``None`` without extrapolation; four levels or
+        more: the least-squares band), "estimate": the estimate the refinement and
+        "converged" read [kg, kg m, kg m^2] (the error itself below four levels), "order":
+        the order used per term [-], "safety": the safety factor per term [-] (1 with three
+        levels: :func:`extrapolation_error` has none; Eça & Hoekstra's with four or more),
+        "family": the panellings' family, "converged": whether every term's estimate
+        (about the volume centroid) is within ``tolerance``,
         "length": the body's largest extent [m] (:func:`relative_error`),
         "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
         level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
@@ -595,7 +631,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         n, a = _solve_level(*lv, scale, rho, about, near_factor)
         asym = float(np.abs(a - a.T).max() / np.abs(a).max())
         return 0.5 * (a + a.T), {"panels": (n,), "asymmetry": asym, "error": None,
-                                 "order": None, "safety": None, "family": "input",
+                                 "estimate": None, "order": None, "safety": None, "family": "input",
                                  "converged": None, "formal_order": None, "levels": (a,)}
     # with mirror planes: the closed part on their positive side remeshed at the whole body's
     # edges and solved with image panels (mirror_panels); else, or where that fails, the body
@@ -640,7 +676,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     elif levels is None:
         used = "refined/coarsened input"
     elif mode.bisect:
-        used = "input faces bisected (no remesh kept the area)"
+        used = "input faces bisected (no remesh family kept the surface and refined)"
     else:
         used = "isotropic remesh (pymeshlab" + ("" if mode.flips else ", no flips: thin members") + ")"
     ladder = False
@@ -734,7 +770,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         mats.append(m)
         nominal = nxt
     asym = float(np.abs(mats[-1] - mats[-1].T).max() / np.abs(mats[-1]).max())
+    # four levels or more: the band shown is Eça & Hoekstra's least-squares uncertainty; the
+    # refinement and the warning read the step plus the change (panel_error's docstring)
+    estimate = error
+    if len(mats) >= 4:
+        error, safety = least_squares_error(mats, counts, a)
     return 0.5 * (a + a.T), {"panels": tuple(counts), "asymmetry": asym, "error": error,
+                             "estimate": estimate,
                              "order": order, "safety": safety, "family": used,
                              "converged": converged, "formal_order": formal,
                              "length": float(scale),
