@@ -45,47 +45,10 @@ import os
 import time
 import warnings
 
-import numpy as np
+from benchmarks.diagnose_independent import truth_factors, truth_thrust  # noqa: F401
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-
-
-def truth_thrust(log, truth, dof: int) -> np.ndarray:
-    """The truth's thruster force in ``dof`` at each sample of ``log`` [N or N m]: each
-    thruster's thrust by the truth's own map (``validation.independent._thrust``: both
-    branches, limits; a clean truth has no dead band, lag or delay) times its allocation in
-    the truth (its direction, and its moment arm about the truth's reference point)."""
-    from validation.independent import _thrust
-    out = np.zeros(len(np.asarray(log["t"])))
-    for t in truth.thrusters:
-        b = np.concatenate([t["direction"], np.cross(t["position"], t["direction"])])[dof]
-        if b == 0.0:
-            continue
-        n = np.asarray(log[f"n_{t['name']}"], float)
-        out += b * np.array([_thrust(t, x) for x in n])
-    return out
-
-
-def truth_factors(log, truth, prior, dof: int) -> dict:
-    """The truth's thrust in DOF ``dof`` against the prior's map on this log (module
-    docstring): ``eta_forward``, ``eta_backward``, ``gain`` [-] and ``other`` [-]."""
-    from stripcoef.effects.windows import window_data
-    data = window_data(log, prior)
-    fk = data.thruster_force(dof)
-    y = truth_thrust(log, truth, dof)
-    if fk is None or not np.any(fk):
-        return {"eta_forward": np.nan, "eta_backward": np.nan, "gain": np.nan,
-                "other": 1.0 if np.any(y) else 0.0}
-    pos = np.where(data.thrust >= 0, fk, 0.0).sum(axis=1)
-    neg = np.where(data.thrust < 0, fk, 0.0).sum(axis=1)
-    (ef, eb), *_ = np.linalg.lstsq(np.column_stack([pos, neg]), y, rcond=None)
-    total = pos + neg
-    g = float(total @ y / (total @ total)) if np.any(total) else np.nan
-    resid = y - ef * pos - eb * neg
-    rms = float(np.sqrt(np.mean(y ** 2)))
-    return {"eta_forward": float(ef), "eta_backward": float(eb), "gain": g,
-            "other": float(np.sqrt(np.mean(resid ** 2)) / rms) if rms > 0 else 0.0}
 
 
 def verdict(effect: str, factors: dict, buoyancy_change: float, parameters: dict) -> str:

@@ -111,9 +111,13 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
         prior = with_truth_maps(prior, truth)
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
-    return [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
+    rows = [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
                           validation_others, one_added_mass),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
+    for row in rows:
+        if row["mode"] == "all":
+            row["truth_has"] = truth_effects(log, truth, prior, row)
+    return rows
 
 
 def _oracle(log, prior, truth) -> dict:
@@ -203,7 +207,13 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                             if r["steps"]},
            "step_effects_kept": {d: [s["effect"] for s in r["steps"] if s.get("kept", True)]
                                  for d, r in per.items()
-                                 if any(s.get("kept", True) for s in r["steps"])}}
+                                 if any(s.get("kept", True) for s in r["steps"])},
+           # each step's fitted parameters and z, and the whole-log thruster gains: what
+           # truth_effects judges a step with against the truth on this log
+           "step_detail": {d: [_step_detail(s) for s in r["steps"]] for d, r in per.items()
+                           if r["steps"]},
+           "thruster_gains": ((res.get("thruster_gains") or {}).get("gains")
+                              if (res.get("thruster_gains") or {}).get("applied") else None)}
     # a step that the log does not tell from other effects (scalechoice): its named set
     row["first_set"] = ([steps[0]["effect"]] + list(steps[0].get("ambiguous_with") or ())
                         if steps else [])
@@ -236,6 +246,123 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             row["magnitude_error_drawn"] = (abs(abs(est) - abs(truth.strength))
                                             / abs(truth.strength))
     return row
+
+
+def _step_detail(step: dict) -> dict:
+    """What the row keeps of a step: its effect, fitted parameters (refitted with the other
+    steps where given), its z and whether the written model kept it."""
+    par = step.get("final_parameters") or step["parameters"]
+    return {"effect": step["effect"], "kept": bool(step.get("kept", True)),
+            "z": float(step.get("z") or np.nan),
+            "parameters": {k: float(v) for k, v in par.items() if isinstance(v, (int, float))}}
+
+
+def truth_thrust(log, truth, dof: int) -> np.ndarray:
+    """The truth's thruster force in ``dof`` at each sample of ``log`` [N or N m]: each
+    thruster's thrust by the truth's own map (``validation.independent._thrust``: both
+    branches, limits; a clean truth has no dead band, lag or delay) times its allocation in
+    the truth (its direction, and its moment arm about the truth's reference point)."""
+    from validation.independent import _thrust
+    out = np.zeros(len(np.asarray(log["t"])))
+    for t in truth.thrusters:
+        b = np.concatenate([t["direction"], np.cross(t["position"], t["direction"])])[dof]
+        if b == 0.0:
+            continue
+        n = np.asarray(log[f"n_{t['name']}"], float)
+        out += b * np.array([_thrust(t, x) for x in n])
+    return out
+
+
+def truth_factors(log, truth, prior, dof: int) -> dict:
+    """The truth's thrust in DOF ``dof`` against the prior's map on this log (module
+    docstring): ``eta_forward``, ``eta_backward``, ``gain`` [-] and ``other`` [-]."""
+    from stripcoef.effects.windows import window_data
+    data = window_data(log, prior)
+    fk = data.thruster_force(dof)
+    y = truth_thrust(log, truth, dof)
+    if fk is None or not np.any(fk):
+        return {"eta_forward": np.nan, "eta_backward": np.nan, "gain": np.nan,
+                "other": 1.0 if np.any(y) else 0.0}
+    pos = np.where(data.thrust >= 0, fk, 0.0).sum(axis=1)
+    neg = np.where(data.thrust < 0, fk, 0.0).sum(axis=1)
+    (ef, eb), *_ = np.linalg.lstsq(np.column_stack([pos, neg]), y, rcond=None)
+    total = pos + neg
+    g = float(total @ y / (total @ total)) if np.any(total) else np.nan
+    resid = y - ef * pos - eb * neg
+    rms = float(np.sqrt(np.mean(y ** 2)))
+    return {"eta_forward": float(ef), "eta_backward": float(eb), "gain": g,
+            "other": float(np.sqrt(np.mean(resid ** 2)) / rms) if rms > 0 else 0.0}
+
+
+#: The thruster effects whose truth on a log :func:`truth_effects` measures from the truth's
+#: own thrusters: their change from the diagnosis's map [-] (the branches' ratio minus one, or
+#: the DOF's thrust gain minus one) on the log's commands
+TRUTH_MEASURED = {"thrust_asymmetry": lambda f: f["eta_backward"] / f["eta_forward"] - 1.0,
+                  "thrust_effectiveness": lambda f: f["gain"] - 1.0}
+FITTED_CHANGE = {"thrust_asymmetry": lambda p: p["eta_backward"] / p["eta_forward"] - 1.0,
+                 "thrust_effectiveness": lambda p: p["scale"] - 1.0}
+
+
+def truth_has(fitted: float, z: float, truth: float) -> bool:
+    r"""Whether the truth carries the effect a step fitted with change ``fitted`` at ``z``
+    standard deviations: the truth's own change on the log (``truth``) goes the same way and
+    is itself at least ``MIN_Z`` of the step's standard deviations
+    (:math:`|\Delta_f|/z`) from zero, i.e. the step's own test (the z gate of
+    ``stripcoef.diagnose.settings.MIN_Z``) would find the truth's effect at the step's
+    precision. No tolerance of the benchmark's: the step's standard deviation and the
+    library's gate."""
+    from stripcoef.diagnose.settings import MIN_Z
+    if not (np.isfinite(fitted) and np.isfinite(truth) and np.isfinite(z) and z > 0):
+        return False
+    return fitted * truth > 0.0 and abs(truth) >= MIN_Z * abs(fitted) / z
+
+
+def truth_effects(log, truth, prior, row: dict) -> dict:
+    r"""For each step of a whole-log row in a DOF other than the effect's, whether the truth
+    has such an effect on this log (:func:`truth_has`), measured from the truth itself: a
+    thrust asymmetry or thrust effectiveness (:data:`TRUTH_MEASURED`) by the truth's
+    thrusters' forward and backward thrust in the DOF regressed on the forward and backward
+    parts of the map the diagnosis used (the prior with the whole-log thruster gains) on the
+    log's commands (:func:`truth_factors`, as ``benchmarks.clean_background``: each thruster's own
+    factor f_k, so a DOF pushed forward and backward by different thrusters has an asymmetry
+    of the truth); a buoyancy offset in heave, roll or pitch by the truth's buoyancy change
+    (heave: the offset's force b against minus the truth's buoyancy change, by
+    :func:`truth_has`; roll and pitch: :func:`background`); any other effect: none. Returns ``{dof: [{effect, truth, fitted,
+    z, has}]}``."""
+    from stripcoef.conventions import parse_dof
+    from stripcoef.effects import get_effect
+    model = prior
+    if row.get("thruster_gains"):
+        model = get_effect("thruster_gain").apply(
+            prior, None, {f"gain_{k}": float(g) for k, g in row["thruster_gains"].items()})
+    # the truth's map without its dead band (a dead band is the deadband log's own effect)
+    static = type(truth)(**{**truth.__dict__, "thrusters": [
+        {**t, "deadband": 0.0} for t in truth.thrusters]})
+    out = {}
+    for d, steps in row.get("step_detail", {}).items():
+        if d == row["dof"] and row["category"] != "clean":
+            continue
+        factors = None
+        for s in steps:
+            e = s["effect"]
+            rec = {"effect": e, "truth": None, "fitted": None, "z": s["z"], "kept": s["kept"]}
+            if e in TRUTH_MEASURED:
+                if factors is None:
+                    factors = truth_factors(log, static, model, parse_dof(d))
+                rec["truth"] = float(TRUTH_MEASURED[e](factors))
+                rec["fitted"] = float(FITTED_CHANGE[e](s["parameters"]))
+                rec["has"] = truth_has(rec["fitted"], s["z"], rec["truth"])
+            elif e == "buoyancy_offset" and d == "heave":
+                # b is the heave force of the offset, positive down: -(the buoyancy change)
+                rec["truth"] = -float(row["buoyancy_change"])
+                rec["fitted"] = float(s["parameters"].get("b", np.nan))
+                rec["has"] = truth_has(rec["fitted"], s["z"], rec["truth"])
+            elif e == "buoyancy_offset":
+                rec["has"] = background(row, d, e)
+            else:
+                rec["has"] = False
+            out.setdefault(d, []).append(rec)
+    return out
 
 
 #: The effects whose magnitude is a force (per unit of its law's regressor) in the DOF's
@@ -409,30 +536,57 @@ def _first_after_background(row: dict):
                  if e == row["category"] or not background(row, row["dof"], e)), None)
 
 
-def _spurious(row: dict, key: str):
+def _spurious(row: dict, key: str, rule: str = "truth"):
     """Whether a whole-log row has a step in a DOF where the truth has no such effect
-    (``key``: ``step_effects`` or ``step_effects_kept``), None when the row lacks it."""
+    (``key``: ``step_effects`` or ``step_effects_kept``), None when the row lacks it.
+    ``rule`` ``"truth"``: :func:`_is_spurious` (the truth's own effect on the log where the
+    row measured it, :func:`truth_effects`); ``"mean gain"``: the earlier rule, one averaged
+    thrust gain per DOF against ``THRUST_BAND`` (:func:`background`)."""
     if key not in row:
         return None
+    return any(_is_spurious(row, d, e, sum(x == e for x in effects[:k]), rule,
+                            kept=key == "step_effects_kept")
+               for d, effects in row[key].items() for k, e in enumerate(effects))
+
+
+def _is_spurious(row: dict, dof: str, effect: str, k: int, rule: str = "truth",
+                 kept: bool = False) -> bool:
+    """Whether the ``k``-th step naming ``effect`` in ``dof`` (its place among the DOF's
+    steps of that effect, among the kept ones with ``kept``) is one the truth of ``row``
+    does not have (:func:`_spurious`; on a clean log every DOF counts)."""
     acts = ACTS_IN.get(row["category"], ())
-    return any(d != row["dof"] and not (e == row["category"] and d in acts)
-               and not background(row, d, e)
-               for d, effects in row[key].items() for e in effects)
+    if (dof == row["dof"] and row["category"] != "clean") or (effect == row["category"]
+                                                              and dof in acts):
+        return False
+    recs = [r for r in row.get("truth_has", {}).get(dof, []) if r["effect"] == effect
+            and (r.get("kept", True) or not kept)]
+    if rule == "truth" and "truth_has" in row and recs:
+        return not recs[min(k, len(recs) - 1)]["has"]
+    return not background(row, dof, effect)
 
 
-def spurious_steps(rows: list[dict]) -> list[str]:
+def spurious_steps(rows: list[dict], rule: str = "truth") -> list[str]:
     """The spurious steps (:func:`_spurious`) of the whole-log rows, one text per row:
-    ``vehicle truth seed: dof effect`` (``*`` when the written model kept it)."""
+    ``vehicle truth seed: dof effect`` (``*`` when the written model kept it; for a thruster
+    effect the fitted change and the truth's on the log, and the step's z)."""
     out = []
     for r in sorted(rows, key=lambda r: (r["vehicle"], r["category"], r["seed"])):
         if r["mode"] != "all" or "step_effects" not in r:
             continue
-        acts = ACTS_IN.get(r["category"], ())
         kept = r.get("step_effects_kept", {})
-        steps = [f"{d} {e}" + ("*" if e in kept.get(d, ()) else "")
-                 for d, effects in r["step_effects"].items() for e in effects
-                 if d != r["dof"] and not (e == r["category"] and d in acts)
-                 and not background(r, d, e)]
+        steps = []
+        for d, effects in r["step_effects"].items():
+            for i, e in enumerate(effects):
+                k = sum(x == e for x in effects[:i])
+                if not _is_spurious(r, d, e, k, rule):
+                    continue
+                recs = [x for x in r.get("truth_has", {}).get(d, []) if x["effect"] == e]
+                x = recs[min(k, len(recs) - 1)] if recs else {}
+                note = ""
+                if x.get("truth") is not None:
+                    note = (f" (fitted {x['fitted']:+.3f}, z {x['z']:.1f}; the truth's "
+                            f"{x['truth']:+.3f})")
+                steps.append(f"{d} {e}" + ("*" if e in kept.get(d, ()) else "") + note)
         if steps:
             out.append(f"{r['vehicle']} {r['category']} {r['seed']}: " + ", ".join(steps))
     return out
@@ -451,6 +605,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
               "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     score, total = 0, 0
     spurious_all = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
+    spurious_old = {"step_effects": [0, 0], "step_effects_kept": [0, 0]}
     mag_all, cut_all, after_all, set_all, mag_drawn = [0, 0], [0], [0], [0], [0]
     ceiling = [0, 0, 0]     # rows with the truth's cut, of them >= 3x, of those measured >= 3x
     confusion: dict = {}
@@ -486,6 +641,10 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                 if mode == "all" and known:
                     spurious_all[key][0] += sum(known)
                     spurious_all[key][1] += len(known)
+                    old = [x for x in (_spurious(r, key, "mean gain") for r in rs)
+                           if x is not None]
+                    spurious_old[key][0] += sum(old)
+                    spurious_old[key][1] += len(old)
             spur_cells = " | ".join(cells)
             score += first
             total += n
@@ -538,24 +697,40 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                          for r in unclaimed) + ".")
     named, kept = spurious_all["step_effects"], spurious_all["step_effects_kept"]
     if named[1]:
+        measured = sum("truth_has" in r for r in rows if r["mode"] == "all")
+        o_named, o_kept = spurious_old["step_effects"], spurious_old["step_effects_kept"]
         lines.append(f"Whole-log runs of library-effect logs with a spurious step (an effect in "
-                     f"a DOF where the truth has none: ACTS_IN): named in {named[0]}/{named[1]}, "
-                     f"kept in the written model in {kept[0]}/{kept[1]}.")
+                     f"a DOF where the truth has none on the log: ACTS_IN, the buoyancy, and a "
+                     f"thrust asymmetry or effectiveness measured from the truth's thrusters on "
+                     f"the log's commands, truth_effects, in {measured} whole-log rows): named "
+                     f"in {named[0]}/{named[1]}, kept in the written model in "
+                     f"{kept[0]}/{kept[1]} (by the earlier rule, one mean thrust gain per DOF "
+                     f"against THRUST_BAND: named {o_named[0]}/{o_named[1]}, kept "
+                     f"{o_kept[0]}/{o_kept[1]}).")
         which = spurious_steps(rows)
         if which:
             lines.append("Spurious whole-log steps (vehicle, truth, seed: DOF effect, "
                          "* = kept in the written model): " + "; ".join(which) + ".")
+        truths = _truth_named(rows)
+        if truths:
+            lines.append("Whole-log steps in other DOFs that the truth has on the log (not "
+                         "spurious by the truth's rule; fitted change, z, the truth's change): "
+                         + "; ".join(truths) + ".")
     if clean:
         fp = sum(r["n_steps"] > 0 for r in clean)
         kept = [r for r in clean if "n_steps_kept" in r]
         real = sum(any(not background(r, d, e) for d, es in r.get("step_effects", {}).items()
                        for e in es) for r in clean)
+        real_truth = sum(bool(_spurious(r, "step_effects")) for r in clean
+                         if r["mode"] == "all")
         lines.append(f"Clean logs: an effect named in {fp} of {len(clean)}"
                      + (f", kept in the written model in "
                         f"{sum(r['n_steps_kept'] > 0 for r in kept)} of {len(kept)}"
                         if kept else "")
                      + f"; an effect other than the background named in "
-                       f"{real} of {len(clean)}.")
+                       f"{real} of {len(clean)} (by the truth's own effects on the log, "
+                       f"truth_effects, whole-log rows: {real_truth} of "
+                       f"{sum(r['mode'] == 'all' for r in clean)}).")
     if outside:
         ok = sum(r["unexplained"] or r["max_gain"] < 0.3 for r in outside)
         lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "
@@ -571,6 +746,20 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines += ["", f"Mean CPU time per log: independent simulation {ts:.1f} s, diagnosis "
               f"{td:.1f} s."]
     return "\n".join(lines)
+
+
+def _truth_named(rows: list[dict]) -> list[str]:
+    """The whole-log steps in another DOF that name a thruster effect the truth has on the
+    log (:func:`truth_effects`), one text per step."""
+    out = []
+    for r in sorted(rows, key=lambda r: (r["vehicle"], r["category"], r["seed"])):
+        for d, recs in r.get("truth_has", {}).items():
+            for x in recs:
+                if x["has"] and x.get("truth") is not None:
+                    out.append(f"{r['vehicle']} {r['category']} {r['seed']} {d} {x['effect']} "
+                               f"{x['fitted']:+.3f} (z {x['z']:.1f}), the truth's "
+                               f"{x['truth']:+.3f}")
+    return out
 
 
 def _detectable(row: dict) -> bool:
@@ -691,9 +880,13 @@ def main(argv=None) -> int:
                     help="diagnose against the prior with the truth's thrust maps (each "
                          "thruster's C_t; the log's own thruster effect left out): the "
                          "thruster-gain background removed, an oracle")
+    ap.add_argument("--only-seeds", default=None,
+                    help="comma-separated log seeds: diagnose only these logs of the run (a "
+                         "log's seed names its vehicle and category)")
     ap.add_argument("--from-rows", default=None,
-                    help="summarise the 'row' lines of an earlier run's output (a partial "
-                         "run's too) instead of running")
+                    help="summarise the 'row' lines of earlier runs' outputs (comma-separated "
+                         "files; partial runs' too; with --only-seeds and --modes, those rows) "
+                         "instead of running")
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
@@ -706,9 +899,13 @@ def main(argv=None) -> int:
     if args.from_rows:
         import json
         from stripcoef.files import read_text
-        rows = [json.loads(line.split(" row ", 1)[1])
-                for line in read_text(args.from_rows, kind="benchmark output").splitlines()
+        rows = [json.loads(line.split(" row ", 1)[1]) for path in args.from_rows.split(",")
+                for line in read_text(path, kind="benchmark output").splitlines()
                 if " row {" in line]
+        if args.only_seeds:
+            keep = {int(x) for x in args.only_seeds.split(",")}
+            rows = [r for r in rows if r["seed"] in keep]
+        rows = [r for r in rows if r["mode"] in modes]
         text = summarise(rows, seed, args.duration)
         print(text)
         if args.write:
@@ -722,6 +919,9 @@ def main(argv=None) -> int:
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
                              args.validation_others, args.truth_maps, args.one_added_mass))
+    if args.only_seeds:
+        keep = {int(x) for x in args.only_seeds.split(",")}
+        jobs = [j for j in jobs if j[2] in keep]
     # in a seeded random order: the rows of a run stopped early are a random sample of the
     # categories and vehicles (summarise them with --from-rows)
     jobs = [jobs[k] for k in np.random.default_rng(seed).permutation(len(jobs))]

@@ -66,7 +66,8 @@ Steps, for each degree of freedom (issue 7):
    at its parameters it must not raise their held-out error by more than ``TIE``
    (:class:`~.select.Siblings`); one of each thruster's own map (dead band, asymmetry) found
    in a DOF that several groups of thrusters drive must not be contradicted by every DOF
-   that parts of them drive alone (:mod:`.thrusterparts`). Before the DOFs are diagnosed, a whole-log diagnosis fits
+   that parts of them drive alone, and a thrust asymmetry in a translation must stay
+   significant with a buoyancy change's column free beside it (:mod:`.thrusterparts`). Before the DOFs are diagnosed, a whole-log diagnosis fits
    the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
