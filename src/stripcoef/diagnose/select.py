@@ -252,7 +252,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
             trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
                                  settings))
-            alt = gainfree.variant(eff)   # the tether's test repeated with the gains free
+            alt = gainfree.variant(eff, dof)   # a test repeated with the gains free
             if alt is not None and gainfree.needs_retest(trials[-1]):
                 a_cfg = cfg.with_terms(list(cfg.terms) + [(alt, None)])
                 a_ref = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Nuisance(alt), None)]))
