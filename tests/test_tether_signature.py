@@ -153,3 +153,31 @@ def test_a_dof_thrust_scale_does_not_remove_the_gain_bias_of_a_tether():
     assert abs(b["error"] - a["error"]) < 0.05       # a common scale does not move it
     assert abs(c["error"]) < abs(a["error"]) / 3     # the gains free do
     assert c["held_out_error"] < 0.2 * a["held_out_error"]
+
+
+def test_the_bias_is_retested_with_one_gain_per_thruster_acting_in_the_dof():
+    """A heave bias (buoyancy offset) whose test fails is repeated with the thrust gains free
+    (Indiveri 1998 eq. 4.16: the weight-buoyancy term identified beside the thrusters'
+    efficiency): the columns are the tether's gain columns, no D_Q, no buoyancy change."""
+    from stripcoef.diagnose.gainfree import BIAS_GAINS_FREE
+    from stripcoef.effects.hydrodynamic import BuoyancyOffsetGainsFree
+
+    log, prior, _ = _log(None, 1, duration=40.0)
+    assert variant(get_effect("buoyancy_offset"), 2) is BIAS_GAINS_FREE
+    assert isinstance(BIAS_GAINS_FREE, BuoyancyOffsetGainsFree)
+    assert variant(BIAS_GAINS_FREE, 2) is None
+    # heave only: elsewhere the bias is not the weight-buoyancy term of Indiveri's model
+    assert all(variant(get_effect("buoyancy_offset"), d) is None for d in (0, 1, 3, 4, 5))
+    assert variant(get_effect("tether_drag"), 0) is GAINS_FREE
+    data = window_data(log, prior)
+    for dof in (0, 2):
+        nuis = BIAS_GAINS_FREE.nuisance(data, dof)
+        acting = data.acting(dof)
+        assert nuis.shape == (data.n_windows, len(acting))
+        np.testing.assert_allclose(nuis, GAINS_FREE.nuisance(data, dof)[:, 2:], rtol=1e-12,
+                                   atol=1e-15)
+        np.testing.assert_allclose(BIAS_GAINS_FREE.nuisance_lower(data, dof), -0.9)
+        assert np.all(np.isinf(BIAS_GAINS_FREE.prior_sd(data, dof)))
+    # the bias's own column is the written effect's
+    np.testing.assert_allclose(BIAS_GAINS_FREE.own_design(data, 2)[1],
+                               get_effect("buoyancy_offset").own_design(data, 2)[1])

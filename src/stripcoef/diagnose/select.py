@@ -5,7 +5,7 @@ docstring, steps 3-5). Also which DOFs a log excites.
 
 Depends on: effects, identify (residual statistics), progress, diagnose.settings,
 diagnose.priors, diagnose.fit, diagnose.calibrate (folded_key), diagnose.compare,
-diagnose.gainfree.
+diagnose.gainfree, diagnose.shapetest.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
-from stripcoef.diagnose import gainfree, scalechoice
+from stripcoef.diagnose import gainfree, scalechoice, shapetest
 from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.cross import velocity_snr
 from stripcoef.diagnose.evidence import judge_family, step_test, supported
@@ -252,7 +252,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
             trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
                                  settings))
-            alt = gainfree.variant(eff)   # the tether's test repeated with the gains free
+            alt = gainfree.variant(eff, dof)   # a test repeated with the gains free
             if alt is not None and gainfree.needs_retest(trials[-1]):
                 a_cfg = cfg.with_terms(list(cfg.terms) + [(alt, None)])
                 a_ref = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Nuisance(alt), None)]))
@@ -278,19 +278,19 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 supported(t, len(trials), n_dofs) for t in competing["joint"]["steps"]):
             joint = competing["joint"]
             shape = _best_shape(cfg, cur, data, dof)
-            free = any(not t["signature"] and t["_held"] for t in joint["steps"])
-            margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
+            margin = (1.0 if any(not t["signature"] and t["_held"] for t in joint["steps"])
+                      else 1.0 - MIN_HELD_OUT_GAIN)
             if not (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
-                    and shape["held_out_error_after"] < margin * joint["ev"]["held_out_error"]):
+                    and shape["held_out_error_after"] < margin * joint["ev"]["held_out_error"]
+                    and shapetest.vetoes(joint["cfg"], joint["ev"], _generic_shapes(data, dof),
+                                         shape, n_dofs)):
                 # the member whose removal costs more is named first (scalechoice.named_order)
                 order, joint["cfg"], joint["ev"] = scalechoice.named_order(joint)
                 for t in order:
-                    step = {k: v for k, v in t.items() if not k.startswith("_")}
-                    step["error_before"] = t["_ref"]["error"]
-                    step["held_out_error_before"] = t["_ref"]["held_out_error"]
-                    step["alternatives"] = []
-                    step["dof"] = DOF[dof]
-                    step["comparison"] = joint["record"]
+                    step = {**{k: v for k, v in t.items() if not k.startswith("_")},
+                            "error_before": t["_ref"]["error"],
+                            "held_out_error_before": t["_ref"]["held_out_error"],
+                            "alternatives": [], "dof": DOF[dof], "comparison": joint["record"]}
                     steps.append(step)
                     accepted_names.add(t["effect"])
                 cfg, cur = joint["cfg"], joint["ev"]
@@ -302,19 +302,19 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         good.sort(key=lambda t: t["held_out_error_after"])
         best = good[0]
         # a shape outside the library that explains the residual clearly better (by
-        # MIN_HELD_OUT_GAIN of the best effect's held-out error) means the residual is not
-        # this effect: stop, and let the structure test call it unexplained
+        # MIN_HELD_OUT_GAIN of its held-out error) and is needed beyond it (shapetest): stop
         shape = _best_shape(cfg, cur, data, dof)
-        # an effect without a signature whose coefficient the log could not calibrate (a
-        # free column, _held_coefficient) has no structure of its own to show: it must also
-        # beat every out-of-library shape (issue 33: dry friction named a linear drag)
-        free = not best["signature"] and best["_held"]
-        margin = 1.0 if free else 1.0 - MIN_HELD_OUT_GAIN
-        # (not for a scale or an added-mass release: judged with the bands, they explain
-        # what the calibration's bands held, not the residual the shape is fitted to)
+        # an effect without a signature whose coefficient the log could not calibrate (a free
+        # column, _held_coefficient) has no structure of its own to show: it must also beat
+        # every out-of-library shape (issue 33: dry friction named a linear drag); not a scale
+        # or an added-mass release: judged with the bands, they explain what the calibration's
+        # bands held, not the residual the shape is fitted to
+        margin = 1.0 if (not best["signature"] and best["_held"]) else 1.0 - MIN_HELD_OUT_GAIN
         if (shape is not None and shape["delta_bic"] < -MIN_DELTA_BIC
                 and not scalechoice.judged_with_bands(get_effect(best["effect"]))
-                and shape["held_out_error_after"] < margin * best["held_out_error_after"]):
+                and shape["held_out_error_after"] < margin * best["held_out_error_after"]
+                and shapetest.vetoes(best["_cfg"], best["_ev"], _generic_shapes(data, dof),
+                                     shape, n_dofs)):
             result["stopped_by_shape"] = {
                 **shape, "best_effect": best["effect"],
                 "best_effect_held_out_error_after": best["held_out_error_after"],

@@ -82,7 +82,7 @@ def gain_dependence(step, fit) -> dict | None:
     if not at:
         return None
     eff, hyper = cfg.terms[at[0]]
-    alt = variant(eff)
+    alt = variant(eff)          # no DOF: the tether's only (a heave bias is written)
     if alt is None or len(eff.parameters) != 1:
         return None
     others = cfg.with_terms([t for k, t in enumerate(cfg.terms) if k != at[0]])

@@ -302,6 +302,40 @@ class BuoyancyOffset(Effect):
         return lambda times, rows, last: np.broadcast_to(e, (len(rows), 6))
 
 
+class BuoyancyOffsetGainsFree(BuoyancyOffset):
+    r"""The bias's test (:class:`BuoyancyOffset`) with one gain per thruster acting in DOF i
+    fitted free in the reference and with the bias, :math:`\Delta F_i = \sum_k (g_k - 1)
+    B_{ik} T_k` (Fossen 2011, sec. 11.2.1; the columns of :class:`TetherDragGainsFree`).
+
+    The published identifications estimate the bias together with the thrust's gain: the
+    heave model of ROMEO identifies the weight-buoyancy term W beside the thrusters'
+    efficiency eta (Indiveri 1998, eq. 4.16, the *eta* model), and without it "the standard
+    model is affected by a bias on W such that the vehicle results positively buoyant in all
+    5 tests, which is false" (discussion of Fig. 4.12); Wang & Clark 2006 (eqs. 8-9) fit the bias
+    delta beside gamma, the input's coefficient. A thruster map that is off by a factor leaves
+    a force proportional to the mean thrust, which holding depth makes nearly constant: it
+    takes or hides the bias. Used by the selection to test the bias only
+    (:mod:`stripcoef.diagnose.gainfree`); never written (the gains are not part of the
+    calibrated model), so not in the registry.
+    """
+
+    #: most thrusters acting in one DOF whose gains the test holds free (:meth:`nuisance`)
+    MAX_GAINS = TetherDragGainsFree.MAX_GAINS
+    nuisance_names = tuple(f"thrust_gain_{k}" for k in range(1, MAX_GAINS + 1))
+
+    def nuisance(self, data, dof):
+        """One column per thruster acting in DOF ``dof``, its window-mean force by the
+        prior's map [N or N m per unit gain change] (:class:`TetherDragGainsFree`); None
+        when no thruster acts in it."""
+        cols = _thrust_gain_columns(data, dof, self.MAX_GAINS)
+        return cols if cols.shape[1] else None
+
+    def nuisance_lower(self, data, dof):
+        """Each thrust gain change above -0.9 (:meth:`TetherDragGainsFree.nuisance_lower`)."""
+        nuis = self.nuisance(data, dof)
+        return np.zeros(0) if nuis is None else np.full(nuis.shape[1], -0.9)
+
+
 class Current(Effect):
     r"""A constant water current, so drag and added-mass forces act on the relative velocity.
 
