@@ -64,6 +64,41 @@ def shipped_model(name: str):
 
 
 @lru_cache(maxsize=None)
+def whole_log_parts(vehicle: str, dofs, effect, seed: int, duration: float):
+    """``(ThrusterParts, truth)``: the siblings of the DOFs ``dofs`` of an independent-simulator
+    log (``validation.independent.generate`` of the shipped ``vehicle`` file) against the prior
+    with the thrusters' gains fitted jointly first, as a whole-log diagnosis does."""
+    from stripcoef.diagnose.gains import fit_thruster_gains
+    from stripcoef.diagnose.thrusterparts import ThrusterParts
+    from stripcoef.effects.windows import window_data
+    from validation.independent import generate
+
+    prior = shipped_model(vehicle)
+    log, truth = generate(prior.to_dict(), effect, seed, duration=duration)
+    dofs = list(dofs)
+    gains = fit_thruster_gains(window_data(log, prior), dofs, excited=dofs)
+    if gains is not None and gains.significant:
+        prior = gains.model(prior)
+    return ThrusterParts(window_data(log, prior), dofs), truth
+
+
+def parts_trial(parts, name: str, dof: int) -> dict:
+    """The selection's record of effect ``name`` fitted in ``dof`` of ``parts`` (a
+    ``ThrusterParts``), as the selection leaves it."""
+    from stripcoef.diagnose.fit import _evaluate
+    from stripcoef.effects.laws import get_effect
+
+    eff = get_effect(name)
+    cfg = parts.configs[dof].with_terms([(eff, None)])
+    ev = _evaluate(cfg)
+    k = cfg.cal_cols.shape[1]
+    nuis = eff.nuisance(cfg.data, dof)
+    kn = 0 if nuis is None else nuis.shape[1]
+    theta = ev["full"]["theta"]
+    return {"effect": name, "parameters": eff.to_parameters(theta[k + kn:], None, theta[k:k + kn]),
+            "_cfg": cfg, "_ev": ev}
+
+
 def synthetic(effect, seed: int, **kw):
     """``validation.synthetic.generate(effect, seed=seed, **kw)``, generated once per test run
     for the tests that read the same log, in whichever worker asks first

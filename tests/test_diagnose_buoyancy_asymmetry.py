@@ -12,12 +12,9 @@ from functools import lru_cache
 
 import pytest
 
-from conftest import shipped_model
-from stripcoef.diagnose.fit import _evaluate
-from stripcoef.diagnose.gains import fit_thruster_gains
-from stripcoef.diagnose.thrusterparts import BuoyancyFreeAsymmetry, ThrusterParts
+from conftest import parts_trial, shipped_model, whole_log_parts
+from stripcoef.diagnose.thrusterparts import BuoyancyFreeAsymmetry
 from stripcoef.effects.laws import get_effect
-from stripcoef.effects.windows import window_data
 
 SURGE, SWAY, HEAVE, YAW = 0, 1, 2, 5
 
@@ -26,28 +23,12 @@ SURGE, SWAY, HEAVE, YAW = 0, 1, 2, 5
 def _parts(effect, seed: int, duration: float = 300.0):
     """The siblings of a BlueROV2-like log's surge, sway, heave and yaw against the prior with
     the thrusters' gains fitted jointly first, as a whole-log diagnosis does."""
-    from validation.independent import generate
-
-    prior = shipped_model("bluerov2_heavy.yaml")
-    log, truth = generate(prior.to_dict(), effect, seed, duration=duration)
-    dofs = [SURGE, SWAY, HEAVE, YAW]
-    gains = fit_thruster_gains(window_data(log, prior), dofs, excited=dofs)
-    if gains is not None and gains.significant:
-        prior = gains.model(prior)
-    return ThrusterParts(window_data(log, prior), dofs), truth
+    return whole_log_parts("bluerov2_heavy.yaml", (SURGE, SWAY, HEAVE, YAW), effect, seed, duration)
 
 
-def _trial(parts: ThrusterParts, name: str, dof: int) -> dict:
-    """The selection's record of ``name`` fitted in ``dof`` (as the selection leaves it)."""
-    eff = get_effect(name)
-    cfg = parts.configs[dof].with_terms([(eff, None)])
-    ev = _evaluate(cfg)
-    k = cfg.cal_cols.shape[1]
-    nuis = eff.nuisance(cfg.data, dof)
-    kn = 0 if nuis is None else nuis.shape[1]
-    theta = ev["full"]["theta"]
-    return {"effect": name, "parameters": eff.to_parameters(theta[k + kn:], None, theta[k:k + kn]),
-            "_cfg": cfg, "_ev": ev}
+def _trial(parts, name: str, dof: int) -> dict:
+    """The selection's record of ``name`` fitted in ``dof`` (conftest.parts_trial)."""
+    return parts_trial(parts, name, dof)
 
 
 def test_the_check_leaves_rotations_other_effects_and_a_dof_with_a_buoyancy_offset_alone():

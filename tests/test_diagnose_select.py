@@ -16,20 +16,9 @@ from conftest import ROOT, shipped_model, synthetic, synthetic_diagnosis
 from stripcoef.diagnose.pipeline import diagnose, prior_widths
 from stripcoef.logfile import Log
 from stripcoef.simulate import simulate
-from validation.synthetic import _steps, add_noise, rov_model
+from validation.synthetic import _steps, rov_model
+from validation.synthetic import surge_log as _surge_log
 
-
-def _surge_log(truth, seed, duration=150.0):
-    """A surge-only log of ``truth`` (commanded steps on the two horizontal thrusters)."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(0.0, duration + 0.05, 0.1)
-    s = _steps(rng, t, (40.0, 110.0))
-    zero = np.zeros(t.size)
-    cmds = {"port": s, "starboard": s, "vertical": zero, "lateral": zero}
-    sim = simulate(truth, t, commands=cmds, rtol=1e-7, atol=1e-9)
-    cols = {k: v for k, v in sim.columns.items() if k not in ("X", "Y", "Z", "K", "M", "N")}
-    cols.update({"n_" + k: v for k, v in cmds.items()})
-    return add_noise(Log(cols, source=f"surge(seed {seed})"), rng)
 
 
 @pytest.mark.slow

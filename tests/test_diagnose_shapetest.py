@@ -18,9 +18,8 @@ from stripcoef.diagnose.select import _generic_shapes
 from stripcoef.diagnose.shapetest import needed_beyond, vetoes
 from stripcoef.effects.laws import get_effect
 from stripcoef.effects.windows import window_data
-from stripcoef.logfile import Log
-from stripcoef.simulate import simulate
-from validation.synthetic import _steps, add_noise, rov_model
+from validation.synthetic import rov_model
+from validation.synthetic import surge_log as _surge_log
 
 
 def _with_linear_drag(log, prior):
@@ -30,17 +29,6 @@ def _with_linear_drag(log, prior):
     cfg = _Config(data, 0, _calibration(data, 0), [(get_effect("linear_drag"), None)])
     return cfg, _evaluate(cfg), _generic_shapes(data, 0)
 
-
-def _surge_log(truth, seed, duration=150.0):
-    rng = np.random.default_rng(seed)
-    t = np.arange(0.0, duration + 0.05, 0.1)
-    s = _steps(rng, t, (40.0, 110.0))
-    zero = np.zeros(t.size)
-    cmds = {"port": s, "starboard": s, "vertical": zero, "lateral": zero}
-    sim = simulate(truth, t, commands=cmds, rtol=1e-7, atol=1e-9)
-    cols = {k: v for k, v in sim.columns.items() if k not in ("X", "Y", "Z", "K", "M", "N")}
-    cols.update({"n_" + k: v for k, v in cmds.items()})
-    return add_noise(Log(cols, source=f"surge(seed {seed})"), rng)
 
 
 def test_a_shape_between_linear_and_quadratic_drag_does_not_veto_a_linear_drag():

@@ -13,12 +13,7 @@ from functools import lru_cache
 
 import pytest
 
-from conftest import shipped_model
-from stripcoef.diagnose.fit import _evaluate
-from stripcoef.diagnose.gains import fit_thruster_gains
-from stripcoef.diagnose.thrusterparts import ThrusterParts
-from stripcoef.effects.laws import get_effect
-from stripcoef.effects.windows import window_data
+from conftest import parts_trial, whole_log_parts
 
 SURGE, HEAVE, PITCH, YAW = 0, 2, 4, 5
 
@@ -28,28 +23,12 @@ def _parts(effect, seed: int, duration: float = 300.0):
     """The siblings of a VideoRay log's surge, heave, pitch and yaw, and the truth, against
     the prior with the thrusters' gains fitted jointly first, as a whole-log diagnosis does
     (diagnose.gains; their contrasts otherwise mix into a yaw asymmetry)."""
-    from validation.independent import generate
-
-    prior = shipped_model("videoray_pro3.yaml")
-    log, truth = generate(prior.to_dict(), effect, seed, duration=duration)
-    dofs = [SURGE, HEAVE, PITCH, YAW]
-    gains = fit_thruster_gains(window_data(log, prior), dofs, excited=dofs)
-    if gains is not None and gains.significant:
-        prior = gains.model(prior)
-    return ThrusterParts(window_data(log, prior), dofs), truth
+    return whole_log_parts("videoray_pro3.yaml", (SURGE, HEAVE, PITCH, YAW), effect, seed, duration)
 
 
-def _trial(parts: ThrusterParts, name: str, dof: int) -> dict:
-    """The selection's record of ``name`` fitted in ``dof`` (as :func:`_judge` leaves it)."""
-    eff = get_effect(name)
-    cfg = parts.configs[dof].with_terms([(eff, None)])
-    ev = _evaluate(cfg)
-    k = cfg.cal_cols.shape[1]
-    nuis = eff.nuisance(cfg.data, dof)
-    kn = 0 if nuis is None else nuis.shape[1]
-    theta = ev["full"]["theta"]
-    return {"effect": name, "parameters": eff.to_parameters(theta[k + kn:], None, theta[k:k + kn]),
-            "_cfg": cfg, "_ev": ev}
+def _trial(parts, name: str, dof: int) -> dict:
+    """The selection's record of ``name`` fitted in ``dof`` (conftest.parts_trial)."""
+    return parts_trial(parts, name, dof)
 
 
 def test_the_parts_of_the_videorays_pitch_are_surge_heave_and_yaw():

@@ -18,22 +18,13 @@ from stripcoef.diagnose.pipeline import diagnose
 from stripcoef.effects.laws import get_effect
 from stripcoef.effects.windows import window_data
 from stripcoef.logfile import Log
-from validation.synthetic import generate, rov_model
+from validation.synthetic import GAINS_OFF
+from validation.synthetic import gains_off_log as _log
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the truth's thrust per unit of the prior's map, per thruster [-]
-GAINS = {"port": 0.8, "starboard": 1.2, "vertical": 1.0, "lateral": 1.0}
+GAINS = GAINS_OFF
 
-
-def _log(effect, seed, duration=240.0):
-    """A log of the prior's vehicle whose thrusters deliver GAINS x the prior's map, and that
-    prior (the model the diagnosis is given)."""
-    prior = rov_model()
-    truth = replace(prior, thrusters=[
-        replace(th, eta_forward=th.eta_forward * GAINS[th.name],
-                eta_backward=th.eta_backward * GAINS[th.name]) for th in prior.thrusters])
-    log, _, known = generate(effect, seed, prior=truth, duration=duration)
-    return log, prior, known
 
 
 def test_retest_holds_one_gain_per_thruster_acting_in_the_dof():
@@ -98,7 +89,7 @@ def test_tether_hidden_by_the_sway_added_mass_is_named_first():
                    "biases it, 0.180 for a truth of 0.225 (the retest's fit, with the gains "
                    "free, gives 0.226, but its gains are not written)")
 def test_tether_magnitude_when_the_thrust_map_is_off():
-    log, prior, known = _log("tether_drag", 2)
+    log, prior, known = _log("tether_drag", 2, duration=240.0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof="surge").to_dict()

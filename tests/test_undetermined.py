@@ -10,7 +10,6 @@ known c_t (seed 1, 120 s: truth 0.1774).
 """
 
 import warnings
-from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -22,21 +21,11 @@ from stripcoef.diagnose.undetermined import ADVICE, gain_dependence, unwritten
 from stripcoef.diagnose.written import window_errors, written_effects
 from stripcoef.diagnose.heldout import split
 from stripcoef.diagnose.settings import VALIDATION_FRACTION
-from validation.synthetic import generate, rov_model
+from validation.synthetic import GAINS_OFF, gains_off_log, rov_model, with_gains
 
 #: the truth's thrust per unit of the prior's map, per thruster [-]
-GAINS = {"port": 0.8, "starboard": 1.2, "vertical": 1.0, "lateral": 1.0}
+GAINS = GAINS_OFF
 
-
-def gains_off_log(effect="tether_drag", seed=1, duration=120.0):
-    """``(log, prior, known)``: a log of the synthetic ROV whose thrusters deliver GAINS x the
-    prior's map, the prior (the model the diagnosis is given) and the known truth."""
-    prior = rov_model()
-    truth = replace(prior, thrusters=[
-        replace(th, eta_forward=th.eta_forward * GAINS[th.name],
-                eta_backward=th.eta_backward * GAINS[th.name]) for th in prior.thrusters])
-    log, _, known = generate(effect, seed, prior=truth, duration=duration)
-    return log, prior, known
 
 
 @pytest.fixture(scope="module")
@@ -90,9 +79,7 @@ def test_the_gain_test_of_a_tether_with_the_right_map_does_not_move(surge):
     beyond the difference's noise when the gains are freed (Hausman's z below MIN_Z)."""
     log, _, known, wrong = surge
     prior = rov_model()
-    truth_map = replace(prior, thrusters=[
-        replace(th, eta_forward=th.eta_forward * GAINS[th.name],
-                eta_backward=th.eta_backward * GAINS[th.name]) for th in prior.thrusters])
+    truth_map = with_gains(prior, GAINS)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, truth_map, dof="surge")

@@ -241,6 +241,42 @@ def generate(effect: str | None, seed: int, *, magnitude: float | None = None,
     return noisy, prior, truth
 
 
+#: Each thruster's delivered thrust over the prior's map in :func:`gains_off_log` [-]: the two
+#: horizontal thrusters off by -20 % and +20 %, as a real vehicle's pair may be
+GAINS_OFF = {"port": 0.8, "starboard": 1.2, "vertical": 1.0, "lateral": 1.0}
+
+
+def with_gains(prior: HydroModel, gains: dict) -> HydroModel:
+    """``prior`` with each thruster's forward and backward efficiency times its gain [-]."""
+    return replace(prior, thrusters=[
+        replace(th, eta_forward=th.eta_forward * gains[th.name],
+                eta_backward=th.eta_backward * gains[th.name]) for th in prior.thrusters])
+
+
+def gains_off_log(effect: str | None = "tether_drag", seed: int = 1,
+                  duration: float = 120.0, gains: dict = GAINS_OFF):
+    """``(log, prior, known)``: a log of :func:`rov_model` whose thrusters deliver ``gains``
+    x the prior's map (:func:`with_gains`), the prior (the model a diagnosis is given) and
+    the known truth of :func:`generate`."""
+    prior = rov_model()
+    log, _, known = generate(effect, seed, prior=with_gains(prior, gains), duration=duration)
+    return log, prior, known
+
+
+def surge_log(truth: HydroModel, seed: int, duration: float = 150.0) -> Log:
+    """A surge-only log of ``truth`` (a :func:`rov_model`-like vehicle: commanded steps on the
+    two horizontal thrusters, seeded sensor noise :func:`add_noise`)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, duration + 0.05, 0.1)
+    s = _steps(rng, t, (40.0, 110.0))
+    zero = np.zeros(t.size)
+    cmds = {"port": s, "starboard": s, "vertical": zero, "lateral": zero}
+    sim = simulate(truth, t, commands=cmds, rtol=1e-7, atol=1e-9)
+    cols = {k: v for k, v in sim.columns.items() if k not in ("X", "Y", "Z", "K", "M", "N")}
+    cols.update({"n_" + k: v for k, v in cmds.items()})
+    return add_noise(Log(cols, source=f"surge(seed {seed})"), rng)
+
+
 def effect_signal(truth: dict, dof: int, *, window: float = 2.0) -> dict:
     r"""Size of the undeclared effects in a generated log, against the noise of the metric.
 
