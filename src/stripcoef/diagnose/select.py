@@ -502,8 +502,8 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
     # coefficient of the model at an admissible value, not a parameter of the effect
     at_bound[:kn] &= np.array([n not in ("M", "D_L", "D_Q") for n in eff.nuisance_names[:kn]],
                               bool)
-    if np.any(at_bound):
-        reasons.append("a parameter is pinned at its physical bound (e.g. zero added mass)")
+    if np.any(at_bound) or (eff.at_bound(params) if hasattr(eff, "at_bound") else ""):
+        reasons.append("a parameter is pinned at its bound: no valid z (Self & Liang 1987)")
     if not signature and not mimic and key and held is None:
         reasons.append(f"no signature in this log and the prior has no {key} to compare")
     nuisance = {n: float(v) for n, v in zip(eff.nuisance_names, theta_nuis)} if kn else {}
