@@ -40,7 +40,6 @@ import argparse
 import collections
 import os
 import sys
-import tempfile
 import time
 import warnings
 from pathlib import Path
@@ -49,8 +48,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, stored_references,  # noqa: E402
-                                   user_files)
+from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, patched_estimates,  # noqa: E402
+                                   stored_references)
 
 RHO = 1000.0
 TOL = 0.05
@@ -62,8 +61,6 @@ def capture(seed: int, count: int, panels: int, only=None) -> dict:
     solves on (``estimate(load_vehicle(FILE), added_mass_method="panels")``), the reference
     point and the mirror planes it used; boxes and plates (graded panels) left out."""
     import stripcoef.hull.panels as panels_mod
-    from stripcoef.assembly import estimate
-    from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.graded_panels import box_faces
 
     real = panels_mod.panel_added_mass
@@ -77,24 +74,11 @@ def capture(seed: int, count: int, panels: int, only=None) -> dict:
         return real(mesh, **k)
 
     out = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        for k, family, path, unit in user_files(seed, count, tmp, only):
-            rec.clear()
-            try:
-                panels_mod.panel_added_mass = spy
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    estimate(load_vehicle(path, length_unit=unit, origin=(0, 0, 0)),
-                             added_mass_method="panels", added_mass_panels=panels)
-            except Exception as exc:            # a refusal is a result: say it, go on
-                print(f"{k:3d} {family}: FAILED {type(exc).__name__}: {exc}", flush=True)
-                continue
-            finally:
-                panels_mod.panel_added_mass = real
-            if box_faces(rec["v"], rec["f"]) is not None:
-                continue
-            out[k] = dict(family=family, **rec,
-                          scale=float(np.ptp(rec["v"], axis=0).max()))
+    for k, family, _, _ in patched_estimates(seed, count, {(panels_mod, "panel_added_mass"): spy},
+                                             only, rec.clear, added_mass_panels=panels):
+        if box_faces(rec["v"], rec["f"]) is not None:
+            continue
+        out[k] = dict(family=family, **rec, scale=float(np.ptp(rec["v"], axis=0).max()))
     return out
 
 

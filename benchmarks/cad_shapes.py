@@ -194,6 +194,40 @@ def user_files(seed: int, count: int, directory, only=None):
         yield k, family, path, unit
 
 
+def patched_estimates(seed: int, count: int, patches: dict, only=None, before=None,
+                      **estimate_kw):
+    """Yield ``(k, family, model, cpu)``: each of the seed's shapes as a user has it
+    (:func:`user_files`) through ``estimate(load_vehicle(FILE), added_mass_method="panels",
+    **estimate_kw)``, with ``patches`` (``{(module, name): replacement}``: the spies and
+    forced settings of the estimate-rule benchmarks) in place for that call only and its
+    warnings silenced; ``before()`` is called before each estimate (a spy's record cleared),
+    ``cpu`` is the estimate's process time [s]. A shape the estimate refuses is printed and
+    skipped: a refusal is a result."""
+    from stripcoef.assembly import estimate
+    from stripcoef.geometry.vehicle import load_vehicle
+
+    real = {key: getattr(*key) for key in patches}
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, family, path, unit in user_files(seed, count, tmp, only):
+            if before is not None:
+                before()
+            c0 = time.process_time()
+            try:
+                for (module, name), new in patches.items():
+                    setattr(module, name, new)
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    model = estimate(load_vehicle(path, length_unit=unit, origin=(0, 0, 0)),
+                                     added_mass_method="panels", **estimate_kw)
+            except Exception as exc:            # a refusal is a result: say it, go on
+                print(f"{k:3d} {family}: FAILED {type(exc).__name__}: {exc}", flush=True)
+                continue
+            finally:
+                for (module, name), old in real.items():
+                    setattr(module, name, old)
+            yield k, family, model, time.process_time() - c0
+
+
 def write_as_user(parts, path_stem, rng):
     """The shape as a user has it: mm or m, OBJ with split vertices or STL. Returns (path,
     length_unit, description)."""

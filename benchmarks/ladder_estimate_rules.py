@@ -58,17 +58,14 @@ import collections
 import os
 import pickle
 import sys
-import tempfile
-import time
-import warnings
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, stored_references,  # noqa: E402
-                                   user_files)
+from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, patched_estimates,  # noqa: E402
+                                   stored_references)
 
 RHO = 1000.0
 TOL = 0.05
@@ -92,8 +89,6 @@ def capture(seed: int, count: int, only=None) -> dict:
     does (base install)."""
     import stripcoef.geometry.mesh as mesh_mod
     import stripcoef.hull.panels as panels
-    from stripcoef.assembly import estimate
-    from stripcoef.geometry.vehicle import load_vehicle
     from stripcoef.hull.panel_error import ladder_extrapolation
     from stripcoef.hull.remesh import available
 
@@ -119,42 +114,29 @@ def capture(seed: int, count: int, only=None) -> dict:
         return m, info
 
     out = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        for k, family, path, unit in user_files(seed, count, tmp, only):
-            rec.clear()
-            c0 = time.process_time()
-            try:
-                panels.panel_added_mass, mesh_mod.volume_centroid = spy, centroid
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    model = estimate(load_vehicle(path, length_unit=unit, origin=(0, 0, 0)),
-                                     added_mass_method="panels")
-            except Exception as exc:            # a refusal is a result: say it, go on
-                print(f"{k:3d} {family}: FAILED {type(exc).__name__}: {exc}", flush=True)
-                continue
-            finally:
-                panels.panel_added_mass, mesh_mod.volume_centroid = real_pam, real_centroid
-            info, f = rec["info"], RHO / rec["rho"]
-            levels = [np.asarray(m) * f for m in info["levels"]]
-            counts = tuple(info["panels"])
-            ladder = False
-            # (the warning's estimate; the band shown before four levels had their own)
-            warned_on = info.get("estimate", info["error"])
-            if len(levels) == 4 and warned_on is not None:
-                _, e = ladder_extrapolation(levels, counts, info["formal_order"])
-                ladder = bool(np.allclose(e, np.asarray(warned_on) * f, rtol=1e-9,
-                                          atol=1e-12))
-            out[k] = dict(family=family, value=rec["value"] * f,
-                          error=None if info["error"] is None else np.asarray(info["error"]) * f,
-                          estimate=None if warned_on is None else np.asarray(warned_on) * f,
-                          warned=not info["converged"], counts=counts, levels=levels,
-                          formal=info["formal_order"], centroid=rec.get("centroid"),
-                          length=info["length"], ladder=ladder,
-                          mirrors=tuple(model.conditions["mirror_planes"] or ()),
-                          remesher=remesher,
-                          cpu=time.process_time() - c0)
-            print(f"{k:3d} {family:12s} panels {'/'.join(map(str, counts))}"
-                  f"{' ladder' if ladder else ''}, CPU {out[k]['cpu']:.2f} s", flush=True)
+    patches = {(panels, "panel_added_mass"): spy, (mesh_mod, "volume_centroid"): centroid}
+    for k, family, model, cpu in patched_estimates(seed, count, patches, only, rec.clear):
+        info, f = rec["info"], RHO / rec["rho"]
+        levels = [np.asarray(m) * f for m in info["levels"]]
+        counts = tuple(info["panels"])
+        ladder = False
+        # (the warning's estimate; the band shown before four levels had their own)
+        warned_on = info.get("estimate", info["error"])
+        if len(levels) == 4 and warned_on is not None:
+            _, e = ladder_extrapolation(levels, counts, info["formal_order"])
+            ladder = bool(np.allclose(e, np.asarray(warned_on) * f, rtol=1e-9,
+                                      atol=1e-12))
+        out[k] = dict(family=family, value=rec["value"] * f,
+                      error=None if info["error"] is None else np.asarray(info["error"]) * f,
+                      estimate=None if warned_on is None else np.asarray(warned_on) * f,
+                      warned=not info["converged"], counts=counts, levels=levels,
+                      formal=info["formal_order"], centroid=rec.get("centroid"),
+                      length=info["length"], ladder=ladder,
+                      mirrors=tuple(model.conditions["mirror_planes"] or ()),
+                      remesher=remesher,
+                      cpu=cpu)
+        print(f"{k:3d} {family:12s} panels {'/'.join(map(str, counts))}"
+              f"{' ladder' if ladder else ''}, CPU {out[k]['cpu']:.2f} s", flush=True)
     return out
 
 

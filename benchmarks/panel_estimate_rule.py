@@ -38,17 +38,14 @@ import argparse
 import collections
 import os
 import sys
-import tempfile
-import time
-import warnings
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, stored_references,  # noqa: E402
-                                   user_files)
+from benchmarks.cad_shapes import (DOFS, SIGNIFICANT, patched_estimates,  # noqa: E402
+                                   stored_references)
 
 RHO = 1000.0
 TOL = 0.05
@@ -63,8 +60,6 @@ def capture(seed: int, count: int, max_panels: int, only=None) -> dict:
     """{shape: dict(family, counts, levels (rho 1000), formal orders per stage, mirrors,
     length [m], cpu [s])} of the seed's shapes, the refinement forced to ``max_panels``."""
     import stripcoef.hull.panels as panels
-    from stripcoef.assembly import estimate
-    from stripcoef.geometry.vehicle import load_vehicle
 
     real_pam, real_order = panels.panel_added_mass, panels.edge_order
     rec: dict = {}
@@ -80,29 +75,16 @@ def capture(seed: int, count: int, max_panels: int, only=None) -> dict:
         return m, info
 
     out = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        for k, family, path, unit in user_files(seed, count, tmp, only):
-            rec.clear()
-            c0 = time.process_time()
-            try:
-                panels.panel_added_mass, panels.edge_order = forced, order
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    model = estimate(load_vehicle(path, length_unit=unit, origin=(0, 0, 0)),
-                                     added_mass_method="panels")
-            except Exception as exc:            # a refusal is a result: say it, go on
-                print(f"{k:3d} {family}: FAILED {type(exc).__name__}: {exc}", flush=True)
-                continue
-            finally:
-                panels.panel_added_mass, panels.edge_order = real_pam, real_order
-            info = rec["info"]
-            out[k] = dict(family=family, counts=tuple(info["panels"]),
-                          levels=[np.asarray(m) * RHO / rec["rho"] for m in info["levels"]],
-                          formal=list(rec["formal"]), mirrors=tuple(model.conditions[
-                              "mirror_planes"] or ()), length=info["length"],
-                          cpu=time.process_time() - c0)
-            print(f"{k:3d} {family:12s} panels {'/'.join(map(str, info['panels']))}, "
-                  f"CPU {out[k]['cpu']:.2f} s", flush=True)
+    patches = {(panels, "panel_added_mass"): forced, (panels, "edge_order"): order}
+    for k, family, model, cpu in patched_estimates(seed, count, patches, only, rec.clear):
+        info = rec["info"]
+        out[k] = dict(family=family, counts=tuple(info["panels"]),
+                      levels=[np.asarray(m) * RHO / rec["rho"] for m in info["levels"]],
+                      formal=list(rec["formal"]), mirrors=tuple(model.conditions[
+                          "mirror_planes"] or ()), length=info["length"],
+                      cpu=cpu)
+        print(f"{k:3d} {family:12s} panels {'/'.join(map(str, info['panels']))}, "
+              f"CPU {out[k]['cpu']:.2f} s", flush=True)
     return out
 
 
