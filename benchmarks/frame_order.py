@@ -62,13 +62,14 @@ def panel_levels(extra: int | None, family: str = "auto"):
         warnings.simplefilter("ignore")
         model = estimate(veh)
         about = tuple(float(x) for x in model.reference_point)
-        kw = {} if extra is None else dict(tolerance=0.0, max_panels=int(extra))
-        # the forced refinement's levels beyond the library's limits (a level of one solve
-        # of at most MAX_PANELS unknowns, a remeshed or bisected level of at most MAX_FACES):
-        # both raised to ``extra`` for this call, then restored
+        kw = {} if extra is None else dict(tolerance=0.0, max_panels=2 * int(extra))
+        # the forced refinement's levels beyond the library's limit on a remeshed or bisected
+        # level (MAX_FACES faces of the part solved, here the y >= 0 half): raised to
+        # ``extra`` for this call, then restored (raising MAX_PANELS too changes the default
+        # levels: the whole body is then solved without its mirror plane)
         saved = (P.MAX_PANELS, R.MAX_FACES)
         if extra is not None:
-            P.MAX_PANELS, R.MAX_FACES = int(extra), int(extra)
+            R.MAX_FACES = int(extra)
         try:
             cpu = time.process_time()
             _, info = panel_added_mass(panel_surface(veh, DEFAULT_PANELS), rho=RHO,
@@ -141,7 +142,8 @@ def table(title, counts, levels, ref, eh_ref_levels=True):
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--extra", type=int, default=None,
-                    help="force the refinement on to this many panels (tolerance 0)")
+                    help="force the refinement on (tolerance 0), a level of at most this many "
+                         "faces of the half solved")
     ap.add_argument("--family", default="auto", choices=("auto", "input"),
                     help="the panel levels: auto (the install's), input (the base install's)")
     ap.add_argument("--write", action="store_true",
@@ -169,6 +171,13 @@ def main(argv=None) -> int:
     for p in (1.0, 4.0 / 3.0, 2.0):
         r = richardson(levels[-2], levels[-1], counts[-2], counts[-1], order=p)
         lines.append(f"| Richardson of {counts[-2]}/{counts[-1]} at order {p:.2f} | "
+                     + " | ".join(_pct(x / y - 1) for x, y in zip(r, g_ref)) + " |")
+    from benchmarks.cad_value_order import observed_value
+
+    for k in range(3, len(counts) + 1):
+        r = observed_value(counts[:k], list(levels[:k]))
+        lines.append(f"| Richardson of {counts[k - 2]}/{counts[k - 1]} at each term's observed "
+                     f"order of {counts[k - 3]}/{counts[k - 2]}/{counts[k - 1]}, in [0.5, 2] | "
                      + " | ".join(_pct(x / y - 1) for x, y in zip(r, g_ref)) + " |")
     if len(counts) > 3:
         k = len(default) if default else 3

@@ -163,13 +163,13 @@ def run(path, shapes=SHAPES, levels=LEVELS, max_gb: float = MAX_GB, first_level:
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
-def compare(levels_csv, model_path=None) -> list[dict]:
+def compare(levels_csv, model_path=None) -> tuple[list[dict], list[str]]:
     """Per diagonal term of the shapes of ``levels_csv``: the levels, Eça & Hoekstra's
     reference over them (:func:`validation.cad_shapes.fine_reference`: limit, band of the
     finest level, order), the stored run's model (default reference_tables/bem/cad_shapes.csv,
     the remesh extra) and its estimated error, and the uniform fine reference
     (cad_shapes_fine_levels*.csv, :func:`validation.cad_shapes.read_levels`); printed as a
-    table, returned as rows."""
+    table, returned as rows and the table's lines."""
     from validation.cad_shapes import (DATA, FINE_ALL, fine_reference, read_graded_levels,
                                        read_levels, read_stored_run)
 
@@ -179,9 +179,9 @@ def compare(levels_csv, model_path=None) -> list[dict]:
     model = {(int(t["shape"]), int(t["i"]), int(t["j"])): t for t in stored
              if not t["what"].startswith("FAILED")}
     rows = []
-    print("| # | term | graded levels (faces: value) | graded ref. (band, order) | model | "
-          "model vs graded | model's estimate | uniform fine ref. (band) vs graded |")
-    print("|---" * 8 + "|")
+    lines = ["| # | term | graded levels (faces: value) | graded ref. (band, order) | model | "
+             "model vs graded | model's estimate | uniform fine ref. (band) vs graded |",
+             "|---" * 8 + "|"]
     for k, lv in sorted(graded.items()):
         n = [lv[x][0] for x in sorted(lv)]
         ref, band, order = fine_reference(n, [lv[x][1] for x in sorted(lv)])
@@ -198,13 +198,14 @@ def compare(levels_csv, model_path=None) -> list[dict]:
                        fine=f_ref[i, i], fine_band=f_band[i, i] / f_ref[i, i],
                        fine_error=f_ref[i, i] / ref[i, i] - 1.0)
             rows.append(row)
-            print(f"| {k} | {DOFS[i]} | "
+            lines.append(f"| {k} | {DOFS[i]} | "
                   + ", ".join(f"{c}: {v:.5g}" for c, v in row["levels"])
                   + f" | {row['ref']:.5g} ({100 * row['band']:.1f} %, {row['order']:.2f}) | "
                   f"{m:.5g} | {100 * row['error']:+.1f} % | {100 * row['estimate']:.1f} % | "
                   f"{row['fine']:.5g} ({100 * row['fine_band']:.1f} %) "
                   f"{100 * row['fine_error']:+.1f} % |")
-    return rows
+    print("\n".join(lines))
+    return rows, lines
 
 
 def main(argv=None) -> int:
@@ -218,11 +219,22 @@ def main(argv=None) -> int:
                     help="index of the first level (levels appended to a shape's rows)")
     ap.add_argument("--compare", default=None, metavar="LEVELS_CSV",
                     help="the stored run's model against the graded levels of this file")
+    ap.add_argument("--md", default=None, help="--compare: write the table here")
     ap.add_argument("--faces", action="store_true",
                     help="mesh the levels and print their faces and checks, no solve")
     args = ap.parse_args(argv)
     if args.compare:
-        compare(args.compare)
+        _, lines = compare(args.compare)
+        if args.md:
+            Path(args.md).write_text(
+                "# CAD shapes 14 and 18 against their edge-graded references "
+                "(benchmarks.graded_cad)\n\n"
+                f"`python -m benchmarks.graded_cad --compare {args.compare} --md {args.md}`. "
+                "The model: the stored run reference_tables/bem/cad_shapes.csv (the remesh "
+                "extra) and its estimated error; the graded reference: Eça & Hoekstra over the "
+                "levels (its band the uncertainty of the finest level, the order its fit's); "
+                "the uniform fine reference: cad_shapes_fine_levels*.csv by the same procedure. "
+                "Diagonal terms [kg, kg m^2] about the origin.\n\n" + "\n".join(lines) + "\n")
         return 0
     if args.faces:
         for k in args.only:
