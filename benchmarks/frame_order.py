@@ -25,7 +25,8 @@ y mirror plane), and at order 1 its surge, sway and yaw are 6.8-10 % below the g
 ``--extra 12000`` adds a fourth level (21,212 panels: the part's face limit ``MAX_FACES`` raised
 to 12,000 for the call; 49 s user + 19 s sys, 8.2 GB peak on the 2-core machine).
 
-``--write`` writes benchmarks/data/frame_order.md (``--family input``: frame_order_input.md).  The remesh extra makes the default levels
+``--write`` writes benchmarks/data/frame_order.md (the base install's levels, ``--family input``
+or no remesher: frame_order_base.md).  The remesh extra makes the default levels
 (without it the base install's ladder is measured).
 """
 
@@ -150,7 +151,8 @@ def main(argv=None) -> int:
     ap.add_argument("--family", default="auto", choices=("auto", "input"),
                     help="the panel levels: auto (the install's), input (the base install's)")
     ap.add_argument("--write", action="store_true",
-                    help=f"write {OUT.relative_to(ROOT)} (--family input: frame_order_input.md)")
+                    help=f"write {OUT.relative_to(ROOT)} (the base install's levels: "
+                         "frame_order_base.md)")
     args = ap.parse_args(argv)
 
     from stripcoef.hull import remesh
@@ -195,7 +197,8 @@ def main(argv=None) -> int:
     text = "\n".join(lines) + "\n"
     print(text)
     if args.write:
-        (OUT if args.family == "auto" else OUT.with_name("frame_order_input.md")).write_text(text)
+        base = args.family == "input" or not remesh.available()
+        (OUT.with_name("frame_order_base.md") if base else OUT).write_text(text)
     return 0
 
 
