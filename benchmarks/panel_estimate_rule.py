@@ -29,7 +29,11 @@ with some term off by more than 5 % that are flagged, and the mean number of lev
 ``--references``: a CSV of ``benchmarks.cad_shapes`` for the same seed (its ``bem`` column
 and ``bem_gci_rel`` band); ``--best``: instead, the most resolved reference this repository
 holds per term of seed 1375923287 (``validation.cad_shapes.best_references``: edge-graded,
-else 12,000-17,000 faces, else the stored 3,000).  Needs the ``remesh`` extra.
+else 12,000-17,000 faces, else the stored 3,000).  Needs the ``remesh`` extra: a shape
+solved on the base install's input ladder (two nested pairs, one stage, no refinement family
+of three to five levels) is skipped and said so; ``benchmarks.ladder_estimate_rules`` measures
+the ladder.  The formal order of k levels is the one the estimate used at the stage that
+solved them (:func:`stage_orders`).
 """
 
 from __future__ import annotations
