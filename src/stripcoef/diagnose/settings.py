@@ -198,6 +198,11 @@ class DiagnoseSettings:
         fit with the prior's thrust map, as before (its c_t +88 % on an independent
         BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
         three such logs measured, docs/performance.md, ``tether33e``)
+    gains_beside_current : bool
+        Whole-log: the thrusters' gains, fitted before any effect, fitted again beside the
+        water current the DOFs found, and the DOFs diagnosed again on them
+        (:mod:`stripcoef.diagnose.regains`: the omitted-variable bias of the first fit). Off
+        by default: measured on the real-style logs only (benchmarks/data/real33_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -212,6 +217,7 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
+    gains_beside_current: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a
