@@ -27,6 +27,7 @@ scale), and the force effects (tether, momentum drag, current, lag, delay).
 
 Usage:
     python -m benchmarks.cut_trace --rows VEHICLE:CATEGORY:SEED:MODE[,...] [--duration 300]
+        [--dof-gains]
 """
 
 from __future__ import annotations
@@ -96,8 +97,9 @@ def truth_dict(prior, truth) -> dict:
     return d
 
 
-def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 300.0) -> dict:
-    """The record of one log (module docstring)."""
+def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 300.0,
+          dof_gains: bool = False) -> dict:
+    """The record of one log (module docstring; ``dof_gains``: diagnose's option)."""
     from stripcoef.conventions import parse_dof
     from stripcoef.diagnose.calibrate import calibrated_model
     from stripcoef.diagnose.heldout import split
@@ -118,7 +120,7 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
-                       time_limit=float("inf"))
+                       time_limit=float("inf"), dof_gains=dof_gains)
     t_diag = time.process_time() - t0
     train, _ = split(log, VALIDATION_FRACTION, key="validation")
 
@@ -138,7 +140,7 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
     wd, td = written.to_dict(), truth_dict(prior, truth)
     r = per[dof_name]
     out = {"vehicle": vehicle, "category": category, "seed": seed, "mode": mode,
-           "dof": dof_name, "t_diagnose": t_diag,
+           "dof": dof_name, "t_diagnose": t_diag, "dof_gains": dof_gains,
            "prior": err(prior), "baseline": float(r.baseline_error), "fitted": err(fitted),
            "written": err(written), "final": float(r.final_error), "truth": err(td),
            "steps": [(s.effect, bool(s.kept)) for s in r.steps],
@@ -170,10 +172,11 @@ def main(argv=None) -> int:
     ap.add_argument("--rows", required=True,
                     help="comma-separated VEHICLE:CATEGORY:SEED:MODE (mode dof or all)")
     ap.add_argument("--duration", type=float, default=300.0)
+    ap.add_argument("--dof-gains", action="store_true", help="diagnose's dof_gains")
     args = ap.parse_args(argv)
     for spec in args.rows.split(","):
         vehicle, category, seed, mode = spec.split(":")
-        rec = trace(vehicle, category, int(seed), mode, args.duration)
+        rec = trace(vehicle, category, int(seed), mode, args.duration, args.dof_gains)
         print("trace " + json.dumps(rec, default=float), flush=True)
         print(_text(rec), flush=True)
     return 0

@@ -140,7 +140,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True,
+             dof_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -194,6 +195,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
+    dof_gains : bool
+        One DOF: the thrusters' gains fitted in that DOF's balance
+        (:attr:`DiagnoseSettings.dof_gains`; off by default).
 
     Returns
     -------
@@ -241,7 +245,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=one_added_mass, not_determined=bool(not_determined))
+        one_added_mass=one_added_mass, not_determined=bool(not_determined),
+        dof_gains=bool(dof_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -293,7 +298,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
     # they are the prior of the rest of the diagnosis and written with the model
     prior, gains = model, None
-    if len(dofs) > 1:
+    if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
             gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))

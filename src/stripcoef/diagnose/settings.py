@@ -198,6 +198,12 @@ class DiagnoseSettings:
         fit with the prior's thrust map, as before (its c_t +88 % on an independent
         BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
         three such logs measured, docs/performance.md, ``tether33e``)
+    dof_gains : bool
+        One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
+        within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
+        whole-log diagnosis fits them over its DOFs, and kept as the prior of the rest of
+        the diagnosis when significant and validated. Off by default
+        (benchmarks/data/cut33_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -212,6 +218,7 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
+    dof_gains: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a
