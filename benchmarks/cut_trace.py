@@ -27,7 +27,7 @@ scale), and the force effects (tether, momentum drag, current, lag, delay).
 
 Usage:
     python -m benchmarks.cut_trace --rows VEHICLE:CATEGORY:SEED:MODE[,...] [--duration 300]
-        [--dof-gains] [--readd]
+        [--dof-gains]
 """
 
 from __future__ import annotations
@@ -98,9 +98,8 @@ def truth_dict(prior, truth) -> dict:
 
 
 def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 300.0,
-          dof_gains: bool = False, readd: bool = False) -> dict:
-    """The record of one log (module docstring; ``dof_gains``, ``readd``
-    (``validation_readd``): diagnose's options)."""
+          dof_gains: bool = False) -> dict:
+    """The record of one log (module docstring; ``dof_gains``: diagnose's option)."""
     from stripcoef.conventions import parse_dof
     from stripcoef.diagnose.calibrate import calibrated_model
     from stripcoef.diagnose.heldout import split
@@ -121,8 +120,7 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
-                       time_limit=float("inf"), dof_gains=dof_gains,
-                       validation_readd=readd)
+                       time_limit=float("inf"), dof_gains=dof_gains)
     t_diag = time.process_time() - t0
     train, _ = split(log, VALIDATION_FRACTION, key="validation")
 
@@ -143,7 +141,6 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
     r = per[dof_name]
     out = {"vehicle": vehicle, "category": category, "seed": seed, "mode": mode,
            "dof": dof_name, "t_diagnose": t_diag, "dof_gains": dof_gains,
-           "validation_readd": readd,
            "prior": err(prior), "baseline": float(r.baseline_error), "fitted": err(fitted),
            "written": err(written), "final": float(r.final_error), "truth": err(td),
            "steps": [(s.effect, bool(s.kept)) for s in r.steps],
@@ -157,8 +154,7 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
            "bounds_hit": res.bounds_hit.get(dof_name) if res.bounds_hit else None,
            "removed": (res.validation or {}).get("removed"),
            "validation": {k: (res.validation or {}).get(k) for k in
-                          ("prior", "all_changes", "kept_changes", "removed_for_own_dof",
-                           "readded")},
+                          ("prior", "all_changes", "kept_changes", "removed_for_own_dof")},
            "written_effects": [e for e in wd.get("effects", [])],
            "truth_effects": td["effects"]}
     out["written_from_truth"] = {g: err(_swap(wd, td, g, i)) for g in GROUPS}
@@ -177,12 +173,10 @@ def main(argv=None) -> int:
                     help="comma-separated VEHICLE:CATEGORY:SEED:MODE (mode dof or all)")
     ap.add_argument("--duration", type=float, default=300.0)
     ap.add_argument("--dof-gains", action="store_true", help="diagnose's dof_gains")
-    ap.add_argument("--readd", action="store_true", help="diagnose's validation_readd")
     args = ap.parse_args(argv)
     for spec in args.rows.split(","):
         vehicle, category, seed, mode = spec.split(":")
-        rec = trace(vehicle, category, int(seed), mode, args.duration, args.dof_gains,
-                    args.readd)
+        rec = trace(vehicle, category, int(seed), mode, args.duration, args.dof_gains)
         print("trace " + json.dumps(rec, default=float), flush=True)
         print(_text(rec), flush=True)
     return 0

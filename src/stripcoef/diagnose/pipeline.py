@@ -141,7 +141,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
-             dof_gains: bool = False, validation_readd: bool = False) -> Diagnosis:
+             dof_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -198,9 +198,6 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
         (:attr:`DiagnoseSettings.dof_gains`; off by default).
-    validation_readd : bool
-        The validation puts back a removed change whose return improves its score
-        (:attr:`DiagnoseSettings.validation_readd`; off by default).
 
     Returns
     -------
@@ -249,7 +246,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        dof_gains=bool(dof_gains), validation_readd=bool(validation_readd))
+        dof_gains=bool(dof_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -343,8 +340,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
-                                           logged=settings.logged_dofs(dofs),
-                                           readd=settings.validation_readd)
+                                           logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

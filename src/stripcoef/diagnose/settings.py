@@ -204,10 +204,6 @@ class DiagnoseSettings:
         whole-log diagnosis fits them over its DOFs, and kept as the prior of the rest of
         the diagnosis when significant and validated. Off by default
         (benchmarks/data/cut33_trace.md)
-    validation_readd : bool
-        The validation's backward elimination with forward moves: a removed change whose
-        return improves the score is put back (:func:`~stripcoef.diagnose.validate.
-        validate_changes`, ``readd``). Off by default (benchmarks/data/cut33_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -223,7 +219,6 @@ class DiagnoseSettings:
     one_added_mass: bool | str = False
     not_determined: bool = True
     dof_gains: bool = False
-    validation_readd: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

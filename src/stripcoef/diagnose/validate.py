@@ -39,8 +39,7 @@ def heldout_errors(result, prior, written) -> dict:
 
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
-                     budget: Budget = UNLIMITED, logged=(), readd: bool = False
-                     ) -> tuple[set, dict]:
+                     budget: Budget = UNLIMITED, logged=()) -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -80,17 +79,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     ``logged``: the DOFs (indices, not diagnosed) whose velocities the free simulations
     take from the log (:func:`stripcoef.diagnose.heldout.segment_squared_errors`;
     :data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
-
-    ``readd`` (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.validation_readd`):
-    backward elimination never reconsiders a change it removed while others were still in
-    the model (on the issue-33 BlueROV2 thrust-asymmetry log it removed the surge asymmetry
-    while a pitch calibration made the free simulation diverge, then the pitch changes).
-    With ``readd`` the hybrid stepwise search (Hastie, Tibshirani & Friedman 2009, sec.
-    3.3.2: forward and backward moves considered at each step) puts back, once neither
-    removal rule removes anything, the removed change (a calibration; an effect whose
-    calibration is kept; a shared effect in all its DOFs) whose return improves the score
-    strictly while every DOF with changes of its own still simulates better than the prior
-    (the veto's rule), the best one first; the two rules then run again.
 
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
@@ -147,7 +135,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     excl = set()
     cur = score(excl)
     first = cur[1]
-    vetoed, readded = [], []
+    vetoed = []
     while True:
         excl, cur = eliminate(excl, cur)
         before = len(excl)
@@ -165,11 +153,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         # shared current, once the DOFs' calibrations were vetoed, simulated five of six
         # DOFs worse than the prior on the validation part and was still written)
         if len(excl) == before:
-            back = _readd(excl, cur, score, changes, own, ref, dofs) if readd else None
-            if back is None:
-                break
-            readded.extend(sorted(excl - back))
-            excl, cur = back, score(back)
+            break
     tests = {}
     if base_sse is not None and cur[2] is not None:
         # on the consecutive segments the scoring already simulated: the rolling segments
@@ -187,8 +171,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
               "logged_dofs": [DOF[j] for j in logged],
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed_for_own_dof": vetoed,
-              **({"readded": [" ".join(c[1:][::-1]) if c[0] == "effect"
-                              else f"{c[1]} calibration" for c in readded]} if readd else {}),
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
                                               "Harvey et al. small-sample factor) of the kept "
                                               "model's free-simulation losses per validation "
@@ -208,34 +190,6 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
-
-
-def _readd(excl, cur, score, changes, own, ref, dofs):
-    """The exclusions ``excl`` less the removed change whose return improves the score
-    ``cur`` most (:func:`validate_changes`, ``readd``), or None when none does: a DOF's
-    calibration, an effect whose DOF's calibration is kept, or a shared effect
-    (:func:`_shared`) in all its DOFs; each DOF with changes of its own must then simulate
-    the validation data better than the prior (``ref``)."""
-    shared = _shared(changes)
-    best = None
-    for c in sorted(excl):
-        if c[0] == "effect" and c[2] in shared:
-            back = {x for x in excl if not (x[0] == "effect" and x[2] == c[2])}
-        elif c[0] == "effect" and ("calibration", c[1]) in excl:
-            continue
-        else:
-            back = excl - {c}
-        back = partners(back, changes)
-        if back == excl:
-            continue
-        got = score(back)
-        if got[1] is None or not (got[0][0] <= cur[0][0] and got[0][1] < cur[0][1]):
-            continue
-        if any(e >= b and own(DOF[i], back) for e, b, i in zip(got[1], ref, dofs)):
-            continue
-        if best is None or got[0] < best[0][0]:
-            best = (got, frozenset(back))
-    return None if best is None else set(best[1])
 
 
 def with_kept(per: dict, excl) -> dict:
