@@ -295,8 +295,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
-    # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
-    # they are the prior of the rest of the diagnosis and written with the model
+    # the thrusters' gains fitted jointly over the DOFs (gains.py; one DOF too, on its own
+    # balance, settings.dof_gains); when kept, they are the prior of the rest of the
+    # diagnosis and written with the model
     prior, gains = model, None
     if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
