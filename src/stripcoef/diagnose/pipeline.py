@@ -142,7 +142,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
-             gains_beside_current: bool = False) -> Diagnosis:
+             gains_beside_current: bool = False,
+             dof_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -200,6 +201,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
         beside it and the DOFs diagnosed again on them (:mod:`.regains`; off by default,
         :attr:`DiagnoseSettings.gains_beside_current`).
+    dof_gains : bool
+        One DOF: the thrusters' gains fitted in that DOF's balance
+        (:attr:`DiagnoseSettings.dof_gains`; off by default).
 
     Returns
     -------
@@ -248,7 +252,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        gains_beside_current=bool(gains_beside_current))
+        gains_beside_current=bool(gains_beside_current),
+        dof_gains=bool(dof_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -297,11 +302,12 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
-    # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
-    # they are the prior of the rest of the diagnosis and written with the model
+    # the thrusters' gains fitted jointly over the DOFs (gains.py; one DOF too, on its own
+    # balance, settings.dof_gains); when kept, they are the prior of the rest of the
+    # diagnosis and written with the model
     prior, gains = model, None
     data0 = data
-    if len(dofs) > 1:
+    if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
             gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))
