@@ -154,14 +154,24 @@ def _solve_profiled(y, H, prior_sd, sigma, lower, m, upper=None, *, with_cov=Tru
         hi = min(hi, float(np.min(upper[mcols])))
     # without active bounds the profiled cost is exactly quadratic in mu (a linear
     # least-squares residual of y - mu * rate, plus quadratic prior and noise terms):
-    # three evaluations give its vertex; otherwise fall back to a bounded search
+    # three evaluations give its vertex; otherwise fall back to a bounded search. The
+    # vertex is taken only where the cost there is the quadratic's own value: a bound
+    # active at the three points and not at the vertex (or the reverse) makes the cost
+    # piecewise quadratic, and the parabola through the three points then has its vertex
+    # away from the minimum, though below the three (issue 33: a BlueROV2-like surge log
+    # with a 2.5x added mass, seed 29113033, where a cross added mass sat at its lower
+    # bound near mu = 0: the vertex mu = 6.5 with a cost of 52 beside the minimum 9.2 with
+    # 0.04, and a thrust scale named in the added mass's place)
     h = 0.1 * m_total
     c0, cp, cm = cost(0.0), cost(h), cost(-h)
     curv = (cp - 2 * c0 + cm) / h ** 2
     mu = None
     if curv > 0:
-        cand = float(np.clip(-(cp - cm) / (2 * h) / curv, lo, hi))
-        if cost(cand) <= min(c0, cp, cm) + 1e-9 * max(abs(c0), 1.0):
+        slope = (cp - cm) / (2 * h)
+        cand = float(np.clip(-slope / curv, lo, hi))
+        quadratic = c0 + slope * cand + 0.5 * curv * cand ** 2
+        tol = 1e-6 * max(abs(c0), abs(cp), abs(cm), 1.0)
+        if abs(cost(cand) - quadratic) <= tol:
             mu = cand
     if mu is None:
         sol = minimize_scalar(cost, bounds=(lo, hi), method="bounded",
