@@ -169,9 +169,11 @@ def _background(truth, prior: dict) -> dict:
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
-               validation_others: str = "logged", one_added_mass: bool = False) -> dict:
+               validation_others: str = "logged", one_added_mass: bool = False,
+               options: dict | None = None) -> dict:
     """One log diagnosed in one mode: the row of the score table (``one_added_mass``:
-    diagnose's option, recorded in the row)."""
+    diagnose's option, recorded in the row; ``options``: further keyword arguments of
+    diagnose, e.g. ``cross_mass_scale``)."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS
@@ -184,7 +186,7 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                        time_limit=float("inf"),
                        validation_others=validation_others,
-                       one_added_mass=one_added_mass).to_dict()
+                       one_added_mass=one_added_mass, **(options or {})).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})

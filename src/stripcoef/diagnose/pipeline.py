@@ -140,7 +140,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True,
+             cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -194,6 +195,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
+    cross_mass_scale : bool
+        Whole-log: a thrust scale must stay identified with the other DOFs' added masses
+        free beside it (:mod:`.crossscale`; on by default); False: not tested
+        (:attr:`DiagnoseSettings.cross_mass_scale`).
 
     Returns
     -------
@@ -241,7 +246,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=one_added_mass, not_determined=bool(not_determined))
+        one_added_mass=one_added_mass, not_determined=bool(not_determined),
+        cross_mass_scale=bool(cross_mass_scale))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
