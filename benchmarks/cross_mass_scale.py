@@ -39,10 +39,12 @@ def log_of(seed: int, log_seed: int, vehicles, categories) -> tuple:
     return vehicles[v], categories[c]
 
 
-def paired(vehicle: str, category: str, log_seed: int, duration: float) -> dict:
+def paired(vehicle: str, category: str, log_seed: int, duration: float,
+           arms=("off", "on")) -> dict:
     """One log (generated once) diagnosed whole-log without and with the test: ``{"off":
-    row, "on": row}``, each row ``benchmarks.diagnose_independent``'s whole-log row with
-    its ``truth_has`` and ``cpu`` [s]."""
+    row, "on": row}`` (the ``arms`` asked for), each row
+    ``benchmarks.diagnose_independent``'s whole-log row with its ``truth_has`` and ``cpu``
+    [s]."""
     from benchmarks.diagnose_independent import (_background, _diagnosed, _prior,
                                                  truth_effects)
     from validation.independent import OUTSIDE, STRENGTHS, generate
@@ -54,7 +56,9 @@ def paired(vehicle: str, category: str, log_seed: int, duration: float) -> dict:
         warnings.simplefilter("ignore")
         log, truth = generate(prior.to_dict(), cat, log_seed, duration=duration)
     out = {}
-    for key, flag in (("off", False), ("on", True)):
+    for key, flag in (("off", False), ("on", True), ("restoring", "restoring")):
+        if key not in arms:
+            continue
         t0 = time.process_time()
         row = {**_diagnosed(log, truth, prior, vehicle, cat, log_seed, "all", dof_name, 0.0,
                             options={"cross_mass_scale": flag}),
@@ -78,32 +82,39 @@ def _scales(row: dict) -> str:
 
 
 def table(pairs: list) -> str:
-    """The markdown table of the paired rows and the totals."""
+    """The markdown table of the rows (each arm a pair holds, ``off`` / ``on``) and the
+    totals."""
     from benchmarks.diagnose_independent import _spurious, spurious_steps
-    lines = ["| log | named first off / on | cut off / on | spurious named off / on | "
-             "spurious kept off / on | other-DOF thrust scales off -> on | CPU off / on [s] |",
+    arms = [k for k in ("off", "on", "restoring") if all(k in p for p in pairs)]
+    sep = " / ".join(arms)
+    lines = [f"| log | named first {sep} | cut {sep} | spurious named {sep} | spurious kept "
+             f"{sep} | other-DOF thrust scales {' -> '.join(arms)} | CPU {sep} [s] |",
              "| --- | --- | --- | --- | --- | --- | --- |"]
-    tot = {k: [0, 0] for k in ("off", "on")}
+    tot = {k: [0, 0] for k in arms}
     lib = 0
     for p in pairs:
-        a, b = p["off"], p["on"]
+        a = p[arms[0]]
         s = {k: (_spurious(p[k], "step_effects"), _spurious(p[k], "step_effects_kept"))
-             for k in ("off", "on")}
+             for k in arms}
         library = a["category"] not in ("clean", "coulomb_friction")
         lib += library
-        for k in ("off", "on"):
+        for k in arms:
             if library:
                 tot[k][0] += bool(s[k][0])
                 tot[k][1] += bool(s[k][1])
-        name = f"{a['vehicle']} {a['category']} {a['seed']}"
-        lines.append(f"| {name} | {a['first']} / {b['first']} | {a['cut']:.2f} / {b['cut']:.2f}"
-                     f" | {'yes' if s['off'][0] else 'no'} / {'yes' if s['on'][0] else 'no'}"
-                     f" | {'yes' if s['off'][1] else 'no'} / {'yes' if s['on'][1] else 'no'}"
-                     f" | {_scales(a)} -> {_scales(b)} | {a['cpu']:.1f} / {b['cpu']:.1f} |")
-    lines += ["", f"Library-effect logs with a spurious whole-log step (truth rule): named "
-              f"{tot['off'][0]} -> {tot['on'][0]} of {lib}, kept {tot['off'][1]} -> "
-              f"{tot['on'][1]} of {lib}.", ""]
-    for k in ("off", "on"):
+
+        def yn(i):
+            return " / ".join("yes" if s[k][i] else "no" for k in arms)
+        lines.append(f"| {a['vehicle']} {a['category']} {a['seed']} | "
+                     + " / ".join(str(p[k]["first"]) for k in arms) + " | "
+                     + " / ".join(f"{p[k]['cut']:.2f}" for k in arms)
+                     + f" | {yn(0)} | {yn(1)} | "
+                     + " -> ".join(_scales(p[k]) for k in arms) + " | "
+                     + " / ".join(f"{p[k]['cpu']:.1f}" for k in arms) + " |")
+    lines += ["", "Library-effect logs with a spurious whole-log step (truth rule): named "
+              + " -> ".join(str(tot[k][0]) for k in arms) + f" of {lib}, kept "
+              + " -> ".join(str(tot[k][1]) for k in arms) + f" of {lib}.", ""]
+    for k in arms:
         lines.append(f"Spurious steps, test {k}: "
                      + ("; ".join(spurious_steps([p[k] for p in pairs])) or "none") + ".")
     return "\n".join(lines)
@@ -116,12 +127,17 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, required=True, help="the run's base seed")
     ap.add_argument("--only-seeds", required=True, help="comma-separated log seeds")
     ap.add_argument("--duration", type=float, default=300.0)
+    ap.add_argument("--arms", default="off,on",
+                    help="off,on (paired) or on alone (the stored run of main is the 'off': "
+                         "the diagnosis is unchanged without the test); restoring: the "
+                         "option's value 'restoring' (a metacentric height free as well)")
     args = ap.parse_args(argv)
+    arms = tuple(args.arms.split(","))
     cats = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
     pairs = []
     for s in (int(x) for x in args.only_seeds.split(",")):
         vehicle, category = log_of(args.seed, s, list(VEHICLES), cats)
-        p = paired(vehicle, category, s, args.duration)
+        p = paired(vehicle, category, s, args.duration, arms)
         print(f"{s} pair {json.dumps(p, default=str)}", flush=True)
         pairs.append(p)
     print(table(pairs))

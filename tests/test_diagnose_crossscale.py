@@ -19,26 +19,39 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-import numpy as np
 import pytest
 
-from conftest import parts_trial, whole_log_parts
+from conftest import shipped_model
 
 PITCH = 4
 
 
 @lru_cache(maxsize=None)
-def _pitch_scale(effect: str, seed: int):
-    """``(parts, trial)``: the siblings of a BlueROV2 log's six DOFs and the selection's
-    record of a pitch thrust scale in it."""
-    parts, _ = whole_log_parts("bluerov2_heavy.yaml", range(6), effect, seed, 300.0)
-    return parts, parts_trial(parts, "thrust_effectiveness", PITCH)
+def _whole_log(effect: str, seed: int, cross_mass_scale: bool = True) -> dict:
+    """The whole-log diagnosis (its JSON dict) of a 300-s BlueROV2 log of the independent
+    simulator, as ``benchmarks.diagnose_independent`` runs it."""
+    import warnings
+
+    from stripcoef.diagnose.pipeline import diagnose
+
+    prior, log = _log(effect, seed)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return diagnose(log, prior, dof="all", time_limit=float("inf"),
+                        cross_mass_scale=cross_mass_scale).to_dict()
 
 
-def _z(trial) -> float:
-    from stripcoef.diagnose.select import _own_estimate
-    _, value, sd = _own_estimate(trial["_cfg"], trial["_ev"])
-    return float(abs(value[-1]) / sd[-1])
+@lru_cache(maxsize=None)
+def _log(effect: str, seed: int):
+    """``(prior, log)``: the shipped BlueROV2 Heavy and a 300-s log of the independent
+    simulator (seeded truth and noise)."""
+    from validation.independent import generate
+    prior = shipped_model("bluerov2_heavy.yaml")
+    return prior, generate(prior.to_dict(), effect, seed, duration=300.0)[0]
+
+
+def _steps(res: dict, dof: str) -> list:
+    return [s["effect"] for s in res["per_dof"][dof]["steps"]]
 
 
 def test_the_free_scale_holds_the_other_dofs_added_masses_free():
@@ -58,27 +71,28 @@ def test_other_effects_are_not_tested():
 
 
 @pytest.mark.slow
-def test_a_pitch_scale_of_the_feed_forward_is_not_identified():
-    """Seed 29113033: the pitch scale passes the z gate alone and falls under it with the
-    other DOFs' added masses free."""
-    from stripcoef.diagnose.crossscale import cross_mass_confounded, cross_names
-    from stripcoef.diagnose.settings import MIN_Z
-    parts, trial = _pitch_scale("added_mass_error", 29113033)
-    assert {"M_surge", "M_heave"} <= set(cross_names(trial["_cfg"]))
-    assert _z(trial) >= MIN_Z
-    assert trial["_ev"]["hyper"][0] > 0.3           # a scale well above 1
-    why = cross_mass_confounded(trial, PITCH, {})
-    assert why.startswith("not identified apart from the other DOFs' added masses"), why
-    # the same reason in the whole-log contradictions
-    assert any(w == why for w in parts.contradictions(trial, PITCH))
+def test_a_pitch_scale_of_the_feed_forward_is_not_named():
+    """Seed 29113033: without the test the whole-log run names the pitch scale (+0.64,
+    z 3.0); with it the scale is refused as not identified and pitch names nothing."""
+    off = _whole_log("added_mass_error", 29113033, False)
+    assert _steps(off, "pitch")[:1] == ["thrust_effectiveness"]
+    on = _whole_log("added_mass_error", 29113033, True)
+    assert "thrust_effectiveness" not in _steps(on, "pitch")
+    cand = next(c for c in on["per_dof"]["pitch"]["candidates"]
+                if c["effect"] == "thrust_effectiveness")
+    assert cand["z"] >= 3.0 and not cand["significant"]
+    assert any(r.startswith("not identified apart from the other DOFs' added masses")
+               for r in cand["rejected_because"]), cand["rejected_because"]
+    # the effect's own DOF is not changed by it
+    assert _steps(on, "surge") == _steps(off, "surge")
 
 
 @pytest.mark.slow
 def test_a_true_pitch_scale_stays_identified():
-    """Seed 29113036: the truth's thrusters deliver about 0.6 of their map in pitch; the scale
-    is still far from 1 with the added masses free."""
-    from stripcoef.diagnose.crossscale import cross_mass_confounded
-    _, trial = _pitch_scale("thrust_effectiveness", 29113036)
-    assert trial["_ev"]["hyper"][0] < -0.2
-    assert cross_mass_confounded(trial, PITCH, {}) == ""
-    assert np.isfinite(_z(trial))
+    """Seed 29113036: the truth's thrusters deliver about 0.6 of their map in pitch (-0.40 on
+    the log); the whole-log run still names the pitch scale with the test on."""
+    on = _whole_log("thrust_effectiveness", 29113036, True)
+    assert "thrust_effectiveness" in _steps(on, "pitch")
+    step = next(s for s in on["per_dof"]["pitch"]["steps"]
+                if s["effect"] == "thrust_effectiveness")
+    assert step["parameters"]["scale"] < 0.8

@@ -114,7 +114,8 @@ class ThrusterParts(Siblings):
 
     def contradictions(self, trial: dict, dof: int) -> list:
         out = super().contradictions(trial, dof)
-        why = (cross_mass_confounded(trial, dof, self._cross_free)   # a thrust scale
+        why = (cross_mass_confounded(trial, dof, self._cross_free,   # a thrust scale
+                                     restoring=self._cross_test == "restoring")
                if self._cross_test else "")
         if why:
             out = out + [why]
