@@ -96,3 +96,10 @@ def test_a_true_pitch_scale_stays_identified():
     step = next(s for s in on["per_dof"]["pitch"]["steps"]
                 if s["effect"] == "thrust_effectiveness")
     assert step["parameters"]["scale"] < 0.8
+
+
+def test_a_bad_option_value_is_a_one_line_input_error():
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.errors import InputError
+    with pytest.raises(InputError, match="cross_mass_scale"):
+        diagnose(None, None, time_limit=1.0, cross_mass_scale="sometimes")
