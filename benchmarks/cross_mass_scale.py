@@ -56,7 +56,7 @@ def paired(vehicle: str, category: str, log_seed: int, duration: float,
         warnings.simplefilter("ignore")
         log, truth = generate(prior.to_dict(), cat, log_seed, duration=duration)
     out = {}
-    for key, flag in (("off", False), ("on", True), ("restoring", "restoring")):
+    for key, flag in (("off", False), ("on", True)):
         if key not in arms:
             continue
         t0 = time.process_time()
@@ -85,7 +85,7 @@ def table(pairs: list) -> str:
     """The markdown table of the rows (each arm a pair holds, ``off`` / ``on``) and the
     totals."""
     from benchmarks.diagnose_independent import _spurious, spurious_steps
-    arms = [k for k in ("off", "on", "restoring") if all(k in p for p in pairs)]
+    arms = [k for k in ("off", "on") if all(k in p for p in pairs)]
     sep = " / ".join(arms)
     lines = [f"| log | named first {sep} | cut {sep} | spurious named {sep} | spurious kept "
              f"{sep} | other-DOF thrust scales {' -> '.join(arms)} | CPU {sep} [s] |",
@@ -129,8 +129,7 @@ def main(argv=None) -> int:
     ap.add_argument("--duration", type=float, default=300.0)
     ap.add_argument("--arms", default="off,on",
                     help="off,on (paired) or on alone (the stored run of main is the 'off': "
-                         "the diagnosis is unchanged without the test); restoring: the "
-                         "option's value 'restoring' (a metacentric height free as well)")
+                         "the diagnosis is unchanged without the test)")
     args = ap.parse_args(argv)
     arms = tuple(args.arms.split(","))
     cats = list(STRENGTHS) + ["clean"] + list(OUTSIDE)

@@ -39,15 +39,6 @@ choice (:mod:`.scalechoice`) and the held-out error decide; only the columns a f
 of the other DOFs' motion puts into the command are freed. Whole-log runs only (this module
 serves :class:`~stripcoef.diagnose.thrusterparts.ThrusterParts`).
 
-With the option value ``"restoring"`` (:attr:`~stripcoef.diagnose.settings.
-DiagnoseSettings.cross_mass_scale`, measured, not the default) a roll or pitch scale is
-refitted with a change of the vertical metacentric height :math:`\overline{BG}_z` free as
-well (:func:`restoring_column`; Fossen 2011, eq. 4.15): an attitude hold's proportional
-term makes the command nearly proportional to the attitude, hence to the restoring moment
-(issue 33, seed 29113033: the pitch command's correlation with the window mean of
-:math:`\sin\theta` is -0.96), and a real vehicle's centre of gravity differs from its
-file's (payload, trim weights).
-
 Depends on: diagnose.select, diagnose.settings, effects.
 """
 
@@ -60,7 +51,6 @@ import numpy as np
 from stripcoef.diagnose.select import _evaluate, _own_estimate
 from stripcoef.diagnose.settings import MIN_Z
 from stripcoef.effects.thrust import ThrustEffectiveness
-from stripcoef.effects.windows import coefficient_column
 
 
 class CrossMassFreeScale(ThrustEffectiveness):
@@ -72,27 +62,9 @@ class CrossMassFreeScale(ThrustEffectiveness):
 
 
 def cross_free_scale(names) -> CrossMassFreeScale:
-    """A :class:`CrossMassFreeScale` whose nuisance columns are the added masses ``names``
-    (and, where ``names`` ends with ``"BG_z"``, :func:`restoring_column`)."""
-    body = {"nuisance_names": tuple(names)}
-    if names and names[-1] == "BG_z":
-        def nuisance(self, data, dof):
-            cols = [coefficient_column(data, dof, n) for n in self.nuisance_names[:-1]]
-            return np.column_stack(cols + [restoring_column(data, dof)])
-        body["nuisance"] = nuisance
-    return type("CrossMassFreeScale", (CrossMassFreeScale,), body)()
-
-
-def restoring_column(data, dof: int) -> np.ndarray:
-    r"""Window regressor of a change of the vertical metacentric height
-    :math:`\overline{BG}_z` [m] in roll or pitch [N]: minus the derivative of the window
-    residual, :math:`-W\,\overline{\cos\theta\sin\phi}` (roll),
-    :math:`-W\,\overline{\sin\theta}` (pitch), from the restoring moments
-    :math:`K = \overline{BG}_z W \cos\theta\sin\phi`, :math:`M = \overline{BG}_z W
-    \sin\theta` of :math:`g(\eta)` (Fossen 2011, eq. 4.15; W the model's weight [N])."""
-    phi, theta = data.eta[:, 3], data.eta[:, 4]
-    g = np.cos(theta) * np.sin(phi) if dof == 3 else np.sin(theta)
-    return -float(data.model.weight) * data.mean(g)
+    """A :class:`CrossMassFreeScale` whose nuisance columns are the added masses ``names``."""
+    cls = type("CrossMassFreeScale", (CrossMassFreeScale,), {"nuisance_names": tuple(names)})
+    return cls()
 
 
 def cross_names(cfg) -> tuple:
@@ -101,21 +73,17 @@ def cross_names(cfg) -> tuple:
     return tuple(n for n in (cfg.cal_names or ()) if n.startswith("M_"))
 
 
-def cross_mass_confounded(trial: dict, dof: int, free: dict, restoring: bool = False) -> str:
+def cross_mass_confounded(trial: dict, dof: int, free: dict) -> str:
     """Why the thrust scale ``trial`` (:func:`~stripcoef.diagnose.select._judge`'s record)
     of DOF ``dof`` is not identified apart from the other DOFs' added masses (module
     docstring): refitted with their columns free beside it, the shortfall ``s - 1`` is under
     ``MIN_Z`` standard deviations from zero; '' when it is not, for another effect, or when
     the calibration holds no such added mass. ``free``: {names: :class:`CrossMassFreeScale`},
-    kept by the caller (one instance per set of columns: the fits cache its columns);
-    ``restoring``: in roll and pitch, a metacentric height change free as well (module
-    docstring)."""
+    kept by the caller (one instance per set of columns: the fits cache its columns)."""
     cfg = trial.get("_cfg")
     if trial["effect"] != ThrustEffectiveness.name or cfg is None:
         return ""
     names = cross_names(cfg)
-    if restoring and dof in (3, 4):
-        names = names + ("BG_z",)
     if not names:
         return ""
     eff = free.get(names) or free.setdefault(names, cross_free_scale(names))

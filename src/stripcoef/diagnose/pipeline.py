@@ -141,7 +141,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
-             cross_mass_scale: bool | str = True) -> Diagnosis:
+             cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -195,10 +195,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
-    cross_mass_scale : bool or str
+    cross_mass_scale : bool
         Whole-log: a thrust scale must stay identified with the other DOFs' added masses
-        free beside it (:mod:`.crossscale`; on by default); False: not tested;
-        ``"restoring"``: a metacentric height free as well in roll and pitch
+        free beside it (:mod:`.crossscale`; on by default); False: not tested
         (:attr:`DiagnoseSettings.cross_mass_scale`).
 
     Returns
@@ -233,10 +232,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
                          expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
-    if cross_mass_scale not in (False, True, "restoring"):
+    if cross_mass_scale not in (False, True):
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
-                         expected="one of False, True, 'restoring'")
+                         expected="True or False")
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -252,8 +251,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        cross_mass_scale=(cross_mass_scale if cross_mass_scale == "restoring"
-                          else bool(cross_mass_scale)))
+        cross_mass_scale=bool(cross_mass_scale))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

@@ -198,11 +198,10 @@ class DiagnoseSettings:
         fit with the prior's thrust map, as before (its c_t +88 % on an independent
         BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
         three such logs measured, docs/performance.md, ``tether33e``)
-    cross_mass_scale : bool or str
+    cross_mass_scale : bool
         Whole-log: a thrust scale must stay ``MIN_Z`` sd from 1 with the other DOFs' added
         masses its calibration holds free beside it (:mod:`stripcoef.diagnose.crossscale`;
-        a closed loop's Coriolis feed-forward, issue 33; on by default). False: not tested;
-        ``"restoring"``: in roll and pitch a metacentric height change free as well
+        a closed loop's Coriolis feed-forward, issue 33; on by default). False: not tested
     """
 
     window: float = DEFAULT_WINDOW
@@ -217,7 +216,7 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
-    cross_mass_scale: bool | str = True
+    cross_mass_scale: bool = True
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

@@ -114,8 +114,7 @@ class ThrusterParts(Siblings):
 
     def contradictions(self, trial: dict, dof: int) -> list:
         out = super().contradictions(trial, dof)
-        why = (cross_mass_confounded(trial, dof, self._cross_free,   # a thrust scale
-                                     restoring=self._cross_test == "restoring")
+        why = (cross_mass_confounded(trial, dof, self._cross_free)   # a thrust scale
                if self._cross_test else "")
         if why:
             out = out + [why]
