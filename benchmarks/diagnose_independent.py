@@ -171,9 +171,10 @@ def _background(truth, prior: dict) -> dict:
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
                validation_others: str = "logged", one_added_mass: bool = False,
-               dof_gains: bool = False) -> dict:
+               dof_gains: bool = False, options: dict | None = None) -> dict:
     """One log diagnosed in one mode: the row of the score table (``one_added_mass``,
-    ``dof_gains``: diagnose's options, recorded in the row)."""
+    ``dof_gains``: diagnose's options, recorded in the row; ``options``: further keyword
+    arguments of diagnose, e.g. ``cross_mass_scale``)."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS
@@ -186,7 +187,8 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                        time_limit=float("inf"),
                        validation_others=validation_others,
-                       one_added_mass=one_added_mass, dof_gains=dof_gains).to_dict()
+                       one_added_mass=one_added_mass, dof_gains=dof_gains,
+                       **(options or {})).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
     prior_error = _prior_error(log, prior, dof_name, res["window_s"])

@@ -143,7 +143,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
              gains_beside_current: bool = False,
-             dof_gains: bool = False) -> Diagnosis:
+             dof_gains: bool = False,
+             cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -204,6 +205,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
         (:attr:`DiagnoseSettings.dof_gains`; off by default).
+    cross_mass_scale : bool
+        Whole-log: a thrust scale must stay identified with the other DOFs' added masses
+        free beside it (:mod:`.crossscale`; on by default); False: not tested
+        (:attr:`DiagnoseSettings.cross_mass_scale`).
 
     Returns
     -------
@@ -237,6 +242,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
                          expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
+    if cross_mass_scale not in (False, True):
+        raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
+                         key="cross_mass_scale", value=cross_mass_scale,
+                         expected="True or False")
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -253,7 +262,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
         gains_beside_current=bool(gains_beside_current),
-        dof_gains=bool(dof_gains))
+        dof_gains=bool(dof_gains),
+        cross_mass_scale=bool(cross_mass_scale))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

@@ -212,6 +212,10 @@ class DiagnoseSettings:
         first unchanged (benchmarks/data/cut33_trace.md), but a tether it finds on the
         gained map is then written where :mod:`stripcoef.diagnose.undetermined` reports it
         as not determined by one DOF; that rule and its tests are to be revisited first
+    cross_mass_scale : bool
+        Whole-log: a thrust scale must stay ``MIN_Z`` sd from 1 with the other DOFs' added
+        masses its calibration holds free beside it (:mod:`stripcoef.diagnose.crossscale`;
+        a closed loop's Coriolis feed-forward, issue 33; on by default). False: not tested
     """
 
     window: float = DEFAULT_WINDOW
@@ -228,6 +232,7 @@ class DiagnoseSettings:
     not_determined: bool = True
     gains_beside_current: bool = False
     dof_gains: bool = False
+    cross_mass_scale: bool = True
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

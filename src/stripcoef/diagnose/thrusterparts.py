@@ -52,7 +52,8 @@ already holds a buoyancy offset (its constant is then in the model), nor in the 
 (a buoyancy change's moment there depends on the centre of buoyancy's position, a column
 not built here), nor per DOF (this class serves whole-log runs).
 
-Depends on: diagnose.select, diagnose.settings, effects, conventions.
+Depends on: diagnose.select, diagnose.settings, diagnose.fit, diagnose.crossscale, effects,
+conventions.
 """
 
 from __future__ import annotations
@@ -62,8 +63,10 @@ import math
 import numpy as np
 
 from stripcoef.conventions import DOF
+from stripcoef.diagnose.crossscale import cross_mass_confounded
+from stripcoef.diagnose.fit import DEFAULTS
 from stripcoef.diagnose.select import Siblings, _evaluate, _own_estimate
-from stripcoef.diagnose.settings import MIN_Z
+from stripcoef.diagnose.settings import MIN_Z, DiagnoseSettings
 from stripcoef.effects.base import THRUST_BAND, TRANSLATIONAL
 from stripcoef.effects.hydrodynamic import buoyancy_column
 from stripcoef.effects.thrust import ThrustAsymmetry
@@ -96,9 +99,11 @@ class ThrusterParts(Siblings):
     (:data:`PER_THRUSTER`) of a DOF in the DOFs driven by parts of its thrusters alone
     (module docstring)."""
 
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
+    def __init__(self, data, dofs, settings: DiagnoseSettings = DEFAULTS, **kwargs):
+        super().__init__(data, dofs, settings, **kwargs)
         self._free = BuoyancyFreeAsymmetry()     # one instance: the fits cache its columns
+        self._cross_free = {}                    # crossscale.CrossMassFreeScale by columns
+        self._cross_test = settings.cross_mass_scale
 
     def parts(self, dof: int) -> list:
         """The diagnosed DOFs whose acting thrusters are a proper, non-empty subset of
@@ -109,6 +114,10 @@ class ThrusterParts(Siblings):
 
     def contradictions(self, trial: dict, dof: int) -> list:
         out = super().contradictions(trial, dof)
+        why = (cross_mass_confounded(trial, dof, self._cross_free)   # a thrust scale
+               if self._cross_test else "")
+        if why:
+            out = out + [why]
         if trial["effect"] not in PER_THRUSTER:
             return out
         out = out + [f"contradicted by {DOF[j]} (driven by a part of its thrusters alone): "
