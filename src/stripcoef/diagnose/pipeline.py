@@ -109,7 +109,8 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.thrusterparts import ThrusterParts
+from stripcoef.diagnose.stepwise import (WholeLogParts, terms_record, changed_dofs,
+                                         retest_steps, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -306,7 +307,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
     cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (ThrusterParts(data, dofs, settings, budget=budget, excited=excited,
+    siblings = (WholeLogParts(data, dofs, settings, budget=budget, excited=excited,
                               cross=cross) if len(dofs) > 1 else None)
     per, fits = {}, {}
     for i in dofs:
@@ -326,10 +327,14 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
                                        settings, budget=budget, excited=excited,
                                        cross=undiagnosed, siblings=siblings)
+    selected = terms_record(fits)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
+        per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
     per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
+        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits)
     exclude, record = set(), None
