@@ -71,7 +71,11 @@ Steps, for each degree of freedom (issue 7):
    the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
-   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
+   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`), and
+   what the shared fits (timing, current) change is judged again (:mod:`.stepwise`: a
+   joint lag or delay not resolved is withdrawn; a DOF's own steps are judged again in its
+   written model; a bias outside heave, roll and pitch must stand beside the thrusters'
+   gains).
    In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
    found only with each thruster's gain free, or whose c_t moves when they are freed) is
    named with its value "not determined by one DOF" and not written
