@@ -34,10 +34,15 @@ of its own:
   linear drag (29212030) selected before the current was shared into heave.
 - **A bias outside the weight's DOFs must stand beside the thrusters' gains**
   (:func:`bias_beside_gains`). A constant force or moment in heave, roll or pitch is the
-  weight-buoyancy term of the restoring force (Fossen 2011, eq. 4.6); in surge, sway and
-  yaw :math:`g(\eta)` has no constant part at small roll and pitch, and the bias is the
-  generic offset :math:`\delta` of Wang & Clark's one-DOF model (Wang & Clark 2006,
-  eqs. 8-9), which they fit beside the input's coefficient :math:`\gamma`. A thrust map off
+  weight-buoyancy term of the restoring force (Fossen 2011, eq. 4.6); in surge and sway
+  :math:`g(\eta)` has only :math:`(W - B)\sin\theta` and :math:`-(W - B)\cos\theta
+  \sin\phi`, small at small trim angles, and in yaw only products of the centres' offsets
+  with the angles, so the bias there is mostly the generic offset :math:`\delta` of Wang &
+  Clark's one-DOF model (Wang & Clark 2006, eqs. 8-9), which they fit beside the input's
+  coefficient :math:`\gamma`. (A trimmed pitch gives surge a real constant: fresh seed
+  41129026's clean VideoRay log 41129037, trimmed at -1.16 deg with a buoyancy change of
+  0.98 N, names a surge bias of -0.032 N, z 3.9, for the 0.020 N that term gives; it stands
+  beside the gains and is kept here.) A thrust map off
   by a factor leaves a force proportional to the mean thrust, which a bias takes
   (:mod:`.gainfree`). So in a whole-log run such a bias is refitted with each acting
   thruster's gain free beside it (:class:`~stripcoef.effects.hydrodynamic.
