@@ -96,11 +96,12 @@ def with_truth_maps(prior, truth):
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
             modes: tuple, validation_others: str = "logged",
-            truth_maps: bool = False, one_added_mass: bool = False) -> list[dict]:
+            truth_maps: bool = False, one_added_mass: bool = False,
+            dof_gains: bool = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
     (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
     against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
-    the background removed; ``one_added_mass``: diagnose's)."""
+    the background removed; ``one_added_mass``, ``dof_gains``: diagnose's)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -112,7 +113,7 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
     rows = [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
-                          validation_others, one_added_mass),
+                          validation_others, one_added_mass, dof_gains),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
     for row in rows:
         if row["mode"] == "all":
@@ -169,9 +170,10 @@ def _background(truth, prior: dict) -> dict:
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
-               validation_others: str = "logged", one_added_mass: bool = False) -> dict:
-    """One log diagnosed in one mode: the row of the score table (``one_added_mass``:
-    diagnose's option, recorded in the row)."""
+               validation_others: str = "logged", one_added_mass: bool = False,
+               dof_gains: bool = False) -> dict:
+    """One log diagnosed in one mode: the row of the score table (``one_added_mass``,
+    ``dof_gains``: diagnose's options, recorded in the row)."""
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS
@@ -184,18 +186,26 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         res = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                        time_limit=float("inf"),
                        validation_others=validation_others,
-                       one_added_mass=one_added_mass).to_dict()
+                       one_added_mass=one_added_mass, dof_gains=dof_gains).to_dict()
     t2 = time.process_time()
     per = res.get("per_dof") or {dof_name: res}
+    prior_error = _prior_error(log, prior, dof_name, res["window_s"])
     own = per.get(dof_name, {"steps": [], "baseline_error": np.nan, "final_error": np.nan})
     steps = own["steps"]                 # the steps of the effect's own DOF
     every = [s for r in per.values() for s in r["steps"]]
     row = {"vehicle": vehicle, "category": category or "clean", "seed": seed, "mode": mode,
            "dof": dof_name, "truth": truth.strength, "one_added_mass": bool(one_added_mass),
+           "dof_gains": bool(dof_gains),
            "first": steps[0]["effect"] if steps else None,
            "n_steps": len(every), "unexplained": bool(res["unexplained"]),
            "max_gain": max([s.get("held_out_gain", 0.0) or 0.0 for s in every], default=0.0),
-           "cut": (own["baseline_error"] / own["final_error"]) if own["final_error"] else np.inf,
+           # the cut against the prior's error (the truth's cut's numerator): a whole-log
+           # baseline_error is the error of the prior with the fitted thruster gains
+           # (stripcoef.diagnose.pipeline), itself a change of the diagnosis
+           "cut": (prior_error / own["final_error"]) if own["final_error"] else np.inf,
+           "cut_baseline": ((own["baseline_error"] / own["final_error"])
+                            if own["final_error"] else np.inf),
+           "prior_error": prior_error,
            "t_simulate": t_sim, "t_diagnose": t2 - t1,
            "step_dofs": sorted(d for d, r in per.items() if r["steps"]),
            # what the written model holds: the steps the validation kept
@@ -246,6 +256,18 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             row["magnitude_error_drawn"] = (abs(abs(est) - abs(truth.strength))
                                             / abs(truth.strength))
     return row
+
+
+def _prior_error(log, prior, dof_name: str, window: float) -> float:
+    """The prior's RMS window force residual in DOF ``dof_name`` on the part of ``log`` a
+    diagnosis fits (its first ``1 - VALIDATION_FRACTION``) [N or N m]: the numerator of
+    the row's ``cut`` and of the truth's cut (``validation.detectability.truth_cut``)."""
+    from stripcoef.conventions import parse_dof
+    from stripcoef.diagnose.heldout import split
+    from stripcoef.diagnose.settings import VALIDATION_FRACTION
+    from stripcoef.diagnose.written import window_errors
+    train, _ = split(log, VALIDATION_FRACTION, key="validation")
+    return float(window_errors(train, prior, [parse_dof(dof_name)], window=window)[dof_name])
 
 
 def _step_detail(step: dict) -> dict:
@@ -433,8 +455,8 @@ def _run(args):
 
 def excitation_row(vehicle: str, category: str | None, seed: int, duration: float,
                    modes: tuple = (), validation_others: str = "",
-                   truth_maps: bool = False) -> list[dict]:
-    """One log, not diagnosed: its excitation (``validation.independent.excitation``) as a
+                   truth_maps: bool = False, *_options) -> list[dict]:
+    """One log, not diagnosed (``_options``: the diagnosis's, unused): its excitation (``validation.independent.excitation``) as a
     row: per driven DOF the shares of samples [-] moving each way, per thruster the share
     saturated, and ``two_way``, the smallest share of one direction over the driven DOFs."""
     from validation.independent import excitation, generate
@@ -890,6 +912,9 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
+    ap.add_argument("--dof-gains", action="store_true",
+                    help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
+                         "the DOF's balance, as whole-log fits them over its DOFs)")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
@@ -918,7 +943,8 @@ def main(argv=None) -> int:
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
-                             args.validation_others, args.truth_maps, args.one_added_mass))
+                             args.validation_others, args.truth_maps, args.one_added_mass,
+                             args.dof_gains))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

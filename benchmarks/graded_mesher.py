@@ -90,17 +90,21 @@ def size_function(H: float, ratio: float = None, growth: float = None):
     return h, h0
 
 
-def half_mesh(mesh):
-    """The y >= 0 part of a closed trimesh cut on y = 0, open along the cut (no cap)."""
+def half_mesh(mesh, axes=(1,)):
+    """The part of a closed trimesh on the positive side of the coordinate planes ``axes``
+    (0: x = 0, 1: y = 0, 2: z = 0; default the y >= 0 half), open along the cuts (no cap)."""
     import trimesh
 
-    return trimesh.intersections.slice_mesh_plane(mesh, plane_normal=[0.0, 1.0, 0.0],
-                                                  plane_origin=[0.0, 0.0, 0.0], cap=False)
+    for axis in axes:
+        mesh = trimesh.intersections.slice_mesh_plane(mesh, plane_normal=np.eye(3)[axis],
+                                                      plane_origin=[0.0, 0.0, 0.0], cap=False)
+    return mesh
 
 
 def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
                 convex_only: bool = True, patch_angle: float = PATCH_ANGLE,
-                verbose: bool = False, curvature: float = None):
+                verbose: bool = False, curvature: float = None, planes=None,
+                curve_angle: float = 180.0):
     """(vertices (n, 3) [m], triangles (k, 3)) of ``mesh`` (a closed trimesh) remeshed by gmsh
     with panels graded towards its sharp edges (module docstring; ``H`` the largest panel
     [m], ``L`` the grading length [m]); with ``mirror`` its y >= 0 half only (the body must
@@ -109,14 +113,20 @@ def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
     with a radius R [m] the panel is also at most H R / R_c (gmsh's size from curvature,
     ``Mesh.MeshSizeFromCurvature``, 2 pi R_c / H panels per 2 pi radians), so that a tube
     thinner than R_c gets panels in proportion to its radius at every level (the levels stay
-    one family scaled by H)."""
+    one family scaled by H).  ``planes``: the coordinate axes (0, 1, 2) of the mirror planes
+    whose positive side alone is meshed (``mirror`` is ``planes=(1,)``; (0, 1, 2) the eighth
+    x, y, z >= 0 of a body symmetric in all three), each cut's nodes on its plane exactly.
+    ``curve_angle`` [deg]: the patch boundaries are split into curves where they turn by more
+    (gmsh's ``classifySurfaces`` curveAngle; 180 keeps them whole, whose remesh may cut a
+    corner of the polyline; a polyhedron's corners are kept with a small angle)."""
     import gmsh
     from scipy.spatial import cKDTree
 
     h, h0 = size_function(H)
     edges = sharp_edges(mesh, angle, convex_only)
     tree = cKDTree(edge_points(edges, 0.25 * h0)) if len(edges) else None
-    surf = half_mesh(mesh) if mirror else mesh
+    planes = tuple(planes) if planes is not None else ((1,) if mirror else ())
+    surf = half_mesh(mesh, planes) if planes else mesh
     with tempfile.TemporaryDirectory() as tmp:
         stl = str(Path(tmp) / "body.stl")
         surf.export(stl)
@@ -125,7 +135,8 @@ def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
             gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
             gmsh.option.setNumber("General.NumThreads", 1)
             gmsh.merge(stl)
-            gmsh.model.mesh.classifySurfaces(np.radians(patch_angle), True, True, np.pi)
+            gmsh.model.mesh.classifySurfaces(np.radians(patch_angle), True, True,
+                                              np.radians(curve_angle))
             gmsh.model.mesh.createGeometry()
             gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
             gmsh.option.setNumber("Mesh.MeshSizeFromCurvature",
@@ -173,9 +184,9 @@ def graded_mesh(mesh, H: float, angle: float = ANGLE, mirror: bool = False,
     remap[used] = np.arange(len(used))
     v, f = v[used], remap[f]
     f = _consistent(v, f, surf)
-    if mirror:
-        on = np.abs(v[:, 1]) < 1e-9 * max(1.0, float(np.ptp(v)))
-        v[on, 1] = 0.0
+    for axis in planes:
+        on = np.abs(v[:, axis]) < 1e-9 * max(1.0, float(np.ptp(v)))
+        v[on, axis] = 0.0
     return v, f
 
 

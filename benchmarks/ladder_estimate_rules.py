@@ -34,7 +34,11 @@ the four levels it solved, and reads their error by each rule, the value A in al
   against their uncertainty; ASME V&V 20-2009 keeps the two apart too): ``E&H U shown, warn
   E&H error estimate`` (their epsilon_phi moved to A by the step), ``E&H U shown, warn step +
   change`` (the default since this benchmark: :func:`stripcoef.hull.panel_error.
-  least_squares_error`), ``X&S U shown, warn step + change``.
+  least_squares_error`), ``X&S U shown, warn step + change``;
+- ``E&H a constant per pair U shown, warn step + change``: Eça & Hoekstra's least squares
+  with one error constant per nested pair at the formal order (their sec. 2.1: the
+  expansion's constant belongs to a family of geometrically similar grids; the ladder is two;
+  :func:`stripcoef.hull.panel_error.ladder_least_squares_error`), moved to A by the step.
 
 Each is symmetrised and no smaller than the finest solve's asymmetry.  A shape is warned where
 the rule's warning estimate (the band itself but for the split rules), judged about the
@@ -78,7 +82,8 @@ RULES = ("step + change (the warning; the former band)", "step + change/(r^p-1)"
          "Eça & Hoekstra", "GCI, Oberkampf & Roy order, three finest",
          "Xing & Stern FS, three finest",
          "E&H U shown, warn E&H error estimate", "E&H U shown, warn step + change (default)",
-         "X&S U shown, warn step + change", "GCI F_s 1.25, p = min(observed, formal)")
+         "X&S U shown, warn step + change", "GCI F_s 1.25, p = min(observed, formal)",
+         "E&H a constant per pair U shown, warn step + change")
 #: the rule of stripcoef.hull.panels (panel_error.least_squares_error)
 DEFAULT = RULES[7]
 
@@ -208,7 +213,8 @@ def rules(levels, counts, p) -> dict:
     """{rule: (value A, estimated error shown, estimate the warning reads)} [kg, kg m,
     kg m^2] of the four levels (module docstring)."""
     from stripcoef.hull.convergence import grid_convergence_index, richardson
-    from stripcoef.hull.panel_error import estimated_error, ladder_extrapolation
+    from stripcoef.hull.panel_error import (estimated_error, ladder_extrapolation,
+                                            ladder_least_squares_error)
 
     m = [np.asarray(x, float) for x in levels]
     a, default = ladder_extrapolation(m, counts, p)
@@ -240,6 +246,7 @@ def rules(levels, counts, p) -> dict:
     out[RULES[6]] = (a, eh, estimated_error(fine, a, eps))
     out[RULES[7]] = (a, eh, default)
     out[RULES[8]] = (a, xs, default)
+    out[RULES[10]] = (a, ladder_least_squares_error(m, counts, a, p), default)
     return out
 
 

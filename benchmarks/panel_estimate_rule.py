@@ -29,7 +29,11 @@ with some term off by more than 5 % that are flagged, and the mean number of lev
 ``--references``: a CSV of ``benchmarks.cad_shapes`` for the same seed (its ``bem`` column
 and ``bem_gci_rel`` band); ``--best``: instead, the most resolved reference this repository
 holds per term of seed 1375923287 (``validation.cad_shapes.best_references``: edge-graded,
-else 12,000-17,000 faces, else the stored 3,000).  Needs the ``remesh`` extra.
+else 12,000-17,000 faces, else the stored 3,000).  Needs the ``remesh`` extra: a shape
+solved on the base install's input ladder (two nested pairs, one stage, no refinement family
+of three to five levels) is skipped and said so; ``benchmarks.ladder_estimate_rules`` measures
+the ladder.  The formal order of k levels is the one the estimate used at the stage that
+solved them (:func:`stage_orders`).
 """
 
 from __future__ import annotations
@@ -78,14 +82,33 @@ def capture(seed: int, count: int, max_panels: int, only=None) -> dict:
     patches = {(panels, "panel_added_mass"): forced, (panels, "edge_order"): order}
     for k, family, model, cpu in patched_estimates(seed, count, patches, only, rec.clear):
         info = rec["info"]
+        if "nested pairs" in info["family"]:
+            # the base install's input ladder (two nested pairs, one stage: no refinement
+            # family whose three, four, five levels could be compared)
+            print(f"{k:3d} {family:12s} skipped: its levels are the input ladder (two nested "
+                  f"pairs); python -m benchmarks.ladder_estimate_rules measures it", flush=True)
+            continue
         out[k] = dict(family=family, counts=tuple(info["panels"]),
                       levels=[np.asarray(m) * RHO / rec["rho"] for m in info["levels"]],
-                      formal=list(rec["formal"]), mirrors=tuple(model.conditions[
-                          "mirror_planes"] or ()), length=info["length"],
-                      cpu=cpu)
+                      formal=stage_orders(rec["formal"], len(info["panels"])),
+                      mirrors=tuple(model.conditions["mirror_planes"] or ()),
+                      length=info["length"], cpu=cpu)
         print(f"{k:3d} {family:12s} panels {'/'.join(map(str, info['panels']))}, "
               f"CPU {out[k]['cpu']:.2f} s", flush=True)
     return out
+
+
+def stage_orders(calls, n_levels: int) -> dict:
+    """{number of levels: the formal order the estimate used with them} from the estimate's
+    ``edge_order`` calls, one per refinement stage: the first stage solves the initial
+    levels (three remeshed, four on the input ladder), each later stage adds one, so the
+    first call belongs to ``n_levels - len(calls) + 1`` levels.  Fewer levels than the
+    first stage's take its order (the estimate never judged them)."""
+    first = n_levels - len(calls) + 1
+    orders = {first + i: p for i, p in enumerate(calls)}
+    for k in range(1, first):
+        orders[k] = calls[0]
+    return orders
 
 
 def rules_at(shape: dict, k_levels: int) -> tuple:
@@ -95,7 +118,7 @@ def rules_at(shape: dict, k_levels: int) -> tuple:
     from stripcoef.hull.panels import estimated_error, extrapolation_error
 
     mats, n = shape["levels"][:k_levels], shape["counts"][:k_levels]
-    p = shape["formal"][k_levels - 3]
+    p = shape["formal"][k_levels]
     a = richardson(mats[-2], mats[-1], n[-2], n[-1], order=p)
     sym = 0.5 * (a + a.T)
     fine = mats[-1]

@@ -302,9 +302,10 @@ N_LOGS = len(EFFECTS) + 1
 
 
 def run_real_style(k: int, duration: float, seed: int,
-                   one_added_mass: bool = False) -> list[dict]:
+                   one_added_mass: bool = False, gains_beside_current: bool = False
+                   ) -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits (with
-    ``diagnose(..., one_added_mass=...)``)."""
+    ``diagnose(..., one_added_mass=..., gains_beside_current=...)``)."""
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
@@ -316,7 +317,8 @@ def run_real_style(k: int, duration: float, seed: int,
     rows = [{"log": name, "kind": "real-style", "truth": truth, "rows": len(read),
              "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
              **row} for row in both_splits(read, prior, widths, oracle,
-                                           one_added_mass=one_added_mass)]
+                                           one_added_mass=one_added_mass,
+                                           gains_beside_current=gains_beside_current)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -326,7 +328,8 @@ def _written(model):
     return type(model).from_dict(model.to_dict())
 
 
-def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False) -> list[dict]:
+def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
+                gains_beside_current=False) -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
     part too, and whether it beats both trivial predictors there."""
@@ -339,14 +342,16 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False) -> lis
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
-                       prior_widths=widths, one_added_mass=one_added_mass)
+                       prior_widths=widths, one_added_mass=one_added_mass,
+                       gains_beside_current=gains_beside_current)
     forward = (res, res.holdout["errors"], time.process_time() - c0)
     head, tail = split(log, 1.0 - HOLDOUT)           # head: the first 30 %, never fitted
     c0 = time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         rev = diagnose(tail, prior, dof="all", time_limit=float("inf"), prior_widths=widths,
-                       one_added_mass=one_added_mass)
+                       one_added_mass=one_added_mass,
+                       gains_beside_current=gains_beside_current)
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
@@ -753,10 +758,14 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (a DOF whose fit contradicts a "
                          "diagnosed DOF's own added mass selected again)")
+    ap.add_argument("--gains-beside-current", action="store_true",
+                    help="diagnose with gains_beside_current (the thrusters' gains fitted "
+                         "again beside the water current the DOFs found)")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
-        " --one-added-mass" if args.one_added_mass else "")
+        " --one-added-mass" if args.one_added_mass else "") + (
+        " --gains-beside-current" if args.gains_beside_current else "")
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)
@@ -784,14 +793,17 @@ def main(argv=None) -> int:
         with ProcessPoolExecutor(args.jobs) as pool:
             n = len(args.logs)
             for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
-                                 [args.seed] * n, [args.one_added_mass] * n):
+                                 [args.seed] * n, [args.one_added_mass] * n,
+                                 [args.gains_beside_current] * n):
                 out += rows
     else:
         for k in args.logs:
-            out += run_real_style(k, args.duration, args.seed, args.one_added_mass)
+            out += run_real_style(k, args.duration, args.seed, args.one_added_mass,
+                                  args.gains_beside_current)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
-            for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass):
+            for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass,
+                                   gains_beside_current=args.gains_beside_current):
                 out.append({"log": name, "kind": "real", "truth": source, "rows": len(log),
                             "rate_hz": round(log.meta["rate"], 3), "clock_offset_s": "",
                             **row})

@@ -39,6 +39,9 @@ GRADED_CHECKS = ROOT / "reference_tables" / "bem" / "plates_graded_checks.csv"
 #: the seed's coarse tessellations and a filleted box on panels graded towards every edge
 #: (benchmarks.graded_polyhedra: the whole 6x6 per level)
 GRADED_COARSE = ROOT / "reference_tables" / "bem" / "graded_coarse.csv"
+#: the seed's low-polygon ellipsoid 14 and filleted box 18 on gmsh triangles graded towards
+#: every facet edge (benchmarks.graded_cad)
+GRADED_CAD = ROOT / "reference_tables" / "bem" / "graded_cad_1375923287.csv"
 
 
 def number(cell) -> float:
@@ -684,7 +687,8 @@ def best_references(model_path=DATA) -> dict:
     (``bem``, 750-3,000 faces, its grid convergence index ``bem_gci_rel``), the fine levels'
     (up to 12,000-17,000 faces, Eça & Hoekstra, :func:`fine_reference`) and the edge-graded
     levels' (on the plates' diagonal terms :func:`read_graded`; every term of the coarse
-    cylinders, the low-polygon ellipsoid 14 and the filleted box 18, :data:`GRADED_COARSE`)
+    cylinders, :data:`GRADED_COARSE`, and of the low-polygon ellipsoid 14 and the filleted box
+    18, :data:`GRADED_CAD`)
     -- the most resolved: the edge-graded, else the fine, else the stored one.  Not the smallest band: a three-level
     index of levels before the asymptotic range can be small and wrong (the plates' stored
     references, bands of 2-6 %, lie up to 18 % from the edge-graded ones, whose bands are
@@ -703,8 +707,10 @@ def best_references(model_path=DATA) -> dict:
     levels = read_levels(*FINE_ALL) if ours else {}
     graded = read_graded() if ours and GRADED.exists() else {}
     coarse = {}
-    if ours and GRADED_COARSE.exists():
-        for k, lv in read_graded_levels(GRADED_COARSE).items():
+    for path in (GRADED_COARSE, GRADED_CAD) if ours else ():
+        if not path.exists():
+            continue
+        for k, lv in read_graded_levels(path).items():
             n = [lv[x][0] for x in sorted(lv)]
             coarse[k] = (*fine_reference(n, [lv[x][1] for x in sorted(lv)]), n)
     for k, terms in shapes.items():

@@ -33,6 +33,11 @@ concept), and it is also the direction the force balance's homogeneity leaves to
 calibration's bands. Each :math:`\sigma_i` is re-estimated from the joint fit's residual
 of its DOF (:data:`NOISE_PASSES` passes).
 
+**One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
+on the diagnosed DOF's balance alone. A BlueROV2's four vectored thrusters at different gains
+push in surge at every sway and yaw command; a surge diagnosis on the file's map bent its drag
+and the other added masses to that force (issue 33, benchmarks/data/cut33_trace.md).
+
 **The prior.** :math:`\sigma_g` is at least :data:`GAIN_SD`, the bench uncertainty of the
 thrust maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I:
 thrust coefficients measured on a load cell), widened to the spread the log itself shows

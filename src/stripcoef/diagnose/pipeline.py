@@ -113,8 +113,9 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.stepwise import (WholeLogParts, terms_record, changed_dofs,
-                                         retest_steps, unresolved_timing)
+from stripcoef.diagnose.regains import refit_gains, with_found_current
+from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
+                                         terms_record, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -145,7 +146,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
-             one_added_mass: bool = False, not_determined: bool = True) -> Diagnosis:
+             one_added_mass: bool = False, not_determined: bool = True,
+             gains_beside_current: bool = False,
+             dof_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -199,6 +202,13 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
+    gains_beside_current : bool
+        Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
+        beside it and the DOFs diagnosed again on them (:mod:`.regains`; off by default,
+        :attr:`DiagnoseSettings.gains_beside_current`).
+    dof_gains : bool
+        One DOF: the thrusters' gains fitted in that DOF's balance
+        (:attr:`DiagnoseSettings.dof_gains`; off by default).
 
     Returns
     -------
@@ -246,7 +256,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation=validation or None, holdout=holdout or None,
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
-        one_added_mass=one_added_mass, not_determined=bool(not_determined))
+        one_added_mass=one_added_mass, not_determined=bool(not_determined),
+        gains_beside_current=bool(gains_beside_current),
+        dof_gains=bool(dof_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -295,10 +307,12 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         warnings.warn(f"{log.source}: no column {', '.join(absent)}: the coupling terms "
                       "(C(nu) nu of the diagnosed DOFs) take them as 0", ModelWarning,
                       stacklevel=3)
-    # whole-log: the thrusters' gains fitted jointly over the DOFs (gains.py); when kept,
-    # they are the prior of the rest of the diagnosis and written with the model
+    # the thrusters' gains fitted jointly over the DOFs (gains.py; one DOF too, on its own
+    # balance, settings.dof_gains); when kept, they are the prior of the rest of the
+    # diagnosis and written with the model
     prior, gains = model, None
-    if len(dofs) > 1:
+    data0 = data
+    if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
             gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))
@@ -307,38 +321,16 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             data = window_data(train_log, model, window=window)
             if model.effects:
                 data.e0 = data.e0 - effect_window_forces(data, model)
-    # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
-    # reach; written once (a diagnosed DOF's own calibration; cross.py)
-    cross = moving_dofs(data)
-    # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (WholeLogParts(data, dofs, settings, budget=budget, excited=excited,
-                              cross=cross) if len(dofs) > 1 else None)
-    per, fits = {}, {}
-    for i in dofs:
-        per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
-                                                 excited=excited, cross=cross,
-                                                 siblings=siblings)
-    # option (settings.one_added_mass): a DOF whose fit contradicts a diagnosed DOF's own
-    # added mass is selected again with the diagnosed DOFs' added masses held at the prior,
-    # and written refitted with their written values (calibrate.contradicted,
-    # consistent_fits)
-    undiagnosed = [j for j in cross if DOF[j] not in per]
-    again = (contradicted(model, per, fits,
-                          difference=settings.one_added_mass == "difference")
-             if len(dofs) > 1 and settings.one_added_mass else {})
-    for d, known in again.items():
-        i = parse_dof(d)
-        per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
-                                       settings, budget=budget, excited=excited,
-                                       cross=undiagnosed, siblings=siblings)
-    selected = terms_record(fits)
-    per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
-    if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
-        per, fits, _ = compare_timing(per, fits)
-        per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
-    per, fits = share_current(per, fits)    # the water's one current (current.py)
-    if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
-        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
+    per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+    # option (settings.gains_beside_current): the gains were fitted before any effect; a
+    # water current found since is a regressor their fit omitted, which biases them
+    # (regains.py): they are fitted again beside it and the DOFs diagnosed again on them
+    water = (with_found_current(prior, per)
+             if settings.gains_beside_current and gains is not None else None)
+    if water is not None:
+        gains, model, data = refit_gains(water, prior, data0, train_log, val_log, dofs,
+                                         excited, settings, budget)
+        per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits)
     exclude, record = set(), None
@@ -405,3 +397,40 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     return result
 
 
+def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Budget):
+    """``(per, fits)``: every diagnosed DOF's calibration and effects against ``model`` (the
+    prior, with the thrusters' gains when kept) on the window data ``data``, the whole-log
+    rules applied (one added mass, one timing, one current)."""
+    # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
+    # reach; written once (a diagnosed DOF's own calibration; cross.py)
+    cross = moving_dofs(data)
+    # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
+    siblings = (WholeLogParts(data, dofs, settings, budget=budget, excited=excited,
+                              cross=cross) if len(dofs) > 1 else None)
+    per, fits = {}, {}
+    for i in dofs:
+        per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
+                                                 excited=excited, cross=cross,
+                                                 siblings=siblings)
+    # option (settings.one_added_mass): a DOF whose fit contradicts a diagnosed DOF's own
+    # added mass is selected again with the diagnosed DOFs' added masses held at the prior,
+    # and written refitted with their written values (calibrate.contradicted,
+    # consistent_fits)
+    undiagnosed = [j for j in cross if DOF[j] not in per]
+    again = (contradicted(model, per, fits,
+                          difference=settings.one_added_mass == "difference")
+             if len(dofs) > 1 and settings.one_added_mass else {})
+    for d, known in again.items():
+        i = parse_dof(d)
+        per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
+                                       settings, budget=budget, excited=excited,
+                                       cross=undiagnosed, siblings=siblings)
+    selected = terms_record(fits)
+    per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
+    if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
+        per, fits, _ = compare_timing(per, fits)
+        per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
+    per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
+        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
+    return per, fits

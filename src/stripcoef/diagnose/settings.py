@@ -198,6 +198,20 @@ class DiagnoseSettings:
         fit with the prior's thrust map, as before (its c_t +88 % on an independent
         BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
         three such logs measured, docs/performance.md, ``tether33e``)
+    gains_beside_current : bool
+        Whole-log: the thrusters' gains, fitted before any effect, fitted again beside the
+        water current the DOFs found, and the DOFs diagnosed again on them
+        (:mod:`stripcoef.diagnose.regains`: the omitted-variable bias of the first fit). Off
+        by default: measured on the real-style logs only (benchmarks/data/real33_trace.md)
+    dof_gains : bool
+        One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
+        within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
+        whole-log diagnosis fits them over its DOFs, and kept as the prior of the rest of
+        the diagnosis when significant and validated. Off by default: on 19 one-DOF logs of
+        the independent simulator it gives the error cut >= 3x in 14 instead of 7, named
+        first unchanged (benchmarks/data/cut33_trace.md), but a tether it finds on the
+        gained map is then written where :mod:`stripcoef.diagnose.undetermined` reports it
+        as not determined by one DOF; that rule and its tests are to be revisited first
     """
 
     window: float = DEFAULT_WINDOW
@@ -212,6 +226,8 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
+    gains_beside_current: bool = False
+    dof_gains: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

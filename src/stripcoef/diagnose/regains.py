@@ -1,0 +1,88 @@
+r"""The thrusters' gains fitted again beside a water current the diagnosis found (issue 33;
+option :attr:`~stripcoef.diagnose.settings.DiagnoseSettings.gains_beside_current`).
+
+A whole-log diagnosis fits the per-thruster gains (:mod:`.gains`) first, on the prior's
+window residual, before any effect is selected. A water current acts in every DOF through
+the relative velocity :math:`\nu_r = \nu - [R^T V_c; 0]` (Fossen 2011, eq. 10.1), a force
+that turns with the heading; the gains' joint fit has no such regressor, so when the log
+holds a current the gains take the part of its force that their contrasts can imitate: the
+omitted-variable bias of a least-squares fit, :math:`E[\hat a] = a + (G^T G)^{-1} G^T F_c`
+for the omitted force :math:`F_c` (Greene 2012, Econometric Analysis, 7th ed., sec. 4.3.2;
+Seber & Lee 2003, Linear Regression Analysis, sec. 9.2). The current the DOFs then find is
+judged beside gains that already hold part of it (the issue-33 real-style current log,
+seed 9: the gained prior simulates the validation part better than the prior in every DOF,
+the current added to it worse in five of six, and the held-out part worse than the prior in
+every DOF: ``benchmarks/data/real33_trace.md``).
+
+With the option, once the DOFs' shared current :math:`\hat V_c`
+(:func:`stripcoef.diagnose.current.share_current`) is known the gains are fitted again on
+the window residual of the prior *with that current* (its window forces subtracted, as a
+calibrated model's effects are, :func:`stripcoef.effects.laws.effect_window_forces`): one
+backfitting cycle of an additive model, each part refitted on the residual of the others
+(Hastie & Tibshirani 1990, Generalized Additive Models, sec. 4.4; Breiman & Friedman 1985).
+They are validated as before (:func:`stripcoef.diagnose.gains.validated`) against the prior
+with the current, and the DOFs are diagnosed again on the prior with the new gains, where
+the current is selected, shared and validated like any effect: nothing of the first pass
+is written but the gains' values.
+
+Depends on: diagnose.gains, diagnose.settings, effects, model.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.effects.laws import effect_window_forces
+from stripcoef.effects.windows import window_data
+
+#: The effect whose force the gains' first fit omitted.
+CURRENT = "current"
+
+
+def found_current(per: dict) -> dict | None:
+    """The parameters (``current_north``, ``current_east`` [m/s]) of the current a
+    diagnosis's DOFs selected (:class:`~stripcoef.diagnose.result.DofResult` per DOF, after
+    :func:`~stripcoef.diagnose.current.share_current`: one value in every DOF), or None."""
+    for r in per.values():
+        for s in r.steps:
+            if s.effect == CURRENT:
+                p = s.final_parameters or s.parameters
+                return {"current_north": float(p["current_north"]),
+                        "current_east": float(p["current_east"])}
+    return None
+
+
+def with_found_current(prior, per: dict):
+    """``prior`` with the current of :func:`found_current` as an effect of all six DOFs
+    (``dof: all``), or None when no DOF selected one."""
+    vc = found_current(per)
+    if vc is None:
+        return None
+    return prior.with_effects({"name": CURRENT, "dof": "all", "parameters": vc})
+
+
+def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings, budget):
+    """``(gains, model, data)``: the thrusters' gains fitted again on the window residual of
+    ``water`` (the prior with the current found) over ``dofs``, validated against ``water``
+    (:func:`~stripcoef.diagnose.gains.validated`); ``model`` the prior with them when kept
+    (else ``prior``) and ``data`` its window data (``data0``, the prior's, when not kept).
+    The gains' record says what they were fitted beside. ``gains`` None when the fit is not
+    possible (as :func:`~stripcoef.diagnose.gains.fit_thruster_gains`)."""
+    data_c = window_data(train_log, water, window=settings.window)
+    data_c.e0 = data_c.e0 - effect_window_forces(data_c, water)
+    gains = fit_thruster_gains(data_c, dofs, settings, excited=excited, budget=budget)
+    if gains is None:
+        return None, prior, data0
+    gains = validated(gains, val_log, water, dofs, settings.logged_dofs(dofs))
+    vc = water.effects[-1]["parameters"]
+    gains = replace(gains, reason=gains.reason + "; fitted beside the current the DOFs found "
+                    f"(north {vc['current_north']:.4g}, east {vc['current_east']:.4g} m/s), "
+                    "the DOFs diagnosed again on them")
+    if not gains.applied:
+        return gains, prior, data0
+    model = gains.model(prior)
+    data = window_data(train_log, model, window=settings.window)
+    if model.effects:
+        data.e0 = data.e0 - effect_window_forces(data, model)
+    return gains, model, data
