@@ -71,7 +71,11 @@ Steps, for each degree of freedom (issue 7):
    the thrusters' gains jointly over them (:mod:`.gains`: contrasts within each group of
    thrusters, kept when significant and not worse on the validation log; the rest of the
    run then diagnoses against the prior with them); after it, a thruster lag and an
-   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`).
+   actuation delay are compared over every DOF the thrusters drive (:mod:`.timing`), and
+   what the shared fits (timing, current) change is judged again (:mod:`.stepwise`: a
+   joint lag or delay not resolved is withdrawn; a DOF's own steps are judged again in its
+   written model; a bias outside heave, roll and pitch must stand beside the thrusters'
+   gains).
    In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
    found only with each thruster's gain free, or whose c_t moves when they are freed) is
    named with its value "not determined by one DOF" and not written
@@ -110,7 +114,8 @@ from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.regains import refit_gains, with_found_current
-from stripcoef.diagnose.thrusterparts import ThrusterParts
+from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
+                                         terms_record, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -410,7 +415,7 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
     cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (ThrusterParts(data, dofs, settings, budget=budget, excited=excited,
+    siblings = (WholeLogParts(data, dofs, settings, budget=budget, excited=excited,
                               cross=cross) if len(dofs) > 1 else None)
     per, fits = {}, {}
     for i in dofs:
@@ -430,8 +435,12 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
         per[d], fits[d] = diagnose_dof(with_known(data, i, dict.fromkeys(known, 0.0)), i,
                                        settings, budget=budget, excited=excited,
                                        cross=undiagnosed, siblings=siblings)
+    selected = terms_record(fits)
     per, fits = share_timing(per, fits)     # the thrusters' one lag/delay (calibrate.py)
     if len(dofs) > 1:       # whole-log: lag or delay, compared over the DOFs (timing.py)
         per, fits, _ = compare_timing(per, fits)
+        per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
     per, fits = share_current(per, fits)    # the water's one current (current.py)
+    if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
+        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
     return per, fits

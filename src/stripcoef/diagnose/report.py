@@ -105,6 +105,9 @@ def text_summary(result) -> str:
                          f" -> {_fmt(s['held_out_error_after'])}{alt}")
         if not r["steps"]:
             lines.append("  no effect is significant")
+        for w in r.get("withdrawn") or ():
+            lines.append(f"  withdrawn after the shared fits (not in the written model): "
+                         f"{w['effect']}: {w['reason']}")
     kept = {d: v for d, v in (result.get("kept_at_prior") or {}).items() if v}
     if kept:
         lines.append("\nkept at the prior (the log does not determine them):")

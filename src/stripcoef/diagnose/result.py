@@ -256,6 +256,9 @@ class DofResult(_Record):
         The generic basis's gain, the noise floor, ...
     unexplained_signature : str
         The residual's signature in words ('' when explained)
+    withdrawn : tuple of mapping, optional
+        Whole-log: steps the selection added and the shared fits made unnecessary, each
+        ``effect``, ``parameters`` and ``reason`` (:mod:`.stepwise`); not written
     """
 
     dof: str
@@ -276,6 +279,7 @@ class DofResult(_Record):
     unexplained: bool
     unexplained_evidence: Mapping
     unexplained_signature: str
+    withdrawn: tuple | None = _optional()
 
     @classmethod
     def from_dict(cls, d: Mapping) -> DofResult:
