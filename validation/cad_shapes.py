@@ -596,8 +596,8 @@ def graded_section() -> str:
         f"{len(b_coup)}; the estimate covers {sum(abs(r['err']) <= r['est'] for r in b_sig)}"
         f" of {len(b_sig)} terms (with the reference's band, root-sum-square: "
         f"{sum(abs(r['err']) <= np.hypot(r['est'], r['band']) for r in b_sig)}). The "
-        f"{len(b_miss)} diagonal terms off by more than 5 % (families "
-        f"{', '.join(b_fams)}): "
+        f"{len(b_miss)} diagonal {'term' if len(b_miss) == 1 else 'terms'} off by more "
+        f"than 5 % ({'family' if len(b_fams) == 1 else 'families'} {', '.join(b_fams)}): "
         + "; ".join(f"{r['shape']} {DOFS[r['i']]} {100 * r['err']:+.1f} % ({r['source']}, "
                     f"band {100 * r['band']:.1f} %)" for r in b_miss) + ".",
         f"- The {len(was)} diagonal terms off by more than 5 % against the stored 3,000-face "
