@@ -73,6 +73,26 @@ def cross_names(cfg) -> tuple:
     return tuple(n for n in (cfg.cal_names or ()) if n.startswith("M_"))
 
 
+
+def refitted_z(cfg, term, *, index: int = 0) -> tuple[float, float] | None:
+    """The step of configuration ``cfg`` refitted with its last term replaced by ``term``
+    (an ``(effect, nuisance)`` pair: the effect with the columns it frees beside its own):
+    the coefficient ``index`` of the effect's own estimate and its distance from zero in
+    standard deviations [-] (``inf`` with a zero standard deviation); None when the refit
+    is singular or estimates nothing.  The one refit behind the rules that refuse a step
+    not identified apart from a confounder (Rothenberg 1971, Theorem 1:
+    :func:`cross_mass_confounded`, the thrust asymmetry beside a buoyancy change, the bias
+    beside the thrusters' gains)."""
+    refit = cfg.with_terms(list(cfg.terms[:-1]) + [term])
+    try:
+        _, value, sd = _own_estimate(refit, _evaluate(refit))
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+    if not value.size:
+        return None
+    v, s = float(value[index]), float(sd[index])
+    return v, (abs(v) / s if s > 0 else math.inf)
+
 def cross_mass_confounded(trial: dict, dof: int, free: dict) -> str:
     """Why the thrust scale ``trial`` (:func:`~stripcoef.diagnose.select._judge`'s record)
     of DOF ``dof`` is not identified apart from the other DOFs' added masses (module
@@ -87,17 +107,11 @@ def cross_mass_confounded(trial: dict, dof: int, free: dict) -> str:
     if not names:
         return ""
     eff = free.get(names) or free.setdefault(names, cross_free_scale(names))
-    refit = cfg.with_terms(list(cfg.terms[:-1]) + [(eff, None)])
-    try:
-        _, value, sd = _own_estimate(refit, _evaluate(refit))
-    except (np.linalg.LinAlgError, ValueError):
+    got = refitted_z(cfg, (eff, None), index=-1)
+    if got is None or got[1] >= MIN_Z:
         return ""
-    if not value.size:
-        return ""
-    z = abs(float(value[-1])) / float(sd[-1]) if sd[-1] > 0 else math.inf
-    if z >= MIN_Z:
-        return ""
+    value, z = got
     return (f"not identified apart from the other DOFs' added masses ({', '.join(names)}): "
-            f"with their columns free beside it the scale is {1.0 + float(value[-1]):.3g}, "
+            f"with their columns free beside it the scale is {1.0 + value:.3g}, "
             f"{z:.1f} standard deviations from 1 (< {MIN_Z:g}); a command that carries "
             "their Coriolis force (a feed-forward) is scaled by their error")

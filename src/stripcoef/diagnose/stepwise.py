@@ -59,7 +59,6 @@ diagnose.gainfree, diagnose.scalechoice, effects, conventions.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -68,8 +67,9 @@ from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose import gainfree, scalechoice
 from stripcoef.diagnose.evidence import supported
 from stripcoef.diagnose.fit import _evaluate, _Nuisance, refit
-from stripcoef.diagnose.select import _judge, _own_estimate
+from stripcoef.diagnose.select import _judge
 from stripcoef.diagnose.settings import MIN_Z
+from stripcoef.diagnose.crossscale import refitted_z
 from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.effects.laws import get_effect
 
@@ -206,18 +206,14 @@ def bias_beside_gains(trial: dict, dof: int) -> str:
     eff = gainfree.BIAS_GAINS_FREE
     if eff.nuisance(cfg.data, dof) is None:
         return ""
-    free = cfg.with_terms(list(cfg.terms[:-1]) + [(eff, None)])
-    try:
-        _, value, sd = _own_estimate(free, _evaluate(free))
-    except (np.linalg.LinAlgError, ValueError):
+    got = refitted_z(cfg, (eff, None))
+    if got is None:
         return ""
-    if not value.size:
-        return ""
-    z = abs(float(value[0])) / float(sd[0]) if sd[0] > 0 else math.inf
+    value, z = got
     return "" if z >= MIN_Z else (
         f"not identified apart from the thrusters' gains: with each acting thruster's gain "
         f"free beside it (Wang & Clark 2006 eqs. 8-9) the {DOF[dof]} bias is "
-        f"{float(value[0]):.3g}, {z:.1f} standard deviations from zero (< {MIN_Z:g})")
+        f"{value:.3g}, {z:.1f} standard deviations from zero (< {MIN_Z:g})")
 
 
 class WholeLogParts(ThrusterParts):

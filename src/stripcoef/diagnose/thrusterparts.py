@@ -58,14 +58,13 @@ conventions.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.diagnose.crossscale import cross_mass_confounded
+from stripcoef.diagnose.crossscale import cross_mass_confounded, refitted_z
 from stripcoef.diagnose.fit import DEFAULTS
-from stripcoef.diagnose.select import Siblings, _evaluate, _own_estimate
+from stripcoef.diagnose.select import Siblings
 from stripcoef.diagnose.settings import MIN_Z, DiagnoseSettings
 from stripcoef.effects.base import THRUST_BAND, TRANSLATIONAL
 from stripcoef.effects.hydrodynamic import buoyancy_column
@@ -136,14 +135,10 @@ class ThrusterParts(Siblings):
         if (trial["effect"] != "thrust_asymmetry" or dof not in TRANSLATIONAL or cfg is None
                 or any(e.name == "buoyancy_offset" for e, _ in cfg.terms[:-1])):
             return ""
-        free = cfg.with_terms(list(cfg.terms[:-1]) + [(self._free, cfg.terms[-1][1])])
-        try:
-            _, value, sd = _own_estimate(free, _evaluate(free))
-        except (np.linalg.LinAlgError, ValueError):
+        got = refitted_z(cfg, (self._free, cfg.terms[-1][1]))
+        if got is None:
             return ""
-        if not value.size:
-            return ""
-        z = abs(float(value[0])) / float(sd[0]) if sd[0] > 0 else math.inf
+        z = got[1]
         return "" if z >= MIN_Z else (
             f"not identified apart from a buoyancy change: with the restoring force's column "
             f"free beside it the asymmetry is {z:.1f} standard deviations from zero "
