@@ -186,7 +186,8 @@ class DiagnoseSettings:
         validate_changes`) move the DOFs that are not diagnosed: ``"logged"`` (in a
         one-DOF diagnosis their velocities, and the attitude when roll and pitch both
         are, follow the log) or ``"simulated"`` (the model, the prior's where nothing
-        was diagnosed; a whole-log diagnosis always) (:data:`VALIDATION_OTHERS`)
+        was diagnosed; a whole-log diagnosis always) or ``"each"`` (every diagnosed DOF
+        alone, the other five logged, whole-log too) (:data:`VALIDATION_OTHERS`)
     one_added_mass : bool or str
         Whole-log: a DOF whose fit holds a diagnosed DOF's added mass more than ``MIN_Z``
         sd from that DOF's own (written) value is selected again with it at the prior and
@@ -242,7 +243,8 @@ class DiagnoseSettings:
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a
         one-DOF diagnosis (``dofs`` one index) with ``validation_others`` ``"logged"``,
-        every other DOF; else none (:data:`VALIDATION_OTHERS`)."""
+        every other DOF; with ``"each"``, :data:`stripcoef.diagnose.heldout.EACH` (each DOF
+        alone, the others logged); else none (:data:`VALIDATION_OTHERS`)."""
         dofs = [int(i) for i in dofs]
         if self.validation_others == "each":   # heldout.EACH: every DOF alone
             return "each"
