@@ -892,7 +892,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
-    ap.add_argument("--validation-others", default="logged", choices=("logged", "simulated"),
+    ap.add_argument("--validation-others", default="logged",
+                    choices=("logged", "simulated", "each"),
                     help="how the validation's free simulations move the DOFs not diagnosed "
                          "(diagnose's validation_others)")
     ap.add_argument("--same-seeds", action="store_true",

@@ -61,3 +61,36 @@ def test_logged_dofs_follow_the_log_and_leave_the_others_to_the_model():
     # the logged velocities are linear between the samples: an error of second order in
     # the sample interval (0.006 m/s at 0.2 s, 0.0004 m/s at 0.05 s on this light ROV)
     assert true_free[0] < 1e-5 and true_logged[0] < 1e-3
+
+
+def test_each_dof_alone_is_every_dof_simulated_with_the_other_five_logged():
+    """``logged=EACH`` (diagnose.settings.VALIDATION_OTHERS "each", issue 33,
+    benchmarks/data/val33_trace.md): each DOF's column is that DOF simulated alone with the
+    five others from the log; on a log of the true model the truth's own error stays at the
+    noise in both DOFs while the wrong yaw damping shows only in yaw."""
+    from stripcoef.diagnose.heldout import EACH
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    model = rov_model()
+    t = np.arange(0.0, 12.0, 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        tau = np.zeros((t.size, 6))
+        tau[:, 0] = np.where(t % 8 < 4, 20.0, -10.0)
+        tau[:, 5] = np.where(t % 6 < 3, 2.0, -2.0)
+        log = add_noise(simulate(model, t, forces=tau), np.random.default_rng(5))
+        d = model.to_dict()
+        d["linear_damping"] = np.array(d["linear_damping"], float)
+        d["linear_damping"][5, 5] *= 3.0
+        wrong = model.__class__.from_dict(d)
+        each, counts = segment_squared_errors(log, wrong, [0, 5], horizon=6.0, logged=EACH)
+        for k, i in enumerate((0, 5)):
+            alone, n = segment_squared_errors(log, wrong, [i], horizon=6.0,
+                                              logged=[j for j in range(6) if j != i])
+            assert each[:, k] == pytest.approx(alone[:, 0], rel=1e-12)
+            assert counts == pytest.approx(n)
+        truth = free_simulation_errors(log, model, [0, 5], horizon=6.0, logged=EACH)
+        off = free_simulation_errors(log, wrong, [0, 5], horizon=6.0, logged=EACH)
+    assert off[0] == pytest.approx(truth[0], rel=0.05)       # surge's own model is right
+    assert off[1] > 2.0 * truth[1]
+    settings = DiagnoseSettings(validation_others="each")
+    assert settings.logged_dofs([0, 5]) == EACH and settings.logged_dofs([0]) == EACH

@@ -68,6 +68,12 @@ def split(log, fraction: float, *, key: str = "holdout"):
 TOLERANCES = (1e-5, 1e-7)
 
 
+#: ``logged`` of :func:`segment_squared_errors`: each DOF simulated on its own, the five
+#: others following the log (the equation decoupling of the one-DOF validation applied to
+#: every DOF of a whole-log diagnosis; :data:`stripcoef.diagnose.settings.VALIDATION_OTHERS`).
+EACH = "each"
+
+
 def free_simulation_errors(log, model, dofs, *, horizon: float = HORIZON,
                            tolerances=TOLERANCES, logged=()):
     """RMS free-simulation error of each DOF in ``dofs`` (list of indices) [m/s or rad/s]
@@ -94,11 +100,20 @@ def segment_squared_errors(log, model, dofs, *, horizon: float = HORIZON,
     (e.g. :func:`rolling_segments`) instead of :func:`segments`. ``logged``: DOFs whose
     velocity (and, for roll and pitch together, attitude) follows the log instead of the
     model (:func:`stripcoef.diagnose.freesim.batch_free_velocities`; a model the batch
-    integrator does not replay, one with control surfaces, is simulated in every DOF)."""
+    integrator does not replay, one with control surfaces, is simulated in every DOF);
+    :data:`EACH`: each DOF of ``dofs`` simulated alone, the five others logged."""
     from stripcoef.diagnose.freesim import batch_free_velocities, supported
     from stripcoef.logfile import log_inputs
     from stripcoef.simulate import replay
 
+    if isinstance(logged, str) and logged == EACH:   # each DOF alone, the others logged
+        parts = [segment_squared_errors(log, model, [i], horizon=horizon,
+                                        tolerances=tolerances, bounds=bounds,
+                                        logged=[j for j in range(6) if j != i])
+                 for i in dofs]
+        if any(p is None for p in parts):
+            return None
+        return np.hstack([p[0] for p in parts]), parts[0][1]
     t = log["t"]
     try:
         inputs = log_inputs(log, model)       # the one replay rule (simulate --from-log's)

@@ -192,7 +192,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     validation_others : str
         ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
         take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
-        diagnosis always does (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
+        diagnosis always does; ``"each"``: every diagnosed DOF simulated alone, the other
+        five from the log, a whole-log diagnosis too
+        (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
     one_added_mass : bool or str
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
         (:attr:`DiagnoseSettings.one_added_mass`; off by default; ``"difference"``: judged

@@ -143,8 +143,13 @@ UNLIMITED = Budget()
 #: and 5469, benchmarks/data/diagnose_independent_detect33.md) gave the error cut >= 3x in
 #: 14 rows instead of 12 (three up, one down: a deadband cut 22.1 -> 1.03) and kept a
 #: spurious pitch thrust asymmetry (0 -> 1 of 16): not adopted. One-DOF rows: 8 -> 13 of
-#: 22 on the same logs, none lower.
-VALIDATION_OTHERS = ("logged", "simulated")
+#: 22 on the same logs, none lower. "each" (an option, issue 33, benchmarks/data/
+#: val33_trace.md): every diagnosed DOF simulated alone, the five others logged
+#: (:data:`stripcoef.diagnose.heldout.EACH`), a whole-log diagnosis included: on the
+#: BlueROV2-like log 29113033 the truth's own model simulates roll and pitch 0.64 and 0.92
+#: rad/s off with every DOF simulated (worse than the prior in three DOFs), 0.035 and 0.034
+#: with the others logged.
+VALIDATION_OTHERS = ("logged", "simulated", "each")
 
 #: The rules of :attr:`DiagnoseSettings.one_added_mass`: off (False), a DOF's fit more than
 #: ``MIN_Z`` of its own sd from a diagnosed DOF's written added mass (True), or more than
@@ -181,7 +186,8 @@ class DiagnoseSettings:
         validate_changes`) move the DOFs that are not diagnosed: ``"logged"`` (in a
         one-DOF diagnosis their velocities, and the attitude when roll and pitch both
         are, follow the log) or ``"simulated"`` (the model, the prior's where nothing
-        was diagnosed; a whole-log diagnosis always) (:data:`VALIDATION_OTHERS`)
+        was diagnosed; a whole-log diagnosis always) or ``"each"`` (every diagnosed DOF
+        alone, the other five logged, whole-log too) (:data:`VALIDATION_OTHERS`)
     one_added_mass : bool or str
         Whole-log: a DOF whose fit holds a diagnosed DOF's added mass more than ``MIN_Z``
         sd from that DOF's own (written) value is selected again with it at the prior and
@@ -237,8 +243,11 @@ class DiagnoseSettings:
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a
         one-DOF diagnosis (``dofs`` one index) with ``validation_others`` ``"logged"``,
-        every other DOF; else none (:data:`VALIDATION_OTHERS`)."""
+        every other DOF; with ``"each"``, :data:`stripcoef.diagnose.heldout.EACH` (each DOF
+        alone, the others logged); else none (:data:`VALIDATION_OTHERS`)."""
         dofs = [int(i) for i in dofs]
+        if self.validation_others == "each":   # heldout.EACH: every DOF alone
+            return "each"
         if self.validation_others != "logged" or len(dofs) != 1:
             return []
         return [j for j in range(6) if j not in dofs]

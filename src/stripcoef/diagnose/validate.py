@@ -90,7 +90,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         return None if got is None else \
             [float(np.sqrt(v)) for v in np.sum(got[0], axis=0) / np.sum(got[1])]
 
-    logged = sorted(int(j) for j in logged)
+    if not (isinstance(logged, str) and logged == "each"):    # heldout.EACH
+        logged = sorted(int(j) for j in logged)
     base_sse = segment_squared_errors(val_log, prior, dofs, logged=logged)
     base = errors(base_sse)
     ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
@@ -168,7 +169,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                              "part of the fitting log, not used to fit: each change is kept "
                              "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
-              "logged_dofs": [DOF[j] for j in logged],
+              "logged_dofs": (logged if isinstance(logged, str)
+                              else [DOF[j] for j in logged]),
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed_for_own_dof": vetoed,
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
