@@ -360,10 +360,7 @@ def eca_hoekstra(counts, values, *, dimension: int = 2,
             and sigma < data_range)
     safety = EH_SAFETY_GOOD if good else EH_SAFETY_POOR
     error, residual = abs(fit1 - phi0), abs(phi[0] - fit1)
-    if sigma < data_range:
-        u = safety * error + sigma + residual
-    else:
-        u = EH_SAFETY_POOR * sigma / data_range * (error + sigma + residual)
+    u = _eh_uncertainty(safety, error, sigma, residual, data_range)
     return GridUncertainty(float(u), float(phi0), float(p_obs), name, bool(weighted),
                            float(safety), float(sigma), data_range, float(error),
                            float(residual))
@@ -382,6 +379,20 @@ def eca_hoekstra_terms(counts, levels, *, dimension: int = 2, extra_orders=()):
         out[:, k] = r.extrapolated, r.uncertainty, r.order, r.safety
     return tuple(x.reshape(shape) for x in out)
 
+
+
+def _eh_uncertainty(safety: float, error: float, sigma: float, residual: float,
+                    data_range: float) -> float:
+    r"""Eça & Hoekstra's uncertainty of the finest level [the unit of :math:`\phi`]
+    (2014, J. Comput. Phys. 262, 104-130, eqs. 20-21): with a fit standard deviation
+    :math:`\sigma` below the data range :math:`\Delta_\phi`,
+    :math:`F_s\,\varepsilon + \sigma + |\phi_1 - \phi_{fit}|`; else
+    :math:`3\,\sigma/\Delta_\phi\,(\varepsilon + \sigma + |\phi_1 - \phi_{fit}|)`, where
+    :math:`\varepsilon` (``error``) is the fit's distance from the finest to the limit and
+    ``residual`` the finest level's distance from the fit."""
+    if sigma < data_range:
+        return safety * error + sigma + residual
+    return EH_SAFETY_POOR * sigma / data_range * (error + sigma + residual)
 
 def least_squares_band(counts, levels):
     r"""Per term of ``levels`` (n_g >= 4 matrices of one square shape, coarse to fine, of
@@ -475,10 +486,7 @@ def eca_hoekstra_families(counts, values, families, order: float, *,
     good = EH_ORDER_LOW <= p_obs < EH_ORDER_HIGH and sigma < data_range
     safety = EH_SAFETY_GOOD if good else EH_SAFETY_POOR
     error, residual = abs(fit1 - phi0), abs(phi[0] - fit1)
-    if sigma < data_range:
-        u = safety * error + sigma + residual
-    else:
-        u = EH_SAFETY_POOR * sigma / data_range * (error + sigma + residual)
+    u = _eh_uncertainty(safety, error, sigma, residual, data_range)
     return GridUncertainty(float(u), float(phi0), p_obs, f"families {order:g}",
                            bool(weighted), float(safety), float(sigma), data_range,
                            float(error), float(residual))
