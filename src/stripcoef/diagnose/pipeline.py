@@ -134,7 +134,7 @@ from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa
                                          resimulated_errors, validate_changes,
                                          validation_errors, with_kept)
 from stripcoef.diagnose.written import read_back
-from stripcoef.effects.laws import effect_window_forces
+from stripcoef.effects.laws import model_window_data
 from stripcoef.effects.windows import window_data
 from stripcoef.errors import InputError, ModelWarning
 
@@ -295,9 +295,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             window_data(train_log, model, window=window)
         except InputError as exc:  # too short to spare a validation part: fit on all of it
             train_log, val_log, skipped = fit_log, None, str(exc)
-    data = window_data(train_log, model, window=window)
-    if model.effects:  # a calibrated model: its effects are part of its prediction
-        data.e0 = data.e0 - effect_window_forces(data, model)
+    data = model_window_data(train_log, model, window=window)
     excited, not_excited = select_dofs(data)
     dropped = {}
     if str(dof).lower() == "all":
@@ -330,9 +328,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))
         if gains is not None and gains.applied:
             model = gains.model(model)
-            data = window_data(train_log, model, window=window)
-            if model.effects:
-                data.e0 = data.e0 - effect_window_forces(data, model)
+            data = model_window_data(train_log, model, window=window)
     per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
     # option (settings.gains_beside_current): the gains were fitted before any effect; a
     # water current found since is a regressor their fit omitted, which biases them

@@ -33,8 +33,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.effects.laws import effect_window_forces
-from stripcoef.effects.windows import window_data
+from stripcoef.effects.laws import model_window_data
 
 #: The effect whose force the gains' first fit omitted.
 CURRENT = "current"
@@ -69,8 +68,7 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
     (else ``prior``) and ``data`` its window data (``data0``, the prior's, when not kept).
     The gains' record says what they were fitted beside. ``gains`` None when the fit is not
     possible (as :func:`~stripcoef.diagnose.gains.fit_thruster_gains`)."""
-    data_c = window_data(train_log, water, window=settings.window)
-    data_c.e0 = data_c.e0 - effect_window_forces(data_c, water)
+    data_c = model_window_data(train_log, water, window=settings.window)
     gains = fit_thruster_gains(data_c, dofs, settings, excited=excited, budget=budget)
     if gains is None:
         return None, prior, data0
@@ -82,7 +80,4 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
     if not gains.applied:
         return gains, prior, data0
     model = gains.model(prior)
-    data = window_data(train_log, model, window=settings.window)
-    if model.effects:
-        data.e0 = data.e0 - effect_window_forces(data, model)
-    return gains, model, data
+    return gains, model, model_window_data(train_log, model, window=settings.window)

@@ -65,19 +65,15 @@ import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose import gainfree, scalechoice
+from stripcoef.diagnose.calibrate import SHARED_EFFECTS, SHARED_TIMING
+from stripcoef.diagnose.crossscale import refitted_z
 from stripcoef.diagnose.evidence import supported
 from stripcoef.diagnose.fit import _evaluate, _Nuisance, refit
 from stripcoef.diagnose.select import _judge
 from stripcoef.diagnose.settings import MIN_Z
-from stripcoef.diagnose.crossscale import refitted_z
 from stripcoef.diagnose.thrusterparts import ThrusterParts
 from stripcoef.effects.laws import get_effect
 
-#: The timing effects the thrusters share (:data:`stripcoef.diagnose.calibrate.SHARED_TIMING`)
-TIMING = ("thruster_lag", "actuation_delay")
-#: Every effect fitted once for the vehicle (:data:`stripcoef.diagnose.calibrate.
-#: SHARED_EFFECTS`): not a DOF's own step
-SHARED = TIMING + ("current",)
 #: The DOFs whose constant force is the restoring force's weight-buoyancy term at small roll
 #: and pitch (Fossen 2011, eq. 4.6): heave, roll, pitch
 WEIGHT_DOFS = (2, 3, 4)
@@ -116,7 +112,7 @@ def unresolved_timing(per: dict, fits: dict) -> tuple[dict, dict]:
     the joint fit leaves at the lower end of its grid or below its resolvable time (module
     docstring), withdrawn from every DOF that holds it."""
     per, fits = dict(per), dict(fits)
-    for name in TIMING:
+    for name in SHARED_TIMING:
         have = [d for d, f in fits.items() if any(e.name == name for e, _ in f.config.terms)]
         if not have:
             continue
@@ -147,7 +143,7 @@ def _own_steps(r) -> list:
     """The steps of a DOF's result that :func:`retest_steps` judges again: its own (not a
     shared effect), tested by the selection's plain rule (not a scale judged with the
     bands, not a step found by the gains-free retest)."""
-    return [s for s in r.steps if s.effect not in SHARED and not gainfree.retested(s)
+    return [s for s in r.steps if s.effect not in SHARED_EFFECTS and not gainfree.retested(s)
             and not scalechoice.judged_with_bands(get_effect(s.effect))
             and not s.not_determined]
 

@@ -40,7 +40,8 @@ from stripcoef.effects.thrust import (Deadband, ThrustAsymmetry, ThrustEffective
 from stripcoef.effects.timing import ActuationDelay, ThrusterLag
 # the window data effects are fitted to, re-exported for the callers of this module
 from stripcoef.effects.windows import (WindowData, coefficient_column,  # noqa: F401
-                                       coriolis_times_velocity, damping_times_velocity)
+                                       coriolis_times_velocity, damping_times_velocity,
+                                       window_data)
 
 #: The registry: name -> the effect (one frozen instance per effect).
 EFFECTS = {e.name: e for e in (TetherDrag(), ThrustAsymmetry(), MomentumDrag(),
@@ -170,5 +171,14 @@ def effect_window_forces(data: WindowData, model) -> np.ndarray:
     return out
 
 
+def model_window_data(log, model, *, window: float) -> WindowData:
+    """The window data of ``model`` on ``log`` (:func:`stripcoef.effects.windows.window_data`)
+    with the forces of the model's effects taken out of its residual
+    (:func:`effect_window_forces`): a calibrated model's effects are part of its prediction."""
+    data = window_data(log, model, window=window)
+    if model.effects:
+        data.e0 = data.e0 - effect_window_forces(data, model)
+    return data
+
 __all__ = ["EFFECTS", "Effect", "check_effect_entries", "effect_forces", "effect_window_forces",
-           "get_effect"]
+           "get_effect", "model_window_data"]
