@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stripcoef.diagnose.heldout import EACH
 from stripcoef.errors import UnreachableError
 
 #: 1-sigma relative bands on the prior's coefficients (:mod:`.pipeline`, step 2).
@@ -149,7 +150,7 @@ UNLIMITED = Budget()
 #: BlueROV2-like log 29113033 the truth's own model simulates roll and pitch 0.64 and 0.92
 #: rad/s off with every DOF simulated (worse than the prior in three DOFs), 0.035 and 0.034
 #: with the others logged.
-VALIDATION_OTHERS = ("logged", "simulated", "each")
+VALIDATION_OTHERS = ("logged", "simulated", EACH)
 
 #: The rules of :attr:`DiagnoseSettings.one_added_mass`: off (False), a DOF's fit more than
 #: ``MIN_Z`` of its own sd from a diagnosed DOF's written added mass (True), or more than
@@ -246,8 +247,8 @@ class DiagnoseSettings:
         every other DOF; with ``"each"``, :data:`stripcoef.diagnose.heldout.EACH` (each DOF
         alone, the others logged); else none (:data:`VALIDATION_OTHERS`)."""
         dofs = [int(i) for i in dofs]
-        if self.validation_others == "each":   # heldout.EACH: every DOF alone
-            return "each"
+        if self.validation_others == EACH:     # every DOF alone
+            return EACH
         if self.validation_others != "logged" or len(dofs) != 1:
             return []
         return [j for j in range(6) if j not in dofs]

@@ -83,14 +83,14 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
-    from stripcoef.diagnose.heldout import (diebold_mariano, hold_last_velocity_errors,
+    from stripcoef.diagnose.heldout import (EACH, diebold_mariano, hold_last_velocity_errors,
                                             segment_squared_errors)
 
     def errors(got):
         return None if got is None else \
             [float(np.sqrt(v)) for v in np.sum(got[0], axis=0) / np.sum(got[1])]
 
-    if not (isinstance(logged, str) and logged == "each"):    # heldout.EACH
+    if not (isinstance(logged, str) and logged == EACH):
         logged = sorted(int(j) for j in logged)
     base_sse = segment_squared_errors(val_log, prior, dofs, logged=logged)
     base = errors(base_sse)
