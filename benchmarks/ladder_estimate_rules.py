@@ -38,7 +38,7 @@ the four levels it solved, and reads their error by each rule, the value A in al
 - ``E&H a constant per pair U shown, warn step + change``: Eça & Hoekstra's least squares
   with one error constant per nested pair at the formal order (their sec. 2.1: the
   expansion's constant belongs to a family of geometrically similar grids; the ladder is two;
-  :func:`stripcoef.hull.panel_error.ladder_least_squares_error`), moved to A by the step.
+  :func:`benchmarks.ladder_families.ladder_least_squares_error`), moved to A by the step.
 
 Each is symmetrised and no smaller than the finest solve's asymmetry.  A shape is warned where
 the rule's warning estimate (the band itself but for the split rules), judged about the
@@ -213,8 +213,8 @@ def rules(levels, counts, p) -> dict:
     """{rule: (value A, estimated error shown, estimate the warning reads)} [kg, kg m,
     kg m^2] of the four levels (module docstring)."""
     from stripcoef.hull.convergence import grid_convergence_index, richardson
-    from stripcoef.hull.panel_error import (estimated_error, ladder_extrapolation,
-                                            ladder_least_squares_error)
+    from benchmarks.ladder_families import ladder_least_squares_error
+    from stripcoef.hull.panel_error import estimated_error, ladder_extrapolation
 
     m = [np.asarray(x, float) for x in levels]
     a, default = ladder_extrapolation(m, counts, p)

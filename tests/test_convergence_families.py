@@ -6,9 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stripcoef.hull.convergence import (EH_SAFETY_GOOD, EH_SAFETY_POOR, eca_hoekstra,
-                                        eca_hoekstra_families)
-from stripcoef.hull.panel_error import ladder_least_squares_error
+from benchmarks.ladder_families import eca_hoekstra_families, ladder_least_squares_error
+from stripcoef.hull.convergence import EH_SAFETY_GOOD, EH_SAFETY_POOR, eca_hoekstra
 
 COUNTS = (400, 800, 1600, 3200)          # N_1 < 2N_1 < 4N_1 < 8N_1: pairs (1, 3) and (2, 4)
 FAMILIES = (0, 1, 0, 1)

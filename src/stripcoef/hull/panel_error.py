@@ -189,27 +189,3 @@ def relative_error(matrix, error, length: float | None = None) -> np.ndarray:
     d = np.sqrt(d)
     scale = np.outer(d, d)
     return np.asarray(error, float) / np.where(scale > 0, scale, np.inf)
-
-
-def ladder_least_squares_error(levels, counts, extrapolated, order: float) -> np.ndarray:
-    r"""The band [kg, kg m, kg m^2] of the value ``extrapolated`` from the input ladder's four
-    ``levels`` (6x6 matrices coarse to fine, not symmetrised; ``counts`` panels; two nested
-    pairs :math:`(L_1, L_3)`, :math:`(L_2, L_4)`, :mod:`stripcoef.hull.input_ladder`):
-    :func:`least_squares_error`'s rule with Eça & Hoekstra's fit given one error constant per
-    pair at the formal ``order`` (:func:`stripcoef.hull.convergence.eca_hoekstra_families`),
-    moved to the value by the step (:func:`estimated_error`); symmetrised.  An option
-    measured against the one-constant band in ``python -m benchmarks.ladder_estimate_rules``
-    (benchmarks/data/ladder_estimate_rules.md), not the default."""
-    from stripcoef.hull.convergence import eca_hoekstra_families
-
-    mats = [np.asarray(m, float) for m in levels]
-    if len(mats) != 4:
-        raise ValueError(f"the ladder has four levels; got {len(mats)}")
-    sym = np.stack([0.5 * (m + m.T) for m in mats])
-    u = np.zeros((6, 6))
-    for i in range(6):
-        for j in range(i, 6):
-            u[i, j] = u[j, i] = eca_hoekstra_families(counts, sym[:, i, j], (0, 1, 0, 1),
-                                                      order).uncertainty
-    a = np.asarray(extrapolated, float)
-    return estimated_error(mats[-1], 0.5 * (a + a.T), u)
