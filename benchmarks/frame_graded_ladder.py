@@ -238,6 +238,55 @@ def volumes(hs, write: bool) -> int:
     return 0
 
 
+def bisected_thin_family(original):
+    """A stand-in for :func:`stripcoef.hull.panels._family` for the trial of ``--trial``: where
+    the family it finds is a no-flip remesh (the thin-member modes), the input's faces bisected
+    instead (the last mode of :data:`stripcoef.hull.remesh.MODES`)."""
+    from stripcoef.hull.remesh import MODES
+
+    def family(vertices, faces, edges, modes):
+        out = original(vertices, faces, edges, modes)
+        if out is not None and not out[1].flips and not out[1].bisect:
+            return original(vertices, faces, edges, tuple(m for m in MODES if m.bisect))
+        return out
+    return family
+
+
+def trial(shapes, write: bool) -> int:
+    """Each of ``shapes`` (SEED:K) estimated as ``benchmarks.cad_shapes`` does, as it is and with
+    :func:`bisected_thin_family` in place: the levels, each diagonal term against the most
+    resolved reference, the largest estimated error over the term, CPU."""
+    from benchmarks.cad_shapes import patched_estimates
+    from stripcoef.hull import panels as P
+    from validation.cad_shapes import best_references
+
+    lines = ["`OPENBLAS_NUM_THREADS=1 python -m benchmarks.frame_graded_ladder --trial "
+             + " ".join(shapes) + "`", "",
+             "| shape | family | levels | " + " | ".join(DOFS)
+             + " | worst estimate / error | CPU [s] |", "|---" * 11 + "|"]
+    for what in shapes:
+        seed, k = (int(x) for x in what.split(":"))
+        best = best_references(ROOT / "reference_tables" / "bem" / f"cad_shapes_{seed}.csv")
+        ref = np.array([best[(k, i, i)][0] for i in range(6)])
+        for name, patches in (("as is", {}),
+                              ("thin: bisected", {(P, "_family"): bisected_thin_family(
+                                  P._family)})):
+            for _, _, model, cpu in patched_estimates(seed, k + 1, patches, only={k}):
+                d = np.diag(np.asarray(model.added_mass)) * RHO / model.density
+                est = np.diag(np.asarray(model.added_mass_error)) * RHO / model.density
+                err = d / ref - 1.0
+                cover = float(np.min(est / np.maximum(np.abs(d - ref), 1e-300)))
+                lines.append(f"| {what} | {name} | "
+                             + "/".join(map(str, model.conditions["added_mass_panel_levels"]))
+                             + " | " + " | ".join(_pct(x) for x in err)
+                             + f" | {cover:.2f} | {cpu:.1f} |")
+                print(lines[-1], flush=True)
+    if write:
+        with open(OUT, "a") as fh:
+            fh.write("\n".join(lines) + "\n\n")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mesher", nargs="+", default=["bisect", "gmsh"],
@@ -247,10 +296,15 @@ def main(argv=None) -> int:
                     help="shapes K of stored CAD seeds instead of the vehicle file")
     ap.add_argument("--volumes", action="store_true",
                     help="the vehicle file's gmsh halves at --H meshed only: faces, volume, CPU")
+    ap.add_argument("--trial", action="store_true",
+                    help="the --shape shapes' whole estimate as is and with thin members' "
+                         "levels bisected (bisected_thin_family)")
     ap.add_argument("--write", action="store_true", help=f"append to {OUT.relative_to(ROOT)}")
     args = ap.parse_args(argv)
     if args.volumes:
         return volumes(args.H, args.write)
+    if args.trial:
+        return trial(args.shape, args.write)
     cmd = ("OPENBLAS_NUM_THREADS=1 python -m benchmarks.frame_graded_ladder --mesher "
            + " ".join(args.mesher) + " --H " + " ".join(f"{h:g}" for h in args.H)
            + (" --shape " + " ".join(args.shape) if args.shape else ""))
