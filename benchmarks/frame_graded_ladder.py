@@ -32,6 +32,13 @@ through the model's reference point) against that seed's stored reference
 
     OPENBLAS_NUM_THREADS=1 python -m benchmarks.frame_graded_ladder [--mesher bisect gmsh]
         [--H 0.4 0.256 0.181 0.128] [--shape 1795919297:22] [--write]
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.frame_graded_ladder --volumes --H 0.4 ... 0.045
+    OPENBLAS_NUM_THREADS=1 python -m benchmarks.frame_graded_ladder --trial --shape SEED:K ...
+
+``gmsh`` needs the ``graded`` extra (``pip install -e '.[graded]'``).  ``--volumes``: the gmsh
+halves' volume against the surface, no solve.  ``--trial``: each shape's whole estimate as it
+is and with thin members' levels bisected instead of remeshed without flips
+(:func:`bisected_thin_family`), against the seed's most resolved references.
 """
 
 from __future__ import annotations
