@@ -113,7 +113,7 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.regains import refit_gains, with_found_current
+from stripcoef.diagnose.regains import JOINT, refit_gains, with_found_current
 from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
                                          terms_record, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
@@ -147,7 +147,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
-             gains_beside_current: bool = False,
+             gains_beside_current: bool | str = False,
              dof_gains: bool = False,
              cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
@@ -268,7 +268,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        gains_beside_current=bool(gains_beside_current),
+        gains_beside_current=(gains_beside_current if gains_beside_current == JOINT
+                              else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale))
     budget = Budget.start(limit, rows=len(log), source=log.source)

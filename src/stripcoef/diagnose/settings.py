@@ -237,7 +237,7 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
-    gains_beside_current: bool = False
+    gains_beside_current: bool | str = False
     dof_gains: bool = False
     cross_mass_scale: bool = True
 
