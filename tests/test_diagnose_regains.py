@@ -10,7 +10,8 @@ import pytest
 
 from conftest import shipped_model
 from stripcoef.diagnose.gains import fit_thruster_gains, thruster_groups
-from stripcoef.diagnose.regains import found_current, with_found_current
+from stripcoef.diagnose.regains import (current_kept, found_current, with_found_current,
+                                        withdrawn)
 from stripcoef.diagnose.select import select_dofs
 from stripcoef.effects.laws import effect_window_forces
 from stripcoef.effects.windows import window_data
@@ -21,7 +22,34 @@ def _per(*steps):
 
 
 def _step(effect, parameters, final=None):
-    return SimpleNamespace(effect=effect, parameters=parameters, final_parameters=final)
+    return SimpleNamespace(effect=effect, parameters=parameters, final_parameters=final,
+                           not_determined=False)
+
+
+def test_the_gains_fitted_beside_the_current_stand_or_fall_with_it():
+    """Mode "joint": the gains fitted beside the current are its fitted partner, written
+    only while some DOF keeps the current (current_kept); withdrawn, the first pass's
+    record says why."""
+    from stripcoef.diagnose.gains import ThrusterGains
+
+    vc = {"current_north": 0.1, "current_east": 0.0}
+    per = {"surge": SimpleNamespace(steps=(_step("current", vc),)),
+           "sway": SimpleNamespace(steps=(_step("current", vc),))}
+    assert current_kept(per, set())
+    assert current_kept(per, {("effect", "surge", "current")})
+    assert not current_kept(per, {("effect", "surge", "current"),
+                                  ("effect", "sway", "current")})
+    assert not current_kept(_per(_step("buoyancy_offset", {"b": 0.3})), set())
+    g = ThrusterGains(names=("a", "b"), gains=(1.1, 0.9), std=(0.01, 0.01), prior_sd=0.05,
+                      combinations=(), test={}, noise={}, dofs=("surge",), applied=True,
+                      reason="significant")
+    first = ThrusterGains(names=("a", "b"), gains=(1.05, 0.95), std=(0.01, 0.01),
+                          prior_sd=0.05, combinations=(), test={}, noise={},
+                          dofs=("surge",), applied=True, reason="significant")
+    back = withdrawn(g, first)
+    assert back.gains == first.gains and back.applied
+    assert "withdrawn" in back.reason and "1.1" in back.reason
+    assert withdrawn(g, None) is None
 
 
 def test_the_current_found_is_the_shared_one_and_none_without_one():

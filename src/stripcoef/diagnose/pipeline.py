@@ -113,7 +113,8 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.regains import JOINT, refit_gains, with_found_current
+from stripcoef.diagnose.regains import (JOINT, current_kept, refit_gains, with_found_current,
+                                        withdrawn)
 from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
                                          terms_record, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
@@ -336,16 +337,28 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # (regains.py): they are fitted again beside it and the DOFs diagnosed again on them
     water = (with_found_current(prior, per)
              if settings.gains_beside_current and gains is not None else None)
+    first = None
     if water is not None:
+        first = (gains, model, per, fits)
         gains, model, data = refit_gains(water, prior, data0, train_log, val_log, dofs,
                                          excited, settings, budget)
         per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+        if not (settings.gains_beside_current == JOINT and gains is not None
+                and gains.applied):
+            first = None
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs))
+        if first is not None and not current_kept(per, exclude):
+            # mode "joint": the gains fitted beside the current are its partner (regains.py)
+            gains = withdrawn(gains, first[0])
+            model, per, fits = first[1:]
+            exclude, record = validate_changes(val_log, model, per, fits, dofs,
+                                               budget=budget,
+                                               logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

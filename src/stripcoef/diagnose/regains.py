@@ -25,6 +25,24 @@ with the current, and the DOFs are diagnosed again on the prior with the new gai
 the current is selected, shared and validated like any effect: nothing of the first pass
 is written but the gains' values.
 
+**Mode** ``"joint"``. Held at the DOFs' value, the current was itself found beside the
+biased gains, and its error stays in the refitted gains. In this mode the current's two
+components are parameters of the gains' joint fit, free (no prior) and common to every DOF,
+their columns the derivatives of the current's window force at the DOFs' value
+(:func:`current_columns`; one Gauss-Newton step of the joint least squares, Seber & Wild
+1989, sec. 2.1). They are profiled out of the gains' information with the calibration
+(the Schur complement, :func:`stripcoef.diagnose.gains._information`), so the gains'
+likelihood-ratio test and the combinations the log determines are those *beside a free
+current*: a combination the current's columns span is not identified apart from it
+(Rothenberg 1971, Econometrica 39, 577-591, Theorem 1, the rule of
+:func:`stripcoef.diagnose.crossscale.refitted_z`) and stays at the prior. And the gains so
+fitted are the current's fitted partner (as a DOF's effects are its calibration's,
+:func:`stripcoef.diagnose.validate.partners`): they were validated with the current in the
+model, so when the second pass's validation removes the current from every DOF (or no DOF
+selects it) they are not written without it, and the first pass (its gains, fitted
+without a current, and its steps, validated as before) is the diagnosis
+(:func:`current_kept`).
+
 Depends on: diagnose.gains, diagnose.settings, effects, model.
 """
 
@@ -94,6 +112,25 @@ def current_columns(data, vc: dict, dofs) -> dict:
                         / (2.0 * CURRENT_STEP))
         out[i] = np.column_stack(cols)
     return out
+
+
+def current_kept(per: dict, exclude) -> bool:
+    """Whether some DOF of ``per`` (:class:`~stripcoef.diagnose.result.DofResult` per DOF)
+    selected the current and the validation kept it (not in ``exclude``,
+    :func:`~stripcoef.diagnose.validate.validate_changes`' removed changes)."""
+    return any(s.effect == CURRENT and not s.not_determined
+               and ("effect", d, CURRENT) not in exclude
+               for d, r in per.items() for s in r.steps)
+
+
+def withdrawn(gains, first):
+    """The first pass's gains record (``first``, a
+    :class:`~stripcoef.diagnose.gains.ThrusterGains` or None) with why the gains fitted
+    beside the current (``gains``) were withdrawn (module docstring, mode ``"joint"``)."""
+    why = ("; the gains fitted beside the current (" + ", ".join(
+        f"{g:.4g}" for g in gains.gains) + ") withdrawn with it: the validation removed "
+        "the current they were fitted beside (their fitted partner) or no DOF selected it")
+    return None if first is None else replace(first, reason=first.reason + why)
 
 
 def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings, budget):
