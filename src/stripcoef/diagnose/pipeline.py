@@ -206,10 +206,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
-    gains_beside_current : bool
+    gains_beside_current : bool or str
         Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
         beside it and the DOFs diagnosed again on them (:mod:`.regains`; off by default,
-        :attr:`DiagnoseSettings.gains_beside_current`).
+        :attr:`DiagnoseSettings.gains_beside_current`); ``"joint"``: with the current free
+        beside them, and withdrawn with it.
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
         (:attr:`DiagnoseSettings.dof_gains`; off by default).
@@ -250,6 +251,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
                          expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
+    if gains_beside_current not in (False, True, JOINT):
+        raise InputError("not a mode of the gains beside the current",
+                         key="gains_beside_current", value=gains_beside_current,
+                         expected=f"False, True or {JOINT!r}")
     if cross_mass_scale not in (False, True):
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
@@ -269,7 +274,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        gains_beside_current=(gains_beside_current if gains_beside_current == JOINT
+        gains_beside_current=(JOINT if gains_beside_current == JOINT
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale))
