@@ -130,3 +130,10 @@ def test_gains_fitted_with_the_current_free_beside_them_find_both():
                    joint.calibration["shared.current_east"]])
     want = np.asarray(truth.current[:2], float)
     assert np.linalg.norm(vc - want) < 0.1 * np.linalg.norm(want), (vc, want)
+
+
+def test_a_bad_mode_is_a_one_line_input_error():
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.errors import InputError
+    with pytest.raises(InputError, match="gains_beside_current"):
+        diagnose(None, None, time_limit=1.0, gains_beside_current="sometimes")
