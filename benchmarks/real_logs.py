@@ -758,14 +758,18 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (a DOF whose fit contradicts a "
                          "diagnosed DOF's own added mass selected again)")
-    ap.add_argument("--gains-beside-current", action="store_true",
+    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
+                    choices=(True, "joint"), metavar="joint",
                     help="diagnose with gains_beside_current (the thrusters' gains fitted "
-                         "again beside the water current the DOFs found)")
+                         "again beside the water current the DOFs found; 'joint': with the "
+                         "current free beside them)")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
         " --one-added-mass" if args.one_added_mass else "") + (
-        " --gains-beside-current" if args.gains_beside_current else "")
+        (" --gains-beside-current" + ("" if args.gains_beside_current is True
+                                       else f" {args.gains_beside_current}")
+         if args.gains_beside_current else ""))
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)

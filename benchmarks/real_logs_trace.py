@@ -24,7 +24,7 @@ that the thrusters' gains (:mod:`stripcoef.diagnose.gains`, fitted before any ef
 fitted beside it; the held-out errors of its written model against the prior's.
 
 Run:  python -m benchmarks.real_logs_trace --log 2 --split forward [--duration 300] [--seed 7]
-      [--current-in-prior]
+      [--current-in-prior] [--gains-beside-current]
 """
 
 from __future__ import annotations
@@ -79,9 +79,11 @@ def with_current(prior, effects):
 
 
 def trace(k: int, split_name: str, duration: float, seed: int,
-          current_in_prior: bool = False) -> dict:
+          current_in_prior: bool = False, **options) -> dict:
     """The trace of real-style log ``k`` on ``split_name`` (``forward``/``reverse``):
-    ``{"changes", "errors": {variant: (validation, held-out)}, "diagonals", "cpu_s"}``."""
+    ``{"changes", "errors": {variant: (validation, held-out)}, "diagonals", "cpu_s"}``;
+    ``options``: keyword options of :func:`stripcoef.diagnose.diagnose` (e.g.
+    ``gains_beside_current=True``)."""
     import stripcoef.diagnose.pipeline as pipeline
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.calibrate import _changes
@@ -130,7 +132,7 @@ def trace(k: int, split_name: str, duration: float, seed: int,
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             res = diagnose(fit_log, prior, dof="all", holdout=holdout, time_limit=float("inf"),
-                           prior_widths=widths)
+                           prior_widths=widths, **options)
     finally:
         pipeline.validate_changes = original
     got.update(log=name, truth=truth, split=split_name, cpu_s=time.process_time() - c0,
@@ -165,9 +167,15 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--current-in-prior", action="store_true",
                     help="what-if: diagnose again with the current found written into the prior")
+    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
+                    choices=(True, "joint"), metavar="joint",
+                    help="diagnose with the option gains_beside_current ('joint': the "
+                         "current free beside the gains)")
     args = ap.parse_args(argv)
     current_in_prior = args.current_in_prior
-    t = trace(args.log, args.split, args.duration, args.seed, current_in_prior)
+    opts = ({"gains_beside_current": args.gains_beside_current}
+            if args.gains_beside_current else {})
+    t = trace(args.log, args.split, args.duration, args.seed, current_in_prior, **opts)
     dofs = list(next(iter(t["errors"].values()))[1])
     print(f"{t['log']} ({t['truth']}), {t['split']}: validation {t['validation_s'][0]:.0f}-"
           f"{t['validation_s'][1]:.0f} s, held out {t['held_out_s'][0]:.0f}-"

@@ -244,6 +244,21 @@ def _blocks(data, dofs, settings, excited):
     return blocks, names, np.asarray(sd, float)
 
 
+def _with_shared(blocks, names, sd, shared_names, columns):
+    """``(blocks, names, sd)`` of :func:`_blocks` with the parameters ``shared_names``
+    (free: prior sd inf) common to every block, their columns ``columns[dof]`` appended to
+    each DOF's (:func:`fit_thruster_gains`' ``shared``)."""
+    first = len(names)
+    names = list(names) + [f"shared.{n}" for n in shared_names]
+    sd = np.concatenate([sd, np.full(len(shared_names), np.inf)])
+    at = np.arange(first, first + len(shared_names))
+    out = []
+    for i, y, cols, idx, g, inertia in blocks:
+        out.append((i, y, np.column_stack([cols, np.asarray(columns[i], float)]),
+                    np.concatenate([idx, at]), g, inertia))
+    return out, names, sd
+
+
 def _normal_equations(blocks, prior_sd, sigmas, p_basis, with_gains=True):
     r"""``(Lambda, b, kc)``: the corrected normal equations of the joint MAP fit (module
     docstring), the calibration's parameters first (``kc`` of them), then the contrasts.
@@ -328,10 +343,16 @@ def spread_sd(f, r, floor: float = GAIN_SD, ceiling: float = MAX_GAIN_SD) -> flo
 
 
 def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings(), *,
-                       excited=None, budget: Budget = UNLIMITED):
+                       excited=None, budget: Budget = UNLIMITED, shared=None):
     """The joint fit of the thrusters' gains over the diagnosed ``dofs`` (module
     docstring): a :class:`ThrusterGains`, or None when the log has no thrusters' commands,
-    fewer than two thrusters or no diagnosed DOF they drive."""
+    fewer than two thrusters or no diagnosed DOF they drive.
+
+    ``shared``: ``(names, columns)``, parameters common to every DOF fitted free (no prior)
+    beside the calibration, ``columns`` DOF index -> (windows, len(names)) [N or N m per unit
+    of each] (a water current linearised about its value, :mod:`.regains`); profiled out of
+    the contrasts' information like the calibration (:func:`_information`), so that the
+    test and the determined combinations are those of the gains beside them."""
     if data.thrust is None or data.thrust.shape[1] < 2:
         return None
     budget.check()
@@ -344,6 +365,8 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     blocks, cal_names, prior_sd = _blocks(data, dofs, settings, excited)
     if not blocks:
         return None
+    if shared is not None:
+        blocks, cal_names, prior_sd = _with_shared(blocks, cal_names, prior_sd, *shared)
     sigmas = [_sigma(y, cols, np.full(cols.shape[1], np.inf)) for _, y, cols, *_ in blocks]
     gain_sd = GAIN_SD
     for _ in range(NOISE_PASSES):

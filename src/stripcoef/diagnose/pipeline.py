@@ -113,7 +113,8 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.regains import refit_gains, with_found_current
+from stripcoef.diagnose.regains import (JOINT, current_kept, refit_gains, with_found_current,
+                                        withdrawn)
 from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
                                          terms_record, unresolved_timing)
 from stripcoef.diagnose.timing import compare_timing
@@ -147,7 +148,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
-             gains_beside_current: bool = False,
+             gains_beside_current: bool | str = False,
              dof_gains: bool = False,
              cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
@@ -205,10 +206,11 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         not determined by one DOF and not written (:mod:`.undetermined`; on by default);
         False: written from the fit with the prior's thrust map
         (:attr:`DiagnoseSettings.not_determined`).
-    gains_beside_current : bool
+    gains_beside_current : bool or str
         Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
         beside it and the DOFs diagnosed again on them (:mod:`.regains`; off by default,
-        :attr:`DiagnoseSettings.gains_beside_current`).
+        :attr:`DiagnoseSettings.gains_beside_current`); ``"joint"``: with the current free
+        beside them, and withdrawn with it.
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
         (:attr:`DiagnoseSettings.dof_gains`; off by default).
@@ -249,6 +251,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
                          expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
+    if gains_beside_current not in (False, True, JOINT):
+        raise InputError("not a mode of the gains beside the current",
+                         key="gains_beside_current", value=gains_beside_current,
+                         expected=f"False, True or {JOINT!r}")
     if cross_mass_scale not in (False, True):
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
@@ -268,7 +274,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        gains_beside_current=bool(gains_beside_current),
+        gains_beside_current=(JOINT if gains_beside_current == JOINT
+                              else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale))
     budget = Budget.start(limit, rows=len(log), source=log.source)
@@ -335,16 +342,28 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # (regains.py): they are fitted again beside it and the DOFs diagnosed again on them
     water = (with_found_current(prior, per)
              if settings.gains_beside_current and gains is not None else None)
+    first = None
     if water is not None:
+        first = (gains, model, per, fits)
         gains, model, data = refit_gains(water, prior, data0, train_log, val_log, dofs,
                                          excited, settings, budget)
         per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+        if not (settings.gains_beside_current == JOINT and gains is not None
+                and gains.applied):
+            first = None
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs))
+        if first is not None and not current_kept(per, exclude):
+            # mode "joint": the gains fitted beside the current are its partner (regains.py)
+            gains = withdrawn(gains, first[0])
+            model, per, fits = first[1:]
+            exclude, record = validate_changes(val_log, model, per, fits, dofs,
+                                               budget=budget,
+                                               logged=settings.logged_dofs(dofs))
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

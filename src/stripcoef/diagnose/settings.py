@@ -205,11 +205,14 @@ class DiagnoseSettings:
         fit with the prior's thrust map, as before (its c_t +88 % on an independent
         BlueROV2-like log; the written model's validation error 0.9-20 % lower on the
         three such logs measured, docs/performance.md, ``tether33e``)
-    gains_beside_current : bool
+    gains_beside_current : bool or str
         Whole-log: the thrusters' gains, fitted before any effect, fitted again beside the
         water current the DOFs found, and the DOFs diagnosed again on them
-        (:mod:`stripcoef.diagnose.regains`: the omitted-variable bias of the first fit). Off
-        by default: measured on the real-style logs only (benchmarks/data/real33_trace.md)
+        (:mod:`stripcoef.diagnose.regains`: the omitted-variable bias of the first fit).
+        ``True``: the current held at the DOFs' value; ``"joint"``: the current free beside
+        the gains (linearised), and the gains withdrawn with the current when the validation
+        removes it. Off by default: measured on the real-style logs only
+        (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md)
     dof_gains : bool
         One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
         within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
@@ -237,7 +240,7 @@ class DiagnoseSettings:
     validation_others: str = "logged"
     one_added_mass: bool | str = False
     not_determined: bool = True
-    gains_beside_current: bool = False
+    gains_beside_current: bool | str = False
     dof_gains: bool = False
     cross_mass_scale: bool = True
 
