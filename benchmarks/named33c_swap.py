@@ -158,17 +158,45 @@ def run(log, model, dof_name: str, mode: str) -> dict:
                        "kept": s.get("kept", True)} for s in r["steps"]]}
 
 
+def summary(records: list[dict], top: int = 4) -> list[str]:
+    """Markdown lines of :func:`run`'s records (``--summarise``): per log, per swap, the
+    steps named and the first step's ``top`` candidates by held-out gain."""
+    out = []
+    for r in records:
+        steps = "; ".join(f"{s['effect']} ("
+                          + ", ".join(f"{k} {v:.4g}" for k, v in s["parameters"].items())
+                          + ("" if s["kept"] else ", removed") + ")" for s in r["steps"])
+        cands = "; ".join(
+            f"{c['effect']} {100 * c['held_out_gain']:.1f} %, z {c['z']:.1f}, dBIC "
+            f"{c['delta_bic']:.1f}" + ("" if c["p_holm"] is None else
+                                       f", Holm p {c['p_holm']:.2g}")
+            + ("" if c["significant"] else " (refused)") for c in r["candidates"][:top])
+        v = r.get("vuong_top_two")
+        vs = ("" if not v else f" Vuong {v['a']} vs {v['b']}: Z {v['z']:.2f} "
+              f"(effective {v['z_effective']:.2f}, p {v['p_effective']:.2g}).")
+        out.append(f"- {r['vehicle']} {r['category']} {r['seed']} {r['mode']}, prior + truth's "
+                   f"{r['swap']}: error {r['baseline_error']:.4f} -> {r['final_error']:.4f}; "
+                   f"steps: {steps or 'none'}. First step: {cands}.{vs}")
+    return out
+
+
 def main(argv=None) -> int:
     from benchmarks.diagnose_independent import _background, _prior
     from stripcoef.conventions import parse_dof
     from validation.independent import STRENGTHS, generate
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--rows", required=True,
+    ap.add_argument("--summarise", default=None,
+                    help="print the markdown summary of an earlier run's JSON lines (a file)")
+    ap.add_argument("--rows", default="",
                     help="VEHICLE:CATEGORY:SEED:MODE[,...] (MODE dof or all)")
     ap.add_argument("--swaps", default=",".join(SWAPS))
     ap.add_argument("--duration", type=float, default=300.0)
     args = ap.parse_args(argv)
-    for row in args.rows.split(","):
+    if args.summarise:
+        with open(args.summarise) as f:
+            print("\n".join(summary([json.loads(x) for x in f if x.strip()])))
+        return 0
+    for row in filter(None, args.rows.split(",")):
         vehicle, category, seed, mode = row.split(":")
         prior = _prior(vehicle)
         dof_name = STRENGTHS[category][0]
