@@ -832,7 +832,11 @@ def detectability_lines(rows: list[dict]) -> list[str]:
             return ", ".join(f"{r['category']} {r['vehicle']} {r['seed']} {r['mode']} -> "
                              f"{r['first']}" for r in rs) or "none"
         det = [r for r in missed if _detectable(r)]
-        sel = [r for r in det if r.get("first_step_on_prior") is True]
+        # passing its test on the prior, named after a difference the truth's background
+        # carries (buoyancy, thrust gain; :func:`background`): filed apart from the rest
+        sel_all = [r for r in det if r.get("first_step_on_prior") is True]
+        after_bg = [r for r in sel_all if _first_after_background(r) == r["category"]]
+        sel = [r for r in sel_all if r not in after_bg]
         hid = [r for r in det if r.get("first_step_on_prior") is False]
         unknown = [r for r in det if "first_step_on_prior" not in r]
         out += ["", f"Misses (not named first): {len(missed)}. Not detectable on the truth's "
@@ -840,6 +844,9 @@ def detectability_lines(rows: list[dict]) -> list[str]:
                 + said([r for r in missed if not _detectable(r)])
                 + f". Detectable, but the effect's own test fails on the prior (the prior's "
                 f"other errors hide it at the first step): {len(hid)}: " + said(hid)
+                + f". Detectable and passing its test on the prior, named after a "
+                f"difference of the truth's background (buoyancy, thrust gain): "
+                f"{len(after_bg)}: " + said(after_bg)
                 + f". Detectable and passing its test on the prior (the selection's misses): "
                 f"{len(sel)}: " + said(sel)
                 + (f". Detectable, rows without the test on the prior: {len(unknown)}: "
