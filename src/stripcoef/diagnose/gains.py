@@ -58,6 +58,17 @@ calibration's own coefficients (Ljung 1999, sec. 9.2, eq. 9.29;
 the prior (their gains stay near 1); the record lists each combination in thruster
 weights with its value and standard deviation.
 
+**The bound.** A thruster delivers at least :data:`MIN_GAIN` of its map, the bound every
+other thrust factor of the library is held to; a fit that puts a gain below it is not
+written. In a one-DOF balance the contrasts are identified only through the other DOFs'
+commands leaking into the DOF, which a closed-loop pilot correlates with the DOF's own
+motion (Ljung 1999, sec. 13.4), so a thrust-shaped effect the prior omits (a delay, a scale)
+can pull them far past any real spread: on the independent simulator's VideoRay-like logs
+(two horizontal thrusters, their one contrast the yaw command in surge) 29112035 (an
+actuation delay) and 29212036 (a thrust scale) gave a starboard gain of -0.087 and -1.03 for
+the truth's 0.95 and 0.92 of the pair's mean, and the effect was then missed
+(benchmarks/data/gains33c_trace.md).
+
 **When the gains are written.** The fit with the contrasts is tested against the fit
 without them by the likelihood ratio of the joint posterior costs at the joint noise
 levels (as :func:`stripcoef.diagnose.compare.lr_test`; Wilks 1938), :math:`\chi^2` with
@@ -98,6 +109,12 @@ NOISE_PASSES = 3
 #: Largest prior standard deviation of the gains the log may set (:func:`spread_sd`) [-]:
 #: a thruster within +-100 % of its map at 1 sigma (a bound of the search, not a band).
 MAX_GAIN_SD = 1.0
+#: Smallest physical gain of a thruster [-]: it delivers at least 10 % of its map, the bound
+#: the library already holds a thrust scale and a gain to (the thrust asymmetry's scale,
+#: :meth:`~stripcoef.effects.thrust.ThrustAsymmetry.lower_bounds`; the tether's retest with
+#: the gains free, :meth:`~stripcoef.effects.hydrodynamic.TetherDragGainsFree.nuisance_lower`).
+#: A fit that puts a gain below it is not written (:func:`fit_thruster_gains`).
+MIN_GAIN = 0.1
 
 
 @dataclass(frozen=True)
@@ -394,6 +411,12 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     if not out.significant:
         return replace(out, reason=f"not significant: p = {test['p_value']:.3g} > {ALPHA:g} "
                                    f"({k} combinations determined by the log)")
+    low = {n: g for n, g in zip(names, gains) if g < MIN_GAIN}
+    if low:     # a physical bound (module docstring, 'The bound'): not a gain
+        return replace(out, reason=f"significant (p = {test['p_value']:.3g}) but outside the "
+                       "physical bound: " + ", ".join(f"{n} {g:.3g}" for n, g in low.items())
+                       + f" < {MIN_GAIN:g} (a thruster delivers at least {100 * MIN_GAIN:.0f} "
+                       "% of its map): the contrasts took a force that is not theirs")
     return replace(out, applied=True,
                    reason=f"significant: p = {test['p_value']:.3g} <= {ALPHA:g} ({k} "
                           "combinations determined by the log)")

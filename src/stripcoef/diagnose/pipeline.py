@@ -340,7 +340,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                          excited, settings, budget)
         per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
-        per = undetermined.mark(per, fits)
+        per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
