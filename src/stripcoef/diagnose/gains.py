@@ -66,7 +66,7 @@ motion (Ljung 1999, sec. 13.4), so a thrust-shaped effect the prior omits (a del
 can pull them far past any real spread: on the independent simulator's VideoRay-like logs
 (two horizontal thrusters, their one contrast the yaw command in surge) 29112035 (an
 actuation delay) and 29212036 (a thrust scale) gave a starboard gain of -0.087 and -1.03 for
-the truth's 0.95 and 0.92 of the pair's mean, and the effect was then missed
+the truth's 0.94 and 0.92 of the pair's mean, and the effect was then missed
 (benchmarks/data/gains33c_trace.md).
 
 **When the gains are written.** The fit with the contrasts is tested against the fit
@@ -416,7 +416,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
         return replace(out, reason=f"significant (p = {test['p_value']:.3g}) but outside the "
                        "physical bound: " + ", ".join(f"{n} {g:.3g}" for n, g in low.items())
                        + f" < {MIN_GAIN:g} (a thruster delivers at least {100 * MIN_GAIN:.0f} "
-                       "% of its map): the contrasts took a force that is not theirs")
+                       "% of its map, the library's bound on every thrust factor): not written")
     return replace(out, applied=True,
                    reason=f"significant: p = {test['p_value']:.3g} <= {ALPHA:g} ({k} "
                           "combinations determined by the log)")
