@@ -23,7 +23,7 @@ from stripcoef.diagnose.gainfree import retested
 from stripcoef.diagnose.pipeline import diagnose
 from stripcoef.diagnose.gains import MIN_GAIN
 from stripcoef.diagnose.report import text_summary
-from stripcoef.diagnose.settings import MIN_Z
+from stripcoef.diagnose.settings import MIN_Z, DiagnoseSettings
 from stripcoef.diagnose.undetermined import ADVICE, gain_dependence, identified_z, unwritten
 from stripcoef.diagnose.written import window_errors, written_effects
 from stripcoef.diagnose.heldout import split
@@ -53,6 +53,10 @@ def gained():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof="surge", dof_gains=True)
     return log, prior, known, res
+
+
+def test_the_gains_are_fitted_in_one_dof_by_default():
+    assert DiagnoseSettings().dof_gains is True
 
 
 @pytest.mark.slow

@@ -14,6 +14,24 @@ the one thrust nuisance one DOF can write, does not remove it (the contrasts are
 scale). Only a whole-log diagnosis fits the gains over the DOFs and writes them
 (:mod:`.gains`; there c_t 0.204 for 0.2026, +0.8 %).
 
+**The rule** (one, whichever map the model writes). A one-DOF tether is *determined* when
+it is identified apart from the thrusters' gains beside the thrust map the written model
+holds -- the prior's, or the prior's with the gains fitted in the DOF's balance
+(:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`, :mod:`.gains`): (a) its
+own test passes on that map, and (b) refitted with each thruster's gain free beside it
+(:class:`~stripcoef.effects.hydrodynamic.TetherDragGainsFree`), its c_t stays
+:data:`~stripcoef.diagnose.settings.MIN_Z` standard deviations from zero: a parameter is
+locally identified only by the part of its column that the confounders' columns do not
+span (Rothenberg 1971, Econometrica 39, 577-591, Theorem 1), the refit of
+:func:`stripcoef.diagnose.crossscale.refitted_z` that every not-identified-apart rule of the
+diagnosis uses (:func:`identified_z`). A step that fails (a) or (b) is named, its value not
+determined by one DOF, nothing written. On the tests' seeded log
+(``validation.synthetic.gains_off_log``: port and starboard at 0.8 and 1.2 of the map, c_t
+0.1774) the two maps give the two answers of the one rule: on the prior's map the tether's
+test fails and only the retest finds it (not determined, gain-free c_t 0.1995 reported);
+with the gains fitted in surge (0.72 and 1.28) it passes there, 9.1 sd from zero with the
+gains free, and c_t 0.181 (+2.0 %) is written beside them.
+
 So in a one-DOF diagnosis a step of an effect with a gain-free variant
 (:func:`.gainfree.variant`) that the selection found only through the retest with the gains
 free (the test with the prior's map failed: the evidence for it is the gain-free fit's) is
