@@ -36,7 +36,9 @@ of its DOF (:data:`NOISE_PASSES` passes).
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
 on the diagnosed DOF's balance alone. A BlueROV2's four vectored thrusters at different gains
 push in surge at every sway and yaw command; a surge diagnosis on the file's map bent its drag
-and the other added masses to that force (issue 33, benchmarks/data/cut33_trace.md).
+and the other added masses to that force (issue 33, benchmarks/data/cut33_trace.md). On by
+default (``gains33c``: one-DOF named first 39 -> 40 and error cut >= 3x 31 -> 38 of 44 on the
+independent simulator's seed 29112026, docs/performance.md).
 
 **The prior.** :math:`\sigma_g` is at least :data:`GAIN_SD`, the bench uncertainty of the
 thrust maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I:
