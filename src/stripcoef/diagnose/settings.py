@@ -215,11 +215,11 @@ class DiagnoseSettings:
         within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
         whole-log diagnosis fits them over its DOFs, and kept as the prior of the rest of
         the diagnosis when significant, within the physical bound (``gains.MIN_GAIN``) and
-        validated. On by default (``gains33c``): on the one-DOF rows of the independent
-        simulator's seed 29112026 (the rows it changes rerun, the others as stored) named
-        first 39 -> 40 of 44, error cut >= 3x 31 -> 38, clean logs and dry friction
-        unchanged; a fresh seed's six logs (1795929680) named first 5 -> 5, cut 4 -> 5
-        (docs/performance.md; benchmarks/data/gains33c_trace.md). A tether found on the
+        validated. On by default (``gains33c``): on every one-DOF row of the independent
+        simulator's seed 29112026 named first 39 -> 40 of 44, magnitude within 15 % 34 -> 38,
+        error cut >= 3x 31 -> 38, clean logs and dry friction unchanged; a fresh seed's six
+        logs (1795929680) named first 5 -> 5, cut 4 -> 5 (docs/performance.md;
+        benchmarks/data/gains33c_trace.md). A tether found on the
         gained map is written when it is identified apart from the gains
         (:mod:`stripcoef.diagnose.undetermined`'s one rule). False: the prior's map
     cross_mass_scale : bool
