@@ -98,7 +98,7 @@ def truth_dict(prior, truth) -> dict:
 
 
 def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 300.0,
-          dof_gains: bool = False) -> dict:
+          dof_gains: bool = True) -> dict:
     """The record of one log (module docstring; ``dof_gains``: diagnose's option)."""
     from stripcoef.conventions import parse_dof
     from stripcoef.diagnose.calibrate import calibrated_model
@@ -172,7 +172,10 @@ def main(argv=None) -> int:
     ap.add_argument("--rows", required=True,
                     help="comma-separated VEHICLE:CATEGORY:SEED:MODE (mode dof or all)")
     ap.add_argument("--duration", type=float, default=300.0)
-    ap.add_argument("--dof-gains", action="store_true", help="diagnose's dof_gains")
+    ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
+                    help="diagnose's dof_gains (its default)")
+    ap.add_argument("--no-dof-gains", dest="dof_gains", action="store_false",
+                    help="diagnose with dof_gains=False")
     args = ap.parse_args(argv)
     for spec in args.rows.split(","):
         vehicle, category, seed, mode = spec.split(":")

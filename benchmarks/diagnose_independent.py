@@ -97,7 +97,7 @@ def with_truth_maps(prior, truth):
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
             modes: tuple, validation_others: str = "logged",
             truth_maps: bool = False, one_added_mass: bool = False,
-            dof_gains: bool = False, gains_beside_current: bool | str = False) -> list[dict]:
+            dof_gains: bool = True, gains_beside_current: bool | str = False) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
     (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
     against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
@@ -174,7 +174,7 @@ def _background(truth, prior: dict) -> dict:
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
                validation_others: str = "logged", one_added_mass: bool = False,
-               dof_gains: bool = False, options: dict | None = None) -> dict:
+               dof_gains: bool = True, options: dict | None = None) -> dict:
     """One log diagnosed in one mode: the row of the score table (``one_added_mass``,
     ``dof_gains``: diagnose's options, recorded in the row; ``options``: further keyword
     arguments of diagnose, e.g. ``cross_mass_scale``)."""
@@ -925,9 +925,12 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
-    ap.add_argument("--dof-gains", action="store_true",
+    ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
-                         "the DOF's balance, as whole-log fits them over its DOFs)")
+                         "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
+                         "default since gains33c)")
+    ap.add_argument("--no-dof-gains", dest="dof_gains", action="store_false",
+                    help="diagnose with dof_gains=False (one DOF on the prior's thrust map)")
     ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
                     choices=(True, "joint"), metavar="joint",
                     help="diagnose with gains_beside_current (whole-log: the thrusters' gains "

@@ -1,7 +1,12 @@
-"""What one DOF cannot determine (``stripcoef.diagnose.undetermined``, issue 33): a tether found
-only by the retest with each thruster's gain free is named, its c_t reported as not
-determined by one DOF (the gain-free value and its sd), nothing written; and the independent
-benchmark scores it named first, its magnitude not claimed.
+"""What one DOF cannot determine (``stripcoef.diagnose.undetermined``, issue 33). The rule: a
+one-DOF tether is determined when it is identified apart from the thrusters' gains beside the
+map the model writes -- its test passes on that map, and refitted with each gain free beside
+it its c_t stays MIN_Z sd from zero (Rothenberg 1971; ``crossscale.refitted_z``). On the prior's
+map (``dof_gains=False``) a tether found only by the retest with each thruster's gain free is
+named, its c_t reported as not determined by one DOF (the gain-free value and its sd),
+nothing written; with the gains fitted in the DOF (``dof_gains``, the default) the same log's
+tether is found on the gained map, identified apart from the gains, and written. The
+independent benchmark scores a step not determined as named first, its magnitude not claimed.
 
 The seeded known truth: the synthetic ROV (validation/synthetic.py) whose port and starboard
 thrusters deliver 0.8 and 1.2 of the prior's map (a real vehicle's thrusters differ from their
@@ -16,8 +21,10 @@ import pytest
 
 from stripcoef.diagnose.gainfree import retested
 from stripcoef.diagnose.pipeline import diagnose
+from stripcoef.diagnose.gains import MIN_GAIN
 from stripcoef.diagnose.report import text_summary
-from stripcoef.diagnose.undetermined import ADVICE, gain_dependence, unwritten
+from stripcoef.diagnose.settings import MIN_Z, DiagnoseSettings
+from stripcoef.diagnose.undetermined import ADVICE, gain_dependence, identified_z, unwritten
 from stripcoef.diagnose.written import window_errors, written_effects
 from stripcoef.diagnose.heldout import split
 from stripcoef.diagnose.settings import VALIDATION_FRACTION
@@ -30,11 +37,71 @@ GAINS = GAINS_OFF
 
 @pytest.fixture(scope="module")
 def surge():
+    """The rule on the prior's map: the gains not fitted in the DOF (``dof_gains=False``)."""
     log, prior, known = gains_off_log()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = diagnose(log, prior, dof="surge")
+        res = diagnose(log, prior, dof="surge", dof_gains=False)
     return log, prior, known, res
+
+
+@pytest.fixture(scope="module")
+def gained():
+    """The same log diagnosed as by default: the gains fitted in the DOF's balance."""
+    log, prior, known = gains_off_log()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof="surge", dof_gains=True)
+    return log, prior, known, res
+
+
+def test_the_gains_are_fitted_in_one_dof_by_default():
+    assert DiagnoseSettings().dof_gains is True
+
+
+@pytest.mark.slow
+def test_with_the_gains_fitted_the_tether_is_identified_apart_from_them_and_written(gained):
+    """The one rule on the gained map: the tether's test passes there (no retest), with each
+    gain free beside it c_t stays MIN_Z sd from zero (the refit of crossscale.refitted_z,
+    the same as gain_dependence's gain-free fit), so it is determined and written, near the
+    truth (measured c_t 0.181 for 0.1774), beside the gains it was fitted with (port 0.72,
+    starboard 1.28 for the truth's 0.8 and 1.2)."""
+    log, prior, known, res = gained
+    gains = res.thruster_gains
+    assert gains["applied"], gains["reason"]
+    for name, truth in (("port", 0.8), ("starboard", 1.2)):
+        assert abs(gains["gains"][name] - truth) < 3.0 * gains["std"][name]
+    r = res.per_dof["surge"]
+    step = r.steps[0]
+    assert step.effect == "tether_drag" and not retested(step)
+    assert step.not_determined is None and step.kept
+    test = gain_dependence(step, res.fits["surge"])
+    z = identified_z(step, res.fits["surge"])
+    assert z == pytest.approx(abs(test["gains_free"]) / test["gains_free_std"], rel=1e-6)
+    assert z >= MIN_Z
+    c_t = written_effects(res.model, "surge")["tether_drag"]["c_t"]
+    assert c_t == pytest.approx(step.final_parameters["c_t"], rel=1e-9)
+    assert c_t == pytest.approx(known["magnitude"], rel=0.10)
+    # the written model holds the gains (its thrusters' efficiencies)
+    eff = {th.name: th.eta_forward / p.eta_forward
+           for th, p in zip(res.model.thrusters, prior.thrusters)}
+    assert eff["port"] == pytest.approx(gains["gains"]["port"], rel=1e-9)
+
+
+def test_a_gain_below_the_physical_bound_is_not_written():
+    """A one-DOF gain fit that puts a thruster under MIN_GAIN of its map (here the truth's
+    own port thruster at 5 %: fitted 0.02) is not written: the bound every thrust factor of
+    the library is held to (gains.MIN_GAIN)."""
+    log, prior, _ = gains_off_log(gains={"port": 0.05, "starboard": 1.95, "vertical": 1.0,
+                                         "lateral": 1.0})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = diagnose(log, prior, dof="surge", dof_gains=True)
+    gains = res.thruster_gains
+    assert min(gains["gains"].values()) < MIN_GAIN
+    assert not gains["applied"] and "physical bound" in gains["reason"]
+    assert [th.eta_forward for th in res.model.thrusters] == pytest.approx(
+        [th.eta_forward for th in prior.thrusters], rel=1e-12)
 
 
 @pytest.mark.slow
@@ -82,7 +149,7 @@ def test_the_gain_test_of_a_tether_with_the_right_map_does_not_move(surge):
     truth_map = with_gains(prior, GAINS)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = diagnose(log, truth_map, dof="surge")
+        res = diagnose(log, truth_map, dof="surge", dof_gains=False)
     step = res.per_dof["surge"].steps[0]
     assert step.effect == "tether_drag" and not retested(step)
     assert step.not_determined is None and step.kept
@@ -127,7 +194,7 @@ def test_the_option_off_writes_the_prior_maps_fit_as_before(surge):
     nd = res.per_dof["surge"].steps[0].not_determined
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        old = diagnose(log, prior, dof="surge", not_determined=False)
+        old = diagnose(log, prior, dof="surge", not_determined=False, dof_gains=False)
     step = old.per_dof["surge"].steps[0]
     assert step.effect == "tether_drag" and step.not_determined is None
     assert step.kept

@@ -36,7 +36,9 @@ of its DOF (:data:`NOISE_PASSES` passes).
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
 on the diagnosed DOF's balance alone. A BlueROV2's four vectored thrusters at different gains
 push in surge at every sway and yaw command; a surge diagnosis on the file's map bent its drag
-and the other added masses to that force (issue 33, benchmarks/data/cut33_trace.md).
+and the other added masses to that force (issue 33, benchmarks/data/cut33_trace.md). On by
+default (``gains33c``: one-DOF named first 39 -> 40 and error cut >= 3x 31 -> 38 of 44 on the
+independent simulator's seed 29112026, docs/performance.md).
 
 **The prior.** :math:`\sigma_g` is at least :data:`GAIN_SD`, the bench uncertainty of the
 thrust maps (:data:`~stripcoef.effects.base.THRUST_BAND`, 5 %, Wang & Clark 2006 Table I:
@@ -57,6 +59,17 @@ calibration's own coefficients (Ljung 1999, sec. 9.2, eq. 9.29;
 :func:`~stripcoef.diagnose.fit._identifiability`). The MAP estimate keeps the others at
 the prior (their gains stay near 1); the record lists each combination in thruster
 weights with its value and standard deviation.
+
+**The bound.** A thruster delivers at least :data:`MIN_GAIN` of its map, the bound every
+other thrust factor of the library is held to; a fit that puts a gain below it is not
+written. In a one-DOF balance the contrasts are identified only through the other DOFs'
+commands leaking into the DOF, which a closed-loop pilot correlates with the DOF's own
+motion (Ljung 1999, sec. 13.4), so a thrust-shaped effect the prior omits (a delay, a scale)
+can pull them far past any real spread: on the independent simulator's VideoRay-like logs
+(two horizontal thrusters, their one contrast the yaw command in surge) 29112035 (an
+actuation delay) and 29212036 (a thrust scale) gave a starboard gain of -0.087 and -1.03 for
+the truth's 0.94 and 0.92 of the pair's mean, and the effect was then missed
+(benchmarks/data/gains33c_trace.md).
 
 **When the gains are written.** The fit with the contrasts is tested against the fit
 without them by the likelihood ratio of the joint posterior costs at the joint noise
@@ -98,6 +111,12 @@ NOISE_PASSES = 3
 #: Largest prior standard deviation of the gains the log may set (:func:`spread_sd`) [-]:
 #: a thruster within +-100 % of its map at 1 sigma (a bound of the search, not a band).
 MAX_GAIN_SD = 1.0
+#: Smallest physical gain of a thruster [-]: it delivers at least 10 % of its map, the bound
+#: the library already holds a thrust scale and a gain to (the thrust asymmetry's scale,
+#: :meth:`~stripcoef.effects.thrust.ThrustAsymmetry.lower_bounds`; the tether's retest with
+#: the gains free, :meth:`~stripcoef.effects.hydrodynamic.TetherDragGainsFree.nuisance_lower`).
+#: A fit that puts a gain below it is not written (:func:`fit_thruster_gains`).
+MIN_GAIN = 0.1
 
 
 @dataclass(frozen=True)
@@ -417,6 +436,12 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     if not out.significant:
         return replace(out, reason=f"not significant: p = {test['p_value']:.3g} > {ALPHA:g} "
                                    f"({k} combinations determined by the log)")
+    low = {n: g for n, g in zip(names, gains) if g < MIN_GAIN}
+    if low:     # a physical bound (module docstring, 'The bound'): not a gain
+        return replace(out, reason=f"significant (p = {test['p_value']:.3g}) but outside the "
+                       "physical bound: " + ", ".join(f"{n} {g:.3g}" for n, g in low.items())
+                       + f" < {MIN_GAIN:g} (a thruster delivers at least {100 * MIN_GAIN:.0f} "
+                       "% of its map, the library's bound on every thrust factor): not written")
     return replace(out, applied=True,
                    reason=f"significant: p = {test['p_value']:.3g} <= {ALPHA:g} ({k} "
                           "combinations determined by the log)")

@@ -76,10 +76,13 @@ Steps, for each degree of freedom (issue 7):
    joint lag or delay not resolved is withdrawn; a DOF's own steps are judged again in its
    written model; a bias outside heave, roll and pitch must stand beside the thrusters'
    gains).
-   In a one-DOF diagnosis a step whose value depends on the thrusters' gains (a tether
-   found only with each thruster's gain free, or whose c_t moves when they are freed) is
-   named with its value "not determined by one DOF" and not written
-   (:mod:`.undetermined`: the whole-log diagnosis writes the gains).
+   A one-DOF diagnosis fits the same gains in its DOF's balance (``dof_gains``, on by
+   default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written). In a one-DOF
+   diagnosis a tether not identified apart from the thrusters' gains beside the map the
+   model writes (found only with each thruster's gain free, or whose c_t, refitted with
+   them free, is under ``MIN_Z`` sd from zero) is named with its value "not determined by
+   one DOF" and not written (:mod:`.undetermined`: the whole-log diagnosis writes the
+   gains).
 5. **What remains**: a generic basis (velocities of every DOF, their squares and cubes,
    signs, applied force, heading, other logged channels) is fitted to the final residual; if
    it cuts the held-out error by ``UNEXPLAINED_GAIN`` the residual is still structured and,
@@ -149,7 +152,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation_others: str = "logged",
              one_added_mass: bool = False, not_determined: bool = True,
              gains_beside_current: bool | str = False,
-             dof_gains: bool = False,
+             dof_gains: bool = True,
              cross_mass_scale: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
@@ -202,9 +205,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         on the sd of the two estimates' difference, :data:`~stripcoef.diagnose.settings.
         ONE_ADDED_MASS`).
     not_determined : bool
-        One DOF: a tether found only with the thrusters' gains free is named with its c_t
-        not determined by one DOF and not written (:mod:`.undetermined`; on by default);
-        False: written from the fit with the prior's thrust map
+        One DOF: a tether not identified apart from the thrusters' gains beside the written
+        map is named with its c_t not determined by one DOF and not written
+        (:mod:`.undetermined`; on by default); False: written from the fit on that map
         (:attr:`DiagnoseSettings.not_determined`).
     gains_beside_current : bool or str
         Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
@@ -213,7 +216,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         beside them, and withdrawn with it.
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
-        (:attr:`DiagnoseSettings.dof_gains`; off by default).
+        (:attr:`DiagnoseSettings.dof_gains`; on by default); False: the prior's map.
     cross_mass_scale : bool
         Whole-log: a thrust scale must stay identified with the other DOFs' added masses
         free beside it (:mod:`.crossscale`; on by default); False: not tested
@@ -352,7 +355,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                 and gains.applied):
             first = None
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
-        per = undetermined.mark(per, fits)
+        per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None
     if val_log is not None:
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,

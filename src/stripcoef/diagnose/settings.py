@@ -217,11 +217,14 @@ class DiagnoseSettings:
         One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
         within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
         whole-log diagnosis fits them over its DOFs, and kept as the prior of the rest of
-        the diagnosis when significant and validated. Off by default: on 19 one-DOF logs of
-        the independent simulator it gives the error cut >= 3x in 14 instead of 7, named
-        first unchanged (benchmarks/data/cut33_trace.md), but a tether it finds on the
-        gained map is then written where :mod:`stripcoef.diagnose.undetermined` reports it
-        as not determined by one DOF; that rule and its tests are to be revisited first
+        the diagnosis when significant, within the physical bound (``gains.MIN_GAIN``) and
+        validated. On by default (``gains33c``): on every one-DOF row of the independent
+        simulator's seed 29112026 named first 39 -> 40 of 44, magnitude within 15 % 34 -> 38,
+        error cut >= 3x 31 -> 38, clean logs and dry friction unchanged; a fresh seed's six
+        logs (1795929680) named first 5 -> 5, cut 4 -> 5 (docs/performance.md;
+        benchmarks/data/gains33c_trace.md). A tether found on the
+        gained map is written when it is identified apart from the gains
+        (:mod:`stripcoef.diagnose.undetermined`'s one rule). False: the prior's map
     cross_mass_scale : bool
         Whole-log: a thrust scale must stay ``MIN_Z`` sd from 1 with the other DOFs' added
         masses its calibration holds free beside it (:mod:`stripcoef.diagnose.crossscale`;
@@ -241,7 +244,7 @@ class DiagnoseSettings:
     one_added_mass: bool | str = False
     not_determined: bool = True
     gains_beside_current: bool | str = False
-    dof_gains: bool = False
+    dof_gains: bool = True
     cross_mass_scale: bool = True
 
     def logged_dofs(self, dofs) -> list:

@@ -14,6 +14,24 @@ the one thrust nuisance one DOF can write, does not remove it (the contrasts are
 scale). Only a whole-log diagnosis fits the gains over the DOFs and writes them
 (:mod:`.gains`; there c_t 0.204 for 0.2026, +0.8 %).
 
+**The rule** (one, whichever map the model writes). A one-DOF tether is *determined* when
+it is identified apart from the thrusters' gains beside the thrust map the written model
+holds -- the prior's, or the prior's with the gains fitted in the DOF's balance
+(:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`, :mod:`.gains`): (a) its
+own test passes on that map, and (b) refitted with each thruster's gain free beside it
+(:class:`~stripcoef.effects.hydrodynamic.TetherDragGainsFree`), its c_t stays
+:data:`~stripcoef.diagnose.settings.MIN_Z` standard deviations from zero: a parameter is
+locally identified only by the part of its column that the confounders' columns do not
+span (Rothenberg 1971, Econometrica 39, 577-591, Theorem 1), the refit of
+:func:`stripcoef.diagnose.crossscale.refitted_z` that every not-identified-apart rule of the
+diagnosis uses (:func:`identified_z`). A step that fails (a) or (b) is named, its value not
+determined by one DOF, nothing written. On the tests' seeded log
+(``validation.synthetic.gains_off_log``: port and starboard at 0.8 and 1.2 of the map, c_t
+0.1774) the two maps give the two answers of the one rule: on the prior's map the tether's
+test fails and only the retest finds it (not determined, gain-free c_t 0.1995 reported);
+with the gains fitted in surge (0.72 and 1.28) it passes there, 9.1 sd from zero with the
+gains free, and c_t 0.181 (+2.0 %) is written beside them.
+
 So in a one-DOF diagnosis a step of an effect with a gain-free variant
 (:func:`.gainfree.variant`) that the selection found only through the retest with the gains
 free (the test with the prior's map failed: the evidence for it is the gain-free fit's) is
@@ -38,7 +56,7 @@ that one DOF does not write (the written model would not be the fitted one) and 
 benchmark's BlueROV2-like logs it is within 15 % on 2 of 4 (``tether33d``,
 docs/performance.md).
 
-Depends on: effects, diagnose.gainfree, diagnose.fit.
+Depends on: effects, diagnose.gainfree, diagnose.fit, diagnose.settings, diagnose.crossscale.
 """
 
 from __future__ import annotations
@@ -50,6 +68,7 @@ import numpy as np
 
 from stripcoef.diagnose.fit import _fit
 from stripcoef.diagnose.gainfree import retested, variant
+from stripcoef.diagnose.settings import MIN_Z
 
 #: What the text, the JSON and the report say to do about such a step
 ADVICE = ("run the whole-log diagnosis (--dof all; diagnose(dof='all')), which fits each "
@@ -101,20 +120,56 @@ def gain_dependence(step, fit) -> dict | None:
             "retested": retested(step)}
 
 
-def mark(per: dict, fits: dict) -> dict:
+def identified_z(step, fit) -> float | None:
+    """How far the parameter of step ``step`` (an effect with a gain-free variant, the
+    tether's) of the DOF whose final fit is ``fit`` stays from zero when refitted with each
+    thruster's gain free beside it, in standard deviations [-]: the refit of
+    :func:`stripcoef.diagnose.crossscale.refitted_z`, the rule every not-identified-apart
+    test of the diagnosis uses (Rothenberg 1971, Theorem 1: identified only by the part of
+    its column the gains' columns do not span). None for another effect or a singular
+    refit."""
+    from stripcoef.diagnose.crossscale import refitted_z
+
+    cfg = fit.config
+    at = [k for k, (e, _) in enumerate(cfg.terms) if e.name == step.effect]
+    if not at:
+        return None
+    eff, hyper = cfg.terms[at[0]]
+    alt = variant(eff)
+    if alt is None or len(eff.parameters) != 1:
+        return None
+    last = cfg.with_terms([t for k, t in enumerate(cfg.terms) if k != at[0]] + [(eff, hyper)])
+    got = refitted_z(last, (alt, hyper))
+    return None if got is None else got[1]
+
+
+def mark(per: dict, fits: dict, gained: bool = False) -> dict:
     """The per-DOF results ``per`` of a one-DOF diagnosis (DOF -> :class:`DofResult`; new
-    ones) with :attr:`Step.not_determined` set on each step found only with the thrusters'
-    gains free (module docstring), ``fits``: DOF -> :class:`DofFit`."""
+    ones) with :attr:`Step.not_determined` set on each step that one DOF does not determine
+    (module docstring, 'The rule'): found only with the thrusters' gains free, or, found
+    on the written map, not identified apart from the gains (:func:`identified_z`).
+    ``fits``: DOF -> :class:`DofFit`; ``gained``: whether the written map holds the gains
+    fitted in the DOF (``dof_gains``), for the record's words."""
     out = {}
+    where = ("the thrust map with the gains fitted in this DOF" if gained
+             else "the prior's thrust map")
     for d, r in per.items():
         steps = []
         for s in r.steps:
-            test = gain_dependence(s, fits[d]) if retested(s) else None
-            if test is not None:
+            test = gain_dependence(s, fits[d])
+            z = identified_z(s, fits[d]) if test is not None and not retested(s) else None
+            why = None
+            if test is not None and retested(s):
                 name = test["parameter"]
-                why = ("found only with each thruster's gain free (the test with the prior's "
-                       f"thrust map failed; its {name} moves by {test['z']:.1f} standard "
+                why = (f"found only with each thruster's gain free (the test with {where} "
+                       f"failed; its {name} moves by {test['z']:.1f} standard "
                        "deviations of the difference when the gains are freed)")
+            elif z is not None and z < MIN_Z:
+                name = test["parameter"]
+                why = (f"found with {where}, but not identified apart from the thrusters' "
+                       f"gains: with each gain free beside it its {name} is {z:.1f} "
+                       f"standard deviations from zero (< {MIN_Z:g})")
+            if why is not None:
                 s = replace(s, not_determined={
                     **test, "reason": f"{s.effect} in {d}: {why}; its {name} depends on the "
                                       "thrusters' gains, which one DOF does not determine: "
