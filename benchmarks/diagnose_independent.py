@@ -97,12 +97,11 @@ def with_truth_maps(prior, truth):
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
             modes: tuple, validation_others: str = "logged",
             truth_maps: bool = False, one_added_mass: bool = False,
-            dof_gains: bool = True, gains_beside_current: bool | str = False) -> list[dict]:
+            dof_gains: bool = True, options: dict | None = None) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
     (``validation_others``: :func:`stripcoef.diagnose.pipeline.diagnose`'s; ``truth_maps``:
     against the prior with the truth's thrust maps, :func:`with_truth_maps`, the gains of
-    the background removed; ``one_added_mass``, ``dof_gains``, ``gains_beside_current``:
-    diagnose's)."""
+    the background removed; ``one_added_mass``, ``dof_gains``, ``options``: diagnose's)."""
     from validation.independent import OUTSIDE, STRENGTHS, generate
 
     prior = _prior(vehicle)
@@ -114,9 +113,7 @@ def run_one(vehicle: str, category: str | None, seed: int, duration: float,
     t1 = time.process_time()
     found = _oracle(log, prior, truth)
     rows = [{**_diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t1 - t0,
-                          validation_others, one_added_mass, dof_gains,
-                          ({"gains_beside_current": gains_beside_current}
-                           if gains_beside_current else None)),
+                          validation_others, one_added_mass, dof_gains, options),
              **_background(truth, prior.to_dict()), **found} for mode in modes]
     for row in rows:
         if row["mode"] == "all":
@@ -925,6 +922,9 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
+    ap.add_argument("--drag-couplings", action="store_true",
+                    help="diagnose with drag_couplings (a moment DOF's calibration holds its "
+                         "drag couplings to the translations)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -965,7 +965,10 @@ def main(argv=None) -> int:
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
                              args.validation_others, args.truth_maps, args.one_added_mass,
-                             args.dof_gains, args.gains_beside_current))
+                             args.dof_gains,
+                             {k: v for k, v in (("gains_beside_current", args.gains_beside_current),
+                                                ("drag_couplings", args.drag_couplings)) if v}
+                             or None))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

@@ -7,7 +7,7 @@ not of a DOF: :func:`share_timing` fits it once for all the DOFs the thrusters d
 water current, one vector of the water, likewise: :mod:`stripcoef.diagnose.current`).
 
 Depends on: model, conventions, diagnose.priors, diagnose.settings, diagnose.fit,
-diagnose.cross.
+diagnose.cross, diagnose.couplings.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.couplings import coupling_dof
 from stripcoef.diagnose.cross import shared_value, with_known
 from stripcoef.diagnose.fit import _Config, _fit, _solve, grid_minimum, refit
 from stripcoef.diagnose.priors import added_mass_bounds
@@ -317,6 +318,9 @@ def _build(model, per: dict, fitted: dict):
                 continue
             if key in ("M", "D_L", "D_Q"):
                 mats[key][i, i] += value
+                applied[key] = float(value)
+            elif coupling_dof(key) is not None:    # a drag coupling D_Q[i, j] (couplings)
+                mats["D_Q"][i, coupling_dof(key)] += value
                 applied[key] = float(value)
             elif key.startswith("M_") and key[2:] not in per:
                 # a DOF that moves but is not diagnosed: its added mass may be calibrated

@@ -23,6 +23,7 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from stripcoef.conventions import DOF, parse_dof
+from stripcoef.diagnose.couplings import coupling_bounds, coupling_dof, coupling_keys
 from stripcoef.diagnose.priors import TERM_MATRIX, added_mass_bounds
 from stripcoef.diagnose.settings import (DEFAULT_WINDOW, MIN_INFORMATION_RATIO, N_BLOCKS,
                                          UNLIMITED, Budget, DiagnoseSettings)
@@ -247,6 +248,9 @@ class _Config:
                 lo, hi = added_mass_bounds(owner, prior[j], settings.band_sd(owner))
                 self.cal_lower[j] = max(self.cal_lower[j], lo - prior[j])
                 self.cal_upper[j] = hi - prior[j]
+            elif coupling_dof(key) is not None:    # a drag coupling keeps its sign
+                self.cal_lower[j], self.cal_upper[j] = coupling_bounds(
+                    prior[j], cal.band[key])
         self.cal_has_m = (len(self.cal_sd) > 0
                           and float(data.model.added_mass[dof, dof]) != 0.0
                           and (self.cal_names is None or self.cal_names[:1] == ["M"]))
@@ -651,6 +655,19 @@ def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
         sd.append(b[key] * abs(value))
         names.append(key)
         prior.append(value)
+    # option: a moment DOF's drag couplings D_Q[dof, j], each with the band of the
+    # translation j's own D_Q (diagnose.couplings)
+    for key in (coupling_keys(m, dof, cross) if settings.drag_couplings else ()):
+        j = coupling_dof(key)
+        col = coefficient_column(data, dof, key)
+        if not np.any(np.abs(col) > 0.0):
+            continue
+        value = float(m.quadratic_damping[dof, j])
+        b[key] = bands["translational"]["D_Q"]
+        cols.append(col)
+        sd.append(b[key] * abs(value))
+        names.append(key)
+        prior.append(value)
     cols = np.column_stack(cols) if cols else np.zeros((data.n_windows, 0))
     return Calibration(cols, np.asarray(sd, float), tuple(names), np.asarray(prior, float), b)
 
@@ -662,9 +679,11 @@ def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:
     widths = settings.widths
     out = {}
     for n in names:
-        owner = dof if n in TERM_MATRIX else parse_dof(n[2:])
+        coupled = coupling_dof(n)
+        owner = (dof if n in TERM_MATRIX else coupled if coupled is not None
+                 else parse_dof(n[2:]))
         kind = "translational" if owner < 3 else "rotational"
-        term = n if n in TERM_MATRIX else "M"
+        term = n if n in TERM_MATRIX else "D_Q" if coupled is not None else "M"
         if widths is not None:
             out[n] = widths.rows[kind][term]
         elif settings.bands is not None:
@@ -690,7 +709,9 @@ def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> di
     """
     reasons, ratios = {}, {}
     for n in names:
-        owner = dof if n in ("M", "D_L", "D_Q") else parse_dof(n[2:])
+        coupled = coupling_dof(n)
+        owner = (dof if n in ("M", "D_L", "D_Q") else coupled if coupled is not None
+                 else parse_dof(n[2:]))
         if owner not in excited:
             reasons[n] = f"{DOF[owner]} is not excited in this log"
     keep = [j for j, n in enumerate(names) if n not in reasons]

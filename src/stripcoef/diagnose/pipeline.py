@@ -153,7 +153,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              one_added_mass: bool = False, not_determined: bool = True,
              gains_beside_current: bool | str = False,
              dof_gains: bool = True,
-             cross_mass_scale: bool = True) -> Diagnosis:
+             cross_mass_scale: bool = True,
+             drag_couplings: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -221,6 +222,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Whole-log: a thrust scale must stay identified with the other DOFs' added masses
         free beside it (:mod:`.crossscale`; on by default); False: not tested
         (:attr:`DiagnoseSettings.cross_mass_scale`).
+    drag_couplings : bool
+        A moment DOF's calibration also holds its drag couplings to the translations
+        (:mod:`.couplings`; off by default, :attr:`DiagnoseSettings.drag_couplings`).
 
     Returns
     -------
@@ -280,7 +284,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         gains_beside_current=(JOINT if gains_beside_current == JOINT
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
-        cross_mass_scale=bool(cross_mass_scale))
+        cross_mass_scale=bool(cross_mass_scale),
+        drag_couplings=bool(drag_couplings))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

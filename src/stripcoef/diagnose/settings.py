@@ -229,6 +229,11 @@ class DiagnoseSettings:
         Whole-log: a thrust scale must stay ``MIN_Z`` sd from 1 with the other DOFs' added
         masses its calibration holds free beside it (:mod:`stripcoef.diagnose.crossscale`;
         a closed loop's Coriolis feed-forward, issue 33; on by default). False: not tested
+    drag_couplings : bool
+        A moment DOF's calibration also holds its quadratic drag couplings
+        :math:`D_Q[i, j]` to the translations that move (the moments of their drag forces;
+        :mod:`stripcoef.diagnose.couplings`), written into the model. Off by default:
+        measured in benchmarks/data/drag33c_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -246,6 +251,7 @@ class DiagnoseSettings:
     gains_beside_current: bool | str = False
     dof_gains: bool = True
     cross_mass_scale: bool = True
+    drag_couplings: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

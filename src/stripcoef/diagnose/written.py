@@ -23,6 +23,7 @@ from dataclasses import replace
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import written_fit
+from stripcoef.diagnose.couplings import coupling_dof
 from stripcoef.diagnose.fit import _evaluate, _rms
 from stripcoef.effects.laws import effect_window_forces
 from stripcoef.effects.windows import window_data
@@ -34,10 +35,14 @@ _MATRIX = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping
 
 def coefficient(model, dof: int, name: str) -> float:
     """The value in ``model`` of the calibration coefficient ``name`` of DOF ``dof``
-    (``M``, ``D_L``, ``D_Q``: the diagonal of that DOF; ``M_<dof>``: that DOF's added mass)
+    (``M``, ``D_L``, ``D_Q``: the diagonal of that DOF; ``M_<dof>``: that DOF's added mass;
+    ``D_Q_<dof>``: the drag coupling :math:`D_Q[dof, j]`)
     [kg, kg m^2, N s/m, ...]."""
     if name in _MATRIX:
         return float(getattr(model, _MATRIX[name])[dof, dof])
+    coupled = coupling_dof(name)
+    if coupled is not None:         # a drag coupling D_Q[dof, j] (diagnose.couplings)
+        return float(model.quadratic_damping[dof, coupled])
     j = parse_dof(name[2:])
     return float(model.added_mass[j, j])
 

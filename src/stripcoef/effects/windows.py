@@ -357,7 +357,9 @@ def coefficient_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndar
     - ``D_L``, ``D_Q``: :math:`-\overline{\nu_i}`, :math:`-\overline{\nu_i|\nu_i|}`;
     - ``M_<dof>`` (another DOF's added mass :math:`M_{jj}`, seen through the added-mass
       Coriolis force, linear in :math:`M_A`; Fossen 2011, eq. 6.43):
-      :math:`-\overline{(C_A[E_{jj}](\nu)\nu)_i}`,
+      :math:`-\overline{(C_A[E_{jj}](\nu)\nu)_i}`;
+    - ``D_Q_<dof>`` (a quadratic drag coupling :math:`D_Q[i, j]`, the moment of DOF j's
+      drag; :mod:`stripcoef.diagnose.couplings`): :math:`-\overline{\nu_j|\nu_j|}`,
 
     with ``nu`` (n, 6) the velocity the coefficient acts on: over ground by default, relative
     to the water when a current is in the model (Fossen 2011, eq. 10.1)."""
@@ -369,6 +371,9 @@ def coefficient_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndar
         return -data.mean(v)
     if key == "D_Q":
         return -data.mean(v * np.abs(v))
+    if key.startswith("D_Q_"):
+        w = nu[:, parse_dof(key[4:])]
+        return -data.mean(w * np.abs(w))
     unit = np.zeros((6, 6))
     j = parse_dof(key[2:])
     unit[j, j] = 1.0
