@@ -966,9 +966,9 @@ def main(argv=None) -> int:
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
                              args.validation_others, args.truth_maps, args.one_added_mass,
                              args.dof_gains,
-                             {k: v for k, v in (("gains_beside_current", args.gains_beside_current),
-                                                ("drag_couplings", args.drag_couplings)) if v}
-                             or None))
+                             {name: value for name, value in (
+                                 ("gains_beside_current", args.gains_beside_current),
+                                 ("drag_couplings", args.drag_couplings)) if value} or None))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]
