@@ -7,6 +7,7 @@ team built against and a fresh one:
 
     python -m benchmarks.fresh_compare benchmarks/data/diagnose_independent_300s.md \
         benchmarks/data/diagnose_independent_fresh_1795929171.md
+    python -m benchmarks.fresh_compare --rows RUN_OUTPUT.txt   (each row's failed criteria)
 
 Per criterion: each run's count, its rate and the Wilson score interval
 (:func:`wilson_interval`), and the issue's bar where it sets one. A rate whose interval lies
@@ -112,11 +113,59 @@ def table(texts: dict) -> str:
     return "\n".join(lines)
 
 
+def row_failures(row: dict) -> list[str]:
+    """The criteria one row of ``diagnose_independent`` (its ``row`` JSON) fails, each as a
+    short text: a library effect not named first (what was named), its magnitude beyond
+    15 %, its error cut under 3x where the truth's own is at least 3x, a whole-log spurious
+    step named (kept); a clean log naming an effect other than the background; dry friction
+    neither unexplained nor under 30 % of held-out gain. The rules are the benchmark's own
+    (``benchmarks.diagnose_independent``)."""
+    from benchmarks.diagnose_independent import _spurious, background, spurious_steps
+    from validation.independent import OUTSIDE, STRENGTHS
+    out = []
+    cat = row["category"]
+    if cat in STRENGTHS:
+        if row["first"] != cat:
+            out.append(f"named first {row['first']}")
+        err = row.get("magnitude_error")
+        if err is None or not err <= 0.15:
+            out.append("magnitude " + ("not claimed" if row.get("magnitude_not_claimed")
+                                       else "none" if err is None else f"{100 * err:.0f} %"))
+        if row["cut"] < 3 and row.get("truth_cut", 0.0) >= 3:
+            out.append(f"cut {row['cut']:.2f} (truth's {row['truth_cut']:.2f})")
+        if row["mode"] == "all" and _spurious(row, "step_effects"):
+            out += [s.split(": ", 1)[1] for s in spurious_steps([row])]
+    elif cat == "clean":
+        other = [f"{d} {e}" for d, es in row.get("step_effects", {}).items() for e in es
+                 if not background(row, d, e)]
+        if other:
+            out.append("clean names " + ", ".join(other))
+    elif cat in OUTSIDE:
+        if not (row["unexplained"] or row["max_gain"] < 0.3):
+            out.append(f"{cat} explained by {row['first']} (held-out gain "
+                       f"{100 * row['max_gain']:.0f} %)")
+    return out
+
+
 def main(argv=None) -> int:
     from stripcoef.files import read_text
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("files", nargs="+", help="markdown outputs of diagnose_independent --write")
+    ap.add_argument("files", nargs="*", help="markdown outputs of diagnose_independent --write")
+    ap.add_argument("--rows", default=None,
+                    help="a run's printed output (its 'row' lines): list each row's failed "
+                         "criteria instead")
     args = ap.parse_args(argv)
+    if args.rows:
+        import json
+        rows = [json.loads(line.split(" row ", 1)[1])
+                for line in read_text(args.rows, kind="benchmark output").splitlines()
+                if " row {" in line]
+        for r in sorted(rows, key=lambda r: (r["category"], r["vehicle"], r["seed"], r["mode"])):
+            fails = row_failures(r)
+            if fails:
+                print(f"- {r['category']} {r['vehicle']} {r['seed']} {r['mode']}: "
+                      + "; ".join(fails))
+        return 0
     texts = {}
     for path in args.files:
         text = read_text(path, kind="benchmark output")
