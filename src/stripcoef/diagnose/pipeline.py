@@ -120,6 +120,7 @@ from stripcoef.diagnose.regains import (JOINT, current_kept, refit_gains, with_f
                                         withdrawn)
 from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
                                          terms_record, unresolved_timing)
+from stripcoef.diagnose.thrusterparts import OneDofParts
 from stripcoef.diagnose.timing import compare_timing
 from stripcoef.diagnose.priors import (ADDED_MASS_BAND_Z, PriorWidths,  # noqa: F401
                                        added_mass_bounds, load_prior, method_added_mass_sd,
@@ -439,9 +440,10 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     # the added masses of the other DOFs that move, calibrated in each diagnosed DOF they
     # reach; written once (a diagnosed DOF's own calibration; cross.py)
     cross = moving_dofs(data)
-    # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters drive
-    siblings = (WholeLogParts(data, dofs, settings, budget=budget, excited=excited,
-                              cross=cross) if len(dofs) > 1 else None)
+    # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters
+    # drive; one DOF: a translation's asymmetry identified apart from a buoyancy change
+    siblings = (WholeLogParts if len(dofs) > 1 else OneDofParts)(
+        data, dofs, settings, budget=budget, excited=excited, cross=cross)
     per, fits = {}, {}
     for i in dofs:
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,

@@ -195,8 +195,8 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     whose added mass this DOF may calibrate (:func:`_calibration`). Coefficients the log
     does not determine are kept at the prior (:func:`_identifiability`). ``siblings``: in a
     whole-log diagnosis, the other diagnosed DOFs (:class:`Siblings`): a thruster effect
-    (:data:`THRUSTER_EFFECTS`) they contradict is not significant here; None (one DOF):
-    no such test."""
+    (:data:`THRUSTER_EFFECTS`) they contradict is not significant here (a one-DOF run
+    passes ``thrusterparts.OneDofParts``, its identification test alone); None: no test."""
     names = list(settings.effects) if settings.effects is not None else list(EFFECTS)
     library = [get_effect(n) for n in names]
     excited = excited_dofs(data) if excited is None else list(excited)
@@ -258,7 +258,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 a_ref = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Nuisance(alt), None)]))
                 trials[-1] = gainfree.with_retest(trials[-1], _judge(
                     alt, a_cfg, _evaluate(a_cfg), a_ref, data, dof, cal_names, cal_sd, settings))
-        if siblings is not None:     # whole-log: a thruster effect the other DOFs refute
+        if siblings is not None:     # a thruster effect the other DOFs (or its test) refute
             for t in trials:
                 if t["significant"]:
                     t["rejected_because"] += siblings.contradictions(t, dof)

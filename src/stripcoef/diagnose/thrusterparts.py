@@ -50,7 +50,12 @@ runs named heave asymmetries eta-/eta+ - 1 of -5.3 % and -8.2 % (z 4.2, 4.0) whe
 truth's thrusters give -0.01 % and +3.5 % on the same commands. Not applied where the DOF
 already holds a buoyancy offset (its constant is then in the model), nor in the rotations
 (a buoyancy change's moment there depends on the centre of buoyancy's position, a column
-not built here), nor per DOF (this class serves whole-log runs).
+not built here). The identification argument does not depend on how many DOFs are
+diagnosed, so a one-DOF run applies this test alone (:class:`OneDofParts`; it has no
+sibling DOFs to check): issue 33, fresh seed 1795929171, BlueROV2-like log 1795930174
+(a buoyancy 0.58 N lighter than the prior's), the one-DOF heave diagnosis named a heave
+asymmetry first (z 7.1; the validation then removed it) where the whole-log run names the
+buoyancy; with the test it names the buoyancy first.
 
 Depends on: diagnose.select, diagnose.settings, diagnose.fit, diagnose.crossscale, effects,
 conventions.
@@ -143,3 +148,14 @@ class ThrusterParts(Siblings):
             f"not identified apart from a buoyancy change: with the restoring force's column "
             f"free beside it the asymmetry is {z:.1f} standard deviations from zero "
             f"(< {MIN_Z:g})")
+
+
+class OneDofParts(ThrusterParts):
+    """A one-DOF run's check of a thruster effect: only the identification of a translation's
+    thrust asymmetry apart from a buoyancy change (:meth:`ThrusterParts.buoyancy_confounded`,
+    module docstring); a one-DOF run has no sibling DOFs, no parts and no other DOFs' added
+    masses to refit beside a scale."""
+
+    def contradictions(self, trial: dict, dof: int) -> list:
+        why = self.buoyancy_confounded(trial, dof)
+        return [why] if why else []
