@@ -33,24 +33,33 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 VARIANTS = ("each", "skill", "skill_joint_gains")
 
 
-def rows_of(job, variant: str) -> list[dict]:
+def rows_of(job, variant: str, with_oracle: bool = False) -> list[dict]:
     """``benchmarks.diagnose_independent.run_one(*job)``'s whole-log rows under ``variant``
-    (module docstring)."""
+    (module docstring); ``with_oracle``: with the truth's detectability columns."""
+    import benchmarks.diagnose_independent as independent
     import stripcoef.diagnose.pipeline as pipeline
     from benchmarks.diagnose_independent import run_one
+    from stripcoef.diagnose.heldout import EACH
 
     original, original_gains = pipeline.validate_changes, pipeline.validated
 
-    def joint_gains(gains, val_log, prior, dofs, logged=()):
-        return original_gains(gains, val_log, prior, dofs, [] if len(dofs) > 1 else logged)
+    def gains_validated(gains, val_log, prior, dofs, logged=()):
+        # whole-log: the gains judged by the joint simulation (skill_joint_gains) or by each
+        # DOF alone (each, skill), whatever the code's default
+        if len(dofs) > 1:
+            logged = [] if variant == "skill_joint_gains" else EACH
+        return original_gains(gains, val_log, prior, dofs, logged)
 
     pipeline.validate_changes = functools.partial(original, skill=variant != "each")
-    if variant == "skill_joint_gains":
-        pipeline.validated = joint_gains
+    pipeline.validated = gains_validated
+    oracle = independent._oracle
+    if not with_oracle:     # the truth's detectability and cut: not what the variants change
+        independent._oracle = lambda log, prior, truth: {}
     try:
         return run_one(*job)
     finally:
         pipeline.validate_changes, pipeline.validated = original, original_gains
+        independent._oracle = oracle
 
 
 def main(argv=None) -> int:
@@ -65,6 +74,8 @@ def main(argv=None) -> int:
     ap.add_argument("--vehicles", default=",".join(VEHICLES))
     ap.add_argument("--only-seeds", default=None)
     ap.add_argument("--variant", choices=VARIANTS, default="skill")
+    ap.add_argument("--oracle", action="store_true",
+                    help="also the truth's detectability and cut (validation.detectability)")
     args = ap.parse_args(argv)
     every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
     cats = args.categories.split(",") if args.categories else every
@@ -78,7 +89,7 @@ def main(argv=None) -> int:
     print(f"seed {args.seed}: {len(jobs)} logs, variant {args.variant}", flush=True)
     t0 = time.process_time()
     for job in jobs:
-        for row in rows_of(job, args.variant):
+        for row in rows_of(job, args.variant, args.oracle):
             row["variant"] = args.variant
             _progress(row)
     print(f"CPU {time.process_time() - t0:.1f} s (user + sys of this process)", flush=True)
