@@ -10,7 +10,9 @@ Variants (``--variant``):
   hold-last-velocity and zero velocity; ``skill=True``, the code's default);
 - ``skill_joint_gains``: ``skill``, and the thrusters' gains
   (:func:`stripcoef.diagnose.gains.validated`) validated by the joint simulation of every
-  DOF, as the default validation does, instead of each DOF alone.
+  DOF, as the default validation does, instead of each DOF alone;
+- ``score_joint_gains``: the same, and a DOF where the prior has no skill left out of the
+  summed score too (``skill="score"``, a trial).
 
 The rows are ``benchmarks.diagnose_independent``'s (the same seeds: a log's seed names its
 vehicle and category), printed as its ``row`` lines, so that ``python -m
@@ -30,7 +32,7 @@ import time
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-VARIANTS = ("each", "skill", "skill_joint_gains")
+VARIANTS = ("each", "skill", "skill_joint_gains", "score_joint_gains")
 
 
 def rows_of(job, variant: str, with_oracle: bool = False) -> list[dict]:
@@ -47,10 +49,11 @@ def rows_of(job, variant: str, with_oracle: bool = False) -> list[dict]:
         # whole-log: the gains judged by the joint simulation (skill_joint_gains) or by each
         # DOF alone (each, skill), whatever the code's default
         if len(dofs) > 1:
-            logged = [] if variant == "skill_joint_gains" else EACH
+            logged = [] if variant.endswith("joint_gains") else EACH
         return original_gains(gains, val_log, prior, dofs, logged)
 
-    pipeline.validate_changes = functools.partial(original, skill=variant != "each")
+    pipeline.validate_changes = functools.partial(
+        original, skill="score" if variant.startswith("score") else variant != "each")
     pipeline.validated = gains_validated
     oracle = independent._oracle
     if not with_oracle:     # the truth's detectability and cut: not what the variants change

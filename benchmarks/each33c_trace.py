@@ -99,10 +99,12 @@ def trace(seed: int, others: str = "each", options: dict | None = None) -> dict:
     base, kept = run(set(changes)), run(excl)
     judged = {}
     for c in changes:
-        if c in excl:
+        name = " ".join(map(str, c))
+        if c in excl:       # a removed change: the kept model with it (and its partners)
+            back = {p for p in excl if p == c or (c[0] == "calibration" and p[1] == c[1])}
+            judged[name] = {"removed": True, "with": rms(run(excl - back))}
             continue
         without = run(excl | {c})
-        name = " ".join(map(str, c))
         k = dofs.index(DOF.index(c[1]))
         entry = {"without": rms(without)}
         if without is not None and kept is not None:

@@ -40,7 +40,7 @@ def heldout_errors(result, prior, written) -> dict:
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
-                     skill: bool = True) -> tuple[set, dict]:
+                     skill: bool | str = True) -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -95,7 +95,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     the vehicle. Where no model of the DOF beats predicting its velocity held or zero, the
     simulation cannot judge its changes, and they stay at the prior (issue 33, each33c:
     benchmarks/data/each33c_trace.md). The summed score is unchanged. ``skill=False``: the
-    prior alone is the veto's reference (as before; ``benchmarks.each33c_rules`` compares).
+    prior alone is the veto's reference (as before; ``benchmarks.each33c_rules`` compares);
+    ``skill="score"`` (a trial): a DOF where the prior has no skill is also left out of the
+    summed score (its errors judge no change there).
 
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
@@ -121,6 +123,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                                                zero_velocity_errors(val_log, dofs))])
     veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
                                             for a, b in zip(ref, trivial)]
+    # skill="score": a DOF where the prior has no skill is left out of the summed score too
+    judge = [True] * len(dofs) if trivial is None or skill != "score" else \
+        [a <= b for a, b in zip(ref, trivial)]
     cache = {}
 
     changes = _changes(per)
@@ -135,7 +140,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
-                r = [a / b for a, b in zip(e, ref)]
+                r = [a / b for a, b, j in zip(e, ref, judge) if j]
                 cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
                               e, got[0])
         return cache[key]
