@@ -94,3 +94,18 @@ def test_each_dof_alone_is_every_dof_simulated_with_the_other_five_logged():
     assert off[1] > 2.0 * truth[1]
     settings = DiagnoseSettings(validation_others="each")
     assert settings.logged_dofs([0, 5]) == EACH and settings.logged_dofs([0]) == EACH
+
+
+def test_each_validates_the_thruster_gains_by_the_joint_simulation():
+    """With ``validation_others="each"`` a whole-log diagnosis judges each DOF's changes on
+    that DOF alone but the thrusters' gains, the prior of every DOF's selection, by the joint
+    simulation (none logged), as the default does: 'each' changes what the validation keeps,
+    not what the selection names (each33c, benchmarks/data/each33c_trace.md)."""
+    from stripcoef.diagnose.heldout import EACH
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    each, default = DiagnoseSettings(validation_others="each"), DiagnoseSettings()
+    assert each.gains_logged_dofs([0, 2, 5]) == [] == default.gains_logged_dofs([0, 2, 5])
+    assert each.logged_dofs([0, 2, 5]) == EACH
+    # one DOF: the gains (dof_gains) are judged as its changes are
+    assert each.gains_logged_dofs([2]) == each.logged_dofs([2])
+    assert default.gains_logged_dofs([2]) == [0, 1, 3, 4, 5]

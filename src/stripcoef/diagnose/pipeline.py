@@ -341,7 +341,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
-            gains = validated(gains, val_log, model, dofs, settings.logged_dofs(dofs))
+            gains = validated(gains, val_log, model, dofs, settings.gains_logged_dofs(dofs))
         if gains is not None and gains.applied:
             model = gains.model(model)
             data = model_window_data(train_log, model, window=window)

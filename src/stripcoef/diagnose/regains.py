@@ -149,7 +149,7 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
                                shared=shared)
     if gains is None:
         return None, prior, data0
-    gains = validated(gains, val_log, water, dofs, settings.logged_dofs(dofs))
+    gains = validated(gains, val_log, water, dofs, settings.gains_logged_dofs(dofs))
     gains = replace(gains, reason=gains.reason + "; fitted beside the current the DOFs found "
                     f"(north {vc['current_north']:.4g}, east {vc['current_east']:.4g} m/s), "
                     "the DOFs diagnosed again on them")

@@ -39,7 +39,8 @@ def heldout_errors(result, prior, written) -> dict:
 
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
-                     budget: Budget = UNLIMITED, logged=()) -> tuple[set, dict]:
+                     budget: Budget = UNLIMITED, logged=(),
+                     skill: bool | str = True) -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -80,11 +81,29 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     take from the log (:func:`stripcoef.diagnose.heldout.segment_squared_errors`;
     :data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
 
+    With ``logged`` :data:`~stripcoef.diagnose.heldout.EACH` in a whole-log diagnosis (each
+    DOF simulated alone, the five others logged) the veto's reference of DOF i is the best
+    of the prior and the two trivial predictors on the same segments (hold-last-velocity
+    and zero velocity, :data:`~stripcoef.diagnose.heldout.TRIVIAL_PREDICTORS`): a DOF's own
+    changes stay only where its simulation has skill, a mean squared error below the
+    reference forecast's (the skill score :math:`1 - MSE / MSE_{ref}` positive: Murphy
+    1988, Mon. Weather Rev. 116, 2417-2424; the more accurate naive forecast, persistence
+    or climatology, as the reference: Murphy 1992, Weather Forecast. 7, 692-698). A DOF the log's pilot holds by
+    feedback (a level or heading hold) is replayed open loop, its own feedback left out
+    (Ljung 1999, sec. 13.4): its simulated error is the missing loop's, and a change that
+    shrinks it (a thrust scale below 1 damps the replayed commands) is not a better model of
+    the vehicle. Where no model of the DOF beats predicting its velocity held or zero, the
+    simulation cannot judge its changes, and they stay at the prior (issue 33, each33c:
+    benchmarks/data/each33c_trace.md). The summed score is unchanged. ``skill=False``: the
+    prior alone is the veto's reference (as before; ``benchmarks.each33c_rules`` compares);
+    ``skill="score"`` (a trial): a DOF where the prior has no skill is also left out of the
+    summed score (its errors judge no change there).
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
     from stripcoef.diagnose.heldout import (EACH, diebold_mariano, hold_last_velocity_errors,
-                                            segment_squared_errors)
+                                            segment_squared_errors, zero_velocity_errors)
 
     def errors(got):
         return None if got is None else \
@@ -96,6 +115,17 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     base = errors(base_sse)
     ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
     ref = [max(e, 1e-12) for e in ref]
+    # each DOF alone, whole-log: the veto's reference is the best of the prior and the
+    # trivial predictors (skill, docstring)
+    trivial = (None if not (skill and isinstance(logged, str) and logged == EACH
+                            and len(dofs) > 1)
+               else [min(a, b) for a, b in zip(hold_last_velocity_errors(val_log, dofs),
+                                               zero_velocity_errors(val_log, dofs))])
+    veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
+                                            for a, b in zip(ref, trivial)]
+    # skill="score": a DOF where the prior has no skill is left out of the summed score too
+    judge = [True] * len(dofs) if trivial is None or skill != "score" else \
+        [a <= b for a, b in zip(ref, trivial)]
     cache = {}
 
     changes = _changes(per)
@@ -110,7 +140,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
-                r = [a / b for a, b in zip(e, ref)]
+                r = [a / b for a, b, j in zip(e, ref, judge) if j]
                 cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
                               e, got[0])
         return cache[key]
@@ -141,7 +171,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         excl, cur = eliminate(excl, cur)
         before = len(excl)
         while cur[1] is not None:
-            worse = [(e / b, DOF[i]) for e, b, i in zip(cur[1], ref, dofs)
+            worse = [(e / b, DOF[i]) for e, b, i in zip(cur[1], veto_ref, dofs)
                      if e >= b and own(DOF[i], excl)]
             if not worse:
                 break
@@ -173,6 +203,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                               else [DOF[j] for j in logged]),
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed_for_own_dof": vetoed,
+              # each DOF alone, whole-log: the better trivial predictor's error, the veto's
+              # reference where it is below the prior's (docstring)
+              **({} if trivial is None else {"trivial_predictor": named(trivial)}),
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
                                               "Harvey et al. small-sample factor) of the kept "
                                               "model's free-simulation losses per validation "
