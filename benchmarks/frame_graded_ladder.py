@@ -55,12 +55,11 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from stripcoef.conventions import DOF  # noqa: E402
+from stripcoef.conventions import DOF as DOFS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "benchmarks" / "data" / "frame_graded_ladder.md"
 FILE = "geometry/bluerov2_heavy.yaml"
-DOFS = DOF
 RHO = 1000.0
 #: largest panel H [m] of each level (the graded references' rule H/4 at an edge)
 LEVELS = (0.4, 0.256, 0.181, 0.128)

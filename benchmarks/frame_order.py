@@ -42,12 +42,11 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from stripcoef.conventions import DOF  # noqa: E402
+from stripcoef.conventions import DOF as DOFS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "benchmarks" / "data" / "frame_order.md"
 FILE = "geometry/bluerov2_heavy.yaml"
-DOFS = DOF
 RHO = 1000.0
 
 
