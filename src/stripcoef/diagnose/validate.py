@@ -292,14 +292,16 @@ def partners(excl, changes) -> set:
 
 def _admitted_beside(c, out, changes) -> bool:
     """Whether the change ``c`` is a translation's thrust asymmetry selected after that
-    DOF's buoyancy offset, which ``out`` removes. Its identification apart from a buoyancy
-    change (:meth:`~stripcoef.diagnose.thrusterparts.ThrusterParts.buoyancy_confounded`;
-    Rothenberg 1971, Theorem 1) was not tested because the DOF held the offset; refitted
-    without it, the asymmetry's column (the backward part of the thrust, one-signed where
-    the thrusters mostly hold the vehicle against its restoring force) takes the bias, a
-    value that no test admitted (issue 33, asym33s: VideoRay-like log 1795929178 of seed
-    1795929171, selected eta_b / eta_f - 1 = -0.32 beside the offset, written +2.06
-    without it). It goes with the offset."""
+    DOF's buoyancy offset, which ``out`` removes. It was selected, and its identification
+    apart from a buoyancy change tested
+    (:meth:`~stripcoef.diagnose.thrusterparts.ThrusterParts.buoyancy_confounded`;
+    Rothenberg 1971, Theorem 1), with the offset in the model; refitted without it, the
+    asymmetry's column (the backward part of the thrust, one-signed where the thrusters
+    mostly hold the vehicle against its restoring force) takes the bias, a value that no
+    test admitted (issue 33, asym33s: VideoRay-like log 1795929178 of seed 1795929171,
+    before the identification test was applied beside an offset: selected
+    eta_b / eta_f - 1 = -0.32 beside the offset, written +2.06 without it). It goes with
+    the offset."""
     if c[2] != "thrust_asymmetry" or parse_dof(c[1]) not in TRANSLATIONAL:
         return False
     b = ("effect", c[1], "buoyancy_offset")
