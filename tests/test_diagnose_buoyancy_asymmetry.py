@@ -14,7 +14,6 @@ import pytest
 
 from conftest import parts_trial, shipped_model, whole_log_parts
 from stripcoef.diagnose.thrusterparts import BuoyancyFreeAsymmetry
-from stripcoef.effects.laws import get_effect
 
 SURGE, SWAY, HEAVE, YAW = 0, 1, 2, 5
 
@@ -31,13 +30,12 @@ def _trial(parts, name: str, dof: int) -> dict:
     return parts_trial(parts, name, dof)
 
 
-def test_the_check_leaves_rotations_other_effects_and_a_dof_with_a_buoyancy_offset_alone():
+def test_the_check_leaves_rotations_and_other_effects_alone():
+    # a DOF that holds a buoyancy offset is checked too (asym33s: the offset is a constant,
+    # a buoyancy change's restoring force is not; tests/test_diagnose_asym_partner.py)
     parts, _ = _parts("current", 29213055, 30.0)
     assert parts.buoyancy_confounded({"effect": "deadband"}, HEAVE) == ""
     assert parts.buoyancy_confounded({"effect": "thrust_asymmetry"}, YAW) == ""
-    held = parts.configs[HEAVE].with_terms([(get_effect("buoyancy_offset"), None),
-                                            (get_effect("thrust_asymmetry"), None)])
-    assert parts.buoyancy_confounded({"effect": "thrust_asymmetry", "_cfg": held}, HEAVE) == ""
     eff = BuoyancyFreeAsymmetry()
     assert eff.nuisance(parts.data, HEAVE).shape == (parts.data.n_windows, 2)
     assert eff.name == "thrust_asymmetry"
@@ -74,8 +72,8 @@ def test_an_asymmetry_of_every_thruster_is_identified_in_heave():
 
 
 def test_a_one_dof_run_checks_only_the_asymmetry_against_a_buoyancy_change():
-    """One DOF (thrusterparts.OneDofParts): no siblings or parts to consult; a deadband, a
-    rotation and a DOF already holding a buoyancy offset are left alone, as whole-log."""
+    """One DOF (thrusterparts.OneDofParts): no siblings or parts to consult; a deadband and
+    a rotation are left alone, as whole-log."""
     from stripcoef.diagnose.thrusterparts import OneDofParts
     from stripcoef.effects.windows import window_data
     from validation.independent import generate
@@ -86,9 +84,6 @@ def test_a_one_dof_run_checks_only_the_asymmetry_against_a_buoyancy_change():
     assert list(one.configs) == [HEAVE]
     assert one.contradictions({"effect": "deadband"}, HEAVE) == []
     assert one.contradictions({"effect": "thrust_asymmetry"}, YAW) == []
-    held = one.configs[HEAVE].with_terms([(get_effect("buoyancy_offset"), None),
-                                          (get_effect("thrust_asymmetry"), None)])
-    assert one.contradictions({"effect": "thrust_asymmetry", "_cfg": held}, HEAVE) == []
 
 
 @pytest.mark.slow

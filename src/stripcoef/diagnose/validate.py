@@ -16,6 +16,7 @@ from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import (SHARED_EFFECTS, SHARED_TIMING, _changes,
                                           calibrated_model)
 from stripcoef.diagnose.settings import RESIMULATION_HORIZON, UNLIMITED, Budget
+from stripcoef.effects.base import TRANSLATIONAL
 from stripcoef.progress import track
 
 
@@ -214,7 +215,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                                               "one-sided", **tests},
               "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
                                                     "fitted with)"
-                                                    if ("calibration", c[1]) in excl else "")
+                                                    if ("calibration", c[1]) in excl else
+                                                    f" (with the {c[1]} buoyancy_offset it "
+                                                    "was admitted beside)"
+                                                    if _admitted_beside(c, excl, changes)
+                                                    else "")
                            if c[0] == "effect" else f"{c[1]} calibration")
                           for c in changes if c in excl],
               # the changes fitted together with a removed one are refitted without it
@@ -280,9 +285,27 @@ def partners(excl, changes) -> set:
         if c[2] in names:                 # one timing, one current: all its DOFs at once
             if c[2] in shared:
                 out.add(c)
-        elif ("calibration", c[1]) in out:
+        elif ("calibration", c[1]) in out or _admitted_beside(c, out, changes):
             out.add(c)
     return out
+
+
+def _admitted_beside(c, out, changes) -> bool:
+    """Whether the change ``c`` is a translation's thrust asymmetry selected after that
+    DOF's buoyancy offset, which ``out`` removes. It was selected, and its identification
+    apart from a buoyancy change tested
+    (:meth:`~stripcoef.diagnose.thrusterparts.ThrusterParts.buoyancy_confounded`;
+    Rothenberg 1971, Theorem 1), with the offset in the model; refitted without it, the
+    asymmetry's column (the backward part of the thrust, one-signed where the thrusters
+    mostly hold the vehicle against its restoring force) takes the bias, a value that no
+    test admitted (issue 33, asym33s: VideoRay-like log 1795929178 of seed 1795929171,
+    before the identification test was applied beside an offset: selected
+    eta_b / eta_f - 1 = -0.32 beside the offset, written +2.06 without it). It goes with
+    the offset."""
+    if c[2] != "thrust_asymmetry" or parse_dof(c[1]) not in TRANSLATIONAL:
+        return False
+    b = ("effect", c[1], "buoyancy_offset")
+    return b in out and b in changes and changes.index(b) < changes.index(c)
 
 
 def _shared(changes) -> set:
