@@ -58,8 +58,8 @@ eta_b / eta_f - 1 = -0.32, z 4.4; refitted with the buoyancy change free beside 
 it is -0.17, z 1.4, and the buoyancy change is 0.54 +- 0.33 N, the truth's 0.53;
 benchmarks/data/asym33s_trace.md). Not applied in the rotations (a buoyancy change's
 moment there depends on the centre of buoyancy's position, a column not built here). The
-identification argument does not depend on how many DOFs are diagnosed, so a one-DOF run applies this test alone (:class:`OneDofParts`; it has no
-sibling DOFs to check): issue 33, fresh seed 1795929171, BlueROV2-like log 1795930174
+identification argument does not depend on how many DOFs are diagnosed, so a one-DOF run
+applies this test alone (:class:`OneDofParts`; it has no sibling DOFs to check): issue 33, fresh seed 1795929171, BlueROV2-like log 1795930174
 (a buoyancy 0.58 N lighter than the prior's), the one-DOF heave diagnosis named a heave
 asymmetry first (z 7.1; the validation then removed it) where the whole-log run names the
 buoyancy; with the test it names the buoyancy first.
