@@ -672,6 +672,16 @@ def _calibration(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
     return Calibration(cols, np.asarray(sd, float), tuple(names), np.asarray(prior, float), b)
 
 
+def _column_owner(dof: int, name: str) -> int:
+    """The DOF [index] whose velocity the calibration coefficient ``name`` of DOF ``dof``
+    belongs to: ``dof`` itself for ``M``, ``D_L``, ``D_Q``; j for another DOF's added mass
+    ``M_<j>`` and for a drag coupling ``D_Q_<j>`` (:mod:`.couplings`)."""
+    if name in TERM_MATRIX:
+        return dof
+    coupled = coupling_dof(name)
+    return coupled if coupled is not None else parse_dof(name[2:])
+
+
 def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:
     """Where each calibrated coefficient's band came from: the method-table row (its text)
     with a vehicle file's :class:`PriorWidths`, else the bands given or the fixed
@@ -679,11 +689,9 @@ def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:
     widths = settings.widths
     out = {}
     for n in names:
-        coupled = coupling_dof(n)
-        owner = (dof if n in TERM_MATRIX else coupled if coupled is not None
-                 else parse_dof(n[2:]))
+        owner = _column_owner(dof, n)
         kind = "translational" if owner < 3 else "rotational"
-        term = n if n in TERM_MATRIX else "D_Q" if coupled is not None else "M"
+        term = n if n in TERM_MATRIX else "D_Q" if coupling_dof(n) is not None else "M"
         if widths is not None:
             out[n] = widths.rows[kind][term]
         elif settings.bands is not None:
@@ -709,9 +717,7 @@ def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> di
     """
     reasons, ratios = {}, {}
     for n in names:
-        coupled = coupling_dof(n)
-        owner = (dof if n in ("M", "D_L", "D_Q") else coupled if coupled is not None
-                 else parse_dof(n[2:]))
+        owner = _column_owner(dof, n)
         if owner not in excited:
             reasons[n] = f"{DOF[owner]} is not excited in this log"
     keep = [j for j, n in enumerate(names) if n not in reasons]
