@@ -14,7 +14,8 @@ dictionary form (what ``--out`` writes), never from an earlier stage of the fits
   :func:`stripcoef.effects.laws.effect_window_forces`), in the commanded force's units
   (divided by the DOF's thrust scale, :func:`thrust_scale`) [N or N m].
 
-Depends on: effects, conventions, diagnose.calibrate, diagnose.fit.
+Depends on: effects, conventions, diagnose.calibrate, diagnose.couplings, diagnose.fit,
+diagnose.priors.
 """
 
 from __future__ import annotations
@@ -25,21 +26,17 @@ from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import written_fit
 from stripcoef.diagnose.couplings import coupling_dof
 from stripcoef.diagnose.fit import _evaluate, _rms
+from stripcoef.diagnose.priors import TERM_MATRIX
 from stripcoef.effects.laws import effect_window_forces
 from stripcoef.effects.windows import window_data
-
-#: The coefficient of each calibration name in a model: (matrix attribute, owner DOF or None
-#: for the diagnosed DOF).
-_MATRIX = {"M": "added_mass", "D_L": "linear_damping", "D_Q": "quadratic_damping"}
-
 
 def coefficient(model, dof: int, name: str) -> float:
     """The value in ``model`` of the calibration coefficient ``name`` of DOF ``dof``
     (``M``, ``D_L``, ``D_Q``: the diagonal of that DOF; ``M_<dof>``: that DOF's added mass;
     ``D_Q_<dof>``: the drag coupling :math:`D_Q[dof, j]`)
     [kg, kg m^2, N s/m, ...]."""
-    if name in _MATRIX:
-        return float(getattr(model, _MATRIX[name])[dof, dof])
+    if name in TERM_MATRIX:
+        return float(getattr(model, TERM_MATRIX[name])[dof, dof])
     coupled = coupling_dof(name)
     if coupled is not None:         # a drag coupling D_Q[dof, j] (diagnose.couplings)
         return float(model.quadratic_damping[dof, coupled])
