@@ -88,6 +88,22 @@ def _own(cfg, eff, hyper):
             eff.std_of(own, cov, np.zeros(0)), fit)
 
 
+def _gain_free_term(step, fit):
+    """``(others, effect, hyper, gain-free variant)`` of step ``step`` in the final fit
+    ``fit``: the fit's configuration without the step's term, the term, and its variant with
+    each thruster's gain free; None for an effect without a one-parameter gain-free variant
+    (no DOF: the tether's only; a heave bias is written)."""
+    cfg = fit.config
+    at = [k for k, (e, _) in enumerate(cfg.terms) if e.name == step.effect]
+    if not at:
+        return None
+    eff, hyper = cfg.terms[at[0]]
+    alt = variant(eff)
+    if alt is None or len(eff.parameters) != 1:
+        return None
+    return cfg.with_terms([t for k, t in enumerate(cfg.terms) if k != at[0]]), eff, hyper, alt
+
+
 def gain_dependence(step, fit) -> dict | None:
     """The test of step ``step`` (a :class:`~stripcoef.diagnose.result.Step`) of the DOF
     whose final fit is ``fit`` (:class:`~stripcoef.diagnose.result.DofFit`) against the
@@ -96,15 +112,10 @@ def gain_dependence(step, fit) -> dict | None:
     without a gain-free variant. Returns ``parameter``, ``prior_map`` / ``prior_map_std``,
     ``gains_free`` / ``gains_free_std`` [the parameter's units], ``z`` (the difference in
     standard deviations of the difference, Hausman 1978) and ``retested``."""
-    cfg = fit.config
-    at = [k for k, (e, _) in enumerate(cfg.terms) if e.name == step.effect]
-    if not at:
+    found = _gain_free_term(step, fit)
+    if found is None:
         return None
-    eff, hyper = cfg.terms[at[0]]
-    alt = variant(eff)          # no DOF: the tether's only (a heave bias is written)
-    if alt is None or len(eff.parameters) != 1:
-        return None
-    others = cfg.with_terms([t for k, t in enumerate(cfg.terms) if k != at[0]])
+    others, eff, hyper, alt = found
     name = next(iter(eff.parameters))
     pa, sa, fa = _own(others, eff, hyper)
     pc, sc, fc = _own(others, alt, hyper)
@@ -130,16 +141,11 @@ def identified_z(step, fit) -> float | None:
     refit."""
     from stripcoef.diagnose.crossscale import refitted_z
 
-    cfg = fit.config
-    at = [k for k, (e, _) in enumerate(cfg.terms) if e.name == step.effect]
-    if not at:
+    found = _gain_free_term(step, fit)
+    if found is None:
         return None
-    eff, hyper = cfg.terms[at[0]]
-    alt = variant(eff)
-    if alt is None or len(eff.parameters) != 1:
-        return None
-    last = cfg.with_terms([t for k, t in enumerate(cfg.terms) if k != at[0]] + [(eff, hyper)])
-    got = refitted_z(last, (alt, hyper))
+    others, eff, hyper, alt = found
+    got = refitted_z(others.with_terms(list(others.terms) + [(eff, hyper)]), (alt, hyper))
     return None if got is None else got[1]
 
 
@@ -156,15 +162,18 @@ def mark(per: dict, fits: dict, gained: bool = False) -> dict:
     for d, r in per.items():
         steps = []
         for s in r.steps:
-            test = gain_dependence(s, fits[d])
-            z = identified_z(s, fits[d]) if test is not None and not retested(s) else None
+            again = retested(s)
+            z = None if again else identified_z(s, fits[d])
+            # the record's test (two more fits) only for a step that is not determined
+            test = (gain_dependence(s, fits[d]) if again or (z is not None and z < MIN_Z)
+                    else None)
             why = None
-            if test is not None and retested(s):
+            if test is not None and again:
                 name = test["parameter"]
                 why = (f"found only with each thruster's gain free (the test with {where} "
                        f"failed; its {name} moves by {test['z']:.1f} standard "
                        "deviations of the difference when the gains are freed)")
-            elif z is not None and z < MIN_Z:
+            elif test is not None:
                 name = test["parameter"]
                 why = (f"found with {where}, but not identified apart from the thrusters' "
                        f"gains: with each gain free beside it its {name} is {z:.1f} "
