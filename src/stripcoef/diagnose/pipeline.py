@@ -351,15 +351,14 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # (regains.py): they are fitted again beside it and the DOFs diagnosed again on them
     water = (with_found_current(prior, per)
              if settings.gains_beside_current and gains is not None else None)
-    first = None
+    first = None        # mode "joint": the first pass, restored if the current is removed
     if water is not None:
-        first = (gains, model, per, fits)
+        before = (gains, model, per, fits)
         gains, model, data = refit_gains(water, prior, data0, train_log, val_log, dofs,
                                          excited, settings, budget)
         per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
-        if not (settings.gains_beside_current == JOINT and gains is not None
-                and gains.applied):
-            first = None
+        if settings.gains_beside_current == JOINT and gains is not None and gains.applied:
+            first = before
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None
