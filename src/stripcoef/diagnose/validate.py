@@ -213,15 +213,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                                               "segment against the prior's: a negative "
                                               "statistic favours the kept model; p_value "
                                               "one-sided", **tests},
-              "removed": [(" ".join(c[1:][::-1]) + (f" (with the {c[1]} calibration it was "
-                                                    "fitted with)"
-                                                    if ("calibration", c[1]) in excl else
-                                                    f" (with the {c[1]} buoyancy_offset it "
-                                                    "was admitted beside)"
-                                                    if _admitted_beside(c, excl, changes)
-                                                    else "")
-                           if c[0] == "effect" else f"{c[1]} calibration")
-                          for c in changes if c in excl],
+              "removed": [_removed_text(c, excl, changes) for c in changes if c in excl],
               # the changes fitted together with a removed one are refitted without it
               # (calibrate.written_fit): their values as written differ from the selection's
               "refitted": {d: kept for d, kept in (
@@ -288,6 +280,20 @@ def partners(excl, changes) -> set:
         elif ("calibration", c[1]) in out or _admitted_beside(c, out, changes):
             out.add(c)
     return out
+
+
+def _removed_text(c, excl, changes) -> str:
+    """The validation record's words for the removed change ``c``: a calibration, or an
+    effect with the partner it went with (:func:`partners`: its DOF's calibration, or the
+    buoyancy offset it was admitted beside)."""
+    if c[0] != "effect":
+        return f"{c[1]} calibration"
+    text = " ".join(c[1:][::-1])
+    if ("calibration", c[1]) in excl:
+        return text + f" (with the {c[1]} calibration it was fitted with)"
+    if _admitted_beside(c, excl, changes):
+        return text + f" (with the {c[1]} buoyancy_offset it was admitted beside)"
+    return text
 
 
 def _admitted_beside(c, out, changes) -> bool:
