@@ -27,7 +27,7 @@ lever's side is the geometry's). The value calibrated is written into
 :math:`D_Q[i, j]` (:func:`stripcoef.diagnose.calibrate.calibrated_model`): the model
 simulated and written holds the coupling the fit used.
 
-Depends on: conventions, diagnose.priors.
+Depends on: conventions, diagnose.priors, effects.windows.
 """
 
 from __future__ import annotations
@@ -36,10 +36,11 @@ import math
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.priors import ADDED_MASS_BAND_Z
+from stripcoef.effects.windows import COUPLING_PREFIX
 
-#: The prefix of a coupling column's name: ``D_Q_sway`` is :math:`D_Q[i, \text{sway}]` in
-#: the calibration of moment DOF i.
-PREFIX = "D_Q_"
+#: The prefix of a coupling column's name (its window column's,
+#: :func:`stripcoef.effects.windows.coefficient_column`).
+PREFIX = COUPLING_PREFIX
 
 
 def coupling_dof(name: str) -> int | None:

@@ -349,6 +349,11 @@ def window_data(log, model, *, window: float = 1.0) -> WindowData:
     return data
 
 
+#: The prefix of a drag coupling's calibration name: ``D_Q_sway`` is :math:`D_Q[i, \text{sway}]`
+#: in the calibration of moment DOF i (:mod:`stripcoef.diagnose.couplings`).
+COUPLING_PREFIX = "D_Q_"
+
+
 def coefficient_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndarray:
     r"""Window regressor of a change of one prior coefficient in DOF i [N or N m per unit]:
     minus the derivative of the window residual :func:`prior_residual` with respect to it,
@@ -371,8 +376,8 @@ def coefficient_column(data: WindowData, dof: int, key: str, nu=None) -> np.ndar
         return -data.mean(v)
     if key == "D_Q":
         return -data.mean(v * np.abs(v))
-    if key.startswith("D_Q_"):
-        w = nu[:, parse_dof(key[4:])]
+    if key.startswith(COUPLING_PREFIX):
+        w = nu[:, parse_dof(key[len(COUPLING_PREFIX):])]
         return -data.mean(w * np.abs(w))
     unit = np.zeros((6, 6))
     j = parse_dof(key[2:])
