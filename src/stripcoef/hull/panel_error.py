@@ -189,3 +189,29 @@ def relative_error(matrix, error, length: float | None = None) -> np.ndarray:
     d = np.sqrt(d)
     scale = np.outer(d, d)
     return np.asarray(error, float) / np.where(scale > 0, scale, np.inf)
+
+
+def finest_pair_under_refined(counts) -> bool:
+    r"""Whether the value of four or more levels (``counts`` panels, coarse to fine) is
+    extrapolated from the two nested pairs :math:`(L_{n-2}, L_n)` and
+    :math:`(L_{n-3}, L_{n-1})` (:func:`ladder_extrapolation` on the last four levels) instead of
+    the two finest: where the finest pair refines by less than Celik et al.'s
+    :math:`r = h_{coarse}/h_{fine} \ge 1.3` (2008, J. Fluids Eng. 130, 078001, "Procedure for
+    estimation and reporting of uncertainty due to discretization in CFD applications", sec.
+    2, step 2: :data:`stripcoef.hull.remesh.MIN_FACE_RATIO` in panels, :math:`h \sim N^{-1/2}`)
+    and each nested pair does.
+
+    Why: the Richardson step multiplies the finest pair's change by :math:`1/(r^p - 1)`, and
+    two independent remeshes of one surface differ by a panelling noise that no power law in
+    h describes (:func:`extrapolation_error`); a level added at the refinement's fallback
+    ratio (:data:`stripcoef.hull.remesh.LEAST_FACE_RATIO`, 1.25 in panels, where creases hold
+    the count) has :math:`r = 1.12` and at the order 4/3 of a right-angled edge multiplies it
+    by 5.8.  Frame 22 of seed 1795919297 (30-mm plates; no-flip levels 944/1682/3010/3830,
+    the last pair r = 1.13): its surge levels lie 1.7 to 4.5 % below the 3,000-face reference
+    and the two finest were extrapolated to -10.0 %; the nested pairs' r are 1.51 and 1.79
+    (benchmarks/data/frame32d_trace.md)."""
+    from stripcoef.hull.remesh import MIN_FACE_RATIO
+
+    n = [float(c) for c in counts]
+    return (len(n) >= 4 and n[-1] < MIN_FACE_RATIO * n[-2]
+            and n[-1] >= MIN_FACE_RATIO * n[-3] and n[-2] >= MIN_FACE_RATIO * n[-4])

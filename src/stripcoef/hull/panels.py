@@ -99,7 +99,7 @@ from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
 from stripcoef.hull.input_ladder import ladder_levels
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
-    least_squares_error, relative_error, richardson_error)
+    finest_pair_under_refined, least_squares_error, relative_error, richardson_error)
 from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels, fold_mask
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
@@ -725,13 +725,14 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         formal = edge_order(features.turning, finest_edge, thickness,
                             sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=formal)
-        if ladder:
-            # two nested pairs: the finer pair's extrapolation, its step plus its change
-            # since the coarser pair's (panel_error.ladder_extrapolation)
-            a, error = ladder_extrapolation(mats, counts, formal)
+        if ladder or finest_pair_under_refined(counts):
+            # two nested pairs (the input ladder; or the finest pair under Celik et al.'s
+            # r = 1.3, panel_error.finest_pair_under_refined): the finer pair's extrapolation,
+            # its step plus its change since the coarser pair's (ladder_extrapolation)
+            a, error = ladder_extrapolation(mats[-4:], counts[-4:], formal)
             order, safety = np.full((6, 6), formal), np.ones((6, 6))
-            at_c = [transform_matrix(m, from_point=about, to_point=centroid) for m in mats]
-            converged = bool(relative_error(*ladder_extrapolation(at_c, counts, formal),
+            at_c = [transform_matrix(m, from_point=about, to_point=centroid) for m in mats[-4:]]
+            converged = bool(relative_error(*ladder_extrapolation(at_c, counts[-4:], formal),
                                             scale).max() <= tol)
         elif len(mats) >= 3:
             # the extrapolated value's own error: its step from the finest level plus its
