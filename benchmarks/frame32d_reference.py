@@ -15,7 +15,8 @@ added_mass``) plus the seed.  ``--cad-shapes-cap``: the remesher's default face 
 squares over them (four or more: :func:`validation.cad_shapes.fine_reference`) and as
 ``benchmarks.cad_shapes`` does (the two finest Richardson-extrapolated as 1/N, their grid
 convergence index), and the model (``benchmarks.cad_shapes.patched_estimates``) with the
-value rule of :func:`stripcoef.hull.panel_error.finest_pair_under_refined` on and off, each
+option ``value_pair="nested"`` (:func:`stripcoef.hull.panel_error.finest_pair_under_refined`)
+and without, each
 diagonal term and the worst significant coupling against each reference, and how many terms
 the model's band covers.  Usage:
 
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import functools
 import sys
 import time
 
@@ -110,8 +112,8 @@ def compare(path, seed: int, k: int) -> int:
             f"{ref[i, i]:.5g} ({100 * band[i, i] / abs(ref[i, i]):.1f} %)" for i in range(6)))
     lines = ["| reference | rule | levels | " + " | ".join(DOFS)
              + " | worst coupling | covered |", "|---" * 11 + "|"]
-    for rule, patches in (("on", {}), ("off", {(P, "finest_pair_under_refined"):
-                                                lambda counts: False})):
+    nested = functools.partial(P.panel_added_mass, value_pair="nested")
+    for rule, patches in (("nested", {(P, "panel_added_mass"): nested}), ("default", {})):
         for _, _, model, _ in patched_estimates(seed, k + 1, patches, only={k}):
             s = RHO / model.density
             ours = np.asarray(model.added_mass) * s

@@ -35,3 +35,13 @@ def test_nested_pairs_exact_on_a_power_law_with_noise_free_levels(p):
     a, err = ladder_extrapolation(mats, counts, p)
     np.testing.assert_allclose(a, phi0, rtol=1e-12)
     np.testing.assert_allclose(err, np.abs(mats[-1] - phi0), rtol=1e-9, atol=1e-12)
+
+
+def test_unknown_value_pair_is_one_line_error():
+    import trimesh
+
+    from stripcoef.errors import InputError
+    from stripcoef.hull.panels import panel_added_mass
+
+    with pytest.raises(InputError, match="value_pair"):
+        panel_added_mass(trimesh.creation.box(), rho=1000.0, value_pair="coarsest")

@@ -209,7 +209,14 @@ def finest_pair_under_refined(counts) -> bool:
     by 5.8.  Frame 22 of seed 1795919297 (30-mm plates; no-flip levels 944/1682/3010/3830,
     the last pair r = 1.13): its surge levels lie 1.7 to 4.5 % below the 3,000-face reference
     and the two finest were extrapolated to -10.0 %; the nested pairs' r are 1.51 and 1.79
-    (benchmarks/data/frame32d_trace.md)."""
+    (benchmarks/data/frame32d_trace.md).
+
+    An option (:func:`stripcoef.hull.panels.panel_added_mass`'s ``value_pair="nested"``), not
+    the default: on the frames it helped (fresh seed 1795939009's frames 8, 12 and 13: worst
+    diagonal -10.0, -4.2, -6.0 % -> -3.5, -1.5, -3.0 %), but on the public meshes it moved the
+    WHOI hybrid glider's sway -0.5 -> -6.1 % and pitch -1.9 -> -7.5 % (levels
+    1206/2050/3218/4334; both covered by their bands and warned), two of 108 diagonal terms
+    beyond 5 % that were within it."""
     from stripcoef.hull.remesh import MIN_FACE_RATIO
 
     n = [float(c) for c in counts]

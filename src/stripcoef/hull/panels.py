@@ -506,7 +506,8 @@ def _solve_level_now(pv, pf, scale, rho, about, near_factor, mirrors=()):
 def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = DEFAULT_PANELS,
                      extrapolate: bool = True, near_factor: float = NEAR_FACTOR,
                      source: str = "", family: str = "auto", tolerance: float | None = None,
-                     max_panels: int | None = None, mirrors=()) -> tuple[np.ndarray, dict]:
+                     max_panels: int | None = None, mirrors=(),
+                     value_pair: str = "finest") -> tuple[np.ndarray, dict]:
     r"""6x6 added mass of a closed body in unbounded fluid by the 3D panel method.
 
     .. math:: A = A_1 + \frac{A_1 - A_2}{r_{21}^{p_f} - 1},\qquad
@@ -576,6 +577,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         solves of N/2^k unknowns, the couplings the planes forbid exactly zero); the panel
         counts are the whole mirrored panelling's.  Without the remesher (the input family)
         the whole body is solved.
+    value_pair : str
+        "finest" (default): the value from the two finest levels; "nested" (an option, not
+        adopted: :func:`~stripcoef.hull.panel_error.finest_pair_under_refined`, measured in
+        benchmarks/data/frame32d_trace.md) the two nested pairs' where the finest pair refines
+        by less than Celik et al.'s r = 1.3.
 
     Returns
     -------
@@ -605,6 +611,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     if not (isinstance(panels, (int, np.integer)) and 50 <= panels <= MAX_PANELS):
         raise InputError("panel count out of range", key="panels", value=panels,
                          expected=f"an integer from 50 to {MAX_PANELS}")
+    if value_pair not in ("finest", "nested"):
+        raise InputError("unknown value pair", key="value_pair", value=value_pair,
+                         expected="finest or nested")
     if family not in FAMILIES:
         raise InputError("unknown panel family", key="family", value=family,
                          expected=" or ".join(FAMILIES))
@@ -725,10 +734,10 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         formal = edge_order(features.turning, finest_edge, thickness,
                             sheet=features.sheet_wider_than(THIN_EDGE_RATIO * finest_edge))
         a = richardson(mats[-2], mats[-1], counts[-2], counts[-1], order=formal)
-        if ladder or finest_pair_under_refined(counts):
-            # two nested pairs (the input ladder; or the finest pair under Celik et al.'s
-            # r = 1.3, panel_error.finest_pair_under_refined): the finer pair's extrapolation,
-            # its step plus its change since the coarser pair's (ladder_extrapolation)
+        if ladder or (value_pair == "nested" and finest_pair_under_refined(counts)):
+            # two nested pairs (the input ladder; or, an option, the finest pair under Celik
+            # et al.'s r = 1.3): the finer pair's extrapolation, its step plus its change
+            # since the coarser pair's (ladder_extrapolation)
             a, error = ladder_extrapolation(mats[-4:], counts[-4:], formal)
             order, safety = np.full((6, 6), formal), np.ones((6, 6))
             at_c = [transform_matrix(m, from_point=about, to_point=centroid) for m in mats[-4:]]
