@@ -86,7 +86,7 @@ def compare(path, seed: int, k: int) -> int:
 
     levels: dict = {}
     with open(path, newline="") as fh:
-        for r in csv.DictReader(fh):
+        for r in csv.DictReader(line for line in fh if not line.startswith("#")):
             if (int(r["seed"]), int(r["shape"])) != (seed, k):
                 continue
             n, m = levels.setdefault(int(r["level"]), [int(r["faces"]), np.zeros((6, 6))])
