@@ -17,7 +17,11 @@ diagnose``, its defaults) is run on
   without their sensor noise (``validation.independent.generate(logged_noise=False)``: the
   same truth, commands and trajectory): the attenuation of an errors-in-variables regressor
   (noisy velocity in a drag or added-mass column; Fuller 1987, sec. 1.1) is the difference
-  from the noisy log's value.
+  from the noisy log's value;
+- ``truth, noise draw k`` (``--noise-draws K``): the noise-free log with K fresh draws of the
+  sensor noise (:func:`renoised`) against the truth's model: their mean off the truth is an
+  errors-in-variables bias, their spread the noise's own scatter (a single log's miss of
+  1-2 of those standard deviations is the draw's).
 
 Each diagnosis's value is compared with the truth in the units the log determines it in
 against *that* model (``benchmarks.diagnose_independent.magnitude_truth`` with the model's
@@ -102,9 +106,27 @@ def _value(res: dict, model: dict, truth, category: str, dof_name: str) -> dict:
     return out
 
 
+def renoised(clean, seed: int, k: int):
+    """The noise-free log ``clean`` with a fresh draw ``k`` of the sensor noise
+    (``validation.independent.NOISE``, the generator's levels, seeded from the log's seed and
+    ``k``): another realisation of the same log's noise, for the spread and the mean of a
+    value over noise draws (an errors-in-variables bias is a mean off the truth; a draw's own
+    miss is a spread)."""
+    from stripcoef.logfile import Log
+    from validation.independent import NOISE
+    rng = np.random.default_rng([seed, 1000 + k])
+    cols = {c: np.array(v, float) for c, v in clean.columns.items()}
+    for name, sd in NOISE.items():
+        if name in cols:
+            cols[name] = cols[name] + rng.normal(0.0, sd, cols[name].shape[0])
+    return Log(cols, source=f"{clean.source}, noise draw {k}", meta=dict(clean.meta))
+
+
 def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 300.0,
-          models: tuple | None = None) -> dict:
-    """The record of one log (module docstring): ``{label: value record}``."""
+          models: tuple | None = None, noise_draws: int = 0) -> dict:
+    """The record of one log (module docstring): ``{label: value record}``;
+    ``noise_draws``: that many diagnoses against the truth's model of the noise-free log with
+    a fresh noise draw each (:func:`renoised`)."""
     from stripcoef.conventions import parse_dof
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.model import HydroModel
@@ -127,8 +149,11 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float = 3
     cases["truth"] = (log, source)
     cases["truth, noise-free"] = (clean, source)
     cases["prior, noise-free"] = (clean, prior.to_dict())
+    for k in range(noise_draws):
+        cases[f"truth, noise draw {k + 1}"] = (renoised(clean, seed, k), source)
     if models:
-        cases = {k: v for k, v in cases.items() if k in models}
+        cases = {k: v for k, v in cases.items()
+                 if k in models or k.startswith("truth, noise draw")}
     out = {"vehicle": vehicle, "category": category, "seed": seed, "mode": mode,
            "dof": dof_name, "drawn": float(truth.strength), "models": {}}
     for label, (lg, model) in cases.items():
@@ -209,6 +234,9 @@ def main(argv=None) -> int:
     ap.add_argument("--rows", default=None,
                     help="comma-separated VEHICLE:CATEGORY:SEED:MODE (mode dof or all)")
     ap.add_argument("--duration", type=float, default=300.0)
+    ap.add_argument("--noise-draws", type=int, default=0,
+                    help="diagnoses of the truth's model on the noise-free log with that many "
+                         "fresh noise draws")
     ap.add_argument("--models", default=None,
                     help="comma-separated labels of the models to diagnose against (default: "
                          "all; 'prior', 'prior <- truth G', 'truth', 'truth, noise-free', "
@@ -235,10 +263,18 @@ def main(argv=None) -> int:
     for spec in args.rows.split(","):
         vehicle, category, seed, mode = spec.split(":")
         t0 = time.process_time()
-        rec = trace(vehicle, category, int(seed), mode, args.duration, models)
+        rec = trace(vehicle, category, int(seed), mode, args.duration, models,
+                    args.noise_draws)
         rec["cpu_s"] = time.process_time() - t0
         print("trace " + json.dumps(rec, default=float), flush=True)
         print(_text(rec), flush=True)
+        draws = [m["error"] for k, m in rec["models"].items()
+                 if k.startswith("truth, noise draw") and "error" in m]
+        if draws:
+            print(f"Noise draws against the truth's model: {len(draws)}, mean error "
+                  f"{100 * np.mean(draws):+.1f} % (its standard error "
+                  f"{100 * np.std(draws, ddof=1) / np.sqrt(len(draws)):.1f} %), spread (sd) "
+                  f"{100 * np.std(draws, ddof=1):.1f} %" if len(draws) > 1 else "", flush=True)
         print(f"({rec['cpu_s']:.0f} s of CPU)", flush=True)
     return 0
 
