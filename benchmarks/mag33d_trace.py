@@ -1,4 +1,4 @@
-"""Why a named effect's magnitude misses the truth by more than 15 % (issue 33): one log of
+r"""Why a named effect's magnitude misses the truth by more than 15 % (issue 33): one log of
 ``benchmarks.diagnose_independent`` diagnosed again against swapped priors and a noise-free
 copy of the log.
 
