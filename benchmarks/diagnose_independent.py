@@ -434,7 +434,18 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
       :math:`s\,g_w/g`, ``written`` :math:`g_w` the thrust of the written model's thrusters
       per unit of the prior's map (:func:`written_gain`: the whole-log thruster gains; 1
       without). Issue 33: the whole-log c_t of a BlueROV2-like tether log, 0.204 for a drawn
-      0.2196, is 0.2026 in the thrust's units (g = 1.084).
+      0.2196, is 0.2026 in the thrust's units (g = 1.084);
+    - an effect that *replaces* a term the prior already holds (the truth's buoyancy
+      :math:`B_p + s`, the truth's surge linear drag :math:`X_u = s`,
+      ``validation.independent.with_effect``): the prior's own term stays absolute in the
+      model's balance (as :math:`M_{RB} + M_{A,prior}` above), so the change the log asks of
+      the model is the truth's term at :math:`s\,g_w/g` less the prior's. The buoyancy offset
+      (heave force, positive down; Fossen 2011 eq. 4.6 at small roll and pitch):
+      :math:`b = (W - B_{true})\,s\,g_w/g - (W - B_p)`; the linear drag:
+      :math:`d_L = X_{u,true}\,s\,g_w/g - X_{u,p}`. Issue 33 (mag33d): on a VideoRay log
+      (prior :math:`W - B_p = -0.30` N, g = 1.246, drawn 0.302 N) the force rule's 0.242 N
+      left out :math:`(W - B_p)(1/g - 1) = +0.059` N; the diagnosis's -0.180 N is -1.4 % of
+      this rule's -0.183 N, -25.6 % of the force rule's.
 
     (The row's ``magnitude_error_drawn`` compares with the drawn strength.)"""
     from stripcoef.conventions import parse_dof
@@ -446,8 +457,16 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
         m_a0 = float(np.asarray(prior["added_mass"], float)[i, i])
         g = thrust_gain(truth, prior, i)
         return (m_rb + float(truth.m_a[i, i])) * scale / g - (m_rb + m_a0)
+    k = scale * written / thrust_gain(truth, prior, i) if category in FORCE_EFFECTS else 1.0
+    if category == "buoyancy_offset":
+        from validation.independent import GRAVITY
+        b_p = float(prior["density"]) * float(prior["volume"]) * GRAVITY
+        return (float(truth.weight) - float(truth.buoyancy)) * k - (float(truth.weight) - b_p)
+    if category == "linear_drag":
+        return (float(np.asarray(truth.d_l, float)[i, i]) * k
+                - float(np.asarray(prior["linear_damping"], float)[i, i]))
     if category in FORCE_EFFECTS:
-        return float(truth.strength) * scale * written / thrust_gain(truth, prior, i)
+        return float(truth.strength) * k
     return float(truth.strength)
 
 

@@ -538,9 +538,15 @@ class Pilot:
 
 
 def generate(vehicle: dict, effect: str | None, seed: int, *, duration: float = 300.0,
-             rate: float = 10.0):
+             rate: float = 10.0, logged_noise: bool = True):
     """A noisy log of ``vehicle`` (``HydroModel.to_dict()`` of the prior) with ``effect``,
     flown by :class:`Pilot`.
+
+    ``logged_noise=False`` writes the true states instead of the measured ones: the pilot
+    still flies on the noisy measurements and every random draw is made (a zero-width
+    normal draw consumes the generator as the noisy one does), so the truth, the commands
+    and the trajectory are those of the noisy log; only the logged columns' sensor noise
+    (:data:`NOISE`) is left out (an errors-in-variables check: Fuller 1987, sec. 1.1).
 
     Returns ``(log, truth)``: the :class:`~stripcoef.logfile.Log` (t, pose, velocities,
     ``n_<thruster>`` commands, ``tether_length``; ``meta["command_range"]``: each thruster's
@@ -612,7 +618,8 @@ def generate(vehicle: dict, effect: str | None, seed: int, *, duration: float = 
     cols = {"t": data[:, 0]}
     names = ["x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r"]
     for j, name in enumerate(names):
-        cols[name] = data[:, 1 + j] + rng.normal(0.0, NOISE[name], data.shape[0])
+        cols[name] = data[:, 1 + j] + rng.normal(0.0, NOISE[name] if logged_noise else 0.0,
+                                                 data.shape[0])
     cols["psi"] = np.unwrap(cols["psi"])
     for k, th in enumerate(truth.thrusters):
         cols[f"n_{th['name']}"] = np.array([c[k] for c in cmds])
