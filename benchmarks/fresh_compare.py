@@ -32,6 +32,8 @@ CRITERIA = (
      r"named first after the truth's background \(buoyancy, thrust gains\): (\d+)/(\d+)",
      None, False),
     ("magnitude within 15 %", r"; magnitude within 15 %: (\d+)/(\d+)", None, False),
+    ("magnitude within 15 %, held by the written model",
+     r"held by the written model, not removed by its validation: (\d+)/(\d+)", None, False),
     ("error cut >= 3x", r"error cut >= 3x: (\d+)/(\d+)", None, False),
     ("the truth's own cut >= 3x", r"cuts the prior's error >= 3x in (\d+)/(\d+)", None, False),
     ("error cut >= 3x where the truth's is",

@@ -30,7 +30,8 @@ def test_wilson_interval_refuses_impossible_counts():
 SUMMARY = ("Seed 1, 2 logs.\nLibrary effects named first: 78/88 (89 %); named first or in "
            "the first step's ambiguous set (...): 78/88; named first after the truth's "
            "background (buoyancy, thrust gains): 80/88; magnitude within 15 %: 69/88 (of the "
-           "drawn strength, magnitude_error_drawn: 62/88); error cut >= 3x: 55/88 (the "
+           "drawn strength, magnitude_error_drawn: 62/88; within 15 % and held by the written "
+           "model, not removed by its validation: 58/88); error cut >= 3x: 55/88 (the "
            "truth's own model cuts the prior's error >= 3x in 86/88 of the rows with the "
            "oracle; of those the diagnosis does in 55/86).\nWhole-log runs ...: named in "
            "3/44, kept in the written model in 2/44 (by the earlier rule, ...: named 4/44, "
@@ -45,6 +46,7 @@ def test_counts_are_read_from_the_summary_text():
     assert got["library effects named first"] == (78, 88)
     assert got["named first after the background"] == (80, 88)
     assert got["magnitude within 15 %"] == (69, 88)
+    assert got["magnitude within 15 %, held by the written model"] == (58, 88)
     assert got["error cut >= 3x"] == (55, 88)
     assert got["the truth's own cut >= 3x"] == (86, 88)
     assert got["error cut >= 3x where the truth's is"] == (55, 86)
