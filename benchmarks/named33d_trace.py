@@ -46,13 +46,14 @@ def trace(vehicle: str, category: str, seed: int, mode: str, effects, options: d
           duration: float = 300.0) -> dict:
     """One diagnosis's record of the effect's DOF (module docstring)."""
     from stripcoef.diagnose.pipeline import diagnose
-    from validation.independent import STRENGTHS, generate
+    from validation.independent import OUTSIDE, STRENGTHS, generate
 
     from benchmarks.diagnose_independent import _prior
 
     prior = _prior(vehicle)
-    dof_name = STRENGTHS[category][0]
-    log, truth = generate(prior.to_dict(), category, seed, duration=duration)
+    dof_name = (STRENGTHS.get(category) or OUTSIDE.get(category) or ("surge",))[0]
+    log, truth = generate(prior.to_dict(), None if category == "clean" else category, seed,
+                          duration=duration)
     t0 = time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

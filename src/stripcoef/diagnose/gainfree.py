@@ -110,16 +110,20 @@ def with_retest(trial: dict, retest: dict, alt=None) -> dict:
         return trial
     bias = (BIAS_RETESTED in (retest.get("signature") or "")
             or isinstance(alt, LinearDragBiasFree))
-    own = trial["signature"] or "no signature of its own"
-    text = (f"{own} ({BIAS_RETESTED if bias else RETESTED}: "
+    text = (f"{trial['signature']} ({BIAS_RETESTED if bias else RETESTED}: "
             f"{', '.join(f'{k} = {v:.3g}' for k, v in retest['parameters'].items())}, "
             f"z = {retest['z']:.1f}, held-out gain {100 * retest['held_out_gain']:.1f} %, "
             f"delta BIC {retest['delta_bic']:.1f}; written without "
             f"{'it' if bias else 'the gains'})")
-    # only the gains-free retest holds a common thrust scale (borrows_from_scale)
-    return {**retest, "effect": trial["effect"], "signature": text,
+    # an effect without a signature of its own (the linear drag, LinearDragBiasFree) keeps
+    # none: the selection's guard against out-of-library shapes (an effect without a
+    # signature must beat every shape) still applies to it (issue 33, named33d: with the
+    # text as its signature a BlueROV2-like dry-friction log, seed 29113038, kept a linear
+    # drag whole-log)
+    return {**retest, "effect": trial["effect"],
+            "signature": text if trial["signature"] else None,
             "released": trial["released"], "_cfg": trial["_cfg"], "_ev": trial["_ev"],
-            "_retested": not bias}
+            "_retested": not bias}   # only the gains-free retest holds a common scale
 
 
 def borrows_from_scale(trial: dict) -> bool:
