@@ -1,5 +1,5 @@
 """Issue 33 (named33d): two options for the named-first misses of the independent benchmark,
-off by default (benchmarks/data/named33d_trace.md).
+measured in benchmarks/data/named33d_trace.md: ``restoring_free`` off, ``scale_choice_unforced`` on.
 
 - ``restoring_free``: the linear drag's test in surge and sway repeated, when it fails on its
   statistics, with the buoyancy change's restoring force free beside it
@@ -53,9 +53,10 @@ def test_its_nuisance_is_the_restoring_forces_column_and_its_own_the_drags():
 def test_unforced_leaves_the_step_alone_without_the_option_or_with_a_passing_candidate():
     good = [{"effect": "current"}]
     pair = {"thrust_effectiveness": {}, "added_mass_error": {}}
-    on = DiagnoseSettings(scale_choice_unforced=True)
+    on = DiagnoseSettings()
+    assert on.scale_choice_unforced                                   # the default
     assert unforced(None, pair, good, on) is good
-    assert unforced(None, pair, [], DiagnoseSettings()) == []
+    assert unforced(None, pair, [], DiagnoseSettings(scale_choice_unforced=False)) == []
     assert unforced(None, {"thrust_effectiveness": {}}, [], on) == []
 
 
@@ -64,7 +65,8 @@ def test_a_seeded_bluerov2_surge_scale_is_named_by_the_model_holding_both():
     """Independent simulator, BlueROV2-like, thrust effectiveness, seed 1795930181 (the fresh
     seed 1795929171's repeat 1): the drawn thrust effectiveness is 0.79. On
     the default the scale's held-out error rises 2.8 % and the added mass is not beyond
-    chance, so no candidate passes and nothing is named. With ``scale_choice_unforced`` the
+    chance, so no candidate passes and nothing is named (``scale_choice_unforced=False``, the
+    rule before named33d). With ``scale_choice_unforced`` (the default) the
     model holding both needs the scale (p 0.004) and not the added mass (p 0.78): the scale
     is named, within 5 % of the truth's."""
     from test_diagnose_scalechoice import _independent
@@ -72,10 +74,10 @@ def test_a_seeded_bluerov2_surge_scale_is_named_by_the_model_holding_both():
     from stripcoef.diagnose.pipeline import diagnose
 
     prior, log, truth = _independent("bluerov2_heavy", "thrust_effectiveness", 1795930181)
-    plain = diagnose(log, prior, dof="surge", time_limit=float("inf")).to_dict()
+    plain = diagnose(log, prior, dof="surge", time_limit=float("inf"),
+                     scale_choice_unforced=False).to_dict()
     assert not plain["steps"]
-    res = diagnose(log, prior, dof="surge", time_limit=float("inf"),
-                   scale_choice_unforced=True).to_dict()
+    res = diagnose(log, prior, dof="surge", time_limit=float("inf")).to_dict()
     first = res["steps"][0]
     assert first["effect"] == "thrust_effectiveness"
     assert first["choice"]["needed"] == {"added_mass_error": False, "thrust_effectiveness": True}

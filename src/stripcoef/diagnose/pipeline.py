@@ -156,7 +156,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
              drag_couplings: bool = False, restoring_free: bool = False,
-             scale_choice_unforced: bool = False) -> Diagnosis:
+             scale_choice_unforced: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -233,7 +233,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     scale_choice_unforced : bool
         A thrust scale and an added-mass release, both contenders of a step no candidate
         passes, decided by the model holding both
-        (:attr:`DiagnoseSettings.scale_choice_unforced`).
+        (:attr:`DiagnoseSettings.scale_choice_unforced`; on by default).
 
     Returns
     -------
