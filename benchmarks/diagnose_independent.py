@@ -951,6 +951,14 @@ def main(argv=None) -> int:
     ap.add_argument("--drag-couplings", action="store_true",
                     help="diagnose with drag_couplings (a moment DOF's calibration holds its "
                          "drag couplings to the translations)")
+    ap.add_argument("--restoring-free", action="store_true",
+                    help="diagnose with restoring_free (the linear drag's test in surge and "
+                         "sway repeated with the buoyancy change free)")
+    ap.add_argument("--no-scale-choice-unforced", dest="scale_choice_unforced",
+                    action="store_false", default=True,
+                    help="diagnose with scale_choice_unforced=False (a scale and an "
+                         "added-mass release, both contenders of a step none passes, left "
+                         "undecided: the rule before named33d)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -992,9 +1000,12 @@ def main(argv=None) -> int:
                              seed + 100000 * rep + 1000 * v + c, args.duration, modes,
                              args.validation_others, args.truth_maps, args.one_added_mass,
                              args.dof_gains,
-                             {name: value for name, value in (
+                             {**{name: value for name, value in (
                                  ("gains_beside_current", args.gains_beside_current),
-                                 ("drag_couplings", args.drag_couplings)) if value} or None))
+                                 ("drag_couplings", args.drag_couplings),
+                                 ("restoring_free", args.restoring_free)) if value},
+                              **({} if args.scale_choice_unforced
+                                 else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

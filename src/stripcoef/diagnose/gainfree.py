@@ -40,7 +40,8 @@ Depends on: effects.
 from __future__ import annotations
 
 from stripcoef.effects.hydrodynamic import (BIAS_RETESTED, BuoyancyOffset,
-                                            BuoyancyOffsetGainsFree, MomentumDrag,
+                                            BuoyancyOffsetGainsFree, LinearDrag,
+                                            LinearDragBiasFree, MomentumDrag,
                                             MomentumDragBiasFree, TetherDrag,
                                             TetherDragGainsFree)
 
@@ -50,6 +51,8 @@ GAINS_FREE = TetherDragGainsFree()
 BIAS_GAINS_FREE = BuoyancyOffsetGainsFree()
 #: The momentum drag's test in heave with the buoyancy free (:class:`MomentumDragBiasFree`)
 DRAG_BIAS_FREE = MomentumDragBiasFree()
+#: The linear drag's test in surge and sway with the buoyancy free (:class:`LinearDragBiasFree`)
+LINEAR_BIAS_FREE = LinearDragBiasFree()
 
 #: The rejections that are statistics of the test (the repeated test may answer them); any
 #: other (an implausible or pinned parameter, a physical problem) stands
@@ -71,7 +74,7 @@ def retested(step) -> bool:
 BIAS_DOF = 2
 
 
-def variant(eff, dof: int | None = None):
+def variant(eff, dof: int | None = None, settings=None):
     """The effect whose test is repeated with the thrust gains free for ``eff`` in DOF
     ``dof``, or None: the tether's (any DOF), and the bias's in heave (:data:`BIAS_DOF`,
     module docstring); the momentum drag's in heave, repeated with the buoyancy free."""
@@ -83,6 +86,9 @@ def variant(eff, dof: int | None = None):
     if (isinstance(eff, MomentumDrag) and not isinstance(eff, MomentumDragBiasFree)
             and dof == BIAS_DOF):
         return DRAG_BIAS_FREE     # the buoyancy free, not the gains (module docstring)
+    if (isinstance(eff, LinearDrag) and not isinstance(eff, LinearDragBiasFree)
+            and dof in (0, 1) and getattr(settings, "restoring_free", False)):
+        return LINEAR_BIAS_FREE   # the restoring force's change in surge and sway
     return None
 
 
@@ -92,7 +98,7 @@ def needs_retest(trial: dict) -> bool:
     return bool(reasons) and all(r.startswith(_STATISTICAL) for r in reasons)
 
 
-def with_retest(trial: dict, retest: dict) -> dict:
+def with_retest(trial: dict, retest: dict, alt=None) -> dict:
     """``trial`` (the fit without the gains) judged by ``retest`` (the same candidate with
     the gains free, :func:`stripcoef.diagnose.select._judge`'s record): when the retest is
     significant, its statistics (z, held-out gain, delta BIC, the errors after it, its
@@ -102,16 +108,22 @@ def with_retest(trial: dict, retest: dict) -> dict:
     that says so; else ``trial`` unchanged."""
     if not retest["significant"]:
         return trial
-    bias = BIAS_RETESTED in (retest.get("signature") or "")
+    bias = (BIAS_RETESTED in (retest.get("signature") or "")
+            or isinstance(alt, LinearDragBiasFree))
     text = (f"{trial['signature']} ({BIAS_RETESTED if bias else RETESTED}: "
             f"{', '.join(f'{k} = {v:.3g}' for k, v in retest['parameters'].items())}, "
             f"z = {retest['z']:.1f}, held-out gain {100 * retest['held_out_gain']:.1f} %, "
             f"delta BIC {retest['delta_bic']:.1f}; written without "
             f"{'it' if bias else 'the gains'})")
-    # only the gains-free retest holds a common thrust scale (borrows_from_scale)
-    return {**retest, "effect": trial["effect"], "signature": text,
+    # an effect without a signature of its own (the linear drag, LinearDragBiasFree) keeps
+    # none: the selection's guard against out-of-library shapes (an effect without a
+    # signature must beat every shape) still applies to it (issue 33, named33d: with the
+    # text as its signature a BlueROV2-like dry-friction log, seed 29113038, kept a linear
+    # drag whole-log)
+    return {**retest, "effect": trial["effect"],
+            "signature": text if trial["signature"] else None,
             "released": trial["released"], "_cfg": trial["_cfg"], "_ev": trial["_ev"],
-            "_retested": not bias}
+            "_retested": not bias}   # only the gains-free retest holds a common scale
 
 
 def borrows_from_scale(trial: dict) -> bool:

@@ -155,7 +155,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_beside_current: bool | str = False,
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
-             drag_couplings: bool = False) -> Diagnosis:
+             drag_couplings: bool = False, restoring_free: bool = False,
+             scale_choice_unforced: bool = True) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -226,6 +227,13 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     drag_couplings : bool
         A moment DOF's calibration also holds its drag couplings to the translations
         (:mod:`.couplings`; off by default, :attr:`DiagnoseSettings.drag_couplings`).
+    restoring_free : bool
+        The linear drag's test in surge and sway repeated with the buoyancy change free
+        (:attr:`DiagnoseSettings.restoring_free`).
+    scale_choice_unforced : bool
+        A thrust scale and an added-mass release, both contenders of a step no candidate
+        passes, decided by the model holding both
+        (:attr:`DiagnoseSettings.scale_choice_unforced`; on by default).
 
     Returns
     -------
@@ -286,7 +294,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
-        drag_couplings=bool(drag_couplings))
+        drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
+        scale_choice_unforced=bool(scale_choice_unforced))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

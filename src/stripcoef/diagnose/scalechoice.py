@@ -134,6 +134,21 @@ def choose(cfg, scale: dict, release: dict) -> dict:
             "ambiguous": ambiguous, "record": record, "joint_hyper": joint_hyper}
 
 
+def unforced(cfg, pair: dict, good: list, settings=None) -> list:
+    """The step's candidates that passed, ``good``; or, with the setting
+    ``scale_choice_unforced`` (the default), when none passed and a thrust scale and an added-mass release
+    are both contenders (``pair``: effect -> judged record, :func:`contender`), the one the
+    model holding both needs (:func:`choose`: each effect's likelihood-ratio test against
+    the comprehensive model, Atkinson 1970, Davidson & MacKinnon 1981, Holm 1979 over the
+    two), none when the choice is ambiguous. Each contender was refused only by a gate the
+    choice weighs again (:data:`_SCALE_GATES`, :data:`_RELEASE_GATES`); without this the
+    choice runs only when one of them passed its own gates."""
+    if good or len(pair) != 2 or not getattr(settings, "scale_choice_unforced", False):
+        return good
+    choice = choose(cfg, pair[SCALE], pair[RELEASE])
+    return [] if choice["ambiguous"] else [choice["first"]]
+
+
 def both(cfg, cur: dict, choice: dict, judge):
     """The two steps of a choice whose members are both needed (:func:`choose`), in the
     choice's order, each at the joint fit's nonlinear parameters (the scale profiled with

@@ -252,12 +252,12 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
             trials.append(_judge(eff, trial_cfg, ev, ref, data, dof, cal_names, cal_sd,
                                  settings))
-            alt = gainfree.variant(eff, dof)   # a test repeated with the gains free
+            alt = gainfree.variant(eff, dof, settings)   # a test repeated, nuisance free
             if alt is not None and gainfree.needs_retest(trials[-1]):
                 a_cfg = cfg.with_terms(list(cfg.terms) + [(alt, None)])
                 a_ref = _evaluate(cfg.with_terms(list(cfg.terms) + [(_Nuisance(alt), None)]))
-                trials[-1] = gainfree.with_retest(trials[-1], _judge(
-                    alt, a_cfg, _evaluate(a_cfg), a_ref, data, dof, cal_names, cal_sd, settings))
+                trials[-1] = gainfree.with_retest(trials[-1], _judge(alt, a_cfg, _evaluate(
+                    a_cfg), a_ref, data, dof, cal_names, cal_sd, settings), alt)
         if siblings is not None:     # a thruster effect the other DOFs (or its test) refute
             for t in trials:
                 if t["significant"]:
@@ -297,7 +297,7 @@ def diagnose_dof(data: WindowData, dof: int, settings: DiagnoseSettings = DEFAUL
                 continue
         if competing is not None:
             good = [t for t in good if t["effect"] not in competing["dominated"]]
-        if not good:
+        if not (good := scalechoice.unforced(cfg, pair, good, settings)):
             break
         good.sort(key=lambda t: t["held_out_error_after"])
         best = good[0]

@@ -241,6 +241,21 @@ class DiagnoseSettings:
         :math:`D_Q[i, j]` to the translations that move (the moments of their drag forces;
         :mod:`stripcoef.diagnose.couplings`), written into the model. Off by default:
         measured in benchmarks/data/drag33c_trace.md
+    restoring_free : bool
+        The linear drag's test in surge and sway repeated, when it fails on its statistics,
+        with the buoyancy change's restoring force free beside it
+        (:class:`~stripcoef.effects.hydrodynamic.LinearDragBiasFree`, a nuisance parameter:
+        Cox & Reid 1987; Fossen 2011 eq. 4.6; Indiveri 1998 sec. 3.3.1).
+        Measured in benchmarks/data/named33d_trace.md
+    scale_choice_unforced : bool
+        When no candidate of a step passes and both a thrust scale and an added-mass release
+        are contenders (:func:`~stripcoef.diagnose.scalechoice.contender`), the model holding
+        both decides (:func:`~stripcoef.diagnose.scalechoice.unforced`). On by default
+        (named33d): the fresh seed's BlueROV2 thrust effectiveness 1795930181 named in both
+        modes (magnitude 6 %), every other row of the thrust-effectiveness, added-mass, clean
+        and dry-friction logs of seeds 29112026 and 1795929171 unchanged
+        (benchmarks/data/named33d_trace.md). False: the choice runs only when one of the
+        two passed its gates
     """
 
     window: float = DEFAULT_WINDOW
@@ -259,6 +274,8 @@ class DiagnoseSettings:
     dof_gains: bool = True
     cross_mass_scale: bool = True
     drag_couplings: bool = False
+    restoring_free: bool = False
+    scale_choice_unforced: bool = True
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

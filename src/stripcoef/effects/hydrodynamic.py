@@ -551,6 +551,39 @@ class LinearDrag(Effect):
 
 
 
+class LinearDragBiasFree(LinearDrag):
+    r"""The linear drag's test (:class:`LinearDrag`) in surge or sway with the buoyancy
+    change's column (:func:`buoyancy_column`, [N], free) in the reference and with the drag.
+
+    A buoyancy change :math:`\Delta B` reaches surge and sway through the attitude,
+    :math:`\Delta g = -\Delta B\,[\sin\theta, -\cos\theta\sin\phi]` (Fossen 2011,
+    eq. 4.6), and a vehicle that pitches with its speed turns it into a surge force that
+    leans on the speed: the drag's column :math:`-\bar u` takes or hides it, and no other
+    candidate of the step holds it (the buoyancy offset is a constant in its DOF). The
+    published identifications fit the weight-buoyancy term beside the drag (Indiveri 1998,
+    sec. 3.3.1, eqs. 4.15-4.17: W identified with the drag coefficients); here it is a
+    nuisance parameter refitted with the candidate and in its reference (Cox & Reid 1987:
+    the test of a parameter with the nuisance parameters profiled). Issue 33, the
+    independent benchmark's BlueROV2-like surge linear-drag log of seed 1796030176: the
+    truth 1.81 N lighter than the prior, pitch 7.8 deg RMS, the drag's test on the prior
+    z 2.4 (``benchmarks/data/named33d_trace.md``). Used by the selection only when the
+    drag's test with the prior's buoyancy fails on its statistics
+    (:mod:`stripcoef.diagnose.gainfree`); never written (the buoyancy is judged by its own
+    effect, ``buoyancy_offset``), so not in the registry.
+    """
+
+    nuisance_names = ("buoyancy_change",)
+
+    def nuisance(self, data, dof):
+        """The buoyancy change's column (:func:`buoyancy_column`) in surge or sway [-]; None
+        in the other DOFs (heave's is the constant a buoyancy offset already tests; no
+        restoring force in a rotation's column here)."""
+        if dof not in (0, 1):
+            return None
+        return buoyancy_column(data, dof)[:, None]
+
+
+
 class AddedMassError(Effect):
     r"""Wrong total inertia (added mass), visible in the transients.
 
