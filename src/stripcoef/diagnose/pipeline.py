@@ -356,9 +356,18 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
              if settings.gains_beside_current and gains is not None else None)
     first = None        # mode "joint": the first pass, restored if the current is removed
     if water is not None and settings.gains_beside_current == TEST:
-        if gains.applied:       # the gains against the current, as two explanations
+        if gains.significant:   # the gains against the current, as two explanations
+            applied = gains.applied
             gains, keep = tested(gains, water, data0, train_log, dofs, excited, settings)
-            if not keep:
+            if keep == JOINT:   # both: mode "joint" (regains.py)
+                before = (gains, model, per, fits)
+                gains, model, data = refit_gains(water, prior, data0, train_log, val_log,
+                                                 dofs, excited, replace(
+                                                     settings, gains_beside_current=JOINT),
+                                                 budget)
+                per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+                first = before if gains is not None and gains.applied else None
+            elif not keep and applied:      # withdrawn: the DOFs on the prior's maps
                 model, data = prior, data0
                 per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
     elif water is not None:

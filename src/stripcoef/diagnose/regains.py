@@ -61,10 +61,14 @@ equally close to the truth: :math:`|z|` beyond the two-sided ALPHA point names o
 the log does not turn, the current's columns lie in the span of the gains' (the current's
 variance inflation beside the gains, :math:`1/\rho_{min}` of the generalised eigenvalues of
 its information with and without the contrasts profiled out, above :data:`MAX_VIF`): the two
-are not identified apart (Rothenberg 1971, Theorem 1) and no test can choose. Only a choice
-for the gains keeps them; a choice for the current, no choice, or no identification withdraw
-them (the prior's maps) and the DOFs are diagnosed again on the prior, where the current is
-selected and validated like any effect; the gains' record says which and why.
+are not identified apart (Rothenberg 1971, Theorem 1) and no test can choose. A choice for
+the gains keeps the first pass. A choice for the current is followed by the nested question,
+whether gains are there beside it: the contrasts fitted with the current free (as mode
+``"joint"``) must raise the log-likelihood by more than the Schwarz (1978, Ann. Stat. 6,
+461) penalty, half their determined combinations times ln n; if so mode ``"joint"`` runs,
+else the gains are withdrawn. No choice, or no identification, withdraw them too (the
+prior's maps); withdrawn, the DOFs are diagnosed again on the prior, where the current is
+selected and validated like any effect. The gains' record says which and why.
 
 Depends on: diagnose.gains, diagnose.settings, diagnose.compare, effects, model.
 """
@@ -247,6 +251,27 @@ def _vif(lam, kc, cur) -> float:
     return float(1.0 / max(float(np.min(rho)), 1e-300))
 
 
+def _gains_beside(blocks, sd, sigmas, p_basis, gain_sd, res_c):
+    """``(gain, k)``: the log-likelihood the gains' contrasts add beside the free current
+    (the blocks' shared columns), :math:`\sum_t \ell_{GC,t} - \ell_{C,t}` at each model's
+    maximum-likelihood noise levels (``res_c`` the current's residuals), and the number of
+    combinations the log determines beside it (:data:`MIN_INFORMATION_RATIO` of
+    :mod:`.gains`) [-]."""
+    from stripcoef.diagnose.gains import NOISE_PASSES, _information, _map, _normal_equations
+    from stripcoef.diagnose.settings import MIN_INFORMATION_RATIO
+
+    sig = list(sigmas)
+    for _ in range(NOISE_PASSES):
+        lam, rhs, kc = _normal_equations(blocks, sd, sig, p_basis)
+        x = _map(lam, rhs, kc, gain_sd)
+        res = _residuals(blocks, x, kc, p_basis @ x[kc:])
+        sig = [max(float(np.sqrt(np.mean(r ** 2))), 1e-12) for r in res.T]
+    f, _ = _information(lam, rhs, kc)
+    eig = np.linalg.eigvalsh(f)
+    k = int(np.sum(gain_sd * np.sqrt(np.maximum(eig, 0.0)) >= MIN_INFORMATION_RATIO))
+    return float(np.sum(_log_density(res)) - np.sum(_log_density(res_c))), k
+
+
 def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
     """Which explanation of the prior's window residual the log holds (module docstring,
     mode ``"test"``): ``gains`` (the first pass's applied
@@ -304,8 +329,16 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
                f"{MAX_VIF:g} (the log's heading spans {span:.0f} deg): a current and a gain "
                "change are not identified apart (Rothenberg 1971); the prior's gains kept")
     elif z > crit:
-        choice = "current"
-        why = f"Vuong z = {z:.3g} > {crit:.3g}: the current explains the residual better"
+        # nested: the gains beside the free current (Schwarz 1978: their log-likelihood
+        # gain against half their determined combinations times ln n)
+        gain_ll, k_b = _gains_beside(bc, sdc, sig, p_basis, gains.prior_sd, res_c)
+        both = gain_ll > 0.5 * k_b * np.log(n)
+        choice = "current and gains" if both else "current"
+        why = (f"Vuong z = {z:.3g} > {crit:.3g}: the current explains the residual better; "
+               f"the gains beside it raise the log-likelihood by {gain_ll:.3g} against the "
+               f"Schwarz penalty {0.5 * k_b * np.log(n):.3g} ({k_b} combinations determined "
+               "beside the current): " + ("they are fitted again beside it (mode 'joint')"
+                                          if both else "the prior's gains kept"))
     elif z < -crit:
         choice = "gains"
         why = f"Vuong z = {z:.3g} < -{crit:.3g}: the gains explain the residual better"
@@ -321,14 +354,18 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
 
 
 def tested(gains, water, data0, train_log, dofs, excited, settings):
-    """``(gains, keep)``: mode ``"test"`` (:func:`explain`) on the first pass's applied
-    ``gains``; ``keep`` whether they stay (the log chose them), else they are withdrawn
-    (not applied, the record says why) and the DOFs are to be diagnosed again on the
-    prior."""
+    """``(gains, keep)``: mode ``"test"`` (:func:`explain`) on the first pass's significant
+    ``gains`` (applied, or removed by their validation or bound); ``keep`` True when they stay (the log chose them), :data:`JOINT` when the
+    log holds the current and gains beside it (fitted again beside the free current, mode
+    ``"joint"``, the first pass restored if the current is removed), else False: they are
+    withdrawn (not applied, the record says why) and the DOFs are to be diagnosed again on
+    the prior."""
     out = explain(gains, water, data0, train_log, dofs, excited, settings)
     if out["choice"] == "gains":
-        return replace(gains, reason=gains.reason + "; kept beside the current the DOFs "
+        return replace(gains, reason=gains.reason + "; chosen over the current the DOFs "
                        "found: " + out["text"]), True
-    return replace(gains, applied=False, reason=gains.reason + "; withdrawn beside the "
-                   "current the DOFs found: " + out["text"]
-                   + "; the DOFs diagnosed again on the prior's maps"), False
+    if out["choice"] == "current and gains":
+        return replace(gains, reason=gains.reason + "; tested beside the current the DOFs "
+                       "found: " + out["text"]), JOINT
+    return replace(gains, applied=False, reason=gains.reason + "; not kept beside the "
+                   "current the DOFs found: " + out["text"]), False
