@@ -252,7 +252,7 @@ def _vif(lam, kc, cur) -> float:
 
 
 def _gains_beside(blocks, sd, sigmas, p_basis, gain_sd, res_c):
-    """``(gain, k)``: the log-likelihood the gains' contrasts add beside the free current
+    r"""``(gain, k)``: the log-likelihood the gains' contrasts add beside the free current
     (the blocks' shared columns), :math:`\sum_t \ell_{GC,t} - \ell_{C,t}` at each model's
     maximum-likelihood noise levels (``res_c`` the current's residuals), and the number of
     combinations the log determines beside it (:data:`MIN_INFORMATION_RATIO` of

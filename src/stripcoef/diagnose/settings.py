@@ -221,7 +221,8 @@ class DiagnoseSettings:
         removes it; ``"test"``: the gains (fitted without a current) and the current
         (without gains) compared as two non-nested explanations of the prior's residual
         (Vuong 1989; not identified apart where the log does not turn, Rothenberg 1971),
-        the gains kept only when the log chooses them. Off by default: measured on the
+        the gains kept when the log chooses them, mode ``"joint"`` when it chooses the
+        current and gains beside it (Schwarz 1978), else withdrawn. Off by default: measured on the
         real-style logs only
         (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md)
     dof_gains : bool
