@@ -356,7 +356,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
              if settings.gains_beside_current and gains is not None else None)
     first = None        # mode "joint": the first pass, restored if the current is removed
     if water is not None and settings.gains_beside_current == TEST:
-        if gains.significant:   # the gains against the current, as two explanations
+        if gains.significant and len(dofs) > 1:     # whole-log: two explanations
             applied = gains.applied
             gains, keep = tested(gains, water, data0, train_log, dofs, excited, settings)
             if keep == JOINT:   # both: mode "joint" (regains.py)
