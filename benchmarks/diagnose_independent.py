@@ -966,10 +966,10 @@ def main(argv=None) -> int:
     ap.add_argument("--no-dof-gains", dest="dof_gains", action="store_false",
                     help="diagnose with dof_gains=False (one DOF on the prior's thrust map)")
     ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
-                    choices=(True, "joint"), metavar="joint",
+                    choices=(True, "joint", "test"), metavar="joint|test",
                     help="diagnose with gains_beside_current (whole-log: the thrusters' gains "
                          "fitted again beside the current the DOFs found; 'joint': with the "
-                         "current free beside them)")
+                         "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories

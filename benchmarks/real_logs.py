@@ -759,10 +759,10 @@ def main(argv=None) -> int:
                     help="diagnose with one_added_mass (a DOF whose fit contradicts a "
                          "diagnosed DOF's own added mass selected again)")
     ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
-                    choices=(True, "joint"), metavar="joint",
+                    choices=(True, "joint", "test"), metavar="joint|test",
                     help="diagnose with gains_beside_current (the thrusters' gains fitted "
                          "again beside the water current the DOFs found; 'joint': with the "
-                         "current free beside them)")
+                         "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (

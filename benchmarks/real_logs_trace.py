@@ -168,9 +168,9 @@ def main(argv=None) -> int:
     ap.add_argument("--current-in-prior", action="store_true",
                     help="what-if: diagnose again with the current found written into the prior")
     ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
-                    choices=(True, "joint"), metavar="joint",
+                    choices=(True, "joint", "test"), metavar="joint|test",
                     help="diagnose with the option gains_beside_current ('joint': the "
-                         "current free beside the gains)")
+                         "current free beside the gains; 'test': the two compared, Vuong 1989)")
     args = ap.parse_args(argv)
     current_in_prior = args.current_in_prior
     opts = ({"gains_beside_current": args.gains_beside_current}

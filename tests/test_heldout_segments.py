@@ -109,3 +109,28 @@ def test_each_validates_the_thruster_gains_by_the_joint_simulation():
     # one DOF: the gains (dof_gains) are judged as its changes are
     assert each.gains_logged_dofs([2]) == each.logged_dofs([2])
     assert default.gains_logged_dofs([2]) == [0, 1, 3, 4, 5]
+
+
+def test_a_written_current_is_simulated_in_every_segment_from_its_logged_heading():
+    """The held-out and validation segments restart from the logged pose, so a written
+    current (the diagnosis's ``current`` effect, ``dof: all``, constant in NED) acts in
+    each segment along that segment's own heading (Fossen 2011 sec. 10.3, eq. 10.34-10.35):
+    on a noise-free log of a turning vehicle in a 0.15 m/s current (simulate's own current,
+    eq. 10.1) the model with the written current replays every segment (errors at the
+    integrator's tolerance), the model without it does not (issue 33, real33e)."""
+    model = rov_model()
+    t = np.arange(0.0, 40.0, 0.2)
+    tau = np.zeros((t.size, 6))
+    tau[:, 0] = np.where(t % 8 < 4, 20.0, -10.0)
+    tau[:, 5] = np.where(t % 12 < 6, 3.0, -1.0)         # it turns: the heading changes
+    vc = {"current_north": 0.1, "current_east": -0.11}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        log = simulate(model, t, forces=tau,
+                       current=[vc["current_north"], vc["current_east"], 0.0])
+        water = model.with_effects({"name": "current", "dof": "all", "parameters": vc})
+        with_current = free_simulation_errors(log, water, [0, 1, 5], horizon=10.0)
+        without = free_simulation_errors(log, model, [0, 1, 5], horizon=10.0)
+    assert np.ptp(np.unwrap(log["psi"])) > np.pi            # the log turns
+    assert max(with_current) < 1e-4, with_current
+    assert max(without[:2]) > 100 * max(with_current), (without, with_current)

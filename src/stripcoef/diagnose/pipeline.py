@@ -116,7 +116,8 @@ from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
-from stripcoef.diagnose.regains import (JOINT, current_kept, refit_gains, with_found_current,
+from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
+                                        with_found_current,
                                         withdrawn)
 from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
                                          terms_record, unresolved_timing)
@@ -216,7 +217,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Whole-log: when the DOFs find a water current, the thrusters' gains are fitted again
         beside it and the DOFs diagnosed again on them (:mod:`.regains`; off by default,
         :attr:`DiagnoseSettings.gains_beside_current`); ``"joint"``: with the current free
-        beside them, and withdrawn with it.
+        beside them, and withdrawn with it; ``"test"``: the gains and the current compared as
+        two explanations of the prior's residual (Vuong 1989), the gains kept only when the
+        log chooses them.
     dof_gains : bool
         One DOF: the thrusters' gains fitted in that DOF's balance
         (:attr:`DiagnoseSettings.dof_gains`; on by default); False: the prior's map.
@@ -267,10 +270,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
                          expected="one of " + ", ".join(map(repr, ONE_ADDED_MASS)))
-    if gains_beside_current not in (False, True, JOINT):
+    if gains_beside_current not in (False, True, JOINT, TEST):
         raise InputError("not a mode of the gains beside the current",
                          key="gains_beside_current", value=gains_beside_current,
-                         expected=f"False, True or {JOINT!r}")
+                         expected=f"False, True, {JOINT!r} or {TEST!r}")
     if cross_mass_scale not in (False, True):
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
@@ -290,7 +293,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         added_mass_sd=added_mass_sd, prior_widths=prior_widths,
         validation_others=validation_others,
         one_added_mass=one_added_mass, not_determined=bool(not_determined),
-        gains_beside_current=(JOINT if gains_beside_current == JOINT
+        gains_beside_current=(gains_beside_current if gains_beside_current in (JOINT, TEST)
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
@@ -361,7 +364,22 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     water = (with_found_current(prior, per)
              if settings.gains_beside_current and gains is not None else None)
     first = None        # mode "joint": the first pass, restored if the current is removed
-    if water is not None:
+    if water is not None and settings.gains_beside_current == TEST:
+        if gains.significant and len(dofs) > 1:     # whole-log: two explanations
+            applied = gains.applied
+            gains, keep = tested(gains, water, data0, train_log, dofs, excited, settings)
+            if keep == JOINT:   # both: mode "joint" (regains.py)
+                before = (gains, model, per, fits)
+                gains, model, data = refit_gains(water, prior, data0, train_log, val_log,
+                                                 dofs, excited, replace(
+                                                     settings, gains_beside_current=JOINT),
+                                                 budget)
+                per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+                first = before if gains is not None and gains.applied else None
+            elif not keep and applied:      # withdrawn: the DOFs on the prior's maps
+                model, data = prior, data0
+                per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
+    elif water is not None:
         before = (gains, model, per, fits)
         gains, model, data = refit_gains(water, prior, data0, train_log, val_log, dofs,
                                          excited, settings, budget)

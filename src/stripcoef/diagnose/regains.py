@@ -43,7 +43,40 @@ selects it) they are not written without it, and the first pass (its gains, fitt
 without a current, and its steps, validated as before) is the diagnosis
 (:func:`current_kept`).
 
-Depends on: diagnose.gains, diagnose.settings, effects, model.
+**Mode** ``"test"``. The two explanations are compared instead of combined. A current is
+constant in the world frame, so in the body frame it turns with the heading,
+:math:`u_c = V_c\cos(\beta_c - \psi)`, :math:`v_c = V_c\sin(\beta_c - \psi)` (Fossen 2011,
+sec. 10.3, eq. 10.34-10.35), while a thruster's gain scales its own thrust whatever the
+heading. Where the log turns the two have different regressors, and which one the log holds
+is a choice between two non-nested models fitted on the same window residual of the prior,
+each with the DOFs' joint calibration (:func:`explain`): *gains* (the contrasts of
+:mod:`.gains`, fitted without a current, as the first pass did) against *current* (its two
+components free, the thrusters at their maps). Vuong's (1989, Econometrica 57, 307-333)
+likelihood-ratio statistic :math:`z = (\sum_t \ell_{C,t} - \ell_{G,t} - \tfrac{p_C - p_G}{2}
+\ln n) / (\sqrt{n}\,\hat\omega)` (his eq. 5.6 with the Schwarz correction of sec. 5, the
+windows' log-densities at each model's maximum-likelihood noise levels, :math:`\hat\omega^2`
+their difference's long-run variance, Newey & West 1987 with the lag of Newey & West 1994,
+since windows of one closed-loop log are serially correlated) is N(0, 1) when the two are
+equally close to the truth: :math:`|z|` beyond the two-sided ALPHA point names one. Where
+the log does not turn, the current's columns lie in the span of the gains' (the current's
+variance inflation beside the gains, :math:`1/\rho_{min}` of the generalised eigenvalues of
+its information with and without the contrasts profiled out, above :data:`MAX_VIF`): the two
+are not identified apart (Rothenberg 1971, Theorem 1) and no test can choose. A choice for
+the gains keeps the first pass. A choice for the current is followed by the nested question,
+whether gains are there beside it: the contrasts fitted with the current free (as mode
+``"joint"``) must raise the log-likelihood by more than the Schwarz (1978, Ann. Stat. 6,
+461) penalty, half their determined combinations times ln n; if so mode ``"joint"`` runs,
+else the gains are withdrawn. No choice, or no identification, withdraw them too (the
+prior's maps); withdrawn, the DOFs are diagnosed again on the prior, where the current is
+selected and validated like any effect. The gains' record says which and why. Measured on
+the real-style current log (``benchmarks/data/real33e_trace.md``): the log turns through
+1500-2600 deg, the current is identified apart (VIF 1.0) and chosen (z 19.4 and 8.3 on
+seeds 7 and 21), and the gains beside it pass the Schwarz penalty, so the rows equal mode
+``"joint"``'s (seed 7 28 -> 30 of 44 cells, seed 21 34 -> 34; a fresh seed's current log 2
+-> 4 of 12). Without the nested step seed 21 lost 6 cells (the truth has gains too). Off by
+default for that reason: where it differs from ``"joint"`` it was not shown to help.
+
+Depends on: diagnose.gains, diagnose.settings, diagnose.compare, effects, model.
 """
 
 from __future__ import annotations
@@ -52,6 +85,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from stripcoef.conventions import DOF
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.effects.laws import model_window_data
 
@@ -61,6 +95,16 @@ CURRENT = "current"
 #: fits the current free beside the gains (:func:`current_columns`); ``True`` holds it at the
 #: value the DOFs found.
 JOINT = "joint"
+#: :attr:`~stripcoef.diagnose.settings.DiagnoseSettings.gains_beside_current`'s mode that
+#: tests the gains against the current as two explanations of the same residual
+#: (:func:`explain`).
+TEST = "test"
+#: The largest variance inflation of the current's components beside the gains' contrasts
+#: for which they are identified apart [-]: the rule of thumb of Marquardt (1970,
+#: Technometrics 12, 591-612) that Kutner, Nachtsheim, Neter & Li (2005, Applied Linear
+#: Statistical Models, 5th ed., sec. 10.5) give, a VIF above 10 marking collinearity that
+#: unduly influences the estimates.
+MAX_VIF = 10.0
 
 
 def found_current(per: dict) -> dict | None:
@@ -157,3 +201,177 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
         return gains, prior, data0
     model = gains.model(prior)
     return gains, model, model_window_data(train_log, model, window=settings.window)
+
+
+def _long_run_variance(d) -> float:
+    """The long-run variance of the series ``d`` (Newey & West 1987, Econometrica 55, 703,
+    Bartlett weights; lag :math:`\\lfloor 4 (n/100)^{2/9} \\rfloor`, Newey & West 1994,
+    Rev. Econ. Stud. 61, 631) [units of d squared]."""
+    d = np.asarray(d, float) - float(np.mean(d))
+    n = d.size
+    lags = int(np.floor(4.0 * (n / 100.0) ** (2.0 / 9.0)))
+    v = float(d @ d) / n
+    for k in range(1, min(lags, n - 1) + 1):
+        v += 2.0 * (1.0 - k / (lags + 1.0)) * float(d[k:] @ d[:-k]) / n
+    return max(v, 0.0)
+
+
+def _log_density(res) -> np.ndarray:
+    """Per window, the Gaussian log-density of the DOFs' residuals ``res`` (windows, DOFs)
+    at their maximum-likelihood noise levels [-]."""
+    s2 = np.maximum(np.mean(res ** 2, axis=0), 1e-300)
+    return np.sum(-0.5 * np.log(2.0 * np.pi * s2) - res ** 2 / (2.0 * s2), axis=1)
+
+
+def _residuals(blocks, x, kc, gain_part=None) -> np.ndarray:
+    """(windows, blocks): each block's residual at the joint estimate ``x``."""
+    out = []
+    for _, y, cols, idx, g, _ in blocks:
+        r = y - cols @ x[idx]
+        if gain_part is not None:
+            r = r - g @ gain_part
+        out.append(r)
+    return np.column_stack(out)
+
+
+def _vif(lam, kc, cur) -> float:
+    """The current's largest variance inflation beside the contrasts (:data:`MAX_VIF`):
+    ``lam`` the data-only normal equations (calibration with the current at ``cur``, then
+    the contrasts from ``kc``); the calibration profiled out, 1 / the smallest generalised
+    eigenvalue of the current's information with the contrasts profiled out too against
+    without [-]."""
+    from scipy.linalg import eigh
+
+    n = lam.shape[0]
+    cal = [k for k in range(kc) if k not in cur]
+    rest = list(cur) + list(range(kc, n))
+    s = (lam[np.ix_(rest, rest)] - lam[np.ix_(rest, cal)]
+         @ np.linalg.pinv(lam[np.ix_(cal, cal)]) @ lam[np.ix_(cal, rest)])
+    m = len(cur)
+    fixed = 0.5 * (s[:m, :m] + s[:m, :m].T)
+    free = fixed - s[:m, m:] @ np.linalg.pinv(s[m:, m:]) @ s[m:, :m]
+    try:
+        rho = eigh(0.5 * (free + free.T), fixed, eigvals_only=True)
+    except np.linalg.LinAlgError:
+        return float("inf")
+    return float(1.0 / max(float(np.min(rho)), 1e-300))
+
+
+def _gains_beside(blocks, sd, sigmas, p_basis, gain_sd, res_c):
+    r"""``(gain, k)``: the log-likelihood the gains' contrasts add beside the free current
+    (the blocks' shared columns), :math:`\sum_t \ell_{GC,t} - \ell_{C,t}` at each model's
+    maximum-likelihood noise levels (``res_c`` the current's residuals), and the number of
+    combinations the log determines beside it (:data:`MIN_INFORMATION_RATIO` of
+    :mod:`.gains`) [-]."""
+    from stripcoef.diagnose.gains import NOISE_PASSES, _information, _map, _normal_equations
+    from stripcoef.diagnose.settings import MIN_INFORMATION_RATIO
+
+    sig = list(sigmas)
+    for _ in range(NOISE_PASSES):
+        lam, rhs, kc = _normal_equations(blocks, sd, sig, p_basis)
+        x = _map(lam, rhs, kc, gain_sd)
+        res = _residuals(blocks, x, kc, p_basis @ x[kc:])
+        sig = [max(float(np.sqrt(np.mean(r ** 2))), 1e-12) for r in res.T]
+    f, _ = _information(lam, rhs, kc)
+    eig = np.linalg.eigvalsh(f)
+    k = int(np.sum(gain_sd * np.sqrt(np.maximum(eig, 0.0)) >= MIN_INFORMATION_RATIO))
+    return float(np.sum(_log_density(res)) - np.sum(_log_density(res_c))), k
+
+
+def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
+    """Which explanation of the prior's window residual the log holds (module docstring,
+    mode ``"test"``): ``gains`` (the first pass's applied
+    :class:`~stripcoef.diagnose.gains.ThrusterGains`, fitted on ``data0``, the prior's window
+    data) or the current of ``water`` (the prior with the current the DOFs found), each
+    beside the DOFs' joint calibration. A dict: ``choice`` (``"gains"``, ``"current"``,
+    ``"not distinguished"`` or ``"not identified"``), ``z`` (Vuong's statistic, > 0 for the
+    current), ``critical``, ``vif``, ``heading_span_deg``, ``windows``, ``parameters``, the
+    current refitted without gains (``current_north``, ``current_east`` [m/s]) and
+    ``text``."""
+    from scipy.stats import norm
+
+    from stripcoef.diagnose.compare import ALPHA
+    from stripcoef.diagnose.gains import (NOISE_PASSES, _blocks, _map, _normal_equations,
+                                          _with_shared, contrast_basis, thruster_groups)
+
+    p_basis = contrast_basis(thruster_groups(data0.alloc), len(gains.names))
+    # the gains: the first pass's fit again (its noise levels, its prior sd)
+    b0, _, sd0 = _blocks(data0, dofs, settings, excited)
+    sig0 = [gains.noise.get(DOF[b[0]], 1.0) for b in b0]
+    lam, rhs, kc = _normal_equations(b0, sd0, sig0, p_basis)
+    x = _map(lam, rhs, kc, gains.prior_sd)
+    res_g = _residuals(b0, x, kc, p_basis @ x[kc:])
+    p_g = sum(bool(c["determined"]) for c in gains.combinations)
+    # the current: its components free (linearised about the DOFs' value), no gains
+    vc = dict(water.effects[-1]["parameters"])
+    data_c = model_window_data(train_log, water, window=settings.window)
+    bc, names_c, sdc = _blocks(data_c, dofs, settings, excited)
+    keys = ("current_north", "current_east")
+    bc, names_c, sdc = _with_shared(bc, names_c, sdc, keys,
+                                    current_columns(data_c, vc, [b[0] for b in bc]))
+    cur = [len(names_c) - 2, len(names_c) - 1]
+    sig = list(sig0)
+    for _ in range(NOISE_PASSES):
+        lam_c, rhs_c, kcc = _normal_equations(bc, sdc, sig, p_basis, with_gains=False)
+        xc = np.linalg.lstsq(lam_c, rhs_c, rcond=None)[0]
+        res_c = _residuals(bc, xc, kcc)
+        sig = [max(float(np.sqrt(np.mean(r ** 2))), 1e-12) for r in res_c.T]
+    refit = {k: float(vc[k] + xc[c]) for k, c in zip(keys, cur)}
+    # identification: the current beside the contrasts, data only (no prior on them)
+    lam_i, _, kci = _normal_equations(bc, sdc, sig, p_basis)
+    vif = _vif(lam_i, kci, cur)
+    psi = np.unwrap(np.asarray(data0.eta[:, 5], float))
+    span = float(np.degrees(np.ptp(psi)))
+    n = res_g.shape[0]
+    d = _log_density(res_c) - _log_density(res_g)
+    p_c = len(keys)
+    lr = float(np.sum(d)) - 0.5 * (p_c - p_g) * np.log(n)
+    omega = np.sqrt(_long_run_variance(d) * n)
+    z = lr / omega if omega > 0 else 0.0
+    crit = float(norm.ppf(1.0 - ALPHA / 2.0))
+    if not vif <= MAX_VIF:
+        choice = "not identified"
+        why = (f"the current's variance inflation beside the gains' contrasts {vif:.3g} > "
+               f"{MAX_VIF:g} (the log's heading spans {span:.0f} deg): a current and a gain "
+               "change are not identified apart (Rothenberg 1971); the prior's gains kept")
+    elif z > crit:
+        # nested: the gains beside the free current (Schwarz 1978: their log-likelihood
+        # gain against half their determined combinations times ln n)
+        gain_ll, k_b = _gains_beside(bc, sdc, sig, p_basis, gains.prior_sd, res_c)
+        both = gain_ll > 0.5 * k_b * np.log(n)
+        choice = "current and gains" if both else "current"
+        why = (f"Vuong z = {z:.3g} > {crit:.3g}: the current explains the residual better; "
+               f"the gains beside it raise the log-likelihood by {gain_ll:.3g} against the "
+               f"Schwarz penalty {0.5 * k_b * np.log(n):.3g} ({k_b} combinations determined "
+               "beside the current): " + ("they are fitted again beside it (mode 'joint')"
+                                          if both else "the prior's gains kept"))
+    elif z < -crit:
+        choice = "gains"
+        why = f"Vuong z = {z:.3g} < -{crit:.3g}: the gains explain the residual better"
+    else:
+        choice = "not distinguished"
+        why = (f"Vuong |z| = {abs(z):.3g} <= {crit:.3g}: neither explains the residual "
+               "better; the prior's gains kept")
+    text = (f"gains (p = {p_g}) vs the current (p = {p_c}) as explanations of the prior's "
+            f"residual over {n} windows, heading span {span:.0f} deg, VIF {vif:.3g}: {why}")
+    return {"choice": choice, "z": float(z), "critical": crit, "vif": vif,
+            "heading_span_deg": span, "windows": int(n), "parameters": (p_g, p_c),
+            **refit, "text": text}
+
+
+def tested(gains, water, data0, train_log, dofs, excited, settings):
+    """``(gains, keep)``: mode ``"test"`` (:func:`explain`) on the first pass's significant
+    ``gains`` (applied, or removed by their validation or bound); ``keep`` True when they stay (the log chose them), :data:`JOINT` when the
+    log holds the current and gains beside it (fitted again beside the free current, mode
+    ``"joint"``, the first pass restored if the current is removed), else False: they are
+    withdrawn (not applied, the record says why) and the DOFs are to be diagnosed again on
+    the prior."""
+    out = explain(gains, water, data0, train_log, dofs, excited, settings)
+    if out["choice"] == "gains":
+        return replace(gains, reason=gains.reason + "; chosen over the current the DOFs "
+                       "found: " + out["text"]), True
+    if out["choice"] == "current and gains":
+        return replace(gains, reason=gains.reason + "; tested beside the current the DOFs "
+                       "found: " + out["text"]), JOINT
+    return replace(gains, applied=False, reason=gains.reason + "; not kept beside the "
+                   "current the DOFs found: " + out["text"]), False

@@ -218,7 +218,12 @@ class DiagnoseSettings:
         (:mod:`stripcoef.diagnose.regains`: the omitted-variable bias of the first fit).
         ``True``: the current held at the DOFs' value; ``"joint"``: the current free beside
         the gains (linearised), and the gains withdrawn with the current when the validation
-        removes it. Off by default: measured on the real-style logs only
+        removes it; ``"test"``: the gains (fitted without a current) and the current
+        (without gains) compared as two non-nested explanations of the prior's residual
+        (Vuong 1989; not identified apart where the log does not turn, Rothenberg 1971),
+        the gains kept when the log chooses them, mode ``"joint"`` when it chooses the
+        current and gains beside it (Schwarz 1978), else withdrawn. Off by default: measured on the
+        real-style logs only
         (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md)
     dof_gains : bool
         One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
