@@ -155,7 +155,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_beside_current: bool | str = False,
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
-             drag_couplings: bool = False) -> Diagnosis:
+             drag_couplings: bool = False,
+             validation_horizon: float | str = RESIMULATION_HORIZON) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -226,6 +227,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     drag_couplings : bool
         A moment DOF's calibration also holds its drag couplings to the translations
         (:mod:`.couplings`; off by default, :attr:`DiagnoseSettings.drag_couplings`).
+    validation_horizon : float or str
+        Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
+        integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
 
     Returns
     -------
@@ -286,7 +290,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
-        drag_couplings=bool(drag_couplings))
+        drag_couplings=bool(drag_couplings),
+        validation_horizon=_horizon_setting(validation_horizon))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -363,15 +368,18 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None
     if val_log is not None:
+        horizon = settings.validation_horizons(val_log, dofs)
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
-                                           logged=settings.logged_dofs(dofs))
+                                           logged=settings.logged_dofs(dofs),
+                                           horizon=horizon)
         if first is not None and not current_kept(per, exclude):
             # mode "joint": the gains fitted beside the current are its partner (regains.py)
             gains = withdrawn(gains, first[0])
             model, per, fits = first[1:]
             exclude, record = validate_changes(val_log, model, per, fits, dofs,
                                                budget=budget,
-                                               logged=settings.logged_dofs(dofs))
+                                               logged=settings.logged_dofs(dofs),
+                                               horizon=horizon)
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
@@ -380,8 +388,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     per = read_back(per, fits, written, train_log, window=window, exclude=exclude,
                     fitted=fitted)
     if record is not None and clipped:      # the validated model was clipped afterwards
-        record["kept_changes"] = validation_errors(val_log, written, dofs,
-                                                   settings.logged_dofs(dofs))
+        record["kept_changes"] = validation_errors(
+            val_log, written, dofs, settings.logged_dofs(dofs),
+            settings.validation_horizons(val_log, dofs))
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
         summary = {"metric": METRIC, "dof": r.dof, "units": r.units,
@@ -470,3 +479,16 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
         per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
     return per, fits
+
+
+def _horizon_setting(value):
+    """``validation_horizon`` checked: ``"correlation"`` or a number of seconds > 0."""
+    from stripcoef.diagnose.horizon import CORRELATION
+
+    if isinstance(value, str) and value == CORRELATION:
+        return value
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0 \
+            and np.isfinite(value):
+        return float(value)
+    raise InputError("not a validation horizon", key="validation_horizon", value=value,
+                     expected=f"a number of seconds > 0 or {CORRELATION!r}")

@@ -4,7 +4,7 @@ budget (:class:`Budget`): passed as arguments to every stage, never stashed on t
 The thresholds of the selection are those of the method in :mod:`.pipeline`'s docstring
 (docs/diagnose.md).
 
-Depends on: errors.
+Depends on: errors, diagnose.heldout, diagnose.horizon.
 """
 
 from __future__ import annotations
@@ -241,6 +241,13 @@ class DiagnoseSettings:
         :math:`D_Q[i, j]` to the translations that move (the moments of their drag forces;
         :mod:`stripcoef.diagnose.couplings`), written into the model. Off by default:
         measured in benchmarks/data/drag33c_trace.md
+    validation_horizon : float or str
+        Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
+        validate_changes`; the thrusters' gains keep the free simulation's):
+        :data:`~stripcoef.diagnose.heldout.HORIZON` (default) or ``"correlation"``, each
+        DOF's the integral time scale of its logged velocity on the validation part, a
+        k-step-ahead prediction error for a log flown in closed loop
+        (:mod:`stripcoef.diagnose.horizon`; :meth:`validation_horizons`)
     """
 
     window: float = DEFAULT_WINDOW
@@ -259,6 +266,20 @@ class DiagnoseSettings:
     dof_gains: bool = True
     cross_mass_scale: bool = True
     drag_couplings: bool = False
+    validation_horizon: float | str = RESIMULATION_HORIZON
+
+    def validation_horizons(self, val_log, dofs):
+        """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
+        (:data:`~stripcoef.diagnose.heldout.HORIZON`), a number as given, or with
+        ``"correlation"`` :func:`stripcoef.diagnose.horizon.correlation_horizons` of the
+        validation log ``val_log``."""
+        from stripcoef.diagnose.horizon import CORRELATION, correlation_horizons
+
+        if self.validation_horizon == CORRELATION:
+            return correlation_horizons(val_log, dofs)
+        if float(self.validation_horizon) == RESIMULATION_HORIZON:
+            return None
+        return [float(self.validation_horizon)] * len(dofs)
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

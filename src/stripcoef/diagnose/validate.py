@@ -2,7 +2,7 @@ r"""Validation by free simulation: each change of a diagnosis kept only if it im
 simulation of data it was not fitted on; the re-simulated and held-out velocity errors
 (:mod:`stripcoef.diagnose.heldout`).
 
-Depends on: diagnose.heldout, diagnose.calibrate, diagnose.settings, progress.
+Depends on: diagnose.heldout, diagnose.horizon, diagnose.calibrate, diagnose.settings, progress.
 """
 
 from __future__ import annotations
@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import (SHARED_EFFECTS, SHARED_TIMING, _changes,
@@ -41,7 +40,7 @@ def heldout_errors(result, prior, written) -> dict:
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
-                     skill: bool | str = True) -> tuple[set, dict]:
+                     skill: bool | str = True, horizon=None) -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -100,28 +99,35 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     ``skill="score"`` (a trial): a DOF where the prior has no skill is also left out of the
     summed score (its errors judge no change there).
 
+    ``horizon``: the validation segments' horizon [s], one number or one per DOF of
+    ``dofs`` (None: :data:`~stripcoef.diagnose.heldout.HORIZON`; the k-step-ahead
+    prediction error of :mod:`stripcoef.diagnose.horizon`, e.g. its
+    :func:`~stripcoef.diagnose.horizon.correlation_horizons`). The trivial predictors are
+    judged on the same segments; the record's ``horizon_s`` holds it.
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
-    from stripcoef.diagnose.heldout import (EACH, diebold_mariano, hold_last_velocity_errors,
-                                            segment_squared_errors, zero_velocity_errors)
+    from stripcoef.diagnose.heldout import EACH, HORIZON, diebold_mariano
+    from stripcoef.diagnose.horizon import dof_losses, per_dof, rms, trivial_errors
+
+    horizon = per_dof(HORIZON if horizon is None else horizon, dofs)
 
     def errors(got):
-        return None if got is None else \
-            [float(np.sqrt(v)) for v in np.sum(got[0], axis=0) / np.sum(got[1])]
+        return None if got is None else rms(got)
 
     if not (isinstance(logged, str) and logged == EACH):
         logged = sorted(int(j) for j in logged)
-    base_sse = segment_squared_errors(val_log, prior, dofs, logged=logged)
+    base_sse = dof_losses(val_log, prior, dofs, logged=logged, horizon=horizon)
     base = errors(base_sse)
-    ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
+    hold, zero = trivial_errors(val_log, dofs, horizon)
+    ref = base if base is not None else hold
     ref = [max(e, 1e-12) for e in ref]
     # each DOF alone, whole-log: the veto's reference is the best of the prior and the
     # trivial predictors (skill, docstring)
     trivial = (None if not (skill and isinstance(logged, str) and logged == EACH
                             and len(dofs) > 1)
-               else [min(a, b) for a, b in zip(hold_last_velocity_errors(val_log, dofs),
-                                               zero_velocity_errors(val_log, dofs))])
+               else [min(a, b) for a, b in zip(hold, zero)])
     veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
                                             for a, b in zip(ref, trivial)]
     # skill="score": a DOF where the prior has no skill is left out of the summed score too
@@ -135,15 +141,15 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         key = frozenset(partners(excl, changes))
         if key not in cache:
             budget.check()
-            got = segment_squared_errors(val_log, calibrated_model(prior, per, fits, key),
-                                         dofs, logged=logged)
+            got = dof_losses(val_log, calibrated_model(prior, per, fits, key), dofs,
+                             logged=logged, horizon=horizon)
             e = errors(got)
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
                 r = [a / b for a, b, j in zip(e, ref, judge) if j]
                 cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
-                              e, got[0])
+                              e, got)
         return cache[key]
 
     def eliminate(excl, cur):
@@ -192,7 +198,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         # (heldout.rolling_segments, about 4x as many) cost a third more CPU per diagnosis
         # for a record that decides nothing; --holdout reports them (holdout.paired_tests)
         for k, i in enumerate(dofs):
-            tests[DOF[i]] = diebold_mariano(cur[2][:, k], base_sse[0][:, k])
+            tests[DOF[i]] = diebold_mariano(cur[2][k][0], base_sse[k][0])
     def named(e):
         return _named(e, dofs)
 
@@ -200,6 +206,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                              "part of the fitting log, not used to fit: each change is kept "
                              "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
+              "horizon_s": _named(horizon, dofs),
               "logged_dofs": (logged if isinstance(logged, str)
                               else [DOF[j] for j in logged]),
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
@@ -331,11 +338,15 @@ def _named(errors, dofs):
     return None if errors is None else {DOF[i]: float(v) for i, v in zip(dofs, errors)}
 
 
-def validation_errors(val_log, model, dofs, logged=()):
+def validation_errors(val_log, model, dofs, logged=(), horizon=None):
     """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
     rad/s] (the record's ``kept_changes`` form), None when a simulation diverges;
-    ``logged`` as for :func:`validate_changes`."""
+    ``logged`` and ``horizon`` as for :func:`validate_changes`."""
     from stripcoef.diagnose.heldout import free_simulation_errors
 
-    return _named(free_simulation_errors(val_log, model, dofs, logged=logged), dofs)
+    if horizon is None:
+        return _named(free_simulation_errors(val_log, model, dofs, logged=logged), dofs)
+    from stripcoef.diagnose.horizon import dof_losses, rms
+    got = dof_losses(val_log, model, dofs, logged=logged, horizon=horizon)
+    return _named(None if got is None else rms(got), dofs)
 
