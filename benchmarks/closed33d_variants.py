@@ -17,7 +17,9 @@ Variants (``--variants``, comma-separated; the first runs the selection):
   (``validation_horizon="correlation"``, :mod:`stripcoef.diagnose.horizon`);
 - ``each``: ``validation_others="each"`` (each DOF alone, the others logged, the skill
   veto; 10-s segments);
-- ``each_correlation``: ``each`` on the correlation horizons.
+- ``each_correlation``: ``each`` on the correlation horizons;
+- ``each_own``, ``each_correlation_own``: the same, each removal judged on the DOFs of the
+  changes it removes (``validation_judge="own"``).
 
 The rows are ``benchmarks.diagnose_independent``'s (``row`` lines with a ``variant`` key);
 ``python -m benchmarks.diagnose_independent --from-rows OUT --modes all`` summarises one
@@ -40,7 +42,10 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 VARIANTS = {"default": ("logged", {}),
             "correlation": ("logged", {"validation_horizon": "correlation"}),
             "each": ("each", {}),
-            "each_correlation": ("each", {"validation_horizon": "correlation"})}
+            "each_correlation": ("each", {"validation_horizon": "correlation"}),
+            "each_own": ("each", {"validation_judge": "own"}),
+            "each_correlation_own": ("each", {"validation_horizon": "correlation",
+                                              "validation_judge": "own"})}
 
 #: The pipeline's stages before the validation, replayed from the first variant's calls.
 REPLAYED = ("fit_thruster_gains", "validated", "_fit_dofs")

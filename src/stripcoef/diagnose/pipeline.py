@@ -135,8 +135,8 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
                                          VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
-from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
-                                         resimulated_errors, validate_changes,
+from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
+                                         resimulate_rms, resimulated_errors, validate_changes,
                                          validation_errors, with_kept)
 from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import model_window_data
@@ -156,7 +156,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
              drag_couplings: bool = False,
-             validation_horizon: float | str = RESIMULATION_HORIZON) -> Diagnosis:
+             validation_horizon: float | str = RESIMULATION_HORIZON,
+             validation_judge: str = "all") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -230,6 +231,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     validation_horizon : float or str
         Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
         integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
+    validation_judge : str
+        ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
+        (:attr:`DiagnoseSettings.validation_judge`).
 
     Returns
     -------
@@ -271,6 +275,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
+    if validation_judge not in JUDGES:
+        raise InputError("not a way to judge a validation's removal", key="validation_judge",
+                         value=validation_judge, expected="one of " + ", ".join(JUDGES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -291,7 +298,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
         drag_couplings=bool(drag_couplings),
-        validation_horizon=_horizon_setting(validation_horizon))
+        validation_horizon=_horizon_setting(validation_horizon),
+        validation_judge=validation_judge)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -371,7 +379,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         horizon = settings.validation_horizons(val_log, dofs)
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs),
-                                           horizon=horizon)
+                                           horizon=horizon, judge=settings.validation_judge)
         if first is not None and not current_kept(per, exclude):
             # mode "joint": the gains fitted beside the current are its partner (regains.py)
             gains = withdrawn(gains, first[0])
@@ -379,7 +387,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             exclude, record = validate_changes(val_log, model, per, fits, dofs,
                                                budget=budget,
                                                logged=settings.logged_dofs(dofs),
-                                               horizon=horizon)
+                                               horizon=horizon,
+                                               judge=settings.validation_judge)
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

@@ -248,6 +248,11 @@ class DiagnoseSettings:
         DOF's the integral time scale of its logged velocity on the validation part, a
         k-step-ahead prediction error for a log flown in closed loop
         (:mod:`stripcoef.diagnose.horizon`; :meth:`validation_horizons`)
+    validation_judge : str
+        The DOFs whose validation errors judge removing a change
+        (:func:`~stripcoef.diagnose.validate.validate_changes`' ``judge``): ``"all"``
+        (default, the summed score over every DOF) or ``"own"`` (those of the changes
+        removed: the equation decoupling, for ``validation_others="each"``)
     """
 
     window: float = DEFAULT_WINDOW
@@ -267,6 +272,7 @@ class DiagnoseSettings:
     cross_mass_scale: bool = True
     drag_couplings: bool = False
     validation_horizon: float | str = RESIMULATION_HORIZON
+    validation_judge: str = "all"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default

@@ -40,7 +40,8 @@ def heldout_errors(result, prior, written) -> dict:
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
-                     skill: bool | str = True, horizon=None) -> tuple[set, dict]:
+                     skill: bool | str = True, horizon=None,
+                     judge: str = "all") -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -105,6 +106,14 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     :func:`~stripcoef.diagnose.horizon.correlation_horizons`). The trivial predictors are
     judged on the same segments; the record's ``horizon_s`` holds it.
 
+    ``judge``: ``"all"`` (default) scores a removal on every DOF (the summed score above);
+    ``"own"`` (an option, issue 33, closed33d) on the DOFs of the changes it removes only
+    (:data:`JUDGES`): the equation decoupling of output-error identification, each
+    equation's change judged on its own output with the other equations' states measured
+    (Klein & Morelli 2006, Aircraft System Identification, ch. 6), so that a DOF whose
+    simulation a change does not address (a held roll replayed open loop) does not veto it.
+    The per-DOF veto is unchanged.
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
@@ -131,7 +140,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
                                             for a, b in zip(ref, trivial)]
     # skill="score": a DOF where the prior has no skill is left out of the summed score too
-    judge = [True] * len(dofs) if trivial is None or skill != "score" else \
+    judge_mask = [True] * len(dofs) if trivial is None or skill != "score" else \
         [a <= b for a, b in zip(ref, trivial)]
     cache = {}
 
@@ -147,13 +156,44 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
-                r = [a / b for a, b, j in zip(e, ref, judge) if j]
+                r = [a / b for a, b, j in zip(e, ref, judge_mask) if j]
                 cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
                               e, got)
         return cache[key]
 
+    def on(entry, ks):
+        """The score of a cached ``entry`` on the DOFs at positions ``ks`` only."""
+        if entry[1] is None:
+            return (math.inf, math.inf)
+        r = [entry[1][k] / ref[k] for k in ks if judge_mask[k]]
+        return (sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r)))
+
+    def eliminate_own(excl, cur):
+        """Backward elimination from ``excl``, each removal judged on the DOFs of the
+        changes it removes (``judge="own"``)."""
+        while len(excl) < len(changes):
+            trials = []
+            for c in [c for c in changes if c not in excl]:
+                names = {g[1] for g in partners(excl | {c}, changes) - excl}
+                ks = [k for k, i in enumerate(dofs) if DOF[i] in names]
+                new, old = on(score(excl | {c}), ks), on(cur, ks)
+                if math.inf in new or math.inf in old:
+                    delta = (0.0, 0.0) if new == old else \
+                        ((math.inf, 0.0) if math.inf in new else (-math.inf, 0.0))
+                else:
+                    delta = (new[0] - old[0], new[1] - old[1])
+                trials.append((delta, c))
+            delta, c = min(trials, key=lambda x: x[0])
+            if delta[0] > 0 or (delta[0] == 0 and delta[1] > 0):
+                break
+            excl = partners(excl | {c}, changes)
+            cur = score(excl)
+        return excl, cur
+
     def eliminate(excl, cur):
         """Backward elimination from ``excl`` (the summed score, above)."""
+        if judge == OWN:
+            return eliminate_own(excl, cur)
         while len(excl) < len(changes):
             trials = [(score(excl | {c}), c) for c in
                       track([c for c in changes if c not in excl],
@@ -229,6 +269,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
+
+
+#: :func:`validate_changes`' ``judge`` values: every DOF, or the removed changes' own.
+OWN = "own"
+JUDGES = ("all", OWN)
 
 
 def with_kept(per: dict, excl) -> dict:
