@@ -247,12 +247,19 @@ class DiagnoseSettings:
         :data:`~stripcoef.diagnose.heldout.HORIZON` (default) or ``"correlation"``, each
         DOF's the integral time scale of its logged velocity on the validation part, a
         k-step-ahead prediction error for a log flown in closed loop
-        (:mod:`stripcoef.diagnose.horizon`; :meth:`validation_horizons`)
+        (:mod:`stripcoef.diagnose.horizon`; :meth:`validation_horizons`). Off by default,
+        as ``validation_judge``: measured together with ``"each"``
+        (benchmarks/data/closed33d_trace.md)
     validation_judge : str
         The DOFs whose validation errors judge removing a change
         (:func:`~stripcoef.diagnose.validate.validate_changes`' ``judge``): ``"all"``
         (default, the summed score over every DOF) or ``"own"`` (those of the changes
-        removed: the equation decoupling, for ``validation_others="each"``)
+        removed: the equation decoupling, for ``validation_others="each"``). Off by
+        default: with ``"each"`` and the correlation horizon the whole-log error cut >= 3x
+        rose 4 -> 15 of 17 rows of seed 29112026 and 6 -> 9 of 11 of the fresh seed
+        1795929171, but the fresh seed's spurious steps kept went 0 -> 2 of 11 (a pitch
+        thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
+        benchmarks/data/closed33d_trace.md, docs/performance.md
     """
 
     window: float = DEFAULT_WINDOW
