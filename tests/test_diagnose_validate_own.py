@@ -59,3 +59,12 @@ def test_judged_on_its_own_dof_the_change_stays(table):
     assert excl == {CAL_P}
     assert record["removed_for_own_dof"] == ["roll"]
     assert record["kept_changes"] == pytest.approx({"heave": 0.01, "roll": 0.13})
+
+
+def test_a_bad_judge_is_refused():
+    from stripcoef.diagnose.pipeline import diagnose
+    from stripcoef.errors import InputError
+    from stripcoef.logfile import Log
+
+    with pytest.raises(InputError, match="validation_judge"):
+        diagnose(Log({"t": np.arange(5.0)}), None, validation_judge="some")
