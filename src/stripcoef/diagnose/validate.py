@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import (SHARED_EFFECTS, SHARED_TIMING, _changes,
                                           calibrated_model)
