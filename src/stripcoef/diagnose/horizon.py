@@ -35,8 +35,8 @@ simulation it replaces.
 
 An option (``validation_horizon="correlation"``), not the default: measured with
 ``validation_others="each"`` and ``validation_judge="own"`` on whole-log rows of the
-independent simulator, the error cut >= 3x rose 4 -> 15 of 17 (seed 29112026) and 6 -> 9 of
-11 (fresh seed 1795929171), but spurious steps kept 2 -> 1 and 0 -> 2 (the level hold's
+independent simulator, the error cut >= 3x rose 4 -> 15 of 17 (seed 29112026) and 13 -> 18
+of 22 (fresh seed 1795929171), but spurious steps kept 2 -> 1 and 1 -> 3 (the level hold's
 feed-forward taken as a pitch thrust scale that beats zero velocity by 2 %; a heave
 asymmetry): benchmarks/data/closed33d_trace.md, docs/performance.md.
 

@@ -256,8 +256,8 @@ class DiagnoseSettings:
         (default, the summed score over every DOF) or ``"own"`` (those of the changes
         removed: the equation decoupling, for ``validation_others="each"``). Off by
         default: with ``"each"`` and the correlation horizon the whole-log error cut >= 3x
-        rose 4 -> 15 of 17 rows of seed 29112026 and 6 -> 9 of 11 of the fresh seed
-        1795929171, but the fresh seed's spurious steps kept went 0 -> 2 of 11 (a pitch
+        rose 4 -> 15 of 17 rows of seed 29112026 and 13 -> 18 of 22 of the fresh seed
+        1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
         thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
         benchmarks/data/closed33d_trace.md, docs/performance.md
     """
