@@ -43,7 +43,8 @@ Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
-        [--validation-others logged|simulated] [--one-added-mass]
+        [--validation-others logged|simulated|each] [--one-added-mass]
+        [--validation-horizon correlation] [--validation-judge own]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -970,7 +971,15 @@ def main(argv=None) -> int:
                     help="diagnose with gains_beside_current (whole-log: the thrusters' gains "
                          "fitted again beside the current the DOFs found; 'joint': with the "
                          "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
+    ap.add_argument("--validation-horizon", default=None, metavar="SECONDS|correlation",
+                    help="diagnose with validation_horizon (the validation's segments [s], or "
+                         "'correlation': each DOF's velocity's integral time scale)")
+    ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
+                    help="diagnose with validation_judge ('own': a removal judged on the DOFs "
+                         "of the changes it removes)")
     args = ap.parse_args(argv)
+    if args.validation_horizon not in (None, "correlation"):
+        args.validation_horizon = float(args.validation_horizon)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = (args.categories.split(",") if args.categories
             else list(STRENGTHS) + ["clean"] + list(OUTSIDE))
@@ -1003,7 +1012,9 @@ def main(argv=None) -> int:
                              {**{name: value for name, value in (
                                  ("gains_beside_current", args.gains_beside_current),
                                  ("drag_couplings", args.drag_couplings),
-                                 ("restoring_free", args.restoring_free)) if value},
+                                 ("restoring_free", args.restoring_free),
+                                 ("validation_horizon", args.validation_horizon),
+                                 ("validation_judge", args.validation_judge)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

@@ -136,8 +136,8 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
                                          VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
-from stripcoef.diagnose.validate import (heldout_errors, resimulate_rms,  # noqa: F401
-                                         resimulated_errors, validate_changes,
+from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
+                                         resimulate_rms, resimulated_errors, validate_changes,
                                          validation_errors, with_kept)
 from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import model_window_data
@@ -157,7 +157,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
              drag_couplings: bool = False, restoring_free: bool = False,
-             scale_choice_unforced: bool = True) -> Diagnosis:
+             scale_choice_unforced: bool = True,
+             validation_horizon: float | str = RESIMULATION_HORIZON,
+             validation_judge: str = "all") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -237,6 +239,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         A thrust scale and an added-mass release, both contenders of a step no candidate
         passes, decided by the model holding both
         (:attr:`DiagnoseSettings.scale_choice_unforced`; on by default).
+    validation_horizon : float or str
+        Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
+        integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
+    validation_judge : str
+        ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
+        (:attr:`DiagnoseSettings.validation_judge`).
 
     Returns
     -------
@@ -278,6 +286,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
+    if validation_judge not in JUDGES:
+        raise InputError("not a way to judge a validation's removal", key="validation_judge",
+                         value=validation_judge, expected="one of " + ", ".join(JUDGES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -298,7 +309,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
-        scale_choice_unforced=bool(scale_choice_unforced))
+        scale_choice_unforced=bool(scale_choice_unforced),
+        validation_horizon=_horizon_setting(validation_horizon),
+        validation_judge=validation_judge)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -390,15 +403,19 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None
     if val_log is not None:
+        horizon = settings.validation_horizons(val_log, dofs)
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
-                                           logged=settings.logged_dofs(dofs))
+                                           logged=settings.logged_dofs(dofs),
+                                           horizon=horizon, judge=settings.validation_judge)
         if first is not None and not current_kept(per, exclude):
             # mode "joint": the gains fitted beside the current are its partner (regains.py)
             gains = withdrawn(gains, first[0])
             model, per, fits = first[1:]
             exclude, record = validate_changes(val_log, model, per, fits, dofs,
                                                budget=budget,
-                                               logged=settings.logged_dofs(dofs))
+                                               logged=settings.logged_dofs(dofs),
+                                               horizon=horizon,
+                                               judge=settings.validation_judge)
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)
@@ -407,8 +424,9 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     per = read_back(per, fits, written, train_log, window=window, exclude=exclude,
                     fitted=fitted)
     if record is not None and clipped:      # the validated model was clipped afterwards
-        record["kept_changes"] = validation_errors(val_log, written, dofs,
-                                                   settings.logged_dofs(dofs))
+        record["kept_changes"] = validation_errors(
+            val_log, written, dofs, settings.logged_dofs(dofs),
+            settings.validation_horizons(val_log, dofs))
     if len(dofs) == 1:
         r = per[DOF[dofs[0]]]
         summary = {"metric": METRIC, "dof": r.dof, "units": r.units,
@@ -497,3 +515,16 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
         per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
     return per, fits
+
+
+def _horizon_setting(value):
+    """``validation_horizon`` checked: ``"correlation"`` or a number of seconds > 0."""
+    from stripcoef.diagnose.horizon import CORRELATION
+
+    if isinstance(value, str) and value == CORRELATION:
+        return value
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0 \
+            and np.isfinite(value):
+        return float(value)
+    raise InputError("not a validation horizon", key="validation_horizon", value=value,
+                     expected=f"a number of seconds > 0 or {CORRELATION!r}")

@@ -4,7 +4,7 @@ budget (:class:`Budget`): passed as arguments to every stage, never stashed on t
 The thresholds of the selection are those of the method in :mod:`.pipeline`'s docstring
 (docs/diagnose.md).
 
-Depends on: errors.
+Depends on: errors, diagnose.heldout, diagnose.horizon.
 """
 
 from __future__ import annotations
@@ -261,6 +261,25 @@ class DiagnoseSettings:
         and dry-friction logs of seeds 29112026 and 1795929171 unchanged
         (benchmarks/data/named33d_trace.md). False: the choice runs only when one of the
         two passed its gates
+    validation_horizon : float or str
+        Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
+        validate_changes`; the thrusters' gains keep the free simulation's):
+        :data:`~stripcoef.diagnose.heldout.HORIZON` (default) or ``"correlation"``, each
+        DOF's the integral time scale of its logged velocity on the validation part, a
+        k-step-ahead prediction error for a log flown in closed loop
+        (:mod:`stripcoef.diagnose.horizon`; :meth:`validation_horizons`). Off by default,
+        as ``validation_judge``: measured together with ``"each"``
+        (benchmarks/data/closed33d_trace.md)
+    validation_judge : str
+        The DOFs whose validation errors judge removing a change
+        (:func:`~stripcoef.diagnose.validate.validate_changes`' ``judge``): ``"all"``
+        (default, the summed score over every DOF) or ``"own"`` (those of the changes
+        removed: the equation decoupling, for ``validation_others="each"``). Off by
+        default: with ``"each"`` and the correlation horizon the whole-log error cut >= 3x
+        rose 4 -> 15 of 17 rows of seed 29112026 and 13 -> 18 of 22 of the fresh seed
+        1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
+        thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
+        benchmarks/data/closed33d_trace.md, docs/performance.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -281,6 +300,21 @@ class DiagnoseSettings:
     drag_couplings: bool = False
     restoring_free: bool = False
     scale_choice_unforced: bool = True
+    validation_horizon: float | str = RESIMULATION_HORIZON
+    validation_judge: str = "all"
+
+    def validation_horizons(self, val_log, dofs):
+        """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
+        (:data:`~stripcoef.diagnose.heldout.HORIZON`), a number as given, or with
+        ``"correlation"`` :func:`stripcoef.diagnose.horizon.correlation_horizons` of the
+        validation log ``val_log``."""
+        from stripcoef.diagnose.horizon import CORRELATION, correlation_horizons
+
+        if self.validation_horizon == CORRELATION:
+            return correlation_horizons(val_log, dofs)
+        if float(self.validation_horizon) == RESIMULATION_HORIZON:
+            return None
+        return [float(self.validation_horizon)] * len(dofs)
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a

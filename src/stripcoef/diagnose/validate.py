@@ -2,15 +2,13 @@ r"""Validation by free simulation: each change of a diagnosis kept only if it im
 simulation of data it was not fitted on; the re-simulated and held-out velocity errors
 (:mod:`stripcoef.diagnose.heldout`).
 
-Depends on: diagnose.heldout, diagnose.calibrate, diagnose.settings, progress.
+Depends on: diagnose.heldout, diagnose.horizon, diagnose.calibrate, diagnose.settings, progress.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import replace
-
-import numpy as np
 
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import (SHARED_EFFECTS, SHARED_TIMING, _changes,
@@ -41,7 +39,8 @@ def heldout_errors(result, prior, written) -> dict:
 
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
-                     skill: bool | str = True) -> tuple[set, dict]:
+                     skill: bool | str = True, horizon=None,
+                     judge: str = "all") -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -100,32 +99,47 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     ``skill="score"`` (a trial): a DOF where the prior has no skill is also left out of the
     summed score (its errors judge no change there).
 
+    ``horizon``: the validation segments' horizon [s], one number or one per DOF of
+    ``dofs`` (None: :data:`~stripcoef.diagnose.heldout.HORIZON`; the k-step-ahead
+    prediction error of :mod:`stripcoef.diagnose.horizon`, e.g. its
+    :func:`~stripcoef.diagnose.horizon.correlation_horizons`). The trivial predictors are
+    judged on the same segments; the record's ``horizon_s`` holds it.
+
+    ``judge``: ``"all"`` (default) scores a removal on every DOF (the summed score above);
+    ``"own"`` (an option, issue 33, closed33d) on the DOFs of the changes it removes only
+    (:data:`JUDGES`): the equation decoupling of output-error identification, each
+    equation's change judged on its own output with the other equations' states measured
+    (Klein & Morelli 2006, Aircraft System Identification, ch. 6), so that a DOF whose
+    simulation a change does not address (a held roll replayed open loop) does not veto it.
+    The per-DOF veto is unchanged.
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
-    from stripcoef.diagnose.heldout import (EACH, diebold_mariano, hold_last_velocity_errors,
-                                            segment_squared_errors, zero_velocity_errors)
+    from stripcoef.diagnose.heldout import EACH, HORIZON, diebold_mariano
+    from stripcoef.diagnose.horizon import dof_losses, per_dof, rms, trivial_errors
+
+    horizon = per_dof(HORIZON if horizon is None else horizon, dofs)
 
     def errors(got):
-        return None if got is None else \
-            [float(np.sqrt(v)) for v in np.sum(got[0], axis=0) / np.sum(got[1])]
+        return None if got is None else rms(got)
 
     if not (isinstance(logged, str) and logged == EACH):
         logged = sorted(int(j) for j in logged)
-    base_sse = segment_squared_errors(val_log, prior, dofs, logged=logged)
+    base_sse = dof_losses(val_log, prior, dofs, logged=logged, horizon=horizon)
     base = errors(base_sse)
-    ref = base if base is not None else hold_last_velocity_errors(val_log, dofs)
+    hold, zero = trivial_errors(val_log, dofs, horizon)
+    ref = base if base is not None else hold
     ref = [max(e, 1e-12) for e in ref]
     # each DOF alone, whole-log: the veto's reference is the best of the prior and the
     # trivial predictors (skill, docstring)
     trivial = (None if not (skill and isinstance(logged, str) and logged == EACH
                             and len(dofs) > 1)
-               else [min(a, b) for a, b in zip(hold_last_velocity_errors(val_log, dofs),
-                                               zero_velocity_errors(val_log, dofs))])
+               else [min(a, b) for a, b in zip(hold, zero)])
     veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
                                             for a, b in zip(ref, trivial)]
     # skill="score": a DOF where the prior has no skill is left out of the summed score too
-    judge = [True] * len(dofs) if trivial is None or skill != "score" else \
+    judge_mask = [True] * len(dofs) if trivial is None or skill != "score" else \
         [a <= b for a, b in zip(ref, trivial)]
     cache = {}
 
@@ -135,19 +149,50 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         key = frozenset(partners(excl, changes))
         if key not in cache:
             budget.check()
-            got = segment_squared_errors(val_log, calibrated_model(prior, per, fits, key),
-                                         dofs, logged=logged)
+            got = dof_losses(val_log, calibrated_model(prior, per, fits, key), dofs,
+                             logged=logged, horizon=horizon)
             e = errors(got)
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
-                r = [a / b for a, b, j in zip(e, ref, judge) if j]
+                r = [a / b for a, b, j in zip(e, ref, judge_mask) if j]
                 cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
-                              e, got[0])
+                              e, got)
         return cache[key]
+
+    def on(entry, ks):
+        """The score of a cached ``entry`` on the DOFs at positions ``ks`` only."""
+        if entry[1] is None:
+            return (math.inf, math.inf)
+        r = [entry[1][k] / ref[k] for k in ks if judge_mask[k]]
+        return (sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r)))
+
+    def eliminate_own(excl, cur):
+        """Backward elimination from ``excl``, each removal judged on the DOFs of the
+        changes it removes (``judge="own"``)."""
+        while len(excl) < len(changes):
+            trials = []
+            for c in [c for c in changes if c not in excl]:
+                names = {g[1] for g in partners(excl | {c}, changes) - excl}
+                ks = [k for k, i in enumerate(dofs) if DOF[i] in names]
+                new, old = on(score(excl | {c}), ks), on(cur, ks)
+                if math.inf in new or math.inf in old:
+                    delta = (0.0, 0.0) if new == old else \
+                        ((math.inf, 0.0) if math.inf in new else (-math.inf, 0.0))
+                else:
+                    delta = (new[0] - old[0], new[1] - old[1])
+                trials.append((delta, c))
+            delta, c = min(trials, key=lambda x: x[0])
+            if delta[0] > 0 or (delta[0] == 0 and delta[1] > 0):
+                break
+            excl = partners(excl | {c}, changes)
+            cur = score(excl)
+        return excl, cur
 
     def eliminate(excl, cur):
         """Backward elimination from ``excl`` (the summed score, above)."""
+        if judge == OWN:
+            return eliminate_own(excl, cur)
         while len(excl) < len(changes):
             trials = [(score(excl | {c}), c) for c in
                       track([c for c in changes if c not in excl],
@@ -192,7 +237,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         # (heldout.rolling_segments, about 4x as many) cost a third more CPU per diagnosis
         # for a record that decides nothing; --holdout reports them (holdout.paired_tests)
         for k, i in enumerate(dofs):
-            tests[DOF[i]] = diebold_mariano(cur[2][:, k], base_sse[0][:, k])
+            tests[DOF[i]] = diebold_mariano(cur[2][k][0], base_sse[k][0])
     def named(e):
         return _named(e, dofs)
 
@@ -200,6 +245,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                              "part of the fitting log, not used to fit: each change is kept "
                              "only if removing it makes this worse",
               "validation_s": [float(val_log["t"][0]), float(val_log["t"][-1])],
+              "horizon_s": _named(horizon, dofs),
               "logged_dofs": (logged if isinstance(logged, str)
                               else [DOF[j] for j in logged]),
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
@@ -222,6 +268,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
+
+
+#: :func:`validate_changes`' ``judge`` values: every DOF, or the removed changes' own.
+OWN = "own"
+JUDGES = ("all", OWN)
 
 
 def with_kept(per: dict, excl) -> dict:
@@ -331,11 +382,15 @@ def _named(errors, dofs):
     return None if errors is None else {DOF[i]: float(v) for i, v in zip(dofs, errors)}
 
 
-def validation_errors(val_log, model, dofs, logged=()):
+def validation_errors(val_log, model, dofs, logged=(), horizon=None):
     """{DOF name: RMS free-simulation error} of ``model`` on the validation log [m/s or
     rad/s] (the record's ``kept_changes`` form), None when a simulation diverges;
-    ``logged`` as for :func:`validate_changes`."""
+    ``logged`` and ``horizon`` as for :func:`validate_changes`."""
     from stripcoef.diagnose.heldout import free_simulation_errors
 
-    return _named(free_simulation_errors(val_log, model, dofs, logged=logged), dofs)
+    if horizon is None:
+        return _named(free_simulation_errors(val_log, model, dofs, logged=logged), dofs)
+    from stripcoef.diagnose.horizon import dof_losses, rms
+    got = dof_losses(val_log, model, dofs, logged=logged, horizon=horizon)
+    return _named(None if got is None else rms(got), dofs)
 
