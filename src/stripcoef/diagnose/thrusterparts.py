@@ -64,6 +64,28 @@ applies this test alone (:class:`OneDofParts`; it has no sibling DOFs to check):
 asymmetry first (z 7.1; the validation then removed it) where the whole-log run names the
 buoyancy; with the test it names the buoyancy first.
 
+A thrust asymmetry found in a translation must, thirdly, be identified apart from the other
+effect of each thruster's own map, its dead band, fitted beside the same buoyancy change
+(:meth:`ThrusterParts.deadband_confounded`). The two are non-nested (neither law is a special
+case of the other: the asymmetry scales every backward thrust, the dead band removes the thrust
+of the small commands of both signs; Vuong 1989, Econometrica 57, 307-333), so the log tells
+them apart only in the model that holds both (the comprehensive model, Atkinson 1970, J. R.
+Stat. Soc. B 32, 323-353; Davidson & MacKinnon 1981, Econometrica 49, 781-793, the rule the
+selection's competing effects already follow, :func:`~stripcoef.diagnose.select._competing`):
+the dead band's width is profiled with the buoyancy change free beside it, and the asymmetry,
+refitted beside that dead band with the buoyancy change free, must still be ``MIN_Z``
+standard deviations from zero (Rothenberg 1971, Theorem 1, as above). The competing-effects
+comparison of the selection does not see the pair when a buoyancy error the prior does not
+carry hides the dead band at the first step, which is where the asymmetry takes both: issue
+33, spur33d, fresh seed 1795929171, BlueROV2-like dead-band log 1795930177 (the truth's
+thrusters all with a dead band of 0.252 of the full command, the truth 2.17 N heavier than the
+prior): the whole-log heave diagnosis named an asymmetry eta_b / eta_f - 1 = -0.12 (z 16.3,
+held-out error 0.573 N; buoyancy-free z 5.1) where the truth's thrusters give -0.003; the
+dead band alone on the prior's buoyancy fits 0.05 (z 2.3); profiled with the buoyancy change
+free it is 0.250 at a held-out error of 0.212 N, and beside it the asymmetry is 0.3 standard
+deviations from zero (benchmarks/data/spur33d_trace.md). A true asymmetry is not a dead band:
+its backward branch's change holds at every command, not only at small ones.
+
 Depends on: diagnose.select, diagnose.settings, diagnose.fit, diagnose.crossscale, effects,
 conventions.
 """
@@ -75,12 +97,12 @@ import numpy as np
 
 from stripcoef.conventions import DOF
 from stripcoef.diagnose.crossscale import cross_mass_confounded, refitted_z
-from stripcoef.diagnose.fit import DEFAULTS
+from stripcoef.diagnose.fit import DEFAULTS, _evaluate
 from stripcoef.diagnose.select import Siblings
 from stripcoef.diagnose.settings import MIN_Z, DiagnoseSettings
 from stripcoef.effects.base import THRUST_BAND, TRANSLATIONAL
 from stripcoef.effects.hydrodynamic import buoyancy_column
-from stripcoef.effects.thrust import ThrustAsymmetry
+from stripcoef.effects.thrust import Deadband, ThrustAsymmetry
 
 #: The library's effects that are properties of each thruster's own map (checked in the parts)
 PER_THRUSTER = ("thrust_asymmetry", "deadband")
@@ -105,6 +127,18 @@ class BuoyancyFreeAsymmetry(ThrustAsymmetry):
         return np.array([-0.9, -np.inf, -np.inf])
 
 
+class BuoyancyFreeDeadband(Deadband):
+    r""":class:`~stripcoef.effects.thrust.Deadband` with a buoyancy change's column
+    (:func:`~stripcoef.effects.hydrodynamic.buoyancy_column`, [N], free) as its nuisance: its
+    width profiled beside the buoyancy change, for the test of :meth:`ThrusterParts.
+    deadband_confounded` (module docstring). Never written, not in the registry."""
+
+    nuisance_names = ("buoyancy_change",)
+
+    def nuisance(self, data, dof):
+        return buoyancy_column(data, dof)[:, None]
+
+
 class ThrusterParts(Siblings):
     """:class:`~stripcoef.diagnose.select.Siblings` that also checks a per-thruster effect
     (:data:`PER_THRUSTER`) of a DOF in the DOFs driven by parts of its thrusters alone
@@ -113,6 +147,7 @@ class ThrusterParts(Siblings):
     def __init__(self, data, dofs, settings: DiagnoseSettings = DEFAULTS, **kwargs):
         super().__init__(data, dofs, settings, **kwargs)
         self._free = BuoyancyFreeAsymmetry()     # one instance: the fits cache its columns
+        self._free_deadband = BuoyancyFreeDeadband()
         self._cross_free = {}                    # crossscale.CrossMassFreeScale by columns
         self._cross_test = settings.cross_mass_scale
 
@@ -134,7 +169,7 @@ class ThrusterParts(Siblings):
         out = out + [f"contradicted by {DOF[j]} (driven by a part of its thrusters alone): "
                      f"{why}" for j in self.parts(dof)
                      for why in [self.contradicted_in(trial, j)] if why]
-        why = self.buoyancy_confounded(trial, dof)
+        why = self.buoyancy_confounded(trial, dof) or self.deadband_confounded(trial, dof)
         return out + [why] if why else out
 
     def buoyancy_confounded(self, trial: dict, dof: int) -> str:
@@ -156,13 +191,40 @@ class ThrusterParts(Siblings):
             f"free beside it the asymmetry is {z:.1f} standard deviations from zero "
             f"(< {MIN_Z:g})")
 
+    def deadband_confounded(self, trial: dict, dof: int) -> str:
+        """Why the thrust asymmetry ``trial`` of translation ``dof`` is not identified apart
+        from a dead band fitted beside a buoyancy change (module docstring): the dead band's
+        width profiled with the buoyancy change free, the asymmetry refitted beside that dead
+        band with the buoyancy change free is under ``MIN_Z`` standard deviations from zero;
+        '' when it is not, for another effect or a rotation, or where no dead band applies."""
+        cfg = trial.get("_cfg")
+        if (trial["effect"] != "thrust_asymmetry" or dof not in TRANSLATIONAL or cfg is None
+                or not self._free_deadband.applicable(cfg.data, dof)[0]):
+            return ""
+        head = list(cfg.terms[:-1])
+        try:
+            width = _evaluate(cfg.with_terms(head + [(self._free_deadband, None)]))["hyper"]
+        except (np.linalg.LinAlgError, ValueError):
+            return ""
+        if width is None:
+            return ""
+        beside = cfg.with_terms(head + [(Deadband(), width), cfg.terms[-1]])
+        got = refitted_z(beside, (self._free, cfg.terms[-1][1]))
+        if got is None or got[1] >= MIN_Z:
+            return ""
+        return (f"not identified apart from a dead band: beside a dead band of "
+                f"{float(np.atleast_1d(width)[0]):.3g} (its width fitted with a buoyancy "
+                f"change free) and the buoyancy change, the asymmetry is {got[1]:.1f} "
+                f"standard deviations from zero (< {MIN_Z:g})")
+
 
 class OneDofParts(ThrusterParts):
     """A one-DOF run's check of a thruster effect: only the identification of a translation's
     thrust asymmetry apart from a buoyancy change (:meth:`ThrusterParts.buoyancy_confounded`,
-    module docstring); a one-DOF run has no sibling DOFs, no parts and no other DOFs' added
+    module docstring) and apart from a dead band beside it (:meth:`ThrusterParts.
+    deadband_confounded`); a one-DOF run has no sibling DOFs, no parts and no other DOFs' added
     masses to refit beside a scale."""
 
     def contradictions(self, trial: dict, dof: int) -> list:
-        why = self.buoyancy_confounded(trial, dof)
+        why = self.buoyancy_confounded(trial, dof) or self.deadband_confounded(trial, dof)
         return [why] if why else []
