@@ -191,13 +191,41 @@ class ThrusterGains:
                 "validation": self.validation}
 
 
-def thruster_groups(alloc, tol: float = 1e-9) -> list:
-    """The thrusters grouped by the set of DOFs they act in (the non-zero entries of their
-    column of the allocation matrix B, (6, N)): lists of thruster indices, in order."""
-    keys = {}
-    for k in range(alloc.shape[1]):
-        keys.setdefault(tuple(np.abs(alloc[:, k]) > tol), []).append(k)
-    return list(keys.values())
+def thruster_groups(alloc, rows=None, tol: float = 1e-9) -> list:
+    r"""The thrusters grouped so that a gain common to a group, and only such a gain, is a
+    thrust scale of each DOF the group drives (the thrust effectiveness): lists of thruster
+    indices, in order of their first member.
+
+    Gains :math:`g` act as per-DOF thrust scales :math:`s` on the rows ``rows`` of the
+    allocation matrix B (6, N) (all six by default; a diagnosis passes its DOFs) for every
+    thrust T exactly when :math:`B_{ik} g_k = s_i B_{ik}` for all i in ``rows`` and all k,
+    that is :math:`g_k = s_i` wherever :math:`B_{ik} \ne 0` (Fossen 2011, eq. 11.14,
+    :math:`\tau = T K u`): g is constant on each connected component of the graph that
+    links two thrusters when they act in a common DOF of ``rows``. Those components are the
+    groups (a union-find over the DOFs); a thruster that acts in none of ``rows`` is alone.
+    Any other direction of g changes the shape of some DOF's thrust, which no thrust scale
+    can, so it is a contrast the fit must hold: on a BlueROV2 Heavy the vectored four act in
+    roll and pitch too (their lever about the reference point), so the vertical four's
+    common gain relative to theirs shapes the roll and pitch thrust (spread33d,
+    benchmarks/data/spread33d_trace.md)."""
+    alloc = np.asarray(alloc, float)
+    n = alloc.shape[1]
+    rows = range(alloc.shape[0]) if rows is None else rows
+    parent = list(range(n))
+
+    def root(k):
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+    for i in rows:
+        acting = np.nonzero(np.abs(alloc[i]) > tol)[0]
+        for k in acting[1:]:
+            parent[root(int(k))] = root(int(acting[0]))
+    groups = {}
+    for k in range(n):
+        groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
 
 
 def contrast_basis(groups, n: int) -> np.ndarray:
@@ -377,7 +405,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     budget.check()
     names = tuple(th.name for th in data.model.thrusters)
     n = len(names)
-    groups = thruster_groups(data.alloc)
+    groups = thruster_groups(data.alloc, rows=dofs)
     p_basis = contrast_basis(groups, n)
     if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
         return None
