@@ -35,7 +35,7 @@ def probe(vehicle: str, category: str, seed: int, settings=DiagnoseSettings()) -
     data = model_window_data(train, prior, window=settings.window)
     excited, _ = select_dofs(data)
     alloc = data.alloc
-    groups = thruster_groups(alloc)
+    groups = thruster_groups(alloc, rows=excited)
     p = contrast_basis(groups, alloc.shape[1])
     sv = np.linalg.svd(alloc, compute_uv=False)
     print(f"{vehicle} {category} {seed}: B {alloc.shape}, rank {np.linalg.matrix_rank(alloc)}"
@@ -47,7 +47,6 @@ def probe(vehicle: str, category: str, seed: int, settings=DiagnoseSettings()) -
     rel = g_true.copy()
     for grp in groups:
         rel[grp] = g_true[grp] / g_true[grp].mean()
-    a_true = p.T @ (rel - 1.0)
     gains = fit_thruster_gains(data, excited, settings, excited=excited)
     print(f"  fitted gains {np.round(gains.gains, 3).tolist()} prior_sd {gains.prior_sd:.3f}"
           f" p {gains.test['p_value']:.3g} k {gains.test['dof']} applied {gains.applied}: "

@@ -2,9 +2,9 @@
 
 The truths are logs of the independent simulator (validation.independent): every thruster's
 coefficient drawn U(0.75, 1.25) x the vehicle file's, so the thrusters differ from each other
-by up to 25 %. The gains are fitted as contrasts within each group of thrusters driving the
-same DOFs (a group's common gain is the thrust effectiveness of its DOFs), so the truth they
-are compared with is each thruster's factor over its group's mean.
+by up to 25 %. The gains are fitted as contrasts within each group of thrusters linked through
+the DOFs they act in (a group's common gain is the thrust effectiveness of its DOFs), so the
+truth they are compared with is each thruster's factor over its group's mean.
 """
 
 import numpy as np
@@ -51,6 +51,43 @@ def test_groups_and_contrasts_of_a_vectored_eight_thruster_layout():
     np.testing.assert_allclose(p.T @ p, np.eye(6), atol=1e-12)
     for members in groups:          # no common gain of a group: that is a thrust scale
         np.testing.assert_allclose(p[members].sum(axis=0), 0.0, atol=1e-12)
+
+
+def test_groups_are_the_thrusters_linked_through_a_shared_dof():
+    # the shipped BlueROV2 Heavy's layout: the vectored four sit below the reference point,
+    # so they act in roll and pitch too, where the vertical four act (spread33d)
+    c, x, y, h = np.sqrt(0.5), 0.15, 0.2, 0.05
+    horizontal = [((x, y), (c, -c)), ((x, -y), (c, c)), ((-x, y), (c, c)), ((-x, -y), (c, -c))]
+    cols = [[dx, dy, 0, -h * dy, h * dx, px * dy - py * dx] for (px, py), (dx, dy) in horizontal]
+    cols += [[0, 0, 1, py, -px, 0] for (px, py), _ in horizontal]
+    b = np.array(cols, float).T
+    assert thruster_groups(b) == [list(range(8))]
+    # without roll and pitch among the rows the two sets are apart again; a thruster that
+    # acts in none of the rows is alone
+    assert thruster_groups(b, rows=[0, 1, 2, 5]) == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert thruster_groups(b, rows=[0]) == [[0, 1, 2, 3], [4], [5], [6], [7]]
+    rng = np.random.default_rng(3)
+    for rows in (range(6), [0, 1, 2, 5], [3]):
+        groups = thruster_groups(b, rows=rows)
+        p = contrast_basis(groups, 8)
+        r = list(rows)
+        # a gain constant on each group is a thrust scale of every DOF of the rows:
+        # B diag(g) = diag(s) B there (Fossen 2011 eq. 11.14)
+        g = np.ones(8)
+        for members in groups:
+            g[members] = rng.uniform(0.8, 1.2)
+        bg = b[r] * g
+        s = np.array([bg[i][np.abs(b[r][i]) > 1e-9][0] / b[r][i][np.abs(b[r][i]) > 1e-9][0]
+                      for i in range(len(r))])
+        np.testing.assert_allclose(bg, s[:, None] * b[r], atol=1e-12)
+        # and every contrast changes the shape of some DOF's thrust (no scale gives it)
+        for a in p.T:
+            shaped = b[r] * (1.0 + 0.1 * a)
+            rest = [np.linalg.lstsq(b[r][i][:, None], shaped[i], rcond=None)[1]
+                    for i in range(len(r))]
+            acting = [k for k in range(8) if np.any(np.abs(b[r][:, k]) > 1e-9)]
+            if np.any(np.abs(a[acting]) > 1e-12):
+                assert max(float(np.sum(v)) for v in rest) > 1e-8
 
 
 @pytest.mark.slow

@@ -26,11 +26,19 @@ constant per DOF, a static force or trim moment held by constant thrusts) and
 (maximum a posteriori least squares, Tarantola 2005 eq. 3.37, the DOFs' window residuals
 independent, a multiresponse model as in Seber & Wild 1989, ch. 11; the inertia columns'
 velocity noise corrected as in Fuller 1987, :func:`_normal_equations`). P is an
-orthonormal basis of the contrasts within each group of thrusters that drive the same
-DOFs (:func:`thruster_groups`, :func:`contrast_basis`), :math:`\sum_{k\in G}(g_k - 1) = 0`:
-a gain common to a group is the thrust effectiveness of the DOFs it drives (one rule per
-concept), and it is also the direction the force balance's homogeneity leaves to the
-calibration's bands. Each :math:`\sigma_i` is re-estimated from the joint fit's residual
+orthonormal basis of the contrasts within each group of thrusters linked through the
+diagnosed DOFs they act in (:func:`thruster_groups`, :func:`contrast_basis`),
+:math:`\sum_{k\in G}(g_k - 1) = 0`: a gain common to a group, and only such a gain, is the
+thrust effectiveness of the DOFs it drives (one rule per concept), and it is also the
+direction the force balance's homogeneity leaves to the calibration's bands. Until
+``spread33d`` the groups were the thrusters with the same *set* of DOFs; on a BlueROV2
+Heavy the vectored four and the vertical four were two groups although both act in roll
+and pitch, so the vertical four's common gain against the vectored four's, which shapes
+the roll and pitch thrust, was never fitted, and the truth's per-thruster spread was left
+there as roll and pitch thrust scales (independent benchmark, fresh seed 1795929171, logs
+1795930173 and 1795930174: of the truth's roll and pitch thrust the fitted gains missed
+26 % and 11 %, 17 % and 7 % of its RMS; with the groups linked 1 % and 0.4 %, 3 % and 1 %;
+benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint fit's residual
 of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
@@ -183,8 +191,9 @@ class ThrusterGains:
                 "prior_sd": float(self.prior_sd),
                 "prior_source": "THRUST_BAND: bench uncertainty of the thrust maps "
                                 "(Wang & Clark 2006 Table I)",
-                "constraint": "contrasts only: the gains' sum is the number of thrusters "
-                              "(a common gain is each DOF's thrust_effectiveness)",
+                "constraint": "contrasts only: within each group of thrusters linked through "
+                              "the diagnosed DOFs, the gains' sum is the group's size (a "
+                              "common gain is each DOF's thrust_effectiveness)",
                 "combinations": [dict(c) for c in self.combinations],
                 "test": dict(self.test), "noise": dict(self.noise), "dofs": list(self.dofs),
                 "applied": bool(self.applied), "reason": self.reason,
