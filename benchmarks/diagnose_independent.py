@@ -925,6 +925,9 @@ def main(argv=None) -> int:
     ap.add_argument("--drag-couplings", action="store_true",
                     help="diagnose with drag_couplings (a moment DOF's calibration holds its "
                          "drag couplings to the translations)")
+    ap.add_argument("--linked-gains", action="store_true",
+                    help="diagnose with linked_gains (the thrusters' gains' contrasts within "
+                         "groups linked through the diagnosed DOFs they act in)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -968,7 +971,8 @@ def main(argv=None) -> int:
                              args.dof_gains,
                              {name: value for name, value in (
                                  ("gains_beside_current", args.gains_beside_current),
-                                 ("drag_couplings", args.drag_couplings)) if value} or None))
+                                 ("drag_couplings", args.drag_couplings),
+                                 ("linked_gains", args.linked_gains)) if value} or None))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

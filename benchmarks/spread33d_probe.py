@@ -2,7 +2,8 @@
 spread33d): the allocation matrix's rank, the gains' contrasts, each combination's
 information ratio and the truth's value of it, on the independent simulator's logs.
 
-``python -m benchmarks.spread33d_probe VEHICLE CATEGORY SEED [SEED...]`` (300 s logs). A
+``python -m benchmarks.spread33d_probe VEHICLE CATEGORY SEED [SEED...] [--default-groups]``
+(300 s logs; the gains with ``linked_gains``, or with the default groups). A
 trace, not a model change: benchmarks/data/spread33d_trace.md."""
 from __future__ import annotations
 
@@ -27,15 +28,16 @@ def truth_gains(prior, truth) -> np.ndarray:
                      for th, t in zip(prior.thrusters, truth.thrusters)])
 
 
-def probe(vehicle: str, category: str, seed: int, settings=DiagnoseSettings()) -> None:
+def probe(vehicle: str, category: str, seed: int, settings=DiagnoseSettings(linked_gains=True)) -> None:
     prior = _prior(vehicle)
-    log, truth = generate(prior.to_dict(), category, seed, duration=300.0)
+    log, truth = generate(prior.to_dict(), None if category == "clean" else category, seed,
+                          duration=300.0)
     t0 = time.process_time()
     train, _ = split(log, VALIDATION_FRACTION, key="validation")
     data = model_window_data(train, prior, window=settings.window)
     excited, _ = select_dofs(data)
     alloc = data.alloc
-    groups = thruster_groups(alloc, rows=excited)
+    groups = thruster_groups(alloc, rows=excited, linked=settings.linked_gains)
     p = contrast_basis(groups, alloc.shape[1])
     sv = np.linalg.svd(alloc, compute_uv=False)
     print(f"{vehicle} {category} {seed}: B {alloc.shape}, rank {np.linalg.matrix_rank(alloc)}"
@@ -79,8 +81,9 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for s in argv[2:]:
-            probe(argv[0], argv[1], int(s))
+        linked = "--default-groups" not in argv
+        for s in [a for a in argv[2:] if a != "--default-groups"]:
+            probe(argv[0], argv[1], int(s), DiagnoseSettings(linked_gains=linked))
     return 0
 
 

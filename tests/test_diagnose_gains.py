@@ -61,14 +61,16 @@ def test_groups_are_the_thrusters_linked_through_a_shared_dof():
     cols = [[dx, dy, 0, -h * dy, h * dx, px * dy - py * dx] for (px, py), (dx, dy) in horizontal]
     cols += [[0, 0, 1, py, -px, 0] for (px, py), _ in horizontal]
     b = np.array(cols, float).T
-    assert thruster_groups(b) == [list(range(8))]
+    # the default groups: the same set of DOFs
+    assert thruster_groups(b) == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert thruster_groups(b, linked=True) == [list(range(8))]
     # without roll and pitch among the rows the two sets are apart again; a thruster that
     # acts in none of the rows is alone
-    assert thruster_groups(b, rows=[0, 1, 2, 5]) == [[0, 1, 2, 3], [4, 5, 6, 7]]
-    assert thruster_groups(b, rows=[0]) == [[0, 1, 2, 3], [4], [5], [6], [7]]
+    assert thruster_groups(b, rows=[0, 1, 2, 5], linked=True) == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert thruster_groups(b, rows=[0], linked=True) == [[0, 1, 2, 3], [4], [5], [6], [7]]
     rng = np.random.default_rng(3)
     for rows in (range(6), [0, 1, 2, 5], [3]):
-        groups = thruster_groups(b, rows=rows)
+        groups = thruster_groups(b, rows=rows, linked=True)
         p = contrast_basis(groups, 8)
         r = list(rows)
         # a gain constant on each group is a thrust scale of every DOF of the rows:

@@ -26,19 +26,21 @@ constant per DOF, a static force or trim moment held by constant thrusts) and
 (maximum a posteriori least squares, Tarantola 2005 eq. 3.37, the DOFs' window residuals
 independent, a multiresponse model as in Seber & Wild 1989, ch. 11; the inertia columns'
 velocity noise corrected as in Fuller 1987, :func:`_normal_equations`). P is an
-orthonormal basis of the contrasts within each group of thrusters linked through the
-diagnosed DOFs they act in (:func:`thruster_groups`, :func:`contrast_basis`),
-:math:`\sum_{k\in G}(g_k - 1) = 0`: a gain common to a group, and only such a gain, is the
-thrust effectiveness of the DOFs it drives (one rule per concept), and it is also the
-direction the force balance's homogeneity leaves to the calibration's bands. Until
-``spread33d`` the groups were the thrusters with the same *set* of DOFs; on a BlueROV2
-Heavy the vectored four and the vertical four were two groups although both act in roll
-and pitch, so the vertical four's common gain against the vectored four's, which shapes
-the roll and pitch thrust, was never fitted, and the truth's per-thruster spread was left
-there as roll and pitch thrust scales (independent benchmark, fresh seed 1795929171, logs
-1795930173 and 1795930174: of the truth's roll and pitch thrust the fitted gains missed
-26 % and 11 %, 17 % and 7 % of its RMS; with the groups linked 1 % and 0.4 %, 3 % and 1 %;
-benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint fit's residual
+orthonormal basis of the contrasts within each group of thrusters that drive the same
+DOFs (:func:`thruster_groups`, :func:`contrast_basis`), :math:`\sum_{k\in G}(g_k - 1) = 0`:
+a gain common to a group is the thrust effectiveness of the DOFs it drives (one rule per
+concept), and it is also the direction the force balance's homogeneity leaves to the
+calibration's bands. That holds exactly only for groups linked through the DOFs they act
+in: on a BlueROV2 Heavy the vectored four and the vertical four are two groups although
+both act in roll and pitch, so the vertical four's common gain against the vectored
+four's, which shapes the roll and pitch thrust, is not fitted, and the truth's
+per-thruster spread is left there (independent benchmark, fresh seed 1795929171, logs
+1795930173 and 1795930174: of the truth's roll and pitch thrust the fitted gains miss 26 %
+and 11 %, 17 % and 7 % of its RMS, where roll and pitch thrust scales were named; with the
+groups linked 1 % and 0.4 %, 3 % and 1 %, and neither step named). The option
+:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.linked_gains` fits the contrasts within
+the linked groups (``thruster_groups(..., linked=True)``); off by default: on the issue-size
+seed's BlueROV2-like whole-log rows it cost error cuts (benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint fit's residual
 of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
@@ -191,19 +193,23 @@ class ThrusterGains:
                 "prior_sd": float(self.prior_sd),
                 "prior_source": "THRUST_BAND: bench uncertainty of the thrust maps "
                                 "(Wang & Clark 2006 Table I)",
-                "constraint": "contrasts only: within each group of thrusters linked through "
-                              "the diagnosed DOFs, the gains' sum is the group's size (a "
-                              "common gain is each DOF's thrust_effectiveness)",
+                "constraint": "contrasts only: within each group of thrusters (the same DOFs, "
+                              "or linked through the diagnosed DOFs with linked_gains), the "
+                              "gains' sum is the group's size (a common gain is each DOF's "
+                              "thrust_effectiveness)",
                 "combinations": [dict(c) for c in self.combinations],
                 "test": dict(self.test), "noise": dict(self.noise), "dofs": list(self.dofs),
                 "applied": bool(self.applied), "reason": self.reason,
                 "validation": self.validation}
 
 
-def thruster_groups(alloc, rows=None, tol: float = 1e-9) -> list:
-    r"""The thrusters grouped so that a gain common to a group, and only such a gain, is a
-    thrust scale of each DOF the group drives (the thrust effectiveness): lists of thruster
-    indices, in order of their first member.
+def thruster_groups(alloc, rows=None, linked: bool = False, tol: float = 1e-9) -> list:
+    r"""The thrusters grouped for the gains' contrasts: lists of thruster indices, in order
+    of their first member. By default (``linked`` False) the thrusters that act in the same
+    *set* of DOFs (the non-zero pattern of their column of B, all six rows). With ``linked``
+    (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.linked_gains`) the groups are such
+    that a gain common to a group, and only such a gain, is a thrust scale of each DOF of
+    ``rows`` the group drives (the thrust effectiveness):
 
     Gains :math:`g` act as per-DOF thrust scales :math:`s` on the rows ``rows`` of the
     allocation matrix B (6, N) (all six by default; a diagnosis passes its DOFs) for every
@@ -219,6 +225,11 @@ def thruster_groups(alloc, rows=None, tol: float = 1e-9) -> list:
     benchmarks/data/spread33d_trace.md)."""
     alloc = np.asarray(alloc, float)
     n = alloc.shape[1]
+    if not linked:
+        keys = {}
+        for k in range(n):
+            keys.setdefault(tuple(np.abs(alloc[:, k]) > tol), []).append(k)
+        return list(keys.values())
     rows = range(alloc.shape[0]) if rows is None else rows
     parent = list(range(n))
 
@@ -414,7 +425,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     budget.check()
     names = tuple(th.name for th in data.model.thrusters)
     n = len(names)
-    groups = thruster_groups(data.alloc, rows=dofs)
+    groups = thruster_groups(data.alloc, rows=dofs, linked=settings.linked_gains)
     p_basis = contrast_basis(groups, n)
     if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
         return None

@@ -155,7 +155,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_beside_current: bool | str = False,
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
-             drag_couplings: bool = False) -> Diagnosis:
+             drag_couplings: bool = False, linked_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -226,6 +226,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     drag_couplings : bool
         A moment DOF's calibration also holds its drag couplings to the translations
         (:mod:`.couplings`; off by default, :attr:`DiagnoseSettings.drag_couplings`).
+    linked_gains : bool
+        The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
+        (:attr:`DiagnoseSettings.linked_gains`; off by default).
 
     Returns
     -------
@@ -286,7 +289,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                               else bool(gains_beside_current)),
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
-        drag_couplings=bool(drag_couplings))
+        drag_couplings=bool(drag_couplings), linked_gains=bool(linked_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

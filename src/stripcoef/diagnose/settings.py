@@ -241,6 +241,13 @@ class DiagnoseSettings:
         :math:`D_Q[i, j]` to the translations that move (the moments of their drag forces;
         :mod:`stripcoef.diagnose.couplings`), written into the model. Off by default:
         measured in benchmarks/data/drag33c_trace.md
+    linked_gains : bool
+        The thrusters' gains' contrasts taken within each group of thrusters linked through
+        the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,
+        ``linked``): a gain common to such a group is exactly a per-DOF thrust scale, so on a
+        BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
+        in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
+        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -259,6 +266,7 @@ class DiagnoseSettings:
     dof_gains: bool = True
     cross_mass_scale: bool = True
     drag_couplings: bool = False
+    linked_gains: bool = False
 
     def logged_dofs(self, dofs) -> list:
         """The DOFs (indices) the validation's free simulations take from the log: in a
