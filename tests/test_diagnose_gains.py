@@ -239,3 +239,29 @@ def test_one_dof_gains_take_up_the_thrusters_spread_in_the_dofs_balance():
     step = next(s for s in gained.steps if s.effect == "current")
     speed = np.hypot(step.parameters["current_north"], step.parameters["current_east"])
     assert speed == pytest.approx(float(np.linalg.norm(truth.current)), rel=0.15)
+
+
+@pytest.mark.slow
+def test_linked_gains_fit_the_vertical_four_against_the_vectored_four():
+    """With ``linked_gains`` the BlueROV2 Heavy's eight thrusters are one group (the vectored
+    four act in roll and pitch too): seven contrasts, and the fitted gains follow the truth's
+    factors over the mean of all eight, the vertical four's common gain against the vectored
+    four's included (spread33d, benchmarks/data/spread33d_trace.md)."""
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    from validation.independent import generate
+
+    prior = _prior("bluerov2_heavy")
+    log, truth = generate(prior.to_dict(), None, 100, duration=120.0)
+    data = window_data(log, prior, window=4.0)
+    excited, _ = select_dofs(data)
+    assert {3, 4} <= set(excited)
+    fit = fit_thruster_gains(data, excited, DiagnoseSettings(linked_gains=True),
+                             excited=excited)
+    assert len(fit.combinations) == 7
+    want = _truth_contrasts(truth, prior, [list(range(8))])
+    got, sd = np.array(fit.gains), np.array(fit.std)
+    msg = f"truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
+    assert np.all(np.abs(got - want) <= np.maximum(3.0 * sd, THRUST_BAND)), msg
+    # the two sets' common gains: their ratio is the truth's within the bench band
+    ratio = got[4:].mean() / got[:4].mean()
+    assert ratio == pytest.approx(want[4:].mean() / want[:4].mean(), abs=THRUST_BAND), msg
