@@ -960,6 +960,9 @@ def main(argv=None) -> int:
                     help="diagnose with scale_choice_unforced=False (a scale and an "
                          "added-mass release, both contenders of a step none passes, left "
                          "undecided: the rule before named33d)")
+    ap.add_argument("--linked-gains", action="store_true",
+                    help="diagnose with linked_gains (the thrusters' gains' contrasts within "
+                         "groups linked through the diagnosed DOFs they act in)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -1014,7 +1017,8 @@ def main(argv=None) -> int:
                                  ("drag_couplings", args.drag_couplings),
                                  ("restoring_free", args.restoring_free),
                                  ("validation_horizon", args.validation_horizon),
-                                 ("validation_judge", args.validation_judge)) if value},
+                                 ("validation_judge", args.validation_judge),
+                                 ("linked_gains", args.linked_gains)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

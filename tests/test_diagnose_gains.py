@@ -2,9 +2,9 @@
 
 The truths are logs of the independent simulator (validation.independent): every thruster's
 coefficient drawn U(0.75, 1.25) x the vehicle file's, so the thrusters differ from each other
-by up to 25 %. The gains are fitted as contrasts within each group of thrusters driving the
-same DOFs (a group's common gain is the thrust effectiveness of its DOFs), so the truth they
-are compared with is each thruster's factor over its group's mean.
+by up to 25 %. The gains are fitted as contrasts within each group of thrusters linked through
+the DOFs they act in (a group's common gain is the thrust effectiveness of its DOFs), so the
+truth they are compared with is each thruster's factor over its group's mean.
 """
 
 import numpy as np
@@ -51,6 +51,45 @@ def test_groups_and_contrasts_of_a_vectored_eight_thruster_layout():
     np.testing.assert_allclose(p.T @ p, np.eye(6), atol=1e-12)
     for members in groups:          # no common gain of a group: that is a thrust scale
         np.testing.assert_allclose(p[members].sum(axis=0), 0.0, atol=1e-12)
+
+
+def test_groups_are_the_thrusters_linked_through_a_shared_dof():
+    # the shipped BlueROV2 Heavy's layout: the vectored four sit below the reference point,
+    # so they act in roll and pitch too, where the vertical four act (spread33d)
+    c, x, y, h = np.sqrt(0.5), 0.15, 0.2, 0.05
+    horizontal = [((x, y), (c, -c)), ((x, -y), (c, c)), ((-x, y), (c, c)), ((-x, -y), (c, -c))]
+    cols = [[dx, dy, 0, -h * dy, h * dx, px * dy - py * dx] for (px, py), (dx, dy) in horizontal]
+    cols += [[0, 0, 1, py, -px, 0] for (px, py), _ in horizontal]
+    b = np.array(cols, float).T
+    # the default groups: the same set of DOFs
+    assert thruster_groups(b) == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert thruster_groups(b, linked=True) == [list(range(8))]
+    # without roll and pitch among the rows the two sets are apart again; a thruster that
+    # acts in none of the rows is alone
+    assert thruster_groups(b, rows=[0, 1, 2, 5], linked=True) == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert thruster_groups(b, rows=[0], linked=True) == [[0, 1, 2, 3], [4], [5], [6], [7]]
+    rng = np.random.default_rng(3)
+    for rows in (range(6), [0, 1, 2, 5], [3]):
+        groups = thruster_groups(b, rows=rows, linked=True)
+        p = contrast_basis(groups, 8)
+        r = list(rows)
+        # a gain constant on each group is a thrust scale of every DOF of the rows:
+        # B diag(g) = diag(s) B there (Fossen 2011 eq. 11.14)
+        g = np.ones(8)
+        for members in groups:
+            g[members] = rng.uniform(0.8, 1.2)
+        bg = b[r] * g
+        s = np.array([bg[i][np.abs(b[r][i]) > 1e-9][0] / b[r][i][np.abs(b[r][i]) > 1e-9][0]
+                      for i in range(len(r))])
+        np.testing.assert_allclose(bg, s[:, None] * b[r], atol=1e-12)
+        # and every contrast changes the shape of some DOF's thrust (no scale gives it)
+        for a in p.T:
+            shaped = b[r] * (1.0 + 0.1 * a)
+            rest = [np.linalg.lstsq(b[r][i][:, None], shaped[i], rcond=None)[1]
+                    for i in range(len(r))]
+            acting = [k for k in range(8) if np.any(np.abs(b[r][:, k]) > 1e-9)]
+            if np.any(np.abs(a[acting]) > 1e-12):
+                assert max(float(np.sum(v)) for v in rest) > 1e-8
 
 
 @pytest.mark.slow
@@ -200,3 +239,29 @@ def test_one_dof_gains_take_up_the_thrusters_spread_in_the_dofs_balance():
     step = next(s for s in gained.steps if s.effect == "current")
     speed = np.hypot(step.parameters["current_north"], step.parameters["current_east"])
     assert speed == pytest.approx(float(np.linalg.norm(truth.current)), rel=0.15)
+
+
+@pytest.mark.slow
+def test_linked_gains_fit_the_vertical_four_against_the_vectored_four():
+    """With ``linked_gains`` the BlueROV2 Heavy's eight thrusters are one group (the vectored
+    four act in roll and pitch too): seven contrasts, and the fitted gains follow the truth's
+    factors over the mean of all eight, the vertical four's common gain against the vectored
+    four's included (spread33d, benchmarks/data/spread33d_trace.md)."""
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    from validation.independent import generate
+
+    prior = _prior("bluerov2_heavy")
+    log, truth = generate(prior.to_dict(), None, 100, duration=120.0)
+    data = window_data(log, prior, window=4.0)
+    excited, _ = select_dofs(data)
+    assert {3, 4} <= set(excited)
+    fit = fit_thruster_gains(data, excited, DiagnoseSettings(linked_gains=True),
+                             excited=excited)
+    assert len(fit.combinations) == 7
+    want = _truth_contrasts(truth, prior, [list(range(8))])
+    got, sd = np.array(fit.gains), np.array(fit.std)
+    msg = f"truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
+    assert np.all(np.abs(got - want) <= np.maximum(3.0 * sd, THRUST_BAND)), msg
+    # the two sets' common gains: their ratio is the truth's within the bench band
+    ratio = got[4:].mean() / got[:4].mean()
+    assert ratio == pytest.approx(want[4:].mean() / want[:4].mean(), abs=THRUST_BAND), msg

@@ -30,7 +30,17 @@ orthonormal basis of the contrasts within each group of thrusters that drive the
 DOFs (:func:`thruster_groups`, :func:`contrast_basis`), :math:`\sum_{k\in G}(g_k - 1) = 0`:
 a gain common to a group is the thrust effectiveness of the DOFs it drives (one rule per
 concept), and it is also the direction the force balance's homogeneity leaves to the
-calibration's bands. Each :math:`\sigma_i` is re-estimated from the joint fit's residual
+calibration's bands. That holds exactly only for groups linked through the DOFs they act
+in: on a BlueROV2 Heavy the vectored four and the vertical four are two groups although
+both act in roll and pitch, so the vertical four's common gain against the vectored
+four's, which shapes the roll and pitch thrust, is not fitted, and the truth's
+per-thruster spread is left there (independent benchmark, fresh seed 1795929171, logs
+1795930173 and 1795930174: of the truth's roll and pitch thrust the fitted gains miss 26 %
+and 11 %, 17 % and 7 % of its RMS, where roll and pitch thrust scales were named; with the
+groups linked 1 % and 0.4 %, 3 % and 1 %, and neither step named). The option
+:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.linked_gains` fits the contrasts within
+the linked groups (``thruster_groups(..., linked=True)``); off by default: on the issue-size
+seed's BlueROV2-like whole-log rows it cost error cuts (benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint fit's residual
 of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
@@ -183,21 +193,59 @@ class ThrusterGains:
                 "prior_sd": float(self.prior_sd),
                 "prior_source": "THRUST_BAND: bench uncertainty of the thrust maps "
                                 "(Wang & Clark 2006 Table I)",
-                "constraint": "contrasts only: the gains' sum is the number of thrusters "
-                              "(a common gain is each DOF's thrust_effectiveness)",
+                "constraint": "contrasts only: within each group of thrusters (the same DOFs, "
+                              "or linked through the diagnosed DOFs with linked_gains), the "
+                              "gains' sum is the group's size (a common gain is each DOF's "
+                              "thrust_effectiveness)",
                 "combinations": [dict(c) for c in self.combinations],
                 "test": dict(self.test), "noise": dict(self.noise), "dofs": list(self.dofs),
                 "applied": bool(self.applied), "reason": self.reason,
                 "validation": self.validation}
 
 
-def thruster_groups(alloc, tol: float = 1e-9) -> list:
-    """The thrusters grouped by the set of DOFs they act in (the non-zero entries of their
-    column of the allocation matrix B, (6, N)): lists of thruster indices, in order."""
-    keys = {}
-    for k in range(alloc.shape[1]):
-        keys.setdefault(tuple(np.abs(alloc[:, k]) > tol), []).append(k)
-    return list(keys.values())
+def thruster_groups(alloc, rows=None, linked: bool = False, tol: float = 1e-9) -> list:
+    r"""The thrusters grouped for the gains' contrasts: lists of thruster indices, in order
+    of their first member. By default (``linked`` False) the thrusters that act in the same
+    *set* of DOFs (the non-zero pattern of their column of B, all six rows). With ``linked``
+    (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.linked_gains`) the groups are such
+    that a gain common to a group, and only such a gain, is a thrust scale of each DOF of
+    ``rows`` the group drives (the thrust effectiveness):
+
+    Gains :math:`g` act as per-DOF thrust scales :math:`s` on the rows ``rows`` of the
+    allocation matrix B (6, N) (all six by default; a diagnosis passes its DOFs) for every
+    thrust T exactly when :math:`B_{ik} g_k = s_i B_{ik}` for all i in ``rows`` and all k,
+    that is :math:`g_k = s_i` wherever :math:`B_{ik} \ne 0` (Fossen 2011, eq. 11.14,
+    :math:`\tau = T K u`): g is constant on each connected component of the graph that
+    links two thrusters when they act in a common DOF of ``rows``. Those components are the
+    groups (a union-find over the DOFs); a thruster that acts in none of ``rows`` is alone.
+    Any other direction of g changes the shape of some DOF's thrust, which no thrust scale
+    can, so it is a contrast the fit must hold: on a BlueROV2 Heavy the vectored four act in
+    roll and pitch too (their lever about the reference point), so the vertical four's
+    common gain relative to theirs shapes the roll and pitch thrust (spread33d,
+    benchmarks/data/spread33d_trace.md)."""
+    alloc = np.asarray(alloc, float)
+    n = alloc.shape[1]
+    if not linked:
+        keys = {}
+        for k in range(n):
+            keys.setdefault(tuple(np.abs(alloc[:, k]) > tol), []).append(k)
+        return list(keys.values())
+    rows = range(alloc.shape[0]) if rows is None else rows
+    parent = list(range(n))
+
+    def root(k):
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+    for i in rows:
+        acting = np.nonzero(np.abs(alloc[i]) > tol)[0]
+        for k in acting[1:]:
+            parent[root(int(k))] = root(int(acting[0]))
+    groups = {}
+    for k in range(n):
+        groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
 
 
 def contrast_basis(groups, n: int) -> np.ndarray:
@@ -377,7 +425,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
     budget.check()
     names = tuple(th.name for th in data.model.thrusters)
     n = len(names)
-    groups = thruster_groups(data.alloc)
+    groups = thruster_groups(data.alloc, rows=dofs, linked=settings.linked_gains)
     p_basis = contrast_basis(groups, n)
     if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
         return None

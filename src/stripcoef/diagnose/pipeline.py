@@ -159,7 +159,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all") -> Diagnosis:
+             validation_judge: str = "all", linked_gains: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -245,6 +245,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     validation_judge : str
         ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
         (:attr:`DiagnoseSettings.validation_judge`).
+    linked_gains : bool
+        The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
+        (:attr:`DiagnoseSettings.linked_gains`; off by default).
 
     Returns
     -------
@@ -311,7 +314,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge)
+        validation_judge=validation_judge, linked_gains=bool(linked_gains))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

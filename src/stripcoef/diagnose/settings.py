@@ -280,6 +280,13 @@ class DiagnoseSettings:
         1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
         thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
         benchmarks/data/closed33d_trace.md, docs/performance.md
+    linked_gains : bool
+        The thrusters' gains' contrasts taken within each group of thrusters linked through
+        the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,
+        ``linked``): a gain common to such a group is exactly a per-DOF thrust scale, so on a
+        BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
+        in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
+        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -302,6 +309,7 @@ class DiagnoseSettings:
     scale_choice_unforced: bool = True
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
+    linked_gains: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
