@@ -40,8 +40,10 @@ and 11 %, 17 % and 7 % of its RMS, where roll and pitch thrust scales were named
 groups linked 1 % and 0.4 %, 3 % and 1 %, and neither step named). The option
 :attr:`~stripcoef.diagnose.settings.DiagnoseSettings.linked_gains` fits the contrasts within
 the linked groups (``thruster_groups(..., linked=True)``); off by default: on the issue-size
-seed's BlueROV2-like whole-log rows it cost error cuts (benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint fit's residual
-of its DOF (:data:`NOISE_PASSES` passes).
+seed's 22 BlueROV2-like whole-log library-effect rows the error cut >= 3x rose 12 -> 15 (six
+gained, three lost), but one of its two dry-friction logs lost its 'unexplained' flag
+(benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint
+fit's residual of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
 on the diagnosed DOF's balance alone. A BlueROV2's four vectored thrusters at different gains

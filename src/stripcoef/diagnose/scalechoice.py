@@ -136,8 +136,8 @@ def choose(cfg, scale: dict, release: dict) -> dict:
 
 def unforced(cfg, pair: dict, good: list, settings=None) -> list:
     """The step's candidates that passed, ``good``; or, with the setting
-    ``scale_choice_unforced`` (the default), when none passed and a thrust scale and an added-mass release
-    are both contenders (``pair``: effect -> judged record, :func:`contender`), the one the
+    ``scale_choice_unforced`` (the default), when none passed and a thrust scale and an
+    added-mass release are both contenders (``pair``: effect -> judged record, :func:`contender`), the one the
     model holding both needs (:func:`choose`: each effect's likelihood-ratio test against
     the comprehensive model, Atkinson 1970, Davidson & MacKinnon 1981, Holm 1979 over the
     two), none when the choice is ambiguous. Each contender was refused only by a gate the
