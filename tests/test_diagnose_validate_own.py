@@ -7,12 +7,13 @@ surgery replaced), so the test checks the rule alone."""
 import numpy as np
 import pytest
 
-from stripcoef.diagnose import heldout, validate
+from _validation_table import PRIOR, install
+
+from stripcoef.diagnose import validate
 
 CAL_W, DRAG_W = ("calibration", "heave"), ("effect", "heave", "momentum_drag")
 CAL_P = ("calibration", "roll")
 CHANGES = [CAL_W, DRAG_W, CAL_P]
-PRIOR = "prior"
 #: RMS errors [m/s, rad/s] of (heave, roll) by the changes kept: the heave drag takes heave
 #: from 0.03 to 0.01 and moves the roll simulation (no change of roll's) from 0.06 to 0.125,
 #: a hair above the prior's 0.12
@@ -26,18 +27,9 @@ TABLE = {
 }
 
 
-def _sse(val_log, model, dofs, **_):
-    kept = frozenset() if model == PRIOR else frozenset(CHANGES) - model[1]
-    e = TABLE[kept]
-    return np.array([[e[0] ** 2, e[1] ** 2]] * 4), np.ones(4)
-
-
 @pytest.fixture
 def table(monkeypatch):
-    monkeypatch.setattr(validate, "_changes", lambda per: list(CHANGES))
-    monkeypatch.setattr(validate, "calibrated_model",
-                        lambda prior, per, fits, key: ("model", frozenset(key)))
-    monkeypatch.setattr(heldout, "segment_squared_errors", _sse)
+    install(monkeypatch, CHANGES, TABLE)
 
 
 def _validate(**kw):

@@ -12,13 +12,14 @@ model surgery replaced), so the test checks the rule alone.
 import numpy as np
 import pytest
 
-from stripcoef.diagnose import heldout, validate
+from _validation_table import PRIOR, install
+
+from stripcoef.diagnose import validate
 from stripcoef.diagnose.heldout import EACH
 
 CAL_U, CAL_P = ("calibration", "surge"), ("calibration", "roll")
 SCALE_P = ("effect", "roll", "thrust_effectiveness")
 CHANGES = [CAL_U, CAL_P, SCALE_P]
-PRIOR = "prior"
 #: RMS errors [m/s, rad/s] of (surge, roll) on the validation part by the changes kept:
 #: every change lowers its DOF's error, but roll's stays above the trivial predictors'.
 TABLE = {
@@ -33,22 +34,9 @@ TABLE = {
 TRIVIAL = {"hold": [0.40, 0.31], "zero": [0.38, 0.28]}
 
 
-def _sse(val_log, model, dofs, **_):
-    kept = frozenset() if model == PRIOR else frozenset(CHANGES) - model[1]
-    e = TABLE.get(kept, (0.2, 1.0))
-    return np.array([[e[0] ** 2, e[1] ** 2]] * 4), np.ones(4)
-
-
 @pytest.fixture
 def table(monkeypatch):
-    monkeypatch.setattr(validate, "_changes", lambda per: list(CHANGES))
-    monkeypatch.setattr(validate, "calibrated_model",
-                        lambda prior, per, fits, key: ("model", frozenset(key)))
-    monkeypatch.setattr(heldout, "segment_squared_errors", _sse)
-    monkeypatch.setattr(heldout, "hold_last_velocity_errors",
-                        lambda log, dofs, **_: list(TRIVIAL["hold"]))
-    monkeypatch.setattr(heldout, "zero_velocity_errors",
-                        lambda log, dofs, **_: list(TRIVIAL["zero"]))
+    install(monkeypatch, CHANGES, TABLE, missing=(0.2, 1.0), trivial=TRIVIAL)
 
 
 def _validate(logged, dofs=(0, 3), **kw):

@@ -5,7 +5,8 @@ pilot and noise), the score from ``python -m benchmarks.diagnose_independent`` (
 run); the stored run is the issue-size one, ``benchmarks/data/diagnose_independent_300s.md``
 (52 logs of 300 s, both modes), shown here as measured, and beside it the same run on a seed
 drawn from the clock that no rule was traced or fixed against when it was drawn,
-``benchmarks/data/diagnose_independent_fresh.md``.
+``benchmarks/data/diagnose_independent_fresh.md``, and a second such seed,
+``benchmarks/data/diagnose_independent_fresh2.md``.
 """
 
 from __future__ import annotations
@@ -15,6 +16,10 @@ from validation import ROOT
 STORED = ROOT / "benchmarks" / "data" / "diagnose_independent_300s.md"
 #: the same issue-size run on a fresh seed (drawn from the clock, ``date +%s``)
 FRESH = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh.md"
+#: a second fresh seed, drawn a stop later: its run on the code as it was
+#: (``diagnose_independent_fresh_1795938998.md``, benchmarks/data/fresh33d_compare.md) and on
+#: the code the stop ended with
+FRESH2 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh2.md"
 
 
 def section() -> str:
@@ -74,4 +79,10 @@ def section() -> str:
         "drawn from the clock (`date +%s`) and run on the code as it was, then again on the "
         "code the stop ended with (benchmarks/data/fresh33b_compare.md compares the two seeds "
         "criterion by criterion with Wilson intervals).", "",
-        FRESH.read_text().split("\n", 2)[2].strip(), ""])
+        FRESH.read_text().split("\n", 2)[2].strip(), "",
+        "### A second fresh seed", "",
+        "Drawn from the clock a stop later and first run on the code as it was, before any of "
+        "that stop's changes (benchmarks/data/diagnose_independent_fresh_1795938998.md; its "
+        "misses traced in benchmarks/data/fresh33d_compare.md); below, the same seed on the "
+        "code the stop ended with.", "",
+        FRESH2.read_text().split("\n", 2)[2].strip(), ""])
