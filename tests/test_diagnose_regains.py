@@ -140,9 +140,10 @@ def test_a_bad_mode_is_a_one_line_input_error():
 
 
 def test_the_long_run_variance_of_white_noise_is_its_variance_and_grows_with_correlation():
-    """Newey & West 1987 with the lag of 1994: for white noise about its variance; for a
-    series of repeated values (positively correlated) larger."""
-    from stripcoef.diagnose.regains import _long_run_variance
+    """Newey & West 1987 with the lag of 1994 (heldout.long_run_variance, the Vuong test's
+    variance): for white noise about its variance; for a series of repeated values
+    (positively correlated) larger."""
+    from stripcoef.diagnose.heldout import long_run_variance as _long_run_variance
 
     rng = np.random.default_rng(3)
     e = rng.normal(0.0, 2.0, 4000)

@@ -217,12 +217,12 @@ def diebold_mariano(loss_a, loss_b, *, overlap: int = 1) -> dict:
     if n < 2:
         return {"statistic": float("nan"), "p_value": float("nan"), "mean_difference": mean,
                 "segments": n, "lags": lags}
-    c = d - mean
-    gamma = [float(c[k:] @ c[:n - k]) / n for k in range(lags + 1)]
-    var = gamma[0] + 2.0 * sum(gamma[1:]) if h > 1 else -1.0
+    var = -1.0
+    if h > 1:
+        gamma = _autocovariances(d, lags)
+        var = gamma[0] + 2.0 * sum(gamma[1:])
     if not var > 0.0:
-        var = gamma[0] + sum(2.0 * (1.0 - k / (lags + 1.0)) * gamma[k]
-                             for k in range(1, lags + 1))
+        var = long_run_variance(d, lags)
     if not var > 0.0:
         stat = 0.0 if mean == 0.0 else math.copysign(math.inf, mean)
     else:
@@ -230,6 +230,31 @@ def diebold_mariano(loss_a, loss_b, *, overlap: int = 1) -> dict:
         stat = mean / math.sqrt(var / n) * math.sqrt(max(factor, 1.0 / n))
     return {"statistic": float(stat), "p_value": float(student.cdf(stat, n - 1)),
             "mean_difference": mean, "segments": n, "lags": lags}
+
+
+def _autocovariances(d, lags: int) -> list:
+    """The autocovariances of ``d`` about its mean to lag ``lags``, each sum over n
+    [units of d squared]."""
+    d = np.asarray(d, float)
+    n = d.size
+    c = d - float(np.mean(d))
+    return [float(c[k:] @ c[:n - k]) / n for k in range(lags + 1)]
+
+
+def long_run_variance(d, lags: int | None = None) -> float:
+    r"""The long-run variance of the series ``d`` by the Newey-West (1987, Econometrica 55,
+    703-708) estimator, :math:`\hat\gamma_0 + 2 \sum_{k=1}^{L} (1 - k/(L+1)) \hat\gamma_k`
+    (Bartlett weights), ``lags`` L by default Newey & West's (1994, Rev. Econ. Stud. 61,
+    631-653) :math:`\lfloor 4 (n/100)^{2/9} \rfloor`, at most n - 1 [units of d squared]; not
+    clipped at zero. The variance of :func:`diebold_mariano` and of the Vuong test of
+    :mod:`stripcoef.diagnose.regains`."""
+    n = np.asarray(d).size
+    if lags is None:
+        lags = int(np.floor(4.0 * (n / 100.0) ** (2.0 / 9.0)))
+    lags = min(int(lags), max(n - 1, 0))
+    gamma = _autocovariances(d, lags)
+    return gamma[0] + sum(2.0 * (1.0 - k / (lags + 1.0)) * gamma[k]
+                          for k in range(1, lags + 1))
 
 
 def hold_last_velocity_errors(log, dofs, *, horizon: float = HORIZON):
