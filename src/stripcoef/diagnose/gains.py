@@ -250,6 +250,16 @@ def thruster_groups(alloc, rows=None, linked: bool = False, tol: float = 1e-9) -
     return list(groups.values())
 
 
+def gain_contrasts(alloc, dofs, settings: DiagnoseSettings) -> np.ndarray:
+    """The basis of the gains' contrasts (N, k) a fit of ``dofs`` holds: :func:`contrast_basis`
+    of :func:`thruster_groups` with the settings' ``linked_gains``, one rule for the gains'
+    fit and for their refit as an explanation of the residual
+    (:func:`stripcoef.diagnose.regains.explain`)."""
+    alloc = np.asarray(alloc, float)
+    return contrast_basis(thruster_groups(alloc, rows=dofs, linked=settings.linked_gains),
+                          alloc.shape[1])
+
+
 def contrast_basis(groups, n: int) -> np.ndarray:
     r"""An orthonormal basis P (n, n - number of groups) of the gains' contrasts within each
     group of :func:`thruster_groups`, :math:`\sum_{k \in G}(g_k - 1) = 0` for every group
@@ -426,9 +436,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
         return None
     budget.check()
     names = tuple(th.name for th in data.model.thrusters)
-    n = len(names)
-    groups = thruster_groups(data.alloc, rows=dofs, linked=settings.linked_gains)
-    p_basis = contrast_basis(groups, n)
+    p_basis = gain_contrasts(data.alloc, dofs, settings)
     if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
         return None
     blocks, cal_names, prior_sd = _blocks(data, dofs, settings, excited)

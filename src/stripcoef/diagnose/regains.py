@@ -76,7 +76,8 @@ seeds 7 and 21), and the gains beside it pass the Schwarz penalty, so the rows e
 -> 4 of 12). Without the nested step seed 21 lost 6 cells (the truth has gains too). Off by
 default for that reason: where it differs from ``"joint"`` it was not shown to help.
 
-Depends on: diagnose.gains, diagnose.settings, diagnose.compare, effects, model.
+Depends on: diagnose.gains, diagnose.heldout, diagnose.settings, diagnose.compare, effects,
+model.
 """
 
 from __future__ import annotations
@@ -87,6 +88,7 @@ import numpy as np
 
 from stripcoef.conventions import DOF
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.heldout import long_run_variance
 from stripcoef.effects.laws import model_window_data
 
 #: The effect whose force the gains' first fit omitted.
@@ -203,19 +205,6 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
     return gains, model, model_window_data(train_log, model, window=settings.window)
 
 
-def _long_run_variance(d) -> float:
-    """The long-run variance of the series ``d`` (Newey & West 1987, Econometrica 55, 703,
-    Bartlett weights; lag :math:`\\lfloor 4 (n/100)^{2/9} \\rfloor`, Newey & West 1994,
-    Rev. Econ. Stud. 61, 631) [units of d squared]."""
-    d = np.asarray(d, float) - float(np.mean(d))
-    n = d.size
-    lags = int(np.floor(4.0 * (n / 100.0) ** (2.0 / 9.0)))
-    v = float(d @ d) / n
-    for k in range(1, min(lags, n - 1) + 1):
-        v += 2.0 * (1.0 - k / (lags + 1.0)) * float(d[k:] @ d[:-k]) / n
-    return max(v, 0.0)
-
-
 def _log_density(res) -> np.ndarray:
     """Per window, the Gaussian log-density of the DOFs' residuals ``res`` (windows, DOFs)
     at their maximum-likelihood noise levels [-]."""
@@ -223,7 +212,7 @@ def _log_density(res) -> np.ndarray:
     return np.sum(-0.5 * np.log(2.0 * np.pi * s2) - res ** 2 / (2.0 * s2), axis=1)
 
 
-def _residuals(blocks, x, kc, gain_part=None) -> np.ndarray:
+def _residuals(blocks, x, gain_part=None) -> np.ndarray:
     """(windows, blocks): each block's residual at the joint estimate ``x``."""
     out = []
     for _, y, cols, idx, g, _ in blocks:
@@ -270,7 +259,7 @@ def _gains_beside(blocks, sd, sigmas, p_basis, gain_sd, res_c):
     for _ in range(NOISE_PASSES):
         lam, rhs, kc = _normal_equations(blocks, sd, sig, p_basis)
         x = _map(lam, rhs, kc, gain_sd)
-        res = _residuals(blocks, x, kc, p_basis @ x[kc:])
+        res = _residuals(blocks, x, p_basis @ x[kc:])
         sig = [max(float(np.sqrt(np.mean(r ** 2))), 1e-12) for r in res.T]
     f, _ = _information(lam, rhs, kc)
     eig = np.linalg.eigvalsh(f)
@@ -292,15 +281,15 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
 
     from stripcoef.diagnose.compare import ALPHA
     from stripcoef.diagnose.gains import (NOISE_PASSES, _blocks, _map, _normal_equations,
-                                          _with_shared, contrast_basis, thruster_groups)
+                                          _with_shared, gain_contrasts)
 
-    p_basis = contrast_basis(thruster_groups(data0.alloc), len(gains.names))
+    p_basis = gain_contrasts(data0.alloc, dofs, settings)
     # the gains: the first pass's fit again (its noise levels, its prior sd)
     b0, _, sd0 = _blocks(data0, dofs, settings, excited)
     sig0 = [gains.noise.get(DOF[b[0]], 1.0) for b in b0]
     lam, rhs, kc = _normal_equations(b0, sd0, sig0, p_basis)
     x = _map(lam, rhs, kc, gains.prior_sd)
-    res_g = _residuals(b0, x, kc, p_basis @ x[kc:])
+    res_g = _residuals(b0, x, p_basis @ x[kc:])
     p_g = sum(bool(c["determined"]) for c in gains.combinations)
     # the current: its components free (linearised about the DOFs' value), no gains
     vc = dict(water.effects[-1]["parameters"])
@@ -314,7 +303,7 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
     for _ in range(NOISE_PASSES):
         lam_c, rhs_c, kcc = _normal_equations(bc, sdc, sig, p_basis, with_gains=False)
         xc = np.linalg.lstsq(lam_c, rhs_c, rcond=None)[0]
-        res_c = _residuals(bc, xc, kcc)
+        res_c = _residuals(bc, xc)
         sig = [max(float(np.sqrt(np.mean(r ** 2))), 1e-12) for r in res_c.T]
     refit = {k: float(vc[k] + xc[c]) for k, c in zip(keys, cur)}
     # identification: the current beside the contrasts, data only (no prior on them)
@@ -326,7 +315,7 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
     d = _log_density(res_c) - _log_density(res_g)
     p_c = len(keys)
     lr = float(np.sum(d)) - 0.5 * (p_c - p_g) * np.log(n)
-    omega = np.sqrt(_long_run_variance(d) * n)
+    omega = np.sqrt(max(long_run_variance(d), 0.0) * n)
     z = lr / omega if omega > 0 else 0.0
     crit = float(norm.ppf(1.0 - ALPHA / 2.0))
     if not vif <= MAX_VIF:
@@ -361,8 +350,9 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
 
 def tested(gains, water, data0, train_log, dofs, excited, settings):
     """``(gains, keep)``: mode ``"test"`` (:func:`explain`) on the first pass's significant
-    ``gains`` (applied, or removed by their validation or bound); ``keep`` True when they stay (the log chose them), :data:`JOINT` when the
-    log holds the current and gains beside it (fitted again beside the free current, mode
+    ``gains`` (applied, or removed by their validation or bound); ``keep`` True when they
+    stay (the log chose them), :data:`JOINT` when the log holds the current and gains beside
+    it (fitted again beside the free current, mode
     ``"joint"``, the first pass restored if the current is removed), else False: they are
     withdrawn (not applied, the record says why) and the DOFs are to be diagnosed again on
     the prior."""
