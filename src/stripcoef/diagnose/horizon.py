@@ -58,10 +58,13 @@ def integral_time_scale(t, v) -> float:
     """The integral time scale of the series ``v`` sampled at ``t`` [s] (module docstring);
     0 for a constant series."""
     t = np.asarray(t, float)
-    x = np.asarray(v, float) - float(np.mean(v))
-    n = x.size
-    if n < 3 or not np.any(x):
+    v = np.asarray(v, float)
+    n = v.size
+    # constant: judged on the values, not on their deviations from the mean, which the
+    # mean's round-off (its summation order, CPU-dependent) can leave non-zero
+    if n < 3 or np.ptp(v) == 0.0:
         return 0.0
+    x = v - float(np.mean(v))
     dt = float(t[-1] - t[0]) / (n - 1)
     f = np.fft.rfft(x, 2 * n)
     c = np.fft.irfft(f * np.conj(f))[:n]          # N c_k, the biased estimate (N c_0 > 0)
