@@ -19,7 +19,10 @@ Variants (``--variants``, comma-separated; the first runs the selection):
   veto; 10-s segments);
 - ``each_correlation``: ``each`` on the correlation horizons;
 - ``each_own``, ``each_correlation_own``: the same, each removal judged on the DOFs of the
-  changes it removes (``validation_judge="own"``).
+  changes it removes (``validation_judge="own"``);
+- ``each_correlation_own_comb``: ``each_correlation_own`` with the skill veto's reference,
+  in a DOF whose prior has no skill, the least-squares combination of the prior and the
+  trivial predictors (``validation_reference="combination"``, cut33f).
 
 The rows are ``benchmarks.diagnose_independent``'s (``row`` lines with a ``variant`` key);
 ``python -m benchmarks.diagnose_independent --from-rows OUT --modes all`` summarises one
@@ -45,7 +48,12 @@ VARIANTS = {"default": ("logged", {}),
             "each_correlation": ("each", {"validation_horizon": "correlation"}),
             "each_own": ("each", {"validation_judge": "own"}),
             "each_correlation_own": ("each", {"validation_horizon": "correlation",
-                                              "validation_judge": "own"})}
+                                              "validation_judge": "own"}),
+            # cut33f: the skill veto's reference in a DOF the prior does not predict is the
+            # prior combined with the trivial predictors (diagnose/combination.py)
+            "each_correlation_own_comb": ("each", {"validation_horizon": "correlation",
+                                                   "validation_judge": "own",
+                                                   "validation_reference": "combination"})}
 
 #: The pipeline's stages before the validation, replayed from the first variant's calls.
 REPLAYED = ("fit_thruster_gains", "validated", "_fit_dofs")
@@ -114,7 +122,7 @@ def rows_of(vehicle, category, seed, duration, variants, check=False) -> list[di
         # what the validation judged with: the horizons, each model's errors, the removals
         row["validation"] = {key: rec.get(key) for key in (
             "horizon_s", "prior", "all_changes", "kept_changes", "removed",
-            "removed_for_own_dof", "trivial_predictor")}
+            "removed_for_own_dof", "trivial_predictor", "combined_reference")}
         if k == len(variants):          # --check: the first variant on the replay
             first = {key: v for key, v in rows[0].items() if not key.startswith("t_")}
             again = {key: v for key, v in row.items() if not key.startswith("t_")}

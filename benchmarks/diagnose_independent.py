@@ -45,6 +45,7 @@ Usage:
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
         [--validation-others logged|simulated|each] [--one-added-mass]
         [--validation-horizon correlation] [--validation-judge own]
+        [--validation-reference combination]
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -980,6 +981,10 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
                          "of the changes it removes)")
+    ap.add_argument("--validation-reference", default=None, choices=("trivial", "combination"),
+                    help="diagnose with validation_reference ('combination': in a DOF the "
+                         "prior does not predict, the skill veto's reference is the prior "
+                         "combined with the trivial predictors)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
@@ -1018,6 +1023,7 @@ def main(argv=None) -> int:
                                  ("restoring_free", args.restoring_free),
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
+                                 ("validation_reference", args.validation_reference),
                                  ("linked_gains", args.linked_gains)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))

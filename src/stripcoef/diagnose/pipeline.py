@@ -136,6 +136,7 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
                                          VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
+from stripcoef.diagnose.combination import REFERENCES
 from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
                                          resimulate_rms, resimulated_errors, validate_changes,
                                          validation_errors, with_kept)
@@ -159,7 +160,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False) -> Diagnosis:
+             validation_judge: str = "all", linked_gains: bool = False,
+             validation_reference: str = "trivial") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -248,6 +250,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     linked_gains : bool
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
+    validation_reference : str
+        ``"trivial"`` or ``"combination"``: the skill veto's reference forecast
+        (:attr:`DiagnoseSettings.validation_reference`; :mod:`.combination`).
 
     Returns
     -------
@@ -289,6 +294,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
+    if validation_reference not in REFERENCES:
+        raise InputError("not a reference forecast of the validation's skill veto",
+                         key="validation_reference", value=validation_reference,
+                         expected="one of " + ", ".join(REFERENCES))
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
@@ -314,7 +323,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains))
+        validation_judge=validation_judge, linked_gains=bool(linked_gains),
+        validation_reference=validation_reference)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -409,7 +419,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         horizon = settings.validation_horizons(val_log, dofs)
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs),
-                                           horizon=horizon, judge=settings.validation_judge)
+                                           horizon=horizon, judge=settings.validation_judge,
+                                           reference=settings.validation_reference)
         if first is not None and not current_kept(per, exclude):
             # mode "joint": the gains fitted beside the current are its partner (regains.py)
             gains = withdrawn(gains, first[0])
@@ -418,7 +429,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                                budget=budget,
                                                logged=settings.logged_dofs(dofs),
                                                horizon=horizon,
-                                               judge=settings.validation_judge)
+                                               judge=settings.validation_judge,
+                                               reference=settings.validation_reference)
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

@@ -287,6 +287,12 @@ class DiagnoseSettings:
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
         same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+    validation_reference : str
+        The skill veto's reference forecast under ``validation_others="each"``
+        (:func:`~stripcoef.diagnose.validate.validate_changes`' ``reference``): ``"trivial"``
+        (default, the best of the prior and the trivial predictors) or ``"combination"``
+        (where the prior has no skill, their least-squares combination:
+        :mod:`stripcoef.diagnose.combination`; measured in benchmarks/data/cut33f_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -310,6 +316,7 @@ class DiagnoseSettings:
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
+    validation_reference: str = "trivial"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default

@@ -2,7 +2,8 @@ r"""Validation by free simulation: each change of a diagnosis kept only if it im
 simulation of data it was not fitted on; the re-simulated and held-out velocity errors
 (:mod:`stripcoef.diagnose.heldout`).
 
-Depends on: diagnose.heldout, diagnose.horizon, diagnose.calibrate, diagnose.settings, progress.
+Depends on: diagnose.heldout, diagnose.horizon, diagnose.combination, diagnose.calibrate,
+diagnose.settings, progress.
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ def heldout_errors(result, prior, written) -> dict:
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
                      skill: bool | str = True, horizon=None,
-                     judge: str = "all") -> tuple[set, dict]:
+                     judge: str = "all", reference: str = "trivial") -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -113,9 +114,18 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     simulation a change does not address (a held roll replayed open loop) does not veto it.
     The per-DOF veto is unchanged.
 
+    ``reference``: with the skill veto above, ``"trivial"`` (default) as described;
+    ``"combination"`` (an option, issue 33, cut33f): in a DOF where the prior has no skill,
+    the veto's reference is the least-squares combination of the prior's simulation and the
+    trivial predictors on the same segments (:mod:`stripcoef.diagnose.combination`: a
+    change that only scales the replayed commands of a held DOF toward the trivial
+    predictors is a rescaled prior forecast, not a better model; Granger & Ramanathan 1984,
+    forecast encompassing).
+
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
     """
+    from stripcoef.diagnose.combination import COMBINATION, combination_errors
     from stripcoef.diagnose.heldout import EACH, HORIZON, diebold_mariano
     from stripcoef.diagnose.horizon import dof_losses, per_dof, rms, trivial_errors
 
@@ -138,6 +148,14 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                else [min(a, b) for a, b in zip(hold, zero)])
     veto_ref = ref if trivial is None else [min(a, max(b, 1e-12))
                                             for a, b in zip(ref, trivial)]
+    combined = None
+    if trivial is not None and reference == COMBINATION and base is not None:
+        # where the prior has no skill, the best rescaling of its forecast toward the
+        # trivial ones (docstring, diagnose/combination.py)
+        combined = combination_errors(val_log, prior, dofs, horizon=horizon, logged=logged)
+        if combined is not None:
+            veto_ref = [min(v, max(c, 1e-12)) if p >= tr else v
+                        for v, c, p, tr in zip(veto_ref, combined, base, trivial)]
     # skill="score": a DOF where the prior has no skill is left out of the summed score too
     judge_mask = [True] * len(dofs) if trivial is None or skill != "score" else \
         [a <= b for a, b in zip(ref, trivial)]
@@ -253,6 +271,8 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
               # each DOF alone, whole-log: the better trivial predictor's error, the veto's
               # reference where it is below the prior's (docstring)
               **({} if trivial is None else {"trivial_predictor": named(trivial)}),
+              # the prior combined with the trivial predictors (reference "combination")
+              **({} if combined is None else {"combined_reference": named(combined)}),
               "per_dof_test": {"description": "Diebold-Mariano test (HAC variance, "
                                               "Harvey et al. small-sample factor) of the kept "
                                               "model's free-simulation losses per validation "
