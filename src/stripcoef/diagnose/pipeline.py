@@ -178,7 +178,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
     time_limit : float, optional
-        Wall-clock budget [s] (default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
+        CPU-time budget [s] (:func:`time.process_time`; default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
         proportion to the rows past :data:`BUDGET_ROWS`; ``inf``: none); past it an
         :class:`~stripcoef.errors.UnreachableError` says so instead of grinding.
     validation : float or None
@@ -322,7 +322,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(),
         budget: Budget = Budget()) -> Diagnosis:
     """:func:`diagnose` with its options as one :class:`DiagnoseSettings` (checked by
-    :func:`diagnose`) inside the wall-clock ``budget``."""
+    :func:`diagnose`) inside the CPU-time ``budget``."""
     from stripcoef.diagnose.heldout import split
 
     window, validation, holdout = settings.window, settings.validation, settings.holdout
