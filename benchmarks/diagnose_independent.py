@@ -980,7 +980,8 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
                          "of the changes it removes)")
-    ap.add_argument("--gains-validation", default=None, choices=("consecutive", "rolling"),
+    ap.add_argument("--gains-validation", default=None,
+                    choices=("consecutive", "rolling", "rolling_test"),
                     help="diagnose with gains_validation ('rolling': the thrusters' gains "
                          "validated on 10-s segments restarted every 2 s by the changes' "
                          "score, stripcoef.diagnose.gaingate)")

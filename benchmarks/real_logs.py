@@ -766,7 +766,7 @@ def main(argv=None) -> int:
                     help="diagnose with gains_beside_current (the thrusters' gains fitted "
                          "again beside the water current the DOFs found; 'joint': with the "
                          "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
-    ap.add_argument("--gains-validation", choices=("consecutive", "rolling"),
+    ap.add_argument("--gains-validation", choices=("consecutive", "rolling", "rolling_test"),
                     default="consecutive",
                     help="diagnose with gains_validation (the thrusters' gains validated on "
                          "consecutive 10-s segments, or on 10-s segments restarted every 2 s "

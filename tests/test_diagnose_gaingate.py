@@ -92,3 +92,20 @@ def test_diagnose_refuses_an_unknown_rule(case):
     prior, log = case
     with pytest.raises(InputError, match="gains_validation"):
         diagnose(log, prior, dof="all", gains_validation="sometimes")
+
+
+def test_rolling_test_keeps_gains_only_beyond_the_segments_noise(case):
+    """Option ``"rolling_test"``: the pooled loss's one-sided Diebold-Mariano test. Gains that
+    change nothing (every gain 1) tie with the prior: kept by the consecutive rule (sum of
+    squared ratios exactly n), removed by the test (p 0.5); the right gains pass it."""
+    prior, log = case
+    settings = DiagnoseSettings(gains_validation="rolling_test")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        none = _gains(prior, [1.0, 1.0, 1.0, 1.0])
+        old = consecutive(none, log, prior, DOFS)
+        new = validate_gains(none, log, prior, DOFS, settings)
+        right = validate_gains(_gains(prior, [1.0, 1.0, 1.3, 1.0]), log, prior, DOFS, settings)
+    assert old.applied and old.validation["sum_squared_ratio"] == pytest.approx(3.0)
+    assert not new.applied and new.validation["pooled_test"]["p_value"] == pytest.approx(0.5)
+    assert right.applied and right.validation["pooled_test"]["p_value"] <= 0.05

@@ -34,7 +34,13 @@ prior's, :math:`(0, n)`: no DOF worse, and :math:`\sum_i r_i^2 \le n`. No new co
 the horizon, the restart step and the score are the package's. The record adds each
 DOF's Diebold-Mariano statistic of the gained prior's segment losses against the prior's
 (overlapping segments, :func:`~stripcoef.diagnose.heldout.diebold_mariano`), for
-reading, not for the rule.
+reading, and the same test of the pooled loss (:func:`pooled_test`).
+
+``gains_validation="rolling_test"`` (a trial): on the same segments the gains are kept only
+if the pooled test finds them better than the prior at
+:data:`~stripcoef.diagnose.heldout.ALPHA` (one-sided; Diebold & Mariano 1995, Harvey,
+Leybourne & Newbold 1997): the file's maps are the null, as in the gains' likelihood-ratio
+test on the fitting part.
 
 Depends on: diagnose.heldout, diagnose.gains, diagnose.settings (its argument).
 """
@@ -51,7 +57,8 @@ from stripcoef.conventions import DOF
 #: (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.gains_validation`).
 CONSECUTIVE = "consecutive"
 ROLLING = "rolling"
-GAIN_VALIDATIONS = (CONSECUTIVE, ROLLING)
+ROLLING_TEST = "rolling_test"
+GAIN_VALIDATIONS = (CONSECUTIVE, ROLLING, ROLLING_TEST)
 
 
 def rolling_losses(val_log, model, dofs, logged=()):
@@ -81,7 +88,22 @@ def score(before: list, after: list) -> tuple[int, float]:
     return sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))
 
 
-def validated(gains, val_log, prior, dofs, logged=()):
+def pooled_test(base, got) -> dict:
+    r"""The one-sided Diebold-Mariano test (:func:`stripcoef.diagnose.heldout.diebold_mariano`,
+    overlapping segments) of the gained prior's pooled segment loss against the prior's:
+    per segment s, :math:`L_s = \sum_i \overline{e^2_{si}} / E_i^2`, each DOF's mean squared
+    error on the segment over the prior's pooled one (the weights of the score's
+    :math:`\sum_i r_i^2`, whose mean over the segments it is). ``base``, ``got``:
+    :func:`rolling_losses` of the prior and of the gained prior."""
+    from stripcoef.diagnose.heldout import diebold_mariano, overlap_steps
+
+    ref = np.maximum(np.sum(base[0], axis=0) / np.sum(base[1]), 1e-24)
+    la = np.sum(got[0] / got[1][:, None] / ref, axis=1)
+    lb = np.sum(base[0] / base[1][:, None] / ref, axis=1)
+    return diebold_mariano(la, lb, overlap=overlap_steps())
+
+
+def validated(gains, val_log, prior, dofs, logged=(), test: bool = False):
     """``gains`` (:class:`stripcoef.diagnose.gains.ThrusterGains`) kept only if the prior
     with them scores no worse than the prior on rolling 10-s segments of ``val_log``
     (module docstring); unchanged without a validation log or when not applied."""
@@ -107,6 +129,17 @@ def validated(gains, val_log, prior, dofs, logged=()):
         d: float(diebold_mariano(got[0][:, k] / got[1], base[0][:, k] / base[1],
                                  overlap=overlap)["statistic"])
         for k, d in enumerate(names)}
+    pooled = pooled_test(base, got)
+    record["pooled_test"] = {k: pooled[k] for k in ("statistic", "p_value", "segments")}
+    if test:    # option "rolling_test": better than the prior beyond the segments' noise
+        from stripcoef.diagnose.heldout import ALPHA
+        if not pooled["p_value"] <= ALPHA:
+            return replace(gains, applied=False, validation=record,
+                           reason=gains.reason + "; removed by the validation (10-s segments "
+                           f"restarted every {ROLLING_STEP:g} s): the prior with the gains "
+                           "not better than the prior beyond the segments' noise "
+                           f"(Diebold-Mariano one-sided p {pooled['p_value']:.3g} > {ALPHA:g})")
+        return replace(gains, validation=record)
     if (worse, total) > (0, float(len(dofs))):
         return replace(gains, applied=False, validation=record,
                        reason=gains.reason + "; removed by the validation (10-s segments "
@@ -122,5 +155,8 @@ def validate_gains(gains, val_log, prior, dofs, settings):
     :func:`validated`; the DOFs it takes from the log are ``settings.gains_logged_dofs``."""
     from stripcoef.diagnose.gains import validated as consecutive
 
-    rule = validated if settings.gains_validation == ROLLING else consecutive
-    return rule(gains, val_log, prior, dofs, settings.gains_logged_dofs(dofs))
+    logged = settings.gains_logged_dofs(dofs)
+    if settings.gains_validation == CONSECUTIVE:
+        return consecutive(gains, val_log, prior, dofs, logged)
+    return validated(gains, val_log, prior, dofs, logged,
+                     test=settings.gains_validation == ROLLING_TEST)

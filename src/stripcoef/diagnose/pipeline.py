@@ -251,7 +251,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
     gains_validation : str
-        ``"consecutive"`` or ``"rolling"``: how the thrusters' gains are validated
+        ``"consecutive"``, ``"rolling"`` or ``"rolling_test"``: how the thrusters' gains are
+        validated
         (:attr:`DiagnoseSettings.gains_validation`, :mod:`.gaingate`).
 
     Returns

@@ -291,8 +291,9 @@ class DiagnoseSettings:
         How the thrusters' gains are validated (:mod:`stripcoef.diagnose.gaingate`):
         ``"consecutive"`` (consecutive 10-s segments, sum of squared error ratios at most
         the DOFs' number) or ``"rolling"`` (10-s segments restarted every 2 s, judged by
-        the changes' score: no DOF worse, then that sum). Measured in
-        benchmarks/data/real33f_trace.md
+        the changes' score: no DOF worse, then that sum) or ``"rolling_test"`` (on those
+        segments, kept only when better than the prior by the one-sided Diebold-Mariano
+        test of the pooled loss). Measured in benchmarks/data/real33f_trace.md
     """
 
     window: float = DEFAULT_WINDOW
