@@ -980,6 +980,11 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
                          "of the changes it removes)")
+    ap.add_argument("--gains-validation", default=None,
+                    choices=("consecutive", "rolling", "rolling_test"),
+                    help="diagnose with gains_validation ('rolling': the thrusters' gains "
+                         "validated on 10-s segments restarted every 2 s by the changes' "
+                         "score, stripcoef.diagnose.gaingate)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
@@ -1018,6 +1023,7 @@ def main(argv=None) -> int:
                                  ("restoring_free", args.restoring_free),
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
+                                 ("gains_validation", args.gains_validation),
                                  ("linked_gains", args.linked_gains)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))

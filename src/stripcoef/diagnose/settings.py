@@ -290,6 +290,13 @@ class DiagnoseSettings:
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
         same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+    gains_validation : str
+        How the thrusters' gains are validated (:mod:`stripcoef.diagnose.gaingate`):
+        ``"consecutive"`` (consecutive 10-s segments, sum of squared error ratios at most
+        the DOFs' number) or ``"rolling"`` (10-s segments restarted every 2 s, judged by
+        the changes' score: no DOF worse, then that sum) or ``"rolling_test"`` (on those
+        segments, kept only when better than the prior by the one-sided Diebold-Mariano
+        test of the pooled loss). Measured in benchmarks/data/real33f_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -313,6 +320,7 @@ class DiagnoseSettings:
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
+    gains_validation: str = "consecutive"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
