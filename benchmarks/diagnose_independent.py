@@ -234,9 +234,9 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
         if match:
-            scale = float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
-                "scale", s["parameters"].get("scale", 1.0)) for s in steps
-                if s["effect"] == "thrust_effectiveness"]))
+            # the thrust scales the estimate was fitted beside (held_scales): a kept step's
+            # value is the written model's, which holds only the kept scales
+            scale = held_scales(steps, bool(match[0].get("kept", True)))
             g_w = written_gain(res, prior.to_dict(), dof_name)
             ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale, g_w)
             row["magnitude_truth"] = float(ref)
@@ -425,8 +425,22 @@ def written_gain(res: dict, prior: dict, dof_name: str) -> float:
 
 
 #: The mark of a row whose ``magnitude_truth`` is in the written model's units for every
-#: effect (the thrust effectiveness and the added mass at the written gains too; fresh33f)
-WRITTEN_UNITS = "written"
+#: effect (the thrust effectiveness and the added mass at the written gains too, and a kept
+#: effect at the thrust scales the written model holds; fresh33f)
+WRITTEN_UNITS = "written, kept scales"
+
+
+def held_scales(steps: list[dict], kept: bool) -> float:
+    r"""The product of the thrust-effectiveness scales of a DOF's ``steps`` that the effect's
+    value was fitted beside [-]: for a kept effect (``kept``; its value is read back from the
+    written model, ``stripcoef.diagnose.written.read_back``) the kept scales only, the written
+    model holding no removed step; for a removed effect (its value that of the DOF's final fit
+    of every selected step) every scale. Issue 33 (fresh33f): VideoRay linear drag 1796048664
+    whole-log, scale 0.784 removed and the drag 2.820 kept, was 26 % off at the removed scale,
+    1.7 % at the written model's 1."""
+    return float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
+        "scale", s["parameters"].get("scale", 1.0)) for s in steps
+        if s["effect"] == "thrust_effectiveness" and (s.get("kept", True) or not kept)]))
 
 
 def prior_inertia(prior: dict, i: int) -> float:
@@ -501,35 +515,60 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
     return float(truth.strength)
 
 
-#: The categories whose reference the written gains now enter
+#: The categories whose reference the written gains now enter (a force effect's took them
+#: already; its reference is converted only for the scales, :func:`held_scales`)
 CONVERTED = ("thrust_effectiveness", "added_mass_error")
 
 
 def converted(row: dict, priors: dict | None = None) -> dict:
     """``row`` with its ``magnitude_truth`` and ``magnitude_error`` in the written model's units
-    (``benchmarks.written_units``): the row itself when it is already marked, is not of
-    :data:`CONVERTED`, or has no reference; otherwise a copy, marked, with ``written_gain``,
-    and ``magnitude_truth_before`` / ``magnitude_error_before`` kept. ``priors``: a cache of
-    the vehicles' prior dicts."""
+    (``benchmarks.written_units``): the row itself when it is already marked, has no
+    reference, or is a force effect's whose scales the rule does not change; otherwise a
+    copy, marked, with ``written_gain`` (a row of :data:`CONVERTED` written before fresh33f),
+    ``held_scale_ratio`` (:func:`held_scales` over the product of every scale) and
+    ``magnitude_truth_before`` / ``magnitude_error_before`` kept. ``priors``: a cache of the
+    vehicles' prior dicts."""
     from stripcoef.conventions import parse_dof
-    if (row.get("magnitude_units") == WRITTEN_UNITS or row["category"] not in CONVERTED
-            or "magnitude_truth" not in row):
+    from validation.independent import GRAVITY
+    if (row.get("magnitude_units") == WRITTEN_UNITS or "magnitude_truth" not in row
+            or row["category"] not in CONVERTED + FORCE_EFFECTS):
+        return row
+    own = [s for s in (row.get("step_detail") or {}).get(row["dof"], [])
+           if s["effect"] == row["category"]]
+    kept = bool(own[0]["kept"]) if own else True
+    te = [s for s in (row.get("step_detail") or {}).get(row["dof"], [])
+          if s["effect"] == "thrust_effectiveness"]
+    # the scale the stored reference took (every scale) over the one the value was fitted
+    # beside (held_scales); 1 for the thrust effectiveness's own row (no scale in its rule)
+    ratio = (held_scales(te, kept) / held_scales(te, False)
+             if te and row["category"] != "thrust_effectiveness" else 1.0)
+    first = row.get("magnitude_units") is None           # before fresh33f: no g_w there
+    if row["category"] in FORCE_EFFECTS and ratio == 1.0:
         return row
     priors = {} if priors is None else priors
     prior = priors.get(row["vehicle"])
     if prior is None:
         prior = priors[row["vehicle"]] = _prior(row["vehicle"]).to_dict()
+    i = parse_dof(row["dof"])
     gains = row.get("thruster_gains")
     g_w = written_gain({"thruster_gains": {"applied": gains is not None,
                                            "gains": gains or {}}}, prior, row["dof"])
+    g_w = g_w if first and row["category"] in CONVERTED else 1.0
     old = float(row["magnitude_truth"])
+    # the reference is k T - base with k the thrust factor (s g_w / g): the prior's own term
+    # (base) stays absolute (magnitude_truth)
+    base = {"thrust_effectiveness": 0.0, "added_mass_error": prior_inertia(prior, i),
+            "linear_drag": float(np.asarray(prior["linear_damping"], float)[i, i]),
+            "buoyancy_offset": (float(prior["mass"]) - float(prior["density"])
+                                * float(prior["volume"])) * GRAVITY}.get(row["category"], 0.0)
     if row["category"] == "thrust_effectiveness":
         new = old / g_w
     else:
-        m0 = prior_inertia(prior, parse_dof(row["dof"]))
-        new = (old + m0) * g_w - m0
+        new = (old + base) * g_w * ratio - base
     out = {**row, "magnitude_truth": new, "magnitude_truth_before": old,
-           "written_gain": g_w, "magnitude_units": WRITTEN_UNITS}
+           "held_scale_ratio": ratio, "magnitude_units": WRITTEN_UNITS}
+    if first and row["category"] in CONVERTED:
+        out["written_gain"] = g_w
     if "estimate" in row:
         est = float(row["estimate"])
         out["magnitude_error_before"] = row.get("magnitude_error")

@@ -18,8 +18,13 @@ None when none were applied) with the benchmark's weights
   prior (:func:`benchmarks.diagnose_independent.prior_inertia`), since
   :math:`r + M_0 = (M_{RB} + M_{A,true})\\,s/g`.
 
-Force effects were already at :math:`g_w`; every other row is left as it is. No diagnosis is
-run. Usage:
+Force effects were already at :math:`g_w`. Second, a kept effect's value is the written
+model's, which holds only the kept thrust scales, but the reference took every scale of the
+DOF, a removed one too: a kept effect's reference (force effect or added mass) is now at the
+kept scales (:func:`benchmarks.diagnose_independent.held_scales`), converted from the row's
+``step_detail`` as :math:`r \\to (r + b)\\,\\rho - b`, :math:`\\rho` the kept scales' product
+over every scale's, b the prior's own term (inertia, surge linear drag, net weight; 0 for a
+tether or momentum drag). Every other row is left as it is. No diagnosis is run. Usage:
 
     python -m benchmarks.written_units OUTPUT[,OUTPUT...]
 
@@ -53,12 +58,13 @@ def main(argv=None) -> int:
               f"estimate); within 15 %: {sum(within(g, 'magnitude_error_before') for g in claimed)}"
               f" -> {sum(within(g, 'magnitude_error') for g in claimed)}")
         for g in moved:
-            if abs(g["written_gain"] - 1.0) < 1e-12:
+            if abs(g["magnitude_truth"] - g["magnitude_truth_before"]) < 1e-12:
                 continue
             err = (f", error {100 * g['magnitude_error_before']:.1f} % -> "
                    f"{100 * g['magnitude_error']:.1f} %" if "estimate" in g else "")
             print(f"  {g['vehicle']} {g['category']} {g['seed']} {g['mode']}: g_w "
-                  f"{g['written_gain']:.4f}, reference {g['magnitude_truth_before']:+.4g} -> "
+                  f"{g.get('written_gain', 1.0):.4f}, held scales / all "
+                  f"{g['held_scale_ratio']:.4f}, reference {g['magnitude_truth_before']:+.4g} -> "
                   f"{g['magnitude_truth']:+.4g}" + (f", estimate {g['estimate']:+.4g}"
                                                     if "estimate" in g else "") + err)
     return 0

@@ -144,3 +144,34 @@ def test_a_stored_row_is_converted_from_its_own_gains():
     tether = {**_old_row(prior, truth, "thrust_effectiveness", 1.0, gains, 1.0),
               "category": "tether_drag"}
     assert converted(tether, priors) is tether
+
+
+def test_a_kept_effect_is_compared_at_the_scales_the_written_model_holds():
+    """fresh33f: a kept step's value is read back from the written model, which holds no
+    removed thrust scale; a removed step's value is the final fit's, beside every scale. A
+    stored row of a kept linear drag beside a removed scale 0.8 is converted to the reference
+    at scale 1: (r + X_u,p) / 0.8 - X_u,p."""
+    from benchmarks.diagnose_independent import converted, held_scales
+    te = [{"effect": "thrust_effectiveness", "kept": False, "parameters": {"scale": 0.8}},
+          {"effect": "thrust_effectiveness", "kept": True, "parameters": {"scale": 0.9}}]
+    assert held_scales(te, True) == pytest.approx(0.9)
+    assert held_scales(te, False) == pytest.approx(0.72)
+    prior, truth = _truth()
+    truth.effect, truth.strength = "linear_drag", 2.5
+    truth.d_l = np.array(truth.d_l, float)
+    truth.d_l[0, 0] = 2.5
+    x_p = float(np.asarray(prior["linear_damping"], float)[0, 0])
+    old = magnitude_truth(truth, prior, "linear_drag", "surge", 0.8)
+    new = magnitude_truth(truth, prior, "linear_drag", "surge", 1.0)
+    assert new == pytest.approx((old + x_p) / 0.8 - x_p)
+    row = {"vehicle": "rov", "category": "linear_drag", "seed": 1, "mode": "all", "dof": "surge",
+           "thruster_gains": None, "estimate": new, "magnitude_truth": old,
+           "magnitude_error": 0.3,
+           "step_detail": {"surge": [{"effect": "linear_drag", "kept": True,
+                                      "parameters": {"d_L": new}}, te[0]]}}
+    got = converted(row, {"rov": prior})
+    assert got["magnitude_truth"] == pytest.approx(new)
+    assert got["magnitude_error"] == pytest.approx(0.0, abs=1e-9)
+    removed = {**row, "step_detail": {"surge": [{"effect": "linear_drag", "kept": False,
+                                                 "parameters": {"d_L": new}}, te[0]]}}
+    assert converted(removed, {"rov": prior}) is removed      # fitted beside the scale
