@@ -960,9 +960,12 @@ def main(argv=None) -> int:
                     help="diagnose with scale_choice_unforced=False (a scale and an "
                          "added-mass release, both contenders of a step none passes, left "
                          "undecided: the rule before named33d)")
-    ap.add_argument("--linked-gains", action="store_true",
+    ap.add_argument("--linked-gains", nargs="?", const=True, default=False,
+                    choices=(True, "identified"),
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
-                         "groups linked through the diagnosed DOFs they act in)")
+                         "groups linked through the diagnosed DOFs they act in); "
+                         "'--linked-gains identified': linked only where the log identifies "
+                         "the groups' contrast")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "

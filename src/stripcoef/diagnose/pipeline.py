@@ -130,7 +130,8 @@ from stripcoef.diagnose.result import Diagnosis, DofFit, _band_record  # noqa: F
 from stripcoef.diagnose.select import (Siblings, _physical_problems,  # noqa: F401
                                        diagnose_dof, excited_dofs, select_dofs)
 from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # noqa: F401
-                                         METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
+                                         LINKED_IDENTIFIED, METRIC, METRIC_TEXT, MIMIC_BANDS,
+                                         MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
@@ -159,7 +160,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False) -> Diagnosis:
+             validation_judge: str = "all", linked_gains: bool | str = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -247,7 +248,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         (:attr:`DiagnoseSettings.validation_judge`).
     linked_gains : bool
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
-        (:attr:`DiagnoseSettings.linked_gains`; off by default).
+        (:attr:`DiagnoseSettings.linked_gains`; off by default); ``"identified"``: linked only
+        where the log identifies the groups' contrast.
 
     Returns
     -------
@@ -314,7 +316,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains))
+        validation_judge=validation_judge,
+        linked_gains=(linked_gains if linked_gains == LINKED_IDENTIFIED else bool(linked_gains)))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

@@ -72,6 +72,9 @@ ADDED_MASS_FACTOR = {"translational": (0.25, 4.0), "rotational": (0.2, 5.0)}
 #: data carry 0.4-0.9 of the band's information, and the thrust efficiency then absorbed
 #: the inertia and drag errors.)
 MIN_INFORMATION_RATIO = 0.3
+#: ``linked_gains`` mode: the gains' groups linked through a shared DOF only where the log
+#: identifies the contrast between them (:func:`stripcoef.diagnose.gains.identified_groups`).
+LINKED_IDENTIFIED = "identified"
 #: A DOF is excited when its velocity's standard deviation is this many times its noise
 #: (the noise from second differences, :meth:`WindowData.rate_noise_variance`'s estimator)
 #: and its applied force moves.
@@ -286,7 +289,10 @@ class DiagnoseSettings:
         ``linked``): a gain common to such a group is exactly a per-DOF thrust scale, so on a
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
-        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md. ``"identified"``
+        (:data:`LINKED_IDENTIFIED`): the groups linked through a shared DOF only where the
+        log identifies their contrast (:func:`stripcoef.diagnose.gains.identified_groups`),
+        measured in benchmarks/data/linked33f_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -309,7 +315,7 @@ class DiagnoseSettings:
     scale_choice_unforced: bool = True
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
-    linked_gains: bool = False
+    linked_gains: bool | str = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
