@@ -227,6 +227,9 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                            if r["steps"]},
            "thruster_gains": ((res.get("thruster_gains") or {}).get("gains")
                               if (res.get("thruster_gains") or {}).get("applied") else None)}
+    if (res.get("thruster_gains") or {}).get("links") is not None:
+        # linked_gains="identified": each pair of groups considered, its information ratio
+        row["gain_links"] = res["thruster_gains"]["links"]
     # a step that the log does not tell from other effects (scalechoice): its named set
     row["first_set"] = ([steps[0]["effect"]] + list(steps[0].get("ambiguous_with") or ())
                         if steps else [])

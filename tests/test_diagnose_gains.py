@@ -326,3 +326,31 @@ def test_identified_mode_needs_the_logs_blocks():
     alloc = _shared_dof_blocks(lever=1.0)[0]
     with pytest.raises(ValueError, match="identified"):
         gain_contrasts(alloc, [0, 1, 2], DiagnoseSettings(linked_gains="identified"))
+
+
+
+@pytest.mark.slow
+def test_identified_gains_record_their_links_and_fit_the_groups_they_name():
+    """``linked_gains="identified"`` on a BlueROV2-like log of the independent simulator: the
+    record lists the one pair of groups that shares a diagnosed DOF (the vectored four and the
+    vertical four, through roll and pitch) with its information ratio against the bench band,
+    linked exactly when it is at least 1; the fit's contrasts are those of the groups it names;
+    the ratio against the log's spread (recorded, not used) is never the smaller, the spread
+    being at least the bench band (linked33f, benchmarks/data/linked33f_trace.md)."""
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    from validation.independent import generate
+
+    prior = _prior("bluerov2_heavy")
+    log, _ = generate(prior.to_dict(), None, 100, duration=120.0)
+    data = window_data(log, prior, window=4.0)
+    excited, _ = select_dofs(data)
+    assert {3, 4} <= set(excited)
+    fit = fit_thruster_gains(data, excited, DiagnoseSettings(linked_gains="identified"),
+                             excited=excited)
+    (link,) = fit.to_dict()["links"]
+    assert sorted(map(sorted, link["groups"])) == [["t1", "t2", "t3", "t4"],
+                                                   ["t5", "t6", "t7", "t8"]]
+    assert set(link["dofs"]) == {"roll", "pitch"}
+    assert link["linked"] == (link["information_ratio"] >= 1.0)
+    assert link["information_ratio_spread"] >= link["information_ratio"] > 0.0
+    assert len(fit.combinations) == (7 if link["linked"] else 6)

@@ -334,7 +334,10 @@ def identified_groups(alloc, rows, blocks, prior_sd, sigmas) -> tuple:
     data-only Fisher information :math:`\lambda_w` with every DOF's thrust scale, the
     calibration and the groups' own contrasts profiled out
     (:func:`contrast_information`) against its prior precision :math:`1/s^2`, s the gains'
-    prior sd the log sets (:func:`spread_sd` on the unlinked groups). Linked when
+    a-priori band :data:`GAIN_SD` (the bench uncertainty of the thrust maps, Wang & Clark
+    2006 Table I): the prior the data are compared with must not come from the same data,
+    so not the spread the log sets (:func:`spread_sd`; its ratio is recorded as
+    ``information_ratio_spread``, not used). Linked when
     :math:`\lambda_w \ge 1/s^2`, i.e. information ratio :math:`s\sqrt{\lambda_w} \ge 1`:
     the posterior mean's weight on the data, :math:`\lambda_w/(\lambda_w + 1/s^2)`, is
     at least its weight on the prior (the linear-Gaussian posterior, Tarantola 2005
@@ -348,10 +351,10 @@ def identified_groups(alloc, rows, blocks, prior_sd, sigmas) -> tuple:
     n = alloc.shape[1]
     groups = thruster_groups(alloc)
     p0 = contrast_basis(groups, n)
-    gain_sd = GAIN_SD
+    spread = GAIN_SD
     if p0.shape[1]:
         lam, rhs, kc = _normal_equations(blocks, prior_sd, sigmas, p0)
-        gain_sd = spread_sd(*_information(lam, rhs, kc))
+        spread = spread_sd(*_information(lam, rhs, kc))
     links = []
     while True:
         p_basis = contrast_basis(groups, n)
@@ -364,11 +367,12 @@ def identified_groups(alloc, rows, blocks, prior_sd, sigmas) -> tuple:
                 if not shared:
                     continue
                 w = _between_contrast(groups, a, b, n)
-                ratio = gain_sd * math.sqrt(contrast_information(
-                    blocks, prior_sd, sigmas, p_basis, w, gain_sd))
+                info = contrast_information(blocks, prior_sd, sigmas, p_basis, w, GAIN_SD)
+                ratio = GAIN_SD * math.sqrt(info)
                 links.append({"groups": (tuple(groups[a]), tuple(groups[b])),
                               "dofs": tuple(shared), "information_ratio": float(ratio),
-                              "linked": bool(ratio >= 1.0)})
+                              "linked": bool(ratio >= 1.0),
+                              "information_ratio_spread": float(spread * math.sqrt(info))})
                 if ratio >= 1.0 and (best is None or ratio > best[0]):
                     best = (ratio, a, b)
         if best is None:
