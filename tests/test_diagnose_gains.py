@@ -354,3 +354,11 @@ def test_identified_gains_record_their_links_and_fit_the_groups_they_name():
     assert link["linked"] == (link["information_ratio"] >= 1.0)
     assert link["information_ratio_spread"] >= link["information_ratio"] > 0.0
     assert len(fit.combinations) == (7 if link["linked"] else 6)
+
+
+def test_a_bad_linked_gains_mode_is_refused():
+    from stripcoef.errors import InputError
+    from stripcoef.logfile import Log
+
+    with pytest.raises(InputError, match="linked_gains"):
+        diagnose(Log({"t": np.arange(5.0)}), None, linked_gains="some")

@@ -42,7 +42,11 @@ groups linked 1 % and 0.4 %, 3 % and 1 %, and neither step named). The option
 the linked groups (``thruster_groups(..., linked=True)``); off by default: on the issue-size
 seed's 22 BlueROV2-like whole-log library-effect rows the error cut >= 3x rose 12 -> 15 (six
 gained, three lost), but one of its two dry-friction logs lost its 'unexplained' flag
-(benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint
+(benchmarks/data/spread33d_trace.md). ``linked_gains="identified"`` links two groups only
+where the shared DOF identifies their contrast (:func:`identified_groups`: its data-only
+information, every DOF's thrust scale free, at least the bench band's prior precision,
+Rothenberg 1971); off by default, measured in benchmarks/data/linked33f_trace.md. Each
+:math:`\sigma_i` is re-estimated from the joint
 fit's residual of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit

@@ -294,6 +294,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
+    if linked_gains not in (False, True, LINKED_IDENTIFIED):
+        raise InputError("not a way to group the thrusters' gains", key="linked_gains",
+                         value=linked_gains, expected=f"False, True or {LINKED_IDENTIFIED!r}")
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -317,7 +320,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
         validation_judge=validation_judge,
-        linked_gains=(linked_gains if linked_gains == LINKED_IDENTIFIED else bool(linked_gains)))
+        linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
+                      else bool(linked_gains)))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
