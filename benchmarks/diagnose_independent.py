@@ -228,6 +228,9 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                            if r["steps"]},
            "thruster_gains": ((res.get("thruster_gains") or {}).get("gains")
                               if (res.get("thruster_gains") or {}).get("applied") else None)}
+    if (res.get("thruster_gains") or {}).get("links") is not None:
+        # linked_gains="identified": each pair of groups considered, its information ratio
+        row["gain_links"] = res["thruster_gains"]["links"]
     # a step that the log does not tell from other effects (scalechoice): its named set
     row["first_set"] = ([steps[0]["effect"]] + list(steps[0].get("ambiguous_with") or ())
                         if steps else [])
@@ -1069,9 +1072,12 @@ def main(argv=None) -> int:
                     help="diagnose with scale_choice_unforced=False (a scale and an "
                          "added-mass release, both contenders of a step none passes, left "
                          "undecided: the rule before named33d)")
-    ap.add_argument("--linked-gains", action="store_true",
+    ap.add_argument("--linked-gains", nargs="?", const=True, default=False,
+                    choices=(True, "identified"),
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
-                         "groups linked through the diagnosed DOFs they act in)")
+                         "groups linked through the diagnosed DOFs they act in); "
+                         "'--linked-gains identified': linked only where the log identifies "
+                         "the groups' contrast")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "

@@ -131,7 +131,8 @@ from stripcoef.diagnose.result import Diagnosis, DofFit, _band_record  # noqa: F
 from stripcoef.diagnose.select import (Siblings, _physical_problems,  # noqa: F401
                                        diagnose_dof, excited_dofs, select_dofs)
 from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # noqa: F401
-                                         METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
+                                         LINKED_IDENTIFIED, METRIC, METRIC_TEXT, MIMIC_BANDS,
+                                         MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
@@ -160,7 +161,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False,
+             validation_judge: str = "all", linked_gains: bool | str = False,
              gains_validation: str = "consecutive") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
@@ -247,9 +248,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     validation_judge : str
         ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
         (:attr:`DiagnoseSettings.validation_judge`).
-    linked_gains : bool
+    linked_gains : bool or str
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
-        (:attr:`DiagnoseSettings.linked_gains`; off by default).
+        (:attr:`DiagnoseSettings.linked_gains`; off by default); ``"identified"``: linked only
+        where the log identifies the groups' contrast.
     gains_validation : str
         ``"consecutive"``, ``"rolling"`` or ``"rolling_test"``: how the thrusters' gains are
         validated
@@ -301,6 +303,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
+    if linked_gains not in (False, True, LINKED_IDENTIFIED):
+        raise InputError("not a way to group the thrusters' gains", key="linked_gains",
+                         value=linked_gains, expected=f"False, True or {LINKED_IDENTIFIED!r}")
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -323,7 +328,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains),
+        validation_judge=validation_judge,
+        linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
+                      else bool(linked_gains)),
         gains_validation=gains_validation)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)

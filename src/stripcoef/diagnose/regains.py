@@ -284,10 +284,10 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
     from stripcoef.diagnose.gains import (NOISE_PASSES, _blocks, _map, _normal_equations,
                                           _with_shared, gain_contrasts)
 
-    p_basis = gain_contrasts(data0.alloc, dofs, settings)
     # the gains: the first pass's fit again (its noise levels, its prior sd)
     b0, _, sd0 = _blocks(data0, dofs, settings, excited)
     sig0 = [gains.noise.get(DOF[b[0]], 1.0) for b in b0]
+    p_basis = gain_contrasts(data0.alloc, dofs, settings, identified=(b0, sd0, sig0))
     lam, rhs, kc = _normal_equations(b0, sd0, sig0, p_basis)
     x = _map(lam, rhs, kc, gains.prior_sd)
     res_g = _residuals(b0, x, p_basis @ x[kc:])

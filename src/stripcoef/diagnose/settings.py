@@ -72,6 +72,9 @@ ADDED_MASS_FACTOR = {"translational": (0.25, 4.0), "rotational": (0.2, 5.0)}
 #: data carry 0.4-0.9 of the band's information, and the thrust efficiency then absorbed
 #: the inertia and drag errors.)
 MIN_INFORMATION_RATIO = 0.3
+#: ``linked_gains`` mode: the gains' groups linked through a shared DOF only where the log
+#: identifies the contrast between them (:func:`stripcoef.diagnose.gains.identified_groups`).
+LINKED_IDENTIFIED = "identified"
 #: A DOF is excited when its velocity's standard deviation is this many times its noise
 #: (the noise from second differences, :meth:`WindowData.rate_noise_variance`'s estimator)
 #: and its applied force moves.
@@ -283,13 +286,20 @@ class DiagnoseSettings:
         1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
         thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
         benchmarks/data/closed33d_trace.md, docs/performance.md
-    linked_gains : bool
+    linked_gains : bool or str
         The thrusters' gains' contrasts taken within each group of thrusters linked through
         the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,
         ``linked``): a gain common to such a group is exactly a per-DOF thrust scale, so on a
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
-        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md. ``"identified"``
+        (:data:`LINKED_IDENTIFIED`): the groups linked through a shared DOF only where the
+        log identifies their contrast (:func:`stripcoef.diagnose.gains.identified_groups`).
+        Off: on the whole-log rows of seeds 1795938998 and 1795929171 the error cut >= 3x
+        rose 55 -> 58 of 88, spurious named 13 -> 12 and the clean logs 7/8 -> 8/8, but
+        magnitude within 15 % fell on both seeds (73 -> 71; two BlueROV2 logs whose contrast
+        the log determines and an omitted effect biases) and named first 76 -> 75
+        (benchmarks/data/linked33f_trace.md)
     gains_validation : str
         How the thrusters' gains are validated (:mod:`stripcoef.diagnose.gaingate`):
         ``"consecutive"`` (consecutive 10-s segments, sum of squared error ratios at most
@@ -319,7 +329,7 @@ class DiagnoseSettings:
     scale_choice_unforced: bool = True
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
-    linked_gains: bool = False
+    linked_gains: bool | str = False
     gains_validation: str = "consecutive"
 
     def validation_horizons(self, val_log, dofs):
