@@ -261,6 +261,11 @@ class DiagnoseSettings:
         and dry-friction logs of seeds 29112026 and 1795929171 unchanged
         (benchmarks/data/named33d_trace.md). False: the choice runs only when one of the
         two passed its gates
+    heldout_rise : str
+        When a thrust scale or a released coefficient "raises the held-out error"
+        (:mod:`stripcoef.diagnose.heldoutrise`): ``"tie"`` (default, beyond ``TIE``) or
+        ``"diebold_mariano"`` (the one-sided Diebold-Mariano test of the cross-validated
+        window losses rejects at ``ALPHA``). Measured in benchmarks/data/named33f_trace.md
     validation_horizon : float or str
         Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
         validate_changes`; the thrusters' gains keep the free simulation's):
@@ -307,6 +312,7 @@ class DiagnoseSettings:
     drag_couplings: bool = False
     restoring_free: bool = False
     scale_choice_unforced: bool = True
+    heldout_rise: str = "tie"
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
