@@ -265,7 +265,12 @@ class DiagnoseSettings:
         When a thrust scale or a released coefficient "raises the held-out error"
         (:mod:`stripcoef.diagnose.heldoutrise`): ``"tie"`` (default, beyond ``TIE``) or
         ``"diebold_mariano"`` (the one-sided Diebold-Mariano test of the cross-validated
-        window losses rejects at ``ALPHA``). Measured in benchmarks/data/named33f_trace.md
+        window losses rejects at ``ALPHA``). Off by default: on the thrust-effectiveness,
+        added-mass and clean logs of seeds 1795938998 and 1795929171 (48 diagnoses) named
+        first +1 (VideoRay 1795939008 both modes named, BlueROV2 1795930181 whole-log lost to
+        the cross-mass test the tie gate had shadowed), error cut >= 3x -1 and spurious kept
+        +1 (the validation removes the scale with the calibration fitted beside it):
+        benchmarks/data/named33f_trace.md
     validation_horizon : float or str
         Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
         validate_changes`; the thrusters' gains keep the free simulation's):
