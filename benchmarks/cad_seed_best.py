@@ -58,12 +58,16 @@ def best(rows: dict, plates=None, coarse=None) -> tuple[dict, dict]:
     source = {}
     if plates:
         for k, (_, _, _, faces, terms) in read_graded(plates).items():
+            if k not in refs:             # a shape the draw lost (its BEM failed): no row
+                continue
             for i in range(6):
                 r, _, _ = fine_reference(faces, [np.array([[v]]) for v in terms[i]])
                 refs[k][i, i] = r[0, 0]
                 source[(k, i, i)] = "graded plate"
     if coarse:
         for k, (_, n, mats) in read(coarse).items():
+            if k not in refs:
+                continue
             r, _, _ = fine_reference(n, mats)
             refs[k] = 0.5 * (r + r.T)
             for i in range(6):

@@ -115,7 +115,8 @@ from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
-from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
+from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
                                         with_found_current,
                                         withdrawn)
@@ -160,7 +161,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True, heldout_rise: str = "tie",
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False) -> Diagnosis:
+             validation_judge: str = "all", linked_gains: bool = False,
+             gains_validation: str = "consecutive") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -179,7 +181,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
     time_limit : float, optional
-        Wall-clock budget [s] (default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
+        CPU-time budget [s] (:func:`time.process_time`; default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
         proportion to the rows past :data:`BUDGET_ROWS`; ``inf``: none); past it an
         :class:`~stripcoef.errors.UnreachableError` says so instead of grinding.
     validation : float or None
@@ -252,6 +254,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     linked_gains : bool
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
+    gains_validation : str
+        ``"consecutive"``, ``"rolling"`` or ``"rolling_test"``: how the thrusters' gains are
+        validated
+        (:attr:`DiagnoseSettings.gains_validation`, :mod:`.gaingate`).
 
     Returns
     -------
@@ -293,6 +299,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
+    if gains_validation not in GAIN_VALIDATIONS:
+        raise InputError("not a way to validate the thrusters' gains", key="gains_validation",
+                         value=gains_validation, expected="one of " + ", ".join(GAIN_VALIDATIONS))
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
@@ -321,7 +330,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced), heldout_rise=heldout_rise,
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains))
+        validation_judge=validation_judge, linked_gains=bool(linked_gains),
+        gains_validation=gains_validation)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -329,7 +339,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(),
         budget: Budget = Budget()) -> Diagnosis:
     """:func:`diagnose` with its options as one :class:`DiagnoseSettings` (checked by
-    :func:`diagnose`) inside the wall-clock ``budget``."""
+    :func:`diagnose`) inside the CPU-time ``budget``."""
     from stripcoef.diagnose.heldout import split
 
     window, validation, holdout = settings.window, settings.validation, settings.holdout
@@ -376,7 +386,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
-            gains = validated(gains, val_log, model, dofs, settings.gains_logged_dofs(dofs))
+            gains = validate_gains(gains, val_log, model, dofs, settings)
         if gains is not None and gains.applied:
             model = gains.model(model)
             data = model_window_data(train_log, model, window=window)

@@ -76,7 +76,7 @@ seeds 7 and 21), and the gains beside it pass the Schwarz penalty, so the rows e
 -> 4 of 12). Without the nested step seed 21 lost 6 cells (the truth has gains too). Off by
 default for that reason: where it differs from ``"joint"`` it was not shown to help.
 
-Depends on: diagnose.gains, diagnose.heldout, diagnose.settings, diagnose.compare, effects,
+Depends on: diagnose.gains, diagnose.gaingate, diagnose.heldout, diagnose.settings, diagnose.compare, effects,
 model.
 """
 
@@ -87,7 +87,8 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.gaingate import validate_gains
+from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.heldout import long_run_variance
 from stripcoef.effects.laws import model_window_data
 
@@ -195,7 +196,7 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
                                shared=shared)
     if gains is None:
         return None, prior, data0
-    gains = validated(gains, val_log, water, dofs, settings.gains_logged_dofs(dofs))
+    gains = validate_gains(gains, val_log, water, dofs, settings)
     gains = replace(gains, reason=gains.reason + "; fitted beside the current the DOFs found "
                     f"(north {vc['current_north']:.4g}, east {vc['current_east']:.4g} m/s), "
                     "the DOFs diagnosed again on them")
