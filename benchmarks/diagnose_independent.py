@@ -1072,6 +1072,10 @@ def main(argv=None) -> int:
                     help="diagnose with scale_choice_unforced=False (a scale and an "
                          "added-mass release, both contenders of a step none passes, left "
                          "undecided: the rule before named33d)")
+    ap.add_argument("--heldout-rise", default=None, choices=("tie", "diebold_mariano"),
+                    help="diagnose with heldout_rise ('diebold_mariano': a scale or a "
+                         "released coefficient refused for a held-out rise only when the "
+                         "Diebold-Mariano test of the window losses rejects)")
     ap.add_argument("--linked-gains", nargs="?", const=True, default=False,
                     choices=(True, "identified"),
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
@@ -1142,7 +1146,8 @@ def main(argv=None) -> int:
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
                                  ("gains_validation", args.gains_validation),
-                                 ("linked_gains", args.linked_gains)) if value},
+                                 ("linked_gains", args.linked_gains),
+                                 ("heldout_rise", args.heldout_rise)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

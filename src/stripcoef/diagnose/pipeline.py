@@ -144,6 +144,7 @@ from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
 from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import model_window_data
 from stripcoef.effects.windows import window_data
+from stripcoef.diagnose.heldoutrise import RULES as RISE_RULES
 from stripcoef.errors import InputError, ModelWarning
 
 
@@ -159,7 +160,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
              drag_couplings: bool = False, restoring_free: bool = False,
-             scale_choice_unforced: bool = True,
+             scale_choice_unforced: bool = True, heldout_rise: str = "tie",
              validation_horizon: float | str = RESIMULATION_HORIZON,
              validation_judge: str = "all", linked_gains: bool | str = False,
              gains_validation: str = "consecutive") -> Diagnosis:
@@ -242,6 +243,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         A thrust scale and an added-mass release, both contenders of a step no candidate
         passes, decided by the model holding both
         (:attr:`DiagnoseSettings.scale_choice_unforced`; on by default).
+    heldout_rise : str
+        ``"tie"`` (default) or ``"diebold_mariano"``: when a scale or a released coefficient
+        raises the held-out error (:mod:`.heldoutrise`, :attr:`DiagnoseSettings.heldout_rise`).
     validation_horizon : float or str
         Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
         integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
@@ -306,6 +310,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if linked_gains not in (False, True, LINKED_IDENTIFIED):
         raise InputError("not a way to group the thrusters' gains", key="linked_gains",
                          value=linked_gains, expected=f"False, True or {LINKED_IDENTIFIED!r}")
+    if heldout_rise not in RISE_RULES:
+        raise InputError("not a rule for a held-out rise", key="heldout_rise",
+                         value=heldout_rise, expected="one of " + ", ".join(RISE_RULES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -326,7 +333,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
-        scale_choice_unforced=bool(scale_choice_unforced),
+        scale_choice_unforced=bool(scale_choice_unforced), heldout_rise=heldout_rise,
         validation_horizon=_horizon_setting(validation_horizon),
         validation_judge=validation_judge,
         linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED

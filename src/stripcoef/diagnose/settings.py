@@ -267,6 +267,16 @@ class DiagnoseSettings:
         and dry-friction logs of seeds 29112026 and 1795929171 unchanged
         (benchmarks/data/named33d_trace.md). False: the choice runs only when one of the
         two passed its gates
+    heldout_rise : str
+        When a thrust scale or a released coefficient "raises the held-out error"
+        (:mod:`stripcoef.diagnose.heldoutrise`): ``"tie"`` (default, beyond ``TIE``) or
+        ``"diebold_mariano"`` (the one-sided Diebold-Mariano test of the cross-validated
+        window losses rejects at ``ALPHA``). Off by default: on the thrust-effectiveness,
+        added-mass and clean logs of seeds 1795938998 and 1795929171 (48 diagnoses) named
+        first +1 (VideoRay 1795939008 both modes named, BlueROV2 1795930181 whole-log lost to
+        the cross-mass test the tie gate had shadowed), error cut >= 3x -1 and spurious kept
+        +1 (the validation removes the scale with the calibration fitted beside it):
+        benchmarks/data/named33f_trace.md
     validation_horizon : float or str
         Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
         validate_changes`; the thrusters' gains keep the free simulation's):
@@ -327,6 +337,7 @@ class DiagnoseSettings:
     drag_couplings: bool = False
     restoring_free: bool = False
     scale_choice_unforced: bool = True
+    heldout_rise: str = "tie"
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool | str = False
