@@ -18,103 +18,11 @@ warning is its ``warned`` column.  Usage:
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 
-import numpy as np
+from validation.cad_draws import best, model_rows, tally
 
-from benchmarks.cad_shapes import DOFS, SIGNIFICANT
-
-TOL = 0.05
-
-
-def model_rows(path) -> dict:
-    """{shape: dict(family, warned, cpu, model, bem, est (6x6 each, est in [kg...]))}."""
-    out: dict = {}
-    with open(path, newline="") as fh:
-        fh.readline()
-        for r in csv.DictReader(fh):
-            if r["what"].startswith("FAILED"):
-                continue
-            x = out.setdefault(int(r["shape"]), dict(
-                family=r["family"], warned=r["warned"] == "1", cpu=float(r["cpu_model_s"]),
-                model=np.zeros((6, 6)), bem=np.zeros((6, 6)), est_rel=np.zeros((6, 6))))
-            i, j = int(r["i"]), int(r["j"])
-            for key, col in (("model", "model"), ("bem", "bem"),
-                             ("est_rel", "estimated_error_rel")):
-                x[key][i, j] = x[key][j, i] = float(r[col])
-    for x in out.values():        # the band back to [kg, ...] from the stored run's scale
-        d = np.sqrt(np.abs(np.diag(x["bem"])))
-        x["est"] = x["est_rel"] * np.outer(d, d)
-    return out
-
-
-def best(rows: dict, plates=None, coarse=None) -> tuple[dict, dict]:
-    """({shape: 6x6 reference}, {(shape, i, j): source}) the edge-graded where held."""
-    from validation.cad_shapes import fine_reference, read_graded
-    from validation.graded_bodies import read
-
-    refs = {k: x["bem"].copy() for k, x in rows.items()}
-    source = {}
-    if plates:
-        for k, (_, _, _, faces, terms) in read_graded(plates).items():
-            for i in range(6):
-                r, _, _ = fine_reference(faces, [np.array([[v]]) for v in terms[i]])
-                refs[k][i, i] = r[0, 0]
-                source[(k, i, i)] = "graded plate"
-    if coarse:
-        for k, (_, n, mats) in read(coarse).items():
-            r, _, _ = fine_reference(n, mats)
-            refs[k] = 0.5 * (r + r.T)
-            for i in range(6):
-                for j in range(i, 6):
-                    source[(k, i, j)] = "graded cylinder"
-    return refs, source
-
-
-def tally(rows: dict, refs: dict, source: dict) -> str:
-    diag = coup = diag_in = coup_in = terms = covered = 0
-    off_shapes = off_warned = 0
-    misses = []
-    for k in sorted(rows):
-        x, ref = rows[k], refs[k]
-        d = np.sqrt(np.abs(np.diag(ref)))
-        scale = np.outer(d, d)
-        off = False
-        for i in range(6):
-            for j in range(i, 6):
-                if i != j and abs(ref[i, j]) < SIGNIFICANT * scale[i, j]:
-                    continue
-                err = x["model"][i, j] - ref[i, j]
-                rel = err / scale[i, j]
-                inside = abs(rel) <= TOL
-                cov = abs(err) <= x["est"][i, j]
-                terms += 1
-                covered += cov
-                if i == j:
-                    diag += 1
-                    diag_in += inside
-                else:
-                    coup += 1
-                    coup_in += inside
-                if not inside:
-                    off = True
-                    misses.append(f"{k} {x['family']} {DOFS[i]}"
-                                  + ("" if i == j else f"-{DOFS[j]}")
-                                  + f" {100 * rel:+.1f} % (band {100 * x['est'][i, j] / scale[i, j]:.1f} %, "
-                                  + ("covered" if cov else "NOT covered") + ", "
-                                  + ("warned" if x["warned"] else "NOT warned") + "; "
-                                  + source.get((k, i, j), "uniform 3,000-face reference")
-                                  + ")")
-        off_shapes += off
-        off_warned += off and x["warned"]
-    cpu = np.array([x["cpu"] for x in rows.values()])
-    return (f"diagonal terms within 5 %: {diag_in}/{diag}; couplings within 5 % of the "
-            f"scale: {coup_in}/{coup}; the band covers the error: {covered}/{terms} "
-            f"({100 * covered / terms:.1f} %); shapes off by > 5 % warned: {off_warned}/"
-            f"{off_shapes}; shapes warned: {sum(x['warned'] for x in rows.values())}/"
-            f"{len(rows)}; estimate CPU median {np.median(cpu):.2f} s (max {cpu.max():.2f} s)\n"
-            + "".join(f"- {m}\n" for m in misses))
+__all__ = ["best", "model_rows", "tally", "main"]
 
 
 def main(argv=None) -> int:

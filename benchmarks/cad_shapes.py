@@ -60,9 +60,9 @@ from benchmarks.bluff_shapes import refine  # noqa: E402  (the BEM meshes refine
 
 RHO = 1000.0
 FAMILIES = ("extrusion", "chamfer_box", "fillet_box", "frame", "plate", "coarse", "pod")
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-#: a coupling is compared when the reference is at least this fraction of sqrt(A_ii A_jj)
-SIGNIFICANT = 0.01
+# the DOFs' names and the coupling rule (a coupling is compared when the reference is at least
+# SIGNIFICANT of sqrt(A_ii A_jj)) are the validation's, which counts the stored draws alike
+from validation.cad_draws import DOFS, SIGNIFICANT  # noqa: E402
 
 
 def _T(xyz):

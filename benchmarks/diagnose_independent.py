@@ -13,7 +13,8 @@ Scores (issue 33's criteria):
 
 - library effects: the right effect named first; its magnitude within 15 % of the truth
   (:func:`magnitude_truth`: for the thrust effectiveness, the DOF's whole thrust gain; a
-  force effect or an added mass in the thrust's units, as the log determines them); an
+  force effect or an added mass in the thrust's units, as the log determines them; each at
+  the thrust the written model gives the DOF, whole-log thruster gains included); an
   effect named with its value "not determined by one DOF" (``not_determined``: a one-DOF
   tether whose c_t depends on the thrusters' gains, ``stripcoef.diagnose.undetermined``;
   nothing written) counts as named first, and its magnitude as not claimed: not within
@@ -228,18 +229,26 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                            if r["steps"]},
            "thruster_gains": ((res.get("thruster_gains") or {}).get("gains")
                               if (res.get("thruster_gains") or {}).get("applied") else None)}
+    if (res.get("thruster_gains") or {}).get("links") is not None:
+        # linked_gains="identified": each pair of groups considered, its information ratio
+        row["gain_links"] = res["thruster_gains"]["links"]
     # a step that the log does not tell from other effects (scalechoice): its named set
     row["first_set"] = ([steps[0]["effect"]] + list(steps[0].get("ambiguous_with") or ())
                         if steps else [])
     if category in STRENGTHS:
         match = [s for s in steps if s["effect"] == category]
         if match:
-            scale = float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
-                "scale", s["parameters"].get("scale", 1.0)) for s in steps
-                if s["effect"] == "thrust_effectiveness"]))
-            ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale,
-                                  written_gain(res, prior.to_dict(), dof_name))
+            # the thrust scales the estimate was fitted beside (held_scales): a kept step's
+            # value is the written model's, which holds only the kept scales
+            scale = held_scales(steps, bool(match[0].get("kept", True)))
+            g_w = written_gain(res, prior.to_dict(), dof_name)
+            ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, scale, g_w)
             row["magnitude_truth"] = float(ref)
+            # the written model's thrust per unit of the prior's map in the DOF, and the
+            # rule's mark: every effect's truth in the written model's units (fresh33f;
+            # rows without it: benchmarks.written_units converts them)
+            row["written_gain"] = float(g_w)
+            row["magnitude_units"] = WRITTEN_UNITS
         nd = match[0].get("not_determined") if match else None
         if nd:
             # named, its value not determined by one DOF (stripcoef.diagnose.undetermined):
@@ -419,6 +428,31 @@ def written_gain(res: dict, prior: dict, dof_name: str) -> float:
     return fw / w if w > 0 else 1.0
 
 
+#: The mark of a row whose ``magnitude_truth`` is in the written model's units for every
+#: effect (the thrust effectiveness and the added mass at the written gains too, and a kept
+#: effect at the thrust scales the written model holds; fresh33f)
+WRITTEN_UNITS = "written, kept scales"
+
+
+def held_scales(steps: list[dict], kept: bool) -> float:
+    r"""The product of the thrust-effectiveness scales of a DOF's ``steps`` that the effect's
+    value was fitted beside [-]: for a kept effect (``kept``; its value is read back from the
+    written model, ``stripcoef.diagnose.written.read_back``) the kept scales only, the written
+    model holding no removed step; for a removed effect (its value that of the DOF's final fit
+    of every selected step) every scale. Issue 33 (fresh33f): VideoRay linear drag 1796048664
+    whole-log, scale 0.784 removed and the drag 2.820 kept, was 26 % off at the removed scale,
+    1.7 % at the written model's 1."""
+    return float(np.prod([(s.get("final_parameters") or s["parameters"]).get(
+        "scale", s["parameters"].get("scale", 1.0)) for s in steps
+        if s["effect"] == "thrust_effectiveness" and (s.get("kept", True) or not kept)]))
+
+
+def prior_inertia(prior: dict, i: int) -> float:
+    """The prior's inertia in DOF ``i``, :math:`M_{RB,ii} + M_{A,ii}` [kg or kg m^2]."""
+    return float(np.asarray(prior["rigid_body_mass"], float)[i, i]
+                 + np.asarray(prior["added_mass"], float)[i, i])
+
+
 def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
                     scale: float = 1.0, written: float = 1.0) -> float:
     r"""The size of the truth's effect that the diagnosis's ``magnitude`` is compared with,
@@ -427,12 +461,22 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
 
     - the thrust effectiveness: its scale in the DOF is the drawn one times the thrusters'
       own U(0.75, 1.25) factors there (:func:`thrust_gain` g: the thrust the DOF gets per
-      unit of the prior's map, the only scale a log of the DOF determines);
+      unit of the prior's map, the only scale a log of the DOF determines), over the
+      written thrusters' gain :math:`g_w` (``written``): the written model's thrust in the
+      DOF is :math:`s\,g_w` of the map, so the scale that makes it the truth's is
+      :math:`g/g_w` (g without applied gains);
     - the added-mass error: a log determines the inertia only as its ratio to the thrust,
-      :math:`(M_{RB} + M_A)/g`; expressed at the thrust scale ``scale`` the diagnosis
-      fitted in the DOF (s, 1 without one) the truth's change is
-      :math:`(M_{RB} + M_{A,true})\,s/g - (M_{RB} + M_{A,prior})`, the drawn strength
-      when s = g;
+      :math:`(M_{RB} + M_A)/g`; expressed at the thrust the written model gives the DOF,
+      the thrust scale ``scale`` the diagnosis fitted there (s, 1 without one) times the
+      written thrusters' gain :math:`g_w`, the truth's change is
+      :math:`(M_{RB} + M_{A,true})\,s\,g_w/g - (M_{RB} + M_{A,prior})`, the drawn
+      strength when :math:`s\,g_w = g`. The same balance as a force effect's below
+      (:math:`\bar f\,\tau_{map} = M\dot\nu + \dots` divided by :math:`\bar f`; Fossen
+      2011 eq. 6.2 with the thrust as the only absolute scale). Issue 33 (fresh33f): before,
+      :math:`g_w` was left out here, so a change that moves a DOF's mean gain off 1 was
+      charged for it: BlueROV2 log 1796040005 with linked gains (:math:`g_w` = 0.856 in
+      surge) was 34 % off by the rule, 3.5 % in the written model's units
+      (benchmarks/data/linked33e_trace.md, item 8);
     - a force effect (:data:`FORCE_EFFECTS`: tether, momentum and linear drag, buoyancy
       offset): the same rule, :math:`\bar f\,\tau_{map} = \dots + F` divided by
       :math:`\bar f`: its coefficient as the log determines it is the drawn one times
@@ -456,12 +500,12 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
     from stripcoef.conventions import parse_dof
     i = parse_dof(dof_name)
     if category == "thrust_effectiveness":
-        return thrust_gain(truth, prior, i)
+        return thrust_gain(truth, prior, i) / written
     if category == "added_mass_error":
         m_rb = float(np.asarray(prior["rigid_body_mass"], float)[i, i])
-        m_a0 = float(np.asarray(prior["added_mass"], float)[i, i])
         g = thrust_gain(truth, prior, i)
-        return (m_rb + float(truth.m_a[i, i])) * scale / g - (m_rb + m_a0)
+        return ((m_rb + float(truth.m_a[i, i])) * scale * written / g
+                - prior_inertia(prior, i))
     k = scale * written / thrust_gain(truth, prior, i) if category in FORCE_EFFECTS else 1.0
     if category == "buoyancy_offset":
         from validation.independent import GRAVITY
@@ -473,6 +517,73 @@ def magnitude_truth(truth, prior: dict, category: str, dof_name: str,
     if category in FORCE_EFFECTS:
         return float(truth.strength) * k
     return float(truth.strength)
+
+
+#: The categories whose reference the written gains now enter (a force effect's took them
+#: already; its reference is converted only for the scales, :func:`held_scales`)
+CONVERTED = ("thrust_effectiveness", "added_mass_error")
+
+
+def converted(row: dict, priors: dict | None = None) -> dict:
+    """``row`` with its ``magnitude_truth`` and ``magnitude_error`` in the written model's units
+    (``benchmarks.written_units``): the row itself when it is already marked, has no
+    reference, or is a force effect's whose scales the rule does not change; otherwise a
+    copy, marked, with ``written_gain`` (a row of :data:`CONVERTED` written before fresh33f),
+    ``held_scale_ratio`` (:func:`held_scales` over the product of every scale) and
+    ``magnitude_truth_before`` / ``magnitude_error_before`` kept. ``priors``: a cache of the
+    vehicles' prior dicts."""
+    from stripcoef.conventions import parse_dof
+    from validation.independent import GRAVITY
+    if (row.get("magnitude_units") == WRITTEN_UNITS or "magnitude_truth" not in row
+            or row["category"] not in CONVERTED + FORCE_EFFECTS):
+        return row
+    own = [s for s in (row.get("step_detail") or {}).get(row["dof"], [])
+           if s["effect"] == row["category"]]
+    kept = bool(own[0]["kept"]) if own else True
+    te = [s for s in (row.get("step_detail") or {}).get(row["dof"], [])
+          if s["effect"] == "thrust_effectiveness"]
+    # the scale the stored reference took (every scale) over the one the value was fitted
+    # beside (held_scales); 1 for the thrust effectiveness's own row (no scale in its rule)
+    ratio = (held_scales(te, kept) / held_scales(te, False)
+             if te and row["category"] != "thrust_effectiveness" else 1.0)
+    first = row.get("magnitude_units") is None           # before fresh33f: no g_w there
+    if row["category"] in FORCE_EFFECTS and ratio == 1.0:
+        return row
+    priors = {} if priors is None else priors
+    prior = priors.get(row["vehicle"])
+    if prior is None:
+        prior = priors[row["vehicle"]] = _prior(row["vehicle"]).to_dict()
+    i = parse_dof(row["dof"])
+    gains = row.get("thruster_gains")
+    g_w = written_gain({"thruster_gains": {"applied": gains is not None,
+                                           "gains": gains or {}}}, prior, row["dof"])
+    g_w = g_w if first and row["category"] in CONVERTED else 1.0
+    old = float(row["magnitude_truth"])
+    # the reference is k T - base with k the thrust factor (s g_w / g): the prior's own term
+    # (base) stays absolute (magnitude_truth)
+    base = {"thrust_effectiveness": 0.0, "added_mass_error": prior_inertia(prior, i),
+            "linear_drag": float(np.asarray(prior["linear_damping"], float)[i, i]),
+            "buoyancy_offset": (float(prior["mass"]) - float(prior["density"])
+                                * float(prior["volume"])) * GRAVITY}.get(row["category"], 0.0)
+    if row["category"] == "thrust_effectiveness":
+        new = old / g_w
+    else:
+        new = (old + base) * g_w * ratio - base
+    out = {**row, "magnitude_truth": new, "magnitude_truth_before": old,
+           "held_scale_ratio": ratio, "magnitude_units": WRITTEN_UNITS}
+    if first and row["category"] in CONVERTED:
+        out["written_gain"] = g_w
+    if "estimate" in row:
+        est = float(row["estimate"])
+        out["magnitude_error_before"] = row.get("magnitude_error")
+        out["magnitude_error"] = abs(abs(est) - abs(new)) / abs(new)
+    return out
+
+
+def converted_rows(rows: list[dict]) -> list[dict]:
+    """Every row of ``rows`` through :func:`converted` (one prior per vehicle)."""
+    priors: dict = {}
+    return [converted(r, priors) for r in rows]
 
 
 def _run(args):
@@ -946,7 +1057,8 @@ def main(argv=None) -> int:
     ap.add_argument("--from-rows", default=None,
                     help="summarise the 'row' lines of earlier runs' outputs (comma-separated "
                          "files; partial runs' too; with --only-seeds and --modes, those rows) "
-                         "instead of running")
+                         "instead of running; rows of runs before fresh33f scored in the "
+                         "written model's units (benchmarks.written_units)")
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
@@ -961,9 +1073,16 @@ def main(argv=None) -> int:
                     help="diagnose with scale_choice_unforced=False (a scale and an "
                          "added-mass release, both contenders of a step none passes, left "
                          "undecided: the rule before named33d)")
-    ap.add_argument("--linked-gains", action="store_true",
+    ap.add_argument("--heldout-rise", default=None, choices=("tie", "diebold_mariano"),
+                    help="diagnose with heldout_rise ('diebold_mariano': a scale or a "
+                         "released coefficient refused for a held-out rise only when the "
+                         "Diebold-Mariano test of the window losses rejects)")
+    ap.add_argument("--linked-gains", nargs="?", const=True, default=False,
+                    choices=(True, "identified"),
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
-                         "groups linked through the diagnosed DOFs they act in)")
+                         "groups linked through the diagnosed DOFs they act in); "
+                         "'--linked-gains identified': linked only where the log identifies "
+                         "the groups' contrast")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -981,6 +1100,11 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
                          "of the changes it removes)")
+    ap.add_argument("--gains-validation", default=None,
+                    choices=("consecutive", "rolling", "rolling_test"),
+                    help="diagnose with gains_validation ('rolling': the thrusters' gains "
+                         "validated on 10-s segments restarted every 2 s by the changes' "
+                         "score, stripcoef.diagnose.gaingate)")
     ap.add_argument("--validation-reference", default=None, choices=("trivial", "combination"),
                     help="diagnose with validation_reference ('combination': in a DOF the "
                          "prior does not predict, the skill veto's reference is the prior "
@@ -1003,6 +1127,9 @@ def main(argv=None) -> int:
             keep = {int(x) for x in args.only_seeds.split(",")}
             rows = [r for r in rows if r["seed"] in keep]
         rows = [r for r in rows if r["mode"] in modes]
+        # rows written before fresh33f: their added-mass and thrust-scale references at the
+        # written gains too (converted, benchmarks.written_units; a no-op where no gain moved the DOF)
+        rows = converted_rows(rows)
         text = summarise(rows, seed, args.duration)
         print(text)
         if args.write:
@@ -1023,8 +1150,10 @@ def main(argv=None) -> int:
                                  ("restoring_free", args.restoring_free),
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
-                                 ("validation_reference", args.validation_reference),
-                                 ("linked_gains", args.linked_gains)) if value},
+                                 ("gains_validation", args.gains_validation),
+                                 ("linked_gains", args.linked_gains),
+                                 ("heldout_rise", args.heldout_rise),
+                                 ("validation_reference", args.validation_reference)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

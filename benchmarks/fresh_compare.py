@@ -162,6 +162,9 @@ def main(argv=None) -> int:
         rows = [json.loads(line.split(" row ", 1)[1])
                 for line in read_text(args.rows, kind="benchmark output").splitlines()
                 if " row {" in line]
+        # rows of runs before fresh33f: magnitudes in the written model's units
+        from benchmarks.diagnose_independent import converted_rows
+        rows = converted_rows(rows)
         for r in sorted(rows, key=lambda r: (r["category"], r["vehicle"], r["seed"], r["mode"])):
             fails = row_failures(r)
             if fails:

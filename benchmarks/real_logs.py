@@ -302,8 +302,8 @@ N_LOGS = len(EFFECTS) + 1
 
 
 def run_real_style(k: int, duration: float, seed: int,
-                   one_added_mass: bool = False, gains_beside_current: bool = False
-                   ) -> list[dict]:
+                   one_added_mass: bool = False, gains_beside_current: bool = False,
+                   gains_validation: str = "consecutive") -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits (with
     ``diagnose(..., one_added_mass=..., gains_beside_current=...)``)."""
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
@@ -318,7 +318,8 @@ def run_real_style(k: int, duration: float, seed: int,
              "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
              **row} for row in both_splits(read, prior, widths, oracle,
                                            one_added_mass=one_added_mass,
-                                           gains_beside_current=gains_beside_current)]
+                                           gains_beside_current=gains_beside_current,
+                                           gains_validation=gains_validation)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -329,7 +330,7 @@ def _written(model):
 
 
 def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
-                gains_beside_current=False) -> list[dict]:
+                gains_beside_current=False, gains_validation="consecutive") -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
     part too, and whether it beats both trivial predictors there."""
@@ -343,7 +344,8 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
                        prior_widths=widths, one_added_mass=one_added_mass,
-                       gains_beside_current=gains_beside_current)
+                       gains_beside_current=gains_beside_current,
+                       gains_validation=gains_validation)
     forward = (res, res.holdout["errors"], time.process_time() - c0)
     head, tail = split(log, 1.0 - HOLDOUT)           # head: the first 30 %, never fitted
     c0 = time.process_time()
@@ -351,7 +353,8 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         warnings.simplefilter("ignore")
         rev = diagnose(tail, prior, dof="all", time_limit=float("inf"), prior_widths=widths,
                        one_added_mass=one_added_mass,
-                       gains_beside_current=gains_beside_current)
+                       gains_beside_current=gains_beside_current,
+                       gains_validation=gains_validation)
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
@@ -763,13 +766,20 @@ def main(argv=None) -> int:
                     help="diagnose with gains_beside_current (the thrusters' gains fitted "
                          "again beside the water current the DOFs found; 'joint': with the "
                          "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
+    ap.add_argument("--gains-validation", choices=("consecutive", "rolling", "rolling_test"),
+                    default="consecutive",
+                    help="diagnose with gains_validation (the thrusters' gains validated on "
+                         "consecutive 10-s segments, or on 10-s segments restarted every 2 s "
+                         "by the changes' score: stripcoef.diagnose.gaingate)")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
         " --one-added-mass" if args.one_added_mass else "") + (
         (" --gains-beside-current" + ("" if args.gains_beside_current is True
                                        else f" {args.gains_beside_current}")
-         if args.gains_beside_current else ""))
+         if args.gains_beside_current else "")) + (
+        f" --gains-validation {args.gains_validation}"
+        if args.gains_validation != "consecutive" else "")
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)
@@ -798,16 +808,18 @@ def main(argv=None) -> int:
             n = len(args.logs)
             for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
                                  [args.seed] * n, [args.one_added_mass] * n,
-                                 [args.gains_beside_current] * n):
+                                 [args.gains_beside_current] * n,
+                                 [args.gains_validation] * n):
                 out += rows
     else:
         for k in args.logs:
             out += run_real_style(k, args.duration, args.seed, args.one_added_mass,
-                                  args.gains_beside_current)
+                                  args.gains_beside_current, args.gains_validation)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
             for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass,
-                                   gains_beside_current=args.gains_beside_current):
+                                   gains_beside_current=args.gains_beside_current,
+                                   gains_validation=args.gains_validation):
                 out.append({"log": name, "kind": "real", "truth": source, "rows": len(log),
                             "rate_hz": round(log.meta["rate"], 3), "clock_offset_s": "",
                             **row})

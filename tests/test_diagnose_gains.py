@@ -265,3 +265,100 @@ def test_linked_gains_fit_the_vertical_four_against_the_vectored_four():
     # the two sets' common gains: their ratio is the truth's within the bench band
     ratio = got[4:].mean() / got[:4].mean()
     assert ratio == pytest.approx(want[4:].mean() / want[:4].mean(), abs=THRUST_BAND), msg
+
+
+def _shared_dof_blocks(lever, n=400, seed=3):
+    """Blocks (gains._blocks' form) of three thrusters: t0 and t1 drive DOF 0, t2 drives DOF
+    1, and all three drive DOF 2 with the lever ``lever`` (t2 with the opposite sign); each
+    DOF's residual y is its thrust with the gains (1.1, 0.9, 1.3) less the map's, plus
+    unit noise; one calibration column per DOF (prior sd 1) and a free offset."""
+    rng = np.random.default_rng(seed)
+    t = rng.normal(0.0, 10.0, (n, 3))
+    gains = np.array([1.1, 0.9, 1.3])
+    maps = {0: np.array([1.0, 1.0, 0.0]), 1: np.array([0.0, 0.0, 1.0]),
+            2: lever * np.array([1.0, 1.0, -1.0])}
+    blocks, k = [], 0
+    for i, b in maps.items():
+        g = t * b
+        y = g @ (gains - 1.0) + rng.normal(0.0, 1.0, n)
+        cols = np.column_stack([rng.normal(0.0, 1.0, n), np.ones(n)])
+        blocks.append((i, y, cols, np.array([k, k + 1]), g, (None, 0.0, 1.0)))
+        k += 2
+    prior_sd = np.tile([1.0, np.inf], 3)
+    alloc = np.zeros((6, 3))
+    for i, b in maps.items():
+        alloc[i] = b
+    return alloc, blocks, prior_sd, [1.0, 1.0, 1.0]
+
+
+def test_identified_groups_link_only_through_a_dof_that_determines_the_contrast():
+    """``linked_gains="identified"``: the pair {t0, t1} and t2 share DOF 2 only. With every
+    DOF's thrust scale free the DOFs one group drives carry no information on the pair's
+    common gain against t2's (a common gain there is a scale): with a zero lever the
+    contrast's information is nil and nothing is linked; with a lever that makes DOF 2's
+    shares vary as much as the others' the data determine it far beyond the prior, and the
+    three are one group (Rothenberg 1971; gains.identified_groups)."""
+    from stripcoef.diagnose.gains import (GAIN_SD, _between_contrast, contrast_information,
+                                          identified_groups)
+
+    alloc, blocks, prior_sd, sig = _shared_dof_blocks(lever=0.0)
+    alloc[2] = [1e-3, 1e-3, -1e-3]      # acts in DOF 2 (the pattern), with no thrust there
+    groups = thruster_groups(alloc)
+    assert groups == [[0, 1], [2]]
+    w = _between_contrast(groups, 0, 1, 3)
+    info = contrast_information(blocks, prior_sd, sig, contrast_basis(groups, 3), w, GAIN_SD)
+    assert info == pytest.approx(0.0, abs=1e-6)
+    got, links = identified_groups(alloc, [0, 1, 2], blocks, prior_sd, sig)
+    assert got == [[0, 1], [2]] and not links[0]["linked"]
+    assert links[0]["dofs"] == ("heave",)
+    alloc, blocks, prior_sd, sig = _shared_dof_blocks(lever=1.0)
+    got, links = identified_groups(alloc, [0, 1, 2], blocks, prior_sd, sig)
+    assert got == [[0, 1, 2]]
+    assert links[0]["linked"] and links[0]["information_ratio"] > 10.0
+    # a DOF outside the diagnosed ones links nothing
+    assert identified_groups(alloc, [0, 1], blocks, prior_sd, sig)[0] == [[0, 1], [2]]
+
+
+def test_identified_mode_needs_the_logs_blocks():
+    from stripcoef.diagnose.gains import gain_contrasts
+    from stripcoef.diagnose.settings import DiagnoseSettings
+
+    alloc = _shared_dof_blocks(lever=1.0)[0]
+    with pytest.raises(ValueError, match="identified"):
+        gain_contrasts(alloc, [0, 1, 2], DiagnoseSettings(linked_gains="identified"))
+
+
+
+@pytest.mark.slow
+def test_identified_gains_record_their_links_and_fit_the_groups_they_name():
+    """``linked_gains="identified"`` on a BlueROV2-like log of the independent simulator: the
+    record lists the one pair of groups that shares a diagnosed DOF (the vectored four and the
+    vertical four, through roll and pitch) with its information ratio against the bench band,
+    linked exactly when it is at least 1; the fit's contrasts are those of the groups it names;
+    the ratio against the log's spread (recorded, not used) is never the smaller, the spread
+    being at least the bench band (linked33f, benchmarks/data/linked33f_trace.md)."""
+    from stripcoef.diagnose.settings import DiagnoseSettings
+    from validation.independent import generate
+
+    prior = _prior("bluerov2_heavy")
+    log, _ = generate(prior.to_dict(), None, 100, duration=120.0)
+    data = window_data(log, prior, window=4.0)
+    excited, _ = select_dofs(data)
+    assert {3, 4} <= set(excited)
+    fit = fit_thruster_gains(data, excited, DiagnoseSettings(linked_gains="identified"),
+                             excited=excited)
+    (link,) = fit.to_dict()["links"]
+    assert sorted(map(sorted, link["groups"])) == [["t1", "t2", "t3", "t4"],
+                                                   ["t5", "t6", "t7", "t8"]]
+    assert set(link["dofs"]) == {"roll", "pitch"}
+    assert link["linked"] == (link["information_ratio"] >= 1.0)
+    assert link["information_ratio_spread"] >= link["information_ratio"] > 0.0
+    assert len(fit.combinations) == (7 if link["linked"] else 6)
+
+
+def test_a_bad_linked_gains_mode_is_refused():
+    from stripcoef.errors import InputError
+    from stripcoef.logfile import Log
+
+    with pytest.raises(InputError, match="linked_gains"):
+        diagnose(Log({"t": np.arange(5.0)}), None, linked_gains="some")

@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 #: Topic modules, in pipeline order.
 SECTIONS: tuple[str, ...] = ("core", "videoray", "reference_tables", "limits", "lift",
-                             "rotary_trace", "fin_incidence", "crossflow_center", "identification", "meshes", "fins", "bluff", "cad_shapes",
+                             "rotary_trace", "fin_incidence", "crossflow_center", "identification", "meshes", "fins", "bluff", "cad_shapes", "cad_draws",
                              "public_meshes", "public_graded", "thin_members",
                              "vehicle_surface", "graded_frames", "bluerov2",
                              "drag", "bands",

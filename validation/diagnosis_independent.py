@@ -6,7 +6,8 @@ run); the stored run is the issue-size one, ``benchmarks/data/diagnose_independe
 (52 logs of 300 s, both modes), shown here as measured, and beside it the same run on a seed
 drawn from the clock that no rule was traced or fixed against when it was drawn,
 ``benchmarks/data/diagnose_independent_fresh.md``, and a second such seed,
-``benchmarks/data/diagnose_independent_fresh2.md``.
+``benchmarks/data/diagnose_independent_fresh2.md``, and a third,
+``benchmarks/data/diagnose_independent_fresh3.md``, run before anything was traced on it.
 """
 
 from __future__ import annotations
@@ -20,6 +21,9 @@ FRESH = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh.md"
 #: (``diagnose_independent_fresh_1795938998.md``, benchmarks/data/fresh33d_compare.md) and on
 #: the code the stop ended with
 FRESH2 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh2.md"
+#: a third fresh seed, drawn at the start of the next stop and run on the code as it was then,
+#: before anything was traced on it (its misses: benchmarks/data/fresh33f_compare.md)
+FRESH3 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh3.md"
 
 
 def section() -> str:
@@ -85,4 +89,10 @@ def section() -> str:
         "that stop's changes (benchmarks/data/diagnose_independent_fresh_1795938998.md; its "
         "misses traced in benchmarks/data/fresh33d_compare.md); below, the same seed on the "
         "code the stop ended with.", "",
-        FRESH2.read_text().split("\n", 2)[2].strip(), ""])
+        FRESH2.read_text().split("\n", 2)[2].strip(), "",
+        "### A third fresh seed, as drawn", "",
+        "Drawn from the clock at the start of the following stop and run on the code as it "
+        "was, before anything was traced on it (its misses traced, by cause, in "
+        "benchmarks/data/fresh33f_compare.md; the four seeds compared criterion by criterion "
+        "with Wilson intervals by `python -m benchmarks.fresh_compare`).", "",
+        FRESH3.read_text().split("\n", 2)[2].strip(), ""])

@@ -42,7 +42,11 @@ groups linked 1 % and 0.4 %, 3 % and 1 %, and neither step named). The option
 the linked groups (``thruster_groups(..., linked=True)``); off by default: on the issue-size
 seed's 22 BlueROV2-like whole-log library-effect rows the error cut >= 3x rose 12 -> 15 (six
 gained, three lost), but one of its two dry-friction logs lost its 'unexplained' flag
-(benchmarks/data/spread33d_trace.md). Each :math:`\sigma_i` is re-estimated from the joint
+(benchmarks/data/spread33d_trace.md). ``linked_gains="identified"`` links two groups only
+where the shared DOF identifies their contrast (:func:`identified_groups`: its data-only
+information, every DOF's thrust scale free, at least the bench band's prior precision,
+Rothenberg 1971); off by default, measured in benchmarks/data/linked33f_trace.md. Each
+:math:`\sigma_i` is re-estimated from the joint
 fit's residual of its DOF (:data:`NOISE_PASSES` passes).
 
 **One DOF** (:attr:`~stripcoef.diagnose.settings.DiagnoseSettings.dof_gains`): the same fit
@@ -110,8 +114,8 @@ from scipy.stats import chi2
 from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.compare import ALPHA
 from stripcoef.diagnose.fit import _sigma
-from stripcoef.diagnose.settings import (MIN_INFORMATION_RATIO, UNLIMITED, Budget,
-                                         DiagnoseSettings)
+from stripcoef.diagnose.settings import (LINKED_IDENTIFIED, MIN_INFORMATION_RATIO, UNLIMITED,
+                                         Budget, DiagnoseSettings)
 from stripcoef.effects.base import THRUST_BAND
 from stripcoef.effects.laws import get_effect
 
@@ -175,6 +179,7 @@ class ThrusterGains:
     reason: str = ""
     validation: dict | None = None
     calibration: dict = field(default_factory=dict, repr=False, compare=False)
+    links: list | None = None
 
     @property
     def significant(self) -> bool:
@@ -202,7 +207,10 @@ class ThrusterGains:
                 "combinations": [dict(c) for c in self.combinations],
                 "test": dict(self.test), "noise": dict(self.noise), "dofs": list(self.dofs),
                 "applied": bool(self.applied), "reason": self.reason,
-                "validation": self.validation}
+                "validation": self.validation,
+                **({} if self.links is None else {"links": [
+                    {**lk, "groups": [[self.names[k] for k in g] for g in lk["groups"]],
+                     "dofs": list(lk["dofs"])} for lk in self.links]})}
 
 
 def thruster_groups(alloc, rows=None, linked: bool = False, tol: float = 1e-9) -> list:
@@ -250,14 +258,140 @@ def thruster_groups(alloc, rows=None, linked: bool = False, tol: float = 1e-9) -
     return list(groups.values())
 
 
-def gain_contrasts(alloc, dofs, settings: DiagnoseSettings) -> np.ndarray:
+def gain_contrasts(alloc, dofs, settings: DiagnoseSettings, identified=None) -> np.ndarray:
     """The basis of the gains' contrasts (N, k) a fit of ``dofs`` holds: :func:`contrast_basis`
     of :func:`thruster_groups` with the settings' ``linked_gains``, one rule for the gains'
     fit and for their refit as an explanation of the residual
-    (:func:`stripcoef.diagnose.regains.explain`)."""
+    (:func:`stripcoef.diagnose.regains.explain`). With ``linked_gains="identified"`` the
+    groups are :func:`identified_groups`' (``identified``: its ``(blocks, prior_sd,
+    sigmas)``, required in that mode)."""
     alloc = np.asarray(alloc, float)
-    return contrast_basis(thruster_groups(alloc, rows=dofs, linked=settings.linked_gains),
-                          alloc.shape[1])
+    if settings.linked_gains == LINKED_IDENTIFIED:
+        if identified is None:
+            raise ValueError("linked_gains='identified' needs the log's blocks "
+                             "(gain_contrasts(..., identified=(blocks, prior_sd, sigmas)))")
+        groups = identified_groups(alloc, dofs, *identified)[0]
+    else:
+        groups = thruster_groups(alloc, rows=dofs, linked=bool(settings.linked_gains))
+    return contrast_basis(groups, alloc.shape[1])
+
+
+def _between_contrast(groups, a: int, b: int, n: int) -> np.ndarray:
+    """The unit contrast (n,) of group ``a``'s common gain against group ``b``'s: weight
+    :math:`1/|A|` on A's members and :math:`-1/|B|` on B's, normalised [-]."""
+    w = np.zeros(n)
+    w[groups[a]] = 1.0 / len(groups[a])
+    w[groups[b]] = -1.0 / len(groups[b])
+    return w / np.linalg.norm(w)
+
+
+def contrast_information(blocks, prior_sd, sigmas, p_basis, w, gain_sd) -> float:
+    r"""The data's Fisher information [-] on the gain contrast ``w`` (unit, (N,)) with every
+    DOF's thrust scale free: the Schur complement of ``w``'s entry in the normal equations
+    of :func:`_normal_equations` (each DOF's calibration with its band priors, its inertia's
+    velocity noise corrected) extended by one free column per DOF, its prior thrust
+    :math:`G_i \mathbf{1}` (the DOF's thrust effectiveness, no prior), the contrasts
+    ``p_basis`` with their prior precision :math:`1/s^2` (``gain_sd``), and ``w`` with none
+    (its data-only information, as :func:`_information`).
+
+    A DOF only one of the two groups drives carries no information on ``w`` once its thrust
+    scale is free (its thrust is that group's common gain times its map, a scale): only the
+    DOFs both groups drive do, through the variation of their two shares (Fossen 2011
+    eq. 11.14). That is the information the link through a shared DOF adds; without the free
+    scales a contrast between a surge-driving and a heave-driving group would be 'determined'
+    by the two DOFs' calibration bands, the prior, not by the log."""
+    kc, nb, na = prior_sd.size, len(blocks), p_basis.shape[1]
+    n = kc + nb + na + 1
+    lam = np.zeros((n, n))
+    for k, ((_, y, cols, idx, g, (jm, nv, _)), s) in enumerate(zip(blocks, sigmas)):
+        h = np.zeros((y.size, n))
+        h[:, idx] = cols
+        h[:, kc + k] = g.sum(axis=1)
+        h[:, kc + nb:kc + nb + na] = g @ p_basis
+        h[:, -1] = g @ w
+        lam += h.T @ h / s ** 2
+        if jm is not None:
+            lam[jm, jm] -= nv / s ** 2
+    fin = np.nonzero(np.isfinite(prior_sd))[0]
+    lam[fin, fin] += 1.0 / prior_sd[fin] ** 2
+    lam[kc + nb:kc + nb + na, kc + nb:kc + nb + na] += np.eye(na) / gain_sd ** 2
+    nuis = lam[:-1, :-1]
+    info = lam[-1, -1] - lam[-1, :-1] @ np.linalg.pinv(nuis) @ lam[:-1, -1]
+    return max(float(info), 0.0)
+
+
+def identified_groups(alloc, rows, blocks, prior_sd, sigmas) -> tuple:
+    r"""``(groups, links)``: the thrusters grouped for the gains' contrasts, the groups of
+    :func:`thruster_groups` (the same set of DOFs) merged through a shared DOF only where the
+    log identifies the contrast between them (``linked_gains="identified"``).
+
+    A group's common gain against another's is a contrast of the gains only through the
+    DOFs both drive (:func:`thruster_groups`, ``linked``); elsewhere it is a per-DOF thrust
+    scale. Linking them makes the fit estimate it before selection, which is right where
+    the shared DOF determines it and a prior-driven guess where it does not (on the
+    VideoRay-like vehicle the three thrusters share only pitch, through 0.01 m levers, and
+    the linked fit put the vertical against the pair at 1.41-2.02 for the truth's
+    0.83-1.38, benchmarks/data/linked33e_trace.md). The criterion is the contrast's
+    identifiability from the log (Rothenberg 1971, Econometrica 39, 577: a parameter is
+    identified when its information matrix is non-singular; in a Bayesian fit the data,
+    not the prior, determine it, Poirier 1998, Econometric Theory 14, 483, sec. 3): its
+    data-only Fisher information :math:`\lambda_w` with every DOF's thrust scale, the
+    calibration and the groups' own contrasts profiled out
+    (:func:`contrast_information`) against its prior precision :math:`1/s^2`, s the gains'
+    a-priori band :data:`GAIN_SD` (the bench uncertainty of the thrust maps, Wang & Clark
+    2006 Table I): the prior the data are compared with must not come from the same data,
+    so not the spread the log sets (:func:`spread_sd`; its ratio is recorded as
+    ``information_ratio_spread``, not used). Linked when
+    :math:`\lambda_w \ge 1/s^2`, i.e. information ratio :math:`s\sqrt{\lambda_w} \ge 1`:
+    the posterior mean's weight on the data, :math:`\lambda_w/(\lambda_w + 1/s^2)`, is
+    at least its weight on the prior (the linear-Gaussian posterior, Tarantola 2005
+    eq. 3.37). The bound is the definition's, not a tuned value.
+
+    Off by default (measured on the whole-log rows of seeds 1795938998 and 1795929171,
+    benchmarks/data/linked33f_trace.md): the VideoRay's pair links on 1 of 12 logs, so
+    ``linked=True``'s VideoRay losses go, and the clean-log failure is fixed, but on the
+    BlueROV2 the contrast is determined (ratios 1.03-2.07) and biased by the effect the fit
+    leaves out on two logs (magnitude within 15 % 73 -> 71 of 88): the criterion bounds the
+    contrast's variance, not its bias.
+
+    Groups are merged one pair at a time, the most informative identified pair first, and
+    the information recomputed on the merged groups, until no pair that shares a DOF of
+    ``rows`` is identified. ``links``: one dict per pair considered (``groups``, ``dof``
+    shared, ``information_ratio``, ``linked``), for the record."""
+    alloc = np.asarray(alloc, float)
+    n = alloc.shape[1]
+    groups = thruster_groups(alloc)
+    p0 = contrast_basis(groups, n)
+    spread = GAIN_SD
+    if p0.shape[1]:
+        lam, rhs, kc = _normal_equations(blocks, prior_sd, sigmas, p0)
+        spread = spread_sd(*_information(lam, rhs, kc))
+    links = []
+    while True:
+        p_basis = contrast_basis(groups, n)
+        best = None
+        for a in range(len(groups)):
+            for b in range(a + 1, len(groups)):
+                shared = [DOF[i] for i in rows
+                          if np.any(np.abs(alloc[i, groups[a]]) > 1e-9)
+                          and np.any(np.abs(alloc[i, groups[b]]) > 1e-9)]
+                if not shared:
+                    continue
+                w = _between_contrast(groups, a, b, n)
+                info = contrast_information(blocks, prior_sd, sigmas, p_basis, w, GAIN_SD)
+                ratio = GAIN_SD * math.sqrt(info)
+                links.append({"groups": (tuple(groups[a]), tuple(groups[b])),
+                              "dofs": tuple(shared), "information_ratio": float(ratio),
+                              "linked": bool(ratio >= 1.0),
+                              "information_ratio_spread": float(spread * math.sqrt(info))})
+                if ratio >= 1.0 and (best is None or ratio > best[0]):
+                    best = (ratio, a, b)
+        if best is None:
+            return groups, links
+        _, a, b = best
+        merged = sorted(groups[a] + groups[b])
+        groups = [g for k, g in enumerate(groups) if k not in (a, b)] + [merged]
+        groups.sort(key=min)
 
 
 def contrast_basis(groups, n: int) -> np.ndarray:
@@ -436,15 +570,22 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
         return None
     budget.check()
     names = tuple(th.name for th in data.model.thrusters)
-    p_basis = gain_contrasts(data.alloc, dofs, settings)
-    if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
-        return None
+    if settings.linked_gains != LINKED_IDENTIFIED:
+        p_basis = gain_contrasts(data.alloc, dofs, settings)
+        if p_basis.shape[1] == 0:           # one thruster per group: no contrast to fit
+            return None
     blocks, cal_names, prior_sd = _blocks(data, dofs, settings, excited)
     if not blocks:
         return None
     if shared is not None:
         blocks, cal_names, prior_sd = _with_shared(blocks, cal_names, prior_sd, *shared)
     sigmas = [_sigma(y, cols, np.full(cols.shape[1], np.inf)) for _, y, cols, *_ in blocks]
+    links = None
+    if settings.linked_gains == LINKED_IDENTIFIED:
+        groups, links = identified_groups(data.alloc, dofs, blocks, prior_sd, sigmas)
+        p_basis = contrast_basis(groups, len(names))
+        if p_basis.shape[1] == 0:
+            return None
     gain_sd = GAIN_SD
     for _ in range(NOISE_PASSES):
         budget.check()
@@ -490,7 +631,7 @@ def fit_thruster_gains(data, dofs, settings: DiagnoseSettings = DiagnoseSettings
                         std=tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov_g)),
                         prior_sd=gain_sd, combinations=tuple(combos), test=test,
                         noise=dict(zip(dof_names, map(float, sigmas))), dofs=dof_names,
-                        calibration=calib)
+                        calibration=calib, links=links)
     if not out.significant:
         return replace(out, reason=f"not significant: p = {test['p_value']:.3g} > {ALPHA:g} "
                                    f"({k} combinations determined by the log)")

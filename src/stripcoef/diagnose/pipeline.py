@@ -115,7 +115,8 @@ from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import undetermined
-from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
+from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
                                         with_found_current,
                                         withdrawn)
@@ -130,7 +131,8 @@ from stripcoef.diagnose.result import Diagnosis, DofFit, _band_record  # noqa: F
 from stripcoef.diagnose.select import (Siblings, _physical_problems,  # noqa: F401
                                        diagnose_dof, excited_dofs, select_dofs)
 from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # noqa: F401
-                                         METRIC, METRIC_TEXT, MIMIC_BANDS, MIN_DELTA_BIC,
+                                         LINKED_IDENTIFIED, METRIC, METRIC_TEXT, MIMIC_BANDS,
+                                         MIN_DELTA_BIC,
                                          MIN_HELD_OUT_GAIN, MIN_Z, N_BLOCKS,
                                          RESIMULATION_HORIZON, TIE, TIME_LIMIT,
                                          ONE_ADDED_MASS, UNEXPLAINED_GAIN,
@@ -143,6 +145,7 @@ from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
 from stripcoef.diagnose.written import read_back
 from stripcoef.effects.laws import model_window_data
 from stripcoef.effects.windows import window_data
+from stripcoef.diagnose.heldoutrise import RULES as RISE_RULES
 from stripcoef.errors import InputError, ModelWarning
 
 
@@ -158,9 +161,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              dof_gains: bool = True,
              cross_mass_scale: bool = True,
              drag_couplings: bool = False, restoring_free: bool = False,
-             scale_choice_unforced: bool = True,
+             scale_choice_unforced: bool = True, heldout_rise: str = "tie",
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False,
+             validation_judge: str = "all", linked_gains: bool | str = False,
+             gains_validation: str = "consecutive",
              validation_reference: str = "trivial") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
@@ -180,7 +184,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     resimulate : bool
         Also report the RMS of the re-simulated velocity (baseline, calibrated, final).
     time_limit : float, optional
-        Wall-clock budget [s] (default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
+        CPU-time budget [s] (:func:`time.process_time`; default :func:`default_time_limit`: :data:`TIME_LIMIT`, in
         proportion to the rows past :data:`BUDGET_ROWS`; ``inf``: none); past it an
         :class:`~stripcoef.errors.UnreachableError` says so instead of grinding.
     validation : float or None
@@ -241,15 +245,23 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         A thrust scale and an added-mass release, both contenders of a step no candidate
         passes, decided by the model holding both
         (:attr:`DiagnoseSettings.scale_choice_unforced`; on by default).
+    heldout_rise : str
+        ``"tie"`` (default) or ``"diebold_mariano"``: when a scale or a released coefficient
+        raises the held-out error (:mod:`.heldoutrise`, :attr:`DiagnoseSettings.heldout_rise`).
     validation_horizon : float or str
         Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
         integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
     validation_judge : str
         ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
         (:attr:`DiagnoseSettings.validation_judge`).
-    linked_gains : bool
+    linked_gains : bool or str
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
-        (:attr:`DiagnoseSettings.linked_gains`; off by default).
+        (:attr:`DiagnoseSettings.linked_gains`; off by default); ``"identified"``: linked only
+        where the log identifies the groups' contrast.
+    gains_validation : str
+        ``"consecutive"``, ``"rolling"`` or ``"rolling_test"``: how the thrusters' gains are
+        validated
+        (:attr:`DiagnoseSettings.gains_validation`, :mod:`.gaingate`).
     validation_reference : str
         ``"trivial"`` or ``"combination"``: the skill veto's reference forecast
         (:attr:`DiagnoseSettings.validation_reference`; :mod:`.combination`).
@@ -294,6 +306,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
+    if gains_validation not in GAIN_VALIDATIONS:
+        raise InputError("not a way to validate the thrusters' gains", key="gains_validation",
+                         value=gains_validation, expected="one of " + ", ".join(GAIN_VALIDATIONS))
     if validation_reference not in REFERENCES:
         raise InputError("not a reference forecast of the validation's skill veto",
                          key="validation_reference", value=validation_reference,
@@ -301,6 +316,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
+    if linked_gains not in (False, True, LINKED_IDENTIFIED):
+        raise InputError("not a way to group the thrusters' gains", key="linked_gains",
+                         value=linked_gains, expected=f"False, True or {LINKED_IDENTIFIED!r}")
+    if heldout_rise not in RISE_RULES:
+        raise InputError("not a rule for a held-out rise", key="heldout_rise",
+                         value=heldout_rise, expected="one of " + ", ".join(RISE_RULES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -321,10 +342,12 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         dof_gains=bool(dof_gains),
         cross_mass_scale=bool(cross_mass_scale),
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
-        scale_choice_unforced=bool(scale_choice_unforced),
+        scale_choice_unforced=bool(scale_choice_unforced), heldout_rise=heldout_rise,
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains),
-        validation_reference=validation_reference)
+        validation_judge=validation_judge,
+        linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
+                      else bool(linked_gains)),
+        gains_validation=gains_validation, validation_reference=validation_reference)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -332,7 +355,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
 def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(),
         budget: Budget = Budget()) -> Diagnosis:
     """:func:`diagnose` with its options as one :class:`DiagnoseSettings` (checked by
-    :func:`diagnose`) inside the wall-clock ``budget``."""
+    :func:`diagnose`) inside the CPU-time ``budget``."""
     from stripcoef.diagnose.heldout import split
 
     window, validation, holdout = settings.window, settings.validation, settings.holdout
@@ -379,7 +402,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gains is not None:
-            gains = validated(gains, val_log, model, dofs, settings.gains_logged_dofs(dofs))
+            gains = validate_gains(gains, val_log, model, dofs, settings)
         if gains is not None and gains.applied:
             model = gains.model(model)
             data = model_window_data(train_log, model, window=window)

@@ -76,7 +76,7 @@ seeds 7 and 21), and the gains beside it pass the Schwarz penalty, so the rows e
 -> 4 of 12). Without the nested step seed 21 lost 6 cells (the truth has gains too). Off by
 default for that reason: where it differs from ``"joint"`` it was not shown to help.
 
-Depends on: diagnose.gains, diagnose.heldout, diagnose.settings, diagnose.compare, effects,
+Depends on: diagnose.gains, diagnose.gaingate, diagnose.heldout, diagnose.settings, diagnose.compare, effects,
 model.
 """
 
@@ -87,7 +87,8 @@ from dataclasses import replace
 import numpy as np
 
 from stripcoef.conventions import DOF
-from stripcoef.diagnose.gains import fit_thruster_gains, validated
+from stripcoef.diagnose.gaingate import validate_gains
+from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.heldout import long_run_variance
 from stripcoef.effects.laws import model_window_data
 
@@ -195,7 +196,7 @@ def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings
                                shared=shared)
     if gains is None:
         return None, prior, data0
-    gains = validated(gains, val_log, water, dofs, settings.gains_logged_dofs(dofs))
+    gains = validate_gains(gains, val_log, water, dofs, settings)
     gains = replace(gains, reason=gains.reason + "; fitted beside the current the DOFs found "
                     f"(north {vc['current_north']:.4g}, east {vc['current_east']:.4g} m/s), "
                     "the DOFs diagnosed again on them")
@@ -283,10 +284,10 @@ def explain(gains, water, data0, train_log, dofs, excited, settings) -> dict:
     from stripcoef.diagnose.gains import (NOISE_PASSES, _blocks, _map, _normal_equations,
                                           _with_shared, gain_contrasts)
 
-    p_basis = gain_contrasts(data0.alloc, dofs, settings)
     # the gains: the first pass's fit again (its noise levels, its prior sd)
     b0, _, sd0 = _blocks(data0, dofs, settings, excited)
     sig0 = [gains.noise.get(DOF[b[0]], 1.0) for b in b0]
+    p_basis = gain_contrasts(data0.alloc, dofs, settings, identified=(b0, sd0, sig0))
     lam, rhs, kc = _normal_equations(b0, sd0, sig0, p_basis)
     x = _map(lam, rhs, kc, gains.prior_sd)
     res_g = _residuals(b0, x, p_basis @ x[kc:])

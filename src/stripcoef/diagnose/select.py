@@ -16,6 +16,7 @@ import numpy as np
 
 from stripcoef.conventions import DOF, FORCES, VELOCITIES, parse_dof
 from stripcoef.diagnose import gainfree, scalechoice, shapetest
+from stripcoef.diagnose.heldoutrise import rise_reasons
 from stripcoef.diagnose.calibrate import folded_key
 from stripcoef.diagnose.cross import velocity_snr
 from stripcoef.diagnose.evidence import judge_family, step_test, supported
@@ -455,9 +456,7 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
         # the released coefficient is the calibration's own column: when the calibration
         # has already absorbed it the held-out error stays (within TIE, the prior's pull);
         # a rise beyond that does not generalise
-        if gain < -TIE:
-            reasons.append(f"held-out error rises ({100 * gain:.1f}% gain, beyond "
-                           f"{100 * TIE:g}%): the released {key} does not generalise")
+        reasons += rise_reasons(gain, ev, cur, f"the released {key}", settings)
     else:
         if held is not None and abs(theta_eff[0]) < MIMIC_BANDS * held:
             reasons.append(f"no signature in this log and the {key} change it implies "
@@ -466,9 +465,7 @@ def _judge(eff, cfg, ev, cur, data, dof, cal_names, cal_sd,
         if held is not None:
             band_excess = float(theta_eff[0] / held)
         if getattr(eff, "scales_prior", False):     # judged with the bands (scalechoice)
-            if gain < -TIE:
-                reasons.append(f"held-out error rises ({100 * gain:.1f}% gain, beyond "
-                               f"{100 * TIE:g}%): the scale does not generalise")
+            reasons += rise_reasons(gain, ev, cur, "the scale", settings)
         else:
             if gain < MIN_HELD_OUT_GAIN:
                 reasons.append(f"held-out gain {100 * gain:.1f}% < "

@@ -1,4 +1,4 @@
-"""The diagnosis's thresholds, its options (:class:`DiagnoseSettings`) and its wall-clock
+"""The diagnosis's thresholds, its options (:class:`DiagnoseSettings`) and its CPU-time
 budget (:class:`Budget`): passed as arguments to every stage, never stashed on the data.
 
 The thresholds of the selection are those of the method in :mod:`.pipeline`'s docstring
@@ -41,7 +41,7 @@ UNEXPLAINED_GAIN = 0.10
 NOISE_FLOOR_FACTOR = 5.0
 N_BLOCKS = 5
 MAX_STEPS = 4
-#: Wall-clock budget of one diagnosis of up to :data:`BUDGET_ROWS` log rows [s]; past the
+#: CPU-time budget (:func:`time.process_time`) of one diagnosis of up to :data:`BUDGET_ROWS` log rows [s]; past the
 #: budget the diagnosis stops with an error saying so, instead of grinding.
 TIME_LIMIT = 300.0
 #: Log rows that :data:`TIME_LIMIT` covers: a longer log gets a budget in proportion to its
@@ -53,7 +53,7 @@ BUDGET_ROWS = 20_000
 
 
 def default_time_limit(rows: int) -> float:
-    """The default wall-clock budget of a diagnosis of a log of ``rows`` rows [s]:
+    """The default CPU-time budget of a diagnosis of a log of ``rows`` rows [s]:
     :data:`TIME_LIMIT`, times rows / :data:`BUDGET_ROWS` for a longer log."""
     return TIME_LIMIT * max(1.0, float(rows) / BUDGET_ROWS)
 #: Plausible added mass as a factor of the prior's [-] (lower, upper): Wang & Clark 2006
@@ -72,6 +72,9 @@ ADDED_MASS_FACTOR = {"translational": (0.25, 4.0), "rotational": (0.2, 5.0)}
 #: data carry 0.4-0.9 of the band's information, and the thrust efficiency then absorbed
 #: the inertia and drag errors.)
 MIN_INFORMATION_RATIO = 0.3
+#: ``linked_gains`` mode: the gains' groups linked through a shared DOF only where the log
+#: identifies the contrast between them (:func:`stripcoef.diagnose.gains.identified_groups`).
+LINKED_IDENTIFIED = "identified"
 #: A DOF is excited when its velocity's standard deviation is this many times its noise
 #: (the noise from second differences, :meth:`WindowData.rate_noise_variance`'s estimator)
 #: and its applied force moves.
@@ -96,10 +99,13 @@ RESIMULATION_HORIZON = 10.0
 
 @dataclass(frozen=True)
 class Budget:
-    """The wall-clock budget of one diagnosis: :meth:`check` raises once it is spent.
+    """The CPU-time budget of one diagnosis: :meth:`check` raises once it is spent.
 
     ``limit`` [s] (``inf``: none), ``rows`` and ``source`` (the log's, for the message) and
-    ``at``, the :func:`time.monotonic` deadline (None: no deadline). One is made per call of
+    ``at``, the :func:`time.process_time` deadline (None: no deadline). This process's CPU
+    time, not the wall clock: a diagnosis that an idle machine finishes in its budget is not
+    refused on the same machine loaded by other work (a test run beside others, a shared
+    server). One is made per call of
     :func:`stripcoef.diagnose.pipeline.diagnose` (:meth:`start`) and passed to every fit."""
 
     limit: float = math.inf
@@ -112,11 +118,11 @@ class Budget:
         """A budget of ``limit`` seconds from now."""
         limit = float(limit)
         return cls(limit, int(rows), str(source),
-                   time.monotonic() + limit if math.isfinite(limit) else None)
+                   time.process_time() + limit if math.isfinite(limit) else None)
 
     def check(self) -> None:
         """Raise :class:`~stripcoef.errors.UnreachableError` once past the deadline."""
-        if self.at is not None and time.monotonic() > self.at:
+        if self.at is not None and time.process_time() > self.at:
             raise UnreachableError(
                 f"{self.source}: diagnosis stopped, over its time budget of {self.limit:g} s; "
                 f"got {self.rows} log rows; expected a log this machine can fit in time "
@@ -261,6 +267,16 @@ class DiagnoseSettings:
         and dry-friction logs of seeds 29112026 and 1795929171 unchanged
         (benchmarks/data/named33d_trace.md). False: the choice runs only when one of the
         two passed its gates
+    heldout_rise : str
+        When a thrust scale or a released coefficient "raises the held-out error"
+        (:mod:`stripcoef.diagnose.heldoutrise`): ``"tie"`` (default, beyond ``TIE``) or
+        ``"diebold_mariano"`` (the one-sided Diebold-Mariano test of the cross-validated
+        window losses rejects at ``ALPHA``). Off by default: on the thrust-effectiveness,
+        added-mass and clean logs of seeds 1795938998 and 1795929171 (48 diagnoses) named
+        first +1 (VideoRay 1795939008 both modes named, BlueROV2 1795930181 whole-log lost to
+        the cross-mass test the tie gate had shadowed), error cut >= 3x -1 and spurious kept
+        +1 (the validation removes the scale with the calibration fitted beside it):
+        benchmarks/data/named33f_trace.md
     validation_horizon : float or str
         Horizon of the validation's segments [s] (:func:`~stripcoef.diagnose.validate.
         validate_changes`; the thrusters' gains keep the free simulation's):
@@ -280,13 +296,27 @@ class DiagnoseSettings:
         1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
         thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
         benchmarks/data/closed33d_trace.md, docs/performance.md
-    linked_gains : bool
+    linked_gains : bool or str
         The thrusters' gains' contrasts taken within each group of thrusters linked through
         the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,
         ``linked``): a gain common to such a group is exactly a per-DOF thrust scale, so on a
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
-        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+        same set of DOFs. Measured in benchmarks/data/spread33d_trace.md. ``"identified"``
+        (:data:`LINKED_IDENTIFIED`): the groups linked through a shared DOF only where the
+        log identifies their contrast (:func:`stripcoef.diagnose.gains.identified_groups`).
+        Off: on the whole-log rows of seeds 1795938998 and 1795929171 the error cut >= 3x
+        rose 55 -> 58 of 88, spurious named 13 -> 12 and the clean logs 7/8 -> 8/8, but
+        magnitude within 15 % fell on both seeds (73 -> 71; two BlueROV2 logs whose contrast
+        the log determines and an omitted effect biases) and named first 76 -> 75
+        (benchmarks/data/linked33f_trace.md)
+    gains_validation : str
+        How the thrusters' gains are validated (:mod:`stripcoef.diagnose.gaingate`):
+        ``"consecutive"`` (consecutive 10-s segments, sum of squared error ratios at most
+        the DOFs' number) or ``"rolling"`` (10-s segments restarted every 2 s, judged by
+        the changes' score: no DOF worse, then that sum) or ``"rolling_test"`` (on those
+        segments, kept only when better than the prior by the one-sided Diebold-Mariano
+        test of the pooled loss). Measured in benchmarks/data/real33f_trace.md
     validation_reference : str
         The skill veto's reference forecast under ``validation_others="each"``
         (:func:`~stripcoef.diagnose.validate.validate_changes`' ``reference``): ``"trivial"``
@@ -313,9 +343,11 @@ class DiagnoseSettings:
     drag_couplings: bool = False
     restoring_free: bool = False
     scale_choice_unforced: bool = True
+    heldout_rise: str = "tie"
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
-    linked_gains: bool = False
+    linked_gains: bool | str = False
+    gains_validation: str = "consecutive"
     validation_reference: str = "trivial"
 
     def validation_horizons(self, val_log, dofs):
