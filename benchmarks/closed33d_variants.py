@@ -5,7 +5,7 @@ The validation (:func:`stripcoef.diagnose.validate.validate_changes`) decides on
 kept: the thrusters' gains, their validation and every DOF's selection come before it. So
 each log is generated and selected once, and the diagnosis's later stages (validation,
 written model, read-back) run once per variant on the same selection: the pipeline's
-``fit_thruster_gains``, ``validated`` and ``_fit_dofs`` are replayed from the first
+``fit_thruster_gains``, ``validate_gains`` and ``_fit_dofs`` are replayed from the first
 variant's calls in their order (``--check`` runs the first variant again on the replayed
 selection and fails if any number of its row differs). What a variant cannot change, by
 construction: named first, spurious steps named, clean logs' steps, dry friction's gains.
@@ -56,7 +56,7 @@ VARIANTS = {"default": ("logged", {}),
                                                    "validation_reference": "combination"})}
 
 #: The pipeline's stages before the validation, replayed from the first variant's calls.
-REPLAYED = ("fit_thruster_gains", "validated", "_fit_dofs")
+REPLAYED = ("fit_thruster_gains", "validate_gains", "_fit_dofs")
 
 
 def _replaying(pipeline, store: dict, record: bool):
