@@ -25,7 +25,7 @@ import time
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-VARIANTS = {"prior": None, "written": {"gains_validation": "written"}}
+VARIANTS = {"prior": {"gains_validation": "prior"}, "written": {"gains_validation": "written"}}
 
 
 def _gains_text(row: dict, res_gains: dict | None) -> str:
