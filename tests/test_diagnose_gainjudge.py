@@ -85,7 +85,9 @@ def test_judged_only_for_one_dof_a_validation_log_and_an_applied_fit():
     assert not gainjudge.after_selection(s, [0], None, applied)
     assert not gainjudge.after_selection(s, [0], object(), SimpleNamespace(applied=False))
     assert not gainjudge.after_selection(s, [0], object(), None)
-    assert not gainjudge.after_selection(DiagnoseSettings(), [0], object(), applied)
+    assert not gainjudge.after_selection(DiagnoseSettings(gains_validation=gainjudge.PRIOR),
+                                         [0], object(), applied)
+    assert DiagnoseSettings().gains_validation == gainjudge.WRITTEN       # the default
 
 
 def test_an_unknown_gains_validation_is_an_input_error():

@@ -77,9 +77,9 @@ Steps, for each degree of freedom (issue 7):
    written model; a bias outside heave, roll and pitch must stand beside the thrusters'
    gains).
    A one-DOF diagnosis fits the same gains in its DOF's balance (``dof_gains``, on by
-   default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written; validated alone
-   on the prior by default, or, option ``gains_validation="written"``, inside the written
-   model after the selection, :mod:`.gainjudge`). In a one-DOF
+   default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written; a significant fit
+   is judged inside the written model after the selection, the DOF diagnosed with and
+   without it, :mod:`.gainjudge`, ``gains_validation``). In a one-DOF
    diagnosis a tether not identified apart from the thrusters' gains beside the map the
    model writes (found only with each thruster's gain free, or whose c_t, refitted with
    them free, is under ``MIN_Z`` sd from zero) is named with its value "not determined by
@@ -163,7 +163,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
              validation_judge: str = "all", linked_gains: bool = False,
-             gains_validation: str = "prior") -> Diagnosis:
+             gains_validation: str = "written") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -253,7 +253,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
     gains_validation : str
-        ``"prior"`` (default), ``"written"`` or ``"none"``: how a significant one-DOF gain fit
+        ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
         is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_validation`).
 
     Returns

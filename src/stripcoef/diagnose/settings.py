@@ -289,11 +289,14 @@ class DiagnoseSettings:
         same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
     gains_validation : str
         How a significant one-DOF gain fit is validated (:mod:`stripcoef.diagnose.gainjudge`):
-        ``"prior"`` (default) alone on the prior before the selection
-        (:func:`stripcoef.diagnose.gains.validated`); ``"written"``: inside the written model
-        after the selection (the DOF diagnosed with and without the gains, the better written
-        model on the validation log kept); ``"none"``: applied unvalidated. Whole-log
-        diagnoses always use ``"prior"``'s rule unless ``"none"``
+        ``"written"`` (default since gains33f) inside the written model after the selection
+        (the DOF diagnosed with and without the gains, the better written model on the
+        validation log kept: on the BlueROV2-like one-DOF rows of seeds 1795938998 and
+        1795929171 named first, magnitude and cut no worse, more named and closer,
+        benchmarks/data/gains33f_trace.md); ``"prior"``: alone on the prior before the
+        selection (:func:`stripcoef.diagnose.gains.validated`, the rule before); ``"none"``:
+        applied unvalidated. Whole-log diagnoses always use ``"prior"``'s rule unless
+        ``"none"``
     """
 
     window: float = DEFAULT_WINDOW
@@ -317,7 +320,7 @@ class DiagnoseSettings:
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
-    gains_validation: str = "prior"
+    gains_validation: str = "written"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
