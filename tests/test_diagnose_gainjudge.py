@@ -91,10 +91,9 @@ def test_judged_only_for_one_dof_a_validation_log_and_an_applied_fit():
 
 
 def test_an_unknown_gains_validation_is_an_input_error():
-    from conftest import shipped_model
+    # the options are checked before the log or the model is read
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.errors import InputError
 
-    prior = shipped_model("bluerov2_heavy.yaml")
     with pytest.raises(InputError, match="gains_validation"):
-        diagnose(None, prior, dof="surge", time_limit=1.0, gains_validation="later")
+        diagnose(None, None, dof="surge", time_limit=1.0, gains_validation="later")
