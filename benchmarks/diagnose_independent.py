@@ -980,8 +980,8 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
                          "of the changes it removes)")
-    ap.add_argument("--gains-validation", default=None, choices=("prior", "written", "none"),
-                    help="diagnose with gains_validation ('written': a significant one-DOF "
+    ap.add_argument("--gains-judge", default=None, choices=("prior", "written", "none"),
+                    help="diagnose with gains_judge ('written': a significant one-DOF "
                          "gain fit judged inside the written model after the selection)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
@@ -1022,7 +1022,7 @@ def main(argv=None) -> int:
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
                                  ("linked_gains", args.linked_gains),
-                                 ("gains_validation", args.gains_validation)) if value},
+                                 ("gains_judge", args.gains_judge)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

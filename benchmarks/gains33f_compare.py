@@ -1,6 +1,6 @@
 """The one-DOF thruster gains validated alone on the prior or inside the written model (issue 33,
 gains33f): each log of ``benchmarks.diagnose_independent`` (its seeding) simulated once and
-diagnosed one DOF with ``gains_validation="prior"`` (the default) and ``"written"``
+diagnosed one DOF with ``gains_judge="prior"`` (the default) and ``"written"``
 (:mod:`stripcoef.diagnose.gainjudge`), the two rows side by side.
 
 Each variant's rows are printed as ``benchmarks.diagnose_independent`` prints them
@@ -25,7 +25,7 @@ import time
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-VARIANTS = {"prior": {"gains_validation": "prior"}, "written": {"gains_validation": "written"}}
+VARIANTS = {"prior": {"gains_judge": "prior"}, "written": {"gains_judge": "written"}}
 
 
 def _gains_text(row: dict, res_gains: dict | None) -> str:

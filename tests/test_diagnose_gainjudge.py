@@ -1,5 +1,5 @@
 """The one-DOF thrusters' gains judged inside the written model (issue 33, gains33f;
-``gains_validation="written"``, :mod:`stripcoef.diagnose.gainjudge`).
+``gains_judge="written"``, :mod:`stripcoef.diagnose.gainjudge`).
 
 The rule is the validation's own (:func:`stripcoef.diagnose.validate.validate_changes`): a
 model's score is (DOFs simulated worse than the prior, sum of squared error ratios), and a
@@ -26,7 +26,7 @@ class _Stub:
 
 
 def _runner(with_error, without_error, prior_error=0.1):
-    """A stand-in for pipeline.run: the gains' pass (gains_validation 'none') and the
+    """A stand-in for pipeline.run: the gains' pass (gains_judge 'none') and the
     prior-map pass (dof_gains False), each with its written model's validation error."""
     calls = []
 
@@ -35,7 +35,7 @@ def _runner(with_error, without_error, prior_error=0.1):
         if not settings.dof_gains:
             return _Stub("without", {"prior": {"surge": prior_error},
                                      "kept_changes": {"surge": without_error}}, None)
-        assert settings.gains_validation == gainjudge.NONE
+        assert settings.gains_judge == gainjudge.NONE
         return _Stub("with", {"prior": {"surge": 0.09},          # the gained prior's
                               "kept_changes": {"surge": with_error}},
                      {"applied": True, "reason": "significant", "gains": {"t1": 1.1}})
@@ -44,7 +44,7 @@ def _runner(with_error, without_error, prior_error=0.1):
 
 def _judged(run):
     return gainjudge.judged(run, None, None, "surge",
-                            DiagnoseSettings(gains_validation=gainjudge.WRITTEN), None)
+                            DiagnoseSettings(gains_judge=gainjudge.WRITTEN), None)
 
 
 def test_gains_kept_when_their_written_model_simulates_the_validation_log_better():
@@ -78,22 +78,22 @@ def test_score_counts_dofs_worse_than_the_prior_first():
 
 
 def test_judged_only_for_one_dof_a_validation_log_and_an_applied_fit():
-    s = DiagnoseSettings(gains_validation=gainjudge.WRITTEN)
+    s = DiagnoseSettings(gains_judge=gainjudge.WRITTEN)
     applied = SimpleNamespace(applied=True)
     assert gainjudge.after_selection(s, [0], object(), applied)
     assert not gainjudge.after_selection(s, [0, 1], object(), applied)
     assert not gainjudge.after_selection(s, [0], None, applied)
     assert not gainjudge.after_selection(s, [0], object(), SimpleNamespace(applied=False))
     assert not gainjudge.after_selection(s, [0], object(), None)
-    assert not gainjudge.after_selection(DiagnoseSettings(gains_validation=gainjudge.PRIOR),
+    assert not gainjudge.after_selection(DiagnoseSettings(gains_judge=gainjudge.PRIOR),
                                          [0], object(), applied)
-    assert DiagnoseSettings().gains_validation == gainjudge.WRITTEN       # the default
+    assert DiagnoseSettings().gains_judge == gainjudge.WRITTEN       # the default
 
 
-def test_an_unknown_gains_validation_is_an_input_error():
+def test_an_unknown_gains_judge_is_an_input_error():
     # the options are checked before the log or the model is read
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.errors import InputError
 
-    with pytest.raises(InputError, match="gains_validation"):
-        diagnose(None, None, dof="surge", time_limit=1.0, gains_validation="later")
+    with pytest.raises(InputError, match="gains_judge"):
+        diagnose(None, None, dof="surge", time_limit=1.0, gains_judge="later")

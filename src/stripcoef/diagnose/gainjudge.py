@@ -1,5 +1,5 @@
 r"""The thrusters' gains of a one-DOF diagnosis judged inside the written model (issue 33,
-gains33f; option :attr:`~stripcoef.diagnose.settings.DiagnoseSettings.gains_validation`).
+gains33f; option :attr:`~stripcoef.diagnose.settings.DiagnoseSettings.gains_judge`).
 
 With ``"prior"`` (the rule before gains33f) a significant one-DOF gain fit (:mod:`.gains`, ``dof_gains``) is
 validated alone, on the prior, before the selection
@@ -46,18 +46,18 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-#: ``gains_validation`` values (module docstring).
+#: ``gains_judge`` values (module docstring).
 PRIOR = "prior"
 WRITTEN = "written"
 NONE = "none"
-GAINS_VALIDATIONS = (PRIOR, WRITTEN, NONE)
+GAINS_JUDGES = (PRIOR, WRITTEN, NONE)
 
 
 def after_selection(settings, dofs, val_log, gains) -> bool:
     """Whether ``gains`` (a fit, or None) are judged inside the written model
     (:func:`judged`): option ``"written"``, one DOF, a validation log, and a fit that is
     significant and within its bound (``applied``)."""
-    return (settings.gains_validation == WRITTEN and len(dofs) == 1 and val_log is not None
+    return (settings.gains_judge == WRITTEN and len(dofs) == 1 and val_log is not None
             and gains is not None and gains.applied)
 
 
@@ -78,7 +78,7 @@ def judged(run, log, model, dof, settings, budget):
     :func:`stripcoef.diagnose.pipeline.run`; returns the :class:`~stripcoef.diagnose.result.
     Diagnosis` of the better written model, its ``thruster_gains`` record saying what was
     compared."""
-    with_gains = run(log, model, dof=dof, settings=replace(settings, gains_validation=NONE),
+    with_gains = run(log, model, dof=dof, settings=replace(settings, gains_judge=NONE),
                      budget=budget)
     without = run(log, model, dof=dof, settings=replace(settings, dof_gains=False),
                   budget=budget)

@@ -79,7 +79,7 @@ Steps, for each degree of freedom (issue 7):
    A one-DOF diagnosis fits the same gains in its DOF's balance (``dof_gains``, on by
    default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written; a significant fit
    is judged inside the written model after the selection, the DOF diagnosed with and
-   without it, :mod:`.gainjudge`, ``gains_validation``). In a one-DOF
+   without it, :mod:`.gainjudge`, ``gains_judge``). In a one-DOF
    diagnosis a tether not identified apart from the thrusters' gains beside the map the
    model writes (found only with each thruster's gain free, or whose c_t, refitted with
    them free, is under ``MIN_Z`` sd from zero) is named with its value "not determined by
@@ -117,7 +117,7 @@ from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
 from stripcoef.diagnose import gainjudge, undetermined
-from stripcoef.diagnose.gainjudge import GAINS_VALIDATIONS
+from stripcoef.diagnose.gainjudge import GAINS_JUDGES
 from stripcoef.diagnose.gains import fit_thruster_gains, validated
 from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
                                         with_found_current,
@@ -163,7 +163,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
              validation_judge: str = "all", linked_gains: bool = False,
-             gains_validation: str = "written") -> Diagnosis:
+             gains_judge: str = "written") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -252,9 +252,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     linked_gains : bool
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
-    gains_validation : str
+    gains_judge : str
         ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
-        is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_validation`).
+        is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_judge`).
 
     Returns
     -------
@@ -299,10 +299,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if validation_judge not in JUDGES:
         raise InputError("not a way to judge a validation's removal", key="validation_judge",
                          value=validation_judge, expected="one of " + ", ".join(JUDGES))
-    if gains_validation not in GAINS_VALIDATIONS:
-        raise InputError("not a way to validate the thrusters' gains", key="gains_validation",
-                         value=gains_validation,
-                         expected="one of " + ", ".join(GAINS_VALIDATIONS))
+    if gains_judge not in GAINS_JUDGES:
+        raise InputError("not a way to validate the thrusters' gains", key="gains_judge",
+                         value=gains_judge,
+                         expected="one of " + ", ".join(GAINS_JUDGES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -326,7 +326,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
         validation_judge=validation_judge, linked_gains=bool(linked_gains),
-        gains_validation=gains_validation)
+        gains_judge=gains_judge)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -384,7 +384,7 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
             # option: judged inside the written model, the DOF diagnosed with and without
             # them (gainjudge.py)
             return gainjudge.judged(run, log, model, dof, settings, budget)
-        if gains is not None and settings.gains_validation != gainjudge.NONE:
+        if gains is not None and settings.gains_judge != gainjudge.NONE:
             gains = validated(gains, val_log, model, dofs, settings.gains_logged_dofs(dofs))
         if gains is not None and gains.applied:
             model = gains.model(model)

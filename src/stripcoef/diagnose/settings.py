@@ -287,7 +287,7 @@ class DiagnoseSettings:
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
         same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
-    gains_validation : str
+    gains_judge : str
         How a significant one-DOF gain fit is validated (:mod:`stripcoef.diagnose.gainjudge`):
         ``"written"`` (default since gains33f) inside the written model after the selection
         (the DOF diagnosed with and without the gains, the better written model on the
@@ -320,7 +320,7 @@ class DiagnoseSettings:
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
-    gains_validation: str = "written"
+    gains_judge: str = "written"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
