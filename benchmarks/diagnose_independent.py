@@ -1109,6 +1109,9 @@ def main(argv=None) -> int:
                     help="diagnose with validation_reference ('combination': in a DOF the "
                          "prior does not predict, the skill veto's reference is the prior "
                          "combined with the trivial predictors)")
+    ap.add_argument("--gains-judge", default=None, choices=("prior", "written", "none"),
+                    help="diagnose with gains_judge ('written': a significant one-DOF "
+                         "gain fit judged inside the written model after the selection)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
@@ -1153,7 +1156,8 @@ def main(argv=None) -> int:
                                  ("gains_validation", args.gains_validation),
                                  ("linked_gains", args.linked_gains),
                                  ("heldout_rise", args.heldout_rise),
-                                 ("validation_reference", args.validation_reference)) if value},
+                                 ("validation_reference", args.validation_reference),
+                                 ("gains_judge", args.gains_judge)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

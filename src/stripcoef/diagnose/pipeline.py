@@ -77,7 +77,9 @@ Steps, for each degree of freedom (issue 7):
    written model; a bias outside heave, roll and pitch must stand beside the thrusters'
    gains).
    A one-DOF diagnosis fits the same gains in its DOF's balance (``dof_gains``, on by
-   default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written). In a one-DOF
+   default; a fit with a gain under :data:`.gains.MIN_GAIN` is not written; a significant fit
+   is judged inside the written model after the selection, the DOF diagnosed with and
+   without it, :mod:`.gainjudge`, ``gains_judge``). In a one-DOF
    diagnosis a tether not identified apart from the thrusters' gains beside the map the
    model writes (found only with each thruster's gain free, or whose c_t, refitted with
    them free, is under ``MIN_Z`` sd from zero) is named with its value "not determined by
@@ -114,7 +116,8 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: 
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
-from stripcoef.diagnose import undetermined
+from stripcoef.diagnose import gainjudge, undetermined
+from stripcoef.diagnose.gainjudge import GAINS_JUDGES
 from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
 from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
@@ -165,7 +168,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation_horizon: float | str = RESIMULATION_HORIZON,
              validation_judge: str = "all", linked_gains: bool | str = False,
              gains_validation: str = "consecutive",
-             validation_reference: str = "trivial") -> Diagnosis:
+             validation_reference: str = "trivial",
+             gains_judge: str = "written") -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -265,6 +269,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     validation_reference : str
         ``"trivial"`` or ``"combination"``: the skill veto's reference forecast
         (:attr:`DiagnoseSettings.validation_reference`; :mod:`.combination`).
+    gains_judge : str
+        ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
+        is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_judge`).
 
     Returns
     -------
@@ -322,6 +329,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     if heldout_rise not in RISE_RULES:
         raise InputError("not a rule for a held-out rise", key="heldout_rise",
                          value=heldout_rise, expected="one of " + ", ".join(RISE_RULES))
+    if gains_judge not in GAINS_JUDGES:
+        raise InputError("not a way to validate the thrusters' gains", key="gains_judge",
+                         value=gains_judge,
+                         expected="one of " + ", ".join(GAINS_JUDGES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:
@@ -347,7 +358,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         validation_judge=validation_judge,
         linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
                       else bool(linked_gains)),
-        gains_validation=gains_validation, validation_reference=validation_reference)
+        gains_validation=gains_validation, validation_reference=validation_reference,
+        gains_judge=gains_judge)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -401,7 +413,11 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     data0 = data
     if len(dofs) > 1 or settings.dof_gains:
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
-        if gains is not None:
+        if gainjudge.after_selection(settings, dofs, val_log, gains):
+            # judged inside the written model, the DOF diagnosed with and without them
+            # (gainjudge.py)
+            return gainjudge.judged(run, log, model, dof, settings, budget)
+        if gains is not None and settings.gains_judge != gainjudge.NONE:
             gains = validate_gains(gains, val_log, model, dofs, settings)
         if gains is not None and gains.applied:
             model = gains.model(model)

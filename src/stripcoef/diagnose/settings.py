@@ -323,6 +323,16 @@ class DiagnoseSettings:
         (default, the best of the prior and the trivial predictors) or ``"combination"``
         (where the prior has no skill, their least-squares combination:
         :mod:`stripcoef.diagnose.combination`; measured in benchmarks/data/cut33f_trace.md)
+    gains_judge : str
+        How a significant one-DOF gain fit is validated (:mod:`stripcoef.diagnose.gainjudge`):
+        ``"written"`` (default since gains33f) inside the written model after the selection
+        (the DOF diagnosed with and without the gains, the better written model on the
+        validation log kept: on the BlueROV2-like one-DOF rows of seeds 1795938998 and
+        1795929171 named first, magnitude and cut no worse, more named and closer,
+        benchmarks/data/gains33f_trace.md); ``"prior"``: alone on the prior before the
+        selection (:func:`stripcoef.diagnose.gains.validated`, the rule before); ``"none"``:
+        applied unvalidated. Whole-log diagnoses always use ``"prior"``'s rule unless
+        ``"none"``
     """
 
     window: float = DEFAULT_WINDOW
@@ -349,6 +359,7 @@ class DiagnoseSettings:
     linked_gains: bool | str = False
     gains_validation: str = "consecutive"
     validation_reference: str = "trivial"
+    gains_judge: str = "written"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
