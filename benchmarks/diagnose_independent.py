@@ -1043,8 +1043,9 @@ def main(argv=None) -> int:
                     help="how the validation's free simulations move the DOFs not diagnosed "
                          "(diagnose's validation_others)")
     ap.add_argument("--same-seeds", action="store_true",
-                    help="seed each log as a run of every category would (a run of a few "
-                         "categories then diagnoses the same logs as the full run)")
+                    help="seed each log as a run of every category and vehicle would (a run "
+                         "of a few categories or one vehicle then diagnoses the same logs as "
+                         "the full run)")
     ap.add_argument("--excitation", action="store_true",
                     help="generate the logs and print their excitation, no diagnosis")
     ap.add_argument("--truth-maps", action="store_true",
@@ -1141,6 +1142,9 @@ def main(argv=None) -> int:
     every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
     for rep in range(args.repeats):
         for v, vehicle in enumerate(args.vehicles.split(",")):
+            # --same-seeds: the vehicle's and the category's places in the full run's lists,
+            # so that a run of some vehicles or categories draws the full run's logs
+            v = VEHICLES.index(vehicle) if args.same_seeds and vehicle in VEHICLES else v
             for c, cat in enumerate(cats):
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
