@@ -963,6 +963,9 @@ def main(argv=None) -> int:
     ap.add_argument("--linked-gains", action="store_true",
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
                          "groups linked through the diagnosed DOFs they act in)")
+    ap.add_argument("--noise-with-bias", action="store_true",
+                    help="diagnose with noise_with_bias (the calibration's identifiability "
+                         "judged with the noise level fitted beside a free constant)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -1018,7 +1021,8 @@ def main(argv=None) -> int:
                                  ("restoring_free", args.restoring_free),
                                  ("validation_horizon", args.validation_horizon),
                                  ("validation_judge", args.validation_judge),
-                                 ("linked_gains", args.linked_gains)) if value},
+                                 ("linked_gains", args.linked_gains),
+                                 ("noise_with_bias", args.noise_with_bias)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

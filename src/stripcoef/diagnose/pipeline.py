@@ -159,7 +159,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              drag_couplings: bool = False, restoring_free: bool = False,
              scale_choice_unforced: bool = True,
              validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool = False) -> Diagnosis:
+             validation_judge: str = "all", linked_gains: bool = False,
+             noise_with_bias: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -248,6 +249,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     linked_gains : bool
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
         (:attr:`DiagnoseSettings.linked_gains`; off by default).
+    noise_with_bias : bool
+        The calibration's identifiability judged with the noise level fitted beside a free
+        constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
 
     Returns
     -------
@@ -314,7 +318,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         drag_couplings=bool(drag_couplings), restoring_free=bool(restoring_free),
         scale_choice_unforced=bool(scale_choice_unforced),
         validation_horizon=_horizon_setting(validation_horizon),
-        validation_judge=validation_judge, linked_gains=bool(linked_gains))
+        validation_judge=validation_judge, linked_gains=bool(linked_gains),
+        noise_with_bias=bool(noise_with_bias))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

@@ -287,6 +287,12 @@ class DiagnoseSettings:
         BlueROV2 Heavy the vertical four's common gain against the vectored four's (both act
         in roll and pitch) is fitted. Off by default: the groups are the thrusters with the
         same set of DOFs. Measured in benchmarks/data/spread33d_trace.md
+    noise_with_bias : bool
+        The calibration's identifiability (:func:`~stripcoef.diagnose.fit._identifiability`)
+        judged with the window residual's noise level fitted with a free constant beside
+        the calibration's columns (:func:`~stripcoef.diagnose.fit.sigma_beside_bias`: a
+        constant force the prior misses is not noise, Ljung 1999 sec. 9.2). Off by default:
+        measured in benchmarks/data/spur33f_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -310,6 +316,7 @@ class DiagnoseSettings:
     validation_horizon: float | str = RESIMULATION_HORIZON
     validation_judge: str = "all"
     linked_gains: bool = False
+    noise_with_bias: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
