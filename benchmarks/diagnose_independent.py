@@ -1084,6 +1084,9 @@ def main(argv=None) -> int:
                          "groups linked through the diagnosed DOFs they act in); "
                          "'--linked-gains identified': linked only where the log identifies "
                          "the groups' contrast")
+    ap.add_argument("--noise-with-bias", action="store_true",
+                    help="diagnose with noise_with_bias (the calibration's identifiability "
+                         "judged with the noise level fitted beside a free constant)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -1161,7 +1164,8 @@ def main(argv=None) -> int:
                                  ("linked_gains", args.linked_gains),
                                  ("heldout_rise", args.heldout_rise),
                                  ("validation_reference", args.validation_reference),
-                                 ("gains_judge", args.gains_judge)) if value},
+                                 ("gains_judge", args.gains_judge),
+                                 ("noise_with_bias", args.noise_with_bias)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

@@ -434,6 +434,19 @@ def _sigma(y, H, sd=None, lower=None, m=None, upper=None):
     return sigma
 
 
+def sigma_beside_bias(y, H, sd=None) -> float:
+    r"""Noise level [units of y] of the window residual :math:`y` with a free constant column
+    beside the columns :math:`H` (band sds ``sd``): :func:`_sigma` of :math:`[H, 1]`.
+
+    The Cramer-Rao bound of a coefficient holds the variance of the innovations (Ljung
+    1999, sec. 9.2, eq. 9.29); a constant force the prior misses (a buoyancy change, a bias:
+    the library's ``buoyancy_offset`` in every DOF) is a term of the model, not noise, and
+    left in the residual it inflates every bound by the ratio of its size to the noise's.
+    Used by :func:`_identifiability` with ``DiagnoseSettings.noise_with_bias`` only."""
+    sd = np.full(H.shape[1], np.inf) if sd is None else np.asarray(sd, float)
+    return _sigma(y, np.column_stack([H, np.ones(len(y))]), np.append(sd, np.inf))
+
+
 def _fit(cfg: _Config, mask=None, hyper=None):
     y, H, sd = cfg.design(hyper)
     lower = cfg.lower(hyper)
@@ -701,7 +714,8 @@ def _band_sources(dof: int, names, settings: DiagnoseSettings) -> dict:
     return out
 
 
-def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> dict:
+def _identifiability(data: WindowData, dof: int, cols, sd, names, excited,
+                     settings: DiagnoseSettings = DEFAULTS) -> dict:
     r"""Which calibration coefficients the log can determine, and why not the others.
 
     A coefficient is kept at the prior when (1) the DOF it belongs to is not excited
@@ -713,6 +727,11 @@ def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> di
     sec. 9.2, eq. 9.29; a near-collinear pair has a large conditional variance, which is
     the condition check).
 
+    With ``settings.noise_with_bias`` the noise level :math:`\sigma` is that of the window
+    residual with a free constant beside the calibration's columns
+    (:func:`sigma_beside_bias`): a constant force the prior
+    misses is not noise (option, off by default; benchmarks/data/spur33f_trace.md).
+
     Returns ``{"kept_at_prior": {name: reason}, "information_ratio": {name: b_j/s_j}}``.
     """
     reasons, ratios = {}, {}
@@ -723,7 +742,8 @@ def _identifiability(data: WindowData, dof: int, cols, sd, names, excited) -> di
     keep = [j for j, n in enumerate(names) if n not in reasons]
     if keep:
         H = cols[:, keep]
-        sigma = _sigma(data.e0[:, dof], H, np.asarray(sd, float)[keep])
+        noise = sigma_beside_bias if settings.noise_with_bias else _sigma
+        sigma = noise(data.e0[:, dof], H, np.asarray(sd, float)[keep])
         cov = np.linalg.pinv(H.T @ H) * sigma ** 2
         for k, j in enumerate(keep):
             s_data = math.sqrt(max(float(cov[k, k]), 0.0))

@@ -169,7 +169,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation_judge: str = "all", linked_gains: bool | str = False,
              gains_validation: str = "consecutive",
              validation_reference: str = "trivial",
-             gains_judge: str = "written") -> Diagnosis:
+             gains_judge: str = "written",
+             noise_with_bias: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -272,6 +273,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     gains_judge : str
         ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
         is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_judge`).
+    noise_with_bias : bool
+        The calibration's identifiability judged with the noise level fitted beside a free
+        constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
 
     Returns
     -------
@@ -359,7 +363,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
                       else bool(linked_gains)),
         gains_validation=gains_validation, validation_reference=validation_reference,
-        gains_judge=gains_judge)
+        gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 

@@ -182,7 +182,7 @@ def _dof_calibration(data: WindowData, dof: int, settings: DiagnoseSettings, exc
     added masses of ``cross`` are those of DOFs that move (:mod:`.cross`)."""
     cal = _calibration(data, dof, settings, cross)
     owned = sorted(set(excited) | set(cross or ()))
-    ident = _identifiability(data, dof, cal.cols, cal.sd, list(cal.names), owned)
+    ident = _identifiability(data, dof, cal.cols, cal.sd, cal.names, owned, settings)
     return (cal.subset([j for j, n in enumerate(cal.names) if n not in ident["kept_at_prior"]]),
             ident)
 

@@ -333,6 +333,12 @@ class DiagnoseSettings:
         selection (:func:`stripcoef.diagnose.gains.validated`, the rule before); ``"none"``:
         applied unvalidated. Whole-log diagnoses always use ``"prior"``'s rule unless
         ``"none"``
+    noise_with_bias : bool
+        The calibration's identifiability (:func:`~stripcoef.diagnose.fit._identifiability`)
+        judged with the window residual's noise level fitted with a free constant beside
+        the calibration's columns (:func:`~stripcoef.diagnose.fit.sigma_beside_bias`: a
+        constant force the prior misses is not noise, Ljung 1999 sec. 9.2). Off by default:
+        measured in benchmarks/data/spur33f_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -360,6 +366,7 @@ class DiagnoseSettings:
     gains_validation: str = "consecutive"
     validation_reference: str = "trivial"
     gains_judge: str = "written"
+    noise_with_bias: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
