@@ -10,13 +10,12 @@ import warnings
 import numpy as np
 import pytest
 
+from _rov_logs import square_wave_log
 from _validation_table import PRIOR, install
 
 from stripcoef.diagnose import combination, validate
 from stripcoef.diagnose.heldout import EACH, segment_squared_errors
 from stripcoef.errors import ModelWarning
-from stripcoef.simulate import simulate
-from validation.synthetic import add_noise, rov_model
 
 
 def test_an_exact_combination_has_no_error():
@@ -39,23 +38,16 @@ def test_the_combination_is_never_worse_than_the_prior_or_a_trivial_predictor():
 
 
 def test_segment_velocities_pool_to_the_validations_losses():
-    model = rov_model()
-    t = np.arange(0.0, 25.0, 0.2)
+    _, log, other = square_wave_log()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
-        tau = np.zeros((t.size, 6))
-        tau[:, 0] = np.where(t % 8 < 4, 20.0, -10.0)
-        tau[:, 5] = np.where(t % 6 < 3, 2.0, -2.0)
-        log = add_noise(simulate(model, t, forces=tau), np.random.default_rng(3))
-        other = model.__class__.from_dict({**model.to_dict(),
-                                           "volume": 1.01 * float(model.volume)})
         got = combination.segment_velocities(log, other, [0, 5], horizon=3.0, logged=EACH)
         sse, _ = segment_squared_errors(log, other, [0, 5], horizon=3.0, logged=EACH)
     if got is None:
         pytest.skip("this model's inputs are not replayed in batch")
     for k, (sim, obs, start) in enumerate(got):
         assert np.sum((sim - obs) ** 2) == pytest.approx(sse[:, k].sum(), rel=1e-9)
-        assert sim.size == obs.size == start.size == t.size
+        assert sim.size == obs.size == start.size == len(log)
 
 
 CAL_U, CAL_P = ("calibration", "surge"), ("calibration", "pitch")
