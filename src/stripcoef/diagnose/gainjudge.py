@@ -32,8 +32,11 @@ validation compares every change. Measured on the 52 BlueROV2-like one-DOF rows 
 first 39 -> 41 of 44, magnitude within 15 % 38 -> 41, error cut >= 3x 44/44, clean logs and
 dry friction unchanged; a buoyancy 17.6 -> 3.9 % off; the gains removed in the three logs
 where the written model without them simulates better. The cost is the second diagnosis:
-CPU 1.7x over those logs. VideoRay-like rows not measured. A whole-log diagnosis keeps ``"prior"``'s rule (not
-measured there).
+CPU 1.7x over those logs. On every one-DOF row of the benchmark's four seeds, both vehicles
+(docs/performance.md): named first 311 -> 315 of 352, magnitude within 15 % 295 -> 302, error
+cut >= 3x 269 -> 270, clean logs and dry friction unchanged; the newest seed, unseen when the
+rule was built, gains most (named first 80 -> 82, magnitude 75 -> 80 of 88). A whole-log
+diagnosis keeps ``"prior"``'s rule (not measured there).
 
 ``"none"``: a significant fit within the gains' physical bound is applied without any
 validation (the first of ``"written"``'s two runs; also what fresh33d measured as "applied").
