@@ -42,7 +42,8 @@ if the pooled test finds them better than the prior at
 Leybourne & Newbold 1997): the file's maps are the null, as in the gains' likelihood-ratio
 test on the fitting part.
 
-Depends on: diagnose.heldout, diagnose.gains, diagnose.settings (its argument).
+Depends on: diagnose.heldout, diagnose.gains, diagnose.validate (its score), diagnose.settings
+(its argument).
 """
 
 from __future__ import annotations
@@ -83,9 +84,10 @@ def _rms(got):
 def score(before: list, after: list) -> tuple[int, float]:
     r"""The validation's score of a model with errors ``after`` against the prior's
     ``before`` [m/s or rad/s]: (number of DOFs with :math:`r_i > 1`, :math:`\sum_i r_i^2`),
-    :math:`r_i` = after / before (:func:`stripcoef.diagnose.validate.validate_changes`)."""
-    r = [a / max(b, 1e-12) for a, b in zip(after, before)]
-    return sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))
+    :math:`r_i` = after / before (:func:`stripcoef.diagnose.validate.ratio_score`)."""
+    from stripcoef.diagnose.validate import ratio_score
+
+    return ratio_score(a / max(b, 1e-12) for a, b in zip(after, before))
 
 
 def pooled_test(base, got) -> dict:

@@ -41,7 +41,8 @@ diagnosis keeps ``"prior"``'s rule (not measured there).
 ``"none"``: a significant fit within the gains' physical bound is applied without any
 validation (the first of ``"written"``'s two runs; also what fresh33d measured as "applied").
 
-Depends on: diagnose.settings, diagnose.gains (its records), conventions.
+Depends on: diagnose.settings, diagnose.gains (its records), diagnose.validate (its score),
+conventions.
 """
 
 from __future__ import annotations
@@ -69,10 +70,11 @@ def score(errors: dict, prior: dict) -> tuple:
     validation errors ``errors`` and the prior's ``prior`` (DOF -> RMS [m/s or rad/s]):
     (number of DOFs with :math:`r_i = E_i / E_i^{prior} > 1`, :math:`\\sum_i r_i^2`);
     ``(inf, inf)`` when a simulation diverged."""
+    from stripcoef.diagnose.validate import ratio_score
+
     if not errors or not prior or any(errors.get(d) is None for d in prior):
         return (math.inf, math.inf)
-    r = [errors[d] / max(prior[d], 1e-12) for d in prior]
-    return (sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r)))
+    return ratio_score(errors[d] / max(prior[d], 1e-12) for d in prior)
 
 
 def judged(run, log, model, dof, settings, budget):

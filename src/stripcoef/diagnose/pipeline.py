@@ -301,10 +301,20 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not prior widths", key="prior_widths",
                          value=type(prior_widths).__name__,
                          expected="a PriorWidths (method_prior_widths(vehicle)) or None")
-    if validation_others not in VALIDATION_OTHERS:
-        raise InputError("not a way to move the DOFs not diagnosed", key="validation_others",
-                         value=validation_others,
-                         expected="one of " + ", ".join(VALIDATION_OTHERS))
+    for key, value, names, what in (
+            ("validation_others", validation_others, VALIDATION_OTHERS,
+             "a way to move the DOFs not diagnosed"),
+            ("gains_validation", gains_validation, GAIN_VALIDATIONS,
+             "a way to validate the thrusters' gains"),
+            ("validation_reference", validation_reference, REFERENCES,
+             "a reference forecast of the validation's skill veto"),
+            ("validation_judge", validation_judge, JUDGES,
+             "a way to judge a validation's removal"),
+            ("heldout_rise", heldout_rise, RISE_RULES, "a rule for a held-out rise"),
+            ("gains_judge", gains_judge, GAINS_JUDGES, "a way to validate the thrusters' gains")):
+        if value not in names:
+            raise InputError(f"not {what}", key=key, value=value,
+                             expected="one of " + ", ".join(names))
     if one_added_mass not in ONE_ADDED_MASS:
         raise InputError("not a rule for one added mass", key="one_added_mass",
                          value=one_added_mass,
@@ -317,26 +327,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         raise InputError("not a rule for a thrust scale beside the other DOFs' added masses",
                          key="cross_mass_scale", value=cross_mass_scale,
                          expected="True or False")
-    if gains_validation not in GAIN_VALIDATIONS:
-        raise InputError("not a way to validate the thrusters' gains", key="gains_validation",
-                         value=gains_validation, expected="one of " + ", ".join(GAIN_VALIDATIONS))
-    if validation_reference not in REFERENCES:
-        raise InputError("not a reference forecast of the validation's skill veto",
-                         key="validation_reference", value=validation_reference,
-                         expected="one of " + ", ".join(REFERENCES))
-    if validation_judge not in JUDGES:
-        raise InputError("not a way to judge a validation's removal", key="validation_judge",
-                         value=validation_judge, expected="one of " + ", ".join(JUDGES))
     if linked_gains not in (False, True, LINKED_IDENTIFIED):
         raise InputError("not a way to group the thrusters' gains", key="linked_gains",
                          value=linked_gains, expected=f"False, True or {LINKED_IDENTIFIED!r}")
-    if heldout_rise not in RISE_RULES:
-        raise InputError("not a rule for a held-out rise", key="heldout_rise",
-                         value=heldout_rise, expected="one of " + ", ".join(RISE_RULES))
-    if gains_judge not in GAINS_JUDGES:
-        raise InputError("not a way to validate the thrusters' gains", key="gains_judge",
-                         value=gains_judge,
-                         expected="one of " + ", ".join(GAINS_JUDGES))
     if added_mass_sd is None and prior_widths is not None:
         added_mass_sd = prior_widths.added_mass_sd
     if added_mass_sd is not None:

@@ -38,6 +38,17 @@ def heldout_errors(result, prior, written) -> dict:
 
 
 
+def ratio_score(ratios) -> tuple[int, float]:
+    r"""The validation's score of a model from its error ratios :math:`r_i = E_i / E_i^{ref}`
+    over the judged DOFs [-]: (the number of DOFs with :math:`r_i > 1`, beyond 1e-9 of
+    round-off; :math:`\sum_i r_i^2`), compared lexicographically (fewer DOFs worse first,
+    then the sum; :func:`validate_changes`). The one rule by which a change, the thrusters'
+    gains (:mod:`.gaingate`) and a written model with or without them (:mod:`.gainjudge`)
+    are scored."""
+    r = list(ratios)
+    return sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))
+
+
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
                      skill: bool | str = True, horizon=None,
@@ -173,8 +184,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
             if e is None:
                 cache[key] = ((math.inf, math.inf), None, None)
             else:
-                r = [a / b for a, b, j in zip(e, ref, judge_mask) if j]
-                cache[key] = ((sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r))),
+                cache[key] = (ratio_score(a / b for a, b, j in zip(e, ref, judge_mask) if j),
                               e, got)
         return cache[key]
 
@@ -182,8 +192,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         """The score of a cached ``entry`` on the DOFs at positions ``ks`` only."""
         if entry[1] is None:
             return (math.inf, math.inf)
-        r = [entry[1][k] / ref[k] for k in ks if judge_mask[k]]
-        return (sum(x > 1.0 + 1e-9 for x in r), float(sum(x * x for x in r)))
+        return ratio_score(entry[1][k] / ref[k] for k in ks if judge_mask[k])
 
     def eliminate_own(excl, cur):
         """Backward elimination from ``excl``, each removal judged on the DOFs of the
