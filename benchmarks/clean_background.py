@@ -105,7 +105,7 @@ def trace(vehicle: str, seed: int, duration: float) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    from benchmarks.diagnose_independent import VEHICLES
+    from benchmarks.diagnose_independent import VEHICLES, log_seed
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, required=True)
     ap.add_argument("--repeats", type=int, default=2)
@@ -121,9 +121,9 @@ def main(argv=None) -> int:
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     cpu = 0.0
     for rep in range(args.repeats):
-        # the seeds of diagnose_independent's clean logs (seed + 100000 rep + 1000 v + c)
+        # the seeds of diagnose_independent's clean logs
         for v, vehicle in enumerate(args.vehicles.split(",")):
-            rows = trace(vehicle, args.seed + 100000 * rep + 1000 * v + args.category_index,
+            rows = trace(vehicle, log_seed(args.seed, rep, v, args.category_index),
                          args.duration)
             cpu += rows[0]["cpu_s"]
             for r in rows:

@@ -135,8 +135,7 @@ def rows_of(vehicle, category, seed, duration, variants, check=False) -> list[di
 
 
 def main(argv=None) -> int:
-    from benchmarks.diagnose_independent import VEHICLES, _progress
-    from validation.independent import OUTSIDE, STRENGTHS
+    from benchmarks.diagnose_independent import VEHICLES, _progress, log_seed, run_categories
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seed", type=int, default=None)
@@ -167,10 +166,10 @@ def main(argv=None) -> int:
             ap.error(f"--variants: {v!r} is not one of {', '.join(VARIANTS)}")
     if args.seed is None:
         ap.error("--seed: required to run")
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     cats = args.categories.split(",") if args.categories else every
     jobs = [(vehicle, None if cat == "clean" else cat,
-             args.seed + 100000 * rep + 1000 * v + every.index(cat))
+             log_seed(args.seed, rep, v, every.index(cat)))
             for rep in range(args.repeats) for v, vehicle in enumerate(args.vehicles.split(","))
             for cat in cats]
     if args.only_seeds:

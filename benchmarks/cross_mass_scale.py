@@ -28,17 +28,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 
-def log_of(seed: int, log_seed: int, vehicles, categories) -> tuple:
-    """``(vehicle, category)`` of the log ``log_seed`` of a run of base seed ``seed``
-    (``benchmarks.diagnose_independent.main``'s numbering; ``categories`` in its order)."""
-    off = log_seed - seed
-    rep, rest = divmod(off, 100000)
-    v, c = divmod(rest, 1000)
-    if off < 0 or v >= len(vehicles) or c >= len(categories):
-        raise ValueError(f"log seed {log_seed} is not a log of base seed {seed}")
-    return vehicles[v], categories[c]
-
-
 def paired(vehicle: str, category: str, log_seed: int, duration: float,
            arms=("off", "on")) -> dict:
     """One log (generated once) diagnosed whole-log without and with the test: ``{"off":
@@ -121,8 +110,7 @@ def table(pairs: list) -> str:
 
 
 def main(argv=None) -> int:
-    from benchmarks.diagnose_independent import VEHICLES
-    from validation.independent import OUTSIDE, STRENGTHS
+    from benchmarks.diagnose_independent import log_of
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, required=True, help="the run's base seed")
     ap.add_argument("--only-seeds", required=True, help="comma-separated log seeds")
@@ -132,10 +120,9 @@ def main(argv=None) -> int:
                          "the diagnosis is unchanged without the test)")
     args = ap.parse_args(argv)
     arms = tuple(args.arms.split(","))
-    cats = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
     pairs = []
     for s in (int(x) for x in args.only_seeds.split(",")):
-        vehicle, category = log_of(args.seed, s, list(VEHICLES), cats)
+        vehicle, category, _ = log_of(args.seed, s)
         p = paired(vehicle, category, s, args.duration, arms)
         print(f"{s} pair {json.dumps(p, default=str)}", flush=True)
         pairs.append(p)

@@ -71,6 +71,36 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 ROOT = Path(__file__).resolve().parent.parent
 VEHICLES = ("videoray_pro3", "bluerov2_heavy")
+#: A log's seed in a run: base + REPEAT_STRIDE repeat + VEHICLE_STRIDE vehicle + category.
+REPEAT_STRIDE = 100000
+VEHICLE_STRIDE = 1000
+
+
+def run_categories() -> list:
+    """The full run's categories in its order: the library's effects, the clean log, the
+    effects outside the library (a log's category index in :func:`log_seed`)."""
+    from validation.independent import OUTSIDE, STRENGTHS
+
+    return list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+
+
+def log_seed(base: int, repeat: int, vehicle: int, category: int) -> int:
+    """The seed of a run's log from the run's base seed and the log's repeat, vehicle index
+    and category index (in :data:`VEHICLES` and :func:`run_categories`, or with a subset
+    of them and no ``--same-seeds``, in the run's own lists)."""
+    return base + REPEAT_STRIDE * repeat + VEHICLE_STRIDE * vehicle + category
+
+
+def log_of(base: int, seed: int) -> tuple[str, str, int]:
+    """``(vehicle, category, repeat)`` of the log ``seed`` of a full run from ``base``, the
+    inverse of :func:`log_seed` ("clean" for a clean log); ValueError if no log of that run
+    has this seed."""
+    repeat, rest = divmod(seed - base, REPEAT_STRIDE)
+    v, c = divmod(rest, VEHICLE_STRIDE)
+    cats = run_categories()
+    if seed < base or v >= len(VEHICLES) or c >= len(cats):
+        raise ValueError(f"log seed {seed} is not a log of base seed {base}")
+    return VEHICLES[v], cats[c], repeat
 
 
 def _prior(vehicle: str):
@@ -1024,8 +1054,6 @@ def _categories(rows: list[dict]) -> list[str]:
 
 
 def main(argv=None) -> int:
-    from validation.independent import OUTSIDE, STRENGTHS
-
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=None, help="base seed (default: a fresh one)")
     ap.add_argument("--duration", type=float, default=300.0, help="log length [s]")
@@ -1120,8 +1148,7 @@ def main(argv=None) -> int:
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
-    cats = (args.categories.split(",") if args.categories
-            else list(STRENGTHS) + ["clean"] + list(OUTSIDE))
+    cats = args.categories.split(",") if args.categories else run_categories()
     jobs = []
     modes = tuple(args.modes.split(","))
     if args.from_rows:
@@ -1142,7 +1169,7 @@ def main(argv=None) -> int:
         if args.write:
             _write(args.write, " ".join(sys.argv[1:] if argv is None else argv), text)
         return 0
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     for rep in range(args.repeats):
         for v, vehicle in enumerate(args.vehicles.split(",")):
             # --same-seeds: the vehicle's and the category's places in the full run's lists,
@@ -1151,7 +1178,7 @@ def main(argv=None) -> int:
             for c, cat in enumerate(cats):
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
-                             seed + 100000 * rep + 1000 * v + c, args.duration, modes,
+                             log_seed(seed, rep, v, c), args.duration, modes,
                              args.validation_others, args.truth_maps, args.one_added_mass,
                              args.dof_gains,
                              {**{name: value for name, value in (

@@ -66,8 +66,7 @@ def rows_of(job, variant: str, with_oracle: bool = False) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    from benchmarks.diagnose_independent import VEHICLES, _progress
-    from validation.independent import OUTSIDE, STRENGTHS
+    from benchmarks.diagnose_independent import VEHICLES, _progress, log_seed, run_categories
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seed", type=int, required=True)
@@ -80,10 +79,10 @@ def main(argv=None) -> int:
     ap.add_argument("--oracle", action="store_true",
                     help="also the truth's detectability and cut (validation.detectability)")
     args = ap.parse_args(argv)
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     cats = args.categories.split(",") if args.categories else every
     jobs = [(vehicle, None if cat == "clean" else cat,
-             args.seed + 100000 * rep + 1000 * v + c, args.duration, ("all",), "each")
+             log_seed(args.seed, rep, v, c), args.duration, ("all",), "each")
             for rep in range(args.repeats) for v, vehicle in enumerate(args.vehicles.split(","))
             for c, cat in enumerate(cats)]
     if args.only_seeds:

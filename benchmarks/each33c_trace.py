@@ -35,13 +35,11 @@ VEHICLES = ("videoray_pro3", "bluerov2_heavy")
 
 def log_of(seed: int, base: int = 29112026) -> tuple[str, str | None]:
     """``(vehicle, category)`` of a log seed of ``benchmarks.diagnose_independent``'s run
-    from ``base`` (seed = base + 100000 repeat + 1000 vehicle + category index)."""
-    from validation.independent import OUTSIDE, STRENGTHS
+    from ``base`` (:func:`benchmarks.diagnose_independent.log_of`)."""
+    from benchmarks.diagnose_independent import log_of as run_log
 
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
-    off = (seed - base) % 100000
-    cat = every[off % 1000]
-    return VEHICLES[off // 1000], (None if cat == "clean" else cat)
+    vehicle, cat, _ = run_log(base, seed)
+    return vehicle, (None if cat == "clean" else cat)
 
 
 def trace(seed: int, others: str = "each", options: dict | None = None) -> dict:

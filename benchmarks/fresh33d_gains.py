@@ -67,9 +67,7 @@ def one(vehicle: str, category: str | None, seed: int, duration: float = 300.0) 
 
 
 def main(argv=None) -> int:
-    from validation.independent import OUTSIDE, STRENGTHS
-
-    from benchmarks.diagnose_independent import VEHICLES
+    from benchmarks.diagnose_independent import VEHICLES, log_seed, run_categories
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, required=True)
     ap.add_argument("--vehicles", default=",".join(VEHICLES))
@@ -77,7 +75,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--duration", type=float, default=300.0)
     args = ap.parse_args(argv)
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     cats = args.categories.split(",") if args.categories else every
     for rep in range(args.repeats):
         for v, vehicle in enumerate(VEHICLES):
@@ -85,7 +83,7 @@ def main(argv=None) -> int:
                 continue
             for cat in cats:
                 # the seeding of benchmarks.diagnose_independent (a run of every category)
-                seed = args.seed + 100000 * rep + 1000 * v + every.index(cat)
+                seed = log_seed(args.seed, rep, v, every.index(cat))
                 t0 = time.process_time()
                 line = one(vehicle, None if cat == "clean" else cat, seed, args.duration)
                 print(f"{line} [{time.process_time() - t0:.1f} s CPU]", flush=True)

@@ -80,9 +80,8 @@ def one(vehicle: str, category: str | None, seed: int, duration: float) -> dict:
 
 
 def main(argv=None) -> int:
-    from benchmarks.diagnose_independent import VEHICLES
+    from benchmarks.diagnose_independent import VEHICLES, log_seed, run_categories
     from benchmarks.fresh_compare import row_failures
-    from validation.independent import OUTSIDE, STRENGTHS
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, required=True)
@@ -93,7 +92,7 @@ def main(argv=None) -> int:
     ap.add_argument("--only-seeds", default=None)
     ap.add_argument("--rows-out", default=None)
     args = ap.parse_args(argv)
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     cats = args.categories.split(",") if args.categories else every
     keep = None if not args.only_seeds else {int(x) for x in args.only_seeds.split(",")}
     files = ({n: open(f"{args.rows_out}_{n}.txt", "w", encoding="utf-8") for n in VARIANTS}
@@ -103,7 +102,7 @@ def main(argv=None) -> int:
             for vehicle in args.vehicles.split(","):
                 v = VEHICLES.index(vehicle)    # the full run's seeding
                 for cat in cats:
-                    seed = args.seed + 100000 * rep + 1000 * v + every.index(cat)
+                    seed = log_seed(args.seed, rep, v, every.index(cat))
                     if keep is not None and seed not in keep:
                         continue
                     got = one(vehicle, None if cat == "clean" else cat, seed, args.duration)

@@ -26,18 +26,15 @@ import warnings
 
 def links(seed: int, log_seed: int, duration: float) -> dict:
     """The log's vehicle, category and the gains' ``links`` record (or None)."""
-    from benchmarks.diagnose_independent import VEHICLES, _prior
+    from benchmarks.diagnose_independent import _prior, log_of
     from stripcoef.diagnose.gains import fit_thruster_gains
     from stripcoef.diagnose.heldout import split
     from stripcoef.diagnose.select import select_dofs
     from stripcoef.diagnose.settings import VALIDATION_FRACTION, DiagnoseSettings
     from stripcoef.effects.laws import model_window_data
-    from validation.independent import OUTSIDE, STRENGTHS, generate
+    from validation.independent import generate
 
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
-    rep, rest = divmod(log_seed - seed, 100000)
-    v, c = divmod(rest, 1000)
-    vehicle, category = VEHICLES[v], every[c]
+    vehicle, category, _ = log_of(seed, log_seed)
     prior = _prior(vehicle)
     settings = DiagnoseSettings(linked_gains="identified")
     with warnings.catch_warnings():

@@ -161,7 +161,7 @@ def summarise(rows: list[dict], variant: str = "one_added_mass") -> str:
 
 
 def main(argv=None) -> int:
-    from validation.independent import OUTSIDE, STRENGTHS
+    from benchmarks.diagnose_independent import log_seed, run_categories
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=None)
@@ -191,13 +191,13 @@ def main(argv=None) -> int:
         print(summarise(rows, args.variant))
         return 0
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
-    every = list(STRENGTHS) + ["clean"] + list(OUTSIDE)
+    every = run_categories()
     jobs = []
     for rep in range(args.repeats):
         for v, vehicle in enumerate(args.vehicles.split(",")):
             for cat in args.categories.split(","):
                 # diagnose_independent --same-seeds: a log seeded as a run of every category
-                s = seed + 100000 * rep + 1000 * v + every.index(cat)
+                s = log_seed(seed, rep, v, every.index(cat))
                 if args.only and f"{vehicle}:{cat}:{s}" not in args.only.split(","):
                     continue
                 jobs.append((vehicle, None if cat == "clean" else cat, s, args.duration,

@@ -59,3 +59,22 @@ def test_thrusters_of_one_factor_carry_no_asymmetry_and_their_factor_as_gain():
         assert gain["truth"] == pytest.approx(0.1, abs=1e-9)
         assert gain["has"]
     assert np.isfinite(got["surge"][0]["fitted"])
+
+
+def test_a_log_seed_names_its_vehicle_category_and_repeat():
+    """The run's seeding (``log_seed``) and its inverse (``log_of``): every log of a full
+    run maps back to the vehicle, category and repeat it was drawn for, and a seed no log
+    of the run has is refused. The stored traces name logs by these seeds (e.g. 1795940009,
+    the BlueROV2 clean log of base 1795938998's first repeat)."""
+    from benchmarks.diagnose_independent import VEHICLES, log_of, log_seed, run_categories
+
+    cats = run_categories()
+    base = 1795938998
+    for rep in range(2):
+        for v, vehicle in enumerate(VEHICLES):
+            for c, cat in enumerate(cats):
+                assert log_of(base, log_seed(base, rep, v, c)) == (vehicle, cat, rep)
+    assert log_of(base, 1795940009) == ("bluerov2_heavy", "clean", 0)
+    for bad in (base - 1, base + 2 * 1000, base + len(cats)):
+        with pytest.raises(ValueError, match="is not a log of base seed"):
+            log_of(base, bad)
