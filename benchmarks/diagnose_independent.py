@@ -312,6 +312,11 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             row["written_magnitude"] = float(wm)
             row["written_magnitude_truth"] = float(held)
             row["written_magnitude_error"] = abs(abs(wm) - abs(held)) / abs(held)
+            # the naming step's own value (as selected, before the later steps' refits and
+            # the validation), against the same reference as the row's estimate
+            sel = get_effect(category).magnitude(match[0].get("selected_parameters")
+                                                 or match[0]["parameters"])
+            row["selected_magnitude_error"] = abs(abs(sel) - abs(ref)) / abs(ref)
     return row
 
 
@@ -876,7 +881,9 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
                  f"by the written model, not removed by its validation: {mag_written[0]}/{total}"
                  f", the written model's own magnitude within 15 % where the row has it, "
                  f"{sum('written_magnitude_error' in r for r in rows if r['category'] in STRENGTHS)}"
-                 f" rows)"
+                 f" rows; the naming step's value as selected within 15 %: "
+                 f"{sum(r.get('selected_magnitude_error', np.inf) <= 0.15 for r in rows)} of "
+                 f"the {sum('selected_magnitude_error' in r for r in rows)} rows that have it)"
                  + (f" (named with the value not determined by one DOF, no magnitude "
                     f"claimed: {mag_all[1]}, counted as named first and not as within 15 %; "
                     f"of the {total - mag_all[1]} claimed: {mag_all[0]} within)"

@@ -19,9 +19,20 @@ keyword arguments, e.g. the six whole-log options) and prints, for the effect's 
   written effect's own parameter (its DOF's entry or the thrusters' one shared entry); 0
   when the written model holds none.
 
+``--rescore ROWS[,ROWS...] [--traces TRACES[,...]]`` diagnoses nothing: it counts the
+stored rows' "held by the written model" again by the written model's own magnitude
+(:func:`benchmarks.written_units.held`). A row of a step the validation kept holds its
+value; a removed step's written magnitude is read from the row where the row determines it
+(:func:`from_row`: a removed thrust scale leaves the DOF's kept scales, a removed force,
+timing or thruster effect nothing), and from a trace of the same log, mode and options
+where the calibration can carry it (:data:`benchmarks.written_units.CALIBRATED`). It prints,
+per file, the count by the step's ``kept`` and by the written model, and every row whose
+step is within 15 % but not kept.
+
 Usage:
     python -m benchmarks.mag33g_trace --rows VEHICLE:CATEGORY:SEED:MODE[,...]
         [--duration 300] [--options six]
+    python -m benchmarks.mag33g_trace --rescore ROWS[,ROWS...] [--traces TRACES[,...]]
 """
 
 from __future__ import annotations
@@ -49,9 +60,49 @@ SIX = {"validation_others": "each", "validation_horizon": "correlation",
 _PRIORS: dict = {}
 
 
+def put_back_errors(log, prior, res, category: str, dof_name: str, options: dict) -> dict:
+    """The validation's free-simulation RMS errors per DOF [m/s or rad/s] of the written
+    changes (``written``: every change the validation kept) and of the same with the removed
+    step ``category`` of DOF ``dof_name`` put back (``put_back``; the DOF's calibration
+    refitted with it, :func:`stripcoef.diagnose.calibrate.calibrated_model`), on the
+    diagnosis's validation part with its horizons and logged DOFs (the validation's own
+    :func:`stripcoef.diagnose.horizon.dof_losses`). For a diagnosis without applied
+    whole-log gains only (its changes are then the prior's)."""
+    from stripcoef.conventions import DOF
+    from stripcoef.diagnose.calibrate import calibrated_model
+    from stripcoef.diagnose.heldout import split
+    from stripcoef.diagnose.horizon import dof_losses, rms
+    from stripcoef.diagnose.settings import VALIDATION_FRACTION, DiagnoseSettings
+    from stripcoef.diagnose.validate import partners
+    from stripcoef.diagnose.calibrate import _changes
+
+    settings = DiagnoseSettings(**{k: v for k, v in options.items()
+                                   if k in DiagnoseSettings.__dataclass_fields__})
+    _, val_log = split(log, VALIDATION_FRACTION, key="validation")
+    dofs = [DOF.index(d) if isinstance(d, str) else int(d) for d in res.diagnosed]
+    removed = set((res.validation or {}).get("removed") or ())
+    changes = _changes(res.per_dof)
+    excl = {c for c in changes if (c[0] == "calibration" and f"{c[1]} calibration" in removed)
+            or (c[0] == "effect" and not next(s.kept for s in res.per_dof[c[1]].steps
+                                              if s.effect == c[2]))}
+    target = ("effect", dof_name, category)
+    back = partners(excl - {target}, changes)
+    horizon = settings.validation_horizons(val_log, dofs)
+    logged = settings.logged_dofs(dofs)
+    out = {}
+    for name, ex in (("written", excl), ("put_back", back)):
+        model = calibrated_model(prior, res.per_dof, res.fits, frozenset(ex))
+        e = rms(dof_losses(val_log, model, dofs, logged=logged, horizon=horizon))
+        out[name] = {DOF[i]: float(v) for i, v in zip(dofs, e)}
+    out["prior"] = {DOF[i]: float(v) for i, v in zip(dofs, rms(dof_losses(
+        val_log, prior, dofs, logged=logged, horizon=horizon)))}
+    return out
+
+
 def trace(vehicle: str, category: str, seed: int, mode: str, duration: float,
-          options: dict) -> dict:
-    """One log's trace (module docstring): a JSON-able record."""
+          options: dict, put_back: bool = False) -> dict:
+    """One log's trace (module docstring): a JSON-able record (``put_back``: with
+    :func:`put_back_errors` where the step was removed)."""
     from benchmarks.diagnose_independent import (_prior, held_scales, magnitude_truth,
                                                  written_gain)
     from benchmarks.written_units import written_magnitude
@@ -108,23 +159,105 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float,
         out["selected"] = float(sel)
         out["selected_error"] = abs(abs(sel) - abs(ref)) / abs(ref)
         out["kept"] = kept
+    if put_back and match and not kept and not (d.get("thruster_gains") or {}).get("applied"):
+        out["put_back"] = put_back_errors(log, prior, res, category, dof_name, options)
     wm = written_magnitude(res.model, prior, category, dof_name)
     out["written_magnitude"] = wm
     out["written_error"] = abs(abs(wm) - abs(ref_written)) / abs(ref_written)
     return out
 
 
+def from_row(row: dict) -> dict | None:
+    """``row`` (a stored row of ``benchmarks.diagnose_independent``, converted to the written
+    model's units) with ``written_magnitude`` and ``written_magnitude_error`` where the row
+    alone determines them (module docstring); None where a trace is needed (a removed step
+    of :data:`benchmarks.written_units.CALIBRATED`) or no magnitude is claimed."""
+    from benchmarks.diagnose_independent import held_scales
+    from benchmarks.written_units import CALIBRATED
+    if "estimate" not in row or "written_magnitude_error" in row:
+        return row if "written_magnitude_error" in row else None
+    if row.get("magnitude_written", True):
+        return {**row, "written_magnitude": row["estimate"],
+                "written_magnitude_error": row["magnitude_error"]}
+    if row["category"] in CALIBRATED:
+        return None
+    steps = (row.get("step_detail") or {}).get(row["dof"], [])
+    # a removed thrust scale: the written model holds the DOF's kept scales (its reference,
+    # g / g_w, has no scale in it); any other removed effect: nothing
+    wm = held_scales(steps, True) if row["category"] == "thrust_effectiveness" else 0.0
+    ref = float(row["magnitude_truth"])
+    return {**row, "written_magnitude": wm,
+            "written_magnitude_error": abs(abs(wm) - abs(ref)) / abs(ref)}
+
+
+def rescore(rows: list[dict], traces: list[dict]) -> tuple[list[dict], list[dict]]:
+    """``(rows, gap)``: ``rows`` with the written model's magnitude where known
+    (:func:`from_row`, else the trace of the same vehicle, category, seed and mode), and the
+    rows whose step is within 15 % and not kept, each with its ``written_magnitude`` (None
+    when neither gives it)."""
+    by = {(t["vehicle"], t["category"], t["seed"], t["mode"]): t for t in traces}
+    out, gap = [], []
+    for r in rows:
+        got = from_row(r)
+        t = by.get((r["vehicle"], r["category"], r["seed"], r["mode"]))
+        if got is None and t is not None and "estimate" in r:
+            got = {**r, "written_magnitude": t["written_magnitude"],
+                   "written_magnitude_error": t["written_error"]}
+        got = got or r
+        out.append(got)
+        if r.get("magnitude_error", np.inf) <= 0.15 and not r.get("magnitude_written", True):
+            gap.append(got)
+    return out, gap
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rows", required=True, help="VEHICLE:CATEGORY:SEED:MODE[,...]")
+    ap.add_argument("--rows", default=None, help="VEHICLE:CATEGORY:SEED:MODE[,...]")
+    ap.add_argument("--rescore", default=None,
+                    help="comma-separated outputs of benchmarks.diagnose_independent")
+    ap.add_argument("--traces", default=None,
+                    help="comma-separated outputs of this module (their 'trace' lines)")
     ap.add_argument("--duration", type=float, default=300.0)
     ap.add_argument("--options", default="default", choices=("default", "six"),
                     help="'six': the six whole-log options (SIX)")
+    ap.add_argument("--put-back", action="store_true",
+                    help="also the validation errors with the removed step put back "
+                         "(put_back_errors)")
     args = ap.parse_args(argv)
     options = SIX if args.options == "six" else {}
+    if args.rescore:
+        from benchmarks.diagnose_independent import converted_rows
+        from benchmarks.written_units import held
+        from stripcoef.files import read_text
+
+        def lines(paths, mark):
+            return [json.loads(line.split(mark, 1)[1]) for path in (paths or "").split(",")
+                    if path for line in read_text(path, kind="benchmark output").splitlines()
+                    if mark in line]
+        traces = lines(args.traces, "trace ")
+        for path in args.rescore.split(","):
+            rows, gap = rescore(converted_rows(lines(path, " row ")), traces)
+            lib = [r for r in rows if "magnitude_truth" in r or r.get("magnitude_not_claimed")
+                   or r["category"] not in ("clean", "coulomb_friction")]
+            old = sum(r.get("magnitude_error", np.inf) <= 0.15
+                      and r.get("magnitude_written", True) for r in lib)
+            print(f"{path}: within 15 % {sum(r.get('magnitude_error', np.inf) <= 0.15 for r in lib)}"
+                  f"; held by the written model: by the step kept {old}, by the written "
+                  f"model's magnitude {sum(held(r) for r in lib)} ({len(gap)} rows within 15 % "
+                  f"and not kept, {sum(g.get('written_magnitude') is None for g in gap)} "
+                  f"without a written magnitude)")
+            for g in gap:
+                wm = g.get("written_magnitude")
+                print(f"  {g['vehicle']} {g['category']} {g['seed']} {g['mode']}: step "
+                      f"{g['estimate']:+.4g} ({100 * g['magnitude_error']:.1f} %), written "
+                      + ("?" if wm is None else
+                         f"{wm:+.4g} ({100 * g['written_magnitude_error']:.1f} %)"))
+        return 0
+    if not args.rows:
+        ap.error("--rows or --rescore")
     for spec in args.rows.split(","):
         vehicle, category, seed, mode = spec.split(":")
-        got = trace(vehicle, category, int(seed), mode, args.duration, options)
+        got = trace(vehicle, category, int(seed), mode, args.duration, options, args.put_back)
         print("trace " + json.dumps(got, default=float), flush=True)
         print(f"  {vehicle} {category} {seed} {mode} ({args.options}): "
               f"estimate {got.get('estimate', np.nan):+.4g} (selected "

@@ -37,6 +37,8 @@ from __future__ import annotations
 import argparse
 import json
 
+import numpy as np
+
 #: The effects a diagnosis's calibration can also carry: the DOF's inertia (its ``M``) and
 #: its linear drag (``D_L``); the written model may hold such an effect's change when the
 #: validation removed its step (:func:`written_magnitude`)
@@ -54,6 +56,9 @@ def written_magnitude(written, prior, category: str, dof_name: str) -> float | N
     - linear drag: :math:`D_{L,ii}^{written} - D_{L,ii}^{prior}` [N s/m or N m s/rad];
     - thrust effectiveness: the product of the written ``thrust_effectiveness`` scales of
       the DOF (:func:`stripcoef.diagnose.written.thrust_scale`), 1 without one [-];
+    - dead band: the mean change of the dead band of the thrusters acting in the DOF [command
+      units] (a thruster's property: a dead band named in another DOF that shares them is
+      written on them too);
     - buoyancy offset: the written net weight's change :math:`(W - B)^{written} -
       (W - B)^{prior}` plus a written ``buoyancy_offset`` entry's own value [N] (Fossen
       2011 eq. 4.6 at small angles);
@@ -76,6 +81,14 @@ def written_magnitude(written, prior, category: str, dof_name: str) -> float | N
         return float(written.linear_damping[i, i] - prior.linear_damping[i, i])
     if category == "thrust_effectiveness":
         return float(thrust_scale(written, dof_name))
+    if category == "deadband":
+        # a thruster's property: the mean dead band of the thrusters acting in the DOF, which
+        # a dead band named in another DOF sharing them writes too (Deadband.apply: each
+        # acting thruster's the larger of its own and the step's)
+        b = written.allocation()[i]
+        act = [th.deadband for k, th in enumerate(written.thrusters) if abs(b[k]) > 1e-9]
+        before = [th.deadband for k, th in enumerate(prior.thrusters) if abs(b[k]) > 1e-9]
+        return float(np.mean(act) - np.mean(before)) if act else 0.0
     eff = get_effect(category)
     effects = written_effects(written, dof_name)
     entries = [e for e in written.effects if isinstance(e, dict)
