@@ -69,8 +69,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     that is not written would be a silent wrong answer, issue 33); the effects kept after
     another one is removed are refitted without it
     (:func:`stripcoef.diagnose.calibrate.written_fit`). The thrusters' shared timing
-    (:func:`stripcoef.diagnose.calibrate.share_timing`) is one change in all its DOFs; so is
-    a dead band named in several DOFs (:data:`THRUSTER_PROPERTIES`).
+    (:func:`stripcoef.diagnose.calibrate.share_timing`) is one change in all its DOFs.
 
     Then, per DOF: the summed score can keep a change that makes its own DOF worse because
     it helps the others through the coupling terms (the issue-33 current log: a surge
@@ -395,32 +394,16 @@ def _admitted_beside(c, out, changes) -> bool:
     return b in out and b in changes and changes.index(b) < changes.index(c)
 
 
-#: Effects that are a property of the thrusters, written on every thruster acting in the
-#: DOF that names them (:meth:`stripcoef.effects.thrust.Deadband.apply`: each thruster's dead
-#: band the larger of its own and the step's; Yoerger, Cooke & Slotine 1990: the dead zone
-#: of a thruster's command). Named in several DOFs, their copies write the same thrusters:
-#: one change, kept or removed in all its DOFs at once as the thrusters' shared timing is
-#: (:func:`_shared`). Issue 33 (mag33g): removed one DOF at a time, each copy is judged
-#: where another still holds the thrusters' dead band, and the last on a DOF that does not
-#: need it -- BlueROV2-like log 1795949665, the right dead band (0.3 % off) named in surge,
-#: sway and yaw, all three removed, the surge validation error 0.0149 without it against
-#: 0.0125 with every change (benchmarks/data/mag33g_trace.md).
-THRUSTER_PROPERTIES = ("deadband",)
-
-
 def _shared(changes) -> set:
-    """The effects of :data:`~stripcoef.diagnose.calibrate.SHARED_EFFECTS` and
-    :data:`THRUSTER_PROPERTIES` that are one change of several DOFs in ``changes``: the
-    thrusters' timing always, the current when more than one DOF holds it
-    (:func:`stripcoef.diagnose.current.share_current`; a one-DOF diagnosis's current is that
-    DOF's, and goes with its calibration), a dead band when more than one DOF holds it (the
-    thrusters' one property; in one DOF it goes with the DOF's calibration)."""
+    """The effects of :data:`~stripcoef.diagnose.calibrate.SHARED_EFFECTS` that are one
+    change of several DOFs in ``changes``: the thrusters' timing always, the current when
+    more than one DOF holds it (:func:`stripcoef.diagnose.current.share_current`; a
+    one-DOF diagnosis's current is that DOF's, and goes with its calibration)."""
     count = {}
     for c in changes:
         if c[0] == "effect":
             count[c[2]] = count.get(c[2], 0) + 1
-    return set(SHARED_TIMING) | {e for e in SHARED_EFFECTS + THRUSTER_PROPERTIES
-                                 if count.get(e, 0) > 1}
+    return set(SHARED_TIMING) | {e for e in SHARED_EFFECTS if count.get(e, 0) > 1}
 
 
 def _named(errors, dofs):
