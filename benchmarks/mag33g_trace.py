@@ -23,8 +23,9 @@ keyword arguments, e.g. the six whole-log options) and prints, for the effect's 
 stored rows' "held by the written model" again by the written model's own magnitude
 (:func:`benchmarks.written_units.held`). A row of a step the validation kept holds its
 value; a removed step's written magnitude is read from the row where the row determines it
-(:func:`from_row`: a removed thrust scale leaves the DOF's kept scales, a removed force,
-timing or thruster effect nothing), and from a trace of the same log, mode and options
+(:func:`from_row`: a removed thrust scale leaves the DOF's kept scales, a removed dead band
+the dead band other DOFs' kept steps wrote on the DOF's thrusters, :func:`row_deadband`, a
+removed force, timing or thruster effect nothing), and from a trace of the same log, mode and options
 where the calibration can carry it (:data:`benchmarks.written_units.CALIBRATED`). It prints,
 per file, the count by the step's ``kept`` and by the written model, and every row whose
 step is within 15 % but not kept.
@@ -167,6 +168,31 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float,
     return out
 
 
+def row_deadband(row: dict) -> float:
+    """The dead band the written model of a stored row holds in the row's DOF [command
+    units], from the row's kept dead-band steps in every DOF (``step_detail``): each
+    thruster's the largest of the kept steps of the DOFs it acts in
+    (:meth:`stripcoef.effects.thrust.Deadband.apply`), their mean over the thrusters acting
+    in the row's DOF (:func:`benchmarks.written_units.written_magnitude`'s rule), on the
+    prior's allocation (the prior has no dead band)."""
+    from benchmarks.diagnose_independent import _prior
+    from stripcoef.conventions import parse_dof
+    prior = _PRIORS.get(row["vehicle"])
+    if prior is None:
+        prior = _PRIORS[row["vehicle"]] = _prior(row["vehicle"])
+    b = prior.allocation()
+    band = np.zeros(len(prior.thrusters))
+    for d, steps in (row.get("step_detail") or {}).items():
+        for st in steps:
+            if st["effect"] == "deadband" and st["kept"]:
+                i = parse_dof(d)
+                for k in range(len(band)):
+                    if abs(b[i, k]) > 1e-9:
+                        band[k] = max(band[k], st["parameters"]["deadband"])
+    act = [k for k in range(len(band)) if abs(b[parse_dof(row["dof"]), k]) > 1e-9]
+    return float(np.mean(band[act])) if act else 0.0
+
+
 def from_row(row: dict) -> dict | None:
     """``row`` (a stored row of ``benchmarks.diagnose_independent``, converted to the written
     model's units) with ``written_magnitude`` and ``written_magnitude_error`` where the row
@@ -176,6 +202,11 @@ def from_row(row: dict) -> dict | None:
     from benchmarks.written_units import CALIBRATED
     if "estimate" not in row or "written_magnitude_error" in row:
         return row if "written_magnitude_error" in row else None
+    if row["category"] == "deadband":
+        wm = row_deadband(row)
+        ref = float(row["magnitude_truth"])
+        return {**row, "written_magnitude": wm,
+                "written_magnitude_error": abs(abs(wm) - abs(ref)) / abs(ref)}
     if row.get("magnitude_written", True):
         return {**row, "written_magnitude": row["estimate"],
                 "written_magnitude_error": row["magnitude_error"]}
