@@ -305,7 +305,7 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             # what the written model itself holds of the effect, whichever change wrote it
             # (a removed added-mass step's inertia may be the calibration's; mag33g), against
             # the truth at the thrust scales the written model holds
-            from benchmarks.written_units import written_magnitude
+            from benchmarks.written_held import written_magnitude
             held = magnitude_truth(truth, prior.to_dict(), category, dof_name,
                                    held_scales(steps, True), g_w)
             wm = written_magnitude(diagnosis.model, prior, category, dof_name)
@@ -798,7 +798,7 @@ def spurious_steps(rows: list[dict], rule: str = "truth") -> list[str]:
 
 
 def summarise(rows: list[dict], seed: int, duration: float) -> str:
-    from benchmarks.written_units import held as held_in_written
+    from benchmarks.written_held import held as held_in_written
     from validation.independent import OUTSIDE, STRENGTHS
 
     n_logs = len({(r["vehicle"], r["category"], r["seed"]) for r in rows})

@@ -14,19 +14,19 @@ keyword arguments, e.g. the six whole-log options) and prints, for the effect's 
   change, of the kept changes and of the better trivial predictor;
 - the benchmark's magnitude (:func:`benchmarks.diagnose_independent.magnitude_truth`, the
   truth in the written model's units) and the effect's magnitude in the written model
-  itself (:func:`benchmarks.written_units.written_magnitude`): the written model's change of the coefficient the
+  itself (:func:`benchmarks.written_held.written_magnitude`): the written model's change of the coefficient the
   effect changes (the inertia, the linear drag, the restoring force, the thrust), or the
   written effect's own parameter (its DOF's entry or the thrusters' one shared entry); 0
   when the written model holds none.
 
 ``--rescore ROWS[,ROWS...] [--traces TRACES[,...]]`` diagnoses nothing: it counts the
 stored rows' "held by the written model" again by the written model's own magnitude
-(:func:`benchmarks.written_units.held`). A row of a step the validation kept holds its
+(:func:`benchmarks.written_held.held`). A row of a step the validation kept holds its
 value; a removed step's written magnitude is read from the row where the row determines it
 (:func:`from_row`: a removed thrust scale leaves the DOF's kept scales, a removed dead band
 the dead band other DOFs' kept steps wrote on the DOF's thrusters, :func:`row_deadband`, a
 removed force, timing or thruster effect nothing), and from a trace of the same log, mode and options
-where the calibration can carry it (:data:`benchmarks.written_units.CALIBRATED`). It prints,
+where the calibration can carry it (:data:`benchmarks.written_held.CALIBRATED`). It prints,
 per file, the count by the step's ``kept`` and by the written model, and every row whose
 step is within 15 % but not kept.
 
@@ -106,7 +106,7 @@ def trace(vehicle: str, category: str, seed: int, mode: str, duration: float,
     :func:`put_back_errors` where the step was removed)."""
     from benchmarks.diagnose_independent import (_prior, held_scales, magnitude_truth,
                                                  written_gain)
-    from benchmarks.written_units import written_magnitude
+    from benchmarks.written_held import written_magnitude
     from stripcoef.diagnose.pipeline import diagnose
     from stripcoef.effects import get_effect
     from validation.independent import STRENGTHS, generate
@@ -173,7 +173,7 @@ def row_deadband(row: dict) -> float:
     units], from the row's kept dead-band steps in every DOF (``step_detail``): each
     thruster's the largest of the kept steps of the DOFs it acts in
     (:meth:`stripcoef.effects.thrust.Deadband.apply`), their mean over the thrusters acting
-    in the row's DOF (:func:`benchmarks.written_units.written_magnitude`'s rule), on the
+    in the row's DOF (:func:`benchmarks.written_held.written_magnitude`'s rule), on the
     prior's allocation (the prior has no dead band)."""
     from benchmarks.diagnose_independent import _prior
     from stripcoef.conventions import parse_dof
@@ -197,9 +197,9 @@ def from_row(row: dict) -> dict | None:
     """``row`` (a stored row of ``benchmarks.diagnose_independent``, converted to the written
     model's units) with ``written_magnitude`` and ``written_magnitude_error`` where the row
     alone determines them (module docstring); None where a trace is needed (a removed step
-    of :data:`benchmarks.written_units.CALIBRATED`) or no magnitude is claimed."""
+    of :data:`benchmarks.written_held.CALIBRATED`) or no magnitude is claimed."""
     from benchmarks.diagnose_independent import held_scales
-    from benchmarks.written_units import CALIBRATED
+    from benchmarks.written_held import CALIBRATED
     if "estimate" not in row or "written_magnitude_error" in row:
         return row if "written_magnitude_error" in row else None
     if row["category"] == "deadband":
@@ -258,7 +258,7 @@ def main(argv=None) -> int:
     options = SIX if args.options == "six" else {}
     if args.rescore:
         from benchmarks.diagnose_independent import converted_rows
-        from benchmarks.written_units import held
+        from benchmarks.written_held import held
         from stripcoef.files import read_text
 
         def lines(paths, mark):

@@ -1,5 +1,5 @@
 """Issue 33 (mag33g): the independent benchmark's "held by the written model" is what the
-written model itself holds of the effect (benchmarks.written_units.written_magnitude), not
+written model itself holds of the effect (benchmarks.written_held.written_magnitude), not
 whether the effect's own step was kept: a removed added-mass step whose change the
 calibration wrote is held; a removed thrust scale is not."""
 
@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from benchmarks.written_units import held, written_magnitude
+from benchmarks.written_held import held, written_magnitude
 from validation.independent import GRAVITY
 from validation.synthetic import rov_model
 
