@@ -22,6 +22,10 @@ Scores (issue 33's criteria):
   truth in the row only (``gains_free_error``); apart from it, the right effect named first or in the first step's ambiguous set (a
   thrust scale and an added-mass change the log does not tell apart,
   ``stripcoef.diagnose.scalechoice``; not counted as named first);
+  the magnitude "held by the written model": within 15 % and the written model's own
+  magnitude of the effect within 15 % too (``benchmarks.written_held``: whichever change
+  wrote it, e.g. the calibration's inertia after an added-mass step is removed; a row
+  written before mag33g by its step's ``kept``);
   the error cut at least 3x (baseline / final); in whole-log mode, no step in a DOF the
   effect does not act in (``ACTS_IN``: a thruster effect acts in every DOF the thrusters
   drive), counted for the steps named and for those the validation kept;
