@@ -88,7 +88,9 @@ def put_back_errors(log, prior, res, category: str, dof_name: str, options: dict
                                               if s.effect == c[2]))}
     target = ("effect", dof_name, category)
     back = partners(excl - {target}, changes)
+    from stripcoef.diagnose.heldout import HORIZON
     horizon = settings.validation_horizons(val_log, dofs)
+    horizon = HORIZON if horizon is None else horizon          # as validate_changes does
     logged = settings.logged_dofs(dofs)
     out = {}
     for name, ex in (("written", excl), ("put_back", back)):
