@@ -773,18 +773,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                                                 + 1), solve_planes, about)
             lv = (pv, pf)
         else:
-            lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
-                                         feature_angle=mode)
-        # (the refinement judged in the panels solved, the counts the extrapolation reads: a
-        # mirrored level's caps are not solved; on the Slocum glider's eighth they let a level
-        # of 1.22 times the finest's panels pass as 1.30: benchmarks/data/slocum32s_trace.md)
-        if box is None and (lv is None or _solved_panels(lv, solve_planes, about)
-                            < remesh.LEAST_FACE_RATIO * counts[-1]):
-            # creases hold the face count (thin members): a level grown to Celik et al.'s
-            # r >= 1.3 over the finest, or none (remesh.MIN_REFINEMENT)
-            lv = remesh.grown_level(*src, remesh.edge_for_panels(area, nxt), mode,
-                                    remesh.MIN_FACE_RATIO * len(levels[-1][1]),
-                                    remesh.MAX_FACES)[0]
+            # Celik et al.'s r >= 1.3 over the finest, grown where creases hold the count
+            # (remesh.added_level), judged in the panels solved, the counts the extrapolation
+            # reads (a mirrored level's caps are not solved: benchmarks/data/slocum32s_trace.md)
+            lv = remesh.added_level(*src, remesh.edge_for_panels(area, nxt), mode, counts[-1],
+                                    lambda x: _solved_panels(x, solve_planes, about))
             if lv is None:
                 break
         levels.append(lv)

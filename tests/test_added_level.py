@@ -1,0 +1,67 @@
+"""The panel method's refinement adds a level at Celik et al.'s r >= 1.3 over the finest
+(stripcoef.hull.remesh.added_level; issue 32, frames whose finest pair refined by r = 1.14-1.20)."""
+
+import numpy as np
+import pytest
+
+
+def _box(seed: int):
+    """A seeded box of random sides 0.2-0.6 m (its 12 faces), (vertices, faces, area)."""
+    trimesh = pytest.importorskip("trimesh")
+    rng = np.random.default_rng(seed)
+    box = trimesh.creation.box(extents=rng.uniform(0.2, 0.6, 3))
+    return np.asarray(box.vertices), np.asarray(box.faces), float(box.area)
+
+
+@pytest.mark.parametrize("seed", [3, 32])
+def test_an_added_level_refines_the_finest_by_celiks_ratio(seed):
+    """Where the remesh at the doubled target refines the finest level by only 1.1-1.5 times its
+    panels (the creases of a frame's plates made its finest level overshoot), the added level
+    is grown to at least 1.69 times (r >= 1.3), within the face limit; the former rule
+    (ratio = LEAST_FACE_RATIO) took the short remesh."""
+    pytest.importorskip("pymeshlab")
+    from stripcoef.hull import remesh
+
+    v, f, area = _box(seed)
+    mode = remesh.MODES[0]
+    edge = remesh.edge_for_panels(area, 1600)
+    plain = len(remesh.remesh_isotropic(v, f, edge, feature_angle=mode)[1])
+    finest = plain / np.random.default_rng(seed).uniform(1.3, 1.5)
+    new = remesh.added_level(v, f, edge, mode, finest)
+    assert new is not None
+    assert remesh.MIN_FACE_RATIO * finest <= len(new[1]) <= remesh.MAX_FACES
+    former = remesh.added_level(v, f, edge, mode, finest, ratio=remesh.LEAST_FACE_RATIO)
+    assert len(former[1]) == plain
+    # a remesh that already refines by 1.69: taken as it is
+    same = remesh.added_level(v, f, edge, mode, plain / 1.8)
+    assert len(same[1]) == plain
+
+
+def test_where_celiks_ratio_does_not_fit_the_family_step_is_kept():
+    """No level of 1.69 times the finest fits within the face limit: the remesh at the target
+    is taken where it refines by LEAST_FACE_RATIO, and no level is added where it does not."""
+    pytest.importorskip("pymeshlab")
+    from stripcoef.hull import remesh
+
+    v, f, area = _box(7)
+    mode = remesh.MODES[0]
+    edge = remesh.edge_for_panels(area, 5000)
+    plain = len(remesh.remesh_isotropic(v, f, edge, feature_angle=mode)[1])
+    assert remesh.MIN_FACE_RATIO * plain / 1.3 > remesh.MAX_FACES
+    kept = remesh.added_level(v, f, edge, mode, plain / 1.3)
+    assert kept is not None and len(kept[1]) == plain
+    assert remesh.added_level(v, f, edge, mode, plain / 1.2) is None
+
+
+def test_the_added_level_is_counted_in_the_panels_solved():
+    """``counted`` (the panels a mirrored solve keeps) judges the ratio, not the faces."""
+    pytest.importorskip("pymeshlab")
+    from stripcoef.hull import remesh
+
+    v, f, area = _box(11)
+    mode = remesh.MODES[0]
+    edge = remesh.edge_for_panels(area, 800)
+    plain = len(remesh.remesh_isotropic(v, f, edge, feature_angle=mode)[1])
+    half = remesh.added_level(v, f, edge, mode, plain / 1.8, lambda lv: len(lv[1]) // 2)
+    assert half is not None
+    assert len(half[1]) // 2 >= remesh.MIN_FACE_RATIO * plain / 1.8
