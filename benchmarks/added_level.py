@@ -30,7 +30,7 @@ def estimates(seed: int, count: int, only, ratio=None):
     """Yield (k, dict(model, est, warned, cpu, levels, grown)) of the draw's shapes under the
     added-level ``ratio`` (default: the module's)."""
     from benchmarks.cad_shapes import patched_estimates
-    from stripcoef.hull import remesh
+    from stripcoef.hull import bisection, panels, remesh
 
     real_added, real_grown = remesh.added_level, remesh.grown_level
     state = {"inside": False, "grown": False}
@@ -50,7 +50,11 @@ def estimates(seed: int, count: int, only, ratio=None):
         return real_grown(*a, **kw)
 
     def clear():
+        # (the per-process memo of the panel solves and bisections emptied: the former rule's
+        # re-run would otherwise find the levels it shares with the default solved)
         state["grown"] = False
+        panels._solved_level.cache_clear()
+        bisection._refined.cache_clear()
 
     patches = {(remesh, "added_level"): added, (remesh, "grown_level"): grown}
     for k, _, model, cpu in patched_estimates(seed, count, patches, only=only, before=clear):
