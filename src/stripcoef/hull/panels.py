@@ -541,7 +541,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`:
     a diagonal term's own value, a coupling's :math:`\sqrt{A_{ii} A_{jj}}`) and a level of
     twice the finest panels fits within ``max_panels``, that level is added and the estimate
-    repeated ("refine until converged"; at least four levels where they fit).  Levels whose finest edge is longer than the body's
+    repeated ("refine until converged"; at least four levels where they fit), a remesh of at
+    least Celik et al.'s r >= 1.3 over the finest where it fits (:func:`stripcoef.hull.remesh.
+    added_level`).  Levels whose finest edge is longer than the body's
     :func:`member_thickness` (thin plates and walls) are remeshed without edge flips
     (:func:`remeshed_levels`).
 

@@ -106,8 +106,9 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
-#: Refinement ratio of a level the refinement adds where the family has not converged and
-#: its next level does not refine by :data:`LEAST_FACE_RATIO`, :math:`r = h_{coarse}/h_{fine}`
+#: Refinement ratio of every level the refinement adds over the finest where it fits within
+#: :data:`MAX_FACES` (:func:`added_level`; before, only where the remesh at the doubled target
+#: did not refine by :data:`LEAST_FACE_RATIO`), :math:`r = h_{coarse}/h_{fine}`
 #: [-] (:func:`stripcoef.hull.panels.panel_added_mass`, :func:`grown_level`): Celik et al.
 #: 2008 ("Procedure for estimation and reporting of uncertainty due to discretization in CFD
 #: applications", J. Fluids Eng. 130(7) 078001, step 2: "it is desirable that the grid
