@@ -92,7 +92,7 @@ from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine, split_in_four re-exported)
     bisect_longest, enclosed_volume, refine, split_in_four, surface_area)
-from stripcoef.hull.graded_panels import box_faces, box_level
+from stripcoef.hull.graded_panels import Prism, box_faces, box_level, prism_faces
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
@@ -658,7 +658,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     family_out, thickness = None, float("inf")
     # a box or a plate (a parallelepiped): panels graded towards its edges (graded_panels),
     # with or without the remesher
-    box = box_faces(v, f) if family == "auto" else None
+    box = (box_faces(v, f) or prism_faces(v, f)) if family == "auto" else None
     if box is not None:
         family_out, thickness = (None, None), box_thickness(box)
     if planes and family in ("auto", "remesh") and box is None:
@@ -691,7 +691,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="pip install 'stripcoef[remesh]' (pymeshlab), or the input "
                                   "family")
     if box is not None:
-        used = "graded towards the edges (a box)"
+        used = "graded towards the edges (" + ("a prism)" if isinstance(box, Prism) else "a box)")
     elif levels is None:
         used = "refined/coarsened input"
     elif mode.bisect:
