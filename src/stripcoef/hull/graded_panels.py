@@ -1,4 +1,6 @@
-r"""Panels graded towards the edges of a thin box member (a plate), for the panel method.
+r"""Panels graded towards the edges of a thin box member (a plate) or of a right prism (a
+coarse cylinder, an extruded polygon: the section after :func:`box_level`), for the panel
+method.
 
 A plate of thickness t thinner than the uniform panels' edge h (issue 32: the CAD benchmark's
 plates, t 2-5 % of the span) is a knife edge at the panels' scale: the isotropic remesh keeps
@@ -259,20 +261,24 @@ class Prism:
 #: its remesh) goes to the isotropic remesh, as before.  Not a tuned factor: a bound on the
 #: cost of reading the planes, and every prism of the benchmark families (5-12 sides) is in.
 MOST_PRISM_SIDES = 24
-#: Fewest panels along a prism's edge [-] (even: a mirror plane through a side's middle or
-#: the mid-height is a node line); no box-like floor of :data:`LEAST_NODES`, so that every
-#: count grows with 1/h from the coarsest level and the levels stay one family (with 4 the
-#: short sides of a 12-gon stalled while the rest refined and its roll wandered by 3 %).
+#: Fewest panels along a side of a prism's polygon [-] (even: a mirror plane through a
+#: side's middle is a node line; its longest side takes at least :data:`LEAST_NODES`,
+#: :func:`size_for_panels`); the height, like a box's thickness, at least LEAST_NODES.  No
+#: floor of LEAST_NODES on every side, so that the sides' counts grow with 1/h from the
+#: coarsest level and the levels stay one family (with 4 on every side the short sides of a
+#: 12-gon stalled while the rest refined and its roll wandered by 3 %).
 PRISM_LEAST_NODES = 2
 #: Whether a right prism (other than a box) takes the graded panels (:func:`prism_faces`).
 PRISMS = True
 
 
-def prism_faces(vertices, faces):
+def prism_faces(vertices, faces, most_panels: int | None = None):
     """The :class:`Prism` a closed surface is (a convex polygon of 5 to
     :data:`MOST_PRISM_SIDES` sides extruded normal to its plane, however its caps and sides
-    were triangulated; a box is :func:`box_faces`'), ``None`` for any other body or when
-    :data:`PRISMS` is off."""
+    were triangulated; a box is :func:`box_faces`'), ``None`` for any other body, when
+    :data:`PRISMS` is off, or when its coarsest graded level (:data:`LEAST_NODES` panels on
+    its longest side) has more than ``most_panels`` (the caller's cap on a level: a long
+    many-sided prism, whose facets are short, stays with the isotropic remesh)."""
     from scipy.spatial import ConvexHull, QhullError
 
     if not PRISMS:
@@ -318,7 +324,10 @@ def prism_faces(vertices, faces):
     # every vertex on one of the caps (no point of a side off them: a side is a rectangle)
     if len(on) + len(other_cap) != len(np.unique(np.round(v / (1e-9 * scale)), axis=0)):
         return None
-    return Prism(base, -n, float(height))
+    prism = Prism(base, -n, float(height))
+    if most_panels is not None and _panels_at(prism, size_for_panels(prism, 1)) > most_panels:
+        return None
+    return prism
 
 
 def _prism_counts(prism: Prism, h: float):
@@ -333,8 +342,8 @@ def _prism_counts(prism: Prism, h: float):
     r_max = float(np.max(np.linalg.norm(prism.base - c, axis=1)))
     nr = max(1, int(round(r_max / h)))
     radial = np.sin(0.5 * np.pi * np.arange(nr + 1) / nr)      # uniform at the centre
-    return ([_nodes(s, h, PRISM_LEAST_NODES) for s in sides],
-            _nodes(prism.height, h, PRISM_LEAST_NODES), radial)
+    return ([_nodes(s, h, PRISM_LEAST_NODES) for s in sides], _nodes(prism.height, h),
+            radial)
 
 
 def _tri(p):
