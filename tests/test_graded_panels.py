@@ -219,3 +219,23 @@ def test_a_coarse_cylinder_s_roll_against_its_edge_graded_reference():
     assert info["family"] == "graded towards the edges (a prism)"
     np.testing.assert_allclose(np.diag(a), ref, rtol=0.02)
     assert np.all(a[~np.eye(6, dtype=bool)] == 0.0)
+
+
+def test_the_graded_prism_s_mirrored_solve_is_its_whole_solve():
+    """The eighth of a graded 12-facet cylinder solved with image panels equals the whole
+    panelling solved at once (the panelling is mirror-symmetric: equal sides take equal
+    counts, a plane through a side's middle or the mid-height is a node line): every diagonal
+    term within 0.2 % (measured at most 0.07 %, the axial rotation 0.03 %, on seeds
+    1795948662's cylinder 4 and 1795919297's 14)."""
+    from stripcoef.hull.panels import NEAR_FACTOR, _solve_level
+
+    cyl = trimesh.creation.cylinder(radius=0.15, height=0.2, sections=12)
+    p = G.prism_faces(cyl.vertices, cyl.faces)
+    pv, pf, use, _ = G.box_level(p, 1600, ("x", "y", "z"), (0.0, 0.0, 0.0))
+    assert use == ("x", "y", "z")
+    n1, part = _solve_level(pv, pf, 0.3, RHO, (0.0, 0.0, 0.0), NEAR_FACTOR, use)
+    tri = G.prism_panels(p, G.size_for_panels(p, 1600))
+    n2, whole = _solve_level(tri.reshape(-1, 3), np.arange(3 * len(tri)).reshape(-1, 3), 0.3,
+                             RHO, (0.0, 0.0, 0.0), NEAR_FACTOR, ())
+    assert n1 == n2 == len(tri)
+    np.testing.assert_allclose(np.diag(part), np.diag(whole), rtol=2e-3)
