@@ -39,6 +39,10 @@ DRAWS = (
      "frame 8 heave -5.9 %, roll -8.7 %, pitch -10.0 %, the other three within 5 %"),
     (1795948662, "cad_plates_graded_1795948662.csv", "graded_coarse_1795948662.csv",
      "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced"),
+    (1795960449, "cad_plates_graded_1795960449.csv", "graded_coarse_1795960449.csv",
+     "drawn 2026-11-29 13:55 UTC, run on main 30aebcf before it was traced; fillet box 11's "
+     "pitch, -6.7 % here, is -5.7 % against four finer Capytaine levels "
+     "(reference_tables/bem/cad_levels_fresh55.csv)"),
 )
 
 
