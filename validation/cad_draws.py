@@ -32,7 +32,7 @@ TOL = 0.05
 DRAWS = (
     (1795919297, "cad_plates_graded_1795919297.csv", "graded_coarse_1795919297.csv",
      "drawn 2026-11-28, run as two shards"),
-    (1795939009, "cad_plates_graded_1795939009.csv", None,
+    (1795939009, "cad_plates_graded_1795939009.csv", "graded_coarse_1795939009.csv",
      "drawn 2026-11-29 07:56 UTC, run on main 9064094 before it was traced; 36 of 40 shapes: "
      "frames 8, 12, 22 and 37 exceeded the BEM's cap then and were solved apart "
      "(benchmarks.frame32d_reference, reference_tables/bem/cad_frames_levels_frame32d.csv), "
