@@ -122,10 +122,17 @@ def table(texts: dict) -> str:
 def pair_table(pairs: dict) -> str:
     """The markdown table of the criteria for pairs of runs ``{label: (base text, other
     text)}`` (two configurations of one seed, e.g. the default and an option): per pair,
-    ``k_base -> k_other of n`` and the two Wilson intervals. A criterion either side lacks is
-    left out; two totals that differ are both shown."""
-    labels = list(pairs)
+    ``k_base -> k_other of n`` and the two Wilson intervals; with several pairs, a last column
+    ``pooled``: the counts and totals summed over the pairs (the seeds' logs are independent
+    draws). A criterion either side lacks is left out; two totals that differ are both shown."""
     runs = {label: (counts(a), counts(b)) for label, (a, b) in pairs.items()}
+    if len(runs) > 1:
+        both = [name for name, _, _, _ in CRITERIA
+                if all(name in a and name in b for a, b in runs.values())]
+        runs["pooled"] = tuple(
+            {name: tuple(sum(runs[label][side][name][j] for label in pairs) for j in (0, 1))
+             for name in both} for side in (0, 1))
+    labels = list(runs)
     lines = ["| criterion | issue's bar | " + " | ".join(
         f"{label}: base -> other (Wilson 95 %)" for label in labels) + " |",
         "| --- | --- | " + " | ".join("---" for _ in labels) + " |"]

@@ -84,3 +84,12 @@ def test_pairs_need_an_even_number_of_files(tmp_path, capsys):
     assert "even number of files, got 1" in capsys.readouterr().out
     assert main(["--pairs", f"one={path}", str(path)]) == 0
     assert "| one: base -> other (Wilson 95 %) |" in capsys.readouterr().out
+
+
+def test_pair_table_pools_the_seeds():
+    from benchmarks.fresh_compare import pair_table
+    better = SUMMARY.replace("error cut >= 3x: 55/88", "error cut >= 3x: 70/88")
+    text = pair_table({"seed 1": (SUMMARY, better), "seed 2": (SUMMARY, SUMMARY)})
+    row = next(line for line in text.splitlines() if line.startswith("| error cut >= 3x |"))
+    # pooled: 55 + 55 -> 70 + 55 of 176
+    assert row.endswith("| 110 -> 125 of 176 (55-69 % -> 64-77 %) |")
