@@ -12,11 +12,12 @@ vehicle's model. A count, not a model change: benchmarks/data/fresh33g_compare.m
 ``--run BASE:SEED[,BASE:SEED...]``: the oracle of a rule not adopted. Each log (a log seed of the
 benchmark's base seed BASE) is diagnosed whole-log as ``benchmarks.diagnose_independent`` does
 (its ``run_one``, the default options), with the dead band one change of every DOF that holds
-it in the validation (:func:`one_deadband`: :func:`stripcoef.diagnose.validate._shared` also
+it in the validation (:func:`one_change`: :func:`stripcoef.diagnose.validate._shared` also
 returns ``deadband`` when more than one DOF holds it, as it does for the current; removed in
 all its DOFs when removed in one, and not removed with a DOF's calibration, refitted without
 it), inside the run only; its ``row`` lines are printed for ``--from-rows`` and
-``fresh_compare --rows``.
+``fresh_compare --rows``. ``--effect thrust_effectiveness``: the same oracle for the thrust
+scale (one change of every DOF that names one).
 """
 from __future__ import annotations
 
@@ -30,15 +31,16 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 
 @contextlib.contextmanager
-def one_deadband():
-    """``stripcoef.diagnose.validate._shared`` with ``deadband`` among the effects that are
-    one change of several DOFs (module docstring), inside the block only."""
+def one_change(effect: str = "deadband"):
+    """``stripcoef.diagnose.validate._shared`` with ``effect`` (a thruster effect: the dead
+    band, or the thrust effectiveness of section 2.6) among the effects that are one change
+    of several DOFs (module docstring), inside the block only."""
     from stripcoef.diagnose import validate
     original = validate._shared
 
     def shared(changes):
-        n = sum(1 for c in changes if c[0] == "effect" and c[2] == "deadband")
-        return original(changes) | ({"deadband"} if n > 1 else set())
+        n = sum(1 for c in changes if c[0] == "effect" and c[2] == effect)
+        return original(changes) | ({effect} if n > 1 else set())
 
     validate._shared = shared
     try:
@@ -90,6 +92,9 @@ def main(argv=None) -> int:
     ap.add_argument("--run", default="",
                     help="BASE:SEED[,...]: diagnose these logs whole-log with one dead band "
                          "change (the oracle; module docstring) and print their rows")
+    ap.add_argument("--effect", default="deadband",
+                    help="with --run: the effect made one change (deadband, "
+                         "thrust_effectiveness)")
     ap.add_argument("--category", default="deadband",
                     help="only rows of this category ('any': every row that names a dead band)")
     args = ap.parse_args(argv)
@@ -101,7 +106,7 @@ def main(argv=None) -> int:
             base, seed = (int(x) for x in spec.split(":"))
             vehicle, category, _ = log_of(base, seed)
             t0 = time.process_time()
-            with one_deadband():
+            with one_change(args.effect):
                 rows = run_one(vehicle, None if category == "clean" else category, seed,
                                300.0, ("all",))
             for r in rows:

@@ -4,7 +4,7 @@ that holds it (as the current), inside the block only."""
 
 from __future__ import annotations
 
-from benchmarks.deadband_consistency import classify, one_deadband
+from benchmarks.deadband_consistency import classify, one_change
 
 
 def _row(category="deadband", **steps):
@@ -27,18 +27,21 @@ CHANGES = [("calibration", "surge"), ("effect", "surge", "deadband"),
            ("calibration", "yaw"), ("effect", "yaw", "deadband")]
 
 
-def test_one_deadband_removes_it_in_every_dof_and_only_inside_the_block():
+def test_one_change_removes_it_in_every_dof_and_only_inside_the_block():
     from stripcoef.diagnose.validate import partners
     yaw_out = {("effect", "yaw", "deadband")}
     assert ("effect", "surge", "deadband") not in partners(yaw_out, CHANGES)
-    with one_deadband():
+    with one_change():
         assert ("effect", "surge", "deadband") in partners(yaw_out, CHANGES)
         # not removed with its DOF's calibration: one change of both DOFs
         got = partners({("calibration", "surge")}, CHANGES)
         assert ("effect", "surge", "deadband") not in got
     # the default again: an effect goes with the calibration it was fitted with
     assert ("effect", "surge", "deadband") in partners({("calibration", "surge")}, CHANGES)
-    # one DOF's dead band is that DOF's: it goes with its calibration inside the block too
-    with one_deadband():
+    # one DOF's dead band is that DOF's: it goes with its calibration inside the block too;
+    # another effect is not touched
+    with one_change():
         assert ("effect", "surge", "deadband") in partners(
             {("calibration", "surge")}, CHANGES[:2])
+    with one_change("thrust_effectiveness"):
+        assert ("effect", "surge", "deadband") not in partners(yaw_out, CHANGES)
