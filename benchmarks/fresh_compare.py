@@ -8,6 +8,10 @@ team built against and a fresh one:
     python -m benchmarks.fresh_compare benchmarks/data/diagnose_independent_300s.md \
         benchmarks/data/diagnose_independent_fresh_1795929171.md
     python -m benchmarks.fresh_compare --rows RUN_OUTPUT.txt   (each row's failed criteria)
+    python -m benchmarks.fresh_compare --pairs BASE_1.md OTHER_1.md [BASE_2.md OTHER_2.md ...]
+        (two configurations of each seed: base -> other per criterion, each with its interval)
+
+A file may be given as ``LABEL=PATH`` (the column's label; default: the seed its text names).
 
 Per criterion: each run's count, its rate and the Wilson score interval
 (:func:`wilson_interval`), and the issue's bar where it sets one. A rate whose interval lies
@@ -115,6 +119,50 @@ def table(texts: dict) -> str:
     return "\n".join(lines)
 
 
+def pair_table(pairs: dict) -> str:
+    """The markdown table of the criteria for pairs of runs ``{label: (base text, other
+    text)}`` (two configurations of one seed, e.g. the default and an option): per pair,
+    ``k_base -> k_other of n`` and the two Wilson intervals; with several pairs, a last column
+    ``pooled``: the counts and totals summed over the pairs (the seeds' logs are independent
+    draws). A criterion either side lacks is left out; two totals that differ are both shown."""
+    runs = {label: (counts(a), counts(b)) for label, (a, b) in pairs.items()}
+    if len(runs) > 1:
+        both = [name for name, _, _, _ in CRITERIA
+                if all(name in a and name in b for a, b in runs.values())]
+        runs["pooled"] = tuple(
+            {name: tuple(sum(runs[label][side][name][j] for label in pairs) for j in (0, 1))
+             for name in both} for side in (0, 1))
+    labels = list(runs)
+    lines = ["| criterion | issue's bar | " + " | ".join(
+        f"{label}: base -> other (Wilson 95 %)" for label in labels) + " |",
+        "| --- | --- | " + " | ".join("---" for _ in labels) + " |"]
+    for name, _, bar, lower in CRITERIA:
+        if not all(name in a and name in b for a, b in runs.values()):
+            continue
+        bar_text = "-" if bar is None else (f"<= {100 * bar:.0f} %" if lower
+                                            else f">= {100 * bar:.0f} %")
+        cells = []
+        for label in labels:
+            (k0, n0), (k1, n1) = runs[label][0][name], runs[label][1][name]
+            (a0, b0), (a1, b1) = wilson_interval(k0, n0), wilson_interval(k1, n1)
+            of = f" of {n0}" if n0 == n1 else f"/{n0} -> {k1}/{n1}"
+            head = f"{k0} -> {k1}{of}" if n0 == n1 else f"{k0}{of}"
+            cells.append(f"{head} ({100 * a0:.0f}-{100 * b0:.0f} % -> "
+                         f"{100 * a1:.0f}-{100 * b1:.0f} %)")
+        lines.append(f"| {name} | {bar_text} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def _labelled(arg: str, text: str) -> tuple[str, str]:
+    """``(label, path)`` of a ``LABEL=PATH`` argument; a bare path's label is the seed its
+    ``text`` names (or the path)."""
+    if "=" in arg:
+        label, path = arg.split("=", 1)
+        return label, path
+    m = re.search(r"^Seed (\d+)", text, flags=re.M)
+    return (f"seed {m.group(1)}" if m else arg), arg
+
+
 def row_failures(row: dict) -> list[str]:
     """The criteria one row of ``diagnose_independent`` (its ``row`` JSON) fails, each as a
     short text: a library effect not named first (what was named), its magnitude beyond
@@ -156,6 +204,9 @@ def main(argv=None) -> int:
     ap.add_argument("--rows", default=None,
                     help="a run's printed output (its 'row' lines): list each row's failed "
                          "criteria instead")
+    ap.add_argument("--pairs", action="store_true",
+                    help="the files are pairs (base, other) of the same seeds: base -> other "
+                         "per criterion")
     args = ap.parse_args(argv)
     if args.rows:
         import json
@@ -171,11 +222,25 @@ def main(argv=None) -> int:
                 print(f"- {r['category']} {r['vehicle']} {r['seed']} {r['mode']}: "
                       + "; ".join(fails))
         return 0
+    def _read(arg):
+        text = read_text(arg.split("=", 1)[1] if "=" in arg else arg, kind="benchmark output")
+        return _labelled(arg, text)[0], text
+
+    if args.pairs:
+        if len(args.files) % 2:
+            print(f"fresh_compare: --pairs needs an even number of files, got "
+                  f"{len(args.files)}")
+            return 2
+        pairs = {}
+        for base, other in zip(args.files[::2], args.files[1::2]):
+            label, a = _read(base)
+            pairs[label] = (a, _read(other)[1])
+        print(pair_table(pairs))
+        return 0
     texts = {}
-    for path in args.files:
-        text = read_text(path, kind="benchmark output")
-        m = re.search(r"^Seed (\d+)", text, flags=re.M)
-        texts[f"seed {m.group(1)}" if m else path] = text
+    for arg in args.files:
+        label, text = _read(arg)
+        texts[label] = text
     print(table(texts))
     return 0
 

@@ -65,3 +65,31 @@ def test_table_says_which_bar_is_missed():
     # a rate short of its bar whose interval still reaches it
     five = SUMMARY.replace("named first: 78/88", "named first: 82/88")
     assert "82/88 (93 %; 86-97 %) | missed (interval reaches the bar) |" in table({"a": five})
+
+
+def test_pair_table_shows_both_counts_and_intervals():
+    from benchmarks.fresh_compare import pair_table
+    better = SUMMARY.replace("error cut >= 3x: 55/88", "error cut >= 3x: 70/88")
+    text = pair_table({"seed 1": (SUMMARY, better)})
+    # 55/88: Wilson 52-72 %; 70/88: 70-87 %
+    assert "| error cut >= 3x | - | 55 -> 70 of 88 (52-72 % -> 70-87 %) |" in text
+    assert "| whole-log runs with a spurious step named | <= 10 % | 3 -> 3 of 44 " in text
+
+
+def test_pairs_need_an_even_number_of_files(tmp_path, capsys):
+    from benchmarks.fresh_compare import main
+    path = tmp_path / "a.md"
+    path.write_text(SUMMARY)
+    assert main(["--pairs", str(path)]) == 2
+    assert "even number of files, got 1" in capsys.readouterr().out
+    assert main(["--pairs", f"one={path}", str(path)]) == 0
+    assert "| one: base -> other (Wilson 95 %) |" in capsys.readouterr().out
+
+
+def test_pair_table_pools_the_seeds():
+    from benchmarks.fresh_compare import pair_table
+    better = SUMMARY.replace("error cut >= 3x: 55/88", "error cut >= 3x: 70/88")
+    text = pair_table({"seed 1": (SUMMARY, better), "seed 2": (SUMMARY, SUMMARY)})
+    row = next(line for line in text.splitlines() if line.startswith("| error cut >= 3x |"))
+    # pooled: 55 + 55 -> 70 + 55 of 176
+    assert row.endswith("| 110 -> 125 of 176 (55-69 % -> 64-77 %) |")

@@ -29,16 +29,23 @@ SIGNIFICANT = 0.01
 TOL = 0.05
 #: the stored draws of 40 shapes after the first (whose references validation.cad_shapes reads):
 #: (seed, edge-graded plates' CSV or None, edge-graded coarse cylinders' CSV or None, how drawn)
+#: Their model rows are re-run on the code of the latest stop that changed the panel method
+#: (``python -m benchmarks.cad_shapes --seed SEED --count 40 --references CSV --csv CSV``;
+#: the CSV's first line says so); the text says how each was drawn and what it scored then.
 DRAWS = (
     (1795919297, "cad_plates_graded_1795919297.csv", "graded_coarse_1795919297.csv",
-     "drawn 2026-11-28, run as two shards"),
-    (1795939009, "cad_plates_graded_1795939009.csv", None,
+     "drawn 2026-11-28, run as two shards; as drawn 234/240 against the most resolved references"),
+    (1795939009, "cad_plates_graded_1795939009.csv", "graded_coarse_1795939009.csv",
      "drawn 2026-11-29 07:56 UTC, run on main 9064094 before it was traced; 36 of 40 shapes: "
      "frames 8, 12, 22 and 37 exceeded the BEM's cap then and were solved apart "
      "(benchmarks.frame32d_reference, reference_tables/bem/cad_frames_levels_frame32d.csv), "
-     "frame 8 heave -5.9 %, roll -8.7 %, pitch -10.0 %, the other three within 5 %"),
+     "frame 8 heave -5.9 %, roll -8.7 %, pitch -10.0 %, the other three within 5 % (as drawn; 214/216 against the most resolved references)"),
     (1795948662, "cad_plates_graded_1795948662.csv", "graded_coarse_1795948662.csv",
-     "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced"),
+     "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced (as drawn 237/240 against the most resolved references)"),
+    (1795960449, "cad_plates_graded_1795960449.csv", "graded_coarse_1795960449.csv",
+     "drawn 2026-11-29 13:55 UTC, run on main 30aebcf before it was traced (as drawn 239/240 "
+     "against the most resolved references: fillet box 11's pitch -6.7 %, -5.7 % against four "
+     "finer Capytaine levels, reference_tables/bem/cad_levels_fresh55.csv)"),
 )
 
 
@@ -153,7 +160,9 @@ def section() -> str:
         "## CAD-style bluff shapes: every stored fresh draw (issue 32)", "",
         "Each draw was made by `python -m benchmarks.cad_shapes --seed SEED --count 40 "
         "--bem-faces 750 1500 3000` on the code of its day, with a seed drawn from the clock "
-        "(the model's rows are that run's; reference_tables/bem/README.md says which commit); "
+        "(the references are that run's; the model's rows are re-run on the current code "
+        "with `--references`, the CSV's first line says so, and each row's text says what "
+        "the draw scored as drawn; reference_tables/bem/README.md says which commit); "
         "the edge-graded references of its thin plates and coarse cylinders were computed "
         "after it (`benchmarks.plate_graded`, `benchmarks.graded_polyhedra cylinders`). "
         "Counted per term by `python -m benchmarks.cad_seed_best --model "
