@@ -339,6 +339,11 @@ class DiagnoseSettings:
         the calibration's columns (:func:`~stripcoef.diagnose.fit.sigma_beside_bias`: a
         constant force the prior misses is not noise, Ljung 1999 sec. 9.2). Off by default:
         measured in benchmarks/data/spur33f_trace.md
+    gains_beside_timing : bool
+        The thrusters' gains, fitted before any effect, fitted again beside the lag or delay
+        the DOFs found and the DOFs diagnosed again on them
+        (:mod:`stripcoef.diagnose.timinggains`: a backfitting cycle, Hastie & Tibshirani
+        1990 sec. 4.4). Off by default: measured in benchmarks/data/calib33g_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -367,6 +372,7 @@ class DiagnoseSettings:
     validation_reference: str = "trivial"
     gains_judge: str = "written"
     noise_with_bias: bool = False
+    gains_beside_timing: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
