@@ -114,7 +114,7 @@ def trace(vehicle, category, seed, mode, duration=300.0, gains_beside_timing=Fal
                 + "; with the effects (validated) "
                 + ("-" if key not in joint else f"{joint[key]:+.3f}")
                 + f"; the truth's {t0:+.3f}")
-            if key in joint and key != "D_L" and not r.calibration.kept:
+            if key in joint and key != "D_L" and r.calibration.kept is False:
                 own[(key, i)] = float(joint[key])
             truths[(key, i)] = float(td[attr][i][i]) - float(getattr(res.model, attr)[i, i])
         if any(e.name in TIMING for e, _ in cfg.terms) and cfg.cal_has_m:
