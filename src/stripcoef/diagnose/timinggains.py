@@ -14,7 +14,7 @@ omitted force :math:`F_T`; Greene 2012, Econometric Analysis, 7th ed., sec. 4.3.
 lag or delay, the calibration's inertia (they trade along :math:`\Delta M \approx -T K_d`
 in a feedback-held DOF) and the drag are then estimated beside a biased thrust map
 (benchmarks/data/calib33g_trace.md: on the traced lag and delay logs the calibration
-fitted *with* the timing effect is within 0.1 kg of the truth's added mass at the truth's
+fitted *with* the timing effect is within 0.12 kg of the truth's added mass at the truth's
 delay; it is the timing value, biased by the thrust map, that moves it, and the validation
 then refuses even the truth's drag beside that map).
 
