@@ -11,9 +11,9 @@ thruster lag :math:`T` holds back every thrust, :math:`\tau_{lag} \approx \tau -
 has no regressor for: the gains take the part of it their contrasts can imitate (the
 omitted-variable bias of least squares, :math:`E[\hat a] = a + (G^T G)^{-1} G^T F_T` for the
 omitted force :math:`F_T`; Greene 2012, Econometric Analysis, 7th ed., sec. 4.3.2). The
-lag or delay, the calibration's inertia (they trade along :math:`\Delta M \approx -T K_d`
-in a feedback-held DOF) and the drag are then estimated beside a biased thrust map
-(benchmarks/data/calib33g_trace.md: on the traced lag and delay logs the calibration
+lag or delay, the calibration's inertia (the two trade: about -23 kg per s of delay on the
+traced delay log) and the drag are then estimated beside a biased thrust map
+(benchmarks/data/calib33g_trace.md: on the traced one-DOF delay log the calibration
 fitted *with* the timing effect is within 0.12 kg of the truth's added mass at the truth's
 delay; it is the timing value, biased by the thrust map, that moves it, and the validation
 then refuses even the truth's drag beside that map).
