@@ -1140,6 +1140,10 @@ def main(argv=None) -> int:
     ap.add_argument("--noise-with-bias", action="store_true",
                     help="diagnose with noise_with_bias (the calibration's identifiability "
                          "judged with the noise level fitted beside a free constant)")
+    ap.add_argument("--gains-beside-timing", action="store_true",
+                    help="diagnose with gains_beside_timing (the thrusters' gains fitted "
+                         "again beside the lag or delay the DOFs found, the DOFs diagnosed "
+                         "again on them)")
     ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
                     help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
                          "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
@@ -1221,7 +1225,8 @@ def main(argv=None) -> int:
                                  ("validation_reference", args.validation_reference),
                                  ("gains_judge", args.gains_judge),
                                  ("noise_with_bias", args.noise_with_bias),
-                                 ("buoyancy_carry", args.buoyancy_carry)) if value},
+                                 ("buoyancy_carry", args.buoyancy_carry),
+                                 ("gains_beside_timing", args.gains_beside_timing)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

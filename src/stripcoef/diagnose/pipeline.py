@@ -116,7 +116,7 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: 
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
-from stripcoef.diagnose import buoyancy, gainjudge, undetermined
+from stripcoef.diagnose import buoyancy, gainjudge, timinggains, undetermined
 from stripcoef.diagnose.gainjudge import GAINS_JUDGES
 from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
 from stripcoef.diagnose.gains import fit_thruster_gains
@@ -170,7 +170,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_validation: str = "consecutive",
              validation_reference: str = "trivial",
              gains_judge: str = "written",
-             noise_with_bias: bool = False, buoyancy_carry: bool = False) -> Diagnosis:
+             noise_with_bias: bool = False, buoyancy_carry: bool = False,
+             gains_beside_timing: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -280,6 +281,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         Heave's buoyancy offset written as one change of the buoyancy B, acting in every DOF
         through the restoring force, and, whole-log, carried into the other DOFs' fits
         (:mod:`.buoyancy`, :attr:`DiagnoseSettings.buoyancy_carry`; off by default).
+    gains_beside_timing : bool
+        The thrusters' gains fitted again beside the lag or delay the DOFs found, the DOFs
+        diagnosed again on them (:mod:`.timinggains`; off by default).
 
     Returns
     -------
@@ -361,7 +365,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                       else bool(linked_gains)),
         gains_validation=gains_validation, validation_reference=validation_reference,
         gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
-        buoyancy_carry=bool(buoyancy_carry))
+        buoyancy_carry=bool(buoyancy_carry),
+        gains_beside_timing=bool(gains_beside_timing))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -453,6 +458,18 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
         if settings.gains_beside_current == JOINT and gains is not None and gains.applied:
             first = before
+    # option (settings.gains_beside_timing): the gains were fitted before any effect; the
+    # thrusters' lag or delay found since is a thrust-shaped force their fit omitted: they
+    # are fitted again beside it and the DOFs diagnosed again on them (timinggains.py)
+    timed = (timinggains.with_found_timing(prior, fits)
+             if settings.gains_beside_timing and gains is not None and first is None
+             else None)
+    if timed is not None:
+        applied = gains.applied
+        gains, model, data = timinggains.refit_gains(timed, prior, data0, train_log, val_log,
+                                                     dofs, excited, settings, budget)
+        if applied or (gains is not None and gains.applied):
+            per, fits = _fit_dofs(data, model, dofs, excited, settings, budget)
     if len(dofs) == 1 and settings.not_determined:   # depends on the gains: not written
         per = undetermined.mark(per, fits, gained=gains is not None and gains.applied)
     exclude, record = set(), None

@@ -347,6 +347,13 @@ class DiagnoseSettings:
         linear-drag, tether and clean whole-log logs, magnitude within 15 % 16 -> 21 of 32,
         error cut >= 3x 17 -> 20, one clean log's surge tether gone, one spurious roll thrust
         scale kept more (seed 1795938998; benchmarks/data/buoy33g_trace.md)
+    gains_beside_timing : bool
+        The thrusters' gains, fitted before any effect, fitted again beside the lag or delay
+        the DOFs found and the DOFs diagnosed again on them
+        (:mod:`stripcoef.diagnose.timinggains`: a backfitting cycle, Hastie & Tibshirani
+        1990 sec. 4.4). Off by default: on the lag and delay logs of four seeds error cut
+        >= 3x 46 -> 52 of 64, but one seed names one more spurious step and another loses a
+        magnitude (benchmarks/data/calib33g_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -376,6 +383,7 @@ class DiagnoseSettings:
     gains_judge: str = "written"
     noise_with_bias: bool = False
     buoyancy_carry: bool = False
+    gains_beside_timing: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
