@@ -1129,9 +1129,11 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-horizon", default=None, metavar="SECONDS|correlation",
                     help="diagnose with validation_horizon (the validation's segments [s], or "
                          "'correlation': each DOF's velocity's integral time scale)")
-    ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
+    ap.add_argument("--validation-judge", default=None,
+                    choices=("all", "own", "coupled"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
-                         "of the changes it removes)")
+                         "of the changes it removes; 'coupled': and on the other DOFs whose "
+                         "prior simulation has skill)")
     ap.add_argument("--gains-validation", default=None,
                     choices=("consecutive", "rolling", "rolling_test"),
                     help="diagnose with gains_validation ('rolling': the thrusters' gains "

@@ -295,7 +295,10 @@ class DiagnoseSettings:
         rose 4 -> 15 of 17 rows of seed 29112026 and 13 -> 18 of 22 of the fresh seed
         1795929171, but the fresh seed's spurious steps kept went 1 -> 3 of 22 (a pitch
         thrust scale imitating the level hold, a heave asymmetry; seed 29112026 2 -> 1):
-        benchmarks/data/closed33d_trace.md, docs/performance.md
+        benchmarks/data/closed33d_trace.md, docs/performance.md. ``"coupled"``: as ``"own"``
+        and also on the other DOFs whose prior simulation has skill, the outputs a change
+        written into the thrusters, the restoring force or an added mass moves too (an
+        option, measured on traced rows only: benchmarks/data/adopt33g_trace.md)
     linked_gains : bool or str
         The thrusters' gains' contrasts taken within each group of thrusters linked through
         the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,
