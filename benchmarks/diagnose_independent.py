@@ -1112,6 +1112,9 @@ def main(argv=None) -> int:
                          "groups linked through the diagnosed DOFs they act in); "
                          "'--linked-gains identified': linked only where the log identifies "
                          "the groups' contrast")
+    ap.add_argument("--retest-scales", action="store_true",
+                    help="diagnose with retest_scales (whole-log: a thrust scale or an "
+                         "added-mass release judged again beside the shared fits)")
     ap.add_argument("--noise-with-bias", action="store_true",
                     help="diagnose with noise_with_bias (the calibration's identifiability "
                          "judged with the noise level fitted beside a free constant)")
@@ -1194,7 +1197,8 @@ def main(argv=None) -> int:
                                  ("heldout_rise", args.heldout_rise),
                                  ("validation_reference", args.validation_reference),
                                  ("gains_judge", args.gains_judge),
-                                 ("noise_with_bias", args.noise_with_bias)) if value},
+                                 ("noise_with_bias", args.noise_with_bias),
+                                 ("retest_scales", args.retest_scales)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

@@ -1,6 +1,7 @@
-"""Issue 33, adopt33g: a whole-log thrust scale (or added-mass release) is judged again in the
-model the shared fits wrote, like every other own step (:func:`stripcoef.diagnose.stepwise.
-retest_steps`; Efroymson 1960; Draper & Smith 1998 sec. 15.2).
+"""Issue 33, adopt33g: with ``retest_scales`` (an option) a whole-log thrust scale or
+added-mass release is judged again in the model the shared fits wrote, like every other own
+step (:func:`stripcoef.diagnose.stepwise.retest_steps`; Efroymson 1960; Draper & Smith 1998
+sec. 15.2).
 
 The seeded log is the independent simulator's (validation.independent), BlueROV2-like log
 1795940006 of seed 1795938998 of ``benchmarks.diagnose_independent``: a thruster lag of
@@ -26,8 +27,10 @@ def test_a_scale_and_an_added_mass_release_are_judged_again_the_shared_effects_a
     r = SimpleNamespace(steps=(_step("thrust_effectiveness"), _step("added_mass_error"),
                                _step("thruster_lag"), _step("current"),
                                _step("linear_drag")))
-    assert [s.effect for s in _own_steps(r)] == ["thrust_effectiveness", "added_mass_error",
-                                                 "linear_drag"]
+    assert [s.effect for s in _own_steps(r, scales=True)] == [
+        "thrust_effectiveness", "added_mass_error", "linear_drag"]
+    # the default: the steps judged with the bands are not judged again
+    assert [s.effect for s in _own_steps(r)] == ["linear_drag"]
 
 
 @pytest.mark.slow
@@ -45,7 +48,8 @@ def test_a_roll_scale_fitted_before_the_shared_lag_is_withdrawn_beside_it():
     assert truth.strength == pytest.approx(0.7704, abs=1e-4)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = diagnose(log, prior, dof="all", time_limit=float("inf")).to_dict()
+        res = diagnose(log, prior, dof="all", time_limit=float("inf"),
+                       retest_scales=True).to_dict()
     roll = res["per_dof"]["roll"]
     assert [s["effect"] for s in roll["steps"]] == ["thruster_lag"]
     lag = roll["steps"][0]["parameters"]["time_constant"]

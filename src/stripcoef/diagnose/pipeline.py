@@ -170,7 +170,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_validation: str = "consecutive",
              validation_reference: str = "trivial",
              gains_judge: str = "written",
-             noise_with_bias: bool = False) -> Diagnosis:
+             noise_with_bias: bool = False, retest_scales: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -276,6 +276,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     noise_with_bias : bool
         The calibration's identifiability judged with the noise level fitted beside a free
         constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
+    retest_scales : bool
+        Whole-log: a thrust scale or an added-mass release judged again in the model the
+        shared fits wrote (:attr:`DiagnoseSettings.retest_scales`; off by default).
 
     Returns
     -------
@@ -356,7 +359,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         linked_gains=(LINKED_IDENTIFIED if linked_gains == LINKED_IDENTIFIED
                       else bool(linked_gains)),
         gains_validation=gains_validation, validation_reference=validation_reference,
-        gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias))
+        gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
+        retest_scales=bool(retest_scales))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -564,7 +568,8 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
         per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
     per, fits = share_current(per, fits)    # the water's one current (current.py)
     if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
-        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
+        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs),
+                                 scales=settings.retest_scales)
     return per, fits
 
 
