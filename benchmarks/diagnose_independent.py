@@ -1146,6 +1146,9 @@ def main(argv=None) -> int:
                     help="diagnose with validation_reference ('combination': in a DOF the "
                          "prior does not predict, the skill veto's reference is the prior "
                          "combined with the trivial predictors)")
+    ap.add_argument("--buoyancy-carry", action="store_true",
+                    help="diagnose with buoyancy_carry (heave's buoyancy offset written as one "
+                         "change of B, acting in every DOF, and carried whole-log)")
     ap.add_argument("--gains-judge", default=None, choices=("prior", "written", "none"),
                     help="diagnose with gains_judge ('written': a significant one-DOF "
                          "gain fit judged inside the written model after the selection)")
@@ -1198,6 +1201,7 @@ def main(argv=None) -> int:
                                  ("validation_reference", args.validation_reference),
                                  ("gains_judge", args.gains_judge),
                                  ("noise_with_bias", args.noise_with_bias),
+                                 ("buoyancy_carry", args.buoyancy_carry),
                                  ("retest_scales", args.retest_scales)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))

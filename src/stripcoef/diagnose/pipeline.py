@@ -116,7 +116,7 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: 
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
-from stripcoef.diagnose import gainjudge, undetermined
+from stripcoef.diagnose import buoyancy, gainjudge, undetermined
 from stripcoef.diagnose.gainjudge import GAINS_JUDGES
 from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
 from stripcoef.diagnose.gains import fit_thruster_gains
@@ -170,7 +170,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              gains_validation: str = "consecutive",
              validation_reference: str = "trivial",
              gains_judge: str = "written",
-             noise_with_bias: bool = False, retest_scales: bool = False) -> Diagnosis:
+             noise_with_bias: bool = False, buoyancy_carry: bool = False,
+             retest_scales: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -276,6 +277,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     noise_with_bias : bool
         The calibration's identifiability judged with the noise level fitted beside a free
         constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
+    buoyancy_carry : bool
+        Heave's buoyancy offset written as one change of the buoyancy B, acting in every DOF
+        through the restoring force, and, whole-log, carried into the other DOFs' fits
+        (:mod:`.buoyancy`, :attr:`DiagnoseSettings.buoyancy_carry`; off by default).
     retest_scales : bool
         Whole-log: a thrust scale or an added-mass release judged again in the model the
         shared fits wrote (:attr:`DiagnoseSettings.retest_scales`; off by default).
@@ -360,7 +365,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
                       else bool(linked_gains)),
         gains_validation=gains_validation, validation_reference=validation_reference,
         gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
-        retest_scales=bool(retest_scales))
+        buoyancy_carry=bool(buoyancy_carry), retest_scales=bool(retest_scales))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -544,10 +549,19 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     siblings = (WholeLogParts if len(dofs) > 1 else OneDofParts)(
         data, dofs, settings, budget=budget, excited=excited, cross=cross)
     per, fits = {}, {}
-    for i in dofs:
+    carry = settings.buoyancy_carry         # heave first, its buoyancy change carried
+    for i in (buoyancy.order(dofs) if carry else dofs):
         per[DOF[i]], fits[DOF[i]] = diagnose_dof(data, i, settings, budget=budget,
                                                  excited=excited, cross=cross,
                                                  siblings=siblings)
+        if carry and i == buoyancy.HEAVE:   # written as one change of B (buoyancy.py)
+            fits[DOF[i]] = buoyancy.written_as_change(fits[DOF[i]])
+            delta_b = buoyancy.heave_change(per[DOF[i]])
+            if delta_b is not None and len(dofs) > 1:
+                data = buoyancy.carried(data, delta_b)
+                siblings = type(siblings)(data, dofs, settings, budget=budget,
+                                          excited=excited, cross=cross)
+    per, fits = {DOF[i]: per[DOF[i]] for i in dofs}, {DOF[i]: fits[DOF[i]] for i in dofs}
     # option (settings.one_added_mass): a DOF whose fit contradicts a diagnosed DOF's own
     # added mass is selected again with the diagnosed DOFs' added masses held at the prior,
     # and written refitted with their written values (calibrate.contradicted,

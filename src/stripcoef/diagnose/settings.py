@@ -342,6 +342,14 @@ class DiagnoseSettings:
         the calibration's columns (:func:`~stripcoef.diagnose.fit.sigma_beside_bias`: a
         constant force the prior misses is not noise, Ljung 1999 sec. 9.2). Off by default:
         measured in benchmarks/data/spur33f_trace.md
+    buoyancy_carry : bool
+        Heave's buoyancy offset written as one change of the buoyancy B (the model's volume),
+        acting in every DOF through the restoring force (Fossen 2011, eq. 4.6), and in a
+        whole-log diagnosis heave diagnosed first and the change carried into the other
+        DOFs' fits (:mod:`stripcoef.diagnose.buoyancy`). Off by default: on the four seeds'
+        linear-drag, tether and clean whole-log logs, magnitude within 15 % 16 -> 21 of 32,
+        error cut >= 3x 17 -> 20, one clean log's surge tether gone, one spurious roll thrust
+        scale kept more (seed 1795938998; benchmarks/data/buoy33g_trace.md)
     retest_scales : bool
         Whole-log: a thrust scale or an added-mass release (the steps judged with the bands)
         judged again in the model the shared fits (lag, delay, current) wrote into its DOF, as
@@ -379,6 +387,7 @@ class DiagnoseSettings:
     validation_reference: str = "trivial"
     gains_judge: str = "written"
     noise_with_bias: bool = False
+    buoyancy_carry: bool = False
     retest_scales: bool = False
 
     def validation_horizons(self, val_log, dofs):

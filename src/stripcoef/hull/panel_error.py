@@ -216,7 +216,9 @@ def finest_pair_under_refined(counts) -> bool:
     diagonal -10.0, -4.2, -6.0 % -> -3.5, -1.5, -3.0 %), but on the public meshes it moved the
     WHOI hybrid glider's sway -0.5 -> -6.1 % and pitch -1.9 -> -7.5 % (levels
     1206/2050/3218/4334; both covered by their bands and warned), two of 108 diagonal terms
-    beyond 5 % that were within it."""
+    beyond 5 % that were within it.  Since the refinement's added level refines the finest by
+    r >= 1.3 wherever that fits (:func:`stripcoef.hull.remesh.added_level`), the finest pair is
+    under-refined only where it does not (benchmarks/data/frame32g_trace.md)."""
     from stripcoef.hull.remesh import MIN_FACE_RATIO
 
     n = [float(c) for c in counts]

@@ -47,7 +47,9 @@ not, and its asymmetry is returned as a measure of the discretisation error).
 
 A box or a plate (a parallelepiped) is panelled as its Capytaine references are, tensor grids
 graded towards every edge (:mod:`stripcoef.hull.graded_panels`): the isotropic remesh put one
-panel across a plate's rim and its in-plane terms came out up to 7.6 % high.
+panel across a plate's rim and its in-plane terms came out up to 7.6 % high.  So is a right
+prism within the level cap (a coarse cylinder: its rotation about the axis, which only the
+facet edges make, wandered by up to 20 % between remeshed levels; ``graded_panels``).
 
 Thin members (frame plates 12.7 mm, duct walls 5.6 mm, issue 32): on the same mesh this
 method and Capytaine agree within 0.09 % on every diagonal term of the BlueROV2 Heavy's
@@ -92,7 +94,7 @@ from stripcoef.conventions import transform_matrix
 from stripcoef.errors import InputError
 from stripcoef.hull.bisection import (  # noqa: F401  (bisect_longest, refine, split_in_four re-exported)
     bisect_longest, enclosed_volume, refine, split_in_four, surface_area)
-from stripcoef.hull.graded_panels import box_faces, box_level
+from stripcoef.hull.graded_panels import Prism, box_faces, box_level, prism_faces
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
@@ -541,7 +543,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     While some term's error exceeds ``tolerance`` of the diagonal scale (:func:`relative_error`:
     a diagonal term's own value, a coupling's :math:`\sqrt{A_{ii} A_{jj}}`) and a level of
     twice the finest panels fits within ``max_panels``, that level is added and the estimate
-    repeated ("refine until converged"; at least four levels where they fit).  Levels whose finest edge is longer than the body's
+    repeated ("refine until converged"; at least four levels where they fit), a remesh of at
+    least Celik et al.'s r >= 1.3 over the finest where it fits (:func:`stripcoef.hull.remesh.
+    added_level`).  Levels whose finest edge is longer than the body's
     :func:`member_thickness` (thin plates and walls) are remeshed without edge flips
     (:func:`remeshed_levels`).
 
@@ -658,7 +662,8 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
     family_out, thickness = None, float("inf")
     # a box or a plate (a parallelepiped): panels graded towards its edges (graded_panels),
     # with or without the remesher
-    box = box_faces(v, f) if family == "auto" else None
+    box = (box_faces(v, f) or prism_faces(v, f, min(cap, MAX_PANELS * 2 ** len(planes)))
+           if family == "auto" else None)
     if box is not None:
         family_out, thickness = (None, None), box_thickness(box)
     if planes and family in ("auto", "remesh") and box is None:
@@ -691,7 +696,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                          expected="pip install 'stripcoef[remesh]' (pymeshlab), or the input "
                                   "family")
     if box is not None:
-        used = "graded towards the edges (a box)"
+        used = "graded towards the edges (" + ("a prism)" if isinstance(box, Prism) else "a box)")
     elif levels is None:
         used = "refined/coarsened input"
     elif mode.bisect:
@@ -773,18 +778,11 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                                                 + 1), solve_planes, about)
             lv = (pv, pf)
         else:
-            lv = remesh.remesh_isotropic(*src, remesh.edge_for_panels(area, nxt),
-                                         feature_angle=mode)
-        # (the refinement judged in the panels solved, the counts the extrapolation reads: a
-        # mirrored level's caps are not solved; on the Slocum glider's eighth they let a level
-        # of 1.22 times the finest's panels pass as 1.30: benchmarks/data/slocum32s_trace.md)
-        if box is None and (lv is None or _solved_panels(lv, solve_planes, about)
-                            < remesh.LEAST_FACE_RATIO * counts[-1]):
-            # creases hold the face count (thin members): a level grown to Celik et al.'s
-            # r >= 1.3 over the finest, or none (remesh.MIN_REFINEMENT)
-            lv = remesh.grown_level(*src, remesh.edge_for_panels(area, nxt), mode,
-                                    remesh.MIN_FACE_RATIO * len(levels[-1][1]),
-                                    remesh.MAX_FACES)[0]
+            # Celik et al.'s r >= 1.3 over the finest, grown where creases hold the count
+            # (remesh.added_level), judged in the panels solved, the counts the extrapolation
+            # reads (a mirrored level's caps are not solved: benchmarks/data/slocum32s_trace.md)
+            lv = remesh.added_level(*src, remesh.edge_for_panels(area, nxt), mode, counts[-1],
+                                    lambda x: _solved_panels(x, solve_planes, about))
             if lv is None:
                 break
         levels.append(lv)

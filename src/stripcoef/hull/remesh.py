@@ -106,8 +106,9 @@ EDGE_STEP = 2.0 ** 0.25
 GROWTH_TRIES = 4
 #: Most faces of a remesh of a family [-] (the panel method's MAX_PANELS).
 MAX_FACES = 6000
-#: Refinement ratio of a level the refinement adds where the family has not converged and
-#: its next level does not refine by :data:`LEAST_FACE_RATIO`, :math:`r = h_{coarse}/h_{fine}`
+#: Refinement ratio of every level the refinement adds over the finest where it fits within
+#: :data:`MAX_FACES` (:func:`added_level`; before, only where the remesh at the doubled target
+#: did not refine by :data:`LEAST_FACE_RATIO`), :math:`r = h_{coarse}/h_{fine}`
 #: [-] (:func:`stripcoef.hull.panels.panel_added_mass`, :func:`grown_level`): Celik et al.
 #: 2008 ("Procedure for estimation and reporting of uncertainty due to discretization in CFD
 #: applications", J. Fluids Eng. 130(7) 078001, step 2: "it is desirable that the grid
@@ -250,9 +251,10 @@ def _refused(change) -> str:
             "thinner than the edge, such as a fin's trailing edge, cut off)")
 
 
-def grown_level(vertices, faces, edge, mode, at_least, max_faces):
+def grown_level(vertices, faces, edge, mode, at_least, max_faces, counted=None):
     """(the remesh at ``edge`` [m], or at edges shorter by EDGE_STEP until it has at least
-    ``at_least`` faces and keeps the area and volume; the last (area, volume) change refused,
+    ``at_least`` faces (or ``counted(level)`` at least ``at_least``: the panels a mirrored
+    solve keeps) and keeps the area and volume; the last (area, volume) change refused,
     or None).  The remesh is ``None`` if no edge gives it within ``max_faces``.  In the
     bisection mode the level is bisected straight to ``at_least`` faces where the edge asks
     fewer (the bisection reaches the count it is asked for; the edge's steps overshoot it:
@@ -271,10 +273,43 @@ def grown_level(vertices, faces, edge, mode, at_least, max_faces):
         else:
             if len(lv[0][1]) > max_faces:
                 return None, change
-            if len(lv[0][1]) >= at_least:
+            if (len(lv[0][1]) if counted is None else counted(lv[0])) >= at_least:
                 return lv[0], change
         edge /= EDGE_STEP
     return None, change
+
+
+def added_level(vertices, faces, edge, mode, finest: float, counted=None, *,
+                ratio: float = MIN_FACE_RATIO):
+    r"""The level the panel method's refinement adds to a family of ``mode`` whose finest
+    level has ``finest`` panels (:func:`stripcoef.hull.panels.panel_added_mass`), or ``None``:
+    the remesh at ``edge`` [m] (the doubled panel count's) where it refines the finest by
+    ``ratio`` in panels (``counted(level)``, default its faces: the panels solved); else a
+    level grown from it to :data:`MIN_FACE_RATIO` (:func:`grown_level`, within
+    :data:`MAX_FACES`); else, where that does not fit, the remesh at ``edge`` if it refines
+    by :data:`LEAST_FACE_RATIO` at least (the family's fallback step).
+
+    The default ``ratio`` is Celik et al. 2008's r >= 1.3 (:data:`MIN_REFINEMENT`, "Procedure
+    for estimation and reporting of uncertainty due to discretization in CFD applications",
+    J. Fluids Eng. 130(7) 078001, step 2), the ratio the families' own levels take
+    (:func:`remesh_family`).  Before (``ratio`` = :data:`LEAST_FACE_RATIO`, which reproduces
+    it) a remesh of 1.25 times the finest's faces was taken: where the creases of a frame's
+    thin plates made the family's finest level overshoot its target (the no-flip remesh's
+    1,600-panel target at 3,084 panels), the doubled target's remesh refined it by r = 1.14
+    to 1.20, and the Richardson step multiplied that pair's change by 5 to 7
+    (benchmarks/data/fresh32f_trace.md, frame 8 of seed 1795939009 and frame 25 of seed
+    1795948662: heave -6.3 and -5.8 % where the finest level was within 1.7 %); grown to
+    r >= 1.3, -1.1 and +0.4 % (benchmarks/data/frame32g_trace.md)."""
+    count = (lambda lv: len(lv[1])) if counted is None else counted
+    lv = _remesh_once(vertices, faces, edge, mode, ITERATIONS)
+    if lv is not None and count(lv) >= ratio * finest:
+        return lv
+    # (a shorter edge than the remesh that fell short: grown_level would remesh it again)
+    grown = grown_level(vertices, faces, edge if lv is None else edge / EDGE_STEP, mode,
+                        MIN_FACE_RATIO * finest, MAX_FACES, counted)[0]
+    if grown is not None:
+        return grown
+    return lv if lv is not None and count(lv) >= LEAST_FACE_RATIO * finest else None
 
 
 def _remesh_once(vertices, faces, edge, mode, iterations):
