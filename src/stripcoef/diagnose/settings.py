@@ -298,7 +298,9 @@ class DiagnoseSettings:
         benchmarks/data/closed33d_trace.md, docs/performance.md. ``"coupled"``: as ``"own"``
         and also on the other DOFs whose prior simulation has skill, the outputs a change
         written into the thrusters, the restoring force or an added mass moves too (an
-        option, measured on traced rows only: benchmarks/data/adopt33g_trace.md)
+        option: on seed 1795938998's 15 rows where it matters it removes a kept spurious heave
+        bias but loses 3 of the 13 cuts >= 3x that ``"own"`` gains: benchmarks/data/
+        adopt33g_trace.md)
     linked_gains : bool or str
         The thrusters' gains' contrasts taken within each group of thrusters linked through
         the diagnosed DOFs they act in (:func:`stripcoef.diagnose.gains.thruster_groups`,

@@ -139,8 +139,9 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     1796039007 (seed 1795938998): a heave bias -0.048 N (the truth's buoyancy change -0.002
     N) that ``"own"`` keeps (heave 0.0117 against 0.0131 m/s without it) moves pitch, which
     the prior predicts (0.030 against 0.200 rad/s), from 0.037 to 0.042 rad/s, worse than
-    the prior; ``"coupled"`` removes it with heave's calibration, pitch 0.017 rad/s
-    (benchmarks/data/adopt33g_trace.md).
+    the prior; ``"coupled"`` removes it with heave's calibration, pitch 0.017 rad/s. Off:
+    on that seed's 15 rows where it matters it loses 3 of the 13 cuts >= 3x ``"own"`` gains,
+    a DOF with skill vetoing the effect DOF's calibration (benchmarks/data/adopt33g_trace.md).
 
     ``reference``: with the skill veto above, ``"trivial"`` (default) as described;
     ``"combination"`` (an option, issue 33, cut33f): in a DOF where the prior has no skill,
