@@ -1137,6 +1137,9 @@ def main(argv=None) -> int:
                          "groups linked through the diagnosed DOFs they act in); "
                          "'--linked-gains identified': linked only where the log identifies "
                          "the groups' contrast")
+    ap.add_argument("--retest-scales", action="store_true",
+                    help="diagnose with retest_scales (whole-log: a thrust scale or an "
+                         "added-mass release judged again beside the shared fits)")
     ap.add_argument("--noise-with-bias", action="store_true",
                     help="diagnose with noise_with_bias (the calibration's identifiability "
                          "judged with the noise level fitted beside a free constant)")
@@ -1158,9 +1161,11 @@ def main(argv=None) -> int:
     ap.add_argument("--validation-horizon", default=None, metavar="SECONDS|correlation",
                     help="diagnose with validation_horizon (the validation's segments [s], or "
                          "'correlation': each DOF's velocity's integral time scale)")
-    ap.add_argument("--validation-judge", default=None, choices=("all", "own"),
+    ap.add_argument("--validation-judge", default=None,
+                    choices=("all", "own", "coupled"),
                     help="diagnose with validation_judge ('own': a removal judged on the DOFs "
-                         "of the changes it removes)")
+                         "of the changes it removes; 'coupled': and on the other DOFs whose "
+                         "prior simulation has skill)")
     ap.add_argument("--gains-validation", default=None,
                     choices=("consecutive", "rolling", "rolling_test"),
                     help="diagnose with gains_validation ('rolling': the thrusters' gains "
@@ -1226,7 +1231,8 @@ def main(argv=None) -> int:
                                  ("gains_judge", args.gains_judge),
                                  ("noise_with_bias", args.noise_with_bias),
                                  ("buoyancy_carry", args.buoyancy_carry),
-                                 ("gains_beside_timing", args.gains_beside_timing)) if value},
+                                 ("gains_beside_timing", args.gains_beside_timing),
+                                 ("retest_scales", args.retest_scales)) if value},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

@@ -171,7 +171,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              validation_reference: str = "trivial",
              gains_judge: str = "written",
              noise_with_bias: bool = False, buoyancy_carry: bool = False,
-             gains_beside_timing: bool = False) -> Diagnosis:
+             gains_beside_timing: bool = False, retest_scales: bool = False) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -284,6 +284,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     gains_beside_timing : bool
         The thrusters' gains fitted again beside the lag or delay the DOFs found, the DOFs
         diagnosed again on them (:mod:`.timinggains`; off by default).
+    retest_scales : bool
+        Whole-log: a thrust scale or an added-mass release judged again in the model the
+        shared fits wrote (:attr:`DiagnoseSettings.retest_scales`; off by default).
 
     Returns
     -------
@@ -366,7 +369,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         gains_validation=gains_validation, validation_reference=validation_reference,
         gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
         buoyancy_carry=bool(buoyancy_carry),
-        gains_beside_timing=bool(gains_beside_timing))
+        gains_beside_timing=bool(gains_beside_timing),
+        retest_scales=bool(retest_scales))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -595,7 +599,8 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
         per, fits = unresolved_timing(per, fits)    # not resolved jointly: withdrawn
     per, fits = share_current(per, fits)    # the water's one current (current.py)
     if len(dofs) > 1:       # whole-log: steps judged again where the shared fits changed
-        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs))
+        per, fits = retest_steps(per, fits, changed_dofs(selected, fits), len(dofs),
+                                 scales=settings.retest_scales)
     return per, fits
 
 

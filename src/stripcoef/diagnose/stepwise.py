@@ -139,26 +139,37 @@ def unresolved_timing(per: dict, fits: dict) -> tuple[dict, dict]:
     return per, fits
 
 
-def _own_steps(r) -> list:
+def _own_steps(r, scales: bool = False) -> list:
     """The steps of a DOF's result that :func:`retest_steps` judges again: its own (not a
-    shared effect), tested by the selection's plain rule (not a scale judged with the
-    bands, not a step found by the gains-free retest)."""
+    shared effect), tested by the selection's plain rule (not a step found by the gains-free
+    retest), and a scale judged with the bands (a thrust scale, an added-mass release,
+    :func:`~stripcoef.diagnose.scalechoice.judged_with_bands`) only with ``scales``
+    (``DiagnoseSettings.retest_scales``): :func:`~stripcoef.diagnose.select._judge` makes
+    their band tests too, and stepwise regression re-examines every term entered before
+    (Efroymson 1960). Issue 33, adopt33g (benchmarks/data/adopt33g_trace.md): on the
+    BlueROV2-like thruster-lag log 1795940006 (seed 1795938998) roll's scale 1.78 was
+    fitted before the shared lag joined roll (the lag's held-out gain there beside it
+    -2.4); judged again beside the lag it is 1.51 and its implied inertia change is within
+    2.5 bands of the added mass (the scale-or-inertia test), so it is withdrawn (the truth's
+    roll gain on the log 0.93). Off by default: the same test withdraws the right heave
+    scale of VideoRay lag log 1796060454 (seed 1795960446)."""
     return [s for s in r.steps if s.effect not in SHARED_EFFECTS and not gainfree.retested(s)
-            and not scalechoice.judged_with_bands(get_effect(s.effect))
+            and (scales or not scalechoice.judged_with_bands(get_effect(s.effect)))
             and not s.not_determined]
 
 
-def retest_steps(per: dict, fits: dict, dofs, n_dofs: int) -> tuple[dict, dict]:
+def retest_steps(per: dict, fits: dict, dofs, n_dofs: int,
+                 scales: bool = False) -> tuple[dict, dict]:
     """``(per, fits)`` (new dictionaries) with the own steps of each DOF of ``dofs`` judged
     again in its written model (module docstring): the failing one with the lowest held-out
-    gain withdrawn, until every remaining step passes."""
+    gain withdrawn, until every remaining step passes (``scales``: :func:`_own_steps`)."""
     per, fits = dict(per), dict(fits)
     for d in dofs:
         i = parse_dof(d)
         while True:
             cfg = fits[d].config
             failed = []
-            for s in _own_steps(per[d]):
+            for s in _own_steps(per[d], scales):
                 k = next((j for j, (e, _) in enumerate(cfg.terms) if e.name == s.effect), None)
                 if k is None:
                     continue

@@ -123,7 +123,25 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     equation's change judged on its own output with the other equations' states measured
     (Klein & Morelli 2006, Aircraft System Identification, ch. 6), so that a DOF whose
     simulation a change does not address (a held roll replayed open loop) does not veto it.
-    The per-DOF veto is unchanged.
+    The per-DOF veto is unchanged. ``"coupled"`` (an option, issue 33, adopt33g): as
+    ``"own"``, and also on every other DOF where the prior's simulation has skill (its error
+    below the better trivial predictor's; with ``logged`` :data:`~stripcoef.diagnose.heldout.
+    EACH` in a whole-log diagnosis, else as ``"own"``). The equation decoupling separates
+    equations whose parameters are disjoint (Klein & Morelli 2006, ch. 6); a change written
+    into the thrusters (a dead band, an asymmetry), into the restoring force (a heave bias
+    is a buoyancy change, which acts in roll and pitch too: Fossen 2011, eq. 4.6) or into an
+    added mass (it enters the other DOFs' :math:`C_A(\nu)\nu`, Fossen 2011, eq. 6.43) moves
+    the simulations of other DOFs, each simulated alone, and they are outputs of the change
+    too; a DOF the change does not enter keeps its error exactly and weighs nothing in the
+    comparison. Of those DOFs only the ones whose open-loop replay predicts their velocity
+    judge (the skill veto's criterion, Murphy 1988, 1992): a held DOF replayed open loop
+    judges nothing (``"own"``'s reason). Measured on VideoRay-like actuation-delay log
+    1796039007 (seed 1795938998): a heave bias -0.048 N (the truth's buoyancy change -0.002
+    N) that ``"own"`` keeps (heave 0.0117 against 0.0131 m/s without it) moves pitch, which
+    the prior predicts (0.030 against 0.200 rad/s), from 0.037 to 0.042 rad/s, worse than
+    the prior; ``"coupled"`` removes it with heave's calibration, pitch 0.017 rad/s. Off:
+    on that seed's 15 rows where it matters it loses 3 of the 13 cuts >= 3x ``"own"`` gains,
+    a DOF with skill vetoing the effect DOF's calibration (benchmarks/data/adopt33g_trace.md).
 
     ``reference``: with the skill veto above, ``"trivial"`` (default) as described;
     ``"combination"`` (an option, issue 33, cut33f): in a DOF where the prior has no skill,
@@ -167,6 +185,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         if combined is not None:
             veto_ref = [min(v, max(c, 1e-12)) if p >= tr else v
                         for v, c, p, tr in zip(veto_ref, combined, base, trivial)]
+    # judge "coupled": besides the removed changes' own DOFs, the DOFs where the prior's
+    # decoupled simulation has skill (docstring)
+    skilled = ([b < t for b, t in zip(base, trivial)]
+               if judge == COUPLED and trivial is not None and base is not None
+               else [False] * len(dofs))
     # skill="score": a DOF where the prior has no skill is left out of the summed score too
     judge_mask = [True] * len(dofs) if trivial is None or skill != "score" else \
         [a <= b for a, b in zip(ref, trivial)]
@@ -196,12 +219,12 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
 
     def eliminate_own(excl, cur):
         """Backward elimination from ``excl``, each removal judged on the DOFs of the
-        changes it removes (``judge="own"``)."""
+        changes it removes (``judge="own"``), and on the DOFs with skill (``"coupled"``)."""
         while len(excl) < len(changes):
             trials = []
             for c in [c for c in changes if c not in excl]:
                 names = {g[1] for g in partners(excl | {c}, changes) - excl}
-                ks = [k for k, i in enumerate(dofs) if DOF[i] in names]
+                ks = [k for k, i in enumerate(dofs) if DOF[i] in names or skilled[k]]
                 new, old = on(score(excl | {c}), ks), on(cur, ks)
                 if math.inf in new or math.inf in old:
                     delta = (0.0, 0.0) if new == old else \
@@ -218,7 +241,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
 
     def eliminate(excl, cur):
         """Backward elimination from ``excl`` (the summed score, above)."""
-        if judge == OWN:
+        if judge in (OWN, COUPLED):
             return eliminate_own(excl, cur)
         while len(excl) < len(changes):
             trials = [(score(excl | {c}), c) for c in
@@ -299,9 +322,11 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
 
 
 
-#: :func:`validate_changes`' ``judge`` values: every DOF, or the removed changes' own.
+#: :func:`validate_changes`' ``judge`` values: every DOF, the removed changes' own, or those
+#: and the other DOFs whose prior simulation has skill.
 OWN = "own"
-JUDGES = ("all", OWN)
+COUPLED = "coupled"
+JUDGES = ("all", OWN, COUPLED)
 
 
 def with_kept(per: dict, excl) -> dict:
