@@ -1141,9 +1141,11 @@ def main(argv=None) -> int:
                     help="diagnose with validation_reference ('combination': in a DOF the "
                          "prior does not predict, the skill veto's reference is the prior "
                          "combined with the trivial predictors)")
-    ap.add_argument("--gains-judge", default=None, choices=("prior", "written", "none"),
+    ap.add_argument("--gains-judge", default=None,
+                    choices=("prior", "written", "none", "written_all"),
                     help="diagnose with gains_judge ('written': a significant one-DOF "
-                         "gain fit judged inside the written model after the selection)")
+                         "gain fit judged inside the written model after the selection; "
+                         "'written_all': a whole-log fit too)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
