@@ -1178,9 +1178,11 @@ def main(argv=None) -> int:
     ap.add_argument("--buoyancy-carry", action="store_true",
                     help="diagnose with buoyancy_carry (heave's buoyancy offset written as one "
                          "change of B, acting in every DOF, and carried whole-log)")
-    ap.add_argument("--gains-judge", default=None, choices=("prior", "written", "none"),
+    ap.add_argument("--gains-judge", default=None,
+                    choices=("prior", "written", "none", "written_all"),
                     help="diagnose with gains_judge ('written': a significant one-DOF "
-                         "gain fit judged inside the written model after the selection)")
+                         "gain fit judged inside the written model after the selection; "
+                         "'written_all': a whole-log fit too)")
     args = ap.parse_args(argv)
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)

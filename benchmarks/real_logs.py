@@ -303,7 +303,8 @@ N_LOGS = len(EFFECTS) + 1
 
 def run_real_style(k: int, duration: float, seed: int,
                    one_added_mass: bool = False, gains_beside_current: bool = False,
-                   gains_validation: str = "consecutive") -> list[dict]:
+                   gains_validation: str = "consecutive",
+                   gains_judge: str = "written") -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits (with
     ``diagnose(..., one_added_mass=..., gains_beside_current=...)``)."""
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
@@ -319,10 +320,25 @@ def run_real_style(k: int, duration: float, seed: int,
              **row} for row in both_splits(read, prior, widths, oracle,
                                            one_added_mass=one_added_mass,
                                            gains_beside_current=gains_beside_current,
-                                           gains_validation=gains_validation)]
+                                           gains_validation=gains_validation,
+                                           gains_judge=gains_judge)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
+
+
+def _gains_text(record) -> str:
+    """Whether the whole-log thrusters' gains (``Diagnosis.thruster_gains``) are written and,
+    where they were judged inside the written model (``gains_judge="written_all"``), the two
+    written models' validation scores (DOFs worse than the prior, sum of squared ratios)."""
+    if not record:
+        return "not fitted"
+    text = "written" if record.get("applied") else "not written"
+    v = record.get("validation") or {}
+    if v.get("rule") == "written":
+        a, b = v["score_with_gains"], v["score_without_gains"]
+        text += f" (with {a[0]:g} / {a[1]:.4g}, without {b[0]:g} / {b[1]:.4g})"
+    return text
 
 
 def _written(model):
@@ -330,7 +346,8 @@ def _written(model):
 
 
 def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
-                gains_beside_current=False, gains_validation="consecutive") -> list[dict]:
+                gains_beside_current=False, gains_validation="consecutive",
+                gains_judge="written") -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
     part too, and whether it beats both trivial predictors there."""
@@ -345,7 +362,7 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         res = diagnose(log, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
                        prior_widths=widths, one_added_mass=one_added_mass,
                        gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation)
+                       gains_validation=gains_validation, gains_judge=gains_judge)
     forward = (res, res.holdout["errors"], time.process_time() - c0)
     head, tail = split(log, 1.0 - HOLDOUT)           # head: the first 30 %, never fitted
     c0 = time.process_time()
@@ -354,7 +371,7 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         rev = diagnose(tail, prior, dof="all", time_limit=float("inf"), prior_widths=widths,
                        one_added_mass=one_added_mass,
                        gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation)
+                       gains_validation=gains_validation, gains_judge=gains_judge)
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
@@ -382,6 +399,7 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
     for name, (r, err, cpu) in (("forward", forward), ("reverse", reverse)):
         effects = "; ".join(f"{e['dof']} {e['name']}" for e in r.model.effects) or "none"
         dropped = "; ".join(f"{d}: {why}" for d, why in r.dropped_dofs.items()) or "none"
+        gains = _gains_text(r.thruster_gains)
         tw = twins[name]
         # the rule that needs no truth: the start-state noise grown along the logged motion
         # (heldout.noise_growth, heldout.predictable) by the prior's and by the calibrated
@@ -406,7 +424,8 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
                          "noise_growth_prior": tw["prior"].get(dof),
                          "noise_growth_truth": tw.get("truth", {}).get(dof),
                          "predictable": int(ok[dof]),
-                         "effects_written": effects, "not_diagnosed": dropped,
+                         "effects_written": effects, "gains_written": gains,
+                         "not_diagnosed": dropped,
                          "cpu_s": round(cpu, 1), **tests[name].get(dof, {})})
     return rows
 
@@ -718,7 +737,8 @@ FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", 
           "calibrated", "hold_last_velocity", "zero_velocity", "truth_coefficients",
           "truth_beats_trivial", "beats_all",
           "prior_beats_trivial", "noise_growth_calibrated", "noise_growth_prior",
-          "noise_growth_truth", "predictable", "effects_written", "not_diagnosed", "cpu_s",
+          "noise_growth_truth", "predictable", "effects_written", "gains_written",
+          "not_diagnosed", "cpu_s",
           "seg10_segments", "seg10_dm_prior", "seg10_dm_hold", "seg10_dm_zero", "seg10_verdict",
           "roll_segments", "roll_dm_prior", "roll_dm_hold", "roll_dm_zero", "roll_verdict",
           "roll_calibrated", "roll_truth_verdict",
@@ -771,6 +791,11 @@ def main(argv=None) -> int:
                     help="diagnose with gains_validation (the thrusters' gains validated on "
                          "consecutive 10-s segments, or on 10-s segments restarted every 2 s "
                          "by the changes' score: stripcoef.diagnose.gaingate)")
+    ap.add_argument("--gains-judge", choices=("written", "written_all", "prior"),
+                    default="written",
+                    help="diagnose with gains_judge ('written_all': the whole-log thrusters' "
+                         "gains judged inside the written model, the log diagnosed with and "
+                         "without them: stripcoef.diagnose.gainjudge)")
     args = ap.parse_args(argv)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
@@ -779,7 +804,8 @@ def main(argv=None) -> int:
                                        else f" {args.gains_beside_current}")
          if args.gains_beside_current else "")) + (
         f" --gains-validation {args.gains_validation}"
-        if args.gains_validation != "consecutive" else "")
+        if args.gains_validation != "consecutive" else "") + (
+        f" --gains-judge {args.gains_judge}" if args.gains_judge != "written" else "")
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)
@@ -809,17 +835,19 @@ def main(argv=None) -> int:
             for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
                                  [args.seed] * n, [args.one_added_mass] * n,
                                  [args.gains_beside_current] * n,
-                                 [args.gains_validation] * n):
+                                 [args.gains_validation] * n, [args.gains_judge] * n):
                 out += rows
     else:
         for k in args.logs:
             out += run_real_style(k, args.duration, args.seed, args.one_added_mass,
-                                  args.gains_beside_current, args.gains_validation)
+                                  args.gains_beside_current, args.gains_validation,
+                                  args.gains_judge)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
             for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass,
                                    gains_beside_current=args.gains_beside_current,
-                                   gains_validation=args.gains_validation):
+                                   gains_validation=args.gains_validation,
+                                   gains_judge=args.gains_judge):
                 out.append({"log": name, "kind": "real", "truth": source, "rows": len(log),
                             "rate_hz": round(log.meta["rate"], 3), "clock_offset_s": "",
                             **row})

@@ -97,3 +97,42 @@ def test_an_unknown_gains_judge_is_an_input_error():
 
     with pytest.raises(InputError, match="gains_judge"):
         diagnose(None, None, dof="surge", time_limit=1.0, gains_judge="later")
+
+
+def test_whole_log_gains_judged_against_the_log_diagnosed_without_them():
+    # "written_all" (real33g): the whole log diagnosed with the gains applied unvalidated and
+    # again with the gains not fitted ("off", not dof_gains, which a whole log ignores)
+    calls = []
+
+    def run(log, model, *, dof, settings, budget):
+        calls.append(settings)
+        if settings.gains_judge == gainjudge.OFF:
+            return _Stub("without", {"prior": {"surge": 0.1, "yaw": 0.2},
+                                     "kept_changes": {"surge": 0.09, "yaw": 0.15}}, None)
+        assert settings.gains_judge == gainjudge.NONE and settings.dof_gains
+        return _Stub("with", {"prior": {"surge": 0.08, "yaw": 0.1},     # the gained prior's
+                              "kept_changes": {"surge": 0.08, "yaw": 0.21}},
+                     {"applied": True, "reason": "significant", "gains": {"t1": 1.1}})
+
+    got = gainjudge.judged(run, None, None, "all",
+                           DiagnoseSettings(gains_judge=gainjudge.WRITTEN_ALL), None,
+                           whole=True)
+    # with the gains yaw is worse than the file's prior (1 DOF worse), without them none is
+    assert got.name == "without" and got.thruster_gains["applied"] is False
+    v = got.thruster_gains["validation"]
+    assert v["score_with_gains"] == [1.0, pytest.approx(0.64 + 1.1025)]
+    assert v["score_without_gains"] == [0.0, pytest.approx(0.81 + 0.5625)]
+    assert [s.gains_judge for s in calls] == [gainjudge.NONE, gainjudge.OFF]
+
+
+def test_written_all_judges_whole_log_fits_and_off_fits_no_gains():
+    applied = SimpleNamespace(applied=True)
+    s = DiagnoseSettings(gains_judge=gainjudge.WRITTEN_ALL)
+    assert gainjudge.after_selection(s, [0, 1], object(), applied)
+    assert gainjudge.after_selection(s, [0], object(), applied)
+    assert not gainjudge.after_selection(s, [0, 1], None, applied)
+    assert gainjudge.fitted(DiagnoseSettings(), [0, 1])
+    assert gainjudge.fitted(DiagnoseSettings(), [0])
+    assert not gainjudge.fitted(DiagnoseSettings(dof_gains=False), [0])
+    assert gainjudge.fitted(DiagnoseSettings(dof_gains=False), [0, 1])
+    assert not gainjudge.fitted(DiagnoseSettings(gains_judge=gainjudge.OFF), [0, 1])

@@ -273,7 +273,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         (:attr:`DiagnoseSettings.validation_reference`; :mod:`.combination`).
     gains_judge : str
         ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
-        is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_judge`).
+        is validated (:mod:`.gainjudge`, :attr:`DiagnoseSettings.gains_judge`);
+        ``"written_all"``: a whole-log fit too; ``"off"``: the gains not fitted.
     noise_with_bias : bool
         The calibration's identifiability judged with the noise level fitted beside a free
         constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
@@ -422,12 +423,13 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     # diagnosis and written with the model
     prior, gains = model, None
     data0 = data
-    if len(dofs) > 1 or settings.dof_gains:
+    if gainjudge.fitted(settings, dofs):
         gains = fit_thruster_gains(data, dofs, settings, excited=excited, budget=budget)
         if gainjudge.after_selection(settings, dofs, val_log, gains):
-            # judged inside the written model, the DOF diagnosed with and without them
+            # judged inside the written model, the DOF(s) diagnosed with and without them
             # (gainjudge.py)
-            return gainjudge.judged(run, log, model, dof, settings, budget)
+            return gainjudge.judged(run, log, model, dof, settings, budget,
+                                    whole=len(dofs) > 1)
         if gains is not None and settings.gains_judge != gainjudge.NONE:
             gains = validate_gains(gains, val_log, model, dofs, settings)
         if gains is not None and gains.applied:

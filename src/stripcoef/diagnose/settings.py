@@ -337,7 +337,8 @@ class DiagnoseSettings:
         benchmarks/data/gains33f_trace.md, docs/performance.md); ``"prior"``: alone on the prior before the
         selection (:func:`stripcoef.diagnose.gains.validated`, the rule before); ``"none"``:
         applied unvalidated. Whole-log diagnoses always use ``"prior"``'s rule unless
-        ``"none"``
+        ``"none"`` or ``"written_all"`` (the whole-log gains judged inside the written model
+        too, an option: benchmarks/data/real33g_trace.md); ``"off"``: the gains not fitted
     noise_with_bias : bool
         The calibration's identifiability (:func:`~stripcoef.diagnose.fit._identifiability`)
         judged with the window residual's noise level fitted with a free constant beside
