@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from _gains import contrast_error
 from conftest import shipped_model
 from stripcoef.diagnose.gains import fit_thruster_gains, thruster_groups
 from stripcoef.diagnose.regains import (current_kept, found_current, with_found_current,
@@ -65,16 +66,6 @@ def test_the_current_found_is_the_shared_one_and_none_without_one():
     assert len(water.effects) == len(prior.effects) + 1
 
 
-def _contrast_error(fit, truth, prior, groups):
-    thr = prior.to_dict()["thrusters"]
-    g = np.array([t["ct_forward"] / (float(p.get("ct_forward", 1.0))
-                                     * float(p.get("eta_forward", 1.0)))
-                  for t, p in zip(truth.thrusters, thr)])
-    want = g.copy()
-    for members in groups:
-        want[members] = g[members] / g[members].mean()
-    return float(np.sqrt(np.mean((np.array(fit.gains) - want) ** 2)))
-
 
 @pytest.mark.slow
 def test_gains_fitted_beside_the_current_lose_the_omitted_variable_bias():
@@ -95,8 +86,8 @@ def test_gains_fitted_beside_the_current_lose_the_omitted_variable_bias():
     data_c = window_data(log, water, window=4.0)
     data_c.e0 = data_c.e0 - effect_window_forces(data_c, water)
     beside = fit_thruster_gains(data_c, excited, excited=excited)
-    e_without = _contrast_error(without, truth, prior, groups)
-    e_beside = _contrast_error(beside, truth, prior, groups)
+    e_without = contrast_error(without, truth, prior, groups)
+    e_beside = contrast_error(beside, truth, prior, groups)
     assert e_beside < 0.5 * e_without, (e_without, e_beside)
 
 
@@ -123,8 +114,8 @@ def test_gains_fitted_with_the_current_free_beside_them_find_both():
                                shared=(("current_north", "current_east"),
                                        current_columns(data, zero, excited)))
     assert joint.significant
-    e_without = _contrast_error(without, truth, prior, groups)
-    e_joint = _contrast_error(joint, truth, prior, groups)
+    e_without = contrast_error(without, truth, prior, groups)
+    e_joint = contrast_error(joint, truth, prior, groups)
     assert e_joint < 0.5 * e_without, (e_without, e_joint)
     vc = np.array([joint.calibration["shared.current_north"],
                    joint.calibration["shared.current_east"]])

@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from _gains import contrast_error
 from conftest import shipped_model
 from stripcoef.diagnose.gains import fit_thruster_gains, thruster_groups
 from stripcoef.diagnose.select import select_dofs
@@ -33,18 +34,6 @@ def test_the_timing_found_is_the_shared_one_and_none_without_one():
     assert len(timed.effects) == len(prior.effects) + 1
 
 
-def _contrast_error(fit, truth, prior, groups):
-    """RMS [-] of the fitted gains minus the truth's within-group contrasts (each group's
-    truth gains divided by their mean: the gains' fit determines contrasts only)."""
-    thr = prior.to_dict()["thrusters"]
-    g = np.array([t["ct_forward"] / (float(p.get("ct_forward", 1.0))
-                                     * float(p.get("eta_forward", 1.0)))
-                  for t, p in zip(truth.thrusters, thr)])
-    want = g.copy()
-    for members in groups:
-        want[members] = g[members] / g[members].mean()
-    return float(np.sqrt(np.mean((np.array(fit.gains) - want) ** 2)))
-
 
 @pytest.mark.slow
 def test_gains_fitted_beside_the_lag_lose_the_omitted_variable_bias():
@@ -65,7 +54,7 @@ def test_gains_fitted_beside_the_lag_lose_the_omitted_variable_bias():
     timed = with_found_timing(prior, _fits((lag, np.array([float(truth.strength)]))))
     beside = fit_thruster_gains(model_window_data(log, timed, window=4.0), excited,
                                 excited=excited)
-    e_without = _contrast_error(without, truth, prior, groups)
-    e_beside = _contrast_error(beside, truth, prior, groups)
+    e_without = contrast_error(without, truth, prior, groups)
+    e_beside = contrast_error(beside, truth, prior, groups)
     # measured: 0.0209 without, 0.0050 beside
     assert e_beside < 0.5 * e_without, (e_without, e_beside)
