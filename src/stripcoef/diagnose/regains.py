@@ -180,30 +180,43 @@ def withdrawn(gains, first):
     return None if first is None else replace(first, reason=first.reason + why)
 
 
-def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings, budget):
-    """``(gains, model, data)``: the thrusters' gains fitted again on the window residual of
-    ``water`` (the prior with the current found) over ``dofs``, validated against ``water``
-    (:func:`~stripcoef.diagnose.gains.validated`); ``model`` the prior with them when kept
-    (else ``prior``) and ``data`` its window data (``data0``, the prior's, when not kept).
-    The gains' record says what they were fitted beside. ``gains`` None when the fit is not
+def refit_beside(data_f, found, prior, data0, train_log, val_log, dofs, excited, settings,
+                 budget, beside: str, shared=None, validate: bool = True):
+    """``(gains, model, data)``: the thrusters' gains fitted again on ``data_f``, the window
+    data of ``found`` (the prior with an effect the DOFs found: a current here, the
+    thrusters' lag or delay in :mod:`.timinggains`), over ``dofs`` (``shared``: columns
+    free beside them, as :func:`~stripcoef.diagnose.gains.fit_thruster_gains`), validated
+    against ``found`` unless not ``validate``; ``model`` the prior with them when kept (else
+    ``prior``) and ``data`` its window data (``data0``, the prior's, when not kept). The
+    gains' record says what they were fitted ``beside``. ``gains`` None when the fit is not
     possible (as :func:`~stripcoef.diagnose.gains.fit_thruster_gains`)."""
+    gains = fit_thruster_gains(data_f, dofs, settings, excited=excited, budget=budget,
+                               shared=shared)
+    if gains is None:
+        return None, prior, data0
+    if validate:
+        gains = validate_gains(gains, val_log, found, dofs, settings)
+    gains = replace(gains, reason=gains.reason + f"; fitted beside {beside}, the DOFs "
+                    "diagnosed again on them")
+    if not gains.applied:
+        return gains, prior, data0
+    model = gains.model(prior)
+    return gains, model, model_window_data(train_log, model, window=settings.window)
+
+
+def refit_gains(water, prior, data0, train_log, val_log, dofs, excited, settings, budget):
+    """:func:`refit_beside` the current ``water`` holds (the prior with the current found),
+    validated against ``water`` (:func:`~stripcoef.diagnose.gains.validated`); mode
+    ``"joint"``: the current's columns free beside the gains."""
     data_c = model_window_data(train_log, water, window=settings.window)
     vc = water.effects[-1]["parameters"]
     shared = None
     if settings.gains_beside_current == JOINT:
         shared = (("current_north", "current_east"), current_columns(data_c, vc, dofs))
-    gains = fit_thruster_gains(data_c, dofs, settings, excited=excited, budget=budget,
-                               shared=shared)
-    if gains is None:
-        return None, prior, data0
-    gains = validate_gains(gains, val_log, water, dofs, settings)
-    gains = replace(gains, reason=gains.reason + "; fitted beside the current the DOFs found "
-                    f"(north {vc['current_north']:.4g}, east {vc['current_east']:.4g} m/s), "
-                    "the DOFs diagnosed again on them")
-    if not gains.applied:
-        return gains, prior, data0
-    model = gains.model(prior)
-    return gains, model, model_window_data(train_log, model, window=settings.window)
+    return refit_beside(data_c, water, prior, data0, train_log, val_log, dofs, excited,
+                        settings, budget, shared=shared,
+                        beside=f"the current the DOFs found (north {vc['current_north']:.4g}, "
+                               f"east {vc['current_east']:.4g} m/s)")
 
 
 def _log_density(res) -> np.ndarray:

@@ -39,16 +39,13 @@ within 15 % 61 -> 60, whole-log spurious steps named 4 -> 4 (one seed +1, anothe
 one-DOF refit validated by the prior's rule, not inside the written model as
 ``gains_judge="written"`` would; not traced).
 
-Depends on: diagnose.calibrate (SHARED_TIMING), diagnose.gaingate, diagnose.gains, effects.
+Depends on: diagnose.calibrate (SHARED_TIMING), diagnose.regains (refit_beside), effects.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 from stripcoef.diagnose.calibrate import SHARED_TIMING
-from stripcoef.diagnose.gaingate import validate_gains
-from stripcoef.diagnose.gains import fit_thruster_gains
+from stripcoef.diagnose.regains import refit_beside
 from stripcoef.effects.laws import model_window_data
 
 
@@ -76,24 +73,13 @@ def with_found_timing(prior, fits: dict):
 
 
 def refit_gains(timed, prior, data0, train_log, val_log, dofs, excited, settings, budget):
-    """``(gains, model, data)``: the thrusters' gains fitted again on the window residual of
-    ``timed`` (the prior with the timing effect found, :func:`with_found_timing`) over
-    ``dofs``, validated against ``timed``; ``model`` the prior with them when kept (else
-    ``prior``) and ``data`` its window data (``data0``, the prior's, when not kept).
-    ``gains`` None when the fit is not possible
-    (:func:`~stripcoef.diagnose.gains.fit_thruster_gains`)."""
-    data_t = model_window_data(train_log, timed, window=settings.window)
-    gains = fit_thruster_gains(data_t, dofs, settings, excited=excited, budget=budget)
-    if gains is None:
-        return None, prior, data0
-    if settings.gains_judge != "none":
-        gains = validate_gains(gains, val_log, timed, dofs, settings)
+    """:func:`~stripcoef.diagnose.regains.refit_beside` the timing effect ``timed`` holds
+    (the prior with the lag or delay found, :func:`with_found_timing`), validated against
+    ``timed`` unless ``settings.gains_judge`` is ``"none"``."""
     entry = timed.effects[-1]
     (key, value), = entry["parameters"].items()
-    gains = replace(gains, reason=gains.reason + f"; fitted beside the thrusters' "
-                    f"{entry['name']} the DOFs found ({key} {value:.4g} s), the DOFs "
-                    "diagnosed again on them")
-    if not gains.applied:
-        return gains, prior, data0
-    model = gains.model(prior)
-    return gains, model, model_window_data(train_log, model, window=settings.window)
+    return refit_beside(model_window_data(train_log, timed, window=settings.window), timed,
+                        prior, data0, train_log, val_log, dofs, excited, settings, budget,
+                        beside=f"the thrusters' {entry['name']} the DOFs found "
+                               f"({key} {value:.4g} s)",
+                        validate=settings.gains_judge != "none")
