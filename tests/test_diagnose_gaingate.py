@@ -3,7 +3,12 @@
 
 The log: a seeded noisy 60-s log of the VideoRay-like ROV (validation.synthetic.rov_model)
 whose vertical thruster delivers 1.3 of its map, simulated by stripcoef's own simulate, so
-the right gains are known exactly."""
+the right gains are known exactly. The commands (up to 162 of the map's units) keep the
+vehicle's motion deterministic: a 1e-9 m/s change of the starting surge moves the log by
+2.6e-9 (``test_the_log_is_not_chaotic``). With commands of 600-900 the Munk moment of the
+light ROV (Z_wdot - X_udot) u w outgrew its restoring moment and it tumbled at 28-37 rad/s:
+the same change then moved the log by 53 m/s, and one CPU's round-off flipped the
+validation's verdicts."""
 
 from __future__ import annotations
 
@@ -30,19 +35,38 @@ def _gains(prior, values):
                          applied=True, reason="test")
 
 
+def _commands(t):
+    """Surge sines with a square-wave turn and a square-wave heave [the map's command units]."""
+    turn = 54.0 * np.sign(np.sin(2 * np.pi * t / 5.3))
+    return {"port": 108.0 * np.sin(2 * np.pi * t / 9.0) + turn,
+            "starboard": 108.0 * np.sin(2 * np.pi * t / 9.0) - turn,
+            "vertical": 126.0 * np.sign(np.sin(2 * np.pi * t / 7.1)), "lateral": 0.0 * t}
+
+
 @pytest.fixture(scope="module")
 def case():
     prior = rov_model()
     truth = _gains(prior, [1.0, 1.0, 1.3, 1.0]).model(prior)
     t = np.arange(0.0, 60.0, 0.1)
-    turn = 300.0 * np.sign(np.sin(2 * np.pi * t / 5.3))
-    cmd = {"port": 600.0 * np.sin(2 * np.pi * t / 9.0) + turn,
-           "starboard": 600.0 * np.sin(2 * np.pi * t / 9.0) - turn,
-           "vertical": 700.0 * np.sign(np.sin(2 * np.pi * t / 7.1)), "lateral": 0.0 * t}
+    cmd = _commands(t)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
         log = add_noise(simulate(truth, t, commands=cmd), np.random.default_rng(3))
     return prior, log
+
+
+def test_the_log_is_not_chaotic():
+    """The verdicts below hold on any CPU only if round-off cannot move the log: a 1e-9 m/s
+    change of the starting surge stays below 1e-7 everywhere."""
+    prior = rov_model()
+    truth = _gains(prior, [1.0, 1.0, 1.3, 1.0]).model(prior)
+    t = np.arange(0.0, 60.0, 0.1)
+    cmd = _commands(t)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        a = simulate(truth, t, commands=cmd)
+        b = simulate(truth, t, commands=cmd, nu0=np.array([1e-9, 0, 0, 0, 0, 0]))
+    assert max(np.max(np.abs(np.asarray(a[c]) - np.asarray(b[c]))) for c in "uvwpqr") < 1e-7
 
 
 def test_the_score_counts_the_dofs_made_worse_first():
@@ -59,7 +83,7 @@ def test_the_right_gains_are_kept_and_a_wrong_contrast_removed_though_the_sum_fa
         right = validated(_gains(prior, [1.0, 1.0, 1.3, 1.0]), log, prior, DOFS)
         # the right vertical gain with a wrong port/starboard contrast: heave and surge
         # better, yaw worse
-        wrong = [1.06, 0.94, 1.3, 1.0]
+        wrong = [1.02, 0.98, 1.3, 1.0]
         old = consecutive(_gains(prior, wrong), log, prior, DOFS)
         new = validated(_gains(prior, wrong), log, prior, DOFS)
     assert right.applied and right.validation["dofs_worse"] == 0
@@ -78,7 +102,7 @@ def test_the_right_gains_are_kept_and_a_wrong_contrast_removed_though_the_sum_fa
 
 def test_the_setting_chooses_the_rule(case):
     prior, log = case
-    g = _gains(prior, [1.06, 0.94, 1.3, 1.0])
+    g = _gains(prior, [1.02, 0.98, 1.3, 1.0])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
         a = validate_gains(g, log, prior, DOFS, DiagnoseSettings(gains_validation=CONSECUTIVE))
