@@ -49,8 +49,14 @@ Usage:
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
         [--validation-others logged|simulated|each] [--one-added-mass]
-        [--validation-horizon correlation] [--validation-judge own]
-        [--validation-reference combination]
+        [--validation-horizon SECONDS|correlation] [--validation-judge all|own|coupled]
+        [--validation-reference trivial|combination] [--linked-gains [identified|off]]
+        [--no-noise-with-bias]
+
+Every option left out is diagnose's default (``DiagnoseSettings``); the defaults before
+adopt33h (stop 56) are ``--validation-others logged --validation-horizon 10
+--validation-judge all --validation-reference trivial --linked-gains off
+--no-noise-with-bias``.
     python -m benchmarks.diagnose_independent --excitation [--seed S] [--repeats 3] ...
 
 ``--excitation`` diagnoses nothing: it generates the logs and prints how each excites its
@@ -132,7 +138,7 @@ def with_truth_maps(prior, truth):
 
 
 def run_one(vehicle: str, category: str | None, seed: int, duration: float,
-            modes: tuple, validation_others: str = "logged",
+            modes: tuple, validation_others: str | None = None,
             truth_maps: bool = False, one_added_mass: bool = False,
             dof_gains: bool = True, options: dict | None = None) -> list[dict]:
     """One log (simulated once) diagnosed in each of ``modes``: the rows of the score table
@@ -207,7 +213,7 @@ def _background(truth, prior: dict) -> dict:
 
 
 def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim,
-               validation_others: str = "logged", one_added_mass: bool = False,
+               validation_others: str | None = None, one_added_mass: bool = False,
                dof_gains: bool = True, options: dict | None = None) -> dict:
     """One log diagnosed in one mode: the row of the score table (``one_added_mass``,
     ``dof_gains``: diagnose's options, recorded in the row; ``options``: further keyword
@@ -223,7 +229,8 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
         # (CPU time is what the table reports)
         diagnosis = diagnose(log, prior, dof=dof_name if mode == "dof" else "all",
                              time_limit=float("inf"),
-                             validation_others=validation_others,
+                             **({} if validation_others is None
+                                else {"validation_others": validation_others}),
                              one_added_mass=one_added_mass, dof_gains=dof_gains,
                              **(options or {}))
         res = diagnosis.to_dict()
@@ -1091,10 +1098,10 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
-    ap.add_argument("--validation-others", default="logged",
+    ap.add_argument("--validation-others", default=None,
                     choices=("logged", "simulated", "each"),
                     help="how the validation's free simulations move the DOFs not diagnosed "
-                         "(diagnose's validation_others)")
+                         "(diagnose's validation_others; default: diagnose's)")
     ap.add_argument("--same-seeds", action="store_true",
                     help="seed each log as a run of every category and vehicle would (a run "
                          "of a few categories or one vehicle then diagnoses the same logs as "
@@ -1116,10 +1123,10 @@ def main(argv=None) -> int:
     ap.add_argument("--one-added-mass", action="store_true",
                     help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
                          "a diagnosed DOF's own added mass selected again)")
-    ap.add_argument("--drag-couplings", action="store_true",
+    ap.add_argument("--drag-couplings", action="store_true", default=None,
                     help="diagnose with drag_couplings (a moment DOF's calibration holds its "
                          "drag couplings to the translations)")
-    ap.add_argument("--restoring-free", action="store_true",
+    ap.add_argument("--restoring-free", action="store_true", default=None,
                     help="diagnose with restoring_free (the linear drag's test in surge and "
                          "sway repeated with the buoyancy change free)")
     ap.add_argument("--no-scale-choice-unforced", dest="scale_choice_unforced",
@@ -1131,19 +1138,22 @@ def main(argv=None) -> int:
                     help="diagnose with heldout_rise ('diebold_mariano': a scale or a "
                          "released coefficient refused for a held-out rise only when the "
                          "Diebold-Mariano test of the window losses rejects)")
-    ap.add_argument("--linked-gains", nargs="?", const=True, default=False,
-                    choices=(True, "identified"),
+    ap.add_argument("--linked-gains", nargs="?", const=True, default=None,
+                    choices=(True, "identified", "off"),
                     help="diagnose with linked_gains (the thrusters' gains' contrasts within "
                          "groups linked through the diagnosed DOFs they act in); "
                          "'--linked-gains identified': linked only where the log identifies "
-                         "the groups' contrast")
-    ap.add_argument("--retest-scales", action="store_true",
+                         "the groups' contrast; 'off': not linked (default: diagnose's)")
+    ap.add_argument("--retest-scales", action="store_true", default=None,
                     help="diagnose with retest_scales (whole-log: a thrust scale or an "
                          "added-mass release judged again beside the shared fits)")
-    ap.add_argument("--noise-with-bias", action="store_true",
+    ap.add_argument("--noise-with-bias", action="store_true", default=None,
                     help="diagnose with noise_with_bias (the calibration's identifiability "
-                         "judged with the noise level fitted beside a free constant)")
-    ap.add_argument("--gains-beside-timing", action="store_true",
+                         "judged with the noise level fitted beside a free constant; "
+                         "diagnose's default)")
+    ap.add_argument("--no-noise-with-bias", dest="noise_with_bias", action="store_false",
+                    help="diagnose with noise_with_bias=False (the rule before adopt33h)")
+    ap.add_argument("--gains-beside-timing", action="store_true", default=None,
                     help="diagnose with gains_beside_timing (the thrusters' gains fitted "
                          "again beside the lag or delay the DOFs found, the DOFs diagnosed "
                          "again on them)")
@@ -1153,7 +1163,7 @@ def main(argv=None) -> int:
                          "default since gains33c)")
     ap.add_argument("--no-dof-gains", dest="dof_gains", action="store_false",
                     help="diagnose with dof_gains=False (one DOF on the prior's thrust map)")
-    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
+    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=None,
                     choices=(True, "joint", "test"), metavar="joint|test",
                     help="diagnose with gains_beside_current (whole-log: the thrusters' gains "
                          "fitted again beside the current the DOFs found; 'joint': with the "
@@ -1175,7 +1185,7 @@ def main(argv=None) -> int:
                     help="diagnose with validation_reference ('combination': in a DOF the "
                          "prior does not predict, the skill veto's reference is the prior "
                          "combined with the trivial predictors)")
-    ap.add_argument("--buoyancy-carry", action="store_true",
+    ap.add_argument("--buoyancy-carry", action="store_true", default=None,
                     help="diagnose with buoyancy_carry (heave's buoyancy offset written as one "
                          "change of B, acting in every DOF, and carried whole-log)")
     ap.add_argument("--gains-judge", default=None,
@@ -1184,6 +1194,8 @@ def main(argv=None) -> int:
                          "gain fit judged inside the written model after the selection; "
                          "'written_all': a whole-log fit too)")
     args = ap.parse_args(argv)
+    if args.linked_gains == "off":
+        args.linked_gains = False
     if args.validation_horizon not in (None, "correlation"):
         args.validation_horizon = float(args.validation_horizon)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
@@ -1234,7 +1246,7 @@ def main(argv=None) -> int:
                                  ("noise_with_bias", args.noise_with_bias),
                                  ("buoyancy_carry", args.buoyancy_carry),
                                  ("gains_beside_timing", args.gains_beside_timing),
-                                 ("retest_scales", args.retest_scales)) if value},
+                                 ("retest_scales", args.retest_scales)) if value is not None},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

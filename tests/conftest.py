@@ -64,11 +64,13 @@ def shipped_model(name: str):
 
 
 @lru_cache(maxsize=None)
-def whole_log_parts(vehicle: str, dofs, effect, seed: int, duration: float):
+def whole_log_parts(vehicle: str, dofs, effect, seed: int, duration: float, settings=None):
     """``(ThrusterParts, truth)``: the siblings of the DOFs ``dofs`` of an independent-simulator
     log (``validation.independent.generate`` of the shipped ``vehicle`` file) against the prior
-    with the thrusters' gains fitted jointly first, as a whole-log diagnosis does."""
+    with the thrusters' gains fitted jointly first, as a whole-log diagnosis does (with
+    ``settings``, a ``DiagnoseSettings``; None: the defaults)."""
     from stripcoef.diagnose.gains import fit_thruster_gains
+    from stripcoef.diagnose.settings import DiagnoseSettings
     from stripcoef.diagnose.thrusterparts import ThrusterParts
     from stripcoef.effects.windows import window_data
     from validation.independent import generate
@@ -76,7 +78,8 @@ def whole_log_parts(vehicle: str, dofs, effect, seed: int, duration: float):
     prior = shipped_model(vehicle)
     log, truth = generate(prior.to_dict(), effect, seed, duration=duration)
     dofs = list(dofs)
-    gains = fit_thruster_gains(window_data(log, prior), dofs, excited=dofs)
+    gains = fit_thruster_gains(window_data(log, prior), dofs, settings or DiagnoseSettings(),
+                               excited=dofs)
     if gains is not None and gains.significant:
         prior = gains.model(prior)
     return ThrusterParts(window_data(log, prior), dofs), truth

@@ -10,6 +10,7 @@ truth they are compared with is each thruster's factor over its group's mean.
 import numpy as np
 import pytest
 
+from _gains import fitted_groups, truth_contrasts
 from conftest import shipped_model
 from stripcoef.diagnose.gains import (GAIN_SD, contrast_basis, fit_thruster_gains,
                                       spread_sd, thruster_groups)
@@ -23,18 +24,6 @@ from stripcoef.errors import ModelWarning
 
 def _prior(vehicle):
     return shipped_model(f"{vehicle}.yaml")
-
-
-def _truth_contrasts(truth, prior, groups) -> np.ndarray:
-    """Each truth thruster's factor over the file's map, divided by its group's mean [-]."""
-    thr = prior.to_dict()["thrusters"]
-    g = np.array([t["ct_forward"] / (float(p.get("ct_forward", 1.0))
-                                     * float(p.get("eta_forward", 1.0)))
-                  for t, p in zip(truth.thrusters, thr)])
-    out = g.copy()
-    for members in groups:
-        out[members] = g[members] / g[members].mean()
-    return out
 
 
 def test_groups_and_contrasts_of_a_vectored_eight_thruster_layout():
@@ -139,8 +128,7 @@ def test_gains_of_a_perturbed_truth_are_recovered_within_their_bands(vehicle, se
     data = window_data(log, prior, window=4.0)
     excited, _ = select_dofs(data)
     fit = fit_thruster_gains(data, excited, excited=excited)
-    groups = thruster_groups(data.alloc)
-    want = _truth_contrasts(truth, prior, groups)
+    want = truth_contrasts(truth, prior, fitted_groups(fit, data.alloc))
     got, sd = np.array(fit.gains), np.array(fit.std)
     err = np.abs(got - want)
     msg = f"seed {seed}: truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
@@ -172,7 +160,7 @@ def test_whole_log_clean_log_names_no_effect_outside_the_truths_background():
     for th in res.model.thrusters:
         assert th.eta_forward == pytest.approx(gains["gains"][th.name], rel=1e-9)
     # the vectored four: each within 3 % of its truth over the group's mean
-    want = _truth_contrasts(truth, prior, thruster_groups(prior.allocation()))
+    want = truth_contrasts(truth, prior, thruster_groups(prior.allocation()))
     for k, th in enumerate(prior.thrusters[:4]):
         assert gains["gains"][th.name] == pytest.approx(want[k], abs=0.03)
     # no step outside the background every truth carries (a buoyancy, the thrust scales)
@@ -258,7 +246,7 @@ def test_linked_gains_fit_the_vertical_four_against_the_vectored_four():
     fit = fit_thruster_gains(data, excited, DiagnoseSettings(linked_gains=True),
                              excited=excited)
     assert len(fit.combinations) == 7
-    want = _truth_contrasts(truth, prior, [list(range(8))])
+    want = truth_contrasts(truth, prior, [list(range(8))])
     got, sd = np.array(fit.gains), np.array(fit.std)
     msg = f"truth {np.round(want, 3)}, fitted {np.round(got, 3)} +- {np.round(sd, 3)}"
     assert np.all(np.abs(got - want) <= np.maximum(3.0 * sd, THRUST_BAND)), msg

@@ -76,8 +76,15 @@ def test_losses_use_each_dofs_own_segments(monkeypatch):
     assert horizon.rms(got) == pytest.approx([np.sqrt(0.5), np.sqrt(0.25), np.sqrt(0.5)])
 
 
-def test_the_default_horizon_is_the_free_simulations():
-    assert DiagnoseSettings().validation_horizons(None, [0, 1]) is None
+def test_the_default_horizon_is_the_velocities_correlation_time():
+    """The default (adopt33h) is each DOF's integral time scale; the free simulations'
+    10-s horizon (:data:`RESIMULATION_HORIZON`, the default before) is asked for by number."""
+    from stripcoef.diagnose.horizon import CORRELATION
+    from stripcoef.diagnose.settings import RESIMULATION_HORIZON
+
+    assert DiagnoseSettings().validation_horizon == CORRELATION
+    assert DiagnoseSettings(validation_horizon=RESIMULATION_HORIZON).validation_horizons(
+        None, [0, 1]) is None
     assert DiagnoseSettings(validation_horizon=2.5).validation_horizons(None, [0]) == [2.5]
 
 

@@ -36,7 +36,8 @@ def test_a_determined_coefficient_is_calibrated_beside_a_bias():
     # [N per unit of the column]; the log determines it to NOISE / sqrt(n) = 0.0018, or with
     # the bias counted as noise to 0.037: information ratios 2.7 and 0.14 against 0.3
     band = [0.005]
-    off = _identifiability(data, 0, H, band, ["D_Q"], [0])
+    off = _identifiability(data, 0, H, band, ["D_Q"], [0],
+                           DiagnoseSettings(noise_with_bias=False))
     on = _identifiability(data, 0, H, band, ["D_Q"], [0], DiagnoseSettings(noise_with_bias=True))
     assert "D_Q" in off["kept_at_prior"]
     assert "D_Q" not in on["kept_at_prior"]

@@ -10,7 +10,7 @@ import pytest
 
 from _gains import contrast_error
 from conftest import shipped_model
-from stripcoef.diagnose.gains import fit_thruster_gains, thruster_groups
+from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.regains import (current_kept, found_current, with_found_current,
                                         withdrawn)
 from stripcoef.diagnose.select import select_dofs
@@ -79,15 +79,14 @@ def test_gains_fitted_beside_the_current_lose_the_omitted_variable_bias():
     log, truth = generate(prior.to_dict(), "current", 9, duration=150.0, rate=20.0)
     data = window_data(log, prior, window=4.0)
     excited, _ = select_dofs(data)
-    groups = thruster_groups(data.alloc)
     without = fit_thruster_gains(data, excited, excited=excited)
     water = prior.with_effects({"name": "current", "dof": "all", "parameters": {
         "current_north": float(truth.current[0]), "current_east": float(truth.current[1])}})
     data_c = window_data(log, water, window=4.0)
     data_c.e0 = data_c.e0 - effect_window_forces(data_c, water)
     beside = fit_thruster_gains(data_c, excited, excited=excited)
-    e_without = contrast_error(without, truth, prior, groups)
-    e_beside = contrast_error(beside, truth, prior, groups)
+    e_without = contrast_error(without, truth, prior, data.alloc)
+    e_beside = contrast_error(beside, truth, prior, data.alloc)
     assert e_beside < 0.5 * e_without, (e_without, e_beside)
 
 
@@ -108,14 +107,13 @@ def test_gains_fitted_with_the_current_free_beside_them_find_both():
     water = prior.with_effects({"name": "current", "dof": "all", "parameters": zero})
     data = window_data(log, water, window=4.0)
     excited, _ = select_dofs(data)
-    groups = thruster_groups(data.alloc)
     without = fit_thruster_gains(data, excited, excited=excited)
     joint = fit_thruster_gains(data, excited, excited=excited,
                                shared=(("current_north", "current_east"),
                                        current_columns(data, zero, excited)))
     assert joint.significant
-    e_without = contrast_error(without, truth, prior, groups)
-    e_joint = contrast_error(joint, truth, prior, groups)
+    e_without = contrast_error(without, truth, prior, data.alloc)
+    e_joint = contrast_error(joint, truth, prior, data.alloc)
     assert e_joint < 0.5 * e_without, (e_without, e_joint)
     vc = np.array([joint.calibration["shared.current_north"],
                    joint.calibration["shared.current_east"]])

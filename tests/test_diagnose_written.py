@@ -18,9 +18,9 @@ import pytest
 
 import stripcoef.diagnose.pipeline as pipeline
 from stripcoef import cli, samples
-from stripcoef.conventions import parse_dof
+from stripcoef.conventions import DOF, parse_dof
 from stripcoef.diagnose.calibrate import SHARED_TIMING, bounds_hit
-from stripcoef.diagnose.heldout import compare, split
+from stripcoef.diagnose.heldout import EACH, compare, split
 from stripcoef.diagnose.report import _fmt, text_summary
 from stripcoef.diagnose.settings import VALIDATION_FRACTION
 from stripcoef.diagnose.validate import validation_errors
@@ -253,10 +253,16 @@ def test_validation_and_held_out_errors_are_the_written_models(run):
     res, model, prior = run["res"], run["model"], run["prior"]
     _, val, test_log = _parts(run)
     dofs = [parse_dof(d) for d in res["per_dof"]]
-    # the DOFs the validation took from the log (a one-DOF diagnosis: every other one)
-    logged = [parse_dof(d) for d in res["validation"]["logged_dofs"]]
-    assert logged == ([j for j in range(6) if j not in dofs] if len(dofs) == 1 else [])
-    kept = validation_errors(val, model, dofs, logged)
+    # the DOFs the validation took from the log: "each" (the default: each diagnosed DOF
+    # alone, the other five logged), or a list (with "logged": a one-DOF diagnosis every
+    # other one); the horizon of each DOF's segments as recorded (None: the free simulation's)
+    logged = res["validation"]["logged_dofs"]
+    if logged != EACH:
+        logged = [parse_dof(d) for d in logged]
+        assert logged == ([j for j in range(6) if j not in dofs] if len(dofs) == 1 else [])
+    horizon = res["validation"]["horizon_s"]
+    horizon = None if horizon is None else [horizon[DOF[i]] for i in dofs]
+    kept = validation_errors(val, model, dofs, logged, horizon)
     for d in res["per_dof"]:
         _same(res["validation"]["kept_changes"][d], kept[d])
     if test_log is not None:

@@ -9,7 +9,9 @@ drawn from the clock that no rule was traced or fixed against when it was drawn,
 ``benchmarks/data/diagnose_independent_fresh2.md``, and a third,
 ``benchmarks/data/diagnose_independent_fresh3.md`` (as drawn, before anything was traced on it:
 ``benchmarks/data/diagnose_independent_fresh_1795948659.md``), and a fourth, as drawn,
-``benchmarks/data/diagnose_independent_fresh_1795960446.md``.
+``benchmarks/data/diagnose_independent_fresh_1795960446.md``; first, a sixth seed with today's
+defaults (``benchmarks/data/diagnose_independent_fresh_1795971241_adopted.md``), the seed on which
+the six closed-loop options were adopted by a rule written before its result was read.
 """
 
 from __future__ import annotations
@@ -30,6 +32,24 @@ FRESH3 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh3.md"
 #: anything was traced on it (its misses: benchmarks/data/fresh33g_compare.md); the diagnosis'
 #: defaults did not change after it in that stop (every rule built was left an option)
 FRESH4 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh_1795960446.md"
+#: a sixth fresh seed, drawn at the start of stop 56 and run on 81fb517 with the defaults of
+#: the time and with the six options adopted then (today's defaults), before anything was
+#: traced on it; the adoption and the six seeds pooled: ADOPTION
+SIXTH = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh_1795971241_adopted.md"
+ADOPTION = ROOT / "benchmarks" / "data" / "closed_loop_options_seed6.md"
+
+
+def _pooled_table() -> str:
+    """The six seeds' pooled comparison of ``ADOPTION`` (its section's table, first and last
+    columns: the criterion, the issue's bar and the pooled counts)."""
+    text = ADOPTION.read_text().split("## Pooled over the six seeds", 1)[1]
+    rows = [line for line in text.splitlines() if line.startswith("|")]
+    out = []
+    for line in rows:
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        out.append("| " + " | ".join(cells[:2] + cells[-1:]) + " |")
+    out[0] = out[0].replace("pooled: base -> other", "six seeds pooled: former defaults -> today's")
+    return "\n".join(out)
 
 
 def section() -> str:
@@ -83,6 +103,21 @@ def section() -> str:
          "(`diagnose/stepwise.py`). The traces behind these rules: "
          "benchmarks/data/cross_mass_scale.md, benchmarks/data/spur33b_stepwise.md; the "
          "error cut's shortfall against the truth's own, benchmarks/data/cut33_trace.md."), "",
+        "### Today's defaults on a sixth, unseen seed", "",
+        "At stop 56 the six closed-loop validation options were adopted as the defaults "
+        "(adopt33h: `validation_others=\"each\"`, the correlation horizon, "
+        "`validation_judge=\"own\"`, the combination reference, `noise_with_bias`, "
+        "`linked_gains=\"identified\"`; `stripcoef.diagnose.settings.ADOPTED_TOGETHER`), by "
+        "a rule written down before this seed's result was read "
+        "(benchmarks/data/closed_loop_options_seed6.md). The seed was drawn from the clock and "
+        "run on the code as it was, with the former defaults "
+        "(benchmarks/data/diagnose_independent_fresh_1795971241.md) and with the six options, "
+        "today's defaults (below). The tables after this one, of the five earlier seeds, were "
+        "measured with the defaults of their day; the six seeds, each run both ways, pooled "
+        "(former defaults -> today's):", "",
+        _pooled_table(), "",
+        SIXTH.read_text().split("\n", 2)[2].strip(), "",
+        "### The issue-size seed, with the defaults of its day", "",
         body, "",
         "### The same run on a fresh seed", "",
         "The seed above has been traced and fixed against for several stops; this one was "

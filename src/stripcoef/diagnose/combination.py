@@ -42,8 +42,10 @@ where the open-loop replay predicts the DOF, a thrust scale is judged on its own
 as before, since there a scale that the combination imitates is the right model (a thrust
 effectiveness in an open-loop surge).
 
-An option (``validation_reference="combination"`` of
-:class:`~stripcoef.diagnose.settings.DiagnoseSettings`), not the default. Measured with
+The default (``validation_reference="combination"`` of
+:class:`~stripcoef.diagnose.settings.DiagnoseSettings`) since adopt33h, with five other
+validation options (:data:`~stripcoef.diagnose.settings.ADOPTED_TOGETHER`, where the
+evidence is). Built with
 ``validation_others="each"``, ``validation_horizon="correlation"`` and
 ``validation_judge="own"`` on traced whole-log rows (benchmarks/data/cut33f_trace.md,
 docs/performance.md): on seed 1795929171's 13 it removes the pitch scale above (spurious kept

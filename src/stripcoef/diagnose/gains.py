@@ -45,7 +45,9 @@ gained, three lost), but one of its two dry-friction logs lost its 'unexplained'
 (benchmarks/data/spread33d_trace.md). ``linked_gains="identified"`` links two groups only
 where the shared DOF identifies their contrast (:func:`identified_groups`: its data-only
 information, every DOF's thrust scale free, at least the bench band's prior precision,
-Rothenberg 1971); off by default, measured in benchmarks/data/linked33f_trace.md. Each
+Rothenberg 1971); the default since adopt33h with five other validation options
+(:data:`~stripcoef.diagnose.settings.ADOPTED_TOGETHER`), built in
+benchmarks/data/linked33f_trace.md. Each
 :math:`\sigma_i` is re-estimated from the joint
 fit's residual of its DOF (:data:`NOISE_PASSES` passes).
 

@@ -33,10 +33,11 @@ close to the simulated one. It is bounded below by two sample intervals (a segme
 predicted sample) and above by :data:`~stripcoef.diagnose.heldout.HORIZON`, the free
 simulation it replaces.
 
-An option (``validation_horizon="correlation"``), not the default: measured with
-``validation_others="each"`` and ``validation_judge="own"`` on whole-log rows of the
-independent simulator, the error cut >= 3x rose 4 -> 15 of 17 (seed 29112026) and 13 -> 18
-of 22 (fresh seed 1795929171), but spurious steps kept 2 -> 1 and 1 -> 3 (the level hold's
+The default (``validation_horizon="correlation"``) since adopt33h, with five other
+validation options (:data:`~stripcoef.diagnose.settings.ADOPTED_TOGETHER`, where the
+evidence is). Built with ``validation_others="each"`` and ``validation_judge="own"`` on
+whole-log rows of the independent simulator: the error cut >= 3x rose 4 -> 15 of 17 (seed
+29112026) and 13 -> 18 of 22 (fresh seed 1795929171), spurious steps kept 2 -> 1 and 1 -> 3 (the level hold's
 feed-forward taken as a pitch thrust scale that beats zero velocity by 2 %; a heave
 asymmetry): benchmarks/data/closed33d_trace.md, docs/performance.md.
 

@@ -152,26 +152,37 @@ from stripcoef.diagnose.heldoutrise import RULES as RISE_RULES
 from stripcoef.errors import InputError, ModelWarning
 
 
+#: the diagnosis' default options (:class:`DiagnoseSettings`), read by :func:`diagnose`'s signature
+_DEFAULTS = DiagnoseSettings()
+
+
 def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=None,
              resimulate: bool = False, bands=None, max_steps: int = MAX_STEPS,
              time_limit: float | None = None,
              validation: float | None = VALIDATION_FRACTION,
              holdout: float | None = None, added_mass_sd=None,
              prior_widths: PriorWidths | None = None,  # noqa: F811 (the function re-exported above)
-             validation_others: str = "logged",
-             one_added_mass: bool = False, not_determined: bool = True,
-             gains_beside_current: bool | str = False,
-             dof_gains: bool = True,
-             cross_mass_scale: bool = True,
-             drag_couplings: bool = False, restoring_free: bool = False,
-             scale_choice_unforced: bool = True, heldout_rise: str = "tie",
-             validation_horizon: float | str = RESIMULATION_HORIZON,
-             validation_judge: str = "all", linked_gains: bool | str = False,
-             gains_validation: str = "consecutive",
-             validation_reference: str = "trivial",
-             gains_judge: str = "written",
-             noise_with_bias: bool = False, buoyancy_carry: bool = False,
-             gains_beside_timing: bool = False, retest_scales: bool = False) -> Diagnosis:
+             # the options' defaults are DiagnoseSettings' (one place, its docstring says why)
+             validation_others: str = _DEFAULTS.validation_others,
+             one_added_mass: bool = _DEFAULTS.one_added_mass,
+             not_determined: bool = _DEFAULTS.not_determined,
+             gains_beside_current: bool | str = _DEFAULTS.gains_beside_current,
+             dof_gains: bool = _DEFAULTS.dof_gains,
+             cross_mass_scale: bool = _DEFAULTS.cross_mass_scale,
+             drag_couplings: bool = _DEFAULTS.drag_couplings,
+             restoring_free: bool = _DEFAULTS.restoring_free,
+             scale_choice_unforced: bool = _DEFAULTS.scale_choice_unforced,
+             heldout_rise: str = _DEFAULTS.heldout_rise,
+             validation_horizon: float | str = _DEFAULTS.validation_horizon,
+             validation_judge: str = _DEFAULTS.validation_judge,
+             linked_gains: bool | str = _DEFAULTS.linked_gains,
+             gains_validation: str = _DEFAULTS.gains_validation,
+             validation_reference: str = _DEFAULTS.validation_reference,
+             gains_judge: str = _DEFAULTS.gains_judge,
+             noise_with_bias: bool = _DEFAULTS.noise_with_bias,
+             buoyancy_carry: bool = _DEFAULTS.buoyancy_carry,
+             gains_beside_timing: bool = _DEFAULTS.gains_beside_timing,
+             retest_scales: bool = _DEFAULTS.retest_scales) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -212,10 +223,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         the row each width came from (``prior_widths``, ``per_dof.<dof>.calibration.
         band_source``).
     validation_others : str
-        ``"logged"`` (default): the validation's free simulations of a one-DOF diagnosis
-        take the other DOFs from the log; ``"simulated"``: from the model, as a whole-log
-        diagnosis always does; ``"each"``: every diagnosed DOF simulated alone, the other
-        five from the log, a whole-log diagnosis too
+        ``"each"`` (default): every diagnosed DOF simulated alone, the other five from the
+        log, a whole-log diagnosis too; ``"logged"``: the validation's free simulations of
+        a one-DOF diagnosis take the other DOFs from the log (a whole-log diagnosis
+        simulates every DOF); ``"simulated"``: from the model
         (:data:`~stripcoef.diagnose.settings.VALIDATION_OTHERS`).
     one_added_mass : bool or str
         Whole-log: select again a DOF whose fit contradicts a diagnosed DOF's own added mass
@@ -255,21 +266,22 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"tie"`` (default) or ``"diebold_mariano"``: when a scale or a released coefficient
         raises the held-out error (:mod:`.heldoutrise`, :attr:`DiagnoseSettings.heldout_rise`).
     validation_horizon : float or str
-        Horizon of the validation's segments [s], or ``"correlation"`` (each DOF's velocity's
-        integral time scale: :mod:`.horizon`; :attr:`DiagnoseSettings.validation_horizon`).
+        ``"correlation"`` (default: each DOF's velocity's integral time scale,
+        :mod:`.horizon`) or the horizon of the validation's segments [s]
+        (:attr:`DiagnoseSettings.validation_horizon`).
     validation_judge : str
-        ``"all"`` or ``"own"``: the DOFs whose validation errors judge removing a change
-        (:attr:`DiagnoseSettings.validation_judge`).
+        ``"own"`` (default), ``"all"`` or ``"coupled"``: the DOFs whose validation errors
+        judge removing a change (:attr:`DiagnoseSettings.validation_judge`).
     linked_gains : bool or str
         The thrusters' gains' contrasts within groups linked through the diagnosed DOFs
-        (:attr:`DiagnoseSettings.linked_gains`; off by default); ``"identified"``: linked only
-        where the log identifies the groups' contrast.
+        (:attr:`DiagnoseSettings.linked_gains`); ``"identified"`` (default): linked only
+        where the log identifies the groups' contrast; False: not linked.
     gains_validation : str
         ``"consecutive"``, ``"rolling"`` or ``"rolling_test"``: how the thrusters' gains are
         validated
         (:attr:`DiagnoseSettings.gains_validation`, :mod:`.gaingate`).
     validation_reference : str
-        ``"trivial"`` or ``"combination"``: the skill veto's reference forecast
+        ``"combination"`` (default) or ``"trivial"``: the skill veto's reference forecast
         (:attr:`DiagnoseSettings.validation_reference`; :mod:`.combination`).
     gains_judge : str
         ``"written"`` (default), ``"prior"`` or ``"none"``: how a significant one-DOF gain fit
@@ -277,7 +289,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"written_all"``: a whole-log fit too; ``"off"``: the gains not fitted.
     noise_with_bias : bool
         The calibration's identifiability judged with the noise level fitted beside a free
-        constant (:attr:`DiagnoseSettings.noise_with_bias`; off by default).
+        constant (:attr:`DiagnoseSettings.noise_with_bias`; on by default).
     buoyancy_carry : bool
         Heave's buoyancy offset written as one change of the buoyancy B, acting in every DOF
         through the restoring force, and, whole-log, carried into the other DOFs' fits
