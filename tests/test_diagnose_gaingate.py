@@ -43,29 +43,28 @@ def _commands(t):
             "vertical": 126.0 * np.sign(np.sin(2 * np.pi * t / 7.1)), "lateral": 0.0 * t}
 
 
-@pytest.fixture(scope="module")
-def case():
+def _truth_log(nu0=None):
+    """The noise-free 60-s log of the truth (the vertical thruster at 1.3 of its map) and the
+    prior, started at rest or at ``nu0``."""
     prior = rov_model()
     truth = _gains(prior, [1.0, 1.0, 1.3, 1.0]).model(prior)
     t = np.arange(0.0, 60.0, 0.1)
-    cmd = _commands(t)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
-        log = add_noise(simulate(truth, t, commands=cmd), np.random.default_rng(3))
-    return prior, log
+        return prior, simulate(truth, t, commands=_commands(t), nu0=nu0)
+
+
+@pytest.fixture(scope="module")
+def case():
+    prior, clean = _truth_log()
+    return prior, add_noise(clean, np.random.default_rng(3))
 
 
 def test_the_log_is_not_chaotic():
     """The verdicts below hold on any CPU only if round-off cannot move the log: a 1e-9 m/s
     change of the starting surge stays below 1e-7 everywhere."""
-    prior = rov_model()
-    truth = _gains(prior, [1.0, 1.0, 1.3, 1.0]).model(prior)
-    t = np.arange(0.0, 60.0, 0.1)
-    cmd = _commands(t)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelWarning)
-        a = simulate(truth, t, commands=cmd)
-        b = simulate(truth, t, commands=cmd, nu0=np.array([1e-9, 0, 0, 0, 0, 0]))
+    _, a = _truth_log()
+    _, b = _truth_log(np.array([1e-9, 0, 0, 0, 0, 0]))
     assert max(np.max(np.abs(np.asarray(a[c]) - np.asarray(b[c]))) for c in "uvwpqr") < 1e-7
 
 
