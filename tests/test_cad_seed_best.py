@@ -40,3 +40,37 @@ def test_graded_references_replace_only_their_terms():
     off = ~np.eye(6, dtype=bool)
     np.testing.assert_array_equal(refs[19][off], stored[19][off])
     assert not np.allclose(np.diag(refs[19]), np.diag(stored[19]), rtol=0.01)
+
+
+def test_finer_levels_replace_their_shapes_terms_and_yield_to_the_graded():
+    """Seed 1795948662: cad_levels_fresh32f.csv holds four Capytaine levels of its shapes 8,
+    21 and 25 (and of 1795939009's frame 8, another seed's rows); graded_cad_1795948662.csv
+    an edge-graded reference of shape 21.  Shapes 8 and 25 take Eça & Hoekstra over their
+    levels, 21 the edge-graded one, every other shape its stored (or graded plate) value."""
+    from validation.cad_draws import read_frame_levels
+    from validation.cad_shapes import fine_reference
+
+    model = BEM / "cad_shapes_1795948662.csv"
+    levels = BEM / "cad_levels_fresh32f.csv"
+    rows = model_rows(model)
+    stored, _ = best(rows)
+    refs, source = best(rows, coarse=[BEM / "graded_cad_1795948662.csv"], levels=[levels],
+                        seed=1795948662)
+    assert {k for k, _, _ in source} == {8, 21, 25}
+    assert source[(21, 3, 3)].startswith("graded polyhedron")
+    assert source[(25, 2, 2)].startswith("Capytaine 2370-10842 faces")
+    n, mats = read_frame_levels(levels, 1795948662)[25]
+    expected, _, _ = fine_reference(n, mats)
+    np.testing.assert_allclose(refs[25], 0.5 * (expected + expected.T), rtol=1e-12)
+    for k in rows:
+        if k not in (8, 21, 25):
+            np.testing.assert_array_equal(refs[k], stored[k])
+    assert set(read_frame_levels(levels, 1795939009)) == {8}
+
+
+def test_finer_levels_need_the_seed():
+    import pytest
+
+    rows = model_rows(MODEL)
+    with pytest.raises(ValueError, match="seed"):
+        best(rows, levels=[BEM / "cad_frames_levels_frame32d.csv"])

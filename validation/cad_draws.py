@@ -6,8 +6,12 @@ the panel model with Capytaine on the fly; each draw of 40 shapes that was store
 the code of its day, with Capytaine's references) is counted here per term against the most
 resolved reference the seed has: the stored 3,000-face reference, or the edge-graded one of a
 thin plate's diagonal terms (``benchmarks.plate_graded``) and of a coarse cylinder's terms
-(``benchmarks.graded_polyhedra cylinders``), each Eca & Hoekstra's least squares over its levels
-(:func:`validation.cad_shapes.fine_reference`). Counted as ``benchmarks.cad_shapes`` counts:
+(``benchmarks.graded_polyhedra cylinders``) and of a low-polygon ellipsoid's terms
+(``benchmarks.graded_polyhedra coarse``), else the finer Capytaine levels of a traced shape in
+the draw's own remesh family (``benchmarks.frame32d_reference``, four levels or more), else the
+stored 3,000-face one -- the order :func:`validation.cad_shapes.best_references` takes for seed
+1375923287 (resolution, not the smallest band) -- each Eca & Hoekstra's least squares over its
+levels (:func:`validation.cad_shapes.fine_reference`). Counted as ``benchmarks.cad_shapes`` counts:
 every diagonal term and each coupling at least 1 % of sqrt(A_ii A_jj) of the reference; within
 5 % of that scale; the estimate covers the error when |model - reference| <= its band.
 ``benchmarks.cad_seed_best`` prints the same counts for one draw.
@@ -16,6 +20,7 @@ every diagonal term and each coupling at least 1 % of sqrt(A_ii A_jj) of the ref
 from __future__ import annotations
 
 import csv
+from pathlib import Path
 
 import numpy as np
 
@@ -28,25 +33,52 @@ DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 SIGNIFICANT = 0.01
 TOL = 0.05
 #: the stored draws of 40 shapes after the first (whose references validation.cad_shapes reads):
-#: (seed, edge-graded plates' CSV or None, edge-graded coarse cylinders' CSV or None, how drawn)
+#: (seed, edge-graded plates' CSV or None, edge-graded coarse shapes' CSVs (cylinders, then
+#: low-polygon polyhedra), finer Capytaine levels' CSVs (``benchmarks.frame32d_reference``; the
+#: rows of the seed), how drawn)
 #: Their model rows are re-run on the code of the latest stop that changed the panel method
 #: (``python -m benchmarks.cad_shapes --seed SEED --count 40 --references CSV --csv CSV``;
 #: the CSV's first line says so); the text says how each was drawn and what it scored then.
 DRAWS = (
-    (1795919297, "cad_plates_graded_1795919297.csv", "graded_coarse_1795919297.csv",
+    (1795919297, "cad_plates_graded_1795919297.csv", ("graded_coarse_1795919297.csv",),
+     ("cad_frames_levels_frame32d.csv",),
      "drawn 2026-11-28, run as two shards; as drawn 234/240 against the most resolved references"),
-    (1795939009, "cad_plates_graded_1795939009.csv", "graded_coarse_1795939009.csv",
+    (1795939009, "cad_plates_graded_1795939009.csv", ("graded_coarse_1795939009.csv",), (),
      "drawn 2026-11-29 07:56 UTC, run on main 9064094 before it was traced; 36 of 40 shapes: "
      "frames 8, 12, 22 and 37 exceeded the BEM's cap then and were solved apart "
      "(benchmarks.frame32d_reference, reference_tables/bem/cad_frames_levels_frame32d.csv), "
      "frame 8 heave -5.9 %, roll -8.7 %, pitch -10.0 %, the other three within 5 % (as drawn; 214/216 against the most resolved references)"),
-    (1795948662, "cad_plates_graded_1795948662.csv", "graded_coarse_1795948662.csv",
+    (1795948662, "cad_plates_graded_1795948662.csv",
+     ("graded_coarse_1795948662.csv", "graded_cad_1795948662.csv"), ("cad_levels_fresh32f.csv",),
      "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced (as drawn 237/240 against the most resolved references)"),
-    (1795960449, "cad_plates_graded_1795960449.csv", "graded_coarse_1795960449.csv",
+    (1795960449, "cad_plates_graded_1795960449.csv", ("graded_coarse_1795960449.csv",),
+     ("cad_levels_fresh55.csv",),
      "drawn 2026-11-29 13:55 UTC, run on main 30aebcf before it was traced (as drawn 239/240 "
      "against the most resolved references: fillet box 11's pitch -6.7 %, -5.7 % against four "
      "finer Capytaine levels, reference_tables/bem/cad_levels_fresh55.csv)"),
+    (1795971315, "cad_plates_graded_1795971315.csv", ("graded_extrusion_1795971315.csv",),
+     ("cad_levels_cad32h.csv",),
+     "drawn 2026-11-29 16:55 UTC, run on main 81fb517 before it was traced (the rows as drawn; "
+     "benchmarks/data/cad32h_trace.md)"),
 )
+
+
+def read_frame_levels(path, seed: int) -> dict:
+    """{shape: (faces per level, [6x6 per level] [kg, kg m, kg m^2])} of seed ``seed``'s rows
+    of a ``benchmarks.frame32d_reference`` CSV (``seed, shape, level, faces, seconds, i, j,
+    added_mass``; comment lines and repeated headers of concatenated files skipped), levels
+    coarse to fine."""
+    out: dict = {}
+    with open(path, newline="") as fh:
+        for r in csv.DictReader(line for line in fh if not line.startswith("#")):
+            if r["seed"] == "seed" or int(r["seed"]) != seed:
+                continue
+            lv = out.setdefault(int(r["shape"]), {})
+            _, a = lv.setdefault(int(r["level"]), (int(r["faces"]), np.zeros((6, 6))))
+            i, j = int(r["i"]), int(r["j"])
+            a[i, j] = a[j, i] = float(r["added_mass"])
+    return {k: ([lv[x][0] for x in sorted(lv)], [lv[x][1] for x in sorted(lv)])
+            for k, lv in out.items()}
 
 
 def model_rows(path) -> dict:
@@ -59,42 +91,77 @@ def model_rows(path) -> dict:
                 continue
             x = out.setdefault(int(r["shape"]), dict(
                 family=r["family"], warned=r["warned"] == "1", cpu=float(r["cpu_model_s"]),
-                model=np.zeros((6, 6)), bem=np.zeros((6, 6)), est_rel=np.zeros((6, 6))))
+                model=np.zeros((6, 6)), bem=np.zeros((6, 6)), est_rel=np.zeros((6, 6)),
+                bem_band_rel=np.full((6, 6), np.nan)))
             i, j = int(r["i"]), int(r["j"])
             for key, col in (("model", "model"), ("bem", "bem"),
                              ("est_rel", "estimated_error_rel")):
                 x[key][i, j] = x[key][j, i] = float(r[col])
+            if r.get("bem_gci_rel") and r.get("bem_richardson_step_rel"):
+                # the stored reference's own band: its grid convergence index plus its
+                # Richardson step, of the run's scale (benchmarks.cad_shapes.stored_references)
+                x["bem_band_rel"][i, j] = x["bem_band_rel"][j, i] = (
+                    float(r["bem_gci_rel"]) + float(r["bem_richardson_step_rel"]))
     for x in out.values():        # the band back to [kg, ...] from the stored run's scale
         d = np.sqrt(np.abs(np.diag(x["bem"])))
         x["est"] = x["est_rel"] * np.outer(d, d)
     return out
 
 
-def best(rows: dict, plates=None, coarse=None) -> tuple[dict, dict]:
-    """({shape: 6x6 reference}, {(shape, i, j): source}) the edge-graded where held."""
+def best(rows: dict, plates=None, coarse=(), levels=(), seed=None) -> tuple[dict, dict]:
+    """({shape: 6x6 reference}, {(shape, i, j): source}): per term the most resolved reference
+    held -- the edge-graded (a plate's diagonal terms, ``plates``; every term of a coarse
+    shape, ``coarse``: one CSV or several), else Eça & Hoekstra over four or more finer
+    Capytaine levels of the shape (``levels``: ``benchmarks.frame32d_reference`` CSVs, the
+    rows of ``seed``), else the draw's stored 3,000-face one."""
+    from stripcoef.hull.convergence import EH_MIN_LEVELS
     from validation.cad_shapes import fine_reference, read_graded
     from validation.graded_bodies import read
 
     refs = {k: x["bem"].copy() for k, x in rows.items()}
     source = {}
+    if isinstance(levels, (str, Path)):
+        levels = (levels,)
+    if levels and seed is None:
+        raise ValueError("finer Capytaine levels need the draw's seed (their rows' seed column)")
+    for path in levels or ():
+        for k, (n, mats) in read_frame_levels(path, seed).items():
+            if k not in refs or len(n) < EH_MIN_LEVELS:
+                continue
+            r, u, _ = fine_reference(n, mats)
+            refs[k] = 0.5 * (r + r.T)
+            for i in range(6):
+                for j in range(i, 6):
+                    source[(k, i, j)] = (f"Capytaine {n[0]}-{n[-1]} faces, its band "
+                                         f"{100 * u[i, j] / _scale(r, i, j):.1f} %")
     if plates:
         for k, (_, _, _, faces, terms) in read_graded(plates).items():
             if k not in refs:             # a shape the draw lost (its BEM failed): no row
                 continue
             for i in range(6):
-                r, _, _ = fine_reference(faces, [np.array([[v]]) for v in terms[i]])
+                r, u, _ = fine_reference(faces, [np.array([[v]]) for v in terms[i]])
                 refs[k][i, i] = r[0, 0]
-                source[(k, i, i)] = "graded plate"
-    if coarse:
-        for k, (_, n, mats) in read(coarse).items():
+                source[(k, i, i)] = f"graded plate, its band {100 * u[0, 0] / abs(r[0, 0]):.1f} %"
+    if isinstance(coarse, (str, Path)):
+        coarse = (coarse,)
+    for path in coarse or ():
+        for k, (what, n, mats) in read(path).items():
             if k not in refs:
                 continue
-            r, _, _ = fine_reference(n, mats)
+            r, u, _ = fine_reference(n, mats)
             refs[k] = 0.5 * (r + r.T)
             for i in range(6):
                 for j in range(i, 6):
-                    source[(k, i, j)] = "graded cylinder"
+                    source[(k, i, j)] = ("graded " + ("cylinder" if "cylinder" in what
+                                                      else "prism" if "extruded" in what
+                                                      else "polyhedron")
+                                         + f", its band {100 * u[i, j] / _scale(r, i, j):.1f} %")
     return refs, source
+
+
+def _scale(ref, i: int, j: int) -> float:
+    """sqrt(|A_ii A_jj|) of a 6x6 reference: the scale a term's error is counted in."""
+    return float(np.sqrt(abs(ref[i, i] * ref[j, j])))
 
 
 def counts(rows: dict, refs: dict, source: dict) -> dict:
@@ -132,7 +199,9 @@ def counts(rows: dict, refs: dict, source: dict) -> dict:
                                   + f" {100 * rel:+.1f} % (band {100 * x['est'][i, j] / scale[i, j]:.1f} %, "
                                   + ("covered" if cov else "NOT covered") + ", "
                                   + ("warned" if x["warned"] else "NOT warned") + "; "
-                                  + source.get((k, i, j), "uniform 3,000-face reference")
+                                  + source.get((k, i, j), "uniform 3,000-face reference, "
+                                               "its GCI + step "
+                                               f"{100 * x['bem_band_rel'][i, j]:.1f} %")
                                   + ")")
         off_shapes += off
         off_warned += off and x["warned"]
@@ -164,21 +233,27 @@ def section() -> str:
         "with `--references`, the CSV's first line says so, and each row's text says what "
         "the draw scored as drawn; reference_tables/bem/README.md says which commit); "
         "the edge-graded references of its thin plates and coarse cylinders were computed "
-        "after it (`benchmarks.plate_graded`, `benchmarks.graded_polyhedra cylinders`). "
+        "after it (`benchmarks.plate_graded`, `benchmarks.graded_polyhedra cylinders`; a "
+        "low-polygon ellipsoid's by `benchmarks.graded_polyhedra coarse`), and four finer "
+        "Capytaine levels of a traced shape in the draw's own remesh family "
+        "(`benchmarks.frame32d_reference`, Eça & Hoekstra over them; used where no edge-graded "
+        "reference is held). "
         "Counted per term by `python -m benchmarks.cad_seed_best --model "
-        "reference_tables/bem/cad_shapes_SEED.csv [--plates ...] [--coarse ...]`. The "
+        "reference_tables/bem/cad_shapes_SEED.csv [--plates ...] [--coarse ...] "
+        "[--levels ...]`. The "
         "issue's bar: every diagonal term within 5 %, couplings within 5 % of the diagonal "
         "scale, the estimate covering the error in at least 90 % of terms.", "",
         "| seed | how drawn | references | diagonal within 5 % | couplings within 5 % "
         "| estimate covers | shapes off > 5 % warned | estimate CPU median (max) [s] |",
         "|---|---|---|---|---|---|---|---|"]
     misses = []
-    for seed, plates, coarse, how in DRAWS:
+    for seed, plates, coarse, levels, how in DRAWS:
         rows = model_rows(BEM / f"cad_shapes_{seed}.csv")
         variants = [("3,000-face (as run)", best(rows))]
-        if plates or coarse:
-            variants.append(("most resolved", best(rows, plates and BEM / plates,
-                                                   coarse and BEM / coarse)))
+        if plates or coarse or levels:
+            variants.append(("most resolved", best(
+                rows, plates and BEM / plates, [BEM / c for c in coarse],
+                [BEM / x for x in levels], seed)))
         for label, (refs, source) in variants:
             c = counts(rows, refs, source)
             lines.append(
@@ -188,6 +263,10 @@ def section() -> str:
                 f"{c['off_shapes']} | {c['cpu_median']:.2f} ({c['cpu_max']:.1f}) |")
         misses += [f"- {seed}: {m}" for m in c["misses"]]
     lines += ["", "Terms beyond 5 % against the most resolved reference (the causes, traced "
-              "term by term: benchmarks/data/fresh32f_trace.md, frame32d_trace.md):", ""]
+              "term by term: benchmarks/data/fresh32f_trace.md, frame32d_trace.md, "
+              "cad32h_trace.md); each line ends with that reference's own band (Eça & "
+              "Hoekstra's U over its levels, or the stored reference's grid convergence index "
+              "plus its Richardson step), so that a miss against a reference uncertain by more "
+              "than 5 % reads as such:", ""]
     lines += misses or ["- none"]
     return "\n".join(lines) + "\n"
