@@ -634,7 +634,8 @@ def unconverged_message(rel, info, panels: int, tolerance: float, max_panels: in
     fix = (f"raise added_mass_panels to {more} (--added-mass-panels {more})" if more > panels
            else "check the mesh (stripcoef mesh FILE) or cross-check with the BEM "
                 "(stripcoef compare FILE)")
-    if info["family"].startswith("refined"):
+    # (not where the input's coarsened levels are kept in every install: fine_smooth_input)
+    if info["family"].startswith("refined") and not info.get("fine_smooth"):
         fix += ("; install the remesher for three uniform levels (pip install "
                 "'stripcoef[remesh]')")
     what = ("the extrapolation's step plus its last change" if len(info["panels"]) >= 3

@@ -98,11 +98,12 @@ from stripcoef.hull.graded_panels import Prism, box_faces, box_level, prism_face
 from stripcoef.hull.graded_panels import thickness as box_thickness
 from stripcoef.hull.memo import array_memo
 from stripcoef.hull.mirror_panels import capped_part, drop_caps, solve_mirrored
-from stripcoef.hull.input_ladder import ladder_levels
+from stripcoef.hull.input_ladder import (  # noqa: F401  (the coarsening, re-exported)
+    CLUSTER_CELL, _cluster, coarsen, ladder_levels, vertex_quadrics)
 from stripcoef.hull.panel_error import (  # noqa: F401  (the error rule, re-exported)
     ERROR_TOLERANCE, NEGLIGIBLE, estimated_error, extrapolation_error, ladder_extrapolation,
     finest_pair_under_refined, least_squares_error, relative_error, richardson_error)
-from stripcoef.hull.remesh import FOLD_ANGLE, edge_for_panels, fold_mask
+from stripcoef.hull.remesh import AREA_TOLERANCE, FOLD_ANGLE, edge_for_panels, fold_mask
 from stripcoef.hull.panel_kernels import (  # noqa: F401  (the kernels, re-exported)
     _FOUR_PI, DENSE_MID_FRACTION, MID_FACTOR, NEAR_FACTOR, _frames, _three_point_dense,
     generalised_normals, influence_matrices, solve_added_mass, triangle_integrals)
@@ -115,96 +116,6 @@ MAX_PANELS = 6000
 
 #: Largest input mesh [faces]: beyond it the clustering alone exceeds the time budget.
 MAX_INPUT_FACES = 2_000_000
-
-
-def vertex_quadrics(vertices, faces):
-    r"""Per vertex, the summed plane quadrics of its faces: :math:`Q = \sum a\, n n^T` (V, 9)
-    and :math:`b = \sum a\, n (n\cdot p)` (V, 3), a the doubled face area [m^2] (Lindstrom
-    2000); computed once for all the clusterings of a mesh."""
-    tri = vertices[faces]
-    cr = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    a2 = np.linalg.norm(cr, axis=1)
-    nrm = cr / np.where(a2 > 0, a2, 1.0)[:, None]
-    q = (a2[:, None, None] * nrm[:, :, None] * nrm[:, None, :]).reshape(-1, 9)
-    b = a2[:, None] * nrm * np.einsum("ij,ij->i", nrm, tri[:, 0])[:, None]
-    idx = faces.reshape(-1)
-    nv = len(vertices)
-    qv = np.column_stack([np.bincount(idx, weights=np.repeat(q[:, c], 3), minlength=nv)
-                          for c in range(9)])
-    bv = np.column_stack([np.bincount(idx, weights=np.repeat(b[:, c], 3), minlength=nv)
-                          for c in range(3)])
-    return qv, bv
-
-
-def _cluster(vertices, faces, h, quadrics=None):
-    r"""Vertex clustering on a grid of cell ``h`` [m] (Rossignac & Borrel 1993, "Multi-resolution
-    3D approximations for rendering complex scenes"), each cell's vertex placed where it
-    minimises the summed squared distances to the planes of the faces around it (the quadric
-    error metric, Lindstrom 2000, "Out-of-core simplification of large polygonal models",
-    SIGGRAPH: :math:`x = \bar x + Q^+ (b - Q\bar x)`, :math:`Q = \sum a\, n n^T`,
-    :math:`b = \sum a\, n (n\cdot p)`, singular values below 1e-3 of the largest dropped), so
-    that edges and corners stay sharp.  Faces that lose a vertex, and pairs of coincident
-    faces of opposite winding (a collapsed thin wall), are dropped.  ``quadrics``: those of
-    :func:`vertex_quadrics` (computed if omitted)."""
-    qv, bv = vertex_quadrics(vertices, faces) if quadrics is None else quadrics
-    key3 = np.floor((vertices - vertices.min(axis=0)) / h).astype(np.int64)
-    dims = key3.max(axis=0) + 1
-    key = (key3[:, 0] * dims[1] + key3[:, 1]) * dims[2] + key3[:, 2]
-    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
-    k = len(counts)
-    mean = np.column_stack([np.bincount(inv, weights=vertices[:, c], minlength=k)
-                            for c in range(3)]) / counts[:, None]
-    qc = np.column_stack([np.bincount(inv, weights=qv[:, c], minlength=k)
-                          for c in range(9)]).reshape(-1, 3, 3)
-    bc = np.column_stack([np.bincount(inv, weights=bv[:, c], minlength=k) for c in range(3)])
-    u, sv, vt = np.linalg.svd(qc)
-    sinv = np.where(sv > 1e-3 * sv[:, :1], 1.0 / np.where(sv > 0, sv, 1.0), 0.0)
-    resid = bc - np.einsum("kij,kj->ki", qc, mean)
-    # x = mean + V S^+ U^T (b - Q mean)  (Q = U S V^T)
-    nv = mean + np.einsum("kji,kj->ki", vt, sinv * np.einsum("kji,kj->ki", u, resid))
-    # a vertex may not leave its cell's neighbourhood (ill-conditioned quadrics)
-    far = np.linalg.norm(nv - mean, axis=1) > h
-    nv[far] = mean[far]
-    f = inv[faces]
-    f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
-    # coincident faces: same vertex set; equal winding -> keep one, opposite -> drop both
-    srt = np.sort(f, axis=1)
-    _, first, ids = np.unique(srt, axis=0, return_index=True, return_inverse=True)
-    ids = ids.reshape(-1)
-    rot = np.argmin(f, axis=1)                       # winding: rotate the smallest index first
-    canon = np.take_along_axis(f, (rot[:, None] + np.arange(3)) % 3, axis=1)
-    sign = np.where(canon[:, 1] == srt[:, 1], 1, -1)
-    net = np.bincount(ids, weights=sign)
-    keep = np.zeros(len(f), bool)
-    keep[first] = net[ids[first]] != 0
-    f = f[keep]
-    flip = net[ids[keep]] * sign[keep] < 0
-    f[flip] = f[flip][:, ::-1]
-    used = np.unique(f)
-    remap = np.full(len(nv), -1, np.int64)
-    remap[used] = np.arange(len(used))
-    return nv[used], remap[f]
-
-
-def coarsen(vertices, faces, panels: int, quadrics=None):
-    r"""At most about ``panels`` triangles of a finer closed mesh by quadric vertex clustering
-    (:func:`_cluster`) on cells of :math:`0.75 h`, :math:`h = \sqrt{4A/(\sqrt3 N)}` the side of
-    N equilateral triangles covering the area A [m^2]; the cell is corrected twice on the
-    count reached (faces ~ cell^-2).  ``quadrics``: :func:`vertex_quadrics` of the mesh
-    (computed if omitted).  Returns (vertices, faces)."""
-    if quadrics is None:
-        quadrics = vertex_quadrics(vertices, faces)
-    h = 0.75 * np.sqrt(4.0 * surface_area(vertices, faces) / (np.sqrt(3.0) * panels))
-    best = None
-    for _ in range(4):
-        cv, cf = _cluster(vertices, faces, h, quadrics)
-        if len(cf) <= 1.1 * panels and (best is None or len(cf) > len(best[1])):
-            best = (cv, cf)
-        ratio = len(cf) / panels
-        if 0.8 < ratio <= 1.1:
-            break
-        h *= np.sqrt(ratio) * (1.02 if ratio > 1 else 0.98)
-    return best if best is not None else (cv, cf)
 
 
 #: Largest change of the enclosed volume by the coarsening [-]: beyond it the mesh has members
@@ -430,8 +341,57 @@ def member_thickness(vertices, faces, rays: int = 256) -> float:
     return float(x[o][min(len(x) - 1, np.searchsorted(cw, THICKNESS_PERCENTILE * cw[-1]))])
 
 
+def fine_smooth_input(vertices, faces, panels: int, features) -> bool:
+    r"""Whether the closed mesh (vertices [m], faces) is panelled by the input family's
+    coarsened levels in every install, the remesher installed or not (:func:`panel_added_mass`,
+    ``auto``; remesh32h): a rule about the mesh, not about what is installed.
+
+    - More faces than the ``panels`` [-] of the finest level (:func:`panel_levels` coarsens);
+    - every edge shorter, in each coordinate, than that level's clustering cell
+      :math:`0.75\,h_N` [m] (:data:`~stripcoef.hull.input_ladder.CLUSTER_CELL`, :math:`h_N`
+      from :func:`~stripcoef.hull.remesh.edge_for_panels`): its two ends then fall in the same
+      or neighbouring cells wherever the grid lies, each panel vertex is the quadric-optimal
+      point of a cluster of input vertices and each panel edge joins neighbouring cells, so
+      the panels are set by the grid and not by the tessellation, which is what the isotropic
+      remesh is for (Rossignac & Borrel 1993; Lindstrom 2000).  A longer face spans cells and
+      survives as a sliver (the VideoRay Pro III's 64-sided surface coarsened: pitch -63 %,
+      docs/performance.md);
+    - no convex edge sharper than :data:`FEATURE_ANGLE` and no fold (``features``, the mesh's
+      :class:`EdgeFeatures`): the remesher keeps sharp edges as creases;
+    - on the finest coarsened level, the input's area within the remesher's
+      :data:`~stripcoef.hull.remesh.AREA_TOLERANCE` and its volume within
+      :data:`VOLUME_TOLERANCE` (a member thinner than the cell collapses), and no member
+      thinner than :math:`h_N` (:func:`member_thickness`, :data:`THIN_EDGE_RATIO`: the
+      remeshed family's own test for its thin-member modes).
+
+    No new constant.  Measured (``python -m benchmarks.remesh32h_paths``,
+    benchmarks/data/remesh32h_trace.md): on 7 meshes it keeps, the two families' worst
+    diagonal terms agree within 0.15 % on six (a near-sphere's tiny roll 3.4 % coarsened, warned,
+    against 1.3 % remeshed) at 0.3-0.4 s of CPU against 2.8-13.6 s; on the 8 fine smooth
+    meshes it declines, the remesh is the more accurate on every one (0.29-0.52 % against
+    0.47-1.86 %)."""
+    v, f = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    if len(f) <= panels or features.turning > 0.0 or features.folds:
+        return False
+    h = edge_for_panels(surface_area(v, f), panels)
+    # every edge within one cell in each coordinate: its two ends fall in the same or
+    # neighbouring cells wherever the grid lies, so every panel edge joins neighbours
+    tri = v[f]
+    if not float(np.abs(tri - np.roll(tri, 1, axis=1)).max()) < CLUSTER_CELL * h:
+        return False
+    # the thickness on the finest coarsened level (the rays of member_thickness cost ~ faces:
+    # on a 19,200-face input 0.5-1 s, on the level 0.04 s), where the clustering kept the
+    # surface: a member thinner than the cell collapses and takes its area and volume with it
+    # (the remesher's and the coarsening's own tolerances)
+    cv, cf = coarsen(v, f, panels)
+    if not (abs(surface_area(cv, cf) / surface_area(v, f) - 1.0) <= AREA_TOLERANCE
+            and abs(enclosed_volume(cv, cf) / enclosed_volume(v, f) - 1.0) <= VOLUME_TOLERANCE):
+        return False
+    return bool(h <= THIN_EDGE_RATIO * member_thickness(cv, cf))
+
+
 #: Panel families of :func:`panel_added_mass` ("auto": the isotropic remesh when the remesher
-#: is installed, else the refined or coarsened input of :func:`panel_levels`).
+#: is installed but on a fine smooth input, else the refined or coarsened input).
 FAMILIES = ("auto", "remesh", "input")
 
 
@@ -597,8 +557,9 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
         "converged" read [kg, kg m, kg m^2] (the error itself below four levels), "order":
         the order used per term [-], "safety": the safety factor per term [-] (1 with three
         levels: :func:`extrapolation_error` has none; Eça & Hoekstra's with four or more),
-        "family": the panellings' family, "converged": whether every term's estimate
-        (about the volume centroid) is within ``tolerance``,
+        "family": the panellings' family ("fine_smooth": the input's coarsened levels kept by
+        :func:`~stripcoef.hull.panels.fine_smooth_input`), "converged": whether every
+        term's estimate (about the volume centroid) is within ``tolerance``,
         "length": the body's largest extent [m] (:func:`relative_error`),
         "formal_order": the index's formal order [-] (:func:`edge_order`), "levels": each
         level's solved matrix, coarse to fine, not symmetrised [kg, kg m, kg m^2]}``.
@@ -666,6 +627,13 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
            if family == "auto" else None)
     if box is not None:
         family_out, thickness = (None, None), box_thickness(box)
+    # the body's sharpest convex edge, facets of smooth parts and folds left out [rad]
+    features = edge_features(v, f)
+    # a fine tessellation of a smooth body: its coarsened levels in every install
+    # (fine_smooth_input; benchmarks/data/remesh32h_trace.md)
+    fine = family == "auto" and box is None and fine_smooth_input(v, f, panels, features)
+    if fine:
+        family = "input"
     if planes and family in ("auto", "remesh") and box is None:
         part = capped_part(v, f, planes, about)
         family_out, thickness = (_remeshed_levels(*part, panels, area=area)
@@ -713,8 +681,6 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
             used = "refined/coarsened input, two nested pairs"
         else:
             levels = panel_levels(v, f, panels, where)
-    # the body's sharpest convex edge, facets of smooth parts and folds left out [rad]
-    features = edge_features(v, f)
     if not np.isfinite(thickness):
         # the input family (no remesher) or the input's faces bisected: the members'
         # thickness from the finest panelling, by the same ray casts (member_thickness needs
@@ -800,6 +766,7 @@ def panel_added_mass(mesh, *, rho: float, about=(0.0, 0.0, 0.0), panels: int = D
                              "estimate": estimate,
                              "order": order, "safety": safety, "family": used,
                              "converged": converged, "formal_order": formal,
+                             "fine_smooth": fine,
                              "length": float(scale),
                              "levels": tuple(np.array(m) for m in mats)}
 
