@@ -369,6 +369,13 @@ class DiagnoseSettings:
         by the six whole-log options) but withdraws the right heave scale of the unseen seed's
         VideoRay lag log 1796060454 (0.744, the truth's 0.802: the scale-or-inertia confound),
         whose cut falls 3.94 -> 1.60 (benchmarks/data/adopt33g_trace.md)
+    validation_choice : str
+        The validation's final model (:func:`~stripcoef.diagnose.validate.validate_changes`'
+        ``choice``): ``"greedy"`` (default, the set the backward elimination and the veto
+        end with) or ``"best_visited"`` (the best on the validation data of the prior and
+        every set they scored, so that the written model never scores worse than the prior
+        there by the validation's own score; Hastie, Tibshirani & Friedman 2009, sec. 7.2).
+        Measured in benchmarks/data/real33h_trace.md
     """
 
     window: float = DEFAULT_WINDOW
@@ -400,6 +407,7 @@ class DiagnoseSettings:
     buoyancy_carry: bool = False
     gains_beside_timing: bool = False
     retest_scales: bool = False
+    validation_choice: str = "greedy"
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
