@@ -42,6 +42,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--duration", type=float, default=300.0)
     ap.add_argument("--split", default="forward", choices=("forward", "reverse"))
+    ap.add_argument("--ablate", action="store_true",
+                    help="also the written model taken apart (:func:`ablate`)")
     for flag, key, kw in OPTION_FLAGS:
         ap.add_argument(flag, dest=key, **kw)
     args = ap.parse_args(argv)
@@ -51,7 +53,7 @@ def main(argv=None) -> int:
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, split
 
-    name, log, prior, widths, truth, _ = real_style_log(args.log, args.duration, args.seed,
+    name, log, prior, widths, truth, truth_coefficients = real_style_log(args.log, args.duration, args.seed,
                                                         oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=args.seed + args.log))
@@ -102,8 +104,84 @@ def main(argv=None) -> int:
     for dof, e in held.items():
         print(f"held out {dof:6s} " + "  ".join(
             f"{m} {x:.4f}" if x is not None else f"{m} None" for m, x in e.items()))
+    if args.ablate:
+        ablate(res, prior, split(read, HOLDOUT)[0] if args.split == "forward" else fit,
+               test, truth_coefficients, options)
     print(f"\n{time.process_time():.1f} s of CPU in all")
     return 0
+
+
+def ablate(res, prior, fit, test, oracle, options) -> None:
+    """The written model taken apart: the prior, the prior with the thrusters' gains, and the
+    gained prior with the water current and the kept calibrations, each alone and together
+    (:func:`stripcoef.diagnose.calibrate.calibrated_model`), and the truth's coefficients
+    (the oracle), each simulated with every DOF free over 10-s segments
+    (:func:`stripcoef.diagnose.heldout.compare`) on the validation part and on the held-out
+    part, and by the validation's own rule on the validation part
+    (:func:`stripcoef.diagnose.validate.validation_errors` with the options' logged DOFs and
+    horizons) [m/s or rad/s]."""
+    from stripcoef.conventions import DOF
+    from stripcoef.diagnose.calibrate import _changes, calibrated_model
+    from stripcoef.diagnose.heldout import compare, split
+    from stripcoef.diagnose.settings import VALIDATION_FRACTION, DiagnoseSettings
+    from stripcoef.diagnose.validate import partners, validation_errors
+    from stripcoef.effects import get_effect
+
+    g = res.thruster_gains or {}
+    gained = (get_effect("thruster_gain").apply(
+        prior, None, {f"gain_{k}": float(v) for k, v in g["gains"].items()})
+        if g.get("applied") else prior)
+    per, fits, dofs = res.per_dof, res.fits, list(res.diagnosed)
+    changes = _changes(per)
+    cals = {c for c in changes if c[0] == "calibration"}
+    current = {c for c in changes if c[0] == "effect" and c[2] == "current"}
+    kept = {c for c in changes if c not in {("calibration", d) for d, r in per.items()
+                                            if not r.calibration.kept}
+            and not (c[0] == "effect" and not next(s.kept for s in per[c[1]].steps
+                                                   if s.effect == c[2]))}
+    removed = set(changes) - kept
+
+    def model(without):
+        return calibrated_model(gained, per, fits, frozenset(partners(set(without), changes)))
+
+    models = {"prior": prior, "prior + gains": gained}
+    if current:
+        models["gains + current"] = model(set(changes) - (current & kept))
+        models["prior + current (no gains)"] = calibrated_model(
+            prior, per, fits, frozenset(partners(set(changes) - (current & kept), changes)))
+    if cals & kept:
+        models["gains + kept calibrations"] = model(removed | current)
+    models["written (gains + kept changes)"] = model(removed)
+    if oracle is not None:
+        models["truth's coefficients"] = oracle
+    settings = DiagnoseSettings(**{k: v for k, v in options.items()
+                                   if k in DiagnoseSettings.__dataclass_fields__})
+    # the diagnosis's validation part: the last quarter of the part it was fitted on
+    val = split(fit, VALIDATION_FRACTION)[1]
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        on_val = compare(val, models, dofs)
+        on_test = compare(test, models, dofs)
+        rule = {name: validation_errors(val, m, dofs, settings.logged_dofs(dofs),
+                                        settings.validation_horizons(val, dofs))
+                for name, m in models.items()}
+    print(f"\nablation (kept changes: {sorted(kept)}):")
+    for title, table in (("validation part, every DOF free, 10 s", on_val),
+                         ("held-out part, every DOF free, 10 s", on_test)):
+        print(f"  {title}:")
+        print("    " + " / ".join(DOF[i] for i in dofs) + "   (hold; zero)")
+        for name in models:
+            print(f"    {name:32s} " + " / ".join(
+                "None" if table[DOF[i]][name] is None else f"{table[DOF[i]][name]:.4f}"
+                for i in dofs))
+        print("    trivial: " + " / ".join(
+            f"{table[DOF[i]]['hold_last_velocity']:.4f}; {table[DOF[i]]['zero_velocity']:.4f}"
+            for i in dofs))
+    print("  validation part, the validation's own simulations (logged DOFs, horizons):")
+    for name, e in rule.items():
+        print(f"    {name:32s} " + ("None" if e is None else " / ".join(
+            f"{e[DOF[i]]:.4f}" for i in dofs)))
 
 
 if __name__ == "__main__":
