@@ -81,3 +81,24 @@ def test_best_visited_keeps_a_set_better_than_the_prior(table, monkeypatch):
     assert excl == set()
     assert record["choice"]["written"] == "the set the elimination ended with"
     assert record["choice"]["score"] == record["choice"]["ended_score"]
+
+
+def test_best_visited_judges_as_the_elimination_does(monkeypatch):
+    # one sway calibration: sway better, surge worse through the coupling terms. Judged on
+    # its own DOF ("own") it stays, and the prior does not beat it there; judged on every
+    # DOF ("all") the elimination itself removes it
+    monkeypatch.setattr(validate, "_changes", lambda per: [CAL_W])
+    monkeypatch.setattr(validate, "calibrated_model",
+                        lambda prior, per, fits, key: ("model", frozenset(key)))
+
+    def sse(val_log, model, dofs, **_):
+        e = (1.0, 1.0, 1.0) if model == PRIOR or CAL_W in model[1] else (1.2, 0.9, 1.0)
+        rows = np.array([[x ** 2 for x in e]]) * (1.0 + 0.01 * np.arange(4))[:, None]
+        return rows, np.ones(4)
+
+    monkeypatch.setattr(heldout, "segment_squared_errors", sse)
+    excl, record = _run(choice="best_visited", judge="own")
+    assert excl == set()
+    assert record["choice"]["written"] == "the set the elimination ended with"
+    excl, record = _run(choice="best_visited", judge="all")
+    assert excl == {CAL_W}

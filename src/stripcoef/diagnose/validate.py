@@ -159,12 +159,15 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     the thrusters' gains, kept the current and the sway calibration at (3 DOFs worse,
     7.54) against the prior's (0, 6): each removal alone scored no better, both together
     did), and a ``"own"`` removal or a veto can raise the summed score. ``"best_visited"``
-    (an option, issue 33, real33h): the final model is the best, by the summed score above
-    (over every judged DOF, whatever ``judge``), of the prior (no change) and every set of
-    changes the elimination and the veto scored, the set they ended with included, among
-    those the veto admits (no DOF whose own changes are kept simulated no better than its
-    veto reference); a tie goes to the set with fewer changes, then to the set they ended
-    with. The written model then never scores worse than the prior on the validation data:
+    (an option, issue 33, real33h): the final model is the best of the set they ended with,
+    every other set of changes they scored and the prior (no change), among those the veto
+    admits (no DOF whose own changes are kept simulated no better than its veto
+    reference): each in the order scored, the prior last, challenges the best so far and
+    wins when it scores better, or as well with fewer changes, on the DOFs that judge a
+    removal (``judge`` above: every judged DOF; with ``"own"`` the DOFs of the changes in
+    which the two sets differ; ``"coupled"`` and the DOFs with skill). The written model
+    then never scores worse than the prior on the validation data by the rule that judges
+    its changes:
     the subset selection's final comparison of the candidate models on the validation set
     (Hastie, Tibshirani & Friedman 2009, sec. 7.2-7.3: the model chosen is the one of least
     validation error among those compared), with no new constant. The record's
@@ -302,8 +305,16 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
             break
     chosen = None
     if choice == BEST_VISITED:
-        excl, cur, chosen = _best_visited(excl, cur, cache, changes, base, base_sse, ref,
-                                          veto_ref, judge_mask, dofs, own)
+        def judged(a, b):
+            """Sets ``a`` and ``b``'s scores on the DOFs that judge them (``judge``)."""
+            if judge not in (OWN, COUPLED):
+                return cache[a][0], cache[b][0]
+            names = {c[1] for c in set(a) ^ set(b)}
+            ks = [k for k, i in enumerate(dofs) if DOF[i] in names or skilled[k]]
+            return on(cache[a], ks), on(cache[b], ks)
+
+        excl, cur, chosen = _best_visited(excl, cache, changes, base, base_sse, ref,
+                                          veto_ref, judge_mask, dofs, own, judged)
     tests = {}
     if base_sse is not None and cur[2] is not None:
         # on the consecutive segments the scoring already simulated: the rolling segments
@@ -353,12 +364,16 @@ BEST_VISITED = "best_visited"
 CHOICES = (GREEDY, BEST_VISITED)
 
 
-def _best_visited(excl, cur, cache, changes, base, base_sse, ref, veto_ref, judge_mask,
-                  dofs, own):
+def _best_visited(excl, cache, changes, base, base_sse, ref, veto_ref, judge_mask, dofs,
+                  own, judged):
     """``(excluded, score entry, record)``: :func:`validate_changes`' ``"best_visited"``
     choice among the prior and the scored sets of ``cache`` (excluded changes -> (score,
-    errors, squared errors)) admitted by the veto (``veto_ref``, ``own``); ``excl`` and
-    ``cur``: the set the elimination and the veto ended with and its entry."""
+    errors, squared errors)) that the veto admits (``veto_ref``, ``own``), ``excl`` the set
+    the elimination and the veto ended with. Each set, in the order scored and the prior
+    last, challenges the best so far, judged as the elimination judges a removal:
+    ``judged(a, b)`` gives both sets' scores on the DOFs that judge them (every judged DOF;
+    with ``judge`` ``"own"`` those of the changes in which they differ, ``"coupled"`` and
+    the DOFs with skill); it wins when it scores better, or as well with fewer changes."""
     ended = frozenset(partners(excl, changes))
     everything = frozenset(partners(set(changes), changes))
     if base is not None:        # the prior: every ratio 1 exactly, no simulation needed
@@ -371,19 +386,21 @@ def _best_visited(excl, cur, cache, changes, base, base_sse, ref, veto_ref, judg
         return e is not None and not any(e[k] >= veto_ref[k] and own(DOF[i], key)
                                          for k, i in enumerate(dofs))
 
-    # fewer DOFs worse, then the smaller sum; a tie to fewer changes, then to the ended set
-    order = {key: n for n, key in enumerate(cache)}
-    candidates = sorted((key for key in cache if key == ended or admitted(key)),
-                        key=lambda key: (cache[key][0], -len(key), key != ended,
-                                         order[key]))
-    best = candidates[0]
-    kept = [c for c in changes if c not in best]
+    best = ended
+    order = [key for key in cache if key != everything] + (
+        [everything] if everything in cache else [])
+    for key in order:
+        if key == best or not admitted(key):
+            continue
+        new, old = judged(key, best)
+        if new < old or (new == old and len(key) > len(best)):
+            best = key
     record = {"rule": BEST_VISITED,
               "written": ("the set the elimination ended with" if best == ended
                           else "the prior" if best == everything else "another set scored"),
               "score": list(cache[best][0]), "ended_score": list(cache[ended][0]),
               "ended_kept": [_change_text(c) for c in changes if c not in ended],
-              "kept": [_change_text(c) for c in kept],
+              "kept": [_change_text(c) for c in changes if c not in best],
               "prior_score": (list(cache[everything][0]) if everything in cache else None),
               "sets_scored": len(cache), "sets_admitted": sum(map(admitted, cache))}
     return set(best), cache[best], record
