@@ -229,8 +229,10 @@ class DiagnoseSettings:
         (Vuong 1989; not identified apart where the log does not turn, Rothenberg 1971),
         the gains kept when the log chooses them, mode ``"joint"`` when it chooses the
         current and gains beside it (Schwarz 1978), else withdrawn. Off by default: measured on the
-        real-style logs only
-        (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md)
+        real-style logs (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md) and,
+        ``True`` with the six closed-loop options and ``validation_choice="best_visited"``, on
+        the independent benchmark's current, clean and tether logs only (real-style logs 29 -> 36
+        of 44, no criterion worse there: benchmarks/data/real33h_trace.md, section 5)
     dof_gains : bool
         One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
         within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
