@@ -271,6 +271,10 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                            if r["steps"]},
            "thruster_gains": ((res.get("thruster_gains") or {}).get("gains")
                               if (res.get("thruster_gains") or {}).get("applied") else None)}
+    choice = (res.get("validation") or {}).get("choice")
+    if choice:
+        # validation_choice="best_visited": which set was written (validate.validate_changes)
+        row["validation_choice"] = choice["written"]
     if (res.get("thruster_gains") or {}).get("links") is not None:
         # linked_gains="identified": each pair of groups considered, its information ratio
         row["gain_links"] = res["thruster_gains"]["links"]
@@ -1147,6 +1151,10 @@ def main(argv=None) -> int:
     ap.add_argument("--retest-scales", action="store_true", default=None,
                     help="diagnose with retest_scales (whole-log: a thrust scale or an "
                          "added-mass release judged again beside the shared fits)")
+    ap.add_argument("--validation-choice", default=None, choices=("greedy", "best_visited"),
+                    help="diagnose with validation_choice ('best_visited': the validation's "
+                         "final model the best on the validation part of the prior and every "
+                         "set its elimination scored)")
     ap.add_argument("--noise-with-bias", action="store_true", default=None,
                     help="diagnose with noise_with_bias (the calibration's identifiability "
                          "judged with the noise level fitted beside a free constant; "
@@ -1246,7 +1254,9 @@ def main(argv=None) -> int:
                                  ("noise_with_bias", args.noise_with_bias),
                                  ("buoyancy_carry", args.buoyancy_carry),
                                  ("gains_beside_timing", args.gains_beside_timing),
-                                 ("retest_scales", args.retest_scales)) if value is not None},
+                                 ("retest_scales", args.retest_scales),
+                                 ("validation_choice", args.validation_choice))
+                                 if value is not None},
                               **({} if args.scale_choice_unforced
                                  else {"scale_choice_unforced": False})} or None))
     if args.only_seeds:

@@ -304,9 +304,9 @@ N_LOGS = len(EFFECTS) + 1
 def run_real_style(k: int, duration: float, seed: int,
                    one_added_mass: bool = False, gains_beside_current: bool = False,
                    gains_validation: str = "consecutive",
-                   gains_judge: str = "written") -> list[dict]:
+                   gains_judge: str = "written", options=None) -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits (with
-    ``diagnose(..., one_added_mass=..., gains_beside_current=...)``)."""
+    ``diagnose(..., one_added_mass=..., gains_beside_current=..., **options)``)."""
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
@@ -321,7 +321,7 @@ def run_real_style(k: int, duration: float, seed: int,
                                            one_added_mass=one_added_mass,
                                            gains_beside_current=gains_beside_current,
                                            gains_validation=gains_validation,
-                                           gains_judge=gains_judge)]
+                                           gains_judge=gains_judge, options=options)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -347,10 +347,11 @@ def _written(model):
 
 def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
                 gains_beside_current=False, gains_validation="consecutive",
-                gains_judge="written") -> list[dict]:
+                gains_judge="written", options=None) -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
-    part too, and whether it beats both trivial predictors there."""
+    part too, and whether it beats both trivial predictors there. ``options``: further
+    keyword arguments of :func:`stripcoef.diagnose.diagnose` (:data:`OPTION_FLAGS`)."""
     from stripcoef.conventions import DOF
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, noise_growth, predictable, split
@@ -362,7 +363,8 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         res = diagnose(log, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
                        prior_widths=widths, one_added_mass=one_added_mass,
                        gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation, gains_judge=gains_judge)
+                       gains_validation=gains_validation, gains_judge=gains_judge,
+                       **(options or {}))
     forward = (res, res.holdout["errors"], time.process_time() - c0)
     head, tail = split(log, 1.0 - HOLDOUT)           # head: the first 30 %, never fitted
     c0 = time.process_time()
@@ -371,7 +373,8 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
         rev = diagnose(tail, prior, dof="all", time_limit=float("inf"), prior_widths=widths,
                        one_added_mass=one_added_mass,
                        gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation, gains_judge=gains_judge)
+                       gains_validation=gains_validation, gains_judge=gains_judge,
+                       **(options or {}))
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
     reverse = (rev, errors, time.process_time() - c0)
@@ -425,6 +428,9 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
                          "noise_growth_truth": tw.get("truth", {}).get(dof),
                          "predictable": int(ok[dof]),
                          "effects_written": effects, "gains_written": gains,
+                         # validation_choice="best_visited": which set was written
+                         "validation_choice": ((r.validation or {}).get("choice")
+                                               or {}).get("written", ""),
                          "not_diagnosed": dropped,
                          "cpu_s": round(cpu, 1), **tests[name].get(dof, {})})
     return rows
@@ -738,6 +744,7 @@ FIELDS = ("log", "kind", "truth", "rows", "rate_hz", "clock_offset_s", "split", 
           "truth_beats_trivial", "beats_all",
           "prior_beats_trivial", "noise_growth_calibrated", "noise_growth_prior",
           "noise_growth_truth", "predictable", "effects_written", "gains_written",
+          "validation_choice",
           "not_diagnosed", "cpu_s",
           "seg10_segments", "seg10_dm_prior", "seg10_dm_hold", "seg10_dm_zero", "seg10_verdict",
           "roll_segments", "roll_dm_prior", "roll_dm_hold", "roll_dm_zero", "roll_verdict",
@@ -752,6 +759,51 @@ def verdict_counts(rows, column: str) -> dict:
     for r in rows:
         if r.get(column) in out:
             out[r[column]] += 1
+    return out
+
+
+#: Further options of :func:`stripcoef.diagnose.diagnose` the held-out table can be run with:
+#: (flag, keyword, argparse keywords), as ``benchmarks.diagnose_independent`` takes them
+#: (issue 33, real33h: the six closed-loop options the lead measures as the base).
+OPTION_FLAGS = (
+    ("--validation-others", "validation_others",
+     {"choices": ("logged", "simulated", "each"), "default": None,
+      "help": "diagnose with validation_others"}),
+    ("--validation-horizon", "validation_horizon",
+     {"default": None, "metavar": "SECONDS|correlation",
+      "help": "diagnose with validation_horizon (seconds or 'correlation')"}),
+    ("--validation-judge", "validation_judge",
+     {"choices": ("all", "own", "coupled"), "default": None,
+      "help": "diagnose with validation_judge"}),
+    ("--validation-reference", "validation_reference",
+     {"choices": ("trivial", "combination"), "default": None,
+      "help": "diagnose with validation_reference"}),
+    ("--noise-with-bias", "noise_with_bias",
+     {"action": "store_true", "default": None, "help": "diagnose with noise_with_bias"}),
+    ("--no-noise-with-bias", "noise_with_bias",
+     {"action": "store_false", "default": None,
+      "help": "diagnose with noise_with_bias=False (the rule before adopt33h)"}),
+    ("--linked-gains", "linked_gains",
+     {"nargs": "?", "const": True, "default": None, "choices": (True, "identified", "off"),
+      "help": "diagnose with linked_gains ('identified': where the log identifies the "
+              "groups' contrast; 'off': not linked)"}),
+    ("--validation-choice", "validation_choice",
+     {"choices": ("greedy", "best_visited"), "default": None,
+      "help": "diagnose with validation_choice ('best_visited': the validation's final "
+              "model the best on the validation part of the prior, the kept set and every "
+              "set the elimination scored)"}),
+)
+
+
+def _options(args) -> dict:
+    """The :data:`OPTION_FLAGS` given on the command line, as keyword arguments."""
+    out = {}
+    for flag, key, _ in OPTION_FLAGS:
+        value = getattr(args, key)
+        if value is not None:           # an option left out is diagnose's default
+            if key == "validation_horizon" and value != "correlation":
+                value = float(value)
+            out[key] = False if (key == "linked_gains" and value == "off") else value
     return out
 
 
@@ -796,7 +848,10 @@ def main(argv=None) -> int:
                     help="diagnose with gains_judge ('written_all': the whole-log thrusters' "
                          "gains judged inside the written model, the log diagnosed with and "
                          "without them: stripcoef.diagnose.gainjudge)")
+    for flag, key, kw in OPTION_FLAGS:
+        ap.add_argument(flag, dest=key, **kw)
     args = ap.parse_args(argv)
+    options = _options(args)
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
         " --one-added-mass" if args.one_added_mass else "") + (
@@ -805,7 +860,9 @@ def main(argv=None) -> int:
          if args.gains_beside_current else "")) + (
         f" --gains-validation {args.gains_validation}"
         if args.gains_validation != "consecutive" else "") + (
-        f" --gains-judge {args.gains_judge}" if args.gains_judge != "written" else "")
+        f" --gains-judge {args.gains_judge}" if args.gains_judge != "written" else "") + "".join(
+        f" {flag}" + ("" if value is True else f" {value}")
+        for flag, key, _ in OPTION_FLAGS if (value := options.get(key)) is not None)
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)
@@ -835,19 +892,20 @@ def main(argv=None) -> int:
             for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
                                  [args.seed] * n, [args.one_added_mass] * n,
                                  [args.gains_beside_current] * n,
-                                 [args.gains_validation] * n, [args.gains_judge] * n):
+                                 [args.gains_validation] * n, [args.gains_judge] * n,
+                                 [options] * n):
                 out += rows
     else:
         for k in args.logs:
             out += run_real_style(k, args.duration, args.seed, args.one_added_mass,
                                   args.gains_beside_current, args.gains_validation,
-                                  args.gains_judge)
+                                  args.gains_judge, options)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
             for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass,
                                    gains_beside_current=args.gains_beside_current,
                                    gains_validation=args.gains_validation,
-                                   gains_judge=args.gains_judge):
+                                   gains_judge=args.gains_judge, options=options):
                 out.append({"log": name, "kind": "real", "truth": source, "rows": len(log),
                             "rate_hz": round(log.meta["rate"], 3), "clock_offset_s": "",
                             **row})

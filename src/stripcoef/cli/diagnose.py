@@ -43,6 +43,11 @@ def add_parser(subparsers):
     p.add_argument("--validation", type=float, default=None, metavar="FRACTION",
                    help="fraction of the fitting log (its end) that validates each change by "
                         "free simulation (default 0.25; 0 keeps every change)")
+    p.add_argument("--validation-choice", default="greedy",
+                   choices=("greedy", "best_visited"),
+                   help="the validation's final model: the set its backward elimination "
+                        "ends with (greedy, default) or the best on the validation part of "
+                        "the prior and every set it scored (best_visited)")
     p.set_defaults(func=run)
     return p
 
@@ -77,7 +82,8 @@ def run(args) -> int:
     model, widths = load_prior(args.vehicle)
     result = diagnose(log, model, dof=args.dof, window=args.window, effects=effects,
                       resimulate=not args.no_resimulate, validation=validation,
-                      holdout=args.holdout, prior_widths=widths)
+                      holdout=args.holdout, prior_widths=widths,
+                      validation_choice=args.validation_choice)
     check_finite_output(result.model.to_dict(), what="the calibrated model", file=str(args.log))
     with OutputSet() as outs:       # the model and the report: all new or all old
         if args.out:

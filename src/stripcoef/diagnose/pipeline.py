@@ -142,7 +142,7 @@ from stripcoef.diagnose.settings import (BANDS, DEFAULT_WINDOW, MAX_STEPS,  # no
                                          VALIDATION_FRACTION, VALIDATION_OTHERS, Budget,
                                          DiagnoseSettings, default_time_limit)
 from stripcoef.diagnose.combination import REFERENCES
-from stripcoef.diagnose.validate import (JUDGES, heldout_errors,  # noqa: F401
+from stripcoef.diagnose.validate import (CHOICES, JUDGES, heldout_errors,  # noqa: F401
                                          resimulate_rms, resimulated_errors, validate_changes,
                                          validation_errors, with_kept)
 from stripcoef.diagnose.written import read_back
@@ -182,7 +182,8 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              noise_with_bias: bool = _DEFAULTS.noise_with_bias,
              buoyancy_carry: bool = _DEFAULTS.buoyancy_carry,
              gains_beside_timing: bool = _DEFAULTS.gains_beside_timing,
-             retest_scales: bool = _DEFAULTS.retest_scales) -> Diagnosis:
+             retest_scales: bool = _DEFAULTS.retest_scales,
+             validation_choice: str = _DEFAULTS.validation_choice) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -300,6 +301,10 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
     retest_scales : bool
         Whole-log: a thrust scale or an added-mass release judged again in the model the
         shared fits wrote (:attr:`DiagnoseSettings.retest_scales`; off by default).
+    validation_choice : str
+        ``"greedy"`` (default) or ``"best_visited"``: the validation's final model, the set
+        its elimination ends with or the best of the prior and every set it scored
+        (:attr:`DiagnoseSettings.validation_choice`).
 
     Returns
     -------
@@ -335,7 +340,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
             ("validation_judge", validation_judge, JUDGES,
              "a way to judge a validation's removal"),
             ("heldout_rise", heldout_rise, RISE_RULES, "a rule for a held-out rise"),
-            ("gains_judge", gains_judge, GAINS_JUDGES, "a way to validate the thrusters' gains")):
+            ("gains_judge", gains_judge, GAINS_JUDGES, "a way to validate the thrusters' gains"),
+            ("validation_choice", validation_choice, CHOICES,
+             "a way to choose the validation's final model")):
         if value not in names:
             raise InputError(f"not {what}", key=key, value=value,
                              expected="one of " + ", ".join(names))
@@ -383,7 +390,7 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
         buoyancy_carry=bool(buoyancy_carry),
         gains_beside_timing=bool(gains_beside_timing),
-        retest_scales=bool(retest_scales))
+        retest_scales=bool(retest_scales), validation_choice=validation_choice)
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -496,7 +503,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
         exclude, record = validate_changes(val_log, model, per, fits, dofs, budget=budget,
                                            logged=settings.logged_dofs(dofs),
                                            horizon=horizon, judge=settings.validation_judge,
-                                           reference=settings.validation_reference)
+                                           reference=settings.validation_reference,
+                                           choice=settings.validation_choice)
         if first is not None and not current_kept(per, exclude):
             # mode "joint": the gains fitted beside the current are its partner (regains.py)
             gains = withdrawn(gains, first[0])
@@ -506,7 +514,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
                                                logged=settings.logged_dofs(dofs),
                                                horizon=horizon,
                                                judge=settings.validation_judge,
-                                               reference=settings.validation_reference)
+                                               reference=settings.validation_reference,
+                                               choice=settings.validation_choice)
         per = with_kept(per, exclude)
     calibrated, fitted = calibrated_fits(model, per, fits, exclude)
     calibrated, clipped = clip_added_mass(model, calibrated, added_mass_sd)

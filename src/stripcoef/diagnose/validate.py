@@ -52,7 +52,8 @@ def ratio_score(ratios) -> tuple[int, float]:
 def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                      budget: Budget = UNLIMITED, logged=(),
                      skill: bool | str = True, horizon=None,
-                     judge: str = "all", reference: str = "trivial") -> tuple[set, dict]:
+                     judge: str = "all", reference: str = "trivial",
+                     choice: str = "greedy") -> tuple[set, dict]:
     r"""Keep a change only if it improves the free simulation of data it was not fitted on.
 
     Backward elimination (Hastie, Tibshirani & Friedman 2009, sec. 3.3.2) on the validation
@@ -150,6 +151,27 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
     change that only scales the replayed commands of a held DOF toward the trivial
     predictors is a rescaled prior forecast, not a better model; Granger & Ramanathan 1984,
     forecast encompassing).
+
+    ``choice``: ``"greedy"`` (default) writes the set the elimination and the veto end with.
+    A backward elimination is greedy: it stops when no single removal scores better, so it
+    can end on a set that scores worse than removing two changes at once, the prior
+    included (issue 33, real33g: the seed-7 current log's forward split, diagnosed without
+    the thrusters' gains, kept the current and the sway calibration at (3 DOFs worse,
+    7.54) against the prior's (0, 6): each removal alone scored no better, both together
+    did), and a ``"own"`` removal or a veto can raise the summed score. ``"best_visited"``
+    (an option, issue 33, real33h): the final model is the best of the set they ended with,
+    every other set of changes they scored and the prior (no change), among those the veto
+    admits (no DOF whose own changes are kept simulated no better than its veto
+    reference): each in the order scored, the prior last, challenges the best so far and
+    wins when it scores better, or as well with fewer changes, on the DOFs that judge a
+    removal (``judge`` above: every judged DOF; with ``"own"`` the DOFs of the changes in
+    which the two sets differ; ``"coupled"`` and the DOFs with skill). The written model
+    then never scores worse than the prior on the validation data by the rule that judges
+    its changes:
+    the subset selection's final comparison of the candidate models on the validation set
+    (Hastie, Tibshirani & Friedman 2009, sec. 7.2-7.3: the model chosen is the one of least
+    validation error among those compared), with no new constant. The record's
+    ``choice`` says which set was written and their scores.
 
     Returns ``(excluded changes, record)``; :func:`with_kept` marks them in the per-DOF
     results.
@@ -281,6 +303,18 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
         # DOFs worse than the prior on the validation part and was still written)
         if len(excl) == before:
             break
+    chosen = None
+    if choice == BEST_VISITED:
+        def judged(a, b):
+            """Sets ``a`` and ``b``'s scores on the DOFs that judge them (``judge``)."""
+            if judge not in (OWN, COUPLED):
+                return cache[a][0], cache[b][0]
+            names = {c[1] for c in set(a) ^ set(b)}
+            ks = [k for k, i in enumerate(dofs) if DOF[i] in names or skilled[k]]
+            return on(cache[a], ks), on(cache[b], ks)
+
+        excl, cur, chosen = _best_visited(excl, cache, changes, base, base_sse, ref,
+                                          veto_ref, judge_mask, dofs, own, judged)
     tests = {}
     if base_sse is not None and cur[2] is not None:
         # on the consecutive segments the scoring already simulated: the rolling segments
@@ -300,6 +334,7 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                               else [DOF[j] for j in logged]),
               "prior": named(base), "all_changes": named(first), "kept_changes": named(cur[1]),
               "removed_for_own_dof": vetoed,
+              **({} if chosen is None else {"choice": chosen}),
               # each DOF alone, whole-log: the better trivial predictor's error, the veto's
               # reference where it is below the prior's (docstring)
               **({} if trivial is None else {"trivial_predictor": named(trivial)}),
@@ -320,6 +355,60 @@ def validate_changes(val_log, prior, per: dict, fits: dict, dofs, *,
                   for d in per if any(c[1] == d for c in excl)) if kept}}
     return excl, record
 
+
+
+#: :func:`validate_changes`' ``choice`` values: the set the elimination ends with, or the best
+#: of the prior and every set it scored.
+GREEDY = "greedy"
+BEST_VISITED = "best_visited"
+CHOICES = (GREEDY, BEST_VISITED)
+
+
+def _best_visited(excl, cache, changes, base, base_sse, ref, veto_ref, judge_mask, dofs,
+                  own, judged):
+    """``(excluded, score entry, record)``: :func:`validate_changes`' ``"best_visited"``
+    choice among the prior and the scored sets of ``cache`` (excluded changes -> (score,
+    errors, squared errors)) that the veto admits (``veto_ref``, ``own``), ``excl`` the set
+    the elimination and the veto ended with. Each set, in the order scored and the prior
+    last, challenges the best so far, judged as the elimination judges a removal:
+    ``judged(a, b)`` gives both sets' scores on the DOFs that judge them (every judged DOF;
+    with ``judge`` ``"own"`` those of the changes in which they differ, ``"coupled"`` and
+    the DOFs with skill); it wins when it scores better, or as well with fewer changes."""
+    ended = frozenset(partners(excl, changes))
+    everything = frozenset(partners(set(changes), changes))
+    if base is not None:        # the prior: every ratio 1 exactly, no simulation needed
+        cache.setdefault(everything, (
+            ratio_score(b / r for b, r, j in zip(base, ref, judge_mask) if j), base,
+            base_sse))
+
+    def admitted(key):
+        e = cache[key][1]
+        return e is not None and not any(e[k] >= veto_ref[k] and own(DOF[i], key)
+                                         for k, i in enumerate(dofs))
+
+    best = ended
+    order = [key for key in cache if key != everything] + (
+        [everything] if everything in cache else [])
+    for key in order:
+        if key == best or not admitted(key):
+            continue
+        new, old = judged(key, best)
+        if new < old or (new == old and len(key) > len(best)):
+            best = key
+    record = {"rule": BEST_VISITED,
+              "written": ("the set the elimination ended with" if best == ended
+                          else "the prior" if best == everything else "another set scored"),
+              "score": list(cache[best][0]), "ended_score": list(cache[ended][0]),
+              "ended_kept": [_change_text(c) for c in changes if c not in ended],
+              "kept": [_change_text(c) for c in changes if c not in best],
+              "prior_score": (list(cache[everything][0]) if everything in cache else None),
+              "sets_scored": len(cache), "sets_admitted": sum(map(admitted, cache))}
+    return set(best), cache[best], record
+
+
+def _change_text(c) -> str:
+    """A change's words: ``"surge calibration"`` or ``"surge current"``."""
+    return f"{c[1]} calibration" if c[0] == "calibration" else f"{c[1]} {c[2]}"
 
 
 #: :func:`validate_changes`' ``judge`` values: every DOF, the removed changes' own, or those
