@@ -18,19 +18,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import tempfile
 import time
 import warnings
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-
-
-def _fmt(d):
-    if not d:
-        return str(d)
-    return ", ".join(f"{k} {v:.4f}" if isinstance(v, float) else f"{k} {v}"
-                     for k, v in d.items())
 
 
 def main(argv=None) -> int:
@@ -41,20 +33,13 @@ def main(argv=None) -> int:
     ap.add_argument("--split", default="forward", choices=("forward", "reverse"))
     args = ap.parse_args(argv)
 
-    from benchmarks.real_logs import HOLDOUT, read_back, real_style_log, write_ros_chunks
+    from benchmarks.real_logs import fmt_record, traced_split
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.gainjudge import score
-    from stripcoef.diagnose.heldout import compare, split
+    from stripcoef.diagnose.heldout import compare
 
-    name, log, prior, widths, truth, _ = real_style_log(args.log, args.duration, args.seed,
-                                                        oracle=True)
-    with tempfile.TemporaryDirectory() as tmp:
-        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=args.seed + args.log))
-    if args.split == "forward":
-        fit, kw, test = read, {"holdout": HOLDOUT}, split(read, HOLDOUT)[1]
-    else:
-        test, fit = split(read, 1.0 - HOLDOUT)
-        kw = {}
+    name, truth, prior, widths, _, fit, kw, test = traced_split(args.log, args.duration,
+                                                                args.seed, args.split)
     print(f"{name} ({truth}), {args.split} split")
     passes = {}
     for judge in ("none", "off"):
@@ -75,14 +60,14 @@ def main(argv=None) -> int:
         print(f"\n== pass gains_judge={judge!r}: {cpu:.1f} s CPU; gains applied "
               f"{g.get('applied')}")
         if g.get("applied"):
-            print("   gains: " + _fmt(g.get("gains")))
+            print("   gains: " + fmt_record(g.get("gains")))
         print("   effects written: " + ("; ".join(f"{e['dof']} {e['name']} "
-                                                 + _fmt(e.get("parameters") or {})
+                                                 + fmt_record(e.get("parameters") or {})
                                                  for e in res.model.effects) or "none"))
         print(f"   bounds hit: {res.bounds_hit}")
         print("   steps: " + "; ".join(f"{s.dof} {s.effect}" for s in res.steps))
         for key in ("prior", "all_changes", "kept_changes"):
-            print(f"   validation {key}: {_fmt(v.get(key))}")
+            print(f"   validation {key}: {fmt_record(v.get(key))}")
         print(f"   removed: {v.get('removed')}; removed for own DOF: "
               f"{v.get('removed_for_own_dof')}")
         print(f"   score against the file's prior (rule): "

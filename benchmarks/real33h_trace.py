@@ -19,19 +19,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import tempfile
 import time
 import warnings
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-
-
-def _fmt(d):
-    if not d:
-        return str(d)
-    return ", ".join(f"{k} {v:.4f}" if isinstance(v, float) else f"{k} {v}"
-                     for k, v in d.items())
 
 
 def main(argv=None) -> int:
@@ -49,19 +41,12 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     options = _options(args)
 
-    from benchmarks.real_logs import HOLDOUT, read_back, real_style_log, write_ros_chunks
+    from benchmarks.real_logs import HOLDOUT, fmt_record, traced_split
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, split
 
-    name, log, prior, widths, truth, truth_coefficients = real_style_log(args.log, args.duration, args.seed,
-                                                        oracle=True)
-    with tempfile.TemporaryDirectory() as tmp:
-        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=args.seed + args.log))
-    if args.split == "forward":
-        fit, kw, test = read, {"holdout": HOLDOUT}, split(read, HOLDOUT)[1]
-    else:
-        test, fit = split(read, 1.0 - HOLDOUT)
-        kw = {}
+    name, truth, prior, widths, truth_coefficients, fit, kw, test = traced_split(
+        args.log, args.duration, args.seed, args.split)
     print(f"{name} ({truth}), {args.split} split, options {options}")
     c0 = time.process_time()
     with warnings.catch_warnings():
@@ -78,22 +63,22 @@ def main(argv=None) -> int:
     print(f"diagnosis {cpu:.1f} s CPU; DOFs {res.diagnosed}; dropped {res.dropped_dofs}")
     print(f"gains applied {g.get('applied')}; significant {g.get('significant')}")
     if g.get("gains"):
-        print("   gains: " + _fmt(g.get("gains")))
+        print("   gains: " + fmt_record(g.get("gains")))
     if g.get("validation"):
-        print("   gains' validation: " + _fmt({k: x for k, x in g["validation"].items()
+        print("   gains' validation: " + fmt_record({k: x for k, x in g["validation"].items()
                                                 if k != "description"}))
     for d, r in res.per_dof.items():
         cal = r.calibration
         print(f"-- {d}: calibration kept {cal.kept}; steps: " + ("; ".join(
             f"{s.effect} (kept {s.kept})" for s in r.steps) or "none"))
     print("effects written: " + ("; ".join(f"{e['dof']} {e['name']} "
-                                           + _fmt(e.get("parameters") or {})
+                                           + fmt_record(e.get("parameters") or {})
                                            for e in res.model.effects) or "none"))
     print(f"bounds hit: {res.bounds_hit}")
     for key in ("horizon_s", "prior", "trivial_predictor", "combined_reference",
                 "all_changes", "kept_changes"):
         if key in v:
-            print(f"validation {key}: {_fmt(v.get(key))}")
+            print(f"validation {key}: {fmt_record(v.get(key))}")
     print(f"removed: {v.get('removed')}")
     print(f"removed for own DOF: {v.get('removed_for_own_dof')}")
     for key in ("choice", "visited"):
@@ -105,7 +90,7 @@ def main(argv=None) -> int:
         print(f"held out {dof:6s} " + "  ".join(
             f"{m} {x:.4f}" if x is not None else f"{m} None" for m, x in e.items()))
     if args.ablate:
-        ablate(res, prior, split(read, HOLDOUT)[0] if args.split == "forward" else fit,
+        ablate(res, prior, split(fit, HOLDOUT)[0] if args.split == "forward" else fit,
                test, truth_coefficients, options)
     print(f"\n{time.process_time():.1f} s of CPU in all")
     return 0

@@ -297,6 +297,33 @@ def real_style_log(k: int, duration: float, seed: int, *, oracle: bool = False):
     return (*out, None) if oracle else out
 
 
+def traced_split(k: int, duration: float, seed: int, which: str):
+    """Real-style log ``k`` as the benchmark reads it back (written as chunk files) and cut as
+    its ``which`` split fits it, for the traces of one diagnosis (benchmarks.real33g_trace,
+    benchmarks.real33h_trace): ``(name, truth, prior, widths, truth_coefficients, fit,
+    kwargs, test)``: the log to diagnose, diagnose's extra keyword arguments (the held-out
+    fraction of a ``"forward"`` split) and the held-out part."""
+    from stripcoef.diagnose.heldout import split
+
+    name, log, prior, widths, truth, truth_coefficients = real_style_log(k, duration, seed,
+                                                                         oracle=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        read, _ = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
+    if which == "forward":
+        return name, truth, prior, widths, truth_coefficients, read, {"holdout": HOLDOUT}, \
+            split(read, HOLDOUT)[1]
+    test, fit = split(read, 1.0 - HOLDOUT)
+    return name, truth, prior, widths, truth_coefficients, fit, {}, test
+
+
+def fmt_record(d) -> str:
+    """A record's numbers on one line (``key value, ...``, floats to 4 decimals)."""
+    if not d:
+        return str(d)
+    return ", ".join(f"{k} {v:.4f}" if isinstance(v, float) else f"{k} {v}"
+                     for k, v in d.items())
+
+
 #: How many real-style logs :func:`real_style_log` makes.
 N_LOGS = len(EFFECTS) + 1
 
