@@ -730,7 +730,8 @@ def _identifiability(data: WindowData, dof: int, cols, sd, names, excited,
     With ``settings.noise_with_bias`` the noise level :math:`\sigma` is that of the window
     residual with a free constant beside the calibration's columns
     (:func:`sigma_beside_bias`): a constant force the prior
-    misses is not noise (option, off by default; benchmarks/data/spur33f_trace.md).
+    misses is not noise (on by default since adopt33h, settings.ADOPTED_TOGETHER;
+    benchmarks/data/spur33f_trace.md).
 
     Returns ``{"kept_at_prior": {name: reason}, "information_ratio": {name: b_j/s_j}}``.
     """

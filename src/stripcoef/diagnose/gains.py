@@ -349,8 +349,10 @@ def identified_groups(alloc, rows, blocks, prior_sd, sigmas) -> tuple:
     at least its weight on the prior (the linear-Gaussian posterior, Tarantola 2005
     eq. 3.37). The bound is the definition's, not a tuned value.
 
-    Off by default (measured on the whole-log rows of seeds 1795938998 and 1795929171,
-    benchmarks/data/linked33f_trace.md): the VideoRay's pair links on 1 of 12 logs, so
+    The default since adopt33h, with five other validation options
+    (:data:`~stripcoef.diagnose.settings.ADOPTED_TOGETHER`). Measured alone on the whole-log
+    rows of seeds 1795938998 and 1795929171 (benchmarks/data/linked33f_trace.md), where it
+    was not adopted: the VideoRay's pair links on 1 of 12 logs, so
     ``linked=True``'s VideoRay losses go, and the clean-log failure is fixed, but on the
     BlueROV2 the contrast is determined (ratios 1.03-2.07) and biased by the effect the fit
     leaves out on two logs (magnitude within 15 % 73 -> 71 of 88): the criterion bounds the
