@@ -415,7 +415,11 @@ class DiagnoseSettings:
         either way (the current log's reverse split writes the prior instead of a model worse
         than it in every held-out DOF); on the whole-log current, clean and tether rows of
         seeds 29112026 and 1795938998 held by the written model 12 -> 13 of 16 but error cut
-        >= 3x 12 -> 11 (benchmarks/data/real33h_trace.md)
+        >= 3x 12 -> 11 (benchmarks/data/real33h_trace.md); with ``gains_beside_current`` on
+        every whole-log row of seed 1795971241 held by the written model 37 -> 34 of 44 and
+        cut >= 3x 40 -> 38: it wrote a set other than the greedy one, or the prior, over a
+        right buoyancy offset or lag on four logs (a choice among many sets on the same
+        validation data, benchmarks/data/closed_loop_choice_seed6.md)
     """
 
     window: float = DEFAULT_WINDOW
