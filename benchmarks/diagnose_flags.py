@@ -99,6 +99,14 @@ FLAGS = (
       "help": "'diebold_mariano': a scale or a released coefficient refused for a held-out "
               "rise only when the Diebold-Mariano test of the window losses rejects "
               "(heldout_rise)"}),
+    ("--calibration-named", "calibration_named",
+     {"action": "store_true",
+      "help": "the written calibration's departures from the prior beyond MIMIC_BANDS bands "
+              "named as the effects that mimic them (calibration_named)"}),
+    ("--bias-gains-one-dof", "bias_gains_one_dof",
+     {"action": "store_true",
+      "help": "one DOF: a bias outside heave, roll and pitch must stand beside the acting "
+              "thrusters' gains, the whole-log rule (bias_gains_one_dof)"}),
     ("--retest-scales", "retest_scales",
      {"action": "store_true",
       "help": "whole-log: a thrust scale or an added-mass release judged again beside the "

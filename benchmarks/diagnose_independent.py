@@ -277,6 +277,18 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
     if (res.get("thruster_gains") or {}).get("links") is not None:
         # linked_gains="identified": each pair of groups considered, its information ratio
         row["gain_links"] = res["thruster_gains"]["links"]
+    # option calibration_named (stripcoef.diagnose.calibnamed): the written calibration's
+    # departures named as the effects that mimic them; "first_named": the first step, or
+    # in a DOF without steps the calibration's first named departure (named33i)
+    cal_named = {d: [{"effect": c["effect"], "value": next(iter(c["parameters"].values())),
+                      "relative": c["relative"], "bands": c["bands"]}
+                     for c in r.get("calibration_named") or ()]
+                 for d, r in per.items() if r.get("calibration_named")}
+    if cal_named or any("calibration_named" in r for r in per.values()) \
+            or (options or {}).get("calibration_named"):
+        row["calibration_named"] = cal_named
+        own_cal = cal_named.get(dof_name) or []
+        row["first_named"] = row["first"] or (own_cal[0]["effect"] if own_cal else None)
     # a step that the log does not tell from other effects (scalechoice): its named set
     row["first_set"] = ([steps[0]["effect"]] + list(steps[0].get("ambiguous_with") or ())
                         if steps else [])
@@ -294,6 +306,17 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
             # rows without it: benchmarks.written_units converts them)
             row["written_gain"] = float(g_w)
             row["magnitude_units"] = WRITTEN_UNITS
+        cal = [c for c in row.get("calibration_named", {}).get(dof_name, [])
+               if c["effect"] == category]
+        if not steps and cal:
+            # named by the calibration: its value is the written model's change (the
+            # truth in the written model's units, no scale step held)
+            g_w = written_gain(res, prior.to_dict(), dof_name)
+            ref = magnitude_truth(truth, prior.to_dict(), category, dof_name, 1.0, g_w)
+            row["calibration_estimate"] = float(cal[0]["value"])
+            row["calibration_magnitude_truth"] = float(ref)
+            row["calibration_magnitude_error"] = (abs(abs(cal[0]["value"]) - abs(ref))
+                                                  / abs(ref))
         nd = match[0].get("not_determined") if match else None
         if nd:
             # named, its value not determined by one DOF (stripcoef.diagnose.undetermined):
@@ -964,6 +987,7 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
         lines.append(f"Dry friction (outside the library): 'unexplained' or held-out gains "
                      f"under 30 % in {ok} of {len(outside)}; named: "
                      + ", ".join(sorted({str(r['first']) for r in outside})) + ".")
+    lines += calibration_named_lines(rows)
     lines += detectability_lines(rows)
     if confusion:
         lines += ["", "Confusion (truth -> effect named first, both modes):", ""]
@@ -974,6 +998,42 @@ def summarise(rows: list[dict], seed: int, duration: float) -> str:
     lines += ["", f"Mean CPU time per log: independent simulation {ts:.1f} s, diagnosis "
               f"{td:.1f} s."]
     return "\n".join(lines)
+
+
+def calibration_named_lines(rows: list[dict]) -> list[str]:
+    """The option ``calibration_named``'s count (rows that hold ``first_named``): named
+    first when a DOF without steps counts the calibration's named departure
+    (stripcoef.diagnose.calibnamed), its magnitude, and the departures named in clean logs
+    and, whole-log, in DOFs other than the effect's. Apart from the table's "named first",
+    which counts steps only."""
+    from validation.independent import STRENGTHS
+
+    rs = [r for r in rows if "first_named" in r]
+    if not rs:
+        return []
+    lib = [r for r in rs if r["category"] in STRENGTHS]
+    by_cal = [r for r in lib if r["first"] is None and r["first_named"] is not None]
+    right = [r for r in by_cal if r["first_named"] == r["category"]]
+    within = sum(r.get("calibration_magnitude_error", np.inf) <= 0.15 for r in right)
+    clean = [r for r in rs if r["category"] == "clean"]
+    clean_named = [f"{r['vehicle']} {r['seed']} {r['mode']}: " + ", ".join(
+        f"{d} {c['effect']} {c['value']:.3g} ({100 * c['relative']:+.0f} %)"
+        for d, cs in r["calibration_named"].items() for c in cs)
+        for r in clean if r["calibration_named"]]
+    other = [f"{r['vehicle']} {r['category']} {r['seed']}: " + ", ".join(
+        f"{d} {c['effect']}" for d, cs in r["calibration_named"].items() if d != r["dof"]
+        for c in cs)
+        for r in lib if r["mode"] == "all"
+        and any(d != r["dof"] for d in r["calibration_named"])]
+    return ["", f"Calibration's named departures (calibration_named): library effects named "
+            f"first, a DOF without steps counting the calibration's named departure: "
+            f"{sum(r['first_named'] == r['category'] for r in lib)}/{len(lib)} (steps only: "
+            f"{sum(r['first'] == r['category'] for r in lib)}/{len(lib)}); named by the "
+            f"calibration alone in {len(by_cal)} rows, the right effect in {len(right)}, its "
+            f"magnitude within 15 % in {within}; whole-log rows with a departure named in "
+            f"another DOF: {len(other)}" + (" (" + "; ".join(other) + ")" if other else "")
+            + f"; clean logs with a departure named: {len(clean_named)} of {len(clean)}"
+            + (" (" + "; ".join(clean_named) + ")" if clean_named else "") + "."]
 
 
 def _truth_named(rows: list[dict]) -> list[str]:

@@ -116,14 +116,15 @@ from stripcoef.diagnose.calibrate import (bounds_hit, calibrated_fits,  # noqa: 
 from stripcoef.diagnose.cross import moving_dofs, with_known
 from stripcoef.diagnose.current import share_current
 from stripcoef.diagnose.fit import EffectFit, fit_effects  # noqa: F401
-from stripcoef.diagnose import buoyancy, gainjudge, timinggains, undetermined
+from stripcoef.diagnose import buoyancy, calibnamed, gainjudge, timinggains, undetermined
 from stripcoef.diagnose.gainjudge import GAINS_JUDGES
 from stripcoef.diagnose.gaingate import GAIN_VALIDATIONS, validate_gains
 from stripcoef.diagnose.gains import fit_thruster_gains
 from stripcoef.diagnose.regains import (JOINT, TEST, current_kept, refit_gains, tested,
                                         with_found_current,
                                         withdrawn)
-from stripcoef.diagnose.stepwise import (WholeLogParts, changed_dofs, retest_steps,
+from stripcoef.diagnose.stepwise import (OneDofBiasParts, WholeLogParts, changed_dofs,
+                                         retest_steps,
                                          terms_record, unresolved_timing)
 from stripcoef.diagnose.thrusterparts import OneDofParts
 from stripcoef.diagnose.timing import compare_timing
@@ -183,7 +184,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
              buoyancy_carry: bool = _DEFAULTS.buoyancy_carry,
              gains_beside_timing: bool = _DEFAULTS.gains_beside_timing,
              retest_scales: bool = _DEFAULTS.retest_scales,
-             validation_choice: str = _DEFAULTS.validation_choice) -> Diagnosis:
+             validation_choice: str = _DEFAULTS.validation_choice,
+             calibration_named: bool = _DEFAULTS.calibration_named,
+             bias_gains_one_dof: bool = _DEFAULTS.bias_gains_one_dof) -> Diagnosis:
     """Diagnose a log against a prior model (module docstring).
 
     Parameters
@@ -305,6 +308,14 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         ``"greedy"`` (default) or ``"best_visited"``: the validation's final model, the set
         its elimination ends with or the best of the prior and every set it scored
         (:attr:`DiagnoseSettings.validation_choice`).
+    calibration_named : bool
+        The written calibration's departures from the prior beyond ``MIMIC_BANDS`` bands
+        named as the effects that mimic them (:mod:`.calibnamed`,
+        :attr:`DiagnoseSettings.calibration_named`; off by default).
+    bias_gains_one_dof : bool
+        One DOF: a bias outside heave, roll and pitch must stand beside the acting
+        thrusters' gains, as in a whole-log run (:class:`~.stepwise.OneDofBiasParts`,
+        :attr:`DiagnoseSettings.bias_gains_one_dof`; off by default).
 
     Returns
     -------
@@ -390,7 +401,9 @@ def diagnose(log, model, *, dof="all", window: float = DEFAULT_WINDOW, effects=N
         gains_judge=gains_judge, noise_with_bias=bool(noise_with_bias),
         buoyancy_carry=bool(buoyancy_carry),
         gains_beside_timing=bool(gains_beside_timing),
-        retest_scales=bool(retest_scales), validation_choice=validation_choice)
+        retest_scales=bool(retest_scales), validation_choice=validation_choice,
+        calibration_named=bool(calibration_named),
+        bias_gains_one_dof=bool(bias_gains_one_dof))
     budget = Budget.start(limit, rows=len(log), source=log.source)
     return run(log, model, dof=dof, settings=settings, budget=budget)
 
@@ -523,6 +536,8 @@ def run(log, model, *, dof="all", settings: DiagnoseSettings = DiagnoseSettings(
     written = type(calibrated).from_dict(calibrated.to_dict())
     per = read_back(per, fits, written, train_log, window=window, exclude=exclude,
                     fitted=fitted)
+    if settings.calibration_named:  # the written calibration's departures (calibnamed.py)
+        per = calibnamed.named(per)
     if record is not None and clipped:      # the validated model was clipped afterwards
         record["kept_changes"] = validation_errors(
             val_log, written, dofs, settings.logged_dofs(dofs),
@@ -586,7 +601,8 @@ def _fit_dofs(data, model, dofs, excited, settings: DiagnoseSettings, budget: Bu
     cross = moving_dofs(data)
     # whole-log: a thruster effect found in one DOF must hold in every DOF its thrusters
     # drive; one DOF: a translation's asymmetry identified apart from a buoyancy change
-    siblings = (WholeLogParts if len(dofs) > 1 else OneDofParts)(
+    siblings = (WholeLogParts if len(dofs) > 1 else OneDofBiasParts
+                if settings.bias_gains_one_dof else OneDofParts)(
         data, dofs, settings, budget=budget, excited=excited, cross=cross)
     per, fits = {}, {}
     carry = settings.buoyancy_carry         # heave first, its buoyancy change carried

@@ -103,7 +103,12 @@ def text_summary(result) -> str:
                          f"at its selection: error {_fmt(s['error_before'])} -> "
                          f"{_fmt(s['error_after'])}, held-out {_fmt(s['held_out_error_before'])}"
                          f" -> {_fmt(s['held_out_error_after'])}{alt}")
-        if not r["steps"]:
+        for c in r.get("calibration_named") or ():
+            lines.append(f"  named by the calibration (in the written model): {c['effect']}: "
+                         + ", ".join(f"{k} {_fmt(v)}" for k, v in c["parameters"].items())
+                         + f" ({c['coefficient']} {_fmt(c['prior'])} -> {_fmt(c['written'])}, "
+                         f"{100 * c['relative']:+.0f} %; {c['rule']})")
+        if not r["steps"] and not r.get("calibration_named"):
             lines.append("  no effect is significant")
         for w in r.get("withdrawn") or ():
             lines.append(f"  withdrawn after the shared fits (not in the written model): "

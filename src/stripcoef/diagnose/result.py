@@ -259,6 +259,11 @@ class DofResult(_Record):
     withdrawn : tuple of mapping, optional
         Whole-log: steps the selection added and the shared fits made unnecessary, each
         ``effect``, ``parameters`` and ``reason`` (:mod:`.stepwise`); not written
+    calibration_named : tuple of mapping, optional
+        The written calibration's departures from the prior named as the effects that
+        mimic them (option ``calibration_named``, :mod:`.calibnamed`): each ``effect``,
+        ``parameters``, ``coefficient``, ``prior``, ``written``, ``relative``, ``bands``,
+        ``z`` and ``rule``
     """
 
     dof: str
@@ -280,6 +285,7 @@ class DofResult(_Record):
     unexplained_evidence: Mapping
     unexplained_signature: str
     withdrawn: tuple | None = _optional()
+    calibration_named: tuple | None = _optional()
 
     @classmethod
     def from_dict(cls, d: Mapping) -> DofResult:

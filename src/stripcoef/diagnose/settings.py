@@ -424,6 +424,18 @@ class DiagnoseSettings:
         cut >= 3x 40 -> 38: it wrote a set other than the greedy one, or the prior, over a
         right buoyancy offset or lag on four logs (a choice among many sets on the same
         validation data, benchmarks/data/closed_loop_choice_seed6.md)
+    calibration_named : bool
+        The written calibration's departure from the prior beyond ``MIMIC_BANDS`` bands and
+        ``MIN_Z`` sd named as the effect that mimics the coefficient (an added mass, a linear
+        drag; :mod:`stripcoef.diagnose.calibnamed`), so that a log whose effect the
+        calibration absorbed still names it; the steps and the written model are unchanged.
+        Off by default (benchmarks/data/named33i_trace.md)
+    bias_gains_one_dof : bool
+        One DOF: a bias (a constant force) outside heave, roll and pitch refused when, with
+        each acting thruster's gain free beside it, it is under ``MIN_Z`` sd from zero, the
+        whole-log rule (:func:`stripcoef.diagnose.stepwise.bias_beside_gains`, Rothenberg
+        1971) applied to a one-DOF run (:class:`~stripcoef.diagnose.stepwise.
+        OneDofBiasParts`). Off by default (benchmarks/data/named33i_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
@@ -456,6 +468,8 @@ class DiagnoseSettings:
     gains_beside_timing: bool = False
     retest_scales: bool = False
     validation_choice: str = "greedy"
+    calibration_named: bool = False
+    bias_gains_one_dof: bool = False
 
     def validation_horizons(self, val_log, dofs):
         """The validation's horizon of each DOF of ``dofs`` [s]: None for the default
