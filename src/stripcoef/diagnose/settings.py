@@ -429,13 +429,20 @@ class DiagnoseSettings:
         ``MIN_Z`` sd named as the effect that mimics the coefficient (an added mass, a linear
         drag; :mod:`stripcoef.diagnose.calibnamed`), so that a log whose effect the
         calibration absorbed still names it; the steps and the written model are unchanged.
-        Off by default (benchmarks/data/named33i_trace.md)
+        Off by default: on five seeds' added-mass, thrust-effectiveness and clean logs (and
+        seed 29112026's momentum-drag and delay logs) named first, counting it where no step
+        names anything, 75 -> 77 of 96, but a clean log names a surge added mass (+89 %) and
+        a thrust scale held by the calibration as inertia is named an added mass (two rows
+        alone, ten beside the scale step; benchmarks/data/named33i_trace.md)
     bias_gains_one_dof : bool
         One DOF: a bias (a constant force) outside heave, roll and pitch refused when, with
         each acting thruster's gain free beside it, it is under ``MIN_Z`` sd from zero, the
         whole-log rule (:func:`stripcoef.diagnose.stepwise.bias_beside_gains`, Rothenberg
         1971) applied to a one-DOF run (:class:`~stripcoef.diagnose.stepwise.
-        OneDofBiasParts`). Off by default (benchmarks/data/named33i_trace.md)
+        OneDofBiasParts`). Off by default: it changes the one row it was built for (a
+        VideoRay surge bias named over the thrust scale, seed 1795971241) and no row of the
+        five other seeds' measured logs, which select no such bias
+        (benchmarks/data/named33i_trace.md)
     """
 
     window: float = DEFAULT_WINDOW
