@@ -109,3 +109,30 @@ def test_a_one_dof_surge_bias_the_gains_take_is_refused():
     assert names[False][0] == "buoyancy_offset"
     assert names[True][0] == "thrust_effectiveness"
     assert "buoyancy_offset" not in names[True]
+
+
+def test_the_benchmark_counts_the_calibration_apart():
+    """``benchmarks.diagnose_independent.calibration_named_lines``: a DOF without steps counts
+    the calibration's named departure in "first_named"; the table's count stays the steps'."""
+    from benchmarks.diagnose_independent import calibration_named_lines
+
+    def row(category, first, named, mode="dof", dof="surge", **extra):
+        return {"vehicle": "v", "category": category, "seed": 1, "mode": mode, "dof": dof,
+                "first": first, "first_named": first or (named[0]["effect"] if named else None),
+                "calibration_named": {dof: named} if named else {}, **extra}
+
+    mass = [{"effect": "added_mass_error", "value": 1.1, "relative": 0.77, "bands": 2.56}]
+    rows = [row("added_mass_error", None, mass, calibration_magnitude_error=0.09),
+            row("added_mass_error", "thrust_effectiveness", mass),
+            row("thrust_effectiveness", None, mass),
+            row("clean", None, mass, mode="all")]
+    (blank, line) = calibration_named_lines(rows)
+    assert blank == ""
+    assert "named first, a DOF without steps counting the calibration's named departure: 1/3" \
+        in line
+    assert "(steps only: 0/3)" in line
+    assert "named by the calibration alone in 2 rows, the right effect in 1, its magnitude " \
+           "within 15 % in 1" in line
+    assert "clean logs with a departure named: 1 of 1" in line
+    assert calibration_named_lines([{k: v for k, v in r.items() if k != "first_named"}
+                                    for r in rows]) == []
