@@ -430,8 +430,8 @@ class DiagnoseSettings:
         drag; :mod:`stripcoef.diagnose.calibnamed`), so that a log whose effect the
         calibration absorbed still names it; the steps and the written model are unchanged.
         Off by default: on five seeds' added-mass, thrust-effectiveness and clean logs (and
-        seed 29112026's momentum-drag and delay logs) named first, counting it where no step
-        names anything, 75 -> 77 of 96, but a clean log names a surge added mass (+89 %) and
+        two seeds' momentum-drag and delay logs) named first, counting it where no step
+        names anything, 91 -> 93 of 112, but a clean log names a surge added mass (+89 %) and
         a thrust scale held by the calibration as inertia is named an added mass (two rows
         alone, ten beside the scale step; benchmarks/data/named33i_trace.md)
     bias_gains_one_dof : bool
