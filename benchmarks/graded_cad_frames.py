@@ -26,6 +26,15 @@ a distance d from the edge h(d) = H sqrt(4 d / l):
 - the tubes' walls (P's boundary between the inner faces, its edges concave: no singularity)
   are quadrilaterals, each facet cut into panels no wider than H / 2 and H / 2 along y.
 
+Why not one library mesh of the whole surface: an isotropic remesh graded the same way
+(:func:`benchmarks.graded_mesher.graded_mesh`, gmsh on the discrete surface; pymeshlab's
+isotropic remesher is isotropic too) must make a rim's panels edge-sized along the rim as well
+as across it, since the whole rim lies within t/2 of two edges: their number grows as H^-4
+(frame 6 of seed 1795971315: 6,004 / 11,060 / 19,292 faces at H = 0.06 / 0.045 / 0.035 m,
+about half of them on the rims and edge strips), so that the levels within 8 GB span too little
+for Eça & Hoekstra.  Structured cosine panels are fine across an edge and coarse along it
+(the plate references' anisotropy); gmsh meshes the one face no grid fits.
+
 The faces meet non-conformingly at the edges, which the collocation method of constant panels
 allows (each panel's source strength is unknown on its own; no continuity is assumed:
 Hess & Smith 1967).  The nodes lie on the body's faces, so every level is the faceted body

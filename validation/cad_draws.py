@@ -45,7 +45,8 @@ DRAWS = (
      ("graded_coarse_1795919297.csv", "graded_cad_frames_1795919297.csv"),
      ("cad_frames_levels_frame32d.csv",),
      "drawn 2026-11-28, run as two shards; as drawn 234/240 against the most resolved references"),
-    (1795939009, "cad_plates_graded_1795939009.csv", ("graded_coarse_1795939009.csv",), (),
+    (1795939009, "cad_plates_graded_1795939009.csv",
+     ("graded_coarse_1795939009.csv", "graded_cad_frames_1795939009.csv"), (),
      "drawn 2026-11-29 07:56 UTC, run on main 9064094 before it was traced; 36 of 40 shapes: "
      "frames 8, 12, 22 and 37 exceeded the BEM's cap then and were solved apart "
      "(benchmarks.frame32d_reference, reference_tables/bem/cad_frames_levels_frame32d.csv), "
@@ -54,7 +55,8 @@ DRAWS = (
      ("graded_coarse_1795948662.csv", "graded_cad_1795948662.csv",
       "graded_cad_frames_1795948662.csv"), ("cad_levels_fresh32f.csv",),
      "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced (as drawn 237/240 against the most resolved references)"),
-    (1795960449, "cad_plates_graded_1795960449.csv", ("graded_coarse_1795960449.csv",),
+    (1795960449, "cad_plates_graded_1795960449.csv",
+     ("graded_coarse_1795960449.csv", "graded_cad_frames_1795960449.csv"),
      ("cad_levels_fresh55.csv",),
      "drawn 2026-11-29 13:55 UTC, run on main 30aebcf before it was traced (as drawn 239/240 "
      "against the most resolved references: fillet box 11's pitch -6.7 %, -5.7 % against four "
