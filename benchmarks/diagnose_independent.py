@@ -48,10 +48,7 @@ Usage:
     python -m benchmarks.diagnose_independent [--seed S] [--duration 300] [--jobs 2]
         [--categories tether_drag,current,...] [--vehicles videoray_pro3,bluerov2_heavy]
         [--modes dof,all] [--repeats 1] [--write FILE.md] [--same-seeds]
-        [--validation-others logged|simulated|each] [--one-added-mass]
-        [--validation-horizon SECONDS|correlation] [--validation-judge all|own|coupled]
-        [--validation-reference trivial|combination] [--linked-gains [identified|off]]
-        [--no-noise-with-bias]
+        [diagnose's options: benchmarks.diagnose_flags, e.g. --linked-gains off]
 
 Every option left out is diagnose's default (``DiagnoseSettings``); the defaults before
 adopt33h (stop 56) are ``--validation-others logged --validation-horizon 10
@@ -75,6 +72,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+
+from benchmarks.diagnose_flags import add_flags, given
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
@@ -1102,10 +1101,6 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="logs per category and vehicle (each its own seed)")
     ap.add_argument("--write", default=None, help="write the table to this markdown file")
-    ap.add_argument("--validation-others", default=None,
-                    choices=("logged", "simulated", "each"),
-                    help="how the validation's free simulations move the DOFs not diagnosed "
-                         "(diagnose's validation_others; default: diagnose's)")
     ap.add_argument("--same-seeds", action="store_true",
                     help="seed each log as a run of every category and vehicle would (a run "
                          "of a few categories or one vehicle then diagnoses the same logs as "
@@ -1124,88 +1119,12 @@ def main(argv=None) -> int:
                          "files; partial runs' too; with --only-seeds and --modes, those rows) "
                          "instead of running; rows of runs before fresh33f scored in the "
                          "written model's units (benchmarks.written_units)")
-    ap.add_argument("--one-added-mass", action="store_true",
-                    help="diagnose with one_added_mass (whole-log: a DOF whose fit contradicts "
-                         "a diagnosed DOF's own added mass selected again)")
-    ap.add_argument("--drag-couplings", action="store_true", default=None,
-                    help="diagnose with drag_couplings (a moment DOF's calibration holds its "
-                         "drag couplings to the translations)")
-    ap.add_argument("--restoring-free", action="store_true", default=None,
-                    help="diagnose with restoring_free (the linear drag's test in surge and "
-                         "sway repeated with the buoyancy change free)")
-    ap.add_argument("--no-scale-choice-unforced", dest="scale_choice_unforced",
-                    action="store_false", default=True,
-                    help="diagnose with scale_choice_unforced=False (a scale and an "
-                         "added-mass release, both contenders of a step none passes, left "
-                         "undecided: the rule before named33d)")
-    ap.add_argument("--heldout-rise", default=None, choices=("tie", "diebold_mariano"),
-                    help="diagnose with heldout_rise ('diebold_mariano': a scale or a "
-                         "released coefficient refused for a held-out rise only when the "
-                         "Diebold-Mariano test of the window losses rejects)")
-    ap.add_argument("--linked-gains", nargs="?", const=True, default=None,
-                    choices=(True, "identified", "off"),
-                    help="diagnose with linked_gains (the thrusters' gains' contrasts within "
-                         "groups linked through the diagnosed DOFs they act in); "
-                         "'--linked-gains identified': linked only where the log identifies "
-                         "the groups' contrast; 'off': not linked (default: diagnose's)")
-    ap.add_argument("--retest-scales", action="store_true", default=None,
-                    help="diagnose with retest_scales (whole-log: a thrust scale or an "
-                         "added-mass release judged again beside the shared fits)")
-    ap.add_argument("--validation-choice", default=None, choices=("greedy", "best_visited"),
-                    help="diagnose with validation_choice ('best_visited': the validation's "
-                         "final model the best on the validation part of the prior and every "
-                         "set its elimination scored)")
-    ap.add_argument("--noise-with-bias", action="store_true", default=None,
-                    help="diagnose with noise_with_bias (the calibration's identifiability "
-                         "judged with the noise level fitted beside a free constant; "
-                         "diagnose's default)")
-    ap.add_argument("--no-noise-with-bias", dest="noise_with_bias", action="store_false",
-                    help="diagnose with noise_with_bias=False (the rule before adopt33h)")
-    ap.add_argument("--gains-beside-timing", action="store_true", default=None,
-                    help="diagnose with gains_beside_timing (the thrusters' gains fitted "
-                         "again beside the lag or delay the DOFs found, the DOFs diagnosed "
-                         "again on them)")
-    ap.add_argument("--dof-gains", dest="dof_gains", action="store_true", default=True,
-                    help="diagnose with dof_gains (one DOF: the thrusters' gains fitted in "
-                         "the DOF's balance, as whole-log fits them over its DOFs; diagnose's "
-                         "default since gains33c)")
-    ap.add_argument("--no-dof-gains", dest="dof_gains", action="store_false",
-                    help="diagnose with dof_gains=False (one DOF on the prior's thrust map)")
-    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=None,
-                    choices=(True, "joint", "test"), metavar="joint|test",
-                    help="diagnose with gains_beside_current (whole-log: the thrusters' gains "
-                         "fitted again beside the current the DOFs found; 'joint': with the "
-                         "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
-    ap.add_argument("--validation-horizon", default=None, metavar="SECONDS|correlation",
-                    help="diagnose with validation_horizon (the validation's segments [s], or "
-                         "'correlation': each DOF's velocity's integral time scale)")
-    ap.add_argument("--validation-judge", default=None,
-                    choices=("all", "own", "coupled"),
-                    help="diagnose with validation_judge ('own': a removal judged on the DOFs "
-                         "of the changes it removes; 'coupled': and on the other DOFs whose "
-                         "prior simulation has skill)")
-    ap.add_argument("--gains-validation", default=None,
-                    choices=("consecutive", "rolling", "rolling_test"),
-                    help="diagnose with gains_validation ('rolling': the thrusters' gains "
-                         "validated on 10-s segments restarted every 2 s by the changes' "
-                         "score, stripcoef.diagnose.gaingate)")
-    ap.add_argument("--validation-reference", default=None, choices=("trivial", "combination"),
-                    help="diagnose with validation_reference ('combination': in a DOF the "
-                         "prior does not predict, the skill veto's reference is the prior "
-                         "combined with the trivial predictors)")
-    ap.add_argument("--buoyancy-carry", action="store_true", default=None,
-                    help="diagnose with buoyancy_carry (heave's buoyancy offset written as one "
-                         "change of B, acting in every DOF, and carried whole-log)")
-    ap.add_argument("--gains-judge", default=None,
-                    choices=("prior", "written", "none", "written_all"),
-                    help="diagnose with gains_judge ('written': a significant one-DOF "
-                         "gain fit judged inside the written model after the selection; "
-                         "'written_all': a whole-log fit too)")
+    add_flags(ap)
     args = ap.parse_args(argv)
-    if args.linked_gains == "off":
-        args.linked_gains = False
-    if args.validation_horizon not in (None, "correlation"):
-        args.validation_horizon = float(args.validation_horizon)
+    options = given(args)       # every option left out: diagnose's default
+    validation_others = options.pop("validation_others", None)
+    one_added_mass = options.pop("one_added_mass", False)     # recorded in the rows
+    dof_gains = options.pop("dof_gains", True)
     seed = args.seed if args.seed is not None else int(np.random.SeedSequence().entropy % 10**6)
     cats = args.categories.split(",") if args.categories else run_categories()
     jobs = []
@@ -1238,27 +1157,8 @@ def main(argv=None) -> int:
                 c = every.index(cat) if args.same_seeds else c
                 jobs.append((vehicle, None if cat == "clean" else cat,
                              log_seed(seed, rep, v, c), args.duration, modes,
-                             args.validation_others, args.truth_maps, args.one_added_mass,
-                             args.dof_gains,
-                             {**{name: value for name, value in (
-                                 ("gains_beside_current", args.gains_beside_current),
-                                 ("drag_couplings", args.drag_couplings),
-                                 ("restoring_free", args.restoring_free),
-                                 ("validation_horizon", args.validation_horizon),
-                                 ("validation_judge", args.validation_judge),
-                                 ("gains_validation", args.gains_validation),
-                                 ("linked_gains", args.linked_gains),
-                                 ("heldout_rise", args.heldout_rise),
-                                 ("validation_reference", args.validation_reference),
-                                 ("gains_judge", args.gains_judge),
-                                 ("noise_with_bias", args.noise_with_bias),
-                                 ("buoyancy_carry", args.buoyancy_carry),
-                                 ("gains_beside_timing", args.gains_beside_timing),
-                                 ("retest_scales", args.retest_scales),
-                                 ("validation_choice", args.validation_choice))
-                                 if value is not None},
-                              **({} if args.scale_choice_unforced
-                                 else {"scale_choice_unforced": False})} or None))
+                             validation_others, args.truth_maps, one_added_mass, dof_gains,
+                             options or None))
     if args.only_seeds:
         keep = {int(x) for x in args.only_seeds.split(",")}
         jobs = [j for j in jobs if j[2] in keep]

@@ -4,7 +4,7 @@ benchmarks/data/real33h_trace.md).
 For real-style log K of :mod:`benchmarks.real_logs` (default 2, the BlueROV2-Heavy-like
 current log), seed S and a split (forward: ``diagnose(..., holdout=0.3)``; reverse: the last
 70 % diagnosed, the first 30 % held out, as :func:`benchmarks.real_logs.both_splits`), with
-the options of :data:`benchmarks.real_logs.OPTION_FLAGS`: the thrusters' gains' record, every
+the options of :mod:`benchmarks.diagnose_flags`: the thrusters' gains' record, every
 step named per DOF (kept or removed by the validation), the water current fitted beside the
 truth's, the effects written, the validation record (the prior's, all changes', the kept
 changes' errors [m/s or rad/s], what was removed and why, each set the elimination scored
@@ -27,7 +27,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 
 def main(argv=None) -> int:
-    from benchmarks.real_logs import OPTION_FLAGS, _options
+    from benchmarks.diagnose_flags import add_flags, given
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--log", type=int, default=2, help="real-style log (0..3)")
@@ -36,10 +36,9 @@ def main(argv=None) -> int:
     ap.add_argument("--split", default="forward", choices=("forward", "reverse"))
     ap.add_argument("--ablate", action="store_true",
                     help="also the written model taken apart (:func:`ablate`)")
-    for flag, key, kw in OPTION_FLAGS:
-        ap.add_argument(flag, dest=key, **kw)
+    add_flags(ap)
     args = ap.parse_args(argv)
-    options = _options(args)
+    options = given(args)
 
     from benchmarks.real_logs import HOLDOUT, fmt_record, traced_split
     from stripcoef.diagnose import diagnose

@@ -73,6 +73,8 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
+from benchmarks.diagnose_flags import add_flags, command_text, given  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "reference_tables" / "real_logs"
 #: The stored run that docs/validation.md shows (``validation/real_logs.py``).
@@ -328,12 +330,9 @@ def fmt_record(d) -> str:
 N_LOGS = len(EFFECTS) + 1
 
 
-def run_real_style(k: int, duration: float, seed: int,
-                   one_added_mass: bool = False, gains_beside_current: bool = False,
-                   gains_validation: str = "consecutive",
-                   gains_judge: str = "written", options=None) -> list[dict]:
+def run_real_style(k: int, duration: float, seed: int, options=None) -> list[dict]:
     """Rows of real-style log ``k``: written, read back, diagnosed on both splits (with
-    ``diagnose(..., one_added_mass=..., gains_beside_current=..., **options)``)."""
+    ``diagnose(..., **options)``, :mod:`benchmarks.diagnose_flags`)."""
     name, log, prior, widths, truth, oracle = real_style_log(k, duration, seed, oracle=True)
     with tempfile.TemporaryDirectory() as tmp:
         read, notes = read_back(tmp, write_ros_chunks(log, tmp, seed=seed + k))
@@ -344,11 +343,7 @@ def run_real_style(k: int, duration: float, seed: int,
           f"{chunks[0]} + {chunks[1]} chunk files; clock offset {offset:+.4f} s", flush=True)
     rows = [{"log": name, "kind": "real-style", "truth": truth, "rows": len(read),
              "rate_hz": round(read.meta["rate"], 3), "clock_offset_s": round(float(offset), 4),
-             **row} for row in both_splits(read, prior, widths, oracle,
-                                           one_added_mass=one_added_mass,
-                                           gains_beside_current=gains_beside_current,
-                                           gains_validation=gains_validation,
-                                           gains_judge=gains_judge, options=options)]
+             **row} for row in both_splits(read, prior, widths, oracle, options=options)]
     for row in rows:
         print("  " + ", ".join(f"{key}={row[key]}" for key in row), flush=True)
     return rows
@@ -372,13 +367,11 @@ def _written(model):
     return type(model).from_dict(model.to_dict())
 
 
-def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
-                gains_beside_current=False, gains_validation="consecutive",
-                gains_judge="written", options=None) -> list[dict]:
+def both_splits(log, prior, widths, oracle=None, *, options=None) -> list[dict]:
     """Held-out errors of both splits (module docstring): one row per split and DOF; with
     ``oracle`` (the truth's coefficients, :func:`truth_model`) its error on the same held-out
     part too, and whether it beats both trivial predictors there. ``options``: further
-    keyword arguments of :func:`stripcoef.diagnose.diagnose` (:data:`OPTION_FLAGS`)."""
+    keyword arguments of :func:`stripcoef.diagnose.diagnose` (:mod:`benchmarks.diagnose_flags`)."""
     from stripcoef.conventions import DOF
     from stripcoef.diagnose import diagnose
     from stripcoef.diagnose.heldout import compare, noise_growth, predictable, split
@@ -388,19 +381,13 @@ def both_splits(log, prior, widths, oracle=None, *, one_added_mass=False,
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = diagnose(log, prior, dof="all", holdout=HOLDOUT, time_limit=float("inf"),
-                       prior_widths=widths, one_added_mass=one_added_mass,
-                       gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation, gains_judge=gains_judge,
-                       **(options or {}))
+                       prior_widths=widths, **(options or {}))
     forward = (res, res.holdout["errors"], time.process_time() - c0)
     head, tail = split(log, 1.0 - HOLDOUT)           # head: the first 30 %, never fitted
     c0 = time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         rev = diagnose(tail, prior, dof="all", time_limit=float("inf"), prior_widths=widths,
-                       one_added_mass=one_added_mass,
-                       gains_beside_current=gains_beside_current,
-                       gains_validation=gains_validation, gains_judge=gains_judge,
                        **(options or {}))
         errors = compare(head, {"prior": prior, "calibrated": _written(rev.model)},
                          list(rev.diagnosed))
@@ -789,51 +776,6 @@ def verdict_counts(rows, column: str) -> dict:
     return out
 
 
-#: Further options of :func:`stripcoef.diagnose.diagnose` the held-out table can be run with:
-#: (flag, keyword, argparse keywords), as ``benchmarks.diagnose_independent`` takes them
-#: (issue 33, real33h: the six closed-loop options the lead measures as the base).
-OPTION_FLAGS = (
-    ("--validation-others", "validation_others",
-     {"choices": ("logged", "simulated", "each"), "default": None,
-      "help": "diagnose with validation_others"}),
-    ("--validation-horizon", "validation_horizon",
-     {"default": None, "metavar": "SECONDS|correlation",
-      "help": "diagnose with validation_horizon (seconds or 'correlation')"}),
-    ("--validation-judge", "validation_judge",
-     {"choices": ("all", "own", "coupled"), "default": None,
-      "help": "diagnose with validation_judge"}),
-    ("--validation-reference", "validation_reference",
-     {"choices": ("trivial", "combination"), "default": None,
-      "help": "diagnose with validation_reference"}),
-    ("--noise-with-bias", "noise_with_bias",
-     {"action": "store_true", "default": None, "help": "diagnose with noise_with_bias"}),
-    ("--no-noise-with-bias", "noise_with_bias",
-     {"action": "store_false", "default": None,
-      "help": "diagnose with noise_with_bias=False (the rule before adopt33h)"}),
-    ("--linked-gains", "linked_gains",
-     {"nargs": "?", "const": True, "default": None, "choices": (True, "identified", "off"),
-      "help": "diagnose with linked_gains ('identified': where the log identifies the "
-              "groups' contrast; 'off': not linked)"}),
-    ("--validation-choice", "validation_choice",
-     {"choices": ("greedy", "best_visited"), "default": None,
-      "help": "diagnose with validation_choice ('best_visited': the validation's final "
-              "model the best on the validation part of the prior, the kept set and every "
-              "set the elimination scored)"}),
-)
-
-
-def _options(args) -> dict:
-    """The :data:`OPTION_FLAGS` given on the command line, as keyword arguments."""
-    out = {}
-    for flag, key, _ in OPTION_FLAGS:
-        value = getattr(args, key)
-        if value is not None:           # an option left out is diagnose's default
-            if key == "validation_horizon" and value != "correlation":
-                value = float(value)
-            out[key] = False if (key == "linked_gains" and value == "off") else value
-    return out
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--duration", type=float, default=300.0, help="real-style log length [s]")
@@ -857,39 +799,12 @@ def main(argv=None) -> int:
                     help="instead of the held-out table: only the truth's coefficients on "
                          "the held-out parts of the BlueROV2-Heavy-like logs (no diagnosis), "
                          f"e.g. with --out {ORACLE}")
-    ap.add_argument("--one-added-mass", action="store_true",
-                    help="diagnose with one_added_mass (a DOF whose fit contradicts a "
-                         "diagnosed DOF's own added mass selected again)")
-    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
-                    choices=(True, "joint", "test"), metavar="joint|test",
-                    help="diagnose with gains_beside_current (the thrusters' gains fitted "
-                         "again beside the water current the DOFs found; 'joint': with the "
-                         "current free beside them; 'test': the gains and the current compared as two explanations, Vuong 1989)")
-    ap.add_argument("--gains-validation", choices=("consecutive", "rolling", "rolling_test"),
-                    default="consecutive",
-                    help="diagnose with gains_validation (the thrusters' gains validated on "
-                         "consecutive 10-s segments, or on 10-s segments restarted every 2 s "
-                         "by the changes' score: stripcoef.diagnose.gaingate)")
-    ap.add_argument("--gains-judge", choices=("written", "written_all", "prior"),
-                    default="written",
-                    help="diagnose with gains_judge ('written_all': the whole-log thrusters' "
-                         "gains judged inside the written model, the log diagnosed with and "
-                         "without them: stripcoef.diagnose.gainjudge)")
-    for flag, key, kw in OPTION_FLAGS:
-        ap.add_argument(flag, dest=key, **kw)
+    add_flags(ap)
     args = ap.parse_args(argv)
-    options = _options(args)
+    options = given(args)       # every option left out: diagnose's default
     command = "python -m benchmarks.real_logs " + " ".join(
         f"--{k} {v}" for k, v in (("duration", f"{args.duration:g}"), ("seed", args.seed))) + (
-        " --one-added-mass" if args.one_added_mass else "") + (
-        (" --gains-beside-current" + ("" if args.gains_beside_current is True
-                                       else f" {args.gains_beside_current}")
-         if args.gains_beside_current else "")) + (
-        f" --gains-validation {args.gains_validation}"
-        if args.gains_validation != "consecutive" else "") + (
-        f" --gains-judge {args.gains_judge}" if args.gains_judge != "written" else "") + "".join(
-        f" {flag}" + ("" if value is True else f" {value}")
-        for flag, key, _ in OPTION_FLAGS if (value := options.get(key)) is not None)
+        command_text(options))
     if args.attribution is not None or args.oracle_only or args.why is not None:
         if args.why is not None:
             rows = why(args.why, args.duration, args.seed)
@@ -917,22 +832,14 @@ def main(argv=None) -> int:
         with ProcessPoolExecutor(args.jobs) as pool:
             n = len(args.logs)
             for rows in pool.map(run_real_style, args.logs, [args.duration] * n,
-                                 [args.seed] * n, [args.one_added_mass] * n,
-                                 [args.gains_beside_current] * n,
-                                 [args.gains_validation] * n, [args.gains_judge] * n,
-                                 [options] * n):
+                                 [args.seed] * n, [options] * n):
                 out += rows
     else:
         for k in args.logs:
-            out += run_real_style(k, args.duration, args.seed, args.one_added_mass,
-                                  args.gains_beside_current, args.gains_validation,
-                                  args.gains_judge, options)
+            out += run_real_style(k, args.duration, args.seed, options)
     if args.mirror:
         for name, log, prior, widths, source in mirror_logs(args.mirror):
-            for row in both_splits(log, prior, widths, one_added_mass=args.one_added_mass,
-                                   gains_beside_current=args.gains_beside_current,
-                                   gains_validation=args.gains_validation,
-                                   gains_judge=args.gains_judge, options=options):
+            for row in both_splits(log, prior, widths, options=options):
                 out.append({"log": name, "kind": "real", "truth": source, "rows": len(log),
                             "rate_hz": round(log.meta["rate"], 3), "clock_offset_s": "",
                             **row})

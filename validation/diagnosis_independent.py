@@ -37,6 +37,9 @@ FRESH4 = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh_1795960446.m
 #: traced on it; the adoption and the six seeds pooled: ADOPTION
 SIXTH = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh_1795971241_adopted.md"
 ADOPTION = ROOT / "benchmarks" / "data" / "closed_loop_options_seed6.md"
+#: a seventh fresh seed, drawn at the start of stop 57 and run on 39ee787 with today's
+#: defaults before anything was traced on it
+SEVENTH = ROOT / "benchmarks" / "data" / "diagnose_independent_fresh_1795981337.md"
 
 
 def _pooled_table() -> str:
@@ -103,6 +106,16 @@ def section() -> str:
          "(`diagnose/stepwise.py`). The traces behind these rules: "
          "benchmarks/data/cross_mass_scale.md, benchmarks/data/spur33b_stepwise.md; the "
          "error cut's shortfall against the truth's own, benchmarks/data/cut33_trace.md."), "",
+        "### Today's defaults on a seventh, unseen seed", "",
+        "Drawn from the clock at the start of stop 57 and run on the code as it was "
+        "(main 39ee787, the defaults of stop 56) before anything was traced on it. On its "
+        "logs that name a current, and on the sixth seed's, the option "
+        "`gains_beside_current` (the thrusters' gains fitted again beside the current) was "
+        "then measured against a rule written before the result: it lifts the real-style "
+        "logs from 29 to 36 of 44 cells, but loses one log of named first on this seed (a "
+        "thrust-effectiveness step named before the current and removed by the validation), "
+        "so it stays an option (benchmarks/data/gains_beside_current_1795981337.md).", "",
+        SEVENTH.read_text().split("\n", 2)[2].strip(), "",
         "### Today's defaults on a sixth, unseen seed", "",
         "At stop 56 the six closed-loop validation options were adopted as the defaults "
         "(adopt33h: `validation_others=\"each\"`, the correlation horizon, "

@@ -260,7 +260,11 @@ class DiagnoseSettings:
         real-style logs (benchmarks/data/real33_trace.md, benchmarks/data/real33c_trace.md) and,
         ``True`` with the six closed-loop options and ``validation_choice="best_visited"``, on
         the independent benchmark's current, clean and tether logs only (real-style logs 29 -> 36
-        of 44, no criterion worse there: benchmarks/data/real33h_trace.md, section 5)
+        of 44, no criterion worse there: benchmarks/data/real33h_trace.md, section 5). Alone
+        beside the defaults (stop 57), by a rule written before the result: real-style logs
+        29 -> 36 of 44, but named first 80 -> 79 of 88 on an unseen seed (a thrust
+        effectiveness named before the current, then removed), so still off
+        (benchmarks/data/gains_beside_current_1795981337.md)
     dof_gains : bool
         One DOF: the thrusters' gains (:mod:`stripcoef.diagnose.gains`, their contrasts
         within each group of thrusters) fitted in the diagnosed DOF's balance alone, as a
