@@ -111,7 +111,8 @@ def test_the_lone_plate_is_the_box():
     assert abs(c["area"]) < 1e-9 and abs(c["volume"]) < 1e-9
 
 
-@pytest.mark.parametrize("seed", [1795971315, 1795948662, 1795919297, 1795939009, 1795960449])
+@pytest.mark.parametrize("seed", [1795971315, 1795948662, 1795919297, 1795939009, 1795960449,
+                                  1795981340])
 def test_the_stored_levels_refine_and_respect_the_mirror_plane(seed):
     """Each stored file (reference_tables/bem/graded_cad_frames_SEED.csv): per frame four or
     more levels, faces rising; the couplings the xOz plane forbids zero to rounding (below

@@ -66,7 +66,8 @@ DRAWS = (
      ("cad_levels_cad32h.csv",),
      "drawn 2026-11-29 16:55 UTC, run on main 81fb517 before it was traced (the rows as drawn; "
      "benchmarks/data/cad32h_trace.md)"),
-    (1795981340, "cad_plates_graded_1795981340.csv", ("graded_coarse_1795981340.csv",),
+    (1795981340, "cad_plates_graded_1795981340.csv",
+     ("graded_coarse_1795981340.csv", "graded_cad_frames_1795981340.csv"),
      ("cad_levels_1795981340.csv",),
      "drawn 2026-11-29 19:42 UTC, run on main 39ee787 before it was traced (the rows as "
      "drawn: 224/240 against the 3,000-face references, every miss a plate's or a shape's "
