@@ -7,7 +7,8 @@ the code of its day, with Capytaine's references) is counted here per term again
 resolved reference the seed has: the stored 3,000-face reference, or the edge-graded one of a
 thin plate's diagonal terms (``benchmarks.plate_graded``) and of a coarse cylinder's terms
 (``benchmarks.graded_polyhedra cylinders``) and of a low-polygon ellipsoid's terms
-(``benchmarks.graded_polyhedra coarse``), else the finer Capytaine levels of a traced shape in
+(``benchmarks.graded_polyhedra coarse``) and of a frame's terms (``benchmarks.graded_cad_frames``),
+else the finer Capytaine levels of a traced shape in
 the draw's own remesh family (``benchmarks.frame32d_reference``, four levels or more), else the
 stored 3,000-face one -- the order :func:`validation.cad_shapes.best_references` takes for seed
 1375923287 (resolution, not the smallest band) -- each Eca & Hoekstra's least squares over its
@@ -33,34 +34,40 @@ DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 SIGNIFICANT = 0.01
 TOL = 0.05
 #: the stored draws of 40 shapes after the first (whose references validation.cad_shapes reads):
-#: (seed, edge-graded plates' CSV or None, edge-graded coarse shapes' CSVs (cylinders, then
-#: low-polygon polyhedra), finer Capytaine levels' CSVs (``benchmarks.frame32d_reference``; the
+#: (seed, edge-graded plates' CSV or None, edge-graded shapes' CSVs (cylinders, then
+#: low-polygon polyhedra, then frames), finer Capytaine levels' CSVs (``benchmarks.frame32d_reference``; the
 #: rows of the seed), how drawn)
 #: Their model rows are re-run on the code of the latest stop that changed the panel method
 #: (``python -m benchmarks.cad_shapes --seed SEED --count 40 --references CSV --csv CSV``;
 #: the CSV's first line says so); the text says how each was drawn and what it scored then.
 DRAWS = (
-    (1795919297, "cad_plates_graded_1795919297.csv", ("graded_coarse_1795919297.csv",),
+    (1795919297, "cad_plates_graded_1795919297.csv",
+     ("graded_coarse_1795919297.csv", "graded_cad_frames_1795919297.csv"),
      ("cad_frames_levels_frame32d.csv",),
      "drawn 2026-11-28, run as two shards; as drawn 234/240 against the most resolved references"),
-    (1795939009, "cad_plates_graded_1795939009.csv", ("graded_coarse_1795939009.csv",), (),
+    (1795939009, "cad_plates_graded_1795939009.csv",
+     ("graded_coarse_1795939009.csv", "graded_cad_frames_1795939009.csv"), (),
      "drawn 2026-11-29 07:56 UTC, run on main 9064094 before it was traced; 36 of 40 shapes: "
      "frames 8, 12, 22 and 37 exceeded the BEM's cap then and were solved apart "
      "(benchmarks.frame32d_reference, reference_tables/bem/cad_frames_levels_frame32d.csv), "
      "frame 8 heave -5.9 %, roll -8.7 %, pitch -10.0 %, the other three within 5 % (as drawn; 214/216 against the most resolved references)"),
     (1795948662, "cad_plates_graded_1795948662.csv",
-     ("graded_coarse_1795948662.csv", "graded_cad_1795948662.csv"), ("cad_levels_fresh32f.csv",),
+     ("graded_coarse_1795948662.csv", "graded_cad_1795948662.csv",
+      "graded_cad_frames_1795948662.csv"), ("cad_levels_fresh32f.csv",),
      "drawn 2026-11-29 10:38 UTC, run on main 8dc1841 before it was traced (as drawn 237/240 against the most resolved references)"),
-    (1795960449, "cad_plates_graded_1795960449.csv", ("graded_coarse_1795960449.csv",),
+    (1795960449, "cad_plates_graded_1795960449.csv",
+     ("graded_coarse_1795960449.csv", "graded_cad_frames_1795960449.csv"),
      ("cad_levels_fresh55.csv",),
      "drawn 2026-11-29 13:55 UTC, run on main 30aebcf before it was traced (as drawn 239/240 "
      "against the most resolved references: fillet box 11's pitch -6.7 %, -5.7 % against four "
      "finer Capytaine levels, reference_tables/bem/cad_levels_fresh55.csv)"),
-    (1795971315, "cad_plates_graded_1795971315.csv", ("graded_extrusion_1795971315.csv",),
+    (1795971315, "cad_plates_graded_1795971315.csv",
+     ("graded_extrusion_1795971315.csv", "graded_cad_frames_1795971315.csv"),
      ("cad_levels_cad32h.csv",),
      "drawn 2026-11-29 16:55 UTC, run on main 81fb517 before it was traced (the rows as drawn; "
      "benchmarks/data/cad32h_trace.md)"),
-    (1795981340, "cad_plates_graded_1795981340.csv", ("graded_coarse_1795981340.csv",),
+    (1795981340, "cad_plates_graded_1795981340.csv",
+     ("graded_coarse_1795981340.csv", "graded_cad_frames_1795981340.csv"),
      ("cad_levels_1795981340.csv",),
      "drawn 2026-11-29 19:42 UTC, run on main 39ee787 before it was traced (the rows as "
      "drawn: 224/240 against the 3,000-face references, every miss a plate's or a shape's "
@@ -159,6 +166,7 @@ def best(rows: dict, plates=None, coarse=(), levels=(), seed=None) -> tuple[dict
                 for j in range(i, 6):
                     source[(k, i, j)] = ("graded " + ("cylinder" if "cylinder" in what
                                                       else "prism" if "extruded" in what
+                                                      else "frame" if "frame" in what
                                                       else "polyhedron")
                                          + f", its band {100 * u[i, j] / _scale(r, i, j):.1f} %")
     return refs, source
@@ -239,7 +247,9 @@ def section() -> str:
         "the draw scored as drawn; reference_tables/bem/README.md says which commit); "
         "the edge-graded references of its thin plates and coarse cylinders were computed "
         "after it (`benchmarks.plate_graded`, `benchmarks.graded_polyhedra cylinders`; a "
-        "low-polygon ellipsoid's by `benchmarks.graded_polyhedra coarse`), and four finer "
+        "low-polygon ellipsoid's by `benchmarks.graded_polyhedra coarse`, a frame's by "
+        "`benchmarks.graded_cad_frames`: panels graded towards the plates' edges, frame32i), "
+        "and four finer "
         "Capytaine levels of a traced shape in the draw's own remesh family "
         "(`benchmarks.frame32d_reference`, Eça & Hoekstra over them; used where no edge-graded "
         "reference is held). "
@@ -269,7 +279,7 @@ def section() -> str:
         misses += [f"- {seed}: {m}" for m in c["misses"]]
     lines += ["", "Terms beyond 5 % against the most resolved reference (the causes, traced "
               "term by term: benchmarks/data/fresh32f_trace.md, frame32d_trace.md, "
-              "cad32h_trace.md); each line ends with that reference's own band (Eça & "
+              "cad32h_trace.md, frame32i_trace.md); each line ends with that reference's own band (Eça & "
               "Hoekstra's U over its levels, or the stored reference's grid convergence index "
               "plus its Richardson step), so that a miss against a reference uncertain by more "
               "than 5 % reads as such:", ""]
