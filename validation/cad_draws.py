@@ -72,6 +72,12 @@ DRAWS = (
      "drawn 2026-11-29 19:42 UTC, run on main 39ee787 before it was traced (the rows as "
      "drawn: 224/240 against the 3,000-face references, every miss a plate's or a shape's "
      "whose uniform reference is not converged; 240/240 against the most resolved ones)"),
+    (1795985778, "cad_plates_graded_1795985778.csv",
+     ("graded_coarse_1795985778.csv", "graded_cad_1795985778.csv", "graded_extrusion_1795985778.csv"),
+     ("cad_levels_1795985778.csv",),
+     "drawn 2026-11-29 20:56 UTC, run on main 66fc399 before it was traced (as drawn: 229/240 "
+     "against the 3,000-face references; the low-polygon ellipsoid 15's yaw, 0.4 % of its "
+     "roll, has no converged reference: reference_tables/bem/README.md)"),
 )
 
 
