@@ -208,6 +208,14 @@ def holed_face(l: float, h: float, holes, H: float, verbose: bool = False):
     return pts, tri
 
 
+def _joined(pieces) -> tuple:
+    """One panel set (vertices [m], faces) of several (vertices, faces) pieces, each piece's
+    face indices shifted past the vertices before it."""
+    offsets = np.cumsum([0] + [len(v) for v, _ in pieces[:-1]])
+    return (np.vstack([v for v, _ in pieces]),
+            np.vstack([f + off for (_, f), off in zip(pieces, offsets)]))
+
+
 def _quads(tri):
     """Triangles as Capytaine's quadrilaterals (the third vertex repeated)."""
     return np.column_stack([tri, tri[:, 2]])
@@ -242,12 +250,7 @@ def half_frame(geo: dict, H: float, tube_min: int = None):
             s = np.linspace(0.0, seg, max(tube_min, int(np.ceil(2.0 * seg / H))) + 1)
             u = np.array([b[0] - a[0], 0.0, b[1] - a[1]]) / seg
             pieces.append(_grid(np.array([a[0], 0.0, a[1]]), e[1], u, ys, s))
-    verts, faces, off = [], [], 0
-    for v, f in pieces:
-        verts.append(v)
-        faces.append(f + off)
-        off += len(v)
-    return np.vstack(verts), np.vstack(faces)
+    return _joined(pieces)
 
 
 def whole(v, f):
@@ -372,12 +375,7 @@ def half_plate(geo: dict, H: float):
     pieces = [(np.column_stack([pts[:, 0], np.full(len(pts), t2), pts[:, 1]]), _quads(tri)),
               _grid(c + [l, 0, 0], e[1], e[2], Y, Z), _grid(c, e[2], e[1], Z, Y),
               _grid(c + [0, 0, h], e[0], e[1], X, Y), _grid(c, e[1], e[0], Y, X)]
-    verts, faces, off = [], [], 0
-    for v, f in pieces:
-        verts.append(v)
-        faces.append(f + off)
-        off += len(v)
-    return np.vstack(verts), np.vstack(faces)
+    return _joined(pieces)
 
 
 #: the lone plate's DOFs (x chord, y thickness, z span) in plate_graded's axes (x chord,
