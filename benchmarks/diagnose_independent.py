@@ -284,8 +284,7 @@ def _diagnosed(log, truth, prior, vehicle, category, seed, mode, dof_name, t_sim
                       "relative": c["relative"], "bands": c["bands"]}
                      for c in r.get("calibration_named") or ()]
                  for d, r in per.items() if r.get("calibration_named")}
-    if cal_named or any("calibration_named" in r for r in per.values()) \
-            or (options or {}).get("calibration_named"):
+    if cal_named or (options or {}).get("calibration_named"):
         row["calibration_named"] = cal_named
         own_cal = cal_named.get(dof_name) or []
         row["first_named"] = row["first"] or (own_cal[0]["effect"] if own_cal else None)

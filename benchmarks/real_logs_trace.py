@@ -41,6 +41,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 import numpy as np  # noqa: E402
 
 from benchmarks import real_logs as R  # noqa: E402
+from benchmarks.diagnose_flags import add_flags, given  # noqa: E402
 
 
 def variants(prior, model, per, fits, oracle) -> dict:
@@ -167,14 +168,10 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--current-in-prior", action="store_true",
                     help="what-if: diagnose again with the current found written into the prior")
-    ap.add_argument("--gains-beside-current", nargs="?", const=True, default=False,
-                    choices=(True, "joint", "test"), metavar="joint|test",
-                    help="diagnose with the option gains_beside_current ('joint': the "
-                         "current free beside the gains; 'test': the two compared, Vuong 1989)")
+    add_flags(ap)      # diagnose's options (e.g. --gains-beside-current), its defaults if left out
     args = ap.parse_args(argv)
     current_in_prior = args.current_in_prior
-    opts = ({"gains_beside_current": args.gains_beside_current}
-            if args.gains_beside_current else {})
+    opts = given(args)
     t = trace(args.log, args.split, args.duration, args.seed, current_in_prior, **opts)
     dofs = list(next(iter(t["errors"].values()))[1])
     print(f"{t['log']} ({t['truth']}), {t['split']}: validation {t['validation_s'][0]:.0f}-"

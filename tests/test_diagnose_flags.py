@@ -48,7 +48,7 @@ def test_values_are_diagnose_keywords():
 
 
 @pytest.mark.parametrize("module", ["benchmarks.diagnose_independent", "benchmarks.real_logs",
-                                    "benchmarks.real33h_trace"])
+                                    "benchmarks.real33h_trace", "benchmarks.real_logs_trace"])
 def test_the_benchmarks_take_the_registry(module, capsys):
     import importlib
     main = importlib.import_module(module).main

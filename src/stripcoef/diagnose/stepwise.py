@@ -223,9 +223,9 @@ def bias_beside_gains(trial: dict, dof: int) -> str:
         f"{value:.3g}, {z:.1f} standard deviations from zero (< {MIN_Z:g})")
 
 
-class WholeLogParts(ThrusterParts):
-    """:class:`~stripcoef.diagnose.thrusterparts.ThrusterParts` that also refuses a bias
-    outside the weight's DOFs that the thrusters' gains take (:func:`bias_beside_gains`)."""
+class _BiasBesideGains:
+    """The refusal of :func:`bias_beside_gains` added to a parts class's contradictions (one
+    rule, shared by :class:`WholeLogParts` and :class:`OneDofBiasParts`)."""
 
     def contradictions(self, trial: dict, dof: int) -> list:
         out = super().contradictions(trial, dof)
@@ -233,7 +233,12 @@ class WholeLogParts(ThrusterParts):
         return out + [why] if why else out
 
 
-class OneDofBiasParts(OneDofParts):
+class WholeLogParts(_BiasBesideGains, ThrusterParts):
+    """:class:`~stripcoef.diagnose.thrusterparts.ThrusterParts` that also refuses a bias
+    outside the weight's DOFs that the thrusters' gains take (:func:`bias_beside_gains`)."""
+
+
+class OneDofBiasParts(_BiasBesideGains, OneDofParts):
     """:class:`~stripcoef.diagnose.thrusterparts.OneDofParts` that also refuses a bias
     outside the weight's DOFs that the acting thrusters' gains take (:func:`bias_beside_gains`;
     option ``bias_gains_one_dof``, off by default). A one-DOF run fits the gains' contrasts
@@ -244,8 +249,3 @@ class OneDofBiasParts(OneDofParts):
     19.8 %: within TIE, the bias preferred for its signature), and removed by the validation;
     the whole-log run refuses it by this test and names the scale first
     (benchmarks/data/named33i_trace.md)."""
-
-    def contradictions(self, trial: dict, dof: int) -> list:
-        out = super().contradictions(trial, dof)
-        why = bias_beside_gains(trial, dof)
-        return out + [why] if why else out
