@@ -506,7 +506,7 @@ def compare(seed: int, path=None) -> list[str]:
     the reference the draw's count used before (``validation.cad_draws.DRAWS`` without this
     file) against the graded one; errors of the scale sqrt(A_ii A_jj).  Lines of a table,
     printed."""
-    from validation.cad_draws import BEM, DRAWS, SIGNIFICANT, TOL, best, model_rows
+    from validation.cad_draws import BEM, DRAWS, TOL, best, counted_terms, model_rows
     from validation.cad_shapes import fine_reference
     from validation.graded_bodies import read
 
@@ -526,22 +526,17 @@ def compare(seed: int, path=None) -> list[str]:
             continue
         ref, band, order = fine_reference(n, mats)
         x = rows[k]
-        d = np.sqrt(np.abs(np.diag(ref)))
-        for i in range(6):
-            for j in range(i, 6):
-                s = d[i] * d[j]
-                if i != j and abs(ref[i, j]) < SIGNIFICANT * s:
-                    continue
-                err = (x["model"][i, j] - ref[i, j]) / s
-                cov = abs(x["model"][i, j] - ref[i, j]) <= x["est"][i, j]
-                mark = "**" if abs(err) > TOL else ""
-                lines.append(
-                    f"| {k} | {DOFS[i]}" + ("" if i == j else f"-{DOFS[j]}")
-                    + f" | {n[0]}-{n[-1]} ({len(n)}) | {ref[i, j]:.5g} "
-                    f"({100 * band[i, j] / s:.1f} %, {order[i, j]:.2f}) | {mark}"
-                    f"{100 * err:+.1f} %{mark} ({100 * x['est'][i, j] / s:.1f} %) | "
-                    + ("yes" if cov else "no") + f" | {100 * (before[k][i, j] - ref[i, j]) / s:+.1f} % "
-                    f"({source.get((k, i, j), 'uniform 3,000-face')}) |")
+        for i, j, s in counted_terms(ref):
+            err = (x["model"][i, j] - ref[i, j]) / s
+            cov = abs(x["model"][i, j] - ref[i, j]) <= x["est"][i, j]
+            mark = "**" if abs(err) > TOL else ""
+            lines.append(
+                f"| {k} | {DOFS[i]}" + ("" if i == j else f"-{DOFS[j]}")
+                + f" | {n[0]}-{n[-1]} ({len(n)}) | {ref[i, j]:.5g} "
+                f"({100 * band[i, j] / s:.1f} %, {order[i, j]:.2f}) | {mark}"
+                f"{100 * err:+.1f} %{mark} ({100 * x['est'][i, j] / s:.1f} %) | "
+                + ("yes" if cov else "no") + f" | {100 * (before[k][i, j] - ref[i, j]) / s:+.1f} % "
+                f"({source.get((k, i, j), 'uniform 3,000-face')}) |")
     print("\n".join(lines))
     return lines
 

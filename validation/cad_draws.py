@@ -184,6 +184,17 @@ def _scale(ref, i: int, j: int) -> float:
     return float(np.sqrt(abs(ref[i, i] * ref[j, j])))
 
 
+def counted_terms(ref):
+    """``(i, j, scale)`` of each term of the 6x6 reference ``ref`` the draws count: every
+    diagonal term and each coupling (upper triangle) at least :data:`SIGNIFICANT` of its
+    scale sqrt(|A_ii A_jj|) [kg, kg m, kg m^2]."""
+    for i in range(6):
+        for j in range(i, 6):
+            scale = _scale(ref, i, j)
+            if i == j or abs(ref[i, j]) >= SIGNIFICANT * scale:
+                yield i, j, scale
+
+
 def counts(rows: dict, refs: dict, source: dict) -> dict:
     """The draw's counts against ``refs``: diagonal terms and couplings within 5 % of the
     scale, terms the band covers, shapes off by > 5 % and how many of them warned, the
@@ -193,36 +204,31 @@ def counts(rows: dict, refs: dict, source: dict) -> dict:
     misses = []
     for k in sorted(rows):
         x, ref = rows[k], refs[k]
-        d = np.sqrt(np.abs(np.diag(ref)))
-        scale = np.outer(d, d)
         off = False
-        for i in range(6):
-            for j in range(i, 6):
-                if i != j and abs(ref[i, j]) < SIGNIFICANT * scale[i, j]:
-                    continue
-                err = x["model"][i, j] - ref[i, j]
-                rel = err / scale[i, j]
-                inside = abs(rel) <= TOL
-                cov = abs(err) <= x["est"][i, j]
-                terms += 1
-                covered += cov
-                if i == j:
-                    diag += 1
-                    diag_in += inside
-                else:
-                    coup += 1
-                    coup_in += inside
-                if not inside:
-                    off = True
-                    misses.append(f"{k} {x['family']} {DOFS[i]}"
-                                  + ("" if i == j else f"-{DOFS[j]}")
-                                  + f" {100 * rel:+.1f} % (band {100 * x['est'][i, j] / scale[i, j]:.1f} %, "
-                                  + ("covered" if cov else "NOT covered") + ", "
-                                  + ("warned" if x["warned"] else "NOT warned") + "; "
-                                  + source.get((k, i, j), "uniform 3,000-face reference, "
-                                               "its GCI + step "
-                                               f"{100 * x['bem_band_rel'][i, j]:.1f} %")
-                                  + ")")
+        for i, j, scale in counted_terms(ref):
+            err = x["model"][i, j] - ref[i, j]
+            rel = err / scale
+            inside = abs(rel) <= TOL
+            cov = abs(err) <= x["est"][i, j]
+            terms += 1
+            covered += cov
+            if i == j:
+                diag += 1
+                diag_in += inside
+            else:
+                coup += 1
+                coup_in += inside
+            if not inside:
+                off = True
+                misses.append(f"{k} {x['family']} {DOFS[i]}"
+                              + ("" if i == j else f"-{DOFS[j]}")
+                              + f" {100 * rel:+.1f} % (band {100 * x['est'][i, j] / scale:.1f} %, "
+                              + ("covered" if cov else "NOT covered") + ", "
+                              + ("warned" if x["warned"] else "NOT warned") + "; "
+                              + source.get((k, i, j), "uniform 3,000-face reference, "
+                                           "its GCI + step "
+                                           f"{100 * x['bem_band_rel'][i, j]:.1f} %")
+                              + ")")
         off_shapes += off
         off_warned += off and x["warned"]
     cpu = np.array([x["cpu"] for x in rows.values()])
